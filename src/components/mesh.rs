@@ -1,0 +1,44 @@
+//! Triangle meshes (object prototypes) and their placed instances.
+
+use std::sync::Arc;
+
+use glam::{Vec2, Vec3};
+use hecs::Entity;
+
+/// An indexed triangle mesh in object space. Shared by every instance of the object.
+///
+/// Invariants established by the loader: every index is in range, no triangle is degenerate
+/// (zero area) and no position is NaN or infinite.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct TriMesh {
+    /// Vertex positions in object space.
+    pub positions: Vec<Vec3>,
+    /// Optional per-vertex shading normals (same length as `positions`).
+    pub normals: Option<Vec<Vec3>>,
+    /// Optional per-vertex texture coordinates (same length as `positions`).
+    pub uvs: Option<Vec<Vec2>>,
+    /// Triangles as vertex indices, counter-clockwise seen from the front.
+    pub triangles: Vec<[u32; 3]>,
+}
+
+impl TriMesh {
+    /// The three object-space vertices of triangle `i`.
+    pub fn triangle(&self, i: usize) -> [Vec3; 3] {
+        let [a, b, c] = self.triangles[i];
+        [
+            self.positions[a as usize],
+            self.positions[b as usize],
+            self.positions[c as usize],
+        ]
+    }
+}
+
+/// A placed copy of an object: the leaf of the resolved instance DAG. The entity also carries
+/// [`crate::components::WorldFromObject`] and [`crate::components::MaterialRef`].
+#[derive(Debug, Clone)]
+pub struct Instance {
+    /// The object entity (it carries an `Arc<TriMesh>` component).
+    pub object: Entity,
+    /// The mesh, shared with the object entity (cheap clone).
+    pub mesh: Arc<TriMesh>,
+}

@@ -1,0 +1,18 @@
+//! Component data carried by scene entities: plain data, one file per concept.
+//!
+//! The scene loader spawns these; stages read them. No behaviour lives here beyond small,
+//! pure helpers on the data itself.
+
+mod camera;
+mod light;
+mod material;
+mod mesh;
+mod naming;
+mod transform;
+
+pub use camera::{Camera, ImageFormat, OutputSpec, Pass, RenderCamera};
+pub use light::{Emitter, LightShape};
+pub use material::{Material, MaterialRef, Shader};
+pub use mesh::{Instance, TriMesh};
+pub use naming::{Name, SourceLink};
+pub use transform::WorldFromObject;

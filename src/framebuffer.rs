@@ -1,0 +1,36 @@
+//! Frame buffers: the per-pixel passes the `shade` stage produces.
+
+use glam::Vec3;
+
+/// Linear, row-major (row 0 at the top) pass buffers of one camera.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FrameBuffers {
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// Linear RGB radiance (W/(sr·m²)).
+    pub beauty: Vec<Vec3>,
+    /// Coverage in [0, 1].
+    pub alpha: Vec<f32>,
+    /// Distance along the camera ray to the first hit of the pixel centre; `f32::INFINITY`
+    /// where nothing was hit.
+    pub depth: Vec<f32>,
+    /// World-space shading normal at the pixel centre; zero where nothing was hit.
+    pub normal: Vec<Vec3>,
+}
+
+impl FrameBuffers {
+    /// Buffers of `width × height` pixels, all zero (depth infinite).
+    pub fn new(width: u32, height: u32) -> Self {
+        let n = width as usize * height as usize;
+        Self {
+            width,
+            height,
+            beauty: vec![Vec3::ZERO; n],
+            alpha: vec![0.0; n],
+            depth: vec![f32::INFINITY; n],
+            normal: vec![Vec3::ZERO; n],
+        }
+    }
+}

@@ -1,0 +1,1 @@
+//! Image writers (PNG, EXR), written atomically. STUB.

@@ -1,0 +1,21 @@
+//! stagelight: an offline renderer and texture baker in the lineage of mental ray.
+//!
+//! A scene (RON) loads into an ECS world (`hecs`) whose entities are cameras, lights,
+//! materials, objects and instances. Rendering is an ordered table of stages
+//! (`systems::STAGES`), each run only when the world holds something for it; the runner
+//! ([`schedule`]) records what ran, why, how long it took and how much work it did.
+
+pub mod accel;
+pub mod components;
+pub mod frame;
+pub mod framebuffer;
+pub mod geometry;
+pub mod image_io;
+pub mod sampling;
+pub mod scene;
+pub mod schedule;
+pub mod settings;
+pub mod shading;
+
+#[path = "../systems/mod.rs"]
+pub mod systems;

@@ -1,0 +1,1 @@
+//! Shading library. STUB.
