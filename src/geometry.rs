@@ -1,4 +1,114 @@
-//! World-space scene geometry produced by `build_accel`. STUB.
+//! World-space scene geometry, the output of the `build_accel` stage: every instance's
+//! triangles flattened into world space, the BVH over them, and what shading needs to turn a
+//! hit into a shading point (instance, material, interpolated normal and uv).
+//!
+//! Instancing is resolved by flattening: each leaf of the instance DAG contributes its
+//! triangles transformed into world space. Traversal stays one-level (no ray transforms, no
+//! nested stacks) and error bounds are computed on the world-space vertices the ray actually
+//! meets.
 
-/// Scene geometry.
-pub struct SceneGeometry;
+use std::sync::Arc;
+
+use glam::{Affine3A, Mat3, Vec2, Vec3};
+use hecs::Entity;
+
+use crate::accel::{Accel, Hit, SurfacePoint};
+use crate::components::{Material, TriMesh};
+
+/// One placed instance in the flattened scene.
+#[derive(Debug, Clone)]
+pub struct InstanceGeometry {
+    /// The instance entity.
+    pub entity: Entity,
+    /// The object's mesh (object space).
+    pub mesh: Arc<TriMesh>,
+    /// Object-to-world transform.
+    pub world_from_object: Affine3A,
+    /// Transform for normals: inverse transpose of the linear part.
+    pub normal_from_object: Mat3,
+    /// Index into [`SceneGeometry::materials`].
+    pub material: u32,
+    /// First world triangle of this instance; its triangles are contiguous.
+    pub first_triangle: u32,
+}
+
+/// Everything about a hit that shading needs.
+#[derive(Debug, Clone, Copy)]
+pub struct ShadingPoint {
+    /// Hit position with error bounds and unit geometric normal (world space).
+    pub surface: SurfacePoint,
+    /// Unit shading normal (interpolated vertex normals when the mesh has them), on the
+    /// same side as `surface.ng`.
+    pub normal: Vec3,
+    /// Texture coordinates (zero when the mesh has none).
+    pub uv: Vec2,
+    /// Index into [`SceneGeometry::materials`].
+    pub material: u32,
+    /// Index into [`SceneGeometry::instances`].
+    pub instance: u32,
+    /// World triangle index.
+    pub prim: u32,
+}
+
+/// World-space triangles, their BVH and shading attributes.
+pub struct SceneGeometry {
+    /// BVH over every world triangle.
+    pub accel: Accel,
+    /// Instance slot of each world triangle.
+    pub triangle_instance: Vec<u32>,
+    /// Placed instances, in entity order.
+    pub instances: Vec<InstanceGeometry>,
+    /// Materials referenced by instances.
+    pub materials: Vec<Material>,
+    /// Material entity of each entry of `materials`.
+    pub material_entities: Vec<Entity>,
+}
+
+impl SceneGeometry {
+    /// Number of world triangles.
+    pub fn triangle_count(&self) -> usize {
+        self.accel.len()
+    }
+
+    /// Instance and mesh-local triangle index of world triangle `prim`.
+    pub fn locate(&self, prim: u32) -> (&InstanceGeometry, usize) {
+        let inst = &self.instances[self.triangle_instance[prim as usize] as usize];
+        (inst, (prim - inst.first_triangle) as usize)
+    }
+
+    /// Material of world triangle `prim`.
+    pub fn material_of(&self, prim: u32) -> &Material {
+        let (inst, _) = self.locate(prim);
+        &self.materials[inst.material as usize]
+    }
+
+    /// Turns a hit into a shading point.
+    pub fn shading_point(&self, hit: &Hit) -> ShadingPoint {
+        let surface = self.accel.surface_point(hit);
+        let slot = self.triangle_instance[hit.prim as usize];
+        let inst = &self.instances[slot as usize];
+        let local = (hit.prim - inst.first_triangle) as usize;
+        let [i0, i1, i2] = inst.mesh.triangles[local].map(|i| i as usize);
+        let b0 = 1.0 - hit.b1 - hit.b2;
+        let mut normal = surface.ng;
+        if let Some(ns) = &inst.mesh.normals {
+            let n = inst.normal_from_object * (ns[i0] * b0 + ns[i1] * hit.b1 + ns[i2] * hit.b2);
+            let n = n.normalize_or_zero();
+            if n != Vec3::ZERO && n.is_finite() {
+                normal = if n.dot(surface.ng) < 0.0 { -n } else { n };
+            }
+        }
+        let uv = match &inst.mesh.uvs {
+            Some(uv) => uv[i0] * b0 + uv[i1] * hit.b1 + uv[i2] * hit.b2,
+            None => Vec2::ZERO,
+        };
+        ShadingPoint {
+            surface,
+            normal,
+            uv,
+            material: inst.material,
+            instance: slot,
+            prim: hit.prim,
+        }
+    }
+}

@@ -1,1 +1,53 @@
-//! The stage table. STUB.
+//! The stage table: the whole frame order in one place, each stage with its run condition.
+//!
+//! Stages still to come (geometry-shader expansion, tessellation, photons, lightmap baking,
+//! contours) take their slots here when they are built:
+//!
+//! | order | stage             | runs when the scene has                              |
+//! |-------|-------------------|------------------------------------------------------|
+//! | 1     | `expand_geometry` | procedural geometry components (not built yet)       |
+//! | 2     | `tessellate`      | parametric surfaces or displacement (not built yet)  |
+//! | 3     | `build_accel`     | instances with triangles and a consumer of rays       |
+//! | 4     | `trace_photons`   | caustics/GI on and a light (not built yet)            |
+//! | 5     | `bake_lightmaps`  | bake requests (not built yet)                         |
+//! | 6     | `shade`           | a render camera                                      |
+//! | 7     | `draw_contours`   | contour shaders (not built yet)                       |
+//! | 8     | `write_output`    | a shaded image and outputs to write                  |
+
+pub mod build_accel;
+pub mod shade;
+pub mod write_output;
+
+use hecs::World;
+
+use prelude::*;
+
+/// Imports shared by the stage modules.
+mod prelude {
+    pub use crate::frame::Frame;
+    pub use crate::schedule::{Decision, Stage, StageError, Work};
+}
+
+/// The ordered stage table.
+pub const STAGES: &[Stage] = &[
+    Stage {
+        name: "build_accel",
+        condition: build_accel::should_run,
+        run: build_accel::run,
+    },
+    Stage {
+        name: "shade",
+        condition: shade::should_run,
+        run: shade::run,
+    },
+    Stage {
+        name: "write_output",
+        condition: write_output::should_run,
+        run: write_output::run,
+    },
+];
+
+/// Runs the whole table over `world`; the report lands in `frame.report`.
+pub fn run(world: &mut World, frame: &mut Frame) -> Result<(), StageError> {
+    crate::schedule::run_stages(STAGES, world, frame)
+}

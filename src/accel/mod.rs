@@ -88,7 +88,11 @@ impl Accel {
 /// A ray leaving `from` in direction `dir`, offset so it cannot re-hit the surface.
 pub fn spawn_ray(from: &SurfacePoint, dir: Vec3) -> Ray {
     let o = from.p + from.ng * 1e-3 * from.ng.dot(dir).signum();
-    Ray { origin: o, dir, t_max: f32::INFINITY }
+    Ray {
+        origin: o,
+        dir,
+        t_max: f32::INFINITY,
+    }
 }
 
 /// A ray from `from` toward the point `target` (a light), ending just before it.
@@ -119,8 +123,21 @@ pub fn brute_force_intersect(triangles: &[[Vec3; 3]], ray: &Ray) -> Option<Hit> 
             continue;
         }
         if best.is_none_or(|h| t < h.t) {
-            best = Some(Hit { t, prim: i as u32, b1: u, b2: v });
+            best = Some(Hit {
+                t,
+                prim: i as u32,
+                b1: u,
+                b2: v,
+            });
         }
     }
     best
+}
+
+/// A ray from `from` to the surface point `to`, offsetting both ends.
+pub fn spawn_ray_to_surface(from: &SurfacePoint, to: &SurfacePoint) -> Ray {
+    spawn_ray_to(
+        from,
+        to.p + to.ng * 1e-3 * to.ng.dot(from.p - to.p).signum(),
+    )
 }

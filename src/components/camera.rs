@@ -58,3 +58,18 @@ pub struct Camera {
 /// Marks the camera named by the scene's `render` entry.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct RenderCamera;
+
+/// Camera-to-world transform of a camera at `eye` looking at `target` with `up` roughly up:
+/// the camera's −Z points at the target, +Y toward `up`. `None` when the directions are
+/// degenerate (eye = target, or `up` parallel to the view direction).
+pub fn world_from_look_at(eye: glam::Vec3, target: glam::Vec3, up: glam::Vec3) -> Option<Affine3A> {
+    let forward = (target - eye).try_normalize()?;
+    let right = forward.cross(up).try_normalize()?;
+    let true_up = right.cross(forward);
+    Some(Affine3A::from_cols(
+        right.into(),
+        true_up.into(),
+        (-forward).into(),
+        eye.into(),
+    ))
+}

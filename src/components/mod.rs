@@ -10,7 +10,7 @@ mod mesh;
 mod naming;
 mod transform;
 
-pub use camera::{Camera, ImageFormat, OutputSpec, Pass, RenderCamera};
+pub use camera::{world_from_look_at, Camera, ImageFormat, OutputSpec, Pass, RenderCamera};
 pub use light::{Emitter, LightShape};
 pub use material::{Material, MaterialRef, Shader};
 pub use mesh::{Instance, TriMesh};

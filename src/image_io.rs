@@ -1,1 +1,0 @@
-//! Image writers (PNG, EXR), written atomically. STUB.

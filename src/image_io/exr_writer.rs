@@ -1,0 +1,47 @@
+//! OpenEXR encoding: linear f32 channels for every requested pass (`R G B A`, `Z`,
+//! `N.X N.Y N.Z`), one layer, lossless compression.
+
+use exr::prelude::*;
+
+use crate::components::Pass;
+use crate::framebuffer::FrameBuffers;
+
+/// Encodes the requested passes into an EXR file in memory.
+pub fn encode_exr(fb: &FrameBuffers, passes: &[Pass]) -> std::result::Result<Vec<u8>, String> {
+    let mut channels: SmallVec<[AnyChannel<FlatSamples>; 4]> = SmallVec::new();
+    let mut add = |name: &str, values: Vec<f32>| {
+        channels.push(AnyChannel::new(name, FlatSamples::F32(values)));
+    };
+    let beauty = passes.contains(&Pass::Beauty);
+    if beauty {
+        add("R", fb.beauty.iter().map(|c| c.x).collect());
+        add("G", fb.beauty.iter().map(|c| c.y).collect());
+        add("B", fb.beauty.iter().map(|c| c.z).collect());
+    }
+    if beauty || passes.contains(&Pass::Alpha) {
+        add("A", fb.alpha.clone());
+    }
+    if passes.contains(&Pass::Depth) {
+        add("Z", fb.depth.clone());
+    }
+    if passes.contains(&Pass::Normal) {
+        add("N.X", fb.normal.iter().map(|n| n.x).collect());
+        add("N.Y", fb.normal.iter().map(|n| n.y).collect());
+        add("N.Z", fb.normal.iter().map(|n| n.z).collect());
+    }
+    let size = (fb.width as usize, fb.height as usize);
+    let layer = Layer::new(
+        size,
+        LayerAttributes::default(),
+        Encoding::SMALL_LOSSLESS,
+        AnyChannels::sort(channels),
+    );
+    let image = Image::from_layer(layer);
+    let mut cursor = std::io::Cursor::new(Vec::new());
+    image
+        .write()
+        .non_parallel()
+        .to_buffered(&mut cursor)
+        .map_err(|e| e.to_string())?;
+    Ok(cursor.into_inner())
+}
