@@ -1,0 +1,169 @@
+//! The command line end to end: exit codes, outputs, overrides, reports, determinism across
+//! thread counts, and refusal of bad scenes without partial output.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn bin() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_stagelight"))
+}
+
+fn asset(name: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("assets/scenes")
+        .join(name)
+}
+
+fn scratch(test: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("stagelight-cli-{test}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn run(cmd: &mut Command) -> Output {
+    cmd.output().expect("run stagelight")
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+#[test]
+fn render_writes_the_requested_png() {
+    let dir = scratch("png");
+    let out = dir.join("plane.png");
+    let o = run(bin()
+        .args(["render"])
+        .arg(asset("test_plane.ron"))
+        .arg("-o")
+        .arg(&out)
+        .args(["--spp", "1"]));
+    assert!(o.status.success(), "{}", stderr(&o));
+    let img = image::open(&out).unwrap();
+    assert_eq!((img.width(), img.height()), (508, 380));
+    // The plane faces the light at the camera: the centre is lit, a corner (background) black.
+    let rgb = img.to_rgb8();
+    assert!(rgb.get_pixel(254, 190)[0] > 100);
+    assert_eq!(rgb.get_pixel(0, 0)[0], 0);
+}
+
+#[test]
+fn exr_is_byte_identical_at_one_and_two_threads() {
+    let dir = scratch("threads");
+    let mut files = Vec::new();
+    for threads in ["1", "2"] {
+        let out = dir.join(format!("cornell_{threads}.exr"));
+        let o = run(bin()
+            .args(["render"])
+            .arg(asset("cornell_box.ron"))
+            .arg("-o")
+            .arg(&out)
+            .args(["--spp", "2", "--threads", threads]));
+        assert!(o.status.success(), "{}", stderr(&o));
+        files.push(std::fs::read(&out).unwrap());
+    }
+    assert!(
+        files[0] == files[1],
+        "EXR differs between --threads 1 and --threads 2"
+    );
+}
+
+#[test]
+fn stats_json_lists_every_stage_with_its_reason() {
+    let dir = scratch("stats");
+    let json = dir.join("stats.json");
+    let o = run(bin()
+        .args(["render"])
+        .arg(asset("test_plane.ron"))
+        .arg("-o")
+        .arg(dir.join("p.png"))
+        .args(["--spp", "1", "--stats"])
+        .arg("--stats-json")
+        .arg(&json));
+    assert!(o.status.success(), "{}", stderr(&o));
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        stdout.contains("build_accel") && stdout.contains("write_output"),
+        "{stdout}"
+    );
+    let v: serde_json::Value = serde_json::from_slice(&std::fs::read(&json).unwrap()).unwrap();
+    let stages = v["stages"].as_array().unwrap();
+    let names: Vec<&str> = stages
+        .iter()
+        .map(|s| s["stage"].as_str().unwrap())
+        .collect();
+    assert_eq!(names, ["build_accel", "shade", "write_output"]);
+    for s in stages {
+        for key in ["stage", "ran", "reason", "seconds", "items"] {
+            assert!(s.get(key).is_some(), "missing {key} in {s}");
+        }
+        assert_eq!(s["ran"], true);
+    }
+    assert_eq!(stages[0]["items"], 2);
+}
+
+#[test]
+fn check_accepts_every_example() {
+    for scene in ["test_plane.ron", "cornell_box.ron", "default_surface.ron"] {
+        let o = run(bin().arg("check").arg(asset(scene)));
+        assert!(o.status.success(), "{scene}: {}", stderr(&o));
+    }
+}
+
+fn write(path: &Path, text: &str) {
+    std::fs::write(path, text).unwrap();
+}
+
+#[test]
+fn bad_scene_exits_1_with_location_and_writes_nothing() {
+    let dir = scratch("bad");
+    let scene = dir.join("bad.ron");
+    let out = dir.join("never.png");
+    write(
+        &scene,
+        r#"Scene(
+    cameras: [(name: "cam", fov_y: 40.0, resolution: (8, 8),
+               placement: LookAt(eye: (0, 0, 5), target: (0, 0, 0), up: (0, 1, 0)),
+               outputs: [(file: "never.png")])],
+    materials: [(name: "chrome", shader: Lambert(albedo: (0.5, 0.5, 0.5)))],
+    objects: [(name: "quad", mesh: Inline(vertices: [(0, 0, 0), (1, 0, 0), (0, 1, 0)], polygons: [[0, 1, 2]]), material: "chrom")],
+    instances: [(name: "q", of: "quad")],
+    groups: [(name: "world", members: ["q"])],
+    render: (root: "world", camera: "cam"),
+)
+"#,
+    );
+    let o = run(bin().arg("render").arg(&scene).arg("-o").arg(&out));
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let err = stderr(&o);
+    assert!(err.contains("bad.ron:5:"), "{err}");
+    assert!(err.contains("chrom"), "{err}");
+    assert!(err.contains("did you mean \"chrome\""), "{err}");
+    assert!(!out.exists());
+    let o = run(bin().arg("check").arg(&scene));
+    assert_eq!(o.status.code(), Some(1));
+}
+
+#[test]
+fn usage_errors_exit_2() {
+    let o = run(bin().args(["render", "--no-such-flag"]));
+    assert_eq!(o.status.code(), Some(2));
+    let o = run(bin()
+        .arg("render")
+        .arg(asset("test_plane.ron"))
+        .args(["-o", "image.bmp"]));
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains(".png or .exr"));
+    let o = run(bin()
+        .args(["render", "--spp", "0"])
+        .arg(asset("test_plane.ron")));
+    assert_eq!(o.status.code(), Some(2));
+}
+
+#[test]
+fn missing_scene_file_is_a_scene_error() {
+    let o = run(bin().args(["check", "/definitely/not/here.ron"]));
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("here.ron"));
+}
