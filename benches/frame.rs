@@ -1,0 +1,57 @@
+//! Whole-frame benchmarks: the Cornell box at 256×256 with 16 spp through every stage but
+//! output, plus the `shade` stage alone (shaded samples per second).
+
+use std::path::PathBuf;
+
+use criterion::{criterion_group, criterion_main, Criterion, Throughput};
+use stagelight::frame::Frame;
+use stagelight::scene::load_scene;
+
+fn cornell() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("assets/scenes/cornell_box.ron")
+}
+
+fn render_once(spp: u32) -> Frame {
+    let mut scene = load_scene(&cornell()).expect("cornell box loads");
+    let mut settings = scene.settings.clone();
+    settings.spp = spp;
+    let mut frame = Frame::new(settings);
+    let stages: Vec<_> = stagelight::systems::STAGES
+        .iter()
+        .copied()
+        .filter(|s| s.name != "write_output")
+        .collect();
+    stagelight::schedule::run_stages(&stages, &mut scene.world, &mut frame).expect("render");
+    frame
+}
+
+fn whole_frame(c: &mut Criterion) {
+    let mut group = c.benchmark_group("frame");
+    group.sample_size(10);
+    group.throughput(Throughput::Elements(256 * 256 * 16));
+    group.bench_function("cornell_256x256_16spp", |b| b.iter(|| render_once(16)));
+    group.finish();
+}
+
+fn shade_only(c: &mut Criterion) {
+    let mut group = c.benchmark_group("shade");
+    group.sample_size(10);
+    let mut scene = load_scene(&cornell()).expect("cornell box loads");
+    let mut frame = Frame::new(scene.settings.clone());
+    frame.settings.spp = 4;
+    (stagelight::systems::STAGES[0].run)(&mut scene.world, &mut frame).expect("build");
+    group.throughput(Throughput::Elements(256 * 256 * 4));
+    group.bench_function("cornell_direct_4spp", |b| {
+        b.iter(|| {
+            let shade = stagelight::systems::STAGES
+                .iter()
+                .find(|s| s.name == "shade")
+                .expect("shade stage");
+            (shade.run)(&mut scene.world, &mut frame).expect("shade");
+        })
+    });
+    group.finish();
+}
+
+criterion_group!(benches, whole_frame, shade_only);
+criterion_main!(benches);
