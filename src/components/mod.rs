@@ -16,3 +16,9 @@ pub use material::{Material, MaterialRef, Shader};
 pub use mesh::{Instance, TriMesh};
 pub use naming::{Name, SourceLink};
 pub use transform::WorldFromObject;
+
+mod bake;
+pub use bake::{
+    BakeFormat, BakeKind, BakeRequest, BakeResolution, BakeTarget, LightmapStore, NormalSpace,
+    UvSource,
+};

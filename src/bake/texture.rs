@@ -1,0 +1,105 @@
+//! Baked textures: a float RGB image with a validity mask, and its encodings (EXR f32,
+//! PNG 8/16-bit).
+
+use exr::prelude::*;
+use glam::Vec3;
+
+use crate::image_io::srgb;
+
+/// A baked texture: linear RGB per texel (row 0 at the top) and whether each texel holds a
+/// baked (or dilated) value.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TexelImage {
+    /// Width in texels.
+    pub width: u32,
+    /// Height in texels.
+    pub height: u32,
+    /// Values.
+    pub texels: Vec<Vec3>,
+    /// True where `texels` holds a value.
+    pub valid: Vec<bool>,
+}
+
+impl TexelImage {
+    /// An empty (all invalid, zero) image.
+    pub fn new(width: u32, height: u32) -> Self {
+        let n = width as usize * height as usize;
+        Self {
+            width,
+            height,
+            texels: vec![Vec3::ZERO; n],
+            valid: vec![false; n],
+        }
+    }
+
+    /// Encodes as linear f32 RGB EXR.
+    pub fn encode_exr(&self) -> std::result::Result<Vec<u8>, String> {
+        let channels: SmallVec<[AnyChannel<FlatSamples>; 4]> = [
+            ("R", 0usize),
+            ("G", 1),
+            ("B", 2),
+        ]
+        .into_iter()
+        .map(|(name, c)| AnyChannel::new(name, FlatSamples::F32(self.texels.iter().map(|t| t[c]).collect())))
+        .collect();
+        let layer = Layer::new(
+            (self.width as usize, self.height as usize),
+            LayerAttributes::default(),
+            Encoding::SMALL_LOSSLESS,
+            AnyChannels::sort(channels),
+        );
+        let mut cursor = std::io::Cursor::new(Vec::new());
+        Image::from_layer(layer)
+            .write()
+            .non_parallel()
+            .to_buffered(&mut cursor)
+            .map_err(|e| e.to_string())?;
+        Ok(cursor.into_inner())
+    }
+
+    /// Encodes as PNG RGB, 8 or 16 bits; `srgb` applies the sRGB curve (colour data),
+    /// otherwise values are stored linearly (clamped to [0, 1]).
+    pub fn encode_png(&self, sixteen_bit: bool, srgb_encode: bool) -> std::result::Result<Vec<u8>, String> {
+        let encode = |v: f32| -> f32 {
+            if srgb_encode {
+                srgb::encode(v)
+            } else if v.is_nan() {
+                0.0
+            } else {
+                v.clamp(0.0, 1.0)
+            }
+        };
+        let mut out = Vec::new();
+        let encoder = image::codecs::png::PngEncoder::new(&mut out);
+        if sixteen_bit {
+            let mut data = Vec::with_capacity(self.texels.len() * 6);
+            for t in &self.texels {
+                for c in 0..3 {
+                    let v = (encode(t[c]) * 65535.0 + 0.5) as u16;
+                    data.extend_from_slice(&v.to_be_bytes());
+                }
+            }
+            image::ImageEncoder::write_image(encoder, &data, self.width, self.height, image::ExtendedColorType::Rgb16)
+                .map_err(|e| e.to_string())?;
+        } else {
+            let data: Vec<u8> = self
+                .texels
+                .iter()
+                .flat_map(|t| [0, 1, 2].map(|c| (encode(t[c]) * 255.0 + 0.5) as u8))
+                .collect();
+            image::ImageEncoder::write_image(encoder, &data, self.width, self.height, image::ExtendedColorType::Rgb8)
+                .map_err(|e| e.to_string())?;
+        }
+        Ok(out)
+    }
+
+    /// The validity mask as an 8-bit grey PNG (255 valid, 0 empty).
+    pub fn encode_mask_png(&self) -> std::result::Result<Vec<u8>, String> {
+        let data: Vec<u8> = self.valid.iter().map(|&v| if v { 255 } else { 0 }).collect();
+        let mut out = Vec::new();
+        let encoder = image::codecs::png::PngEncoder::new(&mut out);
+        image::ImageEncoder::write_image(encoder, &data, self.width, self.height, image::ExtendedColorType::L8)
+            .map_err(|e| e.to_string())?;
+        Ok(out)
+    }
+}
