@@ -19,11 +19,17 @@ pub struct Decision {
 impl Decision {
     /// The stage runs because of `reason`.
     pub fn run(reason: impl Into<String>) -> Self {
-        Self { run: true, reason: reason.into() }
+        Self {
+            run: true,
+            reason: reason.into(),
+        }
     }
     /// The stage is skipped because of `reason`.
     pub fn skip(reason: impl Into<String>) -> Self {
-        Self { run: false, reason: reason.into() }
+        Self {
+            run: false,
+            reason: reason.into(),
+        }
     }
 }
 
@@ -140,7 +146,11 @@ impl RunReport {
 ///
 /// A stage whose condition says no is recorded as skipped and leaves its outputs `None`.
 /// The first failing stage stops the run.
-pub fn run_stages(stages: &[Stage], world: &mut World, frame: &mut Frame) -> Result<(), StageError> {
+pub fn run_stages(
+    stages: &[Stage],
+    world: &mut World,
+    frame: &mut Frame,
+) -> Result<(), StageError> {
     let start = Instant::now();
     frame.report.threads = rayon::current_num_threads();
     frame.report.stages.clear();
@@ -162,7 +172,11 @@ pub fn run_stages(stages: &[Stage], world: &mut World, frame: &mut Frame) -> Res
         let t0 = Instant::now();
         let work = (stage.run)(world, frame)?;
         let seconds = t0.elapsed().as_secs_f64();
-        let rate = if seconds > 0.0 { work.items as f64 / seconds } else { 0.0 };
+        let rate = if seconds > 0.0 {
+            work.items as f64 / seconds
+        } else {
+            0.0
+        };
         frame.report.stages.push(StageReport {
             stage: stage.name,
             ran: true,

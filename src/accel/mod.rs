@@ -88,7 +88,11 @@ impl Accel {
 /// A ray leaving `from` in direction `dir`, offset so it cannot re-hit the surface.
 pub fn spawn_ray(from: &SurfacePoint, dir: Vec3) -> Ray {
     let o = from.p + from.ng * 1e-3 * from.ng.dot(dir).signum();
-    Ray { origin: o, dir, t_max: f32::INFINITY }
+    Ray {
+        origin: o,
+        dir,
+        t_max: f32::INFINITY,
+    }
 }
 
 /// A ray from `from` toward the point `target` (a light), ending just before it.
@@ -119,7 +123,12 @@ pub fn brute_force_intersect(triangles: &[[Vec3; 3]], ray: &Ray) -> Option<Hit> 
             continue;
         }
         if best.is_none_or(|h| t < h.t) {
-            best = Some(Hit { t, prim: i as u32, b1: u, b2: v });
+            best = Some(Hit {
+                t,
+                prim: i as u32,
+                b1: u,
+                b2: v,
+            });
         }
     }
     best

@@ -230,13 +230,7 @@ pub fn load_obj(path: &Path) -> Result<BuiltMesh, ObjError> {
 
 /// Parses OBJ text (see [`load_obj`]).
 pub fn parse_obj(bytes: &[u8]) -> Result<BuiltMesh, ObjError> {
-    let options = tobj::LoadOptions {
-        single_index: true,
-        triangulate: true,
-        ignore_points: true,
-        ignore_lines: true,
-        ..Default::default()
-    };
+    let options = obj_options();
     let mut reader = LineCounter {
         inner: bytes,
         newlines: 0,
@@ -311,6 +305,19 @@ pub fn parse_obj(bytes: &[u8]) -> Result<BuiltMesh, ObjError> {
         uvs = None;
     }
     Ok(finish(positions, normals, uvs, triangles))
+}
+
+#[allow(
+    clippy::field_reassign_with_default,
+    reason = "the struct gains fields with tobj features; a literal would not compile then"
+)]
+fn obj_options() -> tobj::LoadOptions {
+    let mut options = tobj::LoadOptions::default();
+    options.single_index = true;
+    options.triangulate = true;
+    options.ignore_points = true;
+    options.ignore_lines = true;
+    options
 }
 
 /// The first `f` statement with an out-of-range `v`, `vt` or `vn` index.
