@@ -245,6 +245,18 @@ fn ron_message(code: &RonError) -> (String, Option<String>) {
             (format!("expected {expected} but found {found}"), None)
         }
         RonError::Message(text) => (text.clone(), None),
+        RonError::ExpectedComma => (
+            "expected comma".into(),
+            Some("separate fields and list items with `,`".into()),
+        ),
+        RonError::Eof => (
+            "unexpected end of file".into(),
+            Some("a `(` or `[` is not closed".into()),
+        ),
+        RonError::TrailingCharacters => (
+            "unexpected text after the scene".into(),
+            Some("a file holds exactly one `Scene(...)`; check for an extra `)`".into()),
+        ),
         other => (lowercase_first(&other.to_string()), None),
     }
 }

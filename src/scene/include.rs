@@ -10,6 +10,8 @@ use std::fs;
 use std::io;
 use std::path::{Path, PathBuf};
 
+use ron::error::Error as RonError;
+
 use super::desc::{self, SceneDesc};
 use super::diagnostics::{from_ron, Diagnostic, SourceFile, Sources};
 use super::spans::{Pos, SpanIndex};
@@ -93,6 +95,36 @@ fn read_text(path: &Path) -> Result<String, String> {
     })
 }
 
+/// The first non-whitespace position at or after `line:column` (ron reports some errors
+/// at the blank before the offending value).
+fn skip_whitespace(text: &str, line: usize, column: usize) -> (usize, usize) {
+    let Some(start) = text.split_inclusive('\n').nth(line.saturating_sub(1)) else {
+        return (line, column);
+    };
+    let offset = text
+        .split_inclusive('\n')
+        .take(line.saturating_sub(1))
+        .map(str::len)
+        .sum::<usize>();
+    let from = start
+        .char_indices()
+        .nth(column.saturating_sub(1))
+        .map_or(start.len(), |(i, _)| i);
+    let (mut line, mut column) = (line, column);
+    for c in text[offset + from..].chars() {
+        if !c.is_whitespace() {
+            return (line, column);
+        }
+        if c == '\n' {
+            line += 1;
+            column = 1;
+        } else {
+            column += 1;
+        }
+    }
+    (line, column)
+}
+
 impl Loader {
     fn register(&mut self, path: PathBuf, index: SpanIndex, scene: Option<SceneDesc>) -> usize {
         self.out.sources.files.push(SourceFile { path, index });
@@ -103,16 +135,22 @@ impl Loader {
     fn parse_file(&mut self, path: PathBuf, key: PathBuf, text: String) {
         self.seen.insert(key.clone());
         let parsed = desc::parse(&text);
-        let index = if parsed.is_ok() {
-            SpanIndex::new(&text)
-        } else {
-            SpanIndex::default()
-        };
-        let file = self.register(path.clone(), index, None);
+        let index = SpanIndex::new(&text);
         let scene = match parsed {
             Ok(scene) => scene,
             Err(err) => {
-                let d = from_ron(&path, &err);
+                let mut d = from_ron(&path, &err);
+                (d.line, d.column) = skip_whitespace(&text, d.line, d.column);
+                if let RonError::MissingStructField { .. } = err.code {
+                    let close = Pos {
+                        line: d.line,
+                        column: d.column,
+                    };
+                    if let Some(open) = index.opening_of(close) {
+                        (d.line, d.column) = (open.line, open.column);
+                    }
+                }
+                let file = self.register(path.clone(), index, None);
                 let pos = Pos {
                     line: d.line,
                     column: d.column,
@@ -121,6 +159,7 @@ impl Loader {
                 return;
             }
         };
+        let file = self.register(path.clone(), index, None);
         self.stack.push((key, path.clone()));
         let dir = path.parent().unwrap_or(Path::new("")).to_path_buf();
         for (i, include) in scene.include.iter().enumerate() {

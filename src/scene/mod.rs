@@ -120,10 +120,10 @@ fn load(path: &Path, text: Option<&str>) -> Result<LoadedScene, SceneErrors> {
         }
     }
     let parts = spawn::Parts {
-        cameras: cameras.into_iter().flatten().collect(),
-        render_camera: resolved.camera.unwrap_or(usize::MAX),
-        lights: lights.into_iter().flatten().collect(),
-        materials: materials.into_iter().flatten().collect(),
+        cameras,
+        render_camera: resolved.camera,
+        lights,
+        materials,
         meshes: built
             .into_iter()
             .map(|b| b.map(|b| Arc::new(b.mesh)))

@@ -37,6 +37,8 @@ struct Node {
     fields: Vec<(String, Node)>,
     /// Items of a list, tuple or newtype variant.
     items: Vec<Node>,
+    /// Position of the closing bracket, if the value has one.
+    end: Option<Pos>,
 }
 
 /// Positions of every value in one RON text.
@@ -75,6 +77,20 @@ impl SpanIndex {
             }
         }
         node.pos
+    }
+
+    /// Start of the bracketed value whose closing bracket is at `close` (`ron` reports a
+    /// missing field at the closing parenthesis; the opening one reads better).
+    pub fn opening_of(&self, close: Pos) -> Option<Pos> {
+        let mut todo: Vec<&Node> = self.root.iter().collect();
+        while let Some(node) = todo.pop() {
+            if node.end == Some(close) {
+                return Some(node.pos);
+            }
+            todo.extend(node.items.iter());
+            todo.extend(node.fields.iter().map(|(_, v)| v));
+        }
+        None
     }
 
     /// Position of the value at `path`, only if it is written in the text.
@@ -251,6 +267,13 @@ impl Parser {
         }
     }
 
+    /// Consumes the closing bracket `close` if it is next, returning where it was.
+    fn close(&mut self, close: char) -> Option<Pos> {
+        self.skip_ws();
+        let pos = self.pos();
+        self.eat(close).then_some(pos)
+    }
+
     fn eat(&mut self, c: char) -> bool {
         self.skip_ws();
         if self.peek() == Some(c) {
@@ -329,7 +352,8 @@ impl Parser {
     /// Items or fields up to `close`.
     fn contents(&mut self, node: &mut Node, close: char, depth: usize) {
         loop {
-            if self.eat(close) {
+            if let Some(end) = self.close(close) {
+                node.end = Some(end);
                 return;
             }
             self.skip_ws();
@@ -344,7 +368,7 @@ impl Parser {
                         None => return,
                     }
                     if !self.eat(',') {
-                        self.eat(close);
+                        node.end = self.close(close);
                         return;
                     }
                     continue;
@@ -356,7 +380,7 @@ impl Parser {
                 None => return,
             }
             if !self.eat(',') {
-                self.eat(close);
+                node.end = self.close(close);
                 return;
             }
         }
@@ -505,6 +529,29 @@ mod tests {
         let index = SpanIndex::new("(a: (b: 1))");
         assert_eq!(index.locate("a.c.d"), Pos { line: 1, column: 5 });
         assert_eq!(index.find("a.c"), None);
+    }
+
+    #[test]
+    fn finds_the_opening_of_a_closing_bracket() {
+        let index = SpanIndex::new("(a: [(b: 1), Lambert(x: 2 )])");
+        assert_eq!(
+            index.opening_of(Pos {
+                line: 1,
+                column: 11
+            }),
+            Some(Pos { line: 1, column: 6 })
+        );
+        assert_eq!(
+            index.opening_of(Pos {
+                line: 1,
+                column: 27
+            }),
+            Some(Pos {
+                line: 1,
+                column: 14
+            })
+        );
+        assert_eq!(index.opening_of(Pos { line: 1, column: 3 }), None);
     }
 
     #[test]

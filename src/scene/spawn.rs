@@ -24,16 +24,17 @@ use crate::components::{
     WorldFromObject,
 };
 
-/// Everything checked and built, ready to spawn (indices parallel to the merged lists).
+/// Everything checked and built, ready to spawn (indices parallel to the merged lists;
+/// `None` for elements that failed a check, which the caller reports instead of spawning).
 pub struct Parts {
     /// Camera components.
-    pub cameras: Vec<Camera>,
+    pub cameras: Vec<Option<Camera>>,
     /// Index of the render camera.
-    pub render_camera: usize,
+    pub render_camera: Option<usize>,
     /// Light components.
-    pub lights: Vec<Emitter>,
+    pub lights: Vec<Option<Emitter>>,
     /// Material components.
-    pub materials: Vec<Material>,
+    pub materials: Vec<Option<Material>>,
     /// Meshes of the objects that were built (reachable ones).
     pub meshes: Vec<Option<Arc<TriMesh>>>,
     /// The flattened instance DAG.
@@ -51,11 +52,14 @@ pub fn spawn(src: &Sources, m: &Merged<'_>, parts: Parts) -> World {
     for key in used {
         let entity = match key {
             Some(i) => {
+                let Some(Some(material)) = parts.materials.get(i) else {
+                    continue;
+                };
                 let it = &m.materials[i];
                 world.spawn((
                     Name(it.desc.name.clone()),
                     src.link(it.file, &it.path),
-                    parts.materials[i].clone(),
+                    material.clone(),
                 ))
             }
             None => world.spawn((
@@ -111,6 +115,7 @@ pub fn spawn(src: &Sources, m: &Merged<'_>, parts: Parts) -> World {
     }
 
     for (it, emitter) in m.lights.iter().zip(parts.lights) {
+        let Some(emitter) = emitter else { continue };
         world.spawn((
             Name(it.desc.name.clone()),
             src.link(it.file, &it.path),
@@ -119,12 +124,13 @@ pub fn spawn(src: &Sources, m: &Merged<'_>, parts: Parts) -> World {
     }
 
     for (i, (it, camera)) in m.cameras.iter().zip(parts.cameras).enumerate() {
+        let Some(camera) = camera else { continue };
         let entity = world.spawn((
             Name(it.desc.name.clone()),
             src.link(it.file, &it.path),
             camera,
         ));
-        if i == parts.render_camera {
+        if Some(i) == parts.render_camera {
             // The entity was just spawned, so inserting cannot fail.
             let _ = world.insert_one(entity, RenderCamera);
         }
