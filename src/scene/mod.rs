@@ -12,16 +12,16 @@
 //!
 //! The format is documented in `docs/scene-format.md`.
 
-pub mod dag;
+pub(crate) mod dag;
 pub mod desc;
-pub mod diagnostics;
-pub mod include;
-pub mod mesh_load;
-pub mod names;
-pub mod spans;
-pub mod spawn;
-pub mod suggest;
-pub mod validate;
+pub(crate) mod diagnostics;
+pub(crate) mod include;
+pub(crate) mod mesh_load;
+pub(crate) mod names;
+pub(crate) mod spans;
+pub(crate) mod spawn;
+pub(crate) mod suggest;
+pub(crate) mod validate;
 
 use std::path::Path;
 use std::sync::Arc;

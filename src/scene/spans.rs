@@ -94,6 +94,7 @@ impl SpanIndex {
     }
 
     /// Position of the value at `path`, only if it is written in the text.
+    #[cfg(test)]
     pub fn find(&self, path: &str) -> Option<Pos> {
         let mut node = self.root.as_ref()?;
         for seg in segments(path) {
