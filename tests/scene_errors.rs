@@ -463,3 +463,16 @@ fn no_input_makes_the_loader_panic() {
         }
     }
 }
+
+/// Non-finite numbers, a zero rotation axis and a non-affine matrix in transform lists.
+#[test]
+fn transform_values() {
+    check(
+        "transform_values.ron",
+        &[
+            "tests/fixtures/scenes/bad/transform_values.ron:4:56: error: translation must be a finite number, found -inf",
+            "tests/fixtures/scenes/bad/transform_values.ron:4:83: error: rotation axis must not be zero",
+            "tests/fixtures/scenes/bad/transform_values.ron:5:95: error: the last row of a transform matrix must be (0, 0, 0, 1), found (0, 0, 1, 1)",
+        ],
+    );
+}

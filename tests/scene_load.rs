@@ -338,3 +338,40 @@ fn rect_light_samples_default_to_16_and_filter_defaults() {
     .clone();
     assert_eq!(l.samples, 16);
 }
+
+#[test]
+fn three_level_dag_with_shared_groups_composes_every_path() {
+    // leaf group "post" is placed twice in "fence", and "fence" twice in "world": 4 leaves.
+    let text = r#"Scene(
+        objects: [(name: "o", mesh: Inline(vertices: [(0,0,0), (1,0,0), (0,1,0)], polygons: [[0,1,2]]))],
+        instances: [
+            (name: "p", of: "o", transform: [Scale((1, 3, 1))]),
+            (name: "left", of: "post", transform: [Translate((-1, 0, 0))]),
+            (name: "right", of: "post", transform: [Translate((1, 0, 0))]),
+            (name: "near", of: "fence"),
+            (name: "far", of: "fence", transform: [Rotate(axis: (0, 1, 0), degrees: 180), Translate((0, 0, -10))]),
+        ],
+        groups: [
+            (name: "post", members: ["p"]),
+            (name: "fence", members: ["left", "right"]),
+            (name: "world", members: ["near", "far"]),
+        ],
+        cameras: [(name: "c", fov_y: 40, resolution: (1, 1), placement: LookAt(eye: (0, 0, 1), target: (0, 0, 0)))],
+        render: (root: "world", camera: "c"),
+    )"#;
+    let scene = load_scene_str(text, &fixture("fence.ron")).unwrap();
+    let w = &scene.world;
+    assert_eq!(w.query::<&Instance>().iter().count(), 4);
+    // Hand-computed images of the object point (1, 1, 0) for every path.
+    let cases = [
+        ("world/near/left/p", Vec3::new(0.0, 3.0, 0.0)),
+        ("world/near/right/p", Vec3::new(2.0, 3.0, 0.0)),
+        // far: R_y(180°) maps (x, y, z) to (-x, y, -z), then z - 10.
+        ("world/far/left/p", Vec3::new(0.0, 3.0, -10.0)),
+        ("world/far/right/p", Vec3::new(-2.0, 3.0, -10.0)),
+    ];
+    for (path, expected) in cases {
+        let p = leaf_transform(w, path).transform_point3(Vec3::new(1.0, 1.0, 0.0));
+        assert!(close(p, expected), "{path}: {p} != {expected}");
+    }
+}
