@@ -476,3 +476,17 @@ fn transform_values() {
         ],
     );
 }
+
+/// A number that is finite in f64 but not in f32 would become infinite when loaded.
+#[test]
+fn number_beyond_f32() {
+    let text = r#"Scene(lights: [(name: "l", kind: Point(position: (1e300, 0, 0)))])"#;
+    let errors = load_scene_str(text, Path::new("big.ron"))
+        .err()
+        .expect("errors");
+    assert_eq!(errors.0.len(), 2, "{errors}");
+    assert_eq!(
+        errors.0[1].to_string(),
+        "big.ron:1:50: error: position 1e300 is beyond the f32 range"
+    );
+}

@@ -134,13 +134,17 @@ impl Checker<'_> {
         self.src.error(self.file, path, message, None);
     }
 
-    /// Whether `x` is finite; reports it at `path` if not.
+    /// Whether `x` is finite and fits in f32 (every value ends up in f32); reports it at
+    /// `path` if not.
     pub fn finite(&mut self, path: &str, what: &str, x: f64) -> bool {
-        if x.is_finite() {
-            true
-        } else {
+        if !x.is_finite() {
             self.error(path, format!("{what} must be a finite number, found {x}"));
             false
+        } else if x.abs() > f64::from(f32::MAX) {
+            self.error(path, format!("{what} {x:e} is beyond the f32 range"));
+            false
+        } else {
+            true
         }
     }
 
