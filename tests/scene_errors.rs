@@ -487,6 +487,6 @@ fn number_beyond_f32() {
     assert_eq!(errors.0.len(), 2, "{errors}");
     assert_eq!(
         errors.0[1].to_string(),
-        "big.ron:1:50: error: position 1e300 is beyond the f32 range"
+        "big.ron:1:51: error: position 1e300 is beyond the f32 range"
     );
 }
