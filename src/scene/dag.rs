@@ -1,0 +1,282 @@
+//! The instance DAG: instance transforms, cycle detection, and flattening from the render
+//! root into leaves (one per path from the root to an object).
+//!
+//! Edges go group → member instance → the group or object it places. An instance's
+//! transform list applies in listed order (`[Scale, Rotate, Translate]` scales first), so
+//! its matrix is `Tₙ ⋯ T₂ T₁`. Along a path the outer instance applies last:
+//! `world_from_object = I_root ⋯ I_inner`, composed in f64 and rounded to f32 once.
+
+use glam::{Affine3A, DAffine3, DVec3};
+
+use super::desc::TransformDesc;
+use super::diagnostics::Sources;
+use super::names::{Resolved, Target};
+use super::validate::{Checker, Merged};
+
+/// Most placements (instances visited along all paths) a scene may expand to: a guard
+/// against exponential sharing of groups.
+pub const MAX_PLACEMENTS: usize = 10_000_000;
+
+/// One placed object: a path from the root group to an object.
+#[derive(Debug, Clone)]
+pub struct Leaf {
+    /// `root/instance/…/instance`.
+    pub path: String,
+    /// Innermost instance (index into `Merged::instances`).
+    pub instance: usize,
+    /// The object (index into `Merged::objects`).
+    pub object: usize,
+    /// Composed transform.
+    pub world_from_object: Affine3A,
+    /// Material from the closest instance override on the path, then the object's.
+    pub material: Option<usize>,
+}
+
+/// Each instance's own transform (`None` where it is invalid).
+pub fn instance_transforms(src: &mut Sources, m: &Merged<'_>) -> Vec<Option<DAffine3>> {
+    m.instances
+        .iter()
+        .map(|it| {
+            let mut ck = Checker { src, file: it.file };
+            let mut total = Some(DAffine3::IDENTITY);
+            for (k, t) in it.desc.transform.iter().enumerate() {
+                let path = it.at(&format!(".transform[{k}]"));
+                let step = transform(&mut ck, &path, t);
+                total = match (total, step) {
+                    (Some(total), Some(step)) => Some(step * total),
+                    _ => None,
+                };
+            }
+            let total = total?;
+            let finite = total.matrix3.is_finite() && total.translation.is_finite();
+            let det = total.matrix3.determinant();
+            if !finite || det == 0.0 || !det.is_finite() {
+                ck.error(
+                    &it.at(".transform"),
+                    "the composed transform overflows or is not invertible",
+                );
+                return None;
+            }
+            Some(total)
+        })
+        .collect()
+}
+
+fn transform(ck: &mut Checker<'_>, path: &str, t: &TransformDesc) -> Option<DAffine3> {
+    match t {
+        TransformDesc::Scale(s) => {
+            let s = ck.v3(&format!("{path}.Scale[0]"), "scale", *s)?;
+            if s.x == 0.0 || s.y == 0.0 || s.z == 0.0 {
+                ck.src.error(
+                    ck.file,
+                    path,
+                    format!(
+                        "scale ({}, {}, {}) has a zero component: the transform is not \
+                         invertible",
+                        s.x, s.y, s.z
+                    ),
+                    None,
+                );
+                return None;
+            }
+            Some(DAffine3::from_scale(s))
+        }
+        TransformDesc::Rotate { axis, degrees } => {
+            let a = ck.v3(&format!("{path}.Rotate.axis"), "axis", *axis);
+            let ok = ck.finite(&format!("{path}.Rotate.degrees"), "degrees", *degrees);
+            let a = a?.normalize_or_zero();
+            if a == DVec3::ZERO {
+                ck.error(
+                    &format!("{path}.Rotate.axis"),
+                    "rotation axis must not be zero",
+                );
+                return None;
+            }
+            ok.then(|| DAffine3::from_axis_angle(a, degrees.to_radians()))
+        }
+        TransformDesc::Translate(v) => Some(DAffine3::from_translation(ck.v3(
+            &format!("{path}.Translate[0]"),
+            "translation",
+            *v,
+        )?)),
+        TransformDesc::Matrix(m) => {
+            let a = ck.affine(&format!("{path}.Matrix[0]"), "transform matrix", m)?;
+            let cols = [a.matrix3.x_axis, a.matrix3.y_axis, a.matrix3.z_axis];
+            let scale = cols.iter().map(|c| c.length()).product::<f64>();
+            let det = a.matrix3.determinant();
+            if scale == 0.0 || det.abs() <= 1e-12 * scale {
+                ck.error(
+                    path,
+                    format!("transform matrix is singular (determinant {det}): not invertible"),
+                );
+                return None;
+            }
+            Some(a)
+        }
+    }
+}
+
+/// Reports every cycle of the instance graph, at the `of` that closes it. Returns whether
+/// the graph is acyclic.
+pub fn check_cycles(src: &mut Sources, m: &Merged<'_>, r: &Resolved) -> bool {
+    #[derive(Clone, Copy, PartialEq)]
+    enum Mark {
+        New,
+        Open,
+        Done,
+    }
+    let mut mark = vec![Mark::New; m.groups.len()];
+    let mut acyclic = true;
+    for start in 0..m.groups.len() {
+        if mark[start] != Mark::New {
+            continue;
+        }
+        // Explicit stack: (group, next member position); `trail` is the path of instances.
+        let mut stack: Vec<(usize, usize)> = vec![(start, 0)];
+        let mut trail: Vec<usize> = Vec::new();
+        mark[start] = Mark::Open;
+        while let Some(&mut (g, ref mut next)) = stack.last_mut() {
+            let Some(&inst) = r.group_members[g].get(*next) else {
+                mark[g] = Mark::Done;
+                stack.pop();
+                trail.pop();
+                continue;
+            };
+            *next += 1;
+            let Some(Target::Group(child)) = r.instance_of[inst] else {
+                continue;
+            };
+            match mark[child] {
+                Mark::New => {
+                    mark[child] = Mark::Open;
+                    stack.push((child, 0));
+                    trail.push(inst);
+                }
+                Mark::Open => {
+                    acyclic = false;
+                    let from = stack.iter().position(|&(sg, _)| sg == child).unwrap_or(0);
+                    let mut names = Vec::new();
+                    for (k, &(sg, _)) in stack.iter().enumerate().skip(from) {
+                        names.push(m.groups[sg].desc.name.as_str());
+                        let via = if k + 1 < stack.len() { trail[k] } else { inst };
+                        names.push(m.instances[via].desc.name.as_str());
+                    }
+                    names.push(m.groups[child].desc.name.as_str());
+                    let it = &m.instances[inst];
+                    src.error(
+                        it.file,
+                        &it.at(".of"),
+                        format!("instance cycle: {}", names.join(" -> ")),
+                        Some(
+                            "a group may not contain itself, directly or through instances".into(),
+                        ),
+                    );
+                }
+                Mark::Done => {}
+            }
+        }
+    }
+    acyclic
+}
+
+/// Which objects are reachable from the root (tolerates cycles and dangling names).
+pub fn reachable_objects(m: &Merged<'_>, r: &Resolved) -> Vec<bool> {
+    let mut objects = vec![false; m.objects.len()];
+    let mut groups = vec![false; m.groups.len()];
+    let mut todo: Vec<usize> = r.root.into_iter().collect();
+    while let Some(g) = todo.pop() {
+        if std::mem::replace(&mut groups[g], true) {
+            continue;
+        }
+        for &inst in &r.group_members[g] {
+            match r.instance_of[inst] {
+                Some(Target::Object(o)) => objects[o] = true,
+                Some(Target::Group(child)) => todo.push(child),
+                None => {}
+            }
+        }
+    }
+    objects
+}
+
+/// Expands the acyclic graph from the root group into leaves. `locals` are the instance
+/// transforms; the caller has checked they are all valid.
+pub fn flatten(src: &mut Sources, m: &Merged<'_>, r: &Resolved, locals: &[DAffine3]) -> Vec<Leaf> {
+    let Some(root) = r.root else {
+        return Vec::new();
+    };
+    struct Frame {
+        group: usize,
+        next: usize,
+        world: DAffine3,
+        path: String,
+        material: Option<usize>,
+    }
+    let mut leaves = Vec::new();
+    let mut placements = 0usize;
+    let mut stack = vec![Frame {
+        group: root,
+        next: 0,
+        world: DAffine3::IDENTITY,
+        path: m.groups[root].desc.name.clone(),
+        material: None,
+    }];
+    while let Some(top) = stack.last_mut() {
+        let Some(&inst) = r.group_members[top.group].get(top.next) else {
+            stack.pop();
+            continue;
+        };
+        top.next += 1;
+        placements += 1;
+        if placements > MAX_PLACEMENTS {
+            let it = &m.instances[inst];
+            src.error(
+                it.file,
+                &it.at(".of"),
+                format!("the scene expands to more than {MAX_PLACEMENTS} placed instances"),
+                Some("share fewer groups, or merge meshes".into()),
+            );
+            return leaves;
+        }
+        let world = top.world * locals[inst];
+        let path = format!("{}/{}", top.path, m.instances[inst].desc.name);
+        let material = r.instance_material[inst].or(top.material);
+        match r.instance_of[inst] {
+            Some(Target::Object(o)) => {
+                let rounded = Affine3A::from_mat3_translation(
+                    world.matrix3.as_mat3(),
+                    world.translation.as_vec3(),
+                );
+                if !rounded.is_finite() || rounded.matrix3.determinant() == 0.0 {
+                    let it = &m.instances[inst];
+                    src.error(
+                        it.file,
+                        &it.at(".transform"),
+                        format!(
+                            "the transform of \"{path}\" composed along its path does not fit \
+                             in f32 or is not invertible"
+                        ),
+                        None,
+                    );
+                    continue;
+                }
+                leaves.push(Leaf {
+                    path,
+                    instance: inst,
+                    object: o,
+                    world_from_object: rounded,
+                    material: material.or(r.object_material[o]),
+                });
+            }
+            Some(Target::Group(g)) => stack.push(Frame {
+                group: g,
+                next: 0,
+                world,
+                path,
+                material,
+            }),
+            None => {}
+        }
+    }
+    leaves
+}

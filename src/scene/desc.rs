@@ -1,0 +1,424 @@
+//! The RON scene format v1 as plain serde types (`*Desc`), exactly as written by the user.
+//!
+//! Every struct denies unknown fields; every optional field has a default documented here
+//! and in `docs/scene-format.md`. Nothing is validated here: see [`super::validate`].
+
+use serde::Deserialize;
+
+/// A 3-vector as written in the file: `(x, y, z)`.
+pub type V3 = (f64, f64, f64);
+
+/// A row-major 4×4 matrix: `((r0), (r1), (r2), (r3))`.
+pub type M4 = [[f64; 4]; 4];
+
+/// One scene file (the root file or an include). Every field is optional.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(rename = "Scene", deny_unknown_fields, default)]
+pub struct SceneDesc {
+    /// Other scene files merged into this one, relative to this file.
+    pub include: Vec<String>,
+    /// Render options (at most one across all files).
+    pub options: Option<OptionsDesc>,
+    /// Cameras.
+    pub cameras: Vec<CameraDesc>,
+    /// Lights.
+    pub lights: Vec<LightDesc>,
+    /// Materials.
+    pub materials: Vec<MaterialDesc>,
+    /// Objects (mesh prototypes).
+    pub objects: Vec<ObjectDesc>,
+    /// Instances (placed copies of objects or groups).
+    pub instances: Vec<InstanceDesc>,
+    /// Instance groups.
+    pub groups: Vec<GroupDesc>,
+    /// What to render (exactly one across all files).
+    pub render: Option<RenderDesc>,
+}
+
+/// `options: (...)`: render settings.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(rename = "Options", deny_unknown_fields, default)]
+pub struct OptionsDesc {
+    /// Samples per pixel, default 4, at least 1.
+    pub samples: u32,
+    /// Pixel filter, default `Box`.
+    pub filter: FilterDesc,
+    /// Random seed, default 0.
+    pub seed: u64,
+    /// Maximum trace depth, default 4, at least 1.
+    pub max_depth: u32,
+    /// Face visibility, default `Front`.
+    pub face: FaceDesc,
+    /// BVH build quality, default `Medium`.
+    pub bvh_quality: BvhQualityDesc,
+}
+
+impl Default for OptionsDesc {
+    fn default() -> Self {
+        Self {
+            samples: 4,
+            filter: FilterDesc::Box,
+            seed: 0,
+            max_depth: 4,
+            face: FaceDesc::Front,
+            bvh_quality: BvhQualityDesc::Medium,
+        }
+    }
+}
+
+/// Pixel filter.
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
+#[serde(rename = "Filter", deny_unknown_fields)]
+pub enum FilterDesc {
+    /// Box filter over the pixel.
+    Box,
+    /// Truncated Gaussian.
+    Gaussian {
+        /// Standard deviation, pixels, default 0.5.
+        #[serde(default = "default_sigma")]
+        sigma: f64,
+        /// Truncation radius, pixels, default 1.5.
+        #[serde(default = "default_radius")]
+        radius: f64,
+    },
+}
+
+fn default_sigma() -> f64 {
+    0.5
+}
+
+fn default_radius() -> f64 {
+    1.5
+}
+
+/// Face visibility.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename = "Face")]
+pub enum FaceDesc {
+    /// Front faces only.
+    Front,
+    /// Both faces.
+    Both,
+}
+
+/// BVH build quality.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename = "BvhQuality")]
+pub enum BvhQualityDesc {
+    /// Cheapest build.
+    Fast,
+    /// Balanced.
+    Medium,
+    /// Best hierarchy.
+    High,
+}
+
+/// `cameras: [(...)]`: a pinhole camera.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(rename = "Camera", deny_unknown_fields)]
+pub struct CameraDesc {
+    /// Unique camera name.
+    pub name: String,
+    /// Vertical field of view, degrees, in (0, 180).
+    pub fov_y: f64,
+    /// Image size in pixels `(width, height)`, both at least 1.
+    pub resolution: (u32, u32),
+    /// Image-plane aspect ratio, default `width / height`.
+    #[serde(default)]
+    pub aspect: Option<f64>,
+    /// Where the camera is.
+    pub placement: PlacementDesc,
+    /// Files to write, default none.
+    #[serde(default)]
+    pub outputs: Vec<OutputDesc>,
+}
+
+/// Camera placement.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(rename = "Placement", deny_unknown_fields)]
+pub enum PlacementDesc {
+    /// Look from `eye` at `target` with `up` (default `(0, 1, 0)`) roughly up.
+    LookAt {
+        /// Eye position.
+        eye: V3,
+        /// Point looked at.
+        target: V3,
+        /// Up hint, default `(0, 1, 0)`.
+        #[serde(default = "default_up")]
+        up: V3,
+    },
+    /// Row-major rigid camera-to-world matrix; the camera looks down its −Z axis.
+    Matrix(M4),
+}
+
+fn default_up() -> V3 {
+    (0.0, 1.0, 0.0)
+}
+
+/// One output file of a camera.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(rename = "Output", deny_unknown_fields)]
+pub struct OutputDesc {
+    /// Destination path, as written (relative to the working directory).
+    pub file: String,
+    /// Format; default from the extension (`.png`, `.exr`).
+    #[serde(default)]
+    pub format: Option<FormatDesc>,
+    /// Passes, default `[Beauty]`.
+    #[serde(default)]
+    pub passes: Option<Vec<PassDesc>>,
+}
+
+/// Output file format.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename = "Format")]
+pub enum FormatDesc {
+    /// 8-bit PNG.
+    Png,
+    /// OpenEXR.
+    Exr,
+}
+
+/// Image pass.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename = "Pass")]
+pub enum PassDesc {
+    /// Shaded colour.
+    Beauty,
+    /// Coverage.
+    Alpha,
+    /// Distance to the first hit.
+    Depth,
+    /// World-space normal at the first hit.
+    Normal,
+}
+
+/// `lights: [(...)]`: a light.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(rename = "Light", deny_unknown_fields)]
+pub struct LightDesc {
+    /// Unique light name.
+    pub name: String,
+    /// Shape and placement.
+    pub kind: LightKindDesc,
+    /// Linear RGB colour, default `(1, 1, 1)`, non-negative.
+    #[serde(default = "default_white")]
+    pub color: V3,
+    /// Scale of `color`, default 1, non-negative.
+    #[serde(default = "default_one")]
+    pub intensity: f64,
+    /// Whether the light casts shadows, default `true`.
+    #[serde(default = "default_true")]
+    pub shadows: bool,
+    /// Samples per shading point (Rect only, default 16); delta lights accept only 1.
+    #[serde(default)]
+    pub samples: Option<u32>,
+}
+
+fn default_white() -> V3 {
+    (1.0, 1.0, 1.0)
+}
+
+fn default_one() -> f64 {
+    1.0
+}
+
+fn default_true() -> bool {
+    true
+}
+
+/// Light shape.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(rename = "LightKind", deny_unknown_fields)]
+pub enum LightKindDesc {
+    /// Isotropic point light (W/sr).
+    Point {
+        /// Position.
+        position: V3,
+    },
+    /// Spotlight (W/sr on its axis).
+    Spot {
+        /// Position.
+        position: V3,
+        /// Point the axis goes through.
+        target: V3,
+        /// Half angle of the cone, degrees, in (0, 90].
+        cone_angle: f64,
+        /// Penumbra width inside the cone edge, degrees, default 0, in [0, cone_angle].
+        #[serde(default)]
+        penumbra: f64,
+        /// Cosine falloff exponent, default 2, non-negative.
+        #[serde(default = "default_beam")]
+        beam_distribution: f64,
+    },
+    /// Distant light (W/m²).
+    Directional {
+        /// Direction the light travels (normalised by the loader).
+        direction: V3,
+    },
+    /// One-sided parallelogram area light (W/(sr·m²)), emitting along `edge_u × edge_v`.
+    Rect {
+        /// One corner.
+        corner: V3,
+        /// First edge.
+        edge_u: V3,
+        /// Second edge.
+        edge_v: V3,
+    },
+}
+
+fn default_beam() -> f64 {
+    2.0
+}
+
+/// `materials: [(...)]`: a material.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(rename = "Material", deny_unknown_fields)]
+pub struct MaterialDesc {
+    /// Unique material name.
+    pub name: String,
+    /// Surface shader.
+    pub shader: ShaderDesc,
+    /// Shade both faces, default `false`.
+    #[serde(default)]
+    pub two_sided: bool,
+    /// Emitted radiance, W/(sr·m²), default `(0, 0, 0)`.
+    #[serde(default)]
+    pub emission: V3,
+}
+
+/// Surface shader.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(rename = "Shader", deny_unknown_fields)]
+pub enum ShaderDesc {
+    /// Ideal diffuse.
+    Lambert {
+        /// Reflectance in [0, 1] per channel.
+        albedo: V3,
+    },
+    /// Flat colour.
+    Constant {
+        /// Colour, non-negative.
+        color: V3,
+    },
+    /// RenderMan `defaultsurface`.
+    DefaultSurface {
+        /// Ambient weight, default 0.2.
+        #[serde(default = "default_ka")]
+        ka: f64,
+        /// Diffuse weight, default 0.8.
+        #[serde(default = "default_kd")]
+        kd: f64,
+        /// Colour, default `(1, 1, 1)`.
+        #[serde(default = "default_white")]
+        color: V3,
+    },
+}
+
+fn default_ka() -> f64 {
+    0.2
+}
+
+fn default_kd() -> f64 {
+    0.8
+}
+
+/// `objects: [(...)]`: a mesh prototype.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(rename = "Object", deny_unknown_fields)]
+pub struct ObjectDesc {
+    /// Unique name among objects and groups.
+    pub name: String,
+    /// The geometry.
+    pub mesh: MeshDesc,
+    /// Material used when no instance overrides it.
+    #[serde(default)]
+    pub material: Option<String>,
+}
+
+/// Mesh source.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(rename = "Mesh", deny_unknown_fields)]
+pub enum MeshDesc {
+    /// Wavefront OBJ file, relative to the declaring scene file.
+    Obj {
+        /// Path of the OBJ file.
+        file: String,
+    },
+    /// Polygons written in the scene.
+    Inline {
+        /// Vertex positions.
+        vertices: Vec<V3>,
+        /// Convex polygons as vertex indices (≥ 3 each), fan-triangulated.
+        polygons: Vec<Vec<u32>>,
+        /// Per-vertex normals (optional).
+        #[serde(default)]
+        normals: Option<Vec<V3>>,
+        /// Per-vertex texture coordinates (optional).
+        #[serde(default)]
+        uvs: Option<Vec<(f64, f64)>>,
+    },
+}
+
+/// `instances: [(...)]`: a placed copy of an object or a group.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(rename = "Instance", deny_unknown_fields)]
+pub struct InstanceDesc {
+    /// Unique instance name.
+    pub name: String,
+    /// Name of an object or a group.
+    pub of: String,
+    /// Transforms applied in listed order, default none (identity).
+    #[serde(default)]
+    pub transform: Vec<TransformDesc>,
+    /// Material override.
+    #[serde(default)]
+    pub material: Option<String>,
+}
+
+/// One step of an instance transform.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(rename = "Transform", deny_unknown_fields)]
+pub enum TransformDesc {
+    /// Non-uniform scale.
+    Scale(V3),
+    /// Rotation about an axis through the origin (right-handed), degrees.
+    Rotate {
+        /// Axis (normalised by the loader).
+        axis: V3,
+        /// Angle in degrees.
+        degrees: f64,
+    },
+    /// Translation.
+    Translate(V3),
+    /// Row-major affine 4×4 matrix (last row `(0, 0, 0, 1)`).
+    Matrix(M4),
+}
+
+/// `groups: [(...)]`: an instance group.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(rename = "Group", deny_unknown_fields)]
+pub struct GroupDesc {
+    /// Unique name among objects and groups.
+    pub name: String,
+    /// Instance names.
+    #[serde(default)]
+    pub members: Vec<String>,
+}
+
+/// `render: (...)`: what to render.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(rename = "Render", deny_unknown_fields)]
+pub struct RenderDesc {
+    /// Root group name.
+    pub root: String,
+    /// Camera name.
+    pub camera: String,
+}
+
+/// Parses one scene file's text.
+pub fn parse(text: &str) -> Result<SceneDesc, ron::error::SpannedError> {
+    ron::Options::default()
+        .with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME)
+        .from_str(text)
+}

@@ -1,0 +1,239 @@
+//! Name tables and name resolution.
+//!
+//! Names live in separate namespaces per kind: materials, lights, cameras, instances, and
+//! one shared namespace for objects and groups (an instance's `of` may name either). A name
+//! defined twice in its namespace is an error that points at the first definition. Every
+//! reference is resolved to an index into the merged lists, or reported with a
+//! "did you mean".
+
+use std::collections::HashMap;
+
+use super::diagnostics::{suggestion, Sources};
+use super::validate::{Item, Merged};
+
+/// What an instance's `of` names.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Target {
+    /// An object (index into `Merged::objects`).
+    Object(usize),
+    /// A group (index into `Merged::groups`).
+    Group(usize),
+}
+
+/// Every reference of the scene resolved to indices (`None` where it did not resolve).
+#[derive(Debug, Default)]
+pub struct Resolved {
+    /// Material of each object.
+    pub object_material: Vec<Option<usize>>,
+    /// Material override of each instance.
+    pub instance_material: Vec<Option<usize>>,
+    /// What each instance places.
+    pub instance_of: Vec<Option<Target>>,
+    /// Instances of each group (unresolved members left out).
+    pub group_members: Vec<Vec<usize>>,
+    /// The root group.
+    pub root: Option<usize>,
+    /// The render camera.
+    pub camera: Option<usize>,
+}
+
+/// A namespace: name → index of its first definition.
+struct Table<'a> {
+    map: HashMap<&'a str, usize>,
+    names: Vec<&'a str>,
+}
+
+impl<'a> Table<'a> {
+    fn get(&self, name: &str) -> Option<usize> {
+        self.map.get(name).copied()
+    }
+}
+
+/// Builds a table, reporting empty and duplicate names. `entries` are
+/// `(file, element path, name)` in load order.
+fn table<'a>(src: &mut Sources, kind: &str, entries: &[(usize, &str, &'a str)]) -> Table<'a> {
+    let mut map: HashMap<&'a str, usize> = HashMap::new();
+    let mut names = Vec::new();
+    for (i, &(file, path, name)) in entries.iter().enumerate() {
+        let name_path = format!("{path}.name");
+        if name.is_empty() {
+            src.error(file, &name_path, format!("{kind} name is empty"), None);
+            continue;
+        }
+        match map.get(name) {
+            Some(&first) => {
+                let (ffile, fpath, _) = entries[first];
+                let help = format!(
+                    "first defined at {}",
+                    src.where_is(ffile, &format!("{fpath}.name"))
+                );
+                src.error(
+                    file,
+                    &name_path,
+                    format!("duplicate {kind} name \"{name}\""),
+                    Some(help),
+                );
+            }
+            None => {
+                map.insert(name, i);
+                names.push(name);
+            }
+        }
+    }
+    Table { map, names }
+}
+
+fn entries<'a, T>(
+    list: &'a [Item<'a, T>],
+    name: impl Fn(&'a T) -> &'a str,
+) -> Vec<(usize, &'a str, &'a str)> {
+    list.iter()
+        .map(|it| (it.file, it.path.as_str(), name(it.desc)))
+        .collect()
+}
+
+/// Checks names and resolves every reference.
+pub fn resolve(src: &mut Sources, m: &Merged<'_>) -> Resolved {
+    let materials = table(src, "material", &entries(&m.materials, |d| &d.name));
+    table(src, "light", &entries(&m.lights, |d| &d.name));
+    let cameras = table(src, "camera", &entries(&m.cameras, |d| &d.name));
+    let instances = table(src, "instance", &entries(&m.instances, |d| &d.name));
+    let mut shapes_entries = entries(&m.objects, |d| &d.name);
+    shapes_entries.extend(entries(&m.groups, |d| &d.name));
+    let shapes = table(src, "object or group", &shapes_entries);
+    let n_objects = m.objects.len();
+    let target = |i: usize| {
+        if i < n_objects {
+            Target::Object(i)
+        } else {
+            Target::Group(i - n_objects)
+        }
+    };
+
+    let material_ref = |src: &mut Sources, file: usize, path: String, name: &Option<String>| {
+        let name = name.as_deref()?;
+        let found = materials.get(name);
+        if found.is_none() {
+            src.error(
+                file,
+                &path,
+                format!("unknown material \"{name}\""),
+                suggestion(name, &materials.names, "materials"),
+            );
+        }
+        found
+    };
+    let object_material = m
+        .objects
+        .iter()
+        .map(|it| material_ref(src, it.file, it.at(".material"), &it.desc.material))
+        .collect();
+    let instance_material = m
+        .instances
+        .iter()
+        .map(|it| material_ref(src, it.file, it.at(".material"), &it.desc.material))
+        .collect();
+
+    let instance_of = m
+        .instances
+        .iter()
+        .map(|it| {
+            let name = it.desc.of.as_str();
+            let found = shapes.get(name).map(target);
+            if found.is_none() {
+                src.error(
+                    it.file,
+                    &it.at(".of"),
+                    format!("unknown object or group \"{name}\""),
+                    suggestion(name, &shapes.names, "objects or groups"),
+                );
+            }
+            found
+        })
+        .collect();
+
+    let group_members = m
+        .groups
+        .iter()
+        .map(|it| {
+            let mut members: Vec<usize> = Vec::new();
+            for (k, name) in it.desc.members.iter().enumerate() {
+                let path = it.at(&format!(".members[{k}]"));
+                match instances.get(name) {
+                    Some(i) if members.contains(&i) => src.error(
+                        it.file,
+                        &path,
+                        format!(
+                            "instance \"{name}\" is listed twice in group \"{}\"",
+                            it.desc.name
+                        ),
+                        None,
+                    ),
+                    Some(i) => members.push(i),
+                    None => {
+                        let help = match shapes.get(name).map(target) {
+                            Some(Target::Object(_)) => Some(format!(
+                                "\"{name}\" is an object; groups list instances: add \
+                                 `(name: \"{name}_1\", of: \"{name}\")` to `instances` and \
+                                 list that"
+                            )),
+                            Some(Target::Group(_)) => Some(format!(
+                                "\"{name}\" is a group; groups list instances: add \
+                                 `(name: \"{name}_1\", of: \"{name}\")` to `instances` and \
+                                 list that"
+                            )),
+                            None => suggestion(name, &instances.names, "instances"),
+                        };
+                        src.error(it.file, &path, format!("unknown instance \"{name}\""), help);
+                    }
+                }
+            }
+            members
+        })
+        .collect();
+
+    let (mut root, mut camera) = (None, None);
+    if let Some(r) = &m.render {
+        let name = r.desc.root.as_str();
+        match shapes.get(name).map(target) {
+            Some(Target::Group(g)) => root = Some(g),
+            Some(Target::Object(_)) => src.error(
+                r.file,
+                "render.root",
+                format!("render root \"{name}\" is an object, not a group"),
+                Some(format!(
+                    "place it in a group: `instances: [(name: \"{name}_1\", of: \"{name}\")]`, \
+                     `groups: [(name: \"world\", members: [\"{name}_1\"])]`"
+                )),
+            ),
+            None => {
+                let groups: Vec<&str> = m.groups.iter().map(|g| g.desc.name.as_str()).collect();
+                src.error(
+                    r.file,
+                    "render.root",
+                    format!("unknown group \"{name}\""),
+                    suggestion(name, &groups, "groups"),
+                );
+            }
+        }
+        let name = r.desc.camera.as_str();
+        camera = cameras.get(name);
+        if camera.is_none() {
+            src.error(
+                r.file,
+                "render.camera",
+                format!("unknown camera \"{name}\""),
+                suggestion(name, &cameras.names, "cameras"),
+            );
+        }
+    }
+
+    Resolved {
+        object_material,
+        instance_material,
+        instance_of,
+        group_members,
+        root,
+        camera,
+    }
+}

@@ -1,0 +1,645 @@
+//! Merging the loaded files into one list per element kind, and checking every value:
+//! finite numbers, ranges, output formats. Each element that passes is converted to the
+//! component data it will carry ([`Camera`], [`Emitter`], [`Material`], [`RenderSettings`]).
+
+use std::path::{Path, PathBuf};
+
+use glam::{DAffine3, DMat3, DVec3};
+
+use super::desc::{
+    BvhQualityDesc, CameraDesc, FaceDesc, FilterDesc, FormatDesc, GroupDesc, InstanceDesc,
+    LightDesc, LightKindDesc, MaterialDesc, ObjectDesc, OptionsDesc, OutputDesc, PassDesc,
+    PlacementDesc, RenderDesc, SceneDesc, ShaderDesc, M4, V3,
+};
+use super::diagnostics::Sources;
+use crate::components::{
+    Camera, Emitter, ImageFormat, LightShape, Material, OutputSpec, Pass, Shader,
+};
+use crate::settings::{BvhQuality, Face, PixelFilter, RenderSettings};
+
+/// One element of the merged scene: where it was written and what it says.
+#[derive(Debug)]
+pub struct Item<'a, T> {
+    /// File index in [`Sources::files`].
+    pub file: usize,
+    /// Path of the element in its file (`materials[3]`).
+    pub path: String,
+    /// The element.
+    pub desc: &'a T,
+}
+
+impl<T> Item<'_, T> {
+    /// Path of a value inside the element (`suffix` starts with `.` or `[`).
+    pub fn at(&self, suffix: &str) -> String {
+        format!("{}{suffix}", self.path)
+    }
+}
+
+/// All files' elements, in load order.
+#[derive(Debug, Default)]
+pub struct Merged<'a> {
+    /// The single `options` entry, if any.
+    pub options: Option<Item<'a, OptionsDesc>>,
+    /// The single `render` entry, if any.
+    pub render: Option<Item<'a, RenderDesc>>,
+    /// Cameras.
+    pub cameras: Vec<Item<'a, CameraDesc>>,
+    /// Lights.
+    pub lights: Vec<Item<'a, LightDesc>>,
+    /// Materials.
+    pub materials: Vec<Item<'a, MaterialDesc>>,
+    /// Objects.
+    pub objects: Vec<Item<'a, ObjectDesc>>,
+    /// Instances.
+    pub instances: Vec<Item<'a, InstanceDesc>>,
+    /// Groups.
+    pub groups: Vec<Item<'a, GroupDesc>>,
+}
+
+fn items<'a, T>(file: usize, kind: &str, list: &'a [T]) -> impl Iterator<Item = Item<'a, T>> {
+    let kind = kind.to_string();
+    list.iter().enumerate().map(move |(i, desc)| Item {
+        file,
+        path: format!("{kind}[{i}]"),
+        desc,
+    })
+}
+
+/// Merges the parsed files; a second `options` or `render` entry is an error.
+pub fn merge<'a>(src: &mut Sources, scenes: &'a [Option<SceneDesc>]) -> Merged<'a> {
+    let mut m = Merged::default();
+    for (file, scene) in scenes.iter().enumerate() {
+        let Some(scene) = scene else { continue };
+        if let Some(options) = &scene.options {
+            match &m.options {
+                Some(first) => {
+                    let help = format!("first defined at {}", src.where_is(first.file, "options"));
+                    src.error(file, "options", "options are given twice", Some(help));
+                }
+                None => {
+                    m.options = Some(Item {
+                        file,
+                        path: "options".into(),
+                        desc: options,
+                    })
+                }
+            }
+        }
+        if let Some(render) = &scene.render {
+            match &m.render {
+                Some(first) => {
+                    let help = format!("first defined at {}", src.where_is(first.file, "render"));
+                    src.error(file, "render", "render entry is given twice", Some(help));
+                }
+                None => {
+                    m.render = Some(Item {
+                        file,
+                        path: "render".into(),
+                        desc: render,
+                    })
+                }
+            }
+        }
+        m.cameras.extend(items(file, "cameras", &scene.cameras));
+        m.lights.extend(items(file, "lights", &scene.lights));
+        m.materials
+            .extend(items(file, "materials", &scene.materials));
+        m.objects.extend(items(file, "objects", &scene.objects));
+        m.instances
+            .extend(items(file, "instances", &scene.instances));
+        m.groups.extend(items(file, "groups", &scene.groups));
+    }
+    if m.render.is_none() && !scenes.is_empty() {
+        src.error(
+            0,
+            "",
+            "the scene has no render entry",
+            Some("add `render: (root: \"<group>\", camera: \"<camera>\")`".into()),
+        );
+    }
+    m
+}
+
+/// Records errors about the values of one element.
+pub struct Checker<'s> {
+    /// Where errors go.
+    pub src: &'s mut Sources,
+    /// File of the element.
+    pub file: usize,
+}
+
+impl Checker<'_> {
+    /// Records an error at `path`.
+    pub fn error(&mut self, path: &str, message: impl Into<String>) {
+        self.src.error(self.file, path, message, None);
+    }
+
+    /// Whether `x` is finite and fits in f32 (every value ends up in f32); reports it at
+    /// `path` if not.
+    pub fn finite(&mut self, path: &str, what: &str, x: f64) -> bool {
+        if !x.is_finite() {
+            self.error(path, format!("{what} must be a finite number, found {x}"));
+            false
+        } else if x.abs() > f64::from(f32::MAX) {
+            self.error(path, format!("{what} {x:e} is beyond the f32 range"));
+            false
+        } else {
+            true
+        }
+    }
+
+    /// A finite vector (each non-finite component reported at `path[k]`).
+    pub fn v3(&mut self, path: &str, what: &str, v: V3) -> Option<DVec3> {
+        let ok = [v.0, v.1, v.2]
+            .iter()
+            .enumerate()
+            .fold(true, |ok, (k, &x)| {
+                self.finite(&format!("{path}[{k}]"), what, x) && ok
+            });
+        ok.then(|| DVec3::new(v.0, v.1, v.2))
+    }
+
+    /// A finite vector with no negative component.
+    pub fn colour(&mut self, path: &str, what: &str, v: V3) -> Option<DVec3> {
+        let c = self.v3(path, what, v)?;
+        let mut ok = true;
+        for (k, x) in c.to_array().into_iter().enumerate() {
+            if x < 0.0 {
+                self.error(
+                    &format!("{path}[{k}]"),
+                    format!("{what} must not be negative, found {x}"),
+                );
+                ok = false;
+            }
+        }
+        ok.then_some(c)
+    }
+
+    /// A finite, non-negative number.
+    pub fn non_negative(&mut self, path: &str, what: &str, x: f64) -> Option<f64> {
+        if !self.finite(path, what, x) {
+            return None;
+        }
+        if x < 0.0 {
+            self.error(path, format!("{what} must not be negative, found {x}"));
+            return None;
+        }
+        Some(x)
+    }
+
+    /// A finite row-major matrix (each non-finite entry reported at `path[r][c]`).
+    pub fn matrix(&mut self, path: &str, what: &str, m: &M4) -> bool {
+        let mut ok = true;
+        for (r, row) in m.iter().enumerate() {
+            for (c, &x) in row.iter().enumerate() {
+                ok &= self.finite(&format!("{path}[{r}][{c}]"), what, x);
+            }
+        }
+        ok
+    }
+
+    /// The affine transform of a row-major matrix whose last row must be `(0, 0, 0, 1)`.
+    pub fn affine(&mut self, path: &str, what: &str, m: &M4) -> Option<DAffine3> {
+        if !self.matrix(path, what, m) {
+            return None;
+        }
+        if m[3] != [0.0, 0.0, 0.0, 1.0] {
+            self.error(
+                &format!("{path}[3]"),
+                format!(
+                    "the last row of a {what} must be (0, 0, 0, 1), found {}",
+                    tuple(&m[3])
+                ),
+            );
+            return None;
+        }
+        let col = |j: usize| DVec3::new(m[0][j], m[1][j], m[2][j]);
+        Some(DAffine3::from_mat3_translation(
+            DMat3::from_cols(col(0), col(1), col(2)),
+            col(3),
+        ))
+    }
+}
+
+fn tuple(row: &[f64; 4]) -> String {
+    format!("({}, {}, {}, {})", row[0], row[1], row[2], row[3])
+}
+
+/// Render settings from `options` (defaults when absent).
+pub fn settings(src: &mut Sources, options: Option<&Item<'_, OptionsDesc>>) -> RenderSettings {
+    let Some(item) = options else {
+        return RenderSettings::default();
+    };
+    let o = item.desc;
+    let mut ck = Checker {
+        src,
+        file: item.file,
+    };
+    if o.samples == 0 {
+        ck.error(&item.at(".samples"), "samples must be at least 1, found 0");
+    }
+    if o.max_depth == 0 {
+        ck.error(
+            &item.at(".max_depth"),
+            "max_depth must be at least 1, found 0",
+        );
+    }
+    let filter = match o.filter {
+        FilterDesc::Box => PixelFilter::Box,
+        FilterDesc::Gaussian { sigma, radius } => {
+            for (name, x) in [("sigma", sigma), ("radius", radius)] {
+                let path = item.at(&format!(".filter.Gaussian.{name}"));
+                if ck.finite(&path, name, x) && x <= 0.0 {
+                    ck.error(&path, format!("{name} must be positive, found {x}"));
+                }
+            }
+            PixelFilter::Gaussian {
+                sigma: sigma as f32,
+                radius: radius as f32,
+            }
+        }
+    };
+    RenderSettings {
+        spp: o.samples,
+        filter,
+        seed: o.seed,
+        max_depth: o.max_depth,
+        face: match o.face {
+            FaceDesc::Front => Face::Front,
+            FaceDesc::Both => Face::Both,
+        },
+        bvh_quality: match o.bvh_quality {
+            BvhQualityDesc::Fast => BvhQuality::Fast,
+            BvhQualityDesc::Medium => BvhQuality::Medium,
+            BvhQualityDesc::High => BvhQuality::High,
+        },
+    }
+}
+
+/// Checks a camera and builds its component.
+pub fn camera(src: &mut Sources, item: &Item<'_, CameraDesc>) -> Option<Camera> {
+    let c = item.desc;
+    let mut ck = Checker {
+        src,
+        file: item.file,
+    };
+    let mut ok = true;
+    let fov_path = item.at(".fov_y");
+    if ck.finite(&fov_path, "fov_y", c.fov_y) && !(c.fov_y > 0.0 && c.fov_y < 180.0) {
+        ck.error(
+            &fov_path,
+            format!(
+                "fov_y must be between 0 and 180 degrees (exclusive), found {}",
+                c.fov_y
+            ),
+        );
+        ok = false;
+    }
+    ok &= c.fov_y.is_finite();
+    for (k, (what, n)) in [("width", c.resolution.0), ("height", c.resolution.1)]
+        .into_iter()
+        .enumerate()
+    {
+        if n == 0 {
+            ck.error(
+                &item.at(&format!(".resolution[{k}]")),
+                format!("resolution {what} must be at least 1, found 0"),
+            );
+            ok = false;
+        }
+    }
+    let aspect = match c.aspect {
+        Some(a) => {
+            let path = item.at(".aspect");
+            if ck.finite(&path, "aspect", a) && a <= 0.0 {
+                ck.error(&path, format!("aspect must be positive, found {a}"));
+            }
+            ok &= a.is_finite() && a > 0.0;
+            a
+        }
+        None => f64::from(c.resolution.0) / f64::from(c.resolution.1.max(1)),
+    };
+    let placement = placement(&mut ck, &item.at(".placement"), &c.placement);
+    let mut outputs = Vec::new();
+    for (k, o) in c.outputs.iter().enumerate() {
+        match output(&mut ck, &item.at(&format!(".outputs[{k}]")), o) {
+            Some(spec) => outputs.push(spec),
+            None => ok = false,
+        }
+    }
+    let world_from_camera = placement?;
+    ok.then(|| Camera {
+        world_from_camera: glam::Affine3A::from_mat3_translation(
+            world_from_camera.matrix3.as_mat3(),
+            world_from_camera.translation.as_vec3(),
+        ),
+        fov_y: c.fov_y.to_radians() as f32,
+        width: c.resolution.0,
+        height: c.resolution.1,
+        aspect: aspect as f32,
+        outputs,
+    })
+}
+
+fn placement(ck: &mut Checker<'_>, path: &str, p: &PlacementDesc) -> Option<DAffine3> {
+    match p {
+        PlacementDesc::LookAt { eye, target, up } => {
+            let eye_v = ck.v3(&format!("{path}.LookAt.eye"), "eye", *eye);
+            let target_v = ck.v3(&format!("{path}.LookAt.target"), "target", *target);
+            let up_v = ck.v3(&format!("{path}.LookAt.up"), "up", *up);
+            let (eye, target, up) = (eye_v?, target_v?, up_v?);
+            let forward = (target - eye).normalize_or_zero();
+            if forward == DVec3::ZERO {
+                ck.error(
+                    &format!("{path}.LookAt.target"),
+                    "target must differ from eye",
+                );
+                return None;
+            }
+            let z = -forward;
+            let x = up.cross(z).normalize_or_zero();
+            if x == DVec3::ZERO || up.length() < 1e-12 {
+                ck.error(
+                    &format!("{path}.LookAt.up"),
+                    "up must not be zero or parallel to the view direction",
+                );
+                return None;
+            }
+            let y = z.cross(x);
+            Some(DAffine3::from_mat3_translation(
+                DMat3::from_cols(x, y, z),
+                eye,
+            ))
+        }
+        PlacementDesc::Matrix(m) => {
+            let mpath = format!("{path}.Matrix[0]");
+            let a = ck.affine(&mpath, "camera matrix", m)?;
+            let r = a.matrix3;
+            let gram = r.transpose() * r;
+            let off = (gram - DMat3::IDENTITY).to_cols_array();
+            if off.iter().any(|e| e.abs() > 1e-4) || r.determinant() <= 0.0 {
+                ck.error(
+                    &mpath,
+                    "a camera matrix must be rigid: orthonormal rotation with determinant 1, \
+                     no scale, shear or mirroring",
+                );
+                return None;
+            }
+            Some(a)
+        }
+    }
+}
+
+fn output(ck: &mut Checker<'_>, path: &str, o: &OutputDesc) -> Option<OutputSpec> {
+    let ext = Path::new(&o.file)
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    let format = match (o.format, ext.as_deref()) {
+        (Some(FormatDesc::Png), _) => ImageFormat::Png,
+        (Some(FormatDesc::Exr), _) => ImageFormat::Exr,
+        (None, Some("png")) => ImageFormat::Png,
+        (None, Some("exr")) => ImageFormat::Exr,
+        (None, other) => {
+            ck.src.error(
+                ck.file,
+                &format!("{path}.file"),
+                match other {
+                    Some(e) => format!("unknown output extension \".{e}\" in \"{}\"", o.file),
+                    None => format!("output file \"{}\" has no extension", o.file),
+                },
+                Some("use .png or .exr, or give `format: Png` or `format: Exr`".into()),
+            );
+            return None;
+        }
+    };
+    let descs = o.passes.clone().unwrap_or_else(|| vec![PassDesc::Beauty]);
+    if descs.is_empty() {
+        ck.error(
+            &format!("{path}.passes"),
+            "an output needs at least one pass",
+        );
+        return None;
+    }
+    let mut passes: Vec<Pass> = Vec::new();
+    let mut ok = true;
+    for (k, p) in descs.iter().enumerate() {
+        let pass = match p {
+            PassDesc::Beauty => Pass::Beauty,
+            PassDesc::Alpha => Pass::Alpha,
+            PassDesc::Depth => Pass::Depth,
+            PassDesc::Normal => Pass::Normal,
+        };
+        let ppath = format!("{path}.passes[{k}]");
+        if format == ImageFormat::Png && matches!(pass, Pass::Depth | Pass::Normal) {
+            ck.src.error(
+                ck.file,
+                &ppath,
+                format!("a PNG output cannot hold the {pass:?} pass"),
+                Some("write Depth and Normal passes to an .exr output".into()),
+            );
+            ok = false;
+        } else if passes.contains(&pass) {
+            ck.error(&ppath, format!("pass {pass:?} is listed twice"));
+            ok = false;
+        }
+        passes.push(pass);
+    }
+    ok.then(|| OutputSpec {
+        path: PathBuf::from(&o.file),
+        format,
+        passes,
+    })
+}
+
+/// Checks a light and builds its component.
+pub fn light(src: &mut Sources, item: &Item<'_, LightDesc>) -> Option<Emitter> {
+    let l = item.desc;
+    let mut ck = Checker {
+        src,
+        file: item.file,
+    };
+    let color = ck.colour(&item.at(".color"), "color", l.color);
+    let intensity = ck.non_negative(&item.at(".intensity"), "intensity", l.intensity);
+    let kind = |s: &str| item.at(&format!(".kind.{s}"));
+    let is_rect = matches!(l.kind, LightKindDesc::Rect { .. });
+    let samples = match (l.samples, is_rect) {
+        (None, true) => Some(16),
+        (None, false) | (Some(1), false) => Some(1),
+        (Some(0), _) => {
+            ck.error(&item.at(".samples"), "samples must be at least 1, found 0");
+            None
+        }
+        (Some(n), true) => Some(n),
+        (Some(n), false) => {
+            ck.src.error(
+                ck.file,
+                &item.at(".samples"),
+                format!("samples must be 1 for a delta light, found {n}"),
+                Some("only Rect lights take several samples; remove `samples`".into()),
+            );
+            None
+        }
+    };
+    let f32v = |v: DVec3| v.as_vec3();
+    let shape = match &l.kind {
+        LightKindDesc::Point { position } => LightShape::Point {
+            position: f32v(ck.v3(&kind("Point.position"), "position", *position)?),
+        },
+        LightKindDesc::Spot {
+            position,
+            target,
+            cone_angle,
+            penumbra,
+            beam_distribution,
+        } => {
+            let p = ck.v3(&kind("Spot.position"), "position", *position);
+            let t = ck.v3(&kind("Spot.target"), "target", *target);
+            let mut ok = true;
+            let cone_path = kind("Spot.cone_angle");
+            if ck.finite(&cone_path, "cone_angle", *cone_angle)
+                && !(*cone_angle > 0.0 && *cone_angle <= 90.0)
+            {
+                ck.error(
+                    &cone_path,
+                    format!("cone_angle must be in (0, 90] degrees, found {cone_angle}"),
+                );
+                ok = false;
+            }
+            let pen_path = kind("Spot.penumbra");
+            if ck.finite(&pen_path, "penumbra", *penumbra)
+                && !(*penumbra >= 0.0 && *penumbra <= *cone_angle)
+            {
+                ck.error(
+                    &pen_path,
+                    format!(
+                        "penumbra must be in [0, cone_angle] = [0, {cone_angle}] degrees, \
+                         found {penumbra}"
+                    ),
+                );
+                ok = false;
+            }
+            let beam = ck.non_negative(
+                &kind("Spot.beam_distribution"),
+                "beam_distribution",
+                *beam_distribution,
+            );
+            let (p, t, beam) = (p?, t?, beam?);
+            let direction = (t - p).normalize_or_zero();
+            if direction == DVec3::ZERO {
+                ck.error(&kind("Spot.target"), "target must differ from position");
+                return None;
+            }
+            if !ok || !cone_angle.is_finite() || !penumbra.is_finite() {
+                return None;
+            }
+            LightShape::Spot {
+                position: f32v(p),
+                direction: f32v(direction),
+                cone_angle: cone_angle.to_radians() as f32,
+                penumbra: penumbra.to_radians() as f32,
+                beam_distribution: beam as f32,
+            }
+        }
+        LightKindDesc::Directional { direction } => {
+            let path = kind("Directional.direction");
+            let d = ck.v3(&path, "direction", *direction)?.normalize_or_zero();
+            if d == DVec3::ZERO {
+                ck.error(&path, "direction must not be zero");
+                return None;
+            }
+            LightShape::Directional { direction: f32v(d) }
+        }
+        LightKindDesc::Rect {
+            corner,
+            edge_u,
+            edge_v,
+        } => {
+            let c = ck.v3(&kind("Rect.corner"), "corner", *corner);
+            let u = ck.v3(&kind("Rect.edge_u"), "edge_u", *edge_u);
+            let v = ck.v3(&kind("Rect.edge_v"), "edge_v", *edge_v);
+            let (c, u, v) = (c?, u?, v?);
+            if u.cross(v).length_squared() == 0.0 {
+                ck.error(
+                    &kind("Rect.edge_v"),
+                    "edge_u and edge_v must span a non-zero area",
+                );
+                return None;
+            }
+            LightShape::Rect {
+                corner: f32v(c),
+                edge_u: f32v(u),
+                edge_v: f32v(v),
+            }
+        }
+    };
+    Some(Emitter {
+        shape,
+        radiant: (color? * intensity?).as_vec3(),
+        shadows: l.shadows,
+        samples: samples?,
+    })
+}
+
+/// Checks a material and builds its component.
+pub fn material(src: &mut Sources, item: &Item<'_, MaterialDesc>) -> Option<Material> {
+    let m = item.desc;
+    let mut ck = Checker {
+        src,
+        file: item.file,
+    };
+    let shader = |s: &str| item.at(&format!(".shader.{s}"));
+    let emission = ck.colour(&item.at(".emission"), "emission", m.emission);
+    let shader = match &m.shader {
+        ShaderDesc::Lambert { albedo } => {
+            let path = shader("Lambert.albedo");
+            let a = ck.colour(&path, "albedo", *albedo)?;
+            let mut ok = true;
+            for (k, x) in a.to_array().into_iter().enumerate() {
+                if x > 1.0 {
+                    ck.error(
+                        &format!("{path}[{k}]"),
+                        format!("albedo must be at most 1 (energy conservation), found {x}"),
+                    );
+                    ok = false;
+                }
+            }
+            ok.then_some(Shader::Lambert {
+                albedo: a.as_vec3(),
+            })?
+        }
+        ShaderDesc::Constant { color } => Shader::Constant {
+            color: ck
+                .colour(&shader("Constant.color"), "color", *color)?
+                .as_vec3(),
+        },
+        ShaderDesc::DefaultSurface { ka, kd, color } => {
+            let ka = ck.non_negative(&shader("DefaultSurface.ka"), "ka", *ka);
+            let kd = ck.non_negative(&shader("DefaultSurface.kd"), "kd", *kd);
+            let color = ck.colour(&shader("DefaultSurface.color"), "color", *color);
+            Shader::DefaultSurface {
+                ka: ka? as f32,
+                kd: kd? as f32,
+                color: color?.as_vec3(),
+            }
+        }
+    };
+    Some(Material {
+        shader,
+        two_sided: m.two_sided,
+        emission: emission?.as_vec3(),
+    })
+}
+
+/// The built-in material used where neither an instance nor its object names one.
+pub fn default_material() -> Material {
+    Material {
+        shader: Shader::DefaultSurface {
+            ka: 0.2,
+            kd: 0.8,
+            color: glam::Vec3::ONE,
+        },
+        two_sided: false,
+        emission: glam::Vec3::ZERO,
+    }
+}

@@ -1,0 +1,492 @@
+//! Malformed scenes: every fixture in `tests/fixtures/scenes/bad/` with the exact text the
+//! user sees, plus a robustness check that no input makes the loader panic.
+
+use std::path::Path;
+
+use stagelight::scene::{load_scene, load_scene_str, SceneErrors};
+
+const GOOD: &str = "tests/fixtures/scenes/good/main.ron";
+
+/// Loads a bad fixture (path relative to the package root, as a user would type it) and
+/// returns its errors.
+fn errors(name: &str) -> SceneErrors {
+    let path = format!("tests/fixtures/scenes/bad/{name}");
+    match load_scene(Path::new(&path)) {
+        Ok(_) => panic!("{name} loaded without errors"),
+        Err(e) => e,
+    }
+}
+
+/// Asserts the full report of `name`, one string per diagnostic.
+fn check(name: &str, expected: &[&str]) {
+    let errors = errors(name);
+    let got: Vec<String> = errors.0.iter().map(ToString::to_string).collect();
+    assert_eq!(got, expected, "\n--- {name} reported:\n{errors}\n");
+}
+
+/// A missing comma between two fields.
+#[test]
+fn syntax() {
+    check(
+        "syntax.ron",
+        &[concat!(
+            "tests/fixtures/scenes/bad/syntax.ron:3:5: error: expected comma\n",
+            "  help: separate fields and list items with `,`",
+        )],
+    );
+}
+
+/// A misspelt field, with a suggestion.
+#[test]
+fn unknown_field() {
+    check(
+        "unknown_field.ron",
+        &[
+            concat!(
+                "tests/fixtures/scenes/bad/unknown_field.ron:3:61: error: unknown field \"two_side\" in Material\n",
+                "  help: did you mean \"two_sided\"?",
+            ),
+        ],
+    );
+}
+
+/// An unknown field with no close match lists what is expected.
+#[test]
+fn unknown_field_no_match() {
+    check(
+        "unknown_field_no_match.ron",
+        &[
+            concat!(
+                "tests/fixtures/scenes/bad/unknown_field_no_match.ron:2:59: error: unknown field \"radius\" in Point\n",
+                "  help: expected \"position\"",
+            ),
+        ],
+    );
+}
+
+/// A misspelt enum variant, with a suggestion.
+#[test]
+fn unknown_variant() {
+    check(
+        "unknown_variant.ron",
+        &[
+            concat!(
+                "tests/fixtures/scenes/bad/unknown_variant.ron:3:33: error: unknown variant \"Lambrt\" of Shader\n",
+                "  help: did you mean \"Lambert\"?",
+            ),
+        ],
+    );
+}
+
+/// A required field left out: reported at the opening of its struct.
+#[test]
+fn missing_field() {
+    check(
+        "missing_field.ron",
+        &[
+            "tests/fixtures/scenes/bad/missing_field.ron:3:9: error: missing field \"fov_y\" in Camera",
+        ],
+    );
+}
+
+/// A string where a list is expected.
+#[test]
+fn wrong_type() {
+    check(
+        "wrong_type.ron",
+        &["tests/fixtures/scenes/bad/wrong_type.ron:2:39: error: expected opening `[`"],
+    );
+}
+
+/// A material name that is not defined, with a did-you-mean.
+#[test]
+fn dangling_material() {
+    check(
+        "dangling_material.ron",
+        &[
+            concat!(
+                "tests/fixtures/scenes/bad/dangling_material.ron:4:54: error: unknown material \"chrom\"\n",
+                "  help: did you mean \"chrome\"?",
+            ),
+        ],
+    );
+}
+
+/// Dangling names of each kind: `of`, group members, render camera.
+#[test]
+fn dangling_of() {
+    check(
+        "dangling_of.ron",
+        &[
+            concat!(
+                "tests/fixtures/scenes/bad/dangling_of.ron:3:34: error: unknown object or group \"bunyn\"\n",
+                "  help: did you mean \"bunny\"?",
+            ),
+            concat!(
+                "tests/fixtures/scenes/bad/dangling_of.ron:4:46: error: unknown instance \"b2\"\n",
+                "  help: did you mean \"b1\"?",
+            ),
+            concat!(
+                "tests/fixtures/scenes/bad/dangling_of.ron:6:37: error: unknown camera \"cma\"\n",
+                "  help: did you mean \"cam\"?",
+            ),
+        ],
+    );
+}
+
+/// A name defined twice points at the first definition.
+#[test]
+fn duplicate_name() {
+    check(
+        "duplicate_name.ron",
+        &[
+            concat!(
+                "tests/fixtures/scenes/bad/duplicate_name.ron:5:16: error: duplicate material name \"white\"\n",
+                "  help: first defined at tests/fixtures/scenes/bad/duplicate_name.ron:3:16",
+            ),
+        ],
+    );
+}
+
+/// Two groups containing each other through instances.
+#[test]
+fn dag_cycle() {
+    check(
+        "dag_cycle.ron",
+        &[
+            concat!(
+                "tests/fixtures/scenes/bad/dag_cycle.ron:3:30: error: instance cycle: a -> b_in_a -> b -> a_in_b -> a\n",
+                "  help: a group may not contain itself, directly or through instances",
+            ),
+        ],
+    );
+}
+
+/// Includes that come back to a file on the include chain.
+#[test]
+fn include_cycle() {
+    check(
+        "include_cycle.ron",
+        &[
+            concat!(
+                "tests/fixtures/scenes/bad/lib/cycle_b.ron:3:15: error: include cycle: tests/fixtures/scenes/bad/lib/cycle_a.ron -> tests/fixtures/scenes/bad/lib/cycle_b.ron -> tests/fixtures/scenes/bad/lib/cycle_a.ron\n",
+                "  help: a file may not include itself, directly or through other files",
+            ),
+        ],
+    );
+}
+
+/// An OBJ file that does not exist, with its resolved path.
+#[test]
+fn missing_obj() {
+    check(
+        "missing_obj.ron",
+        &[
+            "tests/fixtures/scenes/bad/missing_obj.ron:2:47: error: cannot read OBJ file \"tests/fixtures/scenes/bad/meshes/bunny.obj\": file not found",
+        ],
+    );
+}
+
+/// An include that does not exist, with its resolved path.
+#[test]
+fn missing_include() {
+    check(
+        "missing_include.ron",
+        &[
+            "tests/fixtures/scenes/bad/missing_include.ron:2:36: error: cannot read include file \"tests/fixtures/scenes/bad/lib/nothing_here.ron\": file not found",
+        ],
+    );
+}
+
+/// A transform matrix without an inverse, located at its transform entry.
+#[test]
+fn singular_matrix() {
+    check(
+        "singular_matrix.ron",
+        &[
+            "tests/fixtures/scenes/bad/singular_matrix.ron:6:13: error: transform matrix is singular (determinant 0): not invertible",
+        ],
+    );
+}
+
+/// A scale with a zero component.
+#[test]
+fn zero_scale() {
+    check(
+        "zero_scale.ron",
+        &[
+            "tests/fixtures/scenes/bad/zero_scale.ron:3:91: error: scale (1, 0, 1) has a zero component: the transform is not invertible",
+        ],
+    );
+}
+
+/// NaN and inf literals where colours are expected.
+#[test]
+fn nan_colour() {
+    check(
+        "nan_colour.ron",
+        &[
+            "tests/fixtures/scenes/bad/nan_colour.ron:2:59: error: albedo must be a finite number, found NaN",
+            "tests/fixtures/scenes/bad/nan_colour.ron:2:82: error: emission must be a finite number, found inf",
+        ],
+    );
+}
+
+/// A field of view outside (0, 180) degrees.
+#[test]
+fn fov_range() {
+    check(
+        "fov_range.ron",
+        &[
+            "tests/fixtures/scenes/bad/fov_range.ron:3:36: error: fov_y must be between 0 and 180 degrees (exclusive), found 180",
+        ],
+    );
+}
+
+/// An image with zero rows.
+#[test]
+fn resolution_zero() {
+    check(
+        "resolution_zero.ron",
+        &[
+            "tests/fixtures/scenes/bad/resolution_zero.ron:3:58: error: resolution height must be at least 1, found 0",
+        ],
+    );
+}
+
+/// A Depth pass in a PNG output and an unknown output extension.
+#[test]
+fn png_depth() {
+    check(
+        "png_depth.ron",
+        &[
+            concat!(
+                "tests/fixtures/scenes/bad/png_depth.ron:6:54: error: a PNG output cannot hold the Depth pass\n",
+                "  help: write Depth and Normal passes to an .exr output",
+            ),
+            concat!(
+                "tests/fixtures/scenes/bad/png_depth.ron:6:70: error: unknown output extension \".tiff\" in \"out.tiff\"\n",
+                "  help: use .png or .exr, or give `format: Png` or `format: Exr`",
+            ),
+        ],
+    );
+}
+
+/// A scene without a render entry.
+#[test]
+fn no_render() {
+    check(
+        "no_render.ron",
+        &[concat!(
+            "tests/fixtures/scenes/bad/no_render.ron:2:1: error: the scene has no render entry\n",
+            "  help: add `render: (root: \"<group>\", camera: \"<camera>\")`",
+        )],
+    );
+}
+
+/// Many problems in one file: all reported, ordered by position.
+#[test]
+fn several() {
+    check(
+        "several.ron",
+        &[
+            "tests/fixtures/scenes/bad/several.ron:2:24: error: samples must be at least 1, found 0",
+            "tests/fixtures/scenes/bad/several.ron:4:59: error: albedo must not be negative, found -0.1",
+            "tests/fixtures/scenes/bad/several.ron:6:91: error: cone_angle must be in (0, 90] degrees, found 95",
+            "tests/fixtures/scenes/bad/several.ron:6:105: error: penumbra must be in [0, cone_angle] = [0, 95] degrees, found 100",
+            "tests/fixtures/scenes/bad/several.ron:6:122: error: intensity must not be negative, found -1",
+            "tests/fixtures/scenes/bad/several.ron:7:109: error: vertex index 3 is out of range: the mesh has 3 vertices, 0 to 2",
+            "tests/fixtures/scenes/bad/several.ron:7:113: error: a polygon needs at least 3 vertex indices, found 2",
+            concat!(
+                "tests/fixtures/scenes/bad/several.ron:8:52: error: unknown material \"glod\"\n",
+                "  help: did you mean \"gold\"?",
+            ),
+            "tests/fixtures/scenes/bad/several.ron:10:36: error: fov_y must be between 0 and 180 degrees (exclusive), found 0",
+            "tests/fixtures/scenes/bad/several.ron:10:101: error: target must differ from eye",
+        ],
+    );
+}
+
+/// A semantic error inside an included file names that file.
+#[test]
+fn error_in_include() {
+    check(
+        "error_in_include.ron",
+        &[
+            "tests/fixtures/scenes/bad/lib/broken_materials.ron:4:71: error: emission must not be negative, found -1",
+        ],
+    );
+}
+
+/// A syntax error inside an included file names that file.
+#[test]
+fn syntax_in_include() {
+    check(
+        "syntax_in_include.ron",
+        &[
+            "tests/fixtures/scenes/bad/lib/syntax.ron:2:66: error: expected a tuple of size 3 but found 2 elements",
+        ],
+    );
+}
+
+/// A malformed OBJ file is reported at its own line.
+#[test]
+fn obj_parse() {
+    check(
+        "obj_parse.ron",
+        &[
+            concat!(
+                "tests/fixtures/scenes/bad/meshes/broken.obj:4:1: error: invalid OBJ file \"tests/fixtures/scenes/bad/meshes/broken.obj\": position parse error\n",
+                "  help: loaded for object \"broken\" at tests/fixtures/scenes/bad/obj_parse.ron:2:48",
+            ),
+        ],
+    );
+}
+
+/// An index past the vertex list and a polygon with two indices.
+#[test]
+fn polygon_index() {
+    check(
+        "polygon_index.ron",
+        &[
+            "tests/fixtures/scenes/bad/polygon_index.ron:6:34: error: vertex index 4 is out of range: the mesh has 4 vertices, 0 to 3",
+            "tests/fixtures/scenes/bad/polygon_index.ron:6:38: error: a polygon needs at least 3 vertex indices, found 2",
+        ],
+    );
+}
+
+/// A second render entry (in an include) points at the first.
+#[test]
+fn render_twice() {
+    check(
+        "render_twice.ron",
+        &[concat!(
+            "tests/fixtures/scenes/bad/lib/render.ron:2:13: error: render entry is given twice\n",
+            "  help: first defined at tests/fixtures/scenes/bad/render_twice.ron:5:13",
+        )],
+    );
+}
+
+/// A camera matrix with scale is not rigid.
+#[test]
+fn camera_matrix() {
+    check(
+        "camera_matrix.ron",
+        &[
+            "tests/fixtures/scenes/bad/camera_matrix.ron:3:78: error: a camera matrix must be rigid: orthonormal rotation with determinant 1, no scale, shear or mirroring",
+        ],
+    );
+}
+/// The errors of one file come in position order, and the count is exact.
+#[test]
+fn several_errors_are_all_reported_in_order() {
+    let errors = errors("several.ron");
+    assert_eq!(errors.0.len(), 10);
+    let positions: Vec<(usize, usize)> = errors.0.iter().map(|d| (d.line, d.column)).collect();
+    let mut sorted = positions.clone();
+    sorted.sort();
+    assert_eq!(positions, sorted);
+}
+
+/// Errors in several files are ordered by file (load order), then position.
+#[test]
+fn errors_are_ordered_by_file_then_position() {
+    let text = r#"Scene(
+        include: ["lib/broken_materials.ron"],
+        groups: [(name: "world", members: ["nobody"])],
+        cameras: [(name: "cam", fov_y: 400, resolution: (4, 4), placement: LookAt(eye: (0, 0, 1), target: (0, 0, 0)))],
+        render: (root: "world", camera: "cam"),
+    )"#;
+    let errors = load_scene_str(text, Path::new("tests/fixtures/scenes/bad/inline.ron"))
+        .err()
+        .expect("errors");
+    let got: Vec<String> = errors
+        .0
+        .iter()
+        .map(|d| format!("{}:{}:{}", d.file.display(), d.line, d.column))
+        .collect();
+    assert_eq!(
+        got,
+        [
+            "tests/fixtures/scenes/bad/inline.ron:3:44",
+            "tests/fixtures/scenes/bad/inline.ron:4:40",
+            "tests/fixtures/scenes/bad/lib/broken_materials.ron:4:71",
+        ]
+    );
+}
+
+/// A tiny deterministic generator for the robustness test (no dependency needed).
+struct XorShift(u64);
+
+impl XorShift {
+    fn next(&mut self) -> u64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        self.0
+    }
+
+    fn below(&mut self, n: usize) -> usize {
+        (self.next() % n as u64) as usize
+    }
+}
+
+/// Truncated prefixes and random byte mutations of a valid scene load or fail, never panic.
+#[test]
+fn no_input_makes_the_loader_panic() {
+    let text = std::fs::read_to_string(GOOD).unwrap();
+    let path = Path::new(GOOD);
+    assert!(load_scene_str(&text, path).is_ok());
+    let mut cut: Vec<usize> = (0..text.len()).step_by(3).collect();
+    cut.push(text.len() - 1);
+    for end in cut {
+        if text.is_char_boundary(end) {
+            let _ = load_scene_str(&text[..end], path);
+        }
+    }
+    let alphabet = b"()[]{},:\"'/*#.-+0123456789eE_ \nrbNaNinfxyz";
+    let mut rng = XorShift(0x9E37_79B9_7F4A_7C15);
+    for _ in 0..1500 {
+        let mut bytes = text.clone().into_bytes();
+        for _ in 0..1 + rng.below(4) {
+            let at = rng.below(bytes.len());
+            match rng.below(3) {
+                0 => bytes[at] = alphabet[rng.below(alphabet.len())],
+                1 => {
+                    bytes.remove(at);
+                }
+                _ => bytes.insert(at, alphabet[rng.below(alphabet.len())]),
+            }
+        }
+        if let Ok(mutated) = String::from_utf8(bytes) {
+            let _ = load_scene_str(&mutated, path);
+        }
+    }
+}
+
+/// Non-finite numbers, a zero rotation axis and a non-affine matrix in transform lists.
+#[test]
+fn transform_values() {
+    check(
+        "transform_values.ron",
+        &[
+            "tests/fixtures/scenes/bad/transform_values.ron:4:56: error: translation must be a finite number, found -inf",
+            "tests/fixtures/scenes/bad/transform_values.ron:4:83: error: rotation axis must not be zero",
+            "tests/fixtures/scenes/bad/transform_values.ron:5:95: error: the last row of a transform matrix must be (0, 0, 0, 1), found (0, 0, 1, 1)",
+        ],
+    );
+}
+
+/// A number that is finite in f64 but not in f32 would become infinite when loaded.
+#[test]
+fn number_beyond_f32() {
+    let text = r#"Scene(lights: [(name: "l", kind: Point(position: (1e300, 0, 0)))])"#;
+    let errors = load_scene_str(text, Path::new("big.ron"))
+        .err()
+        .expect("errors");
+    assert_eq!(errors.0.len(), 2, "{errors}");
+    assert_eq!(
+        errors.0[1].to_string(),
+        "big.ron:1:51: error: position 1e300 is beyond the f32 range"
+    );
+}
