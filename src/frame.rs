@@ -6,20 +6,45 @@ use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 
+use crate::bake::BakeReport;
 use crate::framebuffer::FrameBuffers;
 use crate::geometry::SceneGeometry;
 use crate::schedule::RunReport;
 use crate::settings::RenderSettings;
 
+/// What the user asked this run to do.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Tasks {
+    /// Render the render camera (`stagelight render`).
+    pub render: bool,
+    /// Bake the scene's bake requests (`stagelight bake`, or `render --bake`).
+    pub bake: bool,
+}
+
+impl Default for Tasks {
+    fn default() -> Self {
+        Self {
+            render: true,
+            bake: false,
+        }
+    }
+}
+
 /// Everything stages pass forward to each other.
 pub struct Frame {
     /// Render settings (scene `options` plus command-line overrides).
     pub settings: RenderSettings,
+    /// What to do: render, bake or both.
+    pub tasks: Tasks,
+    /// Directory for baked textures (relative paths resolve against the working directory).
+    pub bake_dir: PathBuf,
     /// Written by `build_accel`: world-space triangles, their BVH and shading attributes.
     pub geometry: Option<SceneGeometry>,
     /// Written by `shade`: the render camera's frame buffers.
     pub image: Option<FrameBuffers>,
-    /// Written by `write_output`: the files that now exist.
+    /// Written by `bake_lightmaps`: one report per bake request.
+    pub bake_reports: Vec<BakeReport>,
+    /// Written by `write_output` and `bake_lightmaps`: the files that now exist.
     pub written: Vec<PathBuf>,
     /// Show a progress bar on stderr.
     pub progress: bool,
@@ -34,7 +59,10 @@ impl Frame {
     pub fn new(settings: RenderSettings) -> Self {
         Self {
             settings,
+            tasks: Tasks::default(),
+            bake_dir: PathBuf::from("."),
             geometry: None,
+            bake_reports: Vec::new(),
             image: None,
             written: Vec::new(),
             progress: false,

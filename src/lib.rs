@@ -6,6 +6,7 @@
 //! ([`schedule`]) records what ran, why, how long it took and how much work it did.
 
 pub mod accel;
+pub mod bake;
 pub mod components;
 pub mod frame;
 pub mod framebuffer;

@@ -4,7 +4,7 @@
 //! `settings.bvh_quality`.
 //! **Writes:** `frame.geometry`.
 //! **Runs when:** at least one instance has triangles and something consumes rays (a render
-//! camera).
+//! camera in a run that renders, or bake requests in a run that bakes).
 //! **After this stage:** `frame.geometry` holds world triangles in instance order (each
 //! instance contiguous), their BVH, and per-instance shading data.
 
@@ -15,11 +15,13 @@ use hecs::{Entity, World};
 
 use super::prelude::*;
 use crate::accel::Accel;
-use crate::components::{Instance, Material, MaterialRef, RenderCamera, WorldFromObject};
+use crate::components::{
+    BakeRequest, Instance, Material, MaterialRef, RenderCamera, WorldFromObject,
+};
 use crate::geometry::{InstanceGeometry, SceneGeometry};
 
 /// Run condition: instances with triangles, and a render camera to trace for.
-pub fn should_run(world: &World, _frame: &Frame) -> Decision {
+pub fn should_run(world: &World, frame: &Frame) -> Decision {
     let mut instances = 0usize;
     let mut triangles = 0usize;
     for inst in world.query::<&Instance>().iter() {
@@ -29,8 +31,14 @@ pub fn should_run(world: &World, _frame: &Frame) -> Decision {
     if triangles == 0 {
         return Decision::skip("no instance has triangles");
     }
-    if !crate::schedule::any_with::<RenderCamera>(world) {
-        return Decision::skip("no render camera traces rays");
+    let renders = frame.tasks.render && crate::schedule::any_with::<RenderCamera>(world);
+    let bakes = frame.tasks.bake && crate::schedule::any_with::<BakeRequest>(world);
+    if !renders && !bakes {
+        return Decision::skip(if frame.tasks.render {
+            "no render camera traces rays"
+        } else {
+            "nothing in this run traces rays"
+        });
     }
     Decision::run(format!(
         "{instances} instance(s) with {triangles} triangles"

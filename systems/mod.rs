@@ -9,11 +9,12 @@
 //! | 2     | `tessellate`      | parametric surfaces or displacement (not built yet)  |
 //! | 3     | `build_accel`     | instances with triangles and a consumer of rays       |
 //! | 4     | `trace_photons`   | caustics/GI on and a light (not built yet)            |
-//! | 5     | `bake_lightmaps`  | bake requests (not built yet)                         |
+//! | 5     | `bake_lightmaps`  | bake requests, in a run that bakes                    |
 //! | 6     | `shade`           | a render camera                                      |
 //! | 7     | `draw_contours`   | contour shaders (not built yet)                       |
 //! | 8     | `write_output`    | a shaded image and outputs to write                  |
 
+pub mod bake_lightmaps;
 pub mod build_accel;
 pub mod shade;
 pub mod write_output;
@@ -34,6 +35,11 @@ pub const STAGES: &[Stage] = &[
         name: "build_accel",
         condition: build_accel::should_run,
         run: build_accel::run,
+    },
+    Stage {
+        name: "bake_lightmaps",
+        condition: bake_lightmaps::should_run,
+        run: bake_lightmaps::run,
     },
     Stage {
         name: "shade",

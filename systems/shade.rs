@@ -4,7 +4,7 @@
 //! **Reads:** the `Camera` with `RenderCamera`; `Emitter` entities; `frame.geometry` (absent
 //! means an empty scene: every ray misses); `settings` (spp, filter, seed, face).
 //! **Writes:** `frame.image`.
-//! **Runs when:** a render camera exists.
+//! **Runs when:** the run renders and a render camera exists.
 //! **After this stage:** `frame.image` holds finite beauty, alpha, depth and normal buffers of
 //! the camera's resolution; each pixel depends only on (seed, pixel index, sample index).
 
@@ -24,7 +24,10 @@ use crate::shading::{shade_hit, CameraRays, FilterSampler, LightSet, ShadeContex
 const MESH_LIGHT_SAMPLES: u32 = 16;
 
 /// Run condition: a render camera exists.
-pub fn should_run(world: &World, _frame: &Frame) -> Decision {
+pub fn should_run(world: &World, frame: &Frame) -> Decision {
+    if !frame.tasks.render {
+        return Decision::skip("this run only bakes");
+    }
     match world.query::<(&Camera, &RenderCamera)>().iter().next() {
         Some((camera, _)) => {
             Decision::run(format!("render camera {}×{}", camera.width, camera.height))

@@ -9,9 +9,12 @@ pub mod ao;
 pub mod dilate;
 pub mod irradiance;
 pub mod raster;
+pub mod report;
+pub mod texels;
 pub mod texture;
 pub mod uv;
 
 pub use raster::{rasterize, Coverage, TexelSample};
+pub use report::BakeReport;
 pub use texture::TexelImage;
 pub use uv::{bake_resolution, corner_uvs, BakeUvError};

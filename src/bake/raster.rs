@@ -210,8 +210,16 @@ mod tests {
 
     fn quad_uvs() -> Vec<[Vec2; 3]> {
         vec![
-            [Vec2::new(0.0, 0.0), Vec2::new(1.0, 0.0), Vec2::new(1.0, 1.0)],
-            [Vec2::new(0.0, 0.0), Vec2::new(1.0, 1.0), Vec2::new(0.0, 1.0)],
+            [
+                Vec2::new(0.0, 0.0),
+                Vec2::new(1.0, 0.0),
+                Vec2::new(1.0, 1.0),
+            ],
+            [
+                Vec2::new(0.0, 0.0),
+                Vec2::new(1.0, 1.0),
+                Vec2::new(0.0, 1.0),
+            ],
         ]
     }
 
@@ -226,14 +234,21 @@ mod tests {
     #[test]
     fn texel_centres_follow_the_v_up_convention() {
         // A triangle covering only the top-left corner region of UV space (v near 1).
-        let uvs = vec![[Vec2::new(0.0, 1.0), Vec2::new(0.2, 1.0), Vec2::new(0.0, 0.8)]];
+        let uvs = vec![[
+            Vec2::new(0.0, 1.0),
+            Vec2::new(0.2, 1.0),
+            Vec2::new(0.0, 0.8),
+        ]];
         let c = rasterize(&uvs, 10, 10, 1);
         assert!(c.is_covered(0, 0), "row 0 is the top (v = 1)");
         assert!(!c.is_covered(0, 9));
         // Texel (0, 0) centre is uv (0.05, 0.95): barycentrics of that point.
         let s = c.texel(0, 0)[0].unwrap();
         // uv = (1−b1−b2)·(0,1) + b1·(0.2,1) + b2·(0,0.8) ⇒ b1 = 0.25, b2 = 0.25.
-        assert!((s.b1 - 0.25).abs() < 1e-6 && (s.b2 - 0.25).abs() < 1e-6, "{s:?}");
+        assert!(
+            (s.b1 - 0.25).abs() < 1e-6 && (s.b2 - 0.25).abs() < 1e-6,
+            "{s:?}"
+        );
     }
 
     #[test]
@@ -247,7 +262,11 @@ mod tests {
     #[test]
     fn slivers_get_a_fallback_sample_on_the_triangle() {
         // A thin triangle crossing texel (1, 1) without containing its single centre sample.
-        let uvs = vec![[Vec2::new(0.1, 0.61), Vec2::new(0.9, 0.61), Vec2::new(0.1, 0.62)]];
+        let uvs = vec![[
+            Vec2::new(0.1, 0.61),
+            Vec2::new(0.9, 0.61),
+            Vec2::new(0.1, 0.62),
+        ]];
         let c = rasterize(&uvs, 4, 4, 1);
         let s = c.texel(1, 1)[0].expect("conservative coverage");
         assert!(s.b1 >= 0.0 && s.b2 >= 0.0 && s.b1 + s.b2 <= 1.0 + 1e-6);

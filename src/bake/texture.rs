@@ -34,14 +34,15 @@ impl TexelImage {
 
     /// Encodes as linear f32 RGB EXR.
     pub fn encode_exr(&self) -> std::result::Result<Vec<u8>, String> {
-        let channels: SmallVec<[AnyChannel<FlatSamples>; 4]> = [
-            ("R", 0usize),
-            ("G", 1),
-            ("B", 2),
-        ]
-        .into_iter()
-        .map(|(name, c)| AnyChannel::new(name, FlatSamples::F32(self.texels.iter().map(|t| t[c]).collect())))
-        .collect();
+        let channels: SmallVec<[AnyChannel<FlatSamples>; 4]> = [("R", 0usize), ("G", 1), ("B", 2)]
+            .into_iter()
+            .map(|(name, c)| {
+                AnyChannel::new(
+                    name,
+                    FlatSamples::F32(self.texels.iter().map(|t| t[c]).collect()),
+                )
+            })
+            .collect();
         let layer = Layer::new(
             (self.width as usize, self.height as usize),
             LayerAttributes::default(),
@@ -59,7 +60,11 @@ impl TexelImage {
 
     /// Encodes as PNG RGB, 8 or 16 bits; `srgb` applies the sRGB curve (colour data),
     /// otherwise values are stored linearly (clamped to [0, 1]).
-    pub fn encode_png(&self, sixteen_bit: bool, srgb_encode: bool) -> std::result::Result<Vec<u8>, String> {
+    pub fn encode_png(
+        &self,
+        sixteen_bit: bool,
+        srgb_encode: bool,
+    ) -> std::result::Result<Vec<u8>, String> {
         let encode = |v: f32| -> f32 {
             if srgb_encode {
                 srgb::encode(v)
@@ -79,27 +84,49 @@ impl TexelImage {
                     data.extend_from_slice(&v.to_be_bytes());
                 }
             }
-            image::ImageEncoder::write_image(encoder, &data, self.width, self.height, image::ExtendedColorType::Rgb16)
-                .map_err(|e| e.to_string())?;
+            image::ImageEncoder::write_image(
+                encoder,
+                &data,
+                self.width,
+                self.height,
+                image::ExtendedColorType::Rgb16,
+            )
+            .map_err(|e| e.to_string())?;
         } else {
             let data: Vec<u8> = self
                 .texels
                 .iter()
                 .flat_map(|t| [0, 1, 2].map(|c| (encode(t[c]) * 255.0 + 0.5) as u8))
                 .collect();
-            image::ImageEncoder::write_image(encoder, &data, self.width, self.height, image::ExtendedColorType::Rgb8)
-                .map_err(|e| e.to_string())?;
+            image::ImageEncoder::write_image(
+                encoder,
+                &data,
+                self.width,
+                self.height,
+                image::ExtendedColorType::Rgb8,
+            )
+            .map_err(|e| e.to_string())?;
         }
         Ok(out)
     }
 
     /// The validity mask as an 8-bit grey PNG (255 valid, 0 empty).
     pub fn encode_mask_png(&self) -> std::result::Result<Vec<u8>, String> {
-        let data: Vec<u8> = self.valid.iter().map(|&v| if v { 255 } else { 0 }).collect();
+        let data: Vec<u8> = self
+            .valid
+            .iter()
+            .map(|&v| if v { 255 } else { 0 })
+            .collect();
         let mut out = Vec::new();
         let encoder = image::codecs::png::PngEncoder::new(&mut out);
-        image::ImageEncoder::write_image(encoder, &data, self.width, self.height, image::ExtendedColorType::L8)
-            .map_err(|e| e.to_string())?;
+        image::ImageEncoder::write_image(
+            encoder,
+            &data,
+            self.width,
+            self.height,
+            image::ExtendedColorType::L8,
+        )
+        .map_err(|e| e.to_string())?;
         Ok(out)
     }
 }

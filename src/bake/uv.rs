@@ -51,7 +51,8 @@ fn unwrap(mesh: &TriMesh, page: u32, padding: u32) -> Result<Vec<[Vec2; 3]>, Bak
         padding,
         ..uvunwrap::Options::default()
     };
-    let atlas = uvunwrap::generate(&[input], &options).map_err(|e| BakeUvError::Unwrap(e.to_string()))?;
+    let atlas =
+        uvunwrap::generate(&[input], &options).map_err(|e| BakeUvError::Unwrap(e.to_string()))?;
     let out = &atlas.meshes[0];
     // uvunwrap's v grows with the image row over a page of `width × height`; rescale to the
     // full square page and flip to v up.
@@ -88,7 +89,9 @@ pub fn bake_resolution(
             } else {
                 1.0
             };
-            let pow2 = (side.max(1.0).min(1e9).ceil() as u64).next_power_of_two().min(u32::MAX as u64) as u32;
+            let pow2 = (side.max(1.0).min(1e9).ceil() as u64)
+                .next_power_of_two()
+                .min(u32::MAX as u64) as u32;
             let size = pow2.min(max_size.max(1));
             (size, size)
         }
@@ -120,7 +123,10 @@ mod tests {
 
     #[test]
     fn zero_resolution_is_refused() {
-        let r = BakeResolution::Fixed { width: 0, height: 16 };
+        let r = BakeResolution::Fixed {
+            width: 0,
+            height: 16,
+        };
         assert!(bake_resolution(r, 1.0, 1.0).is_err());
     }
 }

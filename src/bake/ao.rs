@@ -1,0 +1,95 @@
+//! Ambient occlusion and the inside-geometry probe: cosine-weighted rays about the shading
+//! normal from a robustly offset origin.
+
+use glam::Vec3;
+
+use crate::accel::{spawn_ray, SurfacePoint};
+use crate::geometry::SceneGeometry;
+use crate::sampling::{sample_cosine_hemisphere, Sampler};
+
+/// An orthonormal basis with `n` as its third axis (Duff et al. 2017, branchless).
+pub fn basis(n: Vec3) -> (Vec3, Vec3) {
+    let sign = 1.0f32.copysign(n.z);
+    let a = -1.0 / (sign + n.z);
+    let b = n.x * n.y * a;
+    (
+        Vec3::new(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x),
+        Vec3::new(b, sign + n.y * n.y * a, -n.y),
+    )
+}
+
+/// The result of a batch of hemisphere rays from one point.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct HemisphereRays {
+    /// Rays traced.
+    pub rays: u32,
+    /// Rays that escaped (no hit within the distance).
+    pub open: u32,
+    /// Sum of the escaped directions (for bent normals).
+    pub open_dir_sum: Vec3,
+    /// Rays whose first hit was the back of a one-sided surface.
+    pub backface_hits: u32,
+}
+
+/// Traces `count` cosine-weighted rays about `normal` (which faces the side being baked)
+/// from `surface`, each drawn from `Sampler::new(seed, first + k)`. Directions below the
+/// geometric surface (possible with interpolated normals) count as occluded. Hits farther
+/// than `max_distance` do not count.
+pub fn trace_hemisphere(
+    geometry: &SceneGeometry,
+    surface: &SurfacePoint,
+    normal: Vec3,
+    ng_facing: Vec3,
+    max_distance: f32,
+    seed: u32,
+    first: u32,
+    count: u32,
+) -> HemisphereRays {
+    let (t, b) = basis(normal);
+    let mut out = HemisphereRays::default();
+    for k in 0..count {
+        let mut sampler = Sampler::new(seed, first + k);
+        let local = sample_cosine_hemisphere(sampler.next_2d());
+        let dir = t * local.x + b * local.y + normal * local.z;
+        out.rays += 1;
+        if dir.dot(ng_facing) <= 0.0 {
+            continue;
+        }
+        let mut ray = spawn_ray(surface, dir);
+        ray.t_max = max_distance;
+        match geometry.accel.intersect(&ray) {
+            None => {
+                out.open += 1;
+                out.open_dir_sum += dir;
+            }
+            Some(hit) => {
+                let tri = geometry.accel.triangle(hit.prim);
+                let ng = (tri[1] - tri[0]).cross(tri[2] - tri[0]);
+                if ng.dot(dir) > 0.0 && !geometry.material_of(hit.prim).two_sided {
+                    out.backface_hits += 1;
+                }
+            }
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn basis_is_orthonormal() {
+        for n in [
+            Vec3::Z,
+            -Vec3::Z,
+            Vec3::X,
+            Vec3::new(0.3, -0.4, 0.866).normalize(),
+        ] {
+            let (t, b) = basis(n);
+            assert!(t.dot(b).abs() < 1e-6 && t.dot(n).abs() < 1e-6 && b.dot(n).abs() < 1e-6);
+            assert!((t.length() - 1.0).abs() < 1e-6 && (b.length() - 1.0).abs() < 1e-6);
+            assert!((t.cross(b) - n).length() < 1e-5);
+        }
+    }
+}

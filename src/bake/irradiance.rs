@@ -1,0 +1,117 @@
+//! Irradiance estimators for lightmaps: direct irradiance from the scene's lights with
+//! shadow rays, and diffuse interreflection gathered with cosine-weighted paths.
+//!
+//! Emission seen by gather rays is not added: emitting meshes are lights already sampled by
+//! next-event estimation, so counting them again would double their contribution.
+
+use glam::Vec3;
+
+use crate::accel::{spawn_ray, spawn_ray_to, spawn_ray_to_surface, SurfacePoint};
+use crate::bake::ao::basis;
+use crate::components::Shader;
+use crate::geometry::SceneGeometry;
+use crate::sampling::{sample_cosine_hemisphere, Sampler};
+use crate::shading::LightSet;
+
+/// Direct irradiance (W/m²) at `surface` with unit normal `normal` from every light, with
+/// shadow rays; each light uses its own sample count, drawn from child sequences of
+/// `sampler`.
+pub fn direct_irradiance(
+    geometry: &SceneGeometry,
+    lights: &LightSet,
+    surface: &SurfacePoint,
+    normal: Vec3,
+    ng_facing: Vec3,
+    sampler: &mut Sampler,
+) -> Vec3 {
+    let mut e = Vec3::ZERO;
+    for light in &lights.lights {
+        let n = light.sample_count();
+        let seed = sampler.child_seed();
+        let mut sum = Vec3::ZERO;
+        for j in 0..n {
+            let u = Sampler::new(seed, j).next_2d();
+            let Some(ls) = light.sample(surface.p, u, Some(geometry)) else {
+                continue;
+            };
+            let cos = normal.dot(ls.wi);
+            if cos <= 0.0 || ng_facing.dot(ls.wi) <= 0.0 {
+                continue;
+            }
+            if ls.shadows {
+                let ray = match ls.target {
+                    None => spawn_ray(surface, ls.wi),
+                    Some(t) if t.ng == Vec3::ZERO => spawn_ray_to(surface, t.p),
+                    Some(t) => spawn_ray_to_surface(surface, &t),
+                };
+                if geometry.accel.occluded(&ray) {
+                    continue;
+                }
+            }
+            sum += ls.contribution * cos;
+        }
+        e += sum / n as f32;
+    }
+    e
+}
+
+/// Diffuse reflectance used for interreflection: Lambert albedo, or the colour of the
+/// light-independent shaders.
+pub fn diffuse_albedo(shader: &Shader) -> Vec3 {
+    match shader {
+        Shader::Lambert { albedo } => *albedo,
+        Shader::Constant { color } | Shader::DefaultSurface { color, .. } => *color,
+    }
+}
+
+/// Indirect irradiance (W/m²) at `surface` from one cosine-weighted gather path of at most
+/// `depth` bounces: `π · L_in` for the sampled direction (pdf cosθ/π), with direct lighting
+/// at every vertex.
+#[allow(clippy::too_many_arguments)] // the state of one path; called from one place
+pub fn indirect_irradiance_sample(
+    geometry: &SceneGeometry,
+    lights: &LightSet,
+    surface: &SurfacePoint,
+    normal: Vec3,
+    ng_facing: Vec3,
+    depth: u32,
+    sampler: &mut Sampler,
+) -> Vec3 {
+    let mut throughput = Vec3::splat(std::f32::consts::PI);
+    let (mut sp, mut n, mut ngf) = (*surface, normal, ng_facing);
+    let mut e = Vec3::ZERO;
+    for _ in 0..depth {
+        let (t, b) = basis(n);
+        let local = sample_cosine_hemisphere(sampler.next_2d());
+        let dir = t * local.x + b * local.y + n * local.z;
+        if dir.dot(ngf) <= 0.0 {
+            break;
+        }
+        let ray = spawn_ray(&sp, dir);
+        let Some(hit) = geometry.accel.intersect(&ray) else {
+            break;
+        };
+        let hp = geometry.shading_point(&hit);
+        let material = &geometry.materials[hp.material as usize];
+        let front = hp.surface.ng.dot(-dir) > 0.0;
+        if !front && !material.two_sided {
+            break;
+        }
+        let sign = if front { 1.0 } else { -1.0 };
+        let (hn, hng) = (hp.normal * sign, hp.surface.ng * sign);
+        let albedo = diffuse_albedo(&material.shader);
+        // L_in = albedo/π · E(hit); the path weight π/π·albedo carries on.
+        let e_hit = direct_irradiance(geometry, lights, &hp.surface, hn, hng, sampler);
+        throughput *= albedo / std::f32::consts::PI;
+        e += throughput * e_hit;
+        if throughput.max_element() <= 0.0 {
+            break;
+        }
+        // Next bounce: the estimator of E at the hit is π·L_in, so scale by π.
+        throughput *= std::f32::consts::PI;
+        sp = hp.surface;
+        n = hn;
+        ngf = hng;
+    }
+    e
+}

@@ -1,0 +1,338 @@
+//! Evaluates every requested kind at every covered texel of one bake request, in parallel
+//! over texel rows. Each texel's random numbers derive from (seed, texel index, ray index):
+//! the result does not depend on the thread count.
+
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+
+use glam::Vec3;
+use rayon::prelude::*;
+
+use crate::bake::ao::trace_hemisphere;
+use crate::bake::irradiance::{diffuse_albedo, direct_irradiance, indirect_irradiance_sample};
+use crate::bake::raster::Coverage;
+use crate::bake::texture::TexelImage;
+use crate::components::{BakeKind, LightmapStore, NormalSpace};
+use crate::geometry::{InstanceGeometry, SceneGeometry};
+use crate::sampling::{hash_combine, Sampler};
+use crate::shading::LightSet;
+
+/// Rays of the inside-geometry probe per sample position.
+const PROBE_RAYS: u32 = 16;
+/// A sample position is inside geometry when at least this fraction of probe rays first meet
+/// the back of a one-sided surface.
+const INSIDE_FRACTION: f32 = 0.5;
+
+/// Inputs of one request's texel evaluation.
+pub struct TexelJob<'a> {
+    /// Scene geometry.
+    pub geometry: &'a SceneGeometry,
+    /// The baked instance.
+    pub instance: &'a InstanceGeometry,
+    /// Lights.
+    pub lights: &'a LightSet,
+    /// Coverage of the texture.
+    pub coverage: &'a Coverage,
+    /// Kinds to bake.
+    pub kinds: &'a [BakeKind],
+    /// Per-triangle corner UVs (for tangent frames).
+    pub uvs: &'a [[glam::Vec2; 3]],
+    /// Seed of this request.
+    pub seed: u32,
+}
+
+/// Output of [`evaluate`]: one image per kind (AO with bent normals gives two, in kind order
+/// then bent normals last), rays traced, invalid texels.
+pub struct TexelResults {
+    /// Images, aligned with the kinds; a trailing extra image holds bent normals if asked.
+    pub images: Vec<TexelImage>,
+    /// Rays traced.
+    pub rays: u64,
+    /// Covered texels rejected as inside geometry.
+    pub invalid: u64,
+}
+
+/// Values of one texel, one per image.
+type TexelValues = Vec<Option<Vec3>>;
+
+/// Evaluates every kind at every texel. Returns `None` when `cancel` was raised.
+pub fn evaluate(
+    job: &TexelJob<'_>,
+    cancel: &AtomicBool,
+    progress: Option<&indicatif::ProgressBar>,
+) -> Option<TexelResults> {
+    let (w, h) = (job.coverage.width, job.coverage.height);
+    let bent = job.kinds.iter().any(|k| {
+        matches!(
+            k,
+            BakeKind::AmbientOcclusion {
+                bent_normals: true,
+                ..
+            }
+        )
+    });
+    let n_images = job.kinds.len() + usize::from(bent);
+    let needs_probe = job.kinds.iter().any(|k| {
+        matches!(
+            k,
+            BakeKind::AmbientOcclusion { .. } | BakeKind::Lightmap { .. }
+        )
+    });
+    let rays = AtomicU64::new(0);
+    let invalid = AtomicU64::new(0);
+    let stopped = AtomicBool::new(false);
+    let rows: Vec<Vec<TexelValues>> = (0..h)
+        .into_par_iter()
+        .map(|j| {
+            if cancel.load(Ordering::Relaxed) {
+                stopped.store(true, Ordering::Relaxed);
+                return Vec::new();
+            }
+            let mut row_rays = 0u64;
+            let row = (0..w)
+                .map(|i| {
+                    let (values, r, bad) = texel(job, i, j, n_images, bent, needs_probe);
+                    row_rays += r;
+                    if bad {
+                        invalid.fetch_add(1, Ordering::Relaxed);
+                    }
+                    values
+                })
+                .collect();
+            rays.fetch_add(row_rays, Ordering::Relaxed);
+            if let Some(pb) = progress {
+                pb.inc(1);
+            }
+            row
+        })
+        .collect();
+    if stopped.load(Ordering::Relaxed) {
+        return None;
+    }
+    let mut images: Vec<TexelImage> = (0..n_images).map(|_| TexelImage::new(w, h)).collect();
+    for (j, row) in rows.into_iter().enumerate() {
+        for (i, values) in row.into_iter().enumerate() {
+            let idx = j * w as usize + i;
+            for (img, v) in images.iter_mut().zip(values) {
+                if let Some(v) = v {
+                    img.texels[idx] = v;
+                    img.valid[idx] = true;
+                }
+            }
+        }
+    }
+    Some(TexelResults {
+        images,
+        rays: rays.into_inner(),
+        invalid: invalid.into_inner(),
+    })
+}
+
+/// One sample position on the surface, oriented to the baked side.
+struct Site {
+    surface: crate::accel::SurfacePoint,
+    normal: Vec3,
+    ng: Vec3,
+    triangle: usize,
+    material: u32,
+}
+
+/// Evaluates texel `(i, j)`: values per image, rays traced, whether it was rejected.
+fn texel(
+    job: &TexelJob<'_>,
+    i: u32,
+    j: u32,
+    n_images: usize,
+    bent: bool,
+    needs_probe: bool,
+) -> (TexelValues, u64, bool) {
+    let mut values: TexelValues = vec![None; n_images];
+    let slots = job.coverage.texel(i, j);
+    if slots.iter().all(Option::is_none) {
+        return (values, 0, false);
+    }
+    let texel_index = j as u64 * job.coverage.width as u64 + i as u64;
+    let texel_seed = hash_combine(&[job.seed, texel_index as u32, (texel_index >> 32) as u32]);
+    let mut rays = 0u64;
+    // Sample positions, minus those found inside other geometry.
+    let mut sites = Vec::with_capacity(slots.len());
+    for (s, slot) in slots.iter().enumerate() {
+        let Some(ts) = slot else { continue };
+        let prim = job.instance.first_triangle + ts.triangle;
+        let hit = crate::accel::Hit {
+            t: 0.0,
+            prim,
+            b1: ts.b1,
+            b2: ts.b2,
+        };
+        let sp = job.geometry.shading_point(&hit);
+        let site = Site {
+            surface: sp.surface,
+            normal: sp.normal,
+            ng: sp.surface.ng,
+            triangle: ts.triangle as usize,
+            material: sp.material,
+        };
+        if needs_probe {
+            let probe = trace_hemisphere(
+                job.geometry,
+                &site.surface,
+                site.normal,
+                site.ng,
+                f32::INFINITY,
+                hash_combine(&[texel_seed, 0x9b0e, s as u32]),
+                0,
+                PROBE_RAYS,
+            );
+            rays += probe.rays as u64;
+            if probe.backface_hits as f32 >= INSIDE_FRACTION * probe.rays as f32 {
+                continue;
+            }
+        }
+        sites.push(site);
+    }
+    if sites.is_empty() {
+        return (values, rays, true);
+    }
+    let n_sites = sites.len() as u32;
+    for (k, kind) in job.kinds.iter().enumerate() {
+        let kind_seed = hash_combine(&[texel_seed, k as u32 + 1]);
+        let value = match kind {
+            BakeKind::AmbientOcclusion {
+                samples,
+                max_distance,
+                bent_normals,
+            } => {
+                let samples = (*samples).max(1);
+                let mut open = 0u32;
+                let mut traced = 0u32;
+                let mut dir_sum = Vec3::ZERO;
+                for (s, site) in sites.iter().enumerate() {
+                    // Rays are dealt round-robin over the sample positions.
+                    let count = samples / n_sites + u32::from((s as u32) < samples % n_sites);
+                    let first: u32 = (0..s as u32)
+                        .map(|q| samples / n_sites + u32::from(q < samples % n_sites))
+                        .sum();
+                    let r = trace_hemisphere(
+                        job.geometry,
+                        &site.surface,
+                        site.normal,
+                        site.ng,
+                        *max_distance,
+                        kind_seed,
+                        first,
+                        count,
+                    );
+                    open += r.open;
+                    traced += r.rays;
+                    dir_sum += r.open_dir_sum;
+                }
+                rays += traced as u64;
+                if *bent_normals && bent {
+                    let mean_normal = sites
+                        .iter()
+                        .map(|s| s.normal)
+                        .sum::<Vec3>()
+                        .normalize_or_zero();
+                    values[n_images - 1] = Some(dir_sum.try_normalize().unwrap_or(mean_normal));
+                }
+                Vec3::splat(open as f32 / traced.max(1) as f32)
+            }
+            BakeKind::Lightmap {
+                indirect,
+                samples,
+                max_depth,
+                store,
+            } => {
+                let mut e = Vec3::ZERO;
+                for (s, site) in sites.iter().enumerate() {
+                    let mut sampler = Sampler::new(kind_seed, s as u32);
+                    e += direct_irradiance(
+                        job.geometry,
+                        job.lights,
+                        &site.surface,
+                        site.normal,
+                        site.ng,
+                        &mut sampler,
+                    );
+                    rays += job
+                        .lights
+                        .lights
+                        .iter()
+                        .map(|l| l.sample_count() as u64)
+                        .sum::<u64>();
+                }
+                e /= n_sites as f32;
+                if *indirect && *max_depth > 0 {
+                    let samples = (*samples).max(1);
+                    let mut sum = Vec3::ZERO;
+                    for r in 0..samples {
+                        let site = &sites[(r % n_sites) as usize];
+                        let mut sampler = Sampler::new(hash_combine(&[kind_seed, 0x1d1]), r);
+                        sum += indirect_irradiance_sample(
+                            job.geometry,
+                            job.lights,
+                            &site.surface,
+                            site.normal,
+                            site.ng,
+                            *max_depth,
+                            &mut sampler,
+                        );
+                    }
+                    rays += samples as u64 * (*max_depth as u64 + 1);
+                    e += sum / samples as f32;
+                }
+                match store {
+                    LightmapStore::Irradiance => e,
+                    LightmapStore::Radiance => {
+                        let albedo = diffuse_albedo(
+                            &job.geometry.materials[sites[0].material as usize].shader,
+                        );
+                        albedo * e / std::f32::consts::PI
+                    }
+                }
+            }
+            BakeKind::Normals { space } => {
+                let n = sites
+                    .iter()
+                    .map(|s| s.normal)
+                    .sum::<Vec3>()
+                    .normalize_or_zero();
+                match space {
+                    NormalSpace::World => n,
+                    NormalSpace::Tangent => tangent_space(job, &sites[0], n),
+                }
+            }
+            BakeKind::Positions => sites.iter().map(|s| s.surface.p).sum::<Vec3>() / n_sites as f32,
+            BakeKind::Albedo => {
+                diffuse_albedo(&job.geometry.materials[sites[0].material as usize].shader)
+            }
+        };
+        values[k] = value.is_finite().then_some(value);
+    }
+    (values, rays, false)
+}
+
+/// `n` in the tangent frame of the site's triangle: T = dP/du, B = dP/dv (Gram–Schmidt
+/// against the geometric normal), N = geometric normal.
+fn tangent_space(job: &TexelJob<'_>, site: &Site, n: Vec3) -> Vec3 {
+    let prim = job.instance.first_triangle + site.triangle as u32;
+    let [p0, p1, p2] = job.geometry.accel.triangle(prim);
+    let [t0, t1, t2] = job.uvs[site.triangle];
+    let (e1, e2) = (p1 - p0, p2 - p0);
+    let (d1, d2) = (t1 - t0, t2 - t0);
+    let det = d1.x * d2.y - d2.x * d1.y;
+    let ng = site.ng;
+    let tangent = if det.abs() > 0.0 {
+        (e1 * d2.y - e2 * d1.y) / det
+    } else {
+        e1
+    };
+    let t = (tangent - ng * ng.dot(tangent))
+        .try_normalize()
+        .unwrap_or_else(|| crate::bake::ao::basis(ng).0);
+    let mut b = ng.cross(t);
+    if det < 0.0 {
+        b = -b;
+    }
+    Vec3::new(n.dot(t), n.dot(b), n.dot(ng))
+}
