@@ -6,8 +6,8 @@ use std::process::ExitCode;
 use std::sync::atomic::Ordering;
 
 use clap::{Args, Parser, Subcommand};
-use stagelight::components::{Camera, ImageFormat, OutputSpec, Pass, RenderCamera};
-use stagelight::frame::Frame;
+use stagelight::components::{BakeRequest, Camera, ImageFormat, OutputSpec, Pass, RenderCamera};
+use stagelight::frame::{Frame, Tasks};
 use stagelight::scene::{load_scene, LoadedScene};
 use stagelight::schedule::StageError;
 use stagelight::systems;
@@ -34,6 +34,8 @@ struct Cli {
 enum Command {
     /// Render a scene's camera outputs.
     Render(RenderArgs),
+    /// Bake every bake request of a scene into textures.
+    Bake(BakeArgs),
     /// Validate a scene without rendering; exit 0 when it is renderable.
     Check {
         /// Scene file (RON).
@@ -64,6 +66,30 @@ struct RenderArgs {
     /// Write the per-stage report as JSON.
     #[arg(long = "stats-json", value_name = "FILE")]
     stats_json: Option<PathBuf>,
+    /// Also bake the scene's bake requests (into the working directory).
+    #[arg(long)]
+    bake: bool,
+}
+
+#[derive(Args)]
+struct BakeArgs {
+    /// Scene file (RON).
+    scene: PathBuf,
+    /// Directory for the baked textures (default: the working directory).
+    #[arg(short = 'o', long = "output", value_name = "DIR")]
+    output: Option<PathBuf>,
+    /// Worker threads (default: all cores).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
+    threads: Option<u32>,
+    /// Random seed (overrides the scene's `options.seed`).
+    #[arg(long)]
+    seed: Option<u64>,
+    /// Print the per-stage report.
+    #[arg(long)]
+    stats: bool,
+    /// Write the per-stage report (and the bake reports) as JSON.
+    #[arg(long = "stats-json", value_name = "FILE")]
+    stats_json: Option<PathBuf>,
 }
 
 fn main() -> ExitCode {
@@ -86,6 +112,7 @@ fn main() -> ExitCode {
     match cli.command {
         Command::Check { scene } => check(&scene),
         Command::Render(args) => render(args),
+        Command::Bake(args) => bake(args),
     }
 }
 
@@ -165,15 +192,22 @@ fn override_output(world: &mut hecs::World, path: &Path) -> Result<(), String> {
     Ok(())
 }
 
-fn render(args: RenderArgs) -> ExitCode {
-    if let Some(threads) = args.threads {
+fn set_threads(threads: Option<u32>) -> Result<(), ExitCode> {
+    if let Some(threads) = threads {
         if let Err(e) = rayon::ThreadPoolBuilder::new()
             .num_threads(threads as usize)
             .build_global()
         {
             eprintln!("error: cannot start {threads} worker threads: {e}");
-            return ExitCode::from(EXIT_ERROR);
+            return Err(ExitCode::from(EXIT_ERROR));
         }
+    }
+    Ok(())
+}
+
+fn render(args: RenderArgs) -> ExitCode {
+    if let Err(code) = set_threads(args.threads) {
+        return code;
     }
     let mut scene = match load(&args.scene) {
         Ok(s) => s,
@@ -193,27 +227,79 @@ fn render(args: RenderArgs) -> ExitCode {
         }
     }
     let mut frame = Frame::new(settings);
+    frame.tasks = Tasks {
+        render: true,
+        bake: args.bake,
+    };
+    run_and_report(&mut scene, frame, args.stats, args.stats_json.as_deref())
+}
+
+fn bake(args: BakeArgs) -> ExitCode {
+    if let Err(code) = set_threads(args.threads) {
+        return code;
+    }
+    let mut scene = match load(&args.scene) {
+        Ok(s) => s,
+        Err(code) => return code,
+    };
+    let mut settings = scene.settings.clone();
+    if let Some(seed) = args.seed {
+        settings.seed = seed;
+    }
+    if scene.world.query::<&BakeRequest>().iter().next().is_none() {
+        eprintln!(
+            "error: {} has no bake requests\n  help: add `bake: (resolution: (512, 512), outputs: [(kind: AmbientOcclusion())])` to an instance",
+            args.scene.display()
+        );
+        return ExitCode::from(EXIT_ERROR);
+    }
+    let mut frame = Frame::new(settings);
+    frame.tasks = Tasks {
+        render: false,
+        bake: true,
+    };
+    if let Some(dir) = args.output {
+        frame.bake_dir = dir;
+    }
+    run_and_report(&mut scene, frame, args.stats, args.stats_json.as_deref())
+}
+
+/// Runs the stage table and prints what happened.
+fn run_and_report(
+    scene: &mut LoadedScene,
+    mut frame: Frame,
+    stats: bool,
+    stats_json: Option<&Path>,
+) -> ExitCode {
     frame.progress = std::io::stderr().is_terminal();
     let cancel = frame.cancel.clone();
     let _ = ctrlc::set_handler(move || cancel.store(true, Ordering::SeqCst));
 
-    let result = systems::run(&mut scene.world, &mut frame);
-    match result {
+    match systems::run(&mut scene.world, &mut frame) {
         Ok(()) => {}
         Err(StageError::Interrupted) => {
             eprintln!("interrupted; no output written");
             return ExitCode::from(EXIT_INTERRUPTED);
         }
         Err(e) => {
-            eprintln!("error: {e}");
+            eprintln!("{}", with_error_prefix(&e.to_string()));
             return ExitCode::from(EXIT_ERROR);
         }
     }
-    if args.stats {
+    if stats {
         print!("{}", frame.report.to_table());
+        for r in &frame.bake_reports {
+            println!("bake {}", r.summary());
+        }
     }
-    if let Some(path) = &args.stats_json {
-        let json = match serde_json::to_string_pretty(&frame.report) {
+    if let Some(path) = stats_json {
+        let value = serde_json::json!({
+            "threads": frame.report.threads,
+            "total_seconds": frame.report.total_seconds,
+            "stages": frame.report.stages,
+            "bakes": frame.bake_reports,
+        });
+        let json = match serde_json::to_string_pretty(&value) {
             Ok(j) => j,
             Err(e) => {
                 eprintln!("error: cannot encode the report: {e}");
@@ -221,7 +307,7 @@ fn render(args: RenderArgs) -> ExitCode {
             }
         };
         let file = stagelight::image_io::PendingFile {
-            path: path.clone(),
+            path: path.to_path_buf(),
             bytes: json.into_bytes(),
         };
         if let Err((p, e)) = stagelight::image_io::commit_all(&[file]) {
@@ -232,8 +318,18 @@ fn render(args: RenderArgs) -> ExitCode {
     for path in &frame.written {
         eprintln!("wrote {}", path.display());
     }
-    if frame.written.is_empty() {
+    if frame.written.is_empty() && frame.tasks.render {
         eprintln!("note: the render camera has no outputs; nothing written (use -o FILE)");
     }
     ExitCode::SUCCESS
+}
+
+/// Stage errors that already carry a location (`file:line:col: error: …`) print as they are;
+/// others get an `error:` prefix.
+fn with_error_prefix(message: &str) -> String {
+    if message.contains(": error: ") || message.starts_with("error:") {
+        message.to_string()
+    } else {
+        format!("error: {message}")
+    }
 }

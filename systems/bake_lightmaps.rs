@@ -201,6 +201,8 @@ pub fn run(world: &mut World, frame: &mut Frame) -> Result<Work, StageError> {
         };
         let covered = p.coverage.covered_texels();
         texels_baked += covered;
+        // Texels baked from the surface (covered and not inside geometry), before dilation.
+        let baked_mask = results.images.first().map(|img| img.valid.clone());
         let mut dilated = 0;
         for img in &mut results.images {
             dilated = dilate(img, p.request.padding);
@@ -242,10 +244,9 @@ pub fn run(world: &mut World, frame: &mut Frame) -> Result<Work, StageError> {
             if let Some(first) = results.images.first() {
                 let path = frame.bake_dir.join(format!("{safe_name}_mask.png"));
                 let mut mask = first.clone();
-                // The mask shows baked texels only, not dilated ones.
-                for (idx, v) in mask.valid.iter_mut().enumerate() {
-                    let (i, j) = (idx as u32 % mask.width, idx as u32 / mask.width);
-                    *v = p.coverage.is_covered(i, j);
+                // The mask shows texels baked from the surface, not dilated or invalid ones.
+                if let Some(baked) = &baked_mask {
+                    mask.valid.clone_from(baked);
                 }
                 let bytes = mask
                     .encode_mask_png()

@@ -374,6 +374,160 @@ pub struct InstanceDesc {
     /// Material override.
     #[serde(default)]
     pub material: Option<String>,
+    /// Textures to bake for this instance (see [`BakeDesc`]).
+    #[serde(default)]
+    pub bake: Option<BakeDesc>,
+}
+
+/// `bake: (...)` on an instance of an object: textures to bake (`stagelight bake`).
+#[derive(Debug, Clone, Deserialize)]
+#[serde(rename = "Bake", deny_unknown_fields)]
+pub struct BakeDesc {
+    /// Explicit size `(width, height)` in texels; give this or `texels_per_unit`.
+    #[serde(default)]
+    pub resolution: Option<(u32, u32)>,
+    /// Texel density (texels per world unit), rounded up to a power of two.
+    #[serde(default)]
+    pub texels_per_unit: Option<f64>,
+    /// Largest side when sizing from `texels_per_unit`, default 4096.
+    #[serde(default = "default_max_size")]
+    pub max_size: u32,
+    /// UV source, default `Auto` (the mesh's UVs, generated when it has none).
+    #[serde(default)]
+    pub uvs: UvsDesc,
+    /// Sample positions per texel (rounded up to a square number), default 4.
+    #[serde(default = "default_texel_samples")]
+    pub texel_samples: u32,
+    /// Texels of dilation around every chart, default 2.
+    #[serde(default = "default_padding")]
+    pub padding: u32,
+    /// Also write `<instance>_mask.png`, default false.
+    #[serde(default)]
+    pub mask: bool,
+    /// The textures.
+    pub outputs: Vec<BakeOutputDesc>,
+}
+
+fn default_max_size() -> u32 {
+    4096
+}
+fn default_texel_samples() -> u32 {
+    4
+}
+fn default_padding() -> u32 {
+    2
+}
+
+/// UV source of a bake.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Deserialize)]
+#[serde(rename = "Uvs", deny_unknown_fields)]
+pub enum UvsDesc {
+    /// The mesh's UVs; generated lightmap UVs when it has none.
+    #[default]
+    Auto,
+    /// The mesh's UVs only (an error when it has none).
+    Mesh,
+    /// Always generate lightmap UVs.
+    Unwrap,
+}
+
+/// One baked texture.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(rename = "BakeOutput", deny_unknown_fields)]
+pub struct BakeOutputDesc {
+    /// What to bake.
+    pub kind: BakeKindDesc,
+    /// File format, default `Exr`.
+    #[serde(default)]
+    pub format: BakeFormatDesc,
+    /// File name (relative to the bake directory), default `<instance>_<kind>.<ext>`.
+    #[serde(default)]
+    pub file: Option<String>,
+}
+
+/// Kinds of baked texture.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(rename = "BakeKind", deny_unknown_fields)]
+pub enum BakeKindDesc {
+    /// Ambient occlusion.
+    AmbientOcclusion {
+        /// Rays per texel, default 64.
+        #[serde(default = "default_bake_samples")]
+        samples: u32,
+        /// Occluders farther than this are ignored (world units), default unlimited.
+        #[serde(default)]
+        max_distance: Option<f64>,
+        /// Also write bent normals, default false.
+        #[serde(default)]
+        bent_normals: bool,
+    },
+    /// Irradiance from the lights (and optionally interreflection).
+    Lightmap {
+        /// Add indirect light, default false.
+        #[serde(default)]
+        indirect: bool,
+        /// Gather paths per texel for the indirect part, default 64.
+        #[serde(default = "default_bake_samples")]
+        samples: u32,
+        /// Indirect bounces, default 2.
+        #[serde(default = "default_bake_depth")]
+        max_depth: u32,
+        /// `Irradiance` (default, W/m²) or `Radiance` (albedo·E/π).
+        #[serde(default)]
+        store: LightmapStoreDesc,
+    },
+    /// Shading normals.
+    Normals {
+        /// `World` (default) or `Tangent`.
+        #[serde(default)]
+        space: NormalSpaceDesc,
+    },
+    /// World positions.
+    Positions,
+    /// Material albedo.
+    Albedo,
+}
+
+fn default_bake_samples() -> u32 {
+    64
+}
+fn default_bake_depth() -> u32 {
+    2
+}
+
+/// What a lightmap stores.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Deserialize)]
+#[serde(rename = "LightmapStore", deny_unknown_fields)]
+pub enum LightmapStoreDesc {
+    /// Irradiance, W/m².
+    #[default]
+    Irradiance,
+    /// Outgoing diffuse radiance albedo·E/π.
+    Radiance,
+}
+
+/// Space of baked normals.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Deserialize)]
+#[serde(rename = "NormalSpace", deny_unknown_fields)]
+pub enum NormalSpaceDesc {
+    /// World space.
+    #[default]
+    World,
+    /// Tangent space.
+    Tangent,
+}
+
+/// Baked texture file format.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Deserialize)]
+#[serde(rename = "BakeFormat", deny_unknown_fields)]
+pub enum BakeFormatDesc {
+    /// OpenEXR, linear f32.
+    #[default]
+    Exr,
+    /// 8-bit PNG.
+    Png8,
+    /// 16-bit PNG.
+    Png16,
 }
 
 /// One step of an instance transform.

@@ -12,6 +12,7 @@
 //!
 //! The format is documented in `docs/scene-format.md`.
 
+pub(crate) mod bake;
 pub(crate) mod dag;
 pub mod desc;
 pub(crate) mod diagnostics;
@@ -98,6 +99,7 @@ fn load(path: &Path, text: Option<&str>) -> Result<LoadedScene, SceneErrors> {
     } else {
         Vec::new()
     };
+    let bakes = bake::bake_requests(src, &merged, &leaves, &built);
     if sources.has_errors() {
         return Err(SceneErrors(sources.finish()));
     }
@@ -129,6 +131,7 @@ fn load(path: &Path, text: Option<&str>) -> Result<LoadedScene, SceneErrors> {
             .map(|b| b.map(|b| Arc::new(b.mesh)))
             .collect(),
         leaves,
+        bakes,
     };
     let world = spawn::spawn(&sources, &merged, parts);
     Ok(LoadedScene {

@@ -5,7 +5,8 @@
 //!    material if some leaf has no material;
 //! 2. objects used by at least one leaf: `Name`, `SourceLink`, `Arc<TriMesh>`;
 //! 3. one entity per leaf of the instance DAG: `Name` (the DAG path), `SourceLink` (the
-//!    innermost instance), `Instance`, `WorldFromObject`, `MaterialRef`;
+//!    innermost instance), `Instance`, `WorldFromObject`, `MaterialRef`, and `BakeRequest`
+//!    when the instance has a `bake` entry;
 //! 4. every light: `Name`, `SourceLink`, `Emitter`;
 //! 5. every camera: `Name`, `SourceLink`, `Camera`, plus `RenderCamera` on the render camera.
 //!
@@ -20,7 +21,7 @@ use super::dag::Leaf;
 use super::diagnostics::Sources;
 use super::validate::{default_material, Merged};
 use crate::components::{
-    Camera, Emitter, Instance, Material, MaterialRef, Name, RenderCamera, SourceLink, TriMesh,
+    BakeRequest, Camera, Emitter, Instance, Material, MaterialRef, Name, RenderCamera, SourceLink, TriMesh,
     WorldFromObject,
 };
 
@@ -39,6 +40,8 @@ pub struct Parts {
     pub meshes: Vec<Option<Arc<TriMesh>>>,
     /// The flattened instance DAG.
     pub leaves: Vec<Leaf>,
+    /// Bake request of each merged instance (at most one leaf carries each).
+    pub bakes: Vec<Option<BakeRequest>>,
 }
 
 /// Builds the world.
@@ -105,13 +108,17 @@ pub fn spawn(src: &Sources, m: &Merged<'_>, parts: Parts) -> World {
             continue;
         };
         let it = &m.instances[leaf.instance];
-        world.spawn((
+        let entity = world.spawn((
             Name(leaf.path.clone()),
             src.link(it.file, &it.path),
             Instance { object, mesh },
             WorldFromObject(leaf.world_from_object),
             MaterialRef(material),
         ));
+        if let Some(Some(request)) = parts.bakes.get(leaf.instance) {
+            // The entity was just spawned, so inserting cannot fail.
+            let _ = world.insert_one(entity, request.clone());
+        }
     }
 
     for (it, emitter) in m.lights.iter().zip(parts.lights) {

@@ -1,0 +1,221 @@
+//! Bake requests: checks each instance's `bake: (...)` entry and builds the
+//! [`BakeRequest`] component for its (single) placed leaf.
+
+use super::dag::Leaf;
+use super::desc::{
+    BakeDesc, BakeFormatDesc, BakeKindDesc, LightmapStoreDesc, NormalSpaceDesc, UvsDesc,
+};
+use super::diagnostics::Sources;
+use super::mesh_load::BuiltMesh;
+use super::validate::{Checker, Merged};
+use crate::components::{
+    BakeFormat, BakeKind, BakeRequest, BakeResolution, BakeTarget, LightmapStore, NormalSpace,
+    UvSource,
+};
+
+/// One entry per merged instance: the bake request of instances that carry a valid one.
+pub fn bake_requests(
+    src: &mut Sources,
+    m: &Merged<'_>,
+    leaves: &[Leaf],
+    meshes: &[Option<BuiltMesh>],
+) -> Vec<Option<BakeRequest>> {
+    m.instances
+        .iter()
+        .enumerate()
+        .map(|(index, it)| {
+            let desc = it.desc.bake.as_ref()?;
+            let mut ck = Checker { src, file: it.file };
+            let path = it.at(".bake");
+            let placed: Vec<&Leaf> = leaves.iter().filter(|l| l.instance == index).collect();
+            let name = &it.desc.name;
+            match placed.len() {
+                0 => {
+                    ck.error(
+                        &path,
+                        format!(
+                            "instance \"{name}\" has no placed object to bake: it places a group, or the root group does not reach it"
+                        ),
+                    );
+                    return None;
+                }
+                1 => {}
+                n => {
+                    ck.error(
+                        &path,
+                        format!("instance \"{name}\" is placed {n} times through shared groups; a bake needs exactly one placement"),
+                    );
+                    return None;
+                }
+            }
+            let has_uvs = meshes
+                .get(placed[0].object)
+                .and_then(Option::as_ref)
+                .is_some_and(|b| b.mesh.uvs.is_some());
+            request(&mut ck, &path, name, desc, has_uvs)
+        })
+        .collect()
+}
+
+fn request(
+    ck: &mut Checker<'_>,
+    path: &str,
+    name: &str,
+    d: &BakeDesc,
+    has_uvs: bool,
+) -> Option<BakeRequest> {
+    let mut ok = true;
+    let resolution = match (d.resolution, d.texels_per_unit) {
+        (Some((w, h)), None) => {
+            if w == 0 || h == 0 || w > 16384 || h > 16384 {
+                ck.error(
+                    &format!("{path}.resolution"),
+                    format!("bake resolution must be 1 … 16384 texels per side, found ({w}, {h})"),
+                );
+                ok = false;
+            }
+            BakeResolution::Fixed {
+                width: w,
+                height: h,
+            }
+        }
+        (None, Some(density)) => {
+            let p = format!("{path}.texels_per_unit");
+            if !ck.finite(&p, "texels_per_unit", density) || density <= 0.0 {
+                if density.is_finite() {
+                    ck.error(&p, format!("texels_per_unit must be positive, found {density}"));
+                }
+                ok = false;
+            }
+            if d.max_size == 0 || d.max_size > 16384 {
+                ck.error(
+                    &format!("{path}.max_size"),
+                    format!("max_size must be 1 … 16384, found {}", d.max_size),
+                );
+                ok = false;
+            }
+            BakeResolution::Density {
+                texels_per_unit: density as f32,
+                max_size: d.max_size,
+            }
+        }
+        (Some(_), Some(_)) => {
+            ck.error(
+                &format!("{path}.texels_per_unit"),
+                "give either `resolution` or `texels_per_unit`, not both",
+            );
+            return None;
+        }
+        (None, None) => {
+            ck.error(path, "a bake needs its size: add `resolution: (1024, 1024)` or `texels_per_unit: 64.0`");
+            return None;
+        }
+    };
+    let uvs = match d.uvs {
+        UvsDesc::Auto => UvSource::MeshOrUnwrap,
+        UvsDesc::Mesh => {
+            if !has_uvs {
+                ck.error(
+                    &format!("{path}.uvs"),
+                    format!("`uvs: Mesh`, but the mesh of \"{name}\" has no texture coordinates"),
+                );
+                ok = false;
+            }
+            UvSource::Mesh
+        }
+        UvsDesc::Unwrap => UvSource::Unwrap,
+    };
+    if d.texel_samples == 0 || d.texel_samples > 256 {
+        ck.error(
+            &format!("{path}.texel_samples"),
+            format!("texel_samples must be 1 … 256, found {}", d.texel_samples),
+        );
+        ok = false;
+    }
+    if d.outputs.is_empty() {
+        ck.error(&format!("{path}.outputs"), "a bake needs at least one output");
+        ok = false;
+    }
+    let mut targets = Vec::with_capacity(d.outputs.len());
+    for (k, o) in d.outputs.iter().enumerate() {
+        let kp = format!("{path}.outputs[{k}].kind");
+        let kind = match &o.kind {
+            BakeKindDesc::AmbientOcclusion {
+                samples,
+                max_distance,
+                bent_normals,
+            } => {
+                if *samples == 0 {
+                    ck.error(&format!("{kp}.AmbientOcclusion.samples"), "samples must be at least 1");
+                    ok = false;
+                }
+                let max_distance = match max_distance {
+                    None => f32::INFINITY,
+                    Some(x) => {
+                        let p = format!("{kp}.AmbientOcclusion.max_distance");
+                        if ck.finite(&p, "max_distance", *x) && *x > 0.0 {
+                            *x as f32
+                        } else {
+                            if x.is_finite() {
+                                ck.error(&p, format!("max_distance must be positive, found {x}"));
+                            }
+                            ok = false;
+                            f32::INFINITY
+                        }
+                    }
+                };
+                BakeKind::AmbientOcclusion {
+                    samples: *samples,
+                    max_distance,
+                    bent_normals: *bent_normals,
+                }
+            }
+            BakeKindDesc::Lightmap {
+                indirect,
+                samples,
+                max_depth,
+                store,
+            } => {
+                if *samples == 0 {
+                    ck.error(&format!("{kp}.Lightmap.samples"), "samples must be at least 1");
+                    ok = false;
+                }
+                BakeKind::Lightmap {
+                    indirect: *indirect,
+                    samples: *samples,
+                    max_depth: *max_depth,
+                    store: match store {
+                        LightmapStoreDesc::Irradiance => LightmapStore::Irradiance,
+                        LightmapStoreDesc::Radiance => LightmapStore::Radiance,
+                    },
+                }
+            }
+            BakeKindDesc::Normals { space } => BakeKind::Normals {
+                space: match space {
+                    NormalSpaceDesc::World => NormalSpace::World,
+                    NormalSpaceDesc::Tangent => NormalSpace::Tangent,
+                },
+            },
+            BakeKindDesc::Positions => BakeKind::Positions,
+            BakeKindDesc::Albedo => BakeKind::Albedo,
+        };
+        targets.push(BakeTarget {
+            kind,
+            format: match o.format {
+                BakeFormatDesc::Exr => BakeFormat::Exr,
+                BakeFormatDesc::Png8 => BakeFormat::Png8,
+                BakeFormatDesc::Png16 => BakeFormat::Png16,
+            },
+            file: o.file.as_ref().map(Into::into),
+        });
+    }
+    ok.then(|| BakeRequest {
+        name: name.to_string(),
+        resolution,
+        uvs,
+        texel_samples: d.texel_samples,
+        padding: d.padding,
+        mask: d.mask,
+        targets,
+    })
+}
