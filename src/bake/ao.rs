@@ -35,6 +35,7 @@ pub struct HemisphereRays {
 /// from `surface`, each drawn from `Sampler::new(seed, first + k)`. Directions below the
 /// geometric surface (possible with interpolated normals) count as occluded. Hits farther
 /// than `max_distance` do not count.
+#[allow(clippy::too_many_arguments)] // one batch of rays, fully described; two callers
 pub fn trace_hemisphere(
     geometry: &SceneGeometry,
     surface: &SurfacePoint,

@@ -1,7 +1,8 @@
 //! Texel coverage: rasterizes UV triangles into texel space with conservative coverage and
 //! several sample positions per texel.
 //!
-//! A texel is covered by a triangle when their areas overlap at all (separating-axis test).
+//! A texel is covered by a triangle when their areas overlap (separating-axis test; touching
+//! along an edge or at a corner is not overlap).
 //! Each covered texel gets the sub-sample positions (a k×k grid) that lie inside a triangle,
 //! first triangle wins; a covered texel with no sub-sample inside any triangle (a sliver) gets
 //! one sample at the point of the first overlapping triangle closest to the texel centre, so
@@ -162,7 +163,7 @@ fn triangle_overlaps_cell(p: &[DVec2; 3], lo: DVec2) -> bool {
     let hi = lo + DVec2::ONE;
     let tmin = p[0].min(p[1]).min(p[2]);
     let tmax = p[0].max(p[1]).max(p[2]);
-    if tmax.x < lo.x || tmin.x > hi.x || tmax.y < lo.y || tmin.y > hi.y {
+    if tmax.x <= lo.x || tmin.x >= hi.x || tmax.y <= lo.y || tmin.y >= hi.y {
         return false;
     }
     let corners = [lo, DVec2::new(hi.x, lo.y), hi, DVec2::new(lo.x, hi.y)];
@@ -172,8 +173,9 @@ fn triangle_overlaps_cell(p: &[DVec2; 3], lo: DVec2) -> bool {
         let c = p[(e + 2) % 3];
         let n = (b - a).perp();
         let side_c = n.dot(c - a);
-        // All cell corners strictly on the other side of this edge from the triangle.
-        if corners.iter().all(|&q| n.dot(q - a) * side_c < 0.0) {
+        // All cell corners on the other side of this edge from the triangle (or on its line:
+        // touching is not overlapping).
+        if corners.iter().all(|&q| n.dot(q - a) * side_c <= 0.0) {
             return false;
         }
     }

@@ -89,7 +89,7 @@ pub fn bake_resolution(
             } else {
                 1.0
             };
-            let pow2 = (side.max(1.0).min(1e9).ceil() as u64)
+            let pow2 = (side.clamp(1.0, 1e9).ceil() as u64)
                 .next_power_of_two()
                 .min(u32::MAX as u64) as u32;
             let size = pow2.min(max_size.max(1));

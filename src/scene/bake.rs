@@ -83,7 +83,10 @@ fn request(
             let p = format!("{path}.texels_per_unit");
             if !ck.finite(&p, "texels_per_unit", density) || density <= 0.0 {
                 if density.is_finite() {
-                    ck.error(&p, format!("texels_per_unit must be positive, found {density}"));
+                    ck.error(
+                        &p,
+                        format!("texels_per_unit must be positive, found {density}"),
+                    );
                 }
                 ok = false;
             }
@@ -107,7 +110,10 @@ fn request(
             return None;
         }
         (None, None) => {
-            ck.error(path, "a bake needs its size: add `resolution: (1024, 1024)` or `texels_per_unit: 64.0`");
+            ck.error(
+                path,
+                "a bake needs its size: add `resolution: (1024, 1024)` or `texels_per_unit: 64.0`",
+            );
             return None;
         }
     };
@@ -133,7 +139,10 @@ fn request(
         ok = false;
     }
     if d.outputs.is_empty() {
-        ck.error(&format!("{path}.outputs"), "a bake needs at least one output");
+        ck.error(
+            &format!("{path}.outputs"),
+            "a bake needs at least one output",
+        );
         ok = false;
     }
     let mut targets = Vec::with_capacity(d.outputs.len());
@@ -146,7 +155,10 @@ fn request(
                 bent_normals,
             } => {
                 if *samples == 0 {
-                    ck.error(&format!("{kp}.AmbientOcclusion.samples"), "samples must be at least 1");
+                    ck.error(
+                        &format!("{kp}.AmbientOcclusion.samples"),
+                        "samples must be at least 1",
+                    );
                     ok = false;
                 }
                 let max_distance = match max_distance {
@@ -177,7 +189,10 @@ fn request(
                 store,
             } => {
                 if *samples == 0 {
-                    ck.error(&format!("{kp}.Lightmap.samples"), "samples must be at least 1");
+                    ck.error(
+                        &format!("{kp}.Lightmap.samples"),
+                        "samples must be at least 1",
+                    );
                     ok = false;
                 }
                 BakeKind::Lightmap {

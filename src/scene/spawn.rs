@@ -21,8 +21,8 @@ use super::dag::Leaf;
 use super::diagnostics::Sources;
 use super::validate::{default_material, Merged};
 use crate::components::{
-    BakeRequest, Camera, Emitter, Instance, Material, MaterialRef, Name, RenderCamera, SourceLink, TriMesh,
-    WorldFromObject,
+    BakeRequest, Camera, Emitter, Instance, Material, MaterialRef, Name, RenderCamera, SourceLink,
+    TriMesh, WorldFromObject,
 };
 
 /// Everything checked and built, ready to spawn (indices parallel to the merged lists;

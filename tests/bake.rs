@@ -1,0 +1,510 @@
+//! Baking against closed forms: ambient occlusion of analytic configurations, the texel
+//! centre convention, dilation, inside-geometry detection, determinism and run conditions.
+
+mod common;
+
+use std::sync::Arc;
+
+use glam::{Affine3A, Vec2, Vec3};
+use hecs::{Entity, World};
+use stagelight::bake::TexelImage;
+use stagelight::components::{
+    BakeFormat, BakeKind, BakeRequest, BakeResolution, BakeTarget, Shader, TriMesh, UvSource,
+};
+use stagelight::frame::{Frame, Tasks};
+use stagelight::settings::RenderSettings;
+
+/// A square `[-h, h]²` at z = 0 facing +Z with UVs spanning `[u0, u1]²`.
+fn square_uv(h: f32, u0: f32, u1: f32) -> TriMesh {
+    let mut m = common::square(h);
+    m.uvs = Some(vec![
+        Vec2::new(u0, u0),
+        Vec2::new(u1, u0),
+        Vec2::new(u1, u1),
+        Vec2::new(u0, u1),
+    ]);
+    m
+}
+
+/// A UV sphere of radius `r` (outward, one-sided), `nu × nv` segments.
+fn sphere(r: f32, nu: u32, nv: u32) -> TriMesh {
+    let mut positions = Vec::new();
+    for j in 0..=nv {
+        let theta = std::f32::consts::PI * j as f32 / nv as f32;
+        for i in 0..nu {
+            let phi = 2.0 * std::f32::consts::PI * i as f32 / nu as f32;
+            positions.push(
+                r * Vec3::new(
+                    theta.sin() * phi.cos(),
+                    theta.sin() * phi.sin(),
+                    theta.cos(),
+                ),
+            );
+        }
+    }
+    let mut triangles = Vec::new();
+    for j in 0..nv {
+        for i in 0..nu {
+            let a = j * nu + i;
+            let b = j * nu + (i + 1) % nu;
+            let c = (j + 1) * nu + (i + 1) % nu;
+            let d = (j + 1) * nu + i;
+            if j != 0 {
+                triangles.push([a, d, b]);
+            }
+            if j != nv - 1 {
+                triangles.push([b, d, c]);
+            }
+        }
+    }
+    TriMesh {
+        positions,
+        normals: None,
+        uvs: None,
+        triangles,
+    }
+}
+
+fn ao(samples: u32) -> BakeKind {
+    BakeKind::AmbientOcclusion {
+        samples,
+        max_distance: f32::INFINITY,
+        bent_normals: false,
+    }
+}
+
+fn request(
+    kinds: Vec<BakeKind>,
+    width: u32,
+    height: u32,
+    texel_samples: u32,
+    padding: u32,
+) -> BakeRequest {
+    BakeRequest {
+        name: "target".into(),
+        resolution: BakeResolution::Fixed { width, height },
+        uvs: UvSource::Mesh,
+        texel_samples,
+        padding,
+        mask: false,
+        targets: kinds
+            .into_iter()
+            .map(|kind| BakeTarget {
+                kind,
+                format: BakeFormat::Exr,
+                file: None,
+            })
+            .collect(),
+    }
+}
+
+fn spawn(world: &mut World, mesh: TriMesh, xf: Affine3A) -> Entity {
+    let m = common::material(
+        world,
+        Shader::Lambert {
+            albedo: Vec3::splat(0.5),
+        },
+    );
+    common::instance(world, mesh, xf, m)
+}
+
+/// Runs the stages up to and including `bake_lightmaps` (writes into a scratch directory).
+fn bake(world: &mut World, seed: u64) -> Frame {
+    let mut frame = Frame::new(RenderSettings {
+        seed,
+        ..RenderSettings::default()
+    });
+    frame.tasks = Tasks {
+        render: false,
+        bake: true,
+    };
+    let dir = std::env::temp_dir().join(format!(
+        "stagelight-bake-test-{}-{seed}-{:?}",
+        std::process::id(),
+        std::thread::current().id()
+    ));
+    frame.bake_dir = dir;
+    stagelight::systems::run(world, &mut frame).expect("bake");
+    frame
+}
+
+/// Reads a baked EXR back (R channel per texel, row 0 at the top).
+fn read_exr(path: &std::path::Path) -> (usize, usize, Vec<Vec3>) {
+    use exr::prelude::*;
+    let image = read_first_rgba_layer_from_file(
+        path,
+        |res, _| {
+            (
+                res.width(),
+                res.height(),
+                vec![Vec3::ZERO; res.width() * res.height()],
+            )
+        },
+        |(w, _, px), pos, (r, g, b, _a): (f32, f32, f32, f32)| {
+            px[pos.y() * *w + pos.x()] = Vec3::new(r, g, b)
+        },
+    )
+    .unwrap();
+    let (w, h, px) = image.layer_data.channel_data.pixels;
+    (w, h, px)
+}
+
+fn baked(frame: &Frame, suffix: &str) -> (usize, usize, Vec<Vec3>) {
+    let path = frame
+        .written
+        .iter()
+        .find(|p| p.to_string_lossy().ends_with(suffix))
+        .unwrap_or_else(|| panic!("no {suffix} in {:?}", frame.written));
+    read_exr(path)
+}
+
+#[test]
+fn unoccluded_plane_bakes_exactly_one() {
+    let mut world = World::new();
+    let e = spawn(&mut world, square_uv(1.0, 0.0, 1.0), Affine3A::IDENTITY);
+    world
+        .insert_one(e, request(vec![ao(32)], 16, 16, 4, 0))
+        .unwrap();
+    let frame = bake(&mut world, 1);
+    let (_, _, px) = baked(&frame, "target_ao.exr");
+    assert!(
+        px.iter().all(|c| c.x == 1.0),
+        "every texel sees the open sky"
+    );
+    let r = &frame.bake_reports[0];
+    assert_eq!(r.covered_texels, 256);
+    assert_eq!(r.invalid_texels, 0);
+}
+
+/// A floor beside an infinite wall: the wall blocks exactly the half of the cosine-weighted
+/// hemisphere that faces it, so AO = 1/2 at any distance (unlimited max distance).
+#[test]
+fn floor_beside_an_infinite_wall_bakes_one_half_at_any_distance() {
+    for distance in [0.05f32, 1.0, 20.0] {
+        let mut world = World::new();
+        // Wall: the plane x = 0 facing +X, 2e4 wide and tall (z ≥ 0).
+        let wall_xf = Affine3A::from_translation(Vec3::new(0.0, 0.0, 1e4))
+            * Affine3A::from_rotation_y(std::f32::consts::FRAC_PI_2);
+        spawn(&mut world, common::square(1e4), wall_xf);
+        // Floor patch 0.02 wide at distance `distance` from the wall.
+        let floor = spawn(
+            &mut world,
+            square_uv(0.01, 0.0, 1.0),
+            Affine3A::from_translation(Vec3::new(distance + 0.01, 0.0, 0.0)),
+        );
+        let samples = 1024;
+        world
+            .insert_one(floor, request(vec![ao(samples)], 2, 2, 1, 0))
+            .unwrap();
+        let frame = bake(&mut world, 2);
+        let (_, _, px) = baked(&frame, "target_ao.exr");
+        let n = px.len() as f64 * samples as f64;
+        let mean = px.iter().map(|c| c.x as f64).sum::<f64>() / px.len() as f64;
+        let sigma = (0.25 / n).sqrt();
+        assert!(
+            (mean - 0.5).abs() < 3.0 * sigma + 1e-3,
+            "distance {distance}: AO {mean} (σ {sigma})"
+        );
+    }
+}
+
+/// A point below a sphere of radius R whose centre is at distance D along the normal: the
+/// sphere covers a cone of half-angle α, sin α = R/D, whose cosine-weighted measure is
+/// sin²α, so AO = 1 − (R/D)².
+#[test]
+fn point_facing_a_sphere_matches_one_minus_sin_squared() {
+    let (r, d) = (1.0f32, 2.5f32);
+    let mut world = World::new();
+    // The triangulated sphere is inscribed in the true one; scale it so its faces' mean
+    // radius matches R closely (segments small).
+    spawn(
+        &mut world,
+        sphere(r, 256, 128),
+        Affine3A::from_translation(Vec3::new(0.0, 0.0, d)),
+    );
+    let patch = spawn(&mut world, square_uv(1e-3, 0.0, 1.0), Affine3A::IDENTITY);
+    let samples = 4096;
+    world
+        .insert_one(patch, request(vec![ao(samples)], 1, 1, 1, 0))
+        .unwrap();
+    let frame = bake(&mut world, 3);
+    let (_, _, px) = baked(&frame, "target_ao.exr");
+    let expected = 1.0 - (r as f64 / d as f64).powi(2);
+    let sigma = (expected * (1.0 - expected) / samples as f64).sqrt();
+    let got = px[0].x as f64;
+    assert!(
+        (got - expected).abs() < 3.0 * sigma + 2e-3,
+        "AO {got}, closed form {expected} (σ {sigma})"
+    );
+}
+
+/// A point below a parallel square of half-side a at height h: the square's form factor is
+/// four corner rectangles, F = 4 · (1/2π)[X/√(1+X²) atan(Y/√(1+X²)) + Y/√(1+Y²) atan(X/√(1+Y²))]
+/// with X = Y = a/h, and AO = 1 − F.
+#[test]
+fn point_below_a_parallel_square_matches_the_form_factor() {
+    let (a, h) = (0.8f64, 0.6f64);
+    let mut world = World::new();
+    // The occluder faces down (toward the point): rotate the +Z square by π about X.
+    spawn(
+        &mut world,
+        common::square(a as f32),
+        Affine3A::from_translation(Vec3::new(0.0, 0.0, h as f32))
+            * Affine3A::from_rotation_x(std::f32::consts::PI),
+    );
+    let patch = spawn(&mut world, square_uv(1e-4, 0.0, 1.0), Affine3A::IDENTITY);
+    let samples = 4096;
+    world
+        .insert_one(patch, request(vec![ao(samples)], 1, 1, 1, 0))
+        .unwrap();
+    let frame = bake(&mut world, 4);
+    let (_, _, px) = baked(&frame, "target_ao.exr");
+    let x = a / h;
+    let corner = (x / (1.0 + x * x).sqrt() * (x / (1.0 + x * x).sqrt()).atan()) * 2.0
+        / (2.0 * std::f64::consts::PI);
+    let expected = 1.0 - 4.0 * corner;
+    let sigma = (expected * (1.0 - expected) / samples as f64).sqrt();
+    let got = px[0].x as f64;
+    assert!(
+        (got - expected).abs() < 3.0 * sigma,
+        "AO {got}, closed form {expected} (σ {sigma})"
+    );
+}
+
+#[test]
+fn texel_centres_follow_the_documented_convention() {
+    // A square [0,1]² (object space shifted) whose UV equals its position: texel (i, j) must
+    // bake the position ((i + ½)/W, 1 − (j + ½)/H).
+    let mut world = World::new();
+    let e = spawn(
+        &mut world,
+        square_uv(0.5, 0.0, 1.0),
+        Affine3A::from_translation(Vec3::new(0.5, 0.5, 0.0)),
+    );
+    let (w, h) = (8u32, 4u32);
+    world
+        .insert_one(e, request(vec![BakeKind::Positions], w, h, 1, 0))
+        .unwrap();
+    let frame = bake(&mut world, 5);
+    let (bw, bh, px) = baked(&frame, "target_positions.exr");
+    assert_eq!((bw, bh), (w as usize, h as usize));
+    for j in 0..h {
+        for i in 0..w {
+            let p = px[(j * w + i) as usize];
+            let expected = Vec3::new(
+                (i as f32 + 0.5) / w as f32,
+                1.0 - (j as f32 + 0.5) / h as f32,
+                0.0,
+            );
+            assert!(
+                (p - expected).length() < 1e-6,
+                "texel ({i}, {j}): {p} vs {expected}"
+            );
+        }
+    }
+}
+
+#[test]
+fn dilation_fills_gutters_and_never_overwrites_covered_texels() {
+    let run = |padding: u32| {
+        let mut world = World::new();
+        let e = spawn(&mut world, square_uv(1.0, 0.25, 0.75), Affine3A::IDENTITY);
+        world
+            .insert_one(e, request(vec![BakeKind::Positions], 16, 16, 4, padding))
+            .unwrap();
+        let frame = bake(&mut world, 6);
+        let (_, _, px) = baked(&frame, "target_positions.exr");
+        (px, frame.bake_reports[0].dilated_texels)
+    };
+    let (plain, none) = run(0);
+    let (padded, filled) = run(2);
+    assert_eq!(none, 0);
+    // Charts cover texels 4..12 in both axes; two rings around them are 12² − 8² texels.
+    assert_eq!(filled, 12 * 12 - 8 * 8);
+    for j in 0..16usize {
+        for i in 0..16usize {
+            let idx = j * 16 + i;
+            let inside = (4..12).contains(&i) && (4..12).contains(&j);
+            let ring = (2..14).contains(&i) && (2..14).contains(&j);
+            if inside {
+                assert_eq!(padded[idx], plain[idx], "covered texel ({i}, {j}) changed");
+            } else if ring {
+                assert_ne!(
+                    padded[idx],
+                    Vec3::ZERO,
+                    "gutter texel ({i}, {j}) not filled"
+                );
+            } else {
+                assert_eq!(
+                    padded[idx],
+                    Vec3::ZERO,
+                    "texel ({i}, {j}) beyond the padding"
+                );
+            }
+        }
+    }
+}
+
+/// A closed box resting on the floor: floor texels under it see only the box's back faces
+/// and are reported invalid instead of baked black.
+#[test]
+fn texels_inside_geometry_are_invalid_not_black() {
+    let mut world = World::new();
+    let floor = spawn(&mut world, square_uv(1.0, 0.0, 1.0), Affine3A::IDENTITY);
+    // Box [-0.5, 0.5]² × [0, 0.5]: six outward squares.
+    let faces = [
+        Affine3A::from_translation(Vec3::new(0.0, 0.0, 0.5)),
+        Affine3A::from_translation(Vec3::new(0.0, 0.0, 0.0))
+            * Affine3A::from_rotation_x(std::f32::consts::PI),
+        Affine3A::from_translation(Vec3::new(0.5, 0.0, 0.25))
+            * Affine3A::from_rotation_y(std::f32::consts::FRAC_PI_2),
+        Affine3A::from_translation(Vec3::new(-0.5, 0.0, 0.25))
+            * Affine3A::from_rotation_y(-std::f32::consts::FRAC_PI_2),
+        Affine3A::from_translation(Vec3::new(0.0, 0.5, 0.25))
+            * Affine3A::from_rotation_x(-std::f32::consts::FRAC_PI_2),
+        Affine3A::from_translation(Vec3::new(0.0, -0.5, 0.25))
+            * Affine3A::from_rotation_x(std::f32::consts::FRAC_PI_2),
+    ];
+    for (k, xf) in faces.into_iter().enumerate() {
+        let half = if k < 2 {
+            Vec3::new(0.5, 0.5, 1.0)
+        } else {
+            Vec3::new(0.25, 0.5, 1.0)
+        };
+        let scale = if k >= 2 && k < 4 {
+            Vec3::new(0.25, 0.5, 1.0)
+        } else if k >= 4 {
+            Vec3::new(0.5, 0.25, 1.0)
+        } else {
+            half
+        };
+        spawn(
+            &mut world,
+            common::square(1.0),
+            xf * Affine3A::from_scale(scale),
+        );
+    }
+    world
+        .insert_one(floor, request(vec![ao(64)], 16, 16, 4, 0))
+        .unwrap();
+    let frame = bake(&mut world, 7);
+    let r = &frame.bake_reports[0];
+    // The footprint [-0.5, 0.5]² is a quarter of the floor: 64 texels, the border ones
+    // partly outside.
+    assert!(
+        r.invalid_texels >= 36 && r.invalid_texels <= 64,
+        "{} invalid",
+        r.invalid_texels
+    );
+    let (_, _, px) = baked(&frame, "target_ao.exr");
+    // Texels well outside the footprint are baked and bright-ish; none is NaN.
+    assert!(px.iter().all(|c| c.is_finite()));
+    assert!(px[0].x > 0.5);
+}
+
+#[test]
+fn bakes_are_identical_at_one_and_two_threads() {
+    let run = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            let mut world = World::new();
+            let floor = spawn(&mut world, square_uv(1.0, 0.0, 1.0), Affine3A::IDENTITY);
+            spawn(
+                &mut world,
+                sphere(0.3, 16, 8),
+                Affine3A::from_translation(Vec3::new(0.0, 0.0, 0.4)),
+            );
+            common::light(
+                &mut world,
+                stagelight::components::LightShape::Point {
+                    position: Vec3::new(0.5, 0.5, 2.0),
+                },
+                Vec3::splat(5.0),
+                1,
+            );
+            let kinds = vec![
+                ao(16),
+                BakeKind::Lightmap {
+                    indirect: true,
+                    samples: 8,
+                    max_depth: 2,
+                    store: stagelight::components::LightmapStore::Irradiance,
+                },
+            ];
+            world
+                .insert_one(floor, request(kinds, 24, 24, 4, 2))
+                .unwrap();
+            let frame = bake(&mut world, 8);
+            frame
+                .written
+                .iter()
+                .map(|p| std::fs::read(p).unwrap())
+                .collect::<Vec<_>>()
+        })
+    };
+    let a = run(1);
+    let b = run(2);
+    assert_eq!(a.len(), 2);
+    assert!(a == b, "baked bytes differ between 1 and 2 threads");
+}
+
+#[test]
+fn lightmap_of_a_point_lit_plane_matches_the_inverse_square_law() {
+    let mut world = World::new();
+    let e = spawn(&mut world, square_uv(1.0, 0.0, 1.0), Affine3A::IDENTITY);
+    let (pos, intensity) = (Vec3::new(0.2, -0.3, 1.5), 7.0f32);
+    common::light(
+        &mut world,
+        stagelight::components::LightShape::Point { position: pos },
+        Vec3::splat(intensity),
+        1,
+    );
+    let kind = BakeKind::Lightmap {
+        indirect: false,
+        samples: 1,
+        max_depth: 0,
+        store: stagelight::components::LightmapStore::Irradiance,
+    };
+    world
+        .insert_one(e, request(vec![kind], 8, 8, 1, 0))
+        .unwrap();
+    let frame = bake(&mut world, 9);
+    let (_, _, px) = baked(&frame, "target_lightmap.exr");
+    for j in 0..8 {
+        for i in 0..8 {
+            // Texel centre → uv → position on the [-1, 1]² square.
+            let u = (i as f32 + 0.5) / 8.0;
+            let v = 1.0 - (j as f32 + 0.5) / 8.0;
+            let p = Vec3::new(2.0 * u - 1.0, 2.0 * v - 1.0, 0.0);
+            let d = pos - p;
+            let e = intensity * d.z / d.length().powi(3);
+            let got = px[j * 8 + i].x;
+            assert!((got - e).abs() / e < 1e-4, "texel ({i}, {j}): {got} vs {e}");
+        }
+    }
+}
+
+#[test]
+fn bake_stage_is_skipped_without_requests_or_outside_bake_runs() {
+    let mut world = World::new();
+    spawn(&mut world, square_uv(1.0, 0.0, 1.0), Affine3A::IDENTITY);
+    let frame = common::render(&mut world, RenderSettings::default());
+    let s = frame.report.stage("bake_lightmaps").unwrap();
+    assert!(!s.ran);
+    assert_eq!(s.reason, "no bake requests");
+
+    let mut world = World::new();
+    let e = spawn(&mut world, square_uv(1.0, 0.0, 1.0), Affine3A::IDENTITY);
+    world
+        .insert_one(e, request(vec![ao(4)], 4, 4, 1, 0))
+        .unwrap();
+    let frame = common::render(&mut world, RenderSettings::default());
+    let s = frame.report.stage("bake_lightmaps").unwrap();
+    assert!(!s.ran);
+    assert!(s.reason.contains("does not bake"), "{}", s.reason);
+    let _ = TexelImage::new(1, 1);
+    let _ = Arc::new(());
+}
