@@ -365,19 +365,16 @@ fn texels_inside_geometry_are_invalid_not_black() {
         Affine3A::from_translation(Vec3::new(0.0, -0.5, 0.25))
             * Affine3A::from_rotation_x(std::f32::consts::FRAC_PI_2),
     ];
-    for (k, xf) in faces.into_iter().enumerate() {
-        let half = if k < 2 {
-            Vec3::new(0.5, 0.5, 1.0)
-        } else {
-            Vec3::new(0.25, 0.5, 1.0)
-        };
-        let scale = if k >= 2 && k < 4 {
-            Vec3::new(0.25, 0.5, 1.0)
-        } else if k >= 4 {
-            Vec3::new(0.5, 0.25, 1.0)
-        } else {
-            half
-        };
+    // Half-extents of each face in its own plane (the unit square is [-1, 1]²).
+    let extents = [
+        Vec3::new(0.5, 0.5, 1.0),
+        Vec3::new(0.5, 0.5, 1.0),
+        Vec3::new(0.25, 0.5, 1.0),
+        Vec3::new(0.25, 0.5, 1.0),
+        Vec3::new(0.5, 0.25, 1.0),
+        Vec3::new(0.5, 0.25, 1.0),
+    ];
+    for (xf, scale) in faces.into_iter().zip(extents) {
         spawn(
             &mut world,
             common::square(1.0),
