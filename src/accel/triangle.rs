@@ -45,6 +45,8 @@ pub(crate) struct WoopRay {
     sx: f32,
     sy: f32,
     sz: f32,
+    /// Permuted direction, for the f64 refinement of `t`.
+    d: [f32; 3],
 }
 
 impl WoopRay {
@@ -74,6 +76,7 @@ impl WoopRay {
             sx: -d[kx] / d[kz],
             sy: -d[ky] / d[kz],
             sz: 1.0 / d[kz],
+            d: [d[kx], d[ky], d[kz]],
         }
     }
 
@@ -89,9 +92,12 @@ impl WoopRay {
         let p0 = tri[0].to_array();
         let p1 = tri[1].to_array();
         let p2 = tri[2].to_array();
-        let (x0, y0, z0) = (p0[kx] - o[kx], p0[ky] - o[ky], p0[kz] - o[kz]);
-        let (x1, y1, z1) = (p1[kx] - o[kx], p1[ky] - o[ky], p1[kz] - o[kz]);
-        let (x2, y2, z2) = (p2[kx] - o[kx], p2[ky] - o[ky], p2[kz] - o[kz]);
+        let t0 = [p0[kx] - o[kx], p0[ky] - o[ky], p0[kz] - o[kz]];
+        let t1 = [p1[kx] - o[kx], p1[ky] - o[ky], p1[kz] - o[kz]];
+        let t2 = [p2[kx] - o[kx], p2[ky] - o[ky], p2[kz] - o[kz]];
+        let [x0, y0, z0] = t0;
+        let [x1, y1, z1] = t1;
+        let [x2, y2, z2] = t2;
         // Shear x and y so that the ray is the +z axis.
         let x0 = x0 + self.sx * z0;
         let y0 = y0 + self.sy * z0;
@@ -104,7 +110,9 @@ impl WoopRay {
         let mut e1 = x2 * y0 - y2 * x0;
         let mut e2 = x0 * y1 - y0 * x1;
         if e0 == 0.0 || e1 == 0.0 || e2 == 0.0 {
-            // Exactly on an edge in f32: decide in f64, where the products are exact.
+            // Exactly zero in f32 (on an edge, or underflow): decide in f64, where the products
+            // are exact. The sign test uses the f64 values, so an f32 underflow to ±0 cannot
+            // turn a miss by a subnormal distance into an edge hit.
             let (x0, y0, x1, y1, x2, y2) = (
                 f64::from(x0),
                 f64::from(y0),
@@ -113,11 +121,16 @@ impl WoopRay {
                 f64::from(x2),
                 f64::from(y2),
             );
-            e0 = (x1 * y2 - y1 * x2) as f32;
-            e1 = (x2 * y0 - y2 * x0) as f32;
-            e2 = (x0 * y1 - y0 * x1) as f32;
-        }
-        if (e0 < 0.0 || e1 < 0.0 || e2 < 0.0) && (e0 > 0.0 || e1 > 0.0 || e2 > 0.0) {
+            let d0 = x1 * y2 - y1 * x2;
+            let d1 = x2 * y0 - y2 * x0;
+            let d2 = x0 * y1 - y0 * x1;
+            if (d0 < 0.0 || d1 < 0.0 || d2 < 0.0) && (d0 > 0.0 || d1 > 0.0 || d2 > 0.0) {
+                return None;
+            }
+            e0 = d0 as f32;
+            e1 = d1 as f32;
+            e2 = d2 as f32;
+        } else if (e0 < 0.0 || e1 < 0.0 || e2 < 0.0) && (e0 > 0.0 || e1 > 0.0 || e2 > 0.0) {
             return None;
         }
         let det = e0 + e1 + e2;
@@ -136,16 +149,59 @@ impl WoopRay {
         let delta_z = gamma(3) * max_zt;
         let max_xt = x0.abs().max(x1.abs()).max(x2.abs());
         let max_yt = y0.abs().max(y1.abs()).max(y2.abs());
-        let delta_x = gamma(5) * (max_xt + max_zt);
-        let delta_y = gamma(5) * (max_yt + max_zt);
+        // The shear adds `s·z` with |s| ≤ 1 to x and y, so their error scales with the
+        // *unscaled* z (a length, like x and y). pbrt-v4 uses the t-scaled z here, which is
+        // only right for |dir| ≈ 1: far too large for short directions (it rejected true hits
+        // of 1e-3-long directions) and too small for long ones.
+        let max_z = z0.abs().max(z1.abs()).max(z2.abs());
+        let delta_x = gamma(5) * (max_xt + max_z);
+        let delta_y = gamma(5) * (max_yt + max_z);
         let delta_e = 2.0 * (gamma(2) * max_xt * max_yt + delta_y * max_xt + delta_x * max_yt);
         let max_e = e0.abs().max(e1.abs()).max(e2.abs());
         let delta_t =
             3.0 * (gamma(3) * max_e * max_zt + delta_e * max_zt + delta_z * max_e) * inv_det.abs();
-        if !(t > delta_t) {
-            return None;
+        if t > delta_t {
+            return Some((t, e1 * inv_det, e2 * inv_det));
         }
+        // The f32 bound cannot tell t from 0: near the origin (a spawned ray and its own
+        // surface), or at grazing incidence, where δt blows up even for t ≫ 0 and rejecting
+        // would leak. Decide with t and δt recomputed in f64 (same formulas, f64 rounding).
+        let t = self.refine_t(t0, t1, t2)?;
         Some((t, e1 * inv_det, e2 * inv_det))
+    }
+
+    /// `t` and its error bound in f64 from the translated, permuted vertices; `Some(t)` only
+    /// when `t > δt` in f64 (and `t` is still positive in f32).
+    #[cold]
+    #[inline(never)]
+    fn refine_t(&self, t0: [f32; 3], t1: [f32; 3], t2: [f32; 3]) -> Option<f32> {
+        let g = |n: f64| n * f64::EPSILON * 0.5 / (1.0 - n * f64::EPSILON * 0.5);
+        let d = self.d.map(f64::from);
+        let (sx, sy, sz) = (-d[0] / d[2], -d[1] / d[2], 1.0 / d[2]);
+        let shear = |p: [f32; 3]| {
+            let [x, y, z] = p.map(f64::from);
+            (x + sx * z, y + sy * z, z)
+        };
+        let ((x0, y0, z0), (x1, y1, z1), (x2, y2, z2)) = (shear(t0), shear(t1), shear(t2));
+        let e0 = x1 * y2 - y1 * x2;
+        let e1 = x2 * y0 - y2 * x0;
+        let e2 = x0 * y1 - y0 * x1;
+        let det = e0 + e1 + e2;
+        let (zs0, zs1, zs2) = (z0 * sz, z1 * sz, z2 * sz);
+        let t = (e0 * zs0 + e1 * zs1 + e2 * zs2) / det;
+        let max_zt = zs0.abs().max(zs1.abs()).max(zs2.abs());
+        let max_z = z0.abs().max(z1.abs()).max(z2.abs());
+        let max_xt = x0.abs().max(x1.abs()).max(x2.abs());
+        let max_yt = y0.abs().max(y1.abs()).max(y2.abs());
+        let delta_x = g(5.0) * (max_xt + max_z);
+        let delta_y = g(5.0) * (max_yt + max_z);
+        let delta_z = g(3.0) * max_zt;
+        let delta_e = 2.0 * (g(2.0) * max_xt * max_yt + delta_y * max_xt + delta_x * max_yt);
+        let max_e = e0.abs().max(e1.abs()).max(e2.abs());
+        let delta_t =
+            3.0 * (g(3.0) * max_e * max_zt + delta_e * max_zt + delta_z * max_e) / det.abs();
+        let t32 = t as f32;
+        (t > delta_t && t32 > 0.0).then_some(t32)
     }
 }
 
