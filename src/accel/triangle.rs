@@ -84,7 +84,7 @@ impl WoopRay {
     /// (conservatively in front of the origin); the caller compares `t` with its `t_max`.
     /// The result depends only on the ray and the triangle, never on a running `t_max`,
     /// so any traversal order finds the same closest hit.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn intersect(&self, tri: &[Vec3; 3]) -> Option<(f32, f32, f32)> {
         let (kx, ky, kz) = (self.kx, self.ky, self.kz);
         let o = self.o;
@@ -110,26 +110,7 @@ impl WoopRay {
         let mut e1 = x2 * y0 - y2 * x0;
         let mut e2 = x0 * y1 - y0 * x1;
         if e0 == 0.0 || e1 == 0.0 || e2 == 0.0 {
-            // Exactly zero in f32 (on an edge, or underflow): decide in f64, where the products
-            // are exact. The sign test uses the f64 values, so an f32 underflow to ±0 cannot
-            // turn a miss by a subnormal distance into an edge hit.
-            let (x0, y0, x1, y1, x2, y2) = (
-                f64::from(x0),
-                f64::from(y0),
-                f64::from(x1),
-                f64::from(y1),
-                f64::from(x2),
-                f64::from(y2),
-            );
-            let d0 = x1 * y2 - y1 * x2;
-            let d1 = x2 * y0 - y2 * x0;
-            let d2 = x0 * y1 - y0 * x1;
-            if (d0 < 0.0 || d1 < 0.0 || d2 < 0.0) && (d0 > 0.0 || d1 > 0.0 || d2 > 0.0) {
-                return None;
-            }
-            e0 = d0 as f32;
-            e1 = d1 as f32;
-            e2 = d2 as f32;
+            [e0, e1, e2] = edge_functions_f64([x0, y0, x1, y1, x2, y2])?;
         } else if (e0 < 0.0 || e1 < 0.0 || e2 < 0.0) && (e0 > 0.0 || e1 > 0.0 || e2 > 0.0) {
             return None;
         }
@@ -203,6 +184,23 @@ impl WoopRay {
         let t32 = t as f32;
         (t > delta_t && t32 > 0.0).then_some(t32)
     }
+}
+
+/// The edge functions of sheared 2-D vertices `[x0, y0, x1, y1, x2, y2]` in f64, where the
+/// products are exact; `None` when their signs differ. Used when an f32 edge function is
+/// exactly zero (on an edge, or underflow): the sign test uses the f64 values, so an f32
+/// underflow to ±0 cannot turn a miss by a subnormal distance into an edge hit.
+#[cold]
+#[inline(never)]
+fn edge_functions_f64(v: [f32; 6]) -> Option<[f32; 3]> {
+    let [x0, y0, x1, y1, x2, y2] = v.map(f64::from);
+    let d0 = x1 * y2 - y1 * x2;
+    let d1 = x2 * y0 - y2 * x0;
+    let d2 = x0 * y1 - y0 * x1;
+    if (d0 < 0.0 || d1 < 0.0 || d2 < 0.0) && (d0 > 0.0 || d1 > 0.0 || d2 > 0.0) {
+        return None;
+    }
+    Some([d0 as f32, d1 as f32, d2 as f32])
 }
 
 /// The watertight ray/triangle test on its own: `Some((t, b1, b2))` when the ray hits the
