@@ -29,34 +29,36 @@ pub(crate) const FIRST_MASK: u32 = (1 << COUNT_SHIFT) - 1;
 /// Reference of an empty child slot (its box is empty, so it is never entered).
 pub(crate) const EMPTY_CHILD: u32 = u32::MAX;
 
-/// An 8-wide node: the six bounding planes of every child in structure-of-arrays form
-/// (`bounds[2·axis]` minima, `bounds[2·axis + 1]` maxima; lanes 0–3 in `[0]`, 4–7 in `[1]`)
-/// and one reference per child (node index, or leaf with `LEAF_BIT`).
+/// An 8-wide node: one reference per child (node index, or leaf with `LEAF_BIT`), children
+/// packed into the first slots, and the six bounding planes of every child in
+/// structure-of-arrays form: `bounds[group][2·axis]` minima, `bounds[group][2·axis + 1]`
+/// maxima, children 0–3 in group 0 and 4–7 in group 1. A node with at most four children is
+/// tested from its first two cache lines only.
 #[derive(Clone, Copy, Debug)]
 #[repr(C, align(64))]
 pub(crate) struct Node {
-    pub(crate) bounds: [[Vec4; 2]; 6],
     pub(crate) child: [u32; 8],
+    pub(crate) bounds: [[Vec4; 6]; 2],
 }
 
 impl Node {
-    const EMPTY: Node = Node {
-        bounds: [
-            [Vec4::INFINITY; 2],
-            [Vec4::NEG_INFINITY; 2],
-            [Vec4::INFINITY; 2],
-            [Vec4::NEG_INFINITY; 2],
-            [Vec4::INFINITY; 2],
-            [Vec4::NEG_INFINITY; 2],
-        ],
+    pub(crate) const EMPTY: Node = Node {
         child: [EMPTY_CHILD; 8],
+        bounds: [[
+            Vec4::INFINITY,
+            Vec4::NEG_INFINITY,
+            Vec4::INFINITY,
+            Vec4::NEG_INFINITY,
+            Vec4::INFINITY,
+            Vec4::NEG_INFINITY,
+        ]; 2],
     };
 
-    fn set_child(&mut self, slot: usize, reference: u32, lo: Vec3, hi: Vec3) {
+    pub(crate) fn set_child(&mut self, slot: usize, reference: u32, lo: Vec3, hi: Vec3) {
         let (g, l) = (slot / 4, slot % 4);
         for axis in 0..3 {
-            self.bounds[2 * axis][g][l] = lo[axis];
-            self.bounds[2 * axis + 1][g][l] = hi[axis];
+            self.bounds[g][2 * axis][l] = lo[axis];
+            self.bounds[g][2 * axis + 1][l] = hi[axis];
         }
         self.child[slot] = reference;
     }
@@ -147,6 +149,7 @@ pub(crate) fn build(tris: &[[Vec3; 3]], quality: BvhQuality) -> Bvh {
     for i in (0..n).rev() {
         let cn = &cw.nodes[i];
         let (mut nlo, mut nhi) = (Vec3::INFINITY, Vec3::NEG_INFINITY);
+        let mut packed = 0;
         for slot in 0..8 {
             if cn.is_child_empty(slot) {
                 continue;
@@ -167,7 +170,8 @@ pub(crate) fn build(tris: &[[Vec3; 3]], quality: BvhQuality) -> Bvh {
                 );
                 (c as u32, node_box[c].0, node_box[c].1)
             };
-            nodes[i].set_child(slot, reference, lo, hi);
+            nodes[i].set_child(packed, reference, lo, hi);
+            packed += 1;
             nlo = nlo.min(lo);
             nhi = nhi.max(hi);
         }
@@ -233,8 +237,8 @@ mod tests {
                         for v in bvh.tris[k] {
                             for axis in 0..3 {
                                 let (g, l) = (slot / 4, slot % 4);
-                                assert!(node.bounds[2 * axis][g][l] <= v[axis]);
-                                assert!(node.bounds[2 * axis + 1][g][l] >= v[axis]);
+                                assert!(node.bounds[g][2 * axis][l] <= v[axis]);
+                                assert!(node.bounds[g][2 * axis + 1][l] >= v[axis]);
                             }
                         }
                     }

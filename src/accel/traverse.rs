@@ -14,7 +14,7 @@
 
 use glam::Vec4;
 
-use super::bvh::{Bvh, Node, COUNT_SHIFT, FIRST_MASK, LEAF_BIT};
+use super::bvh::{Bvh, Node, COUNT_SHIFT, EMPTY_CHILD, FIRST_MASK, LEAF_BIT};
 use super::triangle::{gamma, ray_is_valid, WoopRay};
 use super::{Hit, Ray};
 
@@ -54,14 +54,16 @@ impl NodeRay {
         let t_far = Vec4::splat(t_far);
         let mut mask = 0;
         let mut entry = [Vec4::ZERO; 2];
-        for (g, e) in entry.iter_mut().enumerate() {
+        // Children are packed: an empty slot 4 means the second group is empty.
+        let groups = if node.child[4] == EMPTY_CHILD { 1 } else { 2 };
+        for (g, e) in entry.iter_mut().enumerate().take(groups) {
             // `a.max(acc)` is SSE `maxps(a, acc)`, which returns `acc` when either is NaN, and
             // `acc` never is: a NaN slab is ignored.
             let mut tn = Vec4::ZERO;
             let mut tf = t_far;
             for a in 0..3 {
-                let n = (node.bounds[self.near[a]][g] - self.o[a]) * self.inv[a];
-                let f = (node.bounds[self.far[a]][g] - self.o[a]) * self.inv[a];
+                let n = (node.bounds[g][self.near[a]] - self.o[a]) * self.inv[a];
+                let f = (node.bounds[g][self.far[a]] - self.o[a]) * self.inv[a];
                 tn = n.max(tn);
                 tf = f.min(tf);
             }
@@ -314,21 +316,8 @@ mod tests {
     #[test]
     fn nan_slab_from_origin_on_plane_is_ignored() {
         // One child box [0,1]³; a ray in the plane x = 0 moving along +y from below.
-        let mut node = Node {
-            bounds: [
-                [Vec4::INFINITY; 2],
-                [Vec4::NEG_INFINITY; 2],
-                [Vec4::INFINITY; 2],
-                [Vec4::NEG_INFINITY; 2],
-                [Vec4::INFINITY; 2],
-                [Vec4::NEG_INFINITY; 2],
-            ],
-            child: [u32::MAX; 8],
-        };
-        for axis in 0..3 {
-            node.bounds[2 * axis][0][0] = 0.0;
-            node.bounds[2 * axis + 1][0][0] = 1.0;
-        }
+        let mut node = Node::EMPTY;
+        node.set_child(0, 0, glam::Vec3::ZERO, glam::Vec3::ONE);
         for (o, d) in [
             (glam::Vec3::new(0.0, -1.0, 0.5), glam::Vec3::Y),
             (glam::Vec3::new(1.0, -1.0, 1.0), glam::Vec3::Y),
