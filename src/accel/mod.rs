@@ -1,11 +1,31 @@
 //! Ray layer: watertight triangle intersection, robust ray spawning and the BVH over the
-//! scene's world-space triangles (a thin layer over `obvhs`).
+//! scene's world-space triangles.
 //!
-//! STUB: replaced by the real implementation (helper A). The API below is the contract.
+//! * [`Accel`] builds the hierarchy with `obvhs` and traverses it with its own kernel
+//!   (`traverse.rs`); triangles are tested with the watertight test of `triangle.rs`.
+//! * Instances are flattened by the caller: stagelight hands every instance's triangles to
+//!   [`Accel::build`] already transformed into world space (obvhs has no transformed
+//!   two-level traversal). Hit points, error bounds and offsets are therefore all in world
+//!   space.
+//! * Rays leaving a surface are made with [`spawn_ray`], [`spawn_ray_to`] and
+//!   [`spawn_ray_to_surface`] from a [`SurfacePoint`] (`spawn.rs`): the origin is offset by
+//!   the point's own error bound, never by a fixed epsilon.
+//!
+//! Design notes and measurements: `docs/ray-layer.md`.
+
+mod brute;
+mod bvh;
+mod spawn;
+mod traverse;
+mod triangle;
 
 use glam::Vec3;
 
 use crate::settings::BvhQuality;
+
+pub use brute::brute_force_intersect;
+pub use spawn::{offset_ray_origin, spawn_ray, spawn_ray_to, spawn_ray_to_surface, SHADOW_EPSILON};
+pub use triangle::{gamma, intersect_triangle, is_degenerate, MACHINE_EPSILON};
 
 /// A ray segment `origin + t·dir`, `t ∈ (0, t_max)`. `dir` need not be unit length; `t` is in
 /// units of `dir`.
@@ -15,7 +35,7 @@ pub struct Ray {
     pub origin: Vec3,
     /// Direction (not necessarily normalised).
     pub dir: Vec3,
-    /// Far end of the segment.
+    /// Far end of the segment (exclusive).
     pub t_max: f32,
 }
 
@@ -43,101 +63,126 @@ pub struct SurfacePoint {
     pub ng: Vec3,
 }
 
-/// BVH over world-space triangles.
+/// Size and build statistics of an [`Accel`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AccelStats {
+    /// Triangles given to [`Accel::build`].
+    pub triangles: usize,
+    /// Triangles in the hierarchy (degenerate ones are left out).
+    pub bvh_triangles: usize,
+    /// 8-wide nodes.
+    pub nodes: usize,
+    /// Node levels on the longest root-to-leaf path.
+    pub depth: u32,
+    /// Wall-clock build time in seconds.
+    pub build_seconds: f64,
+}
+
+/// BVH over world-space triangles. `Send + Sync`: build once, trace from many threads.
 pub struct Accel {
     triangles: Vec<[Vec3; 3]>,
+    bvh: bvh::Bvh,
 }
 
 impl Accel {
-    /// Builds the hierarchy. Degenerate triangles are kept in the index space but never hit.
-    pub fn build(triangles: Vec<[Vec3; 3]>, _quality: BvhQuality) -> Self {
-        Self { triangles }
+    /// Builds the hierarchy. Degenerate triangles (zero area, non-finite vertices) are kept in
+    /// the index space but never hit.
+    pub fn build(triangles: Vec<[Vec3; 3]>, quality: BvhQuality) -> Self {
+        let bvh = bvh::build(&triangles, quality);
+        Self { triangles, bvh }
     }
+
     /// Number of triangles.
     pub fn len(&self) -> usize {
         self.triangles.len()
     }
+
     /// True when there are no triangles.
     pub fn is_empty(&self) -> bool {
         self.triangles.is_empty()
     }
+
     /// Vertices of triangle `prim`.
     pub fn triangle(&self, prim: u32) -> [Vec3; 3] {
         self.triangles[prim as usize]
     }
-    /// Closest hit along the ray.
+
+    /// Closest hit along the ray (`0 < t < t_max`); ties at equal `t` go to the smallest
+    /// `prim`. Rays with a non-finite origin or direction, a zero direction or `t_max ≤ 0`
+    /// hit nothing.
     pub fn intersect(&self, ray: &Ray) -> Option<Hit> {
-        brute_force_intersect(&self.triangles, ray)
+        traverse::closest(&self.bvh, ray)
     }
-    /// Whether anything is hit along the ray segment.
+
+    /// Whether anything is hit along the ray segment (`0 < t < t_max`).
     pub fn occluded(&self, ray: &Ray) -> bool {
-        self.intersect(ray).is_some()
+        traverse::occluded(&self.bvh, ray)
     }
-    /// Surface point of a hit with error bounds.
+
+    /// Surface point of a hit, computed from its barycentrics, with error bounds.
     pub fn surface_point(&self, hit: &Hit) -> SurfacePoint {
-        let [a, b, c] = self.triangle(hit.prim);
-        let b0 = 1.0 - hit.b1 - hit.b2;
-        SurfacePoint {
-            p: a * b0 + b * hit.b1 + c * hit.b2,
-            p_err: Vec3::splat(1e-4),
-            ng: (b - a).cross(c - a).normalize_or_zero(),
+        spawn::surface_point(&self.triangle(hit.prim), hit.b1, hit.b2)
+    }
+
+    /// Wall-clock seconds [`Accel::build`] took.
+    pub fn build_seconds(&self) -> f64 {
+        self.bvh.build_seconds
+    }
+
+    /// Size and build statistics.
+    pub fn stats(&self) -> AccelStats {
+        AccelStats {
+            triangles: self.triangles.len(),
+            bvh_triangles: self.bvh.tris.len(),
+            nodes: self.bvh.nodes.len(),
+            depth: self.bvh.depth,
+            build_seconds: self.bvh.build_seconds,
         }
     }
 }
 
-/// A ray leaving `from` in direction `dir`, offset so it cannot re-hit the surface.
-pub fn spawn_ray(from: &SurfacePoint, dir: Vec3) -> Ray {
-    let o = from.p + from.ng * 1e-3 * from.ng.dot(dir).signum();
-    Ray {
-        origin: o,
-        dir,
-        t_max: f32::INFINITY,
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn accel_is_send_sync() {
+        fn check<T: Send + Sync>() {}
+        check::<Accel>();
     }
-}
 
-/// A ray from `from` toward the point `target` (a light), ending just before it.
-pub fn spawn_ray_to(from: &SurfacePoint, target: Vec3) -> Ray {
-    let mut r = spawn_ray(from, target - from.p);
-    r.dir = target - r.origin;
-    r.t_max = 1.0 - 1e-4;
-    r
-}
-
-/// Closest hit by testing every triangle (reference for tests).
-pub fn brute_force_intersect(triangles: &[[Vec3; 3]], ray: &Ray) -> Option<Hit> {
-    let mut best: Option<Hit> = None;
-    for (i, tri) in triangles.iter().enumerate() {
-        let e1 = tri[1] - tri[0];
-        let e2 = tri[2] - tri[0];
-        let pv = ray.dir.cross(e2);
-        let det = e1.dot(pv);
-        if det.abs() < 1e-12 {
-            continue;
-        }
-        let tv = ray.origin - tri[0];
-        let u = tv.dot(pv) / det;
-        let qv = tv.cross(e1);
-        let v = ray.dir.dot(qv) / det;
-        let t = e2.dot(qv) / det;
-        if u < 0.0 || v < 0.0 || u + v > 1.0 || t <= 0.0 || t >= ray.t_max {
-            continue;
-        }
-        if best.is_none_or(|h| t < h.t) {
-            best = Some(Hit {
-                t,
-                prim: i as u32,
-                b1: u,
-                b2: v,
-            });
-        }
+    #[test]
+    fn empty_accel_hits_nothing() {
+        let a = Accel::build(Vec::new(), BvhQuality::Fast);
+        let r = Ray {
+            origin: Vec3::ZERO,
+            dir: Vec3::X,
+            t_max: f32::INFINITY,
+        };
+        assert!(a.is_empty() && a.intersect(&r).is_none() && !a.occluded(&r));
     }
-    best
-}
 
-/// A ray from `from` to the surface point `to`, offsetting both ends.
-pub fn spawn_ray_to_surface(from: &SurfacePoint, to: &SurfacePoint) -> Ray {
-    spawn_ray_to(
-        from,
-        to.p + to.ng * 1e-3 * to.ng.dot(from.p - to.p).signum(),
-    )
+    #[test]
+    fn single_triangle_hit_and_surface_point() {
+        let tri = [
+            Vec3::new(-1.0, -1.0, 2.0),
+            Vec3::new(1.0, -1.0, 2.0),
+            Vec3::new(0.0, 1.0, 2.0),
+        ];
+        let a = Accel::build(vec![tri], BvhQuality::Medium);
+        let r = Ray {
+            origin: Vec3::ZERO,
+            dir: Vec3::Z,
+            t_max: f32::INFINITY,
+        };
+        let h = a.intersect(&r).unwrap();
+        assert_eq!((h.prim, h.t), (0, 2.0));
+        assert!(a.occluded(&r));
+        let sp = a.surface_point(&h);
+        assert!((sp.p - Vec3::new(0.0, 0.0, 2.0)).length() < 1e-6);
+        assert_eq!(sp.ng, Vec3::Z);
+        assert!(a
+            .intersect(&spawn_ray(&sp, Vec3::new(0.3, 0.1, -1.0)))
+            .is_none());
+    }
 }

@@ -3,6 +3,9 @@
 
 #![allow(dead_code)] // each test binary uses a different subset
 
+mod rays;
+pub use rays::*;
+
 use std::sync::Arc;
 
 use glam::{Affine3A, Vec3};
