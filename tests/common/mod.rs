@@ -4,6 +4,7 @@
 #![allow(dead_code)] // each test binary uses a different subset
 
 mod rays;
+#[allow(unused_imports)] // only the ray-layer tests use these
 pub use rays::*;
 
 use std::sync::Arc;
