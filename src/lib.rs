@@ -6,12 +6,14 @@
 //! ([`schedule`]) records what ran, why, how long it took and how much work it did.
 
 pub mod accel;
+pub mod accumulate;
 pub mod bake;
 pub mod components;
 pub mod frame;
 pub mod framebuffer;
 pub mod geometry;
 pub mod image_io;
+pub mod progress;
 pub mod sampling;
 pub mod scene;
 pub mod schedule;

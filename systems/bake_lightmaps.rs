@@ -23,6 +23,7 @@ use crate::bake::texels::{evaluate, TexelJob};
 use crate::bake::{bake_resolution, corner_uvs, dilate::dilate, rasterize, BakeReport, Coverage};
 use crate::components::{BakeFormat, BakeKind, BakeRequest, Emitter, SourceLink};
 use crate::image_io::{commit_all, PendingFile};
+use crate::progress::Progress;
 use crate::sampling::{fold_seed, hash_combine};
 use crate::shading::LightSet;
 
@@ -171,15 +172,7 @@ pub fn run(world: &mut World, frame: &mut Frame) -> Result<Work, StageError> {
     // Phase 2: bake.
     let seed = fold_seed(frame.settings.seed);
     let total_rows: u64 = prepared.iter().map(|p| p.coverage.height as u64).sum();
-    let progress = frame.progress.then(|| {
-        let pb = indicatif::ProgressBar::new(total_rows);
-        if let Ok(style) = indicatif::ProgressStyle::with_template(
-            "bake [{bar:40}] {pos}/{len} rows {elapsed_precise} eta {eta}",
-        ) {
-            pb.set_style(style.progress_chars("=> "));
-        }
-        pb
-    });
+    let progress = Progress::start(frame.progress, "bake", "rows", total_rows);
     let cancel: &AtomicBool = &frame.cancel;
     let mut pending = Vec::new();
     let mut reports = Vec::new();
@@ -196,7 +189,7 @@ pub fn run(world: &mut World, frame: &mut Frame) -> Result<Work, StageError> {
             uvs: &p.uvs,
             seed: hash_combine(&[seed, index as u32]),
         };
-        let Some(mut results) = evaluate(&job, cancel, progress.as_ref()) else {
+        let Some(mut results) = evaluate(&job, cancel, &progress.ticker()) else {
             return Err(StageError::Interrupted);
         };
         let covered = p.coverage.covered_texels();
@@ -281,9 +274,7 @@ pub fn run(world: &mut World, frame: &mut Frame) -> Result<Work, StageError> {
             files: files.iter().map(|f| f.display().to_string()).collect(),
         });
     }
-    if let Some(pb) = progress {
-        pb.finish_and_clear();
-    }
+    progress.finish();
     if frame.cancelled() {
         return Err(StageError::Interrupted);
     }

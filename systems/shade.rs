@@ -15,8 +15,10 @@ use hecs::{Entity, World};
 use rayon::prelude::*;
 
 use super::prelude::*;
+use crate::accumulate::SampleMean;
 use crate::components::{Camera, Emitter, RenderCamera};
 use crate::framebuffer::FrameBuffers;
+use crate::progress::Progress;
 use crate::sampling::{fold_seed, Sampler};
 use crate::shading::{shade_hit, CameraRays, FilterSampler, LightSet, ShadeContext};
 
@@ -65,7 +67,8 @@ pub fn run(world: &mut World, frame: &mut Frame) -> Result<Work, StageError> {
     let cancel = frame.cancel.clone();
     let stopped = AtomicBool::new(false);
     let dropped = AtomicU64::new(0);
-    let progress = progress_bar(frame.progress, height as u64);
+    let progress = Progress::start(frame.progress, "shade", "rows", height as u64);
+    let ticker = progress.ticker();
 
     let rows: Vec<Vec<PixelResult>> = (0..height)
         .into_par_iter()
@@ -89,15 +92,12 @@ pub fn run(world: &mut World, frame: &mut Frame) -> Result<Work, StageError> {
                     r
                 })
                 .collect();
-            if let Some(pb) = &progress {
-                pb.inc(1);
-            }
+            ticker.tick(1);
             row
         })
         .collect();
-    if let Some(pb) = progress {
-        pb.finish_and_clear();
-    }
+    drop(ticker);
+    progress.finish();
     if stopped.load(Ordering::Relaxed) || cancel.load(Ordering::Relaxed) {
         return Err(StageError::Interrupted);
     }
@@ -118,18 +118,6 @@ pub fn run(world: &mut World, frame: &mut Frame) -> Result<Work, StageError> {
     Ok(Work {
         items: (width * height) as u64 * spp as u64,
         unit: "samples",
-    })
-}
-
-fn progress_bar(enabled: bool, rows: u64) -> Option<indicatif::ProgressBar> {
-    enabled.then(|| {
-        let pb = indicatif::ProgressBar::new(rows);
-        if let Ok(style) = indicatif::ProgressStyle::with_template(
-            "shade [{bar:40}] {pos}/{len} rows {elapsed_precise} eta {eta}",
-        ) {
-            pb.set_style(style.progress_chars("=> "));
-        }
-        pb
     })
 }
 
@@ -171,7 +159,7 @@ fn shade_pixel(
         result.depth = hit.t;
         result.normal = sp.normal;
     }
-    let mut sum = Vec3::ZERO;
+    let mut sum = SampleMean::default();
     let mut covered = 0u32;
     for s in 0..spp {
         let mut sampler = Sampler::for_item(seed, pixel, s);
@@ -183,12 +171,12 @@ fn shade_pixel(
         covered += 1;
         let (radiance, _) = shade_hit(ctx, &ray, &hit, &mut sampler);
         if radiance.is_finite() {
-            sum += radiance;
+            sum.add(radiance);
         } else {
             result.dropped += 1;
         }
     }
-    result.color = sum / spp as f32;
+    result.color = sum.mean_over(spp as u64);
     result.alpha = covered as f32 / spp as f32;
     result
 }

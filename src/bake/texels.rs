@@ -7,12 +7,14 @@ use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use glam::Vec3;
 use rayon::prelude::*;
 
+use crate::accumulate::SampleMean;
 use crate::bake::ao::trace_hemisphere;
 use crate::bake::irradiance::{diffuse_albedo, direct_irradiance, indirect_irradiance_sample};
 use crate::bake::raster::Coverage;
 use crate::bake::texture::TexelImage;
 use crate::components::{BakeKind, LightmapStore, NormalSpace};
 use crate::geometry::{InstanceGeometry, SceneGeometry};
+use crate::progress::ProgressTicker;
 use crate::sampling::{hash_combine, Sampler};
 use crate::shading::LightSet;
 
@@ -58,7 +60,7 @@ type TexelValues = Vec<Option<Vec3>>;
 pub fn evaluate(
     job: &TexelJob<'_>,
     cancel: &AtomicBool,
-    progress: Option<&indicatif::ProgressBar>,
+    progress: &ProgressTicker,
 ) -> Option<TexelResults> {
     let (w, h) = (job.coverage.width, job.coverage.height);
     let bent = job.kinds.iter().any(|k| {
@@ -99,9 +101,7 @@ pub fn evaluate(
                 })
                 .collect();
             rays.fetch_add(row_rays, Ordering::Relaxed);
-            if let Some(pb) = progress {
-                pb.inc(1);
-            }
+            progress.tick(1);
             row
         })
         .collect();
@@ -264,11 +264,11 @@ fn texel(
                 e /= n_sites as f32;
                 if *indirect && *max_depth > 0 {
                     let samples = (*samples).max(1);
-                    let mut sum = Vec3::ZERO;
+                    let mut sum = SampleMean::default();
                     for r in 0..samples {
                         let site = &sites[(r % n_sites) as usize];
                         let mut sampler = Sampler::new(hash_combine(&[kind_seed, 0x1d1]), r);
-                        sum += indirect_irradiance_sample(
+                        sum.add(indirect_irradiance_sample(
                             job.geometry,
                             job.lights,
                             &site.surface,
@@ -276,10 +276,10 @@ fn texel(
                             site.ng,
                             *max_depth,
                             &mut sampler,
-                        );
+                        ));
                     }
                     rays += samples as u64 * (*max_depth as u64 + 1);
-                    e += sum / samples as f32;
+                    e += sum.mean_over(samples as u64);
                 }
                 match store {
                     LightmapStore::Irradiance => e,
