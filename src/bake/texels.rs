@@ -20,9 +20,10 @@ use crate::shading::LightSet;
 
 /// Rays of the inside-geometry probe per sample position.
 const PROBE_RAYS: u32 = 16;
-/// A sample position is inside geometry when at least this fraction of probe rays first meet
-/// the back of a one-sided surface.
-const INSIDE_FRACTION: f32 = 0.5;
+/// A sample position is inside geometry when more than this fraction of probe rays first meet
+/// the back of a one-sided surface (inside a closed mesh it is all of them; beside the back of
+/// a one-sided wall about half).
+const INSIDE_FRACTION: f32 = 0.75;
 
 /// Inputs of one request's texel evaluation.
 pub struct TexelJob<'a> {
@@ -184,7 +185,7 @@ fn texel(
                 PROBE_RAYS,
             );
             rays += probe.rays as u64;
-            if probe.backface_hits as f32 >= INSIDE_FRACTION * probe.rays as f32 {
+            if probe.backface_hits as f32 > INSIDE_FRACTION * probe.rays as f32 {
                 continue;
             }
         }

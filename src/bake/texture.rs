@@ -32,6 +32,34 @@ impl TexelImage {
         }
     }
 
+    /// The four texels a bilinear lookup at `uv` reads, with their weights, clamped to the
+    /// image (texel centres at `((i + ½)/W, 1 − (j + ½)/H)`).
+    pub fn bilinear_taps(&self, uv: glam::Vec2) -> [(usize, f32); 4] {
+        let x = uv.x * self.width as f32 - 0.5;
+        let y = (1.0 - uv.y) * self.height as f32 - 0.5;
+        let (x0, y0) = (x.floor(), y.floor());
+        let (fx, fy) = (x - x0, y - y0);
+        let clamp_x = |v: f32| (v.max(0.0) as usize).min(self.width as usize - 1);
+        let clamp_y = |v: f32| (v.max(0.0) as usize).min(self.height as usize - 1);
+        let (i0, i1) = (clamp_x(x0), clamp_x(x0 + 1.0));
+        let (j0, j1) = (clamp_y(y0), clamp_y(y0 + 1.0));
+        let w = self.width as usize;
+        [
+            (j0 * w + i0, (1.0 - fx) * (1.0 - fy)),
+            (j0 * w + i1, fx * (1.0 - fy)),
+            (j1 * w + i0, (1.0 - fx) * fy),
+            (j1 * w + i1, fx * fy),
+        ]
+    }
+
+    /// Bilinear lookup at `uv` (v up), as a renderer sampling the texture would do.
+    pub fn bilinear(&self, uv: glam::Vec2) -> Vec3 {
+        self.bilinear_taps(uv)
+            .iter()
+            .map(|&(i, w)| self.texels[i] * w)
+            .sum()
+    }
+
     /// Encodes as linear f32 RGB EXR.
     pub fn encode_exr(&self) -> std::result::Result<Vec<u8>, String> {
         let channels: SmallVec<[AnyChannel<FlatSamples>; 4]> = [("R", 0usize), ("G", 1), ("B", 2)]
