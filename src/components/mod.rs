@@ -16,3 +16,18 @@ pub use material::{Material, MaterialRef, Shader};
 pub use mesh::{Instance, TriMesh};
 pub use naming::{Name, SourceLink};
 pub use transform::WorldFromObject;
+
+mod approximation;
+mod displacement;
+mod procedural;
+mod surface;
+
+pub use approximation::{Approximation, LengthSpace, Technique};
+pub use displacement::{
+    DerivativeRequest, Displacement, DisplacementMode, ImageMap, ScalarNode, SurfaceDerivatives,
+    UvAxis,
+};
+pub use procedural::{
+    Cone, Cylinder, Disk, GeneratedFrom, Grid, Procedural, Scatter, Sphere, Stairs, Torus,
+};
+pub use surface::{CubicBasis, NurbsSurface, PatchKind, PatchMesh, Quadric, SubdivMesh, Surface};
