@@ -41,3 +41,28 @@ pub fn expand(p: &Procedural) -> Result<Expanded, GeometryError> {
         Procedural::Grid(g) => stairs::grid(&g).map(Expanded::Mesh),
     }
 }
+
+/// Puts a generated mesh on its object entity and on every leaf instance of that object, so
+/// that `build_accel` sees it like a loaded one.
+pub fn install_mesh(
+    world: &mut hecs::World,
+    object: hecs::Entity,
+    mesh: std::sync::Arc<TriMesh>,
+) -> Result<(), hecs::NoSuchEntity> {
+    world.insert_one(object, mesh.clone())?;
+    for inst in world.query_mut::<&mut crate::components::Instance>() {
+        if inst.object == object {
+            inst.mesh = mesh.clone();
+        }
+    }
+    Ok(())
+}
+
+/// The mesh placeholder a scene loader gives leaf instances of objects whose mesh a geometry
+/// stage generates (procedural, parametric, subdivision, scatter): empty until then.
+pub fn pending_instance(object: hecs::Entity) -> crate::components::Instance {
+    crate::components::Instance {
+        object,
+        mesh: std::sync::Arc::new(TriMesh::default()),
+    }
+}

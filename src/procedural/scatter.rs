@@ -14,7 +14,8 @@ pub const MAX_COUNT: u32 = 10_000_000;
 
 /// A uniform number in [0, 1) from (seed, index, dimension).
 pub fn hash01(seed: u64, index: u64, dim: u64) -> f64 {
-    let mut x = seed ^ index.wrapping_mul(0x9e37_79b9_7f4a_7c15) ^ dim.wrapping_mul(0xc2b2_ae3d_27d4_eb4f);
+    let mut x =
+        seed ^ index.wrapping_mul(0x9e37_79b9_7f4a_7c15) ^ dim.wrapping_mul(0xc2b2_ae3d_27d4_eb4f);
     for _ in 0..2 {
         x = (x ^ (x >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
         x = (x ^ (x >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
@@ -34,7 +35,10 @@ pub fn placements(s: &Scatter, surface: &TriMesh) -> Result<Vec<Affine3A>, Geome
             expected: "≥ scale_min",
         });
     }
-    let jitter = finite("rotation_jitter", s.rotation_jitter)?.abs().min(180.0).to_radians();
+    let jitter = finite("rotation_jitter", s.rotation_jitter)?
+        .abs()
+        .min(180.0)
+        .to_radians();
     let mut cdf = Vec::with_capacity(surface.triangles.len());
     let mut total = 0.0f64;
     for (i, t) in surface.triangles.iter().enumerate() {
@@ -67,7 +71,9 @@ pub fn placements(s: &Scatter, surface: &TriMesh) -> Result<Vec<Affine3A>, Geome
             let n = match &surface.normals {
                 Some(ns) => {
                     let [i0, i1, i2] = surface.triangles[t].map(|k| k as usize);
-                    (ns[i0] * w0 + ns[i1] * w1 + ns[i2] * w2).try_normalize().unwrap_or(ng)
+                    (ns[i0] * w0 + ns[i1] * w1 + ns[i2] * w2)
+                        .try_normalize()
+                        .unwrap_or(ng)
                 }
                 None => ng,
             };
@@ -95,7 +101,13 @@ mod tests {
 
     #[test]
     fn placements_are_seeded_on_the_surface_and_aligned() {
-        let mesh = super::super::stairs::grid(&Grid { size_x: 2.0, size_y: 2.0, nx: 3, ny: 3 }).unwrap();
+        let mesh = super::super::stairs::grid(&Grid {
+            size_x: 2.0,
+            size_y: 2.0,
+            nx: 3,
+            ny: 3,
+        })
+        .unwrap();
         let s = Scatter {
             prototype: Entity::DANGLING,
             surface: Entity::DANGLING,

@@ -56,12 +56,32 @@ pub fn stairs(s: &Stairs) -> Result<TriMesh, GeometryError> {
     for k in 0..n {
         let (y0, y1, z0, z1) = (y(k), y(k + 1), z(k), z(k + 1));
         b.polygon(
-            &[Vec3::new(-x, y0, z0), Vec3::new(x, y0, z0), Vec3::new(x, y0, z1), Vec3::new(-x, y0, z1)],
-            &[Vec2::new(0.0, v(k, false)), Vec2::new(1.0, v(k, false)), Vec2::new(1.0, v(k, true)), Vec2::new(0.0, v(k, true))],
+            &[
+                Vec3::new(-x, y0, z0),
+                Vec3::new(x, y0, z0),
+                Vec3::new(x, y0, z1),
+                Vec3::new(-x, y0, z1),
+            ],
+            &[
+                Vec2::new(0.0, v(k, false)),
+                Vec2::new(1.0, v(k, false)),
+                Vec2::new(1.0, v(k, true)),
+                Vec2::new(0.0, v(k, true)),
+            ],
         );
         b.polygon(
-            &[Vec3::new(-x, y0, z1), Vec3::new(x, y0, z1), Vec3::new(x, y1, z1), Vec3::new(-x, y1, z1)],
-            &[Vec2::new(0.0, v(k, true)), Vec2::new(1.0, v(k, true)), Vec2::new(1.0, v(k + 1, false)), Vec2::new(0.0, v(k + 1, false))],
+            &[
+                Vec3::new(-x, y0, z1),
+                Vec3::new(x, y0, z1),
+                Vec3::new(x, y1, z1),
+                Vec3::new(-x, y1, z1),
+            ],
+            &[
+                Vec2::new(0.0, v(k, true)),
+                Vec2::new(1.0, v(k, true)),
+                Vec2::new(1.0, v(k + 1, false)),
+                Vec2::new(0.0, v(k + 1, false)),
+            ],
         );
     }
     if s.closed {
@@ -84,13 +104,29 @@ pub fn stairs(s: &Stairs) -> Result<TriMesh, GeometryError> {
                 b.polygon(&pts, &uvs);
             }
             // Bottom strip k, facing −Z.
-            let pts = [Vec3::new(-x, y0, 0.0), Vec3::new(-x, y1, 0.0), Vec3::new(x, y1, 0.0), Vec3::new(x, y0, 0.0)];
-            let uvs: Vec<Vec2> = pts.iter().map(|p| Vec2::new(p.x / w + 0.5, p.y / d)).collect();
+            let pts = [
+                Vec3::new(-x, y0, 0.0),
+                Vec3::new(-x, y1, 0.0),
+                Vec3::new(x, y1, 0.0),
+                Vec3::new(x, y0, 0.0),
+            ];
+            let uvs: Vec<Vec2> = pts
+                .iter()
+                .map(|p| Vec2::new(p.x / w + 0.5, p.y / d))
+                .collect();
             b.polygon(&pts, &uvs);
         }
         // Back, facing +Y.
-        let pts = [Vec3::new(x, d, 0.0), Vec3::new(-x, d, 0.0), Vec3::new(-x, d, h), Vec3::new(x, d, h)];
-        let uvs: Vec<Vec2> = pts.iter().map(|p| Vec2::new(p.x / w + 0.5, p.z / h)).collect();
+        let pts = [
+            Vec3::new(x, d, 0.0),
+            Vec3::new(-x, d, 0.0),
+            Vec3::new(-x, d, h),
+            Vec3::new(x, d, h),
+        ];
+        let uvs: Vec<Vec2> = pts
+            .iter()
+            .map(|p| Vec2::new(p.x / w + 0.5, p.z / h))
+            .collect();
         b.polygon(&pts, &uvs);
     }
     Ok(b.finish())
@@ -106,7 +142,8 @@ pub fn grid(g: &Grid) -> Result<TriMesh, GeometryError> {
     for j in 0..=ny {
         for i in 0..=nx {
             let uv = Vec2::new(i as f32 / nx as f32, j as f32 / ny as f32);
-            mesh.positions.push(Vec3::new((uv.x - 0.5) * sx, (uv.y - 0.5) * sy, 0.0));
+            mesh.positions
+                .push(Vec3::new((uv.x - 0.5) * sx, (uv.y - 0.5) * sy, 0.0));
             uvs.push(uv);
         }
     }
@@ -150,15 +187,30 @@ mod tests {
                 *edges.entry((a.min(b), a.max(b))).or_default() += if a < b { 1 } else { -1 };
             }
         }
-        assert!(edges.values().all(|&c| c == 0), "open or inconsistently oriented edges");
+        assert!(
+            edges.values().all(|&c| c == 0),
+            "open or inconsistently oriented edges"
+        );
         // Volume of 5 steps: Σ depth/5 · width · height·k/5 = 2·2·1·(1+…+5)/25 = 2.4.
         assert!((volume - 2.4).abs() < 1e-5, "{volume}");
     }
 
     #[test]
     fn grid_counts() {
-        let m = grid(&Grid { size_x: 2.0, size_y: 1.0, nx: 4, ny: 3 }).unwrap();
+        let m = grid(&Grid {
+            size_x: 2.0,
+            size_y: 1.0,
+            nx: 4,
+            ny: 3,
+        })
+        .unwrap();
         assert_eq!((m.positions.len(), m.triangles.len()), (20, 24));
-        assert!(grid(&Grid { size_x: f32::NAN, size_y: 1.0, nx: 1, ny: 1 }).is_err());
+        assert!(grid(&Grid {
+            size_x: f32::NAN,
+            size_y: 1.0,
+            nx: 1,
+            ny: 1
+        })
+        .is_err());
     }
 }

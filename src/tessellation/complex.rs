@@ -301,7 +301,12 @@ pub fn tessellate(src: &dyn PatchSource, opts: &Options) -> Result<Tessellation,
         })
         .collect();
 
-    Ok(assemble(outs, next as usize, displacer.is_some(), opts.derivatives))
+    Ok(assemble(
+        outs,
+        next as usize,
+        displacer.is_some(),
+        opts.derivatives,
+    ))
 }
 
 /// Evaluates `samples + 1` points of a curve given by `at(t)` → (patch, (u, v)), displaced
@@ -383,7 +388,11 @@ fn dice_patch(
         drop_degenerate(&mut out);
         return out;
     }
-    let (mu, mv) = if plain { (mu, mv) } else { (mu.max(2), mv.max(2)) };
+    let (mu, mv) = if plain {
+        (mu, mv)
+    } else {
+        (mu.max(2), mv.max(2))
+    };
     // Interior grid (i, j) for i in 1..mu, j in 1..mv.
     let (iu, iv) = (mu - 1, mv - 1);
     let first_local = out.gid.len() as u32;
@@ -427,7 +436,12 @@ fn dice_patch(
     } else {
         for j in 1..iv {
             for i in 1..iu {
-                let (a, b, c, d) = (inner(i, j), inner(i + 1, j), inner(i + 1, j + 1), inner(i, j + 1));
+                let (a, b, c, d) = (
+                    inner(i, j),
+                    inner(i + 1, j),
+                    inner(i + 1, j + 1),
+                    inner(i, j + 1),
+                );
                 out.tris.push([a, b, c]);
                 out.tris.push([a, c, d]);
             }

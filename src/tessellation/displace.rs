@@ -259,7 +259,11 @@ mod tests {
     fn perlin_is_deterministic_bounded_and_zero_on_lattice() {
         let mut max: f64 = 0.0;
         for i in 0..2000 {
-            let p = DVec3::new(i as f64 * 0.137, i as f64 * 0.071 - 3.0, (i % 17) as f64 * 0.29);
+            let p = DVec3::new(
+                i as f64 * 0.137,
+                i as f64 * 0.071 - 3.0,
+                (i % 17) as f64 * 0.29,
+            );
             let a = perlin(p, 7);
             assert_eq!(a, perlin(p, 7));
             max = max.max(a.abs());
@@ -283,7 +287,10 @@ mod tests {
             bound: Some(0.5),
             mode: crate::components::DisplacementMode::True,
         };
-        assert_eq!(Displacer::new(&d).unwrap().amount(DVec3::ZERO, DVec2::ZERO), 0.5);
+        assert_eq!(
+            Displacer::new(&d).unwrap().amount(DVec3::ZERO, DVec2::ZERO),
+            0.5
+        );
     }
 
     #[test]

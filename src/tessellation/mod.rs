@@ -107,7 +107,10 @@ pub struct Options<'a> {
 }
 
 /// Tessellates a parametric surface component.
-pub fn tessellate_surface(surface: &Surface, opts: &Options) -> Result<Tessellation, GeometryError> {
+pub fn tessellate_surface(
+    surface: &Surface,
+    opts: &Options,
+) -> Result<Tessellation, GeometryError> {
     match surface {
         Surface::Patches(mesh) => complex::tessellate(&patch::PatchMeshSource::new(mesh)?, opts),
         Surface::Nurbs(n) => complex::tessellate(&nurbs::NurbsSource::new(n)?, opts),

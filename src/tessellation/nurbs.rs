@@ -27,7 +27,12 @@ struct Axis {
 }
 
 impl Axis {
-    fn new(degree: u32, count: u32, knots: &[f32], dir: &'static str) -> Result<Self, GeometryError> {
+    fn new(
+        degree: u32,
+        count: u32,
+        knots: &[f32],
+        dir: &'static str,
+    ) -> Result<Self, GeometryError> {
         let (p, n) = (degree as usize, count as usize);
         let bad = |message: String| GeometryError::BadCount { message };
         if p == 0 || p > MAX_DEGREE {
@@ -38,10 +43,17 @@ impl Axis {
             });
         }
         if n < p + 1 {
-            return Err(bad(format!("nurbs: {dir}: degree {p} needs at least {} control points, found {n}", p + 1)));
+            return Err(bad(format!(
+                "nurbs: {dir}: degree {p} needs at least {} control points, found {n}",
+                p + 1
+            )));
         }
         if knots.len() != n + p + 1 {
-            return Err(bad(format!("nurbs: {dir}: expected {} knots (count + degree + 1), found {}", n + p + 1, knots.len())));
+            return Err(bad(format!(
+                "nurbs: {dir}: expected {} knots (count + degree + 1), found {}",
+                n + p + 1,
+                knots.len()
+            )));
         }
         if knots.iter().any(|k| !k.is_finite()) {
             return Err(GeometryError::NotFinite { parameter: "knots" });
@@ -131,11 +143,17 @@ impl NurbsSource {
         let (cu, cv) = (s.count_u as usize, s.count_v as usize);
         if s.points.len() != cu * cv {
             return Err(GeometryError::BadCount {
-                message: format!("nurbs: expected count_u × count_v = {} points, found {}", cu * cv, s.points.len()),
+                message: format!(
+                    "nurbs: expected count_u × count_v = {} points, found {}",
+                    cu * cv,
+                    s.points.len()
+                ),
             });
         }
         if s.points.iter().any(|p| !p.is_finite()) {
-            return Err(GeometryError::NotFinite { parameter: "points" });
+            return Err(GeometryError::NotFinite {
+                parameter: "points",
+            });
         }
         if let Some(p) = s.points.iter().find(|p| p.w <= 0.0) {
             return Err(GeometryError::OutOfRange {
@@ -163,7 +181,14 @@ impl NurbsSource {
             points: s
                 .points
                 .iter()
-                .map(|p| DVec4::new(p.x as f64 * p.w as f64, p.y as f64 * p.w as f64, p.z as f64 * p.w as f64, p.w as f64))
+                .map(|p| {
+                    DVec4::new(
+                        p.x as f64 * p.w as f64,
+                        p.y as f64 * p.w as f64,
+                        p.z as f64 * p.w as f64,
+                        p.w as f64,
+                    )
+                })
                 .collect(),
             u,
             v,
@@ -240,7 +265,11 @@ mod tests {
     /// A quarter cylinder of radius 1 as an exact rational quadratic in u, linear in v.
     fn quarter_cylinder() -> NurbsSurface {
         let w = std::f32::consts::FRAC_1_SQRT_2;
-        let ring = [Vec4::new(1.0, 0.0, 0.0, 1.0), Vec4::new(1.0, 1.0, 0.0, w), Vec4::new(0.0, 1.0, 0.0, 1.0)];
+        let ring = [
+            Vec4::new(1.0, 0.0, 0.0, 1.0),
+            Vec4::new(1.0, 1.0, 0.0, w),
+            Vec4::new(0.0, 1.0, 0.0, 1.0),
+        ];
         let mut points = ring.to_vec();
         points.extend(ring.iter().map(|p| Vec4::new(p.x, p.y, 2.0, p.w)));
         NurbsSurface {
@@ -275,6 +304,9 @@ mod tests {
         let mut n = quarter_cylinder();
         n.knots_u.pop();
         let e = NurbsSource::new(&n).unwrap_err();
-        assert_eq!(e.to_string(), "nurbs: u: expected 6 knots (count + degree + 1), found 5");
+        assert_eq!(
+            e.to_string(),
+            "nurbs: u: expected 6 knots (count + degree + 1), found 5"
+        );
     }
 }

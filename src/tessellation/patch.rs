@@ -13,7 +13,12 @@ fn cubic(basis: CubicBasis, t: f64) -> ([f64; 4], [f64; 4]) {
     match basis {
         CubicBasis::Bezier => (
             [s * s * s, 3.0 * t * s * s, 3.0 * t2 * s, t3],
-            [-3.0 * s * s, 3.0 * s * s - 6.0 * t * s, 6.0 * t * s - 3.0 * t2, 3.0 * t2],
+            [
+                -3.0 * s * s,
+                3.0 * s * s - 6.0 * t * s,
+                6.0 * t * s - 3.0 * t2,
+                3.0 * t2,
+            ],
         ),
         CubicBasis::BSpline => (
             [
@@ -80,7 +85,12 @@ pub struct PatchMeshSource {
 }
 
 /// Patches along one direction for `n` points: `(count, step)`.
-fn patches_along(kind: PatchKind, n: usize, wrap: bool, dir: &'static str) -> Result<(usize, usize), GeometryError> {
+fn patches_along(
+    kind: PatchKind,
+    n: usize,
+    wrap: bool,
+    dir: &'static str,
+) -> Result<(usize, usize), GeometryError> {
     let bad = |why: String| GeometryError::BadCount {
         message: format!("patch mesh: {dir}: {why}"),
     };
@@ -97,13 +107,17 @@ fn patches_along(kind: PatchKind, n: usize, wrap: bool, dir: &'static str) -> Re
                 ((n - 1) / 3, 3)
             } else {
                 let rule = if wrap { "a multiple of 3" } else { "3·k + 1" };
-                return Err(bad(format!("Bézier patch meshes need {rule} points, found {n}")));
+                return Err(bad(format!(
+                    "Bézier patch meshes need {rule} points, found {n}"
+                )));
             }
         }
         PatchKind::Bicubic(_) => (if wrap { n } else { n - 3 }, 1),
     };
     if wrap && count < 3 {
-        return Err(bad(format!("a periodic direction needs at least 3 patches, found {count}")));
+        return Err(bad(format!(
+            "a periodic direction needs at least 3 patches, found {count}"
+        )));
     }
     Ok((count, step))
 }
@@ -122,7 +136,9 @@ impl PatchMeshSource {
             });
         }
         if m.points.iter().any(|p| !p.is_finite()) {
-            return Err(GeometryError::NotFinite { parameter: "points" });
+            return Err(GeometryError::NotFinite {
+                parameter: "points",
+            });
         }
         let (pu, step) = patches_along(m.kind, nu, m.u_wrap, "u")?;
         let (pv, _) = patches_along(m.kind, nv, m.v_wrap, "v")?;
@@ -211,7 +227,11 @@ mod tests {
 
     #[test]
     fn bases_are_partitions_of_unity_with_zero_sum_derivatives() {
-        for basis in [CubicBasis::Bezier, CubicBasis::BSpline, CubicBasis::CatmullRom] {
+        for basis in [
+            CubicBasis::Bezier,
+            CubicBasis::BSpline,
+            CubicBasis::CatmullRom,
+        ] {
             for k in 0..=10 {
                 let (b, d) = cubic(basis, k as f64 / 10.0);
                 assert!((b.iter().sum::<f64>() - 1.0).abs() < 1e-12);

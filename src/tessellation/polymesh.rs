@@ -35,7 +35,9 @@ impl QuadCage {
             });
         }
         if mesh.positions.iter().any(|p| !p.is_finite()) {
-            return Err(GeometryError::NotFinite { parameter: "positions" });
+            return Err(GeometryError::NotFinite {
+                parameter: "positions",
+            });
         }
         let mut cage = QuadCage::default();
         let mut weld: HashMap<[u32; 3], u32> = HashMap::new();
@@ -54,7 +56,10 @@ impl QuadCage {
         for t in &mesh.triangles {
             let w = t.map(|i| welded[i as usize]);
             let p = w.map(|i| cage.positions[i as usize]);
-            let face_n = (p[1] - p[0]).cross(p[2] - p[0]).try_normalize().unwrap_or(DVec3::Z);
+            let face_n = (p[1] - p[0])
+                .cross(p[2] - p[0])
+                .try_normalize()
+                .unwrap_or(DVec3::Z);
             let nrm: [DVec3; 3] = match &mesh.normals {
                 Some(ns) => t.map(|i| ns[i as usize].as_dvec3().try_normalize().unwrap_or(face_n)),
                 None => [face_n; 3],
@@ -76,7 +81,11 @@ impl QuadCage {
             let avg = |x: &[DVec3]| x.iter().sum::<DVec3>().try_normalize().unwrap_or(face_n);
             let nm = [avg(&nrm[0..2]), avg(&nrm[1..3]), avg(&[nrm[2], nrm[0]])];
             let nc = avg(&nrm);
-            let um = [(uv[0] + uv[1]) * 0.5, (uv[1] + uv[2]) * 0.5, (uv[2] + uv[0]) * 0.5];
+            let um = [
+                (uv[0] + uv[1]) * 0.5,
+                (uv[1] + uv[2]) * 0.5,
+                (uv[2] + uv[0]) * 0.5,
+            ];
             let uc = (uv[0] + uv[1] + uv[2]) / 3.0;
             for k in 0..3 {
                 let prev = (k + 2) % 3;
@@ -140,9 +149,23 @@ mod tests {
     fn triangles_split_into_welded_quads() {
         // Two triangles sharing an edge, with the shared vertices duplicated (a uv seam).
         let mesh = TriMesh {
-            positions: vec![Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::X, Vec3::Y, Vec3::new(1.0, 1.0, 0.0)],
+            positions: vec![
+                Vec3::ZERO,
+                Vec3::X,
+                Vec3::Y,
+                Vec3::X,
+                Vec3::Y,
+                Vec3::new(1.0, 1.0, 0.0),
+            ],
             normals: None,
-            uvs: Some(vec![Vec2::ZERO, Vec2::X, Vec2::Y, Vec2::X, Vec2::Y, Vec2::ONE]),
+            uvs: Some(vec![
+                Vec2::ZERO,
+                Vec2::X,
+                Vec2::Y,
+                Vec2::X,
+                Vec2::Y,
+                Vec2::ONE,
+            ]),
             triangles: vec![[0, 1, 2], [3, 5, 4]],
         };
         let cage = QuadCage::from_trimesh(&mesh).unwrap();

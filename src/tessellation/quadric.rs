@@ -16,11 +16,30 @@ use crate::components::Quadric;
 /// Validated parameters (f64, radians).
 #[derive(Debug, Clone, Copy)]
 enum Shape {
-    Sphere { r: f64, a0: f64, a1: f64 },
-    Cylinder { r: f64, z0: f64, z1: f64 },
-    Cone { h: f64, r: f64 },
-    Disk { h: f64, r: f64 },
-    Torus { big: f64, small: f64, p0: f64, p1: f64 },
+    Sphere {
+        r: f64,
+        a0: f64,
+        a1: f64,
+    },
+    Cylinder {
+        r: f64,
+        z0: f64,
+        z1: f64,
+    },
+    Cone {
+        h: f64,
+        r: f64,
+    },
+    Disk {
+        h: f64,
+        r: f64,
+    },
+    Torus {
+        big: f64,
+        small: f64,
+        p0: f64,
+        p1: f64,
+    },
 }
 
 /// A quadric ready to evaluate.
@@ -65,7 +84,14 @@ impl QuadricSource {
                         expected: "≠ z_min",
                     });
                 }
-                (Shape::Cylinder { r, z0, z1 }, c.theta_max, 0.0, false, false, false)
+                (
+                    Shape::Cylinder { r, z0, z1 },
+                    c.theta_max,
+                    0.0,
+                    false,
+                    false,
+                    false,
+                )
             }
             Quadric::Cone(c) => {
                 let h = finite("height", c.height)?;
@@ -98,7 +124,14 @@ impl QuadricSource {
                     });
                 }
                 let wrap = (range - TAU).abs() < 1e-9;
-                (Shape::Torus { big, small, p0, p1 }, t.theta_max, range, wrap, false, false)
+                (
+                    Shape::Torus { big, small, p0, p1 },
+                    t.theta_max,
+                    range,
+                    wrap,
+                    false,
+                    false,
+                )
             }
         };
         let theta_max = sweep("theta_max", theta_deg)?;
@@ -228,7 +261,10 @@ mod tests {
             theta_max: 360.0,
         });
         let e = QuadricSource::new(&bad).unwrap_err();
-        assert_eq!(e.to_string(), "parameter `radius` = -1 is out of range (expected > 0)");
+        assert_eq!(
+            e.to_string(),
+            "parameter `radius` = -1 is out of range (expected > 0)"
+        );
         let nan = Quadric::Sphere(Sphere {
             radius: 1.0,
             z_min: -1.0,

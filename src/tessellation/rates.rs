@@ -83,7 +83,11 @@ impl<'a> RateContext<'a> {
         match self.technique {
             Technique::Parametric { u, v } => pick(u, v).clamp(1, MAX_FIXED_RATE),
             Technique::Regular { u, v } => {
-                let per = if dir == Direction::U { self.grid.0 } else { self.grid.1 } as u32;
+                let per = if dir == Direction::U {
+                    self.grid.0
+                } else {
+                    self.grid.1
+                } as u32;
                 pick(u, v).div_ceil(per).clamp(1, MAX_FIXED_RATE)
             }
             _ => 1,
@@ -106,9 +110,12 @@ impl<'a> RateContext<'a> {
                 };
                 len / edge as f64
             }
-            Technique::Curvature { distance, angle } => {
-                curvature_segments(points, normals, distance as f64, (angle as f64).to_radians())
-            }
+            Technique::Curvature { distance, angle } => curvature_segments(
+                points,
+                normals,
+                distance as f64,
+                (angle as f64).to_radians(),
+            ),
         };
         clamp_rate(wanted, self.min_rate, self.max_rate)
     }
@@ -228,7 +235,10 @@ mod tests {
             let segs = c.rate(&p, &n, Direction::U) as f64;
             let step = std::f64::consts::FRAC_PI_2 / segs;
             let sagitta = 1.0 - (step / 2.0).cos();
-            assert!(sagitta <= tol / 2.0 * 1.01, "tol {tol}: {segs} segments, {sagitta}");
+            assert!(
+                sagitta <= tol / 2.0 * 1.01,
+                "tol {tol}: {segs} segments, {sagitta}"
+            );
         }
     }
 
@@ -241,7 +251,10 @@ mod tests {
         });
         assert_eq!(c.rate(&p, &n, Direction::U), 16); // length ≈ 1.5703
         let r = ctx(Technique::Regular { u: 16, v: 5 });
-        assert_eq!((r.fixed_rate(Direction::U), r.fixed_rate(Direction::V)), (4, 3));
+        assert_eq!(
+            (r.fixed_rate(Direction::U), r.fixed_rate(Direction::V)),
+            (4, 3)
+        );
     }
 
     #[test]
@@ -261,6 +274,9 @@ mod tests {
             },
             ..Approximation::default()
         };
-        assert_eq!(RateContext::new(&a, None, (1, 1)).unwrap_err(), GeometryError::NoCamera);
+        assert_eq!(
+            RateContext::new(&a, None, (1, 1)).unwrap_err(),
+            GeometryError::NoCamera
+        );
     }
 }

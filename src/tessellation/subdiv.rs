@@ -29,12 +29,17 @@ struct Poly {
 fn poly(m: &SubdivMesh) -> Result<Poly, GeometryError> {
     let n = m.positions.len();
     if m.positions.iter().any(|p| !p.is_finite()) {
-        return Err(GeometryError::NotFinite { parameter: "positions" });
+        return Err(GeometryError::NotFinite {
+            parameter: "positions",
+        });
     }
     let total: u64 = m.face_sizes.iter().map(|&s| s as u64).sum();
     if total != m.face_indices.len() as u64 {
         return Err(GeometryError::BadCount {
-            message: format!("subdivision mesh: face sizes add up to {total}, but there are {} indices", m.face_indices.len()),
+            message: format!(
+                "subdivision mesh: face sizes add up to {total}, but there are {} indices",
+                m.face_indices.len()
+            ),
         });
     }
     let mut faces = Vec::with_capacity(m.face_sizes.len());
@@ -43,14 +48,21 @@ fn poly(m: &SubdivMesh) -> Result<Poly, GeometryError> {
         let idx = &m.face_indices[at..at + size as usize];
         at += size as usize;
         if size < 3 {
-            return Err(GeometryError::BadCount { message: format!("subdivision mesh: face {f} has {size} vertices (needs ≥ 3)") });
+            return Err(GeometryError::BadCount {
+                message: format!("subdivision mesh: face {f} has {size} vertices (needs ≥ 3)"),
+            });
         }
         if let Some(&i) = idx.iter().find(|&&i| i as usize >= n) {
-            return Err(GeometryError::BadCount { message: format!("subdivision mesh: face {f} uses vertex {i}, but there are {n}") });
+            return Err(GeometryError::BadCount {
+                message: format!("subdivision mesh: face {f} uses vertex {i}, but there are {n}"),
+            });
         }
         faces.push(idx.to_vec());
     }
-    Ok(Poly { positions: m.positions.iter().map(|p| p.as_dvec3()).collect(), faces })
+    Ok(Poly {
+        positions: m.positions.iter().map(|p| p.as_dvec3()).collect(),
+        faces,
+    })
 }
 
 /// Edge → adjacent faces; errors on edges with more than two faces.
@@ -67,7 +79,9 @@ fn edge_faces(p: &Poly) -> Result<HashMap<(u32, u32), (u32, Option<u32>)>, Geome
                 Some((_, second @ None)) => *second = Some(f as u32),
                 Some(_) => {
                     return Err(GeometryError::BadCount {
-                        message: format!("subdivision mesh: edge {a}–{b} is shared by more than two faces"),
+                        message: format!(
+                            "subdivision mesh: edge {a}–{b} is shared by more than two faces"
+                        ),
                     })
                 }
             }
@@ -183,11 +197,20 @@ pub fn limit_cage(mesh: &SubdivMesh, approx: &Approximation) -> Result<QuadCage,
 fn fine_enough(p: &Poly, limit: &[DVec3], approx: &Approximation) -> bool {
     match approx.technique {
         Technique::Spatial { edge, .. } => p.faces.iter().all(|f| {
-            (0..4).all(|k| limit[f[k] as usize].distance(limit[f[(k + 1) % 4] as usize]) <= edge as f64)
+            (0..4).all(|k| {
+                limit[f[k] as usize].distance(limit[f[(k + 1) % 4] as usize]) <= edge as f64
+            })
         }),
         Technique::Curvature { distance, .. } => {
-            let d = if distance > 0.0 { distance as f64 } else { f64::INFINITY };
-            p.positions.iter().zip(limit).all(|(a, b)| a.distance(*b) <= d)
+            let d = if distance > 0.0 {
+                distance as f64
+            } else {
+                f64::INFINITY
+            };
+            p.positions
+                .iter()
+                .zip(limit)
+                .all(|(a, b)| a.distance(*b) <= d)
         }
         _ => false,
     }
@@ -203,7 +226,8 @@ fn limit_positions(p: &Poly) -> Result<Vec<DVec3>, GeometryError> {
     for f in &p.faces {
         for k in 0..4 {
             let v = f[k] as usize;
-            edge_sum[v] += p.positions[f[(k + 1) % 4] as usize] + p.positions[f[(k + 3) % 4] as usize];
+            edge_sum[v] +=
+                p.positions[f[(k + 1) % 4] as usize] + p.positions[f[(k + 3) % 4] as usize];
             diag_sum[v] += p.positions[f[(k + 2) % 4] as usize];
             valence[v] += 1;
         }
