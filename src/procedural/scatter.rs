@@ -52,7 +52,7 @@ pub fn placements(s: &Scatter, surface: &TriMesh) -> Result<Vec<Affine3A>, Geome
         total += if area.is_finite() { area } else { 0.0 };
         cdf.push(total);
     }
-    if !(total > 0.0) {
+    if total.is_nan() || total <= 0.0 {
         return Err(GeometryError::MissingData {
             message: "scatter surface has no area to place copies on".into(),
         });

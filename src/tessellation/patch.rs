@@ -101,9 +101,9 @@ fn patches_along(
             return Err(bad(format!("need at least 4 points, found {n}")))
         }
         PatchKind::Bicubic(CubicBasis::Bezier) => {
-            if wrap && n % 3 == 0 {
+            if wrap && n.is_multiple_of(3) {
                 (n / 3, 3)
-            } else if !wrap && (n - 1) % 3 == 0 {
+            } else if !wrap && (n - 1).is_multiple_of(3) {
                 ((n - 1) / 3, 3)
             } else {
                 let rule = if wrap { "a multiple of 3" } else { "3·k + 1" };

@@ -65,9 +65,12 @@ fn poly(m: &SubdivMesh) -> Result<Poly, GeometryError> {
     })
 }
 
+/// Undirected edge (smaller id first) → its first face and its second face, if any.
+type EdgeFaces = HashMap<(u32, u32), (u32, Option<u32>)>;
+
 /// Edge → adjacent faces; errors on edges with more than two faces.
-fn edge_faces(p: &Poly) -> Result<HashMap<(u32, u32), (u32, Option<u32>)>, GeometryError> {
-    let mut map: HashMap<(u32, u32), (u32, Option<u32>)> = HashMap::new();
+fn edge_faces(p: &Poly) -> Result<EdgeFaces, GeometryError> {
+    let mut map: EdgeFaces = HashMap::new();
     for (f, face) in p.faces.iter().enumerate() {
         for k in 0..face.len() {
             let (a, b) = (face[k], face[(k + 1) % face.len()]);
