@@ -164,11 +164,11 @@ fn refine(p: &Poly) -> Result<Poly, GeometryError> {
     Ok(Poly { positions, faces })
 }
 
-/// Levels of refinement for an approximation: parametric/regular `ceil(log2(max(u, v)))`;
-/// spatial: until no cage edge is longer than `edge` (object space; raster lengths use the
-/// same count as object space with `edge` = 1 pixel ≈ unknown, so they refine to
-/// `max_subdiv`); curvature: until every vertex is within `distance` of its limit position.
-/// Always at least 1 and at most `min(max_subdiv, MAX_LEVELS)`.
+/// Levels of refinement for an approximation, as `(min, max)`: parametric/regular refine
+/// exactly `ceil(log2(max(u, v)))` levels; spatial and curvature refine from `min` until
+/// [`fine_enough`] (spatial edges are compared in object units even for raster
+/// approximations — the dicer applies the raster rule afterwards). Always within
+/// `[max(1, min_subdiv), min(max_subdiv, MAX_LEVELS)]`.
 pub fn levels_for(approx: &Approximation) -> (u32, u32) {
     let max = approx.max_subdiv.clamp(1, MAX_LEVELS);
     let min = approx.min_subdiv.clamp(1, max);
