@@ -12,8 +12,8 @@ use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use glam::{Affine3A, Vec2, Vec3};
 use hecs::World;
 use stagelight::components::{
-    BakeFormat, BakeKind, BakeRequest, BakeResolution, BakeTarget, Instance, Material,
-    MaterialRef, Name, Shader, TriMesh, UvSource, WorldFromObject,
+    BakeFormat, BakeKind, BakeRequest, BakeResolution, BakeTarget, Instance, Material, MaterialRef,
+    Name, Shader, TriMesh, UvSource, WorldFromObject,
 };
 use stagelight::frame::{Frame, Tasks};
 use stagelight::settings::RenderSettings;
@@ -26,7 +26,8 @@ fn terrain(n: u32) -> TriMesh {
         for i in 0..=n {
             let (u, v) = (i as f32 / n as f32, j as f32 / n as f32);
             let (x, y) = (2.0 * u - 1.0, 2.0 * v - 1.0);
-            let z = 0.08 * ((7.0 * x).sin() * (5.0 * y).cos()) + 0.03 * ((23.0 * x + 11.0 * y).sin());
+            let z =
+                0.08 * ((7.0 * x).sin() * (5.0 * y).cos()) + 0.03 * ((23.0 * x + 11.0 * y).sin());
             positions.push(Vec3::new(x, y, z));
             uvs.push(Vec2::new(u, v));
         }
@@ -53,7 +54,9 @@ fn world(samples: u32) -> World {
     let material = world.spawn((
         Name("grey".into()),
         Material {
-            shader: Shader::Lambert { albedo: Vec3::splat(0.6) },
+            shader: Shader::Lambert {
+                albedo: Vec3::splat(0.6),
+            },
             two_sided: false,
             emission: Vec3::ZERO,
         },
@@ -67,7 +70,10 @@ fn world(samples: u32) -> World {
         MaterialRef(material),
         BakeRequest {
             name: "terrain_1".into(),
-            resolution: BakeResolution::Fixed { width: 256, height: 256 },
+            resolution: BakeResolution::Fixed {
+                width: 256,
+                height: 256,
+            },
             uvs: UvSource::Mesh,
             texel_samples: 4,
             padding: 2,
@@ -89,7 +95,10 @@ fn world(samples: u32) -> World {
 fn bake_once(samples: u32) -> Frame {
     let mut w = world(samples);
     let mut frame = Frame::new(RenderSettings::default());
-    frame.tasks = Tasks { render: false, bake: true };
+    frame.tasks = Tasks {
+        render: false,
+        bake: true,
+    };
     frame.bake_dir = std::env::temp_dir().join("stagelight-bench-bake");
     stagelight::systems::run(&mut w, &mut frame).expect("bake");
     frame

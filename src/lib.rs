@@ -13,12 +13,14 @@ pub mod frame;
 pub mod framebuffer;
 pub mod geometry;
 pub mod image_io;
+pub mod procedural;
 pub mod progress;
 pub mod sampling;
 pub mod scene;
 pub mod schedule;
 pub mod settings;
 pub mod shading;
+pub mod tessellation;
 
 #[path = "../systems/mod.rs"]
 pub mod systems;

@@ -1,12 +1,12 @@
 //! The stage table: the whole frame order in one place, each stage with its run condition.
 //!
-//! Stages still to come (geometry-shader expansion, tessellation, photons, lightmap baking,
-//! contours) take their slots here when they are built:
+//! Stages still to come (photons, lightmap baking, contours) take their slots here when they
+//! are built:
 //!
 //! | order | stage             | runs when the scene has                              |
 //! |-------|-------------------|------------------------------------------------------|
-//! | 1     | `expand_geometry` | procedural geometry components (not built yet)       |
-//! | 2     | `tessellate`      | parametric surfaces or displacement (not built yet)  |
+//! | 1     | `expand_geometry` | procedural geometry components (`Procedural`, `Scatter`) |
+//! | 2     | `tessellate`      | parametric surfaces, subdivision meshes, true displacement |
 //! | 3     | `build_accel`     | instances with triangles and a consumer of rays       |
 //! | 4     | `trace_photons`   | caustics/GI on and a light (not built yet)            |
 //! | 5     | `bake_lightmaps`  | bake requests, in a run that bakes                    |
@@ -16,7 +16,9 @@
 
 pub mod bake_lightmaps;
 pub mod build_accel;
+pub mod expand_geometry;
 pub mod shade;
+pub mod tessellate;
 pub mod write_output;
 
 use hecs::World;
@@ -31,6 +33,16 @@ mod prelude {
 
 /// The ordered stage table.
 pub const STAGES: &[Stage] = &[
+    Stage {
+        name: "expand_geometry",
+        condition: expand_geometry::should_run,
+        run: expand_geometry::run,
+    },
+    Stage {
+        name: "tessellate",
+        condition: tessellate::should_run,
+        run: tessellate::run,
+    },
     Stage {
         name: "build_accel",
         condition: build_accel::should_run,

@@ -99,6 +99,7 @@ fn stats_json_lists_every_stage_with_its_reason() {
             .position(|x| *x == n)
             .unwrap_or_else(|| panic!("{n} missing in {names:?}"))
     };
+    assert!(pos("expand_geometry") < pos("tessellate") && pos("tessellate") < pos("build_accel"));
     assert!(pos("build_accel") < pos("bake_lightmaps") && pos("bake_lightmaps") < pos("shade"));
     assert!(pos("shade") < pos("write_output"));
     for s in stages {
@@ -111,6 +112,10 @@ fn stats_json_lists_every_stage_with_its_reason() {
         assert!(!s["reason"].as_str().unwrap().is_empty());
     }
     assert_eq!(stages[pos("bake_lightmaps")]["reason"], "no bake requests");
+    assert_eq!(
+        stages[pos("expand_geometry")]["reason"],
+        "no procedural geometry"
+    );
     let stages: Vec<&serde_json::Value> = stages
         .iter()
         .filter(|s| s["stage"] == "build_accel")

@@ -22,3 +22,18 @@ pub use bake::{
     BakeFormat, BakeKind, BakeRequest, BakeResolution, BakeTarget, LightmapStore, NormalSpace,
     UvSource,
 };
+
+mod approximation;
+mod displacement;
+mod procedural;
+mod surface;
+
+pub use approximation::{Approximation, LengthSpace, Technique};
+pub use displacement::{
+    DerivativeRequest, Displacement, DisplacementMode, ImageMap, ScalarNode, SurfaceDerivatives,
+    UvAxis,
+};
+pub use procedural::{
+    Cone, Cylinder, Disk, GeneratedFrom, Grid, Procedural, Scatter, Sphere, Stairs, Torus,
+};
+pub use surface::{CubicBasis, NurbsSurface, PatchKind, PatchMesh, Quadric, SubdivMesh, Surface};

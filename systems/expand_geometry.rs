@@ -1,0 +1,149 @@
+//! `expand_geometry`: runs the geometry shaders — quadrics, stairs, grids and scatters.
+//!
+//! **Reads:** `Procedural` and `Scatter` object entities; `Arc<TriMesh>` of scatter surfaces
+//! and prototypes; leaf `Instance`s of scatter objects with their `WorldFromObject`,
+//! `MaterialRef` and `Name`.
+//! **Writes:** on each `Procedural` object: removes it, inserts a `Surface` (quadrics) or an
+//! `Arc<TriMesh>` (stairs, grid; also into every `Instance` of the object) and a
+//! `GeneratedFrom`. Each scatter leaf instance is despawned and replaced by `count` prototype
+//! instances (`Instance`, `WorldFromObject`, `MaterialRef`, `Name` = `leaf/i`,
+//! `GeneratedFrom`); the `Scatter` component is removed.
+//! **Runs when:** any entity carries `Procedural` or `Scatter`.
+//! **After this stage:** no `Procedural` or `Scatter` is left; curved shapes wait as `Surface`
+//! for `tessellate`, flat ones are meshes.
+
+use std::sync::Arc;
+
+use hecs::{Entity, World};
+
+use super::prelude::*;
+use crate::components::{
+    GeneratedFrom, Instance, MaterialRef, Name, Procedural, Scatter, TriMesh, WorldFromObject,
+};
+use crate::procedural::{expand, install_mesh, scatter, Expanded};
+use crate::schedule::count_with;
+
+/// Run condition: procedural geometry components exist.
+pub fn should_run(world: &World, _frame: &Frame) -> Decision {
+    let shaders = count_with::<Procedural>(world);
+    let scatters = count_with::<Scatter>(world);
+    if shaders + scatters == 0 {
+        return Decision::skip("no procedural geometry");
+    }
+    Decision::run(format!(
+        "{shaders} geometry shader(s), {scatters} scatter(s)"
+    ))
+}
+
+/// The name of an entity for messages.
+fn name_of(world: &World, e: Entity) -> String {
+    world
+        .get::<&Name>(e)
+        .map(|n| n.0.clone())
+        .unwrap_or_else(|_| format!("{e:?}"))
+}
+
+/// Expands every geometry shader, then every scatter.
+pub fn run(world: &mut World, _frame: &mut Frame) -> Result<Work, StageError> {
+    let mut triangles = 0u64;
+    let mut shaders: Vec<(Entity, Procedural)> = world
+        .query::<(Entity, &Procedural)>()
+        .iter()
+        .map(|(e, p)| (e, *p))
+        .collect();
+    shaders.sort_by_key(|(e, _)| e.to_bits());
+    for (e, p) in shaders {
+        let out = expand(&p).map_err(|err| {
+            StageError::Invalid(format!(
+                "object \"{}\" ({}): {err}",
+                name_of(world, e),
+                p.kind()
+            ))
+        })?;
+        let gone = |_| StageError::Invalid(format!("entity {e:?} vanished"));
+        world
+            .remove_one::<Procedural>(e)
+            .map_err(|_| StageError::Invalid(format!("entity {e:?} vanished")))?;
+        world
+            .insert_one(
+                e,
+                GeneratedFrom {
+                    source: e,
+                    generator: p.kind(),
+                },
+            )
+            .map_err(gone)?;
+        match out {
+            Expanded::Surface(s) => world.insert_one(e, s).map_err(gone)?,
+            Expanded::Mesh(m) => {
+                triangles += m.triangles.len() as u64;
+                install_mesh(world, e, Arc::new(m)).map_err(gone)?;
+            }
+        }
+    }
+
+    let mut scatters: Vec<(Entity, Scatter)> = world
+        .query::<(Entity, &Scatter)>()
+        .iter()
+        .map(|(e, s)| (e, *s))
+        .collect();
+    scatters.sort_by_key(|(e, _)| e.to_bits());
+    for (e, s) in scatters {
+        let name = name_of(world, e);
+        let surface = world.get::<&Arc<TriMesh>>(s.surface).map(|m| (*m).clone()).map_err(|_| {
+            StageError::Invalid(format!(
+                "scatter \"{name}\": its surface \"{}\" has no mesh (scatter over loaded meshes, grids or stairs)",
+                name_of(world, s.surface)
+            ))
+        })?;
+        let prototype = world
+            .get::<&Arc<TriMesh>>(s.prototype)
+            .map(|m| (*m).clone())
+            .unwrap_or_else(|_| Arc::new(TriMesh::default()));
+        let xfs = scatter::placements(&s, &surface)
+            .map_err(|err| StageError::Invalid(format!("scatter \"{name}\": {err}")))?;
+        let mut leaves: Vec<(Entity, WorldFromObject, MaterialRef, String)> = world
+            .query::<(
+                Entity,
+                &Instance,
+                &WorldFromObject,
+                &MaterialRef,
+                Option<&Name>,
+            )>()
+            .iter()
+            .filter(|(_, i, ..)| i.object == e)
+            .map(|(l, _, w, m, n)| (l, *w, *m, n.map_or_else(|| name.clone(), |n| n.0.clone())))
+            .collect();
+        leaves.sort_by_key(|(l, ..)| l.to_bits());
+        for (leaf, xf, material, leaf_name) in leaves {
+            world
+                .despawn(leaf)
+                .map_err(|_| StageError::Invalid(format!("instance {leaf:?} vanished")))?;
+            let _spawned: Vec<Entity> = world
+                .spawn_batch(xfs.iter().enumerate().map(|(i, local)| {
+                    (
+                        Instance {
+                            object: s.prototype,
+                            mesh: prototype.clone(),
+                        },
+                        WorldFromObject(xf.0 * *local),
+                        material,
+                        Name(format!("{leaf_name}/{i}")),
+                        GeneratedFrom {
+                            source: e,
+                            generator: "scatter",
+                        },
+                    )
+                }))
+                .collect();
+            triangles += xfs.len() as u64 * prototype.triangles.len() as u64;
+        }
+        world
+            .remove_one::<Scatter>(e)
+            .map_err(|_| StageError::Invalid(format!("entity {e:?} vanished")))?;
+    }
+    Ok(Work {
+        items: triangles,
+        unit: "triangles",
+    })
+}

@@ -1,0 +1,222 @@
+//! `tessellate`: dices parametric surfaces and subdivision meshes into triangles and applies
+//! true displacement, crack-free.
+//!
+//! **Reads:** object entities with `Surface`, `SubdivMesh`, or `Arc<TriMesh>` plus a
+//! `Displacement` in `True` mode; their `Approximation` (default when absent),
+//! `DerivativeRequest` and `Name`; for raster-space approximations the `RenderCamera` and the
+//! `WorldFromObject` of every `Instance` of the object.
+//! **Writes:** on each such object: an `Arc<TriMesh>` (also into every `Instance` of it),
+//! `SurfaceDerivatives` when requested, `GeneratedFrom`; removes the consumed `Surface`,
+//! `SubdivMesh` and true `Displacement`. Bump displacement is left in place for shading.
+//! **Runs when:** any parametric surface, subdivision mesh or true displacement exists.
+//! **After this stage:** every object is a triangle mesh with normals and uvs; shared patch
+//! edges are diced identically (no cracks, bitwise); displaced meshes carry normals of the
+//! displaced surface.
+
+use std::sync::Arc;
+
+use glam::DAffine3;
+use hecs::{Entity, World};
+use rayon::prelude::*;
+
+use super::prelude::*;
+use crate::components::{
+    Approximation, Camera, DerivativeRequest, Displacement, DisplacementMode, GeneratedFrom,
+    Instance, LengthSpace, Name, RenderCamera, SubdivMesh, Surface, Technique, TriMesh,
+    WorldFromObject,
+};
+use crate::procedural::install_mesh;
+use crate::tessellation::{
+    tessellate_mesh, tessellate_subdiv, tessellate_surface, GeometryError, Options, RasterView,
+    Tessellation,
+};
+
+/// What an object is tessellated from.
+enum Input {
+    Surface(Surface),
+    Subdiv(SubdivMesh),
+    Mesh(Arc<TriMesh>),
+}
+
+/// Counts (surfaces, subdivision meshes, true displacements on meshes, bump displacements).
+fn census(world: &World) -> (usize, usize, usize, usize) {
+    let surfaces = world.query::<&Surface>().iter().count();
+    let subdivs = world.query::<&SubdivMesh>().iter().count();
+    let (mut displaced, mut bump) = (0, 0);
+    for d in world.query::<&Displacement>().iter() {
+        match d.mode {
+            DisplacementMode::True => displaced += 1,
+            DisplacementMode::Bump => bump += 1,
+        }
+    }
+    (surfaces, subdivs, displaced, bump)
+}
+
+/// Run condition: parametric surfaces, subdivision meshes or true displacement exist.
+pub fn should_run(world: &World, _frame: &Frame) -> Decision {
+    let (surfaces, subdivs, displaced, bump) = census(world);
+    if surfaces + subdivs + displaced == 0 {
+        return if bump > 0 {
+            Decision::skip(format!(
+                "no parametric surfaces or true displacement ({bump} bump displacement(s) are left to shading)"
+            ))
+        } else {
+            Decision::skip("no parametric surfaces or displacement")
+        };
+    }
+    Decision::run(format!(
+        "{surfaces} surface(s), {subdivs} subdivision mesh(es), {displaced} true displacement(s)"
+    ))
+}
+
+/// Widens a transform to f64.
+fn to_f64(a: glam::Affine3A) -> DAffine3 {
+    DAffine3 {
+        matrix3: glam::DMat3::from_cols(
+            a.matrix3.x_axis.as_dvec3(),
+            a.matrix3.y_axis.as_dvec3(),
+            a.matrix3.z_axis.as_dvec3(),
+        ),
+        translation: a.translation.as_dvec3(),
+    }
+}
+
+/// The raster view of `object` (its instances seen from the render camera).
+fn raster_view(world: &World, object: Entity) -> Option<RasterView> {
+    let camera = world
+        .query::<(&Camera, &RenderCamera)>()
+        .iter()
+        .next()
+        .map(|(c, _)| c.clone())?;
+    let camera_from_world = to_f64(camera.world_from_camera).inverse();
+    let pixels_per_unit = camera.height as f64 * 0.5 / (camera.fov_y as f64 * 0.5).tan();
+    let camera_from_object = world
+        .query::<(&Instance, &WorldFromObject)>()
+        .iter()
+        .filter(|(i, _)| i.object == object)
+        .map(|(_, w)| camera_from_world * to_f64(w.0))
+        .collect();
+    Some(RasterView {
+        camera_from_object,
+        pixels_per_unit,
+    })
+}
+
+/// One object's job.
+struct Job {
+    entity: Entity,
+    name: String,
+    input: Input,
+    approx: Approximation,
+    displacement: Option<Displacement>,
+    derivatives: bool,
+    view: Option<RasterView>,
+}
+
+/// Tessellates every object that needs it.
+pub fn run(world: &mut World, _frame: &mut Frame) -> Result<Work, StageError> {
+    let mut jobs = Vec::new();
+    for (e, surface, subdiv, mesh, disp, approx, deriv, name) in world
+        .query::<(
+            Entity,
+            Option<&Surface>,
+            Option<&SubdivMesh>,
+            Option<&Arc<TriMesh>>,
+            Option<&Displacement>,
+            Option<&Approximation>,
+            Option<&DerivativeRequest>,
+            Option<&Name>,
+        )>()
+        .iter()
+    {
+        let displacement = disp.filter(|d| d.mode == DisplacementMode::True).cloned();
+        let input = match (surface, subdiv, mesh) {
+            (Some(s), ..) => Input::Surface(s.clone()),
+            (None, Some(s), _) => Input::Subdiv(s.clone()),
+            (None, None, Some(m)) if displacement.is_some() => Input::Mesh(m.clone()),
+            _ => continue,
+        };
+        jobs.push(Job {
+            entity: e,
+            name: name.map_or_else(|| format!("{e:?}"), |n| n.0.clone()),
+            input,
+            approx: approx.copied().unwrap_or_default(),
+            displacement,
+            derivatives: deriv.is_some(),
+            view: None,
+        });
+    }
+    jobs.sort_by_key(|j| j.entity.to_bits());
+    for job in &mut jobs {
+        if matches!(
+            job.approx.technique,
+            Technique::Spatial {
+                space: LengthSpace::Raster,
+                ..
+            }
+        ) {
+            job.view = raster_view(world, job.entity);
+        }
+    }
+
+    // Objects one after another; each goes wide inside (edges, patches).
+    let results: Vec<Result<Tessellation, GeometryError>> = jobs
+        .iter()
+        .map(|job| {
+            let opts = Options {
+                approximation: &job.approx,
+                displacement: job.displacement.as_ref(),
+                view: job.view.as_ref(),
+                derivatives: job.derivatives,
+            };
+            match &job.input {
+                Input::Surface(s) => tessellate_surface(s, &opts),
+                Input::Subdiv(s) => tessellate_subdiv(s, &opts),
+                Input::Mesh(m) => tessellate_mesh(m, &opts),
+            }
+        })
+        .collect::<Vec<_>>()
+        .into_par_iter()
+        .collect();
+
+    let mut triangles = 0u64;
+    for (job, result) in jobs.into_iter().zip(results) {
+        let t =
+            result.map_err(|err| StageError::Invalid(format!("object \"{}\": {err}", job.name)))?;
+        triangles += t.mesh.triangles.len() as u64;
+        let e = job.entity;
+        let gone = |_| StageError::Invalid(format!("entity {e:?} vanished"));
+        let generator = match &job.input {
+            Input::Surface(s) => s.kind(),
+            Input::Subdiv(_) => "subdiv",
+            Input::Mesh(_) => "displaced mesh",
+        };
+        match job.input {
+            Input::Surface(_) => drop(world.remove_one::<Surface>(e)),
+            Input::Subdiv(_) => drop(world.remove_one::<SubdivMesh>(e)),
+            Input::Mesh(_) => {}
+        }
+        if job.displacement.is_some() {
+            drop(world.remove_one::<Displacement>(e));
+        }
+        if !world.satisfies::<&GeneratedFrom>(e) {
+            world
+                .insert_one(
+                    e,
+                    GeneratedFrom {
+                        source: e,
+                        generator,
+                    },
+                )
+                .map_err(gone)?;
+        }
+        if let Some(d) = t.derivatives {
+            world.insert_one(e, d).map_err(gone)?;
+        }
+        install_mesh(world, e, Arc::new(t.mesh)).map_err(gone)?;
+    }
+    Ok(Work {
+        items: triangles,
+        unit: "triangles",
+    })
+}
