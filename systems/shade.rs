@@ -79,6 +79,11 @@ pub fn run(world: &mut World, frame: &mut Frame) -> Result<Work, StageError> {
             }
             let row = (0..width)
                 .map(|x| {
+                    // Poll per pixel: one pixel is at most spp samples of work.
+                    if cancel.load(Ordering::Relaxed) {
+                        stopped.store(true, Ordering::Relaxed);
+                        return PixelResult::default();
+                    }
                     let pixel = (y * width + x) as u64;
                     let ctx = geometry.map(|g| ShadeContext {
                         geometry: g,
@@ -122,6 +127,7 @@ pub fn run(world: &mut World, frame: &mut Frame) -> Result<Work, StageError> {
 }
 
 /// What one pixel contributes to each pass.
+#[derive(Default)]
 struct PixelResult {
     color: Vec3,
     alpha: f32,

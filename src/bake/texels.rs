@@ -93,6 +93,11 @@ pub fn evaluate(
             let mut row_rays = 0u64;
             let row = (0..w)
                 .map(|i| {
+                    // Poll per texel: one texel is at most its rays of work.
+                    if cancel.load(Ordering::Relaxed) {
+                        stopped.store(true, Ordering::Relaxed);
+                        return vec![None; n_images];
+                    }
                     let (values, r, bad) = texel(job, i, j, n_images, bent, needs_probe);
                     row_rays += r;
                     if bad {

@@ -1,0 +1,94 @@
+//! "Simulate only the effects a scene calls for": stages with nothing to do cost nothing
+//! measurable and change nothing. On the Cornell box (no procedural geometry, no parametric
+//! surfaces or displacement, no bake requests) the run conditions of those stages take
+//! under 1 µs, and the image is byte-identical to one rendered by a table in which those
+//! stages were never registered.
+
+use std::path::PathBuf;
+use std::time::Instant;
+
+use stagelight::components::{Camera, Pass, RenderCamera};
+use stagelight::frame::Frame;
+use stagelight::image_io::encode_exr;
+use stagelight::scene::{load_scene, LoadedScene};
+use stagelight::schedule::{run_stages, Stage};
+use stagelight::systems::STAGES;
+
+/// Stages the Cornell box does not call for.
+const UNUSED: [&str; 3] = ["expand_geometry", "tessellate", "bake_lightmaps"];
+
+fn cornell() -> LoadedScene {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("assets/scenes/cornell_box.ron");
+    let mut scene = load_scene(&path).expect("cornell box");
+    for (camera, _) in scene.world.query_mut::<(&mut Camera, &RenderCamera)>() {
+        camera.width = 48;
+        camera.height = 48;
+    }
+    scene
+}
+
+#[test]
+fn run_conditions_of_unused_stages_cost_under_a_microsecond() {
+    let scene = cornell();
+    let frame = Frame::new(scene.settings.clone());
+    for name in UNUSED {
+        let stage = STAGES
+            .iter()
+            .find(|s| s.name == name)
+            .expect("stage in the table");
+        assert!(
+            !(stage.condition)(&scene.world, &frame).run,
+            "{name} should skip"
+        );
+        // Best of several batches: the machine is shared, the minimum is the cost.
+        let calls = 10_000u32;
+        let best = (0..5)
+            .map(|_| {
+                let t = Instant::now();
+                for _ in 0..calls {
+                    std::hint::black_box((stage.condition)(
+                        std::hint::black_box(&scene.world),
+                        &frame,
+                    ));
+                }
+                t.elapsed().as_secs_f64() / calls as f64
+            })
+            .fold(f64::INFINITY, f64::min);
+        assert!(
+            best < 1e-6,
+            "{name}: run condition took {:.3} µs",
+            best * 1e6
+        );
+    }
+}
+
+fn render(stages: &[Stage]) -> Vec<u8> {
+    let mut scene = cornell();
+    let mut frame = Frame::new(scene.settings.clone());
+    let table: Vec<Stage> = stages
+        .iter()
+        .copied()
+        .filter(|s| s.name != "write_output")
+        .collect();
+    run_stages(&table, &mut scene.world, &mut frame).expect("render");
+    encode_exr(
+        frame.image.as_ref().expect("image"),
+        &[Pass::Beauty, Pass::Depth, Pass::Normal],
+    )
+    .unwrap()
+}
+
+#[test]
+fn unused_stages_change_no_byte_of_the_image() {
+    let full = render(STAGES);
+    let minimal: Vec<Stage> = STAGES
+        .iter()
+        .copied()
+        .filter(|s| !UNUSED.contains(&s.name))
+        .collect();
+    assert_eq!(minimal.len() + UNUSED.len(), STAGES.len());
+    assert!(
+        render(&minimal) == full,
+        "an unused stage changed the image"
+    );
+}
