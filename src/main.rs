@@ -36,6 +36,9 @@ enum Command {
     Render(RenderArgs),
     /// Bake every bake request of a scene into textures.
     Bake(BakeArgs),
+    /// Run a scene's whole pipeline (render, and bake when it has bake requests) and report
+    /// each stage's throughput; outputs go to a temporary directory and are deleted.
+    Bench(BenchArgs),
     /// Validate a scene without rendering; exit 0 when it is renderable.
     Check {
         /// Scene file (RON).
@@ -92,6 +95,18 @@ struct BakeArgs {
     stats_json: Option<PathBuf>,
 }
 
+#[derive(Args)]
+struct BenchArgs {
+    /// Scene file (RON).
+    scene: PathBuf,
+    /// Worker threads (default: all cores).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
+    threads: Option<u32>,
+    /// Print the report as JSON on stdout.
+    #[arg(long)]
+    json: bool,
+}
+
 fn main() -> ExitCode {
     let _ = tracing_subscriber::fmt()
         .with_writer(std::io::stderr)
@@ -113,6 +128,7 @@ fn main() -> ExitCode {
         Command::Check { scene } => check(&scene),
         Command::Render(args) => render(args),
         Command::Bake(args) => bake(args),
+        Command::Bench(args) => bench(args),
     }
 }
 
@@ -262,6 +278,73 @@ fn bake(args: BakeArgs) -> ExitCode {
         frame.bake_dir = dir;
     }
     run_and_report(&mut scene, frame, args.stats, args.stats_json.as_deref())
+}
+
+fn bench(args: BenchArgs) -> ExitCode {
+    if let Err(code) = set_threads(args.threads) {
+        return code;
+    }
+    let mut scene = match load(&args.scene) {
+        Ok(s) => s,
+        Err(code) => return code,
+    };
+    let scratch = std::env::temp_dir().join(format!("stagelight-bench-{}", std::process::id()));
+    // Outputs land in the scratch directory, under their own file names.
+    for camera in scene.world.query_mut::<&mut Camera>() {
+        for (k, out) in camera.outputs.iter_mut().enumerate() {
+            let name = out
+                .path
+                .file_name()
+                .map(PathBuf::from)
+                .unwrap_or_else(|| PathBuf::from(format!("output_{k}")));
+            out.path = scratch.join(name);
+        }
+    }
+    let mut frame = Frame::new(scene.settings.clone());
+    frame.tasks = Tasks {
+        render: true,
+        bake: scene.world.query::<&BakeRequest>().iter().next().is_some(),
+    };
+    frame.bake_dir = scratch.join("bake");
+    let cancel = frame.cancel.clone();
+    let _ = ctrlc::set_handler(move || cancel.store(true, Ordering::SeqCst));
+    let result = systems::run(&mut scene.world, &mut frame);
+    let _ = std::fs::remove_dir_all(&scratch);
+    match result {
+        Ok(()) => {}
+        Err(StageError::Interrupted) => return ExitCode::from(EXIT_INTERRUPTED),
+        Err(e) => {
+            eprintln!("{}", with_error_prefix(&e.to_string()));
+            return ExitCode::from(EXIT_ERROR);
+        }
+    }
+    if args.json {
+        let value = serde_json::json!({
+            "scene": args.scene.display().to_string(),
+            "threads": frame.report.threads,
+            "total_seconds": frame.report.total_seconds,
+            "stages": frame.report.stages,
+            "bakes": frame.bake_reports,
+        });
+        match serde_json::to_string_pretty(&value) {
+            Ok(j) => println!("{j}"),
+            Err(e) => {
+                eprintln!("error: cannot encode the report: {e}");
+                return ExitCode::from(EXIT_ERROR);
+            }
+        }
+    } else {
+        println!(
+            "{} on {} thread(s)",
+            args.scene.display(),
+            frame.report.threads
+        );
+        print!("{}", frame.report.to_throughput_table());
+        for r in &frame.bake_reports {
+            println!("bake {}", r.summary());
+        }
+    }
+    ExitCode::SUCCESS
 }
 
 /// Runs the stage table and prints what happened.

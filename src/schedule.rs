@@ -142,6 +142,34 @@ impl RunReport {
     }
 }
 
+impl RunReport {
+    /// A throughput table for `stagelight bench`: items, seconds, items/s and items/s per
+    /// thread for every stage that ran; skipped stages with their reason.
+    pub fn to_throughput_table(&self) -> String {
+        let mut out = format!(
+            "{:<16} {:>12} {:<10} {:>10} {:>14} {:>16}\n",
+            "stage", "items", "unit", "seconds", "items/s", "items/s/thread"
+        );
+        for s in &self.stages {
+            if s.ran {
+                out.push_str(&format!(
+                    "{:<16} {:>12} {:<10} {:>10.4} {:>14.0} {:>16.0}\n",
+                    s.stage,
+                    s.items,
+                    s.unit,
+                    s.seconds,
+                    s.items_per_second,
+                    s.items_per_second_per_thread
+                ));
+            } else {
+                out.push_str(&format!("{:<16} skipped: {}\n", s.stage, s.reason));
+            }
+        }
+        out.push_str(&format!("total {:.4} s\n", self.total_seconds));
+        out
+    }
+}
+
 /// Runs `stages` in order over `world`, recording each in `frame.report`.
 ///
 /// A stage whose condition says no is recorded as skipped and leaves its outputs `None`.

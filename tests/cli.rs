@@ -190,3 +190,38 @@ fn missing_scene_file_is_a_scene_error() {
     assert_eq!(o.status.code(), Some(1));
     assert!(stderr(&o).contains("here.ron"));
 }
+
+#[test]
+fn bench_reports_throughput_per_stage_and_writes_nothing_here() {
+    let dir = scratch("bench");
+    let o = run(bin()
+        .current_dir(&dir)
+        .args(["bench", "--json", "--threads", "1"])
+        .arg(asset("test_plane.ron")));
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["threads"], 1);
+    let shade = v["stages"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|s| s["stage"] == "shade")
+        .unwrap();
+    assert_eq!(shade["ran"], true);
+    assert_eq!(shade["items"], 508 * 380 * 4);
+    assert!(shade["items_per_second_per_thread"].as_f64().unwrap() > 0.0);
+    assert!(
+        std::fs::read_dir(&dir).unwrap().next().is_none(),
+        "bench wrote into the working directory"
+    );
+    let o = run(bin()
+        .current_dir(&dir)
+        .arg("bench")
+        .arg(asset("test_plane.ron")));
+    assert!(o.status.success());
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        text.contains("items/s/thread") && text.contains("skipped: no bake requests"),
+        "{text}"
+    );
+}
