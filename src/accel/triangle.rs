@@ -31,8 +31,9 @@ pub fn is_degenerate(tri: &[Vec3; 3]) -> bool {
         return true;
     }
     let c = (tri[2] - tri[0]).cross(tri[1] - tri[0]);
-    // Written so that NaN also counts as degenerate.
-    !(c.length_squared() > 0.0)
+    // NaN also counts as degenerate.
+    let len2 = c.length_squared();
+    len2.is_nan() || len2 <= 0.0
 }
 
 /// Per-ray constants of the watertight test: origin, axis permutation and shear.
