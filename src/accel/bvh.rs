@@ -11,7 +11,7 @@
 
 use std::time::Instant;
 
-use glam::Vec3;
+use glam::{Vec3, Vec4};
 use obvhs::{
     bvh2::reinsertion::ReinsertionOptimizer, cwbvh::bvh2_to_cwbvh::bvh2_to_cwbvh,
     ploc::PlocBuilder, triangle::Triangle, BvhBuildParams,
@@ -31,32 +31,34 @@ pub(crate) const EMPTY_CHILD: u32 = u32::MAX;
 
 /// An 8-wide node: one reference per child (node index, or leaf with `LEAF_BIT`), children
 /// packed into the first slots, and the six bounding planes of every child in
-/// structure-of-arrays form: `planes[2·axis]` minima, `planes[2·axis + 1]` maxima, one lane
-/// per child (empty slots hold an empty box).
+/// structure-of-arrays form: `bounds[group][2·axis]` minima, `bounds[group][2·axis + 1]`
+/// maxima, children 0–3 in group 0 and 4–7 in group 1. A node with at most four children is
+/// tested from its first two cache lines only.
 #[derive(Clone, Copy, Debug)]
 #[repr(C, align(64))]
 pub(crate) struct Node {
-    pub(crate) planes: [[f32; 8]; 6],
     pub(crate) child: [u32; 8],
+    pub(crate) bounds: [[Vec4; 6]; 2],
 }
 
 impl Node {
     pub(crate) const EMPTY: Node = Node {
-        planes: [
-            [f32::INFINITY; 8],
-            [f32::NEG_INFINITY; 8],
-            [f32::INFINITY; 8],
-            [f32::NEG_INFINITY; 8],
-            [f32::INFINITY; 8],
-            [f32::NEG_INFINITY; 8],
-        ],
         child: [EMPTY_CHILD; 8],
+        bounds: [[
+            Vec4::INFINITY,
+            Vec4::NEG_INFINITY,
+            Vec4::INFINITY,
+            Vec4::NEG_INFINITY,
+            Vec4::INFINITY,
+            Vec4::NEG_INFINITY,
+        ]; 2],
     };
 
     pub(crate) fn set_child(&mut self, slot: usize, reference: u32, lo: Vec3, hi: Vec3) {
+        let (g, l) = (slot / 4, slot % 4);
         for axis in 0..3 {
-            self.planes[2 * axis][slot] = lo[axis];
-            self.planes[2 * axis + 1][slot] = hi[axis];
+            self.bounds[g][2 * axis][l] = lo[axis];
+            self.bounds[g][2 * axis + 1][l] = hi[axis];
         }
         self.child[slot] = reference;
     }
@@ -234,8 +236,9 @@ mod tests {
                         seen[bvh.prim_ids[k] as usize] += 1;
                         for v in bvh.tris[k] {
                             for axis in 0..3 {
-                                assert!(node.planes[2 * axis][slot] <= v[axis]);
-                                assert!(node.planes[2 * axis + 1][slot] >= v[axis]);
+                                let (g, l) = (slot / 4, slot % 4);
+                                assert!(node.bounds[g][2 * axis][l] <= v[axis]);
+                                assert!(node.bounds[g][2 * axis + 1][l] >= v[axis]);
                             }
                         }
                     }

@@ -3,9 +3,8 @@
 //! * **Slab test** (pbrt-v4 `Bounds3::IntersectP`, Ize 2013): `t = (plane − o) · (1/d)` with the
 //!   exact IEEE reciprocal (±∞ for zero components, never clamped), far distances scaled by
 //!   `1 + 2γ3`. The only NaN is `0 · ∞` (origin exactly on a plane of an axis the ray does not
-//!   move along); the running min/max are written as selects (`if n > tn { n } else { tn }`)
-//!   so that such a slab is ignored by the language semantics, which is the conservative
-//!   answer. The entry distance is clamped at 0 — not at obvhs's 1e-4.
+//!   move along); the min/max chain is ordered so that such a slab is ignored, which is the
+//!   conservative answer. The entry distance is clamped at 0 — not at obvhs's 1e-4.
 //! * **Order**: hit children are pushed sorted by entry distance, nearest on top; popped
 //!   entries farther than the current closest hit are skipped.
 //! * **Stack**: sized from the tree depth measured at build (a fixed array when that fits, a
@@ -13,7 +12,9 @@
 //! * **Ties**: the closest hit is the smallest `(t, original index)`, so the result does not
 //!   depend on traversal order (the brute-force reference gives the same answer).
 
-use super::bvh::{Bvh, Node, COUNT_SHIFT, FIRST_MASK, LEAF_BIT};
+use glam::Vec4;
+
+use super::bvh::{Bvh, Node, COUNT_SHIFT, EMPTY_CHILD, FIRST_MASK, LEAF_BIT};
 use super::triangle::{gamma, ray_is_valid, WoopRay};
 use super::{Hit, Ray};
 
@@ -22,8 +23,8 @@ const FAR_SCALE: f32 = 1.0 + 2.0 * gamma(3);
 
 /// Per-ray constants of the slab test.
 struct NodeRay {
-    o: [f32; 3],
-    inv: [f32; 3],
+    o: [Vec4; 3],
+    inv: [Vec4; 3],
     near: [usize; 3],
     far: [usize; 3],
 }
@@ -31,41 +32,46 @@ struct NodeRay {
 impl NodeRay {
     #[inline]
     fn new(ray: &Ray) -> Self {
-        let inv = ray.dir.recip().to_array();
+        let inv = ray.dir.recip();
         let d = ray.dir.to_array();
         // The sign bit decides (−0.0 counts as negative, matching 1/−0 = −∞).
         let near = [0, 1, 2].map(|a| 2 * a + usize::from(d[a].is_sign_negative()));
         Self {
-            o: ray.origin.to_array(),
-            inv,
+            o: [
+                Vec4::splat(ray.origin.x),
+                Vec4::splat(ray.origin.y),
+                Vec4::splat(ray.origin.z),
+            ],
+            inv: [Vec4::splat(inv.x), Vec4::splat(inv.y), Vec4::splat(inv.z)],
             near,
             far: near.map(|n| n ^ 1),
         }
     }
 
     /// Tests the eight children against `[0, t_far]`; returns the hit mask and entry distances.
-    /// Plain loops over the eight lanes, which the compiler vectorises (SSE: two 4-wide halves;
-    /// AVX2: one 8-wide pass). `if n > tn { n } else { tn }` is `maxps(n, tn)`, which returns
-    /// `tn` when `n` is NaN: a NaN slab (`0·∞`) is ignored.
     #[inline(always)]
-    fn intersect(&self, node: &Node, t_far: f32) -> (u32, [f32; 8]) {
-        let mut tn = [0.0f32; 8];
-        let mut tf = [t_far; 8];
-        for a in 0..3 {
-            let (near, far) = (&node.planes[self.near[a]], &node.planes[self.far[a]]);
-            let (o, inv) = (self.o[a], self.inv[a]);
-            for i in 0..8 {
-                let n = (near[i] - o) * inv;
-                let f = (far[i] - o) * inv;
-                tn[i] = if n > tn[i] { n } else { tn[i] };
-                tf[i] = if f < tf[i] { f } else { tf[i] };
-            }
-        }
+    fn intersect(&self, node: &Node, t_far: f32) -> (u32, [Vec4; 2]) {
+        let t_far = Vec4::splat(t_far);
         let mut mask = 0;
-        for i in 0..8 {
-            mask |= u32::from(tn[i] <= tf[i] * FAR_SCALE) << i;
+        let mut entry = [Vec4::ZERO; 2];
+        // Children are packed: an empty slot 4 means the second group is empty.
+        let groups = if node.child[4] == EMPTY_CHILD { 1 } else { 2 };
+        for (g, e) in entry.iter_mut().enumerate().take(groups) {
+            // `a.max(acc)` is SSE `maxps(a, acc)`, which returns `acc` when either is NaN, and
+            // `acc` never is: a NaN slab is ignored.
+            let mut tn = Vec4::ZERO;
+            let mut tf = t_far;
+            for a in 0..3 {
+                let n = (node.bounds[g][self.near[a]] - self.o[a]) * self.inv[a];
+                let f = (node.bounds[g][self.far[a]] - self.o[a]) * self.inv[a];
+                tn = n.max(tn);
+                tf = f.min(tf);
+            }
+            let tf = tf * FAR_SCALE;
+            mask |= tn.cmple(tf).bitmask() << (4 * g);
+            *e = tn;
         }
-        (mask, tn)
+        (mask, entry)
     }
 }
 
@@ -170,20 +176,6 @@ pub(crate) fn closest(bvh: &Bvh, ray: &Ray) -> Option<Hit> {
     if bvh.nodes.is_empty() || !ray_is_valid(ray) {
         return None;
     }
-    closest_dispatch(bvh, ray)
-}
-
-/// Whether anything is hit with `0 < t < ray.t_max`.
-pub(crate) fn occluded(bvh: &Bvh, ray: &Ray) -> bool {
-    if bvh.nodes.is_empty() || !ray_is_valid(ray) {
-        return false;
-    }
-    occluded_dispatch(bvh, ray)
-}
-
-/// Picks the stack: a fixed array when the measured depth fits, the heap otherwise.
-#[inline(always)]
-fn closest_dispatch(bvh: &Bvh, ray: &Ray) -> Option<Hit> {
     if stack_bound(bvh.depth) <= ARRAY_STACK {
         closest_with(bvh, ray, ArrayStack::<ARRAY_STACK>::new())
     } else {
@@ -191,9 +183,11 @@ fn closest_dispatch(bvh: &Bvh, ray: &Ray) -> Option<Hit> {
     }
 }
 
-/// Picks the stack, as [`closest_dispatch`].
-#[inline(always)]
-fn occluded_dispatch(bvh: &Bvh, ray: &Ray) -> bool {
+/// Whether anything is hit with `0 < t < ray.t_max`.
+pub(crate) fn occluded(bvh: &Bvh, ray: &Ray) -> bool {
+    if bvh.nodes.is_empty() || !ray_is_valid(ray) {
+        return false;
+    }
     if stack_bound(bvh.depth) <= ARRAY_STACK {
         occluded_with(bvh, ray, ArrayStack::<ARRAY_STACK>::new())
     } else {
@@ -208,7 +202,6 @@ fn leaf_range(r: u32) -> std::ops::Range<usize> {
     first..first + count
 }
 
-#[inline(always)]
 fn closest_with<S: Stack>(bvh: &Bvh, ray: &Ray, mut stack: S) -> Option<Hit> {
     let woop = WoopRay::new(ray.origin, ray.dir);
     let nr = NodeRay::new(ray);
@@ -238,7 +231,10 @@ fn closest_with<S: Stack>(bvh: &Bvh, ray: &Ray, mut stack: S) -> Option<Hit> {
             let (mut mask, entry) = nr.intersect(node, best_t);
             if mask != 0 {
                 let base = stack.len();
-                let tn = entry;
+                let tn: [f32; 8] = {
+                    let (a, b) = (entry[0].to_array(), entry[1].to_array());
+                    [a[0], a[1], a[2], a[3], b[0], b[1], b[2], b[3]]
+                };
                 while mask != 0 {
                     let slot = mask.trailing_zeros() as usize;
                     mask &= mask - 1;
@@ -263,7 +259,6 @@ fn closest_with<S: Stack>(bvh: &Bvh, ray: &Ray, mut stack: S) -> Option<Hit> {
     }
 }
 
-#[inline(always)]
 fn occluded_with<S: Stack>(bvh: &Bvh, ray: &Ray, mut stack: S) -> bool {
     let woop = WoopRay::new(ray.origin, ray.dir);
     let nr = NodeRay::new(ray);
