@@ -375,10 +375,10 @@ fn obvhs_pitfall_canary_own_cwbvh_traversal_misses_the_1e5_hit() {
         BvhBuildParams::fastest_build(),
         &mut Default::default(),
     );
-    let mut ray = obvhs::ray::Ray::new_inf(glam::Vec3A::ZERO, glam::Vec3A::Z);
-    ray.inv_direction = glam::Vec3A::ONE / ray.direction;
+    let mut oray = obvhs::ray::Ray::new_inf(glam::Vec3A::ZERO, glam::Vec3A::Z);
+    oray.inv_direction = glam::Vec3A::ONE / oray.direction;
     let mut hit = RayHit::none();
-    bvh.ray_traverse(ray, &mut hit, |r, id| {
+    bvh.ray_traverse(oray, &mut hit, |r, id| {
         ot[bvh.primitive_indices[id] as usize].intersect(r)
     });
     assert!(hit.t > 1e-4, "obvhs now finds the hit at {}", hit.t);
