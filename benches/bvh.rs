@@ -9,7 +9,8 @@
 //!   python3/numpy it says how to get them and falls back to a smaller workload generated here.
 //! * First a summary table (best of `${STAGELIGHT_BENCH_REPS:-3}`): Mrays/s per query for 1 and
 //!   2 threads (rayon pools; 1 thread also per CPU-second of the tracing thread), hit counts
-//!   checked against the anchor's (715,018 coherent, 602,740 incoherent), and build times.
+//!   checked against the anchor's (715,018 coherent; 602,740 incoherent for Embree and obvhs,
+//!   602,741 here: see `EXPECTED_HITS_INCOHERENT`), and build times.
 //! * Then criterion groups (10 samples each): `build`, `trace/{1,2}t`, and `tiny`, a small
 //!   generated scene that needs no data.
 //!
@@ -27,9 +28,12 @@ use rayon::prelude::*;
 use stagelight::accel::{Accel, Ray};
 use stagelight::settings::BvhQuality;
 
-/// Hit counts of the anchor's ray sets, as every backend reports them.
+/// Hit counts of the anchor's ray sets. Embree 3 (default, non-robust mode) and obvhs report
+/// 602,740 incoherent hits; the watertight test finds one more: ray 374,651 starts inside the
+/// closed mesh and crosses it 2e-6 (in barycentrics) from a shared edge, where the
+/// non-watertight tests leak (checked against obvhs's own traversal and triangle test).
 const EXPECTED_HITS_COHERENT: u64 = 715_018;
-const EXPECTED_HITS_INCOHERENT: u64 = 602_740;
+const EXPECTED_HITS_INCOHERENT: u64 = 602_741;
 
 /// A mesh and its three ray sets.
 struct Workload {
@@ -380,7 +384,11 @@ fn summary(w: &Workload, reps: usize) {
                 let check = if !w.anchor {
                     ""
                 } else if result.0 == expected {
-                    " ok"
+                    if expected == EXPECTED_HITS_INCOHERENT {
+                        " ok (anchor 602,740 + 1 edge leak of non-watertight tests)"
+                    } else {
+                        " ok"
+                    }
                 } else {
                     " MISMATCH"
                 };

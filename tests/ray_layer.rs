@@ -347,6 +347,47 @@ fn obvhs_pitfall_tmin_hit_at_1e5_in_millimetre_scene() {
     }
 }
 
+#[test]
+fn obvhs_pitfall_canary_own_cwbvh_traversal_misses_the_1e5_hit() {
+    // Documents why the ray layer has its own kernel: obvhs 0.4's CWBVH traversal (with the
+    // exact reciprocal already set) culls the one-triangle leaf at t = 1e-5. If this starts
+    // failing, obvhs fixed the clamp; the own kernel stays correct either way.
+    use obvhs::{
+        cwbvh::builder::build_cwbvh_from_tris, ray::RayHit, triangle::Triangle, BvhBuildParams,
+    };
+    let mut rng = Rng::new(10);
+    let mut tris = soup(400, Vec3::ZERO, 1e-3, 2e-4, &mut rng);
+    tris.push([
+        Vec3::new(-1e-4, -1e-4, 1e-5),
+        Vec3::new(1e-4, -1e-4, 1e-5),
+        Vec3::new(0.0, 1e-4, 1e-5),
+    ]);
+    let ot: Vec<Triangle> = tris
+        .iter()
+        .map(|t| Triangle {
+            v0: t[0].into(),
+            v1: t[1].into(),
+            v2: t[2].into(),
+        })
+        .collect();
+    let bvh = build_cwbvh_from_tris(
+        &ot,
+        BvhBuildParams::fastest_build(),
+        &mut Default::default(),
+    );
+    let mut oray = obvhs::ray::Ray::new_inf(glam::Vec3A::ZERO, glam::Vec3A::Z);
+    oray.inv_direction = glam::Vec3A::ONE / oray.direction;
+    let mut hit = RayHit::none();
+    bvh.ray_traverse(oray, &mut hit, |r, id| {
+        ot[bvh.primitive_indices[id] as usize].intersect(r)
+    });
+    assert!(hit.t > 1e-4, "obvhs now finds the hit at {}", hit.t);
+    let accel = Accel::build(tris, BvhQuality::Fast);
+    assert!(accel
+        .intersect(&ray(Vec3::ZERO, Vec3::Z))
+        .is_some_and(|h| h.t < 2e-5));
+}
+
 /// Thousands of nested triangles around one point (every box contains the next) and thousands
 /// of coincident ones: a hierarchy far deeper than obvhs's 32-entry traversal stack.
 fn deep_scene() -> Vec<[Vec3; 3]> {
@@ -394,6 +435,7 @@ fn obvhs_pitfall_deep_hierarchy_neither_crashes_nor_loses_hits() {
     for q in QUALITIES {
         let accel = Accel::build(tris.clone(), q);
         let depth = accel.stats().depth;
+        eprintln!("{q:?}: depth {depth}, {} nodes", accel.stats().nodes);
         assert!(
             depth > 16,
             "scene not deep enough to exercise the heap stack: {depth}"

@@ -206,7 +206,9 @@ fn closest_with<S: Stack>(bvh: &Bvh, ray: &Ray, mut stack: S) -> Option<Hit> {
     let woop = WoopRay::new(ray.origin, ray.dir);
     let nr = NodeRay::new(ray);
     // Until the first hit, t must be < ray.t_max; afterwards (t, prim) must be smaller.
-    let mut best: Option<Hit> = None;
+    // The closest candidate so far as (BVH-order index, b1, b2); its original index is looked
+    // up only on an exact tie and once at the end (`prim_ids` is cold).
+    let mut best: Option<(usize, f32, f32)> = None;
     let mut best_t = ray.t_max;
     let mut cull = best_t * FAR_SCALE;
     let mut cur = 0u32;
@@ -214,13 +216,11 @@ fn closest_with<S: Stack>(bvh: &Bvh, ray: &Ray, mut stack: S) -> Option<Hit> {
         if cur & LEAF_BIT != 0 {
             for k in leaf_range(cur) {
                 if let Some((t, b1, b2)) = woop.intersect(&bvh.tris[k]) {
-                    let prim = bvh.prim_ids[k];
-                    let better = match best {
-                        None => t < best_t,
-                        Some(h) => t < h.t || (t == h.t && prim < h.prim),
-                    };
+                    let better = t < best_t
+                        || (t == best_t
+                            && best.is_some_and(|(bk, _, _)| bvh.prim_ids[k] < bvh.prim_ids[bk]));
                     if better {
-                        best = Some(Hit { t, prim, b1, b2 });
+                        best = Some((k, b1, b2));
                         best_t = t;
                         cull = t * FAR_SCALE;
                     }
@@ -248,7 +248,14 @@ fn closest_with<S: Stack>(bvh: &Bvh, ray: &Ray, mut stack: S) -> Option<Hit> {
         }
         loop {
             match stack.pop() {
-                None => return best,
+                None => {
+                    return best.map(|(k, b1, b2)| Hit {
+                        t: best_t,
+                        prim: bvh.prim_ids[k],
+                        b1,
+                        b2,
+                    })
+                }
                 Some(e) if e.t <= cull => {
                     cur = e.r;
                     break;

@@ -32,8 +32,8 @@ pub fn is_degenerate(tri: &[Vec3; 3]) -> bool {
     }
     let c = (tri[2] - tri[0]).cross(tri[1] - tri[0]);
     // NaN also counts as degenerate.
-    let area2 = c.length_squared();
-    area2.is_nan() || area2 <= 0.0
+    let len2 = c.length_squared();
+    len2.is_nan() || len2 <= 0.0
 }
 
 /// Per-ray constants of the watertight test: origin, axis permutation and shear.
