@@ -5,7 +5,7 @@
 //!
 //! * Data: `${STAGELIGHT_BENCH_DATA:-target/bench-data}` (`mesh.bin`, `rays_coherent.bin`,
 //!   `rays_incoherent.bin`). When missing, the bench runs `python3 gen_scene.py <dir>` (script
-//!   path: `${STAGELIGHT_GEN_SCENE:-/work/shared/anchors/embree/gen_scene.py}`); without
+//!   path: `${STAGELIGHT_GEN_SCENE:-../shared/anchors/embree/gen_scene.py}`); without
 //!   python3/numpy it says how to get them and falls back to a smaller workload generated here.
 //! * First a summary table (best of `${STAGELIGHT_BENCH_REPS:-3}`): Mrays/s per query for 1 and
 //!   2 threads (rayon pools; 1 thread also per CPU-second of the tracing thread), hit counts
@@ -131,8 +131,13 @@ fn load_or_generate() -> Workload {
     if let Ok(w) = load_anchor(&dir) {
         return w;
     }
-    let script = std::env::var("STAGELIGHT_GEN_SCENE")
-        .unwrap_or_else(|_| "/work/shared/anchors/embree/gen_scene.py".to_string());
+    let script = std::env::var("STAGELIGHT_GEN_SCENE").unwrap_or_else(|_| {
+        concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../shared/anchors/embree/gen_scene.py"
+        )
+        .to_string()
+    });
     eprintln!(
         "bench data missing in {}; running python3 {script} …",
         dir.display()
