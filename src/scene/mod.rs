@@ -59,6 +59,15 @@ pub fn load_scene_str(text: &str, path: &Path) -> Result<LoadedScene, SceneError
     load(path, Some(text))
 }
 
+/// Parses OBJ text into a checked triangle mesh (degenerate and non-finite triangles
+/// dropped), as the loader does for `Obj(file: …)` meshes. For tools and the fuzz target;
+/// the error is the message the loader would report.
+pub fn parse_obj_bytes(bytes: &[u8]) -> Result<crate::components::TriMesh, String> {
+    mesh_load::parse_obj(bytes)
+        .map(|built| built.mesh)
+        .map_err(|e| format!("{e:?}"))
+}
+
 fn load(path: &Path, text: Option<&str>) -> Result<LoadedScene, SceneErrors> {
     let LoadedFiles {
         mut sources,

@@ -1,0 +1,49 @@
+//! Replays the fuzz corpus (`fuzz/corpus/`) through the same checks as the fuzz targets, so
+//! every input the fuzzers found interesting stays handled on the stable toolchain too.
+
+use std::path::{Path, PathBuf};
+
+fn corpus(target: &str) -> Vec<PathBuf> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("fuzz/corpus")
+        .join(target);
+    let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)
+        .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .collect();
+    files.sort();
+    assert!(!files.is_empty(), "empty corpus {}", dir.display());
+    files
+}
+
+#[test]
+fn scene_corpus_loads_or_reports_located_errors() {
+    for path in corpus("scene_ron") {
+        let bytes = std::fs::read(&path).unwrap();
+        let Ok(text) = std::str::from_utf8(&bytes) else {
+            continue;
+        };
+        if let Err(errors) = stagelight::scene::load_scene_str(text, Path::new("fuzz.ron")) {
+            assert!(!errors.0.is_empty(), "{}", path.display());
+            for d in &errors.0 {
+                assert!(d.line >= 1 && d.column >= 1, "{}: {d}", path.display());
+            }
+        }
+    }
+}
+
+#[test]
+fn obj_corpus_parses_to_checked_meshes_or_errors() {
+    for path in corpus("obj_text") {
+        let bytes = std::fs::read(&path).unwrap();
+        if let Ok(mesh) = stagelight::scene::parse_obj_bytes(&bytes) {
+            let n = mesh.positions.len() as u32;
+            assert!(
+                mesh.triangles.iter().all(|t| t.iter().all(|&i| i < n)),
+                "{}",
+                path.display()
+            );
+            assert!(mesh.positions.iter().all(|p| p.is_finite()));
+        }
+    }
+}
