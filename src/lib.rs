@@ -20,6 +20,7 @@ pub mod scene;
 pub mod schedule;
 pub mod settings;
 pub mod shading;
+pub mod sweep;
 pub mod tessellation;
 
 #[path = "../systems/mod.rs"]

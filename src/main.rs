@@ -39,6 +39,9 @@ enum Command {
     /// Run a scene's whole pipeline (render, and bake when it has bake requests) and report
     /// each stage's throughput; outputs go to a temporary directory and are deleted.
     Bench(BenchArgs),
+    /// Measure what accuracy costs in time: render once per knob value (and seed), compare
+    /// with a converged reference, write a CSV/JSON table and an SVG plot.
+    Sweep(SweepArgs),
     /// Validate a scene without rendering; exit 0 when it is renderable.
     Check {
         /// Scene file (RON).
@@ -107,6 +110,32 @@ struct BenchArgs {
     json: bool,
 }
 
+#[derive(Args)]
+struct SweepArgs {
+    /// Scene file (RON).
+    scene: PathBuf,
+    /// The knob and its values: spp, light_samples, max_depth, bvh_quality, tessellation,
+    /// bake_samples (e.g. `--knob spp=1,4,16,64`).
+    #[arg(long, value_name = "NAME=V1,V2,…")]
+    knob: String,
+    /// Reference image (linear EXR, same size); rendered and cached in the output directory
+    /// when absent.
+    #[arg(long, value_name = "FILE.exr")]
+    reference: Option<PathBuf>,
+    /// Samples per pixel (or bake samples per texel) of a rendered reference.
+    #[arg(long = "reference-spp", default_value_t = 1024, value_parser = clap::value_parser!(u32).range(1..))]
+    reference_spp: u32,
+    /// Seeds per value (2 or more also report bias² and variance).
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..))]
+    seeds: u32,
+    /// Output directory for sweep.csv, sweep.json, sweep.svg and the cached reference.
+    #[arg(long, default_value = "sweep_out")]
+    out: PathBuf,
+    /// Worker threads (default: all cores).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
+    threads: Option<u32>,
+}
+
 fn main() -> ExitCode {
     let _ = tracing_subscriber::fmt()
         .with_writer(std::io::stderr)
@@ -129,6 +158,7 @@ fn main() -> ExitCode {
         Command::Render(args) => render(args),
         Command::Bake(args) => bake(args),
         Command::Bench(args) => bench(args),
+        Command::Sweep(args) => sweep(args),
     }
 }
 
@@ -343,6 +373,74 @@ fn bench(args: BenchArgs) -> ExitCode {
         for r in &frame.bake_reports {
             println!("bake {}", r.summary());
         }
+    }
+    ExitCode::SUCCESS
+}
+
+fn sweep(args: SweepArgs) -> ExitCode {
+    use stagelight::sweep::{run_sweep, Knob, SweepOptions};
+    if let Err(code) = set_threads(args.threads) {
+        return code;
+    }
+    let knob = match Knob::parse(&args.knob) {
+        Ok(k) => k,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(EXIT_USAGE);
+        }
+    };
+    let opts = SweepOptions {
+        scene: args.scene.clone(),
+        knob,
+        seeds: args.seeds,
+        reference: args.reference,
+        reference_samples: args.reference_spp,
+        out: args.out.clone(),
+        reference_settings: None,
+    };
+    let summary = match run_sweep(&opts, systems::run, |step| eprintln!("sweep: {step}")) {
+        Ok(s) => s,
+        Err(e) => {
+            eprintln!("{}", with_error_prefix(&e.to_string()));
+            return ExitCode::from(EXIT_ERROR);
+        }
+    };
+    let json = serde_json::to_string_pretty(&summary).unwrap_or_default();
+    let svg = match stagelight::sweep::plot::svg(&summary) {
+        Ok(s) => s,
+        Err(e) => {
+            eprintln!("error: cannot draw the plot: {e}");
+            return ExitCode::from(EXIT_ERROR);
+        }
+    };
+    let files = [
+        ("sweep.csv", summary.to_csv()),
+        ("sweep.json", json),
+        ("sweep.svg", svg),
+    ]
+    .map(|(name, text)| stagelight::image_io::PendingFile {
+        path: args.out.join(name),
+        bytes: text.into_bytes(),
+    });
+    if let Err((p, e)) = stagelight::image_io::commit_all(&files) {
+        eprintln!("error: cannot write {}: {e}", p.display());
+        return ExitCode::from(EXIT_ERROR);
+    }
+    print!("{}", summary.to_csv());
+    let fmt = |s: Option<f64>| {
+        s.map_or("never (plateau or no descent)".to_string(), |s| {
+            format!("{s:.3} s")
+        })
+    };
+    println!(
+        "slope {}; bias plateau: {}; relMSE 1e-2 after {}; 1e-3 after {}",
+        summary.slope.map_or("n/a".into(), |s| format!("{s:.2}")),
+        if summary.bias_plateau { "yes" } else { "no" },
+        fmt(summary.seconds_to_rel_mse_1e2),
+        fmt(summary.seconds_to_rel_mse_1e3)
+    );
+    for f in &files {
+        eprintln!("wrote {}", f.path.display());
     }
     ExitCode::SUCCESS
 }

@@ -1,0 +1,292 @@
+//! Accuracy knobs: parsing `NAME=V1,V2,…` and applying one value to a loaded scene. A knob
+//! the scene does not have (area-light samples without area lights, tessellation tolerance
+//! without approximations, bake samples without bake requests) is an error, never a no-op.
+
+use hecs::World;
+
+use crate::components::{Approximation, BakeKind, BakeRequest, Emitter, LightShape, Technique};
+use crate::settings::{BvhQuality, RenderSettings};
+
+/// A knob and the values to sweep.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Knob {
+    /// Samples per pixel.
+    Spp(Vec<u32>),
+    /// Samples per shading point of every area light.
+    LightSamples(Vec<u32>),
+    /// Maximum trace depth.
+    MaxDepth(Vec<u32>),
+    /// BVH build quality.
+    BvhQuality(Vec<BvhQuality>),
+    /// Tessellation tolerance: multiplies every approximation's tolerance (curvature distance,
+    /// spatial edge length) by the value.
+    Tessellation(Vec<f32>),
+    /// Rays (AO) or gather paths (lightmaps) per texel of every bake request.
+    BakeSamples(Vec<u32>),
+}
+
+/// Why a knob cannot be swept.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum KnobError {
+    /// Not of the form `NAME=V1,V2`.
+    #[error("expected --knob NAME=V1,V2,… (e.g. spp=1,4,16), found \"{0}\"")]
+    Syntax(String),
+    /// Unknown knob name.
+    #[error("unknown knob \"{0}\"; knobs: spp, light_samples, max_depth, bvh_quality, tessellation, bake_samples")]
+    Unknown(String),
+    /// A value does not parse.
+    #[error("knob {knob}: cannot read \"{value}\" ({expected})")]
+    Value {
+        /// Knob name.
+        knob: String,
+        /// The value.
+        value: String,
+        /// What was expected.
+        expected: &'static str,
+    },
+    /// The scene has nothing this knob changes.
+    #[error("knob {knob} is not in this scene: {why}")]
+    Absent {
+        /// Knob name.
+        knob: &'static str,
+        /// What is missing.
+        why: &'static str,
+    },
+}
+
+fn parse_list<T: std::str::FromStr>(
+    knob: &str,
+    values: &str,
+    expected: &'static str,
+    ok: impl Fn(&T) -> bool,
+) -> Result<Vec<T>, KnobError> {
+    values
+        .split(',')
+        .map(|v| {
+            let v = v.trim();
+            v.parse::<T>()
+                .ok()
+                .filter(|x| ok(x))
+                .ok_or_else(|| KnobError::Value {
+                    knob: knob.to_string(),
+                    value: v.to_string(),
+                    expected,
+                })
+        })
+        .collect()
+}
+
+impl Knob {
+    /// Parses `NAME=V1,V2,…`.
+    pub fn parse(text: &str) -> Result<Self, KnobError> {
+        let (name, values) = text
+            .split_once('=')
+            .ok_or_else(|| KnobError::Syntax(text.to_string()))?;
+        let name = name.trim();
+        if values.trim().is_empty() {
+            return Err(KnobError::Syntax(text.to_string()));
+        }
+        let positive = "a whole number ≥ 1";
+        Ok(match name {
+            "spp" | "samples" => Knob::Spp(parse_list(name, values, positive, |&v: &u32| v >= 1)?),
+            "light_samples" => {
+                Knob::LightSamples(parse_list(name, values, positive, |&v: &u32| v >= 1)?)
+            }
+            "max_depth" | "trace_depth" => {
+                Knob::MaxDepth(parse_list(name, values, positive, |&v: &u32| v >= 1)?)
+            }
+            "bake_samples" => {
+                Knob::BakeSamples(parse_list(name, values, positive, |&v: &u32| v >= 1)?)
+            }
+            "tessellation" => Knob::Tessellation(parse_list(
+                name,
+                values,
+                "a positive factor",
+                |&v: &f32| v.is_finite() && v > 0.0,
+            )?),
+            "bvh_quality" => Knob::BvhQuality(
+                values
+                    .split(',')
+                    .map(|v| match v.trim().to_ascii_lowercase().as_str() {
+                        "fast" => Ok(BvhQuality::Fast),
+                        "medium" => Ok(BvhQuality::Medium),
+                        "high" => Ok(BvhQuality::High),
+                        other => Err(KnobError::Value {
+                            knob: name.to_string(),
+                            value: other.to_string(),
+                            expected: "fast, medium or high",
+                        }),
+                    })
+                    .collect::<Result<_, _>>()?,
+            ),
+            other => return Err(KnobError::Unknown(other.to_string())),
+        })
+    }
+
+    /// The knob's name in tables.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Knob::Spp(_) => "spp",
+            Knob::LightSamples(_) => "light_samples",
+            Knob::MaxDepth(_) => "max_depth",
+            Knob::BvhQuality(_) => "bvh_quality",
+            Knob::Tessellation(_) => "tessellation",
+            Knob::BakeSamples(_) => "bake_samples",
+        }
+    }
+
+    /// Number of values.
+    pub fn len(&self) -> usize {
+        match self {
+            Knob::Spp(v) | Knob::LightSamples(v) | Knob::MaxDepth(v) | Knob::BakeSamples(v) => {
+                v.len()
+            }
+            Knob::BvhQuality(v) => v.len(),
+            Knob::Tessellation(v) => v.len(),
+        }
+    }
+
+    /// True when there are no values.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Value `i` as text (for tables).
+    pub fn label(&self, i: usize) -> String {
+        match self {
+            Knob::Spp(v) | Knob::LightSamples(v) | Knob::MaxDepth(v) | Knob::BakeSamples(v) => {
+                v[i].to_string()
+            }
+            Knob::BvhQuality(v) => format!("{:?}", v[i]).to_ascii_lowercase(),
+            Knob::Tessellation(v) => v[i].to_string(),
+        }
+    }
+
+    /// Whether this knob sweeps a bake (its results are baked textures).
+    pub fn is_bake(&self) -> bool {
+        matches!(self, Knob::BakeSamples(_))
+    }
+
+    /// Checks the scene has what the knob changes.
+    pub fn check(&self, world: &World) -> Result<(), KnobError> {
+        let absent = |why| {
+            Err(KnobError::Absent {
+                knob: self.name(),
+                why,
+            })
+        };
+        match self {
+            Knob::LightSamples(_) => {
+                if !world
+                    .query::<&Emitter>()
+                    .iter()
+                    .any(|e| matches!(e.shape, LightShape::Rect { .. }))
+                {
+                    return absent("the scene has no area lights");
+                }
+            }
+            Knob::Tessellation(_) => {
+                if world.query::<&Approximation>().iter().next().is_none() {
+                    return absent("no object has an approximation");
+                }
+            }
+            Knob::BakeSamples(_) => {
+                let any = world.query::<&BakeRequest>().iter().any(|r| {
+                    r.targets.iter().any(|t| {
+                        matches!(
+                            t.kind,
+                            BakeKind::AmbientOcclusion { .. }
+                                | BakeKind::Lightmap { indirect: true, .. }
+                        )
+                    })
+                });
+                if !any {
+                    return absent("no bake request has ambient occlusion or an indirect lightmap");
+                }
+            }
+            Knob::Spp(_) | Knob::MaxDepth(_) | Knob::BvhQuality(_) => {}
+        }
+        Ok(())
+    }
+
+    /// Applies value `i` to a freshly loaded scene.
+    pub fn apply(&self, i: usize, world: &mut World, settings: &mut RenderSettings) {
+        match self {
+            Knob::Spp(v) => settings.spp = v[i],
+            Knob::MaxDepth(v) => settings.max_depth = v[i],
+            Knob::BvhQuality(v) => settings.bvh_quality = v[i],
+            Knob::LightSamples(v) => {
+                for e in world.query_mut::<&mut Emitter>() {
+                    if matches!(e.shape, LightShape::Rect { .. }) {
+                        e.samples = v[i];
+                    }
+                }
+            }
+            Knob::Tessellation(v) => {
+                for a in world.query_mut::<&mut Approximation>() {
+                    scale_tolerance(&mut a.technique, v[i]);
+                }
+            }
+            Knob::BakeSamples(v) => {
+                for r in world.query_mut::<&mut BakeRequest>() {
+                    for t in &mut r.targets {
+                        match &mut t.kind {
+                            BakeKind::AmbientOcclusion { samples, .. }
+                            | BakeKind::Lightmap { samples, .. } => *samples = v[i],
+                            _ => {}
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// Multiplies a technique's tolerance by `factor` (rates divided for the uniform ones).
+fn scale_tolerance(t: &mut Technique, factor: f32) {
+    match t {
+        Technique::Curvature { distance, .. } => *distance *= factor,
+        Technique::Spatial { edge, .. } => *edge *= factor,
+        Technique::Parametric { u, v } | Technique::Regular { u, v } => {
+            *u = ((*u as f32 / factor).round() as u32).max(1);
+            *v = ((*v as f32 / factor).round() as u32).max(1);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn parses_names_and_values() {
+        assert_eq!(
+            Knob::parse("spp=1,4,16").unwrap(),
+            Knob::Spp(vec![1, 4, 16])
+        );
+        assert_eq!(
+            Knob::parse("bvh_quality=fast,High").unwrap(),
+            Knob::BvhQuality(vec![BvhQuality::Fast, BvhQuality::High])
+        );
+        assert!(matches!(Knob::parse("spp=0"), Err(KnobError::Value { .. })));
+        assert!(matches!(
+            Knob::parse("photons=1"),
+            Err(KnobError::Unknown(_))
+        ));
+        assert!(matches!(Knob::parse("spp"), Err(KnobError::Syntax(_))));
+    }
+
+    #[test]
+    fn absent_knobs_are_errors() {
+        let world = World::new();
+        assert!(matches!(
+            Knob::parse("light_samples=1,2").unwrap().check(&world),
+            Err(KnobError::Absent { .. })
+        ));
+        assert!(matches!(
+            Knob::parse("tessellation=1,0.5").unwrap().check(&world),
+            Err(KnobError::Absent { .. })
+        ));
+        assert!(Knob::parse("spp=1").unwrap().check(&world).is_ok());
+    }
+}

@@ -1,0 +1,285 @@
+//! The sweep driver: loads the scene fresh for every (value, seed), applies the knob, runs
+//! the pipeline it is given, and compares each result with the reference.
+
+use std::path::{Path, PathBuf};
+
+use glam::Vec3;
+use hecs::World;
+
+use crate::frame::{Frame, Tasks};
+use crate::scene::{load_scene, SceneErrors};
+use crate::schedule::StageError;
+use crate::settings::RenderSettings;
+use crate::sweep::knob::{Knob, KnobError};
+use crate::sweep::metrics::compare;
+use crate::sweep::report::{SweepRow, SweepSummary};
+
+/// Runs the stage table over a world (`systems::run`, passed in by the CLI).
+pub type Pipeline = fn(&mut World, &mut Frame) -> Result<(), StageError>;
+
+/// What to sweep and how.
+#[derive(Debug, Clone)]
+pub struct SweepOptions {
+    /// The scene.
+    pub scene: PathBuf,
+    /// The knob and its values.
+    pub knob: Knob,
+    /// Seeds per value (bias² and variance need ≥ 2).
+    pub seeds: u32,
+    /// A reference image/texture (linear EXR); rendered when absent.
+    pub reference: Option<PathBuf>,
+    /// Samples per pixel (or bake samples) of a rendered reference.
+    pub reference_samples: u32,
+    /// Output directory (tables, plot, cached reference, scratch files).
+    pub out: PathBuf,
+    /// Applied to the settings of every run after the knob (e.g. the reference integrator
+    /// for the reference run); `None` leaves them.
+    pub reference_settings: Option<fn(&mut RenderSettings)>,
+}
+
+/// Why a sweep failed.
+#[derive(Debug, thiserror::Error)]
+pub enum SweepError {
+    /// The scene does not load.
+    #[error("{0}")]
+    Scene(#[from] SceneErrors),
+    /// The knob cannot be swept here.
+    #[error("{0}")]
+    Knob(#[from] KnobError),
+    /// A run failed.
+    #[error("{0}")]
+    Stage(#[from] StageError),
+    /// Reading or writing a file failed.
+    #[error("{path}: {message}")]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// What went wrong.
+        message: String,
+    },
+}
+
+fn io(path: &Path, message: impl std::fmt::Display) -> SweepError {
+    SweepError::Io {
+        path: path.to_path_buf(),
+        message: message.to_string(),
+    }
+}
+
+/// One run's result: the compared image and the per-stage seconds.
+struct RunResult {
+    image: Vec<Vec3>,
+    width: u32,
+    height: u32,
+    stage_seconds: Vec<(String, f64)>,
+    seconds: f64,
+}
+
+fn run_once(
+    opts: &SweepOptions,
+    pipeline: Pipeline,
+    configure: impl Fn(&mut World, &mut RenderSettings),
+    seed: u64,
+    tag: &str,
+) -> Result<RunResult, SweepError> {
+    let mut scene = load_scene(&opts.scene)?;
+    let mut settings = scene.settings.clone();
+    configure(&mut scene.world, &mut settings);
+    settings.seed = settings.seed.wrapping_add(seed);
+    let mut frame = Frame::new(settings);
+    let scratch = opts.out.join("scratch").join(tag);
+    frame.bake_dir = scratch.clone();
+    frame.tasks = Tasks {
+        render: !opts.knob.is_bake(),
+        bake: opts.knob.is_bake(),
+    };
+    // Nothing is written into the user's directories: camera outputs go to scratch.
+    for camera in scene.world.query_mut::<&mut crate::components::Camera>() {
+        camera.outputs.clear();
+    }
+    pipeline(&mut scene.world, &mut frame)?;
+    let image = if opts.knob.is_bake() {
+        let path = frame
+            .written
+            .iter()
+            .find(|p| p.extension().is_some_and(|e| e == "exr"))
+            .cloned()
+            .ok_or_else(|| io(&scratch, "the bake wrote no EXR texture to compare (give the first bake output `format: Exr`)"))?;
+        let img = read_exr_rgb(&path)?;
+        let _ = std::fs::remove_dir_all(&scratch);
+        img
+    } else {
+        let fb = frame.image.as_ref();
+        (
+            fb.map(|fb| fb.beauty.clone()).unwrap_or_default(),
+            fb.map_or(0, |fb| fb.width),
+            fb.map_or(0, |fb| fb.height),
+        )
+    };
+    let (image, width, height) = image;
+    Ok(RunResult {
+        image,
+        width,
+        height,
+        stage_seconds: frame
+            .report
+            .stages
+            .iter()
+            .map(|s| (s.stage.to_string(), s.seconds))
+            .collect(),
+        seconds: frame.report.total_seconds,
+    })
+}
+
+/// Reads the R, G, B channels of a linear EXR, with its width and height.
+pub fn read_exr_rgb(path: &Path) -> Result<(Vec<Vec3>, u32, u32), SweepError> {
+    use exr::prelude::*;
+    let image = read_first_rgba_layer_from_file(
+        path,
+        |res, _| {
+            (
+                res.width(),
+                res.height(),
+                vec![Vec3::ZERO; res.width() * res.height()],
+            )
+        },
+        |(w, _, px): &mut (usize, usize, Vec<Vec3>), pos, (r, g, b, _a): (f32, f32, f32, f32)| {
+            px[pos.y() * *w + pos.x()] = Vec3::new(r, g, b);
+        },
+    )
+    .map_err(|e| io(path, e))?;
+    let (w, h, px) = image.layer_data.channel_data.pixels;
+    Ok((px, w as u32, h as u32))
+}
+
+/// The cache file of a rendered reference: keyed by the scene text (and its includes'
+/// modification does not count — delete the cache after editing an include), the sample
+/// count, and whether it is a bake.
+fn reference_cache(opts: &SweepOptions) -> Result<PathBuf, SweepError> {
+    let text = std::fs::read(&opts.scene).map_err(|e| io(&opts.scene, e))?;
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    let tag = format!(
+        "{}:{}:{}",
+        opts.reference_samples,
+        opts.knob.is_bake(),
+        opts.reference_settings.is_some()
+    );
+    for b in text.iter().chain(tag.as_bytes()) {
+        h = (h ^ u64::from(*b)).wrapping_mul(0x0100_0000_01b3);
+    }
+    Ok(opts.out.join(format!("reference_{h:016x}.exr")))
+}
+
+/// Runs the sweep and returns its summary (the caller writes the files).
+pub fn run_sweep(
+    opts: &SweepOptions,
+    pipeline: Pipeline,
+    mut progress: impl FnMut(&str),
+) -> Result<SweepSummary, SweepError> {
+    {
+        let scene = load_scene(&opts.scene)?;
+        opts.knob.check(&scene.world)?;
+    }
+    std::fs::create_dir_all(&opts.out).map_err(|e| io(&opts.out, e))?;
+    let cached = reference_cache(opts)?;
+    let reference = match &opts.reference {
+        Some(path) => read_exr_rgb(path)?.0,
+        None if cached.exists() => {
+            progress(&format!("reference: cached {}", cached.display()));
+            read_exr_rgb(&cached)?.0
+        }
+        None => {
+            progress(&format!("reference: {} samples", opts.reference_samples));
+            let samples = opts.reference_samples;
+            let knob = opts.knob.clone();
+            let fix = opts.reference_settings;
+            let r = run_once(
+                opts,
+                pipeline,
+                move |world, settings| {
+                    // The reference keeps the scene's own knob setting except the sample
+                    // count, which it raises.
+                    match knob {
+                        Knob::BakeSamples(_) => {
+                            Knob::BakeSamples(vec![samples]).apply(0, world, settings)
+                        }
+                        _ => settings.spp = samples,
+                    }
+                    if let Some(f) = fix {
+                        f(settings);
+                    }
+                },
+                0x05ee_d0ef,
+                "reference",
+            )?;
+            let texture = crate::bake::TexelImage {
+                width: r.width,
+                height: r.height,
+                valid: vec![true; r.image.len()],
+                texels: r.image.clone(),
+            };
+            let bytes = texture.encode_exr().map_err(|e| io(&cached, e))?;
+            crate::image_io::commit_all(&[crate::image_io::PendingFile {
+                path: cached.clone(),
+                bytes,
+            }])
+            .map_err(|(p, e)| io(&p, e))?;
+            r.image
+        }
+    };
+    let mut rows = Vec::with_capacity(opts.knob.len());
+    for i in 0..opts.knob.len() {
+        let mut images = Vec::new();
+        let (mut seconds, mut stage_seconds): (f64, Vec<(String, f64)>) = (0.0, Vec::new());
+        for seed in 0..opts.seeds.max(1) {
+            progress(&format!(
+                "{} = {} (seed {seed})",
+                opts.knob.name(),
+                opts.knob.label(i)
+            ));
+            let r = run_once(
+                opts,
+                pipeline,
+                |w, s| opts.knob.apply(i, w, s),
+                seed as u64,
+                &format!("{i}_{seed}"),
+            )?;
+            if r.image.len() != reference.len() {
+                return Err(io(
+                    opts.reference.as_deref().unwrap_or(Path::new("reference")),
+                    format!(
+                        "reference has {} pixels, the render {}",
+                        reference.len(),
+                        r.image.len()
+                    ),
+                ));
+            }
+            seconds += r.seconds;
+            if stage_seconds.is_empty() {
+                stage_seconds = r.stage_seconds.clone();
+            } else {
+                for (acc, (_, s)) in stage_seconds.iter_mut().zip(&r.stage_seconds) {
+                    acc.1 += s;
+                }
+            }
+            images.push(r.image);
+        }
+        let k = opts.seeds.max(1) as f64;
+        for s in &mut stage_seconds {
+            s.1 /= k;
+        }
+        rows.push(SweepRow {
+            value: opts.knob.label(i),
+            stage_seconds,
+            seconds: seconds / k,
+            error: compare(&images, &reference),
+            seeds: opts.seeds.max(1),
+        });
+    }
+    let _ = std::fs::remove_dir_all(opts.out.join("scratch"));
+    Ok(SweepSummary::new(
+        opts.knob.name(),
+        &opts.scene.display().to_string(),
+        rows,
+    ))
+}

@@ -1,0 +1,163 @@
+//! `stagelight sweep` end to end: the table, JSON and plot are written, the error falls as
+//! the knob buys accuracy, a cached reference is reused, and knobs the scene lacks are
+//! refused.
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+fn bin() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_stagelight"))
+}
+
+fn scratch(test: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("stagelight-sweep-{test}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn run(cmd: &mut Command) -> Output {
+    cmd.output().expect("run stagelight")
+}
+
+/// A small lit scene: a floor under a rectangular light with a blocker (soft shadow), and a
+/// bake request for the bake knob.
+const SCENE: &str = r#"Scene(
+    options: (samples: 1),
+    cameras: [(name: "cam", fov_y: 50.0, resolution: (24, 18),
+        placement: LookAt(eye: (0, -3, 3), target: (0, 0, 0)))],
+    lights: [(name: "panel", kind: Rect(corner: (-0.5, -0.5, 2), edge_u: (0, 1, 0), edge_v: (1, 0, 0)), intensity: 4.0, samples: 1)],
+    materials: [(name: "grey", shader: Lambert(albedo: (0.6, 0.6, 0.6)))],
+    objects: [
+        (name: "floor", mesh: Inline(vertices: [(-2, -2, 0), (2, -2, 0), (2, 2, 0), (-2, 2, 0)],
+            uvs: [(0, 0), (1, 0), (1, 1), (0, 1)], polygons: [[0, 1, 2, 3]]), material: "grey"),
+        (name: "blocker", mesh: Inline(vertices: [(-0.3, -0.3, 0.8), (0.3, -0.3, 0.8), (0.3, 0.3, 0.8), (-0.3, 0.3, 0.8)],
+            polygons: [[0, 1, 2, 3]]), material: "grey"),
+    ],
+    instances: [
+        (name: "floor_1", of: "floor", bake: (resolution: (16, 16), outputs: [(kind: AmbientOcclusion(samples: 4))])),
+        (name: "blocker_1", of: "blocker"),
+    ],
+    groups: [(name: "world", members: ["floor_1", "blocker_1"])],
+    render: (root: "world", camera: "cam"),
+)
+"#;
+
+fn setup(test: &str) -> (PathBuf, PathBuf) {
+    let dir = scratch(test);
+    let scene = dir.join("scene.ron");
+    std::fs::write(&scene, SCENE).unwrap();
+    (dir, scene)
+}
+
+fn rel_mse_column(csv: &str) -> Vec<f64> {
+    let mut lines = csv.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let col = header
+        .iter()
+        .position(|h| *h == "rel_mse")
+        .expect("rel_mse column");
+    lines
+        .map(|l| l.split(',').nth(col).unwrap().parse().unwrap())
+        .collect()
+}
+
+#[test]
+fn spp_sweep_writes_table_json_plot_and_error_falls() {
+    let (dir, scene) = setup("spp");
+    let out = dir.join("out");
+    let o = run(bin()
+        .arg("sweep")
+        .arg(&scene)
+        .args([
+            "--knob",
+            "spp=1,4,16",
+            "--reference-spp",
+            "256",
+            "--seeds",
+            "2",
+        ])
+        .arg("--out")
+        .arg(&out));
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let csv = std::fs::read_to_string(out.join("sweep.csv")).unwrap();
+    assert!(csv.starts_with("spp,"), "{csv}");
+    for col in [
+        "shade_seconds",
+        "total_seconds",
+        "mse",
+        "rel_mse",
+        "max_error",
+        "non_finite",
+        "bias2",
+        "variance",
+    ] {
+        assert!(
+            csv.lines().next().unwrap().split(',').any(|h| h == col),
+            "missing {col}"
+        );
+    }
+    let rel = rel_mse_column(&csv);
+    assert_eq!(rel.len(), 3);
+    assert!(
+        rel[0] > rel[1] && rel[1] > rel[2],
+        "relMSE does not fall: {rel:?}"
+    );
+    let json: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("sweep.json")).unwrap()).unwrap();
+    assert_eq!(json["knob"], "spp");
+    let slope = json["slope"].as_f64().unwrap();
+    assert!(slope < -0.5, "slope {slope}");
+    assert_eq!(json["rows"][0]["seeds"], 2);
+    assert!(json["rows"][0]["error"]["variance"].as_f64().unwrap() > 0.0);
+    let svg = std::fs::read_to_string(out.join("sweep.svg")).unwrap();
+    assert!(svg.contains("<svg") && svg.contains("relMSE"));
+    // A second sweep reuses the cached reference.
+    let o = run(bin()
+        .arg("sweep")
+        .arg(&scene)
+        .args(["--knob", "spp=2", "--reference-spp", "256"])
+        .arg("--out")
+        .arg(&out));
+    assert!(o.status.success());
+    assert!(String::from_utf8_lossy(&o.stderr).contains("reference: cached"));
+}
+
+#[test]
+fn bake_samples_sweep_compares_baked_textures() {
+    let (dir, scene) = setup("bake");
+    let out = dir.join("out");
+    let o = run(bin()
+        .arg("sweep")
+        .arg(&scene)
+        .args(["--knob", "bake_samples=4,64", "--reference-spp", "1024"])
+        .arg("--out")
+        .arg(&out));
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let rel = rel_mse_column(&std::fs::read_to_string(out.join("sweep.csv")).unwrap());
+    assert!(rel[0] > rel[1], "{rel:?}");
+}
+
+#[test]
+fn knobs_the_scene_lacks_are_errors_and_unknown_knobs_usage_errors() {
+    let (dir, scene) = setup("absent");
+    let o = run(bin()
+        .arg("sweep")
+        .arg(&scene)
+        .args(["--knob", "tessellation=1,0.5"])
+        .arg("--out")
+        .arg(dir.join("o")));
+    assert_eq!(o.status.code(), Some(1));
+    assert!(
+        String::from_utf8_lossy(&o.stderr)
+            .contains("knob tessellation is not in this scene: no object has an approximation"),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let o = run(bin()
+        .arg("sweep")
+        .arg(&scene)
+        .args(["--knob", "photons=1,2"]));
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("unknown knob \"photons\""));
+}
