@@ -137,7 +137,10 @@ fn bad_scene_exits_1_with_location_and_writes_nothing() {
     let o = run(bin().arg("render").arg(&scene).arg("-o").arg(&out));
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
     let err = stderr(&o);
-    assert!(err.contains("bad.ron:6:122: error: unknown material \"chrom\""), "{err}");
+    assert!(
+        err.contains("bad.ron:6:122: error: unknown material \"chrom\""),
+        "{err}"
+    );
     assert!(err.contains("chrom"), "{err}");
     assert!(err.contains("did you mean \"chrome\""), "{err}");
     assert!(!out.exists());
