@@ -58,12 +58,24 @@ struct RenderArgs {
     /// Random seed (overrides the scene's `options.seed`).
     #[arg(long)]
     seed: Option<u64>,
+    /// Radiance integrator (overrides the scene's `options.integrator`).
+    #[arg(long, value_enum)]
+    integrator: Option<IntegratorArg>,
     /// Print the per-stage report.
     #[arg(long)]
     stats: bool,
     /// Write the per-stage report as JSON.
     #[arg(long = "stats-json", value_name = "FILE")]
     stats_json: Option<PathBuf>,
+}
+
+/// `--integrator` values.
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum IntegratorArg {
+    /// Direct lighting with traced mirror/refraction rays.
+    Direct,
+    /// Unbiased path tracing (the reference).
+    Path,
 }
 
 fn main() -> ExitCode {
@@ -185,6 +197,12 @@ fn render(args: RenderArgs) -> ExitCode {
     }
     if let Some(seed) = args.seed {
         settings.seed = seed;
+    }
+    if let Some(integrator) = args.integrator {
+        settings.integrator = match integrator {
+            IntegratorArg::Direct => stagelight::settings::Integrator::Direct,
+            IntegratorArg::Path => stagelight::settings::Integrator::Path,
+        };
     }
     if let Some(out) = &args.output {
         if let Err(message) = override_output(&mut scene.world, out) {

@@ -103,3 +103,4 @@ pub fn render(world: &mut World, settings: RenderSettings) -> Frame {
     stagelight::schedule::run_stages(&stages, world, &mut frame).expect("render");
     frame
 }
+pub mod chi2;
