@@ -23,12 +23,9 @@ pub fn fresnel_dielectric_rt(cos_i: f32, eta: f32) -> (f32, f32) {
         eta = 1.0 / eta;
         cos_i = -cos_i;
     }
-    let sin2_i = (1.0 - cos_i * cos_i).max(0.0);
-    let sin2_t = sin2_i / (eta * eta);
-    if sin2_t >= 1.0 {
+    let Some(cos_t) = cos_transmitted(cos_i, eta) else {
         return (1.0, 0.0);
-    }
-    let cos_t = (1.0 - sin2_t).max(0.0).sqrt();
+    };
     let (ec_i, ec_t) = (eta * cos_i, eta * cos_t);
     let d_parl = ec_i + cos_t;
     let d_perp = cos_i + ec_t;
@@ -44,6 +41,16 @@ pub fn fresnel_dielectric_rt(cos_i: f32, eta: f32) -> (f32, f32) {
     let t_perp = 2.0 / d_perp;
     let t = 0.5 * ec_t * cos_i * (t_parl * t_parl + t_perp * t_perp);
     (r, t)
+}
+
+/// `cosθt` for `cosθi ∈ [0, 1]` and relative index `eta`, or `None` under total internal
+/// reflection (`sin²θt ≥ 1`). Written as `√((η² − 1) + cos²θi) / η` with `η² − 1 =
+/// (η − 1)(η + 1)`: exact for η = 1 and accurate at grazing angles, where `1 − sin²θt`
+/// would cancel catastrophically.
+#[inline]
+fn cos_transmitted(cos_i: f32, eta: f32) -> Option<f32> {
+    let k = (eta - 1.0) * (eta + 1.0) + cos_i * cos_i;
+    (k > 0.0).then(|| k.sqrt() / eta)
 }
 
 /// Mirror direction of `wo` about `n`.
@@ -64,12 +71,7 @@ pub fn refract(wi: Vec3, n: Vec3, eta: f32) -> Option<(Vec3, f32)> {
         cos_i = -cos_i;
         n = -n;
     }
-    let sin2_i = (1.0 - cos_i * cos_i).max(0.0);
-    let sin2_t = sin2_i / (eta * eta);
-    if sin2_t >= 1.0 {
-        return None;
-    }
-    let cos_t = (1.0 - sin2_t).max(0.0).sqrt();
+    let cos_t = cos_transmitted(cos_i, eta)?;
     let wt = -wi / eta + (cos_i / eta - cos_t) * n;
     Some((wt.normalize(), eta))
 }
