@@ -41,7 +41,7 @@ fn mirror_scene_reflects_only_within_the_reflection_depth() {
     let none = render("mirror.ron", |s| s.reflection_depth = 0);
     let two = render("mirror.ron", |_| {});
     assert!(
-        mean(&two) > 1.2 * mean(&none),
+        mean(&two) > 1.1 * mean(&none),
         "{} vs {}",
         mean(&two),
         mean(&none)
