@@ -66,6 +66,9 @@ struct RenderArgs {
     /// Random seed (overrides the scene's `options.seed`).
     #[arg(long)]
     seed: Option<u64>,
+    /// Radiance integrator (overrides the scene's `options.integrator`).
+    #[arg(long, value_enum)]
+    integrator: Option<IntegratorArg>,
     /// Print the per-stage report.
     #[arg(long)]
     stats: bool,
@@ -134,6 +137,15 @@ struct SweepArgs {
     /// Worker threads (default: all cores).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
     threads: Option<u32>,
+}
+
+/// `--integrator` values.
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum IntegratorArg {
+    /// Direct lighting with traced mirror/refraction rays.
+    Direct,
+    /// Unbiased path tracing (the reference).
+    Path,
 }
 
 fn main() -> ExitCode {
@@ -265,6 +277,12 @@ fn render(args: RenderArgs) -> ExitCode {
     }
     if let Some(seed) = args.seed {
         settings.seed = seed;
+    }
+    if let Some(integrator) = args.integrator {
+        settings.integrator = match integrator {
+            IntegratorArg::Direct => stagelight::settings::Integrator::Direct,
+            IntegratorArg::Path => stagelight::settings::Integrator::Path,
+        };
     }
     if let Some(out) = &args.output {
         if let Err(message) = override_output(&mut scene.world, out) {

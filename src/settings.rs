@@ -36,6 +36,19 @@ pub enum BvhQuality {
     High,
 }
 
+/// How the `shade` stage computes radiance.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Integrator {
+    /// Direct lighting from every light (shadow rays), emission, and perfect mirror and
+    /// refraction rays traced recursively (every delta branch, no sampling among them) up to
+    /// the trace depths. Glossy and diffuse interreflection is not computed.
+    Direct,
+    /// Unbiased path tracing: next-event estimation and BSDF sampling combined with multiple
+    /// importance sampling (power heuristic), Russian roulette; truncated only by the trace
+    /// depths. The reference the approximations are measured against.
+    Path,
+}
+
 /// Settings every stage can read.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RenderSettings {
@@ -45,8 +58,15 @@ pub struct RenderSettings {
     pub filter: PixelFilter,
     /// Seed of every random decision.
     pub seed: u64,
-    /// Maximum trace depth (1 = camera rays and their shadow rays only).
+    /// Maximum trace depth (1 = camera rays and their shadow rays only): the most surface
+    /// interactions a light path may have between the light and the camera.
     pub max_depth: u32,
+    /// Most glossy or mirror reflections along one path.
+    pub reflection_depth: u32,
+    /// Most refractions (or transparency pass-throughs) along one path.
+    pub refraction_depth: u32,
+    /// Radiance integrator of the `shade` stage.
+    pub integrator: Integrator,
     /// Face visibility.
     pub face: Face,
     /// BVH build quality.
@@ -60,6 +80,9 @@ impl Default for RenderSettings {
             filter: PixelFilter::Box,
             seed: 0,
             max_depth: 4,
+            reflection_depth: 4,
+            refraction_depth: 4,
+            integrator: Integrator::Direct,
             face: Face::Front,
             bvh_quality: BvhQuality::Medium,
         }

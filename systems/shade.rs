@@ -1,8 +1,10 @@
-//! `shade`: renders the render camera's frame buffers — primary rays per pixel sample, direct
-//! lighting with shadow rays, pixel filter, and the centre-sample passes (depth, normal).
+//! `shade`: renders the render camera's frame buffers — primary rays per pixel sample, radiance
+//! from the chosen integrator (direct lighting with traced mirror/refraction rays, or the
+//! reference path tracer), pixel filter, and the centre-sample passes (depth, normal).
 //!
 //! **Reads:** the `Camera` with `RenderCamera`; `Emitter` entities; `frame.geometry` (absent
-//! means an empty scene: every ray misses); `settings` (spp, filter, seed, face).
+//! means an empty scene: every ray misses); `settings` (spp, filter, seed, face, integrator,
+//! trace depths).
 //! **Writes:** `frame.image`.
 //! **Runs when:** the run renders and a render camera exists.
 //! **After this stage:** `frame.image` holds finite beauty, alpha, depth and normal buffers of
@@ -85,11 +87,7 @@ pub fn run(world: &mut World, frame: &mut Frame) -> Result<Work, StageError> {
                         return PixelResult::default();
                     }
                     let pixel = (y * width + x) as u64;
-                    let ctx = geometry.map(|g| ShadeContext {
-                        geometry: g,
-                        lights: &lights,
-                        face: settings.face,
-                    });
+                    let ctx = geometry.map(|g| ShadeContext::new(g, &lights, &settings));
                     let r = shade_pixel(ctx.as_ref(), &rays, &filter, seed, pixel, x, y, spp);
                     if r.dropped > 0 {
                         dropped.fetch_add(r.dropped as u64, Ordering::Relaxed);
@@ -175,7 +173,7 @@ fn shade_pixel(
             continue;
         };
         covered += 1;
-        let (radiance, _) = shade_hit(ctx, &ray, &hit, &mut sampler);
+        let radiance = shade_hit(ctx, &ray, &hit, &mut sampler);
         if radiance.is_finite() {
             sum.add(radiance);
         } else {

@@ -225,3 +225,37 @@ fn bench_reports_throughput_per_stage_and_writes_nothing_here() {
         "{text}"
     );
 }
+
+#[test]
+fn integrator_flag_selects_the_path_tracer_deterministically() {
+    let dir = scratch("integrator");
+    let mut bytes = Vec::new();
+    for (integrator, threads) in [("path", "1"), ("path", "2"), ("direct", "2")] {
+        let out = dir.join(format!("glass_{integrator}_{threads}.exr"));
+        let o = run(bin()
+            .args(["render"])
+            .arg(asset("glass.ron"))
+            .arg("-o")
+            .arg(&out)
+            .args([
+                "--spp",
+                "1",
+                "--threads",
+                threads,
+                "--integrator",
+                integrator,
+            ]));
+        assert!(o.status.success(), "{}", stderr(&o));
+        bytes.push(std::fs::read(&out).unwrap());
+    }
+    assert_eq!(
+        bytes[0], bytes[1],
+        "path tracer differs across thread counts"
+    );
+    assert_ne!(bytes[1], bytes[2], "--integrator made no difference");
+    let o = run(bin()
+        .args(["render"])
+        .arg(asset("glass.ron"))
+        .args(["--integrator", "whitted"]));
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+}

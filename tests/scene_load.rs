@@ -235,6 +235,7 @@ fn cameras_lights_and_settings() {
             max_depth: 3,
             face: Face::Both,
             bvh_quality: BvhQuality::High,
+            ..RenderSettings::default()
         }
     );
     let cam = named(w, "cam");

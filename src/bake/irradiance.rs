@@ -55,12 +55,40 @@ pub fn direct_irradiance(
     e
 }
 
-/// Diffuse reflectance used for interreflection: Lambert albedo, or the colour of the
-/// light-independent shaders.
+/// Diffuse reflectance used for interreflection (lightmaps gather diffuse light only):
+/// the diffuse lobe of each shader, the colour of the light-independent ones, zero for purely
+/// specular ones (mirror, metal, glass).
 pub fn diffuse_albedo(shader: &Shader) -> Vec3 {
     match shader {
         Shader::Lambert { albedo } => *albedo,
         Shader::Constant { color } | Shader::DefaultSurface { color, .. } => *color,
+        Shader::Phong { diffuse, .. }
+        | Shader::Blinn { diffuse, .. }
+        | Shader::CookTorrance { diffuse, .. }
+        | Shader::Blong { diffuse, .. }
+        | Shader::FresnelSpecular { diffuse, .. }
+        | Shader::Dgs { diffuse, .. } => *diffuse,
+        Shader::Matte { kd, color, .. }
+        | Shader::Plastic { kd, color, .. }
+        | Shader::PaintedPlastic { kd, color, .. } => *color * *kd,
+        Shader::Metal { .. }
+        | Shader::ShinyMetal { .. }
+        | Shader::Mirror { .. }
+        | Shader::Dielectric { .. } => Vec3::ZERO,
+        Shader::Opacity { opacity, input } => diffuse_albedo(input) * *opacity,
+    }
+}
+
+/// The surface's base colour, as the `Albedo` bake kind writes it: the diffuse reflectance,
+/// or for specular shaders their reflectance colour.
+pub fn base_color(shader: &Shader) -> Vec3 {
+    match shader {
+        Shader::Metal { color, .. }
+        | Shader::ShinyMetal { color, .. }
+        | Shader::Mirror { color } => *color,
+        Shader::Dielectric { col, .. } => *col,
+        Shader::Opacity { input, .. } => base_color(input),
+        other => diffuse_albedo(other),
     }
 }
 

@@ -9,7 +9,9 @@ use rayon::prelude::*;
 
 use crate::accumulate::SampleMean;
 use crate::bake::ao::trace_hemisphere;
-use crate::bake::irradiance::{diffuse_albedo, direct_irradiance, indirect_irradiance_sample};
+use crate::bake::irradiance::{
+    base_color, diffuse_albedo, direct_irradiance, indirect_irradiance_sample,
+};
 use crate::bake::raster::Coverage;
 use crate::bake::texture::TexelImage;
 use crate::components::{BakeKind, LightmapStore, NormalSpace};
@@ -310,7 +312,7 @@ fn texel(
             }
             BakeKind::Positions => sites.iter().map(|s| s.surface.p).sum::<Vec3>() / n_sites as f32,
             BakeKind::Albedo => {
-                diffuse_albedo(&job.geometry.materials[sites[0].material as usize].shader)
+                base_color(&job.geometry.materials[sites[0].material as usize].shader)
             }
         };
         values[k] = value.is_finite().then_some(value);

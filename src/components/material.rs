@@ -1,9 +1,14 @@
 //! Materials: which surface shader a surface uses and whether it emits light.
+//!
+//! Colours are linear RGB. Reflectance-like parameters are weights of BSDF lobes; when the
+//! weights of a shader's lobes add up to more than 1 in a channel they are scaled down so the
+//! sum is 1 (see `shading::bsdf`), so no material reflects more than it receives.
 
 use glam::Vec3;
 use hecs::Entity;
 
-/// Surface shaders of scene format v1.
+/// Surface shaders: the mental ray illumination models, the RenderMan standard surfaces and
+/// the physically based building blocks (mirror, glass, `dgs`, opacity).
 #[derive(Debug, Clone, PartialEq)]
 pub enum Shader {
     /// Flat colour, independent of lights (mental ray / RenderMan `constant`).
@@ -25,6 +30,198 @@ pub enum Shader {
         /// Diffuse reflectance in [0, 1] per channel.
         albedo: Vec3,
     },
+    /// mental ray Phong (`mi_phong_specular`): Lambert `diffuse` plus the energy-normalised
+    /// Phong lobe `specular · (n+2)/(2π) · cosⁿα` about the mirror direction.
+    Phong {
+        /// Radiance added by the direct-lighting integrator (mental ray's ambient term).
+        ambient: Vec3,
+        /// Diffuse reflectance.
+        diffuse: Vec3,
+        /// Specular weight.
+        specular: Vec3,
+        /// Phong exponent `n` (`spec_exp`).
+        spec_exp: f32,
+    },
+    /// mental ray Blinn (`mi_blinn_specular`): Cook–Torrance with one index of refraction.
+    Blinn {
+        /// Radiance added by the direct-lighting integrator.
+        ambient: Vec3,
+        /// Diffuse reflectance.
+        diffuse: Vec3,
+        /// Specular weight.
+        specular: Vec3,
+        /// RMS slope of the microfacets (Beckmann).
+        roughness: f32,
+        /// Relative index of refraction of the Fresnel term.
+        ior: f32,
+    },
+    /// mental ray Cook–Torrance (`mi_cooktorr_specular`): Beckmann microfacets, V-cavity
+    /// masking, dielectric Fresnel with one index per colour channel.
+    CookTorrance {
+        /// Radiance added by the direct-lighting integrator.
+        ambient: Vec3,
+        /// Diffuse reflectance.
+        diffuse: Vec3,
+        /// Specular weight.
+        specular: Vec3,
+        /// RMS slope of the microfacets (Beckmann).
+        roughness: f32,
+        /// Relative index of refraction per channel.
+        ior: Vec3,
+    },
+    /// Softimage "blong" (`mi_blong_specular`): Blinn's half-vector microfacet form with a
+    /// Phong exponent (normalised Blinn–Phong distribution), no Fresnel term.
+    Blong {
+        /// Radiance added by the direct-lighting integrator.
+        ambient: Vec3,
+        /// Diffuse reflectance.
+        diffuse: Vec3,
+        /// Specular weight.
+        specular: Vec3,
+        /// Blinn–Phong exponent.
+        spec_exp: f32,
+    },
+    /// Fresnel-weighted specular (`mi_fresnel_specular`): Blinn–Phong microfacet lobe
+    /// weighted by the dielectric Fresnel reflectance of `ior_in / ior_out`.
+    FresnelSpecular {
+        /// Radiance added by the direct-lighting integrator.
+        ambient: Vec3,
+        /// Diffuse reflectance.
+        diffuse: Vec3,
+        /// Specular weight.
+        specular: Vec3,
+        /// Blinn–Phong exponent.
+        spec_exp: f32,
+        /// Index of refraction inside the surface.
+        ior_in: f32,
+        /// Index of refraction outside the surface.
+        ior_out: f32,
+    },
+    /// RenderMan `matte`: `Kd · color` diffuse.
+    Matte {
+        /// Ambient weight (scales ambient light; stagelight has none yet).
+        ka: f32,
+        /// Diffuse weight.
+        kd: f32,
+        /// Surface colour.
+        color: Vec3,
+    },
+    /// RenderMan `plastic`: `Kd · color` diffuse plus `Ks · specularcolor` Blinn–Phong
+    /// highlight of exponent `1/roughness`.
+    Plastic {
+        /// Ambient weight (no effect: no ambient lights yet).
+        ka: f32,
+        /// Diffuse weight.
+        kd: f32,
+        /// Specular weight.
+        ks: f32,
+        /// RenderMan roughness; the highlight exponent is `1/roughness`.
+        roughness: f32,
+        /// Colour of the highlight.
+        specular_color: Vec3,
+        /// Surface colour.
+        color: Vec3,
+    },
+    /// RenderMan `metal`: `Ks · color` Blinn–Phong highlight of exponent `1/roughness`.
+    Metal {
+        /// Ambient weight (no effect: no ambient lights yet).
+        ka: f32,
+        /// Specular weight.
+        ks: f32,
+        /// RenderMan roughness.
+        roughness: f32,
+        /// Surface colour.
+        color: Vec3,
+    },
+    /// RenderMan `shinymetal`: `metal` plus `Kr · color` times the reflection-map lookup.
+    /// Until environment maps exist a traced perfect-mirror reflection of the scene stands in
+    /// for the map.
+    ShinyMetal {
+        /// Ambient weight (no effect: no ambient lights yet).
+        ka: f32,
+        /// Specular weight.
+        ks: f32,
+        /// Mirror-reflection weight.
+        kr: f32,
+        /// RenderMan roughness.
+        roughness: f32,
+        /// Surface colour.
+        color: Vec3,
+    },
+    /// RenderMan `paintedplastic`: `plastic` with `color` multiplied by a texture. Until
+    /// textures exist the texture stands in as white (the shader equals `plastic`).
+    PaintedPlastic {
+        /// Ambient weight (no effect: no ambient lights yet).
+        ka: f32,
+        /// Diffuse weight.
+        kd: f32,
+        /// Specular weight.
+        ks: f32,
+        /// RenderMan roughness.
+        roughness: f32,
+        /// Colour of the highlight.
+        specular_color: Vec3,
+        /// Surface colour.
+        color: Vec3,
+    },
+    /// Perfect mirror reflecting `color`.
+    Mirror {
+        /// Reflectance per channel.
+        color: Vec3,
+    },
+    /// Smooth dielectric (mental ray `dielectric_material`): Fresnel reflection and
+    /// refraction, total internal reflection, absorption inside. Always two-sided: the back
+    /// face is the inside.
+    Dielectric {
+        /// Index of refraction inside.
+        ior: f32,
+        /// Index of refraction outside.
+        ior_out: f32,
+        /// Transmittance per unit length inside (`col`): a path of length `d` inside keeps
+        /// `col^d` of its energy.
+        col: Vec3,
+    },
+    /// mental ray `dgs_material`: diffuse + glossy (Blinn–Phong exponent `shiny`) + perfect
+    /// specular reflection.
+    Dgs {
+        /// Diffuse reflectance.
+        diffuse: Vec3,
+        /// Glossy reflectance.
+        glossy: Vec3,
+        /// Perfect-mirror reflectance.
+        specular: Vec3,
+        /// Glossy exponent.
+        shiny: f32,
+    },
+    /// mental ray `mib_opacity`: `opacity · input + (1 − opacity) · what lies behind`.
+    /// Always two-sided.
+    Opacity {
+        /// Opacity per channel in [0, 1].
+        opacity: Vec3,
+        /// The shader blended over what lies behind.
+        input: Box<Shader>,
+    },
+}
+
+impl Shader {
+    /// Whether both faces are shaded whatever the material's `two_sided` says (glass has an
+    /// inside, a partly transparent sheet is seen from both sides).
+    pub fn forces_two_sided(&self) -> bool {
+        matches!(self, Shader::Dielectric { .. } | Shader::Opacity { .. })
+    }
+
+    /// Radiance the direct-lighting integrator adds as mental ray's ambient term.
+    pub fn ambient(&self) -> Vec3 {
+        match self {
+            Shader::Phong { ambient, .. }
+            | Shader::Blinn { ambient, .. }
+            | Shader::CookTorrance { ambient, .. }
+            | Shader::Blong { ambient, .. }
+            | Shader::FresnelSpecular { ambient, .. } => *ambient,
+            Shader::Opacity { opacity, input } => *opacity * input.ambient(),
+            _ => Vec3::ZERO,
+        }
+    }
 }
 
 /// A material entity's data.
@@ -43,6 +240,11 @@ impl Material {
     /// Whether the material emits light.
     pub fn is_emissive(&self) -> bool {
         self.emission.max_element() > 0.0
+    }
+
+    /// Whether the back face is shaded (the `two_sided` flag or a shader that needs it).
+    pub fn shades_back(&self) -> bool {
+        self.two_sided || self.shader.forces_two_sided()
     }
 }
 

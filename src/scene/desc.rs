@@ -51,6 +51,12 @@ pub struct OptionsDesc {
     pub face: FaceDesc,
     /// BVH build quality, default `Medium`.
     pub bvh_quality: BvhQualityDesc,
+    /// Radiance integrator, default `Direct`.
+    pub integrator: IntegratorDesc,
+    /// Most glossy/mirror reflections per path, default 4.
+    pub reflection_depth: u32,
+    /// Most refractions per path, default 4.
+    pub refraction_depth: u32,
 }
 
 impl Default for OptionsDesc {
@@ -62,6 +68,9 @@ impl Default for OptionsDesc {
             max_depth: 4,
             face: FaceDesc::Front,
             bvh_quality: BvhQualityDesc::Medium,
+            integrator: IntegratorDesc::Direct,
+            reflection_depth: 4,
+            refraction_depth: 4,
         }
     }
 }
@@ -111,6 +120,16 @@ pub enum BvhQualityDesc {
     Medium,
     /// Best hierarchy.
     High,
+}
+
+/// Radiance integrator.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename = "Integrator")]
+pub enum IntegratorDesc {
+    /// Direct lighting plus traced mirror/refraction rays.
+    Direct,
+    /// Unbiased path tracing (MIS, Russian roulette).
+    Path,
 }
 
 /// `cameras: [(...)]`: a pinhole camera.
@@ -313,6 +332,220 @@ pub enum ShaderDesc {
         #[serde(default = "default_white")]
         color: V3,
     },
+    /// mental ray Phong: diffuse + normalised Phong lobe.
+    Phong {
+        /// Ambient radiance (Direct integrator only), default `(0, 0, 0)`.
+        #[serde(default)]
+        ambient: V3,
+        /// Diffuse reflectance, default `(0.5, 0.5, 0.5)`.
+        #[serde(default = "default_half")]
+        diffuse: V3,
+        /// Specular weight, default `(0.5, 0.5, 0.5)`.
+        #[serde(default = "default_half")]
+        specular: V3,
+        /// Phong exponent, default 20, ≥ 0.
+        #[serde(default = "default_spec_exp")]
+        spec_exp: f64,
+    },
+    /// mental ray Blinn: Cook–Torrance with one index of refraction.
+    Blinn {
+        /// Ambient radiance (Direct integrator only), default `(0, 0, 0)`.
+        #[serde(default)]
+        ambient: V3,
+        /// Diffuse reflectance, default `(0.5, 0.5, 0.5)`.
+        #[serde(default = "default_half")]
+        diffuse: V3,
+        /// Specular weight, default `(1, 1, 1)`.
+        #[serde(default = "default_white")]
+        specular: V3,
+        /// RMS microfacet slope, default 0.2, > 0.
+        #[serde(default = "default_roughness_mr")]
+        roughness: f64,
+        /// Index of refraction, default 1.5, > 0.
+        #[serde(default = "default_ior")]
+        ior: f64,
+    },
+    /// mental ray Cook–Torrance: Beckmann microfacets, V-cavity masking, per-channel IOR.
+    CookTorrance {
+        /// Ambient radiance (Direct integrator only), default `(0, 0, 0)`.
+        #[serde(default)]
+        ambient: V3,
+        /// Diffuse reflectance, default `(0.5, 0.5, 0.5)`.
+        #[serde(default = "default_half")]
+        diffuse: V3,
+        /// Specular weight, default `(1, 1, 1)`.
+        #[serde(default = "default_white")]
+        specular: V3,
+        /// RMS microfacet slope, default 0.2, > 0.
+        #[serde(default = "default_roughness_mr")]
+        roughness: f64,
+        /// Index of refraction per channel, default `(1.5, 1.5, 1.5)`, > 0.
+        #[serde(default = "default_ior3")]
+        ior: V3,
+    },
+    /// Softimage blong: Blinn half-vector lobe with a Phong exponent.
+    Blong {
+        /// Ambient radiance (Direct integrator only), default `(0, 0, 0)`.
+        #[serde(default)]
+        ambient: V3,
+        /// Diffuse reflectance, default `(0.5, 0.5, 0.5)`.
+        #[serde(default = "default_half")]
+        diffuse: V3,
+        /// Specular weight, default `(0.5, 0.5, 0.5)`.
+        #[serde(default = "default_half")]
+        specular: V3,
+        /// Exponent, default 20, ≥ 0.
+        #[serde(default = "default_spec_exp")]
+        spec_exp: f64,
+    },
+    /// Fresnel-weighted specular (`mi_fresnel_specular`).
+    FresnelSpecular {
+        /// Ambient radiance (Direct integrator only), default `(0, 0, 0)`.
+        #[serde(default)]
+        ambient: V3,
+        /// Diffuse reflectance, default `(0.5, 0.5, 0.5)`.
+        #[serde(default = "default_half")]
+        diffuse: V3,
+        /// Specular weight, default `(1, 1, 1)`.
+        #[serde(default = "default_white")]
+        specular: V3,
+        /// Exponent, default 20, ≥ 0.
+        #[serde(default = "default_spec_exp")]
+        spec_exp: f64,
+        /// Index of refraction inside, default 1.5, > 0.
+        #[serde(default = "default_ior")]
+        ior_in: f64,
+        /// Index of refraction outside, default 1, > 0.
+        #[serde(default = "default_one")]
+        ior_out: f64,
+    },
+    /// RenderMan `matte`.
+    Matte {
+        /// Ambient weight, default 1 (no ambient lights yet: no effect).
+        #[serde(default = "default_one")]
+        ka: f64,
+        /// Diffuse weight, default 1.
+        #[serde(default = "default_one")]
+        kd: f64,
+        /// Colour, default `(1, 1, 1)`.
+        #[serde(default = "default_white")]
+        color: V3,
+    },
+    /// RenderMan `plastic`.
+    Plastic {
+        /// Ambient weight, default 1 (no effect yet).
+        #[serde(default = "default_one")]
+        ka: f64,
+        /// Diffuse weight, default 0.5.
+        #[serde(default = "default_half_scalar")]
+        kd: f64,
+        /// Specular weight, default 0.5.
+        #[serde(default = "default_half_scalar")]
+        ks: f64,
+        /// Roughness (highlight exponent `1/roughness`), default 0.1, > 0.
+        #[serde(default = "default_roughness_rm")]
+        roughness: f64,
+        /// Highlight colour, default `(1, 1, 1)`.
+        #[serde(default = "default_white")]
+        specularcolor: V3,
+        /// Colour, default `(1, 1, 1)`.
+        #[serde(default = "default_white")]
+        color: V3,
+    },
+    /// RenderMan `metal`.
+    Metal {
+        /// Ambient weight, default 1 (no effect yet).
+        #[serde(default = "default_one")]
+        ka: f64,
+        /// Specular weight, default 1.
+        #[serde(default = "default_one")]
+        ks: f64,
+        /// Roughness, default 0.1, > 0.
+        #[serde(default = "default_roughness_rm")]
+        roughness: f64,
+        /// Colour, default `(1, 1, 1)`.
+        #[serde(default = "default_white")]
+        color: V3,
+    },
+    /// RenderMan `shinymetal` (traced mirror reflection stands in for the reflection map).
+    ShinyMetal {
+        /// Ambient weight, default 1 (no effect yet).
+        #[serde(default = "default_one")]
+        ka: f64,
+        /// Specular weight, default 1.
+        #[serde(default = "default_one")]
+        ks: f64,
+        /// Reflection weight, default 1.
+        #[serde(default = "default_one")]
+        kr: f64,
+        /// Roughness, default 0.1, > 0.
+        #[serde(default = "default_roughness_rm")]
+        roughness: f64,
+        /// Colour, default `(1, 1, 1)`.
+        #[serde(default = "default_white")]
+        color: V3,
+    },
+    /// RenderMan `paintedplastic` (white stands in for the texture).
+    PaintedPlastic {
+        /// Ambient weight, default 1 (no effect yet).
+        #[serde(default = "default_one")]
+        ka: f64,
+        /// Diffuse weight, default 0.5.
+        #[serde(default = "default_half_scalar")]
+        kd: f64,
+        /// Specular weight, default 0.5.
+        #[serde(default = "default_half_scalar")]
+        ks: f64,
+        /// Roughness, default 0.1, > 0.
+        #[serde(default = "default_roughness_rm")]
+        roughness: f64,
+        /// Highlight colour, default `(1, 1, 1)`.
+        #[serde(default = "default_white")]
+        specularcolor: V3,
+        /// Colour, default `(1, 1, 1)`.
+        #[serde(default = "default_white")]
+        color: V3,
+    },
+    /// Perfect mirror.
+    Mirror {
+        /// Reflectance, default `(1, 1, 1)`.
+        #[serde(default = "default_white")]
+        color: V3,
+    },
+    /// Smooth dielectric (glass).
+    Dielectric {
+        /// Index of refraction inside, default 1.5, > 0.
+        #[serde(default = "default_ior")]
+        ior: f64,
+        /// Index of refraction outside, default 1, > 0.
+        #[serde(default = "default_one")]
+        ior_out: f64,
+        /// Transmittance per unit length inside, default `(1, 1, 1)`, each in [0, 1].
+        #[serde(default = "default_white")]
+        col: V3,
+    },
+    /// mental ray `dgs_material`.
+    Dgs {
+        /// Diffuse reflectance, default `(0, 0, 0)`.
+        #[serde(default)]
+        diffuse: V3,
+        /// Glossy reflectance, default `(0, 0, 0)`.
+        #[serde(default)]
+        glossy: V3,
+        /// Mirror reflectance, default `(0, 0, 0)`.
+        #[serde(default)]
+        specular: V3,
+        /// Glossy exponent, default 20, ≥ 0.
+        #[serde(default = "default_spec_exp")]
+        shiny: f64,
+    },
+    /// mental ray `mib_opacity`: blend `input` over what lies behind.
+    Opacity {
+        /// Opacity per channel in [0, 1].
+        opacity: V3,
+        /// The shader blended over what lies behind.
+        input: Box<ShaderDesc>,
+    },
 }
 
 fn default_ka() -> f64 {
@@ -321,6 +554,34 @@ fn default_ka() -> f64 {
 
 fn default_kd() -> f64 {
     0.8
+}
+
+fn default_half() -> V3 {
+    (0.5, 0.5, 0.5)
+}
+
+fn default_half_scalar() -> f64 {
+    0.5
+}
+
+fn default_spec_exp() -> f64 {
+    20.0
+}
+
+fn default_roughness_mr() -> f64 {
+    0.2
+}
+
+fn default_roughness_rm() -> f64 {
+    0.1
+}
+
+fn default_ior() -> f64 {
+    1.5
+}
+
+fn default_ior3() -> V3 {
+    (1.5, 1.5, 1.5)
 }
 
 /// `objects: [(...)]`: a mesh prototype.

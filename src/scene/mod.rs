@@ -19,6 +19,7 @@ pub(crate) mod diagnostics;
 pub(crate) mod include;
 pub(crate) mod mesh_load;
 pub(crate) mod names;
+pub(crate) mod shaders;
 pub(crate) mod spans;
 pub(crate) mod spawn;
 pub(crate) mod suggest;

@@ -8,14 +8,14 @@ use glam::{DAffine3, DMat3, DVec3};
 
 use super::desc::{
     BvhQualityDesc, CameraDesc, FaceDesc, FilterDesc, FormatDesc, GroupDesc, InstanceDesc,
-    LightDesc, LightKindDesc, MaterialDesc, ObjectDesc, OptionsDesc, OutputDesc, PassDesc,
-    PlacementDesc, RenderDesc, SceneDesc, ShaderDesc, M4, V3,
+    IntegratorDesc, LightDesc, LightKindDesc, MaterialDesc, ObjectDesc, OptionsDesc, OutputDesc,
+    PassDesc, PlacementDesc, RenderDesc, SceneDesc, M4, V3,
 };
 use super::diagnostics::Sources;
 use crate::components::{
     Camera, Emitter, ImageFormat, LightShape, Material, OutputSpec, Pass, Shader,
 };
-use crate::settings::{BvhQuality, Face, PixelFilter, RenderSettings};
+use crate::settings::{BvhQuality, Face, Integrator, PixelFilter, RenderSettings};
 
 /// One element of the merged scene: where it was written and what it says.
 #[derive(Debug)]
@@ -238,6 +238,10 @@ pub fn settings(src: &mut Sources, options: Option<&Item<'_, OptionsDesc>>) -> R
     if o.samples == 0 {
         ck.error(&item.at(".samples"), "samples must be at least 1, found 0");
     }
+    let integrator = match o.integrator {
+        IntegratorDesc::Direct => Integrator::Direct,
+        IntegratorDesc::Path => Integrator::Path,
+    };
     if o.max_depth == 0 {
         ck.error(
             &item.at(".max_depth"),
@@ -264,6 +268,9 @@ pub fn settings(src: &mut Sources, options: Option<&Item<'_, OptionsDesc>>) -> R
         filter,
         seed: o.seed,
         max_depth: o.max_depth,
+        reflection_depth: o.reflection_depth,
+        refraction_depth: o.refraction_depth,
+        integrator,
         face: match o.face {
             FaceDesc::Front => Face::Front,
             FaceDesc::Both => Face::Both,
@@ -588,42 +595,8 @@ pub fn material(src: &mut Sources, item: &Item<'_, MaterialDesc>) -> Option<Mate
         src,
         file: item.file,
     };
-    let shader = |s: &str| item.at(&format!(".shader.{s}"));
     let emission = ck.colour(&item.at(".emission"), "emission", m.emission);
-    let shader = match &m.shader {
-        ShaderDesc::Lambert { albedo } => {
-            let path = shader("Lambert.albedo");
-            let a = ck.colour(&path, "albedo", *albedo)?;
-            let mut ok = true;
-            for (k, x) in a.to_array().into_iter().enumerate() {
-                if x > 1.0 {
-                    ck.error(
-                        &format!("{path}[{k}]"),
-                        format!("albedo must be at most 1 (energy conservation), found {x}"),
-                    );
-                    ok = false;
-                }
-            }
-            ok.then_some(Shader::Lambert {
-                albedo: a.as_vec3(),
-            })?
-        }
-        ShaderDesc::Constant { color } => Shader::Constant {
-            color: ck
-                .colour(&shader("Constant.color"), "color", *color)?
-                .as_vec3(),
-        },
-        ShaderDesc::DefaultSurface { ka, kd, color } => {
-            let ka = ck.non_negative(&shader("DefaultSurface.ka"), "ka", *ka);
-            let kd = ck.non_negative(&shader("DefaultSurface.kd"), "kd", *kd);
-            let color = ck.colour(&shader("DefaultSurface.color"), "color", *color);
-            Shader::DefaultSurface {
-                ka: ka? as f32,
-                kd: kd? as f32,
-                color: color?.as_vec3(),
-            }
-        }
-    };
+    let shader = super::shaders::shader(&mut ck, &item.at(".shader"), &m.shader)?;
     Some(Material {
         shader,
         two_sided: m.two_sided,

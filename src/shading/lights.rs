@@ -6,7 +6,7 @@
 
 use glam::{Vec2, Vec3};
 
-use crate::accel::SurfacePoint;
+use crate::accel::{Ray, SurfacePoint};
 use crate::components::{Emitter, LightShape};
 use crate::geometry::SceneGeometry;
 
@@ -91,6 +91,9 @@ pub struct LightSample {
     pub target: Option<SurfacePoint>,
     /// Whether a shadow ray is needed.
     pub shadows: bool,
+    /// Solid-angle pdf of the sample; 0 for delta lights (point, spot, directional), which
+    /// no other strategy can reach.
+    pub pdf: f32,
 }
 
 impl Light {
@@ -173,6 +176,7 @@ impl Light {
                     contribution: *intensity / dist2,
                     target: Some(point_target(*position)),
                     shadows: *shadows,
+                    pdf: 0.0,
                 })
             }
             Light::Spot {
@@ -200,6 +204,7 @@ impl Light {
                     contribution: *intensity * (falloff / dist2),
                     target: Some(point_target(*position)),
                     shadows: *shadows,
+                    pdf: 0.0,
                 })
             }
             Light::Directional {
@@ -211,6 +216,7 @@ impl Light {
                 contribution: *irradiance,
                 target: None,
                 shadows: *shadows,
+                pdf: 0.0,
             }),
             Light::Rect {
                 corner,
@@ -269,6 +275,54 @@ impl Light {
     }
 }
 
+impl Light {
+    /// Where a ray meets this light, if it is an area light that rays can hit (`Rect`, whose
+    /// front face only is seen): the ray parameter, the emitted radiance, and the solid-angle
+    /// pdf with which [`Light::sample`] would have chosen that direction from the ray origin.
+    /// Emitting meshes are geometry: see [`LightSet::mesh_pdf`].
+    pub fn hit(&self, ray: &Ray) -> Option<(f32, Vec3, f32)> {
+        let Light::Rect {
+            corner,
+            edge_u,
+            edge_v,
+            normal,
+            area,
+            radiance,
+            ..
+        } = self
+        else {
+            return None;
+        };
+        let denom = ray.dir.dot(*normal);
+        if denom.is_nan() || denom >= 0.0 {
+            return None;
+        }
+        let t = (*corner - ray.origin).dot(*normal) / denom;
+        if !(t > 0.0 && t < ray.t_max) {
+            return None;
+        }
+        let q = ray.origin + ray.dir * t - *corner;
+        // Coordinates of q in the (edge_u, edge_v) basis via the dual basis.
+        let (uu, uv, vv) = (
+            edge_u.dot(*edge_u),
+            edge_u.dot(*edge_v),
+            edge_v.dot(*edge_v),
+        );
+        let det = uu * vv - uv * uv;
+        let (qu, qv) = (q.dot(*edge_u), q.dot(*edge_v));
+        let s = (qu * vv - qv * uv) / det;
+        let r = (qv * uu - qu * uv) / det;
+        if !((0.0..=1.0).contains(&s) && (0.0..=1.0).contains(&r)) {
+            return None;
+        }
+        let len = ray.dir.length();
+        let dist = t * len;
+        let cos_l = -denom / len;
+        let pdf = dist * dist / (cos_l * area);
+        (pdf.is_finite() && pdf > 0.0).then_some((t, *radiance, pdf))
+    }
+}
+
 /// A shadow-ray target at an exactly known point (no error to account for).
 fn point_target(q: Vec3) -> SurfacePoint {
     SurfacePoint {
@@ -316,7 +370,8 @@ fn area_sample(
     }
     target.ng = light_normal;
     let contribution = radiance * (cos_l * inv_pdf_area / dist2);
-    if !contribution.is_finite() {
+    let pdf = dist2 / (cos_l * inv_pdf_area);
+    if !(contribution.is_finite() && pdf > 0.0 && pdf.is_finite()) {
         return None;
     }
     Some(LightSample {
@@ -324,6 +379,7 @@ fn area_sample(
         contribution,
         target: Some(target),
         shadows,
+        pdf,
     })
 }
 
@@ -390,6 +446,33 @@ impl LightSet {
             }
         }
         Self { lights }
+    }
+
+    /// Solid-angle pdf with which the emitting-mesh light samples the point `q` (geometric
+    /// normal `ng`, emitted radiance `emission`, `two_sided` emission) from `p`; 0 when no
+    /// mesh light exists or `q` faces away.
+    pub fn mesh_pdf(&self, p: Vec3, q: Vec3, ng: Vec3, emission: Vec3, two_sided: bool) -> f32 {
+        let Some(total) = self.lights.iter().find_map(|l| match l {
+            Light::Mesh { total_weight, .. } => Some(*total_weight),
+            _ => None,
+        }) else {
+            return 0.0;
+        };
+        let d = q - p;
+        let dist2 = d.length_squared();
+        let mut cos_l = ng.dot(-d) / dist2.sqrt();
+        if two_sided {
+            cos_l = cos_l.abs();
+        }
+        if cos_l.is_nan() || cos_l <= 0.0 || total <= 0.0 {
+            return 0.0;
+        }
+        let pdf = emission.max_element() / total * dist2 / cos_l;
+        if pdf.is_finite() {
+            pdf
+        } else {
+            0.0
+        }
     }
 }
 

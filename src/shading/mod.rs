@@ -1,14 +1,21 @@
-//! The shading library: camera rays, pixel filters, light sampling and surface shaders.
+//! The shading library: camera rays, pixel filters, light sampling, BSDFs and the radiance
+//! integrators.
 //!
 //! Stages call into it; it knows nothing about stages or the ECS beyond plain component data.
 
+pub mod bsdf;
 pub mod camera;
-pub mod direct;
 pub mod filter;
+pub mod frame;
+pub mod fresnel;
+pub mod integrator;
 pub mod lights;
+pub mod microfacet;
+pub mod mis;
 pub mod surface;
 
+pub use bsdf::{Bsdf, BsdfSample};
 pub use camera::CameraRays;
-pub use direct::{shade_hit, ShadeContext};
 pub use filter::FilterSampler;
+pub use integrator::{shade_hit, ShadeContext};
 pub use lights::{Light, LightSample, LightSet};

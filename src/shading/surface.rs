@@ -1,29 +1,18 @@
-//! Surface shaders of scene format v1: what each returns for a view direction and, for
-//! light-dependent shaders, their BRDF.
-
-use std::f32::consts::FRAC_1_PI;
+//! Shaders that do not integrate light: what they return for a view direction.
 
 use glam::Vec3;
 
 use crate::components::Shader;
 
 /// Radiance a shader returns without consulting lights (`None` for shaders that integrate
-/// light: their result comes from [`brdf`] and the light loop).
+/// light: their result comes from their [`crate::shading::bsdf::Bsdf`]).
 ///
 /// `cos_view` is `|N·I|`, the cosine between the shading normal and the view direction.
 pub fn unlit_radiance(shader: &Shader, cos_view: f32) -> Option<Vec3> {
     match shader {
         Shader::Constant { color } => Some(*color),
         Shader::DefaultSurface { ka, kd, color } => Some(*color * (*ka + *kd * cos_view.abs())),
-        Shader::Lambert { .. } => None,
-    }
-}
-
-/// The BRDF value (constant for the diffuse shaders of v1), W/(sr·m²) per W/m².
-pub fn brdf(shader: &Shader) -> Vec3 {
-    match shader {
-        Shader::Lambert { albedo } => *albedo * FRAC_1_PI,
-        Shader::Constant { .. } | Shader::DefaultSurface { .. } => Vec3::ZERO,
+        _ => None,
     }
 }
 
@@ -43,11 +32,10 @@ mod tests {
     }
 
     #[test]
-    fn lambert_brdf_integrates_to_albedo() {
-        // ∫ f cosθ dω over the hemisphere = f · π.
-        let f = brdf(&Shader::Lambert {
+    fn lambert_integrates_light() {
+        let s = Shader::Lambert {
             albedo: Vec3::splat(0.8),
-        });
-        assert!((f.x * std::f32::consts::PI - 0.8).abs() < 1e-6);
+        };
+        assert!(unlit_radiance(&s, 1.0).is_none());
     }
 }

@@ -107,3 +107,115 @@ pub fn render(world: &mut World, settings: RenderSettings) -> Frame {
     stagelight::schedule::run_stages(&stages, world, &mut frame).expect("render");
     frame
 }
+pub mod chi2;
+
+/// An axis-aligned box from `a` to `b` with outward-facing, counter-clockwise faces.
+pub fn box_mesh(a: Vec3, b: Vec3) -> TriMesh {
+    let faces: [[Vec3; 4]; 6] = [
+        [
+            Vec3::new(a.x, a.y, b.z),
+            Vec3::new(b.x, a.y, b.z),
+            Vec3::new(b.x, b.y, b.z),
+            Vec3::new(a.x, b.y, b.z),
+        ],
+        [
+            Vec3::new(a.x, a.y, a.z),
+            Vec3::new(a.x, b.y, a.z),
+            Vec3::new(b.x, b.y, a.z),
+            Vec3::new(b.x, a.y, a.z),
+        ],
+        [
+            Vec3::new(b.x, a.y, a.z),
+            Vec3::new(b.x, b.y, a.z),
+            Vec3::new(b.x, b.y, b.z),
+            Vec3::new(b.x, a.y, b.z),
+        ],
+        [
+            Vec3::new(a.x, a.y, a.z),
+            Vec3::new(a.x, a.y, b.z),
+            Vec3::new(a.x, b.y, b.z),
+            Vec3::new(a.x, b.y, a.z),
+        ],
+        [
+            Vec3::new(a.x, b.y, a.z),
+            Vec3::new(a.x, b.y, b.z),
+            Vec3::new(b.x, b.y, b.z),
+            Vec3::new(b.x, b.y, a.z),
+        ],
+        [
+            Vec3::new(a.x, a.y, a.z),
+            Vec3::new(b.x, a.y, a.z),
+            Vec3::new(b.x, a.y, b.z),
+            Vec3::new(a.x, a.y, b.z),
+        ],
+    ];
+    let mut positions = Vec::new();
+    let mut triangles = Vec::new();
+    for f in faces {
+        let base = positions.len() as u32;
+        positions.extend_from_slice(&f);
+        triangles.push([base, base + 1, base + 2]);
+        triangles.push([base, base + 2, base + 3]);
+    }
+    TriMesh {
+        positions,
+        normals: None,
+        uvs: None,
+        triangles,
+    }
+}
+
+/// A UV sphere of radius `r` at `centre` with outward normals and smooth vertex normals.
+pub fn sphere_mesh(centre: Vec3, r: f32, rings: u32, segments: u32) -> TriMesh {
+    let mut positions = Vec::new();
+    let mut normals = Vec::new();
+    for i in 0..=rings {
+        let theta = std::f32::consts::PI * i as f32 / rings as f32;
+        for j in 0..=segments {
+            let phi = 2.0 * std::f32::consts::PI * j as f32 / segments as f32;
+            let n = Vec3::new(
+                theta.sin() * phi.cos(),
+                theta.sin() * phi.sin(),
+                theta.cos(),
+            );
+            positions.push(centre + n * r);
+            normals.push(n);
+        }
+    }
+    let mut triangles = Vec::new();
+    let w = segments + 1;
+    for i in 0..rings {
+        for j in 0..segments {
+            let (a, b, c, d) = (
+                i * w + j,
+                i * w + j + 1,
+                (i + 1) * w + j + 1,
+                (i + 1) * w + j,
+            );
+            if i != 0 {
+                triangles.push([a, d, b]);
+            }
+            if i != rings - 1 {
+                triangles.push([b, d, c]);
+            }
+        }
+    }
+    TriMesh {
+        positions,
+        normals: Some(normals),
+        uvs: None,
+        triangles,
+    }
+}
+
+/// Spawns a material entity with every field given.
+pub fn material_full(world: &mut World, shader: Shader, two_sided: bool, emission: Vec3) -> Entity {
+    world.spawn((
+        Name("m".into()),
+        Material {
+            shader,
+            two_sided,
+            emission,
+        },
+    ))
+}

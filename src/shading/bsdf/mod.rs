@@ -1,0 +1,495 @@
+//! BSDFs in the local shading frame (normal = +Z, `wo` on the +Z side), built from a
+//! material's [`Shader`].
+//!
+//! A [`Bsdf`] is a weighted sum of up to [`MAX_LOBES`] lobes (one file per family):
+//! Lambert ([`diffuse`]), modified Phong ([`phong`]), microfacet reflection ([`glossy`])
+//! and the delta lobes ([`specular`]: mirror, smooth dielectric, pass-through).
+//!
+//! **Energy.** Lobe weights are colours. If the weights of a material add up to more than 1 in
+//! a channel, all weights of that channel are divided by their sum. Every lobe alone reflects
+//! at most what it receives (Lambert: 1; normalised Phong: ≤ 1; microfacet with V-cavity
+//! masking and Fresnel ≤ 1: ≤ 1; mirror: 1; dielectric: R + T = 1), so every material does.
+//!
+//! **Sampling.** A lobe is chosen with probability proportional to the largest channel of
+//! its weight, then sampled. [`Bsdf::pdf`] and [`Bsdf::eval`] cover the non-delta lobes
+//! only; a delta sample reports `delta = true` and `f` such that `f·|cosθi|/pdf` is its
+//! throughput weight.
+
+pub mod diffuse;
+pub mod glossy;
+pub mod phong;
+pub mod specular;
+
+use glam::{Vec2, Vec3};
+
+use self::glossy::Fresnel;
+use self::specular::DeltaBranch;
+use crate::components::Shader;
+use crate::shading::microfacet::Distribution;
+
+/// Most lobes a material has (`dgs` inside `Opacity`: diffuse, glossy, mirror, pass-through).
+pub const MAX_LOBES: usize = 4;
+
+/// One scattering lobe, unweighted.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Lobe {
+    /// Ideal diffuse.
+    Lambert,
+    /// Modified Phong about the mirror direction.
+    Phong {
+        /// Exponent.
+        exponent: f32,
+    },
+    /// Microfacet reflection.
+    Glossy {
+        /// Distribution of microfacet normals.
+        dist: Distribution,
+        /// Fresnel factor.
+        fresnel: Fresnel,
+    },
+    /// Perfect mirror (delta).
+    Mirror,
+    /// Smooth dielectric interface (delta reflection + refraction).
+    Dielectric {
+        /// `η` behind the surface over `η` on the side of `wo`.
+        eta: f32,
+    },
+    /// Straight pass-through (delta transmission): what lies behind.
+    PassThrough,
+}
+
+impl Lobe {
+    /// Whether the lobe is a Dirac delta.
+    pub fn is_delta(&self) -> bool {
+        matches!(
+            self,
+            Lobe::Mirror | Lobe::Dielectric { .. } | Lobe::PassThrough
+        )
+    }
+
+    fn eval(&self, wo: Vec3, wi: Vec3) -> Vec3 {
+        match self {
+            Lobe::Lambert => Vec3::splat(diffuse::eval(wo, wi)),
+            Lobe::Phong { exponent } => Vec3::splat(phong::eval(*exponent, wo, wi)),
+            Lobe::Glossy { dist, fresnel } => glossy::eval(dist, fresnel, wo, wi),
+            _ => Vec3::ZERO,
+        }
+    }
+
+    fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
+        match self {
+            Lobe::Lambert => diffuse::pdf(wo, wi),
+            Lobe::Phong { exponent } => phong::pdf(*exponent, wo, wi),
+            Lobe::Glossy { dist, .. } => glossy::pdf(dist, wo, wi),
+            _ => 0.0,
+        }
+    }
+}
+
+/// How a sampled direction leaves the surface (for per-ray-type trace depths).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Scatter {
+    /// Diffuse reflection.
+    Diffuse,
+    /// Glossy or perfect-mirror reflection (counts against the reflection depth).
+    Reflection,
+    /// Refraction or pass-through (counts against the refraction depth).
+    Transmission,
+}
+
+/// A sampled direction.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BsdfSample {
+    /// Local direction toward the incident light.
+    pub wi: Vec3,
+    /// BSDF value (delta: the value whose `f·|cosθi|/pdf` is the throughput weight).
+    pub f: Vec3,
+    /// Solid-angle pdf (delta: the discrete probability of the branch, times lobe choice).
+    pub pdf: f32,
+    /// Whether the direction came from a delta lobe.
+    pub delta: bool,
+    /// Kind of scattering.
+    pub scatter: Scatter,
+}
+
+impl BsdfSample {
+    /// Throughput weight `f·|cosθi|/pdf`.
+    pub fn weight(&self) -> Vec3 {
+        self.f * (self.wi.z.abs() / self.pdf)
+    }
+}
+
+/// A delta branch with its colour weight, for integrators that trace every branch.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WeightedBranch {
+    /// Local direction toward the incident light.
+    pub wi: Vec3,
+    /// Radiance fraction per channel.
+    pub weight: Vec3,
+    /// Whether the branch crosses the surface.
+    pub transmits: bool,
+}
+
+/// A material's BSDF at one shading point, in the local frame.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Bsdf {
+    lobes: [(Vec3, Lobe); MAX_LOBES],
+    len: usize,
+    /// Lobe choice probabilities (sum 1 over `len` lobes).
+    prob: [f32; MAX_LOBES],
+}
+
+impl Bsdf {
+    /// The BSDF of `shader` seen from the front (`front = true`) or back face. `None` for
+    /// shaders that do not integrate light (`Constant`, `DefaultSurface`) or that reflect
+    /// nothing.
+    pub fn new(shader: &Shader, front: bool) -> Option<Self> {
+        let mut b = Self {
+            lobes: [(Vec3::ZERO, Lobe::Lambert); MAX_LOBES],
+            len: 0,
+            prob: [0.0; MAX_LOBES],
+        };
+        b.push_shader(shader, Vec3::ONE, front);
+        b.finish()
+    }
+
+    /// A BSDF made of the given weighted lobes (energy clamp and probabilities applied).
+    pub fn from_lobes(lobes: &[(Vec3, Lobe)]) -> Option<Self> {
+        let mut b = Self {
+            lobes: [(Vec3::ZERO, Lobe::Lambert); MAX_LOBES],
+            len: 0,
+            prob: [0.0; MAX_LOBES],
+        };
+        for &(w, l) in lobes {
+            b.push(w, l);
+        }
+        b.finish()
+    }
+
+    fn push(&mut self, weight: Vec3, lobe: Lobe) {
+        if weight.max_element() <= 0.0 {
+            return;
+        }
+        if let Some(slot) = self.lobes[..self.len].iter_mut().find(|(_, l)| *l == lobe) {
+            slot.0 += weight;
+            return;
+        }
+        if self.len < MAX_LOBES {
+            self.lobes[self.len] = (weight, lobe);
+            self.len += 1;
+        }
+    }
+
+    fn push_shader(&mut self, shader: &Shader, w: Vec3, front: bool) {
+        let spec = |roughness: f32| Lobe::Glossy {
+            dist: Distribution::BlinnPhong {
+                exponent: 1.0 / roughness.max(1e-4),
+            },
+            fresnel: Fresnel::One,
+        };
+        match shader {
+            Shader::Constant { .. } | Shader::DefaultSurface { .. } => {}
+            Shader::Lambert { albedo } => self.push(w * *albedo, Lobe::Lambert),
+            Shader::Phong {
+                diffuse,
+                specular,
+                spec_exp,
+                ..
+            } => {
+                self.push(w * *diffuse, Lobe::Lambert);
+                self.push(
+                    w * *specular,
+                    Lobe::Phong {
+                        exponent: *spec_exp,
+                    },
+                );
+            }
+            Shader::Blinn {
+                diffuse,
+                specular,
+                roughness,
+                ior,
+                ..
+            } => {
+                self.push(w * *diffuse, Lobe::Lambert);
+                self.push(
+                    w * *specular,
+                    Lobe::Glossy {
+                        dist: Distribution::Beckmann { alpha: *roughness },
+                        fresnel: Fresnel::Dielectric(Vec3::splat(*ior)),
+                    },
+                );
+            }
+            Shader::CookTorrance {
+                diffuse,
+                specular,
+                roughness,
+                ior,
+                ..
+            } => {
+                self.push(w * *diffuse, Lobe::Lambert);
+                self.push(
+                    w * *specular,
+                    Lobe::Glossy {
+                        dist: Distribution::Beckmann { alpha: *roughness },
+                        fresnel: Fresnel::Dielectric(*ior),
+                    },
+                );
+            }
+            Shader::Blong {
+                diffuse,
+                specular,
+                spec_exp,
+                ..
+            } => {
+                self.push(w * *diffuse, Lobe::Lambert);
+                self.push(
+                    w * *specular,
+                    Lobe::Glossy {
+                        dist: Distribution::BlinnPhong {
+                            exponent: *spec_exp,
+                        },
+                        fresnel: Fresnel::One,
+                    },
+                );
+            }
+            Shader::FresnelSpecular {
+                diffuse,
+                specular,
+                spec_exp,
+                ior_in,
+                ior_out,
+                ..
+            } => {
+                self.push(w * *diffuse, Lobe::Lambert);
+                self.push(
+                    w * *specular,
+                    Lobe::Glossy {
+                        dist: Distribution::BlinnPhong {
+                            exponent: *spec_exp,
+                        },
+                        fresnel: Fresnel::Dielectric(Vec3::splat(ior_in / ior_out)),
+                    },
+                );
+            }
+            Shader::Matte { kd, color, .. } => self.push(w * *kd * *color, Lobe::Lambert),
+            Shader::Plastic {
+                kd,
+                ks,
+                roughness,
+                specular_color,
+                color,
+                ..
+            }
+            | Shader::PaintedPlastic {
+                kd,
+                ks,
+                roughness,
+                specular_color,
+                color,
+                ..
+            } => {
+                self.push(w * *kd * *color, Lobe::Lambert);
+                self.push(w * *ks * *specular_color, spec(*roughness));
+            }
+            Shader::Metal {
+                ks,
+                roughness,
+                color,
+                ..
+            } => self.push(w * *ks * *color, spec(*roughness)),
+            Shader::ShinyMetal {
+                ks,
+                kr,
+                roughness,
+                color,
+                ..
+            } => {
+                self.push(w * *ks * *color, spec(*roughness));
+                self.push(w * *kr * *color, Lobe::Mirror);
+            }
+            Shader::Mirror { color } => self.push(w * *color, Lobe::Mirror),
+            Shader::Dielectric { ior, ior_out, .. } => {
+                let eta = if front { ior / ior_out } else { ior_out / ior };
+                self.push(w, Lobe::Dielectric { eta });
+            }
+            Shader::Dgs {
+                diffuse,
+                glossy,
+                specular,
+                shiny,
+            } => {
+                self.push(w * *diffuse, Lobe::Lambert);
+                self.push(
+                    w * *glossy,
+                    Lobe::Glossy {
+                        dist: Distribution::BlinnPhong { exponent: *shiny },
+                        fresnel: Fresnel::One,
+                    },
+                );
+                self.push(w * *specular, Lobe::Mirror);
+            }
+            Shader::Opacity { opacity, input } => {
+                let o = opacity.clamp(Vec3::ZERO, Vec3::ONE);
+                self.push_shader(input, w * o, front);
+                self.push(w * (Vec3::ONE - o), Lobe::PassThrough);
+            }
+        }
+    }
+
+    fn finish(mut self) -> Option<Self> {
+        if self.len == 0 {
+            return None;
+        }
+        let sum = self.lobes[..self.len]
+            .iter()
+            .fold(Vec3::ZERO, |s, (w, _)| s + *w);
+        let scale = Vec3::ONE / sum.max(Vec3::ONE);
+        for (w, _) in &mut self.lobes[..self.len] {
+            *w *= scale;
+        }
+        let total: f32 = self.lobes[..self.len]
+            .iter()
+            .map(|(w, _)| w.max_element())
+            .sum();
+        if total <= 0.0 {
+            return None;
+        }
+        for i in 0..self.len {
+            self.prob[i] = self.lobes[i].0.max_element() / total;
+        }
+        Some(self)
+    }
+
+    /// The weighted lobes (after the energy clamp).
+    pub fn lobes(&self) -> &[(Vec3, Lobe)] {
+        &self.lobes[..self.len]
+    }
+
+    /// Whether some lobe is not a delta (light sampling can contribute).
+    pub fn has_non_delta(&self) -> bool {
+        self.lobes().iter().any(|(_, l)| !l.is_delta())
+    }
+
+    /// Whether some lobe is a delta (needs traced reflection/refraction rays).
+    pub fn has_delta(&self) -> bool {
+        self.lobes().iter().any(|(_, l)| l.is_delta())
+    }
+
+    /// BSDF value of the non-delta lobes for light arriving from `wi` and leaving along `wo`.
+    pub fn eval(&self, wo: Vec3, wi: Vec3) -> Vec3 {
+        self.lobes()
+            .iter()
+            .fold(Vec3::ZERO, |s, (w, l)| s + *w * l.eval(wo, wi))
+    }
+
+    /// Solid-angle pdf with which [`Bsdf::sample`] returns the non-delta direction `wi`.
+    pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
+        self.lobes()
+            .iter()
+            .zip(&self.prob)
+            .map(|((_, l), p)| p * l.pdf(wo, wi))
+            .sum()
+    }
+
+    /// Draws a direction from `u ∈ [0,1)³` (`u.x` chooses the lobe and, re-used, a
+    /// dielectric's branch). `None` when the chosen lobe produced no valid direction.
+    pub fn sample(&self, wo: Vec3, u: Vec3) -> Option<BsdfSample> {
+        if wo.z <= 0.0 {
+            return None;
+        }
+        let mut acc = 0.0;
+        let mut k = self.len - 1;
+        for i in 0..self.len {
+            if u.x < acc + self.prob[i] || i == self.len - 1 {
+                k = i;
+                break;
+            }
+            acc += self.prob[i];
+        }
+        let p = self.prob[k];
+        let uc = if p > 0.0 {
+            ((u.x - acc) / p).clamp(0.0, 1.0 - f32::EPSILON)
+        } else {
+            0.0
+        };
+        let u2 = Vec2::new(u.y, u.z);
+        let (w, lobe) = self.lobes[k];
+        let delta = |b: DeltaBranch, prob: f32| {
+            let cos = b.wi.z.abs();
+            (cos > 0.0 && prob > 0.0).then(|| BsdfSample {
+                wi: b.wi,
+                f: w * (b.weight / cos),
+                pdf: p * prob,
+                delta: true,
+                scatter: if b.transmits {
+                    Scatter::Transmission
+                } else {
+                    Scatter::Reflection
+                },
+            })
+        };
+        let wi = match lobe {
+            Lobe::Mirror => return delta(specular::mirror(wo), 1.0),
+            Lobe::PassThrough => return delta(specular::pass_through(wo), 1.0),
+            Lobe::Dielectric { eta } => {
+                let pr = specular::dielectric_reflect_probability(wo, eta);
+                let (r, t) = specular::dielectric(wo, eta);
+                return match t {
+                    Some(t) if uc >= pr => delta(t, 1.0 - pr),
+                    _ => delta(r, if t.is_some() { pr } else { 1.0 }),
+                };
+            }
+            Lobe::Lambert => diffuse::sample(wo, u2)?,
+            Lobe::Phong { exponent } => phong::sample(exponent, wo, u2)?,
+            Lobe::Glossy { dist, .. } => glossy::sample(&dist, wo, u2)?,
+        };
+        let pdf = self.pdf(wo, wi);
+        let f = self.eval(wo, wi);
+        (pdf > 0.0 && pdf.is_finite()).then_some(BsdfSample {
+            wi,
+            f,
+            pdf,
+            delta: false,
+            scatter: if matches!(lobe, Lobe::Lambert) {
+                Scatter::Diffuse
+            } else {
+                Scatter::Reflection
+            },
+        })
+    }
+
+    /// Every delta branch with its colour weight (a dielectric gives its reflected and
+    /// refracted branches), for integrators that trace all of them.
+    pub fn delta_branches(&self, wo: Vec3) -> impl Iterator<Item = WeightedBranch> + '_ {
+        let mut out = [None; MAX_LOBES + 1];
+        let mut n = 0;
+        if wo.z > 0.0 {
+            for &(w, lobe) in self.lobes() {
+                let mut add = |b: DeltaBranch| {
+                    if b.weight > 0.0 && n < out.len() {
+                        out[n] = Some(WeightedBranch {
+                            wi: b.wi,
+                            weight: w * b.weight,
+                            transmits: b.transmits,
+                        });
+                        n += 1;
+                    }
+                };
+                match lobe {
+                    Lobe::Mirror => add(specular::mirror(wo)),
+                    Lobe::PassThrough => add(specular::pass_through(wo)),
+                    Lobe::Dielectric { eta } => {
+                        let (r, t) = specular::dielectric(wo, eta);
+                        add(r);
+                        if let Some(t) = t {
+                            add(t);
+                        }
+                    }
+                    _ => {}
+                }
+            }
+        }
+        out.into_iter().flatten()
+    }
+}

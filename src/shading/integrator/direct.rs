@@ -1,0 +1,58 @@
+//! The default integrator: emission, mental ray's ambient term, direct light from every
+//! light with shadow rays (each light's own sample count), and every delta branch (mirror,
+//! both branches of glass, transparency) traced recursively within the trace depths.
+//! Glossy and diffuse interreflection are not computed (the path tracer does that).
+
+use glam::Vec3;
+
+use super::{light_loop, trace, Depth, ShadeContext, Vertex};
+use crate::accel::{Hit, Ray};
+use crate::sampling::Sampler;
+use crate::shading::surface::unlit_radiance;
+
+/// Radiance toward the origin of `ray`, which hits the scene at `hit` (a camera ray).
+pub fn radiance(ctx: &ShadeContext<'_>, ray: &Ray, hit: &Hit, sampler: &mut Sampler) -> Vec3 {
+    vertex_radiance(ctx, ray, hit, sampler, Depth::FIRST)
+}
+
+fn vertex_radiance(
+    ctx: &ShadeContext<'_>,
+    ray: &Ray,
+    hit: &Hit,
+    sampler: &mut Sampler,
+    depth: Depth,
+) -> Vec3 {
+    let v = Vertex::new(ctx, ray, hit);
+    if !v.visible {
+        return Vec3::ZERO;
+    }
+    let mut radiance = v.emitted();
+    if let Some(unlit) = unlit_radiance(&v.material.shader, v.wo.z) {
+        return v.transmittance * (radiance + unlit);
+    }
+    if depth.vertex > ctx.max_depth {
+        return v.transmittance * radiance;
+    }
+    let Some(bsdf) = v.bsdf() else {
+        return v.transmittance * radiance;
+    };
+    radiance += v.material.shader.ambient();
+    if bsdf.has_non_delta() {
+        radiance += light_loop(ctx, &v, &bsdf, sampler, false);
+    }
+    for branch in bsdf.delta_branches(v.wo) {
+        let Some(next) = depth.after(ctx, !branch.transmits, branch.transmits) else {
+            continue;
+        };
+        let Some(ray) = v.spawn(branch.wi, branch.transmits) else {
+            continue;
+        };
+        let (hit, lights, _) = trace(ctx, &ray);
+        let mut incoming = lights;
+        if let Some(h) = hit {
+            incoming += vertex_radiance(ctx, &ray, &h, sampler, next);
+        }
+        radiance += branch.weight * incoming;
+    }
+    v.transmittance * radiance
+}

@@ -1,0 +1,99 @@
+//! The reference path tracer: at every vertex one sample of every light (next-event
+//! estimation) and one BSDF sample, the two combined by the power heuristic; emitters found
+//! by BSDF sampling (emitting triangles and `Rect` lights) are weighted against the light
+//! strategy, delta scattering keeps full weight. Russian roulette from the third vertex on
+//! (survival probability = largest channel of the throughput, at most 0.95) keeps long paths
+//! unbiased. Rays leaving the scene see black.
+
+use glam::Vec3;
+
+use super::{light_loop, trace, Depth, ShadeContext, Vertex};
+use crate::accel::{Hit, Ray};
+use crate::sampling::Sampler;
+use crate::shading::bsdf::Scatter;
+use crate::shading::mis::power_heuristic;
+use crate::shading::surface::unlit_radiance;
+
+/// First vertex at which Russian roulette may end a path.
+const RR_START: u32 = 3;
+
+/// Radiance toward the origin of the camera ray `ray`, which hits the scene at `hit`.
+pub fn radiance(ctx: &ShadeContext<'_>, ray: &Ray, hit: &Hit, sampler: &mut Sampler) -> Vec3 {
+    let mut radiance = Vec3::ZERO;
+    let mut beta = Vec3::ONE;
+    let mut depth = Depth::FIRST;
+    let mut ray = *ray;
+    let mut hit = Some(*hit);
+    // Origin and solid-angle pdf of the last non-delta BSDF sample (None: camera or delta).
+    let mut prev: Option<(Vec3, f32)> = None;
+    while let Some(h) = hit {
+        let v = Vertex::new(ctx, &ray, &h);
+        beta *= v.transmittance;
+        if !v.visible {
+            break;
+        }
+        let le = v.emitted();
+        if le != Vec3::ZERO {
+            let w = match prev {
+                None => 1.0,
+                Some((p, pdf)) => {
+                    let m = v.material;
+                    let pdf_light = ctx.lights.mesh_pdf(
+                        p,
+                        v.sp.surface.p,
+                        v.sp.surface.ng,
+                        m.emission,
+                        m.two_sided,
+                    );
+                    power_heuristic(pdf, pdf_light)
+                }
+            };
+            radiance += beta * le * w;
+        }
+        if let Some(unlit) = unlit_radiance(&v.material.shader, v.wo.z) {
+            radiance += beta * unlit;
+            break;
+        }
+        if depth.vertex > ctx.max_depth {
+            break;
+        }
+        let Some(bsdf) = v.bsdf() else { break };
+        if bsdf.has_non_delta() {
+            radiance += beta * light_loop(ctx, &v, &bsdf, sampler, true);
+        }
+        if depth.vertex >= RR_START {
+            let q = beta.max_element().min(0.95);
+            if sampler.next_1d() >= q {
+                break;
+            }
+            beta /= q;
+        }
+        let u = Vec3::new(sampler.next_1d(), sampler.next_1d(), sampler.next_1d());
+        let Some(s) = bsdf.sample(v.wo, u) else { break };
+        let transmits = s.scatter == Scatter::Transmission;
+        let Some(next) = depth.after(ctx, s.scatter == Scatter::Reflection, transmits) else {
+            break;
+        };
+        let Some(next_ray) = v.spawn(s.wi, transmits) else {
+            break;
+        };
+        beta *= s.weight();
+        if !beta.is_finite() || beta.max_element() <= 0.0 {
+            break;
+        }
+        let (next_hit, _, crossed) = trace(ctx, &next_ray);
+        for (le, pdf_light) in crossed {
+            let w = if s.delta {
+                1.0
+            } else {
+                power_heuristic(s.pdf, pdf_light)
+            };
+            radiance += beta * le * w;
+        }
+        prev = (!s.delta).then_some((v.sp.surface.p, s.pdf));
+        ray = next_ray;
+        hit = next_hit;
+        depth = next;
+    }
+    radiance
+}
