@@ -99,6 +99,10 @@ struct BakeArgs {
     /// Write the per-stage report (and the bake reports) as JSON.
     #[arg(long = "stats-json", value_name = "FILE")]
     stats_json: Option<PathBuf>,
+    /// How indirect light of lightmaps is gathered: `direct` (diffuse gather) or `path` (the
+    /// path-traced reference integrator); overrides the scene's `options.integrator`.
+    #[arg(long, value_enum)]
+    integrator: Option<IntegratorArg>,
 }
 
 #[derive(Args)]
@@ -134,6 +138,10 @@ struct SweepArgs {
     /// Output directory for sweep.csv, sweep.json, sweep.svg and the cached reference.
     #[arg(long, default_value = "sweep_out")]
     out: PathBuf,
+    /// Integrator of the swept runs (overrides the scene's `options.integrator`); the
+    /// reference is always rendered by the path tracer.
+    #[arg(long, value_enum)]
+    integrator: Option<IntegratorArg>,
     /// Worker threads (default: all cores).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
     threads: Option<u32>,
@@ -146,6 +154,15 @@ enum IntegratorArg {
     Direct,
     /// Unbiased path tracing (the reference).
     Path,
+}
+
+impl IntegratorArg {
+    fn integrator(self) -> stagelight::settings::Integrator {
+        match self {
+            IntegratorArg::Direct => stagelight::settings::Integrator::Direct,
+            IntegratorArg::Path => stagelight::settings::Integrator::Path,
+        }
+    }
 }
 
 fn main() -> ExitCode {
@@ -279,10 +296,7 @@ fn render(args: RenderArgs) -> ExitCode {
         settings.seed = seed;
     }
     if let Some(integrator) = args.integrator {
-        settings.integrator = match integrator {
-            IntegratorArg::Direct => stagelight::settings::Integrator::Direct,
-            IntegratorArg::Path => stagelight::settings::Integrator::Path,
-        };
+        settings.integrator = integrator.integrator();
     }
     if let Some(out) = &args.output {
         if let Err(message) = override_output(&mut scene.world, out) {
@@ -309,6 +323,9 @@ fn bake(args: BakeArgs) -> ExitCode {
     let mut settings = scene.settings.clone();
     if let Some(seed) = args.seed {
         settings.seed = seed;
+    }
+    if let Some(integrator) = args.integrator {
+        settings.integrator = integrator.integrator();
     }
     if scene.world.query::<&BakeRequest>().iter().next().is_none() {
         eprintln!(
@@ -414,7 +431,8 @@ fn sweep(args: SweepArgs) -> ExitCode {
         reference: args.reference,
         reference_samples: args.reference_spp,
         out: args.out.clone(),
-        reference_settings: None,
+        integrator: args.integrator.map(IntegratorArg::integrator),
+        reference_integrator: stagelight::settings::Integrator::Path,
     };
     let summary = match run_sweep(&opts, systems::run, |step| eprintln!("sweep: {step}")) {
         Ok(s) => s,

@@ -188,6 +188,7 @@ pub fn run(world: &mut World, frame: &mut Frame) -> Result<Work, StageError> {
             kinds: &kinds,
             uvs: &p.uvs,
             seed: hash_combine(&[seed, index as u32]),
+            settings: &frame.settings,
         };
         let Some(mut results) = evaluate(&job, cancel, &progress.ticker()) else {
             return Err(StageError::Interrupted);

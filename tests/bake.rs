@@ -507,3 +507,64 @@ fn bake_stage_is_skipped_without_requests_or_outside_bake_runs() {
     let _ = TexelImage::new(1, 1);
     let _ = Arc::new(());
 }
+
+/// The lightmap's indirect light gathered by the bake's own diffuse paths and by the
+/// path-traced reference integrator estimate the same irradiance on an all-Lambert scene.
+#[test]
+fn indirect_lightmap_agrees_between_diffuse_gather_and_path_tracer() {
+    let run = |integrator: stagelight::settings::Integrator, indirect: bool| {
+        let mut world = World::new();
+        let floor = spawn(&mut world, square_uv(1.0, 0.0, 1.0), Affine3A::IDENTITY);
+        // A wall at x = −1 facing +x reflects the light back onto the floor.
+        spawn(
+            &mut world,
+            box_mesh(Vec3::new(-1.2, -1.0, 0.0), Vec3::new(-1.0, 1.0, 2.0)),
+            Affine3A::IDENTITY,
+        );
+        common::light(
+            &mut world,
+            stagelight::components::LightShape::Point {
+                position: Vec3::new(-0.5, 0.0, 1.5),
+            },
+            Vec3::splat(4.0),
+            1,
+        );
+        let kind = BakeKind::Lightmap {
+            indirect,
+            samples: 512,
+            max_depth: 3,
+            store: stagelight::components::LightmapStore::Irradiance,
+        };
+        world
+            .insert_one(floor, request(vec![kind], 4, 4, 1, 0))
+            .unwrap();
+        let mut frame = Frame::new(RenderSettings {
+            integrator,
+            ..RenderSettings::default()
+        });
+        frame.tasks = Tasks {
+            render: false,
+            bake: true,
+        };
+        frame.bake_dir = std::env::temp_dir().join(format!(
+            "stagelight-bake-integrators-{:?}-{}",
+            integrator,
+            std::process::id()
+        ));
+        stagelight::systems::run(&mut world, &mut frame).expect("bake");
+        let (_, _, px) = baked(&frame, "target_lightmap.exr");
+        px.iter().map(|c| c.x as f64).sum::<f64>() / px.len() as f64
+    };
+    let direct = run(stagelight::settings::Integrator::Direct, false);
+    let gather = run(stagelight::settings::Integrator::Direct, true) - direct;
+    let path = run(stagelight::settings::Integrator::Path, true) - direct;
+    // The indirect part is a sizeable fraction of the total, so the comparison means something.
+    assert!(
+        gather > 0.05 * direct,
+        "indirect {gather} vs direct {direct}"
+    );
+    assert!(
+        (gather - path).abs() / gather < 0.03,
+        "indirect: diffuse gather {gather}, path {path}"
+    );
+}

@@ -143,3 +143,34 @@ pub fn indirect_irradiance_sample(
     }
     e
 }
+
+/// Indirect irradiance (W/m²) from one cosine-weighted gather ray whose incoming radiance is
+/// estimated by the path-traced reference integrator (`--integrator path`): `π · (L − Le)`,
+/// where `Le` — the hit surface's own emission — is left out because emitters are counted by
+/// [`direct_irradiance`] already.
+pub fn indirect_irradiance_path(
+    ctx: &crate::shading::ShadeContext<'_>,
+    surface: &SurfacePoint,
+    normal: Vec3,
+    ng_facing: Vec3,
+    sampler: &mut Sampler,
+) -> Vec3 {
+    let (t, b) = basis(normal);
+    let local = sample_cosine_hemisphere(sampler.next_2d());
+    let dir = t * local.x + b * local.y + normal * local.z;
+    if dir.dot(ng_facing) <= 0.0 {
+        return Vec3::ZERO;
+    }
+    let ray = spawn_ray(surface, dir);
+    let Some(hit) = ctx.geometry.accel.intersect(&ray) else {
+        return Vec3::ZERO;
+    };
+    let vertex = crate::shading::integrator::Vertex::new(ctx, &ray, &hit);
+    let l = crate::shading::integrator::path::radiance(ctx, &ray, &hit, sampler) - vertex.emitted();
+    let e = l.max(Vec3::ZERO) * std::f32::consts::PI;
+    if e.is_finite() {
+        e
+    } else {
+        Vec3::ZERO
+    }
+}

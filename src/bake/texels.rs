@@ -10,7 +10,8 @@ use rayon::prelude::*;
 use crate::accumulate::SampleMean;
 use crate::bake::ao::trace_hemisphere;
 use crate::bake::irradiance::{
-    base_color, diffuse_albedo, direct_irradiance, indirect_irradiance_sample,
+    base_color, diffuse_albedo, direct_irradiance, indirect_irradiance_path,
+    indirect_irradiance_sample,
 };
 use crate::bake::raster::Coverage;
 use crate::bake::texture::TexelImage;
@@ -43,6 +44,8 @@ pub struct TexelJob<'a> {
     pub uvs: &'a [[glam::Vec2; 3]],
     /// Seed of this request.
     pub seed: u32,
+    /// Render settings (the integrator decides how indirect light is gathered).
+    pub settings: &'a crate::settings::RenderSettings,
 }
 
 /// Output of [`evaluate`]: one image per kind (AO with bent normals gives two, in kind order
@@ -273,18 +276,34 @@ fn texel(
                 if *indirect && *max_depth > 0 {
                     let samples = (*samples).max(1);
                     let mut sum = SampleMean::default();
+                    let path_ctx = (job.settings.integrator == crate::settings::Integrator::Path)
+                        .then(|| {
+                            let mut settings = job.settings.clone();
+                            // The gather ray is the first bounce; the path adds the rest.
+                            settings.max_depth = (*max_depth).max(1);
+                            crate::shading::ShadeContext::new(job.geometry, job.lights, &settings)
+                        });
                     for r in 0..samples {
                         let site = &sites[(r % n_sites) as usize];
                         let mut sampler = Sampler::new(hash_combine(&[kind_seed, 0x1d1]), r);
-                        sum.add(indirect_irradiance_sample(
-                            job.geometry,
-                            job.lights,
-                            &site.surface,
-                            site.normal,
-                            site.ng,
-                            *max_depth,
-                            &mut sampler,
-                        ));
+                        sum.add(match &path_ctx {
+                            Some(ctx) => indirect_irradiance_path(
+                                ctx,
+                                &site.surface,
+                                site.normal,
+                                site.ng,
+                                &mut sampler,
+                            ),
+                            None => indirect_irradiance_sample(
+                                job.geometry,
+                                job.lights,
+                                &site.surface,
+                                site.normal,
+                                site.ng,
+                                *max_depth,
+                                &mut sampler,
+                            ),
+                        });
                     }
                     rays += samples as u64 * (*max_depth as u64 + 1);
                     e += sum.mean_over(samples as u64);

@@ -9,7 +9,7 @@ use hecs::World;
 use crate::frame::{Frame, Tasks};
 use crate::scene::{load_scene, SceneErrors};
 use crate::schedule::StageError;
-use crate::settings::RenderSettings;
+use crate::settings::{Integrator, RenderSettings};
 use crate::sweep::knob::{Knob, KnobError};
 use crate::sweep::metrics::compare;
 use crate::sweep::report::{SweepRow, SweepSummary};
@@ -32,9 +32,10 @@ pub struct SweepOptions {
     pub reference_samples: u32,
     /// Output directory (tables, plot, cached reference, scratch files).
     pub out: PathBuf,
-    /// Applied to the settings of every run after the knob (e.g. the reference integrator
-    /// for the reference run); `None` leaves them.
-    pub reference_settings: Option<fn(&mut RenderSettings)>,
+    /// Integrator of the swept runs; `None` keeps the scene's.
+    pub integrator: Option<Integrator>,
+    /// Integrator of a rendered reference (the path tracer: the converged reference).
+    pub reference_integrator: Integrator,
 }
 
 /// Why a sweep failed.
@@ -159,10 +160,10 @@ fn reference_cache(opts: &SweepOptions) -> Result<PathBuf, SweepError> {
     let text = std::fs::read(&opts.scene).map_err(|e| io(&opts.scene, e))?;
     let mut h: u64 = 0xcbf2_9ce4_8422_2325;
     let tag = format!(
-        "{}:{}:{}",
+        "{}:{}:{:?}",
         opts.reference_samples,
         opts.knob.is_bake(),
-        opts.reference_settings.is_some()
+        opts.reference_integrator
     );
     for b in text.iter().chain(tag.as_bytes()) {
         h = (h ^ u64::from(*b)).wrapping_mul(0x0100_0000_01b3);
@@ -192,7 +193,7 @@ pub fn run_sweep(
             progress(&format!("reference: {} samples", opts.reference_samples));
             let samples = opts.reference_samples;
             let knob = opts.knob.clone();
-            let fix = opts.reference_settings;
+            let integrator = opts.reference_integrator;
             let r = run_once(
                 opts,
                 pipeline,
@@ -205,9 +206,7 @@ pub fn run_sweep(
                         }
                         _ => settings.spp = samples,
                     }
-                    if let Some(f) = fix {
-                        f(settings);
-                    }
+                    settings.integrator = integrator;
                 },
                 0x05ee_d0ef,
                 "reference",
