@@ -71,6 +71,9 @@ pub struct RenderSettings {
     pub face: Face,
     /// BVH build quality.
     pub bvh_quality: BvhQuality,
+    /// Light samples per shading point for emitting meshes (rectangular lights carry their
+    /// own count).
+    pub light_samples: u32,
 }
 
 impl Default for RenderSettings {
@@ -85,6 +88,7 @@ impl Default for RenderSettings {
             integrator: Integrator::Direct,
             face: Face::Front,
             bvh_quality: BvhQuality::Medium,
+            light_samples: 16,
         }
     }
 }

@@ -27,8 +27,6 @@ use crate::progress::Progress;
 use crate::sampling::{fold_seed, hash_combine};
 use crate::shading::LightSet;
 
-/// Samples per shading point for emitting-mesh lights.
-const MESH_LIGHT_SAMPLES: u32 = 16;
 /// Fraction of sample positions that may fall in two triangles before UVs count as
 /// overlapping.
 const OVERLAP_TOLERANCE: f64 = 1e-3;
@@ -88,7 +86,7 @@ pub fn run(world: &mut World, frame: &mut Frame) -> Result<Work, StageError> {
         .collect();
     emitters.sort_by_key(|(e, _)| e.to_bits());
     let emitters: Vec<Emitter> = emitters.into_iter().map(|(_, l)| l).collect();
-    let lights = LightSet::new(&emitters, Some(geometry), MESH_LIGHT_SAMPLES);
+    let lights = LightSet::new(&emitters, Some(geometry), frame.settings.light_samples);
     let slot_of: HashMap<Entity, usize> = geometry
         .instances
         .iter()

@@ -24,9 +24,6 @@ use crate::progress::Progress;
 use crate::sampling::{fold_seed, Sampler};
 use crate::shading::{shade_hit, CameraRays, FilterSampler, LightSet, ShadeContext};
 
-/// Samples per shading point for emitting-mesh lights.
-const MESH_LIGHT_SAMPLES: u32 = 16;
-
 /// Run condition: a render camera exists.
 pub fn should_run(world: &World, frame: &Frame) -> Decision {
     if !frame.tasks.render {
@@ -58,7 +55,7 @@ pub fn run(world: &mut World, frame: &mut Frame) -> Result<Work, StageError> {
 
     let settings = frame.settings.clone();
     let geometry = frame.geometry.as_ref();
-    let lights = LightSet::new(&emitters, geometry, MESH_LIGHT_SAMPLES);
+    let lights = LightSet::new(&emitters, geometry, frame.settings.light_samples);
     let rays = CameraRays::new(&camera);
     let filter = FilterSampler::new(settings.filter);
     let seed = fold_seed(settings.seed);

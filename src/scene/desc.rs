@@ -57,6 +57,8 @@ pub struct OptionsDesc {
     pub reflection_depth: u32,
     /// Most refractions per path, default 4.
     pub refraction_depth: u32,
+    /// Light samples per shading point for emitting meshes, default 16, at least 1.
+    pub light_samples: u32,
 }
 
 impl Default for OptionsDesc {
@@ -71,6 +73,7 @@ impl Default for OptionsDesc {
             integrator: IntegratorDesc::Direct,
             reflection_depth: 4,
             refraction_depth: 4,
+            light_samples: 16,
         }
     }
 }

@@ -248,6 +248,12 @@ pub fn settings(src: &mut Sources, options: Option<&Item<'_, OptionsDesc>>) -> R
             "max_depth must be at least 1, found 0",
         );
     }
+    if o.light_samples == 0 {
+        ck.error(
+            &item.at(".light_samples"),
+            "light_samples must be at least 1, found 0",
+        );
+    }
     let filter = match o.filter {
         FilterDesc::Box => PixelFilter::Box,
         FilterDesc::Gaussian { sigma, radius } => {
@@ -270,6 +276,7 @@ pub fn settings(src: &mut Sources, options: Option<&Item<'_, OptionsDesc>>) -> R
         max_depth: o.max_depth,
         reflection_depth: o.reflection_depth,
         refraction_depth: o.refraction_depth,
+        light_samples: o.light_samples.max(1),
         integrator,
         face: match o.face {
             FaceDesc::Front => Face::Front,

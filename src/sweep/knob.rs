@@ -4,7 +4,9 @@
 
 use hecs::World;
 
-use crate::components::{Approximation, BakeKind, BakeRequest, Emitter, LightShape, Technique};
+use crate::components::{
+    Approximation, BakeKind, BakeRequest, Emitter, LightShape, Material, Technique,
+};
 use crate::settings::{BvhQuality, RenderSettings};
 
 /// A knob and the values to sweep.
@@ -12,7 +14,7 @@ use crate::settings::{BvhQuality, RenderSettings};
 pub enum Knob {
     /// Samples per pixel.
     Spp(Vec<u32>),
-    /// Samples per shading point of every area light.
+    /// Samples per shading point of every area light (rectangles and emitting meshes).
     LightSamples(Vec<u32>),
     /// Maximum trace depth.
     MaxDepth(Vec<u32>),
@@ -177,12 +179,13 @@ impl Knob {
         };
         match self {
             Knob::LightSamples(_) => {
-                if !world
+                let rect = world
                     .query::<&Emitter>()
                     .iter()
-                    .any(|e| matches!(e.shape, LightShape::Rect { .. }))
-                {
-                    return absent("the scene has no area lights");
+                    .any(|e| matches!(e.shape, LightShape::Rect { .. }));
+                let mesh = world.query::<&Material>().iter().any(Material::is_emissive);
+                if !rect && !mesh {
+                    return absent("the scene has no area lights or emitting meshes");
                 }
             }
             Knob::Tessellation(_) => {
@@ -216,6 +219,7 @@ impl Knob {
             Knob::MaxDepth(v) => settings.max_depth = v[i],
             Knob::BvhQuality(v) => settings.bvh_quality = v[i],
             Knob::LightSamples(v) => {
+                settings.light_samples = v[i];
                 for e in world.query_mut::<&mut Emitter>() {
                     if matches!(e.shape, LightShape::Rect { .. }) {
                         e.samples = v[i];
