@@ -271,7 +271,36 @@ pub(crate) fn report(
             _ => direct,
         };
     }
-    ck.error(&path, format!("object \"{object}\" ({what}): {err}"));
+    ck.error(
+        &path,
+        format!("object \"{object}\" ({what}): {}", tidy(err)),
+    );
+}
+
+/// The error's text for a located message: values shown as written (every parameter went
+/// through f32, so its shortest f32 form), without a generator prefix the message repeats.
+fn tidy(err: &GeometryError) -> String {
+    match err {
+        GeometryError::OutOfRange {
+            parameter,
+            value,
+            expected,
+        } => {
+            let shown = (*value as f32).to_string();
+            GeometryError::OutOfRange {
+                parameter,
+                value: shown.parse().unwrap_or(*value),
+                expected,
+            }
+            .to_string()
+        }
+        GeometryError::BadCount { message } => ["patch mesh: ", "nurbs: ", "subdivision mesh: "]
+            .iter()
+            .find_map(|p| message.strip_prefix(p))
+            .unwrap_or(message)
+            .to_string(),
+        other => other.to_string(),
+    }
 }
 
 /// A finite number that fits in f32, reported at `path` otherwise.
