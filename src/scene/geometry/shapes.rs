@@ -118,6 +118,12 @@ pub fn generator(ck: &mut Checker<'_>, ctx: &Ctx<'_>, mesh: &MeshDesc) -> Option
                     GeometryError::OutOfRange { parameter, .. } if *parameter != "weight" => {
                         parameter.to_string()
                     }
+                    GeometryError::OutOfRange { .. } => {
+                        match surface.points.iter().position(|p| p.w <= 0.0) {
+                            Some(k) => format!("points[{k}][3]"),
+                            None => "points".into(),
+                        }
+                    }
                     _ => "points".into(),
                 };
                 report(ck, ctx.object, "nurbs", &at, Some(&field), &e);
