@@ -5,7 +5,9 @@
 //!    ([`desc`]); a syntax/type error or an unreadable include stops loading here.
 //! 2. [`validate`] merges the files and checks every value; [`names`] resolves references;
 //!    [`dag`] builds instance transforms, rejects cycles and flattens the instance DAG from
-//!    the render root; [`mesh_load`] builds the meshes of reachable objects.
+//!    the render root; [`mesh_load`] builds the meshes of reachable objects; [`geometry`]
+//!    checks generated meshes (geometry shaders, free-form surfaces, subdivision meshes,
+//!    scatters), approximations and displacements with the geometry code's own rules.
 //!    All errors of this step are collected and reported together, ordered by file (load
 //!    order) and position, each located through the position index of [`spans`].
 //! 3. [`spawn`] creates the entities.
