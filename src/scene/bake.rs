@@ -6,7 +6,6 @@ use super::desc::{
     BakeDesc, BakeFormatDesc, BakeKindDesc, LightmapStoreDesc, NormalSpaceDesc, UvsDesc,
 };
 use super::diagnostics::Sources;
-use super::mesh_load::BuiltMesh;
 use super::validate::{Checker, Merged};
 use crate::components::{
     BakeFormat, BakeKind, BakeRequest, BakeResolution, BakeTarget, LightmapStore, NormalSpace,
@@ -14,11 +13,12 @@ use crate::components::{
 };
 
 /// One entry per merged instance: the bake request of instances that carry a valid one.
+/// `has_uvs` tells, per object, whether its mesh carries texture coordinates.
 pub fn bake_requests(
     src: &mut Sources,
     m: &Merged<'_>,
     leaves: &[Leaf],
-    meshes: &[Option<BuiltMesh>],
+    has_uvs: &[bool],
 ) -> Vec<Option<BakeRequest>> {
     m.instances
         .iter()
@@ -48,10 +48,7 @@ pub fn bake_requests(
                     return None;
                 }
             }
-            let has_uvs = meshes
-                .get(placed[0].object)
-                .and_then(Option::as_ref)
-                .is_some_and(|b| b.mesh.uvs.is_some());
+            let has_uvs = has_uvs.get(placed[0].object).copied().unwrap_or(false);
             request(&mut ck, &path, name, desc, has_uvs)
         })
         .collect()

@@ -5,6 +5,11 @@
 
 use serde::Deserialize;
 
+pub use super::desc_geometry::{
+    ApproximationDesc, AxisDesc, BasisDesc, DisplacementDesc, DisplacementModeDesc, MeshDesc,
+    ScalarDesc, SpaceDesc,
+};
+
 /// A 3-vector as written in the file: `(x, y, z)`.
 pub type V3 = (f64, f64, f64);
 
@@ -598,30 +603,15 @@ pub struct ObjectDesc {
     /// Material used when no instance overrides it.
     #[serde(default)]
     pub material: Option<String>,
-}
-
-/// Mesh source.
-#[derive(Debug, Clone, Deserialize)]
-#[serde(rename = "Mesh", deny_unknown_fields)]
-pub enum MeshDesc {
-    /// Wavefront OBJ file, relative to the declaring scene file.
-    Obj {
-        /// Path of the OBJ file.
-        file: String,
-    },
-    /// Polygons written in the scene.
-    Inline {
-        /// Vertex positions.
-        vertices: Vec<V3>,
-        /// Convex polygons as vertex indices (≥ 3 each), fan-triangulated.
-        polygons: Vec<Vec<u32>>,
-        /// Per-vertex normals (optional).
-        #[serde(default)]
-        normals: Option<Vec<V3>>,
-        /// Per-vertex texture coordinates (optional).
-        #[serde(default)]
-        uvs: Option<Vec<(f64, f64)>>,
-    },
+    /// How its surfaces are diced, default curvature 0.01 / 10° (see `docs/geometry.md`).
+    #[serde(default)]
+    pub approximation: Option<ApproximationDesc>,
+    /// Displacement shader, default none.
+    #[serde(default)]
+    pub displacement: Option<DisplacementDesc>,
+    /// Store surface derivatives dP/du, dP/dv when tessellating, default false.
+    #[serde(default)]
+    pub derivatives: bool,
 }
 
 /// `instances: [(...)]`: a placed copy of an object or a group.

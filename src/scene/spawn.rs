@@ -3,9 +3,13 @@
 //! Entities, in this order (so entity order is deterministic):
 //! 1. materials used by at least one leaf, in file order, then the built-in `"<default>"`
 //!    material if some leaf has no material;
-//! 2. objects used by at least one leaf: `Name`, `SourceLink`, `Arc<TriMesh>`;
+//! 2. objects used by at least one leaf, or by the scatter of a used object: `Name`,
+//!    `SourceLink`, and `Arc<TriMesh>` for loaded meshes or the generator component
+//!    (`Procedural`, `Surface`, `SubdivMesh`, `Scatter`) for generated ones, plus
+//!    `Approximation`, `Displacement` and `DerivativeRequest` when written;
 //! 3. one entity per leaf of the instance DAG: `Name` (the DAG path), `SourceLink` (the
-//!    innermost instance), `Instance`, `WorldFromObject`, `MaterialRef`, and `BakeRequest`
+//!    innermost instance), `Instance` (with an empty mesh for generated objects:
+//!    `procedural::pending_instance`), `WorldFromObject`, `MaterialRef`, and `BakeRequest`
 //!    when the instance has a `bake` entry;
 //! 4. every light: `Name`, `SourceLink`, `Emitter`;
 //! 5. every camera: `Name`, `SourceLink`, `Camera`, plus `RenderCamera` on the render camera.
@@ -15,15 +19,17 @@
 use std::collections::HashMap;
 use std::sync::Arc;
 
-use hecs::{Entity, World};
+use hecs::{Entity, EntityBuilder, World};
 
 use super::dag::Leaf;
 use super::diagnostics::Sources;
+use super::geometry::{Generated, ObjectGeometry};
 use super::validate::{default_material, Merged};
 use crate::components::{
     BakeRequest, Camera, Emitter, Instance, Material, MaterialRef, Name, RenderCamera, SourceLink,
     TriMesh, WorldFromObject,
 };
+use crate::procedural::pending_instance;
 
 /// Everything checked and built, ready to spawn (indices parallel to the merged lists;
 /// `None` for elements that failed a check, which the caller reports instead of spawning).
@@ -38,10 +44,35 @@ pub struct Parts {
     pub materials: Vec<Option<Material>>,
     /// Meshes of the objects that were built (reachable ones).
     pub meshes: Vec<Option<Arc<TriMesh>>>,
+    /// Geometry components of each object (generators, approximation, displacement).
+    pub geometry: Vec<Option<ObjectGeometry>>,
     /// The flattened instance DAG.
     pub leaves: Vec<Leaf>,
     /// Bake request of each merged instance (at most one leaf carries each).
     pub bakes: Vec<Option<BakeRequest>>,
+}
+
+/// Objects to spawn, in index order: those of the leaves, and the prototypes and surfaces of
+/// the scatters among them.
+fn used_objects(parts: &Parts) -> Vec<usize> {
+    let mut used = vec![false; parts.geometry.len()];
+    let mut todo: Vec<usize> = parts.leaves.iter().map(|l| l.object).collect();
+    while let Some(o) = todo.pop() {
+        if o >= used.len() || std::mem::replace(&mut used[o], true) {
+            continue;
+        }
+        if let Some(Some(ObjectGeometry {
+            generated:
+                Some(Generated::Scatter {
+                    prototype, surface, ..
+                }),
+            ..
+        })) = parts.geometry.get(o)
+        {
+            todo.extend([*prototype, *surface]);
+        }
+    }
+    (0..used.len()).filter(|&o| used[o]).collect()
 }
 
 /// Builds the world.
@@ -83,35 +114,64 @@ pub fn spawn(src: &Sources, m: &Merged<'_>, parts: Parts) -> World {
     }
 
     let mut object_entity: HashMap<usize, Entity> = HashMap::new();
-    let mut used_objects: Vec<usize> = parts.leaves.iter().map(|l| l.object).collect();
-    used_objects.sort_unstable();
-    used_objects.dedup();
-    for o in used_objects {
-        let Some(mesh) = parts.meshes.get(o).cloned().flatten() else {
+    for o in used_objects(&parts) {
+        let Some(Some(geometry)) = parts.geometry.get(o) else {
             continue;
         };
         let it = &m.objects[o];
-        let entity = world.spawn((
-            Name(it.desc.name.clone()),
-            src.link(it.file, &it.path),
-            mesh,
-        ));
-        object_entity.insert(o, entity);
+        let mut b = EntityBuilder::new();
+        b.add(Name(it.desc.name.clone()));
+        b.add(src.link(it.file, &it.path));
+        if geometry.generated.is_none() {
+            let Some(mesh) = parts.meshes.get(o).cloned().flatten() else {
+                continue;
+            };
+            b.add(mesh);
+        }
+        geometry.add_to(&mut b);
+        object_entity.insert(o, world.spawn(b.build()));
+    }
+    // Scatters name other objects: link them now that every object has its entity.
+    for (&o, &entity) in &object_entity {
+        if let Some(Some(ObjectGeometry {
+            generated:
+                Some(Generated::Scatter {
+                    prototype,
+                    surface,
+                    template,
+                }),
+            ..
+        })) = parts.geometry.get(o)
+        {
+            if let (Some(&p), Some(&s)) = (object_entity.get(prototype), object_entity.get(surface))
+            {
+                let scatter = crate::components::Scatter {
+                    prototype: p,
+                    surface: s,
+                    ..*template
+                };
+                // The entity was just spawned, so inserting cannot fail.
+                let _ = world.insert_one(entity, scatter);
+            }
+        }
     }
 
     for leaf in &parts.leaves {
-        let (Some(&object), Some(mesh), Some(&material)) = (
+        let (Some(&object), Some(&material)) = (
             object_entity.get(&leaf.object),
-            parts.meshes.get(leaf.object).cloned().flatten(),
             material_entity.get(&leaf.material),
         ) else {
             continue;
+        };
+        let instance = match parts.meshes.get(leaf.object).cloned().flatten() {
+            Some(mesh) => Instance { object, mesh },
+            None => pending_instance(object),
         };
         let it = &m.instances[leaf.instance];
         let entity = world.spawn((
             Name(leaf.path.clone()),
             src.link(it.file, &it.path),
-            Instance { object, mesh },
+            instance,
             WorldFromObject(leaf.world_from_object),
             MaterialRef(material),
         ));
