@@ -26,76 +26,6 @@ fn square_uv(h: f32, u0: f32, u1: f32) -> TriMesh {
     m
 }
 
-/// A UV sphere of radius `r` (outward, one-sided), `nu × nv` segments.
-fn sphere(r: f32, nu: u32, nv: u32) -> TriMesh {
-    let mut positions = Vec::new();
-    for j in 0..=nv {
-        let theta = std::f32::consts::PI * j as f32 / nv as f32;
-        for i in 0..nu {
-            let phi = 2.0 * std::f32::consts::PI * i as f32 / nu as f32;
-            positions.push(
-                r * Vec3::new(
-                    theta.sin() * phi.cos(),
-                    theta.sin() * phi.sin(),
-                    theta.cos(),
-                ),
-            );
-        }
-    }
-    let mut triangles = Vec::new();
-    for j in 0..nv {
-        for i in 0..nu {
-            let a = j * nu + i;
-            let b = j * nu + (i + 1) % nu;
-            let c = (j + 1) * nu + (i + 1) % nu;
-            let d = (j + 1) * nu + i;
-            if j != 0 {
-                triangles.push([a, d, b]);
-            }
-            if j != nv - 1 {
-                triangles.push([b, d, c]);
-            }
-        }
-    }
-    TriMesh {
-        positions,
-        normals: None,
-        uvs: None,
-        triangles,
-    }
-}
-
-/// A closed axis-aligned box with outward faces.
-fn box_mesh(lo: Vec3, hi: Vec3) -> TriMesh {
-    let positions = (0..8)
-        .map(|i| {
-            Vec3::new(
-                if i & 1 == 0 { lo.x } else { hi.x },
-                if i & 2 == 0 { lo.y } else { hi.y },
-                if i & 4 == 0 { lo.z } else { hi.z },
-            )
-        })
-        .collect();
-    let quads = [
-        [0, 2, 3, 1], // -z
-        [4, 5, 7, 6], // +z
-        [0, 1, 5, 4], // -y
-        [2, 6, 7, 3], // +y
-        [0, 4, 6, 2], // -x
-        [1, 3, 7, 5], // +x
-    ];
-    let triangles = quads
-        .iter()
-        .flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]])
-        .collect();
-    TriMesh {
-        positions,
-        normals: None,
-        uvs: None,
-        triangles,
-    }
-}
-
 fn ao(samples: u32) -> BakeKind {
     BakeKind::AmbientOcclusion {
         samples,
@@ -250,7 +180,7 @@ fn point_facing_a_sphere_matches_one_minus_sin_squared() {
     // radius matches R closely (segments small).
     spawn(
         &mut world,
-        sphere(r, 256, 128),
+        common::sphere(r, 256, 128),
         Affine3A::from_translation(Vec3::new(0.0, 0.0, d)),
     );
     let patch = spawn(&mut world, square_uv(1e-3, 0.0, 1.0), Affine3A::IDENTITY);
@@ -385,7 +315,7 @@ fn texels_inside_geometry_are_invalid_not_black() {
     // A closed box [-0.5, 0.5]² × [-0.05, 0.5] sunk slightly into the floor.
     spawn(
         &mut world,
-        box_mesh(Vec3::new(-0.5, -0.5, -0.05), Vec3::new(0.5, 0.5, 0.5)),
+        common::box_mesh(Vec3::new(-0.5, -0.5, -0.05), Vec3::new(0.5, 0.5, 0.5)),
         Affine3A::IDENTITY,
     );
     world
@@ -413,7 +343,7 @@ fn bakes_are_identical_at_one_and_two_threads() {
             let floor = spawn(&mut world, square_uv(1.0, 0.0, 1.0), Affine3A::IDENTITY);
             spawn(
                 &mut world,
-                sphere(0.3, 16, 8),
+                common::sphere(0.3, 16, 8),
                 Affine3A::from_translation(Vec3::new(0.0, 0.0, 0.4)),
             );
             common::light(
@@ -518,7 +448,7 @@ fn indirect_lightmap_agrees_between_diffuse_gather_and_path_tracer() {
         // A wall at x = −1 facing +x reflects the light back onto the floor.
         spawn(
             &mut world,
-            box_mesh(Vec3::new(-1.2, -1.0, 0.0), Vec3::new(-1.0, 1.0, 2.0)),
+            common::box_mesh(Vec3::new(-1.2, -1.0, 0.0), Vec3::new(-1.0, 1.0, 2.0)),
             Affine3A::IDENTITY,
         );
         common::light(

@@ -35,73 +35,6 @@ fn rect(x0: f32, x1: f32, y0: f32, y1: f32) -> TriMesh {
     }
 }
 
-/// A UV sphere (poles on ±Z) of radius `r`, outward.
-fn sphere(r: f32, nu: u32, nv: u32) -> TriMesh {
-    let mut positions = Vec::new();
-    for j in 0..=nv {
-        let theta = std::f64::consts::PI * j as f64 / nv as f64;
-        for i in 0..nu {
-            let phi = 2.0 * std::f64::consts::PI * i as f64 / nu as f64;
-            let p = glam::DVec3::new(
-                theta.sin() * phi.cos(),
-                theta.sin() * phi.sin(),
-                theta.cos(),
-            );
-            positions.push((p * r as f64).as_vec3());
-        }
-    }
-    let mut triangles = Vec::new();
-    for j in 0..nv {
-        for i in 0..nu {
-            let (a, b) = (j * nu + i, j * nu + (i + 1) % nu);
-            let (c, d) = ((j + 1) * nu + (i + 1) % nu, (j + 1) * nu + i);
-            if j != 0 {
-                triangles.push([a, d, b]);
-            }
-            if j != nv - 1 {
-                triangles.push([b, d, c]);
-            }
-        }
-    }
-    TriMesh {
-        positions,
-        normals: None,
-        uvs: None,
-        triangles,
-    }
-}
-
-/// A closed axis-aligned box with outward faces.
-fn box_mesh(lo: Vec3, hi: Vec3) -> TriMesh {
-    let positions = (0..8)
-        .map(|i| {
-            Vec3::new(
-                if i & 1 == 0 { lo.x } else { hi.x },
-                if i & 2 == 0 { lo.y } else { hi.y },
-                if i & 4 == 0 { lo.z } else { hi.z },
-            )
-        })
-        .collect();
-    let quads = [
-        [0, 2, 3, 1],
-        [4, 5, 7, 6],
-        [0, 1, 5, 4],
-        [2, 6, 7, 3],
-        [0, 4, 6, 2],
-        [1, 3, 7, 5],
-    ];
-    let triangles = quads
-        .iter()
-        .flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]])
-        .collect();
-    TriMesh {
-        positions,
-        normals: None,
-        uvs: None,
-        triangles,
-    }
-}
-
 fn spawn(world: &mut World, mesh: TriMesh, xf: Affine3A) -> hecs::Entity {
     let m = common::material(
         world,
@@ -234,7 +167,7 @@ fn h24_floor_around_a_resting_sphere_matches_the_view_factor() {
     let mut world = World::new();
     spawn(
         &mut world,
-        sphere(r, 256, 128),
+        common::sphere(r, 256, 128),
         Affine3A::from_translation(Vec3::new(0.0, 0.0, r)),
     );
     // A strip of 100 texels along +x from x = 0.05 r to 3.05 r, one point per texel.
@@ -267,7 +200,7 @@ fn h25_no_light_leaks_under_a_penetrating_wall() {
     let floor = spawn(&mut world, rect(-2.0, 2.0, -2.0, 2.0), Affine3A::IDENTITY);
     spawn(
         &mut world,
-        box_mesh(Vec3::new(-0.1, -1.5, -0.2), Vec3::new(0.1, 1.5, 1.0)),
+        common::box_mesh(Vec3::new(-0.1, -1.5, -0.2), Vec3::new(0.1, 1.5, 1.0)),
         Affine3A::IDENTITY,
     );
     common::light(

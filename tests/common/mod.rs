@@ -3,7 +3,10 @@
 
 #![allow(dead_code)] // each test binary uses a different subset
 
+mod meshes;
 mod rays;
+#[allow(unused_imports)] // not every test binary uses these
+pub use meshes::*;
 #[allow(unused_imports)] // only the ray-layer tests use these
 pub use rays::*;
 

@@ -1,0 +1,71 @@
+//! Analytic test meshes: UV spheres and closed boxes with outward faces.
+
+use glam::{DVec3, Vec3};
+use stagelight::components::TriMesh;
+
+/// A UV sphere (poles on ±Z) of radius `r`, `nu × nv` segments, outward, no UVs.
+pub fn sphere(r: f32, nu: u32, nv: u32) -> TriMesh {
+    let mut positions = Vec::new();
+    for j in 0..=nv {
+        let theta = std::f64::consts::PI * j as f64 / nv as f64;
+        for i in 0..nu {
+            let phi = 2.0 * std::f64::consts::PI * i as f64 / nu as f64;
+            let p = DVec3::new(
+                theta.sin() * phi.cos(),
+                theta.sin() * phi.sin(),
+                theta.cos(),
+            );
+            positions.push((p * r as f64).as_vec3());
+        }
+    }
+    let mut triangles = Vec::new();
+    for j in 0..nv {
+        for i in 0..nu {
+            let (a, b) = (j * nu + i, j * nu + (i + 1) % nu);
+            let (c, d) = ((j + 1) * nu + (i + 1) % nu, (j + 1) * nu + i);
+            if j != 0 {
+                triangles.push([a, d, b]);
+            }
+            if j != nv - 1 {
+                triangles.push([b, d, c]);
+            }
+        }
+    }
+    TriMesh {
+        positions,
+        normals: None,
+        uvs: None,
+        triangles,
+    }
+}
+
+/// A closed axis-aligned box with outward faces.
+pub fn box_mesh(lo: Vec3, hi: Vec3) -> TriMesh {
+    let positions = (0..8)
+        .map(|i| {
+            Vec3::new(
+                if i & 1 == 0 { lo.x } else { hi.x },
+                if i & 2 == 0 { lo.y } else { hi.y },
+                if i & 4 == 0 { lo.z } else { hi.z },
+            )
+        })
+        .collect();
+    let quads = [
+        [0, 2, 3, 1], // -z
+        [4, 5, 7, 6], // +z
+        [0, 1, 5, 4], // -y
+        [2, 6, 7, 3], // +y
+        [0, 4, 6, 2], // -x
+        [1, 3, 7, 5], // +x
+    ];
+    let triangles = quads
+        .iter()
+        .flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]])
+        .collect();
+    TriMesh {
+        positions,
+        normals: None,
+        uvs: None,
+        triangles,
+    }
+}
