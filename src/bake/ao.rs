@@ -7,15 +7,11 @@ use crate::accel::{spawn_ray, SurfacePoint};
 use crate::geometry::SceneGeometry;
 use crate::sampling::{sample_cosine_hemisphere, Sampler};
 
-/// An orthonormal basis with `n` as its third axis (Duff et al. 2017, branchless).
+/// Two tangents completing an orthonormal basis with `n` as its third axis (the shading
+/// library's frame: Duff et al. 2017).
 pub fn basis(n: Vec3) -> (Vec3, Vec3) {
-    let sign = 1.0f32.copysign(n.z);
-    let a = -1.0 / (sign + n.z);
-    let b = n.x * n.y * a;
-    (
-        Vec3::new(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x),
-        Vec3::new(b, sign + n.y * n.y * a, -n.y),
-    )
+    let frame = crate::shading::frame::ShadingFrame::from_normal(n);
+    (frame.s, frame.t)
 }
 
 /// The result of a batch of hemisphere rays from one point.
