@@ -163,3 +163,34 @@ fn knobs_the_scene_lacks_are_errors_and_unknown_knobs_usage_errors() {
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("unknown knob \"photons\""));
 }
+
+/// `--integrator path` applies to the swept runs: against a path-traced reference the path
+/// tracer converges (no bias plateau), while direct lighting keeps its bias.
+#[test]
+fn integrator_flag_applies_to_the_swept_runs() {
+    let (dir, scene) = setup("integrator");
+    let bias = |integrator: &str| {
+        let out = dir.join(format!("out_{integrator}"));
+        let o = run(bin()
+            .arg("sweep")
+            .arg(&scene)
+            .args([
+                "--knob",
+                "spp=64",
+                "--reference-spp",
+                "256",
+                "--seeds",
+                "2",
+                "--integrator",
+                integrator,
+            ])
+            .arg("--out")
+            .arg(&out));
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let json: serde_json::Value =
+            serde_json::from_slice(&std::fs::read(out.join("sweep.json")).unwrap()).unwrap();
+        json["rows"][0]["error"]["bias2"].as_f64().unwrap()
+    };
+    let (path, direct) = (bias("path"), bias("direct"));
+    assert!(direct > 10.0 * path, "bias² path {path}, direct {direct}");
+}

@@ -239,7 +239,12 @@ pub fn run_sweep(
             let r = run_once(
                 opts,
                 pipeline,
-                |w, s| opts.knob.apply(i, w, s),
+                |w, s| {
+                    if let Some(integrator) = opts.integrator {
+                        s.integrator = integrator;
+                    }
+                    opts.knob.apply(i, w, s);
+                },
                 seed as u64,
                 &format!("{i}_{seed}"),
             )?;
