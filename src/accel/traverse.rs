@@ -1,4 +1,5 @@
-//! The traversal kernel over our 8-wide nodes: closest hit and occlusion, one ray at a time.
+//! The traversal kernels over our 8-wide nodes: closest hit and occlusion, one ray at a time
+//! or a batch of rays interleaved.
 //!
 //! * **Slab test** (pbrt-v4 `Bounds3::IntersectP`, Ize 2013): `t = (plane − o) · (1/d)` with the
 //!   exact IEEE reciprocal (±∞ for zero components, never clamped), far distances scaled by
@@ -7,6 +8,11 @@
 //!   conservative answer. The entry distance is clamped at 0 — not at obvhs's 1e-4.
 //! * **Order**: hit children are pushed sorted by entry distance, nearest on top; popped
 //!   entries farther than the current closest hit are skipped.
+//! * **Prefetch**: every child pushed is prefetched whole (a node's four cache lines, a
+//!   leaf's triangles), so its misses overlap the work on its siblings (+13–15 % incoherent).
+//! * **Batches** (`closest_batch`, `occluded_batch`): 12 rays traversed interleaved, one node
+//!   or leaf per ray in turn, each lane's next node prefetched; identical results, 2.5–3×
+//!   the single-ray throughput on incoherent rays.
 //! * **Stack**: sized from the tree depth measured at build (a fixed array when that fits, a
 //!   `Vec` otherwise), so it cannot overflow.
 //! * **Ties**: the closest hit is the smallest `(t, original index)`, so the result does not
@@ -247,6 +253,7 @@ fn closest_with<S: Stack>(bvh: &Bvh, ray: &Ray, mut stack: S) -> Option<Hit> {
                 while mask != 0 {
                     let slot = mask.trailing_zeros() as usize;
                     mask &= mask - 1;
+                    prefetch(bvh, node.child[slot]);
                     stack.push(Entry {
                         r: node.child[slot],
                         t: tn[slot],
@@ -294,6 +301,7 @@ fn occluded_with<S: Stack>(bvh: &Bvh, ray: &Ray, mut stack: S) -> bool {
             while mask != 0 {
                 let slot = mask.trailing_zeros() as usize;
                 mask &= mask - 1;
+                prefetch(bvh, node.child[slot]);
                 stack.push(Entry {
                     r: node.child[slot],
                     t: 0.0,
@@ -489,8 +497,9 @@ impl<S: Stack> OcclusionLane<S> {
 /// 4 lanes 1.99, 8 lanes 2.69, 12 lanes 2.82, 16 lanes 2.78; single ray 1.00).
 pub(crate) const BATCH_LANES: usize = 12;
 
-/// Prefetches the node or leaf a lane visits next (a node's four cache lines, up to three
-/// lines of a leaf's triangles), so that its misses are under way while the other lanes work.
+/// Prefetches a node (all four cache lines) or a leaf's triangles (up to three lines): in the
+/// single-ray kernels every child pushed on the stack, in the batch kernels the node or leaf a
+/// lane visits next, so that its misses are under way while other work goes on.
 #[inline(always)]
 fn prefetch(bvh: &Bvh, r: u32) {
     #[cfg(target_arch = "x86_64")]
