@@ -260,6 +260,8 @@ fn generated(nu: usize, nv: usize, res: usize, n_incoherent: usize) -> Workload 
 enum Query {
     Closest,
     Occluded,
+    ClosestBatch,
+    OccludedBatch,
 }
 
 /// Traces all rays in 4096-ray chunks (the anchor's OpenMP `dynamic, 4096`); returns hits and
@@ -268,6 +270,24 @@ fn trace(accel: &Accel, rays: &[Ray], query: Query) -> (u64, f64) {
     rays.par_chunks(4096)
         .map(|chunk| {
             let (mut hits, mut tsum) = (0u64, 0f64);
+            match query {
+                Query::ClosestBatch => {
+                    let mut out = vec![None; chunk.len()];
+                    accel.intersect_batch(chunk, &mut out);
+                    for h in out.iter().flatten() {
+                        hits += 1;
+                        tsum += f64::from(h.t);
+                    }
+                    return (hits, tsum);
+                }
+                Query::OccludedBatch => {
+                    let mut out = vec![false; chunk.len()];
+                    accel.occluded_batch(chunk, &mut out);
+                    hits += out.iter().filter(|&&o| o).count() as u64;
+                    return (hits, tsum);
+                }
+                _ => {}
+            }
             for r in chunk {
                 match query {
                     Query::Closest => {
@@ -277,6 +297,7 @@ fn trace(accel: &Accel, rays: &[Ray], query: Query) -> (u64, f64) {
                         }
                     }
                     Query::Occluded => hits += u64::from(accel.occluded(r)),
+                    _ => unreachable!(),
                 }
             }
             (hits, tsum)
@@ -345,26 +366,41 @@ fn summary(w: &Workload, reps: usize) {
     for (name, accel) in &accels {
         let s = accel.stats();
         println!("# quality={name}: {} nodes, depth {}", s.nodes, s.depth);
-        for (set, rays, query, expected) in [
+        let apis = env_list("STAGELIGHT_BENCH_API", "single batch");
+        let mut rows = Vec::new();
+        for (set, rays, single, batch, expected) in [
             (
                 "coherent",
                 &w.coherent,
                 Query::Closest,
+                Query::ClosestBatch,
                 EXPECTED_HITS_COHERENT,
             ),
             (
                 "incoherent",
                 &w.incoherent,
                 Query::Closest,
+                Query::ClosestBatch,
                 EXPECTED_HITS_INCOHERENT,
             ),
             (
                 "occluded",
                 &w.incoherent,
                 Query::Occluded,
+                Query::OccludedBatch,
                 EXPECTED_HITS_INCOHERENT,
             ),
         ] {
+            // Single and batch rows alternate, so each pair is measured in the same window.
+            for api in apis.split_whitespace() {
+                match api {
+                    "single" => rows.push((set.to_string(), rays, single, expected)),
+                    "batch" => rows.push((format!("{set}/batch"), rays, batch, expected)),
+                    _ => {}
+                }
+            }
+        }
+        for (set, rays, query, expected) in rows {
             for &threads in &thread_counts {
                 let p = pool(threads);
                 let (mut best_wall, mut best_cpu, mut result) =
@@ -398,7 +434,7 @@ fn summary(w: &Workload, reps: usize) {
                     " MISMATCH"
                 };
                 println!(
-                    "{name:6} {set:10} threads={threads}: {:6.2} Mrays/s wall, {:6.2} Mrays/cpu-s, hits {}{check}, tsum {:.6e}",
+                    "{name:6} {set:16} threads={threads}: {:6.2} Mrays/s wall, {:6.2} Mrays/cpu-s, hits {}{check}, tsum {:.6e}",
                     n / best_wall * 1e-6,
                     n / best_cpu * 1e-6,
                     result.0,

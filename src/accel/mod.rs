@@ -119,6 +119,25 @@ impl Accel {
         traverse::occluded(&self.bvh, ray)
     }
 
+    /// Closest hits of a batch of rays: `out[i]` is `self.intersect(&rays[i])`, bit for bit.
+    /// Several rays are traversed interleaved, so that the memory latency of one overlaps the
+    /// work of the others: faster than one call per ray for incoherent rays.
+    ///
+    /// # Panics
+    /// When `rays` and `out` differ in length.
+    pub fn intersect_batch(&self, rays: &[Ray], out: &mut [Option<Hit>]) {
+        traverse::closest_batch(&self.bvh, rays, out);
+    }
+
+    /// Occlusion of a batch of rays: `out[i]` is `self.occluded(&rays[i])`, traversed
+    /// interleaved like [`Accel::intersect_batch`].
+    ///
+    /// # Panics
+    /// When `rays` and `out` differ in length.
+    pub fn occluded_batch(&self, rays: &[Ray], out: &mut [bool]) {
+        traverse::occluded_batch(&self.bvh, rays, out);
+    }
+
     /// Surface point of a hit, computed from its barycentrics, with error bounds.
     pub fn surface_point(&self, hit: &Hit) -> SurfacePoint {
         spawn::surface_point(&self.triangle(hit.prim), hit.b1, hit.b2)

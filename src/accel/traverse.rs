@@ -1,4 +1,5 @@
-//! The traversal kernel over our 8-wide nodes: closest hit and occlusion, one ray at a time.
+//! The traversal kernels over our 8-wide nodes: closest hit and occlusion, one ray at a time
+//! or a batch of rays interleaved.
 //!
 //! * **Slab test** (pbrt-v4 `Bounds3::IntersectP`, Ize 2013): `t = (plane − o) · (1/d)` with the
 //!   exact IEEE reciprocal (±∞ for zero components, never clamped), far distances scaled by
@@ -7,12 +8,17 @@
 //!   conservative answer. The entry distance is clamped at 0 — not at obvhs's 1e-4.
 //! * **Order**: hit children are pushed sorted by entry distance, nearest on top; popped
 //!   entries farther than the current closest hit are skipped.
+//! * **Prefetch**: every child pushed is prefetched whole (a node's four cache lines, a
+//!   leaf's triangles), so its misses overlap the work on its siblings (+13–15 % incoherent).
+//! * **Batches** (`closest_batch`, `occluded_batch`): 12 rays traversed interleaved, one node
+//!   or leaf per ray in turn, each lane's next node prefetched; identical results, 2.5–3×
+//!   the single-ray throughput on incoherent rays.
 //! * **Stack**: sized from the tree depth measured at build (a fixed array when that fits, a
 //!   `Vec` otherwise), so it cannot overflow.
 //! * **Ties**: the closest hit is the smallest `(t, original index)`, so the result does not
 //!   depend on traversal order (the brute-force reference gives the same answer).
 
-use glam::Vec4;
+use glam::{Vec3, Vec4};
 
 use super::bvh::{Bvh, Node, COUNT_SHIFT, EMPTY_CHILD, FIRST_MASK, LEAF_BIT};
 use super::triangle::{gamma, ray_is_valid, WoopRay};
@@ -87,6 +93,7 @@ trait Stack {
     fn push(&mut self, e: Entry);
     fn pop(&mut self) -> Option<Entry>;
     fn len(&self) -> usize;
+    fn clear(&mut self);
     /// Sorts the entries from `from` to the top so that the smallest `t` is on top.
     fn sort_top(&mut self, from: usize);
 }
@@ -138,6 +145,10 @@ impl<const N: usize> Stack for ArrayStack<N> {
         self.len
     }
     #[inline(always)]
+    fn clear(&mut self) {
+        self.len = 0;
+    }
+    #[inline(always)]
     fn sort_top(&mut self, from: usize) {
         sort_descending(&mut self.items[from..self.len]);
     }
@@ -155,6 +166,10 @@ impl Stack for Vec<Entry> {
     #[inline(always)]
     fn len(&self) -> usize {
         Vec::len(self)
+    }
+    #[inline(always)]
+    fn clear(&mut self) {
+        Vec::clear(self);
     }
     #[inline(always)]
     fn sort_top(&mut self, from: usize) {
@@ -238,6 +253,7 @@ fn closest_with<S: Stack>(bvh: &Bvh, ray: &Ray, mut stack: S) -> Option<Hit> {
                 while mask != 0 {
                     let slot = mask.trailing_zeros() as usize;
                     mask &= mask - 1;
+                    prefetch(bvh, node.child[slot]);
                     stack.push(Entry {
                         r: node.child[slot],
                         t: tn[slot],
@@ -285,6 +301,7 @@ fn occluded_with<S: Stack>(bvh: &Bvh, ray: &Ray, mut stack: S) -> bool {
             while mask != 0 {
                 let slot = mask.trailing_zeros() as usize;
                 mask &= mask - 1;
+                prefetch(bvh, node.child[slot]);
                 stack.push(Entry {
                     r: node.child[slot],
                     t: 0.0,
@@ -294,6 +311,322 @@ fn occluded_with<S: Stack>(bvh: &Bvh, ray: &Ray, mut stack: S) -> bool {
         match stack.pop() {
             None => return false,
             Some(e) => cur = e.r,
+        }
+    }
+}
+
+/// The state of one closest-hit traversal of the batch kernel, advanced one node or leaf at a
+/// time by [`ClosestLane::step`]. It does exactly what [`closest_with`] does, in the same
+/// order, so both return identical hits (`batch_equals_single_ray` tests it); the single-ray
+/// kernel keeps its own loop because keeping the state in a struct cost it 5–8 %.
+struct ClosestLane<S> {
+    woop: WoopRay,
+    nr: NodeRay,
+    /// The closest candidate so far as (BVH-order index, b1, b2); its original index is
+    /// looked up only on an exact tie and once at the end (`prim_ids` is cold).
+    best: Option<(usize, f32, f32)>,
+    /// Until the first hit, t must be < ray.t_max; afterwards (t, prim) must be smaller.
+    best_t: f32,
+    cull: f32,
+    /// The node or leaf to process next.
+    cur: u32,
+    stack: S,
+}
+
+impl<S: Stack> ClosestLane<S> {
+    #[inline(always)]
+    fn new(ray: &Ray, stack: S) -> Self {
+        Self {
+            woop: WoopRay::new(ray.origin, ray.dir),
+            nr: NodeRay::new(ray),
+            best: None,
+            best_t: ray.t_max,
+            cull: ray.t_max * FAR_SCALE,
+            cur: 0,
+            stack,
+        }
+    }
+
+    /// Starts over with another ray, keeping the stack's storage.
+    #[inline(always)]
+    fn restart(&mut self, ray: &Ray) {
+        self.woop = WoopRay::new(ray.origin, ray.dir);
+        self.nr = NodeRay::new(ray);
+        self.best = None;
+        self.best_t = ray.t_max;
+        self.cull = ray.t_max * FAR_SCALE;
+        self.cur = 0;
+        self.stack.clear();
+    }
+
+    /// Processes `cur` and pops the next node or leaf into it; false when the traversal is
+    /// finished.
+    #[inline(always)]
+    fn step(&mut self, bvh: &Bvh) -> bool {
+        let cur = self.cur;
+        if cur & LEAF_BIT != 0 {
+            for k in leaf_range(cur) {
+                if let Some((t, b1, b2)) = self.woop.intersect(&bvh.tris[k]) {
+                    let better = t < self.best_t
+                        || (t == self.best_t
+                            && self
+                                .best
+                                .is_some_and(|(bk, _, _)| bvh.prim_ids[k] < bvh.prim_ids[bk]));
+                    if better {
+                        self.best = Some((k, b1, b2));
+                        self.best_t = t;
+                        self.cull = t * FAR_SCALE;
+                    }
+                }
+            }
+        } else {
+            let node = &bvh.nodes[cur as usize];
+            let (mut mask, entry) = self.nr.intersect(node, self.best_t);
+            if mask != 0 {
+                let base = self.stack.len();
+                let tn: [f32; 8] = {
+                    let (a, b) = (entry[0].to_array(), entry[1].to_array());
+                    [a[0], a[1], a[2], a[3], b[0], b[1], b[2], b[3]]
+                };
+                while mask != 0 {
+                    let slot = mask.trailing_zeros() as usize;
+                    mask &= mask - 1;
+                    self.stack.push(Entry {
+                        r: node.child[slot],
+                        t: tn[slot],
+                    });
+                }
+                self.stack.sort_top(base);
+            }
+        }
+        loop {
+            match self.stack.pop() {
+                None => return false,
+                Some(e) if e.t <= self.cull => {
+                    self.cur = e.r;
+                    return true;
+                }
+                Some(_) => {}
+            }
+        }
+    }
+
+    #[inline(always)]
+    fn result(&self, bvh: &Bvh) -> Option<Hit> {
+        self.best.map(|(k, b1, b2)| Hit {
+            t: self.best_t,
+            prim: bvh.prim_ids[k],
+            b1,
+            b2,
+        })
+    }
+}
+
+/// The state of one occlusion traversal (see [`ClosestLane`]).
+struct OcclusionLane<S> {
+    woop: WoopRay,
+    nr: NodeRay,
+    t_max: f32,
+    cur: u32,
+    hit: bool,
+    stack: S,
+}
+
+impl<S: Stack> OcclusionLane<S> {
+    #[inline(always)]
+    fn new(ray: &Ray, stack: S) -> Self {
+        Self {
+            woop: WoopRay::new(ray.origin, ray.dir),
+            nr: NodeRay::new(ray),
+            t_max: ray.t_max,
+            cur: 0,
+            hit: false,
+            stack,
+        }
+    }
+
+    /// Starts over with another ray, keeping the stack's storage.
+    #[inline(always)]
+    fn restart(&mut self, ray: &Ray) {
+        self.woop = WoopRay::new(ray.origin, ray.dir);
+        self.nr = NodeRay::new(ray);
+        self.t_max = ray.t_max;
+        self.cur = 0;
+        self.hit = false;
+        self.stack.clear();
+    }
+
+    /// Processes `cur` and pops the next node or leaf into it; false when the traversal is
+    /// finished (a hit was found or nothing is left).
+    #[inline(always)]
+    fn step(&mut self, bvh: &Bvh) -> bool {
+        let cur = self.cur;
+        if cur & LEAF_BIT != 0 {
+            for k in leaf_range(cur) {
+                if let Some((t, _, _)) = self.woop.intersect(&bvh.tris[k]) {
+                    if t < self.t_max {
+                        self.hit = true;
+                        return false;
+                    }
+                }
+            }
+        } else {
+            let node = &bvh.nodes[cur as usize];
+            let (mut mask, _) = self.nr.intersect(node, self.t_max);
+            while mask != 0 {
+                let slot = mask.trailing_zeros() as usize;
+                mask &= mask - 1;
+                self.stack.push(Entry {
+                    r: node.child[slot],
+                    t: 0.0,
+                });
+            }
+        }
+        match self.stack.pop() {
+            None => false,
+            Some(e) => {
+                self.cur = e.r;
+                true
+            }
+        }
+    }
+}
+
+/// Rays traced interleaved by the batch kernels.
+/// 12 measured best on the anchor's incoherent rays (Mrays per CPU-second, one window:
+/// 4 lanes 1.99, 8 lanes 2.69, 12 lanes 2.82, 16 lanes 2.78; single ray 1.00).
+pub(crate) const BATCH_LANES: usize = 12;
+
+/// Prefetches a node (all four cache lines) or a leaf's triangles (up to three lines): in the
+/// single-ray kernels every child pushed on the stack, in the batch kernels the node or leaf a
+/// lane visits next, so that its misses are under way while other work goes on.
+#[inline(always)]
+fn prefetch(bvh: &Bvh, r: u32) {
+    #[cfg(target_arch = "x86_64")]
+    {
+        use std::arch::x86_64::{_mm_prefetch, _MM_HINT_T0};
+        let lines: [*const i8; 4] = if r & LEAF_BIT != 0 {
+            let range = leaf_range(r);
+            let first = bvh.tris[range.start].as_ptr().cast::<i8>();
+            let last = bvh.tris[range.end - 1].as_ptr().cast::<i8>();
+            // The last byte of the last triangle, and a line in between (≤ 3 triangles of
+            // 36 bytes span at most three lines).
+            let end = last.wrapping_add(std::mem::size_of::<[Vec3; 3]>() - 1);
+            let mid = first.wrapping_add(64).min(end);
+            [first, mid, end, end]
+        } else {
+            let node = std::ptr::from_ref(&bvh.nodes[r as usize]).cast::<i8>();
+            [0, 64, 128, 192].map(|o| node.wrapping_add(o))
+        };
+        for p in lines {
+            // SAFETY: `_mm_prefetch` requires SSE, which every x86_64 target has. It is a
+            // hint: it never faults and has no effect on memory, whatever the address (and
+            // every address here lies inside the node or triangles just indexed).
+            unsafe { _mm_prefetch::<_MM_HINT_T0>(p) };
+        }
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = (bvh, r);
+}
+
+/// Closest hits of `rays` into `out`, [`BATCH_LANES`] rays traversed interleaved: each lane
+/// advances by one node or leaf in turn, so the cache misses of one ray overlap the work of
+/// the others. Results are those of [`closest`], ray by ray.
+pub(crate) fn closest_batch(bvh: &Bvh, rays: &[Ray], out: &mut [Option<Hit>]) {
+    assert_eq!(rays.len(), out.len(), "one result slot per ray");
+    if bvh.nodes.is_empty() || stack_bound(bvh.depth) > ARRAY_STACK {
+        for (r, o) in rays.iter().zip(out.iter_mut()) {
+            *o = closest(bvh, r);
+        }
+        return;
+    }
+    let mut next = 0;
+    // Hands out the next valid ray's index; invalid rays are answered on the spot.
+    let mut take = |out: &mut [Option<Hit>]| {
+        while next < rays.len() {
+            let i = next;
+            next += 1;
+            if ray_is_valid(&rays[i]) {
+                return Some(i);
+            }
+            out[i] = None;
+        }
+        None
+    };
+    let mut lanes: [Option<(usize, ClosestLane<ArrayStack<ARRAY_STACK>>)>; BATCH_LANES] =
+        std::array::from_fn(|_| None);
+    for slot in lanes.iter_mut() {
+        *slot = take(out).map(|i| (i, ClosestLane::new(&rays[i], ArrayStack::new())));
+    }
+    let mut active = lanes.iter().filter(|l| l.is_some()).count();
+    while active > 0 {
+        for slot in lanes.iter_mut() {
+            let Some((i, lane)) = slot else { continue };
+            if lane.step(bvh) {
+                prefetch(bvh, lane.cur);
+                continue;
+            }
+            out[*i] = lane.result(bvh);
+            match take(out) {
+                Some(j) => {
+                    lane.restart(&rays[j]);
+                    *i = j;
+                }
+                None => {
+                    *slot = None;
+                    active -= 1;
+                }
+            }
+        }
+    }
+}
+
+/// Occlusion of `rays` into `out`, interleaved like [`closest_batch`]; results are those of
+/// [`occluded`], ray by ray.
+pub(crate) fn occluded_batch(bvh: &Bvh, rays: &[Ray], out: &mut [bool]) {
+    assert_eq!(rays.len(), out.len(), "one result slot per ray");
+    if bvh.nodes.is_empty() || stack_bound(bvh.depth) > ARRAY_STACK {
+        for (r, o) in rays.iter().zip(out.iter_mut()) {
+            *o = occluded(bvh, r);
+        }
+        return;
+    }
+    let mut next = 0;
+    let mut take = |out: &mut [bool]| {
+        while next < rays.len() {
+            let i = next;
+            next += 1;
+            if ray_is_valid(&rays[i]) {
+                return Some(i);
+            }
+            out[i] = false;
+        }
+        None
+    };
+    let mut lanes: [Option<(usize, OcclusionLane<ArrayStack<ARRAY_STACK>>)>; BATCH_LANES] =
+        std::array::from_fn(|_| None);
+    for slot in lanes.iter_mut() {
+        *slot = take(out).map(|i| (i, OcclusionLane::new(&rays[i], ArrayStack::new())));
+    }
+    let mut active = lanes.iter().filter(|l| l.is_some()).count();
+    while active > 0 {
+        for slot in lanes.iter_mut() {
+            let Some((i, lane)) = slot else { continue };
+            if lane.step(bvh) {
+                prefetch(bvh, lane.cur);
+                continue;
+            }
+            out[*i] = lane.hit;
+            match take(out) {
+                Some(j) => {
+                    lane.restart(&rays[j]);
+                    *i = j;
+                }
+                None => {
+                    *slot = None;
+                    active -= 1;
+                }
+            }
         }
     }
 }
@@ -318,6 +651,99 @@ mod tests {
         assert!(stack_bound(1) >= 8);
         assert!(stack_bound(15) <= ARRAY_STACK);
         assert!(stack_bound(16) > ARRAY_STACK);
+    }
+
+    fn hit_bits(h: Option<Hit>) -> Option<[u32; 4]> {
+        h.map(|h| [h.t.to_bits(), h.prim, h.b1.to_bits(), h.b2.to_bits()])
+    }
+
+    /// The batch kernels give the single-ray results bit for bit, for batches shorter and
+    /// longer than the lane count, with invalid rays and finite `t_max` mixed in, and on a
+    /// hierarchy too deep for the array stack (the batch falls back to single rays).
+    #[test]
+    fn batch_equals_single_ray() {
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut rnd = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 40) as f32 / (1u64 << 24) as f32 * 2.0 - 1.0
+        };
+        let soup: Vec<[Vec3; 3]> = (0..3000)
+            .map(|_| {
+                let c = Vec3::new(rnd(), rnd(), rnd()) * 4.0;
+                [
+                    c,
+                    c + Vec3::new(rnd(), rnd(), rnd()) * 0.3,
+                    c + Vec3::new(rnd(), rnd(), rnd()) * 0.3,
+                ]
+            })
+            .collect();
+        // Nested, shrinking triangles: a hierarchy far deeper than the array stack allows.
+        let nested: Vec<[Vec3; 3]> = (0..3000)
+            .map(|i| {
+                let s = 0.997f32.powi(i);
+                [
+                    Vec3::new(-s, -s, i as f32 * 1e-3),
+                    Vec3::new(s, -s, 0.0),
+                    Vec3::new(0.0, s, 0.0),
+                ]
+            })
+            .collect();
+        let mut rays: Vec<Ray> = (0..2000)
+            .map(|i| {
+                let origin = Vec3::new(rnd(), rnd(), rnd()) * 5.0;
+                // Every other ray aims at the nested triangles around the origin.
+                let dir = if i % 2 == 0 {
+                    Vec3::new(rnd(), rnd(), rnd().abs() * 3.0) - origin
+                } else {
+                    Vec3::new(rnd(), rnd(), rnd())
+                };
+                let t_max = if i % 3 == 0 {
+                    rnd().abs() * 4.0
+                } else {
+                    f32::INFINITY
+                };
+                Ray { origin, dir, t_max }
+            })
+            .collect();
+        rays[5].dir = Vec3::ZERO;
+        rays[17].origin.x = f32::NAN;
+        rays[40].t_max = -1.0;
+        for tris in [soup, nested] {
+            let bvh = super::super::bvh::build(&tris, crate::settings::BvhQuality::Medium);
+            for n in [0, 1, 5, BATCH_LANES, BATCH_LANES + 1, 100, rays.len()] {
+                let rays = &rays[..n];
+                let mut hits = vec![None; n];
+                let mut occ = vec![true; n];
+                closest_batch(&bvh, rays, &mut hits);
+                occluded_batch(&bvh, rays, &mut occ);
+                for (i, r) in rays.iter().enumerate() {
+                    assert_eq!(hit_bits(hits[i]), hit_bits(closest(&bvh, r)), "ray {i}");
+                    assert_eq!(occ[i], occluded(&bvh, r), "ray {i}");
+                }
+            }
+            assert!(hits_some(&bvh, &rays));
+        }
+    }
+
+    fn hits_some(bvh: &Bvh, rays: &[Ray]) -> bool {
+        rays.iter().filter(|r| closest(bvh, r).is_some()).count() > 10
+    }
+
+    /// Prefetching the last node and the last leaf (addresses at the very end of the arrays)
+    /// is harmless.
+    #[test]
+    fn prefetch_of_last_node_and_leaf() {
+        let tri = [Vec3::ZERO, Vec3::X, Vec3::Y];
+        let bvh = super::super::bvh::build(&[tri], crate::settings::BvhQuality::Fast);
+        let last_node = bvh.nodes.len() as u32 - 1;
+        prefetch(&bvh, last_node);
+        prefetch(
+            &bvh,
+            LEAF_BIT | (1 << COUNT_SHIFT) | (bvh.tris.len() as u32 - 1),
+        );
+        prefetch(&bvh, bvh.nodes[0].child[0]);
     }
 
     #[test]

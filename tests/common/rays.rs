@@ -6,7 +6,7 @@
 )]
 
 use glam::{Affine3A, DVec3, Quat, Vec3};
-use stagelight::accel::{brute_force_intersect, Accel, Ray};
+use stagelight::accel::{brute_force_intersect, Accel, Hit, Ray};
 use stagelight::settings::BvhQuality;
 
 /// SplitMix64: tiny, deterministic, good enough for test inputs.
@@ -156,13 +156,29 @@ pub fn mismatches(accel: &Accel, tris: &[[Vec3; 3]], rays: &[Ray]) -> usize {
     mismatches_many(std::slice::from_ref(accel), tris, rays)
 }
 
+/// Single-ray and batch queries of every accel against brute force.
 fn mismatches_many(accels: &[Accel], tris: &[[Vec3; 3]], rays: &[Ray]) -> usize {
+    let batches: Vec<(Vec<Option<Hit>>, Vec<bool>)> = accels
+        .iter()
+        .map(|accel| {
+            let mut hits = vec![None; rays.len()];
+            let mut occluded = vec![false; rays.len()];
+            accel.intersect_batch(rays, &mut hits);
+            accel.occluded_batch(rays, &mut occluded);
+            (hits, occluded)
+        })
+        .collect();
     let mut bad = 0;
-    for r in rays {
+    for (i, r) in rays.iter().enumerate() {
         let b = brute_force_intersect(tris, r);
         for (k, accel) in accels.iter().enumerate() {
             let a = accel.intersect(r);
-            if a != b || accel.occluded(r) != b.is_some() {
+            let (batch_hits, batch_occluded) = &batches[k];
+            if a != b
+                || accel.occluded(r) != b.is_some()
+                || batch_hits[i] != b
+                || batch_occluded[i] != b.is_some()
+            {
                 if bad < 5 {
                     eprintln!("mismatch (accel {k}): ray {r:?}\n  bvh   {a:?}\n  brute {b:?}");
                 }
