@@ -280,23 +280,34 @@ fn set_threads(threads: Option<u32>) -> Result<(), ExitCode> {
     Ok(())
 }
 
-fn render(args: RenderArgs) -> ExitCode {
-    if let Err(code) = set_threads(args.threads) {
-        return code;
-    }
-    let mut scene = match load(&args.scene) {
-        Ok(s) => s,
-        Err(code) => return code,
-    };
+/// Starts the worker pool, loads the scene and applies the command-line overrides common to
+/// `render` and `bake`.
+fn prepare(
+    scene: &Path,
+    threads: Option<u32>,
+    seed: Option<u64>,
+    integrator: Option<IntegratorArg>,
+) -> Result<(LoadedScene, stagelight::settings::RenderSettings), ExitCode> {
+    set_threads(threads)?;
+    let scene = load(scene)?;
     let mut settings = scene.settings.clone();
-    if let Some(spp) = args.spp {
-        settings.spp = spp;
-    }
-    if let Some(seed) = args.seed {
+    if let Some(seed) = seed {
         settings.seed = seed;
     }
-    if let Some(integrator) = args.integrator {
+    if let Some(integrator) = integrator {
         settings.integrator = integrator.integrator();
+    }
+    Ok((scene, settings))
+}
+
+fn render(args: RenderArgs) -> ExitCode {
+    let (mut scene, mut settings) =
+        match prepare(&args.scene, args.threads, args.seed, args.integrator) {
+            Ok(p) => p,
+            Err(code) => return code,
+        };
+    if let Some(spp) = args.spp {
+        settings.spp = spp;
     }
     if let Some(out) = &args.output {
         if let Err(message) = override_output(&mut scene.world, out) {
@@ -313,20 +324,11 @@ fn render(args: RenderArgs) -> ExitCode {
 }
 
 fn bake(args: BakeArgs) -> ExitCode {
-    if let Err(code) = set_threads(args.threads) {
-        return code;
-    }
-    let mut scene = match load(&args.scene) {
-        Ok(s) => s,
+    let (mut scene, settings) = match prepare(&args.scene, args.threads, args.seed, args.integrator)
+    {
+        Ok(p) => p,
         Err(code) => return code,
     };
-    let mut settings = scene.settings.clone();
-    if let Some(seed) = args.seed {
-        settings.seed = seed;
-    }
-    if let Some(integrator) = args.integrator {
-        settings.integrator = integrator.integrator();
-    }
     if scene.world.query::<&BakeRequest>().iter().next().is_none() {
         eprintln!(
             "error: {} has no bake requests\n  help: add `bake: (resolution: (512, 512), outputs: [(kind: AmbientOcclusion())])` to an instance",
