@@ -30,7 +30,8 @@ pub struct HemisphereRays {
 /// Traces `count` cosine-weighted rays about `normal` (which faces the side being baked)
 /// from `surface`, each drawn from `Sampler::new(seed, first + k)`. Directions below the
 /// geometric surface (possible with interpolated normals) count as occluded. Hits farther
-/// than `max_distance` do not count.
+/// than `max_distance` do not occlude. With `probe`, rays run to infinity so that
+/// `backface_hits` also serves as the inside-geometry test.
 #[allow(clippy::too_many_arguments)] // one batch of rays, fully described; two callers
 pub fn trace_hemisphere(
     geometry: &SceneGeometry,
@@ -41,6 +42,7 @@ pub fn trace_hemisphere(
     seed: u32,
     first: u32,
     count: u32,
+    probe: bool,
 ) -> HemisphereRays {
     let (t, b) = basis(normal);
     let mut out = HemisphereRays::default();
@@ -53,19 +55,20 @@ pub fn trace_hemisphere(
             continue;
         }
         let mut ray = spawn_ray(surface, dir);
-        ray.t_max = max_distance;
-        match geometry.accel.intersect(&ray) {
-            None => {
-                out.open += 1;
-                out.open_dir_sum += dir;
+        // As an inside-geometry probe the ray looks for the first surface at any distance;
+        // occlusion still counts only hits within `max_distance`.
+        ray.t_max = if probe { f32::INFINITY } else { max_distance };
+        let hit = geometry.accel.intersect(&ray);
+        if let Some(hit) = hit {
+            let tri = geometry.accel.triangle(hit.prim);
+            let ng = (tri[1] - tri[0]).cross(tri[2] - tri[0]);
+            if ng.dot(dir) > 0.0 && !geometry.material_of(hit.prim).two_sided {
+                out.backface_hits += 1;
             }
-            Some(hit) => {
-                let tri = geometry.accel.triangle(hit.prim);
-                let ng = (tri[1] - tri[0]).cross(tri[2] - tri[0]);
-                if ng.dot(dir) > 0.0 && !geometry.material_of(hit.prim).two_sided {
-                    out.backface_hits += 1;
-                }
-            }
+        }
+        if hit.is_none_or(|h| h.t >= max_distance) {
+            out.open += 1;
+            out.open_dir_sum += dir;
         }
     }
     out

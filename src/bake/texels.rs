@@ -8,7 +8,7 @@ use glam::Vec3;
 use rayon::prelude::*;
 
 use crate::accumulate::SampleMean;
-use crate::bake::ao::trace_hemisphere;
+use crate::bake::ao::{trace_hemisphere, HemisphereRays};
 use crate::bake::irradiance::{
     base_color, diffuse_albedo, direct_irradiance, indirect_irradiance_path,
     indirect_irradiance_sample,
@@ -23,6 +23,9 @@ use crate::shading::LightSet;
 
 /// Rays of the inside-geometry probe per sample position.
 const PROBE_RAYS: u32 = 16;
+/// Ambient-occlusion rays per sample position from which the AO rays themselves serve as the
+/// inside-geometry probe (no separate probe rays are traced).
+const AO_PROBE_MIN_RAYS: u32 = 8;
 /// A sample position is inside geometry when more than this fraction of probe rays first meet
 /// the back of a one-sided surface (inside a closed mesh it is all of them; beside the back of
 /// a one-sided wall about half).
@@ -164,6 +167,13 @@ fn texel(
     let texel_index = j as u64 * job.coverage.width as u64 + i as u64;
     let texel_seed = hash_combine(&[job.seed, texel_index as u32, (texel_index >> 32) as u32]);
     let mut rays = 0u64;
+    // With enough AO rays per sample position, they double as the inside probe.
+    let filled = slots.iter().filter(|s| s.is_some()).count() as u32;
+    let ao_probe = needs_probe
+        && job.kinds.iter().any(|k| {
+            matches!(k, BakeKind::AmbientOcclusion { samples, .. } if *samples >= AO_PROBE_MIN_RAYS * filled)
+        });
+    let needs_probe = needs_probe && !ao_probe;
     // Sample positions, minus those found inside other geometry.
     let mut sites = Vec::with_capacity(slots.len());
     for (s, slot) in slots.iter().enumerate() {
@@ -193,6 +203,7 @@ fn texel(
                 hash_combine(&[texel_seed, 0x9b0e, s as u32]),
                 0,
                 PROBE_RAYS,
+                true,
             );
             rays += probe.rays as u64;
             if probe.backface_hits as f32 > INSIDE_FRACTION * probe.rays as f32 {
@@ -204,6 +215,43 @@ fn texel(
     if sites.is_empty() {
         return (values, rays, true);
     }
+    // AO rays of each sample position, traced first when they are the probe; positions found
+    // inside geometry are dropped with their rays.
+    let mut ao_done: Option<(usize, Vec<HemisphereRays>)> = None;
+    if ao_probe {
+        if let Some((k, (samples, max_distance))) =
+            job.kinds
+                .iter()
+                .enumerate()
+                .find_map(|(k, kind)| match kind {
+                    BakeKind::AmbientOcclusion {
+                        samples,
+                        max_distance,
+                        ..
+                    } => Some((k, (*samples, *max_distance))),
+                    _ => None,
+                })
+        {
+            let kind_seed = hash_combine(&[texel_seed, k as u32 + 1]);
+            let results = ao_rays(job, &sites, samples, max_distance, kind_seed, true);
+            rays += results.iter().map(|r| r.rays as u64).sum::<u64>();
+            let inside =
+                |r: &HemisphereRays| r.backface_hits as f32 > INSIDE_FRACTION * r.rays as f32;
+            let keep: Vec<bool> = results.iter().map(|r| !inside(r)).collect();
+            let mut kept = keep.iter();
+            sites.retain(|_| *kept.next().unwrap_or(&true));
+            let results: Vec<HemisphereRays> = results
+                .into_iter()
+                .zip(&keep)
+                .filter(|(_, k)| **k)
+                .map(|(r, _)| r)
+                .collect();
+            if sites.is_empty() {
+                return (values, rays, true);
+            }
+            ao_done = Some((k, results));
+        }
+    }
     let n_sites = sites.len() as u32;
     for (k, kind) in job.kinds.iter().enumerate() {
         let kind_seed = hash_combine(&[texel_seed, k as u32 + 1]);
@@ -213,31 +261,17 @@ fn texel(
                 max_distance,
                 bent_normals,
             } => {
-                let samples = (*samples).max(1);
-                let mut open = 0u32;
-                let mut traced = 0u32;
-                let mut dir_sum = Vec3::ZERO;
-                for (s, site) in sites.iter().enumerate() {
-                    // Rays are dealt round-robin over the sample positions.
-                    let count = samples / n_sites + u32::from((s as u32) < samples % n_sites);
-                    let first: u32 = (0..s as u32)
-                        .map(|q| samples / n_sites + u32::from(q < samples % n_sites))
-                        .sum();
-                    let r = trace_hemisphere(
-                        job.geometry,
-                        &site.surface,
-                        site.normal,
-                        site.ng,
-                        *max_distance,
-                        kind_seed,
-                        first,
-                        count,
-                    );
-                    open += r.open;
-                    traced += r.rays;
-                    dir_sum += r.open_dir_sum;
-                }
-                rays += traced as u64;
+                let results = match &ao_done {
+                    Some((done, results)) if *done == k => results.clone(),
+                    _ => {
+                        let r = ao_rays(job, &sites, *samples, *max_distance, kind_seed, false);
+                        rays += r.iter().map(|r| r.rays as u64).sum::<u64>();
+                        r
+                    }
+                };
+                let open: u32 = results.iter().map(|r| r.open).sum();
+                let traced: u32 = results.iter().map(|r| r.rays).sum();
+                let dir_sum: Vec3 = results.iter().map(|r| r.open_dir_sum).sum();
                 if *bent_normals && bent {
                     let mean_normal = sites
                         .iter()
@@ -337,6 +371,40 @@ fn texel(
         values[k] = value.is_finite().then_some(value);
     }
     (values, rays, false)
+}
+
+/// AO rays of every sample position: `samples` rays dealt round-robin over `sites`.
+fn ao_rays(
+    job: &TexelJob<'_>,
+    sites: &[Site],
+    samples: u32,
+    max_distance: f32,
+    seed: u32,
+    probe: bool,
+) -> Vec<HemisphereRays> {
+    let samples = samples.max(1);
+    let n = sites.len() as u32;
+    let mut first = 0;
+    sites
+        .iter()
+        .enumerate()
+        .map(|(s, site)| {
+            let count = samples / n + u32::from((s as u32) < samples % n);
+            let r = trace_hemisphere(
+                job.geometry,
+                &site.surface,
+                site.normal,
+                site.ng,
+                max_distance,
+                seed,
+                first,
+                count,
+                probe,
+            );
+            first += count;
+            r
+        })
+        .collect()
 }
 
 /// `n` in the tangent frame of the site's triangle: T = dP/du, B = dP/dv (Gram–Schmidt
