@@ -18,6 +18,10 @@ pub struct FrameBuffers {
     pub depth: Vec<f32>,
     /// World-space shading normal at the pixel centre; zero where nothing was hit.
     pub normal: Vec<Vec3>,
+    /// Object id at the pixel centre (see `Pass::ObjectId`); 0 for the background.
+    pub object_id: Vec<u32>,
+    /// Material id at the pixel centre (see `Pass::MaterialId`); 0 for the background.
+    pub material_id: Vec<u32>,
 }
 
 impl FrameBuffers {
@@ -31,6 +35,8 @@ impl FrameBuffers {
             alpha: vec![0.0; n],
             depth: vec![f32::INFINITY; n],
             normal: vec![Vec3::ZERO; n],
+            object_id: vec![0; n],
+            material_id: vec![0; n],
         }
     }
 }

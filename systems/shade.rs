@@ -108,6 +108,8 @@ pub fn run(world: &mut World, frame: &mut Frame) -> Result<Work, StageError> {
             fb.alpha[i] = r.alpha;
             fb.depth[i] = r.depth;
             fb.normal[i] = r.normal;
+            fb.object_id[i] = r.object_id;
+            fb.material_id[i] = r.material_id;
         }
     }
     let n = dropped.load(Ordering::Relaxed);
@@ -129,6 +131,8 @@ struct PixelResult {
     depth: f32,
     normal: Vec3,
     dropped: u32,
+    object_id: u32,
+    material_id: u32,
 }
 
 #[allow(clippy::too_many_arguments)] // one pixel's full context; called from one place
@@ -149,6 +153,8 @@ fn shade_pixel(
         depth: f32::INFINITY,
         normal: Vec3::ZERO,
         dropped: 0,
+        object_id: 0,
+        material_id: 0,
     };
     let Some(ctx) = ctx else {
         return result;
@@ -159,6 +165,8 @@ fn shade_pixel(
         let sp = ctx.geometry.shading_point(&hit);
         result.depth = hit.t;
         result.normal = sp.normal;
+        result.object_id = sp.instance + 1;
+        result.material_id = sp.material + 1;
     }
     let mut sum = SampleMean::default();
     let mut covered = 0u32;

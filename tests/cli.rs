@@ -259,3 +259,46 @@ fn integrator_flag_selects_the_path_tracer_deterministically() {
         .args(["--integrator", "whitted"]));
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
 }
+
+#[test]
+fn id_passes_go_to_exr_and_are_refused_for_png() {
+    let dir = scratch("ids");
+    let scene = dir.join("ids.ron");
+    let text = r#"Scene(
+    cameras: [(name: "cam", fov_y: 40.0, resolution: (8, 8),
+        placement: LookAt(eye: (0, 0, 3), target: (0, 0, 0)),
+        outputs: [(file: "ids.exr", passes: [Beauty, ObjectId, MaterialId]), (file: "ids.png", passes: [ObjectId])])],
+    objects: [(name: "tri", mesh: Inline(vertices: [(0, 0, 0), (1, 0, 0), (0, 1, 0)], polygons: [[0, 1, 2]]))],
+    instances: [(name: "t", of: "tri")],
+    groups: [(name: "world", members: ["t"])],
+    render: (root: "world", camera: "cam"),
+)
+"#;
+    write(&scene, text);
+    let o = run(bin().arg("check").arg(&scene));
+    assert_eq!(o.status.code(), Some(1));
+    assert!(
+        stderr(&o).contains("ids.ron:4:105: error: a PNG output cannot hold the ObjectId pass"),
+        "{}",
+        stderr(&o)
+    );
+    write(
+        &scene,
+        &text.replace(", (file: \"ids.png\", passes: [ObjectId])", ""),
+    );
+    let o = run(bin().current_dir(&dir).arg("render").arg(&scene));
+    assert!(o.status.success(), "{}", stderr(&o));
+    let read = exr::prelude::read_all_flat_layers_from_file(dir.join("ids.exr")).unwrap();
+    let ids = read.layer_data[0]
+        .channel_data
+        .list
+        .iter()
+        .find(|c| c.name.to_string() == "id.object")
+        .expect("id.object channel");
+    match &ids.sample_data {
+        exr::prelude::FlatSamples::U32(v) => {
+            assert!(v.contains(&0) && v.contains(&1), "{v:?}");
+        }
+        other => panic!("id.object is not u32: {other:?}"),
+    }
+}

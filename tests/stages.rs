@@ -147,7 +147,13 @@ fn render_with_threads(threads: usize) -> Frame {
 fn same_bytes_at_one_and_two_threads() {
     let a = render_with_threads(1);
     let b = render_with_threads(2);
-    let passes = [Pass::Beauty, Pass::Depth, Pass::Normal];
+    let passes = [
+        Pass::Beauty,
+        Pass::Depth,
+        Pass::Normal,
+        Pass::ObjectId,
+        Pass::MaterialId,
+    ];
     let ea = encode_exr(a.image.as_ref().unwrap(), &passes).unwrap();
     let eb = encode_exr(b.image.as_ref().unwrap(), &passes).unwrap();
     assert!(ea == eb, "EXR bytes differ between 1 and 2 threads");
@@ -192,4 +198,39 @@ fn seed_changes_the_noise_but_not_the_mean() {
     let mean = |v: &[Vec3]| v.iter().map(|c| c.x as f64).sum::<f64>() / v.len() as f64;
     let (ma, mb) = (mean(&fa.beauty), mean(&fb.beauty));
     assert!((ma - mb).abs() / ma < 0.02, "{ma} vs {mb}");
+}
+
+#[test]
+fn object_and_material_id_passes_label_what_each_pixel_centre_sees() {
+    let frame = render_with_threads(2);
+    let fb = frame.image.unwrap();
+    let mut objects: Vec<u32> = fb.object_id.clone();
+    objects.sort_unstable();
+    objects.dedup();
+    let mut materials: Vec<u32> = fb.material_id.clone();
+    materials.sort_unstable();
+    materials.dedup();
+    // Background, three instances (floor, occluder, constant quad) and two materials.
+    assert_eq!(objects, [0, 1, 2, 3], "{objects:?}");
+    assert_eq!(materials, [0, 1, 2], "{materials:?}");
+    for i in 0..fb.object_id.len() {
+        assert_eq!(fb.object_id[i] == 0, fb.depth[i].is_infinite());
+        assert_eq!(fb.object_id[i] == 0, fb.material_id[i] == 0);
+    }
+    // The ids reach the EXR as u32 channels.
+    let bytes = encode_exr(&fb, &[Pass::Beauty, Pass::ObjectId, Pass::MaterialId]).unwrap();
+    let dir = std::env::temp_dir().join(format!("stagelight-ids-{}.exr", std::process::id()));
+    std::fs::write(&dir, &bytes).unwrap();
+    let read = exr::prelude::read_all_flat_layers_from_file(&dir).unwrap();
+    let names: Vec<String> = read.layer_data[0]
+        .channel_data
+        .list
+        .iter()
+        .map(|c| c.name.to_string())
+        .collect();
+    assert!(
+        names.contains(&"id.object".to_string()) && names.contains(&"id.material".to_string()),
+        "{names:?}"
+    );
+    let _ = std::fs::remove_file(&dir);
 }

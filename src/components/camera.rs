@@ -15,6 +15,13 @@ pub enum Pass {
     Depth,
     /// World-space shading normal at the first hit (`N.x`, `N.y`, `N.z`).
     Normal,
+    /// Which placed object the pixel centre sees (`id.object`, u32): 1 + the instance's index
+    /// in the flattened scene (instances in entity order, i.e. declaration order of the DAG
+    /// leaves); 0 for the background.
+    ObjectId,
+    /// Which material the pixel centre sees (`id.material`, u32): 1 + the material's index
+    /// among the materials in use; 0 for the background.
+    MaterialId,
 }
 
 /// File formats for outputs.

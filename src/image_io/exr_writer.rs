@@ -29,6 +29,18 @@ pub fn encode_exr(fb: &FrameBuffers, passes: &[Pass]) -> std::result::Result<Vec
         add("N.Y", fb.normal.iter().map(|n| n.y).collect());
         add("N.Z", fb.normal.iter().map(|n| n.z).collect());
     }
+    if passes.contains(&Pass::ObjectId) {
+        channels.push(AnyChannel::new(
+            "id.object",
+            FlatSamples::U32(fb.object_id.clone()),
+        ));
+    }
+    if passes.contains(&Pass::MaterialId) {
+        channels.push(AnyChannel::new(
+            "id.material",
+            FlatSamples::U32(fb.material_id.clone()),
+        ));
+    }
     let size = (fb.width as usize, fb.height as usize);
     let layer = Layer::new(
         size,

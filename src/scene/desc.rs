@@ -218,6 +218,10 @@ pub enum PassDesc {
     Depth,
     /// World-space normal at the first hit.
     Normal,
+    /// Object id of the first hit (EXR only).
+    ObjectId,
+    /// Material id of the first hit (EXR only).
+    MaterialId,
 }
 
 /// `lights: [(...)]`: a light.

@@ -443,14 +443,23 @@ fn output(ck: &mut Checker<'_>, path: &str, o: &OutputDesc) -> Option<OutputSpec
             PassDesc::Alpha => Pass::Alpha,
             PassDesc::Depth => Pass::Depth,
             PassDesc::Normal => Pass::Normal,
+            PassDesc::ObjectId => Pass::ObjectId,
+            PassDesc::MaterialId => Pass::MaterialId,
         };
         let ppath = format!("{path}.passes[{k}]");
-        if format == ImageFormat::Png && matches!(pass, Pass::Depth | Pass::Normal) {
+        if format == ImageFormat::Png
+            && matches!(
+                pass,
+                Pass::Depth | Pass::Normal | Pass::ObjectId | Pass::MaterialId
+            )
+        {
             ck.src.error(
                 ck.file,
                 &ppath,
                 format!("a PNG output cannot hold the {pass:?} pass"),
-                Some("write Depth and Normal passes to an .exr output".into()),
+                Some(
+                    "write Depth, Normal, ObjectId and MaterialId passes to an .exr output".into(),
+                ),
             );
             ok = false;
         } else if passes.contains(&pass) {
