@@ -22,7 +22,7 @@ use crate::sampling::{hash_combine, Sampler};
 use crate::shading::LightSet;
 
 /// Rays of the inside-geometry probe per sample position.
-const PROBE_RAYS: u32 = 16;
+const PROBE_RAYS: u32 = 8;
 /// Ambient-occlusion rays per sample position from which the AO rays themselves serve as the
 /// inside-geometry probe (no separate probe rays are traced).
 const AO_PROBE_MIN_RAYS: u32 = 8;
