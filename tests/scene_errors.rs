@@ -262,7 +262,7 @@ fn png_depth() {
         &[
             concat!(
                 "tests/fixtures/scenes/bad/png_depth.ron:6:54: error: a PNG output cannot hold the Depth pass\n",
-                "  help: write Depth and Normal passes to an .exr output",
+                "  help: write the Depth pass to an .exr output",
             ),
             concat!(
                 "tests/fixtures/scenes/bad/png_depth.ron:6:70: error: unknown output extension \".tiff\" in \"out.tiff\"\n",

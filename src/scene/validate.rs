@@ -457,9 +457,7 @@ fn output(ck: &mut Checker<'_>, path: &str, o: &OutputDesc) -> Option<OutputSpec
                 ck.file,
                 &ppath,
                 format!("a PNG output cannot hold the {pass:?} pass"),
-                Some(
-                    "write Depth, Normal, ObjectId and MaterialId passes to an .exr output".into(),
-                ),
+                Some(format!("write the {pass:?} pass to an .exr output")),
             );
             ok = false;
         } else if passes.contains(&pass) {
