@@ -121,6 +121,16 @@ fn ao(c: &mut Criterion) {
         group.bench_function(format!("ao_256x256_{samples}spt_131k_tris"), |b| {
             b.iter(|| bake_once(samples))
         });
+        // Thread scaling: the same bake in pools of 1 and 2 workers.
+        for threads in [1usize, 2] {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .expect("thread pool");
+            group.bench_function(format!("ao_256x256_{samples}spt_{threads}_threads"), |b| {
+                b.iter(|| pool.install(|| bake_once(samples)))
+            });
+        }
     }
     group.finish();
 }

@@ -1,5 +1,6 @@
 //! Whole-frame benchmarks: the Cornell box at 256×256 with 16 spp through every stage but
-//! output, plus the `shade` stage alone (shaded samples per second).
+//! output, thread scaling (1 vs 2 workers), plus the `shade` stage alone (shaded samples per
+//! second).
 
 use std::path::PathBuf;
 
@@ -30,6 +31,16 @@ fn whole_frame(c: &mut Criterion) {
     group.sample_size(10);
     group.throughput(Throughput::Elements(256 * 256 * 16));
     group.bench_function("cornell_256x256_16spp", |b| b.iter(|| render_once(16)));
+    // Thread scaling: the same frame in pools of 1 and 2 workers.
+    for threads in [1usize, 2] {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .expect("thread pool");
+        group.bench_function(format!("cornell_256x256_4spp_{threads}_threads"), |b| {
+            b.iter(|| pool.install(|| render_once(4)))
+        });
+    }
     group.finish();
 }
 
