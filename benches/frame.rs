@@ -32,6 +32,7 @@ fn whole_frame(c: &mut Criterion) {
     group.throughput(Throughput::Elements(256 * 256 * 16));
     group.bench_function("cornell_256x256_16spp", |b| b.iter(|| render_once(16)));
     // Thread scaling: the same frame in pools of 1 and 2 workers.
+    group.throughput(Throughput::Elements(256 * 256 * 4));
     for threads in [1usize, 2] {
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(threads)
