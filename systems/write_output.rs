@@ -1,7 +1,7 @@
 //! `write_output`: encodes the render camera's frame buffers into its output files (PNG,
 //! EXR) and writes them whole-or-nothing.
 //!
-//! **Reads:** `frame.image`; the render `Camera`'s `outputs`.
+//! **Reads:** `frame.image`; the render `Camera`'s `outputs` and its `Imager` (PNG only).
 //! **Writes:** files on disk; `frame.written`.
 //! **Runs when:** a shaded image exists and the camera lists outputs.
 //! **After this stage:** every output file exists complete, or none was touched.
@@ -9,7 +9,7 @@
 use hecs::World;
 
 use super::prelude::*;
-use crate::components::{Camera, ImageFormat, Pass, RenderCamera};
+use crate::components::{Camera, ImageFormat, Imager, Pass, RenderCamera};
 use crate::image_io::{commit_all, encode_exr, encode_png, PendingFile};
 
 /// Run condition: an image to write and somewhere to write it.
@@ -31,11 +31,11 @@ pub fn should_run(world: &World, frame: &Frame) -> Decision {
 
 /// Encodes and writes every output.
 pub fn run(world: &mut World, frame: &mut Frame) -> Result<Work, StageError> {
-    let outputs = world
-        .query::<(&Camera, &RenderCamera)>()
+    let (outputs, imager) = world
+        .query::<(&Camera, &RenderCamera, Option<&Imager>)>()
         .iter()
         .next()
-        .map(|(c, _)| c.outputs.clone())
+        .map(|(c, _, i)| (c.outputs.clone(), i.copied()))
         .unwrap_or_default();
     let fb = frame
         .image
@@ -44,7 +44,7 @@ pub fn run(world: &mut World, frame: &mut Frame) -> Result<Work, StageError> {
     let mut pending = Vec::with_capacity(outputs.len());
     for out in &outputs {
         let bytes = match out.format {
-            ImageFormat::Png => encode_png(fb, out.passes.contains(&Pass::Alpha)),
+            ImageFormat::Png => encode_png(fb, out.passes.contains(&Pass::Alpha), imager.as_ref()),
             ImageFormat::Exr => encode_exr(fb, &out.passes),
         }
         .map_err(|message| StageError::Write {

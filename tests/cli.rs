@@ -302,3 +302,54 @@ fn id_passes_go_to_exr_and_are_refused_for_png() {
         other => panic!("id.object is not u32: {other:?}"),
     }
 }
+
+#[test]
+fn imager_fills_the_background_and_applies_exposure_to_png() {
+    let dir = scratch("imager");
+    let scene = dir.join("imager.ron");
+    let text = r#"Scene(
+    cameras: [(name: "cam", fov_y: 40.0, resolution: (16, 16),
+        placement: LookAt(eye: (0, 0, 3), target: (0, 0, 0)),
+        outputs: [(file: "out.png"), (file: "out.exr")],
+        imager: (background: (1, 0, 0), gain: 2.0, gamma: 2.2))],
+    materials: [(name: "grey", shader: Constant(color: (0.1, 0.1, 0.1)))],
+    objects: [(name: "quad", mesh: Inline(vertices: [(-0.2, -0.2, 0), (0.2, -0.2, 0), (0.2, 0.2, 0), (-0.2, 0.2, 0)], polygons: [[0, 1, 2, 3]]), material: "grey")],
+    instances: [(name: "q", of: "quad")],
+    groups: [(name: "world", members: ["q"])],
+    render: (root: "world", camera: "cam"),
+)
+"#;
+    write(&scene, text);
+    let o = run(bin()
+        .current_dir(&dir)
+        .arg("render")
+        .arg(&scene)
+        .args(["--spp", "4"]));
+    assert!(o.status.success(), "{}", stderr(&o));
+    let png = image::open(dir.join("out.png")).unwrap().to_rgb8();
+    // Background: the imager's red.
+    assert_eq!(png.get_pixel(0, 0).0, [255, 0, 0]);
+    // Covered centre: RenderMan exposure (2 · 0.1)^(1/2.2) = 0.481 → 123.
+    assert_eq!(png.get_pixel(8, 8).0, [123, 123, 123]);
+    // The EXR keeps scene-linear radiance and a black background.
+    let exr = exr::prelude::read_first_rgba_layer_from_file(
+        dir.join("out.exr"),
+        |res, _| vec![0.0f32; res.width() * res.height()],
+        |px: &mut Vec<f32>, pos, (r, _g, _b, _a): (f32, f32, f32, f32)| {
+            px[pos.y() * 16 + pos.x()] = r
+        },
+    )
+    .unwrap();
+    let red = &exr.layer_data.channel_data.pixels;
+    assert_eq!(red[0], 0.0);
+    assert!((red[8 * 16 + 8] - 0.1).abs() < 1e-6);
+    // A non-positive gamma is a located error.
+    write(&scene, &text.replace("gamma: 2.2", "gamma: 0.0"));
+    let o = run(bin().arg("check").arg(&scene));
+    assert_eq!(o.status.code(), Some(1));
+    assert!(
+        stderr(&o).contains("imager.ron:5:59: error: gamma must be positive, found 0"),
+        "{}",
+        stderr(&o)
+    );
+}

@@ -18,10 +18,12 @@ pub use naming::{Name, SourceLink};
 pub use transform::WorldFromObject;
 
 mod bake;
+mod imager;
 pub use bake::{
     BakeFormat, BakeKind, BakeRequest, BakeResolution, BakeTarget, LightmapStore, NormalSpace,
     UvSource,
 };
+pub use imager::{Imager, ToneMap};
 
 mod approximation;
 mod displacement;

@@ -1,16 +1,33 @@
 //! PNG encoding of the beauty pass (8-bit sRGB, RGB or RGBA).
 
+use crate::components::Imager;
 use crate::framebuffer::FrameBuffers;
 use crate::image_io::srgb::to_u8;
 
 /// Encodes the beauty pass as PNG; with `alpha` the coverage goes into the alpha channel.
-pub fn encode_png(fb: &FrameBuffers, alpha: bool) -> Result<Vec<u8>, String> {
+/// An imager (background, exposure, tone map, gamma) replaces the plain sRGB encoding.
+pub fn encode_png(
+    fb: &FrameBuffers,
+    alpha: bool,
+    imager: Option<&Imager>,
+) -> Result<Vec<u8>, String> {
     let channels = if alpha { 4 } else { 3 };
     let mut data = Vec::with_capacity(fb.beauty.len() * channels);
+    let quantize = |v: f32| (v.clamp(0.0, 1.0) * 255.0 + 0.5) as u8;
     for (i, c) in fb.beauty.iter().enumerate() {
-        data.extend_from_slice(&[to_u8(c.x), to_u8(c.y), to_u8(c.z)]);
+        let a = match imager {
+            Some(im) => {
+                let (c, a) = im.composite(*c, fb.alpha[i]);
+                data.extend_from_slice(&[c.x, c.y, c.z].map(|v| quantize(im.encode(v))));
+                a
+            }
+            None => {
+                data.extend_from_slice(&[to_u8(c.x), to_u8(c.y), to_u8(c.z)]);
+                fb.alpha[i]
+            }
+        };
         if alpha {
-            data.push((fb.alpha[i].clamp(0.0, 1.0) * 255.0 + 0.5) as u8);
+            data.push(quantize(a));
         }
     }
     let color = if alpha {

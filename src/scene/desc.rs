@@ -158,6 +158,42 @@ pub struct CameraDesc {
     /// Files to write, default none.
     #[serde(default)]
     pub outputs: Vec<OutputDesc>,
+    /// Output shader for PNG outputs (background, exposure, tone map, gamma), default none.
+    #[serde(default)]
+    pub imager: Option<ImagerDesc>,
+}
+
+/// `imager: (...)` on a camera: RenderMan `Exposure gain gamma` and `Imager "background"`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(rename = "Imager", deny_unknown_fields)]
+pub struct ImagerDesc {
+    /// Colour behind uncovered pixels, default none (black, transparent).
+    #[serde(default)]
+    pub background: Option<V3>,
+    /// Radiance multiplier, default 1.
+    #[serde(default = "default_gain")]
+    pub gain: f64,
+    /// Tone map, default `None`.
+    #[serde(default)]
+    pub tone_map: ToneMapDesc,
+    /// Display gamma, default none (the sRGB curve).
+    #[serde(default)]
+    pub gamma: Option<f64>,
+}
+
+fn default_gain() -> f64 {
+    1.0
+}
+
+/// Tone-mapping operator.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Deserialize)]
+#[serde(rename = "ToneMap", deny_unknown_fields)]
+pub enum ToneMapDesc {
+    /// Clip above 1.
+    #[default]
+    None,
+    /// `x / (1 + x)`.
+    Reinhard,
 }
 
 /// Camera placement.

@@ -20,6 +20,7 @@ pub mod desc;
 pub mod desc_geometry;
 pub(crate) mod diagnostics;
 pub(crate) mod geometry;
+pub(crate) mod imager;
 pub(crate) mod include;
 pub(crate) mod mesh_load;
 pub(crate) mod names;
@@ -89,6 +90,11 @@ fn load(path: &Path, text: Option<&str>) -> Result<LoadedScene, SceneErrors> {
         .iter()
         .map(|c| validate::camera(src, c))
         .collect();
+    let imagers: Vec<_> = merged
+        .cameras
+        .iter()
+        .map(|c| imager::imager(src, c))
+        .collect();
     let lights: Vec<_> = merged
         .lights
         .iter()
@@ -152,6 +158,7 @@ fn load(path: &Path, text: Option<&str>) -> Result<LoadedScene, SceneErrors> {
     warnings.extend(geometry::warnings(&merged, &object_geometry));
     let parts = spawn::Parts {
         cameras,
+        imagers,
         render_camera: resolved.camera,
         lights,
         materials,

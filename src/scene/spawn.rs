@@ -26,8 +26,8 @@ use super::diagnostics::Sources;
 use super::geometry::{Generated, ObjectGeometry};
 use super::validate::{default_material, Merged};
 use crate::components::{
-    BakeRequest, Camera, Emitter, Instance, Material, MaterialRef, Name, RenderCamera, SourceLink,
-    TriMesh, WorldFromObject,
+    BakeRequest, Camera, Emitter, Imager, Instance, Material, MaterialRef, Name, RenderCamera,
+    SourceLink, TriMesh, WorldFromObject,
 };
 use crate::procedural::pending_instance;
 
@@ -36,6 +36,8 @@ use crate::procedural::pending_instance;
 pub struct Parts {
     /// Camera components.
     pub cameras: Vec<Option<Camera>>,
+    /// The cameras' imagers (parallel to `cameras`).
+    pub imagers: Vec<Option<Imager>>,
     /// Index of the render camera.
     pub render_camera: Option<usize>,
     /// Light components.
@@ -197,6 +199,10 @@ pub fn spawn(src: &Sources, m: &Merged<'_>, parts: Parts) -> World {
             src.link(it.file, &it.path),
             camera,
         ));
+        if let Some(Some(imager)) = parts.imagers.get(i) {
+            // The entity was just spawned, so inserting cannot fail.
+            let _ = world.insert_one(entity, *imager);
+        }
         if Some(i) == parts.render_camera {
             // The entity was just spawned, so inserting cannot fail.
             let _ = world.insert_one(entity, RenderCamera);
