@@ -96,6 +96,7 @@ fn plane_world(shader: Shader) -> World {
             shader,
             two_sided: false,
             emission: Vec3::ZERO,
+            graph: None,
         },
     ));
     let h = 5.0;

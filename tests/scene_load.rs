@@ -149,6 +149,7 @@ fn materials_resolve_innermost_instance_then_outer_then_object_then_default() {
             },
             two_sided: false,
             emission: Vec3::ZERO,
+            graph: None,
         }
     );
     // Only used materials are spawned ("spare" is not).
@@ -168,6 +169,7 @@ fn materials_resolve_innermost_instance_then_outer_then_object_then_default() {
             },
             two_sided: true,
             emission: Vec3::new(2.0, 0.0, 0.0),
+            graph: None,
         }
     );
 }

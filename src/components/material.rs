@@ -4,8 +4,12 @@
 //! weights of a shader's lobes add up to more than 1 in a channel they are scaled down so the
 //! sum is 1 (see `shading::bsdf`), so no material reflects more than it receives.
 
+use std::sync::Arc;
+
 use glam::Vec3;
 use hecs::Entity;
+
+use crate::shading::texture::MaterialGraph;
 
 /// Surface shaders: the mental ray illumination models, the RenderMan standard surfaces and
 /// the physically based building blocks (mirror, glass, `dgs`, opacity).
@@ -234,6 +238,9 @@ pub struct Material {
     pub two_sided: bool,
     /// Emitted radiance in W/(sr·m²) per RGB channel; zero for non-emitters.
     pub emission: Vec3,
+    /// Shader parameters driven by texture nodes and the bump map (`None`: the shader's
+    /// constants everywhere, no bump).
+    pub graph: Option<Arc<MaterialGraph>>,
 }
 
 impl Material {

@@ -615,6 +615,7 @@ pub fn material(src: &mut Sources, item: &Item<'_, MaterialDesc>) -> Option<Mate
         shader,
         two_sided: m.two_sided,
         emission: emission?.as_vec3(),
+        graph: None,
     })
 }
 
@@ -628,5 +629,6 @@ pub fn default_material() -> Material {
         },
         two_sided: false,
         emission: glam::Vec3::ZERO,
+        graph: None,
     }
 }

@@ -13,6 +13,7 @@ pub mod lights;
 pub mod microfacet;
 pub mod mis;
 pub mod surface;
+pub mod texture;
 
 pub use bsdf::{Bsdf, BsdfSample};
 pub use camera::CameraRays;

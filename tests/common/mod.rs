@@ -44,6 +44,7 @@ pub fn material(world: &mut World, shader: Shader) -> Entity {
             shader,
             two_sided: false,
             emission: Vec3::ZERO,
+            graph: None,
         },
     ))
 }
@@ -219,6 +220,7 @@ pub fn material_full(world: &mut World, shader: Shader, two_sided: bool, emissio
             shader,
             two_sided,
             emission,
+            graph: None,
         },
     ))
 }

@@ -27,7 +27,7 @@ fn vertex_radiance(
         return Vec3::ZERO;
     }
     let mut radiance = v.emitted();
-    if let Some(unlit) = unlit_radiance(&v.material.shader, v.wo.z) {
+    if let Some(unlit) = unlit_radiance(&v.shader, v.wo.z) {
         return v.transmittance * (radiance + unlit);
     }
     if depth.vertex > ctx.max_depth {
@@ -36,7 +36,7 @@ fn vertex_radiance(
     let Some(bsdf) = v.bsdf() else {
         return v.transmittance * radiance;
     };
-    radiance += v.material.shader.ambient();
+    radiance += v.shader.ambient();
     if bsdf.has_non_delta() {
         radiance += light_loop(ctx, &v, &bsdf, sampler, false);
     }

@@ -14,6 +14,8 @@
 pub mod direct;
 pub mod path;
 
+use std::borrow::Cow;
+
 use glam::Vec3;
 
 use crate::accel::{spawn_ray, spawn_ray_to, spawn_ray_to_surface, Hit, Ray, SurfacePoint};
@@ -25,6 +27,7 @@ use crate::shading::bsdf::Bsdf;
 use crate::shading::frame::ShadingFrame;
 use crate::shading::lights::LightSet;
 use crate::shading::mis::power_heuristic;
+use crate::shading::texture::{bump, hit as textured};
 
 /// What shading a hit needs from the scene.
 pub struct ShadeContext<'a> {
@@ -126,6 +129,10 @@ pub struct Vertex<'a> {
     pub visible: bool,
     /// The material.
     pub material: &'a Material,
+    /// The material's shader at this point: its texture-driven parameters evaluated.
+    pub shader: Cow<'a, Shader>,
+    /// Whether a bump map perturbed `sp.normal`.
+    pub bumped: bool,
     /// Frame around `sp.normal`.
     pub frame: ShadingFrame,
     /// Direction toward the viewer, local.
@@ -136,17 +143,34 @@ pub struct Vertex<'a> {
 
 impl<'a> Vertex<'a> {
     /// The vertex where `ray` hits `hit`.
+    ///
+    /// Texture nodes are evaluated here (the bound shader, the bump-mapped normal). The
+    /// shading normal is then made safe (hard case H11): turned toward the viewer's side and
+    /// rotated toward the geometric normal just enough that the view direction is above it
+    /// and its mirror direction above the geometric surface
+    /// ([`bump::ensure_valid_reflection`]), so bent normals never shade black.
     pub fn new(ctx: &ShadeContext<'a>, ray: &Ray, hit: &Hit) -> Self {
         let mut sp = ctx.geometry.shading_point(hit);
         let material = &ctx.geometry.materials[sp.material as usize];
+        let (shader, bumped) = match &material.graph {
+            Some(graph) => {
+                let t = textured::evaluate(ctx.geometry, &sp, hit, graph, &material.shader);
+                sp.normal = t.normal;
+                (Cow::Owned(t.shader), t.bumped)
+            }
+            None => (Cow::Borrowed(&material.shader), false),
+        };
         let wo_world = -ray.dir.normalize();
         let front = sp.surface.ng.dot(wo_world) > 0.0;
         if !front {
             sp.normal = -sp.normal;
         }
         let ng = if front { sp.surface.ng } else { -sp.surface.ng };
+        if sp.normal != ng {
+            sp.normal = bump::ensure_valid_reflection(ng, wo_world, sp.normal);
+        }
         let visible = front || material.shades_back() || ctx.face == Face::Both;
-        let transmittance = match &material.shader {
+        let transmittance = match &*shader {
             Shader::Dielectric { col, .. } if !front => {
                 let d = hit.t * ray.dir.length();
                 Vec3::new(col.x.powf(d), col.y.powf(d), col.z.powf(d))
@@ -160,9 +184,21 @@ impl<'a> Vertex<'a> {
             front,
             visible,
             material,
+            shader,
+            bumped,
             frame,
             wo: frame.to_local(wo_world),
             transmittance,
+        }
+    }
+
+    /// The bump shadowing term for light arriving from the world direction `wi`
+    /// ([`bump::shadowing`]); 1 at points without a bump map.
+    pub fn bump_shadowing(&self, wi: Vec3) -> f32 {
+        if self.bumped {
+            bump::shadowing(self.ng, self.sp.normal, wi)
+        } else {
+            1.0
         }
     }
 
@@ -177,7 +213,7 @@ impl<'a> Vertex<'a> {
 
     /// The BSDF of this face.
     pub fn bsdf(&self) -> Option<Bsdf> {
-        Bsdf::new(&self.material.shader, self.front)
+        Bsdf::new(&self.shader, self.front)
     }
 
     /// A ray leaving along the local direction `wi` if it lies on the geometric side its
@@ -220,7 +256,7 @@ pub fn light_loop(
             if wi.z <= 0.0 || v.ng.dot(ls.wi) <= 0.0 {
                 continue;
             }
-            let f = bsdf.eval(v.wo, wi);
+            let f = bsdf.eval(v.wo, wi) * v.bump_shadowing(ls.wi);
             if f == Vec3::ZERO {
                 continue;
             }

@@ -50,7 +50,7 @@ pub fn radiance(ctx: &ShadeContext<'_>, ray: &Ray, hit: &Hit, sampler: &mut Samp
             };
             radiance += beta * le * w;
         }
-        if let Some(unlit) = unlit_radiance(&v.material.shader, v.wo.z) {
+        if let Some(unlit) = unlit_radiance(&v.shader, v.wo.z) {
             radiance += beta * unlit;
             break;
         }
@@ -78,6 +78,9 @@ pub fn radiance(ctx: &ShadeContext<'_>, ray: &Ray, hit: &Hit, sampler: &mut Samp
             break;
         };
         beta *= s.weight();
+        if !s.delta && !transmits {
+            beta *= v.bump_shadowing(v.frame.to_world(s.wi));
+        }
         if !beta.is_finite() || beta.max_element() <= 0.0 {
             break;
         }

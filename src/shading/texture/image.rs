@@ -1,0 +1,210 @@
+//! Image textures: PNG or EXR files decoded once at scene load into linear RGB texels and
+//! sampled bilinearly at the surface uv.
+//!
+//! Conventions: texel `(x, y)` covers `u ∈ [x/w, (x+1)/w)`, `v ∈ [y/h, (y+1)/h)` with its
+//! centre at `((x + ½)/w, (y + ½)/h)`; `v = 0` is the **bottom** row of the image file (as in
+//! OBJ and RenderMan `t` flipped), so a texture shows upright on a quad whose uv (0, 0) is
+//! its lower-left corner. 8-bit PNG codes are decoded with the sRGB curve unless the node says
+//! `Linear`; EXR values are taken as linear unless it says `Srgb`.
+
+use std::path::Path;
+
+use glam::{Vec2, Vec3};
+
+use super::colour::srgb_to_linear;
+
+/// What happens outside `[0, 1)²`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Wrap {
+    /// The image tiles the plane.
+    Repeat,
+    /// Coordinates are clamped: edge texels extend outward.
+    Clamp,
+}
+
+/// How the stored numbers relate to linear RGB.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Encoding {
+    /// sRGB-encoded (decoded with the IEC 61966-2-1 curve).
+    Srgb,
+    /// Already linear.
+    Linear,
+}
+
+/// A decoded texture.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Texture {
+    /// Width in texels (≥ 1).
+    pub width: u32,
+    /// Height in texels (≥ 1).
+    pub height: u32,
+    /// Linear RGB texels, row `y` = 0 at v = 0, `texels[y·width + x]`.
+    pub texels: Vec<Vec3>,
+    /// Wrap mode.
+    pub wrap: Wrap,
+}
+
+impl Texture {
+    /// The four texels around `uv` and their bilinear weights (weights sum to 1).
+    pub fn taps(&self, uv: Vec2) -> [(usize, f32); 4] {
+        let (w, h) = (self.width as i64, self.height as i64);
+        let x = uv.x * self.width as f32 - 0.5;
+        let y = uv.y * self.height as f32 - 0.5;
+        let (x, y) = (
+            if x.is_finite() { x } else { 0.0 },
+            if y.is_finite() { y } else { 0.0 },
+        );
+        let (x0, y0) = (x.floor(), y.floor());
+        let (fx, fy) = (x - x0, y - y0);
+        let index = |xi: i64, yi: i64| {
+            let (xi, yi) = match self.wrap {
+                Wrap::Repeat => (xi.rem_euclid(w), yi.rem_euclid(h)),
+                Wrap::Clamp => (xi.clamp(0, w - 1), yi.clamp(0, h - 1)),
+            };
+            (yi * w + xi) as usize
+        };
+        // Large but finite coordinates saturate in the cast; wrapping keeps them in range.
+        let (x0, y0) = (x0 as i64, y0 as i64);
+        [
+            (index(x0, y0), (1.0 - fx) * (1.0 - fy)),
+            (index(x0.saturating_add(1), y0), fx * (1.0 - fy)),
+            (index(x0, y0.saturating_add(1)), (1.0 - fx) * fy),
+            (index(x0.saturating_add(1), y0.saturating_add(1)), fx * fy),
+        ]
+    }
+
+    /// Bilinear lookup at `uv`.
+    pub fn sample(&self, uv: Vec2) -> Vec3 {
+        if self.texels.is_empty() {
+            return Vec3::ZERO;
+        }
+        self.taps(uv)
+            .iter()
+            .fold(Vec3::ZERO, |s, &(i, w)| s + self.texels[i] * w)
+    }
+}
+
+/// Whether a file name is read as EXR (by extension, case-insensitive).
+pub fn is_exr(path: &Path) -> bool {
+    path.extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case("exr"))
+}
+
+/// Reads a PNG or EXR file (chosen by extension) into a texture. `encoding: None` picks the
+/// file kind's default (PNG: sRGB, EXR: linear). Non-finite or negative EXR values become 0.
+pub fn load(path: &Path, encoding: Option<Encoding>, wrap: Wrap) -> Result<Texture, String> {
+    let exr = is_exr(path);
+    let encoding = encoding.unwrap_or(if exr {
+        Encoding::Linear
+    } else {
+        Encoding::Srgb
+    });
+    let (width, height, top_down) = if exr {
+        read_exr(path)?
+    } else {
+        let img = image::open(path).map_err(|e| e.to_string())?.to_rgb32f();
+        let (w, h) = img.dimensions();
+        let px = img.pixels().map(|p| Vec3::from(p.0)).collect();
+        (w, h, px)
+    };
+    if width == 0 || height == 0 {
+        return Err("the image is empty".into());
+    }
+    let decode = |c: Vec3| {
+        let c = Vec3::select(c.cmpge(Vec3::ZERO) & c.is_finite_mask(), c, Vec3::ZERO);
+        match encoding {
+            Encoding::Linear => c,
+            Encoding::Srgb => Vec3::new(
+                srgb_to_linear(c.x),
+                srgb_to_linear(c.y),
+                srgb_to_linear(c.z),
+            ),
+        }
+    };
+    let w = width as usize;
+    let texels = top_down
+        .chunks_exact(w)
+        .rev()
+        .flat_map(|row| row.iter().map(|&c| decode(c)))
+        .collect();
+    Ok(Texture {
+        width,
+        height,
+        texels,
+        wrap,
+    })
+}
+
+/// Width, height and top-down RGB pixels of the first RGB(A) layer of an EXR file.
+fn read_exr(path: &Path) -> Result<(u32, u32, Vec<Vec3>), String> {
+    use exr::prelude::*;
+    let image = read_first_rgba_layer_from_file(
+        path,
+        |resolution, _| {
+            (
+                resolution.width(),
+                vec![glam::Vec3::ZERO; resolution.width() * resolution.height()],
+            )
+        },
+        |(w, px): &mut (usize, Vec<glam::Vec3>), pos, (r, g, b, _a): (f32, f32, f32, f32)| {
+            px[pos.y() * *w + pos.x()] = glam::Vec3::new(r, g, b);
+        },
+    )
+    .map_err(|e| e.to_string())?;
+    let size = image.layer_data.size;
+    let (_, px) = image.layer_data.channel_data.pixels;
+    Ok((size.width() as u32, size.height() as u32, px))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn tex(wrap: Wrap) -> Texture {
+        // 2×2: bottom row (v = 0) red, green; top row blue, white.
+        Texture {
+            width: 2,
+            height: 2,
+            texels: vec![Vec3::X, Vec3::Y, Vec3::Z, Vec3::ONE],
+            wrap,
+        }
+    }
+
+    #[test]
+    fn texel_centres_return_texels() {
+        let t = tex(Wrap::Clamp);
+        assert_eq!(t.sample(Vec2::new(0.25, 0.25)), Vec3::X);
+        assert_eq!(t.sample(Vec2::new(0.75, 0.25)), Vec3::Y);
+        assert_eq!(t.sample(Vec2::new(0.25, 0.75)), Vec3::Z);
+        assert_eq!(t.sample(Vec2::new(0.75, 0.75)), Vec3::ONE);
+    }
+
+    #[test]
+    fn bilinear_between_centres() {
+        let t = tex(Wrap::Clamp);
+        let c = t.sample(Vec2::new(0.5, 0.5));
+        assert!((c - Vec3::new(0.5, 0.5, 0.5)).abs().max_element() < 1e-6, "{c}");
+        let c = t.sample(Vec2::new(0.375, 0.25));
+        assert!((c - Vec3::new(0.75, 0.25, 0.0)).abs().max_element() < 1e-6, "{c}");
+    }
+
+    #[test]
+    fn wrap_and_clamp_differ_at_the_border() {
+        // At u = 0 (left edge) on the bottom row: clamp gives red, repeat blends red with
+        // the right-hand texel (green) half and half.
+        let c = tex(Wrap::Clamp).sample(Vec2::new(0.0, 0.25));
+        assert!((c - Vec3::X).abs().max_element() < 1e-6, "{c}");
+        let r = tex(Wrap::Repeat).sample(Vec2::new(0.0, 0.25));
+        assert!((r - Vec3::new(0.5, 0.5, 0.0)).abs().max_element() < 1e-6, "{r}");
+        // Repeat tiles: one period away gives the same value.
+        let a = tex(Wrap::Repeat).sample(Vec2::new(0.3, 0.6));
+        let b = tex(Wrap::Repeat).sample(Vec2::new(-1.7, 3.6));
+        assert!((a - b).abs().max_element() < 1e-5);
+        // Hostile coordinates stay finite.
+        for uv in [Vec2::splat(f32::NAN), Vec2::splat(1e30), Vec2::splat(-f32::MAX)] {
+            assert!(tex(Wrap::Repeat).sample(uv).is_finite());
+            assert!(tex(Wrap::Clamp).sample(uv).is_finite());
+        }
+    }
+}

@@ -1,0 +1,387 @@
+//! Texture shaders and shader graphs: the nodes a material parameter may be driven by, and
+//! the compiled graphs materials carry.
+//!
+//! A scene's node trees (and the phenomena they call) are compiled by the loader
+//! (`scene::nodes`) into one flat [`Program`] per material: a list of [`Op`]s in dependency
+//! order, each writing one register. Every register holds an RGB triple; a scalar is stored
+//! in all three channels (so a scalar may feed a colour input, never the other way round —
+//! the loader checks types). At a shading point the program runs once with the point's
+//! [`Inputs`]; the bound parameters are written into a copy of the material's constant
+//! shader ([`bind`]), so BSDFs see plain constants.
+//!
+//! Node families, one file each: [`pattern`] (checker, disk, smoothstep, uv repeat),
+//! [`noise`] (Perlin, fBm, turbulence), [`image`] (PNG/EXR textures), [`colour`]
+//! (RGB/HSV/HSL), [`bump`] (bump mapping and the shading-normal safeguards). Everything is
+//! deterministic: a node's value depends only on its inputs and parameters.
+
+pub mod bind;
+pub mod bump;
+pub mod colour;
+pub mod hit;
+pub mod image;
+pub mod noise;
+pub mod pattern;
+
+use std::sync::Arc;
+
+use glam::{Vec2, Vec3};
+
+use self::colour::ColourSpace;
+use self::image::Texture;
+use self::noise::Fractal;
+use crate::components::Shader;
+
+/// What a graph may read at a shading point.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Inputs {
+    /// Texture coordinates.
+    pub uv: Vec2,
+    /// Object-space position.
+    pub p: Vec3,
+    /// World-space unit shading normal (before bump mapping).
+    pub n: Vec3,
+}
+
+/// A register index (an earlier op's output).
+pub type Reg = u32;
+
+/// Which noise a [`Op::Noise`] computes.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum NoiseKind {
+    /// One octave of Perlin noise (signed, about [−1, 1]).
+    Perlin,
+    /// Fractal Brownian motion (signed).
+    Fbm,
+    /// Turbulence (sum of absolute octaves, ≥ 0).
+    Turbulence,
+}
+
+/// One node of a compiled graph; inputs are registers of earlier ops. Scalar inputs read
+/// channel 0; coordinates (`uv`) read channels 0 and 1.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Op {
+    /// A constant.
+    Const(Vec3),
+    /// `(u, v, 0)`.
+    Uv,
+    /// Object-space position.
+    Position,
+    /// World-space shading normal.
+    Normal,
+    /// `a` where `⌊u·scale⌋ + ⌊v·scale⌋` is even, `b` where odd.
+    Checker {
+        /// Coordinates.
+        uv: Reg,
+        /// Squares per unit.
+        scale: Reg,
+        /// Even squares.
+        a: Reg,
+        /// Odd squares.
+        b: Reg,
+    },
+    /// The seed's disk: `mix(outside, inside, 1 − smoothstep(r − fuzz, r + fuzz, |uv − c|))`.
+    Disk {
+        /// Coordinates.
+        uv: Reg,
+        /// Centre in uv.
+        center: Vec2,
+        /// Radius.
+        radius: Reg,
+        /// Half-width of the soft edge.
+        fuzz: Reg,
+        /// Colour inside.
+        inside: Reg,
+        /// Colour outside.
+        outside: Reg,
+    },
+    /// `(mod(u·scale, 1), mod(v·scale, 1), 0)`.
+    Repeat {
+        /// Coordinates.
+        uv: Reg,
+        /// Repetitions per unit.
+        scale: Reg,
+    },
+    /// Solid noise of a point.
+    Noise {
+        /// The point.
+        p: Reg,
+        /// Which noise.
+        kind: NoiseKind,
+        /// Frequency, octaves, seed.
+        fractal: Fractal,
+    },
+    /// An image texture at `uv`.
+    Image {
+        /// Coordinates.
+        uv: Reg,
+        /// The decoded image (shared between materials).
+        texture: Arc<Texture>,
+    },
+    /// `a·(1 − t) + b·t`.
+    Mix {
+        /// Value at t = 0.
+        a: Reg,
+        /// Value at t = 1.
+        b: Reg,
+        /// Blend.
+        t: Reg,
+    },
+    /// `smoothstep(edge0, edge1, x)`.
+    Smoothstep {
+        /// Lower edge.
+        edge0: Reg,
+        /// Upper edge.
+        edge1: Reg,
+        /// Input.
+        x: Reg,
+    },
+    /// `a + b`.
+    Add(Reg, Reg),
+    /// `a − b`.
+    Sub(Reg, Reg),
+    /// `a · b` (per channel).
+    Mul(Reg, Reg),
+    /// One channel of a colour, as a scalar.
+    Channel(Reg, u8),
+    /// Rec. 709 luminance of a colour, as a scalar.
+    Luminance(Reg),
+    /// A colour from three scalars.
+    Combine(Reg, Reg, Reg),
+    /// Colour-space conversion.
+    Convert {
+        /// The colour.
+        input: Reg,
+        /// Space it is in.
+        from: ColourSpace,
+        /// Space to convert to.
+        to: ColourSpace,
+    },
+}
+
+/// A compiled graph: ops in dependency order; op `i` writes register `i`.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Program {
+    /// The ops.
+    pub ops: Vec<Op>,
+}
+
+impl Program {
+    /// Appends an op and returns its register.
+    pub fn push(&mut self, op: Op) -> Reg {
+        self.ops.push(op);
+        (self.ops.len() - 1) as Reg
+    }
+
+    /// Runs every op; `regs` receives one value per op (finite: NaN/∞ become 0).
+    pub fn run(&self, inputs: &Inputs, regs: &mut Vec<Vec3>) {
+        regs.clear();
+        regs.reserve(self.ops.len());
+        for op in &self.ops {
+            let r = |i: &Reg| regs[*i as usize];
+            let s = |i: &Reg| regs[*i as usize].x;
+            let uv = |i: &Reg| {
+                let c = regs[*i as usize];
+                Vec2::new(c.x, c.y)
+            };
+            let v = match op {
+                Op::Const(c) => *c,
+                Op::Uv => inputs.uv.extend(0.0),
+                Op::Position => inputs.p,
+                Op::Normal => inputs.n,
+                Op::Checker {
+                    uv: c,
+                    scale,
+                    a,
+                    b,
+                } => {
+                    if pattern::checker(uv(c), s(scale)) == 0.0 {
+                        r(a)
+                    } else {
+                        r(b)
+                    }
+                }
+                Op::Disk {
+                    uv: c,
+                    center,
+                    radius,
+                    fuzz,
+                    inside,
+                    outside,
+                } => {
+                    let t = pattern::disk(uv(c), *center, s(radius), s(fuzz));
+                    pattern::mix(r(outside), r(inside), t)
+                }
+                Op::Repeat { uv: c, scale } => pattern::repeat(uv(c), s(scale)).extend(0.0),
+                Op::Noise { p, kind, fractal } => Vec3::splat(match kind {
+                    NoiseKind::Perlin => noise::noise(r(p), fractal.frequency, fractal.seed),
+                    NoiseKind::Fbm => noise::fbm(r(p), fractal),
+                    NoiseKind::Turbulence => noise::turbulence(r(p), fractal),
+                }),
+                Op::Image { uv: c, texture } => texture.sample(uv(c)),
+                Op::Mix { a, b, t } => pattern::mix(r(a), r(b), s(t)),
+                Op::Smoothstep { edge0, edge1, x } => {
+                    Vec3::splat(pattern::smoothstep(s(edge0), s(edge1), s(x)))
+                }
+                Op::Add(a, b) => r(a) + r(b),
+                Op::Sub(a, b) => r(a) - r(b),
+                Op::Mul(a, b) => r(a) * r(b),
+                Op::Channel(a, k) => Vec3::splat(r(a)[(*k).min(2) as usize]),
+                Op::Luminance(a) => Vec3::splat(r(a).dot(Vec3::new(0.2126, 0.7152, 0.0722))),
+                Op::Combine(a, b, c) => Vec3::new(s(a), s(b), s(c)),
+                Op::Convert { input, from, to } => colour::convert(r(input), *from, *to),
+            };
+            regs.push(Vec3::select(v.is_finite_mask(), v, Vec3::ZERO));
+        }
+    }
+
+    /// Whether some op reads the object-space position.
+    pub fn uses_position(&self) -> bool {
+        self.ops.iter().any(|op| matches!(op, Op::Position))
+    }
+}
+
+/// A shader parameter driven by a register.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Binding {
+    /// Parameter name as written in the scene (`albedo`, `input.color`).
+    pub param: String,
+    /// Register holding its value.
+    pub reg: Reg,
+}
+
+/// Bump mapping of a material: the height (object units along the normal) is `scale` times
+/// a scalar register.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BumpMap {
+    /// Register holding the height.
+    pub height: Reg,
+    /// Multiplier of the height.
+    pub scale: f32,
+}
+
+/// Step in uv (or, without a uv parametrisation, in object units along the tangents) of the
+/// finite differences that give the height's derivatives.
+pub const BUMP_STEP: f32 = 1e-3;
+
+/// The node graphs of one material: which parameters they drive and the bump height.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct MaterialGraph {
+    /// The compiled ops of every binding and of the bump height.
+    pub program: Program,
+    /// Driven parameters.
+    pub bindings: Vec<Binding>,
+    /// Bump mapping, if any.
+    pub bump: Option<BumpMap>,
+}
+
+impl MaterialGraph {
+    /// `shader` with every bound parameter replaced by its value at `inputs`; `regs` is
+    /// scratch space.
+    pub fn bind(&self, shader: &Shader, inputs: &Inputs, regs: &mut Vec<Vec3>) -> Shader {
+        let mut out = shader.clone();
+        if self.bindings.is_empty() {
+            return out;
+        }
+        self.program.run(inputs, regs);
+        for b in &self.bindings {
+            let v = regs[b.reg as usize];
+            bind::field(&mut out, &b.param, |f| f.set(v));
+        }
+        out
+    }
+
+    /// The bump-mapped shading normal at `inputs` (its `n` is the unperturbed unit normal)
+    /// from the surface tangents `dpdu`, `dpdv` (world space) and their object-space
+    /// counterparts `dpdu_obj`, `dpdv_obj` (how the `Position` input moves). `has_uv`: the
+    /// tangents follow the uv parametrisation (else uv stays fixed in the differences).
+    pub fn bumped_normal(
+        &self,
+        inputs: &Inputs,
+        tangents: [Vec3; 4],
+        has_uv: bool,
+        regs: &mut Vec<Vec3>,
+    ) -> Vec3 {
+        let Some(bump) = self.bump else {
+            return inputs.n;
+        };
+        let [dpdu, dpdv, dpdu_obj, dpdv_obj] = tangents;
+        let mut height = |inp: &Inputs| {
+            self.program.run(inp, regs);
+            regs[bump.height as usize].x * bump.scale
+        };
+        let h = height(inputs);
+        let d = BUMP_STEP;
+        let du_uv = if has_uv { Vec2::new(d, 0.0) } else { Vec2::ZERO };
+        let dv_uv = if has_uv { Vec2::new(0.0, d) } else { Vec2::ZERO };
+        let hu = height(&Inputs {
+            uv: inputs.uv + du_uv,
+            p: inputs.p + dpdu_obj * d,
+            n: inputs.n,
+        });
+        let hv = height(&Inputs {
+            uv: inputs.uv + dv_uv,
+            p: inputs.p + dpdv_obj * d,
+            n: inputs.n,
+        });
+        bump::perturb(inputs.n, dpdu, dpdv, (hu - h) / d, (hv - h) / d)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn inputs(u: f32, v: f32) -> Inputs {
+        Inputs {
+            uv: Vec2::new(u, v),
+            p: Vec3::ZERO,
+            n: Vec3::Z,
+        }
+    }
+
+    #[test]
+    fn checker_graph_binds_albedo() {
+        let mut p = Program::default();
+        let uv = p.push(Op::Uv);
+        let scale = p.push(Op::Const(Vec3::splat(2.0)));
+        let a = p.push(Op::Const(Vec3::splat(0.9)));
+        let b = p.push(Op::Const(Vec3::splat(0.1)));
+        let c = p.push(Op::Checker { uv, scale, a, b });
+        let g = MaterialGraph {
+            program: p,
+            bindings: vec![Binding {
+                param: "albedo".into(),
+                reg: c,
+            }],
+            bump: None,
+        };
+        let base = Shader::Lambert { albedo: Vec3::ONE };
+        let mut regs = Vec::new();
+        let at = |u, v, regs: &mut Vec<Vec3>| match g.bind(&base, &inputs(u, v), regs) {
+            Shader::Lambert { albedo } => albedo.x,
+            _ => unreachable!(),
+        };
+        assert_eq!(at(0.1, 0.1, &mut regs), 0.9);
+        assert_eq!(at(0.6, 0.1, &mut regs), 0.1);
+        assert_eq!(at(0.6, 0.6, &mut regs), 0.9);
+    }
+
+    #[test]
+    fn bump_of_a_linear_height_tilts_the_normal() {
+        // h = 0.5·u on a plane with ∂P/∂u = x: normal ∝ (−0.5, 0, 1).
+        let mut p = Program::default();
+        let uv = p.push(Op::Uv);
+        let u = p.push(Op::Channel(uv, 0));
+        let g = MaterialGraph {
+            program: p,
+            bindings: Vec::new(),
+            bump: Some(BumpMap {
+                height: u,
+                scale: 0.5,
+            }),
+        };
+        let t = [Vec3::X, Vec3::Y, Vec3::X, Vec3::Y];
+        let n = g.bumped_normal(&inputs(0.3, 0.3), t, true, &mut Vec::new());
+        assert!((n - Vec3::new(-0.5, 0.0, 1.0).normalize()).length() < 1e-3, "{n}");
+    }
+}
