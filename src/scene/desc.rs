@@ -5,6 +5,8 @@
 
 use serde::Deserialize;
 
+pub use super::nodes_desc::{BumpDesc, InputDesc, NodeDesc, PhenomenonDesc};
+
 pub use super::desc_geometry::{
     ApproximationDesc, AxisDesc, BasisDesc, DisplacementDesc, DisplacementModeDesc, MeshDesc,
     ScalarDesc, SpaceDesc,
@@ -38,6 +40,8 @@ pub struct SceneDesc {
     pub groups: Vec<GroupDesc>,
     /// What to render (exactly one across all files).
     pub render: Option<RenderDesc>,
+    /// Phenomena: named shader graphs with interface parameters (see [`PhenomenonDesc`]).
+    pub phenomena: Vec<PhenomenonDesc>,
 }
 
 /// `options: (...)`: render settings.
@@ -352,6 +356,12 @@ pub struct MaterialDesc {
     /// Emitted radiance, W/(sr·m²), default `(0, 0, 0)`.
     #[serde(default)]
     pub emission: V3,
+    /// Shader parameters driven by node graphs (`{"albedo": Checker(…)}`), default none.
+    #[serde(default)]
+    pub bind: std::collections::BTreeMap<String, InputDesc>,
+    /// Bump mapping, default none.
+    #[serde(default)]
+    pub bump: Option<BumpDesc>,
 }
 
 /// Surface shader.

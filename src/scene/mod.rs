@@ -18,12 +18,14 @@ pub(crate) mod bake;
 pub(crate) mod dag;
 pub mod desc;
 pub mod desc_geometry;
+pub mod nodes_desc;
 pub(crate) mod diagnostics;
 pub(crate) mod geometry;
 pub(crate) mod imager;
 pub(crate) mod include;
 pub(crate) mod mesh_load;
 pub(crate) mod names;
+pub(crate) mod nodes;
 pub(crate) mod shaders;
 pub(crate) mod spans;
 pub(crate) mod spawn;
@@ -100,11 +102,13 @@ fn load(path: &Path, text: Option<&str>) -> Result<LoadedScene, SceneErrors> {
         .iter()
         .map(|l| validate::light(src, l))
         .collect();
-    let materials: Vec<_> = merged
+    let mut materials: Vec<_> = merged
         .materials
         .iter()
         .map(|mat| validate::material(src, mat))
         .collect();
+    let mut phenomena = nodes::check_phenomena(src, &merged);
+    nodes::attach(src, &merged, &mut phenomena, &mut materials);
     let resolved = names::resolve(src, &merged);
     let scatters = geometry::scatter::resolve(src, &merged);
     let object_geometry = geometry::check_objects(src, &merged, &scatters);

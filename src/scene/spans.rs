@@ -39,12 +39,16 @@ struct Node {
     items: Vec<Node>,
     /// Position of the closing bracket, if the value has one.
     end: Option<Pos>,
+    /// Character range `[start, end)` of the value in the text.
+    range: (usize, usize),
 }
 
 /// Positions of every value in one RON text.
 #[derive(Debug, Clone, Default)]
 pub struct SpanIndex {
     root: Option<Node>,
+    /// The indexed text, for [`SpanIndex::text_at`].
+    chars: Vec<char>,
 }
 
 /// Deepest nesting the index follows (ron itself stops at 128).
@@ -61,7 +65,10 @@ impl SpanIndex {
         };
         parser.skip_attributes();
         let root = parser.value(0);
-        Self { root }
+        Self {
+            root,
+            chars: parser.chars,
+        }
     }
 
     /// Position of the value at `path`; if the path does not exist in the text (a defaulted
@@ -77,6 +84,18 @@ impl SpanIndex {
             }
         }
         node.pos
+    }
+
+    /// The source text of the value at `path` and its position, only if the value is
+    /// written in the text (used to re-parse a value for a precise error message).
+    pub fn text_at(&self, path: &str) -> Option<(Pos, String)> {
+        let mut node = self.root.as_ref()?;
+        for seg in segments(path) {
+            node = step(node, &seg)?;
+        }
+        let (a, b) = node.range;
+        let text = self.chars.get(a..b)?.iter().collect();
+        Some((node.pos, text))
     }
 
     /// Start of the bracketed value whose closing bracket is at `close` (`ron` reports a
@@ -291,6 +310,7 @@ impl Parser {
         }
         self.skip_ws();
         let pos = self.pos();
+        let start = self.at;
         let c = self.peek()?;
         let mut node = Node {
             pos,
@@ -340,6 +360,7 @@ impl Parser {
             }
             _ => return None,
         }
+        node.range = (start, self.at);
         Some(node)
     }
 
@@ -387,17 +408,26 @@ impl Parser {
         }
     }
 
-    /// `{ key: value, … }`; values are kept as items (the format has no maps).
+    /// `{ key: value, … }`; values are kept as items, and values under a string key also as
+    /// fields named by the key (`bind: {"albedo": …}` is found at `.bind.albedo`).
     fn map(&mut self, node: &mut Node, depth: usize) {
         loop {
             if self.eat('}') {
                 return;
             }
+            self.skip_ws();
+            let key_start = self.at;
             if self.value(depth + 1).is_none() || !self.eat(':') {
                 return;
             }
+            let key = self.string_key(key_start);
             match self.value(depth + 1) {
-                Some(v) => node.items.push(v),
+                Some(v) => {
+                    if let Some(key) = key {
+                        node.fields.push((key, v.clone()));
+                    }
+                    node.items.push(v)
+                }
                 None => return,
             }
             if !self.eat(',') {
@@ -438,6 +468,22 @@ impl Parser {
                 break;
             }
         }
+    }
+
+    /// The contents of a plain `"…"` string starting at character `start` (escapes kept
+    /// as written), or `None` if no such string starts there.
+    fn string_key(&self, start: usize) -> Option<String> {
+        if self.chars.get(start) != Some(&'"') {
+            return None;
+        }
+        let mut out = String::new();
+        for &c in self.chars.get(start + 1..)? {
+            if c == '"' {
+                return Some(out);
+            }
+            out.push(c);
+        }
+        None
     }
 
     /// A `"…"` string with escapes; the cursor is on the opening quote.

@@ -54,6 +54,8 @@ pub struct Merged<'a> {
     pub instances: Vec<Item<'a, InstanceDesc>>,
     /// Groups.
     pub groups: Vec<Item<'a, GroupDesc>>,
+    /// Phenomena (named shader graphs).
+    pub phenomena: Vec<Item<'a, super::desc::PhenomenonDesc>>,
 }
 
 fn items<'a, T>(file: usize, kind: &str, list: &'a [T]) -> impl Iterator<Item = Item<'a, T>> {
@@ -108,6 +110,8 @@ pub fn merge<'a>(src: &mut Sources, scenes: &'a [Option<SceneDesc>]) -> Merged<'
         m.instances
             .extend(items(file, "instances", &scene.instances));
         m.groups.extend(items(file, "groups", &scene.groups));
+        m.phenomena
+            .extend(items(file, "phenomena", &scene.phenomena));
     }
     if m.render.is_none() && !scenes.is_empty() {
         src.error(

@@ -1,0 +1,930 @@
+//! Checking shader graphs and compiling them: every material's `bind` entries and `bump`
+//! height, with the phenomena they call, become one flat [`Program`] per material
+//! ([`MaterialGraph`]).
+//!
+//! Errors are located at the offending value: an unknown node (re-parsed from the source
+//! text so `ron`'s own message and suggestion apply), a colour where a number is expected,
+//! an unknown shader or interface parameter (with "did you mean"), an unknown phenomenon,
+//! a phenomenon that uses itself, an unreadable image file. A phenomenon's body is checked
+//! once, where it is declared; a call checks only its arguments.
+//!
+//! Phenomena are expanded inline at every call (their arguments compiled in the caller's
+//! context, missing ones from the declared defaults), so a program never calls anything.
+
+use std::collections::HashMap;
+use std::path::PathBuf;
+use std::sync::Arc;
+
+use glam::{Vec2, Vec3};
+
+use super::desc::{MaterialDesc, V3};
+use super::diagnostics::{from_ron, suggestion, Diagnostic, Sources};
+use super::nodes_desc::{
+    ColourSpaceDesc, EncodingDesc, InputDesc, NodeDesc, PhenomenonDesc, WrapDesc, NODE_NAMES,
+};
+use super::validate::{Item, Merged};
+use crate::components::Material;
+use crate::shading::texture::bind::{self, ParamType};
+use crate::shading::texture::colour::ColourSpace;
+use crate::shading::texture::image::{self, Encoding, Texture, Wrap};
+use crate::shading::texture::noise::Fractal;
+use crate::shading::texture::{Binding, BumpMap, MaterialGraph, NoiseKind, Op, Program, Reg};
+
+/// The type of a node's value.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Ty {
+    /// One number.
+    Scalar,
+    /// Three channels.
+    Colour,
+}
+
+impl Ty {
+    fn join(self, other: Ty) -> Ty {
+        if self == Ty::Colour || other == Ty::Colour {
+            Ty::Colour
+        } else {
+            Ty::Scalar
+        }
+    }
+}
+
+impl From<ParamType> for Ty {
+    fn from(t: ParamType) -> Self {
+        match t {
+            ParamType::Colour => Ty::Colour,
+            ParamType::Scalar => Ty::Scalar,
+        }
+    }
+}
+
+/// What checking a phenomenon found.
+#[derive(Debug, Clone)]
+struct Checked {
+    /// Interface parameters and their types, by name.
+    params: Vec<(String, Ty)>,
+    /// Type of the output; `None` when the phenomenon has errors.
+    output: Option<Ty>,
+}
+
+/// The scene's phenomena, checked.
+pub struct Phenomena<'a> {
+    items: &'a [Item<'a, PhenomenonDesc>],
+    by_name: HashMap<&'a str, usize>,
+    checked: Vec<Option<Checked>>,
+    /// Phenomena on a cycle (never expanded).
+    cyclic: Vec<bool>,
+    textures: HashMap<(PathBuf, bool, Option<bool>), Option<Arc<Texture>>>,
+}
+
+/// Where a value is: file and path.
+#[derive(Clone, Copy)]
+struct At<'p> {
+    file: usize,
+    path: &'p str,
+}
+
+/// One compilation: the program being built, whether errors are reported.
+struct Compiler<'c, 'a> {
+    src: &'c mut Sources,
+    ph: &'c mut Phenomena<'a>,
+    prog: Program,
+    /// Phenomena being expanded (innermost last).
+    stack: Vec<usize>,
+    report: bool,
+}
+
+/// Interface parameter values inside a phenomenon body.
+type Env = [(String, Ty, Reg)];
+
+/// Checks every phenomenon (duplicate names, cycles, bodies, defaults).
+pub fn check_phenomena<'a>(src: &mut Sources, m: &'a Merged<'a>) -> Phenomena<'a> {
+    let mut by_name = HashMap::new();
+    for (i, it) in m.phenomena.iter().enumerate() {
+        if let Some(&first) = by_name.get(it.desc.name.as_str()) {
+            let first: &Item<'_, PhenomenonDesc> = &m.phenomena[first];
+            let help = format!(
+                "first defined at {}",
+                src.where_is(first.file, &first.at(".name"))
+            );
+            src.error(
+                it.file,
+                &it.at(".name"),
+                format!("phenomenon \"{}\" is defined twice", it.desc.name),
+                Some(help),
+            );
+        } else {
+            by_name.insert(it.desc.name.as_str(), i);
+        }
+    }
+    let n = m.phenomena.len();
+    let mut ph = Phenomena {
+        items: &m.phenomena,
+        by_name,
+        checked: vec![None; n],
+        cyclic: vec![false; n],
+        textures: HashMap::new(),
+    };
+    find_cycles(src, &mut ph);
+    for i in 0..n {
+        ensure_checked(src, &mut ph, i);
+    }
+    ph
+}
+
+/// Reports every phenomenon that reaches itself through `Graph` calls.
+fn find_cycles(src: &mut Sources, ph: &mut Phenomena<'_>) {
+    let n = ph.items.len();
+    // Calls of each phenomenon: (callee, path of the call).
+    let calls: Vec<Vec<(usize, String)>> = ph
+        .items
+        .iter()
+        .map(|it| {
+            let mut out = Vec::new();
+            collect_calls(&it.desc.output, &it.at(".output"), &ph.by_name, &mut out);
+            for (k, v) in &it.desc.params {
+                collect_calls(v, &it.at(&format!(".params.{k}")), &ph.by_name, &mut out);
+            }
+            out
+        })
+        .collect();
+    for start in 0..n {
+        // Depth-first search for a path from `start` back to itself.
+        let mut seen = vec![false; n];
+        let mut stack = vec![(start, 0usize)];
+        let mut chain = vec![start];
+        while let Some(&mut (node, ref mut next)) = stack.last_mut() {
+            if *next >= calls[node].len() {
+                stack.pop();
+                chain.pop();
+                continue;
+            }
+            let (callee, _) = calls[node][*next];
+            *next += 1;
+            if callee == start {
+                ph.cyclic[start] = true;
+                let names: Vec<&str> = chain
+                    .iter()
+                    .chain(std::iter::once(&start))
+                    .map(|&i| ph.items[i].desc.name.as_str())
+                    .collect();
+                let it = &ph.items[start];
+                let (_, path) = &calls[start][stack[0].1 - 1];
+                src.error(
+                    it.file,
+                    path,
+                    format!(
+                        "phenomenon \"{}\" uses itself: {}",
+                        it.desc.name,
+                        names.join(" → ")
+                    ),
+                    Some("a phenomenon cannot call itself, directly or through others".into()),
+                );
+                break;
+            }
+            if !seen[callee] {
+                seen[callee] = true;
+                stack.push((callee, 0));
+                chain.push(callee);
+            }
+        }
+    }
+}
+
+fn collect_calls(
+    d: &InputDesc,
+    path: &str,
+    by_name: &HashMap<&str, usize>,
+    out: &mut Vec<(usize, String)>,
+) {
+    let InputDesc::Node(n) = d else { return };
+    let mut sub = |d: &InputDesc, p: String| collect_calls(d, &p, by_name, out);
+    match &**n {
+        NodeDesc::Graph(name, args) => {
+            for (k, v) in args {
+                sub(v, format!("{path}.Graph[1].{k}"));
+            }
+            if let Some(&i) = by_name.get(name.as_str()) {
+                out.push((i, path.to_string()));
+            }
+        }
+        other => {
+            for_each_input(other, |field, d| sub(d, format!("{path}{field}")));
+        }
+    }
+}
+
+/// Calls `f` with the path suffix and description of every input of a node (not `Graph`).
+fn for_each_input(n: &NodeDesc, mut f: impl FnMut(String, &InputDesc)) {
+    let mut named = |variant: &str, fields: &[(&str, &InputDesc)]| {
+        for (k, v) in fields {
+            f(format!(".{variant}.{k}"), v);
+        }
+    };
+    match n {
+        NodeDesc::Checker { uv, scale, a, b } => {
+            named("Checker", &[("uv", uv), ("scale", scale), ("a", a), ("b", b)])
+        }
+        NodeDesc::Disk {
+            uv,
+            radius,
+            fuzz,
+            inside,
+            outside,
+            ..
+        } => named(
+            "Disk",
+            &[
+                ("uv", uv),
+                ("radius", radius),
+                ("fuzz", fuzz),
+                ("inside", inside),
+                ("outside", outside),
+            ],
+        ),
+        NodeDesc::Repeat { uv, scale } => named("Repeat", &[("uv", uv), ("scale", scale)]),
+        NodeDesc::Noise { p, .. } => named("Noise", &[("p", p)]),
+        NodeDesc::Fbm { p, .. } => named("Fbm", &[("p", p)]),
+        NodeDesc::Turbulence { p, .. } => named("Turbulence", &[("p", p)]),
+        NodeDesc::Image { uv, .. } => named("Image", &[("uv", uv)]),
+        NodeDesc::Mix { a, b, t } => named("Mix", &[("a", a), ("b", b), ("t", t)]),
+        NodeDesc::Smoothstep { edge0, edge1, x } => named(
+            "Smoothstep",
+            &[("edge0", edge0), ("edge1", edge1), ("x", x)],
+        ),
+        NodeDesc::Convert { input, .. } => named("Convert", &[("input", input)]),
+        NodeDesc::Add(a, b) | NodeDesc::Sub(a, b) | NodeDesc::Mul(a, b) => {
+            let v = variant_name(n);
+            f(format!(".{v}[0]"), a);
+            f(format!(".{v}[1]"), b);
+        }
+        NodeDesc::Channel(a, _) => f(".Channel[0]".into(), a),
+        NodeDesc::Luminance(a) => f(".Luminance[0]".into(), a),
+        NodeDesc::Combine(a, b, c) => {
+            f(".Combine[0]".into(), a);
+            f(".Combine[1]".into(), b);
+            f(".Combine[2]".into(), c);
+        }
+        NodeDesc::Uv
+        | NodeDesc::Position
+        | NodeDesc::Normal
+        | NodeDesc::Graph(..)
+        | NodeDesc::Param(_) => {}
+    }
+}
+
+fn variant_name(n: &NodeDesc) -> &'static str {
+    match n {
+        NodeDesc::Add(..) => "Add",
+        NodeDesc::Sub(..) => "Sub",
+        _ => "Mul",
+    }
+}
+
+/// Checks phenomenon `i` (once), after the phenomena it calls.
+fn ensure_checked(src: &mut Sources, ph: &mut Phenomena<'_>, i: usize) {
+    if ph.checked[i].is_some() {
+        return;
+    }
+    // Mark first: acyclic calls cannot come back here.
+    ph.checked[i] = Some(Checked {
+        params: Vec::new(),
+        output: None,
+    });
+    let item = &ph.items[i];
+    let (file, desc) = (item.file, item.desc);
+    let base = item.path.clone();
+    let mut c = Compiler {
+        src,
+        ph,
+        prog: Program::default(),
+        stack: vec![i],
+        report: true,
+    };
+    let mut env = Vec::new();
+    let mut params = Vec::new();
+    let mut ok = true;
+    for (k, v) in &desc.params {
+        let path = format!("{base}.params.{k}");
+        match c.input(At { file, path: &path }, v, &[]) {
+            Some((reg, ty)) => {
+                env.push((k.clone(), ty, reg));
+                params.push((k.clone(), ty));
+            }
+            None => ok = false,
+        }
+    }
+    let path = format!("{base}.output");
+    let out = c.input(At { file, path: &path }, &desc.output, &env);
+    let cyclic = c.ph.cyclic[i];
+    c.ph.checked[i] = Some(Checked {
+        params,
+        output: out.filter(|_| ok && !cyclic).map(|(_, t)| t),
+    });
+}
+
+impl Compiler<'_, '_> {
+    fn error(&mut self, at: At<'_>, message: impl Into<String>, help: Option<String>) {
+        if self.report {
+            self.src.error(at.file, at.path, message, help);
+        }
+    }
+
+    fn constant(&mut self, v: Vec3) -> Reg {
+        self.prog.push(Op::Const(v))
+    }
+
+    fn finite(&mut self, at: At<'_>, what: &str, x: f64) -> Option<f32> {
+        if x.is_finite() && x.abs() <= f64::from(f32::MAX) {
+            Some(x as f32)
+        } else {
+            self.error(at, format!("{what} must be a finite number, found {x}"), None);
+            None
+        }
+    }
+
+    fn colour(&mut self, at: At<'_>, v: V3) -> Option<Vec3> {
+        let mut ok = true;
+        let mut out = [0.0; 3];
+        for (k, x) in [v.0, v.1, v.2].into_iter().enumerate() {
+            let p = format!("{}[{k}]", at.path);
+            match self.finite(At { file: at.file, path: &p }, "a colour channel", x) {
+                Some(x) => out[k] = x,
+                None => ok = false,
+            }
+        }
+        ok.then(|| Vec3::from(out))
+    }
+
+    /// Compiles an input; `env` holds the interface parameters when inside a phenomenon.
+    fn input(&mut self, at: At<'_>, d: &InputDesc, env: &Env) -> Option<(Reg, Ty)> {
+        match d {
+            InputDesc::Number(x) => {
+                let x = self.finite(at, "a number", *x)?;
+                Some((self.constant(Vec3::splat(x)), Ty::Scalar))
+            }
+            InputDesc::Colour(v) => {
+                let c = self.colour(at, *v)?;
+                Some((self.constant(c), Ty::Colour))
+            }
+            InputDesc::Node(n) => self.node(at, n, env),
+            InputDesc::Invalid(v) => {
+                let node = self.reparse(at, v)?;
+                self.node(at, &node, env)
+            }
+        }
+    }
+
+    /// Re-reads a value that is not a number, colour or node from the source text: a node
+    /// written with all defaults (`Fbm()`, `Uv`) parses here; anything else gets `ron`'s
+    /// message at the right position.
+    fn reparse(&mut self, at: At<'_>, v: &ron::Value) -> Option<NodeDesc> {
+        let name = match v {
+            ron::Value::String(s) => Some(s.clone()),
+            ron::Value::Map(m) if m.len() == 1 => match m.iter().next() {
+                Some((ron::Value::String(s), _)) => Some(s.clone()),
+                _ => None,
+            },
+            _ => None,
+        };
+        if let Some(name) = &name {
+            if !NODE_NAMES.contains(&name.as_str()) {
+                self.error(
+                    at,
+                    format!("unknown node \"{name}\""),
+                    suggestion(name, NODE_NAMES, "nodes"),
+                );
+                return None;
+            }
+        }
+        let Some((pos, text)) = self.src.files[at.file].index.text_at(at.path) else {
+            self.error(
+                at,
+                "expected a number, a colour (r, g, b) or a node such as Checker(…)",
+                None,
+            );
+            return None;
+        };
+        let parse = |t: &str| {
+            ron::Options::default()
+                .with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME)
+                .from_str::<NodeDesc>(t)
+        };
+        let bare = text.chars().all(|c| c.is_alphanumeric() || c == '_');
+        let result = if bare {
+            parse(&format!("{text}()")).or_else(|_| parse(&text))
+        } else {
+            parse(&text)
+        };
+        match result {
+            Ok(n) => Some(n),
+            Err(e) if name.is_some() => {
+                if self.report {
+                    let file = self.src.files[at.file].path.clone();
+                    let d = from_ron(&file, &e);
+                    let (line, column) = if d.line <= 1 {
+                        (pos.line, pos.column + d.column.saturating_sub(1))
+                    } else {
+                        (pos.line + d.line - 1, d.column)
+                    };
+                    self.src.push(
+                        at.file,
+                        pos,
+                        Diagnostic {
+                            line,
+                            column,
+                            ..d
+                        },
+                    );
+                }
+                None
+            }
+            Err(_) => {
+                self.error(
+                    at,
+                    "expected a number, a colour (r, g, b) or a node such as Checker(…)",
+                    None,
+                );
+                None
+            }
+        }
+    }
+
+    /// Compiles an input that must be a scalar.
+    fn scalar(&mut self, at: At<'_>, d: &InputDesc, env: &Env, what: &str) -> Option<Reg> {
+        let (reg, ty) = self.input(at, d, env)?;
+        if ty == Ty::Colour {
+            self.error(
+                at,
+                format!("{what} must be a number, but this gives a colour"),
+                Some("take one channel with Channel(…, 0) or use Luminance(…)".into()),
+            );
+            return None;
+        }
+        Some(reg)
+    }
+
+    fn node(&mut self, at: At<'_>, n: &NodeDesc, env: &Env) -> Option<(Reg, Ty)> {
+        let sub = |field: &str| format!("{}{field}", at.path);
+        let file = at.file;
+        macro_rules! input {
+            ($field:expr, $d:expr) => {{
+                let p = sub($field);
+                self.input(At { file, path: &p }, $d, env)
+            }};
+        }
+        macro_rules! scalar {
+            ($field:expr, $d:expr, $what:expr) => {{
+                let p = sub($field);
+                self.scalar(At { file, path: &p }, $d, env, $what)
+            }};
+        }
+        match n {
+            NodeDesc::Uv => Some((self.prog.push(Op::Uv), Ty::Colour)),
+            NodeDesc::Position => Some((self.prog.push(Op::Position), Ty::Colour)),
+            NodeDesc::Normal => Some((self.prog.push(Op::Normal), Ty::Colour)),
+            NodeDesc::Checker { uv, scale, a, b } => {
+                let uv = input!(".Checker.uv", uv);
+                let scale = scalar!(".Checker.scale", scale, "scale");
+                let a = input!(".Checker.a", a);
+                let b = input!(".Checker.b", b);
+                let ((uv, _), scale, (a, ta), (b, tb)) = (uv?, scale?, a?, b?);
+                let r = self.prog.push(Op::Checker { uv, scale, a, b });
+                Some((r, ta.join(tb)))
+            }
+            NodeDesc::Disk {
+                uv,
+                center,
+                radius,
+                fuzz,
+                inside,
+                outside,
+            } => {
+                let uv = input!(".Disk.uv", uv);
+                let cp = sub(".Disk.center");
+                let c0 = self.finite(At { file, path: &cp }, "center", center.0);
+                let c1 = self.finite(At { file, path: &cp }, "center", center.1);
+                let radius = scalar!(".Disk.radius", radius, "radius");
+                let fuzz = scalar!(".Disk.fuzz", fuzz, "fuzz");
+                let inside = input!(".Disk.inside", inside);
+                let outside = input!(".Disk.outside", outside);
+                let ((uv, _), c0, c1, radius, fuzz, (i, ti), (o, to)) =
+                    (uv?, c0?, c1?, radius?, fuzz?, inside?, outside?);
+                let r = self.prog.push(Op::Disk {
+                    uv,
+                    center: Vec2::new(c0, c1),
+                    radius,
+                    fuzz,
+                    inside: i,
+                    outside: o,
+                });
+                Some((r, ti.join(to)))
+            }
+            NodeDesc::Repeat { uv, scale } => {
+                let uv = input!(".Repeat.uv", uv);
+                let scale = scalar!(".Repeat.scale", scale, "scale");
+                let ((uv, _), scale) = (uv?, scale?);
+                Some((self.prog.push(Op::Repeat { uv, scale }), Ty::Colour))
+            }
+            NodeDesc::Noise { p, frequency, seed } => {
+                let p = input!(".Noise.p", p);
+                let fp = sub(".Noise.frequency");
+                let f = self.finite(At { file, path: &fp }, "frequency", *frequency);
+                let ((p, _), frequency) = (p?, f?);
+                let fractal = Fractal {
+                    frequency,
+                    octaves: 1,
+                    lacunarity: 2.0,
+                    gain: 0.5,
+                    seed: *seed,
+                };
+                let op = Op::Noise {
+                    p,
+                    kind: NoiseKind::Perlin,
+                    fractal,
+                };
+                Some((self.prog.push(op), Ty::Scalar))
+            }
+            NodeDesc::Fbm {
+                p,
+                frequency,
+                octaves,
+                lacunarity,
+                gain,
+                seed,
+            }
+            | NodeDesc::Turbulence {
+                p,
+                frequency,
+                octaves,
+                lacunarity,
+                gain,
+                seed,
+            } => {
+                let (v, kind) = if matches!(n, NodeDesc::Fbm { .. }) {
+                    ("Fbm", NoiseKind::Fbm)
+                } else {
+                    ("Turbulence", NoiseKind::Turbulence)
+                };
+                let p = input!(&format!(".{v}.p"), p);
+                let mut num = |field: &str, x: f64| {
+                    let fp = sub(&format!(".{v}.{field}"));
+                    self.finite(At { file, path: &fp }, field, x)
+                };
+                let (f, l, g) = (
+                    num("frequency", *frequency),
+                    num("lacunarity", *lacunarity),
+                    num("gain", *gain),
+                );
+                let op = sub(&format!(".{v}.octaves"));
+                let oct_ok = (1..=12).contains(octaves);
+                if !oct_ok {
+                    self.error(
+                        At { file, path: &op },
+                        format!("octaves must be in 1…12, found {octaves}"),
+                        None,
+                    );
+                }
+                let ((p, _), frequency, lacunarity, gain) = (p?, f?, l?, g?);
+                if !oct_ok {
+                    return None;
+                }
+                let fractal = Fractal {
+                    frequency,
+                    octaves: *octaves,
+                    lacunarity,
+                    gain,
+                    seed: *seed,
+                };
+                Some((self.prog.push(Op::Noise { p, kind, fractal }), Ty::Scalar))
+            }
+            NodeDesc::Image {
+                file: name,
+                uv,
+                wrap,
+                color_space,
+            } => {
+                let uv = input!(".Image.uv", uv);
+                let fp = sub(".Image.file");
+                let texture = self.texture(At { file, path: &fp }, name, *wrap, *color_space);
+                let ((uv, _), texture) = (uv?, texture?);
+                Some((self.prog.push(Op::Image { uv, texture }), Ty::Colour))
+            }
+            NodeDesc::Mix { a, b, t } => {
+                let a = input!(".Mix.a", a);
+                let b = input!(".Mix.b", b);
+                let t = scalar!(".Mix.t", t, "t");
+                let ((a, ta), (b, tb), t) = (a?, b?, t?);
+                Some((self.prog.push(Op::Mix { a, b, t }), ta.join(tb)))
+            }
+            NodeDesc::Smoothstep { edge0, edge1, x } => {
+                let e0 = scalar!(".Smoothstep.edge0", edge0, "edge0");
+                let e1 = scalar!(".Smoothstep.edge1", edge1, "edge1");
+                let x = scalar!(".Smoothstep.x", x, "x");
+                let (edge0, edge1, x) = (e0?, e1?, x?);
+                let op = Op::Smoothstep { edge0, edge1, x };
+                Some((self.prog.push(op), Ty::Scalar))
+            }
+            NodeDesc::Add(a, b) | NodeDesc::Sub(a, b) | NodeDesc::Mul(a, b) => {
+                let v = variant_name(n);
+                let a = input!(&format!(".{v}[0]"), a);
+                let b = input!(&format!(".{v}[1]"), b);
+                let ((a, ta), (b, tb)) = (a?, b?);
+                let op = match n {
+                    NodeDesc::Add(..) => Op::Add(a, b),
+                    NodeDesc::Sub(..) => Op::Sub(a, b),
+                    _ => Op::Mul(a, b),
+                };
+                Some((self.prog.push(op), ta.join(tb)))
+            }
+            NodeDesc::Channel(a, k) => {
+                let a = input!(".Channel[0]", a);
+                if *k > 2 {
+                    let p = sub(".Channel[1]");
+                    self.error(
+                        At { file, path: &p },
+                        format!("channel must be 0, 1 or 2, found {k}"),
+                        None,
+                    );
+                    return None;
+                }
+                let (a, _) = a?;
+                Some((self.prog.push(Op::Channel(a, *k as u8)), Ty::Scalar))
+            }
+            NodeDesc::Luminance(a) => {
+                let (a, _) = input!(".Luminance[0]", a)?;
+                Some((self.prog.push(Op::Luminance(a)), Ty::Scalar))
+            }
+            NodeDesc::Combine(a, b, c) => {
+                let a = scalar!(".Combine[0]", a, "each Combine input");
+                let b = scalar!(".Combine[1]", b, "each Combine input");
+                let c = scalar!(".Combine[2]", c, "each Combine input");
+                let (a, b, c) = (a?, b?, c?);
+                Some((self.prog.push(Op::Combine(a, b, c)), Ty::Colour))
+            }
+            NodeDesc::Convert { input, from, to } => {
+                let (input, _) = input!(".Convert.input", input)?;
+                let op = Op::Convert {
+                    input,
+                    from: space(*from),
+                    to: space(*to),
+                };
+                Some((self.prog.push(op), Ty::Colour))
+            }
+            NodeDesc::Param(name) => {
+                if self.stack.is_empty() {
+                    self.error(
+                        at,
+                        format!("Param(\"{name}\") is only allowed inside a phenomenon"),
+                        Some("declare the graph under `phenomena` and call it with Graph(…)".into()),
+                    );
+                    return None;
+                }
+                match env.iter().find(|(k, ..)| k == name) {
+                    Some((_, ty, reg)) => Some((*reg, *ty)),
+                    None => {
+                        let names: Vec<&str> = env.iter().map(|(k, ..)| k.as_str()).collect();
+                        let ph = &self.ph.items[*self.stack.last().unwrap_or(&0)].desc.name;
+                        self.error(
+                            at,
+                            format!("phenomenon \"{ph}\" has no parameter \"{name}\""),
+                            suggestion(name, &names, "parameters"),
+                        );
+                        None
+                    }
+                }
+            }
+            NodeDesc::Graph(name, args) => self.call(at, name, args, env),
+        }
+    }
+
+    /// Expands a phenomenon call inline.
+    fn call(
+        &mut self,
+        at: At<'_>,
+        name: &str,
+        args: &std::collections::BTreeMap<String, InputDesc>,
+        env: &Env,
+    ) -> Option<(Reg, Ty)> {
+        let Some(&i) = self.ph.by_name.get(name) else {
+            let names: Vec<&str> = self.ph.items.iter().map(|p| p.desc.name.as_str()).collect();
+            let p = format!("{}.Graph[0]", at.path);
+            self.error(
+                At {
+                    file: at.file,
+                    path: &p,
+                },
+                format!("unknown phenomenon \"{name}\""),
+                suggestion(name, &names, "phenomena"),
+            );
+            return None;
+        };
+        if self.ph.cyclic[i] || self.stack.contains(&i) {
+            return None;
+        }
+        ensure_checked(self.src, self.ph, i);
+        let checked = self.ph.checked[i].clone()?;
+        // Arguments, in the caller's context.
+        let mut ok = true;
+        let mut given = Vec::new();
+        for (k, v) in args {
+            let p = format!("{}.Graph[1].{k}", at.path);
+            let here = At {
+                file: at.file,
+                path: &p,
+            };
+            let Some(&(_, want)) = checked.params.iter().find(|(n, _)| n == k) else {
+                let names: Vec<&str> = checked.params.iter().map(|(n, _)| n.as_str()).collect();
+                self.error(
+                    here,
+                    format!("phenomenon \"{name}\" has no parameter \"{k}\""),
+                    suggestion(k, &names, "parameters"),
+                );
+                ok = false;
+                continue;
+            };
+            match self.input(here, v, env) {
+                Some((reg, ty)) => {
+                    if want == Ty::Scalar && ty == Ty::Colour {
+                        self.error(
+                            here,
+                            format!("parameter \"{k}\" of \"{name}\" is a number, but this gives a colour"),
+                            Some("take one channel with Channel(…, 0) or use Luminance(…)".into()),
+                        );
+                        ok = false;
+                    }
+                    given.push((k.clone(), want, reg));
+                }
+                None => ok = false,
+            }
+        }
+        let output = checked.output?;
+        if !ok {
+            return None;
+        }
+        // Defaults for the rest and the body, in the phenomenon's context (checked already).
+        let item = &self.ph.items[i];
+        let (file, desc, base) = (item.file, item.desc, item.path.clone());
+        let report = std::mem::replace(&mut self.report, false);
+        self.stack.push(i);
+        let mut inner: Vec<(String, Ty, Reg)> = Vec::new();
+        for (k, ty) in &checked.params {
+            if let Some(g) = given.iter().find(|(n, ..)| n == k) {
+                inner.push(g.clone());
+            } else if let Some(d) = desc.params.get(k) {
+                let p = format!("{base}.params.{k}");
+                let (reg, _) = self.input(At { file, path: &p }, d, &[])?;
+                inner.push((k.clone(), *ty, reg));
+            }
+        }
+        let p = format!("{base}.output");
+        let out = self.input(At { file, path: &p }, &desc.output, &inner);
+        self.stack.pop();
+        self.report = report;
+        out.map(|(r, _)| (r, output))
+    }
+
+    fn texture(
+        &mut self,
+        at: At<'_>,
+        name: &str,
+        wrap: WrapDesc,
+        enc: Option<EncodingDesc>,
+    ) -> Option<Arc<Texture>> {
+        let path = self.src.files[at.file].dir().join(name);
+        let key = (
+            path.clone(),
+            wrap == WrapDesc::Clamp,
+            enc.map(|e| e == EncodingDesc::Srgb),
+        );
+        if let Some(t) = self.ph.textures.get(&key) {
+            return t.clone();
+        }
+        let wrap = match wrap {
+            WrapDesc::Repeat => Wrap::Repeat,
+            WrapDesc::Clamp => Wrap::Clamp,
+        };
+        let enc = enc.map(|e| match e {
+            EncodingDesc::Srgb => Encoding::Srgb,
+            EncodingDesc::Linear => Encoding::Linear,
+        });
+        let t = match image::load(&path, enc, wrap) {
+            Ok(t) => Some(Arc::new(t)),
+            Err(e) => {
+                // Reported whatever `report` says: the same file may be read first from a
+                // body that was checked with other arguments.
+                self.src.error(
+                    at.file,
+                    at.path,
+                    format!("cannot read image file \"{}\": {e}", path.display()),
+                    Some("image textures are PNG or EXR files, relative to the scene file".into()),
+                );
+                None
+            }
+        };
+        self.ph.textures.insert(key, t.clone());
+        t
+    }
+}
+
+fn space(s: ColourSpaceDesc) -> ColourSpace {
+    match s {
+        ColourSpaceDesc::Rgb => ColourSpace::Rgb,
+        ColourSpaceDesc::Hsv => ColourSpace::Hsv,
+        ColourSpaceDesc::Hsl => ColourSpace::Hsl,
+    }
+}
+
+/// Compiles the `bind` and `bump` entries of every material into its [`MaterialGraph`].
+/// `materials[i]` is `None` where the material itself failed validation (its graphs are
+/// still checked, parameter names only against nothing).
+pub fn attach(
+    src: &mut Sources,
+    m: &Merged<'_>,
+    ph: &mut Phenomena<'_>,
+    materials: &mut [Option<Material>],
+) {
+    for (item, mat) in m.materials.iter().zip(materials.iter_mut()) {
+        let graph = compile_material(src, ph, item, mat.as_ref());
+        if let (Some(mat), Some(g)) = (mat.as_mut(), graph) {
+            mat.graph = g.map(Arc::new);
+        }
+    }
+}
+
+/// `Some(None)`: nothing to compile; `None`: errors.
+fn compile_material(
+    src: &mut Sources,
+    ph: &mut Phenomena<'_>,
+    item: &Item<'_, MaterialDesc>,
+    mat: Option<&Material>,
+) -> Option<Option<MaterialGraph>> {
+    let d = item.desc;
+    if d.bind.is_empty() && d.bump.is_none() {
+        return Some(None);
+    }
+    let file = item.file;
+    let mut c = Compiler {
+        src,
+        ph,
+        prog: Program::default(),
+        stack: Vec::new(),
+        report: true,
+    };
+    let params = mat.map(|m| bind::names(&m.shader)).unwrap_or_default();
+    let shader_name = mat
+        .map(|m| {
+            let s = format!("{:?}", m.shader);
+            s.split([' ', '{', '(']).next().unwrap_or_default().to_string()
+        })
+        .unwrap_or_default();
+    let mut ok = true;
+    let mut bindings = Vec::new();
+    for (param, input) in &d.bind {
+        let path = item.at(&format!(".bind.{param}"));
+        let at = At { file, path: &path };
+        let want = params.iter().find(|(n, _)| n == param).map(|(_, t)| *t);
+        if mat.is_some() && want.is_none() {
+            let names: Vec<&str> = params.iter().map(|(n, _)| n.as_str()).collect();
+            c.error(
+                at,
+                format!("shader {shader_name} has no parameter \"{param}\""),
+                suggestion(param, &names, "parameters"),
+            );
+            ok = false;
+        }
+        match c.input(at, input, &[]) {
+            Some((reg, ty)) => {
+                if want == Some(ParamType::Scalar) && ty == Ty::Colour {
+                    c.error(
+                        at,
+                        format!("parameter \"{param}\" is a number, but this gives a colour"),
+                        Some("take one channel with Channel(…, 0) or use Luminance(…)".into()),
+                    );
+                    ok = false;
+                }
+                bindings.push(Binding {
+                    param: param.clone(),
+                    reg,
+                });
+            }
+            None => ok = false,
+        }
+    }
+    let mut bump = None;
+    if let Some(b) = &d.bump {
+        let hp = item.at(".bump.height");
+        let sp = item.at(".bump.scale");
+        let h = c.scalar(At { file, path: &hp }, &b.height, &[], "bump height");
+        let s = c.finite(At { file, path: &sp }, "bump scale", b.scale);
+        match (h, s) {
+            (Some(height), Some(scale)) => bump = Some(BumpMap { height, scale }),
+            _ => ok = false,
+        }
+    }
+    ok.then_some(Some(MaterialGraph {
+        program: c.prog,
+        bindings,
+        bump,
+    }))
+}

@@ -1,0 +1,377 @@
+//! The RON form of shader graphs (`*Desc`): node trees bound to material parameters, bump
+//! maps, and phenomena (named graphs with interface parameters). Checked and compiled by
+//! [`super::nodes`]; documented in `docs/scene-format.md` ("Shader graphs").
+
+use std::collections::BTreeMap;
+
+use serde::Deserialize;
+
+use super::desc::V3;
+
+/// A node input: a number, a colour `(r, g, b)` or a node.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(untagged)]
+pub enum InputDesc {
+    /// A constant number (a scalar; fed to a colour input it fills all three channels).
+    Number(f64),
+    /// A constant colour.
+    Colour(V3),
+    /// A node.
+    Node(Box<NodeDesc>),
+    /// Anything else: kept so the loader can report it at its position with a suggestion.
+    Invalid(ron::Value),
+}
+
+impl InputDesc {
+    fn node(n: NodeDesc) -> Self {
+        InputDesc::Node(Box::new(n))
+    }
+}
+
+fn uv() -> InputDesc {
+    InputDesc::node(NodeDesc::Uv)
+}
+fn position() -> InputDesc {
+    InputDesc::node(NodeDesc::Position)
+}
+fn num(x: f64) -> InputDesc {
+    InputDesc::Number(x)
+}
+fn one() -> InputDesc {
+    num(1.0)
+}
+fn zero() -> InputDesc {
+    num(0.0)
+}
+fn two() -> InputDesc {
+    num(2.0)
+}
+fn ten() -> InputDesc {
+    num(10.0)
+}
+fn radius() -> InputDesc {
+    num(0.4)
+}
+fn blue() -> InputDesc {
+    InputDesc::Colour((0.0, 0.0, 1.0))
+}
+fn red() -> InputDesc {
+    InputDesc::Colour((1.0, 0.0, 0.0))
+}
+fn centre() -> (f64, f64) {
+    (0.5, 0.5)
+}
+fn one_f() -> f64 {
+    1.0
+}
+fn two_f() -> f64 {
+    2.0
+}
+fn half_f() -> f64 {
+    0.5
+}
+fn four() -> u32 {
+    4
+}
+
+/// A shader node.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(rename = "Node", deny_unknown_fields)]
+pub enum NodeDesc {
+    /// Texture coordinates `(u, v, 0)` (colour).
+    Uv,
+    /// Object-space position (colour).
+    Position,
+    /// World-space shading normal (colour).
+    Normal,
+    /// Checkerboard over uv: `a` on even squares, `b` on odd ones.
+    Checker {
+        /// Coordinates, default `Uv`.
+        #[serde(default = "uv")]
+        uv: InputDesc,
+        /// Squares per unit of u and v (scalar), default 2.
+        #[serde(default = "two")]
+        scale: InputDesc,
+        /// Even squares, default 1.
+        #[serde(default = "one")]
+        a: InputDesc,
+        /// Odd squares, default 0.
+        #[serde(default = "zero")]
+        b: InputDesc,
+    },
+    /// The seed's disk with a soft edge.
+    Disk {
+        /// Coordinates, default `Uv`.
+        #[serde(default = "uv")]
+        uv: InputDesc,
+        /// Centre in uv, default `(0.5, 0.5)`.
+        #[serde(default = "centre")]
+        center: (f64, f64),
+        /// Radius (scalar), default 0.4.
+        #[serde(default = "radius")]
+        radius: InputDesc,
+        /// Half-width of the soft edge (scalar), default 0.
+        #[serde(default = "zero")]
+        fuzz: InputDesc,
+        /// Inside, default `(0, 0, 1)`.
+        #[serde(default = "blue")]
+        inside: InputDesc,
+        /// Outside, default `(1, 0, 0)`.
+        #[serde(default = "red")]
+        outside: InputDesc,
+    },
+    /// Repeated coordinates `(mod(u·scale, 1), mod(v·scale, 1), 0)` (colour).
+    Repeat {
+        /// Coordinates, default `Uv`.
+        #[serde(default = "uv")]
+        uv: InputDesc,
+        /// Repetitions per unit (scalar), default 10.
+        #[serde(default = "ten")]
+        scale: InputDesc,
+    },
+    /// One octave of Perlin noise (scalar, about [−1, 1]).
+    Noise {
+        /// Point, default `Position`.
+        #[serde(default = "position")]
+        p: InputDesc,
+        /// Frequency, default 1.
+        #[serde(default = "one_f")]
+        frequency: f64,
+        /// Seed, default 0.
+        #[serde(default)]
+        seed: u64,
+    },
+    /// Fractal Brownian motion (scalar, signed).
+    Fbm {
+        /// Point, default `Position`.
+        #[serde(default = "position")]
+        p: InputDesc,
+        /// Base frequency, default 1.
+        #[serde(default = "one_f")]
+        frequency: f64,
+        /// Octaves, default 4, in 1…12.
+        #[serde(default = "four")]
+        octaves: u32,
+        /// Frequency multiplier per octave, default 2.
+        #[serde(default = "two_f")]
+        lacunarity: f64,
+        /// Amplitude multiplier per octave, default 0.5.
+        #[serde(default = "half_f")]
+        gain: f64,
+        /// Seed, default 0.
+        #[serde(default)]
+        seed: u64,
+    },
+    /// Turbulence (scalar, ≥ 0).
+    Turbulence {
+        /// Point, default `Position`.
+        #[serde(default = "position")]
+        p: InputDesc,
+        /// Base frequency, default 1.
+        #[serde(default = "one_f")]
+        frequency: f64,
+        /// Octaves, default 4, in 1…12.
+        #[serde(default = "four")]
+        octaves: u32,
+        /// Frequency multiplier per octave, default 2.
+        #[serde(default = "two_f")]
+        lacunarity: f64,
+        /// Amplitude multiplier per octave, default 0.5.
+        #[serde(default = "half_f")]
+        gain: f64,
+        /// Seed, default 0.
+        #[serde(default)]
+        seed: u64,
+    },
+    /// An image file at uv (colour).
+    Image {
+        /// PNG or EXR file, relative to the declaring scene file.
+        file: String,
+        /// Coordinates, default `Uv`.
+        #[serde(default = "uv")]
+        uv: InputDesc,
+        /// `Repeat` (default) or `Clamp`.
+        #[serde(default)]
+        wrap: WrapDesc,
+        /// `Srgb` or `Linear`; default sRGB for PNG, linear for EXR.
+        #[serde(default)]
+        color_space: Option<EncodingDesc>,
+    },
+    /// `a·(1 − t) + b·t`.
+    Mix {
+        /// Value at t = 0.
+        a: InputDesc,
+        /// Value at t = 1.
+        b: InputDesc,
+        /// Blend (scalar).
+        t: InputDesc,
+    },
+    /// `smoothstep(edge0, edge1, x)` (scalar).
+    Smoothstep {
+        /// Lower edge.
+        edge0: InputDesc,
+        /// Upper edge.
+        edge1: InputDesc,
+        /// Input.
+        x: InputDesc,
+    },
+    /// `a + b`.
+    Add(InputDesc, InputDesc),
+    /// `a − b`.
+    Sub(InputDesc, InputDesc),
+    /// `a · b` per channel.
+    Mul(InputDesc, InputDesc),
+    /// Channel 0, 1 or 2 of a colour (scalar).
+    Channel(InputDesc, u32),
+    /// Rec. 709 luminance of a colour (scalar).
+    Luminance(InputDesc),
+    /// A colour from three scalars.
+    Combine(InputDesc, InputDesc, InputDesc),
+    /// Colour-space conversion (colour).
+    Convert {
+        /// The colour.
+        input: InputDesc,
+        /// Space it is in, default `Rgb`.
+        #[serde(default)]
+        from: ColourSpaceDesc,
+        /// Space to convert to, default `Rgb`.
+        #[serde(default)]
+        to: ColourSpaceDesc,
+    },
+    /// A phenomenon with arguments for some of its interface parameters.
+    Graph(String, #[serde(default)] BTreeMap<String, InputDesc>),
+    /// An interface parameter of the enclosing phenomenon.
+    Param(String),
+}
+
+/// Names of every node, for suggestions.
+pub const NODE_NAMES: &[&str] = &[
+    "Uv",
+    "Position",
+    "Normal",
+    "Checker",
+    "Disk",
+    "Repeat",
+    "Noise",
+    "Fbm",
+    "Turbulence",
+    "Image",
+    "Mix",
+    "Smoothstep",
+    "Add",
+    "Sub",
+    "Mul",
+    "Channel",
+    "Luminance",
+    "Combine",
+    "Convert",
+    "Graph",
+    "Param",
+];
+
+/// Image wrap mode.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename = "Wrap")]
+pub enum WrapDesc {
+    /// Tile.
+    #[default]
+    Repeat,
+    /// Extend the edge texels.
+    Clamp,
+}
+
+/// How an image's numbers are encoded.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename = "ColorSpace")]
+pub enum EncodingDesc {
+    /// sRGB curve.
+    Srgb,
+    /// Linear.
+    Linear,
+}
+
+/// A colour space of `Convert`.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename = "Space")]
+pub enum ColourSpaceDesc {
+    /// Red, green, blue.
+    #[default]
+    Rgb,
+    /// Hue, saturation, value (hue in [0, 1)).
+    Hsv,
+    /// Hue, saturation, lightness (hue in [0, 1)).
+    Hsl,
+}
+
+/// `bump: (...)` on a material.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(rename = "Bump", deny_unknown_fields)]
+pub struct BumpDesc {
+    /// Height along the normal (scalar node), object units before `scale`.
+    pub height: InputDesc,
+    /// Multiplier of the height, default 1.
+    #[serde(default = "one_f")]
+    pub scale: f64,
+}
+
+/// `phenomena: [(...)]`: a named graph with interface parameters.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(rename = "Phenomenon", deny_unknown_fields)]
+pub struct PhenomenonDesc {
+    /// Unique phenomenon name.
+    pub name: String,
+    /// Interface parameters and their defaults (the default fixes the type: a number is a
+    /// scalar, `(r, g, b)` a colour), default none.
+    #[serde(default)]
+    pub params: BTreeMap<String, InputDesc>,
+    /// The graph's result.
+    pub output: InputDesc,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse(text: &str) -> InputDesc {
+        ron::Options::default()
+            .with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME)
+            .from_str(text)
+            .unwrap()
+    }
+
+    #[test]
+    fn inputs_parse_as_numbers_colours_and_nodes() {
+        assert!(matches!(parse("8"), InputDesc::Number(x) if x == 8.0));
+        assert!(matches!(parse("(0.9, 0.9, 1)"), InputDesc::Colour(_)));
+        assert!(matches!(parse("Uv"), InputDesc::Node(n) if matches!(*n, NodeDesc::Uv)));
+        let InputDesc::Node(n) = parse("Checker(scale: 8, a: (0.9, 0.9, 0.9), b: Fbm())") else {
+            panic!()
+        };
+        let NodeDesc::Checker { scale, a, b, .. } = *n else {
+            panic!()
+        };
+        assert!(matches!(scale, InputDesc::Number(x) if x == 8.0));
+        assert!(matches!(a, InputDesc::Colour(_)));
+        assert!(matches!(b, InputDesc::Node(_)));
+        let InputDesc::Node(n) = parse(r#"Graph("marble", {"vein": (1, 0, 0), "scale": 3})"#)
+        else {
+            panic!()
+        };
+        assert!(matches!(*n, NodeDesc::Graph(ref name, ref args) if name == "marble" && args.len() == 2));
+        assert!(matches!(parse("Add(Uv, 1)"), InputDesc::Node(_)));
+    }
+
+    #[test]
+    fn probe_forms() {
+        for t in ["Fbm()", "Fbm", "Fbm(seed: 1)", "Checker()", "Checker"] {
+            eprintln!("{t}: {:?}", parse(t));
+        }
+    }
+
+    #[test]
+    fn unknown_nodes_are_kept_for_the_loader() {
+        assert!(matches!(parse("Chekcer(scale: 8)"), InputDesc::Invalid(_)));
+        assert!(matches!(parse("Checker(scael: 8)"), InputDesc::Invalid(_)));
+        assert!(matches!(parse("\"text\""), InputDesc::Invalid(_)));
+    }
+}

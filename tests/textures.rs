@@ -1,0 +1,262 @@
+//! Shader graphs end to end: texture nodes bound to material parameters, phenomena, image
+//! textures, bump mapping and the bent-normal hard cases H11/H12, each checked against
+//! analytic values at low resolution.
+
+use std::path::{Path, PathBuf};
+
+use glam::Vec3;
+use stagelight::frame::Frame;
+use stagelight::scene::load_scene_str;
+
+/// Renders `text` as if it were `dir/scene.ron`; returns (width, beauty).
+fn render_in(dir: &Path, text: &str) -> (usize, Vec<Vec3>) {
+    let mut scene =
+        load_scene_str(text, &dir.join("scene.ron")).unwrap_or_else(|e| panic!("{e}"));
+    let mut frame = Frame::new(scene.settings.clone());
+    let stages: Vec<_> = stagelight::systems::STAGES
+        .iter()
+        .copied()
+        .filter(|s| s.name != "write_output")
+        .collect();
+    stagelight::schedule::run_stages(&stages, &mut scene.world, &mut frame).expect("render");
+    let image = frame.image.expect("image");
+    (image.width as usize, image.beauty)
+}
+
+fn render(text: &str) -> (usize, Vec<Vec3>) {
+    render_in(Path::new(env!("CARGO_MANIFEST_DIR")), text)
+}
+
+fn load_errors(text: &str) -> String {
+    match load_scene_str(text, Path::new("scene.ron")) {
+        Ok(_) => panic!("expected errors"),
+        Err(e) => e.to_string(),
+    }
+}
+
+/// A unit-uv quad spanning [−1, 1]² in z = 0 (uv (0, 0) at (−1, −1)), seen from z = 3 with
+/// a 30° field of view (the image shows x, y ∈ [−0.80, 0.80]), lit straight on by a
+/// directional light of irradiance π (so a Lambert albedo ρ shows as radiance ρ).
+fn quad_scene(materials: &str, extra: &str, res: u32, spp: u32) -> String {
+    format!(
+        r#"(
+    options: (samples: {spp}),
+    cameras: [(name: "cam", fov_y: 30, resolution: ({res}, {res}),
+               placement: LookAt(eye: (0, 0, 3), target: (0, 0, 0)))],
+    lights: [(name: "sun", kind: Directional(direction: (0, 0, -1)), intensity: 3.14159265358979)],
+    materials: [{materials}],
+    objects: [(name: "quad", material: "m",
+               mesh: Inline(vertices: [(-1, -1, 0), (1, -1, 0), (1, 1, 0), (-1, 1, 0)],
+                            polygons: [[0, 1, 2, 3]],
+                            uvs: [(0, 0), (1, 0), (1, 1), (0, 1)]))],
+    instances: [(name: "q", of: "quad")],
+    groups: [(name: "world", members: ["q"])],
+    render: (root: "world", camera: "cam"),
+    {extra}
+)"#
+    )
+}
+
+/// uv of the centre of pixel (px, py) of a `res`² render of [`quad_scene`], and the
+/// half-size of the pixel in uv.
+fn pixel_uv(px: usize, py: usize, res: usize) -> (f32, f32, f32) {
+    let half = 3.0 * (15f32).to_radians().tan();
+    let x = ((px as f32 + 0.5) / res as f32 * 2.0 - 1.0) * half;
+    let y = (1.0 - (py as f32 + 0.5) / res as f32 * 2.0) * half;
+    ((x + 1.0) / 2.0, (y + 1.0) / 2.0, half / res as f32 / 2.0 * 1.01)
+}
+
+#[test]
+fn checker_plane_matches_the_checker_colours_times_lighting() {
+    let m = r#"(name: "m", shader: Lambert(albedo: (1, 1, 1)),
+               bind: {"albedo": Checker(scale: 5, a: (0.9, 0.5, 0.1), b: 0.2)})"#;
+    let res = 40;
+    let (w, img) = render(&quad_scene(m, "", res, 4));
+    let (a, b) = (Vec3::new(0.9, 0.5, 0.1), Vec3::splat(0.2));
+    let mut counts = [0, 0];
+    for (i, c) in img.iter().enumerate() {
+        let (u, v, h) = pixel_uv(i % w, i / w, res as usize);
+        let cell = |u: f32, v: f32| ((u * 5.0).floor() + (v * 5.0).floor()) as i32;
+        if cell(u - h, v - h) != cell(u + h, v + h) || (u * 5.0 - h * 5.0).floor() != (u * 5.0 + h * 5.0).floor() {
+            continue; // the pixel straddles a cell edge
+        }
+        let even = cell(u, v).rem_euclid(2) == 0;
+        let want = if even { a } else { b };
+        counts[even as usize] += 1;
+        assert!((*c - want).abs().max_element() < 1e-4, "pixel {i}: {c} vs {want}");
+    }
+    assert!(counts[0] > 300 && counts[1] > 300, "{counts:?}");
+}
+
+#[test]
+fn phenomenon_used_twice_renders_each_parameter_set() {
+    let phen = r#"phenomena: [(name: "painted", params: {"base": (0.5, 0.5, 0.5), "k": 1.0},
+                              output: Mul(Param("base"), Param("k")))],"#;
+    let mats = r#"(name: "m", shader: Lambert(albedo: (1, 1, 1)),
+                   bind: {"albedo": Graph("painted", {"base": (0.8, 0.2, 0.4)})}),
+                  (name: "n", shader: Lambert(albedo: (1, 1, 1)),
+                   bind: {"albedo": Graph("painted", {"k": 0.5})})"#;
+    // Two quads: the left half uses "m", the right half "n".
+    let text = quad_scene(mats, phen, 16, 1)
+        .replace(
+            r#"instances: [(name: "q", of: "quad")]"#,
+            r#"instances: [(name: "q", of: "quad", transform: [Scale((0.5, 1, 1)), Translate((-0.5, 0, 0))]),
+                           (name: "r", of: "quad", material: "n", transform: [Scale((0.5, 1, 1)), Translate((0.5, 0, 0))])]"#,
+        )
+        .replace(r#"members: ["q"]"#, r#"members: ["q", "r"]"#);
+    let (w, img) = render(&text);
+    let left = img[8 * w + 2];
+    let right = img[8 * w + w - 3];
+    assert!((left - Vec3::new(0.8, 0.2, 0.4)).abs().max_element() < 1e-4, "{left}");
+    assert!((right - Vec3::splat(0.25)).abs().max_element() < 1e-4, "{right}");
+}
+
+/// A 2×2 RGB PNG, top row red/green, bottom row blue/white (8-bit sRGB codes given).
+fn write_png(path: &Path, codes: [[u8; 3]; 4]) {
+    let mut img = image::RgbImage::new(2, 2);
+    for (i, c) in codes.iter().enumerate() {
+        img.put_pixel((i % 2) as u32, (i / 2) as u32, image::Rgb(*c));
+    }
+    img.save(path).unwrap();
+}
+
+fn temp_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("stagelight-textures-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn srgb(code: u8) -> f32 {
+    let x = code as f32 / 255.0;
+    if x <= 0.04045 {
+        x / 12.92
+    } else {
+        ((x + 0.055) / 1.055).powf(2.4)
+    }
+}
+
+#[test]
+fn image_texture_is_decoded_upright_and_sampled_bilinearly() {
+    let dir = temp_dir("png");
+    let codes = [[255, 0, 0], [0, 255, 0], [0, 0, 255], [188, 188, 188]];
+    write_png(&dir.join("tex.png"), codes);
+    // Constant shader: the pixel is the texture value itself.
+    let m = r#"(name: "m", shader: Constant(color: (0, 0, 0)),
+               bind: {"color": Image(file: "tex.png", wrap: Clamp)})"#;
+    let res = 64;
+    let (w, img) = render_in(&dir, &quad_scene(m, "", res, 1));
+    // The file's top-left texel (red) shows at the top left of the quad, where uv is
+    // (0.25, 0.75); the image shows uv ∈ [0.1, 0.9]², so that is pixel ≈ (12, 12).
+    let at = |u: f32, v: f32| {
+        let px = ((u * 2.0 - 1.0) / (3.0 * 15f32.to_radians().tan()) + 1.0) / 2.0 * res as f32;
+        let py = (1.0 - (v * 2.0 - 1.0) / (3.0 * 15f32.to_radians().tan())) / 2.0 * res as f32;
+        img[py as usize * w + px as usize]
+    };
+    let texel = |k: usize| Vec3::new(srgb(codes[k][0]), srgb(codes[k][1]), srgb(codes[k][2]));
+    // Pixels near texel centres (footprint ~0.0067 uv, bilinear slope ≤ 2 per uv unit).
+    for (u, v, k) in [(0.25, 0.75, 0), (0.75, 0.75, 1), (0.25, 0.25, 2), (0.75, 0.25, 3)] {
+        let c = at(u, v);
+        assert!((c - texel(k)).abs().max_element() < 0.06, "({u}, {v}): {c} vs {}", texel(k));
+    }
+    // 188 decodes to ≈ 0.503 (not 0.737): the sRGB curve was applied.
+    assert!((at(0.75, 0.25).x - 0.5029).abs() < 0.06);
+    // Half-way between the top texels: the bilinear mean of red and green.
+    let mid = at(0.5, 0.75);
+    assert!((mid - Vec3::new(0.5, 0.5, 0.0)).abs().max_element() < 0.03, "{mid}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn exr_textures_are_linear_and_png_can_be_declared_linear() {
+    use stagelight::shading::texture::image::{load, Encoding, Wrap};
+    let dir = temp_dir("exr");
+    let path = dir.join("t.exr");
+    exr::prelude::write_rgb_file(&path, 2, 1, |x, _y| {
+        if x == 0 {
+            (0.25f32, 2.0f32, 0.5f32)
+        } else {
+            (1.0, 0.0, 0.125)
+        }
+    })
+    .unwrap();
+    let t = load(&path, None, Wrap::Clamp).unwrap();
+    assert_eq!((t.width, t.height), (2, 1));
+    assert_eq!(t.texels, vec![Vec3::new(0.25, 2.0, 0.5), Vec3::new(1.0, 0.0, 0.125)]);
+    let png = dir.join("t.png");
+    write_png(&png, [[188, 0, 255], [0, 0, 0], [0, 0, 0], [0, 0, 0]]);
+    let lin = load(&png, Some(Encoding::Linear), Wrap::Repeat).unwrap();
+    // Top-left of the file is the last row (v = 1 at the top).
+    assert!((lin.texels[2] - Vec3::new(188.0 / 255.0, 0.0, 1.0)).abs().max_element() < 1e-6);
+    let s = load(&png, None, Wrap::Repeat).unwrap();
+    assert!((s.texels[2].x - srgb(188)).abs() < 1e-6);
+    assert!(load(&dir.join("missing.png"), None, Wrap::Repeat).is_err());
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn graph_errors_are_located_with_suggestions() {
+    let m = r#"(name: "m", shader: Lambert(albedo: (1, 1, 1)),
+               bind: {"albdo": Checker(scale: 4),
+                      "albedo": Chekcer(scale: 4)})"#;
+    let e = load_errors(&quad_scene(m, "", 8, 1));
+    assert!(e.contains("scene.ron:7:32: error: shader Lambert has no parameter \"albdo\""), "{e}");
+    assert!(e.contains("did you mean \"albedo\"?"), "{e}");
+    assert!(e.contains("scene.ron:8:33: error: unknown node \"Chekcer\""), "{e}");
+    assert!(e.contains("did you mean \"Checker\"?"), "{e}");
+
+    // A field typo inside a known node: ron's own message at the field.
+    let m = r#"(name: "m", shader: Lambert(albedo: (1, 1, 1)), bind: {"albedo": Checker(scael: 4)})"#;
+    let e = load_errors(&quad_scene(m, "", 8, 1));
+    assert!(e.contains("unknown field \"scael\""), "{e}");
+    assert!(e.contains("did you mean \"scale\"?"), "{e}");
+
+    // A colour where a number is expected.
+    let m = r#"(name: "m", shader: Plastic(), bind: {"roughness": Checker(a: (1, 1, 1))})"#;
+    let e = load_errors(&quad_scene(m, "", 8, 1));
+    assert!(e.contains("parameter \"roughness\" is a number, but this gives a colour"), "{e}");
+    let m = r#"(name: "m", shader: Lambert(albedo: (1,1,1)), bump: (height: Uv))"#;
+    let e = load_errors(&quad_scene(m, "", 8, 1));
+    assert!(e.contains("bump height must be a number, but this gives a colour"), "{e}");
+
+    // Phenomena: unknown name, unknown parameter, wrong argument type, cycles.
+    let phen = r#"phenomena: [
+        (name: "a", params: {"k": 1.0}, output: Graph("b", {})),
+        (name: "b", output: Graph("a", {"k": 2})),
+        (name: "ok", params: {"grain": 1.0}, output: Mul(Param("grain"), Param("grian"))),
+        (name: "fine", params: {"grain": 1.0}, output: Param("grain")),
+    ],"#;
+    let m = r#"(name: "m", shader: Lambert(albedo: (1, 1, 1)),
+               bind: {"albedo": Graph("marbel", {})}),
+               (name: "n", shader: Metal(),
+               bind: {"roughness": Graph("fine", {"grian": 2, "grain": (1, 1, 1)})})"#;
+    let e = load_errors(&quad_scene(m, phen, 8, 1));
+    assert!(e.contains("unknown phenomenon \"marbel\""), "{e}");
+    assert!(e.contains("phenomenon \"a\" uses itself: a → b → a"), "{e}");
+    assert!(e.contains("phenomenon \"b\" uses itself: b → a → b"), "{e}");
+    assert!(e.contains("phenomenon \"ok\" has no parameter \"grian\""), "{e}");
+    assert!(e.contains("phenomenon \"fine\" has no parameter \"grian\""), "{e}");
+    assert!(e.contains("parameter \"grain\" of \"fine\" is a number, but this gives a colour"), "{e}");
+    assert!(e.contains("did you mean \"grain\"?"), "{e}");
+
+    // Missing image file.
+    let m = r#"(name: "m", shader: Lambert(albedo: (1, 1, 1)), bind: {"albedo": Image(file: "nope.png")})"#;
+    let e = load_errors(&quad_scene(m, "", 8, 1));
+    assert!(e.contains("cannot read image file"), "{e}");
+    assert!(e.contains("nope.png"), "{e}");
+
+    // Hostile numbers are rejected.
+    let m = r#"(name: "m", shader: Lambert(albedo: (1, 1, 1)), bind: {"albedo": Checker(scale: NaN)})"#;
+    let e = load_errors(&quad_scene(m, "", 8, 1));
+    assert!(e.contains("must be a finite number"), "{e}");
+    let m = r#"(name: "m", shader: Lambert(albedo: (1, 1, 1)), bind: {"albedo": Fbm(octaves: 40)})"#;
+    let e = load_errors(&quad_scene(m, "", 8, 1));
+    assert!(e.contains("octaves must be in 1…12, found 40"), "{e}");
+}
+
+#[test]
+fn nodes_with_all_defaults_may_be_written_bare() {
+    let m = r#"(name: "m", shader: Lambert(albedo: (1, 1, 1)),
+               bind: {"albedo": Mix(a: Checker(), b: Turbulence(), t: Smoothstep(edge0: 0, edge1: 1, x: Fbm()))})"#;
+    let (_, img) = render(&quad_scene(m, "", 8, 1));
+    assert!(img.iter().all(|c| c.is_finite()));
+}
