@@ -2,7 +2,9 @@
 //!
 //! - `shading/<family>`: shaded samples per second of each material family — a 64×64 plane
 //!   under a rect light (8 shadow samples), 4 spp, direct integrator (camera ray, BSDF
-//!   construction, light loop with shadow rays, delta branches).
+//!   construction, light loop with shadow rays, delta branches). `lambert_textured` adds a
+//!   shader graph: albedo = mix of two colours by 4-octave fBm of the position, plus a bump
+//!   map of the same fBm (three graph evaluations per hit).
 //! - `path/cornell_256_to_relmse_1e-2`: the path tracer on the Cornell box at 256×256
 //!   (max_depth 8): the smallest power-of-two spp whose image reaches relMSE ≤ 1e-2 against a
 //!   converged reference, then the time of a render at that spp. The reference (path tracer,
@@ -22,6 +24,8 @@ use stagelight::components::{
 use stagelight::frame::Frame;
 use stagelight::scene::load_scene;
 use stagelight::settings::{Integrator, RenderSettings};
+use stagelight::shading::texture::noise::Fractal;
+use stagelight::shading::texture::{Binding, BumpMap, MaterialGraph, NoiseKind, Op, Program};
 
 fn families() -> Vec<(&'static str, Shader)> {
     let g = Vec3::splat;
@@ -88,7 +92,40 @@ fn families() -> Vec<(&'static str, Shader)> {
     ]
 }
 
-fn plane_world(shader: Shader) -> World {
+/// Albedo = mix((0.1, 0.3, 0.7), (0.9, 0.6, 0.2), 0.5 + fbm(4·P)); bump height 0.02·fbm.
+fn textured_graph() -> MaterialGraph {
+    let mut program = Program::default();
+    let p = program.push(Op::Position);
+    let fbm = program.push(Op::Noise {
+        p,
+        kind: NoiseKind::Fbm,
+        fractal: Fractal {
+            frequency: 4.0,
+            octaves: 4,
+            lacunarity: 2.0,
+            gain: 0.5,
+            seed: 1,
+        },
+    });
+    let half = program.push(Op::Const(Vec3::splat(0.5)));
+    let t = program.push(Op::Add(half, fbm));
+    let a = program.push(Op::Const(Vec3::new(0.1, 0.3, 0.7)));
+    let b = program.push(Op::Const(Vec3::new(0.9, 0.6, 0.2)));
+    let albedo = program.push(Op::Mix { a, b, t });
+    MaterialGraph {
+        program,
+        bindings: vec![Binding {
+            param: "albedo".into(),
+            reg: albedo,
+        }],
+        bump: Some(BumpMap {
+            height: fbm,
+            scale: 0.02,
+        }),
+    }
+}
+
+fn plane_world(shader: Shader, graph: Option<MaterialGraph>) -> World {
     let mut world = World::new();
     let m = world.spawn((
         Name("m".into()),
@@ -96,7 +133,7 @@ fn plane_world(shader: Shader) -> World {
             shader,
             two_sided: false,
             emission: Vec3::ZERO,
-            graph: None,
+            graph: graph.map(std::sync::Arc::new),
         },
     ));
     let h = 5.0;
@@ -164,8 +201,14 @@ fn material_families(c: &mut Criterion) {
     group.sample_size(10);
     let spp = 4;
     group.throughput(Throughput::Elements(64 * 64 * spp as u64));
-    for (name, shader) in families() {
-        let mut world = plane_world(shader);
+    let textured = (
+        "lambert_textured",
+        Shader::Lambert { albedo: Vec3::ONE },
+        Some(textured_graph()),
+    );
+    let plain = families().into_iter().map(|(n, s)| (n, s, None));
+    for (name, shader, graph) in plain.chain(std::iter::once(textured)) {
+        let mut world = plane_world(shader, graph);
         let settings = RenderSettings {
             spp,
             ..RenderSettings::default()

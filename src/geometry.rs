@@ -13,7 +13,7 @@ use glam::{Affine3A, Mat3, Vec2, Vec3};
 use hecs::Entity;
 
 use crate::accel::{Accel, Hit, SurfacePoint};
-use crate::components::{Material, TriMesh};
+use crate::components::{Displacement, Material, TriMesh};
 
 /// One placed instance in the flattened scene.
 #[derive(Debug, Clone)]
@@ -30,6 +30,8 @@ pub struct InstanceGeometry {
     pub material: u32,
     /// First world triangle of this instance; its triangles are contiguous.
     pub first_triangle: u32,
+    /// The object's displacement when it is in `Bump` mode (shading normals only).
+    pub bump: Option<Arc<Displacement>>,
 }
 
 /// Everything about a hit that shading needs.

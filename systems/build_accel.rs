@@ -1,6 +1,7 @@
 //! `build_accel`: flattens every instance's triangles into world space and builds the BVH.
 //!
 //! **Reads:** `Instance`, `WorldFromObject`, `MaterialRef` entities; `Material` entities;
+//! the objects' `Displacement` in `Bump` mode (kept for shading);
 //! `settings.bvh_quality`.
 //! **Writes:** `frame.geometry`.
 //! **Runs when:** at least one instance has triangles and something consumes rays (a render
@@ -9,6 +10,7 @@
 //! instance contiguous), their BVH, and per-instance shading data.
 
 use std::collections::HashMap;
+use std::sync::Arc;
 
 use glam::Vec3;
 use hecs::{Entity, World};
@@ -16,7 +18,8 @@ use hecs::{Entity, World};
 use super::prelude::*;
 use crate::accel::Accel;
 use crate::components::{
-    BakeRequest, Instance, Material, MaterialRef, RenderCamera, WorldFromObject,
+    BakeRequest, Displacement, DisplacementMode, Instance, Material, MaterialRef, RenderCamera,
+    WorldFromObject,
 };
 use crate::geometry::{InstanceGeometry, SceneGeometry};
 
@@ -92,6 +95,11 @@ pub fn run(world: &mut World, frame: &mut Frame) -> Result<Work, StageError> {
             normal_from_object: glam::Mat3::from(xf.matrix3).inverse().transpose(),
             material: slot,
             first_triangle: first,
+            bump: world
+                .get::<&Displacement>(instance.object)
+                .ok()
+                .filter(|d| d.mode == DisplacementMode::Bump)
+                .map(|d| Arc::new((*d).clone())),
         });
     }
     let count = triangles.len() as u64;

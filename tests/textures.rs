@@ -10,8 +10,7 @@ use stagelight::scene::load_scene_str;
 
 /// Renders `text` as if it were `dir/scene.ron`; returns (width, beauty).
 fn render_in(dir: &Path, text: &str) -> (usize, Vec<Vec3>) {
-    let mut scene =
-        load_scene_str(text, &dir.join("scene.ron")).unwrap_or_else(|e| panic!("{e}"));
+    let mut scene = load_scene_str(text, &dir.join("scene.ron")).unwrap_or_else(|e| panic!("{e}"));
     let mut frame = Frame::new(scene.settings.clone());
     let stages: Vec<_> = stagelight::systems::STAGES
         .iter()
@@ -63,7 +62,11 @@ fn pixel_uv(px: usize, py: usize, res: usize) -> (f32, f32, f32) {
     let half = 3.0 * (15f32).to_radians().tan();
     let x = ((px as f32 + 0.5) / res as f32 * 2.0 - 1.0) * half;
     let y = (1.0 - (py as f32 + 0.5) / res as f32 * 2.0) * half;
-    ((x + 1.0) / 2.0, (y + 1.0) / 2.0, half / res as f32 / 2.0 * 1.01)
+    (
+        (x + 1.0) / 2.0,
+        (y + 1.0) / 2.0,
+        half / res as f32 / 2.0 * 1.01,
+    )
 }
 
 #[test]
@@ -77,13 +80,18 @@ fn checker_plane_matches_the_checker_colours_times_lighting() {
     for (i, c) in img.iter().enumerate() {
         let (u, v, h) = pixel_uv(i % w, i / w, res as usize);
         let cell = |u: f32, v: f32| ((u * 5.0).floor() + (v * 5.0).floor()) as i32;
-        if cell(u - h, v - h) != cell(u + h, v + h) || (u * 5.0 - h * 5.0).floor() != (u * 5.0 + h * 5.0).floor() {
+        if cell(u - h, v - h) != cell(u + h, v + h)
+            || (u * 5.0 - h * 5.0).floor() != (u * 5.0 + h * 5.0).floor()
+        {
             continue; // the pixel straddles a cell edge
         }
         let even = cell(u, v).rem_euclid(2) == 0;
         let want = if even { a } else { b };
         counts[even as usize] += 1;
-        assert!((*c - want).abs().max_element() < 1e-4, "pixel {i}: {c} vs {want}");
+        assert!(
+            (*c - want).abs().max_element() < 1e-4,
+            "pixel {i}: {c} vs {want}"
+        );
     }
     assert!(counts[0] > 300 && counts[1] > 300, "{counts:?}");
 }
@@ -107,8 +115,14 @@ fn phenomenon_used_twice_renders_each_parameter_set() {
     let (w, img) = render(&text);
     let left = img[8 * w + 2];
     let right = img[8 * w + w - 3];
-    assert!((left - Vec3::new(0.8, 0.2, 0.4)).abs().max_element() < 1e-4, "{left}");
-    assert!((right - Vec3::splat(0.25)).abs().max_element() < 1e-4, "{right}");
+    assert!(
+        (left - Vec3::new(0.8, 0.2, 0.4)).abs().max_element() < 1e-4,
+        "{left}"
+    );
+    assert!(
+        (right - Vec3::splat(0.25)).abs().max_element() < 1e-4,
+        "{right}"
+    );
 }
 
 /// A 2×2 RGB PNG, top row red/green, bottom row blue/white (8-bit sRGB codes given).
@@ -121,7 +135,8 @@ fn write_png(path: &Path, codes: [[u8; 3]; 4]) {
 }
 
 fn temp_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("stagelight-textures-{name}-{}", std::process::id()));
+    let dir =
+        std::env::temp_dir().join(format!("stagelight-textures-{name}-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     dir
 }
@@ -154,15 +169,27 @@ fn image_texture_is_decoded_upright_and_sampled_bilinearly() {
     };
     let texel = |k: usize| Vec3::new(srgb(codes[k][0]), srgb(codes[k][1]), srgb(codes[k][2]));
     // Pixels near texel centres (footprint ~0.0067 uv, bilinear slope ≤ 2 per uv unit).
-    for (u, v, k) in [(0.25, 0.75, 0), (0.75, 0.75, 1), (0.25, 0.25, 2), (0.75, 0.25, 3)] {
+    for (u, v, k) in [
+        (0.25, 0.75, 0),
+        (0.75, 0.75, 1),
+        (0.25, 0.25, 2),
+        (0.75, 0.25, 3),
+    ] {
         let c = at(u, v);
-        assert!((c - texel(k)).abs().max_element() < 0.06, "({u}, {v}): {c} vs {}", texel(k));
+        assert!(
+            (c - texel(k)).abs().max_element() < 0.06,
+            "({u}, {v}): {c} vs {}",
+            texel(k)
+        );
     }
     // 188 decodes to ≈ 0.503 (not 0.737): the sRGB curve was applied.
     assert!((at(0.75, 0.25).x - 0.5029).abs() < 0.06);
     // Half-way between the top texels: the bilinear mean of red and green.
     let mid = at(0.5, 0.75);
-    assert!((mid - Vec3::new(0.5, 0.5, 0.0)).abs().max_element() < 0.03, "{mid}");
+    assert!(
+        (mid - Vec3::new(0.5, 0.5, 0.0)).abs().max_element() < 0.03,
+        "{mid}"
+    );
     std::fs::remove_dir_all(&dir).ok();
 }
 
@@ -181,12 +208,20 @@ fn exr_textures_are_linear_and_png_can_be_declared_linear() {
     .unwrap();
     let t = load(&path, None, Wrap::Clamp).unwrap();
     assert_eq!((t.width, t.height), (2, 1));
-    assert_eq!(t.texels, vec![Vec3::new(0.25, 2.0, 0.5), Vec3::new(1.0, 0.0, 0.125)]);
+    assert_eq!(
+        t.texels,
+        vec![Vec3::new(0.25, 2.0, 0.5), Vec3::new(1.0, 0.0, 0.125)]
+    );
     let png = dir.join("t.png");
     write_png(&png, [[188, 0, 255], [0, 0, 0], [0, 0, 0], [0, 0, 0]]);
     let lin = load(&png, Some(Encoding::Linear), Wrap::Repeat).unwrap();
     // Top-left of the file is the last row (v = 1 at the top).
-    assert!((lin.texels[2] - Vec3::new(188.0 / 255.0, 0.0, 1.0)).abs().max_element() < 1e-6);
+    assert!(
+        (lin.texels[2] - Vec3::new(188.0 / 255.0, 0.0, 1.0))
+            .abs()
+            .max_element()
+            < 1e-6
+    );
     let s = load(&png, None, Wrap::Repeat).unwrap();
     assert!((s.texels[2].x - srgb(188)).abs() < 1e-6);
     assert!(load(&dir.join("missing.png"), None, Wrap::Repeat).is_err());
@@ -199,13 +234,20 @@ fn graph_errors_are_located_with_suggestions() {
                bind: {"albdo": Checker(scale: 4),
                       "albedo": Chekcer(scale: 4)})"#;
     let e = load_errors(&quad_scene(m, "", 8, 1));
-    assert!(e.contains("scene.ron:7:32: error: shader Lambert has no parameter \"albdo\""), "{e}");
+    assert!(
+        e.contains("scene.ron:7:32: error: shader Lambert has no parameter \"albdo\""),
+        "{e}"
+    );
     assert!(e.contains("did you mean \"albedo\"?"), "{e}");
-    assert!(e.contains("scene.ron:8:33: error: unknown node \"Chekcer\""), "{e}");
+    assert!(
+        e.contains("scene.ron:8:33: error: unknown node \"Chekcer\""),
+        "{e}"
+    );
     assert!(e.contains("did you mean \"Checker\"?"), "{e}");
 
     // A field typo inside a known node: ron's own message at the field.
-    let m = r#"(name: "m", shader: Lambert(albedo: (1, 1, 1)), bind: {"albedo": Checker(scael: 4)})"#;
+    let m =
+        r#"(name: "m", shader: Lambert(albedo: (1, 1, 1)), bind: {"albedo": Checker(scael: 4)})"#;
     let e = load_errors(&quad_scene(m, "", 8, 1));
     assert!(e.contains("unknown field \"scael\""), "{e}");
     assert!(e.contains("did you mean \"scale\"?"), "{e}");
@@ -213,10 +255,16 @@ fn graph_errors_are_located_with_suggestions() {
     // A colour where a number is expected.
     let m = r#"(name: "m", shader: Plastic(), bind: {"roughness": Checker(a: (1, 1, 1))})"#;
     let e = load_errors(&quad_scene(m, "", 8, 1));
-    assert!(e.contains("parameter \"roughness\" is a number, but this gives a colour"), "{e}");
+    assert!(
+        e.contains("parameter \"roughness\" is a number, but this gives a colour"),
+        "{e}"
+    );
     let m = r#"(name: "m", shader: Lambert(albedo: (1,1,1)), bump: (height: Uv))"#;
     let e = load_errors(&quad_scene(m, "", 8, 1));
-    assert!(e.contains("bump height must be a number, but this gives a colour"), "{e}");
+    assert!(
+        e.contains("bump height must be a number, but this gives a colour"),
+        "{e}"
+    );
 
     // Phenomena: unknown name, unknown parameter, wrong argument type, cycles.
     let phen = r#"phenomena: [
@@ -233,9 +281,18 @@ fn graph_errors_are_located_with_suggestions() {
     assert!(e.contains("unknown phenomenon \"marbel\""), "{e}");
     assert!(e.contains("phenomenon \"a\" uses itself: a → b → a"), "{e}");
     assert!(e.contains("phenomenon \"b\" uses itself: b → a → b"), "{e}");
-    assert!(e.contains("phenomenon \"ok\" has no parameter \"grian\""), "{e}");
-    assert!(e.contains("phenomenon \"fine\" has no parameter \"grian\""), "{e}");
-    assert!(e.contains("parameter \"grain\" of \"fine\" is a number, but this gives a colour"), "{e}");
+    assert!(
+        e.contains("phenomenon \"ok\" has no parameter \"grian\""),
+        "{e}"
+    );
+    assert!(
+        e.contains("phenomenon \"fine\" has no parameter \"grian\""),
+        "{e}"
+    );
+    assert!(
+        e.contains("parameter \"grain\" of \"fine\" is a number, but this gives a colour"),
+        "{e}"
+    );
     assert!(e.contains("did you mean \"grain\"?"), "{e}");
 
     // Missing image file.
@@ -245,10 +302,12 @@ fn graph_errors_are_located_with_suggestions() {
     assert!(e.contains("nope.png"), "{e}");
 
     // Hostile numbers are rejected.
-    let m = r#"(name: "m", shader: Lambert(albedo: (1, 1, 1)), bind: {"albedo": Checker(scale: NaN)})"#;
+    let m =
+        r#"(name: "m", shader: Lambert(albedo: (1, 1, 1)), bind: {"albedo": Checker(scale: NaN)})"#;
     let e = load_errors(&quad_scene(m, "", 8, 1));
     assert!(e.contains("must be a finite number"), "{e}");
-    let m = r#"(name: "m", shader: Lambert(albedo: (1, 1, 1)), bind: {"albedo": Fbm(octaves: 40)})"#;
+    let m =
+        r#"(name: "m", shader: Lambert(albedo: (1, 1, 1)), bind: {"albedo": Fbm(octaves: 40)})"#;
     let e = load_errors(&quad_scene(m, "", 8, 1));
     assert!(e.contains("octaves must be in 1…12, found 40"), "{e}");
 }
@@ -259,4 +318,64 @@ fn nodes_with_all_defaults_may_be_written_bare() {
                bind: {"albedo": Mix(a: Checker(), b: Turbulence(), t: Smoothstep(edge0: 0, edge1: 1, x: Fbm()))})"#;
     let (_, img) = render(&quad_scene(m, "", 8, 1));
     assert!(img.iter().all(|c| c.is_finite()));
+}
+
+/// Hostile numbers in node parameters (scales, radii, noise settings, colours, bump scale,
+/// phenomenon arguments) are rejected at their value or render finite, non-negative pixels.
+#[test]
+fn hostile_node_parameters_are_rejected_or_render_finite_pixels() {
+    use proptest::prelude::*;
+    use proptest::test_runner::{Config, TestRng, TestRunner};
+    const ORDINARY: [&str; 10] = ["4", "0.4", "0.1", "3", "2", "0.5", "0.8", "1", "0.05", "2"];
+    let template = r#"(name: "m", shader: Plastic(roughness: 0.2),
+        bind: {"color": Mix(a: Checker(scale: {}, a: (0.9, 0.9, 0.9)),
+                            b: Disk(uv: Repeat(scale: 3), radius: {}, fuzz: {}),
+                            t: Add(0.5, Fbm(frequency: {}, lacunarity: {}, gain: {}))),
+               "roughness": Graph("g", {"k": {}})},
+        bump: (height: Mul(Turbulence(frequency: {}), {}), scale: {}))"#;
+    let phen = r#"phenomena: [(name: "g", params: {"k": 0.3}, output: Mul(Param("k"), Noise(frequency: 2)))],"#;
+    let mut runner = TestRunner::new_with_rng(
+        Config {
+            cases: 64,
+            failure_persistence: None,
+            ..Config::default()
+        },
+        TestRng::deterministic_rng(proptest::test_runner::RngAlgorithm::ChaCha),
+    );
+    let hostile = prop::sample::select(vec![
+        "NaN", "inf", "-inf", "0", "-0.0", "-1", "1e39", "-1e39", "1e-45", "1e30", "-1e-30",
+    ]);
+    let strategy = (
+        prop::collection::vec((any::<bool>(), hostile), 10),
+        0usize..10,
+    );
+    runner
+        .run(&strategy, |(picks, forced)| {
+            let mut m = template.to_string();
+            for (k, &(bad, v)) in picks.iter().enumerate() {
+                let v = if bad || k == forced { v } else { ORDINARY[k] };
+                m = m.replacen("{}", v, 1);
+            }
+            let text = quad_scene(&m, phen, 6, 1);
+            match load_scene_str(&text, Path::new("scene.ron")) {
+                Err(errors) => {
+                    for d in &errors.0 {
+                        prop_assert!(d.line >= 1 && d.column >= 1, "unlocated: {d}");
+                        prop_assert!(
+                            d.message.contains("finite") || d.message.contains("f32"),
+                            "{d}"
+                        );
+                    }
+                }
+                Ok(_) => {
+                    let (_, img) = render(&text);
+                    prop_assert!(
+                        img.iter().all(|c| c.is_finite() && c.min_element() >= 0.0),
+                        "non-finite pixel for\n{m}"
+                    );
+                }
+            }
+            Ok(())
+        })
+        .unwrap();
 }

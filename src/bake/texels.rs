@@ -19,6 +19,7 @@ use crate::components::{BakeKind, LightmapStore, NormalSpace};
 use crate::geometry::{InstanceGeometry, SceneGeometry};
 use crate::progress::ProgressTicker;
 use crate::sampling::{hash_combine, Sampler};
+use crate::shading::texture::hit as textured;
 use crate::shading::LightSet;
 
 /// Rays of the inside-geometry probe per sample position.
@@ -148,6 +149,8 @@ struct Site {
     ng: Vec3,
     triangle: usize,
     material: u32,
+    /// The hit this site came from (for evaluating texture nodes).
+    hit: crate::accel::Hit,
 }
 
 /// Evaluates texel `(i, j)`: values per image, rays traced, whether it was rejected.
@@ -192,6 +195,7 @@ fn texel(
             ng: sp.surface.ng,
             triangle: ts.triangle as usize,
             material: sp.material,
+            hit,
         };
         if needs_probe {
             let probe = trace_hemisphere(
@@ -365,7 +369,19 @@ fn texel(
             }
             BakeKind::Positions => sites.iter().map(|s| s.surface.p).sum::<Vec3>() / n_sites as f32,
             BakeKind::Albedo => {
-                base_color(&job.geometry.materials[sites[0].material as usize].shader)
+                // The material's texture nodes evaluated at every sample position.
+                sites
+                    .iter()
+                    .map(|site| {
+                        let material = &job.geometry.materials[site.material as usize];
+                        let sp = job.geometry.shading_point(&site.hit);
+                        match textured::evaluate(job.geometry, &sp, &site.hit, material) {
+                            Some(t) => base_color(&t.shader),
+                            None => base_color(&material.shader),
+                        }
+                    })
+                    .sum::<Vec3>()
+                    / n_sites as f32
             }
         };
         values[k] = value.is_finite().then_some(value);

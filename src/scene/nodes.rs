@@ -222,9 +222,10 @@ fn for_each_input(n: &NodeDesc, mut f: impl FnMut(String, &InputDesc)) {
         }
     };
     match n {
-        NodeDesc::Checker { uv, scale, a, b } => {
-            named("Checker", &[("uv", uv), ("scale", scale), ("a", a), ("b", b)])
-        }
+        NodeDesc::Checker { uv, scale, a, b } => named(
+            "Checker",
+            &[("uv", uv), ("scale", scale), ("a", a), ("b", b)],
+        ),
         NodeDesc::Disk {
             uv,
             radius,
@@ -338,7 +339,11 @@ impl Compiler<'_, '_> {
         if x.is_finite() && x.abs() <= f64::from(f32::MAX) {
             Some(x as f32)
         } else {
-            self.error(at, format!("{what} must be a finite number, found {x}"), None);
+            self.error(
+                at,
+                format!("{what} must be a finite number, found {x}"),
+                None,
+            );
             None
         }
     }
@@ -348,7 +353,14 @@ impl Compiler<'_, '_> {
         let mut out = [0.0; 3];
         for (k, x) in [v.0, v.1, v.2].into_iter().enumerate() {
             let p = format!("{}[{k}]", at.path);
-            match self.finite(At { file: at.file, path: &p }, "a colour channel", x) {
+            match self.finite(
+                At {
+                    file: at.file,
+                    path: &p,
+                },
+                "a colour channel",
+                x,
+            ) {
                 Some(x) => out[k] = x,
                 None => ok = false,
             }
@@ -427,15 +439,8 @@ impl Compiler<'_, '_> {
                     } else {
                         (pos.line + d.line - 1, d.column)
                     };
-                    self.src.push(
-                        at.file,
-                        pos,
-                        Diagnostic {
-                            line,
-                            column,
-                            ..d
-                        },
-                    );
+                    self.src
+                        .push(at.file, pos, Diagnostic { line, column, ..d });
                 }
                 None
             }
@@ -676,7 +681,9 @@ impl Compiler<'_, '_> {
                     self.error(
                         at,
                         format!("Param(\"{name}\") is only allowed inside a phenomenon"),
-                        Some("declare the graph under `phenomena` and call it with Graph(…)".into()),
+                        Some(
+                            "declare the graph under `phenomena` and call it with Graph(…)".into(),
+                        ),
                     );
                     return None;
                 }
@@ -875,7 +882,10 @@ fn compile_material(
     let shader_name = mat
         .map(|m| {
             let s = format!("{:?}", m.shader);
-            s.split([' ', '{', '(']).next().unwrap_or_default().to_string()
+            s.split([' ', '{', '('])
+                .next()
+                .unwrap_or_default()
+                .to_string()
         })
         .unwrap_or_default();
     let mut ok = true;

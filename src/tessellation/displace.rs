@@ -230,6 +230,7 @@ pub fn perlin(p: DVec3, seed: u64) -> f64 {
         return 0.0;
     }
     let f = p.floor();
+    // Saturating casts; neighbours wrap (huge points give meaningless but finite noise).
     let (ix, iy, iz) = (f.x as i64, f.y as i64, f.z as i64);
     let d = p - f;
     let fade = |t: f64| t * t * t * (t * (t * 6.0 - 15.0) + 10.0);
@@ -237,9 +238,9 @@ pub fn perlin(p: DVec3, seed: u64) -> f64 {
     let lerp = |a: f64, b: f64, t: f64| a + (b - a) * t;
     let g = |dx: i64, dy: i64, dz: i64| {
         gradient(
-            ix + dx,
-            iy + dy,
-            iz + dz,
+            ix.wrapping_add(dx),
+            iy.wrapping_add(dy),
+            iz.wrapping_add(dz),
             seed,
             d - DVec3::new(dx as f64, dy as f64, dz as f64),
         )

@@ -152,9 +152,8 @@ impl<'a> Vertex<'a> {
     pub fn new(ctx: &ShadeContext<'a>, ray: &Ray, hit: &Hit) -> Self {
         let mut sp = ctx.geometry.shading_point(hit);
         let material = &ctx.geometry.materials[sp.material as usize];
-        let (shader, bumped) = match &material.graph {
-            Some(graph) => {
-                let t = textured::evaluate(ctx.geometry, &sp, hit, graph, &material.shader);
+        let (shader, bumped) = match textured::evaluate(ctx.geometry, &sp, hit, material) {
+            Some(t) => {
                 sp.normal = t.normal;
                 (Cow::Owned(t.shader), t.bumped)
             }

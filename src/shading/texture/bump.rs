@@ -24,7 +24,7 @@ pub fn tangents(p: [Vec3; 3], uv: [Vec2; 3]) -> Option<(Vec3, Vec3)> {
     let (duv02, duv12) = (uv[0] - uv[2], uv[1] - uv[2]);
     let (dp02, dp12) = (p[0] - p[2], p[1] - p[2]);
     let det = duv02.x * duv12.y - duv02.y * duv12.x;
-    if !(det.abs() > 1e-12) {
+    if det.is_nan() || det.abs() <= 1e-12 {
         return None;
     }
     let inv = 1.0 / det;
@@ -59,7 +59,7 @@ pub fn perturb(n: Vec3, dpdu: Vec3, dpdv: Vec3, dhdu: f32, dhdv: f32) -> Vec3 {
 /// already.
 pub fn ensure_valid_reflection(ng: Vec3, wo: Vec3, n: Vec3) -> Vec3 {
     let iz = wo.dot(ng);
-    if !(iz > 0.0) || !n.is_finite() {
+    if iz.is_nan() || iz <= 0.0 || !n.is_finite() {
         return ng;
     }
     let r = 2.0 * n.dot(wo) * n - wo;
@@ -95,11 +95,11 @@ pub fn ensure_valid_reflection(ng: Vec3, wo: Vec3, n: Vec3) -> Vec3 {
 /// normal; falls toward 0 for light grazing the geometry under a strongly bent normal.
 pub fn shadowing(ng: Vec3, ns: Vec3, wi: Vec3) -> f32 {
     let cos_d = ng.dot(ns).abs().min(1.0);
-    if !(cos_d < 1.0) {
+    if cos_d.is_nan() || cos_d >= 1.0 {
         return 1.0;
     }
     let cos_i = ng.dot(wi);
-    if !(cos_i > 0.0) {
+    if cos_i.is_nan() || cos_i <= 0.0 {
         return 0.0;
     }
     let cos_d2 = (cos_d * cos_d).max(1e-12);
@@ -115,7 +115,11 @@ mod tests {
 
     #[test]
     fn tangents_of_a_unit_square_triangle() {
-        let p = [Vec3::ZERO, Vec3::new(2.0, 0.0, 0.0), Vec3::new(0.0, 3.0, 0.0)];
+        let p = [
+            Vec3::ZERO,
+            Vec3::new(2.0, 0.0, 0.0),
+            Vec3::new(0.0, 3.0, 0.0),
+        ];
         let uv = [Vec2::ZERO, Vec2::X, Vec2::Y];
         let (du, dv) = tangents(p, uv).unwrap();
         assert!((du - Vec3::new(2.0, 0.0, 0.0)).length() < 1e-6);
@@ -127,7 +131,10 @@ mod tests {
     fn perturb_gives_the_height_field_normal() {
         // h(u, v) = u on the z = 0 plane: surface z = x, normal (−1, 0, 1)/√2.
         let n = perturb(Vec3::Z, Vec3::X, Vec3::Y, 1.0, 0.0);
-        assert!((n - Vec3::new(-1.0, 0.0, 1.0).normalize()).length() < 1e-6, "{n}");
+        assert!(
+            (n - Vec3::new(-1.0, 0.0, 1.0).normalize()).length() < 1e-6,
+            "{n}"
+        );
         // Mirrored uv (∂P/∂v = −y) bends the same way.
         let m = perturb(Vec3::Z, Vec3::X, Vec3::NEG_Y, 1.0, 0.0);
         assert!((m - n).length() < 1e-6, "{m}");
@@ -150,7 +157,10 @@ mod tests {
         let ok = Vec3::new(0.1, 0.0, 1.0).normalize();
         assert_eq!(ensure_valid_reflection(ng, wo, ok), ok);
         // Grazing views and hostile input stay finite and unit.
-        for wo in [Vec3::new(1.0, 0.0, 1e-6).normalize(), Vec3::new(0.0, 1.0, 1e-3)] {
+        for wo in [
+            Vec3::new(1.0, 0.0, 1e-6).normalize(),
+            Vec3::new(0.0, 1.0, 1e-3),
+        ] {
             for n in [Vec3::X, Vec3::NEG_X, Vec3::new(0.0, -1.0, 1e-3).normalize()] {
                 let f = ensure_valid_reflection(ng, wo.normalize(), n);
                 assert!(f.is_finite() && (f.length() - 1.0).abs() < 1e-4, "{f}");
@@ -172,6 +182,9 @@ mod tests {
         let g = shadowing(Vec3::Z, ns, wi);
         assert!(eval * g < 0.01, "{}", eval * g);
         // Unperturbed normal: no change.
-        assert_eq!(shadowing(Vec3::Z, Vec3::Z, Vec3::new(0.3, 0.0, 0.9).normalize()), 1.0);
+        assert_eq!(
+            shadowing(Vec3::Z, Vec3::Z, Vec3::new(0.3, 0.0, 0.9).normalize()),
+            1.0
+        );
     }
 }

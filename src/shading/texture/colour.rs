@@ -45,7 +45,7 @@ fn hue(c: Vec3, max: f32, d: f32) -> f32 {
 pub fn rgb_to_hsv(c: Vec3) -> Vec3 {
     let max = c.max_element();
     let d = max - c.min_element();
-    if !(d > 0.0) {
+    if d.is_nan() || d <= 0.0 {
         return Vec3::new(0.0, 0.0, max);
     }
     let s = if max > 0.0 { d / max } else { 0.0 };
@@ -54,7 +54,11 @@ pub fn rgb_to_hsv(c: Vec3) -> Vec3 {
 
 /// The RGB colour of hue `h` (wrapped to [0, 1)) at full saturation and value.
 fn pure_hue(h: f32) -> Vec3 {
-    let h = if h.is_finite() { h.rem_euclid(1.0) } else { 0.0 } * 6.0;
+    let h = if h.is_finite() {
+        h.rem_euclid(1.0)
+    } else {
+        0.0
+    } * 6.0;
     Vec3::new(
         ((h - 3.0).abs() - 1.0).clamp(0.0, 1.0),
         (2.0 - (h - 2.0).abs()).clamp(0.0, 1.0),
@@ -74,7 +78,7 @@ pub fn rgb_to_hsl(c: Vec3) -> Vec3 {
     let min = c.min_element();
     let l = 0.5 * (max + min);
     let d = max - min;
-    if !(d > 0.0) {
+    if d.is_nan() || d <= 0.0 {
         return Vec3::new(0.0, 0.0, l);
     }
     let s = d / (1.0 - (2.0 * l - 1.0).abs()).max(1e-12);
@@ -90,7 +94,7 @@ pub fn hsl_to_rgb(c: Vec3) -> Vec3 {
 
 /// sRGB-encoded [0, 1] → linear (IEC 61966-2-1).
 pub fn srgb_to_linear(x: f32) -> f32 {
-    if !(x > 0.0) {
+    if x.is_nan() || x <= 0.0 {
         0.0
     } else if x <= 0.040_45 {
         x / 12.92
@@ -116,9 +120,15 @@ mod tests {
             hsv_to_rgb(Vec3::new(1.0 / 6.0, 0.5, 0.8)),
             Vec3::new(0.8, 0.8, 0.4)
         ));
-        assert!(close(hsv_to_rgb(Vec3::new(0.3, 0.0, 0.25)), Vec3::splat(0.25)));
+        assert!(close(
+            hsv_to_rgb(Vec3::new(0.3, 0.0, 0.25)),
+            Vec3::splat(0.25)
+        ));
         // Hue wraps: the seed's `color "hsv" (cosangle*10, 1, 1)` goes round many times.
-        assert!(close(hsv_to_rgb(Vec3::new(7.5, 1.0, 1.0)), Vec3::new(0.0, 1.0, 1.0)));
+        assert!(close(
+            hsv_to_rgb(Vec3::new(7.5, 1.0, 1.0)),
+            Vec3::new(0.0, 1.0, 1.0)
+        ));
     }
 
     #[test]
@@ -128,7 +138,10 @@ mod tests {
             hsl_to_rgb(Vec3::new(0.5, 1.0, 0.25)),
             Vec3::new(0.0, 0.5, 0.5)
         ));
-        assert!(close(hsl_to_rgb(Vec3::new(0.9, 0.0, 0.7)), Vec3::splat(0.7)));
+        assert!(close(
+            hsl_to_rgb(Vec3::new(0.9, 0.0, 0.7)),
+            Vec3::splat(0.7)
+        ));
         assert!(close(
             rgb_to_hsl(Vec3::new(0.75, 0.25, 0.25)),
             Vec3::new(0.0, 0.5, 0.5)

@@ -1,5 +1,6 @@
 //! Evaluating a material's graph at a ray hit: the inputs (uv, object-space position,
-//! normal), the bound shader, and the bump-mapped normal with its tangents.
+//! normal), the bound shader, and the bump-mapped normal with its tangents. The object's
+//! `displacement` in `Bump` mode adds its amount to the material's bump height.
 //!
 //! **uv.** Meshes with texture coordinates (OBJ `vt`, inline `uvs`) interpolate them;
 //! generated surfaces (spheres, tori, patches, NURBS, stairs, …) carry their parametric uv.
@@ -9,11 +10,12 @@
 
 use glam::{Mat3, Vec3};
 
-use super::{bump, Inputs, MaterialGraph};
+use super::{bump, bumped_normal, Inputs};
 use crate::accel::Hit;
-use crate::components::Shader;
+use crate::components::{Displacement, Material, Shader};
 use crate::geometry::{SceneGeometry, ShadingPoint};
 use crate::shading::frame::ShadingFrame;
+use crate::tessellation::displace;
 
 /// A shading point's textured material.
 #[derive(Debug, Clone, PartialEq)]
@@ -27,15 +29,19 @@ pub struct Textured {
     pub bumped: bool,
 }
 
-/// Evaluates `graph` for `shader` at the shading point `sp` of `hit`.
+/// Evaluates the material's graph (bound parameters, bump map) and the object's bump
+/// displacement at the shading point `sp` of `hit`; `None` when there is neither.
 pub fn evaluate(
     geometry: &SceneGeometry,
     sp: &ShadingPoint,
     hit: &Hit,
-    graph: &MaterialGraph,
-    shader: &Shader,
-) -> Textured {
+    material: &Material,
+) -> Option<Textured> {
     let inst = &geometry.instances[sp.instance as usize];
+    let displacement = inst.bump.as_deref();
+    if material.graph.is_none() && displacement.is_none() {
+        return None;
+    }
     let local = (hit.prim - inst.first_triangle) as usize;
     let idx = inst.mesh.triangles[local].map(|i| i as usize);
     let b = [1.0 - hit.b1 - hit.b2, hit.b1, hit.b2];
@@ -46,14 +52,19 @@ pub fn evaluate(
         p,
         n: sp.normal,
     };
-    let mut regs = Vec::with_capacity(graph.program.ops.len());
-    let bound = graph.bind(shader, &inputs, &mut regs);
-    if graph.bump.is_none() {
-        return Textured {
-            shader: bound,
+    let graph = material.graph.as_deref();
+    let mut regs = Vec::with_capacity(graph.map_or(0, |g| g.program.ops.len()));
+    let shader = match graph {
+        Some(g) => g.bind(&material.shader, &inputs, &mut regs),
+        None => material.shader.clone(),
+    };
+    let has_bump = graph.is_some_and(|g| g.bump.is_some());
+    if !has_bump && displacement.is_none() {
+        return Some(Textured {
+            shader,
             normal: sp.normal,
             bumped: false,
-        };
+        });
     }
     let m = Mat3::from(inst.world_from_object.matrix3);
     let uv_tangents = inst
@@ -73,10 +84,32 @@ pub fn evaluate(
     // Tangents in the plane of the shading normal, so a zero height gradient keeps it.
     let dpdu = dpdu - n * n.dot(dpdu);
     let dpdv = dpdv - n * n.dot(dpdv);
-    let normal = graph.bumped_normal(&inputs, [dpdu, dpdv, du_obj, dv_obj], has_uv, &mut regs);
-    Textured {
-        shader: bound,
+    let height = |i: &Inputs| {
+        let mut h = graph.map_or(0.0, |g| g.bump_height(i, &mut regs));
+        if let Some(d) = displacement {
+            h += displacement_height(d, i);
+        }
+        h
+    };
+    let normal = bumped_normal(&inputs, [dpdu, dpdv, du_obj, dv_obj], has_uv, height);
+    Some(Textured {
+        shader,
         normal,
         bumped: true,
+    })
+}
+
+/// The amount of a `Bump`-mode displacement shader at `i` (object units, clamped to its
+/// bound when it has one).
+fn displacement_height(d: &Displacement, i: &Inputs) -> f32 {
+    let h = displace::eval(&d.shader, i.p.as_dvec3(), i.uv.as_dvec2());
+    let h = match d.bound {
+        Some(b) => h.clamp(-(b.abs() as f64), b.abs() as f64),
+        None => h,
+    };
+    if h.is_finite() {
+        h as f32
+    } else {
+        0.0
     }
 }

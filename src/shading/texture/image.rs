@@ -184,9 +184,15 @@ mod tests {
     fn bilinear_between_centres() {
         let t = tex(Wrap::Clamp);
         let c = t.sample(Vec2::new(0.5, 0.5));
-        assert!((c - Vec3::new(0.5, 0.5, 0.5)).abs().max_element() < 1e-6, "{c}");
+        assert!(
+            (c - Vec3::new(0.5, 0.5, 0.5)).abs().max_element() < 1e-6,
+            "{c}"
+        );
         let c = t.sample(Vec2::new(0.375, 0.25));
-        assert!((c - Vec3::new(0.75, 0.25, 0.0)).abs().max_element() < 1e-6, "{c}");
+        assert!(
+            (c - Vec3::new(0.75, 0.25, 0.0)).abs().max_element() < 1e-6,
+            "{c}"
+        );
     }
 
     #[test]
@@ -196,13 +202,20 @@ mod tests {
         let c = tex(Wrap::Clamp).sample(Vec2::new(0.0, 0.25));
         assert!((c - Vec3::X).abs().max_element() < 1e-6, "{c}");
         let r = tex(Wrap::Repeat).sample(Vec2::new(0.0, 0.25));
-        assert!((r - Vec3::new(0.5, 0.5, 0.0)).abs().max_element() < 1e-6, "{r}");
+        assert!(
+            (r - Vec3::new(0.5, 0.5, 0.0)).abs().max_element() < 1e-6,
+            "{r}"
+        );
         // Repeat tiles: one period away gives the same value.
         let a = tex(Wrap::Repeat).sample(Vec2::new(0.3, 0.6));
         let b = tex(Wrap::Repeat).sample(Vec2::new(-1.7, 3.6));
         assert!((a - b).abs().max_element() < 1e-5);
         // Hostile coordinates stay finite.
-        for uv in [Vec2::splat(f32::NAN), Vec2::splat(1e30), Vec2::splat(-f32::MAX)] {
+        for uv in [
+            Vec2::splat(f32::NAN),
+            Vec2::splat(1e30),
+            Vec2::splat(-f32::MAX),
+        ] {
             assert!(tex(Wrap::Repeat).sample(uv).is_finite());
             assert!(tex(Wrap::Clamp).sample(uv).is_finite());
         }

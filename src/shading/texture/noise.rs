@@ -126,9 +126,14 @@ mod tests {
 
     #[test]
     fn seeds_give_different_patterns_and_non_finite_points_give_zero() {
-        let differ = points().filter(|&p| fbm(p, &fractal(1)) != fbm(p, &fractal(2))).count();
+        let differ = points()
+            .filter(|&p| fbm(p, &fractal(1)) != fbm(p, &fractal(2)))
+            .count();
         assert!(differ > 3900, "{differ}");
         assert_eq!(fbm(Vec3::splat(f32::NAN), &fractal(1)), 0.0);
         assert_eq!(noise(Vec3::splat(f32::INFINITY), 1.0, 0), 0.0);
+        // Huge but finite points saturate the lattice coordinates without overflow.
+        assert!(noise(Vec3::splat(1e30), 1e30, 0).is_finite());
+        assert!(fbm(Vec3::splat(-3e38), &fractal(1)).is_finite());
     }
 }

@@ -95,7 +95,10 @@ mod tests {
     #[test]
     fn repeat_is_the_seed_modulo() {
         let r = repeat(Vec2::new(0.123, -0.123), 10.0);
-        assert!((r.x - 0.23).abs() < 1e-5 && (r.y - 0.77).abs() < 1e-5, "{r}");
+        assert!(
+            (r.x - 0.23).abs() < 1e-5 && (r.y - 0.77).abs() < 1e-5,
+            "{r}"
+        );
         assert_eq!(fract(f32::INFINITY), 0.0);
     }
 }
