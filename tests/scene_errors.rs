@@ -490,3 +490,46 @@ fn number_beyond_f32() {
         "big.ron:1:51: error: position 1e300 is beyond the f32 range"
     );
 }
+
+/// Shader graphs: a phenomenon cycle, an unknown interface parameter, an unknown shader
+/// parameter, a misspelt node and node field, a colour bound to a number, a missing image.
+#[test]
+fn shader_graph() {
+    check(
+        "shader_graph.ron",
+        &[
+            concat!(
+                "tests/fixtures/scenes/bad/shader_graph.ron:3:56: error: phenomenon \"wood\" uses itself: wood → bark → wood\n",
+                "  help: a phenomenon cannot call itself, directly or through others",
+            ),
+            concat!(
+                "tests/fixtures/scenes/bad/shader_graph.ron:4:32: error: phenomenon \"bark\" uses itself: bark → wood → bark\n",
+                "  help: a phenomenon cannot call itself, directly or through others",
+            ),
+            concat!(
+                "tests/fixtures/scenes/bad/shader_graph.ron:4:56: error: phenomenon \"wood\" has no parameter \"grian\"\n",
+                "  help: did you mean \"grain\"?",
+            ),
+            concat!(
+                "tests/fixtures/scenes/bad/shader_graph.ron:7:73: error: shader Lambert has no parameter \"albdo\"\n",
+                "  help: did you mean \"albedo\"?",
+            ),
+            concat!(
+                "tests/fixtures/scenes/bad/shader_graph.ron:7:73: error: unknown node \"Chekcer\"\n",
+                "  help: did you mean \"Checker\"?",
+            ),
+            concat!(
+                "tests/fixtures/scenes/bad/shader_graph.ron:8:60: error: parameter \"roughness\" is a number, but this gives a colour\n",
+                "  help: take one channel with Channel(…, 0) or use Luminance(…)",
+            ),
+            concat!(
+                "tests/fixtures/scenes/bad/shader_graph.ron:9:62: error: unknown field \"scael\" in Checker\n",
+                "  help: did you mean \"scale\"?",
+            ),
+            concat!(
+                "tests/fixtures/scenes/bad/shader_graph.ron:10:66: error: cannot read image file \"tests/fixtures/scenes/bad/missing.png\": No such file or directory (os error 2)\n",
+                "  help: image textures are PNG or EXR files, relative to the scene file",
+            ),
+        ],
+    );
+}

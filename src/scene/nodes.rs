@@ -315,6 +315,12 @@ fn ensure_checked(src: &mut Sources, ph: &mut Phenomena<'_>, i: usize) {
             None => ok = false,
         }
     }
+    // The interface is known before the body: calls back into this phenomenon (only
+    // possible on a cycle, which is reported already) check their arguments against it.
+    c.ph.checked[i] = Some(Checked {
+        params: params.clone(),
+        output: None,
+    });
     let path = format!("{base}.output");
     let out = c.input(At { file, path: &path }, &desc.output, &env);
     let cyclic = c.ph.cyclic[i];
@@ -726,10 +732,9 @@ impl Compiler<'_, '_> {
             );
             return None;
         };
-        if self.ph.cyclic[i] || self.stack.contains(&i) {
-            return None;
+        if !self.stack.contains(&i) {
+            ensure_checked(self.src, self.ph, i);
         }
-        ensure_checked(self.src, self.ph, i);
         let checked = self.ph.checked[i].clone()?;
         // Arguments, in the caller's context.
         let mut ok = true;
@@ -766,7 +771,7 @@ impl Compiler<'_, '_> {
             }
         }
         let output = checked.output?;
-        if !ok {
+        if !ok || self.ph.cyclic[i] || self.stack.contains(&i) {
             return None;
         }
         // Defaults for the rest and the body, in the phenomenon's context (checked already).
