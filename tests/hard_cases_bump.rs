@@ -163,3 +163,43 @@ fn bump_displacement_mode_perturbs_shading() {
     assert!(changed > bumped.len() / 2, "{changed}");
     assert!(bumped.iter().all(|c| c.is_finite() && c.x > 0.0));
 }
+
+/// H11 (c): a coarse sphere (10 × 10 segments) with smooth interpolated normals, mirror and
+/// glossy, in the white furnace: the rim, where the view falls behind the interpolated
+/// normal, has no black pixel. The mirror is rendered with one sample per pixel so a single
+/// black sample would show (without the normal correction 9 of its ~2,400 pixels are black).
+#[test]
+fn h11_coarse_smooth_sphere_has_no_black_rim() {
+    for (shader, spp) in [
+        ("Mirror(color: (1, 1, 1))", 1),
+        (
+            "CookTorrance(diffuse: (0, 0, 0), specular: (1, 1, 1), roughness: 0.1, ior: (20, 20, 20))",
+            16,
+        ),
+    ] {
+        let text = format!(
+            r#"(
+    options: (samples: {spp}, integrator: Path, max_depth: 3),
+    cameras: [(name: "cam", fov_y: 32, resolution: (64, 64),
+               placement: LookAt(eye: (0, -4, 0.3), target: (0, 0, 0), up: (0, 0, 1)))],
+    materials: [
+        (name: "m", shader: {shader}),
+        (name: "sky", shader: Lambert(albedo: (0, 0, 0)), emission: (1, 1, 1), two_sided: true),
+    ],
+    objects: [
+        (name: "ball", material: "m", mesh: Sphere(radius: 1), approximation: Parametric(u: 10, v: 10)),
+        (name: "dome", material: "sky", mesh: Sphere(radius: 50), approximation: Parametric(u: 8, v: 8)),
+    ],
+    instances: [(name: "b", of: "ball"), (name: "d", of: "dome")],
+    groups: [(name: "world", members: ["b", "d"])],
+    render: (root: "world", camera: "cam"),
+)"#
+        );
+        let (_, img) = render(&text);
+        let (mean, se, min) = stats(&img);
+        assert!(img.iter().all(|c| c.is_finite()));
+        let dark = img.iter().filter(|c| c.min_element() < 0.05).count();
+        assert!(min >= 0.05, "{shader}: darkest {min}, {dark} dark pixels");
+        assert!(mean <= 1.0 + 3.0 * se + 1e-4, "{shader}: mean {mean} ± {se}");
+    }
+}
