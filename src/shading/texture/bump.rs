@@ -170,6 +170,38 @@ mod tests {
         assert_eq!(ensure_valid_reflection(ng, wo, Vec3::NAN), ng);
     }
 
+    /// H11 (a), mitsuba3 `test_normalmap.py test03`: view normalize(−1, −1, 0.5), bent
+    /// normal normalize(1, 1, 1), light from (0, 0, 1), Lambert: in the bent frame the view is
+    /// below the normal, so eval, pdf and sampling are all 0; with the corrected normal all
+    /// are positive.
+    #[test]
+    fn h11_mitsuba_normalmap_case_is_not_black() {
+        use crate::components::Shader;
+        use crate::shading::bsdf::Bsdf;
+        use crate::shading::frame::ShadingFrame;
+        let bsdf = Bsdf::new(&Shader::Lambert { albedo: Vec3::ONE }, true).unwrap();
+        let (ng, view, light) = (Vec3::Z, Vec3::new(-1.0, -1.0, 0.5).normalize(), Vec3::Z);
+        let probe = |n: Vec3| {
+            let f = ShadingFrame::from_normal(n);
+            let (wo, wi) = (f.to_local(view), f.to_local(light));
+            let weight = bsdf
+                .sample(wo, Vec3::new(0.5, 0.3, 0.7))
+                .map_or(0.0, |s| s.weight().x);
+            (
+                bsdf.eval(wo, wi).x * wi.z.max(0.0),
+                bsdf.pdf(wo, wi),
+                weight,
+            )
+        };
+        let bent = Vec3::ONE.normalize();
+        assert_eq!(probe(bent), (0.0, 0.0, 0.0));
+        let (eval, pdf, weight) = probe(ensure_valid_reflection(ng, view, bent));
+        assert!(
+            eval > 0.0 && pdf > 0.0 && weight > 0.0,
+            "{eval} {pdf} {weight}"
+        );
+    }
+
     #[test]
     fn shadowing_term_mitsuba_case() {
         // mitsuba3 test_normalmap test04: viewer straight above, shading normal and light
