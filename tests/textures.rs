@@ -379,3 +379,77 @@ fn hostile_node_parameters_are_rejected_or_render_finite_pixels() {
         })
         .unwrap();
 }
+
+/// `stagelight bake` of `Albedo` evaluates the material's nodes: an 8 × 8 bake of a floor
+/// whose albedo is a 2 × 2 checker holds exactly the checker colours per texel.
+#[test]
+fn baked_albedo_evaluates_texture_nodes() {
+    use stagelight::shading::texture::image::{load, Wrap};
+    let dir = temp_dir("bake");
+    let text = r#"Scene(
+    cameras: [(name: "cam", fov_y: 40.0, resolution: (8, 8),
+               placement: LookAt(eye: (0, -4, 3), target: (0, 0, 0)))],
+    lights: [(name: "sun", kind: Directional(direction: (0.3, 0.2, -1)), intensity: 2.0)],
+    materials: [(name: "m", shader: Lambert(albedo: (0.5, 0.5, 0.5)),
+                 bind: {"albedo": Checker(scale: 2, a: (0.9, 0.1, 0.1), b: (0.1, 0.1, 0.9))})],
+    objects: [(name: "floor", material: "m", mesh: Inline(
+        vertices: [(-1, -1, 0), (1, -1, 0), (1, 1, 0), (-1, 1, 0)],
+        uvs: [(0, 0), (1, 0), (1, 1), (0, 1)], polygons: [[0, 1, 2, 3]]))],
+    instances: [(name: "floor_1", of: "floor",
+                 bake: (resolution: (8, 8), padding: 0, outputs: [(kind: Albedo)]))],
+    groups: [(name: "world", members: ["floor_1"])],
+    render: (root: "world", camera: "cam"),
+)"#;
+    std::fs::write(dir.join("scene.ron"), text).unwrap();
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_stagelight"))
+        .arg("bake")
+        .arg(dir.join("scene.ron"))
+        .arg("-o")
+        .arg(&dir)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let t = load(&dir.join("floor_1_albedo.exr"), None, Wrap::Clamp).unwrap();
+    assert_eq!((t.width, t.height), (8, 8));
+    for y in 0..8 {
+        for x in 0..8 {
+            // Row 0 of the loaded texture is v = 0.
+            let (u, v) = ((x as f32 + 0.5) / 8.0, (y as f32 + 0.5) / 8.0);
+            let even = ((u * 2.0).floor() + (v * 2.0).floor()) as i32 % 2 == 0;
+            let want = if even {
+                Vec3::new(0.9, 0.1, 0.1)
+            } else {
+                Vec3::new(0.1, 0.1, 0.9)
+            };
+            let got = t.texels[y * 8 + x];
+            assert!(
+                (got - want).abs().max_element() < 1e-5,
+                "texel ({x}, {y}): {got}"
+            );
+        }
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// A bump map with a linear height `h = u` on the quad (∂P/∂u = 2x) tilts every shading
+/// normal to normalize(−1, 0, 2): under light straight down, Lambert 0.8 shows
+/// 0.8 · cos(26.57°) = 0.8 · 2/√5 in every pixel (the bump shadowing term is 1 for light
+/// along the geometric normal).
+#[test]
+fn linear_bump_tilts_the_normal_as_predicted() {
+    for height in ["Channel(Uv, 0)", "Mul(Channel(Uv, 1), -1)"] {
+        let m = format!(
+            r#"(name: "m", shader: Lambert(albedo: (0.8, 0.8, 0.8)),
+                bump: (height: {height}, scale: 1))"#
+        );
+        let (_, img) = render(&quad_scene(&m, "", 8, 1));
+        let want = 0.8 * 2.0 / 5f32.sqrt();
+        for c in &img {
+            assert!((c.x - want).abs() < 1e-3, "{height}: {c} vs {want}");
+        }
+    }
+}
