@@ -295,6 +295,18 @@ fn graph_errors_are_located_with_suggestions() {
     );
     assert!(e.contains("did you mean \"grain\"?"), "{e}");
 
+    // A phenomenon defined twice.
+    let phen = r#"phenomena: [(name: "p", output: Uv), (name: "p", output: Normal)],"#;
+    let m = r#"(name: "m", shader: Lambert(albedo: (1, 1, 1)))"#;
+    let e = load_errors(&quad_scene(m, phen, 8, 1));
+    assert!(e.contains("phenomenon \"p\" is defined twice"), "{e}");
+    assert!(e.contains("first defined at scene.ron:"), "{e}");
+
+    // Param outside a phenomenon.
+    let m = r#"(name: "m", shader: Lambert(albedo: (1, 1, 1)), bind: {"albedo": Param("x")})"#;
+    let e = load_errors(&quad_scene(m, "", 8, 1));
+    assert!(e.contains("Param(\"x\") is only allowed inside a phenomenon"), "{e}");
+
     // Missing image file.
     let m = r#"(name: "m", shader: Lambert(albedo: (1, 1, 1)), bind: {"albedo": Image(file: "nope.png")})"#;
     let e = load_errors(&quad_scene(m, "", 8, 1));
