@@ -305,7 +305,10 @@ fn graph_errors_are_located_with_suggestions() {
     // Param outside a phenomenon.
     let m = r#"(name: "m", shader: Lambert(albedo: (1, 1, 1)), bind: {"albedo": Param("x")})"#;
     let e = load_errors(&quad_scene(m, "", 8, 1));
-    assert!(e.contains("Param(\"x\") is only allowed inside a phenomenon"), "{e}");
+    assert!(
+        e.contains("Param(\"x\") is only allowed inside a phenomenon"),
+        "{e}"
+    );
 
     // Missing image file.
     let m = r#"(name: "m", shader: Lambert(albedo: (1, 1, 1)), bind: {"albedo": Image(file: "nope.png")})"#;

@@ -26,6 +26,7 @@ pub(crate) mod mesh_load;
 pub(crate) mod names;
 pub(crate) mod nodes;
 pub mod nodes_desc;
+pub(crate) mod nodes_phenomena;
 pub(crate) mod shaders;
 pub(crate) mod spans;
 pub(crate) mod spawn;

@@ -11,18 +11,17 @@
 //! Phenomena are expanded inline at every call (their arguments compiled in the caller's
 //! context, missing ones from the declared defaults), so a program never calls anything.
 
-use std::collections::HashMap;
-use std::path::PathBuf;
 use std::sync::Arc;
 
 use glam::{Vec2, Vec3};
 
 use super::desc::{MaterialDesc, V3};
 use super::diagnostics::{from_ron, suggestion, Diagnostic, Sources};
-use super::nodes_desc::{
-    ColourSpaceDesc, EncodingDesc, InputDesc, NodeDesc, PhenomenonDesc, WrapDesc, NODE_NAMES,
-};
-use super::validate::{Item, Merged};
+use super::nodes_desc::{ColourSpaceDesc, EncodingDesc, InputDesc, NodeDesc, WrapDesc, NODE_NAMES};
+pub use super::nodes_phenomena::{check_phenomena, Phenomena};
+use super::nodes_phenomena::{ensure_checked, variant_name};
+use super::validate::Item;
+use super::validate::Merged;
 use crate::components::Material;
 use crate::shading::texture::bind::{self, ParamType};
 use crate::shading::texture::colour::ColourSpace;
@@ -58,277 +57,31 @@ impl From<ParamType> for Ty {
     }
 }
 
-/// What checking a phenomenon found.
-#[derive(Debug, Clone)]
-struct Checked {
-    /// Interface parameters and their types, by name.
-    params: Vec<(String, Ty)>,
-    /// Type of the output; `None` when the phenomenon has errors.
-    output: Option<Ty>,
-}
-
-/// The scene's phenomena, checked.
-pub struct Phenomena<'a> {
-    items: &'a [Item<'a, PhenomenonDesc>],
-    by_name: HashMap<&'a str, usize>,
-    checked: Vec<Option<Checked>>,
-    /// Phenomena on a cycle (never expanded).
-    cyclic: Vec<bool>,
-    textures: HashMap<(PathBuf, bool, Option<bool>), Option<Arc<Texture>>>,
-}
-
 /// Where a value is: file and path.
 #[derive(Clone, Copy)]
-struct At<'p> {
-    file: usize,
-    path: &'p str,
+pub(super) struct At<'p> {
+    /// File index in `Sources::files`.
+    pub(super) file: usize,
+    /// Path of the value in its file.
+    pub(super) path: &'p str,
 }
 
 /// One compilation: the program being built, whether errors are reported.
-struct Compiler<'c, 'a> {
-    src: &'c mut Sources,
-    ph: &'c mut Phenomena<'a>,
-    prog: Program,
+pub(super) struct Compiler<'c, 'a> {
+    /// Where errors go.
+    pub(super) src: &'c mut Sources,
+    /// The phenomena (and the texture cache).
+    pub(super) ph: &'c mut Phenomena<'a>,
+    /// The program being built.
+    pub(super) prog: Program,
     /// Phenomena being expanded (innermost last).
-    stack: Vec<usize>,
-    report: bool,
+    pub(super) stack: Vec<usize>,
+    /// Whether errors are reported (off while re-expanding an already checked body).
+    pub(super) report: bool,
 }
 
 /// Interface parameter values inside a phenomenon body.
-type Env = [(String, Ty, Reg)];
-
-/// Checks every phenomenon (duplicate names, cycles, bodies, defaults).
-pub fn check_phenomena<'a>(src: &mut Sources, m: &'a Merged<'a>) -> Phenomena<'a> {
-    let mut by_name = HashMap::new();
-    for (i, it) in m.phenomena.iter().enumerate() {
-        if let Some(&first) = by_name.get(it.desc.name.as_str()) {
-            let first: &Item<'_, PhenomenonDesc> = &m.phenomena[first];
-            let help = format!(
-                "first defined at {}",
-                src.where_is(first.file, &first.at(".name"))
-            );
-            src.error(
-                it.file,
-                &it.at(".name"),
-                format!("phenomenon \"{}\" is defined twice", it.desc.name),
-                Some(help),
-            );
-        } else {
-            by_name.insert(it.desc.name.as_str(), i);
-        }
-    }
-    let n = m.phenomena.len();
-    let mut ph = Phenomena {
-        items: &m.phenomena,
-        by_name,
-        checked: vec![None; n],
-        cyclic: vec![false; n],
-        textures: HashMap::new(),
-    };
-    find_cycles(src, &mut ph);
-    for i in 0..n {
-        ensure_checked(src, &mut ph, i);
-    }
-    ph
-}
-
-/// Reports every phenomenon that reaches itself through `Graph` calls.
-fn find_cycles(src: &mut Sources, ph: &mut Phenomena<'_>) {
-    let n = ph.items.len();
-    // Calls of each phenomenon: (callee, path of the call).
-    let calls: Vec<Vec<(usize, String)>> = ph
-        .items
-        .iter()
-        .map(|it| {
-            let mut out = Vec::new();
-            collect_calls(&it.desc.output, &it.at(".output"), &ph.by_name, &mut out);
-            for (k, v) in &it.desc.params {
-                collect_calls(v, &it.at(&format!(".params.{k}")), &ph.by_name, &mut out);
-            }
-            out
-        })
-        .collect();
-    for start in 0..n {
-        // Depth-first search for a path from `start` back to itself.
-        let mut seen = vec![false; n];
-        let mut stack = vec![(start, 0usize)];
-        let mut chain = vec![start];
-        while let Some(&mut (node, ref mut next)) = stack.last_mut() {
-            if *next >= calls[node].len() {
-                stack.pop();
-                chain.pop();
-                continue;
-            }
-            let (callee, _) = calls[node][*next];
-            *next += 1;
-            if callee == start {
-                ph.cyclic[start] = true;
-                let names: Vec<&str> = chain
-                    .iter()
-                    .chain(std::iter::once(&start))
-                    .map(|&i| ph.items[i].desc.name.as_str())
-                    .collect();
-                let it = &ph.items[start];
-                let (_, path) = &calls[start][stack[0].1 - 1];
-                src.error(
-                    it.file,
-                    path,
-                    format!(
-                        "phenomenon \"{}\" uses itself: {}",
-                        it.desc.name,
-                        names.join(" → ")
-                    ),
-                    Some("a phenomenon cannot call itself, directly or through others".into()),
-                );
-                break;
-            }
-            if !seen[callee] {
-                seen[callee] = true;
-                stack.push((callee, 0));
-                chain.push(callee);
-            }
-        }
-    }
-}
-
-fn collect_calls(
-    d: &InputDesc,
-    path: &str,
-    by_name: &HashMap<&str, usize>,
-    out: &mut Vec<(usize, String)>,
-) {
-    let InputDesc::Node(n) = d else { return };
-    let mut sub = |d: &InputDesc, p: String| collect_calls(d, &p, by_name, out);
-    match &**n {
-        NodeDesc::Graph(name, args) => {
-            for (k, v) in args {
-                sub(v, format!("{path}.Graph[1].{k}"));
-            }
-            if let Some(&i) = by_name.get(name.as_str()) {
-                out.push((i, path.to_string()));
-            }
-        }
-        other => {
-            for_each_input(other, |field, d| sub(d, format!("{path}{field}")));
-        }
-    }
-}
-
-/// Calls `f` with the path suffix and description of every input of a node (not `Graph`).
-fn for_each_input(n: &NodeDesc, mut f: impl FnMut(String, &InputDesc)) {
-    let mut named = |variant: &str, fields: &[(&str, &InputDesc)]| {
-        for (k, v) in fields {
-            f(format!(".{variant}.{k}"), v);
-        }
-    };
-    match n {
-        NodeDesc::Checker { uv, scale, a, b } => named(
-            "Checker",
-            &[("uv", uv), ("scale", scale), ("a", a), ("b", b)],
-        ),
-        NodeDesc::Disk {
-            uv,
-            radius,
-            fuzz,
-            inside,
-            outside,
-            ..
-        } => named(
-            "Disk",
-            &[
-                ("uv", uv),
-                ("radius", radius),
-                ("fuzz", fuzz),
-                ("inside", inside),
-                ("outside", outside),
-            ],
-        ),
-        NodeDesc::Repeat { uv, scale } => named("Repeat", &[("uv", uv), ("scale", scale)]),
-        NodeDesc::Noise { p, .. } => named("Noise", &[("p", p)]),
-        NodeDesc::Fbm { p, .. } => named("Fbm", &[("p", p)]),
-        NodeDesc::Turbulence { p, .. } => named("Turbulence", &[("p", p)]),
-        NodeDesc::Image { uv, .. } => named("Image", &[("uv", uv)]),
-        NodeDesc::Mix { a, b, t } => named("Mix", &[("a", a), ("b", b), ("t", t)]),
-        NodeDesc::Smoothstep { edge0, edge1, x } => named(
-            "Smoothstep",
-            &[("edge0", edge0), ("edge1", edge1), ("x", x)],
-        ),
-        NodeDesc::Convert { input, .. } => named("Convert", &[("input", input)]),
-        NodeDesc::Add(a, b) | NodeDesc::Sub(a, b) | NodeDesc::Mul(a, b) => {
-            let v = variant_name(n);
-            f(format!(".{v}[0]"), a);
-            f(format!(".{v}[1]"), b);
-        }
-        NodeDesc::Channel(a, _) => f(".Channel[0]".into(), a),
-        NodeDesc::Luminance(a) => f(".Luminance[0]".into(), a),
-        NodeDesc::Combine(a, b, c) => {
-            f(".Combine[0]".into(), a);
-            f(".Combine[1]".into(), b);
-            f(".Combine[2]".into(), c);
-        }
-        NodeDesc::Uv
-        | NodeDesc::Position
-        | NodeDesc::Normal
-        | NodeDesc::Graph(..)
-        | NodeDesc::Param(_) => {}
-    }
-}
-
-fn variant_name(n: &NodeDesc) -> &'static str {
-    match n {
-        NodeDesc::Add(..) => "Add",
-        NodeDesc::Sub(..) => "Sub",
-        _ => "Mul",
-    }
-}
-
-/// Checks phenomenon `i` (once), after the phenomena it calls.
-fn ensure_checked(src: &mut Sources, ph: &mut Phenomena<'_>, i: usize) {
-    if ph.checked[i].is_some() {
-        return;
-    }
-    // Mark first: acyclic calls cannot come back here.
-    ph.checked[i] = Some(Checked {
-        params: Vec::new(),
-        output: None,
-    });
-    let item = &ph.items[i];
-    let (file, desc) = (item.file, item.desc);
-    let base = item.path.clone();
-    let mut c = Compiler {
-        src,
-        ph,
-        prog: Program::default(),
-        stack: vec![i],
-        report: true,
-    };
-    let mut env = Vec::new();
-    let mut params = Vec::new();
-    let mut ok = true;
-    for (k, v) in &desc.params {
-        let path = format!("{base}.params.{k}");
-        match c.input(At { file, path: &path }, v, &[]) {
-            Some((reg, ty)) => {
-                env.push((k.clone(), ty, reg));
-                params.push((k.clone(), ty));
-            }
-            None => ok = false,
-        }
-    }
-    // The interface is known before the body: calls back into this phenomenon (only
-    // possible on a cycle, which is reported already) check their arguments against it.
-    c.ph.checked[i] = Some(Checked {
-        params: params.clone(),
-        output: None,
-    });
-    let path = format!("{base}.output");
-    let out = c.input(At { file, path: &path }, &desc.output, &env);
-    let cyclic = c.ph.cyclic[i];
-    c.ph.checked[i] = Some(Checked {
-        params,
-        output: out.filter(|_| ok && !cyclic).map(|(_, t)| t),
-    });
-}
+pub(super) type Env = [(String, Ty, Reg)];
 
 impl Compiler<'_, '_> {
     fn error(&mut self, at: At<'_>, message: impl Into<String>, help: Option<String>) {
@@ -375,7 +128,7 @@ impl Compiler<'_, '_> {
     }
 
     /// Compiles an input; `env` holds the interface parameters when inside a phenomenon.
-    fn input(&mut self, at: At<'_>, d: &InputDesc, env: &Env) -> Option<(Reg, Ty)> {
+    pub(super) fn input(&mut self, at: At<'_>, d: &InputDesc, env: &Env) -> Option<(Reg, Ty)> {
         match d {
             InputDesc::Number(x) => {
                 let x = self.finite(at, "a number", *x)?;
