@@ -647,6 +647,19 @@ fn compile_material(
         })
         .unwrap_or_default();
     let mut ok = true;
+    // The bump height first: its registers come first, so the finite differences run only
+    // the start of the program.
+    let mut bump = None;
+    if let Some(b) = &d.bump {
+        let hp = item.at(".bump.height");
+        let sp = item.at(".bump.scale");
+        let h = c.scalar(At { file, path: &hp }, &b.height, &[], "bump height");
+        let s = c.finite(At { file, path: &sp }, "bump scale", b.scale);
+        match (h, s) {
+            (Some(height), Some(scale)) => bump = Some(BumpMap { height, scale }),
+            _ => ok = false,
+        }
+    }
     let mut bindings = Vec::new();
     for (param, input) in &d.bind {
         let path = item.at(&format!(".bind.{param}"));
@@ -677,17 +690,6 @@ fn compile_material(
                 });
             }
             None => ok = false,
-        }
-    }
-    let mut bump = None;
-    if let Some(b) = &d.bump {
-        let hp = item.at(".bump.height");
-        let sp = item.at(".bump.scale");
-        let h = c.scalar(At { file, path: &hp }, &b.height, &[], "bump height");
-        let s = c.finite(At { file, path: &sp }, "bump scale", b.scale);
-        match (h, s) {
-            (Some(height), Some(scale)) => bump = Some(BumpMap { height, scale }),
-            _ => ok = false,
         }
     }
     ok.then_some(Some(MaterialGraph {

@@ -174,9 +174,15 @@ impl Program {
 
     /// Runs every op; `regs` receives one value per op (finite: NaN/∞ become 0).
     pub fn run(&self, inputs: &Inputs, regs: &mut Vec<Vec3>) {
+        self.run_to(inputs, regs, self.ops.len());
+    }
+
+    /// Runs the first `end` ops (enough for every register below `end`: ops only read
+    /// earlier registers).
+    pub fn run_to(&self, inputs: &Inputs, regs: &mut Vec<Vec3>, end: usize) {
         regs.clear();
-        regs.reserve(self.ops.len());
-        for op in &self.ops {
+        regs.reserve(end);
+        for op in &self.ops[..end.min(self.ops.len())] {
             let r = |i: &Reg| regs[*i as usize];
             let s = |i: &Reg| regs[*i as usize].x;
             let uv = |i: &Reg| {
@@ -290,7 +296,7 @@ impl MaterialGraph {
     pub fn bump_height(&self, inputs: &Inputs, regs: &mut Vec<Vec3>) -> f32 {
         match self.bump {
             Some(bump) => {
-                self.program.run(inputs, regs);
+                self.program.run_to(inputs, regs, bump.height as usize + 1);
                 regs[bump.height as usize].x * bump.scale
             }
             None => 0.0,
