@@ -25,6 +25,7 @@ use crate::shading::bsdf::Bsdf;
 use crate::shading::frame::ShadingFrame;
 use crate::shading::lights::LightSet;
 use crate::shading::mis::power_heuristic;
+use crate::shading::volume::Volumes;
 
 /// What shading a hit needs from the scene.
 pub struct ShadeContext<'a> {
@@ -42,6 +43,8 @@ pub struct ShadeContext<'a> {
     pub reflection_depth: u32,
     /// Most refractions per path.
     pub refraction_depth: u32,
+    /// Fog around the camera and inside materials (`None`: vacuum everywhere).
+    pub volumes: Option<&'a Volumes>,
 }
 
 impl<'a> ShadeContext<'a> {
@@ -59,7 +62,14 @@ impl<'a> ShadeContext<'a> {
             max_depth: settings.max_depth,
             reflection_depth: settings.reflection_depth,
             refraction_depth: settings.refraction_depth,
+            volumes: None,
         }
+    }
+
+    /// The same context with the scene's media.
+    pub fn with_volumes(mut self, volumes: Option<&'a Volumes>) -> Self {
+        self.volumes = volumes;
+        self
     }
 }
 
@@ -227,12 +237,15 @@ pub fn light_loop(
             if ls.shadows && occluded(ctx.geometry, &v.sp, ls.wi, ls.target) {
                 continue;
             }
+            let fog = ctx.volumes.map_or(Vec3::ONE, |vol| {
+                vol.shadow_transmittance(v.sp.surface.p, ls.target.as_ref())
+            });
             let w = if mis && ls.pdf > 0.0 {
                 power_heuristic(ls.pdf, bsdf.pdf(v.wo, wi))
             } else {
                 1.0
             };
-            sum += f * ls.contribution * (wi.z * w);
+            sum += f * ls.contribution * fog * (wi.z * w);
         }
         radiance += sum / n as f32;
     }
