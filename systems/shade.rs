@@ -4,9 +4,9 @@
 //! atmosphere or a material interior, pixel filter, and the centre-sample passes (depth,
 //! normal).
 //!
-//! Samples per pixel: `spp` everywhere, or adaptive (`settings.adaptive`): `min` samples,
-//! then batches that double the count until the standard error of the pixel's mean is below
-//! `contrast` in every channel or `max` is reached — decided from the pixel's own samples.
+//! Samples per pixel: `spp` everywhere, or adaptive (`settings.adaptive`, see
+//! `crate::adaptive`): pass 1 takes `min` samples in every pixel; pass 2 refines the pixels
+//! whose own samples or neighbours exceed the contrast, doubling up to `max`.
 //!
 //! **Reads:** the `Camera` with `RenderCamera` (and its `Lenses`, `Atmosphere`); `Interior`
 //! of material entities; `Emitter` entities; `frame.geometry` (absent means an empty scene:
@@ -18,14 +18,14 @@
 //! the camera's resolution; each pixel depends only on (seed, pixel index, sample index).
 //! The reported work items are the camera samples actually taken.
 
-use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::sync::atomic::{AtomicBool, Ordering};
 
-use glam::{DVec3, Vec2, Vec3};
+use glam::{Vec2, Vec3};
 use hecs::{Entity, World};
 use rayon::prelude::*;
 
 use super::prelude::*;
-use crate::accumulate::SampleMean;
+use crate::adaptive::{refine_flags, PixelSamples, SampleBudget};
 use crate::components::{Atmosphere, Camera, Emitter, Interior, Lenses, RenderCamera};
 use crate::framebuffer::FrameBuffers;
 use crate::progress::Progress;
@@ -82,61 +82,79 @@ pub fn run(world: &mut World, frame: &mut Frame) -> Result<Work, StageError> {
     let mut fb = FrameBuffers::new(camera.width, camera.height);
     let cancel = frame.cancel.clone();
     let stopped = AtomicBool::new(false);
-    let dropped = AtomicU64::new(0);
-    let progress = Progress::start(frame.progress, "shade", "rows", height as u64);
+    let passes = if budget.refines() { 2 } else { 1 };
+    let progress = Progress::start(frame.progress, "shade", "rows", (passes * height) as u64);
     let ticker = progress.ticker();
+    let ctx =
+        geometry.map(|g| ShadeContext::new(g, &lights, &settings).with_volumes(volumes.as_ref()));
+    let shade = PixelShader {
+        ctx: ctx.as_ref(),
+        rays: &rays,
+        filter: &filter,
+        seed,
+        width,
+    };
+    // Runs `f` on every pixel, rows in parallel, polling for cancellation per pixel (one
+    // pixel is at most `max` samples of work).
+    let per_pixel = |f: &(dyn Fn(usize, usize) -> Option<PixelResult> + Sync)| {
+        let rows: Vec<Vec<Option<PixelResult>>> = (0..height)
+            .into_par_iter()
+            .map(|y| {
+                let row = (0..width)
+                    .map(|x| {
+                        if cancel.load(Ordering::Relaxed) {
+                            stopped.store(true, Ordering::Relaxed);
+                            return None;
+                        }
+                        f(x, y)
+                    })
+                    .collect();
+                ticker.tick(1);
+                row
+            })
+            .collect();
+        rows.into_iter().flatten().collect::<Vec<_>>()
+    };
 
-    let rows: Vec<Vec<PixelResult>> = (0..height)
-        .into_par_iter()
-        .map(|y| {
-            if cancel.load(Ordering::Relaxed) {
-                stopped.store(true, Ordering::Relaxed);
-                return Vec::new();
+    // Pass 1: the centre-sample passes and `min` samples everywhere.
+    let mut pixels = per_pixel(&|x, y| Some(shade.first_pass(x, y, budget.min)));
+    if budget.refines() && !stopped.load(Ordering::Relaxed) {
+        let pass1: Vec<PixelSamples> = pixels
+            .iter()
+            .map(|p| p.as_ref().map(|p| p.samples.clone()).unwrap_or_default())
+            .collect();
+        let flags = refine_flags(&pass1, width, height, budget.contrast);
+        // Pass 2: refined pixels double their samples until converged or at `max`.
+        let refined = per_pixel(&|x, y| {
+            let i = y * width + x;
+            let mut p = pixels[i].as_ref()?.clone();
+            if let Some(delta) = flags[i] {
+                shade.refine(&mut p, x, y, &budget, delta);
             }
-            let row = (0..width)
-                .map(|x| {
-                    // Poll per pixel: one pixel is at most `max` samples of work.
-                    if cancel.load(Ordering::Relaxed) {
-                        stopped.store(true, Ordering::Relaxed);
-                        return PixelResult::default();
-                    }
-                    let pixel = (y * width + x) as u64;
-                    let ctx = geometry.map(|g| {
-                        ShadeContext::new(g, &lights, &settings).with_volumes(volumes.as_ref())
-                    });
-                    let r = shade_pixel(ctx.as_ref(), &rays, &filter, seed, pixel, x, y, budget);
-                    if r.dropped > 0 {
-                        dropped.fetch_add(r.dropped as u64, Ordering::Relaxed);
-                    }
-                    r
-                })
-                .collect();
-            ticker.tick(1);
-            row
-        })
-        .collect();
+            Some(p)
+        });
+        pixels = refined;
+    }
     drop(ticker);
     progress.finish();
     if stopped.load(Ordering::Relaxed) || cancel.load(Ordering::Relaxed) {
         return Err(StageError::Interrupted);
     }
-    let mut taken = 0u64;
-    for (y, row) in rows.into_iter().enumerate() {
-        for (x, r) in row.into_iter().enumerate() {
-            let i = y * width + x;
-            fb.beauty[i] = r.color;
-            fb.alpha[i] = r.alpha;
-            fb.depth[i] = r.depth;
-            fb.normal[i] = r.normal;
-            fb.object_id[i] = r.object_id;
-            fb.material_id[i] = r.material_id;
-            fb.samples[i] = r.samples;
-            taken += u64::from(r.samples);
-        }
+    let (mut taken, mut dropped) = (0u64, 0u64);
+    for (i, p) in pixels.into_iter().enumerate() {
+        let Some(p) = p else { continue };
+        fb.beauty[i] = p.samples.value();
+        fb.alpha[i] = p.samples.alpha();
+        fb.depth[i] = p.depth;
+        fb.normal[i] = p.normal;
+        fb.object_id[i] = p.object_id;
+        fb.material_id[i] = p.material_id;
+        fb.samples[i] = p.samples.taken;
+        taken += u64::from(p.samples.taken);
+        dropped += u64::from(p.samples.dropped);
     }
-    let n = dropped.load(Ordering::Relaxed);
-    if n > 0 {
-        tracing::warn!("{n} non-finite samples were dropped");
+    if dropped > 0 {
+        tracing::warn!("{dropped} non-finite samples were dropped");
     }
     frame.image = Some(fb);
     Ok(Work {
@@ -145,153 +163,100 @@ pub fn run(world: &mut World, frame: &mut Frame) -> Result<Work, StageError> {
     })
 }
 
-/// What one pixel contributes to each pass.
-#[derive(Default)]
+/// One pixel: its centre-sample passes and its samples so far.
+#[derive(Clone)]
 struct PixelResult {
-    color: Vec3,
-    alpha: f32,
     depth: f32,
     normal: Vec3,
-    dropped: u32,
     object_id: u32,
     material_id: u32,
-    samples: u32,
+    samples: PixelSamples,
 }
 
-/// How many samples a pixel takes: `min` first, then batches doubling the count until the
-/// pixel's own samples say it has converged (`contrast`) or `max` is reached.
-#[derive(Debug, Clone, Copy)]
-struct SampleBudget {
-    min: u32,
-    max: u32,
-    contrast: Vec3,
+/// Everything a pixel's samples need.
+struct PixelShader<'a> {
+    ctx: Option<&'a ShadeContext<'a>>,
+    rays: &'a CameraRays,
+    filter: &'a FilterSampler,
+    seed: u32,
+    width: usize,
 }
 
-impl SampleBudget {
-    fn new(settings: &crate::settings::RenderSettings) -> Self {
-        match settings.adaptive {
-            Some(a) => Self {
-                min: a.min.max(1),
-                max: a.max.max(a.min.max(1)),
-                contrast: a.contrast,
-            },
-            None => {
-                let n = settings.spp.max(1);
-                Self {
-                    min: n,
-                    max: n,
-                    contrast: Vec3::INFINITY,
+impl PixelShader<'_> {
+    /// The centre-sample passes and samples `0..count` of pixel `(x, y)`.
+    fn first_pass(&self, x: usize, y: usize, count: u32) -> PixelResult {
+        let mut result = PixelResult {
+            depth: f32::INFINITY,
+            normal: Vec3::ZERO,
+            object_id: 0,
+            material_id: 0,
+            samples: PixelSamples::default(),
+        };
+        if let Some(ctx) = self.ctx {
+            // Through the aperture centre.
+            let centre = Vec2::new(x as f32 + 0.5, y as f32 + 0.5);
+            if let Some(ray) = self.rays.ray(centre.x, centre.y, Vec2::splat(0.5)) {
+                if let Some(hit) = ctx.geometry.accel.intersect(&ray) {
+                    let sp = ctx.geometry.shading_point(&hit);
+                    result.depth = hit.t;
+                    result.normal = sp.normal;
+                    result.object_id = sp.instance + 1;
+                    result.material_id = sp.material + 1;
                 }
             }
         }
-    }
-}
-
-/// Per-channel running mean and variance of a pixel's samples (Welford, f64).
-#[derive(Default)]
-struct Spread {
-    n: u64,
-    mean: DVec3,
-    m2: DVec3,
-}
-
-impl Spread {
-    fn add(&mut self, x: Vec3) {
-        let x = x.as_dvec3();
-        self.n += 1;
-        let d = x - self.mean;
-        self.mean += d / self.n as f64;
-        self.m2 += d * (x - self.mean);
+        self.take(&mut result.samples, x, y, count);
+        result
     }
 
-    /// Whether the standard error of the mean is at most `contrast` in every channel.
-    fn converged(&self, contrast: Vec3) -> bool {
-        if self.n < 2 {
-            return false;
-        }
-        let n = self.n as f64;
-        let se2 = self.m2 / ((n - 1.0) * n);
-        let c = contrast.as_dvec3();
-        se2.cmple(c * c).all()
-    }
-}
-
-#[allow(clippy::too_many_arguments)] // one pixel's full context; called from one place
-fn shade_pixel(
-    ctx: Option<&ShadeContext<'_>>,
-    rays: &CameraRays,
-    filter: &FilterSampler,
-    seed: u32,
-    pixel: u64,
-    x: usize,
-    y: usize,
-    budget: SampleBudget,
-) -> PixelResult {
-    let centre = Vec2::new(x as f32 + 0.5, y as f32 + 0.5);
-    let mut result = PixelResult {
-        color: Vec3::ZERO,
-        alpha: 0.0,
-        depth: f32::INFINITY,
-        normal: Vec3::ZERO,
-        dropped: 0,
-        object_id: 0,
-        material_id: 0,
-        samples: budget.min,
-    };
-    let Some(ctx) = ctx else {
-        return result;
-    };
-    // Centre-sample passes (through the aperture centre).
-    if let Some(ray) = rays.ray(centre.x, centre.y, Vec2::splat(0.5)) {
-        if let Some(hit) = ctx.geometry.accel.intersect(&ray) {
-            let sp = ctx.geometry.shading_point(&hit);
-            result.depth = hit.t;
-            result.normal = sp.normal;
-            result.object_id = sp.instance + 1;
-            result.material_id = sp.material + 1;
+    /// Pass 2 for a refined pixel: doubling batches until converged or at `max`.
+    fn refine(&self, p: &mut PixelResult, x: usize, y: usize, budget: &SampleBudget, delta: Vec3) {
+        loop {
+            let batch = budget.next_batch(p.samples.taken);
+            if batch == 0 {
+                break;
+            }
+            self.take(&mut p.samples, x, y, batch);
+            if p.samples.converged_near(budget.contrast, delta) {
+                break;
+            }
         }
     }
-    let lens = rays.needs_lens_sample();
-    let mut sum = SampleMean::default();
-    let mut spread = Spread::default();
-    let mut covered = 0u32;
-    let mut taken = 0u32;
-    let mut batch = budget.min;
-    loop {
-        for s in taken..taken + batch {
-            let mut sampler = Sampler::for_item(seed, pixel, s);
-            let film = centre + filter.sample(sampler.next_2d());
+
+    /// Takes the next `count` samples of pixel `(x, y)` (sample indices continue from the
+    /// samples already taken).
+    fn take(&self, samples: &mut PixelSamples, x: usize, y: usize, count: u32) {
+        let pixel = (y * self.width + x) as u64;
+        let Some(ctx) = self.ctx else {
+            // An empty scene: every sample misses.
+            for _ in 0..count {
+                samples.add(Vec3::ZERO, false);
+            }
+            return;
+        };
+        let centre = Vec2::new(x as f32 + 0.5, y as f32 + 0.5);
+        let lens = self.rays.needs_lens_sample();
+        let first = samples.taken;
+        for s in first..first + count {
+            let mut sampler = Sampler::for_item(self.seed, pixel, s);
+            let film = centre + self.filter.sample(sampler.next_2d());
             let lens_u = if lens {
                 sampler.next_2d()
             } else {
                 Vec2::splat(0.5)
             };
-            let hit = rays
+            let hit = self
+                .rays
                 .ray(film.x, film.y, lens_u)
                 .and_then(|ray| Some((ray, ctx.geometry.accel.intersect(&ray)?)));
-            let radiance = match hit {
+            match hit {
                 Some((ray, hit)) => {
-                    covered += 1;
                     let l = shade_hit(ctx, &ray, &hit, &mut sampler);
-                    volume::segment(ctx, &ray, &hit, &mut sampler).apply(l)
+                    let l = volume::through_segment(ctx, &ray, &hit, l, &mut sampler);
+                    samples.add(l, true);
                 }
-                None => Vec3::ZERO,
-            };
-            if radiance.is_finite() {
-                sum.add(radiance);
-                spread.add(radiance);
-            } else {
-                result.dropped += 1;
+                None => samples.add(Vec3::ZERO, false),
             }
         }
-        taken += batch;
-        if taken >= budget.max || spread.converged(budget.contrast) {
-            break;
-        }
-        batch = taken.min(budget.max - taken);
     }
-    result.color = sum.mean_over(taken as u64);
-    result.alpha = covered as f32 / taken as f32;
-    result.samples = taken;
-    result
 }

@@ -110,6 +110,21 @@ pub fn segment(ctx: &ShadeContext<'_>, ray: &Ray, hit: &Hit, sampler: &mut Sampl
     }
 }
 
+/// `radiance` arriving at the end of the segment of `ray` that ends at `hit`, as seen from
+/// the segment's origin (unchanged, bit for bit, when the scene has no volumes).
+pub fn through_segment(
+    ctx: &ShadeContext<'_>,
+    ray: &Ray,
+    hit: &Hit,
+    radiance: Vec3,
+    sampler: &mut Sampler,
+) -> Vec3 {
+    if ctx.volumes.is_none() {
+        return radiance;
+    }
+    segment(ctx, ray, hit, sampler).apply(radiance)
+}
+
 /// Single scattering along `origin + t·dir`, `t ∈ [0, length]` (`dir` unit).
 fn inscatter(
     ctx: &ShadeContext<'_>,

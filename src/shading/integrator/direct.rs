@@ -53,7 +53,7 @@ fn vertex_radiance(
         let mut incoming = lights;
         if let Some(h) = hit {
             incoming += vertex_radiance(ctx, &ray, &h, sampler, next);
-            incoming = volume::segment(ctx, &ray, &h, sampler).apply(incoming);
+            incoming = volume::through_segment(ctx, &ray, &h, incoming, sampler);
         }
         radiance += branch.weight * incoming;
     }

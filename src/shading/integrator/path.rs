@@ -85,7 +85,7 @@ pub fn radiance(ctx: &ShadeContext<'_>, ray: &Ray, hit: &Hit, sampler: &mut Samp
             break;
         }
         let (next_hit, _, crossed) = trace(ctx, &next_ray);
-        if let Some(h) = &next_hit {
+        if let (Some(h), Some(_)) = (&next_hit, ctx.volumes) {
             let seg = volume::segment(ctx, &next_ray, h, sampler);
             radiance += beta * seg.inscattered;
             beta *= seg.transmittance;
