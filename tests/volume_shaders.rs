@@ -228,3 +228,46 @@ fn fog_attenuates_shadow_rays_to_lights_in_the_scene() {
     let want = (-0.3f32 * 3.0).exp();
     assert!((ratio - want).abs() < 1e-3 * want, "{ratio} vs {want}");
 }
+
+#[test]
+fn fog_filled_shells_attenuate_shadows_instead_of_blocking_them() {
+    // A floor lit from 3 m above through a 1 m slab of absorbing fog inside a see-through
+    // shell: the lit floor keeps e^(−σa·1) of its light (the camera sees it beside the slab).
+    let scene = |with_slab: bool| {
+        let (materials, objects, members) = if with_slab {
+            (
+                shell_material("Fog(sigma_a: (0.7, 0.7, 0.7))"),
+                slab("box", "shell", 1.0, 2.0),
+                ", \"box_1\"",
+            )
+        } else {
+            (String::new(), String::new(), "")
+        };
+        // Z is up here: the slab z ∈ [1, 2] lies between the floor (z = 0) and the light.
+        format!(
+            r#"Scene(
+    options: (samples: 4),
+    cameras: [(name: "cam", fov_y: 1, resolution: (3, 3),
+        placement: LookAt(eye: (0, -0.5, 0.5), target: (0, 0, 0), up: (0, 0, 1)))],
+    lights: [(name: "bulb", kind: Point(position: (0, 0, 3)), intensity: 4)],
+    materials: [(name: "floor", shader: Lambert(albedo: (0.5, 0.5, 0.5))) {materials}],
+    objects: [(name: "floor", mesh: Inline(vertices: [(-5, -5, 0), (5, -5, 0), (5, 5, 0), (-5, 5, 0)],
+        polygons: [[0, 1, 2, 3]]), material: "floor") {objects}],
+    instances: [(name: "floor_1", of: "floor") {}],
+    groups: [(name: "world", members: ["floor_1" {members}])],
+    render: (root: "world", camera: "cam"),
+)"#,
+            if with_slab {
+                ", (name: \"box_1\", of: \"box\")"
+            } else {
+                ""
+            }
+        )
+    };
+    let (clear, _) = render_text(&scene(false), |_| {});
+    let (shaded, _) = render_text(&scene(true), |_| {});
+    assert!(all_finite(&shaded));
+    let ratio = shaded.beauty[4].x / clear.beauty[4].x;
+    let want = (-0.7f32).exp();
+    assert!((ratio - want).abs() < 1e-3 * want, "{ratio} vs {want}");
+}

@@ -11,14 +11,14 @@
 //! In-scattering `∫₀ᵈ T(t) σs Σ_lights p(θ) L_light(x(t)) T_light dt` is estimated with one
 //! sample per light and segment: the distance is drawn by equiangular sampling about the
 //! light's position (point, spot, rectangle centre) or from the transmittance for other
-//! lights, the light then sampled from that point with a shadow ray, attenuated by the same
-//! medium over the distance to the light (exact for lights in the same volume; a light
-//! outside a closed fog-filled object is blocked by its shell). Only single scattering is
-//! computed: no path scatters twice inside a medium.
+//! lights, the light then sampled from that point with a shadow ray. Shadow rays (from
+//! surfaces too) pass through the shells of fog-filled materials and are attenuated by every
+//! medium they cross ([`shadow_transmittance`]). Only single scattering is computed: no
+//! path scatters twice inside a medium.
 
 use glam::Vec3;
 
-use crate::accel::{Hit, Ray, SurfacePoint};
+use crate::accel::{spawn_ray, spawn_ray_to, Hit, Ray};
 use crate::components::Fog;
 use crate::geometry::SceneGeometry;
 use crate::sampling::Sampler;
@@ -55,15 +55,6 @@ impl Volumes {
             }
         }
         self.atmosphere.as_ref()
-    }
-
-    /// Transmittance of the atmosphere along a shadow ray from the surface point `p` to a
-    /// light sample's `target` (`None`: a directional light, no attenuation).
-    pub fn shadow_transmittance(&self, p: Vec3, target: Option<&SurfacePoint>) -> Vec3 {
-        match (&self.atmosphere, target) {
-            (Some(fog), Some(t)) => fog.transmittance((t.p - p).length()),
-            _ => Vec3::ONE,
-        }
     }
 }
 
@@ -152,10 +143,15 @@ fn inscatter(
             continue;
         };
         let to_light = ls.target.map(|q| (q.p - x).length());
-        if ls.shadows && blocked(ctx.geometry, x, ls.wi, to_light) {
+        let first = Ray {
+            origin: x,
+            dir: ls.wi,
+            t_max: to_light.map_or(f32::INFINITY, |d| d * (1.0 - 1e-3)),
+        };
+        let target = ls.target.map(|q| q.p);
+        let Some(t_light) = shadow_transmittance(ctx, first, Some(fog), target, ls.shadows) else {
             continue;
-        }
-        let t_light = to_light.map_or(Vec3::ONE, |d| fog.transmittance(d));
+        };
         let phase = henyey_greenstein(fog.g, dir.dot(ls.wi));
         let c = fog.transmittance(t) * fog.sigma_s * ls.contribution * t_light * (phase / pdf);
         if c.is_finite() {
@@ -165,15 +161,62 @@ fn inscatter(
     sum
 }
 
-/// Whether the shadow ray from a point in space toward a light is blocked (`dist`: distance
-/// to the light sample; `None`: infinitely far).
-fn blocked(geometry: &SceneGeometry, x: Vec3, wi: Vec3, dist: Option<f32>) -> bool {
-    let ray = Ray {
-        origin: x,
-        dir: wi,
-        t_max: dist.map_or(f32::INFINITY, |d| d * (1.0 - 1e-3)),
+/// Most fog boundaries one shadow ray passes through.
+const MAX_CROSSINGS: usize = 16;
+
+/// Transmittance along a shadow ray toward a light, or `None` when it is blocked.
+///
+/// `first` is the ray from the shading point (its `t_max` stops short of the light);
+/// `start` is the medium at its origin; `target` is the light sample's position (`None`:
+/// infinitely far, whose last segment crosses no medium). The shells of fog-filled
+/// materials (those with an `interior`) are volume boundaries, not occluders: the ray
+/// passes through them, entering the interior at a front face and returning to the
+/// atmosphere at a back face. Any other surface blocks (unless `occlude` is false: then
+/// only the starting medium attenuates, over the straight distance).
+pub fn shadow_transmittance(
+    ctx: &ShadeContext<'_>,
+    first: Ray,
+    start: Option<&Fog>,
+    target: Option<Vec3>,
+    occlude: bool,
+) -> Option<Vec3> {
+    let along = |fog: Option<&Fog>, from: Vec3| match (fog, target) {
+        (Some(f), Some(p)) => f.transmittance((p - from).length()),
+        _ => Vec3::ONE,
     };
-    geometry.accel.occluded(&ray)
+    if !occlude {
+        return Some(along(start, first.origin));
+    }
+    let Some(volumes) = ctx.volumes else {
+        return (!ctx.geometry.accel.occluded(&first)).then_some(Vec3::ONE);
+    };
+    let mut ray = first;
+    let mut medium = start;
+    let mut t = Vec3::ONE;
+    for _ in 0..MAX_CROSSINGS {
+        let Some(hit) = ctx.geometry.accel.intersect(&ray) else {
+            return Some(t * along(medium, ray.origin));
+        };
+        let slot = ctx.geometry.triangle_instance[hit.prim as usize] as usize;
+        let material = ctx.geometry.instances[slot].material as usize;
+        let Some(Some(interior)) = volumes.interiors.get(material) else {
+            return None;
+        };
+        if let Some(f) = medium {
+            t *= f.transmittance(hit.t * ray.dir.length());
+        }
+        let sp = ctx.geometry.accel.surface_point(&hit);
+        medium = if sp.ng.dot(ray.dir) < 0.0 {
+            Some(interior)
+        } else {
+            volumes.atmosphere.as_ref()
+        };
+        ray = match target {
+            Some(p) => spawn_ray_to(&sp, p),
+            None => spawn_ray(&sp, ray.dir),
+        };
+    }
+    None
 }
 
 /// Position equiangular sampling aims at, for lights that have one.
@@ -196,12 +239,13 @@ pub fn equiangular(origin: Vec3, dir: Vec3, length: f32, c: Vec3, u: f32) -> Opt
     let oc = c - origin;
     let delta = oc.dot(dir);
     let d = (oc - dir * delta).length();
-    if !(d > 1e-5 * (length + delta.abs()).max(1e-3)) {
+    let far_enough = d > 1e-5 * (length + delta.abs()).max(1e-3);
+    if !far_enough {
         return None;
     }
     let a = (-delta).atan2(d);
     let b = (length - delta).atan2(d);
-    if !(b > a) {
+    if b.is_nan() || a.is_nan() || b <= a {
         return None;
     }
     let theta = a + u * (b - a);
