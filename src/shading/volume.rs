@@ -272,3 +272,66 @@ pub fn henyey_greenstein(g: f32, cos_theta: f32) -> f32 {
     let denom = 1.0 + g * g - 2.0 * g * cos_theta;
     (1.0 - g * g) / (4.0 * std::f32::consts::PI * denom * denom.max(1e-12).sqrt())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Inverse-CDF samples `t(u)` with pdf `p(t)`: `∫ dt` over the samples' spacing equals
+    /// `∫ p dt = 1`, i.e. `dt/du = 1/p` everywhere.
+    fn check_inverse_cdf(sample: impl Fn(f32) -> (f32, f32), length: f32) {
+        let n = 2000;
+        let mut total = 0.0f64;
+        for k in 0..n {
+            let u = (k as f32 + 0.5) / n as f32;
+            let (t, pdf) = sample(u);
+            assert!((0.0..=length).contains(&t) && pdf > 0.0, "{t} {pdf}");
+            let (t2, _) = sample(u + 1e-4);
+            let dtdu = (t2 - t) / 1e-4;
+            assert!(
+                (dtdu * pdf - 1.0).abs() < 2e-2,
+                "u {u}: dt/du {dtdu} vs 1/pdf {}",
+                1.0 / pdf
+            );
+            total += f64::from(1.0 / pdf) / n as f64;
+        }
+        // E_u[1/p] = length.
+        assert!((total / f64::from(length) - 1.0).abs() < 1e-2, "{total}");
+    }
+
+    #[test]
+    fn equiangular_pdf_matches_its_sampling() {
+        let (o, d) = (Vec3::ZERO, Vec3::new(0.0, 0.0, -1.0));
+        check_inverse_cdf(
+            |u| equiangular(o, d, 4.0, Vec3::new(0.5, 0.0, -1.0), u).unwrap(),
+            4.0,
+        );
+        assert!(equiangular(o, d, 4.0, Vec3::new(0.0, 0.0, -2.0), 0.5).is_none());
+    }
+
+    #[test]
+    fn distance_sampling_pdf_matches_its_sampling() {
+        let fog = Fog {
+            sigma_a: Vec3::splat(0.3),
+            sigma_s: Vec3::new(0.2, 0.5, 0.8),
+            g: 0.0,
+        };
+        check_inverse_cdf(|u| distance_sample(&fog, 5.0, u), 5.0);
+    }
+
+    #[test]
+    fn henyey_greenstein_integrates_to_one() {
+        for g in [-0.9f32, -0.3, 0.0, 0.5, 0.95] {
+            let n = 200_000;
+            let sum: f64 = (0..n)
+                .map(|k| {
+                    let mu = -1.0 + 2.0 * (k as f64 + 0.5) / n as f64;
+                    f64::from(henyey_greenstein(g, mu as f32))
+                })
+                .sum();
+            // ∫ p dω = 2π ∫ p dμ.
+            let integral = sum * 2.0 / n as f64 * std::f64::consts::TAU;
+            assert!((integral - 1.0).abs() < 1e-3, "g {g}: {integral}");
+        }
+    }
+}
