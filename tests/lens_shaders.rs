@@ -238,3 +238,35 @@ fn depth_of_field_after_a_fisheye_chains() {
     let got = centroid(&fb, predicted, 4.0);
     assert!((got.0 - predicted.0).abs() < 0.5 && (got.1 - predicted.1).abs() < 0.5);
 }
+
+/// The lens, fog and adaptive example scenes give identical bytes at 1 and 2 threads.
+#[test]
+fn lens_and_fog_scenes_do_not_depend_on_the_thread_count() {
+    for name in ["depth_of_field.ron", "fisheye.ron", "fog.ron"] {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("assets/scenes")
+            .join(name);
+        let text = std::fs::read_to_string(&path).unwrap();
+        // Shrink the image: replace the resolution with 40×30.
+        let start = text.find("resolution: (").unwrap();
+        let end = start + text[start..].find(')').unwrap() + 1;
+        let text = format!("{}resolution: (40, 30){}", &text[..start], &text[end..]);
+        let render = |threads| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap()
+                .install(|| render_text(&text, |s| s.spp = s.spp.min(4)).0)
+        };
+        let (one, two) = (render(1), render(2));
+        assert!(all_finite(&one), "{name}");
+        let bits = |fb: &stagelight::framebuffer::FrameBuffers| -> Vec<u32> {
+            fb.beauty
+                .iter()
+                .flat_map(|c| c.to_array().map(f32::to_bits))
+                .chain(fb.samples.iter().copied())
+                .collect()
+        };
+        assert_eq!(bits(&one), bits(&two), "{name}");
+    }
+}
