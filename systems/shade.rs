@@ -39,9 +39,21 @@ pub fn should_run(world: &World, frame: &Frame) -> Decision {
     if !frame.tasks.render {
         return Decision::skip("this run only bakes");
     }
-    match world.query::<(&Camera, &RenderCamera)>().iter().next() {
-        Some((camera, _)) => {
-            Decision::run(format!("render camera {}×{}", camera.width, camera.height))
+    let mut query = world.query::<(&Camera, &RenderCamera, Option<&Lenses>, Option<&Atmosphere>)>();
+    match query.iter().next() {
+        Some((camera, _, lenses, atmosphere)) => {
+            let mut reason = format!("render camera {}×{}", camera.width, camera.height);
+            if let Some(a) = frame.settings.adaptive {
+                reason += &format!(", adaptive {}–{} samples", a.min, a.max);
+            }
+            if let Some(l) = lenses.filter(|l| !l.0.is_empty()) {
+                let s = if l.0.len() == 1 { "" } else { "s" };
+                reason += &format!(", {} lens shader{s}", l.0.len());
+            }
+            if atmosphere.is_some() {
+                reason += ", atmosphere";
+            }
+            Decision::run(reason)
         }
         None => Decision::skip("no render camera"),
     }
