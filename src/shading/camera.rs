@@ -149,6 +149,8 @@ fn thin_lens(
 mod tests {
     use super::*;
 
+    use std::f32::consts::PI;
+
     const C: Vec2 = Vec2::splat(0.5);
 
     fn camera(fov_deg: f32, w: u32, h: u32) -> Camera {
@@ -182,5 +184,45 @@ mod tests {
             .unwrap();
         // Left edge at atan(aspect · tan 45°) = atan 2.
         assert!((r.dir.x / r.dir.z - 2.0).abs() < 1e-5 && r.dir.x < 0.0);
+    }
+
+    #[test]
+    fn fisheye_and_spherical_map_film_positions_to_directions() {
+        let cam = camera(60.0, 64, 64);
+        let fish = CameraRays::with_lenses(&cam, &[Lens::Fisheye { fov: PI }]);
+        let centre = fish.ray(32.0, 32.0, C).unwrap();
+        assert!((centre.dir - Vec3::NEG_Z).length() < 1e-6);
+        // Top edge of a 180° fisheye: 90° up.
+        let top = fish.ray(32.0, 0.0, C).unwrap();
+        assert!((top.dir - Vec3::Y).length() < 1e-6, "{}", top.dir);
+        let sphere = CameraRays::with_lenses(&camera(60.0, 128, 64), &[Lens::Spherical]);
+        // Three quarters across: azimuth +90° (toward +X); the left edge looks backwards.
+        let right = sphere.ray(96.0, 32.0, C).unwrap();
+        assert!((right.dir - Vec3::X).length() < 1e-6, "{}", right.dir);
+        let back = sphere.ray(0.0, 32.0, C).unwrap();
+        assert!((back.dir - Vec3::Z).length() < 1e-5, "{}", back.dir);
+    }
+
+    #[test]
+    fn thin_lens_rays_of_a_pixel_meet_on_the_focus_plane() {
+        let lens = [Lens::ThinLens {
+            radius: 0.3,
+            focus_distance: 5.0,
+        }];
+        let rays = CameraRays::with_lenses(&camera(40.0, 32, 32), &lens);
+        let pinhole = CameraRays::new(&camera(40.0, 32, 32))
+            .ray(10.0, 20.0, C)
+            .unwrap();
+        let target = pinhole.dir * (5.0 / -pinhole.dir.z);
+        for u in [
+            Vec2::new(0.1, 0.2),
+            Vec2::new(0.9, 0.5),
+            Vec2::new(0.4, 0.99),
+        ] {
+            let r = rays.ray(10.0, 20.0, u).unwrap();
+            assert!(r.origin.z == 0.0 && r.origin.length() <= 0.3 + 1e-6);
+            let t = (-5.0 - r.origin.z) / r.dir.z;
+            assert!((r.origin + r.dir * t - target).length() < 1e-5);
+        }
     }
 }
