@@ -5,12 +5,12 @@
 
 use serde::Deserialize;
 
-pub use super::nodes_desc::{BumpDesc, InputDesc, NodeDesc, PhenomenonDesc};
-
+pub use super::desc_camera::{LensDesc, SamplesDesc, VolumeDesc};
 pub use super::desc_geometry::{
     ApproximationDesc, AxisDesc, BasisDesc, DisplacementDesc, DisplacementModeDesc, MeshDesc,
     ScalarDesc, SpaceDesc,
 };
+pub use super::nodes_desc::{BumpDesc, InputDesc, NodeDesc, PhenomenonDesc};
 
 /// A 3-vector as written in the file: `(x, y, z)`.
 pub type V3 = (f64, f64, f64);
@@ -48,8 +48,8 @@ pub struct SceneDesc {
 #[derive(Debug, Clone, Deserialize)]
 #[serde(rename = "Options", deny_unknown_fields, default)]
 pub struct OptionsDesc {
-    /// Samples per pixel, default 4, at least 1.
-    pub samples: u32,
+    /// Samples per pixel, default 4, at least 1; or adaptive `(min, max, contrast)`.
+    pub samples: SamplesDesc,
     /// Pixel filter, default `Box`.
     pub filter: FilterDesc,
     /// Random seed, default 0.
@@ -73,7 +73,7 @@ pub struct OptionsDesc {
 impl Default for OptionsDesc {
     fn default() -> Self {
         Self {
-            samples: 4,
+            samples: SamplesDesc::Fixed(4),
             filter: FilterDesc::Box,
             seed: 0,
             max_depth: 4,
@@ -165,6 +165,12 @@ pub struct CameraDesc {
     /// Output shader for PNG outputs (background, exposure, tone map, gamma), default none.
     #[serde(default)]
     pub imager: Option<ImagerDesc>,
+    /// Lens shaders applied in order after the pinhole, default none.
+    #[serde(default)]
+    pub lens: Vec<LensDesc>,
+    /// Volume shader filling the scene around the camera, default none.
+    #[serde(default)]
+    pub atmosphere: Option<VolumeDesc>,
 }
 
 /// `imager: (...)` on a camera: RenderMan `Exposure gain gamma` and `Imager "background"`.
@@ -362,6 +368,9 @@ pub struct MaterialDesc {
     /// Bump mapping, default none.
     #[serde(default)]
     pub bump: Option<BumpDesc>,
+    /// Volume shader filling the inside of closed meshes with this material, default none.
+    #[serde(default)]
+    pub interior: Option<VolumeDesc>,
 }
 
 /// Surface shader.
