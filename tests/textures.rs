@@ -468,3 +468,27 @@ fn linear_bump_tilts_the_normal_as_predicted() {
         }
     }
 }
+
+/// `assets/scenes/textures.ron` (every node family, a phenomenon, an image, a bump map)
+/// renders the same bits with 1 and 3 threads.
+#[test]
+fn textured_images_do_not_depend_on_the_thread_count() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenes/textures.ron");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let text = text.replace("resolution: (240, 160)", "resolution: (48, 32)");
+    let render = |threads| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap()
+            .install(|| render_in(path.parent().unwrap(), &text).1)
+    };
+    let bits = |img: Vec<Vec3>| -> Vec<u32> {
+        img.iter()
+            .flat_map(|c| c.to_array().map(f32::to_bits))
+            .collect()
+    };
+    let one = bits(render(1));
+    assert!(one.iter().any(|&b| b != 0));
+    assert_eq!(one, bits(render(3)));
+}
