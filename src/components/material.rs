@@ -152,8 +152,9 @@ pub enum Shader {
         /// Surface colour.
         color: Vec3,
     },
-    /// RenderMan `paintedplastic`: `plastic` with `color` multiplied by a texture. Until
-    /// textures exist the texture stands in as white (the shader equals `plastic`).
+    /// RenderMan `paintedplastic`: `plastic` with `color` multiplied by a texture. The texture
+    /// is a binding of `color` (e.g. `Mul(colour, Image(…))`, see `Material::graph`); without
+    /// one it is white and the shader equals `plastic`.
     PaintedPlastic {
         /// Ambient weight (no effect: no ambient lights yet).
         ka: f32,
