@@ -84,8 +84,17 @@ pub fn evaluate(
     // Tangents in the plane of the shading normal, so a zero height gradient keeps it.
     let dpdu = dpdu - n * n.dot(dpdu);
     let dpdv = dpdv - n * n.dot(dpdv);
+    // Binding ran the whole program at this point already: its height register is the
+    // first value the finite differences ask for.
+    let mut at_point = graph
+        .filter(|g| !g.bindings.is_empty())
+        .and_then(|g| g.bump)
+        .map(|b| regs[b.height as usize].x * b.scale);
     let height = |i: &Inputs| {
-        let mut h = graph.map_or(0.0, |g| g.bump_height(i, &mut regs));
+        let mut h = match at_point.take() {
+            Some(h) => h,
+            None => graph.map_or(0.0, |g| g.bump_height(i, &mut regs)),
+        };
         if let Some(d) = displacement {
             h += displacement_height(d, i);
         }

@@ -305,7 +305,8 @@ impl MaterialGraph {
 }
 
 /// The bump-mapped shading normal at `inputs` (its `n` is the unperturbed unit normal) for
-/// the height function `height`, from the surface tangents `[∂P/∂u, ∂P/∂v]` in world space
+/// the height function `height` (called first at `inputs` itself, then at the two offset
+/// points), from the surface tangents `[∂P/∂u, ∂P/∂v]` in world space
 /// followed by their object-space counterparts (how the `Position` input moves). `has_uv`:
 /// the tangents follow the uv parametrisation (else uv stays fixed in the differences).
 pub fn bumped_normal(
