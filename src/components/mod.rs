@@ -15,7 +15,7 @@ pub use light::{Emitter, LightShape};
 pub use material::{Material, MaterialRef, Shader};
 pub use mesh::{Instance, TriMesh};
 pub use naming::{Name, SourceLink};
-pub use transform::WorldFromObject;
+pub use transform::{SceneOrigin, WorldFromObject};
 
 mod bake;
 mod imager;

@@ -1,0 +1,213 @@
+//! Rebasing scenes far from the origin (hard case H5): everything the renderer traces is in
+//! *render space*, world space shifted by a scene origin chosen at load time, so that the
+//! f32 hot path never sees large coordinates.
+//!
+//! * **The origin** is the centre of the scene bounds: the world-space bounding box of every
+//!   placed mesh (generated geometry, which does not exist yet at load time, counts by its
+//!   object origin), computed in f64 and snapped to a power-of-two grid of 1/256 of the
+//!   bounds' largest extent (so that translating a scene by a round number translates the
+//!   origin by exactly that number).
+//! * **Instance transforms** are composed along the DAG in f64 ([`super::dag`]); the origin is
+//!   subtracted from the composed f64 translation, and only then is the transform rounded to
+//!   f32.
+//! * **Mesh vertices** given far from their object's origin (inline or OBJ meshes whose
+//!   bounding-box centre lies farther from the object origin than the box's largest extent)
+//!   are re-centred in f64 before rounding to f32; the centre moves into the instance
+//!   transforms, again in f64. Meshes used by scatters (as surface or prototype) keep their
+//!   object space, since scatter placements are made in it.
+//! * **Cameras and lights**: eye, target, camera-matrix translation, light positions, spot
+//!   targets and rect corners are shifted in f64 before validation rounds them.
+//!
+//! The origin is kept in the world as a [`crate::components::SceneOrigin`] entity; outputs that
+//! expose absolute positions (the bake `positions` kind) add it back. Directions, distances
+//! (`depth`) and normals are unaffected. Shading sees render-space positions.
+
+use glam::{Affine3A, DAffine3, DVec3, Vec3};
+
+use super::dag::Leaf;
+use super::desc::{CameraDesc, LightDesc, LightKindDesc, PlacementDesc, V3};
+
+/// Positions of a mesh in f64 → object-space f32 positions and the object-space centre that
+/// was subtracted (zero when the mesh stays as it is: its vertices lie near its origin).
+pub fn centre_positions(positions: &[DVec3]) -> (Vec<Vec3>, DVec3) {
+    // Only points that fit in f32 count: a hostile vertex (1e300) is dropped later anyway and
+    // must not drag the centre away from the rest.
+    let fits = positions.iter().copied().filter(|p| p.as_vec3().is_finite());
+    let offset = match bounds(fits) {
+        Some((lo, hi)) => {
+            let centre = (lo + hi) * 0.5;
+            let extent = (hi - lo).max_element();
+            if centre.abs().max_element() > extent && centre.is_finite() {
+                centre
+            } else {
+                DVec3::ZERO
+            }
+        }
+        None => DVec3::ZERO,
+    };
+    let rounded = positions.iter().map(|&p| (p - offset).as_vec3()).collect();
+    (rounded, offset)
+}
+
+/// Object-space bounding box of a mesh's positions (`None` when it has none).
+pub fn mesh_bounds(mesh: &crate::components::TriMesh) -> Option<(DVec3, DVec3)> {
+    bounds(mesh.positions.iter().map(|p| p.as_dvec3()))
+}
+
+/// Bounding box of the finite points, if any.
+fn bounds(points: impl Iterator<Item = DVec3>) -> Option<(DVec3, DVec3)> {
+    points.filter(|p| p.is_finite()).fold(None, |acc, p| match acc {
+        None => Some((p, p)),
+        Some((lo, hi)) => Some((lo.min(p), hi.max(p))),
+    })
+}
+
+/// The scene origin: the centre of the world bounds of the placed leaves, snapped to a grid
+/// of 1/256 of their largest extent (a power of two). `object_bounds[o]` is object `o`'s
+/// object-space bounding box, `None` for generated geometry (counted as its origin point).
+/// Zero when there is nothing placed or the bounds are not finite.
+pub fn scene_origin(leaves: &[Leaf], object_bounds: &[Option<(DVec3, DVec3)>]) -> DVec3 {
+    let mut boxes = Vec::with_capacity(leaves.len() * 2);
+    for leaf in leaves {
+        let (lo, hi) = object_bounds
+            .get(leaf.object)
+            .copied()
+            .flatten()
+            .unwrap_or((DVec3::ZERO, DVec3::ZERO));
+        let c = (lo + hi) * 0.5;
+        let h = (hi - lo) * 0.5;
+        let m = leaf.world.matrix3;
+        let wc = leaf.world.transform_point3(c);
+        let wh = m.x_axis.abs() * h.x + m.y_axis.abs() * h.y + m.z_axis.abs() * h.z;
+        boxes.push(wc - wh);
+        boxes.push(wc + wh);
+    }
+    let Some((lo, hi)) = bounds(boxes.into_iter()) else {
+        return DVec3::ZERO;
+    };
+    let centre = (lo + hi) * 0.5;
+    let extent = (hi - lo).max_element();
+    if !centre.is_finite() || !extent.is_finite() {
+        return DVec3::ZERO;
+    }
+    if extent <= 0.0 {
+        return centre;
+    }
+    let grid = 2f64.powi(extent.log2().floor() as i32 - 8);
+    let snapped = (centre / grid).round() * grid;
+    if snapped.is_finite() {
+        snapped
+    } else {
+        centre
+    }
+}
+
+/// Rounds every leaf's f64 transform, less `origin`, to its f32 `world_from_object`. Returns
+/// false, changing nothing, when some rebased transform does not fit in f32 or is singular
+/// there.
+pub fn rebase_leaves(leaves: &mut [Leaf], origin: DVec3) -> bool {
+    let rebased: Option<Vec<Affine3A>> = leaves
+        .iter()
+        .map(|leaf| {
+            let t = leaf.world.translation - origin;
+            let a = Affine3A::from_mat3_translation(leaf.world.matrix3.as_mat3(), t.as_vec3());
+            (a.is_finite() && a.matrix3.determinant() != 0.0).then_some(a)
+        })
+        .collect();
+    let Some(rebased) = rebased else {
+        return false;
+    };
+    for (leaf, a) in leaves.iter_mut().zip(rebased) {
+        leaf.world_from_object = a;
+    }
+    true
+}
+
+/// `v − origin` for a finite point; a non-finite one is left as written (validation reports
+/// it with the value the user wrote).
+fn shift(v: V3, origin: DVec3) -> V3 {
+    let p = DVec3::new(v.0, v.1, v.2);
+    if !p.is_finite() {
+        return v;
+    }
+    let q = p - origin;
+    (q.x, q.y, q.z)
+}
+
+/// The camera with its position (and look-at target) moved into render space.
+pub fn camera(desc: &CameraDesc, origin: DVec3) -> CameraDesc {
+    let mut out = desc.clone();
+    out.placement = match &desc.placement {
+        PlacementDesc::LookAt { eye, target, up } => PlacementDesc::LookAt {
+            eye: shift(*eye, origin),
+            target: shift(*target, origin),
+            up: *up,
+        },
+        PlacementDesc::Matrix(m) => {
+            let mut m = *m;
+            let t = shift((m[0][3], m[1][3], m[2][3]), origin);
+            (m[0][3], m[1][3], m[2][3]) = t;
+            PlacementDesc::Matrix(m)
+        }
+    };
+    out
+}
+
+/// The light with its positions moved into render space (directions are unchanged).
+pub fn light(desc: &LightDesc, origin: DVec3) -> LightDesc {
+    let mut out = desc.clone();
+    match &mut out.kind {
+        LightKindDesc::Point { position } => *position = shift(*position, origin),
+        LightKindDesc::Spot {
+            position, target, ..
+        } => {
+            *position = shift(*position, origin);
+            *target = shift(*target, origin);
+        }
+        LightKindDesc::Directional { .. } => {}
+        LightKindDesc::Rect { corner, .. } => *corner = shift(*corner, origin),
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn near_meshes_keep_their_object_space() {
+        let p = [DVec3::ZERO, DVec3::new(1.0, 1.0, 1.0), DVec3::new(2.0, 0.0, 0.0)];
+        let (rounded, offset) = centre_positions(&p);
+        assert_eq!(offset, DVec3::ZERO);
+        assert_eq!(rounded[1], Vec3::ONE);
+    }
+
+    #[test]
+    fn far_meshes_are_centred_in_f64() {
+        let t = 1e6 + 0.1;
+        let p = [DVec3::splat(t), DVec3::splat(t + 1.0), DVec3::new(t, t + 0.5, t)];
+        let (rounded, offset) = centre_positions(&p);
+        assert_eq!(offset, DVec3::splat(t + 0.5));
+        assert_eq!(rounded[0], Vec3::splat(-0.5));
+        assert_eq!(rounded[2], Vec3::new(-0.5, 0.0, -0.5));
+    }
+
+    #[test]
+    fn origin_moves_exactly_with_a_round_translation() {
+        let leaf = |t: f64| Leaf {
+            path: "root/a".into(),
+            instance: 0,
+            object: 0,
+            world_from_object: Affine3A::IDENTITY,
+            world: DAffine3::from_translation(DVec3::splat(t)),
+            material: None,
+        };
+        let b = [Some((DVec3::ZERO, DVec3::new(1.0, 0.75, 1.0)))];
+        let o0 = scene_origin(&[leaf(0.0)], &b);
+        assert_eq!(o0, DVec3::new(0.5, 0.375, 0.5));
+        for t in [1e3, 1e4, 1e5, 1e6] {
+            assert_eq!(scene_origin(&[leaf(t)], &b) - DVec3::splat(t), o0);
+        }
+        assert_eq!(scene_origin(&[], &b), DVec3::ZERO);
+    }
+}
