@@ -27,29 +27,73 @@ fn cornell(t: f64, placed: bool) -> String {
         )
     };
     let objects = [
-        quad("floor", [(0., 0., 0.), (0., 0., 1.), (1., 0., 1.), (1., 0., 0.)], "white"),
-        quad("ceiling", [(0., 1., 0.), (1., 1., 0.), (1., 1., 1.), (0., 1., 1.)], "white"),
-        quad("back", [(0., 0., 1.), (0., 1., 1.), (1., 1., 1.), (1., 0., 1.)], "white"),
-        quad("left", [(0., 0., 0.), (0., 1., 0.), (0., 1., 1.), (0., 0., 1.)], "red"),
-        quad("right", [(1., 0., 0.), (1., 0., 1.), (1., 1., 1.), (1., 1., 0.)], "green"),
+        quad(
+            "floor",
+            [(0., 0., 0.), (0., 0., 1.), (1., 0., 1.), (1., 0., 0.)],
+            "white",
+        ),
+        quad(
+            "ceiling",
+            [(0., 1., 0.), (1., 1., 0.), (1., 1., 1.), (0., 1., 1.)],
+            "white",
+        ),
+        quad(
+            "back",
+            [(0., 0., 1.), (0., 1., 1.), (1., 1., 1.), (1., 0., 1.)],
+            "white",
+        ),
+        quad(
+            "left",
+            [(0., 0., 0.), (0., 1., 0.), (0., 1., 1.), (0., 0., 1.)],
+            "red",
+        ),
+        quad(
+            "right",
+            [(1., 0., 0.), (1., 0., 1.), (1., 1., 1.), (1., 1., 0.)],
+            "green",
+        ),
         quad(
             "block_top",
-            [(0.25, 0.375, 0.25), (0.25, 0.375, 0.625), (0.625, 0.375, 0.625), (0.625, 0.375, 0.25)],
+            [
+                (0.25, 0.375, 0.25),
+                (0.25, 0.375, 0.625),
+                (0.625, 0.375, 0.625),
+                (0.625, 0.375, 0.25),
+            ],
             "white",
         ),
         quad(
             "block_front",
-            [(0.25, 0., 0.25), (0.25, 0.375, 0.25), (0.625, 0.375, 0.25), (0.625, 0., 0.25)],
+            [
+                (0.25, 0., 0.25),
+                (0.25, 0.375, 0.25),
+                (0.625, 0.375, 0.25),
+                (0.625, 0., 0.25),
+            ],
             "white",
         ),
         quad(
             "block_side",
-            [(0.625, 0., 0.25), (0.625, 0.375, 0.25), (0.625, 0.375, 0.625), (0.625, 0., 0.625)],
+            [
+                (0.625, 0., 0.25),
+                (0.625, 0.375, 0.25),
+                (0.625, 0.375, 0.625),
+                (0.625, 0., 0.625),
+            ],
             "white",
         ),
     ]
     .join("\n        ");
-    let names = ["floor", "ceiling", "back", "left", "right", "block_top", "block_front", "block_side"];
+    let names = [
+        "floor",
+        "ceiling",
+        "back",
+        "left",
+        "right",
+        "block_top",
+        "block_front",
+        "block_side",
+    ];
     let instances: String = names
         .iter()
         .map(|n| format!("(name: \"{n}_1\", of: \"{n}\"),"))
@@ -131,8 +175,15 @@ fn rel_mse(a: &[Vec3], r: &[Vec3]) -> f64 {
 fn h05_scene_far_from_origin() {
     for placed in [true, false] {
         let reference = render(&cornell(0.0, placed));
-        let lit = reference.beauty.iter().filter(|c| c.max_element() > 0.0).count();
-        assert!(lit > reference.beauty.len() / 2, "the box is lit: {lit} pixels");
+        let lit = reference
+            .beauty
+            .iter()
+            .filter(|c| c.max_element() > 0.0)
+            .count();
+        assert!(
+            lit > reference.beauty.len() / 2,
+            "the box is lit: {lit} pixels"
+        );
         for t in TS {
             let img = render(&cornell(t, placed));
             let non_finite = img.beauty.iter().filter(|c| !c.is_finite()).count();
@@ -142,7 +193,11 @@ fn h05_scene_far_from_origin() {
                 bits(&img.beauty) == bits(&reference.beauty),
                 "T = {t} (placed {placed}): beauty differs from T = 0, relMSE {rel:e}"
             );
-            assert_eq!(bits(&img.normal), bits(&reference.normal), "T = {t}: normals");
+            assert_eq!(
+                bits(&img.normal),
+                bits(&reference.normal),
+                "T = {t}: normals"
+            );
             let depth = |f: &FrameBuffers| f.depth.iter().map(|d| d.to_bits()).collect::<Vec<_>>();
             assert_eq!(depth(&img), depth(&reference), "T = {t}: depth");
         }
@@ -182,7 +237,8 @@ fn h05_bake_far_from_origin() {
         render: false,
         bake: true,
     };
-    frame.bake_dir = std::env::temp_dir().join(format!("stagelight-h05-bake-{}", std::process::id()));
+    frame.bake_dir =
+        std::env::temp_dir().join(format!("stagelight-h05-bake-{}", std::process::id()));
     stagelight::systems::run(&mut scene.world, &mut frame).expect("bake");
     let read = |path: &Path| -> Vec<Vec3> {
         use exr::prelude::*;
@@ -206,7 +262,10 @@ fn h05_bake_far_from_origin() {
     };
     let ao = read(&find("_ao"));
     assert_eq!(ao.len(), 64);
-    assert!(ao.iter().all(|a| a.x == 1.0), "a ray hit the open plane at 1e6: {ao:?}");
+    assert!(
+        ao.iter().all(|a| a.x == 1.0),
+        "a ray hit the open plane at 1e6: {ao:?}"
+    );
     let positions = read(&find("_positions"));
     for j in 0..8 {
         for i in 0..8 {

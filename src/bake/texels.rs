@@ -364,7 +364,10 @@ fn texel(
                 }
             }
             // Render space back to world space, in f64, rounded once to f32.
-            BakeKind::Positions => (sites.iter().map(|s| s.surface.p.as_dvec3()).sum::<glam::DVec3>()
+            BakeKind::Positions => (sites
+                .iter()
+                .map(|s| s.surface.p.as_dvec3())
+                .sum::<glam::DVec3>()
                 / n_sites as f64
                 + job.geometry.origin)
                 .as_vec3(),

@@ -4,15 +4,17 @@
 //!
 //! * **The origin** is the centre of the scene bounds: the world-space bounding box of every
 //!   placed mesh (generated geometry, which does not exist yet at load time, counts by its
-//!   object origin), computed in f64 and snapped to a power-of-two grid of 1/256 of the
-//!   bounds' largest extent (so that translating a scene by a round number translates the
-//!   origin by exactly that number).
+//!   object origin), computed in f64 and rounded to a multiple of the smallest power of two
+//!   at least twice the bounds' extent ([`snap`]). A scene near the world origin therefore
+//!   keeps origin zero and is loaded exactly as written; a far one is shifted by a round
+//!   number, so that translating a scene by a multiple of that power of two renders the very
+//!   same image.
 //! * **Instance transforms** are composed along the DAG in f64 ([`super::dag`]); the origin is
 //!   subtracted from the composed f64 translation, and only then is the transform rounded to
 //!   f32.
 //! * **Mesh vertices** given far from their object's origin (inline or OBJ meshes whose
-//!   bounding-box centre lies farther from the object origin than the box's largest extent)
-//!   are re-centred in f64 before rounding to f32; the centre moves into the instance
+//!   bounding box is not within its own size of the object origin) are re-centred in f64 by
+//!   the [`snap`]ped centre of their bounds before rounding to f32; the centre moves into the instance
 //!   transforms, again in f64. Meshes used by scatters (as surface or prototype) keep their
 //!   object space, since scatter placements are made in it.
 //! * **Cameras and lights**: eye, target, camera-matrix translation, light positions, spot
@@ -27,26 +29,39 @@ use glam::{Affine3A, DAffine3, DVec3, Vec3};
 use super::dag::Leaf;
 use super::desc::{CameraDesc, LightDesc, LightKindDesc, PlacementDesc, V3};
 
-/// Positions of a mesh in f64 → object-space f32 positions and the object-space centre that
-/// was subtracted (zero when the mesh stays as it is: its vertices lie near its origin).
+/// Positions of a mesh in f64 → object-space f32 positions and the object-space offset that
+/// was subtracted ([`snap`] of the bounds centre: zero when the mesh lies near its origin).
 pub fn centre_positions(positions: &[DVec3]) -> (Vec<Vec3>, DVec3) {
     // Only points that fit in f32 count: a hostile vertex (1e300) is dropped later anyway and
     // must not drag the centre away from the rest.
-    let fits = positions.iter().copied().filter(|p| p.as_vec3().is_finite());
-    let offset = match bounds(fits) {
-        Some((lo, hi)) => {
-            let centre = (lo + hi) * 0.5;
-            let extent = (hi - lo).max_element();
-            if centre.abs().max_element() > extent && centre.is_finite() {
-                centre
-            } else {
-                DVec3::ZERO
-            }
-        }
-        None => DVec3::ZERO,
-    };
+    let fits = positions
+        .iter()
+        .copied()
+        .filter(|p| p.as_vec3().is_finite());
+    let offset = bounds(fits).map_or(DVec3::ZERO, |(lo, hi)| snap(lo, hi));
     let rounded = positions.iter().map(|&p| (p - offset).as_vec3()).collect();
     (rounded, offset)
+}
+
+/// The origin for a bounding box: its centre rounded to the nearest multiple of `G`, the
+/// smallest power of two at least twice the box's largest extent (at least 2⁻²⁰ of the
+/// centre's magnitude, for a box that is a point). So a box within `G/2` of zero keeps
+/// origin zero (a scene near the origin is left exactly as it is), coordinates relative to
+/// the origin stay within about twice the extent, and translating the box by a multiple of
+/// `G` translates the origin by exactly as much. Zero for non-finite input.
+pub fn snap(lo: DVec3, hi: DVec3) -> DVec3 {
+    let centre = (lo + hi) * 0.5;
+    let size = (2.0 * (hi - lo).max_element()).max(centre.abs().max_element() * 2f64.powi(-20));
+    if !centre.is_finite() || !size.is_finite() || size <= 0.0 {
+        return DVec3::ZERO;
+    }
+    let grid = 2f64.powi(size.log2().ceil() as i32);
+    let snapped = (centre / grid).round() * grid;
+    if snapped.is_finite() {
+        snapped
+    } else {
+        DVec3::ZERO
+    }
 }
 
 /// Object-space bounding box of a mesh's positions (`None` when it has none).
@@ -56,16 +71,19 @@ pub fn mesh_bounds(mesh: &crate::components::TriMesh) -> Option<(DVec3, DVec3)> 
 
 /// Bounding box of the finite points, if any.
 fn bounds(points: impl Iterator<Item = DVec3>) -> Option<(DVec3, DVec3)> {
-    points.filter(|p| p.is_finite()).fold(None, |acc, p| match acc {
-        None => Some((p, p)),
-        Some((lo, hi)) => Some((lo.min(p), hi.max(p))),
-    })
+    points
+        .filter(|p| p.is_finite())
+        .fold(None, |acc, p| match acc {
+            None => Some((p, p)),
+            Some((lo, hi)) => Some((lo.min(p), hi.max(p))),
+        })
 }
 
-/// The scene origin: the centre of the world bounds of the placed leaves, snapped to a grid
-/// of 1/256 of their largest extent (a power of two). `object_bounds[o]` is object `o`'s
+/// The scene origin: the centre of the world bounds of the placed leaves, [`snap`]ped.
+/// `object_bounds[o]` is object `o`'s
 /// object-space bounding box, `None` for generated geometry (counted as its origin point).
-/// Zero when there is nothing placed or the bounds are not finite.
+/// Zero when there is nothing placed, the bounds are not finite, or the scene lies near the
+/// origin.
 pub fn scene_origin(leaves: &[Leaf], object_bounds: &[Option<(DVec3, DVec3)>]) -> DVec3 {
     let mut boxes = Vec::with_capacity(leaves.len() * 2);
     for leaf in leaves {
@@ -82,24 +100,7 @@ pub fn scene_origin(leaves: &[Leaf], object_bounds: &[Option<(DVec3, DVec3)>]) -
         boxes.push(wc - wh);
         boxes.push(wc + wh);
     }
-    let Some((lo, hi)) = bounds(boxes.into_iter()) else {
-        return DVec3::ZERO;
-    };
-    let centre = (lo + hi) * 0.5;
-    let extent = (hi - lo).max_element();
-    if !centre.is_finite() || !extent.is_finite() {
-        return DVec3::ZERO;
-    }
-    if extent <= 0.0 {
-        return centre;
-    }
-    let grid = 2f64.powi(extent.log2().floor() as i32 - 8);
-    let snapped = (centre / grid).round() * grid;
-    if snapped.is_finite() {
-        snapped
-    } else {
-        centre
-    }
+    bounds(boxes.into_iter()).map_or(DVec3::ZERO, |(lo, hi)| snap(lo, hi))
 }
 
 /// Rounds every leaf's f64 transform, less `origin`, to its f32 `world_from_object`. Returns
@@ -176,7 +177,11 @@ mod tests {
 
     #[test]
     fn near_meshes_keep_their_object_space() {
-        let p = [DVec3::ZERO, DVec3::new(1.0, 1.0, 1.0), DVec3::new(2.0, 0.0, 0.0)];
+        let p = [
+            DVec3::ZERO,
+            DVec3::new(1.0, 1.0, 1.0),
+            DVec3::new(2.0, 0.0, 0.0),
+        ];
         let (rounded, offset) = centre_positions(&p);
         assert_eq!(offset, DVec3::ZERO);
         assert_eq!(rounded[1], Vec3::ONE);
@@ -185,11 +190,18 @@ mod tests {
     #[test]
     fn far_meshes_are_centred_in_f64() {
         let t = 1e6 + 0.1;
-        let p = [DVec3::splat(t), DVec3::splat(t + 1.0), DVec3::new(t, t + 0.5, t)];
+        let p = [
+            DVec3::splat(t),
+            DVec3::splat(t + 1.0),
+            DVec3::new(t, t + 0.5, t),
+        ];
         let (rounded, offset) = centre_positions(&p);
-        assert_eq!(offset, DVec3::splat(t + 0.5));
-        assert_eq!(rounded[0], Vec3::splat(-0.5));
-        assert_eq!(rounded[2], Vec3::new(-0.5, 0.0, -0.5));
+        assert_eq!(offset, DVec3::splat(1e6));
+        assert_eq!(rounded[0], Vec3::splat(0.1));
+        assert_eq!(
+            rounded[2],
+            Vec3::new((t - 1e6) as f32, (t + 0.5 - 1e6) as f32, 0.1)
+        );
     }
 
     #[test]
@@ -203,11 +215,14 @@ mod tests {
             material: None,
         };
         let b = [Some((DVec3::ZERO, DVec3::new(1.0, 0.75, 1.0)))];
-        let o0 = scene_origin(&[leaf(0.0)], &b);
-        assert_eq!(o0, DVec3::new(0.5, 0.375, 0.5));
+        assert_eq!(scene_origin(&[leaf(0.0)], &b), DVec3::ZERO);
         for t in [1e3, 1e4, 1e5, 1e6] {
-            assert_eq!(scene_origin(&[leaf(t)], &b) - DVec3::splat(t), o0);
+            assert_eq!(scene_origin(&[leaf(t)], &b), DVec3::splat(t));
         }
         assert_eq!(scene_origin(&[], &b), DVec3::ZERO);
+        // A point far away (generated geometry) still moves the origin.
+        let point = [None];
+        assert_eq!(scene_origin(&[leaf(1e6)], &point), DVec3::splat(1e6));
+        assert_eq!(snap(DVec3::NAN, DVec3::ONE), DVec3::ZERO);
     }
 }
