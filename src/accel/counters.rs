@@ -2,16 +2,21 @@
 //! per-stage throughput ledger (`stagelight bench`, `--stats`).
 //!
 //! Each thread adds to its own cache-line-sized slot (threads are dealt slots round-robin
-//! the first time they trace), so counting costs one uncontended atomic add per query, or
-//! per batch for the batch API; a reader sums the slots. Counts never influence what is
-//! traced, so images stay deterministic; the totals themselves are exact whatever the
-//! thread count.
+//! the first time they trace anything), so counting costs a thread-local read and a plain
+//! load and store on a line no other thread writes, per query or per batch of the batch API
+//! (no locked instruction, no sharing); a reader sums the slots. Counts never influence what
+//! is traced, so images stay deterministic.
+//!
+//! The totals are exact as long as no two threads that share a slot trace through the same
+//! accelerator at the same time: threads are numbered in the order they first trace, and
+//! share a slot only when their numbers differ by a multiple of 256 (a pool's workers number
+//! consecutively, so any pool of up to 256 workers counts exactly).
 
 use std::cell::Cell;
 use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
 
-/// Slots per accelerator; threads beyond this share slots (still exact, atomically).
-const SLOTS: usize = 64;
+/// Slots per accelerator (32 KiB); threads numbered this far apart share one.
+const SLOTS: usize = 256;
 
 /// Rays traced through one accelerator.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -69,6 +74,13 @@ fn slot_index() -> usize {
     })
 }
 
+/// Adds `n` to a counter only this thread writes: a plain load and store, not a locked
+/// read-modify-write.
+#[inline]
+fn bump(c: &AtomicU64, n: u64) {
+    c.store(c.load(Ordering::Relaxed).wrapping_add(n), Ordering::Relaxed);
+}
+
 impl Counters {
     /// Zeroed counters.
     pub(crate) fn new() -> Self {
@@ -80,17 +92,13 @@ impl Counters {
     /// Counts `n` closest-hit queries on this thread.
     #[inline]
     pub(crate) fn add_closest(&self, n: u64) {
-        self.slots[slot_index()]
-            .closest
-            .fetch_add(n, Ordering::Relaxed);
+        bump(&self.slots[slot_index()].closest, n);
     }
 
     /// Counts `n` occlusion queries on this thread.
     #[inline]
     pub(crate) fn add_occlusion(&self, n: u64) {
-        self.slots[slot_index()]
-            .occlusion
-            .fetch_add(n, Ordering::Relaxed);
+        bump(&self.slots[slot_index()].occlusion, n);
     }
 
     /// The totals over every thread. Exact once the tracing threads are done (a stage has

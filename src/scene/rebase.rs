@@ -24,7 +24,7 @@
 //! expose absolute positions (the bake `positions` kind) add it back. Directions, distances
 //! (`depth`) and normals are unaffected. Shading sees render-space positions.
 
-use glam::{Affine3A, DAffine3, DVec3, Vec3};
+use glam::{Affine3A, DVec3, Vec3};
 
 use super::dag::Leaf;
 use super::desc::{CameraDesc, LightDesc, LightKindDesc, PlacementDesc, V3};
@@ -174,6 +174,7 @@ pub fn light(desc: &LightDesc, origin: DVec3) -> LightDesc {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use glam::DAffine3;
 
     #[test]
     fn near_meshes_keep_their_object_space() {
