@@ -15,7 +15,7 @@
 use std::cell::Cell;
 use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
 
-/// Slots per accelerator (32 KiB); threads numbered this far apart share one.
+/// Slots per accelerator (32 KiB; a power of two); threads numbered this far apart share one.
 const SLOTS: usize = 256;
 
 /// Rays traced through one accelerator.
@@ -92,13 +92,13 @@ impl Counters {
     /// Counts `n` closest-hit queries on this thread.
     #[inline]
     pub(crate) fn add_closest(&self, n: u64) {
-        bump(&self.slots[slot_index()].closest, n);
+        bump(&self.slots[slot_index() & (SLOTS - 1)].closest, n);
     }
 
     /// Counts `n` occlusion queries on this thread.
     #[inline]
     pub(crate) fn add_occlusion(&self, n: u64) {
-        bump(&self.slots[slot_index()].occlusion, n);
+        bump(&self.slots[slot_index() & (SLOTS - 1)].occlusion, n);
     }
 
     /// The totals over every thread. Exact once the tracing threads are done (a stage has
