@@ -10,7 +10,9 @@ mod mesh;
 mod naming;
 mod transform;
 
-pub use camera::{world_from_look_at, Camera, ImageFormat, OutputSpec, Pass, RenderCamera};
+pub use camera::{
+    world_from_look_at, Camera, ImageFormat, Lens, Lenses, OutputSpec, Pass, RenderCamera,
+};
 pub use light::{Emitter, LightShape};
 pub use material::{Material, MaterialRef, Shader};
 pub use mesh::{Instance, TriMesh};
@@ -24,6 +26,9 @@ pub use bake::{
     UvSource,
 };
 pub use imager::{Imager, ToneMap};
+
+mod volume;
+pub use volume::{Atmosphere, Fog, Interior};
 
 mod approximation;
 mod displacement;

@@ -1,5 +1,5 @@
-//! The shading library: camera rays, pixel filters, light sampling, BSDFs and the radiance
-//! integrators.
+//! The shading library: camera rays and lens shaders, pixel filters, light sampling, BSDFs,
+//! volume shaders and the radiance integrators.
 //!
 //! Stages call into it; it knows nothing about stages or the ECS beyond plain component data.
 
@@ -13,9 +13,11 @@ pub mod lights;
 pub mod microfacet;
 pub mod mis;
 pub mod surface;
+pub mod volume;
 
 pub use bsdf::{Bsdf, BsdfSample};
 pub use camera::CameraRays;
 pub use filter::FilterSampler;
 pub use integrator::{shade_hit, ShadeContext};
 pub use lights::{Light, LightSample, LightSet};
+pub use volume::Volumes;

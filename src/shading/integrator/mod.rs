@@ -25,6 +25,7 @@ use crate::shading::bsdf::Bsdf;
 use crate::shading::frame::ShadingFrame;
 use crate::shading::lights::LightSet;
 use crate::shading::mis::power_heuristic;
+use crate::shading::volume::{shadow_transmittance, Volumes};
 
 /// What shading a hit needs from the scene.
 pub struct ShadeContext<'a> {
@@ -42,6 +43,8 @@ pub struct ShadeContext<'a> {
     pub reflection_depth: u32,
     /// Most refractions per path.
     pub refraction_depth: u32,
+    /// Fog around the camera and inside materials (`None`: vacuum everywhere).
+    pub volumes: Option<&'a Volumes>,
 }
 
 impl<'a> ShadeContext<'a> {
@@ -59,7 +62,14 @@ impl<'a> ShadeContext<'a> {
             max_depth: settings.max_depth,
             reflection_depth: settings.reflection_depth,
             refraction_depth: settings.refraction_depth,
+            volumes: None,
         }
+    }
+
+    /// The same context with the scene's media.
+    pub fn with_volumes(mut self, volumes: Option<&'a Volumes>) -> Self {
+        self.volumes = volumes;
+        self
     }
 }
 
@@ -224,15 +234,30 @@ pub fn light_loop(
             if f == Vec3::ZERO {
                 continue;
             }
-            if ls.shadows && occluded(ctx.geometry, &v.sp, ls.wi, ls.target) {
-                continue;
-            }
+            let fog = match ctx.volumes {
+                // Fog attenuates the shadow ray; fog-filled shells let it through.
+                Some(_) => {
+                    let first = shadow_ray(&v.sp, ls.wi, ls.target);
+                    let target = ls.target.map(|t| t.p);
+                    let atmosphere = ctx.volumes.and_then(|vol| vol.atmosphere.as_ref());
+                    match shadow_transmittance(ctx, first, atmosphere, target, ls.shadows) {
+                        Some(t) => t,
+                        None => continue,
+                    }
+                }
+                None => {
+                    if ls.shadows && occluded(ctx.geometry, &v.sp, ls.wi, ls.target) {
+                        continue;
+                    }
+                    Vec3::ONE
+                }
+            };
             let w = if mis && ls.pdf > 0.0 {
                 power_heuristic(ls.pdf, bsdf.pdf(v.wo, wi))
             } else {
                 1.0
             };
-            sum += f * ls.contribution * (wi.z * w);
+            sum += f * ls.contribution * fog * (wi.z * w);
         }
         radiance += sum / n as f32;
     }
@@ -246,12 +271,16 @@ fn occluded(
     wi: Vec3,
     target: Option<SurfacePoint>,
 ) -> bool {
-    let ray = match target {
+    geometry.accel.occluded(&shadow_ray(sp, wi, target))
+}
+
+/// The shadow ray from `sp` toward a light sample.
+fn shadow_ray(sp: &ShadingPoint, wi: Vec3, target: Option<SurfacePoint>) -> Ray {
+    match target {
         None => spawn_ray(&sp.surface, wi),
         Some(t) if t.ng == Vec3::ZERO => spawn_ray_to(&sp.surface, t.p),
         Some(t) => spawn_ray_to_surface(&sp.surface, &t),
-    };
-    geometry.accel.occluded(&ray)
+    }
 }
 
 /// The closest hit along a ray leaving a surface, and the `Rect` lights it crosses before
