@@ -12,11 +12,11 @@
 use std::time::Instant;
 
 use glam::{Vec3, Vec4};
-use rayon::prelude::*;
 use obvhs::{
     bvh2::reinsertion::ReinsertionOptimizer, cwbvh::bvh2_to_cwbvh::bvh2_to_cwbvh,
     ploc::PlocBuilder, triangle::Triangle, BvhBuildParams,
 };
+use rayon::prelude::*;
 
 use super::triangle::is_degenerate;
 use crate::settings::BvhQuality;
