@@ -281,3 +281,69 @@ fn h05_bake_far_from_origin() {
     }
     let _ = std::fs::remove_dir_all(&frame.bake_dir);
 }
+
+/// OBJ files are read in f64 and re-centred before rounding: a box written at 1e6 in an OBJ
+/// file renders the same image as the box written at the origin.
+#[test]
+fn h05_obj_far_from_origin() {
+    let dir = std::env::temp_dir().join(format!("stagelight-h05-obj-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let render_at = |t: f64| {
+        let corners = [
+            (0., 0., 0.),
+            (1., 0., 0.),
+            (1., 0., 1.),
+            (0., 0., 1.),
+            (0., 1., 1.),
+            (1., 1., 1.),
+        ];
+        let mut obj = String::new();
+        for (x, y, z) in corners {
+            // 0.3 and 1.3 are not representable at 1e6 in f32: an f32 parser would move them.
+            obj.push_str(&format!("v {} {} {}\n", x + 0.3 + t, y + t, z + 0.3 + t));
+        }
+        // Floor (facing +y) and back wall (facing -z).
+        obj.push_str("f 1 4 3 2\nf 4 5 6 3\n");
+        let name = format!("box_{t}.obj");
+        std::fs::write(dir.join(&name), obj).unwrap();
+        let p = |x: f64, y: f64, z: f64| format!("({}, {}, {})", x + t, y + t, z + t);
+        let text = format!(
+            r#"Scene(
+    options: (samples: 4, seed: 3, integrator: Path, max_depth: 2),
+    cameras: [(name: "cam", fov_y: 50.0, resolution: (24, 24),
+        placement: LookAt(eye: {eye}, target: {target}, up: (0, 1, 0)), outputs: [])],
+    lights: [(name: "bulb", kind: Point(position: {bulb}), intensity: 0.5)],
+    materials: [(name: "white", shader: Lambert(albedo: (0.7, 0.7, 0.7)))],
+    objects: [(name: "box", mesh: Obj(file: "{name}"), material: "white")],
+    instances: [(name: "box_1", of: "box")],
+    groups: [(name: "world", members: ["box_1"])],
+    render: (root: "world", camera: "cam"),
+)"#,
+            eye = p(0.5, 0.75, -1.0),
+            target = p(0.5, 0.25, 0.75),
+            bulb = p(0.5, 0.875, 0.25),
+        );
+        let mut scene = stagelight::scene::load_scene_str(&text, &dir.join("obj.ron"))
+            .unwrap_or_else(|e| panic!("{e}"));
+        let mut frame = Frame::new(scene.settings.clone());
+        let stages: Vec<_> = stagelight::systems::STAGES
+            .iter()
+            .copied()
+            .filter(|s| s.name != "write_output")
+            .collect();
+        stagelight::schedule::run_stages(&stages, &mut scene.world, &mut frame).expect("render");
+        frame.image.expect("an image").beauty
+    };
+    let reference = render_at(0.0);
+    assert!(reference.iter().any(|c| c.max_element() > 0.0));
+    for t in [1e5, 1e6] {
+        let img = render_at(t);
+        assert!(img.iter().all(|c| c.is_finite()));
+        assert!(
+            bits(&img) == bits(&reference),
+            "T = {t}: relMSE {:e}",
+            rel_mse(&img, &reference)
+        );
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

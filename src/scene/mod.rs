@@ -77,7 +77,10 @@ pub fn load_scene_str(text: &str, path: &Path) -> Result<LoadedScene, SceneError
 /// the error is the message the loader would report.
 pub fn parse_obj_bytes(bytes: &[u8]) -> Result<crate::components::TriMesh, String> {
     mesh_load::parse_obj(bytes)
-        .map(|built| built.mesh)
+        .map(|mut built| {
+            built.uncentre();
+            built.mesh
+        })
         .map_err(|e| format!("{e:?}"))
 }
 
