@@ -103,6 +103,8 @@ pub struct StageReport {
     pub rays_occlusion: u64,
     /// All rays the stage traced (`rays_closest + rays_occlusion`).
     pub rays: u64,
+    /// Rays per second (0 when the stage traced none).
+    pub rays_per_second: f64,
     /// Rays per second per worker thread (0 when the stage traced none).
     pub rays_per_second_per_thread: f64,
 }
@@ -218,6 +220,7 @@ pub fn run_stages(
                 rays_closest: 0,
                 rays_occlusion: 0,
                 rays: 0,
+                rays_per_second: 0.0,
                 rays_per_second_per_thread: 0.0,
             });
             continue;
@@ -228,6 +231,11 @@ pub fn run_stages(
         let seconds = t0.elapsed().as_secs_f64();
         let rays = ray_counts(frame).since(rays_before);
         let threads = frame.report.threads.max(1) as f64;
+        let ray_rate = if seconds > 0.0 {
+            rays.total() as f64 / seconds
+        } else {
+            0.0
+        };
         let rate = if seconds > 0.0 {
             work.items as f64 / seconds
         } else {
@@ -245,11 +253,8 @@ pub fn run_stages(
             rays_closest: rays.closest,
             rays_occlusion: rays.occlusion,
             rays: rays.total(),
-            rays_per_second_per_thread: if seconds > 0.0 {
-                rays.total() as f64 / seconds / threads
-            } else {
-                0.0
-            },
+            rays_per_second: ray_rate,
+            rays_per_second_per_thread: ray_rate / threads,
         });
     }
     frame.report.total_seconds = start.elapsed().as_secs_f64();
