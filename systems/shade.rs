@@ -2,7 +2,8 @@
 //! from the chosen integrator (direct lighting with traced mirror/refraction rays, or the
 //! reference path tracer), pixel filter, and the centre-sample passes (depth, normal).
 //!
-//! **Reads:** the `Camera` with `RenderCamera`; `Emitter` entities; `frame.geometry` (absent
+//! **Reads:** the `Camera` with `RenderCamera` (and its `Imager`'s background, which hides the
+//! environment from camera rays); `Emitter` entities; the `Environment`; `frame.geometry` (absent
 //! means an empty scene: every ray misses); `settings` (spp, filter, seed, face, integrator,
 //! trace depths).
 //! **Writes:** `frame.image`.
@@ -18,11 +19,12 @@ use rayon::prelude::*;
 
 use super::prelude::*;
 use crate::accumulate::SampleMean;
-use crate::components::{Camera, Emitter, RenderCamera};
+use crate::components::{Camera, Emitter, Environment, Imager, RenderCamera};
 use crate::framebuffer::FrameBuffers;
 use crate::progress::Progress;
 use crate::sampling::{fold_seed, Sampler};
-use crate::shading::{shade_hit, CameraRays, FilterSampler, LightSet, ShadeContext};
+use crate::shading::integrator::shade_camera_ray;
+use crate::shading::{CameraRays, FilterSampler, LightSet, ShadeContext};
 
 /// Run condition: a render camera exists.
 pub fn should_run(world: &World, frame: &Frame) -> Decision {
@@ -39,12 +41,13 @@ pub fn should_run(world: &World, frame: &Frame) -> Decision {
 
 /// Renders `frame.image`.
 pub fn run(world: &mut World, frame: &mut Frame) -> Result<Work, StageError> {
-    let camera = world
-        .query::<(&Camera, &RenderCamera)>()
+    let (camera, background) = world
+        .query::<(&Camera, &RenderCamera, Option<&Imager>)>()
         .iter()
         .next()
-        .map(|(c, _)| c.clone())
+        .map(|(c, _, i)| (c.clone(), i.and_then(|i| i.background)))
         .ok_or_else(|| StageError::Invalid("no render camera".into()))?;
+    let environment = world.query::<&Environment>().iter().next().cloned();
     let mut emitters: Vec<(Entity, Emitter)> = world
         .query::<(Entity, &Emitter)>()
         .iter()
@@ -55,7 +58,9 @@ pub fn run(world: &mut World, frame: &mut Frame) -> Result<Work, StageError> {
 
     let settings = frame.settings.clone();
     let geometry = frame.geometry.as_ref();
-    let lights = LightSet::new(&emitters, geometry, frame.settings.light_samples);
+    let mut lights = LightSet::new(&emitters, geometry, frame.settings.light_samples)
+        .with_environment(environment.as_ref());
+    lights.camera_sees_environment = background.is_none();
     let rays = CameraRays::new(&camera);
     let filter = FilterSampler::new(settings.filter);
     let seed = fold_seed(settings.seed);
@@ -174,11 +179,8 @@ fn shade_pixel(
         let mut sampler = Sampler::for_item(seed, pixel, s);
         let film = centre + filter.sample(sampler.next_2d());
         let ray = rays.ray(film.x, film.y);
-        let Some(hit) = ctx.geometry.accel.intersect(&ray) else {
-            continue;
-        };
-        covered += 1;
-        let radiance = shade_hit(ctx, &ray, &hit, &mut sampler);
+        let (radiance, hit) = shade_camera_ray(ctx, &ray, &mut sampler);
+        covered += u32::from(hit);
         if radiance.is_finite() {
             sum.add(radiance);
         } else {

@@ -19,9 +19,11 @@ pub(crate) mod dag;
 pub mod desc;
 pub mod desc_geometry;
 pub(crate) mod diagnostics;
+pub(crate) mod environment;
 pub(crate) mod geometry;
 pub(crate) mod imager;
 pub(crate) mod include;
+pub(crate) mod lights;
 pub(crate) mod mesh_load;
 pub(crate) mod names;
 pub(crate) mod shaders;
@@ -100,6 +102,7 @@ fn load(path: &Path, text: Option<&str>) -> Result<LoadedScene, SceneErrors> {
         .iter()
         .map(|l| validate::light(src, l))
         .collect();
+    let environment = environment::environment(src, &scenes);
     let materials: Vec<_> = merged
         .materials
         .iter()
@@ -170,7 +173,10 @@ fn load(path: &Path, text: Option<&str>) -> Result<LoadedScene, SceneErrors> {
         leaves,
         bakes,
     };
-    let world = spawn::spawn(&sources, &merged, parts);
+    let mut world = spawn::spawn(&sources, &merged, parts);
+    if let Some(env) = environment {
+        world.spawn((crate::components::Name("environment".into()), env));
+    }
     Ok(LoadedScene {
         world,
         settings,

@@ -2,21 +2,24 @@
 //!
 //! [`direct`] is the fast default (direct lighting plus traced mirror/refraction branches);
 //! [`path`] is the unbiased reference path tracer. Both share the helpers here: turning a
-//! hit into a shading [`Vertex`], the light loop with shadow rays, rays crossing `Rect`
-//! lights, and absorption inside dielectrics.
+//! hit into a shading [`Vertex`], the light loop with (tinted) shadow rays, rays crossing
+//! area lights or leaving for the environment, and absorption inside dielectrics.
 //!
 //! Trace depths: the vertex reached by the camera ray has depth 1. A vertex of depth `k`
 //! adds its emission; if `k ≤ max_depth` it also gathers light (paths of `k + 1` segments)
 //! and continues. Glossy/mirror reflections count against `reflection_depth`, refractions
 //! and transparency against `refraction_depth`; a branch beyond its budget is not traced.
-//! `Rect` lights are not seen by camera rays; every other ray sees their front face.
+//! Area lights are seen by camera rays and perfect mirror/refraction rays only when they are
+//! `visible`; BSDF-sampled path-tracer rays see every area light's front face (MIS). A ray
+//! beyond a reflection/refraction budget sees the environment or black, as the scene's
+//! environment says (`depth_exceeded`).
 
 pub mod direct;
 pub mod path;
 
 use glam::Vec3;
 
-use crate::accel::{spawn_ray, spawn_ray_to, spawn_ray_to_surface, Hit, Ray, SurfacePoint};
+use crate::accel::{spawn_ray, Hit, Ray};
 use crate::components::{Material, Shader};
 use crate::geometry::{SceneGeometry, ShadingPoint};
 use crate::sampling::Sampler;
@@ -25,6 +28,7 @@ use crate::shading::bsdf::Bsdf;
 use crate::shading::frame::ShadingFrame;
 use crate::shading::lights::LightSet;
 use crate::shading::mis::power_heuristic;
+use crate::shading::shadow::transmittance;
 
 /// What shading a hit needs from the scene.
 pub struct ShadeContext<'a> {
@@ -192,7 +196,8 @@ impl<'a> Vertex<'a> {
 
 /// Light gathered at `v` by sampling every light: `samples_per_light` samples each (`None`:
 /// the light's own count, with child sequences of `sampler`; `Some(1)`: one sample each from
-/// `sampler`'s next dimensions and MIS-weighted against BSDF sampling).
+/// `sampler`'s next dimensions and MIS-weighted against BSDF sampling). Shadow rays pass
+/// transmissive surfaces with their shadow tint (see [`crate::shading::shadow`]).
 pub fn light_loop(
     ctx: &ShadeContext<'_>,
     v: &Vertex<'_>,
@@ -224,7 +229,18 @@ pub fn light_loop(
             if f == Vec3::ZERO {
                 continue;
             }
-            if ls.shadows && occluded(ctx.geometry, &v.sp, ls.wi, ls.target) {
+            let shadow = if ls.shadows {
+                transmittance(
+                    ctx.geometry,
+                    &v.sp.surface,
+                    ls.wi,
+                    ls.target,
+                    ctx.lights.transmissive_shadows,
+                )
+            } else {
+                Vec3::ONE
+            };
+            if shadow == Vec3::ZERO {
                 continue;
             }
             let w = if mis && ls.pdf > 0.0 {
@@ -232,31 +248,23 @@ pub fn light_loop(
             } else {
                 1.0
             };
-            sum += f * ls.contribution * (wi.z * w);
+            sum += f * ls.contribution * shadow * (wi.z * w);
         }
         radiance += sum / n as f32;
     }
     radiance
 }
 
-/// Whether the shadow ray from `sp` toward a light sample is blocked.
-fn occluded(
-    geometry: &SceneGeometry,
-    sp: &ShadingPoint,
-    wi: Vec3,
-    target: Option<SurfacePoint>,
-) -> bool {
-    let ray = match target {
-        None => spawn_ray(&sp.surface, wi),
-        Some(t) if t.ng == Vec3::ZERO => spawn_ray_to(&sp.surface, t.p),
-        Some(t) => spawn_ray_to_surface(&sp.surface, &t),
-    };
-    geometry.accel.occluded(&ray)
-}
-
-/// The closest hit along a ray leaving a surface, and the `Rect` lights it crosses before
-/// that hit: `(radiance, pdf)` of each (at most the number of lights).
-pub fn trace(ctx: &ShadeContext<'_>, ray: &Ray) -> (Option<Hit>, Vec3, Vec<(Vec3, f32)>) {
+/// The closest hit along a ray, and the emitters it meets before that hit: the area lights it
+/// crosses and, when it hits nothing, the environment — `(radiance, light pdf)` of each, the
+/// pdf being the solid-angle density of that light's own sampler (0 if it is not sampled).
+/// `delta`: a camera ray or a perfect mirror/refraction ray, which sees only `visible` area
+/// lights (BSDF-sampled rays see every area light, so that MIS stays unbiased).
+pub fn trace(
+    ctx: &ShadeContext<'_>,
+    ray: &Ray,
+    delta: bool,
+) -> (Option<Hit>, Vec3, Vec<(Vec3, f32)>) {
     let hit = ctx.geometry.accel.intersect(ray);
     let mut clipped = *ray;
     if let Some(h) = &hit {
@@ -265,10 +273,55 @@ pub fn trace(ctx: &ShadeContext<'_>, ray: &Ray) -> (Option<Hit>, Vec3, Vec<(Vec3
     let mut direct = Vec3::ZERO;
     let mut crossed = Vec::new();
     for light in &ctx.lights.lights {
-        if let Some((_, radiance, pdf)) = light.hit(&clipped) {
+        if let Some((_, radiance, pdf)) = light.hit(&clipped, delta) {
             direct += radiance;
             crossed.push((radiance, pdf));
         }
     }
+    if hit.is_none() {
+        if let Some((le, pdf)) = ctx.lights.environment_along(ray.dir) {
+            direct += le;
+            crossed.push((le, pdf));
+        }
+    }
     (hit, direct, crossed)
+}
+
+/// Radiance a ray that is not traced because it exceeds a trace-depth budget brings back:
+/// the environment along it when the scene says so (with its light pdf), else nothing.
+pub fn depth_exceeded(ctx: &ShadeContext<'_>, dir: Vec3) -> Option<(Vec3, f32)> {
+    if ctx.lights.depth_exceeded_sees_environment() {
+        ctx.lights.environment_along(dir)
+    } else {
+        None
+    }
+}
+
+/// What one camera ray sees: radiance, and whether it met something (geometry or a visible
+/// area light: coverage for the alpha pass). Rays that miss see the environment unless
+/// [`LightSet::camera_sees_environment`] is off (a camera imager's background replaces it).
+pub fn shade_camera_ray(ctx: &ShadeContext<'_>, ray: &Ray, sampler: &mut Sampler) -> (Vec3, bool) {
+    let hit = ctx.geometry.accel.intersect(ray);
+    let mut clipped = *ray;
+    if let Some(h) = &hit {
+        clipped.t_max = h.t;
+    }
+    let mut radiance = Vec3::ZERO;
+    let mut covered = hit.is_some();
+    for light in &ctx.lights.lights {
+        if let Some((_, le, _)) = light.hit(&clipped, true) {
+            radiance += le;
+            covered = true;
+        }
+    }
+    match hit {
+        Some(h) => radiance += shade_hit(ctx, ray, &h, sampler),
+        None if ctx.lights.camera_sees_environment && !covered => {
+            if let Some((le, _)) = ctx.lights.environment_along(ray.dir) {
+                radiance += le;
+            }
+        }
+        None => {}
+    }
+    (radiance, covered)
 }
