@@ -38,6 +38,7 @@ use std::sync::Arc;
 use glam::DAffine3;
 
 pub use diagnostics::{Diagnostic, SceneErrors};
+pub use environment::read_exr as read_lat_long;
 
 use crate::settings::RenderSettings;
 use desc::MeshDesc;

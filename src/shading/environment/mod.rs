@@ -176,15 +176,16 @@ impl EnvLight {
                 if distribution.integral() <= 0.0 {
                     return None;
                 }
-                let (uv, pdf_uv) = distribution.sample(u);
-                let sin_t = (PI * uv.y).sin();
-                if !(pdf_uv > 0.0 && sin_t > 0.0) {
-                    return None;
-                }
+                let (uv, _) = distribution.sample(u);
                 let d = Self::to_world(*rotation, uv_to_direction(uv));
-                (d, pdf_uv / (2.0 * PI * PI * sin_t))
+                // Radiance and pdf both from the direction, so that they always describe the
+                // same texel (the sampler keeps clear of texel edges, see `Distribution1D`).
+                (d, self.pdf(d))
             }
         };
+        if pdf.is_nan() || pdf <= 0.0 {
+            return None;
+        }
         let le = self.radiance(wi);
         let contribution = le / pdf;
         (pdf.is_finite() && contribution.is_finite() && le.max_element() > 0.0).then_some(
