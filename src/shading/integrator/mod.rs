@@ -258,8 +258,11 @@ pub fn light_loop(
 /// The closest hit along a ray, and the emitters it meets before that hit: the area lights it
 /// crosses and, when it hits nothing, the environment — `(radiance, light pdf)` of each, the
 /// pdf being the solid-angle density of that light's own sampler (0 if it is not sampled).
-/// `delta`: a camera ray or a perfect mirror/refraction ray, which sees only `visible` area
-/// lights (BSDF-sampled rays see every area light, so that MIS stays unbiased).
+///
+/// `delta`: a camera ray or a perfect mirror/refraction ray. Those see only `visible` area
+/// lights, and a visible light is opaque to them: the nearest one in front of the hit ends
+/// the ray (no hit is returned). BSDF-sampled rays see every area light's front face
+/// additively and go on (lights never block light, and MIS needs every light reachable).
 pub fn trace(
     ctx: &ShadeContext<'_>,
     ray: &Ray,
@@ -270,12 +273,25 @@ pub fn trace(
     if let Some(h) = &hit {
         clipped.t_max = h.t;
     }
+    if delta {
+        let nearest = ctx
+            .lights
+            .lights
+            .iter()
+            .filter_map(|l| l.hit(&clipped, true))
+            .min_by(|a, b| a.0.total_cmp(&b.0));
+        if let Some((_, le, pdf)) = nearest {
+            return (None, le, vec![(le, pdf)]);
+        }
+    }
     let mut direct = Vec3::ZERO;
     let mut crossed = Vec::new();
-    for light in &ctx.lights.lights {
-        if let Some((_, radiance, pdf)) = light.hit(&clipped, delta) {
-            direct += radiance;
-            crossed.push((radiance, pdf));
+    if !delta {
+        for light in &ctx.lights.lights {
+            if let Some((_, radiance, pdf)) = light.hit(&clipped, false) {
+                direct += radiance;
+                crossed.push((radiance, pdf));
+            }
         }
     }
     if hit.is_none() {
@@ -306,22 +322,21 @@ pub fn shade_camera_ray(ctx: &ShadeContext<'_>, ray: &Ray, sampler: &mut Sampler
     if let Some(h) = &hit {
         clipped.t_max = h.t;
     }
-    let mut radiance = Vec3::ZERO;
-    let mut covered = hit.is_some();
-    for light in &ctx.lights.lights {
-        if let Some((_, le, _)) = light.hit(&clipped, true) {
-            radiance += le;
-            covered = true;
-        }
+    let nearest_light = ctx
+        .lights
+        .lights
+        .iter()
+        .filter_map(|l| l.hit(&clipped, true))
+        .min_by(|a, b| a.0.total_cmp(&b.0));
+    match (nearest_light, hit) {
+        (Some((_, le, _)), _) => (le, true),
+        (None, Some(h)) => (shade_hit(ctx, ray, &h, sampler), true),
+        (None, None) if ctx.lights.camera_sees_environment => (
+            ctx.lights
+                .environment_along(ray.dir)
+                .map_or(Vec3::ZERO, |(le, _)| le),
+            false,
+        ),
+        (None, None) => (Vec3::ZERO, false),
     }
-    match hit {
-        Some(h) => radiance += shade_hit(ctx, ray, &h, sampler),
-        None if ctx.lights.camera_sees_environment && !covered => {
-            if let Some((le, _)) = ctx.lights.environment_along(ray.dir) {
-                radiance += le;
-            }
-        }
-        None => {}
-    }
-    (radiance, covered)
 }
