@@ -62,8 +62,8 @@ pub fn environment(src: &mut Sources, scenes: &[Option<SceneDesc>]) -> Option<En
                         at,
                         format!("cannot use EXR file \"{}\": {reason}", path.display()),
                         Some(
-                            "a lat-long environment is an RGB(A) OpenEXR image, 2:1, relative \
-                             to this scene file"
+                            "a lat-long environment is an RGB(A) OpenEXR image; the path is \
+                             relative to this scene file"
                                 .into(),
                         ),
                     );

@@ -90,14 +90,14 @@ pub fn attenuation(ck: &mut Checker<'_>, item: &Item<'_, LightDesc>) -> Option<O
     }
     let ok_s = ck.finite(&format!("{path}[0]"), "attenuation start", start);
     let ok_e = ck.finite(&format!("{path}[1]"), "attenuation end", end);
-    if !(ok_s && ok_e) {
-        return None;
-    }
-    if start < 0.0 {
+    if ok_s && start < 0.0 {
         ck.error(
             &format!("{path}[0]"),
             format!("attenuation start must not be negative, found {start}"),
         );
+        return None;
+    }
+    if !(ok_s && ok_e) {
         return None;
     }
     if end <= start {
