@@ -523,3 +523,35 @@ fn h18_disc_and_sphere_from_near_to_far() {
         .sample(Vec3::new(0.1, 0.0, 0.0), Vec2::splat(0.3), None)
         .is_none());
 }
+
+/// Near/far attenuation from a scene: a spot light 4 above a plane with `attenuation:
+/// (2, 6)` gives the plane point below it `I/16 · (6 − 4)/(6 − 2)`: half the physical value.
+#[test]
+fn spot_attenuation_halves_light_midway_through_the_ramp() {
+    let text = r#"Scene(
+    options: (samples: 4, max_depth: 1),
+    cameras: [(name: "cam", fov_y: 0.5, resolution: (2, 2),
+        placement: LookAt(eye: (3, 0, 1), target: (0, 0, 0), up: (0, 0, 1)))],
+    lights: [(name: "spot", kind: Spot(position: (0, 0, 4), target: (0, 0, 0), cone_angle: 40),
+              intensity: 16, attenuation: (2, 6))],
+    materials: [(name: "m", shader: Lambert(albedo: (0.5, 0.5, 0.5)))],
+    objects: [(name: "floor", mesh: Inline(vertices: [(-5, -5, 0), (5, -5, 0), (5, 5, 0), (-5, 5, 0)],
+               polygons: [[0, 1, 2, 3]]), material: "m")],
+    instances: [(name: "f", of: "floor")],
+    groups: [(name: "world", members: ["f"])],
+    render: (root: "world", camera: "cam"),
+)"#;
+    let mut scene =
+        stagelight::scene::load_scene_str(text, std::path::Path::new("att.ron")).unwrap();
+    let mut frame = stagelight::frame::Frame::new(scene.settings.clone());
+    let stages: Vec<_> = stagelight::systems::STAGES
+        .iter()
+        .copied()
+        .filter(|s| s.name != "write_output")
+        .collect();
+    stagelight::schedule::run_stages(&stages, &mut scene.world, &mut frame).unwrap();
+    let image = frame.image.unwrap().beauty;
+    let got = mean_red(&image);
+    let want = 0.5 / PI * 16.0 / 16.0 * 0.5;
+    assert!(rel(got, want) < 1e-3, "{got} vs {want}");
+}
