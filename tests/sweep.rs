@@ -194,3 +194,43 @@ fn integrator_flag_applies_to_the_swept_runs() {
     let (path, direct) = (bias("path"), bias("direct"));
     assert!(direct > 10.0 * path, "bias² path {path}, direct {direct}");
 }
+
+/// `--knob adaptive_contrast`: refused on a scene with a fixed sample count; on a scene with
+/// `samples: (min, max, contrast)` lower contrast buys lower error.
+#[test]
+fn adaptive_contrast_sweep_needs_adaptive_samples_and_error_falls() {
+    let (dir, scene) = setup("adaptive");
+    let o = run(bin()
+        .arg("sweep")
+        .arg(&scene)
+        .args(["--knob", "adaptive_contrast=0.2,0.05"])
+        .arg("--out")
+        .arg(dir.join("o")));
+    assert_eq!(o.status.code(), Some(1));
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        stderr.contains("knob adaptive_contrast is not in this scene"),
+        "{stderr}"
+    );
+    let adaptive = dir.join("adaptive.ron");
+    std::fs::write(
+        &adaptive,
+        SCENE.replace("samples: 1),", "samples: (min: 2, max: 64)),"),
+    )
+    .unwrap();
+    let out = dir.join("adaptive_out");
+    let o = run(bin()
+        .arg("sweep")
+        .arg(&adaptive)
+        .args([
+            "--knob",
+            "adaptive_contrast=0.5,0.01",
+            "--reference-spp",
+            "256",
+        ])
+        .arg("--out")
+        .arg(&out));
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let rel = rel_mse_column(&std::fs::read_to_string(out.join("sweep.csv")).unwrap());
+    assert!(rel[0] > rel[1], "{rel:?}");
+}

@@ -10,7 +10,9 @@ mod mesh;
 mod naming;
 mod transform;
 
-pub use camera::{world_from_look_at, Camera, ImageFormat, OutputSpec, Pass, RenderCamera};
+pub use camera::{
+    world_from_look_at, Camera, ImageFormat, Lens, Lenses, OutputSpec, Pass, RenderCamera,
+};
 pub use light::{attenuation_factor, Emitter, LightShape};
 pub use material::{Material, MaterialRef, Shader};
 pub use mesh::{Instance, TriMesh};
@@ -26,6 +28,9 @@ pub use bake::{
 };
 pub use environment::{DepthExceeded, Environment, EnvironmentSource, LatLongMap};
 pub use imager::{Imager, ToneMap};
+
+mod volume;
+pub use volume::{Atmosphere, Fog, Interior};
 
 mod approximation;
 mod displacement;

@@ -5,6 +5,7 @@
 
 use serde::Deserialize;
 
+pub use super::desc_camera::{LensDesc, SamplesDesc, VolumeDesc};
 pub use super::desc_geometry::{
     ApproximationDesc, AxisDesc, BasisDesc, DisplacementDesc, DisplacementModeDesc, MeshDesc,
     ScalarDesc, SpaceDesc,
@@ -46,8 +47,8 @@ pub struct SceneDesc {
 #[derive(Debug, Clone, Deserialize)]
 #[serde(rename = "Options", deny_unknown_fields, default)]
 pub struct OptionsDesc {
-    /// Samples per pixel, default 4, at least 1.
-    pub samples: u32,
+    /// Samples per pixel, default 4, at least 1; or adaptive `(min, max, contrast)`.
+    pub samples: SamplesDesc,
     /// Pixel filter, default `Box`.
     pub filter: FilterDesc,
     /// Random seed, default 0.
@@ -71,7 +72,7 @@ pub struct OptionsDesc {
 impl Default for OptionsDesc {
     fn default() -> Self {
         Self {
-            samples: 4,
+            samples: SamplesDesc::Fixed(4),
             filter: FilterDesc::Box,
             seed: 0,
             max_depth: 4,
@@ -163,6 +164,12 @@ pub struct CameraDesc {
     /// Output shader for PNG outputs (background, exposure, tone map, gamma), default none.
     #[serde(default)]
     pub imager: Option<ImagerDesc>,
+    /// Lens shaders applied in order after the pinhole, default none.
+    #[serde(default)]
+    pub lens: Vec<LensDesc>,
+    /// Volume shader filling the scene around the camera, default none.
+    #[serde(default)]
+    pub atmosphere: Option<VolumeDesc>,
 }
 
 /// `imager: (...)` on a camera: RenderMan `Exposure gain gamma` and `Imager "background"`.
@@ -439,6 +446,9 @@ pub struct MaterialDesc {
     /// Emitted radiance, W/(sr·m²), default `(0, 0, 0)`.
     #[serde(default)]
     pub emission: V3,
+    /// Volume shader filling the inside of closed meshes with this material, default none.
+    #[serde(default)]
+    pub interior: Option<VolumeDesc>,
 }
 
 /// Surface shader.

@@ -17,20 +17,24 @@
 pub(crate) mod bake;
 pub(crate) mod dag;
 pub mod desc;
+pub mod desc_camera;
 pub mod desc_geometry;
 pub(crate) mod diagnostics;
 pub(crate) mod environment;
 pub(crate) mod geometry;
 pub(crate) mod imager;
 pub(crate) mod include;
+pub(crate) mod lens;
 pub(crate) mod lights;
 pub(crate) mod mesh_load;
 pub(crate) mod names;
+pub(crate) mod samples;
 pub(crate) mod shaders;
 pub(crate) mod spans;
 pub(crate) mod spawn;
 pub(crate) mod suggest;
 pub(crate) mod validate;
+pub(crate) mod volume;
 
 use std::path::Path;
 use std::sync::Arc;
@@ -98,6 +102,21 @@ fn load(path: &Path, text: Option<&str>) -> Result<LoadedScene, SceneErrors> {
         .iter()
         .map(|c| imager::imager(src, c))
         .collect();
+    let lenses: Vec<_> = merged
+        .cameras
+        .iter()
+        .map(|c| lens::lenses(src, c))
+        .collect();
+    let atmospheres: Vec<_> = merged
+        .cameras
+        .iter()
+        .map(|c| volume::atmosphere(src, c))
+        .collect();
+    let interiors: Vec<_> = merged
+        .materials
+        .iter()
+        .map(|m| volume::interior(src, m))
+        .collect();
     let lights: Vec<_> = merged
         .lights
         .iter()
@@ -163,6 +182,9 @@ fn load(path: &Path, text: Option<&str>) -> Result<LoadedScene, SceneErrors> {
     let parts = spawn::Parts {
         cameras,
         imagers,
+        lenses,
+        atmospheres,
+        interiors,
         render_camera: resolved.camera,
         lights,
         materials,

@@ -235,9 +235,7 @@ pub fn settings(src: &mut Sources, options: Option<&Item<'_, OptionsDesc>>) -> R
         src,
         file: item.file,
     };
-    if o.samples == 0 {
-        ck.error(&item.at(".samples"), "samples must be at least 1, found 0");
-    }
+    let (spp, adaptive) = super::samples::samples(&mut ck, &item.at(".samples"), o.samples);
     let integrator = match o.integrator {
         IntegratorDesc::Direct => Integrator::Direct,
         IntegratorDesc::Path => Integrator::Path,
@@ -270,7 +268,8 @@ pub fn settings(src: &mut Sources, options: Option<&Item<'_, OptionsDesc>>) -> R
         }
     };
     RenderSettings {
-        spp: o.samples,
+        spp,
+        adaptive,
         filter,
         seed: o.seed,
         max_depth: o.max_depth,

@@ -2,7 +2,8 @@
 //! light with shadow rays (each light's own sample count), and every delta branch (mirror,
 //! both branches of glass, transparency) traced recursively within the trace depths; rays
 //! that leave the scene see the environment (and visible area lights they cross).
-//! Glossy and diffuse interreflection are not computed (the path tracer does that).
+//! Glossy and diffuse interreflection are not computed (the path tracer does that). Traced
+//! segments cross the scene's fog (`shading::volume`): attenuation and single scattering.
 
 use glam::Vec3;
 
@@ -10,6 +11,7 @@ use super::{depth_exceeded, light_loop, trace, Depth, ShadeContext, Vertex};
 use crate::accel::{Hit, Ray};
 use crate::sampling::Sampler;
 use crate::shading::surface::unlit_radiance;
+use crate::shading::volume;
 
 /// Radiance toward the origin of `ray`, which hits the scene at `hit` (a camera ray).
 pub fn radiance(ctx: &ShadeContext<'_>, ray: &Ray, hit: &Hit, sampler: &mut Sampler) -> Vec3 {
@@ -55,6 +57,7 @@ fn vertex_radiance(
         let mut incoming = lights;
         if let Some(h) = hit {
             incoming += vertex_radiance(ctx, &ray, &h, sampler, next);
+            incoming = volume::through_segment(ctx, &ray, &h, incoming, sampler);
         }
         radiance += branch.weight * incoming;
     }

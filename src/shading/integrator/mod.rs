@@ -19,7 +19,7 @@ pub mod path;
 
 use glam::Vec3;
 
-use crate::accel::{spawn_ray, Hit, Ray};
+use crate::accel::{spawn_ray, spawn_ray_to, spawn_ray_to_surface, Hit, Ray, SurfacePoint};
 use crate::components::{Material, Shader};
 use crate::geometry::{SceneGeometry, ShadingPoint};
 use crate::sampling::Sampler;
@@ -29,6 +29,7 @@ use crate::shading::frame::ShadingFrame;
 use crate::shading::lights::LightSet;
 use crate::shading::mis::power_heuristic;
 use crate::shading::shadow::transmittance;
+use crate::shading::volume::{shadow_transmittance, Volumes};
 
 /// What shading a hit needs from the scene.
 pub struct ShadeContext<'a> {
@@ -46,6 +47,8 @@ pub struct ShadeContext<'a> {
     pub reflection_depth: u32,
     /// Most refractions per path.
     pub refraction_depth: u32,
+    /// Fog around the camera and inside materials (`None`: vacuum everywhere).
+    pub volumes: Option<&'a Volumes>,
 }
 
 impl<'a> ShadeContext<'a> {
@@ -63,7 +66,14 @@ impl<'a> ShadeContext<'a> {
             max_depth: settings.max_depth,
             reflection_depth: settings.reflection_depth,
             refraction_depth: settings.refraction_depth,
+            volumes: None,
         }
+    }
+
+    /// The same context with the scene's media.
+    pub fn with_volumes(mut self, volumes: Option<&'a Volumes>) -> Self {
+        self.volumes = volumes;
+        self
     }
 }
 
@@ -229,16 +239,26 @@ pub fn light_loop(
             if f == Vec3::ZERO {
                 continue;
             }
-            let shadow = if ls.shadows {
-                transmittance(
+            let shadow = match ctx.volumes {
+                // Fog attenuates the shadow ray; fog-filled shells and transparent surfaces
+                // let it through.
+                Some(_) => {
+                    let first = shadow_ray(&v.sp, ls.wi, ls.target);
+                    let target = ls.target.map(|t| t.p);
+                    let atmosphere = ctx.volumes.and_then(|vol| vol.atmosphere.as_ref());
+                    match shadow_transmittance(ctx, first, atmosphere, target, ls.shadows) {
+                        Some(t) => t,
+                        None => continue,
+                    }
+                }
+                None if ls.shadows => transmittance(
                     ctx.geometry,
                     &v.sp.surface,
                     ls.wi,
                     ls.target,
                     ctx.lights.transmissive_shadows,
-                )
-            } else {
-                Vec3::ONE
+                ),
+                None => Vec3::ONE,
             };
             if shadow == Vec3::ZERO {
                 continue;
@@ -253,6 +273,15 @@ pub fn light_loop(
         radiance += sum / n as f32;
     }
     radiance
+}
+
+/// The shadow ray from `sp` toward a light sample.
+fn shadow_ray(sp: &ShadingPoint, wi: Vec3, target: Option<SurfacePoint>) -> Ray {
+    match target {
+        None => spawn_ray(&sp.surface, wi),
+        Some(t) if t.ng == Vec3::ZERO => spawn_ray_to(&sp.surface, t.p),
+        Some(t) => spawn_ray_to_surface(&sp.surface, &t),
+    }
 }
 
 /// The closest hit along a ray, and the emitters it meets before that hit: the area lights it
@@ -313,10 +342,21 @@ pub fn depth_exceeded(ctx: &ShadeContext<'_>, dir: Vec3) -> Option<(Vec3, f32)> 
     }
 }
 
-/// What one camera ray sees: radiance, and whether it met something (geometry or a visible
-/// area light: coverage for the alpha pass). Rays that miss see the environment unless
-/// [`LightSet::camera_sees_environment`] is off (a camera imager's background replaces it).
-pub fn shade_camera_ray(ctx: &ShadeContext<'_>, ray: &Ray, sampler: &mut Sampler) -> (Vec3, bool) {
+/// What a camera ray meets first.
+#[derive(Debug, Clone, Copy)]
+pub enum CameraHit {
+    /// A surface, to be shaded.
+    Surface(Hit),
+    /// A visible area light in front of every surface: its radiance (covers the pixel).
+    Light(Vec3),
+    /// Nothing: the environment's radiance along the ray (black when there is none, or when
+    /// [`LightSet::camera_sees_environment`] is off because a camera imager's background
+    /// replaces it). Does not cover the pixel (alpha 0).
+    Miss(Vec3),
+}
+
+/// What the camera ray `ray` meets first (see [`CameraHit`]).
+pub fn camera_hit(ctx: &ShadeContext<'_>, ray: &Ray) -> CameraHit {
     let hit = ctx.geometry.accel.intersect(ray);
     let mut clipped = *ray;
     if let Some(h) = &hit {
@@ -329,14 +369,13 @@ pub fn shade_camera_ray(ctx: &ShadeContext<'_>, ray: &Ray, sampler: &mut Sampler
         .filter_map(|l| l.hit(&clipped, true))
         .min_by(|a, b| a.0.total_cmp(&b.0));
     match (nearest_light, hit) {
-        (Some((_, le, _)), _) => (le, true),
-        (None, Some(h)) => (shade_hit(ctx, ray, &h, sampler), true),
-        (None, None) if ctx.lights.camera_sees_environment => (
+        (Some((_, le, _)), _) => CameraHit::Light(le),
+        (None, Some(h)) => CameraHit::Surface(h),
+        (None, None) if ctx.lights.camera_sees_environment => CameraHit::Miss(
             ctx.lights
                 .environment_along(ray.dir)
                 .map_or(Vec3::ZERO, |(le, _)| le),
-            false,
         ),
-        (None, None) => (Vec3::ZERO, false),
+        (None, None) => CameraHit::Miss(Vec3::ZERO),
     }
 }

@@ -5,7 +5,9 @@
 //! vertex on (survival probability = largest channel of the throughput, at most 0.95) keeps
 //! long paths unbiased. Rays leaving the scene see the environment (black without one); a
 //! bounce beyond a reflection/refraction budget sees what the environment's
-//! `depth_exceeded` says.
+//! `depth_exceeded` says. Every segment that ends at a hit is attenuated by the fog it
+//! crosses and adds single scattering from the lights (`shading::volume`): unbiased for
+//! attenuation; light scattered more than once inside a medium is not computed.
 
 use glam::Vec3;
 
@@ -15,6 +17,7 @@ use crate::sampling::Sampler;
 use crate::shading::bsdf::Scatter;
 use crate::shading::mis::power_heuristic;
 use crate::shading::surface::unlit_radiance;
+use crate::shading::volume;
 
 /// First vertex at which Russian roulette may end a path.
 const RR_START: u32 = 3;
@@ -94,6 +97,11 @@ pub fn radiance(ctx: &ShadeContext<'_>, ray: &Ray, hit: &Hit, sampler: &mut Samp
             break;
         }
         let (next_hit, _, crossed) = trace(ctx, &next_ray, s.delta);
+        if let (Some(h), Some(_)) = (&next_hit, ctx.volumes) {
+            let seg = volume::segment(ctx, &next_ray, h, sampler);
+            radiance += beta * seg.inscattered;
+            beta *= seg.transmittance;
+        }
         for (le, pdf_light) in crossed {
             radiance += beta * le * mis(pdf_light);
         }

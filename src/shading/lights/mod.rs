@@ -63,6 +63,18 @@ pub struct AreaLight {
     pub attenuation: Option<(f32, f32)>,
 }
 
+impl AreaLight {
+    /// The centre of the shape.
+    pub fn centre(&self) -> Vec3 {
+        match &self.shape {
+            AreaShape::Rect(r) => r.corner + 0.5 * (r.edge_u + r.edge_v),
+            AreaShape::Disc(d) => d.center,
+            AreaShape::Sphere(s) => s.center,
+            AreaShape::Cylinder(c) => c.start + c.frame.n * (0.5 * c.length),
+        }
+    }
+}
+
 /// A light prepared for sampling (world space).
 #[derive(Debug, Clone)]
 pub enum Light {
