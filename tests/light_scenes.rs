@@ -145,3 +145,29 @@ fn environment_scene_floor_gets_the_sky_irradiance() {
     assert!(fb.alpha[..32].iter().all(|a| *a == 0.0));
     assert!(fb.beauty[..32].iter().all(|c| c.min_element() > 0.1));
 }
+
+/// The three example scenes give identical bytes at 1 and 2 threads.
+#[test]
+fn light_scenes_do_not_depend_on_the_thread_count() {
+    for name in ["area_lights.ron", "shadows_coloured.ron", "environment.ron"] {
+        let render_with = |threads| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap()
+                .install(|| {
+                    let mut scene = load(name);
+                    resize(&mut scene, 40, 30);
+                    render(&mut scene, 2)
+                })
+        };
+        let bits = |fb: &FrameBuffers| -> Vec<u32> {
+            fb.beauty
+                .iter()
+                .flat_map(|c| c.to_array().map(f32::to_bits))
+                .chain(fb.alpha.iter().map(|a| a.to_bits()))
+                .collect()
+        };
+        assert_eq!(bits(&render_with(1)), bits(&render_with(2)), "{name}");
+    }
+}

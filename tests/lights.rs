@@ -361,6 +361,15 @@ fn visible_area_lights_are_seen_by_camera_and_mirror_rays() {
 /// Point light at height 4 over a white Lambert plane, with transparent coloured squares
 /// (`Opacity`) at the given heights between them; the camera looks at the plane's origin.
 fn tinted_shadow(squares: &[f32], look_at: Vec3, integrator: Integrator) -> Vec3 {
+    tinted_shadow_in(squares, look_at, integrator, None)
+}
+
+fn tinted_shadow_in(
+    squares: &[f32],
+    look_at: Vec3,
+    integrator: Integrator,
+    fog: Option<stagelight::components::Fog>,
+) -> Vec3 {
     let mut world = hecs::World::new();
     let white = common::material(
         &mut world,
@@ -394,7 +403,7 @@ fn tinted_shadow(squares: &[f32], look_at: Vec3, integrator: Integrator) -> Vec3
         Vec3::splat(10.0),
         1,
     );
-    common::camera(
+    let cam = common::camera(
         &mut world,
         look_at + Vec3::new(3.0, 0.0, 1.0),
         look_at,
@@ -402,6 +411,11 @@ fn tinted_shadow(squares: &[f32], look_at: Vec3, integrator: Integrator) -> Vec3
         2,
         2,
     );
+    if let Some(f) = fog {
+        world
+            .insert_one(cam, stagelight::components::Atmosphere(f))
+            .unwrap();
+    }
     let settings = RenderSettings {
         spp: 4,
         max_depth: 1,
@@ -554,4 +568,26 @@ fn spot_attenuation_halves_light_midway_through_the_ramp() {
     let got = mean_red(&image);
     let want = 0.5 / PI * 16.0 / 16.0 * 0.5;
     assert!(rel(got, want) < 1e-3, "{got} vs {want}");
+}
+
+/// Tinted shadows inside an absorbing atmosphere: the shadow ray is attenuated by the fog
+/// over its length and tinted by the sheet: `lit · T · e^(−σ·4) · e^(−σ·√10)` (the last
+/// factor for the camera segment).
+#[test]
+fn tinted_shadows_through_fog() {
+    let fog = stagelight::components::Fog {
+        sigma_a: Vec3::splat(0.1),
+        sigma_s: Vec3::ZERO,
+        g: 0.0,
+    };
+    let lit = 0.8 / std::f32::consts::PI * 10.0 / 16.0;
+    let t = Vec3::new(0.5, 0.2, 0.1);
+    let want = t * lit * (-0.1f32 * 4.0).exp() * (-0.1f32 * 10f32.sqrt()).exp();
+    for integrator in [Integrator::Direct, Integrator::Path] {
+        let got = tinted_shadow_in(&[2.0], Vec3::ZERO, integrator, Some(fog));
+        assert!(
+            ((got - want) / want).abs().max_element() < 2e-3,
+            "{integrator:?}: {got} vs {want}"
+        );
+    }
 }
