@@ -347,7 +347,8 @@ pub fn depth_exceeded(ctx: &ShadeContext<'_>, dir: Vec3) -> Option<(Vec3, f32)> 
 pub enum CameraHit {
     /// A surface, to be shaded.
     Surface(Hit),
-    /// A visible area light in front of every surface: its radiance (covers the pixel).
+    /// A visible area light in front of every surface: the radiance reaching the camera
+    /// (attenuated by the atmosphere, if any); covers the pixel.
     Light(Vec3),
     /// Nothing: the environment's radiance along the ray (black when there is none, or when
     /// [`LightSet::camera_sees_environment`] is off because a camera imager's background
@@ -369,7 +370,11 @@ pub fn camera_hit(ctx: &ShadeContext<'_>, ray: &Ray) -> CameraHit {
         .filter_map(|l| l.hit(&clipped, true))
         .min_by(|a, b| a.0.total_cmp(&b.0));
     match (nearest_light, hit) {
-        (Some((_, le, _)), _) => CameraHit::Light(le),
+        (Some((t, le, _)), _) => {
+            let fog = ctx.volumes.and_then(|v| v.atmosphere.as_ref());
+            let att = fog.map_or(Vec3::ONE, |f| f.transmittance(t * ray.dir.length()));
+            CameraHit::Light(le * att)
+        }
         (None, Some(h)) => CameraHit::Surface(h),
         (None, None) if ctx.lights.camera_sees_environment => CameraHit::Miss(
             ctx.lights
