@@ -22,10 +22,12 @@ pub mod desc;
 pub mod desc_camera;
 pub mod desc_geometry;
 pub(crate) mod diagnostics;
+pub(crate) mod environment;
 pub(crate) mod geometry;
 pub(crate) mod imager;
 pub(crate) mod include;
 pub(crate) mod lens;
+pub(crate) mod lights;
 pub(crate) mod mesh_load;
 pub(crate) mod names;
 pub(crate) mod rebase;
@@ -43,6 +45,7 @@ use std::sync::Arc;
 use glam::{DAffine3, DVec3};
 
 pub use diagnostics::{Diagnostic, SceneErrors};
+pub use environment::read_exr as read_lat_long;
 
 use crate::settings::RenderSettings;
 use desc::MeshDesc;
@@ -115,6 +118,7 @@ fn load(path: &Path, text: Option<&str>) -> Result<LoadedScene, SceneErrors> {
         .iter()
         .map(|m| volume::interior(src, m))
         .collect();
+    let environment = environment::environment(src, &scenes);
     let materials: Vec<_> = merged
         .materials
         .iter()
@@ -226,7 +230,10 @@ fn load(path: &Path, text: Option<&str>) -> Result<LoadedScene, SceneErrors> {
         bakes,
         origin,
     };
-    let world = spawn::spawn(&sources, &merged, parts);
+    let mut world = spawn::spawn(&sources, &merged, parts);
+    if let Some(env) = environment {
+        world.spawn((crate::components::Name("environment".into()), env));
+    }
     Ok(LoadedScene {
         world,
         settings,

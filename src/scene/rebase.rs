@@ -18,7 +18,8 @@
 //!   transforms, again in f64. Meshes used by scatters (as surface or prototype) keep their
 //!   object space, since scatter placements are made in it.
 //! * **Cameras and lights**: eye, target, camera-matrix translation, light positions, spot
-//!   targets and rect corners are shifted in f64 before validation rounds them.
+//!   targets, rect corners, disc and sphere centres and cylinder end points are shifted in
+//!   f64 before validation rounds them.
 //!
 //! The origin is kept in the world as a [`crate::components::SceneOrigin`] entity; outputs that
 //! expose absolute positions (the bake `positions` kind) add it back. Directions, distances
@@ -167,6 +168,13 @@ pub fn light(desc: &LightDesc, origin: DVec3) -> LightDesc {
         }
         LightKindDesc::Directional { .. } => {}
         LightKindDesc::Rect { corner, .. } => *corner = shift(*corner, origin),
+        LightKindDesc::Disc { center, .. } | LightKindDesc::Sphere { center, .. } => {
+            *center = shift(*center, origin);
+        }
+        LightKindDesc::Cylinder { start, end, .. } => {
+            *start = shift(*start, origin);
+            *end = shift(*end, origin);
+        }
     }
     out
 }
