@@ -113,6 +113,7 @@ fn cornell(t: f64, placed: bool) -> String {
     lights: [
         (name: "panel", kind: Rect(corner: {corner}, edge_u: (0.25, 0, 0), edge_v: (0, 0, 0.25)), intensity: 8.0, samples: 4),
         (name: "bulb", kind: Point(position: {bulb}), intensity: 0.25),
+        (name: "ball", kind: Sphere(center: {ball}, radius: 0.0625), intensity: 1.0, samples: 2),
     ],
     materials: [
         (name: "white", shader: Lambert(albedo: (0.75, 0.75, 0.75))),
@@ -136,6 +137,7 @@ fn cornell(t: f64, placed: bool) -> String {
         target = p(0.5, 0.5, 0.5),
         corner = p(0.375, 0.9921875, 0.375),
         bulb = p(0.75, 0.75, 0.375),
+        ball = p(0.25, 0.75, 0.75),
         members = members.join(", "),
     )
 }
