@@ -166,6 +166,8 @@ fn plane_world(shader: Shader, graph: Option<MaterialGraph>) -> World {
             radiant: Vec3::splat(5.0),
             shadows: true,
             samples: 8,
+            visible: false,
+            attenuation: None,
         },
     ));
     let eye = Vec3::new(0.0, -6.0, 4.0);

@@ -2,6 +2,7 @@
 //!
 //! **Reads:** `Instance`, `WorldFromObject`, `MaterialRef` entities; `Material` entities;
 //! the objects' `Displacement` in `Bump` mode (kept for shading);
+//! the `SceneOrigin` (copied into the geometry);
 //! `settings.bvh_quality`.
 //! **Writes:** `frame.geometry`.
 //! **Runs when:** at least one instance has triangles and something consumes rays (a render
@@ -19,7 +20,7 @@ use super::prelude::*;
 use crate::accel::Accel;
 use crate::components::{
     BakeRequest, Displacement, DisplacementMode, Instance, Material, MaterialRef, RenderCamera,
-    WorldFromObject,
+    SceneOrigin, WorldFromObject,
 };
 use crate::geometry::{InstanceGeometry, SceneGeometry};
 
@@ -110,6 +111,11 @@ pub fn run(world: &mut World, frame: &mut Frame) -> Result<Work, StageError> {
         instances,
         materials,
         material_entities,
+        origin: world
+            .query::<&SceneOrigin>()
+            .iter()
+            .next()
+            .map_or(glam::DVec3::ZERO, |o| o.0),
     });
     Ok(Work {
         items: count,

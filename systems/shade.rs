@@ -8,8 +8,9 @@
 //! `crate::adaptive`): pass 1 takes `min` samples in every pixel; pass 2 refines the pixels
 //! whose own samples or neighbours exceed the contrast, doubling up to `max`.
 //!
-//! **Reads:** the `Camera` with `RenderCamera` (and its `Lenses`, `Atmosphere`); `Interior`
-//! of material entities; `Emitter` entities; `frame.geometry` (absent means an empty scene:
+//! **Reads:** the `Camera` with `RenderCamera` (and its `Lenses`, `Atmosphere`, and its
+//! `Imager`'s background, which hides the environment from camera rays); `Interior` of
+//! material entities; `Emitter` entities; the `Environment`; `frame.geometry` (absent means an empty scene:
 //! every ray misses); `settings` (spp or adaptive samples, filter, seed, face, integrator,
 //! trace depths).
 //! **Writes:** `frame.image` (with the samples each pixel took).
@@ -26,10 +27,13 @@ use rayon::prelude::*;
 
 use super::prelude::*;
 use crate::adaptive::{refine_flags, PixelSamples, SampleBudget};
-use crate::components::{Atmosphere, Camera, Emitter, Interior, Lenses, RenderCamera};
+use crate::components::{
+    Atmosphere, Camera, Emitter, Environment, Imager, Interior, Lenses, RenderCamera,
+};
 use crate::framebuffer::FrameBuffers;
 use crate::progress::Progress;
 use crate::sampling::{fold_seed, Sampler};
+use crate::shading::integrator::{camera_hit, CameraHit};
 use crate::shading::{
     shade_hit, volume, CameraRays, FilterSampler, LightSet, ShadeContext, Volumes,
 };
@@ -61,12 +65,26 @@ pub fn should_run(world: &World, frame: &Frame) -> Decision {
 
 /// Renders `frame.image`.
 pub fn run(world: &mut World, frame: &mut Frame) -> Result<Work, StageError> {
-    let (camera, lenses, atmosphere) = world
-        .query::<(&Camera, &RenderCamera, Option<&Lenses>, Option<&Atmosphere>)>()
+    let (camera, lenses, atmosphere, background) = world
+        .query::<(
+            &Camera,
+            &RenderCamera,
+            Option<&Lenses>,
+            Option<&Atmosphere>,
+            Option<&Imager>,
+        )>()
         .iter()
         .next()
-        .map(|(c, _, l, a)| (c.clone(), l.cloned().unwrap_or_default(), a.map(|a| a.0)))
+        .map(|(c, _, l, a, i)| {
+            (
+                c.clone(),
+                l.cloned().unwrap_or_default(),
+                a.map(|a| a.0),
+                i.and_then(|i| i.background),
+            )
+        })
         .ok_or_else(|| StageError::Invalid("no render camera".into()))?;
+    let environment = world.query::<&Environment>().iter().next().cloned();
     let mut emitters: Vec<(Entity, Emitter)> = world
         .query::<(Entity, &Emitter)>()
         .iter()
@@ -77,7 +95,9 @@ pub fn run(world: &mut World, frame: &mut Frame) -> Result<Work, StageError> {
 
     let settings = frame.settings.clone();
     let geometry = frame.geometry.as_ref();
-    let lights = LightSet::new(&emitters, geometry, frame.settings.light_samples);
+    let mut lights = LightSet::new(&emitters, geometry, frame.settings.light_samples)
+        .with_environment(environment.as_ref());
+    lights.camera_sees_environment = background.is_none();
     let rays = CameraRays::with_lenses(&camera, &lenses.0);
     let interiors: Vec<_> = geometry.map_or_else(Vec::new, |g| {
         g.material_entities
@@ -260,13 +280,15 @@ impl PixelShader<'_> {
             let hit = self
                 .rays
                 .ray(film.x, film.y, lens_u)
-                .and_then(|ray| Some((ray, ctx.geometry.accel.intersect(&ray)?)));
+                .map(|ray| (ray, camera_hit(ctx, &ray)));
             match hit {
-                Some((ray, hit)) => {
+                Some((ray, CameraHit::Surface(hit))) => {
                     let l = shade_hit(ctx, &ray, &hit, &mut sampler);
                     let l = volume::through_segment(ctx, &ray, &hit, l, &mut sampler);
                     samples.add(l, true);
                 }
+                Some((_, CameraHit::Light(le))) => samples.add(le, true),
+                Some((_, CameraHit::Miss(le))) => samples.add(le, false),
                 None => samples.add(Vec3::ZERO, false),
             }
         }

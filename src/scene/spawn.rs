@@ -11,8 +11,9 @@
 //!    innermost instance), `Instance` (with an empty mesh for generated objects:
 //!    `procedural::pending_instance`), `WorldFromObject`, `MaterialRef`, and `BakeRequest`
 //!    when the instance has a `bake` entry;
-//! 4. every light: `Name`, `SourceLink`, `Emitter`;
-//! 5. every camera: `Name`, `SourceLink`, `Camera`, plus `RenderCamera` on the render camera
+//! 4. the scene origin (`SceneOrigin`), when render space is not world space;
+//! 5. every light: `Name`, `SourceLink`, `Emitter`;
+//! 6. every camera: `Name`, `SourceLink`, `Camera`, plus `RenderCamera` on the render camera
 //!    and `Imager`, `Lenses`, `Atmosphere` when written.
 //!
 //! Materials with an `interior` also carry `Interior`.
@@ -30,7 +31,7 @@ use super::geometry::{Generated, ObjectGeometry};
 use super::validate::{default_material, Merged};
 use crate::components::{
     Atmosphere, BakeRequest, Camera, Emitter, Fog, Imager, Instance, Interior, Lenses, Material,
-    MaterialRef, Name, RenderCamera, SourceLink, TriMesh, WorldFromObject,
+    MaterialRef, Name, RenderCamera, SceneOrigin, SourceLink, TriMesh, WorldFromObject,
 };
 use crate::procedural::pending_instance;
 
@@ -61,6 +62,8 @@ pub struct Parts {
     pub leaves: Vec<Leaf>,
     /// Bake request of each merged instance (at most one leaf carries each).
     pub bakes: Vec<Option<BakeRequest>>,
+    /// The scene origin subtracted from world space (see [`super::rebase`]).
+    pub origin: glam::DVec3,
 }
 
 /// Objects to spawn, in index order: those of the leaves, and the prototypes and surfaces of
@@ -195,6 +198,10 @@ pub fn spawn(src: &Sources, m: &Merged<'_>, parts: Parts) -> World {
             // The entity was just spawned, so inserting cannot fail.
             let _ = world.insert_one(entity, request.clone());
         }
+    }
+
+    if parts.origin != glam::DVec3::ZERO {
+        world.spawn((SceneOrigin(parts.origin),));
     }
 
     for (it, emitter) in m.lights.iter().zip(parts.lights) {

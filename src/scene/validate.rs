@@ -486,8 +486,14 @@ pub fn light(src: &mut Sources, item: &Item<'_, LightDesc>) -> Option<Emitter> {
     let color = ck.colour(&item.at(".color"), "color", l.color);
     let intensity = ck.non_negative(&item.at(".intensity"), "intensity", l.intensity);
     let kind = |s: &str| item.at(&format!(".kind.{s}"));
-    let is_rect = matches!(l.kind, LightKindDesc::Rect { .. });
-    let samples = match (l.samples, is_rect) {
+    let is_area = matches!(
+        l.kind,
+        LightKindDesc::Rect { .. }
+            | LightKindDesc::Disc { .. }
+            | LightKindDesc::Sphere { .. }
+            | LightKindDesc::Cylinder { .. }
+    );
+    let samples = match (l.samples, is_area) {
         (None, true) => Some(16),
         (None, false) | (Some(1), false) => Some(1),
         (Some(0), _) => {
@@ -500,7 +506,7 @@ pub fn light(src: &mut Sources, item: &Item<'_, LightDesc>) -> Option<Emitter> {
                 ck.file,
                 &item.at(".samples"),
                 format!("samples must be 1 for a delta light, found {n}"),
-                Some("only Rect lights take several samples; remove `samples`".into()),
+                Some("only area lights take several samples; remove `samples`".into()),
             );
             None
         }
@@ -596,12 +602,17 @@ pub fn light(src: &mut Sources, item: &Item<'_, LightDesc>) -> Option<Emitter> {
                 edge_v: f32v(v),
             }
         }
+        other => super::lights::area_shape(&mut ck, &item.path, other)?,
     };
+    let attenuation = super::lights::attenuation(&mut ck, item);
+    let visible = super::lights::visible(&mut ck, item, is_area);
     Some(Emitter {
         shape,
         radiant: (color? * intensity?).as_vec3(),
         shadows: l.shadows,
         samples: samples?,
+        visible: visible?,
+        attenuation: attenuation?,
     })
 }
 

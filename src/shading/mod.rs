@@ -5,6 +5,7 @@
 
 pub mod bsdf;
 pub mod camera;
+pub mod environment;
 pub mod filter;
 pub mod frame;
 pub mod fresnel;
@@ -12,12 +13,14 @@ pub mod integrator;
 pub mod lights;
 pub mod microfacet;
 pub mod mis;
+pub mod shadow;
 pub mod surface;
 pub mod texture;
 pub mod volume;
 
 pub use bsdf::{Bsdf, BsdfSample};
 pub use camera::CameraRays;
+pub use environment::EnvLight;
 pub use filter::FilterSampler;
 pub use integrator::{shade_hit, ShadeContext};
 pub use lights::{Light, LightSample, LightSet};

@@ -171,7 +171,8 @@ const MAX_CROSSINGS: usize = 16;
 /// infinitely far, whose last segment crosses no medium). The shells of fog-filled
 /// materials (those with an `interior`) are volume boundaries, not occluders: the ray
 /// passes through them, entering the interior at a front face and returning to the
-/// atmosphere at a back face. Any other surface blocks (unless `occlude` is false: then
+/// atmosphere at a back face. Transparent surfaces tint (`shading::shadow`); any other
+/// surface blocks (unless `occlude` is false: then
 /// only the starting medium attenuates, over the straight distance).
 pub fn shadow_transmittance(
     ctx: &ShadeContext<'_>,
@@ -199,18 +200,27 @@ pub fn shadow_transmittance(
         };
         let slot = ctx.geometry.triangle_instance[hit.prim as usize] as usize;
         let material = ctx.geometry.instances[slot].material as usize;
-        let Some(Some(interior)) = volumes.interiors.get(material) else {
-            return None;
+        let interior = volumes.interiors.get(material).and_then(Option::as_ref);
+        // A surface without an interior passes light only if its shader lets shadows
+        // through (`shading::shadow`); the medium stays the same across it.
+        let tint = match interior {
+            Some(_) => Vec3::ONE,
+            None => crate::shading::shadow::shadow_transmittance(
+                &ctx.geometry.materials[material].shader,
+            )?,
         };
         if let Some(f) = medium {
             t *= f.transmittance(hit.t * ray.dir.length());
         }
+        t *= tint;
         let sp = ctx.geometry.accel.surface_point(&hit);
-        medium = if sp.ng.dot(ray.dir) < 0.0 {
-            Some(interior)
-        } else {
-            volumes.atmosphere.as_ref()
-        };
+        if let Some(interior) = interior {
+            medium = if sp.ng.dot(ray.dir) < 0.0 {
+                Some(interior)
+            } else {
+                volumes.atmosphere.as_ref()
+            };
+        }
         ray = match target {
             Some(p) => spawn_ray_to(&sp, p),
             None => spawn_ray(&sp, ray.dir),
@@ -223,12 +233,7 @@ pub fn shadow_transmittance(
 fn light_centre(light: &Light) -> Option<Vec3> {
     match light {
         Light::Point { position, .. } | Light::Spot { position, .. } => Some(*position),
-        Light::Rect {
-            corner,
-            edge_u,
-            edge_v,
-            ..
-        } => Some(*corner + 0.5 * (*edge_u + *edge_v)),
+        Light::Area(a) => Some(a.centre()),
         _ => None,
     }
 }

@@ -99,6 +99,8 @@ pub fn light(world: &mut World, shape: LightShape, radiant: Vec3, samples: u32) 
             radiant,
             shadows: true,
             samples,
+            visible: false,
+            attenuation: None,
         },
     ))
 }
