@@ -3,8 +3,9 @@
 //! reference path tracer), pixel filter, and the centre-sample passes (depth, normal).
 //!
 //! **Reads:** the `Camera` with `RenderCamera`; `Emitter` entities; `frame.geometry` (absent
-//! means an empty scene: every ray misses); `settings` (spp, filter, seed, face, integrator,
-//! trace depths).
+//! means an empty scene: every ray misses); `frame.photons` (the `Direct` integrator's
+//! caustics and final gather; absent: none); `settings` (spp, filter, seed, face,
+//! integrator, trace depths).
 //! **Writes:** `frame.image`.
 //! **Runs when:** the run renders and a render camera exists.
 //! **After this stage:** `frame.image` holds finite beauty, alpha, depth and normal buffers of
@@ -55,6 +56,7 @@ pub fn run(world: &mut World, frame: &mut Frame) -> Result<Work, StageError> {
 
     let settings = frame.settings.clone();
     let geometry = frame.geometry.as_ref();
+    let photons = frame.photons.as_ref();
     let lights = LightSet::new(&emitters, geometry, frame.settings.light_samples);
     let rays = CameraRays::new(&camera);
     let filter = FilterSampler::new(settings.filter);
@@ -84,7 +86,8 @@ pub fn run(world: &mut World, frame: &mut Frame) -> Result<Work, StageError> {
                         return PixelResult::default();
                     }
                     let pixel = (y * width + x) as u64;
-                    let ctx = geometry.map(|g| ShadeContext::new(g, &lights, &settings));
+                    let ctx = geometry
+                        .map(|g| ShadeContext::new(g, &lights, &settings).with_photons(photons));
                     let r = shade_pixel(ctx.as_ref(), &rays, &filter, seed, pixel, x, y, spp);
                     if r.dropped > 0 {
                         dropped.fetch_add(r.dropped as u64, Ordering::Relaxed);

@@ -7,7 +7,7 @@ use hecs::World;
 use crate::components::{
     Approximation, BakeKind, BakeRequest, Emitter, LightShape, Material, Technique,
 };
-use crate::settings::{BvhQuality, RenderSettings};
+use crate::settings::{BvhQuality, PhotonMapSettings, RenderSettings};
 
 /// A knob and the values to sweep.
 #[derive(Debug, Clone, PartialEq)]
@@ -25,6 +25,12 @@ pub enum Knob {
     Tessellation(Vec<f32>),
     /// Rays (AO) or gather paths (lightmaps) per texel of every bake request.
     BakeSamples(Vec<u32>),
+    /// Photons emitted for every photon map the scene turns on.
+    Photons(Vec<u32>),
+    /// Largest gather radius of every photon map (world units; 0 = automatic).
+    GatherRadius(Vec<f32>),
+    /// Photons per estimate (k) of every photon map.
+    GatherCount(Vec<u32>),
 }
 
 /// Why a knob cannot be swept.
@@ -34,7 +40,7 @@ pub enum KnobError {
     #[error("expected --knob NAME=V1,V2,… (e.g. spp=1,4,16), found \"{0}\"")]
     Syntax(String),
     /// Unknown knob name.
-    #[error("unknown knob \"{0}\"; knobs: spp, light_samples, max_depth, bvh_quality, tessellation, bake_samples")]
+    #[error("unknown knob \"{0}\"; knobs: spp, light_samples, max_depth, bvh_quality, tessellation, bake_samples, photons, gather_radius, gather_count")]
     Unknown(String),
     /// A value does not parse.
     #[error("knob {knob}: cannot read \"{value}\" ({expected})")]
@@ -121,6 +127,19 @@ impl Knob {
                     })
                     .collect::<Result<_, _>>()?,
             ),
+            "photons" => Knob::Photons(parse_list(name, values, positive, |&v: &u32| v >= 1)?),
+            "gather_count" => Knob::GatherCount(parse_list(
+                name,
+                values,
+                "a whole number ≥ 2",
+                |&v: &u32| v >= 2,
+            )?),
+            "gather_radius" => Knob::GatherRadius(parse_list(
+                name,
+                values,
+                "a radius ≥ 0 (0 = automatic)",
+                |&v: &f32| v.is_finite() && v >= 0.0,
+            )?),
             other => return Err(KnobError::Unknown(other.to_string())),
         })
     }
@@ -134,6 +153,9 @@ impl Knob {
             Knob::BvhQuality(_) => "bvh_quality",
             Knob::Tessellation(_) => "tessellation",
             Knob::BakeSamples(_) => "bake_samples",
+            Knob::Photons(_) => "photons",
+            Knob::GatherRadius(_) => "gather_radius",
+            Knob::GatherCount(_) => "gather_count",
         }
     }
 
@@ -145,6 +167,8 @@ impl Knob {
             }
             Knob::BvhQuality(v) => v.len(),
             Knob::Tessellation(v) => v.len(),
+            Knob::Photons(v) | Knob::GatherCount(v) => v.len(),
+            Knob::GatherRadius(v) => v.len(),
         }
     }
 
@@ -161,6 +185,8 @@ impl Knob {
             }
             Knob::BvhQuality(v) => format!("{:?}", v[i]).to_ascii_lowercase(),
             Knob::Tessellation(v) => v[i].to_string(),
+            Knob::Photons(v) | Knob::GatherCount(v) => v[i].to_string(),
+            Knob::GatherRadius(v) => v[i].to_string(),
         }
     }
 
@@ -208,6 +234,23 @@ impl Knob {
                 }
             }
             Knob::Spp(_) | Knob::MaxDepth(_) | Knob::BvhQuality(_) => {}
+            Knob::Photons(_) | Knob::GatherRadius(_) | Knob::GatherCount(_) => {}
+        }
+        Ok(())
+    }
+
+    /// [`Knob::check`] plus the knobs that live in the scene's options (photon maps).
+    pub fn check_with(&self, world: &World, settings: &RenderSettings) -> Result<(), KnobError> {
+        self.check(world)?;
+        let photon_knob = matches!(
+            self,
+            Knob::Photons(_) | Knob::GatherRadius(_) | Knob::GatherCount(_)
+        );
+        if photon_knob && !settings.photons.any() {
+            return Err(KnobError::Absent {
+                knob: self.name(),
+                why: "the scene turns on neither caustics nor global_illumination",
+            });
         }
         Ok(())
     }
@@ -231,6 +274,9 @@ impl Knob {
                     scale_tolerance(&mut a.technique, v[i]);
                 }
             }
+            Knob::Photons(v) => photon_maps(settings, |m| m.photons = v[i]),
+            Knob::GatherRadius(v) => photon_maps(settings, |m| m.radius = v[i]),
+            Knob::GatherCount(v) => photon_maps(settings, |m| m.gather = v[i]),
             Knob::BakeSamples(v) => {
                 for r in world.query_mut::<&mut BakeRequest>() {
                     for t in &mut r.targets {
@@ -243,6 +289,17 @@ impl Knob {
                 }
             }
         }
+    }
+}
+
+/// Applies `f` to every photon map the settings turn on.
+fn photon_maps(settings: &mut RenderSettings, f: impl Fn(&mut PhotonMapSettings)) {
+    let p = &mut settings.photons;
+    for m in [&mut p.caustics, &mut p.global_illumination]
+        .into_iter()
+        .flatten()
+    {
+        f(m);
     }
 }
 
@@ -274,8 +331,16 @@ mod tests {
         );
         assert!(matches!(Knob::parse("spp=0"), Err(KnobError::Value { .. })));
         assert!(matches!(
-            Knob::parse("photons=1"),
+            Knob::parse("photon_count=1"),
             Err(KnobError::Unknown(_))
+        ));
+        assert_eq!(
+            Knob::parse("photons=1000,4000").unwrap(),
+            Knob::Photons(vec![1000, 4000])
+        );
+        assert!(matches!(
+            Knob::parse("gather_count=1"),
+            Err(KnobError::Value { .. })
         ));
         assert!(matches!(Knob::parse("spp"), Err(KnobError::Syntax(_))));
     }
@@ -292,5 +357,12 @@ mod tests {
             Err(KnobError::Absent { .. })
         ));
         assert!(Knob::parse("spp=1").unwrap().check(&world).is_ok());
+        let settings = RenderSettings::default();
+        for k in ["photons=10", "gather_radius=0.1", "gather_count=8"] {
+            assert!(matches!(
+                Knob::parse(k).unwrap().check_with(&world, &settings),
+                Err(KnobError::Absent { .. })
+            ));
+        }
     }
 }

@@ -179,7 +179,7 @@ pub fn run_sweep(
 ) -> Result<SweepSummary, SweepError> {
     {
         let scene = load_scene(&opts.scene)?;
-        opts.knob.check(&scene.world)?;
+        opts.knob.check_with(&scene.world, &scene.settings)?;
     }
     std::fs::create_dir_all(&opts.out).map_err(|e| io(&opts.out, e))?;
     let cached = reference_cache(opts)?;

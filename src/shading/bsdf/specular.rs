@@ -5,6 +5,7 @@
 
 use glam::Vec3;
 
+use super::Transport;
 use crate::shading::fresnel::{fresnel_dielectric_rt, refract};
 
 /// One delta-lobe direction with the fraction of radiance it carries.
@@ -41,12 +42,25 @@ pub fn pass_through(wo: Vec3) -> DeltaBranch {
 /// reflection the refracted branch is `None` and the reflected one carries everything.
 /// Radiance crossing into the denser side is scaled by `1/η²` (radiance, not importance).
 pub fn dielectric(wo: Vec3, eta: f32) -> (DeltaBranch, Option<DeltaBranch>) {
+    dielectric_transport(wo, eta, Transport::Radiance)
+}
+
+/// [`dielectric`] for the given transported quantity: the refracted branch carries `T/η²`
+/// of radiance but `T` of importance (photon power), pbrt's `TransportMode`.
+pub fn dielectric_transport(
+    wo: Vec3,
+    eta: f32,
+    mode: Transport,
+) -> (DeltaBranch, Option<DeltaBranch>) {
     let (r, t) = fresnel_dielectric_rt(wo.z, eta);
     let mut reflected = mirror(wo);
     let refracted = refract(wo, Vec3::Z, eta).and_then(|(wt, eta_t)| {
         (t > 0.0).then_some(DeltaBranch {
             wi: wt,
-            weight: t / (eta_t * eta_t),
+            weight: match mode {
+                Transport::Radiance => t / (eta_t * eta_t),
+                Transport::Importance => t,
+            },
             transmits: true,
         })
     });

@@ -1,7 +1,8 @@
 //! The default integrator: emission, mental ray's ambient term, direct light from every
 //! light with shadow rays (each light's own sample count), and every delta branch (mirror,
 //! both branches of glass, transparency) traced recursively within the trace depths.
-//! Glossy and diffuse interreflection are not computed (the path tracer does that).
+//! Glossy and diffuse interreflection are not computed (the path tracer does that), except
+//! through the photon maps when the scene turns caustics or global illumination on.
 
 use glam::Vec3;
 
@@ -39,6 +40,7 @@ fn vertex_radiance(
     radiance += v.material.shader.ambient();
     if bsdf.has_non_delta() {
         radiance += light_loop(ctx, &v, &bsdf, sampler, false);
+        radiance += crate::photon::estimate::photon_radiance(ctx, &v, &bsdf, sampler);
     }
     for branch in bsdf.delta_branches(v.wo) {
         let Some(next) = depth.after(ctx, !branch.transmits, branch.transmits) else {
