@@ -490,3 +490,17 @@ fn number_beyond_f32() {
         "big.ron:1:51: error: position 1e300 is beyond the f32 range"
     );
 }
+
+/// Photon map knobs out of range: every one reported at its value.
+#[test]
+fn photon_options() {
+    check(
+        "photon_options.ron",
+        &[
+            "tests/fixtures/scenes/bad/photon_options.ron:2:35: error: photons must be at least 1, found 0",
+            "tests/fixtures/scenes/bad/photon_options.ron:2:46: error: gather must be at least 2 (the estimate divides by k − 1), found 1",
+            "tests/fixtures/scenes/bad/photon_options.ron:2:80: error: radius must not be negative, found -1",
+            "tests/fixtures/scenes/bad/photon_options.ron:2:98: error: final_gather must be at least 1, found 0",
+        ],
+    );
+}

@@ -105,7 +105,7 @@ impl PhotonMap {
         out: &mut Vec<Neighbour>,
     ) {
         out.clear();
-        if k == 0 || !(r_max > 0.0) || !p.is_finite() {
+        if k == 0 || r_max.is_nan() || r_max <= 0.0 || !p.is_finite() {
             return;
         }
         let mut q = Query {
@@ -189,7 +189,7 @@ struct Query {
 impl Query {
     fn offer(&mut self, ph: &Photon, index: u32) {
         let d2 = (ph.position - self.p).length_squared();
-        if !(d2 < self.max_d2) {
+        if d2.is_nan() || d2 >= self.max_d2 {
             return;
         }
         if let Some(n) = self.normal {

@@ -109,7 +109,7 @@ pub fn trace_photon(
             return fate;
         }
         let q = weight.max_element().min(1.0);
-        if !(u_rr < q) {
+        if q.is_nan() || u_rr >= q {
             fate.absorbed += power;
             return fate;
         }
