@@ -11,7 +11,8 @@
 //!   2 threads (rayon pools; 1 thread also per CPU-second of the tracing thread), hit counts
 //!   checked against the anchor's (715,018 coherent; 602,740 incoherent for Embree and obvhs,
 //!   602,741 here: see `EXPECTED_HITS_INCOHERENT`), and build times.
-//! * Then criterion groups (10 samples each): `build`, `trace/{1,2}t`, and `tiny`, a small
+//! * Then criterion groups (10 samples each): `build`, `build/{1,2}t` (thread scaling of the
+//!   Medium build), `trace/{1,2}t`, and `tiny`, a small
 //!   generated scene that needs no data.
 //!
 //! Run: `cargo bench --bench bvh` (add `-- tiny` for the small group only, `-- summary` for
@@ -456,6 +457,18 @@ fn criterion_groups(c: &mut Criterion, w: &Workload, group: &str) {
         });
     }
     g.finish();
+    // Build thread scaling: obvhs parallelises PLOC, reinsertion and the radix sort over the
+    // current rayon pool; our node conversion is serial.
+    for threads in [1, 2] {
+        let p = pool(threads);
+        let mut g = c.benchmark_group(format!("{group}/build/{threads}t"));
+        g.sample_size(10)
+            .throughput(Throughput::Elements(w.tris.len() as u64));
+        g.bench_function("medium", |b| {
+            b.iter(|| p.install(|| Accel::build(black_box(w.tris.clone()), BvhQuality::Medium)))
+        });
+        g.finish();
+    }
     let accel = Accel::build(w.tris.clone(), BvhQuality::Medium);
     for threads in [1, 2] {
         let p = pool(threads);

@@ -128,6 +128,8 @@ fn plane_world(shader: Shader) -> World {
             radiant: Vec3::splat(5.0),
             shadows: true,
             samples: 8,
+            visible: false,
+            attenuation: None,
         },
     ));
     let eye = Vec3::new(0.0, -6.0, 4.0);

@@ -1,9 +1,11 @@
 //! Tessellation throughput: output triangles per second per technique, displacement
-//! throughput, and bytes per output triangle (printed once). Run single-threaded so the
-//! figures are per thread:
+//! throughput, and bytes per output triangle (printed once); then thread scaling
+//! (`tessellate/1t`, `tessellate/2t`: two of the cases in rayon pools of 1 and 2 workers).
+//! Run the first group single-threaded so its figures are per thread:
 //!
 //! ```sh
-//! RAYON_NUM_THREADS=1 cargo bench --bench tessellate
+//! RAYON_NUM_THREADS=1 cargo bench --bench tessellate -- 'tessellate/'
+//! cargo bench --bench tessellate -- 'tessellate/[12]t'
 //! ```
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
@@ -149,7 +151,27 @@ fn bench(c: &mut Criterion) {
         group.bench_function(*name, |b| b.iter(|| run(surface, a, *d)));
     }
     group.finish();
+
+    // Thread scaling: tessellation goes wide inside one object (edge rates, patches, welding),
+    // so the same surfaces in rayon pools of 1 and 2 workers.
+    for threads in [1usize, 2] {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .expect("thread pool");
+        let mut group = c.benchmark_group(format!("tessellate/{threads}t"));
+        group.sample_size(10);
+        for (name, surface, a, d) in cases.iter().filter(|(n, ..)| SCALING.contains(n)) {
+            let tris = run(surface, a, *d).mesh.triangles.len() as u64;
+            group.throughput(Throughput::Elements(tris));
+            group.bench_function(*name, |b| b.iter(|| pool.install(|| run(surface, a, *d))));
+        }
+        group.finish();
+    }
 }
+
+/// The cases measured in 1- and 2-thread pools.
+const SCALING: [&str; 2] = ["regular_bspline_256x256", "displaced_noise_torus_64x64"];
 
 criterion_group!(benches, bench);
 criterion_main!(benches);

@@ -24,3 +24,10 @@ sweep cornell_light_samples assets/scenes/cornell_box.ron --knob light_samples=1
 sweep cornell_bvh assets/scenes/cornell_box.ron --knob bvh_quality=fast,medium,high --integrator direct --reference-spp 256
 # Bake samples of the AO bake (1024², 146k triangles at the asset's 65k).
 sweep bake_ao_samples assets/scenes/bake_ao.ron --knob bake_samples=4,16,64 --reference-spp 256
+# Adaptive contrast against uniform spp on the depth-of-field scene, direct lighting, against a
+# 512-spp direct-lighting reference (the knob trades noise, not the integrator's bias).
+mkdir -p "$out/dof_spp"
+ref="$out/dof_spp/reference_direct_512.exr"
+[ -f "$ref" ] || "$bin" render assets/scenes/depth_of_field.ron --spp 512 -o "$ref"
+sweep dof_adaptive_contrast assets/scenes/depth_of_field.ron --knob adaptive_contrast=0.2,0.1,0.05,0.02 --integrator direct --reference "$ref"
+sweep dof_spp assets/scenes/depth_of_field.ron --knob spp=4,8,16,32 --integrator direct --reference "$ref"

@@ -22,6 +22,8 @@ pub struct FrameBuffers {
     pub object_id: Vec<u32>,
     /// Material id at the pixel centre (see `Pass::MaterialId`); 0 for the background.
     pub material_id: Vec<u32>,
+    /// Camera samples the pixel took (the uniform count, or what adaptive sampling chose).
+    pub samples: Vec<u32>,
 }
 
 impl FrameBuffers {
@@ -37,6 +39,7 @@ impl FrameBuffers {
             normal: vec![Vec3::ZERO; n],
             object_id: vec![0; n],
             material_id: vec![0; n],
+            samples: vec![0; n],
         }
     }
 }

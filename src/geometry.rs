@@ -62,6 +62,9 @@ pub struct SceneGeometry {
     pub materials: Vec<Material>,
     /// Material entity of each entry of `materials`.
     pub material_entities: Vec<Entity>,
+    /// World-space position of render space's zero (see
+    /// [`crate::components::SceneOrigin`]): every position here is relative to it.
+    pub origin: glam::DVec3,
 }
 
 impl SceneGeometry {

@@ -7,6 +7,7 @@
 
 pub mod accel;
 pub mod accumulate;
+pub mod adaptive;
 pub mod bake;
 pub mod components;
 pub mod frame;

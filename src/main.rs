@@ -57,7 +57,7 @@ struct RenderArgs {
     /// .png or .exr).
     #[arg(short = 'o', long = "output")]
     output: Option<PathBuf>,
-    /// Samples per pixel (overrides the scene's `options.samples`).
+    /// Samples per pixel (overrides the scene's `options.samples`, adaptive included).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
     spp: Option<u32>,
     /// Worker threads (default: all cores).
@@ -121,8 +121,8 @@ struct BenchArgs {
 struct SweepArgs {
     /// Scene file (RON).
     scene: PathBuf,
-    /// The knob and its values: spp, light_samples, max_depth, bvh_quality, tessellation,
-    /// bake_samples (e.g. `--knob spp=1,4,16,64`).
+    /// The knob and its values: spp, adaptive_contrast, light_samples, max_depth, bvh_quality,
+    /// tessellation, bake_samples (e.g. `--knob spp=1,4,16,64`).
     #[arg(long, value_name = "NAME=V1,V2,…")]
     knob: String,
     /// Reference image (linear EXR, same size); rendered and cached in the output directory
@@ -307,7 +307,9 @@ fn render(args: RenderArgs) -> ExitCode {
             Err(code) => return code,
         };
     if let Some(spp) = args.spp {
+        // A fixed count overrides the scene's adaptive sampling too.
         settings.spp = spp;
+        settings.adaptive = None;
     }
     if let Some(out) = &args.output {
         if let Err(message) = override_output(&mut scene.world, out) {

@@ -5,6 +5,7 @@ use std::time::Instant;
 use hecs::World;
 use serde::Serialize;
 
+use crate::accel::RayCounts;
 use crate::frame::Frame;
 
 /// Whether a stage runs, and the reason (which component or option decided it).
@@ -96,6 +97,16 @@ pub struct StageReport {
     pub items_per_second: f64,
     /// Items per second per worker thread.
     pub items_per_second_per_thread: f64,
+    /// Closest-hit rays the stage traced (counted by the accelerator).
+    pub rays_closest: u64,
+    /// Occlusion (shadow, AO) rays the stage traced.
+    pub rays_occlusion: u64,
+    /// All rays the stage traced (`rays_closest + rays_occlusion`).
+    pub rays: u64,
+    /// Rays per second (0 when the stage traced none).
+    pub rays_per_second: f64,
+    /// Rays per second per worker thread (0 when the stage traced none).
+    pub rays_per_second_per_thread: f64,
 }
 
 /// The whole run's report.
@@ -119,18 +130,19 @@ impl RunReport {
     pub fn to_table(&self) -> String {
         let mut out = String::new();
         out.push_str(&format!(
-            "{:<16} {:<4} {:>9} {:>12} {:<10} {:>14}  reason\n",
-            "stage", "ran", "seconds", "items", "unit", "items/s"
+            "{:<16} {:<4} {:>9} {:>12} {:<10} {:>14} {:>12}  reason\n",
+            "stage", "ran", "seconds", "items", "unit", "items/s", "rays"
         ));
         for s in &self.stages {
             out.push_str(&format!(
-                "{:<16} {:<4} {:>9.4} {:>12} {:<10} {:>14.0}  {}\n",
+                "{:<16} {:<4} {:>9.4} {:>12} {:<10} {:>14.0} {:>12}  {}\n",
                 s.stage,
                 if s.ran { "yes" } else { "no" },
                 s.seconds,
                 s.items,
                 s.unit,
                 s.items_per_second,
+                s.rays,
                 s.reason
             ));
         }
@@ -147,19 +159,30 @@ impl RunReport {
     /// thread for every stage that ran; skipped stages with their reason.
     pub fn to_throughput_table(&self) -> String {
         let mut out = format!(
-            "{:<16} {:>12} {:<10} {:>10} {:>14} {:>16}\n",
-            "stage", "items", "unit", "seconds", "items/s", "items/s/thread"
+            "{:<16} {:>12} {:<10} {:>10} {:>14} {:>16} {:>12} {:>12} {:>14}\n",
+            "stage",
+            "items",
+            "unit",
+            "seconds",
+            "items/s",
+            "items/s/thread",
+            "rays",
+            "occlusion",
+            "rays/s/thread"
         );
         for s in &self.stages {
             if s.ran {
                 out.push_str(&format!(
-                    "{:<16} {:>12} {:<10} {:>10.4} {:>14.0} {:>16.0}\n",
+                    "{:<16} {:>12} {:<10} {:>10.4} {:>14.0} {:>16.0} {:>12} {:>12} {:>14.0}\n",
                     s.stage,
                     s.items,
                     s.unit,
                     s.seconds,
                     s.items_per_second,
-                    s.items_per_second_per_thread
+                    s.items_per_second_per_thread,
+                    s.rays,
+                    s.rays_occlusion,
+                    s.rays_per_second_per_thread
                 ));
             } else {
                 out.push_str(&format!("{:<16} skipped: {}\n", s.stage, s.reason));
@@ -194,12 +217,25 @@ pub fn run_stages(
                 unit: "",
                 items_per_second: 0.0,
                 items_per_second_per_thread: 0.0,
+                rays_closest: 0,
+                rays_occlusion: 0,
+                rays: 0,
+                rays_per_second: 0.0,
+                rays_per_second_per_thread: 0.0,
             });
             continue;
         }
+        let rays_before = ray_counts(frame);
         let t0 = Instant::now();
         let work = (stage.run)(world, frame)?;
         let seconds = t0.elapsed().as_secs_f64();
+        let rays = ray_counts(frame).since(rays_before);
+        let threads = frame.report.threads.max(1) as f64;
+        let ray_rate = if seconds > 0.0 {
+            rays.total() as f64 / seconds
+        } else {
+            0.0
+        };
         let rate = if seconds > 0.0 {
             work.items as f64 / seconds
         } else {
@@ -213,11 +249,24 @@ pub fn run_stages(
             items: work.items,
             unit: work.unit,
             items_per_second: rate,
-            items_per_second_per_thread: rate / frame.report.threads.max(1) as f64,
+            items_per_second_per_thread: rate / threads,
+            rays_closest: rays.closest,
+            rays_occlusion: rays.occlusion,
+            rays: rays.total(),
+            rays_per_second: ray_rate,
+            rays_per_second_per_thread: ray_rate / threads,
         });
     }
     frame.report.total_seconds = start.elapsed().as_secs_f64();
     Ok(())
+}
+
+/// Rays traced so far through the frame's accelerator (zero before `build_accel`).
+fn ray_counts(frame: &Frame) -> RayCounts {
+    frame
+        .geometry
+        .as_ref()
+        .map_or(RayCounts::default(), |g| g.accel.ray_counts())
 }
 
 /// Run-condition helper: does any entity carry component `T`? Scans archetypes only.

@@ -49,11 +49,28 @@ pub enum Integrator {
     Path,
 }
 
+/// Adaptive anti-aliasing (mental ray `samples min max` with a `contrast`): every pixel
+/// takes `min` samples, then doubles its count until the standard error of its mean (sample
+/// standard deviation / √n) is at most `contrast` in every channel, or `max` is reached.
+/// Each pixel decides from its own samples only, so the image does not depend on the
+/// thread count.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AdaptiveSamples {
+    /// Samples every pixel takes (≥ 1).
+    pub min: u32,
+    /// Most samples one pixel takes (≥ `min`).
+    pub max: u32,
+    /// Per-channel threshold on the standard error of the pixel mean (radiance units).
+    pub contrast: glam::Vec3,
+}
+
 /// Settings every stage can read.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RenderSettings {
-    /// Samples per pixel.
+    /// Samples per pixel (when `adaptive` is `None`).
     pub spp: u32,
+    /// Adaptive anti-aliasing; `None`: `spp` samples in every pixel.
+    pub adaptive: Option<AdaptiveSamples>,
     /// Pixel filter.
     pub filter: PixelFilter,
     /// Seed of every random decision.
@@ -114,6 +131,7 @@ impl Default for RenderSettings {
     fn default() -> Self {
         Self {
             spp: 4,
+            adaptive: None,
             filter: PixelFilter::Box,
             seed: 0,
             max_depth: 4,

@@ -86,7 +86,13 @@ pub fn run(world: &mut World, frame: &mut Frame) -> Result<Work, StageError> {
         .collect();
     emitters.sort_by_key(|(e, _)| e.to_bits());
     let emitters: Vec<Emitter> = emitters.into_iter().map(|(_, l)| l).collect();
-    let lights = LightSet::new(&emitters, Some(geometry), frame.settings.light_samples);
+    let environment = world
+        .query::<&crate::components::Environment>()
+        .iter()
+        .next()
+        .cloned();
+    let lights = LightSet::new(&emitters, Some(geometry), frame.settings.light_samples)
+        .with_environment(environment.as_ref());
     let slot_of: HashMap<Entity, usize> = geometry
         .instances
         .iter()

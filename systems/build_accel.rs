@@ -1,6 +1,7 @@
 //! `build_accel`: flattens every instance's triangles into world space and builds the BVH.
 //!
 //! **Reads:** `Instance`, `WorldFromObject`, `MaterialRef` entities; `Material` entities;
+//! the `SceneOrigin` (copied into the geometry);
 //! `settings.bvh_quality`.
 //! **Writes:** `frame.geometry`.
 //! **Runs when:** at least one instance has triangles and something consumes rays (a render
@@ -16,7 +17,7 @@ use hecs::{Entity, World};
 use super::prelude::*;
 use crate::accel::Accel;
 use crate::components::{
-    BakeRequest, Instance, Material, MaterialRef, RenderCamera, WorldFromObject,
+    BakeRequest, Instance, Material, MaterialRef, RenderCamera, SceneOrigin, WorldFromObject,
 };
 use crate::geometry::{InstanceGeometry, SceneGeometry};
 
@@ -102,6 +103,11 @@ pub fn run(world: &mut World, frame: &mut Frame) -> Result<Work, StageError> {
         instances,
         materials,
         material_entities,
+        origin: world
+            .query::<&SceneOrigin>()
+            .iter()
+            .next()
+            .map_or(glam::DVec3::ZERO, |o| o.0),
     });
     Ok(Work {
         items: count,

@@ -1,38 +1,64 @@
-//! `shade`: renders the render camera's frame buffers — primary rays per pixel sample, radiance
-//! from the chosen integrator (direct lighting with traced mirror/refraction rays, or the
-//! reference path tracer), pixel filter, and the centre-sample passes (depth, normal).
+//! `shade`: renders the render camera's frame buffers — primary rays per pixel sample through
+//! the camera's lens shaders, radiance from the chosen integrator (direct lighting with traced
+//! mirror/refraction rays, or the reference path tracer), the camera segment through the
+//! atmosphere or a material interior, pixel filter, and the centre-sample passes (depth,
+//! normal).
 //!
-//! **Reads:** the `Camera` with `RenderCamera`; `Emitter` entities; `frame.geometry` (absent
-//! means an empty scene: every ray misses); `frame.photons` (the `Direct` integrator's
-//! caustics and final gather; absent: none); `settings` (spp, filter, seed, face,
-//! integrator, trace depths).
-//! **Writes:** `frame.image`.
+//! Samples per pixel: `spp` everywhere, or adaptive (`settings.adaptive`, see
+//! `crate::adaptive`): pass 1 takes `min` samples in every pixel; pass 2 refines the pixels
+//! whose own samples or neighbours exceed the contrast, doubling up to `max`.
+//!
+//! **Reads:** the `Camera` with `RenderCamera` (and its `Lenses`, `Atmosphere`, and its
+//! `Imager`'s background, which hides the environment from camera rays); `Interior` of
+//! material entities; `Emitter` entities; the `Environment`; `frame.geometry` (absent means an empty scene:
+//! every ray misses); `frame.photons` (the `Direct` integrator's caustics and final gather;
+//! absent: none); `settings` (spp or adaptive samples, filter, seed, face, integrator,
+//! trace depths).
+//! **Writes:** `frame.image` (with the samples each pixel took).
 //! **Runs when:** the run renders and a render camera exists.
 //! **After this stage:** `frame.image` holds finite beauty, alpha, depth and normal buffers of
 //! the camera's resolution; each pixel depends only on (seed, pixel index, sample index).
+//! The reported work items are the camera samples actually taken.
 
-use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::sync::atomic::{AtomicBool, Ordering};
 
 use glam::{Vec2, Vec3};
 use hecs::{Entity, World};
 use rayon::prelude::*;
 
 use super::prelude::*;
-use crate::accumulate::SampleMean;
-use crate::components::{Camera, Emitter, RenderCamera};
+use crate::adaptive::{refine_flags, PixelSamples, SampleBudget};
+use crate::components::{
+    Atmosphere, Camera, Emitter, Environment, Imager, Interior, Lenses, RenderCamera,
+};
 use crate::framebuffer::FrameBuffers;
 use crate::progress::Progress;
 use crate::sampling::{fold_seed, Sampler};
-use crate::shading::{shade_hit, CameraRays, FilterSampler, LightSet, ShadeContext};
+use crate::shading::integrator::{camera_hit, CameraHit};
+use crate::shading::{
+    shade_hit, volume, CameraRays, FilterSampler, LightSet, ShadeContext, Volumes,
+};
 
 /// Run condition: a render camera exists.
 pub fn should_run(world: &World, frame: &Frame) -> Decision {
     if !frame.tasks.render {
         return Decision::skip("this run only bakes");
     }
-    match world.query::<(&Camera, &RenderCamera)>().iter().next() {
-        Some((camera, _)) => {
-            Decision::run(format!("render camera {}×{}", camera.width, camera.height))
+    let mut query = world.query::<(&Camera, &RenderCamera, Option<&Lenses>, Option<&Atmosphere>)>();
+    match query.iter().next() {
+        Some((camera, _, lenses, atmosphere)) => {
+            let mut reason = format!("render camera {}×{}", camera.width, camera.height);
+            if let Some(a) = frame.settings.adaptive {
+                reason += &format!(", adaptive {}–{} samples", a.min, a.max);
+            }
+            if let Some(l) = lenses.filter(|l| !l.0.is_empty()) {
+                let s = if l.0.len() == 1 { "" } else { "s" };
+                reason += &format!(", {} lens shader{s}", l.0.len());
+            }
+            if atmosphere.is_some() {
+                reason += ", atmosphere";
+            }
+            Decision::run(reason)
         }
         None => Decision::skip("no render camera"),
     }
@@ -40,12 +66,26 @@ pub fn should_run(world: &World, frame: &Frame) -> Decision {
 
 /// Renders `frame.image`.
 pub fn run(world: &mut World, frame: &mut Frame) -> Result<Work, StageError> {
-    let camera = world
-        .query::<(&Camera, &RenderCamera)>()
+    let (camera, lenses, atmosphere, background) = world
+        .query::<(
+            &Camera,
+            &RenderCamera,
+            Option<&Lenses>,
+            Option<&Atmosphere>,
+            Option<&Imager>,
+        )>()
         .iter()
         .next()
-        .map(|(c, _)| c.clone())
+        .map(|(c, _, l, a, i)| {
+            (
+                c.clone(),
+                l.cloned().unwrap_or_default(),
+                a.map(|a| a.0),
+                i.and_then(|i| i.background),
+            )
+        })
         .ok_or_else(|| StageError::Invalid("no render camera".into()))?;
+    let environment = world.query::<&Environment>().iter().next().cloned();
     let mut emitters: Vec<(Entity, Emitter)> = world
         .query::<(Entity, &Emitter)>()
         .iter()
@@ -56,139 +96,206 @@ pub fn run(world: &mut World, frame: &mut Frame) -> Result<Work, StageError> {
 
     let settings = frame.settings.clone();
     let geometry = frame.geometry.as_ref();
-    let photons = frame.photons.as_ref();
-    let lights = LightSet::new(&emitters, geometry, frame.settings.light_samples);
-    let rays = CameraRays::new(&camera);
+    let mut lights = LightSet::new(&emitters, geometry, frame.settings.light_samples)
+        .with_environment(environment.as_ref());
+    lights.camera_sees_environment = background.is_none();
+    let rays = CameraRays::with_lenses(&camera, &lenses.0);
+    let interiors: Vec<_> = geometry.map_or_else(Vec::new, |g| {
+        g.material_entities
+            .iter()
+            .map(|&e| world.get::<&Interior>(e).ok().map(|i| i.0))
+            .collect()
+    });
+    let volumes = Volumes::new(atmosphere, interiors);
     let filter = FilterSampler::new(settings.filter);
     let seed = fold_seed(settings.seed);
-    let spp = settings.spp.max(1);
+    let budget = SampleBudget::new(&settings);
     let (width, height) = (camera.width as usize, camera.height as usize);
 
     let mut fb = FrameBuffers::new(camera.width, camera.height);
     let cancel = frame.cancel.clone();
     let stopped = AtomicBool::new(false);
-    let dropped = AtomicU64::new(0);
-    let progress = Progress::start(frame.progress, "shade", "rows", height as u64);
+    let passes = if budget.refines() { 2 } else { 1 };
+    let progress = Progress::start(frame.progress, "shade", "rows", (passes * height) as u64);
     let ticker = progress.ticker();
+    let photons = frame.photons.as_ref();
+    let ctx = geometry.map(|g| {
+        ShadeContext::new(g, &lights, &settings)
+            .with_volumes(volumes.as_ref())
+            .with_photons(photons)
+    });
+    let shade = PixelShader {
+        ctx: ctx.as_ref(),
+        rays: &rays,
+        filter: &filter,
+        seed,
+        width,
+    };
+    // Runs `f` on every pixel, rows in parallel, polling for cancellation per pixel (one
+    // pixel is at most `max` samples of work).
+    let per_pixel = |f: &(dyn Fn(usize, usize) -> Option<PixelResult> + Sync)| {
+        let rows: Vec<Vec<Option<PixelResult>>> = (0..height)
+            .into_par_iter()
+            .map(|y| {
+                let row = (0..width)
+                    .map(|x| {
+                        if cancel.load(Ordering::Relaxed) {
+                            stopped.store(true, Ordering::Relaxed);
+                            return None;
+                        }
+                        f(x, y)
+                    })
+                    .collect();
+                ticker.tick(1);
+                row
+            })
+            .collect();
+        rows.into_iter().flatten().collect::<Vec<_>>()
+    };
 
-    let rows: Vec<Vec<PixelResult>> = (0..height)
-        .into_par_iter()
-        .map(|y| {
-            if cancel.load(Ordering::Relaxed) {
-                stopped.store(true, Ordering::Relaxed);
-                return Vec::new();
+    // Pass 1: the centre-sample passes and `min` samples everywhere.
+    let mut pixels = per_pixel(&|x, y| Some(shade.first_pass(x, y, budget.min)));
+    if budget.refines() && !stopped.load(Ordering::Relaxed) {
+        let pass1: Vec<PixelSamples> = pixels
+            .iter()
+            .map(|p| p.as_ref().map(|p| p.samples.clone()).unwrap_or_default())
+            .collect();
+        let flags = refine_flags(&pass1, width, height, budget.contrast);
+        // Pass 2: refined pixels double their samples until converged or at `max`.
+        let refined = per_pixel(&|x, y| {
+            let i = y * width + x;
+            let mut p = pixels[i].as_ref()?.clone();
+            if let Some(delta) = flags[i] {
+                shade.refine(&mut p, x, y, &budget, delta);
             }
-            let row = (0..width)
-                .map(|x| {
-                    // Poll per pixel: one pixel is at most spp samples of work.
-                    if cancel.load(Ordering::Relaxed) {
-                        stopped.store(true, Ordering::Relaxed);
-                        return PixelResult::default();
-                    }
-                    let pixel = (y * width + x) as u64;
-                    let ctx = geometry
-                        .map(|g| ShadeContext::new(g, &lights, &settings).with_photons(photons));
-                    let r = shade_pixel(ctx.as_ref(), &rays, &filter, seed, pixel, x, y, spp);
-                    if r.dropped > 0 {
-                        dropped.fetch_add(r.dropped as u64, Ordering::Relaxed);
-                    }
-                    r
-                })
-                .collect();
-            ticker.tick(1);
-            row
-        })
-        .collect();
+            Some(p)
+        });
+        pixels = refined;
+    }
     drop(ticker);
     progress.finish();
     if stopped.load(Ordering::Relaxed) || cancel.load(Ordering::Relaxed) {
         return Err(StageError::Interrupted);
     }
-    for (y, row) in rows.into_iter().enumerate() {
-        for (x, r) in row.into_iter().enumerate() {
-            let i = y * width + x;
-            fb.beauty[i] = r.color;
-            fb.alpha[i] = r.alpha;
-            fb.depth[i] = r.depth;
-            fb.normal[i] = r.normal;
-            fb.object_id[i] = r.object_id;
-            fb.material_id[i] = r.material_id;
-        }
+    let (mut taken, mut dropped) = (0u64, 0u64);
+    for (i, p) in pixels.into_iter().enumerate() {
+        let Some(p) = p else { continue };
+        fb.beauty[i] = p.samples.value();
+        fb.alpha[i] = p.samples.alpha();
+        fb.depth[i] = p.depth;
+        fb.normal[i] = p.normal;
+        fb.object_id[i] = p.object_id;
+        fb.material_id[i] = p.material_id;
+        fb.samples[i] = p.samples.taken;
+        taken += u64::from(p.samples.taken);
+        dropped += u64::from(p.samples.dropped);
     }
-    let n = dropped.load(Ordering::Relaxed);
-    if n > 0 {
-        tracing::warn!("{n} non-finite samples were dropped");
+    if dropped > 0 {
+        tracing::warn!("{dropped} non-finite samples were dropped");
     }
     frame.image = Some(fb);
     Ok(Work {
-        items: (width * height) as u64 * spp as u64,
+        items: taken,
         unit: "samples",
     })
 }
 
-/// What one pixel contributes to each pass.
-#[derive(Default)]
+/// One pixel: its centre-sample passes and its samples so far.
+#[derive(Clone)]
 struct PixelResult {
-    color: Vec3,
-    alpha: f32,
     depth: f32,
     normal: Vec3,
-    dropped: u32,
     object_id: u32,
     material_id: u32,
+    samples: PixelSamples,
 }
 
-#[allow(clippy::too_many_arguments)] // one pixel's full context; called from one place
-fn shade_pixel(
-    ctx: Option<&ShadeContext<'_>>,
-    rays: &CameraRays,
-    filter: &FilterSampler,
+/// Everything a pixel's samples need.
+struct PixelShader<'a> {
+    ctx: Option<&'a ShadeContext<'a>>,
+    rays: &'a CameraRays,
+    filter: &'a FilterSampler,
     seed: u32,
-    pixel: u64,
-    x: usize,
-    y: usize,
-    spp: u32,
-) -> PixelResult {
-    let centre = Vec2::new(x as f32 + 0.5, y as f32 + 0.5);
-    let mut result = PixelResult {
-        color: Vec3::ZERO,
-        alpha: 0.0,
-        depth: f32::INFINITY,
-        normal: Vec3::ZERO,
-        dropped: 0,
-        object_id: 0,
-        material_id: 0,
-    };
-    let Some(ctx) = ctx else {
-        return result;
-    };
-    // Centre-sample passes.
-    let ray = rays.ray(centre.x, centre.y);
-    if let Some(hit) = ctx.geometry.accel.intersect(&ray) {
-        let sp = ctx.geometry.shading_point(&hit);
-        result.depth = hit.t;
-        result.normal = sp.normal;
-        result.object_id = sp.instance + 1;
-        result.material_id = sp.material + 1;
-    }
-    let mut sum = SampleMean::default();
-    let mut covered = 0u32;
-    for s in 0..spp {
-        let mut sampler = Sampler::for_item(seed, pixel, s);
-        let film = centre + filter.sample(sampler.next_2d());
-        let ray = rays.ray(film.x, film.y);
-        let Some(hit) = ctx.geometry.accel.intersect(&ray) else {
-            continue;
+    width: usize,
+}
+
+impl PixelShader<'_> {
+    /// The centre-sample passes and samples `0..count` of pixel `(x, y)`.
+    fn first_pass(&self, x: usize, y: usize, count: u32) -> PixelResult {
+        let mut result = PixelResult {
+            depth: f32::INFINITY,
+            normal: Vec3::ZERO,
+            object_id: 0,
+            material_id: 0,
+            samples: PixelSamples::default(),
         };
-        covered += 1;
-        let radiance = shade_hit(ctx, &ray, &hit, &mut sampler);
-        if radiance.is_finite() {
-            sum.add(radiance);
-        } else {
-            result.dropped += 1;
+        if let Some(ctx) = self.ctx {
+            // Through the aperture centre.
+            let centre = Vec2::new(x as f32 + 0.5, y as f32 + 0.5);
+            if let Some(ray) = self.rays.ray(centre.x, centre.y, Vec2::splat(0.5)) {
+                if let Some(hit) = ctx.geometry.accel.intersect(&ray) {
+                    let sp = ctx.geometry.shading_point(&hit);
+                    result.depth = hit.t;
+                    result.normal = sp.normal;
+                    result.object_id = sp.instance + 1;
+                    result.material_id = sp.material + 1;
+                }
+            }
+        }
+        self.take(&mut result.samples, x, y, count);
+        result
+    }
+
+    /// Pass 2 for a refined pixel: doubling batches until converged or at `max`.
+    fn refine(&self, p: &mut PixelResult, x: usize, y: usize, budget: &SampleBudget, delta: Vec3) {
+        loop {
+            let batch = budget.next_batch(p.samples.taken);
+            if batch == 0 {
+                break;
+            }
+            self.take(&mut p.samples, x, y, batch);
+            if p.samples.converged_near(budget.contrast, delta) {
+                break;
+            }
         }
     }
-    result.color = sum.mean_over(spp as u64);
-    result.alpha = covered as f32 / spp as f32;
-    result
+
+    /// Takes the next `count` samples of pixel `(x, y)` (sample indices continue from the
+    /// samples already taken).
+    fn take(&self, samples: &mut PixelSamples, x: usize, y: usize, count: u32) {
+        let pixel = (y * self.width + x) as u64;
+        let Some(ctx) = self.ctx else {
+            // An empty scene: every sample misses.
+            for _ in 0..count {
+                samples.add(Vec3::ZERO, false);
+            }
+            return;
+        };
+        let centre = Vec2::new(x as f32 + 0.5, y as f32 + 0.5);
+        let lens = self.rays.needs_lens_sample();
+        let first = samples.taken;
+        for s in first..first + count {
+            let mut sampler = Sampler::for_item(self.seed, pixel, s);
+            let film = centre + self.filter.sample(sampler.next_2d());
+            let lens_u = if lens {
+                sampler.next_2d()
+            } else {
+                Vec2::splat(0.5)
+            };
+            let hit = self
+                .rays
+                .ray(film.x, film.y, lens_u)
+                .map(|ray| (ray, camera_hit(ctx, &ray)));
+            match hit {
+                Some((ray, CameraHit::Surface(hit))) => {
+                    let l = shade_hit(ctx, &ray, &hit, &mut sampler);
+                    let l = volume::through_segment(ctx, &ray, &hit, l, &mut sampler);
+                    samples.add(l, true);
+                }
+                Some((_, CameraHit::Light(le))) => samples.add(le, true),
+                Some((_, CameraHit::Miss(le))) => samples.add(le, false),
+                None => samples.add(Vec3::ZERO, false),
+            }
+        }
+    }
 }

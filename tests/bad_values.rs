@@ -48,6 +48,8 @@ const ORDINARY: [&str; SLOTS] = [
 fn hostile() -> impl Strategy<Value = &'static str> {
     prop::sample::select(vec![
         "NaN", "inf", "-inf", "0", "-0.0", "-1", "1e39", "-1e39", "1e-45", "1e30", "-1e-30", "180",
+        // Far but ordinary coordinates: the loader rebases them (hard case H5).
+        "1e6", "-3.5e7",
     ])
 }
 

@@ -210,6 +210,11 @@ fn bench_reports_throughput_per_stage_and_writes_nothing_here() {
     assert_eq!(shade["ran"], true);
     assert_eq!(shade["items"], 508 * 380 * 4);
     assert!(shade["items_per_second_per_thread"].as_f64().unwrap() > 0.0);
+    // Rays per stage: a camera ray per sample plus a pixel-centre ray per pixel; the lamp
+    // casts no shadows, so no shadow rays.
+    assert_eq!(shade["rays_closest"], 508 * 380 * 5);
+    assert_eq!(shade["rays_occlusion"], 0);
+    assert!(shade["rays_per_second_per_thread"].as_f64().unwrap() > 0.0);
     assert!(
         std::fs::read_dir(&dir).unwrap().next().is_none(),
         "bench wrote into the working directory"
@@ -221,7 +226,9 @@ fn bench_reports_throughput_per_stage_and_writes_nothing_here() {
     assert!(o.status.success());
     let text = String::from_utf8_lossy(&o.stdout);
     assert!(
-        text.contains("items/s/thread") && text.contains("skipped: no bake requests"),
+        text.contains("items/s/thread")
+            && text.contains("rays/s/thread")
+            && text.contains("skipped: no bake requests"),
         "{text}"
     );
 }

@@ -265,7 +265,7 @@ fn h26_bilinear_taps_land_on_valid_texels_after_dilation() {
         positions: m
             .positions
             .chunks(3)
-            .map(|p| Vec3::new(p[0], p[1], p[2]))
+            .map(|p| Vec3::new(p[0] as f32, p[1] as f32, p[2] as f32))
             .collect(),
         normals: None,
         uvs: None,

@@ -16,8 +16,7 @@ use stagelight::photon::{trace_photon, Gather, GatherMap, Neighbour, PhotonMaps}
 use stagelight::sampling::Sampler;
 use stagelight::scene::load_scene;
 use stagelight::settings::{PhotonMapSettings, RenderSettings};
-use stagelight::shading::bsdf::specular::dielectric_transport;
-use stagelight::shading::bsdf::Transport;
+use stagelight::shading::bsdf::specular::{dielectric_in_mode, TransportMode};
 use stagelight::shading::{LightSet, ShadeContext};
 
 /// Runs every stage up to and including `trace_photons` (a 1×1 camera makes the scene one
@@ -65,8 +64,8 @@ fn global(frame: &Frame) -> &GatherMap {
 fn h14a_refraction_weight_radiance_vs_importance() {
     let t = 1.0 - (0.5f32 / 2.5).powi(2);
     for (eta, radiance_factor) in [(1.5f32, 1.0 / 2.25), (1.0 / 1.5, 2.25)] {
-        let (_, r) = dielectric_transport(Vec3::Z, eta, Transport::Radiance);
-        let (_, i) = dielectric_transport(Vec3::Z, eta, Transport::Importance);
+        let (_, r) = dielectric_in_mode(Vec3::Z, eta, TransportMode::Radiance);
+        let (_, i) = dielectric_in_mode(Vec3::Z, eta, TransportMode::Importance);
         let (r, i) = (r.unwrap().weight, i.unwrap().weight);
         assert!(((r - t * radiance_factor) / r).abs() < 1e-6, "{eta}: {r}");
         assert!(((i - t) / i).abs() < 1e-6, "{eta}: {i}");

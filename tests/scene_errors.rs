@@ -491,6 +491,28 @@ fn number_beyond_f32() {
     );
 }
 
+/// Lens shaders, volume shaders and adaptive samples are checked with located errors.
+#[test]
+fn lens_volume_and_adaptive_samples() {
+    let f = "tests/fixtures/scenes/bad/lens_volume.ron";
+    check(
+        "lens_volume.ron",
+        &[
+            &format!("{f}:2:38: error: max must be at least min (8), found 4"),
+            &format!(
+                "{f}:5:16: error: a ThinLens needs exactly one of `radius` and `fstop`\n  help: e.g. `ThinLens(radius: 0.05, focus_distance: 4.0)`"
+            ),
+            &format!(
+                "{f}:5:70: error: a projection lens (Fisheye, Spherical) must be the first lens\n  help: a projection replaces the pinhole, so it must come first in `lens`"
+            ),
+            &format!("{f}:5:124: error: focus_distance must be positive, found 0"),
+            &format!("{f}:6:40: error: sigma_s must not be negative, found -0.2"),
+            &format!("{f}:6:55: error: g must be between -1 and 1 (exclusive), found 1"),
+            &format!("{f}:7:99: error: sigma_a 1e39 is beyond the f32 range"),
+        ],
+    );
+}
+
 /// Photon map knobs out of range: every one reported at its value.
 #[test]
 fn photon_options() {

@@ -106,10 +106,32 @@ fn spp_sweep_writes_table_json_plot_and_error_falls() {
     let json: serde_json::Value =
         serde_json::from_slice(&std::fs::read(out.join("sweep.json")).unwrap()).unwrap();
     assert_eq!(json["knob"], "spp");
-    // Time grows 64× while the error falls: a clearly negative slope (timings are noisy on a
-    // shared machine, so no tighter bound).
+    // The reported slope is the least-squares fit of log relMSE against log seconds of the
+    // table's own rows (the timings themselves are too noisy on a shared machine to bound).
     let slope = json["slope"].as_f64().unwrap();
-    assert!(slope < -0.3, "slope {slope}");
+    let points: Vec<(f64, f64)> = json["rows"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|r| {
+            (
+                r["seconds"].as_f64().unwrap().log10(),
+                r["error"]["rel_mse"].as_f64().unwrap().log10(),
+            )
+        })
+        .collect();
+    let n = points.len() as f64;
+    let (mx, my) = (
+        points.iter().map(|p| p.0).sum::<f64>() / n,
+        points.iter().map(|p| p.1).sum::<f64>() / n,
+    );
+    let sxy: f64 = points.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
+    let sxx: f64 = points.iter().map(|p| (p.0 - mx).powi(2)).sum();
+    assert!(
+        (slope - sxy / sxx).abs() < 1e-6 * (1.0 + slope.abs()),
+        "slope {slope} vs fit {}",
+        sxy / sxx
+    );
     assert_eq!(json["rows"][0]["seeds"], 2);
     assert!(json["rows"][0]["error"]["variance"].as_f64().unwrap() > 0.0);
     let svg = std::fs::read_to_string(out.join("sweep.svg")).unwrap();
@@ -207,4 +229,44 @@ fn integrator_flag_applies_to_the_swept_runs() {
     };
     let (path, direct) = (bias("path"), bias("direct"));
     assert!(direct > 10.0 * path, "bias² path {path}, direct {direct}");
+}
+
+/// `--knob adaptive_contrast`: refused on a scene with a fixed sample count; on a scene with
+/// `samples: (min, max, contrast)` lower contrast buys lower error.
+#[test]
+fn adaptive_contrast_sweep_needs_adaptive_samples_and_error_falls() {
+    let (dir, scene) = setup("adaptive");
+    let o = run(bin()
+        .arg("sweep")
+        .arg(&scene)
+        .args(["--knob", "adaptive_contrast=0.2,0.05"])
+        .arg("--out")
+        .arg(dir.join("o")));
+    assert_eq!(o.status.code(), Some(1));
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        stderr.contains("knob adaptive_contrast is not in this scene"),
+        "{stderr}"
+    );
+    let adaptive = dir.join("adaptive.ron");
+    std::fs::write(
+        &adaptive,
+        SCENE.replace("samples: 1),", "samples: (min: 2, max: 64)),"),
+    )
+    .unwrap();
+    let out = dir.join("adaptive_out");
+    let o = run(bin()
+        .arg("sweep")
+        .arg(&adaptive)
+        .args([
+            "--knob",
+            "adaptive_contrast=0.5,0.01",
+            "--reference-spp",
+            "256",
+        ])
+        .arg("--out")
+        .arg(&out));
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let rel = rel_mse_column(&std::fs::read_to_string(out.join("sweep.csv")).unwrap());
+    assert!(rel[0] > rel[1], "{rel:?}");
 }

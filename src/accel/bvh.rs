@@ -16,6 +16,7 @@ use obvhs::{
     bvh2::reinsertion::ReinsertionOptimizer, cwbvh::bvh2_to_cwbvh::bvh2_to_cwbvh,
     ploc::PlocBuilder, triangle::Triangle, BvhBuildParams,
 };
+use rayon::prelude::*;
 
 use super::triangle::is_degenerate;
 use crate::settings::BvhQuality;
@@ -97,7 +98,10 @@ pub(crate) fn build(tris: &[[Vec3; 3]], quality: BvhQuality) -> Bvh {
         tris.len() <= FIRST_MASK as usize,
         "too many triangles for one BVH"
     );
+    // The gathers around the obvhs calls go wide (order-preserving collects): PLOC and
+    // reinsertion are parallel inside obvhs, its CWBVH conversion and our node sweep are not.
     let valid: Vec<u32> = (0..tris.len() as u32)
+        .into_par_iter()
         .filter(|&i| !is_degenerate(&tris[i as usize]))
         .collect();
     if valid.is_empty() {
@@ -110,7 +114,7 @@ pub(crate) fn build(tris: &[[Vec3; 3]], quality: BvhQuality) -> Bvh {
         };
     }
     let ob_tris: Vec<Triangle> = valid
-        .iter()
+        .par_iter()
         .map(|&i| {
             let [v0, v1, v2] = tris[i as usize];
             Triangle {
@@ -136,10 +140,10 @@ pub(crate) fn build(tris: &[[Vec3; 3]], quality: BvhQuality) -> Bvh {
 
     let prim_ids: Vec<u32> = cw
         .primitive_indices
-        .iter()
+        .par_iter()
         .map(|&i| valid[i as usize])
         .collect();
-    let bvh_tris: Vec<[Vec3; 3]> = prim_ids.iter().map(|&i| tris[i as usize]).collect();
+    let bvh_tris: Vec<[Vec3; 3]> = prim_ids.par_iter().map(|&i| tris[i as usize]).collect();
 
     // Children always follow their parent in obvhs's layout, so one reverse sweep computes
     // every node box from its children before the parent needs it.

@@ -11,10 +11,13 @@
 //!   [`spawn_ray_to_surface`] from a [`SurfacePoint`] (`spawn.rs`): the origin is offset by
 //!   the point's own error bound, never by a fixed epsilon.
 //!
+//! * Every query is counted ([`Accel::ray_counts`], `counters.rs`) for the per-stage ledger.
+//!
 //! Design notes and measurements: `docs/ray-layer.md`.
 
 mod brute;
 mod bvh;
+mod counters;
 mod spawn;
 mod traverse;
 mod triangle;
@@ -24,6 +27,7 @@ use glam::Vec3;
 use crate::settings::BvhQuality;
 
 pub use brute::brute_force_intersect;
+pub use counters::RayCounts;
 pub use spawn::{offset_ray_origin, spawn_ray, spawn_ray_to, spawn_ray_to_surface, SHADOW_EPSILON};
 pub use triangle::{gamma, intersect_triangle, is_degenerate, MACHINE_EPSILON};
 
@@ -82,6 +86,7 @@ pub struct AccelStats {
 pub struct Accel {
     triangles: Vec<[Vec3; 3]>,
     bvh: bvh::Bvh,
+    counters: counters::Counters,
 }
 
 impl Accel {
@@ -89,7 +94,11 @@ impl Accel {
     /// the index space but never hit.
     pub fn build(triangles: Vec<[Vec3; 3]>, quality: BvhQuality) -> Self {
         let bvh = bvh::build(&triangles, quality);
-        Self { triangles, bvh }
+        Self {
+            triangles,
+            bvh,
+            counters: counters::Counters::new(),
+        }
     }
 
     /// Number of triangles.
@@ -111,11 +120,13 @@ impl Accel {
     /// `prim`. Rays with a non-finite origin or direction, a zero direction or `t_max ≤ 0`
     /// hit nothing.
     pub fn intersect(&self, ray: &Ray) -> Option<Hit> {
+        self.counters.add_closest(1);
         traverse::closest(&self.bvh, ray)
     }
 
     /// Whether anything is hit along the ray segment (`0 < t < t_max`).
     pub fn occluded(&self, ray: &Ray) -> bool {
+        self.counters.add_occlusion(1);
         traverse::occluded(&self.bvh, ray)
     }
 
@@ -126,6 +137,7 @@ impl Accel {
     /// # Panics
     /// When `rays` and `out` differ in length.
     pub fn intersect_batch(&self, rays: &[Ray], out: &mut [Option<Hit>]) {
+        self.counters.add_closest(rays.len() as u64);
         traverse::closest_batch(&self.bvh, rays, out);
     }
 
@@ -135,12 +147,19 @@ impl Accel {
     /// # Panics
     /// When `rays` and `out` differ in length.
     pub fn occluded_batch(&self, rays: &[Ray], out: &mut [bool]) {
+        self.counters.add_occlusion(rays.len() as u64);
         traverse::occluded_batch(&self.bvh, rays, out);
     }
 
     /// Surface point of a hit, computed from its barycentrics, with error bounds.
     pub fn surface_point(&self, hit: &Hit) -> SurfacePoint {
         spawn::surface_point(&self.triangle(hit.prim), hit.b1, hit.b2)
+    }
+
+    /// Rays traced through this accelerator so far, by kind, over every thread (see
+    /// `counters.rs`): exact once the tracing threads have finished.
+    pub fn ray_counts(&self) -> RayCounts {
+        self.counters.totals()
     }
 
     /// Wall-clock seconds [`Accel::build`] took.

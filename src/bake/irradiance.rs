@@ -6,15 +6,16 @@
 
 use glam::Vec3;
 
-use crate::accel::{spawn_ray, spawn_ray_to, spawn_ray_to_surface, SurfacePoint};
+use crate::accel::{spawn_ray, SurfacePoint};
 use crate::bake::ao::basis;
 use crate::components::Shader;
 use crate::geometry::SceneGeometry;
 use crate::sampling::{sample_cosine_hemisphere, Sampler};
+use crate::shading::shadow::transmittance;
 use crate::shading::LightSet;
 
 /// Direct irradiance (W/m²) at `surface` with unit normal `normal` from every light, with
-/// shadow rays; each light uses its own sample count, drawn from child sequences of
+/// shadow rays (tinted by transparent surfaces, as in renders); each light uses its own sample count, drawn from child sequences of
 /// `sampler`.
 pub fn direct_irradiance(
     geometry: &SceneGeometry,
@@ -38,17 +39,18 @@ pub fn direct_irradiance(
             if cos <= 0.0 || ng_facing.dot(ls.wi) <= 0.0 {
                 continue;
             }
-            if ls.shadows {
-                let ray = match ls.target {
-                    None => spawn_ray(surface, ls.wi),
-                    Some(t) if t.ng == Vec3::ZERO => spawn_ray_to(surface, t.p),
-                    Some(t) => spawn_ray_to_surface(surface, &t),
-                };
-                if geometry.accel.occluded(&ray) {
-                    continue;
-                }
-            }
-            sum += ls.contribution * cos;
+            let shadow = if ls.shadows {
+                transmittance(
+                    geometry,
+                    surface,
+                    ls.wi,
+                    ls.target,
+                    lights.transmissive_shadows,
+                )
+            } else {
+                Vec3::ONE
+            };
+            sum += ls.contribution * shadow * cos;
         }
         e += sum / n as f32;
     }

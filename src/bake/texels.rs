@@ -363,7 +363,14 @@ fn texel(
                     NormalSpace::Tangent => tangent_space(job, &sites[0], n),
                 }
             }
-            BakeKind::Positions => sites.iter().map(|s| s.surface.p).sum::<Vec3>() / n_sites as f32,
+            // Render space back to world space, in f64, rounded once to f32.
+            BakeKind::Positions => (sites
+                .iter()
+                .map(|s| s.surface.p.as_dvec3())
+                .sum::<glam::DVec3>()
+                / n_sites as f64
+                + job.geometry.origin)
+                .as_vec3(),
             BakeKind::Albedo => {
                 base_color(&job.geometry.materials[sites[0].material as usize].shader)
             }

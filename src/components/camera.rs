@@ -80,3 +80,44 @@ pub fn world_from_look_at(eye: glam::Vec3, target: glam::Vec3, up: glam::Vec3) -
         eye.into(),
     ))
 }
+
+/// A lens shader: changes the primary rays of a camera. Lenses chain in list order, each
+/// receiving the camera-space ray the previous one produced (the first receives the
+/// pinhole ray).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Lens {
+    /// Thin-lens depth of field: rays start on a disk of `radius` and meet where the ray
+    /// they replace reaches the focus surface — the plane `focus_distance` in front of the
+    /// camera after the pinhole projection, the sphere of that radius around the camera
+    /// after a `Fisheye` or `Spherical` projection.
+    ThinLens {
+        /// Aperture radius, metres (> 0).
+        radius: f32,
+        /// Distance to the plane (or sphere) in focus, metres (> 0).
+        focus_distance: f32,
+    },
+    /// Equidistant fisheye projection: the angle from the view axis grows linearly with the
+    /// distance from the image centre, reaching `fov / 2` at the top and bottom edges (same
+    /// horizontal scale, so the image circle of a square image touches all four edges).
+    /// Film positions beyond 180° from the axis see nothing.
+    Fisheye {
+        /// Full field of view across the image height, radians, in (0, 2π].
+        fov: f32,
+    },
+    /// Lat-long (equirectangular) 360° × 180° projection: azimuth −180°…180° left to right
+    /// (0 at the image centre, looking down −Z, +90° toward +X), elevation 90°…−90° top to
+    /// bottom.
+    Spherical,
+}
+
+impl Lens {
+    /// Whether the lens replaces the pinhole projection (the direction of each film
+    /// position) rather than modifying the incoming ray.
+    pub fn is_projection(&self) -> bool {
+        matches!(self, Lens::Fisheye { .. } | Lens::Spherical)
+    }
+}
+
+/// A camera's lens shaders, applied in order (at most one projection, and first).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Lenses(pub Vec<Lens>);

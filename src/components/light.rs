@@ -1,4 +1,5 @@
-//! Light emitters: point, spot, directional and rectangular area lights.
+//! Light emitters: point, spot, directional, and the four area-light shapes of mental ray
+//! (rectangle, disc, sphere, cylinder).
 
 use glam::Vec3;
 
@@ -38,6 +39,45 @@ pub enum LightShape {
         /// Second edge vector from `corner`.
         edge_v: Vec3,
     },
+    /// One-sided disc emitting along `normal`; `Emitter::radiant` is radiance in W/(sr·m²).
+    Disc {
+        /// Centre.
+        center: Vec3,
+        /// Unit normal (the emitting side).
+        normal: Vec3,
+        /// Radius (> 0).
+        radius: f32,
+    },
+    /// Sphere emitting outward; `Emitter::radiant` is radiance in W/(sr·m²).
+    Sphere {
+        /// Centre.
+        center: Vec3,
+        /// Radius (> 0).
+        radius: f32,
+    },
+    /// Open tube (no caps) from `start` to `end` emitting outward; `Emitter::radiant` is
+    /// radiance in W/(sr·m²).
+    Cylinder {
+        /// Centre of one end.
+        start: Vec3,
+        /// Centre of the other end (differs from `start`).
+        end: Vec3,
+        /// Radius (> 0).
+        radius: f32,
+    },
+}
+
+impl LightShape {
+    /// Whether the shape has an area (the emitted quantity is radiance, rays can meet it).
+    pub fn is_area(&self) -> bool {
+        matches!(
+            self,
+            LightShape::Rect { .. }
+                | LightShape::Disc { .. }
+                | LightShape::Sphere { .. }
+                | LightShape::Cylinder { .. }
+        )
+    }
 }
 
 /// A light entity's data.
@@ -51,4 +91,43 @@ pub struct Emitter {
     pub shadows: bool,
     /// Samples per shading point for area lights (1 for delta lights).
     pub samples: u32,
+    /// Area lights only: whether camera rays and perfect mirror / refraction rays see the
+    /// light's emitting face (mental ray's `visible`). Invisible lights still light surfaces
+    /// (glossy highlights included).
+    pub visible: bool,
+    /// Optional linear near/far falloff `(start, end)` in scene units, on top of the
+    /// physical inverse-square law: full strength up to `start`, none beyond `end`.
+    pub attenuation: Option<(f32, f32)>,
+}
+
+impl Emitter {
+    /// A light of `shape` emitting `radiant`, casting shadows, one sample (16 for area
+    /// lights), invisible, without near/far attenuation.
+    pub fn new(shape: LightShape, radiant: Vec3) -> Self {
+        let samples = if shape.is_area() { 16 } else { 1 };
+        Self {
+            shape,
+            radiant,
+            shadows: true,
+            samples,
+            visible: false,
+            attenuation: None,
+        }
+    }
+}
+
+/// Linear near/far attenuation factor at distance `d`: 1 up to `start`, 0 from `end` on.
+pub fn attenuation_factor(attenuation: Option<(f32, f32)>, d: f32) -> f32 {
+    match attenuation {
+        None => 1.0,
+        Some((start, end)) => {
+            if d <= start {
+                1.0
+            } else if d >= end {
+                0.0
+            } else {
+                (end - d) / (end - start)
+            }
+        }
+    }
 }

@@ -10,20 +10,27 @@ mod mesh;
 mod naming;
 mod transform;
 
-pub use camera::{world_from_look_at, Camera, ImageFormat, OutputSpec, Pass, RenderCamera};
-pub use light::{Emitter, LightShape};
+pub use camera::{
+    world_from_look_at, Camera, ImageFormat, Lens, Lenses, OutputSpec, Pass, RenderCamera,
+};
+pub use light::{attenuation_factor, Emitter, LightShape};
 pub use material::{Material, MaterialRef, Shader};
 pub use mesh::{Instance, TriMesh};
 pub use naming::{Name, SourceLink};
-pub use transform::WorldFromObject;
+pub use transform::{SceneOrigin, WorldFromObject};
 
 mod bake;
+mod environment;
 mod imager;
 pub use bake::{
     BakeFormat, BakeKind, BakeRequest, BakeResolution, BakeTarget, LightmapStore, NormalSpace,
     UvSource,
 };
+pub use environment::{DepthExceeded, Environment, EnvironmentSource, LatLongMap};
 pub use imager::{Imager, ToneMap};
+
+mod volume;
+pub use volume::{Atmosphere, Fog, Interior};
 
 mod approximation;
 mod displacement;

@@ -1,23 +1,26 @@
 //! Photon emission: each light's power in watts and a sampler of photons leaving it.
 //!
-//! Powers follow from the lights' physical units: point `Φ = 4π·I`; spot `Φ = 2π·I·∫ falloff(cosθ)
-//! dcosθ` over its cone (numerical quadrature of the beam and penumbra); rectangle
-//! `Φ = π·L·A`; emitting triangles `Φ = π·L·A` each (twice for two-sided emission);
-//! directional `Φ = E·π·R²` through a disc of the scene's bounding-sphere radius `R` facing
-//! the light. A light is chosen with probability proportional to its (channel-mean) power;
-//! every photon's power is its emitted flux divided by that probability, so the mean power
-//! per photon is the total power of the scene's lights. A new light shape adds one arm to
-//! [`Source::from_light`] and one to [`Source::emit`].
+//! Powers follow from the lights' physical units: point `Φ = 4π·I`; spot
+//! `Φ = 2π·I·∫ falloff(cosθ) dcosθ` over its cone (numerical quadrature of the beam and
+//! penumbra); area lights `Φ = π·L·A` (rectangle, disc, sphere `A = 4πr²`, cylinder side
+//! `A = 2πrh`, each emitting outward with a cosine distribution); emitting triangles
+//! `Φ = π·L·A` each (twice for two-sided emission); directional `Φ = E·π·R²` through a disc
+//! of the scene's bounding-sphere radius `R` facing the light. The environment emits no
+//! photons, and lights' near/far `attenuation` is not applied to photons. A light is chosen
+//! with probability proportional to its (channel-mean) power; every photon's power is its
+//! emitted flux divided by that probability, so the mean power per photon is the total power
+//! of the scene's lights. A new light shape adds one arm to [`Source::from_light`] and one to
+//! [`Source::emit`].
 
 use std::f32::consts::PI;
 
 use glam::{Vec2, Vec3};
 
-use crate::accel::{spawn_ray, Hit, Ray, SurfacePoint};
+use crate::accel::{spawn_ray, Hit, Ray};
 use crate::geometry::SceneGeometry;
 use crate::sampling::{sample_cosine_hemisphere, sample_triangle};
 use crate::shading::frame::ShadingFrame;
-use crate::shading::lights::{spot_falloff, Light, LightSet};
+use crate::shading::lights::{spot_falloff, AreaShape, Light, LightSet, MeshLight};
 
 /// A photon leaving a light: its ray and its flux weight, W (not yet divided by the number of
 /// photons emitted).
@@ -51,8 +54,10 @@ impl Source {
                 ..
             } => *intensity * spot_solid_angle(*cos_outer, *cos_inner, *beam_distribution),
             Light::Directional { irradiance, .. } => *irradiance * (PI * bounds.1 * bounds.1),
-            Light::Rect { area, radiance, .. } => *radiance * (PI * *area),
-            Light::Mesh { prims, .. } => prims.iter().fold(Vec3::ZERO, |s, &prim| {
+            Light::Area(a) => a.radiance * (PI * area_of(&a.shape)),
+            // The environment sends no photons (documented limitation).
+            Light::Environment(_) => Vec3::ZERO,
+            Light::Mesh(MeshLight { prims, .. }) => prims.iter().fold(Vec3::ZERO, |s, &prim| {
                 let m = geometry.material_of(prim);
                 let sides = if m.two_sided { 2.0 } else { 1.0 };
                 s + m.emission * (PI * sides * triangle_area(geometry, prim))
@@ -111,28 +116,32 @@ impl Source {
                 let origin = centre - *direction * (1.01 * radius) + frame.s * d.x + frame.t * d.y;
                 from_point(origin, *direction, self.power)
             }
-            Light::Rect {
-                corner,
-                edge_u,
-                edge_v,
-                normal,
-                ..
-            } => {
-                let q = *corner + *edge_u * u_pos.x + *edge_v * u_pos.y;
-                let gamma = 4.0 * f32::EPSILON * 0.5 / (1.0 - 4.0 * f32::EPSILON * 0.5);
-                let sp = SurfacePoint {
-                    p: q,
-                    p_err: q.abs() * gamma,
-                    ng: *normal,
+            Light::Area(a) => {
+                // A point on the shape and its outward normal; light shapes are not scene
+                // geometry, so the photon starts exactly there.
+                let (q, n) = match &a.shape {
+                    AreaShape::Rect(r) => {
+                        (r.corner + r.edge_u * u_pos.x + r.edge_v * u_pos.y, r.normal)
+                    }
+                    AreaShape::Disc(d) => {
+                        let p = crate::sampling::sample_concentric_disk(u_pos) * d.radius;
+                        (d.center + d.frame.s * p.x + d.frame.t * p.y, d.frame.n)
+                    }
+                    AreaShape::Sphere(s) => {
+                        let n = uniform_sphere(u_pos);
+                        (s.center + n * s.radius, n)
+                    }
+                    AreaShape::Cylinder(c) => {
+                        let phi = 2.0 * PI * u_pos.y;
+                        let n = c.frame.s * phi.cos() + c.frame.t * phi.sin();
+                        (c.start + c.frame.n * (u_pos.x * c.length) + n * c.radius, n)
+                    }
                 };
-                let dir =
-                    ShadingFrame::from_normal(*normal).to_world(sample_cosine_hemisphere(u_dir));
-                EmittedPhoton {
-                    ray: spawn_ray(&sp, dir),
-                    power: self.power,
-                }
+                let dir = ShadingFrame::from_normal(n).to_world(sample_cosine_hemisphere(u_dir));
+                from_point(q, dir, self.power)
             }
-            Light::Mesh { prims, cdf, .. } => {
+            Light::Environment(_) => return None,
+            Light::Mesh(MeshLight { prims, cdf, .. }) => {
                 let k = cdf.partition_point(|&c| c <= u_pos.x).clamp(1, prims.len()) - 1;
                 let (c0, c1) = (cdf[k], cdf[k + 1]);
                 if c1 <= c0 {
@@ -238,6 +247,16 @@ impl Emission {
 
 fn mean(v: Vec3) -> f32 {
     (v.x + v.y + v.z) / 3.0
+}
+
+/// Emitting area of a light shape, m².
+fn area_of(shape: &AreaShape) -> f32 {
+    match shape {
+        AreaShape::Rect(r) => r.area,
+        AreaShape::Disc(d) => PI * d.radius * d.radius,
+        AreaShape::Sphere(s) => 4.0 * PI * s.radius * s.radius,
+        AreaShape::Cylinder(c) => 2.0 * PI * c.radius * c.length,
+    }
 }
 
 fn triangle_area(geometry: &SceneGeometry, prim: u32) -> f32 {

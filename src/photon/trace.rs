@@ -4,7 +4,7 @@
 //!
 //! At each hit the photon's power is first attenuated by the absorption of the segment it
 //! crossed (dielectric `col`), then — if the surface has a non-delta lobe — deposited, then
-//! scattered: the BSDF is sampled with [`Transport::Importance`] (refraction conserves power,
+//! scattered: the BSDF is sampled with [`TransportMode::Importance`] (refraction conserves power,
 //! no `1/η²`; H14) and the weight gets Veach's shading-normal correction
 //! `|wo·nₛ||wi·n_g| / (|wo·n_g||wi·nₛ|)`. The photon survives with probability
 //! `q = min(1, max channel of the weight)` and carries `power·weight/q` (Jensen): for grey
@@ -15,7 +15,7 @@ use glam::Vec3;
 use super::kdtree::Photon;
 use crate::accel::Ray;
 use crate::sampling::Sampler;
-use crate::shading::bsdf::{Scatter, Transport};
+use crate::shading::bsdf::{Scatter, TransportMode};
 use crate::shading::integrator::{ShadeContext, Vertex};
 
 /// Most surface interactions of one photon.
@@ -94,7 +94,7 @@ pub fn trace_photon(
         }
         let u = Vec3::new(sampler.next_1d(), sampler.next_1d(), sampler.next_1d());
         let u_rr = sampler.next_1d();
-        let Some(s) = bsdf.sample_transport(v.wo, u, Transport::Importance) else {
+        let Some(s) = bsdf.sample_transport(v.wo, u, TransportMode::Importance) else {
             fate.absorbed += power;
             return fate;
         };

@@ -26,8 +26,10 @@ pub struct Leaf {
     pub instance: usize,
     /// The object (index into `Merged::objects`).
     pub object: usize,
-    /// Composed transform.
+    /// Composed transform, rounded to f32 (in render space once [`super::rebase`] has run).
     pub world_from_object: Affine3A,
+    /// Composed transform in f64 world space, including the object's mesh offset.
+    pub world: DAffine3,
     /// Material from the closest instance override on the path, then the object's.
     pub material: Option<usize>,
 }
@@ -200,8 +202,15 @@ pub fn reachable_objects(m: &Merged<'_>, r: &Resolved) -> Vec<bool> {
 }
 
 /// Expands the acyclic graph from the root group into leaves. `locals` are the instance
-/// transforms; the caller has checked they are all valid.
-pub fn flatten(src: &mut Sources, m: &Merged<'_>, r: &Resolved, locals: &[DAffine3]) -> Vec<Leaf> {
+/// transforms; the caller has checked they are all valid. `offsets[o]` is the object-space
+/// centre subtracted from object `o`'s vertices (see [`super::rebase`]), applied first.
+pub fn flatten(
+    src: &mut Sources,
+    m: &Merged<'_>,
+    r: &Resolved,
+    locals: &[DAffine3],
+    offsets: &[DVec3],
+) -> Vec<Leaf> {
     let Some(root) = r.root else {
         return Vec::new();
     };
@@ -243,6 +252,8 @@ pub fn flatten(src: &mut Sources, m: &Merged<'_>, r: &Resolved, locals: &[DAffin
         let material = r.instance_material[inst].or(top.material);
         match r.instance_of[inst] {
             Some(Target::Object(o)) => {
+                let offset = offsets.get(o).copied().unwrap_or(DVec3::ZERO);
+                let world = world * DAffine3::from_translation(offset);
                 let rounded = Affine3A::from_mat3_translation(
                     world.matrix3.as_mat3(),
                     world.translation.as_vec3(),
@@ -265,6 +276,7 @@ pub fn flatten(src: &mut Sources, m: &Merged<'_>, r: &Resolved, locals: &[DAffin
                     instance: inst,
                     object: o,
                     world_from_object: rounded,
+                    world,
                     material: material.or(r.object_material[o]),
                 });
             }

@@ -5,6 +5,7 @@
 
 use serde::Deserialize;
 
+pub use super::desc_camera::{LensDesc, SamplesDesc, VolumeDesc};
 pub use super::desc_geometry::{
     ApproximationDesc, AxisDesc, BasisDesc, DisplacementDesc, DisplacementModeDesc, MeshDesc,
     ScalarDesc, SpaceDesc,
@@ -38,14 +39,16 @@ pub struct SceneDesc {
     pub groups: Vec<GroupDesc>,
     /// What to render (exactly one across all files).
     pub render: Option<RenderDesc>,
+    /// What rays leaving the scene see, also a light (at most one across all files).
+    pub environment: Option<EnvironmentDesc>,
 }
 
 /// `options: (...)`: render settings.
 #[derive(Debug, Clone, Deserialize)]
 #[serde(rename = "Options", deny_unknown_fields, default)]
 pub struct OptionsDesc {
-    /// Samples per pixel, default 4, at least 1.
-    pub samples: u32,
+    /// Samples per pixel, default 4, at least 1; or adaptive `(min, max, contrast)`.
+    pub samples: SamplesDesc,
     /// Pixel filter, default `Box`.
     pub filter: FilterDesc,
     /// Random seed, default 0.
@@ -98,7 +101,7 @@ impl Default for PhotonMapDesc {
 impl Default for OptionsDesc {
     fn default() -> Self {
         Self {
-            samples: 4,
+            samples: SamplesDesc::Fixed(4),
             filter: FilterDesc::Box,
             seed: 0,
             max_depth: 4,
@@ -192,6 +195,12 @@ pub struct CameraDesc {
     /// Output shader for PNG outputs (background, exposure, tone map, gamma), default none.
     #[serde(default)]
     pub imager: Option<ImagerDesc>,
+    /// Lens shaders applied in order after the pinhole, default none.
+    #[serde(default)]
+    pub lens: Vec<LensDesc>,
+    /// Volume shader filling the scene around the camera, default none.
+    #[serde(default)]
+    pub atmosphere: Option<VolumeDesc>,
 }
 
 /// `imager: (...)` on a camera: RenderMan `Exposure gain gamma` and `Imager "background"`.
@@ -308,9 +317,15 @@ pub struct LightDesc {
     /// Whether the light casts shadows, default `true`.
     #[serde(default = "default_true")]
     pub shadows: bool,
-    /// Samples per shading point (Rect only, default 16); delta lights accept only 1.
+    /// Samples per shading point (area lights, default 16); delta lights accept only 1.
     #[serde(default)]
     pub samples: Option<u32>,
+    /// Area lights: seen by camera rays and mirror/refraction rays, default `false`.
+    #[serde(default)]
+    pub visible: bool,
+    /// Linear near/far falloff `(start, end)` on top of the inverse-square law, default none.
+    #[serde(default)]
+    pub attenuation: Option<(f64, f64)>,
 }
 
 fn default_white() -> V3 {
@@ -363,6 +378,85 @@ pub enum LightKindDesc {
         /// Second edge.
         edge_v: V3,
     },
+    /// One-sided disc area light (W/(sr·m²)), emitting along `normal`.
+    Disc {
+        /// Centre.
+        center: V3,
+        /// Emitting side (normalised by the loader).
+        normal: V3,
+        /// Radius, > 0.
+        radius: f64,
+    },
+    /// Spherical area light (W/(sr·m²)) emitting outward.
+    Sphere {
+        /// Centre.
+        center: V3,
+        /// Radius, > 0.
+        radius: f64,
+    },
+    /// Cylindrical area light (W/(sr·m²)): an open tube emitting outward.
+    Cylinder {
+        /// Centre of one end.
+        start: V3,
+        /// Centre of the other end.
+        end: V3,
+        /// Radius, > 0.
+        radius: f64,
+    },
+}
+
+/// `environment: (...)`: the scene's environment (mental ray's environment shader).
+#[derive(Debug, Clone, Deserialize)]
+#[serde(rename = "Environment", deny_unknown_fields)]
+pub struct EnvironmentDesc {
+    /// Where the radiance comes from.
+    pub shader: EnvironmentShaderDesc,
+    /// Scale of the radiance, default 1, non-negative.
+    #[serde(default = "default_one")]
+    pub intensity: f64,
+    /// Light samples per shading point (direct integrator), default 16.
+    #[serde(default = "default_env_samples")]
+    pub samples: u32,
+    /// What rays beyond a reflection/refraction budget see, default `Environment`.
+    #[serde(default = "default_depth_exceeded")]
+    pub depth_exceeded: DepthExceededDesc,
+}
+
+fn default_env_samples() -> u32 {
+    16
+}
+
+fn default_depth_exceeded() -> DepthExceededDesc {
+    DepthExceededDesc::Environment
+}
+
+/// The environment's radiance.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(rename = "EnvironmentShader", deny_unknown_fields)]
+pub enum EnvironmentShaderDesc {
+    /// The same radiance (W/(sr·m²)) from every direction.
+    Constant {
+        /// Linear RGB radiance.
+        color: V3,
+    },
+    /// An equirectangular EXR radiance map, +Y up.
+    LatLong {
+        /// EXR file, relative to the scene file.
+        file: String,
+        /// Rotation about +Y, degrees, default 0.
+        #[serde(default)]
+        rotation: f64,
+    },
+}
+
+/// What rays that exceed a trace-depth budget see.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename = "DepthExceeded")]
+pub enum DepthExceededDesc {
+    /// The environment.
+    Environment,
+    /// Black.
+    Black,
 }
 
 fn default_beam() -> f64 {
@@ -383,6 +477,9 @@ pub struct MaterialDesc {
     /// Emitted radiance, W/(sr·m²), default `(0, 0, 0)`.
     #[serde(default)]
     pub emission: V3,
+    /// Volume shader filling the inside of closed meshes with this material, default none.
+    #[serde(default)]
+    pub interior: Option<VolumeDesc>,
 }
 
 /// Surface shader.

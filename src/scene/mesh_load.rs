@@ -1,7 +1,8 @@
 //! Building [`TriMesh`]es: inline polygons (checked, fan-triangulated) and Wavefront OBJ
 //! files (via `tobj`, every model merged into one mesh).
 //!
-//! Positions are rounded to f32 first; a triangle whose area is zero in f64 arithmetic on
+//! Positions are read in f64 and, when they lie far from the object origin, re-centred
+//! before they are rounded to f32 ([`super::rebase::centre_positions`]); a triangle whose area is zero in f64 arithmetic on
 //! those positions, or that touches a non-finite position, is dropped and counted. Shading
 //! normals are normalised; a normal set with a non-finite or zero-length entry is dropped
 //! whole, as is a non-finite UV set. Normals and UVs are kept only when every vertex has one.
@@ -24,6 +25,23 @@ pub struct BuiltMesh {
     pub dropped: usize,
     /// Whether a normal set was dropped because of a bad entry.
     pub dropped_normals: bool,
+    /// Object-space point subtracted from every position before rounding to f32 (zero when
+    /// the mesh lies near its object origin); the instance transforms add it back in f64.
+    pub offset: DVec3,
+}
+
+impl BuiltMesh {
+    /// Undoes the re-centring (for meshes whose object space others depend on, such as
+    /// scatter surfaces and prototypes): positions are moved back by `offset`, rounded again.
+    pub fn uncentre(&mut self) {
+        if self.offset == DVec3::ZERO {
+            return;
+        }
+        for p in &mut self.mesh.positions {
+            *p = (p.as_dvec3() + self.offset).as_vec3();
+        }
+        self.offset = DVec3::ZERO;
+    }
 }
 
 /// Why an OBJ file did not load.
@@ -135,6 +153,7 @@ pub fn build_inline(
     uvs: Option<&[(f64, f64)]>,
 ) -> BuiltMesh {
     let v3 = |v: &V3| Vec3::new(v.0 as f32, v.1 as f32, v.2 as f32);
+    let d3 = |v: &V3| DVec3::new(v.0, v.1, v.2);
     let mut triangles = Vec::new();
     for poly in polygons {
         for k in 1..poly.len().saturating_sub(1) {
@@ -142,7 +161,7 @@ pub fn build_inline(
         }
     }
     finish(
-        vertices.iter().map(v3).collect(),
+        vertices.iter().map(d3).collect(),
         normals.map(|n| n.iter().map(v3).collect()),
         uvs.map(|u| {
             u.iter()
@@ -156,11 +175,12 @@ pub fn build_inline(
 /// Drops degenerate and non-finite triangles, normalises normals and removes unused
 /// non-finite positions. Indices must be in range.
 fn finish(
-    positions: Vec<Vec3>,
+    positions: Vec<DVec3>,
     normals: Option<Vec<Vec3>>,
     uvs: Option<Vec<Vec2>>,
     triangles: Vec<[u32; 3]>,
 ) -> BuiltMesh {
+    let (positions, offset) = super::rebase::centre_positions(&positions);
     let before = triangles.len();
     let triangles: Vec<[u32; 3]> = triangles
         .into_iter()
@@ -196,6 +216,7 @@ fn finish(
         mesh,
         dropped,
         dropped_normals: bad_normals,
+        offset,
     }
 }
 
@@ -273,14 +294,14 @@ pub fn parse_obj(bytes: &[u8]) -> Result<BuiltMesh, ObjError> {
         positions.extend(
             m.positions
                 .chunks_exact(3)
-                .map(|p| Vec3::new(p[0], p[1], p[2])),
+                .map(|p| DVec3::new(p[0], p[1], p[2])),
         );
         if m.normals.len() == count * 3 {
             if let Some(n) = &mut normals {
                 n.extend(
                     m.normals
                         .chunks_exact(3)
-                        .map(|p| Vec3::new(p[0], p[1], p[2])),
+                        .map(|p| Vec3::new(p[0] as f32, p[1] as f32, p[2] as f32)),
                 );
             }
         } else {
@@ -288,7 +309,11 @@ pub fn parse_obj(bytes: &[u8]) -> Result<BuiltMesh, ObjError> {
         }
         if m.texcoords.len() == count * 2 {
             if let Some(u) = &mut uvs {
-                u.extend(m.texcoords.chunks_exact(2).map(|p| Vec2::new(p[0], p[1])));
+                u.extend(
+                    m.texcoords
+                        .chunks_exact(2)
+                        .map(|p| Vec2::new(p[0] as f32, p[1] as f32)),
+                );
             }
         } else {
             uvs = None;

@@ -10,6 +10,8 @@
 //!    scatters), approximations and displacements with the geometry code's own rules.
 //!    All errors of this step are collected and reported together, ordered by file (load
 //!    order) and position, each located through the position index of [`spans`].
+//!    [`rebase`] then moves everything into render space (world space less the scene
+//!    origin, in f64) before cameras and lights are rounded to f32.
 //! 3. [`spawn`] creates the entities.
 //!
 //! The format is documented in `docs/scene-format.md`.
@@ -17,25 +19,33 @@
 pub(crate) mod bake;
 pub(crate) mod dag;
 pub mod desc;
+pub mod desc_camera;
 pub mod desc_geometry;
 pub(crate) mod diagnostics;
+pub(crate) mod environment;
 pub(crate) mod geometry;
 pub(crate) mod imager;
 pub(crate) mod include;
+pub(crate) mod lens;
+pub(crate) mod lights;
 pub(crate) mod mesh_load;
 pub(crate) mod names;
+pub(crate) mod rebase;
+pub(crate) mod samples;
 pub(crate) mod shaders;
 pub(crate) mod spans;
 pub(crate) mod spawn;
 pub(crate) mod suggest;
 pub(crate) mod validate;
+pub(crate) mod volume;
 
 use std::path::Path;
 use std::sync::Arc;
 
-use glam::DAffine3;
+use glam::{DAffine3, DVec3};
 
 pub use diagnostics::{Diagnostic, SceneErrors};
+pub use environment::read_exr as read_lat_long;
 
 use crate::settings::RenderSettings;
 use desc::MeshDesc;
@@ -70,7 +80,10 @@ pub fn load_scene_str(text: &str, path: &Path) -> Result<LoadedScene, SceneError
 /// the error is the message the loader would report.
 pub fn parse_obj_bytes(bytes: &[u8]) -> Result<crate::components::TriMesh, String> {
     mesh_load::parse_obj(bytes)
-        .map(|built| built.mesh)
+        .map(|mut built| {
+            built.uncentre();
+            built.mesh
+        })
         .map_err(|e| format!("{e:?}"))
 }
 
@@ -85,21 +98,27 @@ fn load(path: &Path, text: Option<&str>) -> Result<LoadedScene, SceneErrors> {
     let src = &mut sources;
     let merged = validate::merge(src, &scenes);
     let settings = validate::settings(src, merged.options.as_ref());
-    let cameras: Vec<_> = merged
-        .cameras
-        .iter()
-        .map(|c| validate::camera(src, c))
-        .collect();
     let imagers: Vec<_> = merged
         .cameras
         .iter()
         .map(|c| imager::imager(src, c))
         .collect();
-    let lights: Vec<_> = merged
-        .lights
+    let lenses: Vec<_> = merged
+        .cameras
         .iter()
-        .map(|l| validate::light(src, l))
+        .map(|c| lens::lenses(src, c))
         .collect();
+    let atmospheres: Vec<_> = merged
+        .cameras
+        .iter()
+        .map(|c| volume::atmosphere(src, c))
+        .collect();
+    let interiors: Vec<_> = merged
+        .materials
+        .iter()
+        .map(|m| volume::interior(src, m))
+        .collect();
+    let environment = environment::environment(src, &scenes);
     let materials: Vec<_> = merged
         .materials
         .iter()
@@ -112,16 +131,53 @@ fn load(path: &Path, text: Option<&str>) -> Result<LoadedScene, SceneErrors> {
     let acyclic = dag::check_cycles(src, &merged, &resolved);
     let mut reachable = dag::reachable_objects(&merged, &resolved);
     geometry::scatter::extend_reachable(&mut reachable, &scatters);
-    let built = build_meshes(src, &merged, &reachable);
+    let mut built = build_meshes(src, &merged, &reachable);
+    // Scatters place copies in their surface's and prototype's object space: keep it.
+    for &(prototype, surface) in scatters.iter().flatten() {
+        for o in [prototype, surface] {
+            if let Some(Some(b)) = built.get_mut(o) {
+                b.uncentre();
+            }
+        }
+    }
+    let offsets: Vec<DVec3> = built
+        .iter()
+        .map(|b| b.as_ref().map_or(DVec3::ZERO, |b| b.offset))
+        .collect();
     let mut leaves = if acyclic {
         let locals: Vec<DAffine3> = locals
             .iter()
             .map(|l| l.unwrap_or(DAffine3::IDENTITY))
             .collect();
-        dag::flatten(src, &merged, &resolved, &locals)
+        dag::flatten(src, &merged, &resolved, &locals, &offsets)
     } else {
         Vec::new()
     };
+    // Render space (hard case H5): subtract the scene origin in f64 before rounding.
+    let object_bounds: Vec<_> = built
+        .iter()
+        .map(|b| b.as_ref().and_then(|b| rebase::mesh_bounds(&b.mesh)))
+        .collect();
+    let mut origin = rebase::scene_origin(&leaves, &object_bounds);
+    if !rebase::rebase_leaves(&mut leaves, origin) {
+        origin = DVec3::ZERO;
+    }
+    let cameras: Vec<_> = merged
+        .cameras
+        .iter()
+        .map(|c| {
+            let desc = rebase::camera(c.desc, origin);
+            validate::camera(src, &rebased(c, &desc))
+        })
+        .collect();
+    let lights: Vec<_> = merged
+        .lights
+        .iter()
+        .map(|l| {
+            let desc = rebase::light(l.desc, origin);
+            validate::light(src, &rebased(l, &desc))
+        })
+        .collect();
     geometry::scatter::copy_materials(&mut leaves, &scatters, &resolved.object_material);
     geometry::scatter::check_bakes(src, &merged, &leaves);
     let has_uvs: Vec<bool> = merged
@@ -159,6 +215,9 @@ fn load(path: &Path, text: Option<&str>) -> Result<LoadedScene, SceneErrors> {
     let parts = spawn::Parts {
         cameras,
         imagers,
+        lenses,
+        atmospheres,
+        interiors,
         render_camera: resolved.camera,
         lights,
         materials,
@@ -169,13 +228,26 @@ fn load(path: &Path, text: Option<&str>) -> Result<LoadedScene, SceneErrors> {
         geometry: object_geometry,
         leaves,
         bakes,
+        origin,
     };
-    let world = spawn::spawn(&sources, &merged, parts);
+    let mut world = spawn::spawn(&sources, &merged, parts);
+    if let Some(env) = environment {
+        world.spawn((crate::components::Name("environment".into()), env));
+    }
     Ok(LoadedScene {
         world,
         settings,
         warnings,
     })
+}
+
+/// The same element with a rebased description (see [`rebase`]).
+fn rebased<'a, T>(item: &validate::Item<'_, T>, desc: &'a T) -> validate::Item<'a, T> {
+    validate::Item {
+        file: item.file,
+        path: item.path.clone(),
+        desc,
+    }
 }
 
 /// Checks every object's mesh and builds those reachable from the root. A missing OBJ file

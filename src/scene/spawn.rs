@@ -11,8 +11,12 @@
 //!    innermost instance), `Instance` (with an empty mesh for generated objects:
 //!    `procedural::pending_instance`), `WorldFromObject`, `MaterialRef`, and `BakeRequest`
 //!    when the instance has a `bake` entry;
-//! 4. every light: `Name`, `SourceLink`, `Emitter`;
-//! 5. every camera: `Name`, `SourceLink`, `Camera`, plus `RenderCamera` on the render camera.
+//! 4. the scene origin (`SceneOrigin`), when render space is not world space;
+//! 5. every light: `Name`, `SourceLink`, `Emitter`;
+//! 6. every camera: `Name`, `SourceLink`, `Camera`, plus `RenderCamera` on the render camera
+//!    and `Imager`, `Lenses`, `Atmosphere` when written.
+//!
+//! Materials with an `interior` also carry `Interior`.
 //!
 //! `SourceLink`s point at the element's opening parenthesis in its file.
 
@@ -26,8 +30,8 @@ use super::diagnostics::Sources;
 use super::geometry::{Generated, ObjectGeometry};
 use super::validate::{default_material, Merged};
 use crate::components::{
-    BakeRequest, Camera, Emitter, Imager, Instance, Material, MaterialRef, Name, RenderCamera,
-    SourceLink, TriMesh, WorldFromObject,
+    Atmosphere, BakeRequest, Camera, Emitter, Fog, Imager, Instance, Interior, Lenses, Material,
+    MaterialRef, Name, RenderCamera, SceneOrigin, SourceLink, TriMesh, WorldFromObject,
 };
 use crate::procedural::pending_instance;
 
@@ -38,6 +42,12 @@ pub struct Parts {
     pub cameras: Vec<Option<Camera>>,
     /// The cameras' imagers (parallel to `cameras`).
     pub imagers: Vec<Option<Imager>>,
+    /// The cameras' lens shaders (parallel to `cameras`).
+    pub lenses: Vec<Option<Lenses>>,
+    /// The cameras' atmospheres (parallel to `cameras`).
+    pub atmospheres: Vec<Option<Fog>>,
+    /// The materials' interiors (parallel to `materials`).
+    pub interiors: Vec<Option<Fog>>,
     /// Index of the render camera.
     pub render_camera: Option<usize>,
     /// Light components.
@@ -52,6 +62,8 @@ pub struct Parts {
     pub leaves: Vec<Leaf>,
     /// Bake request of each merged instance (at most one leaf carries each).
     pub bakes: Vec<Option<BakeRequest>>,
+    /// The scene origin subtracted from world space (see [`super::rebase`]).
+    pub origin: glam::DVec3,
 }
 
 /// Objects to spawn, in index order: those of the leaves, and the prototypes and surfaces of
@@ -92,11 +104,16 @@ pub fn spawn(src: &Sources, m: &Merged<'_>, parts: Parts) -> World {
                     continue;
                 };
                 let it = &m.materials[i];
-                world.spawn((
+                let entity = world.spawn((
                     Name(it.desc.name.clone()),
                     src.link(it.file, &it.path),
                     material.clone(),
-                ))
+                ));
+                if let Some(Some(fog)) = parts.interiors.get(i) {
+                    // The entity was just spawned, so inserting cannot fail.
+                    let _ = world.insert_one(entity, Interior(*fog));
+                }
+                entity
             }
             None => world.spawn((
                 Name("<default>".into()),
@@ -183,6 +200,10 @@ pub fn spawn(src: &Sources, m: &Merged<'_>, parts: Parts) -> World {
         }
     }
 
+    if parts.origin != glam::DVec3::ZERO {
+        world.spawn((SceneOrigin(parts.origin),));
+    }
+
     for (it, emitter) in m.lights.iter().zip(parts.lights) {
         let Some(emitter) = emitter else { continue };
         world.spawn((
@@ -202,6 +223,14 @@ pub fn spawn(src: &Sources, m: &Merged<'_>, parts: Parts) -> World {
         if let Some(Some(imager)) = parts.imagers.get(i) {
             // The entity was just spawned, so inserting cannot fail.
             let _ = world.insert_one(entity, *imager);
+        }
+        if let Some(Some(lenses)) = parts.lenses.get(i) {
+            // The entity was just spawned, so inserting cannot fail.
+            let _ = world.insert_one(entity, lenses.clone());
+        }
+        if let Some(Some(fog)) = parts.atmospheres.get(i) {
+            // The entity was just spawned, so inserting cannot fail.
+            let _ = world.insert_one(entity, Atmosphere(*fog));
         }
         if Some(i) == parts.render_camera {
             // The entity was just spawned, so inserting cannot fail.

@@ -237,9 +237,7 @@ pub fn settings(src: &mut Sources, options: Option<&Item<'_, OptionsDesc>>) -> R
         src,
         file: item.file,
     };
-    if o.samples == 0 {
-        ck.error(&item.at(".samples"), "samples must be at least 1, found 0");
-    }
+    let (spp, adaptive) = super::samples::samples(&mut ck, &item.at(".samples"), o.samples);
     let integrator = match o.integrator {
         IntegratorDesc::Direct => Integrator::Direct,
         IntegratorDesc::Path => Integrator::Path,
@@ -280,7 +278,8 @@ pub fn settings(src: &mut Sources, options: Option<&Item<'_, OptionsDesc>>) -> R
     };
     RenderSettings {
         photons,
-        spp: o.samples,
+        spp,
+        adaptive,
         filter,
         seed: o.seed,
         max_depth: o.max_depth,
@@ -527,8 +526,14 @@ pub fn light(src: &mut Sources, item: &Item<'_, LightDesc>) -> Option<Emitter> {
     let color = ck.colour(&item.at(".color"), "color", l.color);
     let intensity = ck.non_negative(&item.at(".intensity"), "intensity", l.intensity);
     let kind = |s: &str| item.at(&format!(".kind.{s}"));
-    let is_rect = matches!(l.kind, LightKindDesc::Rect { .. });
-    let samples = match (l.samples, is_rect) {
+    let is_area = matches!(
+        l.kind,
+        LightKindDesc::Rect { .. }
+            | LightKindDesc::Disc { .. }
+            | LightKindDesc::Sphere { .. }
+            | LightKindDesc::Cylinder { .. }
+    );
+    let samples = match (l.samples, is_area) {
         (None, true) => Some(16),
         (None, false) | (Some(1), false) => Some(1),
         (Some(0), _) => {
@@ -541,7 +546,7 @@ pub fn light(src: &mut Sources, item: &Item<'_, LightDesc>) -> Option<Emitter> {
                 ck.file,
                 &item.at(".samples"),
                 format!("samples must be 1 for a delta light, found {n}"),
-                Some("only Rect lights take several samples; remove `samples`".into()),
+                Some("only area lights take several samples; remove `samples`".into()),
             );
             None
         }
@@ -637,12 +642,17 @@ pub fn light(src: &mut Sources, item: &Item<'_, LightDesc>) -> Option<Emitter> {
                 edge_v: f32v(v),
             }
         }
+        other => super::lights::area_shape(&mut ck, &item.path, other)?,
     };
+    let attenuation = super::lights::attenuation(&mut ck, item);
+    let visible = super::lights::visible(&mut ck, item, is_area);
     Some(Emitter {
         shape,
         radiant: (color? * intensity?).as_vec3(),
         shadows: l.shadows,
         samples: samples?,
+        visible: visible?,
+        attenuation: attenuation?,
     })
 }
 

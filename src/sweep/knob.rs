@@ -1,6 +1,7 @@
 //! Accuracy knobs: parsing `NAME=V1,V2,…` and applying one value to a loaded scene. A knob
 //! the scene does not have (area-light samples without area lights, tessellation tolerance
-//! without approximations, bake samples without bake requests) is an error, never a no-op.
+//! without approximations, bake samples without bake requests, adaptive contrast without
+//! adaptive sampling) is an error, never a no-op.
 
 use hecs::World;
 
@@ -25,6 +26,9 @@ pub enum Knob {
     Tessellation(Vec<f32>),
     /// Rays (AO) or gather paths (lightmaps) per texel of every bake request.
     BakeSamples(Vec<u32>),
+    /// Adaptive anti-aliasing contrast, the same threshold in every channel (the scene's
+    /// `samples: (min, max, contrast)` keeps its `min` and `max`).
+    AdaptiveContrast(Vec<f32>),
     /// Photons emitted for every photon map the scene turns on.
     Photons(Vec<u32>),
     /// Largest gather radius of every photon map (world units; 0 = automatic).
@@ -40,7 +44,7 @@ pub enum KnobError {
     #[error("expected --knob NAME=V1,V2,… (e.g. spp=1,4,16), found \"{0}\"")]
     Syntax(String),
     /// Unknown knob name.
-    #[error("unknown knob \"{0}\"; knobs: spp, light_samples, max_depth, bvh_quality, tessellation, bake_samples, photons, gather_radius, gather_count")]
+    #[error("unknown knob \"{0}\"; knobs: spp, adaptive_contrast, light_samples, max_depth, bvh_quality, tessellation, bake_samples, photons, gather_radius, gather_count")]
     Unknown(String),
     /// A value does not parse.
     #[error("knob {knob}: cannot read \"{value}\" ({expected})")]
@@ -112,6 +116,12 @@ impl Knob {
                 "a positive factor",
                 |&v: &f32| v.is_finite() && v > 0.0,
             )?),
+            "adaptive_contrast" | "contrast" => Knob::AdaptiveContrast(parse_list(
+                name,
+                values,
+                "a non-negative number",
+                |&v: &f32| v.is_finite() && v >= 0.0,
+            )?),
             "bvh_quality" => Knob::BvhQuality(
                 values
                     .split(',')
@@ -153,6 +163,7 @@ impl Knob {
             Knob::BvhQuality(_) => "bvh_quality",
             Knob::Tessellation(_) => "tessellation",
             Knob::BakeSamples(_) => "bake_samples",
+            Knob::AdaptiveContrast(_) => "adaptive_contrast",
             Knob::Photons(_) => "photons",
             Knob::GatherRadius(_) => "gather_radius",
             Knob::GatherCount(_) => "gather_count",
@@ -166,7 +177,7 @@ impl Knob {
                 v.len()
             }
             Knob::BvhQuality(v) => v.len(),
-            Knob::Tessellation(v) => v.len(),
+            Knob::Tessellation(v) | Knob::AdaptiveContrast(v) => v.len(),
             Knob::Photons(v) | Knob::GatherCount(v) => v.len(),
             Knob::GatherRadius(v) => v.len(),
         }
@@ -184,7 +195,7 @@ impl Knob {
                 v[i].to_string()
             }
             Knob::BvhQuality(v) => format!("{:?}", v[i]).to_ascii_lowercase(),
-            Knob::Tessellation(v) => v[i].to_string(),
+            Knob::Tessellation(v) | Knob::AdaptiveContrast(v) => v[i].to_string(),
             Knob::Photons(v) | Knob::GatherCount(v) => v[i].to_string(),
             Knob::GatherRadius(v) => v[i].to_string(),
         }
@@ -195,8 +206,8 @@ impl Knob {
         matches!(self, Knob::BakeSamples(_))
     }
 
-    /// Checks the scene has what the knob changes.
-    pub fn check(&self, world: &World) -> Result<(), KnobError> {
+    /// Checks the scene (its world and settings) has what the knob changes.
+    pub fn check(&self, world: &World, settings: &RenderSettings) -> Result<(), KnobError> {
         let absent = |why| {
             Err(KnobError::Absent {
                 knob: self.name(),
@@ -233,24 +244,19 @@ impl Knob {
                     return absent("no bake request has ambient occlusion or an indirect lightmap");
                 }
             }
+            Knob::AdaptiveContrast(_) => {
+                if settings.adaptive.is_none() {
+                    return absent(
+                        "options.samples is a fixed count; write `samples: (min: 4, max: 64)`",
+                    );
+                }
+            }
+            Knob::Photons(_) | Knob::GatherRadius(_) | Knob::GatherCount(_) => {
+                if !settings.photons.any() {
+                    return absent("the scene turns on neither caustics nor global_illumination");
+                }
+            }
             Knob::Spp(_) | Knob::MaxDepth(_) | Knob::BvhQuality(_) => {}
-            Knob::Photons(_) | Knob::GatherRadius(_) | Knob::GatherCount(_) => {}
-        }
-        Ok(())
-    }
-
-    /// [`Knob::check`] plus the knobs that live in the scene's options (photon maps).
-    pub fn check_with(&self, world: &World, settings: &RenderSettings) -> Result<(), KnobError> {
-        self.check(world)?;
-        let photon_knob = matches!(
-            self,
-            Knob::Photons(_) | Knob::GatherRadius(_) | Knob::GatherCount(_)
-        );
-        if photon_knob && !settings.photons.any() {
-            return Err(KnobError::Absent {
-                knob: self.name(),
-                why: "the scene turns on neither caustics nor global_illumination",
-            });
         }
         Ok(())
     }
@@ -258,7 +264,15 @@ impl Knob {
     /// Applies value `i` to a freshly loaded scene.
     pub fn apply(&self, i: usize, world: &mut World, settings: &mut RenderSettings) {
         match self {
-            Knob::Spp(v) => settings.spp = v[i],
+            Knob::Spp(v) => {
+                settings.spp = v[i];
+                settings.adaptive = None;
+            }
+            Knob::AdaptiveContrast(v) => {
+                if let Some(a) = &mut settings.adaptive {
+                    a.contrast = glam::Vec3::splat(v[i]);
+                }
+            }
             Knob::MaxDepth(v) => settings.max_depth = v[i],
             Knob::BvhQuality(v) => settings.bvh_quality = v[i],
             Knob::LightSamples(v) => {
@@ -349,20 +363,49 @@ mod tests {
     fn absent_knobs_are_errors() {
         let world = World::new();
         assert!(matches!(
-            Knob::parse("light_samples=1,2").unwrap().check(&world),
+            Knob::parse("light_samples=1,2")
+                .unwrap()
+                .check(&world, &RenderSettings::default()),
             Err(KnobError::Absent { .. })
         ));
         assert!(matches!(
-            Knob::parse("tessellation=1,0.5").unwrap().check(&world),
+            Knob::parse("tessellation=1,0.5")
+                .unwrap()
+                .check(&world, &RenderSettings::default()),
             Err(KnobError::Absent { .. })
         ));
-        assert!(Knob::parse("spp=1").unwrap().check(&world).is_ok());
-        let settings = RenderSettings::default();
+        assert!(Knob::parse("spp=1")
+            .unwrap()
+            .check(&world, &RenderSettings::default())
+            .is_ok());
         for k in ["photons=10", "gather_radius=0.1", "gather_count=8"] {
             assert!(matches!(
-                Knob::parse(k).unwrap().check_with(&world, &settings),
+                Knob::parse(k)
+                    .unwrap()
+                    .check(&world, &RenderSettings::default()),
                 Err(KnobError::Absent { .. })
             ));
         }
+        let contrast = Knob::parse("adaptive_contrast=0.2,0.05").unwrap();
+        assert_eq!(contrast, Knob::AdaptiveContrast(vec![0.2, 0.05]));
+        assert!(matches!(
+            contrast.check(&world, &RenderSettings::default()),
+            Err(KnobError::Absent { .. })
+        ));
+        let mut settings = RenderSettings {
+            adaptive: Some(crate::settings::AdaptiveSamples {
+                min: 4,
+                max: 64,
+                contrast: glam::Vec3::splat(0.1),
+            }),
+            ..RenderSettings::default()
+        };
+        assert!(contrast.check(&world, &settings).is_ok());
+        let mut world = World::new();
+        contrast.apply(1, &mut world, &mut settings);
+        assert_eq!(
+            settings.adaptive.map(|a| a.contrast),
+            Some(glam::Vec3::splat(0.05))
+        );
     }
 }

@@ -179,7 +179,7 @@ pub fn run_sweep(
 ) -> Result<SweepSummary, SweepError> {
     {
         let scene = load_scene(&opts.scene)?;
-        opts.knob.check_with(&scene.world, &scene.settings)?;
+        opts.knob.check(&scene.world, &scene.settings)?;
     }
     std::fs::create_dir_all(&opts.out).map_err(|e| io(&opts.out, e))?;
     let cached = reference_cache(opts)?;
@@ -204,7 +204,10 @@ pub fn run_sweep(
                         Knob::BakeSamples(_) => {
                             Knob::BakeSamples(vec![samples]).apply(0, world, settings)
                         }
-                        _ => settings.spp = samples,
+                        _ => {
+                            settings.spp = samples;
+                            settings.adaptive = None;
+                        }
                     }
                     settings.integrator = integrator;
                 },

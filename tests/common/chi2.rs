@@ -45,14 +45,26 @@ pub struct Chi2Outcome {
 /// density. Errors on a hard failure (samples where the pdf is zero, pdf integrating to more
 /// than 1.02, non-unit or non-finite directions).
 pub fn chi2_directions(
-    mut sample: impl FnMut(Vec3) -> Option<Vec3>,
+    sample: impl FnMut(Vec3) -> Option<Vec3>,
     pdf: impl Fn(Vec3) -> f64,
     samples: usize,
     seed: u64,
 ) -> Result<Chi2Outcome, String> {
+    chi2_directions_fine(sample, pdf, samples, seed, 6)
+}
+
+/// [`chi2_directions`] integrating the pdf over each cell with `sub × sub` midpoints: for
+/// densities with sharp edges inside cells (the cone of a sphere light, a disc's rim).
+pub fn chi2_directions_fine(
+    mut sample: impl FnMut(Vec3) -> Option<Vec3>,
+    pdf: impl Fn(Vec3) -> f64,
+    samples: usize,
+    seed: u64,
+    sub: usize,
+) -> Result<Chi2Outcome, String> {
     const N_COS: usize = 40;
     const N_PHI: usize = 80;
-    const SUB: usize = 6;
+    let sub = sub.max(1);
     let mut observed = vec![0f64; N_COS * N_PHI];
     let mut rng = Rng(seed);
     let mut valid = 0usize;
@@ -73,16 +85,16 @@ pub fn chi2_directions(
     for i in 0..N_COS {
         for j in 0..N_PHI {
             let mut acc = 0.0;
-            for a in 0..SUB {
-                for b in 0..SUB {
-                    let c = -1.0 + (i as f64 + (a as f64 + 0.5) / SUB as f64) * d_cos;
-                    let phi = (j as f64 + (b as f64 + 0.5) / SUB as f64) * d_phi;
+            for a in 0..sub {
+                for b in 0..sub {
+                    let c = -1.0 + (i as f64 + (a as f64 + 0.5) / sub as f64) * d_cos;
+                    let phi = (j as f64 + (b as f64 + 0.5) / sub as f64) * d_phi;
                     let s = (1.0 - c * c).max(0.0).sqrt();
                     let w = Vec3::new((s * phi.cos()) as f32, (s * phi.sin()) as f32, c as f32);
                     acc += pdf(w);
                 }
             }
-            let cell_integral = acc / (SUB * SUB) as f64 * d_cos * d_phi;
+            let cell_integral = acc / (sub * sub) as f64 * d_cos * d_phi;
             integral += cell_integral;
             expected[i * N_PHI + j] = cell_integral * samples as f64;
         }

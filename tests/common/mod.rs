@@ -5,10 +5,13 @@
 
 mod meshes;
 mod rays;
+mod scene_text;
 #[allow(unused_imports)] // not every test binary uses these
 pub use meshes::*;
 #[allow(unused_imports)] // only the ray-layer tests use these
 pub use rays::*;
+#[allow(unused_imports)] // only the camera/volume tests use these
+pub use scene_text::*;
 
 use std::sync::Arc;
 
@@ -95,6 +98,8 @@ pub fn light(world: &mut World, shape: LightShape, radiant: Vec3, samples: u32) 
             radiant,
             shadows: true,
             samples,
+            visible: false,
+            attenuation: None,
         },
     ))
 }

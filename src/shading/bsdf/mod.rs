@@ -24,6 +24,7 @@ use glam::{Vec2, Vec3};
 
 use self::glossy::Fresnel;
 use self::specular::DeltaBranch;
+pub use self::specular::TransportMode;
 use crate::components::Shader;
 use crate::shading::microfacet::Distribution;
 
@@ -84,15 +85,6 @@ impl Lobe {
             _ => 0.0,
         }
     }
-}
-
-/// What a path carries, for the one place the adjoint BSDF differs (refraction's `1/η²`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Transport {
-    /// Radiance traced from the camera: refraction scales by `1/η²`.
-    Radiance,
-    /// Importance or photon power traced from the lights: refraction conserves power.
-    Importance,
 }
 
 /// How a sampled direction leaves the surface (for per-ray-type trace depths).
@@ -404,12 +396,12 @@ impl Bsdf {
     /// Draws a direction from `u ∈ [0,1)³` (`u.x` chooses the lobe and, re-used, a
     /// dielectric's branch). `None` when the chosen lobe produced no valid direction.
     pub fn sample(&self, wo: Vec3, u: Vec3) -> Option<BsdfSample> {
-        self.sample_transport(wo, u, Transport::Radiance)
+        self.sample_transport(wo, u, TransportMode::Radiance)
     }
 
     /// [`Bsdf::sample`] for the given transported quantity (photon tracing samples with
-    /// [`Transport::Importance`]; `wo` is then the direction the photon came from).
-    pub fn sample_transport(&self, wo: Vec3, u: Vec3, mode: Transport) -> Option<BsdfSample> {
+    /// [`TransportMode::Importance`]; `wo` is then the direction the photon came from).
+    pub fn sample_transport(&self, wo: Vec3, u: Vec3, mode: TransportMode) -> Option<BsdfSample> {
         if wo.z <= 0.0 {
             return None;
         }
@@ -449,7 +441,7 @@ impl Bsdf {
             Lobe::PassThrough => return delta(specular::pass_through(wo), 1.0),
             Lobe::Dielectric { eta } => {
                 let pr = specular::dielectric_reflect_probability(wo, eta);
-                let (r, t) = specular::dielectric_transport(wo, eta, mode);
+                let (r, t) = specular::dielectric_in_mode(wo, eta, mode);
                 return match t {
                     Some(t) if uc >= pr => delta(t, 1.0 - pr),
                     _ => delta(r, if t.is_some() { pr } else { 1.0 }),

@@ -1,15 +1,19 @@
 //! The default integrator: emission, mental ray's ambient term, direct light from every
 //! light with shadow rays (each light's own sample count), and every delta branch (mirror,
-//! both branches of glass, transparency) traced recursively within the trace depths.
-//! Glossy and diffuse interreflection are not computed (the path tracer does that), except
-//! through the photon maps when the scene turns caustics or global illumination on.
+//! both branches of glass, transparency) traced recursively within the trace depths; rays
+//! that leave the scene see the environment (and visible area lights they cross).
+//! Glossy and diffuse interreflection are not computed (the path tracer does that). Traced
+//! segments cross the scene's fog (`shading::volume`): attenuation and single scattering.
+//! With caustics or global illumination on, the photon maps add caustics and one bounce of
+//! indirect diffuse light (`crate::photon::estimate`).
 
 use glam::Vec3;
 
-use super::{light_loop, trace, Depth, ShadeContext, Vertex};
+use super::{depth_exceeded, light_loop, trace, Depth, ShadeContext, Vertex};
 use crate::accel::{Hit, Ray};
 use crate::sampling::Sampler;
 use crate::shading::surface::unlit_radiance;
+use crate::shading::volume;
 
 /// Radiance toward the origin of `ray`, which hits the scene at `hit` (a camera ray).
 pub fn radiance(ctx: &ShadeContext<'_>, ray: &Ray, hit: &Hit, sampler: &mut Sampler) -> Vec3 {
@@ -44,15 +48,19 @@ fn vertex_radiance(
     }
     for branch in bsdf.delta_branches(v.wo) {
         let Some(next) = depth.after(ctx, !branch.transmits, branch.transmits) else {
+            if let Some((le, _)) = depth_exceeded(ctx, v.frame.to_world(branch.wi)) {
+                radiance += branch.weight * le;
+            }
             continue;
         };
         let Some(ray) = v.spawn(branch.wi, branch.transmits) else {
             continue;
         };
-        let (hit, lights, _) = trace(ctx, &ray);
+        let (hit, lights, _) = trace(ctx, &ray, true);
         let mut incoming = lights;
         if let Some(h) = hit {
             incoming += vertex_radiance(ctx, &ray, &h, sampler, next);
+            incoming = volume::through_segment(ctx, &ray, &h, incoming, sampler);
         }
         radiance += branch.weight * incoming;
     }

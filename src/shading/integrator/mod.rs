@@ -2,14 +2,17 @@
 //!
 //! [`direct`] is the fast default (direct lighting plus traced mirror/refraction branches);
 //! [`path`] is the unbiased reference path tracer. Both share the helpers here: turning a
-//! hit into a shading [`Vertex`], the light loop with shadow rays, rays crossing `Rect`
-//! lights, and absorption inside dielectrics.
+//! hit into a shading [`Vertex`], the light loop with (tinted) shadow rays, rays crossing
+//! area lights or leaving for the environment, and absorption inside dielectrics.
 //!
 //! Trace depths: the vertex reached by the camera ray has depth 1. A vertex of depth `k`
 //! adds its emission; if `k ≤ max_depth` it also gathers light (paths of `k + 1` segments)
 //! and continues. Glossy/mirror reflections count against `reflection_depth`, refractions
 //! and transparency against `refraction_depth`; a branch beyond its budget is not traced.
-//! `Rect` lights are not seen by camera rays; every other ray sees their front face.
+//! Area lights are seen by camera rays and perfect mirror/refraction rays only when they are
+//! `visible`; BSDF-sampled path-tracer rays see every area light's front face (MIS). A ray
+//! beyond a reflection/refraction budget sees the environment or black, as the scene's
+//! environment says (`depth_exceeded`).
 
 pub mod direct;
 pub mod path;
@@ -26,6 +29,8 @@ use crate::shading::bsdf::Bsdf;
 use crate::shading::frame::ShadingFrame;
 use crate::shading::lights::LightSet;
 use crate::shading::mis::power_heuristic;
+use crate::shading::shadow::transmittance;
+use crate::shading::volume::{shadow_transmittance, Volumes};
 
 /// What shading a hit needs from the scene.
 pub struct ShadeContext<'a> {
@@ -45,6 +50,8 @@ pub struct ShadeContext<'a> {
     pub refraction_depth: u32,
     /// Photon maps the `Direct` integrator reads (caustics, final gather); `None`: none.
     pub photons: Option<&'a PhotonMaps>,
+    /// Fog around the camera and inside materials (`None`: vacuum everywhere).
+    pub volumes: Option<&'a Volumes>,
 }
 
 impl<'a> ShadeContext<'a> {
@@ -63,12 +70,19 @@ impl<'a> ShadeContext<'a> {
             reflection_depth: settings.reflection_depth,
             refraction_depth: settings.refraction_depth,
             photons: None,
+            volumes: None,
         }
     }
 
     /// The same context reading `photons`.
     pub fn with_photons(mut self, photons: Option<&'a PhotonMaps>) -> Self {
         self.photons = photons;
+        self
+    }
+
+    /// The same context with the scene's media.
+    pub fn with_volumes(mut self, volumes: Option<&'a Volumes>) -> Self {
+        self.volumes = volumes;
         self
     }
 }
@@ -202,7 +216,8 @@ impl<'a> Vertex<'a> {
 
 /// Light gathered at `v` by sampling every light: `samples_per_light` samples each (`None`:
 /// the light's own count, with child sequences of `sampler`; `Some(1)`: one sample each from
-/// `sampler`'s next dimensions and MIS-weighted against BSDF sampling).
+/// `sampler`'s next dimensions and MIS-weighted against BSDF sampling). Shadow rays pass
+/// transmissive surfaces with their shadow tint (see [`crate::shading::shadow`]).
 pub fn light_loop(
     ctx: &ShadeContext<'_>,
     v: &Vertex<'_>,
@@ -234,7 +249,28 @@ pub fn light_loop(
             if f == Vec3::ZERO {
                 continue;
             }
-            if ls.shadows && occluded(ctx.geometry, &v.sp, ls.wi, ls.target) {
+            let shadow = match ctx.volumes {
+                // Fog attenuates the shadow ray; fog-filled shells and transparent surfaces
+                // let it through.
+                Some(_) => {
+                    let first = shadow_ray(&v.sp, ls.wi, ls.target);
+                    let target = ls.target.map(|t| t.p);
+                    let atmosphere = ctx.volumes.and_then(|vol| vol.atmosphere.as_ref());
+                    match shadow_transmittance(ctx, first, atmosphere, target, ls.shadows) {
+                        Some(t) => t,
+                        None => continue,
+                    }
+                }
+                None if ls.shadows => transmittance(
+                    ctx.geometry,
+                    &v.sp.surface,
+                    ls.wi,
+                    ls.target,
+                    ctx.lights.transmissive_shadows,
+                ),
+                None => Vec3::ONE,
+            };
+            if shadow == Vec3::ZERO {
                 continue;
             }
             let w = if mis && ls.pdf > 0.0 {
@@ -242,43 +278,119 @@ pub fn light_loop(
             } else {
                 1.0
             };
-            sum += f * ls.contribution * (wi.z * w);
+            sum += f * ls.contribution * shadow * (wi.z * w);
         }
         radiance += sum / n as f32;
     }
     radiance
 }
 
-/// Whether the shadow ray from `sp` toward a light sample is blocked.
-fn occluded(
-    geometry: &SceneGeometry,
-    sp: &ShadingPoint,
-    wi: Vec3,
-    target: Option<SurfacePoint>,
-) -> bool {
-    let ray = match target {
+/// The shadow ray from `sp` toward a light sample.
+fn shadow_ray(sp: &ShadingPoint, wi: Vec3, target: Option<SurfacePoint>) -> Ray {
+    match target {
         None => spawn_ray(&sp.surface, wi),
         Some(t) if t.ng == Vec3::ZERO => spawn_ray_to(&sp.surface, t.p),
         Some(t) => spawn_ray_to_surface(&sp.surface, &t),
-    };
-    geometry.accel.occluded(&ray)
+    }
 }
 
-/// The closest hit along a ray leaving a surface, and the `Rect` lights it crosses before
-/// that hit: `(radiance, pdf)` of each (at most the number of lights).
-pub fn trace(ctx: &ShadeContext<'_>, ray: &Ray) -> (Option<Hit>, Vec3, Vec<(Vec3, f32)>) {
+/// The closest hit along a ray, and the emitters it meets before that hit: the area lights it
+/// crosses and, when it hits nothing, the environment — `(radiance, light pdf)` of each, the
+/// pdf being the solid-angle density of that light's own sampler (0 if it is not sampled).
+///
+/// `delta`: a camera ray or a perfect mirror/refraction ray. Those see only `visible` area
+/// lights, and a visible light is opaque to them: the nearest one in front of the hit ends
+/// the ray (no hit is returned). BSDF-sampled rays see every area light's front face
+/// additively and go on (lights never block light, and MIS needs every light reachable).
+pub fn trace(
+    ctx: &ShadeContext<'_>,
+    ray: &Ray,
+    delta: bool,
+) -> (Option<Hit>, Vec3, Vec<(Vec3, f32)>) {
     let hit = ctx.geometry.accel.intersect(ray);
     let mut clipped = *ray;
     if let Some(h) = &hit {
         clipped.t_max = h.t;
     }
+    if delta {
+        let nearest = ctx
+            .lights
+            .lights
+            .iter()
+            .filter_map(|l| l.hit(&clipped, true))
+            .min_by(|a, b| a.0.total_cmp(&b.0));
+        if let Some((_, le, pdf)) = nearest {
+            return (None, le, vec![(le, pdf)]);
+        }
+    }
     let mut direct = Vec3::ZERO;
     let mut crossed = Vec::new();
-    for light in &ctx.lights.lights {
-        if let Some((_, radiance, pdf)) = light.hit(&clipped) {
-            direct += radiance;
-            crossed.push((radiance, pdf));
+    if !delta {
+        for light in &ctx.lights.lights {
+            if let Some((_, radiance, pdf)) = light.hit(&clipped, false) {
+                direct += radiance;
+                crossed.push((radiance, pdf));
+            }
+        }
+    }
+    if hit.is_none() {
+        if let Some((le, pdf)) = ctx.lights.environment_along(ray.dir) {
+            direct += le;
+            crossed.push((le, pdf));
         }
     }
     (hit, direct, crossed)
+}
+
+/// Radiance a ray that is not traced because it exceeds a trace-depth budget brings back:
+/// the environment along it when the scene says so (with its light pdf), else nothing.
+pub fn depth_exceeded(ctx: &ShadeContext<'_>, dir: Vec3) -> Option<(Vec3, f32)> {
+    if ctx.lights.depth_exceeded_sees_environment() {
+        ctx.lights.environment_along(dir)
+    } else {
+        None
+    }
+}
+
+/// What a camera ray meets first.
+#[derive(Debug, Clone, Copy)]
+pub enum CameraHit {
+    /// A surface, to be shaded.
+    Surface(Hit),
+    /// A visible area light in front of every surface: the radiance reaching the camera
+    /// (attenuated by the atmosphere, if any); covers the pixel.
+    Light(Vec3),
+    /// Nothing: the environment's radiance along the ray (black when there is none, or when
+    /// [`LightSet::camera_sees_environment`] is off because a camera imager's background
+    /// replaces it). Does not cover the pixel (alpha 0).
+    Miss(Vec3),
+}
+
+/// What the camera ray `ray` meets first (see [`CameraHit`]).
+pub fn camera_hit(ctx: &ShadeContext<'_>, ray: &Ray) -> CameraHit {
+    let hit = ctx.geometry.accel.intersect(ray);
+    let mut clipped = *ray;
+    if let Some(h) = &hit {
+        clipped.t_max = h.t;
+    }
+    let nearest_light = ctx
+        .lights
+        .lights
+        .iter()
+        .filter_map(|l| l.hit(&clipped, true))
+        .min_by(|a, b| a.0.total_cmp(&b.0));
+    match (nearest_light, hit) {
+        (Some((t, le, _)), _) => {
+            let fog = ctx.volumes.and_then(|v| v.atmosphere.as_ref());
+            let att = fog.map_or(Vec3::ONE, |f| f.transmittance(t * ray.dir.length()));
+            CameraHit::Light(le * att)
+        }
+        (None, Some(h)) => CameraHit::Surface(h),
+        (None, None) if ctx.lights.camera_sees_environment => CameraHit::Miss(
+            ctx.lights
+                .environment_along(ray.dir)
+                .map_or(Vec3::ZERO, |(le, _)| le),
+        ),
+        (None, None) => CameraHit::Miss(Vec3::ZERO),
+    }
 }

@@ -1,18 +1,23 @@
 //! The reference path tracer: at every vertex one sample of every light (next-event
 //! estimation) and one BSDF sample, the two combined by the power heuristic; emitters found
-//! by BSDF sampling (emitting triangles and `Rect` lights) are weighted against the light
-//! strategy, delta scattering keeps full weight. Russian roulette from the third vertex on
-//! (survival probability = largest channel of the throughput, at most 0.95) keeps long paths
-//! unbiased. Rays leaving the scene see black.
+//! by BSDF sampling (emitting triangles, area lights, the environment) are weighted against
+//! the light strategy, delta scattering keeps full weight. Russian roulette from the third
+//! vertex on (survival probability = largest channel of the throughput, at most 0.95) keeps
+//! long paths unbiased. Rays leaving the scene see the environment (black without one); a
+//! bounce beyond a reflection/refraction budget sees what the environment's
+//! `depth_exceeded` says. Every segment that ends at a hit is attenuated by the fog it
+//! crosses and adds single scattering from the lights (`shading::volume`): unbiased for
+//! attenuation; light scattered more than once inside a medium is not computed.
 
 use glam::Vec3;
 
-use super::{light_loop, trace, Depth, ShadeContext, Vertex};
+use super::{depth_exceeded, light_loop, trace, Depth, ShadeContext, Vertex};
 use crate::accel::{Hit, Ray};
 use crate::sampling::Sampler;
 use crate::shading::bsdf::Scatter;
 use crate::shading::mis::power_heuristic;
 use crate::shading::surface::unlit_radiance;
+use crate::shading::volume;
 
 /// First vertex at which Russian roulette may end a path.
 const RR_START: u32 = 3;
@@ -71,7 +76,17 @@ pub fn radiance(ctx: &ShadeContext<'_>, ray: &Ray, hit: &Hit, sampler: &mut Samp
         let u = Vec3::new(sampler.next_1d(), sampler.next_1d(), sampler.next_1d());
         let Some(s) = bsdf.sample(v.wo, u) else { break };
         let transmits = s.scatter == Scatter::Transmission;
+        let mis = |pdf_light: f32| {
+            if s.delta {
+                1.0
+            } else {
+                power_heuristic(s.pdf, pdf_light)
+            }
+        };
         let Some(next) = depth.after(ctx, s.scatter == Scatter::Reflection, transmits) else {
+            if let Some((le, pdf_light)) = depth_exceeded(ctx, v.frame.to_world(s.wi)) {
+                radiance += beta * s.weight() * le * mis(pdf_light);
+            }
             break;
         };
         let Some(next_ray) = v.spawn(s.wi, transmits) else {
@@ -81,14 +96,14 @@ pub fn radiance(ctx: &ShadeContext<'_>, ray: &Ray, hit: &Hit, sampler: &mut Samp
         if !beta.is_finite() || beta.max_element() <= 0.0 {
             break;
         }
-        let (next_hit, _, crossed) = trace(ctx, &next_ray);
+        let (next_hit, _, crossed) = trace(ctx, &next_ray, s.delta);
+        if let (Some(h), Some(_)) = (&next_hit, ctx.volumes) {
+            let seg = volume::segment(ctx, &next_ray, h, sampler);
+            radiance += beta * seg.inscattered;
+            beta *= seg.transmittance;
+        }
         for (le, pdf_light) in crossed {
-            let w = if s.delta {
-                1.0
-            } else {
-                power_heuristic(s.pdf, pdf_light)
-            };
-            radiance += beta * le * w;
+            radiance += beta * le * mis(pdf_light);
         }
         prev = (!s.delta).then_some((v.sp.surface.p, s.pdf));
         ray = next_ray;

@@ -1,0 +1,160 @@
+//! RON types of the camera's lens and volume shaders, material interiors, and the
+//! `samples` option (a count, or adaptive `(min, max, contrast)`), as written by the user.
+
+use std::fmt;
+
+use serde::de::{self, MapAccess, Visitor};
+use serde::{Deserialize, Deserializer};
+
+use super::desc::V3;
+
+/// A lens shader in a camera's `lens: [...]` list.
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
+#[serde(rename = "Lens", deny_unknown_fields)]
+pub enum LensDesc {
+    /// Thin-lens depth of field; exactly one of `radius` and `fstop`.
+    ThinLens {
+        /// Aperture radius, metres.
+        #[serde(default)]
+        radius: Option<f64>,
+        /// f-number: aperture diameter = focal length / fstop, the focal length being that of
+        /// a 36 × 24 mm film with the camera's `fov_y` (12 mm / tan(fov_y / 2)).
+        #[serde(default)]
+        fstop: Option<f64>,
+        /// Distance to the plane in focus, metres.
+        focus_distance: f64,
+    },
+    /// Equidistant fisheye with `fov` degrees across the image height, in (0, 360].
+    Fisheye {
+        /// Full field of view, degrees.
+        fov: f64,
+    },
+    /// Lat-long 360° × 180° projection.
+    Spherical,
+}
+
+/// A volume shader (`atmosphere` on a camera, `interior` on a material).
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
+#[serde(rename = "Volume", deny_unknown_fields)]
+pub enum VolumeDesc {
+    /// Homogeneous fog.
+    Fog {
+        /// Absorption coefficient per channel, 1/m, default `(0, 0, 0)`.
+        #[serde(default)]
+        sigma_a: V3,
+        /// Scattering coefficient per channel, 1/m, default `(0, 0, 0)`.
+        #[serde(default)]
+        sigma_s: V3,
+        /// Henyey–Greenstein asymmetry in (−1, 1), default 0 (isotropic).
+        #[serde(default)]
+        g: f64,
+    },
+}
+
+/// `samples:` in the options: a fixed count per pixel, or adaptive sampling.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum SamplesDesc {
+    /// `samples: 16`.
+    Fixed(u64),
+    /// `samples: (min: 4, max: 64, contrast: (0.05, 0.05, 0.05))`.
+    Adaptive {
+        /// Samples every pixel takes, at least 1.
+        min: u64,
+        /// Most samples a pixel takes, at least `min`.
+        max: u64,
+        /// Per-channel threshold on the standard error of the pixel mean, default 0.1 each.
+        contrast: V3,
+    },
+}
+
+impl Default for SamplesDesc {
+    fn default() -> Self {
+        SamplesDesc::Fixed(4)
+    }
+}
+
+const ADAPTIVE_FIELDS: &[&str] = &["min", "max", "contrast"];
+
+impl<'de> Deserialize<'de> for SamplesDesc {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        d.deserialize_any(SamplesVisitor)
+    }
+}
+
+struct SamplesVisitor;
+
+impl<'de> Visitor<'de> for SamplesVisitor {
+    type Value = SamplesDesc;
+
+    fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str("a sample count or `(min: N, max: N, contrast: (r, g, b))`")
+    }
+
+    fn visit_u64<E: de::Error>(self, v: u64) -> Result<SamplesDesc, E> {
+        Ok(SamplesDesc::Fixed(v))
+    }
+
+    fn visit_i64<E: de::Error>(self, v: i64) -> Result<SamplesDesc, E> {
+        u64::try_from(v)
+            .map(SamplesDesc::Fixed)
+            .map_err(|_| E::invalid_value(de::Unexpected::Signed(v), &self))
+    }
+
+    fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<SamplesDesc, A::Error> {
+        let (mut min, mut max, mut contrast) = (None, None, None);
+        while let Some(key) = map.next_key::<String>()? {
+            match key.as_str() {
+                "min" if min.is_none() => min = Some(map.next_value::<u64>()?),
+                "max" if max.is_none() => max = Some(map.next_value::<u64>()?),
+                "contrast" if contrast.is_none() => contrast = Some(map.next_value::<V3>()?),
+                "min" | "max" | "contrast" => return Err(de::Error::duplicate_field("samples")),
+                other => return Err(de::Error::unknown_field(other, ADAPTIVE_FIELDS)),
+            }
+        }
+        Ok(SamplesDesc::Adaptive {
+            min: min.ok_or_else(|| de::Error::missing_field("min"))?,
+            max: max.ok_or_else(|| de::Error::missing_field("max"))?,
+            contrast: contrast.unwrap_or((0.1, 0.1, 0.1)),
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[derive(Debug, Deserialize)]
+    struct Holder {
+        samples: SamplesDesc,
+    }
+
+    fn parse(text: &str) -> Result<SamplesDesc, String> {
+        ron::from_str::<Holder>(text)
+            .map(|h| h.samples)
+            .map_err(|e| e.to_string())
+    }
+
+    #[test]
+    fn samples_read_as_a_count_or_adaptive() {
+        assert_eq!(parse("(samples: 16)").unwrap(), SamplesDesc::Fixed(16));
+        assert_eq!(
+            parse("(samples: (min: 4, max: 64, contrast: (0.1, 0.2, 0.3)))").unwrap(),
+            SamplesDesc::Adaptive {
+                min: 4,
+                max: 64,
+                contrast: (0.1, 0.2, 0.3)
+            }
+        );
+        assert_eq!(
+            parse("(samples: (min: 1, max: 8))").unwrap(),
+            SamplesDesc::Adaptive {
+                min: 1,
+                max: 8,
+                contrast: (0.1, 0.1, 0.1)
+            }
+        );
+        let e = parse("(samples: (min: 1, maxx: 8))").unwrap_err();
+        assert!(e.contains("maxx"), "{e}");
+        assert!(parse("(samples: -3)").is_err());
+    }
+}

@@ -1,0 +1,149 @@
+//! The scene's `environment: (...)`: at most one across all files; a lat-long map is read
+//! from its EXR file (relative to the declaring scene file) at load time, so a missing or bad
+//! file is a located error like any other.
+
+use std::path::Path;
+use std::sync::Arc;
+
+use glam::Vec3;
+
+use super::desc::{DepthExceededDesc, EnvironmentShaderDesc, SceneDesc};
+use super::diagnostics::Sources;
+use super::include::io_reason;
+use super::validate::Checker;
+use crate::components::{DepthExceeded, Environment, EnvironmentSource, LatLongMap};
+
+/// Most texels a lat-long map may have (64 Mi: 16k × 4k maps fit).
+const MAX_TEXELS: usize = 1 << 26;
+
+/// Checks the environment of the loaded files and builds its component (errors recorded).
+pub fn environment(src: &mut Sources, scenes: &[Option<SceneDesc>]) -> Option<Environment> {
+    let mut found: Option<(usize, &super::desc::EnvironmentDesc)> = None;
+    for (file, scene) in scenes.iter().enumerate() {
+        let Some(env) = scene.as_ref().and_then(|s| s.environment.as_ref()) else {
+            continue;
+        };
+        match found {
+            Some((first, _)) => {
+                let help = format!("first defined at {}", src.where_is(first, "environment"));
+                src.error(
+                    file,
+                    "environment",
+                    "environment is given twice",
+                    Some(help),
+                );
+            }
+            None => found = Some((file, env)),
+        }
+    }
+    let (file, d) = found?;
+    let mut ck = Checker { src, file };
+    let intensity = ck.non_negative("environment.intensity", "intensity", d.intensity);
+    if d.samples == 0 {
+        ck.error("environment.samples", "samples must be at least 1, found 0");
+    }
+    let source = match &d.shader {
+        EnvironmentShaderDesc::Constant { color } => {
+            let c = ck.colour("environment.shader.Constant.color", "color", *color);
+            EnvironmentSource::Constant((c? * intensity?).as_vec3())
+        }
+        EnvironmentShaderDesc::LatLong {
+            file: name,
+            rotation,
+        } => {
+            let rot_ok = ck.finite("environment.shader.LatLong.rotation", "rotation", *rotation);
+            let path = ck.src.files[file].dir().join(name);
+            let at = "environment.shader.LatLong.file";
+            let map = match read_exr(&path) {
+                Ok(map) => Some(map),
+                Err(reason) => {
+                    ck.src.error(
+                        file,
+                        at,
+                        format!("cannot use EXR file \"{}\": {reason}", path.display()),
+                        Some(
+                            "a lat-long environment is an RGB(A) OpenEXR image; the path is \
+                             relative to this scene file"
+                                .into(),
+                        ),
+                    );
+                    None
+                }
+            };
+            let (mut map, k) = (map?, intensity? as f32);
+            if !rot_ok || d.samples == 0 {
+                return None;
+            }
+            for t in &mut map.texels {
+                *t *= k;
+            }
+            map.rotation = rotation.to_radians() as f32;
+            EnvironmentSource::LatLong(Arc::new(map))
+        }
+    };
+    if d.samples == 0 {
+        return None;
+    }
+    Some(Environment {
+        source,
+        samples: d.samples,
+        depth_exceeded: match d.depth_exceeded {
+            DepthExceededDesc::Environment => DepthExceeded::Environment,
+            DepthExceededDesc::Black => DepthExceeded::Black,
+        },
+    })
+}
+
+/// Reads the first RGB(A) layer of an EXR file as a lat-long map (rotation 0); every value
+/// must be finite and non-negative.
+pub fn read_exr(path: &Path) -> Result<LatLongMap, String> {
+    use exr::prelude::{read_first_rgba_layer_from_file, Vec2 as ExrVec2};
+    if let Err(e) = std::fs::metadata(path) {
+        return Err(io_reason(&e));
+    }
+    let image = read_first_rgba_layer_from_file(
+        path,
+        |size: ExrVec2<usize>, _| {
+            let n = size.width().saturating_mul(size.height());
+            let texels = if n <= MAX_TEXELS {
+                vec![Vec3::ZERO; n]
+            } else {
+                Vec::new()
+            };
+            (size.width(), texels)
+        },
+        |(w, texels): &mut (usize, Vec<Vec3>),
+         pos: ExrVec2<usize>,
+         (r, g, b, _a): (f32, f32, f32, f32)| {
+            if let Some(t) = texels.get_mut(pos.y() * *w + pos.x()) {
+                *t = Vec3::new(r, g, b);
+            }
+        },
+    )
+    .map_err(|e| format!("not a readable OpenEXR RGB image ({e})"))?;
+    let size = image.layer_data.size;
+    let (_, texels) = image.layer_data.channel_data.pixels;
+    let (w, h) = (size.width(), size.height());
+    if w == 0 || h == 0 || w * h > MAX_TEXELS || texels.len() != w * h {
+        return Err(format!(
+            "{w}×{h} texels: a map needs between 1 and {MAX_TEXELS} texels"
+        ));
+    }
+    if let Some(i) = texels
+        .iter()
+        .position(|t| !t.is_finite() || t.min_element() < 0.0)
+    {
+        return Err(format!(
+            "texel ({}, {}) is {} (radiance must be finite and non-negative)",
+            i % w,
+            i / w,
+            texels[i]
+        ));
+    }
+    Ok(LatLongMap {
+        width: w as u32,
+        height: h as u32,
+        texels,
+        rotation: 0.0,
+    })
+}

@@ -1,0 +1,127 @@
+//! Checks of the area-light shapes beyond `Rect` (disc, sphere, cylinder) and of the light
+//! options `visible` and `attenuation`, each error located at its value.
+
+use glam::DVec3;
+
+use super::desc::{LightDesc, LightKindDesc};
+use super::validate::{Checker, Item};
+use crate::components::LightShape;
+
+/// A radius: finite and positive.
+fn radius(ck: &mut Checker<'_>, path: &str, r: f64) -> Option<f32> {
+    if !ck.finite(path, "radius", r) {
+        return None;
+    }
+    if r <= 0.0 {
+        ck.error(path, format!("radius must be positive, found {r}"));
+        return None;
+    }
+    Some(r as f32)
+}
+
+/// The shape of a `Disc`, `Sphere` or `Cylinder` light (`light`: the light's path).
+pub fn area_shape(ck: &mut Checker<'_>, light: &str, kind: &LightKindDesc) -> Option<LightShape> {
+    let at = |s: &str| format!("{light}.kind.{s}");
+    match kind {
+        LightKindDesc::Disc {
+            center,
+            normal,
+            radius: r,
+        } => {
+            let c = ck.v3(&at("Disc.center"), "center", *center);
+            let n = ck.v3(&at("Disc.normal"), "normal", *normal);
+            let r = radius(ck, &at("Disc.radius"), *r);
+            let n = n?.normalize_or_zero();
+            if n == DVec3::ZERO {
+                ck.error(&at("Disc.normal"), "normal must not be zero");
+                return None;
+            }
+            Some(LightShape::Disc {
+                center: c?.as_vec3(),
+                normal: n.as_vec3(),
+                radius: r?,
+            })
+        }
+        LightKindDesc::Sphere { center, radius: r } => {
+            let c = ck.v3(&at("Sphere.center"), "center", *center);
+            let r = radius(ck, &at("Sphere.radius"), *r);
+            Some(LightShape::Sphere {
+                center: c?.as_vec3(),
+                radius: r?,
+            })
+        }
+        LightKindDesc::Cylinder {
+            start,
+            end,
+            radius: r,
+        } => {
+            let s = ck.v3(&at("Cylinder.start"), "start", *start);
+            let e = ck.v3(&at("Cylinder.end"), "end", *end);
+            let r = radius(ck, &at("Cylinder.radius"), *r);
+            let (s, e) = (s?, e?);
+            if (e - s).as_vec3().length_squared() == 0.0 {
+                ck.error(&at("Cylinder.end"), "end must differ from start");
+                return None;
+            }
+            Some(LightShape::Cylinder {
+                start: s.as_vec3(),
+                end: e.as_vec3(),
+                radius: r?,
+            })
+        }
+        _ => None,
+    }
+}
+
+/// `attenuation: (start, end)`: finite, `0 ≤ start < end`; not on directional lights.
+pub fn attenuation(ck: &mut Checker<'_>, item: &Item<'_, LightDesc>) -> Option<Option<(f32, f32)>> {
+    let Some((start, end)) = item.desc.attenuation else {
+        return Some(None);
+    };
+    let path = item.at(".attenuation");
+    if matches!(item.desc.kind, LightKindDesc::Directional { .. }) {
+        ck.src.error(
+            ck.file,
+            &path,
+            "a directional light has no distance to attenuate over",
+            Some("remove `attenuation`, or use a point, spot or area light".into()),
+        );
+        return None;
+    }
+    let ok_s = ck.finite(&format!("{path}[0]"), "attenuation start", start);
+    let ok_e = ck.finite(&format!("{path}[1]"), "attenuation end", end);
+    if ok_s && start < 0.0 {
+        ck.error(
+            &format!("{path}[0]"),
+            format!("attenuation start must not be negative, found {start}"),
+        );
+        return None;
+    }
+    if !(ok_s && ok_e) {
+        return None;
+    }
+    if end <= start {
+        ck.src.error(
+            ck.file,
+            &format!("{path}[1]"),
+            format!("attenuation end must be greater than start ({start}), found {end}"),
+            Some("light falls off linearly from full at `start` to none at `end`".into()),
+        );
+        return None;
+    }
+    Some(Some((start as f32, end as f32)))
+}
+
+/// `visible: true` only on area lights.
+pub fn visible(ck: &mut Checker<'_>, item: &Item<'_, LightDesc>, is_area: bool) -> Option<bool> {
+    if item.desc.visible && !is_area {
+        ck.src.error(
+            ck.file,
+            &item.at(".visible"),
+            "only area lights can be visible (a point, spot or directional light has no surface)",
+            Some("remove `visible`, or use a Rect, Disc, Sphere or Cylinder light".into()),
+        );
+        return None;
+    }
+    Some(item.desc.visible)
+}

@@ -1,0 +1,342 @@
+//! Volume shaders along ray segments: homogeneous fog as the camera's atmosphere and inside
+//! materials (their `interior`), with transmittance `e^(−σt·d)` on every segment and single
+//! scattering of light into the segment.
+//!
+//! Which medium a segment crosses: the interior of the material whose **back face** ends the
+//! segment (the ray is leaving that object), otherwise the atmosphere. There is no medium
+//! stack: an object inside a fog-filled object is seen through the atmosphere. Following
+//! mental ray (a volume shader sees `dist = 0` on rays of infinite length), segments that
+//! leave the scene and shadow rays toward directional lights cross no medium.
+//!
+//! In-scattering `∫₀ᵈ T(t) σs Σ_lights p(θ) L_light(x(t)) T_light dt` is estimated with one
+//! sample per light and segment: the distance is drawn by equiangular sampling about the
+//! light's position (point, spot, rectangle centre) or from the transmittance for other
+//! lights, the light then sampled from that point with a shadow ray. Shadow rays (from
+//! surfaces too) pass through the shells of fog-filled materials and are attenuated by every
+//! medium they cross ([`shadow_transmittance`]). Only single scattering is computed: no
+//! path scatters twice inside a medium.
+
+use glam::Vec3;
+
+use crate::accel::{spawn_ray, spawn_ray_to, Hit, Ray};
+use crate::components::Fog;
+use crate::geometry::SceneGeometry;
+use crate::sampling::Sampler;
+use crate::shading::integrator::ShadeContext;
+use crate::shading::lights::Light;
+
+/// The scene's media: the render camera's atmosphere and each material's interior.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Volumes {
+    /// The camera's atmosphere.
+    pub atmosphere: Option<Fog>,
+    /// Interior of each material, indexed like `SceneGeometry::materials`.
+    pub interiors: Vec<Option<Fog>>,
+}
+
+impl Volumes {
+    /// The media, or `None` when there is none (no volume work at all then).
+    pub fn new(atmosphere: Option<Fog>, interiors: Vec<Option<Fog>>) -> Option<Self> {
+        (atmosphere.is_some() || interiors.iter().any(Option::is_some)).then_some(Self {
+            atmosphere,
+            interiors,
+        })
+    }
+
+    /// The medium the segment of `ray` ending at `hit` crosses.
+    pub fn medium(&self, geometry: &SceneGeometry, ray: &Ray, hit: &Hit) -> Option<&Fog> {
+        let prim = hit.prim as usize;
+        let slot = geometry.triangle_instance[prim] as usize;
+        let material = geometry.instances[slot].material as usize;
+        if let Some(Some(fog)) = self.interiors.get(material) {
+            let ng = geometry.accel.surface_point(hit).ng;
+            if ng.dot(ray.dir) > 0.0 {
+                return Some(fog);
+            }
+        }
+        self.atmosphere.as_ref()
+    }
+}
+
+/// What a segment does to the radiance travelling along it toward its origin:
+/// `L_origin = transmittance · L_end + inscattered`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Segment {
+    /// `e^(−σt·d)` per channel.
+    pub transmittance: Vec3,
+    /// Single-scattered radiance gathered along the segment.
+    pub inscattered: Vec3,
+}
+
+impl Segment {
+    /// A segment through vacuum.
+    pub const VACUUM: Segment = Segment {
+        transmittance: Vec3::ONE,
+        inscattered: Vec3::ZERO,
+    };
+
+    /// `transmittance · radiance + inscattered`.
+    pub fn apply(&self, radiance: Vec3) -> Vec3 {
+        self.transmittance * radiance + self.inscattered
+    }
+}
+
+/// The segment of `ray` that ends at `hit`, in the medium the scene puts there.
+pub fn segment(ctx: &ShadeContext<'_>, ray: &Ray, hit: &Hit, sampler: &mut Sampler) -> Segment {
+    let Some(volumes) = ctx.volumes else {
+        return Segment::VACUUM;
+    };
+    let Some(fog) = volumes.medium(ctx.geometry, ray, hit) else {
+        return Segment::VACUUM;
+    };
+    let len = ray.dir.length();
+    let length = hit.t * len;
+    if !(length.is_finite() && length > 0.0) {
+        return Segment::VACUUM;
+    }
+    let dir = ray.dir / len;
+    Segment {
+        transmittance: fog.transmittance(length),
+        inscattered: inscatter(ctx, fog, ray.origin, dir, length, sampler),
+    }
+}
+
+/// `radiance` arriving at the end of the segment of `ray` that ends at `hit`, as seen from
+/// the segment's origin (unchanged, bit for bit, when the scene has no volumes).
+pub fn through_segment(
+    ctx: &ShadeContext<'_>,
+    ray: &Ray,
+    hit: &Hit,
+    radiance: Vec3,
+    sampler: &mut Sampler,
+) -> Vec3 {
+    if ctx.volumes.is_none() {
+        return radiance;
+    }
+    segment(ctx, ray, hit, sampler).apply(radiance)
+}
+
+/// Single scattering along `origin + t·dir`, `t ∈ [0, length]` (`dir` unit).
+fn inscatter(
+    ctx: &ShadeContext<'_>,
+    fog: &Fog,
+    origin: Vec3,
+    dir: Vec3,
+    length: f32,
+    sampler: &mut Sampler,
+) -> Vec3 {
+    if fog.sigma_s == Vec3::ZERO {
+        return Vec3::ZERO;
+    }
+    let mut sum = Vec3::ZERO;
+    for light in &ctx.lights.lights {
+        let u_t = sampler.next_1d();
+        let u_l = sampler.next_2d();
+        let (t, pdf) = light_centre(light)
+            .and_then(|c| equiangular(origin, dir, length, c, u_t))
+            .unwrap_or_else(|| distance_sample(fog, length, u_t));
+        if !(pdf > 0.0 && pdf.is_finite()) {
+            continue;
+        }
+        let x = origin + dir * t;
+        let Some(ls) = light.sample(x, u_l, Some(ctx.geometry)) else {
+            continue;
+        };
+        let to_light = ls.target.map(|q| (q.p - x).length());
+        let first = Ray {
+            origin: x,
+            dir: ls.wi,
+            t_max: to_light.map_or(f32::INFINITY, |d| d * (1.0 - 1e-3)),
+        };
+        let target = ls.target.map(|q| q.p);
+        let Some(t_light) = shadow_transmittance(ctx, first, Some(fog), target, ls.shadows) else {
+            continue;
+        };
+        let phase = henyey_greenstein(fog.g, dir.dot(ls.wi));
+        let c = fog.transmittance(t) * fog.sigma_s * ls.contribution * t_light * (phase / pdf);
+        if c.is_finite() {
+            sum += c;
+        }
+    }
+    sum
+}
+
+/// Most fog boundaries one shadow ray passes through.
+const MAX_CROSSINGS: usize = 16;
+
+/// Transmittance along a shadow ray toward a light, or `None` when it is blocked.
+///
+/// `first` is the ray from the shading point (its `t_max` stops short of the light);
+/// `start` is the medium at its origin; `target` is the light sample's position (`None`:
+/// infinitely far, whose last segment crosses no medium). The shells of fog-filled
+/// materials (those with an `interior`) are volume boundaries, not occluders: the ray
+/// passes through them, entering the interior at a front face and returning to the
+/// atmosphere at a back face. Transparent surfaces tint (`shading::shadow`); any other
+/// surface blocks (unless `occlude` is false: then
+/// only the starting medium attenuates, over the straight distance).
+pub fn shadow_transmittance(
+    ctx: &ShadeContext<'_>,
+    first: Ray,
+    start: Option<&Fog>,
+    target: Option<Vec3>,
+    occlude: bool,
+) -> Option<Vec3> {
+    let along = |fog: Option<&Fog>, from: Vec3| match (fog, target) {
+        (Some(f), Some(p)) => f.transmittance((p - from).length()),
+        _ => Vec3::ONE,
+    };
+    if !occlude {
+        return Some(along(start, first.origin));
+    }
+    let Some(volumes) = ctx.volumes else {
+        return (!ctx.geometry.accel.occluded(&first)).then_some(Vec3::ONE);
+    };
+    let mut ray = first;
+    let mut medium = start;
+    let mut t = Vec3::ONE;
+    for _ in 0..MAX_CROSSINGS {
+        let Some(hit) = ctx.geometry.accel.intersect(&ray) else {
+            return Some(t * along(medium, ray.origin));
+        };
+        let slot = ctx.geometry.triangle_instance[hit.prim as usize] as usize;
+        let material = ctx.geometry.instances[slot].material as usize;
+        let interior = volumes.interiors.get(material).and_then(Option::as_ref);
+        // A surface without an interior passes light only if its shader lets shadows
+        // through (`shading::shadow`); the medium stays the same across it.
+        let tint = match interior {
+            Some(_) => Vec3::ONE,
+            None => crate::shading::shadow::shadow_transmittance(
+                &ctx.geometry.materials[material].shader,
+            )?,
+        };
+        if let Some(f) = medium {
+            t *= f.transmittance(hit.t * ray.dir.length());
+        }
+        t *= tint;
+        let sp = ctx.geometry.accel.surface_point(&hit);
+        if let Some(interior) = interior {
+            medium = if sp.ng.dot(ray.dir) < 0.0 {
+                Some(interior)
+            } else {
+                volumes.atmosphere.as_ref()
+            };
+        }
+        ray = match target {
+            Some(p) => spawn_ray_to(&sp, p),
+            None => spawn_ray(&sp, ray.dir),
+        };
+    }
+    None
+}
+
+/// Position equiangular sampling aims at, for lights that have one.
+fn light_centre(light: &Light) -> Option<Vec3> {
+    match light {
+        Light::Point { position, .. } | Light::Spot { position, .. } => Some(*position),
+        Light::Area(a) => Some(a.centre()),
+        _ => None,
+    }
+}
+
+/// Equiangular sampling of `t ∈ [0, length]` about the point `c` (Kulla & Fajardo 2012):
+/// `(t, pdf)`, or `None` when the ray passes (almost) through `c`.
+pub fn equiangular(origin: Vec3, dir: Vec3, length: f32, c: Vec3, u: f32) -> Option<(f32, f32)> {
+    let oc = c - origin;
+    let delta = oc.dot(dir);
+    let d = (oc - dir * delta).length();
+    let far_enough = d > 1e-5 * (length + delta.abs()).max(1e-3);
+    if !far_enough {
+        return None;
+    }
+    let a = (-delta).atan2(d);
+    let b = (length - delta).atan2(d);
+    if b.is_nan() || a.is_nan() || b <= a {
+        return None;
+    }
+    let theta = a + u * (b - a);
+    let t = (delta + d * theta.tan()).clamp(0.0, length);
+    let s = t - delta;
+    Some((t, d / ((b - a) * (d * d + s * s))))
+}
+
+/// Distance sampling proportional to the mean extinction, truncated to `[0, length]`:
+/// `(t, pdf)` (uniform when the segment is optically thin).
+pub fn distance_sample(fog: &Fog, length: f32, u: f32) -> (f32, f32) {
+    let s = fog.sigma_t().element_sum() / 3.0;
+    if s * length < 1e-4 {
+        return (u * length, 1.0 / length);
+    }
+    let norm = -(-s * length).exp_m1();
+    let t = (-(-u * norm).ln_1p() / s).clamp(0.0, length);
+    (t, s * (-s * t).exp() / norm)
+}
+
+/// Henyey–Greenstein phase function, 1/sr, for `cos_theta` between the direction toward the
+/// light and the ray direction (light continuing forward has `cos_theta = 1`).
+pub fn henyey_greenstein(g: f32, cos_theta: f32) -> f32 {
+    let denom = 1.0 + g * g - 2.0 * g * cos_theta;
+    (1.0 - g * g) / (4.0 * std::f32::consts::PI * denom * denom.max(1e-12).sqrt())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Inverse-CDF samples `t(u)` with pdf `p(t)`: `∫ dt` over the samples' spacing equals
+    /// `∫ p dt = 1`, i.e. `dt/du = 1/p` everywhere.
+    fn check_inverse_cdf(sample: impl Fn(f32) -> (f32, f32), length: f32) {
+        let n = 2000;
+        let mut total = 0.0f64;
+        for k in 0..n {
+            let u = (k as f32 + 0.5) / n as f32;
+            let (t, pdf) = sample(u);
+            assert!((0.0..=length).contains(&t) && pdf > 0.0, "{t} {pdf}");
+            let (t2, _) = sample(u + 1e-4);
+            let dtdu = (t2 - t) / 1e-4;
+            assert!(
+                (dtdu * pdf - 1.0).abs() < 2e-2,
+                "u {u}: dt/du {dtdu} vs 1/pdf {}",
+                1.0 / pdf
+            );
+            total += f64::from(1.0 / pdf) / n as f64;
+        }
+        // E_u[1/p] = length.
+        assert!((total / f64::from(length) - 1.0).abs() < 1e-2, "{total}");
+    }
+
+    #[test]
+    fn equiangular_pdf_matches_its_sampling() {
+        let (o, d) = (Vec3::ZERO, Vec3::new(0.0, 0.0, -1.0));
+        check_inverse_cdf(
+            |u| equiangular(o, d, 4.0, Vec3::new(0.5, 0.0, -1.0), u).unwrap(),
+            4.0,
+        );
+        assert!(equiangular(o, d, 4.0, Vec3::new(0.0, 0.0, -2.0), 0.5).is_none());
+    }
+
+    #[test]
+    fn distance_sampling_pdf_matches_its_sampling() {
+        let fog = Fog {
+            sigma_a: Vec3::splat(0.3),
+            sigma_s: Vec3::new(0.2, 0.5, 0.8),
+            g: 0.0,
+        };
+        check_inverse_cdf(|u| distance_sample(&fog, 5.0, u), 5.0);
+    }
+
+    #[test]
+    fn henyey_greenstein_integrates_to_one() {
+        for g in [-0.9f32, -0.3, 0.0, 0.5, 0.95] {
+            let n = 200_000;
+            let sum: f64 = (0..n)
+                .map(|k| {
+                    let mu = -1.0 + 2.0 * (k as f64 + 0.5) / n as f64;
+                    f64::from(henyey_greenstein(g, mu as f32))
+                })
+                .sum();
+            // ∫ p dω = 2π ∫ p dμ.
+            let integral = sum * 2.0 / n as f64 * std::f64::consts::TAU;
+            assert!((integral - 1.0).abs() < 1e-3, "g {g}: {integral}");
+        }
+    }
+}

@@ -1,0 +1,106 @@
+//! Malformed area lights, light options and environments: each fixture in
+//! `tests/fixtures/scenes/bad/` with the exact text the user sees.
+
+use std::path::Path;
+
+use stagelight::scene::{load_scene, load_scene_str};
+
+fn check(name: &str, expected: &[&str]) {
+    let path = format!("tests/fixtures/scenes/bad/{name}");
+    let errors = match load_scene(Path::new(&path)) {
+        Ok(_) => panic!("{name} loaded without errors"),
+        Err(e) => e,
+    };
+    let got: Vec<String> = errors.0.iter().map(ToString::to_string).collect();
+    assert_eq!(got, expected, "\n--- {name} reported:\n{errors}\n");
+}
+
+/// Zero and negative radii, NaN, a zero normal, a zero-length cylinder, `visible` on a point
+/// light, reversed, negative and infinite attenuation ranges, attenuation on a directional
+/// light: every error at its value, all reported together.
+#[test]
+fn area_lights() {
+    check(
+        "area_lights.ron",
+        &[
+            "tests/fixtures/scenes/bad/area_lights.ron:3:59: error: normal must not be zero",
+            "tests/fixtures/scenes/bad/area_lights.ron:3:78: error: radius must be positive, found 0",
+            "tests/fixtures/scenes/bad/area_lights.ron:4:46: error: center must be a finite number, found NaN",
+            "tests/fixtures/scenes/bad/area_lights.ron:4:63: error: radius must be positive, found -1",
+            "tests/fixtures/scenes/bad/area_lights.ron:5:59: error: end must differ from start",
+            concat!(
+                "tests/fixtures/scenes/bad/area_lights.ron:6:64: error: only area lights can be visible (a point, spot or directional light has no surface)\n",
+                "  help: remove `visible`, or use a Rect, Disc, Sphere or Cylinder light",
+            ),
+            concat!(
+                "tests/fixtures/scenes/bad/area_lights.ron:6:87: error: attenuation end must be greater than start (2), found 1\n",
+                "  help: light falls off linearly from full at `start` to none at `end`",
+            ),
+            concat!(
+                "tests/fixtures/scenes/bad/area_lights.ron:7:78: error: a directional light has no distance to attenuate over\n",
+                "  help: remove `attenuation`, or use a point, spot or area light",
+            ),
+            "tests/fixtures/scenes/bad/area_lights.ron:8:76: error: samples must be at least 1, found 0",
+            "tests/fixtures/scenes/bad/area_lights.ron:8:93: error: attenuation start must not be negative, found -1",
+            "tests/fixtures/scenes/bad/area_lights.ron:8:97: error: attenuation end must be a finite number, found inf",
+        ],
+    );
+}
+
+/// A missing EXR file, a NaN rotation, a negative intensity and zero samples.
+#[test]
+fn environment_missing() {
+    check(
+        "environment_missing.ron",
+        &[
+            concat!(
+                "tests/fixtures/scenes/bad/environment_missing.ron:2:41: error: cannot use EXR file \"tests/fixtures/scenes/bad/textures/nowhere.exr\": file not found\n",
+                "  help: a lat-long environment is an RGB(A) OpenEXR image; the path is relative to this scene file",
+            ),
+            "tests/fixtures/scenes/bad/environment_missing.ron:2:75: error: rotation must be a finite number, found NaN",
+            "tests/fixtures/scenes/bad/environment_missing.ron:2:92: error: intensity must not be negative, found -2",
+            "tests/fixtures/scenes/bad/environment_missing.ron:2:105: error: samples must be at least 1, found 0",
+        ],
+    );
+}
+
+/// A file that is not an EXR image.
+#[test]
+fn environment_bad_exr() {
+    check(
+        "environment_bad_exr.ron",
+        &[
+            concat!(
+                "tests/fixtures/scenes/bad/environment_bad_exr.ron:2:41: error: cannot use EXR file \"tests/fixtures/scenes/bad/not_an.exr\": not a readable OpenEXR RGB image (invalid: file identifier missing)\n",
+                "  help: a lat-long environment is an RGB(A) OpenEXR image; the path is relative to this scene file",
+            ),
+        ],
+    );
+}
+
+/// Two files may not both define the environment.
+#[test]
+fn environment_twice() {
+    let dir = std::env::temp_dir().join("stagelight_env_twice");
+    std::fs::create_dir_all(&dir).unwrap();
+    let lib = dir.join("lib.ron");
+    std::fs::write(
+        &lib,
+        "Scene(environment: (shader: Constant(color: (1, 1, 1))))",
+    )
+    .unwrap();
+    let text = r#"Scene(
+    include: ["lib.ron"],
+    environment: (shader: Constant(color: (0, 0, 1))),
+    groups: [(name: "world")],
+    cameras: [(name: "cam", fov_y: 40, resolution: (4, 4), placement: LookAt(eye: (0, 0, 1), target: (0, 0, 0)))],
+    render: (root: "world", camera: "cam"),
+)"#;
+    let errors = load_scene_str(text, &dir.join("main.ron"))
+        .err()
+        .expect("errors");
+    let got: Vec<String> = errors.0.iter().map(ToString::to_string).collect();
+    assert_eq!(got.len(), 1, "{errors}");
+    assert!(got[0].contains("environment is given twice"), "{errors}");
+    assert!(got[0].contains("help: first defined at"), "{errors}");
+}
