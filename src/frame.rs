@@ -9,6 +9,7 @@ use std::sync::Arc;
 use crate::bake::BakeReport;
 use crate::framebuffer::FrameBuffers;
 use crate::geometry::SceneGeometry;
+use crate::photon::PhotonMaps;
 use crate::schedule::RunReport;
 use crate::settings::RenderSettings;
 
@@ -40,6 +41,8 @@ pub struct Frame {
     pub bake_dir: PathBuf,
     /// Written by `build_accel`: world-space triangles, their BVH and shading attributes.
     pub geometry: Option<SceneGeometry>,
+    /// Written by `trace_photons`: the caustic and global photon maps.
+    pub photons: Option<PhotonMaps>,
     /// Written by `shade`: the render camera's frame buffers.
     pub image: Option<FrameBuffers>,
     /// Written by `bake_lightmaps`: one report per bake request.
@@ -62,6 +65,7 @@ impl Frame {
             tasks: Tasks::default(),
             bake_dir: PathBuf::from("."),
             geometry: None,
+            photons: None,
             bake_reports: Vec::new(),
             image: None,
             written: Vec::new(),

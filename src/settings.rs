@@ -91,6 +91,40 @@ pub struct RenderSettings {
     /// Light samples per shading point for emitting meshes (rectangular lights carry their
     /// own count).
     pub light_samples: u32,
+    /// Photon maps to build (`trace_photons`) and use in the `Direct` integrator.
+    pub photons: PhotonSettings,
+}
+
+/// Accuracy knobs of one photon map.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PhotonMapSettings {
+    /// Photons emitted from the lights (the number stored differs: photons that miss the
+    /// scene store nothing, bouncing photons store several).
+    pub photons: u32,
+    /// Largest gather radius in world units; 0 = automatic (2 % of the scene's bounding-box
+    /// diagonal).
+    pub radius: f32,
+    /// Nearest photons per radiance estimate (k of the k-nearest-neighbour estimate), ≥ 2.
+    pub gather: u32,
+    /// Final-gather rays per shading point (global illumination only; ignored for caustics).
+    pub final_gather: u32,
+}
+
+/// Which photon maps a render builds; `None` = off (the default for both).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct PhotonSettings {
+    /// Caustic map: photons stored at diffuse surfaces after one or more specular bounces.
+    pub caustics: Option<PhotonMapSettings>,
+    /// Global illumination map: photons stored at every diffuse hit, used through final
+    /// gathering for indirect diffuse light.
+    pub global_illumination: Option<PhotonMapSettings>,
+}
+
+impl PhotonSettings {
+    /// Whether any photon map is requested.
+    pub fn any(&self) -> bool {
+        self.caustics.is_some() || self.global_illumination.is_some()
+    }
 }
 
 impl Default for RenderSettings {
@@ -107,6 +141,7 @@ impl Default for RenderSettings {
             face: Face::Front,
             bvh_quality: BvhQuality::Medium,
             light_samples: 16,
+            photons: PhotonSettings::default(),
         }
     }
 }

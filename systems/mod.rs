@@ -1,14 +1,13 @@
 //! The stage table: the whole frame order in one place, each stage with its run condition.
 //!
-//! Stages still to come (photons, lightmap baking, contours) take their slots here when they
-//! are built:
+//! Stages still to come (contours) take their slots here when they are built:
 //!
 //! | order | stage             | runs when the scene has                              |
 //! |-------|-------------------|------------------------------------------------------|
 //! | 1     | `expand_geometry` | procedural geometry components (`Procedural`, `Scatter`) |
 //! | 2     | `tessellate`      | parametric surfaces, subdivision meshes, true displacement |
 //! | 3     | `build_accel`     | instances with triangles and a consumer of rays       |
-//! | 4     | `trace_photons`   | caustics/GI on and a light (not built yet)            |
+//! | 4     | `trace_photons`   | caustics/GI on, a `Direct` render, a light with power |
 //! | 5     | `bake_lightmaps`  | bake requests, in a run that bakes                    |
 //! | 6     | `shade`           | a render camera                                      |
 //! | 7     | `draw_contours`   | contour shaders (not built yet)                       |
@@ -19,6 +18,7 @@ pub mod build_accel;
 pub mod expand_geometry;
 pub mod shade;
 pub mod tessellate;
+pub mod trace_photons;
 pub mod write_output;
 
 use hecs::World;
@@ -47,6 +47,11 @@ pub const STAGES: &[Stage] = &[
         name: "build_accel",
         condition: build_accel::should_run,
         run: build_accel::run,
+    },
+    Stage {
+        name: "trace_photons",
+        condition: trace_photons::should_run,
+        run: trace_photons::run,
     },
     Stage {
         name: "bake_lightmaps",

@@ -11,7 +11,8 @@
 //! **Reads:** the `Camera` with `RenderCamera` (and its `Lenses`, `Atmosphere`, and its
 //! `Imager`'s background, which hides the environment from camera rays); `Interior` of
 //! material entities; `Emitter` entities; the `Environment`; `frame.geometry` (absent means an empty scene:
-//! every ray misses); `settings` (spp or adaptive samples, filter, seed, face, integrator,
+//! every ray misses); `frame.photons` (the `Direct` integrator's caustics and final gather;
+//! absent: none); `settings` (spp or adaptive samples, filter, seed, face, integrator,
 //! trace depths).
 //! **Writes:** `frame.image` (with the samples each pixel took).
 //! **Runs when:** the run renders and a render camera exists.
@@ -117,8 +118,12 @@ pub fn run(world: &mut World, frame: &mut Frame) -> Result<Work, StageError> {
     let passes = if budget.refines() { 2 } else { 1 };
     let progress = Progress::start(frame.progress, "shade", "rows", (passes * height) as u64);
     let ticker = progress.ticker();
-    let ctx =
-        geometry.map(|g| ShadeContext::new(g, &lights, &settings).with_volumes(volumes.as_ref()));
+    let photons = frame.photons.as_ref();
+    let ctx = geometry.map(|g| {
+        ShadeContext::new(g, &lights, &settings)
+            .with_volumes(volumes.as_ref())
+            .with_photons(photons)
+    });
     let shade = PixelShader {
         ctx: ctx.as_ref(),
         rays: &rays,

@@ -1,7 +1,7 @@
 //! Degenerate, NaN and infinite inputs anywhere in a scene are either rejected with a located
 //! error or handled — never a panic and never a NaN or infinite pixel. A property test fills
 //! every number of a small but complete scene (vertices, transforms, colours, intensities,
-//! light sizes, camera) with ordinary or hostile values.
+//! light sizes, camera, photon gather radii) with ordinary or hostile values.
 
 use std::path::Path;
 
@@ -16,7 +16,6 @@ const SLOTS: usize = 24;
 
 /// The template: `{}` marks are replaced by generated numbers.
 const TEMPLATE: &str = r#"Scene(
-    options: (samples: 2),
     cameras: [(name: "cam", fov_y: {}, resolution: (12, 9),
         placement: LookAt(eye: ({}, {}, 4), target: (0, 0, {}), up: (0, 1, 0)))],
     lights: [
@@ -33,15 +32,17 @@ const TEMPLATE: &str = r#"Scene(
     instances: [(name: "t", of: "tri", transform: [Scale(({}, 1, 1)), Rotate(axis: (0, 0, 1), degrees: {}), Translate(({}, 0, 0)), Matrix(((1, 0, 0, {}), (0, 1, 0, 0), (0, 0, {}, 0), (0, 0, 0, 1)))])],
     groups: [(name: "world", members: ["t"])],
     render: (root: "world", camera: "cam"),
+    options: (samples: 2, caustics: (photons: 300, radius: {}),
+        global_illumination: (photons: 300, radius: {}, final_gather: 2)),
 )
 "#;
 
 /// Ordinary values for each slot (used where the generator does not pick a hostile one).
 const ORDINARY: [&str; SLOTS] = [
     "40.0", "0.5", "0.2", "0", "0.3", "5.0", "2", "2", "1", "30.0", "5.0", "0.5", "1", "0", "0",
-    "0", "1", "15", "0.1", "0", "1",
-    // Spare slots (keep the count stable if the template grows).
-    "0", "0", "0",
+    "0", "1", "15", "0.1", "0", "1", // Photon map gather radii (0 = automatic).
+    "0", "0", // Spare slot (keep the count stable if the template grows).
+    "0",
 ];
 
 fn hostile() -> impl Strategy<Value = &'static str> {

@@ -555,3 +555,17 @@ fn lens_volume_and_adaptive_samples() {
         ],
     );
 }
+
+/// Photon map knobs out of range: every one reported at its value.
+#[test]
+fn photon_options() {
+    check(
+        "photon_options.ron",
+        &[
+            "tests/fixtures/scenes/bad/photon_options.ron:2:35: error: photons must be at least 1, found 0",
+            "tests/fixtures/scenes/bad/photon_options.ron:2:46: error: gather must be at least 2 (the estimate divides by k − 1), found 1",
+            "tests/fixtures/scenes/bad/photon_options.ron:2:80: error: radius must not be negative, found -1",
+            "tests/fixtures/scenes/bad/photon_options.ron:2:98: error: final_gather must be at least 1, found 0",
+        ],
+    );
+}

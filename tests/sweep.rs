@@ -181,9 +181,23 @@ fn knobs_the_scene_lacks_are_errors_and_unknown_knobs_usage_errors() {
     let o = run(bin()
         .arg("sweep")
         .arg(&scene)
-        .args(["--knob", "photons=1,2"]));
+        .args(["--knob", "photons=1000,4000"])
+        .arg("--out")
+        .arg(dir.join("p")));
+    assert_eq!(o.status.code(), Some(1));
+    assert!(
+        String::from_utf8_lossy(&o.stderr).contains(
+            "knob photons is not in this scene: the scene turns on neither caustics nor global_illumination"
+        ),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let o = run(bin()
+        .arg("sweep")
+        .arg(&scene)
+        .args(["--knob", "photon_count=1,2"]));
     assert_eq!(o.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&o.stderr).contains("unknown knob \"photons\""));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("unknown knob \"photon_count\""));
 }
 
 /// `--integrator path` applies to the swept runs: against a path-traced reference the path

@@ -70,6 +70,35 @@ pub struct OptionsDesc {
     pub refraction_depth: u32,
     /// Light samples per shading point for emitting meshes, default 16, at least 1.
     pub light_samples: u32,
+    /// Caustic photon map, default off.
+    pub caustics: Option<PhotonMapDesc>,
+    /// Global-illumination photon map with final gathering, default off.
+    pub global_illumination: Option<PhotonMapDesc>,
+}
+
+/// `caustics: (...)` / `global_illumination: (...)` in `options`: one photon map's knobs.
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
+#[serde(rename = "PhotonMap", deny_unknown_fields, default)]
+pub struct PhotonMapDesc {
+    /// Photons emitted, default 100 000, at least 1.
+    pub photons: u32,
+    /// Largest gather radius, world units, default 0 (automatic: 2 % of the scene diagonal).
+    pub radius: f64,
+    /// Photons per estimate (k nearest), default 50, at least 2.
+    pub gather: u32,
+    /// Final-gather rays per shading point (global illumination only), default 16, at least 1.
+    pub final_gather: u32,
+}
+
+impl Default for PhotonMapDesc {
+    fn default() -> Self {
+        Self {
+            photons: 100_000,
+            radius: 0.0,
+            gather: 50,
+            final_gather: 16,
+        }
+    }
 }
 
 impl Default for OptionsDesc {
@@ -85,6 +114,8 @@ impl Default for OptionsDesc {
             reflection_depth: 4,
             refraction_depth: 4,
             light_samples: 16,
+            caustics: None,
+            global_illumination: None,
         }
     }
 }

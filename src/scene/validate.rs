@@ -9,13 +9,15 @@ use glam::{DAffine3, DMat3, DVec3};
 use super::desc::{
     BvhQualityDesc, CameraDesc, FaceDesc, FilterDesc, FormatDesc, GroupDesc, InstanceDesc,
     IntegratorDesc, LightDesc, LightKindDesc, MaterialDesc, ObjectDesc, OptionsDesc, OutputDesc,
-    PassDesc, PlacementDesc, RenderDesc, SceneDesc, M4, V3,
+    PassDesc, PhotonMapDesc, PlacementDesc, RenderDesc, SceneDesc, M4, V3,
 };
 use super::diagnostics::Sources;
 use crate::components::{
     Camera, Emitter, ImageFormat, LightShape, Material, OutputSpec, Pass, Shader,
 };
-use crate::settings::{BvhQuality, Face, Integrator, PixelFilter, RenderSettings};
+use crate::settings::{
+    BvhQuality, Face, Integrator, PhotonMapSettings, PhotonSettings, PixelFilter, RenderSettings,
+};
 
 /// One element of the merged scene: where it was written and what it says.
 #[derive(Debug)]
@@ -271,7 +273,15 @@ pub fn settings(src: &mut Sources, options: Option<&Item<'_, OptionsDesc>>) -> R
             }
         }
     };
+    let mut map = |name: &str, d: Option<&PhotonMapDesc>| {
+        d.map(|d| photon_map(&mut ck, &item.at(&format!(".{name}")), d))
+    };
+    let photons = PhotonSettings {
+        caustics: map("caustics", o.caustics.as_ref()),
+        global_illumination: map("global_illumination", o.global_illumination.as_ref()),
+    };
     RenderSettings {
+        photons,
         spp,
         adaptive,
         filter,
@@ -290,6 +300,40 @@ pub fn settings(src: &mut Sources, options: Option<&Item<'_, OptionsDesc>>) -> R
             BvhQualityDesc::Medium => BvhQuality::Medium,
             BvhQualityDesc::High => BvhQuality::High,
         },
+    }
+}
+
+/// Checks one photon map's knobs (`path` is the map's field in `options`).
+fn photon_map(ck: &mut Checker<'_>, path: &str, d: &PhotonMapDesc) -> PhotonMapSettings {
+    if d.photons == 0 {
+        ck.error(
+            &format!("{path}.photons"),
+            "photons must be at least 1, found 0",
+        );
+    }
+    if d.gather < 2 {
+        ck.error(
+            &format!("{path}.gather"),
+            format!(
+                "gather must be at least 2 (the estimate divides by k − 1), found {}",
+                d.gather
+            ),
+        );
+    }
+    if d.final_gather == 0 {
+        ck.error(
+            &format!("{path}.final_gather"),
+            "final_gather must be at least 1, found 0",
+        );
+    }
+    let radius = ck
+        .non_negative(&format!("{path}.radius"), "radius", d.radius)
+        .unwrap_or(0.0);
+    PhotonMapSettings {
+        photons: d.photons.max(1),
+        radius: radius as f32,
+        gather: d.gather.max(2),
+        final_gather: d.final_gather.max(1),
     }
 }
 

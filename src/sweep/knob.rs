@@ -8,7 +8,7 @@ use hecs::World;
 use crate::components::{
     Approximation, BakeKind, BakeRequest, Emitter, LightShape, Material, Technique,
 };
-use crate::settings::{BvhQuality, RenderSettings};
+use crate::settings::{BvhQuality, PhotonMapSettings, RenderSettings};
 
 /// A knob and the values to sweep.
 #[derive(Debug, Clone, PartialEq)]
@@ -29,6 +29,12 @@ pub enum Knob {
     /// Adaptive anti-aliasing contrast, the same threshold in every channel (the scene's
     /// `samples: (min, max, contrast)` keeps its `min` and `max`).
     AdaptiveContrast(Vec<f32>),
+    /// Photons emitted for every photon map the scene turns on.
+    Photons(Vec<u32>),
+    /// Largest gather radius of every photon map (world units; 0 = automatic).
+    GatherRadius(Vec<f32>),
+    /// Photons per estimate (k) of every photon map.
+    GatherCount(Vec<u32>),
 }
 
 /// Why a knob cannot be swept.
@@ -38,7 +44,7 @@ pub enum KnobError {
     #[error("expected --knob NAME=V1,V2,… (e.g. spp=1,4,16), found \"{0}\"")]
     Syntax(String),
     /// Unknown knob name.
-    #[error("unknown knob \"{0}\"; knobs: spp, adaptive_contrast, light_samples, max_depth, bvh_quality, tessellation, bake_samples")]
+    #[error("unknown knob \"{0}\"; knobs: spp, adaptive_contrast, light_samples, max_depth, bvh_quality, tessellation, bake_samples, photons, gather_radius, gather_count")]
     Unknown(String),
     /// A value does not parse.
     #[error("knob {knob}: cannot read \"{value}\" ({expected})")]
@@ -131,6 +137,19 @@ impl Knob {
                     })
                     .collect::<Result<_, _>>()?,
             ),
+            "photons" => Knob::Photons(parse_list(name, values, positive, |&v: &u32| v >= 1)?),
+            "gather_count" => Knob::GatherCount(parse_list(
+                name,
+                values,
+                "a whole number ≥ 2",
+                |&v: &u32| v >= 2,
+            )?),
+            "gather_radius" => Knob::GatherRadius(parse_list(
+                name,
+                values,
+                "a radius ≥ 0 (0 = automatic)",
+                |&v: &f32| v.is_finite() && v >= 0.0,
+            )?),
             other => return Err(KnobError::Unknown(other.to_string())),
         })
     }
@@ -145,6 +164,9 @@ impl Knob {
             Knob::Tessellation(_) => "tessellation",
             Knob::BakeSamples(_) => "bake_samples",
             Knob::AdaptiveContrast(_) => "adaptive_contrast",
+            Knob::Photons(_) => "photons",
+            Knob::GatherRadius(_) => "gather_radius",
+            Knob::GatherCount(_) => "gather_count",
         }
     }
 
@@ -156,6 +178,8 @@ impl Knob {
             }
             Knob::BvhQuality(v) => v.len(),
             Knob::Tessellation(v) | Knob::AdaptiveContrast(v) => v.len(),
+            Knob::Photons(v) | Knob::GatherCount(v) => v.len(),
+            Knob::GatherRadius(v) => v.len(),
         }
     }
 
@@ -172,6 +196,8 @@ impl Knob {
             }
             Knob::BvhQuality(v) => format!("{:?}", v[i]).to_ascii_lowercase(),
             Knob::Tessellation(v) | Knob::AdaptiveContrast(v) => v[i].to_string(),
+            Knob::Photons(v) | Knob::GatherCount(v) => v[i].to_string(),
+            Knob::GatherRadius(v) => v[i].to_string(),
         }
     }
 
@@ -225,6 +251,11 @@ impl Knob {
                     );
                 }
             }
+            Knob::Photons(_) | Knob::GatherRadius(_) | Knob::GatherCount(_) => {
+                if !settings.photons.any() {
+                    return absent("the scene turns on neither caustics nor global_illumination");
+                }
+            }
             Knob::Spp(_) | Knob::MaxDepth(_) | Knob::BvhQuality(_) => {}
         }
         Ok(())
@@ -257,6 +288,9 @@ impl Knob {
                     scale_tolerance(&mut a.technique, v[i]);
                 }
             }
+            Knob::Photons(v) => photon_maps(settings, |m| m.photons = v[i]),
+            Knob::GatherRadius(v) => photon_maps(settings, |m| m.radius = v[i]),
+            Knob::GatherCount(v) => photon_maps(settings, |m| m.gather = v[i]),
             Knob::BakeSamples(v) => {
                 for r in world.query_mut::<&mut BakeRequest>() {
                     for t in &mut r.targets {
@@ -269,6 +303,17 @@ impl Knob {
                 }
             }
         }
+    }
+}
+
+/// Applies `f` to every photon map the settings turn on.
+fn photon_maps(settings: &mut RenderSettings, f: impl Fn(&mut PhotonMapSettings)) {
+    let p = &mut settings.photons;
+    for m in [&mut p.caustics, &mut p.global_illumination]
+        .into_iter()
+        .flatten()
+    {
+        f(m);
     }
 }
 
@@ -300,8 +345,16 @@ mod tests {
         );
         assert!(matches!(Knob::parse("spp=0"), Err(KnobError::Value { .. })));
         assert!(matches!(
-            Knob::parse("photons=1"),
+            Knob::parse("photon_count=1"),
             Err(KnobError::Unknown(_))
+        ));
+        assert_eq!(
+            Knob::parse("photons=1000,4000").unwrap(),
+            Knob::Photons(vec![1000, 4000])
+        );
+        assert!(matches!(
+            Knob::parse("gather_count=1"),
+            Err(KnobError::Value { .. })
         ));
         assert!(matches!(Knob::parse("spp"), Err(KnobError::Syntax(_))));
     }
@@ -325,6 +378,14 @@ mod tests {
             .unwrap()
             .check(&world, &RenderSettings::default())
             .is_ok());
+        for k in ["photons=10", "gather_radius=0.1", "gather_count=8"] {
+            assert!(matches!(
+                Knob::parse(k)
+                    .unwrap()
+                    .check(&world, &RenderSettings::default()),
+                Err(KnobError::Absent { .. })
+            ));
+        }
         let contrast = Knob::parse("adaptive_contrast=0.2,0.05").unwrap();
         assert_eq!(contrast, Knob::AdaptiveContrast(vec![0.2, 0.05]));
         assert!(matches!(

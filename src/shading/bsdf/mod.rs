@@ -24,6 +24,7 @@ use glam::{Vec2, Vec3};
 
 use self::glossy::Fresnel;
 use self::specular::DeltaBranch;
+pub use self::specular::TransportMode;
 use crate::components::Shader;
 use crate::shading::microfacet::Distribution;
 
@@ -395,6 +396,12 @@ impl Bsdf {
     /// Draws a direction from `u ∈ [0,1)³` (`u.x` chooses the lobe and, re-used, a
     /// dielectric's branch). `None` when the chosen lobe produced no valid direction.
     pub fn sample(&self, wo: Vec3, u: Vec3) -> Option<BsdfSample> {
+        self.sample_transport(wo, u, TransportMode::Radiance)
+    }
+
+    /// [`Bsdf::sample`] for the given transported quantity (photon tracing samples with
+    /// [`TransportMode::Importance`]; `wo` is then the direction the photon came from).
+    pub fn sample_transport(&self, wo: Vec3, u: Vec3, mode: TransportMode) -> Option<BsdfSample> {
         if wo.z <= 0.0 {
             return None;
         }
@@ -434,7 +441,7 @@ impl Bsdf {
             Lobe::PassThrough => return delta(specular::pass_through(wo), 1.0),
             Lobe::Dielectric { eta } => {
                 let pr = specular::dielectric_reflect_probability(wo, eta);
-                let (r, t) = specular::dielectric(wo, eta);
+                let (r, t) = specular::dielectric_in_mode(wo, eta, mode);
                 return match t {
                     Some(t) if uc >= pr => delta(t, 1.0 - pr),
                     _ => delta(r, if t.is_some() { pr } else { 1.0 }),

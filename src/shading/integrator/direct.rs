@@ -4,6 +4,8 @@
 //! that leave the scene see the environment (and visible area lights they cross).
 //! Glossy and diffuse interreflection are not computed (the path tracer does that). Traced
 //! segments cross the scene's fog (`shading::volume`): attenuation and single scattering.
+//! With caustics or global illumination on, the photon maps add caustics and one bounce of
+//! indirect diffuse light (`crate::photon::estimate`).
 
 use glam::Vec3;
 
@@ -42,6 +44,7 @@ fn vertex_radiance(
     radiance += v.shader.ambient();
     if bsdf.has_non_delta() {
         radiance += light_loop(ctx, &v, &bsdf, sampler, false);
+        radiance += crate::photon::estimate::photon_radiance(ctx, &v, &bsdf, sampler);
     }
     for branch in bsdf.delta_branches(v.wo) {
         let Some(next) = depth.after(ctx, !branch.transmits, branch.transmits) else {

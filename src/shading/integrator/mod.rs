@@ -24,6 +24,7 @@ use glam::Vec3;
 use crate::accel::{spawn_ray, spawn_ray_to, spawn_ray_to_surface, Hit, Ray, SurfacePoint};
 use crate::components::{Material, Shader};
 use crate::geometry::{SceneGeometry, ShadingPoint};
+use crate::photon::PhotonMaps;
 use crate::sampling::Sampler;
 use crate::settings::{Face, Integrator, RenderSettings};
 use crate::shading::bsdf::Bsdf;
@@ -50,6 +51,8 @@ pub struct ShadeContext<'a> {
     pub reflection_depth: u32,
     /// Most refractions per path.
     pub refraction_depth: u32,
+    /// Photon maps the `Direct` integrator reads (caustics, final gather); `None`: none.
+    pub photons: Option<&'a PhotonMaps>,
     /// Fog around the camera and inside materials (`None`: vacuum everywhere).
     pub volumes: Option<&'a Volumes>,
 }
@@ -69,8 +72,15 @@ impl<'a> ShadeContext<'a> {
             max_depth: settings.max_depth,
             reflection_depth: settings.reflection_depth,
             refraction_depth: settings.refraction_depth,
+            photons: None,
             volumes: None,
         }
+    }
+
+    /// The same context reading `photons`.
+    pub fn with_photons(mut self, photons: Option<&'a PhotonMaps>) -> Self {
+        self.photons = photons;
+        self
     }
 
     /// The same context with the scene's media.

@@ -1,0 +1,334 @@
+//! Photon emission: each light's power in watts and a sampler of photons leaving it.
+//!
+//! Powers follow from the lights' physical units: point `Φ = 4π·I`; spot
+//! `Φ = 2π·I·∫ falloff(cosθ) dcosθ` over its cone (numerical quadrature of the beam and
+//! penumbra); area lights `Φ = π·L·A` (rectangle, disc, sphere `A = 4πr²`, cylinder side
+//! `A = 2πrh`, each emitting outward with a cosine distribution); emitting triangles
+//! `Φ = π·L·A` each (twice for two-sided emission); directional `Φ = E·π·R²` through a disc
+//! of the scene's bounding-sphere radius `R` facing the light. The environment emits no
+//! photons, and lights' near/far `attenuation` is not applied to photons. A light is chosen
+//! with probability proportional to its (channel-mean) power; every photon's power is its
+//! emitted flux divided by that probability, so the mean power per photon is the total power
+//! of the scene's lights. A new light shape adds one arm to [`Source::from_light`] and one to
+//! [`Source::emit`].
+
+use std::f32::consts::PI;
+
+use glam::{Vec2, Vec3};
+
+use crate::accel::{spawn_ray, Hit, Ray};
+use crate::geometry::SceneGeometry;
+use crate::sampling::{sample_cosine_hemisphere, sample_triangle};
+use crate::shading::frame::ShadingFrame;
+use crate::shading::lights::{spot_falloff, AreaShape, Light, LightSet, MeshLight};
+
+/// A photon leaving a light: its ray and its flux weight, W (not yet divided by the number of
+/// photons emitted).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EmittedPhoton {
+    /// Where it starts and where it goes (unit direction).
+    pub ray: Ray,
+    /// Flux weight, W.
+    pub power: Vec3,
+}
+
+/// One light prepared for photon emission.
+#[derive(Debug, Clone)]
+struct Source {
+    light: Light,
+    /// Total emitted power, W.
+    power: Vec3,
+    /// Directional lights: centre and radius of the scene's bounding sphere.
+    bounds: (Vec3, f32),
+}
+
+impl Source {
+    fn from_light(light: &Light, geometry: &SceneGeometry, bounds: (Vec3, f32)) -> Self {
+        let power = match light {
+            Light::Point { intensity, .. } => *intensity * (4.0 * PI),
+            Light::Spot {
+                cos_outer,
+                cos_inner,
+                beam_distribution,
+                intensity,
+                ..
+            } => *intensity * spot_solid_angle(*cos_outer, *cos_inner, *beam_distribution),
+            Light::Directional { irradiance, .. } => *irradiance * (PI * bounds.1 * bounds.1),
+            Light::Area(a) => a.radiance * (PI * area_of(&a.shape)),
+            // The environment sends no photons (documented limitation).
+            Light::Environment(_) => Vec3::ZERO,
+            Light::Mesh(MeshLight { prims, .. }) => prims.iter().fold(Vec3::ZERO, |s, &prim| {
+                let m = geometry.material_of(prim);
+                let sides = if m.two_sided { 2.0 } else { 1.0 };
+                s + m.emission * (PI * sides * triangle_area(geometry, prim))
+            }),
+        };
+        let power = if power.is_finite() {
+            power.max(Vec3::ZERO)
+        } else {
+            Vec3::ZERO
+        };
+        Self {
+            light: light.clone(),
+            power,
+            bounds,
+        }
+    }
+
+    /// A photon from `u ∈ [0,1)⁴`; its power is the emitted flux weight `Lₑ·cos/(pdf_A·pdf_ω)`.
+    fn emit(&self, geometry: &SceneGeometry, u: [f32; 4]) -> Option<EmittedPhoton> {
+        let (u_pos, u_dir) = (Vec2::new(u[0], u[1]), Vec2::new(u[2], u[3]));
+        let from_point = |origin: Vec3, dir: Vec3, power: Vec3| EmittedPhoton {
+            ray: Ray {
+                origin,
+                dir,
+                t_max: f32::INFINITY,
+            },
+            power,
+        };
+        let photon = match &self.light {
+            Light::Point { position, .. } => {
+                from_point(*position, uniform_sphere(u_dir), self.power)
+            }
+            Light::Spot {
+                position,
+                axis,
+                cos_outer,
+                cos_inner,
+                beam_distribution,
+                intensity,
+                ..
+            } => {
+                // Uniform in the cone: cosθ uniform in [cos_outer, 1].
+                let cos = 1.0 - u_dir.x * (1.0 - cos_outer);
+                let sin = (1.0 - cos * cos).max(0.0).sqrt();
+                let phi = 2.0 * PI * u_dir.y;
+                let local = Vec3::new(sin * phi.cos(), sin * phi.sin(), cos);
+                let dir = ShadingFrame::from_normal(*axis).to_world(local);
+                let falloff = spot_falloff(cos, *cos_outer, *cos_inner, *beam_distribution);
+                let solid_angle = 2.0 * PI * (1.0 - cos_outer);
+                from_point(*position, dir, *intensity * (falloff * solid_angle))
+            }
+            Light::Directional { direction, .. } => {
+                let (centre, radius) = self.bounds;
+                let frame = ShadingFrame::from_normal(*direction);
+                let d = crate::sampling::sample_concentric_disk(u_pos) * radius;
+                let origin = centre - *direction * (1.01 * radius) + frame.s * d.x + frame.t * d.y;
+                from_point(origin, *direction, self.power)
+            }
+            Light::Area(a) => {
+                // A point on the shape and its outward normal; light shapes are not scene
+                // geometry, so the photon starts exactly there.
+                let (q, n) = match &a.shape {
+                    AreaShape::Rect(r) => {
+                        (r.corner + r.edge_u * u_pos.x + r.edge_v * u_pos.y, r.normal)
+                    }
+                    AreaShape::Disc(d) => {
+                        let p = crate::sampling::sample_concentric_disk(u_pos) * d.radius;
+                        (d.center + d.frame.s * p.x + d.frame.t * p.y, d.frame.n)
+                    }
+                    AreaShape::Sphere(s) => {
+                        let n = uniform_sphere(u_pos);
+                        (s.center + n * s.radius, n)
+                    }
+                    AreaShape::Cylinder(c) => {
+                        let phi = 2.0 * PI * u_pos.y;
+                        let n = c.frame.s * phi.cos() + c.frame.t * phi.sin();
+                        (c.start + c.frame.n * (u_pos.x * c.length) + n * c.radius, n)
+                    }
+                };
+                let dir = ShadingFrame::from_normal(n).to_world(sample_cosine_hemisphere(u_dir));
+                from_point(q, dir, self.power)
+            }
+            Light::Environment(_) => return None,
+            Light::Mesh(MeshLight { prims, cdf, .. }) => {
+                let k = cdf.partition_point(|&c| c <= u_pos.x).clamp(1, prims.len()) - 1;
+                let (c0, c1) = (cdf[k], cdf[k + 1]);
+                if c1 <= c0 {
+                    return None;
+                }
+                let ux = ((u_pos.x - c0) / (c1 - c0)).clamp(0.0, 1.0 - f32::EPSILON);
+                let prim = prims[k];
+                let material = geometry.material_of(prim);
+                let (b1, b2) = sample_triangle(Vec2::new(ux, u_pos.y));
+                let sp = geometry.accel.surface_point(&Hit {
+                    t: 0.0,
+                    prim,
+                    b1,
+                    b2,
+                });
+                // Two-sided emitters pick a side by the first direction dimension.
+                let (mut n, mut ud, mut sides) = (sp.ng, u_dir, 1.0);
+                if material.two_sided {
+                    sides = 2.0;
+                    if ud.x < 0.5 {
+                        ud.x *= 2.0;
+                    } else {
+                        ud.x = 2.0 * ud.x - 1.0;
+                        n = -n;
+                    }
+                }
+                let dir = ShadingFrame::from_normal(n).to_world(sample_cosine_hemisphere(ud));
+                let area = triangle_area(geometry, prim);
+                let prob = c1 - c0;
+                EmittedPhoton {
+                    ray: spawn_ray(&sp, dir),
+                    power: material.emission * (PI * sides * area / prob),
+                }
+            }
+        };
+        (photon.power.is_finite() && photon.ray.dir.is_finite() && photon.ray.origin.is_finite())
+            .then_some(photon)
+    }
+}
+
+/// Every light with power, and the distribution photons are emitted from.
+#[derive(Debug, Clone, Default)]
+pub struct Emission {
+    sources: Vec<Source>,
+    /// Normalised CDF over `sources` by channel-mean power (length `sources.len() + 1`).
+    cdf: Vec<f32>,
+}
+
+impl Emission {
+    /// The lights of `lights` that emit power into `geometry`.
+    pub fn new(lights: &LightSet, geometry: &SceneGeometry) -> Self {
+        let bounds = bounding_sphere(geometry);
+        let sources: Vec<Source> = lights
+            .lights
+            .iter()
+            .map(|l| Source::from_light(l, geometry, bounds))
+            .filter(|s| mean(s.power) > 0.0)
+            .collect();
+        let total: f64 = sources.iter().map(|s| mean(s.power) as f64).sum();
+        let mut cdf = vec![0.0f32];
+        let mut acc = 0.0f64;
+        for s in &sources {
+            acc += mean(s.power) as f64;
+            cdf.push((acc / total) as f32);
+        }
+        if let Some(last) = cdf.last_mut() {
+            *last = 1.0;
+        }
+        Self { sources, cdf }
+    }
+
+    /// Whether no light emits power.
+    pub fn is_empty(&self) -> bool {
+        self.sources.is_empty()
+    }
+
+    /// Number of lights that emit power.
+    pub fn light_count(&self) -> usize {
+        self.sources.len()
+    }
+
+    /// Total power of every light, W.
+    pub fn total_power(&self) -> Vec3 {
+        self.sources.iter().fold(Vec3::ZERO, |s, x| s + x.power)
+    }
+
+    /// A photon from `u ∈ [0,1)⁵` (`u[0]` picks the light); `None` when the sample is void.
+    pub fn sample(&self, geometry: &SceneGeometry, u: [f32; 5]) -> Option<EmittedPhoton> {
+        if self.sources.is_empty() {
+            return None;
+        }
+        let n = self.sources.len();
+        let k = self.cdf.partition_point(|&c| c <= u[0]).clamp(1, n) - 1;
+        let prob = self.cdf[k + 1] - self.cdf[k];
+        if prob <= 0.0 {
+            return None;
+        }
+        let mut photon = self.sources[k].emit(geometry, [u[1], u[2], u[3], u[4]])?;
+        photon.power /= prob;
+        Some(photon)
+    }
+}
+
+fn mean(v: Vec3) -> f32 {
+    (v.x + v.y + v.z) / 3.0
+}
+
+/// Emitting area of a light shape, m².
+fn area_of(shape: &AreaShape) -> f32 {
+    match shape {
+        AreaShape::Rect(r) => r.area,
+        AreaShape::Disc(d) => PI * d.radius * d.radius,
+        AreaShape::Sphere(s) => 4.0 * PI * s.radius * s.radius,
+        AreaShape::Cylinder(c) => 2.0 * PI * c.radius * c.length,
+    }
+}
+
+fn triangle_area(geometry: &SceneGeometry, prim: u32) -> f32 {
+    let t = geometry.accel.triangle(prim);
+    0.5 * (t[1] - t[0]).cross(t[2] - t[0]).length()
+}
+
+/// Uniform direction on the unit sphere.
+fn uniform_sphere(u: Vec2) -> Vec3 {
+    let z = 1.0 - 2.0 * u.x;
+    let r = (1.0 - z * z).max(0.0).sqrt();
+    let phi = 2.0 * PI * u.y;
+    Vec3::new(r * phi.cos(), r * phi.sin(), z)
+}
+
+/// `∫ falloff dω` over a spot's cone, sr (midpoint rule in cosθ, 4096 steps).
+fn spot_solid_angle(cos_outer: f32, cos_inner: f32, beam: f32) -> f32 {
+    const STEPS: usize = 4096;
+    let width = (1.0 - cos_outer as f64) / STEPS as f64;
+    let sum: f64 = (0..STEPS)
+        .map(|i| {
+            let c = cos_outer as f64 + (i as f64 + 0.5) * width;
+            spot_falloff(c as f32, cos_outer, cos_inner, beam) as f64
+        })
+        .sum();
+    (2.0 * std::f64::consts::PI * sum * width) as f32
+}
+
+/// Centre and radius of a sphere around every triangle of `geometry`.
+pub fn bounding_sphere(geometry: &SceneGeometry) -> (Vec3, f32) {
+    let (lo, hi) = scene_bounds(geometry);
+    if lo.cmpgt(hi).any() {
+        return (Vec3::ZERO, 1.0);
+    }
+    let centre = 0.5 * (lo + hi);
+    (centre, (0.5 * (hi - lo).length()).max(1e-6))
+}
+
+/// Axis-aligned bounds of every triangle of `geometry` (empty: lo > hi).
+pub fn scene_bounds(geometry: &SceneGeometry) -> (Vec3, Vec3) {
+    (0..geometry.accel.len() as u32).fold(
+        (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
+        |(lo, hi), prim| {
+            let t = geometry.accel.triangle(prim);
+            (
+                lo.min(t[0]).min(t[1]).min(t[2]),
+                hi.max(t[0]).max(t[1]).max(t[2]),
+            )
+        },
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn spot_power_integrates_its_cone() {
+        // No penumbra, no beam falloff: the cone's solid angle 2π(1 − cos θ).
+        let c = 30f32.to_radians().cos();
+        let omega = spot_solid_angle(c, c, 0.0);
+        assert!((omega - 2.0 * PI * (1.0 - c)).abs() < 1e-4, "{omega}");
+        // cos¹ beam over the full hemisphere: π.
+        let omega = spot_solid_angle(0.0, 0.0, 1.0);
+        assert!((omega - PI).abs() < 1e-4, "{omega}");
+    }
+
+    #[test]
+    fn uniform_sphere_is_unit() {
+        for i in 0..16 {
+            let d = uniform_sphere(Vec2::new(i as f32 / 16.0, 0.3));
+            assert!((d.length() - 1.0).abs() < 1e-5);
+        }
+    }
+}
