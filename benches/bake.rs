@@ -96,11 +96,11 @@ fn world(samples: u32) -> World {
 fn bake_once(samples: u32) -> Frame {
     let mut w = world(samples);
     let mut frame = Frame::new(RenderSettings::default());
-    frame.tasks = Tasks {
+    frame.inputs.tasks = Tasks {
         render: false,
         bake: true,
     };
-    frame.bake_dir = std::env::temp_dir().join("stagelight-bench-bake");
+    frame.inputs.bake_dir = std::env::temp_dir().join("stagelight-bench-bake");
     stagelight::systems::run(&mut w, &mut frame).expect("bake");
     frame
 }
@@ -110,7 +110,7 @@ fn ao(c: &mut Criterion) {
     group.sample_size(10);
     for samples in [64u32, 256] {
         let probe = bake_once(samples);
-        let r = &probe.bake_reports[0];
+        let r = &probe.outputs.bake_reports[0];
         println!(
             "ao {samples} rays/texel: {} texels, {:.2} Mrays/s, {:.0} texels/s ({} threads)",
             r.covered_texels,

@@ -50,16 +50,21 @@ fn shade_only(c: &mut Criterion) {
     group.sample_size(10);
     let mut scene = load_scene(&cornell()).expect("cornell box loads");
     let mut frame = Frame::new(scene.settings.clone());
-    frame.settings.spp = 4;
-    (stagelight::systems::STAGES[0].run)(&mut scene.world, &mut frame).expect("build");
+    frame.inputs.settings.spp = 4;
+    let stages = stagelight::systems::STAGES;
+    let shade = stages
+        .iter()
+        .position(|s| s.name == "shade")
+        .expect("shade stage");
+    // Everything before shading (geometry, BVH, photons) once.
+    stagelight::schedule::run_stages(&stages[..shade], &mut scene.world, &mut frame)
+        .expect("stages before shade");
     group.throughput(Throughput::Elements(256 * 256 * 4));
     group.bench_function("cornell_direct_4spp", |b| {
         b.iter(|| {
-            let shade = stagelight::systems::STAGES
-                .iter()
-                .find(|s| s.name == "shade")
-                .expect("shade stage");
-            (shade.run)(&mut scene.world, &mut frame).expect("shade");
+            stages[shade]
+                .run_body(&mut scene.world, &frame)
+                .expect("shade")
         })
     });
     group.finish();

@@ -231,6 +231,7 @@ fn cornell(spp: u32, seed: u64) -> Vec<Vec3> {
         ..scene.settings.clone()
     };
     render(&mut scene.world, settings)
+        .outputs
         .image
         .expect("image")
         .beauty

@@ -1,16 +1,25 @@
-//! The per-run state shared by stages: settings, the typed outputs of each stage and the
-//! run report. A skipped stage leaves its output `None`; consumers treat `None` as "no
-//! contribution".
+//! The per-run state, in three parts with one ownership rule each:
+//!
+//! - [`RunInputs`]: what the user asked for (settings with command-line overrides, tasks,
+//!   output overrides, directories, progress, cancellation). Set before the run; read-only
+//!   to every stage.
+//! - [`StageOutputs`]: the typed output of each stage, each field written by exactly one
+//!   stage (named on the field). Stages never write here themselves: a stage returns its
+//!   output in its [`crate::schedule::Work`] and the runner stores it in the stage's declared
+//!   slot. A skipped stage leaves its output `None`; consumers treat `None` as "no
+//!   contribution".
+//! - [`RunReport`]: filled by the runner only, including the files each stage wrote.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 
 use crate::bake::BakeReport;
+use crate::components::{ImageFormat, OutputSpec, Pass};
 use crate::framebuffer::FrameBuffers;
 use crate::geometry::SceneGeometry;
 use crate::photon::PhotonMaps;
-use crate::schedule::RunReport;
+use crate::report::RunReport;
 use crate::settings::RenderSettings;
 
 /// What the user asked this run to do.
@@ -31,14 +40,142 @@ impl Default for Tasks {
     }
 }
 
-/// Everything stages pass forward to each other.
-pub struct Frame {
+/// Where the render camera's outputs go, as the command line asked (pbrt's `--outfile`):
+/// an option of the run, never an edit of the scene.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct OutputOverrides {
+    /// `-o FILE`: replaces the camera's first output (or adds one); format from the extension.
+    pub first: Option<PathBuf>,
+    /// Puts every output under this directory, keeping its file name (`stagelight bench`).
+    pub directory: Option<PathBuf>,
+    /// Writes no camera output at all (`stagelight sweep` compares images in memory).
+    pub discard: bool,
+}
+
+impl OutputOverrides {
+    /// Checks `-o`'s extension; the error is the message for the user.
+    pub fn check(&self) -> Result<(), String> {
+        match &self.first {
+            Some(path) => format_from_extension(path).map(|_| ()),
+            None => Ok(()),
+        }
+    }
+
+    /// The outputs the run writes for a camera that lists `outputs`.
+    pub fn apply(&self, outputs: &[OutputSpec]) -> Result<Vec<OutputSpec>, String> {
+        if self.discard {
+            return Ok(Vec::new());
+        }
+        let mut outputs = outputs.to_vec();
+        if let Some(path) = &self.first {
+            let format = format_from_extension(path)?;
+            let mut passes = outputs
+                .first()
+                .map(|o| o.passes.clone())
+                .unwrap_or_else(|| vec![Pass::Beauty]);
+            if format == ImageFormat::Png {
+                passes.retain(|p| matches!(p, Pass::Beauty | Pass::Alpha));
+                if passes.is_empty() {
+                    passes.push(Pass::Beauty);
+                }
+            }
+            let spec = OutputSpec {
+                path: path.clone(),
+                format,
+                passes,
+            };
+            match outputs.first_mut() {
+                Some(first) => *first = spec,
+                None => outputs.push(spec),
+            }
+        }
+        if let Some(dir) = &self.directory {
+            for (k, out) in outputs.iter_mut().enumerate() {
+                let name = out
+                    .path
+                    .file_name()
+                    .map(PathBuf::from)
+                    .unwrap_or_else(|| PathBuf::from(format!("output_{k}")));
+                out.path = dir.join(name);
+            }
+        }
+        Ok(outputs)
+    }
+}
+
+/// The image format named by a file's extension (`.png`, `.exr`).
+pub fn format_from_extension(path: &Path) -> Result<ImageFormat, String> {
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    match ext.as_deref() {
+        Some("png") => Ok(ImageFormat::Png),
+        Some("exr") => Ok(ImageFormat::Exr),
+        _ => Err(format!(
+            "cannot tell the image format of {}: use a .png or .exr extension",
+            path.display()
+        )),
+    }
+}
+
+/// Everything the user asked for; read-only to stages.
+#[derive(Debug, Clone)]
+pub struct RunInputs {
     /// Render settings (scene `options` plus command-line overrides).
     pub settings: RenderSettings,
     /// What to do: render, bake or both.
     pub tasks: Tasks,
+    /// Where camera outputs go when the command line redirects them.
+    pub outputs: OutputOverrides,
     /// Directory for baked textures (relative paths resolve against the working directory).
     pub bake_dir: PathBuf,
+    /// Show a progress bar on stderr.
+    pub progress: bool,
+    /// Set from another thread (SIGINT) to stop the run; stages poll it.
+    pub cancel: Arc<AtomicBool>,
+}
+
+/// A stage output slot: which field of [`StageOutputs`] a stage writes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Slot {
+    /// [`StageOutputs::geometry`].
+    Geometry,
+    /// [`StageOutputs::photons`].
+    Photons,
+    /// [`StageOutputs::image`].
+    Image,
+    /// [`StageOutputs::bake_reports`].
+    BakeReports,
+}
+
+/// A stage's typed result, stored by the runner in the stage's slot.
+pub enum StageOutput {
+    /// World-space triangles, their BVH and shading attributes.
+    Geometry(SceneGeometry),
+    /// The caustic and global photon maps.
+    Photons(PhotonMaps),
+    /// The render camera's frame buffers.
+    Image(FrameBuffers),
+    /// One report per bake request.
+    BakeReports(Vec<BakeReport>),
+}
+
+impl StageOutput {
+    /// The slot this output belongs in.
+    pub fn slot(&self) -> Slot {
+        match self {
+            StageOutput::Geometry(_) => Slot::Geometry,
+            StageOutput::Photons(_) => Slot::Photons,
+            StageOutput::Image(_) => Slot::Image,
+            StageOutput::BakeReports(_) => Slot::BakeReports,
+        }
+    }
+}
+
+/// The outputs of the stages, each with exactly one writer.
+#[derive(Default)]
+pub struct StageOutputs {
     /// Written by `build_accel`: world-space triangles, their BVH and shading attributes.
     pub geometry: Option<SceneGeometry>,
     /// Written by `trace_photons`: the caustic and global photon maps.
@@ -47,36 +184,68 @@ pub struct Frame {
     pub image: Option<FrameBuffers>,
     /// Written by `bake_lightmaps`: one report per bake request.
     pub bake_reports: Vec<BakeReport>,
-    /// Written by `write_output` and `bake_lightmaps`: the files that now exist.
-    pub written: Vec<PathBuf>,
-    /// Show a progress bar on stderr.
-    pub progress: bool,
-    /// Set from another thread (SIGINT) to stop the run; stages poll it.
-    pub cancel: Arc<AtomicBool>,
-    /// Per-stage report, filled by the runner.
+    /// Slots promised by stages a plan expects to run (`stagelight plan` runs no stage, so
+    /// later run conditions ask [`StageOutputs::has`] instead of looking at the data).
+    promised: Vec<Slot>,
+}
+
+impl StageOutputs {
+    /// Whether `slot` holds data, or a stage planned to run before now will fill it.
+    pub fn has(&self, slot: Slot) -> bool {
+        self.promised.contains(&slot)
+            || match slot {
+                Slot::Geometry => self.geometry.is_some(),
+                Slot::Photons => self.photons.is_some(),
+                Slot::Image => self.image.is_some(),
+                Slot::BakeReports => !self.bake_reports.is_empty(),
+            }
+    }
+
+    /// Records that a planned stage will fill `slot` (planning only).
+    pub(crate) fn promise(&mut self, slot: Slot) {
+        self.promised.push(slot);
+    }
+
+    /// Stores a stage's output in its slot.
+    pub(crate) fn store(&mut self, output: StageOutput) {
+        match output {
+            StageOutput::Geometry(g) => self.geometry = Some(g),
+            StageOutput::Photons(p) => self.photons = Some(p),
+            StageOutput::Image(i) => self.image = Some(i),
+            StageOutput::BakeReports(r) => self.bake_reports = r,
+        }
+    }
+}
+
+/// The whole per-run state: inputs, stage outputs and the report.
+pub struct Frame {
+    /// What the user asked for (read-only to stages).
+    pub inputs: RunInputs,
+    /// Each stage's output (stored by the runner).
+    pub outputs: StageOutputs,
+    /// Per-stage report (written by the runner).
     pub report: RunReport,
 }
 
 impl Frame {
-    /// A fresh frame with no stage outputs yet.
+    /// A fresh frame for a render with `settings` and no stage outputs yet.
     pub fn new(settings: RenderSettings) -> Self {
         Self {
-            settings,
-            tasks: Tasks::default(),
-            bake_dir: PathBuf::from("."),
-            geometry: None,
-            photons: None,
-            bake_reports: Vec::new(),
-            image: None,
-            written: Vec::new(),
-            progress: false,
-            cancel: Arc::new(AtomicBool::new(false)),
+            inputs: RunInputs {
+                settings,
+                tasks: Tasks::default(),
+                outputs: OutputOverrides::default(),
+                bake_dir: PathBuf::from("."),
+                progress: false,
+                cancel: Arc::new(AtomicBool::new(false)),
+            },
+            outputs: StageOutputs::default(),
             report: RunReport::default(),
         }
     }
 
     /// Whether the run was interrupted.
     pub fn cancelled(&self) -> bool {
-        self.cancel.load(Ordering::Relaxed)
+        self.inputs.cancel.load(Ordering::Relaxed)
     }
 }

@@ -17,11 +17,14 @@ pub mod image_io;
 pub mod photon;
 pub mod procedural;
 pub mod progress;
+pub mod report;
 pub mod sampling;
 pub mod scene;
+pub mod scene_view;
 pub mod schedule;
 pub mod settings;
 pub mod shading;
+pub mod stage_error;
 pub mod sweep;
 pub mod tessellation;
 

@@ -6,18 +6,15 @@ use std::process::ExitCode;
 use std::sync::atomic::Ordering;
 
 use clap::{Args, Parser, Subcommand};
-use stagelight::components::{BakeRequest, Camera, ImageFormat, OutputSpec, Pass, RenderCamera};
-use stagelight::frame::{Frame, Tasks};
+use stagelight::components::BakeRequest;
+use stagelight::frame::{Frame, OutputOverrides, Tasks};
 use stagelight::scene::{load_scene, LoadedScene};
-use stagelight::schedule::StageError;
 use stagelight::systems;
 
 /// Exit code for scene and runtime errors.
 const EXIT_ERROR: u8 = 1;
 /// Exit code for command-line usage errors.
 const EXIT_USAGE: u8 = 2;
-/// Exit code after SIGINT (128 + 2).
-const EXIT_INTERRUPTED: u8 = 130;
 
 #[derive(Parser)]
 #[command(
@@ -42,6 +39,9 @@ enum Command {
     /// Measure what accuracy costs in time: render once per knob value (and seed), compare
     /// with a converged reference, write a CSV/JSON table and an SVG plot.
     Sweep(SweepArgs),
+    /// Print the stages in order with run/skip and the reason each would get for this scene,
+    /// without running any.
+    Plan(PlanArgs),
     /// Validate a scene without rendering; exit 0 when it is renderable.
     Check {
         /// Scene file (RON).
@@ -103,6 +103,24 @@ struct BakeArgs {
     /// path-traced reference integrator); overrides the scene's `options.integrator`.
     #[arg(long, value_enum)]
     integrator: Option<IntegratorArg>,
+}
+
+#[derive(Args)]
+struct PlanArgs {
+    /// Scene file (RON).
+    scene: PathBuf,
+    /// Plan `render --bake` (render and bake).
+    #[arg(long, conflicts_with = "bake_only")]
+    bake: bool,
+    /// Plan `stagelight bake` (bake only).
+    #[arg(long = "bake-only")]
+    bake_only: bool,
+    /// Radiance integrator (overrides the scene's `options.integrator`).
+    #[arg(long, value_enum)]
+    integrator: Option<IntegratorArg>,
+    /// Print the plan as JSON on stdout.
+    #[arg(long)]
+    json: bool,
 }
 
 #[derive(Args)]
@@ -184,6 +202,7 @@ fn main() -> ExitCode {
     };
     match cli.command {
         Command::Check { scene } => check(&scene),
+        Command::Plan(args) => plan(args),
         Command::Render(args) => render(args),
         Command::Bake(args) => bake(args),
         Command::Bench(args) => bench(args),
@@ -223,48 +242,47 @@ fn check(path: &Path) -> ExitCode {
     }
 }
 
-fn format_from_extension(path: &Path) -> Option<ImageFormat> {
-    match path.extension()?.to_str()?.to_ascii_lowercase().as_str() {
-        "png" => Some(ImageFormat::Png),
-        "exr" => Some(ImageFormat::Exr),
-        _ => None,
-    }
-}
-
-/// Points the render camera's first output at `path` (or adds one).
-fn override_output(world: &mut hecs::World, path: &Path) -> Result<(), String> {
-    let format = format_from_extension(path).ok_or_else(|| {
-        format!(
-            "cannot tell the image format of {}: use a .png or .exr extension",
-            path.display()
-        )
-    })?;
-    let mut query = world.query::<(&mut Camera, &RenderCamera)>();
-    let Some((camera, _)) = query.iter().next() else {
-        return Err("the scene has no render camera".into());
+fn plan(args: PlanArgs) -> ExitCode {
+    let scene = match load(&args.scene) {
+        Ok(s) => s,
+        Err(code) => return code,
     };
-    let mut passes = camera
-        .outputs
-        .first()
-        .map(|o| o.passes.clone())
-        .unwrap_or_else(|| vec![Pass::Beauty]);
-    if format == ImageFormat::Png {
-        passes.retain(|p| matches!(p, Pass::Beauty | Pass::Alpha));
-        if passes.is_empty() {
-            passes.push(Pass::Beauty);
+    let mut settings = scene.settings.clone();
+    if let Some(integrator) = args.integrator {
+        settings.integrator = integrator.integrator();
+    }
+    let mut frame = Frame::new(settings);
+    frame.inputs.tasks = Tasks {
+        render: !args.bake_only,
+        bake: args.bake || args.bake_only,
+    };
+    let planned = systems::plan(&scene.world, &mut frame);
+    if args.json {
+        match serde_json::to_string_pretty(&planned) {
+            Ok(j) => println!("{j}"),
+            Err(e) => {
+                eprintln!("error: cannot encode the plan: {e}");
+                return ExitCode::from(EXIT_ERROR);
+            }
         }
+        return ExitCode::SUCCESS;
     }
-    let spec = OutputSpec {
-        path: path.to_path_buf(),
-        format,
-        passes,
+    let task = match (frame.inputs.tasks.render, frame.inputs.tasks.bake) {
+        (true, true) => "render --bake",
+        (true, false) => "render",
+        _ => "bake",
     };
-    if camera.outputs.is_empty() {
-        camera.outputs.push(spec);
-    } else {
-        camera.outputs[0] = spec;
+    println!("plan for {} ({task}):", args.scene.display());
+    for (i, p) in planned.iter().enumerate() {
+        println!(
+            "{:>2} {:<16} {:<4} {}",
+            i + 1,
+            p.stage,
+            if p.run { "run" } else { "skip" },
+            p.reason
+        );
     }
-    Ok(())
+    ExitCode::SUCCESS
 }
 
 fn set_threads(threads: Option<u32>) -> Result<(), ExitCode> {
@@ -311,14 +329,21 @@ fn render(args: RenderArgs) -> ExitCode {
         settings.spp = spp;
         settings.adaptive = None;
     }
-    if let Some(out) = &args.output {
-        if let Err(message) = override_output(&mut scene.world, out) {
-            eprintln!("error: {message}");
-            return ExitCode::from(EXIT_USAGE);
-        }
+    let overrides = OutputOverrides {
+        first: args.output.clone(),
+        ..OutputOverrides::default()
+    };
+    if let Err(message) = overrides.check() {
+        eprintln!("error: {message}");
+        return ExitCode::from(EXIT_USAGE);
+    }
+    if args.output.is_some() && !stagelight::scene_view::has_render_camera(&scene.world) {
+        eprintln!("error: the scene has no render camera");
+        return ExitCode::from(EXIT_USAGE);
     }
     let mut frame = Frame::new(settings);
-    frame.tasks = Tasks {
+    frame.inputs.outputs = overrides;
+    frame.inputs.tasks = Tasks {
         render: true,
         bake: args.bake,
     };
@@ -339,12 +364,12 @@ fn bake(args: BakeArgs) -> ExitCode {
         return ExitCode::from(EXIT_ERROR);
     }
     let mut frame = Frame::new(settings);
-    frame.tasks = Tasks {
+    frame.inputs.tasks = Tasks {
         render: false,
         bake: true,
     };
     if let Some(dir) = args.output {
-        frame.bake_dir = dir;
+        frame.inputs.bake_dir = dir;
     }
     run_and_report(&mut scene, frame, args.stats, args.stats_json.as_deref())
 }
@@ -358,33 +383,23 @@ fn bench(args: BenchArgs) -> ExitCode {
         Err(code) => return code,
     };
     let scratch = std::env::temp_dir().join(format!("stagelight-bench-{}", std::process::id()));
-    // Outputs land in the scratch directory, under their own file names.
-    for camera in scene.world.query_mut::<&mut Camera>() {
-        for (k, out) in camera.outputs.iter_mut().enumerate() {
-            let name = out
-                .path
-                .file_name()
-                .map(PathBuf::from)
-                .unwrap_or_else(|| PathBuf::from(format!("output_{k}")));
-            out.path = scratch.join(name);
-        }
-    }
     let mut frame = Frame::new(scene.settings.clone());
-    frame.tasks = Tasks {
+    // Outputs land in the scratch directory, under their own file names.
+    frame.inputs.outputs.directory = Some(scratch.clone());
+    frame.inputs.tasks = Tasks {
         render: true,
         bake: scene.world.query::<&BakeRequest>().iter().next().is_some(),
     };
-    frame.bake_dir = scratch.join("bake");
-    let cancel = frame.cancel.clone();
+    frame.inputs.bake_dir = scratch.join("bake");
+    let cancel = frame.inputs.cancel.clone();
     let _ = ctrlc::set_handler(move || cancel.store(true, Ordering::SeqCst));
     let result = systems::run(&mut scene.world, &mut frame);
     let _ = std::fs::remove_dir_all(&scratch);
     match result {
         Ok(()) => {}
-        Err(StageError::Interrupted) => return ExitCode::from(EXIT_INTERRUPTED),
         Err(e) => {
-            eprintln!("{}", with_error_prefix(&e.to_string()));
-            return ExitCode::from(EXIT_ERROR);
+            eprintln!("{e}");
+            return ExitCode::from(e.exit_code());
         }
     }
     if args.json {
@@ -393,7 +408,7 @@ fn bench(args: BenchArgs) -> ExitCode {
             "threads": frame.report.threads,
             "total_seconds": frame.report.total_seconds,
             "stages": frame.report.stages,
-            "bakes": frame.bake_reports,
+            "bakes": frame.outputs.bake_reports,
         });
         match serde_json::to_string_pretty(&value) {
             Ok(j) => println!("{j}"),
@@ -409,7 +424,7 @@ fn bench(args: BenchArgs) -> ExitCode {
             frame.report.threads
         );
         print!("{}", frame.report.to_throughput_table());
-        for r in &frame.bake_reports {
+        for r in &frame.outputs.bake_reports {
             println!("bake {}", r.summary());
         }
     }
@@ -441,8 +456,11 @@ fn sweep(args: SweepArgs) -> ExitCode {
     let summary = match run_sweep(&opts, systems::run, |step| eprintln!("sweep: {step}")) {
         Ok(s) => s,
         Err(e) => {
-            eprintln!("{}", with_error_prefix(&e.to_string()));
-            return ExitCode::from(EXIT_ERROR);
+            eprintln!("{e}");
+            return ExitCode::from(match &e {
+                stagelight::sweep::SweepError::Stage(s) => s.exit_code(),
+                _ => EXIT_ERROR,
+            });
         }
     };
     let json = serde_json::to_string_pretty(&summary).unwrap_or_default();
@@ -492,24 +510,20 @@ fn run_and_report(
     stats: bool,
     stats_json: Option<&Path>,
 ) -> ExitCode {
-    frame.progress = std::io::stderr().is_terminal();
-    let cancel = frame.cancel.clone();
+    frame.inputs.progress = std::io::stderr().is_terminal();
+    let cancel = frame.inputs.cancel.clone();
     let _ = ctrlc::set_handler(move || cancel.store(true, Ordering::SeqCst));
 
     match systems::run(&mut scene.world, &mut frame) {
         Ok(()) => {}
-        Err(StageError::Interrupted) => {
-            eprintln!("interrupted; no output written");
-            return ExitCode::from(EXIT_INTERRUPTED);
-        }
         Err(e) => {
-            eprintln!("{}", with_error_prefix(&e.to_string()));
-            return ExitCode::from(EXIT_ERROR);
+            eprintln!("{e}");
+            return ExitCode::from(e.exit_code());
         }
     }
     if stats {
         print!("{}", frame.report.to_table());
-        for r in &frame.bake_reports {
+        for r in &frame.outputs.bake_reports {
             println!("bake {}", r.summary());
         }
     }
@@ -518,7 +532,8 @@ fn run_and_report(
             "threads": frame.report.threads,
             "total_seconds": frame.report.total_seconds,
             "stages": frame.report.stages,
-            "bakes": frame.bake_reports,
+            "bakes": frame.outputs.bake_reports,
+            "written": frame.report.written,
         });
         let json = match serde_json::to_string_pretty(&value) {
             Ok(j) => j,
@@ -536,21 +551,11 @@ fn run_and_report(
             return ExitCode::from(EXIT_ERROR);
         }
     }
-    for path in &frame.written {
+    for path in &frame.report.written {
         eprintln!("wrote {}", path.display());
     }
-    if frame.written.is_empty() && frame.tasks.render {
+    if frame.report.written.is_empty() && frame.inputs.tasks.render {
         eprintln!("note: the render camera has no outputs; nothing written (use -o FILE)");
     }
     ExitCode::SUCCESS
-}
-
-/// Stage errors that already carry a location (`file:line:col: error: …`) print as they are;
-/// others get an `error:` prefix.
-fn with_error_prefix(message: &str) -> String {
-    if message.contains(": error: ") || message.starts_with("error:") {
-        message.to_string()
-    } else {
-        format!("error: {message}")
-    }
 }

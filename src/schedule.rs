@@ -1,12 +1,17 @@
-//! The stage runner: stage type, run conditions, and the per-stage report.
+//! The stage runner: the `Stage` type with its run condition and declared data, the runner
+//! that stores each stage's output in its slot and records the report, and the plan that
+//! evaluates the same run conditions without running anything (`stagelight plan`).
 
+use std::path::PathBuf;
 use std::time::Instant;
 
 use hecs::World;
 use serde::Serialize;
 
 use crate::accel::RayCounts;
-use crate::frame::Frame;
+use crate::frame::{Frame, Slot, StageOutput};
+use crate::report::StageReport;
+pub use crate::stage_error::StageError;
 
 /// Whether a stage runs, and the reason (which component or option decided it).
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -34,169 +39,145 @@ impl Decision {
     }
 }
 
-/// Work a stage did, for throughput figures.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// What a stage did: work items for throughput figures, the files it wrote, and its typed
+/// output (stored by the runner in the stage's declared slot).
 pub struct Work {
     /// Items processed.
     pub items: u64,
     /// What an item is (`"triangles"`, `"samples"`, `"files"`, …).
     pub unit: &'static str,
+    /// Files the stage wrote (whole), in the order written.
+    pub files: Vec<PathBuf>,
+    /// The stage's output, if it has a slot.
+    pub output: Option<StageOutput>,
 }
 
-/// Errors a stage can end with.
-#[derive(Debug, thiserror::Error)]
-pub enum StageError {
-    /// Writing an output file failed.
-    #[error("cannot write {path}: {message}")]
-    Write {
-        /// The file.
-        path: std::path::PathBuf,
-        /// What went wrong.
-        message: String,
-    },
-    /// The user interrupted the run.
-    #[error("interrupted")]
-    Interrupted,
-    /// The world lacks something the stage needs (a bug in a run condition or the loader).
-    #[error("{0}")]
-    Invalid(String),
+impl Work {
+    /// `items` of `unit`, no files, no output.
+    pub fn new(items: u64, unit: &'static str) -> Self {
+        Self {
+            items,
+            unit,
+            files: Vec::new(),
+            output: None,
+        }
+    }
+
+    /// The same work with the stage's output.
+    pub fn with_output(mut self, output: StageOutput) -> Self {
+        self.output = Some(output);
+        self
+    }
+
+    /// The same work with the files the stage wrote.
+    pub fn with_files(mut self, files: Vec<PathBuf>) -> Self {
+        self.files = files;
+        self
+    }
 }
 
-/// A run condition: a cheap, pure query over the world and frame.
+/// A run condition: a cheap, pure query over the world and the frame. It asks whether
+/// earlier outputs exist through `frame.outputs.has(slot)`, so the same condition answers
+/// for a real run and for a plan.
 pub type RunCondition = fn(&World, &Frame) -> Decision;
-/// A stage body.
-pub type StageFn = fn(&mut World, &mut Frame) -> Result<Work, StageError>;
+
+/// A stage body. Only the geometry stages may edit the world; the others see it read-only.
+/// Both see the frame read-only and return their output in [`Work`].
+#[derive(Clone, Copy)]
+pub enum StageBody {
+    /// A geometry stage: turns components into meshes (structural world edits).
+    EditsWorld(fn(&mut World, &Frame) -> Result<Work, StageError>),
+    /// Every other stage.
+    ReadsWorld(fn(&World, &Frame) -> Result<Work, StageError>),
+}
 
 /// One entry of the stage table.
 #[derive(Clone, Copy)]
 pub struct Stage {
     /// Reported name (equal to the module name in `systems/`).
     pub name: &'static str,
+    /// When the stage runs, in words (the documentation table is generated from this).
+    pub runs_when: &'static str,
+    /// What it reads, in words.
+    pub reads: &'static str,
+    /// What it writes, in words.
+    pub writes: &'static str,
+    /// The output slot it fills, if any (the runner refuses any other).
+    pub slot: Option<Slot>,
     /// When the stage runs.
     pub condition: RunCondition,
     /// What it does.
-    pub run: StageFn,
+    pub body: StageBody,
 }
 
-/// What the runner recorded for one stage.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct StageReport {
+impl Stage {
+    /// Runs the stage body once, outside the runner (benchmarks and tests): its output is
+    /// returned in the [`Work`], not stored.
+    pub fn run_body(&self, world: &mut World, frame: &Frame) -> Result<Work, StageError> {
+        match self.body {
+            StageBody::EditsWorld(body) => body(world, frame),
+            StageBody::ReadsWorld(body) => body(world, frame),
+        }
+    }
+}
+
+/// The markdown table of a stage list (order, name, runs when, reads, writes): the
+/// documentation in `systems/mod.rs` and `ARCHITECTURE.md` is checked against it.
+pub fn stage_table_markdown(stages: &[Stage]) -> String {
+    let mut out = String::from(
+        "| order | stage | runs when | reads | writes |\n| --- | --- | --- | --- | --- |\n",
+    );
+    for (i, s) in stages.iter().enumerate() {
+        out.push_str(&format!(
+            "| {} | `{}` | {} | {} | {} |\n",
+            i + 1,
+            s.name,
+            s.runs_when,
+            s.reads,
+            s.writes
+        ));
+    }
+    out
+}
+
+/// What a plan says of one stage.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+pub struct PlannedStage {
     /// Stage name.
     pub stage: &'static str,
-    /// Whether it ran.
-    pub ran: bool,
-    /// Why it ran or was skipped.
+    /// Whether it would run.
+    pub run: bool,
+    /// The reason its run condition gives.
     pub reason: String,
-    /// Wall time of the stage body (0 when skipped).
-    pub seconds: f64,
-    /// Items processed.
-    pub items: u64,
-    /// Unit of `items`.
-    pub unit: &'static str,
-    /// Items per second (0 when skipped).
-    pub items_per_second: f64,
-    /// Items per second per worker thread.
-    pub items_per_second_per_thread: f64,
-    /// Closest-hit rays the stage traced (counted by the accelerator).
-    pub rays_closest: u64,
-    /// Occlusion (shadow, AO) rays the stage traced.
-    pub rays_occlusion: u64,
-    /// All rays the stage traced (`rays_closest + rays_occlusion`).
-    pub rays: u64,
-    /// Rays per second (0 when the stage traced none).
-    pub rays_per_second: f64,
-    /// Rays per second per worker thread (0 when the stage traced none).
-    pub rays_per_second_per_thread: f64,
 }
 
-/// The whole run's report.
-#[derive(Debug, Clone, Default, PartialEq, Serialize)]
-pub struct RunReport {
-    /// Worker threads used.
-    pub threads: usize,
-    /// One entry per stage of the table, in order.
-    pub stages: Vec<StageReport>,
-    /// Wall time of the whole schedule.
-    pub total_seconds: f64,
-}
-
-impl RunReport {
-    /// The entry for a stage, if it is in the table.
-    pub fn stage(&self, name: &str) -> Option<&StageReport> {
-        self.stages.iter().find(|s| s.stage == name)
-    }
-
-    /// A fixed-width table for `--stats`.
-    pub fn to_table(&self) -> String {
-        let mut out = String::new();
-        out.push_str(&format!(
-            "{:<16} {:<4} {:>9} {:>12} {:<10} {:>14} {:>12}  reason\n",
-            "stage", "ran", "seconds", "items", "unit", "items/s", "rays"
-        ));
-        for s in &self.stages {
-            out.push_str(&format!(
-                "{:<16} {:<4} {:>9.4} {:>12} {:<10} {:>14.0} {:>12}  {}\n",
-                s.stage,
-                if s.ran { "yes" } else { "no" },
-                s.seconds,
-                s.items,
-                s.unit,
-                s.items_per_second,
-                s.rays,
-                s.reason
-            ));
-        }
-        out.push_str(&format!(
-            "total {:.4} s on {} thread(s)\n",
-            self.total_seconds, self.threads
-        ));
-        out
-    }
-}
-
-impl RunReport {
-    /// A throughput table for `stagelight bench`: items, seconds, items/s and items/s per
-    /// thread for every stage that ran; skipped stages with their reason.
-    pub fn to_throughput_table(&self) -> String {
-        let mut out = format!(
-            "{:<16} {:>12} {:<10} {:>10} {:>14} {:>16} {:>12} {:>12} {:>14}\n",
-            "stage",
-            "items",
-            "unit",
-            "seconds",
-            "items/s",
-            "items/s/thread",
-            "rays",
-            "occlusion",
-            "rays/s/thread"
-        );
-        for s in &self.stages {
-            if s.ran {
-                out.push_str(&format!(
-                    "{:<16} {:>12} {:<10} {:>10.4} {:>14.0} {:>16.0} {:>12} {:>12} {:>14.0}\n",
-                    s.stage,
-                    s.items,
-                    s.unit,
-                    s.seconds,
-                    s.items_per_second,
-                    s.items_per_second_per_thread,
-                    s.rays,
-                    s.rays_occlusion,
-                    s.rays_per_second_per_thread
-                ));
-            } else {
-                out.push_str(&format!("{:<16} skipped: {}\n", s.stage, s.reason));
+/// Evaluates every stage's run condition in order without running any stage: a stage that
+/// would run promises its slot to the conditions after it. The geometry stages' conditions
+/// count pending geometry (procedural objects, surfaces) so later stages plan as they run.
+pub fn plan(stages: &[Stage], world: &World, frame: &mut Frame) -> Vec<PlannedStage> {
+    stages
+        .iter()
+        .map(|stage| {
+            let d = (stage.condition)(world, frame);
+            if d.run {
+                if let Some(slot) = stage.slot {
+                    frame.outputs.promise(slot);
+                }
             }
-        }
-        out.push_str(&format!("total {:.4} s\n", self.total_seconds));
-        out
-    }
+            PlannedStage {
+                stage: stage.name,
+                run: d.run,
+                reason: d.reason,
+            }
+        })
+        .collect()
 }
 
 /// Runs `stages` in order over `world`, recording each in `frame.report`.
 ///
 /// A stage whose condition says no is recorded as skipped and leaves its outputs `None`.
-/// The first failing stage stops the run.
+/// The runner alone stores stage outputs (in the slot the stage declares) and collects the
+/// files written. The first failing stage stops the run.
 pub fn run_stages(
     stages: &[Stage],
     world: &mut World,
@@ -205,42 +186,43 @@ pub fn run_stages(
     let start = Instant::now();
     frame.report.threads = rayon::current_num_threads();
     frame.report.stages.clear();
+    frame.report.written.clear();
     for stage in stages {
         let decision = (stage.condition)(world, frame);
         if !decision.run {
-            frame.report.stages.push(StageReport {
-                stage: stage.name,
-                ran: false,
-                reason: decision.reason,
-                seconds: 0.0,
-                items: 0,
-                unit: "",
-                items_per_second: 0.0,
-                items_per_second_per_thread: 0.0,
-                rays_closest: 0,
-                rays_occlusion: 0,
-                rays: 0,
-                rays_per_second: 0.0,
-                rays_per_second_per_thread: 0.0,
-            });
+            frame
+                .report
+                .stages
+                .push(StageReport::skipped(stage.name, decision.reason));
             continue;
         }
         let rays_before = ray_counts(frame);
         let t0 = Instant::now();
-        let work = (stage.run)(world, frame)?;
+        let work = stage.run_body(world, frame)?;
         let seconds = t0.elapsed().as_secs_f64();
+        if let Some(output) = work.output {
+            if Some(output.slot()) != stage.slot {
+                return Err(StageError::Internal(format!(
+                    "stage {} returned a {:?} output but declares {:?}",
+                    stage.name,
+                    output.slot(),
+                    stage.slot
+                )));
+            }
+            frame.outputs.store(output);
+        }
         let rays = ray_counts(frame).since(rays_before);
         let threads = frame.report.threads.max(1) as f64;
-        let ray_rate = if seconds > 0.0 {
-            rays.total() as f64 / seconds
-        } else {
-            0.0
+        let per_second = |n: u64| {
+            if seconds > 0.0 {
+                n as f64 / seconds
+            } else {
+                0.0
+            }
         };
-        let rate = if seconds > 0.0 {
-            work.items as f64 / seconds
-        } else {
-            0.0
-        };
+        let rate = per_second(work.items);
+        let ray_rate = per_second(rays.total());
+        frame.report.written.extend(work.files.iter().cloned());
         frame.report.stages.push(StageReport {
             stage: stage.name,
             ran: true,
@@ -255,6 +237,7 @@ pub fn run_stages(
             rays: rays.total(),
             rays_per_second: ray_rate,
             rays_per_second_per_thread: ray_rate / threads,
+            files: work.files,
         });
     }
     frame.report.total_seconds = start.elapsed().as_secs_f64();
@@ -264,6 +247,7 @@ pub fn run_stages(
 /// Rays traced so far through the frame's accelerator (zero before `build_accel`).
 fn ray_counts(frame: &Frame) -> RayCounts {
     frame
+        .outputs
         .geometry
         .as_ref()
         .map_or(RayCounts::default(), |g| g.accel.ray_counts())

@@ -4,10 +4,10 @@
 //! the objects' `Displacement` in `Bump` mode (kept for shading);
 //! the `SceneOrigin` (copied into the geometry);
 //! `settings.bvh_quality`.
-//! **Writes:** `frame.geometry`.
+//! **Writes:** `outputs.geometry` (returned to the runner).
 //! **Runs when:** at least one instance has triangles and something consumes rays (a render
 //! camera in a run that renders, or bake requests in a run that bakes).
-//! **After this stage:** `frame.geometry` holds world triangles in instance order (each
+//! **After this stage:** `outputs.geometry` holds world triangles in instance order (each
 //! instance contiguous), their BVH, and per-instance shading data.
 
 use std::collections::HashMap;
@@ -19,10 +19,12 @@ use hecs::{Entity, World};
 use super::prelude::*;
 use crate::accel::Accel;
 use crate::components::{
-    BakeRequest, Displacement, DisplacementMode, Instance, Material, MaterialRef, RenderCamera,
-    SceneOrigin, WorldFromObject,
+    BakeRequest, Displacement, DisplacementMode, Instance, Material, MaterialRef, Procedural,
+    Scatter, SceneOrigin, SubdivMesh, Surface, WorldFromObject,
 };
 use crate::geometry::{InstanceGeometry, SceneGeometry};
+use crate::scene_view::has_render_camera;
+use crate::schedule::any_with;
 
 /// Run condition: instances with triangles, and a render camera to trace for.
 pub fn should_run(world: &World, frame: &Frame) -> Decision {
@@ -32,25 +34,36 @@ pub fn should_run(world: &World, frame: &Frame) -> Decision {
         instances += 1;
         triangles += inst.mesh.triangles.len();
     }
-    if triangles == 0 {
+    // Before the geometry stages run (a plan), generated geometry is still components.
+    let pending = any_with::<Procedural>(world)
+        || any_with::<Scatter>(world)
+        || any_with::<Surface>(world)
+        || any_with::<SubdivMesh>(world);
+    if triangles == 0 && !pending {
         return Decision::skip("no instance has triangles");
     }
-    let renders = frame.tasks.render && crate::schedule::any_with::<RenderCamera>(world);
-    let bakes = frame.tasks.bake && crate::schedule::any_with::<BakeRequest>(world);
+    let tasks = frame.inputs.tasks;
+    let renders = tasks.render && has_render_camera(world);
+    let bakes = tasks.bake && any_with::<BakeRequest>(world);
     if !renders && !bakes {
-        return Decision::skip(if frame.tasks.render {
+        return Decision::skip(if tasks.render {
             "no render camera traces rays"
         } else {
             "nothing in this run traces rays"
         });
+    }
+    if pending {
+        return Decision::run(format!(
+            "{instances} instance(s) with {triangles} triangles so far, more to be generated"
+        ));
     }
     Decision::run(format!(
         "{instances} instance(s) with {triangles} triangles"
     ))
 }
 
-/// Builds `frame.geometry`.
-pub fn run(world: &mut World, frame: &mut Frame) -> Result<Work, StageError> {
+/// Builds the scene geometry.
+pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
     // Gather in entity order so the triangle order, and thus every output byte, is fixed.
     let mut placed: Vec<(Entity, Instance, WorldFromObject, MaterialRef)> = world
         .query::<(Entity, &Instance, &WorldFromObject, &MaterialRef)>()
@@ -72,7 +85,7 @@ pub fn run(world: &mut World, frame: &mut Frame) -> Result<Work, StageError> {
             Some(&s) => s,
             None => {
                 let material = world.get::<&Material>(material_ref.0).map_err(|_| {
-                    StageError::Invalid(format!("instance {entity:?} has no material"))
+                    StageError::Internal(format!("instance {entity:?} has no material"))
                 })?;
                 let s = materials.len() as u32;
                 materials.push((*material).clone());
@@ -104,8 +117,8 @@ pub fn run(world: &mut World, frame: &mut Frame) -> Result<Work, StageError> {
         });
     }
     let count = triangles.len() as u64;
-    let accel = Accel::build(triangles, frame.settings.bvh_quality);
-    frame.geometry = Some(SceneGeometry {
+    let accel = Accel::build(triangles, frame.inputs.settings.bvh_quality);
+    let geometry = SceneGeometry {
         accel,
         triangle_instance,
         instances,
@@ -116,9 +129,40 @@ pub fn run(world: &mut World, frame: &mut Frame) -> Result<Work, StageError> {
             .iter()
             .next()
             .map_or(glam::DVec3::ZERO, |o| o.0),
-    });
-    Ok(Work {
-        items: count,
-        unit: "triangles",
-    })
+    };
+    Ok(Work::new(count, "triangles").with_output(StageOutput::Geometry(geometry)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::frame::Tasks;
+    use crate::systems::tiny_scene::{load, scene};
+
+    #[test]
+    fn the_square_becomes_two_world_triangles() {
+        let (world, frame) = load(&scene("", "", "", &[]), false);
+        let d = should_run(&world, &frame);
+        assert_eq!(d, Decision::run("1 instance(s) with 2 triangles"));
+        let work = run(&world, &frame).unwrap();
+        assert_eq!(work.items, 2);
+        let Some(StageOutput::Geometry(g)) = work.output else {
+            panic!("build_accel returns the geometry");
+        };
+        assert_eq!(g.instances.len(), 1);
+        assert_eq!(g.triangle_instance, vec![0, 0]);
+    }
+
+    #[test]
+    fn skipped_when_nothing_traces_rays() {
+        let (world, mut frame) = load(&scene("", "", "", &[]), false);
+        frame.inputs.tasks = Tasks {
+            render: false,
+            bake: true,
+        };
+        assert_eq!(
+            should_run(&world, &frame),
+            Decision::skip("nothing in this run traces rays")
+        );
+    }
 }

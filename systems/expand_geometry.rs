@@ -44,7 +44,7 @@ fn name_of(world: &World, e: Entity) -> String {
 }
 
 /// Expands every geometry shader, then every scatter.
-pub fn run(world: &mut World, _frame: &mut Frame) -> Result<Work, StageError> {
+pub fn run(world: &mut World, _frame: &Frame) -> Result<Work, StageError> {
     let mut triangles = 0u64;
     let mut shaders: Vec<(Entity, Procedural)> = world
         .query::<(Entity, &Procedural)>()
@@ -53,17 +53,14 @@ pub fn run(world: &mut World, _frame: &mut Frame) -> Result<Work, StageError> {
         .collect();
     shaders.sort_by_key(|(e, _)| e.to_bits());
     for (e, p) in shaders {
-        let out = expand(&p).map_err(|err| {
-            StageError::Invalid(format!(
-                "object \"{}\" ({}): {err}",
-                name_of(world, e),
-                p.kind()
-            ))
+        let out = expand(&p).map_err(|err| StageError::Geometry {
+            object: name_of(world, e),
+            message: format!("{}: {err}", p.kind()),
         })?;
-        let gone = |_| StageError::Invalid(format!("entity {e:?} vanished"));
+        let gone = |_| StageError::Internal(format!("entity {e:?} vanished"));
         world
             .remove_one::<Procedural>(e)
-            .map_err(|_| StageError::Invalid(format!("entity {e:?} vanished")))?;
+            .map_err(|_| StageError::Internal(format!("entity {e:?} vanished")))?;
         world
             .insert_one(
                 e,
@@ -90,18 +87,24 @@ pub fn run(world: &mut World, _frame: &mut Frame) -> Result<Work, StageError> {
     scatters.sort_by_key(|(e, _)| e.to_bits());
     for (e, s) in scatters {
         let name = name_of(world, e);
-        let surface = world.get::<&Arc<TriMesh>>(s.surface).map(|m| (*m).clone()).map_err(|_| {
-            StageError::Invalid(format!(
-                "scatter \"{name}\": its surface \"{}\" has no mesh (scatter over loaded meshes, grids or stairs)",
-                name_of(world, s.surface)
-            ))
-        })?;
+        let surface = world
+            .get::<&Arc<TriMesh>>(s.surface)
+            .map(|m| (*m).clone())
+            .map_err(|_| StageError::Geometry {
+                object: name.clone(),
+                message: format!(
+                    "scatter surface \"{}\" has no mesh (scatter over loaded meshes, grids or stairs)",
+                    name_of(world, s.surface)
+                ),
+            })?;
         let prototype = world
             .get::<&Arc<TriMesh>>(s.prototype)
             .map(|m| (*m).clone())
             .unwrap_or_else(|_| Arc::new(TriMesh::default()));
-        let xfs = scatter::placements(&s, &surface)
-            .map_err(|err| StageError::Invalid(format!("scatter \"{name}\": {err}")))?;
+        let xfs = scatter::placements(&s, &surface).map_err(|err| StageError::Geometry {
+            object: name.clone(),
+            message: format!("scatter: {err}"),
+        })?;
         let mut leaves: Vec<(Entity, WorldFromObject, MaterialRef, String)> = world
             .query::<(
                 Entity,
@@ -118,7 +121,7 @@ pub fn run(world: &mut World, _frame: &mut Frame) -> Result<Work, StageError> {
         for (leaf, xf, material, leaf_name) in leaves {
             world
                 .despawn(leaf)
-                .map_err(|_| StageError::Invalid(format!("instance {leaf:?} vanished")))?;
+                .map_err(|_| StageError::Internal(format!("instance {leaf:?} vanished")))?;
             let _spawned: Vec<Entity> = world
                 .spawn_batch(xfs.iter().enumerate().map(|(i, local)| {
                     (
@@ -140,10 +143,62 @@ pub fn run(world: &mut World, _frame: &mut Frame) -> Result<Work, StageError> {
         }
         world
             .remove_one::<Scatter>(e)
-            .map_err(|_| StageError::Invalid(format!("entity {e:?} vanished")))?;
+            .map_err(|_| StageError::Internal(format!("entity {e:?} vanished")))?;
     }
-    Ok(Work {
-        items: triangles,
-        unit: "triangles",
-    })
+    Ok(Work::new(triangles, "triangles"))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::components::Surface;
+    use crate::systems::tiny_scene::{load, scene};
+
+    #[test]
+    fn a_sphere_becomes_a_surface_and_nothing_procedural_is_left() {
+        let text = scene(
+            "",
+            "",
+            r#"(name: "ball", mesh: Sphere(radius: 0.5)),"#,
+            &["ball"],
+        );
+        let (mut world, frame) = load(&text, false);
+        assert!(should_run(&world, &frame).run);
+        let work = run(&mut world, &frame).unwrap();
+        assert_eq!(
+            work.items, 0,
+            "a quadric waits for tessellation: no triangles yet"
+        );
+        assert_eq!(count_with::<Procedural>(&world), 0);
+        assert_eq!(count_with::<Surface>(&world), 1);
+        assert!(!should_run(&world, &frame).run);
+    }
+
+    #[test]
+    fn a_grid_becomes_a_mesh_on_its_instances() {
+        let text = scene(
+            "",
+            "",
+            r#"(name: "floor", mesh: Grid(size_x: 2, size_y: 2, nx: 3, ny: 2)),"#,
+            &["floor"],
+        );
+        let (mut world, frame) = load(&text, false);
+        let work = run(&mut world, &frame).unwrap();
+        assert_eq!(work.items, 3 * 2 * 2, "two triangles per grid cell");
+        let on_instances: usize = world
+            .query::<&Instance>()
+            .iter()
+            .map(|i| i.mesh.triangles.len())
+            .sum();
+        assert_eq!(on_instances, 2 + 12, "the square and the grid");
+    }
+
+    #[test]
+    fn skipped_without_procedural_geometry() {
+        let (world, frame) = load(&scene("", "", "", &[]), false);
+        assert_eq!(
+            should_run(&world, &frame),
+            Decision::skip("no procedural geometry")
+        );
+    }
 }

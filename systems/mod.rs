@@ -1,17 +1,20 @@
-//! The stage table: the whole frame order in one place, each stage with its run condition.
+//! The stage table: the whole frame order in one place, each stage with its run condition,
+//! the data it reads and writes, and its body. The documentation table below is generated
+//! from [`STAGES`] (`stagelight plan --table`) and a unit test keeps it equal:
 //!
-//! Stages still to come (contours) take their slots here when they are built:
+//! <!-- stage table start -->
+//! | order | stage | runs when | reads | writes |
+//! | --- | --- | --- | --- | --- |
+//! | 1 | `expand_geometry` | any object has procedural geometry (`Procedural`, `Scatter`) | `Procedural`, `Scatter`, scatter surfaces and prototypes | meshes or `Surface`s on objects; scatter copies as instances (world) |
+//! | 2 | `tessellate` | a parametric surface, subdivision mesh or true displacement exists (or a quadric waits for expansion) | `Surface`, `SubdivMesh`, `Displacement`, `Approximation`, render camera (raster-space rates) | triangle meshes on objects and their instances (world) |
+//! | 3 | `build_accel` | instances with triangles (or geometry pending) and a render camera or bake request in this run | `Instance`, `WorldFromObject`, `MaterialRef`, `Material`, bump `Displacement`, `settings.bvh_quality` | `outputs.geometry` |
+//! | 4 | `trace_photons` | caustics or global illumination on, a `Direct` render, geometry, a light with power | `Emitter`s, `outputs.geometry`, `settings.photons` | `outputs.photons` |
+//! | 5 | `bake_lightmaps` | bake requests, in a run that bakes | `BakeRequest`s, `Emitter`s, `Environment`, `outputs.geometry`, `inputs.bake_dir` | texture files; `outputs.bake_reports` |
+//! | 6 | `shade` | a render camera, in a run that renders | render camera, lenses, atmosphere, `Interior`s, `Emitter`s, `Environment`, `outputs.geometry`, `outputs.photons` | `outputs.image` |
+//! | 7 | `write_output` | a shaded image and outputs to write | `outputs.image`, camera outputs with `inputs.outputs` overrides, `Imager` | image files |
+//! <!-- stage table end -->
 //!
-//! | order | stage             | runs when the scene has                              |
-//! |-------|-------------------|------------------------------------------------------|
-//! | 1     | `expand_geometry` | procedural geometry components (`Procedural`, `Scatter`) |
-//! | 2     | `tessellate`      | parametric surfaces, subdivision meshes, true displacement |
-//! | 3     | `build_accel`     | instances with triangles and a consumer of rays       |
-//! | 4     | `trace_photons`   | caustics/GI on, a `Direct` render, a light with power |
-//! | 5     | `bake_lightmaps`  | bake requests, in a run that bakes                    |
-//! | 6     | `shade`           | a render camera                                      |
-//! | 7     | `draw_contours`   | contour shaders (not built yet)                       |
-//! | 8     | `write_output`    | a shaded image and outputs to write                  |
+//! `draw_contours` takes its slot between `shade` and `write_output` when it is built.
 
 pub mod bake_lightmaps;
 pub mod build_accel;
@@ -21,13 +24,18 @@ pub mod tessellate;
 pub mod trace_photons;
 pub mod write_output;
 
+#[cfg(test)]
+mod tiny_scene;
+
 use hecs::World;
 
+use crate::frame::Slot;
+use crate::schedule::{PlannedStage, StageBody};
 use prelude::*;
 
 /// Imports shared by the stage modules.
 mod prelude {
-    pub use crate::frame::Frame;
+    pub use crate::frame::{Frame, StageOutput};
     pub use crate::schedule::{Decision, Stage, StageError, Work};
 }
 
@@ -35,42 +43,118 @@ mod prelude {
 pub const STAGES: &[Stage] = &[
     Stage {
         name: "expand_geometry",
+        runs_when: "any object has procedural geometry (`Procedural`, `Scatter`)",
+        reads: "`Procedural`, `Scatter`, scatter surfaces and prototypes",
+        writes: "meshes or `Surface`s on objects; scatter copies as instances (world)",
+        slot: None,
         condition: expand_geometry::should_run,
-        run: expand_geometry::run,
+        body: StageBody::EditsWorld(expand_geometry::run),
     },
     Stage {
         name: "tessellate",
+        runs_when: "a parametric surface, subdivision mesh or true displacement exists (or a quadric waits for expansion)",
+        reads: "`Surface`, `SubdivMesh`, `Displacement`, `Approximation`, render camera (raster-space rates)",
+        writes: "triangle meshes on objects and their instances (world)",
+        slot: None,
         condition: tessellate::should_run,
-        run: tessellate::run,
+        body: StageBody::EditsWorld(tessellate::run),
     },
     Stage {
         name: "build_accel",
+        runs_when: "instances with triangles (or geometry pending) and a render camera or bake request in this run",
+        reads: "`Instance`, `WorldFromObject`, `MaterialRef`, `Material`, bump `Displacement`, `settings.bvh_quality`",
+        writes: "`outputs.geometry`",
+        slot: Some(Slot::Geometry),
         condition: build_accel::should_run,
-        run: build_accel::run,
+        body: StageBody::ReadsWorld(build_accel::run),
     },
     Stage {
         name: "trace_photons",
+        runs_when: "caustics or global illumination on, a `Direct` render, geometry, a light with power",
+        reads: "`Emitter`s, `outputs.geometry`, `settings.photons`",
+        writes: "`outputs.photons`",
+        slot: Some(Slot::Photons),
         condition: trace_photons::should_run,
-        run: trace_photons::run,
+        body: StageBody::ReadsWorld(trace_photons::run),
     },
     Stage {
         name: "bake_lightmaps",
+        runs_when: "bake requests, in a run that bakes",
+        reads: "`BakeRequest`s, `Emitter`s, `Environment`, `outputs.geometry`, `inputs.bake_dir`",
+        writes: "texture files; `outputs.bake_reports`",
+        slot: Some(Slot::BakeReports),
         condition: bake_lightmaps::should_run,
-        run: bake_lightmaps::run,
+        body: StageBody::ReadsWorld(bake_lightmaps::run),
     },
     Stage {
         name: "shade",
+        runs_when: "a render camera, in a run that renders",
+        reads: "render camera, lenses, atmosphere, `Interior`s, `Emitter`s, `Environment`, `outputs.geometry`, `outputs.photons`",
+        writes: "`outputs.image`",
+        slot: Some(Slot::Image),
         condition: shade::should_run,
-        run: shade::run,
+        body: StageBody::ReadsWorld(shade::run),
     },
     Stage {
         name: "write_output",
+        runs_when: "a shaded image and outputs to write",
+        reads: "`outputs.image`, camera outputs with `inputs.outputs` overrides, `Imager`",
+        writes: "image files",
+        slot: None,
         condition: write_output::should_run,
-        run: write_output::run,
+        body: StageBody::ReadsWorld(write_output::run),
     },
 ];
 
 /// Runs the whole table over `world`; the report lands in `frame.report`.
 pub fn run(world: &mut World, frame: &mut Frame) -> Result<(), StageError> {
     crate::schedule::run_stages(STAGES, world, frame)
+}
+
+/// What each stage would do for this world and these inputs, without running any.
+pub fn plan(world: &World, frame: &mut Frame) -> Vec<PlannedStage> {
+    crate::schedule::plan(STAGES, world, frame)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The table in this module's header is the one generated from `STAGES`.
+    #[test]
+    fn documented_table_matches_the_stage_table() {
+        let source = include_str!("mod.rs");
+        let start = source.find("<!-- stage table start -->").unwrap();
+        let end = source.find("<!-- stage table end -->").unwrap();
+        let documented: String = source[start..end]
+            .lines()
+            .skip(1)
+            .map(|l| l.trim_start_matches("//!").trim_start())
+            .filter(|l| !l.is_empty())
+            .map(|l| format!("{l}\n"))
+            .collect();
+        assert_eq!(documented, crate::schedule::stage_table_markdown(STAGES));
+    }
+
+    /// Stage names are the module names, unique, and only geometry stages edit the world.
+    #[test]
+    fn names_are_unique_and_only_geometry_stages_edit_the_world() {
+        let mut names: Vec<_> = STAGES.iter().map(|s| s.name).collect();
+        names.sort_unstable();
+        names.dedup();
+        assert_eq!(names.len(), STAGES.len());
+        for s in STAGES {
+            let edits = matches!(s.body, StageBody::EditsWorld(_));
+            assert_eq!(
+                edits,
+                ["expand_geometry", "tessellate"].contains(&s.name),
+                "{}",
+                s.name
+            );
+        }
+        let slots: Vec<_> = STAGES.iter().filter_map(|s| s.slot).collect();
+        for (i, a) in slots.iter().enumerate() {
+            assert!(!slots[i + 1..].contains(a), "two writers of {a:?}");
+        }
+    }
 }

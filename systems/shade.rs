@@ -10,115 +10,89 @@
 //!
 //! **Reads:** the `Camera` with `RenderCamera` (and its `Lenses`, `Atmosphere`, and its
 //! `Imager`'s background, which hides the environment from camera rays); `Interior` of
-//! material entities; `Emitter` entities; the `Environment`; `frame.geometry` (absent means an empty scene:
-//! every ray misses); `frame.photons` (the `Direct` integrator's caustics and final gather;
+//! material entities; `Emitter` entities; the `Environment`; `outputs.geometry` (absent means an empty scene:
+//! every ray misses); `outputs.photons` (the `Direct` integrator's caustics and final gather;
 //! absent: none); `settings` (spp or adaptive samples, filter, seed, face, integrator,
 //! trace depths).
-//! **Writes:** `frame.image` (with the samples each pixel took).
+//! **Writes:** `outputs.image` (with the samples each pixel took), returned to the runner.
 //! **Runs when:** the run renders and a render camera exists.
-//! **After this stage:** `frame.image` holds finite beauty, alpha, depth and normal buffers of
+//! **After this stage:** `outputs.image` holds finite beauty, alpha, depth and normal buffers of
 //! the camera's resolution; each pixel depends only on (seed, pixel index, sample index).
 //! The reported work items are the camera samples actually taken.
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use glam::{Vec2, Vec3};
-use hecs::{Entity, World};
+use hecs::World;
 use rayon::prelude::*;
 
 use super::prelude::*;
 use crate::adaptive::{refine_flags, PixelSamples, SampleBudget};
-use crate::components::{
-    Atmosphere, Camera, Emitter, Environment, Imager, Interior, Lenses, RenderCamera,
-};
+use crate::components::Interior;
 use crate::framebuffer::FrameBuffers;
 use crate::progress::Progress;
 use crate::sampling::{fold_seed, Sampler};
+use crate::scene_view::{light_set, render_view, WithEnvironment};
 use crate::shading::integrator::{camera_hit, CameraHit};
-use crate::shading::{
-    shade_hit, volume, CameraRays, FilterSampler, LightSet, ShadeContext, Volumes,
-};
+use crate::shading::{shade_hit, volume, CameraRays, FilterSampler, ShadeContext, Volumes};
 
 /// Run condition: a render camera exists.
 pub fn should_run(world: &World, frame: &Frame) -> Decision {
-    if !frame.tasks.render {
+    if !frame.inputs.tasks.render {
         return Decision::skip("this run only bakes");
     }
-    let mut query = world.query::<(&Camera, &RenderCamera, Option<&Lenses>, Option<&Atmosphere>)>();
-    match query.iter().next() {
-        Some((camera, _, lenses, atmosphere)) => {
-            let mut reason = format!("render camera {}×{}", camera.width, camera.height);
-            if let Some(a) = frame.settings.adaptive {
-                reason += &format!(", adaptive {}–{} samples", a.min, a.max);
-            }
-            if let Some(l) = lenses.filter(|l| !l.0.is_empty()) {
-                let s = if l.0.len() == 1 { "" } else { "s" };
-                reason += &format!(", {} lens shader{s}", l.0.len());
-            }
-            if atmosphere.is_some() {
-                reason += ", atmosphere";
-            }
-            Decision::run(reason)
-        }
-        None => Decision::skip("no render camera"),
+    let Some(view) = render_view(world) else {
+        return Decision::skip("no render camera");
+    };
+    let camera = &view.camera;
+    let mut reason = format!("render camera {}×{}", camera.width, camera.height);
+    if let Some(a) = frame.inputs.settings.adaptive {
+        reason += &format!(", adaptive {}–{} samples", a.min, a.max);
     }
+    if !view.lenses.is_empty() {
+        let s = if view.lenses.len() == 1 { "" } else { "s" };
+        reason += &format!(", {} lens shader{s}", view.lenses.len());
+    }
+    if view.atmosphere.is_some() {
+        reason += ", atmosphere";
+    }
+    Decision::run(reason)
 }
 
-/// Renders `frame.image`.
-pub fn run(world: &mut World, frame: &mut Frame) -> Result<Work, StageError> {
-    let (camera, lenses, atmosphere, background) = world
-        .query::<(
-            &Camera,
-            &RenderCamera,
-            Option<&Lenses>,
-            Option<&Atmosphere>,
-            Option<&Imager>,
-        )>()
-        .iter()
-        .next()
-        .map(|(c, _, l, a, i)| {
-            (
-                c.clone(),
-                l.cloned().unwrap_or_default(),
-                a.map(|a| a.0),
-                i.and_then(|i| i.background),
-            )
-        })
-        .ok_or_else(|| StageError::Invalid("no render camera".into()))?;
-    let environment = world.query::<&Environment>().iter().next().cloned();
-    let mut emitters: Vec<(Entity, Emitter)> = world
-        .query::<(Entity, &Emitter)>()
-        .iter()
-        .map(|(e, l)| (e, l.clone()))
-        .collect();
-    emitters.sort_by_key(|(e, _)| e.to_bits());
-    let emitters: Vec<Emitter> = emitters.into_iter().map(|(_, l)| l).collect();
-
-    let settings = frame.settings.clone();
-    let geometry = frame.geometry.as_ref();
-    let mut lights = LightSet::new(&emitters, geometry, frame.settings.light_samples)
-        .with_environment(environment.as_ref());
+/// Renders the render camera's frame buffers.
+pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
+    let view = render_view(world).ok_or_else(|| StageError::Internal("no render camera".into()))?;
+    let camera = view.camera;
+    let background = view.imager.and_then(|i| i.background);
+    let settings = frame.inputs.settings.clone();
+    let geometry = frame.outputs.geometry.as_ref();
+    let mut lights = light_set(world, geometry, &settings, WithEnvironment::Yes);
     lights.camera_sees_environment = background.is_none();
-    let rays = CameraRays::with_lenses(&camera, &lenses.0);
+    let rays = CameraRays::with_lenses(&camera, &view.lenses);
     let interiors: Vec<_> = geometry.map_or_else(Vec::new, |g| {
         g.material_entities
             .iter()
             .map(|&e| world.get::<&Interior>(e).ok().map(|i| i.0))
             .collect()
     });
-    let volumes = Volumes::new(atmosphere, interiors);
+    let volumes = Volumes::new(view.atmosphere, interiors);
     let filter = FilterSampler::new(settings.filter);
     let seed = fold_seed(settings.seed);
     let budget = SampleBudget::new(&settings);
     let (width, height) = (camera.width as usize, camera.height as usize);
 
     let mut fb = FrameBuffers::new(camera.width, camera.height);
-    let cancel = frame.cancel.clone();
+    let cancel = frame.inputs.cancel.clone();
     let stopped = AtomicBool::new(false);
     let passes = if budget.refines() { 2 } else { 1 };
-    let progress = Progress::start(frame.progress, "shade", "rows", (passes * height) as u64);
+    let progress = Progress::start(
+        frame.inputs.progress,
+        "shade",
+        "rows",
+        (passes * height) as u64,
+    );
     let ticker = progress.ticker();
-    let photons = frame.photons.as_ref();
+    let photons = frame.outputs.photons.as_ref();
     let ctx = geometry.map(|g| {
         ShadeContext::new(g, &lights, &settings)
             .with_volumes(volumes.as_ref())
@@ -193,11 +167,7 @@ pub fn run(world: &mut World, frame: &mut Frame) -> Result<Work, StageError> {
     if dropped > 0 {
         tracing::warn!("{dropped} non-finite samples were dropped");
     }
-    frame.image = Some(fb);
-    Ok(Work {
-        items: taken,
-        unit: "samples",
-    })
+    Ok(Work::new(taken, "samples").with_output(StageOutput::Image(fb)))
 }
 
 /// One pixel: its centre-sample passes and its samples so far.
@@ -297,5 +267,50 @@ impl PixelShader<'_> {
                 None => samples.add(Vec3::ZERO, false),
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::frame::Tasks;
+    use crate::systems::tiny_scene::{load, run_until, scene};
+
+    #[test]
+    fn the_lit_square_fills_the_centre_and_every_pixel_is_finite() {
+        let (mut world, mut frame) = load(&scene("", "", "", &[]), false);
+        run_until("shade", &mut world, &mut frame);
+        assert_eq!(
+            should_run(&world, &frame),
+            Decision::run("render camera 16×12")
+        );
+        let work = run(&world, &frame).unwrap();
+        assert_eq!(work.items, 16 * 12, "one sample per pixel");
+        let Some(StageOutput::Image(fb)) = work.output else {
+            panic!("shade returns the frame buffers");
+        };
+        assert!(fb.beauty.iter().all(|c| c.is_finite()));
+        // The square (±1 at distance 3, 60° fov) covers the centre; a point light of 2 W/sr
+        // 2 above it gives E = 2/4 W/m² at the centre and L = 0.5·E/π.
+        let centre = fb.beauty[6 * 16 + 8];
+        let expected = 0.5 * 0.5 / std::f32::consts::PI;
+        assert!(
+            (centre.x - expected).abs() < 0.05 * expected,
+            "{centre} vs {expected}"
+        );
+        assert_eq!(fb.alpha[0], 0.0, "the corner sees no geometry");
+    }
+
+    #[test]
+    fn skipped_in_a_bake_only_run() {
+        let (world, mut frame) = load(&scene("", "", "", &[]), false);
+        frame.inputs.tasks = Tasks {
+            render: false,
+            bake: true,
+        };
+        assert_eq!(
+            should_run(&world, &frame),
+            Decision::skip("this run only bakes")
+        );
     }
 }

@@ -21,11 +21,10 @@ use rayon::prelude::*;
 
 use super::prelude::*;
 use crate::components::{
-    Approximation, Camera, DerivativeRequest, Displacement, DisplacementMode, GeneratedFrom,
-    Instance, LengthSpace, Name, RenderCamera, SubdivMesh, Surface, Technique, TriMesh,
-    WorldFromObject,
+    Approximation, DerivativeRequest, Displacement, DisplacementMode, GeneratedFrom, Instance,
+    LengthSpace, Name, Procedural, SubdivMesh, Surface, Technique, TriMesh, WorldFromObject,
 };
-use crate::procedural::install_mesh;
+use crate::procedural::{expands_to_surface, install_mesh};
 use crate::tessellation::{
     tessellate_mesh, tessellate_subdiv, tessellate_surface, GeometryError, Options, RasterView,
     Tessellation,
@@ -39,8 +38,15 @@ enum Input {
 }
 
 /// Counts (surfaces, subdivision meshes, true displacements on meshes, bump displacements).
+/// Quadrics that `expand_geometry` has yet to turn into surfaces count as surfaces, so a
+/// plan made before any stage runs decides as the run will.
 fn census(world: &World) -> (usize, usize, usize, usize) {
-    let surfaces = world.query::<&Surface>().iter().count();
+    let pending = world
+        .query::<&Procedural>()
+        .iter()
+        .filter(|p| expands_to_surface(p))
+        .count();
+    let surfaces = world.query::<&Surface>().iter().count() + pending;
     let subdivs = world.query::<&SubdivMesh>().iter().count();
     let (mut displaced, mut bump) = (0, 0);
     for d in world.query::<&Displacement>().iter() {
@@ -83,11 +89,7 @@ fn to_f64(a: glam::Affine3A) -> DAffine3 {
 
 /// The raster view of `object` (its instances seen from the render camera).
 fn raster_view(world: &World, object: Entity) -> Option<RasterView> {
-    let camera = world
-        .query::<(&Camera, &RenderCamera)>()
-        .iter()
-        .next()
-        .map(|(c, _)| c.clone())?;
+    let camera = crate::scene_view::render_view(world)?.camera;
     let camera_from_world = to_f64(camera.world_from_camera).inverse();
     let pixels_per_unit = camera.height as f64 * 0.5 / (camera.fov_y as f64 * 0.5).tan();
     let camera_from_object = world
@@ -114,7 +116,7 @@ struct Job {
 }
 
 /// Tessellates every object that needs it.
-pub fn run(world: &mut World, _frame: &mut Frame) -> Result<Work, StageError> {
+pub fn run(world: &mut World, _frame: &Frame) -> Result<Work, StageError> {
     let mut jobs = Vec::new();
     for (e, surface, subdiv, mesh, disp, approx, deriv, name) in world
         .query::<(
@@ -181,11 +183,13 @@ pub fn run(world: &mut World, _frame: &mut Frame) -> Result<Work, StageError> {
 
     let mut triangles = 0u64;
     for (job, result) in jobs.into_iter().zip(results) {
-        let t =
-            result.map_err(|err| StageError::Invalid(format!("object \"{}\": {err}", job.name)))?;
+        let t = result.map_err(|err| StageError::Geometry {
+            object: job.name.clone(),
+            message: err.to_string(),
+        })?;
         triangles += t.mesh.triangles.len() as u64;
         let e = job.entity;
-        let gone = |_| StageError::Invalid(format!("entity {e:?} vanished"));
+        let gone = |_| StageError::Internal(format!("entity {e:?} vanished"));
         let generator = match &job.input {
             Input::Surface(s) => s.kind(),
             Input::Subdiv(_) => "subdiv",
@@ -215,8 +219,47 @@ pub fn run(world: &mut World, _frame: &mut Frame) -> Result<Work, StageError> {
         }
         install_mesh(world, e, Arc::new(t.mesh)).map_err(gone)?;
     }
-    Ok(Work {
-        items: triangles,
-        unit: "triangles",
-    })
+    Ok(Work::new(triangles, "triangles"))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::schedule::count_with;
+    use crate::systems::tiny_scene::{load, run_until, scene};
+
+    #[test]
+    fn a_parametric_sphere_is_diced_into_its_instances() {
+        let text = scene(
+            "",
+            "",
+            r#"(name: "ball", mesh: Sphere(radius: 0.5), approximation: Parametric(u: 8, v: 4)),"#,
+            &["ball"],
+        );
+        let (mut world, mut frame) = load(&text, false);
+        // Planned before expansion, the quadric already counts.
+        assert!(should_run(&world, &frame).run);
+        run_until("tessellate", &mut world, &mut frame);
+        assert!(should_run(&world, &frame).run);
+        let work = run(&mut world, &frame).unwrap();
+        assert!(work.items > 0);
+        assert_eq!(count_with::<Surface>(&world), 0, "the surface is consumed");
+        let ball: usize = world
+            .query::<(&Instance, &Name)>()
+            .iter()
+            .filter(|(_, n)| n.0 == "ball_inst")
+            .map(|(i, _)| i.mesh.triangles.len())
+            .sum();
+        assert_eq!(ball as u64, work.items);
+        assert!(!should_run(&world, &frame).run, "nothing left to dice");
+    }
+
+    #[test]
+    fn skipped_without_surfaces_or_displacement() {
+        let (world, frame) = load(&scene("", "", "", &[]), false);
+        assert_eq!(
+            should_run(&world, &frame),
+            Decision::skip("no parametric surfaces or displacement")
+        );
+    }
 }

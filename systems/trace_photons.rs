@@ -1,31 +1,33 @@
 //! `trace_photons`: the photon pass. Emits photons from every light with power, traces them
 //! through the scene's BSDFs and stores the caustic and global photon maps.
 //!
-//! **Reads:** `Emitter` entities; `frame.geometry` (lights, emitting meshes, surfaces);
+//! **Reads:** `Emitter` entities; `outputs.geometry` (lights, emitting meshes, surfaces);
 //! `settings.photons` (photons, radius, gather per map), `settings.seed`.
-//! **Writes:** `frame.photons`.
+//! **Writes:** `outputs.photons` (returned to the runner).
 //! **Runs when:** the run renders with the `Direct` integrator, caustics or global
 //! illumination is on, geometry exists, and some light emits power.
-//! **After this stage:** `frame.photons` holds the requested maps, each built from its own
+//! **After this stage:** `outputs.photons` holds the requested maps, each built from its own
 //! number of emitted photons with powers summing (in expectation) to what reaches the
 //! stored surfaces, identical at any thread count.
 
-use hecs::{Entity, World};
+use hecs::World;
 
 use super::prelude::*;
-use crate::components::{Emitter, Material, RenderCamera};
+use crate::components::{Emitter, Material};
+use crate::frame::Slot;
 use crate::photon::emit::bounding_sphere;
 use crate::photon::{trace_map, Emission, GatherMap, MapKind, PhotonMap, PhotonMaps};
 use crate::sampling::fold_seed;
+use crate::scene_view::{has_render_camera, light_set, WithEnvironment};
 use crate::settings::{Integrator, PhotonMapSettings};
-use crate::shading::{LightSet, ShadeContext};
+use crate::shading::ShadeContext;
 
 /// Automatic gather radius as a fraction of the scene's bounding-box diagonal.
 const AUTO_RADIUS: f32 = 0.02;
 
 /// Run condition: a map is requested, something reads it, and a light has power.
 pub fn should_run(world: &World, frame: &Frame) -> Decision {
-    let p = frame.settings.photons;
+    let p = frame.inputs.settings.photons;
     let maps: Vec<String> = [
         ("caustics", p.caustics),
         ("global illumination", p.global_illumination),
@@ -36,13 +38,13 @@ pub fn should_run(world: &World, frame: &Frame) -> Decision {
     if maps.is_empty() {
         return Decision::skip("caustics and global illumination are off");
     }
-    if !frame.tasks.render || !crate::schedule::any_with::<RenderCamera>(world) {
+    if !frame.inputs.tasks.render || !has_render_camera(world) {
         return Decision::skip("no render camera reads photon maps in this run");
     }
-    if frame.settings.integrator != Integrator::Direct {
+    if frame.inputs.settings.integrator != Integrator::Direct {
         return Decision::skip("the path integrator does not read photon maps");
     }
-    if frame.geometry.is_none() {
+    if !frame.outputs.has(Slot::Geometry) {
         return Decision::skip("no geometry receives photons");
     }
     let lit = world
@@ -56,27 +58,22 @@ pub fn should_run(world: &World, frame: &Frame) -> Decision {
     Decision::run(maps.join(" + "))
 }
 
-/// Builds `frame.photons`.
-pub fn run(world: &mut World, frame: &mut Frame) -> Result<Work, StageError> {
+/// Traces the requested photon maps.
+pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
     let geometry = frame
+        .outputs
         .geometry
         .as_ref()
-        .ok_or_else(|| StageError::Invalid("photon pass without geometry".into()))?;
-    let mut emitters: Vec<(Entity, Emitter)> = world
-        .query::<(Entity, &Emitter)>()
-        .iter()
-        .map(|(e, l)| (e, l.clone()))
-        .collect();
-    emitters.sort_by_key(|(e, _)| e.to_bits());
-    let emitters: Vec<Emitter> = emitters.into_iter().map(|(_, l)| l).collect();
-    let lights = LightSet::new(&emitters, Some(geometry), frame.settings.light_samples);
+        .ok_or_else(|| StageError::Internal("photon pass without geometry".into()))?;
+    let settings = &frame.inputs.settings;
+    let lights = light_set(world, Some(geometry), settings, WithEnvironment::No);
     let emission = Emission::new(&lights, geometry);
-    let ctx = ShadeContext::new(geometry, &lights, &frame.settings);
-    let seed = fold_seed(frame.settings.seed);
+    let ctx = ShadeContext::new(geometry, &lights, settings);
+    let seed = fold_seed(settings.seed);
     let diagonal = 2.0 * bounding_sphere(geometry).1;
     let build = |kind: MapKind, s: Option<PhotonMapSettings>| -> Result<_, StageError> {
         let Some(s) = s else { return Ok(None) };
-        let photons = trace_map(&ctx, &emission, kind, s.photons, seed, &frame.cancel)
+        let photons = trace_map(&ctx, &emission, kind, s.photons, seed, &frame.inputs.cancel)
             .ok_or(StageError::Interrupted)?;
         Ok(Some(GatherMap {
             map: PhotonMap::build(photons),
@@ -91,13 +88,61 @@ pub fn run(world: &mut World, frame: &mut Frame) -> Result<Work, StageError> {
         }))
     };
     let maps = PhotonMaps {
-        caustics: build(MapKind::Caustics, frame.settings.photons.caustics)?,
-        global: build(MapKind::Global, frame.settings.photons.global_illumination)?,
+        caustics: build(MapKind::Caustics, settings.photons.caustics)?,
+        global: build(MapKind::Global, settings.photons.global_illumination)?,
     };
     let stored = maps.stored();
-    frame.photons = Some(maps);
-    Ok(Work {
-        items: stored,
-        unit: "photons",
-    })
+    Ok(Work::new(stored, "photons").with_output(StageOutput::Photons(maps)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::systems::tiny_scene::{load, run_until, scene};
+
+    fn photons_of(world: &World, frame: &Frame) -> (u64, PhotonMaps) {
+        let work = run(world, frame).unwrap();
+        match work.output {
+            Some(StageOutput::Photons(maps)) => (work.items, maps),
+            _ => panic!("trace_photons returns the maps"),
+        }
+    }
+
+    #[test]
+    fn a_global_map_lands_on_the_lit_square_deterministically() {
+        let text = scene(
+            "global_illumination: (photons: 2000, gather: 8)",
+            "",
+            "",
+            &[],
+        );
+        let (mut world, mut frame) = load(&text, false);
+        run_until("trace_photons", &mut world, &mut frame);
+        assert_eq!(
+            should_run(&world, &frame),
+            Decision::run("global illumination (2000 photons)")
+        );
+        let (stored, maps) = photons_of(&world, &frame);
+        let global = maps.global.as_ref().unwrap();
+        assert!(maps.caustics.is_none());
+        assert_eq!(global.emitted, 2000);
+        // A point light 2 above a 2×2 square sends photons into the solid angle the square
+        // subtends: 4·atan(1/(2·√(1+1+4)))/(4π) ≈ 0.137 of them; Lambert albedo 0.5 may
+        // store a bounce too, but nothing returns to the square from open space.
+        let fraction = stored as f64 / 2000.0;
+        assert!(
+            (0.10..0.17).contains(&fraction),
+            "stored fraction {fraction}"
+        );
+        assert_eq!(photons_of(&world, &frame).0, stored, "same seed, same map");
+    }
+
+    #[test]
+    fn skipped_when_no_map_is_requested() {
+        let (world, frame) = load(&scene("", "", "", &[]), false);
+        assert_eq!(
+            should_run(&world, &frame),
+            Decision::skip("caustics and global illumination are off")
+        );
+    }
 }

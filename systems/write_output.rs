@@ -1,46 +1,56 @@
 //! `write_output`: encodes the render camera's frame buffers into its output files (PNG,
 //! EXR) and writes them whole-or-nothing.
 //!
-//! **Reads:** `frame.image`; the render `Camera`'s `outputs` and its `Imager` (PNG only).
-//! **Writes:** files on disk; `frame.written`.
-//! **Runs when:** a shaded image exists and the camera lists outputs.
+//! **Reads:** `outputs.image`; the render `Camera`'s `outputs` as redirected by
+//! `inputs.outputs` (`-o`, `bench`'s scratch directory) and its `Imager` (PNG only).
+//! **Writes:** files on disk (reported to the runner in `Work::files`).
+//! **Runs when:** a shaded image exists and the camera (or the command line) lists outputs.
 //! **After this stage:** every output file exists complete, or none was touched.
 
 use hecs::World;
 
 use super::prelude::*;
-use crate::components::{Camera, ImageFormat, Imager, Pass, RenderCamera};
+use crate::components::{ImageFormat, OutputSpec, Pass};
+use crate::frame::Slot;
 use crate::image_io::{commit_all, encode_exr, encode_png, PendingFile};
+use crate::scene_view::render_view;
+
+/// The outputs this run writes: the camera's, with the command line's overrides.
+fn outputs(world: &World, frame: &Frame) -> Result<Vec<OutputSpec>, StageError> {
+    let listed = render_view(world)
+        .map(|v| v.camera.outputs)
+        .unwrap_or_default();
+    frame
+        .inputs
+        .outputs
+        .apply(&listed)
+        .map_err(StageError::Internal)
+}
 
 /// Run condition: an image to write and somewhere to write it.
 pub fn should_run(world: &World, frame: &Frame) -> Decision {
-    if frame.image.is_none() {
+    if !frame.outputs.has(Slot::Image) {
         return Decision::skip("no shaded image");
     }
-    let outputs = world
-        .query::<(&Camera, &RenderCamera)>()
-        .iter()
-        .next()
-        .map(|(c, _)| c.outputs.len())
-        .unwrap_or(0);
-    if outputs == 0 {
+    if frame.inputs.outputs.discard {
+        return Decision::skip("this run keeps its image in memory");
+    }
+    let n = outputs(world, frame).map_or(0, |o| o.len());
+    if n == 0 {
         return Decision::skip("render camera has no outputs");
     }
-    Decision::run(format!("{outputs} camera output(s)"))
+    Decision::run(format!("{n} camera output(s)"))
 }
 
 /// Encodes and writes every output.
-pub fn run(world: &mut World, frame: &mut Frame) -> Result<Work, StageError> {
-    let (outputs, imager) = world
-        .query::<(&Camera, &RenderCamera, Option<&Imager>)>()
-        .iter()
-        .next()
-        .map(|(c, _, i)| (c.outputs.clone(), i.copied()))
-        .unwrap_or_default();
+pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
+    let outputs = outputs(world, frame)?;
+    let imager = render_view(world).and_then(|v| v.imager);
     let fb = frame
+        .outputs
         .image
         .as_ref()
-        .ok_or_else(|| StageError::Invalid("no image to write".into()))?;
+        .ok_or_else(|| StageError::Internal("no image to write".into()))?;
     let mut pending = Vec::with_capacity(outputs.len());
     for out in &outputs {
         let bytes = match out.format {
@@ -63,10 +73,38 @@ pub fn run(world: &mut World, frame: &mut Frame) -> Result<Work, StageError> {
         path,
         message: e.to_string(),
     })?;
-    let n = written.len() as u64;
-    frame.written = written;
-    Ok(Work {
-        items: n,
-        unit: "files",
-    })
+    Ok(Work::new(written.len() as u64, "files").with_files(written))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::systems::tiny_scene::{load, run_until, scene};
+
+    #[test]
+    fn writes_the_camera_output_where_the_run_inputs_say() {
+        let dir =
+            std::env::temp_dir().join(format!("stagelight-unit-write-{}", std::process::id()));
+        let (mut world, mut frame) = load(&scene("", "", "", &[]), false);
+        frame.inputs.outputs.directory = Some(dir.clone());
+        run_until("write_output", &mut world, &mut frame);
+        assert_eq!(
+            should_run(&world, &frame),
+            Decision::run("1 camera output(s)")
+        );
+        let work = run(&world, &frame).unwrap();
+        assert_eq!(work.files, vec![dir.join("tiny.exr")]);
+        assert!(work.files[0].is_file());
+        assert!(work.output.is_none(), "write_output has no output slot");
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    #[test]
+    fn skipped_without_a_shaded_image() {
+        let (world, frame) = load(&scene("", "", "", &[]), false);
+        assert_eq!(
+            should_run(&world, &frame),
+            Decision::skip("no shaded image")
+        );
+    }
 }

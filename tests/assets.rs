@@ -44,6 +44,7 @@ fn every_example_scene_renders_without_nan_or_inf() {
         stagelight::schedule::run_stages(&stages, &mut scene.world, &mut frame)
             .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
         let fb = frame
+            .outputs
             .image
             .unwrap_or_else(|| panic!("{}: no image", path.display()));
         let name = path.display();

@@ -129,7 +129,7 @@ fn hostile_numbers_are_rejected_with_a_location_or_render_finite_pixels() {
                         .collect();
                     stagelight::schedule::run_stages(&stages, &mut scene.world, &mut frame)
                         .map_err(|e| TestCaseError::fail(format!("render failed: {e}\n{text}")))?;
-                    let fb = frame.image.expect("image");
+                    let fb = frame.outputs.image.expect("image");
                     prop_assert!(
                         fb.beauty
                             .iter()

@@ -95,7 +95,7 @@ fn render(text: &str) -> Result<stagelight::framebuffer::FrameBuffers, String> {
         .collect();
     stagelight::schedule::run_stages(&stages, &mut scene.world, &mut frame)
         .unwrap_or_else(|e| panic!("render failed: {e}\n{text}"));
-    Ok(frame.image.expect("image"))
+    Ok(frame.outputs.image.expect("image"))
 }
 
 #[test]

@@ -80,7 +80,7 @@ fn render_finite(text: &str) -> Result<bool, TestCaseError> {
                 .collect();
             stagelight::schedule::run_stages(&stages, &mut scene.world, &mut frame)
                 .map_err(|e| TestCaseError::fail(format!("render failed: {e}\n{text}")))?;
-            let fb = frame.image.expect("image");
+            let fb = frame.outputs.image.expect("image");
             prop_assert!(
                 fb.beauty
                     .iter()

@@ -75,7 +75,7 @@ fn bake(world: &mut World, seed: u64) -> Frame {
         seed,
         ..RenderSettings::default()
     });
-    frame.tasks = Tasks {
+    frame.inputs.tasks = Tasks {
         render: false,
         bake: true,
     };
@@ -84,7 +84,7 @@ fn bake(world: &mut World, seed: u64) -> Frame {
         std::process::id(),
         std::thread::current().id()
     ));
-    frame.bake_dir = dir;
+    frame.inputs.bake_dir = dir;
     stagelight::systems::run(world, &mut frame).expect("bake");
     frame
 }
@@ -112,10 +112,11 @@ fn read_exr(path: &std::path::Path) -> (usize, usize, Vec<Vec3>) {
 
 fn baked(frame: &Frame, suffix: &str) -> (usize, usize, Vec<Vec3>) {
     let path = frame
+        .report
         .written
         .iter()
         .find(|p| p.to_string_lossy().ends_with(suffix))
-        .unwrap_or_else(|| panic!("no {suffix} in {:?}", frame.written));
+        .unwrap_or_else(|| panic!("no {suffix} in {:?}", frame.report.written));
     read_exr(path)
 }
 
@@ -132,7 +133,7 @@ fn unoccluded_plane_bakes_exactly_one() {
         px.iter().all(|c| c.x == 1.0),
         "every texel sees the open sky"
     );
-    let r = &frame.bake_reports[0];
+    let r = &frame.outputs.bake_reports[0];
     assert_eq!(r.covered_texels, 256);
     assert_eq!(r.invalid_texels, 0);
 }
@@ -275,7 +276,7 @@ fn dilation_fills_gutters_and_never_overwrites_covered_texels() {
             .unwrap();
         let frame = bake(&mut world, 6);
         let (_, _, px) = baked(&frame, "target_positions.exr");
-        (px, frame.bake_reports[0].dilated_texels)
+        (px, frame.outputs.bake_reports[0].dilated_texels)
     };
     let (plain, none) = run(0);
     let (padded, filled) = run(2);
@@ -322,7 +323,7 @@ fn texels_inside_geometry_are_invalid_not_black() {
         .insert_one(floor, request(vec![ao(64)], 16, 16, 4, 0))
         .unwrap();
     let frame = bake(&mut world, 7);
-    let r = &frame.bake_reports[0];
+    let r = &frame.outputs.bake_reports[0];
     // The footprint [-0.5, 0.5]² is a quarter of the floor: exactly 8 × 8 texels.
     assert_eq!(r.invalid_texels, 64);
     let (_, _, px) = baked(&frame, "target_ao.exr");
@@ -368,6 +369,7 @@ fn bakes_are_identical_at_one_and_two_threads() {
                 .unwrap();
             let frame = bake(&mut world, 8);
             frame
+                .report
                 .written
                 .iter()
                 .map(|p| std::fs::read(p).unwrap())
@@ -472,11 +474,11 @@ fn indirect_lightmap_agrees_between_diffuse_gather_and_path_tracer() {
             integrator,
             ..RenderSettings::default()
         });
-        frame.tasks = Tasks {
+        frame.inputs.tasks = Tasks {
             render: false,
             bake: true,
         };
-        frame.bake_dir = std::env::temp_dir().join(format!(
+        frame.inputs.bake_dir = std::env::temp_dir().join(format!(
             "stagelight-bake-integrators-{:?}-{}",
             integrator,
             std::process::id()

@@ -133,6 +133,7 @@ fn white_furnace_every_pixel_is_one() {
         8,
     );
     let image = common::render(&mut world, path(16384, 64))
+        .outputs
         .image
         .unwrap()
         .beauty;
@@ -165,7 +166,11 @@ fn lit_plane(e: Environment, shader: Shader, settings: RenderSettings) -> f64 {
     common::instance(&mut world, plane_up(100.0), Affine3A::IDENTITY, m);
     spawn_env(&mut world, e);
     common::camera(&mut world, Vec3::new(0.0, 2.0, 1.0), Vec3::ZERO, 0.5, 2, 2);
-    let image = common::render(&mut world, settings).image.unwrap().beauty;
+    let image = common::render(&mut world, settings)
+        .outputs
+        .image
+        .unwrap()
+        .beauty;
     image.iter().map(|c| c.x as f64).sum::<f64>() / image.len() as f64
 }
 
@@ -299,7 +304,7 @@ fn mirror_scene(
         reflection_depth,
         ..RenderSettings::default()
     };
-    let fb = common::render(&mut world, settings).image.unwrap();
+    let fb = common::render(&mut world, settings).outputs.image.unwrap();
     (fb.beauty[0], fb.alpha[0], fb.beauty[2], fb.alpha[2])
 }
 
@@ -411,7 +416,11 @@ fn h19_glass_sphere_in_the_white_furnace() {
         refraction_depth: 64,
         ..path(16384, 64)
     };
-    let image = common::render(&mut world, settings).image.unwrap().beauty;
+    let image = common::render(&mut world, settings)
+        .outputs
+        .image
+        .unwrap()
+        .beauty;
     let worst = image
         .iter()
         .map(|c| (*c - Vec3::ONE).abs().max_element())

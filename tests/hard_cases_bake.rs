@@ -64,16 +64,16 @@ fn request(kind: BakeKind, width: u32, height: u32, padding: u32, uvs: UvSource)
 /// Bakes the world and reads back the first texture.
 fn bake(world: &mut World, tag: &str) -> TexelImage {
     let mut frame = Frame::new(RenderSettings::default());
-    frame.tasks = Tasks {
+    frame.inputs.tasks = Tasks {
         render: false,
         bake: true,
     };
-    frame.bake_dir =
+    frame.inputs.bake_dir =
         std::env::temp_dir().join(format!("stagelight-hard-bake-{tag}-{}", std::process::id()));
     stagelight::systems::run(world, &mut frame).expect("bake");
     use exr::prelude::*;
     let image = read_first_rgba_layer_from_file(
-        &frame.written[0],
+        &frame.report.written[0],
         |res, _| TexelImage::new(res.width() as u32, res.height() as u32),
         |img: &mut TexelImage, pos, (r, g, b, _a): (f32, f32, f32, f32)| {
             let i = pos.y() * img.width as usize + pos.x();

@@ -17,7 +17,7 @@ fn render(text: &str) -> (usize, Vec<Vec3>) {
         .filter(|s| s.name != "write_output")
         .collect();
     stagelight::schedule::run_stages(&stages, &mut scene.world, &mut frame).expect("render");
-    let image = frame.image.expect("image");
+    let image = frame.outputs.image.expect("image");
     (image.width as usize, image.beauty)
 }
 

@@ -153,7 +153,7 @@ fn render(text: &str) -> FrameBuffers {
         .filter(|s| s.name != "write_output")
         .collect();
     stagelight::schedule::run_stages(&stages, &mut scene.world, &mut frame).expect("render");
-    frame.image.expect("an image")
+    frame.outputs.image.expect("an image")
 }
 
 fn bits(v: &[Vec3]) -> Vec<[u32; 3]> {
@@ -235,11 +235,11 @@ fn h05_bake_far_from_origin() {
     let mut scene = stagelight::scene::load_scene_str(&text, Path::new("far_bake.ron"))
         .unwrap_or_else(|e| panic!("{e}"));
     let mut frame = Frame::new(scene.settings.clone());
-    frame.tasks = Tasks {
+    frame.inputs.tasks = Tasks {
         render: false,
         bake: true,
     };
-    frame.bake_dir =
+    frame.inputs.bake_dir =
         std::env::temp_dir().join(format!("stagelight-h05-bake-{}", std::process::id()));
     stagelight::systems::run(&mut scene.world, &mut frame).expect("bake");
     let read = |path: &Path| -> Vec<Vec3> {
@@ -256,10 +256,11 @@ fn h05_bake_far_from_origin() {
     };
     let find = |kind: &str| {
         frame
+            .report
             .written
             .iter()
             .find(|p| p.to_string_lossy().contains(kind))
-            .unwrap_or_else(|| panic!("no {kind} file in {:?}", frame.written))
+            .unwrap_or_else(|| panic!("no {kind} file in {:?}", frame.report.written))
             .clone()
     };
     let ao = read(&find("_ao"));
@@ -281,7 +282,7 @@ fn h05_bake_far_from_origin() {
             assert_eq!(p, exact.as_vec3(), "texel ({i}, {j})");
         }
     }
-    let _ = std::fs::remove_dir_all(&frame.bake_dir);
+    let _ = std::fs::remove_dir_all(&frame.inputs.bake_dir);
 }
 
 /// OBJ files are read in f64 and re-centred before rounding: a box written at 1e6 in an OBJ
@@ -334,7 +335,7 @@ fn h05_obj_far_from_origin() {
             .filter(|s| s.name != "write_output")
             .collect();
         stagelight::schedule::run_stages(&stages, &mut scene.world, &mut frame).expect("render");
-        frame.image.expect("an image").beauty
+        frame.outputs.image.expect("an image").beauty
     };
     let reference = render_at(0.0);
     assert!(reference.iter().any(|c| c.max_element() > 0.0));

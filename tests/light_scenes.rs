@@ -31,7 +31,7 @@ fn render(scene: &mut LoadedScene, spp: u32) -> FrameBuffers {
         .filter(|s| s.name != "write_output")
         .collect();
     stagelight::schedule::run_stages(&stages, &mut scene.world, &mut frame).expect("render");
-    frame.image.expect("image")
+    frame.outputs.image.expect("image")
 }
 
 fn resize(scene: &mut LoadedScene, w: u32, h: u32) {

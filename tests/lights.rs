@@ -235,7 +235,11 @@ fn lit_plane(shape: LightShape, settings: RenderSettings) -> Vec<Vec3> {
     common::instance(&mut world, common::square(10.0), Affine3A::IDENTITY, m);
     common::light(&mut world, shape, Vec3::splat(3.0), 16);
     common::camera(&mut world, Vec3::new(0.0, -3.0, 1.0), Vec3::ZERO, 0.5, 4, 4);
-    common::render(&mut world, settings).image.unwrap().beauty
+    common::render(&mut world, settings)
+        .outputs
+        .image
+        .unwrap()
+        .beauty
 }
 
 fn mean_red(image: &[Vec3]) -> f64 {
@@ -333,7 +337,7 @@ fn look_at_sphere_light(visible: bool, mirror: bool, integrator: Integrator) -> 
         integrator,
         ..RenderSettings::default()
     };
-    let fb = common::render(&mut world, settings).image.unwrap();
+    let fb = common::render(&mut world, settings).outputs.image.unwrap();
     (fb.beauty[0], fb.alpha[0])
 }
 
@@ -422,7 +426,11 @@ fn tinted_shadow_in(
         integrator,
         ..RenderSettings::default()
     };
-    let image = common::render(&mut world, settings).image.unwrap().beauty;
+    let image = common::render(&mut world, settings)
+        .outputs
+        .image
+        .unwrap()
+        .beauty;
     image.iter().sum::<Vec3>() / image.len() as f32
 }
 
@@ -564,7 +572,7 @@ fn spot_attenuation_halves_light_midway_through_the_ramp() {
         .filter(|s| s.name != "write_output")
         .collect();
     stagelight::schedule::run_stages(&stages, &mut scene.world, &mut frame).unwrap();
-    let image = frame.image.unwrap().beauty;
+    let image = frame.outputs.image.unwrap().beauty;
     let got = mean_red(&image);
     let want = 0.5 / PI * 16.0 / 16.0 * 0.5;
     assert!(rel(got, want) < 1e-3, "{got} vs {want}");

@@ -36,7 +36,7 @@ fn photon_pass(world: &mut World, settings: RenderSettings) -> Frame {
 /// Geometry of a world built by the first stages.
 fn geometry(world: &mut World) -> SceneGeometry {
     let mut frame = photon_pass(world, RenderSettings::default());
-    frame.geometry.take().expect("geometry")
+    frame.outputs.geometry.take().expect("geometry")
 }
 
 fn gi(photons: u32) -> RenderSettings {
@@ -52,6 +52,7 @@ fn gi(photons: u32) -> RenderSettings {
 
 fn global(frame: &Frame) -> &GatherMap {
     frame
+        .outputs
         .photons
         .as_ref()
         .and_then(|m| m.global.as_ref())
@@ -412,7 +413,7 @@ fn photon_maps_are_identical_at_any_thread_count() {
     };
     let (a, b) = (run(1), run(2));
     let maps = |f: &Frame| {
-        let m: &PhotonMaps = f.photons.as_ref().unwrap();
+        let m: &PhotonMaps = f.outputs.photons.as_ref().unwrap();
         let all = |g: &Option<GatherMap>| g.as_ref().unwrap().map.photons().to_vec();
         (all(&m.caustics), all(&m.global))
     };
@@ -420,7 +421,8 @@ fn photon_maps_are_identical_at_any_thread_count() {
     assert!(!ma.0.is_empty() && !ma.1.is_empty());
     assert_eq!(ma, mb);
     let bytes = |f: &Frame| -> Vec<u32> {
-        f.image
+        f.outputs
+            .image
             .as_ref()
             .unwrap()
             .beauty
@@ -441,6 +443,7 @@ fn caustics_scene_focuses_light_under_the_ball() {
     settings.photons.global_illumination = None;
     let frame_on = render_with(&mut on, settings.clone());
     let caustics = frame_on
+        .outputs
         .photons
         .as_ref()
         .and_then(|m| m.caustics.as_ref())
@@ -462,8 +465,8 @@ fn caustics_scene_focuses_light_under_the_ball() {
     settings.photons.caustics = None;
     let frame_off = render_with(&mut off, settings);
     let (a, b) = (
-        &frame_on.image.as_ref().unwrap().beauty,
-        &frame_off.image.as_ref().unwrap().beauty,
+        &frame_on.outputs.image.as_ref().unwrap().beauty,
+        &frame_off.outputs.image.as_ref().unwrap().beauty,
     );
     assert!(a.iter().all(|c| c.is_finite() && c.min_element() >= 0.0));
     let gain = a

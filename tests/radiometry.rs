@@ -43,7 +43,7 @@ fn lambert_plane_under_point_light_matches_closed_form_per_pixel() {
         ..RenderSettings::default()
     };
     let frame = common::render(&mut world, settings);
-    let fb = frame.image.as_ref().unwrap();
+    let fb = frame.outputs.image.as_ref().unwrap();
 
     // Reference: average of the closed form over the pixel footprint (box filter), 16×16 grid,
     // camera rays intersected with the plane in f64. The camera looks down −Z from `eye` with
@@ -119,7 +119,7 @@ fn rect_light_irradiance_matches_closed_form() {
         ..RenderSettings::default()
     };
     let frame = common::render(&mut world, settings);
-    let fb = frame.image.as_ref().unwrap();
+    let fb = frame.outputs.image.as_ref().unwrap();
     // Four corner rectangles of (a/2) × (b/2) meet above the origin.
     let e = 4.0 * corner_rect_irradiance(radiance, a / 2.0, b / 2.0, height);
     let expected = albedo / std::f64::consts::PI * e;

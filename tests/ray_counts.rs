@@ -30,11 +30,11 @@ fn run(threads: usize) -> Frame {
     let mut scene =
         stagelight::scene::load_scene_str(SCENE, Path::new("counts.ron")).expect("scene loads");
     let mut frame = Frame::new(scene.settings.clone());
-    frame.tasks = Tasks {
+    frame.inputs.tasks = Tasks {
         render: true,
         bake: true,
     };
-    frame.bake_dir = std::env::temp_dir().join(format!(
+    frame.inputs.bake_dir = std::env::temp_dir().join(format!(
         "stagelight-ray-counts-{threads}-{}",
         std::process::id()
     ));
@@ -49,7 +49,7 @@ fn run(threads: usize) -> Frame {
         .unwrap();
     pool.install(|| stagelight::schedule::run_stages(&stages, &mut scene.world, &mut frame))
         .expect("render and bake");
-    let _ = std::fs::remove_dir_all(&frame.bake_dir);
+    let _ = std::fs::remove_dir_all(&frame.inputs.bake_dir);
     frame
 }
 
@@ -75,7 +75,7 @@ fn shade_and_bake_report_exact_ray_counts() {
         let bake = report.stage("bake_lightmaps").unwrap();
         assert_eq!(bake.rays, 16 * 64, "{bake:?}");
         assert_eq!(
-            bake.rays, frame.bake_reports[0].rays,
+            bake.rays, frame.outputs.bake_reports[0].rays,
             "the bake's own count agrees"
         );
 

@@ -166,7 +166,11 @@ fn scene_with_sphere(sphere: Option<f32>, integrator: Integrator) -> Vec<Vec3> {
         refraction_depth: 8,
         ..RenderSettings::default()
     };
-    common::render(&mut world, settings).image.unwrap().beauty
+    common::render(&mut world, settings)
+        .outputs
+        .image
+        .unwrap()
+        .beauty
 }
 
 /// An η = 1 glass sphere is invisible: every pixel equals the render without it, in both

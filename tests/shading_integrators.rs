@@ -40,7 +40,7 @@ fn furnace(albedo: f32, emission: f32, settings: RenderSettings) -> Vec<Vec3> {
         8,
     );
     let frame = common::render(&mut world, settings);
-    frame.image.unwrap().beauty
+    frame.outputs.image.unwrap().beauty
 }
 
 fn path(spp: u32, max_depth: u32) -> RenderSettings {
@@ -132,7 +132,11 @@ fn rect_lit_plane(shader: Shader, settings: RenderSettings) -> Vec<Vec3> {
         16,
     );
     common::camera(&mut world, Vec3::new(0.0, -3.0, 1.0), Vec3::ZERO, 0.5, 4, 4);
-    common::render(&mut world, settings).image.unwrap().beauty
+    common::render(&mut world, settings)
+        .outputs
+        .image
+        .unwrap()
+        .beauty
 }
 
 /// H18 through MIS: the path tracer (light sampling and BSDF-sampled rays that hit the
@@ -209,7 +213,11 @@ fn mirror_reflects_color_times_emission() {
             integrator,
             ..RenderSettings::default()
         };
-        let image = common::render(&mut world, settings).image.unwrap().beauty;
+        let image = common::render(&mut world, settings)
+            .outputs
+            .image
+            .unwrap()
+            .beauty;
         for c in image {
             assert!(
                 (c - Vec3::new(1.8, 1.0, 0.5)).abs().max_element() < 1e-5,
@@ -258,7 +266,11 @@ fn dielectric_absorbs_col_per_unit_length() {
             max_depth: 2,
             ..RenderSettings::default()
         };
-        common::render(&mut world, settings).image.unwrap().beauty
+        common::render(&mut world, settings)
+            .outputs
+            .image
+            .unwrap()
+            .beauty
     };
     let t = 0.96f32 * 0.96;
     let expected = Vec3::new(0.5f32.powf(0.5), 1.0, 0.25f32.powf(0.5)) * t;

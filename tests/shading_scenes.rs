@@ -27,7 +27,7 @@ fn render(name: &str, tweak: impl FnOnce(&mut RenderSettings)) -> Vec<Vec3> {
         .filter(|s| s.name != "write_output")
         .collect();
     stagelight::schedule::run_stages(&stages, &mut scene.world, &mut frame).expect("render");
-    frame.image.expect("image").beauty
+    frame.outputs.image.expect("image").beauty
 }
 
 fn mean(image: &[Vec3]) -> f32 {

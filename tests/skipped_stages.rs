@@ -77,7 +77,7 @@ fn render(stages: &[Stage]) -> Vec<u8> {
         .collect();
     run_stages(&table, &mut scene.world, &mut frame).expect("render");
     encode_exr(
-        frame.image.as_ref().expect("image"),
+        frame.outputs.image.as_ref().expect("image"),
         &[Pass::Beauty, Pass::Depth, Pass::Normal],
     )
     .unwrap()

@@ -92,7 +92,7 @@ fn empty_world_skips_every_stage_with_a_reason() {
     let shade = frame.report.stage("shade").unwrap();
     assert!(!shade.ran);
     assert_eq!(shade.reason, "no render camera");
-    assert!(frame.geometry.is_none() && frame.image.is_none());
+    assert!(frame.outputs.geometry.is_none() && frame.outputs.image.is_none());
 }
 
 #[test]
@@ -104,7 +104,7 @@ fn camera_without_geometry_shades_black_and_skips_build() {
     let shade = frame.report.stage("shade").unwrap();
     assert!(shade.ran);
     assert_eq!(shade.items, 8 * 6 * 4);
-    let fb = frame.image.unwrap();
+    let fb = frame.outputs.image.unwrap();
     assert!(fb.beauty.iter().all(|c| *c == Vec3::ZERO));
     assert!(fb.alpha.iter().all(|a| *a == 0.0));
 }
@@ -154,8 +154,8 @@ fn same_bytes_at_one_and_two_threads() {
         Pass::ObjectId,
         Pass::MaterialId,
     ];
-    let ea = encode_exr(a.image.as_ref().unwrap(), &passes).unwrap();
-    let eb = encode_exr(b.image.as_ref().unwrap(), &passes).unwrap();
+    let ea = encode_exr(a.outputs.image.as_ref().unwrap(), &passes).unwrap();
+    let eb = encode_exr(b.outputs.image.as_ref().unwrap(), &passes).unwrap();
     assert!(ea == eb, "EXR bytes differ between 1 and 2 threads");
     assert_eq!(a.report.threads, 1);
     assert_eq!(b.report.threads, 2);
@@ -164,7 +164,7 @@ fn same_bytes_at_one_and_two_threads() {
 #[test]
 fn every_pass_is_finite_and_sane() {
     let frame = render_with_threads(2);
-    let fb = frame.image.unwrap();
+    let fb = frame.outputs.image.unwrap();
     assert!(fb
         .beauty
         .iter()
@@ -193,7 +193,7 @@ fn seed_changes_the_noise_but_not_the_mean() {
             ..settings()
         },
     );
-    let (fa, fb) = (a.image.unwrap(), b.image.unwrap());
+    let (fa, fb) = (a.outputs.image.unwrap(), b.outputs.image.unwrap());
     assert_ne!(fa.beauty, fb.beauty);
     let mean = |v: &[Vec3]| v.iter().map(|c| c.x as f64).sum::<f64>() / v.len() as f64;
     let (ma, mb) = (mean(&fa.beauty), mean(&fb.beauty));
@@ -203,7 +203,7 @@ fn seed_changes_the_noise_but_not_the_mean() {
 #[test]
 fn object_and_material_id_passes_label_what_each_pixel_centre_sees() {
     let frame = render_with_threads(2);
-    let fb = frame.image.unwrap();
+    let fb = frame.outputs.image.unwrap();
     let mut objects: Vec<u32> = fb.object_id.clone();
     objects.sort_unstable();
     objects.dedup();

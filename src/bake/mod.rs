@@ -1,15 +1,18 @@
 //! Texture baking: UV sources and bake resolution, texel rasterization with conservative
 //! coverage, the per-texel estimators (ambient occlusion, irradiance), dilation and texture
-//! encoding. The `bake_lightmaps` stage drives these.
+//! encoding; request checking ([`request`]) and file naming/encoding ([`files`]). The
+//! `bake_lightmaps` stage drives these.
 //!
 //! Texel convention: texel `(i, j)` of a `W × H` texture (row `j = 0` at the top of the image)
 //! has its centre at `uv = ((i + 0.5) / W, 1 − (j + 0.5) / H)` — OBJ/OpenGL UVs with `v` up.
 
 pub mod ao;
 pub mod dilate;
+pub mod files;
 pub mod irradiance;
 pub mod raster;
 pub mod report;
+pub mod request;
 pub mod texels;
 pub mod texture;
 pub mod uv;

@@ -42,6 +42,13 @@ pub fn expand(p: &Procedural) -> Result<Expanded, GeometryError> {
     }
 }
 
+/// Whether `p` expands into a parametric surface that `tessellate` dices (the quadrics),
+/// rather than straight into a mesh (stairs, grids). For planning: the tessellation stage
+/// runs for the surfaces expansion is about to make.
+pub fn expands_to_surface(p: &Procedural) -> bool {
+    !matches!(p, Procedural::Stairs(_) | Procedural::Grid(_))
+}
+
 /// Puts a generated mesh on its object entity and on every leaf instance of that object, so
 /// that `build_accel` sees it like a loaded one.
 pub fn install_mesh(

@@ -15,4 +15,4 @@ pub mod runner;
 pub use knob::{Knob, KnobError};
 pub use metrics::{compare, ErrorMetrics};
 pub use report::{SweepRow, SweepSummary};
-pub use runner::{run_sweep, Pipeline, SweepOptions};
+pub use runner::{run_sweep, Pipeline, SweepError, SweepOptions};

@@ -45,13 +45,13 @@ pub enum SweepError {
     #[error("{0}")]
     Scene(#[from] SceneErrors),
     /// The knob cannot be swept here.
-    #[error("{0}")]
+    #[error("error: {0}")]
     Knob(#[from] KnobError),
     /// A run failed.
     #[error("{0}")]
     Stage(#[from] StageError),
     /// Reading or writing a file failed.
-    #[error("{path}: {message}")]
+    #[error("error: {path}: {message}")]
     Io {
         /// The file.
         path: PathBuf,
@@ -89,18 +89,17 @@ fn run_once(
     settings.seed = settings.seed.wrapping_add(seed);
     let mut frame = Frame::new(settings);
     let scratch = opts.out.join("scratch").join(tag);
-    frame.bake_dir = scratch.clone();
-    frame.tasks = Tasks {
+    frame.inputs.bake_dir = scratch.clone();
+    frame.inputs.tasks = Tasks {
         render: !opts.knob.is_bake(),
         bake: opts.knob.is_bake(),
     };
-    // Nothing is written into the user's directories: camera outputs go to scratch.
-    for camera in scene.world.query_mut::<&mut crate::components::Camera>() {
-        camera.outputs.clear();
-    }
+    // Nothing is written into the user's directories: the image is compared in memory.
+    frame.inputs.outputs.discard = true;
     pipeline(&mut scene.world, &mut frame)?;
     let image = if opts.knob.is_bake() {
         let path = frame
+            .report
             .written
             .iter()
             .find(|p| p.extension().is_some_and(|e| e == "exr"))
@@ -110,7 +109,7 @@ fn run_once(
         let _ = std::fs::remove_dir_all(&scratch);
         img
     } else {
-        let fb = frame.image.as_ref();
+        let fb = frame.outputs.image.as_ref();
         (
             fb.map(|fb| fb.beauty.clone()).unwrap_or_default(),
             fb.map_or(0, |fb| fb.width),

@@ -29,7 +29,7 @@ pub fn render_text(text: &str, tweak: impl FnOnce(&mut RenderSettings)) -> (Fram
         .iter()
         .find(|s| s.stage == "shade")
         .map_or(0, |s| s.items);
-    (frame.image.expect("image"), items)
+    (frame.outputs.image.expect("image"), items)
 }
 
 /// A camera-facing square of half-size `h` centred at `c` (its normal points at the origin),

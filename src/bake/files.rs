@@ -1,0 +1,136 @@
+//! What a baked request becomes on disk: its file names (`<instance>_<kind>.<ext>` unless
+//! the output names a file; `_bent_normals.exr` and `_mask.png` beside them), the encoding
+//! of each texture (sRGB PNG for colour kinds, normals mapped to [0, 1] in PNG, linear EXR)
+//! and the per-request report.
+
+use std::path::{Path, PathBuf};
+
+use super::request::PreparedBake;
+use super::texels::TexelResults;
+use super::{BakeReport, TexelImage};
+use crate::components::{BakeFormat, BakeKind};
+use crate::image_io::PendingFile;
+use crate::stage_error::StageError;
+
+/// The encoded files of one baked request, not yet written.
+pub struct BakedFiles {
+    /// The files, in request order: targets, then bent normals, then the mask.
+    pub pending: Vec<PendingFile>,
+}
+
+/// Encodes the (already dilated) images of `p` for writing under `dir`. `baked` is the
+/// validity of the texels baked from the surface, before dilation (the mask shows it).
+pub fn encode_request(
+    p: &PreparedBake,
+    results: &TexelResults,
+    baked: Option<&[bool]>,
+    dir: &Path,
+) -> Result<BakedFiles, StageError> {
+    let write_error = |path: &Path| {
+        let path = path.to_path_buf();
+        move |message| StageError::Write { path, message }
+    };
+    let mut pending = Vec::new();
+    let safe_name = p.request.name.replace(['/', '\\'], "_");
+    for (target, img) in p.request.targets.iter().zip(&results.images) {
+        let file = target.file.clone().unwrap_or_else(|| {
+            PathBuf::from(format!(
+                "{safe_name}_{}.{}",
+                target.kind.suffix(),
+                target.format.extension()
+            ))
+        });
+        let color = matches!(target.kind, BakeKind::Lightmap { .. } | BakeKind::Albedo);
+        let signed = matches!(target.kind, BakeKind::Normals { .. });
+        let bytes = encode(img, target.format, color, signed).map_err(write_error(&file))?;
+        pending.push(PendingFile {
+            path: dir.join(file),
+            bytes,
+        });
+    }
+    if results.images.len() > p.request.targets.len() {
+        let img = &results.images[results.images.len() - 1];
+        let path = dir.join(format!("{safe_name}_bent_normals.exr"));
+        let bytes = img.encode_exr().map_err(write_error(&path))?;
+        pending.push(PendingFile { path, bytes });
+    }
+    if p.request.mask {
+        if let Some(first) = results.images.first() {
+            let path = dir.join(format!("{safe_name}_mask.png"));
+            let mut mask = first.clone();
+            // The mask shows texels baked from the surface, not dilated or invalid ones.
+            if let Some(baked) = baked {
+                mask.valid = baked.to_vec();
+            }
+            let bytes = mask.encode_mask_png().map_err(write_error(&path))?;
+            pending.push(PendingFile { path, bytes });
+        }
+    }
+    Ok(BakedFiles { pending })
+}
+
+/// The report of one baked request.
+pub fn report(
+    p: &PreparedBake,
+    results: &TexelResults,
+    dilated: u64,
+    seconds: f64,
+    files: &BakedFiles,
+) -> BakeReport {
+    let covered = p.coverage.covered_texels();
+    BakeReport {
+        name: p.request.name.clone(),
+        width: p.coverage.width,
+        height: p.coverage.height,
+        texels_per_unit: if p.world_area > 0.0 {
+            (covered as f64 / p.world_area).sqrt()
+        } else {
+            0.0
+        },
+        covered_texels: covered,
+        invalid_texels: results.invalid,
+        dilated_texels: dilated,
+        rays: results.rays,
+        seconds,
+        rays_per_second: if seconds > 0.0 {
+            results.rays as f64 / seconds
+        } else {
+            0.0
+        },
+        files: files
+            .pending
+            .iter()
+            .map(|f| f.path.display().to_string())
+            .collect(),
+    }
+}
+
+/// Encodes a baked texture. Colour kinds go through sRGB in PNG; normals are mapped from
+/// [−1, 1] to [0, 1] in PNG; everything is linear in EXR.
+fn encode(
+    img: &TexelImage,
+    format: BakeFormat,
+    color: bool,
+    signed: bool,
+) -> Result<Vec<u8>, String> {
+    match format {
+        BakeFormat::Exr => img.encode_exr(),
+        BakeFormat::Png8 | BakeFormat::Png16 => {
+            let mapped;
+            let img = if signed {
+                mapped = TexelImage {
+                    texels: img
+                        .texels
+                        .iter()
+                        .map(|n| *n * 0.5 + glam::Vec3::splat(0.5))
+                        .collect(),
+                    ..img.clone()
+                };
+                &mapped
+            } else {
+                img
+            };
+            img.encode_png(format == BakeFormat::Png16, color)
+        }
+    }
+}

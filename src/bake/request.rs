@@ -1,0 +1,159 @@
+//! Checking bake requests before any texel is baked: each request's instance must have
+//! triangles, its UVs must exist (or be generated), its resolution must be valid, and its
+//! UVs must not overlap where the kind needs unique UVs. Every problem of every request is
+//! collected, located at the request in the scene file where it came from one.
+
+use std::collections::HashMap;
+
+use hecs::{Entity, World};
+
+use super::{bake_resolution, corner_uvs, rasterize, Coverage};
+use crate::components::{BakeKind, BakeRequest, BakeResolution, SourceLink};
+use crate::geometry::SceneGeometry;
+use crate::scene::Diagnostic;
+use crate::stage_error::StageError;
+
+/// Fraction of sample positions that may fall in two triangles before UVs count as
+/// overlapping.
+const OVERLAP_TOLERANCE: f64 = 1e-3;
+/// UV page size used when generating lightmap UVs for density-sized bakes.
+const UNWRAP_PAGE: u32 = 1024;
+
+/// A request checked and rasterized, ready to bake.
+pub struct PreparedBake {
+    /// The request.
+    pub request: BakeRequest,
+    /// Index of its instance in `SceneGeometry::instances`.
+    pub slot: usize,
+    /// Per-triangle corner UVs.
+    pub uvs: Vec<[glam::Vec2; 3]>,
+    /// Texel coverage at the chosen resolution.
+    pub coverage: Coverage,
+    /// World-space area of the instance (for texel density).
+    pub world_area: f64,
+}
+
+/// One request's problem, located where possible.
+struct Problem<'a> {
+    link: Option<&'a SourceLink>,
+    instance: &'a str,
+    message: String,
+    help: Option<String>,
+}
+
+/// Every bake request of the world, in entity order, checked and rasterized; or every
+/// problem found. Without geometry (no instance had triangles) every request is refused.
+pub fn prepare_bakes(
+    world: &World,
+    geometry: Option<&SceneGeometry>,
+) -> Result<Vec<PreparedBake>, StageError> {
+    let mut requests: Vec<(Entity, BakeRequest, Option<SourceLink>)> = world
+        .query::<(Entity, &BakeRequest, Option<&SourceLink>)>()
+        .iter()
+        .map(|(e, r, l)| (e, r.clone(), l.cloned()))
+        .collect();
+    requests.sort_by_key(|(e, ..)| e.to_bits());
+    let slot_of: HashMap<Entity, usize> = geometry
+        .map(|g| g.instances.iter().enumerate().map(|(i, g)| (g.entity, i)))
+        .into_iter()
+        .flatten()
+        .collect();
+    let mut prepared = Vec::with_capacity(requests.len());
+    let mut problems = Vec::new();
+    for (entity, request, link) in &requests {
+        let problem = |message: String, help: Option<String>| Problem {
+            link: link.as_ref(),
+            instance: &request.name,
+            message,
+            help,
+        };
+        let (Some(&slot), Some(geometry)) = (slot_of.get(entity), geometry) else {
+            problems.push(problem("the instance has no triangles".into(), None));
+            continue;
+        };
+        match prepare(request, slot, geometry) {
+            Ok(p) => prepared.push(p),
+            Err((message, help)) => problems.push(problem(message, help)),
+        }
+    }
+    if problems.is_empty() {
+        return Ok(prepared);
+    }
+    if problems.iter().all(|p| p.link.is_some()) {
+        return Err(StageError::Scene(
+            problems
+                .iter()
+                .filter_map(|p| {
+                    let l = p.link?;
+                    Some(Diagnostic {
+                        file: l.file.clone(),
+                        line: l.line,
+                        column: l.column,
+                        message: format!(
+                            "bake request on instance \"{}\": {}",
+                            p.instance, p.message
+                        ),
+                        help: p.help.clone(),
+                    })
+                })
+                .collect(),
+        ));
+    }
+    let first = &problems[0];
+    Err(StageError::Bake {
+        instance: first.instance.to_string(),
+        message: match &first.help {
+            Some(h) => format!("{}\n  help: {h}", first.message),
+            None => first.message.clone(),
+        },
+    })
+}
+
+/// Checks and rasterizes one request; the error is (message, help).
+fn prepare(
+    request: &BakeRequest,
+    slot: usize,
+    geometry: &SceneGeometry,
+) -> Result<PreparedBake, (String, Option<String>)> {
+    let inst = &geometry.instances[slot];
+    let page = match request.resolution {
+        BakeResolution::Fixed { width, height } => width.max(height).max(1),
+        BakeResolution::Density { max_size, .. } => max_size.clamp(1, UNWRAP_PAGE),
+    };
+    let uvs = corner_uvs(&inst.mesh, request.uvs, page, request.padding)
+        .map_err(|e| (e.to_string(), None))?;
+    let mut world_area = 0.0f64;
+    let mut uv_area = 0.0f64;
+    for (t, uv) in uvs.iter().enumerate() {
+        let [a, b, c] = geometry.accel.triangle(inst.first_triangle + t as u32);
+        world_area += 0.5 * (b - a).cross(c - a).length() as f64;
+        uv_area += 0.5 * ((uv[1] - uv[0]).perp_dot(uv[2] - uv[0]) as f64).abs();
+    }
+    let (w, h) = bake_resolution(request.resolution, world_area, uv_area)
+        .map_err(|e| (e.to_string(), None))?;
+    let coverage = rasterize(&uvs, w, h, request.texel_samples);
+    let unique = request
+        .targets
+        .iter()
+        .find(|t| !matches!(t.kind, BakeKind::Albedo));
+    if let Some(target) = unique {
+        if coverage.overlaps as f64 > OVERLAP_TOLERANCE * coverage.inside.max(1) as f64 {
+            return Err((
+                format!(
+                    "its UVs overlap ({} of {} sample positions lie in two or more triangles); {} needs unique UVs",
+                    coverage.overlaps,
+                    coverage.inside,
+                    target.kind.suffix()
+                ),
+                Some("set `uvs: Unwrap` to generate lightmap UVs".into()),
+            ));
+        }
+    }
+    Ok(PreparedBake {
+        request: request.clone(),
+        slot,
+        uvs,
+        coverage,
+        world_area,
+    })
+}

@@ -1,0 +1,149 @@
+//! The run report: what the stage runner recorded for each stage (ran or skipped, why, wall
+//! time, work items, rays) and the files the run wrote, with its `--stats` and `bench`
+//! tables. Only the runner (`crate::schedule`) writes it.
+
+use std::path::PathBuf;
+
+use serde::Serialize;
+
+/// What the runner recorded for one stage.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct StageReport {
+    /// Stage name.
+    pub stage: &'static str,
+    /// Whether it ran.
+    pub ran: bool,
+    /// Why it ran or was skipped.
+    pub reason: String,
+    /// Wall time of the stage body (0 when skipped).
+    pub seconds: f64,
+    /// Items processed.
+    pub items: u64,
+    /// Unit of `items`.
+    pub unit: &'static str,
+    /// Items per second (0 when skipped).
+    pub items_per_second: f64,
+    /// Items per second per worker thread.
+    pub items_per_second_per_thread: f64,
+    /// Closest-hit rays the stage traced (counted by the accelerator).
+    pub rays_closest: u64,
+    /// Occlusion (shadow, AO) rays the stage traced.
+    pub rays_occlusion: u64,
+    /// All rays the stage traced (`rays_closest + rays_occlusion`).
+    pub rays: u64,
+    /// Rays per second (0 when the stage traced none).
+    pub rays_per_second: f64,
+    /// Rays per second per worker thread (0 when the stage traced none).
+    pub rays_per_second_per_thread: f64,
+    /// Files the stage wrote.
+    pub files: Vec<PathBuf>,
+}
+
+impl StageReport {
+    /// The entry of a stage that did not run.
+    pub fn skipped(stage: &'static str, reason: String) -> Self {
+        Self {
+            stage,
+            ran: false,
+            reason,
+            seconds: 0.0,
+            items: 0,
+            unit: "",
+            items_per_second: 0.0,
+            items_per_second_per_thread: 0.0,
+            rays_closest: 0,
+            rays_occlusion: 0,
+            rays: 0,
+            rays_per_second: 0.0,
+            rays_per_second_per_thread: 0.0,
+            files: Vec::new(),
+        }
+    }
+}
+
+/// The whole run's report.
+#[derive(Debug, Clone, Default, PartialEq, Serialize)]
+pub struct RunReport {
+    /// Worker threads used.
+    pub threads: usize,
+    /// One entry per stage of the table, in order.
+    pub stages: Vec<StageReport>,
+    /// Wall time of the whole schedule.
+    pub total_seconds: f64,
+    /// Every file the run wrote, in stage order (collected by the runner from each stage's
+    /// `Work`).
+    pub written: Vec<PathBuf>,
+}
+
+impl RunReport {
+    /// The entry for a stage, if it is in the table.
+    pub fn stage(&self, name: &str) -> Option<&StageReport> {
+        self.stages.iter().find(|s| s.stage == name)
+    }
+
+    /// A fixed-width table for `--stats`.
+    pub fn to_table(&self) -> String {
+        let mut out = String::new();
+        out.push_str(&format!(
+            "{:<16} {:<4} {:>9} {:>12} {:<10} {:>14} {:>12}  reason\n",
+            "stage", "ran", "seconds", "items", "unit", "items/s", "rays"
+        ));
+        for s in &self.stages {
+            out.push_str(&format!(
+                "{:<16} {:<4} {:>9.4} {:>12} {:<10} {:>14.0} {:>12}  {}\n",
+                s.stage,
+                if s.ran { "yes" } else { "no" },
+                s.seconds,
+                s.items,
+                s.unit,
+                s.items_per_second,
+                s.rays,
+                s.reason
+            ));
+        }
+        out.push_str(&format!(
+            "total {:.4} s on {} thread(s)\n",
+            self.total_seconds, self.threads
+        ));
+        out
+    }
+}
+
+impl RunReport {
+    /// A throughput table for `stagelight bench`: items, seconds, items/s and items/s per
+    /// thread for every stage that ran; skipped stages with their reason.
+    pub fn to_throughput_table(&self) -> String {
+        let mut out = format!(
+            "{:<16} {:>12} {:<10} {:>10} {:>14} {:>16} {:>12} {:>12} {:>14}\n",
+            "stage",
+            "items",
+            "unit",
+            "seconds",
+            "items/s",
+            "items/s/thread",
+            "rays",
+            "occlusion",
+            "rays/s/thread"
+        );
+        for s in &self.stages {
+            if s.ran {
+                out.push_str(&format!(
+                    "{:<16} {:>12} {:<10} {:>10.4} {:>14.0} {:>16.0} {:>12} {:>12} {:>14.0}\n",
+                    s.stage,
+                    s.items,
+                    s.unit,
+                    s.seconds,
+                    s.items_per_second,
+                    s.items_per_second_per_thread,
+                    s.rays,
+                    s.rays_occlusion,
+                    s.rays_per_second_per_thread
+                ));
+            } else {
+                out.push_str(&format!("{:<16} skipped: {}\n", s.stage, s.reason));
+            }
+        }
+        out.push_str(&format!("total {:.4} s\n", self.total_seconds));
+        out
+    }
+}

@@ -1,0 +1,92 @@
+//! The scene's shared elements read out of the world the same way by every stage: the
+//! render camera with its lens shaders, atmosphere and imager; the emitters in entity order
+//! (the order every light index, and so every output byte, depends on); the environment;
+//! and the light set built from them. Stages call these instead of writing their own
+//! queries.
+
+use hecs::{Entity, World};
+
+use crate::components::{
+    Atmosphere, Camera, Emitter, Environment, Fog, Imager, Lens, Lenses, RenderCamera,
+};
+use crate::geometry::SceneGeometry;
+use crate::settings::RenderSettings;
+use crate::shading::LightSet;
+
+/// The render camera and what is attached to it.
+#[derive(Debug, Clone)]
+pub struct RenderView {
+    /// The camera (placement, projection, resolution, outputs).
+    pub camera: Camera,
+    /// Its lens shaders, in order (empty: a pinhole).
+    pub lenses: Vec<Lens>,
+    /// The fog the camera sits in, if any.
+    pub atmosphere: Option<Fog>,
+    /// Its imager (PNG outputs), if any.
+    pub imager: Option<Imager>,
+}
+
+/// The render camera, if the scene names one.
+pub fn render_view(world: &World) -> Option<RenderView> {
+    world
+        .query::<(
+            &Camera,
+            &RenderCamera,
+            Option<&Lenses>,
+            Option<&Atmosphere>,
+            Option<&Imager>,
+        )>()
+        .iter()
+        .next()
+        .map(|(c, _, l, a, i)| RenderView {
+            camera: c.clone(),
+            lenses: l.map(|l| l.0.clone()).unwrap_or_default(),
+            atmosphere: a.map(|a| a.0),
+            imager: i.copied(),
+        })
+}
+
+/// Whether the scene has a render camera (cheap; for run conditions).
+pub fn has_render_camera(world: &World) -> bool {
+    crate::schedule::any_with::<RenderCamera>(world)
+}
+
+/// Every emitter, in entity order.
+pub fn emitters(world: &World) -> Vec<Emitter> {
+    let mut emitters: Vec<(Entity, Emitter)> = world
+        .query::<(Entity, &Emitter)>()
+        .iter()
+        .map(|(e, l)| (e, l.clone()))
+        .collect();
+    emitters.sort_by_key(|(e, _)| e.to_bits());
+    emitters.into_iter().map(|(_, l)| l).collect()
+}
+
+/// The scene's environment, if any.
+pub fn environment(world: &World) -> Option<Environment> {
+    world.query::<&Environment>().iter().next().cloned()
+}
+
+/// Whether the light set includes the environment as a light.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum WithEnvironment {
+    /// Shading and baking: rays that leave the scene see the environment, which is sampled.
+    Yes,
+    /// The photon pass: the environment sends no photons.
+    No,
+}
+
+/// The light set every stage shades with: the emitters in entity order, the emitting
+/// triangles of `geometry`, and (optionally) the environment.
+pub fn light_set(
+    world: &World,
+    geometry: Option<&SceneGeometry>,
+    settings: &RenderSettings,
+    environment: WithEnvironment,
+) -> LightSet {
+    let lights = LightSet::new(&emitters(world), geometry, settings.light_samples);
+    match environment {
+        WithEnvironment::Yes => lights.with_environment(self::environment(world).as_ref()),
+        WithEnvironment::No => lights,
+    }
+}
