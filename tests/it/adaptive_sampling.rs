@@ -3,7 +3,7 @@
 //! total, the reported work is the samples taken, and the image is the same at 1 and 2
 //! threads.
 
-mod common;
+use crate::common;
 
 use common::{all_finite, render_text};
 use stagelight::framebuffer::FrameBuffers;

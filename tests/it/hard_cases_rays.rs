@@ -1,7 +1,7 @@
 //! Hard cases of frames and tiny triangles (`../shared/HARDCASES.md`): H7 (tiny triangles and
 //! long rays hit their target) and H10 (orthonormal bases near the poles).
 
-mod common;
+use crate::common;
 
 use glam::{DVec3, Quat, Vec3};
 use stagelight::accel::{Accel, Ray};

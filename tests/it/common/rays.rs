@@ -1,9 +1,5 @@
 //! Shared helpers of the ray-layer tests: a fixed-seed RNG, scene builders (closed UV
 //! spheres, height fields, soups), instance transforms and comparison helpers.
-#![allow(
-    dead_code,
-    reason = "each test file uses a different subset of the helpers"
-)]
 
 use glam::{Affine3A, DVec3, Quat, Vec3};
 use stagelight::accel::{brute_force_intersect, Accel, Hit, Ray};

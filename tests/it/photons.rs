@@ -2,7 +2,7 @@
 //! dielectrics, flux bookkeeping, density-estimate bias and leaks, determinism across thread
 //! counts, and the caustics example scene.
 
-mod common;
+use crate::common;
 
 use std::path::PathBuf;
 

@@ -2,7 +2,7 @@
 //! bounded by the error bound (H1), and contact occlusion across thin gaps (H2). Names follow
 //! `/work/shared/HARDCASES.md`.
 
-mod common;
+use crate::common;
 
 use common::Rng;
 use glam::{Affine3A, DVec3, Vec3};

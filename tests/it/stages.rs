@@ -1,7 +1,7 @@
 //! The stage table end to end on small worlds: run conditions and their reasons,
 //! determinism across thread counts, finite output, and the written files.
 
-mod common;
+use crate::common;
 
 use glam::{Affine3A, Vec3};
 use stagelight::components::{LightShape, Pass, Shader};

@@ -3,7 +3,7 @@
 //! law, unit refracted directions, TIR exactly past the critical angle), and an index-matched
 //! sphere that is invisible in a render.
 
-mod common;
+use crate::common;
 
 use glam::{Affine3A, Vec3};
 use stagelight::components::Shader;

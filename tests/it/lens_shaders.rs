@@ -2,7 +2,7 @@
 //! confusion of the thin-lens formula and keeps the focus plane sharp; the fisheye and
 //! spherical projections put known directions at the predicted pixels.
 
-mod common;
+use crate::common;
 
 use common::{all_finite, facing_quad, render_text};
 use glam::Vec3;

@@ -6,7 +6,7 @@
 //!   the lossless dielectric reflects + transmits exactly 1; reciprocity of the reflection
 //!   lobes.
 
-mod common;
+use crate::common;
 
 use common::chi2::{chi2_directions, sidak, Rng};
 use glam::Vec3;

@@ -1,6 +1,6 @@
 //! Analytic radiometry: rendered pixels against closed-form radiance.
 
-mod common;
+use crate::common;
 
 use glam::{Affine3A, DVec3, Vec3};
 use stagelight::components::{LightShape, Shader};

@@ -1,16 +1,11 @@
 //! Shared helpers for integration tests: small worlds built directly from components (no
 //! scene file), and running the stage table on them.
 
-#![allow(dead_code)] // each test binary uses a different subset
-
 mod meshes;
 mod rays;
 mod scene_text;
-#[allow(unused_imports)] // not every test binary uses these
 pub use meshes::*;
-#[allow(unused_imports)] // only the ray-layer tests use these
 pub use rays::*;
-#[allow(unused_imports)] // only the camera/volume tests use these
 pub use scene_text::*;
 
 use std::sync::Arc;

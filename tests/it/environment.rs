@@ -4,7 +4,7 @@
 //! light-only and BSDF-only estimators, camera misses, imager background, depth_exceeded,
 //! and the example map `assets/textures/sky.exr` against its generator.
 
-mod common;
+use crate::common;
 
 use std::f64::consts::PI;
 use std::sync::Arc;

@@ -1,7 +1,7 @@
 //! Baking against closed forms: ambient occlusion of analytic configurations, the texel
 //! centre convention, dilation, inside-geometry detection, determinism and run conditions.
 
-mod common;
+use crate::common;
 
 use std::sync::Arc;
 

@@ -9,7 +9,7 @@
 //! With `max_depth = d` the path tracer must return the truncated sum `E·Σ_{k=0..d} aᵏ`,
 //! which pins down off-by-one depth bugs; the direct integrator returns `E·(1 + a)`.
 
-mod common;
+use crate::common;
 
 use glam::{Affine3A, Vec3};
 use stagelight::components::{LightShape, Shader};

@@ -2,7 +2,7 @@
 //! every scale (H24), no light leaking from texels inside geometry (H25), bilinear taps on
 //! valid texels after dilation (H26), and exact accumulation (H27).
 
-mod common;
+use crate::common;
 
 use glam::{Affine3A, Vec2, Vec3};
 use hecs::World;

@@ -38,34 +38,3 @@ pub fn sphere(r: f32, nu: u32, nv: u32) -> TriMesh {
         triangles,
     }
 }
-
-/// A closed axis-aligned box with outward faces.
-pub fn box_mesh(lo: Vec3, hi: Vec3) -> TriMesh {
-    let positions = (0..8)
-        .map(|i| {
-            Vec3::new(
-                if i & 1 == 0 { lo.x } else { hi.x },
-                if i & 2 == 0 { lo.y } else { hi.y },
-                if i & 4 == 0 { lo.z } else { hi.z },
-            )
-        })
-        .collect();
-    let quads = [
-        [0, 2, 3, 1], // -z
-        [4, 5, 7, 6], // +z
-        [0, 1, 5, 4], // -y
-        [2, 6, 7, 3], // +y
-        [0, 4, 6, 2], // -x
-        [1, 3, 7, 5], // +x
-    ];
-    let triangles = quads
-        .iter()
-        .flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]])
-        .collect();
-    TriMesh {
-        positions,
-        normals: None,
-        uvs: None,
-        triangles,
-    }
-}

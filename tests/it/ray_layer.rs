@@ -3,7 +3,7 @@
 //! pitfalls (tmin clamp, fixed 32-entry stack, no instancing). Names follow
 //! `/work/shared/HARDCASES.md`.
 
-mod common;
+use crate::common;
 
 use common::{
     height_field, mismatches, mismatches_all_qualities, soup, transform, triangles, uv_sphere, Rng,

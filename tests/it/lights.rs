@@ -4,7 +4,7 @@
 //! independent quadrature over the hemisphere, end-to-end renders through both integrators,
 //! `visible` lights, near/far attenuation, and coloured shadows through transparent objects.
 
-mod common;
+use crate::common;
 
 use std::f64::consts::PI;
 

@@ -2,7 +2,7 @@
 //! (atmosphere) and inside a fog-filled object (material interior), single scattering of a
 //! point light against a 1-D integral in f64, both integrators, no NaN.
 
-mod common;
+use crate::common;
 
 use common::{all_finite, render_text};
 use glam::Vec3;

@@ -2,7 +2,7 @@
 //! instances that `build_accel` picks up, scatter, errors, determinism, and a ray-level leak
 //! test of a displaced closed surface (HARDCASES H3/H13).
 
-mod common;
+use crate::common;
 
 use std::sync::Arc;
 
