@@ -12,6 +12,7 @@ mod bake;
 mod cli;
 mod cli_bake;
 mod cli_photons;
+mod cli_plan;
 mod environment;
 mod fuzz_corpus;
 mod geometry_scene;
