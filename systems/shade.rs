@@ -34,10 +34,8 @@ use crate::components::{
 use crate::framebuffer::FrameBuffers;
 use crate::progress::Progress;
 use crate::sampling::{fold_seed, Sampler};
-use crate::shading::integrator::{camera_hit, CameraHit};
-use crate::shading::{
-    shade_hit, volume, CameraRays, FilterSampler, LightSet, ShadeContext, Volumes,
-};
+use crate::shading::integrator::{camera_hit, volume, CameraHit};
+use crate::shading::{shade_hit, CameraRays, FilterSampler, LightSet, ShadeContext, Volumes};
 
 /// Run condition: a render camera exists.
 pub fn should_run(world: &World, frame: &Frame) -> Decision {
