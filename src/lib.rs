@@ -14,6 +14,7 @@ pub mod frame;
 pub mod framebuffer;
 pub mod geometry;
 pub mod image_io;
+pub mod noise;
 pub mod photon;
 pub mod procedural;
 pub mod progress;

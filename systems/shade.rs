@@ -33,8 +33,8 @@ use crate::framebuffer::FrameBuffers;
 use crate::progress::Progress;
 use crate::sampling::{fold_seed, Sampler};
 use crate::scene_view::{light_set, render_view, WithEnvironment};
-use crate::shading::integrator::{camera_hit, CameraHit};
-use crate::shading::{shade_hit, volume, CameraRays, FilterSampler, ShadeContext, Volumes};
+use crate::shading::integrator::{camera_hit, volume, CameraHit};
+use crate::shading::{shade_hit, CameraRays, FilterSampler, ShadeContext, Volumes};
 
 /// Run condition: a render camera exists.
 pub fn should_run(world: &World, frame: &Frame) -> Decision {

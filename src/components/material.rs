@@ -9,7 +9,7 @@ use std::sync::Arc;
 use glam::Vec3;
 use hecs::Entity;
 
-use crate::shading::texture::MaterialGraph;
+use super::graph::MaterialGraph;
 
 /// Surface shaders: the mental ray illumination models, the RenderMan standard surfaces and
 /// the physically based building blocks (mirror, glass, `dgs`, opacity).

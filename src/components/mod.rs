@@ -21,6 +21,7 @@ pub use transform::{SceneOrigin, WorldFromObject};
 
 mod bake;
 mod environment;
+pub mod graph;
 mod imager;
 pub use bake::{
     BakeFormat, BakeKind, BakeRequest, BakeResolution, BakeTarget, LightmapStore, NormalSpace,

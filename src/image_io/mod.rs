@@ -4,6 +4,7 @@
 
 mod atomic;
 mod exr_writer;
+pub mod imager;
 mod png_writer;
 pub mod srgb;
 

@@ -4,31 +4,31 @@
 
 use glam::Vec3;
 
-use super::{GatherMap, Neighbour};
+use super::{GatherMap, Neighbour, PhotonMaps};
 use crate::sampling::Sampler;
 use crate::shading::bsdf::Bsdf;
-use crate::shading::integrator::{ShadeContext, Vertex};
+use crate::shading::integrator::{PhotonRadiance, ShadeContext, Vertex};
 
-/// Caustic plus indirect diffuse radiance toward the viewer at `v` (zero without maps). Draws
-/// from `sampler` only when a global map exists.
-pub fn photon_radiance(
-    ctx: &ShadeContext<'_>,
-    v: &Vertex<'_>,
-    bsdf: &Bsdf,
-    sampler: &mut Sampler,
-) -> Vec3 {
-    let Some(maps) = ctx.photons else {
-        return Vec3::ZERO;
-    };
-    let mut scratch = Vec::new();
-    let mut radiance = Vec3::ZERO;
-    if let Some(c) = &maps.caustics {
-        radiance += reflected(c, v, bsdf, &mut scratch);
+impl PhotonRadiance for PhotonMaps {
+    /// Caustic plus indirect diffuse radiance toward the viewer at `v` (zero without maps).
+    /// Draws from `sampler` only when a global map exists.
+    fn radiance(
+        &self,
+        ctx: &ShadeContext<'_>,
+        v: &Vertex<'_>,
+        bsdf: &Bsdf,
+        sampler: &mut Sampler,
+    ) -> Vec3 {
+        let mut scratch = Vec::new();
+        let mut radiance = Vec3::ZERO;
+        if let Some(c) = &self.caustics {
+            radiance += reflected(c, v, bsdf, &mut scratch);
+        }
+        if let Some(g) = &self.global {
+            radiance += final_gather(ctx, g, v, bsdf, sampler, &mut scratch);
+        }
+        radiance
     }
-    if let Some(g) = &maps.global {
-        radiance += final_gather(ctx, g, v, bsdf, sampler, &mut scratch);
-    }
-    radiance
 }
 
 /// Density estimate of the light `map` reflects at `v` through `bsdf`.

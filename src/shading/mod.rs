@@ -5,7 +5,6 @@
 
 pub mod bsdf;
 pub mod camera;
-pub mod environment;
 pub mod filter;
 pub mod frame;
 pub mod fresnel;
@@ -20,8 +19,8 @@ pub mod volume;
 
 pub use bsdf::{Bsdf, BsdfSample};
 pub use camera::CameraRays;
-pub use environment::EnvLight;
 pub use filter::FilterSampler;
 pub use integrator::{shade_hit, ShadeContext};
+pub use lights::EnvLight;
 pub use lights::{Light, LightSample, LightSet};
 pub use volume::Volumes;

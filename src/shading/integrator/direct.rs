@@ -3,17 +3,16 @@
 //! both branches of glass, transparency) traced recursively within the trace depths; rays
 //! that leave the scene see the environment (and visible area lights they cross).
 //! Glossy and diffuse interreflection are not computed (the path tracer does that). Traced
-//! segments cross the scene's fog (`shading::volume`): attenuation and single scattering.
+//! segments cross the scene's fog ([`super::volume`]): attenuation and single scattering.
 //! With caustics or global illumination on, the photon maps add caustics and one bounce of
-//! indirect diffuse light (`crate::photon::estimate`).
+//! indirect diffuse light ([`super::PhotonRadiance`], implemented in `crate::photon::estimate`).
 
 use glam::Vec3;
 
-use super::{depth_exceeded, light_loop, trace, Depth, ShadeContext, Vertex};
+use super::{depth_exceeded, light_loop, trace, volume, Depth, ShadeContext, Vertex};
 use crate::accel::{Hit, Ray};
 use crate::sampling::Sampler;
 use crate::shading::surface::unlit_radiance;
-use crate::shading::volume;
 
 /// Radiance toward the origin of `ray`, which hits the scene at `hit` (a camera ray).
 pub fn radiance(ctx: &ShadeContext<'_>, ray: &Ray, hit: &Hit, sampler: &mut Sampler) -> Vec3 {
@@ -44,7 +43,9 @@ fn vertex_radiance(
     radiance += v.shader.ambient();
     if bsdf.has_non_delta() {
         radiance += light_loop(ctx, &v, &bsdf, sampler, false);
-        radiance += crate::photon::estimate::photon_radiance(ctx, &v, &bsdf, sampler);
+        radiance += ctx
+            .photons
+            .map_or(Vec3::ZERO, |p| p.radiance(ctx, &v, &bsdf, sampler));
     }
     for branch in bsdf.delta_branches(v.wo) {
         let Some(next) = depth.after(ctx, !branch.transmits, branch.transmits) else {

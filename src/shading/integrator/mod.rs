@@ -16,6 +16,7 @@
 
 pub mod direct;
 pub mod path;
+pub mod volume;
 
 use std::borrow::Cow;
 
@@ -24,7 +25,6 @@ use glam::Vec3;
 use crate::accel::{spawn_ray, spawn_ray_to, spawn_ray_to_surface, Hit, Ray, SurfacePoint};
 use crate::components::{Material, Shader};
 use crate::geometry::{SceneGeometry, ShadingPoint};
-use crate::photon::PhotonMaps;
 use crate::sampling::Sampler;
 use crate::settings::{Face, Integrator, RenderSettings};
 use crate::shading::bsdf::Bsdf;
@@ -33,7 +33,8 @@ use crate::shading::lights::LightSet;
 use crate::shading::mis::power_heuristic;
 use crate::shading::shadow::transmittance;
 use crate::shading::texture::{bump, hit as textured};
-use crate::shading::volume::{shadow_transmittance, Volumes};
+use crate::shading::volume::Volumes;
+use volume::shadow_transmittance;
 
 /// What shading a hit needs from the scene.
 pub struct ShadeContext<'a> {
@@ -52,7 +53,7 @@ pub struct ShadeContext<'a> {
     /// Most refractions per path.
     pub refraction_depth: u32,
     /// Photon maps the `Direct` integrator reads (caustics, final gather); `None`: none.
-    pub photons: Option<&'a PhotonMaps>,
+    pub photons: Option<&'a dyn PhotonRadiance>,
     /// Fog around the camera and inside materials (`None`: vacuum everywhere).
     pub volumes: Option<&'a Volumes>,
 }
@@ -77,9 +78,9 @@ impl<'a> ShadeContext<'a> {
         }
     }
 
-    /// The same context reading `photons`.
-    pub fn with_photons(mut self, photons: Option<&'a PhotonMaps>) -> Self {
-        self.photons = photons;
+    /// The same context reading `photons` (the photon maps, `photon::PhotonMaps`).
+    pub fn with_photons<P: PhotonRadiance>(mut self, photons: Option<&'a P>) -> Self {
+        self.photons = photons.map(|p| p as &dyn PhotonRadiance);
         self
     }
 
@@ -88,6 +89,21 @@ impl<'a> ShadeContext<'a> {
         self.volumes = volumes;
         self
     }
+}
+
+/// Radiance photon maps add at a diffuse shading point of the `Direct` integrator (caustics
+/// and final gather). Implemented by `photon::PhotonMaps`; the trait keeps the shading
+/// library free of the photon module, which traces photons with this library's lights,
+/// BSDFs and [`Vertex`].
+pub trait PhotonRadiance: Sync {
+    /// Radiance toward the viewer at `v` through `bsdf` (`bsdf` has a non-delta part).
+    fn radiance(
+        &self,
+        ctx: &ShadeContext<'_>,
+        v: &Vertex<'_>,
+        bsdf: &Bsdf,
+        sampler: &mut Sampler,
+    ) -> Vec3;
 }
 
 /// Radiance arriving at the origin of the camera ray `ray` from its first hit `hit`.

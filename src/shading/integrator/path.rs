@@ -6,18 +6,17 @@
 //! long paths unbiased. Rays leaving the scene see the environment (black without one); a
 //! bounce beyond a reflection/refraction budget sees what the environment's
 //! `depth_exceeded` says. Every segment that ends at a hit is attenuated by the fog it
-//! crosses and adds single scattering from the lights (`shading::volume`): unbiased for
+//! crosses and adds single scattering from the lights ([`super::volume`]): unbiased for
 //! attenuation; light scattered more than once inside a medium is not computed.
 
 use glam::Vec3;
 
-use super::{depth_exceeded, light_loop, trace, Depth, ShadeContext, Vertex};
+use super::{depth_exceeded, light_loop, trace, volume, Depth, ShadeContext, Vertex};
 use crate::accel::{Hit, Ray};
 use crate::sampling::Sampler;
 use crate::shading::bsdf::Scatter;
 use crate::shading::mis::power_heuristic;
 use crate::shading::surface::unlit_radiance;
-use crate::shading::volume;
 
 /// First vertex at which Russian roulette may end a path.
 const RR_START: u32 = 3;

@@ -13,6 +13,7 @@
 
 mod cylinder;
 mod disc;
+pub mod environment;
 mod mesh;
 mod rect;
 mod sphere;
@@ -23,6 +24,7 @@ use glam::{Vec2, Vec3};
 
 pub use cylinder::CylinderLight;
 pub use disc::DiscLight;
+pub use environment::EnvLight;
 pub use mesh::MeshLight;
 pub use rect::RectLight;
 pub use sphere::SphereLight;
@@ -30,7 +32,6 @@ pub use sphere::SphereLight;
 use crate::accel::{gamma, Ray, SurfacePoint};
 use crate::components::{attenuation_factor, Emitter, Environment, LightShape};
 use crate::geometry::SceneGeometry;
-use crate::shading::environment::EnvLight;
 use crate::shading::shadow::shader_transmits_shadows;
 
 /// The geometry of an area light.

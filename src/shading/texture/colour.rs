@@ -4,16 +4,7 @@
 
 use glam::Vec3;
 
-/// A colour space a conversion node reads or writes.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum ColourSpace {
-    /// Linear red, green, blue.
-    Rgb,
-    /// Hue, saturation, value.
-    Hsv,
-    /// Hue, saturation, lightness.
-    Hsl,
-}
+pub use crate::components::graph::ColourSpace;
 
 /// Converts `c` from `from` to `to` (through RGB).
 pub fn convert(c: Vec3, from: ColourSpace, to: ColourSpace) -> Vec3 {

@@ -12,15 +12,7 @@ use std::path::Path;
 use glam::{Vec2, Vec3};
 
 use super::colour::srgb_to_linear;
-
-/// What happens outside `[0, 1)²`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Wrap {
-    /// The image tiles the plane.
-    Repeat,
-    /// Coordinates are clamped: edge texels extend outward.
-    Clamp,
-}
+pub use crate::components::graph::{Texture, Wrap};
 
 /// How the stored numbers relate to linear RGB.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -29,19 +21,6 @@ pub enum Encoding {
     Srgb,
     /// Already linear.
     Linear,
-}
-
-/// A decoded texture.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Texture {
-    /// Width in texels (≥ 1).
-    pub width: u32,
-    /// Height in texels (≥ 1).
-    pub height: u32,
-    /// Linear RGB texels, row `y` = 0 at v = 0, `texels[y·width + x]`.
-    pub texels: Vec<Vec3>,
-    /// Wrap mode.
-    pub wrap: Wrap,
 }
 
 impl Texture {

@@ -22,13 +22,9 @@ pub mod image;
 pub mod noise;
 pub mod pattern;
 
-use std::sync::Arc;
-
 use glam::{Vec2, Vec3};
 
-use self::colour::ColourSpace;
-use self::image::Texture;
-use self::noise::Fractal;
+pub use crate::components::graph::{Binding, BumpMap, MaterialGraph, NoiseKind, Op, Program, Reg};
 use crate::components::Shader;
 
 /// What a graph may read at a shading point.
@@ -42,136 +38,7 @@ pub struct Inputs {
     pub n: Vec3,
 }
 
-/// A register index (an earlier op's output).
-pub type Reg = u32;
-
-/// Which noise a [`Op::Noise`] computes.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum NoiseKind {
-    /// One octave of Perlin noise (signed, about [−1, 1]).
-    Perlin,
-    /// Fractal Brownian motion (signed).
-    Fbm,
-    /// Turbulence (sum of absolute octaves, ≥ 0).
-    Turbulence,
-}
-
-/// One node of a compiled graph; inputs are registers of earlier ops. Scalar inputs read
-/// channel 0; coordinates (`uv`) read channels 0 and 1.
-#[derive(Debug, Clone, PartialEq)]
-pub enum Op {
-    /// A constant.
-    Const(Vec3),
-    /// `(u, v, 0)`.
-    Uv,
-    /// Object-space position.
-    Position,
-    /// World-space shading normal.
-    Normal,
-    /// `a` where `⌊u·scale⌋ + ⌊v·scale⌋` is even, `b` where odd.
-    Checker {
-        /// Coordinates.
-        uv: Reg,
-        /// Squares per unit.
-        scale: Reg,
-        /// Even squares.
-        a: Reg,
-        /// Odd squares.
-        b: Reg,
-    },
-    /// The seed's disk: `mix(outside, inside, 1 − smoothstep(r − fuzz, r + fuzz, |uv − c|))`.
-    Disk {
-        /// Coordinates.
-        uv: Reg,
-        /// Centre in uv.
-        center: Vec2,
-        /// Radius.
-        radius: Reg,
-        /// Half-width of the soft edge.
-        fuzz: Reg,
-        /// Colour inside.
-        inside: Reg,
-        /// Colour outside.
-        outside: Reg,
-    },
-    /// `(mod(u·scale, 1), mod(v·scale, 1), 0)`.
-    Repeat {
-        /// Coordinates.
-        uv: Reg,
-        /// Repetitions per unit.
-        scale: Reg,
-    },
-    /// Solid noise of a point.
-    Noise {
-        /// The point.
-        p: Reg,
-        /// Which noise.
-        kind: NoiseKind,
-        /// Frequency, octaves, seed.
-        fractal: Fractal,
-    },
-    /// An image texture at `uv`.
-    Image {
-        /// Coordinates.
-        uv: Reg,
-        /// The decoded image (shared between materials).
-        texture: Arc<Texture>,
-    },
-    /// `a·(1 − t) + b·t`.
-    Mix {
-        /// Value at t = 0.
-        a: Reg,
-        /// Value at t = 1.
-        b: Reg,
-        /// Blend.
-        t: Reg,
-    },
-    /// `smoothstep(edge0, edge1, x)`.
-    Smoothstep {
-        /// Lower edge.
-        edge0: Reg,
-        /// Upper edge.
-        edge1: Reg,
-        /// Input.
-        x: Reg,
-    },
-    /// `a + b`.
-    Add(Reg, Reg),
-    /// `a − b`.
-    Sub(Reg, Reg),
-    /// `a · b` (per channel).
-    Mul(Reg, Reg),
-    /// One channel of a colour, as a scalar.
-    Channel(Reg, u8),
-    /// Rec. 709 luminance of a colour, as a scalar.
-    Luminance(Reg),
-    /// A colour from three scalars.
-    Combine(Reg, Reg, Reg),
-    /// Colour-space conversion.
-    Convert {
-        /// The colour.
-        input: Reg,
-        /// Space it is in.
-        from: ColourSpace,
-        /// Space to convert to.
-        to: ColourSpace,
-    },
-}
-
-/// A compiled graph: ops in dependency order; op `i` writes register `i`.
-#[derive(Debug, Clone, Default, PartialEq)]
-pub struct Program {
-    /// The ops.
-    pub ops: Vec<Op>,
-}
-
 impl Program {
-    /// Appends an op and returns its register.
-    pub fn push(&mut self, op: Op) -> Reg {
-        self.ops.push(op);
-        (self.ops.len() - 1) as Reg
-    }
-
     /// Runs every op; `regs` receives one value per op (finite: NaN/∞ become 0).
     pub fn run(&self, inputs: &Inputs, regs: &mut Vec<Vec3>) {
         self.run_to(inputs, regs, self.ops.len());
@@ -234,46 +101,11 @@ impl Program {
             regs.push(Vec3::select(v.is_finite_mask(), v, Vec3::ZERO));
         }
     }
-
-    /// Whether some op reads the object-space position.
-    pub fn uses_position(&self) -> bool {
-        self.ops.iter().any(|op| matches!(op, Op::Position))
-    }
-}
-
-/// A shader parameter driven by a register.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Binding {
-    /// Parameter name as written in the scene (`albedo`, `input.color`).
-    pub param: String,
-    /// Register holding its value.
-    pub reg: Reg,
-}
-
-/// Bump mapping of a material: the height (object units along the normal) is `scale` times
-/// a scalar register.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct BumpMap {
-    /// Register holding the height.
-    pub height: Reg,
-    /// Multiplier of the height.
-    pub scale: f32,
 }
 
 /// Step in uv (or, without a uv parametrisation, in object units along the tangents) of the
 /// finite differences that give the height's derivatives.
 pub const BUMP_STEP: f32 = 1e-3;
-
-/// The node graphs of one material: which parameters they drive and the bump height.
-#[derive(Debug, Clone, Default, PartialEq)]
-pub struct MaterialGraph {
-    /// The compiled ops of every binding and of the bump height.
-    pub program: Program,
-    /// Driven parameters.
-    pub bindings: Vec<Binding>,
-    /// Bump mapping, if any.
-    pub bump: Option<BumpMap>,
-}
 
 impl MaterialGraph {
     /// `shader` with every bound parameter replaced by its value at `inputs`; `regs` is

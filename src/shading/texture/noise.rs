@@ -1,29 +1,15 @@
 //! Solid noise for texture nodes: Perlin gradient noise, fractal Brownian motion and
 //! turbulence. Deterministic: the value depends only on the point and the node's parameters
 //! (the seed is a parameter), never on threads or sample order. The lattice noise is the
-//! one displacement uses (`crate::tessellation::displace::perlin`).
+//! one displacement uses ([`crate::noise::perlin`]).
 
 use glam::{DVec3, Vec3};
 
-use crate::tessellation::displace::perlin;
+pub use crate::components::graph::Fractal;
+use crate::noise::perlin;
 
 /// Conservative bound of one octave of [`noise`] (gradient noise with cube-edge gradients).
-pub const OCTAVE_BOUND: f32 = 1.25;
-
-/// Fractal parameters shared by [`fbm`] and [`turbulence`].
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Fractal {
-    /// Base frequency (cycles per unit of the input point).
-    pub frequency: f32,
-    /// Octaves, clamped to `1..=12`.
-    pub octaves: u32,
-    /// Frequency multiplier per octave.
-    pub lacunarity: f32,
-    /// Amplitude multiplier per octave.
-    pub gain: f32,
-    /// Seed: different seeds give unrelated patterns.
-    pub seed: u64,
-}
+pub const OCTAVE_BOUND: f32 = crate::noise::PERLIN_BOUND as f32;
 
 impl Fractal {
     /// A bound of |fbm| and of turbulence: `OCTAVE_BOUND · Σ |gain|^i`.

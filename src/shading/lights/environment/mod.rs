@@ -13,8 +13,8 @@ use std::f32::consts::PI;
 
 use glam::{Vec2, Vec3};
 
+use super::LightSample;
 use crate::components::{DepthExceeded, Environment, EnvironmentSource, LatLongMap};
-use crate::shading::lights::LightSample;
 pub use distribution::{Distribution1D, Distribution2D};
 
 /// The environment prepared for lookups and sampling.
