@@ -213,6 +213,9 @@ fn main() -> ExitCode {
 fn load(path: &Path) -> Result<LoadedScene, ExitCode> {
     match load_scene(path) {
         Ok(scene) => {
+            for w in &scene.located_warnings {
+                eprintln!("{w}");
+            }
             for w in &scene.warnings {
                 eprintln!("warning: {w}");
             }

@@ -1,4 +1,5 @@
-//! The RON scene format v1 as plain serde types (`*Desc`), exactly as written by the user.
+//! The scene description as plain serde types (`*Desc`): the format-neutral description every
+//! reader produces (RON deserialises into it directly, exactly as written by the user).
 //!
 //! Every struct denies unknown fields; every optional field has a default documented here
 //! and in `docs/scene-format.md`. Nothing is validated here: see [`super::validate`].
@@ -999,11 +1000,4 @@ pub struct RenderDesc {
     pub root: String,
     /// Camera name.
     pub camera: String,
-}
-
-/// Parses one scene file's text.
-pub fn parse(text: &str) -> Result<SceneDesc, ron::error::SpannedError> {
-    ron::Options::default()
-        .with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME)
-        .from_str(text)
 }

@@ -1,17 +1,33 @@
-//! Scene errors as the user sees them: `file:line:col: error: message` plus a `help:` line.
+//! Scene diagnostics as the user sees them: `file:line:col: error: message` (or
+//! `warning:`) plus a `help:` line, the same for every scene format.
 //!
-//! [`Sources`] holds every loaded scene file with its position index and collects errors as
-//! validation finds them; [`Sources::finish`] orders them by file (load order) and position.
-//! [`from_ron`] turns a `ron` syntax or type error into a diagnostic with a suggestion.
+//! [`Sources`] holds every loaded scene file with its [`SourceMap`] and collects errors and
+//! warnings as reading and validation find them, each located through the map of the file
+//! it is about; [`Sources::finish`] orders the errors by file (load order) and position.
 
 use std::fmt;
 use std::path::{Path, PathBuf};
 
-use ron::error::{Error as RonError, SpannedError};
-
-use super::spans::{Pos, SpanIndex};
+use super::import::{SourceMap, SourcePos};
 use super::suggest;
-use crate::components::SourceLink;
+
+/// How bad a diagnostic is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Severity {
+    /// The scene is refused.
+    Error,
+    /// The scene loads; something was ignored or changed.
+    Warning,
+}
+
+impl fmt::Display for Severity {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Severity::Error => "error",
+            Severity::Warning => "warning",
+        })
+    }
+}
 
 /// One problem found in a scene, located in a file.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -28,17 +44,63 @@ pub struct Diagnostic {
     pub help: Option<String>,
 }
 
+impl Diagnostic {
+    /// A diagnostic at `pos`.
+    pub fn at(pos: SourcePos, message: impl Into<String>, help: Option<String>) -> Self {
+        Self {
+            file: pos.file,
+            line: pos.line,
+            column: pos.column,
+            message: message.into(),
+            help,
+        }
+    }
+
+    /// Where it is.
+    pub fn pos(&self) -> SourcePos {
+        SourcePos {
+            file: self.file.clone(),
+            line: self.line,
+            column: self.column,
+        }
+    }
+
+    /// The text printed for it with `severity`: `file:line:col: warning: message`.
+    pub fn with_severity(&self, severity: Severity) -> Shown<'_> {
+        Shown {
+            diagnostic: self,
+            severity,
+        }
+    }
+}
+
+/// Shows a diagnostic as an error (what a scene refused for prints).
 impl fmt::Display for Diagnostic {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        self.with_severity(Severity::Error).fmt(f)
+    }
+}
+
+/// A diagnostic with its severity, for printing (see [`Diagnostic::with_severity`]).
+#[derive(Debug, Clone, Copy)]
+pub struct Shown<'d> {
+    diagnostic: &'d Diagnostic,
+    severity: Severity,
+}
+
+impl fmt::Display for Shown<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let d = self.diagnostic;
         write!(
             f,
-            "{}:{}:{}: error: {}",
-            self.file.display(),
-            self.line,
-            self.column,
-            self.message
+            "{}:{}:{}: {}: {}",
+            d.file.display(),
+            d.line,
+            d.column,
+            self.severity,
+            d.message
         )?;
-        if let Some(help) = &self.help {
+        if let Some(help) = &d.help {
             write!(f, "\n  help: {help}")?;
         }
         Ok(())
@@ -63,13 +125,13 @@ impl fmt::Display for SceneErrors {
 
 impl std::error::Error for SceneErrors {}
 
-/// A scene file that parsed: its display path and where its values are.
+/// A scene file that was read: its display path and where its values are.
 #[derive(Debug, Clone)]
 pub struct SourceFile {
     /// Path as the user gave it, joined with include-relative parts.
     pub path: PathBuf,
-    /// Positions of the values in the text.
-    pub index: SpanIndex,
+    /// Positions of the values, from the file's reader.
+    pub map: SourceMap,
 }
 
 impl SourceFile {
@@ -79,48 +141,29 @@ impl SourceFile {
     }
 }
 
-/// Loaded files plus the errors found so far.
+/// A recorded diagnostic with its sort key: file index (load order), line, column.
+type Keyed = ((usize, usize, usize), Diagnostic);
+
+/// Loaded files plus the errors and warnings found so far.
 #[derive(Debug, Default)]
 pub struct Sources {
     /// Files in load order (root first, then includes depth-first).
     pub files: Vec<SourceFile>,
-    /// Errors with their sort key (file order, position).
-    errors: Vec<(usize, Pos, Diagnostic)>,
+    errors: Vec<Keyed>,
+    warnings: Vec<Keyed>,
 }
 
 impl Sources {
     /// Position of the value at `path` in file `file` (or of its nearest written parent).
-    pub fn pos(&self, file: usize, path: &str) -> Pos {
+    pub fn pos(&self, file: usize, path: &str) -> SourcePos {
         self.files
             .get(file)
-            .map_or_else(Pos::default, |f| f.index.locate(path))
+            .map_or_else(|| SourcePos::start(Path::new("")), |f| f.map.locate(path))
     }
 
     /// `file:line:col` of the value at `path`, for help texts.
     pub fn where_is(&self, file: usize, path: &str) -> String {
-        let pos = self.pos(file, path);
-        format!("{}:{}:{}", self.display(file), pos.line, pos.column)
-    }
-
-    /// Provenance of the element at `path`.
-    pub fn link(&self, file: usize, path: &str) -> SourceLink {
-        let pos = self.pos(file, path);
-        SourceLink {
-            file: self
-                .files
-                .get(file)
-                .map(|f| f.path.clone())
-                .unwrap_or_default(),
-            line: pos.line,
-            column: pos.column,
-        }
-    }
-
-    fn display(&self, file: usize) -> String {
-        self.files
-            .get(file)
-            .map(|f| f.path.display().to_string())
-            .unwrap_or_default()
+        self.pos(file, path).to_string()
     }
 
     /// Records an error at the value `path` of file `file`.
@@ -132,24 +175,19 @@ impl Sources {
         help: Option<String>,
     ) {
         let pos = self.pos(file, path);
-        let diagnostic = Diagnostic {
-            file: self
-                .files
-                .get(file)
-                .map(|f| f.path.clone())
-                .unwrap_or_default(),
-            line: pos.line,
-            column: pos.column,
-            message: message.into(),
-            help,
-        };
-        self.errors.push((file, pos, diagnostic));
+        self.push(file, pos.clone(), Diagnostic::at(pos, message, help));
     }
 
-    /// Records a diagnostic located elsewhere (a file that did not parse, an OBJ file), sorted
+    /// Records an error located elsewhere (a file that did not parse, an OBJ file), sorted
     /// as if it were at `pos` of file `file`.
-    pub fn push(&mut self, file: usize, pos: Pos, diagnostic: Diagnostic) {
-        self.errors.push((file, pos, diagnostic));
+    pub fn push(&mut self, file: usize, pos: SourcePos, diagnostic: Diagnostic) {
+        self.errors.push(((file, pos.line, pos.column), diagnostic));
+    }
+
+    /// Records a located warning about file `file` (sorted at its own position).
+    pub fn push_warning(&mut self, file: usize, diagnostic: Diagnostic) {
+        let key = (file, diagnostic.line, diagnostic.column);
+        self.warnings.push((key, diagnostic));
     }
 
     /// Whether any error was recorded.
@@ -157,10 +195,20 @@ impl Sources {
         !self.errors.is_empty()
     }
 
+    /// The warnings ordered like the errors, printed `file:line:col: warning: …`.
+    pub fn warnings(&self) -> Vec<String> {
+        let mut sorted: Vec<&Keyed> = self.warnings.iter().collect();
+        sorted.sort_by_key(|(key, _)| *key);
+        sorted
+            .into_iter()
+            .map(|(_, d)| d.with_severity(Severity::Warning).to_string())
+            .collect()
+    }
+
     /// The errors ordered by file (load order), then position; ties keep discovery order.
     pub fn finish(mut self) -> Vec<Diagnostic> {
-        self.errors.sort_by_key(|(file, pos, _)| (*file, *pos));
-        self.errors.into_iter().map(|(_, _, d)| d).collect()
+        self.errors.sort_by_key(|(key, _)| *key);
+        self.errors.into_iter().map(|(_, d)| d).collect()
     }
 }
 
@@ -176,96 +224,6 @@ pub fn suggestion(wrong: &str, candidates: &[&str], what: &str) -> Option<String
             suggest::quoted_list(candidates.iter().copied())
         )),
         _ => None,
-    }
-}
-
-/// A `ron` syntax or type error as a diagnostic in `file`.
-pub fn from_ron(file: &Path, err: &SpannedError) -> Diagnostic {
-    let (message, help) = ron_message(&err.code);
-    Diagnostic {
-        file: file.to_path_buf(),
-        line: err.span.start.line,
-        column: err.span.start.col,
-        message,
-        help,
-    }
-}
-
-fn in_outer(outer: &Option<String>) -> String {
-    outer
-        .as_ref()
-        .map(|o| format!(" in {o}"))
-        .unwrap_or_default()
-}
-
-fn ron_message(code: &RonError) -> (String, Option<String>) {
-    match code {
-        RonError::NoSuchStructField {
-            expected,
-            found,
-            outer,
-        } => (
-            format!("unknown field \"{found}\"{}", in_outer(outer)),
-            suggestion(found, expected, "fields"),
-        ),
-        RonError::NoSuchEnumVariant {
-            expected,
-            found,
-            outer,
-        } => (
-            format!(
-                "unknown variant \"{found}\"{}",
-                outer
-                    .as_ref()
-                    .map(|o| format!(" of {o}"))
-                    .unwrap_or_default()
-            ),
-            suggestion(found, expected, "variants"),
-        ),
-        RonError::MissingStructField { field, outer } => (
-            format!("missing field \"{field}\"{}", in_outer(outer)),
-            None,
-        ),
-        RonError::DuplicateStructField { field, outer } => (
-            format!("field \"{field}\" is given twice{}", in_outer(outer)),
-            None,
-        ),
-        RonError::ExpectedDifferentStructName { expected, found } => {
-            (format!("expected {expected}(…) but found {found}(…)"), None)
-        }
-        RonError::InvalidValueForType { expected, found } => {
-            (format!("expected {expected} but found {found}"), None)
-        }
-        RonError::ExpectedDifferentLength { expected, found } => {
-            let found = match found {
-                0 => "no elements".to_string(),
-                1 => "one element".to_string(),
-                n => format!("{n} elements"),
-            };
-            (format!("expected {expected} but found {found}"), None)
-        }
-        RonError::Message(text) => (text.clone(), None),
-        RonError::ExpectedComma => (
-            "expected comma".into(),
-            Some("separate fields and list items with `,`".into()),
-        ),
-        RonError::Eof => (
-            "unexpected end of file".into(),
-            Some("a `(` or `[` is not closed".into()),
-        ),
-        RonError::TrailingCharacters => (
-            "unexpected text after the scene".into(),
-            Some("a file holds exactly one `Scene(...)`; check for an extra `)`".into()),
-        ),
-        other => (lowercase_first(&other.to_string()), None),
-    }
-}
-
-fn lowercase_first(text: &str) -> String {
-    let mut chars = text.chars();
-    match chars.next() {
-        Some(c) => c.to_lowercase().chain(chars).collect(),
-        None => String::new(),
     }
 }
 
@@ -285,6 +243,10 @@ mod tests {
         assert_eq!(
             d.to_string(),
             "a/b.ron:3:7: error: unknown material \"chrom\"\n  help: did you mean \"chrome\"?"
+        );
+        assert_eq!(
+            d.with_severity(Severity::Warning).to_string(),
+            "a/b.ron:3:7: warning: unknown material \"chrom\"\n  help: did you mean \"chrome\"?"
         );
     }
 

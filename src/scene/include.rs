@@ -1,5 +1,9 @@
 //! Reading the root scene file and, depth-first, every file it includes.
 //!
+//! Each file is read through the reader seam ([`super::import`]): its format is chosen by
+//! its extension, and its reader's errors and warnings are recorded in [`Sources`] with the
+//! file's [`super::import::SourceMap`].
+//!
 //! Include paths are relative to the including file. A file reached twice through different
 //! include chains (a diamond) is loaded once; a file that includes itself, directly or
 //! through others, is an include cycle. Display paths are the user's root path joined with
@@ -10,11 +14,9 @@ use std::fs;
 use std::io;
 use std::path::{Path, PathBuf};
 
-use ron::error::Error as RonError;
-
-use super::desc::{self, SceneDesc};
-use super::diagnostics::{from_ron, Diagnostic, SourceFile, Sources};
-use super::spans::{Pos, SpanIndex};
+use super::desc::SceneDesc;
+use super::diagnostics::{Diagnostic, SourceFile, Sources};
+use super::import::{self, SourceMap, SourcePos};
 
 /// Deepest include chain followed (guards the stack against absurd chains of distinct files).
 const MAX_INCLUDE_DEPTH: usize = 64;
@@ -37,9 +39,11 @@ pub fn io_reason(err: &io::Error) -> String {
     }
 }
 
-/// Reads `root` (or uses `text` for it) and everything it includes.
-pub fn load_files(root: &Path, text: Option<&str>) -> LoadedFiles {
+/// Reads `root` (or uses `text` for it) and everything it includes, each file with the
+/// reader its extension names in `formats` (the loader passes [`import::FORMATS`]).
+pub fn load_files(root: &Path, text: Option<&str>, formats: &[import::Format]) -> LoadedFiles {
     let mut loader = Loader {
+        formats,
         out: LoadedFiles {
             sources: Sources::default(),
             scenes: Vec::new(),
@@ -48,30 +52,36 @@ pub fn load_files(root: &Path, text: Option<&str>) -> LoadedFiles {
         seen: HashSet::new(),
     };
     let key = canonical(root);
-    match text {
-        Some(text) => loader.parse_file(root.to_path_buf(), key, text.to_string()),
-        None => match read_text(root) {
-            Ok(text) => loader.parse_file(root.to_path_buf(), key, text),
-            Err(reason) => {
-                let file = loader.register(root.to_path_buf(), SpanIndex::default(), None);
-                loader.out.sources.push(
-                    file,
-                    Pos::default(),
-                    Diagnostic {
-                        file: root.to_path_buf(),
-                        line: 1,
-                        column: 1,
-                        message: format!("cannot read scene file \"{}\": {reason}", root.display()),
-                        help: None,
-                    },
-                );
-            }
-        },
+    let failed = |loader: &mut Loader<'_>, message: String, help: Option<String>| {
+        let file = loader.register(SourceMap::empty(root), None);
+        let at = SourcePos::start(root);
+        let d = Diagnostic::at(at.clone(), message, help);
+        loader.out.sources.push(file, at, d);
+    };
+    let format = match import::reader_for(formats, root) {
+        Ok(format) => format,
+        Err((reason, help)) => {
+            failed(&mut loader, reason, Some(help));
+            return loader.out;
+        }
+    };
+    let bytes = match text {
+        Some(text) => Ok(text.as_bytes().to_vec()),
+        None => fs::read(root).map_err(|e| io_reason(&e)),
+    };
+    match bytes {
+        Ok(bytes) => loader.read_file(format, root.to_path_buf(), key, &bytes),
+        Err(reason) => failed(
+            &mut loader,
+            format!("cannot read scene file \"{}\": {reason}", root.display()),
+            None,
+        ),
     }
     loader.out
 }
 
-struct Loader {
+struct Loader<'f> {
+    formats: &'f [import::Format],
     out: LoadedFiles,
     /// Include chain being followed: (canonical key, display path).
     stack: Vec<(PathBuf, PathBuf)>,
@@ -83,83 +93,32 @@ fn canonical(path: &Path) -> PathBuf {
     fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf())
 }
 
-/// Reads a file as UTF-8 text; the error is the reason, for a message.
-fn read_text(path: &Path) -> Result<String, String> {
-    let bytes = fs::read(path).map_err(|e| io_reason(&e))?;
-    String::from_utf8(bytes).map_err(|e| {
-        let valid = &e.as_bytes()[..e.utf8_error().valid_up_to()];
-        let valid = String::from_utf8_lossy(valid);
-        let line = 1 + valid.matches('\n').count();
-        let column = 1 + valid.chars().rev().take_while(|&c| c != '\n').count();
-        format!("invalid UTF-8 at line {line}, column {column}")
-    })
-}
-
-/// The first non-whitespace position at or after `line:column` (ron reports some errors
-/// at the blank before the offending value).
-fn skip_whitespace(text: &str, line: usize, column: usize) -> (usize, usize) {
-    let Some(start) = text.split_inclusive('\n').nth(line.saturating_sub(1)) else {
-        return (line, column);
-    };
-    let offset = text
-        .split_inclusive('\n')
-        .take(line.saturating_sub(1))
-        .map(str::len)
-        .sum::<usize>();
-    let from = start
-        .char_indices()
-        .nth(column.saturating_sub(1))
-        .map_or(start.len(), |(i, _)| i);
-    let (mut line, mut column) = (line, column);
-    for c in text[offset + from..].chars() {
-        if !c.is_whitespace() {
-            return (line, column);
-        }
-        if c == '\n' {
-            line += 1;
-            column = 1;
-        } else {
-            column += 1;
-        }
-    }
-    (line, column)
-}
-
-impl Loader {
-    fn register(&mut self, path: PathBuf, index: SpanIndex, scene: Option<SceneDesc>) -> usize {
-        self.out.sources.files.push(SourceFile { path, index });
+impl Loader<'_> {
+    fn register(&mut self, map: SourceMap, scene: Option<SceneDesc>) -> usize {
+        let path = map.file().to_path_buf();
+        self.out.sources.files.push(SourceFile { path, map });
         self.out.scenes.push(scene);
         self.out.scenes.len() - 1
     }
 
-    fn parse_file(&mut self, path: PathBuf, key: PathBuf, text: String) {
+    /// Reads one file with its format's reader, then follows its includes.
+    fn read_file(&mut self, format: &import::Format, path: PathBuf, key: PathBuf, bytes: &[u8]) {
         self.seen.insert(key.clone());
-        let parsed = desc::parse(&text);
-        let index = SpanIndex::new(&text);
-        let scene = match parsed {
-            Ok(scene) => scene,
-            Err(err) => {
-                let mut d = from_ron(&path, &err);
-                (d.line, d.column) = skip_whitespace(&text, d.line, d.column);
-                if let RonError::MissingStructField { .. } = err.code {
-                    let close = Pos {
-                        line: d.line,
-                        column: d.column,
-                    };
-                    if let Some(open) = index.opening_of(close) {
-                        (d.line, d.column) = (open.line, open.column);
-                    }
+        let read = match (format.read)(&path, bytes) {
+            Ok(read) => read,
+            Err(errors) => {
+                let file = self.register(SourceMap::empty(&path), None);
+                for d in errors {
+                    self.out.sources.push(file, d.pos(), d);
                 }
-                let file = self.register(path.clone(), index, None);
-                let pos = Pos {
-                    line: d.line,
-                    column: d.column,
-                };
-                self.out.sources.push(file, pos, d);
                 return;
             }
         };
-        let file = self.register(path.clone(), index, None);
+        let file = self.register(read.map, None);
+        for w in read.warnings {
+            self.out.sources.push_warning(file, w);
+        }
+        let scene = read.desc;
         self.stack.push((key, path.clone()));
         let dir = path.parent().unwrap_or(Path::new("")).to_path_buf();
         for (i, include) in scene.include.iter().enumerate() {
@@ -198,14 +157,22 @@ impl Loader {
             );
             return;
         }
-        match read_text(path) {
-            Ok(text) => self.parse_file(path.to_path_buf(), key, text),
-            Err(reason) => self.out.sources.error(
-                from,
-                &at,
-                format!("cannot read include file \"{}\": {reason}", path.display()),
-                None,
-            ),
+        let cannot_read =
+            |reason: String| format!("cannot read include file \"{}\": {reason}", path.display());
+        let format = match import::reader_for(self.formats, path) {
+            Ok(format) => format,
+            Err((reason, help)) => {
+                let message = cannot_read(reason);
+                self.out.sources.error(from, &at, message, Some(help));
+                return;
+            }
+        };
+        match fs::read(path) {
+            Ok(bytes) => self.read_file(format, path.to_path_buf(), key, &bytes),
+            Err(e) => {
+                let message = cannot_read(io_reason(&e));
+                self.out.sources.error(from, &at, message, None);
+            }
         }
     }
 }

@@ -1,15 +1,19 @@
-//! Scene loading: RON files → validated descriptions → an ECS world.
+//! Scene loading: scene files → validated descriptions → an ECS world.
 //!
 //! The pipeline, one module per step:
-//! 1. [`include`] reads the root file and its includes and parses each with `ron`
-//!    ([`desc`]); a syntax/type error or an unreadable include stops loading here.
+//! 1. [`include`] reads the root file and, depth-first, its includes, each through the
+//!    reader seam ([`import`]): the file's extension picks its reader (`.ron` today), which
+//!    produces the format-neutral description ([`desc`]) and a map of where every value was
+//!    written. A reader's errors (syntax, types), an unknown format or an unreadable
+//!    include stop loading here.
 //! 2. [`validate`] merges the files and checks every value; [`names`] resolves references;
 //!    [`dag`] builds instance transforms, rejects cycles and flattens the instance DAG from
 //!    the render root; [`mesh_load`] builds the meshes of reachable objects; [`geometry`]
 //!    checks generated meshes (geometry shaders, free-form surfaces, subdivision meshes,
 //!    scatters), approximations and displacements with the geometry code's own rules.
 //!    All errors of this step are collected and reported together, ordered by file (load
-//!    order) and position, each located through the position index of [`spans`].
+//!    order) and position, each located through its file's source map, so they read the
+//!    same whatever the format.
 //!    [`rebase`] then moves everything into render space (world space less the scene
 //!    origin, in f64) before cameras and lights are rounded to f32.
 //! 3. [`spawn`] creates the entities.
@@ -25,6 +29,7 @@ pub(crate) mod diagnostics;
 pub(crate) mod environment;
 pub(crate) mod geometry;
 pub(crate) mod imager;
+pub mod import;
 pub(crate) mod include;
 pub(crate) mod lens;
 pub(crate) mod lights;
@@ -36,7 +41,6 @@ pub(crate) mod nodes_phenomena;
 pub(crate) mod rebase;
 pub(crate) mod samples;
 pub(crate) mod shaders;
-pub(crate) mod spans;
 pub(crate) mod spawn;
 pub(crate) mod suggest;
 pub(crate) mod validate;
@@ -63,19 +67,23 @@ pub struct LoadedScene {
     pub world: hecs::World,
     /// Settings from the scene's `options`.
     pub settings: RenderSettings,
-    /// Non-fatal notes (e.g. `mesh "x": dropped 3 degenerate triangles`).
+    /// Non-fatal notes about elements (e.g. `mesh "x": dropped 3 degenerate triangles`),
+    /// printed after `warning: `.
     pub warnings: Vec<String>,
+    /// Located warnings from the readers and validation, each a complete text as printed:
+    /// `file:line:col: warning: …` (plus a `help:` line), in file and position order.
+    pub located_warnings: Vec<String>,
 }
 
 /// Loads and validates the scene at `path`.
 pub fn load_scene(path: &Path) -> Result<LoadedScene, SceneErrors> {
-    load(path, None)
+    load(path, None, import::FORMATS)
 }
 
 /// Loads a scene from `text` as if it were the file at `path` (includes and OBJ files are
 /// still read from disk, relative to `path`).
 pub fn load_scene_str(text: &str, path: &Path) -> Result<LoadedScene, SceneErrors> {
-    load(path, Some(text))
+    load(path, Some(text), import::FORMATS)
 }
 
 /// Parses OBJ text into a checked triangle mesh (degenerate and non-finite triangles
@@ -90,11 +98,17 @@ pub fn parse_obj_bytes(bytes: &[u8]) -> Result<crate::components::TriMesh, Strin
         .map_err(|e| format!("{e:?}"))
 }
 
-fn load(path: &Path, text: Option<&str>) -> Result<LoadedScene, SceneErrors> {
+/// Loads the scene at `path` (or `text` as that file), reading each file with the format
+/// its extension names in `formats` ([`import::FORMATS`] outside tests).
+fn load(
+    path: &Path,
+    text: Option<&str>,
+    formats: &[import::Format],
+) -> Result<LoadedScene, SceneErrors> {
     let LoadedFiles {
         mut sources,
         scenes,
-    } = include::load_files(path, text);
+    } = include::load_files(path, text, formats);
     if sources.has_errors() {
         return Err(SceneErrors(sources.finish()));
     }
@@ -243,6 +257,7 @@ fn load(path: &Path, text: Option<&str>) -> Result<LoadedScene, SceneErrors> {
         world,
         settings,
         warnings,
+        located_warnings: sources.warnings(),
     })
 }
 
@@ -251,6 +266,7 @@ fn rebased<'a, T>(item: &validate::Item<'_, T>, desc: &'a T) -> validate::Item<'
     validate::Item {
         file: item.file,
         path: item.path.clone(),
+        pos: item.pos.clone(),
         desc,
     }
 }

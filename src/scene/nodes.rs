@@ -16,7 +16,7 @@ use std::sync::Arc;
 use glam::{Vec2, Vec3};
 
 use super::desc::{MaterialDesc, V3};
-use super::diagnostics::{from_ron, suggestion, Diagnostic, Sources};
+use super::diagnostics::{suggestion, Sources};
 use super::nodes_desc::{ColourSpaceDesc, EncodingDesc, InputDesc, NodeDesc, WrapDesc, NODE_NAMES};
 pub use super::nodes_phenomena::{check_phenomena, Phenomena};
 use super::nodes_phenomena::{ensure_checked, variant_name};
@@ -146,9 +146,9 @@ impl Compiler<'_, '_> {
         }
     }
 
-    /// Re-reads a value that is not a number, colour or node from the source text: a node
-    /// written with all defaults (`Fbm()`, `Uv`) parses here; anything else gets `ron`'s
-    /// message at the right position.
+    /// Re-reads a value that is not a number, colour or node through its file's reader
+    /// (`SourceMap::reread_node`): a node written with all defaults (`Fbm()`, `Uv`) parses
+    /// there; a misspelt node gets the reader's message at the right position.
     fn reparse(&mut self, at: At<'_>, v: &ron::Value) -> Option<NodeDesc> {
         let name = match v {
             ron::Value::String(s) => Some(s.clone()),
@@ -168,42 +168,20 @@ impl Compiler<'_, '_> {
                 return None;
             }
         }
-        let Some((pos, text)) = self.src.files[at.file].index.text_at(at.path) else {
-            self.error(
-                at,
-                "expected a number, a colour (r, g, b) or a node such as Checker(…)",
-                None,
-            );
-            return None;
-        };
-        let parse = |t: &str| {
-            ron::Options::default()
-                .with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME)
-                .from_str::<NodeDesc>(t)
-        };
-        let bare = text.chars().all(|c| c.is_alphanumeric() || c == '_');
-        let result = if bare {
-            parse(&format!("{text}()")).or_else(|_| parse(&text))
-        } else {
-            parse(&text)
-        };
-        match result {
-            Ok(n) => Some(n),
-            Err(e) if name.is_some() => {
+        let reread = self
+            .src
+            .files
+            .get(at.file)
+            .and_then(|f| f.map.reread_node(at.path));
+        match reread {
+            Some(Ok(n)) => Some(n),
+            Some(Err((pos, d))) if name.is_some() => {
                 if self.report {
-                    let file = self.src.files[at.file].path.clone();
-                    let d = from_ron(&file, &e);
-                    let (line, column) = if d.line <= 1 {
-                        (pos.line, pos.column + d.column.saturating_sub(1))
-                    } else {
-                        (pos.line + d.line - 1, d.column)
-                    };
-                    self.src
-                        .push(at.file, pos, Diagnostic { line, column, ..d });
+                    self.src.push(at.file, pos, d);
                 }
                 None
             }
-            Err(_) => {
+            _ => {
                 self.error(
                     at,
                     "expected a number, a colour (r, g, b) or a node such as Checker(…)",

@@ -106,7 +106,7 @@ pub fn spawn(src: &Sources, m: &Merged<'_>, parts: Parts) -> World {
                 let it = &m.materials[i];
                 let entity = world.spawn((
                     Name(it.desc.name.clone()),
-                    src.link(it.file, &it.path),
+                    SourceLink::from(it.pos.clone()),
                     material.clone(),
                 ));
                 if let Some(Some(fog)) = parts.interiors.get(i) {
@@ -140,7 +140,7 @@ pub fn spawn(src: &Sources, m: &Merged<'_>, parts: Parts) -> World {
         let it = &m.objects[o];
         let mut b = EntityBuilder::new();
         b.add(Name(it.desc.name.clone()));
-        b.add(src.link(it.file, &it.path));
+        b.add(SourceLink::from(it.pos.clone()));
         if geometry.generated.is_none() {
             let Some(mesh) = parts.meshes.get(o).cloned().flatten() else {
                 continue;
@@ -189,7 +189,7 @@ pub fn spawn(src: &Sources, m: &Merged<'_>, parts: Parts) -> World {
         let it = &m.instances[leaf.instance];
         let entity = world.spawn((
             Name(leaf.path.clone()),
-            src.link(it.file, &it.path),
+            SourceLink::from(it.pos.clone()),
             instance,
             WorldFromObject(leaf.world_from_object),
             MaterialRef(material),
@@ -208,7 +208,7 @@ pub fn spawn(src: &Sources, m: &Merged<'_>, parts: Parts) -> World {
         let Some(emitter) = emitter else { continue };
         world.spawn((
             Name(it.desc.name.clone()),
-            src.link(it.file, &it.path),
+            SourceLink::from(it.pos.clone()),
             emitter,
         ));
     }
@@ -217,7 +217,7 @@ pub fn spawn(src: &Sources, m: &Merged<'_>, parts: Parts) -> World {
         let Some(camera) = camera else { continue };
         let entity = world.spawn((
             Name(it.desc.name.clone()),
-            src.link(it.file, &it.path),
+            SourceLink::from(it.pos.clone()),
             camera,
         ));
         if let Some(Some(imager)) = parts.imagers.get(i) {

@@ -12,6 +12,7 @@ use super::desc::{
     PassDesc, PhotonMapDesc, PlacementDesc, RenderDesc, SceneDesc, M4, V3,
 };
 use super::diagnostics::Sources;
+use super::import::SourcePos;
 use crate::components::{
     Camera, Emitter, ImageFormat, LightShape, Material, OutputSpec, Pass, Shader,
 };
@@ -22,12 +23,26 @@ use crate::settings::{
 /// One element of the merged scene: where it was written and what it says.
 #[derive(Debug)]
 pub struct Item<'a, T> {
-    /// File index in [`Sources::files`].
+    /// File index in [`Sources::files`] (whose map locates the values inside the element).
     pub file: usize,
-    /// Path of the element in its file (`materials[3]`).
+    /// Path of the element in its file's description (`materials[3]`).
     pub path: String,
+    /// Where the element itself was written, from its reader's map.
+    pub pos: SourcePos,
     /// The element.
     pub desc: &'a T,
+}
+
+impl<'a, T> Item<'a, T> {
+    /// The element at `path` of file `file`, located through the file's map.
+    pub fn new(src: &Sources, file: usize, path: String, desc: &'a T) -> Self {
+        Self {
+            file,
+            pos: src.pos(file, &path),
+            path,
+            desc,
+        }
+    }
 }
 
 impl<T> Item<'_, T> {
@@ -60,13 +75,11 @@ pub struct Merged<'a> {
     pub phenomena: Vec<Item<'a, super::desc::PhenomenonDesc>>,
 }
 
-fn items<'a, T>(file: usize, kind: &str, list: &'a [T]) -> impl Iterator<Item = Item<'a, T>> {
-    let kind = kind.to_string();
-    list.iter().enumerate().map(move |(i, desc)| Item {
-        file,
-        path: format!("{kind}[{i}]"),
-        desc,
-    })
+fn items<'a, T>(src: &Sources, file: usize, kind: &str, list: &'a [T]) -> Vec<Item<'a, T>> {
+    list.iter()
+        .enumerate()
+        .map(|(i, desc)| Item::new(src, file, format!("{kind}[{i}]"), desc))
+        .collect()
 }
 
 /// Merges the parsed files; a second `options` or `render` entry is an error.
@@ -77,43 +90,33 @@ pub fn merge<'a>(src: &mut Sources, scenes: &'a [Option<SceneDesc>]) -> Merged<'
         if let Some(options) = &scene.options {
             match &m.options {
                 Some(first) => {
-                    let help = format!("first defined at {}", src.where_is(first.file, "options"));
+                    let help = format!("first defined at {}", first.pos);
                     src.error(file, "options", "options are given twice", Some(help));
                 }
-                None => {
-                    m.options = Some(Item {
-                        file,
-                        path: "options".into(),
-                        desc: options,
-                    })
-                }
+                None => m.options = Some(Item::new(src, file, "options".into(), options)),
             }
         }
         if let Some(render) = &scene.render {
             match &m.render {
                 Some(first) => {
-                    let help = format!("first defined at {}", src.where_is(first.file, "render"));
+                    let help = format!("first defined at {}", first.pos);
                     src.error(file, "render", "render entry is given twice", Some(help));
                 }
-                None => {
-                    m.render = Some(Item {
-                        file,
-                        path: "render".into(),
-                        desc: render,
-                    })
-                }
+                None => m.render = Some(Item::new(src, file, "render".into(), render)),
             }
         }
-        m.cameras.extend(items(file, "cameras", &scene.cameras));
-        m.lights.extend(items(file, "lights", &scene.lights));
+        m.cameras
+            .extend(items(src, file, "cameras", &scene.cameras));
+        m.lights.extend(items(src, file, "lights", &scene.lights));
         m.materials
-            .extend(items(file, "materials", &scene.materials));
-        m.objects.extend(items(file, "objects", &scene.objects));
+            .extend(items(src, file, "materials", &scene.materials));
+        m.objects
+            .extend(items(src, file, "objects", &scene.objects));
         m.instances
-            .extend(items(file, "instances", &scene.instances));
-        m.groups.extend(items(file, "groups", &scene.groups));
+            .extend(items(src, file, "instances", &scene.instances));
+        m.groups.extend(items(src, file, "groups", &scene.groups));
         m.phenomena
-            .extend(items(file, "phenomena", &scene.phenomena));
+            .extend(items(src, file, "phenomena", &scene.phenomena));
     }
     if m.render.is_none() && !scenes.is_empty() {
         src.error(

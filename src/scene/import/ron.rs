@@ -1,0 +1,273 @@
+//! The RON reader: `.ron` text → [`ReadScene`].
+//!
+//! Owns everything that knows RON text: parsing with the `ron` crate (with the
+//! `implicit_some` extension), turning `ron`'s syntax and type errors into diagnostics with
+//! suggestions, and the position index ([`super::ron_spans`]) that locates every value by
+//! its path, because `ron` reports positions for its own errors but not for the values it
+//! returns. A RON file holds no warnings; `ron` stops at the first syntax error of a file.
+
+use std::path::{Path, PathBuf};
+
+use ron::error::{Error as RonError, SpannedError};
+
+use super::ron_spans::{Pos, SpanIndex};
+use super::{PositionIndex, ReadScene, SourceMap, SourcePos};
+use crate::scene::desc::SceneDesc;
+use crate::scene::diagnostics::{suggestion, Diagnostic};
+use crate::scene::nodes_desc::NodeDesc;
+
+/// Reads one RON scene file (the [`super::ReadFn`] of `.ron`).
+pub fn read(path: &Path, bytes: &[u8]) -> Result<ReadScene, Vec<Diagnostic>> {
+    let text = std::str::from_utf8(bytes).map_err(|e| vec![not_utf8(path, bytes, &e)])?;
+    let index = SpanIndex::new(text);
+    match parse(text) {
+        Ok(desc) => Ok(ReadScene {
+            desc,
+            map: SourceMap::new(
+                path,
+                RonIndex {
+                    file: path.to_path_buf(),
+                    spans: index,
+                },
+            ),
+            warnings: Vec::new(),
+        }),
+        Err(err) => {
+            let mut d = from_ron(path, &err);
+            (d.line, d.column) = skip_whitespace(text, d.line, d.column);
+            if let RonError::MissingStructField { .. } = err.code {
+                let close = Pos {
+                    line: d.line,
+                    column: d.column,
+                };
+                if let Some(open) = index.opening_of(close) {
+                    (d.line, d.column) = (open.line, open.column);
+                }
+            }
+            Err(vec![d])
+        }
+    }
+}
+
+/// Parses a scene description from RON text.
+pub fn parse(text: &str) -> Result<SceneDesc, SpannedError> {
+    ron::Options::default()
+        .with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME)
+        .from_str(text)
+}
+
+/// Bytes that are not UTF-8, reported where the first bad byte is.
+fn not_utf8(path: &Path, bytes: &[u8], e: &std::str::Utf8Error) -> Diagnostic {
+    let valid = String::from_utf8_lossy(&bytes[..e.valid_up_to()]);
+    let line = 1 + valid.matches('\n').count();
+    let column = 1 + valid.chars().rev().take_while(|&c| c != '\n').count();
+    Diagnostic {
+        file: path.to_path_buf(),
+        line,
+        column,
+        message: "invalid UTF-8".into(),
+        help: Some("a RON scene file is UTF-8 text".into()),
+    }
+}
+
+/// Positions of one RON file's values.
+#[derive(Debug)]
+struct RonIndex {
+    file: PathBuf,
+    spans: SpanIndex,
+}
+
+impl RonIndex {
+    fn at(&self, pos: Pos) -> SourcePos {
+        SourcePos {
+            file: self.file.clone(),
+            line: pos.line,
+            column: pos.column,
+        }
+    }
+}
+
+impl PositionIndex for RonIndex {
+    fn locate(&self, path: &str) -> Option<SourcePos> {
+        Some(self.at(self.spans.locate(path)))
+    }
+
+    /// A node written with all defaults (`Fbm()`, `Uv`) parses here; anything else gets
+    /// `ron`'s message at the right position inside the value.
+    fn reread_node(&self, path: &str) -> Option<Result<NodeDesc, (SourcePos, Diagnostic)>> {
+        let (pos, text) = self.spans.text_at(path)?;
+        let parse = |t: &str| {
+            ron::Options::default()
+                .with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME)
+                .from_str::<NodeDesc>(t)
+        };
+        let bare = text.chars().all(|c| c.is_alphanumeric() || c == '_');
+        let result = if bare {
+            parse(&format!("{text}()")).or_else(|_| parse(&text))
+        } else {
+            parse(&text)
+        };
+        Some(result.map_err(|e| {
+            let d = from_ron(&self.file, &e);
+            let (line, column) = if d.line <= 1 {
+                (pos.line, pos.column + d.column.saturating_sub(1))
+            } else {
+                (pos.line + d.line - 1, d.column)
+            };
+            (self.at(pos), Diagnostic { line, column, ..d })
+        }))
+    }
+}
+
+/// The first non-whitespace position at or after `line:column` (ron reports some errors
+/// at the blank before the offending value).
+fn skip_whitespace(text: &str, line: usize, column: usize) -> (usize, usize) {
+    let Some(start) = text.split_inclusive('\n').nth(line.saturating_sub(1)) else {
+        return (line, column);
+    };
+    let offset = text
+        .split_inclusive('\n')
+        .take(line.saturating_sub(1))
+        .map(str::len)
+        .sum::<usize>();
+    let from = start
+        .char_indices()
+        .nth(column.saturating_sub(1))
+        .map_or(start.len(), |(i, _)| i);
+    let (mut line, mut column) = (line, column);
+    for c in text[offset + from..].chars() {
+        if !c.is_whitespace() {
+            return (line, column);
+        }
+        if c == '\n' {
+            line += 1;
+            column = 1;
+        } else {
+            column += 1;
+        }
+    }
+    (line, column)
+}
+
+/// A `ron` syntax or type error as a diagnostic in `file`.
+fn from_ron(file: &Path, err: &SpannedError) -> Diagnostic {
+    let (message, help) = ron_message(&err.code);
+    Diagnostic {
+        file: file.to_path_buf(),
+        line: err.span.start.line,
+        column: err.span.start.col,
+        message,
+        help,
+    }
+}
+
+fn in_outer(outer: &Option<String>) -> String {
+    outer
+        .as_ref()
+        .map(|o| format!(" in {o}"))
+        .unwrap_or_default()
+}
+
+fn ron_message(code: &RonError) -> (String, Option<String>) {
+    match code {
+        RonError::NoSuchStructField {
+            expected,
+            found,
+            outer,
+        } => (
+            format!("unknown field \"{found}\"{}", in_outer(outer)),
+            suggestion(found, expected, "fields"),
+        ),
+        RonError::NoSuchEnumVariant {
+            expected,
+            found,
+            outer,
+        } => (
+            format!(
+                "unknown variant \"{found}\"{}",
+                outer
+                    .as_ref()
+                    .map(|o| format!(" of {o}"))
+                    .unwrap_or_default()
+            ),
+            suggestion(found, expected, "variants"),
+        ),
+        RonError::MissingStructField { field, outer } => (
+            format!("missing field \"{field}\"{}", in_outer(outer)),
+            None,
+        ),
+        RonError::DuplicateStructField { field, outer } => (
+            format!("field \"{field}\" is given twice{}", in_outer(outer)),
+            None,
+        ),
+        RonError::ExpectedDifferentStructName { expected, found } => {
+            (format!("expected {expected}(…) but found {found}(…)"), None)
+        }
+        RonError::InvalidValueForType { expected, found } => {
+            (format!("expected {expected} but found {found}"), None)
+        }
+        RonError::ExpectedDifferentLength { expected, found } => {
+            let found = match found {
+                0 => "no elements".to_string(),
+                1 => "one element".to_string(),
+                n => format!("{n} elements"),
+            };
+            (format!("expected {expected} but found {found}"), None)
+        }
+        RonError::Message(text) => (text.clone(), None),
+        RonError::ExpectedComma => (
+            "expected comma".into(),
+            Some("separate fields and list items with `,`".into()),
+        ),
+        RonError::Eof => (
+            "unexpected end of file".into(),
+            Some("a `(` or `[` is not closed".into()),
+        ),
+        RonError::TrailingCharacters => (
+            "unexpected text after the scene".into(),
+            Some("a file holds exactly one `Scene(...)`; check for an extra `)`".into()),
+        ),
+        other => (lowercase_first(&other.to_string()), None),
+    }
+}
+
+fn lowercase_first(text: &str) -> String {
+    let mut chars = text.chars();
+    match chars.next() {
+        Some(c) => c.to_lowercase().chain(chars).collect(),
+        None => String::new(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn values_are_located_by_path_with_parent_fallback() {
+        let text = "Scene(\n  objects: [\n    (name: \"q\", mesh: Sphere(radius: 2)),\n  ],\n)";
+        let read = read(Path::new("a/s.ron"), text.as_bytes()).unwrap();
+        let at = |p: &str| read.map.locate(p).to_string();
+        assert_eq!(at("objects[0]"), "a/s.ron:3:5");
+        assert_eq!(at("objects[0].mesh.Sphere.radius"), "a/s.ron:3:38");
+        // `material` is not written: its element's position.
+        assert_eq!(at("objects[0].material"), "a/s.ron:3:5");
+        assert!(read.warnings.is_empty());
+    }
+
+    #[test]
+    fn syntax_errors_and_bad_bytes_are_located_in_the_file() {
+        let errors =
+            read(Path::new("s.ron"), b"Scene(\n  objects: [] cameras: [],\n)").unwrap_err();
+        let got: Vec<String> = errors.iter().map(ToString::to_string).collect();
+        assert_eq!(
+            got,
+            ["s.ron:2:15: error: expected comma\n  help: separate fields and list items with `,`"]
+        );
+        let errors = read(Path::new("s.ron"), b"Scene(\n  // caf\xff\n)").unwrap_err();
+        assert_eq!(
+            errors[0].to_string(),
+            "s.ron:2:9: error: invalid UTF-8\n  help: a RON scene file is UTF-8 text"
+        );
+    }
+}
