@@ -1,5 +1,5 @@
-//! Building [`TriMesh`]es: inline polygons (checked, fan-triangulated) and Wavefront OBJ
-//! files (via `tobj`, every model merged into one mesh).
+//! Building [`TriMesh`]es: inline polygons (checked, fan-triangulated) and mesh files (read
+//! by [`super::mesh_files`], their errors reported as scene diagnostics).
 //!
 //! Positions are read in f64 and, when they lie far from the object origin, re-centred
 //! before they are rounded to f32 ([`super::rebase::centre_positions`]); a triangle whose area is zero in f64 arithmetic on
@@ -7,13 +7,12 @@
 //! normals are normalised; a normal set with a non-finite or zero-length entry is dropped
 //! whole, as is a non-finite UV set. Normals and UVs are kept only when every vertex has one.
 
-use std::io::{self, BufRead, Read};
-use std::path::Path;
-
 use glam::{DVec3, Vec2, Vec3};
 
-use super::desc::V3;
-use super::validate::Checker;
+use super::desc::{ObjectDesc, V3};
+use super::diagnostics::{Diagnostic, Sources};
+use super::mesh_files::{self, Location, MeshData, MeshFileError, MeshFormat};
+use super::validate::{Checker, Item};
 use crate::components::TriMesh;
 
 /// A mesh and what was dropped while building it.
@@ -42,20 +41,6 @@ impl BuiltMesh {
         }
         self.offset = DVec3::ZERO;
     }
-}
-
-/// Why an OBJ file did not load.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub enum ObjError {
-    /// The file could not be read (reason for a message).
-    Read(String),
-    /// The file did not parse; `line` where known.
-    Parse {
-        /// 1-based line of the offending statement.
-        line: Option<usize>,
-        /// What `tobj` said.
-        message: String,
-    },
 }
 
 /// Checks an inline mesh, reporting at `path` (`objects[i].mesh.Inline`). Returns whether it
@@ -243,173 +228,77 @@ fn compact(mesh: &mut TriMesh) {
     }
 }
 
-/// Loads an OBJ file, merging all its models (materials and `mtllib` are ignored).
-pub fn load_obj(path: &Path) -> Result<BuiltMesh, ObjError> {
-    let bytes = std::fs::read(path).map_err(|e| ObjError::Read(super::include::io_reason(&e)))?;
-    parse_obj(&bytes)
+/// Builds the mesh a mesh file describes (see [`finish`] for what is dropped).
+pub fn from_data(data: MeshData) -> BuiltMesh {
+    finish(data.positions, data.normals, data.uvs, data.triangles)
 }
 
-/// Parses OBJ text (see [`load_obj`]).
-pub fn parse_obj(bytes: &[u8]) -> Result<BuiltMesh, ObjError> {
-    let options = obj_options();
-    let mut reader = LineCounter {
-        inner: bytes,
-        newlines: 0,
-        ends_line: true,
+/// Loads the mesh file that object `it` names, or only checks that it exists when the
+/// object is not `reachable`. Errors are recorded in `src`: an unreadable file at the file
+/// name in the scene; a parse error at its place in the mesh file (line and column), or, for
+/// a binary position, at the file name with the byte offset in the message; the help names
+/// the object and the scene position that loads the file.
+pub fn load_file(
+    src: &mut Sources,
+    it: &Item<'_, ObjectDesc>,
+    format: MeshFormat,
+    file: &str,
+    reachable: bool,
+) -> Option<BuiltMesh> {
+    let path = src.files[it.file].dir().join(file);
+    let at = it.at(&format!(".mesh.{}.file", format.variant()));
+    let result = if reachable {
+        mesh_files::read(format, &path).map(|data| Some(from_data(data)))
+    } else {
+        std::fs::metadata(&path)
+            .map(|_| None)
+            .map_err(|e| MeshFileError::Read {
+                reason: super::include::io_reason(&e),
+            })
     };
-    let result = std::panic::catch_unwind(move || {
-        let r = tobj::load_obj_buf(&mut reader, &options, |_| {
-            Err(tobj::LoadError::OpenFileFailed)
-        });
-        (r, reader.newlines, reader.ends_line)
-    });
-    let (result, newlines, ends_line) = result.map_err(|_| ObjError::Parse {
-        line: None,
-        message: "the OBJ parser failed on this file".into(),
-    })?;
-    let models = match result {
-        Ok((models, _)) => models,
-        Err(err) => {
-            let line = match err {
-                tobj::LoadError::FaceVertexOutOfBounds
-                | tobj::LoadError::FaceTexCoordOutOfBounds
-                | tobj::LoadError::FaceNormalOutOfBounds => bad_face_line(bytes),
-                tobj::LoadError::ReadError => None,
-                _ => Some(if ends_line { newlines } else { newlines + 1 }.max(1)),
+    let kind = format.name();
+    match result {
+        Ok(b) => b,
+        Err(MeshFileError::Read { reason }) => {
+            src.error(
+                it.file,
+                &at,
+                format!("cannot read {kind} file \"{}\": {reason}", path.display()),
+                None,
+            );
+            None
+        }
+        Err(MeshFileError::Parse {
+            at: location,
+            message,
+        }) => {
+            let pos = src.pos(it.file, &at);
+            let referrer = src.where_is(it.file, &at);
+            let (file, line, column, message) = match location {
+                Location::Text { line, column } => (path.clone(), line, column, message),
+                Location::Byte(offset) => (
+                    src.files[it.file].path.clone(),
+                    pos.line,
+                    pos.column,
+                    format!("at byte {offset}: {message}"),
+                ),
             };
-            return Err(ObjError::Parse {
-                line,
-                message: err.to_string(),
-            });
+            src.push(
+                it.file,
+                pos,
+                Diagnostic {
+                    file,
+                    line,
+                    column,
+                    message: format!("invalid {kind} file \"{}\": {message}", path.display()),
+                    help: Some(format!(
+                        "loaded for object \"{}\" at {referrer}",
+                        it.desc.name
+                    )),
+                },
+            );
+            None
         }
-    };
-    let mut positions = Vec::new();
-    let mut normals = Some(Vec::new());
-    let mut uvs = Some(Vec::new());
-    let mut triangles = Vec::new();
-    for model in &models {
-        let m = &model.mesh;
-        let base = positions.len() as u32;
-        let count = m.positions.len() / 3;
-        positions.extend(
-            m.positions
-                .chunks_exact(3)
-                .map(|p| DVec3::new(p[0], p[1], p[2])),
-        );
-        if m.normals.len() == count * 3 {
-            if let Some(n) = &mut normals {
-                n.extend(
-                    m.normals
-                        .chunks_exact(3)
-                        .map(|p| Vec3::new(p[0] as f32, p[1] as f32, p[2] as f32)),
-                );
-            }
-        } else {
-            normals = None;
-        }
-        if m.texcoords.len() == count * 2 {
-            if let Some(u) = &mut uvs {
-                u.extend(
-                    m.texcoords
-                        .chunks_exact(2)
-                        .map(|p| Vec2::new(p[0] as f32, p[1] as f32)),
-                );
-            }
-        } else {
-            uvs = None;
-        }
-        for t in m.indices.chunks_exact(3) {
-            let t = [t[0], t[1], t[2]];
-            if t.iter().all(|&i| (i as usize) < count) {
-                triangles.push(t.map(|i| base + i));
-            }
-        }
-    }
-    if positions.is_empty() {
-        normals = None;
-        uvs = None;
-    }
-    Ok(finish(positions, normals, uvs, triangles))
-}
-
-#[allow(
-    clippy::field_reassign_with_default,
-    reason = "the struct gains fields with tobj features; a literal would not compile then"
-)]
-fn obj_options() -> tobj::LoadOptions {
-    let mut options = tobj::LoadOptions::default();
-    options.single_index = true;
-    options.triangulate = true;
-    options.ignore_points = true;
-    options.ignore_lines = true;
-    options
-}
-
-/// The first `f` statement with an out-of-range `v`, `vt` or `vn` index.
-fn bad_face_line(bytes: &[u8]) -> Option<usize> {
-    let text = String::from_utf8_lossy(bytes);
-    let (mut v, mut vt, mut vn) = (0i64, 0i64, 0i64);
-    for (number, line) in text.lines().enumerate() {
-        let mut words = line.split_whitespace();
-        match words.next() {
-            Some("v") => v += 1,
-            Some("vt") => vt += 1,
-            Some("vn") => vn += 1,
-            Some("f") => {
-                for word in words {
-                    for (k, part) in word.split('/').enumerate() {
-                        let count = [v, vt, vn].get(k).copied().unwrap_or(0);
-                        let Ok(i) = part.parse::<i64>() else { continue };
-                        let resolved = if i < 0 { count + i } else { i - 1 };
-                        if resolved < 0 || resolved >= count {
-                            return Some(number + 1);
-                        }
-                    }
-                }
-            }
-            _ => {}
-        }
-    }
-    None
-}
-
-/// Counts the lines a `BufRead` consumer has taken.
-struct LineCounter<'a> {
-    inner: &'a [u8],
-    newlines: usize,
-    ends_line: bool,
-}
-
-impl LineCounter<'_> {
-    fn count(&mut self, taken: &[u8]) {
-        self.newlines += taken.iter().filter(|&&b| b == b'\n').count();
-        if let Some(&last) = taken.last() {
-            self.ends_line = last == b'\n';
-        }
-    }
-}
-
-impl Read for LineCounter<'_> {
-    fn read(&mut self, buf: &mut [u8]) -> io::Result<usize> {
-        let n = self.inner.len().min(buf.len());
-        buf[..n].copy_from_slice(&self.inner[..n]);
-        let (taken, rest) = self.inner.split_at(n);
-        self.count(taken);
-        self.inner = rest;
-        Ok(n)
-    }
-}
-
-impl BufRead for LineCounter<'_> {
-    fn fill_buf(&mut self) -> io::Result<&[u8]> {
-        Ok(self.inner)
-    }
-
-    fn consume(&mut self, amt: usize) {
-        let amt = amt.min(self.inner.len());
-        let (taken, rest) = self.inner.split_at(amt);
-        self.count(taken);
-        self.inner = rest;
     }
 }
 
@@ -432,29 +321,9 @@ mod tests {
     }
 
     #[test]
-    fn obj_errors_have_lines() {
-        let bad = b"v 0 0 0\nv 1 0 0\nv x 1 0\nf 1 2 3\n";
-        assert_eq!(
-            parse_obj(bad).unwrap_err(),
-            ObjError::Parse {
-                line: Some(3),
-                message: "position parse error".into()
-            }
-        );
-        let oob = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 9\no next\n";
-        assert_eq!(
-            parse_obj(oob).unwrap_err(),
-            ObjError::Parse {
-                line: Some(5),
-                message: "face vertex index out of bounds".into()
-            }
-        );
-    }
-
-    #[test]
     fn obj_nan_vertices_are_dropped_and_compacted() {
         let obj = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nv nan 0 0\nf 1 2 3\nf 1 2 4\n";
-        let built = parse_obj(obj).unwrap();
+        let built = from_data(super::mesh_files::obj::parse(obj).unwrap());
         assert_eq!(built.dropped, 1);
         assert_eq!(built.mesh.positions.len(), 3);
         assert!(built.mesh.positions.iter().all(|p| p.is_finite()));

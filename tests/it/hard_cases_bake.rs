@@ -251,25 +251,11 @@ fn h25_no_light_leaks_under_a_penetrating_wall() {
 #[test]
 fn h26_bilinear_taps_land_on_valid_texels_after_dilation() {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/meshes/torus.obj");
-    let (models, _) = tobj::load_obj(
-        &path,
-        &tobj::LoadOptions {
-            triangulate: true,
-            single_index: true,
-            ..Default::default()
-        },
-    )
-    .unwrap();
-    let m = &models[0].mesh;
+    let bytes = std::fs::read(&path).unwrap();
     let mesh = TriMesh {
-        positions: m
-            .positions
-            .chunks(3)
-            .map(|p| Vec3::new(p[0] as f32, p[1] as f32, p[2] as f32))
-            .collect(),
         normals: None,
         uvs: None,
-        triangles: m.indices.chunks(3).map(|t| [t[0], t[1], t[2]]).collect(),
+        ..stagelight::scene::parse_obj_bytes(&bytes).unwrap()
     };
     let uvs = stagelight::bake::corner_uvs(&mesh, UvSource::Unwrap, 128, 2).unwrap();
     let mut world = World::new();

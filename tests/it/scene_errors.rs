@@ -336,7 +336,7 @@ fn obj_parse() {
         "obj_parse.ron",
         &[
             concat!(
-                "tests/fixtures/scenes/bad/meshes/broken.obj:4:1: error: invalid OBJ file \"tests/fixtures/scenes/bad/meshes/broken.obj\": position parse error\n",
+                "tests/fixtures/scenes/bad/meshes/broken.obj:4:5: error: invalid OBJ file \"tests/fixtures/scenes/bad/meshes/broken.obj\": \"l\" is not a number\n",
                 "  help: loaded for object \"broken\" at tests/fixtures/scenes/bad/obj_parse.ron:2:48",
             ),
         ],

@@ -78,9 +78,14 @@ impl ObjectGeometry {
     }
 }
 
-/// Whether a stage generates this mesh (everything but `Obj` and `Inline`).
+/// Whether a stage generates this mesh (everything but mesh files and `Inline`).
 pub fn is_generated(mesh: &MeshDesc) -> bool {
-    !matches!(mesh, MeshDesc::Obj { .. } | MeshDesc::Inline { .. })
+    !is_loaded(mesh)
+}
+
+/// Whether the loader builds this mesh: a mesh file or `Inline`.
+pub fn is_loaded(mesh: &MeshDesc) -> bool {
+    matches!(mesh, MeshDesc::Inline { .. }) || super::mesh_files::mesh_file(mesh).is_some()
 }
 
 /// Short name of a mesh kind for messages (`"torus"`, `"OBJ mesh"`).
@@ -136,7 +141,7 @@ fn check_object(
     };
     let mut ok = true;
     let generated = match &d.mesh {
-        MeshDesc::Obj { .. } | MeshDesc::Inline { .. } => None,
+        mesh if is_loaded(mesh) => None,
         MeshDesc::Scatter { .. } => match (scatter::template(&mut ck, &ctx, &d.mesh), refs) {
             (Some(template), Some((prototype, surface))) => Some(Generated::Scatter {
                 prototype,
@@ -208,13 +213,11 @@ pub fn warnings(m: &Merged<'_>, geometry: &[Option<ObjectGeometry>]) -> Vec<Stri
     let mut out = Vec::new();
     for (it, g) in m.objects.iter().zip(geometry) {
         let Some(g) = g else { continue };
-        let polygonal = matches!(
-            it.desc.mesh,
-            MeshDesc::Obj { .. }
-                | MeshDesc::Inline { .. }
-                | MeshDesc::Stairs { .. }
-                | MeshDesc::Grid { .. }
-        );
+        let polygonal = is_loaded(&it.desc.mesh)
+            || matches!(
+                it.desc.mesh,
+                MeshDesc::Stairs { .. } | MeshDesc::Grid { .. }
+            );
         let displaced = g
             .displacement
             .as_ref()

@@ -116,13 +116,8 @@ pub fn resolve(src: &mut Sources, m: &Merged<'_>) -> Vec<Option<(usize, usize)>>
                         "{field} \"{name}\" is a scatter: scatters cannot be nested"
                     ))
                 } else if field == "surface"
-                    && !matches!(
-                        target,
-                        MeshDesc::Obj { .. }
-                            | MeshDesc::Inline { .. }
-                            | MeshDesc::Grid { .. }
-                            | MeshDesc::Stairs { .. }
-                    )
+                    && !super::is_loaded(target)
+                    && !matches!(target, MeshDesc::Grid { .. } | MeshDesc::Stairs { .. })
                 {
                     Some(format!(
                         "surface \"{name}\" is a {}: a scatter needs a polygon mesh \

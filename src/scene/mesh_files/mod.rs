@@ -1,0 +1,167 @@
+//! Mesh files: one reader per format ([`obj`], …), each turning a file's bytes into the same
+//! [`MeshData`] or a located [`MeshFileError`]. This module owns the format list
+//! ([`MeshFormat`]), the shared description and error, and the dispatch; it knows nothing
+//! of scenes or diagnostics ([`super::mesh_load`] turns the results into meshes and
+//! messages).
+//!
+//! Adding a format is one reader file here, one [`MeshFormat`] arm and its `MeshDesc`
+//! variant.
+
+pub mod obj;
+
+use std::fmt;
+use std::path::Path;
+
+use glam::{DVec3, Vec2, Vec3};
+
+use super::desc::MeshDesc;
+
+/// A mesh file's format, chosen by the `MeshDesc` variant that names the file.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MeshFormat {
+    /// Wavefront OBJ (`Obj(file: …)`), read by [`obj`].
+    Obj,
+}
+
+impl MeshFormat {
+    /// The format's name in messages (`"OBJ"`).
+    pub fn name(self) -> &'static str {
+        match self {
+            MeshFormat::Obj => "OBJ",
+        }
+    }
+
+    /// The scene format's variant that names such a file (`"Obj"` for `Obj(file: …)`).
+    pub fn variant(self) -> &'static str {
+        match self {
+            MeshFormat::Obj => "Obj",
+        }
+    }
+
+    /// Reads a file of this format from its bytes.
+    pub fn parse(self, bytes: &[u8]) -> Result<MeshData, MeshFileError> {
+        match self {
+            MeshFormat::Obj => obj::parse(bytes),
+        }
+    }
+}
+
+/// The mesh file an object's mesh names, if it names one: its format and path (as written,
+/// relative to the declaring scene file).
+pub fn mesh_file(mesh: &MeshDesc) -> Option<(MeshFormat, &str)> {
+    match mesh {
+        MeshDesc::Obj { file } => Some((MeshFormat::Obj, file)),
+        _ => None,
+    }
+}
+
+/// Reads and parses the mesh file at `path`.
+pub fn read(format: MeshFormat, path: &Path) -> Result<MeshData, MeshFileError> {
+    let bytes = std::fs::read(path).map_err(|e| MeshFileError::Read {
+        reason: super::include::io_reason(&e),
+    })?;
+    format.parse(&bytes)
+}
+
+/// A mesh as a file describes it, whatever the format: f64 positions, optional per-vertex
+/// normals and texture coordinates, triangles (polygons already fan-triangulated).
+///
+/// Invariants every reader keeps: `normals` and `uvs`, when present, have one entry per
+/// position; every triangle index is below `positions.len()`. Values are as written (they
+/// may be non-finite or degenerate; [`super::mesh_load`] drops what cannot be rendered).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct MeshData {
+    /// Vertex positions in object space, as written (f64).
+    pub positions: Vec<DVec3>,
+    /// Per-vertex shading normals, when every vertex has one.
+    pub normals: Option<Vec<Vec3>>,
+    /// Per-vertex texture coordinates, when every vertex has one.
+    pub uvs: Option<Vec<Vec2>>,
+    /// Triangles as indices into `positions`.
+    pub triangles: Vec<[u32; 3]>,
+}
+
+/// Where in a mesh file a problem is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Location {
+    /// A text position: 1-based line, and 1-based column in characters (a byte that is not
+    /// UTF-8 counts as one).
+    Text {
+        /// 1-based line.
+        line: usize,
+        /// 1-based column.
+        column: usize,
+    },
+    /// An offset in binary data, in bytes from the start of the file.
+    Byte(u64),
+}
+
+impl fmt::Display for Location {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Location::Text { line, column } => write!(f, "line {line}, column {column}"),
+            Location::Byte(offset) => write!(f, "byte {offset}"),
+        }
+    }
+}
+
+/// Why a mesh file did not load.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum MeshFileError {
+    /// The file could not be read.
+    Read {
+        /// Why, for a message (`"file not found"`).
+        reason: String,
+    },
+    /// The file was read but its content is not a valid file of the format.
+    Parse {
+        /// Where the first problem is.
+        at: Location,
+        /// What is wrong, for a message.
+        message: String,
+    },
+}
+
+impl MeshFileError {
+    /// A parse error at a text position.
+    pub fn at_line(line: usize, column: usize, message: impl Into<String>) -> Self {
+        MeshFileError::Parse {
+            at: Location::Text { line, column },
+            message: message.into(),
+        }
+    }
+}
+
+impl fmt::Display for MeshFileError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            MeshFileError::Read { reason } => write!(f, "cannot read the file: {reason}"),
+            MeshFileError::Parse { at, message } => write!(f, "{at}: {message}"),
+        }
+    }
+}
+
+impl std::error::Error for MeshFileError {}
+
+/// `word` for a message: the text (escaped) when it is UTF-8, else its bytes escaped
+/// (`\xff`); at most 24 characters, then `…`.
+pub fn shown(word: &[u8]) -> String {
+    let escaped: String = match std::str::from_utf8(word) {
+        Ok(text) => text.escape_debug().collect(),
+        Err(_) => word.escape_ascii().to_string(),
+    };
+    let mut chars = escaped.chars();
+    let head: String = chars.by_ref().take(24).collect();
+    if chars.next().is_some() {
+        format!("{head}…")
+    } else {
+        head
+    }
+}
+
+/// 1-based column of byte `offset` of `line` (characters before it, a byte that is not UTF-8
+/// counting as one, plus one).
+pub fn column(line: &[u8], offset: usize) -> usize {
+    let prefix = &line[..offset.min(line.len())];
+    String::from_utf8_lossy(prefix).chars().count() + 1
+}
