@@ -26,6 +26,7 @@ mod interrupt;
 mod lens_shaders;
 mod light_scenes;
 mod lights;
+mod mesh_files;
 mod photons;
 mod radiometry;
 mod ray_counts;
