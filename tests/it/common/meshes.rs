@@ -1,6 +1,6 @@
 //! Analytic test meshes: UV spheres and closed boxes with outward faces.
 
-use glam::{DVec3, Vec3};
+use glam::DVec3;
 use stagelight::components::TriMesh;
 
 /// A UV sphere (poles on ±Z) of radius `r`, `nu × nv` segments, outward, no UVs.
