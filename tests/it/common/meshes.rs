@@ -1,6 +1,6 @@
-//! Analytic test meshes: UV spheres and closed boxes with outward faces.
+//! Analytic test meshes: a UV sphere with outward faces (the closed box is `box_mesh` in `mod.rs`).
 
-use glam::{DVec3, Vec3};
+use glam::DVec3;
 use stagelight::components::TriMesh;
 
 /// A UV sphere (poles on ±Z) of radius `r`, `nu × nv` segments, outward, no UVs.
