@@ -1,4 +1,4 @@
-//! Analytic test meshes: UV spheres and closed boxes with outward faces.
+//! Analytic test meshes: a UV sphere with outward faces (the closed box is `box_mesh` in `mod.rs`).
 
 use glam::DVec3;
 use stagelight::components::TriMesh;
