@@ -3,9 +3,12 @@
 # compares the output files byte for byte. Exit 0 when every file is identical.
 #
 #   scripts/compare_assets.sh BASE_REV [SCENE...]
+#   BASE_BIN=/path/to/old/stagelight scripts/compare_assets.sh BASE_REV   (skip building it)
 #
-# Builds both in release (BASE_REV in a temporary git worktree, its own target dir under
-# target/compare-base so repeated runs reuse it). Outputs go to target/compare/{base,head}/.
+# Builds both with PROFILE (default release; PROFILE=dev for the test profile), BASE_REV in a
+# temporary git worktree with its own target dir under target/compare-base so repeated runs
+# reuse it. The working tree builds into CARGO_TARGET_DIR (default target/). Outputs go to
+# target/compare/{base,head}/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 base_rev=${1:?usage: scripts/compare_assets.sh BASE_REV [SCENE...]}
@@ -16,15 +19,21 @@ if [ ${#scenes[@]} -eq 0 ]; then
     mapfile -t scenes < <(ls assets/scenes/*.ron)
 fi
 
-base_tree=$(mktemp -d /tmp/stagelight-base.XXXXXX)
-trap 'git worktree remove --force "$base_tree" >/dev/null 2>&1 || true' EXIT
-git worktree add --detach -q "$base_tree" "$base_rev"
-echo "== building $base_rev"
-(cd "$base_tree" && cargo build --release -q --target-dir "$root/target/compare-base")
-echo "== building the working tree"
-cargo build --release -q
-base_bin="$root/target/compare-base/release/stagelight"
-head_bin="$root/target/release/stagelight"
+profile=${PROFILE:-release}
+dir_of_profile=$([ "$profile" = dev ] && echo debug || echo "$profile")
+head_target=${CARGO_TARGET_DIR:-$root/target}
+base_bin=${BASE_BIN:-}
+if [ -z "$base_bin" ]; then
+    base_tree=$(mktemp -d /tmp/stagelight-base.XXXXXX)
+    trap 'git worktree remove --force "$base_tree" >/dev/null 2>&1 || true' EXIT
+    git worktree add --detach -q "$base_tree" "$base_rev"
+    echo "== building $base_rev ($profile)"
+    (cd "$base_tree" && cargo build --profile "$profile" -q --target-dir "$root/target/compare-base")
+    base_bin="$root/target/compare-base/$dir_of_profile/stagelight"
+fi
+echo "== building the working tree ($profile)"
+cargo build --profile "$profile" -q
+head_bin="$head_target/$dir_of_profile/stagelight"
 
 out="$root/target/compare"
 rm -rf "$out"
