@@ -9,12 +9,13 @@ target. Two graphs are checked:
 - one level down: edges between the child modules of one top-level module (for example
   `shading::environment` and `shading::lights`).
 
-A cycle is a strongly connected component with more than one module. Cycles named in the
-allow-list (argument `--allow A,B` once per cycle, modules sorted or not) are printed but do
-not fail the check; any other cycle exits with status 1. Comments are ignored; test modules
-count like any other code.
+A cycle is a strongly connected component with more than one module. Allowed cycles are
+printed but do not fail the check: `--allow A,B` names one cycle by its modules (in any
+order; it must match the cycle exactly), `--allow-within M` allows every cycle among the
+children of top-level module M. Any other cycle exits with status 1. Comments and string
+literals are ignored; test modules count like any other code.
 
-Usage: module_cycles.py [--allow frame,schedule] [--allow scene::a,scene::b] [SRC_DIR]
+Usage: module_cycles.py [--allow frame,schedule] [--allow-within scene] [SRC_DIR]
 """
 
 import os
@@ -165,12 +166,14 @@ def sccs(graph):
 
 
 def main(argv):
-    allow, src = set(), "src"
+    allow, within, src = set(), set(), "src"
     args = list(argv)
     while args:
         a = args.pop(0)
         if a == "--allow":
             allow.add(frozenset(args.pop(0).split(",")))
+        elif a == "--allow-within":
+            within.add(args.pop(0))
         else:
             src = a
     top_level = {
@@ -203,7 +206,10 @@ def main(argv):
 
     failed = False
     for comp in sccs(graph):
-        allowed = frozenset(comp) in allow
+        parents = {m.split("::")[0] for m in comp}
+        allowed = frozenset(comp) in allow or (
+            all("::" in m for m in comp) and len(parents) == 1 and parents <= within
+        )
         tag = "allowed (owned elsewhere)" if allowed else "error"
         print(f"{tag}: import cycle: {' <-> '.join(comp)}")
         for a in comp:

@@ -312,6 +312,9 @@ pub fn scene_bounds(geometry: &SceneGeometry) -> (Vec3, Vec3) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::components::{Emitter, LightShape};
+    use crate::sampling::Sampler;
+    use crate::shading::integrator::fixture::{self, Object};
 
     #[test]
     fn spot_power_integrates_its_cone() {
@@ -322,6 +325,88 @@ mod tests {
         // cos¹ beam over the full hemisphere: π.
         let omega = spot_solid_angle(0.0, 0.0, 1.0);
         assert!((omega - PI).abs() < 1e-4, "{omega}");
+    }
+
+    fn lights(emitters: &[Emitter]) -> LightSet {
+        LightSet::new(emitters, None, 1)
+    }
+
+    fn grey_floor() -> SceneGeometry {
+        fixture::geometry(vec![Object {
+            triangles: fixture::floor(2.0, 0.0),
+            material: fixture::lambert(0.5),
+        }])
+    }
+
+    #[test]
+    fn light_powers_follow_from_their_units() {
+        let geometry = grey_floor();
+        let point = Emitter::new(LightShape::Point { position: Vec3::Z }, Vec3::splat(2.0));
+        let rect = Emitter::new(
+            LightShape::Rect {
+                corner: Vec3::new(0.0, 0.0, 3.0),
+                edge_u: Vec3::new(0.0, 2.0, 0.0),
+                edge_v: Vec3::new(1.5, 0.0, 0.0),
+            },
+            Vec3::splat(5.0),
+        );
+        // Point: 4π·I. Rectangle: π·L·A.
+        let e = Emission::new(&lights(std::slice::from_ref(&point)), &geometry);
+        assert!((e.total_power().x - 8.0 * PI).abs() < 1e-4);
+        let e = Emission::new(&lights(std::slice::from_ref(&rect)), &geometry);
+        assert!((e.total_power().x - PI * 5.0 * 3.0).abs() < 1e-4);
+        let e = Emission::new(&lights(&[point, rect]), &geometry);
+        assert_eq!(e.light_count(), 2);
+        assert!((e.total_power().x - 23.0 * PI).abs() < 1e-3);
+        // The environment emits no photons: nothing to sample.
+        assert!(Emission::new(&LightSet::default(), &geometry).is_empty());
+    }
+
+    #[test]
+    fn every_photon_of_grey_lights_carries_the_total_power() {
+        // A light is chosen with probability ∝ its power and the photon's power is divided by
+        // that probability: with grey lights every photon carries exactly the total.
+        let geometry = grey_floor();
+        let emitters = [
+            Emitter::new(
+                LightShape::Point {
+                    position: Vec3::new(0.0, 0.0, 1.0),
+                },
+                Vec3::splat(1.0),
+            ),
+            Emitter::new(
+                LightShape::Disc {
+                    center: Vec3::new(1.0, 0.0, 2.0),
+                    normal: -Vec3::Z,
+                    radius: 0.5,
+                },
+                Vec3::splat(3.0),
+            ),
+        ];
+        let e = Emission::new(&lights(&emitters), &geometry);
+        let total = e.total_power();
+        let mut from_disc = 0;
+        for i in 0..4000u64 {
+            let mut s = Sampler::for_item(1, i, 0);
+            let u = [(); 5].map(|_| s.next_1d());
+            let p = e.sample(&geometry, u).unwrap();
+            assert!(
+                (p.power - total).abs().max_element() < 1e-4 * total.x,
+                "{p:?}"
+            );
+            assert!((p.ray.dir.length() - 1.0).abs() < 1e-5);
+            if (p.ray.origin.z - 2.0).abs() < 1e-6 {
+                // Disc photons leave its lower face.
+                let centre = Vec3::new(1.0, 0.0, 2.0);
+                assert!(p.ray.dir.z < 0.0 && (p.ray.origin - centre).length() <= 0.5 + 1e-5);
+                from_disc += 1;
+            }
+        }
+        // P(disc) = 3π·π·0.25 / (4π + 0.75π²); photons are independent (σ ≈ 0.008).
+        let p_disc = 0.75 * PI * PI / (4.0 * PI + 0.75 * PI * PI);
+        let got = from_disc as f32 / 4000.0;
+        println!("disc photons: {got} (probability {p_disc})");
+        assert!((got - p_disc).abs() < 0.03, "{got} vs {p_disc}");
     }
 
     #[test]

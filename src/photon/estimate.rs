@@ -94,3 +94,157 @@ fn final_gather(
         Vec3::ZERO
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use std::f32::consts::PI;
+
+    use super::*;
+    use crate::photon::{Photon, PhotonMap};
+    use crate::settings::RenderSettings;
+    use crate::shading::integrator::fixture::{self, Object};
+    use crate::shading::lights::LightSet;
+
+    fn photon(x: f32, y: f32, power: f32, incoming: Vec3) -> Photon {
+        Photon {
+            position: Vec3::new(x, y, 0.0),
+            power: Vec3::splat(power),
+            incoming,
+            normal: Vec3::Z,
+        }
+    }
+
+    /// 8 photons at distance 0.5 of the origin, the 9th at 1, and 4 more at 2 (power 0.01).
+    fn rings(incoming: Vec3) -> Vec<Photon> {
+        let ring = |r: f32, n: usize, phase: f32| {
+            (0..n).map(move |i| {
+                let a = phase + i as f32 * std::f32::consts::TAU / n as f32;
+                (r * a.cos(), r * a.sin())
+            })
+        };
+        ring(0.5, 8, 0.1)
+            .chain([(1.0, 0.0)])
+            .chain(ring(2.0, 4, 0.3))
+            .map(|(x, y)| photon(x, y, 0.01, incoming))
+            .collect()
+    }
+
+    fn map(photons: Vec<Photon>, k: usize, radius: f32) -> GatherMap {
+        GatherMap {
+            map: PhotonMap::build(photons),
+            gather: k,
+            radius,
+            final_gather: 0,
+            emitted: 1000,
+        }
+    }
+
+    #[test]
+    fn the_estimate_of_known_photons_is_the_closed_form() {
+        let rho = 0.6;
+        let geometry = fixture::geometry(vec![Object {
+            triangles: fixture::floor(10.0, 0.0),
+            material: fixture::lambert(rho),
+        }]);
+        let lights = LightSet::default();
+        let s = RenderSettings::default();
+        let ctx = ShadeContext::new(&geometry, &lights, &s);
+        let (ray, hit) = fixture::hit(&geometry, Vec3::new(0.0, 0.0, 1.0), -Vec3::Z);
+        let v = Vertex::new(&ctx, &ray, &hit);
+        let bsdf = v.bsdf().unwrap();
+        let mut scratch = Vec::new();
+        let from_above = Vec3::new(0.6, 0.0, 0.8);
+        // k = 9: the 8 nearest summed over π·r₉² (r₉ = 1), each reflecting f = ρ/π.
+        let l = reflected(&map(rings(from_above), 9, 10.0), &v, &bsdf, &mut scratch);
+        let expected = 8.0 * 0.01 * rho / PI / PI;
+        assert!(
+            (l - Vec3::splat(expected)).abs().max_element() < 1e-5 * expected,
+            "{l}"
+        );
+        // Fewer than k within r_max = 1.5: the 9 inside, over π·1.5².
+        let l = reflected(&map(rings(from_above), 20, 1.5), &v, &bsdf, &mut scratch);
+        let expected = 9.0 * 0.01 * rho / PI / (PI * 2.25);
+        assert!(
+            (l - Vec3::splat(expected)).abs().max_element() < 1e-5 * expected,
+            "{l}"
+        );
+        // Light arriving from below the surface reflects nothing.
+        let l = reflected(&map(rings(-from_above), 9, 10.0), &v, &bsdf, &mut scratch);
+        assert_eq!(l, Vec3::ZERO);
+    }
+
+    #[test]
+    fn photon_maps_add_the_caustic_estimate_and_draw_nothing_without_a_global_map() {
+        let geometry = fixture::geometry(vec![Object {
+            triangles: fixture::floor(10.0, 0.0),
+            material: fixture::lambert(0.5),
+        }]);
+        let lights = LightSet::default();
+        let s = RenderSettings::default();
+        let ctx = ShadeContext::new(&geometry, &lights, &s);
+        let (ray, hit) = fixture::hit(&geometry, Vec3::new(0.0, 0.0, 1.0), -Vec3::Z);
+        let v = Vertex::new(&ctx, &ray, &hit);
+        let bsdf = v.bsdf().unwrap();
+        let caustics = map(rings(Vec3::Z), 9, 10.0);
+        let expected = reflected(&caustics, &v, &bsdf, &mut Vec::new());
+        let maps = PhotonMaps {
+            caustics: Some(caustics),
+            global: None,
+        };
+        let mut sampler = Sampler::new(4, 0);
+        assert_eq!(maps.radiance(&ctx, &v, &bsdf, &mut sampler), expected);
+        assert!(expected.x > 0.0);
+        assert_eq!(sampler.next_1d(), Sampler::new(4, 0).next_1d());
+        let none = PhotonMaps::default();
+        assert_eq!(none.radiance(&ctx, &v, &bsdf, &mut sampler), Vec3::ZERO);
+    }
+
+    #[test]
+    fn final_gather_reads_the_global_map_where_its_rays_land() {
+        // Seen from a grey ceiling (ρc, facing down, 1 above a floor covered by photons of
+        // uniform irradiance E): the floor reflects ρf·E/π everywhere within the photons'
+        // square, so the ceiling reflects ρc·ρf·E/π times the cosine-weighted fraction of
+        // rays that land inside [−20, 20]² (> 0.998); rays that escape add nothing.
+        let (rho_c, rho_f) = (0.5, 0.8);
+        let geometry = fixture::geometry(vec![
+            Object {
+                triangles: fixture::floor(30.0, 0.0),
+                material: fixture::lambert(rho_f),
+            },
+            Object {
+                triangles: fixture::quad(
+                    Vec3::new(-30.0, -30.0, 1.0),
+                    Vec3::new(0.0, 60.0, 0.0),
+                    Vec3::new(60.0, 0.0, 0.0),
+                ),
+                material: fixture::lambert(rho_c),
+            },
+        ]);
+        let lights = LightSet::default();
+        let s = RenderSettings::default();
+        let ctx = ShadeContext::new(&geometry, &lights, &s);
+        // A 401 × 401 grid of spacing 0.1 on [−20, 20]²: E = Φ / 0.01.
+        let power = 1e-4;
+        let photons: Vec<Photon> = (0..401 * 401)
+            .map(|i| {
+                let (x, y) = ((i % 401) as f32 * 0.1 - 20.0, (i / 401) as f32 * 0.1 - 20.0);
+                photon(x, y, power, Vec3::Z)
+            })
+            .collect();
+        let global = GatherMap {
+            final_gather: 256,
+            ..map(photons, 64, 1.0)
+        };
+        let maps = PhotonMaps {
+            caustics: None,
+            global: Some(global),
+        };
+        let (ray, hit) = fixture::hit(&geometry, Vec3::new(0.05, 0.0, 0.5), Vec3::Z);
+        let v = Vertex::new(&ctx, &ray, &hit);
+        let bsdf = v.bsdf().unwrap();
+        let l = maps.radiance(&ctx, &v, &bsdf, &mut Sampler::new(2, 0));
+        let expected = rho_c * rho_f * (power / 0.01) / PI;
+        println!("final gather: {l} (expected {expected})");
+        assert!((l.x / expected - 1.0).abs() < 0.05, "{l} vs {expected}");
+    }
+}

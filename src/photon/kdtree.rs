@@ -283,4 +283,71 @@ mod tests {
         map.nearest(Vec3::ZERO, None, 50, 1.5, &mut out);
         assert_eq!(out.len(), 4);
     }
+
+    /// Deterministic pseudo-random points in the unit cube (a 64-bit LCG).
+    fn scattered(n: usize, seed: u64) -> Vec<Vec3> {
+        let mut x = seed;
+        let mut next = move || {
+            x = x
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            (x >> 40) as f32 / (1u64 << 24) as f32
+        };
+        (0..n).map(|_| Vec3::new(next(), next(), next())).collect()
+    }
+
+    #[test]
+    fn k_nearest_matches_brute_force_on_scattered_points() {
+        let photons: Vec<Photon> = scattered(3000, 1)
+            .into_iter()
+            .map(|p| Photon {
+                position: p,
+                power: Vec3::ONE,
+                incoming: Vec3::Z,
+                normal: Vec3::Z,
+            })
+            .collect();
+        let map = PhotonMap::build(photons);
+        let mut out = Vec::new();
+        for (qi, q) in scattered(40, 2).into_iter().enumerate() {
+            for (k, r_max) in [(1, 1.0), (7, 0.2), (50, 0.15), (200, 2.0)] {
+                map.nearest(q, None, k, r_max, &mut out);
+                let mut brute: Vec<(f32, u32)> = map
+                    .photons()
+                    .iter()
+                    .enumerate()
+                    .map(|(i, ph)| ((ph.position - q).length_squared(), i as u32))
+                    .filter(|&(d2, _)| d2 < r_max * r_max)
+                    .collect();
+                brute.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+                brute.truncate(k);
+                let got: Vec<(f32, u32)> = out.iter().map(|n| (n.dist2, n.index)).collect();
+                assert_eq!(got, brute, "query {qi}, k {k}, r_max {r_max}");
+            }
+        }
+    }
+
+    #[test]
+    fn fixed_radius_estimate_counts_the_disc_and_invalid_photons_are_dropped() {
+        let mut photons = grid(10);
+        photons[5].position = Vec3::NAN;
+        photons[6].power = Vec3::INFINITY;
+        let map = PhotonMap::build(photons);
+        assert_eq!(map.len(), 98);
+        assert_eq!(map.total_power(), Vec3::splat(98.0));
+        // Within 1.2 of (3, 3): the centre and its 4 edge neighbours (diagonals are √2 away).
+        let mut scratch = Vec::new();
+        let e = map.estimate(
+            Vec3::new(3.0, 3.0, 0.0),
+            Vec3::Z,
+            Gather::Radius(1.2),
+            &mut scratch,
+            |_| Vec3::ONE,
+        );
+        let expected = 5.0 / (std::f32::consts::PI * 1.44);
+        assert!(
+            (e - Vec3::splat(expected)).abs().max_element() < 1e-6,
+            "{e}"
+        );
+    }
 }

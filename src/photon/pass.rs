@@ -75,3 +75,55 @@ pub fn trace_map(
     }
     Some(all)
 }
+
+#[cfg(test)]
+mod tests {
+    use glam::Vec3;
+
+    use super::*;
+    use crate::components::{Emitter, LightShape};
+    use crate::settings::RenderSettings;
+    use crate::shading::integrator::fixture::{self, Object};
+    use crate::shading::lights::LightSet;
+
+    /// A point light of intensity 1 at height 1 over a large grey floor: 4π W, of which the
+    /// half going down lands on the floor, and every bounce leaves the scene.
+    fn photons(kind: MapKind, n: u32, threads: usize, cancel: bool) -> Option<Vec<Photon>> {
+        let geometry = fixture::geometry(vec![Object {
+            triangles: fixture::floor(1000.0, 0.0),
+            material: fixture::lambert(0.5),
+        }]);
+        let position = Vec3::new(0.0, 0.0, 1.0);
+        let e = Emitter::new(LightShape::Point { position }, Vec3::ONE);
+        let lights = LightSet::new(&[e], None, 1);
+        let s = RenderSettings::default();
+        let ctx = ShadeContext::new(&geometry, &lights, &s);
+        let emission = Emission::new(&lights, &geometry);
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        let flag = AtomicBool::new(cancel);
+        pool.install(|| trace_map(&ctx, &emission, kind, n, 3, &flag))
+    }
+
+    #[test]
+    fn the_global_map_is_the_same_at_any_thread_count_with_exact_powers() {
+        let n = 6000;
+        let one = photons(MapKind::Global, n, 1, false).unwrap();
+        let three = photons(MapKind::Global, n, 3, false).unwrap();
+        assert_eq!(one, three);
+        // First hits only (bounces escape), each carrying Φ / N.
+        let each = Vec3::splat(4.0 * std::f32::consts::PI) * (1.0 / n as f32);
+        assert!(one.iter().all(|p| p.power == each && p.normal == Vec3::Z));
+        let fraction = one.len() as f64 / f64::from(n);
+        println!("stored {} of {n} photons ({fraction})", one.len());
+        assert!((fraction - 0.5).abs() < 0.03, "{fraction}");
+    }
+
+    #[test]
+    fn the_caustic_map_is_empty_without_specular_surfaces_and_cancel_stops() {
+        assert_eq!(photons(MapKind::Caustics, 2000, 2, false), Some(Vec::new()));
+        assert_eq!(photons(MapKind::Global, 2000, 2, true), None);
+    }
+}

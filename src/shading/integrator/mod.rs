@@ -15,6 +15,8 @@
 //! environment says (`depth_exceeded`).
 
 pub mod direct;
+#[cfg(test)]
+pub(crate) mod fixture;
 pub mod path;
 pub mod volume;
 
@@ -443,5 +445,200 @@ pub fn camera_hit(ctx: &ShadeContext<'_>, ray: &Ray) -> CameraHit {
                 .map_or(Vec3::ZERO, |(le, _)| le),
         ),
         (None, None) => CameraHit::Miss(Vec3::ZERO),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::f32::consts::PI;
+
+    use super::fixture::{self, Object};
+    use super::*;
+    use crate::components::{Emitter, LightShape};
+
+    fn settings(integrator: Integrator, max_depth: u32) -> RenderSettings {
+        RenderSettings {
+            integrator,
+            max_depth,
+            ..RenderSettings::default()
+        }
+    }
+
+    fn point_light(position: Vec3, intensity: f32) -> LightSet {
+        let e = Emitter::new(LightShape::Point { position }, Vec3::splat(intensity));
+        LightSet::new(&[e], None, 1)
+    }
+
+    /// Radiance seen along `dir` from `origin` (the ray must hit).
+    fn seen(ctx: &ShadeContext<'_>, origin: Vec3, dir: Vec3, sampler: &mut Sampler) -> Vec3 {
+        let (ray, hit) = fixture::hit(ctx.geometry, origin, dir);
+        shade_hit(ctx, &ray, &hit, sampler)
+    }
+
+    #[test]
+    fn lambert_floor_under_a_point_light_matches_the_closed_form() {
+        // L = ρ/π · I · cosθ / d² on a floor under a point light at height 2.
+        let (rho, intensity) = (0.5, 3.0);
+        let geometry = fixture::geometry(vec![Object {
+            triangles: fixture::floor(100.0, 0.0),
+            material: fixture::lambert(rho),
+        }]);
+        let lights = point_light(Vec3::new(0.0, 0.0, 2.0), intensity);
+        for integrator in [Integrator::Direct, Integrator::Path] {
+            let s = settings(integrator, 1);
+            let ctx = ShadeContext::new(&geometry, &lights, &s);
+            for x in [0.0f32, 0.5, 1.5, 3.0] {
+                let d2 = x * x + 4.0;
+                let expected = rho / PI * intensity * (2.0 / d2.sqrt()) / d2;
+                let mut sampler = Sampler::new(1, 0);
+                let l = seen(&ctx, Vec3::new(x, 0.0, 1.0), -Vec3::Z, &mut sampler);
+                println!("{integrator:?} x {x}: {l} (closed form {expected})");
+                assert!(
+                    (l - Vec3::splat(expected)).abs().max_element() < 1e-4 * expected,
+                    "{integrator:?} at x = {x}: {l} vs {expected}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn emission_shows_on_the_front_face_only() {
+        let mut m = fixture::lambert(0.5);
+        m.emission = Vec3::new(2.0, 1.0, 0.5);
+        let geometry = fixture::geometry(vec![Object {
+            triangles: fixture::floor(10.0, 0.0),
+            material: m,
+        }]);
+        let lights = LightSet::default();
+        let s = settings(Integrator::Direct, 4);
+        let ctx = ShadeContext::new(&geometry, &lights, &s);
+        let mut sampler = Sampler::new(0, 0);
+        let above = seen(&ctx, Vec3::new(0.3, 0.2, 1.0), -Vec3::Z, &mut sampler);
+        assert_eq!(above, Vec3::new(2.0, 1.0, 0.5));
+        let below = seen(&ctx, Vec3::new(0.3, 0.2, -1.0), Vec3::Z, &mut sampler);
+        assert_eq!(below, Vec3::ZERO);
+    }
+
+    /// Mean radiance at the centre of an inward-facing cube whose walls (albedo `rho`) all
+    /// emit radiance 1, over `n` camera rays in Sobol directions.
+    fn furnace(integrator: Integrator, max_depth: u32, rho: f32, n: u64) -> f64 {
+        let mut wall = fixture::lambert(rho);
+        wall.emission = Vec3::ONE;
+        let geometry = fixture::geometry(vec![Object {
+            triangles: fixture::inward_cube(1.0),
+            material: wall,
+        }]);
+        let lights = LightSet::new(&[], Some(&geometry), 4);
+        let s = settings(integrator, max_depth);
+        let ctx = ShadeContext::new(&geometry, &lights, &s);
+        let mut sum = 0.0f64;
+        for i in 0..n {
+            let mut sampler = Sampler::for_item(11, i, 0);
+            let u = sampler.next_2d();
+            let z = 1.0 - 2.0 * u.x;
+            let r = (1.0 - z * z).max(0.0).sqrt();
+            let phi = 2.0 * PI * u.y;
+            let dir = Vec3::new(r * phi.cos(), r * phi.sin(), z);
+            let l = seen(&ctx, Vec3::new(0.01, -0.02, 0.03), dir, &mut sampler);
+            assert!(l.is_finite() && l.min_element() >= 0.0, "{l}");
+            sum += f64::from(l.x);
+        }
+        sum / n as f64
+    }
+
+    #[test]
+    fn path_tracer_in_an_emitting_furnace_sums_the_bounces() {
+        // Uniform emission 1 everywhere: each bounce adds ρ^k, so depth D sees Σ_{k≤D} ρ^k.
+        let rho = 0.5f64;
+        let mean = furnace(Integrator::Path, 2, rho as f32, 4000);
+        let expected = 1.0 + rho + rho * rho;
+        println!("path furnace: {mean} (expected {expected})");
+        assert!((mean / expected - 1.0).abs() < 0.02, "{mean} vs {expected}");
+    }
+
+    #[test]
+    fn direct_integrator_in_an_emitting_furnace_adds_one_bounce() {
+        // Emission plus direct light from the emitting walls: 1 + ρ.
+        let rho = 0.5f64;
+        let mean = furnace(Integrator::Direct, 4, rho as f32, 2000);
+        println!("direct furnace: {mean} (expected {})", 1.0 + rho);
+        assert!((mean / (1.0 + rho) - 1.0).abs() < 0.02, "{mean}");
+    }
+
+    #[test]
+    fn depth_budgets_count_reflections_and_refractions_separately() {
+        let geometry = fixture::geometry(vec![Object {
+            triangles: fixture::floor(1.0, 0.0),
+            material: fixture::lambert(0.5),
+        }]);
+        let lights = LightSet::default();
+        let s = RenderSettings {
+            reflection_depth: 1,
+            refraction_depth: 2,
+            ..RenderSettings::default()
+        };
+        let ctx = ShadeContext::new(&geometry, &lights, &s);
+        let r1 = Depth::FIRST.after(&ctx, true, false).unwrap();
+        assert_eq!((r1.vertex, r1.reflections, r1.refractions), (2, 1, 0));
+        assert_eq!(r1.after(&ctx, true, false), None);
+        let t2 = r1
+            .after(&ctx, false, true)
+            .unwrap()
+            .after(&ctx, false, true);
+        assert_eq!(t2.map(|d| (d.vertex, d.refractions)), Some((4, 2)));
+        assert_eq!(t2.unwrap().after(&ctx, false, true), None);
+        // Diffuse scattering counts vertices only.
+        let mut d = Depth::FIRST;
+        for _ in 0..10 {
+            d = d.after(&ctx, false, false).unwrap();
+        }
+        assert_eq!((d.vertex, d.reflections, d.refractions), (11, 0, 0));
+    }
+
+    /// A photon estimate that adds a constant.
+    struct Constant(Vec3);
+
+    impl PhotonRadiance for Constant {
+        fn radiance(
+            &self,
+            _: &ShadeContext<'_>,
+            _: &Vertex<'_>,
+            _: &Bsdf,
+            _: &mut Sampler,
+        ) -> Vec3 {
+            self.0
+        }
+    }
+
+    #[test]
+    fn photon_radiance_is_added_once_at_diffuse_points_only() {
+        let lights = point_light(Vec3::new(0.0, 0.0, 2.0), 1.0);
+        let s = settings(Integrator::Direct, 4);
+        let extra = Constant(Vec3::new(0.25, 0.5, 1.0));
+        for (shader_is_diffuse, material) in [
+            (true, fixture::lambert(0.7)),
+            (
+                false,
+                fixture::material(Shader::Mirror {
+                    color: Vec3::splat(0.9),
+                }),
+            ),
+        ] {
+            let geometry = fixture::geometry(vec![Object {
+                triangles: fixture::floor(5.0, 0.0),
+                material,
+            }]);
+            let plain = ShadeContext::new(&geometry, &lights, &s);
+            let with = ShadeContext::new(&geometry, &lights, &s).with_photons(Some(&extra));
+            let o = Vec3::new(0.5, 0.0, 1.0);
+            let a = seen(&plain, o, -Vec3::Z, &mut Sampler::new(3, 0));
+            let b = seen(&with, o, -Vec3::Z, &mut Sampler::new(3, 0));
+            let added = if shader_is_diffuse {
+                extra.0
+            } else {
+                Vec3::ZERO
+            };
+            assert_eq!(b, a + added, "diffuse {shader_is_diffuse}");
+        }
     }
 }
