@@ -19,6 +19,11 @@ pub enum MeshDesc {
         /// Path of the OBJ file.
         file: String,
     },
+    /// PLY file (ASCII or binary), relative to the declaring scene file.
+    Ply {
+        /// Path of the PLY file.
+        file: String,
+    },
     /// Polygons written in the scene.
     Inline {
         /// Vertex positions.
@@ -183,7 +188,7 @@ pub enum MeshDesc {
     Scatter {
         /// Object whose copies are placed.
         prototype: String,
-        /// Object whose mesh the copies are scattered over (Obj, Inline, Grid or Stairs).
+        /// Object whose mesh the copies are scattered over (Obj, Ply, Inline, Grid or Stairs).
         surface: String,
         /// Copies, default 100 (clamped to 10 000 000).
         #[serde(default = "hundred")]

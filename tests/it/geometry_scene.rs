@@ -397,7 +397,7 @@ fn nan_in_a_patch_control_point() {
 fn scatter_over_a_surface_without_a_mesh() {
     check(
         "scatter_surface.ron",
-        &["scatter_surface.ron:6:71: error: surface \"planet\" is a sphere: a scatter needs a polygon mesh (Obj, Inline, Grid or Stairs)"],
+        &["scatter_surface.ron:6:71: error: surface \"planet\" is a sphere: a scatter needs a polygon mesh (Obj, Ply, Inline, Grid or Stairs)"],
     );
 }
 

@@ -5,6 +5,7 @@ use std::path::Path;
 use std::sync::Arc;
 
 use stagelight::components::TriMesh;
+use stagelight::scene::mesh_files::MeshFormat;
 
 const DIR: &str = "tests/fixtures/meshes";
 
@@ -68,7 +69,11 @@ fn prose_is_not_obj() {
 /// A PLY file named as an OBJ file is located at its magic word.
 #[test]
 fn a_ply_file_is_not_obj() {
-    expect("tri_ascii.ply", "1:1", "\"ply\" is not an OBJ statement");
+    expect(
+        "tri_ascii.ply",
+        "1:1",
+        "\"ply\" is not an OBJ statement: this is a PLY file (load it with Ply(file: …))",
+    );
 }
 
 /// A face naming a texture coordinate the file does not have.
@@ -115,4 +120,129 @@ fn missing_file() {
             "{DIR}/scene.ron:2:47: error: cannot read OBJ file \"{DIR}/nothing.obj\": file not found"
         )]
     );
+}
+
+/// The diagnostics of loading `file` as a PLY mesh.
+fn ply_errors(file: &str) -> Vec<String> {
+    match load(&format!("Ply(file: \"{file}\")")) {
+        Ok(_) => panic!("{file} loaded"),
+        Err(e) => e,
+    }
+}
+
+/// A box of quads with an octagonal lid, normals and UVs: `box.obj` and the same mesh
+/// written as PLY by `plyfile` (`scripts/make_mesh_fixtures.py`), ASCII and binary of both
+/// byte orders, load to the same bits and render the same bytes.
+#[test]
+fn obj_and_ply_render_the_same_bytes() {
+    let render = |mesh: &str| {
+        let text = format!(
+            r#"Scene(
+    options: (samples: 4, seed: 3, integrator: Path, max_depth: 2),
+    cameras: [(name: "cam", fov_y: 50.0, resolution: (24, 24),
+        placement: LookAt(eye: (2.5, 2.2, 2.8), target: (0.8, 0.4, 0.3), up: (0, 1, 0)), outputs: [])],
+    lights: [(name: "bulb", kind: Point(position: (1.5, 3, 2)), intensity: 4)],
+    materials: [(name: "white", shader: Lambert(albedo: (0.7, 0.7, 0.7)))],
+    objects: [(name: "box", mesh: {mesh}, material: "white")],
+    instances: [(name: "box_1", of: "box")],
+    groups: [(name: "world", members: ["box_1"])],
+    render: (root: "world", camera: "cam"),
+)"#
+        );
+        let mut scene =
+            stagelight::scene::load_scene_str(&text, &Path::new(DIR).join("render.ron"))
+                .unwrap_or_else(|e| panic!("{mesh}: {e}"));
+        assert_eq!(scene.warnings, Vec::<String>::new());
+        let mesh = mesh_of(&scene);
+        let mut frame = stagelight::frame::Frame::new(scene.settings.clone());
+        let stages: Vec<_> = stagelight::systems::STAGES
+            .iter()
+            .copied()
+            .filter(|s| s.name != "write_output")
+            .collect();
+        stagelight::schedule::run_stages(&stages, &mut scene.world, &mut frame).expect("render");
+        let beauty: Vec<[u32; 3]> = frame
+            .image
+            .expect("an image")
+            .beauty
+            .iter()
+            .map(|c| c.to_array().map(f32::to_bits))
+            .collect();
+        (mesh, beauty)
+    };
+    let (obj, obj_image) = render("Obj(file: \"box.obj\")");
+    assert_eq!((obj.positions.len(), obj.triangles.len()), (28, 16));
+    assert!(obj.normals.is_some() && obj.uvs.is_some());
+    assert!(obj_image.iter().any(|c| c[0] != 0), "the box is lit");
+    for file in ["box_ascii.ply", "box_le.ply", "box_be.ply"] {
+        let (ply, ply_image) = render(&format!("Ply(file: \"{file}\")"));
+        assert_eq!(format!("{ply:?}"), format!("{obj:?}"), "{file}");
+        assert!(ply_image == obj_image, "{file}: the images differ");
+    }
+}
+
+/// A bad PLY header is an error at its line and column in the PLY file.
+#[test]
+fn ply_bad_header() {
+    assert_eq!(
+        ply_errors("missing_vt.obj"),
+        [format!(
+            "{DIR}/missing_vt.obj:1:1: error: invalid PLY file \"{DIR}/missing_vt.obj\": a PLY \
+             file starts with the line \"ply\"\n  help: loaded for object \"thing\" at \
+             {DIR}/scene.ron:2:47"
+        )]
+    );
+}
+
+/// An error in binary data is reported at the file name with its byte offset.
+#[test]
+fn ply_truncated_binary_data() {
+    assert_eq!(
+        ply_errors("truncated_le.ply"),
+        [format!(
+            "{DIR}/scene.ron:2:47: error: invalid PLY file \"{DIR}/truncated_le.ply\": at byte \
+             1810: the file ends inside face 5 of the 6 faces the header declares (its \
+             \"vertex_indices\" value)\n  help: loaded for object \"thing\" at {DIR}/scene.ron:2:47"
+        )]
+    );
+}
+
+/// A face that names a vertex the file does not have, in ASCII data.
+#[test]
+fn ply_index_out_of_range() {
+    assert_eq!(
+        ply_errors("bad_index.ply"),
+        [format!(
+            "{DIR}/bad_index.ply:14:7: error: invalid PLY file \"{DIR}/bad_index.ply\": face 0 \
+             refers to vertex 3, but the file has 3 vertices\n  help: loaded for object \
+             \"thing\" at {DIR}/scene.ron:2:47"
+        )]
+    );
+}
+
+/// Replays the PLY fuzz corpus (`fuzz/corpus/ply/`) through the fuzz target's checks.
+#[test]
+fn ply_corpus_parses_to_checked_meshes_or_errors() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("fuzz/corpus/ply");
+    let mut files: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
+    files.sort();
+    assert!(files.len() >= 4, "{files:?}");
+    let mut loaded = 0;
+    for path in files {
+        let bytes = std::fs::read(&path).unwrap();
+        if let Ok(mesh) = stagelight::scene::parse_mesh_bytes(MeshFormat::Ply, &bytes) {
+            let n = mesh.positions.len();
+            assert!(
+                mesh.triangles.iter().flatten().all(|&i| (i as usize) < n),
+                "{}",
+                path.display()
+            );
+            assert!(mesh.positions.iter().all(|p| p.is_finite()));
+            loaded += 1;
+        }
+    }
+    assert!(loaded >= 2);
 }

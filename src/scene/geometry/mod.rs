@@ -92,6 +92,7 @@ pub fn is_loaded(mesh: &MeshDesc) -> bool {
 pub fn kind_name(mesh: &MeshDesc) -> &'static str {
     match mesh {
         MeshDesc::Obj { .. } => "OBJ mesh",
+        MeshDesc::Ply { .. } => "PLY mesh",
         MeshDesc::Inline { .. } => "inline mesh",
         MeshDesc::Sphere { .. } => "sphere",
         MeshDesc::Cylinder { .. } => "cylinder",

@@ -121,7 +121,7 @@ pub fn resolve(src: &mut Sources, m: &Merged<'_>) -> Vec<Option<(usize, usize)>>
                 {
                     Some(format!(
                         "surface \"{name}\" is a {}: a scatter needs a polygon mesh \
-                         (Obj, Inline, Grid or Stairs)",
+                         (Obj, Ply, Inline, Grid or Stairs)",
                         kind_name(target)
                     ))
                 } else {

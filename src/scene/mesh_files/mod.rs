@@ -1,4 +1,4 @@
-//! Mesh files: one reader per format ([`obj`], …), each turning a file's bytes into the same
+//! Mesh files: one reader per format ([`obj`], [`ply`]), each turning a file's bytes into the same
 //! [`MeshData`] or a located [`MeshFileError`]. This module owns the format list
 //! ([`MeshFormat`]), the shared description and error, and the dispatch; it knows nothing
 //! of scenes or diagnostics ([`super::mesh_load`] turns the results into meshes and
@@ -8,6 +8,7 @@
 //! variant.
 
 pub mod obj;
+pub mod ply;
 
 use std::fmt;
 use std::path::Path;
@@ -21,6 +22,8 @@ use super::desc::MeshDesc;
 pub enum MeshFormat {
     /// Wavefront OBJ (`Obj(file: …)`), read by [`obj`].
     Obj,
+    /// PLY, ASCII or binary (`Ply(file: …)`), read by [`ply`].
+    Ply,
 }
 
 impl MeshFormat {
@@ -28,6 +31,7 @@ impl MeshFormat {
     pub fn name(self) -> &'static str {
         match self {
             MeshFormat::Obj => "OBJ",
+            MeshFormat::Ply => "PLY",
         }
     }
 
@@ -35,6 +39,7 @@ impl MeshFormat {
     pub fn variant(self) -> &'static str {
         match self {
             MeshFormat::Obj => "Obj",
+            MeshFormat::Ply => "Ply",
         }
     }
 
@@ -42,6 +47,7 @@ impl MeshFormat {
     pub fn parse(self, bytes: &[u8]) -> Result<MeshData, MeshFileError> {
         match self {
             MeshFormat::Obj => obj::parse(bytes),
+            MeshFormat::Ply => ply::parse(bytes),
         }
     }
 }
@@ -51,6 +57,7 @@ impl MeshFormat {
 pub fn mesh_file(mesh: &MeshDesc) -> Option<(MeshFormat, &str)> {
     match mesh {
         MeshDesc::Obj { file } => Some((MeshFormat::Obj, file)),
+        MeshDesc::Ply { file } => Some((MeshFormat::Ply, file)),
         _ => None,
     }
 }

@@ -155,6 +155,11 @@ impl Reader {
                 utf8_name(line, start, "material")
             }
             _ if keyword.starts_with(b"#") || IGNORED.contains(&keyword) => Ok(()),
+            b"ply" if self.line == 1 => Err((
+                at,
+                "\"ply\" is not an OBJ statement: this is a PLY file (load it with Ply(file: …))"
+                    .into(),
+            )),
             _ => Err((
                 at,
                 format!("\"{}\" is not an OBJ statement", shown(keyword)),
@@ -467,7 +472,12 @@ mod tests {
     fn a_file_that_is_not_obj_is_an_error_at_its_first_word() {
         assert_eq!(
             error(b"ply\nformat ascii 1.0\n"),
-            (1, 1, "\"ply\" is not an OBJ statement".into())
+            (
+                1,
+                1,
+                "\"ply\" is not an OBJ statement: this is a PLY file (load it with Ply(file: …))"
+                    .into()
+            )
         );
         assert_eq!(
             error(b"# a note\n  The quick brown fox\n"),
