@@ -18,12 +18,10 @@ fi
 
 echo "== layering: import cycles between modules of src/"
 # Allowed cycles, owned by other work in flight (issue 10, point 5):
-# - frame <-> schedule (`RunReport`): the lead's Frame/report split;
 # - cycles among the children of scene/ (validate <-> samples/lights/shaders through
 #   `Checker`, desc <-> desc_*, nodes <-> nodes_phenomena): the importer-seam rework of
 #   src/scene/ (helper seam10).
 # Remove an entry when its cycle is gone; a new cycle anywhere else fails.
 python3 scripts/module_cycles.py \
-    --allow frame,schedule \
     --allow-within scene \
     src

@@ -249,7 +249,11 @@ mod tests {
             .iter()
             .map(|i| i.mesh.triangles.len())
             .sum();
-        assert_eq!(on_instances as u64, 2 + work.items, "the square and the diced ball");
+        assert_eq!(
+            on_instances as u64,
+            2 + work.items,
+            "the square and the diced ball"
+        );
         assert!(!should_run(&world, &frame).run, "nothing left to dice");
     }
 

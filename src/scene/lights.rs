@@ -3,8 +3,8 @@
 
 use glam::DVec3;
 
+use super::checker::{Checker, Item};
 use super::desc::{LightDesc, LightKindDesc};
-use super::validate::{Checker, Item};
 use crate::components::LightShape;
 
 /// A radius: finite and positive.

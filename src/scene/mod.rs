@@ -21,6 +21,7 @@
 //! The format is documented in `docs/scene-format.md`.
 
 pub(crate) mod bake;
+pub(crate) mod checker;
 pub(crate) mod dag;
 pub mod desc;
 pub mod desc_camera;

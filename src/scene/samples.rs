@@ -1,7 +1,7 @@
 //! Checks the `samples` option: a fixed count, or adaptive `(min, max, contrast)`.
 
+use super::checker::Checker;
 use super::desc::SamplesDesc;
-use super::validate::Checker;
 use crate::settings::AdaptiveSamples;
 
 /// The uniform sample count and the adaptive settings of `samples` (errors recorded at

@@ -5,8 +5,8 @@
 
 use glam::{DVec3, Vec3};
 
+use super::checker::Checker;
 use super::desc::{ShaderDesc, V3};
-use super::validate::Checker;
 use crate::components::Shader;
 
 /// Checks one shader description at `path` (the path of the `shader` value itself).

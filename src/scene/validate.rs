@@ -6,51 +6,19 @@ use std::path::{Path, PathBuf};
 
 use glam::{DAffine3, DMat3, DVec3};
 
+pub use super::checker::{Checker, Item};
 use super::desc::{
     BvhQualityDesc, CameraDesc, FaceDesc, FilterDesc, FormatDesc, GroupDesc, InstanceDesc,
     IntegratorDesc, LightDesc, LightKindDesc, MaterialDesc, ObjectDesc, OptionsDesc, OutputDesc,
-    PassDesc, PhotonMapDesc, PlacementDesc, RenderDesc, SceneDesc, M4, V3,
+    PassDesc, PhotonMapDesc, PlacementDesc, RenderDesc, SceneDesc,
 };
 use super::diagnostics::Sources;
-use super::import::SourcePos;
 use crate::components::{
     Camera, Emitter, ImageFormat, LightShape, Material, OutputSpec, Pass, Shader,
 };
 use crate::settings::{
     BvhQuality, Face, Integrator, PhotonMapSettings, PhotonSettings, PixelFilter, RenderSettings,
 };
-
-/// One element of the merged scene: where it was written and what it says.
-#[derive(Debug)]
-pub struct Item<'a, T> {
-    /// File index in [`Sources::files`] (whose map locates the values inside the element).
-    pub file: usize,
-    /// Path of the element in its file's description (`materials[3]`).
-    pub path: String,
-    /// Where the element itself was written, from its reader's map.
-    pub pos: SourcePos,
-    /// The element.
-    pub desc: &'a T,
-}
-
-impl<'a, T> Item<'a, T> {
-    /// The element at `path` of file `file`, located through the file's map.
-    pub fn new(src: &Sources, file: usize, path: String, desc: &'a T) -> Self {
-        Self {
-            file,
-            pos: src.pos(file, &path),
-            path,
-            desc,
-        }
-    }
-}
-
-impl<T> Item<'_, T> {
-    /// Path of a value inside the element (`suffix` starts with `.` or `[`).
-    pub fn at(&self, suffix: &str) -> String {
-        format!("{}{suffix}", self.path)
-    }
-}
 
 /// All files' elements, in load order.
 #[derive(Debug, Default)]
@@ -127,111 +95,6 @@ pub fn merge<'a>(src: &mut Sources, scenes: &'a [Option<SceneDesc>]) -> Merged<'
         );
     }
     m
-}
-
-/// Records errors about the values of one element.
-pub struct Checker<'s> {
-    /// Where errors go.
-    pub src: &'s mut Sources,
-    /// File of the element.
-    pub file: usize,
-}
-
-impl Checker<'_> {
-    /// Records an error at `path`.
-    pub fn error(&mut self, path: &str, message: impl Into<String>) {
-        self.src.error(self.file, path, message, None);
-    }
-
-    /// Whether `x` is finite and fits in f32 (every value ends up in f32); reports it at
-    /// `path` if not.
-    pub fn finite(&mut self, path: &str, what: &str, x: f64) -> bool {
-        if !x.is_finite() {
-            self.error(path, format!("{what} must be a finite number, found {x}"));
-            false
-        } else if x.abs() > f64::from(f32::MAX) {
-            self.error(path, format!("{what} {x:e} is beyond the f32 range"));
-            false
-        } else {
-            true
-        }
-    }
-
-    /// A finite vector (each non-finite component reported at `path[k]`).
-    pub fn v3(&mut self, path: &str, what: &str, v: V3) -> Option<DVec3> {
-        let ok = [v.0, v.1, v.2]
-            .iter()
-            .enumerate()
-            .fold(true, |ok, (k, &x)| {
-                self.finite(&format!("{path}[{k}]"), what, x) && ok
-            });
-        ok.then(|| DVec3::new(v.0, v.1, v.2))
-    }
-
-    /// A finite vector with no negative component.
-    pub fn colour(&mut self, path: &str, what: &str, v: V3) -> Option<DVec3> {
-        let c = self.v3(path, what, v)?;
-        let mut ok = true;
-        for (k, x) in c.to_array().into_iter().enumerate() {
-            if x < 0.0 {
-                self.error(
-                    &format!("{path}[{k}]"),
-                    format!("{what} must not be negative, found {x}"),
-                );
-                ok = false;
-            }
-        }
-        ok.then_some(c)
-    }
-
-    /// A finite, non-negative number.
-    pub fn non_negative(&mut self, path: &str, what: &str, x: f64) -> Option<f64> {
-        if !self.finite(path, what, x) {
-            return None;
-        }
-        if x < 0.0 {
-            self.error(path, format!("{what} must not be negative, found {x}"));
-            return None;
-        }
-        Some(x)
-    }
-
-    /// A finite row-major matrix (each non-finite entry reported at `path[r][c]`).
-    pub fn matrix(&mut self, path: &str, what: &str, m: &M4) -> bool {
-        let mut ok = true;
-        for (r, row) in m.iter().enumerate() {
-            for (c, &x) in row.iter().enumerate() {
-                ok &= self.finite(&format!("{path}[{r}][{c}]"), what, x);
-            }
-        }
-        ok
-    }
-
-    /// The affine transform of a row-major matrix whose last row must be `(0, 0, 0, 1)`.
-    pub fn affine(&mut self, path: &str, what: &str, m: &M4) -> Option<DAffine3> {
-        if !self.matrix(path, what, m) {
-            return None;
-        }
-        if m[3] != [0.0, 0.0, 0.0, 1.0] {
-            self.error(
-                &format!("{path}[3]"),
-                format!(
-                    "the last row of a {what} must be (0, 0, 0, 1), found {}",
-                    tuple(&m[3])
-                ),
-            );
-            return None;
-        }
-        let col = |j: usize| DVec3::new(m[0][j], m[1][j], m[2][j]);
-        Some(DAffine3::from_mat3_translation(
-            DMat3::from_cols(col(0), col(1), col(2)),
-            col(3),
-        ))
-    }
-}
-
-fn tuple(row: &[f64; 4]) -> String {
-    format!("({}, {}, {}, {})", row[0], row[1], row[2], row[3])
 }
 
 /// Render settings from `options` (defaults when absent).

@@ -162,6 +162,7 @@ fn obj_and_ply_render_the_same_bytes() {
             .collect();
         stagelight::schedule::run_stages(&stages, &mut scene.world, &mut frame).expect("render");
         let beauty: Vec<[u32; 3]> = frame
+            .outputs
             .image
             .expect("an image")
             .beauty
