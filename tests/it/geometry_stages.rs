@@ -292,7 +292,7 @@ fn bad_parameters_and_missing_cameras_fail_with_the_object_name() {
     let err = stagelight::systems::run(&mut world, &mut frame).unwrap_err();
     assert_eq!(
         err.to_string(),
-        "object \"donut\" (torus): parameter `r_minor` = -1 is out of range (expected > 0)"
+        "error: object \"donut\": torus: parameter `r_minor` = -1 is out of range (expected > 0)"
     );
 
     let mut world = World::new();
@@ -310,7 +310,7 @@ fn bad_parameters_and_missing_cameras_fail_with_the_object_name() {
     let err = stagelight::systems::run(&mut world, &mut frame).unwrap_err();
     assert_eq!(
         err.to_string(),
-        "object \"ring\": the approximation measures edges in raster pixels but the scene has no render camera"
+        "error: object \"ring\": the approximation measures edges in raster pixels but the scene has no render camera"
     );
 }
 
