@@ -3,7 +3,8 @@
 # compares the output files byte for byte. Exit 0 when every file is identical.
 #
 #   scripts/compare_assets.sh BASE_REV [SCENE...]
-#   BASE_BIN=/path/to/old/stagelight scripts/compare_assets.sh BASE_REV   (skip building it)
+#   BASE_BIN=/path/to/old/stagelight HEAD_BIN=/path/to/new/stagelight \
+#       scripts/compare_assets.sh BASE_REV                     (skip building either)
 #
 # Builds both with PROFILE (default release; PROFILE=dev for the test profile), BASE_REV in a
 # temporary git worktree with its own target dir under target/compare-base so repeated runs
@@ -31,9 +32,12 @@ if [ -z "$base_bin" ]; then
     (cd "$base_tree" && cargo build --profile "$profile" -q --target-dir "$root/target/compare-base")
     base_bin="$root/target/compare-base/$dir_of_profile/stagelight"
 fi
-echo "== building the working tree ($profile)"
-cargo build --profile "$profile" -q
-head_bin="$head_target/$dir_of_profile/stagelight"
+head_bin=${HEAD_BIN:-}
+if [ -z "$head_bin" ]; then
+    echo "== building the working tree ($profile)"
+    cargo build --profile "$profile" -q
+    head_bin="$head_target/$dir_of_profile/stagelight"
+fi
 
 out="$root/target/compare"
 rm -rf "$out"
