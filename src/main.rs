@@ -42,6 +42,14 @@ enum Command {
     /// Print the stages in order with run/skip and the reason each would get for this scene,
     /// without running any.
     Plan(PlanArgs),
+    /// Write a scene in any readable format (RIB, RON) as the equivalent RON scene.
+    Convert {
+        /// Scene file (any readable format: .rib, .ron).
+        scene: PathBuf,
+        /// The RON file to write.
+        #[arg(short = 'o', long = "output")]
+        output: PathBuf,
+    },
     /// Validate a scene without rendering; exit 0 when it is renderable.
     Check {
         /// Scene file (RON).
@@ -203,6 +211,7 @@ fn main() -> ExitCode {
     match cli.command {
         Command::Check { scene } => check(&scene),
         Command::Plan(args) => plan(args),
+        Command::Convert { scene, output } => convert(&scene, &output),
         Command::Render(args) => render(args),
         Command::Bake(args) => bake(args),
         Command::Bench(args) => bench(args),
@@ -285,6 +294,50 @@ fn plan(args: PlanArgs) -> ExitCode {
             p.reason
         );
     }
+    ExitCode::SUCCESS
+}
+
+/// `stagelight convert SCENE -o OUT.ron`: checks the scene as `render` would, then writes
+/// its description (as its reader produced it; a RIB file's archives inlined) as RON that
+/// loads into the same description. Written to a temporary name, then renamed.
+fn convert(scene: &Path, output: &Path) -> ExitCode {
+    use stagelight::scene::import::{reader_for, to_ron::to_ron, FORMATS};
+    if let Err(code) = load(scene) {
+        return code;
+    }
+    let fail = |message: String| {
+        eprintln!("{message}");
+        ExitCode::from(EXIT_ERROR)
+    };
+    let bytes = match std::fs::read(scene) {
+        Ok(b) => b,
+        Err(e) => return fail(format!("cannot read {}: {e}", scene.display())),
+    };
+    let format = match reader_for(FORMATS, scene) {
+        Ok(f) => f,
+        Err((reason, help)) => {
+            return fail(format!("{}: {reason}\n  help: {help}", scene.display()))
+        }
+    };
+    let desc = match (format.read)(scene, &bytes) {
+        Ok(read) => read.desc,
+        Err(errors) => {
+            let text: Vec<String> = errors.iter().map(ToString::to_string).collect();
+            return fail(text.join("\n"));
+        }
+    };
+    let text = match to_ron(&desc) {
+        Ok(t) => t,
+        Err(e) => return fail(format!("cannot write {} as RON: {e}", scene.display())),
+    };
+    let mut tmp = output.as_os_str().to_owned();
+    tmp.push(".tmp");
+    let tmp = PathBuf::from(tmp);
+    if let Err(e) = std::fs::write(&tmp, text).and_then(|()| std::fs::rename(&tmp, output)) {
+        let _ = std::fs::remove_file(&tmp);
+        return fail(format!("cannot write {}: {e}", output.display()));
+    }
+    println!("{}: wrote {}", scene.display(), output.display());
     ExitCode::SUCCESS
 }
 

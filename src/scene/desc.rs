@@ -4,7 +4,7 @@
 //! Every struct denies unknown fields; every optional field has a default documented here
 //! and in `docs/scene-format.md`. Nothing is validated here: see [`super::validate`].
 
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 
 pub use super::desc_camera::{LensDesc, SamplesDesc, VolumeDesc};
 pub use super::desc_geometry::{
@@ -20,7 +20,7 @@ pub type V3 = (f64, f64, f64);
 pub type M4 = [[f64; 4]; 4];
 
 /// One scene file (the root file or an include). Every field is optional.
-#[derive(Debug, Clone, Default, Deserialize)]
+#[derive(Debug, Clone, Default, Deserialize, Serialize)]
 #[serde(rename = "Scene", deny_unknown_fields, default)]
 pub struct SceneDesc {
     /// Other scene files merged into this one, relative to this file.
@@ -48,7 +48,7 @@ pub struct SceneDesc {
 }
 
 /// `options: (...)`: render settings.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(rename = "Options", deny_unknown_fields, default)]
 pub struct OptionsDesc {
     /// Samples per pixel, default 4, at least 1; or adaptive `(min, max, contrast)`.
@@ -78,7 +78,7 @@ pub struct OptionsDesc {
 }
 
 /// `caustics: (...)` / `global_illumination: (...)` in `options`: one photon map's knobs.
-#[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize, Serialize)]
 #[serde(rename = "PhotonMap", deny_unknown_fields, default)]
 pub struct PhotonMapDesc {
     /// Photons emitted, default 100 000, at least 1.
@@ -122,7 +122,7 @@ impl Default for OptionsDesc {
 }
 
 /// Pixel filter.
-#[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize, Serialize)]
 #[serde(rename = "Filter", deny_unknown_fields)]
 pub enum FilterDesc {
     /// Box filter over the pixel.
@@ -147,7 +147,7 @@ fn default_radius() -> f64 {
 }
 
 /// Face visibility.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename = "Face")]
 pub enum FaceDesc {
     /// Front faces only.
@@ -157,7 +157,7 @@ pub enum FaceDesc {
 }
 
 /// BVH build quality.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename = "BvhQuality")]
 pub enum BvhQualityDesc {
     /// Cheapest build.
@@ -169,7 +169,7 @@ pub enum BvhQualityDesc {
 }
 
 /// Radiance integrator.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename = "Integrator")]
 pub enum IntegratorDesc {
     /// Direct lighting plus traced mirror/refraction rays.
@@ -179,7 +179,7 @@ pub enum IntegratorDesc {
 }
 
 /// `cameras: [(...)]`: a pinhole camera.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(rename = "Camera", deny_unknown_fields)]
 pub struct CameraDesc {
     /// Unique camera name.
@@ -208,7 +208,7 @@ pub struct CameraDesc {
 }
 
 /// `imager: (...)` on a camera: RenderMan `Exposure gain gamma` and `Imager "background"`.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(rename = "Imager", deny_unknown_fields)]
 pub struct ImagerDesc {
     /// Colour behind uncovered pixels, default none (black, transparent).
@@ -230,7 +230,7 @@ fn default_gain() -> f64 {
 }
 
 /// Tone-mapping operator.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Deserialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Deserialize, Serialize)]
 #[serde(rename = "ToneMap", deny_unknown_fields)]
 pub enum ToneMapDesc {
     /// Clip above 1.
@@ -241,7 +241,7 @@ pub enum ToneMapDesc {
 }
 
 /// Camera placement.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(rename = "Placement", deny_unknown_fields)]
 pub enum PlacementDesc {
     /// Look from `eye` at `target` with `up` (default `(0, 1, 0)`) roughly up.
@@ -263,7 +263,7 @@ fn default_up() -> V3 {
 }
 
 /// One output file of a camera.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(rename = "Output", deny_unknown_fields)]
 pub struct OutputDesc {
     /// Destination path, as written (relative to the working directory).
@@ -277,7 +277,7 @@ pub struct OutputDesc {
 }
 
 /// Output file format.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename = "Format")]
 pub enum FormatDesc {
     /// 8-bit PNG.
@@ -287,7 +287,7 @@ pub enum FormatDesc {
 }
 
 /// Image pass.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename = "Pass")]
 pub enum PassDesc {
     /// Shaded colour.
@@ -305,7 +305,7 @@ pub enum PassDesc {
 }
 
 /// `lights: [(...)]`: a light.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(rename = "Light", deny_unknown_fields)]
 pub struct LightDesc {
     /// Unique light name.
@@ -345,7 +345,7 @@ fn default_true() -> bool {
 }
 
 /// Light shape.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(rename = "LightKind", deny_unknown_fields)]
 pub enum LightKindDesc {
     /// Isotropic point light (W/sr).
@@ -410,7 +410,7 @@ pub enum LightKindDesc {
 }
 
 /// `environment: (...)`: the scene's environment (mental ray's environment shader).
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(rename = "Environment", deny_unknown_fields)]
 pub struct EnvironmentDesc {
     /// Where the radiance comes from.
@@ -435,7 +435,7 @@ fn default_depth_exceeded() -> DepthExceededDesc {
 }
 
 /// The environment's radiance.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(rename = "EnvironmentShader", deny_unknown_fields)]
 pub enum EnvironmentShaderDesc {
     /// The same radiance (W/(sr·m²)) from every direction.
@@ -454,7 +454,7 @@ pub enum EnvironmentShaderDesc {
 }
 
 /// What rays that exceed a trace-depth budget see.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename = "DepthExceeded")]
 pub enum DepthExceededDesc {
     /// The environment.
@@ -468,7 +468,7 @@ fn default_beam() -> f64 {
 }
 
 /// `materials: [(...)]`: a material.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(rename = "Material", deny_unknown_fields)]
 pub struct MaterialDesc {
     /// Unique material name.
@@ -493,7 +493,7 @@ pub struct MaterialDesc {
 }
 
 /// Surface shader.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(rename = "Shader", deny_unknown_fields)]
 pub enum ShaderDesc {
     /// Ideal diffuse.
@@ -771,7 +771,7 @@ fn default_ior3() -> V3 {
 }
 
 /// `objects: [(...)]`: a mesh prototype.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(rename = "Object", deny_unknown_fields)]
 pub struct ObjectDesc {
     /// Unique name among objects and groups.
@@ -793,7 +793,7 @@ pub struct ObjectDesc {
 }
 
 /// `instances: [(...)]`: a placed copy of an object or a group.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(rename = "Instance", deny_unknown_fields)]
 pub struct InstanceDesc {
     /// Unique instance name.
@@ -812,7 +812,7 @@ pub struct InstanceDesc {
 }
 
 /// `bake: (...)` on an instance of an object: textures to bake (`stagelight bake`).
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(rename = "Bake", deny_unknown_fields)]
 pub struct BakeDesc {
     /// Explicit size `(width, height)` in texels; give this or `texels_per_unit`.
@@ -851,7 +851,7 @@ fn default_padding() -> u32 {
 }
 
 /// UV source of a bake.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Deserialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Deserialize, Serialize)]
 #[serde(rename = "Uvs", deny_unknown_fields)]
 pub enum UvsDesc {
     /// The mesh's UVs; generated lightmap UVs when it has none.
@@ -864,7 +864,7 @@ pub enum UvsDesc {
 }
 
 /// One baked texture.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(rename = "BakeOutput", deny_unknown_fields)]
 pub struct BakeOutputDesc {
     /// What to bake.
@@ -878,7 +878,7 @@ pub struct BakeOutputDesc {
 }
 
 /// Kinds of baked texture.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(rename = "BakeKind", deny_unknown_fields)]
 pub enum BakeKindDesc {
     /// Ambient occlusion.
@@ -928,7 +928,7 @@ fn default_bake_depth() -> u32 {
 }
 
 /// What a lightmap stores.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Deserialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Deserialize, Serialize)]
 #[serde(rename = "LightmapStore", deny_unknown_fields)]
 pub enum LightmapStoreDesc {
     /// Irradiance, W/m².
@@ -939,7 +939,7 @@ pub enum LightmapStoreDesc {
 }
 
 /// Space of baked normals.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Deserialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Deserialize, Serialize)]
 #[serde(rename = "NormalSpace", deny_unknown_fields)]
 pub enum NormalSpaceDesc {
     /// World space.
@@ -950,7 +950,7 @@ pub enum NormalSpaceDesc {
 }
 
 /// Baked texture file format.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Deserialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Deserialize, Serialize)]
 #[serde(rename = "BakeFormat", deny_unknown_fields)]
 pub enum BakeFormatDesc {
     /// OpenEXR, linear f32.
@@ -963,7 +963,7 @@ pub enum BakeFormatDesc {
 }
 
 /// One step of an instance transform.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(rename = "Transform", deny_unknown_fields)]
 pub enum TransformDesc {
     /// Non-uniform scale.
@@ -982,7 +982,7 @@ pub enum TransformDesc {
 }
 
 /// `groups: [(...)]`: an instance group.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(rename = "Group", deny_unknown_fields)]
 pub struct GroupDesc {
     /// Unique name among objects and groups.
@@ -993,7 +993,7 @@ pub struct GroupDesc {
 }
 
 /// `render: (...)`: what to render.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(rename = "Render", deny_unknown_fields)]
 pub struct RenderDesc {
     /// Root group name.

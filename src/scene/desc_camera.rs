@@ -4,12 +4,13 @@
 use std::fmt;
 
 use serde::de::{self, MapAccess, Visitor};
-use serde::{Deserialize, Deserializer};
+use serde::ser::SerializeStruct;
+use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
 use super::desc::V3;
 
 /// A lens shader in a camera's `lens: [...]` list.
-#[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize, Serialize)]
 #[serde(rename = "Lens", deny_unknown_fields)]
 pub enum LensDesc {
     /// Thin-lens depth of field; exactly one of `radius` and `fstop`.
@@ -34,7 +35,7 @@ pub enum LensDesc {
 }
 
 /// A volume shader (`atmosphere` on a camera, `interior` on a material).
-#[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize, Serialize)]
 #[serde(rename = "Volume", deny_unknown_fields)]
 pub enum VolumeDesc {
     /// Homogeneous fog.
@@ -70,6 +71,22 @@ pub enum SamplesDesc {
 impl Default for SamplesDesc {
     fn default() -> Self {
         SamplesDesc::Fixed(4)
+    }
+}
+
+/// Written back as the loader reads it: a bare count, or `(min: …, max: …, contrast: …)`.
+impl Serialize for SamplesDesc {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        match *self {
+            SamplesDesc::Fixed(n) => s.serialize_u64(n),
+            SamplesDesc::Adaptive { min, max, contrast } => {
+                let mut st = s.serialize_struct("", 3)?;
+                st.serialize_field("min", &min)?;
+                st.serialize_field("max", &max)?;
+                st.serialize_field("contrast", &contrast)?;
+                st.end()
+            }
+        }
     }
 }
 
@@ -123,7 +140,7 @@ impl<'de> Visitor<'de> for SamplesVisitor {
 mod tests {
     use super::*;
 
-    #[derive(Debug, Deserialize)]
+    #[derive(Debug, Deserialize, Serialize)]
     struct Holder {
         samples: SamplesDesc,
     }

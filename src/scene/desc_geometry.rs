@@ -6,12 +6,12 @@
 //! [`super::geometry`]. Field names follow the components of `docs/geometry.md`; the
 //! RenderMan spellings (`rmajor`, `thetamax`, …) are accepted as aliases.
 
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 
 use super::desc::V3;
 
 /// Mesh source of an object.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(rename = "Mesh", deny_unknown_fields)]
 pub enum MeshDesc {
     /// Wavefront OBJ file, relative to the declaring scene file.
@@ -209,7 +209,7 @@ pub enum MeshDesc {
 }
 
 /// Patch type and basis of a `PatchMesh`.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename = "Basis")]
 pub enum BasisDesc {
     /// Bilinear: 2×2 points per patch.
@@ -224,7 +224,7 @@ pub enum BasisDesc {
 }
 
 /// `approximation: …` on an object: how finely its surfaces are diced.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(rename = "Approximation", deny_unknown_fields)]
 pub enum ApproximationDesc {
     /// `u × v` segments per patch.
@@ -273,7 +273,7 @@ pub enum ApproximationDesc {
 }
 
 /// Where a spatial edge length is measured.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename = "Space")]
 pub enum SpaceDesc {
     /// Object units.
@@ -284,7 +284,7 @@ pub enum SpaceDesc {
 }
 
 /// `displacement: (...)` on an object.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(rename = "Displacement", deny_unknown_fields)]
 pub struct DisplacementDesc {
     /// The displacement along the unit normal, object units.
@@ -298,7 +298,7 @@ pub struct DisplacementDesc {
 }
 
 /// True or bump displacement.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename = "DisplacementMode")]
 pub enum DisplacementModeDesc {
     /// Move the vertices.
@@ -309,7 +309,7 @@ pub enum DisplacementModeDesc {
 }
 
 /// A scalar shader node.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(rename = "Scalar", deny_unknown_fields)]
 pub enum ScalarDesc {
     /// A constant.
@@ -362,7 +362,7 @@ pub enum ScalarDesc {
 }
 
 /// Texture coordinate read by `Sine`.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename = "Axis")]
 pub enum AxisDesc {
     /// `s` (u).

@@ -4,12 +4,12 @@
 
 use std::collections::BTreeMap;
 
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 
 use super::desc::V3;
 
 /// A node input: a number, a colour `(r, g, b)` or a node.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(untagged)]
 pub enum InputDesc {
     /// A constant number (a scalar; fed to a colour input it fills all three channels).
@@ -75,7 +75,7 @@ fn four() -> u32 {
 }
 
 /// A shader node.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(rename = "Node", deny_unknown_fields)]
 pub enum NodeDesc {
     /// Texture coordinates `(u, v, 0)` (colour).
@@ -270,7 +270,7 @@ pub const NODE_NAMES: &[&str] = &[
 ];
 
 /// Image wrap mode.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename = "Wrap")]
 pub enum WrapDesc {
     /// Tile.
@@ -281,7 +281,7 @@ pub enum WrapDesc {
 }
 
 /// How an image's numbers are encoded.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename = "ColorSpace")]
 pub enum EncodingDesc {
     /// sRGB curve.
@@ -291,7 +291,7 @@ pub enum EncodingDesc {
 }
 
 /// A colour space of `Convert`.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename = "Space")]
 pub enum ColourSpaceDesc {
     /// Red, green, blue.
@@ -304,7 +304,7 @@ pub enum ColourSpaceDesc {
 }
 
 /// `bump: (...)` on a material.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(rename = "Bump", deny_unknown_fields)]
 pub struct BumpDesc {
     /// Height along the normal (scalar node), object units before `scale`.
@@ -315,7 +315,7 @@ pub struct BumpDesc {
 }
 
 /// `phenomena: [(...)]`: a named graph with interface parameters.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(rename = "Phenomenon", deny_unknown_fields)]
 pub struct PhenomenonDesc {
     /// Unique phenomenon name.

@@ -32,6 +32,7 @@ mod radiometry;
 mod ray_counts;
 mod ray_layer;
 mod ray_spawn;
+mod rib;
 mod scene_errors;
 mod scene_errors_lights;
 mod scene_load;

@@ -31,8 +31,10 @@
 //! `lights[i]`, `materials[i]`, `objects[i]`, `instances[i]`, `groups[i]`, `phenomena[i]`
 //! and `include[i]`; the empty path is the file itself.
 
+pub mod rib;
 pub mod ron;
 mod ron_spans;
+pub mod to_ron;
 
 use std::collections::HashMap;
 use std::fmt;
@@ -209,11 +211,18 @@ pub struct Format {
 }
 
 /// Every scene format, by extension (compared case-insensitively).
-pub const FORMATS: &[Format] = &[Format {
-    name: "RON",
-    extensions: &["ron"],
-    read: ron::read,
-}];
+pub const FORMATS: &[Format] = &[
+    Format {
+        name: "RON",
+        extensions: &["ron"],
+        read: ron::read,
+    },
+    Format {
+        name: "RIB",
+        extensions: &["rib"],
+        read: rib::read,
+    },
+];
 
 /// The known extensions as a help text: `known scene formats: .ron`.
 fn known_formats(formats: &[Format]) -> String {

@@ -1,0 +1,1394 @@
+//! Request by request onto the description: the dispatcher over the graphics state,
+//! `ReadArchive`, and the final assembly (mirror, names, materials, instances, one group
+//! `world`, the camera `camera`).
+
+use std::collections::{HashMap, HashSet};
+use std::path::{Path, PathBuf};
+
+use glam::{DMat4, DVec3};
+
+use super::camera::{rows, world_mirror, CameraOptions, Display};
+use super::geometry::{self, Primitive, PRIMITIVES};
+use super::lexer;
+use super::params::{parse_type, Args, Declarations, Param};
+use super::parse::{self, Request};
+use super::shaders::{self, LightShader, DISPLACEMENTS, LIGHTS, SURFACES};
+use super::state::{from_rib, rotate, Block, GraphicsState, ShaderCall};
+use super::{Located, LocatedProblem, Pos, Problem, RibScene};
+use crate::scene::desc::{
+    ApproximationDesc, DisplacementDesc, DisplacementModeDesc, FilterDesc, GroupDesc, InstanceDesc,
+    LightDesc, LightKindDesc, MaterialDesc, ObjectDesc, OptionsDesc, PassDesc, PhotonMapDesc,
+    RenderDesc, SceneDesc, ShaderDesc, SpaceDesc, TransformDesc, V3,
+};
+use crate::scene::diagnostics::suggestion;
+
+/// Deepest `ReadArchive` nesting.
+const MAX_ARCHIVE_DEPTH: usize = 16;
+
+/// Requests read and deliberately not mapped (a warning each).
+const IGNORED: &[&str] = &[
+    "Hider",
+    "Option",
+    "MakeTexture",
+    "MakeShadow",
+    "MakeCubeFaceEnvironment",
+    "MakeLatLongEnvironment",
+    "MotionBegin",
+    "MotionEnd",
+    "ShadingInterpolation",
+    "Orientation",
+    "ReverseOrientation",
+    "Atmosphere",
+    "Interior",
+    "Exterior",
+    "DepthOfField",
+    "Shutter",
+    "Quantize",
+    "Procedural",
+    "Paraboloid",
+    "Hyperboloid",
+    "Points",
+    "Curves",
+    "Blobby",
+    "Geometry",
+    "ObjectBegin",
+    "ObjectEnd",
+    "ObjectInstance",
+    "Bound",
+    "Detail",
+    "DetailRange",
+    "GeometricApproximation",
+    "TrimCurve",
+    "Matte",
+    "ColorSamples",
+    "RelativeDetail",
+    "CropWindow",
+    "FrameAspectRatio",
+    "Perspective",
+    "Skew",
+    "Deformation",
+    "Illuminance",
+];
+
+/// Requests understood (for "did you mean").
+const KNOWN: &[&str] = &[
+    "version",
+    "FrameBegin",
+    "FrameEnd",
+    "WorldBegin",
+    "WorldEnd",
+    "Format",
+    "Projection",
+    "ScreenWindow",
+    "Clipping",
+    "PixelSamples",
+    "PixelFilter",
+    "PixelVariance",
+    "ShadingRate",
+    "Exposure",
+    "Imager",
+    "Display",
+    "AttributeBegin",
+    "AttributeEnd",
+    "TransformBegin",
+    "TransformEnd",
+    "Identity",
+    "Translate",
+    "Rotate",
+    "Scale",
+    "ConcatTransform",
+    "Transform",
+    "CoordinateSystem",
+    "CoordSysTransform",
+    "Color",
+    "Opacity",
+    "Sides",
+    "ReadArchive",
+    "Surface",
+    "Displacement",
+    "LightSource",
+    "AreaLightSource",
+    "Illuminate",
+    "Attribute",
+    "Declare",
+    "Basis",
+];
+
+struct PendingLight {
+    name: String,
+    values: shaders::LightValues,
+    /// Maps shader space to RIB world space (pre-world lights are completed at WorldBegin).
+    to_world: DMat4,
+    /// Declared before WorldBegin: `to_world` is still camera space.
+    pre_world: bool,
+    shadows: bool,
+    at: (usize, Pos),
+    /// Whether some primitive has it on / off.
+    used_on: bool,
+    used_off: bool,
+}
+
+struct PendingObject {
+    name: String,
+    prim: Primitive,
+    world_from_object: DMat4,
+    material: usize,
+    approximation: Option<(ApproximationDesc, Pos)>,
+    displacement: Option<(DisplacementDesc, Vec<(String, Pos)>)>,
+    at: (usize, Pos),
+}
+
+struct PendingMaterial {
+    desc: MaterialDesc,
+    paths: Vec<(String, Pos)>,
+    at: (usize, Pos),
+}
+
+/// The reader's state over one root file and its archives.
+pub struct Builder {
+    files: Vec<PathBuf>,
+    file: usize,
+    decls: Declarations,
+    gs: GraphicsState,
+    cam: CameraOptions,
+    problems: Vec<(usize, Problem)>,
+    lights: Vec<PendingLight>,
+    handles: HashMap<String, usize>,
+    objects: Vec<PendingObject>,
+    materials: Vec<PendingMaterial>,
+    material_keys: HashMap<String, usize>,
+    /// Surface calls (file, position) whose parameter problems were reported.
+    surfaces_reported: HashSet<(usize, Pos)>,
+    coordsys: HashMap<String, DMat4>,
+    world: Option<(usize, Pos)>,
+    world_ended: bool,
+    after_frame_warned: bool,
+    names: HashMap<String, usize>,
+    depth: usize,
+    /// AIR's caustic light (`LightSource "caustic"`): the caustic photon map, where it was
+    /// switched on, and the photon and gather counts from AIR's attributes.
+    caustics: Option<(usize, Pos)>,
+    photons: Option<(u32, Pos)>,
+    gather: Option<(u32, Pos)>,
+}
+
+impl Builder {
+    /// Reads `path` (contents `bytes`) and everything it includes.
+    pub fn run(path: &Path, bytes: &[u8]) -> Result<RibScene, Vec<LocatedProblem>> {
+        let mut b = Builder {
+            files: vec![path.to_path_buf()],
+            file: 0,
+            decls: Declarations::default(),
+            gs: GraphicsState::default(),
+            cam: CameraOptions::default(),
+            problems: Vec::new(),
+            lights: Vec::new(),
+            handles: HashMap::new(),
+            objects: Vec::new(),
+            materials: Vec::new(),
+            material_keys: HashMap::new(),
+            surfaces_reported: HashSet::new(),
+            coordsys: HashMap::new(),
+            world: None,
+            world_ended: false,
+            after_frame_warned: false,
+            names: HashMap::new(),
+            depth: 0,
+            caustics: None,
+            photons: None,
+            gather: None,
+        };
+        b.read_text(bytes);
+        b.finish_blocks();
+        let scene = b.assemble();
+        let mut errors = Vec::new();
+        let mut warnings = Vec::new();
+        let files = std::mem::take(&mut b.files);
+        let mut problems = std::mem::take(&mut b.problems);
+        problems.sort_by_key(|(f, p)| (*f, p.pos));
+        for (f, p) in problems {
+            let lp = LocatedProblem {
+                file: files[f].clone(),
+                problem: p,
+            };
+            if lp.problem.warning {
+                warnings.push(lp);
+            } else {
+                errors.push(lp);
+            }
+        }
+        if !errors.is_empty() {
+            return Err(errors);
+        }
+        let (desc, paths) = scene;
+        let paths = paths
+            .into_iter()
+            .map(|(path, f, pos)| {
+                (
+                    path,
+                    Located {
+                        file: files[f].clone(),
+                        pos,
+                    },
+                )
+            })
+            .collect();
+        Ok(RibScene {
+            desc,
+            paths,
+            warnings,
+        })
+    }
+
+    fn push(&mut self, p: Problem) {
+        self.problems.push((self.file, p));
+    }
+
+    fn read_text(&mut self, bytes: &[u8]) {
+        let text = String::from_utf8_lossy(bytes);
+        let (tokens, lex_errors) = lexer::tokens(&text);
+        let lex_positions: Vec<Pos> = lex_errors.iter().map(|e| e.pos).collect();
+        for e in lex_errors {
+            self.push(Problem::error(e.pos, e.message));
+        }
+        let (mut requests, syntax) = parse::requests(&tokens);
+        for e in syntax {
+            self.push(Problem::error(e.pos, e.message));
+        }
+        // A request with a lexical error inside is not read either.
+        for e in &lex_positions {
+            if let Some(r) = requests.iter_mut().rev().find(|r| r.pos <= *e) {
+                r.broken = true;
+            }
+        }
+        for r in requests.iter().filter(|r| !r.broken) {
+            self.request(r);
+        }
+    }
+
+    fn finish_blocks(&mut self) {
+        let open: Vec<(Block, Pos)> = self.gs.open().collect();
+        for (b, pos) in open {
+            self.problems.push((
+                0,
+                Problem::error(pos, format!("{} is never closed by {}", b.begin(), b.end())),
+            ));
+        }
+        if self.world.is_none() {
+            self.problems.push((
+                0,
+                Problem::error(
+                    Pos::default(),
+                    "the file has no WorldBegin: no scene to render",
+                )
+                .with_help("geometry and lights go between WorldBegin and WorldEnd"),
+            ));
+        }
+    }
+
+    fn request(&mut self, r: &Request) {
+        if self.world_ended && !matches!(r.name.as_str(), "FrameEnd" | "version") {
+            if !self.after_frame_warned {
+                self.after_frame_warned = true;
+                self.push(Problem::warning(
+                    r.pos,
+                    format!(
+                        "ignored \"{}\" and everything after it: only the first frame is read",
+                        r.name
+                    ),
+                ));
+            }
+            return;
+        }
+        let mut problems = Vec::new();
+        if let Err(e) = self.dispatch(r, &mut problems) {
+            problems.push(e);
+        }
+        for p in problems {
+            self.push(p);
+        }
+    }
+
+    fn in_world(&self) -> bool {
+        self.world.is_some()
+    }
+
+    fn dispatch(&mut self, r: &Request, problems: &mut Vec<Problem>) -> Result<(), Problem> {
+        let name = r.name.as_str();
+        let mut a = Args::new(r);
+        let option = matches!(
+            name,
+            "Format"
+                | "Projection"
+                | "ScreenWindow"
+                | "Clipping"
+                | "PixelSamples"
+                | "PixelFilter"
+                | "PixelVariance"
+                | "Exposure"
+                | "Imager"
+                | "Display"
+        );
+        if option && self.in_world() {
+            problems.push(Problem::warning(
+                r.pos,
+                format!(
+                    "ignored \"{name}\" inside the world block: options are set before WorldBegin"
+                ),
+            ));
+            return Ok(());
+        }
+        if (PRIMITIVES.contains(&name) || name == "AreaLightSource") && !self.in_world() {
+            return Err(Problem::error(r.pos, format!("{name} before WorldBegin"))
+                .with_help("geometry and lights go between WorldBegin and WorldEnd"));
+        }
+        match name {
+            "version" => {
+                a.num("version")?;
+            }
+            "FrameBegin" => {
+                if !a.done() {
+                    a.num("frame")?;
+                }
+                self.gs.begin(Block::Frame, r.pos);
+            }
+            "FrameEnd" => self.end(Block::Frame, r.pos)?,
+            "WorldBegin" => {
+                if self.in_world() {
+                    return Err(Problem::error(r.pos, "WorldBegin inside the world block"));
+                }
+                self.world = Some((self.file, r.pos));
+                self.cam.camera_from_world = Some((self.gs.attrs.ctm, r.pos));
+                self.coordsys
+                    .insert("camera".into(), self.gs.attrs.ctm.inverse());
+                let m_inv = self.gs.attrs.ctm.inverse();
+                for l in &mut self.lights {
+                    if l.pre_world {
+                        l.to_world = m_inv * l.to_world;
+                        l.pre_world = false;
+                    }
+                }
+                self.gs.begin(Block::World, r.pos);
+                self.gs.attrs.ctm = DMat4::IDENTITY;
+                self.coordsys.insert("world".into(), DMat4::IDENTITY);
+            }
+            "WorldEnd" => {
+                self.end(Block::World, r.pos)?;
+                self.world_ended = true;
+            }
+            "AttributeBegin" => self.gs.begin(Block::Attribute, r.pos),
+            "AttributeEnd" => self.end(Block::Attribute, r.pos)?,
+            "TransformBegin" => self.gs.begin(Block::Transform, r.pos),
+            "TransformEnd" => self.end(Block::Transform, r.pos)?,
+            "Identity" => self.gs.attrs.ctm = DMat4::IDENTITY,
+            "Translate" => {
+                let v = vec3(&mut a, ["dx", "dy", "dz"])?;
+                self.gs.concat(DMat4::from_translation(v));
+            }
+            "Scale" => {
+                let v = vec3(&mut a, ["sx", "sy", "sz"])?;
+                self.gs.concat(DMat4::from_scale(v));
+            }
+            "Rotate" => {
+                let (angle, _) = a.num("angle")?;
+                let axis = vec3(&mut a, ["dx", "dy", "dz"])?;
+                let m = rotate(angle, axis)
+                    .ok_or_else(|| Problem::error(r.pos, "Rotate about a zero axis"))?;
+                self.gs.concat(m);
+            }
+            "ConcatTransform" | "Transform" => {
+                let m = a.array("transform")?;
+                let v = m.value.nums().unwrap_or(&[]);
+                if v.len() != 16 {
+                    return Err(Problem::error(
+                        m.pos,
+                        format!("{name} takes 16 numbers, found {}", v.len()),
+                    ));
+                }
+                let t = from_rib(v);
+                if name == "Transform" {
+                    self.gs.attrs.ctm = t;
+                } else {
+                    self.gs.concat(t);
+                }
+            }
+            "CoordinateSystem" => {
+                let (n, _) = a.string("name")?;
+                self.coordsys.insert(n, self.gs.attrs.ctm);
+            }
+            "CoordSysTransform" => {
+                let (n, pos) = a.string("name")?;
+                match self.coordsys.get(&n) {
+                    Some(m) => self.gs.attrs.ctm = *m,
+                    None => {
+                        let names: Vec<&str> = self.coordsys.keys().map(String::as_str).collect();
+                        let mut e =
+                            Problem::error(pos, format!("unknown coordinate system \"{n}\""));
+                        e.help = suggestion(&n, &names, "coordinate systems");
+                        return Err(e);
+                    }
+                }
+            }
+            "Color" | "Opacity" => {
+                let c = vec3(&mut a, ["red", "green", "blue"])?;
+                let c = (c.x, c.y, c.z);
+                if name == "Color" {
+                    self.gs.attrs.color = c;
+                } else {
+                    self.gs.attrs.opacity = c;
+                }
+            }
+            "Sides" => {
+                let (n, pos) = a.count("sides", 1)?;
+                if n > 2 {
+                    return Err(Problem::error(
+                        pos,
+                        format!("Sides must be 1 or 2, found {n}"),
+                    ));
+                }
+                self.gs.attrs.sides = n as u32;
+            }
+            "ShadingRate" => {
+                let (v, pos) = a.num("size")?;
+                if v.is_nan() || v <= 0.0 {
+                    return Err(Problem::error(
+                        pos,
+                        format!("ShadingRate must be > 0, found {v}"),
+                    ));
+                }
+                self.gs.attrs.shading_rate = Some((v, pos));
+            }
+            "Declare" => {
+                let (n, _) = a.string("name")?;
+                let (ty, pos) = a.string("declaration")?;
+                let d = parse_type(&ty).map_err(|m| Problem::error(pos, m))?;
+                self.decls.declare(&n, d);
+            }
+            "Basis" => {
+                let dir = |a: &mut Args<'_>,
+                           d: &str|
+                 -> Result<super::state::BasisState, Problem> {
+                    let (b, pos) = a.string(&format!("{d}basis"))?;
+                    let (step, _) = a.count(&format!("{d}step"), 1)?;
+                    let basis = geometry::basis(&b, step).map_err(|m| Problem::error(pos, m))?;
+                    Ok(super::state::BasisState {
+                        basis,
+                        step,
+                        pos: Some(pos),
+                    })
+                };
+                let u = dir(&mut a, "u")?;
+                let v = dir(&mut a, "v")?;
+                self.gs.attrs.basis = (u, v);
+            }
+            "ReadArchive" => {
+                let (f, pos) = a.string("filename")?;
+                self.archive(&f, pos);
+            }
+            "Surface" | "Displacement" | "AreaLightSource" | "LightSource" => {
+                return self.shader(name, r, a, problems);
+            }
+            "Illuminate" => {
+                let handle = self.handle(&mut a)?;
+                let (on, _) = a.num("onoff")?;
+                let Some(&i) = self.handles.get(&handle.0) else {
+                    return Err(Problem::error(
+                        handle.1,
+                        format!("unknown light handle {}", handle.0),
+                    ));
+                };
+                self.gs.attrs.lights_off.retain(|&l| l != i);
+                if on == 0.0 {
+                    self.gs.attrs.lights_off.push(i);
+                }
+            }
+            "Attribute" => return self.attribute(a, problems),
+            "Format" => {
+                let (w, wp) = a.count("xresolution", 1)?;
+                let (h, _) = a.count("yresolution", 1)?;
+                let (pa, _) = a.num("pixelaspectratio")?;
+                let pa = if pa > 0.0 { pa } else { 1.0 };
+                self.cam.format = Some(((w as u32, h as u32, pa), wp));
+            }
+            "Projection" => {
+                let (kind, pos) = a.string("name")?;
+                self.cam.projection = Some(r.pos);
+                let params = a.params(&self.decls, problems);
+                if kind != "perspective" {
+                    problems.push(Problem::warning(
+                        pos,
+                        format!("Projection \"{kind}\" is not supported: rendering a perspective projection"),
+                    ));
+                }
+                for p in params {
+                    if p.name == "fov" && p.nums().len() == 1 {
+                        let f = p.num();
+                        if !(f > 0.0 && f < 180.0) {
+                            problems.push(Problem::error(
+                                p.pos(),
+                                format!("fov must be in (0, 180) degrees, found {f}"),
+                            ));
+                        } else {
+                            self.cam.fov = Some((f, p.pos()));
+                        }
+                    } else {
+                        problems.push(ignored_param(&p, "Projection"));
+                    }
+                }
+                return Ok(());
+            }
+            "ScreenWindow" => {
+                let mut s = [0.0; 4];
+                for (i, n) in ["left", "right", "bottom", "top"].iter().enumerate() {
+                    s[i] = a.num(n)?.0;
+                }
+                if s[0] + s[1] != 0.0 || s[2] + s[3] != 0.0 || s[1] <= 0.0 || s[3] <= 0.0 {
+                    return Err(Problem::error(
+                        r.pos,
+                        "only a screen window centred on the view axis is supported",
+                    )
+                    .with_help("write it as -x x -y y"));
+                }
+                self.cam.screen = Some((s, r.pos));
+            }
+            "Clipping" => {
+                let (near, _) = a.num("near")?;
+                let (far, _) = a.num("far")?;
+                if near > 1e-5 || far.is_finite() && far < 1e30 {
+                    problems.push(Problem::warning(
+                        r.pos,
+                        format!("ignored Clipping {near} {far}: the camera has no clipping planes"),
+                    ));
+                }
+            }
+            "PixelSamples" => {
+                let (x, _) = a.num("xsamples")?;
+                let (y, _) = a.num("ysamples")?;
+                let n = (x.max(1.0).ceil() * y.max(1.0).ceil()).min(1e6) as u64;
+                self.cam.samples = Some((n, r.pos));
+            }
+            "PixelVariance" => {
+                problems.push(Problem::warning(
+                    r.pos,
+                    "ignored PixelVariance: sampling is fixed per pixel",
+                ));
+            }
+            "PixelFilter" => {
+                let (f, pos) = a.string("filter")?;
+                let (xw, _) = a.num("xwidth")?;
+                let (yw, _) = a.num("ywidth")?;
+                if xw != yw {
+                    problems.push(Problem::warning(
+                        pos,
+                        format!("PixelFilter widths differ: using {xw} in both directions"),
+                    ));
+                }
+                let filter = match f.as_str() {
+                    "gaussian" => FilterDesc::Gaussian {
+                        sigma: xw / 4.0,
+                        radius: xw / 2.0,
+                    },
+                    "box" => {
+                        if xw != 1.0 {
+                            problems.push(Problem::warning(
+                                pos,
+                                format!(
+                                    "PixelFilter \"box\" {xw}: the box filter covers one pixel"
+                                ),
+                            ));
+                        }
+                        FilterDesc::Box
+                    }
+                    other => {
+                        problems.push(Problem::warning(pos, format!("PixelFilter \"{other}\" is not supported: using \"gaussian\" {xw} {yw}")));
+                        FilterDesc::Gaussian {
+                            sigma: xw / 4.0,
+                            radius: xw / 2.0,
+                        }
+                    }
+                };
+                self.cam.filter = Some((filter, r.pos));
+            }
+            "Exposure" => {
+                let (gain, _) = a.num("gain")?;
+                let (gamma, _) = a.num("gamma")?;
+                self.cam.exposure = Some(((gain, gamma), r.pos));
+            }
+            "Imager" => {
+                let (n, pos) = a.string("name")?;
+                let params = a.params(&self.decls, problems);
+                if n != "background" {
+                    problems.push(Problem::warning(
+                        pos,
+                        format!("ignored Imager \"{n}\": only \"background\" is supported"),
+                    ));
+                    return Ok(());
+                }
+                for p in params {
+                    if p.name == "background" && p.nums().len() == 3 {
+                        self.cam.background = Some((p.triple(), p.pos()));
+                    } else {
+                        let mut e = Problem::error(
+                            p.name_pos,
+                            format!("unknown parameter \"{}\" of imager \"background\"", p.name),
+                        );
+                        e.help = suggestion(&p.name, &["background"], "parameters");
+                        problems.push(e);
+                    }
+                }
+                return Ok(());
+            }
+            "Display" => return self.display(a, problems),
+            _ if PRIMITIVES.contains(&name) => self.primitive(r, problems),
+            _ if IGNORED.contains(&name) => {
+                problems.push(Problem::warning(
+                    r.pos,
+                    format!("ignored request \"{name}\""),
+                ));
+            }
+            _ => {
+                let mut all: Vec<&str> = KNOWN.to_vec();
+                all.extend(PRIMITIVES);
+                let mut e = Problem::error(r.pos, format!("unknown request \"{name}\""));
+                e.help = suggestion(name, &all, "requests").filter(|h| h.starts_with("did"));
+                return Err(e);
+            }
+        }
+        let checked = !PRIMITIVES.contains(&name) && !IGNORED.contains(&name);
+        if checked && !a.done() {
+            let extra = r.args.last().map_or(r.pos, |x| x.pos);
+            problems.push(Problem::error(
+                extra,
+                format!("too many arguments for {name}"),
+            ));
+        }
+        Ok(())
+    }
+
+    fn end(&mut self, block: Block, pos: Pos) -> Result<(), Problem> {
+        self.gs.end(block).map_err(|m| Problem::error(pos, m))
+    }
+
+    fn handle(&self, a: &mut Args<'_>) -> Result<(String, Pos), Problem> {
+        if a.peek_is_string() {
+            a.string("light handle")
+        } else {
+            let (v, p) = a.num("light handle")?;
+            Ok((format!("{v}"), p))
+        }
+    }
+
+    fn archive(&mut self, name: &str, pos: Pos) {
+        if self.depth >= MAX_ARCHIVE_DEPTH {
+            self.push(Problem::error(
+                pos,
+                format!("ReadArchive nests deeper than {MAX_ARCHIVE_DEPTH} files"),
+            ));
+            return;
+        }
+        let dir = self.files[self.file]
+            .parent()
+            .map(Path::to_path_buf)
+            .unwrap_or_default();
+        let path = dir.join(name);
+        let bytes = match std::fs::read(&path) {
+            Ok(b) => b,
+            Err(e) => {
+                self.push(Problem::error(
+                    pos,
+                    format!(
+                        "cannot read archive \"{}\": {}",
+                        path.display(),
+                        crate::scene::include::io_reason(&e)
+                    ),
+                ));
+                return;
+            }
+        };
+        let saved = self.file;
+        self.files.push(path);
+        self.file = self.files.len() - 1;
+        self.depth += 1;
+        self.read_text(&bytes);
+        self.depth -= 1;
+        self.file = saved;
+    }
+
+    fn shader(
+        &mut self,
+        kind: &str,
+        r: &Request,
+        mut a: Args<'_>,
+        problems: &mut Vec<Problem>,
+    ) -> Result<(), Problem> {
+        let (name, npos) = a.string("shader name")?;
+        let handle = if matches!(kind, "LightSource" | "AreaLightSource") {
+            Some(self.handle(&mut a)?)
+        } else {
+            None
+        };
+        let params = a.params(&self.decls, problems);
+        let call = ShaderCall {
+            name: name.clone(),
+            pos: r.pos,
+            file: self.file,
+            params,
+        };
+        if kind == "LightSource" && name == "caustic" {
+            for p in &call.params {
+                problems.push(ignored_param(p, "LightSource \"caustic\""));
+            }
+            self.caustics = Some((self.file, r.pos));
+            return Ok(());
+        }
+        let known: &[&str] = match kind {
+            "Surface" => SURFACES,
+            "Displacement" => DISPLACEMENTS,
+            "AreaLightSource" => &["arealight"],
+            _ => LIGHTS,
+        };
+        if !known.contains(&name.as_str()) {
+            let what = kind.to_lowercase();
+            let mut w = Problem::warning(
+                npos,
+                match kind {
+                    "Surface" => {
+                        format!("unknown surface shader \"{name}\": using \"defaultsurface\"")
+                    }
+                    _ => format!("ignored {what} shader \"{name}\": not one of ours"),
+                },
+            );
+            w.help = suggestion(&name, known, "shaders");
+            problems.push(w);
+            if kind == "Surface" {
+                self.gs.attrs.surface = None;
+            }
+            return Ok(());
+        }
+        match kind {
+            "Surface" => self.gs.attrs.surface = Some(call),
+            "Displacement" => self.gs.attrs.displacement = Some(call),
+            "AreaLightSource" => {
+                for p in &call.params {
+                    if !matches!(p.name.as_str(), "intensity" | "lightcolor") {
+                        let mut e = Problem::error(
+                            p.name_pos,
+                            format!("unknown parameter \"{}\" of light \"arealight\"", p.name),
+                        );
+                        e.help = suggestion(&p.name, &["intensity", "lightcolor"], "parameters");
+                        problems.push(e);
+                    }
+                }
+                self.gs.attrs.area_light = Some(call);
+            }
+            _ => {
+                let values = shaders::light(&call, problems);
+                let n = self.lights.len();
+                let lname = format!("{name}_{}", n + 1);
+                if let Some((h, _)) = handle {
+                    self.handles.insert(h, n);
+                }
+                self.lights.push(PendingLight {
+                    name: lname,
+                    values,
+                    to_world: self.gs.attrs.ctm,
+                    pre_world: !self.in_world(),
+                    shadows: self.gs.attrs.light_shadows,
+                    at: (self.file, r.pos),
+                    used_on: false,
+                    used_off: false,
+                });
+            }
+        }
+        Ok(())
+    }
+
+    fn attribute(&mut self, mut a: Args<'_>, problems: &mut Vec<Problem>) -> Result<(), Problem> {
+        let (class, cpos) = a.string("name")?;
+        let params = a.params_lenient(&self.decls, problems);
+        for p in params {
+            match (class.as_str(), p.name.as_str()) {
+                ("displacementbound", "sphere") if p.nums().len() == 1 => {
+                    self.gs.attrs.displacement_bound = Some((p.num(), p.pos()));
+                }
+                ("displacementbound", "coordinatesystem")
+                    if matches!(p.str(), "object" | "shader" | "current") => {}
+                ("render", "truedisplacement") if p.nums().len() == 1 => {
+                    self.gs.attrs.true_displacement = p.num() != 0.0;
+                }
+                ("identifier", "name") if p.decl.ty == super::params::Ty::Str => {
+                    self.gs.attrs.name = Some(p.str().to_string());
+                }
+                ("light", "shadows") if p.decl.ty == super::params::Ty::Str => {
+                    self.gs.attrs.light_shadows = p.str() == "on";
+                }
+                ("light", "nphotons") if p.nums().len() == 1 && p.num() >= 1.0 => {
+                    self.photons = Some((p.num().min(f64::from(u32::MAX)) as u32, p.pos()));
+                }
+                ("caustic", "ngather") if p.nums().len() == 1 && p.num() >= 2.0 => {
+                    self.gather = Some((p.num().min(f64::from(u32::MAX)) as u32, p.pos()));
+                }
+                _ => problems.push(Problem::warning(
+                    p.name_pos,
+                    format!("ignored Attribute \"{class}\" \"{}\"", p.name),
+                )),
+            }
+        }
+        let _ = cpos;
+        Ok(())
+    }
+
+    fn display(&mut self, mut a: Args<'_>, problems: &mut Vec<Problem>) -> Result<(), Problem> {
+        let (name, pos) = a.string("name")?;
+        let (ty, tpos) = a.string("type")?;
+        let (mode, mpos) = a.string("mode")?;
+        let params = a.params(&self.decls, problems);
+        for p in params {
+            problems.push(ignored_param(&p, "Display"));
+        }
+        let (append, name) = match name.strip_prefix('+') {
+            Some(n) => (true, n.to_string()),
+            None => (false, name),
+        };
+        if !matches!(
+            ty.as_str(),
+            "file" | "tiff" | "framebuffer" | "png" | "exr" | "openexr"
+        ) {
+            problems.push(Problem::warning(
+                tpos,
+                format!("display type \"{ty}\" is not supported: writing a file"),
+            ));
+        }
+        let passes = match mode.as_str() {
+            "rgb" => vec![PassDesc::Beauty],
+            "rgba" => vec![PassDesc::Beauty, PassDesc::Alpha],
+            "z" => vec![PassDesc::Depth],
+            "a" => vec![PassDesc::Alpha],
+            other => {
+                return Err(Problem::error(
+                    mpos,
+                    format!("display mode \"{other}\" is not supported"),
+                )
+                .with_help("expected \"rgb\", \"rgba\", \"a\" or \"z\""));
+            }
+        };
+        let depth = passes.contains(&PassDesc::Depth);
+        let path = Path::new(&name);
+        let ext = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(str::to_ascii_lowercase);
+        let file = match ext.as_deref() {
+            Some("png") if !depth => name.clone(),
+            Some("exr") => name.clone(),
+            _ => {
+                let new = path
+                    .with_extension(if depth { "exr" } else { "png" })
+                    .display()
+                    .to_string();
+                problems.push(Problem::warning(
+                    pos,
+                    format!(
+                        "writing \"{new}\" for display \"{name}\": stagelight writes PNG and EXR"
+                    ),
+                ));
+                new
+            }
+        };
+        if !append {
+            self.cam.displays.clear();
+        }
+        self.cam.displays.push(Display { file, pos, passes });
+        Ok(())
+    }
+
+    fn primitive(&mut self, r: &Request, problems: &mut Vec<Problem>) {
+        let Some(prim) = geometry::primitive(r, &self.gs.attrs, &self.decls, problems) else {
+            return;
+        };
+        let surface_reported = match self.gs.attrs.surface.clone() {
+            Some(s) => self.reported_surface(&s),
+            None => false,
+        };
+        let attrs = &self.gs.attrs;
+        let cs = prim.color.unwrap_or(attrs.color);
+        let os = prim.opacity.unwrap_or(attrs.opacity);
+        let mut sp = Vec::new();
+        let surface = shaders::surface(attrs.surface.as_ref(), cs, &mut sp);
+        // Parameter problems are reported once, at the Surface request.
+        if !surface_reported {
+            problems.extend(sp);
+        }
+        let mut shader = surface.shader;
+        let mut spaths: Vec<(String, Pos)> = surface
+            .paths
+            .into_iter()
+            .map(|(p, pos)| (format!(".shader{p}"), pos))
+            .collect();
+        if os != (1.0, 1.0, 1.0) {
+            shader = ShaderDesc::Opacity {
+                opacity: os,
+                input: Box::new(shader),
+            };
+            spaths = spaths
+                .into_iter()
+                .map(|(p, pos)| (p.replacen(".shader", ".shader.Opacity.input", 1), pos))
+                .collect();
+        }
+        let emission = attrs.area_light.as_ref().map(|c| {
+            let find = |n: &str| c.params.iter().find(|p| p.name == n);
+            let i = find("intensity").map_or(1.0, Param::num);
+            let col = find("lightcolor").map_or((1.0, 1.0, 1.0), Param::triple);
+            (col.0 * i, col.1 * i, col.2 * i)
+        });
+        let at_pos = attrs.surface.as_ref().map_or(r.pos, |s| s.pos);
+        let at_file = attrs.surface.as_ref().map_or(self.file, |s| s.file);
+        let desc = MaterialDesc {
+            name: String::new(),
+            shader,
+            two_sided: attrs.sides == 2,
+            emission: emission.unwrap_or((0.0, 0.0, 0.0)),
+            bind: Default::default(),
+            bump: None,
+            interior: None,
+        };
+        let key = format!(
+            "{:?}|{}|{:?}|{}",
+            desc.shader,
+            desc.two_sided,
+            desc.emission,
+            at_pos.line * 100_000 + at_pos.column
+        );
+        let material = match self.material_keys.get(&key) {
+            Some(&m) => m,
+            None => {
+                let m = self.materials.len();
+                let base = attrs
+                    .surface
+                    .as_ref()
+                    .map_or("defaultsurface", |s| s.name.as_str());
+                let mut desc = desc;
+                desc.name = format!("{base}_{}", m + 1);
+                self.materials.push(PendingMaterial {
+                    desc,
+                    paths: spaths,
+                    at: (at_file, at_pos),
+                });
+                self.material_keys.insert(key, m);
+                m
+            }
+        };
+        let displacement = attrs.displacement.as_ref().and_then(|d| {
+            let mut dp = Vec::new();
+            let shader = shaders::displacement(d, &mut dp)?;
+            let mut paths = vec![(String::new(), d.pos), (".shader".to_string(), d.pos)];
+            let bound = attrs.displacement_bound.map(|(b, pos)| {
+                paths.push((".bound".into(), pos));
+                b
+            });
+            Some((
+                DisplacementDesc {
+                    shader,
+                    bound,
+                    mode: if attrs.true_displacement {
+                        DisplacementModeDesc::True
+                    } else {
+                        DisplacementModeDesc::Bump
+                    },
+                },
+                paths,
+            ))
+        });
+        let approximation = attrs.shading_rate.map(|(rate, pos)| {
+            (
+                ApproximationDesc::Spatial {
+                    edge: rate.sqrt(),
+                    space: SpaceDesc::Raster,
+                    min_subdiv: 0,
+                    max_subdiv: 7,
+                },
+                pos,
+            )
+        });
+        let base = attrs.name.clone().unwrap_or_else(|| r.name.to_lowercase());
+        let n = self.names.entry(base.clone()).or_insert(0);
+        *n += 1;
+        let name = if attrs.name.is_some() && *n == 1 && base != "world" {
+            base
+        } else {
+            format!("{base}_{n}")
+        };
+        for (i, l) in self.lights.iter_mut().enumerate() {
+            if attrs.lights_off.contains(&i) {
+                l.used_off = true;
+            } else {
+                l.used_on = true;
+            }
+        }
+        self.objects.push(PendingObject {
+            name,
+            prim,
+            world_from_object: attrs.ctm,
+            material,
+            approximation,
+            displacement,
+            at: (self.file, r.pos),
+        });
+    }
+
+    /// Whether the problems of this surface call were already reported (by an earlier
+    /// primitive using it).
+    fn reported_surface(&mut self, s: &ShaderCall) -> bool {
+        !self.surfaces_reported.insert((s.file, s.pos))
+    }
+
+    /// The description and the paths of its values.
+    fn assemble(&mut self) -> (SceneDesc, Vec<(String, usize, Pos)>) {
+        let mut paths: Vec<(String, usize, Pos)> = Vec::new();
+        let (wfile, wpos) = self.world.unwrap_or((0, Pos::default()));
+        let m = self.cam.camera_from_world.map_or(DMat4::IDENTITY, |c| c.0);
+        let g = world_mirror(m);
+        let (camera, cpaths) = self.cam.camera(wpos);
+        for (p, pos) in cpaths {
+            paths.push((format!("cameras[0]{p}"), wfile, pos));
+        }
+        let mut desc = SceneDesc {
+            options: Some(OptionsDesc {
+                samples: self.cam.samples(),
+                filter: self.cam.filter(),
+                ..OptionsDesc::default()
+            }),
+            cameras: vec![camera],
+            ..SceneDesc::default()
+        };
+        paths.push(("options".into(), wfile, wpos));
+        if let Some((_, p)) = self.cam.samples {
+            paths.push(("options.samples".into(), wfile, p));
+        }
+        if let Some((_, p)) = self.cam.filter {
+            paths.push(("options.filter".into(), wfile, p));
+        }
+        if let (Some((f, p)), Some(o)) = (self.caustics, desc.options.as_mut()) {
+            let mut map = PhotonMapDesc::default();
+            paths.push(("options.caustics".into(), f, p));
+            if let Some((n, pos)) = self.photons {
+                map.photons = n;
+                paths.push(("options.caustics.photons".into(), f, pos));
+            }
+            if let Some((n, pos)) = self.gather {
+                map.gather = n;
+                paths.push(("options.caustics.gather".into(), f, pos));
+            }
+            o.caustics = Some(map);
+        }
+        let mut ambient = Vec::new();
+        for l in &self.lights {
+            if !l.used_on && l.used_off {
+                self.problems.push((
+                    l.at.0,
+                    Problem::warning(
+                        l.at.1,
+                        format!(
+                            "light \"{}\" is switched off for every primitive: left out",
+                            l.name
+                        ),
+                    ),
+                ));
+                continue;
+            }
+            if l.used_on && l.used_off {
+                self.problems.push((
+                    l.at.0,
+                    Problem::warning(l.at.1, format!("light \"{}\" lights every primitive: Illuminate per primitive is not supported", l.name)),
+                ));
+            }
+            let t = g * l.to_world;
+            let pt = |v: V3| {
+                let p = t.transform_point3(DVec3::new(v.0, v.1, v.2));
+                (p.x, p.y, p.z)
+            };
+            let kind = match l.values.shader {
+                LightShader::Ambient => {
+                    ambient.push(l);
+                    continue;
+                }
+                LightShader::Point { from } => LightKindDesc::Point { position: pt(from) },
+                LightShader::Distant { from, to } => {
+                    let (a, b) = (pt(from), pt(to));
+                    LightKindDesc::Directional {
+                        direction: (b.0 - a.0, b.1 - a.1, b.2 - a.2),
+                    }
+                }
+                LightShader::Spot {
+                    from,
+                    to,
+                    cone,
+                    delta,
+                    beam,
+                } => {
+                    let cone_angle = cone.to_degrees();
+                    LightKindDesc::Spot {
+                        position: pt(from),
+                        target: pt(to),
+                        cone_angle,
+                        penumbra: delta.to_degrees().min(cone_angle).max(0.0),
+                        beam_distribution: beam,
+                    }
+                }
+            };
+            let i = desc.lights.len();
+            paths.push((format!("lights[{i}]"), l.at.0, l.at.1));
+            paths.push((format!("lights[{i}].kind"), l.at.0, l.at.1));
+            for (p, pos) in &l.values.paths {
+                paths.push((format!("lights[{i}]{p}"), l.at.0, *pos));
+            }
+            desc.lights.push(LightDesc {
+                name: l.name.clone(),
+                kind,
+                color: l.values.color,
+                intensity: l.values.intensity,
+                shadows: l.shadows,
+                samples: None,
+                visible: false,
+                attenuation: None,
+            });
+        }
+        for l in ambient {
+            self.problems.push((
+                l.at.0,
+                Problem::warning(
+                    l.at.1,
+                    "ignored LightSource \"ambientlight\": ambient light is not supported yet",
+                ),
+            ));
+        }
+        for (i, m) in self.materials.iter().enumerate() {
+            paths.push((format!("materials[{i}]"), m.at.0, m.at.1));
+            paths.push((format!("materials[{i}].shader"), m.at.0, m.at.1));
+            for (p, pos) in &m.paths {
+                paths.push((format!("materials[{i}]{p}"), m.at.0, *pos));
+            }
+            desc.materials.push(m.desc.clone());
+        }
+        let mut members = Vec::new();
+        for (i, o) in self.objects.drain(..).enumerate() {
+            let (f, pos) = o.at;
+            paths.push((format!("objects[{i}]"), f, pos));
+            paths.push((format!("objects[{i}].mesh"), f, pos));
+            for (p, vpos) in &o.prim.paths {
+                paths.push((format!("objects[{i}].mesh{p}"), f, *vpos));
+            }
+            paths.push((format!("instances[{i}]"), f, pos));
+            paths.push((format!("instances[{i}].transform[0]"), f, pos));
+            if let Some((_, p)) = &o.approximation {
+                paths.push((format!("objects[{i}].approximation"), f, *p));
+            }
+            if let Some((_, dp)) = &o.displacement {
+                for (p, vpos) in dp {
+                    paths.push((format!("objects[{i}].displacement{p}"), f, *vpos));
+                }
+            }
+            desc.objects.push(ObjectDesc {
+                name: o.name.clone(),
+                mesh: o.prim.mesh,
+                material: Some(desc.materials[o.material].name.clone()),
+                approximation: o.approximation.map(|a| a.0),
+                displacement: o.displacement.map(|d| d.0),
+                derivatives: false,
+            });
+            desc.instances.push(InstanceDesc {
+                name: o.name.clone(),
+                of: o.name.clone(),
+                transform: vec![TransformDesc::Matrix(rows(g * o.world_from_object))],
+                material: None,
+                bake: None,
+            });
+            members.push(o.name);
+        }
+        paths.push(("groups[0]".into(), wfile, wpos));
+        paths.push(("render".into(), wfile, wpos));
+        desc.groups.push(GroupDesc {
+            name: "world".into(),
+            members,
+        });
+        desc.render = Some(RenderDesc {
+            root: "world".into(),
+            camera: "camera".into(),
+        });
+        (desc, paths)
+    }
+}
+
+fn vec3(a: &mut Args<'_>, names: [&str; 3]) -> Result<DVec3, Problem> {
+    let x = a.num(names[0])?.0;
+    let y = a.num(names[1])?.0;
+    let z = a.num(names[2])?.0;
+    Ok(DVec3::new(x, y, z))
+}
+
+fn ignored_param(p: &Param, request: &str) -> Problem {
+    Problem::warning(
+        p.name_pos,
+        format!("ignored parameter \"{}\" of {request}", p.name),
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::desc::MeshDesc;
+
+    fn read(text: &str) -> RibScene {
+        Builder::run(Path::new("t.rib"), text.as_bytes()).unwrap_or_else(|e| {
+            panic!(
+                "{}",
+                e.iter()
+                    .map(|e| e.to_string())
+                    .collect::<Vec<_>>()
+                    .join("\n")
+            )
+        })
+    }
+
+    fn matrix(desc: &SceneDesc, i: usize) -> [[f64; 4]; 4] {
+        match &desc.instances[i].transform[..] {
+            [TransformDesc::Matrix(m)] => *m,
+            other => panic!("{other:?}"),
+        }
+    }
+
+    fn close(a: [[f64; 4]; 4], b: [[f64; 4]; 4]) {
+        for r in 0..4 {
+            for c in 0..4 {
+                assert!((a[r][c] - b[r][c]).abs() < 1e-12, "{a:?}\n!=\n{b:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn torus_of_shadertest_with_its_transform() {
+        let s = read(
+            "WorldBegin\nAttributeBegin\nTranslate 0 1 5\nRotate 45 1 0 0\n\
+             Torus 3.0 1.0 0.0 360.0 360.0\nAttributeEnd\nWorldEnd\n",
+        );
+        let d = &s.desc;
+        assert!(matches!(
+            d.objects[0].mesh,
+            MeshDesc::Torus { r_major, r_minor, phi_min, phi_max, theta_max }
+                if (r_major, r_minor, phi_min, phi_max, theta_max) == (3.0, 1.0, 0.0, 360.0, 360.0)
+        ));
+        // mirror · T(0, 1, 5) · Rx(45°), by hand: c = s = √½.
+        let h = std::f64::consts::FRAC_1_SQRT_2;
+        close(
+            matrix(d, 0),
+            [
+                [1.0, 0.0, 0.0, 0.0],
+                [0.0, h, -h, 1.0],
+                [0.0, -h, -h, -5.0],
+                [0.0, 0.0, 0.0, 1.0],
+            ],
+        );
+        let at = |p: &str| {
+            s.paths
+                .iter()
+                .rev()
+                .find(|(q, _)| q == p)
+                .map(|(_, l)| l.pos)
+        };
+        assert_eq!(
+            at("objects[0].mesh.Torus.r_minor"),
+            Some(Pos {
+                line: 5,
+                column: 11
+            })
+        );
+        assert_eq!(at("objects[0]"), Some(Pos { line: 5, column: 1 }));
+    }
+
+    #[test]
+    fn sphere_parameters_and_attribute_stack() {
+        let s = read(
+            "WorldBegin\nColor [1 0 0]\nAttributeBegin\nColor [0 1 0]\nSurface \"matte\" \"Kd\" 0.5\n\
+             Sphere 2 -1 1.5 270\nAttributeEnd\nSphere 1 -1 1 360\nWorldEnd\n",
+        );
+        let d = &s.desc;
+        assert!(matches!(
+            d.objects[0].mesh,
+            MeshDesc::Sphere { radius, z_min: Some(a), z_max: Some(b), theta_max }
+                if (radius, a, b, theta_max) == (2.0, -1.0, 1.5, 270.0)
+        ));
+        assert!(matches!(
+            d.materials[0].shader,
+            ShaderDesc::Matte { ka, kd, color } if (ka, kd, color) == (1.0, 0.5, (0.0, 1.0, 0.0))
+        ));
+        // Outside the block: red, defaultsurface with the RI defaults Ka 0.2, Kd 0.8.
+        assert!(matches!(
+            d.materials[1].shader,
+            ShaderDesc::DefaultSurface { ka, kd, color } if (ka, kd, color) == (0.2, 0.8, (1.0, 0.0, 0.0))
+        ));
+        assert!(d.materials.iter().all(|m| m.two_sided));
+    }
+
+    #[test]
+    fn camera_transform_before_world_and_lights() {
+        let s = read(
+            "Projection \"perspective\" \"fov\" [ 30 ]\nLightSource \"pointlight\" 0\n\
+             Translate 0 0 7\nWorldBegin\nTranslate 1 0 0\n\
+             LightSource \"spotlight\" 1 \"from\" [0 0 2] \"coneangle\" 0.35 \"to\" [0 0 3]\n\
+             WorldEnd\n",
+        );
+        let d = &s.desc;
+        // Declared in camera space at the eye (RIB world z = −7, ours +7).
+        assert!(
+            matches!(d.lights[0].kind, LightKindDesc::Point { position } if position == (0.0, 0.0, 7.0))
+        );
+        let LightKindDesc::Spot {
+            position,
+            target,
+            cone_angle,
+            penumbra,
+            beam_distribution,
+        } = d.lights[1].kind
+        else {
+            panic!("{:?}", d.lights[1].kind)
+        };
+        assert_eq!(position, (1.0, 0.0, -2.0));
+        assert_eq!(target, (1.0, 0.0, -3.0));
+        assert!((cone_angle - 0.35f64.to_degrees()).abs() < 1e-12);
+        assert!((penumbra - 5.0).abs() < 1e-12);
+        assert_eq!(beam_distribution, 2.0);
+        assert!(!d.lights[0].shadows);
+        assert!((d.cameras[0].fov_y - 30.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn patch_mesh_with_basis_equals_its_ron() {
+        let s = read(
+            "Basis \"b-spline\" 1 \"b-spline\" 1\nWorldBegin\n\
+             PatchMesh \"bicubic\" 4 \"nonperiodic\" 4 \"periodic\" \"P\" [\
+             0 0 0 1 0 0 2 0 0 3 0 0 0 1 0 1 1 1 2 1 0 3 1 0 \
+             0 2 0 1 2 0 2 2 1 3 2 0 0 3 0 1 3 0 2 3 0 3 3 0]\nWorldEnd\n",
+        );
+        let ron = "PatchMesh(basis: BSpline, nu: 4, nv: 4, u_wrap: false, v_wrap: true, points: [\
+             (0, 0, 0), (1, 0, 0), (2, 0, 0), (3, 0, 0), (0, 1, 0), (1, 1, 1), (2, 1, 0), (3, 1, 0), \
+             (0, 2, 0), (1, 2, 0), (2, 2, 1), (3, 2, 0), (0, 3, 0), (1, 3, 0), (2, 3, 0), (3, 3, 0)])";
+        let expected: MeshDesc = ron::from_str(ron).unwrap();
+        assert_eq!(
+            format!("{:?}", s.desc.objects[0].mesh),
+            format!("{expected:?}")
+        );
+    }
+
+    #[test]
+    fn ignored_requests_are_located_warnings() {
+        let s = read("Hider \"photon\" \"emit\" 1000000\nWorldBegin\nAttribute \"visibility\" \"integer camera\" [1]\nWorldEnd\n");
+        let w: Vec<String> = s.warnings.iter().map(ToString::to_string).collect();
+        assert_eq!(
+            w,
+            vec![
+                "t.rib:1:1: warning: ignored request \"Hider\"",
+                "t.rib:3:24: warning: ignored Attribute \"visibility\" \"camera\"",
+            ]
+        );
+    }
+}

@@ -1,0 +1,226 @@
+//! The RIB options that make the camera, its outputs and the render options: `Format`,
+//! `Projection`, `ScreenWindow`, `PixelSamples`, `PixelFilter`, `Exposure`, `Imager`,
+//! `Display`, and the camera transformation current at `WorldBegin`.
+//!
+//! RI spec 3.2 defaults: `Format 640 480 1`, perspective `fov` 90° across the shorter side
+//! of the screen window, `PixelSamples 2 2`, `PixelFilter "gaussian" 2 2`, `Exposure 1 1`
+//! (no display gamma: 8-bit files hold linear values), no imager, no display.
+
+use glam::{DMat3, DMat4, DVec3};
+
+use super::Pos;
+use crate::scene::desc::{
+    CameraDesc, FilterDesc, ImagerDesc, OutputDesc, PassDesc, PlacementDesc, SamplesDesc,
+    ToneMapDesc, M4, V3,
+};
+
+/// One `Display` output.
+#[derive(Debug, Clone)]
+pub struct Display {
+    /// File name as we write it.
+    pub file: String,
+    /// Where the name is.
+    pub pos: Pos,
+    /// Passes.
+    pub passes: Vec<PassDesc>,
+}
+
+/// The camera options as written so far (`None`: not written, the RI default applies).
+#[derive(Debug, Clone, Default)]
+pub struct CameraOptions {
+    /// `Format xres yres pixelaspect` and where.
+    pub format: Option<((u32, u32, f64), Pos)>,
+    /// `Projection "perspective" "fov"` value (degrees) and where.
+    pub fov: Option<(f64, Pos)>,
+    /// Where `Projection` is.
+    pub projection: Option<Pos>,
+    /// `ScreenWindow left right bottom top` and where.
+    pub screen: Option<([f64; 4], Pos)>,
+    /// `PixelSamples` product and where.
+    pub samples: Option<(u64, Pos)>,
+    /// `PixelFilter` as ours and where.
+    pub filter: Option<(FilterDesc, Pos)>,
+    /// `Exposure gain gamma` and where.
+    pub exposure: Option<((f64, f64), Pos)>,
+    /// `Imager "background"` colour and where.
+    pub background: Option<(V3, Pos)>,
+    /// The displays.
+    pub displays: Vec<Display>,
+    /// Camera-from-world (the transformation at `WorldBegin`) and where `WorldBegin` is.
+    pub camera_from_world: Option<(DMat4, Pos)>,
+}
+
+/// The RenderMan-space mirror applied to the world: z → −z when the camera transformation
+/// is a proper motion, none when it mirrors already.
+pub fn world_mirror(camera_from_world: DMat4) -> DMat4 {
+    if camera_from_world.determinant() < 0.0 {
+        DMat4::IDENTITY
+    } else {
+        DMat4::from_scale(DVec3::new(1.0, 1.0, -1.0))
+    }
+}
+
+/// Row-major rows of a column-vector affine matrix.
+pub fn rows(m: DMat4) -> M4 {
+    let t = m.transpose().to_cols_array_2d();
+    [t[0], t[1], t[2], [0.0, 0.0, 0.0, 1.0]]
+}
+
+impl CameraOptions {
+    /// The camera (named `camera`) and the paths of its values.
+    pub fn camera(&self, world_pos: Pos) -> (CameraDesc, Vec<(String, Pos)>) {
+        let mut paths = vec![(String::new(), self.projection.unwrap_or(world_pos))];
+        let ((w, h, pixel_aspect), fpos) = self.format.unwrap_or(((640, 480, 1.0), world_pos));
+        paths.push((".resolution".into(), fpos));
+        let frame_aspect = f64::from(w) * pixel_aspect / f64::from(h);
+        let screen = self.screen.map_or_else(
+            || {
+                if frame_aspect >= 1.0 {
+                    [-frame_aspect, frame_aspect, -1.0, 1.0]
+                } else {
+                    [-1.0, 1.0, -1.0 / frame_aspect, 1.0 / frame_aspect]
+                }
+            },
+            |(s, p)| {
+                paths.push((".aspect".into(), p));
+                s
+            },
+        );
+        let (fov, fov_pos) = self.fov.unwrap_or((90.0, world_pos));
+        let half = (fov.to_radians() / 2.0).tan();
+        let top = (screen[3] - screen[2]) / 2.0;
+        let fov_y = 2.0 * (half * top).atan().to_degrees();
+        paths.push((".fov_y".into(), fov_pos));
+        let aspect = (screen[1] - screen[0]) / (screen[3] - screen[2]);
+        let (m, wpos) = self
+            .camera_from_world
+            .unwrap_or((DMat4::IDENTITY, world_pos));
+        paths.push((".placement".into(), wpos));
+        paths.push((".placement.Matrix[0]".into(), wpos));
+        let g = world_mirror(m);
+        let flip = DMat4::from_scale(DVec3::new(1.0, 1.0, -1.0));
+        let a = g * m.inverse() * flip;
+        // Keep the rotation: a uniform scale of the camera does not change the image.
+        let l = DMat3::from_mat4(a);
+        let s = l.determinant().abs().cbrt();
+        let r = if s > 0.0 { l * (1.0 / s) } else { l };
+        let placement = DMat4::from_cols(
+            r.x_axis.extend(0.0),
+            r.y_axis.extend(0.0),
+            r.z_axis.extend(0.0),
+            a.w_axis,
+        );
+        let outputs = self
+            .displays
+            .iter()
+            .enumerate()
+            .map(|(i, d)| {
+                paths.push((format!(".outputs[{i}]"), d.pos));
+                paths.push((format!(".outputs[{i}].file"), d.pos));
+                OutputDesc {
+                    file: d.file.clone(),
+                    format: None,
+                    passes: Some(d.passes.clone()),
+                }
+            })
+            .collect();
+        let ((gain, gamma), epos) = self.exposure.unwrap_or(((1.0, 1.0), world_pos));
+        paths.push((".imager".into(), epos));
+        paths.push((".imager.gain".into(), epos));
+        paths.push((".imager.gamma".into(), epos));
+        if let Some((_, p)) = self.background {
+            paths.push((".imager.background".into(), p));
+        }
+        let imager = ImagerDesc {
+            background: self.background.map(|b| b.0),
+            gain,
+            tone_map: ToneMapDesc::None,
+            gamma: Some(gamma),
+        };
+        (
+            CameraDesc {
+                name: "camera".into(),
+                fov_y,
+                resolution: (w, h),
+                aspect: (self.screen.is_some() || pixel_aspect != 1.0).then_some(aspect),
+                placement: PlacementDesc::Matrix(rows(placement)),
+                outputs,
+                imager: Some(imager),
+                lens: Vec::new(),
+                atmosphere: None,
+            },
+            paths,
+        )
+    }
+
+    /// `samples` of the options.
+    pub fn samples(&self) -> SamplesDesc {
+        SamplesDesc::Fixed(self.samples.map_or(4, |s| s.0))
+    }
+
+    /// `filter` of the options.
+    pub fn filter(&self) -> FilterDesc {
+        self.filter.map_or(
+            FilterDesc::Gaussian {
+                sigma: 0.5,
+                radius: 1.0,
+            },
+            |f| f.0,
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn p() -> Pos {
+        Pos::default()
+    }
+
+    #[test]
+    fn default_camera_looks_down_rib_plus_z() {
+        let (c, _) = CameraOptions::default().camera(p());
+        assert_eq!(c.resolution, (640, 480));
+        assert!((c.fov_y - 90.0).abs() < 1e-12);
+        let PlacementDesc::Matrix(m) = c.placement else {
+            panic!("a matrix")
+        };
+        // Identity: the world is mirrored instead, so the camera is the identity.
+        assert_eq!(m, rows(DMat4::IDENTITY));
+    }
+
+    #[test]
+    fn fov_spans_the_shorter_side() {
+        let o = CameraOptions {
+            format: Some(((100, 200, 1.0), p())),
+            fov: Some((90.0, p())),
+            ..Default::default()
+        };
+        let (c, _) = o.camera(p());
+        // Portrait: 90° across the width, so tan(fov_y/2) = 2.
+        assert!(
+            (c.fov_y - 2.0 * 2f64.atan().to_degrees()).abs() < 1e-12,
+            "{}",
+            c.fov_y
+        );
+        assert_eq!(c.aspect, None);
+    }
+
+    #[test]
+    fn camera_translation_moves_the_eye() {
+        // `Translate 0 0 5` before WorldBegin: the world is 5 units in front of the camera,
+        // so the eye sits at RIB world z = −5, our z = +5.
+        let o = CameraOptions {
+            camera_from_world: Some((DMat4::from_translation(DVec3::new(0.0, 0.0, 5.0)), p())),
+            ..Default::default()
+        };
+        let (c, _) = o.camera(p());
+        let PlacementDesc::Matrix(m) = c.placement else {
+            panic!("a matrix")
+        };
+        assert_eq!(m[2][3], 5.0);
+        assert_eq!(m[0][0], 1.0);
+        assert_eq!(m[2][2], 1.0);
+    }
+}

@@ -1,0 +1,417 @@
+//! The RenderMan standard shaders as stagelight descriptions: `Surface` (`constant`,
+//! `matte`, `metal`, `shinymetal`, `plastic`, `paintedplastic`, `defaultsurface`),
+//! `Displacement` (stagelight's `sine`, standing in for the tutorial's `myDisplacement`),
+//! and `LightSource` (`pointlight`, `spotlight`, `distantlight`, `ambientlight`).
+//!
+//! Every parameter a shader does not have is an error with a suggestion; parameters left
+//! out take the defaults of the RenderMan Interface Specification 3.2.
+
+use super::params::{Param, Ty};
+use super::state::ShaderCall;
+use super::{Pos, Problem};
+use crate::scene::desc::{AxisDesc, ScalarDesc, ShaderDesc, V3};
+use crate::scene::diagnostics::suggestion;
+
+/// Kinds of shader parameter value.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Kind {
+    Float,
+    Color,
+    Point,
+    Str,
+}
+
+/// One parameter a shader takes: name, kind, description path of its value (or `None`
+/// when it has no field of its own).
+type Spec = (&'static str, Kind, Option<&'static str>);
+
+const CONSTANT: &[Spec] = &[];
+const MATTE: &[Spec] = &[
+    ("Ka", Kind::Float, Some("ka")),
+    ("Kd", Kind::Float, Some("kd")),
+];
+const DEFAULT_SURFACE: &[Spec] = MATTE;
+const METAL: &[Spec] = &[
+    ("Ka", Kind::Float, Some("ka")),
+    ("Ks", Kind::Float, Some("ks")),
+    ("roughness", Kind::Float, Some("roughness")),
+];
+const SHINY_METAL: &[Spec] = &[
+    ("Ka", Kind::Float, Some("ka")),
+    ("Ks", Kind::Float, Some("ks")),
+    ("Kr", Kind::Float, Some("kr")),
+    ("roughness", Kind::Float, Some("roughness")),
+    ("texturename", Kind::Str, None),
+];
+const PLASTIC: &[Spec] = &[
+    ("Ka", Kind::Float, Some("ka")),
+    ("Kd", Kind::Float, Some("kd")),
+    ("Ks", Kind::Float, Some("ks")),
+    ("roughness", Kind::Float, Some("roughness")),
+    ("specularcolor", Kind::Color, Some("specularcolor")),
+];
+const PAINTED_PLASTIC: &[Spec] = &[
+    ("Ka", Kind::Float, Some("ka")),
+    ("Kd", Kind::Float, Some("kd")),
+    ("Ks", Kind::Float, Some("ks")),
+    ("roughness", Kind::Float, Some("roughness")),
+    ("specularcolor", Kind::Color, Some("specularcolor")),
+    ("texturename", Kind::Str, None),
+];
+
+/// The surface shaders we have.
+pub const SURFACES: &[&str] = &[
+    "constant",
+    "matte",
+    "metal",
+    "shinymetal",
+    "plastic",
+    "paintedplastic",
+    "defaultsurface",
+];
+
+/// The light shaders we have.
+pub const LIGHTS: &[&str] = &["ambientlight", "pointlight", "spotlight", "distantlight"];
+
+/// The displacement shaders we have.
+pub const DISPLACEMENTS: &[&str] = &["sine"];
+
+/// Looks up the parameters of a call: checks names against `specs` and kinds, returns the
+/// values by spec index. Unknown parameters are errors.
+struct Values<'a> {
+    found: Vec<Option<&'a Param>>,
+}
+
+impl<'a> Values<'a> {
+    fn read(call: &'a ShaderCall, what: &str, specs: &[Spec], problems: &mut Vec<Problem>) -> Self {
+        let mut found = vec![None; specs.len()];
+        for p in &call.params {
+            let Some(i) = specs.iter().position(|s| s.0 == p.name) else {
+                let names: Vec<&str> = specs.iter().map(|s| s.0).collect();
+                let mut e = Problem::error(
+                    p.name_pos,
+                    format!(
+                        "unknown parameter \"{}\" of {what} \"{}\"",
+                        p.name, call.name
+                    ),
+                );
+                e.help = suggestion(&p.name, &names, "parameters");
+                problems.push(e);
+                continue;
+            };
+            let (name, kind, _) = specs[i];
+            let ok = match kind {
+                Kind::Float => p.decl.ty == Ty::Float && p.nums().len() == 1,
+                Kind::Color | Kind::Point => p.decl.ty == Ty::Triple && p.nums().len() == 3,
+                Kind::Str => p.decl.ty == Ty::Str,
+            };
+            if !ok {
+                let want = match kind {
+                    Kind::Float => "one float",
+                    Kind::Color => "one color (3 numbers)",
+                    Kind::Point => "one point (3 numbers)",
+                    Kind::Str => "a string",
+                };
+                problems.push(Problem::error(
+                    p.pos(),
+                    format!(
+                        "parameter \"{name}\" of {what} \"{}\" takes {want}",
+                        call.name
+                    ),
+                ));
+                continue;
+            }
+            found[i] = Some(p);
+        }
+        Self { found }
+    }
+
+    fn num(&self, i: usize, default: f64) -> f64 {
+        self.found[i].map_or(default, Param::num)
+    }
+
+    fn triple(&self, i: usize, default: V3) -> V3 {
+        self.found[i].map_or(default, Param::triple)
+    }
+
+    fn string(&self, i: usize) -> Option<&'a Param> {
+        self.found[i]
+    }
+}
+
+/// A surface shader with the value paths of its parameters (relative to the shader).
+pub struct Surface {
+    /// The shader.
+    pub shader: ShaderDesc,
+    /// `(path below the shader, position)` of each written parameter.
+    pub paths: Vec<(String, Pos)>,
+}
+
+/// The surface shader of `call` (`None`: `defaultsurface`) with colour `cs`.
+pub fn surface(call: Option<&ShaderCall>, cs: V3, problems: &mut Vec<Problem>) -> Surface {
+    let name = call.map_or("defaultsurface", |c| c.name.as_str());
+    let specs = match name {
+        "constant" => CONSTANT,
+        "matte" => MATTE,
+        "metal" => METAL,
+        "shinymetal" => SHINY_METAL,
+        "plastic" => PLASTIC,
+        "paintedplastic" => PAINTED_PLASTIC,
+        _ => DEFAULT_SURFACE,
+    };
+    let (v, variant) = match call {
+        Some(c) if SURFACES.contains(&name) => (
+            Values::read(c, "surface", specs, problems),
+            variant_name(name),
+        ),
+        _ => (
+            Values {
+                found: vec![None; specs.len()],
+            },
+            "DefaultSurface",
+        ),
+    };
+    let white = (1.0, 1.0, 1.0);
+    let shader = match name {
+        "constant" => ShaderDesc::Constant { color: cs },
+        "matte" => ShaderDesc::Matte {
+            ka: v.num(0, 1.0),
+            kd: v.num(1, 1.0),
+            color: cs,
+        },
+        "metal" => ShaderDesc::Metal {
+            ka: v.num(0, 1.0),
+            ks: v.num(1, 1.0),
+            roughness: v.num(2, 0.1),
+            color: cs,
+        },
+        "shinymetal" => {
+            if let Some(t) = v.string(4).filter(|t| !t.str().is_empty()) {
+                problems.push(Problem::warning(
+                    t.pos(),
+                    format!(
+                        "ignored \"texturename\" \"{}\" of \"shinymetal\": traced mirror \
+                         reflections stand in for the environment map",
+                        t.str()
+                    ),
+                ));
+            }
+            ShaderDesc::ShinyMetal {
+                ka: v.num(0, 1.0),
+                ks: v.num(1, 1.0),
+                kr: v.num(2, 1.0),
+                roughness: v.num(3, 0.1),
+                color: cs,
+            }
+        }
+        "plastic" => ShaderDesc::Plastic {
+            ka: v.num(0, 1.0),
+            kd: v.num(1, 0.5),
+            ks: v.num(2, 0.5),
+            roughness: v.num(3, 0.1),
+            specularcolor: v.triple(4, white),
+            color: cs,
+        },
+        "paintedplastic" => {
+            if let Some(t) = v.string(5).filter(|t| !t.str().is_empty()) {
+                problems.push(Problem::warning(
+                    t.pos(),
+                    format!(
+                        "ignored \"texturename\" \"{}\" of \"paintedplastic\": texture maps \
+                         are not read from RIB yet",
+                        t.str()
+                    ),
+                ));
+            }
+            ShaderDesc::PaintedPlastic {
+                ka: v.num(0, 1.0),
+                kd: v.num(1, 0.5),
+                ks: v.num(2, 0.5),
+                roughness: v.num(3, 0.1),
+                specularcolor: v.triple(4, white),
+                color: cs,
+            }
+        }
+        _ => ShaderDesc::DefaultSurface {
+            ka: v.num(0, 0.2),
+            kd: v.num(1, 0.8),
+            color: cs,
+        },
+    };
+    let mut paths = Vec::new();
+    for (spec, p) in specs.iter().zip(&v.found) {
+        if let (Some(field), Some(p)) = (spec.2, p) {
+            paths.push((format!(".{variant}.{field}"), p.pos()));
+        }
+    }
+    if matches!(
+        shader,
+        ShaderDesc::Constant { .. } | ShaderDesc::Matte { .. }
+    ) {
+        paths.push((
+            format!(".{variant}"),
+            call.map_or(Pos::default(), |c| c.pos),
+        ));
+    }
+    Surface { shader, paths }
+}
+
+fn variant_name(name: &str) -> &'static str {
+    match name {
+        "constant" => "Constant",
+        "matte" => "Matte",
+        "metal" => "Metal",
+        "shinymetal" => "ShinyMetal",
+        "plastic" => "Plastic",
+        "paintedplastic" => "PaintedPlastic",
+        _ => "DefaultSurface",
+    }
+}
+
+const SINE: &[Spec] = &[
+    ("amplitude", Kind::Float, None),
+    ("factor", Kind::Float, None),
+    ("axis", Kind::Str, None),
+];
+
+/// stagelight's `sine` displacement: `amplitude · sin(coord · factor · π)` along the
+/// normal, over `s`, `t` or both (`"st"`: the sum) — the tutorial's `myDisplacement`
+/// (defaults: amplitude 0.1, factor 20, axis "st").
+pub fn displacement(call: &ShaderCall, problems: &mut Vec<Problem>) -> Option<ScalarDesc> {
+    let v = Values::read(call, "displacement", SINE, problems);
+    let amplitude = v.num(0, 0.1);
+    let factor = v.num(1, 20.0);
+    let sine = |axis| ScalarDesc::Sine {
+        amplitude,
+        factor,
+        axis,
+    };
+    match v.string(2).map_or("st", Param::str) {
+        "s" => Some(sine(AxisDesc::U)),
+        "t" => Some(sine(AxisDesc::V)),
+        "st" => Some(ScalarDesc::Sum(vec![sine(AxisDesc::V), sine(AxisDesc::U)])),
+        other => {
+            let p = v.string(2).expect("a value was read");
+            problems.push(
+                Problem::error(p.pos(), format!("unknown axis \"{other}\" of \"sine\""))
+                    .with_help("expected \"s\", \"t\" or \"st\""),
+            );
+            None
+        }
+    }
+}
+
+const AMBIENT: &[Spec] = &[
+    ("intensity", Kind::Float, Some("intensity")),
+    ("lightcolor", Kind::Color, Some("color")),
+];
+const POINT: &[Spec] = &[
+    ("intensity", Kind::Float, Some("intensity")),
+    ("lightcolor", Kind::Color, Some("color")),
+    ("from", Kind::Point, Some("kind.Point.position")),
+];
+const DISTANT: &[Spec] = &[
+    ("intensity", Kind::Float, Some("intensity")),
+    ("lightcolor", Kind::Color, Some("color")),
+    ("from", Kind::Point, Some("kind.Directional.direction")),
+    ("to", Kind::Point, Some("kind.Directional.direction")),
+];
+const SPOT: &[Spec] = &[
+    ("intensity", Kind::Float, Some("intensity")),
+    ("lightcolor", Kind::Color, Some("color")),
+    ("from", Kind::Point, Some("kind.Spot.position")),
+    ("to", Kind::Point, Some("kind.Spot.target")),
+    ("coneangle", Kind::Float, Some("kind.Spot.cone_angle")),
+    ("conedeltaangle", Kind::Float, Some("kind.Spot.penumbra")),
+    (
+        "beamdistribution",
+        Kind::Float,
+        Some("kind.Spot.beam_distribution"),
+    ),
+];
+
+/// A light shader's values, in the light's shader space (points untransformed).
+#[derive(Debug, Clone, PartialEq)]
+pub enum LightShader {
+    /// `ambientlight`.
+    Ambient,
+    /// `pointlight`.
+    Point {
+        /// `from`.
+        from: V3,
+    },
+    /// `distantlight`.
+    Distant {
+        /// `from`.
+        from: V3,
+        /// `to`.
+        to: V3,
+    },
+    /// `spotlight`.
+    Spot {
+        /// `from`.
+        from: V3,
+        /// `to`.
+        to: V3,
+        /// `coneangle`, radians.
+        cone: f64,
+        /// `conedeltaangle`, radians.
+        delta: f64,
+        /// `beamdistribution`.
+        beam: f64,
+    },
+}
+
+/// A light shader call read: shape, intensity, colour, and value paths (relative to the
+/// light).
+pub struct LightValues {
+    /// The shape and its shader-space values.
+    pub shader: LightShader,
+    /// `intensity`.
+    pub intensity: f64,
+    /// `lightcolor`.
+    pub color: V3,
+    /// `(path below the light, position)` of each written parameter.
+    pub paths: Vec<(String, Pos)>,
+}
+
+/// Reads a `LightSource` call of one of [`LIGHTS`].
+pub fn light(call: &ShaderCall, problems: &mut Vec<Problem>) -> LightValues {
+    let specs = match call.name.as_str() {
+        "ambientlight" => AMBIENT,
+        "pointlight" => POINT,
+        "distantlight" => DISTANT,
+        _ => SPOT,
+    };
+    let v = Values::read(call, "light", specs, problems);
+    let zero = (0.0, 0.0, 0.0);
+    let shader = match call.name.as_str() {
+        "ambientlight" => LightShader::Ambient,
+        "pointlight" => LightShader::Point {
+            from: v.triple(2, zero),
+        },
+        "distantlight" => LightShader::Distant {
+            from: v.triple(2, zero),
+            to: v.triple(3, (0.0, 0.0, 1.0)),
+        },
+        _ => LightShader::Spot {
+            from: v.triple(2, zero),
+            to: v.triple(3, (0.0, 0.0, 1.0)),
+            cone: v.num(4, 30f64.to_radians()),
+            delta: v.num(5, 5f64.to_radians()),
+            beam: v.num(6, 2.0),
+        },
+    };
+    let mut paths = Vec::new();
+    for (spec, p) in specs.iter().zip(&v.found) {
+        if let (Some(field), Some(p)) = (spec.2, p) {
+            paths.push((format!(".{field}"), p.pos()));
+        }
+    }
+    LightValues {
+        shader,
+        intensity: v.num(0, 1.0),
+        color: v.triple(1, (1.0, 1.0, 1.0)),
+        paths,
+    }
+}
