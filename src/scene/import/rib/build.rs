@@ -424,7 +424,7 @@ impl Builder {
                         let names: Vec<&str> = self.coordsys.keys().map(String::as_str).collect();
                         let mut e =
                             Problem::error(pos, format!("unknown coordinate system \"{n}\""));
-                        e.help = suggestion(&n, &names, "coordinate systems");
+                        e.help = suggestion(&n, &names, "CoordinateSystem names");
                         return Err(e);
                     }
                 }
