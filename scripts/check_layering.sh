@@ -4,7 +4,7 @@
 #      outside components (`crate::X` with X ≠ components, or `super::super`) in code;
 #      comments (doc links included) may mention other modules;
 #   2. no import cycle between the top-level modules of src/, nor between the child modules
-#      of one top-level module (scripts/module_cycles.py), except the allow-list below.
+#      of one top-level module (scripts/module_cycles.py).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -17,11 +17,4 @@ if grep -rn --include='*.rs' -E 'crate::|super::super' src/components \
 fi
 
 echo "== layering: import cycles between modules of src/"
-# Allowed cycles, owned by other work in flight (issue 10, point 5):
-# - cycles among the children of scene/ (validate <-> samples/lights/shaders through
-#   `Checker`, desc <-> desc_*, nodes <-> nodes_phenomena): the importer-seam rework of
-#   src/scene/ (helper seam10).
-# Remove an entry when its cycle is gone; a new cycle anywhere else fails.
-python3 scripts/module_cycles.py \
-    --allow-within scene \
-    src
+python3 scripts/module_cycles.py src

@@ -11,13 +11,8 @@ pub use super::desc_geometry::{
     ApproximationDesc, AxisDesc, BasisDesc, DisplacementDesc, DisplacementModeDesc, MeshDesc,
     ScalarDesc, SpaceDesc,
 };
+pub use super::desc_values::{M4, V3};
 pub use super::nodes_desc::{BumpDesc, InputDesc, NodeDesc, PhenomenonDesc};
-
-/// A 3-vector as written in the file: `(x, y, z)`.
-pub type V3 = (f64, f64, f64);
-
-/// A row-major 4×4 matrix: `((r0), (r1), (r2), (r3))`.
-pub type M4 = [[f64; 4]; 4];
 
 /// One scene file (the root file or an include). Every field is optional.
 #[derive(Debug, Clone, Default, Deserialize, Serialize)]

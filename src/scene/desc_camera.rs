@@ -7,7 +7,7 @@ use serde::de::{self, MapAccess, Visitor};
 use serde::ser::SerializeStruct;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
-use super::desc::V3;
+use super::desc_values::V3;
 
 /// A lens shader in a camera's `lens: [...]` list.
 #[derive(Debug, Clone, Copy, PartialEq, Deserialize, Serialize)]

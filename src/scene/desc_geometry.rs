@@ -8,7 +8,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::desc::V3;
+use super::desc_values::V3;
 
 /// Mesh source of an object.
 #[derive(Debug, Clone, Deserialize, Serialize)]

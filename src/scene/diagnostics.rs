@@ -1,129 +1,14 @@
-//! Scene diagnostics as the user sees them: `file:line:col: error: message` (or
-//! `warning:`) plus a `help:` line, the same for every scene format.
-//!
-//! [`Sources`] holds every loaded scene file with its [`SourceMap`] and collects errors and
-//! warnings as reading and validation find them, each located through the map of the file
-//! it is about; [`Sources::finish`] orders the errors by file (load order) and position.
+//! Collecting scene diagnostics: [`Sources`] holds every loaded scene file with its
+//! [`SourceMap`] and collects errors and warnings as reading and validation find them,
+//! each located through the map of the file it is about; [`Sources::finish`] orders the
+//! errors by file (load order) and position. The diagnostics themselves are
+//! [`super::message`]'s (re-exported here).
 
-use std::fmt;
 use std::path::{Path, PathBuf};
 
-use super::import::{SourceMap, SourcePos};
-use super::suggest;
-
-/// How bad a diagnostic is.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Severity {
-    /// The scene is refused.
-    Error,
-    /// The scene loads; something was ignored or changed.
-    Warning,
-}
-
-impl fmt::Display for Severity {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(match self {
-            Severity::Error => "error",
-            Severity::Warning => "warning",
-        })
-    }
-}
-
-/// One problem found in a scene, located in a file.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct Diagnostic {
-    /// File the problem is in, as the user named it (joined with include-relative parts).
-    pub file: PathBuf,
-    /// 1-based line.
-    pub line: usize,
-    /// 1-based column (characters).
-    pub column: usize,
-    /// What is wrong and what was expected.
-    pub message: String,
-    /// A suggestion (`did you mean "chrome_red"?`).
-    pub help: Option<String>,
-}
-
-impl Diagnostic {
-    /// A diagnostic at `pos`.
-    pub fn at(pos: SourcePos, message: impl Into<String>, help: Option<String>) -> Self {
-        Self {
-            file: pos.file,
-            line: pos.line,
-            column: pos.column,
-            message: message.into(),
-            help,
-        }
-    }
-
-    /// Where it is.
-    pub fn pos(&self) -> SourcePos {
-        SourcePos {
-            file: self.file.clone(),
-            line: self.line,
-            column: self.column,
-        }
-    }
-
-    /// The text printed for it with `severity`: `file:line:col: warning: message`.
-    pub fn with_severity(&self, severity: Severity) -> Shown<'_> {
-        Shown {
-            diagnostic: self,
-            severity,
-        }
-    }
-}
-
-/// Shows a diagnostic as an error (what a scene refused for prints).
-impl fmt::Display for Diagnostic {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        self.with_severity(Severity::Error).fmt(f)
-    }
-}
-
-/// A diagnostic with its severity, for printing (see [`Diagnostic::with_severity`]).
-#[derive(Debug, Clone, Copy)]
-pub struct Shown<'d> {
-    diagnostic: &'d Diagnostic,
-    severity: Severity,
-}
-
-impl fmt::Display for Shown<'_> {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let d = self.diagnostic;
-        write!(
-            f,
-            "{}:{}:{}: {}: {}",
-            d.file.display(),
-            d.line,
-            d.column,
-            self.severity,
-            d.message
-        )?;
-        if let Some(help) = &d.help {
-            write!(f, "\n  help: {help}")?;
-        }
-        Ok(())
-    }
-}
-
-/// Every problem found in a scene, reported together, ordered by file then position.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct SceneErrors(pub Vec<Diagnostic>);
-
-impl fmt::Display for SceneErrors {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        for (i, d) in self.0.iter().enumerate() {
-            if i > 0 {
-                writeln!(f)?;
-            }
-            write!(f, "{d}")?;
-        }
-        Ok(())
-    }
-}
-
-impl std::error::Error for SceneErrors {}
+use super::import::SourceMap;
+pub use super::message::{Diagnostic, SceneErrors, Severity, SourcePos};
+pub use super::suggest::suggestion;
 
 /// A scene file that was read: its display path and where its values are.
 #[derive(Debug, Clone)]
@@ -209,60 +94,5 @@ impl Sources {
     pub fn finish(mut self) -> Vec<Diagnostic> {
         self.errors.sort_by_key(|(key, _)| *key);
         self.errors.into_iter().map(|(_, d)| d).collect()
-    }
-}
-
-/// `"did you mean …?"` for `wrong` among `candidates`, else a list of what is expected.
-pub fn suggestion(wrong: &str, candidates: &[&str], what: &str) -> Option<String> {
-    if let Some(best) = suggest::closest(wrong, candidates.iter().copied()) {
-        return Some(format!("did you mean \"{best}\"?"));
-    }
-    match candidates.len() {
-        0 => Some(format!("no {what} are defined")),
-        1..=8 => Some(format!(
-            "expected {}",
-            suggest::quoted_list(candidates.iter().copied())
-        )),
-        _ => None,
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn display_has_help_on_second_line() {
-        let d = Diagnostic {
-            file: "a/b.ron".into(),
-            line: 3,
-            column: 7,
-            message: "unknown material \"chrom\"".into(),
-            help: Some("did you mean \"chrome\"?".into()),
-        };
-        assert_eq!(
-            d.to_string(),
-            "a/b.ron:3:7: error: unknown material \"chrom\"\n  help: did you mean \"chrome\"?"
-        );
-        assert_eq!(
-            d.with_severity(Severity::Warning).to_string(),
-            "a/b.ron:3:7: warning: unknown material \"chrom\"\n  help: did you mean \"chrome\"?"
-        );
-    }
-
-    #[test]
-    fn suggestions_fall_back_to_lists() {
-        assert_eq!(
-            suggestion("colour", &["color", "name"], "fields").as_deref(),
-            Some("did you mean \"color\"?")
-        );
-        assert_eq!(
-            suggestion("zzz", &["albedo"], "fields").as_deref(),
-            Some("expected \"albedo\"")
-        );
-        assert_eq!(
-            suggestion("zzz", &[], "materials").as_deref(),
-            Some("no materials are defined")
-        );
     }
 }

@@ -11,12 +11,12 @@
 
 use std::collections::HashSet;
 use std::fs;
-use std::io;
 use std::path::{Path, PathBuf};
 
 use super::desc::SceneDesc;
 use super::diagnostics::{Diagnostic, SourceFile, Sources};
 use super::import::{self, SourceMap, SourcePos};
+pub use super::message::io_reason;
 
 /// Deepest include chain followed (guards the stack against absurd chains of distinct files).
 const MAX_INCLUDE_DEPTH: usize = 64;
@@ -27,16 +27,6 @@ pub struct LoadedFiles {
     pub sources: Sources,
     /// Parsed descriptions, parallel to `sources.files`.
     pub scenes: Vec<Option<SceneDesc>>,
-}
-
-/// Human text for an I/O error, stable across platforms.
-pub fn io_reason(err: &io::Error) -> String {
-    match err.kind() {
-        io::ErrorKind::NotFound => "file not found".into(),
-        io::ErrorKind::PermissionDenied => "permission denied".into(),
-        io::ErrorKind::IsADirectory => "is a directory".into(),
-        _ => err.to_string(),
-    }
 }
 
 /// Reads `root` (or uses `text` for it) and everything it includes, each file with the

@@ -26,6 +26,7 @@ pub(crate) mod dag;
 pub mod desc;
 pub mod desc_camera;
 pub mod desc_geometry;
+pub mod desc_values;
 pub(crate) mod diagnostics;
 pub(crate) mod environment;
 pub(crate) mod geometry;
@@ -36,10 +37,10 @@ pub(crate) mod lens;
 pub(crate) mod lights;
 pub mod mesh_files;
 pub(crate) mod mesh_load;
+pub(crate) mod message;
 pub(crate) mod names;
 pub(crate) mod nodes;
 pub mod nodes_desc;
-pub(crate) mod nodes_phenomena;
 pub(crate) mod rebase;
 pub(crate) mod samples;
 pub(crate) mod shaders;
@@ -57,11 +58,13 @@ pub use diagnostics::{Diagnostic, SceneErrors};
 pub use environment::read_exr as read_lat_long;
 
 use crate::settings::RenderSettings;
+use checker::Checker;
 use desc::MeshDesc;
 use diagnostics::Sources;
 use include::LoadedFiles;
 use mesh_load::BuiltMesh;
-use validate::{Checker, Merged};
+use spawn::{CameraParts, MaterialParts, ObjectParts};
+use validate::Merged;
 
 /// A loaded, validated scene.
 pub struct LoadedScene {
@@ -129,21 +132,22 @@ fn load(
     let src = &mut sources;
     let merged = validate::merge(src, &scenes);
     let settings = validate::settings(src, merged.options.as_ref());
-    let imagers: Vec<_> = merged
+    // Each pass over the elements keeps its place: errors at the same position are
+    // reported in discovery order.
+    let mut cameras: Vec<CameraParts> = merged
         .cameras
         .iter()
-        .map(|c| imager::imager(src, c))
+        .map(|c| CameraParts {
+            imager: imager::imager(src, c),
+            ..CameraParts::default()
+        })
         .collect();
-    let lenses: Vec<_> = merged
-        .cameras
-        .iter()
-        .map(|c| lens::lenses(src, c))
-        .collect();
-    let atmospheres: Vec<_> = merged
-        .cameras
-        .iter()
-        .map(|c| volume::atmosphere(src, c))
-        .collect();
+    for (parts, c) in cameras.iter_mut().zip(&merged.cameras) {
+        parts.lenses = lens::lenses(src, c);
+    }
+    for (parts, c) in cameras.iter_mut().zip(&merged.cameras) {
+        parts.atmosphere = volume::atmosphere(src, c);
+    }
     let interiors: Vec<_> = merged
         .materials
         .iter()
@@ -157,6 +161,11 @@ fn load(
         .collect();
     let mut phenomena = nodes::check_phenomena(src, &merged);
     nodes::attach(src, &merged, &mut phenomena, &mut materials);
+    let materials: Vec<MaterialParts> = materials
+        .into_iter()
+        .zip(interiors)
+        .map(|(material, interior)| MaterialParts { material, interior })
+        .collect();
     let resolved = names::resolve(src, &merged);
     let scatters = geometry::scatter::resolve(src, &merged);
     let object_geometry = geometry::check_objects(src, &merged, &scatters);
@@ -195,14 +204,10 @@ fn load(
     if !rebase::rebase_leaves(&mut leaves, origin) {
         origin = DVec3::ZERO;
     }
-    let cameras: Vec<_> = merged
-        .cameras
-        .iter()
-        .map(|c| {
-            let desc = rebase::camera(c.desc, origin);
-            validate::camera(src, &rebased(c, &desc))
-        })
-        .collect();
+    for (parts, c) in cameras.iter_mut().zip(&merged.cameras) {
+        let desc = rebase::camera(c.desc, origin);
+        parts.camera = validate::camera(src, &rebased(c, &desc));
+    }
     let lights: Vec<_> = merged
         .lights
         .iter()
@@ -245,20 +250,20 @@ fn load(
         }
     }
     warnings.extend(geometry::warnings(&merged, &object_geometry));
+    let objects = built
+        .into_iter()
+        .zip(object_geometry)
+        .map(|(b, geometry)| ObjectParts {
+            mesh: b.map(|b| Arc::new(b.mesh)),
+            geometry,
+        })
+        .collect();
     let parts = spawn::Parts {
         cameras,
-        imagers,
-        lenses,
-        atmospheres,
-        interiors,
         render_camera: resolved.camera,
         lights,
         materials,
-        meshes: built
-            .into_iter()
-            .map(|b| b.map(|b| Arc::new(b.mesh)))
-            .collect(),
-        geometry: object_geometry,
+        objects,
         leaves,
         bakes,
         origin,

@@ -6,7 +6,7 @@ use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
-use super::desc::V3;
+use super::desc_values::V3;
 
 /// A node input: a number, a colour `(r, g, b)` or a node.
 #[derive(Debug, Clone, Deserialize, Serialize)]

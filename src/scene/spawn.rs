@@ -35,29 +35,48 @@ use crate::components::{
 };
 use crate::procedural::pending_instance;
 
-/// Everything checked and built, ready to spawn (indices parallel to the merged lists;
+/// What one camera was checked into (`None` where a check failed or nothing is written).
+#[derive(Default)]
+pub struct CameraParts {
+    /// The camera component.
+    pub camera: Option<Camera>,
+    /// Its imager.
+    pub imager: Option<Imager>,
+    /// Its lens shaders.
+    pub lenses: Option<Lenses>,
+    /// Its atmosphere.
+    pub atmosphere: Option<Fog>,
+}
+
+/// What one material was checked into.
+pub struct MaterialParts {
+    /// The material component.
+    pub material: Option<Material>,
+    /// Its interior volume.
+    pub interior: Option<Fog>,
+}
+
+/// What one object was checked and built into.
+pub struct ObjectParts {
+    /// Its mesh, if it was built (reachable objects with a loaded mesh).
+    pub mesh: Option<Arc<TriMesh>>,
+    /// Its geometry components (generator, approximation, displacement).
+    pub geometry: Option<ObjectGeometry>,
+}
+
+/// Everything checked and built, ready to spawn (one entry per element of the merged lists;
 /// `None` for elements that failed a check, which the caller reports instead of spawning).
 pub struct Parts {
-    /// Camera components.
-    pub cameras: Vec<Option<Camera>>,
-    /// The cameras' imagers (parallel to `cameras`).
-    pub imagers: Vec<Option<Imager>>,
-    /// The cameras' lens shaders (parallel to `cameras`).
-    pub lenses: Vec<Option<Lenses>>,
-    /// The cameras' atmospheres (parallel to `cameras`).
-    pub atmospheres: Vec<Option<Fog>>,
-    /// The materials' interiors (parallel to `materials`).
-    pub interiors: Vec<Option<Fog>>,
+    /// Per camera.
+    pub cameras: Vec<CameraParts>,
     /// Index of the render camera.
     pub render_camera: Option<usize>,
     /// Light components.
     pub lights: Vec<Option<Emitter>>,
-    /// Material components.
-    pub materials: Vec<Option<Material>>,
-    /// Meshes of the objects that were built (reachable ones).
-    pub meshes: Vec<Option<Arc<TriMesh>>>,
-    /// Geometry components of each object (generators, approximation, displacement).
-    pub geometry: Vec<Option<ObjectGeometry>>,
+    /// Per material.
+    pub materials: Vec<MaterialParts>,
+    /// Per object.
+    pub objects: Vec<ObjectParts>,
     /// The flattened instance DAG.
     pub leaves: Vec<Leaf>,
     /// Bake request of each merged instance (at most one leaf carries each).
@@ -69,7 +88,7 @@ pub struct Parts {
 /// Objects to spawn, in index order: those of the leaves, and the prototypes and surfaces of
 /// the scatters among them.
 fn used_objects(parts: &Parts) -> Vec<usize> {
-    let mut used = vec![false; parts.geometry.len()];
+    let mut used = vec![false; parts.objects.len()];
     let mut todo: Vec<usize> = parts.leaves.iter().map(|l| l.object).collect();
     while let Some(o) = todo.pop() {
         if o >= used.len() || std::mem::replace(&mut used[o], true) {
@@ -81,7 +100,7 @@ fn used_objects(parts: &Parts) -> Vec<usize> {
                     prototype, surface, ..
                 }),
             ..
-        })) = parts.geometry.get(o)
+        })) = parts.objects.get(o).map(|p| &p.geometry)
         {
             todo.extend([*prototype, *surface]);
         }
@@ -100,7 +119,11 @@ pub fn spawn(src: &Sources, m: &Merged<'_>, parts: Parts) -> World {
     for key in used {
         let entity = match key {
             Some(i) => {
-                let Some(Some(material)) = parts.materials.get(i) else {
+                let Some(MaterialParts {
+                    material: Some(material),
+                    interior,
+                }) = parts.materials.get(i)
+                else {
                     continue;
                 };
                 let it = &m.materials[i];
@@ -109,7 +132,7 @@ pub fn spawn(src: &Sources, m: &Merged<'_>, parts: Parts) -> World {
                     SourceLink::from(it.pos.clone()),
                     material.clone(),
                 ));
-                if let Some(Some(fog)) = parts.interiors.get(i) {
+                if let Some(fog) = interior {
                     // The entity was just spawned, so inserting cannot fail.
                     let _ = world.insert_one(entity, Interior(*fog));
                 }
@@ -134,7 +157,11 @@ pub fn spawn(src: &Sources, m: &Merged<'_>, parts: Parts) -> World {
 
     let mut object_entity: HashMap<usize, Entity> = HashMap::new();
     for o in used_objects(&parts) {
-        let Some(Some(geometry)) = parts.geometry.get(o) else {
+        let Some(ObjectParts {
+            mesh,
+            geometry: Some(geometry),
+        }) = parts.objects.get(o)
+        else {
             continue;
         };
         let it = &m.objects[o];
@@ -142,7 +169,7 @@ pub fn spawn(src: &Sources, m: &Merged<'_>, parts: Parts) -> World {
         b.add(Name(it.desc.name.clone()));
         b.add(SourceLink::from(it.pos.clone()));
         if geometry.generated.is_none() {
-            let Some(mesh) = parts.meshes.get(o).cloned().flatten() else {
+            let Some(mesh) = mesh.clone() else {
                 continue;
             };
             b.add(mesh);
@@ -160,7 +187,7 @@ pub fn spawn(src: &Sources, m: &Merged<'_>, parts: Parts) -> World {
                     template,
                 }),
             ..
-        })) = parts.geometry.get(o)
+        })) = parts.objects.get(o).map(|p| &p.geometry)
         {
             if let (Some(&p), Some(&s)) = (object_entity.get(prototype), object_entity.get(surface))
             {
@@ -182,7 +209,8 @@ pub fn spawn(src: &Sources, m: &Merged<'_>, parts: Parts) -> World {
         ) else {
             continue;
         };
-        let instance = match parts.meshes.get(leaf.object).cloned().flatten() {
+        let mesh = parts.objects.get(leaf.object).and_then(|p| p.mesh.clone());
+        let instance = match mesh {
             Some(mesh) => Instance { object, mesh },
             None => pending_instance(object),
         };
@@ -213,24 +241,24 @@ pub fn spawn(src: &Sources, m: &Merged<'_>, parts: Parts) -> World {
         ));
     }
 
-    for (i, (it, camera)) in m.cameras.iter().zip(parts.cameras).enumerate() {
-        let Some(camera) = camera else { continue };
+    for (i, (it, cam)) in m.cameras.iter().zip(parts.cameras).enumerate() {
+        let Some(camera) = cam.camera else { continue };
         let entity = world.spawn((
             Name(it.desc.name.clone()),
             SourceLink::from(it.pos.clone()),
             camera,
         ));
-        if let Some(Some(imager)) = parts.imagers.get(i) {
+        if let Some(imager) = cam.imager {
             // The entity was just spawned, so inserting cannot fail.
-            let _ = world.insert_one(entity, *imager);
+            let _ = world.insert_one(entity, imager);
         }
-        if let Some(Some(lenses)) = parts.lenses.get(i) {
+        if let Some(lenses) = cam.lenses {
             // The entity was just spawned, so inserting cannot fail.
-            let _ = world.insert_one(entity, lenses.clone());
+            let _ = world.insert_one(entity, lenses);
         }
-        if let Some(Some(fog)) = parts.atmospheres.get(i) {
+        if let Some(fog) = cam.atmosphere {
             // The entity was just spawned, so inserting cannot fail.
-            let _ = world.insert_one(entity, Atmosphere(*fog));
+            let _ = world.insert_one(entity, Atmosphere(fog));
         }
         if Some(i) == parts.render_camera {
             // The entity was just spawned, so inserting cannot fail.

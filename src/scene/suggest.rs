@@ -71,6 +71,21 @@ where
     }
 }
 
+/// `"did you mean …?"` for `wrong` among `candidates`, else a list of what is expected.
+pub fn suggestion(wrong: &str, candidates: &[&str], what: &str) -> Option<String> {
+    if let Some(best) = closest(wrong, candidates.iter().copied()) {
+        return Some(format!("did you mean \"{best}\"?"));
+    }
+    match candidates.len() {
+        0 => Some(format!("no {what} are defined")),
+        1..=8 => Some(format!(
+            "expected {}",
+            quoted_list(candidates.iter().copied())
+        )),
+        _ => None,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -98,5 +113,21 @@ mod tests {
     fn lists() {
         assert_eq!(quoted_list(["a"]), "\"a\"");
         assert_eq!(quoted_list(["a", "b", "c"]), "\"a\", \"b\" or \"c\"");
+    }
+
+    #[test]
+    fn suggestions_fall_back_to_lists() {
+        assert_eq!(
+            suggestion("colour", &["color", "name"], "fields").as_deref(),
+            Some("did you mean \"color\"?")
+        );
+        assert_eq!(
+            suggestion("zzz", &["albedo"], "fields").as_deref(),
+            Some("expected \"albedo\"")
+        );
+        assert_eq!(
+            suggestion("zzz", &[], "materials").as_deref(),
+            Some("no materials are defined")
+        );
     }
 }

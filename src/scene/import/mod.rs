@@ -42,47 +42,9 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use super::desc::SceneDesc;
-use super::diagnostics::Diagnostic;
+use super::message::Diagnostic;
+pub use super::message::SourcePos;
 use super::nodes_desc::NodeDesc;
-use crate::components::SourceLink;
-
-/// Where a value was written: the file as the user named it, 1-based line and column (chars).
-#[derive(Debug, Clone, PartialEq, Eq, PartialOrd, Ord, Hash)]
-pub struct SourcePos {
-    /// File as the user named it (joined with include-relative parts, never absolutized).
-    pub file: PathBuf,
-    /// 1-based line.
-    pub line: usize,
-    /// 1-based column, counting characters.
-    pub column: usize,
-}
-
-impl SourcePos {
-    /// Line 1, column 1 of `file`: where file-level problems are reported.
-    pub fn start(file: &Path) -> Self {
-        Self {
-            file: file.to_path_buf(),
-            line: 1,
-            column: 1,
-        }
-    }
-}
-
-impl fmt::Display for SourcePos {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}:{}:{}", self.file.display(), self.line, self.column)
-    }
-}
-
-impl From<SourcePos> for SourceLink {
-    fn from(p: SourcePos) -> Self {
-        SourceLink {
-            file: p.file,
-            line: p.line,
-            column: p.column,
-        }
-    }
-}
 
 /// What one reader produced from one file.
 #[derive(Debug)]

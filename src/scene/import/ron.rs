@@ -13,8 +13,9 @@ use ron::error::{Error as RonError, SpannedError};
 use super::ron_spans::{Pos, SpanIndex};
 use super::{PositionIndex, ReadScene, SourceMap, SourcePos};
 use crate::scene::desc::SceneDesc;
-use crate::scene::diagnostics::{suggestion, Diagnostic};
+use crate::scene::message::Diagnostic;
 use crate::scene::nodes_desc::NodeDesc;
+use crate::scene::suggest::suggestion;
 
 /// Reads one RON scene file (the [`super::ReadFn`] of `.ron`).
 pub fn read(path: &Path, bytes: &[u8]) -> Result<ReadScene, Vec<Diagnostic>> {

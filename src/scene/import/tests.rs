@@ -9,8 +9,8 @@ use serde::de::DeserializeOwned;
 
 use super::{parent, Format, PathTable, ReadScene, SourcePos, FORMATS};
 use crate::scene::desc::SceneDesc;
-use crate::scene::diagnostics::Diagnostic;
 use crate::scene::load;
+use crate::scene::message::Diagnostic;
 
 /// RON's table plus the fake format.
 const WITH_FAKE: &[Format] = &[

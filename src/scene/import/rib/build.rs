@@ -20,7 +20,7 @@ use crate::scene::desc::{
     LightDesc, LightKindDesc, MaterialDesc, ObjectDesc, OptionsDesc, PassDesc, PhotonMapDesc,
     RenderDesc, SceneDesc, ShaderDesc, SpaceDesc, TransformDesc, V3,
 };
-use crate::scene::diagnostics::suggestion;
+use crate::scene::suggest::suggestion;
 
 /// Deepest `ReadArchive` nesting.
 const MAX_ARCHIVE_DEPTH: usize = 16;
@@ -699,7 +699,7 @@ impl Builder {
                     format!(
                         "cannot read archive \"{}\": {}",
                         path.display(),
-                        crate::scene::include::io_reason(&e)
+                        crate::scene::message::io_reason(&e)
                     ),
                 ));
                 return;

@@ -31,7 +31,7 @@ use std::path::{Path, PathBuf};
 
 use super::{PathTable, ReadScene, SourcePos};
 use crate::scene::desc::SceneDesc;
-use crate::scene::diagnostics::Diagnostic;
+use crate::scene::message::Diagnostic;
 
 /// A 1-based line and column (columns count characters).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]

@@ -10,7 +10,7 @@ use super::params::{Param, Ty};
 use super::state::ShaderCall;
 use super::{Pos, Problem};
 use crate::scene::desc::{AxisDesc, ScalarDesc, ShaderDesc, V3};
-use crate::scene::diagnostics::suggestion;
+use crate::scene::suggest::suggestion;
 
 /// Kinds of shader parameter value.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

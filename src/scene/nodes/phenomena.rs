@@ -1,16 +1,16 @@
 //! Phenomena: checking the scene's named shader graphs once where they are declared —
 //! duplicate names, cycles of `Graph` calls (reported with the whole chain), interface
 //! parameters and their types (fixed by the defaults), and the body. Calls are expanded by
-//! [`super::nodes`].
+//! [`super`].
 
 use std::collections::HashMap;
 use std::path::PathBuf;
 use std::sync::Arc;
 
-use super::diagnostics::Sources;
-use super::nodes::{At, Compiler, Ty};
-use super::nodes_desc::{InputDesc, NodeDesc, PhenomenonDesc};
-use super::validate::{Item, Merged};
+use super::{At, Compiler, Ty};
+use crate::scene::diagnostics::Sources;
+use crate::scene::nodes_desc::{InputDesc, NodeDesc, PhenomenonDesc};
+use crate::scene::validate::{Item, Merged};
 use crate::shading::texture::image::Texture;
 use crate::shading::texture::Program;
 

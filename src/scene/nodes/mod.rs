@@ -11,6 +11,8 @@
 //! Phenomena are expanded inline at every call (their arguments compiled in the caller's
 //! context, missing ones from the declared defaults), so a program never calls anything.
 
+mod phenomena;
+
 use std::sync::Arc;
 
 use glam::{Vec2, Vec3};
@@ -18,8 +20,6 @@ use glam::{Vec2, Vec3};
 use super::desc::{MaterialDesc, V3};
 use super::diagnostics::{suggestion, Sources};
 use super::nodes_desc::{ColourSpaceDesc, EncodingDesc, InputDesc, NodeDesc, WrapDesc, NODE_NAMES};
-pub use super::nodes_phenomena::{check_phenomena, Phenomena};
-use super::nodes_phenomena::{ensure_checked, variant_name};
 use super::validate::Item;
 use super::validate::Merged;
 use crate::components::Material;
@@ -28,6 +28,8 @@ use crate::shading::texture::colour::ColourSpace;
 use crate::shading::texture::image::{self, Encoding, Texture, Wrap};
 use crate::shading::texture::noise::Fractal;
 use crate::shading::texture::{Binding, BumpMap, MaterialGraph, NoiseKind, Op, Program, Reg};
+pub use phenomena::{check_phenomena, Phenomena};
+use phenomena::{ensure_checked, variant_name};
 
 /// The type of a node's value.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
