@@ -17,7 +17,7 @@
 
 use glam::{DVec3, Vec3};
 
-use crate::accumulate::SampleMean;
+use crate::exact_sum::ExactSum;
 use crate::settings::RenderSettings;
 
 /// How many samples pixels take.
@@ -66,11 +66,12 @@ impl SampleBudget {
     }
 }
 
-/// The samples one pixel has taken: their mean (compensated), per-channel variance
-/// (Welford, f64), coverage and non-finite drops.
+/// The samples one pixel has taken: their exact sums (so that parts of a farm render merge
+/// to the same bits, see `crate::farm`), per-channel variance (Welford, f64), coverage and
+/// non-finite drops.
 #[derive(Debug, Clone, Default)]
 pub struct PixelSamples {
-    sum: SampleMean,
+    sums: [ExactSum; 3],
     n: u64,
     mean: DVec3,
     m2: DVec3,
@@ -91,7 +92,9 @@ impl PixelSamples {
             self.dropped += 1;
             return;
         }
-        self.sum.add(radiance);
+        self.sums[0].add(radiance.x);
+        self.sums[1].add(radiance.y);
+        self.sums[2].add(radiance.z);
         let x = radiance.as_dvec3();
         self.n += 1;
         let d = x - self.mean;
@@ -101,16 +104,17 @@ impl PixelSamples {
 
     /// The pixel value: sum over the samples taken.
     pub fn value(&self) -> Vec3 {
-        self.sum.mean_over(u64::from(self.taken))
+        pixel_value(&self.sums, self.taken)
+    }
+
+    /// The exact per-channel sums of the finite samples.
+    pub fn sums(&self) -> &[ExactSum; 3] {
+        &self.sums
     }
 
     /// Coverage in [0, 1].
     pub fn alpha(&self) -> f32 {
-        if self.taken == 0 {
-            0.0
-        } else {
-            self.covered as f32 / self.taken as f32
-        }
+        pixel_alpha(self.covered, self.taken)
     }
 
     /// Whether the standard error of the mean is at most `contrast` in every channel (never
@@ -130,6 +134,29 @@ impl PixelSamples {
         let edge = delta.as_dvec3() * (3f64.sqrt() / n);
         let c = contrast.as_dvec3();
         se2.cmple(c * c).all() && edge.cmple(c).all()
+    }
+}
+
+/// A pixel's value from the exact sums of its samples over the `taken` samples (dropped
+/// ones count as black), rounded once per channel.
+pub fn pixel_value(sums: &[ExactSum; 3], taken: u32) -> Vec3 {
+    if taken == 0 {
+        return Vec3::ZERO;
+    }
+    let n = f64::from(taken);
+    Vec3::new(
+        (sums[0].to_f64() / n) as f32,
+        (sums[1].to_f64() / n) as f32,
+        (sums[2].to_f64() / n) as f32,
+    )
+}
+
+/// A pixel's coverage in [0, 1]: the share of its samples whose camera ray hit something.
+pub fn pixel_alpha(covered: u32, taken: u32) -> f32 {
+    if taken == 0 {
+        0.0
+    } else {
+        covered as f32 / taken as f32
     }
 }
 

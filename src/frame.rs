@@ -16,6 +16,7 @@ use std::sync::Arc;
 
 use crate::bake::BakeReport;
 use crate::components::{ImageFormat, OutputSpec, Pass};
+use crate::farm::PartRun;
 use crate::framebuffer::FrameBuffers;
 use crate::geometry::SceneGeometry;
 use crate::photon::PhotonMaps;
@@ -134,6 +135,18 @@ pub struct RunInputs {
     pub progress: bool,
     /// Set from another thread (SIGINT) to stop the run; stages poll it.
     pub cancel: Arc<AtomicBool>,
+    /// Render only this farm part and write its part file (`render --part K/N`).
+    pub part: Option<PartRun>,
+    /// The image merged from part files (`stagelight merge`): `shade` passes it on instead
+    /// of rendering, and the stages that only feed rendering skip.
+    pub merged_image: Option<FrameBuffers>,
+}
+
+impl RunInputs {
+    /// Whether the image comes from merged part files rather than from rendering.
+    pub fn merging(&self) -> bool {
+        self.merged_image.is_some()
+    }
 }
 
 /// A stage output slot: which field of [`StageOutputs`] a stage writes.
@@ -238,6 +251,8 @@ impl Frame {
                 bake_dir: PathBuf::from("."),
                 progress: false,
                 cancel: Arc::new(AtomicBool::new(false)),
+                part: None,
+                merged_image: None,
             },
             outputs: StageOutputs::default(),
             report: RunReport::default(),

@@ -2,6 +2,8 @@
 
 use glam::Vec3;
 
+use crate::exact_sum::ExactSum;
+
 /// Linear, row-major (row 0 at the top) pass buffers of one camera.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FrameBuffers {
@@ -24,6 +26,20 @@ pub struct FrameBuffers {
     pub material_id: Vec<u32>,
     /// Camera samples the pixel took (the uniform count, or what adaptive sampling chose).
     pub samples: Vec<u32>,
+    /// The exact sample sums behind `beauty` and `alpha`, kept only when the run renders a
+    /// farm part (`crate::farm`), which writes them instead of the image.
+    pub sums: Option<PixelSums>,
+}
+
+/// Exact per-pixel sample sums and counts (see [`FrameBuffers::sums`]).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct PixelSums {
+    /// Exact sums of the finite R, G, B samples.
+    pub sums: Vec<[ExactSum; 3]>,
+    /// Samples whose camera ray hit something.
+    pub covered: Vec<u32>,
+    /// Non-finite samples dropped.
+    pub dropped: Vec<u32>,
 }
 
 impl FrameBuffers {
@@ -40,6 +56,7 @@ impl FrameBuffers {
             object_id: vec![0; n],
             material_id: vec![0; n],
             samples: vec![0; n],
+            sums: None,
         }
     }
 }

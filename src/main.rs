@@ -7,6 +7,7 @@ use std::sync::atomic::Ordering;
 
 use clap::{Args, Parser, Subcommand};
 use stagelight::components::BakeRequest;
+use stagelight::farm::{PartNumber, PartRun, Split};
 use stagelight::frame::{Frame, OutputOverrides, Tasks};
 use stagelight::scene::{load_scene, LoadedScene};
 use stagelight::systems;
@@ -50,6 +51,11 @@ enum Command {
         #[arg(short = 'o', long = "output")]
         output: PathBuf,
     },
+    /// Merge the part files of `render --part K/N` into the outputs a single-machine render
+    /// writes, bit-identical.
+    Merge(MergeArgs),
+    /// Write Slurm batch scripts that render a scene as a job array of parts and merge them.
+    Farm(FarmArgs),
     /// Validate a scene without rendering; exit 0 when it is renderable.
     Check {
         /// Scene file (RON).
@@ -86,6 +92,86 @@ struct RenderArgs {
     /// Also bake the scene's bake requests (into the working directory).
     #[arg(long)]
     bake: bool,
+    /// Render only part K of N (1-based) and write it as a part file to `-o PART.exr`, for
+    /// `stagelight merge`.
+    #[arg(long, value_name = "K/N", conflicts_with = "bake")]
+    part: Option<PartNumber>,
+    /// How `--part` divides the render: `tiles` (interleaved 16×16 pixel tiles) or
+    /// `samples` (a range of every pixel's sample indices).
+    #[arg(long, value_enum, default_value = "tiles", requires = "part")]
+    split: SplitArg,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+enum SplitArg {
+    /// Interleaved 16×16 pixel tiles.
+    Tiles,
+    /// Ranges of every pixel's sample indices.
+    Samples,
+}
+
+impl SplitArg {
+    fn split(self) -> Split {
+        match self {
+            SplitArg::Tiles => Split::Tiles,
+            SplitArg::Samples => Split::Samples,
+        }
+    }
+}
+
+#[derive(Args)]
+struct MergeArgs {
+    /// The part files (every part of one render, each once, in any order).
+    #[arg(required = true)]
+    parts: Vec<PathBuf>,
+    /// Write the image here instead of the camera's outputs (.png or .exr).
+    #[arg(short = 'o', long = "output")]
+    output: Option<PathBuf>,
+    /// The scene the parts were rendered from (default: the path recorded in the parts).
+    #[arg(long)]
+    scene: Option<PathBuf>,
+    /// Print the per-stage report.
+    #[arg(long)]
+    stats: bool,
+}
+
+#[derive(Args)]
+struct FarmArgs {
+    /// Scene file.
+    scene: PathBuf,
+    /// Number of parts (array tasks).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1_000_000))]
+    parts: u32,
+    /// Directory for the scripts, part files and logs (created).
+    #[arg(long, value_name = "DIR")]
+    out: PathBuf,
+    /// How the render is divided.
+    #[arg(long, value_enum, default_value = "tiles")]
+    split: SplitArg,
+    /// Where the merge job writes (default: the camera's outputs).
+    #[arg(short = 'o', long = "output")]
+    output: Option<PathBuf>,
+    /// Samples per pixel for every part.
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
+    spp: Option<u32>,
+    /// Random seed for every part.
+    #[arg(long)]
+    seed: Option<u64>,
+    /// Slurm partition.
+    #[arg(long)]
+    partition: Option<String>,
+    /// CPUs (and worker threads) per part.
+    #[arg(long = "cpus-per-task", default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=4096))]
+    cpus_per_task: u32,
+    /// Memory per part, as Slurm writes it (e.g. 4G).
+    #[arg(long)]
+    mem: Option<String>,
+    /// Time limit per job, as Slurm writes it (e.g. 01:00:00).
+    #[arg(long)]
+    time: Option<String>,
+    /// Submit with `sbatch` and print the job ids.
+    #[arg(long)]
+    submit: bool,
 }
 
 #[derive(Args)]
@@ -212,6 +298,8 @@ fn main() -> ExitCode {
         Command::Check { scene } => check(&scene),
         Command::Plan(args) => plan(args),
         Command::Convert { scene, output } => convert(&scene, &output),
+        Command::Merge(args) => merge(args),
+        Command::Farm(args) => farm(args),
         Command::Render(args) => render(args),
         Command::Bake(args) => bake(args),
         Command::Bench(args) => bench(args),
@@ -397,13 +485,170 @@ fn render(args: RenderArgs) -> ExitCode {
         eprintln!("error: the scene has no render camera");
         return ExitCode::from(EXIT_USAGE);
     }
+    let part = match args.part {
+        Some(number) => match part_run(&args, number, &scene, &settings) {
+            Ok(run) => Some(run),
+            Err(message) => {
+                eprintln!("error: {message}");
+                return ExitCode::from(EXIT_USAGE);
+            }
+        },
+        None => None,
+    };
     let mut frame = Frame::new(settings);
     frame.inputs.outputs = overrides;
+    frame.inputs.part = part;
     frame.inputs.tasks = Tasks {
         render: true,
         bake: args.bake,
     };
     run_and_report(&mut scene, frame, args.stats, args.stats_json.as_deref())
+}
+
+/// The part a `render --part K/N` run computes, after checking the flags that go with it.
+fn part_run(
+    args: &RenderArgs,
+    number: PartNumber,
+    scene: &LoadedScene,
+    settings: &stagelight::settings::RenderSettings,
+) -> Result<PartRun, String> {
+    let split = args.split.split();
+    let exr = args
+        .output
+        .as_ref()
+        .is_some_and(|o| o.extension().is_some_and(|e| e.eq_ignore_ascii_case("exr")));
+    if !exr {
+        return Err(format!(
+            "--part {}/{} writes a part file: give it with -o PART.exr\n  help: e.g. -o part_{}.exr, then `stagelight merge part_*.exr -o image.png`",
+            number.index, number.count, number.index
+        ));
+    }
+    if split == Split::Samples && settings.adaptive.is_some() {
+        return Err("--split samples cannot divide adaptive sampling (a pixel's second pass depends on all of its first-pass samples)\n  help: use --split tiles, or a fixed count with --spp N".into());
+    }
+    Ok(PartRun {
+        part: stagelight::farm::Part {
+            index: number.index,
+            count: number.count,
+            split,
+        },
+        scene: args.scene.display().to_string(),
+        scene_hash: stagelight::farm::scene_hash(scene.source_hash, &scene.world),
+    })
+}
+
+fn merge(args: MergeArgs) -> ExitCode {
+    let parts = match stagelight::farm::merge::read_parts(&args.parts) {
+        Ok(parts) => parts,
+        Err(message) => {
+            eprintln!("error: {message}\nnothing written");
+            return ExitCode::from(EXIT_ERROR);
+        }
+    };
+    let image = match stagelight::farm::merge::merge(&parts) {
+        Ok(image) => image,
+        Err(message) => {
+            eprintln!("error: {message}\nnothing written");
+            return ExitCode::from(EXIT_ERROR);
+        }
+    };
+    let header = &parts[0].file.header;
+    let scene_path = args
+        .scene
+        .clone()
+        .unwrap_or_else(|| PathBuf::from(&header.scene));
+    let mut scene = match load(&scene_path) {
+        Ok(s) => s,
+        Err(code) => return code,
+    };
+    let hash = stagelight::farm::scene_hash(scene.source_hash, &scene.world);
+    if hash != header.scene_hash {
+        eprintln!(
+            "error: {} changed since the parts were rendered (content hash {hash:016x}, the parts have {:016x})\n  help: render the parts again, or pass the scene they came from with --scene\nnothing written",
+            scene_path.display(),
+            header.scene_hash
+        );
+        return ExitCode::from(EXIT_ERROR);
+    }
+    let overrides = OutputOverrides {
+        first: args.output.clone(),
+        ..OutputOverrides::default()
+    };
+    if let Err(message) = overrides.check() {
+        eprintln!("error: {message}");
+        return ExitCode::from(EXIT_USAGE);
+    }
+    let mut frame = Frame::new(scene.settings.clone());
+    frame.inputs.outputs = overrides;
+    frame.inputs.merged_image = Some(image);
+    run_and_report(&mut scene, frame, args.stats, None)
+}
+
+fn farm(args: FarmArgs) -> ExitCode {
+    let scene = match load(&args.scene) {
+        Ok(s) => s,
+        Err(code) => return code,
+    };
+    if !stagelight::scene_view::has_render_camera(&scene.world) {
+        eprintln!("error: {} has no render camera", args.scene.display());
+        return ExitCode::from(EXIT_ERROR);
+    }
+    if args.split == SplitArg::Samples && scene.settings.adaptive.is_some() && args.spp.is_none() {
+        eprintln!("error: --split samples cannot divide adaptive sampling\n  help: use --split tiles, or a fixed count with --spp N");
+        return ExitCode::from(EXIT_USAGE);
+    }
+    let job = match stagelight::farm::slurm::job(
+        &args.scene,
+        &args.out,
+        args.output.as_deref(),
+        stagelight::farm::slurm::JobOptions {
+            parts: args.parts,
+            split: args.split.split(),
+            spp: args.spp,
+            seed: args.seed,
+            partition: args.partition.clone(),
+            cpus_per_task: args.cpus_per_task,
+            mem: args.mem.clone(),
+            time: args.time.clone(),
+        },
+    ) {
+        Ok(job) => job,
+        Err(message) => {
+            eprintln!("error: {message}");
+            return ExitCode::from(EXIT_ERROR);
+        }
+    };
+    let written = match stagelight::farm::slurm::write(&job) {
+        Ok(w) => w,
+        Err(message) => {
+            eprintln!("error: {message}");
+            return ExitCode::from(EXIT_ERROR);
+        }
+    };
+    for path in &written {
+        eprintln!("wrote {}", path.display());
+    }
+    if !args.submit {
+        eprintln!(
+            "submit with: bash {}",
+            job.out.join("submit.sh").display()
+        );
+        return ExitCode::SUCCESS;
+    }
+    match std::process::Command::new("bash")
+        .arg(job.out.join("submit.sh"))
+        .status()
+    {
+        Ok(status) if status.success() => ExitCode::SUCCESS,
+        Ok(status) => {
+            eprintln!("error: submitting with sbatch failed ({status})");
+            ExitCode::from(EXIT_ERROR)
+        }
+        Err(e) => {
+            eprintln!("error: cannot run bash to submit: {e}");
+            ExitCode::from(EXIT_ERROR)
+        }
+    }
 }
 
 fn bake(args: BakeArgs) -> ExitCode {

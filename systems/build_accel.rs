@@ -17,6 +17,7 @@ use glam::Vec3;
 use hecs::{Entity, World};
 
 use super::prelude::*;
+use super::MERGING;
 use crate::accel::Accel;
 use crate::components::{
     BakeRequest, Displacement, DisplacementMode, Instance, Material, MaterialRef, Procedural,
@@ -28,6 +29,9 @@ use crate::schedule::any_with;
 
 /// Run condition: instances with triangles, and a render camera to trace for.
 pub fn should_run(world: &World, frame: &Frame) -> Decision {
+    if frame.inputs.merging() {
+        return Decision::skip(MERGING);
+    }
     let mut instances = 0usize;
     let mut triangles = 0usize;
     for inst in world.query::<&Instance>().iter() {

@@ -17,6 +17,7 @@ use std::sync::Arc;
 use hecs::{Entity, World};
 
 use super::prelude::*;
+use super::MERGING;
 use crate::components::{
     GeneratedFrom, Instance, MaterialRef, Name, Procedural, Scatter, TriMesh, WorldFromObject,
 };
@@ -24,7 +25,10 @@ use crate::procedural::{expand, install_mesh, scatter, Expanded};
 use crate::schedule::count_with;
 
 /// Run condition: procedural geometry components exist.
-pub fn should_run(world: &World, _frame: &Frame) -> Decision {
+pub fn should_run(world: &World, frame: &Frame) -> Decision {
+    if frame.inputs.merging() {
+        return Decision::skip(MERGING);
+    }
     let shaders = count_with::<Procedural>(world);
     let scatters = count_with::<Scatter>(world);
     if shaders + scatters == 0 {

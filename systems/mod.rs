@@ -39,6 +39,9 @@ mod prelude {
     pub use crate::schedule::{Decision, Stage, StageError, Work};
 }
 
+/// Why the stages that only feed rendering skip in `stagelight merge`.
+pub const MERGING: &str = "the image is merged from part files";
+
 /// The ordered stage table.
 pub const STAGES: &[Stage] = &[
     Stage {

@@ -29,7 +29,8 @@ use rayon::prelude::*;
 use super::prelude::*;
 use crate::adaptive::{refine_flags, PixelSamples, SampleBudget};
 use crate::components::Interior;
-use crate::framebuffer::FrameBuffers;
+use crate::farm::{Part, Split};
+use crate::framebuffer::{FrameBuffers, PixelSums};
 use crate::progress::Progress;
 use crate::sampling::{fold_seed, Sampler};
 use crate::scene_view::{light_set, render_view, WithEnvironment};
@@ -40,6 +41,9 @@ use crate::shading::{shade_hit, CameraRays, FilterSampler, ShadeContext, Volumes
 pub fn should_run(world: &World, frame: &Frame) -> Decision {
     if !frame.inputs.tasks.render {
         return Decision::skip("this run only bakes");
+    }
+    if let Some(fb) = &frame.inputs.merged_image {
+        return Decision::run(format!("image {}×{} merged from parts", fb.width, fb.height));
     }
     let Some(view) = render_view(world) else {
         return Decision::skip("no render camera");
@@ -56,11 +60,18 @@ pub fn should_run(world: &World, frame: &Frame) -> Decision {
     if view.atmosphere.is_some() {
         reason += ", atmosphere";
     }
+    if let Some(run) = &frame.inputs.part {
+        reason += &format!(", {}", run.part);
+    }
     Decision::run(reason)
 }
 
 /// Renders the render camera's frame buffers.
 pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
+    if let Some(fb) = &frame.inputs.merged_image {
+        let taken = fb.samples.iter().map(|&s| u64::from(s)).sum();
+        return Ok(Work::new(taken, "samples").with_output(StageOutput::Image(fb.clone())));
+    }
     let view = render_view(world).ok_or_else(|| StageError::Internal("no render camera".into()))?;
     let camera = view.camera;
     let background = view.imager.and_then(|i| i.background);
@@ -80,6 +91,15 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
     let seed = fold_seed(settings.seed);
     let budget = SampleBudget::new(&settings);
     let (width, height) = (camera.width as usize, camera.height as usize);
+    let part = frame.inputs.part.as_ref().map(|r| r.part);
+    let whole = Part::whole();
+    let part_or_whole = part.unwrap_or(whole);
+    if part_or_whole.split == Split::Samples && budget.refines() {
+        return Err(StageError::Internal(
+            "adaptive sampling cannot be split by samples".into(),
+        ));
+    }
+    let first_samples = part_or_whole.samples(budget.min);
 
     let mut fb = FrameBuffers::new(camera.width, camera.height);
     let cancel = frame.inputs.cancel.clone();
@@ -104,6 +124,7 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
         filter: &filter,
         seed,
         width,
+        sample_offset: first_samples.start,
     };
     // Runs `f` on every pixel, rows in parallel, polling for cancellation per pixel (one
     // pixel is at most `max` samples of work).
@@ -127,8 +148,15 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
         rows.into_iter().flatten().collect::<Vec<_>>()
     };
 
-    // Pass 1: the centre-sample passes and `min` samples everywhere.
-    let mut pixels = per_pixel(&|x, y| Some(shade.first_pass(x, y, budget.min)));
+    // Pass 1: the centre-sample passes and `min` samples everywhere (a tiles part: in its
+    // own pixels and, when refinement compares neighbours, those next to them).
+    let count = first_samples.len() as u32;
+    let mut pixels = per_pixel(&|x, y| {
+        if !part_or_whole.needs_first_pass(x, y, width, height, budget.refines()) {
+            return Some(PixelResult::empty());
+        }
+        Some(shade.first_pass(x, y, count))
+    });
     if budget.refines() && !stopped.load(Ordering::Relaxed) {
         let pass1: Vec<PixelSamples> = pixels
             .iter()
@@ -139,6 +167,9 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
         let refined = per_pixel(&|x, y| {
             let i = y * width + x;
             let mut p = pixels[i].as_ref()?.clone();
+            if !part_or_whole.owns(x, y, width) {
+                return Some(PixelResult::empty());
+            }
             if let Some(delta) = flags[i] {
                 shade.refine(&mut p, x, y, &budget, delta);
             }
@@ -152,8 +183,22 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
         return Err(StageError::Interrupted);
     }
     let (mut taken, mut dropped) = (0u64, 0u64);
+    let mut sums = part.map(|_| PixelSums {
+        sums: vec![Default::default(); width * height],
+        covered: vec![0; width * height],
+        dropped: vec![0; width * height],
+    });
     for (i, p) in pixels.into_iter().enumerate() {
-        let Some(p) = p else { continue };
+        let Some(mut p) = p else { continue };
+        if !part_or_whole.owns(i % width, i / width, width) {
+            // A neighbour's first pass, computed only for refinement decisions.
+            p = PixelResult::empty();
+        }
+        if let Some(s) = &mut sums {
+            s.sums[i] = *p.samples.sums();
+            s.covered[i] = p.samples.covered;
+            s.dropped[i] = p.samples.dropped;
+        }
         fb.beauty[i] = p.samples.value();
         fb.alpha[i] = p.samples.alpha();
         fb.depth[i] = p.depth;
@@ -167,6 +212,7 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
     if dropped > 0 {
         tracing::warn!("{dropped} non-finite samples were dropped");
     }
+    fb.sums = sums;
     Ok(Work::new(taken, "samples").with_output(StageOutput::Image(fb)))
 }
 
@@ -180,6 +226,19 @@ struct PixelResult {
     samples: PixelSamples,
 }
 
+impl PixelResult {
+    /// A pixel this part does not compute: no samples, nothing hit.
+    fn empty() -> Self {
+        Self {
+            depth: f32::INFINITY,
+            normal: Vec3::ZERO,
+            object_id: 0,
+            material_id: 0,
+            samples: PixelSamples::default(),
+        }
+    }
+}
+
 /// Everything a pixel's samples need.
 struct PixelShader<'a> {
     ctx: Option<&'a ShadeContext<'a>>,
@@ -187,18 +246,14 @@ struct PixelShader<'a> {
     filter: &'a FilterSampler,
     seed: u32,
     width: usize,
+    /// Index of the first sample this run takes of each pixel (a samples-split part).
+    sample_offset: u32,
 }
 
 impl PixelShader<'_> {
     /// The centre-sample passes and samples `0..count` of pixel `(x, y)`.
     fn first_pass(&self, x: usize, y: usize, count: u32) -> PixelResult {
-        let mut result = PixelResult {
-            depth: f32::INFINITY,
-            normal: Vec3::ZERO,
-            object_id: 0,
-            material_id: 0,
-            samples: PixelSamples::default(),
-        };
+        let mut result = PixelResult::empty();
         if let Some(ctx) = self.ctx {
             // Through the aperture centre.
             let centre = Vec2::new(x as f32 + 0.5, y as f32 + 0.5);
@@ -243,7 +298,7 @@ impl PixelShader<'_> {
         };
         let centre = Vec2::new(x as f32 + 0.5, y as f32 + 0.5);
         let lens = self.rays.needs_lens_sample();
-        let first = samples.taken;
+        let first = self.sample_offset + samples.taken;
         for s in first..first + count {
             let mut sampler = Sampler::for_item(self.seed, pixel, s);
             let film = centre + self.filter.sample(sampler.next_2d());

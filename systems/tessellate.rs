@@ -20,6 +20,7 @@ use hecs::{Entity, World};
 use rayon::prelude::*;
 
 use super::prelude::*;
+use super::MERGING;
 use crate::components::{
     Approximation, DerivativeRequest, Displacement, DisplacementMode, GeneratedFrom, Instance,
     LengthSpace, Name, Procedural, SubdivMesh, Surface, Technique, TriMesh, WorldFromObject,
@@ -59,7 +60,10 @@ fn census(world: &World) -> (usize, usize, usize, usize) {
 }
 
 /// Run condition: parametric surfaces, subdivision meshes or true displacement exist.
-pub fn should_run(world: &World, _frame: &Frame) -> Decision {
+pub fn should_run(world: &World, frame: &Frame) -> Decision {
+    if frame.inputs.merging() {
+        return Decision::skip(MERGING);
+    }
     let (surfaces, subdivs, displaced, bump) = census(world);
     if surfaces + subdivs + displaced == 0 {
         return if bump > 0 {

@@ -13,6 +13,7 @@
 use hecs::World;
 
 use super::prelude::*;
+use super::MERGING;
 use crate::components::{Emitter, Material};
 use crate::frame::Slot;
 use crate::photon::emit::bounding_sphere;
@@ -27,6 +28,9 @@ const AUTO_RADIUS: f32 = 0.02;
 
 /// Run condition: a map is requested, something reads it, and a light has power.
 pub fn should_run(world: &World, frame: &Frame) -> Decision {
+    if frame.inputs.merging() {
+        return Decision::skip(MERGING);
+    }
     let p = frame.inputs.settings.photons;
     let maps: Vec<String> = [
         ("caustics", p.caustics),

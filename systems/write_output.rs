@@ -11,6 +11,7 @@ use hecs::World;
 
 use super::prelude::*;
 use crate::components::{ImageFormat, OutputSpec, Pass};
+use crate::farm::PartRun;
 use crate::frame::Slot;
 use crate::image_io::{commit_all, encode_exr, encode_png, PendingFile};
 use crate::scene_view::render_view;
@@ -35,6 +36,9 @@ pub fn should_run(world: &World, frame: &Frame) -> Decision {
     if frame.inputs.outputs.discard {
         return Decision::skip("this run keeps its image in memory");
     }
+    if let Some(run) = &frame.inputs.part {
+        return Decision::run(format!("{}: the part file", run.part));
+    }
     let n = outputs(world, frame).map_or(0, |o| o.len());
     if n == 0 {
         return Decision::skip("render camera has no outputs");
@@ -44,6 +48,9 @@ pub fn should_run(world: &World, frame: &Frame) -> Decision {
 
 /// Encodes and writes every output.
 pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
+    if let Some(run) = &frame.inputs.part {
+        return write_part(run, frame);
+    }
     let outputs = outputs(world, frame)?;
     let imager = render_view(world).and_then(|v| v.imager);
     let fb = frame
@@ -72,6 +79,37 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
     let written = commit_all(&pending).map_err(|(path, e)| StageError::Write {
         path,
         message: e.to_string(),
+    })?;
+    Ok(Work::new(written.len() as u64, "files").with_files(written))
+}
+
+/// A farm part's run writes its part file (to `-o`) instead of the camera outputs.
+fn write_part(run: &PartRun, frame: &Frame) -> Result<Work, StageError> {
+    let fb = frame
+        .outputs
+        .image
+        .as_ref()
+        .ok_or_else(|| StageError::Internal("no image to write".into()))?;
+    let path = frame
+        .inputs
+        .outputs
+        .first
+        .clone()
+        .ok_or_else(|| StageError::Internal("a part run without -o".into()))?;
+    let file = crate::farm::part_file(run, &frame.inputs.settings, fb)
+        .ok_or_else(|| StageError::Internal("a part run without exact sums".into()))?;
+    let bytes = crate::farm::part_file::encode(&file).map_err(|message| StageError::Write {
+        path: path.clone(),
+        message,
+    })?;
+    if frame.cancelled() {
+        return Err(StageError::Interrupted);
+    }
+    let written = commit_all(&[PendingFile { path, bytes }]).map_err(|(path, e)| {
+        StageError::Write {
+            path,
+            message: e.to_string(),
+        }
     })?;
     Ok(Work::new(written.len() as u64, "files").with_files(written))
 }

@@ -17,6 +17,7 @@ use super::desc::SceneDesc;
 use super::diagnostics::{Diagnostic, SourceFile, Sources};
 use super::import::{self, SourceMap, SourcePos};
 pub use super::message::io_reason;
+use crate::hash::Fnv64;
 
 /// Deepest include chain followed (guards the stack against absurd chains of distinct files).
 const MAX_INCLUDE_DEPTH: usize = 64;
@@ -27,6 +28,8 @@ pub struct LoadedFiles {
     pub sources: Sources,
     /// Parsed descriptions, parallel to `sources.files`.
     pub scenes: Vec<Option<SceneDesc>>,
+    /// FNV-1a over the bytes of every scene file read, in load order.
+    pub content_hash: Fnv64,
 }
 
 /// Reads `root` (or uses `text` for it) and everything it includes, each file with the
@@ -37,6 +40,7 @@ pub fn load_files(root: &Path, text: Option<&str>, formats: &[import::Format]) -
         out: LoadedFiles {
             sources: Sources::default(),
             scenes: Vec::new(),
+            content_hash: Fnv64::default(),
         },
         stack: Vec::new(),
         seen: HashSet::new(),
@@ -94,6 +98,7 @@ impl Loader<'_> {
     /// Reads one file with its format's reader, then follows its includes.
     fn read_file(&mut self, format: &import::Format, path: PathBuf, key: PathBuf, bytes: &[u8]) {
         self.seen.insert(key.clone());
+        self.out.content_hash.bytes(bytes);
         let read = match (format.read)(&path, bytes) {
             Ok(read) => read,
             Err(errors) => {

@@ -78,6 +78,9 @@ pub struct LoadedScene {
     /// Located warnings from the readers and validation, each a complete text as printed:
     /// `file:line:col: warning: …` (plus a `help:` line), in file and position order.
     pub located_warnings: Vec<String>,
+    /// FNV-1a over the bytes of the scene file and every include, in load order (part of
+    /// the farm's scene content hash, `crate::farm::scene_hash`).
+    pub source_hash: u64,
 }
 
 /// Loads and validates the scene at `path`.
@@ -125,6 +128,7 @@ fn load(
     let LoadedFiles {
         mut sources,
         scenes,
+        content_hash,
     } = include::load_files(path, text, formats);
     if sources.has_errors() {
         return Err(SceneErrors(sources.finish()));
@@ -277,6 +281,7 @@ fn load(
         settings,
         warnings,
         located_warnings: sources.warnings(),
+        source_hash: content_hash.finish(),
     })
 }
 

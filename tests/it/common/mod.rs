@@ -1,6 +1,7 @@
 //! Shared helpers for integration tests: small worlds built directly from components (no
 //! scene file), and running the stage table on them.
 
+pub mod cli;
 mod meshes;
 mod rays;
 mod scene_text;

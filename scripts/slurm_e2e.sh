@@ -1,0 +1,131 @@
+#!/usr/bin/env bash
+# A real Slurm run of a farm render on this machine: brings up a single-node Slurm
+# (munge, slurmctld and slurmd on localhost, a generated slurm.conf in a temporary
+# directory), submits `stagelight farm SCENE --parts 4 --submit`, waits for the merge job
+# and compares its image with a local render byte for byte; tears everything down after.
+#
+# Usage: scripts/slurm_e2e.sh [STAGELIGHT_BINARY]   (default: target/release/stagelight)
+# Needs root to start the daemons; installs Debian's slurm-wlm and munge when missing.
+# Exits non-zero, loudly, when Slurm cannot be installed or started: it never passes
+# without having run the job.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bin="$(realpath "${1:-target/release/stagelight}")"
+[ -x "$bin" ] || { echo "slurm_e2e: no stagelight binary at $bin" >&2; exit 1; }
+
+if ! command -v slurmctld >/dev/null || ! command -v munged >/dev/null; then
+    echo "slurm_e2e: installing slurm-wlm and munge"
+    if ! DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends \
+        slurm-wlm munge >/dev/null; then
+        echo "slurm_e2e: FAILED: cannot install slurm-wlm/munge; the Slurm test did NOT run" >&2
+        exit 1
+    fi
+fi
+
+work="$(mktemp -d /tmp/stagelight-slurm.XXXXXX)"
+chmod 755 "$work"
+host="$(hostname -s)"
+pids=()
+started_munge=
+cleanup() {
+    set +e
+    scancel --full --quiet -u root >/dev/null 2>&1
+    for p in "${pids[@]}"; do kill "$p" 2>/dev/null; done
+    sleep 1
+    for p in "${pids[@]}"; do kill -9 "$p" 2>/dev/null; done
+    [ -n "${started_munge:-}" ] && pkill -x munged
+    rm -rf "$work"
+}
+trap cleanup EXIT
+
+# munge, as Debian installs it (key in /etc/munge), started by hand when not running.
+if ! munge -n 2>/dev/null | unmunge >/dev/null 2>&1; then
+    [ -f /etc/munge/munge.key ] || runuser -u munge -- mungekey --create
+    mkdir -p /run/munge /var/log/munge /var/lib/munge
+    chown munge:munge /run/munge /var/log/munge /var/lib/munge
+    runuser -u munge -- /usr/sbin/munged
+    sleep 0.5
+    started_munge=1
+fi
+if ! munge -n | unmunge >/dev/null; then
+    echo "slurm_e2e: FAILED: munge does not work; the Slurm test did NOT run" >&2
+    exit 1
+fi
+
+cpus="$(nproc)"
+mem_mb="$(( $(awk '/MemTotal/ {print $2}' /proc/meminfo) / 1024 / 2 ))"
+mkdir -p "$work/state" "$work/spool"
+cat >"$work/slurm.conf" <<EOF
+ClusterName=stagelight-ci
+SlurmctldHost=$host
+SlurmUser=root
+SlurmdUser=root
+AuthType=auth/munge
+CredType=cred/munge
+MpiDefault=none
+ProctrackType=proctrack/linuxproc
+TaskPlugin=task/none
+SelectType=select/cons_tres
+SelectTypeParameters=CR_Core_Memory
+ReturnToService=2
+SchedulerType=sched/backfill
+StateSaveLocation=$work/state
+SlurmdSpoolDir=$work/spool
+SlurmctldPidFile=$work/slurmctld.pid
+SlurmdPidFile=$work/slurmd.pid
+SlurmctldLogFile=$work/slurmctld.log
+SlurmdLogFile=$work/slurmd.log
+SlurmctldPort=16817
+SlurmdPort=16818
+JobCompType=jobcomp/none
+AccountingStorageType=accounting_storage/none
+DefMemPerCPU=256
+NodeName=$host CPUs=$cpus RealMemory=$mem_mb State=UNKNOWN
+PartitionName=ci Nodes=$host Default=YES MaxTime=INFINITE State=UP
+EOF
+export SLURM_CONF="$work/slurm.conf"
+
+slurmctld -i -f "$SLURM_CONF"
+slurmd -f "$SLURM_CONF" -N "$host"
+sleep 1
+[ -f "$work/slurmctld.pid" ] && pids+=("$(cat "$work/slurmctld.pid")")
+[ -f "$work/slurmd.pid" ] && pids+=("$(cat "$work/slurmd.pid")")
+
+for _ in $(seq 1 60); do
+    if sinfo -h -o '%T' 2>/dev/null | grep -qE '^idle'; then break; fi
+    sleep 1
+done
+if ! sinfo -h -o '%T' | grep -qE '^idle'; then
+    echo "slurm_e2e: FAILED: the Slurm node did not come up; the Slurm test did NOT run" >&2
+    sinfo >&2 || true
+    tail -20 "$work/slurmctld.log" "$work/slurmd.log" >&2 || true
+    exit 1
+fi
+echo "slurm_e2e: single-node Slurm up ($host, $cpus CPUs)"
+
+scene="$(realpath assets/scenes/cornell_box.ron)"
+mkdir -p "$work/run"
+chmod 777 "$work/run"
+cd "$work/run"
+"$bin" render "$scene" --spp 4 -o local.png 2>/dev/null
+submitted="$("$bin" farm "$scene" --parts 4 --spp 4 --out "$work/run/job" -o "$work/run/farm.png" \
+    --cpus-per-task 1 --submit)"
+echo "$submitted"
+merge_id="$(echo "$submitted" | awk '/^merge job/ {print $3}')"
+[ -n "$merge_id" ] || { echo "slurm_e2e: FAILED: no merge job id" >&2; exit 1; }
+
+for _ in $(seq 1 600); do
+    if [ -z "$(squeue -h -j "$merge_id" 2>/dev/null)" ]; then break; fi
+    sleep 1
+done
+if [ ! -f farm.png ]; then
+    echo "slurm_e2e: FAILED: the merge job wrote no image" >&2
+    tail -n 20 job/logs/*.log >&2 || true
+    exit 1
+fi
+if cmp -s local.png farm.png; then
+    echo "slurm_e2e: ok: 4 Slurm array parts merged byte-identical to the local render"
+else
+    echo "slurm_e2e: FAILED: the farm image differs from the local render" >&2
+    exit 1
+fi

@@ -1,0 +1,178 @@
+//! Merging part files into the frame buffers the single-machine render produces, bit for
+//! bit: the parts must be one complete set (same scene, settings, seed, split and count,
+//! each part exactly once); then the exact sums add, the counts add, and the centre-sample
+//! passes come from the part that owns each pixel. The pixel values are derived exactly as
+//! `shade` derives them ([`pixel_value`], [`pixel_alpha`]).
+
+use std::path::{Path, PathBuf};
+
+use super::part::{Part, Split};
+use super::part_file::{PartFile, PartPixels};
+use crate::adaptive::{pixel_alpha, pixel_value};
+use crate::framebuffer::FrameBuffers;
+
+/// A part file that was read, with the path it came from.
+pub struct LoadedPart {
+    /// Where it was read from (for messages).
+    pub path: PathBuf,
+    /// Its content.
+    pub file: PartFile,
+}
+
+/// The largest part file read (a part of a 16k × 16k image is well below it).
+pub const MAX_PART_BYTES: u64 = 64 << 30;
+
+/// Reads and decodes part files; the first unreadable one is the error.
+pub fn read_parts(paths: &[PathBuf]) -> Result<Vec<LoadedPart>, String> {
+    let mut parts = Vec::with_capacity(paths.len());
+    for path in paths {
+        let size = std::fs::metadata(path)
+            .map_err(|e| format!("cannot read part file {}: {e}", path.display()))?
+            .len();
+        if size > MAX_PART_BYTES {
+            return Err(format!(
+                "{} is {size} bytes, more than a part file can be ({MAX_PART_BYTES})",
+                path.display()
+            ));
+        }
+        let bytes = std::fs::read(path)
+            .map_err(|e| format!("cannot read part file {}: {e}", path.display()))?;
+        let file = super::part_file::decode(&bytes).map_err(|e| format!("{}: {e}", path.display()))?;
+        parts.push(LoadedPart {
+            path: path.clone(),
+            file,
+        });
+    }
+    Ok(parts)
+}
+
+/// Checks that `parts` are one complete set and returns the first part's header fields
+/// that every part shares; the error names the offending files.
+fn check_set(parts: &[LoadedPart]) -> Result<(), String> {
+    let Some(first) = parts.first() else {
+        return Err("no part files given".into());
+    };
+    let h0 = &first.file.header;
+    let p0 = first.path.display();
+    for p in &parts[1..] {
+        let h = &p.file.header;
+        let path = p.path.display();
+        let differs = |what: &str, a: String, b: String| {
+            Err(format!(
+                "{path} and {p0} are parts of different renders: {what} {b} vs {a}\n  help: merge only the parts of one `stagelight render --part K/N` run"
+            ))
+        };
+        if h.scene_hash != h0.scene_hash {
+            return differs(
+                "scene content",
+                format!("{:016x} ({})", h0.scene_hash, h0.scene),
+                format!("{:016x} ({})", h.scene_hash, h.scene),
+            );
+        }
+        if h.seed != h0.seed {
+            return differs("seed", h0.seed.to_string(), h.seed.to_string());
+        }
+        if h.part.split != h0.part.split {
+            return differs("split", h0.part.split.to_string(), h.part.split.to_string());
+        }
+        if h.part.count != h0.part.count {
+            return differs(
+                "part count",
+                h0.part.count.to_string(),
+                h.part.count.to_string(),
+            );
+        }
+        if h.settings_hash != h0.settings_hash {
+            return differs(
+                "render settings",
+                format!("{:016x}", h0.settings_hash),
+                format!("{:016x}", h.settings_hash),
+            );
+        }
+        if (h.width, h.height) != (h0.width, h0.height) {
+            return differs(
+                "resolution",
+                format!("{}×{}", h0.width, h0.height),
+                format!("{}×{}", h.width, h.height),
+            );
+        }
+    }
+    let count = h0.part.count;
+    let mut seen: Vec<Option<&Path>> = vec![None; count as usize];
+    for p in parts {
+        let k = p.file.header.part.index;
+        let slot = &mut seen[(k - 1) as usize];
+        if let Some(other) = slot {
+            return Err(format!(
+                "part {k}/{count} is given twice: {} and {}\n  help: pass each part file once",
+                other.display(),
+                p.path.display()
+            ));
+        }
+        *slot = Some(&p.path);
+    }
+    let missing: Vec<String> = seen
+        .iter()
+        .enumerate()
+        .filter(|(_, s)| s.is_none())
+        .map(|(k, _)| format!("{}/{count}", k + 1))
+        .collect();
+    if !missing.is_empty() {
+        let shown = if missing.len() > 10 {
+            format!("{} … ({} parts)", missing[..10].join(", "), missing.len())
+        } else {
+            missing.join(", ")
+        };
+        return Err(format!(
+            "missing part{} {shown}\n  help: re-run `stagelight render --part K/{count}` for {} (or resubmit those array indices)",
+            if missing.len() == 1 { "" } else { "s" },
+            if missing.len() == 1 { "it" } else { "them" }
+        ));
+    }
+    Ok(())
+}
+
+/// Merges a complete set of parts into frame buffers (see the module header).
+pub fn merge(parts: &[LoadedPart]) -> Result<FrameBuffers, String> {
+    check_set(parts)?;
+    let h0 = &parts[0].file.header;
+    let (width, height) = (h0.width as usize, h0.height as usize);
+    let split = h0.part.split;
+    let count = h0.part.count;
+    let n = width * height;
+    let mut total = PartPixels::new(n);
+    for p in parts {
+        let px = &p.file.pixels;
+        let k = p.file.header.part.index;
+        for i in 0..n {
+            let owner = Part::owner_of(split, count, i % width, i / width, width);
+            if split == Split::Tiles && owner != k {
+                continue;
+            }
+            for c in 0..3 {
+                total.sums[i][c].merge(&px.sums[i][c]);
+            }
+            total.taken[i] += px.taken[i];
+            total.covered[i] += px.covered[i];
+            total.dropped[i] += px.dropped[i];
+            if owner == k {
+                total.depth[i] = px.depth[i];
+                total.normal[i] = px.normal[i];
+                total.object_id[i] = px.object_id[i];
+                total.material_id[i] = px.material_id[i];
+            }
+        }
+    }
+    let mut fb = FrameBuffers::new(h0.width, h0.height);
+    for i in 0..n {
+        let taken = total.taken[i];
+        fb.beauty[i] = pixel_value(&total.sums[i], taken);
+        fb.alpha[i] = pixel_alpha(total.covered[i], taken);
+        fb.depth[i] = total.depth[i];
+        fb.normal[i] = total.normal[i];
+        fb.object_id[i] = total.object_id[i];
+        fb.material_id[i] = total.material_id[i];
+        fb.samples[i] = taken;
+    }
+    Ok(fb)
+}

@@ -1,0 +1,350 @@
+//! The part file: one farm part's results as an OpenEXR file that holds exactly what an
+//! exact merge needs — per pixel the exact sample sums ([`ExactSum`] limbs as `u32` words),
+//! the sample, coverage and dropped counts, and the centre-sample passes — plus metadata
+//! (format, stagelight version, scene, scene content hash, settings hash, seed, part K/N,
+//! split) as EXR text attributes, and a hash of the pixel data that catches a damaged file.
+
+use std::collections::HashMap;
+
+use exr::prelude::*;
+use glam::Vec3;
+
+use super::part::{Part, Split};
+use crate::exact_sum::{ExactSum, LIMBS};
+use crate::hash::Fnv64;
+
+/// The value of the `stagelight.format` attribute.
+pub const FORMAT: &str = "stagelight part 1";
+
+/// Everything about a part except its pixels.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct PartHeader {
+    /// stagelight version that wrote it.
+    pub version: String,
+    /// The scene path as the render was given it.
+    pub scene: String,
+    /// Hash of the scene's content (see `crate::farm::scene_hash`).
+    pub scene_hash: u64,
+    /// Hash of the effective render settings (scene options plus command-line overrides).
+    pub settings_hash: u64,
+    /// The seed.
+    pub seed: u64,
+    /// Which part this is.
+    pub part: Part,
+    /// Image width in pixels.
+    pub width: u32,
+    /// Image height in pixels.
+    pub height: u32,
+}
+
+/// Per-pixel results of one part (row-major, full image size; pixels the part does not
+/// compute are zero).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct PartPixels {
+    /// Exact sums of the R, G, B samples.
+    pub sums: Vec<[ExactSum; 3]>,
+    /// Samples taken.
+    pub taken: Vec<u32>,
+    /// Samples whose camera ray hit something.
+    pub covered: Vec<u32>,
+    /// Non-finite samples dropped.
+    pub dropped: Vec<u32>,
+    /// Centre-sample depth.
+    pub depth: Vec<f32>,
+    /// Centre-sample normal.
+    pub normal: Vec<Vec3>,
+    /// Centre-sample object id.
+    pub object_id: Vec<u32>,
+    /// Centre-sample material id.
+    pub material_id: Vec<u32>,
+}
+
+impl PartPixels {
+    /// All-zero pixels for `n` pixels (depth infinite).
+    pub fn new(n: usize) -> Self {
+        Self {
+            sums: vec![[ExactSum::default(); 3]; n],
+            taken: vec![0; n],
+            covered: vec![0; n],
+            dropped: vec![0; n],
+            depth: vec![f32::INFINITY; n],
+            normal: vec![Vec3::ZERO; n],
+            object_id: vec![0; n],
+            material_id: vec![0; n],
+        }
+    }
+}
+
+/// A part file's content.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PartFile {
+    /// Metadata.
+    pub header: PartHeader,
+    /// Results.
+    pub pixels: PartPixels,
+}
+
+const CHANNELS: [&str; 3] = ["R", "G", "B"];
+
+fn sum_channel(c: usize, word: usize) -> String {
+    format!("sum.{}.{word:02}", CHANNELS[c])
+}
+
+/// The u32 channels of a part, by name, in a fixed order.
+fn u32_channels(p: &PartPixels) -> Vec<(String, Vec<u32>)> {
+    let mut out = Vec::new();
+    for c in 0..3 {
+        for word in 0..2 * LIMBS {
+            let values = p
+                .sums
+                .iter()
+                .map(|s| {
+                    let limb = s[c].limbs()[word / 2];
+                    (limb >> (32 * (word % 2))) as u32
+                })
+                .collect();
+            out.push((sum_channel(c, word), values));
+        }
+    }
+    out.push(("taken".into(), p.taken.clone()));
+    out.push(("covered".into(), p.covered.clone()));
+    out.push(("dropped".into(), p.dropped.clone()));
+    out.push(("id.object".into(), p.object_id.clone()));
+    out.push(("id.material".into(), p.material_id.clone()));
+    out
+}
+
+/// The f32 channels of a part, by name, in a fixed order.
+fn f32_channels(p: &PartPixels) -> Vec<(String, Vec<f32>)> {
+    vec![
+        ("Z".into(), p.depth.clone()),
+        ("N.X".into(), p.normal.iter().map(|n| n.x).collect()),
+        ("N.Y".into(), p.normal.iter().map(|n| n.y).collect()),
+        ("N.Z".into(), p.normal.iter().map(|n| n.z).collect()),
+    ]
+}
+
+/// FNV-1a over the pixel data in channel order: the `stagelight.payload` attribute.
+fn payload_hash(p: &PartPixels) -> u64 {
+    let mut h = Fnv64::default();
+    for (name, values) in u32_channels(p) {
+        h.bytes(name.as_bytes());
+        values.iter().for_each(|v| h.bytes(&v.to_le_bytes()));
+    }
+    for (name, values) in f32_channels(p) {
+        h.bytes(name.as_bytes());
+        values.iter().for_each(|v| h.bytes(&v.to_bits().to_le_bytes()));
+    }
+    h.finish()
+}
+
+fn hex(bytes: &[u8]) -> String {
+    bytes.iter().map(|b| format!("{b:02x}")).collect()
+}
+
+fn unhex(s: &str) -> Option<Vec<u8>> {
+    if s.len() % 2 != 0 {
+        return None;
+    }
+    (0..s.len())
+        .step_by(2)
+        .map(|i| u8::from_str_radix(s.get(i..i + 2)?, 16).ok())
+        .collect()
+}
+
+/// Encodes a part file.
+pub fn encode(part: &PartFile) -> std::result::Result<Vec<u8>, String> {
+    let h = &part.header;
+    let p = &part.pixels;
+    let mut channels: SmallVec<[AnyChannel<FlatSamples>; 4]> = SmallVec::new();
+    for (name, values) in u32_channels(p) {
+        channels.push(AnyChannel::new(name.as_str(), FlatSamples::U32(values)));
+    }
+    for (name, values) in f32_channels(p) {
+        channels.push(AnyChannel::new(name.as_str(), FlatSamples::F32(values)));
+    }
+    let mut attributes = LayerAttributes::default();
+    let mut text = |key: &str, value: String| {
+        // Every value is ASCII (numbers, names, hex).
+        attributes.other.insert(
+            Text::new_or_panic(key),
+            AttributeValue::Text(Text::new_or_panic(value)),
+        );
+    };
+    text("stagelight.format", FORMAT.into());
+    text("stagelight.version", h.version.clone());
+    text("stagelight.scene", hex(h.scene.as_bytes()));
+    text("stagelight.scene_hash", format!("{:016x}", h.scene_hash));
+    text("stagelight.settings_hash", format!("{:016x}", h.settings_hash));
+    text("stagelight.seed", h.seed.to_string());
+    text(
+        "stagelight.part",
+        format!("{}/{}", h.part.index, h.part.count),
+    );
+    text("stagelight.split", h.part.split.name().into());
+    text("stagelight.payload", format!("{:016x}", payload_hash(p)));
+    let layer = Layer::new(
+        (h.width as usize, h.height as usize),
+        attributes,
+        Encoding::SMALL_LOSSLESS,
+        AnyChannels::sort(channels),
+    );
+    let mut cursor = std::io::Cursor::new(Vec::new());
+    Image::from_layer(layer)
+        .write()
+        .non_parallel()
+        .to_buffered(&mut cursor)
+        .map_err(|e| e.to_string())?;
+    Ok(cursor.into_inner())
+}
+
+/// Decodes a part file; the error says what is wrong with it (the caller names the file).
+pub fn decode(bytes: &[u8]) -> std::result::Result<PartFile, String> {
+    let image = read()
+        .no_deep_data()
+        .largest_resolution_level()
+        .all_channels()
+        .first_valid_layer()
+        .all_attributes()
+        .non_parallel()
+        .from_buffered(std::io::Cursor::new(bytes))
+        .map_err(|e| format!("not a readable EXR file ({e}); it may be truncated"))?;
+    let layer = image.layer_data;
+    let attrs: HashMap<String, String> = layer
+        .attributes
+        .other
+        .iter()
+        .filter_map(|(k, v)| match v {
+            AttributeValue::Text(t) => Some((k.to_string(), t.to_string())),
+            _ => None,
+        })
+        .collect();
+    let get = |key: &str| {
+        attrs
+            .get(key)
+            .cloned()
+            .ok_or_else(|| format!("not a stagelight part file (no `{key}` attribute)"))
+    };
+    let format = get("stagelight.format")?;
+    if format != FORMAT {
+        return Err(format!(
+            "part file format \"{format}\" is not \"{FORMAT}\" (written by another stagelight version?)"
+        ));
+    }
+    let bad = |key: &str| format!("damaged part file (attribute `{key}` is malformed)");
+    let hex64 = |key: &str| u64::from_str_radix(&get(key)?, 16).map_err(|_| bad(key));
+    let scene = unhex(&get("stagelight.scene")?)
+        .and_then(|b| String::from_utf8(b).ok())
+        .ok_or_else(|| bad("stagelight.scene"))?;
+    let number: super::part::PartNumber = get("stagelight.part")?
+        .parse()
+        .map_err(|_| bad("stagelight.part"))?;
+    let split = Split::from_name(&get("stagelight.split")?).ok_or_else(|| bad("stagelight.split"))?;
+    let size = layer.size;
+    let header = PartHeader {
+        version: get("stagelight.version")?,
+        scene,
+        scene_hash: hex64("stagelight.scene_hash")?,
+        settings_hash: hex64("stagelight.settings_hash")?,
+        seed: get("stagelight.seed")?
+            .parse()
+            .map_err(|_| bad("stagelight.seed"))?,
+        part: Part {
+            index: number.index,
+            count: number.count,
+            split,
+        },
+        width: size.width() as u32,
+        height: size.height() as u32,
+    };
+    let n = size.area();
+    let find = |name: &str| {
+        layer
+            .channel_data
+            .list
+            .iter()
+            .find(|c| c.name.to_string() == name)
+            .map(|c| &c.sample_data)
+            .ok_or_else(|| format!("damaged part file (no `{name}` channel)"))
+    };
+    let u32s = |name: &str| match find(name)? {
+        FlatSamples::U32(v) if v.len() == n => Ok(v.clone()),
+        _ => Err(format!("damaged part file (channel `{name}` is not {n} u32 samples)")),
+    };
+    let f32s = |name: &str| match find(name)? {
+        FlatSamples::F32(v) if v.len() == n => Ok(v.clone()),
+        _ => Err(format!("damaged part file (channel `{name}` is not {n} f32 samples)")),
+    };
+    let mut pixels = PartPixels::new(n);
+    for c in 0..3 {
+        let words: Vec<Vec<u32>> = (0..2 * LIMBS)
+            .map(|w| u32s(&sum_channel(c, w)))
+            .collect::<std::result::Result<_, _>>()?;
+        for (i, s) in pixels.sums.iter_mut().enumerate() {
+            let mut limbs = [0u64; LIMBS];
+            for (l, limb) in limbs.iter_mut().enumerate() {
+                *limb = u64::from(words[2 * l][i]) | (u64::from(words[2 * l + 1][i]) << 32);
+            }
+            s[c] = ExactSum::from_limbs(limbs);
+        }
+    }
+    pixels.taken = u32s("taken")?;
+    pixels.covered = u32s("covered")?;
+    pixels.dropped = u32s("dropped")?;
+    pixels.object_id = u32s("id.object")?;
+    pixels.material_id = u32s("id.material")?;
+    pixels.depth = f32s("Z")?;
+    let (nx, ny, nz) = (f32s("N.X")?, f32s("N.Y")?, f32s("N.Z")?);
+    pixels.normal = (0..n).map(|i| Vec3::new(nx[i], ny[i], nz[i])).collect();
+    if hex64("stagelight.payload")? != payload_hash(&pixels) {
+        return Err("damaged part file (its pixel data does not match its checksum)".into());
+    }
+    Ok(PartFile { header, pixels })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sample() -> PartFile {
+        let mut pixels = PartPixels::new(6);
+        pixels.sums[1][0].add(1.5);
+        pixels.sums[4][2].add(-1e-30);
+        pixels.taken[1] = 3;
+        pixels.depth[2] = 4.0;
+        pixels.normal[5] = Vec3::Y;
+        PartFile {
+            header: PartHeader {
+                version: "0.1.0".into(),
+                scene: "scènes/a.ron".into(),
+                scene_hash: 0xdead_beef,
+                settings_hash: 7,
+                seed: 42,
+                part: Part {
+                    index: 2,
+                    count: 3,
+                    split: Split::Samples,
+                },
+                width: 3,
+                height: 2,
+            },
+            pixels,
+        }
+    }
+
+    #[test]
+    fn round_trips_every_field() {
+        let part = sample();
+        let bytes = encode(&part).unwrap();
+        assert_eq!(decode(&bytes).unwrap(), part);
+    }
+
+    #[test]
+    fn truncated_and_foreign_files_are_refused() {
+        let bytes = encode(&sample()).unwrap();
+        let e = decode(&bytes[..bytes.len() / 2]).unwrap_err();
+        assert!(e.contains("truncated") || e.starts_with("damaged"), "{e}");
+        let e = decode(b"not an exr").unwrap_err();
+        assert!(e.starts_with("not a readable EXR file"), "{e}");
+    }
+}

@@ -1,0 +1,306 @@
+//! Slurm batch scripts for a farm render (`stagelight farm`): a job array whose task K runs
+//! `stagelight render SCENE --part K/N`, a merge job that waits for the whole array
+//! (`--dependency=afterok:<array>`), and `submit.sh`, which submits both with `sbatch` and
+//! prints their job ids. The scripts are plain, commented bash that a user can read, edit
+//! and submit by hand.
+//!
+//! Photon maps: there is no photon file yet, so every part traces the scene's photon maps
+//! itself (deterministically: identical maps in every part); the cost is one photon pass
+//! per part.
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use super::part::Split;
+
+/// What to write scripts for.
+#[derive(Debug, Clone)]
+pub struct FarmJob {
+    /// The stagelight executable the nodes run (absolute).
+    pub exe: PathBuf,
+    /// The scene (absolute).
+    pub scene: PathBuf,
+    /// Directory of the scripts, part files and logs (absolute).
+    pub out: PathBuf,
+    /// Working directory of the jobs (where the camera's relative output paths resolve).
+    pub workdir: PathBuf,
+    /// Number of parts.
+    pub parts: u32,
+    /// How the render is divided.
+    pub split: Split,
+    /// Where the merge writes (`-o`); `None`: the camera's outputs.
+    pub output: Option<PathBuf>,
+    /// Extra `render` arguments (`--spp N`, `--seed S`, `--integrator I`).
+    pub render_args: Vec<String>,
+    /// `#SBATCH --partition`.
+    pub partition: Option<String>,
+    /// `#SBATCH --cpus-per-task` (each part uses that many threads).
+    pub cpus_per_task: u32,
+    /// `#SBATCH --mem` (e.g. `4G`).
+    pub mem: Option<String>,
+    /// `#SBATCH --time` (e.g. `01:00:00`).
+    pub time: Option<String>,
+}
+
+/// One script file: its name in [`FarmJob::out`] and its text.
+pub struct Script {
+    /// File name.
+    pub name: &'static str,
+    /// Contents.
+    pub text: String,
+}
+
+/// Quotes `s` for bash (single quotes; embedded quotes closed, escaped and reopened).
+pub fn quote(s: &str) -> String {
+    format!("'{}'", s.replace('\'', r"'\''"))
+}
+
+fn q(p: &Path) -> String {
+    quote(&p.to_string_lossy())
+}
+
+/// The part file of part `k` (as the merge job names it: `part_$K.exr`).
+pub fn part_path(out: &Path, k: u32) -> PathBuf {
+    out.join(format!("part_{k}.exr"))
+}
+
+fn common_directives(s: &mut String, job: &FarmJob, name: &str, log: &str) {
+    let _ = writeln!(s, "#SBATCH --job-name={name}");
+    let _ = writeln!(s, "#SBATCH --chdir={}", job.workdir.display());
+    let _ = writeln!(s, "#SBATCH --output={}", job.out.join("logs").join(log).display());
+    if let Some(p) = &job.partition {
+        let _ = writeln!(s, "#SBATCH --partition={p}");
+    }
+    if let Some(t) = &job.time {
+        let _ = writeln!(s, "#SBATCH --time={t}");
+    }
+}
+
+/// The three scripts of `job`.
+pub fn scripts(job: &FarmJob) -> Vec<Script> {
+    let n = job.parts;
+    let mut render = String::from("#!/bin/bash\n");
+    let _ = writeln!(
+        render,
+        "# stagelight farm: part $SLURM_ARRAY_TASK_ID of {n} of {} (split: {}).",
+        job.scene.display(),
+        job.split
+    );
+    let _ = writeln!(
+        render,
+        "# A failed task is requeued by Slurm; re-run one by hand with\n#   sbatch --array=K {}",
+        job.out.join("render.sbatch").display()
+    );
+    common_directives(&mut render, job, "stagelight-render", "part_%a.log");
+    let _ = writeln!(render, "#SBATCH --array=1-{n}");
+    let _ = writeln!(render, "#SBATCH --cpus-per-task={}", job.cpus_per_task);
+    let _ = writeln!(render, "#SBATCH --ntasks=1");
+    if let Some(m) = &job.mem {
+        let _ = writeln!(render, "#SBATCH --mem={m}");
+    }
+    render.push_str("#SBATCH --requeue\nset -euo pipefail\nK=\"$SLURM_ARRAY_TASK_ID\"\n");
+    let extra: String = job.render_args.iter().map(|a| format!(" {}", quote(a))).collect();
+    let _ = writeln!(
+        render,
+        "exec {} render {} --part \"$K/{n}\" --split {} --threads \"${{SLURM_CPUS_PER_TASK:-1}}\"{extra} -o {}\"/part_$K.exr\"",
+        q(&job.exe),
+        q(&job.scene),
+        job.split,
+        q(&job.out)
+    );
+
+    let mut merge = String::from("#!/bin/bash\n");
+    let _ = writeln!(
+        merge,
+        "# stagelight farm: merges the {n} part files into the outputs of a local render."
+    );
+    common_directives(&mut merge, job, "stagelight-merge", "merge.log");
+    merge.push_str("#SBATCH --ntasks=1\n#SBATCH --cpus-per-task=1\nset -euo pipefail\n");
+    let _ = writeln!(merge, "parts=()\nfor k in $(seq 1 {n}); do parts+=({}\"/part_$k.exr\"); done", q(&job.out));
+    let output = job
+        .output
+        .as_ref()
+        .map(|o| format!(" -o {}", q(o)))
+        .unwrap_or_default();
+    let _ = writeln!(
+        merge,
+        "exec {} merge --scene {} \"${{parts[@]}}\"{output}",
+        q(&job.exe),
+        q(&job.scene)
+    );
+
+    let mut submit = String::from("#!/bin/bash\n");
+    submit.push_str(
+        "# Submits the part array, then the merge job that runs once every part succeeded.\n",
+    );
+    submit.push_str("set -euo pipefail\n");
+    let _ = writeln!(submit, "mkdir -p {}", q(&job.out.join("logs")));
+    let _ = writeln!(
+        submit,
+        "array=$(sbatch --parsable {})\narray=\"${{array%%;*}}\"",
+        q(&job.out.join("render.sbatch"))
+    );
+    let _ = writeln!(
+        submit,
+        "merge=$(sbatch --parsable --dependency=afterok:\"$array\" {})\nmerge=\"${{merge%%;*}}\"",
+        q(&job.out.join("merge.sbatch"))
+    );
+    submit.push_str("echo \"render array job $array\"\necho \"merge job $merge\"\n");
+    vec![
+        Script {
+            name: "render.sbatch",
+            text: render,
+        },
+        Script {
+            name: "merge.sbatch",
+            text: merge,
+        },
+        Script {
+            name: "submit.sh",
+            text: submit,
+        },
+    ]
+}
+
+/// The farm command's options besides the paths.
+#[derive(Debug, Clone)]
+pub struct JobOptions {
+    /// Number of parts.
+    pub parts: u32,
+    /// How the render is divided.
+    pub split: Split,
+    /// `--spp` for every part.
+    pub spp: Option<u32>,
+    /// `--seed` for every part.
+    pub seed: Option<u64>,
+    /// Slurm partition.
+    pub partition: Option<String>,
+    /// CPUs per part.
+    pub cpus_per_task: u32,
+    /// Memory per part.
+    pub mem: Option<String>,
+    /// Time limit.
+    pub time: Option<String>,
+}
+
+/// A Slurm value (`--mem`, `--time`, `--partition`) must be one plain word: it goes on an
+/// `#SBATCH` line unquoted.
+fn plain(what: &str, value: &Option<String>) -> Result<(), String> {
+    match value {
+        Some(v)
+            if v.is_empty()
+                || !v
+                    .chars()
+                    .all(|c| c.is_ascii_alphanumeric() || "-_:.,".contains(c)) =>
+        {
+            Err(format!(
+                "--{what} \"{v}\" is not a Slurm value (letters, digits and - _ : . , only)"
+            ))
+        }
+        _ => Ok(()),
+    }
+}
+
+/// The job for `scene` with scripts and parts in `out`, the executable being this one and
+/// every path made absolute (the nodes may start elsewhere).
+pub fn job(
+    scene: &Path,
+    out: &Path,
+    output: Option<&Path>,
+    options: JobOptions,
+) -> Result<FarmJob, String> {
+    plain("partition", &options.partition)?;
+    plain("mem", &options.mem)?;
+    plain("time", &options.time)?;
+    let workdir =
+        std::env::current_dir().map_err(|e| format!("cannot read the working directory: {e}"))?;
+    let absolute = |p: &Path| {
+        if p.is_absolute() {
+            p.to_path_buf()
+        } else {
+            workdir.join(p)
+        }
+    };
+    let exe = std::env::current_exe()
+        .map_err(|e| format!("cannot find the stagelight executable: {e}"))?;
+    let mut render_args = Vec::new();
+    if let Some(spp) = options.spp {
+        render_args.extend(["--spp".to_string(), spp.to_string()]);
+    }
+    if let Some(seed) = options.seed {
+        render_args.extend(["--seed".to_string(), seed.to_string()]);
+    }
+    Ok(FarmJob {
+        exe,
+        scene: absolute(scene),
+        out: absolute(out),
+        workdir: workdir.clone(),
+        parts: options.parts,
+        split: options.split,
+        output: output.map(absolute),
+        render_args,
+        partition: options.partition,
+        cpus_per_task: options.cpus_per_task,
+        mem: options.mem,
+        time: options.time,
+    })
+}
+
+/// Writes the scripts (executable) into `job.out` and creates its `logs/`; returns the
+/// paths written.
+pub fn write(job: &FarmJob) -> Result<Vec<PathBuf>, String> {
+    let logs = job.out.join("logs");
+    std::fs::create_dir_all(&logs)
+        .map_err(|e| format!("cannot create {}: {e}", logs.display()))?;
+    let mut written = Vec::new();
+    for script in scripts(job) {
+        let path = job.out.join(script.name);
+        std::fs::write(&path, &script.text)
+            .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::PermissionsExt;
+            let _ = std::fs::set_permissions(&path, std::fs::Permissions::from_mode(0o755));
+        }
+        written.push(path);
+    }
+    Ok(written)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn job() -> FarmJob {
+        FarmJob {
+            exe: "/opt/bin/stagelight".into(),
+            scene: "/scenes/it's.ron".into(),
+            out: "/farm/out".into(),
+            workdir: "/scenes".into(),
+            parts: 4,
+            split: Split::Tiles,
+            output: Some("/farm/final.png".into()),
+            render_args: vec!["--spp".into(), "16".into()],
+            partition: Some("render".into()),
+            cpus_per_task: 8,
+            mem: Some("4G".into()),
+            time: None,
+        }
+    }
+
+    #[test]
+    fn the_array_renders_each_part_and_the_merge_waits_for_it() {
+        let s = scripts(&job());
+        let render = &s[0].text;
+        assert!(render.contains("#SBATCH --array=1-4\n"), "{render}");
+        assert!(render.contains("#SBATCH --partition=render\n"));
+        assert!(render.contains("#SBATCH --cpus-per-task=8\n"));
+        assert!(render.contains(
+            "exec '/opt/bin/stagelight' render '/scenes/it'\\''s.ron' --part \"$K/4\" --split tiles --threads \"${SLURM_CPUS_PER_TASK:-1}\" '--spp' '16' -o '/farm/out'\"/part_$K.exr\"\n"
+        ), "{render}");
+        let merge = &s[1].text;
+        assert!(merge.contains("merge --scene '/scenes/it'\\''s.ron' \"${parts[@]}\" -o '/farm/final.png'"), "{merge}");
+        let submit = &s[2].text;
+        assert!(submit.contains("--dependency=afterok:\"$array\""), "{submit}");
+    }
+}

@@ -1,0 +1,200 @@
+//! `render --part K/N`, `stagelight merge` and `stagelight farm` from the command line: the
+//! merged image is byte-identical to a single render, mismatched or incomplete sets of
+//! parts are refused with nothing written, and the generated Slurm scripts, run as Slurm
+//! would run them, produce the single render's bytes.
+
+use std::path::Path;
+use std::process::Command;
+
+use crate::common::cli::{bin, run, scratch, stderr};
+
+const SCENE: &str = r#"Scene(
+    options: (samples: 3),
+    cameras: [(name: "cam", fov_y: 40.0, resolution: (40, 24),
+               placement: LookAt(eye: (0, -4, 3), target: (0, 0, 0)),
+               outputs: [(file: "view.png")])],
+    lights: [(name: "sun", kind: Point(position: (0.5, 0, 3)), intensity: 2.0)],
+    materials: [(name: "grey", shader: Lambert(albedo: (0.5, 0.5, 0.5)))],
+    objects: [
+        (name: "floor", mesh: Inline(
+            vertices: [(-2, -2, 0), (2, -2, 0), (2, 2, 0), (-2, 2, 0)],
+            polygons: [[0, 1, 2, 3]]), material: "grey"),
+        (name: "ball", mesh: Sphere(radius: 0.6), material: "grey",
+         approximation: Parametric(u: 16, v: 8)),
+    ],
+    instances: [
+        (name: "floor_1", of: "floor"),
+        (name: "ball_1", of: "ball", transform: [Translate((0, 0, 0.6))]),
+    ],
+    groups: [(name: "world", members: ["floor_1", "ball_1"])],
+    render: (root: "world", camera: "cam"),
+)
+"#;
+
+fn setup(test: &str) -> std::path::PathBuf {
+    let dir = scratch(&format!("cli-farm-{test}"));
+    std::fs::write(dir.join("scene.ron"), SCENE).unwrap();
+    dir
+}
+
+fn stagelight(dir: &Path, args: &[&str]) -> std::process::Output {
+    run(bin().current_dir(dir).args(args))
+}
+
+fn ok(dir: &Path, args: &[&str]) {
+    let o = stagelight(dir, args);
+    assert!(o.status.success(), "{args:?}: {}", stderr(&o));
+}
+
+fn render_parts(dir: &Path, count: u32, split: &str, extra: &[&str]) -> Vec<String> {
+    (1..=count)
+        .map(|k| {
+            let name = format!("part_{k}.exr");
+            let part = format!("{k}/{count}");
+            let mut args = vec![
+                "render", "scene.ron", "--part", &part, "--split", split, "-o", &name,
+            ];
+            args.extend_from_slice(extra);
+            ok(dir, &args);
+            name
+        })
+        .collect()
+}
+
+#[test]
+fn merged_parts_are_byte_identical_to_the_single_render() {
+    let dir = setup("identical");
+    ok(&dir, &["render", "scene.ron", "-o", "single.png"]);
+    ok(&dir, &["render", "scene.ron", "-o", "single.exr"]);
+    for (count, split) in [(3, "tiles"), (2, "samples"), (4, "samples")] {
+        let parts = render_parts(&dir, count, split, &[]);
+        let mut args = vec!["merge"];
+        args.extend(parts.iter().map(String::as_str).rev());
+        for out in ["merged.png", "merged.exr"] {
+            let mut a = args.clone();
+            a.extend(["-o", out]);
+            ok(&dir, &a);
+        }
+        for ext in ["png", "exr"] {
+            let single = std::fs::read(dir.join(format!("single.{ext}"))).unwrap();
+            let merged = std::fs::read(dir.join(format!("merged.{ext}"))).unwrap();
+            assert!(single == merged, "{count} {split} parts: {ext} differs");
+        }
+    }
+    // Without -o the merge writes the camera's own outputs, as the render does.
+    let parts = render_parts(&dir, 2, "tiles", &[]);
+    let o = stagelight(&dir, &["merge", &parts[0], &parts[1]]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains("wrote view.png"), "{}", stderr(&o));
+    assert_eq!(
+        std::fs::read(dir.join("view.png")).unwrap(),
+        std::fs::read(dir.join("single.png")).unwrap()
+    );
+}
+
+#[test]
+fn mismatched_missing_duplicate_and_damaged_parts_are_refused_with_nothing_written() {
+    let dir = setup("refusals");
+    render_parts(&dir, 2, "tiles", &["--seed", "1"]);
+    std::fs::rename(dir.join("part_2.exr"), dir.join("seed1_part_2.exr")).unwrap();
+    render_parts(&dir, 2, "tiles", &["--seed", "2"]);
+    let refused = |args: &[&str], expected: &str| {
+        let o = stagelight(&dir, args);
+        assert_eq!(o.status.code(), Some(1), "{args:?}");
+        assert_eq!(stderr(&o), expected, "{args:?}");
+        assert!(!dir.join("out.png").exists(), "{args:?} wrote a file");
+    };
+    refused(
+        &["merge", "part_1.exr", "seed1_part_2.exr", "-o", "out.png"],
+        "error: seed1_part_2.exr and part_1.exr are parts of different renders: seed 1 vs 2\n  help: merge only the parts of one `stagelight render --part K/N` run\nnothing written\n",
+    );
+    refused(
+        &["merge", "part_2.exr", "-o", "out.png"],
+        "error: missing part 1/2\n  help: re-run `stagelight render --part K/2` for it (or resubmit those array indices)\nnothing written\n",
+    );
+    refused(
+        &["merge", "part_1.exr", "part_2.exr", "part_1.exr", "-o", "out.png"],
+        "error: part 1/2 is given twice: part_1.exr and part_1.exr\n  help: pass each part file once\nnothing written\n",
+    );
+    let bytes = std::fs::read(dir.join("part_2.exr")).unwrap();
+    std::fs::write(dir.join("cut.exr"), &bytes[..bytes.len() * 2 / 3]).unwrap();
+    let o = stagelight(&dir, &["merge", "part_1.exr", "cut.exr", "-o", "out.png"]);
+    assert_eq!(o.status.code(), Some(1));
+    let e = stderr(&o);
+    assert!(e.starts_with("error: cut.exr: "), "{e}");
+    assert!(e.ends_with("\nnothing written\n"), "{e}");
+    assert!(!dir.join("out.png").exists());
+    // Parts of a different scene.
+    std::fs::write(dir.join("other.ron"), SCENE.replace("intensity: 2.0", "intensity: 3.0")).unwrap();
+    ok(&dir, &["render", "other.ron", "--part", "2/2", "-o", "other_2.exr"]);
+    let o = stagelight(&dir, &["merge", "part_1.exr", "other_2.exr", "-o", "out.png"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(
+        stderr(&o).starts_with("error: other_2.exr and part_1.exr are parts of different renders: scene content "),
+        "{}",
+        stderr(&o)
+    );
+    // A scene edited after its parts were rendered.
+    std::fs::write(dir.join("scene.ron"), SCENE.replace("samples: 3", "samples: 3, seed: 9")).unwrap();
+    let o = stagelight(&dir, &["merge", "part_1.exr", "part_2.exr", "-o", "out.png"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("scene.ron changed since the parts were rendered"), "{}", stderr(&o));
+    assert!(!dir.join("out.png").exists());
+}
+
+#[test]
+fn part_flags_are_checked() {
+    let dir = setup("flags");
+    let o = stagelight(&dir, &["render", "scene.ron", "--part", "2/4"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(
+        stderr(&o),
+        "error: --part 2/4 writes a part file: give it with -o PART.exr\n  help: e.g. -o part_2.exr, then `stagelight merge part_*.exr -o image.png`\n"
+    );
+    let o = stagelight(&dir, &["render", "scene.ron", "--part", "5/4", "-o", "p.exr"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("expected K/N with 1 ≤ K ≤ N"), "{}", stderr(&o));
+    std::fs::write(
+        dir.join("adaptive.ron"),
+        SCENE.replace("samples: 3", "samples: (min: 2, max: 8, contrast: (0.1, 0.1, 0.1))"),
+    )
+    .unwrap();
+    let o = stagelight(&dir, &["render", "adaptive.ron", "--part", "1/2", "--split", "samples", "-o", "p.exr"]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).starts_with("error: --split samples cannot divide adaptive sampling"), "{}", stderr(&o));
+}
+
+/// The scripts `stagelight farm` writes, run the way Slurm runs them (one process per
+/// array index with `SLURM_ARRAY_TASK_ID` set, then the merge), give the local render.
+#[test]
+fn farm_scripts_run_as_slurm_would_give_the_local_render() {
+    let dir = setup("farm");
+    ok(&dir, &["render", "scene.ron", "-o", "single.png"]);
+    let o = stagelight(
+        &dir,
+        &["farm", "scene.ron", "--parts", "3", "--out", "job", "-o", "farm.png", "--cpus-per-task", "1"],
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let render = std::fs::read_to_string(dir.join("job/render.sbatch")).unwrap();
+    assert!(render.contains("#SBATCH --array=1-3\n"), "{render}");
+    for k in 1..=3 {
+        let s = Command::new("bash")
+            .arg(dir.join("job/render.sbatch"))
+            .current_dir(&dir)
+            .env("SLURM_ARRAY_TASK_ID", k.to_string())
+            .env("SLURM_CPUS_PER_TASK", "1")
+            .status()
+            .unwrap();
+        assert!(s.success());
+    }
+    let s = Command::new("bash")
+        .arg(dir.join("job/merge.sbatch"))
+        .current_dir(&dir)
+        .status()
+        .unwrap();
+    assert!(s.success());
+    assert_eq!(
+        std::fs::read(dir.join("farm.png")).unwrap(),
+        std::fs::read(dir.join("single.png")).unwrap()
+    );
+}

@@ -1,0 +1,144 @@
+//! Farm parts merge exactly: for every example scene (at a reduced resolution), rendering it
+//! as N parts (N = 1, 2, 3, 7; tiles and samples splits) and merging the part files gives
+//! the single render's frame buffers bit for bit.
+
+use std::path::{Path, PathBuf};
+
+use stagelight::components::{Camera, Pass, RenderCamera};
+use stagelight::farm::merge::{merge, LoadedPart};
+use stagelight::farm::part_file::{decode, encode};
+use stagelight::farm::{part_file, Part, PartRun, Split};
+use stagelight::frame::Frame;
+use stagelight::framebuffer::FrameBuffers;
+use stagelight::image_io::encode_exr;
+use stagelight::scene::load_scene;
+
+fn example_scenes() -> Vec<PathBuf> {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("assets/scenes");
+    let mut scenes: Vec<PathBuf> = std::fs::read_dir(&dir)
+        .unwrap()
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|x| x == "ron"))
+        .collect();
+    scenes.sort();
+    scenes
+}
+
+/// Renders `path` shrunk to at most 20 pixels across with at most 2 samples (adaptive
+/// sampling capped at 8), as `part` when given. Returns the buffers (with exact sums for a
+/// part), the effective settings' frame and whether the scene samples adaptively.
+fn render(path: &Path, part: Option<Part>) -> (FrameBuffers, Frame) {
+    let mut scene = load_scene(path).unwrap_or_else(|e| panic!("{}:\n{e}", path.display()));
+    for (camera, _) in scene.world.query_mut::<(&mut Camera, &RenderCamera)>() {
+        let scale = (20.0 / camera.width.max(camera.height) as f32).min(1.0);
+        camera.width = ((camera.width as f32 * scale).round() as u32).max(1);
+        camera.height = ((camera.height as f32 * scale).round() as u32).max(1);
+    }
+    let mut settings = scene.settings.clone();
+    settings.spp = settings.spp.min(2);
+    if let Some(a) = &mut settings.adaptive {
+        a.max = a.max.min(8);
+        a.min = a.min.min(a.max);
+    }
+    let mut frame = Frame::new(settings);
+    frame.inputs.part = part.map(|part| PartRun {
+        part,
+        scene: path.display().to_string(),
+        scene_hash: 1,
+    });
+    let stages: Vec<_> = stagelight::systems::STAGES
+        .iter()
+        .copied()
+        .filter(|s| s.name != "write_output")
+        .collect();
+    stagelight::schedule::run_stages(&stages, &mut scene.world, &mut frame)
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let fb = frame.outputs.image.take().expect("an image");
+    (fb, frame)
+}
+
+/// Part `part` of `path`, through its part file as `stagelight merge` reads it.
+fn part_of(path: &Path, part: Part) -> LoadedPart {
+    let (fb, frame) = render(path, Some(part));
+    let run = frame.inputs.part.as_ref().unwrap();
+    let file = part_file(run, &frame.inputs.settings, &fb).expect("a part keeps its sums");
+    let bytes = encode(&file).unwrap();
+    LoadedPart {
+        path: format!("part_{}.exr", part.index).into(),
+        file: decode(&bytes).unwrap(),
+    }
+}
+
+/// Every pass, as bytes, and the per-pixel sample counts.
+fn bits(fb: &FrameBuffers) -> (Vec<u8>, Vec<u32>) {
+    let all = [
+        Pass::Beauty,
+        Pass::Depth,
+        Pass::Normal,
+        Pass::ObjectId,
+        Pass::MaterialId,
+    ];
+    (encode_exr(fb, &all).unwrap(), fb.samples.clone())
+}
+
+#[test]
+fn every_example_scene_merges_bit_identically_for_any_part_count_and_split() {
+    for path in example_scenes() {
+        let (single, frame) = render(&path, None);
+        let adaptive = frame.inputs.settings.adaptive.is_some();
+        let expected = bits(&single);
+        for split in [Split::Tiles, Split::Samples] {
+            if split == Split::Samples && adaptive {
+                continue;
+            }
+            for count in [1, 2, 3, 7] {
+                let parts: Vec<LoadedPart> = (1..=count)
+                    .map(|index| {
+                        part_of(
+                            &path,
+                            Part {
+                                index,
+                                count,
+                                split,
+                            },
+                        )
+                    })
+                    .collect();
+                let merged = merge(&parts).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+                assert!(
+                    bits(&merged) == expected,
+                    "{}: {count} parts, {split} split differ from the single render",
+                    path.display()
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn a_part_alone_does_not_merge_and_names_the_missing_ones() {
+    let path = example_scenes()
+        .into_iter()
+        .find(|p| p.ends_with("cornell_box.ron"))
+        .unwrap();
+    let part = |index| {
+        part_of(
+            &path,
+            Part {
+                index,
+                count: 3,
+                split: Split::Tiles,
+            },
+        )
+    };
+    let e = merge(&[part(2)]).err().unwrap();
+    assert_eq!(
+        e,
+        "missing parts 1/3, 3/3\n  help: re-run `stagelight render --part K/3` for them (or resubmit those array indices)"
+    );
+    let e = merge(&[part(1), part(2), part(2), part(3)]).err().unwrap();
+    assert_eq!(
+        e,
+        "part 2/3 is given twice: part_2.exr and part_2.exr\n  help: pass each part file once"
+    );
+}
