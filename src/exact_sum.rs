@@ -136,8 +136,14 @@ mod tests {
         assert_eq!(sum(&[]).to_f64(), 0.0);
         assert_eq!(sum(&[1.0, 2.0, 0.5]).to_f64(), 3.5);
         assert_eq!(sum(&[1.0, -3.0]).to_f64(), -2.0);
-        assert_eq!(sum(&[f32::MIN_POSITIVE / 4.0]).to_f64(), f64::from(f32::MIN_POSITIVE) / 4.0);
-        assert_eq!(sum(&[f32::MAX, f32::MAX]).to_f64(), 2.0 * f64::from(f32::MAX));
+        assert_eq!(
+            sum(&[f32::MIN_POSITIVE / 4.0]).to_f64(),
+            f64::from(f32::MIN_POSITIVE) / 4.0
+        );
+        assert_eq!(
+            sum(&[f32::MAX, f32::MAX]).to_f64(),
+            2.0 * f64::from(f32::MAX)
+        );
         assert_eq!(sum(&[f32::NAN, f32::INFINITY, 1.0]).to_f64(), 1.0);
     }
 
@@ -151,7 +157,7 @@ mod tests {
     #[test]
     fn any_split_and_order_give_the_same_bits() {
         let values: Vec<f32> = (0..1000u32)
-            .map(|i| ((i * 2_654_435_761) % 10_007) as f32 * 1.37e-3 - 3.1)
+            .map(|i| (i.wrapping_mul(2_654_435_761) % 10_007) as f32 * 1.37e-3 - 3.1)
             .collect();
         let whole = sum(&values);
         for parts in [2, 3, 7] {

@@ -629,10 +629,7 @@ fn farm(args: FarmArgs) -> ExitCode {
         eprintln!("wrote {}", path.display());
     }
     if !args.submit {
-        eprintln!(
-            "submit with: bash {}",
-            job.out.join("submit.sh").display()
-        );
+        eprintln!("submit with: bash {}", job.out.join("submit.sh").display());
         return ExitCode::SUCCESS;
     }
     match std::process::Command::new("bash")

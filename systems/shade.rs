@@ -43,7 +43,10 @@ pub fn should_run(world: &World, frame: &Frame) -> Decision {
         return Decision::skip("this run only bakes");
     }
     if let Some(fb) = &frame.inputs.merged_image {
-        return Decision::run(format!("image {}×{} merged from parts", fb.width, fb.height));
+        return Decision::run(format!(
+            "image {}×{} merged from parts",
+            fb.width, fb.height
+        ));
     }
     let Some(view) = render_view(world) else {
         return Decision::skip("no render camera");

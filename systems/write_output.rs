@@ -105,12 +105,11 @@ fn write_part(run: &PartRun, frame: &Frame) -> Result<Work, StageError> {
     if frame.cancelled() {
         return Err(StageError::Interrupted);
     }
-    let written = commit_all(&[PendingFile { path, bytes }]).map_err(|(path, e)| {
-        StageError::Write {
+    let written =
+        commit_all(&[PendingFile { path, bytes }]).map_err(|(path, e)| StageError::Write {
             path,
             message: e.to_string(),
-        }
-    })?;
+        })?;
     Ok(Work::new(written.len() as u64, "files").with_files(written))
 }
 

@@ -37,7 +37,8 @@ pub fn read_parts(paths: &[PathBuf]) -> Result<Vec<LoadedPart>, String> {
         }
         let bytes = std::fs::read(path)
             .map_err(|e| format!("cannot read part file {}: {e}", path.display()))?;
-        let file = super::part_file::decode(&bytes).map_err(|e| format!("{}: {e}", path.display()))?;
+        let file =
+            super::part_file::decode(&bytes).map_err(|e| format!("{}: {e}", path.display()))?;
         parts.push(LoadedPart {
             path: path.clone(),
             file,

@@ -63,7 +63,11 @@ pub fn scene_hash(source_hash: u64, world: &hecs::World) -> u64 {
 }
 
 /// The part file of a part run from its frame buffers (which carry the exact sums).
-pub fn part_file(run: &PartRun, settings: &RenderSettings, fb: &FrameBuffers) -> Option<part_file::PartFile> {
+pub fn part_file(
+    run: &PartRun,
+    settings: &RenderSettings,
+    fb: &FrameBuffers,
+) -> Option<part_file::PartFile> {
     let sums = fb.sums.as_ref()?;
     let pixels = PartPixels {
         sums: sums.sums.clone(),

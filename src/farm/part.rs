@@ -79,7 +79,8 @@ impl FromStr for PartNumber {
     type Err = String;
 
     fn from_str(s: &str) -> Result<Self, String> {
-        let expected = || format!("expected K/N with 1 ≤ K ≤ N ≤ {MAX_PARTS}, e.g. 2/4; got \"{s}\"");
+        let expected =
+            || format!("expected K/N with 1 ≤ K ≤ N ≤ {MAX_PARTS}, e.g. 2/4; got \"{s}\"");
         let (k, n) = s.split_once('/').ok_or_else(expected)?;
         let k: u32 = k.trim().parse().map_err(|_| expected())?;
         let n: u32 = n.trim().parse().map_err(|_| expected())?;

@@ -129,11 +129,15 @@ fn payload_hash(p: &PartPixels) -> u64 {
     let mut h = Fnv64::default();
     for (name, values) in u32_channels(p) {
         h.bytes(name.as_bytes());
-        values.iter().for_each(|v| h.bytes(&v.to_le_bytes()));
+        for v in &values {
+            h.bytes(&v.to_le_bytes());
+        }
     }
     for (name, values) in f32_channels(p) {
         h.bytes(name.as_bytes());
-        values.iter().for_each(|v| h.bytes(&v.to_bits().to_le_bytes()));
+        for v in &values {
+            h.bytes(&v.to_bits().to_le_bytes());
+        }
     }
     h.finish()
 }
@@ -143,7 +147,7 @@ fn hex(bytes: &[u8]) -> String {
 }
 
 fn unhex(s: &str) -> Option<Vec<u8>> {
-    if s.len() % 2 != 0 {
+    if !s.len().is_multiple_of(2) {
         return None;
     }
     (0..s.len())
@@ -175,7 +179,10 @@ pub fn encode(part: &PartFile) -> std::result::Result<Vec<u8>, String> {
     text("stagelight.version", h.version.clone());
     text("stagelight.scene", hex(h.scene.as_bytes()));
     text("stagelight.scene_hash", format!("{:016x}", h.scene_hash));
-    text("stagelight.settings_hash", format!("{:016x}", h.settings_hash));
+    text(
+        "stagelight.settings_hash",
+        format!("{:016x}", h.settings_hash),
+    );
     text("stagelight.seed", h.seed.to_string());
     text(
         "stagelight.part",
@@ -239,7 +246,8 @@ pub fn decode(bytes: &[u8]) -> std::result::Result<PartFile, String> {
     let number: super::part::PartNumber = get("stagelight.part")?
         .parse()
         .map_err(|_| bad("stagelight.part"))?;
-    let split = Split::from_name(&get("stagelight.split")?).ok_or_else(|| bad("stagelight.split"))?;
+    let split =
+        Split::from_name(&get("stagelight.split")?).ok_or_else(|| bad("stagelight.split"))?;
     let size = layer.size;
     let header = PartHeader {
         version: get("stagelight.version")?,
@@ -269,11 +277,15 @@ pub fn decode(bytes: &[u8]) -> std::result::Result<PartFile, String> {
     };
     let u32s = |name: &str| match find(name)? {
         FlatSamples::U32(v) if v.len() == n => Ok(v.clone()),
-        _ => Err(format!("damaged part file (channel `{name}` is not {n} u32 samples)")),
+        _ => Err(format!(
+            "damaged part file (channel `{name}` is not {n} u32 samples)"
+        )),
     };
     let f32s = |name: &str| match find(name)? {
         FlatSamples::F32(v) if v.len() == n => Ok(v.clone()),
-        _ => Err(format!("damaged part file (channel `{name}` is not {n} f32 samples)")),
+        _ => Err(format!(
+            "damaged part file (channel `{name}` is not {n} f32 samples)"
+        )),
     };
     let mut pixels = PartPixels::new(n);
     for c in 0..3 {

@@ -67,7 +67,11 @@ pub fn part_path(out: &Path, k: u32) -> PathBuf {
 fn common_directives(s: &mut String, job: &FarmJob, name: &str, log: &str) {
     let _ = writeln!(s, "#SBATCH --job-name={name}");
     let _ = writeln!(s, "#SBATCH --chdir={}", job.workdir.display());
-    let _ = writeln!(s, "#SBATCH --output={}", job.out.join("logs").join(log).display());
+    let _ = writeln!(
+        s,
+        "#SBATCH --output={}",
+        job.out.join("logs").join(log).display()
+    );
     if let Some(p) = &job.partition {
         let _ = writeln!(s, "#SBATCH --partition={p}");
     }
@@ -99,7 +103,11 @@ pub fn scripts(job: &FarmJob) -> Vec<Script> {
         let _ = writeln!(render, "#SBATCH --mem={m}");
     }
     render.push_str("#SBATCH --requeue\nset -euo pipefail\nK=\"$SLURM_ARRAY_TASK_ID\"\n");
-    let extra: String = job.render_args.iter().map(|a| format!(" {}", quote(a))).collect();
+    let extra: String = job
+        .render_args
+        .iter()
+        .map(|a| format!(" {}", quote(a)))
+        .collect();
     let _ = writeln!(
         render,
         "exec {} render {} --part \"$K/{n}\" --split {} --threads \"${{SLURM_CPUS_PER_TASK:-1}}\"{extra} -o {}\"/part_$K.exr\"",
@@ -116,7 +124,11 @@ pub fn scripts(job: &FarmJob) -> Vec<Script> {
     );
     common_directives(&mut merge, job, "stagelight-merge", "merge.log");
     merge.push_str("#SBATCH --ntasks=1\n#SBATCH --cpus-per-task=1\nset -euo pipefail\n");
-    let _ = writeln!(merge, "parts=()\nfor k in $(seq 1 {n}); do parts+=({}\"/part_$k.exr\"); done", q(&job.out));
+    let _ = writeln!(
+        merge,
+        "parts=()\nfor k in $(seq 1 {n}); do parts+=({}\"/part_$k.exr\"); done",
+        q(&job.out)
+    );
     let output = job
         .output
         .as_ref()
@@ -250,8 +262,7 @@ pub fn job(
 /// paths written.
 pub fn write(job: &FarmJob) -> Result<Vec<PathBuf>, String> {
     let logs = job.out.join("logs");
-    std::fs::create_dir_all(&logs)
-        .map_err(|e| format!("cannot create {}: {e}", logs.display()))?;
+    std::fs::create_dir_all(&logs).map_err(|e| format!("cannot create {}: {e}", logs.display()))?;
     let mut written = Vec::new();
     for script in scripts(job) {
         let path = job.out.join(script.name);
@@ -299,8 +310,16 @@ mod tests {
             "exec '/opt/bin/stagelight' render '/scenes/it'\\''s.ron' --part \"$K/4\" --split tiles --threads \"${SLURM_CPUS_PER_TASK:-1}\" '--spp' '16' -o '/farm/out'\"/part_$K.exr\"\n"
         ), "{render}");
         let merge = &s[1].text;
-        assert!(merge.contains("merge --scene '/scenes/it'\\''s.ron' \"${parts[@]}\" -o '/farm/final.png'"), "{merge}");
+        assert!(
+            merge.contains(
+                "merge --scene '/scenes/it'\\''s.ron' \"${parts[@]}\" -o '/farm/final.png'"
+            ),
+            "{merge}"
+        );
         let submit = &s[2].text;
-        assert!(submit.contains("--dependency=afterok:\"$array\""), "{submit}");
+        assert!(
+            submit.contains("--dependency=afterok:\"$array\""),
+            "{submit}"
+        );
     }
 }

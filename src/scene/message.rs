@@ -162,6 +162,16 @@ impl fmt::Display for SceneErrors {
 
 impl std::error::Error for SceneErrors {}
 
+/// Human text for an I/O error, stable across platforms.
+pub fn io_reason(err: &std::io::Error) -> String {
+    match err.kind() {
+        std::io::ErrorKind::NotFound => "file not found".into(),
+        std::io::ErrorKind::PermissionDenied => "permission denied".into(),
+        std::io::ErrorKind::IsADirectory => "is a directory".into(),
+        _ => err.to_string(),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -183,15 +193,5 @@ mod tests {
             d.with_severity(Severity::Warning).to_string(),
             "a/b.ron:3:7: warning: unknown material \"chrom\"\n  help: did you mean \"chrome\"?"
         );
-    }
-}
-
-/// Human text for an I/O error, stable across platforms.
-pub fn io_reason(err: &std::io::Error) -> String {
-    match err.kind() {
-        std::io::ErrorKind::NotFound => "file not found".into(),
-        std::io::ErrorKind::PermissionDenied => "permission denied".into(),
-        std::io::ErrorKind::IsADirectory => "is a directory".into(),
-        _ => err.to_string(),
     }
 }

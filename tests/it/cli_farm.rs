@@ -52,7 +52,14 @@ fn render_parts(dir: &Path, count: u32, split: &str, extra: &[&str]) -> Vec<Stri
             let name = format!("part_{k}.exr");
             let part = format!("{k}/{count}");
             let mut args = vec![
-                "render", "scene.ron", "--part", &part, "--split", split, "-o", &name,
+                "render",
+                "scene.ron",
+                "--part",
+                &part,
+                "--split",
+                split,
+                "-o",
+                &name,
             ];
             args.extend_from_slice(extra);
             ok(dir, &args);
@@ -125,20 +132,43 @@ fn mismatched_missing_duplicate_and_damaged_parts_are_refused_with_nothing_writt
     assert!(e.ends_with("\nnothing written\n"), "{e}");
     assert!(!dir.join("out.png").exists());
     // Parts of a different scene.
-    std::fs::write(dir.join("other.ron"), SCENE.replace("intensity: 2.0", "intensity: 3.0")).unwrap();
-    ok(&dir, &["render", "other.ron", "--part", "2/2", "-o", "other_2.exr"]);
-    let o = stagelight(&dir, &["merge", "part_1.exr", "other_2.exr", "-o", "out.png"]);
+    std::fs::write(
+        dir.join("other.ron"),
+        SCENE.replace("intensity: 2.0", "intensity: 3.0"),
+    )
+    .unwrap();
+    ok(
+        &dir,
+        &["render", "other.ron", "--part", "2/2", "-o", "other_2.exr"],
+    );
+    let o = stagelight(
+        &dir,
+        &["merge", "part_1.exr", "other_2.exr", "-o", "out.png"],
+    );
     assert_eq!(o.status.code(), Some(1));
     assert!(
-        stderr(&o).starts_with("error: other_2.exr and part_1.exr are parts of different renders: scene content "),
+        stderr(&o).starts_with(
+            "error: other_2.exr and part_1.exr are parts of different renders: scene content "
+        ),
         "{}",
         stderr(&o)
     );
     // A scene edited after its parts were rendered.
-    std::fs::write(dir.join("scene.ron"), SCENE.replace("samples: 3", "samples: 3, seed: 9")).unwrap();
-    let o = stagelight(&dir, &["merge", "part_1.exr", "part_2.exr", "-o", "out.png"]);
+    std::fs::write(
+        dir.join("scene.ron"),
+        SCENE.replace("samples: 3", "samples: 3, seed: 9"),
+    )
+    .unwrap();
+    let o = stagelight(
+        &dir,
+        &["merge", "part_1.exr", "part_2.exr", "-o", "out.png"],
+    );
     assert_eq!(o.status.code(), Some(1));
-    assert!(stderr(&o).contains("scene.ron changed since the parts were rendered"), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("scene.ron changed since the parts were rendered"),
+        "{}",
+        stderr(&o)
+    );
     assert!(!dir.join("out.png").exists());
 }
 
@@ -151,17 +181,43 @@ fn part_flags_are_checked() {
         stderr(&o),
         "error: --part 2/4 writes a part file: give it with -o PART.exr\n  help: e.g. -o part_2.exr, then `stagelight merge part_*.exr -o image.png`\n"
     );
-    let o = stagelight(&dir, &["render", "scene.ron", "--part", "5/4", "-o", "p.exr"]);
+    let o = stagelight(
+        &dir,
+        &["render", "scene.ron", "--part", "5/4", "-o", "p.exr"],
+    );
     assert_eq!(o.status.code(), Some(2));
-    assert!(stderr(&o).contains("expected K/N with 1 ≤ K ≤ N"), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("expected K/N with 1 ≤ K ≤ N"),
+        "{}",
+        stderr(&o)
+    );
     std::fs::write(
         dir.join("adaptive.ron"),
-        SCENE.replace("samples: 3", "samples: (min: 2, max: 8, contrast: (0.1, 0.1, 0.1))"),
+        SCENE.replace(
+            "samples: 3",
+            "samples: (min: 2, max: 8, contrast: (0.1, 0.1, 0.1))",
+        ),
     )
     .unwrap();
-    let o = stagelight(&dir, &["render", "adaptive.ron", "--part", "1/2", "--split", "samples", "-o", "p.exr"]);
+    let o = stagelight(
+        &dir,
+        &[
+            "render",
+            "adaptive.ron",
+            "--part",
+            "1/2",
+            "--split",
+            "samples",
+            "-o",
+            "p.exr",
+        ],
+    );
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
-    assert!(stderr(&o).starts_with("error: --split samples cannot divide adaptive sampling"), "{}", stderr(&o));
+    assert!(
+        stderr(&o).starts_with("error: --split samples cannot divide adaptive sampling"),
+        "{}",
+        stderr(&o)
+    );
 }
 
 /// The scripts `stagelight farm` writes, run the way Slurm runs them (one process per
@@ -172,7 +228,18 @@ fn farm_scripts_run_as_slurm_would_give_the_local_render() {
     ok(&dir, &["render", "scene.ron", "-o", "single.png"]);
     let o = stagelight(
         &dir,
-        &["farm", "scene.ron", "--parts", "3", "--out", "job", "-o", "farm.png", "--cpus-per-task", "1"],
+        &[
+            "farm",
+            "scene.ron",
+            "--parts",
+            "3",
+            "--out",
+            "job",
+            "-o",
+            "farm.png",
+            "--cpus-per-task",
+            "1",
+        ],
     );
     assert!(o.status.success(), "{}", stderr(&o));
     let render = std::fs::read_to_string(dir.join("job/render.sbatch")).unwrap();
