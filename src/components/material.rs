@@ -10,6 +10,7 @@ use glam::Vec3;
 use hecs::Entity;
 
 use super::graph::MaterialGraph;
+use super::local_model::LocalModel;
 
 /// Surface shaders: the mental ray illumination models, the RenderMan standard surfaces and
 /// the physically based building blocks (mirror, glass, `dgs`, opacity).
@@ -198,6 +199,10 @@ pub enum Shader {
         /// Glossy exponent.
         shiny: f32,
     },
+    /// A local illumination model evaluated as its specification writes it (RenderMan's
+    /// standard surfaces as RIB scenes use them): ambient terms and `Cl`-weighted sums over
+    /// the lights, no energy normalisation; a traced mirror term. See [`LocalModel`].
+    Local(LocalModel),
     /// mental ray `mib_opacity`: `opacity · input + (1 − opacity) · what lies behind`.
     /// Always two-sided.
     Opacity {
