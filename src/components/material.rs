@@ -104,7 +104,7 @@ pub enum Shader {
     },
     /// RenderMan `matte`: `Kd · color` diffuse.
     Matte {
-        /// Ambient weight (scales ambient light; stagelight has none yet).
+        /// Ambient weight (no effect in this physically based stand-in; `Local` uses it).
         ka: f32,
         /// Diffuse weight.
         kd: f32,
@@ -114,7 +114,7 @@ pub enum Shader {
     /// RenderMan `plastic`: `Kd · color` diffuse plus `Ks · specularcolor` Blinn–Phong
     /// highlight of exponent `1/roughness`.
     Plastic {
-        /// Ambient weight (no effect: no ambient lights yet).
+        /// Ambient weight (no effect in this physically based stand-in; `Local` uses it).
         ka: f32,
         /// Diffuse weight.
         kd: f32,
@@ -129,7 +129,7 @@ pub enum Shader {
     },
     /// RenderMan `metal`: `Ks · color` Blinn–Phong highlight of exponent `1/roughness`.
     Metal {
-        /// Ambient weight (no effect: no ambient lights yet).
+        /// Ambient weight (no effect in this physically based stand-in; `Local` uses it).
         ka: f32,
         /// Specular weight.
         ks: f32,
@@ -142,7 +142,7 @@ pub enum Shader {
     /// Until environment maps exist a traced perfect-mirror reflection of the scene stands in
     /// for the map.
     ShinyMetal {
-        /// Ambient weight (no effect: no ambient lights yet).
+        /// Ambient weight (no effect in this physically based stand-in; `Local` uses it).
         ka: f32,
         /// Specular weight.
         ks: f32,
@@ -157,7 +157,7 @@ pub enum Shader {
     /// is a binding of `color` (e.g. `Mul(colour, Image(…))`, see `Material::graph`); without
     /// one it is white and the shader equals `plastic`.
     PaintedPlastic {
-        /// Ambient weight (no effect: no ambient lights yet).
+        /// Ambient weight (no effect in this physically based stand-in; `Local` uses it).
         ka: f32,
         /// Diffuse weight.
         kd: f32,

@@ -610,7 +610,7 @@ pub enum ShaderDesc {
     },
     /// RenderMan `matte`.
     Matte {
-        /// Ambient weight, default 1 (no ambient lights yet: no effect).
+        /// Ambient weight, default 1 (no effect in this stand-in; see `Local`).
         #[serde(default = "default_one")]
         ka: f64,
         /// Diffuse weight, default 1.
@@ -622,7 +622,7 @@ pub enum ShaderDesc {
     },
     /// RenderMan `plastic`.
     Plastic {
-        /// Ambient weight, default 1 (no effect yet).
+        /// Ambient weight, default 1 (no effect in this stand-in; see `Local`).
         #[serde(default = "default_one")]
         ka: f64,
         /// Diffuse weight, default 0.5.
@@ -643,7 +643,7 @@ pub enum ShaderDesc {
     },
     /// RenderMan `metal`.
     Metal {
-        /// Ambient weight, default 1 (no effect yet).
+        /// Ambient weight, default 1 (no effect in this stand-in; see `Local`).
         #[serde(default = "default_one")]
         ka: f64,
         /// Specular weight, default 1.
@@ -658,7 +658,7 @@ pub enum ShaderDesc {
     },
     /// RenderMan `shinymetal` (traced mirror reflection stands in for the reflection map).
     ShinyMetal {
-        /// Ambient weight, default 1 (no effect yet).
+        /// Ambient weight, default 1 (no effect in this stand-in; see `Local`).
         #[serde(default = "default_one")]
         ka: f64,
         /// Specular weight, default 1.
@@ -676,7 +676,7 @@ pub enum ShaderDesc {
     },
     /// RenderMan `paintedplastic` (white stands in for the texture).
     PaintedPlastic {
-        /// Ambient weight, default 1 (no effect yet).
+        /// Ambient weight, default 1 (no effect in this stand-in; see `Local`).
         #[serde(default = "default_one")]
         ka: f64,
         /// Diffuse weight, default 0.5.

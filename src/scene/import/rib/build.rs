@@ -1403,9 +1403,11 @@ mod tests {
             MeshDesc::Sphere { radius, z_min: Some(a), z_max: Some(b), theta_max }
                 if (radius, a, b, theta_max) == (2.0, -1.0, 1.5, 270.0)
         ));
+        // matte as the RI formula: Cs·(Ka·ambient() + Kd·diffuse), Ka 1 by default.
         assert!(matches!(
             d.materials[0].shader,
-            ShaderDesc::Matte { ka, kd, color } if (ka, kd, color) == (1.0, 0.5, (0.0, 1.0, 0.0))
+            ShaderDesc::Local { ka, kd, color, specular, .. }
+                if (ka, kd, color, specular) == (1.0, 0.5, (0.0, 1.0, 0.0), (0.0, 0.0, 0.0))
         ));
         // Outside the block: red, defaultsurface with the RI defaults Ka 0.2, Kd 0.8.
         assert!(matches!(
