@@ -77,6 +77,8 @@ pub fn diffuse_albedo(shader: &Shader) -> Vec3 {
         | Shader::ShinyMetal { .. }
         | Shader::Mirror { .. }
         | Shader::Dielectric { .. } => Vec3::ZERO,
+        // The local model's diffuse weight (its sum has no 1/π: not a reflectance).
+        Shader::Local(m) => m.color * m.kd,
         Shader::Opacity { opacity, input } => diffuse_albedo(input) * *opacity,
     }
 }

@@ -108,13 +108,24 @@ pub enum Lens {
     /// (0 at the image centre, looking down −Z, +90° toward +X), elevation 90°…−90° top to
     /// bottom.
     Spherical,
+    /// Off-axis pinhole: the image window moved by `(x, y)` half-heights of the image plane
+    /// (+x right, +y up) — RenderMan's off-centre `ScreenWindow`.
+    Shift {
+        /// Horizontal shift, half-heights.
+        x: f32,
+        /// Vertical shift, half-heights.
+        y: f32,
+    },
 }
 
 impl Lens {
     /// Whether the lens replaces the pinhole projection (the direction of each film
     /// position) rather than modifying the incoming ray.
     pub fn is_projection(&self) -> bool {
-        matches!(self, Lens::Fisheye { .. } | Lens::Spherical)
+        matches!(
+            self,
+            Lens::Fisheye { .. } | Lens::Spherical | Lens::Shift { .. }
+        )
     }
 }
 

@@ -1,5 +1,5 @@
-//! Light emitters: point, spot, directional, and the four area-light shapes of mental ray
-//! (rectangle, disc, sphere, cylinder).
+//! Light emitters: point, spot, directional, the four area-light shapes of mental ray
+//! (rectangle, disc, sphere, cylinder), and ambient light (RenderMan's `ambientlight`).
 
 use glam::Vec3;
 
@@ -24,6 +24,10 @@ pub enum LightShape {
         /// Exponent of `cos` falloff from the axis (`beamdistribution`).
         beam_distribution: f32,
     },
+    /// Ambient light (RenderMan `ambientlight`): no position or direction. `Emitter::radiant`
+    /// is the `Cl` it adds to the ambient term of local illumination models
+    /// ([`crate::components::LocalModel`]); physically based shaders do not see it.
+    Ambient,
     /// Distant light; `Emitter::radiant` is irradiance in W/m² on a surface facing it.
     Directional {
         /// Unit direction the light travels in.

@@ -10,6 +10,7 @@ use glam::Vec3;
 use hecs::Entity;
 
 use super::graph::MaterialGraph;
+use super::local_model::LocalModel;
 
 /// Surface shaders: the mental ray illumination models, the RenderMan standard surfaces and
 /// the physically based building blocks (mirror, glass, `dgs`, opacity).
@@ -103,7 +104,7 @@ pub enum Shader {
     },
     /// RenderMan `matte`: `Kd · color` diffuse.
     Matte {
-        /// Ambient weight (scales ambient light; stagelight has none yet).
+        /// Ambient weight (no effect in this physically based stand-in; `Local` uses it).
         ka: f32,
         /// Diffuse weight.
         kd: f32,
@@ -113,7 +114,7 @@ pub enum Shader {
     /// RenderMan `plastic`: `Kd · color` diffuse plus `Ks · specularcolor` Blinn–Phong
     /// highlight of exponent `1/roughness`.
     Plastic {
-        /// Ambient weight (no effect: no ambient lights yet).
+        /// Ambient weight (no effect in this physically based stand-in; `Local` uses it).
         ka: f32,
         /// Diffuse weight.
         kd: f32,
@@ -128,7 +129,7 @@ pub enum Shader {
     },
     /// RenderMan `metal`: `Ks · color` Blinn–Phong highlight of exponent `1/roughness`.
     Metal {
-        /// Ambient weight (no effect: no ambient lights yet).
+        /// Ambient weight (no effect in this physically based stand-in; `Local` uses it).
         ka: f32,
         /// Specular weight.
         ks: f32,
@@ -141,7 +142,7 @@ pub enum Shader {
     /// Until environment maps exist a traced perfect-mirror reflection of the scene stands in
     /// for the map.
     ShinyMetal {
-        /// Ambient weight (no effect: no ambient lights yet).
+        /// Ambient weight (no effect in this physically based stand-in; `Local` uses it).
         ka: f32,
         /// Specular weight.
         ks: f32,
@@ -156,7 +157,7 @@ pub enum Shader {
     /// is a binding of `color` (e.g. `Mul(colour, Image(…))`, see `Material::graph`); without
     /// one it is white and the shader equals `plastic`.
     PaintedPlastic {
-        /// Ambient weight (no effect: no ambient lights yet).
+        /// Ambient weight (no effect in this physically based stand-in; `Local` uses it).
         ka: f32,
         /// Diffuse weight.
         kd: f32,
@@ -198,6 +199,10 @@ pub enum Shader {
         /// Glossy exponent.
         shiny: f32,
     },
+    /// A local illumination model evaluated as its specification writes it (RenderMan's
+    /// standard surfaces as RIB scenes use them): ambient terms and `Cl`-weighted sums over
+    /// the lights, no energy normalisation; a traced mirror term. See [`LocalModel`].
+    Local(LocalModel),
     /// mental ray `mib_opacity`: `opacity · input + (1 − opacity) · what lies behind`.
     /// Always two-sided.
     Opacity {

@@ -5,6 +5,7 @@
 
 mod camera;
 mod light;
+mod local_model;
 mod material;
 mod mesh;
 mod naming;
@@ -14,6 +15,7 @@ pub use camera::{
     world_from_look_at, Camera, ImageFormat, Lens, Lenses, OutputSpec, Pass, RenderCamera,
 };
 pub use light::{attenuation_factor, Emitter, LightShape};
+pub use local_model::{LocalLobe, LocalModel};
 pub use material::{Material, MaterialRef, Shader};
 pub use mesh::{Instance, TriMesh};
 pub use naming::{Name, SourceLink};

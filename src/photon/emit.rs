@@ -55,8 +55,9 @@ impl Source {
             } => *intensity * spot_solid_angle(*cos_outer, *cos_inner, *beam_distribution),
             Light::Directional { irradiance, .. } => *irradiance * (PI * bounds.1 * bounds.1),
             Light::Area(a) => a.radiance * (PI * area_of(&a.shape)),
-            // The environment sends no photons (documented limitation).
-            Light::Environment(_) => Vec3::ZERO,
+            // The environment sends no photons (documented limitation); ambient light is
+            // not light transport.
+            Light::Environment(_) | Light::Ambient { .. } => Vec3::ZERO,
             Light::Mesh(MeshLight { prims, .. }) => prims.iter().fold(Vec3::ZERO, |s, &prim| {
                 let m = geometry.material_of(prim);
                 let sides = if m.two_sided { 2.0 } else { 1.0 };
@@ -140,7 +141,7 @@ impl Source {
                 let dir = ShadingFrame::from_normal(n).to_world(sample_cosine_hemisphere(u_dir));
                 from_point(q, dir, self.power)
             }
-            Light::Environment(_) => return None,
+            Light::Environment(_) | Light::Ambient { .. } => return None,
             Light::Mesh(MeshLight { prims, cdf, .. }) => {
                 let k = cdf.partition_point(|&c| c <= u_pos.x).clamp(1, prims.len()) - 1;
                 let (c0, c1) = (cdf[k], cdf[k + 1]);

@@ -343,6 +343,9 @@ fn default_true() -> bool {
 #[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(rename = "LightKind", deny_unknown_fields)]
 pub enum LightKindDesc {
+    /// Ambient light (RenderMan `ambientlight`): `color · intensity` is added to the ambient
+    /// term of `Local` shaders (weighted by their `ka`); other shaders do not see it.
+    Ambient,
     /// Isotropic point light (W/sr).
     Point {
         /// Position.
@@ -602,7 +605,7 @@ pub enum ShaderDesc {
     },
     /// RenderMan `matte`.
     Matte {
-        /// Ambient weight, default 1 (no ambient lights yet: no effect).
+        /// Ambient weight, default 1 (no effect in this stand-in; see `Local`).
         #[serde(default = "default_one")]
         ka: f64,
         /// Diffuse weight, default 1.
@@ -614,7 +617,7 @@ pub enum ShaderDesc {
     },
     /// RenderMan `plastic`.
     Plastic {
-        /// Ambient weight, default 1 (no effect yet).
+        /// Ambient weight, default 1 (no effect in this stand-in; see `Local`).
         #[serde(default = "default_one")]
         ka: f64,
         /// Diffuse weight, default 0.5.
@@ -635,7 +638,7 @@ pub enum ShaderDesc {
     },
     /// RenderMan `metal`.
     Metal {
-        /// Ambient weight, default 1 (no effect yet).
+        /// Ambient weight, default 1 (no effect in this stand-in; see `Local`).
         #[serde(default = "default_one")]
         ka: f64,
         /// Specular weight, default 1.
@@ -650,7 +653,7 @@ pub enum ShaderDesc {
     },
     /// RenderMan `shinymetal` (traced mirror reflection stands in for the reflection map).
     ShinyMetal {
-        /// Ambient weight, default 1 (no effect yet).
+        /// Ambient weight, default 1 (no effect in this stand-in; see `Local`).
         #[serde(default = "default_one")]
         ka: f64,
         /// Specular weight, default 1.
@@ -668,7 +671,7 @@ pub enum ShaderDesc {
     },
     /// RenderMan `paintedplastic` (white stands in for the texture).
     PaintedPlastic {
-        /// Ambient weight, default 1 (no effect yet).
+        /// Ambient weight, default 1 (no effect in this stand-in; see `Local`).
         #[serde(default = "default_one")]
         ka: f64,
         /// Diffuse weight, default 0.5.
@@ -720,6 +723,34 @@ pub enum ShaderDesc {
         #[serde(default = "default_spec_exp")]
         shiny: f64,
     },
+    /// A local illumination model as a shading-language specification writes it (what the
+    /// RIB reader makes of RenderMan's `matte`, `metal`, `shinymetal`, `plastic` and
+    /// `paintedplastic`): `color·(ka·A + kd·Σ Cl·max(0, N·L)) + ambient + specular·Σ Cl·lobe
+    /// + reflection·(mirror)`, `A` the scene's `Ambient` lights; no 1/π, no energy clamp.
+    /// Defaults are RenderMan `plastic`'s.
+    Local {
+        /// Surface colour `Cs`, default `(1, 1, 1)`.
+        #[serde(default = "default_white")]
+        color: V3,
+        /// Weight of the ambient light, default 1.
+        #[serde(default = "default_one")]
+        ka: f64,
+        /// Weight of the diffuse sum, default 0.5.
+        #[serde(default = "default_half_scalar")]
+        kd: f64,
+        /// Weight of the highlight sum (`Ks · specularcolor`), default `(0.5, 0.5, 0.5)`.
+        #[serde(default = "default_half")]
+        specular: V3,
+        /// The highlight lobe, default `RenderMan(roughness: 0.1)`.
+        #[serde(default)]
+        lobe: LocalLobeDesc,
+        /// Weight of the traced mirror reflection, default `(0, 0, 0)`.
+        #[serde(default)]
+        reflection: V3,
+        /// Radiance added as it is, default `(0, 0, 0)`.
+        #[serde(default)]
+        ambient: V3,
+    },
     /// mental ray `mib_opacity`: blend `input` over what lies behind.
     Opacity {
         /// Opacity per channel in [0, 1].
@@ -727,6 +758,26 @@ pub enum ShaderDesc {
         /// The shader blended over what lies behind.
         input: Box<ShaderDesc>,
     },
+}
+
+/// The highlight lobe of a `Local` shader.
+#[derive(Debug, Clone, Copy, Deserialize, Serialize)]
+#[serde(rename = "LocalLobe", deny_unknown_fields)]
+pub enum LocalLobeDesc {
+    /// RenderMan Interface 3.2 `specularbrdf`: `max(0, N·H)^(1/roughness)`.
+    RenderMan {
+        /// Roughness, default 0.1, > 0.
+        #[serde(default = "default_roughness_rm")]
+        roughness: f64,
+    },
+}
+
+impl Default for LocalLobeDesc {
+    fn default() -> Self {
+        LocalLobeDesc::RenderMan {
+            roughness: default_roughness_rm(),
+        }
+    }
 }
 
 fn default_ka() -> f64 {

@@ -32,6 +32,14 @@ pub enum LensDesc {
     },
     /// Lat-long 360° × 180° projection.
     Spherical,
+    /// Off-axis pinhole (RenderMan's off-centre `ScreenWindow`): the image window moved by
+    /// `(x, y)` half-heights of the image plane, +x right, +y up; must be the first lens.
+    Shift {
+        /// Horizontal shift, half-heights.
+        x: f64,
+        /// Vertical shift, half-heights.
+        y: f64,
+    },
 }
 
 /// A volume shader (`atmosphere` on a camera, `interior` on a material).

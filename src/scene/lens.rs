@@ -1,6 +1,6 @@
 //! Checks a camera's `lens: [...]` list and builds its [`Lenses`] component: thin lenses
 //! need a positive aperture (`radius`, or `fstop` with the camera's focal length) and focus
-//! distance; at most one projection (`Fisheye`, `Spherical`), and it comes first.
+//! distance; at most one projection (`Fisheye`, `Spherical`, `Shift`), and it comes first.
 
 use super::desc::{CameraDesc, LensDesc};
 use super::diagnostics::Sources;
@@ -35,7 +35,11 @@ pub fn lenses(src: &mut Sources, item: &Item<'_, CameraDesc>) -> Option<Lenses> 
                     ck.src.error(
                         ck.file,
                         &path,
-                        "a projection lens (Fisheye, Spherical) must be the first lens",
+                        if matches!(l, Lens::Shift { .. }) {
+                            "a Shift lens (an off-axis pinhole) must be the first lens"
+                        } else {
+                            "a projection lens (Fisheye, Spherical) must be the first lens"
+                        },
                         Some(help.into()),
                     );
                     ok = false;
@@ -95,6 +99,14 @@ fn lens(ck: &mut Checker<'_>, path: &str, d: &LensDesc, fov_y: f64) -> Option<Le
             })
         }
         LensDesc::Spherical => Some(Lens::Spherical),
+        LensDesc::Shift { x, y } => {
+            let ok_x = ck.finite(&format!("{path}.Shift.x"), "x", x);
+            let ok_y = ck.finite(&format!("{path}.Shift.y"), "y", y);
+            (ok_x && ok_y).then_some(Lens::Shift {
+                x: x as f32,
+                y: y as f32,
+            })
+        }
     }
 }
 

@@ -73,17 +73,23 @@ pub fn area_shape(ck: &mut Checker<'_>, light: &str, kind: &LightKindDesc) -> Op
     }
 }
 
-/// `attenuation: (start, end)`: finite, `0 ≤ start < end`; not on directional lights.
+/// `attenuation: (start, end)`: finite, `0 ≤ start < end`; not on directional or ambient
+/// lights.
 pub fn attenuation(ck: &mut Checker<'_>, item: &Item<'_, LightDesc>) -> Option<Option<(f32, f32)>> {
     let Some((start, end)) = item.desc.attenuation else {
         return Some(None);
     };
     let path = item.at(".attenuation");
-    if matches!(item.desc.kind, LightKindDesc::Directional { .. }) {
+    let what = match item.desc.kind {
+        LightKindDesc::Directional { .. } => Some("a directional"),
+        LightKindDesc::Ambient => Some("an ambient"),
+        _ => None,
+    };
+    if let Some(what) = what {
         ck.src.error(
             ck.file,
             &path,
-            "a directional light has no distance to attenuate over",
+            format!("{what} light has no distance to attenuate over"),
             Some("remove `attenuation`, or use a point, spot or area light".into()),
         );
         return None;

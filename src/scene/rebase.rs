@@ -166,7 +166,7 @@ pub fn light(desc: &LightDesc, origin: DVec3) -> LightDesc {
             *position = shift(*position, origin);
             *target = shift(*target, origin);
         }
-        LightKindDesc::Directional { .. } => {}
+        LightKindDesc::Directional { .. } | LightKindDesc::Ambient => {}
         LightKindDesc::Rect { corner, .. } => *corner = shift(*corner, origin),
         LightKindDesc::Disc { center, .. } | LightKindDesc::Sphere { center, .. } => {
             *center = shift(*center, origin);

@@ -6,8 +6,8 @@
 use glam::{DVec3, Vec3};
 
 use super::checker::Checker;
-use super::desc::{ShaderDesc, V3};
-use crate::components::Shader;
+use super::desc::{LocalLobeDesc, ShaderDesc, V3};
+use crate::components::{LocalLobe, LocalModel, Shader};
 
 /// Checks one shader description at `path` (the path of the `shader` value itself).
 pub fn shader(ck: &mut Checker<'_>, path: &str, desc: &ShaderDesc) -> Option<Shader> {
@@ -170,6 +170,31 @@ pub fn shader(ck: &mut Checker<'_>, path: &str, desc: &ShaderDesc) -> Option<Sha
             specular: s.colour("Dgs.specular", "specular", *specular),
             shiny: s.weight("Dgs.shiny", "shiny", *shiny),
         },
+        ShaderDesc::Local {
+            color,
+            ka,
+            kd,
+            specular,
+            lobe,
+            reflection,
+            ambient,
+        } => Shader::Local(LocalModel {
+            color: s.colour("Local.color", "color", *color),
+            ka: s.weight("Local.ka", "ka", *ka),
+            kd: s.weight("Local.kd", "kd", *kd),
+            specular: s.colour("Local.specular", "specular", *specular),
+            lobe: match lobe {
+                LocalLobeDesc::RenderMan { roughness } => LocalLobe::RenderMan {
+                    roughness: s.positive(
+                        "Local.lobe.RenderMan.roughness",
+                        "roughness",
+                        *roughness,
+                    ),
+                },
+            },
+            reflection: s.colour("Local.reflection", "reflection", *reflection),
+            ambient: s.colour("Local.ambient", "ambient", *ambient),
+        }),
         ShaderDesc::Opacity { opacity, input } => {
             let opacity = s.unit_colour("Opacity.opacity", "opacity", *opacity);
             let input_path = format!("{path}.Opacity.input");

@@ -423,6 +423,7 @@ pub fn light(src: &mut Sources, item: &Item<'_, LightDesc>) -> Option<Emitter> {
     };
     let f32v = |v: DVec3| v.as_vec3();
     let shape = match &l.kind {
+        LightKindDesc::Ambient => LightShape::Ambient,
         LightKindDesc::Point { position } => LightShape::Point {
             position: f32v(ck.v3(&kind("Point.position"), "position", *position)?),
         },

@@ -67,6 +67,9 @@ impl CameraRays {
                     dir = self.spherical(x, y);
                     projected = true;
                 }
+                Lens::Shift { x: dx, y: dy } => {
+                    dir += Vec3::new(dx, dy, 0.0) * self.tan_half_fov;
+                }
                 Lens::ThinLens {
                     radius,
                     focus_distance,

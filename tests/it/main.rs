@@ -35,6 +35,7 @@ mod ray_counts;
 mod ray_layer;
 mod ray_spawn;
 mod rib;
+mod rib_shading;
 mod scene_errors;
 mod scene_errors_lights;
 mod scene_load;

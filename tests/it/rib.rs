@@ -127,6 +127,10 @@ const MALFORMED: &[(&str, &str)] = &[
         "tests/fixtures/rib/attribute_end_without_begin.rib:2:1: error: AttributeEnd without AttributeBegin",
     ),
     (
+        "bad_paraboloid",
+        "tests/fixtures/rib/bad_paraboloid.rib:2:1: error: Paraboloid needs rmax > 0, 0 ≤ zmin < zmax and thetamax > 0, found 1 2 1 360",
+    ),
+    (
         "bad_number",
         "tests/fixtures/rib/bad_number.rib:2:13: error: invalid number \"1.2.3\"",
     ),
@@ -173,6 +177,10 @@ const MALFORMED: &[(&str, &str)] = &[
     (
         "patch_point_count",
         "tests/fixtures/rib/patch_point_count.rib:2:22: error: Patch needs nu × nv = 4 points, found 3",
+    ),
+    (
+        "screen_window_order",
+        "tests/fixtures/rib/screen_window_order.rib:1:1: error: ScreenWindow needs left < right and bottom < top, found 1 -1 -1 1",
     ),
     (
         "too_many_arguments",

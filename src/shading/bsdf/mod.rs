@@ -143,7 +143,7 @@ pub struct Bsdf {
 impl Bsdf {
     /// The BSDF of `shader` seen from the front (`front = true`) or back face. `None` for
     /// shaders that do not integrate light (`Constant`, `DefaultSurface`) or that reflect
-    /// nothing.
+    /// nothing. Of a `Local` model only its mirror term is a lobe.
     pub fn new(shader: &Shader, front: bool) -> Option<Self> {
         let mut b = Self {
             lobes: [(Vec3::ZERO, Lobe::Lambert); MAX_LOBES],
@@ -310,6 +310,9 @@ impl Bsdf {
                 self.push(w * *kr * *color, Lobe::Mirror);
             }
             Shader::Mirror { color } => self.push(w * *color, Lobe::Mirror),
+            // Only the traced mirror term is a lobe; the rest is evaluated as written
+            // (`crate::shading::local`).
+            Shader::Local(m) => self.push(w * m.reflection, Lobe::Mirror),
             Shader::Dielectric { ior, ior_out, .. } => {
                 let eta = if front { ior / ior_out } else { ior_out / ior };
                 self.push(w, Lobe::Dielectric { eta });

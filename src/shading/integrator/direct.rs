@@ -1,7 +1,9 @@
-//! The default integrator: emission, mental ray's ambient term, direct light from every
-//! light with shadow rays (each light's own sample count), and every delta branch (mirror,
-//! both branches of glass, transparency) traced recursively within the trace depths; rays
-//! that leave the scene see the environment (and visible area lights they cross).
+//! The default integrator: emission, mental ray's ambient term, local illumination models
+//! ([`super::local`]: RenderMan's standard surfaces with the scene's ambient light), direct
+//! light from every light with shadow rays (each light's own sample count), and every delta
+//! branch (mirror, both branches of glass, transparency) traced recursively within the trace
+//! depths; rays that leave the scene see the environment (and visible area lights they
+//! cross).
 //! Glossy and diffuse interreflection are not computed (the path tracer does that). Traced
 //! segments cross the scene's fog ([`super::volume`]): attenuation and single scattering.
 //! With caustics or global illumination on, the photon maps add caustics and one bounce of
@@ -9,7 +11,7 @@
 
 use glam::Vec3;
 
-use super::{depth_exceeded, light_loop, trace, volume, Depth, ShadeContext, Vertex};
+use super::{depth_exceeded, light_loop, local, trace, volume, Depth, ShadeContext, Vertex};
 use crate::accel::{Hit, Ray};
 use crate::sampling::Sampler;
 use crate::shading::surface::unlit_radiance;
@@ -37,6 +39,7 @@ fn vertex_radiance(
     if depth.vertex > ctx.max_depth {
         return v.transmittance * radiance;
     }
+    radiance += local::radiance(ctx, &v, sampler);
     let Some(bsdf) = v.bsdf() else {
         return v.transmittance * radiance;
     };

@@ -17,6 +17,7 @@
 pub mod direct;
 #[cfg(test)]
 pub(crate) mod fixture;
+pub mod local;
 pub mod path;
 pub mod volume;
 
@@ -31,7 +32,7 @@ use crate::sampling::Sampler;
 use crate::settings::{Face, Integrator, RenderSettings};
 use crate::shading::bsdf::Bsdf;
 use crate::shading::frame::ShadingFrame;
-use crate::shading::lights::LightSet;
+use crate::shading::lights::{Light, LightSet};
 use crate::shading::mis::power_heuristic;
 use crate::shading::shadow::transmittance;
 use crate::shading::texture::{bump, hit as textured};
@@ -278,9 +279,34 @@ pub fn light_loop(
     sampler: &mut Sampler,
     mis: bool,
 ) -> Vec3 {
+    let f = |wi: Vec3, wi_world: Vec3| bsdf.eval(v.wo, wi) * v.bump_shadowing(wi_world);
+    gather(ctx, v, sampler, mis.then_some(bsdf), Response::Bsdf(&f))
+}
+
+/// What a light sample arriving from `wi` (local; `wi_world` in world space) contributes
+/// per unit of its `Cl`.
+pub enum Response<'a> {
+    /// A BSDF value, times `N·L` by the loop.
+    Bsdf(&'a dyn Fn(Vec3, Vec3) -> Vec3),
+    /// The whole factor (cosine included), as a local illumination model writes it.
+    Local(&'a dyn Fn(Vec3, Vec3) -> Vec3),
+}
+
+/// The light loop of [`light_loop`] for any response: every light's samples with their
+/// shadow rays, `mis` weighting against the BSDF's own sampling when given.
+pub fn gather(
+    ctx: &ShadeContext<'_>,
+    v: &Vertex<'_>,
+    sampler: &mut Sampler,
+    mis: Option<&Bsdf>,
+    response: Response<'_>,
+) -> Vec3 {
     let mut radiance = Vec3::ZERO;
     for light in &ctx.lights.lights {
-        let (n, mut child) = if mis {
+        if matches!(light, Light::Ambient { .. }) {
+            continue;
+        }
+        let (n, mut child) = if mis.is_some() {
             (1, None)
         } else {
             (light.sample_count(), Some(sampler.child_seed()))
@@ -298,7 +324,10 @@ pub fn light_loop(
             if wi.z <= 0.0 || v.ng.dot(ls.wi) <= 0.0 {
                 continue;
             }
-            let f = bsdf.eval(v.wo, wi) * v.bump_shadowing(ls.wi);
+            let (f, cosine) = match response {
+                Response::Bsdf(f) => (f(wi, ls.wi), true),
+                Response::Local(f) => (f(wi, ls.wi), false),
+            };
             if f == Vec3::ZERO {
                 continue;
             }
@@ -326,12 +355,12 @@ pub fn light_loop(
             if shadow == Vec3::ZERO {
                 continue;
             }
-            let w = if mis && ls.pdf > 0.0 {
-                power_heuristic(ls.pdf, bsdf.pdf(v.wo, wi))
-            } else {
-                1.0
+            let w = match mis {
+                Some(bsdf) if ls.pdf > 0.0 => power_heuristic(ls.pdf, bsdf.pdf(v.wo, wi)),
+                _ => 1.0,
             };
-            sum += f * ls.contribution * shadow * (wi.z * w);
+            let c = if cosine { wi.z * w } else { w };
+            sum += f * ls.contribution * shadow * c;
         }
         radiance += sum / n as f32;
     }

@@ -7,11 +7,13 @@
 //! bounce beyond a reflection/refraction budget sees what the environment's
 //! `depth_exceeded` says. Every segment that ends at a hit is attenuated by the fog it
 //! crosses and adds single scattering from the lights ([`super::volume`]): unbiased for
-//! attenuation; light scattered more than once inside a medium is not computed.
+//! attenuation; light scattered more than once inside a medium is not computed. Local
+//! illumination models ([`super::local`]) are shaded as the Direct integrator shades them
+//! (ambient term, every light, no MIS) and continue only through their delta lobes.
 
 use glam::Vec3;
 
-use super::{depth_exceeded, light_loop, trace, volume, Depth, ShadeContext, Vertex};
+use super::{depth_exceeded, light_loop, local, trace, volume, Depth, ShadeContext, Vertex};
 use crate::accel::{Hit, Ray};
 use crate::sampling::Sampler;
 use crate::shading::bsdf::Scatter;
@@ -61,6 +63,7 @@ pub fn radiance(ctx: &ShadeContext<'_>, ray: &Ray, hit: &Hit, sampler: &mut Samp
         if depth.vertex > ctx.max_depth {
             break;
         }
+        radiance += beta * local::radiance(ctx, &v, sampler);
         let Some(bsdf) = v.bsdf() else { break };
         if bsdf.has_non_delta() {
             radiance += beta * light_loop(ctx, &v, &bsdf, sampler, true);

@@ -124,6 +124,11 @@ pub enum Light {
     Mesh(MeshLight),
     /// The scene's environment (rays that leave the scene).
     Environment(Arc<EnvLight>),
+    /// Ambient light: never sampled; its `Cl` is summed into [`LightSet::ambient`].
+    Ambient {
+        /// `Cl`, the ambient term it adds (RenderMan `intensity · lightcolor`).
+        radiance: Vec3,
+    },
 }
 
 /// One sample toward a light.
@@ -158,6 +163,9 @@ impl Light {
             })
         };
         match e.shape {
+            LightShape::Ambient => Light::Ambient {
+                radiance: e.radiant,
+            },
             LightShape::Point { position } => Light::Point {
                 position,
                 intensity: e.radiant,
@@ -271,6 +279,7 @@ impl Light {
             }
             Light::Mesh(m) => m.sample(p, u, geometry?),
             Light::Environment(e) => e.sample(u),
+            Light::Ambient { .. } => None,
         }
     }
 
@@ -408,6 +417,9 @@ pub struct LightSet {
     /// Whether camera rays that miss everything see the environment (off when the camera's
     /// imager fills the background instead).
     pub camera_sees_environment: bool,
+    /// The sum of the ambient lights' `Cl` (RenderMan's `ambient()`), which local
+    /// illumination models weight by their `ka`.
+    pub ambient: Vec3,
 }
 
 impl LightSet {
@@ -422,11 +434,16 @@ impl LightSet {
                 .iter()
                 .any(|m| shader_transmits_shadows(&m.shader))
         });
+        let ambient = lights.iter().fold(Vec3::ZERO, |a, l| match l {
+            Light::Ambient { radiance } => a + *radiance,
+            _ => a,
+        });
         Self {
             lights,
             environment: None,
             transmissive_shadows,
             camera_sees_environment: true,
+            ambient,
         }
     }
 

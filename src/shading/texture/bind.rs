@@ -7,7 +7,7 @@
 
 use glam::Vec3;
 
-use crate::components::Shader;
+use crate::components::{LocalLobe, Shader};
 
 /// Whether a parameter holds a colour or a number.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -205,6 +205,17 @@ pub fn visit(shader: &mut Shader, f: &mut dyn FnMut(&'static str, Field<'_>)) {
             f("glossy", C(glossy, N));
             f("specular", C(specular, N));
             f("shiny", S(shiny, N));
+        }
+        Shader::Local(m) => {
+            f("color", C(&mut m.color, N));
+            f("ka", S(&mut m.ka, N));
+            f("kd", S(&mut m.kd, N));
+            f("specular", C(&mut m.specular, N));
+            match &mut m.lobe {
+                LocalLobe::RenderMan { roughness } => f("roughness", S(roughness, P)),
+            }
+            f("reflection", C(&mut m.reflection, N));
+            f("ambient", C(&mut m.ambient, N));
         }
         Shader::Opacity { opacity, .. } => f("opacity", C(opacity, U)),
     }

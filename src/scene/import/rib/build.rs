@@ -20,6 +20,7 @@ use crate::scene::desc::{
     LightDesc, LightKindDesc, MaterialDesc, ObjectDesc, OptionsDesc, PassDesc, PhotonMapDesc,
     RenderDesc, SceneDesc, ShaderDesc, SpaceDesc, TransformDesc, V3,
 };
+use crate::scene::nodes_desc::{EncodingDesc, InputDesc, NodeDesc, WrapDesc};
 use crate::scene::suggest::suggestion;
 
 /// Deepest `ReadArchive` nesting.
@@ -45,8 +46,6 @@ const IGNORED: &[&str] = &[
     "Shutter",
     "Quantize",
     "Procedural",
-    "Paraboloid",
-    "Hyperboloid",
     "Points",
     "Curves",
     "Blobby",
@@ -542,12 +541,14 @@ impl Builder {
                 for (i, n) in ["left", "right", "bottom", "top"].iter().enumerate() {
                     s[i] = a.num(n)?.0;
                 }
-                if s[0] + s[1] != 0.0 || s[2] + s[3] != 0.0 || s[1] <= 0.0 || s[3] <= 0.0 {
+                if !(s.iter().all(|x| x.is_finite()) && s[1] > s[0] && s[3] > s[2]) {
                     return Err(Problem::error(
                         r.pos,
-                        "only a screen window centred on the view axis is supported",
-                    )
-                    .with_help("write it as -x x -y y"));
+                        format!(
+                            "ScreenWindow needs left < right and bottom < top, found {} {} {} {}",
+                            s[0], s[1], s[2], s[3]
+                        ),
+                    ));
                 }
                 self.cam.screen = Some((s, r.pos));
             }
@@ -915,6 +916,10 @@ impl Builder {
         let os = prim.opacity.unwrap_or(attrs.opacity);
         let mut sp = Vec::new();
         let surface = shaders::surface(attrs.surface.as_ref(), cs, &mut sp);
+        let mut bind = match &surface.texture {
+            Some((t, tpos)) => self.texture_bind(t, *tpos, cs, &mut sp),
+            None => Default::default(),
+        };
         // Parameter problems are reported once, at the Surface request.
         if !surface_reported {
             problems.extend(sp);
@@ -934,6 +939,15 @@ impl Builder {
                 .into_iter()
                 .map(|(p, pos)| (p.replacen(".shader", ".shader.Opacity.input", 1), pos))
                 .collect();
+            bind = bind
+                .into_iter()
+                .map(|(k, v)| (format!("input.{k}"), v))
+                .collect();
+        }
+        if let Some((_, tpos)) = &surface.texture {
+            for k in bind.keys() {
+                spaths.push((format!(".bind.{k}"), *tpos));
+            }
         }
         let emission = attrs.area_light.as_ref().map(|c| {
             let find = |n: &str| c.params.iter().find(|p| p.name == n);
@@ -948,13 +962,14 @@ impl Builder {
             shader,
             two_sided: attrs.sides == 2,
             emission: emission.unwrap_or((0.0, 0.0, 0.0)),
-            bind: Default::default(),
+            bind,
             bump: None,
             interior: None,
         };
         let key = format!(
-            "{:?}|{}|{:?}|{}",
+            "{:?}|{:?}|{}|{:?}|{}",
             desc.shader,
+            desc.bind,
             desc.two_sided,
             desc.emission,
             at_pos.line * 100_000 + at_pos.column
@@ -1036,6 +1051,90 @@ impl Builder {
         });
     }
 
+    /// `paintedplastic`'s `texturename` as a binding of the `Local` colour: `Cs` times the
+    /// image, looked up at RenderMan's `(s, t)` (`t` runs down the image, so the image's
+    /// `v` is `1 − t`), values taken as stored (linear). RenderMan texture files (`.tex`,
+    /// `.tx`, TIFF) are not read: the PNG or EXR of the same name beside them is, with a
+    /// warning; without one the texture is white.
+    fn texture_bind(
+        &self,
+        name: &str,
+        pos: Pos,
+        cs: V3,
+        problems: &mut Vec<Problem>,
+    ) -> std::collections::BTreeMap<String, InputDesc> {
+        let mut bind = std::collections::BTreeMap::new();
+        let dir = self.files[self.file]
+            .parent()
+            .map(Path::to_path_buf)
+            .unwrap_or_default();
+        let root = self.files[0]
+            .parent()
+            .map(Path::to_path_buf)
+            .unwrap_or_default();
+        let written = Path::new(name);
+        let readable = |p: &Path| {
+            p.extension()
+                .and_then(|e| e.to_str())
+                .is_some_and(|e| matches!(e.to_ascii_lowercase().as_str(), "png" | "exr"))
+        };
+        let candidates: Vec<PathBuf> = if readable(written) {
+            vec![written.to_path_buf()]
+        } else {
+            ["png", "exr"]
+                .iter()
+                .map(|e| written.with_extension(e))
+                .collect()
+        };
+        let Some(found) = candidates.into_iter().find(|c| dir.join(c).is_file()) else {
+            problems.push(Problem::warning(
+                pos,
+                format!(
+                    "ignored \"texturename\" \"{name}\": no PNG or EXR file of that name \
+                     (RenderMan texture files are not read): the surface is untextured"
+                ),
+            ));
+            return bind;
+        };
+        if found.as_path() != written {
+            problems.push(Problem::warning(
+                pos,
+                format!(
+                    "reading \"{}\" for texture \"{name}\": stagelight reads PNG and EXR",
+                    found.display()
+                ),
+            ));
+        }
+        let full = dir.join(&found);
+        let file = full
+            .strip_prefix(&root)
+            .map(Path::to_path_buf)
+            .unwrap_or(full)
+            .display()
+            .to_string();
+        let node = |n: NodeDesc| InputDesc::Node(Box::new(n));
+        let uv = || node(NodeDesc::Uv);
+        let st = node(NodeDesc::Combine(
+            node(NodeDesc::Channel(uv(), 0)),
+            node(NodeDesc::Sub(
+                InputDesc::Number(1.0),
+                node(NodeDesc::Channel(uv(), 1)),
+            )),
+            InputDesc::Number(0.0),
+        ));
+        let image = node(NodeDesc::Image {
+            file,
+            uv: st,
+            wrap: WrapDesc::Repeat,
+            color_space: Some(EncodingDesc::Linear),
+        });
+        bind.insert(
+            "color".to_string(),
+            node(NodeDesc::Mul(InputDesc::Colour(cs), image)),
+        );
+        bind
+    }
+
     /// Whether the problems of this surface call were already reported (by an earlier
     /// primitive using it).
     fn reported_surface(&mut self, s: &ShaderCall) -> bool {
@@ -1081,7 +1180,6 @@ impl Builder {
             }
             o.caustics = Some(map);
         }
-        let mut ambient = Vec::new();
         for l in &self.lights {
             if !l.used_on && l.used_off {
                 self.problems.push((
@@ -1108,10 +1206,7 @@ impl Builder {
                 (p.x, p.y, p.z)
             };
             let kind = match l.values.shader {
-                LightShader::Ambient => {
-                    ambient.push(l);
-                    continue;
-                }
+                LightShader::Ambient => LightKindDesc::Ambient,
                 LightShader::Point { from } => LightKindDesc::Point { position: pt(from) },
                 LightShader::Distant { from, to } => {
                     let (a, b) = (pt(from), pt(to));
@@ -1152,15 +1247,6 @@ impl Builder {
                 visible: false,
                 attenuation: None,
             });
-        }
-        for l in ambient {
-            self.problems.push((
-                l.at.0,
-                Problem::warning(
-                    l.at.1,
-                    "ignored LightSource \"ambientlight\": ambient light is not supported yet",
-                ),
-            ));
         }
         for (i, m) in self.materials.iter().enumerate() {
             paths.push((format!("materials[{i}]"), m.at.0, m.at.1));
@@ -1317,9 +1403,11 @@ mod tests {
             MeshDesc::Sphere { radius, z_min: Some(a), z_max: Some(b), theta_max }
                 if (radius, a, b, theta_max) == (2.0, -1.0, 1.5, 270.0)
         ));
+        // matte as the RI formula: Cs·(Ka·ambient() + Kd·diffuse), Ka 1 by default.
         assert!(matches!(
             d.materials[0].shader,
-            ShaderDesc::Matte { ka, kd, color } if (ka, kd, color) == (1.0, 0.5, (0.0, 1.0, 0.0))
+            ShaderDesc::Local { ka, kd, color, specular, .. }
+                if (ka, kd, color, specular) == (1.0, 0.5, (0.0, 1.0, 0.0), (0.0, 0.0, 0.0))
         ));
         // Outside the block: red, defaultsurface with the RI defaults Ka 0.2, Kd 0.8.
         assert!(matches!(
@@ -1377,6 +1465,147 @@ mod tests {
             format!("{:?}", s.desc.objects[0].mesh),
             format!("{expected:?}")
         );
+    }
+
+    #[test]
+    fn standard_shaders_become_the_ri_formulas() {
+        let s = read(
+            "WorldBegin\nColor [0.5 0.25 1]\n\
+             AttributeBegin\nSurface \"matte\" \"Kd\" 0.7\nSphere 1 -1 1 360\nAttributeEnd\n\
+             AttributeBegin\nSurface \"metal\" \"Ks\" 0.5 \"roughness\" 0.2\nSphere 1 -1 1 360\nAttributeEnd\n\
+             AttributeBegin\nSurface \"shinymetal\" \"Kr\" 0.5\nSphere 1 -1 1 360\nAttributeEnd\n\
+             AttributeBegin\nSurface \"shinymetal\" \"Kr\" 0.5 \"texturename\" \"env.tex\"\nSphere 1 -1 1 360\nAttributeEnd\n\
+             AttributeBegin\nSurface \"plastic\" \"Ks\" 0.25 \"specularcolor\" [1 0 0.5]\nSphere 1 -1 1 360\nAttributeEnd\n\
+             WorldEnd\n",
+        );
+        let cs = (0.5, 0.25, 1.0);
+        let local = |i: usize| match s.desc.materials[i].shader {
+            ShaderDesc::Local {
+                color,
+                ka,
+                kd,
+                specular,
+                lobe: crate::scene::desc::LocalLobeDesc::RenderMan { roughness },
+                reflection,
+                ambient,
+            } => (color, ka, kd, specular, roughness, reflection, ambient),
+            ref other => panic!("{other:?}"),
+        };
+        let z = (0.0, 0.0, 0.0);
+        // matte: Cs·(Ka·ambient() + Kd·diffuse), RI defaults Ka 1.
+        assert_eq!(local(0), (cs, 1.0, 0.7, z, 0.1, z, z));
+        // metal: no diffuse, the highlight tinted by Cs.
+        assert_eq!(local(1), (cs, 1.0, 0.0, (0.25, 0.125, 0.5), 0.2, z, z));
+        // shinymetal without a map: environment("") is black; with one, Kr·Cs traced.
+        assert_eq!(local(2), (cs, 1.0, 0.0, cs, 0.1, z, z));
+        assert_eq!(local(3), (cs, 1.0, 0.0, cs, 0.1, (0.25, 0.125, 0.5), z));
+        // plastic: Ka 1, Kd 0.5, Ks·specularcolor.
+        assert_eq!(local(4), (cs, 1.0, 0.5, (0.25, 0.0, 0.125), 0.1, z, z));
+        let w: Vec<String> = s.warnings.iter().map(ToString::to_string).collect();
+        assert_eq!(
+            w,
+            vec![
+                "t.rib:16:45: warning: \"texturename\" \"env.tex\" of \"shinymetal\": a traced \
+                 mirror reflection stands in for the environment map"
+            ]
+        );
+        let at = |p: &str| {
+            s.paths
+                .iter()
+                .rev()
+                .find(|(q, _)| q == p)
+                .map(|(_, l)| (l.pos.line, l.pos.column))
+        };
+        assert_eq!(at("materials[1].shader.Local.specular"), Some((8, 22)));
+        assert_eq!(
+            at("materials[1].shader.Local.lobe.RenderMan.roughness"),
+            Some((8, 38))
+        );
+    }
+
+    #[test]
+    fn ambientlight_is_an_ambient_light() {
+        let s = read(
+            "WorldBegin\nLightSource \"ambientlight\" 1 \"intensity\" 0.25 \
+             \"lightcolor\" [1 0.5 0]\nSphere 1 -1 1 360\nWorldEnd\n",
+        );
+        let l = &s.desc.lights[0];
+        assert!(matches!(l.kind, LightKindDesc::Ambient));
+        assert_eq!((l.intensity, l.color), (0.25, (1.0, 0.5, 0.0)));
+        assert!(s.warnings.is_empty(), "{:?}", s.warnings);
+    }
+
+    #[test]
+    fn off_centre_screen_window_is_a_shifted_pinhole() {
+        let s = read(
+            "Format 200 100 1\nScreenWindow 0 2 -0.5 0.5\nProjection \"perspective\" \
+             \"fov\" [90]\nWorldBegin\nSphere 1 -1 1 360\nWorldEnd\n",
+        );
+        let c = &s.desc.cameras[0];
+        // Half-height 0.5 of the window at tan(45°) = 1: fov_y = 2·atan(0.5).
+        assert!((c.fov_y - 2.0 * 0.5f64.atan().to_degrees()).abs() < 1e-12);
+        assert_eq!(c.aspect, Some(2.0));
+        // Centre (1, 0) in half-heights of 0.5: 2 to the right.
+        assert!(matches!(
+            c.lens[..],
+            [crate::scene::desc::LensDesc::Shift { x, y }] if (x, y) == (2.0, 0.0)
+        ));
+    }
+
+    #[test]
+    fn transform_blocks_and_a_mirroring_camera() {
+        // The camera mirrors already (Scale 1 1 -1): no world mirror. Inside the world a
+        // TransformBegin/End around a ConcatTransform, then Scale: only the scale remains.
+        let s = read(
+            "Scale 1 1 -1\nWorldBegin\nTranslate 1 2 3\nTransformBegin\n\
+             ConcatTransform [2 0 0 0  0 1 0 0  0 0 1 0  5 0 0 1]\nSphere 1 -1 1 360\n\
+             TransformEnd\nScale 2 2 2\nSphere 1 -1 1 360\nWorldEnd\n",
+        );
+        // T(1, 2, 3) · (x ↦ 2x + 5 in RIB row-vector form: column form [[2,0,0,5],…]).
+        close(
+            matrix(&s.desc, 0),
+            [
+                [2.0, 0.0, 0.0, 6.0],
+                [0.0, 1.0, 0.0, 2.0],
+                [0.0, 0.0, 1.0, 3.0],
+                [0.0, 0.0, 0.0, 1.0],
+            ],
+        );
+        close(
+            matrix(&s.desc, 1),
+            [
+                [2.0, 0.0, 0.0, 1.0],
+                [0.0, 2.0, 0.0, 2.0],
+                [0.0, 0.0, 2.0, 3.0],
+                [0.0, 0.0, 0.0, 1.0],
+            ],
+        );
+    }
+
+    #[test]
+    fn paraboloid_and_hyperboloid_are_nurbs() {
+        let s = read("WorldBegin\nParaboloid 1 0 2 360\nHyperboloid 1 0 -1 0 1 1 180\nWorldEnd\n");
+        assert!(matches!(
+            s.desc.objects[0].mesh,
+            MeshDesc::Nurbs {
+                degree_u: 2,
+                degree_v: 2,
+                count_u: 9,
+                count_v: 3,
+                ..
+            }
+        ));
+        assert!(matches!(
+            s.desc.objects[1].mesh,
+            MeshDesc::Nurbs {
+                degree_u: 2,
+                degree_v: 1,
+                count_u: 5,
+                count_v: 2,
+                ..
+            }
+        ));
+        assert!(s.warnings.is_empty(), "{:?}", s.warnings);
     }
 
     #[test]

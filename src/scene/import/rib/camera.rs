@@ -2,6 +2,8 @@
 //! `Projection`, `ScreenWindow`, `PixelSamples`, `PixelFilter`, `Exposure`, `Imager`,
 //! `Display`, and the camera transformation current at `WorldBegin`.
 //!
+//! An off-centre `ScreenWindow` becomes a `Shift` lens (an off-axis pinhole).
+//!
 //! RI spec 3.2 defaults: `Format 640 480 1`, perspective `fov` 90° across the shorter side
 //! of the screen window, `PixelSamples 2 2`, `PixelFilter "gaussian" 2 2`, `Exposure 1 1`
 //! (no display gamma: 8-bit files hold linear values), no imager, no display.
@@ -10,7 +12,7 @@ use glam::{DMat3, DMat4, DVec3};
 
 use super::Pos;
 use crate::scene::desc::{
-    CameraDesc, FilterDesc, ImagerDesc, OutputDesc, PassDesc, PlacementDesc, SamplesDesc,
+    CameraDesc, FilterDesc, ImagerDesc, LensDesc, OutputDesc, PassDesc, PlacementDesc, SamplesDesc,
     ToneMapDesc, M4, V3,
 };
 
@@ -92,6 +94,19 @@ impl CameraOptions {
         let fov_y = 2.0 * (half * top).atan().to_degrees();
         paths.push((".fov_y".into(), fov_pos));
         let aspect = (screen[1] - screen[0]) / (screen[3] - screen[2]);
+        // An off-centre window is a shifted pinhole, in half-heights of the window.
+        let (cx, cy) = ((screen[0] + screen[1]) / 2.0, (screen[2] + screen[3]) / 2.0);
+        let lens = if cx != 0.0 || cy != 0.0 {
+            if let Some((_, p)) = self.screen {
+                paths.push((".lens[0]".into(), p));
+            }
+            vec![LensDesc::Shift {
+                x: cx / top,
+                y: cy / top,
+            }]
+        } else {
+            Vec::new()
+        };
         let (m, wpos) = self
             .camera_from_world
             .unwrap_or((DMat4::IDENTITY, world_pos));
@@ -146,7 +161,7 @@ impl CameraOptions {
                 placement: PlacementDesc::Matrix(rows(placement)),
                 outputs,
                 imager: Some(imager),
-                lens: Vec::new(),
+                lens,
                 atmosphere: None,
             },
             paths,

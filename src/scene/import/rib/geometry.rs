@@ -1,5 +1,6 @@
 //! RIB geometric primitives as stagelight meshes: the quadrics (`Sphere`, `Cylinder`,
-//! `Cone`, `Disk`, `Torus`), polygons (`Polygon`, `GeneralPolygon`, `PointsPolygons`,
+//! `Cone`, `Disk`, `Torus`; `Paraboloid` and `Hyperboloid` as NURBS, see [`super::revolve`]),
+//! polygons (`Polygon`, `GeneralPolygon`, `PointsPolygons`,
 //! `PointsGeneralPolygons`), patches (`Patch`, `PatchMesh` with the current `Basis`),
 //! `NuPatch` and `SubdivisionMesh "catmull-clark"`, with the `P`, `Pw`, `N`, `st`/`s`/`t`
 //! primitive variables. Each mesh comes with the positions of its values by path (relative
@@ -18,6 +19,8 @@ pub const PRIMITIVES: &[&str] = &[
     "Cone",
     "Disk",
     "Torus",
+    "Paraboloid",
+    "Hyperboloid",
     "Polygon",
     "GeneralPolygon",
     "PointsPolygons",
@@ -113,6 +116,24 @@ pub fn primitive(
                 phi_max: v[3],
                 theta_max: v[4],
             }
+        }
+        "Paraboloid" => {
+            let v = nums(&mut a, &["rmax", "zmin", "zmax", "thetamax"], "Nurbs")?;
+            paths.clear();
+            super::revolve::paraboloid(v[0], v[1], v[2], v[3])
+                .map_err(|m| problems.push(Problem::error(req.pos, m)))
+                .ok()?
+        }
+        "Hyperboloid" => {
+            let v = nums(
+                &mut a,
+                &["x1", "y1", "z1", "x2", "y2", "z2", "thetamax"],
+                "Nurbs",
+            )?;
+            paths.clear();
+            super::revolve::hyperboloid((v[0], v[1], v[2]), (v[3], v[4], v[5]), v[6])
+                .map_err(|m| problems.push(Problem::error(req.pos, m)))
+                .ok()?
         }
         _ => return polygonal(req, a, attrs, decls, problems),
     };

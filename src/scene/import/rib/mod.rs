@@ -6,7 +6,8 @@
 //! [`state`] (the graphics state: attribute and transform stacks), [`build`] (request by
 //! request onto the description), with the request families in [`shaders`] (surfaces,
 //! displacements, lights), [`geometry`] (quadrics, polygons, patches, NURBS, subdivision
-//! meshes) and [`camera`] (options, the camera and its outputs).
+//! meshes; [`revolve`]: paraboloids and hyperboloids) and [`camera`] (options, the camera
+//! and its outputs).
 //!
 //! **Conventions.** RenderMan's camera space is left-handed (+x right, +y up, +z into the
 //! screen) and the transformation current at `WorldBegin` is camera-from-world. stagelight's
@@ -24,6 +25,7 @@ pub mod geometry;
 pub mod lexer;
 pub mod params;
 pub mod parse;
+pub mod revolve;
 pub mod shaders;
 pub mod state;
 

@@ -9,7 +9,7 @@
 use super::params::{Param, Ty};
 use super::state::ShaderCall;
 use super::{Pos, Problem};
-use crate::scene::desc::{AxisDesc, ScalarDesc, ShaderDesc, V3};
+use crate::scene::desc::{AxisDesc, LocalLobeDesc, ScalarDesc, ShaderDesc, V3};
 use crate::scene::suggest::suggestion;
 
 /// Kinds of shader parameter value.
@@ -22,40 +22,37 @@ enum Kind {
 }
 
 /// One parameter a shader takes: name, kind, description path of its value (or `None`
-/// when it has no field of its own).
+/// when it has no field of its own; surfaces list their fields in [`surface`]).
 type Spec = (&'static str, Kind, Option<&'static str>);
 
 const CONSTANT: &[Spec] = &[];
-const MATTE: &[Spec] = &[
-    ("Ka", Kind::Float, Some("ka")),
-    ("Kd", Kind::Float, Some("kd")),
-];
+const MATTE: &[Spec] = &[("Ka", Kind::Float, None), ("Kd", Kind::Float, None)];
 const DEFAULT_SURFACE: &[Spec] = MATTE;
 const METAL: &[Spec] = &[
-    ("Ka", Kind::Float, Some("ka")),
-    ("Ks", Kind::Float, Some("ks")),
-    ("roughness", Kind::Float, Some("roughness")),
+    ("Ka", Kind::Float, None),
+    ("Ks", Kind::Float, None),
+    ("roughness", Kind::Float, None),
 ];
 const SHINY_METAL: &[Spec] = &[
-    ("Ka", Kind::Float, Some("ka")),
-    ("Ks", Kind::Float, Some("ks")),
-    ("Kr", Kind::Float, Some("kr")),
-    ("roughness", Kind::Float, Some("roughness")),
+    ("Ka", Kind::Float, None),
+    ("Ks", Kind::Float, None),
+    ("Kr", Kind::Float, None),
+    ("roughness", Kind::Float, None),
     ("texturename", Kind::Str, None),
 ];
 const PLASTIC: &[Spec] = &[
-    ("Ka", Kind::Float, Some("ka")),
-    ("Kd", Kind::Float, Some("kd")),
-    ("Ks", Kind::Float, Some("ks")),
-    ("roughness", Kind::Float, Some("roughness")),
-    ("specularcolor", Kind::Color, Some("specularcolor")),
+    ("Ka", Kind::Float, None),
+    ("Kd", Kind::Float, None),
+    ("Ks", Kind::Float, None),
+    ("roughness", Kind::Float, None),
+    ("specularcolor", Kind::Color, None),
 ];
 const PAINTED_PLASTIC: &[Spec] = &[
-    ("Ka", Kind::Float, Some("ka")),
-    ("Kd", Kind::Float, Some("kd")),
-    ("Ks", Kind::Float, Some("ks")),
-    ("roughness", Kind::Float, Some("roughness")),
-    ("specularcolor", Kind::Color, Some("specularcolor")),
+    ("Ka", Kind::Float, None),
+    ("Kd", Kind::Float, None),
+    ("Ks", Kind::Float, None),
+    ("roughness", Kind::Float, None),
+    ("specularcolor", Kind::Color, None),
     ("texturename", Kind::Str, None),
 ];
 
@@ -145,9 +142,24 @@ pub struct Surface {
     pub shader: ShaderDesc,
     /// `(path below the shader, position)` of each written parameter.
     pub paths: Vec<(String, Pos)>,
+    /// `paintedplastic`'s `texturename`, as written, with its position.
+    pub texture: Option<(String, Pos)>,
 }
 
 /// The surface shader of `call` (`None`: `defaultsurface`) with colour `cs`.
+///
+/// `constant` and `defaultsurface` are light-independent and map onto their own shaders;
+/// `matte`, `metal`, `shinymetal`, `plastic` and `paintedplastic` become `Local` models with
+/// the formulas of the RenderMan Interface Specification 3.2:
+///
+/// - `matte`: `Cs·(Ka·ambient() + Kd·diffuse(Nf))`;
+/// - `metal`: `Cs·(Ka·ambient() + Ks·specular(Nf, V, roughness))`;
+/// - `shinymetal`: `metal` `+ Cs·Kr·environment(texturename, R)` — the map is not read, a
+///   traced mirror reflection stands in for it when `texturename` is given (an empty name
+///   looks up nothing, as the specification's `environment("")`);
+/// - `plastic`: `Cs·(Ka·ambient() + Kd·diffuse(Nf)) + specularcolor·Ks·specular(Nf, V,
+///   roughness)`;
+/// - `paintedplastic`: `plastic` with `Cs` times `texture(texturename)`.
 pub fn surface(call: Option<&ShaderCall>, cs: V3, problems: &mut Vec<Problem>) -> Surface {
     let name = call.map_or("defaultsurface", |c| c.name.as_str());
     let specs = match name {
@@ -159,112 +171,120 @@ pub fn surface(call: Option<&ShaderCall>, cs: V3, problems: &mut Vec<Problem>) -
         "paintedplastic" => PAINTED_PLASTIC,
         _ => DEFAULT_SURFACE,
     };
-    let (v, variant) = match call {
-        Some(c) if SURFACES.contains(&name) => (
-            Values::read(c, "surface", specs, problems),
-            variant_name(name),
-        ),
-        _ => (
-            Values {
-                found: vec![None; specs.len()],
-            },
-            "DefaultSurface",
-        ),
+    let v = match call {
+        Some(c) if SURFACES.contains(&name) => Values::read(c, "surface", specs, problems),
+        _ => Values {
+            found: vec![None; specs.len()],
+        },
     };
     let white = (1.0, 1.0, 1.0);
+    let black = (0.0, 0.0, 0.0);
+    let scale = |k: f64, c: V3| (k * c.0, k * c.1, k * c.2);
+    let local =
+        |ka: f64, kd: f64, specular: V3, roughness: f64, reflection: V3| ShaderDesc::Local {
+            color: cs,
+            ka,
+            kd,
+            specular,
+            lobe: LocalLobeDesc::RenderMan { roughness },
+            reflection,
+            ambient: black,
+        };
+    // Description fields of each RIB parameter, below `.Local` (or the shader's variant).
+    let mut fields: Vec<(usize, &'static str)> = Vec::new();
+    let mut texture = None;
     let shader = match name {
         "constant" => ShaderDesc::Constant { color: cs },
-        "matte" => ShaderDesc::Matte {
-            ka: v.num(0, 1.0),
-            kd: v.num(1, 1.0),
-            color: cs,
-        },
-        "metal" => ShaderDesc::Metal {
-            ka: v.num(0, 1.0),
-            ks: v.num(1, 1.0),
-            roughness: v.num(2, 0.1),
-            color: cs,
-        },
+        "matte" => {
+            fields = vec![(0, "ka"), (1, "kd")];
+            local(v.num(0, 1.0), v.num(1, 1.0), black, 0.1, black)
+        }
+        "metal" => {
+            fields = vec![(0, "ka"), (1, "specular"), (2, "lobe.RenderMan.roughness")];
+            local(
+                v.num(0, 1.0),
+                0.0,
+                scale(v.num(1, 1.0), cs),
+                v.num(2, 0.1),
+                black,
+            )
+        }
         "shinymetal" => {
-            if let Some(t) = v.string(4).filter(|t| !t.str().is_empty()) {
+            fields = vec![
+                (0, "ka"),
+                (1, "specular"),
+                (2, "reflection"),
+                (3, "lobe.RenderMan.roughness"),
+            ];
+            let map = v.string(4).filter(|t| !t.str().is_empty());
+            if let Some(t) = map {
                 problems.push(Problem::warning(
                     t.pos(),
                     format!(
-                        "ignored \"texturename\" \"{}\" of \"shinymetal\": traced mirror \
-                         reflections stand in for the environment map",
+                        "\"texturename\" \"{}\" of \"shinymetal\": a traced mirror reflection \
+                         stands in for the environment map",
                         t.str()
                     ),
                 ));
             }
-            ShaderDesc::ShinyMetal {
-                ka: v.num(0, 1.0),
-                ks: v.num(1, 1.0),
-                kr: v.num(2, 1.0),
-                roughness: v.num(3, 0.1),
+            let kr = if map.is_some() { v.num(2, 1.0) } else { 0.0 };
+            local(
+                v.num(0, 1.0),
+                0.0,
+                scale(v.num(1, 1.0), cs),
+                v.num(3, 0.1),
+                scale(kr, cs),
+            )
+        }
+        "plastic" | "paintedplastic" => {
+            fields = vec![
+                (0, "ka"),
+                (1, "kd"),
+                (2, "specular"),
+                (3, "lobe.RenderMan.roughness"),
+                (4, "specular"),
+            ];
+            if name == "paintedplastic" {
+                texture = v
+                    .string(5)
+                    .filter(|t| !t.str().is_empty())
+                    .map(|t| (t.str().to_string(), t.pos()));
+            }
+            local(
+                v.num(0, 1.0),
+                v.num(1, 0.5),
+                scale(v.num(2, 0.5), v.triple(4, white)),
+                v.num(3, 0.1),
+                black,
+            )
+        }
+        _ => {
+            fields = vec![(0, "ka"), (1, "kd")];
+            ShaderDesc::DefaultSurface {
+                ka: v.num(0, 0.2),
+                kd: v.num(1, 0.8),
                 color: cs,
             }
         }
-        "plastic" => ShaderDesc::Plastic {
-            ka: v.num(0, 1.0),
-            kd: v.num(1, 0.5),
-            ks: v.num(2, 0.5),
-            roughness: v.num(3, 0.1),
-            specularcolor: v.triple(4, white),
-            color: cs,
-        },
-        "paintedplastic" => {
-            if let Some(t) = v.string(5).filter(|t| !t.str().is_empty()) {
-                problems.push(Problem::warning(
-                    t.pos(),
-                    format!(
-                        "ignored \"texturename\" \"{}\" of \"paintedplastic\": texture maps \
-                         are not read from RIB yet",
-                        t.str()
-                    ),
-                ));
-            }
-            ShaderDesc::PaintedPlastic {
-                ka: v.num(0, 1.0),
-                kd: v.num(1, 0.5),
-                ks: v.num(2, 0.5),
-                roughness: v.num(3, 0.1),
-                specularcolor: v.triple(4, white),
-                color: cs,
-            }
-        }
-        _ => ShaderDesc::DefaultSurface {
-            ka: v.num(0, 0.2),
-            kd: v.num(1, 0.8),
-            color: cs,
-        },
     };
-    let mut paths = Vec::new();
-    for (spec, p) in specs.iter().zip(&v.found) {
-        if let (Some(field), Some(p)) = (spec.2, p) {
+    let variant = match shader {
+        ShaderDesc::Constant { .. } => "Constant",
+        ShaderDesc::DefaultSurface { .. } => "DefaultSurface",
+        _ => "Local",
+    };
+    let mut paths = vec![(
+        format!(".{variant}"),
+        call.map_or(Pos::default(), |c| c.pos),
+    )];
+    for (i, field) in fields {
+        if let Some(p) = v.found[i] {
             paths.push((format!(".{variant}.{field}"), p.pos()));
         }
     }
-    if matches!(
+    Surface {
         shader,
-        ShaderDesc::Constant { .. } | ShaderDesc::Matte { .. }
-    ) {
-        paths.push((
-            format!(".{variant}"),
-            call.map_or(Pos::default(), |c| c.pos),
-        ));
-    }
-    Surface { shader, paths }
-}
-
-fn variant_name(name: &str) -> &'static str {
-    match name {
-        "constant" => "Constant",
-        "matte" => "Matte",
-        "metal" => "Metal",
-        "shinymetal" => "ShinyMetal",
-        "plastic" => "Plastic",
-        "paintedplastic" => "PaintedPlastic",
-        _ => "DefaultSurface",
+        paths,
+        texture,
     }
 }
 
