@@ -9,6 +9,8 @@
 //!   slot. A skipped stage leaves its output `None`; consumers treat `None` as "no
 //!   contribution".
 //! - [`RunReport`]: filled by the runner only, including the files each stage wrote.
+//! - [`Frame::held_files`]: the run's files, encoded but not written, when the caller asked
+//!   to commit them itself (`RunInputs::hold_files`).
 
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -18,6 +20,7 @@ use crate::bake::BakeReport;
 use crate::components::{ImageFormat, OutputSpec, Pass};
 use crate::framebuffer::FrameBuffers;
 use crate::geometry::SceneGeometry;
+use crate::image_io::PendingFile;
 use crate::photon::PhotonMaps;
 use crate::report::RunReport;
 use crate::settings::RenderSettings;
@@ -132,8 +135,13 @@ pub struct RunInputs {
     pub bake_dir: PathBuf,
     /// Show a progress bar on stderr.
     pub progress: bool,
-    /// Set from another thread (SIGINT) to stop the run; stages poll it.
+    /// Set from another thread (SIGINT, SIGTERM) to stop the run; stages poll it.
     pub cancel: Arc<AtomicBool>,
+    /// The memory budget the run's estimates are held to (see [`crate::budget`]).
+    pub budget: crate::budget::Budget,
+    /// Leave the run's files in [`Frame::held_files`] instead of committing them, so that the
+    /// caller commits them together with its own (all or nothing).
+    pub hold_files: bool,
 }
 
 /// A stage output slot: which field of [`StageOutputs`] a stage writes.
@@ -225,6 +233,9 @@ pub struct Frame {
     pub outputs: StageOutputs,
     /// Per-stage report (written by the runner).
     pub report: RunReport,
+    /// The run's encoded files, not yet written, when `inputs.hold_files` is set (written by
+    /// the runner).
+    pub held_files: Vec<PendingFile>,
 }
 
 impl Frame {
@@ -238,9 +249,12 @@ impl Frame {
                 bake_dir: PathBuf::from("."),
                 progress: false,
                 cancel: Arc::new(AtomicBool::new(false)),
+                budget: crate::budget::Budget::unlimited(),
+                hold_files: false,
             },
             outputs: StageOutputs::default(),
             report: RunReport::default(),
+            held_files: Vec::new(),
         }
     }
 

@@ -7,7 +7,8 @@ use std::sync::atomic::Ordering;
 
 use clap::{Args, Parser, Subcommand};
 use stagelight::components::BakeRequest;
-use stagelight::frame::{Frame, OutputOverrides, Tasks};
+use stagelight::frame::{Frame, OutputOverrides, RunInputs, Tasks};
+use stagelight::guard::limits::MAX_THREADS;
 use stagelight::scene::{load_scene, LoadedScene};
 use stagelight::systems;
 
@@ -54,6 +55,9 @@ enum Command {
     Check {
         /// Scene file (RON).
         scene: PathBuf,
+        /// Memory budget the estimates are checked against (as for `render`).
+        #[arg(long = "memory-limit", value_name = "BYTES", value_parser = stagelight::budget::parse_bytes)]
+        memory_limit: Option<u64>,
     },
 }
 
@@ -68,8 +72,8 @@ struct RenderArgs {
     /// Samples per pixel (overrides the scene's `options.samples`, adaptive included).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
     spp: Option<u32>,
-    /// Worker threads (default: all cores).
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
+    /// Worker threads (default: all cores; at most 1024).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=MAX_THREADS as i64))]
     threads: Option<u32>,
     /// Random seed (overrides the scene's `options.seed`).
     #[arg(long)]
@@ -86,6 +90,10 @@ struct RenderArgs {
     /// Also bake the scene's bake requests (into the working directory).
     #[arg(long)]
     bake: bool,
+    /// Memory budget in bytes (suffix K, M, G, T allowed); default: the smallest of half
+    /// the physical memory, `ulimit -v` and the cgroup limit.
+    #[arg(long = "memory-limit", value_name = "BYTES", value_parser = stagelight::budget::parse_bytes)]
+    memory_limit: Option<u64>,
 }
 
 #[derive(Args)]
@@ -95,8 +103,8 @@ struct BakeArgs {
     /// Directory for the baked textures (default: the working directory).
     #[arg(short = 'o', long = "output", value_name = "DIR")]
     output: Option<PathBuf>,
-    /// Worker threads (default: all cores).
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
+    /// Worker threads (default: all cores; at most 1024).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=MAX_THREADS as i64))]
     threads: Option<u32>,
     /// Random seed (overrides the scene's `options.seed`).
     #[arg(long)]
@@ -111,6 +119,10 @@ struct BakeArgs {
     /// path-traced reference integrator); overrides the scene's `options.integrator`.
     #[arg(long, value_enum)]
     integrator: Option<IntegratorArg>,
+    /// Memory budget in bytes (suffix K, M, G, T allowed); default: the smallest of half
+    /// the physical memory, `ulimit -v` and the cgroup limit.
+    #[arg(long = "memory-limit", value_name = "BYTES", value_parser = stagelight::budget::parse_bytes)]
+    memory_limit: Option<u64>,
 }
 
 #[derive(Args)]
@@ -135,12 +147,16 @@ struct PlanArgs {
 struct BenchArgs {
     /// Scene file (RON).
     scene: PathBuf,
-    /// Worker threads (default: all cores).
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
+    /// Worker threads (default: all cores; at most 1024).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=MAX_THREADS as i64))]
     threads: Option<u32>,
     /// Print the report as JSON on stdout.
     #[arg(long)]
     json: bool,
+    /// Memory budget in bytes (suffix K, M, G, T allowed); default: the smallest of half
+    /// the physical memory, `ulimit -v` and the cgroup limit.
+    #[arg(long = "memory-limit", value_name = "BYTES", value_parser = stagelight::budget::parse_bytes)]
+    memory_limit: Option<u64>,
 }
 
 #[derive(Args)]
@@ -168,8 +184,8 @@ struct SweepArgs {
     /// reference is always rendered by the path tracer.
     #[arg(long, value_enum)]
     integrator: Option<IntegratorArg>,
-    /// Worker threads (default: all cores).
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
+    /// Worker threads (default: all cores; at most 1024).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=MAX_THREADS as i64))]
     threads: Option<u32>,
 }
 
@@ -196,6 +212,8 @@ fn main() -> ExitCode {
         .with_writer(std::io::stderr)
         .with_target(false)
         .without_time()
+        // Colour codes only for a terminal: logs and pipes get plain text.
+        .with_ansi(std::io::stderr().is_terminal())
         .try_init();
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
@@ -209,7 +227,10 @@ fn main() -> ExitCode {
         }
     };
     match cli.command {
-        Command::Check { scene } => check(&scene),
+        Command::Check {
+            scene,
+            memory_limit,
+        } => check(&scene, memory_limit),
         Command::Plan(args) => plan(args),
         Command::Convert { scene, output } => convert(&scene, &output),
         Command::Render(args) => render(args),
@@ -243,15 +264,92 @@ fn load(path: &Path) -> Result<LoadedScene, ExitCode> {
     }
 }
 
-fn check(path: &Path) -> ExitCode {
+fn check(path: &Path, memory_limit: Option<u64>) -> ExitCode {
     match load(path) {
         Ok(scene) => {
+            // What `render --bake` would write and need, with the scene's own outputs.
+            let mut frame = Frame::new(scene.settings.clone());
+            frame.inputs.tasks = Tasks {
+                render: true,
+                bake: true,
+            };
+            frame.inputs.budget = budget(memory_limit);
+            if let Err(code) = check_run(path, &scene, &frame.inputs, None) {
+                return code;
+            }
             let entities = scene.world.len();
             println!("{}: ok ({entities} entities)", path.display());
             ExitCode::SUCCESS
         }
         Err(code) => code,
     }
+}
+
+/// The run's memory budget: `--memory-limit`, else the machine's and process's limits.
+fn budget(memory_limit: Option<u64>) -> stagelight::budget::Budget {
+    memory_limit.map_or_else(
+        stagelight::budget::Budget::detect,
+        stagelight::budget::Budget::given,
+    )
+}
+
+/// Refuses a run, before anything runs, whose estimated memory exceeds its budget (exit 1)
+/// or whose outputs would overwrite an input or each other (exit 2 when a flag names the
+/// output, 1 when the scene does).
+fn check_run(
+    path: &Path,
+    scene: &LoadedScene,
+    inputs: &RunInputs,
+    stats_json: Option<&Path>,
+) -> Result<(), ExitCode> {
+    let refused = stagelight::budget::estimate::check(
+        &scene.world,
+        &inputs.settings,
+        inputs.tasks,
+        &inputs.budget,
+    );
+    if !refused.is_empty() {
+        let refused = stagelight::guard::locate::options_located(path, refused);
+        for d in &refused {
+            eprintln!("{d}");
+        }
+        let n = refused.len();
+        eprintln!(
+            "{n} error{} in {}; nothing rendered",
+            if n == 1 { "" } else { "s" },
+            path.display()
+        );
+        return Err(ExitCode::from(EXIT_ERROR));
+    }
+    check_outputs(path, scene, inputs, stats_json)
+}
+
+/// Refuses a run whose outputs would overwrite an input or each other (before anything
+/// runs): exit 2 when a flag names the output, 1 when the scene does.
+fn check_outputs(
+    path: &Path,
+    scene: &LoadedScene,
+    inputs: &RunInputs,
+    stats_json: Option<&Path>,
+) -> Result<(), ExitCode> {
+    let clashes = stagelight::guard::outputs::check(path, &scene.world, inputs, stats_json);
+    if clashes.is_empty() {
+        return Ok(());
+    }
+    for c in &clashes {
+        eprintln!("{}", c.text);
+    }
+    let n = clashes.len();
+    eprintln!(
+        "{n} error{} in {}; nothing rendered",
+        if n == 1 { "" } else { "s" },
+        path.display()
+    );
+    Err(ExitCode::from(if clashes.iter().any(|c| c.usage) {
+        EXIT_USAGE
+    } else {
+        EXIT_ERROR
+    }))
 }
 
 fn plan(args: PlanArgs) -> ExitCode {
@@ -309,6 +407,19 @@ fn convert(scene: &Path, output: &Path) -> ExitCode {
         eprintln!("{message}");
         ExitCode::from(EXIT_ERROR)
     };
+    let inputs = stagelight::guard::outputs::scene_inputs(scene, None);
+    let key = stagelight::guard::outputs::same_file_key(output);
+    if let Some(input) = inputs
+        .iter()
+        .find(|i| stagelight::guard::outputs::same_file_key(i) == key)
+    {
+        eprintln!(
+            "error: -o {} would overwrite the scene input {}\n  help: write the RON scene to another file",
+            output.display(),
+            input.display()
+        );
+        return ExitCode::from(EXIT_USAGE);
+    }
     let bytes = match std::fs::read(scene) {
         Ok(b) => b,
         Err(e) => return fail(format!("cannot read {}: {e}", scene.display())),
@@ -398,12 +509,19 @@ fn render(args: RenderArgs) -> ExitCode {
         return ExitCode::from(EXIT_USAGE);
     }
     let mut frame = Frame::new(settings);
+    frame.inputs.budget = budget(args.memory_limit);
     frame.inputs.outputs = overrides;
     frame.inputs.tasks = Tasks {
         render: true,
         bake: args.bake,
     };
-    run_and_report(&mut scene, frame, args.stats, args.stats_json.as_deref())
+    run_and_report(
+        &args.scene,
+        &mut scene,
+        frame,
+        args.stats,
+        args.stats_json.as_deref(),
+    )
 }
 
 fn bake(args: BakeArgs) -> ExitCode {
@@ -420,6 +538,7 @@ fn bake(args: BakeArgs) -> ExitCode {
         return ExitCode::from(EXIT_ERROR);
     }
     let mut frame = Frame::new(settings);
+    frame.inputs.budget = budget(args.memory_limit);
     frame.inputs.tasks = Tasks {
         render: false,
         bake: true,
@@ -427,7 +546,13 @@ fn bake(args: BakeArgs) -> ExitCode {
     if let Some(dir) = args.output {
         frame.inputs.bake_dir = dir;
     }
-    run_and_report(&mut scene, frame, args.stats, args.stats_json.as_deref())
+    run_and_report(
+        &args.scene,
+        &mut scene,
+        frame,
+        args.stats,
+        args.stats_json.as_deref(),
+    )
 }
 
 fn bench(args: BenchArgs) -> ExitCode {
@@ -447,6 +572,19 @@ fn bench(args: BenchArgs) -> ExitCode {
         bake: scene.world.query::<&BakeRequest>().iter().next().is_some(),
     };
     frame.inputs.bake_dir = scratch.join("bake");
+    frame.inputs.budget = budget(args.memory_limit);
+    let refused = stagelight::budget::estimate::check(
+        &scene.world,
+        &frame.inputs.settings,
+        frame.inputs.tasks,
+        &frame.inputs.budget,
+    );
+    if !refused.is_empty() {
+        for d in stagelight::guard::locate::options_located(&args.scene, refused) {
+            eprintln!("{d}");
+        }
+        return ExitCode::from(EXIT_ERROR);
+    }
     let cancel = frame.inputs.cancel.clone();
     let _ = ctrlc::set_handler(move || cancel.store(true, Ordering::SeqCst));
     let result = systems::run(&mut scene.world, &mut frame);
@@ -559,16 +697,22 @@ fn sweep(args: SweepArgs) -> ExitCode {
     ExitCode::SUCCESS
 }
 
-/// Runs the stage table and prints what happened.
+/// Refuses clashing outputs, runs the stage table, commits the run's files together with
+/// `--stats-json` (all or nothing) and prints what happened.
 fn run_and_report(
+    scene_path: &Path,
     scene: &mut LoadedScene,
     mut frame: Frame,
     stats: bool,
     stats_json: Option<&Path>,
 ) -> ExitCode {
+    if let Err(code) = check_run(scene_path, scene, &frame.inputs, stats_json) {
+        return code;
+    }
     frame.inputs.progress = std::io::stderr().is_terminal();
-    let cancel = frame.inputs.cancel.clone();
-    let _ = ctrlc::set_handler(move || cancel.store(true, Ordering::SeqCst));
+    frame.inputs.hold_files = true;
+    // SIGINT and SIGTERM both stop the run within half a second: exit 130, no file.
+    stagelight::guard::interrupt::install(frame.inputs.cancel.clone());
 
     match systems::run(&mut scene.world, &mut frame) {
         Ok(()) => {}
@@ -598,14 +742,22 @@ fn run_and_report(
                 return ExitCode::from(EXIT_ERROR);
             }
         };
-        let file = stagelight::image_io::PendingFile {
+        frame.held_files.push(stagelight::image_io::PendingFile {
             path: path.to_path_buf(),
             bytes: json.into_bytes(),
-        };
-        if let Err((p, e)) = stagelight::image_io::commit_all(&[file]) {
-            eprintln!("error: cannot write {}: {e}", p.display());
-            return ExitCode::from(EXIT_ERROR);
-        }
+        });
+    }
+    if frame.cancelled() {
+        eprintln!("{}", stagelight::stage_error::StageError::Interrupted);
+        return ExitCode::from(stagelight::stage_error::EXIT_INTERRUPTED);
+    }
+    if let Err((p, e)) = stagelight::image_io::commit_all(&frame.held_files) {
+        eprintln!(
+            "error: cannot write {}: {}; no file of this run was written",
+            p.display(),
+            stagelight::guard::io_reason(&e)
+        );
+        return ExitCode::from(EXIT_ERROR);
     }
     for path in &frame.report.written {
         eprintln!("wrote {}", path.display());

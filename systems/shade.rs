@@ -104,6 +104,7 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
         filter: &filter,
         seed,
         width,
+        cancel: &cancel,
     };
     // Runs `f` on every pixel, rows in parallel, polling for cancellation per pixel (one
     // pixel is at most `max` samples of work).
@@ -187,6 +188,7 @@ struct PixelShader<'a> {
     filter: &'a FilterSampler,
     seed: u32,
     width: usize,
+    cancel: &'a AtomicBool,
 }
 
 impl PixelShader<'_> {
@@ -245,6 +247,10 @@ impl PixelShader<'_> {
         let lens = self.rays.needs_lens_sample();
         let first = samples.taken;
         for s in first..first + count {
+            // A pixel may take millions of samples (`--spp`): poll here too.
+            if s % 64 == 0 && self.cancel.load(Ordering::Relaxed) {
+                return;
+            }
             let mut sampler = Sampler::for_item(self.seed, pixel, s);
             let film = centre + self.filter.sample(sampler.next_2d());
             let lens_u = if lens {

@@ -1,18 +1,18 @@
 //! `write_output`: encodes the render camera's frame buffers into its output files (PNG,
-//! EXR) and writes them whole-or-nothing.
+//! EXR); the runner writes them with the run's other files, all or nothing.
 //!
 //! **Reads:** `outputs.image`; the render `Camera`'s `outputs` as redirected by
 //! `inputs.outputs` (`-o`, `bench`'s scratch directory) and its `Imager` (PNG only).
-//! **Writes:** files on disk (reported to the runner in `Work::files`).
+//! **Writes:** files, handed to the runner encoded (`Work::pending`), which commits them.
 //! **Runs when:** a shaded image exists and the camera (or the command line) lists outputs.
-//! **After this stage:** every output file exists complete, or none was touched.
+//! **After the run:** every output file exists complete, or none was touched.
 
 use hecs::World;
 
 use super::prelude::*;
 use crate::components::{ImageFormat, OutputSpec, Pass};
 use crate::frame::Slot;
-use crate::image_io::{commit_all, encode_exr, encode_png, PendingFile};
+use crate::image_io::{encode_exr, encode_png, PendingFile};
 use crate::scene_view::render_view;
 
 /// The outputs this run writes: the camera's, with the command line's overrides.
@@ -69,11 +69,7 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
     if frame.cancelled() {
         return Err(StageError::Interrupted);
     }
-    let written = commit_all(&pending).map_err(|(path, e)| StageError::Write {
-        path,
-        message: e.to_string(),
-    })?;
-    Ok(Work::new(written.len() as u64, "files").with_files(written))
+    Ok(Work::new(pending.len() as u64, "files").with_pending(pending))
 }
 
 #[cfg(test)]
@@ -94,7 +90,8 @@ mod tests {
         );
         let work = run(&world, &frame).unwrap();
         assert_eq!(work.files, vec![dir.join("tiny.exr")]);
-        assert!(work.files[0].is_file());
+        assert!(!work.pending[0].bytes.is_empty());
+        assert!(!dir.exists(), "the runner, not the stage, writes files");
         assert!(work.output.is_none(), "write_output has no output slot");
         let _ = std::fs::remove_dir_all(&dir);
     }

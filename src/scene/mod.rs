@@ -39,6 +39,7 @@ pub(crate) mod mesh_load;
 pub(crate) mod names;
 pub(crate) mod nodes;
 pub mod nodes_desc;
+pub(crate) mod nodes_depth;
 pub(crate) mod nodes_phenomena;
 pub(crate) mod rebase;
 pub(crate) mod samples;
@@ -79,13 +80,13 @@ pub struct LoadedScene {
 
 /// Loads and validates the scene at `path`.
 pub fn load_scene(path: &Path) -> Result<LoadedScene, SceneErrors> {
-    load(path, None, import::FORMATS)
+    load(path, None, import::FORMATS).and_then(crate::guard::check_loaded)
 }
 
 /// Loads a scene from `text` as if it were the file at `path` (includes and OBJ files are
 /// still read from disk, relative to `path`).
 pub fn load_scene_str(text: &str, path: &Path) -> Result<LoadedScene, SceneErrors> {
-    load(path, Some(text), import::FORMATS)
+    load(path, Some(text), import::FORMATS).and_then(crate::guard::check_loaded)
 }
 
 /// Parses OBJ text into a checked triangle mesh (degenerate and non-finite triangles

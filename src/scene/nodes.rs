@@ -463,6 +463,10 @@ impl Compiler<'_, '_> {
             );
             return None;
         };
+        if self.ph.too_deep[i] {
+            // Reported where the chain starts (`nodes_depth`).
+            return None;
+        }
         if !self.stack.contains(&i) {
             ensure_checked(self.src, self.ph, i);
         }

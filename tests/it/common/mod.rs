@@ -1,9 +1,11 @@
 //! Shared helpers for integration tests: small worlds built directly from components (no
 //! scene file), and running the stage table on them.
 
+mod cli;
 mod meshes;
 mod rays;
 mod scene_text;
+pub use cli::*;
 pub use meshes::*;
 pub use rays::*;
 pub use scene_text::*;
