@@ -23,6 +23,7 @@ mod hard_cases_bake;
 mod hard_cases_bump;
 mod hard_cases_far;
 mod hard_cases_rays;
+mod hostile_budget;
 mod hostile_extent;
 mod hostile_limits;
 mod hostile_outputs;
