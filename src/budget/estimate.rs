@@ -20,8 +20,8 @@ use hecs::{Entity, World};
 
 use super::{human, Budget};
 use crate::components::{
-    Approximation, BakeRequest, BakeResolution, Camera, Instance, Name, Procedural,
-    RenderCamera, Scatter, SourceLink, SubdivMesh, Surface, Technique, TriMesh,
+    Approximation, BakeRequest, BakeResolution, Camera, Instance, Name, Procedural, RenderCamera,
+    Scatter, SourceLink, SubdivMesh, Surface, Technique, TriMesh,
 };
 use crate::frame::Tasks;
 use crate::scene::Diagnostic;
@@ -60,10 +60,9 @@ pub struct Estimate {
 impl Estimate {
     /// The refusal of this estimate under `budget`, located at the element.
     pub fn refusal(&self, budget: &Budget) -> Diagnostic {
-        let (file, line, column) = self
-            .at
-            .as_ref()
-            .map_or((Default::default(), 1, 1), |l| (l.file.clone(), l.line, l.column));
+        let (file, line, column) = self.at.as_ref().map_or((Default::default(), 1, 1), |l| {
+            (l.file.clone(), l.line, l.column)
+        });
         Diagnostic {
             file,
             line,
@@ -220,7 +219,7 @@ pub fn estimates(world: &World, settings: &RenderSettings, tasks: Tasks) -> Vec<
             out.push(Estimate {
                 element: format!("options.{key}"),
                 at: None,
-                what: format!("the photon map of {} photons", m.photons),
+                what: format!("the {} photons of the photon map", m.photons),
                 bytes: u64::from(m.photons).saturating_mul(BYTES_PER_PHOTON),
                 help: "emit fewer photons",
             });
@@ -245,7 +244,9 @@ pub fn estimates(world: &World, settings: &RenderSettings, tasks: Tasks) -> Vec<
                 element: format!("bake request on instance \"{}\"", r.name),
                 at,
                 what: format!("{textures} texture(s) of {w}×{h} texels"),
-                bytes: texels.saturating_mul(textures).saturating_mul(BYTES_PER_TEXEL),
+                bytes: texels
+                    .saturating_mul(textures)
+                    .saturating_mul(BYTES_PER_TEXEL),
                 help: "lower the bake resolution",
             });
         }

@@ -52,8 +52,14 @@ impl Budget {
                 }
             }
         };
-        consider(probe::physical_memory().map(|m| m / 2), "half of physical memory");
-        consider(probe::address_space_limit(), "the address-space limit (ulimit -v)");
+        consider(
+            probe::physical_memory().map(|m| m / 2),
+            "half of physical memory",
+        );
+        consider(
+            probe::address_space_limit(),
+            "the address-space limit (ulimit -v)",
+        );
         consider(probe::cgroup_limit(), "the cgroup memory limit");
         best
     }

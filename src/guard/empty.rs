@@ -16,9 +16,13 @@ pub fn warnings(world: &World) -> Vec<String> {
     for inst in world.query::<&Instance>().iter() {
         let o = inst.object;
         let why = if let Ok(m) = world.get::<&Arc<TriMesh>>(o) {
-            m.triangles.is_empty().then_some("its mesh has no triangles")
+            m.triangles
+                .is_empty()
+                .then_some("its mesh has no triangles")
         } else if let Ok(s) = world.get::<&SubdivMesh>(o) {
-            s.face_sizes.is_empty().then_some("its subdivision mesh has no faces")
+            s.face_sizes
+                .is_empty()
+                .then_some("its subdivision mesh has no faces")
         } else {
             None
         };
@@ -26,11 +30,10 @@ pub fn warnings(world: &World) -> Vec<String> {
         let name = world
             .get::<&Name>(o)
             .map_or_else(|_| "?".to_string(), |n| n.0.clone());
-        let at = world
-            .get::<&SourceLink>(o)
-            .map_or_else(|_| String::new(), |l| {
-                format!("{}:{}:{}: ", l.file.display(), l.line, l.column)
-            });
+        let at = world.get::<&SourceLink>(o).map_or_else(
+            |_| String::new(),
+            |l| format!("{}:{}:{}: ", l.file.display(), l.line, l.column),
+        );
         found.entry(o.to_bits().get()).or_insert_with(|| {
             format!(
                 "{at}warning: object \"{name}\": {why}; it renders nothing\n  help: check the mesh, or leave the object out"

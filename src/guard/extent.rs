@@ -70,7 +70,15 @@ pub fn diagnostic(object: &str, at: Option<&SourceLink>, reach: f32) -> Diagnost
 /// translation and scale (a unit of object space placed beyond the range is out of range).
 fn transform_reach(xf: &Affine3A) -> f32 {
     let m = xf.matrix3;
-    reach([xf.translation.into(), m.x_axis.into(), m.y_axis.into(), m.z_axis.into()].into_iter())
+    reach(
+        [
+            xf.translation.into(),
+            m.x_axis.into(),
+            m.y_axis.into(),
+            m.z_axis.into(),
+        ]
+        .into_iter(),
+    )
 }
 
 /// Checks every placed instance of the loaded world; one error per object, in entity order.
@@ -81,7 +89,13 @@ pub fn check_world(world: &World) -> Vec<Diagnostic> {
         let r = if instance.mesh.positions.is_empty() {
             transform_reach(&xf)
         } else {
-            reach(instance.mesh.positions.iter().map(|&p| xf.transform_point3(p)))
+            reach(
+                instance
+                    .mesh
+                    .positions
+                    .iter()
+                    .map(|&p| xf.transform_point3(p)),
+            )
         };
         if out_of_range(r) {
             let e = worst
@@ -117,6 +131,9 @@ mod tests {
         assert!(out_of_range(1.0e13));
         assert!(out_of_range(f32::INFINITY));
         assert!(out_of_range(f32::NAN));
-        assert_eq!(reach([Vec3::new(f32::INFINITY, 0.0, 0.0)].into_iter()), f32::INFINITY);
+        assert_eq!(
+            reach([Vec3::new(f32::INFINITY, 0.0, 0.0)].into_iter()),
+            f32::INFINITY
+        );
     }
 }

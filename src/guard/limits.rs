@@ -36,6 +36,9 @@ mod tests {
     #[test]
     fn reading_stops_at_the_limit() {
         let err = read_file(std::path::Path::new("/dev/zero"), 1 << 20, "scene file").unwrap_err();
-        assert_eq!(err.to_string(), "larger than 1 MiB, the limit for a scene file");
+        assert_eq!(
+            err.to_string(),
+            "larger than 1 MiB, the limit for a scene file"
+        );
     }
 }

@@ -115,8 +115,7 @@ fn unknown_link() -> SourceLink {
 /// and each file they name outside their outputs. `text` stands in for the root file when
 /// the scene was loaded from a string.
 pub fn scene_inputs(scene: &Path, text: Option<&str>) -> Vec<PathBuf> {
-    let loaded =
-        crate::scene::include::load_files(scene, text, crate::scene::import::FORMATS);
+    let loaded = crate::scene::include::load_files(scene, text, crate::scene::import::FORMATS);
     let mut inputs = Vec::new();
     for (file, desc) in loaded.sources.files.iter().zip(&loaded.scenes) {
         inputs.push(file.path.clone());
@@ -182,7 +181,11 @@ pub fn clashes(inputs: &[PathBuf], outputs: &[PlannedOutput]) -> Vec<Clash> {
     for (i, out) in outputs.iter().enumerate() {
         let key = same_file_key(&out.path);
         let problem = if let Some(k) = input_keys.iter().position(|k| *k == key) {
-            let what = if k == 0 { "the scene file" } else { "an input of the scene" };
+            let what = if k == 0 {
+                "the scene file"
+            } else {
+                "an input of the scene"
+            };
             Some(format!(
                 "{} would overwrite {what} {}",
                 describe(out),

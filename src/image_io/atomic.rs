@@ -244,10 +244,8 @@ mod tests {
     use super::*;
 
     fn scratch(name: &str) -> PathBuf {
-        let dir = std::env::temp_dir().join(format!(
-            "stagelight-atomic-{name}-{}",
-            std::process::id()
-        ));
+        let dir =
+            std::env::temp_dir().join(format!("stagelight-atomic-{name}-{}", std::process::id()));
         let _ = fs::remove_dir_all(&dir);
         fs::create_dir_all(&dir).unwrap();
         dir
@@ -319,7 +317,10 @@ mod tests {
         fs::write(dir.join(&mine), b"x").unwrap();
         fs::write(dir.join(".hidden.tmp"), b"x").unwrap();
         remove_stale(&dir);
-        assert_eq!(names(&dir), vec![".hidden.tmp".to_string(), mine, "kept.png".into()]);
+        assert_eq!(
+            names(&dir),
+            vec![".hidden.tmp".to_string(), mine, "kept.png".into()]
+        );
         assert_eq!(fs::read(dir.join("kept.png")).unwrap(), b"old");
         fs::remove_dir_all(&dir).unwrap();
     }

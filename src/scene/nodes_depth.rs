@@ -81,7 +81,11 @@ pub(super) fn check_depth(src: &mut Sources, ph: &mut Phenomena<'_>) {
                 name(chain[chain.len() - 1])
             )
         } else {
-            chain.iter().map(|&k| name(k)).collect::<Vec<_>>().join(" → ")
+            chain
+                .iter()
+                .map(|&k| name(k))
+                .collect::<Vec<_>>()
+                .join(" → ")
         };
         let it = &ph.items[i];
         let path = next[i].map_or_else(|| it.at(".output"), |j| calls[i][j].1.clone());

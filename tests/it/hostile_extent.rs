@@ -86,12 +86,18 @@ fn generated_geometry_beyond_the_extent_is_refused_when_built() {
         .replace(r#", transform: [Scale((1e20, 1e20, 1e20))]"#, "");
     std::fs::write(dir.join("huge.ron"), &scene).unwrap();
     let o = run_in(&dir, &["check", "huge.ron"]);
-    assert!(o.status.success(), "the grid's size is only known once it is built");
+    assert!(
+        o.status.success(),
+        "the grid's size is only known once it is built"
+    );
     let o = run_in(&dir, &["render", "huge.ron", "-o", "out.png"]);
     assert_eq!(o.status.code(), Some(1), "{}", stderr_of(&o));
     assert_eq!(
         stderr_of(&o),
-        format!("huge.ron:6:9: error: {}\n{HELP}\n", message("floor", "5.0e12"))
+        format!(
+            "huge.ron:6:9: error: {}\n{HELP}\n",
+            message("floor", "5.0e12")
+        )
     );
     assert!(!dir.join("out.png").exists());
 }
@@ -106,8 +112,14 @@ fn a_quad_within_the_extent_renders() {
         "",
     );
     std::fs::write(dir.join("scene.ron"), scene).unwrap();
-    let o = run_in(&dir, &["render", "scene.ron", "-o", "out.png", "--spp", "1"]);
+    let o = run_in(
+        &dir,
+        &["render", "scene.ron", "-o", "out.png", "--spp", "1"],
+    );
     assert!(o.status.success(), "{}", stderr_of(&o));
     let img = image::open(dir.join("out.png")).unwrap().to_rgb8();
-    assert!(img.get_pixel(4, 4)[0] > 0, "the quad fills the view and is lit");
+    assert!(
+        img.get_pixel(4, 4)[0] > 0,
+        "the quad fills the view and is lit"
+    );
 }

@@ -21,11 +21,10 @@ fn deeply_nested_shader_nodes_state_the_limit() {
     for _ in 0..80 {
         node = format!("Mul({node}, (1, 1, 1))");
     }
-    let scene = small_scene(&quad_object("quad"), r#"(name: "q", of: "quad")"#, "", "")
-        .replace(
-            r#"shader: Lambert(albedo: (0.5, 0.5, 0.5))"#,
-            &format!(r#"shader: Lambert(albedo: (1, 1, 1)), bind: {{"albedo": {node}}}"#),
-        );
+    let scene = small_scene(&quad_object("quad"), r#"(name: "q", of: "quad")"#, "", "").replace(
+        r#"shader: Lambert(albedo: (0.5, 0.5, 0.5))"#,
+        &format!(r#"shader: Lambert(albedo: (1, 1, 1)), bind: {{"albedo": {node}}}"#),
+    );
     std::fs::write(dir.join("scene.ron"), scene).unwrap();
     let o = run_in(&dir, &["check", "scene.ron"]);
     assert_eq!(o.status.code(), Some(1));
@@ -77,8 +76,11 @@ fn a_chain_of_phenomena_beyond_the_limit_is_refused_where_it_starts() {
 fn an_endless_include_stops_at_the_size_limit() {
     let dir = scratch_dir("include-dev-zero");
     std::os::unix::fs::symlink("/dev/zero", dir.join("zero.ron")).unwrap();
-    let scene = small_scene(&quad_object("quad"), r#"(name: "q", of: "quad")"#, "", "")
-        .replacen("Scene(\n", "Scene(\n    include: [\"zero.ron\"],\n", 1);
+    let scene = small_scene(&quad_object("quad"), r#"(name: "q", of: "quad")"#, "", "").replacen(
+        "Scene(\n",
+        "Scene(\n    include: [\"zero.ron\"],\n",
+        1,
+    );
     std::fs::write(dir.join("scene.ron"), scene).unwrap();
     let o = run_in(&dir, &["check", "scene.ron"]);
     assert_eq!(o.status.code(), Some(1));

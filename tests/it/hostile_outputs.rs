@@ -25,7 +25,10 @@ fn stats_json_onto_the_scene_is_refused_and_the_scene_kept() {
         stderr_of(&o),
         format!("error: --stats-json scene.ron would overwrite the scene file scene.ron\n{HELP}\n1 error in scene.ron; nothing rendered\n")
     );
-    assert_eq!(std::fs::read_to_string(dir.join("scene.ron")).unwrap(), text);
+    assert_eq!(
+        std::fs::read_to_string(dir.join("scene.ron")).unwrap(),
+        text
+    );
     assert_eq!(dir_names(&dir), ["scene.ron"]);
 }
 
@@ -35,7 +38,14 @@ fn stats_json_onto_the_image_is_refused() {
     std::fs::write(dir.join("scene.ron"), quad_scene("", "")).unwrap();
     let o = run_in(
         &dir,
-        &["render", "scene.ron", "-o", "out.png", "--stats-json", "./out.png"],
+        &[
+            "render",
+            "scene.ron",
+            "-o",
+            "out.png",
+            "--stats-json",
+            "./out.png",
+        ],
     );
     assert_eq!(o.status.code(), Some(2));
     assert_eq!(
@@ -113,7 +123,10 @@ fn convert_onto_its_own_scene_is_refused() {
         stderr_of(&o),
         "error: -o ./scene.ron would overwrite the scene input scene.ron\n  help: write the RON scene to another file\n"
     );
-    assert_eq!(std::fs::read_to_string(dir.join("scene.ron")).unwrap(), text);
+    assert_eq!(
+        std::fs::read_to_string(dir.join("scene.ron")).unwrap(),
+        text
+    );
 }
 
 #[test]
@@ -126,7 +139,17 @@ fn a_failing_second_output_leaves_the_first_as_it_was() {
         quad_scene(r#"(file: "a.exr"), (file: "b.exr")"#, ""),
     )
     .unwrap();
-    let o = run_in(&dir, &["render", "scene.ron", "--spp", "1", "--stats-json", "s.json"]);
+    let o = run_in(
+        &dir,
+        &[
+            "render",
+            "scene.ron",
+            "--spp",
+            "1",
+            "--stats-json",
+            "s.json",
+        ],
+    );
     assert_eq!(o.status.code(), Some(1));
     assert_eq!(
         stderr_of(&o),

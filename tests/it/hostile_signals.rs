@@ -11,7 +11,12 @@ use crate::common::{
 
 /// Starts `stagelight args…` in `dir`, sends `signal` after `delay`; returns the exit code,
 /// the seconds from the signal to the exit, and stderr.
-fn signal_after(dir: &std::path::Path, args: &[&str], signal: &str, delay: Duration) -> (Option<i32>, f64, String) {
+fn signal_after(
+    dir: &std::path::Path,
+    args: &[&str],
+    signal: &str,
+    delay: Duration,
+) -> (Option<i32>, f64, String) {
     let mut child = stagelight_in(dir)
         .args(args)
         .stdout(Stdio::null())
@@ -48,12 +53,22 @@ fn sigterm_inside_one_pixels_samples_exits_130_within_half_a_second() {
     // 10⁹ samples in each of 64 pixels: cancellation between pixels alone would never come.
     let (code, seconds, stderr) = signal_after(
         &dir,
-        &["render", "scene.ron", "-o", "out.exr", "--spp", "1000000000"],
+        &[
+            "render",
+            "scene.ron",
+            "-o",
+            "out.exr",
+            "--spp",
+            "1000000000",
+        ],
         "-TERM",
         Duration::from_millis(700),
     );
     assert_eq!(code, Some(130), "{stderr}");
-    assert!(stderr.ends_with("interrupted; no output written\n"), "{stderr}");
+    assert!(
+        stderr.ends_with("interrupted; no output written\n"),
+        "{stderr}"
+    );
     assert!(seconds < 0.5, "took {seconds:.3} s after SIGTERM");
     assert_eq!(dir_names(&dir), ["scene.ron"]);
 }
@@ -70,7 +85,10 @@ fn stale_temporaries_of_dead_processes_are_removed_by_the_next_run() {
     std::fs::write(dir.join(".out.png.4999999.tmp"), b"partial").unwrap();
     std::fs::write(dir.join(".old.png.4999999.tmp"), b"partial").unwrap();
     std::fs::write(dir.join("notes.tmp"), b"not ours").unwrap();
-    let o = run_in(&dir, &["render", "scene.ron", "-o", "out.png", "--spp", "1"]);
+    let o = run_in(
+        &dir,
+        &["render", "scene.ron", "-o", "out.png", "--spp", "1"],
+    );
     assert!(o.status.success(), "{}", stderr_of(&o));
     assert_eq!(dir_names(&dir), ["notes.tmp", "out.png", "scene.ron"]);
 }

@@ -20,7 +20,10 @@ pub fn scratch_dir(name: &str) -> PathBuf {
 
 /// Runs `stagelight args…` in `dir`.
 pub fn run_in(dir: &Path, args: &[&str]) -> Output {
-    stagelight_in(dir).args(args).output().expect("run stagelight")
+    stagelight_in(dir)
+        .args(args)
+        .output()
+        .expect("run stagelight")
 }
 
 /// The process's stderr as text.
