@@ -129,7 +129,7 @@ fn prepare(
         world_area += 0.5 * (b - a).cross(c - a).length() as f64;
         uv_area += 0.5 * ((uv[1] - uv[0]).perp_dot(uv[2] - uv[0]) as f64).abs();
     }
-    if !(uv_area > 0.0) {
+    if uv_area.is_nan() || uv_area <= 0.0 {
         // All UVs at one point or on a line: nothing could be covered (issue 18, family 8).
         return Err((
             "its UVs cover no area (every triangle's UVs lie at one point or on a line)".into(),

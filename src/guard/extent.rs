@@ -37,7 +37,7 @@ pub fn reach(points: impl Iterator<Item = Vec3>) -> f32 {
 
 /// Whether a reach is beyond what the renderer supports.
 pub fn out_of_range(reach: f32) -> bool {
-    !(reach <= MAX_COORDINATE)
+    reach.is_nan() || reach > MAX_COORDINATE
 }
 
 /// The error for an object whose placed geometry reaches `reach`, at the object's position.

@@ -56,8 +56,8 @@ pub(super) fn check_depth(src: &mut Sources, ph: &mut Phenomena<'_>) {
             stack.pop();
         }
     }
-    for i in 0..n {
-        ph.too_deep[i] = depth[i] > MAX_PHENOMENON_DEPTH;
+    for (too_deep, &d) in ph.too_deep.iter_mut().zip(&depth) {
+        *too_deep = d > MAX_PHENOMENON_DEPTH;
     }
     let called_by_too_deep: Vec<bool> = (0..n)
         .map(|c| (0..n).any(|i| ph.too_deep[i] && calls[i].iter().any(|(x, _)| *x == c)))

@@ -122,7 +122,7 @@ fn every_accepted_field_and_variant_is_in_the_format_reference() {
         let source = std::fs::read_to_string(root.join(file)).unwrap();
         for (ty, name) in accepted_names(&source) {
             seen += 1;
-            if !in_code.iter().any(|w| *w == name) {
+            if !in_code.contains(&name) {
                 missing.push(format!("{file}: {ty}.{name}"));
             }
         }

@@ -98,3 +98,70 @@ fn a_byte_order_mark_before_the_scene_is_accepted() {
     let o = run_in(&dir, &["check", "scene.ron"]);
     assert!(o.status.success(), "{}", stderr_of(&o));
 }
+
+#[test]
+fn a_filter_wider_than_the_limit_is_refused() {
+    let dir = scratch_dir("filter-radius");
+    let scene = small_scene(
+        &quad_object("quad"),
+        r#"(name: "q", of: "quad")"#,
+        "",
+        "    options: (filter: Gaussian(radius: 1000000)),\n",
+    );
+    std::fs::write(dir.join("scene.ron"), scene).unwrap();
+    let o = run_in(&dir, &["check", "scene.ron"]);
+    assert_eq!(o.status.code(), Some(1));
+    let stderr = stderr_of(&o);
+    assert!(stderr.starts_with("scene.ron:12:"), "{stderr}");
+    assert!(
+        stderr.contains(": error: radius must be at most 64 pixels, found 1000000\n"),
+        "{stderr}"
+    );
+}
+
+#[test]
+fn objects_without_geometry_get_a_located_warning() {
+    let dir = scratch_dir("empty-meshes");
+    std::fs::write(dir.join("empty.obj"), "").unwrap();
+    let scene = small_scene(
+        r#"(name: "nothing", mesh: Obj(file: "empty.obj")),
+        (name: "cage", mesh: Subdiv(vertices: [(0, 0, 0)], polygons: [])),"#,
+        r#"(name: "n", of: "nothing"), (name: "c", of: "cage")"#,
+        "",
+        "",
+    );
+    std::fs::write(dir.join("scene.ron"), scene).unwrap();
+    let o = run_in(&dir, &["check", "scene.ron"]);
+    let stderr = stderr_of(&o);
+    assert!(
+        stderr.contains("scene.ron:5:9: warning: object \"nothing\": its mesh has no triangles; it renders nothing\n  help: check the mesh, or leave the object out\n"),
+        "{stderr}"
+    );
+    assert!(
+        stderr.contains("scene.ron:6:9: warning: object \"cage\": its subdivision mesh has no faces; it renders nothing\n"),
+        "{stderr}"
+    );
+    assert!(
+        !stderr.contains('\u{1b}'),
+        "no colour codes into a pipe: {stderr:?}"
+    );
+}
+
+#[test]
+fn bake_uvs_at_one_point_are_refused() {
+    let dir = scratch_dir("bake-point-uvs");
+    let scene = small_scene(
+        r#"(name: "quad", mesh: Inline(vertices: [(-1, -1, 0), (1, -1, 0), (1, 1, 0), (-1, 1, 0)], uvs: [(0.5, 0.5), (0.5, 0.5), (0.5, 0.5), (0.5, 0.5)], polygons: [[0, 1, 2, 3]]), material: "grey"),"#,
+        r#"(name: "q", of: "quad", bake: (texels_per_unit: 8, uvs: Mesh, outputs: [(kind: AmbientOcclusion(samples: 1))]))"#,
+        "",
+        "",
+    );
+    std::fs::write(dir.join("scene.ron"), scene).unwrap();
+    let o = run_in(&dir, &["bake", "scene.ron"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert_eq!(
+        stderr_of(&o),
+        "scene.ron:7:17: error: bake request on instance \"q\": its UVs cover no area (every triangle's UVs lie at one point or on a line)\n  help: give the mesh real UVs, or set `uvs: Unwrap` to generate lightmap UVs\n"
+    );
+    assert_eq!(crate::common::dir_names(&dir), ["scene.ron"]);
+}
