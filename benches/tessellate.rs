@@ -59,6 +59,7 @@ fn run(s: &Surface, a: &Approximation, d: Option<&Displacement>) -> Tessellation
         displacement: d,
         view: None,
         derivatives: false,
+        max_triangles: u64::MAX,
     };
     tessellate_surface(s, &opts).expect("tessellates")
 }

@@ -9,6 +9,8 @@
 //!   slot. A skipped stage leaves its output `None`; consumers treat `None` as "no
 //!   contribution".
 //! - [`RunReport`]: filled by the runner only, including the files each stage wrote.
+//! - [`Frame::held_files`]: the run's files, encoded but not written, when the caller asked
+//!   to commit them itself (`RunInputs::hold_files`).
 
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -19,27 +21,11 @@ use crate::components::{ImageFormat, OutputSpec, Pass};
 use crate::farm::PartRun;
 use crate::framebuffer::FrameBuffers;
 use crate::geometry::SceneGeometry;
+use crate::image_io::PendingFile;
 use crate::photon::PhotonMaps;
 use crate::report::RunReport;
 use crate::settings::RenderSettings;
-
-/// What the user asked this run to do.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Tasks {
-    /// Render the render camera (`stagelight render`).
-    pub render: bool,
-    /// Bake the scene's bake requests (`stagelight bake`, or `render --bake`).
-    pub bake: bool,
-}
-
-impl Default for Tasks {
-    fn default() -> Self {
-        Self {
-            render: true,
-            bake: false,
-        }
-    }
-}
+pub use crate::tasks::Tasks;
 
 /// Where the render camera's outputs go, as the command line asked (pbrt's `--outfile`):
 /// an option of the run, never an edit of the scene.
@@ -133,13 +119,18 @@ pub struct RunInputs {
     pub bake_dir: PathBuf,
     /// Show a progress bar on stderr.
     pub progress: bool,
-    /// Set from another thread (SIGINT) to stop the run; stages poll it.
+    /// Set from another thread (SIGINT, SIGTERM) to stop the run; stages poll it.
     pub cancel: Arc<AtomicBool>,
     /// Render only this farm part and write its part file (`render --part K/N`).
     pub part: Option<PartRun>,
     /// The image merged from part files (`stagelight merge`): `shade` passes it on instead
     /// of rendering, and the stages that only feed rendering skip.
     pub merged_image: Option<FrameBuffers>,
+    /// The memory budget the run's estimates are held to (see [`crate::budget`]).
+    pub budget: crate::budget::Budget,
+    /// Leave the run's files in [`Frame::held_files`] instead of committing them, so that the
+    /// caller commits them together with its own (all or nothing).
+    pub hold_files: bool,
 }
 
 impl RunInputs {
@@ -238,6 +229,9 @@ pub struct Frame {
     pub outputs: StageOutputs,
     /// Per-stage report (written by the runner).
     pub report: RunReport,
+    /// The run's encoded files, not yet written, when `inputs.hold_files` is set (written by
+    /// the runner).
+    pub held_files: Vec<PendingFile>,
 }
 
 impl Frame {
@@ -253,9 +247,12 @@ impl Frame {
                 cancel: Arc::new(AtomicBool::new(false)),
                 part: None,
                 merged_image: None,
+                budget: crate::budget::Budget::unlimited(),
+                hold_files: false,
             },
             outputs: StageOutputs::default(),
             report: RunReport::default(),
+            held_files: Vec::new(),
         }
     }
 

@@ -9,14 +9,17 @@ pub mod accel;
 pub mod accumulate;
 pub mod adaptive;
 pub mod bake;
+pub mod budget;
 pub mod components;
 pub mod exact_sum;
 pub mod farm;
 pub mod frame;
 pub mod framebuffer;
 pub mod geometry;
+pub mod guard;
 pub mod hash;
 pub mod image_io;
+pub mod limits;
 pub mod noise;
 pub mod photon;
 pub mod procedural;
@@ -30,6 +33,7 @@ pub mod settings;
 pub mod shading;
 pub mod stage_error;
 pub mod sweep;
+pub mod tasks;
 pub mod tessellation;
 
 #[path = "../systems/mod.rs"]

@@ -8,8 +8,11 @@ use std::sync::atomic::Ordering;
 use clap::{Args, Parser, Subcommand};
 use stagelight::components::BakeRequest;
 use stagelight::farm::{PartNumber, PartRun, Split};
-use stagelight::frame::{Frame, OutputOverrides, Tasks};
-use stagelight::scene::{load_scene, LoadedScene};
+use stagelight::frame::{Frame, OutputOverrides, RunInputs, Tasks};
+use stagelight::guard::limits::MAX_THREADS;
+use stagelight::guard::outputs::same_file_key;
+use stagelight::scene::load_scene;
+use stagelight::scene::LoadedScene;
 use stagelight::systems;
 
 /// Exit code for scene and runtime errors.
@@ -60,6 +63,9 @@ enum Command {
     Check {
         /// Scene file (RON).
         scene: PathBuf,
+        /// Memory budget the estimates are checked against (as for `render`).
+        #[arg(long = "memory-limit", value_name = "BYTES", value_parser = stagelight::budget::parse_bytes)]
+        memory_limit: Option<u64>,
     },
 }
 
@@ -74,8 +80,8 @@ struct RenderArgs {
     /// Samples per pixel (overrides the scene's `options.samples`, adaptive included).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
     spp: Option<u32>,
-    /// Worker threads (default: all cores).
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
+    /// Worker threads (default: all cores; at most 1024).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=MAX_THREADS as i64))]
     threads: Option<u32>,
     /// Random seed (overrides the scene's `options.seed`).
     #[arg(long)]
@@ -100,6 +106,10 @@ struct RenderArgs {
     /// `samples` (a range of every pixel's sample indices).
     #[arg(long, value_enum, default_value = "tiles", requires = "part")]
     split: SplitArg,
+    /// Memory budget in bytes (suffix K, M, G, T allowed); default: the smallest of half
+    /// the physical memory, `ulimit -v` and the cgroup limit.
+    #[arg(long = "memory-limit", value_name = "BYTES", value_parser = stagelight::budget::parse_bytes)]
+    memory_limit: Option<u64>,
 }
 
 #[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
@@ -181,8 +191,8 @@ struct BakeArgs {
     /// Directory for the baked textures (default: the working directory).
     #[arg(short = 'o', long = "output", value_name = "DIR")]
     output: Option<PathBuf>,
-    /// Worker threads (default: all cores).
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
+    /// Worker threads (default: all cores; at most 1024).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=MAX_THREADS as i64))]
     threads: Option<u32>,
     /// Random seed (overrides the scene's `options.seed`).
     #[arg(long)]
@@ -197,6 +207,10 @@ struct BakeArgs {
     /// path-traced reference integrator); overrides the scene's `options.integrator`.
     #[arg(long, value_enum)]
     integrator: Option<IntegratorArg>,
+    /// Memory budget in bytes (suffix K, M, G, T allowed); default: the smallest of half
+    /// the physical memory, `ulimit -v` and the cgroup limit.
+    #[arg(long = "memory-limit", value_name = "BYTES", value_parser = stagelight::budget::parse_bytes)]
+    memory_limit: Option<u64>,
 }
 
 #[derive(Args)]
@@ -221,12 +235,16 @@ struct PlanArgs {
 struct BenchArgs {
     /// Scene file (RON).
     scene: PathBuf,
-    /// Worker threads (default: all cores).
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
+    /// Worker threads (default: all cores; at most 1024).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=MAX_THREADS as i64))]
     threads: Option<u32>,
     /// Print the report as JSON on stdout.
     #[arg(long)]
     json: bool,
+    /// Memory budget in bytes (suffix K, M, G, T allowed); default: the smallest of half
+    /// the physical memory, `ulimit -v` and the cgroup limit.
+    #[arg(long = "memory-limit", value_name = "BYTES", value_parser = stagelight::budget::parse_bytes)]
+    memory_limit: Option<u64>,
 }
 
 #[derive(Args)]
@@ -254,8 +272,8 @@ struct SweepArgs {
     /// reference is always rendered by the path tracer.
     #[arg(long, value_enum)]
     integrator: Option<IntegratorArg>,
-    /// Worker threads (default: all cores).
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
+    /// Worker threads (default: all cores; at most 1024).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=MAX_THREADS as i64))]
     threads: Option<u32>,
 }
 
@@ -282,6 +300,8 @@ fn main() -> ExitCode {
         .with_writer(std::io::stderr)
         .with_target(false)
         .without_time()
+        // Colour codes only for a terminal: logs and pipes get plain text.
+        .with_ansi(std::io::stderr().is_terminal())
         .try_init();
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
@@ -295,7 +315,10 @@ fn main() -> ExitCode {
         }
     };
     match cli.command {
-        Command::Check { scene } => check(&scene),
+        Command::Check {
+            scene,
+            memory_limit,
+        } => check(&scene, memory_limit),
         Command::Plan(args) => plan(args),
         Command::Convert { scene, output } => convert(&scene, &output),
         Command::Merge(args) => merge(args),
@@ -331,15 +354,92 @@ fn load(path: &Path) -> Result<LoadedScene, ExitCode> {
     }
 }
 
-fn check(path: &Path) -> ExitCode {
+fn check(path: &Path, memory_limit: Option<u64>) -> ExitCode {
     match load(path) {
         Ok(scene) => {
+            // What `render --bake` would write and need, with the scene's own outputs.
+            let mut frame = Frame::new(scene.settings.clone());
+            frame.inputs.tasks = Tasks {
+                render: true,
+                bake: true,
+            };
+            frame.inputs.budget = budget(memory_limit);
+            if let Err(code) = check_run(path, &scene, &frame.inputs, None) {
+                return code;
+            }
             let entities = scene.world.len();
             println!("{}: ok ({entities} entities)", path.display());
             ExitCode::SUCCESS
         }
         Err(code) => code,
     }
+}
+
+/// The run's memory budget: `--memory-limit`, else the machine's and process's limits.
+fn budget(memory_limit: Option<u64>) -> stagelight::budget::Budget {
+    memory_limit.map_or_else(
+        stagelight::budget::Budget::detect,
+        stagelight::budget::Budget::given,
+    )
+}
+
+/// Refuses a run, before anything runs, whose estimated memory exceeds its budget (exit 1)
+/// or whose outputs would overwrite an input or each other (exit 2 when a flag names the
+/// output, 1 when the scene does).
+fn check_run(
+    path: &Path,
+    scene: &LoadedScene,
+    inputs: &RunInputs,
+    stats_json: Option<&Path>,
+) -> Result<(), ExitCode> {
+    let refused = stagelight::budget::estimate::check(
+        &scene.world,
+        &inputs.settings,
+        inputs.tasks,
+        &inputs.budget,
+    );
+    if !refused.is_empty() {
+        let refused = stagelight::guard::locate::options_located(path, refused);
+        for d in &refused {
+            eprintln!("{d}");
+        }
+        let n = refused.len();
+        eprintln!(
+            "{n} error{} in {}; nothing rendered",
+            if n == 1 { "" } else { "s" },
+            path.display()
+        );
+        return Err(ExitCode::from(EXIT_ERROR));
+    }
+    check_outputs(path, scene, inputs, stats_json)
+}
+
+/// Refuses a run whose outputs would overwrite an input or each other (before anything
+/// runs): exit 2 when a flag names the output, 1 when the scene does.
+fn check_outputs(
+    path: &Path,
+    scene: &LoadedScene,
+    inputs: &RunInputs,
+    stats_json: Option<&Path>,
+) -> Result<(), ExitCode> {
+    let clashes = stagelight::guard::outputs::check(path, &scene.world, inputs, stats_json);
+    if clashes.is_empty() {
+        return Ok(());
+    }
+    for c in &clashes {
+        eprintln!("{}", c.text);
+    }
+    let n = clashes.len();
+    eprintln!(
+        "{n} error{} in {}; nothing rendered",
+        if n == 1 { "" } else { "s" },
+        path.display()
+    );
+    Err(ExitCode::from(if clashes.iter().any(|c| c.usage) {
+        EXIT_USAGE
+    } else {
+        EXIT_ERROR
+    }))
 }
 
 fn plan(args: PlanArgs) -> ExitCode {
@@ -397,6 +497,19 @@ fn convert(scene: &Path, output: &Path) -> ExitCode {
         eprintln!("{message}");
         ExitCode::from(EXIT_ERROR)
     };
+    let inputs = stagelight::guard::outputs::scene_inputs(scene, None);
+    let key = stagelight::guard::outputs::same_file_key(output);
+    if let Some(input) = inputs
+        .iter()
+        .find(|i| stagelight::guard::outputs::same_file_key(i) == key)
+    {
+        eprintln!(
+            "error: -o {} would overwrite the scene input {}\n  help: write the RON scene to another file",
+            output.display(),
+            input.display()
+        );
+        return ExitCode::from(EXIT_USAGE);
+    }
     let bytes = match std::fs::read(scene) {
         Ok(b) => b,
         Err(e) => return fail(format!("cannot read {}: {e}", scene.display())),
@@ -496,13 +609,20 @@ fn render(args: RenderArgs) -> ExitCode {
         None => None,
     };
     let mut frame = Frame::new(settings);
+    frame.inputs.budget = budget(args.memory_limit);
     frame.inputs.outputs = overrides;
     frame.inputs.part = part;
     frame.inputs.tasks = Tasks {
         render: true,
         bake: args.bake,
     };
-    run_and_report(&mut scene, frame, args.stats, args.stats_json.as_deref())
+    run_and_report(
+        &args.scene,
+        &mut scene,
+        frame,
+        args.stats,
+        args.stats_json.as_deref(),
+    )
 }
 
 /// The part a `render --part K/N` run computes, after checking the flags that go with it.
@@ -538,6 +658,19 @@ fn part_run(
 }
 
 fn merge(args: MergeArgs) -> ExitCode {
+    if let Some(out) = &args.output {
+        if args
+            .parts
+            .iter()
+            .any(|p| same_file_key(p) == same_file_key(out))
+        {
+            eprintln!(
+                "error: -o {} is one of the part files being merged\n  help: write the merged image to a new file",
+                out.display()
+            );
+            return ExitCode::from(EXIT_USAGE);
+        }
+    }
     let parts = match stagelight::farm::merge::read_parts(&args.parts) {
         Ok(parts) => parts,
         Err(message) => {
@@ -581,7 +714,7 @@ fn merge(args: MergeArgs) -> ExitCode {
     let mut frame = Frame::new(scene.settings.clone());
     frame.inputs.outputs = overrides;
     frame.inputs.merged_image = Some(image);
-    run_and_report(&mut scene, frame, args.stats, None)
+    run_and_report(&scene_path, &mut scene, frame, args.stats, None)
 }
 
 fn farm(args: FarmArgs) -> ExitCode {
@@ -662,6 +795,7 @@ fn bake(args: BakeArgs) -> ExitCode {
         return ExitCode::from(EXIT_ERROR);
     }
     let mut frame = Frame::new(settings);
+    frame.inputs.budget = budget(args.memory_limit);
     frame.inputs.tasks = Tasks {
         render: false,
         bake: true,
@@ -669,7 +803,13 @@ fn bake(args: BakeArgs) -> ExitCode {
     if let Some(dir) = args.output {
         frame.inputs.bake_dir = dir;
     }
-    run_and_report(&mut scene, frame, args.stats, args.stats_json.as_deref())
+    run_and_report(
+        &args.scene,
+        &mut scene,
+        frame,
+        args.stats,
+        args.stats_json.as_deref(),
+    )
 }
 
 fn bench(args: BenchArgs) -> ExitCode {
@@ -689,6 +829,19 @@ fn bench(args: BenchArgs) -> ExitCode {
         bake: scene.world.query::<&BakeRequest>().iter().next().is_some(),
     };
     frame.inputs.bake_dir = scratch.join("bake");
+    frame.inputs.budget = budget(args.memory_limit);
+    let refused = stagelight::budget::estimate::check(
+        &scene.world,
+        &frame.inputs.settings,
+        frame.inputs.tasks,
+        &frame.inputs.budget,
+    );
+    if !refused.is_empty() {
+        for d in stagelight::guard::locate::options_located(&args.scene, refused) {
+            eprintln!("{d}");
+        }
+        return ExitCode::from(EXIT_ERROR);
+    }
     let cancel = frame.inputs.cancel.clone();
     let _ = ctrlc::set_handler(move || cancel.store(true, Ordering::SeqCst));
     let result = systems::run(&mut scene.world, &mut frame);
@@ -801,16 +954,22 @@ fn sweep(args: SweepArgs) -> ExitCode {
     ExitCode::SUCCESS
 }
 
-/// Runs the stage table and prints what happened.
+/// Refuses clashing outputs, runs the stage table, commits the run's files together with
+/// `--stats-json` (all or nothing) and prints what happened.
 fn run_and_report(
+    scene_path: &Path,
     scene: &mut LoadedScene,
     mut frame: Frame,
     stats: bool,
     stats_json: Option<&Path>,
 ) -> ExitCode {
+    if let Err(code) = check_run(scene_path, scene, &frame.inputs, stats_json) {
+        return code;
+    }
     frame.inputs.progress = std::io::stderr().is_terminal();
-    let cancel = frame.inputs.cancel.clone();
-    let _ = ctrlc::set_handler(move || cancel.store(true, Ordering::SeqCst));
+    frame.inputs.hold_files = true;
+    // SIGINT and SIGTERM both stop the run within half a second: exit 130, no file.
+    stagelight::guard::interrupt::install(frame.inputs.cancel.clone());
 
     match systems::run(&mut scene.world, &mut frame) {
         Ok(()) => {}
@@ -840,14 +999,22 @@ fn run_and_report(
                 return ExitCode::from(EXIT_ERROR);
             }
         };
-        let file = stagelight::image_io::PendingFile {
+        frame.held_files.push(stagelight::image_io::PendingFile {
             path: path.to_path_buf(),
             bytes: json.into_bytes(),
-        };
-        if let Err((p, e)) = stagelight::image_io::commit_all(&[file]) {
-            eprintln!("error: cannot write {}: {e}", p.display());
-            return ExitCode::from(EXIT_ERROR);
-        }
+        });
+    }
+    if frame.cancelled() {
+        eprintln!("{}", stagelight::stage_error::StageError::Interrupted);
+        return ExitCode::from(stagelight::stage_error::EXIT_INTERRUPTED);
+    }
+    if let Err((p, e)) = stagelight::image_io::commit_all(&frame.held_files) {
+        eprintln!(
+            "error: cannot write {}: {}; no file of this run was written",
+            p.display(),
+            stagelight::guard::io_reason(&e)
+        );
+        return ExitCode::from(EXIT_ERROR);
     }
     for path in &frame.report.written {
         eprintln!("wrote {}", path.display());

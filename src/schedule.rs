@@ -10,6 +10,7 @@ use serde::Serialize;
 
 use crate::accel::RayCounts;
 use crate::frame::{Frame, Slot, StageOutput};
+use crate::image_io::{commit_all, PendingFile};
 use crate::report::StageReport;
 pub use crate::stage_error::StageError;
 
@@ -39,15 +40,18 @@ impl Decision {
     }
 }
 
-/// What a stage did: work items for throughput figures, the files it wrote, and its typed
-/// output (stored by the runner in the stage's declared slot).
+/// What a stage did: work items for throughput figures, the files it produced (encoded, not
+/// yet written: the runner commits every stage's files together at the end of the run), and
+/// its typed output (stored by the runner in the stage's declared slot).
 pub struct Work {
     /// Items processed.
     pub items: u64,
     /// What an item is (`"triangles"`, `"samples"`, `"files"`, …).
     pub unit: &'static str,
-    /// Files the stage wrote (whole), in the order written.
+    /// Destinations of the files the stage produced, in order.
     pub files: Vec<PathBuf>,
+    /// The encoded files, committed by the runner with every other stage's (all or nothing).
+    pub pending: Vec<PendingFile>,
     /// The stage's output, if it has a slot.
     pub output: Option<StageOutput>,
 }
@@ -59,6 +63,7 @@ impl Work {
             items,
             unit,
             files: Vec::new(),
+            pending: Vec::new(),
             output: None,
         }
     }
@@ -69,9 +74,10 @@ impl Work {
         self
     }
 
-    /// The same work with the files the stage wrote.
-    pub fn with_files(mut self, files: Vec<PathBuf>) -> Self {
-        self.files = files;
+    /// The same work with the files the stage produced, for the runner to commit.
+    pub fn with_pending(mut self, pending: Vec<PendingFile>) -> Self {
+        self.files = pending.iter().map(|f| f.path.clone()).collect();
+        self.pending = pending;
         self
     }
 }
@@ -177,7 +183,10 @@ pub fn plan(stages: &[Stage], world: &World, frame: &mut Frame) -> Vec<PlannedSt
 ///
 /// A stage whose condition says no is recorded as skipped and leaves its outputs `None`.
 /// The runner alone stores stage outputs (in the slot the stage declares) and collects the
-/// files written. The first failing stage stops the run.
+/// files the stages produced. The first failing stage stops the run, and nothing is written.
+/// After the last stage every file is committed together ([`commit_all`]: all or nothing),
+/// unless `frame.inputs.hold_files` asks to leave them in `frame.held_files` for the caller
+/// to commit with its own (the CLI's `--stats-json`).
 pub fn run_stages(
     stages: &[Stage],
     world: &mut World,
@@ -187,6 +196,8 @@ pub fn run_stages(
     frame.report.threads = rayon::current_num_threads();
     frame.report.stages.clear();
     frame.report.written.clear();
+    frame.held_files.clear();
+    let mut pending: Vec<PendingFile> = Vec::new();
     for stage in stages {
         let decision = (stage.condition)(world, frame);
         if !decision.run {
@@ -198,7 +209,8 @@ pub fn run_stages(
         }
         let rays_before = ray_counts(frame);
         let t0 = Instant::now();
-        let work = stage.run_body(world, frame)?;
+        let mut work = stage.run_body(world, frame)?;
+        pending.append(&mut work.pending);
         let seconds = t0.elapsed().as_secs_f64();
         if let Some(output) = work.output {
             if Some(output.slot()) != stage.slot {
@@ -239,6 +251,17 @@ pub fn run_stages(
             rays_per_second_per_thread: ray_rate / threads,
             files: work.files,
         });
+    }
+    if frame.cancelled() {
+        return Err(StageError::Interrupted);
+    }
+    if frame.inputs.hold_files {
+        frame.held_files = pending;
+    } else if !pending.is_empty() {
+        commit_all(&pending).map_err(|(path, e)| StageError::Write {
+            path,
+            message: crate::scene::include::io_reason(&e),
+        })?;
     }
     frame.report.total_seconds = start.elapsed().as_secs_f64();
     Ok(())

@@ -1,9 +1,11 @@
 //! `bake_lightmaps`: bakes every bake request (ambient occlusion, lightmaps, normals,
-//! positions, albedo) into textures, dilates them, and writes them whole-or-nothing.
+//! positions, albedo) into textures and dilates them; the runner writes them with the run's
+//! other files, all or nothing.
 //!
 //! **Reads:** `BakeRequest` + `Name` + `SourceLink` on instance entities; `Emitter` entities;
 //! `outputs.geometry`; `inputs.bake_dir`; `settings.seed`.
-//! **Writes:** texture files (reported in `Work::files`); `outputs.bake_reports`.
+//! **Writes:** texture files (encoded, in `Work::pending`, committed by the runner);
+//! `outputs.bake_reports`.
 //! **Runs when:** the run bakes (`stagelight bake` or `render --bake`) and at least one
 //! instance carries a bake request.
 //! **After this stage:** every requested texture exists complete (or none was written), and
@@ -21,7 +23,6 @@ use crate::bake::files::{encode_request, report};
 use crate::bake::request::prepare_bakes;
 use crate::bake::texels::{evaluate, TexelJob};
 use crate::components::{BakeKind, BakeRequest};
-use crate::image_io::commit_all;
 use crate::progress::Progress;
 use crate::sampling::{fold_seed, hash_combine};
 use crate::scene_view::{light_set, WithEnvironment};
@@ -99,12 +100,8 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
     if frame.cancelled() {
         return Err(StageError::Interrupted);
     }
-    let written = commit_all(&pending).map_err(|(path, e)| StageError::Write {
-        path,
-        message: e.to_string(),
-    })?;
     Ok(Work::new(texels_baked, "texels")
-        .with_files(written)
+        .with_pending(pending)
         .with_output(StageOutput::BakeReports(reports)))
 }
 
@@ -132,7 +129,7 @@ mod tests {
             "every texel of the unit-UV square is covered"
         );
         assert_eq!(work.files, vec![dir.join("square_inst_ao.exr")]);
-        assert!(work.files[0].is_file());
+        assert!(!work.pending[0].bytes.is_empty());
         let Some(StageOutput::BakeReports(reports)) = work.output else {
             panic!("bake_lightmaps returns its reports");
         };

@@ -4,6 +4,8 @@
 //! the objects' `Displacement` in `Bump` mode (kept for shading);
 //! the `SceneOrigin` (copied into the geometry);
 //! `settings.bvh_quality`.
+//! **Refuses:** placed triangles beyond the supported coordinate range
+//! (`crate::guard::extent`), located at their object.
 //! **Writes:** `outputs.geometry` (returned to the runner).
 //! **Runs when:** at least one instance has triangles and something consumes rays (a render
 //! camera in a run that renders, or bake requests in a run that bakes).
@@ -24,6 +26,7 @@ use crate::components::{
     Scatter, SceneOrigin, SubdivMesh, Surface, WorldFromObject,
 };
 use crate::geometry::{InstanceGeometry, SceneGeometry};
+use crate::guard::extent::{located, out_of_range, reach};
 use crate::scene_view::has_render_camera;
 use crate::schedule::any_with;
 
@@ -83,6 +86,7 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
     let total: usize = placed.iter().map(|(_, i, ..)| i.mesh.triangles.len()).sum();
     let mut triangles: Vec<[Vec3; 3]> = Vec::with_capacity(total);
     let mut triangle_instance = Vec::with_capacity(total);
+    let mut too_far: Vec<(Entity, f32)> = Vec::new();
 
     for (entity, instance, world_from_object, material_ref) in placed {
         let slot = match material_slot.get(&material_ref.0) {
@@ -106,6 +110,10 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
             triangles.push(tri.map(|i| xf.transform_point3(mesh.positions[i as usize])));
             triangle_instance.push(index);
         }
+        let r = reach(triangles[first as usize..].iter().flatten().copied());
+        if out_of_range(r) && !too_far.iter().any(|(o, _)| *o == instance.object) {
+            too_far.push((instance.object, r));
+        }
         instances.push(InstanceGeometry {
             entity,
             mesh: instance.mesh.clone(),
@@ -119,6 +127,16 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
                 .filter(|d| d.mode == DisplacementMode::Bump)
                 .map(|d| Arc::new((*d).clone())),
         });
+    }
+    // Generated geometry is only known now: refuse what the f32 BVH and triangle test cannot
+    // handle (located at the object) instead of letting obvhs index out of bounds.
+    if !too_far.is_empty() {
+        return Err(StageError::Scene(
+            too_far
+                .into_iter()
+                .map(|(object, r)| located(world, object, r))
+                .collect(),
+        ));
     }
     let count = triangles.len() as u64;
     let accel = Accel::build(triangles, frame.inputs.settings.bvh_quality);

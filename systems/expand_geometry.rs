@@ -105,10 +105,30 @@ pub fn run(world: &mut World, _frame: &Frame) -> Result<Work, StageError> {
             .get::<&Arc<TriMesh>>(s.prototype)
             .map(|m| (*m).clone())
             .unwrap_or_else(|_| Arc::new(TriMesh::default()));
-        let xfs = scatter::placements(&s, &surface).map_err(|err| StageError::Geometry {
-            object: name.clone(),
-            message: format!("scatter: {err}"),
-        })?;
+        // Located at the scatter object, like the loader's errors.
+        let xfs =
+            scatter::placements(&s, &surface).map_err(|err| match world
+                .get::<&crate::components::SourceLink>(
+                e,
+            ) {
+                Ok(at) => StageError::Scene(vec![crate::scene::Diagnostic {
+                    file: at.file.clone(),
+                    line: at.line,
+                    column: at.column,
+                    message: format!("object \"{name}\": scatter: {err}"),
+                    help: matches!(err, crate::tessellation::GeometryError::MissingData { .. })
+                        .then(|| {
+                            format!(
+                            "scatter over a surface whose triangles have area (\"{}\" has none)",
+                            name_of(world, s.surface)
+                        )
+                        }),
+                }]),
+                Err(_) => StageError::Geometry {
+                    object: name.clone(),
+                    message: format!("scatter: {err}"),
+                },
+            })?;
         let mut leaves: Vec<(Entity, WorldFromObject, MaterialRef, String)> = world
             .query::<(
                 Entity,

@@ -128,6 +128,7 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
         seed,
         width,
         sample_offset: first_samples.start,
+        cancel: &cancel,
     };
     // Runs `f` on every pixel, rows in parallel, polling for cancellation per pixel (one
     // pixel is at most `max` samples of work).
@@ -251,6 +252,7 @@ struct PixelShader<'a> {
     width: usize,
     /// Index of the first sample this run takes of each pixel (a samples-split part).
     sample_offset: u32,
+    cancel: &'a AtomicBool,
 }
 
 impl PixelShader<'_> {
@@ -303,6 +305,10 @@ impl PixelShader<'_> {
         let lens = self.rays.needs_lens_sample();
         let first = self.sample_offset + samples.taken;
         for s in first..first + count {
+            // A pixel may take millions of samples (`--spp`): poll here too.
+            if s % 64 == 0 && self.cancel.load(Ordering::Relaxed) {
+                return;
+            }
             let mut sampler = Sampler::for_item(self.seed, pixel, s);
             let film = centre + self.filter.sample(sampler.next_2d());
             let lens_u = if lens {

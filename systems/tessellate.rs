@@ -21,6 +21,7 @@ use rayon::prelude::*;
 
 use super::prelude::*;
 use super::MERGING;
+use crate::budget::estimate::max_triangles;
 use crate::components::{
     Approximation, DerivativeRequest, Displacement, DisplacementMode, GeneratedFrom, Instance,
     LengthSpace, Name, Procedural, SubdivMesh, Surface, Technique, TriMesh, WorldFromObject,
@@ -120,7 +121,7 @@ struct Job {
 }
 
 /// Tessellates every object that needs it.
-pub fn run(world: &mut World, _frame: &Frame) -> Result<Work, StageError> {
+pub fn run(world: &mut World, frame: &Frame) -> Result<Work, StageError> {
     let mut jobs = Vec::new();
     for (e, surface, subdiv, mesh, disp, approx, deriv, name) in world
         .query::<(
@@ -174,6 +175,7 @@ pub fn run(world: &mut World, _frame: &Frame) -> Result<Work, StageError> {
                 displacement: job.displacement.as_ref(),
                 view: job.view.as_ref(),
                 derivatives: job.derivatives,
+                max_triangles: max_triangles(&frame.inputs.budget),
             };
             match &job.input {
                 Input::Surface(s) => tessellate_surface(s, &opts),

@@ -1,11 +1,11 @@
 //! `write_output`: encodes the render camera's frame buffers into its output files (PNG,
-//! EXR) and writes them whole-or-nothing.
+//! EXR); the runner writes them with the run's other files, all or nothing.
 //!
 //! **Reads:** `outputs.image`; the render `Camera`'s `outputs` as redirected by
 //! `inputs.outputs` (`-o`, `bench`'s scratch directory) and its `Imager` (PNG only).
-//! **Writes:** files on disk (reported to the runner in `Work::files`).
+//! **Writes:** files, handed to the runner encoded (`Work::pending`), which commits them.
 //! **Runs when:** a shaded image exists and the camera (or the command line) lists outputs.
-//! **After this stage:** every output file exists complete, or none was touched.
+//! **After the run:** every output file exists complete, or none was touched.
 
 use hecs::World;
 
@@ -13,7 +13,7 @@ use super::prelude::*;
 use crate::components::{ImageFormat, OutputSpec, Pass};
 use crate::farm::PartRun;
 use crate::frame::Slot;
-use crate::image_io::{commit_all, encode_exr, encode_png, PendingFile};
+use crate::image_io::{encode_exr, encode_png, PendingFile};
 use crate::scene_view::render_view;
 
 /// The outputs this run writes: the camera's, with the command line's overrides.
@@ -76,11 +76,7 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
     if frame.cancelled() {
         return Err(StageError::Interrupted);
     }
-    let written = commit_all(&pending).map_err(|(path, e)| StageError::Write {
-        path,
-        message: e.to_string(),
-    })?;
-    Ok(Work::new(written.len() as u64, "files").with_files(written))
+    Ok(Work::new(pending.len() as u64, "files").with_pending(pending))
 }
 
 /// A farm part's run writes its part file (to `-o`) instead of the camera outputs.
@@ -105,12 +101,7 @@ fn write_part(run: &PartRun, frame: &Frame) -> Result<Work, StageError> {
     if frame.cancelled() {
         return Err(StageError::Interrupted);
     }
-    let written =
-        commit_all(&[PendingFile { path, bytes }]).map_err(|(path, e)| StageError::Write {
-            path,
-            message: e.to_string(),
-        })?;
-    Ok(Work::new(written.len() as u64, "files").with_files(written))
+    Ok(Work::new(1, "files").with_pending(vec![PendingFile { path, bytes }]))
 }
 
 #[cfg(test)]
@@ -131,7 +122,8 @@ mod tests {
         );
         let work = run(&world, &frame).unwrap();
         assert_eq!(work.files, vec![dir.join("tiny.exr")]);
-        assert!(work.files[0].is_file());
+        assert!(!work.pending[0].bytes.is_empty());
+        assert!(!dir.exists(), "the runner, not the stage, writes files");
         assert!(work.output.is_none(), "write_output has no output slot");
         let _ = std::fs::remove_dir_all(&dir);
     }

@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 use super::request::PreparedBake;
 use super::texels::TexelResults;
 use super::{BakeReport, TexelImage};
-use crate::components::{BakeFormat, BakeKind};
+use crate::components::{BakeFormat, BakeKind, BakeRequest, BakeTarget};
 use crate::image_io::PendingFile;
 use crate::stage_error::StageError;
 
@@ -31,15 +31,9 @@ pub fn encode_request(
         move |message| StageError::Write { path, message }
     };
     let mut pending = Vec::new();
-    let safe_name = p.request.name.replace(['/', '\\'], "_");
+    let safe_name = safe_name(&p.request);
     for (target, img) in p.request.targets.iter().zip(&results.images) {
-        let file = target.file.clone().unwrap_or_else(|| {
-            PathBuf::from(format!(
-                "{safe_name}_{}.{}",
-                target.kind.suffix(),
-                target.format.extension()
-            ))
-        });
+        let file = target_file(&safe_name, target);
         let color = matches!(target.kind, BakeKind::Lightmap { .. } | BakeKind::Albedo);
         let signed = matches!(target.kind, BakeKind::Normals { .. });
         let bytes = encode(img, target.format, color, signed).map_err(write_error(&file))?;
@@ -67,6 +61,49 @@ pub fn encode_request(
         }
     }
     Ok(BakedFiles { pending })
+}
+
+/// The request's name as used in file names (path separators replaced).
+fn safe_name(request: &BakeRequest) -> String {
+    request.name.replace(['/', '\\'], "_")
+}
+
+/// The file of one target, relative to the bake directory.
+fn target_file(safe_name: &str, target: &BakeTarget) -> PathBuf {
+    target.file.clone().unwrap_or_else(|| {
+        PathBuf::from(format!(
+            "{safe_name}_{}.{}",
+            target.kind.suffix(),
+            target.format.extension()
+        ))
+    })
+}
+
+/// Every file a request writes under `dir`, in the order [`encode_request`] writes them
+/// (targets, bent normals, mask), known before baking (output path checks).
+pub fn planned_paths(request: &BakeRequest, dir: &Path) -> Vec<PathBuf> {
+    let safe_name = safe_name(request);
+    let mut paths: Vec<PathBuf> = request
+        .targets
+        .iter()
+        .map(|t| dir.join(target_file(&safe_name, t)))
+        .collect();
+    let bent = request.targets.iter().any(|t| {
+        matches!(
+            t.kind,
+            BakeKind::AmbientOcclusion {
+                bent_normals: true,
+                ..
+            }
+        )
+    });
+    if bent {
+        paths.push(dir.join(format!("{safe_name}_bent_normals.exr")));
+    }
+    if request.mask && !request.targets.is_empty() {
+        paths.push(dir.join(format!("{safe_name}_mask.png")));
+    }
+    paths
 }
 
 /// The report of one baked request.

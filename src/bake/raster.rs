@@ -32,7 +32,8 @@ pub struct Coverage {
     pub per_texel: u32,
     /// `width · height · per_texel` slots, texel-major, row 0 at the top.
     pub samples: Vec<Option<TexelSample>>,
-    /// Sub-samples inside two or more triangles (UV overlap), counted once per extra claim.
+    /// Sub-samples inside two or more triangles (UV overlap), each counted once (so at most
+    /// `inside`).
     pub overlaps: u64,
     /// Sub-samples inside some triangle.
     pub inside: u64,
@@ -69,6 +70,7 @@ pub fn rasterize(uvs: &[[Vec2; 3]], width: u32, height: u32, texel_samples: u32)
     let mut samples = vec![None; width as usize * height as usize * per_texel as usize];
     let mut fallback: Vec<Option<TexelSample>> = vec![None; width as usize * height as usize];
     let mut overlaps = 0u64;
+    let mut claimed_twice = vec![false; samples.len()];
     let mut inside_count = 0u64;
     let (w, h) = (width as f64, height as f64);
     for (t, corners) in uvs.iter().enumerate() {
@@ -102,7 +104,8 @@ pub fn rasterize(uvs: &[[Vec2; 3]], width: u32, height: u32, texel_samples: u32)
                         continue;
                     };
                     any_inside = true;
-                    let slot = &mut samples[texel * per_texel as usize + s as usize];
+                    let index = texel * per_texel as usize + s as usize;
+                    let slot = &mut samples[index];
                     match slot {
                         None => {
                             *slot = Some(TexelSample {
@@ -112,7 +115,10 @@ pub fn rasterize(uvs: &[[Vec2; 3]], width: u32, height: u32, texel_samples: u32)
                             });
                             inside_count += 1;
                         }
-                        Some(_) if strict => overlaps += 1,
+                        Some(_) if strict && !claimed_twice[index] => {
+                            claimed_twice[index] = true;
+                            overlaps += 1;
+                        }
                         Some(_) => {}
                     }
                 }

@@ -129,6 +129,13 @@ fn prepare(
         world_area += 0.5 * (b - a).cross(c - a).length() as f64;
         uv_area += 0.5 * ((uv[1] - uv[0]).perp_dot(uv[2] - uv[0]) as f64).abs();
     }
+    if uv_area.is_nan() || uv_area <= 0.0 {
+        // All UVs at one point or on a line: nothing could be covered (issue 18, family 8).
+        return Err((
+            "its UVs cover no area (every triangle's UVs lie at one point or on a line)".into(),
+            Some("give the mesh real UVs, or set `uvs: Unwrap` to generate lightmap UVs".into()),
+        ));
+    }
     let (w, h) = bake_resolution(request.resolution, world_area, uv_area)
         .map_err(|e| (e.to_string(), None))?;
     let coverage = rasterize(&uvs, w, h, request.texel_samples);

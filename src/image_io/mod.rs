@@ -1,6 +1,6 @@
-//! Image writers: PNG (8-bit sRGB) and OpenEXR (linear f32 layers). Files are written to a
-//! temporary name in the destination directory and renamed into place, so a file either
-//! exists whole or not at all.
+//! Image writers: PNG (8-bit sRGB) and OpenEXR (linear f32 layers), and the all-or-nothing
+//! commit of a run's files ([`commit_all`]: temporaries, then renames, rolled back on
+//! failure).
 
 mod atomic;
 mod exr_writer;
@@ -8,6 +8,6 @@ pub mod imager;
 mod png_writer;
 pub mod srgb;
 
-pub use atomic::{commit_all, PendingFile};
+pub use atomic::{commit_all, commit_state, remove_stale, PendingFile};
 pub use exr_writer::encode_exr;
 pub use png_writer::encode_png;

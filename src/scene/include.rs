@@ -18,6 +18,7 @@ use super::diagnostics::{Diagnostic, SourceFile, Sources};
 use super::import::{self, SourceMap, SourcePos};
 pub use super::message::io_reason;
 use crate::hash::Fnv64;
+use crate::limits::{read_file, MAX_SCENE_FILE_BYTES};
 
 /// Deepest include chain followed (guards the stack against absurd chains of distinct files).
 const MAX_INCLUDE_DEPTH: usize = 64;
@@ -61,7 +62,7 @@ pub fn load_files(root: &Path, text: Option<&str>, formats: &[import::Format]) -
     };
     let bytes = match text {
         Some(text) => Ok(text.as_bytes().to_vec()),
-        None => fs::read(root).map_err(|e| io_reason(&e)),
+        None => read_file(root, MAX_SCENE_FILE_BYTES, "scene file").map_err(|e| io_reason(&e)),
     };
     match bytes {
         Ok(bytes) => loader.read_file(format, root.to_path_buf(), key, &bytes),
@@ -162,7 +163,7 @@ impl Loader<'_> {
                 return;
             }
         };
-        match fs::read(path) {
+        match read_file(path, MAX_SCENE_FILE_BYTES, "scene file") {
             Ok(bytes) => self.read_file(format, path.to_path_buf(), key, &bytes),
             Err(e) => {
                 let message = cannot_read(io_reason(&e));

@@ -48,6 +48,7 @@ pub(crate) mod spawn;
 pub(crate) mod suggest;
 pub(crate) mod validate;
 pub(crate) mod volume;
+pub mod world_checks;
 
 use std::path::Path;
 use std::sync::Arc;
@@ -85,13 +86,13 @@ pub struct LoadedScene {
 
 /// Loads and validates the scene at `path`.
 pub fn load_scene(path: &Path) -> Result<LoadedScene, SceneErrors> {
-    load(path, None, import::FORMATS)
+    load(path, None, import::FORMATS).and_then(world_checks::check_loaded)
 }
 
 /// Loads a scene from `text` as if it were the file at `path` (includes and OBJ files are
 /// still read from disk, relative to `path`).
 pub fn load_scene_str(text: &str, path: &Path) -> Result<LoadedScene, SceneErrors> {
-    load(path, Some(text), import::FORMATS)
+    load(path, Some(text), import::FORMATS).and_then(world_checks::check_loaded)
 }
 
 /// Parses OBJ text into a checked triangle mesh (degenerate and non-finite triangles

@@ -82,7 +82,11 @@ pub fn suggestion(wrong: &str, candidates: &[&str], what: &str) -> Option<String
             "expected {}",
             quoted_list(candidates.iter().copied())
         )),
-        _ => None,
+        // Long lists too (Camera, Options): a user who typed an unknown name needs them.
+        _ => Some(format!(
+            "expected one of {}",
+            quoted_list(candidates.iter().copied())
+        )),
     }
 }
 

@@ -20,6 +20,10 @@ use crate::settings::{
     BvhQuality, Face, Integrator, PhotonMapSettings, PhotonSettings, PixelFilter, RenderSettings,
 };
 
+/// The widest Gaussian pixel filter (truncation radius, pixels): a wider one spreads each
+/// pixel's samples over more of the frame than it covers (issue 18, family 8).
+pub const MAX_FILTER_RADIUS: f64 = 64.0;
+
 /// All files' elements, in load order.
 #[derive(Debug, Default)]
 pub struct Merged<'a> {
@@ -131,6 +135,12 @@ pub fn settings(src: &mut Sources, options: Option<&Item<'_, OptionsDesc>>) -> R
                 let path = item.at(&format!(".filter.Gaussian.{name}"));
                 if ck.finite(&path, name, x) && x <= 0.0 {
                     ck.error(&path, format!("{name} must be positive, found {x}"));
+                } else if name == "radius" && x > MAX_FILTER_RADIUS {
+                    // Samples that far from their pixel leave the image: a black frame.
+                    ck.error(
+                        &path,
+                        format!("radius must be at most {MAX_FILTER_RADIUS} pixels, found {x}"),
+                    );
                 }
             }
             PixelFilter::Gaussian {

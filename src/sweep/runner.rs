@@ -7,7 +7,8 @@ use glam::Vec3;
 use hecs::World;
 
 use crate::frame::{Frame, Tasks};
-use crate::scene::{load_scene, SceneErrors};
+use crate::scene::load_scene;
+use crate::scene::SceneErrors;
 use crate::schedule::StageError;
 use crate::settings::{Integrator, RenderSettings};
 use crate::sweep::knob::{Knob, KnobError};

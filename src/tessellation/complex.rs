@@ -194,6 +194,18 @@ pub fn tessellate(src: &dyn PatchSource, opts: &Options) -> Result<Tessellation,
         })
         .collect();
 
+    // Refuse before dicing what would not fit (two triangles per interior cell, plus the
+    // stitching, which never adds more than the boundary).
+    let triangles = interior.iter().fold(0u64, |t, &(mu, mv)| {
+        t.saturating_add(2 * u64::from(mu) * u64::from(mv))
+    });
+    if triangles > opts.max_triangles {
+        return Err(GeometryError::TooManyTriangles {
+            triangles,
+            limit: opts.max_triangles,
+        });
+    }
+
     // 4. Shared vertices: corners, then each edge's interior vertices.
     let mut edge_first = Vec::with_capacity(edges.len());
     let mut shared = corner_count as u32;

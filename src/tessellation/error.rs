@@ -32,6 +32,14 @@ pub enum GeometryError {
         /// What is missing.
         message: String,
     },
+    /// The approximation's rates ask for more triangles than the memory budget allows
+    /// (found before dicing).
+    TooManyTriangles {
+        /// Triangles the rates give.
+        triangles: u64,
+        /// The most the budget allows.
+        limit: u64,
+    },
 }
 
 impl fmt::Display for GeometryError {
@@ -50,6 +58,10 @@ impl fmt::Display for GeometryError {
                 "the approximation measures edges in raster pixels but the scene has no render camera",
             ),
             GeometryError::MissingData { message } => f.write_str(message),
+            GeometryError::TooManyTriangles { triangles, limit } => write!(
+                f,
+                "its approximation would make {triangles} triangles, more than the {limit} the memory budget allows (coarsen the approximation, or raise --memory-limit)"
+            ),
         }
     }
 }

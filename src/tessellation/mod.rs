@@ -104,6 +104,10 @@ pub struct Options<'a> {
     pub view: Option<&'a RasterView>,
     /// Store per-vertex derivatives.
     pub derivatives: bool,
+    /// The most triangles the rates may ask for: checked before dicing, so a hostile rate
+    /// (`Parametric(u: 4096, v: 4096)`, a tiny `Spatial` edge) fails instead of allocating
+    /// (`u64::MAX`: no limit; the stage derives it from the run's memory budget).
+    pub max_triangles: u64,
 }
 
 /// Tessellates a parametric surface component.

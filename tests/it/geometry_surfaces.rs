@@ -26,6 +26,7 @@ fn run(surface: &Surface, a: &Approximation, d: Option<&Displacement>) -> Tessel
         displacement: d,
         view: None,
         derivatives: false,
+        max_triangles: u64::MAX,
     };
     tessellate_surface(surface, &opts).expect("tessellates")
 }
@@ -310,6 +311,7 @@ fn closed_surfaces_stay_closed_after_tessellation_and_displacement() {
         displacement: Some(&d),
         view: None,
         derivatives: true,
+        max_triangles: u64::MAX,
     };
     let m = tessellate_mesh(&stairs, &opts).unwrap();
     assert_eq!(edge_defects(&m.mesh), (0, 0), "displaced stairs");

@@ -20,6 +20,9 @@ use crate::scene::suggest::suggestion;
 /// Reads one RON scene file (the [`super::ReadFn`] of `.ron`).
 pub fn read(path: &Path, bytes: &[u8]) -> Result<ReadScene, Vec<Diagnostic>> {
     let text = std::str::from_utf8(bytes).map_err(|e| vec![not_utf8(path, bytes, &e)])?;
+    // A UTF-8 byte order mark (editors on Windows write one) is not part of the scene; the
+    // columns of line 1 are then counted as the editor shows them.
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let index = SpanIndex::new(text);
     match parse(text) {
         Ok(desc) => Ok(ReadScene {
@@ -50,10 +53,15 @@ pub fn read(path: &Path, bytes: &[u8]) -> Result<ReadScene, Vec<Diagnostic>> {
     }
 }
 
+/// How deep values may nest in a RON scene file (parentheses and brackets inside each
+/// other): deeper input is refused with this limit instead of overflowing the stack.
+pub const MAX_NESTING: usize = 128;
+
 /// Parses a scene description from RON text.
 pub fn parse(text: &str) -> Result<SceneDesc, SpannedError> {
     ron::Options::default()
         .with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME)
+        .with_recursion_limit(MAX_NESTING)
         .from_str(text)
 }
 
@@ -223,6 +231,14 @@ fn ron_message(code: &RonError) -> (String, Option<String>) {
         RonError::Eof => (
             "unexpected end of file".into(),
             Some("a `(` or `[` is not closed".into()),
+        ),
+        RonError::ExceededRecursionLimit => (
+            format!("values nested deeper than {MAX_NESTING} levels"),
+            Some(
+                "a scene file nests at most that deep: declare inner shader nodes as \
+                 phenomena and call them with Graph(…)"
+                    .into(),
+            ),
         ),
         RonError::TrailingCharacters => (
             "unexpected text after the scene".into(),

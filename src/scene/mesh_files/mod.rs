@@ -64,9 +64,11 @@ pub fn mesh_file(mesh: &MeshDesc) -> Option<(MeshFormat, &str)> {
 
 /// Reads and parses the mesh file at `path`.
 pub fn read(format: MeshFormat, path: &Path) -> Result<MeshData, MeshFileError> {
-    let bytes = std::fs::read(path).map_err(|e| MeshFileError::Read {
-        reason: super::include::io_reason(&e),
-    })?;
+    use crate::limits::{read_file, MAX_MESH_FILE_BYTES};
+    let bytes =
+        read_file(path, MAX_MESH_FILE_BYTES, "mesh file").map_err(|e| MeshFileError::Read {
+            reason: super::include::io_reason(&e),
+        })?;
     format.parse(&bytes)
 }
 

@@ -11,6 +11,7 @@
 //! Phenomena are expanded inline at every call (their arguments compiled in the caller's
 //! context, missing ones from the declared defaults), so a program never calls anything.
 
+mod depth;
 mod phenomena;
 
 use std::sync::Arc;
@@ -465,6 +466,10 @@ impl Compiler<'_, '_> {
             );
             return None;
         };
+        if self.ph.too_deep[i] {
+            // Reported where the chain starts (`nodes_depth`).
+            return None;
+        }
         if !self.stack.contains(&i) {
             ensure_checked(self.src, self.ph, i);
         }

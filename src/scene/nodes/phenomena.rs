@@ -33,6 +33,9 @@ pub struct Phenomena<'a> {
     pub(super) checked: Vec<Option<Checked>>,
     /// Phenomena on a cycle (never expanded).
     pub(super) cyclic: Vec<bool>,
+    /// Phenomena whose call chains nest deeper than the limit (never expanded; see
+    /// [`super::nodes_depth`]).
+    pub(super) too_deep: Vec<bool>,
     /// Image textures read so far, by (path, clamp, sRGB), `None` when unreadable.
     pub(super) textures: TextureCache,
 }
@@ -66,9 +69,11 @@ pub fn check_phenomena<'a>(src: &mut Sources, m: &'a Merged<'a>) -> Phenomena<'a
         by_name,
         checked: vec![None; n],
         cyclic: vec![false; n],
+        too_deep: vec![false; n],
         textures: HashMap::new(),
     };
     find_cycles(src, &mut ph);
+    super::depth::check_depth(src, &mut ph);
     for i in 0..n {
         ensure_checked(src, &mut ph, i);
     }
@@ -134,7 +139,7 @@ fn find_cycles(src: &mut Sources, ph: &mut Phenomena<'_>) {
     }
 }
 
-fn collect_calls(
+pub(super) fn collect_calls(
     d: &InputDesc,
     path: &str,
     by_name: &HashMap<&str, usize>,
@@ -229,6 +234,14 @@ pub(super) fn variant_name(n: &NodeDesc) -> &'static str {
 /// Checks phenomenon `i` (once), after the phenomena it calls.
 pub(super) fn ensure_checked(src: &mut Sources, ph: &mut Phenomena<'_>, i: usize) {
     if ph.checked[i].is_some() {
+        return;
+    }
+    if ph.too_deep[i] {
+        // Reported by `nodes_depth`; checking the body would recurse down the whole chain.
+        ph.checked[i] = Some(Checked {
+            params: Vec::new(),
+            output: None,
+        });
         return;
     }
     // Mark first: acyclic calls cannot come back here.

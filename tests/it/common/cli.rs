@@ -1,8 +1,68 @@
-//! Running the `stagelight` binary from tests: the command, a fresh scratch directory per
-//! test, and the output as text.
+//! Running the `stagelight` binary on scenes written into a scratch directory.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
+
+/// The binary under test, started in `dir`.
+pub fn stagelight_in(dir: &Path) -> Command {
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_stagelight"));
+    cmd.current_dir(dir);
+    cmd
+}
+
+/// A fresh, empty scratch directory for test `name`.
+pub fn scratch_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("stagelight-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// Runs `stagelight args…` in `dir`.
+pub fn run_in(dir: &Path, args: &[&str]) -> Output {
+    stagelight_in(dir)
+        .args(args)
+        .output()
+        .expect("run stagelight")
+}
+
+/// The process's stderr as text.
+pub fn stderr_of(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// The names in `dir`, sorted.
+pub fn dir_names(dir: &Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    names
+}
+
+/// A small scene (an 8×8 camera looking at the z = 0 plane from z = 3, a grey material)
+/// with the given objects, instances (all members of the root group), camera outputs and
+/// extra top-level fields. Line 5 holds the first object.
+pub fn small_scene(objects: &str, instances: &str, outputs: &str, extra: &str) -> String {
+    let members: Vec<String> = instances
+        .split("(name: \"")
+        .skip(1)
+        .map(|s| format!("\"{}\"", s.split('"').next().unwrap_or_default()))
+        .collect();
+    format!(
+        "Scene(\n    materials: [(name: \"grey\", shader: Lambert(albedo: (0.5, 0.5, 0.5)))],\n    lights: [(name: \"sun\", kind: Point(position: (0, 0, 3)), intensity: 10.0)],\n    objects: [\n        {objects}\n    ],\n    instances: [{instances}],\n    groups: [(name: \"world\", members: [{}])],\n    cameras: [(name: \"cam\", fov_y: 40.0, resolution: (8, 8),\n        placement: LookAt(eye: (0, 0, 3), target: (0, 0, 0)), outputs: [{outputs}])],\n    render: (root: \"world\", camera: \"cam\"),\n{extra})\n",
+        members.join(", ")
+    )
+}
+
+/// The unit quad `[-1, 1]²` in z = 0 as an inline mesh object named `name`.
+pub fn quad_object(name: &str) -> String {
+    format!(
+        "(name: \"{name}\", mesh: Inline(vertices: [(-1, -1, 0), (1, -1, 0), (1, 1, 0), (-1, 1, 0)], uvs: [(0, 0), (1, 0), (1, 1), (0, 1)], polygons: [[0, 1, 2, 3]]), material: \"grey\"),"
+    )
+}
 
 /// The `stagelight` binary under test.
 pub fn bin() -> Command {
@@ -11,10 +71,7 @@ pub fn bin() -> Command {
 
 /// A fresh, empty directory for `test` (unique per process).
 pub fn scratch(test: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("stagelight-{test}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+    scratch_dir(test)
 }
 
 /// Runs `cmd` to completion.
@@ -24,5 +81,5 @@ pub fn run(cmd: &mut Command) -> Output {
 
 /// Its standard error as text.
 pub fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
+    stderr_of(o)
 }

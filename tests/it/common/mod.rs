@@ -5,6 +5,7 @@ pub mod cli;
 mod meshes;
 mod rays;
 mod scene_text;
+pub use cli::*;
 pub use meshes::*;
 pub use rays::*;
 pub use scene_text::*;

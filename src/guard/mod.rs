@@ -1,0 +1,19 @@
+//! Guards against hostile input (issue 18): checks that run on a loaded scene and on a run's
+//! plan before any stage does, so that input the renderer cannot handle is refused with a
+//! located error instead of reaching a panic, an abort or a clobbered file.
+//!
+//! - [`extent`]: coordinates beyond what `f32` tracing supports;
+//! - [`outputs`]: outputs that would overwrite an input or each other;
+//! - [`empty`]: placed objects without geometry (a located warning);
+//! - [`limits`]: hard limits (worker threads, file sizes);
+//! - [`interrupt`]: SIGINT and SIGTERM stop a run within [`interrupt::GRACE`].
+//!
+//! The README's "Reliability" section lists every guarantee with its limit and its test.
+
+pub use crate::scene::world_checks::{empty, extent};
+pub mod interrupt;
+pub use crate::limits;
+pub mod locate;
+pub mod outputs;
+
+pub use crate::scene::message::io_reason;

@@ -1,0 +1,273 @@
+//! Output paths that would overwrite an input or each other (issue 18, family 5), refused
+//! before anything runs: `check` and every command that writes files run the same test.
+//!
+//! The inputs are the scene file, its includes and every file a scene names outside its
+//! outputs (meshes, textures, environment maps, displacement maps); the outputs are the
+//! render camera's files (after `-o`), the bake files of every request (in the bake
+//! directory) and `--stats-json`. Two paths are the same file when they name the same
+//! directory entry: both are compared absolute, through the real (symlink-free) parent
+//! directory where it exists.
+
+use std::path::{Component, Path, PathBuf};
+
+use hecs::World;
+
+use crate::components::{BakeRequest, Camera, Name, RenderCamera, SourceLink};
+use crate::frame::RunInputs;
+
+/// Who asked for an output file: a command-line flag or a scene element.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Origin {
+    /// A flag (`-o`, `--stats-json`).
+    Flag(&'static str),
+    /// A scene element (its `file:line:column` and what it is, e.g. `camera "cam" output 2`).
+    Scene(SourceLink, String),
+}
+
+/// One file the run would write.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct PlannedOutput {
+    /// The destination as the run will write it.
+    pub path: PathBuf,
+    /// Who asked for it.
+    pub origin: Origin,
+}
+
+/// A refused output: the text printed (located for scene elements) and whether a flag caused
+/// it (a usage error, exit 2) or the scene (exit 1).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Clash {
+    /// The complete message, `file:line:col: error: …` or `error: …`, with a `help:` line.
+    pub text: String,
+    /// True when a command-line flag names the refused output.
+    pub usage: bool,
+}
+
+/// The files a run with `inputs` writes for `world`, `stats_json` last.
+pub fn planned_outputs(
+    world: &World,
+    inputs: &RunInputs,
+    stats_json: Option<&Path>,
+) -> Vec<PlannedOutput> {
+    let mut out = Vec::new();
+    if inputs.tasks.bake {
+        let mut requests: Vec<_> = world
+            .query::<(hecs::Entity, &BakeRequest, Option<&SourceLink>)>()
+            .iter()
+            .map(|(e, r, l)| (e.to_bits(), r.clone(), l.cloned()))
+            .collect();
+        requests.sort_by_key(|(e, ..)| *e);
+        for (_, request, link) in requests {
+            for path in crate::bake::files::planned_paths(&request, &inputs.bake_dir) {
+                out.push(PlannedOutput {
+                    path,
+                    origin: Origin::Scene(
+                        link.clone().unwrap_or_else(unknown_link),
+                        format!("bake request on instance \"{}\"", request.name),
+                    ),
+                });
+            }
+        }
+    }
+    if inputs.tasks.render && !inputs.outputs.discard {
+        let camera = world
+            .query::<(&Camera, &RenderCamera, Option<&Name>, Option<&SourceLink>)>()
+            .iter()
+            .next()
+            .map(|(c, _, n, l)| (c.clone(), n.cloned(), l.cloned()));
+        if let Some((camera, name, link)) = camera {
+            let name = name.map_or_else(|| "?".to_string(), |n| n.0);
+            let applied = inputs.outputs.apply(&camera.outputs).unwrap_or_default();
+            for (k, spec) in applied.into_iter().enumerate() {
+                let origin = if k == 0 && inputs.outputs.first.is_some() {
+                    Origin::Flag("-o")
+                } else {
+                    Origin::Scene(
+                        link.clone().unwrap_or_else(unknown_link),
+                        format!("camera \"{name}\" output {}", k + 1),
+                    )
+                };
+                out.push(PlannedOutput {
+                    path: spec.path,
+                    origin,
+                });
+            }
+        }
+    }
+    if let Some(path) = stats_json {
+        out.push(PlannedOutput {
+            path: path.to_path_buf(),
+            origin: Origin::Flag("--stats-json"),
+        });
+    }
+    out
+}
+
+fn unknown_link() -> SourceLink {
+    SourceLink {
+        file: PathBuf::new(),
+        line: 1,
+        column: 1,
+    }
+}
+
+/// Every input file of the scene at `scene` (as paths the loader opens): the scene files
+/// and each file they name outside their outputs. `text` stands in for the root file when
+/// the scene was loaded from a string.
+pub fn scene_inputs(scene: &Path, text: Option<&str>) -> Vec<PathBuf> {
+    let loaded = crate::scene::include::load_files(scene, text, crate::scene::import::FORMATS);
+    let mut inputs = Vec::new();
+    for (file, desc) in loaded.sources.files.iter().zip(&loaded.scenes) {
+        inputs.push(file.path.clone());
+        let Some(desc) = desc else { continue };
+        let Ok(value) = serde_json::to_value(desc) else {
+            continue;
+        };
+        let mut named = Vec::new();
+        named_files(&value, &mut named);
+        inputs.extend(named.into_iter().map(|n| file.dir().join(n)));
+    }
+    inputs
+}
+
+/// Strings under a `file` key anywhere in `value`, except inside `outputs` lists (camera
+/// and bake outputs are destinations, not inputs).
+fn named_files(value: &serde_json::Value, out: &mut Vec<String>) {
+    match value {
+        serde_json::Value::Object(map) => {
+            for (key, v) in map {
+                match (key.as_str(), v) {
+                    ("outputs", _) => {}
+                    ("file", serde_json::Value::String(s)) => out.push(s.clone()),
+                    _ => named_files(v, out),
+                }
+            }
+        }
+        serde_json::Value::Array(items) => items.iter().for_each(|v| named_files(v, out)),
+        _ => {}
+    }
+}
+
+/// The identity of a path for comparison: absolute, `.` and `..` resolved, through the real
+/// parent directory when it exists.
+pub fn same_file_key(path: &Path) -> PathBuf {
+    let absolute = std::path::absolute(path).unwrap_or_else(|_| path.to_path_buf());
+    let mut clean = PathBuf::new();
+    for c in absolute.components() {
+        match c {
+            Component::ParentDir => {
+                clean.pop();
+            }
+            Component::CurDir => {}
+            other => clean.push(other),
+        }
+    }
+    if let Ok(real) = std::fs::canonicalize(&clean) {
+        return real;
+    }
+    match (clean.parent(), clean.file_name()) {
+        (Some(dir), Some(name)) => std::fs::canonicalize(dir)
+            .map(|d| d.join(name))
+            .unwrap_or(clean),
+        _ => clean,
+    }
+}
+
+/// Refuses every output that is an input or that an earlier output already writes.
+pub fn clashes(inputs: &[PathBuf], outputs: &[PlannedOutput]) -> Vec<Clash> {
+    let input_keys: Vec<PathBuf> = inputs.iter().map(|p| same_file_key(p)).collect();
+    let mut seen: Vec<(PathBuf, usize)> = Vec::new();
+    let mut found = Vec::new();
+    for (i, out) in outputs.iter().enumerate() {
+        let key = same_file_key(&out.path);
+        let problem = if let Some(k) = input_keys.iter().position(|k| *k == key) {
+            let what = if k == 0 {
+                "the scene file"
+            } else {
+                "an input of the scene"
+            };
+            Some(format!(
+                "{} would overwrite {what} {}",
+                describe(out),
+                inputs[k].display()
+            ))
+        } else if let Some((_, first)) = seen.iter().find(|(k, _)| *k == key) {
+            Some(format!(
+                "{} is also written by {}",
+                describe(out),
+                describe(&outputs[*first])
+            ))
+        } else {
+            None
+        };
+        seen.push((key, i));
+        if let Some(message) = problem {
+            found.push(clash(out, message));
+        }
+    }
+    found
+}
+
+/// `--stats-json out.png`, `camera "cam" output 2 ("a.png")`.
+fn describe(out: &PlannedOutput) -> String {
+    match &out.origin {
+        Origin::Flag(flag) => format!("{flag} {}", out.path.display()),
+        Origin::Scene(_, what) => format!("{what} (\"{}\")", out.path.display()),
+    }
+}
+
+fn clash(out: &PlannedOutput, message: String) -> Clash {
+    let help = "give every output its own file, and none the name of an input";
+    match &out.origin {
+        Origin::Flag(_) => Clash {
+            text: format!("error: {message}\n  help: {help}"),
+            usage: true,
+        },
+        Origin::Scene(link, _) => Clash {
+            text: format!(
+                "{}:{}:{}: error: {message}\n  help: {help}",
+                link.file.display(),
+                link.line,
+                link.column
+            ),
+            usage: false,
+        },
+    }
+}
+
+/// Everything refused for a run of the scene at `scene`.
+pub fn check(
+    scene: &Path,
+    world: &World,
+    inputs: &RunInputs,
+    stats_json: Option<&Path>,
+) -> Vec<Clash> {
+    clashes(
+        &scene_inputs(scene, None),
+        &planned_outputs(world, inputs, stats_json),
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn keys_resolve_dots_and_compare_equal() {
+        assert_eq!(
+            same_file_key(Path::new("a/./b/../c.png")),
+            same_file_key(Path::new("a/c.png"))
+        );
+    }
+
+    #[test]
+    fn named_files_skip_outputs() {
+        let v = serde_json::json!({
+            "objects": [{"mesh": {"Obj": {"file": "m.obj"}}}],
+            "cameras": [{"outputs": [{"file": "out.png"}]}],
+        });
+        let mut out = Vec::new();
+        named_files(&v, &mut out);
+        assert_eq!(out, vec!["m.obj".to_string()]);
+    }
+}

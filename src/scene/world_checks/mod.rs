@@ -1,0 +1,20 @@
+//! The checks of a loaded scene that need the spawned world: the supported extent
+//! ([`extent`]) and objects without geometry ([`empty`]). `load_scene` runs them, so every
+//! caller of the loader gets them.
+
+pub mod empty;
+pub mod extent;
+
+use super::{LoadedScene, SceneErrors};
+
+/// Refuses the scene with every extent problem located, and adds the warnings about
+/// objects without geometry.
+pub fn check_loaded(mut scene: LoadedScene) -> Result<LoadedScene, SceneErrors> {
+    let errors = extent::check_world(&scene.world);
+    if errors.is_empty() {
+        scene.located_warnings.extend(empty::warnings(&scene.world));
+        Ok(scene)
+    } else {
+        Err(SceneErrors(errors))
+    }
+}

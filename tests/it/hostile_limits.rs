@@ -1,0 +1,167 @@
+//! Issue 18, families 3, 4 and 9: bounded recursion (RON nesting, phenomenon chains),
+//! bounded thread counts and file sizes, and a UTF-8 byte order mark accepted.
+
+use crate::common::{quad_object, run_in, scratch_dir, small_scene, stderr_of};
+
+#[test]
+fn threads_above_the_limit_are_refused() {
+    let dir = scratch_dir("threads-limit");
+    let o = run_in(&dir, &["render", "scene.ron", "--threads", "100000"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(
+        stderr_of(&o),
+        "error: invalid value '100000' for '--threads <THREADS>': 100000 is not in 1..=1024\n\nFor more information, try '--help'.\n"
+    );
+}
+
+#[test]
+fn deeply_nested_shader_nodes_state_the_limit() {
+    let dir = scratch_dir("ron-nesting");
+    let mut node = "(0.5, 0.5, 0.5)".to_string();
+    for _ in 0..80 {
+        node = format!("Mul({node}, (1, 1, 1))");
+    }
+    let scene = small_scene(&quad_object("quad"), r#"(name: "q", of: "quad")"#, "", "").replace(
+        r#"shader: Lambert(albedo: (0.5, 0.5, 0.5))"#,
+        &format!(r#"shader: Lambert(albedo: (1, 1, 1)), bind: {{"albedo": {node}}}"#),
+    );
+    std::fs::write(dir.join("scene.ron"), scene).unwrap();
+    let o = run_in(&dir, &["check", "scene.ron"]);
+    assert_eq!(o.status.code(), Some(1));
+    let stderr = stderr_of(&o);
+    assert!(
+        stderr.starts_with("scene.ron:2:"),
+        "located in the file: {stderr}"
+    );
+    assert!(
+        stderr.contains(": error: values nested deeper than 128 levels\n  help: a scene file nests at most that deep: declare inner shader nodes as phenomena and call them with Graph(…)\n"),
+        "{stderr}"
+    );
+    assert!(!stderr.contains("recursion_limit"), "{stderr}");
+}
+
+#[test]
+fn a_chain_of_phenomena_beyond_the_limit_is_refused_where_it_starts() {
+    let dir = scratch_dir("phenomenon-chain");
+    let n = 3000;
+    let mut phenomena = Vec::new();
+    for i in 0..n {
+        let body = if i + 1 < n {
+            format!(r#"Graph("p{}", {{}})"#, i + 1)
+        } else {
+            "(0.5, 0.5, 0.5)".to_string()
+        };
+        phenomena.push(format!(r#"(name: "p{i}", output: {body})"#));
+    }
+    let scene = small_scene(
+        &quad_object("quad"),
+        r#"(name: "q", of: "quad")"#,
+        "",
+        &format!("    phenomena: [\n{}\n    ],\n", phenomena.join(",\n")),
+    )
+    .replace(
+        r#"shader: Lambert(albedo: (0.5, 0.5, 0.5))"#,
+        r#"shader: Lambert(albedo: (1, 1, 1)), bind: {"albedo": Graph("p0", {})}"#,
+    );
+    std::fs::write(dir.join("scene.ron"), scene).unwrap();
+    let o = run_in(&dir, &["check", "scene.ron"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert_eq!(
+        stderr_of(&o),
+        "scene.ron:13:22: error: phenomenon \"p0\" starts a chain of 3000 nested phenomenon calls (p0 → p1 → … → p2999); the limit is 64\n  help: call fewer phenomena inside each other: inline some of them\n1 error in scene.ron; nothing rendered\n"
+    );
+}
+
+#[test]
+fn an_endless_include_stops_at_the_size_limit() {
+    let dir = scratch_dir("include-dev-zero");
+    std::os::unix::fs::symlink("/dev/zero", dir.join("zero.ron")).unwrap();
+    let scene = small_scene(&quad_object("quad"), r#"(name: "q", of: "quad")"#, "", "").replacen(
+        "Scene(\n",
+        "Scene(\n    include: [\"zero.ron\"],\n",
+        1,
+    );
+    std::fs::write(dir.join("scene.ron"), scene).unwrap();
+    let o = run_in(&dir, &["check", "scene.ron"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert_eq!(
+        stderr_of(&o),
+        "scene.ron:2:15: error: cannot read include file \"zero.ron\": larger than 64 MiB, the limit for a scene file\n1 error in scene.ron; nothing rendered\n"
+    );
+}
+
+#[test]
+fn a_byte_order_mark_before_the_scene_is_accepted() {
+    let dir = scratch_dir("bom");
+    let scene = small_scene(&quad_object("quad"), r#"(name: "q", of: "quad")"#, "", "");
+    std::fs::write(dir.join("scene.ron"), format!("\u{feff}{scene}")).unwrap();
+    let o = run_in(&dir, &["check", "scene.ron"]);
+    assert!(o.status.success(), "{}", stderr_of(&o));
+}
+
+#[test]
+fn a_filter_wider_than_the_limit_is_refused() {
+    let dir = scratch_dir("filter-radius");
+    let scene = small_scene(
+        &quad_object("quad"),
+        r#"(name: "q", of: "quad")"#,
+        "",
+        "    options: (filter: Gaussian(radius: 1000000)),\n",
+    );
+    std::fs::write(dir.join("scene.ron"), scene).unwrap();
+    let o = run_in(&dir, &["check", "scene.ron"]);
+    assert_eq!(o.status.code(), Some(1));
+    let stderr = stderr_of(&o);
+    assert!(stderr.starts_with("scene.ron:12:"), "{stderr}");
+    assert!(
+        stderr.contains(": error: radius must be at most 64 pixels, found 1000000\n"),
+        "{stderr}"
+    );
+}
+
+#[test]
+fn objects_without_geometry_get_a_located_warning() {
+    let dir = scratch_dir("empty-meshes");
+    std::fs::write(dir.join("empty.obj"), "").unwrap();
+    let scene = small_scene(
+        r#"(name: "nothing", mesh: Obj(file: "empty.obj")),
+        (name: "cage", mesh: Subdiv(vertices: [(0, 0, 0)], polygons: [])),"#,
+        r#"(name: "n", of: "nothing"), (name: "c", of: "cage")"#,
+        "",
+        "",
+    );
+    std::fs::write(dir.join("scene.ron"), scene).unwrap();
+    let o = run_in(&dir, &["check", "scene.ron"]);
+    let stderr = stderr_of(&o);
+    assert!(
+        stderr.contains("scene.ron:5:9: warning: object \"nothing\": its mesh has no triangles; it renders nothing\n  help: check the mesh, or leave the object out\n"),
+        "{stderr}"
+    );
+    assert!(
+        stderr.contains("scene.ron:6:9: warning: object \"cage\": its subdivision mesh has no faces; it renders nothing\n"),
+        "{stderr}"
+    );
+    assert!(
+        !stderr.contains('\u{1b}'),
+        "no colour codes into a pipe: {stderr:?}"
+    );
+}
+
+#[test]
+fn bake_uvs_at_one_point_are_refused() {
+    let dir = scratch_dir("bake-point-uvs");
+    let scene = small_scene(
+        r#"(name: "quad", mesh: Inline(vertices: [(-1, -1, 0), (1, -1, 0), (1, 1, 0), (-1, 1, 0)], uvs: [(0.5, 0.5), (0.5, 0.5), (0.5, 0.5), (0.5, 0.5)], polygons: [[0, 1, 2, 3]]), material: "grey"),"#,
+        r#"(name: "q", of: "quad", bake: (texels_per_unit: 8, uvs: Mesh, outputs: [(kind: AmbientOcclusion(samples: 1))]))"#,
+        "",
+        "",
+    );
+    std::fs::write(dir.join("scene.ron"), scene).unwrap();
+    let o = run_in(&dir, &["bake", "scene.ron"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert_eq!(
+        stderr_of(&o),
+        "scene.ron:7:17: error: bake request on instance \"q\": its UVs cover no area (every triangle's UVs lie at one point or on a line)\n  help: give the mesh real UVs, or set `uvs: Unwrap` to generate lightmap UVs\n"
+    );
+    assert_eq!(crate::common::dir_names(&dir), ["scene.ron"]);
+}

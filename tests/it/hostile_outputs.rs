@@ -1,0 +1,160 @@
+//! Issue 18, families 5 and 6: outputs never overwrite an input or each other (refused
+//! before anything runs, `check` included), and a run's files are committed all or nothing.
+
+use crate::common::{dir_names, quad_object, run_in, scratch_dir, small_scene, stderr_of};
+
+const HELP: &str = "  help: give every output its own file, and none the name of an input";
+
+fn quad_scene(outputs: &str, extra_instance: &str) -> String {
+    small_scene(
+        &quad_object("quad"),
+        &format!(r#"(name: "q", of: "quad"{extra_instance})"#),
+        outputs,
+        "",
+    )
+}
+
+#[test]
+fn stats_json_onto_the_scene_is_refused_and_the_scene_kept() {
+    let dir = scratch_dir("out-stats-scene");
+    let text = quad_scene(r#"(file: "out.png")"#, "");
+    std::fs::write(dir.join("scene.ron"), &text).unwrap();
+    let o = run_in(&dir, &["render", "scene.ron", "--stats-json", "scene.ron"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(
+        stderr_of(&o),
+        format!("error: --stats-json scene.ron would overwrite the scene file scene.ron\n{HELP}\n1 error in scene.ron; nothing rendered\n")
+    );
+    assert_eq!(
+        std::fs::read_to_string(dir.join("scene.ron")).unwrap(),
+        text
+    );
+    assert_eq!(dir_names(&dir), ["scene.ron"]);
+}
+
+#[test]
+fn stats_json_onto_the_image_is_refused() {
+    let dir = scratch_dir("out-stats-image");
+    std::fs::write(dir.join("scene.ron"), quad_scene("", "")).unwrap();
+    let o = run_in(
+        &dir,
+        &[
+            "render",
+            "scene.ron",
+            "-o",
+            "out.png",
+            "--stats-json",
+            "./out.png",
+        ],
+    );
+    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(
+        stderr_of(&o),
+        format!("error: --stats-json ./out.png is also written by -o out.png\n{HELP}\n1 error in scene.ron; nothing rendered\n")
+    );
+    assert_eq!(dir_names(&dir), ["scene.ron"]);
+}
+
+#[test]
+fn two_camera_outputs_with_one_file_are_refused_at_check() {
+    let dir = scratch_dir("out-camera-twice");
+    std::fs::write(
+        dir.join("scene.ron"),
+        quad_scene(r#"(file: "a.exr"), (file: "a.exr", passes: [Depth])"#, ""),
+    )
+    .unwrap();
+    let expected = format!("scene.ron:9:15: error: camera \"cam\" output 2 (\"a.exr\") is also written by camera \"cam\" output 1 (\"a.exr\")\n{HELP}\n1 error in scene.ron; nothing rendered\n");
+    for command in ["check", "render"] {
+        let o = run_in(&dir, &[command, "scene.ron"]);
+        assert_eq!(o.status.code(), Some(1), "{command}");
+        assert_eq!(stderr_of(&o), expected, "{command}");
+    }
+    assert_eq!(dir_names(&dir), ["scene.ron"]);
+}
+
+#[test]
+fn two_bake_outputs_with_one_file_are_refused_at_check() {
+    let dir = scratch_dir("out-bake-twice");
+    std::fs::write(
+        dir.join("scene.ron"),
+        quad_scene(
+            "",
+            r#", bake: (resolution: (8, 8), outputs: [(kind: AmbientOcclusion(samples: 1), file: "t.exr"), (kind: Positions, file: "t.exr")])"#,
+        ),
+    )
+    .unwrap();
+    let expected = format!("scene.ron:7:17: error: bake request on instance \"q\" (\"./t.exr\") is also written by bake request on instance \"q\" (\"./t.exr\")\n{HELP}\n1 error in scene.ron; nothing rendered\n");
+    for command in ["check", "bake"] {
+        let o = run_in(&dir, &[command, "scene.ron"]);
+        assert_eq!(o.status.code(), Some(1), "{command}");
+        assert_eq!(stderr_of(&o), expected, "{command}");
+    }
+    assert_eq!(dir_names(&dir), ["scene.ron"]);
+}
+
+#[test]
+fn an_output_onto_a_texture_input_is_refused() {
+    let dir = scratch_dir("out-texture");
+    let png = image::RgbImage::from_pixel(2, 2, image::Rgb([200, 100, 50]));
+    png.save(dir.join("tex.png")).unwrap();
+    let before = std::fs::read(dir.join("tex.png")).unwrap();
+    let scene = quad_scene("", "").replace(
+        r#"shader: Lambert(albedo: (0.5, 0.5, 0.5))"#,
+        r#"shader: Lambert(albedo: (0.5, 0.5, 0.5)), bind: {"albedo": Image(file: "tex.png")}"#,
+    );
+    std::fs::write(dir.join("scene.ron"), scene).unwrap();
+    let o = run_in(&dir, &["render", "scene.ron", "-o", "tex.png"]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr_of(&o));
+    assert_eq!(
+        stderr_of(&o),
+        format!("error: -o tex.png would overwrite an input of the scene tex.png\n{HELP}\n1 error in scene.ron; nothing rendered\n")
+    );
+    assert_eq!(std::fs::read(dir.join("tex.png")).unwrap(), before);
+}
+
+#[test]
+fn convert_onto_its_own_scene_is_refused() {
+    let dir = scratch_dir("out-convert");
+    let text = quad_scene("", "");
+    std::fs::write(dir.join("scene.ron"), &text).unwrap();
+    let o = run_in(&dir, &["convert", "scene.ron", "-o", "./scene.ron"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(
+        stderr_of(&o),
+        "error: -o ./scene.ron would overwrite the scene input scene.ron\n  help: write the RON scene to another file\n"
+    );
+    assert_eq!(
+        std::fs::read_to_string(dir.join("scene.ron")).unwrap(),
+        text
+    );
+}
+
+#[test]
+fn a_failing_second_output_leaves_the_first_as_it_was() {
+    let dir = scratch_dir("out-all-or-nothing");
+    std::fs::write(dir.join("a.exr"), b"previous run").unwrap();
+    std::fs::create_dir(dir.join("b.exr")).unwrap();
+    std::fs::write(
+        dir.join("scene.ron"),
+        quad_scene(r#"(file: "a.exr"), (file: "b.exr")"#, ""),
+    )
+    .unwrap();
+    let o = run_in(
+        &dir,
+        &[
+            "render",
+            "scene.ron",
+            "--spp",
+            "1",
+            "--stats-json",
+            "s.json",
+        ],
+    );
+    assert_eq!(o.status.code(), Some(1));
+    assert_eq!(
+        stderr_of(&o),
+        "error: cannot write b.exr: is a directory; no file of this run was written\n"
+    );
+    assert_eq!(std::fs::read(dir.join("a.exr")).unwrap(), b"previous run");
+    assert_eq!(dir_names(&dir), ["a.exr", "b.exr", "scene.ron"]);
+}
