@@ -126,6 +126,9 @@ pub struct RunInputs {
     /// The image merged from part files (`stagelight merge`): `shade` passes it on instead
     /// of rendering, and the stages that only feed rendering skip.
     pub merged_image: Option<FrameBuffers>,
+    /// The bake merged from bake part files (`stagelight merge`): `bake_lightmaps` dilates
+    /// and encodes these texels instead of baking.
+    pub merged_bake: Option<crate::farm::bake_part::MergedBake>,
     /// The memory budget the run's estimates are held to (see [`crate::budget`]).
     pub budget: crate::budget::Budget,
     /// Leave the run's files in [`Frame::held_files`] instead of committing them, so that the
@@ -247,6 +250,7 @@ impl Frame {
                 cancel: Arc::new(AtomicBool::new(false)),
                 part: None,
                 merged_image: None,
+                merged_bake: None,
                 budget: crate::budget::Budget::unlimited(),
                 hold_files: false,
             },

@@ -131,10 +131,11 @@ impl SplitArg {
 
 #[derive(Args)]
 struct MergeArgs {
-    /// The part files (every part of one render, each once, in any order).
+    /// The part files (every part of one render or of one bake, each once, in any order).
     #[arg(required = true)]
     parts: Vec<PathBuf>,
-    /// Write the image here instead of the camera's outputs (.png or .exr).
+    /// Render parts: write the image here instead of the camera's outputs (.png or .exr).
+    /// Bake parts: the directory for the textures (default: the working directory).
     #[arg(short = 'o', long = "output")]
     output: Option<PathBuf>,
     /// The scene the parts were rendered from (default: the path recorded in the parts).
@@ -211,6 +212,11 @@ struct BakeArgs {
     /// the physical memory, `ulimit -v` and the cgroup limit.
     #[arg(long = "memory-limit", value_name = "BYTES", value_parser = stagelight::budget::parse_bytes)]
     memory_limit: Option<u64>,
+    /// Bake only part K of N (1-based; interleaved 16×16 texel tiles of all requests) and
+    /// write it undilated as `bake_part_K_of_N.exr` into the output directory, for
+    /// `stagelight merge`.
+    #[arg(long, value_name = "K/N")]
+    part: Option<PartNumber>,
 }
 
 #[derive(Args)]
@@ -658,6 +664,13 @@ fn part_run(
 }
 
 fn merge(args: MergeArgs) -> ExitCode {
+    if args
+        .parts
+        .first()
+        .is_some_and(|p| stagelight::farm::bake_part_file::is_bake_part_file(p))
+    {
+        return merge_bake(args);
+    }
     if let Some(out) = &args.output {
         if args
             .parts
@@ -714,6 +727,59 @@ fn merge(args: MergeArgs) -> ExitCode {
     let mut frame = Frame::new(scene.settings.clone());
     frame.inputs.outputs = overrides;
     frame.inputs.merged_image = Some(image);
+    run_and_report(&scene_path, &mut scene, frame, args.stats, None)
+}
+
+/// `stagelight merge` of bake parts: assembles the texels, then bakes the scene's requests
+/// from them (dilation and encoding as a single bake) into `-o DIR`.
+fn merge_bake(args: MergeArgs) -> ExitCode {
+    use stagelight::farm::bake_part::{merge, read_parts};
+    let merged = match read_parts(&args.parts).and_then(|parts| {
+        let header = parts[0].file.header.clone();
+        merge(&parts).map(|merged| (header, merged))
+    }) {
+        Ok(m) => m,
+        Err(message) => {
+            eprintln!("error: {message}\nnothing written");
+            return ExitCode::from(EXIT_ERROR);
+        }
+    };
+    let (header, merged) = merged;
+    let scene_path = args
+        .scene
+        .clone()
+        .unwrap_or_else(|| PathBuf::from(&header.scene));
+    let mut scene = match load(&scene_path) {
+        Ok(s) => s,
+        Err(code) => return code,
+    };
+    let hash = stagelight::farm::scene_hash(scene.source_hash, &scene.world);
+    if hash != header.scene_hash {
+        eprintln!(
+            "error: {} changed since the parts were baked (content hash {hash:016x}, the parts have {:016x})\n  help: bake the parts again, or pass the scene they came from with --scene\nnothing written",
+            scene_path.display(),
+            header.scene_hash
+        );
+        return ExitCode::from(EXIT_ERROR);
+    }
+    let mut settings = scene.settings.clone();
+    settings.seed = header.seed;
+    if stagelight::farm::settings_hash(&settings) != header.settings_hash {
+        eprintln!(
+            "error: the parts were baked with other settings than {} has now (an --integrator override?)\n  help: bake the parts again without overrides\nnothing written",
+            scene_path.display()
+        );
+        return ExitCode::from(EXIT_ERROR);
+    }
+    let mut frame = Frame::new(settings);
+    frame.inputs.tasks = Tasks {
+        render: false,
+        bake: true,
+    };
+    if let Some(dir) = args.output {
+        frame.inputs.bake_dir = dir;
+    }
+    frame.inputs.merged_bake = Some(merged);
     run_and_report(&scene_path, &mut scene, frame, args.stats, None)
 }
 
@@ -803,6 +869,15 @@ fn bake(args: BakeArgs) -> ExitCode {
     if let Some(dir) = args.output {
         frame.inputs.bake_dir = dir;
     }
+    frame.inputs.part = args.part.map(|number| PartRun {
+        part: stagelight::farm::Part {
+            index: number.index,
+            count: number.count,
+            split: Split::Tiles,
+        },
+        scene: args.scene.display().to_string(),
+        scene_hash: stagelight::farm::scene_hash(scene.source_hash, &scene.world),
+    });
     run_and_report(
         &args.scene,
         &mut scene,

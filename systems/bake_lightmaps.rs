@@ -13,6 +13,11 @@
 //!
 //! Every request is checked (UVs, resolution, overlapping UVs; `crate::bake::request`)
 //! before any texel is baked; naming and encoding live in `crate::bake::files`.
+//!
+//! Farm parts (`crate::farm::bake_part`): a `bake --part K/N` run (`inputs.part`) bakes only
+//! its texel tiles and writes them undilated as one bake part file instead of textures; a
+//! merge (`inputs.merged_bake`) takes every texel from the merged parts and dilates and
+//! encodes them exactly as a single bake does.
 
 use std::time::Instant;
 
@@ -21,8 +26,12 @@ use hecs::World;
 use super::prelude::*;
 use crate::bake::files::{encode_request, report};
 use crate::bake::request::prepare_bakes;
+use crate::bake::request::PreparedBake;
+use crate::bake::texels::TexelResults;
 use crate::bake::texels::{evaluate, TexelJob};
 use crate::components::{BakeKind, BakeRequest};
+use crate::farm::bake_part::{first_tiles, BakePartFile, BakePartRequest, TexelOwner};
+use crate::farm::PartRun;
 use crate::progress::Progress;
 use crate::sampling::{fold_seed, hash_combine};
 use crate::scene_view::{light_set, WithEnvironment};
@@ -56,29 +65,64 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
         WithEnvironment::Yes,
     );
 
-    // Phase 2: bake.
+    // Phase 2: bake (or take the texels merged from farm parts).
     let seed = fold_seed(inputs.settings.seed);
     let total_rows: u64 = prepared.iter().map(|p| p.coverage.height as u64).sum();
     let progress = Progress::start(inputs.progress, "bake", "rows", total_rows);
+    let firsts = first_tiles(
+        prepared
+            .iter()
+            .map(|p| (p.coverage.width, p.coverage.height)),
+    );
     let mut pending = Vec::new();
     let mut reports = Vec::new();
+    let mut part_requests = Vec::new();
     let mut texels_baked = 0u64;
     for (index, p) in prepared.iter().enumerate() {
         let start = Instant::now();
-        let kinds: Vec<BakeKind> = p.request.targets.iter().map(|t| t.kind.clone()).collect();
-        let job = TexelJob {
-            geometry,
-            instance: &geometry.instances[p.slot],
-            lights: &lights,
-            coverage: &p.coverage,
-            kinds: &kinds,
-            uvs: &p.uvs,
-            seed: hash_combine(&[seed, index as u32]),
-            settings: &inputs.settings,
+        let mut results = if let Some(merged) = &inputs.merged_bake {
+            merged_results(merged, index, p)?
+        } else {
+            let kinds: Vec<BakeKind> = p.request.targets.iter().map(|t| t.kind.clone()).collect();
+            let owner = inputs.part.as_ref().map(|run| TexelOwner {
+                first_tile: firsts[index],
+                width: p.coverage.width,
+                count: run.part.count,
+                index: run.part.index,
+            });
+            let owns = owner.map(|o| move |i: u32, j: u32| o.owns(i, j));
+            let job = TexelJob {
+                geometry,
+                instance: &geometry.instances[p.slot],
+                lights: &lights,
+                coverage: &p.coverage,
+                kinds: &kinds,
+                uvs: &p.uvs,
+                seed: hash_combine(&[seed, index as u32]),
+                settings: &inputs.settings,
+                owns: owns
+                    .as_ref()
+                    .map(|f| f as &(dyn Fn(u32, u32) -> bool + Sync)),
+            };
+            let Some(results) = evaluate(&job, &inputs.cancel, &progress.ticker()) else {
+                return Err(StageError::Interrupted);
+            };
+            results
         };
-        let Some(mut results) = evaluate(&job, &inputs.cancel, &progress.ticker()) else {
-            return Err(StageError::Interrupted);
-        };
+        if inputs.part.is_some() {
+            // A farm part keeps its texels undilated for the merge.
+            texels_baked += results
+                .images
+                .first()
+                .map_or(0, |img| img.valid.iter().filter(|&&v| v).count() as u64);
+            part_requests.push(BakePartRequest {
+                name: p.request.name.clone(),
+                images: results.images,
+                rays: results.rays,
+                invalid: results.invalid,
+            });
+            continue;
+        }
         texels_baked += p.coverage.covered_texels();
         // Texels baked from the surface (covered and not inside geometry), before dilation.
         let baked_mask = results.images.first().map(|img| img.valid.clone());
@@ -87,22 +131,88 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
             dilated = crate::bake::dilate::dilate(img, p.request.padding);
         }
         let files = encode_request(p, &results, baked_mask.as_deref(), &inputs.bake_dir)?;
-        reports.push(report(
-            p,
-            &results,
-            dilated,
-            start.elapsed().as_secs_f64(),
-            &files,
-        ));
+        let mut r = report(p, &results, dilated, start.elapsed().as_secs_f64(), &files);
+        if inputs.merged_bake.is_some() {
+            // The rays are the parts' total; the merge itself traces none.
+            r.rays_per_second = 0.0;
+        }
+        reports.push(r);
         pending.extend(files.pending);
     }
     progress.finish();
     if frame.cancelled() {
         return Err(StageError::Interrupted);
     }
+    if let Some(run) = &inputs.part {
+        pending.push(part_file(run, frame, part_requests)?);
+    }
     Ok(Work::new(texels_baked, "texels")
         .with_pending(pending)
         .with_output(StageOutput::BakeReports(reports)))
+}
+
+/// The texels of request `index` as merged from farm parts, checked against the request the
+/// scene prepares (the merge already checked the scene's content hash).
+fn merged_results(
+    merged: &crate::farm::bake_part::MergedBake,
+    index: usize,
+    p: &PreparedBake,
+) -> Result<TexelResults, StageError> {
+    let request = merged
+        .requests
+        .get(index)
+        .filter(|r| r.name == p.request.name)
+        .filter(|r| {
+            r.images
+                .iter()
+                .all(|img| (img.width, img.height) == (p.coverage.width, p.coverage.height))
+        })
+        .ok_or_else(|| {
+            StageError::Internal(format!(
+                "the merged bake parts do not hold request {} as the scene prepares it",
+                p.request.name
+            ))
+        })?;
+    Ok(TexelResults {
+        images: request.images.clone(),
+        rays: request.rays,
+        invalid: request.invalid,
+    })
+}
+
+/// The bake part file of a `bake --part K/N` run, written into the bake directory.
+fn part_file(
+    run: &PartRun,
+    frame: &Frame,
+    requests: Vec<BakePartRequest>,
+) -> Result<crate::image_io::PendingFile, StageError> {
+    let settings = &frame.inputs.settings;
+    let file = BakePartFile {
+        header: crate::farm::part_file::PartHeader {
+            version: env!("CARGO_PKG_VERSION").into(),
+            scene: run.scene.clone(),
+            scene_hash: run.scene_hash,
+            settings_hash: crate::farm::settings_hash(settings),
+            seed: settings.seed,
+            part: run.part,
+            width: 0,
+            height: 0,
+        },
+        requests,
+    };
+    let path = frame
+        .inputs
+        .bake_dir
+        .join(crate::farm::bake_part::part_file_name(
+            run.part.index,
+            run.part.count,
+        ));
+    let bytes =
+        crate::farm::bake_part_file::encode(&file).map_err(|message| StageError::Write {
+            path: path.clone(),
+            message,
+        })?;
+    Ok(crate::image_io::PendingFile { path, bytes })
 }
 
 #[cfg(test)]

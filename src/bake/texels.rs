@@ -50,6 +50,9 @@ pub struct TexelJob<'a> {
     pub seed: u32,
     /// Render settings (the integrator decides how indirect light is gathered).
     pub settings: &'a crate::settings::RenderSettings,
+    /// Only the texels `(i, j)` for which this returns true are evaluated (a farm part's
+    /// share); `None` evaluates all of them.
+    pub owns: Option<&'a (dyn Fn(u32, u32) -> bool + Sync)>,
 }
 
 /// Output of [`evaluate`]: one image per kind (AO with bent normals gives two, in kind order
@@ -105,6 +108,9 @@ pub fn evaluate(
                     // Poll per texel: one texel is at most its rays of work.
                     if cancel.load(Ordering::Relaxed) {
                         stopped.store(true, Ordering::Relaxed);
+                        return vec![None; n_images];
+                    }
+                    if job.owns.is_some_and(|owns| !owns(i, j)) {
                         return vec![None; n_images];
                     }
                     let (values, r, bad) = texel(job, i, j, n_images, bent, needs_probe);

@@ -7,7 +7,7 @@
 use std::path::{Path, PathBuf};
 
 use super::part::{Part, Split};
-use super::part_file::{PartFile, PartPixels};
+use super::part_file::{PartFile, PartHeader, PartPixels};
 use crate::adaptive::{pixel_alpha, pixel_value};
 use crate::framebuffer::FrameBuffers;
 
@@ -47,20 +47,28 @@ pub fn read_parts(paths: &[PathBuf]) -> Result<Vec<LoadedPart>, String> {
     Ok(parts)
 }
 
-/// Checks that `parts` are one complete set and returns the first part's header fields
-/// that every part shares; the error names the offending files.
+/// Checks that `parts` are one complete set; the error names the offending files.
 fn check_set(parts: &[LoadedPart]) -> Result<(), String> {
-    let Some(first) = parts.first() else {
+    let headers: Vec<(&Path, &PartHeader)> = parts
+        .iter()
+        .map(|p| (p.path.as_path(), &p.file.header))
+        .collect();
+    check_headers(&headers, "render")
+}
+
+/// Checks that the parts with these headers are one complete set of one `stagelight
+/// <command> --part K/N` run (`command` is `render` or `bake`, for the help lines): same
+/// scene, seed, split, count, settings and resolution, each part exactly once.
+pub fn check_headers(parts: &[(&Path, &PartHeader)], command: &str) -> Result<(), String> {
+    let Some(&(p0, h0)) = parts.first() else {
         return Err("no part files given".into());
     };
-    let h0 = &first.file.header;
-    let p0 = first.path.display();
-    for p in &parts[1..] {
-        let h = &p.file.header;
-        let path = p.path.display();
+    let p0 = p0.display();
+    for &(path, h) in &parts[1..] {
+        let path = path.display();
         let differs = |what: &str, a: String, b: String| {
             Err(format!(
-                "{path} and {p0} are parts of different renders: {what} {b} vs {a}\n  help: merge only the parts of one `stagelight render --part K/N` run"
+                "{path} and {p0} are parts of different {command}s: {what} {b} vs {a}\n  help: merge only the parts of one `stagelight {command} --part K/N` run"
             ))
         };
         if h.scene_hash != h0.scene_hash {
@@ -100,17 +108,17 @@ fn check_set(parts: &[LoadedPart]) -> Result<(), String> {
     }
     let count = h0.part.count;
     let mut seen: Vec<Option<&Path>> = vec![None; count as usize];
-    for p in parts {
-        let k = p.file.header.part.index;
+    for &(path, h) in parts {
+        let k = h.part.index;
         let slot = &mut seen[(k - 1) as usize];
         if let Some(other) = slot {
             return Err(format!(
                 "part {k}/{count} is given twice: {} and {}\n  help: pass each part file once",
                 other.display(),
-                p.path.display()
+                path.display()
             ));
         }
-        *slot = Some(&p.path);
+        *slot = Some(path);
     }
     let missing: Vec<String> = seen
         .iter()
@@ -125,7 +133,7 @@ fn check_set(parts: &[LoadedPart]) -> Result<(), String> {
             missing.join(", ")
         };
         return Err(format!(
-            "missing part{} {shown}\n  help: re-run `stagelight render --part K/{count}` for {} (or resubmit those array indices)",
+            "missing part{} {shown}\n  help: re-run `stagelight {command} --part K/{count}` for {} (or resubmit those array indices)",
             if missing.len() == 1 { "" } else { "s" },
             if missing.len() == 1 { "it" } else { "them" }
         ));

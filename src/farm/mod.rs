@@ -8,6 +8,9 @@
 //! pixels and the `write_output` stage writes its file; the merge feeds the merged buffers
 //! back through the stage table as a run input.
 
+pub mod bake_part;
+pub mod bake_part_file;
+pub mod exr_meta;
 pub mod merge;
 pub mod part;
 pub mod part_file;

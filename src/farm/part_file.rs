@@ -2,7 +2,8 @@
 //! exact merge needs — per pixel the exact sample sums ([`ExactSum`] limbs as `u32` words),
 //! the sample, coverage and dropped counts, and the centre-sample passes — plus metadata
 //! (format, stagelight version, scene, scene content hash, settings hash, seed, part K/N,
-//! split) as EXR text attributes, and a hash of the pixel data that catches a damaged file.
+//! split) as `key value` lines of one EXR text attribute (`super::exr_meta`), and a hash of
+//! the pixel data that catches a damaged file.
 
 use std::collections::HashMap;
 
@@ -13,8 +14,8 @@ use super::part::{Part, Split};
 use crate::exact_sum::{ExactSum, LIMBS};
 use crate::hash::Fnv64;
 
-/// The value of the `stagelight.format` attribute.
-pub const FORMAT: &str = "stagelight part 1";
+/// The `format` entry of the metadata.
+pub const FORMAT: &str = "stagelight part 2";
 
 /// Everything about a part except its pixels.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -124,7 +125,7 @@ fn f32_channels(p: &PartPixels) -> Vec<(String, Vec<f32>)> {
     ]
 }
 
-/// FNV-1a over the pixel data in channel order: the `stagelight.payload` attribute.
+/// FNV-1a over the pixel data in channel order: the `payload` entry of the metadata.
 fn payload_hash(p: &PartPixels) -> u64 {
     let mut h = Fnv64::default();
     for (name, values) in u32_channels(p) {
@@ -168,28 +169,21 @@ pub fn encode(part: &PartFile) -> std::result::Result<Vec<u8>, String> {
         channels.push(AnyChannel::new(name.as_str(), FlatSamples::F32(values)));
     }
     let mut attributes = LayerAttributes::default();
-    let mut text = |key: &str, value: String| {
-        // Every value is ASCII (numbers, names, hex).
-        attributes.other.insert(
-            Text::new_or_panic(key),
-            AttributeValue::Text(Text::new_or_panic(value)),
-        );
-    };
-    text("stagelight.format", FORMAT.into());
-    text("stagelight.version", h.version.clone());
-    text("stagelight.scene", hex(h.scene.as_bytes()));
-    text("stagelight.scene_hash", format!("{:016x}", h.scene_hash));
-    text(
-        "stagelight.settings_hash",
-        format!("{:016x}", h.settings_hash),
-    );
-    text("stagelight.seed", h.seed.to_string());
-    text(
-        "stagelight.part",
-        format!("{}/{}", h.part.index, h.part.count),
-    );
-    text("stagelight.split", h.part.split.name().into());
-    text("stagelight.payload", format!("{:016x}", payload_hash(p)));
+    let pairs: Vec<(String, String)> = [
+        ("format", FORMAT.to_string()),
+        ("version", h.version.clone()),
+        ("scene", hex(h.scene.as_bytes())),
+        ("scene_hash", format!("{:016x}", h.scene_hash)),
+        ("settings_hash", format!("{:016x}", h.settings_hash)),
+        ("seed", h.seed.to_string()),
+        ("part", format!("{}/{}", h.part.index, h.part.count)),
+        ("split", h.part.split.name().into()),
+        ("payload", format!("{:016x}", payload_hash(p))),
+    ]
+    .into_iter()
+    .map(|(k, v)| (k.to_string(), v))
+    .collect();
+    super::exr_meta::put(&mut attributes, &pairs);
     let layer = Layer::new(
         (h.width as usize, h.height as usize),
         attributes,
@@ -217,46 +211,34 @@ pub fn decode(bytes: &[u8]) -> std::result::Result<PartFile, String> {
         .from_buffered(std::io::Cursor::new(bytes))
         .map_err(|e| format!("not a readable EXR file ({e}); it may be truncated"))?;
     let layer = image.layer_data;
-    let attrs: HashMap<String, String> = layer
-        .attributes
-        .other
-        .iter()
-        .filter_map(|(k, v)| match v {
-            AttributeValue::Text(t) => Some((k.to_string(), t.to_string())),
-            _ => None,
-        })
-        .collect();
+    let attrs: HashMap<String, String> = super::exr_meta::read(&layer.attributes)
+        .ok_or("not a stagelight part file (no `stagelight` attribute)")?;
     let get = |key: &str| {
         attrs
             .get(key)
             .cloned()
-            .ok_or_else(|| format!("not a stagelight part file (no `{key}` attribute)"))
+            .ok_or_else(|| format!("damaged part file (no `{key}` entry)"))
     };
-    let format = get("stagelight.format")?;
+    let format = get("format")?;
     if format != FORMAT {
         return Err(format!(
             "part file format \"{format}\" is not \"{FORMAT}\" (written by another stagelight version?)"
         ));
     }
-    let bad = |key: &str| format!("damaged part file (attribute `{key}` is malformed)");
+    let bad = |key: &str| format!("damaged part file (entry `{key}` is malformed)");
     let hex64 = |key: &str| u64::from_str_radix(&get(key)?, 16).map_err(|_| bad(key));
-    let scene = unhex(&get("stagelight.scene")?)
+    let scene = unhex(&get("scene")?)
         .and_then(|b| String::from_utf8(b).ok())
-        .ok_or_else(|| bad("stagelight.scene"))?;
-    let number: super::part::PartNumber = get("stagelight.part")?
-        .parse()
-        .map_err(|_| bad("stagelight.part"))?;
-    let split =
-        Split::from_name(&get("stagelight.split")?).ok_or_else(|| bad("stagelight.split"))?;
+        .ok_or_else(|| bad("scene"))?;
+    let number: super::part::PartNumber = get("part")?.parse().map_err(|_| bad("part"))?;
+    let split = Split::from_name(&get("split")?).ok_or_else(|| bad("split"))?;
     let size = layer.size;
     let header = PartHeader {
-        version: get("stagelight.version")?,
+        version: get("version")?,
         scene,
-        scene_hash: hex64("stagelight.scene_hash")?,
-        settings_hash: hex64("stagelight.settings_hash")?,
-        seed: get("stagelight.seed")?
-            .parse()
-            .map_err(|_| bad("stagelight.seed"))?,
+        scene_hash: hex64("scene_hash")?,
+        settings_hash: hex64("settings_hash")?,
+        seed: get("seed")?.parse().map_err(|_| bad("seed"))?,
         part: Part {
             index: number.index,
             count: number.count,
@@ -308,7 +290,7 @@ pub fn decode(bytes: &[u8]) -> std::result::Result<PartFile, String> {
     pixels.depth = f32s("Z")?;
     let (nx, ny, nz) = (f32s("N.X")?, f32s("N.Y")?, f32s("N.Z")?);
     pixels.normal = (0..n).map(|i| Vec3::new(nx[i], ny[i], nz[i])).collect();
-    if hex64("stagelight.payload")? != payload_hash(&pixels) {
+    if hex64("payload")? != payload_hash(&pixels) {
         return Err("damaged part file (its pixel data does not match its checksum)".into());
     }
     Ok(PartFile { header, pixels })
@@ -349,6 +331,10 @@ mod tests {
         let part = sample();
         let bytes = encode(&part).unwrap();
         assert_eq!(decode(&bytes).unwrap(), part);
+        // The same part gives the same bytes (metadata in one attribute, fixed order).
+        for _ in 0..4 {
+            assert!(encode(&part).unwrap() == bytes);
+        }
     }
 
     #[test]

@@ -17,6 +17,7 @@ mod cli_plan;
 mod docs_reference;
 mod environment;
 mod farm;
+mod farm_bake;
 mod fuzz_corpus;
 mod geometry_scene;
 mod geometry_stages;

@@ -1,0 +1,335 @@
+//! The bake part file: one `bake --part K/N` run's texels as a multi-layer OpenEXR file.
+//! Layer `r.m` holds image `m` of request `r` before dilation (`R`, `G`, `B` as f32, `valid`
+//! as u32 0/1); the first layer carries the metadata shared with render parts (format,
+//! version, scene, content and settings hashes, seed, K/N) plus, per request, its name,
+//! image count, rays and invalid texels, and a checksum of all texel data — as `key value`
+//! lines of one text attribute (`super::exr_meta`).
+
+use std::collections::HashMap;
+
+use exr::prelude::*;
+use glam::Vec3;
+
+use super::bake_part::{BakePartFile, BakePartRequest};
+use super::part::{Part, PartNumber, Split};
+use super::part_file::PartHeader;
+use crate::bake::TexelImage;
+use crate::hash::Fnv64;
+
+/// The `format` entry of a bake part's metadata.
+pub const FORMAT: &str = "stagelight bake part 1";
+
+fn hex(bytes: &[u8]) -> String {
+    bytes.iter().map(|b| format!("{b:02x}")).collect()
+}
+
+fn unhex(s: &str) -> Option<Vec<u8>> {
+    if !s.len().is_multiple_of(2) {
+        return None;
+    }
+    (0..s.len())
+        .step_by(2)
+        .map(|i| u8::from_str_radix(s.get(i..i + 2)?, 16).ok())
+        .collect()
+}
+
+/// FNV-1a over every request's counters and texels: the `payload` entry.
+fn payload_hash(requests: &[BakePartRequest]) -> u64 {
+    let mut h = Fnv64::default();
+    for r in requests {
+        h.bytes(r.name.as_bytes());
+        h.bytes(&r.rays.to_le_bytes());
+        h.bytes(&r.invalid.to_le_bytes());
+        for img in &r.images {
+            h.bytes(&img.width.to_le_bytes());
+            h.bytes(&img.height.to_le_bytes());
+            for (t, v) in img.texels.iter().zip(&img.valid) {
+                for c in t.to_array() {
+                    h.bytes(&c.to_bits().to_le_bytes());
+                }
+                h.bytes(&[u8::from(*v)]);
+            }
+        }
+    }
+    h.finish()
+}
+
+/// Encodes a bake part file. Fails when no request has an image (nothing to store).
+pub fn encode(part: &BakePartFile) -> std::result::Result<Vec<u8>, String> {
+    let h = &part.header;
+    let mut layers: Vec<Layer<AnyChannels<FlatSamples>>> = Vec::new();
+    for (r, request) in part.requests.iter().enumerate() {
+        for (m, img) in request.images.iter().enumerate() {
+            let mut channels: SmallVec<[AnyChannel<FlatSamples>; 4]> = [0usize, 1, 2]
+                .into_iter()
+                .map(|c| {
+                    AnyChannel::new(
+                        ["R", "G", "B"][c],
+                        FlatSamples::F32(img.texels.iter().map(|t| t[c]).collect()),
+                    )
+                })
+                .collect();
+            channels.push(AnyChannel::new(
+                "valid",
+                FlatSamples::U32(img.valid.iter().map(|&v| u32::from(v)).collect()),
+            ));
+            let mut attributes = LayerAttributes::named(format!("{r}.{m}").as_str());
+            if layers.is_empty() {
+                header_attributes(&mut attributes, h, &part.requests);
+            }
+            layers.push(Layer::new(
+                (img.width as usize, img.height as usize),
+                attributes,
+                Encoding::SMALL_LOSSLESS,
+                AnyChannels::sort(channels),
+            ));
+        }
+    }
+    let Some(first) = layers.first() else {
+        return Err("a bake part needs at least one baked image".into());
+    };
+    let bounds = IntegerBounds::new((0, 0), first.size);
+    let mut cursor = std::io::Cursor::new(Vec::new());
+    Image::from_layers(ImageAttributes::new(bounds), layers)
+        .write()
+        .non_parallel()
+        .to_buffered(&mut cursor)
+        .map_err(|e| e.to_string())?;
+    Ok(cursor.into_inner())
+}
+
+/// The metadata (all ASCII: numbers, hex, names of our own), in one attribute.
+fn header_attributes(
+    attributes: &mut LayerAttributes,
+    h: &PartHeader,
+    requests: &[BakePartRequest],
+) {
+    let mut pairs: Vec<(String, String)> = vec![
+        ("format".into(), FORMAT.into()),
+        ("version".into(), h.version.clone()),
+        ("scene".into(), hex(h.scene.as_bytes())),
+        ("scene_hash".into(), format!("{:016x}", h.scene_hash)),
+        ("settings_hash".into(), format!("{:016x}", h.settings_hash)),
+        ("seed".into(), h.seed.to_string()),
+        ("part".into(), format!("{}/{}", h.part.index, h.part.count)),
+        ("requests".into(), requests.len().to_string()),
+    ];
+    for (r, request) in requests.iter().enumerate() {
+        pairs.push((
+            format!("request.{r}"),
+            format!(
+                "{} {} {} {}",
+                hex(request.name.as_bytes()),
+                request.images.len(),
+                request.rays,
+                request.invalid
+            ),
+        ));
+    }
+    pairs.push(("payload".into(), format!("{:016x}", payload_hash(requests))));
+    super::exr_meta::put(attributes, &pairs);
+}
+
+/// Whether this EXR metadata names the bake part format.
+fn names_bake_format(meta: &exr::meta::MetaData) -> bool {
+    meta.headers
+        .first()
+        .and_then(super::exr_meta::read_header)
+        .is_some_and(|m| m.get("format").is_some_and(|f| f == FORMAT))
+}
+
+/// Whether `bytes` are a bake part file (an EXR whose metadata names this format).
+pub fn is_bake_part(bytes: &[u8]) -> bool {
+    exr::meta::MetaData::read_from_buffered(std::io::Cursor::new(bytes), false)
+        .is_ok_and(|meta| names_bake_format(&meta))
+}
+
+/// Whether the file at `path` is a bake part file (reads only its header); `stagelight
+/// merge` uses it to tell bake parts from render parts.
+pub fn is_bake_part_file(path: &std::path::Path) -> bool {
+    exr::meta::MetaData::read_from_file(path, false).is_ok_and(|meta| names_bake_format(&meta))
+}
+
+/// Decodes a bake part file; the error says what is wrong with it (the caller names the file).
+pub fn decode(bytes: &[u8]) -> std::result::Result<BakePartFile, String> {
+    let image = read()
+        .no_deep_data()
+        .largest_resolution_level()
+        .all_channels()
+        .all_layers()
+        .all_attributes()
+        .non_parallel()
+        .from_buffered(std::io::Cursor::new(bytes))
+        .map_err(|e| format!("not a readable EXR file ({e}); it may be truncated"))?;
+    let layers = &image.layer_data;
+    let first = layers
+        .first()
+        .ok_or("not a stagelight bake part file (no layers)")?;
+    let attrs: HashMap<String, String> = super::exr_meta::read(&first.attributes)
+        .ok_or("not a stagelight bake part file (no `stagelight` attribute)")?;
+    let get = |key: &str| {
+        attrs
+            .get(key)
+            .cloned()
+            .ok_or_else(|| format!("damaged bake part file (no `{key}` entry)"))
+    };
+    let format = get("format")?;
+    if format != FORMAT {
+        return Err(format!(
+            "part file format \"{format}\" is not \"{FORMAT}\" (written by another stagelight version?)"
+        ));
+    }
+    let bad = |key: &str| format!("damaged bake part file (entry `{key}` is malformed)");
+    let hex64 = |key: &str| u64::from_str_radix(&get(key)?, 16).map_err(|_| bad(key));
+    let scene = unhex(&get("scene")?)
+        .and_then(|b| String::from_utf8(b).ok())
+        .ok_or_else(|| bad("scene"))?;
+    let number: PartNumber = get("part")?.parse().map_err(|_| bad("part"))?;
+    let header = PartHeader {
+        version: get("version")?,
+        scene,
+        scene_hash: hex64("scene_hash")?,
+        settings_hash: hex64("settings_hash")?,
+        seed: get("seed")?.parse().map_err(|_| bad("seed"))?,
+        part: Part {
+            index: number.index,
+            count: number.count,
+            split: Split::Tiles,
+        },
+        width: 0,
+        height: 0,
+    };
+    let count: usize = get("requests")?.parse().map_err(|_| bad("requests"))?;
+    if count > layers.len() {
+        return Err(bad("requests"));
+    }
+    let mut requests = Vec::with_capacity(count);
+    for r in 0..count {
+        let key = format!("request.{r}");
+        let value = get(&key)?;
+        let fields: Vec<&str> = value.split(' ').collect();
+        let [name, images, rays, invalid] = fields[..] else {
+            return Err(bad(&key));
+        };
+        let name = unhex(name)
+            .and_then(|b| String::from_utf8(b).ok())
+            .ok_or_else(|| bad(&key))?;
+        let images: usize = images.parse().map_err(|_| bad(&key))?;
+        let images = (0..images)
+            .map(|m| layer_image(layers, &format!("{r}.{m}")))
+            .collect::<std::result::Result<Vec<_>, _>>()?;
+        requests.push(BakePartRequest {
+            name,
+            images,
+            rays: rays.parse().map_err(|_| bad(&key))?,
+            invalid: invalid.parse().map_err(|_| bad(&key))?,
+        });
+    }
+    if hex64("payload")? != payload_hash(&requests) {
+        return Err("damaged bake part file (its texel data does not match its checksum)".into());
+    }
+    Ok(BakePartFile { header, requests })
+}
+
+/// The image stored in the layer named `name`.
+fn layer_image(
+    layers: &[Layer<AnyChannels<FlatSamples>>],
+    name: &str,
+) -> std::result::Result<TexelImage, String> {
+    let layer = layers
+        .iter()
+        .find(|l| {
+            l.attributes
+                .layer_name
+                .as_ref()
+                .is_some_and(|n| n == name)
+        })
+        .ok_or_else(|| format!("damaged bake part file (no layer `{name}`)"))?;
+    let n = layer.size.area();
+    let find = |channel: &str| {
+        layer
+            .channel_data
+            .list
+            .iter()
+            .find(|c| c.name.to_string() == channel)
+            .map(|c| &c.sample_data)
+    };
+    let damaged = || format!("damaged bake part file (layer `{name}` lacks its channels)");
+    let f32s = |channel: &str| match find(channel) {
+        Some(FlatSamples::F32(v)) if v.len() == n => Ok(v),
+        _ => Err(damaged()),
+    };
+    let (r, g, b) = (f32s("R")?, f32s("G")?, f32s("B")?);
+    let Some(FlatSamples::U32(valid)) = find("valid") else {
+        return Err(damaged());
+    };
+    if valid.len() != n {
+        return Err(damaged());
+    }
+    Ok(TexelImage {
+        width: layer.size.width() as u32,
+        height: layer.size.height() as u32,
+        texels: (0..n).map(|i| Vec3::new(r[i], g[i], b[i])).collect(),
+        valid: valid.iter().map(|&v| v != 0).collect(),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sample() -> BakePartFile {
+        let mut a = TexelImage::new(3, 2);
+        a.texels[4] = Vec3::new(0.25, -1.0, 1e-30);
+        a.valid[4] = true;
+        let b = TexelImage::new(1, 5);
+        BakePartFile {
+            header: PartHeader {
+                version: "0.1.0".into(),
+                scene: "scènes/bake.ron".into(),
+                scene_hash: 0xfeed,
+                settings_hash: 3,
+                seed: 9,
+                part: Part {
+                    index: 2,
+                    count: 3,
+                    split: Split::Tiles,
+                },
+                width: 0,
+                height: 0,
+            },
+            requests: vec![
+                BakePartRequest {
+                    name: "floor/1".into(),
+                    images: vec![a.clone(), a],
+                    rays: 77,
+                    invalid: 1,
+                },
+                BakePartRequest {
+                    name: "rock".into(),
+                    images: vec![b],
+                    rays: 0,
+                    invalid: 0,
+                },
+            ],
+        }
+    }
+
+    #[test]
+    fn round_trips_every_field_and_is_recognised() {
+        let part = sample();
+        let bytes = encode(&part).unwrap();
+        assert!(is_bake_part(&bytes));
+        assert_eq!(decode(&bytes).unwrap(), part);
+    }
+
+    #[test]
+    fn truncated_and_foreign_files_are_refused() {
+        let bytes = encode(&sample()).unwrap();
+        let e = decode(&bytes[..bytes.len() - 40]).unwrap_err();
+        assert!(e.contains("truncated") || e.starts_with("damaged"), "{e}");
+        assert!(!is_bake_part(b"not an exr"));
+        let e = decode(b"not an exr").unwrap_err();
+        assert!(e.starts_with("not a readable EXR file"), "{e}");
+    }
+}

@@ -1,0 +1,268 @@
+//! Bakes past one machine: `bake --part K/N` writes bake part files and `stagelight merge`
+//! assembles, dilates and encodes them into the single bake's bytes — for every example
+//! scene with bake requests and a scene with several requests and every kind of file (EXR,
+//! PNG, bent normals, mask), for N = 1, 2, 3, 7 — and refuses incomplete or mixed sets with
+//! nothing written.
+
+use std::path::{Path, PathBuf};
+
+use stagelight::components::{BakeKind, BakeRequest, BakeResolution};
+use stagelight::farm::bake_part::{merge, BakePartFile, LoadedBakePart};
+use stagelight::farm::bake_part_file::{decode, encode};
+use stagelight::farm::{Part, PartRun, Split};
+use stagelight::frame::{Frame, Tasks};
+use stagelight::image_io::PendingFile;
+use stagelight::scene::load_scene;
+
+use crate::common::cli::{dir_names, run_in, scratch_dir, stderr_of};
+
+/// Bakes `path` with every request shrunk to at most 40 texels a side and 4 AO rays, as
+/// `part` when given, or from `merged` parts. Returns the files the run would write.
+fn bake(
+    path: &Path,
+    part: Option<Part>,
+    merged: Option<stagelight::farm::bake_part::MergedBake>,
+) -> Vec<PendingFile> {
+    let mut scene = load_scene(path).unwrap_or_else(|e| panic!("{}:\n{e}", path.display()));
+    for request in scene.world.query_mut::<&mut BakeRequest>() {
+        request.resolution = BakeResolution::Fixed {
+            width: 40,
+            height: 24,
+        };
+        for t in &mut request.targets {
+            if let BakeKind::AmbientOcclusion { samples, .. } = &mut t.kind {
+                *samples = (*samples).min(4);
+            }
+        }
+    }
+    let mut frame = Frame::new(scene.settings.clone());
+    frame.inputs.tasks = Tasks {
+        render: false,
+        bake: true,
+    };
+    frame.inputs.bake_dir = PathBuf::from("out");
+    frame.inputs.hold_files = true;
+    frame.inputs.part = part.map(|part| PartRun {
+        part,
+        scene: path.display().to_string(),
+        scene_hash: 1,
+    });
+    frame.inputs.merged_bake = merged;
+    stagelight::systems::run(&mut scene.world, &mut frame)
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    std::mem::take(&mut frame.held_files)
+}
+
+fn part_of(path: &Path, index: u32, count: u32) -> LoadedBakePart {
+    let files = bake(
+        path,
+        Some(Part {
+            index,
+            count,
+            split: Split::Tiles,
+        }),
+        None,
+    );
+    assert_eq!(files.len(), 1, "a bake part writes one part file");
+    assert_eq!(
+        files[0].path,
+        Path::new("out").join(format!("bake_part_{index}_of_{count}.exr"))
+    );
+    let file: BakePartFile = decode(&files[0].bytes).unwrap();
+    assert_eq!(encode(&file).unwrap(), files[0].bytes, "encoding is stable");
+    LoadedBakePart {
+        path: files[0].path.clone(),
+        file,
+    }
+}
+
+fn scenes_with_bakes() -> Vec<PathBuf> {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("assets/scenes");
+    let mut scenes: Vec<PathBuf> = std::fs::read_dir(&dir)
+        .unwrap()
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|x| x == "ron"))
+        .filter(|p| std::fs::read_to_string(p).unwrap().contains("bake: ("))
+        .collect();
+    scenes.sort();
+    scenes
+}
+
+#[test]
+fn every_example_bake_merges_bit_identically_for_any_part_count() {
+    let scenes = scenes_with_bakes();
+    assert!(!scenes.is_empty(), "assets/scenes has bake requests");
+    for path in scenes {
+        let single = bake(&path, None, None);
+        assert!(!single.is_empty());
+        for count in [1, 2, 3, 7] {
+            let parts: Vec<LoadedBakePart> =
+                (1..=count).map(|k| part_of(&path, k, count)).collect();
+            let merged = merge(&parts).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+            let files = bake(&path, None, Some(merged));
+            assert_eq!(files.len(), single.len());
+            for (a, b) in files.iter().zip(&single) {
+                assert_eq!(a.path, b.path);
+                assert!(
+                    a.bytes == b.bytes,
+                    "{}: {} differs after merging {count} parts",
+                    path.display(),
+                    a.path.display()
+                );
+            }
+        }
+    }
+}
+
+/// Two requests (AO with bent normals and a mask in EXR; a lightmap and normals in PNG)
+/// around a block that leaves invalid texels under it.
+const SCENE: &str = r#"Scene(
+    options: (samples: 2, seed: 5),
+    cameras: [(name: "cam", fov_y: 40.0, resolution: (8, 8),
+               placement: LookAt(eye: (0, -4, 3), target: (0, 0, 0)),
+               outputs: [(file: "view.png")])],
+    lights: [(name: "sun", kind: Directional(direction: (0.3, 0.2, -1)), intensity: 2.0)],
+    materials: [(name: "grey", shader: Lambert(albedo: (0.5, 0.5, 0.5)))],
+    objects: [
+        (name: "floor", mesh: Inline(
+            vertices: [(-1, -1, 0), (1, -1, 0), (1, 1, 0), (-1, 1, 0)],
+            uvs: [(0, 0), (1, 0), (1, 1), (0, 1)],
+            polygons: [[0, 1, 2, 3]]), material: "grey"),
+        (name: "block", mesh: Inline(
+            vertices: [(-0.3, -0.3, 0.4), (0.3, -0.3, 0.4), (0.3, 0.3, 0.4), (-0.3, 0.3, 0.4)],
+            uvs: [(0, 0), (1, 0), (1, 1), (0, 1)],
+            polygons: [[0, 1, 2, 3]]), material: "grey"),
+    ],
+    instances: [
+        (name: "floor_1", of: "floor", bake: (resolution: (37, 21), uvs: Mesh, mask: true,
+            outputs: [(kind: AmbientOcclusion(samples: 8, bent_normals: true))])),
+        (name: "block_1", of: "block", bake: (resolution: (20, 20), uvs: Mesh, padding: 3,
+            outputs: [(kind: Lightmap(), format: Png8), (kind: Normals(), format: Png16)])),
+    ],
+    groups: [(name: "world", members: ["floor_1", "block_1"])],
+    render: (root: "world", camera: "cam"),
+)
+"#;
+
+fn setup(test: &str) -> PathBuf {
+    let dir = scratch_dir(&format!("farm-bake-{test}"));
+    std::fs::write(dir.join("scene.ron"), SCENE).unwrap();
+    dir
+}
+
+fn ok(dir: &Path, args: &[&str]) {
+    let o = run_in(dir, args);
+    assert!(o.status.success(), "{args:?}: {}", stderr_of(&o));
+}
+
+fn bake_parts(dir: &Path, count: u32, out: &str, extra: &[&str]) {
+    for k in 1..=count {
+        let part = format!("{k}/{count}");
+        let mut args = vec!["bake", "scene.ron", "--part", &part, "-o", out];
+        args.extend_from_slice(extra);
+        ok(dir, &args);
+    }
+}
+
+#[test]
+fn cli_bake_parts_merge_into_the_single_bakes_files() {
+    let dir = setup("cli");
+    ok(&dir, &["bake", "scene.ron", "-o", "single"]);
+    let expected = dir_names(&dir.join("single"));
+    assert_eq!(
+        expected,
+        [
+            "block_1_lightmap.png",
+            "block_1_normals.png",
+            "floor_1_ao.exr",
+            "floor_1_bent_normals.exr",
+            "floor_1_mask.png"
+        ]
+    );
+    bake_parts(&dir, 3, "parts", &["--threads", "1"]);
+    assert_eq!(
+        dir_names(&dir.join("parts")),
+        [
+            "bake_part_1_of_3.exr",
+            "bake_part_2_of_3.exr",
+            "bake_part_3_of_3.exr"
+        ]
+    );
+    ok(
+        &dir,
+        &[
+            "merge",
+            "parts/bake_part_3_of_3.exr",
+            "parts/bake_part_1_of_3.exr",
+            "parts/bake_part_2_of_3.exr",
+            "-o",
+            "merged",
+        ],
+    );
+    assert_eq!(dir_names(&dir.join("merged")), expected);
+    for name in &expected {
+        assert!(
+            std::fs::read(dir.join("single").join(name)).unwrap()
+                == std::fs::read(dir.join("merged").join(name)).unwrap(),
+            "{name} differs"
+        );
+    }
+}
+
+#[test]
+fn cli_merge_refuses_incomplete_mixed_and_damaged_bake_parts_and_writes_nothing() {
+    let dir = setup("refusals");
+    bake_parts(&dir, 2, "a", &[]);
+    bake_parts(&dir, 2, "b", &["--seed", "9"]);
+    let refused = |args: &[&str], expected: &str| {
+        let o = run_in(&dir, args);
+        assert_eq!(o.status.code(), Some(1), "{args:?}");
+        assert_eq!(stderr_of(&o), expected, "{args:?}");
+        assert!(!dir.join("out").exists(), "{args:?} wrote something");
+    };
+    refused(
+        &["merge", "a/bake_part_2_of_2.exr", "-o", "out"],
+        "error: missing part 1/2\n  help: re-run `stagelight bake --part K/2` for it (or resubmit those array indices)\nnothing written\n",
+    );
+    refused(
+        &["merge", "a/bake_part_1_of_2.exr", "a/bake_part_1_of_2.exr", "a/bake_part_2_of_2.exr", "-o", "out"],
+        "error: part 1/2 is given twice: a/bake_part_1_of_2.exr and a/bake_part_1_of_2.exr\n  help: pass each part file once\nnothing written\n",
+    );
+    refused(
+        &["merge", "a/bake_part_1_of_2.exr", "b/bake_part_2_of_2.exr", "-o", "out"],
+        "error: b/bake_part_2_of_2.exr and a/bake_part_1_of_2.exr are parts of different bakes: seed 9 vs 5\n  help: merge only the parts of one `stagelight bake --part K/N` run\nnothing written\n",
+    );
+    let bytes = std::fs::read(dir.join("a/bake_part_2_of_2.exr")).unwrap();
+    std::fs::write(dir.join("cut.exr"), &bytes[..bytes.len() - 100]).unwrap();
+    let o = run_in(
+        &dir,
+        &["merge", "a/bake_part_1_of_2.exr", "cut.exr", "-o", "out"],
+    );
+    assert_eq!(o.status.code(), Some(1));
+    let e = stderr_of(&o);
+    assert!(
+        e.starts_with("error: cut.exr: not a readable EXR file")
+            && e.ends_with("nothing written\n"),
+        "{e}"
+    );
+    assert!(!dir.join("out").exists());
+    // A scene edited after the parts were baked.
+    std::fs::write(dir.join("scene.ron"), SCENE.replace("seed: 5", "seed: 6")).unwrap();
+    let o = run_in(
+        &dir,
+        &[
+            "merge",
+            "a/bake_part_1_of_2.exr",
+            "a/bake_part_2_of_2.exr",
+            "-o",
+            "out",
+        ],
+    );
+    assert_eq!(o.status.code(), Some(1));
+    assert!(
+        stderr_of(&o).starts_with("error: scene.ron changed since the parts were baked"),
+        "{}",
+        stderr_of(&o)
+    );
+    assert!(!dir.join("out").exists());
+}
