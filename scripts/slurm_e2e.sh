@@ -2,7 +2,9 @@
 # A real Slurm run of a farm render on this machine: brings up a single-node Slurm
 # (munge, slurmctld and slurmd on localhost, a generated slurm.conf in a temporary
 # directory), submits `stagelight farm SCENE --parts 4 --submit`, waits for the merge job
-# and compares its image with a local render byte for byte; tears everything down after.
+# and compares its image with a local render byte for byte; then the same for a bake
+# (`stagelight farm BAKE --bake --parts 3 --submit` against a local bake); tears everything
+# down after.
 #
 # Usage: scripts/slurm_e2e.sh [STAGELIGHT_BINARY]   (default: target/release/stagelight)
 # Needs root to start the daemons; installs Debian's slurm-wlm and munge when missing.
@@ -114,10 +116,13 @@ echo "$submitted"
 merge_id="$(echo "$submitted" | awk '/^merge job/ {print $3}')"
 [ -n "$merge_id" ] || { echo "slurm_e2e: FAILED: no merge job id" >&2; exit 1; }
 
-for _ in $(seq 1 600); do
-    if [ -z "$(squeue -h -j "$merge_id" 2>/dev/null)" ]; then break; fi
-    sleep 1
-done
+wait_for() {
+    for _ in $(seq 1 600); do
+        if [ -z "$(squeue -h -j "$1" 2>/dev/null)" ]; then break; fi
+        sleep 1
+    done
+}
+wait_for "$merge_id"
 if [ ! -f farm.png ]; then
     echo "slurm_e2e: FAILED: the merge job wrote no image" >&2
     tail -n 20 job/logs/*.log >&2 || true
@@ -129,3 +134,44 @@ else
     echo "slurm_e2e: FAILED: the farm image differs from the local render" >&2
     exit 1
 fi
+
+# A bake through the farm: a floor with an occluding block, two requests' worth of files.
+cat >bake.ron <<'SCENE'
+Scene(
+    cameras: [(name: "cam", fov_y: 40.0, resolution: (8, 8),
+               placement: LookAt(eye: (0, -4, 3), target: (0, 0, 0)))],
+    lights: [(name: "sun", kind: Directional(direction: (0.3, 0.2, -1)), intensity: 2.0)],
+    materials: [(name: "grey", shader: Lambert(albedo: (0.5, 0.5, 0.5)))],
+    objects: [
+        (name: "floor", mesh: Inline(
+            vertices: [(-1, -1, 0), (1, -1, 0), (1, 1, 0), (-1, 1, 0)],
+            uvs: [(0, 0), (1, 0), (1, 1), (0, 1)],
+            polygons: [[0, 1, 2, 3]]), material: "grey"),
+        (name: "block", mesh: Inline(
+            vertices: [(-0.3, -0.3, 0.4), (0.3, -0.3, 0.4), (0.3, 0.3, 0.4), (-0.3, 0.3, 0.4)],
+            uvs: [(0, 0), (1, 0), (1, 1), (0, 1)],
+            polygons: [[0, 1, 2, 3]]), material: "grey"),
+    ],
+    instances: [
+        (name: "floor_1", of: "floor", bake: (resolution: (64, 64), uvs: Mesh, mask: true,
+            outputs: [(kind: AmbientOcclusion(samples: 16, bent_normals: true))])),
+        (name: "block_1", of: "block", bake: (resolution: (32, 32), uvs: Mesh,
+            outputs: [(kind: Lightmap(), format: Png8)])),
+    ],
+    groups: [(name: "world", members: ["floor_1", "block_1"])],
+    render: (root: "world", camera: "cam"),
+)
+SCENE
+"$bin" bake bake.ron -o local_bake 2>/dev/null
+submitted="$("$bin" farm bake.ron --bake --parts 3 --out "$work/run/bake_job" \
+    -o "$work/run/farm_bake" --cpus-per-task 1 --submit)"
+echo "$submitted"
+merge_id="$(echo "$submitted" | awk '/^merge job/ {print $3}')"
+[ -n "$merge_id" ] || { echo "slurm_e2e: FAILED: no bake merge job id" >&2; exit 1; }
+wait_for "$merge_id"
+if [ ! -d farm_bake ] || ! diff -r local_bake farm_bake >/dev/null; then
+    echo "slurm_e2e: FAILED: the farm bake differs from the local bake (or is missing)" >&2
+    tail -n 20 bake_job/logs/*.log >&2 || true
+    exit 1
+fi
+echo "slurm_e2e: ok: 3 Slurm bake parts merged byte-identical to the local bake ($(ls farm_bake | wc -l) files)"

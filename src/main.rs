@@ -183,6 +183,10 @@ struct FarmArgs {
     /// Submit with `sbatch` and print the job ids.
     #[arg(long)]
     submit: bool,
+    /// Bake the scene's bake requests as parts (`bake --part K/N`) instead of rendering;
+    /// `-o` is then the texture directory of the merge.
+    #[arg(long, conflicts_with_all = ["spp", "split"])]
+    bake: bool,
 }
 
 #[derive(Args)]
@@ -788,7 +792,12 @@ fn farm(args: FarmArgs) -> ExitCode {
         Ok(s) => s,
         Err(code) => return code,
     };
-    if !stagelight::scene_view::has_render_camera(&scene.world) {
+    if args.bake {
+        if scene.world.query::<&BakeRequest>().iter().next().is_none() {
+            eprintln!("error: {} has no bake requests", args.scene.display());
+            return ExitCode::from(EXIT_ERROR);
+        }
+    } else if !stagelight::scene_view::has_render_camera(&scene.world) {
         eprintln!("error: {} has no render camera", args.scene.display());
         return ExitCode::from(EXIT_ERROR);
     }
@@ -803,6 +812,7 @@ fn farm(args: FarmArgs) -> ExitCode {
         stagelight::farm::slurm::JobOptions {
             parts: args.parts,
             split: args.split.split(),
+            bake: args.bake,
             spp: args.spp,
             seed: args.seed,
             partition: args.partition.clone(),

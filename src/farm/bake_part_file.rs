@@ -238,12 +238,7 @@ fn layer_image(
 ) -> std::result::Result<TexelImage, String> {
     let layer = layers
         .iter()
-        .find(|l| {
-            l.attributes
-                .layer_name
-                .as_ref()
-                .is_some_and(|n| n == name)
-        })
+        .find(|l| l.attributes.layer_name.as_ref().is_some_and(|n| n == name))
         .ok_or_else(|| format!("damaged bake part file (no layer `{name}`)"))?;
     let n = layer.size.area();
     let find = |channel: &str| {

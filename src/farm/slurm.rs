@@ -1,5 +1,6 @@
-//! Slurm batch scripts for a farm render (`stagelight farm`): a job array whose task K runs
-//! `stagelight render SCENE --part K/N`, a merge job that waits for the whole array
+//! Slurm batch scripts for a farm render or bake (`stagelight farm [--bake]`): a job array
+//! whose task K runs `stagelight render SCENE --part K/N` (or `stagelight bake SCENE --part
+//! K/N`), a merge job that waits for the whole array
 //! (`--dependency=afterok:<array>`), and `submit.sh`, which submits both with `sbatch` and
 //! prints their job ids. The scripts are plain, commented bash that a user can read, edit
 //! and submit by hand.
@@ -28,7 +29,10 @@ pub struct FarmJob {
     pub parts: u32,
     /// How the render is divided.
     pub split: Split,
-    /// Where the merge writes (`-o`); `None`: the camera's outputs.
+    /// Bake the scene's bake requests instead of rendering its camera.
+    pub bake: bool,
+    /// Where the merge writes (`-o`); `None`: the camera's outputs (a bake: the working
+    /// directory).
     pub output: Option<PathBuf>,
     /// Extra `render` arguments (`--spp N`, `--seed S`, `--integrator I`).
     pub render_args: Vec<String>,
@@ -64,6 +68,25 @@ pub fn part_path(out: &Path, k: u32) -> PathBuf {
     out.join(format!("part_{k}.exr"))
 }
 
+/// The command of array task `$K` of `n`, without the executable.
+fn part_command(job: &FarmJob, n: u32, extra: &str) -> String {
+    if job.bake {
+        // A bake part names its own file in the directory: `bake_part_K_of_N.exr`.
+        format!(
+            "bake {} --part \"$K/{n}\" --threads \"${{SLURM_CPUS_PER_TASK:-1}}\"{extra} -o {}",
+            q(&job.scene),
+            q(&job.out)
+        )
+    } else {
+        format!(
+            "render {} --part \"$K/{n}\" --split {} --threads \"${{SLURM_CPUS_PER_TASK:-1}}\"{extra} -o {}\"/part_$K.exr\"",
+            q(&job.scene),
+            job.split,
+            q(&job.out)
+        )
+    }
+}
+
 fn common_directives(s: &mut String, job: &FarmJob, name: &str, log: &str) {
     let _ = writeln!(s, "#SBATCH --job-name={name}");
     let _ = writeln!(s, "#SBATCH --chdir={}", job.workdir.display());
@@ -84,11 +107,15 @@ fn common_directives(s: &mut String, job: &FarmJob, name: &str, log: &str) {
 pub fn scripts(job: &FarmJob) -> Vec<Script> {
     let n = job.parts;
     let mut render = String::from("#!/bin/bash\n");
+    let what = if job.bake {
+        "bake, texel tiles".to_string()
+    } else {
+        format!("split: {}", job.split)
+    };
     let _ = writeln!(
         render,
-        "# stagelight farm: part $SLURM_ARRAY_TASK_ID of {n} of {} (split: {}).",
+        "# stagelight farm: part $SLURM_ARRAY_TASK_ID of {n} of {} ({what}).",
         job.scene.display(),
-        job.split
     );
     let _ = writeln!(
         render,
@@ -110,23 +137,27 @@ pub fn scripts(job: &FarmJob) -> Vec<Script> {
         .collect();
     let _ = writeln!(
         render,
-        "exec {} render {} --part \"$K/{n}\" --split {} --threads \"${{SLURM_CPUS_PER_TASK:-1}}\"{extra} -o {}\"/part_$K.exr\"",
+        "exec {} {}",
         q(&job.exe),
-        q(&job.scene),
-        job.split,
-        q(&job.out)
+        part_command(job, n, &extra)
     );
 
     let mut merge = String::from("#!/bin/bash\n");
     let _ = writeln!(
         merge,
-        "# stagelight farm: merges the {n} part files into the outputs of a local render."
+        "# stagelight farm: merges the {n} part files into the outputs of a local {}.",
+        if job.bake { "bake" } else { "render" }
     );
     common_directives(&mut merge, job, "stagelight-merge", "merge.log");
     merge.push_str("#SBATCH --ntasks=1\n#SBATCH --cpus-per-task=1\nset -euo pipefail\n");
+    let part_file = if job.bake {
+        format!("bake_part_${{k}}_of_{n}.exr")
+    } else {
+        "part_$k.exr".to_string()
+    };
     let _ = writeln!(
         merge,
-        "parts=()\nfor k in $(seq 1 {n}); do parts+=({}\"/part_$k.exr\"); done",
+        "parts=()\nfor k in $(seq 1 {n}); do parts+=({}\"/{part_file}\"); done",
         q(&job.out)
     );
     let output = job
@@ -181,6 +212,8 @@ pub struct JobOptions {
     pub parts: u32,
     /// How the render is divided.
     pub split: Split,
+    /// Bake instead of render.
+    pub bake: bool,
     /// `--spp` for every part.
     pub spp: Option<u32>,
     /// `--seed` for every part.
@@ -249,6 +282,7 @@ pub fn job(
         workdir: workdir.clone(),
         parts: options.parts,
         split: options.split,
+        bake: options.bake,
         output: output.map(absolute),
         render_args,
         partition: options.partition,
@@ -290,6 +324,7 @@ mod tests {
             workdir: "/scenes".into(),
             parts: 4,
             split: Split::Tiles,
+            bake: false,
             output: Some("/farm/final.png".into()),
             render_args: vec!["--spp".into(), "16".into()],
             partition: Some("render".into()),
@@ -320,6 +355,30 @@ mod tests {
         assert!(
             submit.contains("--dependency=afterok:\"$array\""),
             "{submit}"
+        );
+    }
+
+    #[test]
+    fn a_bake_array_bakes_each_part_and_the_merge_assembles_the_bake_parts() {
+        let mut j = job();
+        j.bake = true;
+        j.render_args = vec!["--seed".into(), "3".into()];
+        j.output = Some("/farm/textures".into());
+        let s = scripts(&j);
+        let render = &s[0].text;
+        assert!(render.contains(
+            "exec '/opt/bin/stagelight' bake '/scenes/it'\\''s.ron' --part \"$K/4\" --threads \"${SLURM_CPUS_PER_TASK:-1}\" '--seed' '3' -o '/farm/out'\n"
+        ), "{render}");
+        let merge = &s[1].text;
+        assert!(
+            merge.contains(
+                "for k in $(seq 1 4); do parts+=('/farm/out'\"/bake_part_${k}_of_4.exr\"); done"
+            ),
+            "{merge}"
+        );
+        assert!(
+            merge.contains("\"${parts[@]}\" -o '/farm/textures'"),
+            "{merge}"
         );
     }
 }

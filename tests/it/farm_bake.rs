@@ -266,3 +266,64 @@ fn cli_merge_refuses_incomplete_mixed_and_damaged_bake_parts_and_writes_nothing(
     );
     assert!(!dir.join("out").exists());
 }
+
+#[test]
+fn farm_bake_scripts_run_as_slurm_would_give_the_local_bake() {
+    let dir = setup("slurm");
+    ok(&dir, &["bake", "scene.ron", "-o", "single"]);
+    ok(
+        &dir,
+        &[
+            "farm",
+            "scene.ron",
+            "--bake",
+            "--parts",
+            "2",
+            "--out",
+            "job",
+            "-o",
+            "farmed",
+        ],
+    );
+    for k in 1..=2 {
+        let s = std::process::Command::new("bash")
+            .arg(dir.join("job/render.sbatch"))
+            .current_dir(&dir)
+            .env("SLURM_ARRAY_TASK_ID", k.to_string())
+            .env("SLURM_CPUS_PER_TASK", "1")
+            .status()
+            .unwrap();
+        assert!(s.success());
+    }
+    assert!(dir.join("job/bake_part_2_of_2.exr").exists());
+    let s = std::process::Command::new("bash")
+        .arg(dir.join("job/merge.sbatch"))
+        .current_dir(&dir)
+        .status()
+        .unwrap();
+    assert!(s.success());
+    let names = dir_names(&dir.join("single"));
+    assert_eq!(dir_names(&dir.join("farmed")), names);
+    for name in &names {
+        assert!(
+            std::fs::read(dir.join("single").join(name)).unwrap()
+                == std::fs::read(dir.join("farmed").join(name)).unwrap(),
+            "{name} differs"
+        );
+    }
+    let o = run_in(
+        &dir,
+        &[
+            "farm",
+            "scene.ron",
+            "--bake",
+            "--spp",
+            "4",
+            "--parts",
+            "2",
+            "--out",
+            "x",
+        ],
+    );
+    assert_eq!(o.status.code(), Some(2), "--spp does not apply to bakes");
+}
