@@ -385,6 +385,16 @@ fn negative_displacement_bound() {
     );
 }
 
+/// A bad radius is reported once: not again through the `z_min`/`z_max` the user never wrote
+/// (their defaults follow the radius).
+#[test]
+fn nan_sphere_radius_is_reported_once() {
+    check(
+        "sphere_nan_radius.ron",
+        &["sphere_nan_radius.ron:4:45: error: radius must be a finite number, found NaN"],
+    );
+}
+
 #[test]
 fn nan_in_a_patch_control_point() {
     check(

@@ -569,3 +569,27 @@ fn photon_options() {
         ],
     );
 }
+
+/// `ron` says only "integer is out of bounds"; the message names the number as written, the
+/// field and the range it takes.
+#[test]
+fn out_of_range_integers_name_the_number_the_field_and_the_range() {
+    let dir = std::env::temp_dir().join(format!("stagelight-int-range-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for (text, expected) in [
+        (
+            "Scene(\n  objects: [(name: \"g\", mesh: Grid(nx: 99999999999, ny: 2))],\n)\n",
+            "int.ron:2:40: error: integer 99999999999 is out of range for `nx`\n  help: `nx` takes a whole number from 0 to 4294967295",
+        ),
+        (
+            "Scene(\n  options: (seed: -3),\n)\n",
+            "int.ron:2:20: error: integer -3 is out of range for `seed`\n  help: `seed` takes a whole number from 0 to 18446744073709551615",
+        ),
+    ] {
+        let path = dir.join("int.ron");
+        std::fs::write(&path, text).unwrap();
+        let errors = stagelight::scene::load_scene(&path).err().expect("refused");
+        let got = errors.0[0].to_string();
+        assert_eq!(got, format!("{}/{expected}", dir.display()));
+    }
+}

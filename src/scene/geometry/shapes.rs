@@ -210,8 +210,10 @@ fn procedural_shape(ck: &mut Checker<'_>, ctx: &Ctx<'_>, mesh: &MeshDesc) -> Opt
             theta_max,
         } => Procedural::Sphere(Sphere {
             radius: f(ck, "radius", radius),
-            z_min: f(ck, "z_min", z_min.unwrap_or(-radius)),
-            z_max: f(ck, "z_max", z_max.unwrap_or(radius)),
+            // Unwritten bounds follow the radius; a bad radius is reported once, not again
+            // through bounds the user never wrote.
+            z_min: f(ck, "z_min", z_min.unwrap_or(-finite_or_one(radius))),
+            z_max: f(ck, "z_max", z_max.unwrap_or(finite_or_one(radius))),
             theta_max: f(ck, "theta_max", theta_max),
         }),
         MeshDesc::Cylinder {
@@ -302,4 +304,13 @@ fn procedural_shape(ck: &mut Checker<'_>, ctx: &Ctx<'_>, mesh: &MeshDesc) -> Opt
         return None;
     }
     Some(p)
+}
+
+/// `x` when finite, else 1 (a stand-in default after `x` itself was reported).
+fn finite_or_one(x: f64) -> f64 {
+    if x.is_finite() {
+        x
+    } else {
+        1.0
+    }
 }

@@ -33,6 +33,7 @@
 
 pub mod rib;
 pub mod ron;
+mod ron_integers;
 mod ron_spans;
 pub mod to_ron;
 

@@ -39,6 +39,13 @@ pub fn read(path: &Path, bytes: &[u8]) -> Result<ReadScene, Vec<Diagnostic>> {
         Err(err) => {
             let mut d = from_ron(path, &err);
             (d.line, d.column) = skip_whitespace(text, d.line, d.column);
+            if let RonError::IntegerOutOfBounds = err.code {
+                if let Some((message, help)) =
+                    super::ron_integers::out_of_range(text, d.line, d.column)
+                {
+                    (d.message, d.help) = (message, Some(help));
+                }
+            }
             if let RonError::MissingStructField { .. } = err.code {
                 let close = Pos {
                     line: d.line,
