@@ -20,4 +20,4 @@ pub mod uv;
 pub use raster::{rasterize, Coverage, TexelSample};
 pub use report::BakeReport;
 pub use texture::TexelImage;
-pub use uv::{bake_resolution, corner_uvs, BakeUvError};
+pub use uv::{bake_resolution, corner_uvs, second_set_corner_uvs, BakeUvError};
