@@ -211,6 +211,10 @@ struct BakeArgs {
     /// the physical memory, `ulimit -v` and the cgroup limit.
     #[arg(long = "memory-limit", value_name = "BYTES", value_parser = stagelight::budget::parse_bytes)]
     memory_limit: Option<u64>,
+    /// Also write `DIR/<scene>.glb`: a copy of the glTF scene whose materials reference the
+    /// baked textures (lightmap and occlusion on TEXCOORD_1; docs/gltf.md).
+    #[arg(long = "write-gltf")]
+    write_gltf: bool,
 }
 
 #[derive(Args)]
@@ -802,6 +806,20 @@ fn bake(args: BakeArgs) -> ExitCode {
     };
     if let Some(dir) = args.output {
         frame.inputs.bake_dir = dir;
+    }
+    if args.write_gltf {
+        let ext = args
+            .scene
+            .extension()
+            .map(|e| e.to_string_lossy().to_ascii_lowercase());
+        if !matches!(ext.as_deref(), Some("gltf" | "glb")) {
+            eprintln!(
+                "error: --write-gltf needs a glTF scene (.gltf or .glb), not {}",
+                args.scene.display()
+            );
+            return ExitCode::from(EXIT_USAGE);
+        }
+        frame.inputs.write_gltf = Some(args.scene.clone());
     }
     run_and_report(
         &args.scene,

@@ -233,7 +233,7 @@ pub fn uri_bytes(uri: &str, dir: Option<&Path>, what: &str) -> Result<Vec<u8>, M
             format!(
                 "cannot read \"{}\": {}",
                 path.display(),
-                crate::scene::include::io_reason(&e)
+                crate::scene::message::io_reason(&e)
             ),
         )
     })
@@ -652,7 +652,7 @@ pub fn image_reference(name: &str) -> Option<(&str, usize)> {
 /// view, a `data:` URI or a file beside it.
 pub fn image_bytes(path: &Path, index: usize) -> Result<Vec<u8>, String> {
     let bytes = crate::limits::read_file(path, crate::limits::MAX_MESH_FILE_BYTES, "glTF file")
-        .map_err(|e| crate::scene::include::io_reason(&e))?;
+        .map_err(|e| crate::scene::message::io_reason(&e))?;
     let dir = path.parent();
     let file = open(&bytes, dir).map_err(|e| e.to_string())?;
     let count = file.doc.images().count();

@@ -93,7 +93,7 @@ pub fn read(
     use crate::limits::{read_file, MAX_MESH_FILE_BYTES};
     let bytes =
         read_file(path, MAX_MESH_FILE_BYTES, "mesh file").map_err(|e| MeshFileError::Read {
-            reason: super::include::io_reason(&e),
+            reason: super::message::io_reason(&e),
         })?;
     match format {
         MeshFormat::Gltf => gltf_file::parse(&bytes, path.parent(), pick),

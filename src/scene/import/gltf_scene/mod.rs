@@ -10,13 +10,16 @@
 //!   node's local matrix; any other node is a group (`<node>_group`) placed by an instance
 //!   (`<node>_node`) with the node's matrix, holding one instance per primitive (`<node>` or
 //!   `<node>_<k>`) and the instances of its children; the root is the group `scene`;
-//! - materials ([`materials`]), cameras and `KHR_lights_punctual` lights ([`view`]).
+//! - materials ([`materials`]), cameras and `KHR_lights_punctual` lights ([`view`]);
+//! - every instance of a primitive with `TEXCOORD_1` carries the default bake request
+//!   ([`bakes`]), so `stagelight bake model.glb` bakes lightmaps and ambient occlusion.
 //!
 //! Names come from the file (node, mesh, material, light and camera names; `node3` and the
 //! like for unnamed ones), made unique with `_2`, `_3`, … and stripped of characters that
 //! could not be part of a file name. Every element is located at the start of the file (a
 //! binary file has no lines); messages name the glTF element (`nodes[3]`).
 
+pub mod bakes;
 pub mod materials;
 pub mod view;
 
@@ -100,7 +103,7 @@ pub fn read(path: &Path, bytes: &[u8]) -> Result<ReadScene, Vec<Diagnostic>> {
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_default();
-    let (desc, warnings) = build(path, &file_name, &file)?;
+    let (desc, warnings, _) = build(path, &file_name, &file)?;
     let mut table = PathTable::default();
     table.insert("", SourcePos::start(path));
     Ok(ReadScene {
@@ -143,6 +146,8 @@ pub struct Walk<'a> {
     pub bounds: Option<(DVec3, DVec3)>,
     /// The first camera met: (node, world matrix).
     pub camera: Option<(usize, DMat4)>,
+    /// Every instance of a primitive: (instance name, node, primitive index).
+    pub leaves: Vec<(String, usize, usize)>,
     errors: Vec<Diagnostic>,
 }
 
@@ -314,6 +319,7 @@ impl Walk<'_> {
                         } else {
                             label.clone()
                         });
+                        self.leaves.push((inst.clone(), node.index(), p));
                         members.push(place(self, inst, object, &DMat4::IDENTITY));
                     }
                 }
@@ -334,7 +340,9 @@ impl Walk<'_> {
                 } else {
                     format!("{child_label}_node")
                 });
-                let _ = child_index;
+                if lone {
+                    self.leaves.push((name.clone(), child_index, 0));
+                }
                 members.push(place(self, name, of, &local));
             }
         }
@@ -362,11 +370,10 @@ fn file_name_of(path: &Path) -> String {
         .unwrap_or_default()
 }
 
-fn build(
-    path: &Path,
-    _file_name: &str,
-    file: &GltfFile,
-) -> Result<(SceneDesc, Vec<Diagnostic>), Vec<Diagnostic>> {
+/// What [`build`] returns: the description, warnings and the primitive instances.
+type Built = (SceneDesc, Vec<Diagnostic>, Vec<(String, usize, usize)>);
+
+fn build(path: &Path, _file_name: &str, file: &GltfFile) -> Result<Built, Vec<Diagnostic>> {
     let doc = &file.doc;
     let Some(scene) = doc.default_scene().or_else(|| doc.scenes().next()) else {
         return Err(vec![at_file(
@@ -387,6 +394,7 @@ fn build(
         groups: HashMap::new(),
         bounds: None,
         camera: None,
+        leaves: Vec::new(),
         errors: Vec::new(),
     };
     materials::warn_unmapped(&mut w);
@@ -394,11 +402,15 @@ fn build(
     for node in scene.nodes() {
         let local = local_matrix(&node);
         let label = node_label(&node);
+        let index = node.index();
         if let Some(of) = w.walk(node, local, &mut Vec::new()) {
             let lone = w.objects.values().any(|o| *o == of);
             let name = w
                 .names
                 .take(&if lone { label } else { format!("{label}_node") });
+            if lone {
+                w.leaves.push((name.clone(), index, 0));
+            }
             members.push(place(&mut w, name, of, &local));
         }
     }
@@ -421,9 +433,22 @@ fn build(
     });
     let camera = view::camera(&mut w);
     view::default_light(&mut w);
+    bakes::default_bakes(&mut w);
     let warnings = std::mem::take(&mut w.warnings);
+    let leaves = std::mem::take(&mut w.leaves);
     desc.render = Some(RenderDesc { root, camera });
-    Ok((desc, warnings))
+    Ok((desc, warnings, leaves))
+}
+
+/// Every instance of a primitive in the glTF scene at `path`: (instance name, node index,
+/// primitive index), as [`read`] names them (for writing baked textures back into the file).
+pub fn primitive_instances(
+    path: &Path,
+    bytes: &[u8],
+) -> Result<Vec<(String, usize, usize)>, Vec<Diagnostic>> {
+    let dir = path.parent().unwrap_or(Path::new(""));
+    let file = gltf_file::open(bytes, Some(dir)).map_err(|e| vec![file_error(path, &e)])?;
+    build(path, "", &file).map(|(_, _, leaves)| leaves)
 }
 
 #[cfg(test)]
