@@ -166,7 +166,7 @@ fn the_rough_dielectric_is_close_to_lambert() {
     for _ in 0..500 {
         let dir = |r: &mut Rng| {
             let cos = 0.5 + 0.5 * r.next_f32();
-            let phi = 6.283 * r.next_f32();
+            let phi = std::f32::consts::TAU * r.next_f32();
             let sin = (1.0 - cos * cos).sqrt();
             Vec3::new(sin * phi.cos(), sin * phi.sin(), cos)
         };

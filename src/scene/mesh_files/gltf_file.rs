@@ -612,7 +612,7 @@ pub fn mesh_data(file: &GltfFile, pick: &MeshPick) -> Result<MeshData, MeshFileE
             }
             None => (0..n as u32).collect(),
         };
-        if corners.len() % 3 != 0 {
+        if !corners.len().is_multiple_of(3) {
             return Err(element(
                 path,
                 format!(
