@@ -178,3 +178,34 @@ fn the_rough_dielectric_is_close_to_lambert() {
         );
     }
 }
+
+/// Just above the mirror threshold (roughness 0.05, α = 0.0025) a white metal behaves as the
+/// mirror within noise: 95 % of the sampled directions lie within 2° of the mirror
+/// direction (GGX: 98 % of half-vectors within 1° at this α) and the mean throughput weight
+/// is within 3 % of the mirror's 1.
+#[test]
+fn a_nearly_smooth_metal_is_the_mirror_within_noise() {
+    let bsdf = Bsdf::new(&mr(1.0, 1.0, 0.05), true).unwrap();
+    for wo in [Vec3::Z, Vec3::new(0.6, 0.0, 0.8)] {
+        let mirror = Vec3::new(-wo.x, -wo.y, wo.z);
+        let mut rng = Rng(21);
+        let (mut sum, mut n, mut near) = (Vec3::ZERO, 0, 0);
+        for _ in 0..20_000 {
+            let Some(s) = bsdf.sample(wo, rng.next_vec3()) else {
+                continue;
+            };
+            near += usize::from(s.wi.dot(mirror) > 2f32.to_radians().cos());
+            sum += s.weight();
+            n += 1;
+        }
+        assert!(
+            near as f64 >= 0.95 * n as f64,
+            "{wo}: {near} of {n} within 2°"
+        );
+        let mean = sum / n as f32;
+        assert!(
+            (mean - Vec3::ONE).abs().max_element() < 0.03,
+            "{wo}: {mean}"
+        );
+    }
+}
