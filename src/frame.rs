@@ -134,6 +134,9 @@ pub struct RunInputs {
     /// Leave the run's files in [`Frame::held_files`] instead of committing them, so that the
     /// caller commits them together with its own (all or nothing).
     pub hold_files: bool,
+    /// The glTF scene to write back with its baked textures (`bake --write-gltf`): the
+    /// `bake_lightmaps` stage adds `<bake_dir>/<stem>.glb` to its files.
+    pub write_gltf: Option<PathBuf>,
 }
 
 impl RunInputs {
@@ -253,6 +256,7 @@ impl Frame {
                 merged_bake: None,
                 budget: crate::budget::Budget::unlimited(),
                 hold_files: false,
+                write_gltf: None,
             },
             outputs: StageOutputs::default(),
             report: RunReport::default(),

@@ -219,8 +219,12 @@ struct BakeArgs {
     /// Bake only part K of N (1-based; interleaved 16×16 texel tiles of all requests) and
     /// write it undilated as `bake_part_K_of_N.exr` into the output directory, for
     /// `stagelight merge`.
-    #[arg(long, value_name = "K/N")]
+    #[arg(long, value_name = "K/N", conflicts_with = "write_gltf")]
     part: Option<PartNumber>,
+    /// Also write `DIR/<scene>.glb`: a copy of the glTF scene whose materials reference the
+    /// baked textures (lightmap and occlusion on TEXCOORD_1; docs/gltf.md).
+    #[arg(long = "write-gltf")]
+    write_gltf: bool,
 }
 
 #[derive(Args)]
@@ -888,6 +892,20 @@ fn bake(args: BakeArgs) -> ExitCode {
         scene: args.scene.display().to_string(),
         scene_hash: stagelight::farm::scene_hash(scene.source_hash, &scene.world),
     });
+    if args.write_gltf {
+        let ext = args
+            .scene
+            .extension()
+            .map(|e| e.to_string_lossy().to_ascii_lowercase());
+        if !matches!(ext.as_deref(), Some("gltf" | "glb")) {
+            eprintln!(
+                "error: --write-gltf needs a glTF scene (.gltf or .glb), not {}",
+                args.scene.display()
+            );
+            return ExitCode::from(EXIT_USAGE);
+        }
+        frame.inputs.write_gltf = Some(args.scene.clone());
+    }
     run_and_report(
         &args.scene,
         &mut scene,

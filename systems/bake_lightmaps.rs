@@ -3,8 +3,9 @@
 //! other files, all or nothing.
 //!
 //! **Reads:** `BakeRequest` + `Name` + `SourceLink` on instance entities; `Emitter` entities;
-//! `outputs.geometry`; `inputs.bake_dir`; `settings.seed`.
-//! **Writes:** texture files (encoded, in `Work::pending`, committed by the runner);
+//! `outputs.geometry`; `inputs.bake_dir`; `inputs.write_gltf`; `settings.seed`.
+//! **Writes:** texture files (encoded, in `Work::pending`, committed by the runner), and
+//! with `inputs.write_gltf` the glTF copy referencing them (`crate::bake::gltf_out`);
 //! `outputs.bake_reports`.
 //! **Runs when:** the run bakes (`stagelight bake` or `render --bake`) and at least one
 //! instance carries a bake request.
@@ -29,7 +30,7 @@ use crate::bake::request::prepare_bakes;
 use crate::bake::request::PreparedBake;
 use crate::bake::texels::TexelResults;
 use crate::bake::texels::{evaluate, TexelJob};
-use crate::components::{BakeKind, BakeRequest};
+use crate::components::{BakeFormat, BakeKind, BakeRequest};
 use crate::farm::bake_part::{first_tiles, BakePartFile, BakePartRequest, TexelOwner};
 use crate::farm::PartRun;
 use crate::progress::Progress;
@@ -78,6 +79,7 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
     let mut reports = Vec::new();
     let mut part_requests = Vec::new();
     let mut texels_baked = 0u64;
+    let mut baked_pngs: Vec<(String, BakeKind, Vec<u8>)> = Vec::new();
     for (index, p) in prepared.iter().enumerate() {
         let start = Instant::now();
         let mut results = if let Some(merged) = &inputs.merged_bake {
@@ -131,6 +133,14 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
             dilated = crate::bake::dilate::dilate(img, p.request.padding);
         }
         let files = encode_request(p, &results, baked_mask.as_deref(), &inputs.bake_dir)?;
+        if inputs.write_gltf.is_some() {
+            for (target, file) in p.request.targets.iter().zip(&files.pending) {
+                if target.format != BakeFormat::Exr {
+                    let name = p.request.name.clone();
+                    baked_pngs.push((name, target.kind.clone(), file.bytes.clone()));
+                }
+            }
+        }
         let mut r = report(p, &results, dilated, start.elapsed().as_secs_f64(), &files);
         if inputs.merged_bake.is_some() {
             // The rays are the parts' total; the merge itself traces none.
@@ -145,6 +155,9 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
     }
     if let Some(run) = &inputs.part {
         pending.push(part_file(run, frame, part_requests)?);
+    }
+    if let Some(source) = &inputs.write_gltf {
+        pending.push(baked_gltf(source, &baked_pngs, &inputs.bake_dir)?);
     }
     Ok(Work::new(texels_baked, "texels")
         .with_pending(pending)
@@ -212,6 +225,57 @@ fn part_file(
             path: path.clone(),
             message,
         })?;
+    Ok(crate::image_io::PendingFile { path, bytes })
+}
+
+/// The glTF copy of `source` referencing the baked PNGs (`bake --write-gltf`), as
+/// `<dir>/<stem>.glb`.
+fn baked_gltf(
+    source: &std::path::Path,
+    pngs: &[(String, BakeKind, Vec<u8>)],
+    dir: &std::path::Path,
+) -> Result<crate::image_io::PendingFile, StageError> {
+    use crate::bake::gltf_out::{baked_glb, BakedTexture, TextureSlot};
+    let stem = source.file_stem().unwrap_or_default().to_string_lossy();
+    let path = dir.join(format!("{stem}.glb"));
+    let fail = |message: String| StageError::Write {
+        path: path.clone(),
+        message,
+    };
+    let same = |a: &std::path::Path, b: &std::path::Path| matches!((a.canonicalize(), b.canonicalize()), (Ok(x), Ok(y)) if x == y);
+    if same(&path, source) {
+        return Err(fail(
+            "it is the glTF file being baked; bake into another directory (-o DIR)".into(),
+        ));
+    }
+    let bytes = std::fs::read(source).map_err(|e| fail(e.to_string()))?;
+    let leaves =
+        crate::scene::import::gltf_scene::primitive_instances(source, &bytes).map_err(|e| {
+            fail(
+                e.iter()
+                    .map(|d| d.message.clone())
+                    .collect::<Vec<_>>()
+                    .join("; "),
+            )
+        })?;
+    let mut textures = Vec::new();
+    for (name, kind, png) in pngs {
+        let Some((_, node, primitive)) = leaves.iter().find(|(n, ..)| n == name) else {
+            continue;
+        };
+        let slot = match kind {
+            BakeKind::AmbientOcclusion { .. } => TextureSlot::Occlusion,
+            BakeKind::Lightmap { .. } => TextureSlot::Lightmap,
+            _ => continue,
+        };
+        textures.push(BakedTexture {
+            node: *node,
+            primitive: *primitive,
+            slot,
+            png,
+        });
+    }
+    let bytes = baked_glb(source, &textures).map_err(fail)?;
     Ok(crate::image_io::PendingFile { path, bytes })
 }
 

@@ -9,7 +9,7 @@
 //! | 2 | `tessellate` | a parametric surface, subdivision mesh or true displacement exists (or a quadric waits for expansion) | `Surface`, `SubdivMesh`, `Displacement`, `Approximation`, render camera (raster-space rates) | triangle meshes on objects and their instances (world) |
 //! | 3 | `build_accel` | instances with triangles (or geometry pending) and a render camera or bake request in this run | `Instance`, `WorldFromObject`, `MaterialRef`, `Material`, bump `Displacement`, `settings.bvh_quality` | `outputs.geometry` |
 //! | 4 | `trace_photons` | caustics or global illumination on, a `Direct` render, geometry, a light with power | `Emitter`s, `outputs.geometry`, `settings.photons` | `outputs.photons` |
-//! | 5 | `bake_lightmaps` | bake requests, in a run that bakes | `BakeRequest`s, `Emitter`s, `Environment`, `outputs.geometry`, `inputs.bake_dir` | texture files; `outputs.bake_reports` |
+//! | 5 | `bake_lightmaps` | bake requests, in a run that bakes | `BakeRequest`s, `Emitter`s, `Environment`, `outputs.geometry`, `inputs.bake_dir`, `inputs.write_gltf` | texture files (and the baked glTF copy); `outputs.bake_reports` |
 //! | 6 | `shade` | a render camera, in a run that renders | render camera, lenses, atmosphere, `Interior`s, `Emitter`s, `Environment`, `outputs.geometry`, `outputs.photons` | `outputs.image` |
 //! | 7 | `write_output` | a shaded image and outputs to write | `outputs.image`, camera outputs with `inputs.outputs` overrides, `Imager` | image files |
 //! <!-- stage table end -->
@@ -83,8 +83,8 @@ pub const STAGES: &[Stage] = &[
     Stage {
         name: "bake_lightmaps",
         runs_when: "bake requests, in a run that bakes",
-        reads: "`BakeRequest`s, `Emitter`s, `Environment`, `outputs.geometry`, `inputs.bake_dir`",
-        writes: "texture files; `outputs.bake_reports`",
+        reads: "`BakeRequest`s, `Emitter`s, `Environment`, `outputs.geometry`, `inputs.bake_dir`, `inputs.write_gltf`",
+        writes: "texture files (and the baked glTF copy); `outputs.bake_reports`",
         slot: Some(Slot::BakeReports),
         condition: bake_lightmaps::should_run,
         body: StageBody::ReadsWorld(bake_lightmaps::run),

@@ -77,6 +77,12 @@ pub fn diffuse_albedo(shader: &Shader) -> Vec3 {
         | Shader::ShinyMetal { .. }
         | Shader::Mirror { .. }
         | Shader::Dielectric { .. } => Vec3::ZERO,
+        // The diffuse term of the metallic-roughness model (at normal incidence).
+        Shader::MetallicRoughness {
+            base_color,
+            metallic,
+            ..
+        } => *base_color * ((1.0 - metallic) * 0.96),
         // The local model's diffuse weight (its sum has no 1/π: not a reflectance).
         Shader::Local(m) => m.color * m.kd,
         Shader::Opacity { opacity, input } => diffuse_albedo(input) * *opacity,
@@ -90,6 +96,7 @@ pub fn base_color(shader: &Shader) -> Vec3 {
         Shader::Metal { color, .. }
         | Shader::ShinyMetal { color, .. }
         | Shader::Mirror { color } => *color,
+        Shader::MetallicRoughness { base_color, .. } => *base_color,
         Shader::Dielectric { col, .. } => *col,
         Shader::Opacity { input, .. } => base_color(input),
         other => diffuse_albedo(other),

@@ -1,6 +1,7 @@
 //! Texture baking: UV sources and bake resolution, texel rasterization with conservative
 //! coverage, the per-texel estimators (ambient occlusion, irradiance), dilation and texture
-//! encoding; request checking ([`request`]) and file naming/encoding ([`files`]). The
+//! encoding; request checking ([`request`]), file naming/encoding ([`files`]) and the baked
+//! glTF copy ([`gltf_out`]). The
 //! `bake_lightmaps` stage drives these.
 //!
 //! Texel convention: texel `(i, j)` of a `W × H` texture (row `j = 0` at the top of the image)
@@ -9,6 +10,7 @@
 pub mod ao;
 pub mod dilate;
 pub mod files;
+pub mod gltf_out;
 pub mod irradiance;
 pub mod raster;
 pub mod report;
@@ -20,4 +22,4 @@ pub mod uv;
 pub use raster::{rasterize, Coverage, TexelSample};
 pub use report::BakeReport;
 pub use texture::TexelImage;
-pub use uv::{bake_resolution, corner_uvs, BakeUvError};
+pub use uv::{bake_resolution, corner_uvs, second_set_corner_uvs, BakeUvError};

@@ -7,8 +7,10 @@ use std::collections::HashMap;
 
 use hecs::{Entity, World};
 
-use super::{bake_resolution, corner_uvs, rasterize, Coverage};
-use crate::components::{BakeKind, BakeRequest, BakeResolution, SourceLink};
+use super::{bake_resolution, corner_uvs, rasterize, second_set_corner_uvs, Coverage};
+use crate::components::{
+    BakeKind, BakeRequest, BakeResolution, Instance, SecondUvs, SourceLink, UvSource,
+};
 use crate::geometry::SceneGeometry;
 use crate::scene::Diagnostic;
 use crate::stage_error::StageError;
@@ -71,7 +73,16 @@ pub fn prepare_bakes(
             problems.push(problem("the instance has no triangles".into(), None));
             continue;
         };
-        match prepare(request, slot, geometry) {
+        let second = world
+            .get::<&Instance>(*entity)
+            .ok()
+            .and_then(|i| world.get::<&SecondUvs>(i.object).ok().map(|s| s.0.clone()));
+        match prepare(
+            request,
+            slot,
+            geometry,
+            second.as_deref().map(|v| v.as_slice()),
+        ) {
             Ok(p) => prepared.push(p),
             Err((message, help)) => problems.push(problem(message, help)),
         }
@@ -114,14 +125,18 @@ fn prepare(
     request: &BakeRequest,
     slot: usize,
     geometry: &SceneGeometry,
+    second: Option<&[glam::Vec2]>,
 ) -> Result<PreparedBake, (String, Option<String>)> {
     let inst = &geometry.instances[slot];
     let page = match request.resolution {
         BakeResolution::Fixed { width, height } => width.max(height).max(1),
         BakeResolution::Density { max_size, .. } => max_size.clamp(1, UNWRAP_PAGE),
     };
-    let uvs = corner_uvs(&inst.mesh, request.uvs, page, request.padding)
-        .map_err(|e| (e.to_string(), None))?;
+    let uvs = match (request.uvs, second) {
+        (UvSource::SecondSet, Some(second)) => second_set_corner_uvs(&inst.mesh, second),
+        _ => corner_uvs(&inst.mesh, request.uvs, page, request.padding),
+    }
+    .map_err(|e| (e.to_string(), None))?;
     let mut world_area = 0.0f64;
     let mut uv_area = 0.0f64;
     for (t, uv) in uvs.iter().enumerate() {

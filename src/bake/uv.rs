@@ -11,6 +11,9 @@ pub enum BakeUvError {
     /// The mesh has no UVs and unwrapping is off.
     #[error("the mesh has no texture coordinates and `uvs: Mesh` forbids generating them")]
     NoUvs,
+    /// `uvs: MeshSet(1)`, but the mesh as placed has no second UV set (one per vertex).
+    #[error("the mesh has no second UV set (TEXCOORD_1) matching its vertices (displacement or dicing replaces the vertices and drops it)")]
+    NoSecondSet,
     /// The unwrapper failed.
     #[error("generating lightmap UVs failed: {0}")]
     Unwrap(String),
@@ -36,8 +39,25 @@ pub fn corner_uvs(
     match (source, &mesh.uvs) {
         (UvSource::Mesh, Some(uvs)) | (UvSource::MeshOrUnwrap, Some(uvs)) => Ok(from_mesh(uvs)),
         (UvSource::Mesh, None) => Err(BakeUvError::NoUvs),
+        (UvSource::SecondSet, _) => Err(BakeUvError::NoSecondSet),
         _ => unwrap(mesh, page, padding),
     }
+}
+
+/// Per-triangle corner UVs from a second UV set (`uvs: MeshSet(1)`), which must have one
+/// entry per vertex of `mesh`.
+pub fn second_set_corner_uvs(
+    mesh: &TriMesh,
+    second: &[Vec2],
+) -> Result<Vec<[Vec2; 3]>, BakeUvError> {
+    if second.len() != mesh.positions.len() {
+        return Err(BakeUvError::NoSecondSet);
+    }
+    Ok(mesh
+        .triangles
+        .iter()
+        .map(|t| t.map(|i| second[i as usize]))
+        .collect())
 }
 
 fn unwrap(mesh: &TriMesh, page: u32, padding: u32) -> Result<Vec<[Vec2; 3]>, BakeUvError> {

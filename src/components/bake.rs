@@ -32,6 +32,8 @@ pub enum UvSource {
     MeshOrUnwrap,
     /// Always generate lightmap UVs (unique, non-overlapping; `uvunwrap`).
     Unwrap,
+    /// The mesh's second UV set (glTF `TEXCOORD_1`, carried as `SecondUvs`).
+    SecondSet,
 }
 
 /// What irradiance lightmaps contain.

@@ -30,6 +30,16 @@ pub enum Shader {
         /// Surface colour (linear RGB).
         color: Vec3,
     },
+    /// The glTF 2.0 metallic-roughness model (GGX specular with the specification's base
+    /// colour / metallic mixing; `shading::bsdf::metallic_roughness`).
+    MetallicRoughness {
+        /// Base colour (linear RGB, each in \[0, 1\]).
+        base_color: Vec3,
+        /// Metalness in \[0, 1\].
+        metallic: f32,
+        /// Perceptual roughness in \[0, 1\] (GGX α = roughness²).
+        roughness: f32,
+    },
     /// Ideal diffuse reflector: BRDF `albedo / π`.
     Lambert {
         /// Diffuse reflectance in [0, 1] per channel.

@@ -33,6 +33,12 @@ impl TriMesh {
     }
 }
 
+/// The second texture-coordinate set of an object's mesh (glTF `TEXCOORD_1`, the usual
+/// lightmap UVs), one per vertex of its [`TriMesh`], v up. Carried by the object entity
+/// beside its `Arc<TriMesh>`; bakes with `uvs: MeshSet(1)` read it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SecondUvs(pub Arc<Vec<Vec2>>);
+
 /// A placed copy of an object: the leaf of the resolved instance DAG. The entity also carries
 /// [`crate::components::WorldFromObject`] and [`crate::components::MaterialRef`].
 #[derive(Debug, Clone)]

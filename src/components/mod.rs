@@ -17,7 +17,7 @@ pub use camera::{
 pub use light::{attenuation_factor, Emitter, LightShape};
 pub use local_model::{LocalLobe, LocalModel};
 pub use material::{Material, MaterialRef, Shader};
-pub use mesh::{Instance, TriMesh};
+pub use mesh::{Instance, SecondUvs, TriMesh};
 pub use naming::{Name, SourceLink};
 pub use transform::{SceneOrigin, WorldFromObject};
 

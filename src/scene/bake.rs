@@ -13,12 +13,13 @@ use crate::components::{
 };
 
 /// One entry per merged instance: the bake request of instances that carry a valid one.
-/// `has_uvs` tells, per object, whether its mesh carries texture coordinates.
+/// `has_uvs` tells, per object, whether its mesh carries texture coordinates of set 0 and
+/// of set 1.
 pub fn bake_requests(
     src: &mut Sources,
     m: &Merged<'_>,
     leaves: &[Leaf],
-    has_uvs: &[bool],
+    has_uvs: &[[bool; 2]],
 ) -> Vec<Option<BakeRequest>> {
     m.instances
         .iter()
@@ -48,7 +49,7 @@ pub fn bake_requests(
                     return None;
                 }
             }
-            let has_uvs = has_uvs.get(placed[0].object).copied().unwrap_or(false);
+            let has_uvs = has_uvs.get(placed[0].object).copied().unwrap_or([false; 2]);
             request(&mut ck, &path, name, desc, has_uvs)
         })
         .collect()
@@ -59,7 +60,7 @@ fn request(
     path: &str,
     name: &str,
     d: &BakeDesc,
-    has_uvs: bool,
+    has_uvs: [bool; 2],
 ) -> Option<BakeRequest> {
     let mut ok = true;
     let resolution = match (d.resolution, d.texels_per_unit) {
@@ -117,7 +118,7 @@ fn request(
     let uvs = match d.uvs {
         UvsDesc::Auto => UvSource::MeshOrUnwrap,
         UvsDesc::Mesh => {
-            if !has_uvs {
+            if !has_uvs[0] {
                 ck.error(
                     &format!("{path}.uvs"),
                     format!("`uvs: Mesh`, but the mesh of \"{name}\" has no texture coordinates"),
@@ -127,6 +128,26 @@ fn request(
             UvSource::Mesh
         }
         UvsDesc::Unwrap => UvSource::Unwrap,
+        UvsDesc::MeshSet(set) => match set {
+            0 if has_uvs[0] => UvSource::Mesh,
+            1 if has_uvs[1] => UvSource::SecondSet,
+            0 | 1 => {
+                ck.error(
+                    &format!("{path}.uvs.MeshSet"),
+                    format!("`uvs: MeshSet({set})`, but the mesh of \"{name}\" has no texture coordinates of set {set}"),
+                );
+                ok = false;
+                UvSource::Mesh
+            }
+            _ => {
+                ck.error(
+                    &format!("{path}.uvs.MeshSet"),
+                    format!("UV set {set} does not exist: meshes carry sets 0 and 1 (glTF `TEXCOORD_0`, `TEXCOORD_1`)"),
+                );
+                ok = false;
+                UvSource::Mesh
+            }
+        },
     };
     if d.texel_samples == 0 || d.texel_samples > 256 {
         ck.error(

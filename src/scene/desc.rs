@@ -690,6 +690,19 @@ pub enum ShaderDesc {
         #[serde(default = "default_white")]
         color: V3,
     },
+    /// The glTF 2.0 metallic-roughness model (what the glTF reader makes of a glTF
+    /// material): GGX specular with the glTF specification's base colour / metallic mixing.
+    MetallicRoughness {
+        /// Base colour (linear), each channel in [0, 1], default `(1, 1, 1)`.
+        #[serde(default = "default_white")]
+        base_color: V3,
+        /// Metalness in [0, 1], default 1 (glTF's default).
+        #[serde(default = "default_one")]
+        metallic: f64,
+        /// Perceptual roughness in [0, 1] (GGX α = roughness²), default 1.
+        #[serde(default = "default_one")]
+        roughness: f64,
+    },
     /// Perfect mirror.
     Mirror {
         /// Reflectance, default `(1, 1, 1)`.
@@ -907,6 +920,9 @@ pub enum UvsDesc {
     Mesh,
     /// Always generate lightmap UVs.
     Unwrap,
+    /// The mesh's UV set 0 (`MeshSet(0)`, as `Mesh`) or 1 (`MeshSet(1)`: glTF `TEXCOORD_1`,
+    /// the usual lightmap UVs); an error when the mesh has none.
+    MeshSet(u32),
 }
 
 /// One baked texture.

@@ -24,6 +24,17 @@ pub enum MeshDesc {
         /// Path of the PLY file.
         file: String,
     },
+    /// A mesh of a glTF 2.0 file (`.gltf` or `.glb`), relative to the declaring scene file.
+    Gltf {
+        /// Path of the glTF file.
+        file: String,
+        /// The mesh's name (or `"#index"`); default: the file's only mesh.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        mesh: Option<String>,
+        /// Only this primitive of the mesh, default all of them.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        primitive: Option<u32>,
+    },
     /// Polygons written in the scene.
     Inline {
         /// Vertex positions.

@@ -24,6 +24,9 @@ pub struct BuiltMesh {
     pub dropped: usize,
     /// Whether a normal set was dropped because of a bad entry.
     pub dropped_normals: bool,
+    /// The mesh's second UV set (glTF `TEXCOORD_1`), one per vertex of `mesh`, for bakes
+    /// with `uvs: MeshSet(1)`.
+    pub uvs1: Option<Vec<Vec2>>,
     /// Object-space point subtracted from every position before rounding to f32 (zero when
     /// the mesh lies near its object origin); the instance transforms add it back in f64.
     pub offset: DVec3,
@@ -153,6 +156,7 @@ pub fn build_inline(
                 .map(|t| Vec2::new(t.0 as f32, t.1 as f32))
                 .collect()
         }),
+        None,
         triangles,
     )
 }
@@ -163,6 +167,7 @@ fn finish(
     positions: Vec<DVec3>,
     normals: Option<Vec<Vec3>>,
     uvs: Option<Vec<Vec2>>,
+    uvs1: Option<Vec<Vec2>>,
     triangles: Vec<[u32; 3]>,
 ) -> BuiltMesh {
     let (positions, offset) = super::rebase::centre_positions(&positions);
@@ -188,6 +193,7 @@ fn finish(
     };
     let normals = normals.filter(|n| n.iter().all(|v| v.is_finite()));
     let uvs = uvs.filter(|u| u.iter().all(|t| t.is_finite()));
+    let mut uvs1 = uvs1.filter(|u| u.len() == positions.len() && u.iter().all(|t| t.is_finite()));
     let mut mesh = TriMesh {
         positions,
         normals,
@@ -195,18 +201,22 @@ fn finish(
         triangles,
     };
     if mesh.positions.iter().any(|p| !p.is_finite()) {
-        compact(&mut mesh);
+        let kept = compact(&mut mesh);
+        if let Some(u) = &mut uvs1 {
+            *u = kept.iter().map(|&i| u[i]).collect();
+        }
     }
     BuiltMesh {
         mesh,
         dropped,
         dropped_normals: bad_normals,
+        uvs1,
         offset,
     }
 }
 
-/// Keeps only the vertices some triangle uses.
-fn compact(mesh: &mut TriMesh) {
+/// Keeps only the vertices some triangle uses; returns the old index of each kept vertex.
+fn compact(mesh: &mut TriMesh) -> Vec<usize> {
     let mut remap = vec![u32::MAX; mesh.positions.len()];
     let mut kept = Vec::new();
     for t in &mut mesh.triangles {
@@ -226,11 +236,18 @@ fn compact(mesh: &mut TriMesh) {
     if let Some(u) = &mut mesh.uvs {
         *u = kept.iter().map(|&i| u[i]).collect();
     }
+    kept
 }
 
 /// Builds the mesh a mesh file describes (see [`finish`] for what is dropped).
 pub fn from_data(data: MeshData) -> BuiltMesh {
-    finish(data.positions, data.normals, data.uvs, data.triangles)
+    finish(
+        data.positions,
+        data.normals,
+        data.uvs,
+        data.uvs1,
+        data.triangles,
+    )
 }
 
 /// Loads the mesh file that object `it` names, or only checks that it exists when the
@@ -248,7 +265,8 @@ pub fn load_file(
     let path = src.files[it.file].dir().join(file);
     let at = it.at(&format!(".mesh.{}.file", format.variant()));
     let result = if reachable {
-        mesh_files::read(format, &path).map(|data| Some(from_data(data)))
+        mesh_files::read(format, &path, &mesh_files::gltf_pick(&it.desc.mesh))
+            .map(|data| Some(from_data(data)))
     } else {
         std::fs::metadata(&path)
             .map(|_| None)
@@ -265,6 +283,25 @@ pub fn load_file(
                 &at,
                 format!("cannot read {kind} file \"{}\": {reason}", path.display()),
                 None,
+            );
+            None
+        }
+        Err(MeshFileError::Element {
+            path: element,
+            message,
+        }) => {
+            let referrer = src.where_is(it.file, &at);
+            src.error(
+                it.file,
+                &at,
+                format!(
+                    "invalid {kind} file \"{}\": {element}: {message}",
+                    path.display()
+                ),
+                Some(format!(
+                    "loaded for object \"{}\" at {referrer}",
+                    it.desc.name
+                )),
             );
             None
         }

@@ -223,13 +223,16 @@ fn load(
         .collect();
     geometry::scatter::copy_materials(&mut leaves, &scatters, &resolved.object_material);
     geometry::scatter::check_bakes(src, &merged, &leaves);
-    let has_uvs: Vec<bool> = merged
+    let has_uvs: Vec<[bool; 2]> = merged
         .objects
         .iter()
         .zip(&built)
         .map(|(it, b)| {
-            b.as_ref().is_some_and(|b| b.mesh.uvs.is_some())
-                || geometry::generated_has_uvs(&it.desc.mesh)
+            [
+                b.as_ref().is_some_and(|b| b.mesh.uvs.is_some())
+                    || geometry::generated_has_uvs(&it.desc.mesh),
+                b.as_ref().is_some_and(|b| b.uvs1.is_some()),
+            ]
         })
         .collect();
     let bakes = bake::bake_requests(src, &merged, &leaves, &has_uvs);
@@ -258,9 +261,13 @@ fn load(
     let objects = built
         .into_iter()
         .zip(object_geometry)
-        .map(|(b, geometry)| ObjectParts {
-            mesh: b.map(|b| Arc::new(b.mesh)),
-            geometry,
+        .map(|(b, geometry)| {
+            let uvs1 = b.as_ref().and_then(|b| b.uvs1.clone()).map(Arc::new);
+            ObjectParts {
+                mesh: b.map(|b| Arc::new(b.mesh)),
+                uvs1,
+                geometry,
+            }
         })
         .collect();
     let parts = spawn::Parts {

@@ -151,6 +151,15 @@ pub fn shader(ck: &mut Checker<'_>, path: &str, desc: &ShaderDesc) -> Option<Sha
             ),
             color: s.colour("PaintedPlastic.color", "color", *color),
         },
+        ShaderDesc::MetallicRoughness {
+            base_color,
+            metallic,
+            roughness,
+        } => Shader::MetallicRoughness {
+            base_color: s.unit_colour("MetallicRoughness.base_color", "base_color", *base_color),
+            metallic: s.unit("MetallicRoughness.metallic", "metallic", *metallic),
+            roughness: s.unit("MetallicRoughness.roughness", "roughness", *roughness),
+        },
         ShaderDesc::Mirror { color } => Shader::Mirror {
             color: s.colour("Mirror.color", "color", *color),
         },
@@ -259,6 +268,18 @@ impl Fields<'_, '_, '_> {
         let path = self.at(field);
         let v = self.ck.non_negative(&path, what, x).map(|x| x as f32);
         self.record(v)
+    }
+
+    /// A finite number in [0, 1].
+    fn unit(&mut self, field: &str, what: &str, x: f64) -> f32 {
+        let v = self.weight(field, what, x);
+        if x > 1.0 {
+            let path = self.at(field);
+            self.ck
+                .error(&path, format!("{what} must be at most 1, found {x}"));
+            self.ok = false;
+        }
+        v
     }
 
     /// A finite, positive number.

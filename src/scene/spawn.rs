@@ -60,6 +60,8 @@ pub struct MaterialParts {
 pub struct ObjectParts {
     /// Its mesh, if it was built (reachable objects with a loaded mesh).
     pub mesh: Option<Arc<TriMesh>>,
+    /// Its mesh's second UV set (glTF `TEXCOORD_1`), spawned as [`crate::components::SecondUvs`].
+    pub uvs1: Option<Arc<Vec<glam::Vec2>>>,
     /// Its geometry components (generator, approximation, displacement).
     pub geometry: Option<ObjectGeometry>,
 }
@@ -159,6 +161,7 @@ pub fn spawn(src: &Sources, m: &Merged<'_>, parts: Parts) -> World {
     for o in used_objects(&parts) {
         let Some(ObjectParts {
             mesh,
+            uvs1,
             geometry: Some(geometry),
         }) = parts.objects.get(o)
         else {
@@ -173,6 +176,9 @@ pub fn spawn(src: &Sources, m: &Merged<'_>, parts: Parts) -> World {
                 continue;
             };
             b.add(mesh);
+            if let Some(uvs) = uvs1 {
+                b.add(crate::components::SecondUvs(uvs.clone()));
+            }
         }
         geometry.add_to(&mut b);
         object_entity.insert(o, world.spawn(b.build()));

@@ -22,6 +22,12 @@ pub enum Distribution {
         /// Exponent `n` ≥ 0.
         exponent: f32,
     },
+    /// GGX / Trowbridge–Reitz (the glTF metallic-roughness model's distribution):
+    /// `D = α² / (π cos⁴θh (α² + tan²θh)²)`.
+    Ggx {
+        /// Width `α` (glTF: perceptual roughness squared), > 0.
+        alpha: f32,
+    },
 }
 
 impl Distribution {
@@ -47,6 +53,17 @@ impl Distribution {
             Distribution::BlinnPhong { exponent } => {
                 (exponent + 2.0) * 0.5 * FRAC_1_PI * cos.powf(exponent)
             }
+            Distribution::Ggx { alpha } => {
+                let a2 = alpha * alpha;
+                let cos2 = cos * cos;
+                let k = cos2 * (a2 - 1.0) + 1.0;
+                let v = a2 * FRAC_1_PI / (k * k);
+                if v.is_finite() {
+                    v
+                } else {
+                    0.0
+                }
+            }
         }
     }
 
@@ -58,6 +75,10 @@ impl Distribution {
                 1.0 / (1.0 + tan2).sqrt()
             }
             Distribution::BlinnPhong { exponent } => u.x.powf(1.0 / (exponent + 2.0)),
+            Distribution::Ggx { alpha } => {
+                let tan2 = alpha * alpha * u.x / (1.0 - u.x).max(f32::MIN_POSITIVE);
+                1.0 / (1.0 + tan2).sqrt()
+            }
         };
         let sin = (1.0 - cos * cos).max(0.0).sqrt();
         let phi = 2.0 * PI * u.y;
@@ -101,6 +122,8 @@ mod tests {
             Distribution::BlinnPhong { exponent: 0.0 },
             Distribution::BlinnPhong { exponent: 10.0 },
             Distribution::BlinnPhong { exponent: 200.0 },
+            Distribution::Ggx { alpha: 0.3 },
+            Distribution::Ggx { alpha: 1.0 },
         ] {
             let a = projected_area(&d);
             assert!((a - 1.0).abs() < 2e-3, "{d:?}: {a}");

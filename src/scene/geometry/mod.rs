@@ -93,6 +93,7 @@ pub fn kind_name(mesh: &MeshDesc) -> &'static str {
     match mesh {
         MeshDesc::Obj { .. } => "OBJ mesh",
         MeshDesc::Ply { .. } => "PLY mesh",
+        MeshDesc::Gltf { .. } => "glTF mesh",
         MeshDesc::Inline { .. } => "inline mesh",
         MeshDesc::Sphere { .. } => "sphere",
         MeshDesc::Cylinder { .. } => "cylinder",

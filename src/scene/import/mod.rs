@@ -31,6 +31,7 @@
 //! `lights[i]`, `materials[i]`, `objects[i]`, `instances[i]`, `groups[i]`, `phenomena[i]`
 //! and `include[i]`; the empty path is the file itself.
 
+pub mod gltf_scene;
 pub mod rib;
 pub mod ron;
 mod ron_integers;
@@ -184,6 +185,11 @@ pub const FORMATS: &[Format] = &[
         name: "RIB",
         extensions: &["rib"],
         read: rib::read,
+    },
+    Format {
+        name: "glTF",
+        extensions: &["gltf", "glb"],
+        read: gltf_scene::read,
     },
 ];
 

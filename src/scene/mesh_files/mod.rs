@@ -1,4 +1,4 @@
-//! Mesh files: one reader per format ([`obj`], [`ply`]), each turning a file's bytes into the same
+//! Mesh files: one reader per format ([`obj`], [`ply`], [`gltf_file`]), each turning a file's bytes into the same
 //! [`MeshData`] or a located [`MeshFileError`]. This module owns the format list
 //! ([`MeshFormat`]), the shared description and error, and the dispatch; it knows nothing
 //! of scenes or diagnostics ([`super::mesh_load`] turns the results into meshes and
@@ -7,6 +7,7 @@
 //! Adding a format is one reader file here, one [`MeshFormat`] arm and its `MeshDesc`
 //! variant.
 
+pub mod gltf_file;
 pub mod obj;
 pub mod ply;
 
@@ -24,6 +25,8 @@ pub enum MeshFormat {
     Obj,
     /// PLY, ASCII or binary (`Ply(file: …)`), read by [`ply`].
     Ply,
+    /// glTF 2.0, `.gltf` or `.glb` (`Gltf(file: …, mesh: …)`), read by [`gltf_file`].
+    Gltf,
 }
 
 impl MeshFormat {
@@ -32,6 +35,7 @@ impl MeshFormat {
         match self {
             MeshFormat::Obj => "OBJ",
             MeshFormat::Ply => "PLY",
+            MeshFormat::Gltf => "glTF",
         }
     }
 
@@ -40,14 +44,17 @@ impl MeshFormat {
         match self {
             MeshFormat::Obj => "Obj",
             MeshFormat::Ply => "Ply",
+            MeshFormat::Gltf => "Gltf",
         }
     }
 
-    /// Reads a file of this format from its bytes.
+    /// Reads a file of this format from its bytes (a glTF file: its only mesh, and only
+    /// buffers inside the file).
     pub fn parse(self, bytes: &[u8]) -> Result<MeshData, MeshFileError> {
         match self {
             MeshFormat::Obj => obj::parse(bytes),
             MeshFormat::Ply => ply::parse(bytes),
+            MeshFormat::Gltf => gltf_file::parse(bytes, None, &gltf_file::MeshPick::default()),
         }
     }
 }
@@ -58,18 +65,40 @@ pub fn mesh_file(mesh: &MeshDesc) -> Option<(MeshFormat, &str)> {
     match mesh {
         MeshDesc::Obj { file } => Some((MeshFormat::Obj, file)),
         MeshDesc::Ply { file } => Some((MeshFormat::Ply, file)),
+        MeshDesc::Gltf { file, .. } => Some((MeshFormat::Gltf, file)),
         _ => None,
     }
 }
 
-/// Reads and parses the mesh file at `path`.
-pub fn read(format: MeshFormat, path: &Path) -> Result<MeshData, MeshFileError> {
+/// The part of a glTF file a `Gltf(…)` mesh names (the default for other meshes).
+pub fn gltf_pick(mesh: &MeshDesc) -> gltf_file::MeshPick {
+    match mesh {
+        MeshDesc::Gltf {
+            mesh, primitive, ..
+        } => gltf_file::MeshPick {
+            mesh: mesh.clone(),
+            primitive: *primitive,
+        },
+        _ => gltf_file::MeshPick::default(),
+    }
+}
+
+/// Reads and parses the mesh file at `path` (for glTF, the part `pick` names; external
+/// buffers are read beside the file).
+pub fn read(
+    format: MeshFormat,
+    path: &Path,
+    pick: &gltf_file::MeshPick,
+) -> Result<MeshData, MeshFileError> {
     use crate::limits::{read_file, MAX_MESH_FILE_BYTES};
     let bytes =
         read_file(path, MAX_MESH_FILE_BYTES, "mesh file").map_err(|e| MeshFileError::Read {
-            reason: super::include::io_reason(&e),
+            reason: super::message::io_reason(&e),
         })?;
-    format.parse(&bytes)
+    match format {
+        MeshFormat::Gltf => gltf_file::parse(&bytes, path.parent(), pick),
+        _ => format.parse(&bytes),
+    }
 }
 
 /// A mesh as a file describes it, whatever the format: f64 positions, optional per-vertex
@@ -86,6 +115,9 @@ pub struct MeshData {
     pub normals: Option<Vec<Vec3>>,
     /// Per-vertex texture coordinates, when every vertex has one.
     pub uvs: Option<Vec<Vec2>>,
+    /// A second set of per-vertex texture coordinates (glTF `TEXCOORD_1`, for lightmaps),
+    /// when every vertex has one.
+    pub uvs1: Option<Vec<Vec2>>,
     /// Triangles as indices into `positions`.
     pub triangles: Vec<[u32; 3]>,
 }
@@ -129,6 +161,13 @@ pub enum MeshFileError {
         /// What is wrong, for a message.
         message: String,
     },
+    /// An element of a structured file (glTF) is wrong.
+    Element {
+        /// The element's path in the file (`meshes[0].primitives[1]`, `accessors[3]`).
+        path: String,
+        /// What is wrong, for a message.
+        message: String,
+    },
 }
 
 impl MeshFileError {
@@ -146,6 +185,7 @@ impl fmt::Display for MeshFileError {
         match self {
             MeshFileError::Read { reason } => write!(f, "cannot read the file: {reason}"),
             MeshFileError::Parse { at, message } => write!(f, "{at}: {message}"),
+            MeshFileError::Element { path, message } => write!(f, "{path}: {message}"),
         }
     }
 }

@@ -317,6 +317,7 @@ impl Reader {
             positions,
             normals,
             uvs,
+            uvs1: None,
             triangles: self.triangles,
         })
     }

@@ -683,6 +683,7 @@ fn read(h: &Header, layout: &Layout, mut values: impl Values) -> Result<MeshData
         positions,
         normals,
         uvs,
+        uvs1: None,
         triangles,
     })
 }

@@ -558,7 +558,16 @@ impl Compiler<'_, '_> {
             EncodingDesc::Srgb => Encoding::Srgb,
             EncodingDesc::Linear => Encoding::Linear,
         });
-        let t = match image::load(&path, enc, wrap) {
+        let embedded = crate::scene::mesh_files::gltf_file::image_reference(name);
+        let loaded = match embedded {
+            Some((file, index)) => {
+                let gltf = self.src.files[at.file].dir().join(file);
+                crate::scene::mesh_files::gltf_file::image_bytes(&gltf, index)
+                    .and_then(|bytes| image::decode(&bytes, enc, wrap))
+            }
+            None => image::load(&path, enc, wrap),
+        };
+        let t = match loaded {
             Ok(t) => Some(Arc::new(t)),
             Err(e) => {
                 // Reported whatever `report` says: the same file may be read first from a

@@ -2,8 +2,8 @@
 //! material's [`Shader`].
 //!
 //! A [`Bsdf`] is a weighted sum of up to [`MAX_LOBES`] lobes (one file per family):
-//! Lambert ([`diffuse`]), modified Phong ([`phong`]), microfacet reflection ([`glossy`])
-//! and the delta lobes ([`specular`]: mirror, smooth dielectric, pass-through).
+//! Lambert ([`diffuse`]), modified Phong ([`phong`]), microfacet reflection ([`glossy`]),
+//! the glTF metallic-roughness model ([`metallic_roughness`]) and the delta lobes ([`specular`]: mirror, smooth dielectric, pass-through).
 //!
 //! **Energy.** Lobe weights are colours. If the weights of a material add up to more than 1 in
 //! a channel, all weights of that channel are divided by their sum. Every lobe alone reflects
@@ -17,6 +17,7 @@
 
 pub mod diffuse;
 pub mod glossy;
+pub mod metallic_roughness;
 pub mod phong;
 pub mod specular;
 
@@ -48,6 +49,8 @@ pub enum Lobe {
         /// Fresnel factor.
         fresnel: Fresnel,
     },
+    /// The glTF metallic-roughness BRDF (GGX specular, Schlick Fresnel, diffuse base).
+    MetallicRoughness(metallic_roughness::MetallicRoughness),
     /// Perfect mirror (delta).
     Mirror,
     /// Smooth dielectric interface (delta reflection + refraction).
@@ -73,6 +76,7 @@ impl Lobe {
             Lobe::Lambert => Vec3::splat(diffuse::eval(wo, wi)),
             Lobe::Phong { exponent } => Vec3::splat(phong::eval(*exponent, wo, wi)),
             Lobe::Glossy { dist, fresnel } => glossy::eval(dist, fresnel, wo, wi),
+            Lobe::MetallicRoughness(m) => metallic_roughness::eval(m, wo, wi),
             _ => Vec3::ZERO,
         }
     }
@@ -82,6 +86,7 @@ impl Lobe {
             Lobe::Lambert => diffuse::pdf(wo, wi),
             Lobe::Phong { exponent } => phong::pdf(*exponent, wo, wi),
             Lobe::Glossy { dist, .. } => glossy::pdf(dist, wo, wi),
+            Lobe::MetallicRoughness(m) => metallic_roughness::pdf(m, wo, wi),
             _ => 0.0,
         }
     }
@@ -310,6 +315,29 @@ impl Bsdf {
                 self.push(w * *kr * *color, Lobe::Mirror);
             }
             Shader::Mirror { color } => self.push(w * *color, Lobe::Mirror),
+            Shader::MetallicRoughness {
+                base_color,
+                metallic,
+                roughness,
+            } => {
+                use metallic_roughness::{MetallicRoughness, DIELECTRIC_F0, SMOOTH_ROUGHNESS};
+                let base = base_color.clamp(Vec3::ZERO, Vec3::ONE);
+                let metallic = metallic.clamp(0.0, 1.0);
+                if *roughness < SMOOTH_ROUGHNESS {
+                    let diffuse = base * ((1.0 - metallic) * (1.0 - DIELECTRIC_F0));
+                    self.push(w * diffuse, Lobe::Lambert);
+                    let mirror = base * metallic + Vec3::splat((1.0 - metallic) * DIELECTRIC_F0);
+                    self.push(w * mirror, Lobe::Mirror);
+                } else {
+                    let r = roughness.min(1.0);
+                    let lobe = MetallicRoughness {
+                        base,
+                        metallic,
+                        alpha: r * r,
+                    };
+                    self.push(w, Lobe::MetallicRoughness(lobe));
+                }
+            }
             // Only the traced mirror term is a lobe; the rest is evaluated as written
             // (`crate::shading::local`).
             Shader::Local(m) => self.push(w * m.reflection, Lobe::Mirror),
@@ -453,6 +481,7 @@ impl Bsdf {
             Lobe::Lambert => diffuse::sample(wo, u2)?,
             Lobe::Phong { exponent } => phong::sample(exponent, wo, u2)?,
             Lobe::Glossy { dist, .. } => glossy::sample(&dist, wo, u2)?,
+            Lobe::MetallicRoughness(m) => metallic_roughness::sample(&m, wo, u2)?,
         };
         let pdf = self.pdf(wo, wi);
         let f = self.eval(wo, wi);

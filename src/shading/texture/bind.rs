@@ -190,6 +190,15 @@ pub fn visit(shader: &mut Shader, f: &mut dyn FnMut(&'static str, Field<'_>)) {
             f("color", C(color, N));
         }
         Shader::Mirror { color } => f("color", C(color, N)),
+        Shader::MetallicRoughness {
+            base_color,
+            metallic,
+            roughness,
+        } => {
+            f("base_color", C(base_color, U));
+            f("metallic", S(metallic, U));
+            f("roughness", S(roughness, U));
+        }
         Shader::Dielectric { ior, ior_out, col } => {
             f("ior", S(ior, P));
             f("ior_out", S(ior_out, P));

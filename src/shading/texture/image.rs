@@ -87,6 +87,28 @@ pub fn load(path: &Path, encoding: Option<Encoding>, wrap: Wrap) -> Result<Textu
         let px = img.pixels().map(|p| Vec3::from(p.0)).collect();
         (w, h, px)
     };
+    texture(width, height, top_down, encoding, wrap)
+}
+
+/// Decodes an image file held in memory (a PNG inside a glTF file) into a texture;
+/// `encoding` as for [`load`] (default sRGB).
+pub fn decode(bytes: &[u8], encoding: Option<Encoding>, wrap: Wrap) -> Result<Texture, String> {
+    let img = image::load_from_memory(bytes)
+        .map_err(|e| e.to_string())?
+        .to_rgb32f();
+    let (w, h) = img.dimensions();
+    let px = img.pixels().map(|p| Vec3::from(p.0)).collect();
+    texture(w, h, px, encoding.unwrap_or(Encoding::Srgb), wrap)
+}
+
+/// A texture from rows listed top to bottom.
+fn texture(
+    width: u32,
+    height: u32,
+    top_down: Vec<Vec3>,
+    encoding: Encoding,
+    wrap: Wrap,
+) -> Result<Texture, String> {
     if width == 0 || height == 0 {
         return Err("the image is empty".into());
     }

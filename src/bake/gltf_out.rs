@@ -1,0 +1,207 @@
+//! Baked glTF: a copy of a glTF scene as one `.glb` whose materials reference the baked
+//! textures (`stagelight bake model.glb --write-gltf`).
+//!
+//! For every baked primitive instance (node, primitive) the copy gets its own material — a
+//! clone of the primitive's material (or of glTF's default material) — with the ambient
+//! occlusion as `occlusionTexture` and the lightmap as the `MSFT_lightmap` extension's
+//! `lightmapTexture`, both on `TEXCOORD_1`, and the node gets its own copy of the mesh
+//! (sharing the accessors) pointing at that material. The textures are the baked PNG files,
+//! byte for byte, embedded as buffer views. All buffers are merged into the one `BIN` chunk
+//! and images the source kept in files or `data:` URIs are embedded too, so the copy stands
+//! alone. The JSON is edited as JSON, so everything the reader does not map (animations,
+//! skins, extensions) is kept as it was.
+
+use std::path::Path;
+
+use serde_json::{json, Value};
+
+use crate::scene::mesh_files::gltf_file;
+
+/// One baked texture of one primitive instance.
+pub struct BakedTexture<'a> {
+    /// glTF node index.
+    pub node: usize,
+    /// Primitive index within the node's mesh.
+    pub primitive: usize,
+    /// Where the texture goes.
+    pub slot: TextureSlot,
+    /// The encoded PNG.
+    pub png: &'a [u8],
+}
+
+/// Which material slot a baked texture fills.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TextureSlot {
+    /// `occlusionTexture` (red channel, `TEXCOORD_1`).
+    Occlusion,
+    /// `extensions.MSFT_lightmap.lightmapTexture` (`TEXCOORD_1`).
+    Lightmap,
+}
+
+fn pad4(bytes: &mut Vec<u8>, fill: u8) {
+    while !bytes.len().is_multiple_of(4) {
+        bytes.push(fill);
+    }
+}
+
+/// Appends `data` to `bin` as a new buffer view of buffer 0; returns its index.
+fn add_view(json: &mut Value, bin: &mut Vec<u8>, data: &[u8]) -> usize {
+    pad4(bin, 0);
+    let offset = bin.len();
+    bin.extend_from_slice(data);
+    let views = list(json, "bufferViews");
+    views.push(json!({"buffer": 0, "byteOffset": offset, "byteLength": data.len()}));
+    views.len() - 1
+}
+
+/// The array `json[key]`, created empty when missing.
+fn list<'a>(json: &'a mut Value, key: &str) -> &'a mut Vec<Value> {
+    if !json[key].is_array() {
+        json[key] = json!([]);
+    }
+    json[key].as_array_mut().expect("made an array")
+}
+
+fn mime(bytes: &[u8]) -> &'static str {
+    if bytes.starts_with(&[0xff, 0xd8]) {
+        "image/jpeg"
+    } else {
+        "image/png"
+    }
+}
+
+/// The source file's JSON chunk (or whole JSON text) as a value.
+fn source_json(bytes: &[u8]) -> Result<Value, String> {
+    let text = if bytes.starts_with(b"glTF") {
+        let len = u32::from_le_bytes([bytes[12], bytes[13], bytes[14], bytes[15]]) as usize;
+        &bytes[20..20 + len]
+    } else {
+        bytes
+    };
+    serde_json::from_slice(text).map_err(|e| format!("invalid glTF JSON: {e}"))
+}
+
+/// The baked copy of the glTF file at `source` (read again; its buffers beside it) as GLB
+/// bytes, with `textures` referenced by the materials.
+pub fn baked_glb(source: &Path, textures: &[BakedTexture<'_>]) -> Result<Vec<u8>, String> {
+    let bytes = crate::limits::read_file(source, crate::limits::MAX_MESH_FILE_BYTES, "glTF file")
+        .map_err(|e| crate::scene::message::io_reason(&e))?;
+    let file = gltf_file::open(&bytes, source.parent()).map_err(|e| e.to_string())?;
+    let mut json = source_json(&bytes)?;
+    // One BIN: every buffer, 4-aligned, views re-pointed.
+    let mut bin = Vec::new();
+    let mut base = Vec::new();
+    for data in &file.buffers {
+        pad4(&mut bin, 0);
+        base.push(bin.len());
+        bin.extend_from_slice(data);
+    }
+    for view in list(&mut json, "bufferViews").iter_mut() {
+        let buffer = view["buffer"].as_u64().unwrap_or(0) as usize;
+        let offset = view["byteOffset"].as_u64().unwrap_or(0) as usize;
+        view["buffer"] = json!(0);
+        view["byteOffset"] = json!(base.get(buffer).copied().unwrap_or(0) + offset);
+    }
+    // Images kept in files or data URIs are embedded.
+    let image_count = list(&mut json, "images").len();
+    for i in 0..image_count {
+        let Some(uri) = json["images"][i]["uri"].as_str().map(str::to_string) else {
+            continue;
+        };
+        let data = gltf_file::uri_bytes(&uri, source.parent(), &format!("images[{i}]"))
+            .map_err(|e| e.to_string())?;
+        let view = add_view(&mut json, &mut bin, &data);
+        let image = &mut json["images"][i];
+        if let Some(o) = image.as_object_mut() {
+            o.remove("uri");
+        }
+        image["bufferView"] = json!(view);
+        image["mimeType"] = json!(mime(&data));
+    }
+    // Per baked node: a copy of its mesh; per baked primitive: a copy of its material.
+    let mut node_mesh: Vec<(usize, usize)> = Vec::new();
+    let mut prim_material: Vec<((usize, usize), usize)> = Vec::new();
+    let mut lightmaps = false;
+    for t in textures {
+        let mesh_copy = match node_mesh.iter().find(|(n, _)| *n == t.node) {
+            Some(&(_, m)) => m,
+            None => {
+                let Some(mesh) = json["nodes"][t.node]["mesh"].as_u64() else {
+                    return Err(format!("nodes[{}] has no mesh", t.node));
+                };
+                let copy = json["meshes"][mesh as usize].clone();
+                let meshes = list(&mut json, "meshes");
+                meshes.push(copy);
+                let m = meshes.len() - 1;
+                json["nodes"][t.node]["mesh"] = json!(m);
+                node_mesh.push((t.node, m));
+                m
+            }
+        };
+        let key = (t.node, t.primitive);
+        let material = match prim_material.iter().find(|(k, _)| *k == key) {
+            Some(&(_, m)) => m,
+            None => {
+                let prim = &json["meshes"][mesh_copy]["primitives"][t.primitive];
+                if prim.is_null() {
+                    return Err(format!(
+                        "nodes[{}]: the mesh has no primitive {}",
+                        t.node, t.primitive
+                    ));
+                }
+                let copy = match prim["material"].as_u64() {
+                    Some(m) => json["materials"][m as usize].clone(),
+                    None => json!({"name": "default"}),
+                };
+                let materials = list(&mut json, "materials");
+                materials.push(copy);
+                let m = materials.len() - 1;
+                json["meshes"][mesh_copy]["primitives"][t.primitive]["material"] = json!(m);
+                prim_material.push((key, m));
+                m
+            }
+        };
+        let view = add_view(&mut json, &mut bin, t.png);
+        let images = list(&mut json, "images");
+        images.push(json!({"bufferView": view, "mimeType": "image/png"}));
+        let image = images.len() - 1;
+        let textures = list(&mut json, "textures");
+        textures.push(json!({"source": image}));
+        let texture = textures.len() - 1;
+        let reference = json!({"index": texture, "texCoord": 1});
+        let m = &mut json["materials"][material];
+        match t.slot {
+            TextureSlot::Occlusion => m["occlusionTexture"] = reference,
+            TextureSlot::Lightmap => {
+                lightmaps = true;
+                if !m["extensions"].is_object() {
+                    m["extensions"] = json!({});
+                }
+                m["extensions"]["MSFT_lightmap"] =
+                    json!({"lightmapTexture": reference, "lightmapFactor": [1.0, 1.0, 1.0]});
+            }
+        }
+    }
+    if lightmaps {
+        let used = list(&mut json, "extensionsUsed");
+        if !used.iter().any(|e| e == "MSFT_lightmap") {
+            used.push(json!("MSFT_lightmap"));
+        }
+    }
+    pad4(&mut bin, 0);
+    json["buffers"] = json!([{"byteLength": bin.len()}]);
+    let mut text = serde_json::to_vec(&json).map_err(|e| e.to_string())?;
+    pad4(&mut text, b' ');
+    let total = 12 + 8 + text.len() + 8 + bin.len();
+    let mut out = Vec::with_capacity(total);
+    out.extend_from_slice(b"glTF");
+    out.extend_from_slice(&2u32.to_le_bytes());
+    out.extend_from_slice(&(total as u32).to_le_bytes());
+    out.extend_from_slice(&(text.len() as u32).to_le_bytes());
+    out.extend_from_slice(b"JSON");
+    out.extend_from_slice(&text);
+    out.extend_from_slice(&(bin.len() as u32).to_le_bytes());
+    out.extend_from_slice(b"BIN\0");
+    out.extend_from_slice(&bin);
+    Ok(out)
+}

@@ -1,0 +1,73 @@
+//! The default bake request of a glTF scene: every instance of a primitive that has a
+//! second UV set (`TEXCOORD_1`, lightmap UVs) bakes, on that set, an irradiance lightmap
+//! (direct plus two bounces of indirect light) and ambient occlusion into 8-bit PNGs at
+//! [`TEXELS_PER_UNIT`] texels per unit (at most [`MAX_SIZE`]), which
+//! `stagelight bake model.glb --write-gltf` puts back into a copy of the file.
+
+use super::Walk;
+use crate::scene::desc::{
+    BakeDesc, BakeFormatDesc, BakeKindDesc, BakeOutputDesc, LightmapStoreDesc, UvsDesc,
+};
+
+/// Texel density of the default bakes (texels per world unit).
+pub const TEXELS_PER_UNIT: f64 = 32.0;
+/// Largest side of a default bake texture.
+pub const MAX_SIZE: u32 = 512;
+/// AO rays and indirect gather paths per texel of the default bakes.
+pub const SAMPLES: u32 = 64;
+
+/// The default request (see the module header).
+pub fn default_bake() -> BakeDesc {
+    BakeDesc {
+        resolution: None,
+        texels_per_unit: Some(TEXELS_PER_UNIT),
+        max_size: MAX_SIZE,
+        uvs: UvsDesc::MeshSet(1),
+        texel_samples: 4,
+        padding: 2,
+        mask: false,
+        outputs: vec![
+            BakeOutputDesc {
+                kind: BakeKindDesc::Lightmap {
+                    indirect: true,
+                    samples: SAMPLES,
+                    max_depth: 2,
+                    store: LightmapStoreDesc::Irradiance,
+                },
+                format: BakeFormatDesc::Png8,
+                file: None,
+            },
+            BakeOutputDesc {
+                kind: BakeKindDesc::AmbientOcclusion {
+                    samples: SAMPLES,
+                    max_distance: None,
+                    bent_normals: false,
+                },
+                format: BakeFormatDesc::Png8,
+                file: None,
+            },
+        ],
+    }
+}
+
+/// Gives every primitive instance with `TEXCOORD_1` the default request.
+pub fn default_bakes(w: &mut Walk<'_>) {
+    for (name, node, p) in &w.leaves {
+        let Some(prim) = w
+            .file
+            .doc
+            .nodes()
+            .nth(*node)
+            .and_then(|n| n.mesh())
+            .and_then(|m| m.primitives().nth(*p))
+        else {
+            continue;
+        };
+        if prim.get(&gltf::Semantic::TexCoords(1)).is_none() {
+            continue;
+        }
+        if let Some(inst) = w.desc.instances.iter_mut().find(|i| &i.name == name) {
+            inst.bake = Some(default_bake());
+        }
+    }
+}

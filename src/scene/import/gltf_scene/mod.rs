@@ -1,0 +1,476 @@
+//! The glTF 2.0 scene reader (`.gltf`, `.glb`): a whole file → the format-neutral
+//! [`SceneDesc`], so `stagelight render|check|bake|plan|convert model.glb` work like on RON.
+//!
+//! Mapping (documented in `docs/gltf.md`):
+//! - every primitive of every mesh is an object whose mesh is `Gltf(file: <this file>, mesh:
+//!   …, primitive: …)`, so geometry is read once by the shared mesh loader and shared by all
+//!   nodes that use the mesh;
+//! - the node hierarchy of the default scene (or the first) becomes instances and groups: a
+//!   node with one primitive and no children is an instance of that object carrying the
+//!   node's local matrix; any other node is a group (`<node>_group`) placed by an instance
+//!   (`<node>_node`) with the node's matrix, holding one instance per primitive (`<node>` or
+//!   `<node>_<k>`) and the instances of its children; the root is the group `scene`;
+//! - materials ([`materials`]), cameras and `KHR_lights_punctual` lights ([`view`]);
+//! - every instance of a primitive with `TEXCOORD_1` carries the default bake request
+//!   ([`bakes`]), so `stagelight bake model.glb` bakes lightmaps and ambient occlusion.
+//!
+//! Names come from the file (node, mesh, material, light and camera names; `node3` and the
+//! like for unnamed ones), made unique with `_2`, `_3`, … and stripped of characters that
+//! could not be part of a file name. Every element is located at the start of the file (a
+//! binary file has no lines); messages name the glTF element (`nodes[3]`).
+
+pub mod bakes;
+pub mod materials;
+pub mod view;
+
+use std::collections::{HashMap, HashSet};
+use std::path::Path;
+
+use glam::{DMat4, DVec3};
+
+use super::{PathTable, ReadScene, SourcePos};
+use crate::scene::desc::{
+    GroupDesc, InstanceDesc, MeshDesc, ObjectDesc, RenderDesc, SceneDesc, TransformDesc, M4,
+};
+use crate::scene::mesh_files::gltf_file::{self, GltfFile};
+use crate::scene::mesh_files::MeshFileError;
+use crate::scene::message::Diagnostic;
+
+/// Deepest node hierarchy read (deeper is refused, as a cycle would be).
+const MAX_NODE_DEPTH: usize = 64;
+
+/// Unique, file-name-safe element names.
+#[derive(Debug, Default)]
+pub struct Names {
+    used: HashSet<String>,
+}
+
+impl Names {
+    /// `preferred` made safe (letters, digits, `_`, `-`, `.`; others become `_`) and unique
+    /// (`_2`, `_3`, … appended).
+    pub fn take(&mut self, preferred: &str) -> String {
+        let mut base: String = preferred
+            .chars()
+            .map(|c| {
+                if c.is_alphanumeric() || matches!(c, '_' | '-' | '.') {
+                    c
+                } else {
+                    '_'
+                }
+            })
+            .collect();
+        if base.is_empty() || base.starts_with('.') {
+            base.insert(0, '_');
+        }
+        let mut name = base.clone();
+        let mut k = 2;
+        while !self.used.insert(name.clone()) {
+            name = format!("{base}_{k}");
+            k += 1;
+        }
+        name
+    }
+}
+
+/// A diagnostic at the start of `path` (glTF files are located by element, not by line).
+pub fn at_file(path: &Path, message: impl Into<String>) -> Diagnostic {
+    Diagnostic::at(SourcePos::start(path), message, None)
+}
+
+/// The diagnostic for a container or mesh error of the file at `path`.
+pub fn file_error(path: &Path, e: &MeshFileError) -> Diagnostic {
+    use crate::scene::mesh_files::Location;
+    match e {
+        MeshFileError::Parse {
+            at: Location::Text { line, column },
+            message,
+        } => Diagnostic {
+            file: path.to_path_buf(),
+            line: *line,
+            column: *column,
+            message: format!("invalid glTF file: {message}"),
+            help: None,
+        },
+        other => at_file(path, format!("invalid glTF file: {other}")),
+    }
+}
+
+/// Reads a glTF scene (the reader in `import::FORMATS`).
+pub fn read(path: &Path, bytes: &[u8]) -> Result<ReadScene, Vec<Diagnostic>> {
+    let dir = path.parent().unwrap_or(Path::new(""));
+    let file = gltf_file::open(bytes, Some(dir)).map_err(|e| vec![file_error(path, &e)])?;
+    let file_name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let (desc, warnings, _) = build(path, &file_name, &file)?;
+    let mut table = PathTable::default();
+    table.insert("", SourcePos::start(path));
+    Ok(ReadScene {
+        desc,
+        map: table.into_map(path),
+        warnings,
+    })
+}
+
+/// Row-major matrix of the description from a glam matrix.
+pub fn m4(m: &DMat4) -> M4 {
+    let c = m.to_cols_array_2d();
+    [0, 1, 2, 3].map(|r| [0, 1, 2, 3].map(|k| c[k][r]))
+}
+
+fn local_matrix(node: &gltf::Node<'_>) -> DMat4 {
+    let cols = node.transform().matrix();
+    DMat4::from_cols_array_2d(&cols.map(|c| c.map(f64::from)))
+}
+
+/// What the node walk collects besides the hierarchy.
+pub struct Walk<'a> {
+    /// The file.
+    pub file: &'a GltfFile,
+    /// Element names.
+    pub names: &'a mut Names,
+    /// The scene being built.
+    pub desc: &'a mut SceneDesc,
+    /// Located warnings.
+    pub warnings: Vec<Diagnostic>,
+    /// The file's path as the user named it.
+    pub path: &'a Path,
+    /// Object names of each (mesh, primitive).
+    objects: HashMap<(usize, usize), String>,
+    /// Material name of each glTF material (`None`: the default material).
+    materials: HashMap<Option<usize>, String>,
+    /// Group of each node already built (`None`: nothing to place under it).
+    groups: HashMap<usize, Option<String>>,
+    /// World-space bounds of the placed meshes (min, max).
+    pub bounds: Option<(DVec3, DVec3)>,
+    /// The first camera met: (node, world matrix).
+    pub camera: Option<(usize, DMat4)>,
+    /// Every instance of a primitive: (instance name, node, primitive index).
+    pub leaves: Vec<(String, usize, usize)>,
+    errors: Vec<Diagnostic>,
+}
+
+/// What places a node under its parent: an instance of an object or a group, with the
+/// node's matrix.
+fn place(w: &mut Walk<'_>, name: String, of: String, local: &DMat4) -> String {
+    let transform = if *local == DMat4::IDENTITY {
+        Vec::new()
+    } else {
+        vec![TransformDesc::Matrix(m4(local))]
+    };
+    w.desc.instances.push(InstanceDesc {
+        name: name.clone(),
+        of,
+        transform,
+        material: None,
+        bake: None,
+    });
+    name
+}
+
+fn node_label(node: &gltf::Node<'_>) -> String {
+    node.name()
+        .map(str::to_string)
+        .unwrap_or_else(|| format!("node{}", node.index()))
+}
+
+impl Walk<'_> {
+    fn object(&mut self, mesh: &gltf::Mesh<'_>, p: usize, material: String) -> String {
+        if let Some(name) = self.objects.get(&(mesh.index(), p)) {
+            return name.clone();
+        }
+        let label = mesh
+            .name()
+            .map(str::to_string)
+            .unwrap_or_else(|| format!("mesh{}", mesh.index()));
+        let count = mesh.primitives().count();
+        let name = self.names.take(&if count > 1 {
+            format!("{label}_mesh_{p}")
+        } else {
+            format!("{label}_mesh")
+        });
+        let unique = self
+            .file
+            .doc
+            .meshes()
+            .filter(|m| m.name() == mesh.name())
+            .count()
+            == 1;
+        let selector = match mesh.name() {
+            Some(n) if unique => n.to_string(),
+            _ => format!("#{}", mesh.index()),
+        };
+        self.desc.objects.push(ObjectDesc {
+            name: name.clone(),
+            mesh: MeshDesc::Gltf {
+                file: file_name_of(self.path),
+                mesh: Some(selector),
+                primitive: (count > 1).then_some(p as u32),
+            },
+            material: Some(material),
+            approximation: None,
+            displacement: None,
+            derivatives: false,
+        });
+        self.objects.insert((mesh.index(), p), name.clone());
+        name
+    }
+
+    fn grow_bounds(&mut self, prim: &gltf::Primitive<'_>, world: &DMat4) {
+        let Some(pos) = prim.get(&gltf::Semantic::Positions) else {
+            return;
+        };
+        let read = |v: Option<gltf::json::Value>| -> Option<[f64; 3]> {
+            let list = v?.as_array()?.clone();
+            let x: Vec<f64> = list.iter().filter_map(|x| x.as_f64()).collect();
+            (x.len() == 3).then(|| [x[0], x[1], x[2]])
+        };
+        let (Some(lo), Some(hi)) = (read(pos.min()), read(pos.max())) else {
+            return;
+        };
+        for k in 0..8 {
+            let corner = DVec3::new(
+                if k & 1 == 0 { lo[0] } else { hi[0] },
+                if k & 2 == 0 { lo[1] } else { hi[1] },
+                if k & 4 == 0 { lo[2] } else { hi[2] },
+            );
+            let p = world.transform_point3(corner);
+            if !p.is_finite() {
+                continue;
+            }
+            self.bounds = Some(match self.bounds {
+                Some((a, b)) => (a.min(p), b.max(p)),
+                None => (p, p),
+            });
+        }
+    }
+
+    /// Walks `node` placed at `world`; returns what its parent places (an object for a
+    /// lone primitive, or the node's group), `None` when nothing lies under it.
+    fn walk(
+        &mut self,
+        node: gltf::Node<'_>,
+        world: DMat4,
+        stack: &mut Vec<usize>,
+    ) -> Option<String> {
+        if stack.contains(&node.index()) || stack.len() >= MAX_NODE_DEPTH {
+            let why = if stack.contains(&node.index()) {
+                "the node hierarchy has a cycle (a node is its own ancestor)".to_string()
+            } else {
+                format!("the node hierarchy is deeper than {MAX_NODE_DEPTH} levels")
+            };
+            self.errors.push(at_file(
+                self.path,
+                format!("nodes[{}]: {why}", node.index()),
+            ));
+            return None;
+        }
+        stack.push(node.index());
+        if let Some(camera) = node.camera() {
+            if self.camera.is_none() {
+                if matches!(
+                    camera.projection(),
+                    gltf::camera::Projection::Perspective(_)
+                ) {
+                    self.camera = Some((node.index(), world));
+                } else {
+                    self.warnings.push(at_file(
+                        self.path,
+                        format!(
+                            "cameras[{}]: ignored an orthographic camera (only perspective cameras are read)",
+                            camera.index()
+                        ),
+                    ));
+                }
+            }
+        }
+        if let Some(light) = node.light() {
+            view::light(self, &light, &world);
+        }
+        if node.skin().is_some() || node.weights().is_some() {
+            self.warnings.push(at_file(
+                self.path,
+                format!(
+                    "nodes[{}]: ignored its skin and morph weights (the mesh is read in its bind pose)",
+                    node.index()
+                ),
+            ));
+        }
+        let mut result = None;
+        let memo = self.groups.get(&node.index()).cloned();
+        let label = node_label(&node);
+        let mut members = Vec::new();
+        if let Some(mesh) = node.mesh() {
+            let prims: Vec<gltf::Primitive<'_>> = mesh.primitives().collect();
+            for prim in &prims {
+                self.grow_bounds(prim, &world);
+            }
+            if memo.is_none() {
+                let lone = prims.len() == 1 && node.children().count() == 0;
+                for (p, prim) in prims.iter().enumerate() {
+                    let material = materials::material_name(self, prim.material().index());
+                    let object = self.object(&mesh, p, material);
+                    if lone {
+                        result = Some(object);
+                    } else {
+                        let inst = self.names.take(&if prims.len() > 1 {
+                            format!("{label}_{p}")
+                        } else {
+                            label.clone()
+                        });
+                        self.leaves.push((inst.clone(), node.index(), p));
+                        members.push(place(self, inst, object, &DMat4::IDENTITY));
+                    }
+                }
+            }
+        }
+        for child in node.children() {
+            let local = local_matrix(&child);
+            let child_label = node_label(&child);
+            let child_index = child.index();
+            let placed = self.walk(child, world * local, stack);
+            if memo.is_some() {
+                continue;
+            }
+            if let Some(of) = placed {
+                let lone = self.objects.values().any(|o| *o == of);
+                let name = self.names.take(&if lone {
+                    child_label
+                } else {
+                    format!("{child_label}_node")
+                });
+                if lone {
+                    self.leaves.push((name.clone(), child_index, 0));
+                }
+                members.push(place(self, name, of, &local));
+            }
+        }
+        stack.pop();
+        if let Some(memo) = memo {
+            return memo;
+        }
+        if result.is_none() && !members.is_empty() {
+            let group = self.names.take(&format!("{label}_group"));
+            self.desc.groups.push(GroupDesc {
+                name: group.clone(),
+                members,
+            });
+            result = Some(group);
+        }
+        self.groups.insert(node.index(), result.clone());
+        result
+    }
+}
+
+/// The file name a scene's `Gltf(file: …)` meshes use (the meshes resolve beside the file).
+fn file_name_of(path: &Path) -> String {
+    path.file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default()
+}
+
+/// What [`build`] returns: the description, warnings and the primitive instances.
+type Built = (SceneDesc, Vec<Diagnostic>, Vec<(String, usize, usize)>);
+
+fn build(path: &Path, _file_name: &str, file: &GltfFile) -> Result<Built, Vec<Diagnostic>> {
+    let doc = &file.doc;
+    let Some(scene) = doc.default_scene().or_else(|| doc.scenes().next()) else {
+        return Err(vec![at_file(
+            path,
+            "the glTF file holds no scene: nothing to render",
+        )]);
+    };
+    let mut names = Names::default();
+    let mut desc = SceneDesc::default();
+    let mut w = Walk {
+        file,
+        names: &mut names,
+        desc: &mut desc,
+        warnings: Vec::new(),
+        path,
+        objects: HashMap::new(),
+        materials: HashMap::new(),
+        groups: HashMap::new(),
+        bounds: None,
+        camera: None,
+        leaves: Vec::new(),
+        errors: Vec::new(),
+    };
+    materials::warn_unmapped(&mut w);
+    let mut members = Vec::new();
+    for node in scene.nodes() {
+        let local = local_matrix(&node);
+        let label = node_label(&node);
+        let index = node.index();
+        if let Some(of) = w.walk(node, local, &mut Vec::new()) {
+            let lone = w.objects.values().any(|o| *o == of);
+            let name = w
+                .names
+                .take(&if lone { label } else { format!("{label}_node") });
+            if lone {
+                w.leaves.push((name.clone(), index, 0));
+            }
+            members.push(place(&mut w, name, of, &local));
+        }
+    }
+    if !w.errors.is_empty() {
+        return Err(w.errors);
+    }
+    if members.is_empty() {
+        return Err(vec![at_file(
+            path,
+            format!(
+                "scenes[{}]: the scene places no mesh: nothing to render",
+                scene.index()
+            ),
+        )]);
+    }
+    let root = w.names.take(scene.name().unwrap_or("scene"));
+    w.desc.groups.push(GroupDesc {
+        name: root.clone(),
+        members,
+    });
+    let camera = view::camera(&mut w);
+    view::default_light(&mut w);
+    bakes::default_bakes(&mut w);
+    let warnings = std::mem::take(&mut w.warnings);
+    let leaves = std::mem::take(&mut w.leaves);
+    desc.render = Some(RenderDesc { root, camera });
+    Ok((desc, warnings, leaves))
+}
+
+/// Every instance of a primitive in the glTF scene at `path`: (instance name, node index,
+/// primitive index), as [`read`] names them (for writing baked textures back into the file).
+pub fn primitive_instances(
+    path: &Path,
+    bytes: &[u8],
+) -> Result<Vec<(String, usize, usize)>, Vec<Diagnostic>> {
+    let dir = path.parent().unwrap_or(Path::new(""));
+    let file = gltf_file::open(bytes, Some(dir)).map_err(|e| vec![file_error(path, &e)])?;
+    build(path, "", &file).map(|(_, _, leaves)| leaves)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_are_made_safe_and_unique() {
+        let mut n = Names::default();
+        assert_eq!(n.take("Cube"), "Cube");
+        assert_eq!(n.take("Cube"), "Cube_2");
+        assert_eq!(n.take("a/b c"), "a_b_c");
+        assert_eq!(n.take(""), "_");
+        assert_eq!(n.take("../x"), "_.._x");
+    }
+
+    #[test]
+    fn matrices_are_written_row_major() {
+        let m = DMat4::from_translation(DVec3::new(1.0, 2.0, 3.0));
+        let r = m4(&m);
+        assert_eq!(r[0], [1.0, 0.0, 0.0, 1.0]);
+        assert_eq!(r[2], [0.0, 0.0, 1.0, 3.0]);
+        assert_eq!(r[3], [0.0, 0.0, 0.0, 1.0]);
+    }
+}

@@ -1,0 +1,219 @@
+//! Cameras and lights of a glTF scene: the first perspective camera met in the node walk (or
+//! a default framing of the scene's bounds), `KHR_lights_punctual` lights converted to
+//! radiometric units, and the default light of a file that has none.
+//!
+//! Units: glTF gives point and spot intensities in candela (lm/sr) and directional ones in
+//! lux (lm/m²); stagelight's lights are radiometric (W/sr, W/m²), so the reader divides by
+//! 683 lm/W (the luminous efficacy at 555 nm, the definition of the candela).
+
+use glam::{DMat4, DVec3};
+
+use super::{at_file, m4, Walk};
+use crate::scene::desc::{
+    CameraDesc, DepthExceededDesc, EnvironmentDesc, EnvironmentShaderDesc, LightDesc,
+    LightKindDesc, OutputDesc, PlacementDesc,
+};
+
+/// Lumens per watt: photometric → radiometric.
+pub const LUMENS_PER_WATT: f64 = 683.0;
+
+/// Image width of a camera read from glTF (the height follows its aspect ratio).
+pub const CAMERA_WIDTH: u32 = 640;
+
+/// Vertical field of view of the default camera, degrees.
+pub const DEFAULT_FOV_Y: f64 = 45.0;
+
+/// Elevation of the default camera above the bounds' centre, degrees.
+pub const DEFAULT_ELEVATION: f64 = 20.0;
+
+/// Adds the light of `light` placed at `world`.
+pub fn light(w: &mut Walk<'_>, light: &gltf::khr_lights_punctual::Light<'_>, world: &DMat4) {
+    use gltf::khr_lights_punctual::Kind;
+    let label = light
+        .name()
+        .map(str::to_string)
+        .unwrap_or_else(|| format!("light{}", light.index()));
+    let name = w.names.take(&label);
+    let position = world.transform_point3(DVec3::ZERO);
+    let direction = world.transform_vector3(DVec3::NEG_Z).normalize_or_zero();
+    let v3 = |v: DVec3| (v.x, v.y, v.z);
+    let direction = if direction == DVec3::ZERO {
+        DVec3::NEG_Z
+    } else {
+        direction
+    };
+    let kind = match light.kind() {
+        Kind::Point => LightKindDesc::Point {
+            position: v3(position),
+        },
+        Kind::Directional => LightKindDesc::Directional {
+            direction: v3(direction),
+        },
+        Kind::Spot {
+            inner_cone_angle,
+            outer_cone_angle,
+        } => {
+            let outer = (outer_cone_angle as f64).to_degrees().clamp(1e-3, 90.0);
+            let inner = (inner_cone_angle as f64).to_degrees().clamp(0.0, outer);
+            LightKindDesc::Spot {
+                position: v3(position),
+                target: v3(position + direction),
+                cone_angle: outer,
+                penumbra: outer - inner,
+                beam_distribution: 0.0,
+            }
+        }
+    };
+    if light.range().is_some() {
+        w.warnings.push(at_file(
+            w.path,
+            format!(
+                "lights[{}]: ignored its range (lights fall off with the inverse square law only)",
+                light.index()
+            ),
+        ));
+    }
+    let [r, g, b] = light.color();
+    w.desc.lights.push(LightDesc {
+        name,
+        kind,
+        color: (r as f64, g as f64, b as f64),
+        intensity: (light.intensity() as f64 / LUMENS_PER_WATT).max(0.0),
+        shadows: true,
+        samples: None,
+        visible: false,
+        attenuation: None,
+    });
+}
+
+/// A rigid camera-to-world matrix from a node's world matrix (scale and shear removed,
+/// looking down −Z).
+fn rigid(world: &DMat4) -> DMat4 {
+    let z = world.z_axis.truncate().normalize_or_zero();
+    let z = if z == DVec3::ZERO { DVec3::Z } else { z };
+    let x0 = world.x_axis.truncate();
+    let x = (x0 - z * x0.dot(z)).normalize_or_zero();
+    let x = if x == DVec3::ZERO {
+        z.any_orthonormal_vector()
+    } else {
+        x
+    };
+    let y = z.cross(x);
+    DMat4::from_cols(
+        x.extend(0.0),
+        y.extend(0.0),
+        z.extend(0.0),
+        world.w_axis.truncate().extend(1.0),
+    )
+}
+
+/// Adds the render camera (the first perspective camera of the walk, else the default
+/// framing) and returns its name.
+pub fn camera(w: &mut Walk<'_>) -> String {
+    let stem = w
+        .path
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "gltf".into());
+    let outputs = vec![OutputDesc {
+        file: format!("{stem}.png"),
+        format: None,
+        passes: None,
+    }];
+    let found = w.camera.and_then(|(node, world)| {
+        let node = w.file.doc.nodes().nth(node)?;
+        let camera = node.camera()?;
+        let gltf::camera::Projection::Perspective(p) = camera.projection() else {
+            return None;
+        };
+        let label = camera
+            .name()
+            .or(node.name())
+            .map(str::to_string)
+            .unwrap_or_else(|| format!("camera{}", camera.index()));
+        Some((label, p.yfov() as f64, p.aspect_ratio(), world))
+    });
+    let (label, fov_y, aspect, placement) = match found {
+        Some((label, yfov, aspect, world)) => (
+            label,
+            yfov.to_degrees().clamp(1e-3, 179.0),
+            aspect,
+            PlacementDesc::Matrix(m4(&rigid(&world))),
+        ),
+        None => {
+            let (lo, hi) = w.bounds.unwrap_or((DVec3::splat(-1.0), DVec3::splat(1.0)));
+            let centre = (lo + hi) * 0.5;
+            let radius = ((hi - lo).length() * 0.5).max(1e-3);
+            let distance = radius / (DEFAULT_FOV_Y.to_radians() * 0.5).sin() * 1.05;
+            let e = DEFAULT_ELEVATION.to_radians();
+            let eye = centre + DVec3::new(0.0, e.sin(), e.cos()) * distance;
+            (
+                "default_camera".to_string(),
+                DEFAULT_FOV_Y,
+                None,
+                PlacementDesc::LookAt {
+                    eye: (eye.x, eye.y, eye.z),
+                    target: (centre.x, centre.y, centre.z),
+                    up: (0.0, 1.0, 0.0),
+                },
+            )
+        }
+    };
+    let aspect = aspect
+        .map(f64::from)
+        .filter(|a| a.is_finite() && *a > 0.0)
+        .unwrap_or(4.0 / 3.0);
+    let height = ((CAMERA_WIDTH as f64 / aspect).round() as u32).clamp(1, 16384);
+    let name = w.names.take(&label);
+    w.desc.cameras.push(CameraDesc {
+        name: name.clone(),
+        fov_y,
+        resolution: (CAMERA_WIDTH, height),
+        aspect: None,
+        placement,
+        outputs,
+        imager: None,
+        lens: Vec::new(),
+        atmosphere: None,
+    });
+    name
+}
+
+/// A file without lights and without emitting materials is lit by a white environment of
+/// radiance 1 (what glTF viewers do with a default light), so it never renders black.
+pub fn default_light(w: &mut Walk<'_>) {
+    let emits = w
+        .desc
+        .materials
+        .iter()
+        .any(|m| m.emission.0 > 0.0 || m.emission.1 > 0.0 || m.emission.2 > 0.0);
+    if w.desc.lights.is_empty() && !emits {
+        w.desc.environment = Some(EnvironmentDesc {
+            shader: EnvironmentShaderDesc::Constant {
+                color: (1.0, 1.0, 1.0),
+            },
+            intensity: 1.0,
+            samples: 16,
+            depth_exceeded: DepthExceededDesc::Environment,
+        });
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_scaled_camera_node_gives_a_rigid_placement() {
+        let world = DMat4::from_scale_rotation_translation(
+            DVec3::new(2.0, 3.0, 4.0),
+            glam::DQuat::from_rotation_y(0.5),
+            DVec3::new(1.0, 2.0, 3.0),
+        );
+        let r = rigid(&world);
+        assert!((r.x_axis.length() - 1.0).abs() < 1e-12);
+        assert!((r.z_axis.truncate() - world.z_axis.truncate().normalize()).length() < 1e-12);
+        assert!(r.x_axis.dot(r.y_axis).abs() < 1e-12);
+        assert_eq!(r.w_axis, world.w_axis);
+    }
+}
