@@ -2,6 +2,7 @@
 
 use glam::Vec3;
 
+use crate::contour::ContourStore;
 use crate::exact_sum::ExactSum;
 
 /// Linear, row-major (row 0 at the top) pass buffers of one camera.
@@ -29,6 +30,9 @@ pub struct FrameBuffers {
     /// The exact sample sums behind `beauty` and `alpha`, kept only when the run renders a
     /// farm part (`crate::farm`), which writes them instead of the image.
     pub sums: Option<PixelSums>,
+    /// What the camera sees at each pixel centre, for `draw_contours`; kept only when some
+    /// material has a contour shader (and not in a farm part).
+    pub contour_store: Option<ContourStore>,
 }
 
 /// Exact per-pixel sample sums and counts (see [`FrameBuffers::sums`]).
@@ -57,6 +61,7 @@ impl FrameBuffers {
             material_id: vec![0; n],
             samples: vec![0; n],
             sums: None,
+            contour_store: None,
         }
     }
 }
