@@ -57,6 +57,8 @@ pub fn link(crossings: &EdgeCrossings) -> Vec<Chain> {
         *slot as usize
     };
     let mut segments: Vec<Segment> = Vec::new();
+    // Junction nodes with the corner of their cell (film position of its first sample).
+    let mut junctions: Vec<(usize, Vec2)> = Vec::new();
     for cy in 0..h - 1 {
         for cx in 0..w - 1 {
             let sides = [
@@ -89,6 +91,7 @@ pub fn link(crossings: &EdgeCrossings) -> Vec<Chain> {
                         found.iter().map(|(_, c)| c.pos).sum::<Vec2>() / found.len() as f32;
                     let junction = positions.len();
                     positions.push(centre);
+                    junctions.push((junction, Vec2::new(cx as f32, cy as f32) + 0.5));
                     for (n, c) in &found {
                         segments.push(Segment {
                             ends: [*n, junction],
@@ -100,7 +103,57 @@ pub fn link(crossings: &EdgeCrossings) -> Vec<Chain> {
             }
         }
     }
+    place_junctions(&mut positions, &segments, &junctions);
     chains(&positions, &segments)
+}
+
+/// Moves each junction from the mean of its crossings to where the lines arriving at it
+/// meet: the least-squares intersection of the lines through each of its crossings and the
+/// node before that crossing (a corner may lie in the next cell, whose two crossings cut
+/// it). It stays at the mean when the lines are near parallel or meet more than a pixel
+/// outside its cell.
+fn place_junctions(positions: &mut [Vec2], segments: &[Segment], junctions: &[(usize, Vec2)]) {
+    let mut incident: Vec<Vec<usize>> = vec![Vec::new(); positions.len()];
+    for (i, s) in segments.iter().enumerate() {
+        incident[s.ends[0]].push(i);
+        incident[s.ends[1]].push(i);
+    }
+    let other = |seg: usize, node: usize| {
+        let e = segments[seg].ends;
+        if e[0] == node {
+            e[1]
+        } else {
+            e[0]
+        }
+    };
+    for &(j, corner) in junctions {
+        // Normal equations of Σ |(I − u uᵀ)(x − c)|² over the arriving lines.
+        let (mut a11, mut a12, mut a22, mut b) = (0.0f32, 0.0f32, 0.0f32, Vec2::ZERO);
+        for &seg in &incident[j] {
+            let c = other(seg, j);
+            let Some(&before) = incident[c].iter().find(|&&s| s != seg) else {
+                continue;
+            };
+            let Some(u) = (positions[c] - positions[other(before, c)]).try_normalize() else {
+                continue;
+            };
+            let (p11, p12, p22) = (1.0 - u.x * u.x, -u.x * u.y, 1.0 - u.y * u.y);
+            let pc = positions[c];
+            a11 += p11;
+            a12 += p12;
+            a22 += p22;
+            b += Vec2::new(p11 * pc.x + p12 * pc.y, p12 * pc.x + p22 * pc.y);
+        }
+        let det = a11 * a22 - a12 * a12;
+        if det < 0.05 {
+            continue;
+        }
+        let x = Vec2::new(a22 * b.x - a12 * b.y, a11 * b.y - a12 * b.x) / det;
+        let inside = x.cmpge(corner - 1.0).all() && x.cmple(corner + 2.0).all();
+        if inside {
+            positions[j] = x;
+        }
+    }
 }
 
 /// Follows the segments into chains.
