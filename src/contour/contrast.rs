@@ -120,7 +120,9 @@ pub fn find_crossings(
             back: *back,
         })
     };
-    let rows: Vec<(Vec<Option<Crossing>>, Vec<Option<Crossing>>)> = (0..h)
+    // Per row: the crossings across to the right and down to the next row.
+    type Row = (Vec<Option<Crossing>>, Vec<Option<Crossing>>);
+    let rows: Vec<Row> = (0..h)
         .into_par_iter()
         .map(|y| {
             let across = (0..w.saturating_sub(1))
