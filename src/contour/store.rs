@@ -1,6 +1,6 @@
-//! The contour store: what the camera sees at each pixel centre, kept for finding contours
-//! (mental ray's contour store function). `shade` writes it with the frame buffers; the
-//! [`Probe`] that fills it also answers the extra rays that place edges between samples.
+//! The contour store's probe: the camera rays that fill the store (what the camera sees at
+//! each pixel centre, mental ray's contour store function; the data types live with the
+//! frame buffers, which carry the store from `shade`) and that place edges between samples.
 
 use std::collections::HashMap;
 use std::sync::Arc;
@@ -8,66 +8,9 @@ use std::sync::Arc;
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 
+pub use crate::framebuffer::{ContourSample, ContourStore};
 use crate::geometry::SceneGeometry;
 use crate::shading::CameraRays;
-
-/// What one camera ray sees, as contour contrast compares it.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ContourSample {
-    /// 1 + the placed instance's index (as `Pass::ObjectId`); 0 for the background.
-    pub instance: u32,
-    /// 1 + the index of the first instance showing the same object (mesh); 0 for the
-    /// background. Two instances of one object share it.
-    pub object: u32,
-    /// 1 + the material's index (as `Pass::MaterialId`); 0 for the background.
-    pub material: u32,
-    /// World-space shading normal; zero for the background.
-    pub normal: Vec3,
-    /// Distance along the ray to the hit; infinity for the background.
-    pub depth: f32,
-    /// The shaded colour of the pixel (linear RGB; zero for samples taken between pixels).
-    pub color: Vec3,
-}
-
-impl ContourSample {
-    /// What a ray that hits nothing sees.
-    pub const BACKGROUND: ContourSample = ContourSample {
-        instance: 0,
-        object: 0,
-        material: 0,
-        normal: Vec3::ZERO,
-        depth: f32::INFINITY,
-        color: Vec3::ZERO,
-    };
-
-    /// Whether the sample sees no surface.
-    pub fn is_background(&self) -> bool {
-        self.instance == 0
-    }
-}
-
-/// One sample per pixel centre, row-major (row 0 at the top).
-#[derive(Debug, Clone, PartialEq)]
-pub struct ContourStore {
-    /// Width in samples (the image width).
-    pub width: u32,
-    /// Height in samples (the image height).
-    pub height: u32,
-    /// The samples; sample `(x, y)` is at film position `(x + 0.5, y + 0.5)`.
-    pub samples: Vec<ContourSample>,
-}
-
-impl ContourStore {
-    /// Sample `(x, y)`.
-    pub fn at(&self, x: u32, y: u32) -> &ContourSample {
-        &self.samples[(y * self.width + x) as usize]
-    }
-
-    /// Film position of sample `(x, y)`, pixels.
-    pub fn position(x: u32, y: u32) -> Vec2 {
-        Vec2::new(x as f32 + 0.5, y as f32 + 0.5)
-    }
-}
 
 /// Traces the rays of the store: the camera's primary ray through a film position, through
 /// the aperture centre, against the scene geometry.

@@ -50,7 +50,7 @@ pub fn encode_svg(image: &ContourImage) -> String {
 
 /// `fill` and `fill-opacity` of a linear RGBA colour (sRGB-encoded).
 fn paint(c: Vec4) -> String {
-    let u8 = |v: f32| (srgb_encode(v) * 255.0 + 0.5) as u8;
+    let u8 = crate::image_io::srgb::to_u8;
     format!(
         "fill=\"#{:02x}{:02x}{:02x}\" fill-opacity=\"{:.3}\"",
         u8(c.x),
@@ -58,20 +58,6 @@ fn paint(c: Vec4) -> String {
         u8(c.z),
         c.w.clamp(0.0, 1.0)
     )
-}
-
-/// Linear [0, 1] → sRGB-encoded [0, 1] (IEC 61966-2-1; `image_io::srgb::encode`, which
-/// this module cannot import without a cycle through the frame buffers).
-fn srgb_encode(linear: f32) -> f32 {
-    if linear.is_nan() || linear <= 0.0 {
-        return 0.0;
-    }
-    let l = linear.min(1.0);
-    if l <= 0.003_130_8 {
-        12.92 * l
-    } else {
-        1.055 * l.powf(1.0 / 2.4) - 0.055
-    }
 }
 
 /// The mean colour of a line's points.

@@ -7,10 +7,10 @@ use std::path::PathBuf;
 
 use glam::Vec4;
 
+use super::checker::{Checker, Item};
 use super::desc::{CameraDesc, MaterialDesc, OptionsDesc, OutputDesc, PassDesc};
 use super::desc_contour::{ContourDesc, V4};
 use super::diagnostics::{Diagnostic, Sources};
-use super::checker::{Checker, Item};
 use crate::components::{ContourContrast, ContourShader, ImageFormat, OutputSpec, Pass};
 
 /// The contour shader of a material, if it has a valid one (errors recorded otherwise).
