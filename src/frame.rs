@@ -18,6 +18,7 @@ use std::sync::Arc;
 
 use crate::bake::BakeReport;
 use crate::components::{ImageFormat, OutputSpec, Pass};
+use crate::contour::ContourImage;
 use crate::farm::PartRun;
 use crate::framebuffer::FrameBuffers;
 use crate::geometry::SceneGeometry;
@@ -157,6 +158,8 @@ pub enum Slot {
     Image,
     /// [`StageOutputs::bake_reports`].
     BakeReports,
+    /// [`StageOutputs::contours`].
+    Contours,
 }
 
 /// A stage's typed result, stored by the runner in the stage's slot.
@@ -169,6 +172,8 @@ pub enum StageOutput {
     Image(FrameBuffers),
     /// One report per bake request.
     BakeReports(Vec<BakeReport>),
+    /// The contour lines and their layer.
+    Contours(ContourImage),
 }
 
 impl StageOutput {
@@ -179,6 +184,7 @@ impl StageOutput {
             StageOutput::Photons(_) => Slot::Photons,
             StageOutput::Image(_) => Slot::Image,
             StageOutput::BakeReports(_) => Slot::BakeReports,
+            StageOutput::Contours(_) => Slot::Contours,
         }
     }
 }
@@ -194,6 +200,8 @@ pub struct StageOutputs {
     pub image: Option<FrameBuffers>,
     /// Written by `bake_lightmaps`: one report per bake request.
     pub bake_reports: Vec<BakeReport>,
+    /// Written by `draw_contours`: the contour lines and their rasterised layer.
+    pub contours: Option<ContourImage>,
     /// Slots promised by stages a plan expects to run (`stagelight plan` runs no stage, so
     /// later run conditions ask [`StageOutputs::has`] instead of looking at the data).
     promised: Vec<Slot>,
@@ -208,6 +216,7 @@ impl StageOutputs {
                 Slot::Photons => self.photons.is_some(),
                 Slot::Image => self.image.is_some(),
                 Slot::BakeReports => !self.bake_reports.is_empty(),
+                Slot::Contours => self.contours.is_some(),
             }
     }
 
@@ -223,6 +232,7 @@ impl StageOutputs {
             StageOutput::Photons(p) => self.photons = Some(p),
             StageOutput::Image(i) => self.image = Some(i),
             StageOutput::BakeReports(r) => self.bake_reports = r,
+            StageOutput::Contours(c) => self.contours = Some(c),
         }
     }
 }

@@ -1,6 +1,7 @@
-//! Frame buffers: the per-pixel passes the `shade` stage produces.
+//! Frame buffers: the per-pixel passes the `shade` stage produces, and the contour store it
+//! keeps for `draw_contours` (what each pixel centre sees).
 
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 
 use crate::exact_sum::ExactSum;
 
@@ -29,6 +30,9 @@ pub struct FrameBuffers {
     /// The exact sample sums behind `beauty` and `alpha`, kept only when the run renders a
     /// farm part (`crate::farm`), which writes them instead of the image.
     pub sums: Option<PixelSums>,
+    /// What the camera sees at each pixel centre, for `draw_contours`; kept only when some
+    /// material has a contour shader (and not in a farm part).
+    pub contour_store: Option<ContourStore>,
 }
 
 /// Exact per-pixel sample sums and counts (see [`FrameBuffers::sums`]).
@@ -57,6 +61,65 @@ impl FrameBuffers {
             material_id: vec![0; n],
             samples: vec![0; n],
             sums: None,
+            contour_store: None,
         }
+    }
+}
+
+/// What one camera ray sees, as contour contrast compares it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContourSample {
+    /// 1 + the placed instance's index (as `Pass::ObjectId`); 0 for the background.
+    pub instance: u32,
+    /// 1 + the index of the first instance showing the same object (mesh); 0 for the
+    /// background. Two instances of one object share it.
+    pub object: u32,
+    /// 1 + the material's index (as `Pass::MaterialId`); 0 for the background.
+    pub material: u32,
+    /// World-space shading normal; zero for the background.
+    pub normal: Vec3,
+    /// Distance along the ray to the hit; infinity for the background.
+    pub depth: f32,
+    /// The shaded colour of the pixel (linear RGB; zero for samples taken between pixels).
+    pub color: Vec3,
+}
+
+impl ContourSample {
+    /// What a ray that hits nothing sees.
+    pub const BACKGROUND: ContourSample = ContourSample {
+        instance: 0,
+        object: 0,
+        material: 0,
+        normal: Vec3::ZERO,
+        depth: f32::INFINITY,
+        color: Vec3::ZERO,
+    };
+
+    /// Whether the sample sees no surface.
+    pub fn is_background(&self) -> bool {
+        self.instance == 0
+    }
+}
+
+/// One sample per pixel centre, row-major (row 0 at the top).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ContourStore {
+    /// Width in samples (the image width).
+    pub width: u32,
+    /// Height in samples (the image height).
+    pub height: u32,
+    /// The samples; sample `(x, y)` is at film position `(x + 0.5, y + 0.5)`.
+    pub samples: Vec<ContourSample>,
+}
+
+impl ContourStore {
+    /// Sample `(x, y)`.
+    pub fn at(&self, x: u32, y: u32) -> &ContourSample {
+        &self.samples[(y * self.width + x) as usize]
+    }
+
+    /// Film position of sample `(x, y)`, pixels.
+    pub fn position(x: u32, y: u32) -> Vec2 {
+        Vec2::new(x as f32 + 0.5, y as f32 + 0.5)
     }
 }

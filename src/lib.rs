@@ -11,6 +11,7 @@ pub mod adaptive;
 pub mod bake;
 pub mod budget;
 pub mod components;
+pub mod contour;
 pub mod exact_sum;
 pub mod farm;
 pub mod frame;

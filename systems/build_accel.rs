@@ -32,7 +32,7 @@ use crate::schedule::any_with;
 
 /// Run condition: instances with triangles, and a render camera to trace for.
 pub fn should_run(world: &World, frame: &Frame) -> Decision {
-    if frame.inputs.merging() {
+    if super::merged_without_contours(world, frame) {
         return Decision::skip(MERGING);
     }
     let mut instances = 0usize;

@@ -26,7 +26,7 @@ use crate::schedule::count_with;
 
 /// Run condition: procedural geometry components exist.
 pub fn should_run(world: &World, frame: &Frame) -> Decision {
-    if frame.inputs.merging() {
+    if super::merged_without_contours(world, frame) {
         return Decision::skip(MERGING);
     }
     let shaders = count_with::<Procedural>(world);

@@ -11,13 +11,13 @@
 //! | 4 | `trace_photons` | caustics or global illumination on, a `Direct` render, geometry, a light with power | `Emitter`s, `outputs.geometry`, `settings.photons` | `outputs.photons` |
 //! | 5 | `bake_lightmaps` | bake requests, in a run that bakes | `BakeRequest`s, `Emitter`s, `Environment`, `outputs.geometry`, `inputs.bake_dir`, `inputs.write_gltf` | texture files (and the baked glTF copy); `outputs.bake_reports` |
 //! | 6 | `shade` | a render camera, in a run that renders | render camera, lenses, atmosphere, `Interior`s, `Emitter`s, `Environment`, `outputs.geometry`, `outputs.photons` | `outputs.image` |
-//! | 7 | `write_output` | a shaded image and outputs to write | `outputs.image`, camera outputs with `inputs.outputs` overrides, `Imager` | image files |
+//! | 7 | `draw_contours` | a shaded image, a material with a contour shader, not a farm part | `outputs.image` (contour store), `outputs.geometry`, render camera, `ContourShader`s, `ContourContrast` | `outputs.contours` |
+//! | 8 | `write_output` | a shaded image and outputs to write | `outputs.image`, `outputs.contours`, camera outputs with `inputs.outputs` overrides, `Imager` | image files, SVG contour lines |
 //! <!-- stage table end -->
-//!
-//! `draw_contours` takes its slot between `shade` and `write_output` when it is built.
 
 pub mod bake_lightmaps;
 pub mod build_accel;
+pub mod draw_contours;
 pub mod expand_geometry;
 pub mod shade;
 pub mod tessellate;
@@ -41,6 +41,12 @@ mod prelude {
 
 /// Why the stages that only feed rendering skip in `stagelight merge`.
 pub const MERGING: &str = "the image is merged from part files";
+
+/// Whether a geometry stage skips because the image is merged from part files: it does
+/// unless contours are drawn, whose bisection rays need the scene geometry.
+pub fn merged_without_contours(world: &World, frame: &Frame) -> bool {
+    frame.inputs.merging() && !crate::schedule::any_with::<crate::components::ContourShader>(world)
+}
 
 /// The ordered stage table.
 pub const STAGES: &[Stage] = &[
@@ -99,10 +105,19 @@ pub const STAGES: &[Stage] = &[
         body: StageBody::ReadsWorld(shade::run),
     },
     Stage {
+        name: "draw_contours",
+        runs_when: "a shaded image, a material with a contour shader, not a farm part",
+        reads: "`outputs.image` (contour store), `outputs.geometry`, render camera, `ContourShader`s, `ContourContrast`",
+        writes: "`outputs.contours`",
+        slot: Some(Slot::Contours),
+        condition: draw_contours::should_run,
+        body: StageBody::ReadsWorld(draw_contours::run),
+    },
+    Stage {
         name: "write_output",
         runs_when: "a shaded image and outputs to write",
-        reads: "`outputs.image`, camera outputs with `inputs.outputs` overrides, `Imager`",
-        writes: "image files",
+        reads: "`outputs.image`, `outputs.contours`, camera outputs with `inputs.outputs` overrides, `Imager`",
+        writes: "image files, SVG contour lines",
         slot: None,
         condition: write_output::should_run,
         body: StageBody::ReadsWorld(write_output::run),

@@ -14,7 +14,9 @@
 //! every ray misses); `outputs.photons` (the `Direct` integrator's caustics and final gather;
 //! absent: none); `settings` (spp or adaptive samples, filter, seed, face, integrator,
 //! trace depths).
-//! **Writes:** `outputs.image` (with the samples each pixel took), returned to the runner.
+//! **Writes:** `outputs.image` (with the samples each pixel took and, when some material has
+//! a contour shader, the contour store: what each pixel centre sees), returned to the
+//! runner.
 //! **Runs when:** the run renders and a render camera exists.
 //! **After this stage:** `outputs.image` holds finite beauty, alpha, depth and normal buffers of
 //! the camera's resolution; each pixel depends only on (seed, pixel index, sample index).
@@ -28,12 +30,14 @@ use rayon::prelude::*;
 
 use super::prelude::*;
 use crate::adaptive::{refine_flags, PixelSamples, SampleBudget};
-use crate::components::Interior;
+use crate::components::{ContourShader, Interior};
+use crate::contour::{ContourStore, Probe};
 use crate::farm::{Part, Split};
 use crate::framebuffer::{FrameBuffers, PixelSums};
 use crate::progress::Progress;
 use crate::sampling::{fold_seed, Sampler};
 use crate::scene_view::{light_set, render_view, WithEnvironment};
+use crate::schedule::any_with;
 use crate::shading::integrator::{camera_hit, volume, CameraHit};
 use crate::shading::{shade_hit, CameraRays, FilterSampler, ShadeContext, Volumes};
 
@@ -73,7 +77,9 @@ pub fn should_run(world: &World, frame: &Frame) -> Decision {
 pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
     if let Some(fb) = &frame.inputs.merged_image {
         let taken = fb.samples.iter().map(|&s| u64::from(s)).sum();
-        return Ok(Work::new(taken, "samples").with_output(StageOutput::Image(fb.clone())));
+        let mut fb = fb.clone();
+        fb.contour_store = contour_store(world, frame, &fb);
+        return Ok(Work::new(taken, "samples").with_output(StageOutput::Image(fb)));
     }
     let view = render_view(world).ok_or_else(|| StageError::Internal("no render camera".into()))?;
     let camera = view.camera;
@@ -217,7 +223,21 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
         tracing::warn!("{dropped} non-finite samples were dropped");
     }
     fb.sums = sums;
+    fb.contour_store = contour_store(world, frame, &fb);
     Ok(Work::new(taken, "samples").with_output(StageOutput::Image(fb)))
+}
+
+/// The contour store of the shaded (or merged) image `fb`, when some material has a contour
+/// shader and the run is not a farm part (see `draw_contours`). Its samples are the pixel
+/// centres' first hits, which need no random numbers: a merge recomputes them exactly.
+fn contour_store(world: &World, frame: &Frame, fb: &FrameBuffers) -> Option<ContourStore> {
+    if frame.inputs.part.is_some() || !any_with::<ContourShader>(world) {
+        return None;
+    }
+    let view = render_view(world)?;
+    let rays = CameraRays::with_lenses(&view.camera, &view.lenses);
+    let probe = Probe::new(frame.outputs.geometry.as_ref(), &rays);
+    Some(probe.store(fb.width, fb.height, &fb.beauty))
 }
 
 /// One pixel: its centre-sample passes and its samples so far.

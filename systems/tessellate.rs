@@ -62,7 +62,7 @@ fn census(world: &World) -> (usize, usize, usize, usize) {
 
 /// Run condition: parametric surfaces, subdivision meshes or true displacement exist.
 pub fn should_run(world: &World, frame: &Frame) -> Decision {
-    if frame.inputs.merging() {
+    if super::merged_without_contours(world, frame) {
         return Decision::skip(MERGING);
     }
     let (surfaces, subdivs, displaced, bump) = census(world);

@@ -1,7 +1,8 @@
 //! `write_output`: encodes the render camera's frame buffers into its output files (PNG,
-//! EXR); the runner writes them with the run's other files, all or nothing.
+//! EXR) and the contour lines into SVG; the runner writes them with the run's other files,
+//! all or nothing.
 //!
-//! **Reads:** `outputs.image`; the render `Camera`'s `outputs` as redirected by
+//! **Reads:** `outputs.image`; `outputs.contours` (absent: no lines); the render `Camera`'s `outputs` as redirected by
 //! `inputs.outputs` (`-o`, `bench`'s scratch directory) and its `Imager` (PNG only).
 //! **Writes:** files, handed to the runner encoded (`Work::pending`), which commits them.
 //! **Runs when:** a shaded image exists and the camera (or the command line) lists outputs.
@@ -10,10 +11,15 @@
 use hecs::World;
 
 use super::prelude::*;
-use crate::components::{ImageFormat, OutputSpec, Pass};
+use glam::{Vec3, Vec4};
+
+use crate::components::{ImageFormat, Imager, OutputSpec, Pass};
+use crate::contour::svg::encode_svg;
+use crate::contour::{output, ContourImage};
 use crate::farm::PartRun;
 use crate::frame::Slot;
-use crate::image_io::{encode_exr, encode_png, PendingFile};
+use crate::framebuffer::FrameBuffers;
+use crate::image_io::{encode_exr_with, encode_png, PendingFile};
 use crate::scene_view::render_view;
 
 /// The outputs this run writes: the camera's, with the command line's overrides.
@@ -58,11 +64,19 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
         .image
         .as_ref()
         .ok_or_else(|| StageError::Internal("no image to write".into()))?;
+    let contours = frame.outputs.contours.as_ref();
     let mut pending = Vec::with_capacity(outputs.len());
     for out in &outputs {
         let bytes = match out.format {
-            ImageFormat::Png => encode_png(fb, out.passes.contains(&Pass::Alpha), imager.as_ref()),
-            ImageFormat::Exr => encode_exr(fb, &out.passes),
+            ImageFormat::Png => png(fb, contours, out, imager.as_ref()),
+            ImageFormat::Exr => {
+                let extra = match contours {
+                    Some(c) if out.passes.contains(&Pass::Contours) => output::exr_channels(c),
+                    _ => Vec::new(),
+                };
+                encode_exr_with(fb, &out.passes, extra)
+            }
+            ImageFormat::Svg => Ok(encode_svg(contours.unwrap_or(&no_lines(fb))).into_bytes()),
         }
         .map_err(|message| StageError::Write {
             path: out.path.clone(),
@@ -77,6 +91,41 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
         return Err(StageError::Interrupted);
     }
     Ok(Work::new(pending.len() as u64, "files").with_pending(pending))
+}
+
+/// A PNG output: the beauty, with the contours composited when it lists `Contours` (over
+/// the beauty when it lists `Beauty` too, else over the imager's background colour, white
+/// without one, as an opaque image).
+fn png(
+    fb: &FrameBuffers,
+    contours: Option<&ContourImage>,
+    out: &OutputSpec,
+    imager: Option<&Imager>,
+) -> Result<Vec<u8>, String> {
+    let alpha = out.passes.contains(&Pass::Alpha);
+    let Some(c) = contours.filter(|_| out.passes.contains(&Pass::Contours)) else {
+        return encode_png(fb, alpha, imager);
+    };
+    let mut composed = fb.clone();
+    if out.passes.contains(&Pass::Beauty) {
+        output::composite(&mut composed.beauty, &mut composed.alpha, c, None);
+        return encode_png(&composed, alpha, imager);
+    }
+    let paper = imager.and_then(|i| i.background).unwrap_or(Vec3::ONE);
+    output::composite(&mut composed.beauty, &mut composed.alpha, c, Some(paper));
+    encode_png(&composed, alpha, None)
+}
+
+/// No contour lines, for an image of `fb`'s size (contours were not drawn: no material in
+/// use has a contour shader).
+fn no_lines(fb: &FrameBuffers) -> ContourImage {
+    ContourImage {
+        width: fb.width,
+        height: fb.height,
+        lines: Vec::new(),
+        material_names: Vec::new(),
+        layer: vec![Vec4::ZERO; fb.beauty.len()],
+    }
 }
 
 /// A farm part's run writes its part file (to `-o`) instead of the camera outputs.

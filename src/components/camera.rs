@@ -22,6 +22,10 @@ pub enum Pass {
     /// Which material the pixel centre sees (`id.material`, u32): 1 + the material's index
     /// among the materials in use; 0 for the background.
     MaterialId,
+    /// The contour layer (`contour.R`, `contour.G`, `contour.B`, `contour.A`, premultiplied)
+    /// in EXR; in PNG the contours composited over the beauty (or, without `Beauty`, over
+    /// the imager's background colour, white without one).
+    Contours,
 }
 
 /// File formats for outputs.
@@ -31,6 +35,8 @@ pub enum ImageFormat {
     Png,
     /// OpenEXR, linear, with layers for every requested pass.
     Exr,
+    /// SVG vector drawing of the contour lines (no passes).
+    Svg,
 }
 
 /// One output file of a camera.

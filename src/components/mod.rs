@@ -4,6 +4,7 @@
 //! pure helpers on the data itself.
 
 mod camera;
+mod contour;
 mod light;
 mod local_model;
 mod material;
@@ -14,6 +15,7 @@ mod transform;
 pub use camera::{
     world_from_look_at, Camera, ImageFormat, Lens, Lenses, OutputSpec, Pass, RenderCamera,
 };
+pub use contour::{ContourContrast, ContourShader};
 pub use light::{attenuation_factor, Emitter, LightShape};
 pub use local_model::{LocalLobe, LocalModel};
 pub use material::{Material, MaterialRef, Shader};

@@ -8,6 +8,15 @@ use crate::framebuffer::FrameBuffers;
 
 /// Encodes the requested passes into an EXR file in memory.
 pub fn encode_exr(fb: &FrameBuffers, passes: &[Pass]) -> std::result::Result<Vec<u8>, String> {
+    encode_exr_with(fb, passes, Vec::new())
+}
+
+/// [`encode_exr`] plus `extra` f32 channels of the same size (e.g. the contour layer).
+pub fn encode_exr_with(
+    fb: &FrameBuffers,
+    passes: &[Pass],
+    extra: Vec<(&str, Vec<f32>)>,
+) -> std::result::Result<Vec<u8>, String> {
     let mut channels: SmallVec<[AnyChannel<FlatSamples>; 4]> = SmallVec::new();
     let mut add = |name: &str, values: Vec<f32>| {
         channels.push(AnyChannel::new(name, FlatSamples::F32(values)));
@@ -40,6 +49,9 @@ pub fn encode_exr(fb: &FrameBuffers, passes: &[Pass]) -> std::result::Result<Vec
             "id.material",
             FlatSamples::U32(fb.material_id.clone()),
         ));
+    }
+    for (name, values) in extra {
+        channels.push(AnyChannel::new(name, FlatSamples::F32(values)));
     }
     let size = (fb.width as usize, fb.height as usize);
     let layer = Layer::new(

@@ -9,5 +9,5 @@ mod png_writer;
 pub mod srgb;
 
 pub use atomic::{commit_all, commit_state, remove_stale, PendingFile};
-pub use exr_writer::encode_exr;
+pub use exr_writer::{encode_exr, encode_exr_with};
 pub use png_writer::encode_png;

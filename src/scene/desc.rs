@@ -7,6 +7,7 @@
 use serde::{Deserialize, Serialize};
 
 pub use super::desc_camera::{LensDesc, SamplesDesc, VolumeDesc};
+pub use super::desc_contour::{ContourDesc, ContoursDesc, ContrastDesc};
 pub use super::desc_geometry::{
     ApproximationDesc, AxisDesc, BasisDesc, DisplacementDesc, DisplacementModeDesc, MeshDesc,
     ScalarDesc, SpaceDesc,
@@ -70,6 +71,8 @@ pub struct OptionsDesc {
     pub caustics: Option<PhotonMapDesc>,
     /// Global-illumination photon map with final gathering, default off.
     pub global_illumination: Option<PhotonMapDesc>,
+    /// Contour contrast, default [`ContoursDesc::default`].
+    pub contours: Option<ContoursDesc>,
 }
 
 /// `caustics: (...)` / `global_illumination: (...)` in `options`: one photon map's knobs.
@@ -112,6 +115,7 @@ impl Default for OptionsDesc {
             light_samples: 16,
             caustics: None,
             global_illumination: None,
+            contours: None,
         }
     }
 }
@@ -279,6 +283,8 @@ pub enum FormatDesc {
     Png,
     /// OpenEXR.
     Exr,
+    /// SVG contour lines.
+    Svg,
 }
 
 /// Image pass.
@@ -297,6 +303,8 @@ pub enum PassDesc {
     ObjectId,
     /// Material id of the first hit (EXR only).
     MaterialId,
+    /// The contour layer (EXR), or contours composited (PNG).
+    Contours,
 }
 
 /// `lights: [(...)]`: a light.
@@ -488,6 +496,9 @@ pub struct MaterialDesc {
     /// Volume shader filling the inside of closed meshes with this material, default none.
     #[serde(default)]
     pub interior: Option<VolumeDesc>,
+    /// Contour shader, default none (no contours around this material).
+    #[serde(default)]
+    pub contour: Option<ContourDesc>,
 }
 
 /// Surface shader.

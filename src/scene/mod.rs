@@ -22,9 +22,11 @@
 
 pub(crate) mod bake;
 pub(crate) mod checker;
+pub(crate) mod contours;
 pub(crate) mod dag;
 pub mod desc;
 pub mod desc_camera;
+pub mod desc_contour;
 pub mod desc_geometry;
 pub mod desc_values;
 pub(crate) mod diagnostics;
@@ -166,10 +168,22 @@ fn load(
         .collect();
     let mut phenomena = nodes::check_phenomena(src, &merged);
     nodes::attach(src, &merged, &mut phenomena, &mut materials);
+    let contour_shaders: Vec<_> = merged
+        .materials
+        .iter()
+        .map(|m| contours::contour(src, m))
+        .collect();
+    let contrast = contours::contrast(src, merged.options.as_ref());
+    contours::check_pairing(src, &merged.cameras, &merged.materials);
     let materials: Vec<MaterialParts> = materials
         .into_iter()
         .zip(interiors)
-        .map(|(material, interior)| MaterialParts { material, interior })
+        .zip(contour_shaders)
+        .map(|((material, interior), contour)| MaterialParts {
+            material,
+            interior,
+            contour,
+        })
         .collect();
     let resolved = names::resolve(src, &merged);
     let scatters = geometry::scatter::resolve(src, &merged);
@@ -283,6 +297,14 @@ fn load(
     let mut world = spawn::spawn(&sources, &merged, parts);
     if let Some(env) = environment {
         world.spawn((crate::components::Name("environment".into()), env));
+    }
+    let has_contours = world
+        .query::<&crate::components::ContourShader>()
+        .iter()
+        .next()
+        .is_some();
+    if has_contours {
+        world.spawn((crate::components::Name("contours".into()), contrast));
     }
     Ok(LoadedScene {
         world,

@@ -16,7 +16,8 @@
 //! 6. every camera: `Name`, `SourceLink`, `Camera`, plus `RenderCamera` on the render camera
 //!    and `Imager`, `Lenses`, `Atmosphere` when written.
 //!
-//! Materials with an `interior` also carry `Interior`.
+//! Materials with an `interior` also carry `Interior`, those with a contour shader
+//! `ContourShader`.
 //!
 //! `SourceLink`s point at the element's opening parenthesis in its file.
 
@@ -30,8 +31,9 @@ use super::diagnostics::Sources;
 use super::geometry::{Generated, ObjectGeometry};
 use super::validate::{default_material, Merged};
 use crate::components::{
-    Atmosphere, BakeRequest, Camera, Emitter, Fog, Imager, Instance, Interior, Lenses, Material,
-    MaterialRef, Name, RenderCamera, SceneOrigin, SourceLink, TriMesh, WorldFromObject,
+    Atmosphere, BakeRequest, Camera, ContourShader, Emitter, Fog, Imager, Instance, Interior,
+    Lenses, Material, MaterialRef, Name, RenderCamera, SceneOrigin, SourceLink, TriMesh,
+    WorldFromObject,
 };
 use crate::procedural::pending_instance;
 
@@ -54,6 +56,8 @@ pub struct MaterialParts {
     pub material: Option<Material>,
     /// Its interior volume.
     pub interior: Option<Fog>,
+    /// Its contour shader.
+    pub contour: Option<ContourShader>,
 }
 
 /// What one object was checked and built into.
@@ -124,6 +128,7 @@ pub fn spawn(src: &Sources, m: &Merged<'_>, parts: Parts) -> World {
                 let Some(MaterialParts {
                     material: Some(material),
                     interior,
+                    contour,
                 }) = parts.materials.get(i)
                 else {
                     continue;
@@ -137,6 +142,10 @@ pub fn spawn(src: &Sources, m: &Merged<'_>, parts: Parts) -> World {
                 if let Some(fog) = interior {
                     // The entity was just spawned, so inserting cannot fail.
                     let _ = world.insert_one(entity, Interior(*fog));
+                }
+                if let Some(shader) = contour {
+                    // As above.
+                    let _ = world.insert_one(entity, *shader);
                 }
                 entity
             }

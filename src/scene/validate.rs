@@ -335,8 +335,10 @@ fn output(ck: &mut Checker<'_>, path: &str, o: &OutputDesc) -> Option<OutputSpec
     let format = match (o.format, ext.as_deref()) {
         (Some(FormatDesc::Png), _) => ImageFormat::Png,
         (Some(FormatDesc::Exr), _) => ImageFormat::Exr,
+        (Some(FormatDesc::Svg), _) => ImageFormat::Svg,
         (None, Some("png")) => ImageFormat::Png,
         (None, Some("exr")) => ImageFormat::Exr,
+        (None, Some("svg")) => ImageFormat::Svg,
         (None, other) => {
             ck.src.error(
                 ck.file,
@@ -345,11 +347,14 @@ fn output(ck: &mut Checker<'_>, path: &str, o: &OutputDesc) -> Option<OutputSpec
                     Some(e) => format!("unknown output extension \".{e}\" in \"{}\"", o.file),
                     None => format!("output file \"{}\" has no extension", o.file),
                 },
-                Some("use .png or .exr, or give `format: Png` or `format: Exr`".into()),
+                Some("use .png, .exr or .svg, or give `format: Png`, `Exr` or `Svg`".into()),
             );
             return None;
         }
     };
+    if format == ImageFormat::Svg {
+        return super::contours::svg_output(ck, path, o);
+    }
     let descs = o.passes.clone().unwrap_or_else(|| vec![PassDesc::Beauty]);
     if descs.is_empty() {
         ck.error(
@@ -368,6 +373,7 @@ fn output(ck: &mut Checker<'_>, path: &str, o: &OutputDesc) -> Option<OutputSpec
             PassDesc::Normal => Pass::Normal,
             PassDesc::ObjectId => Pass::ObjectId,
             PassDesc::MaterialId => Pass::MaterialId,
+            PassDesc::Contours => Pass::Contours,
         };
         let ppath = format!("{path}.passes[{k}]");
         if format == ImageFormat::Png

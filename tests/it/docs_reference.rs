@@ -116,6 +116,7 @@ fn every_accepted_field_and_variant_is_in_the_format_reference() {
     for file in [
         "src/scene/desc.rs",
         "src/scene/desc_camera.rs",
+        "src/scene/desc_contour.rs",
         "src/scene/desc_geometry.rs",
         "src/scene/nodes_desc.rs",
     ] {

@@ -266,7 +266,7 @@ fn png_depth() {
             ),
             concat!(
                 "tests/fixtures/scenes/bad/png_depth.ron:6:70: error: unknown output extension \".tiff\" in \"out.tiff\"\n",
-                "  help: use .png or .exr, or give `format: Png` or `format: Exr`",
+                "  help: use .png, .exr or .svg, or give `format: Png`, `Exr` or `Svg`",
             ),
         ],
     );

@@ -965,6 +965,7 @@ impl Builder {
             bind,
             bump: None,
             interior: None,
+            contour: None,
         };
         let key = format!(
             "{:?}|{:?}|{}|{:?}|{}",

@@ -1,0 +1,168 @@
+//! Contour shaders: the colour and width of a line point from the material's
+//! [`ContourShader`] and the crossing under it (formulas on each variant).
+
+use glam::{Vec3, Vec4};
+
+use super::contrast::Crossing;
+use super::linking::Chain;
+use super::{ContourLine, ContourPoint};
+use crate::components::ContourShader;
+
+/// Rec. 709 luminance weights.
+const LUMINANCE: Vec3 = Vec3::new(0.2126, 0.7152, 0.0722);
+
+/// Colour (linear RGBA, straight alpha) and width (pixels) of the line at `c` drawn by
+/// `shader`, in an image whose smaller dimension is `min_dimension` pixels.
+pub fn style(shader: &ContourShader, c: &Crossing, min_dimension: f32) -> (Vec4, f32) {
+    let (color, percent) = match *shader {
+        ContourShader::Simple { color, width } => (color, width),
+        ContourShader::DepthFade {
+            near,
+            far,
+            near_color,
+            far_color,
+            near_width,
+            far_width,
+        } => {
+            let t = ((c.front.depth - near) / (far - near)).clamp(0.0, 1.0);
+            (
+                near_color.lerp(far_color, t),
+                near_width + (far_width - near_width) * t,
+            )
+        }
+        ContourShader::Curvature {
+            color,
+            min_width,
+            max_width,
+        } => {
+            let angle = if c.back.is_background() || c.back.object != c.front.object {
+                std::f32::consts::PI
+            } else {
+                c.front.normal.dot(c.back.normal).clamp(-1.0, 1.0).acos()
+            };
+            (
+                color,
+                min_width + (max_width - min_width) * angle / std::f32::consts::PI,
+            )
+        }
+        ContourShader::FactorColor { factor, width } => {
+            ((c.front.color * factor).extend(1.0), width)
+        }
+        ContourShader::WidthFromLight {
+            color,
+            dark_width,
+            lit_width,
+        } => {
+            let light = c.front.color.dot(LUMINANCE).clamp(0.0, 1.0);
+            (color, dark_width + (lit_width - dark_width) * light)
+        }
+    };
+    (color, percent * 0.01 * min_dimension)
+}
+
+/// Styles every chain with the contour shader of its material (`shaders[material − 1]`;
+/// chains of materials without one were never linked, and are dropped if met).
+pub fn styled_lines(
+    chains: Vec<Chain>,
+    shaders: &[Option<ContourShader>],
+    min_dimension: f32,
+) -> Vec<ContourLine> {
+    chains
+        .into_iter()
+        .filter_map(|chain| {
+            let shader = shaders
+                .get(chain.material.checked_sub(1)? as usize)?
+                .as_ref()?;
+            let points = chain
+                .points
+                .iter()
+                .map(|p| {
+                    let (color, width) = style(shader, &p.crossing, min_dimension);
+                    ContourPoint {
+                        pos: p.pos,
+                        color,
+                        width,
+                    }
+                })
+                .collect();
+            Some(ContourLine {
+                material: chain.material,
+                closed: chain.closed,
+                points,
+            })
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::contour::store::ContourSample;
+    use glam::Vec2;
+
+    fn crossing(depth: f32, color: Vec3, back_normal: Vec3) -> Crossing {
+        let front = ContourSample {
+            instance: 1,
+            object: 1,
+            material: 1,
+            normal: Vec3::Z,
+            depth,
+            color,
+        };
+        Crossing {
+            pos: Vec2::ZERO,
+            front,
+            back: ContourSample {
+                normal: back_normal,
+                depth: depth + 1.0,
+                ..front
+            },
+        }
+    }
+
+    #[test]
+    fn each_shader_follows_its_formula() {
+        let black = Vec4::new(0.0, 0.0, 0.0, 1.0);
+        let white = Vec4::ONE;
+        let c = crossing(3.0, Vec3::new(0.5, 0.5, 0.5), Vec3::X);
+        let simple = ContourShader::Simple {
+            color: black,
+            width: 1.0,
+        };
+        assert_eq!(style(&simple, &c, 300.0), (black, 3.0), "1 % of 300 px");
+        let fade = ContourShader::DepthFade {
+            near: 2.0,
+            far: 6.0,
+            near_color: black,
+            far_color: white,
+            near_width: 2.0,
+            far_width: 0.0,
+        };
+        let (col, w) = style(&fade, &c, 100.0);
+        assert!((col - Vec4::new(0.25, 0.25, 0.25, 1.0)).abs().max_element() < 1e-6);
+        assert!((w - 1.5).abs() < 1e-6);
+        let curv = ContourShader::Curvature {
+            color: black,
+            min_width: 0.0,
+            max_width: 2.0,
+        };
+        assert!(
+            (style(&curv, &c, 100.0).1 - 1.0).abs() < 1e-5,
+            "90° is half"
+        );
+        let factor = ContourShader::FactorColor {
+            factor: 0.5,
+            width: 1.0,
+        };
+        assert_eq!(
+            style(&factor, &c, 100.0).0,
+            Vec4::new(0.25, 0.25, 0.25, 1.0)
+        );
+        let light = ContourShader::WidthFromLight {
+            color: black,
+            dark_width: 2.0,
+            lit_width: 1.0,
+        };
+        assert!((style(&light, &c, 100.0).1 - 1.5).abs() < 1e-5, "L = 0.5");
+    }
+}

@@ -1,0 +1,283 @@
+//! Checks contours in a scene: each material's `contour:` shader, the options' `contours:
+//! (contrast: …)`, SVG outputs, and that contour shaders and contour outputs come together
+//! (an SVG or `Contours` output without any contour shader is an error; a contour shader
+//! that no output shows is a warning).
+
+use std::path::PathBuf;
+
+use glam::Vec4;
+
+use super::checker::{Checker, Item};
+use super::desc::{CameraDesc, MaterialDesc, OptionsDesc, OutputDesc, PassDesc};
+use super::desc_contour::{ContourDesc, V4};
+use super::diagnostics::{Diagnostic, Sources};
+use crate::components::{ContourContrast, ContourShader, ImageFormat, OutputSpec, Pass};
+
+/// The contour shader of a material, if it has a valid one (errors recorded otherwise).
+pub fn contour(src: &mut Sources, item: &Item<'_, MaterialDesc>) -> Option<ContourShader> {
+    let d = item.desc.contour.as_ref()?;
+    let mut ck = Checker {
+        src,
+        file: item.file,
+    };
+    let base = item.at(".contour");
+    let colours_ok = std::cell::Cell::new(true);
+    let colour = |ck: &mut Checker<'_>, variant: &str, name: &str, c: V4| -> Vec4 {
+        let path = format!("{base}.{variant}.{name}");
+        let v = [c.0, c.1, c.2, c.3];
+        for (k, x) in v.iter().enumerate() {
+            let p = format!("{path}[{k}]");
+            if !ck.finite(&p, name, *x) {
+                colours_ok.set(false);
+            } else if *x < 0.0 || (k == 3 && *x > 1.0) {
+                let range = if k == 3 { "in [0, 1]" } else { "non-negative" };
+                ck.error(&p, format!("{name} must be {range}, found {x}"));
+                colours_ok.set(false);
+            }
+        }
+        Vec4::new(c.0 as f32, c.1 as f32, c.2 as f32, c.3 as f32)
+    };
+    let mut ok = true;
+    let (variant, shader) = match *d {
+        ContourDesc::Simple { color, width } => (
+            "Simple",
+            ContourShader::Simple {
+                color: colour(&mut ck, "Simple", "color", color),
+                width: width as f32,
+            },
+        ),
+        ContourDesc::DepthFade {
+            near,
+            far,
+            near_color,
+            far_color,
+            near_width,
+            far_width,
+        } => {
+            let v = "DepthFade";
+            let mut distances_ok = ck
+                .non_negative(&format!("{base}.{v}.near"), "near", near)
+                .is_some();
+            distances_ok &= ck.finite(&format!("{base}.{v}.far"), "far", far);
+            if distances_ok && far <= near {
+                ck.error(
+                    &format!("{base}.{v}.far"),
+                    format!("far must be greater than near ({near}), found {far}"),
+                );
+                distances_ok = false;
+            }
+            ok &= distances_ok;
+            (
+                v,
+                ContourShader::DepthFade {
+                    near: near as f32,
+                    far: far as f32,
+                    near_color: colour(&mut ck, v, "near_color", near_color),
+                    far_color: colour(&mut ck, v, "far_color", far_color),
+                    near_width: near_width as f32,
+                    far_width: far_width as f32,
+                },
+            )
+        }
+        ContourDesc::Curvature {
+            color,
+            min_width,
+            max_width,
+        } => (
+            "Curvature",
+            ContourShader::Curvature {
+                color: colour(&mut ck, "Curvature", "color", color),
+                min_width: min_width as f32,
+                max_width: max_width as f32,
+            },
+        ),
+        ContourDesc::FactorColor { factor, width } => {
+            let p = format!("{base}.FactorColor.factor");
+            ok &= ck.non_negative(&p, "factor", factor).is_some();
+            (
+                "FactorColor",
+                ContourShader::FactorColor {
+                    factor: factor as f32,
+                    width: width as f32,
+                },
+            )
+        }
+        ContourDesc::WidthFromLight {
+            color,
+            dark_width,
+            lit_width,
+        } => (
+            "WidthFromLight",
+            ContourShader::WidthFromLight {
+                color: colour(&mut ck, "WidthFromLight", "color", color),
+                dark_width: dark_width as f32,
+                lit_width: lit_width as f32,
+            },
+        ),
+    };
+    let mut ok = colours_ok.get() && ok;
+    for (name, w) in width_fields(d) {
+        let path = format!("{base}.{variant}.{name}");
+        if !ck.finite(&path, name, w) {
+            ok = false;
+        } else if w <= 0.0 {
+            ck.src.error(
+                ck.file,
+                &path,
+                format!("contour {name} must be positive, found {w}"),
+                Some("widths are in percent of the smaller image dimension, e.g. `width: 0.5`; to draw no contours, leave out `contour`".into()),
+            );
+            ok = false;
+        } else if w > 100.0 {
+            ck.error(
+                &path,
+                format!("contour {name} must be at most 100 (percent), found {w}"),
+            );
+            ok = false;
+        }
+    }
+    ok.then_some(shader)
+}
+
+/// The width fields of a contour shader, by name.
+fn width_fields(d: &ContourDesc) -> Vec<(&'static str, f64)> {
+    match *d {
+        ContourDesc::Simple { width, .. } | ContourDesc::FactorColor { width, .. } => {
+            vec![("width", width)]
+        }
+        ContourDesc::DepthFade {
+            near_width,
+            far_width,
+            ..
+        } => vec![("near_width", near_width), ("far_width", far_width)],
+        ContourDesc::Curvature {
+            min_width,
+            max_width,
+            ..
+        } => vec![("min_width", min_width), ("max_width", max_width)],
+        ContourDesc::WidthFromLight {
+            dark_width,
+            lit_width,
+            ..
+        } => vec![("dark_width", dark_width), ("lit_width", lit_width)],
+    }
+}
+
+/// The contour contrast of `options` (defaults without them).
+pub fn contrast(src: &mut Sources, options: Option<&Item<'_, OptionsDesc>>) -> ContourContrast {
+    let Some((item, c)) = options.and_then(|o| o.desc.contours.map(|c| (o, c.contrast))) else {
+        return ContourContrast::default();
+    };
+    let mut ck = Checker {
+        src,
+        file: item.file,
+    };
+    let path = item.at(".contours.contrast");
+    let angle = format!("{path}.normal_angle");
+    if ck.finite(&angle, "normal_angle", c.normal_angle)
+        && !(c.normal_angle > 0.0 && c.normal_angle <= 180.0)
+    {
+        ck.error(
+            &angle,
+            format!(
+                "normal_angle must be in (0, 180] degrees, found {}",
+                c.normal_angle
+            ),
+        );
+    }
+    let depth = format!("{path}.depth");
+    if ck.finite(&depth, "depth", c.depth) && c.depth <= 0.0 {
+        ck.error(
+            &depth,
+            format!(
+                "depth must be positive (a fraction of the nearer depth), found {}",
+                c.depth
+            ),
+        );
+    }
+    ContourContrast {
+        instance: c.instance,
+        object: c.object,
+        material: c.material,
+        normal_angle: c.normal_angle as f32,
+        depth: c.depth as f32,
+        background: c.background,
+    }
+}
+
+/// An SVG output: it holds the contour lines only (`passes`, if given, is `[Contours]`).
+pub fn svg_output(ck: &mut Checker<'_>, path: &str, o: &OutputDesc) -> Option<OutputSpec> {
+    if let Some(passes) = &o.passes {
+        if passes.as_slice() != [PassDesc::Contours] {
+            ck.src.error(
+                ck.file,
+                &format!("{path}.passes"),
+                "an SVG output holds only the contour lines",
+                Some("leave out `passes`, or write `passes: [Contours]`".into()),
+            );
+            return None;
+        }
+    }
+    Some(OutputSpec {
+        path: PathBuf::from(&o.file),
+        format: ImageFormat::Svg,
+        passes: vec![Pass::Contours],
+    })
+}
+
+/// Whether an output shows contours (an SVG, or a `Contours` pass).
+fn shows_contours(o: &OutputDesc) -> bool {
+    let svg = o.format == Some(super::desc::FormatDesc::Svg)
+        || (o.format.is_none()
+            && std::path::Path::new(&o.file)
+                .extension()
+                .is_some_and(|e| e.eq_ignore_ascii_case("svg")));
+    svg || o
+        .passes
+        .as_ref()
+        .is_some_and(|p| p.contains(&PassDesc::Contours))
+}
+
+/// Contour outputs need a contour shader (errors), and contour shaders an output that shows
+/// them (warnings, at each shader).
+pub fn check_pairing(
+    src: &mut Sources,
+    cameras: &[Item<'_, CameraDesc>],
+    materials: &[Item<'_, MaterialDesc>],
+) {
+    let shaders = materials.iter().any(|m| m.desc.contour.is_some());
+    let mut shown = false;
+    for c in cameras {
+        for (k, o) in c.desc.outputs.iter().enumerate() {
+            if !shows_contours(o) {
+                continue;
+            }
+            shown = true;
+            if !shaders {
+                src.error(
+                    c.file,
+                    &c.at(&format!(".outputs[{k}].file")),
+                    format!("output \"{}\" shows contours, but no material has a contour shader", o.file),
+                    Some("give a material a contour shader, e.g. `contour: Simple(color: (0, 0, 0, 1), width: 0.5)`".into()),
+                );
+            }
+        }
+    }
+    if shown {
+        return;
+    }
+    for m in materials.iter().filter(|m| m.desc.contour.is_some()) {
+        let pos = src.pos(m.file, &m.at(".contour"));
+        src.push_warning(
+            m.file,
+            Diagnostic::at(
+                pos,
+                format!(
+                    "material \"{}\" has a contour shader, but no camera output shows contours",
+                    m.desc.name
+                ),
+                Some("add an output such as `(file: \"lines.svg\")` or a `Contours` pass".into()),
+            ),
+        );
+    }
+}

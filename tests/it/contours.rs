@@ -1,0 +1,437 @@
+//! Contours (issue 11): line positions, edge counts, widths, per-material shaders, the SVG
+//! against a real SVG rasteriser, skipping, determinism, farm merges and bad input.
+
+use std::path::Path;
+
+use glam::Vec2;
+use stagelight::contour::{ContourImage, ContourLine};
+use stagelight::frame::Frame;
+use stagelight::scene::load_scene_str;
+
+use crate::common::{run_in, scratch_dir, stderr_of};
+
+/// A scene of `objects`/`instances`/`materials` (RON list entries) seen by a `w × h` camera
+/// at `eye` looking at the origin, with `options` fields; outputs `outputs`.
+fn scene(w: u32, h: u32, eye: (f32, f32, f32), options: &str, body: &str, outputs: &str) -> String {
+    format!(
+        r#"Scene(
+    options: (samples: 1, {options}),
+    cameras: [(name: "cam", fov_y: 40.0, resolution: ({w}, {h}),
+        placement: LookAt(eye: ({}, {}, {}), target: (0, 0, 0), up: (0, 0, 1)),
+        outputs: [{outputs}])],
+    {body}
+    render: (root: "root", camera: "cam"),
+)"#,
+        eye.0, eye.1, eye.2
+    )
+}
+
+/// Loads `text` and runs every stage but `write_output`.
+fn render(text: &str) -> Frame {
+    let mut scene = load_scene_str(text, Path::new("contours_test.ron"))
+        .unwrap_or_else(|e| panic!("{e}\n{text}"));
+    let mut frame = Frame::new(scene.settings.clone());
+    let stages: Vec<_> = stagelight::systems::STAGES
+        .iter()
+        .copied()
+        .filter(|s| s.name != "write_output")
+        .collect();
+    stagelight::schedule::run_stages(&stages, &mut scene.world, &mut frame).unwrap();
+    frame
+}
+
+fn contours(text: &str) -> ContourImage {
+    render(text).outputs.contours.expect("contours drawn")
+}
+
+const SPHERE: &str = r#"
+    materials: [(name: "ink", shader: Constant(color: (0.8, 0.8, 0.8)),
+                 contour: Simple(color: (0, 0, 0, 1), width: 1.0))],
+    objects: [(name: "ball", mesh: Sphere(radius: 1.0), material: "ink",
+               approximation: Parametric(u: 96, v: 48))],
+    instances: [(name: "ball_1", of: "ball")],
+    groups: [(name: "root", members: ["ball_1"])],
+"#;
+
+/// The sphere's silhouette: every line point, and every point of the SVG outline (at half
+/// the width on either side), lies on the projected circle within 0.25 px.
+#[test]
+fn sphere_silhouette_lies_on_the_projected_circle() {
+    let distance = 5.0f32;
+    for (w, h) in [(48, 40), (120, 90), (200, 160)] {
+        let img = contours(&scene(
+            w,
+            h,
+            (0.0, -distance, 0.0),
+            "",
+            SPHERE,
+            r#"(file: "s.svg")"#,
+        ));
+        // Angular radius asin(R/D); pixels per unit of tan: (h/2)/tan(fov/2).
+        let alpha = (1.0 / distance).asin();
+        let r = alpha.tan() / 20f32.to_radians().tan() * h as f32 / 2.0;
+        let centre = Vec2::new(w as f32, h as f32) / 2.0;
+        assert_eq!(img.lines.len(), 1, "{w}×{h}: one closed silhouette");
+        assert!(img.lines[0].closed);
+        assert!(
+            img.lines[0].points.len() as f32 > 4.0 * r,
+            "a crossing per pixel row/column"
+        );
+        for p in &img.lines[0].points {
+            let d = (p.pos - centre).length();
+            assert!(
+                (d - r).abs() < 0.25,
+                "{w}×{h}: {} is {d} from the centre, r = {r}",
+                p.pos
+            );
+        }
+        let half = 0.01 * h.min(w) as f32 / 2.0;
+        for p in svg_points(&stagelight::contour::svg::encode_svg(&img)) {
+            let d = (p - centre).length();
+            let off = (d - (r - half)).abs().min((d - (r + half)).abs());
+            assert!(off < 0.25, "{w}×{h}: SVG point {p} is {d} from the centre");
+        }
+    }
+}
+
+/// Every point of every `<polygon>` of an SVG document.
+fn svg_points(svg: &str) -> Vec<Vec2> {
+    svg.split("points=\"")
+        .skip(1)
+        .flat_map(|rest| {
+            rest[..rest.find('"').unwrap()]
+                .split_whitespace()
+                .map(|xy| {
+                    let (x, y) = xy.split_once(',').unwrap();
+                    Vec2::new(x.parse().unwrap(), y.parse().unwrap())
+                })
+                .collect::<Vec<_>>()
+        })
+        .collect()
+}
+
+/// Straight pieces of a line: Douglas–Peucker with `tolerance` pixels, then (for a closed
+/// line) the pieces meeting at the first point merged when they are collinear.
+fn straight_pieces(line: &ContourLine, tolerance: f32) -> usize {
+    fn dp(p: &[Vec2], tol: f32) -> Vec<Vec2> {
+        let (a, b) = (p[0], p[p.len() - 1]);
+        let dist = |q: Vec2| {
+            let d = b - a;
+            if d.length() < 1e-6 {
+                (q - a).length()
+            } else {
+                ((q - a).perp_dot(d) / d.length()).abs()
+            }
+        };
+        let (k, far) = p
+            .iter()
+            .enumerate()
+            .map(|(i, &q)| (i, dist(q)))
+            .fold((0, 0.0), |m, x| if x.1 > m.1 { x } else { m });
+        if far <= tol || p.len() < 3 {
+            return vec![a, b];
+        }
+        let mut left = dp(&p[..=k], tol);
+        left.pop();
+        left.extend(dp(&p[k..], tol));
+        left
+    }
+    let mut pts: Vec<Vec2> = line.points.iter().map(|p| p.pos).collect();
+    if line.closed {
+        pts.push(pts[0]);
+    }
+    let simple = dp(&pts, tolerance);
+    let mut pieces = simple.len() - 1;
+    if line.closed && pieces > 2 {
+        let first = (simple[1] - simple[0]).normalize();
+        let last = (simple[0] - simple[simple.len() - 2]).normalize();
+        if first.dot(last) > 10f32.to_radians().cos() {
+            pieces -= 1;
+        }
+    }
+    pieces
+}
+
+fn cube(normal_angle: f32) -> String {
+    scene(
+        200,
+        200,
+        (3.1, 2.3, 2.6),
+        &format!("contours: (contrast: (normal_angle: {normal_angle}))"),
+        r#"
+    materials: [(name: "ink", shader: Constant(color: (0.8, 0.8, 0.8)),
+                 contour: Simple(color: (0, 0, 0, 1), width: 0.5))],
+    objects: [(name: "cube", mesh: Inline(
+        vertices: [(-0.5, -0.5, -0.5), (0.5, -0.5, -0.5), (0.5, 0.5, -0.5), (-0.5, 0.5, -0.5),
+                   (-0.5, -0.5, 0.5), (0.5, -0.5, 0.5), (0.5, 0.5, 0.5), (-0.5, 0.5, 0.5)],
+        polygons: [[0, 3, 2, 1], [4, 5, 6, 7], [0, 1, 5, 4], [1, 2, 6, 5], [2, 3, 7, 6], [3, 0, 4, 7]]),
+        material: "ink")],
+    instances: [(name: "cube_1", of: "cube")],
+    groups: [(name: "root", members: ["cube_1"])],
+"#,
+        r#"(file: "c.svg")"#,
+    )
+}
+
+/// A cube seen from a corner: its 9 visible edges (6 silhouette, 3 creases) with the
+/// normal-angle contrast, none across its flat faces; only the 6 silhouette edges with the
+/// threshold above 90°.
+#[test]
+fn a_cube_from_a_corner_has_nine_edges_or_six_without_creases() {
+    let count =
+        |img: &ContourImage| -> usize { img.lines.iter().map(|l| straight_pieces(l, 0.8)).sum() };
+    let creased = contours(&cube(60.0));
+    assert_eq!(count(&creased), 9);
+    assert_eq!(
+        creased.lines.len(),
+        6,
+        "3 silhouette chains and 3 creases between 4 junctions"
+    );
+    let outline = contours(&cube(100.0));
+    assert_eq!(outline.lines.len(), 1, "one closed hexagon");
+    assert_eq!(count(&outline), 6);
+}
+
+/// Two quads side by side, each filling its half of a 400×300 image edge to edge; only the
+/// left one has a contour shader (`width`), a vertical edge at x ≈ 130.3.
+fn two_quads(width: f32) -> String {
+    format!(
+        r#"Scene(
+    options: (samples: 1),
+    cameras: [(name: "cam", fov_y: 40.0, resolution: (400, 300),
+        placement: LookAt(eye: (0, 0, 5), target: (0, 0, 0), up: (0, 1, 0)),
+        outputs: [(file: "q.png", passes: [Beauty, Contours])])],
+    materials: [
+        (name: "inked", shader: Constant(color: (0.2, 0.4, 0.8)),
+         contour: Simple(color: (1, 0, 0, 1), width: {width})),
+        (name: "plain", shader: Constant(color: (0.8, 0.4, 0.2))),
+    ],
+    objects: [
+        (name: "left", mesh: Inline(vertices: [(-0.9, -3, 0), (-0.9, 3, 0), (-9, 3, 0), (-9, -3, 0)],
+            polygons: [[3, 0, 1, 2]]), material: "inked"),
+        (name: "right", mesh: Inline(vertices: [(0.9, -1, 0), (9, -1, 0), (9, 1, 0), (0.9, 1, 0)],
+            polygons: [[0, 1, 2, 3]]), material: "plain"),
+    ],
+    instances: [(name: "l", of: "left"), (name: "r", of: "right")],
+    groups: [(name: "root", members: ["l", "r"])],
+    render: (root: "root", camera: "cam"),
+)"#
+    )
+}
+
+/// `Simple(width: 1.0)` at 400×300 is 3 px wide (1 % of 300) ± 0.25 px across the line;
+/// the quad without a contour shader gets no lines.
+#[test]
+fn width_is_percent_of_the_smaller_dimension_and_only_inked_materials_get_lines() {
+    let img = contours(&two_quads(1.0));
+    let row = 150;
+    let across: f32 = (0..200).map(|x| img.layer[row * 400 + x].w).sum();
+    assert!((across - 3.0).abs() <= 0.25, "{across} px");
+    assert!(
+        img.lines.iter().all(|l| l.material == 1),
+        "lines only around the inked quad"
+    );
+    // Nothing near the plain quad's edges (x > 200).
+    let right: f32 = (0..300)
+        .flat_map(|y| (200..400).map(move |x| (x, y)))
+        .map(|(x, y)| img.layer[y * 400 + x].w)
+        .sum();
+    assert_eq!(right, 0.0);
+    // Red ink.
+    let peak = img.layer[row * 400..row * 400 + 200]
+        .iter()
+        .fold(glam::Vec4::ZERO, |m, c| if c.w > m.w { *c } else { m });
+    assert!(
+        (peak - glam::Vec4::new(1.0, 0.0, 0.0, 1.0))
+            .abs()
+            .max_element()
+            < 1e-6,
+        "{peak}"
+    );
+}
+
+/// The SVG, drawn by a real SVG rasteriser (resvg), covers the pixels the contour layer
+/// covers (IoU ≥ 0.95 of the pixels at least half covered).
+#[test]
+fn svg_rasterised_by_resvg_matches_the_contour_layer() {
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/assets/scenes/contours.ron"
+    ))
+    .unwrap()
+    .replace("resolution: (160, 120)", "resolution: (480, 360)");
+    let img = contours(&text);
+    let svg = stagelight::contour::svg::encode_svg(&img);
+    let tree = resvg::usvg::Tree::from_str(&svg, &resvg::usvg::Options::default())
+        .expect("the SVG parses");
+    let mut pixmap = resvg::tiny_skia::Pixmap::new(img.width, img.height).unwrap();
+    resvg::render(
+        &tree,
+        resvg::tiny_skia::Transform::identity(),
+        &mut pixmap.as_mut(),
+    );
+    let (mut both, mut either) = (0usize, 0usize);
+    for (i, c) in img.layer.iter().enumerate() {
+        let vector = pixmap.pixels()[i].alpha() >= 128;
+        let raster = c.w >= 0.5;
+        both += usize::from(vector && raster);
+        either += usize::from(vector || raster);
+    }
+    assert!(either > 500, "the scene has lines ({either} px)");
+    let iou = both as f64 / either as f64;
+    assert!(iou >= 0.95, "IoU {iou:.3} ({both} / {either})");
+}
+
+/// Without a contour shader `draw_contours` is skipped with its reason, and the files are
+/// byte for byte those of a run without the stage.
+#[test]
+fn skipped_without_contour_shaders_and_output_unchanged() {
+    let text = scene(
+        40,
+        30,
+        (0.0, -5.0, 0.0),
+        "",
+        &SPHERE.replace(
+            "contour: Simple(color: (0, 0, 0, 1), width: 1.0)",
+            "two_sided: false",
+        ),
+        r#"(file: "s.png"), (file: "s.exr", passes: [Beauty, Depth])"#,
+    );
+    let files = |with_stage: bool| {
+        let mut scene = load_scene_str(&text, Path::new("t.ron")).unwrap();
+        let mut frame = Frame::new(scene.settings.clone());
+        frame.inputs.hold_files = true;
+        let stages: Vec<_> = stagelight::systems::STAGES
+            .iter()
+            .copied()
+            .filter(|s| with_stage || s.name != "draw_contours")
+            .collect();
+        stagelight::schedule::run_stages(&stages, &mut scene.world, &mut frame).unwrap();
+        let bytes: Vec<Vec<u8>> = frame.held_files.iter().map(|f| f.bytes.clone()).collect();
+        (frame, bytes)
+    };
+    let (frame, with) = files(true);
+    let stage = frame
+        .report
+        .stages
+        .iter()
+        .find(|s| s.stage == "draw_contours")
+        .unwrap();
+    assert!(!stage.ran);
+    assert_eq!(stage.reason, "no material has a contour shader");
+    let (_, without) = files(false);
+    assert_eq!(with.len(), 2);
+    assert!(with == without, "byte-identical files");
+}
+
+/// Lines and layer are the same at 1 and 2 threads.
+#[test]
+fn identical_lines_at_one_and_two_threads() {
+    let text = cube(60.0);
+    let at = |threads| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap()
+            .install(|| contours(&text))
+    };
+    assert!(at(1) == at(2));
+}
+
+/// `render --part` + `merge` give the contour files of a single render, byte for byte.
+#[test]
+fn farm_parts_merge_into_the_same_contour_files() {
+    let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/assets/scenes/contours.ron");
+    let single = scratch_dir("contours-single");
+    let o = run_in(&single, &["render", scene]);
+    assert!(o.status.success(), "{}", stderr_of(&o));
+    let farm = scratch_dir("contours-farm");
+    for part in ["1/3", "2/3", "3/3"] {
+        let file = format!("part_{}.exr", &part[..1]);
+        let o = run_in(&farm, &["render", scene, "--part", part, "-o", &file]);
+        assert!(o.status.success(), "{}", stderr_of(&o));
+    }
+    let o = run_in(&farm, &["merge", "part_1.exr", "part_2.exr", "part_3.exr"]);
+    assert!(o.status.success(), "{}", stderr_of(&o));
+    for name in ["contours.png", "contours.svg"] {
+        let a = std::fs::read(single.join(name)).unwrap();
+        let b = std::fs::read(farm.join(name)).unwrap();
+        assert!(a == b, "{name} differs after the merge");
+    }
+    let _ = std::fs::remove_dir_all(single);
+    let _ = std::fs::remove_dir_all(farm);
+}
+
+/// Loads `text`, expecting the errors (or, with `Ok`, the warnings) it reports.
+fn diagnostics(text: &str) -> Result<Vec<String>, String> {
+    match load_scene_str(text, Path::new("bad.ron")) {
+        Ok(s) => Ok(s.located_warnings),
+        Err(e) => Err(e.to_string()),
+    }
+}
+
+const QUAD: &str = r#"
+    objects: [(name: "q", mesh: Inline(vertices: [(-1, -1, 0), (1, -1, 0), (1, 1, 0), (-1, 1, 0)],
+        polygons: [[0, 1, 2, 3]]), material: "m")],
+    instances: [(name: "q_1", of: "q")],
+    groups: [(name: "root", members: ["q_1"])],
+"#;
+
+#[test]
+fn a_width_of_zero_is_a_located_error() {
+    let body = format!(
+        "materials: [(name: \"m\", shader: Lambert(albedo: (0.5, 0.5, 0.5)),\n contour: Simple(width: 0))],{QUAD}"
+    );
+    let e = diagnostics(&scene(
+        8,
+        8,
+        (0.0, -5.0, 0.5),
+        "",
+        &body,
+        r#"(file: "a.svg")"#,
+    ))
+    .unwrap_err();
+    assert_eq!(
+        e.trim_end(),
+        "bad.ron:7:25: error: contour width must be positive, found 0\n  help: widths are in percent of the smaller image dimension, e.g. `width: 0.5`; to draw no contours, leave out `contour`"
+    );
+}
+
+#[test]
+fn an_svg_output_without_contour_shaders_is_a_located_error() {
+    let body =
+        format!("materials: [(name: \"m\", shader: Lambert(albedo: (0.5, 0.5, 0.5)))],{QUAD}");
+    let e = diagnostics(&scene(
+        8,
+        8,
+        (0.0, -5.0, 0.5),
+        "",
+        &body,
+        r#"(file: "lines.svg")"#,
+    ))
+    .unwrap_err();
+    assert_eq!(
+        e.trim_end(),
+        "bad.ron:5:26: error: output \"lines.svg\" shows contours, but no material has a contour shader\n  help: give a material a contour shader, e.g. `contour: Simple(color: (0, 0, 0, 1), width: 0.5)`"
+    );
+}
+
+#[test]
+fn a_contour_shader_no_output_shows_is_a_located_warning() {
+    let body = format!(
+        "materials: [(name: \"m\", shader: Lambert(albedo: (0.5, 0.5, 0.5)),\n contour: Simple())],{QUAD}"
+    );
+    let w = diagnostics(&scene(
+        8,
+        8,
+        (0.0, -5.0, 0.5),
+        "",
+        &body,
+        r#"(file: "a.png")"#,
+    ))
+    .unwrap();
+    assert_eq!(
+        w,
+        ["bad.ron:7:11: warning: material \"m\" has a contour shader, but no camera output shows contours\n  help: add an output such as `(file: \"lines.svg\")` or a `Contours` pass"]
+    );
+}
