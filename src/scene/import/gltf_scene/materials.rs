@@ -59,6 +59,7 @@ pub fn material_name(w: &mut Walk<'_>, index: Option<usize>) -> String {
             bind: BTreeMap::new(),
             bump: None,
             interior: None,
+            contour: None,
         },
     };
     let name = desc.name.clone();
@@ -159,6 +160,7 @@ fn material(w: &mut Walk<'_>, m: &gltf::Material<'_>) -> MaterialDesc {
         bind,
         bump: None,
         interior: None,
+        contour: None,
     }
 }
 
