@@ -108,6 +108,10 @@ pub struct PhotonMapSettings {
     pub gather: u32,
     /// Final-gather rays per shading point (global illumination only; ignored for caustics).
     pub final_gather: u32,
+    /// Caustic map only: emit photons only toward the caustic casters' bounding spheres
+    /// (aimed emission, same expected value, far more photons stored); `false` emits in
+    /// every direction the lights send light.
+    pub aim: bool,
 }
 
 /// Which photon maps a render builds; `None` = off (the default for both).

@@ -15,16 +15,19 @@
 //!
 //! The path tracer (`Path` integrator) ignores the maps: it is the reference.
 
+pub mod aim;
 pub mod emit;
 pub mod estimate;
 pub mod kdtree;
 pub mod pass;
+pub mod roles;
 pub mod trace;
 
 pub use emit::Emission;
 pub use kdtree::{Gather, Neighbour, Photon, PhotonMap};
 pub use pass::{trace_map, MapKind};
-pub use trace::{trace_photon, Deposit, Fate};
+pub use roles::PhotonRoles;
+pub use trace::{trace_photon, trace_photon_with_roles, Deposit, Fate};
 
 /// A photon map and the knobs of the estimates that read it.
 #[derive(Debug, Clone)]

@@ -9,7 +9,8 @@ use rayon::prelude::*;
 
 use super::emit::Emission;
 use super::kdtree::Photon;
-use super::trace::trace_photon;
+use super::trace::trace_photon_with_roles;
+use crate::components::PhotonRole;
 use crate::sampling::{hash_combine, Sampler};
 use crate::shading::integrator::ShadeContext;
 
@@ -27,10 +28,12 @@ pub enum MapKind {
 }
 
 /// Emits `photons` photons from `emission` into `ctx`'s scene and returns the ones the map
-/// stores, powers divided by `photons`. `None` when `cancel` was set.
+/// stores, powers divided by `photons`; `roles[instance slot]` says which surfaces cast and
+/// receive (empty: all). `None` when `cancel` was set.
 pub fn trace_map(
     ctx: &ShadeContext<'_>,
     emission: &Emission,
+    roles: &[PhotonRole],
     kind: MapKind,
     photons: u32,
     seed: u32,
@@ -53,8 +56,9 @@ pub fn trace_map(
                     continue;
                 };
                 let stop = kind == MapKind::Caustics;
-                trace_photon(
+                trace_photon_with_roles(
                     ctx,
+                    roles,
                     emitted.ray,
                     emitted.power * scale,
                     &mut sampler,
@@ -104,7 +108,7 @@ mod tests {
             .build()
             .unwrap();
         let flag = AtomicBool::new(cancel);
-        pool.install(|| trace_map(&ctx, &emission, kind, n, 3, &flag))
+        pool.install(|| trace_map(&ctx, &emission, &[], kind, n, 3, &flag))
     }
 
     #[test]

@@ -84,6 +84,8 @@ pub struct PhotonMapDesc {
     pub gather: u32,
     /// Final-gather rays per shading point (global illumination only), default 16, at least 1.
     pub final_gather: u32,
+    /// Caustics only: emit photons only toward the caustic casters, default true.
+    pub aim: bool,
 }
 
 impl Default for PhotonMapDesc {
@@ -93,6 +95,7 @@ impl Default for PhotonMapDesc {
             radius: 0.0,
             gather: 50,
             final_gather: 16,
+            aim: true,
         }
     }
 }
@@ -836,6 +839,14 @@ pub struct ObjectDesc {
     /// Store surface derivatives dP/du, dP/dv when tessellating, default false.
     #[serde(default)]
     pub derivatives: bool,
+    /// Caustic photon role (mental ray `caustic`): 0 none, 1 casts, 2 receives, 3 both;
+    /// default from the material (specular casts, non-specular receives).
+    #[serde(default)]
+    pub caustic: Option<u8>,
+    /// Global-illumination photon role (mental ray `globillum`), values as `caustic`;
+    /// default: every surface casts and non-specular surfaces receive.
+    #[serde(default)]
+    pub globillum: Option<u8>,
 }
 
 /// `instances: [(...)]`: a placed copy of an object or a group.
@@ -855,6 +866,12 @@ pub struct InstanceDesc {
     /// Textures to bake for this instance (see [`BakeDesc`]).
     #[serde(default)]
     pub bake: Option<BakeDesc>,
+    /// Caustic photon role override for everything this instance places (as on objects).
+    #[serde(default)]
+    pub caustic: Option<u8>,
+    /// Global-illumination photon role override (as on objects).
+    #[serde(default)]
+    pub globillum: Option<u8>,
 }
 
 /// `bake: (...)` on an instance of an object: textures to bake (`stagelight bake`).

@@ -222,6 +222,10 @@ pub fn spawn(src: &Sources, m: &Merged<'_>, parts: Parts) -> World {
             WorldFromObject(leaf.world_from_object),
             MaterialRef(material),
         ));
+        if !leaf.photon.is_default() {
+            // The entity was just spawned, so inserting cannot fail.
+            let _ = world.insert_one(entity, leaf.photon);
+        }
         if let Some(Some(request)) = parts.bakes.get(leaf.instance) {
             // The entity was just spawned, so inserting cannot fail.
             let _ = world.insert_one(entity, request.clone());

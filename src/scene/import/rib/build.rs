@@ -1281,6 +1281,8 @@ impl Builder {
                 approximation: o.approximation.map(|a| a.0),
                 displacement: o.displacement.map(|d| d.0),
                 derivatives: false,
+                caustic: None,
+                globillum: None,
             });
             desc.instances.push(InstanceDesc {
                 name: o.name.clone(),
@@ -1288,6 +1290,8 @@ impl Builder {
                 transform: vec![TransformDesc::Matrix(rows(g * o.world_from_object))],
                 material: None,
                 bake: None,
+                caustic: None,
+                globillum: None,
             });
             members.push(o.name);
         }
