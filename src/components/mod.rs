@@ -51,4 +51,4 @@ pub use procedural::{
 pub use surface::{CubicBasis, NurbsSurface, PatchKind, PatchMesh, Quadric, SubdivMesh, Surface};
 
 mod photon_flags;
-pub use photon_flags::{PhotonFlags, PhotonRole};
+pub use photon_flags::{LightPhotons, PhotonFlags, PhotonRole};

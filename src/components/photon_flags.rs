@@ -1,5 +1,8 @@
 //! Photon caster/receiver flags of a placed instance (mental ray `caustic 0|1|2|3` and
-//! `globillum 0|1|2|3` on objects and instances).
+//! `globillum 0|1|2|3` on objects and instances), and a light's photon controls (mental ray
+//! `energy`, `caustic photons`, `globillum photons`).
+
+use glam::Vec3;
 
 /// The role of a surface for one photon map: a bit set, `1` casts (photons scatter off it
 /// and go on), `2` receives (photons are stored on it). mental ray's values: `0` none,
@@ -52,6 +55,26 @@ impl PhotonFlags {
             caustic: self.caustic.or(outer.caustic),
             globillum: self.globillum.or(outer.globillum),
         }
+    }
+}
+
+/// A light's photon controls; lights without them emit their physical power, sharing each
+/// map's `photons` with the other lights by power. Only lights with a control carry this.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct LightPhotons {
+    /// Power the light's photons carry, W per channel, instead of its physical power
+    /// (mental ray `energy`); zero: the light emits no photons.
+    pub energy: Option<Vec3>,
+    /// Photons this light emits for the caustic map (mental ray `caustic photons`).
+    pub caustic_photons: Option<u32>,
+    /// Photons this light emits for the global map (mental ray `globillum photons`).
+    pub globillum_photons: Option<u32>,
+}
+
+impl LightPhotons {
+    /// Whether no control is set.
+    pub fn is_default(&self) -> bool {
+        *self == Self::default()
     }
 }
 

@@ -39,8 +39,14 @@ pub struct EmittedPhoton {
 #[derive(Debug, Clone)]
 struct Source {
     light: Light,
-    /// Total emitted power, W.
+    /// Index of the light in the [`LightSet`].
+    index: usize,
+    /// Total emitted power, W (the light's `energy` where it has one).
     power: Vec3,
+    /// Total physical power, W (what [`Source::emit`] spreads over the photons).
+    physical: Vec3,
+    /// Factor from the physical power to `power` per channel (1 without `energy`).
+    scale: Vec3,
     /// Directional lights: centre and radius of the scene's bounding sphere.
     bounds: (Vec3, f32),
 }
@@ -74,9 +80,25 @@ impl Source {
         };
         Self {
             light: light.clone(),
+            index: 0,
             power,
+            physical: power,
+            scale: Vec3::ONE,
             bounds,
         }
+    }
+
+    /// The same light emitting `energy` W instead (per channel; a channel the light does not
+    /// emit physically stays dark).
+    fn with_energy(mut self, energy: Vec3) -> Self {
+        let ratio = |e: f32, p: f32| if p > 0.0 { e / p } else { 0.0 };
+        self.scale = Vec3::new(
+            ratio(energy.x, self.power.x),
+            ratio(energy.y, self.power.y),
+            ratio(energy.z, self.power.z),
+        );
+        self.power *= self.scale;
+        self
     }
 
     /// A photon from `u ∈ [0,1)⁴`; its power is the emitted flux weight `Lₑ·cos/(pdf_A·pdf_ω)`.
@@ -92,7 +114,7 @@ impl Source {
         };
         let photon = match &self.light {
             Light::Point { position, .. } => {
-                from_point(*position, uniform_sphere(u_dir), self.power)
+                from_point(*position, uniform_sphere(u_dir), self.physical)
             }
             Light::Spot {
                 position,
@@ -118,14 +140,14 @@ impl Source {
                 let frame = ShadingFrame::from_normal(*direction);
                 let d = crate::sampling::sample_concentric_disk(u_pos) * radius;
                 let origin = centre - *direction * (1.01 * radius) + frame.s * d.x + frame.t * d.y;
-                from_point(origin, *direction, self.power)
+                from_point(origin, *direction, self.physical)
             }
             Light::Area(a) => {
                 // A point on the shape and its outward normal; light shapes are not scene
                 // geometry, so the photon starts exactly there.
                 let (q, n) = area_point(&a.shape, u_pos);
                 let dir = ShadingFrame::from_normal(n).to_world(sample_cosine_hemisphere(u_dir));
-                from_point(q, dir, self.power)
+                from_point(q, dir, self.physical)
             }
             Light::Environment(_) | Light::Ambient { .. } => return None,
             Light::Mesh(MeshLight { prims, cdf, .. }) => {
@@ -172,7 +194,7 @@ impl Source {
                 let (dir, pdf) = aim.direction(*position, pick, u_dir)?;
                 EmittedPhoton {
                     ray: ray(*position, dir),
-                    power: self.power / (4.0 * PI * pdf),
+                    power: self.physical / (4.0 * PI * pdf),
                 }
             }
             Light::Spot {
@@ -202,7 +224,7 @@ impl Source {
                 // Irradiance E = Φ / (π R²) crossing the plane, over the area density.
                 EmittedPhoton {
                     ray: ray(origin, *direction),
-                    power: self.power / (PI * radius * radius * pdf),
+                    power: self.physical / (PI * radius * radius * pdf),
                 }
             }
             Light::Area(a) => {
@@ -301,13 +323,56 @@ pub struct Emission {
 impl Emission {
     /// The lights of `lights` that emit power into `geometry`.
     pub fn new(lights: &LightSet, geometry: &SceneGeometry) -> Self {
+        Self::with_energies(lights, geometry, &[])
+    }
+
+    /// [`Emission::new`] where `energies[i]`, when given, replaces the power of light `i` of
+    /// `lights` (mental ray `energy`; lights beyond the slice keep their physical power).
+    pub fn with_energies(
+        lights: &LightSet,
+        geometry: &SceneGeometry,
+        energies: &[Option<Vec3>],
+    ) -> Self {
         let bounds = bounding_sphere(geometry);
         let sources: Vec<Source> = lights
             .lights
             .iter()
-            .map(|l| Source::from_light(l, geometry, bounds))
+            .enumerate()
+            .map(|(index, l)| {
+                let s = Source {
+                    index,
+                    ..Source::from_light(l, geometry, bounds)
+                };
+                match energies.get(index).copied().flatten() {
+                    Some(e) => s.with_energy(e),
+                    None => s,
+                }
+            })
             .filter(|s| mean(s.power) > 0.0)
             .collect();
+        Self::from_sources(sources)
+    }
+
+    /// Only the lights whose index in the [`LightSet`] passes `keep`, powers unchanged.
+    pub fn subset(&self, keep: impl Fn(usize) -> bool) -> Self {
+        let sources = self
+            .sources
+            .iter()
+            .filter(|s| keep(s.index))
+            .cloned()
+            .collect();
+        Self {
+            aim: self.aim.clone(),
+            ..Self::from_sources(sources)
+        }
+    }
+
+    /// Indices (in the [`LightSet`]) of the lights that emit.
+    pub fn light_indices(&self) -> Vec<usize> {
+        self.sources.iter().map(|s| s.index).collect()
+    }
+
+    fn from_sources(sources: Vec<Source>) -> Self {
         let total: f64 = sources.iter().map(|s| mean(s.power) as f64).sum();
         let mut cdf = vec![0.0f32];
         let mut acc = 0.0f64;
@@ -367,7 +432,7 @@ impl Emission {
             }
             None => self.sources[k].emit(geometry, [u[1], u[2], u[3], u[4]])?,
         };
-        photon.power /= prob;
+        photon.power = photon.power * self.sources[k].scale / prob;
         Some(photon)
     }
 }

@@ -1,7 +1,8 @@
 //! The photon pass for one map: `N` photons emitted and traced in parallel (rayon over
 //! fixed ranges of photon indices), each from its own Sobol sequence
 //! `Sampler::for_item(seed ⊕ map, photon index, 0)`, gathered in index order — so the map is
-//! the same at any thread count.
+//! the same at any thread count. Lights with their own photon count (mental ray `caustic
+//! photons N` on a light) emit it in a pass of their own ([`trace_map_by_light`]).
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -23,7 +24,9 @@ pub enum MapKind {
     /// Photons at diffuse surfaces after one or more specular bounces only; paths stop at
     /// their first diffuse scattering.
     Caustics,
-    /// Photons at every diffuse hit.
+    /// Photons at every diffuse hit except caustic ones (`L S+ D`, the caustic map's): a
+    /// final-gather ray that meets a caustic would read a few very bright photons, the
+    /// speckles of a caustic seen through one diffuse bounce (`L S+ D D E`, not computed).
     Global,
 }
 
@@ -64,7 +67,8 @@ pub fn trace_map(
                     &mut sampler,
                     stop,
                     |d| {
-                        if kind == MapKind::Global || d.caustic {
+                        // Caustic photons go to the caustic map only (see `MapKind::Global`).
+                        if (kind == MapKind::Caustics) == d.caustic {
                             out.push(d.photon);
                         }
                     },
@@ -78,6 +82,44 @@ pub fn trace_map(
         all.extend(c?);
     }
     Some(all)
+}
+
+/// [`trace_map`] where the lights in `counts` (`(light index, photons)`) each emit their own
+/// number of photons, seeded apart, and the other lights share `photons` by power. Returns
+/// the stored photons (shared pass first, then by light in `counts` order) and the number
+/// emitted.
+#[allow(clippy::too_many_arguments)] // reason: one pass's inputs, each used once
+pub fn trace_map_by_light(
+    ctx: &ShadeContext<'_>,
+    emission: &Emission,
+    roles: &[PhotonRole],
+    kind: MapKind,
+    photons: u32,
+    counts: &[(usize, u32)],
+    seed: u32,
+    cancel: &AtomicBool,
+) -> Option<(Vec<Photon>, u64)> {
+    if counts.is_empty() {
+        let all = trace_map(ctx, emission, roles, kind, photons, seed, cancel)?;
+        return Some((all, u64::from(photons)));
+    }
+    let counted = |i: usize| counts.iter().any(|&(j, _)| j == i);
+    let shared = emission.subset(|i| !counted(i));
+    let (mut all, mut emitted) = (Vec::new(), 0u64);
+    if !shared.is_empty() {
+        all = trace_map(ctx, &shared, roles, kind, photons, seed, cancel)?;
+        emitted += u64::from(photons);
+    }
+    for &(light, n) in counts {
+        let own = emission.subset(|i| i == light);
+        if own.is_empty() || n == 0 {
+            continue;
+        }
+        let light_seed = hash_combine(&[seed, light as u32 + 1, 0x117e]);
+        all.extend(trace_map(ctx, &own, roles, kind, n, light_seed, cancel)?);
+        emitted += u64::from(n);
+    }
+    Some((all, emitted))
 }
 
 #[cfg(test)]

@@ -86,6 +86,24 @@ pub struct PhotonMapDesc {
     pub final_gather: u32,
     /// Caustics only: emit photons only toward the caustic casters, default true.
     pub aim: bool,
+    /// Weighting of photons in an estimate, default `Box`.
+    pub filter: PhotonFilterDesc,
+}
+
+/// `filter:` of a photon map (mental ray `caustic filter box|cone|gauss`).
+#[derive(Debug, Clone, Copy, PartialEq, Default, Deserialize, Serialize)]
+#[serde(rename = "PhotonFilter", deny_unknown_fields)]
+pub enum PhotonFilterDesc {
+    /// Every photon weighs 1.
+    #[default]
+    Box,
+    /// Jensen's cone filter, weight `1 − d/(k·r)`, `k ≥ 1`.
+    Cone {
+        /// Jensen's `k`, ≥ 1 (mental ray's cone filter constant, often 1.1).
+        k: f64,
+    },
+    /// Jensen's (Pavicic's) normalised Gaussian filter.
+    Gauss,
 }
 
 impl Default for PhotonMapDesc {
@@ -96,6 +114,7 @@ impl Default for PhotonMapDesc {
             gather: 50,
             final_gather: 16,
             aim: true,
+            filter: PhotonFilterDesc::Box,
         }
     }
 }
@@ -328,6 +347,17 @@ pub struct LightDesc {
     /// Linear near/far falloff `(start, end)` on top of the inverse-square law, default none.
     #[serde(default)]
     pub attenuation: Option<(f64, f64)>,
+    /// Photon power, W per channel, replacing the physical power for photons only (mental
+    /// ray `energy`), default none (physical power).
+    #[serde(default)]
+    pub energy: Option<V3>,
+    /// Caustic photons this light emits (mental ray `caustic photons`), default none (the
+    /// lights without a count share the map's `photons` by power).
+    #[serde(default)]
+    pub caustic_photons: Option<u32>,
+    /// Global-illumination photons this light emits (mental ray `globillum photons`).
+    #[serde(default)]
+    pub globillum_photons: Option<u32>,
 }
 
 fn default_white() -> V3 {

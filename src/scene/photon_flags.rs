@@ -3,12 +3,14 @@
 //! the closest instance that sets a flag wins, then the object's own), and the warning for a
 //! caustic caster whose material also lets shadow rays through (its light would be counted
 //! twice: once by the shadow rays, once by the caustic photons — the seed's rule that a
-//! caustic caster should have no shadow shader).
+//! caustic caster should have no shadow shader). Also the lights' photon controls
+//! (`energy`, `caustic_photons`, `globillum_photons`).
 
+use super::desc::LightDesc;
 use super::diagnostics::Sources;
 use super::message::Diagnostic;
 use super::validate::Merged;
-use crate::components::{Material, PhotonFlags, PhotonRole};
+use crate::components::{LightPhotons, Material, PhotonFlags, PhotonRole};
 use crate::shading::shadow::shader_transmits_shadows;
 
 /// Largest valid flag value (3: casts and receives).
@@ -33,8 +35,39 @@ pub fn object_flags(m: &Merged<'_>, o: usize) -> PhotonFlags {
     flags(d.caustic, d.globillum)
 }
 
-/// Reports every flag outside `0..=3`.
+/// A light's photon controls (checked by [`check`]).
+pub fn light_photons(d: &LightDesc) -> LightPhotons {
+    LightPhotons {
+        energy: d
+            .energy
+            .map(|(r, g, b)| glam::DVec3::new(r, g, b).as_vec3().max(glam::Vec3::ZERO)),
+        caustic_photons: d.caustic_photons,
+        globillum_photons: d.globillum_photons,
+    }
+}
+
+/// Reports every flag outside `0..=3` and every light `energy` that is negative or not
+/// finite.
 pub fn check(src: &mut Sources, m: &Merged<'_>) {
+    for it in &m.lights {
+        let Some((r, g, b)) = it.desc.energy else {
+            continue;
+        };
+        let ok = [r, g, b]
+            .iter()
+            .all(|v| v.is_finite() && *v >= 0.0 && *v <= f32::MAX as f64);
+        if !ok {
+            src.error(
+                it.file,
+                &it.at(".energy"),
+                format!("energy must be finite and non-negative, found ({r}, {g}, {b})"),
+                Some(
+                    "energy is the photon power in W per channel; (0, 0, 0) emits no photons"
+                        .into(),
+                ),
+            );
+        }
+    }
     let objects = m
         .objects
         .iter()

@@ -238,11 +238,16 @@ pub fn spawn(src: &Sources, m: &Merged<'_>, parts: Parts) -> World {
 
     for (it, emitter) in m.lights.iter().zip(parts.lights) {
         let Some(emitter) = emitter else { continue };
-        world.spawn((
+        let entity = world.spawn((
             Name(it.desc.name.clone()),
             SourceLink::from(it.pos.clone()),
             emitter,
         ));
+        let photons = super::photon_flags::light_photons(it.desc);
+        if !photons.is_default() {
+            // The entity was just spawned, so inserting cannot fail.
+            let _ = world.insert_one(entity, photons);
+        }
     }
 
     for (i, (it, cam)) in m.cameras.iter().zip(parts.cameras).enumerate() {

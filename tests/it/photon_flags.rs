@@ -126,12 +126,17 @@ fn flags_choose_casters_and_receivers_down_the_dag() {
         ..Flags::default()
     };
     assert_eq!(with(floor_casts_only), (0, 0));
-    // globillum 2 on the floor: it still receives its direct photons.
+    // globillum 2 on the floor: it still receives its direct photons, but absorbs them, so
+    // none comes back from the ball after a bounce.
     let floor_receives = Flags {
         floor: ", globillum: 2",
         ..Flags::default()
     };
-    assert_eq!(with(floor_receives).1, global);
+    let received = with(floor_receives).1;
+    assert!(
+        received < global && received as f64 > 0.95 * global as f64,
+        "{received}"
+    );
 }
 
 #[test]
@@ -143,14 +148,16 @@ fn a_flag_out_of_range_is_a_located_error() {
             ..Flags::default()
         },
     );
-    let errors = load_scene_str(&text, Path::new("ball.ron")).unwrap_err();
+    let Err(errors) = load_scene_str(&text, Path::new("ball.ron")) else {
+        panic!("a caustic flag of 4 loads");
+    };
     let line = text.lines().position(|l| l.contains("caustic: 4")).unwrap() + 1;
     let column = text.lines().nth(line - 1).unwrap().find("4)").unwrap() + 1;
     assert_eq!(
         errors.to_string(),
         format!(
             "ball.ron:{line}:{column}: error: caustic must be 0, 1, 2 or 3, found 4\n  \
-             help: 0 = none, 1 = casts, 2 = receives, 3 = casts and receives\n"
+             help: 0 = none, 1 = casts, 2 = receives, 3 = casts and receives"
         )
     );
 }
@@ -159,7 +166,7 @@ fn a_flag_out_of_range_is_a_located_error() {
 fn a_caustic_caster_with_a_shadow_shader_is_warned_about() {
     let text = ball_scene(BOTH_MAPS, Flags::default()).replace(
         r#"(name: "glass", shader: Dielectric(ior: 1.5)),"#,
-        r#"(name: "glass", shader: Opacity(opacity: (0.5, 0.5, 0.5), input: Lambert())),"#,
+        r#"(name: "glass", shader: Opacity(opacity: (0.5, 0.5, 0.5), input: Lambert(albedo: (0.5, 0.5, 0.5)))),"#,
     );
     assert!(load(&text).located_warnings.is_empty());
     let flagged = text.replace(

@@ -47,6 +47,7 @@ fn gi(photons: u32) -> RenderSettings {
         gather: 50,
         final_gather: 4,
         aim: true,
+        filter: stagelight::settings::PhotonFilter::Box,
     });
     s
 }

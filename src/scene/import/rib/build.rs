@@ -1246,6 +1246,9 @@ impl Builder {
                 samples: None,
                 visible: false,
                 attenuation: None,
+                energy: None,
+                caustic_photons: None,
+                globillum_photons: None,
             });
         }
         for (i, m) in self.materials.iter().enumerate() {
