@@ -103,7 +103,7 @@ impl Aim {
             .iter()
             .map(|&s| Cone::toward(x, s).solid_angle())
             .sum();
-        if !(total > 0.0) {
+        if total.is_nan() || total <= 0.0 {
             return None;
         }
         let target = pick * total;
@@ -142,7 +142,7 @@ impl Aim {
         let frame = ShadingFrame::from_normal(dir);
         let onto_plane = |c: Vec3| c - dir * (c - origin).dot(dir);
         let total: f32 = self.spheres.iter().map(|&(_, r)| PI * r * r).sum();
-        if !(total > 0.0) {
+        if total.is_nan() || total <= 0.0 {
             return None;
         }
         let target = pick * total;

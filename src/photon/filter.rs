@@ -5,11 +5,12 @@
 //! regions):
 //! - box: `w = 1`, estimate `Σ Φ / (π r²)`;
 //! - cone: `w = 1 − d/(k·r)`, `k ≥ 1`, estimate `Σ w·Φ / ((1 − 2/(3k)) π r²)`;
-//! - Gaussian (Pavicic): `w = α [1 − (1 − e^{−β d²/(2r²)}) / (1 − e^{−β})]`, `α = 0.918`,
-//!   `β = 1.953`, estimate `Σ w·Φ / (π r²)`.
+//! - Gaussian (Pavicic): shape `g = 1 − (1 − e^{−β d²/(2r²)}) / (1 − e^{−β})`, `β = 1.953`,
+//!   estimate `Σ g·Φ / (c π r²)` with `c = ∫ g dA / (π r²) = 1 − (1 − (2/β)(1 − e^{−β/2})) /
+//!   (1 − e^{−β}) ≈ 0.5786` computed exactly (the published constant `α = 0.918` in place of
+//!   `1/c` would leave the estimate at 0.53 of the box's on a uniform density).
 
-/// Jensen's Gaussian filter constants.
-const GAUSS_ALPHA: f32 = 0.918;
+/// Jensen's Gaussian filter constant β.
 const GAUSS_BETA: f32 = 1.953;
 
 pub use crate::settings::PhotonFilter;
@@ -26,8 +27,11 @@ impl PhotonFilter {
                 w.max(0.0) / (1.0 - 2.0 / (3.0 * k))
             }
             PhotonFilter::Gauss => {
+                let tail = 1.0 - (-GAUSS_BETA).exp();
                 let e = 1.0 - (-GAUSS_BETA * d2 / (2.0 * r2)).exp();
-                GAUSS_ALPHA * (1.0 - e / (1.0 - (-GAUSS_BETA).exp()))
+                let mean =
+                    1.0 - (1.0 - 2.0 / GAUSS_BETA * (1.0 - (-GAUSS_BETA / 2.0).exp())) / tail;
+                (1.0 - e / tail) / mean
             }
         }
     }
@@ -57,8 +61,7 @@ mod tests {
                     f.weight((d * d) as f32, 1.0) as f64 * 2.0 * d / n as f64
                 })
                 .sum();
-            // Jensen's Gaussian constants are rounded: 0.2 %.
-            assert!((integral - 1.0).abs() < 3e-3, "{f:?}: {integral}");
+            assert!((integral - 1.0).abs() < 1e-3, "{f:?}: {integral}");
         }
     }
 
