@@ -17,7 +17,7 @@ use std::collections::BinaryHeap;
 
 use glam::Vec3;
 
-use super::filter::PhotonFilter;
+use crate::settings::PhotonFilter;
 
 /// Smallest `n_p·n_q` for a photon to count in an estimate at a point with normal `n_q`.
 pub const NORMAL_FILTER: f32 = 0.9;

@@ -25,16 +25,20 @@ fn the_caustics_scene_has_no_speckles_on_its_back_wall() {
     // Each wall pixel (top quarter, but for the ball in the middle) against the median of
     // its 3 × 3 neighbourhood: a speckle stands out of it (5.4× before the fix, 1.23× after,
     // at 128 × 96).
-    let mut worst = 0.0f32;
+    let (mut worst, mut tested) = (0.0f32, 0);
     for y in 1..h / 4 {
         for x in (1..w - 1).filter(|&x| (x as f32) < 0.3 * w as f32 || (x as f32) > 0.7 * w as f32)
         {
             let mut around: Vec<f32> = (0..9).map(|k| at(x + k % 3 - 1, y + k / 3 - 1)).collect();
             around.sort_by(f32::total_cmp);
-            assert!(around[4] > 0.0, "dark wall at ({x}, {y})");
-            worst = worst.max(at(x, y) / around[4]);
+            // Background beside the wall: nothing to compare.
+            if around[0] > 0.0 {
+                worst = worst.max(at(x, y) / around[4]);
+                tested += 1;
+            }
         }
     }
+    assert!(tested > 200, "only {tested} wall pixels");
     println!("wall: brightest pixel {worst:.3} × its neighbourhood's median");
     assert!(worst < 2.0, "speckle: {worst} × the local median");
 }
