@@ -108,6 +108,27 @@ pub struct PhotonMapSettings {
     pub gather: u32,
     /// Final-gather rays per shading point (global illumination only; ignored for caustics).
     pub final_gather: u32,
+    /// Caustic map only: emit photons only toward the caustic casters' bounding spheres
+    /// (aimed emission, same expected value, far more photons stored); `false` emits in
+    /// every direction the lights send light.
+    pub aim: bool,
+    /// Weighting of photons in an estimate (mental ray `caustic filter`).
+    pub filter: PhotonFilter,
+}
+
+/// How photons are weighted inside the gather disc of an estimate (mental ray `caustic
+/// filter`); the weights live in `photon::filter`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum PhotonFilter {
+    /// Every photon weighs 1.
+    Box,
+    /// Weight falling linearly to `1 − 1/k` at the disc's edge; `k ≥ 1` (1: to zero).
+    Cone {
+        /// Jensen's `k`, ≥ 1.
+        k: f32,
+    },
+    /// Gaussian weight (Pavicic's normalised form).
+    Gauss,
 }
 
 /// Which photon maps a render builds; `None` = off (the default for both).

@@ -1,8 +1,10 @@
 //! `trace_photons`: the photon pass. Emits photons from every light with power, traces them
 //! through the scene's BSDFs and stores the caustic and global photon maps.
 //!
-//! **Reads:** `Emitter` entities; `outputs.geometry` (lights, emitting meshes, surfaces);
-//! `settings.photons` (photons, radius, gather per map), `settings.seed`.
+//! **Reads:** `Emitter` entities and their `LightPhotons` (energy, photon counts);
+//! `PhotonFlags` of instances (caster/receiver roles);
+//! `outputs.geometry` (lights, emitting meshes, surfaces); `settings.photons` (photons,
+//! radius, gather, aim per map), `settings.seed`.
 //! **Writes:** `outputs.photons` (returned to the runner).
 //! **Runs when:** the run renders with the `Direct` integrator, caustics or global
 //! illumination is on, geometry exists, and some light emits power.
@@ -14,10 +16,14 @@ use hecs::World;
 
 use super::prelude::*;
 use super::MERGING;
-use crate::components::{Emitter, Material};
+use crate::components::{Emitter, LightPhotons, Material, PhotonFlags};
 use crate::frame::Slot;
+use crate::photon::aim::Aim;
 use crate::photon::emit::bounding_sphere;
-use crate::photon::{trace_map, Emission, GatherMap, MapKind, PhotonMap, PhotonMaps};
+use crate::photon::roles::instance_sphere;
+use crate::photon::{
+    trace_map_by_light, Emission, GatherMap, MapKind, PhotonMap, PhotonMaps, PhotonRoles,
+};
 use crate::sampling::fold_seed;
 use crate::scene_view::{has_render_camera, light_set, WithEnvironment};
 use crate::settings::{Integrator, PhotonMapSettings};
@@ -71,14 +77,49 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
         .ok_or_else(|| StageError::Internal("photon pass without geometry".into()))?;
     let settings = &frame.inputs.settings;
     let lights = light_set(world, Some(geometry), settings, WithEnvironment::No);
-    let emission = Emission::new(&lights, geometry);
+    let controls = light_controls(world);
+    let energies: Vec<_> = controls.iter().map(|c| c.energy).collect();
+    let emission = Emission::with_energies(&lights, geometry, &energies);
+    let roles = PhotonRoles::new(geometry, |slot| {
+        let entity = geometry.instances[slot].entity;
+        world.get::<&PhotonFlags>(entity).ok().map(|f| *f)
+    });
     let ctx = ShadeContext::new(geometry, &lights, settings);
     let seed = fold_seed(settings.seed);
     let diagonal = 2.0 * bounding_sphere(geometry).1;
     let build = |kind: MapKind, s: Option<PhotonMapSettings>| -> Result<_, StageError> {
         let Some(s) = s else { return Ok(None) };
-        let photons = trace_map(&ctx, &emission, kind, s.photons, seed, &frame.inputs.cancel)
-            .ok_or(StageError::Interrupted)?;
+        let aimed;
+        let emission = if kind == MapKind::Caustics && s.aim {
+            let spheres = roles
+                .caustic_casters(geometry)
+                .into_iter()
+                .filter_map(|slot| instance_sphere(geometry, slot))
+                .collect();
+            aimed = emission.clone().aimed(Aim::new(spheres));
+            &aimed
+        } else {
+            &emission
+        };
+        let counts: Vec<(usize, u32)> = controls
+            .iter()
+            .enumerate()
+            .filter_map(|(i, c)| match kind {
+                MapKind::Caustics => c.caustic_photons.map(|n| (i, n)),
+                MapKind::Global => c.globillum_photons.map(|n| (i, n)),
+            })
+            .collect();
+        let (photons, emitted) = trace_map_by_light(
+            &ctx,
+            emission,
+            roles.for_map(kind),
+            kind,
+            s.photons,
+            &counts,
+            seed,
+            &frame.inputs.cancel,
+        )
+        .ok_or(StageError::Interrupted)?;
         Ok(Some(GatherMap {
             map: PhotonMap::build(photons),
             gather: s.gather.max(2) as usize,
@@ -88,7 +129,8 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
                 AUTO_RADIUS * diagonal
             },
             final_gather: s.final_gather.max(1),
-            emitted: u64::from(s.photons),
+            emitted,
+            filter: s.filter,
         }))
     };
     let maps = PhotonMaps {
@@ -97,6 +139,17 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
     };
     let stored = maps.stored();
     Ok(Work::new(stored, "photons").with_output(StageOutput::Photons(maps)))
+}
+
+/// Each emitter's photon controls, in the order of the light set (entity order).
+fn light_controls(world: &World) -> Vec<LightPhotons> {
+    let mut lights: Vec<(u64, LightPhotons)> = world
+        .query::<(hecs::Entity, &Emitter, Option<&LightPhotons>)>()
+        .iter()
+        .map(|(e, _, c)| (e.to_bits().get(), c.copied().unwrap_or_default()))
+        .collect();
+    lights.sort_by_key(|&(bits, _)| bits);
+    lights.into_iter().map(|(_, c)| c).collect()
 }
 
 #[cfg(test)]

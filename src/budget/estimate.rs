@@ -225,6 +225,31 @@ pub fn estimates(world: &World, settings: &RenderSettings, tasks: Tasks) -> Vec<
             });
         }
     }
+    // Lights with their own photon counts emit them on top of the maps' `photons`.
+    let mut lights: Vec<(Entity, crate::components::LightPhotons)> = world
+        .query::<(Entity, &crate::components::LightPhotons)>()
+        .iter()
+        .map(|(e, c)| (e, *c))
+        .collect();
+    lights.sort_by_key(|(e, _)| e.to_bits());
+    for (e, c) in lights {
+        let on = |map: &Option<_>, n: Option<u32>| if map.is_some() { n.unwrap_or(0) } else { 0 };
+        let n = u64::from(on(&settings.photons.caustics, c.caustic_photons))
+            + u64::from(on(
+                &settings.photons.global_illumination,
+                c.globillum_photons,
+            ));
+        if n > 0 {
+            let (name, at) = named(world, e);
+            out.push(Estimate {
+                element: format!("light \"{name}\""),
+                at,
+                what: format!("the {n} photons it emits"),
+                bytes: n.saturating_mul(BYTES_PER_PHOTON),
+                help: "emit fewer photons",
+            });
+        }
+    }
     if tasks.bake {
         let mut requests: Vec<_> = world
             .query::<(Entity, &BakeRequest)>()

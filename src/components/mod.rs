@@ -51,3 +51,6 @@ pub use procedural::{
     Cone, Cylinder, Disk, GeneratedFrom, Grid, Procedural, Scatter, Sphere, Stairs, Torus,
 };
 pub use surface::{CubicBasis, NurbsSurface, PatchKind, PatchMesh, Quadric, SubdivMesh, Surface};
+
+mod photon_flags;
+pub use photon_flags::{LightPhotons, PhotonFlags, PhotonRole};

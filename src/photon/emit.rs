@@ -5,7 +5,9 @@
 //! penumbra); area lights `Φ = π·L·A` (rectangle, disc, sphere `A = 4πr²`, cylinder side
 //! `A = 2πrh`, each emitting outward with a cosine distribution); emitting triangles
 //! `Φ = π·L·A` each (twice for two-sided emission); directional `Φ = E·π·R²` through a disc
-//! of the scene's bounding-sphere radius `R` facing the light. The environment emits no
+//! of the scene's bounding-sphere radius `R` facing the light. With an [`Aim`] (caustic maps),
+//! photons leave only toward the caustic casters, powers divided by the density of the
+//! aimed directions (see [`super::aim`]). The environment emits no
 //! photons, and lights' near/far `attenuation` is not applied to photons. A light is chosen
 //! with probability proportional to its (channel-mean) power; every photon's power is its
 //! emitted flux divided by that probability, so the mean power per photon is the total power
@@ -16,7 +18,8 @@ use std::f32::consts::PI;
 
 use glam::{Vec2, Vec3};
 
-use crate::accel::{spawn_ray, Hit, Ray};
+use super::aim::Aim;
+use crate::accel::{spawn_ray, Hit, Ray, SurfacePoint};
 use crate::geometry::SceneGeometry;
 use crate::sampling::{sample_cosine_hemisphere, sample_triangle};
 use crate::shading::frame::ShadingFrame;
@@ -36,8 +39,14 @@ pub struct EmittedPhoton {
 #[derive(Debug, Clone)]
 struct Source {
     light: Light,
-    /// Total emitted power, W.
+    /// Index of the light in the [`LightSet`].
+    index: usize,
+    /// Total emitted power, W (the light's `energy` where it has one).
     power: Vec3,
+    /// Total physical power, W (what [`Source::emit`] spreads over the photons).
+    physical: Vec3,
+    /// Factor from the physical power to `power` per channel (1 without `energy`).
+    scale: Vec3,
     /// Directional lights: centre and radius of the scene's bounding sphere.
     bounds: (Vec3, f32),
 }
@@ -71,9 +80,25 @@ impl Source {
         };
         Self {
             light: light.clone(),
+            index: 0,
             power,
+            physical: power,
+            scale: Vec3::ONE,
             bounds,
         }
+    }
+
+    /// The same light emitting `energy` W instead (per channel; a channel the light does not
+    /// emit physically stays dark).
+    fn with_energy(mut self, energy: Vec3) -> Self {
+        let ratio = |e: f32, p: f32| if p > 0.0 { e / p } else { 0.0 };
+        self.scale = Vec3::new(
+            ratio(energy.x, self.power.x),
+            ratio(energy.y, self.power.y),
+            ratio(energy.z, self.power.z),
+        );
+        self.power *= self.scale;
+        self
     }
 
     /// A photon from `u ∈ [0,1)⁴`; its power is the emitted flux weight `Lₑ·cos/(pdf_A·pdf_ω)`.
@@ -89,7 +114,7 @@ impl Source {
         };
         let photon = match &self.light {
             Light::Point { position, .. } => {
-                from_point(*position, uniform_sphere(u_dir), self.power)
+                from_point(*position, uniform_sphere(u_dir), self.physical)
             }
             Light::Spot {
                 position,
@@ -115,49 +140,19 @@ impl Source {
                 let frame = ShadingFrame::from_normal(*direction);
                 let d = crate::sampling::sample_concentric_disk(u_pos) * radius;
                 let origin = centre - *direction * (1.01 * radius) + frame.s * d.x + frame.t * d.y;
-                from_point(origin, *direction, self.power)
+                from_point(origin, *direction, self.physical)
             }
             Light::Area(a) => {
                 // A point on the shape and its outward normal; light shapes are not scene
                 // geometry, so the photon starts exactly there.
-                let (q, n) = match &a.shape {
-                    AreaShape::Rect(r) => {
-                        (r.corner + r.edge_u * u_pos.x + r.edge_v * u_pos.y, r.normal)
-                    }
-                    AreaShape::Disc(d) => {
-                        let p = crate::sampling::sample_concentric_disk(u_pos) * d.radius;
-                        (d.center + d.frame.s * p.x + d.frame.t * p.y, d.frame.n)
-                    }
-                    AreaShape::Sphere(s) => {
-                        let n = uniform_sphere(u_pos);
-                        (s.center + n * s.radius, n)
-                    }
-                    AreaShape::Cylinder(c) => {
-                        let phi = 2.0 * PI * u_pos.y;
-                        let n = c.frame.s * phi.cos() + c.frame.t * phi.sin();
-                        (c.start + c.frame.n * (u_pos.x * c.length) + n * c.radius, n)
-                    }
-                };
+                let (q, n) = area_point(&a.shape, u_pos);
                 let dir = ShadingFrame::from_normal(n).to_world(sample_cosine_hemisphere(u_dir));
-                from_point(q, dir, self.power)
+                from_point(q, dir, self.physical)
             }
             Light::Environment(_) | Light::Ambient { .. } => return None,
             Light::Mesh(MeshLight { prims, cdf, .. }) => {
-                let k = cdf.partition_point(|&c| c <= u_pos.x).clamp(1, prims.len()) - 1;
-                let (c0, c1) = (cdf[k], cdf[k + 1]);
-                if c1 <= c0 {
-                    return None;
-                }
-                let ux = ((u_pos.x - c0) / (c1 - c0)).clamp(0.0, 1.0 - f32::EPSILON);
-                let prim = prims[k];
+                let (prim, sp, prob) = mesh_point(geometry, prims, cdf, u_pos)?;
                 let material = geometry.material_of(prim);
-                let (b1, b2) = sample_triangle(Vec2::new(ux, u_pos.y));
-                let sp = geometry.accel.surface_point(&Hit {
-                    t: 0.0,
-                    prim,
-                    b1,
-                    b2,
-                });
                 // Two-sided emitters pick a side by the first direction dimension.
                 let (mut n, mut ud, mut sides) = (sp.ng, u_dir, 1.0);
                 if material.two_sided {
@@ -171,16 +166,148 @@ impl Source {
                 }
                 let dir = ShadingFrame::from_normal(n).to_world(sample_cosine_hemisphere(ud));
                 let area = triangle_area(geometry, prim);
-                let prob = c1 - c0;
                 EmittedPhoton {
                     ray: spawn_ray(&sp, dir),
                     power: material.emission * (PI * sides * area / prob),
                 }
             }
         };
-        (photon.power.is_finite() && photon.ray.dir.is_finite() && photon.ray.origin.is_finite())
-            .then_some(photon)
+        valid(photon)
     }
+
+    /// A photon aimed at `aim`'s casters from `u ∈ [0,1)⁵` (`u[0]` chooses among the casters):
+    /// power = radiant intensity toward the direction / its density (see [`super::aim`]).
+    fn emit_aimed(
+        &self,
+        geometry: &SceneGeometry,
+        aim: &Aim,
+        u: [f32; 5],
+    ) -> Option<EmittedPhoton> {
+        let (pick, u_pos, u_dir) = (u[0], Vec2::new(u[1], u[2]), Vec2::new(u[3], u[4]));
+        let ray = |origin: Vec3, dir: Vec3| Ray {
+            origin,
+            dir,
+            t_max: f32::INFINITY,
+        };
+        let photon = match &self.light {
+            Light::Point { position, .. } => {
+                let (dir, pdf) = aim.direction(*position, pick, u_dir)?;
+                EmittedPhoton {
+                    ray: ray(*position, dir),
+                    power: self.physical / (4.0 * PI * pdf),
+                }
+            }
+            Light::Spot {
+                position,
+                axis,
+                cos_outer,
+                cos_inner,
+                beam_distribution,
+                intensity,
+                ..
+            } => {
+                let (dir, pdf) = aim.direction(*position, pick, u_dir)?;
+                let cos = dir.dot(*axis);
+                if cos < *cos_outer {
+                    return None;
+                }
+                let falloff = spot_falloff(cos, *cos_outer, *cos_inner, *beam_distribution);
+                EmittedPhoton {
+                    ray: ray(*position, dir),
+                    power: *intensity * (falloff / pdf),
+                }
+            }
+            Light::Directional { direction, .. } => {
+                let (centre, radius) = self.bounds;
+                let plane = centre - *direction * (1.01 * radius);
+                let (origin, pdf) = aim.beam_point(plane, *direction, pick, u_pos)?;
+                // Irradiance E = Φ / (π R²) crossing the plane, over the area density.
+                EmittedPhoton {
+                    ray: ray(origin, *direction),
+                    power: self.physical / (PI * radius * radius * pdf),
+                }
+            }
+            Light::Area(a) => {
+                let (q, n) = area_point(&a.shape, u_pos);
+                let (dir, pdf) = aim.direction(q, pick, u_dir)?;
+                let cos = n.dot(dir);
+                if cos <= 0.0 {
+                    return None;
+                }
+                EmittedPhoton {
+                    ray: ray(q, dir),
+                    power: a.radiance * (area_of(&a.shape) * cos / pdf),
+                }
+            }
+            Light::Environment(_) | Light::Ambient { .. } => return None,
+            Light::Mesh(MeshLight { prims, cdf, .. }) => {
+                let (prim, sp, prob) = mesh_point(geometry, prims, cdf, u_pos)?;
+                let material = geometry.material_of(prim);
+                let (dir, pdf) = aim.direction(sp.p, pick, u_dir)?;
+                let cos = sp.ng.dot(dir);
+                let cos = if material.two_sided { cos.abs() } else { cos };
+                if cos <= 0.0 {
+                    return None;
+                }
+                let area = triangle_area(geometry, prim);
+                EmittedPhoton {
+                    ray: spawn_ray(&sp, dir),
+                    power: material.emission * (area * cos / (pdf * prob)),
+                }
+            }
+        };
+        valid(photon)
+    }
+}
+
+fn valid(photon: EmittedPhoton) -> Option<EmittedPhoton> {
+    (photon.power.is_finite() && photon.ray.dir.is_finite() && photon.ray.origin.is_finite())
+        .then_some(photon)
+}
+
+/// A point on an area light's shape (uniform by area) and its outward normal.
+fn area_point(shape: &AreaShape, u: Vec2) -> (Vec3, Vec3) {
+    match shape {
+        AreaShape::Rect(r) => (r.corner + r.edge_u * u.x + r.edge_v * u.y, r.normal),
+        AreaShape::Disc(d) => {
+            let p = crate::sampling::sample_concentric_disk(u) * d.radius;
+            (d.center + d.frame.s * p.x + d.frame.t * p.y, d.frame.n)
+        }
+        AreaShape::Sphere(s) => {
+            let n = uniform_sphere(u);
+            (s.center + n * s.radius, n)
+        }
+        AreaShape::Cylinder(c) => {
+            let phi = 2.0 * PI * u.y;
+            let n = c.frame.s * phi.cos() + c.frame.t * phi.sin();
+            (c.start + c.frame.n * (u.x * c.length) + n * c.radius, n)
+        }
+    }
+}
+
+/// A point on an emitting mesh: a triangle by the CDF (by emitted power), a point uniform on
+/// it; returns the triangle, the point and the triangle's probability.
+fn mesh_point(
+    geometry: &SceneGeometry,
+    prims: &[u32],
+    cdf: &[f32],
+    u: Vec2,
+) -> Option<(u32, SurfacePoint, f32)> {
+    let k = cdf.partition_point(|&c| c <= u.x).clamp(1, prims.len()) - 1;
+    let (c0, c1) = (cdf[k], cdf[k + 1]);
+    if c1 <= c0 {
+        return None;
+    }
+    let ux = ((u.x - c0) / (c1 - c0)).clamp(0.0, 1.0 - f32::EPSILON);
+    let prim = prims[k];
+    let (b1, b2) = sample_triangle(Vec2::new(ux, u.y));
+    let sp = geometry.accel.surface_point(&Hit {
+        t: 0.0,
+        prim,
+        b1,
+        b2,
+    });
+    Some((prim, sp, c1 - c0))
 }
 
 /// Every light with power, and the distribution photons are emitted from.
@@ -189,18 +316,63 @@ pub struct Emission {
     sources: Vec<Source>,
     /// Normalised CDF over `sources` by channel-mean power (length `sources.len() + 1`).
     cdf: Vec<f32>,
+    /// Casters every photon is aimed at (caustic maps), if any.
+    aim: Option<Aim>,
 }
 
 impl Emission {
     /// The lights of `lights` that emit power into `geometry`.
     pub fn new(lights: &LightSet, geometry: &SceneGeometry) -> Self {
+        Self::with_energies(lights, geometry, &[])
+    }
+
+    /// [`Emission::new`] where `energies[i]`, when given, replaces the power of light `i` of
+    /// `lights` (mental ray `energy`; lights beyond the slice keep their physical power).
+    pub fn with_energies(
+        lights: &LightSet,
+        geometry: &SceneGeometry,
+        energies: &[Option<Vec3>],
+    ) -> Self {
         let bounds = bounding_sphere(geometry);
         let sources: Vec<Source> = lights
             .lights
             .iter()
-            .map(|l| Source::from_light(l, geometry, bounds))
+            .enumerate()
+            .map(|(index, l)| {
+                let s = Source {
+                    index,
+                    ..Source::from_light(l, geometry, bounds)
+                };
+                match energies.get(index).copied().flatten() {
+                    Some(e) => s.with_energy(e),
+                    None => s,
+                }
+            })
             .filter(|s| mean(s.power) > 0.0)
             .collect();
+        Self::from_sources(sources)
+    }
+
+    /// Only the lights whose index in the [`LightSet`] passes `keep`, powers unchanged.
+    pub fn subset(&self, keep: impl Fn(usize) -> bool) -> Self {
+        let sources = self
+            .sources
+            .iter()
+            .filter(|s| keep(s.index))
+            .cloned()
+            .collect();
+        Self {
+            aim: self.aim.clone(),
+            ..Self::from_sources(sources)
+        }
+    }
+
+    /// Indices (in the [`LightSet`]) of the lights that emit.
+    pub fn light_indices(&self) -> Vec<usize> {
+        self.sources.iter().map(|s| s.index).collect()
+    }
+
+    fn from_sources(sources: Vec<Source>) -> Self {
         let total: f64 = sources.iter().map(|s| mean(s.power) as f64).sum();
         let mut cdf = vec![0.0f32];
         let mut acc = 0.0f64;
@@ -211,7 +383,19 @@ impl Emission {
         if let Some(last) = cdf.last_mut() {
             *last = 1.0;
         }
-        Self { sources, cdf }
+        Self {
+            sources,
+            cdf,
+            aim: None,
+        }
+    }
+
+    /// The same lights, every photon aimed at `aim`'s casters.
+    pub fn aimed(self, aim: Aim) -> Self {
+        Self {
+            aim: Some(aim),
+            ..self
+        }
     }
 
     /// Whether no light emits power.
@@ -240,8 +424,15 @@ impl Emission {
         if prob <= 0.0 {
             return None;
         }
-        let mut photon = self.sources[k].emit(geometry, [u[1], u[2], u[3], u[4]])?;
-        photon.power /= prob;
+        let mut photon = match &self.aim {
+            // The light's share of `u[0]`, rescaled to [0,1), picks the caster.
+            Some(aim) => {
+                let pick = ((u[0] - self.cdf[k]) / prob).clamp(0.0, 1.0 - f32::EPSILON);
+                self.sources[k].emit_aimed(geometry, aim, [pick, u[1], u[2], u[3], u[4]])?
+            }
+            None => self.sources[k].emit(geometry, [u[1], u[2], u[3], u[4]])?,
+        };
+        photon.power = photon.power * self.sources[k].scale / prob;
         Some(photon)
     }
 }

@@ -38,15 +38,21 @@ pub fn reflected(
     bsdf: &Bsdf,
     scratch: &mut Vec<Neighbour>,
 ) -> Vec3 {
-    map.map
-        .estimate(v.sp.surface.p, v.ng, map.gather(), scratch, |ph| {
+    map.map.estimate_filtered(
+        v.sp.surface.p,
+        v.ng,
+        map.gather(),
+        map.filter,
+        scratch,
+        |ph| {
             let wi = v.frame.to_local(ph.incoming);
             if wi.z <= 0.0 {
                 Vec3::ZERO
             } else {
                 bsdf.eval(v.wo, wi)
             }
-        })
+        },
+    )
 }
 
 /// Indirect diffuse light at `v`: `final_gather` BSDF-sampled rays, each reading the global
@@ -136,6 +142,7 @@ mod tests {
             radius,
             final_gather: 0,
             emitted: 1000,
+            filter: crate::photon::PhotonFilter::Box,
         }
     }
 

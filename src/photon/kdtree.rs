@@ -17,6 +17,8 @@ use std::collections::BinaryHeap;
 
 use glam::Vec3;
 
+use crate::settings::PhotonFilter;
+
 /// Smallest `n_p·n_q` for a photon to count in an estimate at a point with normal `n_q`.
 pub const NORMAL_FILTER: f32 = 0.9;
 
@@ -132,10 +134,27 @@ impl PhotonMap {
         scratch: &mut Vec<Neighbour>,
         f: impl Fn(&Photon) -> Vec3,
     ) -> Vec3 {
-        let sum = |n: &[Neighbour]| {
+        self.estimate_filtered(p, normal, gather, PhotonFilter::Box, scratch, f)
+    }
+
+    /// [`PhotonMap::estimate`] with each photon weighted by `filter` over the gather disc
+    /// (see [`super::filter`]).
+    pub fn estimate_filtered(
+        &self,
+        p: Vec3,
+        normal: Vec3,
+        gather: Gather,
+        filter: PhotonFilter,
+        scratch: &mut Vec<Neighbour>,
+        f: impl Fn(&Photon) -> Vec3,
+    ) -> Vec3 {
+        let sum = |n: &[Neighbour], r2: f32| {
             n.iter().fold(Vec3::ZERO, |s, nb| {
                 let ph = &self.photons[nb.index as usize];
-                s + f(ph) * ph.power
+                match filter {
+                    PhotonFilter::Box => s + f(ph) * ph.power,
+                    _ => s + f(ph) * ph.power * filter.weight(nb.dist2, r2),
+                }
             })
         };
         let area = |r2: f32| std::f32::consts::PI * r2;
@@ -144,14 +163,15 @@ impl PhotonMap {
                 let k = k.max(2);
                 self.nearest(p, Some(normal), k, r_max, scratch);
                 if scratch.len() == k && scratch[k - 1].dist2 > 0.0 {
-                    sum(&scratch[..k - 1]) / area(scratch[k - 1].dist2)
+                    let r2 = scratch[k - 1].dist2;
+                    sum(&scratch[..k - 1], r2) / area(r2)
                 } else {
-                    sum(scratch) / area(r_max * r_max)
+                    sum(scratch, r_max * r_max) / area(r_max * r_max)
                 }
             }
             Gather::Radius(r) => {
                 self.nearest(p, Some(normal), usize::MAX, r, scratch);
-                sum(scratch) / area(r * r)
+                sum(scratch, r * r) / area(r * r)
             }
         }
     }

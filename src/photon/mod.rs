@@ -9,22 +9,29 @@
 //! - caustics `L S+ D E`: the caustic map, visualised directly (`S` = delta: mirror, glass,
 //!   transparency);
 //! - indirect diffuse `L (S|D)* D D E`: one final-gather bounce whose hits read the global
-//!   map (which stores every diffuse hit, direct ones included). Gather rays that hit delta
-//!   surfaces or lights add nothing, so no path is counted twice; `L …D S D E` paths through a
-//!   mirror after a diffuse bounce are not computed.
+//!   map (which stores every diffuse hit, direct ones included, except caustic `L S+ D`
+//!   hits). Gather rays that hit delta surfaces or lights add nothing, so no path is counted
+//!   twice; `L …D S D E` paths through a mirror after a diffuse bounce and `L S+ D D E`
+//!   (a caustic seen through one diffuse bounce: a few very bright photons, which made
+//!   speckles) are not computed.
 //!
 //! The path tracer (`Path` integrator) ignores the maps: it is the reference.
 
+pub mod aim;
 pub mod emit;
 pub mod estimate;
+pub mod filter;
 pub mod kdtree;
 pub mod pass;
+pub mod roles;
 pub mod trace;
 
 pub use emit::Emission;
+pub use filter::PhotonFilter;
 pub use kdtree::{Gather, Neighbour, Photon, PhotonMap};
-pub use pass::{trace_map, MapKind};
-pub use trace::{trace_photon, Deposit, Fate};
+pub use pass::{trace_map, trace_map_by_light, MapKind};
+pub use roles::PhotonRoles;
+pub use trace::{trace_photon, trace_photon_with_roles, Deposit, Fate};
 
 /// A photon map and the knobs of the estimates that read it.
 #[derive(Debug, Clone)]
@@ -39,6 +46,8 @@ pub struct GatherMap {
     pub final_gather: u32,
     /// Photons emitted to build it.
     pub emitted: u64,
+    /// Weighting of the photons in an estimate.
+    pub filter: PhotonFilter,
 }
 
 impl GatherMap {

@@ -1,7 +1,8 @@
 //! The photon pass for one map: `N` photons emitted and traced in parallel (rayon over
 //! fixed ranges of photon indices), each from its own Sobol sequence
 //! `Sampler::for_item(seed ⊕ map, photon index, 0)`, gathered in index order — so the map is
-//! the same at any thread count.
+//! the same at any thread count. Lights with their own photon count (mental ray `caustic
+//! photons N` on a light) emit it in a pass of their own ([`trace_map_by_light`]).
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -9,7 +10,8 @@ use rayon::prelude::*;
 
 use super::emit::Emission;
 use super::kdtree::Photon;
-use super::trace::trace_photon;
+use super::trace::trace_photon_with_roles;
+use crate::components::PhotonRole;
 use crate::sampling::{hash_combine, Sampler};
 use crate::shading::integrator::ShadeContext;
 
@@ -22,15 +24,19 @@ pub enum MapKind {
     /// Photons at diffuse surfaces after one or more specular bounces only; paths stop at
     /// their first diffuse scattering.
     Caustics,
-    /// Photons at every diffuse hit.
+    /// Photons at every diffuse hit except caustic ones (`L S+ D`, the caustic map's): a
+    /// final-gather ray that meets a caustic would read a few very bright photons, the
+    /// speckles of a caustic seen through one diffuse bounce (`L S+ D D E`, not computed).
     Global,
 }
 
 /// Emits `photons` photons from `emission` into `ctx`'s scene and returns the ones the map
-/// stores, powers divided by `photons`. `None` when `cancel` was set.
+/// stores, powers divided by `photons`; `roles[instance slot]` says which surfaces cast and
+/// receive (empty: all). `None` when `cancel` was set.
 pub fn trace_map(
     ctx: &ShadeContext<'_>,
     emission: &Emission,
+    roles: &[PhotonRole],
     kind: MapKind,
     photons: u32,
     seed: u32,
@@ -53,14 +59,16 @@ pub fn trace_map(
                     continue;
                 };
                 let stop = kind == MapKind::Caustics;
-                trace_photon(
+                trace_photon_with_roles(
                     ctx,
+                    roles,
                     emitted.ray,
                     emitted.power * scale,
                     &mut sampler,
                     stop,
                     |d| {
-                        if kind == MapKind::Global || d.caustic {
+                        // Caustic photons go to the caustic map only (see `MapKind::Global`).
+                        if (kind == MapKind::Caustics) == d.caustic {
                             out.push(d.photon);
                         }
                     },
@@ -74,6 +82,44 @@ pub fn trace_map(
         all.extend(c?);
     }
     Some(all)
+}
+
+/// [`trace_map`] where the lights in `counts` (`(light index, photons)`) each emit their own
+/// number of photons, seeded apart, and the other lights share `photons` by power. Returns
+/// the stored photons (shared pass first, then by light in `counts` order) and the number
+/// emitted.
+#[allow(clippy::too_many_arguments)] // reason: one pass's inputs, each used once
+pub fn trace_map_by_light(
+    ctx: &ShadeContext<'_>,
+    emission: &Emission,
+    roles: &[PhotonRole],
+    kind: MapKind,
+    photons: u32,
+    counts: &[(usize, u32)],
+    seed: u32,
+    cancel: &AtomicBool,
+) -> Option<(Vec<Photon>, u64)> {
+    if counts.is_empty() {
+        let all = trace_map(ctx, emission, roles, kind, photons, seed, cancel)?;
+        return Some((all, u64::from(photons)));
+    }
+    let counted = |i: usize| counts.iter().any(|&(j, _)| j == i);
+    let shared = emission.subset(|i| !counted(i));
+    let (mut all, mut emitted) = (Vec::new(), 0u64);
+    if !shared.is_empty() {
+        all = trace_map(ctx, &shared, roles, kind, photons, seed, cancel)?;
+        emitted += u64::from(photons);
+    }
+    for &(light, n) in counts {
+        let own = emission.subset(|i| i == light);
+        if own.is_empty() || n == 0 {
+            continue;
+        }
+        let light_seed = hash_combine(&[seed, light as u32 + 1, 0x117e]);
+        all.extend(trace_map(ctx, &own, roles, kind, n, light_seed, cancel)?);
+        emitted += u64::from(n);
+    }
+    Some((all, emitted))
 }
 
 #[cfg(test)]
@@ -104,7 +150,7 @@ mod tests {
             .build()
             .unwrap();
         let flag = AtomicBool::new(cancel);
-        pool.install(|| trace_map(&ctx, &emission, kind, n, 3, &flag))
+        pool.install(|| trace_map(&ctx, &emission, &[], kind, n, 3, &flag))
     }
 
     #[test]

@@ -9,14 +9,22 @@
 //! `|wo·nₛ||wi·n_g| / (|wo·n_g||wi·nₛ|)`. The photon survives with probability
 //! `q = min(1, max channel of the weight)` and carries `power·weight/q` (Jensen): for grey
 //! materials a surviving photon keeps its power, so a map's photons have even powers.
+//!
+//! **Roles** ([`super::roles`]): a photon is stored only on a surface that receives for its
+//! map, and is absorbed at a surface that does not cast. **Pass-through** (the straight
+//! transmission of a material whose shadow shader lets light through, `Opacity`) does not
+//! make a path a caustic: shadow rays already carry that light, so `L T D` is direct light,
+//! while `L S T D` or `L T S D` with a mirror or refraction `S` stays a caustic.
 
 use glam::Vec3;
 
 use super::kdtree::Photon;
 use crate::accel::Ray;
+use crate::components::PhotonRole;
 use crate::sampling::Sampler;
 use crate::shading::bsdf::{Scatter, TransportMode};
 use crate::shading::integrator::{ShadeContext, Vertex};
+use crate::shading::shadow::shader_transmits_shadows;
 
 /// Most surface interactions of one photon.
 pub const MAX_BOUNCES: u32 = 64;
@@ -50,9 +58,23 @@ pub struct Fate {
 
 /// Traces a photon along `ray` carrying `power`, calling `deposit` at every diffuse hit. With
 /// `stop_after_diffuse`, the path ends after its first non-specular scattering (no caustic
-/// photon can follow: the caustic pass uses it).
+/// photon can follow: the caustic pass uses it). Every surface casts and receives.
 pub fn trace_photon(
     ctx: &ShadeContext<'_>,
+    ray: Ray,
+    power: Vec3,
+    sampler: &mut Sampler,
+    stop_after_diffuse: bool,
+    deposit: impl FnMut(Deposit),
+) -> Fate {
+    trace_photon_with_roles(ctx, &[], ray, power, sampler, stop_after_diffuse, deposit)
+}
+
+/// [`trace_photon`] with each instance's role (`roles[instance slot]`; an instance beyond
+/// the slice casts and receives).
+pub fn trace_photon_with_roles(
+    ctx: &ShadeContext<'_>,
+    roles: &[PhotonRole],
     mut ray: Ray,
     mut power: Vec3,
     sampler: &mut Sampler,
@@ -61,6 +83,7 @@ pub fn trace_photon(
 ) -> Fate {
     let mut fate = Fate::default();
     let mut specular_only = true;
+    let mut specular_events = 0u32;
     for bounces in 0..MAX_BOUNCES {
         let Some(hit) = ctx.geometry.accel.intersect(&ray) else {
             fate.escaped = power;
@@ -80,7 +103,11 @@ pub fn trace_photon(
             }
         };
         let incoming = -ray.dir.normalize();
-        if bsdf.has_non_delta() {
+        let role = roles
+            .get(v.sp.instance as usize)
+            .copied()
+            .unwrap_or(PhotonRole::BOTH);
+        if bsdf.has_non_delta() && role.receives() {
             deposit(Deposit {
                 photon: Photon {
                     position: v.sp.surface.p,
@@ -89,8 +116,12 @@ pub fn trace_photon(
                     normal: v.ng,
                 },
                 bounces,
-                caustic: bounces > 0 && specular_only,
+                caustic: specular_events > 0 && specular_only,
             });
+        }
+        if !role.casts() {
+            fate.absorbed += power;
+            return fate;
         }
         let u = Vec3::new(sampler.next_1d(), sampler.next_1d(), sampler.next_1d());
         let u_rr = sampler.next_1d();
@@ -115,6 +146,8 @@ pub fn trace_photon(
         }
         if !s.delta {
             specular_only = false;
+        } else if !(s.wi == -v.wo && shader_transmits_shadows(&v.shader)) {
+            specular_events += 1;
         }
         let next_power = power * (weight / q);
         // What survival does not carry on (a colour-dependent weight) is absorbed; a weight

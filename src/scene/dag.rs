@@ -11,7 +11,9 @@ use glam::{Affine3A, DAffine3, DVec3};
 use super::desc::TransformDesc;
 use super::diagnostics::Sources;
 use super::names::{Resolved, Target};
+use super::photon_flags::{instance_flags, object_flags};
 use super::validate::{Checker, Merged};
+use crate::components::PhotonFlags;
 
 /// Most placements (instances visited along all paths) a scene may expand to: a guard
 /// against exponential sharing of groups.
@@ -32,6 +34,9 @@ pub struct Leaf {
     pub world: DAffine3,
     /// Material from the closest instance override on the path, then the object's.
     pub material: Option<usize>,
+    /// Photon flags: each from the closest instance on the path that sets it, then the
+    /// object's (see [`super::photon_flags`]).
+    pub photon: PhotonFlags,
 }
 
 /// Each instance's own transform (`None` where it is invalid).
@@ -220,6 +225,7 @@ pub fn flatten(
         world: DAffine3,
         path: String,
         material: Option<usize>,
+        photon: PhotonFlags,
     }
     let mut leaves = Vec::new();
     let mut placements = 0usize;
@@ -229,6 +235,7 @@ pub fn flatten(
         world: DAffine3::IDENTITY,
         path: m.groups[root].desc.name.clone(),
         material: None,
+        photon: PhotonFlags::default(),
     }];
     while let Some(top) = stack.last_mut() {
         let Some(&inst) = r.group_members[top.group].get(top.next) else {
@@ -250,6 +257,7 @@ pub fn flatten(
         let world = top.world * locals[inst];
         let path = format!("{}/{}", top.path, m.instances[inst].desc.name);
         let material = r.instance_material[inst].or(top.material);
+        let photon = instance_flags(m, inst).or(top.photon);
         match r.instance_of[inst] {
             Some(Target::Object(o)) => {
                 let offset = offsets.get(o).copied().unwrap_or(DVec3::ZERO);
@@ -278,6 +286,7 @@ pub fn flatten(
                     world_from_object: rounded,
                     world,
                     material: material.or(r.object_material[o]),
+                    photon: photon.or(object_flags(m, o)),
                 });
             }
             Some(Target::Group(g)) => stack.push(Frame {
@@ -286,6 +295,7 @@ pub fn flatten(
                 world,
                 path,
                 material,
+                photon,
             }),
             None => {}
         }

@@ -87,6 +87,26 @@ pub struct PhotonMapDesc {
     pub gather: u32,
     /// Final-gather rays per shading point (global illumination only), default 16, at least 1.
     pub final_gather: u32,
+    /// Caustics only: emit photons only toward the caustic casters, default true.
+    pub aim: bool,
+    /// Weighting of photons in an estimate, default `Box`.
+    pub filter: PhotonFilterDesc,
+}
+
+/// `filter:` of a photon map (mental ray `caustic filter box|cone|gauss`).
+#[derive(Debug, Clone, Copy, PartialEq, Default, Deserialize, Serialize)]
+#[serde(rename = "PhotonFilter", deny_unknown_fields)]
+pub enum PhotonFilterDesc {
+    /// Every photon weighs 1.
+    #[default]
+    Box,
+    /// Jensen's cone filter, weight `1 − d/(k·r)`, `k ≥ 1`.
+    Cone {
+        /// Jensen's `k`, ≥ 1 (mental ray's cone filter constant, often 1.1).
+        k: f64,
+    },
+    /// Jensen's (Pavicic's) normalised Gaussian filter.
+    Gauss,
 }
 
 impl Default for PhotonMapDesc {
@@ -96,6 +116,8 @@ impl Default for PhotonMapDesc {
             radius: 0.0,
             gather: 50,
             final_gather: 16,
+            aim: true,
+            filter: PhotonFilterDesc::Box,
         }
     }
 }
@@ -333,6 +355,17 @@ pub struct LightDesc {
     /// Linear near/far falloff `(start, end)` on top of the inverse-square law, default none.
     #[serde(default)]
     pub attenuation: Option<(f64, f64)>,
+    /// Photon power, W per channel, replacing the physical power for photons only (mental
+    /// ray `energy`), default none (physical power).
+    #[serde(default)]
+    pub energy: Option<V3>,
+    /// Caustic photons this light emits (mental ray `caustic photons`), default none (the
+    /// lights without a count share the map's `photons` by power).
+    #[serde(default)]
+    pub caustic_photons: Option<u32>,
+    /// Global-illumination photons this light emits (mental ray `globillum photons`).
+    #[serde(default)]
+    pub globillum_photons: Option<u32>,
 }
 
 fn default_white() -> V3 {
@@ -860,6 +893,14 @@ pub struct ObjectDesc {
     /// Store surface derivatives dP/du, dP/dv when tessellating, default false.
     #[serde(default)]
     pub derivatives: bool,
+    /// Caustic photon role (mental ray `caustic`): 0 none, 1 casts, 2 receives, 3 both;
+    /// default from the material (specular casts, non-specular receives).
+    #[serde(default)]
+    pub caustic: Option<u8>,
+    /// Global-illumination photon role (mental ray `globillum`), values as `caustic`;
+    /// default: every surface casts and non-specular surfaces receive.
+    #[serde(default)]
+    pub globillum: Option<u8>,
 }
 
 /// `instances: [(...)]`: a placed copy of an object or a group.
@@ -879,6 +920,12 @@ pub struct InstanceDesc {
     /// Textures to bake for this instance (see [`BakeDesc`]).
     #[serde(default)]
     pub bake: Option<BakeDesc>,
+    /// Caustic photon role override for everything this instance places (as on objects).
+    #[serde(default)]
+    pub caustic: Option<u8>,
+    /// Global-illumination photon role override (as on objects).
+    #[serde(default)]
+    pub globillum: Option<u8>,
 }
 
 /// `bake: (...)` on an instance of an object: textures to bake (`stagelight bake`).

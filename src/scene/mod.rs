@@ -43,6 +43,7 @@ pub(crate) mod message;
 pub(crate) mod names;
 pub(crate) mod nodes;
 pub mod nodes_desc;
+pub(crate) mod photon_flags;
 pub(crate) mod rebase;
 pub(crate) mod samples;
 pub(crate) mod shaders;
@@ -185,6 +186,7 @@ fn load(
             contour,
         })
         .collect();
+    photon_flags::check(src, &merged);
     let resolved = names::resolve(src, &merged);
     let scatters = geometry::scatter::resolve(src, &merged);
     let object_geometry = geometry::check_objects(src, &merged, &scatters);
@@ -284,6 +286,15 @@ fn load(
             }
         })
         .collect();
+    let checked: Vec<_> = materials.iter().map(|p| p.material.as_ref()).collect();
+    let placed = leaves.iter().map(|l| photon_flags::PlacedFlags {
+        path: &l.path,
+        instance: l.instance,
+        object: l.object,
+        material: l.material,
+        photon: l.photon,
+    });
+    photon_flags::warn_shadow_casters(&mut sources, &merged, placed, &checked);
     let parts = spawn::Parts {
         cameras,
         render_camera: resolved.camera,

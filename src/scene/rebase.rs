@@ -222,6 +222,7 @@ mod tests {
             world_from_object: Affine3A::IDENTITY,
             world: DAffine3::from_translation(DVec3::splat(t)),
             material: None,
+            photon: Default::default(),
         };
         let b = [Some((DVec3::ZERO, DVec3::new(1.0, 0.75, 1.0)))];
         assert_eq!(scene_origin(&[leaf(0.0)], &b), DVec3::ZERO);

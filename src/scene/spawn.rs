@@ -237,6 +237,10 @@ pub fn spawn(src: &Sources, m: &Merged<'_>, parts: Parts) -> World {
             WorldFromObject(leaf.world_from_object),
             MaterialRef(material),
         ));
+        if !leaf.photon.is_default() {
+            // The entity was just spawned, so inserting cannot fail.
+            let _ = world.insert_one(entity, leaf.photon);
+        }
         if let Some(Some(request)) = parts.bakes.get(leaf.instance) {
             // The entity was just spawned, so inserting cannot fail.
             let _ = world.insert_one(entity, request.clone());
@@ -249,11 +253,16 @@ pub fn spawn(src: &Sources, m: &Merged<'_>, parts: Parts) -> World {
 
     for (it, emitter) in m.lights.iter().zip(parts.lights) {
         let Some(emitter) = emitter else { continue };
-        world.spawn((
+        let entity = world.spawn((
             Name(it.desc.name.clone()),
             SourceLink::from(it.pos.clone()),
             emitter,
         ));
+        let photons = super::photon_flags::light_photons(it.desc);
+        if !photons.is_default() {
+            // The entity was just spawned, so inserting cannot fail.
+            let _ = world.insert_one(entity, photons);
+        }
     }
 
     for (i, (it, cam)) in m.cameras.iter().zip(parts.cameras).enumerate() {

@@ -10,14 +10,15 @@ pub use super::checker::{Checker, Item};
 use super::desc::{
     BvhQualityDesc, CameraDesc, FaceDesc, FilterDesc, FormatDesc, GroupDesc, InstanceDesc,
     IntegratorDesc, LightDesc, LightKindDesc, MaterialDesc, ObjectDesc, OptionsDesc, OutputDesc,
-    PassDesc, PhotonMapDesc, PlacementDesc, RenderDesc, SceneDesc,
+    PassDesc, PhotonFilterDesc, PhotonMapDesc, PlacementDesc, RenderDesc, SceneDesc,
 };
 use super::diagnostics::Sources;
 use crate::components::{
     Camera, Emitter, ImageFormat, LightShape, Material, OutputSpec, Pass, Shader,
 };
 use crate::settings::{
-    BvhQuality, Face, Integrator, PhotonMapSettings, PhotonSettings, PixelFilter, RenderSettings,
+    BvhQuality, Face, Integrator, PhotonFilter, PhotonMapSettings, PhotonSettings, PixelFilter,
+    RenderSettings,
 };
 
 /// The widest Gaussian pixel filter (truncation radius, pixels): a wider one spreads each
@@ -205,11 +206,28 @@ fn photon_map(ck: &mut Checker<'_>, path: &str, d: &PhotonMapDesc) -> PhotonMapS
     let radius = ck
         .non_negative(&format!("{path}.radius"), "radius", d.radius)
         .unwrap_or(0.0);
+    let filter = match d.filter {
+        PhotonFilterDesc::Box => PhotonFilter::Box,
+        PhotonFilterDesc::Gauss => PhotonFilter::Gauss,
+        PhotonFilterDesc::Cone { k } => {
+            if !(k.is_finite() && (1.0..=1e6).contains(&k)) {
+                ck.error(
+                    &format!("{path}.filter.Cone.k"),
+                    format!("cone filter k must be between 1 and 1e6, found {k}"),
+                );
+            }
+            PhotonFilter::Cone {
+                k: k.clamp(1.0, 1e6) as f32,
+            }
+        }
+    };
     PhotonMapSettings {
         photons: d.photons.max(1),
         radius: radius as f32,
         gather: d.gather.max(2),
         final_gather: d.final_gather.max(1),
+        aim: d.aim,
+        filter,
     }
 }
 

@@ -46,6 +46,8 @@ fn gi(photons: u32) -> RenderSettings {
         radius: 0.0,
         gather: 50,
         final_gather: 4,
+        aim: true,
+        filter: stagelight::settings::PhotonFilter::Box,
     });
     s
 }

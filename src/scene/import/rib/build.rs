@@ -1247,6 +1247,9 @@ impl Builder {
                 samples: None,
                 visible: false,
                 attenuation: None,
+                energy: None,
+                caustic_photons: None,
+                globillum_photons: None,
             });
         }
         for (i, m) in self.materials.iter().enumerate() {
@@ -1282,6 +1285,8 @@ impl Builder {
                 approximation: o.approximation.map(|a| a.0),
                 displacement: o.displacement.map(|d| d.0),
                 derivatives: false,
+                caustic: None,
+                globillum: None,
             });
             desc.instances.push(InstanceDesc {
                 name: o.name.clone(),
@@ -1289,6 +1294,8 @@ impl Builder {
                 transform: vec![TransformDesc::Matrix(rows(g * o.world_from_object))],
                 material: None,
                 bake: None,
+                caustic: None,
+                globillum: None,
             });
             members.push(o.name);
         }
