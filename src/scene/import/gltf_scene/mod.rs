@@ -165,6 +165,8 @@ fn place(w: &mut Walk<'_>, name: String, of: String, local: &DMat4) -> String {
         transform,
         material: None,
         bake: None,
+        caustic: None,
+        globillum: None,
     });
     name
 }
@@ -212,6 +214,8 @@ impl Walk<'_> {
             approximation: None,
             displacement: None,
             derivatives: false,
+            caustic: None,
+            globillum: None,
         });
         self.objects.insert((mesh.index(), p), name.clone());
         name

@@ -83,6 +83,9 @@ pub fn light(w: &mut Walk<'_>, light: &gltf::khr_lights_punctual::Light<'_>, wor
         samples: None,
         visible: false,
         attenuation: None,
+        energy: None,
+        caustic_photons: None,
+        globillum_photons: None,
     });
 }
 
