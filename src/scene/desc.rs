@@ -325,6 +325,10 @@ pub struct LightDesc {
     /// Linear near/far falloff `(start, end)` on top of the inverse-square law, default none.
     #[serde(default)]
     pub attenuation: Option<(f64, f64)>,
+    /// Point and spot lights: whether `Cl` falls off as 1/d², default `true`; `false` is
+    /// mental ray's `mib_light_point`/`mib_light_spot` (`Cl` = colour at every distance).
+    #[serde(default = "default_true")]
+    pub inverse_square: bool,
 }
 
 fn default_white() -> V3 {
@@ -488,6 +492,10 @@ pub struct MaterialDesc {
     /// Volume shader filling the inside of closed meshes with this material, default none.
     #[serde(default)]
     pub interior: Option<VolumeDesc>,
+    /// Light list (mental ray's `"lights"`): the names of the only lights this material
+    /// sees, default none (every light). Listed lights light it in renders and bakes.
+    #[serde(default)]
+    pub lights: Option<Vec<String>>,
 }
 
 /// Surface shader.
@@ -769,6 +777,11 @@ pub enum LocalLobeDesc {
         /// Roughness, default 0.1, > 0.
         #[serde(default = "default_roughness_rm")]
         roughness: f64,
+    },
+    /// mental ray `mib_illum_phong`: `max(0, R·L)^exponent`, `R` the mirrored view direction.
+    Phong {
+        /// Exponent, ≥ 0.
+        exponent: f64,
     },
 }
 

@@ -34,6 +34,7 @@ pub(crate) mod imager;
 pub mod import;
 pub(crate) mod include;
 pub(crate) mod lens;
+pub(crate) mod light_lists;
 pub(crate) mod lights;
 pub mod mesh_files;
 pub(crate) mod mesh_load;
@@ -166,6 +167,7 @@ fn load(
         .collect();
     let mut phenomena = nodes::check_phenomena(src, &merged);
     nodes::attach(src, &merged, &mut phenomena, &mut materials);
+    light_lists::attach(src, &merged, &mut materials);
     let materials: Vec<MaterialParts> = materials
         .into_iter()
         .zip(interiors)

@@ -31,6 +31,7 @@
 //! `lights[i]`, `materials[i]`, `objects[i]`, `instances[i]`, `groups[i]`, `phenomena[i]`
 //! and `include[i]`; the empty path is the file itself.
 
+pub mod mi;
 pub mod rib;
 pub mod ron;
 mod ron_spans;
@@ -183,6 +184,11 @@ pub const FORMATS: &[Format] = &[
         name: "RIB",
         extensions: &["rib"],
         read: rib::read,
+    },
+    Format {
+        name: "mental ray",
+        extensions: &["mi"],
+        read: mi::read,
     },
 ];
 

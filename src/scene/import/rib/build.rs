@@ -965,6 +965,7 @@ impl Builder {
             bind,
             bump: None,
             interior: None,
+            lights: None,
         };
         let key = format!(
             "{:?}|{:?}|{}|{:?}|{}",
@@ -1246,6 +1247,7 @@ impl Builder {
                 samples: None,
                 visible: false,
                 attenuation: None,
+                inverse_square: true,
             });
         }
         for (i, m) in self.materials.iter().enumerate() {
