@@ -35,6 +35,7 @@ mod lens_shaders;
 mod light_scenes;
 mod lights;
 mod mesh_files;
+mod mi;
 mod photons;
 mod radiometry;
 mod ray_counts;

@@ -23,6 +23,8 @@ use crate::scene::suggest::closest;
 const MAX_DEPTH: usize = 64;
 
 struct Out {
+    /// Every element name defined, including elements that failed (already reported).
+    defined: HashSet<String>,
     desc: SceneDesc,
     paths: Vec<(String, Located)>,
     problems: Vec<LocatedProblem>,
@@ -49,6 +51,9 @@ impl Out {
     }
 
     fn unknown(&mut self, at: &Located, what: &str, name: &str, known: Vec<&str>) {
+        if self.defined.contains(name) {
+            return; // the element failed and was reported where it is written
+        }
         let mut p = Problem::error(Pos::default(), format!("unknown {what} \"{name}\""));
         if let Some(s) = closest(name, known) {
             p = p.with_help(format!("did you mean \"{s}\"?"));
@@ -84,9 +89,10 @@ pub fn assemble(reader: Reader) -> Result<MiScene, Vec<LocatedProblem>> {
         raw,
         problems,
         root,
-        ..
+        defined,
     } = reader;
     let mut out = Out {
+        defined: defined.into_keys().collect(),
         desc: SceneDesc::default(),
         paths: Vec::new(),
         problems,
@@ -202,10 +208,15 @@ fn build(raw: &RawScene, root: &Located, out: &mut Out) {
     }
     let shadows = options.is_none_or(|o| o.shadows);
     for (name, light, w, at) in lights {
-        if let Some(desc) = light_desc(name, light, w, shadows, &at, out) {
-            let i = out.desc.lights.len();
-            out.paths.push((format!("lights[{i}]"), at));
-            out.desc.lights.push(desc);
+        match light_desc(name.clone(), light, w, shadows, &at, out) {
+            Some(desc) => {
+                let i = out.desc.lights.len();
+                out.paths.push((format!("lights[{i}]"), at));
+                out.desc.lights.push(desc);
+            }
+            None => {
+                out.defined.insert(name);
+            }
         }
     }
     let light_names: Vec<String> = out.desc.lights.iter().map(|l| l.name.clone()).collect();

@@ -13,8 +13,7 @@ use super::model::{AreaShape, RawCamera, RawLight, RawMaterial, RawOptions, Spac
 use super::shaders;
 use super::statements::Reader;
 use crate::scene::desc::{
-    FaceDesc, FormatDesc, MaterialDesc, OptionsDesc, OutputDesc, PassDesc, PhotonMapDesc,
-    SamplesDesc,
+    FaceDesc, FormatDesc, MaterialDesc, OptionsDesc, OutputDesc, PassDesc, SamplesDesc,
 };
 use crate::scene::suggest::closest;
 
@@ -68,6 +67,7 @@ pub fn options(r: &mut Reader, c: &mut Cursor, open: Pos) {
         c.skip_to_end("options", open);
         return;
     };
+    let fresh = r.define(c, &name, pos);
     let mut o = RawOptions {
         at: c.located(open),
         desc: OptionsDesc::default(),
@@ -77,11 +77,7 @@ pub fn options(r: &mut Reader, c: &mut Cursor, open: Pos) {
     let mut contrast = (0.1, 0.1, 0.1);
     let mut samples: Option<(i64, i64)> = None;
     loop {
-        let Some(t) = c.peek().cloned() else {
-            c.error(
-                open,
-                "\"options\" block is not closed (expected \"end options\")",
-            );
+        let Some(t) = c.block_token("options", open) else {
             return;
         };
         let Tok::Word(w) = &t.tok else {
@@ -176,15 +172,11 @@ pub fn options(r: &mut Reader, c: &mut Cursor, open: Pos) {
                     c.error(p, format!("expected \"space\" after \"{w}\""));
                 }
             }
-            "caustic" => caustic_option(c, &mut o.desc, t.pos),
+            "caustic" => caustic_option(c, t.pos),
             "globillum" => {
-                if c.at_word("on") || c.at_word("off") {
-                    let on = c.switch();
-                    o.desc.global_illumination = on.then(PhotonMapDesc::default);
-                } else {
-                    c.skip_arguments();
-                    c.warn(t.pos, "\"globillum\" settings are read but not yet mapped");
-                }
+                c.eat_word("accuracy");
+                c.skip_arguments();
+                c.warn(t.pos, "\"globillum\" is read but not yet mapped");
             }
             "photonmap" | "photon" | "finalgather" | "diagnostic" => {
                 while c.at_word("file")
@@ -245,43 +237,18 @@ pub fn options(r: &mut Reader, c: &mut Cursor, open: Pos) {
             SamplesDesc::Fixed(spp(max))
         };
     }
-    if r.define(c, &name, pos) {
+    if fresh {
         r.raw.options.insert(name, o);
     }
 }
 
-fn caustic_option(c: &mut Cursor, o: &mut OptionsDesc, at: Pos) {
-    if c.eat_word("accuracy") {
-        let Some(n) = c.count("caustic accuracy") else {
-            return;
-        };
-        let radius = if c.at_number() {
-            c.number("caustic accuracy radius").unwrap_or(0.0)
-        } else {
-            0.0
-        };
-        let map = o.caustics.get_or_insert_with(PhotonMapDesc::default);
-        map.gather = n.max(2);
-        map.radius = radius.max(0.0);
-    } else if c.eat_word("filter") {
-        for f in ["box", "cone", "gauss"] {
-            if c.eat_word(f) {
-                break;
-            }
-        }
-        c.skip_arguments();
-        c.warn(at, "\"caustic filter\" is read but not yet mapped");
-    } else if c.at_number() {
-        c.skip_arguments();
-        c.warn(at, "\"caustic\" mode is read but not yet mapped");
-    } else {
-        let on = c.switch();
-        if on {
-            o.caustics.get_or_insert_with(PhotonMapDesc::default);
-        } else {
-            o.caustics = None;
-        }
+fn caustic_option(c: &mut Cursor, at: Pos) {
+    for w in ["accuracy", "filter", "box", "cone", "gauss", "on", "off"] {
+        c.eat_word(w);
     }
+    c.eat_word("cone");
+    c.skip_arguments();
+    c.warn(at, "\"caustic\" is read but not yet mapped");
 }
 
 const CAMERA: &[&str] = &[
@@ -306,6 +273,7 @@ pub fn camera(r: &mut Reader, c: &mut Cursor, open: Pos) {
         c.skip_to_end("camera", open);
         return;
     };
+    let fresh = r.define(c, &name, pos);
     let (mut focal, mut aperture) = (1.0f64, 1.0f64);
     let mut cam = RawCamera {
         at: c.located(open),
@@ -316,11 +284,7 @@ pub fn camera(r: &mut Reader, c: &mut Cursor, open: Pos) {
         environment: None,
     };
     loop {
-        let Some(t) = c.peek().cloned() else {
-            c.error(
-                open,
-                "\"camera\" block is not closed (expected \"end camera\")",
-            );
+        let Some(t) = c.block_token("camera", open) else {
             return;
         };
         let Tok::Word(w) = &t.tok else {
@@ -398,7 +362,7 @@ pub fn camera(r: &mut Reader, c: &mut Cursor, open: Pos) {
         .unwrap_or(f64::from(cam.resolution.0.max(1)) / f64::from(cam.resolution.1.max(1)));
     // The aperture is the film width; the film height is aperture / aspect.
     cam.fov_y = 2.0 * (aperture / (2.0 * focal * aspect)).atan().to_degrees();
-    if r.define(c, &name, pos) {
+    if fresh {
         r.raw.cameras.insert(name, cam);
     }
 }
@@ -507,6 +471,7 @@ pub fn light(r: &mut Reader, c: &mut Cursor, open: Pos) {
         c.skip_to_end("light", open);
         return;
     };
+    let fresh = r.define(c, &name, pos);
     let Some(call) = c.shader_call("the light shader") else {
         c.skip_to_end("light", open);
         return;
@@ -518,11 +483,7 @@ pub fn light(r: &mut Reader, c: &mut Cursor, open: Pos) {
     let mut area = None;
     let mut visible = false;
     loop {
-        let Some(t) = c.peek().cloned() else {
-            c.error(
-                open,
-                "\"light\" block is not closed (expected \"end light\")",
-            );
+        let Some(t) = c.block_token("light", open) else {
             return;
         };
         let Tok::Word(w) = &t.tok else {
@@ -584,7 +545,7 @@ pub fn light(r: &mut Reader, c: &mut Cursor, open: Pos) {
     }
     c.expect_end("light", open);
     let Some(m) = mapped else { return };
-    if r.define(c, &name, pos) {
+    if fresh {
         r.raw.lights.insert(
             name,
             RawLight {
@@ -622,6 +583,7 @@ pub fn material(r: &mut Reader, c: &mut Cursor, open: Pos) {
         c.skip_to_end("material", open);
         return;
     };
+    let fresh = r.define(c, &name, pos);
     c.eat_word("opaque");
     let Some(call) = c.shader_call("the material shader") else {
         c.skip_to_end("material", open);
@@ -629,11 +591,7 @@ pub fn material(r: &mut Reader, c: &mut Cursor, open: Pos) {
     };
     let mapped = shaders::material(c, &call, &r.raw.shaders, 0);
     loop {
-        let Some(t) = c.peek().cloned() else {
-            c.error(
-                open,
-                "\"material\" block is not closed (expected \"end material\")",
-            );
+        let Some(t) = c.block_token("material", open) else {
             return;
         };
         let Tok::Word(w) = &t.tok else {
@@ -671,7 +629,7 @@ pub fn material(r: &mut Reader, c: &mut Cursor, open: Pos) {
     let Some((shader, lights, exclusive)) = mapped else {
         return;
     };
-    if r.define(c, &name, pos) {
+    if fresh {
         let desc = MaterialDesc {
             name: name.clone(),
             shader,
@@ -720,6 +678,7 @@ pub fn declare(r: &mut Reader, c: &mut Cursor, open: Pos) {
         c.skip_to_end("declare", open);
         return;
     };
+    let fresh = r.define(c, &name, pos);
     // The interface parameter declarations.
     if c.eat_punct('(') {
         let mut depth = 1usize;
@@ -775,7 +734,7 @@ pub fn declare(r: &mut Reader, c: &mut Cursor, open: Pos) {
         );
         return;
     };
-    if r.define(c, &name, pos) {
+    if fresh {
         r.raw.shaders.extend(shaders);
         r.raw.shaders.insert(name, call);
     }
@@ -786,10 +745,11 @@ pub fn named_shader(r: &mut Reader, c: &mut Cursor) {
     let Some((name, pos)) = c.string("the shader name") else {
         return;
     };
+    let fresh = r.define(c, &name, pos);
     let Some(call) = c.shader_call("the shader") else {
         return;
     };
-    if r.define(c, &name, pos) {
+    if fresh {
         r.raw.shaders.insert(name, call);
     }
 }

@@ -148,6 +148,33 @@ impl Cursor {
         matches!(self.peek(), Some(Token { tok: Tok::Word(x), .. }) if x == w)
     }
 
+    /// Whether the next token starts a top-level statement (`camera space` and `object space` in options
+    /// does not): the block before it was not closed.
+    pub fn at_statement(&self) -> bool {
+        let Some(Token {
+            tok: Tok::Word(w), ..
+        }) = self.peek()
+        else {
+            return false;
+        };
+        let space = matches!(self.peek2(), Some(Token { tok: Tok::Word(s), .. }) if s == "space");
+        super::statements::STATEMENTS.contains(&w.as_str())
+            && !((w == "camera" || w == "object") && space)
+    }
+
+    /// The next token of a `kind` block opened at `open`, not consumed; `None` (reported:
+    /// the block is not closed) at the end of the file or at a top-level statement.
+    pub fn block_token(&mut self, kind: &str, open: Pos) -> Option<Token> {
+        if self.peek().is_none() || self.at_statement() {
+            self.error(
+                open,
+                format!("\"{kind}\" block is not closed (expected \"end {kind}\")"),
+            );
+            return None;
+        }
+        self.peek().cloned()
+    }
+
     /// Whether the next token is the punctuation `c`.
     pub fn at_punct(&self, c: char) -> bool {
         matches!(self.peek(), Some(Token { tok: Tok::Punct(x), .. }) if *x == c)

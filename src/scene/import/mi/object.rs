@@ -59,6 +59,7 @@ pub fn object(r: &mut Reader, c: &mut Cursor, open: Pos) {
         c.skip_to_end("object", open);
         return;
     };
+    let fresh = r.define(c, &name, pos);
     let mut obj = RawObject {
         at: c.located(open),
         vertices: Vec::new(),
@@ -67,11 +68,7 @@ pub fn object(r: &mut Reader, c: &mut Cursor, open: Pos) {
     };
     let mut failed = false;
     loop {
-        let Some(t) = c.peek().cloned() else {
-            c.error(
-                open,
-                "\"object\" block is not closed (expected \"end object\")",
-            );
+        let Some(t) = c.block_token("object", open) else {
             return;
         };
         let Tok::Word(w) = &t.tok else {
@@ -128,7 +125,7 @@ pub fn object(r: &mut Reader, c: &mut Cursor, open: Pos) {
         c.error(open, format!("object \"{name}\" has no polygons"));
         return;
     }
-    if r.define(c, &name, pos) {
+    if fresh {
         r.raw.objects.push((name, obj));
     }
 }
@@ -155,11 +152,7 @@ fn group(c: &mut Cursor, obj: &mut RawObject, open: Pos) -> bool {
         vectors.push((v[0], v[1], v[2]));
     }
     loop {
-        let Some(t) = c.peek().cloned() else {
-            c.error(
-                open,
-                "\"group\" block is not closed (expected \"end group\")",
-            );
+        let Some(t) = c.block_token("group", open) else {
             return false;
         };
         let Tok::Word(w) = &t.tok else {
@@ -289,6 +282,7 @@ pub fn instance(r: &mut Reader, c: &mut Cursor, open: Pos) {
         c.skip_to_end("instance", open);
         return;
     };
+    let fresh = r.define(c, &name, pos);
     let Some((of, of_pos)) = c.string("the element the instance places") else {
         c.skip_to_end("instance", open);
         return;
@@ -303,11 +297,7 @@ pub fn instance(r: &mut Reader, c: &mut Cursor, open: Pos) {
         flags: Flags::default(),
     };
     loop {
-        let Some(t) = c.peek().cloned() else {
-            c.error(
-                open,
-                "\"instance\" block is not closed (expected \"end instance\")",
-            );
+        let Some(t) = c.block_token("instance", open) else {
             return;
         };
         let Tok::Word(w) = &t.tok else {
@@ -384,7 +374,7 @@ pub fn instance(r: &mut Reader, c: &mut Cursor, open: Pos) {
         }
     }
     c.expect_end("instance", open);
-    if r.define(c, &name, pos) {
+    if fresh {
         r.raw.instances.push((name, inst));
     }
 }
@@ -395,6 +385,7 @@ pub fn instgroup(r: &mut Reader, c: &mut Cursor, open: Pos) {
         c.skip_to_end("instgroup", open);
         return;
     };
+    let fresh = r.define(c, &name, pos);
     let mut members = Vec::new();
     while c.at_string() {
         if let Some((m, p)) = c.string("a member") {
@@ -402,7 +393,7 @@ pub fn instgroup(r: &mut Reader, c: &mut Cursor, open: Pos) {
         }
     }
     c.expect_end("instgroup", open);
-    if r.define(c, &name, pos) {
+    if fresh {
         r.raw.groups.push((
             name,
             RawGroup {

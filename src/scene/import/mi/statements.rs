@@ -23,7 +23,7 @@ pub const BUILT_IN_LIBRARIES: &[&str] = &["base", "physics", "contour"];
 const MAX_INCLUDE_DEPTH: usize = 16;
 
 /// The top-level statements.
-const STATEMENTS: &[&str] = &[
+pub const STATEMENTS: &[&str] = &[
     "verbose",
     "link",
     "$include",
@@ -48,8 +48,9 @@ pub struct Reader {
     pub raw: RawScene,
     /// Every problem, in reading order.
     pub problems: Vec<LocatedProblem>,
-    /// Where each element name was first defined.
-    defined: std::collections::HashMap<String, Located>,
+    /// Where each element name was first defined (also for elements that failed, so
+    /// references to them are not reported a second time).
+    pub defined: std::collections::HashMap<String, Located>,
 }
 
 impl Reader {
