@@ -108,14 +108,15 @@ fn plane_scene_as_printed_matches_mental_rays_lambert_and_point_light() {
 fn point_light_atten_ramps_linearly_and_ambience_adds() {
     let text = plane_text()
         .replace("\"atten\" false", "\"atten\" true")
-        .replace("\"start\" 0,", "\"start\" 1.1,")
-        .replace("\"stop\" 1\n", "\"stop\" 1.6\n")
+        .replace("\"start\" 0,", "\"start\" 0.5,")
+        .replace("\"stop\" 1\n", "\"stop\" 2.5\n")
         .replace("\"ambient\" 0.0 0.0 0.0", "\"ambient\" 0.1 0.2 0.3")
         .replace("\"ambience\" 0.0 0.0 0.0", "\"ambience\" 0.5 1 1");
     let scene = load_scene_str(&text, &dir("assets/seeds/mi/plane_atten.mi")).unwrap();
-    check_plane(scene, 160, |x, y, z| {
+    // Every visible point is between 1 and √3 from the light: inside the ramp.
+    check_plane(scene, 508, |x, y, z| {
         let d = (x * x + y * y + z * z).sqrt();
-        let ramp = ((1.6 - d) / (1.6 - 1.1)).clamp(0.0, 1.0);
+        let ramp = ((2.5 - d) / (2.5 - 0.5)).clamp(0.0, 1.0);
         0.05 + 0.8 * (-z / d) * ramp
     });
 }
@@ -164,6 +165,50 @@ fn a_material_listing_one_light_ignores_the_other_pixel_exact() {
     // Without a list both lights light the plane: brighter where B reaches.
     let brighter = c.iter().zip(&a).filter(|(c, a)| c.x > a.x + 1e-3).count();
     assert!(brighter > c.len() / 2, "{brighter}");
+}
+
+/// A RIB scene with two point lights; the sphere switches light 2 off when `off`, and light 2
+/// is not written at all when `!with_2`.
+fn illuminate_rib(off: bool, with_2: bool) -> String {
+    let second = if with_2 {
+        "LightSource \"pointlight\" 2 \"from\" [2 1 -1] \"intensity\" 3 \"lightcolor\" [1 0.5 0.2]\n"
+    } else {
+        ""
+    };
+    let illuminate = if off && with_2 {
+        "Illuminate 2 0\n"
+    } else {
+        ""
+    };
+    format!(
+        "Format 24 18 1\nProjection \"perspective\" \"fov\" 40\nTranslate 0 0 5\nWorldBegin\n\
+         LightSource \"pointlight\" 1 \"from\" [-2 2 -3] \"intensity\" 8\n{second}\
+         AttributeBegin\n{illuminate}Surface \"matte\"\nSphere 1 -1 1 360\nAttributeEnd\n\
+         AttributeBegin\nSurface \"matte\"\nTranslate 0 0 2\nPatch \"bilinear\" \"P\" [-4 -4 0 4 -4 0 -4 4 0 4 4 0]\nAttributeEnd\nWorldEnd\n"
+    )
+}
+
+#[test]
+fn rib_illuminate_off_is_a_light_list() {
+    let at = dir("assets/seeds/rib/illuminate.rib");
+    let load = |text: String| load_scene_str(&text, &at).unwrap_or_else(|e| panic!("{e}\n{text}"));
+    let (w, _, off) = render(load(illuminate_rib(true, true)), 24, 1);
+    let (_, _, without) = render(load(illuminate_rib(false, false)), 24, 1);
+    let (_, _, on) = render(load(illuminate_rib(false, true)), 24, 1);
+    // The sphere covers the middle of the image: there light 2 is off, exactly as if it
+    // were not in the scene; the patch behind still sees it.
+    let mid = (9 * w + 12) as usize;
+    assert_eq!(
+        off[mid].to_array().map(f32::to_bits),
+        without[mid].to_array().map(f32::to_bits)
+    );
+    assert!(on[mid].x > off[mid].x + 1e-4, "{} vs {}", on[mid], off[mid]);
+    let brighter_behind = off
+        .iter()
+        .zip(&without)
+        .filter(|(a, b)| a.x > b.x + 1e-4)
+        .count();
+    assert!(brighter_behind > 0, "the patch no longer sees light 2");
 }
 
 #[test]
