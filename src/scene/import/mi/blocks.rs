@@ -24,7 +24,7 @@ fn name_of(c: &mut Cursor, what: &str) -> Option<(String, Pos)> {
 /// Reports the word at the cursor as not part of `block`, with a suggestion from `known`,
 /// then skips it and its arguments.
 fn unknown(c: &mut Cursor, block: &str, known: &[&str]) {
-    let Some(t) = c.next() else { return };
+    let Some(t) = c.advance() else { return };
     let shown = t.tok.describe();
     let mut p = Problem::error(t.pos, format!("unexpected {shown} in {block}"));
     if let Tok::Word(w) = &t.tok {
@@ -87,7 +87,7 @@ pub fn options(r: &mut Reader, c: &mut Cursor, open: Pos) {
         if w == "end" {
             break;
         }
-        c.next();
+        c.advance();
         match w.as_str() {
             "samples" => {
                 let Some(a) = c.number("samples") else {
@@ -106,7 +106,7 @@ pub fn options(r: &mut Reader, c: &mut Cursor, open: Pos) {
                 };
                 contrast = (v[0], v[1], v[2]);
                 if c.at_number() {
-                    c.next();
+                    c.advance();
                 }
             }
             "trace" => {
@@ -155,7 +155,7 @@ pub fn options(r: &mut Reader, c: &mut Cursor, open: Pos) {
             }
             "shadow" => {
                 if c.at_word("sort") || c.at_word("segments") {
-                    c.next();
+                    c.advance();
                 } else {
                     o.shadows = c.switch();
                 }
@@ -193,7 +193,7 @@ pub fn options(r: &mut Reader, c: &mut Cursor, open: Pos) {
                     || c.at_word("only")
                     || c.at_word("samples")
                 {
-                    c.next();
+                    c.advance();
                     c.skip_arguments();
                 }
                 c.skip_arguments();
@@ -208,7 +208,7 @@ pub fn options(r: &mut Reader, c: &mut Cursor, open: Pos) {
                     || c.at_word("lanczos")
                     || c.at_word("rapid")
                 {
-                    c.next();
+                    c.advance();
                 }
                 c.skip_arguments();
                 c.warn(t.pos, format!("option \"{w}\" is read but not mapped"));
@@ -294,7 +294,7 @@ pub fn camera(r: &mut Reader, c: &mut Cursor, open: Pos) {
         if w == "end" {
             break;
         }
-        c.next();
+        c.advance();
         match w.as_str() {
             "frame" => c.skip_arguments(),
             "focal" => {
@@ -493,7 +493,7 @@ pub fn light(r: &mut Reader, c: &mut Cursor, open: Pos) {
         if w == "end" {
             break;
         }
-        c.next();
+        c.advance();
         match w.as_str() {
             "origin" => origin = vec3(c, "origin"),
             "direction" => direction = vec3(c, "direction"),
@@ -601,7 +601,7 @@ pub fn material(r: &mut Reader, c: &mut Cursor, open: Pos) {
         if w == "end" {
             break;
         }
-        c.next();
+        c.advance();
         match w.as_str() {
             "opaque" => {}
             "shadow" | "photon" | "volume" | "environment" | "displace" | "contour" => {
@@ -667,11 +667,11 @@ pub fn declare(r: &mut Reader, c: &mut Cursor, open: Pos) {
             ..
         })
     ) {
-        c.next();
+        c.advance();
     }
     if c.eat_punct('{') {
         while c.peek().is_some() && !c.eat_punct('}') {
-            c.next();
+            c.advance();
         }
     }
     let Some((name, pos)) = name_of(c, "phenomenon") else {
@@ -683,7 +683,7 @@ pub fn declare(r: &mut Reader, c: &mut Cursor, open: Pos) {
     if c.eat_punct('(') {
         let mut depth = 1usize;
         while depth > 0 {
-            match c.next().map(|t| t.tok) {
+            match c.advance().map(|t| t.tok) {
                 Some(Tok::Punct('(')) => depth += 1,
                 Some(Tok::Punct(')')) => depth -= 1,
                 None => break,
@@ -704,7 +704,7 @@ pub fn declare(r: &mut Reader, c: &mut Cursor, open: Pos) {
         match &t.tok {
             Tok::Word(w) if w == "end" => break,
             Tok::Word(w) if w == "shader" => {
-                c.next();
+                c.advance();
                 let Some((sname, _)) = c.string("the shader name") else {
                     continue;
                 };
@@ -713,12 +713,12 @@ pub fn declare(r: &mut Reader, c: &mut Cursor, open: Pos) {
                 }
             }
             Tok::Word(w) if w == "root" => {
-                c.next();
+                c.advance();
                 c.eat_punct('=');
-                root = c.string("the phenomenon root").map(|(s, p)| (s, p));
+                root = c.string("the phenomenon root");
             }
             _ => {
-                c.next();
+                c.advance();
             }
         }
     }

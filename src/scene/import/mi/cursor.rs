@@ -101,7 +101,7 @@ impl Cursor {
     }
 
     /// Consumes the next token.
-    pub fn next(&mut self) -> Option<Token> {
+    pub fn advance(&mut self) -> Option<Token> {
         let t = self.tokens.get(self.at).cloned();
         if t.is_some() {
             self.at += 1;
@@ -308,7 +308,7 @@ impl Cursor {
     /// Skips to just after `end kind` (error recovery, and statements not read). Reports an
     /// error at `open` when the file ends first.
     pub fn skip_to_end(&mut self, kind: &str, open: Pos) {
-        while let Some(t) = self.next() {
+        while let Some(t) = self.advance() {
             if matches!(&t.tok, Tok::Word(w) if w == "end") && self.eat_word(kind) {
                 return;
             }
@@ -436,7 +436,7 @@ impl Cursor {
             }
             Tok::Punct('{') => {
                 let mut depth = 0usize;
-                while let Some(t) = self.next() {
+                while let Some(t) = self.advance() {
                     match t.tok {
                         Tok::Punct('{') => depth += 1,
                         Tok::Punct('}') => {

@@ -80,7 +80,7 @@ pub fn object(r: &mut Reader, c: &mut Cursor, open: Pos) {
         if w == "end" {
             break;
         }
-        c.next();
+        c.advance();
         if flag(c, w, &mut obj.flags, t.pos) {
             continue;
         }
@@ -134,7 +134,7 @@ pub fn object(r: &mut Reader, c: &mut Cursor, open: Pos) {
 fn group(c: &mut Cursor, obj: &mut RawObject, open: Pos) -> bool {
     if c.at_string() {
         // `group "merge" eps` and similar options.
-        c.next();
+        c.advance();
         c.skip_arguments();
     }
     let mut vectors: Vec<(f64, f64, f64)> = Vec::new();
@@ -167,7 +167,7 @@ fn group(c: &mut Cursor, obj: &mut RawObject, open: Pos) -> bool {
         if w == "end" {
             break;
         }
-        c.next();
+        c.advance();
         match w.as_str() {
             "v" => {
                 let at = c.pos();
@@ -197,7 +197,7 @@ fn group(c: &mut Cursor, obj: &mut RawObject, open: Pos) -> bool {
                     || c.at_word("u")
                 {
                     let ref_at = c.pos();
-                    c.next();
+                    c.advance();
                     c.skip_arguments();
                     if !warned_refs {
                         c.warn(
@@ -228,7 +228,7 @@ fn group(c: &mut Cursor, obj: &mut RawObject, open: Pos) -> bool {
                 if c.at_word("hole") {
                     let at = c.pos();
                     c.error(at, "polygons with holes are not supported");
-                    c.next();
+                    c.advance();
                     c.skip_arguments();
                     ok = false;
                     continue;
@@ -255,7 +255,7 @@ fn group(c: &mut Cursor, obj: &mut RawObject, open: Pos) -> bool {
                     matches!(&t.tok, Tok::Word(w) if w != "end" && w != "v" && w != "p")
                         || matches!(t.tok, Tok::Num(_))
                 }) {
-                    c.next();
+                    c.advance();
                 }
                 c.warn(
                     t.pos,
@@ -309,7 +309,7 @@ pub fn instance(r: &mut Reader, c: &mut Cursor, open: Pos) {
         if w == "end" {
             break;
         }
-        c.next();
+        c.advance();
         if flag(c, w, &mut inst.flags, t.pos) {
             continue;
         }
@@ -336,7 +336,7 @@ pub fn instance(r: &mut Reader, c: &mut Cursor, open: Pos) {
                 if c.eat_punct('[') {
                     let first = c.string("a material name");
                     while c.peek().is_some() && !c.eat_punct(']') {
-                        c.next();
+                        c.advance();
                     }
                     c.warn(
                         t.pos,

@@ -81,7 +81,7 @@ impl Reader {
         for e in lex_errors {
             c.error(e.pos, e.message);
         }
-        while let Some(t) = c.next() {
+        while let Some(t) = c.advance() {
             self.statement(&mut c, t, depth);
         }
         let mut problems = std::mem::take(&mut c.problems);
@@ -154,14 +154,14 @@ impl Reader {
                 while c.peek().is_some_and(
                     |t| !matches!(&t.tok, Tok::Word(w) if STATEMENTS.contains(&w.as_str())),
                 ) {
-                    c.next();
+                    c.advance();
                 }
             }
         }
     }
 
     fn include(&mut self, c: &mut Cursor, depth: usize) {
-        let Some(t) = c.next() else {
+        let Some(t) = c.advance() else {
             c.error(
                 c.pos(),
                 "expected a file after $include, found the end of the file",

@@ -1265,7 +1265,7 @@ impl Builder {
                     .lights
                     .iter()
                     .enumerate()
-                    .filter(|(j, l)| !m.lights_off.contains(j) && !(!l.used_on && l.used_off));
+                    .filter(|(j, l)| !m.lights_off.contains(j) && (l.used_on || !l.used_off));
                 material.lights = Some(names.map(|(_, l)| l.name.clone()).collect());
             }
             desc.materials.push(material);
