@@ -303,6 +303,10 @@ const MALFORMED: &[(&str, &str)] = &[
         "tests/fixtures/mi/duplicate_name.mi:14:8: error: \"quad\" is defined twice\n  help: the first is at tests/fixtures/mi/duplicate_name.mi:13:10",
     ),
     (
+        "include_cycle",
+        "tests/fixtures/mi/include_cycle.mi:1:10: error: \"tests/fixtures/mi/include_cycle.mi\" includes itself",
+    ),
+    (
         "missing_include",
         "tests/fixtures/mi/missing_include.mi:1:10: error: cannot read include \"tests/fixtures/mi/missing.mi\": file not found",
     ),

@@ -10,6 +10,9 @@ use std::path::PathBuf;
 use super::super::rib::{Located, LocatedProblem, Pos, Problem};
 use super::lexer::{Tok, Token};
 
+/// Deepest nesting of array values.
+const MAX_ARRAY_DEPTH: usize = 32;
+
 /// A parameter value as written.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Value {
@@ -364,7 +367,7 @@ impl Cursor {
             }
             let (name, pos) = self.string(&format!("a parameter name of \"{shader}\""))?;
             let value_pos = self.pos();
-            let value = self.value(&name)?;
+            let value = self.value(&name, 0)?;
             params.push(Param {
                 name,
                 pos,
@@ -382,7 +385,7 @@ impl Cursor {
         }
     }
 
-    fn value(&mut self, param: &str) -> Option<Value> {
+    fn value(&mut self, param: &str, depth: usize) -> Option<Value> {
         let Some(t) = self.peek().cloned() else {
             self.error(
                 self.pos(),
@@ -423,6 +426,13 @@ impl Cursor {
                 let (s, _) = self.string("a shader reference")?;
                 Some(Value::Ref(s))
             }
+            Tok::Punct('[') if depth >= MAX_ARRAY_DEPTH => {
+                self.error(
+                    t.pos,
+                    format!("arrays in parameter \"{param}\" nest deeper than {MAX_ARRAY_DEPTH}"),
+                );
+                None
+            }
             Tok::Punct('[') => {
                 self.at += 1;
                 let mut items = Vec::new();
@@ -430,7 +440,7 @@ impl Cursor {
                     if self.eat_punct(']') {
                         return Some(Value::Array(items));
                     }
-                    items.push(self.value(param)?);
+                    items.push(self.value(param, depth + 1)?);
                     self.eat_punct(',');
                 }
             }

@@ -51,6 +51,8 @@ pub struct Reader {
     /// Where each element name was first defined (also for elements that failed, so
     /// references to them are not reported a second time).
     pub defined: std::collections::HashMap<String, Located>,
+    /// The files being read, outermost first (an include of one of them is a cycle).
+    reading: Vec<std::path::PathBuf>,
 }
 
 impl Reader {
@@ -64,6 +66,7 @@ impl Reader {
             raw: RawScene::default(),
             problems: Vec::new(),
             defined: Default::default(),
+            reading: Vec::new(),
         }
     }
 
@@ -183,8 +186,16 @@ impl Reader {
                     c.error(t.pos, format!("includes nest deeper than {MAX_INCLUDE_DEPTH} files (an include cycle?)"));
                     return;
                 }
+                if self.reading.contains(&file) || file == c.file {
+                    c.error(t.pos, format!("\"{}\" includes itself", file.display()));
+                    return;
+                }
                 match std::fs::read(&file) {
-                    Ok(bytes) => self.read_file(&file, &bytes, depth + 1),
+                    Ok(bytes) => {
+                        self.reading.push(c.file.clone());
+                        self.read_file(&file, &bytes, depth + 1);
+                        self.reading.pop();
+                    }
                     Err(e) => {
                         let why = if e.kind() == std::io::ErrorKind::NotFound {
                             "file not found".to_string()
