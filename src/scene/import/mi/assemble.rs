@@ -90,6 +90,7 @@ pub fn assemble(reader: Reader) -> Result<MiScene, Vec<LocatedProblem>> {
         problems,
         root,
         defined,
+        ..
     } = reader;
     let mut out = Out {
         defined: defined.into_keys().collect(),
