@@ -134,6 +134,7 @@ fn plane_world(shader: Shader, graph: Option<MaterialGraph>) -> World {
             two_sided: false,
             emission: Vec3::ZERO,
             graph: graph.map(std::sync::Arc::new),
+            lights: None,
         },
     ));
     let h = 5.0;
@@ -168,6 +169,7 @@ fn plane_world(shader: Shader, graph: Option<MaterialGraph>) -> World {
             samples: 8,
             visible: false,
             attenuation: None,
+            inverse_square: true,
         },
     ));
     let eye = Vec3::new(0.0, -6.0, 4.0);

@@ -48,7 +48,7 @@ enum Command {
     Plan(PlanArgs),
     /// Write a scene in any readable format (RIB, RON) as the equivalent RON scene.
     Convert {
-        /// Scene file (any readable format: .rib, .ron).
+        /// Scene file (any readable format: .mi, .rib, .ron).
         scene: PathBuf,
         /// The RON file to write.
         #[arg(short = 'o', long = "output")]

@@ -8,25 +8,30 @@ use glam::Vec3;
 
 use crate::accel::{spawn_ray, SurfacePoint};
 use crate::bake::ao::basis;
-use crate::components::Shader;
+use crate::components::{Material, Shader};
 use crate::geometry::SceneGeometry;
 use crate::sampling::{sample_cosine_hemisphere, Sampler};
 use crate::shading::shadow::transmittance;
 use crate::shading::LightSet;
 
-/// Direct irradiance (W/m²) at `surface` with unit normal `normal` from every light, with
-/// shadow rays (tinted by transparent surfaces, as in renders); each light uses its own sample count, drawn from child sequences of
+/// Direct irradiance (W/m²) at `surface` with unit normal `normal` from every light that
+/// lights `material` (its light list), with shadow rays (tinted by transparent surfaces, as
+/// in renders); each light uses its own sample count, drawn from child sequences of
 /// `sampler`.
 pub fn direct_irradiance(
     geometry: &SceneGeometry,
     lights: &LightSet,
+    material: &Material,
     surface: &SurfacePoint,
     normal: Vec3,
     ng_facing: Vec3,
     sampler: &mut Sampler,
 ) -> Vec3 {
     let mut e = Vec3::ZERO;
-    for light in &lights.lights {
+    for (i, light) in lights.lights.iter().enumerate() {
+        if !material.sees_light(i) {
+            continue;
+        }
         let n = light.sample_count();
         let seed = sampler.child_seed();
         let mut sum = Vec3::ZERO;
@@ -140,7 +145,7 @@ pub fn indirect_irradiance_sample(
         let (hn, hng) = (hp.normal * sign, hp.surface.ng * sign);
         let albedo = diffuse_albedo(&material.shader);
         // L_in = albedo/π · E(hit); the path weight π/π·albedo carries on.
-        let e_hit = direct_irradiance(geometry, lights, &hp.surface, hn, hng, sampler);
+        let e_hit = direct_irradiance(geometry, lights, material, &hp.surface, hn, hng, sampler);
         throughput *= albedo / std::f32::consts::PI;
         e += throughput * e_hit;
         if throughput.max_element() <= 0.0 {

@@ -304,6 +304,7 @@ fn texel(
                     e += direct_irradiance(
                         job.geometry,
                         job.lights,
+                        &job.geometry.materials[site.material as usize],
                         &site.surface,
                         site.normal,
                         site.ng,

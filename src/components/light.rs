@@ -102,11 +102,15 @@ pub struct Emitter {
     /// Optional linear near/far falloff `(start, end)` in scene units, on top of the
     /// physical inverse-square law: full strength up to `start`, none beyond `end`.
     pub attenuation: Option<(f32, f32)>,
+    /// Point and spot lights: whether the arriving light falls off as 1/d² (physical);
+    /// `false` is mental ray's `mib_light_point`/`mib_light_spot`, whose `Cl` is the
+    /// intensity itself at every distance (times the near/far ramp).
+    pub inverse_square: bool,
 }
 
 impl Emitter {
     /// A light of `shape` emitting `radiant`, casting shadows, one sample (16 for area
-    /// lights), invisible, without near/far attenuation.
+    /// lights), invisible, without near/far attenuation, falling off as 1/d².
     pub fn new(shape: LightShape, radiant: Vec3) -> Self {
         let samples = if shape.is_area() { 16 } else { 1 };
         Self {
@@ -116,6 +120,7 @@ impl Emitter {
             samples,
             visible: false,
             attenuation: None,
+            inverse_square: true,
         }
     }
 }

@@ -15,6 +15,12 @@ pub enum LocalLobe {
         /// RenderMan roughness (> 0).
         roughness: f32,
     },
+    /// mental ray's `mib_illum_phong`: `max(0, R·L)^exponent` with `R` the viewer's direction
+    /// mirrored about the normal.
+    Phong {
+        /// Phong exponent (≥ 0).
+        exponent: f32,
+    },
 }
 
 impl LocalLobe {
@@ -29,6 +35,16 @@ impl LocalLobe {
                     0.0
                 } else {
                     c.powf(1.0 / roughness.max(1e-4))
+                }
+            }
+            LocalLobe::Phong { exponent } => {
+                // The mirror direction of `wo` about +Z.
+                let r = Vec3::new(-wo.x, -wo.y, wo.z).normalize_or_zero();
+                let c = r.dot(wi);
+                if c <= 0.0 {
+                    0.0
+                } else {
+                    c.powf(exponent)
                 }
             }
         }

@@ -257,9 +257,19 @@ pub struct Material {
     /// Shader parameters driven by texture nodes and the bump map (`None`: the shader's
     /// constants everywhere, no bump).
     pub graph: Option<Arc<MaterialGraph>>,
+    /// Light list (mental ray's `"lights"`): indices of the only scene emitters (in entity
+    /// order, as the light set lists them) that light this material; `None`: every light.
+    pub lights: Option<Arc<[u32]>>,
 }
 
 impl Material {
+    /// Whether the light at index `i` of the light set lights this material.
+    pub fn sees_light(&self, i: usize) -> bool {
+        self.lights
+            .as_ref()
+            .is_none_or(|l| l.iter().any(|&j| j as usize == i))
+    }
+
     /// Whether the material emits light.
     pub fn is_emissive(&self) -> bool {
         self.emission.max_element() > 0.0

@@ -366,6 +366,10 @@ pub struct LightDesc {
     /// Global-illumination photons this light emits (mental ray `globillum photons`).
     #[serde(default)]
     pub globillum_photons: Option<u32>,
+    /// Point and spot lights: whether `Cl` falls off as 1/d², default `true`; `false` is
+    /// mental ray's `mib_light_point`/`mib_light_spot` (`Cl` = colour at every distance).
+    #[serde(default = "default_true")]
+    pub inverse_square: bool,
 }
 
 fn default_white() -> V3 {
@@ -532,6 +536,10 @@ pub struct MaterialDesc {
     /// Contour shader, default none (no contours around this material).
     #[serde(default)]
     pub contour: Option<ContourDesc>,
+    /// Light list (mental ray's `"lights"`): the names of the only lights this material
+    /// sees, default none (every light). Listed lights light it in renders and bakes.
+    #[serde(default)]
+    pub lights: Option<Vec<String>>,
 }
 
 /// Surface shader.
@@ -826,6 +834,11 @@ pub enum LocalLobeDesc {
         /// Roughness, default 0.1, > 0.
         #[serde(default = "default_roughness_rm")]
         roughness: f64,
+    },
+    /// mental ray `mib_illum_phong`: `max(0, R·L)^exponent`, `R` the mirrored view direction.
+    Phong {
+        /// Exponent, ≥ 0.
+        exponent: f64,
     },
 }
 

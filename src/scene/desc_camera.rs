@@ -88,7 +88,9 @@ impl Serialize for SamplesDesc {
         match *self {
             SamplesDesc::Fixed(n) => s.serialize_u64(n),
             SamplesDesc::Adaptive { min, max, contrast } => {
-                let mut st = s.serialize_struct("", 3)?;
+                // Named, so RON written with struct names (`stagelight convert`) stays valid; the
+                // name is optional on reading.
+                let mut st = s.serialize_struct("Adaptive", 3)?;
                 st.serialize_field("min", &min)?;
                 st.serialize_field("max", &max)?;
                 st.serialize_field("contrast", &contrast)?;

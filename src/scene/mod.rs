@@ -36,6 +36,7 @@ pub(crate) mod imager;
 pub mod import;
 pub(crate) mod include;
 pub(crate) mod lens;
+pub(crate) mod light_lists;
 pub(crate) mod lights;
 pub mod mesh_files;
 pub(crate) mod mesh_load;
@@ -176,6 +177,7 @@ fn load(
         .collect();
     let contrast = contours::contrast(src, merged.options.as_ref());
     contours::check_pairing(src, &merged.cameras, &merged.materials);
+    light_lists::attach(src, &merged, &mut materials);
     let materials: Vec<MaterialParts> = materials
         .into_iter()
         .zip(interiors)

@@ -200,6 +200,9 @@ pub fn shader(ck: &mut Checker<'_>, path: &str, desc: &ShaderDesc) -> Option<Sha
                         *roughness,
                     ),
                 },
+                LocalLobeDesc::Phong { exponent } => LocalLobe::Phong {
+                    exponent: s.weight("Local.lobe.Phong.exponent", "exponent", *exponent),
+                },
             },
             reflection: s.colour("Local.reflection", "reflection", *reflection),
             ambient: s.colour("Local.ambient", "ambient", *ambient),

@@ -558,6 +558,7 @@ pub fn light(src: &mut Sources, item: &Item<'_, LightDesc>) -> Option<Emitter> {
         samples: samples?,
         visible: visible?,
         attenuation: attenuation?,
+        inverse_square: l.inverse_square,
     })
 }
 
@@ -575,6 +576,7 @@ pub fn material(src: &mut Sources, item: &Item<'_, MaterialDesc>) -> Option<Mate
         two_sided: m.two_sided,
         emission: emission?.as_vec3(),
         graph: None,
+        lights: None,
     })
 }
 
@@ -589,5 +591,6 @@ pub fn default_material() -> Material {
         two_sided: false,
         emission: glam::Vec3::ZERO,
         graph: None,
+        lights: None,
     }
 }

@@ -38,6 +38,7 @@ mod lens_shaders;
 mod light_scenes;
 mod lights;
 mod mesh_files;
+mod mi;
 mod photon_clean;
 mod photon_flags;
 mod photon_lights;

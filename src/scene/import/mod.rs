@@ -32,6 +32,7 @@
 //! and `include[i]`; the empty path is the file itself.
 
 pub mod gltf_scene;
+pub mod mi;
 pub mod rib;
 pub mod ron;
 mod ron_integers;
@@ -190,6 +191,11 @@ pub const FORMATS: &[Format] = &[
         name: "glTF",
         extensions: &["gltf", "glb"],
         read: gltf_scene::read,
+    },
+    Format {
+        name: "mental ray",
+        extensions: &["mi"],
+        read: mi::read,
     },
 ];
 

@@ -302,8 +302,8 @@ pub fn gather(
     response: Response<'_>,
 ) -> Vec3 {
     let mut radiance = Vec3::ZERO;
-    for light in &ctx.lights.lights {
-        if matches!(light, Light::Ambient { .. }) {
+    for (i, light) in ctx.lights.lights.iter().enumerate() {
+        if matches!(light, Light::Ambient { .. }) || !v.material.sees_light(i) {
             continue;
         }
         let (n, mut child) = if mis.is_some() {

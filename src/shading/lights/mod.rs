@@ -89,6 +89,8 @@ pub enum Light {
         shadows: bool,
         /// Near/far attenuation `(start, end)`.
         attenuation: Option<(f32, f32)>,
+        /// Whether `intensity` falls off as 1/d².
+        inverse_square: bool,
     },
     /// RenderMan-style spotlight.
     Spot {
@@ -108,6 +110,8 @@ pub enum Light {
         shadows: bool,
         /// Near/far attenuation `(start, end)`.
         attenuation: Option<(f32, f32)>,
+        /// Whether `intensity` falls off as 1/d².
+        inverse_square: bool,
     },
     /// Distant light.
     Directional {
@@ -171,6 +175,7 @@ impl Light {
                 intensity: e.radiant,
                 shadows: e.shadows,
                 attenuation: e.attenuation,
+                inverse_square: e.inverse_square,
             },
             LightShape::Spot {
                 position,
@@ -187,6 +192,7 @@ impl Light {
                 intensity: e.radiant,
                 shadows: e.shadows,
                 attenuation: e.attenuation,
+                inverse_square: e.inverse_square,
             },
             LightShape::Directional { direction } => Light::Directional {
                 direction: direction.normalize_or_zero(),
@@ -235,7 +241,14 @@ impl Light {
                 intensity,
                 shadows,
                 attenuation,
-            } => delta_sample(p, *position, *intensity, *shadows, *attenuation),
+                inverse_square,
+            } => delta_sample(
+                p,
+                *position,
+                *intensity,
+                *shadows,
+                (*attenuation, *inverse_square),
+            ),
             Light::Spot {
                 position,
                 axis,
@@ -245,6 +258,7 @@ impl Light {
                 intensity,
                 shadows,
                 attenuation,
+                inverse_square,
             } => {
                 let d = (*position - p).normalize_or_zero();
                 let falloff =
@@ -252,7 +266,13 @@ impl Light {
                 if falloff <= 0.0 {
                     return None;
                 }
-                delta_sample(p, *position, *intensity * falloff, *shadows, *attenuation)
+                delta_sample(
+                    p,
+                    *position,
+                    *intensity * falloff,
+                    *shadows,
+                    (*attenuation, *inverse_square),
+                )
             }
             Light::Directional {
                 direction,
@@ -307,14 +327,16 @@ impl Light {
     }
 }
 
-/// A sample of a point-like light at `q` with intensity `intensity` (W/sr).
+/// A sample of a point-like light at `q` with intensity `intensity` (W/sr), its near/far
+/// ramp and whether it falls off as 1/d² (`falloff`).
 fn delta_sample(
     p: Vec3,
     q: Vec3,
     intensity: Vec3,
     shadows: bool,
-    attenuation: Option<(f32, f32)>,
+    falloff: (Option<(f32, f32)>, bool),
 ) -> Option<LightSample> {
+    let (attenuation, inverse_square) = falloff;
     let d = q - p;
     let dist2 = d.length_squared();
     if !dist2.is_finite() || dist2 <= 0.0 {
@@ -327,7 +349,7 @@ fn delta_sample(
     }
     Some(LightSample {
         wi: d / dist,
-        contribution: intensity * (att / dist2),
+        contribution: intensity * if inverse_square { att / dist2 } else { att },
         target: Some(SurfacePoint {
             p: q,
             p_err: Vec3::ZERO,

@@ -222,6 +222,7 @@ pub fn visit(shader: &mut Shader, f: &mut dyn FnMut(&'static str, Field<'_>)) {
             f("specular", C(&mut m.specular, N));
             match &mut m.lobe {
                 LocalLobe::RenderMan { roughness } => f("roughness", S(roughness, P)),
+                LocalLobe::Phong { exponent } => f("exponent", S(exponent, N)),
             }
             f("reflection", C(&mut m.reflection, N));
             f("ambient", C(&mut m.ambient, N));

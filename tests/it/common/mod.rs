@@ -45,6 +45,7 @@ pub fn material(world: &mut World, shader: Shader) -> Entity {
             two_sided: false,
             emission: Vec3::ZERO,
             graph: None,
+            lights: None,
         },
     ))
 }
@@ -98,6 +99,7 @@ pub fn light(world: &mut World, shape: LightShape, radiant: Vec3, samples: u32) 
             samples,
             visible: false,
             attenuation: None,
+            inverse_square: true,
         },
     ))
 }
@@ -223,6 +225,7 @@ pub fn material_full(world: &mut World, shader: Shader, two_sided: bool, emissio
             two_sided,
             emission,
             graph: None,
+            lights: None,
         },
     ))
 }

@@ -60,6 +60,7 @@ pub fn material_name(w: &mut Walk<'_>, index: Option<usize>) -> String {
             bump: None,
             interior: None,
             contour: None,
+            lights: None,
         },
     };
     let name = desc.name.clone();
@@ -161,6 +162,7 @@ fn material(w: &mut Walk<'_>, m: &gltf::Material<'_>) -> MaterialDesc {
         bump: None,
         interior: None,
         contour: None,
+        lights: None,
     }
 }
 

@@ -86,6 +86,7 @@ pub fn light(w: &mut Walk<'_>, light: &gltf::khr_lights_punctual::Light<'_>, wor
         energy: None,
         caustic_photons: None,
         globillum_photons: None,
+        inverse_square: true,
     });
 }
 

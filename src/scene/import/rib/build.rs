@@ -141,6 +141,9 @@ struct PendingMaterial {
     desc: MaterialDesc,
     paths: Vec<(String, Pos)>,
     at: (usize, Pos),
+    /// Lights switched off by `Illuminate` where the material was used (indices into the
+    /// light list): the material's light list is every other light.
+    lights_off: Vec<usize>,
 }
 
 /// The reader's state over one root file and its archives.
@@ -966,14 +969,19 @@ impl Builder {
             bump: None,
             interior: None,
             contour: None,
+            lights: None,
         };
+        let mut lights_off = attrs.lights_off.clone();
+        lights_off.sort_unstable();
+        lights_off.dedup();
         let key = format!(
-            "{:?}|{:?}|{}|{:?}|{}",
+            "{:?}|{:?}|{}|{:?}|{}|{:?}",
             desc.shader,
             desc.bind,
             desc.two_sided,
             desc.emission,
-            at_pos.line * 100_000 + at_pos.column
+            at_pos.line * 100_000 + at_pos.column,
+            lights_off
         );
         let material = match self.material_keys.get(&key) {
             Some(&m) => m,
@@ -989,6 +997,7 @@ impl Builder {
                     desc,
                     paths: spaths,
                     at: (at_file, at_pos),
+                    lights_off,
                 });
                 self.material_keys.insert(key, m);
                 m
@@ -1195,12 +1204,6 @@ impl Builder {
                 ));
                 continue;
             }
-            if l.used_on && l.used_off {
-                self.problems.push((
-                    l.at.0,
-                    Problem::warning(l.at.1, format!("light \"{}\" lights every primitive: Illuminate per primitive is not supported", l.name)),
-                ));
-            }
             let t = g * l.to_world;
             let pt = |v: V3| {
                 let p = t.transform_point3(DVec3::new(v.0, v.1, v.2));
@@ -1250,6 +1253,7 @@ impl Builder {
                 energy: None,
                 caustic_photons: None,
                 globillum_photons: None,
+                inverse_square: true,
             });
         }
         for (i, m) in self.materials.iter().enumerate() {
@@ -1258,7 +1262,17 @@ impl Builder {
             for (p, pos) in &m.paths {
                 paths.push((format!("materials[{i}]{p}"), m.at.0, *pos));
             }
-            desc.materials.push(m.desc.clone());
+            let mut material = m.desc.clone();
+            if !m.lights_off.is_empty() {
+                // `Illuminate handle 0`: lit by every light written but those.
+                let names = self
+                    .lights
+                    .iter()
+                    .enumerate()
+                    .filter(|(j, l)| !m.lights_off.contains(j) && (l.used_on || !l.used_off));
+                material.lights = Some(names.map(|(_, l)| l.name.clone()).collect());
+            }
+            desc.materials.push(material);
         }
         let mut members = Vec::new();
         for (i, o) in self.objects.drain(..).enumerate() {

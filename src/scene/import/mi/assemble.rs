@@ -1,0 +1,621 @@
+//! From the statements to the description: the instance tree is walked from the render
+//! root (object space: transforms composed in f64; camera space: none), each camera and
+//! light instance becomes a camera or light named after the instance, objects with several
+//! polygon materials become one object per material under a group of the object's name,
+//! and materials' light lists are resolved against the light instances.
+
+use std::collections::{HashMap, HashSet};
+use std::f64::consts::PI;
+
+use glam::{DMat4, DVec3};
+
+use super::super::rib::{Located, LocatedProblem, Pos, Problem};
+use super::model::{AreaShape, Flags, LightModel, RawLight, RawObject, RawScene, Space};
+use super::statements::Reader;
+use super::MiScene;
+use crate::scene::desc::{
+    CameraDesc, GroupDesc, InstanceDesc, LightDesc, LightKindDesc, MeshDesc, ObjectDesc,
+    PlacementDesc, RenderDesc, SceneDesc, TransformDesc, M4, V3,
+};
+use crate::scene::suggest::closest;
+
+/// Deepest instance-group nesting followed (a guard against cycles).
+const MAX_DEPTH: usize = 64;
+
+struct Out {
+    /// Every element name defined, including elements that failed (already reported).
+    defined: HashSet<String>,
+    desc: SceneDesc,
+    paths: Vec<(String, Located)>,
+    problems: Vec<LocatedProblem>,
+}
+
+impl Out {
+    fn report(&mut self, at: &Located, problem: Problem) {
+        let _ = at.pos;
+        self.problems.push(LocatedProblem {
+            file: at.file.clone(),
+            problem: Problem {
+                pos: at.pos,
+                ..problem
+            },
+        });
+    }
+
+    fn error(&mut self, at: &Located, message: impl Into<String>) {
+        self.report(at, Problem::error(Pos::default(), message));
+    }
+
+    fn warn(&mut self, at: &Located, message: impl Into<String>) {
+        self.report(at, Problem::warning(Pos::default(), message));
+    }
+
+    fn unknown(&mut self, at: &Located, what: &str, name: &str, known: Vec<&str>) {
+        if self.defined.contains(name) {
+            return; // the element failed and was reported where it is written
+        }
+        let mut p = Problem::error(Pos::default(), format!("unknown {what} \"{name}\""));
+        if let Some(s) = closest(name, known) {
+            p = p.with_help(format!("did you mean \"{s}\"?"));
+        }
+        self.report(at, p);
+    }
+}
+
+/// The mental ray `transform` (world → object, row vectors) as `world_from_object`.
+pub fn world_from_object(m: &[f64; 16]) -> Option<DMat4> {
+    // Read column by column, the row-major row-vector matrix is its transpose: the
+    // column-vector `object_from_world`.
+    let object_from_world = DMat4::from_cols_array(m);
+    let det = object_from_world.determinant();
+    (det.is_finite() && det.abs() > 1e-12).then(|| object_from_world.inverse())
+}
+
+fn to_m4(m: DMat4) -> M4 {
+    m.transpose().to_cols_array_2d()
+}
+
+fn v3(v: DVec3) -> V3 {
+    (v.x, v.y, v.z)
+}
+
+fn dv(v: V3) -> DVec3 {
+    DVec3::new(v.0, v.1, v.2)
+}
+
+/// Builds the description from everything read.
+pub fn assemble(reader: Reader) -> Result<MiScene, Vec<LocatedProblem>> {
+    let Reader {
+        raw,
+        problems,
+        root,
+        defined,
+        ..
+    } = reader;
+    let mut out = Out {
+        defined: defined.into_keys().collect(),
+        desc: SceneDesc::default(),
+        paths: Vec::new(),
+        problems,
+    };
+    build(&raw, &root, &mut out);
+    let (errors, warnings): (Vec<_>, Vec<_>) =
+        out.problems.into_iter().partition(|p| !p.problem.warning);
+    if !errors.is_empty() {
+        return Err(errors);
+    }
+    Ok(MiScene {
+        desc: out.desc,
+        paths: out.paths,
+        warnings,
+    })
+}
+
+fn build(raw: &RawScene, root: &Located, out: &mut Out) {
+    let Some(render) = &raw.render else {
+        out.report(
+            root,
+            Problem::error(
+                Pos::default(),
+                "the file has no render statement: nothing to render",
+            )
+            .with_help(
+                "end the scene with render \"root_instgroup\" \"camera_instance\" \"options\"",
+            ),
+        );
+        return;
+    };
+    let options = match raw.options.get(&render.options.0) {
+        Some(o) => Some(o),
+        None => {
+            out.unknown(
+                &render.options.1,
+                "options",
+                &render.options.0,
+                raw.options.keys().map(String::as_str).collect(),
+            );
+            None
+        }
+    };
+    let space = options.map_or(Space::Camera, |o| o.space);
+    if let Some(o) = options {
+        out.desc.options = Some(o.desc.clone());
+        out.paths.push(("options".into(), o.at.clone()));
+    }
+    let instances: HashMap<&str, usize> = raw
+        .instances
+        .iter()
+        .enumerate()
+        .map(|(i, (n, _))| (n.as_str(), i))
+        .collect();
+    let groups: HashMap<&str, usize> = raw
+        .groups
+        .iter()
+        .enumerate()
+        .map(|(i, (n, _))| (n.as_str(), i))
+        .collect();
+    let objects: HashMap<&str, usize> = raw
+        .objects
+        .iter()
+        .enumerate()
+        .map(|(i, (n, _))| (n.as_str(), i))
+        .collect();
+    if !groups.contains_key(render.root.0.as_str()) {
+        out.unknown(
+            &render.root.1,
+            "instgroup",
+            &render.root.0,
+            groups.keys().copied().collect(),
+        );
+        return;
+    }
+
+    // Walk the tree: cameras and lights with their composed transforms.
+    let mut walk = Walk {
+        raw,
+        instances: &instances,
+        groups: &groups,
+        space,
+        cameras: Vec::new(),
+        lights: Vec::new(),
+        visiting: HashSet::new(),
+    };
+    walk.group(
+        render.root.0.as_str(),
+        DMat4::IDENTITY,
+        0,
+        &render.root.1,
+        out,
+    );
+    let (cameras, lights) = (walk.cameras, walk.lights);
+
+    for (name, cam, w, at) in cameras {
+        let i = out.desc.cameras.len();
+        out.paths.push((format!("cameras[{i}]"), at));
+        out.desc.cameras.push(CameraDesc {
+            name,
+            fov_y: cam.fov_y,
+            resolution: cam.resolution,
+            aspect: cam.aspect,
+            placement: PlacementDesc::Matrix(to_m4(w)),
+            outputs: cam.outputs.clone(),
+            imager: None,
+            lens: Vec::new(),
+            atmosphere: None,
+        });
+        if out.desc.environment.is_none() {
+            out.desc.environment = cam.environment.clone();
+        }
+    }
+    let shadows = options.is_none_or(|o| o.shadows);
+    for (name, light, w, at) in lights {
+        match light_desc(name.clone(), light, w, shadows, &at, out) {
+            Some(desc) => {
+                let i = out.desc.lights.len();
+                out.paths.push((format!("lights[{i}]"), at));
+                out.desc.lights.push(desc);
+            }
+            None => {
+                out.defined.insert(name);
+            }
+        }
+    }
+    let light_names: Vec<String> = out.desc.lights.iter().map(|l| l.name.clone()).collect();
+
+    for (name, m) in &raw.materials {
+        let mut desc = m.desc.clone();
+        if let Some(list) = &m.lights {
+            let mut names = Vec::new();
+            for (l, at) in list {
+                if light_names.contains(l) {
+                    names.push(l.clone());
+                } else if raw.lights.contains_key(l) {
+                    out.report(
+                        at,
+                        Problem::error(Pos::default(), format!("material \"{name}\" lists light \"{l}\", which is not instanced under the render root"))
+                            .with_help("lights lists name light instances"),
+                    );
+                } else {
+                    out.unknown(
+                        at,
+                        "light instance",
+                        l,
+                        light_names.iter().map(String::as_str).collect(),
+                    );
+                }
+            }
+            desc.lights = Some(if m.exclusive {
+                light_names
+                    .iter()
+                    .filter(|l| !names.contains(l))
+                    .cloned()
+                    .collect()
+            } else {
+                names
+            });
+        }
+        let i = out.desc.materials.len();
+        out.paths.push((format!("materials[{i}]"), m.at.clone()));
+        out.desc.materials.push(desc);
+    }
+    let material_names: Vec<&str> = raw.materials.iter().map(|(n, _)| n.as_str()).collect();
+
+    for (name, obj) in &raw.objects {
+        objects_of(name, obj, &material_names, out);
+    }
+    for (name, inst) in &raw.instances {
+        let placed_object = objects.contains_key(inst.of.as_str());
+        let placed_group = groups.contains_key(inst.of.as_str());
+        if !placed_object && !placed_group {
+            let known_elsewhere =
+                raw.cameras.contains_key(&inst.of) || raw.lights.contains_key(&inst.of);
+            if !known_elsewhere {
+                let mut known: Vec<&str> = objects.keys().copied().collect();
+                known.extend(groups.keys().copied());
+                known.extend(raw.cameras.keys().map(String::as_str));
+                known.extend(raw.lights.keys().map(String::as_str));
+                out.unknown(&inst.of_at, "element", &inst.of, known);
+            }
+            continue;
+        }
+        warn_flags(&inst.flags, &inst.at, out);
+        let transform = match (&inst.transform, space) {
+            (Some(m), Space::Object) => match world_from_object(m) {
+                Some(w) => vec![TransformDesc::Matrix(to_m4(w))],
+                None => {
+                    let at = inst.transform_at.clone().unwrap_or(inst.at.clone());
+                    out.error(
+                        &at,
+                        format!("the transform of instance \"{name}\" is singular"),
+                    );
+                    continue;
+                }
+            },
+            _ => Vec::new(),
+        };
+        let material = match &inst.material {
+            Some((m, at)) if !material_names.contains(&m.as_str()) => {
+                out.unknown(at, "material", m, material_names.clone());
+                None
+            }
+            other => other.as_ref().map(|(m, _)| m.clone()),
+        };
+        let i = out.desc.instances.len();
+        out.paths.push((format!("instances[{i}]"), inst.at.clone()));
+        out.desc.instances.push(InstanceDesc {
+            name: name.clone(),
+            of: inst.of.clone(),
+            transform,
+            material,
+            bake: None,
+            caustic: None,
+            globillum: None,
+        });
+    }
+    for (name, g) in &raw.groups {
+        let mut members = Vec::new();
+        for (m, at) in &g.members {
+            match instances.get(m.as_str()).map(|&i| &raw.instances[i].1) {
+                Some(inst)
+                    if objects.contains_key(inst.of.as_str())
+                        || groups.contains_key(inst.of.as_str()) =>
+                {
+                    members.push(m.clone())
+                }
+                Some(_) => {}
+                None => out.unknown(at, "instance", m, instances.keys().copied().collect()),
+            }
+        }
+        let i = out.desc.groups.len();
+        out.paths.push((format!("groups[{i}]"), g.at.clone()));
+        out.desc.groups.push(GroupDesc {
+            name: name.clone(),
+            members,
+        });
+    }
+    if !out.desc.cameras.iter().any(|c| c.name == render.camera.0) {
+        let known: Vec<String> = out.desc.cameras.iter().map(|c| c.name.clone()).collect();
+        let known = known.iter().map(String::as_str).collect();
+        out.unknown(&render.camera.1, "camera instance", &render.camera.0, known);
+    }
+    out.paths.push(("render".into(), render.at.clone()));
+    out.desc.render = Some(RenderDesc {
+        root: render.root.0.clone(),
+        camera: render.camera.0.clone(),
+    });
+}
+
+fn warn_flags(flags: &Flags, at: &Located, out: &mut Out) {
+    for (name, v) in [
+        ("visible", flags.visible),
+        ("shadow", flags.shadow),
+        ("trace", flags.trace),
+    ] {
+        if v == Some(false) {
+            out.warn(at, format!("\"{name} off\" is read but not yet mapped"));
+        }
+    }
+}
+
+/// One object, or one per polygon material (named `object:material`) under a group named
+/// after the object.
+fn objects_of(name: &str, obj: &RawObject, materials: &[&str], out: &mut Out) {
+    warn_flags(&obj.flags, &obj.at, out);
+    let mut order: Vec<Option<&str>> = Vec::new();
+    for p in &obj.polygons {
+        let m = p.material.as_deref();
+        if let Some(m) = m {
+            if !materials.contains(&m) {
+                out.unknown(&p.at, "material", m, materials.to_vec());
+                return;
+            }
+        }
+        if !order.contains(&m) {
+            order.push(m);
+        }
+    }
+    let single = order.len() == 1;
+    let mut members = Vec::new();
+    for m in &order {
+        let mut remap: HashMap<u32, u32> = HashMap::new();
+        let mut vertices = Vec::new();
+        let mut polygons = Vec::new();
+        for p in obj.polygons.iter().filter(|p| p.material.as_deref() == *m) {
+            let poly = p
+                .vertices
+                .iter()
+                .map(|&v| {
+                    *remap.entry(v).or_insert_with(|| {
+                        vertices.push(obj.vertices[v as usize]);
+                        (vertices.len() - 1) as u32
+                    })
+                })
+                .collect();
+            polygons.push(poly);
+        }
+        let part = if single {
+            name.to_string()
+        } else {
+            format!("{name}:{}", m.unwrap_or("default"))
+        };
+        let i = out.desc.objects.len();
+        out.paths.push((format!("objects[{i}]"), obj.at.clone()));
+        out.desc.objects.push(ObjectDesc {
+            name: part.clone(),
+            mesh: MeshDesc::Inline {
+                vertices,
+                polygons,
+                normals: None,
+                uvs: None,
+            },
+            material: m.map(str::to_string),
+            approximation: None,
+            displacement: None,
+            derivatives: false,
+            caustic: None,
+            globillum: None,
+        });
+        if !single {
+            let i = out.desc.instances.len();
+            out.paths.push((format!("instances[{i}]"), obj.at.clone()));
+            out.desc.instances.push(InstanceDesc {
+                name: part.clone(),
+                of: part.clone(),
+                transform: Vec::new(),
+                material: None,
+                bake: None,
+                caustic: None,
+                globillum: None,
+            });
+            members.push(part);
+        }
+    }
+    if !single {
+        let i = out.desc.groups.len();
+        out.paths.push((format!("groups[{i}]"), obj.at.clone()));
+        out.desc.groups.push(GroupDesc {
+            name: name.to_string(),
+            members,
+        });
+    }
+}
+
+/// A camera or light placed by the walk: instance name, element, `world_from_object`, where.
+type Placed<'a, T> = (String, &'a T, DMat4, Located);
+
+struct Walk<'a> {
+    raw: &'a RawScene,
+    instances: &'a HashMap<&'a str, usize>,
+    groups: &'a HashMap<&'a str, usize>,
+    space: Space,
+    cameras: Vec<Placed<'a, super::model::RawCamera>>,
+    lights: Vec<Placed<'a, RawLight>>,
+    visiting: HashSet<String>,
+}
+
+impl<'a> Walk<'a> {
+    fn group(&mut self, name: &str, w: DMat4, depth: usize, at: &Located, out: &mut Out) {
+        if depth > MAX_DEPTH || !self.visiting.insert(name.to_string()) {
+            out.error(at, format!("instgroup \"{name}\" contains itself"));
+            return;
+        }
+        let g = &self.raw.groups[self.groups[name]].1;
+        for (member, m_at) in &g.members {
+            let Some(&i) = self.instances.get(member.as_str()) else {
+                continue; // reported with the groups
+            };
+            let (iname, inst) = (&self.raw.instances[i].0, &self.raw.instances[i].1);
+            let local = match (&inst.transform, self.space) {
+                (Some(m), Space::Object) => world_from_object(m).unwrap_or(DMat4::IDENTITY),
+                _ => DMat4::IDENTITY,
+            };
+            let w = w * local;
+            if let Some(cam) = self.raw.cameras.get(&inst.of) {
+                self.cameras.push((iname.clone(), cam, w, inst.at.clone()));
+            } else if let Some(light) = self.raw.lights.get(&inst.of) {
+                let name = if self.lights.iter().any(|l| &l.0 == iname) {
+                    format!("{iname}#{}", self.lights.len())
+                } else {
+                    iname.clone()
+                };
+                self.lights.push((name, light, w, inst.at.clone()));
+            } else if self.groups.contains_key(inst.of.as_str()) {
+                self.group(&inst.of, w, depth + 1, m_at, out);
+            }
+        }
+        self.visiting.remove(name);
+    }
+}
+
+/// The light `light` placed by `w`.
+fn light_desc(
+    name: String,
+    light: &RawLight,
+    w: DMat4,
+    shadows: bool,
+    at: &Located,
+    out: &mut Out,
+) -> Option<LightDesc> {
+    let origin = light.origin.map(|o| w.transform_point3(dv(o)));
+    let direction = light.direction.map(|d| w.transform_vector3(dv(d)));
+    let physical = light.inverse_square;
+    let mut color = light.color;
+    let mut samples = None;
+    let scale = |c: V3, k: f64| (c.0 * k, c.1 * k, c.2 * k);
+    let kind = if let Some((shape, n)) = light.area {
+        let o = origin.unwrap_or(w.transform_point3(DVec3::ZERO));
+        samples = Some(n.max(1));
+        let (kind, area) = match shape {
+            AreaShape::Rectangle(e, f) => {
+                let (e, f) = (w.transform_vector3(dv(e)), w.transform_vector3(dv(f)));
+                let kind = LightKindDesc::Rect {
+                    corner: v3(o - 0.5 * (e + f)),
+                    edge_u: v3(e),
+                    edge_v: v3(f),
+                };
+                (kind, e.cross(f).length())
+            }
+            AreaShape::Disc(n, r) => (
+                LightKindDesc::Disc {
+                    center: v3(o),
+                    normal: v3(w.transform_vector3(dv(n))),
+                    radius: r,
+                },
+                PI * r * r,
+            ),
+            AreaShape::Sphere(r) => (
+                LightKindDesc::Sphere {
+                    center: v3(o),
+                    radius: r,
+                },
+                4.0 * PI * r * r,
+            ),
+            AreaShape::Cylinder(a, r) => {
+                let a = w.transform_vector3(dv(a));
+                (
+                    LightKindDesc::Cylinder {
+                        start: v3(o - 0.5 * a),
+                        end: v3(o + 0.5 * a),
+                        radius: r,
+                    },
+                    2.0 * PI * r * a.length(),
+                )
+            }
+        };
+        // Area lights are physical: the same power as the point light of this colour.
+        if area > 0.0 {
+            color = scale(color, 1.0 / (PI * area));
+        }
+        kind
+    } else {
+        let distant = light.model == LightModel::Infinite || origin.is_none();
+        match (origin, direction, light.spread) {
+            (_, Some(d), _) if distant => LightKindDesc::Directional { direction: v3(d) },
+            (Some(p), Some(d), Some(spread)) => {
+                if !(-1.0..1.0).contains(&spread) || spread < 0.0 {
+                    out.error(at, format!("light \"{name}\": spread must be the cosine of the cone, in [0, 1), found {spread}"));
+                    return None;
+                }
+                let outer = spread.acos().to_degrees();
+                let inner = match light.model {
+                    LightModel::Spot { cone: Some(c) } if c > spread => {
+                        c.min(1.0).acos().to_degrees()
+                    }
+                    _ => outer,
+                };
+                if physical {
+                    color = scale(color, 1.0 / (4.0 * PI));
+                }
+                LightKindDesc::Spot {
+                    position: v3(p),
+                    target: v3(p + d),
+                    cone_angle: outer,
+                    penumbra: outer - inner,
+                    beam_distribution: 0.0,
+                }
+            }
+            (Some(p), _, _) => {
+                if light.model == LightModel::Infinite {
+                    out.error(
+                        at,
+                        format!("light \"{name}\": an infinite light needs a direction"),
+                    );
+                    return None;
+                }
+                if physical {
+                    color = scale(color, 1.0 / (4.0 * PI));
+                }
+                LightKindDesc::Point { position: v3(p) }
+            }
+            (None, _, _) => {
+                out.error(
+                    at,
+                    format!("light \"{name}\" has neither origin nor direction"),
+                );
+                return None;
+            }
+        }
+    };
+    let is_delta = !matches!(
+        kind,
+        LightKindDesc::Rect { .. }
+            | LightKindDesc::Disc { .. }
+            | LightKindDesc::Sphere { .. }
+            | LightKindDesc::Cylinder { .. }
+    );
+    let directional = matches!(kind, LightKindDesc::Directional { .. });
+    Some(LightDesc {
+        name,
+        kind,
+        color,
+        intensity: 1.0,
+        shadows: shadows && light.shadows,
+        samples,
+        visible: light.visible && !is_delta,
+        attenuation: if directional { None } else { light.attenuation },
+        inverse_square: physical || !is_delta || directional,
+        energy: None,
+        caustic_photons: None,
+        globillum_photons: None,
+    })
+}

@@ -1,0 +1,756 @@
+//! The scene-element blocks other than geometry: `options`, `camera`, `light`, `material`,
+//! `declare` (`phenomenon` with its `shader`s and `root`; native `shader` declarations are
+//! skipped) and top-level named `shader`s.
+//!
+//! Statements that are read but not mapped give located warnings; photon statements (light
+//! `energy`, `caustic photons`, `globillum photons`, `photonmap file`, material `photon`
+//! shaders) are read and reported "read but not yet mapped".
+
+use super::super::rib::{Pos, Problem};
+use super::cursor::Cursor;
+use super::lexer::{Tok, Token};
+use super::model::{AreaShape, RawCamera, RawLight, RawMaterial, RawOptions, Space};
+use super::shaders;
+use super::statements::Reader;
+use crate::scene::desc::{
+    FaceDesc, FormatDesc, MaterialDesc, OptionsDesc, OutputDesc, PassDesc, SamplesDesc,
+};
+use crate::scene::suggest::closest;
+
+fn name_of(c: &mut Cursor, what: &str) -> Option<(String, Pos)> {
+    c.string(&format!("the name of the {what}"))
+}
+
+/// Reports the word at the cursor as not part of `block`, with a suggestion from `known`,
+/// then skips it and its arguments.
+fn unknown(c: &mut Cursor, block: &str, known: &[&str]) {
+    let Some(t) = c.advance() else { return };
+    let shown = t.tok.describe();
+    let mut p = Problem::error(t.pos, format!("unexpected {shown} in {block}"));
+    if let Tok::Word(w) = &t.tok {
+        if let Some(s) = closest(w, known.iter().copied()) {
+            p = p.with_help(format!("did you mean \"{s}\"?"));
+        }
+    }
+    c.report(p);
+    c.skip_arguments();
+}
+
+const OPTIONS: &[&str] = &[
+    "samples",
+    "contrast",
+    "trace",
+    "face",
+    "shadow",
+    "object",
+    "camera",
+    "caustic",
+    "globillum",
+    "finalgather",
+    "photonmap",
+    "photon",
+    "diagnostic",
+    "filter",
+    "scanline",
+    "jitter",
+    "lens",
+    "volume",
+    "geometry",
+    "displace",
+    "output",
+    "end",
+];
+
+/// `options "name" … end options`.
+pub fn options(r: &mut Reader, c: &mut Cursor, open: Pos) {
+    let Some((name, pos)) = name_of(c, "options") else {
+        c.skip_to_end("options", open);
+        return;
+    };
+    let fresh = r.define(c, &name, pos);
+    let mut o = RawOptions {
+        at: c.located(open),
+        desc: OptionsDesc::default(),
+        space: Space::Camera,
+        shadows: true,
+    };
+    let mut contrast = (0.1, 0.1, 0.1);
+    let mut samples: Option<(i64, i64)> = None;
+    loop {
+        let Some(t) = c.block_token("options", open) else {
+            return;
+        };
+        let Tok::Word(w) = &t.tok else {
+            unknown(c, "options", OPTIONS);
+            continue;
+        };
+        if w == "end" {
+            break;
+        }
+        c.advance();
+        match w.as_str() {
+            "samples" => {
+                let Some(a) = c.number("samples") else {
+                    continue;
+                };
+                let b = if c.at_number() {
+                    c.number("samples").unwrap_or(a)
+                } else {
+                    a
+                };
+                samples = Some((a.round() as i64, b.round() as i64));
+            }
+            "contrast" => {
+                let Some(v) = c.numbers(3, "contrast") else {
+                    continue;
+                };
+                contrast = (v[0], v[1], v[2]);
+                if c.at_number() {
+                    c.advance();
+                }
+            }
+            "trace" => {
+                if c.eat_word("depth") {
+                    let Some(a) = c.count("trace depth") else {
+                        continue;
+                    };
+                    let b = if c.at_number() {
+                        c.count("trace depth").unwrap_or(a)
+                    } else {
+                        a
+                    };
+                    let s = if c.at_number() {
+                        c.count("trace depth").unwrap_or(a + b)
+                    } else {
+                        a + b
+                    };
+                    o.desc.reflection_depth = a;
+                    o.desc.refraction_depth = b;
+                    o.desc.max_depth = s.max(1);
+                } else {
+                    c.switch();
+                }
+            }
+            "face" => {
+                if c.eat_word("both") {
+                    o.desc.face = FaceDesc::Both;
+                } else if c.eat_word("front") {
+                    o.desc.face = FaceDesc::Front;
+                } else if c.eat_word("back") {
+                    c.warn(
+                        t.pos,
+                        "\"face back\" is not supported; front faces are rendered",
+                    );
+                } else {
+                    let (p, f) = (
+                        c.pos(),
+                        c.peek()
+                            .map_or("the end of the file".into(), |t| t.tok.describe()),
+                    );
+                    c.error(
+                        p,
+                        format!("expected front, back or both after face, found {f}"),
+                    );
+                }
+            }
+            "shadow" => {
+                if c.at_word("sort") || c.at_word("segments") {
+                    c.advance();
+                } else {
+                    o.shadows = c.switch();
+                }
+            }
+            "object" | "camera" => {
+                if c.eat_word("space") {
+                    o.space = if w == "object" {
+                        Space::Object
+                    } else {
+                        Space::Camera
+                    };
+                } else {
+                    let p = c.pos();
+                    c.error(p, format!("expected \"space\" after \"{w}\""));
+                }
+            }
+            "caustic" => caustic_option(c, t.pos),
+            "globillum" => {
+                c.eat_word("accuracy");
+                c.skip_arguments();
+                c.warn(t.pos, "\"globillum\" is read but not yet mapped");
+            }
+            "photonmap" | "photon" | "finalgather" | "diagnostic" => {
+                while c.at_word("file")
+                    || c.at_word("trace")
+                    || c.at_word("depth")
+                    || c.at_word("rebuild")
+                    || c.at_word("grid")
+                    || c.at_word("photon")
+                    || c.at_word("object")
+                    || c.at_word("world")
+                    || c.at_word("density")
+                    || c.at_word("irradiance")
+                    || c.at_word("accuracy")
+                    || c.at_word("only")
+                    || c.at_word("samples")
+                {
+                    c.advance();
+                    c.skip_arguments();
+                }
+                c.skip_arguments();
+                c.warn(t.pos, format!("\"{w}\" is read but not yet mapped"));
+            }
+            "filter" | "scanline" | "jitter" | "lens" | "volume" | "geometry" | "displace"
+            | "output" => {
+                while c.at_word("box")
+                    || c.at_word("triangle")
+                    || c.at_word("gauss")
+                    || c.at_word("mitchell")
+                    || c.at_word("lanczos")
+                    || c.at_word("rapid")
+                {
+                    c.advance();
+                }
+                c.skip_arguments();
+                c.warn(t.pos, format!("option \"{w}\" is read but not mapped"));
+            }
+            other => {
+                let mut p = Problem::error(t.pos, format!("unknown option \"{other}\""));
+                if let Some(s) = closest(other, OPTIONS.iter().copied()) {
+                    p = p.with_help(format!("did you mean \"{s}\"?"));
+                }
+                c.report(p);
+                c.skip_arguments();
+            }
+        }
+    }
+    c.expect_end("options", open);
+    if let Some((min, max)) = samples {
+        // mental ray counts in powers of 4: `samples n` is 4ⁿ per pixel (below 0: one).
+        let spp = |e: i64| 4u64.pow(e.clamp(0, 5) as u32);
+        o.desc.samples = if max > min.max(0) {
+            SamplesDesc::Adaptive {
+                min: spp(min),
+                max: spp(max),
+                contrast,
+            }
+        } else {
+            SamplesDesc::Fixed(spp(max))
+        };
+    }
+    if fresh {
+        r.raw.options.insert(name, o);
+    }
+}
+
+fn caustic_option(c: &mut Cursor, at: Pos) {
+    for w in ["accuracy", "filter", "box", "cone", "gauss", "on", "off"] {
+        c.eat_word(w);
+    }
+    c.eat_word("cone");
+    c.skip_arguments();
+    c.warn(at, "\"caustic\" is read but not yet mapped");
+}
+
+const CAMERA: &[&str] = &[
+    "frame",
+    "output",
+    "focal",
+    "aperture",
+    "aspect",
+    "resolution",
+    "environment",
+    "lens",
+    "volume",
+    "clip",
+    "offset",
+    "window",
+    "end",
+];
+
+/// `camera "name" … end camera`.
+pub fn camera(r: &mut Reader, c: &mut Cursor, open: Pos) {
+    let Some((name, pos)) = name_of(c, "camera") else {
+        c.skip_to_end("camera", open);
+        return;
+    };
+    let fresh = r.define(c, &name, pos);
+    let (mut focal, mut aperture) = (1.0f64, 1.0f64);
+    let mut cam = RawCamera {
+        at: c.located(open),
+        fov_y: 0.0,
+        resolution: (768, 576),
+        aspect: None,
+        outputs: Vec::new(),
+        environment: None,
+    };
+    loop {
+        let Some(t) = c.block_token("camera", open) else {
+            return;
+        };
+        let Tok::Word(w) = &t.tok else {
+            unknown(c, "camera", CAMERA);
+            continue;
+        };
+        if w == "end" {
+            break;
+        }
+        c.advance();
+        match w.as_str() {
+            "frame" => c.skip_arguments(),
+            "focal" => {
+                if c.eat_word("infinity") {
+                    c.warn(
+                        t.pos,
+                        "orthographic cameras (focal infinity) are not supported",
+                    );
+                } else if let Some(v) = c.number("focal") {
+                    focal = v;
+                }
+            }
+            "aperture" => {
+                if let Some(v) = c.number("aperture") {
+                    aperture = v;
+                }
+            }
+            "aspect" => cam.aspect = c.number("aspect"),
+            "resolution" => {
+                let (Some(w), Some(h)) = (c.count("resolution"), c.count("resolution")) else {
+                    continue;
+                };
+                cam.resolution = (w, h);
+            }
+            "output" => output(c, &mut cam.outputs),
+            "environment" => {
+                if let Some(call) = c.shader_call("the environment shader") {
+                    cam.environment = shaders::environment(c, &call, &r.raw.shaders);
+                }
+            }
+            "lens" | "volume" => {
+                if let Some(call) = c.shader_call(&format!("the {w} shader")) {
+                    c.warn(
+                        call.pos,
+                        format!("{w} shader \"{}\" is not mapped", call.name),
+                    );
+                }
+            }
+            "clip" | "offset" | "window" => {
+                c.skip_arguments();
+                c.warn(t.pos, format!("camera \"{w}\" is read but not mapped"));
+            }
+            other => {
+                let mut p = Problem::error(t.pos, format!("unknown camera statement \"{other}\""));
+                if let Some(s) = closest(other, CAMERA.iter().copied()) {
+                    p = p.with_help(format!("did you mean \"{s}\"?"));
+                }
+                c.report(p);
+                c.skip_arguments();
+            }
+        }
+    }
+    c.expect_end("camera", open);
+    if focal <= 0.0 || aperture <= 0.0 {
+        c.error(
+            open,
+            format!(
+                "camera \"{name}\" needs focal > 0 and aperture > 0, found {focal} and {aperture}"
+            ),
+        );
+        return;
+    }
+    let aspect = cam
+        .aspect
+        .unwrap_or(f64::from(cam.resolution.0.max(1)) / f64::from(cam.resolution.1.max(1)));
+    // The aperture is the film width; the film height is aperture / aspect.
+    cam.fov_y = 2.0 * (aperture / (2.0 * focal * aspect)).atan().to_degrees();
+    if fresh {
+        r.raw.cameras.insert(name, cam);
+    }
+}
+
+/// `output "type" ["format"] "file"`: rgb/rgba → colour (plus alpha), z → depth, n → normals,
+/// tag → object ids. PNG and EXR are written; other formats go to a PNG (colour) or EXR
+/// (data) of the same stem, with a warning.
+fn output(c: &mut Cursor, outputs: &mut Vec<OutputDesc>) {
+    let Some((kind, kind_pos)) = c.string("the output type") else {
+        return;
+    };
+    let Some((mut file, file_pos)) = c.string("the output file") else {
+        return;
+    };
+    if c.at_string() {
+        file = c.string("the output file").map_or(file, |f| f.0);
+    }
+    let passes = match kind.as_str() {
+        "rgb" | "rgb_h" | "rgb_f" | "rgb_16" | "rgb_fp" => vec![PassDesc::Beauty],
+        "rgba" | "rgba_h" | "rgba_f" | "rgba_16" | "rgba_fp" => {
+            vec![PassDesc::Beauty, PassDesc::Alpha]
+        }
+        "z" => vec![PassDesc::Depth],
+        "n" => vec![PassDesc::Normal],
+        "tag" => vec![PassDesc::ObjectId],
+        other => {
+            c.report(
+                Problem::error(
+                    kind_pos,
+                    format!("output type \"{other}\" is not supported"),
+                )
+                .with_help("expected \"rgb\", \"rgba\", \"z\", \"n\" or \"tag\""),
+            );
+            return;
+        }
+    };
+    let colour = passes == [PassDesc::Beauty];
+    let lower = file.to_ascii_lowercase();
+    let format = if lower.ends_with(".png") && colour {
+        FormatDesc::Png
+    } else if lower.ends_with(".exr") {
+        FormatDesc::Exr
+    } else {
+        let stem = file
+            .rsplit_once('.')
+            .map_or(file.as_str(), |(s, _)| s)
+            .to_string();
+        let (ext, format) = if colour {
+            ("png", FormatDesc::Png)
+        } else {
+            ("exr", FormatDesc::Exr)
+        };
+        let new = format!("{stem}.{ext}");
+        c.warn(
+            file_pos,
+            format!("output \"{file}\" is written as \"{new}\" (PNG and EXR files are written)"),
+        );
+        file = new;
+        format
+    };
+    outputs.push(OutputDesc {
+        file,
+        format: Some(format),
+        passes: Some(passes),
+    });
+}
+
+const LIGHT: &[&str] = &[
+    "origin",
+    "direction",
+    "spread",
+    "rectangle",
+    "disc",
+    "sphere",
+    "cylinder",
+    "visible",
+    "energy",
+    "caustic",
+    "globillum",
+    "exponent",
+    "shadowmap",
+    "end",
+];
+
+fn vec3(c: &mut Cursor, what: &str) -> Option<(f64, f64, f64)> {
+    c.numbers(3, what).map(|v| (v[0], v[1], v[2]))
+}
+
+fn samples(c: &mut Cursor) -> u32 {
+    if !c.at_number() {
+        return 16;
+    }
+    let u = c.count("area light samples").unwrap_or(4).max(1);
+    let v = if c.at_number() {
+        c.count("area light samples").unwrap_or(u).max(1)
+    } else {
+        u
+    };
+    c.skip_arguments();
+    u.saturating_mul(v)
+}
+
+/// `light "name" "shader" (…) … end light`.
+pub fn light(r: &mut Reader, c: &mut Cursor, open: Pos) {
+    let Some((name, pos)) = name_of(c, "light") else {
+        c.skip_to_end("light", open);
+        return;
+    };
+    let fresh = r.define(c, &name, pos);
+    let Some(call) = c.shader_call("the light shader") else {
+        c.skip_to_end("light", open);
+        return;
+    };
+    let mapped = shaders::light(c, &call);
+    let mut origin = None;
+    let mut direction = None;
+    let mut spread = None;
+    let mut area = None;
+    let mut visible = false;
+    loop {
+        let Some(t) = c.block_token("light", open) else {
+            return;
+        };
+        let Tok::Word(w) = &t.tok else {
+            unknown(c, "light", LIGHT);
+            continue;
+        };
+        if w == "end" {
+            break;
+        }
+        c.advance();
+        match w.as_str() {
+            "origin" => origin = vec3(c, "origin"),
+            "direction" => direction = vec3(c, "direction"),
+            "spread" => spread = c.number("spread"),
+            "rectangle" => {
+                let (Some(e), Some(f)) = (vec3(c, "rectangle"), vec3(c, "rectangle")) else {
+                    continue;
+                };
+                area = Some((AreaShape::Rectangle(e, f), samples(c)));
+            }
+            "disc" => {
+                let (Some(n), Some(radius)) = (vec3(c, "disc"), c.number("disc radius")) else {
+                    continue;
+                };
+                area = Some((AreaShape::Disc(n, radius), samples(c)));
+            }
+            "sphere" => {
+                let Some(radius) = c.number("sphere radius") else {
+                    continue;
+                };
+                area = Some((AreaShape::Sphere(radius), samples(c)));
+            }
+            "cylinder" => {
+                let (Some(a), Some(radius)) = (vec3(c, "cylinder"), c.number("cylinder radius"))
+                else {
+                    continue;
+                };
+                area = Some((AreaShape::Cylinder(a, radius), samples(c)));
+            }
+            "visible" => visible = c.switch(),
+            "energy" | "exponent" | "shadowmap" => {
+                c.skip_arguments();
+                c.warn(t.pos, format!("light \"{w}\" is read but not yet mapped"));
+            }
+            "caustic" | "globillum" => {
+                c.eat_word("photons");
+                c.skip_arguments();
+                c.warn(t.pos, format!("\"{w} photons\" is read but not yet mapped"));
+            }
+            other => {
+                let mut p = Problem::error(t.pos, format!("unknown light statement \"{other}\""));
+                if let Some(s) = closest(other, LIGHT.iter().copied()) {
+                    p = p.with_help(format!("did you mean \"{s}\"?"));
+                }
+                c.report(p);
+                c.skip_arguments();
+            }
+        }
+    }
+    c.expect_end("light", open);
+    let Some(m) = mapped else { return };
+    if fresh {
+        r.raw.lights.insert(
+            name,
+            RawLight {
+                at: c.located(open),
+                model: m.model,
+                color: m.color,
+                shadows: m.shadows,
+                inverse_square: m.physical,
+                attenuation: m.attenuation,
+                origin,
+                direction,
+                spread,
+                area,
+                visible,
+            },
+        );
+    }
+}
+
+const MATERIAL: &[&str] = &[
+    "opaque",
+    "shadow",
+    "photon",
+    "volume",
+    "environment",
+    "displace",
+    "contour",
+    "end",
+];
+
+/// `material "name" [opaque] "shader" (…) [shadow|photon|volume|environment|displace|contour
+/// "shader" (…)] end material`.
+pub fn material(r: &mut Reader, c: &mut Cursor, open: Pos) {
+    let Some((name, pos)) = name_of(c, "material") else {
+        c.skip_to_end("material", open);
+        return;
+    };
+    let fresh = r.define(c, &name, pos);
+    c.eat_word("opaque");
+    let Some(call) = c.shader_call("the material shader") else {
+        c.skip_to_end("material", open);
+        return;
+    };
+    let mapped = shaders::material(c, &call, &r.raw.shaders, 0);
+    loop {
+        let Some(t) = c.block_token("material", open) else {
+            return;
+        };
+        let Tok::Word(w) = &t.tok else {
+            unknown(c, "material", MATERIAL);
+            continue;
+        };
+        if w == "end" {
+            break;
+        }
+        c.advance();
+        match w.as_str() {
+            "opaque" => {}
+            "shadow" | "photon" | "volume" | "environment" | "displace" | "contour" => {
+                if let Some(call) = c.shader_call(&format!("the {w} shader")) {
+                    let msg = if w == "photon" {
+                        format!("photon shader \"{}\" is read but not yet mapped", call.name)
+                    } else {
+                        format!("{w} shader \"{}\" is not mapped", call.name)
+                    };
+                    c.warn(call.pos, msg);
+                }
+            }
+            other => {
+                let mut p =
+                    Problem::error(t.pos, format!("unknown material statement \"{other}\""));
+                if let Some(s) = closest(other, MATERIAL.iter().copied()) {
+                    p = p.with_help(format!("did you mean \"{s}\"?"));
+                }
+                c.report(p);
+                c.skip_arguments();
+            }
+        }
+    }
+    c.expect_end("material", open);
+    let Some((shader, lights, exclusive)) = mapped else {
+        return;
+    };
+    if fresh {
+        let desc = MaterialDesc {
+            name: name.clone(),
+            shader,
+            two_sided: false,
+            emission: (0.0, 0.0, 0.0),
+            bind: Default::default(),
+            bump: None,
+            interior: None,
+            lights: None,
+            contour: None,
+        };
+        r.raw.materials.push((
+            name,
+            RawMaterial {
+                at: c.located(open),
+                desc,
+                lights,
+                exclusive,
+            },
+        ));
+    }
+}
+
+/// `declare phenomenon type "name" (…) shader … root = "…" … end declare`, or `declare
+/// shader … end declare` (a native shader's declaration: skipped).
+pub fn declare(r: &mut Reader, c: &mut Cursor, open: Pos) {
+    if !c.eat_word("phenomenon") {
+        c.skip_to_end("declare", open);
+        return;
+    }
+    // The result type: a word, or `struct { … }`.
+    while matches!(
+        c.peek(),
+        Some(Token {
+            tok: Tok::Word(_),
+            ..
+        })
+    ) {
+        c.advance();
+    }
+    if c.eat_punct('{') {
+        while c.peek().is_some() && !c.eat_punct('}') {
+            c.advance();
+        }
+    }
+    let Some((name, pos)) = name_of(c, "phenomenon") else {
+        c.skip_to_end("declare", open);
+        return;
+    };
+    let fresh = r.define(c, &name, pos);
+    // The interface parameter declarations.
+    if c.eat_punct('(') {
+        let mut depth = 1usize;
+        while depth > 0 {
+            match c.advance().map(|t| t.tok) {
+                Some(Tok::Punct('(')) => depth += 1,
+                Some(Tok::Punct(')')) => depth -= 1,
+                None => break,
+                _ => {}
+            }
+        }
+    }
+    let mut shaders = std::collections::HashMap::new();
+    let mut root = None;
+    loop {
+        let Some(t) = c.peek().cloned() else {
+            c.error(
+                open,
+                "\"declare\" block is not closed (expected \"end declare\")",
+            );
+            return;
+        };
+        match &t.tok {
+            Tok::Word(w) if w == "end" => break,
+            Tok::Word(w) if w == "shader" => {
+                c.advance();
+                let Some((sname, _)) = c.string("the shader name") else {
+                    continue;
+                };
+                if let Some(call) = c.shader_call("the shader") {
+                    shaders.insert(sname, call);
+                }
+            }
+            Tok::Word(w) if w == "root" => {
+                c.advance();
+                c.eat_punct('=');
+                root = c.string("the phenomenon root");
+            }
+            _ => {
+                c.advance();
+            }
+        }
+    }
+    c.expect_end("declare", open);
+    let Some((root, root_pos)) = root else {
+        c.error(open, format!("phenomenon \"{name}\" has no root"));
+        return;
+    };
+    let Some(call) = shaders.get(&root).cloned() else {
+        c.error(
+            root_pos,
+            format!("phenomenon root \"{root}\" is not a shader of \"{name}\""),
+        );
+        return;
+    };
+    if fresh {
+        r.raw.shaders.extend(shaders);
+        r.raw.shaders.insert(name, call);
+    }
+}
+
+/// `shader "name" "type" (…)`: a named shader other parameters refer to with `= "name"`.
+pub fn named_shader(r: &mut Reader, c: &mut Cursor) {
+    let Some((name, pos)) = c.string("the shader name") else {
+        return;
+    };
+    let fresh = r.define(c, &name, pos);
+    let Some(call) = c.shader_call("the shader") else {
+        return;
+    };
+    if fresh {
+        r.raw.shaders.insert(name, call);
+    }
+}

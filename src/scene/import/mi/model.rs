@@ -1,0 +1,216 @@
+//! The scene as the statements wrote it, before the instance tree is resolved: one record
+//! per `options`, `camera`, `light`, `material`, `object`, `instance`, `instgroup`, named
+//! `shader` and `declare phenomenon`, each with where it was written.
+
+use std::collections::HashMap;
+
+use super::super::rib::Located;
+use super::cursor::ShaderCall;
+use crate::scene::desc::{EnvironmentDesc, MaterialDesc, OptionsDesc, OutputDesc, V3};
+
+/// Camera space (mental ray's default: instance transformations have no effect) or object
+/// space.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Space {
+    /// Geometry is given in camera space.
+    Camera,
+    /// Geometry is placed by instances.
+    Object,
+}
+
+/// An `options` block.
+#[derive(Debug, Clone)]
+pub struct RawOptions {
+    /// Where the block starts.
+    pub at: Located,
+    /// What maps onto the description's options.
+    pub desc: OptionsDesc,
+    /// `object space` / `camera space`.
+    pub space: Space,
+    /// `shadow off` turns every light's shadows off.
+    pub shadows: bool,
+}
+
+/// A `camera` block.
+#[derive(Debug, Clone)]
+pub struct RawCamera {
+    /// Where the block starts.
+    pub at: Located,
+    /// Vertical field of view, degrees.
+    pub fov_y: f64,
+    /// `resolution w h`.
+    pub resolution: (u32, u32),
+    /// `aspect`, when written.
+    pub aspect: Option<f64>,
+    /// `output` statements.
+    pub outputs: Vec<OutputDesc>,
+    /// `environment` shader, mapped.
+    pub environment: Option<EnvironmentDesc>,
+}
+
+/// What a light shader made of its parameters.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum LightModel {
+    /// `mib_light_point`, `physical_light` without direction: a point.
+    Point,
+    /// A spot: needs `direction` and `spread`; `cone` the inner cosine (penumbra start).
+    Spot {
+        /// Cosine of the angle where the falloff starts (`cone`), if written.
+        cone: Option<f64>,
+    },
+    /// `mib_light_infinite`, `physical_light` with only a direction: distant.
+    Infinite,
+}
+
+/// An area light shape, in the light's object space.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum AreaShape {
+    /// `rectangle ex ey ez  fx fy fz`: edges from a corner at `origin − (e+f)/2`.
+    Rectangle(V3, V3),
+    /// `disc nx ny nz r`.
+    Disc(V3, f64),
+    /// `sphere r`.
+    Sphere(f64),
+    /// `cylinder ax ay az r`: axis from `origin − a/2` to `origin + a/2`.
+    Cylinder(V3, f64),
+}
+
+/// A `light` block.
+#[derive(Debug, Clone)]
+pub struct RawLight {
+    /// Where the block starts.
+    pub at: Located,
+    /// What the shader is.
+    pub model: LightModel,
+    /// Colour (linear RGB), already scaled as the shader's semantics ask.
+    pub color: V3,
+    /// Whether it casts shadows.
+    pub shadows: bool,
+    /// Whether the inverse-square law applies (`physical_light`) or not (`mib_light_*`).
+    pub inverse_square: bool,
+    /// `atten` with `start`/`stop`.
+    pub attenuation: Option<(f64, f64)>,
+    /// `origin`.
+    pub origin: Option<V3>,
+    /// `direction`.
+    pub direction: Option<V3>,
+    /// `spread` (cosine of the outer cone).
+    pub spread: Option<f64>,
+    /// Area shape and its `(u, v)` samples.
+    pub area: Option<(AreaShape, u32)>,
+    /// `visible`.
+    pub visible: bool,
+}
+
+/// A `material` block.
+#[derive(Debug, Clone)]
+pub struct RawMaterial {
+    /// Where the block starts.
+    pub at: Located,
+    /// The material, without its light list.
+    pub desc: MaterialDesc,
+    /// `"lights" [...]` of its shader, with where each name was written.
+    pub lights: Option<Vec<(String, Located)>>,
+    /// `"mode" 2`: the list names the lights to leave out.
+    pub exclusive: bool,
+}
+
+/// One polygon of a group: its material, vertex indices (into the `v` list) and position.
+#[derive(Debug, Clone)]
+pub struct RawPolygon {
+    /// `p "material"`, or the previous polygon's material when omitted.
+    pub material: Option<String>,
+    /// Vertex indices.
+    pub vertices: Vec<u32>,
+    /// Where `p` is.
+    pub at: Located,
+}
+
+/// Visibility flags of an object or instance (`None`: not written, inherited).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Flags {
+    /// `visible`.
+    pub visible: Option<bool>,
+    /// `shadow`.
+    pub shadow: Option<bool>,
+    /// `trace`.
+    pub trace: Option<bool>,
+}
+
+/// An `object` block with its polygon group.
+#[derive(Debug, Clone)]
+pub struct RawObject {
+    /// Where the block starts.
+    pub at: Located,
+    /// Vertex positions (the `v` list resolved against the vector list).
+    pub vertices: Vec<V3>,
+    /// Polygons.
+    pub polygons: Vec<RawPolygon>,
+    /// Flags.
+    pub flags: Flags,
+}
+
+/// An `instance` block.
+#[derive(Debug, Clone)]
+pub struct RawInstance {
+    /// Where the block starts.
+    pub at: Located,
+    /// The element placed.
+    pub of: String,
+    /// Where that name is.
+    pub of_at: Located,
+    /// `transform`: 16 numbers, row by row, world → object with row vectors.
+    pub transform: Option<[f64; 16]>,
+    /// Where `transform` is.
+    pub transform_at: Option<Located>,
+    /// `material "m"` override.
+    pub material: Option<(String, Located)>,
+    /// Flags.
+    pub flags: Flags,
+}
+
+/// An `instgroup` block.
+#[derive(Debug, Clone)]
+pub struct RawGroup {
+    /// Where the block starts.
+    pub at: Located,
+    /// Member instance names and where each is written.
+    pub members: Vec<(String, Located)>,
+}
+
+/// `render "root" "camera" "options"`.
+#[derive(Debug, Clone)]
+pub struct RawRender {
+    /// Where `render` is.
+    pub at: Located,
+    /// Root instance group.
+    pub root: (String, Located),
+    /// Camera instance.
+    pub camera: (String, Located),
+    /// Options block.
+    pub options: (String, Located),
+}
+
+/// Everything the statements of all files wrote, by name (the first definition of a name
+/// wins; a second one is reported).
+#[derive(Debug, Clone, Default)]
+pub struct RawScene {
+    /// `options` blocks.
+    pub options: HashMap<String, RawOptions>,
+    /// `camera` blocks.
+    pub cameras: HashMap<String, RawCamera>,
+    /// `light` blocks.
+    pub lights: HashMap<String, RawLight>,
+    /// `material` blocks, in file order.
+    pub materials: Vec<(String, RawMaterial)>,
+    /// `object` blocks, in file order.
+    pub objects: Vec<(String, RawObject)>,
+    /// `instance` blocks, in file order.
+    pub instances: Vec<(String, RawInstance)>,
+    /// `instgroup` blocks, in file order.
+    pub groups: Vec<(String, RawGroup)>,
+    /// Named shaders (`shader "n" "type" (…)`) and phenomenon roots, by name.
+    pub shaders: HashMap<String, ShaderCall>,
+    /// `render`.
+    pub render: Option<RawRender>,
+}

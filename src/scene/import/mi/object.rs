@@ -1,0 +1,405 @@
+//! Geometry and the instance tree: `object … group … end group end object` (vector list,
+//! `v` references, `p ["material"] i j k …` polygons, flags), `instance … end instance`
+//! (`transform`, `material` override, flags) and `instgroup … end instgroup`.
+//!
+//! Vertex normals and texture references (`v i n j t k`), `approximate` statements and the
+//! `caustic`/`globillum` flags are read and reported as not mapped; free-form surfaces are
+//! an error.
+
+use super::super::rib::{Pos, Problem};
+use super::cursor::Cursor;
+use super::lexer::Tok;
+use super::model::{Flags, RawGroup, RawInstance, RawObject, RawPolygon};
+use super::statements::Reader;
+use crate::scene::suggest::closest;
+
+const OBJECT: &[&str] = &[
+    "visible",
+    "shadow",
+    "trace",
+    "tag",
+    "caustic",
+    "globillum",
+    "box",
+    "max",
+    "group",
+    "basis",
+    "hide",
+    "end",
+];
+
+fn flag(c: &mut Cursor, w: &str, flags: &mut Flags, at: Pos) -> bool {
+    match w {
+        "visible" => flags.visible = Some(c.switch()),
+        "trace" => flags.trace = Some(c.switch()),
+        "shadow" => {
+            if c.at_number() {
+                let v = c.number("shadow").unwrap_or(1.0);
+                flags.shadow = Some(v != 0.0);
+            } else {
+                flags.shadow = Some(c.switch());
+            }
+        }
+        "caustic" | "globillum" => {
+            c.skip_arguments();
+            c.warn(at, format!("\"{w}\" flag is read but not yet mapped"));
+        }
+        "tag" => {
+            c.eat_word("label");
+            c.skip_arguments();
+        }
+        _ => return false,
+    }
+    true
+}
+
+/// `object "name" … end object`.
+pub fn object(r: &mut Reader, c: &mut Cursor, open: Pos) {
+    let Some((name, pos)) = c.string("the name of the object") else {
+        c.skip_to_end("object", open);
+        return;
+    };
+    let fresh = r.define(c, &name, pos);
+    let mut obj = RawObject {
+        at: c.located(open),
+        vertices: Vec::new(),
+        polygons: Vec::new(),
+        flags: Flags::default(),
+    };
+    let mut failed = false;
+    loop {
+        let Some(t) = c.block_token("object", open) else {
+            return;
+        };
+        let Tok::Word(w) = &t.tok else {
+            let found = t.tok.describe();
+            c.error(t.pos, format!("unexpected {found} in object"));
+            c.skip_to_end("object", open);
+            return;
+        };
+        if w == "end" {
+            break;
+        }
+        c.advance();
+        if flag(c, w, &mut obj.flags, t.pos) {
+            continue;
+        }
+        match w.as_str() {
+            "box" => {
+                c.skip_arguments();
+            }
+            "max" => {
+                c.eat_word("displace");
+                c.skip_arguments();
+            }
+            "hide" => {
+                if c.switch() {
+                    obj.flags.visible = Some(false);
+                }
+            }
+            "group" => {
+                if !group(c, &mut obj, t.pos) {
+                    failed = true;
+                }
+            }
+            "basis" | "surface" | "curve" | "connect" => {
+                c.error(t.pos, format!("free-form surfaces (\"{w}\") are not supported; write the object as polygons"));
+                c.skip_to_end("object", open);
+                return;
+            }
+            other => {
+                let mut p = Problem::error(t.pos, format!("unknown object statement \"{other}\""));
+                if let Some(s) = closest(other, OBJECT.iter().copied()) {
+                    p = p.with_help(format!("did you mean \"{s}\"?"));
+                }
+                c.report(p);
+                c.skip_arguments();
+            }
+        }
+    }
+    c.expect_end("object", open);
+    if failed {
+        return;
+    }
+    if obj.polygons.is_empty() {
+        c.error(open, format!("object \"{name}\" has no polygons"));
+        return;
+    }
+    if fresh {
+        r.raw.objects.push((name, obj));
+    }
+}
+
+/// `group … end group`: appends its vertices and polygons to `obj`. False on an error.
+fn group(c: &mut Cursor, obj: &mut RawObject, open: Pos) -> bool {
+    if c.at_string() {
+        // `group "merge" eps` and similar options.
+        c.advance();
+        c.skip_arguments();
+    }
+    let mut vectors: Vec<(f64, f64, f64)> = Vec::new();
+    let base = obj.vertices.len() as u32;
+    let mut vertex_count = 0u32;
+    let mut material: Option<String> = None;
+    let mut warned_refs = false;
+    let mut ok = true;
+    // The vector list.
+    while c.at_number() {
+        let Some(v) = c.numbers(3, "a vector of the group") else {
+            c.skip_to_end("group", open);
+            return false;
+        };
+        vectors.push((v[0], v[1], v[2]));
+    }
+    loop {
+        let Some(t) = c.block_token("group", open) else {
+            return false;
+        };
+        let Tok::Word(w) = &t.tok else {
+            let found = t.tok.describe();
+            c.error(
+                t.pos,
+                format!("unexpected {found} in group (expected v, p or end group)"),
+            );
+            c.skip_to_end("group", open);
+            return false;
+        };
+        if w == "end" {
+            break;
+        }
+        c.advance();
+        match w.as_str() {
+            "v" => {
+                let at = c.pos();
+                let Some(i) = c.count("the vector index of v") else {
+                    ok = false;
+                    continue;
+                };
+                match vectors.get(i as usize) {
+                    Some(p) => obj.vertices.push(*p),
+                    None => {
+                        c.error(
+                            at,
+                            format!(
+                                "vector index {i} is out of range (the group has {} vectors)",
+                                vectors.len()
+                            ),
+                        );
+                        ok = false;
+                        obj.vertices.push((0.0, 0.0, 0.0));
+                    }
+                }
+                vertex_count += 1;
+                while c.at_word("n")
+                    || c.at_word("t")
+                    || c.at_word("d")
+                    || c.at_word("m")
+                    || c.at_word("u")
+                {
+                    let ref_at = c.pos();
+                    c.advance();
+                    c.skip_arguments();
+                    if !warned_refs {
+                        c.warn(
+                            ref_at,
+                            "vertex normal, texture and derivative references are not mapped",
+                        );
+                        warned_refs = true;
+                    }
+                }
+            }
+            "p" | "c" | "cp" => {
+                if c.at_string() {
+                    material = c.string("the polygon material").map(|s| s.0);
+                }
+                let mut indices = Vec::new();
+                while c.at_number() {
+                    let at = c.pos();
+                    let Some(i) = c.count("a polygon vertex index") else {
+                        ok = false;
+                        break;
+                    };
+                    if i >= vertex_count {
+                        c.error(at, format!("vertex index {i} is out of range (the group has {vertex_count} vertices so far)"));
+                        ok = false;
+                    }
+                    indices.push(base + i);
+                }
+                if c.at_word("hole") {
+                    let at = c.pos();
+                    c.error(at, "polygons with holes are not supported");
+                    c.advance();
+                    c.skip_arguments();
+                    ok = false;
+                    continue;
+                }
+                if indices.len() < 3 {
+                    c.error(
+                        t.pos,
+                        format!(
+                            "a polygon needs at least 3 vertices, found {}",
+                            indices.len()
+                        ),
+                    );
+                    ok = false;
+                    continue;
+                }
+                obj.polygons.push(RawPolygon {
+                    material: material.clone(),
+                    vertices: indices,
+                    at: c.located(t.pos),
+                });
+            }
+            "approximate" => {
+                while c.peek().is_some_and(|t| {
+                    matches!(&t.tok, Tok::Word(w) if w != "end" && w != "v" && w != "p")
+                        || matches!(t.tok, Tok::Num(_))
+                }) {
+                    c.advance();
+                }
+                c.warn(
+                    t.pos,
+                    "\"approximate\" is read but not mapped (polygons are used as written)",
+                );
+            }
+            other => {
+                c.report(
+                    Problem::error(t.pos, format!("unknown group statement \"{other}\""))
+                        .with_help("a group holds vectors, then v, p and approximate statements"),
+                );
+                c.skip_to_end("group", open);
+                return false;
+            }
+        }
+    }
+    c.expect_end("group", open);
+    ok
+}
+
+/// `instance "name" "element" … end instance`.
+pub fn instance(r: &mut Reader, c: &mut Cursor, open: Pos) {
+    let Some((name, pos)) = c.string("the name of the instance") else {
+        c.skip_to_end("instance", open);
+        return;
+    };
+    let fresh = r.define(c, &name, pos);
+    let Some((of, of_pos)) = c.string("the element the instance places") else {
+        c.skip_to_end("instance", open);
+        return;
+    };
+    let mut inst = RawInstance {
+        at: c.located(open),
+        of,
+        of_at: c.located(of_pos),
+        transform: None,
+        transform_at: None,
+        material: None,
+        flags: Flags::default(),
+    };
+    loop {
+        let Some(t) = c.block_token("instance", open) else {
+            return;
+        };
+        let Tok::Word(w) = &t.tok else {
+            let found = t.tok.describe();
+            c.error(t.pos, format!("unexpected {found} in instance"));
+            c.skip_to_end("instance", open);
+            return;
+        };
+        if w == "end" {
+            break;
+        }
+        c.advance();
+        if flag(c, w, &mut inst.flags, t.pos) {
+            continue;
+        }
+        match w.as_str() {
+            "transform" => {
+                if c.at_number() {
+                    let Some(m) = c.numbers(16, "the transform (16 numbers)") else {
+                        c.skip_to_end("instance", open);
+                        return;
+                    };
+                    let mut a = [0.0; 16];
+                    a.copy_from_slice(&m);
+                    inst.transform = Some(a);
+                    inst.transform_at = Some(c.located(t.pos));
+                }
+            }
+            "motion" => {
+                c.eat_word("transform");
+                c.eat_word("off");
+                c.skip_arguments();
+                c.warn(t.pos, "motion transforms are not mapped");
+            }
+            "material" => {
+                if c.eat_punct('[') {
+                    let first = c.string("a material name");
+                    while c.peek().is_some() && !c.eat_punct(']') {
+                        c.advance();
+                    }
+                    c.warn(
+                        t.pos,
+                        "a material list on an instance: its first material is used",
+                    );
+                    inst.material = first.map(|(s, p)| (s, c.located(p)));
+                } else if let Some((m, p)) = c.string("the material of the instance") {
+                    inst.material = Some((m, c.located(p)));
+                }
+            }
+            "hide" => {
+                if c.switch() {
+                    inst.flags.visible = Some(false);
+                }
+            }
+            other => {
+                let mut p =
+                    Problem::error(t.pos, format!("unknown instance statement \"{other}\""));
+                let known = [
+                    "transform",
+                    "material",
+                    "visible",
+                    "shadow",
+                    "trace",
+                    "hide",
+                    "tag",
+                    "motion",
+                ];
+                if let Some(s) = closest(other, known) {
+                    p = p.with_help(format!("did you mean \"{s}\"?"));
+                }
+                c.report(p);
+                c.skip_arguments();
+            }
+        }
+    }
+    c.expect_end("instance", open);
+    if fresh {
+        r.raw.instances.push((name, inst));
+    }
+}
+
+/// `instgroup "name" "member" … end instgroup`.
+pub fn instgroup(r: &mut Reader, c: &mut Cursor, open: Pos) {
+    let Some((name, pos)) = c.string("the name of the instgroup") else {
+        c.skip_to_end("instgroup", open);
+        return;
+    };
+    let fresh = r.define(c, &name, pos);
+    let mut members = Vec::new();
+    while c.at_string() {
+        if let Some((m, p)) = c.string("a member") {
+            members.push((m, c.located(p)));
+        }
+    }
+    c.expect_end("instgroup", open);
+    if fresh {
+        r.raw.groups.push((
+            name,
+            RawGroup {
+                at: c.located(open),
+                members,
+            },
+        ));
+    }
+}
