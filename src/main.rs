@@ -741,7 +741,8 @@ fn merge(args: MergeArgs) -> ExitCode {
 /// `stagelight merge` of bake parts: assembles the texels, then bakes the scene's requests
 /// from them (dilation and encoding as a single bake) into `-o DIR`.
 fn merge_bake(args: MergeArgs) -> ExitCode {
-    use stagelight::farm::bake_part::{merge, read_parts};
+    use stagelight::farm::bake_part::merge;
+    use stagelight::farm::bake_part_file::read_parts;
     let merged = match read_parts(&args.parts).and_then(|parts| {
         let header = parts[0].file.header.clone();
         merge(&parts).map(|merged| (header, merged))

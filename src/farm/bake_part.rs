@@ -98,32 +98,6 @@ pub struct LoadedBakePart {
     pub file: BakePartFile,
 }
 
-/// Reads and decodes bake part files; the first unreadable one is the error.
-pub fn read_parts(paths: &[PathBuf]) -> Result<Vec<LoadedBakePart>, String> {
-    let mut parts = Vec::with_capacity(paths.len());
-    for path in paths {
-        let size = std::fs::metadata(path)
-            .map_err(|e| format!("cannot read part file {}: {e}", path.display()))?
-            .len();
-        if size > super::merge::MAX_PART_BYTES {
-            return Err(format!(
-                "{} is {size} bytes, more than a part file can be ({})",
-                path.display(),
-                super::merge::MAX_PART_BYTES
-            ));
-        }
-        let bytes = std::fs::read(path)
-            .map_err(|e| format!("cannot read part file {}: {e}", path.display()))?;
-        let file = super::bake_part_file::decode(&bytes)
-            .map_err(|e| format!("{}: {e}", path.display()))?;
-        parts.push(LoadedBakePart {
-            path: path.clone(),
-            file,
-        });
-    }
-    Ok(parts)
-}
-
 /// The merged bake: every request's images before dilation, with the summed counters.
 #[derive(Debug, Clone, PartialEq)]
 pub struct MergedBake {

@@ -10,7 +10,7 @@ use std::collections::HashMap;
 use exr::prelude::*;
 use glam::Vec3;
 
-use super::bake_part::{BakePartFile, BakePartRequest};
+use super::bake_part::{BakePartFile, BakePartRequest, LoadedBakePart};
 use super::part::{Part, PartNumber, Split};
 use super::part_file::PartHeader;
 use crate::bake::TexelImage;
@@ -148,6 +148,33 @@ pub fn is_bake_part(bytes: &[u8]) -> bool {
 /// merge` uses it to tell bake parts from render parts.
 pub fn is_bake_part_file(path: &std::path::Path) -> bool {
     exr::meta::MetaData::read_from_file(path, false).is_ok_and(|meta| names_bake_format(&meta))
+}
+
+/// Reads and decodes bake part files; the first unreadable one is the error.
+pub fn read_parts(
+    paths: &[std::path::PathBuf],
+) -> std::result::Result<Vec<LoadedBakePart>, String> {
+    let mut parts = Vec::with_capacity(paths.len());
+    for path in paths {
+        let size = std::fs::metadata(path)
+            .map_err(|e| format!("cannot read part file {}: {e}", path.display()))?
+            .len();
+        if size > super::merge::MAX_PART_BYTES {
+            return Err(format!(
+                "{} is {size} bytes, more than a part file can be ({})",
+                path.display(),
+                super::merge::MAX_PART_BYTES
+            ));
+        }
+        let bytes = std::fs::read(path)
+            .map_err(|e| format!("cannot read part file {}: {e}", path.display()))?;
+        let file = decode(&bytes).map_err(|e| format!("{}: {e}", path.display()))?;
+        parts.push(LoadedBakePart {
+            path: path.clone(),
+            file,
+        });
+    }
+    Ok(parts)
 }
 
 /// Decodes a bake part file; the error says what is wrong with it (the caller names the file).
