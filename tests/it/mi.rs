@@ -430,3 +430,38 @@ fn fuzz_corpus_reads_or_reports_located_errors() {
         }
     }
 }
+
+/// The seed's photon statements map onto the photon controls: light `energy` and `caustic
+/// photons`, object and instance `caustic`/`globillum` modes (`on` = 3); a mode outside 0–3
+/// is a located error.
+#[test]
+fn photon_statements_map_onto_lights_objects_and_instances() {
+    let path = dir("assets/seeds/mi/caustics.mi");
+    let bytes = std::fs::read(&path).unwrap();
+    let desc = read_mi(&path, &bytes).unwrap().desc;
+    let light = &desc.lights[0];
+    assert_eq!(light.energy, Some((1000.0, 1000.0, 1000.0)));
+    assert_eq!(light.caustic_photons, Some(5_000_000));
+    assert_eq!(light.globillum_photons, None);
+    let flagged: Vec<(&str, Option<u8>)> = desc
+        .objects
+        .iter()
+        .map(|o| (o.name.as_str(), o.caustic))
+        .filter(|(_, c)| c.is_some())
+        .collect();
+    assert!(
+        !flagged.is_empty(),
+        "the seed flags its objects: {flagged:?}"
+    );
+
+    let text = "object \"o\"\n  caustic 5\n  globillum on\n  group\n    0 0 0  1 0 0  0 1 0\n    v 0 v 1 v 2\n    p 0 1 2\n  end group\nend object\n";
+    let e = read_mi(Path::new("flags.mi"), text.as_bytes())
+        .err()
+        .unwrap();
+    assert!(
+        e.iter().any(|p| p
+            .to_string()
+            .contains("caustic must be 0, 1, 2 or 3, found 5")),
+        "{e:?}"
+    );
+}

@@ -308,8 +308,8 @@ fn build(raw: &RawScene, root: &Located, out: &mut Out) {
             transform,
             material,
             bake: None,
-            caustic: None,
-            globillum: None,
+            caustic: inst.flags.caustic,
+            globillum: inst.flags.globillum,
         });
     }
     for (name, g) in &raw.groups {
@@ -412,8 +412,8 @@ fn objects_of(name: &str, obj: &RawObject, materials: &[&str], out: &mut Out) {
             approximation: None,
             displacement: None,
             derivatives: false,
-            caustic: None,
-            globillum: None,
+            caustic: obj.flags.caustic,
+            globillum: obj.flags.globillum,
         });
         if !single {
             let i = out.desc.instances.len();
@@ -614,8 +614,8 @@ fn light_desc(
         visible: light.visible && !is_delta,
         attenuation: if directional { None } else { light.attenuation },
         inverse_square: physical || !is_delta || directional,
-        energy: None,
-        caustic_photons: None,
-        globillum_photons: None,
+        energy: light.energy,
+        caustic_photons: light.caustic_photons,
+        globillum_photons: light.globillum_photons,
     })
 }

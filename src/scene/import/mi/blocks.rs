@@ -2,9 +2,10 @@
 //! `declare` (`phenomenon` with its `shader`s and `root`; native `shader` declarations are
 //! skipped) and top-level named `shader`s.
 //!
-//! Statements that are read but not mapped give located warnings; photon statements (light
-//! `energy`, `caustic photons`, `globillum photons`, `photonmap file`, material `photon`
-//! shaders) are read and reported "read but not yet mapped".
+//! Statements that are read but not mapped give located warnings. Light `energy`, `caustic
+//! photons` and `globillum photons` become the light's photon controls; `photonmap file`,
+//! the photon options and material `photon` shaders are read and reported "read but not yet
+//! mapped".
 
 use super::super::rib::{Pos, Problem};
 use super::cursor::Cursor;
@@ -482,6 +483,7 @@ pub fn light(r: &mut Reader, c: &mut Cursor, open: Pos) {
     let mut spread = None;
     let mut area = None;
     let mut visible = false;
+    let (mut energy, mut caustic_photons, mut globillum_photons) = (None, None, None);
     loop {
         let Some(t) = c.block_token("light", open) else {
             return;
@@ -524,14 +526,21 @@ pub fn light(r: &mut Reader, c: &mut Cursor, open: Pos) {
                 area = Some((AreaShape::Cylinder(a, radius), samples(c)));
             }
             "visible" => visible = c.switch(),
-            "energy" | "exponent" | "shadowmap" => {
+            "energy" => energy = vec3(c, "energy"),
+            "exponent" | "shadowmap" => {
                 c.skip_arguments();
                 c.warn(t.pos, format!("light \"{w}\" is read but not yet mapped"));
             }
             "caustic" | "globillum" => {
                 c.eat_word("photons");
+                let n = c.count(&format!("{w} photons"));
+                // mental ray's optional further numbers (store count, …) are not used.
                 c.skip_arguments();
-                c.warn(t.pos, format!("\"{w} photons\" is read but not yet mapped"));
+                if w == "caustic" {
+                    caustic_photons = n;
+                } else {
+                    globillum_photons = n;
+                }
             }
             other => {
                 let mut p = Problem::error(t.pos, format!("unknown light statement \"{other}\""));
@@ -560,6 +569,9 @@ pub fn light(r: &mut Reader, c: &mut Cursor, open: Pos) {
                 spread,
                 area,
                 visible,
+                energy,
+                caustic_photons,
+                globillum_photons,
             },
         );
     }

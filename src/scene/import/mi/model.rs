@@ -100,6 +100,12 @@ pub struct RawLight {
     pub area: Option<(AreaShape, u32)>,
     /// `visible`.
     pub visible: bool,
+    /// `energy r g b`: photon power, W (photons only).
+    pub energy: Option<V3>,
+    /// `caustic photons N`.
+    pub caustic_photons: Option<u32>,
+    /// `globillum photons N`.
+    pub globillum_photons: Option<u32>,
 }
 
 /// A `material` block.
@@ -135,6 +141,10 @@ pub struct Flags {
     pub shadow: Option<bool>,
     /// `trace`.
     pub trace: Option<bool>,
+    /// `caustic N`: caustic photon mode 0–3 (none, casts, receives, both).
+    pub caustic: Option<u8>,
+    /// `globillum N`: global-illumination photon mode 0–3.
+    pub globillum: Option<u8>,
 }
 
 /// An `object` block with its polygon group.

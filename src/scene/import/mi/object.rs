@@ -2,9 +2,9 @@
 //! `v` references, `p ["material"] i j k …` polygons, flags), `instance … end instance`
 //! (`transform`, `material` override, flags) and `instgroup … end instgroup`.
 //!
-//! Vertex normals and texture references (`v i n j t k`), `approximate` statements and the
-//! `caustic`/`globillum` flags are read and reported as not mapped; free-form surfaces are
-//! an error.
+//! The `caustic`/`globillum` flags become the photon flags of the object or instance.
+//! Vertex normals and texture references (`v i n j t k`) and `approximate` statements are
+//! read and reported as not mapped; free-form surfaces are an error.
 
 use super::super::rib::{Pos, Problem};
 use super::cursor::Cursor;
@@ -28,7 +28,7 @@ const OBJECT: &[&str] = &[
     "end",
 ];
 
-fn flag(c: &mut Cursor, w: &str, flags: &mut Flags, at: Pos) -> bool {
+fn flag(c: &mut Cursor, w: &str, flags: &mut Flags) -> bool {
     match w {
         "visible" => flags.visible = Some(c.switch()),
         "trace" => flags.trace = Some(c.switch()),
@@ -41,8 +41,12 @@ fn flag(c: &mut Cursor, w: &str, flags: &mut Flags, at: Pos) -> bool {
             }
         }
         "caustic" | "globillum" => {
-            c.skip_arguments();
-            c.warn(at, format!("\"{w}\" flag is read but not yet mapped"));
+            let mode = photon_mode(c, w);
+            if w == "caustic" {
+                flags.caustic = mode;
+            } else {
+                flags.globillum = mode;
+            }
         }
         "tag" => {
             c.eat_word("label");
@@ -51,6 +55,20 @@ fn flag(c: &mut Cursor, w: &str, flags: &mut Flags, at: Pos) -> bool {
         _ => return false,
     }
     true
+}
+
+/// `caustic N` / `globillum N` (0 none, 1 casts, 2 receives, 3 both; `on` = 3, `off` = 0).
+fn photon_mode(c: &mut Cursor, w: &str) -> Option<u8> {
+    if !c.at_number() {
+        return Some(if c.switch() { 3 } else { 0 });
+    }
+    let pos = c.pos();
+    let v = c.number(w)?;
+    if !(0.0..=3.0).contains(&v) || v.fract() != 0.0 {
+        c.error(pos, format!("{w} must be 0, 1, 2 or 3, found {v}"));
+        return None;
+    }
+    Some(v as u8)
 }
 
 /// `object "name" … end object`.
@@ -81,7 +99,7 @@ pub fn object(r: &mut Reader, c: &mut Cursor, open: Pos) {
             break;
         }
         c.advance();
-        if flag(c, w, &mut obj.flags, t.pos) {
+        if flag(c, w, &mut obj.flags) {
             continue;
         }
         match w.as_str() {
@@ -310,7 +328,7 @@ pub fn instance(r: &mut Reader, c: &mut Cursor, open: Pos) {
             break;
         }
         c.advance();
-        if flag(c, w, &mut inst.flags, t.pos) {
+        if flag(c, w, &mut inst.flags) {
             continue;
         }
         match w.as_str() {
