@@ -5,33 +5,17 @@
 //! image count, rays and invalid texels, and a checksum of all texel data — as `key value`
 //! lines of one text attribute (`super::exr_meta`).
 
-use std::collections::HashMap;
-
 use exr::prelude::*;
 use glam::Vec3;
 
 use super::bake_part::{BakePartFile, BakePartRequest, LoadedBakePart};
-use super::part::{Part, PartNumber, Split};
-use super::part_file::PartHeader;
+use super::part::Split;
+use super::part_file::{hex, unhex, Entries, PartHeader};
 use crate::bake::TexelImage;
 use crate::hash::Fnv64;
 
 /// The `format` entry of a bake part's metadata.
 pub const FORMAT: &str = "stagelight bake part 1";
-
-fn hex(bytes: &[u8]) -> String {
-    bytes.iter().map(|b| format!("{b:02x}")).collect()
-}
-
-fn unhex(s: &str) -> Option<Vec<u8>> {
-    if !s.len().is_multiple_of(2) {
-        return None;
-    }
-    (0..s.len())
-        .step_by(2)
-        .map(|i| u8::from_str_radix(s.get(i..i + 2)?, 16).ok())
-        .collect()
-}
 
 /// FNV-1a over every request's counters and texels: the `payload` entry.
 fn payload_hash(requests: &[BakePartRequest]) -> u64 {
@@ -192,40 +176,12 @@ pub fn decode(bytes: &[u8]) -> std::result::Result<BakePartFile, String> {
     let first = layers
         .first()
         .ok_or("not a stagelight bake part file (no layers)")?;
-    let attrs: HashMap<String, String> = super::exr_meta::read(&first.attributes)
+    let attrs = super::exr_meta::read(&first.attributes)
         .ok_or("not a stagelight bake part file (no `stagelight` attribute)")?;
-    let get = |key: &str| {
-        attrs
-            .get(key)
-            .cloned()
-            .ok_or_else(|| format!("damaged bake part file (no `{key}` entry)"))
-    };
-    let format = get("format")?;
-    if format != FORMAT {
-        return Err(format!(
-            "part file format \"{format}\" is not \"{FORMAT}\" (written by another stagelight version?)"
-        ));
-    }
-    let bad = |key: &str| format!("damaged bake part file (entry `{key}` is malformed)");
-    let hex64 = |key: &str| u64::from_str_radix(&get(key)?, 16).map_err(|_| bad(key));
-    let scene = unhex(&get("scene")?)
-        .and_then(|b| String::from_utf8(b).ok())
-        .ok_or_else(|| bad("scene"))?;
-    let number: PartNumber = get("part")?.parse().map_err(|_| bad("part"))?;
-    let header = PartHeader {
-        version: get("version")?,
-        scene,
-        scene_hash: hex64("scene_hash")?,
-        settings_hash: hex64("settings_hash")?,
-        seed: get("seed")?.parse().map_err(|_| bad("seed"))?,
-        part: Part {
-            index: number.index,
-            count: number.count,
-            split: Split::Tiles,
-        },
-        width: 0,
-        height: 0,
-    };
+    let entries = Entries::new(attrs, "bake part file");
+    let header = entries.header(FORMAT, Split::Tiles, 0, 0)?;
+    let get = |key: &str| entries.get(key);
+    let bad = |key: &str| entries.bad(key);
     let count: usize = get("requests")?.parse().map_err(|_| bad("requests"))?;
     if count > layers.len() {
         return Err(bad("requests"));
@@ -252,7 +208,7 @@ pub fn decode(bytes: &[u8]) -> std::result::Result<BakePartFile, String> {
             invalid: invalid.parse().map_err(|_| bad(&key))?,
         });
     }
-    if hex64("payload")? != payload_hash(&requests) {
+    if entries.hex64("payload")? != payload_hash(&requests) {
         return Err("damaged bake part file (its texel data does not match its checksum)".into());
     }
     Ok(BakePartFile { header, requests })
@@ -299,6 +255,7 @@ fn layer_image(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::farm::part::Part;
 
     fn sample() -> BakePartFile {
         let mut a = TexelImage::new(3, 2);

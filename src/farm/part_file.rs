@@ -143,11 +143,13 @@ fn payload_hash(p: &PartPixels) -> u64 {
     h.finish()
 }
 
-fn hex(bytes: &[u8]) -> String {
+/// Lower-case hex of `bytes` (names and paths in the metadata stay ASCII).
+pub(super) fn hex(bytes: &[u8]) -> String {
     bytes.iter().map(|b| format!("{b:02x}")).collect()
 }
 
-fn unhex(s: &str) -> Option<Vec<u8>> {
+/// The bytes of a [`hex`] string; `None` when it is not one.
+pub(super) fn unhex(s: &str) -> Option<Vec<u8>> {
     if !s.len().is_multiple_of(2) {
         return None;
     }
@@ -155,6 +157,74 @@ fn unhex(s: &str) -> Option<Vec<u8>> {
         .step_by(2)
         .map(|i| u8::from_str_radix(s.get(i..i + 2)?, 16).ok())
         .collect()
+}
+
+/// The metadata entries of a part file (render or bake), with the messages that say which
+/// entry is missing or malformed.
+pub(super) struct Entries {
+    map: HashMap<String, String>,
+    /// `part file` or `bake part file`, for the messages.
+    kind: &'static str,
+}
+
+impl Entries {
+    /// The entries read from a file of `kind`.
+    pub(super) fn new(map: HashMap<String, String>, kind: &'static str) -> Self {
+        Self { map, kind }
+    }
+
+    /// The entry `key`.
+    pub(super) fn get(&self, key: &str) -> std::result::Result<String, String> {
+        self.map
+            .get(key)
+            .cloned()
+            .ok_or_else(|| format!("damaged {} (no `{key}` entry)", self.kind))
+    }
+
+    /// The message for a malformed entry `key`.
+    pub(super) fn bad(&self, key: &str) -> String {
+        format!("damaged {} (entry `{key}` is malformed)", self.kind)
+    }
+
+    /// The entry `key` as a 64-bit hex number.
+    pub(super) fn hex64(&self, key: &str) -> std::result::Result<u64, String> {
+        u64::from_str_radix(&self.get(key)?, 16).map_err(|_| self.bad(key))
+    }
+
+    /// The header shared by render and bake parts, after checking the format is `format`.
+    pub(super) fn header(
+        &self,
+        format: &str,
+        split: Split,
+        width: u32,
+        height: u32,
+    ) -> std::result::Result<PartHeader, String> {
+        let found = self.get("format")?;
+        if found != format {
+            return Err(format!(
+                "part file format \"{found}\" is not \"{format}\" (written by another stagelight version?)"
+            ));
+        }
+        let scene = unhex(&self.get("scene")?)
+            .and_then(|b| String::from_utf8(b).ok())
+            .ok_or_else(|| self.bad("scene"))?;
+        let number: super::part::PartNumber =
+            self.get("part")?.parse().map_err(|_| self.bad("part"))?;
+        Ok(PartHeader {
+            version: self.get("version")?,
+            scene,
+            scene_hash: self.hex64("scene_hash")?,
+            settings_hash: self.hex64("settings_hash")?,
+            seed: self.get("seed")?.parse().map_err(|_| self.bad("seed"))?,
+            part: Part {
+                index: number.index,
+                count: number.count,
+                split,
+            },
+            width,
+            height,
+        })
+    }
 }
 
 /// Encodes a part file.
@@ -211,42 +281,19 @@ pub fn decode(bytes: &[u8]) -> std::result::Result<PartFile, String> {
         .from_buffered(std::io::Cursor::new(bytes))
         .map_err(|e| format!("not a readable EXR file ({e}); it may be truncated"))?;
     let layer = image.layer_data;
-    let attrs: HashMap<String, String> = super::exr_meta::read(&layer.attributes)
+    let attrs = super::exr_meta::read(&layer.attributes)
         .ok_or("not a stagelight part file (no `stagelight` attribute)")?;
-    let get = |key: &str| {
-        attrs
-            .get(key)
-            .cloned()
-            .ok_or_else(|| format!("damaged part file (no `{key}` entry)"))
-    };
-    let format = get("format")?;
-    if format != FORMAT {
-        return Err(format!(
-            "part file format \"{format}\" is not \"{FORMAT}\" (written by another stagelight version?)"
-        ));
-    }
-    let bad = |key: &str| format!("damaged part file (entry `{key}` is malformed)");
-    let hex64 = |key: &str| u64::from_str_radix(&get(key)?, 16).map_err(|_| bad(key));
-    let scene = unhex(&get("scene")?)
-        .and_then(|b| String::from_utf8(b).ok())
-        .ok_or_else(|| bad("scene"))?;
-    let number: super::part::PartNumber = get("part")?.parse().map_err(|_| bad("part"))?;
-    let split = Split::from_name(&get("split")?).ok_or_else(|| bad("split"))?;
+    let entries = Entries::new(attrs, "part file");
     let size = layer.size;
-    let header = PartHeader {
-        version: get("version")?,
-        scene,
-        scene_hash: hex64("scene_hash")?,
-        settings_hash: hex64("settings_hash")?,
-        seed: get("seed")?.parse().map_err(|_| bad("seed"))?,
-        part: Part {
-            index: number.index,
-            count: number.count,
-            split,
-        },
-        width: size.width() as u32,
-        height: size.height() as u32,
-    };
+    let mut header = entries.header(
+        FORMAT,
+        Split::Tiles,
+        size.width() as u32,
+        size.height() as u32,
+    )?;
+    header.part.split =
+        Split::from_name(&entries.get("split")?).ok_or_else(|| entries.bad("split"))?;
+    let payload = entries.hex64("payload")?;
     let n = size.area();
     let find = |name: &str| {
         layer
@@ -290,7 +337,7 @@ pub fn decode(bytes: &[u8]) -> std::result::Result<PartFile, String> {
     pixels.depth = f32s("Z")?;
     let (nx, ny, nz) = (f32s("N.X")?, f32s("N.Y")?, f32s("N.Z")?);
     pixels.normal = (0..n).map(|i| Vec3::new(nx[i], ny[i], nz[i])).collect();
-    if hex64("payload")? != payload_hash(&pixels) {
+    if payload != payload_hash(&pixels) {
         return Err("damaged part file (its pixel data does not match its checksum)".into());
     }
     Ok(PartFile { header, pixels })
