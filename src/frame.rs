@@ -138,6 +138,12 @@ pub struct RunInputs {
     /// The glTF scene to write back with its baked textures (`bake --write-gltf`): the
     /// `bake_lightmaps` stage adds `<bake_dir>/<stem>.glb` to its files.
     pub write_gltf: Option<PathBuf>,
+    /// `--photon-cache DIR`: photon maps are loaded from and kept in `DIR/<hash>.pmap`
+    /// (before the scene's `photon_map` file).
+    pub photon_cache: Option<PathBuf>,
+    /// Run the stage table only through this stage (`stagelight photons` stops after
+    /// `trace_photons`); `None`: every stage.
+    pub stop_after: Option<&'static str>,
 }
 
 impl RunInputs {
@@ -267,6 +273,8 @@ impl Frame {
                 budget: crate::budget::Budget::unlimited(),
                 hold_files: false,
                 write_gltf: None,
+                photon_cache: None,
+                stop_after: None,
             },
             outputs: StageOutputs::default(),
             report: RunReport::default(),

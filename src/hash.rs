@@ -26,6 +26,15 @@ impl Fnv64 {
     }
 }
 
+/// Hashes formatted text as it is written, without building the string: `write!(h, "{x:?}")`
+/// folds the `Debug` text of `x` in (stable across runs for the same value).
+impl std::fmt::Write for Fnv64 {
+    fn write_str(&mut self, s: &str) -> std::fmt::Result {
+        self.bytes(s.as_bytes());
+        Ok(())
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

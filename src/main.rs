@@ -59,6 +59,9 @@ enum Command {
     Merge(MergeArgs),
     /// Write Slurm batch scripts that render a scene as a job array of parts and merge them.
     Farm(FarmArgs),
+    /// Trace a scene's photon maps once and keep them (in `--photon-cache DIR` or the
+    /// scene's `photon_map` file) for later renders, sweeps and farm parts to load.
+    Photons(PhotonsArgs),
     /// Validate a scene without rendering; exit 0 when it is renderable.
     Check {
         /// Scene file (RON).
@@ -108,6 +111,31 @@ struct RenderArgs {
     split: SplitArg,
     /// Memory budget in bytes (suffix K, M, G, T allowed); default: the smallest of half
     /// the physical memory, `ulimit -v` and the cgroup limit.
+    #[arg(long = "memory-limit", value_name = "BYTES", value_parser = stagelight::budget::parse_bytes)]
+    memory_limit: Option<u64>,
+    /// Load the photon maps from `DIR/<hash>.pmap` when that file exists, else trace them
+    /// and keep them there (overrides the scene's `photon_map` file).
+    #[arg(long = "photon-cache", value_name = "DIR")]
+    photon_cache: Option<PathBuf>,
+}
+
+#[derive(Args)]
+struct PhotonsArgs {
+    /// Scene file (any readable format).
+    scene: PathBuf,
+    /// Keep the maps in `DIR/<hash>.pmap` (default: the scene's `photon_map` file).
+    #[arg(long = "photon-cache", value_name = "DIR")]
+    photon_cache: Option<PathBuf>,
+    /// Worker threads (default: all cores; at most 1024).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=MAX_THREADS as i64))]
+    threads: Option<u32>,
+    /// Random seed (overrides the scene's `options.seed`; renders must use the same one).
+    #[arg(long)]
+    seed: Option<u64>,
+    /// Print the per-stage report.
+    #[arg(long)]
+    stats: bool,
+    /// Memory budget in bytes (as for `render`).
     #[arg(long = "memory-limit", value_name = "BYTES", value_parser = stagelight::budget::parse_bytes)]
     memory_limit: Option<u64>,
 }
@@ -337,6 +365,7 @@ fn main() -> ExitCode {
         Command::Convert { scene, output } => convert(&scene, &output),
         Command::Merge(args) => merge(args),
         Command::Farm(args) => farm(args),
+        Command::Photons(args) => photons(args),
         Command::Render(args) => render(args),
         Command::Bake(args) => bake(args),
         Command::Bench(args) => bench(args),
@@ -626,6 +655,7 @@ fn render(args: RenderArgs) -> ExitCode {
     frame.inputs.budget = budget(args.memory_limit);
     frame.inputs.outputs = overrides;
     frame.inputs.part = part;
+    frame.inputs.photon_cache = args.photon_cache.clone();
     frame.inputs.tasks = Tasks {
         render: true,
         bake: args.bake,
@@ -637,6 +667,41 @@ fn render(args: RenderArgs) -> ExitCode {
         args.stats,
         args.stats_json.as_deref(),
     )
+}
+
+/// `stagelight photons`: the stages through `trace_photons`, keeping the maps.
+fn photons(args: PhotonsArgs) -> ExitCode {
+    let (mut scene, settings) = match prepare(&args.scene, args.threads, args.seed, None) {
+        Ok(p) => p,
+        Err(code) => return code,
+    };
+    if args.photon_cache.is_none() && settings.photon_map.is_none() {
+        eprintln!(
+            "error: nowhere to keep the photon maps of {}\n  help: give --photon-cache DIR, or add `photon_map: (file: \"scene.pmap\")` to the scene's options",
+            args.scene.display()
+        );
+        return ExitCode::from(EXIT_USAGE);
+    }
+    let mut frame = Frame::new(settings);
+    frame.inputs.budget = budget(args.memory_limit);
+    frame.inputs.photon_cache = args.photon_cache;
+    frame.inputs.outputs.discard = true;
+    frame.inputs.stop_after = Some("trace_photons");
+    let mut plan_frame = Frame::new(frame.inputs.settings.clone());
+    plan_frame.inputs = frame.inputs.clone();
+    let planned = systems::plan(&scene.world, &mut plan_frame);
+    if let Some(p) = planned
+        .iter()
+        .find(|p| p.stage == "trace_photons" && !p.run)
+    {
+        eprintln!(
+            "error: {} traces no photons: {}\n  help: photon maps are built for `caustics: (…)` or `global_illumination: (…)` in options, with the Direct integrator",
+            args.scene.display(),
+            p.reason
+        );
+        return ExitCode::from(EXIT_ERROR);
+    }
+    run_and_report(&args.scene, &mut scene, frame, args.stats, None)
 }
 
 /// The part a `render --part K/N` run computes, after checking the flags that go with it.
@@ -925,7 +990,10 @@ fn bench(args: BenchArgs) -> ExitCode {
         Err(code) => return code,
     };
     let scratch = std::env::temp_dir().join(format!("stagelight-bench-{}", std::process::id()));
-    let mut frame = Frame::new(scene.settings.clone());
+    let mut settings = scene.settings.clone();
+    // A bench traces its photons: a kept photon map file would hide their cost.
+    settings.photon_map = None;
+    let mut frame = Frame::new(settings);
     // Outputs land in the scratch directory, under their own file names.
     frame.inputs.outputs.directory = Some(scratch.clone());
     frame.inputs.tasks = Tasks {
@@ -1123,7 +1191,13 @@ fn run_and_report(
     for path in &frame.report.written {
         eprintln!("wrote {}", path.display());
     }
-    if frame.report.written.is_empty() && frame.inputs.tasks.render {
+    if frame.inputs.stop_after.is_some() {
+        for r in frame.report.stages.iter().filter(|r| !r.ran) {
+            if r.stage == "trace_photons" {
+                eprintln!("photon maps {}", r.reason);
+            }
+        }
+    } else if frame.report.written.is_empty() && frame.inputs.tasks.render {
         eprintln!("note: the render camera has no outputs; nothing written (use -o FILE)");
     }
     ExitCode::SUCCESS

@@ -54,6 +54,10 @@ pub struct Work {
     pub pending: Vec<PendingFile>,
     /// The stage's output, if it has a slot.
     pub output: Option<StageOutput>,
+    /// Set when the stage found its output ready (a photon map file whose hash matches)
+    /// instead of computing it: the report lists the stage as skipped for this reason,
+    /// while its output is stored as usual.
+    pub reused: Option<String>,
 }
 
 impl Work {
@@ -65,7 +69,14 @@ impl Work {
             files: Vec::new(),
             pending: Vec::new(),
             output: None,
+            reused: None,
         }
+    }
+
+    /// The same work, reported as skipped because its output was reused (`reason`).
+    pub fn reused(mut self, reason: impl Into<String>) -> Self {
+        self.reused = Some(reason.into());
+        self
     }
 
     /// The same work with the stage's output.
@@ -222,6 +233,14 @@ pub fn run_stages(
                 )));
             }
             frame.outputs.store(output);
+        }
+        if let Some(reason) = work.reused {
+            let mut report = StageReport::skipped(stage.name, reason);
+            report.seconds = seconds;
+            report.files = work.files;
+            frame.report.written.extend(report.files.iter().cloned());
+            frame.report.stages.push(report);
+            continue;
         }
         let rays = ray_counts(frame).since(rays_before);
         let threads = frame.report.threads.max(1) as f64;

@@ -93,6 +93,19 @@ pub struct RenderSettings {
     pub light_samples: u32,
     /// Photon maps to build (`trace_photons`) and use in the `Direct` integrator.
     pub photons: PhotonSettings,
+    /// A file the photon maps are loaded from when its content hash matches, and written to
+    /// otherwise (mental ray `photonmap file`); `None`: maps live only in memory.
+    pub photon_map: Option<PhotonMapFile>,
+}
+
+/// `options: (photon_map: (file: "scene.pmap", rebuild: false))`: where photon maps persist
+/// between runs (format and hash in `photon::file` and `photon::key`).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct PhotonMapFile {
+    /// The file, as written (relative paths resolve against the working directory).
+    pub path: std::path::PathBuf,
+    /// Trace the maps and rewrite the file even when its hash matches.
+    pub rebuild: bool,
 }
 
 /// Accuracy knobs of one photon map.
@@ -163,6 +176,7 @@ impl Default for RenderSettings {
             bvh_quality: BvhQuality::Medium,
             light_samples: 16,
             photons: PhotonSettings::default(),
+            photon_map: None,
         }
     }
 }

@@ -124,9 +124,15 @@ pub const STAGES: &[Stage] = &[
     },
 ];
 
-/// Runs the whole table over `world`; the report lands in `frame.report`.
+/// Runs the table over `world` (through `frame.inputs.stop_after` when set); the report
+/// lands in `frame.report`.
 pub fn run(world: &mut World, frame: &mut Frame) -> Result<(), StageError> {
-    crate::schedule::run_stages(STAGES, world, frame)
+    let end = frame
+        .inputs
+        .stop_after
+        .and_then(|last| STAGES.iter().position(|s| s.name == last))
+        .map_or(STAGES.len(), |i| i + 1);
+    crate::schedule::run_stages(&STAGES[..end], world, frame)
 }
 
 /// What each stage would do for this world and these inputs, without running any.

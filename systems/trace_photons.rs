@@ -5,7 +5,10 @@
 //! `PhotonFlags` of instances (caster/receiver roles);
 //! `outputs.geometry` (lights, emitting meshes, surfaces); `settings.photons` (photons,
 //! radius, gather, aim per map), `settings.seed`.
-//! **Writes:** `outputs.photons` (returned to the runner).
+//! **Writes:** `outputs.photons` (returned to the runner); the photon map file, when the
+//! scene names one (`photon_map`) or the run has `--photon-cache DIR`, unless it was reused.
+//! **Reuses:** that file when its content hash ([`crate::photon::key`]) matches: the maps
+//! are loaded, and the report lists the stage as skipped, "loaded from FILE (hash …)".
 //! **Runs when:** the run renders with the `Direct` integrator, caustics or global
 //! illumination is on, geometry exists, and some light emits power.
 //! **After this stage:** `outputs.photons` holds the requested maps, each built from its own
@@ -18,15 +21,19 @@ use super::prelude::*;
 use super::MERGING;
 use crate::components::{Emitter, LightPhotons, Material, PhotonFlags};
 use crate::frame::Slot;
+use crate::image_io::PendingFile;
 use crate::photon::aim::Aim;
 use crate::photon::emit::bounding_sphere;
+use crate::photon::file::{encode, StoredMap, StoredMaps};
+use crate::photon::key::photon_key;
 use crate::photon::roles::instance_sphere;
+use crate::photon::store::{self, Miss};
 use crate::photon::{
     trace_map_by_light, Emission, GatherMap, MapKind, PhotonMap, PhotonMaps, PhotonRoles,
 };
 use crate::sampling::fold_seed;
 use crate::scene_view::{has_render_camera, light_set, WithEnvironment};
-use crate::settings::{Integrator, PhotonMapSettings};
+use crate::settings::{Integrator, PhotonMapSettings, RenderSettings};
 use crate::shading::ShadeContext;
 
 /// Automatic gather radius as a fraction of the scene's bounding-box diagonal.
@@ -65,7 +72,21 @@ pub fn should_run(world: &World, frame: &Frame) -> Decision {
     if !lit {
         return Decision::skip("no light has power");
     }
-    Decision::run(maps.join(" + "))
+    let kept = match (
+        &frame.inputs.photon_cache,
+        &frame.inputs.settings.photon_map,
+    ) {
+        (Some(dir), _) => format!(
+            "; kept in {}/<hash>.pmap, loaded when the hash matches",
+            dir.display()
+        ),
+        (None, Some(f)) => format!(
+            "; kept in {}, loaded when its hash matches",
+            f.path.display()
+        ),
+        (None, None) => String::new(),
+    };
+    Decision::run(format!("{}{kept}", maps.join(" + ")))
 }
 
 /// Traces the requested photon maps.
@@ -87,7 +108,24 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
     let ctx = ShadeContext::new(geometry, &lights, settings);
     let seed = fold_seed(settings.seed);
     let diagonal = 2.0 * bounding_sphere(geometry).1;
-    let build = |kind: MapKind, s: Option<PhotonMapSettings>| -> Result<_, StageError> {
+    let key = photon_key(geometry, &lights, &controls, &roles, settings);
+    let kept = store::location(settings, frame.inputs.photon_cache.as_deref(), key);
+    if let Some(at) = &kept {
+        match store::load(at, key) {
+            Ok(stored) => {
+                let maps = gather_maps(stored, settings, diagonal);
+                return Ok(Work::new(maps.stored(), "photons")
+                    .with_output(StageOutput::Photons(maps))
+                    .reused(format!(
+                        "loaded from {} (hash {key:016x})",
+                        at.path.display()
+                    )));
+            }
+            Err(Miss::Unreadable(why)) => tracing::warn!("{why}"),
+            Err(_) => {}
+        }
+    }
+    let trace = |kind: MapKind, s: Option<PhotonMapSettings>| -> Result<_, StageError> {
         let Some(s) = s else { return Ok(None) };
         let aimed;
         let emission = if kind == MapKind::Caustics && s.aim {
@@ -120,8 +158,36 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
             &frame.inputs.cancel,
         )
         .ok_or(StageError::Interrupted)?;
-        Ok(Some(GatherMap {
+        Ok(Some(StoredMap {
             map: PhotonMap::build(photons),
+            emitted,
+        }))
+    };
+    let stored = StoredMaps {
+        key,
+        caustics: trace(MapKind::Caustics, settings.photons.caustics)?,
+        global: trace(MapKind::Global, settings.photons.global_illumination)?,
+    };
+    let pending: Vec<PendingFile> = kept
+        .into_iter()
+        .map(|at| PendingFile {
+            path: at.path,
+            bytes: encode(&stored),
+        })
+        .collect();
+    let maps = gather_maps(stored, settings, diagonal);
+    Ok(Work::new(maps.stored(), "photons")
+        .with_output(StageOutput::Photons(maps))
+        .with_pending(pending))
+}
+
+/// The maps with the knobs of the estimates that read them (from `settings`, which the
+/// content hash leaves out: they can change without tracing again).
+fn gather_maps(stored: StoredMaps, settings: &RenderSettings, diagonal: f32) -> PhotonMaps {
+    let knobs = |s: Option<PhotonMapSettings>, m: Option<StoredMap>| {
+        let (s, m) = (s?, m?);
+        Some(GatherMap {
+            map: m.map,
             gather: s.gather.max(2) as usize,
             radius: if s.radius > 0.0 {
                 s.radius
@@ -129,16 +195,14 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
                 AUTO_RADIUS * diagonal
             },
             final_gather: s.final_gather.max(1),
-            emitted,
+            emitted: m.emitted,
             filter: s.filter,
-        }))
+        })
     };
-    let maps = PhotonMaps {
-        caustics: build(MapKind::Caustics, settings.photons.caustics)?,
-        global: build(MapKind::Global, settings.photons.global_illumination)?,
-    };
-    let stored = maps.stored();
-    Ok(Work::new(stored, "photons").with_output(StageOutput::Photons(maps)))
+    PhotonMaps {
+        caustics: knobs(settings.photons.caustics, stored.caustics),
+        global: knobs(settings.photons.global_illumination, stored.global),
+    }
 }
 
 /// Each emitter's photon controls, in the order of the light set (entity order).

@@ -34,3 +34,22 @@ pub fn options_located(scene: &Path, diagnostics: Vec<Diagnostic>) -> Vec<Diagno
         })
         .collect()
 }
+
+/// Where the scene at `scene` writes the option `key` (e.g. `options.photon_map.file`): in the
+/// file that holds `options`, else the start of the scene file.
+pub fn option_link(scene: &Path, key: &str) -> crate::components::SourceLink {
+    let loaded = crate::scene::include::load_files(scene, None, crate::scene::import::FORMATS);
+    let pos = match loaded
+        .scenes
+        .iter()
+        .position(|d| d.as_ref().is_some_and(|d| d.options.is_some()))
+    {
+        Some(f) => loaded.sources.pos(f, key),
+        None => crate::scene::import::SourcePos::start(scene),
+    };
+    crate::components::SourceLink {
+        file: pos.file,
+        line: pos.line,
+        column: pos.column,
+    }
+}

@@ -94,6 +94,16 @@ pub fn planned_outputs(
             }
         }
     }
+    if let (true, None, Some(file)) = (
+        inputs.tasks.render && inputs.settings.photons.any(),
+        &inputs.photon_cache,
+        &inputs.settings.photon_map,
+    ) {
+        out.push(PlannedOutput {
+            path: file.path.clone(),
+            origin: Origin::Scene(unknown_link(), "options photon_map file".to_string()),
+        });
+    }
     if let Some(path) = stats_json {
         out.push(PlannedOutput {
             path: path.to_path_buf(),
@@ -112,7 +122,8 @@ fn unknown_link() -> SourceLink {
 }
 
 /// Every input file of the scene at `scene` (as paths the loader opens): the scene files
-/// and each file they name outside their outputs. `text` stands in for the root file when
+/// and each file they name outside their outputs and the `photon_map` file (a cache the
+/// run may rewrite). `text` stands in for the root file when
 /// the scene was loaded from a string.
 pub fn scene_inputs(scene: &Path, text: Option<&str>) -> Vec<PathBuf> {
     let loaded = crate::scene::include::load_files(scene, text, crate::scene::import::FORMATS);
@@ -137,7 +148,7 @@ fn named_files(value: &serde_json::Value, out: &mut Vec<String>) {
         serde_json::Value::Object(map) => {
             for (key, v) in map {
                 match (key.as_str(), v) {
-                    ("outputs", _) => {}
+                    ("outputs", _) | ("photon_map", _) => {}
                     ("file", serde_json::Value::String(s)) => out.push(s.clone()),
                     _ => named_files(v, out),
                 }
@@ -242,10 +253,15 @@ pub fn check(
     inputs: &RunInputs,
     stats_json: Option<&Path>,
 ) -> Vec<Clash> {
-    clashes(
-        &scene_inputs(scene, None),
-        &planned_outputs(world, inputs, stats_json),
-    )
+    let mut outputs = planned_outputs(world, inputs, stats_json);
+    for out in &mut outputs {
+        if let Origin::Scene(link, what) = &mut out.origin {
+            if link.file.as_os_str().is_empty() && what.starts_with("options photon_map") {
+                *link = super::locate::option_link(scene, "options.photon_map.file");
+            }
+        }
+    }
+    clashes(&scene_inputs(scene, None), &outputs)
 }
 
 #[cfg(test)]

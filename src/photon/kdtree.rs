@@ -76,6 +76,23 @@ impl PhotonMap {
         Self { photons, axes }
     }
 
+    /// A tree stored earlier: `photons` in tree order and the split axis of each node, as
+    /// [`PhotonMap::photons`] and [`PhotonMap::axes`] gave them. `None` when the lengths
+    /// differ, an axis is not 0–2 or a value is not finite (any such tree searches safely, but
+    /// only a built one finds the right photons).
+    pub fn from_tree(photons: Vec<Photon>, axes: Vec<u8>) -> Option<Self> {
+        let finite = photons
+            .iter()
+            .all(|p| p.position.is_finite() && p.power.is_finite());
+        (photons.len() == axes.len() && axes.iter().all(|&a| a < 3) && finite)
+            .then_some(Self { photons, axes })
+    }
+
+    /// The split axis of each node, in tree order (0 = x, 1 = y, 2 = z).
+    pub fn axes(&self) -> &[u8] {
+        &self.axes
+    }
+
     /// Number of stored photons.
     pub fn len(&self) -> usize {
         self.photons.len()

@@ -1,7 +1,9 @@
 //! Photon mapping (Jensen; mental ray's caustics and global illumination): emission from the
 //! lights ([`emit`]), tracing and deposits ([`trace`]), the parallel photon pass that fills a
-//! map ([`pass`]), the kd-tree and density estimate ([`kdtree`]) and the radiance the
-//! `Direct` integrator adds from the maps ([`estimate`]).
+//! map ([`pass`]), the kd-tree and density estimate ([`kdtree`]), the radiance the
+//! `Direct` integrator adds from the maps ([`estimate`]), and photon map files: their format
+//! ([`file`]), the content hash that decides reuse ([`key`]) and where they are kept
+//! ([`store`]).
 //!
 //! **Path-space partition** (what each part of a `Direct` render computes at a diffuse point
 //! seen by the camera, directly or through mirrors and glass):
@@ -20,10 +22,13 @@
 pub mod aim;
 pub mod emit;
 pub mod estimate;
+pub mod file;
 pub mod filter;
 pub mod kdtree;
+pub mod key;
 pub mod pass;
 pub mod roles;
+pub mod store;
 pub mod trace;
 
 pub use emit::Emission;

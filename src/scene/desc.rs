@@ -73,6 +73,19 @@ pub struct OptionsDesc {
     pub global_illumination: Option<PhotonMapDesc>,
     /// Contour contrast, default [`ContoursDesc::default`].
     pub contours: Option<ContoursDesc>,
+    /// Photon map file (mental ray `photonmap file`), default none.
+    pub photon_map: Option<PhotonMapFileDesc>,
+}
+
+/// `photon_map: (file: "scene.pmap", rebuild: false)` in `options`.
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[serde(rename = "PhotonMapFile", deny_unknown_fields)]
+pub struct PhotonMapFileDesc {
+    /// The file, relative to the working directory (like camera outputs).
+    pub file: String,
+    /// Trace and rewrite even when the file's hash matches, default false.
+    #[serde(default)]
+    pub rebuild: bool,
 }
 
 /// `caustics: (...)` / `global_illumination: (...)` in `options`: one photon map's knobs.
@@ -138,6 +151,7 @@ impl Default for OptionsDesc {
             caustics: None,
             global_illumination: None,
             contours: None,
+            photon_map: None,
         }
     }
 }

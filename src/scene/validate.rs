@@ -17,8 +17,8 @@ use crate::components::{
     Camera, Emitter, ImageFormat, LightShape, Material, OutputSpec, Pass, Shader,
 };
 use crate::settings::{
-    BvhQuality, Face, Integrator, PhotonFilter, PhotonMapSettings, PhotonSettings, PixelFilter,
-    RenderSettings,
+    BvhQuality, Face, Integrator, PhotonFilter, PhotonMapFile, PhotonMapSettings, PhotonSettings,
+    PixelFilter, RenderSettings,
 };
 
 /// The widest Gaussian pixel filter (truncation radius, pixels): a wider one spreads each
@@ -157,8 +157,21 @@ pub fn settings(src: &mut Sources, options: Option<&Item<'_, OptionsDesc>>) -> R
         caustics: map("caustics", o.caustics.as_ref()),
         global_illumination: map("global_illumination", o.global_illumination.as_ref()),
     };
+    let photon_map = o.photon_map.as_ref().map(|f| {
+        if f.file.trim().is_empty() {
+            ck.error(
+                &item.at(".photon_map.file"),
+                "photon_map file is empty: name the file the photon maps are kept in, e.g. \"scene.pmap\"",
+            );
+        }
+        PhotonMapFile {
+            path: PathBuf::from(&f.file),
+            rebuild: f.rebuild,
+        }
+    });
     RenderSettings {
         photons,
+        photon_map,
         spp,
         adaptive,
         filter,

@@ -88,6 +88,8 @@ fn run_once(
     let mut settings = scene.settings.clone();
     configure(&mut scene.world, &mut settings);
     settings.seed = settings.seed.wrapping_add(seed);
+    // Every run traces its own photons: a kept photon map file would hide their cost.
+    settings.photon_map = None;
     let mut frame = Frame::new(settings);
     let scratch = opts.out.join("scratch").join(tag);
     frame.inputs.bake_dir = scratch.clone();

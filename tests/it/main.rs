@@ -40,6 +40,7 @@ mod lights;
 mod mesh_files;
 mod mi;
 mod photon_clean;
+mod photon_file;
 mod photon_flags;
 mod photon_lights;
 mod photons;
