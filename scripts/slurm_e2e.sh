@@ -3,7 +3,8 @@
 # (munge, slurmctld and slurmd on localhost, a generated slurm.conf in a temporary
 # directory), submits `stagelight farm SCENE --parts 4 --submit`, waits for the merge job
 # and compares its image with a local render byte for byte; then the same for a bake
-# (`stagelight farm BAKE --bake --parts 3 --submit` against a local bake); tears everything
+# (`stagelight farm BAKE --bake --parts 3 --submit` against a local bake) and a photon-mapped
+# render whose photon job runs before its array; tears everything
 # down after.
 #
 # Usage: scripts/slurm_e2e.sh [STAGELIGHT_BINARY]   (default: target/release/stagelight)
@@ -106,6 +107,7 @@ fi
 echo "slurm_e2e: single-node Slurm up ($host, $cpus CPUs)"
 
 scene="$(realpath assets/scenes/cornell_box.ron)"
+caustics="$(realpath assets/scenes/caustics.ron)"
 mkdir -p "$work/run"
 chmod 777 "$work/run"
 cd "$work/run"
@@ -134,6 +136,24 @@ else
     echo "slurm_e2e: FAILED: the farm image differs from the local render" >&2
     exit 1
 fi
+
+# Photon maps through the farm: a photon job traces them once, the parts load them.
+"$bin" render "$caustics" --spp 1 -o local_caustics.png 2>/dev/null
+submitted="$("$bin" farm "$caustics" --parts 3 --spp 1 --out "$work/run/caustics_job" \
+    -o "$work/run/farm_caustics.png" --cpus-per-task 1 --submit)"
+echo "$submitted"
+echo "$submitted" | grep -q '^photon job ' || { echo "slurm_e2e: FAILED: no photon job" >&2; exit 1; }
+merge_id="$(echo "$submitted" | awk '/^merge job/ {print $3}')"
+[ -n "$merge_id" ] || { echo "slurm_e2e: FAILED: no caustics merge job id" >&2; exit 1; }
+wait_for "$merge_id"
+if [ ! -f farm_caustics.png ] || ! cmp -s local_caustics.png farm_caustics.png; then
+    echo "slurm_e2e: FAILED: the farm caustics render differs from the local render (or is missing)" >&2
+    tail -n 20 caustics_job/logs/*.log >&2 || true
+    exit 1
+fi
+maps="$(ls caustics_job/photons | wc -l)"
+[ "$maps" = 1 ] || { echo "slurm_e2e: FAILED: $maps photon map files, expected 1" >&2; exit 1; }
+echo "slurm_e2e: ok: photon job + 3 Slurm parts loading its map merged byte-identical to the local render"
 
 # A bake through the farm: a floor with an occluding block, two requests' worth of files.
 cat >bake.ron <<'SCENE'

@@ -875,6 +875,17 @@ fn farm(args: FarmArgs) -> ExitCode {
         eprintln!("error: --split samples cannot divide adaptive sampling\n  help: use --split tiles, or a fixed count with --spp N");
         return ExitCode::from(EXIT_USAGE);
     }
+    // A render that traces photon maps gets a photon job before its array.
+    let photons = !args.bake && {
+        let mut settings = scene.settings.clone();
+        if let Some(seed) = args.seed {
+            settings.seed = seed;
+        }
+        let mut frame = Frame::new(settings);
+        systems::plan(&scene.world, &mut frame)
+            .iter()
+            .any(|p| p.stage == "trace_photons" && p.run)
+    };
     let job = match stagelight::farm::slurm::job(
         &args.scene,
         &args.out,
@@ -883,6 +894,7 @@ fn farm(args: FarmArgs) -> ExitCode {
             parts: args.parts,
             split: args.split.split(),
             bake: args.bake,
+            photons,
             spp: args.spp,
             seed: args.seed,
             partition: args.partition.clone(),

@@ -5,9 +5,11 @@
 //! prints their job ids. The scripts are plain, commented bash that a user can read, edit
 //! and submit by hand.
 //!
-//! Photon maps: there is no photon file yet, so every part traces the scene's photon maps
-//! itself (deterministically: identical maps in every part); the cost is one photon pass
-//! per part.
+//! Photon maps: when the render traces photon maps, a photon job runs first
+//! (`stagelight photons SCENE --photon-cache OUT/photons`), the array waits for it
+//! (`--dependency=afterok:<photon job>`) and every part loads the maps from that cache
+//! instead of tracing them: one photon pass for the whole farm, and identical maps in every
+//! part by construction.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -36,6 +38,10 @@ pub struct FarmJob {
     pub output: Option<PathBuf>,
     /// Extra `render` arguments (`--spp N`, `--seed S`, `--integrator I`).
     pub render_args: Vec<String>,
+    /// The render traces photon maps: a photon job fills `OUT/photons` before the array.
+    pub photons: bool,
+    /// Extra `photons` arguments (`--seed S`).
+    pub photon_args: Vec<String>,
     /// `#SBATCH --partition`.
     pub partition: Option<String>,
     /// `#SBATCH --cpus-per-task` (each part uses that many threads).
@@ -68,8 +74,18 @@ pub fn part_path(out: &Path, k: u32) -> PathBuf {
     out.join(format!("part_{k}.exr"))
 }
 
+/// The photon cache the photon job fills and the parts read.
+pub fn photon_cache(out: &Path) -> PathBuf {
+    out.join("photons")
+}
+
 /// The command of array task `$K` of `n`, without the executable.
 fn part_command(job: &FarmJob, n: u32, extra: &str) -> String {
+    let extra = if job.photons && !job.bake {
+        format!("{extra} --photon-cache {}", q(&photon_cache(&job.out)))
+    } else {
+        extra.to_string()
+    };
     if job.bake {
         // A bake part names its own file in the directory: `bake_part_K_of_N.exr`.
         format!(
@@ -172,15 +188,54 @@ pub fn scripts(job: &FarmJob) -> Vec<Script> {
         q(&job.scene)
     );
 
-    let mut submit = String::from("#!/bin/bash\n");
-    submit.push_str(
-        "# Submits the part array, then the merge job that runs once every part succeeded.\n",
+    let mut photons = String::from("#!/bin/bash\n");
+    let _ = writeln!(
+        photons,
+        "# stagelight farm: traces the photon maps of {} once into {}; every part loads them.",
+        job.scene.display(),
+        photon_cache(&job.out).display()
     );
+    common_directives(&mut photons, job, "stagelight-photons", "photons.log");
+    let _ = writeln!(photons, "#SBATCH --ntasks=1");
+    let _ = writeln!(photons, "#SBATCH --cpus-per-task={}", job.cpus_per_task);
+    if let Some(m) = &job.mem {
+        let _ = writeln!(photons, "#SBATCH --mem={m}");
+    }
+    photons.push_str("set -euo pipefail\n");
+    let photon_extra: String = job
+        .photon_args
+        .iter()
+        .map(|a| format!(" {}", quote(a)))
+        .collect();
+    let _ = writeln!(
+        photons,
+        "exec {} photons {} --photon-cache {} --threads \"${{SLURM_CPUS_PER_TASK:-1}}\"{photon_extra}",
+        q(&job.exe),
+        q(&job.scene),
+        q(&photon_cache(&job.out))
+    );
+
+    let mut submit = String::from("#!/bin/bash\n");
+    submit.push_str(if job.photons {
+        "# Submits the photon job, the part array that waits for it, then the merge job that runs\n# once every part succeeded.\n"
+    } else {
+        "# Submits the part array, then the merge job that runs once every part succeeded.\n"
+    });
     submit.push_str("set -euo pipefail\n");
     let _ = writeln!(submit, "mkdir -p {}", q(&job.out.join("logs")));
+    let after_photons = if job.photons {
+        let _ = writeln!(
+            submit,
+            "photons=$(sbatch --parsable {})\nphotons=\"${{photons%%;*}}\"\necho \"photon job $photons\"",
+            q(&job.out.join("photons.sbatch"))
+        );
+        " --dependency=afterok:\"$photons\""
+    } else {
+        ""
+    };
     let _ = writeln!(
         submit,
-        "array=$(sbatch --parsable {})\narray=\"${{array%%;*}}\"",
+        "array=$(sbatch --parsable{after_photons} {})\narray=\"${{array%%;*}}\"",
         q(&job.out.join("render.sbatch"))
     );
     let _ = writeln!(
@@ -189,7 +244,14 @@ pub fn scripts(job: &FarmJob) -> Vec<Script> {
         q(&job.out.join("merge.sbatch"))
     );
     submit.push_str("echo \"render array job $array\"\necho \"merge job $merge\"\n");
-    vec![
+    let mut scripts = Vec::new();
+    if job.photons {
+        scripts.push(Script {
+            name: "photons.sbatch",
+            text: photons,
+        });
+    }
+    scripts.extend([
         Script {
             name: "render.sbatch",
             text: render,
@@ -202,7 +264,8 @@ pub fn scripts(job: &FarmJob) -> Vec<Script> {
             name: "submit.sh",
             text: submit,
         },
-    ]
+    ]);
+    scripts
 }
 
 /// The farm command's options besides the paths.
@@ -214,6 +277,8 @@ pub struct JobOptions {
     pub split: Split,
     /// Bake instead of render.
     pub bake: bool,
+    /// The render traces photon maps (a photon job runs before the array).
+    pub photons: bool,
     /// `--spp` for every part.
     pub spp: Option<u32>,
     /// `--seed` for every part.
@@ -272,8 +337,10 @@ pub fn job(
     if let Some(spp) = options.spp {
         render_args.extend(["--spp".to_string(), spp.to_string()]);
     }
+    let mut photon_args = Vec::new();
     if let Some(seed) = options.seed {
         render_args.extend(["--seed".to_string(), seed.to_string()]);
+        photon_args.extend(["--seed".to_string(), seed.to_string()]);
     }
     Ok(FarmJob {
         exe,
@@ -285,6 +352,8 @@ pub fn job(
         bake: options.bake,
         output: output.map(absolute),
         render_args,
+        photons: options.photons && !options.bake,
+        photon_args,
         partition: options.partition,
         cpus_per_task: options.cpus_per_task,
         mem: options.mem,
@@ -327,6 +396,8 @@ mod tests {
             bake: false,
             output: Some("/farm/final.png".into()),
             render_args: vec!["--spp".into(), "16".into()],
+            photons: false,
+            photon_args: Vec::new(),
             partition: Some("render".into()),
             cpus_per_task: 8,
             mem: Some("4G".into()),
@@ -379,6 +450,45 @@ mod tests {
         assert!(
             merge.contains("\"${parts[@]}\" -o '/farm/textures'"),
             "{merge}"
+        );
+    }
+
+    #[test]
+    fn a_photon_job_runs_first_and_the_parts_load_its_maps() {
+        let mut j = job();
+        j.photons = true;
+        j.photon_args = vec!["--seed".into(), "5".into()];
+        let s = scripts(&j);
+        let names: Vec<_> = s.iter().map(|s| s.name).collect();
+        assert_eq!(
+            names,
+            [
+                "photons.sbatch",
+                "render.sbatch",
+                "merge.sbatch",
+                "submit.sh"
+            ]
+        );
+        let photons = &s[0].text;
+        assert!(photons.contains(
+            "exec '/opt/bin/stagelight' photons '/scenes/it'\\''s.ron' --photon-cache '/farm/out/photons' --threads \"${SLURM_CPUS_PER_TASK:-1}\" '--seed' '5'\n"
+        ), "{photons}");
+        assert!(
+            photons.contains("#SBATCH --cpus-per-task=8\n#SBATCH --mem=4G\n"),
+            "{photons}"
+        );
+        let render = &s[1].text;
+        assert!(
+            render.contains("'--spp' '16' --photon-cache '/farm/out/photons' -o '/farm/out'"),
+            "{render}"
+        );
+        let submit = &s[3].text;
+        assert!(submit.contains(
+            "photons=$(sbatch --parsable '/farm/out/photons.sbatch')\nphotons=\"${photons%%;*}\"\necho \"photon job $photons\"\narray=$(sbatch --parsable --dependency=afterok:\"$photons\" '/farm/out/render.sbatch')"
+        ), "{submit}");
+        assert!(
+            submit.contains("--dependency=afterok:\"$array\""),
+            "{submit}"
         );
     }
 }

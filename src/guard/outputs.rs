@@ -138,6 +138,7 @@ pub fn scene_inputs(scene: &Path, text: Option<&str>) -> Vec<PathBuf> {
         named_files(&value, &mut named);
         inputs.extend(named.into_iter().map(|n| file.dir().join(n)));
     }
+    inputs.extend(loaded.read_files);
     inputs
 }
 

@@ -31,6 +31,8 @@ pub struct LoadedFiles {
     pub scenes: Vec<Option<SceneDesc>>,
     /// FNV-1a over the bytes of every scene file read, in load order.
     pub content_hash: Fnv64,
+    /// Files the readers read themselves (RIB archives, `.mi` includes), in load order.
+    pub read_files: Vec<PathBuf>,
 }
 
 /// Reads `root` (or uses `text` for it) and everything it includes, each file with the
@@ -42,6 +44,7 @@ pub fn load_files(root: &Path, text: Option<&str>, formats: &[import::Format]) -
             sources: Sources::default(),
             scenes: Vec::new(),
             content_hash: Fnv64::default(),
+            read_files: Vec::new(),
         },
         stack: Vec::new(),
         seen: HashSet::new(),
@@ -111,6 +114,7 @@ impl Loader<'_> {
             }
         };
         let file = self.register(read.map, None);
+        self.out.read_files.extend(read.read_files);
         for w in read.warnings {
             self.out.sources.push_warning(file, w);
         }

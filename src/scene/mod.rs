@@ -134,6 +134,7 @@ fn load(
         mut sources,
         scenes,
         content_hash,
+        ..
     } = include::load_files(path, text, formats);
     if sources.has_errors() {
         return Err(SceneErrors(sources.finish()));

@@ -165,3 +165,31 @@ fn bake_uvs_at_one_point_are_refused() {
     );
     assert_eq!(crate::common::dir_names(&dir), ["scene.ron"]);
 }
+
+/// RIB `ReadArchive` and `.mi` `$include` files stop at the scene-file size limit too.
+#[test]
+fn an_endless_archive_or_mi_include_stops_at_the_size_limit() {
+    let dir = scratch_dir("archive-dev-zero");
+    std::os::unix::fs::symlink("/dev/zero", dir.join("zero.rib")).unwrap();
+    std::os::unix::fs::symlink("/dev/zero", dir.join("zero.mi")).unwrap();
+    std::fs::write(
+        dir.join("scene.rib"),
+        "Format 8 8 1\nWorldBegin\nReadArchive \"zero.rib\"\nWorldEnd\n",
+    )
+    .unwrap();
+    std::fs::write(dir.join("scene.mi"), "$include \"zero.mi\"\n").unwrap();
+    let o = run_in(&dir, &["check", "scene.rib"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(
+        stderr_of(&o).starts_with("scene.rib:3:13: error: cannot read archive \"zero.rib\": larger than 64 MiB, the limit for a scene file\n"),
+        "{}",
+        stderr_of(&o)
+    );
+    let o = run_in(&dir, &["check", "scene.mi"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(
+        stderr_of(&o).contains("scene.mi:1:10: error: cannot read include \"zero.mi\": larger than 64 MiB, the limit for a scene file\n"),
+        "{}",
+        stderr_of(&o)
+    );
+}

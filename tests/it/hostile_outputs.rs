@@ -158,3 +158,26 @@ fn a_failing_second_output_leaves_the_first_as_it_was() {
     assert_eq!(std::fs::read(dir.join("a.exr")).unwrap(), b"previous run");
     assert_eq!(dir_names(&dir), ["a.exr", "b.exr", "scene.ron"]);
 }
+
+/// A RIB archive is an input: `-o` onto it is refused and the archive kept.
+#[test]
+fn an_output_onto_a_rib_archive_is_refused() {
+    let dir = scratch_dir("out-rib-archive");
+    std::fs::write(
+        dir.join("scene.rib"),
+        "Display \"out.png\" \"file\" \"rgb\"\nFormat 8 8 1\nProjection \"perspective\" \"fov\" 40\nWorldBegin\nReadArchive \"part.exr\"\nWorldEnd\n",
+    )
+    .unwrap();
+    std::fs::write(dir.join("part.exr"), "Sphere 1 -1 1 360\n").unwrap();
+    let o = run_in(&dir, &["render", "scene.rib", "-o", "part.exr"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(
+        stderr_of(&o),
+        format!("error: -o part.exr would overwrite an input of the scene part.exr\n{HELP}\n1 error in scene.rib; nothing rendered\n")
+    );
+    assert_eq!(
+        std::fs::read_to_string(dir.join("part.exr")).unwrap(),
+        "Sphere 1 -1 1 360\n"
+    );
+    assert_eq!(dir_names(&dir), ["part.exr", "scene.rib"]);
+}

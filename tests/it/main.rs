@@ -19,6 +19,7 @@ mod docs_reference;
 mod environment;
 mod farm;
 mod farm_bake;
+mod farm_photons;
 mod fuzz_corpus;
 mod geometry_scene;
 mod geometry_stages;

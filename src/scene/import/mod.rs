@@ -60,6 +60,9 @@ pub struct ReadScene {
     /// Located warnings (`file:line:col: warning: ignored request "Hider"`), never dropped
     /// silently.
     pub warnings: Vec<Diagnostic>,
+    /// Other files the reader read itself (RIB `ReadArchive`, `.mi` `$include`): inputs of
+    /// the scene, which no output may overwrite.
+    pub read_files: Vec<PathBuf>,
 }
 
 /// A reader: bytes of one file (its path as the user named it) → [`ReadScene`], or every

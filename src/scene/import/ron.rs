@@ -35,6 +35,7 @@ pub fn read(path: &Path, bytes: &[u8]) -> Result<ReadScene, Vec<Diagnostic>> {
                 },
             ),
             warnings: Vec::new(),
+            read_files: Vec::new(),
         }),
         Err(err) => {
             let mut d = from_ron(path, &err);

@@ -118,6 +118,7 @@ fn read_fake(path: &Path, bytes: &[u8]) -> Result<ReadScene, Vec<Diagnostic>> {
         desc,
         map: table.into_map(path),
         warnings,
+        read_files: Vec::new(),
     })
 }
 

@@ -110,6 +110,7 @@ pub fn read(path: &Path, bytes: &[u8]) -> Result<ReadScene, Vec<Diagnostic>> {
         desc,
         map: table.into_map(path),
         warnings,
+        read_files: Vec::new(),
     })
 }
 

@@ -90,6 +90,7 @@ pub fn assemble(reader: Reader) -> Result<MiScene, Vec<LocatedProblem>> {
         problems,
         root,
         defined,
+        included,
         ..
     } = reader;
     let mut out = Out {
@@ -108,6 +109,7 @@ pub fn assemble(reader: Reader) -> Result<MiScene, Vec<LocatedProblem>> {
         desc: out.desc,
         paths: out.paths,
         warnings,
+        includes: included,
     })
 }
 

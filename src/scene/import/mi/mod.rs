@@ -45,6 +45,8 @@ pub struct MiScene {
     pub paths: Vec<(String, Located)>,
     /// What was read but not mapped, located.
     pub warnings: Vec<LocatedProblem>,
+    /// The `$include` files read (the root file left out).
+    pub includes: Vec<std::path::PathBuf>,
 }
 
 /// Reads the `.mi` file `path` whose contents are `bytes`. `$include "file"` files are read
@@ -82,5 +84,6 @@ pub fn read(path: &Path, bytes: &[u8]) -> Result<ReadScene, Vec<Diagnostic>> {
         desc: scene.desc,
         map: table.into_map(path),
         warnings: scene.warnings.into_iter().map(diagnostic).collect(),
+        read_files: scene.includes,
     })
 }

@@ -53,6 +53,8 @@ pub struct Reader {
     pub defined: std::collections::HashMap<String, Located>,
     /// The files being read, outermost first (an include of one of them is a cycle).
     reading: Vec<std::path::PathBuf>,
+    /// Every `$include` file read, in reading order.
+    pub included: Vec<std::path::PathBuf>,
 }
 
 impl Reader {
@@ -67,6 +69,7 @@ impl Reader {
             problems: Vec::new(),
             defined: Default::default(),
             reading: Vec::new(),
+            included: Vec::new(),
         }
     }
 
@@ -190,8 +193,14 @@ impl Reader {
                     c.error(t.pos, format!("\"{}\" includes itself", file.display()));
                     return;
                 }
-                match std::fs::read(&file) {
+                let read = crate::limits::read_file(
+                    &file,
+                    crate::limits::MAX_SCENE_FILE_BYTES,
+                    "scene file",
+                );
+                match read {
                     Ok(bytes) => {
+                        self.included.push(file.clone());
                         self.reading.push(c.file.clone());
                         self.read_file(&file, &bytes, depth + 1);
                         self.reading.pop();

@@ -239,6 +239,7 @@ impl Builder {
             desc,
             paths,
             warnings,
+            archives: files.into_iter().skip(1).collect(),
         })
     }
 
@@ -695,7 +696,9 @@ impl Builder {
             .map(Path::to_path_buf)
             .unwrap_or_default();
         let path = dir.join(name);
-        let bytes = match std::fs::read(&path) {
+        let read =
+            crate::limits::read_file(&path, crate::limits::MAX_SCENE_FILE_BYTES, "scene file");
+        let bytes = match read {
             Ok(b) => b,
             Err(e) => {
                 self.push(Problem::error(

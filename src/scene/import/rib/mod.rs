@@ -136,6 +136,8 @@ pub struct RibScene {
     pub paths: Vec<(String, Located)>,
     /// What was ignored, located.
     pub warnings: Vec<LocatedProblem>,
+    /// The `ReadArchive` files read (the root file left out).
+    pub archives: Vec<std::path::PathBuf>,
 }
 
 /// Reads the RIB file `path` whose contents are `bytes`. `ReadArchive` files are read from
@@ -170,5 +172,6 @@ pub fn read(path: &Path, bytes: &[u8]) -> Result<ReadScene, Vec<Diagnostic>> {
         desc: scene.desc,
         map: table.into_map(path),
         warnings: scene.warnings.into_iter().map(diagnostic).collect(),
+        read_files: scene.archives,
     })
 }
