@@ -34,7 +34,7 @@ use crate::bake::request::prepare_bakes;
 use crate::bake::request::PreparedBake;
 use crate::bake::texels::TexelResults;
 use crate::bake::texels::{evaluate, TexelJob};
-use crate::bake::vertex_files::encode_vertex_request;
+use crate::bake::vertex_files::{encode_vertex_request, VertexValues};
 use crate::components::{BakeFormat, BakeKind, BakeRequest};
 use crate::farm::bake_part::{first_tiles, BakePartFile, BakePartRequest, TexelOwner};
 use crate::farm::PartRun;
@@ -85,7 +85,7 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
     let mut part_requests = Vec::new();
     let mut texels_baked = 0u64;
     let mut baked_pngs: Vec<(String, BakeKind, Vec<u8>)> = Vec::new();
-    let mut vertex_colors: Vec<(String, Vec<(BakeKind, Vec<glam::Vec3>)>)> = Vec::new();
+    let mut vertex_colors: Vec<(String, VertexValues)> = Vec::new();
     for (index, p) in prepared.iter().enumerate() {
         let start = Instant::now();
         let mut results = if let Some(merged) = &inputs.merged_bake {
@@ -265,7 +265,7 @@ fn part_file(
 fn baked_gltf(
     source: &std::path::Path,
     pngs: &[(String, BakeKind, Vec<u8>)],
-    vertex_colors: &[(String, Vec<(BakeKind, Vec<glam::Vec3>)>)],
+    vertex_colors: &[(String, VertexValues)],
     dir: &std::path::Path,
 ) -> Result<crate::image_io::PendingFile, StageError> {
     use crate::bake::gltf_out::{baked_glb, color_source, BakedColors, BakedTexture, TextureSlot};

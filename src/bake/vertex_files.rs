@@ -16,13 +16,16 @@ use super::vertices::{fill_missing, vertex_values};
 use crate::components::{BakeKind, TriMesh};
 use crate::image_io::{srgb, PendingFile};
 
+/// Per target of a per-vertex request: its kind and one value per vertex.
+pub type VertexValues = Vec<(BakeKind, Vec<Vec3>)>;
+
 /// The files of one per-vertex request, and per target its kind and vertex values (for the
 /// glTF copy's `COLOR_0`), and how many vertices were filled from their neighbours.
 pub struct VertexBake {
     /// The PLY files, in target order.
     pub files: BakedFiles,
     /// Per target: its kind and one value per vertex.
-    pub values: Vec<(BakeKind, Vec<Vec3>)>,
+    pub values: VertexValues,
     /// Vertices without a baked value, filled from their neighbours.
     pub filled: u64,
 }

@@ -350,9 +350,16 @@ fn per_vertex_outputs_refuse_texture_only_settings() {
         let o = run_in(&dir, &["bake", "scene.ron", "-o", "out"]);
         assert!(!o.status.success(), "{output}");
         let err = stderr_of(&o);
+        // `scene.ron:LINE:COLUMN: error: …`, located at the output's field.
+        let line = err
+            .lines()
+            .find(|l| l.ends_with(&format!(": error: {message}")))
+            .unwrap_or_else(|| panic!("{output}:\n{err}"));
+        let place: Vec<&str> = line.splitn(4, ':').collect();
+        assert_eq!(place[0], "scene.ron", "{line}");
         assert!(
-            err.contains(&format!("scene.ron:")) && err.contains(&format!("error: {message}")),
-            "{output}:\n{err}"
+            place[1].parse::<u32>().is_ok() && place[2].parse::<u32>().is_ok(),
+            "{line}"
         );
         assert!(!dir.join("out").exists(), "nothing is written");
     }
