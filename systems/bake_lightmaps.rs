@@ -143,6 +143,7 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
                 start.elapsed().as_secs_f64(),
                 &baked.files,
             );
+            r.vertices = Some(mesh.positions.len() as u64);
             if inputs.merged_bake.is_some() {
                 r.rays_per_second = 0.0;
             }

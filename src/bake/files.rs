@@ -141,6 +141,7 @@ pub fn report(
             .iter()
             .map(|f| f.path.display().to_string())
             .collect(),
+        vertices: None,
     }
 }
 

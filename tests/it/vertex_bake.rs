@@ -135,7 +135,17 @@ fn vertex_ao_beside_a_wall_is_one_half() {
         ),
         r#""strip_1""#,
     );
-    bake(&dir, &text, "out", &[]);
+    std::fs::write(dir.join("scene.ron"), &text).unwrap();
+    let o = run_in(&dir, &["bake", "scene.ron", "-o", "out", "--stats"]);
+    assert!(o.status.success(), "{}", stderr_of(&o));
+    let report = String::from_utf8_lossy(&o.stdout).into_owned() + &stderr_of(&o);
+    assert!(
+        report.contains(&format!(
+            "bake strip_1: 9 vertices, 9 baked, 0 invalid, 0 filled from neighbours, {} rays",
+            9 * samples
+        )),
+        "{report}"
+    );
     assert_eq!(dir_names(&dir.join("out")), ["strip_1_ao.ply"]);
     let ply = BakedPly::read(&dir.join("out/strip_1_ao.ply"));
     assert_eq!((ply.count, ply.faces), (9, 8));
