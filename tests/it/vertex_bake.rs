@@ -307,7 +307,7 @@ fn a_baked_glb_carries_vertex_ao_as_color_0() {
         let ply = BakedPly::read(&dir.join("out").join(ply_name));
         let node = glb
             .nodes()
-            .find(|n| n.name().is_some_and(|name| instance.starts_with(name)))
+            .find(|n| n.name() == Some(instance))
             .unwrap_or_else(|| panic!("a node for {instance}"));
         let prim = node.mesh().unwrap().primitives().next().unwrap();
         let colors = prim.get(&gltf::Semantic::Colors(0)).expect("COLOR_0");
