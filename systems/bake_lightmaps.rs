@@ -5,7 +5,8 @@
 //! **Reads:** `BakeRequest` + `Name` + `SourceLink` on instance entities; `Emitter` entities;
 //! `outputs.geometry`; `inputs.bake_dir`; `inputs.write_gltf`; `settings.seed`.
 //! **Writes:** texture files (encoded, in `Work::pending`, committed by the runner), and
-//! with `inputs.write_gltf` the glTF copy referencing them (`crate::bake::gltf_out`);
+//! with `inputs.write_gltf` the glTF copy referencing them (`crate::bake::gltf_out`;
+//! per-vertex bakes as `COLOR_0`);
 //! `outputs.bake_reports`.
 //! **Runs when:** the run bakes (`stagelight bake` or `render --bake`) and at least one
 //! instance carries a bake request.
@@ -13,7 +14,10 @@
 //! a report per request gives texel density, coverage, invalid texels, rays and time.
 //!
 //! Every request is checked (UVs, resolution, overlapping UVs; `crate::bake::request`)
-//! before any texel is baked; naming and encoding live in `crate::bake::files`.
+//! before any texel is baked; naming and encoding live in `crate::bake::files`. Per-vertex
+//! targets (`target: Vertices`) are a request of their own whose texels are the mesh's
+//! vertices (`crate::bake::vertices`), baked by the same estimators, not dilated, written
+//! as PLY (`crate::bake::vertex_files`); farm parts split and merge them like textures.
 //!
 //! Farm parts (`crate::farm::bake_part`): a `bake --part K/N` run (`inputs.part`) bakes only
 //! its texel tiles and writes them undilated as one bake part file instead of textures; a
@@ -30,6 +34,7 @@ use crate::bake::request::prepare_bakes;
 use crate::bake::request::PreparedBake;
 use crate::bake::texels::TexelResults;
 use crate::bake::texels::{evaluate, TexelJob};
+use crate::bake::vertex_files::{encode_vertex_request, VertexValues};
 use crate::components::{BakeFormat, BakeKind, BakeRequest};
 use crate::farm::bake_part::{first_tiles, BakePartFile, BakePartRequest, TexelOwner};
 use crate::farm::PartRun;
@@ -80,6 +85,7 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
     let mut part_requests = Vec::new();
     let mut texels_baked = 0u64;
     let mut baked_pngs: Vec<(String, BakeKind, Vec<u8>)> = Vec::new();
+    let mut vertex_colors: Vec<(String, VertexValues)> = Vec::new();
     for (index, p) in prepared.iter().enumerate() {
         let start = Instant::now();
         let mut results = if let Some(merged) = &inputs.merged_bake {
@@ -126,6 +132,28 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
             continue;
         }
         texels_baked += p.coverage.covered_texels();
+        if p.per_vertex() {
+            // Vertices: no dilation; vertices without a value take their neighbours'.
+            let mesh = &geometry.instances[p.slot].mesh;
+            let baked = encode_vertex_request(p, &results, mesh, &inputs.bake_dir);
+            let mut r = report(
+                p,
+                &results,
+                baked.filled,
+                start.elapsed().as_secs_f64(),
+                &baked.files,
+            );
+            r.vertices = Some(mesh.positions.len() as u64);
+            if inputs.merged_bake.is_some() {
+                r.rays_per_second = 0.0;
+            }
+            reports.push(r);
+            pending.extend(baked.files.pending);
+            if inputs.write_gltf.is_some() {
+                vertex_colors.push((p.request.name.clone(), baked.values));
+            }
+            continue;
+        }
         // Texels baked from the surface (covered and not inside geometry), before dilation.
         let baked_mask = results.images.first().map(|img| img.valid.clone());
         let mut dilated = 0;
@@ -157,7 +185,12 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
         pending.push(part_file(run, frame, part_requests)?);
     }
     if let Some(source) = &inputs.write_gltf {
-        pending.push(baked_gltf(source, &baked_pngs, &inputs.bake_dir)?);
+        pending.push(baked_gltf(
+            source,
+            &baked_pngs,
+            &vertex_colors,
+            &inputs.bake_dir,
+        )?);
     }
     Ok(Work::new(texels_baked, "texels")
         .with_pending(pending)
@@ -233,9 +266,10 @@ fn part_file(
 fn baked_gltf(
     source: &std::path::Path,
     pngs: &[(String, BakeKind, Vec<u8>)],
+    vertex_colors: &[(String, VertexValues)],
     dir: &std::path::Path,
 ) -> Result<crate::image_io::PendingFile, StageError> {
-    use crate::bake::gltf_out::{baked_glb, BakedTexture, TextureSlot};
+    use crate::bake::gltf_out::{baked_glb, color_source, BakedColors, BakedTexture, TextureSlot};
     let stem = source.file_stem().unwrap_or_default().to_string_lossy();
     let path = dir.join(format!("{stem}.glb"));
     let fail = |message: String| StageError::Write {
@@ -275,7 +309,20 @@ fn baked_gltf(
             png,
         });
     }
-    let bytes = baked_glb(source, &textures).map_err(fail)?;
+    let mut colors = Vec::new();
+    for (name, targets) in vertex_colors {
+        let Some((_, node, primitive)) = leaves.iter().find(|(n, ..)| n == name) else {
+            continue;
+        };
+        if let Some(values) = color_source(targets) {
+            colors.push(BakedColors {
+                node: *node,
+                primitive: *primitive,
+                values,
+            });
+        }
+    }
+    let bytes = baked_glb(source, &textures, &colors).map_err(fail)?;
     Ok(crate::image_io::PendingFile { path, bytes })
 }
 

@@ -64,12 +64,12 @@ pub fn encode_request(
 }
 
 /// The request's name as used in file names (path separators replaced).
-fn safe_name(request: &BakeRequest) -> String {
+pub fn safe_name(request: &BakeRequest) -> String {
     request.name.replace(['/', '\\'], "_")
 }
 
 /// The file of one target, relative to the bake directory.
-fn target_file(safe_name: &str, target: &BakeTarget) -> PathBuf {
+pub fn target_file(safe_name: &str, target: &BakeTarget) -> PathBuf {
     target.file.clone().unwrap_or_else(|| {
         PathBuf::from(format!(
             "{safe_name}_{}.{}",
@@ -88,19 +88,21 @@ pub fn planned_paths(request: &BakeRequest, dir: &Path) -> Vec<PathBuf> {
         .iter()
         .map(|t| dir.join(target_file(&safe_name, t)))
         .collect();
+    let texture_targets = request.targets.iter().any(|t| !t.format.is_per_vertex());
     let bent = request.targets.iter().any(|t| {
-        matches!(
-            t.kind,
-            BakeKind::AmbientOcclusion {
-                bent_normals: true,
-                ..
-            }
-        )
+        !t.format.is_per_vertex()
+            && matches!(
+                t.kind,
+                BakeKind::AmbientOcclusion {
+                    bent_normals: true,
+                    ..
+                }
+            )
     });
     if bent {
         paths.push(dir.join(format!("{safe_name}_bent_normals.exr")));
     }
-    if request.mask && !request.targets.is_empty() {
+    if request.mask && texture_targets {
         paths.push(dir.join(format!("{safe_name}_mask.png")));
     }
     paths
@@ -139,6 +141,7 @@ pub fn report(
             .iter()
             .map(|f| f.path.display().to_string())
             .collect(),
+        vertices: None,
     }
 }
 
@@ -152,6 +155,7 @@ fn encode(
 ) -> Result<Vec<u8>, String> {
     match format {
         BakeFormat::Exr => img.encode_exr(),
+        BakeFormat::Ply => Err("per-vertex values are written by bake::vertex_files".into()),
         BakeFormat::Png8 | BakeFormat::Png16 => {
             let mapped;
             let img = if signed {

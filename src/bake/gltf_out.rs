@@ -8,7 +8,8 @@
 //! (sharing the accessors) pointing at that material. The textures are the baked PNG files,
 //! byte for byte, embedded as buffer views. All buffers are merged into the one `BIN` chunk
 //! and images the source kept in files or `data:` URIs are embedded too, so the copy stands
-//! alone. The JSON is edited as JSON, so everything the reader does not map (animations,
+//! alone. Per-vertex bakes become the primitive's `COLOR_0` (float RGB, [`color_source`]
+//! picks which). The JSON is edited as JSON, so everything the reader does not map (animations,
 //! skins, extensions) is kept as it was.
 
 use std::path::Path;
@@ -36,6 +37,112 @@ pub enum TextureSlot {
     Occlusion,
     /// `extensions.MSFT_lightmap.lightmapTexture` (`TEXCOORD_1`).
     Lightmap,
+}
+
+/// Per-vertex baked values of one primitive instance, written as its `COLOR_0`.
+pub struct BakedColors {
+    /// glTF node index.
+    pub node: usize,
+    /// Primitive index within the node's mesh.
+    pub primitive: usize,
+    /// One linear RGB value per vertex of the primitive, in [0, 1].
+    pub values: Vec<glam::Vec3>,
+}
+
+/// The values that become `COLOR_0` among one request's per-vertex targets: the ambient
+/// occlusion, else the first lightmap or albedo, clamped to [0, 1] (`COLOR_0` multiplies
+/// the base colour); `None` when the request baked none of these.
+pub fn color_source(
+    targets: &[(crate::components::BakeKind, Vec<glam::Vec3>)],
+) -> Option<Vec<glam::Vec3>> {
+    use crate::components::BakeKind;
+    let ao = targets
+        .iter()
+        .find(|(k, _)| matches!(k, BakeKind::AmbientOcclusion { .. }));
+    let colour = || {
+        targets
+            .iter()
+            .find(|(k, _)| matches!(k, BakeKind::Lightmap { .. } | BakeKind::Albedo))
+    };
+    let (_, values) = ao.or_else(colour)?;
+    Some(
+        values
+            .iter()
+            .map(|v| v.clamp(glam::Vec3::ZERO, glam::Vec3::ONE))
+            .map(|v| if v.is_nan() { glam::Vec3::ZERO } else { v })
+            .collect(),
+    )
+}
+
+/// The index of node `node`'s own copy of its mesh (made on first use).
+fn mesh_copy(
+    json: &mut Value,
+    node_mesh: &mut Vec<(usize, usize)>,
+    node: usize,
+) -> Result<usize, String> {
+    if let Some(&(_, m)) = node_mesh.iter().find(|(n, _)| *n == node) {
+        return Ok(m);
+    }
+    let Some(mesh) = json["nodes"][node]["mesh"].as_u64() else {
+        return Err(format!("nodes[{node}] has no mesh"));
+    };
+    let copy = json["meshes"][mesh as usize].clone();
+    let meshes = list(json, "meshes");
+    meshes.push(copy);
+    let m = meshes.len() - 1;
+    json["nodes"][node]["mesh"] = json!(m);
+    node_mesh.push((node, m));
+    Ok(m)
+}
+
+/// Adds `c.values` as a float VEC3 accessor and makes it `COLOR_0` of the primitive in the
+/// mesh copy `mesh` (replacing any `COLOR_0` it had). The count must be the primitive's
+/// vertex count.
+fn add_colors(
+    json: &mut Value,
+    bin: &mut Vec<u8>,
+    mesh: usize,
+    c: &BakedColors,
+) -> Result<(), String> {
+    let prim = &json["meshes"][mesh]["primitives"][c.primitive];
+    let at = || format!("nodes[{}] primitive {}", c.node, c.primitive);
+    let Some(position) = prim["attributes"]["POSITION"].as_u64() else {
+        return Err(format!("{}: no POSITION attribute", at()));
+    };
+    let count = json["accessors"][position as usize]["count"].as_u64();
+    if count != Some(c.values.len() as u64) {
+        return Err(format!(
+            "{}: {} baked vertex values for {} vertices",
+            at(),
+            c.values.len(),
+            count.unwrap_or(0)
+        ));
+    }
+    let mut data = Vec::with_capacity(c.values.len() * 12);
+    let (mut lo, mut hi) = (
+        glam::Vec3::splat(f32::INFINITY),
+        glam::Vec3::splat(f32::NEG_INFINITY),
+    );
+    for v in &c.values {
+        lo = lo.min(*v);
+        hi = hi.max(*v);
+        for x in v.to_array() {
+            data.extend_from_slice(&x.to_le_bytes());
+        }
+    }
+    let view = add_view(json, bin, &data);
+    let accessors = list(json, "accessors");
+    accessors.push(json!({
+        "bufferView": view,
+        "componentType": 5126,
+        "count": c.values.len(),
+        "type": "VEC3",
+        "min": lo.to_array(),
+        "max": hi.to_array(),
+    }));
+    let accessor = accessors.len() - 1;
+    json["meshes"][mesh]["primitives"][c.primitive]["attributes"]["COLOR_0"] = json!(accessor);
+    Ok(())
 }
 
 fn pad4(bytes: &mut Vec<u8>, fill: u8) {
@@ -82,8 +189,13 @@ fn source_json(bytes: &[u8]) -> Result<Value, String> {
 }
 
 /// The baked copy of the glTF file at `source` (read again; its buffers beside it) as GLB
-/// bytes, with `textures` referenced by the materials.
-pub fn baked_glb(source: &Path, textures: &[BakedTexture<'_>]) -> Result<Vec<u8>, String> {
+/// bytes, with `textures` referenced by the materials and `colors` as the baked
+/// primitives' `COLOR_0`.
+pub fn baked_glb(
+    source: &Path,
+    textures: &[BakedTexture<'_>],
+    colors: &[BakedColors],
+) -> Result<Vec<u8>, String> {
     let bytes = crate::limits::read_file(source, crate::limits::MAX_MESH_FILE_BYTES, "glTF file")
         .map_err(|e| crate::scene::message::io_reason(&e))?;
     let file = gltf_file::open(&bytes, source.parent()).map_err(|e| e.to_string())?;
@@ -122,22 +234,12 @@ pub fn baked_glb(source: &Path, textures: &[BakedTexture<'_>]) -> Result<Vec<u8>
     let mut node_mesh: Vec<(usize, usize)> = Vec::new();
     let mut prim_material: Vec<((usize, usize), usize)> = Vec::new();
     let mut lightmaps = false;
+    for c in colors {
+        let mesh_copy = mesh_copy(&mut json, &mut node_mesh, c.node)?;
+        add_colors(&mut json, &mut bin, mesh_copy, c)?;
+    }
     for t in textures {
-        let mesh_copy = match node_mesh.iter().find(|(n, _)| *n == t.node) {
-            Some(&(_, m)) => m,
-            None => {
-                let Some(mesh) = json["nodes"][t.node]["mesh"].as_u64() else {
-                    return Err(format!("nodes[{}] has no mesh", t.node));
-                };
-                let copy = json["meshes"][mesh as usize].clone();
-                let meshes = list(&mut json, "meshes");
-                meshes.push(copy);
-                let m = meshes.len() - 1;
-                json["nodes"][t.node]["mesh"] = json!(m);
-                node_mesh.push((t.node, m));
-                m
-            }
-        };
+        let mesh_copy = mesh_copy(&mut json, &mut node_mesh, t.node)?;
         let key = (t.node, t.primitive);
         let material = match prim_material.iter().find(|(k, _)| *k == key) {
             Some(&(_, m)) => m,

@@ -1,7 +1,8 @@
 //! Texture baking: UV sources and bake resolution, texel rasterization with conservative
 //! coverage, the per-texel estimators (ambient occlusion, irradiance), dilation and texture
 //! encoding; request checking ([`request`]), file naming/encoding ([`files`]) and the baked
-//! glTF copy ([`gltf_out`]). The
+//! glTF copy ([`gltf_out`]); per-vertex bakes lay vertices out as texels ([`vertices`]) and
+//! are written as PLY ([`vertex_files`]). The
 //! `bake_lightmaps` stage drives these.
 //!
 //! Texel convention: texel `(i, j)` of a `W × H` texture (row `j = 0` at the top of the image)
@@ -18,6 +19,8 @@ pub mod request;
 pub mod texels;
 pub mod texture;
 pub mod uv;
+pub mod vertex_files;
+pub mod vertices;
 
 pub use raster::{rasterize, Coverage, TexelSample};
 pub use report::BakeReport;

@@ -27,11 +27,28 @@ pub struct BakeReport {
     pub rays_per_second: f64,
     /// Files written.
     pub files: Vec<String>,
+    /// For a per-vertex bake (`target: Vertices`): the mesh's vertex count (its texels are
+    /// the vertices laid out on a grid; `dilated_texels` counts vertices filled from their
+    /// neighbours).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub vertices: Option<u64>,
 }
 
 impl BakeReport {
     /// One line for the terminal.
     pub fn summary(&self) -> String {
+        if let Some(vertices) = self.vertices {
+            return format!(
+                "{}: {vertices} vertices, {} baked, {} invalid, {} filled from neighbours, {} rays in {:.3} s ({:.2} Mrays/s)",
+                self.name,
+                self.covered_texels,
+                self.invalid_texels,
+                self.dilated_texels,
+                self.rays,
+                self.seconds,
+                self.rays_per_second / 1e6
+            );
+        }
         format!(
             "{}: {}×{} texels, {:.1} texels/unit, {} covered, {} invalid, {} dilated, {} rays in {:.3} s ({:.2} Mrays/s)",
             self.name,

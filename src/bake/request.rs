@@ -9,7 +9,7 @@ use hecs::{Entity, World};
 
 use super::{bake_resolution, corner_uvs, rasterize, second_set_corner_uvs, Coverage};
 use crate::components::{
-    BakeKind, BakeRequest, BakeResolution, Instance, SecondUvs, SourceLink, UvSource,
+    BakeKind, BakeRequest, BakeResolution, BakeTarget, Instance, SecondUvs, SourceLink, UvSource,
 };
 use crate::geometry::SceneGeometry;
 use crate::scene::Diagnostic;
@@ -33,6 +33,16 @@ pub struct PreparedBake {
     pub coverage: Coverage,
     /// World-space area of the instance (for texel density).
     pub world_area: f64,
+}
+
+impl PreparedBake {
+    /// Whether this bake's texels are the mesh's vertices (`target: Vertices`).
+    pub fn per_vertex(&self) -> bool {
+        self.request
+            .targets
+            .first()
+            .is_some_and(|t| t.format.is_per_vertex())
+    }
 }
 
 /// One request's problem, located where possible.
@@ -77,14 +87,20 @@ pub fn prepare_bakes(
             .get::<&Instance>(*entity)
             .ok()
             .and_then(|i| world.get::<&SecondUvs>(i.object).ok().map(|s| s.0.clone()));
-        match prepare(
-            request,
-            slot,
-            geometry,
-            second.as_deref().map(|v| v.as_slice()),
-        ) {
-            Ok(p) => prepared.push(p),
-            Err((message, help)) => problems.push(problem(message, help)),
+        let (textures, vertices) = split_targets(request);
+        if let Some(textures) = textures {
+            match prepare(
+                &textures,
+                slot,
+                geometry,
+                second.as_deref().map(|v| v.as_slice()),
+            ) {
+                Ok(p) => prepared.push(p),
+                Err((message, help)) => problems.push(problem(message, help)),
+            }
+        }
+        if let Some(vertices) = vertices {
+            prepared.push(prepare_vertices(vertices, slot, geometry));
         }
     }
     if problems.is_empty() {
@@ -118,6 +134,48 @@ pub fn prepare_bakes(
             None => first.message.clone(),
         },
     })
+}
+
+/// The request's texture targets and its per-vertex targets as two requests (either
+/// `None` when it has no such target); the per-vertex one writes no mask.
+fn split_targets(request: &BakeRequest) -> (Option<BakeRequest>, Option<BakeRequest>) {
+    let (vertex, texture): (Vec<_>, Vec<_>) = request
+        .targets
+        .iter()
+        .cloned()
+        .partition(|t| t.format.is_per_vertex());
+    let with = |targets: Vec<BakeTarget>, mask: bool| {
+        (!targets.is_empty()).then(|| BakeRequest {
+            targets,
+            mask,
+            ..request.clone()
+        })
+    };
+    (with(texture, request.mask), with(vertex, false))
+}
+
+/// A per-vertex request: every vertex of the instance's mesh as a texel
+/// ([`super::vertices`]).
+fn prepare_vertices(request: BakeRequest, slot: usize, geometry: &SceneGeometry) -> PreparedBake {
+    let inst = &geometry.instances[slot];
+    let coverage = super::vertices::vertex_coverage(
+        &inst.mesh,
+        &inst.world_from_object,
+        request.texel_samples,
+    );
+    let world_area = (0..inst.mesh.triangles.len())
+        .map(|t| {
+            let [a, b, c] = geometry.accel.triangle(inst.first_triangle + t as u32);
+            0.5 * (b - a).cross(c - a).length() as f64
+        })
+        .sum();
+    PreparedBake {
+        uvs: super::vertices::no_uvs(&inst.mesh),
+        request,
+        slot,
+        coverage,
+        world_area,
+    }
 }
 
 /// Checks and rasterizes one request; the error is (message, help).

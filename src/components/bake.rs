@@ -112,6 +112,9 @@ pub enum BakeFormat {
     Png8,
     /// 16-bit PNG (same encoding rules).
     Png16,
+    /// Per-vertex values (`target: Vertices`): a binary PLY copy of the mesh with vertex
+    /// colours (`crate::bake::vertex_files`).
+    Ply,
 }
 
 impl BakeFormat {
@@ -120,7 +123,13 @@ impl BakeFormat {
         match self {
             BakeFormat::Exr => "exr",
             BakeFormat::Png8 | BakeFormat::Png16 => "png",
+            BakeFormat::Ply => "ply",
         }
+    }
+
+    /// Whether this target is baked per vertex rather than per texel.
+    pub fn is_per_vertex(self) -> bool {
+        self == BakeFormat::Ply
     }
 }
 

@@ -3,7 +3,8 @@
 
 use super::dag::Leaf;
 use super::desc::{
-    BakeDesc, BakeFormatDesc, BakeKindDesc, LightmapStoreDesc, NormalSpaceDesc, UvsDesc,
+    BakeDesc, BakeFormatDesc, BakeKindDesc, BakeTargetDesc, LightmapStoreDesc, NormalSpaceDesc,
+    UvsDesc,
 };
 use super::diagnostics::Sources;
 use super::validate::{Checker, Merged};
@@ -107,6 +108,10 @@ fn request(
             );
             return None;
         }
+        (None, None) if all_per_vertex(d) => BakeResolution::Fixed {
+            width: 1,
+            height: 1,
+        },
         (None, None) => {
             ck.error(
                 path,
@@ -232,13 +237,26 @@ fn request(
             BakeKindDesc::Positions => BakeKind::Positions,
             BakeKindDesc::Albedo => BakeKind::Albedo,
         };
+        let format = match (o.target, o.format) {
+            (BakeTargetDesc::Vertices, _) => {
+                ok &= vertex_target_checks(ck, &format!("{path}.outputs[{k}]"), o, &kind);
+                BakeFormat::Ply
+            }
+            (BakeTargetDesc::Texture, BakeFormatDesc::Exr) => BakeFormat::Exr,
+            (BakeTargetDesc::Texture, BakeFormatDesc::Png8) => BakeFormat::Png8,
+            (BakeTargetDesc::Texture, BakeFormatDesc::Png16) => BakeFormat::Png16,
+            (BakeTargetDesc::Texture, BakeFormatDesc::Ply) => {
+                ck.error(
+                    &format!("{path}.outputs[{k}].format"),
+                    "`format: Ply` is the format of per-vertex bakes: add `target: Vertices`, or write the texture as Exr, Png8 or Png16",
+                );
+                ok = false;
+                BakeFormat::Exr
+            }
+        };
         targets.push(BakeTarget {
             kind,
-            format: match o.format {
-                BakeFormatDesc::Exr => BakeFormat::Exr,
-                BakeFormatDesc::Png8 => BakeFormat::Png8,
-                BakeFormatDesc::Png16 => BakeFormat::Png16,
-            },
+            format,
             file: o.file.as_ref().map(Into::into),
         });
     }
@@ -251,4 +269,56 @@ fn request(
         mask: d.mask,
         targets,
     })
+}
+
+/// Whether every output of the bake is baked per vertex (then no texture size is needed).
+fn all_per_vertex(d: &BakeDesc) -> bool {
+    !d.outputs.is_empty()
+        && d.outputs
+            .iter()
+            .all(|o| o.target == BakeTargetDesc::Vertices)
+}
+
+/// What a per-vertex output may not ask for: a texture format, bent normals (a texture of
+/// their own) or tangent-space normals (a texture's frame). Returns whether it is valid.
+fn vertex_target_checks(
+    ck: &mut Checker<'_>,
+    path: &str,
+    o: &super::desc::BakeOutputDesc,
+    kind: &BakeKind,
+) -> bool {
+    let mut ok = true;
+    if matches!(o.format, BakeFormatDesc::Png8 | BakeFormatDesc::Png16) {
+        ck.error(
+            &format!("{path}.format"),
+            "`target: Vertices` writes a PLY with vertex colours; leave `format` out (or write `format: Ply`)",
+        );
+        ok = false;
+    }
+    if matches!(
+        kind,
+        BakeKind::AmbientOcclusion {
+            bent_normals: true,
+            ..
+        }
+    ) {
+        ck.error(
+            &format!("{path}.kind.AmbientOcclusion.bent_normals"),
+            "bent normals are baked into a texture only; bake them in an output without `target: Vertices`",
+        );
+        ok = false;
+    }
+    if matches!(
+        kind,
+        BakeKind::Normals {
+            space: NormalSpace::Tangent
+        }
+    ) {
+        ck.error(
+            &format!("{path}.kind.Normals.space"),
+            "tangent-space normals need a texture's tangent frame; bake `space: World` per vertex",
+        );
+        ok = false;
+    }
+    ok
 }

@@ -1022,6 +1022,27 @@ pub struct BakeOutputDesc {
     /// File name (relative to the bake directory), default `<instance>_<kind>.<ext>`.
     #[serde(default)]
     pub file: Option<String>,
+    /// Where the values go: `Texture` (default, texels through the bake's UVs) or `Vertices`
+    /// (one value per mesh vertex, written as a PLY with vertex colours).
+    #[serde(default, skip_serializing_if = "BakeTargetDesc::is_texture")]
+    pub target: BakeTargetDesc,
+}
+
+/// Where a bake output's values go.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Deserialize, Serialize)]
+#[serde(rename = "BakeTarget", deny_unknown_fields)]
+pub enum BakeTargetDesc {
+    /// Texels of a texture, through the bake's UVs.
+    #[default]
+    Texture,
+    /// Mesh vertices: area-weighted sample positions around each vertex.
+    Vertices,
+}
+
+impl BakeTargetDesc {
+    fn is_texture(&self) -> bool {
+        *self == BakeTargetDesc::Texture
+    }
 }
 
 /// Kinds of baked texture.
@@ -1107,6 +1128,8 @@ pub enum BakeFormatDesc {
     Png8,
     /// 16-bit PNG.
     Png16,
+    /// PLY with vertex colours (the format of `target: Vertices`, and only of it).
+    Ply,
 }
 
 /// One step of an instance transform.

@@ -63,4 +63,5 @@ mod skipped_stages;
 mod stages;
 mod sweep;
 mod textures;
+mod vertex_bake;
 mod volume_shaders;

@@ -1,12 +1,15 @@
 //! The default bake request of a glTF scene: every instance of a primitive that has a
 //! second UV set (`TEXCOORD_1`, lightmap UVs) bakes, on that set, an irradiance lightmap
 //! (direct plus two bounces of indirect light) and ambient occlusion into 8-bit PNGs at
-//! [`TEXELS_PER_UNIT`] texels per unit (at most [`MAX_SIZE`]), which
-//! `stagelight bake model.glb --write-gltf` puts back into a copy of the file.
+//! [`TEXELS_PER_UNIT`] texels per unit (at most [`MAX_SIZE`]); every instance of a primitive
+//! without it bakes ambient occlusion per vertex ([`default_vertex_bake`]). `stagelight bake
+//! model.glb --write-gltf` puts both back into a copy of the file (textures in the
+//! materials, vertex AO as `COLOR_0`).
 
 use super::Walk;
 use crate::scene::desc::{
-    BakeDesc, BakeFormatDesc, BakeKindDesc, BakeOutputDesc, LightmapStoreDesc, UvsDesc,
+    BakeDesc, BakeFormatDesc, BakeKindDesc, BakeOutputDesc, BakeTargetDesc, LightmapStoreDesc,
+    UvsDesc,
 };
 
 /// Texel density of the default bakes (texels per world unit).
@@ -36,6 +39,7 @@ pub fn default_bake() -> BakeDesc {
                 },
                 format: BakeFormatDesc::Png8,
                 file: None,
+                target: BakeTargetDesc::Texture,
             },
             BakeOutputDesc {
                 kind: BakeKindDesc::AmbientOcclusion {
@@ -45,12 +49,38 @@ pub fn default_bake() -> BakeDesc {
                 },
                 format: BakeFormatDesc::Png8,
                 file: None,
+                target: BakeTargetDesc::Texture,
             },
         ],
     }
 }
 
-/// Gives every primitive instance with `TEXCOORD_1` the default request.
+/// The default request of a primitive without lightmap UVs: [`SAMPLES`] AO rays per vertex
+/// over 4 sample positions, written as `<instance>_ao.ply` (and `COLOR_0` of the copy).
+pub fn default_vertex_bake() -> BakeDesc {
+    BakeDesc {
+        resolution: None,
+        texels_per_unit: None,
+        max_size: MAX_SIZE,
+        uvs: UvsDesc::Auto,
+        texel_samples: 4,
+        padding: 0,
+        mask: false,
+        outputs: vec![BakeOutputDesc {
+            kind: BakeKindDesc::AmbientOcclusion {
+                samples: SAMPLES,
+                max_distance: None,
+                bent_normals: false,
+            },
+            format: BakeFormatDesc::Ply,
+            file: None,
+            target: BakeTargetDesc::Vertices,
+        }],
+    }
+}
+
+/// Gives every primitive instance with `TEXCOORD_1` the default request, and every other
+/// one the default per-vertex request.
 pub fn default_bakes(w: &mut Walk<'_>) {
     for (name, node, p) in &w.leaves {
         let Some(prim) = w
@@ -63,11 +93,13 @@ pub fn default_bakes(w: &mut Walk<'_>) {
         else {
             continue;
         };
-        if prim.get(&gltf::Semantic::TexCoords(1)).is_none() {
-            continue;
-        }
+        let bake = if prim.get(&gltf::Semantic::TexCoords(1)).is_some() {
+            default_bake()
+        } else {
+            default_vertex_bake()
+        };
         if let Some(inst) = w.desc.instances.iter_mut().find(|i| &i.name == name) {
-            inst.bake = Some(default_bake());
+            inst.bake = Some(bake);
         }
     }
 }

@@ -1,0 +1,287 @@
+//! Per-vertex bakes (`target: Vertices`): the sample positions of each mesh vertex, laid out
+//! as the texels of a [`Coverage`] so the texel estimators, their seeding and the farm's
+//! tile split apply unchanged; and the values read back per vertex, with vertices that got
+//! no value (every sample inside other geometry) filled from their neighbours.
+//!
+//! Vertex `v` of an `N`-vertex mesh is texel `(v mod W, v div W)` of a `W × H` grid with
+//! `W = ⌈√N⌉`, `H = ⌈N / W⌉` (square, so rows spread over threads and farm tiles).
+//!
+//! Sample positions: the vertex's dual cell — in every triangle around it, the quad of the
+//! vertex, the two edge midpoints beside it and the centroid (a third of the triangle's
+//! area), split into two triangles of equal area. The `k²` sample slots (the request's
+//! `texel_samples` rounded up as for textures) are stratified over these pieces by world
+//! area, so each triangle gets samples in proportion to its area (area-weighted), and placed
+//! in each piece by a fixed low-discrepancy pattern: no randomness, so the positions are the
+//! same in every run.
+
+use glam::{Affine3A, Vec2, Vec3};
+
+use super::raster::{Coverage, TexelSample};
+use super::TexelImage;
+use crate::components::TriMesh;
+
+/// The grid `(width, height)` that holds `vertices` vertices.
+pub fn grid(vertices: usize) -> (u32, u32) {
+    let n = vertices.max(1);
+    let width = (n as f64).sqrt().ceil() as usize;
+    let height = n.div_ceil(width);
+    (width as u32, height as u32)
+}
+
+/// The triangles around each vertex: (triangle, corner) pairs, in triangle order.
+fn corners_of_vertices(mesh: &TriMesh) -> Vec<Vec<(u32, usize)>> {
+    let mut around = vec![Vec::new(); mesh.positions.len()];
+    for (t, tri) in mesh.triangles.iter().enumerate() {
+        for (c, &v) in tri.iter().enumerate() {
+            if let Some(list) = around.get_mut(v as usize) {
+                list.push((t as u32, c));
+            }
+        }
+    }
+    around
+}
+
+/// Barycentric weights `(λ0, λ1, λ2)` of the point `(a, b) ∈ [0, 1)²` mapped uniformly
+/// onto half `half` (0 or 1) of corner `corner`'s dual cell.
+fn dual_cell_point(corner: usize, half: usize, a: f64, b: f64) -> [f64; 3] {
+    let unit = |i: usize| {
+        let mut e = [0.0; 3];
+        e[i] = 1.0;
+        e
+    };
+    let mid = |i: usize, j: usize| {
+        let (x, y) = (unit(i), unit(j));
+        [
+            (x[0] + y[0]) / 2.0,
+            (x[1] + y[1]) / 2.0,
+            (x[2] + y[2]) / 2.0,
+        ]
+    };
+    let vertex = unit(corner);
+    let centroid = [1.0 / 3.0; 3];
+    let (p, q) = if half == 0 {
+        (mid(corner, (corner + 1) % 3), centroid)
+    } else {
+        (centroid, mid(corner, (corner + 2) % 3))
+    };
+    // Uniform on the triangle (vertex, p, q).
+    let r = a.sqrt();
+    let (wv, wp, wq) = (1.0 - r, r * (1.0 - b), r * b);
+    [0, 1, 2].map(|i| wv * vertex[i] + wp * p[i] + wq * q[i])
+}
+
+/// The sample positions of every vertex of `mesh` (placed by `world_from_object`, for the
+/// area weights) with `texel_samples` (rounded up to `k²`) slots per vertex.
+pub fn vertex_coverage(
+    mesh: &TriMesh,
+    world_from_object: &Affine3A,
+    texel_samples: u32,
+) -> Coverage {
+    let k = (texel_samples.max(1) as f64).sqrt().ceil() as u32;
+    let per_texel = (k * k) as usize;
+    let (width, height) = grid(mesh.positions.len());
+    let mut samples = vec![None; width as usize * height as usize * per_texel];
+    let area: Vec<f64> = mesh
+        .triangles
+        .iter()
+        .enumerate()
+        .map(|(t, _)| {
+            let [a, b, c] = mesh
+                .triangle(t)
+                .map(|p| world_from_object.transform_point3(p));
+            let twice = (b - a).cross(c - a).length() as f64;
+            if twice.is_finite() {
+                twice / 2.0
+            } else {
+                0.0
+            }
+        })
+        .collect();
+    let mut inside = 0u64;
+    for (v, around) in corners_of_vertices(mesh).iter().enumerate() {
+        // Two pieces per triangle, each a sixth of its area.
+        let pieces: Vec<(u32, usize, usize, f64)> = around
+            .iter()
+            .filter(|&&(t, _)| area[t as usize] > 0.0)
+            .flat_map(|&(t, c)| [0, 1].map(|half| (t, c, half, area[t as usize] / 6.0)))
+            .collect();
+        let total: f64 = pieces.iter().map(|p| p.3).sum();
+        if pieces.is_empty() || total <= 0.0 {
+            continue;
+        }
+        let mut piece = 0;
+        let mut before = 0.0;
+        for s in 0..per_texel {
+            let u = (s as f64 + 0.5) / per_texel as f64 * total;
+            while piece + 1 < pieces.len() && before + pieces[piece].3 <= u {
+                before += pieces[piece].3;
+                piece += 1;
+            }
+            let (t, c, half, weight) = pieces[piece];
+            let a = ((u - before) / weight).clamp(0.0, 1.0);
+            // Golden-ratio sequence for the second coordinate.
+            let b = (0.5 + s as f64 * 0.618_033_988_749_894_9).fract();
+            let l = dual_cell_point(c, half, a, b);
+            samples[v * per_texel + s] = Some(TexelSample {
+                triangle: t,
+                b1: l[1] as f32,
+                b2: l[2] as f32,
+            });
+            inside += 1;
+        }
+    }
+    Coverage {
+        width,
+        height,
+        per_texel: per_texel as u32,
+        samples,
+        overlaps: 0,
+        inside,
+    }
+}
+
+/// Zero corner UVs for every triangle (per-vertex bakes have no texture frame).
+pub fn no_uvs(mesh: &TriMesh) -> Vec<[Vec2; 3]> {
+    vec![[Vec2::ZERO; 3]; mesh.triangles.len()]
+}
+
+/// The values of the first `vertices` texels of `img` (vertex order), `None` where no value
+/// was baked.
+pub fn vertex_values(img: &TexelImage, vertices: usize) -> Vec<Option<Vec3>> {
+    (0..vertices)
+        .map(|v| {
+            img.valid
+                .get(v)
+                .copied()
+                .unwrap_or(false)
+                .then(|| img.texels[v])
+        })
+        .collect()
+}
+
+/// Passes of neighbour filling for vertices without a value.
+const FILL_PASSES: usize = 16;
+
+/// Gives every vertex without a value the mean of its neighbours' values (vertices sharing a
+/// triangle), pass by pass from the previous pass's values (so the order of vertices does
+/// not matter); vertices still without a value after [`FILL_PASSES`] passes (none of their
+/// part of the mesh was baked) become zero. Returns how many vertices were filled.
+pub fn fill_missing(mesh: &TriMesh, values: &mut [Option<Vec3>]) -> u64 {
+    let mut filled = 0u64;
+    let mut neighbours: Vec<Vec<u32>> = vec![Vec::new(); values.len()];
+    for tri in &mesh.triangles {
+        for (c, &v) in tri.iter().enumerate() {
+            for d in 1..3 {
+                let w = tri[(c + d) % 3];
+                if let Some(list) = neighbours.get_mut(v as usize) {
+                    if (w as usize) < values.len() && !list.contains(&w) {
+                        list.push(w);
+                    }
+                }
+            }
+        }
+    }
+    for _ in 0..FILL_PASSES {
+        let before = values.to_vec();
+        let mut changed = false;
+        for (v, value) in values.iter_mut().enumerate() {
+            if value.is_some() {
+                continue;
+            }
+            let known: Vec<Vec3> = neighbours[v]
+                .iter()
+                .filter_map(|&w| before[w as usize])
+                .collect();
+            if !known.is_empty() {
+                *value = Some(known.iter().sum::<Vec3>() / known.len() as f32);
+                filled += 1;
+                changed = true;
+            }
+        }
+        if !changed {
+            break;
+        }
+    }
+    for value in values.iter_mut() {
+        if value.is_none() {
+            *value = Some(Vec3::ZERO);
+            filled += 1;
+        }
+    }
+    filled
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn square() -> TriMesh {
+        TriMesh {
+            positions: vec![
+                Vec3::new(0.0, 0.0, 0.0),
+                Vec3::new(1.0, 0.0, 0.0),
+                Vec3::new(1.0, 1.0, 0.0),
+                Vec3::new(0.0, 1.0, 0.0),
+                Vec3::new(5.0, 5.0, 5.0),
+            ],
+            normals: None,
+            uvs: None,
+            triangles: vec![[0, 1, 2], [0, 2, 3]],
+        }
+    }
+
+    #[test]
+    fn the_grid_is_square_and_holds_every_vertex() {
+        assert_eq!(grid(1), (1, 1));
+        assert_eq!(grid(5), (3, 2));
+        assert_eq!(grid(16), (4, 4));
+        assert_eq!(grid(17), (5, 4));
+    }
+
+    #[test]
+    fn samples_stay_in_the_dual_cell_and_follow_the_area() {
+        let mesh = square();
+        let cov = vertex_coverage(&mesh, &Affine3A::IDENTITY, 64);
+        assert_eq!((cov.width, cov.height, cov.per_texel), (3, 2, 64));
+        // Vertex 4 is on no triangle: no samples.
+        assert!(!cov.is_covered(1, 1));
+        // Vertex 0 is on both triangles (equal areas): half of its samples in each, each
+        // with vertex 0's weight at least the others' (inside the dual cell).
+        let slots = cov.texel(0, 0);
+        let mut per_triangle = [0; 2];
+        for s in slots.iter().flatten() {
+            per_triangle[s.triangle as usize] += 1;
+            let l0 = 1.0 - s.b1 - s.b2;
+            assert!(l0 + 1e-6 >= s.b1 && l0 + 1e-6 >= s.b2, "{s:?}");
+        }
+        assert_eq!(per_triangle, [32, 32]);
+        // Vertex 1 is on the first triangle only.
+        assert!(cov.texel(1, 0).iter().flatten().all(|s| s.triangle == 0));
+        // The mean sample position of vertex 0 is near its dual cell's centroid: the
+        // hexagon (0,0) (½,0) (⅔,⅓) (½,½) (⅓,⅔) (0,½), centroid (7/24, 7/24).
+        let mean: Vec3 = slots
+            .iter()
+            .flatten()
+            .map(|s| {
+                let [a, b, c] = mesh.triangle(s.triangle as usize);
+                a * (1.0 - s.b1 - s.b2) + b * s.b1 + c * s.b2
+            })
+            .sum::<Vec3>()
+            / 64.0;
+        assert!(
+            (mean - Vec3::new(7.0 / 24.0, 7.0 / 24.0, 0.0)).length() < 0.02,
+            "{mean}"
+        );
+    }
+
+    #[test]
+    fn missing_vertices_take_their_neighbours_mean() {
+        let mesh = square();
+        let mut values = vec![Some(Vec3::ONE), None, Some(Vec3::splat(3.0)), None, None];
+        let filled = fill_missing(&mesh, &mut values);
+        assert_eq!(filled, 3);
+        assert_eq!(values[1], Some(Vec3::splat(2.0)));
+        assert_eq!(values[3], Some(Vec3::splat(2.0)));
+        assert_eq!(values[4], Some(Vec3::ZERO), "no neighbours: zero");
+    }
+}

@@ -1,0 +1,377 @@
+//! Per-vertex bakes (`outputs: [(kind: …, target: Vertices)]`): ambient occlusion per vertex
+//! against closed forms beside a wall, the PLY they are written to, the same bytes at any
+//! thread count and through farm parts, `COLOR_0` of a baked glTF copy, and the scene
+//! errors of what a per-vertex output cannot be.
+
+use std::f64::consts::PI;
+use std::path::{Path, PathBuf};
+
+use crate::common::cli::{dir_names, run_in, scratch_dir, stderr_of};
+
+/// A PLY written by a per-vertex bake: the header's vertex properties and the raw records.
+struct BakedPly {
+    count: usize,
+    properties: Vec<(String, usize)>,
+    records: Vec<u8>,
+    stride: usize,
+    faces: usize,
+}
+
+impl BakedPly {
+    fn read(path: &Path) -> BakedPly {
+        let bytes = std::fs::read(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        let end = b"end_header\n";
+        let at = bytes.windows(end.len()).position(|w| w == end).unwrap() + end.len();
+        let header = std::str::from_utf8(&bytes[..at]).unwrap();
+        assert!(header.starts_with("ply\nformat binary_little_endian 1.0\n"));
+        let mut count = 0;
+        let mut faces = 0;
+        let mut properties = Vec::new();
+        let mut in_vertex = false;
+        for line in header.lines() {
+            let words: Vec<&str> = line.split_whitespace().collect();
+            match words.as_slice() {
+                ["element", "vertex", n] => {
+                    count = n.parse().unwrap();
+                    in_vertex = true;
+                }
+                ["element", "face", n] => {
+                    faces = n.parse().unwrap();
+                    in_vertex = false;
+                }
+                ["property", ty, name] if in_vertex => {
+                    let size = match *ty {
+                        "float" => 4,
+                        "uchar" => 1,
+                        other => panic!("unexpected type {other}"),
+                    };
+                    properties.push((name.to_string(), size));
+                }
+                _ => {}
+            }
+        }
+        let stride = properties.iter().map(|p| p.1).sum();
+        BakedPly {
+            count,
+            properties,
+            records: bytes[at..at + count * stride].to_vec(),
+            stride,
+            faces,
+        }
+    }
+
+    fn offset(&self, name: &str) -> usize {
+        let mut o = 0;
+        for (n, size) in &self.properties {
+            if n == name {
+                return o;
+            }
+            o += size;
+        }
+        panic!("no property {name}");
+    }
+
+    fn float(&self, v: usize, name: &str) -> f32 {
+        let o = v * self.stride + self.offset(name);
+        f32::from_le_bytes(self.records[o..o + 4].try_into().unwrap())
+    }
+
+    fn byte(&self, v: usize, name: &str) -> u8 {
+        self.records[v * self.stride + self.offset(name)]
+    }
+}
+
+/// The scene: a wall at x = 0 (facing −x, 200 × 100 units) and, on the floor z = 0 at
+/// x < 0, the instances given.
+fn scene(objects: &str, instances: &str, names: &str) -> String {
+    format!(
+        r#"Scene(
+    options: (seed: 3),
+    cameras: [(name: "cam", fov_y: 40.0, resolution: (4, 4),
+               placement: LookAt(eye: (-3, 0, 2), target: (0, 0, 0)),
+               outputs: [(file: "view.png")])],
+    materials: [(name: "grey", shader: Lambert(albedo: (0.5, 0.5, 0.5)))],
+    objects: [
+        (name: "wall", mesh: Inline(
+            vertices: [(0, -100, 0), (0, 100, 0), (0, 100, 100), (0, -100, 100)],
+            polygons: [[0, 3, 2, 1]]), material: "grey"),
+        {objects}
+    ],
+    instances: [(name: "wall_1", of: "wall"), {instances}],
+    groups: [(name: "world", members: ["wall_1", {names}])],
+    render: (root: "world", camera: "cam"),
+)
+"#
+    )
+}
+
+/// A floor strip beside the wall: x ∈ [−1, 0], y ∈ [−1, 1], 2 × 2 cells (9 vertices, three
+/// of them on the wall's foot).
+const STRIP: &str = r#"(name: "strip", mesh: Inline(
+            vertices: [(-1, -1, 0), (-0.5, -1, 0), (0, -1, 0), (-1, 0, 0), (-0.5, 0, 0),
+                       (0, 0, 0), (-1, 1, 0), (-0.5, 1, 0), (0, 1, 0)],
+            polygons: [[0, 1, 4, 3], [1, 2, 5, 4], [3, 4, 7, 6], [4, 5, 8, 7]]),
+            material: "grey"),"#;
+
+fn bake(dir: &Path, text: &str, out: &str, extra: &[&str]) {
+    std::fs::write(dir.join("scene.ron"), text).unwrap();
+    let mut args = vec!["bake", "scene.ron", "-o", out];
+    args.extend_from_slice(extra);
+    let o = run_in(dir, &args);
+    assert!(o.status.success(), "{args:?}: {}", stderr_of(&o));
+}
+
+/// Every vertex of a floor beside a (practically infinite) wall sees the wall cover half of
+/// its cosine-weighted hemisphere: AO ½ within 4σ, the vertices on the wall's foot too.
+#[test]
+fn vertex_ao_beside_a_wall_is_one_half() {
+    let dir = scratch_dir("vertex-bake-half");
+    let samples = 1024;
+    let text = scene(
+        STRIP,
+        &format!(
+            r#"(name: "strip_1", of: "strip", bake: (outputs: [
+                (kind: AmbientOcclusion(samples: {samples}), target: Vertices)]))"#
+        ),
+        r#""strip_1""#,
+    );
+    std::fs::write(dir.join("scene.ron"), &text).unwrap();
+    let o = run_in(&dir, &["bake", "scene.ron", "-o", "out", "--stats"]);
+    assert!(o.status.success(), "{}", stderr_of(&o));
+    let report = String::from_utf8_lossy(&o.stdout).into_owned() + &stderr_of(&o);
+    assert!(
+        report.contains(&format!(
+            "bake strip_1: 9 vertices, 9 baked, 0 invalid, 0 filled from neighbours, {} rays",
+            9 * samples
+        )),
+        "{report}"
+    );
+    assert_eq!(dir_names(&dir.join("out")), ["strip_1_ao.ply"]);
+    let ply = BakedPly::read(&dir.join("out/strip_1_ao.ply"));
+    assert_eq!((ply.count, ply.faces), (9, 8));
+    let sigma = (0.25f64 / samples as f64).sqrt();
+    let mut sum = 0.0;
+    for v in 0..ply.count {
+        let ao = ply.float(v, "baked_r") as f64;
+        assert!((ao - 0.5).abs() < 4.0 * sigma, "vertex {v}: AO {ao}");
+        assert_eq!(ply.float(v, "baked_g") as f64, ao);
+        assert_eq!(ply.byte(v, "red"), (ao * 255.0 + 0.5) as u8);
+        sum += ao;
+    }
+    let mean = sum / ply.count as f64;
+    assert!((mean - 0.5).abs() < 4.0 * sigma / 3.0, "mean AO {mean}");
+    // The positions are the mesh's.
+    assert_eq!(
+        (ply.float(2, "x"), ply.float(2, "y"), ply.float(2, "z")),
+        (0.0, -1.0, 0.0)
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// With `max_distance: R`, a point at distance x from the wall is occluded by the directions
+/// whose horizontal component toward the wall exceeds x/R: AO = 1 − (acos a − a√(1−a²))/π,
+/// a = x/R. Tiny triangles (1 mm) at x = 0.1 … 0.9 make each vertex a point.
+#[test]
+fn vertex_ao_with_a_distance_limit_matches_the_closed_form() {
+    let dir = scratch_dir("vertex-bake-limit");
+    let xs = [0.1, 0.3, 0.5, 0.7, 0.9];
+    let mut vertices = Vec::new();
+    let mut polygons = Vec::new();
+    for (k, x) in xs.iter().enumerate() {
+        let x = -x;
+        vertices.push(format!(
+            "({x}, 0, 0), ({}, 0, 0), ({x}, 0.001, 0)",
+            x + 0.001
+        ));
+        polygons.push(format!("[{}, {}, {}]", 3 * k, 3 * k + 1, 3 * k + 2));
+    }
+    let objects = format!(
+        r#"(name: "dots", mesh: Inline(vertices: [{}], polygons: [{}]), material: "grey"),"#,
+        vertices.join(", "),
+        polygons.join(", ")
+    );
+    let samples = 2048;
+    let text = scene(
+        &objects,
+        &format!(
+            r#"(name: "dots_1", of: "dots", bake: (outputs: [
+                (kind: AmbientOcclusion(samples: {samples}, max_distance: 1.0), target: Vertices)]))"#
+        ),
+        r#""dots_1""#,
+    );
+    bake(&dir, &text, "out", &[]);
+    let ply = BakedPly::read(&dir.join("out/dots_1_ao.ply"));
+    for (k, x) in xs.iter().enumerate() {
+        let a: f64 = *x;
+        let expected = 1.0 - (a.acos() - a * (1.0 - a * a).sqrt()) / PI;
+        let sigma = (expected * (1.0 - expected) / samples as f64).sqrt();
+        for v in 3 * k..3 * k + 3 {
+            let ao = ply.float(v, "baked_r") as f64;
+            assert!(
+                (ao - expected).abs() < 4.0 * sigma + 2e-3,
+                "x = {x}: vertex {v} AO {ao}, expected {expected} (σ {sigma})"
+            );
+        }
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Per-vertex bakes are the same bytes at any thread count and through farm parts, beside a
+/// texture bake of the same request (each keeps its own files).
+#[test]
+fn vertex_bakes_are_deterministic_and_merge_from_parts() {
+    let dir = scratch_dir("vertex-bake-parts");
+    let text = scene(
+        STRIP,
+        r#"(name: "strip_1", of: "strip", bake: (resolution: (8, 8), outputs: [
+                (kind: AmbientOcclusion(samples: 8), target: Vertices),
+                (kind: AmbientOcclusion(samples: 8)),
+                (kind: Normals(), target: Vertices)]))"#,
+        r#""strip_1""#,
+    );
+    bake(&dir, &text, "one", &["--threads", "1"]);
+    bake(&dir, &text, "three", &["--threads", "3"]);
+    let names = dir_names(&dir.join("one"));
+    assert_eq!(
+        names,
+        ["strip_1_ao.exr", "strip_1_ao.ply", "strip_1_normals.ply"]
+    );
+    let read = |sub: &str, name: &str| std::fs::read(dir.join(sub).join(name)).unwrap();
+    for name in &names {
+        assert!(read("one", name) == read("three", name), "{name} differs");
+    }
+    for k in 1..=3 {
+        let part = format!("{k}/3");
+        bake(&dir, &text, "parts", &["--part", &part]);
+    }
+    let o = run_in(
+        &dir,
+        &[
+            "merge",
+            "parts/bake_part_1_of_3.exr",
+            "parts/bake_part_2_of_3.exr",
+            "parts/bake_part_3_of_3.exr",
+            "-o",
+            "merged",
+        ],
+    );
+    assert!(o.status.success(), "{}", stderr_of(&o));
+    for name in &names {
+        assert!(
+            read("one", name) == read("merged", name),
+            "{name} differs after merging"
+        );
+    }
+    // World normals of the floor: straight up, shown as (128, 128, 255).
+    let ply = BakedPly::read(&dir.join("one/strip_1_normals.ply"));
+    assert_eq!(ply.float(4, "baked_b"), 1.0);
+    assert_eq!(
+        (
+            ply.byte(4, "red"),
+            ply.byte(4, "green"),
+            ply.byte(4, "blue")
+        ),
+        (128, 128, 255)
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A glTF primitive without `TEXCOORD_1` bakes AO per vertex by default, and `--write-gltf`
+/// makes it the primitive's `COLOR_0` in the copy (one float RGB per vertex, the PLY's
+/// values), each of the three nodes sharing the mesh with its own copy.
+#[test]
+fn a_baked_glb_carries_vertex_ao_as_color_0() {
+    let dir = scratch_dir("vertex-bake-gltf");
+    let source =
+        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/gltf/hierarchy.glb");
+    let o = run_in(
+        &dir,
+        &[
+            "bake",
+            source.to_str().unwrap(),
+            "-o",
+            "out",
+            "--write-gltf",
+        ],
+    );
+    assert!(o.status.success(), "{}", stderr_of(&o));
+    let names = dir_names(&dir.join("out"));
+    let plys: Vec<&String> = names.iter().filter(|n| n.ends_with("_ao.ply")).collect();
+    assert_eq!(plys.len(), 3, "{names:?}");
+    let bytes = std::fs::read(dir.join("out/hierarchy.glb")).unwrap();
+    let glb = gltf::Gltf::from_slice(&bytes).expect("a valid glb");
+    let blob = glb.blob.clone().expect("a BIN chunk");
+    let mut checked = 0;
+    for ply_name in plys {
+        let instance = ply_name.trim_end_matches("_ao.ply");
+        let ply = BakedPly::read(&dir.join("out").join(ply_name));
+        let node = glb
+            .nodes()
+            .find(|n| n.name() == Some(instance))
+            .unwrap_or_else(|| panic!("a node for {instance}"));
+        let prim = node.mesh().unwrap().primitives().next().unwrap();
+        let colors = prim.get(&gltf::Semantic::Colors(0)).expect("COLOR_0");
+        assert_eq!(colors.count(), ply.count);
+        assert_eq!(colors.data_type(), gltf::accessor::DataType::F32);
+        let view = colors.view().unwrap();
+        let start = view.offset() + colors.offset();
+        for v in 0..ply.count {
+            let at = start + v * 12;
+            let r = f32::from_le_bytes(blob[at..at + 4].try_into().unwrap());
+            assert_eq!(r, ply.float(v, "baked_r").clamp(0.0, 1.0));
+            checked += 1;
+        }
+    }
+    assert!(checked > 0);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// What a per-vertex output cannot be is a located scene error.
+#[test]
+fn per_vertex_outputs_refuse_texture_only_settings() {
+    let dir = scratch_dir("vertex-bake-errors");
+    let cases = [
+        (
+            "(kind: AmbientOcclusion(), format: Png8, target: Vertices)",
+            "`target: Vertices` writes a PLY with vertex colours; leave `format` out (or write `format: Ply`)",
+        ),
+        (
+            "(kind: AmbientOcclusion(bent_normals: true), target: Vertices)",
+            "bent normals are baked into a texture only; bake them in an output without `target: Vertices`",
+        ),
+        (
+            "(kind: Normals(space: Tangent), target: Vertices)",
+            "tangent-space normals need a texture's tangent frame; bake `space: World` per vertex",
+        ),
+        (
+            "(kind: AmbientOcclusion(), format: Ply)",
+            "`format: Ply` is the format of per-vertex bakes: add `target: Vertices`, or write the texture as Exr, Png8 or Png16",
+        ),
+    ];
+    for (output, message) in cases {
+        let text = scene(
+            STRIP,
+            &format!(
+                r#"(name: "strip_1", of: "strip", bake: (resolution: (4, 4), outputs: [{output}]))"#
+            ),
+            r#""strip_1""#,
+        );
+        std::fs::write(dir.join("scene.ron"), text).unwrap();
+        let o = run_in(&dir, &["bake", "scene.ron", "-o", "out"]);
+        assert!(!o.status.success(), "{output}");
+        let err = stderr_of(&o);
+        // `scene.ron:LINE:COLUMN: error: …`, located at the output's field.
+        let line = err
+            .lines()
+            .find(|l| l.ends_with(&format!(": error: {message}")))
+            .unwrap_or_else(|| panic!("{output}:\n{err}"));
+        let place: Vec<&str> = line.splitn(4, ':').collect();
+        assert_eq!(place[0], "scene.ron", "{line}");
+        assert!(
+            place[1].parse::<u32>().is_ok() && place[2].parse::<u32>().is_ok(),
+            "{line}"
+        );
+        assert!(!dir.join("out").exists(), "nothing is written");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
