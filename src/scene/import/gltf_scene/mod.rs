@@ -167,6 +167,9 @@ fn place(w: &mut Walk<'_>, name: String, of: String, local: &DMat4) -> String {
         bake: None,
         caustic: None,
         globillum: None,
+        visible: None,
+        shadow: None,
+        trace: None,
     });
     name
 }
@@ -216,6 +219,9 @@ impl Walk<'_> {
             derivatives: false,
             caustic: None,
             globillum: None,
+            visible: None,
+            shadow: None,
+            trace: None,
         });
         self.objects.insert((mesh.index(), p), name.clone());
         name

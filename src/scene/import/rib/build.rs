@@ -1301,6 +1301,9 @@ impl Builder {
                 derivatives: false,
                 caustic: None,
                 globillum: None,
+                visible: None,
+                shadow: None,
+                trace: None,
             });
             desc.instances.push(InstanceDesc {
                 name: o.name.clone(),
@@ -1310,6 +1313,9 @@ impl Builder {
                 bake: None,
                 caustic: None,
                 globillum: None,
+                visible: None,
+                shadow: None,
+                trace: None,
             });
             members.push(o.name);
         }
