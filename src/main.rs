@@ -92,6 +92,13 @@ struct RenderArgs {
     /// Radiance integrator (overrides the scene's `options.integrator`).
     #[arg(long, value_enum)]
     integrator: Option<IntegratorArg>,
+    /// Switch kinds of shaders off for this run, added to the scene's `options.disable`:
+    /// a comma-separated list of lens, volume, geometry, displacement, output.
+    #[arg(long, value_name = "FEATURES", value_parser = stagelight::features::Features::parse_list)]
+    disable: Option<stagelight::features::Features>,
+    /// Replace the beauty pass by a diagnostic view: `samples` (samples per pixel).
+    #[arg(long, value_name = "MODE", value_parser = stagelight::diagnostic::Diagnostic::parse)]
+    diagnostic: Option<stagelight::diagnostic::Diagnostic>,
     /// Print the per-stage report.
     #[arg(long)]
     stats: bool,
@@ -628,6 +635,12 @@ fn render(args: RenderArgs) -> ExitCode {
         // A fixed count overrides the scene's adaptive sampling too.
         settings.spp = spp;
         settings.adaptive = None;
+    }
+    if let Some(off) = args.disable {
+        settings.disabled = settings.disabled.union(off);
+    }
+    if args.diagnostic.is_some() {
+        settings.diagnostic = args.diagnostic;
     }
     let overrides = OutputOverrides {
         first: args.output.clone(),

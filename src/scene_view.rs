@@ -9,6 +9,7 @@ use hecs::{Entity, World};
 use crate::components::{
     Atmosphere, Camera, Emitter, Environment, Fog, Imager, Lens, Lenses, RenderCamera,
 };
+use crate::features::{Feature, Features};
 use crate::geometry::SceneGeometry;
 use crate::settings::RenderSettings;
 use crate::shading::LightSet;
@@ -24,6 +25,20 @@ pub struct RenderView {
     pub atmosphere: Option<Fog>,
     /// Its imager (PNG outputs), if any.
     pub imager: Option<Imager>,
+}
+
+impl RenderView {
+    /// The view with the switched-off features left out: no lens shaders when
+    /// [`Feature::Lens`] is off (a pinhole), no atmosphere when [`Feature::Volume`] is.
+    pub fn without(mut self, off: Features) -> Self {
+        if off.contains(Feature::Lens) {
+            self.lenses.clear();
+        }
+        if off.contains(Feature::Volume) {
+            self.atmosphere = None;
+        }
+        self
+    }
 }
 
 /// The render camera, if the scene names one.

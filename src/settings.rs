@@ -96,6 +96,10 @@ pub struct RenderSettings {
     /// A file the photon maps are loaded from when its content hash matches, and written to
     /// otherwise (mental ray `photonmap file`); `None`: maps live only in memory.
     pub photon_map: Option<PhotonMapFile>,
+    /// Features switched off for this run (`options.disable`, `--disable`).
+    pub disabled: crate::features::Features,
+    /// Diagnostic view replacing the beauty pass (`options.diagnostic`, `--diagnostic`).
+    pub diagnostic: Option<crate::diagnostic::Diagnostic>,
 }
 
 /// `options: (photon_map: (file: "scene.pmap", rebuild: false))`: where photon maps persist
@@ -177,6 +181,8 @@ impl Default for RenderSettings {
             light_samples: 16,
             photons: PhotonSettings::default(),
             photon_map: None,
+            disabled: crate::features::Features::NONE,
+            diagnostic: None,
         }
     }
 }

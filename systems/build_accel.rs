@@ -2,7 +2,8 @@
 //!
 //! **Reads:** `Instance`, `WorldFromObject`, `MaterialRef` entities; `Material` entities;
 //! the objects' `Displacement` in `Bump` mode (kept for shading);
-//! the `SceneOrigin` (copied into the geometry);
+//! the `SceneOrigin` (copied into the geometry); instances' `RayFlags` (per-triangle ray
+//! masks in the BVH);
 //! `settings.bvh_quality`.
 //! **Refuses:** placed triangles beyond the supported coordinate range
 //! (`crate::guard::extent`), located at their object.
@@ -23,7 +24,7 @@ use super::MERGING;
 use crate::accel::Accel;
 use crate::components::{
     BakeRequest, Displacement, DisplacementMode, Instance, Material, MaterialRef, Procedural,
-    Scatter, SceneOrigin, SubdivMesh, Surface, WorldFromObject,
+    RayFlags, Scatter, SceneOrigin, SubdivMesh, Surface, WorldFromObject, ALL_RAYS,
 };
 use crate::geometry::{InstanceGeometry, SceneGeometry};
 use crate::guard::extent::{located, out_of_range, reach};
@@ -87,6 +88,12 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
     let mut triangles: Vec<[Vec3; 3]> = Vec::with_capacity(total);
     let mut triangle_instance = Vec::with_capacity(total);
     let mut too_far: Vec<(Entity, f32)> = Vec::new();
+    let mut ray_masks: Vec<u8> = Vec::new();
+    let displace = !frame
+        .inputs
+        .settings
+        .disabled
+        .contains(crate::features::Feature::Displacement);
 
     for (entity, instance, world_from_object, material_ref) in placed {
         let slot = match material_slot.get(&material_ref.0) {
@@ -110,6 +117,10 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
             triangles.push(tri.map(|i| xf.transform_point3(mesh.positions[i as usize])));
             triangle_instance.push(index);
         }
+        let mask = world
+            .get::<&RayFlags>(entity)
+            .map_or(ALL_RAYS, |f| f.mask());
+        ray_masks.resize(triangles.len(), mask);
         let r = reach(triangles[first as usize..].iter().flatten().copied());
         if out_of_range(r) && !too_far.iter().any(|(o, _)| *o == instance.object) {
             too_far.push((instance.object, r));
@@ -124,7 +135,7 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
             bump: world
                 .get::<&Displacement>(instance.object)
                 .ok()
-                .filter(|d| d.mode == DisplacementMode::Bump)
+                .filter(|d| displace && d.mode == DisplacementMode::Bump)
                 .map(|d| Arc::new((*d).clone())),
         });
     }
@@ -139,7 +150,8 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
         ));
     }
     let count = triangles.len() as u64;
-    let accel = Accel::build(triangles, frame.inputs.settings.bvh_quality);
+    let mut accel = Accel::build(triangles, frame.inputs.settings.bvh_quality);
+    accel.set_ray_masks(ray_masks);
     let geometry = SceneGeometry {
         accel,
         triangle_instance,

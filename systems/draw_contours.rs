@@ -38,6 +38,16 @@ pub fn should_run(world: &World, frame: &Frame) -> Decision {
     if n == 0 {
         return Decision::skip("no material has a contour shader");
     }
+    if frame
+        .inputs
+        .settings
+        .disabled
+        .contains(crate::features::Feature::Output)
+    {
+        return Decision::skip(format!(
+            "output shaders disabled ({n} material(s) with a contour shader)"
+        ));
+    }
     if let Some(run) = &frame.inputs.part {
         return Decision::skip(format!(
             "{}: contours are drawn when the parts are merged",
@@ -58,7 +68,9 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
         .contour_store
         .as_ref()
         .ok_or_else(|| StageError::Internal("shade kept no contour store".into()))?;
-    let view = render_view(world).ok_or_else(|| StageError::Internal("no render camera".into()))?;
+    let view = render_view(world)
+        .ok_or_else(|| StageError::Internal("no render camera".into()))?
+        .without(frame.inputs.settings.disabled);
     let rays = CameraRays::with_lenses(&view.camera, &view.lenses);
     let geometry = frame.outputs.geometry.as_ref();
     let probe = Probe::new(geometry, &rays);

@@ -21,6 +21,7 @@ use super::MERGING;
 use crate::components::{
     GeneratedFrom, Instance, MaterialRef, Name, Procedural, Scatter, TriMesh, WorldFromObject,
 };
+use crate::features::Feature;
 use crate::procedural::{expand, install_mesh, scatter, Expanded};
 use crate::schedule::count_with;
 
@@ -33,6 +34,11 @@ pub fn should_run(world: &World, frame: &Frame) -> Decision {
     let scatters = count_with::<Scatter>(world);
     if shaders + scatters == 0 {
         return Decision::skip("no procedural geometry");
+    }
+    if frame.inputs.settings.disabled.contains(Feature::Geometry) {
+        return Decision::skip(format!(
+            "geometry shaders disabled ({shaders} geometry shader(s), {scatters} scatter(s) left empty)"
+        ));
     }
     Decision::run(format!(
         "{shaders} geometry shader(s), {scatters} scatter(s)"

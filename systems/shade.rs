@@ -29,10 +29,13 @@ use hecs::World;
 use rayon::prelude::*;
 
 use super::prelude::*;
+use crate::accel::RayKind;
 use crate::adaptive::{refine_flags, PixelSamples, SampleBudget};
 use crate::components::{ContourShader, Interior};
 use crate::contour::{ContourStore, Probe};
+use crate::diagnostic::{samples_view, Diagnostic};
 use crate::farm::{Part, Split};
+use crate::features::Feature;
 use crate::framebuffer::{FrameBuffers, PixelSums};
 use crate::progress::Progress;
 use crate::sampling::{fold_seed, Sampler};
@@ -55,6 +58,8 @@ pub fn should_run(world: &World, frame: &Frame) -> Decision {
     let Some(view) = render_view(world) else {
         return Decision::skip("no render camera");
     };
+    let off = frame.inputs.settings.disabled;
+    let view = view.without(off);
     let camera = &view.camera;
     let mut reason = format!("render camera {}×{}", camera.width, camera.height);
     if let Some(a) = frame.inputs.settings.adaptive {
@@ -66,6 +71,14 @@ pub fn should_run(world: &World, frame: &Frame) -> Decision {
     }
     if view.atmosphere.is_some() {
         reason += ", atmosphere";
+    }
+    if let Some(d) = frame.inputs.settings.diagnostic {
+        reason += &format!(", diagnostic {}", d.name());
+    }
+    for f in [Feature::Lens, Feature::Volume] {
+        if off.contains(f) {
+            reason += &format!(", {} shaders disabled", f.name());
+        }
     }
     if let Some(run) = &frame.inputs.part {
         reason += &format!(", {}", run.part);
@@ -82,6 +95,8 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
         return Ok(Work::new(taken, "samples").with_output(StageOutput::Image(fb)));
     }
     let view = render_view(world).ok_or_else(|| StageError::Internal("no render camera".into()))?;
+    let off = frame.inputs.settings.disabled;
+    let view = view.without(off);
     let camera = view.camera;
     let background = view.imager.and_then(|i| i.background);
     let settings = frame.inputs.settings.clone();
@@ -93,6 +108,7 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
         g.material_entities
             .iter()
             .map(|&e| world.get::<&Interior>(e).ok().map(|i| i.0))
+            .map(|i| i.filter(|_| !off.contains(Feature::Volume)))
             .collect()
     });
     let volumes = Volumes::new(view.atmosphere, interiors);
@@ -222,6 +238,9 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
     if dropped > 0 {
         tracing::warn!("{dropped} non-finite samples were dropped");
     }
+    if settings.diagnostic == Some(Diagnostic::Samples) {
+        fb.beauty = samples_view(&fb.samples, budget.max);
+    }
     fb.sums = sums;
     fb.contour_store = contour_store(world, frame, &fb);
     Ok(Work::new(taken, "samples").with_output(StageOutput::Image(fb)))
@@ -231,10 +250,13 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
 /// shader and the run is not a farm part (see `draw_contours`). Its samples are the pixel
 /// centres' first hits, which need no random numbers: a merge recomputes them exactly.
 fn contour_store(world: &World, frame: &Frame, fb: &FrameBuffers) -> Option<ContourStore> {
-    if frame.inputs.part.is_some() || !any_with::<ContourShader>(world) {
+    if frame.inputs.part.is_some()
+        || !any_with::<ContourShader>(world)
+        || frame.inputs.settings.disabled.contains(Feature::Output)
+    {
         return None;
     }
-    let view = render_view(world)?;
+    let view = render_view(world)?.without(frame.inputs.settings.disabled);
     let rays = CameraRays::with_lenses(&view.camera, &view.lenses);
     let probe = Probe::new(frame.outputs.geometry.as_ref(), &rays);
     Some(probe.store(fb.width, fb.height, &fb.beauty))
@@ -283,7 +305,7 @@ impl PixelShader<'_> {
             // Through the aperture centre.
             let centre = Vec2::new(x as f32 + 0.5, y as f32 + 0.5);
             if let Some(ray) = self.rays.ray(centre.x, centre.y, Vec2::splat(0.5)) {
-                if let Some(hit) = ctx.geometry.accel.intersect(&ray) {
+                if let Some(hit) = ctx.geometry.accel.intersect_as(&ray, RayKind::Camera) {
                     let sp = ctx.geometry.shading_point(&hit);
                     result.depth = hit.t;
                     result.normal = sp.normal;

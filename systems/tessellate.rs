@@ -15,6 +15,7 @@
 
 use std::sync::Arc;
 
+use crate::features::{Feature, Features};
 use glam::DAffine3;
 use hecs::{Entity, World};
 use rayon::prelude::*;
@@ -42,12 +43,16 @@ enum Input {
 /// Counts (surfaces, subdivision meshes, true displacements on meshes, bump displacements).
 /// Quadrics that `expand_geometry` has yet to turn into surfaces count as surfaces, so a
 /// plan made before any stage runs decides as the run will.
-fn census(world: &World) -> (usize, usize, usize, usize) {
-    let pending = world
-        .query::<&Procedural>()
-        .iter()
-        .filter(|p| expands_to_surface(p))
-        .count();
+fn census(world: &World, off: Features) -> (usize, usize, usize, usize) {
+    let pending = if off.contains(Feature::Geometry) {
+        0
+    } else {
+        world
+            .query::<&Procedural>()
+            .iter()
+            .filter(|p| expands_to_surface(p))
+            .count()
+    };
     let surfaces = world.query::<&Surface>().iter().count() + pending;
     let subdivs = world.query::<&SubdivMesh>().iter().count();
     let (mut displaced, mut bump) = (0, 0);
@@ -65,7 +70,14 @@ pub fn should_run(world: &World, frame: &Frame) -> Decision {
     if super::merged_without_contours(world, frame) {
         return Decision::skip(MERGING);
     }
-    let (surfaces, subdivs, displaced, bump) = census(world);
+    let off = frame.inputs.settings.disabled;
+    let (surfaces, subdivs, displaced, bump) = census(world, off);
+    if off.contains(Feature::Displacement) && surfaces + subdivs == 0 && displaced + bump > 0 {
+        return Decision::skip(format!(
+            "displacement disabled ({} displacement shader(s) left out)",
+            displaced + bump
+        ));
+    }
     if surfaces + subdivs + displaced == 0 {
         return if bump > 0 {
             Decision::skip(format!(
@@ -74,6 +86,11 @@ pub fn should_run(world: &World, frame: &Frame) -> Decision {
         } else {
             Decision::skip("no parametric surfaces or displacement")
         };
+    }
+    if off.contains(Feature::Displacement) {
+        return Decision::run(format!(
+            "{surfaces} surface(s), {subdivs} subdivision mesh(es); displacement disabled"
+        ));
     }
     Decision::run(format!(
         "{surfaces} surface(s), {subdivs} subdivision mesh(es), {displaced} true displacement(s)"
@@ -123,6 +140,11 @@ struct Job {
 /// Tessellates every object that needs it.
 pub fn run(world: &mut World, frame: &Frame) -> Result<Work, StageError> {
     let mut jobs = Vec::new();
+    let displace = !frame
+        .inputs
+        .settings
+        .disabled
+        .contains(Feature::Displacement);
     for (e, surface, subdiv, mesh, disp, approx, deriv, name) in world
         .query::<(
             Entity,
@@ -136,7 +158,9 @@ pub fn run(world: &mut World, frame: &Frame) -> Result<Work, StageError> {
         )>()
         .iter()
     {
-        let displacement = disp.filter(|d| d.mode == DisplacementMode::True).cloned();
+        let displacement = disp
+            .filter(|d| displace && d.mode == DisplacementMode::True)
+            .cloned();
         let input = match (surface, subdiv, mesh) {
             (Some(s), ..) => Input::Surface(s.clone()),
             (None, Some(s), _) => Input::Subdiv(s.clone()),

@@ -18,6 +18,7 @@
 mod brute;
 mod bvh;
 mod counters;
+mod ray_kind;
 mod spawn;
 mod traverse;
 mod triangle;
@@ -28,6 +29,7 @@ use crate::settings::BvhQuality;
 
 pub use brute::brute_force_intersect;
 pub use counters::RayCounts;
+pub use ray_kind::{RayKind, MAX_PASSED};
 pub use spawn::{offset_ray_origin, spawn_ray, spawn_ray_to, spawn_ray_to_surface, SHADOW_EPSILON};
 pub use triangle::{gamma, intersect_triangle, is_degenerate, MACHINE_EPSILON};
 
@@ -87,6 +89,8 @@ pub struct Accel {
     triangles: Vec<[Vec3; 3]>,
     bvh: bvh::Bvh,
     counters: counters::Counters,
+    /// Ray kinds that see each triangle (`ray_kind.rs`); `None`: every kind sees all.
+    masks: Option<Vec<u8>>,
 }
 
 impl Accel {
@@ -98,6 +102,7 @@ impl Accel {
             triangles,
             bvh,
             counters: counters::Counters::new(),
+            masks: None,
         }
     }
 

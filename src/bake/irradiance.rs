@@ -6,7 +6,7 @@
 
 use glam::Vec3;
 
-use crate::accel::{spawn_ray, SurfacePoint};
+use crate::accel::{spawn_ray, RayKind, SurfacePoint};
 use crate::bake::ao::basis;
 use crate::components::{Material, Shader};
 use crate::geometry::SceneGeometry;
@@ -132,7 +132,7 @@ pub fn indirect_irradiance_sample(
             break;
         }
         let ray = spawn_ray(&sp, dir);
-        let Some(hit) = geometry.accel.intersect(&ray) else {
+        let Some(hit) = geometry.accel.intersect_as(&ray, RayKind::Secondary) else {
             break;
         };
         let hp = geometry.shading_point(&hit);
@@ -178,7 +178,7 @@ pub fn indirect_irradiance_path(
         return Vec3::ZERO;
     }
     let ray = spawn_ray(surface, dir);
-    let Some(hit) = ctx.geometry.accel.intersect(&ray) else {
+    let Some(hit) = ctx.geometry.accel.intersect_as(&ray, RayKind::Secondary) else {
         return Vec3::ZERO;
     };
     let vertex = crate::shading::integrator::Vertex::new(ctx, &ray, &hit);

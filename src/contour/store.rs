@@ -8,6 +8,7 @@ use std::sync::Arc;
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 
+use crate::accel::RayKind;
 pub use crate::framebuffer::{ContourSample, ContourStore};
 use crate::geometry::SceneGeometry;
 use crate::shading::CameraRays;
@@ -51,7 +52,7 @@ impl<'a> Probe<'a> {
         let Some(ray) = self.rays.ray(film.x, film.y, Vec2::splat(0.5)) else {
             return ContourSample::BACKGROUND;
         };
-        let Some(hit) = g.accel.intersect(&ray) else {
+        let Some(hit) = g.accel.intersect_as(&ray, RayKind::Camera) else {
             return ContourSample::BACKGROUND;
         };
         let sp = g.shading_point(&hit);

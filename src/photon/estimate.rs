@@ -5,6 +5,7 @@
 use glam::Vec3;
 
 use super::{GatherMap, Neighbour, PhotonMaps};
+use crate::accel::RayKind;
 use crate::sampling::Sampler;
 use crate::shading::bsdf::Bsdf;
 use crate::shading::integrator::{PhotonRadiance, ShadeContext, Vertex};
@@ -80,7 +81,7 @@ fn final_gather(
         let Some(ray) = v.spawn(bs.wi, false) else {
             continue;
         };
-        let Some(hit) = ctx.geometry.accel.intersect(&ray) else {
+        let Some(hit) = ctx.geometry.accel.intersect_as(&ray, RayKind::Secondary) else {
             continue;
         };
         let w = Vertex::new(ctx, &ray, &hit);

@@ -12,8 +12,9 @@ use super::desc::TransformDesc;
 use super::diagnostics::Sources;
 use super::names::{Resolved, Target};
 use super::photon_flags::{instance_flags, object_flags};
+use super::ray_flags::{instance_ray_flags, object_ray_flags};
 use super::validate::{Checker, Merged};
-use crate::components::PhotonFlags;
+use crate::components::{PhotonFlags, RayFlags};
 
 /// Most placements (instances visited along all paths) a scene may expand to: a guard
 /// against exponential sharing of groups.
@@ -37,6 +38,9 @@ pub struct Leaf {
     /// Photon flags: each from the closest instance on the path that sets it, then the
     /// object's (see [`super::photon_flags`]).
     pub photon: PhotonFlags,
+    /// Ray flags (`visible`, `shadow`, `trace`), inherited as `photon` is (see
+    /// [`super::ray_flags`]).
+    pub rays: RayFlags,
 }
 
 /// Each instance's own transform (`None` where it is invalid).
@@ -226,6 +230,7 @@ pub fn flatten(
         path: String,
         material: Option<usize>,
         photon: PhotonFlags,
+        rays: RayFlags,
     }
     let mut leaves = Vec::new();
     let mut placements = 0usize;
@@ -236,6 +241,7 @@ pub fn flatten(
         path: m.groups[root].desc.name.clone(),
         material: None,
         photon: PhotonFlags::default(),
+        rays: RayFlags::default(),
     }];
     while let Some(top) = stack.last_mut() {
         let Some(&inst) = r.group_members[top.group].get(top.next) else {
@@ -258,6 +264,7 @@ pub fn flatten(
         let path = format!("{}/{}", top.path, m.instances[inst].desc.name);
         let material = r.instance_material[inst].or(top.material);
         let photon = instance_flags(m, inst).or(top.photon);
+        let rays = instance_ray_flags(m, inst).or(top.rays);
         match r.instance_of[inst] {
             Some(Target::Object(o)) => {
                 let offset = offsets.get(o).copied().unwrap_or(DVec3::ZERO);
@@ -287,6 +294,7 @@ pub fn flatten(
                     world,
                     material: material.or(r.object_material[o]),
                     photon: photon.or(object_flags(m, o)),
+                    rays: rays.or(object_ray_flags(m, o)),
                 });
             }
             Some(Target::Group(g)) => stack.push(Frame {
@@ -296,6 +304,7 @@ pub fn flatten(
                 path,
                 material,
                 photon,
+                rays,
             }),
             None => {}
         }

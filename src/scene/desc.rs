@@ -75,6 +75,10 @@ pub struct OptionsDesc {
     pub contours: Option<ContoursDesc>,
     /// Photon map file (mental ray `photonmap file`), default none.
     pub photon_map: Option<PhotonMapFileDesc>,
+    /// Features switched off (mental ray `lens off`, `volume off`, …), default none.
+    pub disable: Vec<FeatureDesc>,
+    /// Diagnostic view replacing the beauty pass (mental ray `diagnostic …`), default none.
+    pub diagnostic: Option<DiagnosticDesc>,
 }
 
 /// `photon_map: (file: "scene.pmap", rebuild: false)` in `options`.
@@ -86,6 +90,31 @@ pub struct PhotonMapFileDesc {
     /// Trace and rewrite even when the file's hash matches, default false.
     #[serde(default)]
     pub rebuild: bool,
+}
+
+/// `diagnostic:` in `options` (see [`crate::diagnostic::Diagnostic`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename = "Diagnostic", deny_unknown_fields)]
+pub enum DiagnosticDesc {
+    /// Samples per pixel as grey levels (mental ray `diagnostic samples on`).
+    Samples,
+}
+
+/// An entry of `disable: [...]` in `options`: a kind of shader switched off for the run (see
+/// [`crate::features::Feature`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename = "Feature", deny_unknown_fields)]
+pub enum FeatureDesc {
+    /// Camera lens shaders.
+    Lens,
+    /// Atmosphere and material interiors.
+    Volume,
+    /// Geometry shaders and scatters.
+    Geometry,
+    /// Displacement shaders (true and bump).
+    Displacement,
+    /// Output shaders (contour drawing).
+    Output,
 }
 
 /// `caustics: (...)` / `global_illumination: (...)` in `options`: one photon map's knobs.
@@ -152,6 +181,8 @@ impl Default for OptionsDesc {
             global_illumination: None,
             contours: None,
             photon_map: None,
+            disable: Vec::new(),
+            diagnostic: None,
         }
     }
 }
@@ -928,6 +959,15 @@ pub struct ObjectDesc {
     /// default: every surface casts and non-specular surfaces receive.
     #[serde(default)]
     pub globillum: Option<u8>,
+    /// Seen by camera rays (mental ray `visible`), default true.
+    #[serde(default)]
+    pub visible: Option<bool>,
+    /// Casts shadows (mental ray `shadow`), default true.
+    #[serde(default)]
+    pub shadow: Option<bool>,
+    /// Seen by reflection, refraction and gathering rays (mental ray `trace`), default true.
+    #[serde(default)]
+    pub trace: Option<bool>,
 }
 
 /// `instances: [(...)]`: a placed copy of an object or a group.
@@ -953,6 +993,15 @@ pub struct InstanceDesc {
     /// Global-illumination photon role override (as on objects).
     #[serde(default)]
     pub globillum: Option<u8>,
+    /// Camera-ray visibility override for everything this instance places (as on objects).
+    #[serde(default)]
+    pub visible: Option<bool>,
+    /// Shadow-casting override (as on objects).
+    #[serde(default)]
+    pub shadow: Option<bool>,
+    /// Secondary-ray visibility override (as on objects).
+    #[serde(default)]
+    pub trace: Option<bool>,
 }
 
 /// `bake: (...)` on an instance of an object: textures to bake (`stagelight bake`).

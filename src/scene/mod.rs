@@ -45,6 +45,7 @@ pub(crate) mod names;
 pub(crate) mod nodes;
 pub mod nodes_desc;
 pub(crate) mod photon_flags;
+mod ray_flags;
 pub(crate) mod rebase;
 pub(crate) mod samples;
 pub(crate) mod shaders;

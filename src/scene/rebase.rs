@@ -223,6 +223,7 @@ mod tests {
             world: DAffine3::from_translation(DVec3::splat(t)),
             material: None,
             photon: Default::default(),
+            rays: Default::default(),
         };
         let b = [Some((DVec3::ZERO, DVec3::new(1.0, 0.75, 1.0)))];
         assert_eq!(scene_origin(&[leaf(0.0)], &b), DVec3::ZERO);

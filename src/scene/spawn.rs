@@ -241,6 +241,10 @@ pub fn spawn(src: &Sources, m: &Merged<'_>, parts: Parts) -> World {
             // The entity was just spawned, so inserting cannot fail.
             let _ = world.insert_one(entity, leaf.photon);
         }
+        if !leaf.rays.is_default() {
+            // The entity was just spawned, so inserting cannot fail.
+            let _ = world.insert_one(entity, leaf.rays);
+        }
         if let Some(Some(request)) = parts.bakes.get(leaf.instance) {
             // The entity was just spawned, so inserting cannot fail.
             let _ = world.insert_one(entity, request.clone());

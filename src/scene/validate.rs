@@ -8,14 +8,16 @@ use glam::{DAffine3, DMat3, DVec3};
 
 pub use super::checker::{Checker, Item};
 use super::desc::{
-    BvhQualityDesc, CameraDesc, FaceDesc, FilterDesc, FormatDesc, GroupDesc, InstanceDesc,
-    IntegratorDesc, LightDesc, LightKindDesc, MaterialDesc, ObjectDesc, OptionsDesc, OutputDesc,
-    PassDesc, PhotonFilterDesc, PhotonMapDesc, PlacementDesc, RenderDesc, SceneDesc,
+    BvhQualityDesc, CameraDesc, DiagnosticDesc, FaceDesc, FeatureDesc, FilterDesc, FormatDesc,
+    GroupDesc, InstanceDesc, IntegratorDesc, LightDesc, LightKindDesc, MaterialDesc, ObjectDesc,
+    OptionsDesc, OutputDesc, PassDesc, PhotonFilterDesc, PhotonMapDesc, PlacementDesc, RenderDesc,
+    SceneDesc,
 };
 use super::diagnostics::Sources;
 use crate::components::{
     Camera, Emitter, ImageFormat, LightShape, Material, OutputSpec, Pass, Shader,
 };
+use crate::features::{Feature, Features};
 use crate::settings::{
     BvhQuality, Face, Integrator, PhotonFilter, PhotonMapFile, PhotonMapSettings, PhotonSettings,
     PixelFilter, RenderSettings,
@@ -190,7 +192,26 @@ pub fn settings(src: &mut Sources, options: Option<&Item<'_, OptionsDesc>>) -> R
             BvhQualityDesc::Medium => BvhQuality::Medium,
             BvhQualityDesc::High => BvhQuality::High,
         },
+        disabled: switched_off(&o.disable),
+        diagnostic: o.diagnostic.map(|d| match d {
+            DiagnosticDesc::Samples => crate::diagnostic::Diagnostic::Samples,
+        }),
     }
+}
+
+/// The set that `options.disable` lists.
+fn switched_off(list: &[FeatureDesc]) -> Features {
+    let mut set = Features::NONE;
+    for d in list {
+        set.insert(match d {
+            FeatureDesc::Lens => Feature::Lens,
+            FeatureDesc::Volume => Feature::Volume,
+            FeatureDesc::Geometry => Feature::Geometry,
+            FeatureDesc::Displacement => Feature::Displacement,
+            FeatureDesc::Output => Feature::Output,
+        });
+    }
+    set
 }
 
 /// Checks one photon map's knobs (`path` is the map's field in `options`).

@@ -15,7 +15,7 @@
 
 use glam::Vec3;
 
-use crate::accel::{spawn_ray, spawn_ray_to, spawn_ray_to_surface, Ray, SurfacePoint};
+use crate::accel::{spawn_ray, spawn_ray_to, spawn_ray_to_surface, Ray, RayKind, SurfacePoint};
 use crate::components::Shader;
 use crate::geometry::SceneGeometry;
 
@@ -66,7 +66,7 @@ pub fn transmittance(
 ) -> Vec3 {
     let ray = shadow_ray(from, wi, target.as_ref());
     if !tinted {
-        return if geometry.accel.occluded(&ray) {
+        return if geometry.accel.occluded_as(&ray, RayKind::Shadow) {
             Vec3::ZERO
         } else {
             Vec3::ONE
@@ -75,7 +75,7 @@ pub fn transmittance(
     let mut t = Vec3::ONE;
     let mut ray = ray;
     for _ in 0..=MAX_CROSSINGS {
-        let Some(hit) = geometry.accel.intersect(&ray) else {
+        let Some(hit) = geometry.accel.intersect_as(&ray, RayKind::Shadow) else {
             return t;
         };
         let Some(tr) = shadow_transmittance(&geometry.material_of(hit.prim).shader) else {

@@ -25,7 +25,9 @@ use std::borrow::Cow;
 
 use glam::Vec3;
 
-use crate::accel::{spawn_ray, spawn_ray_to, spawn_ray_to_surface, Hit, Ray, SurfacePoint};
+use crate::accel::{
+    spawn_ray, spawn_ray_to, spawn_ray_to_surface, Hit, Ray, RayKind, SurfacePoint,
+};
 use crate::components::{Material, Shader};
 use crate::geometry::{SceneGeometry, ShadingPoint};
 use crate::sampling::Sampler;
@@ -389,7 +391,7 @@ pub fn trace(
     ray: &Ray,
     delta: bool,
 ) -> (Option<Hit>, Vec3, Vec<(Vec3, f32)>) {
-    let hit = ctx.geometry.accel.intersect(ray);
+    let hit = ctx.geometry.accel.intersect_as(ray, RayKind::Secondary);
     let mut clipped = *ray;
     if let Some(h) = &hit {
         clipped.t_max = h.t;
@@ -450,7 +452,7 @@ pub enum CameraHit {
 
 /// What the camera ray `ray` meets first (see [`CameraHit`]).
 pub fn camera_hit(ctx: &ShadeContext<'_>, ray: &Ray) -> CameraHit {
-    let hit = ctx.geometry.accel.intersect(ray);
+    let hit = ctx.geometry.accel.intersect_as(ray, RayKind::Camera);
     let mut clipped = *ray;
     if let Some(h) = &hit {
         clipped.t_max = h.t;

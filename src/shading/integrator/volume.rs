@@ -6,7 +6,7 @@
 use glam::Vec3;
 
 use super::ShadeContext;
-use crate::accel::{spawn_ray, spawn_ray_to, Hit, Ray};
+use crate::accel::{spawn_ray, spawn_ray_to, Hit, Ray, RayKind};
 use crate::components::Fog;
 use crate::sampling::Sampler;
 use crate::shading::lights::Light;
@@ -143,13 +143,13 @@ pub fn shadow_transmittance(
         return Some(along(start, first.origin));
     }
     let Some(volumes) = ctx.volumes else {
-        return (!ctx.geometry.accel.occluded(&first)).then_some(Vec3::ONE);
+        return (!ctx.geometry.accel.occluded_as(&first, RayKind::Shadow)).then_some(Vec3::ONE);
     };
     let mut ray = first;
     let mut medium = start;
     let mut t = Vec3::ONE;
     for _ in 0..MAX_CROSSINGS {
-        let Some(hit) = ctx.geometry.accel.intersect(&ray) else {
+        let Some(hit) = ctx.geometry.accel.intersect_as(&ray, RayKind::Shadow) else {
             return Some(t * along(medium, ray.origin));
         };
         let slot = ctx.geometry.triangle_instance[hit.prim as usize] as usize;

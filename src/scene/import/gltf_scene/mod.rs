@@ -168,6 +168,9 @@ fn place(w: &mut Walk<'_>, name: String, of: String, local: &DMat4) -> String {
         bake: None,
         caustic: None,
         globillum: None,
+        visible: None,
+        shadow: None,
+        trace: None,
     });
     name
 }
@@ -217,6 +220,9 @@ impl Walk<'_> {
             derivatives: false,
             caustic: None,
             globillum: None,
+            visible: None,
+            shadow: None,
+            trace: None,
         });
         self.objects.insert((mesh.index(), p), name.clone());
         name

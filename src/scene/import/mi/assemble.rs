@@ -10,7 +10,7 @@ use std::f64::consts::PI;
 use glam::{DMat4, DVec3};
 
 use super::super::rib::{Located, LocatedProblem, Pos, Problem};
-use super::model::{AreaShape, Flags, LightModel, RawLight, RawObject, RawScene, Space};
+use super::model::{AreaShape, LightModel, RawLight, RawObject, RawScene, Space};
 use super::statements::Reader;
 use super::MiScene;
 use crate::scene::desc::{
@@ -44,10 +44,6 @@ impl Out {
 
     fn error(&mut self, at: &Located, message: impl Into<String>) {
         self.report(at, Problem::error(Pos::default(), message));
-    }
-
-    fn warn(&mut self, at: &Located, message: impl Into<String>) {
-        self.report(at, Problem::warning(Pos::default(), message));
     }
 
     fn unknown(&mut self, at: &Located, what: &str, name: &str, known: Vec<&str>) {
@@ -280,7 +276,6 @@ fn build(raw: &RawScene, root: &Located, out: &mut Out) {
             }
             continue;
         }
-        warn_flags(&inst.flags, &inst.at, out);
         let transform = match (&inst.transform, space) {
             (Some(m), Space::Object) => match world_from_object(m) {
                 Some(w) => vec![TransformDesc::Matrix(to_m4(w))],
@@ -312,6 +307,9 @@ fn build(raw: &RawScene, root: &Located, out: &mut Out) {
             bake: None,
             caustic: inst.flags.caustic,
             globillum: inst.flags.globillum,
+            visible: inst.flags.visible,
+            shadow: inst.flags.shadow,
+            trace: inst.flags.trace,
         });
     }
     for (name, g) in &raw.groups {
@@ -347,22 +345,9 @@ fn build(raw: &RawScene, root: &Located, out: &mut Out) {
     });
 }
 
-fn warn_flags(flags: &Flags, at: &Located, out: &mut Out) {
-    for (name, v) in [
-        ("visible", flags.visible),
-        ("shadow", flags.shadow),
-        ("trace", flags.trace),
-    ] {
-        if v == Some(false) {
-            out.warn(at, format!("\"{name} off\" is read but not yet mapped"));
-        }
-    }
-}
-
 /// One object, or one per polygon material (named `object:material`) under a group named
 /// after the object.
 fn objects_of(name: &str, obj: &RawObject, materials: &[&str], out: &mut Out) {
-    warn_flags(&obj.flags, &obj.at, out);
     let mut order: Vec<Option<&str>> = Vec::new();
     for p in &obj.polygons {
         let m = p.material.as_deref();
@@ -416,6 +401,9 @@ fn objects_of(name: &str, obj: &RawObject, materials: &[&str], out: &mut Out) {
             derivatives: false,
             caustic: obj.flags.caustic,
             globillum: obj.flags.globillum,
+            visible: obj.flags.visible,
+            shadow: obj.flags.shadow,
+            trace: obj.flags.trace,
         });
         if !single {
             let i = out.desc.instances.len();
@@ -428,6 +416,9 @@ fn objects_of(name: &str, obj: &RawObject, materials: &[&str], out: &mut Out) {
                 bake: None,
                 caustic: None,
                 globillum: None,
+                visible: None,
+                shadow: None,
+                trace: None,
             });
             members.push(part);
         }

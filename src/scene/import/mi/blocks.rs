@@ -3,16 +3,18 @@
 //! skipped) and top-level named `shader`s.
 //!
 //! Statements that are read but not mapped give located warnings. Light `energy`, `caustic
-//! photons` and `globillum photons` become the light's photon controls; `photonmap file`,
-//! the photon options and material `photon` shaders are read and reported "read but not yet
-//! mapped".
+//! photons` and `globillum photons` become the light's photon controls; the photon options
+//! and `photonmap file` map onto the photon maps (`photon_options.rs`); material `photon`
+//! shaders are read and reported "read but not yet mapped".
 
 use super::super::rib::{Pos, Problem};
 use super::cursor::Cursor;
 use super::lexer::{Tok, Token};
 use super::model::{AreaShape, RawCamera, RawLight, RawMaterial, RawOptions, Space};
+use super::photon_options::PhotonOptions;
 use super::shaders;
 use super::statements::Reader;
+use super::switches;
 use crate::scene::desc::{
     FaceDesc, FormatDesc, MaterialDesc, OptionsDesc, OutputDesc, PassDesc, SamplesDesc,
 };
@@ -77,6 +79,9 @@ pub fn options(r: &mut Reader, c: &mut Cursor, open: Pos) {
     };
     let mut contrast = (0.1, 0.1, 0.1);
     let mut samples: Option<(i64, i64)> = None;
+    let mut photons = PhotonOptions::default();
+    // `trace off`: no reflection or refraction rays, whatever the trace depth says.
+    let mut traced = true;
     loop {
         let Some(t) = c.block_token("options", open) else {
             return;
@@ -129,7 +134,7 @@ pub fn options(r: &mut Reader, c: &mut Cursor, open: Pos) {
                     o.desc.refraction_depth = b;
                     o.desc.max_depth = s.max(1);
                 } else {
-                    c.switch();
+                    traced = c.switch();
                 }
             }
             "face" => {
@@ -173,13 +178,12 @@ pub fn options(r: &mut Reader, c: &mut Cursor, open: Pos) {
                     c.error(p, format!("expected \"space\" after \"{w}\""));
                 }
             }
-            "caustic" => caustic_option(c, t.pos),
-            "globillum" => {
-                c.eat_word("accuracy");
-                c.skip_arguments();
-                c.warn(t.pos, "\"globillum\" is read but not yet mapped");
-            }
-            "photonmap" | "photon" | "finalgather" | "diagnostic" => {
+            "caustic" => photons.caustic(c, t.pos),
+            "globillum" => photons.globillum(c, t.pos),
+            "finalgather" => photons.final_gather(c, t.pos),
+            "diagnostic" => switches::diagnostic(c, t.pos, &mut o.desc),
+            "photonmap" => photons.photon_map(c, t.pos),
+            "photon" => {
                 while c.at_word("file")
                     || c.at_word("trace")
                     || c.at_word("depth")
@@ -200,8 +204,8 @@ pub fn options(r: &mut Reader, c: &mut Cursor, open: Pos) {
                 c.skip_arguments();
                 c.warn(t.pos, format!("\"{w}\" is read but not yet mapped"));
             }
-            "filter" | "scanline" | "jitter" | "lens" | "volume" | "geometry" | "displace"
-            | "output" => {
+            w if switches::is_switch(w) => switches::switch(c, w, &mut o.desc),
+            "filter" | "scanline" | "jitter" => {
                 while c.at_word("box")
                     || c.at_word("triangle")
                     || c.at_word("gauss")
@@ -225,6 +229,11 @@ pub fn options(r: &mut Reader, c: &mut Cursor, open: Pos) {
         }
     }
     c.expect_end("options", open);
+    photons.apply(c, &mut o.desc);
+    if !traced {
+        o.desc.reflection_depth = 0;
+        o.desc.refraction_depth = 0;
+    }
     if let Some((min, max)) = samples {
         // mental ray counts in powers of 4: `samples n` is 4ⁿ per pixel (below 0: one).
         let spp = |e: i64| 4u64.pow(e.clamp(0, 5) as u32);
@@ -241,15 +250,6 @@ pub fn options(r: &mut Reader, c: &mut Cursor, open: Pos) {
     if fresh {
         r.raw.options.insert(name, o);
     }
-}
-
-fn caustic_option(c: &mut Cursor, at: Pos) {
-    for w in ["accuracy", "filter", "box", "cone", "gauss", "on", "off"] {
-        c.eat_word(w);
-    }
-    c.eat_word("cone");
-    c.skip_arguments();
-    c.warn(at, "\"caustic\" is read but not yet mapped");
 }
 
 const CAMERA: &[&str] = &[

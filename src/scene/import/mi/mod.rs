@@ -4,7 +4,8 @@
 //! One module per step: [`lexer`] (tokens with `line:column`), [`cursor`] (a file's tokens
 //! and the shader parameter lists `("name" value, …)`), [`statements`] (the top-level
 //! statements, `$include` and `link`), [`blocks`] (`options`, `camera`, `light`,
-//! `material` and `declare phenomenon` blocks), [`object`] (`object … group … end group
+//! `material` and `declare phenomenon` blocks; [`photon_options`] maps the photon
+//! statements of `options`, [`switches`] its feature switches), [`object`] (`object … group … end group
 //! end object`), [`shaders`] (the built-in shaders' parameters and what each maps onto)
 //! and [`assemble`] (the instance tree → cameras, lights, objects, instances and groups).
 //!
@@ -26,8 +27,10 @@ pub mod cursor;
 pub mod lexer;
 pub mod model;
 pub mod object;
+pub mod photon_options;
 pub mod shaders;
 pub mod statements;
+pub mod switches;
 
 use std::path::Path;
 

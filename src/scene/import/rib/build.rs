@@ -1304,6 +1304,9 @@ impl Builder {
                 derivatives: false,
                 caustic: None,
                 globillum: None,
+                visible: None,
+                shadow: None,
+                trace: None,
             });
             desc.instances.push(InstanceDesc {
                 name: o.name.clone(),
@@ -1313,6 +1316,9 @@ impl Builder {
                 bake: None,
                 caustic: None,
                 globillum: None,
+                visible: None,
+                shadow: None,
+                trace: None,
             });
             members.push(o.name);
         }

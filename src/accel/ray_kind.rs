@@ -1,0 +1,153 @@
+//! Queries by ray kind: surfaces that a kind of ray does not see (mental ray `visible`,
+//! `shadow`, `trace` off; see [`crate::components::RayFlags`]) are passed through.
+//!
+//! The masks are per triangle and optional: without them ([`Accel::set_ray_masks`] never
+//! called, or every triangle seen by every kind) each query is the plain one, bit for bit.
+//! With them, a hit on a surface the kind does not see is stepped over: the ray is spawned
+//! again from that hit ([`spawn_ray`], error-bounded) along the same direction and the search
+//! goes on, at most [`MAX_PASSED`] times. The hit returned carries `t` along the caller's
+//! ray, recomputed from the hit point.
+
+use glam::Vec3;
+
+use super::spawn::spawn_ray;
+use super::{Accel, Hit, Ray};
+use crate::components::{ALL_RAYS, CAMERA_RAYS, SECONDARY_RAYS, SHADOW_RAYS};
+
+/// Most hidden surfaces one query steps over before it reports no hit (closest queries) or
+/// no occluder (shadow queries).
+pub const MAX_PASSED: u32 = 64;
+
+/// What a ray is for, which decides the surfaces it sees.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum RayKind {
+    /// From the camera: sees surfaces that are `visible`.
+    Camera,
+    /// Toward a light: blocked by surfaces that cast shadows (`shadow`).
+    Shadow,
+    /// Reflection, refraction and gathering rays: see surfaces that are `trace`d.
+    Secondary,
+}
+
+impl RayKind {
+    /// The mask bit of this kind.
+    pub fn bit(self) -> u8 {
+        match self {
+            Self::Camera => CAMERA_RAYS,
+            Self::Shadow => SHADOW_RAYS,
+            Self::Secondary => SECONDARY_RAYS,
+        }
+    }
+}
+
+impl Accel {
+    /// Sets which ray kinds see each triangle (`masks[prim]`, bits of
+    /// [`crate::components::RayFlags::mask`]); when every triangle is seen by every kind
+    /// the masks are dropped and queries stay the plain ones.
+    ///
+    /// # Panics
+    /// When `masks` is not one entry per triangle.
+    pub fn set_ray_masks(&mut self, masks: Vec<u8>) {
+        assert_eq!(
+            masks.len(),
+            self.triangles.len(),
+            "one ray mask per triangle"
+        );
+        self.masks = masks.iter().any(|&m| m != ALL_RAYS).then_some(masks);
+    }
+
+    /// Whether some triangle is hidden from some kind of ray.
+    pub fn has_ray_masks(&self) -> bool {
+        self.masks.is_some()
+    }
+
+    /// Whether rays of `kind` see triangle `prim`.
+    pub fn sees(&self, prim: u32, kind: RayKind) -> bool {
+        self.masks
+            .as_ref()
+            .is_none_or(|m| m[prim as usize] & kind.bit() != 0)
+    }
+
+    /// Closest hit that rays of `kind` see (see [`Accel::intersect`]).
+    pub fn intersect_as(&self, ray: &Ray, kind: RayKind) -> Option<Hit> {
+        if self.masks.is_none() {
+            return self.intersect(ray);
+        }
+        let mut next = *ray;
+        for _ in 0..=MAX_PASSED {
+            let hit = self.intersect(&next)?;
+            if self.sees(hit.prim, kind) {
+                if next == *ray {
+                    return Some(hit);
+                }
+                let p = self.surface_point(&hit).p;
+                let t = (p - ray.origin).dot(ray.dir) / ray.dir.length_squared();
+                return Some(Hit { t, ..hit });
+            }
+            next = self.pass(ray, &hit)?;
+        }
+        None
+    }
+
+    /// Whether something that rays of `kind` see is on the segment (see
+    /// [`Accel::occluded`]).
+    pub fn occluded_as(&self, ray: &Ray, kind: RayKind) -> bool {
+        if self.masks.is_none() {
+            return self.occluded(ray);
+        }
+        // Any-hit first: a free segment needs no walk.
+        self.occluded(ray) && self.intersect_as(ray, kind).is_some()
+    }
+
+    /// The rest of `ray` beyond `hit` (`None` when nothing of the segment is left).
+    fn pass(&self, ray: &Ray, hit: &Hit) -> Option<Ray> {
+        let sp = self.surface_point(hit);
+        let mut next = spawn_ray(&sp, ray.dir);
+        if ray.t_max.is_finite() {
+            let end: Vec3 = ray.origin + ray.dir * ray.t_max;
+            next.t_max = (end - next.origin).dot(ray.dir) / ray.dir.length_squared();
+            if next.t_max.is_nan() || next.t_max <= 0.0 {
+                return None;
+            }
+        }
+        Some(next)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::settings::BvhQuality;
+
+    fn wall(z: f32) -> [Vec3; 3] {
+        [
+            Vec3::new(-1.0, -1.0, z),
+            Vec3::new(3.0, -1.0, z),
+            Vec3::new(-1.0, 3.0, z),
+        ]
+    }
+
+    #[test]
+    fn hidden_surfaces_are_passed_and_t_stays_on_the_callers_ray() {
+        let mut a = Accel::build(vec![wall(1.0), wall(2.0)], BvhQuality::Fast);
+        let ray = Ray {
+            origin: Vec3::ZERO,
+            dir: Vec3::Z,
+            t_max: f32::INFINITY,
+        };
+        assert_eq!(a.intersect_as(&ray, RayKind::Camera).unwrap().prim, 0);
+        a.set_ray_masks(vec![ALL_RAYS, ALL_RAYS]);
+        assert!(!a.has_ray_masks());
+        a.set_ray_masks(vec![SHADOW_RAYS, ALL_RAYS]);
+        let hit = a.intersect_as(&ray, RayKind::Camera).unwrap();
+        assert_eq!(hit.prim, 1);
+        assert!((hit.t - 2.0).abs() < 1e-5);
+        assert_eq!(a.intersect_as(&ray, RayKind::Shadow).unwrap().prim, 0);
+        let short = Ray { t_max: 1.5, ..ray };
+        assert!(a.occluded_as(&short, RayKind::Shadow));
+        assert!(!a.occluded_as(&short, RayKind::Secondary));
+        a.set_ray_masks(vec![CAMERA_RAYS, CAMERA_RAYS]);
+        assert!(!a.occluded_as(&ray, RayKind::Shadow));
+        assert!(a.intersect_as(&ray, RayKind::Secondary).is_none());
+    }
+}
