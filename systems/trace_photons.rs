@@ -4,7 +4,7 @@
 //! **Reads:** `Emitter` entities and their `LightPhotons` (energy, photon counts);
 //! `PhotonFlags` of instances (caster/receiver roles);
 //! `outputs.geometry` (lights, emitting meshes, surfaces); `settings.photons` (photons,
-//! radius, gather, aim per map), `settings.seed`.
+//! radius, gather, aim, progressive passes per map), `settings.seed`.
 //! **Writes:** `outputs.photons` (returned to the runner).
 //! **Runs when:** the run renders with the `Direct` integrator, caustics or global
 //! illumination is on, geometry exists, and some light emits power.
@@ -20,6 +20,7 @@ use crate::components::{Emitter, LightPhotons, Material, PhotonFlags};
 use crate::frame::Slot;
 use crate::photon::aim::Aim;
 use crate::photon::emit::bounding_sphere;
+use crate::photon::progressive::trace_passes;
 use crate::photon::roles::instance_sphere;
 use crate::photon::{
     trace_map_by_light, Emission, GatherMap, MapKind, PhotonMap, PhotonMaps, PhotonRoles,
@@ -43,7 +44,12 @@ pub fn should_run(world: &World, frame: &Frame) -> Decision {
         ("global illumination", p.global_illumination),
     ]
     .into_iter()
-    .filter_map(|(name, m)| m.map(|m| format!("{name} ({} photons)", m.photons)))
+    .filter_map(|(name, m)| {
+        m.map(|m| match m.progressive {
+            Some(p) => format!("{name} ({} photons × {} passes)", m.photons, p.passes),
+            None => format!("{name} ({} photons)", m.photons),
+        })
+    })
     .collect();
     if maps.is_empty() {
         return Decision::skip("caustics and global illumination are off");
@@ -109,17 +115,13 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
                 MapKind::Global => c.globillum_photons.map(|n| (i, n)),
             })
             .collect();
-        let (photons, emitted) = trace_map_by_light(
-            &ctx,
-            emission,
-            roles.for_map(kind),
-            kind,
-            s.photons,
-            &counts,
-            seed,
-            &frame.inputs.cancel,
-        )
-        .ok_or(StageError::Interrupted)?;
+        let pass = |seed| {
+            let roles = roles.for_map(kind);
+            let cancel = &frame.inputs.cancel;
+            trace_map_by_light(&ctx, emission, roles, kind, s.photons, &counts, seed, cancel)
+        };
+        let (photons, progressive, emitted) =
+            trace_passes(s.progressive, seed, pass).ok_or(StageError::Interrupted)?;
         Ok(Some(GatherMap {
             map: PhotonMap::build(photons),
             gather: s.gather.max(2) as usize,
@@ -131,6 +133,7 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
             final_gather: s.final_gather.max(1),
             emitted,
             filter: s.filter,
+            progressive,
         }))
     };
     let maps = PhotonMaps {

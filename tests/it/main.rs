@@ -42,6 +42,8 @@ mod mi;
 mod photon_clean;
 mod photon_flags;
 mod photon_lights;
+mod photon_partition;
+mod photon_progressive;
 mod photons;
 mod radiometry;
 mod ray_counts;
