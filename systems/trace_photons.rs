@@ -118,7 +118,9 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
         let pass = |seed| {
             let roles = roles.for_map(kind);
             let cancel = &frame.inputs.cancel;
-            trace_map_by_light(&ctx, emission, roles, kind, s.photons, &counts, seed, cancel)
+            trace_map_by_light(
+                &ctx, emission, roles, kind, s.photons, &counts, seed, cancel,
+            )
         };
         let (photons, progressive, emitted) =
             trace_passes(s.progressive, seed, pass).ok_or(StageError::Interrupted)?;

@@ -243,10 +243,7 @@ pub fn estimates(world: &World, settings: &RenderSettings, tasks: Tasks) -> Vec<
             None => 0,
         };
         let n = on(&settings.photons.caustics, c.caustic_photons)
-            + on(
-                &settings.photons.global_illumination,
-                c.globillum_photons,
-            );
+            + on(&settings.photons.global_illumination, c.globillum_photons);
         if n > 0 {
             let (name, at) = named(world, e);
             out.push(Estimate {

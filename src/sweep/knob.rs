@@ -5,10 +5,10 @@
 
 use hecs::World;
 
+use super::photon_knobs::{apply_passes, filter_label, parse_filters};
 use crate::components::{
     Approximation, BakeKind, BakeRequest, Emitter, LightShape, Material, Technique,
 };
-use super::photon_knobs::{apply_passes, filter_label, parse_filters};
 use crate::settings::{BvhQuality, PhotonFilter, PhotonMapSettings, RenderSettings};
 
 /// A knob and the values to sweep.

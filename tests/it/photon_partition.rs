@@ -27,8 +27,8 @@ fn scene(options: &str) -> String {
     cameras: [(name: "cam", fov_y: 34, resolution: ({WIDTH}, {HEIGHT}),
         placement: LookAt(eye: (0.4, -0.6, 5), target: (0.4, 0, 0), up: (0, 1, 0)),
         outputs: [(file: "h23.png")])],
-    lights: [(name: "panel", kind: Rect(corner: (-2.75, 0.25, 3), edge_u: (0.5, 0, 0),
-        edge_v: (0, -0.5, 0)), intensity: 40, samples: 4)],
+    lights: [(name: "panel", kind: Rect(corner: (-3, 0.5, 3), edge_u: (1, 0, 0),
+        edge_v: (0, -1, 0)), intensity: 10, samples: 4, visible: true)],
     materials: [
         (name: "floor", shader: Lambert(albedo: (0.7, 0.7, 0.7))),
         (name: "wall", shader: Lambert(albedo: (0.7, 0.3, 0.2))),
@@ -100,7 +100,7 @@ fn masks(camera: &Camera) -> [Vec<usize>; 3] {
                 continue;
             }
             let i = (y * WIDTH + x) as usize;
-            if (floor - focus).length() < 0.3 {
+            if (floor - focus).length() < 0.4 {
                 out[0].push(i);
             } else if blocked(floor, LIGHT, 0.8 * RADIUS) {
                 out[1].push(i);
@@ -134,7 +134,12 @@ fn region(images: &[Vec<Vec3>], mask: &[usize]) -> (f64, f64) {
 fn h23_photon_render_equals_the_path_tracer_on_every_region() {
     let seeds = 4;
     let path: Vec<Vec<Vec3>> = (0..seeds)
-        .map(|s| render(&format!("samples: 96, seed: {s}, integrator: Path, max_depth: 8")).0)
+        .map(|s| {
+            render(&format!(
+                "samples: 96, seed: {s}, integrator: Path, max_depth: 8"
+            ))
+            .0
+        })
         .collect();
     let mut camera = None;
     let hybrid: Vec<Vec<Vec3>> = (0..seeds)

@@ -47,7 +47,8 @@ fn scene(caustics: &str) -> String {
 /// The caustic map of `scene(caustics)`, traced on `threads` threads.
 fn caustic_map(caustics: &str, threads: usize) -> GatherMap {
     let text = scene(caustics);
-    let mut scene = load_scene_str(&text, Path::new("mirror.ron")).unwrap_or_else(|e| panic!("{e}"));
+    let mut scene =
+        load_scene_str(&text, Path::new("mirror.ron")).unwrap_or_else(|e| panic!("{e}"));
     let mut frame = Frame::new(scene.settings.clone());
     let stages: Vec<_> = stagelight::systems::STAGES
         .iter()
@@ -60,7 +61,11 @@ fn caustic_map(caustics: &str, threads: usize) -> GatherMap {
         .unwrap();
     pool.install(|| stagelight::schedule::run_stages(&stages, &mut scene.world, &mut frame))
         .expect("photon pass");
-    frame.outputs.photons.and_then(|m| m.caustics).expect("caustic map")
+    frame
+        .outputs
+        .photons
+        .and_then(|m| m.caustics)
+        .expect("caustic map")
 }
 
 /// Irradiance on the ceiling at `(x, 0, H)` from the light's mirror image at `(0, 0, −h)`.
@@ -112,7 +117,7 @@ fn slope(points: &[(usize, f64)]) -> f64 {
 /// is the progressive one.
 #[test]
 fn the_caustic_error_falls_with_passes() {
-    let (radius, passes) = (2.0, 32);
+    let (radius, passes) = (3.0, 32);
     let map = caustic_map(
         &format!("photons: 1000, radius: {radius}, progressive: (passes: {passes}, alpha: 0.7)"),
         2,
