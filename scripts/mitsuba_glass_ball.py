@@ -22,7 +22,7 @@ import time
 
 # Caustic crop, pixels [x0, x1) × [y0, y1) of the 128 × 96 image (the bright spot right of
 # the ball and its surroundings).
-CROP = (62, 90, 44, 68)
+CROP = (71, 92, 50, 62)
 
 
 def scene_dict(mi, integrator, spp, seed):
