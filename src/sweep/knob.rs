@@ -5,7 +5,7 @@
 
 use hecs::World;
 
-use super::photon_knobs::{apply_passes, filter_label, parse_filters};
+use super::photon_knobs::{apply_passes, filter_label, parse_filters, FILTER_VALUES};
 use crate::components::{
     Approximation, BakeKind, BakeRequest, Emitter, LightShape, Material, Technique,
 };
@@ -161,7 +161,13 @@ impl Knob {
                 "a whole number of passes from 1 to 65536",
                 |&v: &u32| (1..=65536).contains(&v),
             )?),
-            "filter" | "photon_filter" => Knob::PhotonFilter(parse_filters(name, values)?),
+            "filter" | "photon_filter" => {
+                Knob::PhotonFilter(parse_filters(values).map_err(|value| KnobError::Value {
+                    knob: name.to_string(),
+                    value,
+                    expected: FILTER_VALUES,
+                })?)
+            }
             other => return Err(KnobError::Unknown(other.to_string())),
         })
     }

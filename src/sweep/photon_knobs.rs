@@ -2,23 +2,22 @@
 //! `passes` (progressive photon mapping of the caustic map) and `filter` (the estimate filter
 //! of every photon map): parsing their values and applying one.
 
-use super::knob::KnobError;
 use crate::settings::{PhotonFilter, ProgressiveSettings, RenderSettings};
 
 /// α of a caustic map that the `passes` knob makes progressive (Hachisuka's 0.7).
 pub const DEFAULT_ALPHA: f32 = 0.7;
 
-/// Parses the `filter` knob's values: `box`, `cone` (k = 1.1), `cone:K` (K ≥ 1), `gauss`.
-pub fn parse_filters(knob: &str, values: &str) -> Result<Vec<PhotonFilter>, KnobError> {
+/// What the `filter` knob's values may be.
+pub const FILTER_VALUES: &str = "box, cone, cone:K (K ≥ 1) or gauss";
+
+/// Parses the `filter` knob's values: `box`, `cone` (k = 1.1), `cone:K` (K ≥ 1), `gauss`;
+/// the first value that is none of them is the error.
+pub fn parse_filters(values: &str) -> Result<Vec<PhotonFilter>, String> {
     values
         .split(',')
         .map(|v| {
             let v = v.trim();
-            let bad = || KnobError::Value {
-                knob: knob.to_string(),
-                value: v.to_string(),
-                expected: "box, cone, cone:K (K ≥ 1) or gauss",
-            };
+            let bad = || v.to_string();
             match v.to_ascii_lowercase().as_str() {
                 "box" => Ok(PhotonFilter::Box),
                 "gauss" => Ok(PhotonFilter::Gauss),
@@ -63,7 +62,7 @@ mod tests {
 
     #[test]
     fn filters_parse_and_print_back() {
-        let f = parse_filters("filter", "box, Cone,cone:2,gauss").unwrap();
+        let f = parse_filters("box, Cone,cone:2,gauss").unwrap();
         assert_eq!(
             f,
             [
@@ -76,10 +75,7 @@ mod tests {
         let labels: Vec<String> = f.into_iter().map(filter_label).collect();
         assert_eq!(labels, ["box", "cone:1.1", "cone:2", "gauss"]);
         for bad in ["cone:0.5", "tent", "cone:x"] {
-            assert!(matches!(
-                parse_filters("filter", bad),
-                Err(KnobError::Value { .. })
-            ));
+            assert_eq!(parse_filters(&format!("box,{bad}")), Err(bad.to_string()));
         }
     }
 
