@@ -33,7 +33,7 @@ timed() { # NAME COMMAND…: runs the command, prints its wall time
     echo "$name: $(echo "$end - $start" | bc) s wall"
 }
 timed stagelight_photons "$BIN" render "$scene" -o "$out/stagelight_photons.exr"
-timed stagelight_path "$BIN" render "$scene" --integrator path --spp "${PATH_SPP:-64}" -o "$out/stagelight_path.exr"
+timed stagelight_path "$BIN" render "$scene" --integrator path --spp "${PATH_SPP:-32}" -o "$out/stagelight_path.exr"
 python3 $py render "$out/mitsuba_path.exr" --integrator path --spp "${MTS_PATH_SPP:-64}"
 python3 $py render "$out/mitsuba_ptracer.exr" --integrator ptracer --spp "${MTS_PT_SPP:-64}"
 for name in stagelight_photons stagelight_path mitsuba_path mitsuba_ptracer; do
