@@ -6,8 +6,8 @@
 #      caustic crop: a light tracer converges a caustic on a diffuse floor fastest);
 #   2. one run of each method (settings below, chosen for similar times), wall time and
 #      relMSE of the whole image and of the caustic crop.
-# stagelight's time is the whole CLI run (load, tessellation, BVH, photons, shading);
-# Mitsuba's the render call only (scene load and kernel compile excluded).
+# Times: wall and CPU of each whole process (stagelight: load, tessellation, BVH, photons,
+# shading; Mitsuba: import, scene load, render); the .log files hold Mitsuba's render-call time.
 # Needs PyPI (pip install mitsuba numpy). BIN=path/to/stagelight skips the release build.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -24,18 +24,15 @@ scene=scripts/glass_ball.ron
 echo "load: $(cut -d' ' -f1-3 /proc/loadavg) on $(nproc) cores"
 [ -e "$out/ref_path.exr" ] || python3 $py render "$out/ref_path.exr" --integrator path --spp "$ref_spp" --seed 101
 [ -e "$out/ref_ptracer.exr" ] || python3 $py render "$out/ref_ptracer.exr" --integrator ptracer --spp "$ref_spp" --seed 102
-timed() { # NAME COMMAND…: runs the command, prints its wall time
+timed() { # NAME COMMAND…: runs the command, prints its wall and CPU (user+sys) seconds
     local name=$1; shift
-    local start end
-    start=$(date +%s.%N)
-    "$@" > "$out/$name.log" 2>&1
-    end=$(date +%s.%N)
-    echo "$name: $(echo "$end - $start" | bc) s wall"
+    /usr/bin/time -f "$name: %e s wall, %U + %S s CPU" "$@" > "$out/$name.log" 2> "$out/$name.time"
+    tail -1 "$out/$name.time"
 }
 timed stagelight_photons "$BIN" render "$scene" -o "$out/stagelight_photons.exr"
 timed stagelight_path "$BIN" render "$scene" --integrator path --spp "${PATH_SPP:-32}" -o "$out/stagelight_path.exr"
-python3 $py render "$out/mitsuba_path.exr" --integrator path --spp "${MTS_PATH_SPP:-64}"
-python3 $py render "$out/mitsuba_ptracer.exr" --integrator ptracer --spp "${MTS_PT_SPP:-64}"
+timed mitsuba_path python3 $py render "$out/mitsuba_path.exr" --integrator path --spp "${MTS_PATH_SPP:-64}"
+timed mitsuba_ptracer python3 $py render "$out/mitsuba_ptracer.exr" --integrator ptracer --spp "${MTS_PT_SPP:-64}"
 for name in stagelight_photons stagelight_path mitsuba_path mitsuba_ptracer; do
     echo "$name: $(python3 $py compare "$out/$name.exr" "$out/ref_path.exr" "$out/ref_ptracer.exr")"
 done
