@@ -7,6 +7,8 @@
 # LLVM 14/15 fail with "Cannot select fminimum"). Falls back to scalar_rgb without it.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+# `mitsuba_compare.sh caustics`: the glass-ball caustics table instead (issue 16).
+if [ "${1:-}" = caustics ]; then exec scripts/mitsuba_caustics.sh; fi
 out=${OUT:-target/mitsuba}
 mkdir -p "$out"
 python3 -c "import mitsuba, numpy" 2>/dev/null || pip install --quiet mitsuba numpy

@@ -301,7 +301,8 @@ struct SweepArgs {
     /// Scene file (RON).
     scene: PathBuf,
     /// The knob and its values: spp, adaptive_contrast, light_samples, max_depth, bvh_quality,
-    /// tessellation, bake_samples (e.g. `--knob spp=1,4,16,64`).
+    /// tessellation, bake_samples, photons, gather_radius, gather_count, passes, filter
+    /// (e.g. `--knob spp=1,4,16,64`).
     #[arg(long, value_name = "NAME=V1,V2,…")]
     knob: String,
     /// Reference image (linear EXR, same size); rendered and cached in the output directory

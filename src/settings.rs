@@ -131,6 +131,18 @@ pub struct PhotonMapSettings {
     pub aim: bool,
     /// Weighting of photons in an estimate (mental ray `caustic filter`).
     pub filter: PhotonFilter,
+    /// Progressive photon mapping (`None`: one pass, k-nearest estimates).
+    pub progressive: Option<ProgressiveSettings>,
+}
+
+/// Progressive photon mapping of one map (Hachisuka et al.): `passes` photon passes of
+/// `photons` each, the gather radius of every shading point shrinking pass by pass.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ProgressiveSettings {
+    /// Photon passes, ≥ 1.
+    pub passes: u32,
+    /// Fraction of each pass's new photons kept (0 < α ≤ 1; 1 = no shrinking).
+    pub alpha: f32,
 }
 
 /// How photons are weighted inside the gather disc of an estimate (mental ray `caustic

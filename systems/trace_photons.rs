@@ -4,7 +4,7 @@
 //! **Reads:** `Emitter` entities and their `LightPhotons` (energy, photon counts);
 //! `PhotonFlags` of instances (caster/receiver roles);
 //! `outputs.geometry` (lights, emitting meshes, surfaces); `settings.photons` (photons,
-//! radius, gather, aim per map), `settings.seed`.
+//! radius, gather, aim, progressive passes per map), `settings.seed`.
 //! **Writes:** `outputs.photons` (returned to the runner); the photon map file, when the
 //! scene names one (`photon_map`) or the run has `--photon-cache DIR`, unless it was reused.
 //! **Reuses:** that file when its content hash ([`crate::photon::key`]) matches: the maps
@@ -26,6 +26,7 @@ use crate::photon::aim::Aim;
 use crate::photon::emit::bounding_sphere;
 use crate::photon::file::{encode, StoredMap, StoredMaps};
 use crate::photon::key::photon_key;
+use crate::photon::progressive::{trace_passes, Progressive};
 use crate::photon::roles::instance_sphere;
 use crate::photon::store::{self, Miss};
 use crate::photon::{
@@ -50,7 +51,12 @@ pub fn should_run(world: &World, frame: &Frame) -> Decision {
         ("global illumination", p.global_illumination),
     ]
     .into_iter()
-    .filter_map(|(name, m)| m.map(|m| format!("{name} ({} photons)", m.photons)))
+    .filter_map(|(name, m)| {
+        m.map(|m| match m.progressive {
+            Some(p) => format!("{name} ({} photons × {} passes)", m.photons, p.passes),
+            None => format!("{name} ({} photons)", m.photons),
+        })
+    })
     .collect();
     if maps.is_empty() {
         return Decision::skip("caustics and global illumination are off");
@@ -147,19 +153,18 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
                 MapKind::Global => c.globillum_photons.map(|n| (i, n)),
             })
             .collect();
-        let (photons, emitted) = trace_map_by_light(
-            &ctx,
-            emission,
-            roles.for_map(kind),
-            kind,
-            s.photons,
-            &counts,
-            seed,
-            &frame.inputs.cancel,
-        )
-        .ok_or(StageError::Interrupted)?;
+        let pass = |seed| {
+            let roles = roles.for_map(kind);
+            let cancel = &frame.inputs.cancel;
+            trace_map_by_light(
+                &ctx, emission, roles, kind, s.photons, &counts, seed, cancel,
+            )
+        };
+        let (photons, progressive, emitted) =
+            trace_passes(s.progressive, seed, pass).ok_or(StageError::Interrupted)?;
         Ok(Some(StoredMap {
             map: PhotonMap::build(photons),
+            later: progressive.map(|p| p.later).unwrap_or_default(),
             emitted,
         }))
     };
@@ -197,6 +202,10 @@ fn gather_maps(stored: StoredMaps, settings: &RenderSettings, diagonal: f32) -> 
             final_gather: s.final_gather.max(1),
             emitted: m.emitted,
             filter: s.filter,
+            progressive: s.progressive.map(|p| Progressive {
+                later: m.later,
+                alpha: p.alpha,
+            }),
         })
     };
     PhotonMaps {

@@ -216,11 +216,16 @@ pub fn estimates(world: &World, settings: &RenderSettings, tasks: Tasks) -> Vec<
     ];
     for (key, map) in maps {
         if let Some(m) = map {
+            // A progressive map keeps every pass.
+            let (passes, what) = match m.progressive {
+                Some(p) => (p.passes, format!("{} × {} passes", m.photons, p.passes)),
+                None => (1, m.photons.to_string()),
+            };
             out.push(Estimate {
                 element: format!("options.{key}"),
                 at: None,
-                what: format!("the {} photons of the photon map", m.photons),
-                bytes: u64::from(m.photons).saturating_mul(BYTES_PER_PHOTON),
+                what: format!("the {what} photons of the photon map"),
+                bytes: (u64::from(m.photons) * u64::from(passes)).saturating_mul(BYTES_PER_PHOTON),
                 help: "emit fewer photons",
             });
         }
@@ -233,12 +238,12 @@ pub fn estimates(world: &World, settings: &RenderSettings, tasks: Tasks) -> Vec<
         .collect();
     lights.sort_by_key(|(e, _)| e.to_bits());
     for (e, c) in lights {
-        let on = |map: &Option<_>, n: Option<u32>| if map.is_some() { n.unwrap_or(0) } else { 0 };
-        let n = u64::from(on(&settings.photons.caustics, c.caustic_photons))
-            + u64::from(on(
-                &settings.photons.global_illumination,
-                c.globillum_photons,
-            ));
+        let on = |map: &Option<crate::settings::PhotonMapSettings>, n: Option<u32>| match map {
+            Some(m) => u64::from(n.unwrap_or(0)) * u64::from(m.progressive.map_or(1, |p| p.passes)),
+            None => 0,
+        };
+        let n = on(&settings.photons.caustics, c.caustic_photons)
+            + on(&settings.photons.global_illumination, c.globillum_photons);
         if n > 0 {
             let (name, at) = named(world, e);
             out.push(Estimate {

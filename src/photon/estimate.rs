@@ -4,8 +4,8 @@
 
 use glam::Vec3;
 
+use super::gather_path::land;
 use super::{GatherMap, Neighbour, PhotonMaps};
-use crate::accel::RayKind;
 use crate::sampling::Sampler;
 use crate::shading::bsdf::Bsdf;
 use crate::shading::integrator::{PhotonRadiance, ShadeContext, Vertex};
@@ -26,7 +26,8 @@ impl PhotonRadiance for PhotonMaps {
             radiance += reflected(c, v, bsdf, &mut scratch);
         }
         if let Some(g) = &self.global {
-            radiance += final_gather(ctx, g, v, bsdf, sampler, &mut scratch);
+            let caustics = self.caustics.as_ref();
+            radiance += final_gather(ctx, g, caustics, v, bsdf, sampler, &mut scratch);
         }
         radiance
     }
@@ -39,28 +40,23 @@ pub fn reflected(
     bsdf: &Bsdf,
     scratch: &mut Vec<Neighbour>,
 ) -> Vec3 {
-    map.map.estimate_filtered(
-        v.sp.surface.p,
-        v.ng,
-        map.gather(),
-        map.filter,
-        scratch,
-        |ph| {
-            let wi = v.frame.to_local(ph.incoming);
-            if wi.z <= 0.0 {
-                Vec3::ZERO
-            } else {
-                bsdf.eval(v.wo, wi)
-            }
-        },
-    )
+    map.density(v.sp.surface.p, v.ng, scratch, |ph| {
+        let wi = v.frame.to_local(ph.incoming);
+        if wi.z <= 0.0 {
+            Vec3::ZERO
+        } else {
+            bsdf.eval(v.wo, wi)
+        }
+    })
 }
 
 /// Indirect diffuse light at `v`: `final_gather` BSDF-sampled rays, each reading the global
-/// map where it lands on a diffuse surface.
+/// map and the caustic map (if any) where it lands on a diffuse surface, directly or through
+/// mirrors and glass ([`super::gather_path`]).
 fn final_gather(
     ctx: &ShadeContext<'_>,
     map: &GatherMap,
+    caustics: Option<&GatherMap>,
     v: &Vertex<'_>,
     bsdf: &Bsdf,
     sampler: &mut Sampler,
@@ -81,18 +77,15 @@ fn final_gather(
         let Some(ray) = v.spawn(bs.wi, false) else {
             continue;
         };
-        let Some(hit) = ctx.geometry.accel.intersect_as(&ray, RayKind::Secondary) else {
+        let Some(to) = land(ctx, ray, &mut s) else {
             continue;
         };
-        let w = Vertex::new(ctx, &ray, &hit);
-        if !w.visible {
-            continue;
+        let (w, b) = (&to.vertex, &to.bsdf);
+        let mut incoming = reflected(map, w, b, scratch);
+        if let Some(c) = caustics {
+            incoming += reflected(c, w, b, scratch);
         }
-        let Some(b) = w.bsdf().filter(Bsdf::has_non_delta) else {
-            continue;
-        };
-        let incoming = reflected(map, &w, &b, scratch) * w.transmittance;
-        sum += bs.weight() * incoming;
+        sum += bs.weight() * to.throughput * incoming;
     }
     let l = sum / n as f32;
     if l.is_finite() {
@@ -144,6 +137,7 @@ mod tests {
             final_gather: 0,
             emitted: 1000,
             filter: crate::photon::PhotonFilter::Box,
+            progressive: None,
         }
     }
 

@@ -5,9 +5,10 @@
 //!
 //! **Layout** (little-endian): the magic line `stagelight photon map\n`, the format version
 //! (`u32`, 1), the content hash (`u64`), a `u32` of present maps (bit 0 caustics, bit 1
-//! global), then per present map `emitted` (`u64`), the photon count `n` (`u64`), `n`
-//! photons of 12 `f32` (position, power, incoming, normal) and `n` split axes (`u8`, 0–2);
-//! last, the FNV-1a hash of every byte before it (`u64`). A reader checks the magic, the
+//! global), then per present map `emitted` (`u64`, over all passes), the number of photon
+//! passes `P` (`u32`, ≥ 1: more for a progressive map) and `P` trees, each the photon count
+//! `n` (`u64`), `n` photons of 12 `f32` (position, power, incoming, normal) and `n` split
+//! axes (`u8`, 0–2); last, the FNV-1a hash of every byte before it (`u64`). A reader checks the magic, the
 //! version, the sizes against the file's length before allocating, the checksum, the axes
 //! and that every value is finite, so a truncated or corrupt file is an error, never a crash
 //! or wrong light.
@@ -23,13 +24,17 @@ pub const MAGIC: &[u8] = b"stagelight photon map\n";
 pub const VERSION: u32 = 1;
 /// Bytes of one stored photon (12 `f32` and its axis byte).
 const PHOTON_BYTES: u64 = 12 * 4 + 1;
+/// Most photon passes of one map a file may hold.
+const MAX_PASSES: u32 = 1 << 16;
 
 /// One map as a file keeps it.
 #[derive(Debug, Clone)]
 pub struct StoredMap {
-    /// The photons (a built kd-tree).
+    /// The photons (a built kd-tree); the first pass of a progressive map.
     pub map: PhotonMap,
-    /// Photons emitted to build it.
+    /// The later passes of a progressive map, in order (empty: one pass).
+    pub later: Vec<PhotonMap>,
+    /// Photons emitted to build it, over all passes.
     pub emitted: u64,
 }
 
@@ -79,7 +84,8 @@ pub fn encode(maps: &StoredMaps) -> Vec<u8> {
     let photons: usize = [&maps.caustics, &maps.global]
         .into_iter()
         .flatten()
-        .map(|m| m.map.len())
+        .flat_map(|m| std::iter::once(&m.map).chain(&m.later))
+        .map(PhotonMap::len)
         .sum();
     let mut out = Vec::with_capacity(64 + photons * PHOTON_BYTES as usize);
     out.extend_from_slice(MAGIC);
@@ -89,15 +95,18 @@ pub fn encode(maps: &StoredMaps) -> Vec<u8> {
     out.extend_from_slice(&present.to_le_bytes());
     for stored in [&maps.caustics, &maps.global].into_iter().flatten() {
         out.extend_from_slice(&stored.emitted.to_le_bytes());
-        out.extend_from_slice(&(stored.map.len() as u64).to_le_bytes());
-        for p in stored.map.photons() {
-            for v in [p.position, p.power, p.incoming, p.normal] {
-                for x in v.to_array() {
-                    out.extend_from_slice(&x.to_le_bytes());
+        out.extend_from_slice(&(1 + stored.later.len() as u32).to_le_bytes());
+        for map in std::iter::once(&stored.map).chain(&stored.later) {
+            out.extend_from_slice(&(map.len() as u64).to_le_bytes());
+            for p in map.photons() {
+                for v in [p.position, p.power, p.incoming, p.normal] {
+                    for x in v.to_array() {
+                        out.extend_from_slice(&x.to_le_bytes());
+                    }
                 }
             }
+            out.extend_from_slice(map.axes());
         }
-        out.extend_from_slice(stored.map.axes());
     }
     let sum = Fnv64::default().bytes(&out).finish();
     out.extend_from_slice(&sum.to_le_bytes());
@@ -209,6 +218,22 @@ impl Reader<'_> {
 
     fn map(&mut self) -> Result<StoredMap, PhotonFileError> {
         let emitted = self.u64()?;
+        let passes = self.u32()?;
+        if passes == 0 || passes > MAX_PASSES {
+            return Err(PhotonFileError::Invalid("number of photon passes"));
+        }
+        let map = self.tree()?;
+        let later = (1..passes)
+            .map(|_| self.tree())
+            .collect::<Result<Vec<_>, _>>()?;
+        Ok(StoredMap {
+            map,
+            later,
+            emitted,
+        })
+    }
+
+    fn tree(&mut self) -> Result<PhotonMap, PhotonFileError> {
         let n = self.u64()?;
         let left = (self.bytes.len() - self.at) as u64;
         if n.checked_mul(PHOTON_BYTES).is_none_or(|b| b > left) {
@@ -235,9 +260,7 @@ impl Reader<'_> {
             photons.push(photon);
         }
         let axes = self.take(n)?.to_vec();
-        let map = PhotonMap::from_tree(photons, axes)
-            .ok_or(PhotonFileError::Invalid("kd-tree split axis"))?;
-        Ok(StoredMap { map, emitted })
+        PhotonMap::from_tree(photons, axes).ok_or(PhotonFileError::Invalid("kd-tree split axis"))
     }
 }
 
@@ -256,6 +279,7 @@ mod tests {
             key: 0x0123_4567_89ab_cdef,
             caustics: Some(StoredMap {
                 map: PhotonMap::build((0..37).map(photon).collect()),
+                later: vec![PhotonMap::build((3..9).map(photon).collect())],
                 emitted: 1000,
             }),
             global: None,
@@ -273,6 +297,8 @@ mod tests {
         assert_eq!(a.emitted, b.emitted);
         assert_eq!(a.map.photons(), b.map.photons());
         assert_eq!(a.map.axes(), b.map.axes());
+        assert_eq!(a.later.len(), 1);
+        assert_eq!(a.later[0].photons(), b.later[0].photons());
         assert_eq!(encode(&decode(&bytes).unwrap()), bytes);
         assert_eq!(peek_key(&bytes), Some(0x0123_4567_89ab_cdef));
     }
@@ -297,7 +323,7 @@ mod tests {
     #[test]
     fn a_huge_photon_count_is_refused_before_allocating() {
         let mut bytes = encode(&maps());
-        let count_at = MAGIC.len() + 4 + 8 + 4 + 8;
+        let count_at = MAGIC.len() + 4 + 8 + 4 + 8 + 4;
         bytes[count_at..count_at + 8].copy_from_slice(&u64::MAX.to_le_bytes());
         assert_eq!(decode(&bytes).unwrap_err(), PhotonFileError::Truncated);
     }

@@ -6,8 +6,9 @@
 //! (every instance's triangles, normals and UVs, transform, material slot and bump), the
 //! materials (their shaders, textures, emission and light lists), the lights with their photon
 //! controls, each instance's caster/receiver roles, the seed, the trace depths, face
-//! visibility, BVH quality, and per map whether it is built, its photon count and aiming.
-//! **Not in it:** what only reads the maps — gather count, radius, filter, final-gather rays —
+//! visibility, BVH quality, and per map whether it is built, its photon count, aiming and
+//! progressive passes. **Not in it:** what only reads the maps — gather count, radius,
+//! filter, final-gather rays, progressive `alpha` —
 //! and everything else of the render (camera, samples, pixel filter, outputs), so tuning
 //! those reuses the file, as mental ray's `photonmap file` intends.
 
@@ -76,7 +77,9 @@ pub fn photon_key(
         "origin {:?}\nmaterials {:?}\nlights {:?}\ncontrols {:?}\nroles {:?}",
         geometry.origin, geometry.materials, lights, controls, roles
     );
-    let map = |m: Option<PhotonMapSettings>| m.map(|m| (m.photons, m.aim));
+    let map = |m: Option<PhotonMapSettings>| {
+        m.map(|m| (m.photons, m.aim, m.progressive.map(|p| p.passes)))
+    };
     let _ = writeln!(
         h,
         "seed {} depth {} {} {} face {:?} bvh {:?} caustics {:?} global {:?}",

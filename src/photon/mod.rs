@@ -10,12 +10,12 @@
 //! - direct light `L D E`: the light loop (shadow rays);
 //! - caustics `L S+ D E`: the caustic map, visualised directly (`S` = delta: mirror, glass,
 //!   transparency);
-//! - indirect diffuse `L (S|D)* D D E`: one final-gather bounce whose hits read the global
-//!   map (which stores every diffuse hit, direct ones included, except caustic `L S+ D`
-//!   hits). Gather rays that hit delta surfaces or lights add nothing, so no path is counted
-//!   twice; `L …D S D E` paths through a mirror after a diffuse bounce and `L S+ D D E`
-//!   (a caustic seen through one diffuse bounce: a few very bright photons, which made
-//!   speckles) are not computed.
+//! - indirect diffuse `L (S|D)* D S* D E`: one final-gather bounce, followed through any
+//!   chain of purely specular surfaces (`S*`: mirrors, glass; [`gather_path`]) to the first
+//!   diffuse surface, where it reads the global map (every diffuse hit, direct ones included,
+//!   except caustic `L S+ D` hits) and the caustic map (those `L S+ D` hits: `L S+ D S* D
+//!   E`). Gather rays that reach lights add nothing (direct light and `L S+ D E` come from the
+//!   light loop and the caustic map), so no path is counted twice and none is missing (H23).
 //!
 //! The path tracer (`Path` integrator) ignores the maps: it is the reference.
 
@@ -24,17 +24,22 @@ pub mod emit;
 pub mod estimate;
 pub mod file;
 pub mod filter;
+pub mod gather_path;
 pub mod kdtree;
 pub mod key;
 pub mod pass;
+pub mod progressive;
 pub mod roles;
 pub mod store;
 pub mod trace;
+
+use glam::Vec3;
 
 pub use emit::Emission;
 pub use filter::PhotonFilter;
 pub use kdtree::{Gather, Neighbour, Photon, PhotonMap};
 pub use pass::{trace_map, trace_map_by_light, MapKind};
+pub use progressive::Progressive;
 pub use roles::PhotonRoles;
 pub use trace::{trace_photon, trace_photon_with_roles, Deposit, Fate};
 
@@ -53,6 +58,8 @@ pub struct GatherMap {
     pub emitted: u64,
     /// Weighting of the photons in an estimate.
     pub filter: PhotonFilter,
+    /// The later passes of a progressive map (`map` is the first; `None`: one pass).
+    pub progressive: Option<Progressive>,
 }
 
 impl GatherMap {
@@ -62,6 +69,28 @@ impl GatherMap {
             k: self.gather,
             r_max: self.radius,
         }
+    }
+
+    /// The density estimate `Σ f(photon)·Φ / area` at `p` (normal `normal`): k-nearest, or
+    /// the progressive estimate over every pass (irradiance for `f = 1`).
+    pub fn density(
+        &self,
+        p: Vec3,
+        normal: Vec3,
+        scratch: &mut Vec<Neighbour>,
+        f: impl Fn(&Photon) -> Vec3,
+    ) -> Vec3 {
+        match &self.progressive {
+            Some(prog) => progressive::estimate(self, prog, p, normal, scratch, f),
+            None => self
+                .map
+                .estimate_filtered(p, normal, self.gather(), self.filter, scratch, f),
+        }
+    }
+
+    /// Photons stored over every pass.
+    pub fn stored(&self) -> u64 {
+        self.map.len() as u64 + self.progressive.as_ref().map_or(0, Progressive::stored)
     }
 }
 
@@ -80,7 +109,7 @@ impl PhotonMaps {
         [&self.caustics, &self.global]
             .into_iter()
             .flatten()
-            .map(|m| m.map.len() as u64)
+            .map(GatherMap::stored)
             .sum()
     }
 }

@@ -133,6 +133,27 @@ pub struct PhotonMapDesc {
     pub aim: bool,
     /// Weighting of photons in an estimate, default `Box`.
     pub filter: PhotonFilterDesc,
+    /// Progressive photon mapping, default off.
+    pub progressive: Option<ProgressiveDesc>,
+}
+
+/// `progressive: (passes: N, alpha: 0.7)` of a photon map.
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize, Serialize)]
+#[serde(rename = "Progressive", deny_unknown_fields, default)]
+pub struct ProgressiveDesc {
+    /// Photon passes, default 16, 1 to 65536.
+    pub passes: u32,
+    /// Fraction of each pass's photons kept when the radius shrinks, default 0.7, in (0, 1].
+    pub alpha: f64,
+}
+
+impl Default for ProgressiveDesc {
+    fn default() -> Self {
+        Self {
+            passes: 16,
+            alpha: 0.7,
+        }
+    }
 }
 
 /// `filter:` of a photon map (mental ray `caustic filter box|cone|gauss`).
@@ -160,6 +181,7 @@ impl Default for PhotonMapDesc {
             final_gather: 16,
             aim: true,
             filter: PhotonFilterDesc::Box,
+            progressive: None,
         }
     }
 }

@@ -10,8 +10,8 @@ pub use super::checker::{Checker, Item};
 use super::desc::{
     BvhQualityDesc, CameraDesc, DiagnosticDesc, FaceDesc, FeatureDesc, FilterDesc, FormatDesc,
     GroupDesc, InstanceDesc, IntegratorDesc, LightDesc, LightKindDesc, MaterialDesc, ObjectDesc,
-    OptionsDesc, OutputDesc, PassDesc, PhotonFilterDesc, PhotonMapDesc, PlacementDesc, RenderDesc,
-    SceneDesc,
+    OptionsDesc, OutputDesc, PassDesc, PhotonFilterDesc, PhotonMapDesc, PlacementDesc,
+    ProgressiveDesc, RenderDesc, SceneDesc,
 };
 use super::diagnostics::Sources;
 use crate::components::{
@@ -20,12 +20,15 @@ use crate::components::{
 use crate::features::{Feature, Features};
 use crate::settings::{
     BvhQuality, Face, Integrator, PhotonFilter, PhotonMapFile, PhotonMapSettings, PhotonSettings,
-    PixelFilter, RenderSettings,
+    PixelFilter, ProgressiveSettings, RenderSettings,
 };
 
 /// The widest Gaussian pixel filter (truncation radius, pixels): a wider one spreads each
 /// pixel's samples over more of the frame than it covers (issue 18, family 8).
 pub const MAX_FILTER_RADIUS: f64 = 64.0;
+
+/// Most progressive photon passes of one map (every pass is kept in memory).
+pub const MAX_PASSES: u32 = 65536;
 
 /// All files' elements, in load order.
 #[derive(Debug, Default)]
@@ -262,6 +265,37 @@ fn photon_map(ck: &mut Checker<'_>, path: &str, d: &PhotonMapDesc) -> PhotonMapS
         final_gather: d.final_gather.max(1),
         aim: d.aim,
         filter,
+        progressive: d.progressive.map(|p| progressive(ck, path, &p)),
+    }
+}
+
+/// Checks a photon map's `progressive: (passes, alpha)`.
+fn progressive(ck: &mut Checker<'_>, path: &str, d: &ProgressiveDesc) -> ProgressiveSettings {
+    if !(1..=MAX_PASSES).contains(&d.passes) {
+        ck.error(
+            &format!("{path}.progressive.passes"),
+            format!(
+                "passes must be between 1 and {MAX_PASSES}, found {}",
+                d.passes
+            ),
+        );
+    }
+    if !(d.alpha > 0.0 && d.alpha <= 1.0) {
+        ck.error(
+            &format!("{path}.progressive.alpha"),
+            format!(
+                "alpha must be in (0, 1] (1: the radius never shrinks), found {}",
+                d.alpha
+            ),
+        );
+    }
+    ProgressiveSettings {
+        passes: d.passes.clamp(1, MAX_PASSES),
+        alpha: if d.alpha > 0.0 && d.alpha <= 1.0 {
+            d.alpha as f32
+        } else {
+            0.7
+        },
     }
 }
 

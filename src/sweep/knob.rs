@@ -5,10 +5,11 @@
 
 use hecs::World;
 
+use super::photon_knobs::{apply_passes, filter_label, parse_filters, FILTER_VALUES};
 use crate::components::{
     Approximation, BakeKind, BakeRequest, Emitter, LightShape, Material, Technique,
 };
-use crate::settings::{BvhQuality, PhotonMapSettings, RenderSettings};
+use crate::settings::{BvhQuality, PhotonFilter, PhotonMapSettings, RenderSettings};
 
 /// A knob and the values to sweep.
 #[derive(Debug, Clone, PartialEq)]
@@ -35,6 +36,10 @@ pub enum Knob {
     GatherRadius(Vec<f32>),
     /// Photons per estimate (k) of every photon map.
     GatherCount(Vec<u32>),
+    /// Progressive passes of the caustic map (made progressive with α = 0.7 if it is not).
+    Passes(Vec<u32>),
+    /// Estimate filter of every photon map.
+    PhotonFilter(Vec<PhotonFilter>),
 }
 
 /// Why a knob cannot be swept.
@@ -44,7 +49,7 @@ pub enum KnobError {
     #[error("expected --knob NAME=V1,V2,… (e.g. spp=1,4,16), found \"{0}\"")]
     Syntax(String),
     /// Unknown knob name.
-    #[error("unknown knob \"{0}\"; knobs: spp, adaptive_contrast, light_samples, max_depth, bvh_quality, tessellation, bake_samples, photons, gather_radius, gather_count")]
+    #[error("unknown knob \"{0}\"; knobs: spp, adaptive_contrast, light_samples, max_depth, bvh_quality, tessellation, bake_samples, photons, gather_radius, gather_count, passes, filter")]
     Unknown(String),
     /// A value does not parse.
     #[error("knob {knob}: cannot read \"{value}\" ({expected})")]
@@ -150,6 +155,19 @@ impl Knob {
                 "a radius ≥ 0 (0 = automatic)",
                 |&v: &f32| v.is_finite() && v >= 0.0,
             )?),
+            "passes" => Knob::Passes(parse_list(
+                name,
+                values,
+                "a whole number of passes from 1 to 65536",
+                |&v: &u32| (1..=65536).contains(&v),
+            )?),
+            "filter" | "photon_filter" => {
+                Knob::PhotonFilter(parse_filters(values).map_err(|value| KnobError::Value {
+                    knob: name.to_string(),
+                    value,
+                    expected: FILTER_VALUES,
+                })?)
+            }
             other => return Err(KnobError::Unknown(other.to_string())),
         })
     }
@@ -167,6 +185,8 @@ impl Knob {
             Knob::Photons(_) => "photons",
             Knob::GatherRadius(_) => "gather_radius",
             Knob::GatherCount(_) => "gather_count",
+            Knob::Passes(_) => "passes",
+            Knob::PhotonFilter(_) => "filter",
         }
     }
 
@@ -180,6 +200,8 @@ impl Knob {
             Knob::Tessellation(v) | Knob::AdaptiveContrast(v) => v.len(),
             Knob::Photons(v) | Knob::GatherCount(v) => v.len(),
             Knob::GatherRadius(v) => v.len(),
+            Knob::Passes(v) => v.len(),
+            Knob::PhotonFilter(v) => v.len(),
         }
     }
 
@@ -198,6 +220,8 @@ impl Knob {
             Knob::Tessellation(v) | Knob::AdaptiveContrast(v) => v[i].to_string(),
             Knob::Photons(v) | Knob::GatherCount(v) => v[i].to_string(),
             Knob::GatherRadius(v) => v[i].to_string(),
+            Knob::Passes(v) => v[i].to_string(),
+            Knob::PhotonFilter(v) => filter_label(v[i]),
         }
     }
 
@@ -251,7 +275,15 @@ impl Knob {
                     );
                 }
             }
-            Knob::Photons(_) | Knob::GatherRadius(_) | Knob::GatherCount(_) => {
+            Knob::Passes(_) => {
+                if settings.photons.caustics.is_none() {
+                    return absent("the scene does not turn on caustics");
+                }
+            }
+            Knob::Photons(_)
+            | Knob::GatherRadius(_)
+            | Knob::GatherCount(_)
+            | Knob::PhotonFilter(_) => {
                 if !settings.photons.any() {
                     return absent("the scene turns on neither caustics nor global_illumination");
                 }
@@ -291,6 +323,8 @@ impl Knob {
             Knob::Photons(v) => photon_maps(settings, |m| m.photons = v[i]),
             Knob::GatherRadius(v) => photon_maps(settings, |m| m.radius = v[i]),
             Knob::GatherCount(v) => photon_maps(settings, |m| m.gather = v[i]),
+            Knob::Passes(v) => apply_passes(settings, v[i]),
+            Knob::PhotonFilter(v) => photon_maps(settings, |m| m.filter = v[i]),
             Knob::BakeSamples(v) => {
                 for r in world.query_mut::<&mut BakeRequest>() {
                     for t in &mut r.targets {
@@ -378,7 +412,13 @@ mod tests {
             .unwrap()
             .check(&world, &RenderSettings::default())
             .is_ok());
-        for k in ["photons=10", "gather_radius=0.1", "gather_count=8"] {
+        for k in [
+            "photons=10",
+            "gather_radius=0.1",
+            "gather_count=8",
+            "passes=1,4",
+            "filter=box,gauss",
+        ] {
             assert!(matches!(
                 Knob::parse(k)
                     .unwrap()

@@ -8,6 +8,7 @@
 
 pub mod knob;
 pub mod metrics;
+pub mod photon_knobs;
 pub mod plot;
 pub mod report;
 pub mod runner;

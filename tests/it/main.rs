@@ -46,6 +46,8 @@ mod photon_clean;
 mod photon_file;
 mod photon_flags;
 mod photon_lights;
+mod photon_partition;
+mod photon_progressive;
 mod photons;
 mod radiometry;
 mod ray_counts;

@@ -260,3 +260,26 @@ fn a_photon_map_file_that_names_an_input_is_refused_before_anything_runs() {
     assert!(!dir.join("out.png").exists());
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn every_pass_of_a_progressive_map_is_kept_and_loaded() {
+    let dir = scratch_dir("pmap-progressive");
+    let progressive = |text: String| {
+        text.replace(
+            "caustics: (photons: 4000, gather: 20),",
+            "caustics: (photons: 1500, gather: 20, progressive: (passes: 3, alpha: 0.7)),",
+        )
+    };
+    std::fs::write(dir.join("scene.ron"), progressive(scene(40.0, 20, ""))).unwrap();
+    render(&dir, &[]);
+    let traced = std::fs::read(dir.join("out.png")).unwrap();
+    std::fs::write(dir.join("scene.ron"), progressive(scene(40.0, 20, KEPT))).unwrap();
+    assert_eq!(render(&dir, &[]).0["ran"], true);
+    let (loaded, _) = render(&dir, &[]);
+    assert_eq!(loaded["ran"], false, "{loaded}");
+    assert_eq!(std::fs::read(dir.join("out.png")).unwrap(), traced);
+    let file =
+        stagelight::photon::file::decode(&std::fs::read(dir.join("scene.pmap")).unwrap()).unwrap();
+    assert_eq!(file.caustics.unwrap().later.len(), 2, "passes 2 and 3 kept");
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -48,6 +48,7 @@ fn gi(photons: u32) -> RenderSettings {
         final_gather: 4,
         aim: true,
         filter: stagelight::settings::PhotonFilter::Box,
+        progressive: None,
     });
     s
 }

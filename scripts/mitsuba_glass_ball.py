@@ -1,0 +1,107 @@
+#!/usr/bin/env python3
+"""Renders scripts/glass_ball.ron (a glass ball on a floor under a small panel light) with
+Mitsuba 3, and compares EXR images on the whole frame and on the caustic crop.
+
+The scene is written out by hand here (keep it in step with glass_ball.ron): the floor and
+wall are rectangles (one-sided diffuse, as stagelight's Lambert with `face: Front`), the ball
+an analytic sphere (stagelight tessellates it finely, 96 × 48), the panel a one-sided
+rectangle emitter of radiance 800 (stagelight's Rect `intensity`). Mitsuba's `max_depth`
+counts path segments, stagelight's counts vertices: Mitsuba gets stagelight's 8 + 1. Box pixel
+filter on both.
+
+Usage:
+  mitsuba_glass_ball.py render OUT.exr --integrator path|ptracer --spp N [--seed S]
+  mitsuba_glass_ball.py compare TEST.exr WHOLE_REF.exr CROP_REF.exr
+(`render` prints the seconds the render took, the scene load and kernel compile excluded;
+`compare` prints relMSE — mean of (x−r)²/(r²+0.01) — of the whole image against WHOLE_REF and
+of the caustic crop against CROP_REF.)
+"""
+import argparse
+import sys
+import time
+
+# Caustic crop, pixels [x0, x1) × [y0, y1) of the 128 × 96 image (the bright spot right of
+# the ball and its surroundings).
+CROP = (71, 92, 50, 62)
+
+
+def scene_dict(mi, integrator, spp, seed):
+    T = mi.ScalarTransform4f
+    diffuse = lambda rgb: {"type": "diffuse", "reflectance": {"type": "rgb", "value": rgb}}
+    return {
+        "type": "scene",
+        "integrator": {"type": integrator, "max_depth": 9},
+        "sensor": {
+            "type": "perspective",
+            "fov_axis": "y",
+            "fov": 40.0,
+            "to_world": T().look_at(origin=[0, -3.5, 2.2], target=[0.2, 0, 0.3], up=[0, 0, 1]),
+            "sampler": {"type": "independent", "sample_count": spp, "seed": seed},
+            "film": {"type": "hdrfilm", "width": 128, "height": 96, "rfilter": {"type": "box"},
+                     "pixel_format": "rgb"},
+        },
+        "floor": {"type": "rectangle", "to_world": T().scale([3, 3, 1]),
+                  "bsdf": diffuse([0.7, 0.7, 0.7])},
+        "wall": {"type": "rectangle",
+                 "to_world": T().translate([0, 2, 1.5]).rotate([1, 0, 0], 90).scale([3, 1.5, 1]),
+                 "bsdf": diffuse([0.7, 0.3, 0.2])},
+        "ball": {"type": "sphere", "center": [0, 0, 0.5], "radius": 0.5,
+                 "bsdf": {"type": "dielectric", "int_ior": 1.5, "ext_ior": 1.0}},
+        "panel": {"type": "rectangle",
+                  "to_world": T().translate([-2.5, 0, 2.5]).rotate([1, 0, 0], 180).scale([0.1, 0.1, 1]),
+                  "emitter": {"type": "area", "radiance": {"type": "rgb", "value": [800, 800, 800]}}},
+    }
+
+
+def render(args):
+    import mitsuba as mi
+    mi.set_variant(args.variant)
+    scene = mi.load_dict(scene_dict(mi, args.integrator, args.spp, args.seed))
+    start = time.time()
+    image = mi.render(scene, spp=args.spp, seed=args.seed)
+    seconds = time.time() - start
+    mi.Bitmap(image).write(args.out)
+    print("%s %d spp: %.2f s" % (args.integrator, args.spp, seconds))
+
+
+def load(mi, path):
+    import numpy as np
+    return np.array(mi.Bitmap(path), dtype=np.float64)[:, :, :3]
+
+
+def rel_mse(a, r):
+    import numpy as np
+    d = a - r
+    return float(np.mean(d * d / (r * r + 1e-2)))
+
+
+def compare(args):
+    import mitsuba as mi
+    mi.set_variant("scalar_rgb")
+    test, whole, crop_ref = load(mi, args.test), load(mi, args.whole), load(mi, args.crop)
+    x0, x1, y0, y1 = CROP
+    crop = lambda img: img[y0:y1, x0:x1]
+    print("whole %.3e  crop %.3e  crop mean %.4f (ref %.4f)" % (
+        rel_mse(test, whole), rel_mse(crop(test), crop(crop_ref)), crop(test).mean(),
+        crop(crop_ref).mean()))
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    sub = ap.add_subparsers(dest="cmd", required=True)
+    r = sub.add_parser("render")
+    r.add_argument("out")
+    r.add_argument("--integrator", default="path", choices=["path", "ptracer"])
+    r.add_argument("--spp", type=int, default=64)
+    r.add_argument("--seed", type=int, default=0)
+    r.add_argument("--variant", default="scalar_rgb")
+    c = sub.add_parser("compare")
+    c.add_argument("test")
+    c.add_argument("whole")
+    c.add_argument("crop")
+    args = ap.parse_args()
+    return render(args) if args.cmd == "render" else compare(args)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
