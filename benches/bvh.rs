@@ -366,7 +366,14 @@ fn summary(w: &Workload, reps: usize) {
     }
     for (name, accel) in &accels {
         let s = accel.stats();
-        println!("# quality={name}: {} nodes, depth {}", s.nodes, s.depth);
+        println!(
+            "# quality={name}: {} nodes, depth {}, SAH cost {:.4}, mesh + BVH {:.1} MB = {:.1} bytes/triangle",
+            s.nodes,
+            s.depth,
+            s.sah_cost,
+            s.bytes as f64 * 1e-6,
+            s.bytes as f64 / s.triangles as f64
+        );
         let apis = env_list("STAGELIGHT_BENCH_API", "single batch");
         let mut rows = Vec::new();
         for (set, rays, single, batch, expected) in [
