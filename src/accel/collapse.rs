@@ -253,28 +253,31 @@ impl Collapser<'_> {
         self.gather(node, 0, &mut list, &mut len);
         let centre = |n: u32| self.bvh2.nodes[n as usize].aabb().center();
         let p = centre(node as u32);
+        let list = &list[..len];
+        // cost[c][s]: centroid of child `c` projected on the direction of octant `s`.
         let mut cost = [[f32::MAX; 8]; 8];
-        for s in 0..8 {
-            let d = Vec3A::new(
-                if s & 0b100 != 0 { -1.0 } else { 1.0 },
-                if s & 0b010 != 0 { -1.0 } else { 1.0 },
-                if s & 0b001 != 0 { -1.0 } else { 1.0 },
-            );
-            for c in 0..len {
-                cost[c][s] = d.dot(centre(list[c]) - p);
-            }
+        for (row, &c) in cost.iter_mut().zip(list) {
+            let v = centre(c) - p;
+            *row = std::array::from_fn(|s| {
+                let d = Vec3A::new(
+                    if s & 0b100 != 0 { -1.0 } else { 1.0 },
+                    if s & 0b010 != 0 { -1.0 } else { 1.0 },
+                    if s & 0b001 != 0 { -1.0 } else { 1.0 },
+                );
+                d.dot(v)
+            });
         }
         let mut assignment = [usize::MAX; 8];
         let mut filled = [false; 8];
         loop {
             let (mut min_cost, mut min_slot, mut min_child) = (f32::MAX, usize::MAX, usize::MAX);
-            for c in 0..len {
+            for (c, row) in cost.iter().take(list.len()).enumerate() {
                 if assignment[c] != usize::MAX {
                     continue;
                 }
-                for s in 0..8 {
-                    if !filled[s] && cost[c][s] < min_cost {
-                        (min_cost, min_slot, min_child) = (cost[c][s], s, c);
+                for (s, (&k, &full)) in row.iter().zip(&filled).enumerate() {
+                    if !full && k < min_cost {
+                        (min_cost, min_slot, min_child) = (k, s, c);
                     }
                 }
             }
@@ -287,16 +290,16 @@ impl Collapser<'_> {
         // Children whose costs are not below `f32::MAX` (infinite or NaN centres of huge
         // boxes) are left unassigned by the greedy loop (obvhs then indexes out of bounds):
         // they take the free slots in order.
-        for c in 0..len {
-            if assignment[c] == usize::MAX {
-                let s = (0..8).find(|&s| !filled[s]).unwrap_or(0);
-                filled[s] = true;
-                assignment[c] = s;
+        let mut slots = [INVALID; 8];
+        for slot in assignment.iter_mut().take(list.len()) {
+            if *slot == usize::MAX {
+                let free = filled.iter().position(|&f| !f).unwrap_or(0);
+                filled[free] = true;
+                *slot = free;
             }
         }
-        let mut slots = [INVALID; 8];
-        for c in 0..len {
-            slots[assignment[c]] = list[c];
+        for (&child, &slot) in list.iter().zip(&assignment) {
+            slots[slot] = child;
         }
         slots
     }
@@ -447,15 +450,14 @@ pub(crate) fn sah_cost(nodes: &[Node]) -> f64 {
     };
     let mut root_area = 0.0f64;
     let (mut lo, mut hi) = (Vec3::INFINITY, Vec3::NEG_INFINITY);
-    for slot in 0..8 {
-        if root.child[slot] == super::bvh::EMPTY_CHILD {
+    for (slot, &c) in root.child.iter().enumerate() {
+        if c == super::bvh::EMPTY_CHILD {
             continue;
         }
         let (g, l) = (slot / 4, slot % 4);
-        for a in 0..3 {
-            lo[a] = lo[a].min(root.bounds[g][2 * a][l]);
-            hi[a] = hi[a].max(root.bounds[g][2 * a + 1][l]);
-        }
+        let b = &root.bounds[g];
+        lo = lo.min(Vec3::new(b[0][l], b[2][l], b[4][l]));
+        hi = hi.max(Vec3::new(b[1][l], b[3][l], b[5][l]));
     }
     let d = (hi - lo).as_dvec3();
     root_area += (d.x + d.y) * d.z + d.x * d.y;
@@ -627,7 +629,11 @@ mod tests {
                 Vec3::new(big, -big, 0.0),
                 Vec3::new(0.0, big, big),
             ]);
-            tris.push([Vec3::new(-big, 0.0, -big), Vec3::new(big, 0.0, -big), Vec3::Z]);
+            tris.push([
+                Vec3::new(-big, 0.0, -big),
+                Vec3::new(big, 0.0, -big),
+                Vec3::Z,
+            ]);
             let ob: Vec<Triangle> = tris
                 .iter()
                 .map(|t| Triangle {
