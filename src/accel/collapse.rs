@@ -423,10 +423,8 @@ impl Collapser<'_> {
         }
         // Children packed into the first slots, in slot order; the box is their union.
         let (mut nlo, mut nhi) = (Vec3::INFINITY, Vec3::NEG_INFINITY);
-        let mut packed = 0;
-        for (reference, lo, hi) in refs.into_iter().flatten() {
+        for (packed, (reference, lo, hi)) in refs.into_iter().flatten().enumerate() {
             head[0].set_child(packed, reference, lo, hi);
-            packed += 1;
             nlo = nlo.min(lo);
             nhi = nhi.max(hi);
         }
