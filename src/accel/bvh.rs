@@ -20,9 +20,10 @@ use obvhs::{
 };
 use rayon::prelude::*;
 
-use super::collapse;
 use super::triangle::is_degenerate;
 use crate::settings::BvhQuality;
+
+mod collapse;
 
 /// Child reference flag: the child is a leaf.
 pub(crate) const LEAF_BIT: u32 = 1 << 31;

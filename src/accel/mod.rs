@@ -17,7 +17,6 @@
 
 mod brute;
 mod bvh;
-mod collapse;
 mod counters;
 mod spawn;
 mod traverse;
@@ -130,12 +129,21 @@ impl Accel {
     /// hit nothing.
     pub fn intersect(&self, ray: &Ray) -> Option<Hit> {
         self.counters.add_closest(1);
+        // The widest kernel this CPU runs (`traverse_wide.rs`), else SSE: same answers.
+        #[cfg(target_arch = "x86_64")]
+        if let Some(hit) = traverse_wide::closest(&self.bvh, ray) {
+            return hit;
+        }
         traverse::closest(&self.bvh, ray)
     }
 
     /// Whether anything is hit along the ray segment (`0 < t < t_max`).
     pub fn occluded(&self, ray: &Ray) -> bool {
         self.counters.add_occlusion(1);
+        #[cfg(target_arch = "x86_64")]
+        if let Some(hit) = traverse_wide::occluded(&self.bvh, ray) {
+            return hit;
+        }
         traverse::occluded(&self.bvh, ray)
     }
 

@@ -216,21 +216,14 @@ const ARRAY_STACK: usize = 128;
 /// saves a 1 KiB fill on every ray of scenes like the Cornell box.
 const SMALL_STACK: usize = 32;
 
-/// Closest hit of `ray`, with the widest kernel this CPU runs (`traverse_wide.rs`).
+/// Closest hit of `ray` with the SSE kernel (the fallback of `traverse_wide.rs`; `Accel`
+/// picks the kernel).
 pub(crate) fn closest(bvh: &Bvh, ray: &Ray) -> Option<Hit> {
-    #[cfg(target_arch = "x86_64")]
-    if let Some(hit) = super::traverse_wide::closest(bvh, ray) {
-        return hit;
-    }
     closest_in::<NodeRay>(bvh, ray)
 }
 
-/// Whether anything is hit with `0 < t < ray.t_max`, with the widest kernel this CPU runs.
+/// Whether anything is hit with `0 < t < ray.t_max`, with the SSE kernel.
 pub(crate) fn occluded(bvh: &Bvh, ray: &Ray) -> bool {
-    #[cfg(target_arch = "x86_64")]
-    if let Some(hit) = super::traverse_wide::occluded(bvh, ray) {
-        return hit;
-    }
     occluded_in::<NodeRay>(bvh, ray)
 }
 

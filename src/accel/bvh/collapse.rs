@@ -18,7 +18,7 @@ use std::sync::atomic::{AtomicU32, AtomicU64, Ordering::Relaxed};
 use glam::{Vec3, Vec3A};
 use obvhs::bvh2::Bvh2;
 
-use super::bvh::{Node, COUNT_SHIFT, LEAF_BIT};
+use super::{Node, COUNT_SHIFT, LEAF_BIT};
 
 /// SAH cost of one triangle test relative to one node visit (obvhs's `PRIM_COST`).
 pub(crate) const PRIM_COST: f32 = 0.3;
@@ -449,7 +449,7 @@ pub(crate) fn sah_cost(nodes: &[Node]) -> f64 {
     let mut root_area = 0.0f64;
     let (mut lo, mut hi) = (Vec3::INFINITY, Vec3::NEG_INFINITY);
     for (slot, &c) in root.child.iter().enumerate() {
-        if c == super::bvh::EMPTY_CHILD {
+        if c == super::EMPTY_CHILD {
             continue;
         }
         let (g, l) = (slot / 4, slot % 4);
@@ -465,7 +465,7 @@ pub(crate) fn sah_cost(nodes: &[Node]) -> f64 {
     let mut sum = 0.0f64;
     for node in nodes {
         for (slot, &c) in node.child.iter().enumerate() {
-            if c == super::bvh::EMPTY_CHILD {
+            if c == super::EMPTY_CHILD {
                 continue;
             }
             let area = half_area(node, slot);
@@ -482,7 +482,7 @@ pub(crate) fn sah_cost(nodes: &[Node]) -> f64 {
 
 #[cfg(test)]
 mod tests {
-    use super::super::bvh::{binary_hierarchy, build, build_params, EMPTY_CHILD, FIRST_MASK};
+    use super::super::{binary_hierarchy, build, build_params, EMPTY_CHILD, FIRST_MASK};
     use super::*;
     use crate::settings::BvhQuality;
     use obvhs::{cwbvh::bvh2_to_cwbvh::bvh2_to_cwbvh, triangle::Triangle};
