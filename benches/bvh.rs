@@ -350,15 +350,31 @@ fn summary(w: &Workload, reps: usize) {
             continue;
         }
         for &threads in &thread_counts {
-            let best = (0..reps)
+            // Wall time, and for 1 thread also the CPU time of the building thread (robust
+            // against time-slicing on a shared host).
+            let (best, best_cpu) = (0..reps)
                 .map(|_| {
-                    pool(threads)
-                        .install(|| Accel::build(w.tris.clone(), q))
-                        .build_seconds()
+                    pool(threads).install(|| {
+                        let tris = w.tris.clone();
+                        let c0 = thread_cpu_seconds();
+                        let wall = Accel::build(tris, q).build_seconds();
+                        let cpu = match (c0, thread_cpu_seconds()) {
+                            (Some(a), Some(b)) if threads == 1 => b - a,
+                            _ => f64::NAN,
+                        };
+                        (wall, cpu)
+                    })
                 })
-                .fold(f64::INFINITY, f64::min);
+                .fold((f64::INFINITY, f64::INFINITY), |a, b| {
+                    (a.0.min(b.0), a.1.min(b.1))
+                });
+            let cpu = if threads == 1 {
+                format!(", {:.0} ms cpu", best_cpu * 1e3)
+            } else {
+                String::new()
+            };
             println!(
-                "build quality={name} threads={threads}: {:.0} ms",
+                "build quality={name} threads={threads}: {:.0} ms wall{cpu}",
                 best * 1e3
             );
         }
@@ -366,7 +382,14 @@ fn summary(w: &Workload, reps: usize) {
     }
     for (name, accel) in &accels {
         let s = accel.stats();
-        println!("# quality={name}: {} nodes, depth {}", s.nodes, s.depth);
+        println!(
+            "# quality={name}: {} nodes, depth {}, SAH cost {:.4}, mesh + BVH {:.1} MB = {:.1} bytes/triangle",
+            s.nodes,
+            s.depth,
+            s.sah_cost,
+            s.bytes as f64 * 1e-6,
+            s.bytes as f64 / s.triangles as f64
+        );
         let apis = env_list("STAGELIGHT_BENCH_API", "single batch");
         let mut rows = Vec::new();
         for (set, rays, single, batch, expected) in [

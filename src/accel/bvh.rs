@@ -1,6 +1,6 @@
-//! BVH construction: obvhs builds the hierarchy (PLOC, reinsertion, collapse into a compressed
-//! 8-wide CWBVH), and the result is converted once into stagelight's own 8-wide node layout
-//! with *exact* `f32` child boxes, with the triangles copied into BVH order.
+//! BVH construction: obvhs builds the binary hierarchy (PLOC, reinsertion), `collapse.rs`
+//! collapses it in parallel into stagelight's own 8-wide node layout (the tree obvhs's CWBVH
+//! collapse makes) with *exact* `f32` child boxes, and the triangles are copied into BVH order.
 //!
 //! Why convert: obvhs's CWBVH nodes store child boxes quantised to 8 bits, and its node test
 //! clamps the entry distance to a hard-coded 1e-4 and ignores `tmin`; its traversal stack has
@@ -13,13 +13,17 @@ use std::time::Instant;
 
 use glam::{Vec3, Vec4};
 use obvhs::{
-    bvh2::reinsertion::ReinsertionOptimizer, cwbvh::bvh2_to_cwbvh::bvh2_to_cwbvh,
-    ploc::PlocBuilder, triangle::Triangle, BvhBuildParams,
+    bvh2::{reinsertion::ReinsertionOptimizer, Bvh2},
+    ploc::PlocBuilder,
+    triangle::Triangle,
+    BvhBuildParams,
 };
 use rayon::prelude::*;
 
 use super::triangle::is_degenerate;
 use crate::settings::BvhQuality;
+
+mod collapse;
 
 /// Child reference flag: the child is a leaf.
 pub(crate) const LEAF_BIT: u32 = 1 << 31;
@@ -75,6 +79,8 @@ pub(crate) struct Bvh {
     pub(crate) prim_ids: Vec<u32>,
     /// Number of node levels on the longest root-to-leaf path.
     pub(crate) depth: u32,
+    /// SAH cost (`collapse::sah_cost`).
+    pub(crate) sah_cost: f64,
     /// Wall-clock build time in seconds.
     pub(crate) build_seconds: f64,
 }
@@ -98,8 +104,8 @@ pub(crate) fn build(tris: &[[Vec3; 3]], quality: BvhQuality) -> Bvh {
         tris.len() <= FIRST_MASK as usize,
         "too many triangles for one BVH"
     );
-    // The gathers around the obvhs calls go wide (order-preserving collects): PLOC and
-    // reinsertion are parallel inside obvhs, its CWBVH conversion and our node sweep are not.
+    // Every pass goes wide: the gathers (order-preserving collects), PLOC and reinsertion
+    // inside obvhs, and the collapse into 8-wide nodes (`collapse.rs`).
     let valid: Vec<u32> = (0..tris.len() as u32)
         .into_par_iter()
         .filter(|&i| !is_degenerate(&tris[i as usize]))
@@ -110,6 +116,7 @@ pub(crate) fn build(tris: &[[Vec3; 3]], quality: BvhQuality) -> Bvh {
             tris: Vec::new(),
             prim_ids: Vec::new(),
             depth: 0,
+            sah_cost: 0.0,
             build_seconds: start.elapsed().as_secs_f64(),
         };
     }
@@ -125,62 +132,20 @@ pub(crate) fn build(tris: &[[Vec3; 3]], quality: BvhQuality) -> Bvh {
         })
         .collect();
     let params = build_params(quality);
-    // The low-level obvhs calls (not `build_cwbvh_from_tris`) skip its debug-build validation,
-    // which is slow and would dominate debug-profile tests.
-    let mut bvh2 = PlocBuilder::with_capacity(ob_tris.len()).build(
-        params.ploc_search_distance,
-        &ob_tris,
-        (0..ob_tris.len() as u32).collect(),
-        params.sort_precision,
-        params.search_depth_threshold,
-    );
-    ReinsertionOptimizer::default().run(&mut bvh2, params.reinsertion_batch_ratio, None);
-    let cw = bvh2_to_cwbvh(&bvh2, params.max_prims_per_leaf.clamp(1, 3), true, false);
+    let bvh2 = binary_hierarchy(&ob_tris, &params);
+    drop(ob_tris);
+    let collapsed = collapse::collapse(&bvh2, params.max_prims_per_leaf.clamp(1, 3), &|p| {
+        tris[valid[p as usize] as usize]
+    });
     drop(bvh2);
-
-    let prim_ids: Vec<u32> = cw
-        .primitive_indices
+    let prim_ids: Vec<u32> = collapsed
+        .order
         .par_iter()
         .map(|&i| valid[i as usize])
         .collect();
     let bvh_tris: Vec<[Vec3; 3]> = prim_ids.par_iter().map(|&i| tris[i as usize]).collect();
-
-    // Children always follow their parent in obvhs's layout, so one reverse sweep computes
-    // every node box from its children before the parent needs it.
-    let n = cw.nodes.len();
-    let mut nodes = vec![Node::EMPTY; n];
-    let mut node_box = vec![(Vec3::INFINITY, Vec3::NEG_INFINITY); n];
-    for i in (0..n).rev() {
-        let cn = &cw.nodes[i];
-        let (mut nlo, mut nhi) = (Vec3::INFINITY, Vec3::NEG_INFINITY);
-        let mut packed = 0;
-        for slot in 0..8 {
-            if cn.is_child_empty(slot) {
-                continue;
-            }
-            let (reference, lo, hi) = if cn.is_leaf(slot) {
-                let (first, count) = cn.child_primitives(slot);
-                let (mut lo, mut hi) = (Vec3::INFINITY, Vec3::NEG_INFINITY);
-                for t in &bvh_tris[first as usize..(first + count) as usize] {
-                    lo = lo.min(t[0]).min(t[1]).min(t[2]);
-                    hi = hi.max(t[0]).max(t[1]).max(t[2]);
-                }
-                (LEAF_BIT | (count << COUNT_SHIFT) | first, lo, hi)
-            } else {
-                let c = cn.child_node_index(slot) as usize;
-                assert!(
-                    c > i,
-                    "obvhs node layout changed: child {c} before parent {i}"
-                );
-                (c as u32, node_box[c].0, node_box[c].1)
-            };
-            nodes[i].set_child(packed, reference, lo, hi);
-            packed += 1;
-            nlo = nlo.min(lo);
-            nhi = nhi.max(hi);
-        }
-        node_box[i] = (nlo, nhi);
-    }
+    let nodes = collapsed.nodes;
+    let n = nodes.len();
 
     // Depth by a forward sweep (parents first).
     let mut level = vec![0u32; n];
@@ -195,13 +160,30 @@ pub(crate) fn build(tris: &[[Vec3; 3]], quality: BvhQuality) -> Bvh {
         }
     }
 
+    let sah_cost = collapse::sah_cost(&nodes);
     Bvh {
         nodes,
         tris: bvh_tris,
         prim_ids,
         depth,
+        sah_cost,
         build_seconds: start.elapsed().as_secs_f64(),
     }
+}
+
+/// obvhs's binary hierarchy (PLOC, then reinsertion), one triangle per leaf. The low-level
+/// obvhs calls (not `build_cwbvh_from_tris`) skip its debug-build validation, which is slow
+/// and would dominate debug-profile tests.
+pub(crate) fn binary_hierarchy(ob_tris: &[Triangle], params: &BvhBuildParams) -> Bvh2 {
+    let mut bvh2 = PlocBuilder::with_capacity(ob_tris.len()).build(
+        params.ploc_search_distance,
+        ob_tris,
+        (0..ob_tris.len() as u32).collect(),
+        params.sort_precision,
+        params.search_depth_threshold,
+    );
+    ReinsertionOptimizer::default().run(&mut bvh2, params.reinsertion_batch_ratio, None);
+    bvh2
 }
 
 #[cfg(test)]

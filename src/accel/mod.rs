@@ -21,6 +21,8 @@ mod counters;
 mod ray_kind;
 mod spawn;
 mod traverse;
+#[cfg(target_arch = "x86_64")]
+mod traverse_wide;
 mod triangle;
 
 use glam::Vec3;
@@ -82,6 +84,12 @@ pub struct AccelStats {
     pub depth: u32,
     /// Wall-clock build time in seconds.
     pub build_seconds: f64,
+    /// SAH cost of the hierarchy: expected node visits plus 0.3 per triangle test, for a ray
+    /// that hits the root box (`collapse.rs`; lower is better).
+    pub sah_cost: f64,
+    /// Heap bytes of the mesh and the hierarchy: the caller's triangles, the BVH-order copy,
+    /// the index map and the nodes.
+    pub bytes: usize,
 }
 
 /// BVH over world-space triangles. `Send + Sync`: build once, trace from many threads.
@@ -126,12 +134,21 @@ impl Accel {
     /// hit nothing.
     pub fn intersect(&self, ray: &Ray) -> Option<Hit> {
         self.counters.add_closest(1);
+        // The widest kernel this CPU runs (`traverse_wide.rs`), else SSE: same answers.
+        #[cfg(target_arch = "x86_64")]
+        if let Some(hit) = traverse_wide::closest(&self.bvh, ray) {
+            return hit;
+        }
         traverse::closest(&self.bvh, ray)
     }
 
     /// Whether anything is hit along the ray segment (`0 < t < t_max`).
     pub fn occluded(&self, ray: &Ray) -> bool {
         self.counters.add_occlusion(1);
+        #[cfg(target_arch = "x86_64")]
+        if let Some(hit) = traverse_wide::occluded(&self.bvh, ray) {
+            return hit;
+        }
         traverse::occluded(&self.bvh, ray)
     }
 
@@ -180,6 +197,11 @@ impl Accel {
             nodes: self.bvh.nodes.len(),
             depth: self.bvh.depth,
             build_seconds: self.bvh.build_seconds,
+            sah_cost: self.bvh.sah_cost,
+            bytes: std::mem::size_of_val(self.triangles.as_slice())
+                + std::mem::size_of_val(self.bvh.tris.as_slice())
+                + std::mem::size_of_val(self.bvh.prim_ids.as_slice())
+                + std::mem::size_of_val(self.bvh.nodes.as_slice()),
         }
     }
 }

@@ -27,8 +27,34 @@ use super::{Hit, Ray};
 /// Far slab distances are scaled by this to make the box test conservative.
 const FAR_SCALE: f32 = 1.0 + 2.0 * gamma(3);
 
-/// Per-ray constants of the slab test.
-struct NodeRay {
+/// The 8-child slab test of one ray, in one instruction set: `intersect` returns the hit mask
+/// (bit `i` for child slot `i`) and the entry distances. Every implementation returns the same
+/// mask for the same ray and node, so the traversal (and the result) does not depend on it.
+pub(super) trait NodeTest {
+    /// Per-ray constants.
+    fn new(ray: &Ray) -> Self;
+    /// Tests the eight children against `[0, t_far]`.
+    fn intersect(&self, node: &Node, t_far: f32) -> (u32, [f32; 8]);
+}
+
+impl NodeTest for NodeRay {
+    #[inline(always)]
+    fn new(ray: &Ray) -> Self {
+        NodeRay::new(ray)
+    }
+    #[inline(always)]
+    fn intersect(&self, node: &Node, t_far: f32) -> (u32, [f32; 8]) {
+        let (mask, entry) = NodeRay::intersect(self, node, t_far);
+        let (a, b) = (entry[0].to_array(), entry[1].to_array());
+        (mask, [a[0], a[1], a[2], a[3], b[0], b[1], b[2], b[3]])
+    }
+}
+
+/// Far slab distances are scaled by this (shared with the wide kernels).
+pub(super) const FAR_SCALE_FACTOR: f32 = FAR_SCALE;
+
+/// Per-ray constants of the slab test (SSE, four children at a time).
+pub(super) struct NodeRay {
     o: [Vec4; 3],
     inv: [Vec4; 3],
     near: [usize; 3],
@@ -37,7 +63,7 @@ struct NodeRay {
 
 impl NodeRay {
     #[inline]
-    fn new(ray: &Ray) -> Self {
+    pub(super) fn new(ray: &Ray) -> Self {
         let inv = ray.dir.recip();
         let d = ray.dir.to_array();
         // The sign bit decides (−0.0 counts as negative, matching 1/−0 = −∞).
@@ -56,7 +82,7 @@ impl NodeRay {
 
     /// Tests the eight children against `[0, t_far]`; returns the hit mask and entry distances.
     #[inline(always)]
-    fn intersect(&self, node: &Node, t_far: f32) -> (u32, [Vec4; 2]) {
+    pub(super) fn intersect(&self, node: &Node, t_far: f32) -> (u32, [Vec4; 2]) {
         let t_far = Vec4::splat(t_far);
         let mut mask = 0;
         let mut entry = [Vec4::ZERO; 2];
@@ -190,31 +216,44 @@ const ARRAY_STACK: usize = 128;
 /// saves a 1 KiB fill on every ray of scenes like the Cornell box.
 const SMALL_STACK: usize = 32;
 
-/// Closest hit of `ray`.
+/// Closest hit of `ray` with the SSE kernel (the fallback of `traverse_wide.rs`; `Accel`
+/// picks the kernel).
 pub(crate) fn closest(bvh: &Bvh, ray: &Ray) -> Option<Hit> {
+    closest_in::<NodeRay>(bvh, ray)
+}
+
+/// Whether anything is hit with `0 < t < ray.t_max`, with the SSE kernel.
+pub(crate) fn occluded(bvh: &Bvh, ray: &Ray) -> bool {
+    occluded_in::<NodeRay>(bvh, ray)
+}
+
+/// Closest hit of `ray` with the node test `N` (SSE: `NodeRay`, the fallback).
+#[inline(always)]
+pub(super) fn closest_in<N: NodeTest>(bvh: &Bvh, ray: &Ray) -> Option<Hit> {
     if bvh.nodes.is_empty() || !ray_is_valid(ray) {
         return None;
     }
     if stack_bound(bvh.depth) <= SMALL_STACK {
-        closest_with(bvh, ray, ArrayStack::<SMALL_STACK>::new())
+        closest_with::<_, N>(bvh, ray, ArrayStack::<SMALL_STACK>::new())
     } else if stack_bound(bvh.depth) <= ARRAY_STACK {
-        closest_with(bvh, ray, ArrayStack::<ARRAY_STACK>::new())
+        closest_with::<_, N>(bvh, ray, ArrayStack::<ARRAY_STACK>::new())
     } else {
-        closest_with(bvh, ray, Vec::with_capacity(stack_bound(bvh.depth)))
+        closest_with::<_, N>(bvh, ray, Vec::with_capacity(stack_bound(bvh.depth)))
     }
 }
 
-/// Whether anything is hit with `0 < t < ray.t_max`.
-pub(crate) fn occluded(bvh: &Bvh, ray: &Ray) -> bool {
+/// Occlusion of `ray` with the node test `N`.
+#[inline(always)]
+pub(super) fn occluded_in<N: NodeTest>(bvh: &Bvh, ray: &Ray) -> bool {
     if bvh.nodes.is_empty() || !ray_is_valid(ray) {
         return false;
     }
     if stack_bound(bvh.depth) <= SMALL_STACK {
-        occluded_with(bvh, ray, ArrayStack::<SMALL_STACK>::new())
+        occluded_with::<_, N>(bvh, ray, ArrayStack::<SMALL_STACK>::new())
     } else if stack_bound(bvh.depth) <= ARRAY_STACK {
-        occluded_with(bvh, ray, ArrayStack::<ARRAY_STACK>::new())
+        occluded_with::<_, N>(bvh, ray, ArrayStack::<ARRAY_STACK>::new())
     } else {
-        occluded_with(bvh, ray, Vec::with_capacity(stack_bound(bvh.depth)))
+        occluded_with::<_, N>(bvh, ray, Vec::with_capacity(stack_bound(bvh.depth)))
     }
 }
 
@@ -225,9 +264,10 @@ fn leaf_range(r: u32) -> std::ops::Range<usize> {
     first..first + count
 }
 
-fn closest_with<S: Stack>(bvh: &Bvh, ray: &Ray, mut stack: S) -> Option<Hit> {
+#[inline(always)]
+fn closest_with<S: Stack, N: NodeTest>(bvh: &Bvh, ray: &Ray, mut stack: S) -> Option<Hit> {
     let woop = WoopRay::new(ray.origin, ray.dir);
-    let nr = NodeRay::new(ray);
+    let nr = N::new(ray);
     // Until the first hit, t must be < ray.t_max; afterwards (t, prim) must be smaller.
     // The closest candidate so far as (BVH-order index, b1, b2); its original index is looked
     // up only on an exact tie and once at the end (`prim_ids` is cold).
@@ -251,13 +291,9 @@ fn closest_with<S: Stack>(bvh: &Bvh, ray: &Ray, mut stack: S) -> Option<Hit> {
             }
         } else {
             let node = &bvh.nodes[cur as usize];
-            let (mut mask, entry) = nr.intersect(node, best_t);
+            let (mut mask, tn) = nr.intersect(node, best_t);
             if mask != 0 {
                 let base = stack.len();
-                let tn: [f32; 8] = {
-                    let (a, b) = (entry[0].to_array(), entry[1].to_array());
-                    [a[0], a[1], a[2], a[3], b[0], b[1], b[2], b[3]]
-                };
                 while mask != 0 {
                     let slot = mask.trailing_zeros() as usize;
                     mask &= mask - 1;
@@ -290,9 +326,10 @@ fn closest_with<S: Stack>(bvh: &Bvh, ray: &Ray, mut stack: S) -> Option<Hit> {
     }
 }
 
-fn occluded_with<S: Stack>(bvh: &Bvh, ray: &Ray, mut stack: S) -> bool {
+#[inline(always)]
+fn occluded_with<S: Stack, N: NodeTest>(bvh: &Bvh, ray: &Ray, mut stack: S) -> bool {
     let woop = WoopRay::new(ray.origin, ray.dir);
-    let nr = NodeRay::new(ray);
+    let nr = N::new(ray);
     let mut cur = 0u32;
     loop {
         if cur & LEAF_BIT != 0 {

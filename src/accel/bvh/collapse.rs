@@ -1,0 +1,672 @@
+//! Parallel collapse of obvhs's binary hierarchy (one triangle per leaf) into stagelight's
+//! 8-wide nodes, and the SAH cost of the result.
+//!
+//! The tree is the one obvhs 0.4's `bvh2_to_cwbvh` makes (same SAH dynamic programme after
+//! Ylitie et al. 2017, same leaf cost, same greedy octant assignment of children, same
+//! triangle order inside a leaf; `bvh::tests` compares the two trees node by node), but:
+//!
+//! * every pass runs over the rayon pool: the cost table bottom-up with `rayon::join` over the
+//!   two subtrees of the upper levels, the node count and the emission top-down over disjoint
+//!   slices of the output (`split_at_mut`), so no `unsafe` and no locks;
+//! * it writes our nodes with exact `f32` child boxes directly (no 8-bit quantisation, hence
+//!   no index-out-of-bounds on finite geometry around 1e19 as in obvhs's quantiser);
+//! * the layout is depth-first: a node, then the subtrees of its inner children in slot order.
+//!   Children still follow their parent, which `bvh.rs` relies on for the depth sweep.
+
+use std::sync::atomic::{AtomicU32, AtomicU64, Ordering::Relaxed};
+
+use glam::{Vec3, Vec3A};
+use obvhs::bvh2::Bvh2;
+
+use super::{Node, COUNT_SHIFT, LEAF_BIT};
+
+/// SAH cost of one triangle test relative to one node visit (obvhs's `PRIM_COST`).
+pub(crate) const PRIM_COST: f32 = 0.3;
+
+/// Binary subtrees above this depth are costed in parallel (`rayon::join`).
+const PARALLEL_DEPTH: u32 = 12;
+
+/// Subtrees with more triangles than this are counted and emitted in parallel.
+const PARALLEL_PRIMS: u32 = 4096;
+
+/// No child in this slot.
+const INVALID: u32 = u32::MAX;
+
+/// What a binary node becomes when its parent hands it `i + 1` child slots.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+enum Kind {
+    Leaf = 0,
+    Internal = 1,
+    Distribute = 2,
+}
+
+/// One entry of the cost table.
+#[derive(Clone, Copy, Debug)]
+struct Decision {
+    cost: f32,
+    kind: Kind,
+    left: u8,
+    right: u8,
+}
+
+impl Decision {
+    fn pack(self) -> u64 {
+        u64::from(self.cost.to_bits())
+            | (self.kind as u64) << 32
+            | u64::from(self.left) << 40
+            | u64::from(self.right) << 48
+    }
+
+    fn unpack(v: u64) -> Self {
+        let kind = match (v >> 32) as u8 {
+            0 => Kind::Leaf,
+            1 => Kind::Internal,
+            _ => Kind::Distribute,
+        };
+        Self {
+            cost: f32::from_bits(v as u32),
+            kind,
+            left: (v >> 40) as u8,
+            right: (v >> 48) as u8,
+        }
+    }
+}
+
+/// The passes' shared state. The tables are atomics used with relaxed ordering: every entry is
+/// written by exactly one task and read after `rayon::join`/the pass that wrote it returned,
+/// which orders the accesses; on x86 these are plain loads and stores.
+struct Collapser<'a> {
+    bvh2: &'a Bvh2,
+    max_prims_per_leaf: u32,
+    /// Seven decisions per binary node (`i + 1` slots for `i` in 0..7).
+    decisions: Vec<AtomicU64>,
+    /// Triangles under each binary node.
+    prims: Vec<AtomicU32>,
+    /// 8-wide nodes in the subtree of each binary node that becomes an 8-wide node.
+    nodes8: Vec<AtomicU32>,
+}
+
+/// Result of [`collapse`].
+pub(crate) struct Collapsed {
+    /// 8-wide nodes, root first; children follow their parent.
+    pub(crate) nodes: Vec<Node>,
+    /// Triangle order: `order[k]` is the binary hierarchy's primitive index of the `k`-th
+    /// triangle in leaf order.
+    pub(crate) order: Vec<u32>,
+}
+
+/// Collapses `bvh2` (non-empty, one triangle per leaf) into 8-wide nodes with leaves of at
+/// most `max_prims_per_leaf` triangles. `triangle(p)` gives the vertices of primitive `p`;
+/// leaf boxes are folded from them vertex by vertex, inner boxes from their children.
+pub(crate) fn collapse<F>(bvh2: &Bvh2, max_prims_per_leaf: u32, triangle: &F) -> Collapsed
+where
+    F: Fn(u32) -> [Vec3; 3] + Sync,
+{
+    let n = bvh2.nodes.len();
+    let c = Collapser {
+        bvh2,
+        max_prims_per_leaf,
+        decisions: (0..n * 7).map(|_| AtomicU64::new(0)).collect(),
+        prims: (0..n).map(|_| AtomicU32::new(0)).collect(),
+        nodes8: (0..n).map(|_| AtomicU32::new(0)).collect(),
+    };
+    let total_prims = c.cost(0, 0);
+    let total_nodes = c.count(0);
+    let mut nodes = vec![Node::EMPTY; total_nodes as usize];
+    let mut order = vec![0u32; total_prims as usize];
+    c.emit(0, &mut nodes, &mut order, 0, 0, triangle);
+    Collapsed { nodes, order }
+}
+
+impl Collapser<'_> {
+    fn decision(&self, node: usize, i: usize) -> Decision {
+        Decision::unpack(self.decisions[node * 7 + i].load(Relaxed))
+    }
+
+    fn set_decision(&self, node: usize, i: usize, d: Decision) {
+        self.decisions[node * 7 + i].store(d.pack(), Relaxed);
+    }
+
+    fn half_area(&self, node: usize) -> f32 {
+        self.bvh2.nodes[node].aabb().half_area()
+    }
+
+    /// Fills the cost table of the subtree at `node` bottom-up; returns its triangle count.
+    fn cost(&self, node: usize, depth: u32) -> u32 {
+        let bn = &self.bvh2.nodes[node];
+        let half_area = self.half_area(node);
+        let count = if bn.prim_count != 0 {
+            let cost = half_area * bn.prim_count as f32 * PRIM_COST;
+            for i in 0..7 {
+                self.set_decision(
+                    node,
+                    i,
+                    Decision {
+                        cost,
+                        kind: Kind::Leaf,
+                        left: 0,
+                        right: 0,
+                    },
+                );
+            }
+            bn.prim_count
+        } else {
+            let (l, r) = (bn.first_index as usize, bn.first_index as usize + 1);
+            let (pl, pr) = if depth < PARALLEL_DEPTH {
+                rayon::join(|| self.cost(l, depth + 1), || self.cost(r, depth + 1))
+            } else {
+                (self.cost(l, depth + 1), self.cost(r, depth + 1))
+            };
+            let count = pl + pr;
+            let lc = |k: usize| self.decision(l, k).cost;
+            let rc = |k: usize| self.decision(r, k).cost;
+            // One slot: a leaf, or an inner node whose 8 slots go to the two children.
+            let cost_leaf = if count <= self.max_prims_per_leaf {
+                count as f32 * half_area * PRIM_COST
+            } else {
+                f32::INFINITY
+            };
+            // obvhs starts from "no split" and panics when no cost is finite (half areas
+            // overflow `f32` around extents of 1e19); starting from the even split gives the
+            // same choice whenever one is finite, and a valid one otherwise.
+            let (mut best, mut left, mut right) = (f32::INFINITY, 3, 3);
+            for k in 0..7 {
+                let c = lc(k) + rc(6 - k);
+                if c < best {
+                    (best, left, right) = (c, k as u8, 6 - k as u8);
+                }
+            }
+            let cost_internal = best + half_area;
+            let first = if cost_leaf < cost_internal {
+                Decision {
+                    cost: cost_leaf,
+                    kind: Kind::Leaf,
+                    left,
+                    right,
+                }
+            } else {
+                Decision {
+                    cost: cost_internal,
+                    kind: Kind::Internal,
+                    left,
+                    right,
+                }
+            };
+            self.set_decision(node, 0, first);
+            // `i + 1` slots: as with `i` slots, or distributed over the two children.
+            let mut prev = first;
+            for i in 1..7 {
+                let (mut best, mut left, mut right) = (prev.cost, u8::MAX, u8::MAX);
+                for k in 0..i {
+                    let c = lc(k) + rc(i - k - 1);
+                    if c < best {
+                        (best, left, right) = (c, k as u8, (i - k - 1) as u8);
+                    }
+                }
+                let d = if left != u8::MAX {
+                    Decision {
+                        cost: best,
+                        kind: Kind::Distribute,
+                        left,
+                        right,
+                    }
+                } else {
+                    prev
+                };
+                self.set_decision(node, i, d);
+                prev = d;
+            }
+            count
+        };
+        self.prims[node].store(count, Relaxed);
+        count
+    }
+
+    /// The binary nodes that become the children of the 8-wide node made of `node`, in the
+    /// order obvhs gives them (`get_children`).
+    fn gather(&self, node: usize, i: usize, out: &mut [u32; 8], len: &mut usize) {
+        let bn = &self.bvh2.nodes[node];
+        if bn.prim_count != 0 {
+            out[*len] = node as u32;
+            *len += 1;
+            return;
+        }
+        let d = self.decision(node, i);
+        for (child, k) in [
+            (bn.first_index as usize, d.left),
+            (bn.first_index as usize + 1, d.right),
+        ] {
+            if self.decision(child, k as usize).kind == Kind::Distribute {
+                self.gather(child, k as usize, out, len);
+            } else {
+                out[*len] = child as u32;
+                *len += 1;
+            }
+        }
+    }
+
+    /// Children of the 8-wide node made of `node`, assigned to octant slots (`INVALID` where
+    /// empty) by obvhs's greedy `order_children`.
+    fn children(&self, node: usize) -> [u32; 8] {
+        let mut list = [INVALID; 8];
+        let mut len = 0;
+        self.gather(node, 0, &mut list, &mut len);
+        let centre = |n: u32| self.bvh2.nodes[n as usize].aabb().center();
+        let p = centre(node as u32);
+        let list = &list[..len];
+        // cost[c][s]: centroid of child `c` projected on the direction of octant `s`.
+        let mut cost = [[f32::MAX; 8]; 8];
+        for (row, &c) in cost.iter_mut().zip(list) {
+            let v = centre(c) - p;
+            *row = std::array::from_fn(|s| {
+                let d = Vec3A::new(
+                    if s & 0b100 != 0 { -1.0 } else { 1.0 },
+                    if s & 0b010 != 0 { -1.0 } else { 1.0 },
+                    if s & 0b001 != 0 { -1.0 } else { 1.0 },
+                );
+                d.dot(v)
+            });
+        }
+        let mut assignment = [usize::MAX; 8];
+        let mut filled = [false; 8];
+        loop {
+            let (mut min_cost, mut min_slot, mut min_child) = (f32::MAX, usize::MAX, usize::MAX);
+            for (c, row) in cost.iter().take(list.len()).enumerate() {
+                if assignment[c] != usize::MAX {
+                    continue;
+                }
+                for (s, (&k, &full)) in row.iter().zip(&filled).enumerate() {
+                    if !full && k < min_cost {
+                        (min_cost, min_slot, min_child) = (k, s, c);
+                    }
+                }
+            }
+            if min_slot == usize::MAX {
+                break;
+            }
+            filled[min_slot] = true;
+            assignment[min_child] = min_slot;
+        }
+        // Children whose costs are not below `f32::MAX` (infinite or NaN centres of huge
+        // boxes) are left unassigned by the greedy loop (obvhs then indexes out of bounds):
+        // they take the free slots in order.
+        let mut slots = [INVALID; 8];
+        for slot in assignment.iter_mut().take(list.len()) {
+            if *slot == usize::MAX {
+                let free = filled.iter().position(|&f| !f).unwrap_or(0);
+                filled[free] = true;
+                *slot = free;
+            }
+        }
+        for (&child, &slot) in list.iter().zip(&assignment) {
+            slots[slot] = child;
+        }
+        slots
+    }
+
+    /// Whether child `c` of an 8-wide node is an inner node (else a leaf).
+    fn is_inner(&self, c: u32) -> bool {
+        self.decision(c as usize, 0).kind == Kind::Internal
+    }
+
+    /// Counts the 8-wide nodes under `node` (which becomes one), storing the counts.
+    fn count(&self, node: usize) -> u32 {
+        let inner: Vec<u32> = self
+            .children(node)
+            .into_iter()
+            .filter(|&c| c != INVALID && self.is_inner(c))
+            .collect();
+        let big = self.prims[node].load(Relaxed) > PARALLEL_PRIMS;
+        let below: u32 = if big {
+            use rayon::prelude::*;
+            inner.par_iter().map(|&c| self.count(c as usize)).sum()
+        } else {
+            inner.iter().map(|&c| self.count(c as usize)).sum()
+        };
+        self.nodes8[node].store(below + 1, Relaxed);
+        below + 1
+    }
+
+    /// The binary leaves under `c` (in left-first order) into `out`.
+    fn leaf_prims(&self, c: usize, out: &mut [u32], at: &mut usize) {
+        let bn = &self.bvh2.nodes[c];
+        if bn.prim_count != 0 {
+            for k in 0..bn.prim_count {
+                out[*at] = self.bvh2.primitive_indices[(bn.first_index + k) as usize];
+                *at += 1;
+            }
+            return;
+        }
+        self.leaf_prims(bn.first_index as usize, out, at);
+        self.leaf_prims(bn.first_index as usize + 1, out, at);
+    }
+
+    /// Writes the 8-wide subtree of `node` into `nodes` (its first entry is `node`'s, at global
+    /// index `node_base`) and its triangle order into `order` (global offset `prim_base`);
+    /// returns the subtree's exact box.
+    fn emit<F>(
+        &self,
+        node: usize,
+        nodes: &mut [Node],
+        order: &mut [u32],
+        node_base: u32,
+        prim_base: u32,
+        triangle: &F,
+    ) -> (Vec3, Vec3)
+    where
+        F: Fn(u32) -> [Vec3; 3] + Sync,
+    {
+        let slots = self.children(node);
+        let (head, mut rest_nodes) = nodes.split_at_mut(1);
+        let mut rest_order = order;
+        // Leaves first, in slot order: their triangles open the subtree's range.
+        let mut at = 0;
+        let mut refs = [None; 8];
+        for (s, &c) in slots.iter().enumerate() {
+            if c == INVALID || self.is_inner(c) {
+                continue;
+            }
+            let start = at;
+            self.leaf_prims(c as usize, rest_order, &mut at);
+            let (mut lo, mut hi) = (Vec3::INFINITY, Vec3::NEG_INFINITY);
+            for &p in &rest_order[start..at] {
+                let t = triangle(p);
+                lo = lo.min(t[0]).min(t[1]).min(t[2]);
+                hi = hi.max(t[0]).max(t[1]).max(t[2]);
+            }
+            let count = (at - start) as u32;
+            refs[s] = Some((
+                LEAF_BIT | (count << COUNT_SHIFT) | (prim_base + start as u32),
+                lo,
+                hi,
+            ));
+        }
+        rest_order = &mut rest_order[at..];
+        // Then the inner children's subtrees, each in its own slices.
+        let mut node_at = node_base + 1;
+        let mut prim_at = prim_base + at as u32;
+        let mut jobs = Vec::new();
+        for (s, &c) in slots.iter().enumerate() {
+            if c == INVALID || !self.is_inner(c) {
+                continue;
+            }
+            let nn = self.nodes8[c as usize].load(Relaxed) as usize;
+            let np = self.prims[c as usize].load(Relaxed) as usize;
+            let (sub_nodes, more_nodes) = std::mem::take(&mut rest_nodes).split_at_mut(nn);
+            let (sub_order, more_order) = std::mem::take(&mut rest_order).split_at_mut(np);
+            rest_nodes = more_nodes;
+            rest_order = more_order;
+            jobs.push((s, c, sub_nodes, sub_order, node_at, prim_at));
+            node_at += nn as u32;
+            prim_at += np as u32;
+        }
+        let run = |(s, c, sub_nodes, sub_order, nb, pb): (
+            usize,
+            u32,
+            &mut [Node],
+            &mut [u32],
+            u32,
+            u32,
+        )| {
+            let (lo, hi) = self.emit(c as usize, sub_nodes, sub_order, nb, pb, triangle);
+            (s, nb, lo, hi)
+        };
+        let done: Vec<(usize, u32, Vec3, Vec3)> = if self.prims[node].load(Relaxed) > PARALLEL_PRIMS
+        {
+            use rayon::prelude::*;
+            jobs.into_par_iter().map(run).collect()
+        } else {
+            jobs.into_iter().map(run).collect()
+        };
+        for (s, nb, lo, hi) in done {
+            refs[s] = Some((nb, lo, hi));
+        }
+        // Children packed into the first slots, in slot order; the box is their union.
+        let (mut nlo, mut nhi) = (Vec3::INFINITY, Vec3::NEG_INFINITY);
+        for (packed, (reference, lo, hi)) in refs.into_iter().flatten().enumerate() {
+            head[0].set_child(packed, reference, lo, hi);
+            nlo = nlo.min(lo);
+            nhi = nhi.max(hi);
+        }
+        (nlo, nhi)
+    }
+}
+
+/// SAH cost of the hierarchy, in units of one node visit by a ray that hits the root box:
+/// `Σ_inner A(child)/A(root) + PRIM_COST · Σ_leaf n·A(leaf)/A(root)`, plus 1 for the root,
+/// with `A` the half surface area. Serial and in node order, so the same tree gives the same
+/// number bit for bit.
+pub(crate) fn sah_cost(nodes: &[Node]) -> f64 {
+    let Some(root) = nodes.first() else {
+        return 0.0;
+    };
+    let half_area = |node: &Node, slot: usize| -> f64 {
+        let (g, l) = (slot / 4, slot % 4);
+        let d = [0, 1, 2]
+            .map(|a| f64::from(node.bounds[g][2 * a + 1][l]) - f64::from(node.bounds[g][2 * a][l]));
+        (d[0] + d[1]) * d[2] + d[0] * d[1]
+    };
+    let mut root_area = 0.0f64;
+    let (mut lo, mut hi) = (Vec3::INFINITY, Vec3::NEG_INFINITY);
+    for (slot, &c) in root.child.iter().enumerate() {
+        if c == super::EMPTY_CHILD {
+            continue;
+        }
+        let (g, l) = (slot / 4, slot % 4);
+        let b = &root.bounds[g];
+        lo = lo.min(Vec3::new(b[0][l], b[2][l], b[4][l]));
+        hi = hi.max(Vec3::new(b[1][l], b[3][l], b[5][l]));
+    }
+    let d = (hi - lo).as_dvec3();
+    root_area += (d.x + d.y) * d.z + d.x * d.y;
+    if root_area <= 0.0 || !root_area.is_finite() {
+        return 1.0;
+    }
+    let mut sum = 0.0f64;
+    for node in nodes {
+        for (slot, &c) in node.child.iter().enumerate() {
+            if c == super::EMPTY_CHILD {
+                continue;
+            }
+            let area = half_area(node, slot);
+            if c & LEAF_BIT != 0 {
+                let count = (c & !LEAF_BIT) >> COUNT_SHIFT;
+                sum += f64::from(PRIM_COST) * f64::from(count) * area;
+            } else {
+                sum += area;
+            }
+        }
+    }
+    1.0 + sum / root_area
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::{binary_hierarchy, build, build_params, EMPTY_CHILD, FIRST_MASK};
+    use super::*;
+    use crate::settings::BvhQuality;
+    use obvhs::{cwbvh::bvh2_to_cwbvh::bvh2_to_cwbvh, triangle::Triangle};
+
+    fn soup(n: usize, seed: u64) -> Vec<[Vec3; 3]> {
+        let mut state = seed;
+        let mut rnd = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 40) as f32 / (1u64 << 24) as f32 * 2.0 - 1.0
+        };
+        (0..n)
+            .map(|_| {
+                let c = Vec3::new(rnd(), rnd() * 0.5, rnd() * 2.0) * 8.0;
+                [
+                    c,
+                    c + Vec3::new(rnd(), rnd(), rnd()) * 0.4,
+                    c + Vec3::new(rnd(), rnd(), rnd()) * 0.4,
+                ]
+            })
+            .collect()
+    }
+
+    /// One 8-wide node in canonical form: per packed child, its box bits and either the
+    /// triangles of a leaf (binary-hierarchy primitive indices, in order) or an inner node.
+    type Canon = Vec<([u32; 6], Result<Vec<u32>, usize>)>;
+
+    fn canon_ours(c: &Collapsed, node: usize) -> Canon {
+        let n = &c.nodes[node];
+        (0..8)
+            .filter(|&s| n.child[s] != EMPTY_CHILD)
+            .map(|s| {
+                let (g, l) = (s / 4, s % 4);
+                let b = [0, 1, 2, 3, 4, 5].map(|k| n.bounds[g][k][l].to_bits());
+                let r = n.child[s];
+                let what = if r & LEAF_BIT != 0 {
+                    let first = (r & FIRST_MASK) as usize;
+                    let count = ((r & !LEAF_BIT) >> COUNT_SHIFT) as usize;
+                    Ok(c.order[first..first + count].to_vec())
+                } else {
+                    Err(r as usize)
+                };
+                (b, what)
+            })
+            .collect()
+    }
+
+    /// Walks our tree and obvhs's (`bvh2_to_cwbvh`, the converter this file replaces) side by
+    /// side: same children in the same packed order, same leaves, and our boxes are exactly
+    /// the folds of the leaf triangles (obvhs's own boxes are quantised, so the boxes are
+    /// checked against the triangles).
+    fn assert_same_tree(tris: &[[Vec3; 3]], quality: BvhQuality) {
+        let ob: Vec<Triangle> = tris
+            .iter()
+            .map(|t| Triangle {
+                v0: t[0].into(),
+                v1: t[1].into(),
+                v2: t[2].into(),
+            })
+            .collect();
+        let params = build_params(quality);
+        let bvh2 = binary_hierarchy(&ob, &params);
+        let leaf = params.max_prims_per_leaf.clamp(1, 3);
+        let ours = collapse(&bvh2, leaf, &|p| tris[p as usize]);
+        let theirs = bvh2_to_cwbvh(&bvh2, leaf, true, false);
+        assert_eq!(ours.nodes.len(), theirs.nodes.len());
+        let mut stack = vec![(0usize, 0usize)];
+        let mut visited = 0;
+        while let Some((a, b)) = stack.pop() {
+            visited += 1;
+            let mine = canon_ours(&ours, a);
+            let cn = &theirs.nodes[b];
+            let slots: Vec<usize> = (0..8).filter(|&s| !cn.is_child_empty(s)).collect();
+            assert_eq!(mine.len(), slots.len(), "node {a}/{b}");
+            for ((bits, what), s) in mine.into_iter().zip(slots) {
+                let (mut lo, mut hi) = (Vec3::INFINITY, Vec3::NEG_INFINITY);
+                match what {
+                    Ok(prims) => {
+                        assert!(cn.is_leaf(s));
+                        let (first, count) = cn.child_primitives(s);
+                        assert_eq!(
+                            prims,
+                            theirs.primitive_indices[first as usize..(first + count) as usize]
+                        );
+                        for p in prims {
+                            let t = tris[p as usize];
+                            lo = lo.min(t[0]).min(t[1]).min(t[2]);
+                            hi = hi.max(t[0]).max(t[1]).max(t[2]);
+                        }
+                        let want = [lo.x, hi.x, lo.y, hi.y, lo.z, hi.z].map(f32::to_bits);
+                        assert_eq!(bits, want);
+                    }
+                    Err(child) => {
+                        assert!(!cn.is_leaf(s));
+                        stack.push((child, cn.child_node_index(s) as usize));
+                    }
+                }
+            }
+        }
+        assert_eq!(visited, ours.nodes.len());
+    }
+
+    #[test]
+    fn same_tree_as_obvhs_serial_collapse() {
+        for (n, seed) in [(1, 3), (2, 5), (3, 7), (40, 11), (3000, 13)] {
+            for q in [BvhQuality::Fast, BvhQuality::Medium, BvhQuality::High] {
+                assert_same_tree(&soup(n, seed), q);
+            }
+        }
+    }
+
+    #[test]
+    fn same_tree_at_every_thread_count() {
+        let tris = soup(20_000, 17);
+        let at = |threads: usize| {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            pool.install(|| build(&tris, BvhQuality::Medium))
+        };
+        let (one, three) = (at(1), at(3));
+        assert_eq!(one.prim_ids, three.prim_ids);
+        assert_eq!(one.nodes.len(), three.nodes.len());
+        for (a, b) in one.nodes.iter().zip(&three.nodes) {
+            assert_eq!(a.child, b.child);
+            assert_eq!(format!("{:?}", a.bounds), format!("{:?}", b.bounds));
+        }
+        assert_eq!(one.sah_cost.to_bits(), three.sah_cost.to_bits());
+    }
+
+    /// obvhs's collapse indexes out of bounds on finite geometry whose half areas overflow
+    /// `f32` (extents around 1e19 and beyond: every cost is infinite); ours builds, and the
+    /// hierarchy answers rays as brute force does.
+    #[test]
+    fn extreme_finite_extents_build() {
+        for big in [1e19f32, 1e30, 1.5e38] {
+            let mut tris = soup(200, 23);
+            tris.push([
+                Vec3::new(-big, -big, 0.0),
+                Vec3::new(big, -big, 0.0),
+                Vec3::new(0.0, big, big),
+            ]);
+            tris.push([
+                Vec3::new(-big, 0.0, -big),
+                Vec3::new(big, 0.0, -big),
+                Vec3::Z,
+            ]);
+            let ob: Vec<Triangle> = tris
+                .iter()
+                .map(|t| Triangle {
+                    v0: t[0].into(),
+                    v1: t[1].into(),
+                    v2: t[2].into(),
+                })
+                .collect();
+            let bvh2 = binary_hierarchy(&ob, &build_params(BvhQuality::Medium));
+            let theirs = std::panic::catch_unwind(|| bvh2_to_cwbvh(&bvh2, 3, true, false));
+            eprintln!("{big:e}: obvhs collapse panics: {}", theirs.is_err());
+            let accel = crate::accel::Accel::build(tris.clone(), BvhQuality::Medium);
+            let s = accel.stats();
+            assert_eq!(s.bvh_triangles, tris.len());
+            for i in 0..200 {
+                let f = i as f32;
+                let ray = crate::accel::Ray {
+                    origin: Vec3::new((f * 0.7).sin(), (f * 0.3).cos(), 9.0) * 8.0,
+                    dir: Vec3::new((f * 1.3).sin(), (f * 0.9).cos(), -3.0),
+                    t_max: f32::INFINITY,
+                };
+                let want = crate::accel::brute_force_intersect(&tris, &ray);
+                assert_eq!(accel.intersect(&ray), want, "{big:e} ray {i}");
+            }
+        }
+    }
+
+    /// Closed form: one triangle gives one leaf covering the root box, so the cost is the root
+    /// visit plus one triangle test.
+    #[test]
+    fn sah_cost_of_a_single_triangle() {
+        let bvh = build(
+            &[[Vec3::ZERO, Vec3::X, Vec3::Y + Vec3::Z]],
+            BvhQuality::Medium,
+        );
+        assert_eq!(bvh.sah_cost, 1.0 + f64::from(PRIM_COST));
+    }
+}

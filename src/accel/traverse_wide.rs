@@ -1,0 +1,213 @@
+//! The AVX2 traversal kernels (x86-64 only), selected at run time: the single-ray closest-hit
+//! and occlusion loops of `traverse.rs`, compiled for AVX2, with an 8-wide node test (all
+//! eight children in one instruction sequence instead of two 4-wide halves).
+//!
+//! * **Dispatch**: [`closest`] and [`occluded`] answer `None` when the CPU lacks AVX2
+//!   (`is_x86_feature_detected!`, cached by std) or when `STAGELIGHT_TRAVERSAL=sse` was set at
+//!   the first query (read once; for A/B measurements); the caller then runs the SSE kernel,
+//!   which stays the fallback and is tested against this one.
+//! * **Same answers**: the node test makes the same operations as the SSE test, lane by lane
+//!   (subtract, multiply by the exact reciprocal, `max(n, acc)`/`min(f, acc)` in the same
+//!   operand order so a NaN slab is ignored in the same way, far distance times `1 + 2γ3`,
+//!   ordered `≤`), so the hit mask, the traversal order and the result are those of the SSE
+//!   kernel bit for bit (`wide_equals_sse` below; every BVH-vs-brute-force test runs through
+//!   the dispatch).
+
+use std::arch::x86_64::{
+    __m256, _mm256_cmp_ps, _mm256_max_ps, _mm256_min_ps, _mm256_movemask_ps, _mm256_mul_ps,
+    _mm256_set1_ps, _mm256_set_m128, _mm256_setzero_ps, _mm256_storeu_ps, _mm256_sub_ps,
+    _CMP_LE_OS,
+};
+use std::sync::OnceLock;
+
+use super::bvh::{Bvh, Node};
+use super::traverse::{closest_in, occluded_in, NodeTest, FAR_SCALE_FACTOR};
+use super::{Hit, Ray};
+
+/// Whether the AVX2 kernels run (AVX2 present and not turned off by the environment).
+fn use_avx2() -> bool {
+    static CHOICE: OnceLock<bool> = OnceLock::new();
+    *CHOICE.get_or_init(|| {
+        std::arch::is_x86_feature_detected!("avx2")
+            && std::env::var("STAGELIGHT_TRAVERSAL").as_deref() != Ok("sse")
+    })
+}
+
+/// Closest hit with the AVX2 kernel; `None` when it does not run here (the caller falls back).
+#[inline]
+pub(super) fn closest(bvh: &Bvh, ray: &Ray) -> Option<Option<Hit>> {
+    if !use_avx2() {
+        return None;
+    }
+    // SAFETY: AVX2 was detected on this CPU just above.
+    Some(unsafe { closest_avx2(bvh, ray) })
+}
+
+/// Occlusion with the AVX2 kernel; `None` when it does not run here.
+#[inline]
+pub(super) fn occluded(bvh: &Bvh, ray: &Ray) -> Option<bool> {
+    if !use_avx2() {
+        return None;
+    }
+    // SAFETY: AVX2 was detected on this CPU just above.
+    Some(unsafe { occluded_avx2(bvh, ray) })
+}
+
+/// # Safety
+/// The CPU must support AVX2.
+#[target_feature(enable = "avx2")]
+unsafe fn closest_avx2(bvh: &Bvh, ray: &Ray) -> Option<Hit> {
+    closest_in::<NodeRay8>(bvh, ray)
+}
+
+/// # Safety
+/// The CPU must support AVX2.
+#[target_feature(enable = "avx2")]
+unsafe fn occluded_avx2(bvh: &Bvh, ray: &Ray) -> bool {
+    occluded_in::<NodeRay8>(bvh, ray)
+}
+
+/// Per-ray constants of the 8-wide slab test. Only made inside the AVX2 kernels above (the
+/// type is private to this file), so its methods may use AVX.
+struct NodeRay8 {
+    o: [__m256; 3],
+    inv: [__m256; 3],
+    near: [usize; 3],
+    far: [usize; 3],
+}
+
+impl NodeTest for NodeRay8 {
+    #[inline(always)]
+    fn new(ray: &Ray) -> Self {
+        let inv = ray.dir.recip();
+        let d = ray.dir.to_array();
+        let near = [0, 1, 2].map(|a| 2 * a + usize::from(d[a].is_sign_negative()));
+        // SAFETY: `_mm256_set1_ps` needs AVX; this type exists only inside the AVX2 kernels.
+        let splat = |x: f32| unsafe { _mm256_set1_ps(x) };
+        Self {
+            o: [
+                splat(ray.origin.x),
+                splat(ray.origin.y),
+                splat(ray.origin.z),
+            ],
+            inv: [splat(inv.x), splat(inv.y), splat(inv.z)],
+            near,
+            far: near.map(|n| n ^ 1),
+        }
+    }
+
+    #[inline(always)]
+    fn intersect(&self, node: &Node, t_far: f32) -> (u32, [f32; 8]) {
+        // SAFETY: AVX intrinsics; this type exists only inside the AVX2 kernels. The loads
+        // read two `Vec4`s of the node by value (no raw pointers).
+        unsafe {
+            let plane = |k: usize| -> __m256 {
+                _mm256_set_m128(node.bounds[1][k].into(), node.bounds[0][k].into())
+            };
+            let mut tn = _mm256_setzero_ps();
+            let mut tf = _mm256_set1_ps(t_far);
+            for a in 0..3 {
+                let n = _mm256_mul_ps(_mm256_sub_ps(plane(self.near[a]), self.o[a]), self.inv[a]);
+                let f = _mm256_mul_ps(_mm256_sub_ps(plane(self.far[a]), self.o[a]), self.inv[a]);
+                // `max(n, acc)` returns `acc` when either is NaN, as SSE `maxps` does.
+                tn = _mm256_max_ps(n, tn);
+                tf = _mm256_min_ps(f, tf);
+            }
+            let tf = _mm256_mul_ps(tf, _mm256_set1_ps(FAR_SCALE_FACTOR));
+            let mask = _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_LE_OS>(tn, tf)) as u32;
+            let mut entry = [0f32; 8];
+            _mm256_storeu_ps(entry.as_mut_ptr(), tn);
+            (mask, entry)
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::bvh::build;
+    use super::super::traverse::NodeRay;
+    use super::*;
+    use crate::settings::BvhQuality;
+    use glam::Vec3;
+
+    fn hit_bits(h: Option<Hit>) -> Option<[u32; 4]> {
+        h.map(|h| [h.t.to_bits(), h.prim, h.b1.to_bits(), h.b2.to_bits()])
+    }
+
+    /// The AVX2 kernels (when this CPU has AVX2) give the SSE fallback's answers bit for bit,
+    /// and the same node masks, on a soup with axis-parallel, zero-component (both signs),
+    /// on-plane and finite-`t_max` rays; the fallback is forced by calling it directly.
+    #[test]
+    fn wide_equals_sse() {
+        if !std::arch::is_x86_feature_detected!("avx2") {
+            eprintln!("no AVX2 on this CPU: only the SSE kernel runs");
+            return;
+        }
+        let mut state = 0x9e37_79b9_7f4a_7c15u64;
+        let mut rnd = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 40) as f32 / (1u64 << 24) as f32 * 2.0 - 1.0
+        };
+        let tris: Vec<[Vec3; 3]> = (0..4000)
+            .map(|i| {
+                // Half the triangles on the integer grid, so rays run along box planes.
+                let c = if i % 2 == 0 {
+                    Vec3::new(rnd(), rnd(), rnd()) * 4.0
+                } else {
+                    (Vec3::new(rnd(), rnd(), rnd()) * 4.0).round()
+                };
+                [c, c + Vec3::X * 0.5, c + Vec3::new(0.0, 0.5, rnd() * 0.5)]
+            })
+            .collect();
+        let mut rays = Vec::new();
+        for i in 0..3000 {
+            let origin = if i % 3 == 0 {
+                (Vec3::new(rnd(), rnd(), rnd()) * 5.0).round()
+            } else {
+                Vec3::new(rnd(), rnd(), rnd()) * 5.0
+            };
+            let mut dir = Vec3::new(rnd(), rnd(), rnd());
+            match i % 5 {
+                0 => dir = Vec3::new(0.0, -0.0, 1.0),
+                1 => dir = Vec3::new(-0.0, rnd(), 0.0),
+                2 => dir.x = 0.0,
+                _ => {}
+            }
+            let t_max = if i % 4 == 0 {
+                rnd().abs() * 3.0
+            } else {
+                f32::INFINITY
+            };
+            rays.push(Ray { origin, dir, t_max });
+        }
+        for q in [BvhQuality::Fast, BvhQuality::Medium] {
+            let bvh = build(&tris, q);
+            let mut hits = 0;
+            for r in &rays {
+                // SAFETY: AVX2 was detected above.
+                let (wide_hit, wide_occ) =
+                    unsafe { (closest_avx2(&bvh, r), occluded_avx2(&bvh, r)) };
+                let sse_hit = closest_in::<NodeRay>(&bvh, r);
+                assert_eq!(hit_bits(wide_hit), hit_bits(sse_hit), "{r:?}");
+                assert_eq!(wide_occ, occluded_in::<NodeRay>(&bvh, r), "{r:?}");
+                hits += usize::from(sse_hit.is_some());
+                for node in bvh.nodes.iter().take(64) {
+                    for t_far in [r.t_max, 1.0] {
+                        // SAFETY: AVX2 was detected above.
+                        let wide = unsafe { mask_avx2(node, r, t_far) };
+                        let sse = <NodeRay as NodeTest>::intersect(&NodeRay::new(r), node, t_far).0;
+                        assert_eq!(wide, sse, "{r:?}");
+                    }
+                }
+            }
+            assert!(hits > 300, "{hits}");
+        }
+    }
+
+    #[target_feature(enable = "avx2")]
+    unsafe fn mask_avx2(node: &Node, ray: &Ray, t_far: f32) -> u32 {
+        <NodeRay8 as NodeTest>::new(ray).intersect(node, t_far).0
+    }
+}
