@@ -47,3 +47,21 @@ fn obj_corpus_parses_to_checked_meshes_or_errors() {
         }
     }
 }
+
+#[test]
+fn photon_map_corpus_decodes_to_valid_trees_or_errors() {
+    let mut decoded = 0;
+    for path in corpus("photon_map") {
+        let bytes = std::fs::read(&path).unwrap();
+        if let Ok(maps) = stagelight::photon::file::decode(&bytes) {
+            decoded += 1;
+            for stored in [&maps.caustics, &maps.global].into_iter().flatten() {
+                for map in std::iter::once(&stored.map).chain(&stored.later) {
+                    assert!(map.axes().iter().all(|&a| a < 3), "{}", path.display());
+                }
+            }
+            assert_eq!(stagelight::photon::file::encode(&maps), bytes);
+        }
+    }
+    assert_eq!(decoded, 1, "only valid.pmap decodes");
+}
