@@ -7,30 +7,6 @@ use std::process::Command;
 
 use crate::common::cli::{bin, dir_names, run, scratch, stderr};
 
-const SCENE: &str = r#"Scene(
-    options: (samples: 1, max_depth: 6, refraction_depth: 6,
-        caustics: (photons: 3000, gather: 20)),
-    cameras: [(name: "cam", fov_y: 40, resolution: (20, 12),
-        placement: LookAt(eye: (0, -4.5, 3.0), target: (0, 0, 0.5), up: (0, 0, 1)))],
-    lights: [(name: "lamp", kind: Point(position: (0, 0, 4)), intensity: 40)],
-    materials: [
-        (name: "floor", shader: Lambert(albedo: (0.7, 0.7, 0.7))),
-        (name: "glass", shader: Dielectric(ior: 1.5)),
-    ],
-    objects: [
-        (name: "floor", mesh: Grid(size_x: 6, size_y: 6), material: "floor"),
-        (name: "ball", mesh: Sphere(radius: 0.6), material: "glass",
-         approximation: Parametric(u: 16, v: 8)),
-    ],
-    instances: [
-        (name: "floor_1", of: "floor"),
-        (name: "ball_1", of: "ball", transform: [Translate((0, 0, 0.9))]),
-    ],
-    groups: [(name: "world", members: ["floor_1", "ball_1"])],
-    render: (root: "world", camera: "cam"),
-)
-"#;
-
 fn script(dir: &Path, name: &str, task: Option<u32>) -> String {
     let mut cmd = Command::new("bash");
     cmd.arg(dir.join("job").join(name))
@@ -47,7 +23,8 @@ fn script(dir: &Path, name: &str, task: Option<u32>) -> String {
 #[test]
 fn the_photon_job_traces_once_and_every_part_loads_its_maps() {
     let dir = scratch("farm-photons");
-    std::fs::write(dir.join("scene.ron"), SCENE).unwrap();
+    let text = crate::photon_file::scene(40.0, 20, "");
+    std::fs::write(dir.join("scene.ron"), &text).unwrap();
     let o = run(bin()
         .current_dir(&dir)
         .args(["render", "scene.ron", "-o", "single.png"]));
@@ -87,7 +64,12 @@ fn the_photon_job_traces_once_and_every_part_loads_its_maps() {
     );
 
     // A scene without photon maps gets no photon job.
-    let plain = SCENE.replace("caustics: (photons: 3000, gather: 20)", "");
+    let plain = text
+        .replace("caustics: (photons: 4000, gather: 20),", "")
+        .replace(
+            "global_illumination: (photons: 1000, gather: 16, final_gather: 2),",
+            "",
+        );
     std::fs::write(dir.join("plain.ron"), plain).unwrap();
     let o = run(bin().current_dir(&dir).args([
         "farm",

@@ -8,8 +8,9 @@ use std::path::Path;
 
 use crate::common::cli::{run_in, scratch_dir, stderr_of};
 
-/// A glass ball over a floor under a point light: caustics and a small global map.
-fn scene(intensity: f32, gather: u32, photon_map: &str) -> String {
+/// A glass ball over a floor under a point light: caustics and a small global map (also the
+/// farm's photon-job scene).
+pub fn scene(intensity: f32, gather: u32, photon_map: &str) -> String {
     format!(
         r#"Scene(
     options: (
