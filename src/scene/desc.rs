@@ -321,6 +321,8 @@ pub enum FormatDesc {
     Exr,
     /// SVG contour lines.
     Svg,
+    /// EPS (PostScript) contour lines.
+    Eps,
 }
 
 /// Image pass.
