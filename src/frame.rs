@@ -17,7 +17,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 
 use crate::bake::BakeReport;
-use crate::components::{ImageFormat, OutputSpec, Pass};
+use crate::components::{ContourShader, ImageFormat, OutputSpec, Pass};
 use crate::contour::ContourImage;
 use crate::farm::PartRun;
 use crate::framebuffer::FrameBuffers;
@@ -32,7 +32,9 @@ pub use crate::tasks::Tasks;
 /// an option of the run, never an edit of the scene.
 #[derive(Debug, Clone, Default, PartialEq, Eq)]
 pub struct OutputOverrides {
-    /// `-o FILE`: replaces the camera's first output (or adds one); format from the extension.
+    /// `-o FILE`, format from the extension: an image (.png, .exr) replaces the camera's
+    /// first image output, a vector drawing of the contours (.svg, .eps) its first vector
+    /// output; either is added when the camera has none of its kind.
     pub first: Option<PathBuf>,
     /// Puts every output under this directory, keeping its file name (`stagelight bench`).
     pub directory: Option<PathBuf>,
@@ -49,6 +51,22 @@ impl OutputOverrides {
         }
     }
 
+    /// Checks that a vector `-o` (.svg, .eps) has contour lines to draw in `world`; the
+    /// error is the message for the user.
+    pub fn check_contours(&self, world: &hecs::World) -> Result<(), String> {
+        let Some(path) = &self.first else {
+            return Ok(());
+        };
+        let vector = format_from_extension(path).is_ok_and(is_vector);
+        if vector && world.query::<&ContourShader>().iter().next().is_none() {
+            return Err(format!(
+                "-o {} writes contour lines, but no material of the scene has a contour shader\n  help: give a material `contour: Simple(color: (0, 0, 0, 1), width: 0.5)`, or write a .png or .exr",
+                path.display()
+            ));
+        }
+        Ok(())
+    }
+
     /// The outputs the run writes for a camera that lists `outputs`.
     pub fn apply(&self, outputs: &[OutputSpec]) -> Result<Vec<OutputSpec>, String> {
         if self.discard {
@@ -57,12 +75,16 @@ impl OutputOverrides {
         let mut outputs = outputs.to_vec();
         if let Some(path) = &self.first {
             let format = format_from_extension(path)?;
-            let mut passes = outputs
-                .first()
-                .map(|o| o.passes.clone())
-                .unwrap_or_else(|| vec![Pass::Beauty]);
+            let replaced = outputs
+                .iter()
+                .position(|o| is_vector(o.format) == is_vector(format));
+            let mut passes = match replaced {
+                _ if is_vector(format) => vec![Pass::Contours],
+                Some(k) => outputs[k].passes.clone(),
+                None => vec![Pass::Beauty],
+            };
             if format == ImageFormat::Png {
-                passes.retain(|p| matches!(p, Pass::Beauty | Pass::Alpha));
+                passes.retain(|p| matches!(p, Pass::Beauty | Pass::Alpha | Pass::Contours));
                 if passes.is_empty() {
                     passes.push(Pass::Beauty);
                 }
@@ -72,8 +94,8 @@ impl OutputOverrides {
                 format,
                 passes,
             };
-            match outputs.first_mut() {
-                Some(first) => *first = spec,
+            match replaced {
+                Some(k) => outputs[k] = spec,
                 None => outputs.push(spec),
             }
         }
@@ -91,7 +113,12 @@ impl OutputOverrides {
     }
 }
 
-/// The image format named by a file's extension (`.png`, `.exr`).
+/// Whether `format` is a vector drawing of the contour lines rather than an image.
+pub fn is_vector(format: ImageFormat) -> bool {
+    matches!(format, ImageFormat::Svg | ImageFormat::Eps)
+}
+
+/// The output format named by a file's extension (`.png`, `.exr`, `.svg`, `.eps`).
 pub fn format_from_extension(path: &Path) -> Result<ImageFormat, String> {
     let ext = path
         .extension()
@@ -100,8 +127,10 @@ pub fn format_from_extension(path: &Path) -> Result<ImageFormat, String> {
     match ext.as_deref() {
         Some("png") => Ok(ImageFormat::Png),
         Some("exr") => Ok(ImageFormat::Exr),
+        Some("svg") => Ok(ImageFormat::Svg),
+        Some("eps") => Ok(ImageFormat::Eps),
         _ => Err(format!(
-            "cannot tell the image format of {}: use a .png or .exr extension",
+            "cannot tell the output format of {}: use a .png, .exr, .svg or .eps extension",
             path.display()
         )),
     }

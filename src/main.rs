@@ -76,8 +76,8 @@ enum Command {
 struct RenderArgs {
     /// Scene file (RON).
     scene: PathBuf,
-    /// Write the image here instead of the camera's first output (format from the extension:
-    /// .png or .exr).
+    /// Write the image here instead of the camera's first image output (.png or .exr), or the
+    /// contour lines instead of its first vector output (.svg or .eps); added if it has none.
     #[arg(short = 'o', long = "output")]
     output: Option<PathBuf>,
     /// Samples per pixel (overrides the scene's `options.samples`, adaptive included).
@@ -169,7 +169,8 @@ struct MergeArgs {
     /// The part files (every part of one render or of one bake, each once, in any order).
     #[arg(required = true)]
     parts: Vec<PathBuf>,
-    /// Render parts: write the image here instead of the camera's outputs (.png or .exr).
+    /// Render parts: write the image here instead of the camera's first output of its kind
+    /// (.png or .exr; .svg or .eps for the contour lines).
     /// Bake parts: the directory for the textures (default: the working directory).
     #[arg(short = 'o', long = "output")]
     output: Option<PathBuf>,
@@ -651,6 +652,10 @@ fn render(args: RenderArgs) -> ExitCode {
         eprintln!("error: {message}");
         return ExitCode::from(EXIT_USAGE);
     }
+    if let Err(message) = overrides.check_contours(&scene.world) {
+        eprintln!("error: {message}");
+        return ExitCode::from(EXIT_USAGE);
+    }
     if args.output.is_some() && !stagelight::scene_view::has_render_camera(&scene.world) {
         eprintln!("error: the scene has no render camera");
         return ExitCode::from(EXIT_USAGE);
@@ -808,6 +813,10 @@ fn merge(args: MergeArgs) -> ExitCode {
         ..OutputOverrides::default()
     };
     if let Err(message) = overrides.check() {
+        eprintln!("error: {message}");
+        return ExitCode::from(EXIT_USAGE);
+    }
+    if let Err(message) = overrides.check_contours(&scene.world) {
         eprintln!("error: {message}");
         return ExitCode::from(EXIT_USAGE);
     }

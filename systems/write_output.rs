@@ -1,5 +1,5 @@
 //! `write_output`: encodes the render camera's frame buffers into its output files (PNG,
-//! EXR) and the contour lines into SVG; the runner writes them with the run's other files,
+//! EXR) and the contour lines into SVG and EPS; the runner writes them with the run's other files,
 //! all or nothing.
 //!
 //! **Reads:** `outputs.image`; `outputs.contours` (absent: no lines); the render `Camera`'s `outputs` as redirected by
@@ -14,6 +14,7 @@ use super::prelude::*;
 use glam::{Vec3, Vec4};
 
 use crate::components::{ImageFormat, Imager, OutputSpec, Pass};
+use crate::contour::eps::encode_eps;
 use crate::contour::svg::encode_svg;
 use crate::contour::{output, ContourImage};
 use crate::farm::PartRun;
@@ -77,6 +78,7 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
                 encode_exr_with(fb, &out.passes, extra)
             }
             ImageFormat::Svg => Ok(encode_svg(contours.unwrap_or(&no_lines(fb))).into_bytes()),
+            ImageFormat::Eps => Ok(encode_eps(contours.unwrap_or(&no_lines(fb))).into_bytes()),
         }
         .map_err(|message| StageError::Write {
             path: out.path.clone(),

@@ -37,6 +37,8 @@ pub enum ImageFormat {
     Exr,
     /// SVG vector drawing of the contour lines (no passes).
     Svg,
+    /// Encapsulated PostScript drawing of the contour lines (no passes).
+    Eps,
 }
 
 /// One output file of a camera.

@@ -7,11 +7,13 @@
 //! 4. [`shaders`]: each point's colour and width from the front material's contour shader;
 //! 5. [`raster`]: the anti-aliased RGBA contour layer;
 //!
-//! and the writers read the result: [`svg`] (vector lines) and [`output`] (the EXR layer and
-//! the PNG composite).
+//! and the writers read the result: [`svg`] and [`eps`] (vector lines, both from the shapes
+//! of [`outline`]) and [`output`] (the EXR layer and the PNG composite).
 
 pub mod contrast;
+pub mod eps;
 pub mod linking;
+pub mod outline;
 pub mod output;
 pub mod raster;
 pub mod shaders;

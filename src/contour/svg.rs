@@ -1,16 +1,13 @@
 //! The SVG writer of contour lines: one `<g>` per material (its name as `id`, its first
-//! line's colour as `fill`), each line a filled polygon outlining its varying width (round
-//! caps and joins as the raster layer draws them, mitred where the turn is gentle), in pixel
-//! coordinates with the image size as `viewBox`.
+//! line's colour as `fill`), each line a filled polygon outlining its varying width (the
+//! shapes of [`super::outline`]), in pixel coordinates with the image size as `viewBox`.
 
 use std::fmt::Write;
 
-use glam::{Vec2, Vec4};
+use glam::Vec4;
 
-use super::{ContourImage, ContourLine};
-
-/// Points of a half circle (cap) or of a round join.
-const ARC_STEPS: usize = 8;
+use super::outline::material_groups;
+use super::ContourImage;
 
 /// The SVG document of `image`'s lines.
 pub fn encode_svg(image: &ContourImage) -> String {
@@ -18,26 +15,17 @@ pub fn encode_svg(image: &ContourImage) -> String {
     let mut out = format!(
         "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" viewBox=\"0 0 {w} {h}\">\n"
     );
-    let mut materials: Vec<u32> = image.lines.iter().map(|l| l.material).collect();
-    materials.sort_unstable();
-    materials.dedup();
-    for m in materials {
-        let lines: Vec<&ContourLine> = image.lines.iter().filter(|l| l.material == m).collect();
-        let group_color = mean_color(lines[0]);
-        let name = image
-            .material_names
-            .get(m as usize - 1)
-            .map_or_else(|| format!("material-{m}"), |n| escape(n));
-        let _ = writeln!(out, "<g id=\"{name}\" {}>", paint(group_color));
-        for line in lines {
-            let color = mean_color(line);
-            let own = if color == group_color {
+    for group in material_groups(image) {
+        let name = escape(&group.name);
+        let _ = writeln!(out, "<g id=\"{name}\" {}>", paint(group.color));
+        for shape in &group.shapes {
+            let own = if shape.color == group.color {
                 String::new()
             } else {
-                format!(" {}", paint(color))
+                format!(" {}", paint(shape.color))
             };
             let mut points = String::new();
-            for p in outline(line) {
+            for p in &shape.polygon {
                 let _ = write!(points, "{:.3},{:.3} ", p.x, p.y);
             }
             let _ = writeln!(out, "<polygon{own} points=\"{}\"/>", points.trim_end());
@@ -60,105 +48,10 @@ fn paint(c: Vec4) -> String {
     )
 }
 
-/// The mean colour of a line's points.
-fn mean_color(line: &ContourLine) -> Vec4 {
-    line.points.iter().map(|p| p.color).sum::<Vec4>() / line.points.len() as f32
-}
-
 /// XML-escapes a name for an attribute.
 fn escape(s: &str) -> String {
     s.replace('&', "&amp;")
         .replace('"', "&quot;")
         .replace('<', "&lt;")
         .replace('>', "&gt;")
-}
-
-/// The polygon around `line`: its left side forward, the end cap, its right side back and
-/// the start cap (an open line), or the left side then the right side as two rings joined
-/// where they start (a closed line).
-fn outline(line: &ContourLine) -> Vec<Vec2> {
-    let pts = &line.points;
-    let n = pts.len();
-    let dir = |a: Vec2, b: Vec2| (b - a).try_normalize().unwrap_or(Vec2::X);
-    let left_of = |d: Vec2| Vec2::new(d.y, -d.x);
-    let segments = if line.closed { n } else { n - 1 };
-    let seg_dir: Vec<Vec2> = (0..segments)
-        .map(|k| dir(pts[k].pos, pts[(k + 1) % n].pos))
-        .collect();
-    // One side: offset points at each vertex (sign +1 left, −1 right), with round joins
-    // on the outside of sharp turns.
-    let side = |sign: f32| -> Vec<Vec2> {
-        let mut out = Vec::new();
-        for k in 0..n {
-            let half = 0.5 * pts[k].width * sign;
-            let before = if k > 0 || line.closed {
-                Some(seg_dir[(k + segments - 1) % segments])
-            } else {
-                None
-            };
-            let after = if k < segments { Some(seg_dir[k]) } else { None };
-            match (before, after) {
-                (Some(a), Some(b)) => {
-                    let miter = (left_of(a) + left_of(b)).normalize_or_zero();
-                    let cos = miter.dot(left_of(a));
-                    if cos > 0.7 {
-                        out.push(pts[k].pos + miter * (half / cos));
-                    } else {
-                        arc(&mut out, pts[k].pos, left_of(a) * half, left_of(b) * half);
-                    }
-                }
-                (Some(d), None) | (None, Some(d)) => out.push(pts[k].pos + left_of(d) * half),
-                (None, None) => {}
-            }
-        }
-        out
-    };
-    let mut left = side(1.0);
-    let mut right = side(-1.0);
-    right.reverse();
-    if line.closed {
-        // Both rings, the inner one reversed: with the non-zero fill rule the band between
-        // them is filled and the inside stays empty.
-        left.push(left[0]);
-        right.push(right[0]);
-        left.extend(right);
-        return left;
-    }
-    let end = pts[n - 1];
-    let start = pts[0];
-    let end_left = left_of(seg_dir[segments - 1]) * 0.5 * end.width;
-    let start_left = left_of(seg_dir[0]) * 0.5 * start.width;
-    let mut out = left;
-    cap(&mut out, end.pos, end_left);
-    out.extend(right);
-    cap(&mut out, start.pos, -start_left);
-    out
-}
-
-/// Points of the arc from offset `from` to offset `to` around `centre` (inner points only).
-fn arc(out: &mut Vec<Vec2>, centre: Vec2, from: Vec2, to: Vec2) {
-    let (a0, a1) = (from.y.atan2(from.x), to.y.atan2(to.x));
-    let mut sweep = a1 - a0;
-    while sweep > std::f32::consts::PI {
-        sweep -= std::f32::consts::TAU;
-    }
-    while sweep < -std::f32::consts::PI {
-        sweep += std::f32::consts::TAU;
-    }
-    let r = from.length();
-    for i in 0..=ARC_STEPS {
-        let a = a0 + sweep * i as f32 / ARC_STEPS as f32;
-        out.push(centre + Vec2::new(a.cos(), a.sin()) * r);
-    }
-}
-
-/// A half circle cap around `centre` from offset `from` to `−from`, turning away from the
-/// line (from the left side over the end to the right side).
-fn cap(out: &mut Vec<Vec2>, centre: Vec2, from: Vec2) {
-    let a0 = from.y.atan2(from.x);
-    let r = from.length();
-    for i in 1..ARC_STEPS {
-        let a = a0 + std::f32::consts::PI * i as f32 / ARC_STEPS as f32;
-        out.push(centre + Vec2::new(a.cos(), a.sin()) * r);
-    }
 }

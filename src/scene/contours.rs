@@ -205,14 +205,27 @@ pub fn contrast(src: &mut Sources, options: Option<&Item<'_, OptionsDesc>>) -> C
     }
 }
 
-/// An SVG output: it holds the contour lines only (`passes`, if given, is `[Contours]`).
-pub fn svg_output(ck: &mut Checker<'_>, path: &str, o: &OutputDesc) -> Option<OutputSpec> {
+/// An SVG or EPS output (`format`): it holds the contour lines only (`passes`, if given, is
+/// `[Contours]`).
+pub fn vector_output(
+    ck: &mut Checker<'_>,
+    path: &str,
+    o: &OutputDesc,
+    format: ImageFormat,
+) -> Option<OutputSpec> {
     if let Some(passes) = &o.passes {
         if passes.as_slice() != [PassDesc::Contours] {
             ck.src.error(
                 ck.file,
                 &format!("{path}.passes"),
-                "an SVG output holds only the contour lines",
+                format!(
+                    "an {} output holds only the contour lines",
+                    if format == ImageFormat::Eps {
+                        "EPS"
+                    } else {
+                        "SVG"
+                    }
+                ),
                 Some("leave out `passes`, or write `passes: [Contours]`".into()),
             );
             return None;
@@ -220,18 +233,19 @@ pub fn svg_output(ck: &mut Checker<'_>, path: &str, o: &OutputDesc) -> Option<Ou
     }
     Some(OutputSpec {
         path: PathBuf::from(&o.file),
-        format: ImageFormat::Svg,
+        format,
         passes: vec![Pass::Contours],
     })
 }
 
-/// Whether an output shows contours (an SVG, or a `Contours` pass).
+/// Whether an output shows contours (an SVG or EPS, or a `Contours` pass).
 fn shows_contours(o: &OutputDesc) -> bool {
-    let svg = o.format == Some(super::desc::FormatDesc::Svg)
+    use super::desc::FormatDesc;
+    let svg = matches!(o.format, Some(FormatDesc::Svg | FormatDesc::Eps))
         || (o.format.is_none()
             && std::path::Path::new(&o.file)
                 .extension()
-                .is_some_and(|e| e.eq_ignore_ascii_case("svg")));
+                .is_some_and(|e| e.eq_ignore_ascii_case("svg") || e.eq_ignore_ascii_case("eps")));
     svg || o
         .passes
         .as_ref()

@@ -374,6 +374,8 @@ pub enum FormatDesc {
     Exr,
     /// SVG contour lines.
     Svg,
+    /// EPS (PostScript) contour lines.
+    Eps,
 }
 
 /// Image pass.

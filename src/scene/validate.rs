@@ -422,9 +422,11 @@ fn output(ck: &mut Checker<'_>, path: &str, o: &OutputDesc) -> Option<OutputSpec
         (Some(FormatDesc::Png), _) => ImageFormat::Png,
         (Some(FormatDesc::Exr), _) => ImageFormat::Exr,
         (Some(FormatDesc::Svg), _) => ImageFormat::Svg,
+        (Some(FormatDesc::Eps), _) => ImageFormat::Eps,
         (None, Some("png")) => ImageFormat::Png,
         (None, Some("exr")) => ImageFormat::Exr,
         (None, Some("svg")) => ImageFormat::Svg,
+        (None, Some("eps")) => ImageFormat::Eps,
         (None, other) => {
             ck.src.error(
                 ck.file,
@@ -433,13 +435,16 @@ fn output(ck: &mut Checker<'_>, path: &str, o: &OutputDesc) -> Option<OutputSpec
                     Some(e) => format!("unknown output extension \".{e}\" in \"{}\"", o.file),
                     None => format!("output file \"{}\" has no extension", o.file),
                 },
-                Some("use .png, .exr or .svg, or give `format: Png`, `Exr` or `Svg`".into()),
+                Some(
+                    "use .png, .exr, .svg or .eps, or give `format: Png`, `Exr`, `Svg` or `Eps`"
+                        .into(),
+                ),
             );
             return None;
         }
     };
-    if format == ImageFormat::Svg {
-        return super::contours::svg_output(ck, path, o);
+    if matches!(format, ImageFormat::Svg | ImageFormat::Eps) {
+        return super::contours::vector_output(ck, path, o, format);
     }
     let descs = o.passes.clone().unwrap_or_else(|| vec![PassDesc::Beauty]);
     if descs.is_empty() {

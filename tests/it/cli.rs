@@ -177,7 +177,7 @@ fn usage_errors_exit_2() {
         .arg(asset("test_plane.ron"))
         .args(["-o", "image.bmp"]));
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
-    assert!(stderr(&o).contains(".png or .exr"));
+    assert!(stderr(&o).contains(".png, .exr, .svg or .eps"));
     let o = run(bin()
         .args(["render", "--spp", "0"])
         .arg(asset("test_plane.ron")));

@@ -435,3 +435,152 @@ fn a_contour_shader_no_output_shows_is_a_located_warning() {
         ["bad.ron:7:11: warning: material \"m\" has a contour shader, but no camera output shows contours\n  help: add an output such as `(file: \"lines.svg\")` or a `Contours` pass"]
     );
 }
+
+/// Each text's numbers, in pairs, as points.
+fn point_lists(shapes: impl Iterator<Item = String>) -> Vec<Vec<Vec2>> {
+    shapes
+        .map(|s| {
+            let n: Vec<f32> = s
+                .split(|c: char| c == ',' || c.is_whitespace())
+                .filter_map(|t| t.parse().ok())
+                .collect();
+            n.chunks(2).map(|p| Vec2::new(p[0], p[1])).collect()
+        })
+        .collect()
+}
+
+/// The EPS writer draws the SVG's polygons: its header holds the image size as bounding
+/// box, it fills one path per `<polygon>` (one group per `<g>`), and each path has the
+/// polygon's points with y flipped (PostScript's y goes up), within the printed 0.001.
+#[test]
+fn eps_draws_the_svg_polygons_with_the_image_as_bounding_box() {
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/assets/scenes/contours.ron"
+    ))
+    .unwrap();
+    let img = contours(&text);
+    let svg = stagelight::contour::svg::encode_svg(&img);
+    let eps = stagelight::contour::eps::encode_eps(&img);
+    let header: Vec<&str> = eps.lines().take_while(|l| *l != "%%EndComments").collect();
+    assert_eq!(header[0], "%!PS-Adobe-3.0 EPSF-3.0");
+    let bbox = header
+        .iter()
+        .find_map(|l| l.strip_prefix("%%BoundingBox: "))
+        .expect("a bounding box");
+    assert_eq!(bbox, format!("0 0 {} {}", img.width, img.height));
+    assert_eq!(
+        eps.matches("% material ").count(),
+        svg.matches("<g id=").count()
+    );
+    // SVG polygons in document order; EPS paths: from a point's `m` to the `f`.
+    let svg_shapes = point_lists(
+        svg.split("points=\"")
+            .skip(1)
+            .map(|s| s[..s.find('"').unwrap()].to_string()),
+    );
+    // The prolog defines `/f`, `/m` and `/l`; the paths follow it.
+    let body = &eps[eps.find("%%EndProlog").unwrap()..];
+    let (mut eps_shapes, mut numbers, mut shape) = (Vec::new(), Vec::new(), Vec::new());
+    for token in body.split_whitespace() {
+        match token {
+            "m" | "l" => {
+                shape.push(Vec2::new(numbers[0], numbers[1]));
+                numbers.clear();
+            }
+            "f" => eps_shapes.push(std::mem::take(&mut shape)),
+            _ => match token.parse::<f32>() {
+                Ok(v) => numbers.push(v),
+                Err(_) => numbers.clear(),
+            },
+        }
+    }
+    assert!(svg_shapes.len() > 10, "the scene has lines");
+    assert_eq!(eps_shapes.len(), svg_shapes.len());
+    for (e, s) in eps_shapes.iter().zip(&svg_shapes) {
+        assert_eq!(e.len(), s.len());
+        for (a, b) in e.iter().zip(s) {
+            let flipped = Vec2::new(b.x, img.height as f32 - b.y);
+            assert!(
+                (*a - flipped).abs().max_element() <= 1.5e-3,
+                "{a} vs {flipped}"
+            );
+        }
+    }
+}
+
+/// `render -o lines.svg` / `-o lines.eps` replaces the camera's vector output (the PNG is
+/// still written), with the same drawing as the scene's own SVG; on a camera without one it
+/// is added.
+#[test]
+fn dash_o_with_a_vector_extension_writes_the_contour_lines() {
+    let dir = scratch_dir("contours-dash-o");
+    let scene_of = |outputs: &str| {
+        let body = SPHERE.replace("width: 1.0", "width: 2.0");
+        scene(48, 40, (0.0, -5.0, 0.0), "", &body, outputs)
+    };
+    std::fs::write(
+        dir.join("both.ron"),
+        scene_of(r#"(file: "a.png", passes: [Beauty, Contours]), (file: "a.svg")"#),
+    )
+    .unwrap();
+    std::fs::write(
+        dir.join("png.ron"),
+        scene_of(r#"(file: "b.png", passes: [Beauty, Contours])"#),
+    )
+    .unwrap();
+    let ok = |args: &[&str]| {
+        let o = run_in(&dir, args);
+        assert!(o.status.success(), "{args:?}: {}", stderr_of(&o));
+    };
+    ok(&["render", "both.ron"]);
+    ok(&["render", "both.ron", "-o", "lines.svg"]);
+    ok(&["render", "both.ron", "-o", "lines.eps"]);
+    ok(&["render", "png.ron", "-o", "added.svg"]);
+    let read = |name: &str| std::fs::read(dir.join(name)).unwrap_or_else(|e| panic!("{name}: {e}"));
+    assert!(
+        read("lines.svg") == read("a.svg"),
+        "-o lines.svg: the scene's drawing"
+    );
+    assert!(
+        read("added.svg") == read("a.svg"),
+        "added to a camera without one"
+    );
+    assert!(read("b.png") == read("a.png"), "the image output is kept");
+    let eps = String::from_utf8(read("lines.eps")).unwrap();
+    assert!(eps.contains("\n%%BoundingBox: 0 0 48 40\n"));
+    let svg = String::from_utf8(read("a.svg")).unwrap();
+    assert_eq!(
+        eps.split_whitespace().filter(|t| *t == "f").count(),
+        svg.matches("<polygon").count()
+    );
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+/// A vector `-o` on a scene without contour shaders, or an unknown extension, is a usage
+/// error that writes nothing.
+#[test]
+fn dash_o_vector_without_contour_shaders_is_a_usage_error() {
+    let dir = scratch_dir("contours-dash-o-bad");
+    let body =
+        format!("materials: [(name: \"m\", shader: Lambert(albedo: (0.5, 0.5, 0.5)))],{QUAD}");
+    std::fs::write(
+        dir.join("plain.ron"),
+        scene(8, 8, (0.0, -5.0, 0.5), "", &body, r#"(file: "a.png")"#),
+    )
+    .unwrap();
+    let o = run_in(&dir, &["render", "plain.ron", "-o", "lines.eps"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(
+        stderr_of(&o).trim_end(),
+        "error: -o lines.eps writes contour lines, but no material of the scene has a contour shader\n  help: give a material `contour: Simple(color: (0, 0, 0, 1), width: 0.5)`, or write a .png or .exr"
+    );
+    let o = run_in(&dir, &["render", "plain.ron", "-o", "lines.ps"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(
+        stderr_of(&o).trim_end(),
+        "error: cannot tell the output format of lines.ps: use a .png, .exr, .svg or .eps extension"
+    );
+    assert_eq!(crate::common::dir_names(&dir), ["plain.ron"]);
+    let _ = std::fs::remove_dir_all(dir);
+}

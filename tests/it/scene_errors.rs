@@ -266,7 +266,7 @@ fn png_depth() {
             ),
             concat!(
                 "tests/fixtures/scenes/bad/png_depth.ron:6:70: error: unknown output extension \".tiff\" in \"out.tiff\"\n",
-                "  help: use .png, .exr or .svg, or give `format: Png`, `Exr` or `Svg`",
+                "  help: use .png, .exr, .svg or .eps, or give `format: Png`, `Exr`, `Svg` or `Eps`",
             ),
         ],
     );
