@@ -791,23 +791,11 @@ fn merge(args: MergeArgs) -> ExitCode {
         }
     };
     let header = &parts[0].file.header;
-    let scene_path = args
-        .scene
-        .clone()
-        .unwrap_or_else(|| PathBuf::from(&header.scene));
-    let mut scene = match load(&scene_path) {
-        Ok(s) => s,
-        Err(code) => return code,
-    };
-    let hash = stagelight::farm::scene_hash(scene.source_hash, &scene.world);
-    if hash != header.scene_hash {
-        eprintln!(
-            "error: {} changed since the parts were rendered (content hash {hash:016x}, the parts have {:016x})\n  help: render the parts again, or pass the scene they came from with --scene\nnothing written",
-            scene_path.display(),
-            header.scene_hash
-        );
-        return ExitCode::from(EXIT_ERROR);
-    }
+    let (scene_path, mut scene) =
+        match part_scene(&args, &header.scene, header.scene_hash, "render") {
+            Ok(s) => s,
+            Err(code) => return code,
+        };
     let overrides = OutputOverrides {
         first: args.output.clone(),
         ..OutputOverrides::default()
@@ -826,6 +814,31 @@ fn merge(args: MergeArgs) -> ExitCode {
     run_and_report(&scene_path, &mut scene, frame, args.stats, None)
 }
 
+/// The scene a set of part files came from (`--scene`, else the path in their header),
+/// loaded and checked against the parts' content hash; `verb` is `render` or `bake`.
+fn part_scene(
+    args: &MergeArgs,
+    header_scene: &str,
+    parts_hash: u64,
+    verb: &str,
+) -> Result<(PathBuf, LoadedScene), ExitCode> {
+    let scene_path = args
+        .scene
+        .clone()
+        .unwrap_or_else(|| PathBuf::from(header_scene));
+    let scene = load(&scene_path)?;
+    let hash = stagelight::farm::scene_hash(scene.source_hash, &scene.world);
+    if hash != parts_hash {
+        let done = if verb == "bake" { "baked" } else { "rendered" };
+        eprintln!(
+            "error: {} changed since the parts were {done} (content hash {hash:016x}, the parts have {parts_hash:016x})\n  help: {verb} the parts again, or pass the scene they came from with --scene\nnothing written",
+            scene_path.display(),
+        );
+        return Err(ExitCode::from(EXIT_ERROR));
+    }
+    Ok((scene_path, scene))
+}
+
 /// `stagelight merge` of bake parts: assembles the texels, then bakes the scene's requests
 /// from them (dilation and encoding as a single bake) into `-o DIR`.
 fn merge_bake(args: MergeArgs) -> ExitCode {
@@ -842,23 +855,11 @@ fn merge_bake(args: MergeArgs) -> ExitCode {
         }
     };
     let (header, merged) = merged;
-    let scene_path = args
-        .scene
-        .clone()
-        .unwrap_or_else(|| PathBuf::from(&header.scene));
-    let mut scene = match load(&scene_path) {
+    let (scene_path, mut scene) = match part_scene(&args, &header.scene, header.scene_hash, "bake")
+    {
         Ok(s) => s,
         Err(code) => return code,
     };
-    let hash = stagelight::farm::scene_hash(scene.source_hash, &scene.world);
-    if hash != header.scene_hash {
-        eprintln!(
-            "error: {} changed since the parts were baked (content hash {hash:016x}, the parts have {:016x})\n  help: bake the parts again, or pass the scene they came from with --scene\nnothing written",
-            scene_path.display(),
-            header.scene_hash
-        );
-        return ExitCode::from(EXIT_ERROR);
-    }
     let mut settings = scene.settings.clone();
     settings.seed = header.seed;
     if stagelight::farm::settings_hash(&settings) != header.settings_hash {
