@@ -44,8 +44,8 @@ pub fn settings_hash(settings: &RenderSettings) -> u64 {
         .finish()
 }
 
-/// Content hash of a loaded scene: its files' bytes (scene and includes, as the loader read
-/// them: `source_hash`) and every loaded triangle mesh. Textures and environment maps are
+/// Content hash of a loaded scene: its files' bytes (scene, includes, RIB archives and `.mi`
+/// includes, as the loaders read them: `source_hash`) and every loaded triangle mesh. Textures and environment maps are
 /// not included: a farm is expected to see the same files on every node.
 pub fn scene_hash(source_hash: u64, world: &hecs::World) -> u64 {
     let mut h = Fnv64::default();

@@ -29,7 +29,8 @@ pub struct LoadedFiles {
     pub sources: Sources,
     /// Parsed descriptions, parallel to `sources.files`.
     pub scenes: Vec<Option<SceneDesc>>,
-    /// FNV-1a over the bytes of every scene file read, in load order.
+    /// FNV-1a over the bytes of every scene file read, in load order, including the files
+    /// the readers read themselves (RIB archives, `.mi` includes).
     pub content_hash: Fnv64,
     /// Files the readers read themselves (RIB archives, `.mi` includes), in load order.
     pub read_files: Vec<PathBuf>,
@@ -114,6 +115,13 @@ impl Loader<'_> {
             }
         };
         let file = self.register(read.map, None);
+        // Files the reader read itself (RIB archives, `.mi` includes) are part of the scene's
+        // content: an edited archive must change the farm's scene hash.
+        for extra in &read.read_files {
+            if let Ok(extra_bytes) = read_file(extra, MAX_SCENE_FILE_BYTES, "scene file") {
+                self.out.content_hash.bytes(&extra_bytes);
+            }
+        }
         self.out.read_files.extend(read.read_files);
         for w in read.warnings {
             self.out.sources.push_warning(file, w);

@@ -84,8 +84,8 @@ pub struct LoadedScene {
     /// Located warnings from the readers and validation, each a complete text as printed:
     /// `file:line:col: warning: …` (plus a `help:` line), in file and position order.
     pub located_warnings: Vec<String>,
-    /// FNV-1a over the bytes of the scene file and every include, in load order (part of
-    /// the farm's scene content hash, `crate::farm::scene_hash`).
+    /// FNV-1a over the bytes of the scene file, every include, RIB archive and `.mi` include,
+    /// in load order (part of the farm's scene content hash, `crate::farm::scene_hash`).
     pub source_hash: u64,
 }
 

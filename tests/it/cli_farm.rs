@@ -265,3 +265,36 @@ fn farm_scripts_run_as_slurm_would_give_the_local_render() {
         std::fs::read(dir.join("single.png")).unwrap()
     );
 }
+
+#[test]
+fn an_archive_edited_after_the_parts_were_rendered_is_refused() {
+    let dir = scratch("cli-farm-archive");
+    std::fs::write(
+        dir.join("scene.rib"),
+        "Display \"out.png\" \"file\" \"rgb\"\nFormat 16 12 1\nProjection \"perspective\" \"fov\" 40\nTranslate 0 0 5\nWorldBegin\nLightSource \"pointlight\" 1 \"from\" [0 2 -2] \"intensity\" 4\nReadArchive \"ball.rib\"\nWorldEnd\n",
+    )
+    .unwrap();
+    std::fs::write(dir.join("ball.rib"), "Sphere 1 -1 1 360\n").unwrap();
+    for k in 1..=2 {
+        let part = format!("{k}/2");
+        let name = format!("part_{k}.exr");
+        ok(&dir, &["render", "scene.rib", "--part", &part, "-o", &name]);
+    }
+    ok(
+        &dir,
+        &["merge", "part_1.exr", "part_2.exr", "-o", "before.png"],
+    );
+    // Only the archive changes: the scene file's bytes are the same.
+    std::fs::write(dir.join("ball.rib"), "Sphere 1.5 -1.5 1.5 360\n").unwrap();
+    let o = stagelight(
+        &dir,
+        &["merge", "part_1.exr", "part_2.exr", "-o", "out.png"],
+    );
+    assert_eq!(o.status.code(), Some(1));
+    assert!(
+        stderr(&o).contains("scene.rib changed since the parts were rendered"),
+        "{}",
+        stderr(&o)
+    );
+    assert!(!dir.join("out.png").exists());
+}
