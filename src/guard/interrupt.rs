@@ -16,7 +16,7 @@ use crate::image_io::commit_state;
 use crate::stage_error::{StageError, EXIT_INTERRUPTED};
 
 /// How long a signalled run may take to stop by itself before the process exits.
-pub const GRACE: Duration = Duration::from_millis(400);
+pub const GRACE: Duration = Duration::from_millis(250);
 
 /// Installs the SIGINT/SIGTERM handler for a run that polls `cancel`.
 pub fn install(cancel: Arc<AtomicBool>) {

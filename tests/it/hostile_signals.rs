@@ -92,3 +92,30 @@ fn stale_temporaries_of_dead_processes_are_removed_by_the_next_run() {
     assert!(o.status.success(), "{}", stderr_of(&o));
     assert_eq!(dir_names(&dir), ["notes.tmp", "out.png", "scene.ron"]);
 }
+
+#[test]
+fn sigint_inside_the_bvh_build_exits_130_within_half_a_second() {
+    let dir = scratch_dir("sigint-bvh");
+    // 980,000 triangles: the build takes seconds, and obvhs's builder cannot poll the flag,
+    // so the interrupt handler's deadline ends the run.
+    let grid =
+        r#"(name: "grid", mesh: Grid(size_x: 2, size_y: 2, nx: 700, ny: 700), material: "grey"),"#;
+    std::fs::write(
+        dir.join("scene.ron"),
+        small_scene(grid, r#"(name: "g", of: "grid")"#, "", ""),
+    )
+    .unwrap();
+    let (code, seconds, stderr) = signal_after(
+        &dir,
+        &["render", "scene.ron", "-o", "out.exr"],
+        "-INT",
+        Duration::from_millis(400),
+    );
+    assert_eq!(code, Some(130), "{stderr}");
+    assert!(
+        stderr.ends_with("interrupted; no output written\n"),
+        "{stderr}"
+    );
+    assert!(seconds < 0.5, "took {seconds:.3} s after SIGINT");
+    assert_eq!(dir_names(&dir), ["scene.ron"]);
+}
