@@ -7,6 +7,8 @@
 //! `settings.bvh_quality`.
 //! **Refuses:** placed triangles beyond the supported coordinate range
 //! (`crate::guard::extent`), located at their object.
+//! **Stops:** when the run is interrupted, even inside obvhs's build (waited for through
+//! `crate::guard::cancellable`).
 //! **Writes:** `outputs.geometry` (returned to the runner).
 //! **Runs when:** at least one instance has triangles and something consumes rays (a render
 //! camera in a run that renders, or bake requests in a run that bakes).
@@ -96,6 +98,9 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
         .contains(crate::features::Feature::Displacement);
 
     for (entity, instance, world_from_object, material_ref) in placed {
+        if frame.cancelled() {
+            return Err(StageError::Interrupted);
+        }
         let slot = match material_slot.get(&material_ref.0) {
             Some(&s) => s,
             None => {
@@ -150,7 +155,16 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
         ));
     }
     let count = triangles.len() as u64;
-    let mut accel = Accel::build(triangles, frame.inputs.settings.bvh_quality);
+    // obvhs cannot poll the cancel flag: build on a thread of its own and stop waiting
+    // when the run is interrupted.
+    let quality = frame.inputs.settings.bvh_quality;
+    let built = crate::guard::cancellable::until_cancelled(&frame.inputs.cancel, move || {
+        Accel::build(triangles, quality)
+    })
+    .map_err(|e| StageError::Internal(format!("cannot start the BVH build: {e}")))?;
+    let Some(mut accel) = built else {
+        return Err(StageError::Interrupted);
+    };
     accel.set_ray_masks(ray_masks);
     let geometry = SceneGeometry {
         accel,

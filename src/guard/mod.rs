@@ -6,11 +6,14 @@
 //! - [`outputs`]: outputs that would overwrite an input or each other;
 //! - [`empty`]: placed objects without geometry (a located warning);
 //! - [`limits`]: hard limits (worker threads, file sizes);
-//! - [`interrupt`]: SIGINT and SIGTERM stop a run within [`interrupt::GRACE`].
+//! - [`interrupt`]: SIGINT and SIGTERM stop a run within [`interrupt::GRACE`];
+//! - [`cancellable`]: long work that cannot poll the cancel flag (the BVH build), waited
+//!   for in a way that can stop.
 //!
 //! The README's "Reliability" section lists every guarantee with its limit and its test.
 
 pub use crate::scene::world_checks::{empty, extent};
+pub mod cancellable;
 pub mod interrupt;
 pub use crate::limits;
 pub mod locate;

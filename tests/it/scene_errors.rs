@@ -84,7 +84,10 @@ fn missing_field() {
     check(
         "missing_field.ron",
         &[
-            "tests/fixtures/scenes/bad/missing_field.ron:3:9: error: missing field \"fov_y\" in Camera",
+            concat!(
+                "tests/fixtures/scenes/bad/missing_field.ron:3:9: error: missing field \"fov_y\" in Camera\n",
+                "  help: add `fov_y: …`; docs/scene-format.md lists the fields and their defaults",
+            ),
         ],
     );
 }
@@ -94,7 +97,7 @@ fn missing_field() {
 fn wrong_type() {
     check(
         "wrong_type.ron",
-        &["tests/fixtures/scenes/bad/wrong_type.ron:2:39: error: expected opening `[`"],
+        &["tests/fixtures/scenes/bad/wrong_type.ron:2:39: error: expected opening `[`\n  help: write a list `[…]` here"],
     );
 }
 
@@ -324,7 +327,7 @@ fn syntax_in_include() {
     check(
         "syntax_in_include.ron",
         &[
-            "tests/fixtures/scenes/bad/lib/syntax.ron:2:66: error: expected a tuple of size 3 but found 2 elements",
+            "tests/fixtures/scenes/bad/lib/syntax.ron:2:66: error: expected a tuple of size 3 but found 2 elements\n  help: write exactly 3 values in `(…)`",
         ],
     );
 }

@@ -211,25 +211,35 @@ fn ron_message(code: &RonError) -> (String, Option<String>) {
         ),
         RonError::MissingStructField { field, outer } => (
             format!("missing field \"{field}\"{}", in_outer(outer)),
-            None,
+            Some(format!(
+                "add `{field}: …`; docs/scene-format.md lists the fields and their defaults"
+            )),
         ),
         RonError::DuplicateStructField { field, outer } => (
             format!("field \"{field}\" is given twice{}", in_outer(outer)),
-            None,
+            Some(format!("keep one `{field}: …`")),
         ),
-        RonError::ExpectedDifferentStructName { expected, found } => {
-            (format!("expected {expected}(…) but found {found}(…)"), None)
-        }
-        RonError::InvalidValueForType { expected, found } => {
-            (format!("expected {expected} but found {found}"), None)
-        }
+        RonError::ExpectedDifferentStructName { expected, found } => (
+            format!("expected {expected}(…) but found {found}(…)"),
+            Some(format!("write `{expected}(…)` here")),
+        ),
+        RonError::InvalidValueForType { expected, found } => (
+            format!("expected {expected} but found {found}"),
+            Some("docs/scene-format.md gives the type of every field".into()),
+        ),
         RonError::ExpectedDifferentLength { expected, found } => {
             let found = match found {
                 0 => "no elements".to_string(),
                 1 => "one element".to_string(),
                 n => format!("{n} elements"),
             };
-            (format!("expected {expected} but found {found}"), None)
+            (
+                format!("expected {expected} but found {found}"),
+                Some(match expected.rsplit(' ').next().map(str::parse::<usize>) {
+                    Some(Ok(n)) => format!("write exactly {n} values in `(…)`"),
+                    _ => format!("write {expected}"),
+                }),
+            )
         }
         RonError::Message(text) => (text.clone(), None),
         RonError::ExpectedComma => (
@@ -252,7 +262,29 @@ fn ron_message(code: &RonError) -> (String, Option<String>) {
             "unexpected text after the scene".into(),
             Some("a file holds exactly one `Scene(...)`; check for an extra `)`".into()),
         ),
-        other => (lowercase_first(&other.to_string()), None),
+        RonError::ExpectedStringEnd => (
+            "expected end of string".into(),
+            Some("close the string with `\"`; write `\\\"` for a quote inside it".into()),
+        ),
+        other => (
+            lowercase_first(&other.to_string()),
+            Some(
+                match other {
+                    RonError::ExpectedFloat => "write a number such as `1.0`",
+                    RonError::ExpectedInteger => "write a whole number such as `4`",
+                    RonError::ExpectedBoolean => "write `true` or `false`",
+                    RonError::ExpectedString => "write text in double quotes, e.g. `\"name\"`",
+                    RonError::ExpectedArray => "write a list `[…]` here",
+                    RonError::ExpectedArrayEnd => "close the list with `]`",
+                    RonError::ExpectedStructLike => "write `(…)` here",
+                    RonError::ExpectedStructLikeEnd => "close the `(` with `)`",
+                    RonError::ExpectedOption => "write `Some(…)` or `None`",
+                    RonError::ExpectedIdentifier => "write a field or variant name here",
+                    _ => "docs/scene-format.md shows the syntax of every field",
+                }
+                .into(),
+            ),
+        ),
     }
 }
 
