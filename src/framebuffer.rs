@@ -33,6 +33,9 @@ pub struct FrameBuffers {
     /// What the camera sees at each pixel centre, for `draw_contours`; kept only when some
     /// material has a contour shader (and not in a farm part).
     pub contour_store: Option<ContourStore>,
+    /// The component passes per pixel (linear RGB, in the order of `Pass::COMPONENTS`;
+    /// they sum to `beauty`), kept only when an output asks for one.
+    pub components: Option<Vec<[Vec3; 6]>>,
 }
 
 /// Exact per-pixel sample sums and counts (see [`FrameBuffers::sums`]).
@@ -62,6 +65,7 @@ impl FrameBuffers {
             samples: vec![0; n],
             sums: None,
             contour_store: None,
+            components: None,
         }
     }
 }
