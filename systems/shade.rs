@@ -15,8 +15,9 @@
 //! absent: none); `settings` (spp or adaptive samples, filter, seed, face, integrator,
 //! trace depths).
 //! **Writes:** `outputs.image` (with the samples each pixel took and, when some material has
-//! a contour shader, the contour store: what each pixel centre sees), returned to the
-//! runner.
+//! a contour shader, the contour store: what each pixel centre sees; when an output asks
+//! for a component pass and the run is not a farm part, the component passes), returned to
+//! the runner.
 //! **Runs when:** the run renders and a render camera exists.
 //! **After this stage:** `outputs.image` holds finite beauty, alpha, depth and normal buffers of
 //! the camera's resolution; each pixel depends only on (seed, pixel index, sample index).

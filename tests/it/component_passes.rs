@@ -26,13 +26,13 @@ fn example_scenes() -> Vec<PathBuf> {
     scenes
 }
 
-/// Renders `path` shrunk to at most 16 pixels across with at most 2 samples (adaptive
+/// Renders `path` shrunk to at most 12 pixels across with at most 2 samples (adaptive
 /// sampling capped at 4) with `integrator`; `components`: an EXR output asking for the six
 /// component passes is added to the render camera.
 fn render(path: &Path, integrator: Integrator, components: bool) -> FrameBuffers {
     let mut scene = load_scene(path).unwrap_or_else(|e| panic!("{}:\n{e}", path.display()));
     for (camera, _) in scene.world.query_mut::<(&mut Camera, &RenderCamera)>() {
-        let scale = (16.0 / camera.width.max(camera.height) as f32).min(1.0);
+        let scale = (12.0 / camera.width.max(camera.height) as f32).min(1.0);
         camera.width = ((camera.width as f32 * scale).round() as u32).max(1);
         camera.height = ((camera.height as f32 * scale).round() as u32).max(1);
         if components {
