@@ -32,7 +32,7 @@ use rayon::prelude::*;
 use super::prelude::*;
 use crate::accel::RayKind;
 use crate::adaptive::{refine_flags, PixelSamples, SampleBudget};
-use crate::components::{ContourShader, Interior};
+use crate::components::{ContourContrast, ContourShader, Interior};
 use crate::contour::{ContourStore, Probe};
 use crate::diagnostic::{samples_view, Diagnostic};
 use crate::farm::{Part, Split};
@@ -269,7 +269,19 @@ fn contour_store(world: &World, frame: &Frame, fb: &FrameBuffers) -> Option<Cont
     let view = render_view(world)?.without(frame.inputs.settings.disabled);
     let rays = CameraRays::with_lenses(&view.camera, &view.lenses);
     let probe = Probe::new(frame.outputs.geometry.as_ref(), &rays);
-    Some(probe.store(fb.width, fb.height, &fb.beauty))
+    let mut store = probe.store(fb.width, fb.height, &fb.beauty);
+    let ray_depth = world
+        .query::<&ContourContrast>()
+        .iter()
+        .next()
+        .map_or(0, |c| c.ray_depth);
+    for level in 1..=ray_depth {
+        let probe = Probe::new(frame.outputs.geometry.as_ref(), &rays).at_level(level);
+        store
+            .deeper
+            .push(probe.store(fb.width, fb.height, &fb.beauty));
+    }
+    Some(store)
 }
 
 /// Whether some output of `camera` asks for a component pass (emission, diffuse, …).
