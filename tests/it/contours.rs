@@ -695,3 +695,32 @@ fn layered_contours_thin_by_the_layers_in_front() {
         }
     }
 }
+
+/// `Layered(thinning: 0)` and `ray_depth: 9` are located errors.
+#[test]
+fn a_zero_thinning_and_a_too_deep_ray_depth_are_located_errors() {
+    let body = format!(
+        "materials: [(name: \"m\", shader: Lambert(albedo: (0.5, 0.5, 0.5)),\n contour: Layered(thinning: 0))],{QUAD}"
+    );
+    let e = diagnostics(&scene(
+        8,
+        8,
+        (0.0, -5.0, 0.5),
+        "contours: (ray_depth: 9)",
+        &body,
+        r#"(file: "a.svg")"#,
+    ))
+    .unwrap_err();
+    let lines: Vec<&str> = e.lines().filter(|l| l.contains("error:")).collect();
+    assert_eq!(lines.len(), 2, "{e}");
+    assert!(
+        lines[0].starts_with("bad.ron:2:")
+            && lines[0].ends_with(": error: contour ray_depth must be at most 8, found 9"),
+        "{e}"
+    );
+    assert!(
+        lines[1].starts_with("bad.ron:7:")
+            && lines[1].ends_with(": error: thinning must be in (0, 1], found 0"),
+        "{e}"
+    );
+}
