@@ -33,6 +33,9 @@ pub struct FrameBuffers {
     /// What the camera sees at each pixel centre, for `draw_contours`; kept only when some
     /// material has a contour shader (and not in a farm part).
     pub contour_store: Option<ContourStore>,
+    /// The component passes per pixel (linear RGB, in the order of `Pass::COMPONENTS`;
+    /// they sum to `beauty`), kept only when an output asks for one.
+    pub components: Option<Vec<[Vec3; 6]>>,
 }
 
 /// Exact per-pixel sample sums and counts (see [`FrameBuffers::sums`]).
@@ -62,6 +65,7 @@ impl FrameBuffers {
             samples: vec![0; n],
             sums: None,
             contour_store: None,
+            components: None,
         }
     }
 }
@@ -95,9 +99,25 @@ impl ContourSample {
         color: Vec3::ZERO,
     };
 
+    /// What a sample of a deeper level sees where the path ended before that level (no
+    /// mirror, refraction or transparency to follow): no contour runs next to it.
+    pub const ABSENT: ContourSample = ContourSample {
+        instance: u32::MAX,
+        object: u32::MAX,
+        material: 0,
+        normal: Vec3::ZERO,
+        depth: f32::INFINITY,
+        color: Vec3::ZERO,
+    };
+
     /// Whether the sample sees no surface.
     pub fn is_background(&self) -> bool {
         self.instance == 0
+    }
+
+    /// Whether the sample's path ended before its level ([`ContourSample::ABSENT`]).
+    pub fn is_absent(&self) -> bool {
+        self.instance == u32::MAX
     }
 }
 
@@ -110,6 +130,11 @@ pub struct ContourStore {
     pub height: u32,
     /// The samples; sample `(x, y)` is at film position `(x + 0.5, y + 0.5)`.
     pub samples: Vec<ContourSample>,
+    /// The ray level of the samples: 0 for what the camera sees, `k` for what it sees
+    /// behind `k` mirror, refraction or transparency events (the layers in front).
+    pub level: u32,
+    /// The stores of levels 1, 2, … (the contours' `ray_depth`; empty by default).
+    pub deeper: Vec<ContourStore>,
 }
 
 impl ContourStore {

@@ -741,6 +741,9 @@ fn part_run(
             number.index, number.count, number.index
         ));
     }
+    if let Some(message) = component_passes_in_part(number, scene) {
+        return Err(message);
+    }
     if split == Split::Samples && settings.adaptive.is_some() {
         return Err("--split samples cannot divide adaptive sampling (a pixel's second pass depends on all of its first-pass samples)\n  help: use --split tiles, or a fixed count with --spp N".into());
     }
@@ -752,6 +755,22 @@ fn part_run(
         },
         scene: args.scene.display().to_string(),
         scene_hash: stagelight::farm::scene_hash(scene.source_hash, &scene.world),
+    })
+}
+
+/// Part files carry no component passes: the refusal of `--part` for a camera output that
+/// asks for them.
+fn component_passes_in_part(number: PartNumber, scene: &LoadedScene) -> Option<String> {
+    let view = stagelight::scene_view::render_view(&scene.world)?;
+    view.camera.outputs.iter().find_map(|o| {
+        let names: Vec<String> = (o.passes.iter())
+            .filter(|p| p.component().is_some())
+            .map(|p| format!("{p:?}"))
+            .collect();
+        (!names.is_empty()).then(|| format!(
+            "--part {}/{} cannot carry the component passes ({}) of {}\n  help: render the component passes on one machine, or leave them out of the farm render's outputs",
+            number.index, number.count, names.join(", "), o.path.display()
+        ))
     })
 }
 

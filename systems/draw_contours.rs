@@ -73,7 +73,6 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
         .without(frame.inputs.settings.disabled);
     let rays = CameraRays::with_lenses(&view.camera, &view.lenses);
     let geometry = frame.outputs.geometry.as_ref();
-    let probe = Probe::new(geometry, &rays);
     let entities = geometry.map_or(&[][..], |g| &g.material_entities[..]);
     let shaders: Vec<Option<ContourShader>> = entities
         .iter()
@@ -99,12 +98,20 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
             .and_then(|m| shaders.get(m as usize))
             .is_some_and(Option::is_some)
     };
-    let crossings = find_crossings(store, &probe, &Contrast::new(settings), &has_shader);
-    if frame.cancelled() {
-        return Err(StageError::Interrupted);
-    }
     let min_dimension = fb.width.min(fb.height) as f32;
-    let lines = styled_lines(link(&crossings), &shaders, min_dimension);
+    let contrast = Contrast::new(settings);
+    // Deeper levels first: what mirrors and refractions show lies behind the first hits'
+    // lines, which are drawn over it.
+    let mut lines = Vec::new();
+    for level in store.deeper.iter().rev().chain([store]) {
+        let probe = Probe::new(geometry, &rays).at_level(level.level);
+        let crossings = find_crossings(level, &probe, &contrast, &has_shader);
+        if frame.cancelled() {
+            return Err(StageError::Interrupted);
+        }
+        let chains = link(&crossings);
+        lines.extend(styled_lines(chains, &shaders, min_dimension, level.level));
+    }
     let layer = rasterise(&lines, fb.width, fb.height);
     let points: usize = lines.iter().map(|l| l.points.len()).sum();
     let image = ContourImage {

@@ -15,8 +15,9 @@
 //! absent: none); `settings` (spp or adaptive samples, filter, seed, face, integrator,
 //! trace depths).
 //! **Writes:** `outputs.image` (with the samples each pixel took and, when some material has
-//! a contour shader, the contour store: what each pixel centre sees), returned to the
-//! runner.
+//! a contour shader, the contour store: what each pixel centre sees; when an output asks
+//! for a component pass and the run is not a farm part, the component passes), returned to
+//! the runner.
 //! **Runs when:** the run renders and a render camera exists.
 //! **After this stage:** `outputs.image` holds finite beauty, alpha, depth and normal buffers of
 //! the camera's resolution; each pixel depends only on (seed, pixel index, sample index).
@@ -24,14 +25,14 @@
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use glam::{Vec2, Vec3};
+use glam::{DVec3, Vec2, Vec3};
 use hecs::World;
 use rayon::prelude::*;
 
 use super::prelude::*;
 use crate::accel::RayKind;
 use crate::adaptive::{refine_flags, PixelSamples, SampleBudget};
-use crate::components::{ContourShader, Interior};
+use crate::components::{ContourContrast, ContourShader, Interior};
 use crate::contour::{ContourStore, Probe};
 use crate::diagnostic::{samples_view, Diagnostic};
 use crate::farm::{Part, Split};
@@ -41,8 +42,9 @@ use crate::progress::Progress;
 use crate::sampling::{fold_seed, Sampler};
 use crate::scene_view::{light_set, render_view, WithEnvironment};
 use crate::schedule::any_with;
-use crate::shading::integrator::{camera_hit, volume, CameraHit};
-use crate::shading::{shade_hit, CameraRays, FilterSampler, ShadeContext, Volumes};
+use crate::shading::integrator::components::{camera_sample, Component, Components};
+use crate::shading::integrator::{camera_hit, CameraHit};
+use crate::shading::{CameraRays, FilterSampler, ShadeContext, Volumes};
 
 /// Run condition: a render camera exists.
 pub fn should_run(world: &World, frame: &Frame) -> Decision {
@@ -151,6 +153,7 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
         width,
         sample_offset: first_samples.start,
         cancel: &cancel,
+        components: part.is_none() && wants_components(&camera),
     };
     // Runs `f` on every pixel, rows in parallel, polling for cancellation per pixel (one
     // pixel is at most `max` samples of work).
@@ -209,6 +212,9 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
         return Err(StageError::Interrupted);
     }
     let (mut taken, mut dropped) = (0u64, 0u64);
+    let mut components = shade
+        .components
+        .then(|| vec![[Vec3::ZERO; 6]; width * height]);
     let mut sums = part.map(|_| PixelSums {
         sums: vec![Default::default(); width * height],
         covered: vec![0; width * height],
@@ -232,6 +238,9 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
         fb.object_id[i] = p.object_id;
         fb.material_id[i] = p.material_id;
         fb.samples[i] = p.samples.taken;
+        if let Some(c) = &mut components {
+            c[i] = p.component_values();
+        }
         taken += u64::from(p.samples.taken);
         dropped += u64::from(p.samples.dropped);
     }
@@ -242,6 +251,7 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
         fb.beauty = samples_view(&fb.samples, budget.max);
     }
     fb.sums = sums;
+    fb.components = components;
     fb.contour_store = contour_store(world, frame, &fb);
     Ok(Work::new(taken, "samples").with_output(StageOutput::Image(fb)))
 }
@@ -259,7 +269,27 @@ fn contour_store(world: &World, frame: &Frame, fb: &FrameBuffers) -> Option<Cont
     let view = render_view(world)?.without(frame.inputs.settings.disabled);
     let rays = CameraRays::with_lenses(&view.camera, &view.lenses);
     let probe = Probe::new(frame.outputs.geometry.as_ref(), &rays);
-    Some(probe.store(fb.width, fb.height, &fb.beauty))
+    let mut store = probe.store(fb.width, fb.height, &fb.beauty);
+    let ray_depth = world
+        .query::<&ContourContrast>()
+        .iter()
+        .next()
+        .map_or(0, |c| c.ray_depth);
+    for level in 1..=ray_depth {
+        let probe = Probe::new(frame.outputs.geometry.as_ref(), &rays).at_level(level);
+        store
+            .deeper
+            .push(probe.store(fb.width, fb.height, &fb.beauty));
+    }
+    Some(store)
+}
+
+/// Whether some output of `camera` asks for a component pass (emission, diffuse, …).
+fn wants_components(camera: &crate::components::Camera) -> bool {
+    camera
+        .outputs
+        .iter()
+        .any(|o| o.passes.iter().any(|p| p.component().is_some()))
 }
 
 /// One pixel: its centre-sample passes and its samples so far.
@@ -270,6 +300,8 @@ struct PixelResult {
     object_id: u32,
     material_id: u32,
     samples: PixelSamples,
+    /// Sums of the finite samples' components (only when component passes are asked for).
+    components: Option<Box<[DVec3; 6]>>,
 }
 
 impl PixelResult {
@@ -281,7 +313,15 @@ impl PixelResult {
             object_id: 0,
             material_id: 0,
             samples: PixelSamples::default(),
+            components: None,
         }
+    }
+
+    /// The component passes' values: each component's sum over the samples taken.
+    fn component_values(&self) -> [Vec3; 6] {
+        let n = f64::from(self.samples.taken.max(1));
+        let sums = self.components.as_deref().copied().unwrap_or_default();
+        sums.map(|s| (s / n).as_vec3())
     }
 }
 
@@ -295,6 +335,8 @@ struct PixelShader<'a> {
     /// Index of the first sample this run takes of each pixel (a samples-split part).
     sample_offset: u32,
     cancel: &'a AtomicBool,
+    /// Whether to record the component passes.
+    components: bool,
 }
 
 impl PixelShader<'_> {
@@ -314,7 +356,7 @@ impl PixelShader<'_> {
                 }
             }
         }
-        self.take(&mut result.samples, x, y, count);
+        self.take(&mut result, x, y, count);
         result
     }
 
@@ -325,7 +367,7 @@ impl PixelShader<'_> {
             if batch == 0 {
                 break;
             }
-            self.take(&mut p.samples, x, y, batch);
+            self.take(p, x, y, batch);
             if p.samples.converged_near(budget.contrast, delta) {
                 break;
             }
@@ -334,12 +376,17 @@ impl PixelShader<'_> {
 
     /// Takes the next `count` samples of pixel `(x, y)` (sample indices continue from the
     /// samples already taken).
-    fn take(&self, samples: &mut PixelSamples, x: usize, y: usize, count: u32) {
+    fn take(&self, result: &mut PixelResult, x: usize, y: usize, count: u32) {
+        if self.components && result.components.is_none() {
+            result.components = Some(Box::default());
+        }
+        let samples = &mut result.samples;
+        let mut sums = result.components.as_deref_mut();
         let pixel = (y * self.width + x) as u64;
         let Some(ctx) = self.ctx else {
             // An empty scene: every sample misses.
             for _ in 0..count {
-                samples.add(Vec3::ZERO, false);
+                result.samples.add(Vec3::ZERO, false);
             }
             return;
         };
@@ -362,15 +409,27 @@ impl PixelShader<'_> {
                 .rays
                 .ray(film.x, film.y, lens_u)
                 .map(|ray| (ray, camera_hit(ctx, &ray)));
-            match hit {
-                Some((ray, CameraHit::Surface(hit))) => {
-                    let l = shade_hit(ctx, &ray, &hit, &mut sampler);
-                    let l = volume::through_segment(ctx, &ray, &hit, l, &mut sampler);
-                    samples.add(l, true);
+            let mut parts = Components::default();
+            let recording = sums.is_some().then_some(&mut parts);
+            let (l, covered) = match hit {
+                Some((ray, CameraHit::Surface(hit))) => (
+                    camera_sample(ctx, &ray, &hit, &mut sampler, recording),
+                    true,
+                ),
+                Some((_, CameraHit::Light(le))) => (le, true),
+                Some((_, CameraHit::Miss(le))) => (le, false),
+                None => (Vec3::ZERO, false),
+            };
+            samples.add(l, covered);
+            if let Some(sums) = sums.as_deref_mut() {
+                if !matches!(hit, Some((_, CameraHit::Surface(_)))) {
+                    parts.add(Component::Emission, l);
                 }
-                Some((_, CameraHit::Light(le))) => samples.add(le, true),
-                Some((_, CameraHit::Miss(le))) => samples.add(le, false),
-                None => samples.add(Vec3::ZERO, false),
+                if l.is_finite() {
+                    for (sum, part) in sums.iter_mut().zip(parts.parts) {
+                        *sum += part.as_dvec3();
+                    }
+                }
             }
         }
     }

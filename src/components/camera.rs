@@ -26,6 +26,51 @@ pub enum Pass {
     /// in EXR; in PNG the contours composited over the beauty (or, without `Beauty`, over
     /// the imager's background colour, white without one).
     Contours,
+    /// Component pass (EXR `emission.R/G/B`): light seen without scattering — surface
+    /// emission at the first hit, light-independent shaders, visible lights and the
+    /// environment behind everything. The six component passes sum to the beauty.
+    Emission,
+    /// Component pass (EXR `diffuse_direct.R/G/B`): light from the lights through the diffuse
+    /// lobes of the first hit (and a `Local` model's terms).
+    DiffuseDirect,
+    /// Component pass (EXR `diffuse_indirect.R/G/B`): further bounces through the diffuse
+    /// lobes of the first hit, photon maps, ambient terms.
+    DiffuseIndirect,
+    /// Component pass (EXR `specular.R/G/B`): light through the glossy and mirror lobes of
+    /// the first hit.
+    Specular,
+    /// Component pass (EXR `transmission.R/G/B`): light refracted or passed through at the
+    /// first hit.
+    Transmission,
+    /// Component pass (EXR `volume.R/G/B`): light scattered by fog on the camera ray.
+    Volume,
+}
+
+impl Pass {
+    /// The component passes, in the order of `FrameBuffers::components`.
+    pub const COMPONENTS: [Pass; 6] = [
+        Pass::Emission,
+        Pass::DiffuseDirect,
+        Pass::DiffuseIndirect,
+        Pass::Specular,
+        Pass::Transmission,
+        Pass::Volume,
+    ];
+
+    /// For a component pass: its index in [`Pass::COMPONENTS`] and its EXR layer name.
+    pub fn component(&self) -> Option<(usize, &'static str)> {
+        let name = match self {
+            Pass::Emission => "emission",
+            Pass::DiffuseDirect => "diffuse_direct",
+            Pass::DiffuseIndirect => "diffuse_indirect",
+            Pass::Specular => "specular",
+            Pass::Transmission => "transmission",
+            Pass::Volume => "volume",
+            _ => return None,
+        };
+        let index = Pass::COMPONENTS.iter().position(|p| p == self)?;
+        Some((index, name))
+    }
 }
 
 /// File formats for outputs.

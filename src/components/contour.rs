@@ -64,15 +64,27 @@ pub enum ContourShader {
         /// Width where the surface is white or brighter (percent).
         lit_width: f32,
     },
+    /// Width thinning with the layers in front: with `k` the number of surfaces the camera
+    /// ray passed, or was reflected or refracted by, before reaching the line's surface
+    /// (0 for what the camera sees directly; contours behind the first hit need the
+    /// contrast's `ray_depth`), `width = width · thinning^k`.
+    Layered {
+        /// Line colour.
+        color: Vec4,
+        /// Width with no layer in front (percent).
+        width: f32,
+        /// Factor per layer in front, in (0, 1].
+        thinning: f32,
+    },
 }
 
 impl ContourShader {
     /// Every width the shader may produce, percent (for validation).
     pub fn widths(&self) -> Vec<f32> {
         match *self {
-            ContourShader::Simple { width, .. } | ContourShader::FactorColor { width, .. } => {
-                vec![width]
-            }
+            ContourShader::Simple { width, .. }
+            | ContourShader::FactorColor { width, .. }
+            | ContourShader::Layered { width, .. } => vec![width],
             ContourShader::DepthFade {
                 near_width,
                 far_width,
@@ -109,6 +121,10 @@ pub struct ContourContrast {
     pub depth: f32,
     /// Between a surface and the background: silhouettes (default on).
     pub background: bool,
+    /// How many mirror, refraction or transparency levels behind the first hit also get
+    /// contours (default 0: only what the camera sees directly). Level `k` follows the
+    /// strongest delta branch (mirror, refraction, pass-through) of each surface `k` times.
+    pub ray_depth: u32,
 }
 
 impl Default for ContourContrast {
@@ -120,6 +136,7 @@ impl Default for ContourContrast {
             normal_angle: 60.0,
             depth: 0.25,
             background: true,
+            ray_depth: 0,
         }
     }
 }

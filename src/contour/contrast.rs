@@ -37,6 +37,9 @@ impl Contrast {
     /// Whether an edge runs between `a` and `b`.
     pub fn differs(&self, a: &ContourSample, b: &ContourSample) -> bool {
         let c = &self.settings;
+        if a.is_absent() || b.is_absent() {
+            return false;
+        }
         match (a.is_background(), b.is_background()) {
             (true, true) => return false,
             (false, false) => {}
@@ -188,6 +191,7 @@ mod tests {
             normal_angle: 180.0,
             depth: f32::INFINITY,
             background: false,
+            ray_depth: 0,
         });
         for b in [ContourSample::BACKGROUND, surface(2, 2, -Vec3::Z, 9.0)] {
             assert!(!none.differs(&a, &b));

@@ -12,8 +12,9 @@ use crate::components::ContourShader;
 const LUMINANCE: Vec3 = Vec3::new(0.2126, 0.7152, 0.0722);
 
 /// Colour (linear RGBA, straight alpha) and width (pixels) of the line at `c` drawn by
-/// `shader`, in an image whose smaller dimension is `min_dimension` pixels.
-pub fn style(shader: &ContourShader, c: &Crossing, min_dimension: f32) -> (Vec4, f32) {
+/// `shader`, in an image whose smaller dimension is `min_dimension` pixels; `level`: the
+/// ray level of the crossing's samples (the layers in front, see `ContourStore::level`).
+pub fn style(shader: &ContourShader, c: &Crossing, min_dimension: f32, level: u32) -> (Vec4, f32) {
     let (color, percent) = match *shader {
         ContourShader::Simple { color, width } => (color, width),
         ContourShader::DepthFade {
@@ -56,16 +57,26 @@ pub fn style(shader: &ContourShader, c: &Crossing, min_dimension: f32) -> (Vec4,
             let light = c.front.color.dot(LUMINANCE).clamp(0.0, 1.0);
             (color, dark_width + (lit_width - dark_width) * light)
         }
+        ContourShader::Layered {
+            color,
+            width,
+            thinning,
+        } => (
+            color,
+            width * thinning.powi(level.min(i32::MAX as u32) as i32),
+        ),
     };
     (color, percent * 0.01 * min_dimension)
 }
 
-/// Styles every chain with the contour shader of its material (`shaders[material − 1]`;
-/// chains of materials without one were never linked, and are dropped if met).
+/// Styles every chain of ray level `level` with the contour shader of its material
+/// (`shaders[material − 1]`; chains of materials without one were never linked, and are
+/// dropped if met).
 pub fn styled_lines(
     chains: Vec<Chain>,
     shaders: &[Option<ContourShader>],
     min_dimension: f32,
+    level: u32,
 ) -> Vec<ContourLine> {
     chains
         .into_iter()
@@ -77,7 +88,7 @@ pub fn styled_lines(
                 .points
                 .iter()
                 .map(|p| {
-                    let (color, width) = style(shader, &p.crossing, min_dimension);
+                    let (color, width) = style(shader, &p.crossing, min_dimension, level);
                     ContourPoint {
                         pos: p.pos,
                         color,
@@ -129,7 +140,7 @@ mod tests {
             color: black,
             width: 1.0,
         };
-        assert_eq!(style(&simple, &c, 300.0), (black, 3.0), "1 % of 300 px");
+        assert_eq!(style(&simple, &c, 300.0, 0), (black, 3.0), "1 % of 300 px");
         let fade = ContourShader::DepthFade {
             near: 2.0,
             far: 6.0,
@@ -138,7 +149,7 @@ mod tests {
             near_width: 2.0,
             far_width: 0.0,
         };
-        let (col, w) = style(&fade, &c, 100.0);
+        let (col, w) = style(&fade, &c, 100.0, 0);
         assert!((col - Vec4::new(0.25, 0.25, 0.25, 1.0)).abs().max_element() < 1e-6);
         assert!((w - 1.5).abs() < 1e-6);
         let curv = ContourShader::Curvature {
@@ -147,7 +158,7 @@ mod tests {
             max_width: 2.0,
         };
         assert!(
-            (style(&curv, &c, 100.0).1 - 1.0).abs() < 1e-5,
+            (style(&curv, &c, 100.0, 0).1 - 1.0).abs() < 1e-5,
             "90° is half"
         );
         let factor = ContourShader::FactorColor {
@@ -155,7 +166,7 @@ mod tests {
             width: 1.0,
         };
         assert_eq!(
-            style(&factor, &c, 100.0).0,
+            style(&factor, &c, 100.0, 0).0,
             Vec4::new(0.25, 0.25, 0.25, 1.0)
         );
         let light = ContourShader::WidthFromLight {
@@ -163,6 +174,21 @@ mod tests {
             dark_width: 2.0,
             lit_width: 1.0,
         };
-        assert!((style(&light, &c, 100.0).1 - 1.5).abs() < 1e-5, "L = 0.5");
+        assert!(
+            (style(&light, &c, 100.0, 0).1 - 1.5).abs() < 1e-5,
+            "L = 0.5"
+        );
+        let layered = ContourShader::Layered {
+            color: black,
+            width: 2.0,
+            thinning: 0.5,
+        };
+        for (level, width) in [(0, 2.0), (1, 1.0), (3, 0.25)] {
+            assert_eq!(
+                style(&layered, &c, 100.0, level),
+                (black, width),
+                "2·0.5^{level}"
+            );
+        }
     }
 }

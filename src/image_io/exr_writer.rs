@@ -1,5 +1,5 @@
 //! OpenEXR encoding: linear f32 channels for every requested pass (`R G B A`, `Z`,
-//! `N.X N.Y N.Z`), one layer, lossless compression.
+//! `N.X N.Y N.Z`, the component passes' `emission.R …`), one layer, lossless compression.
 
 use exr::prelude::*;
 
@@ -37,6 +37,17 @@ pub fn encode_exr_with(
         add("N.X", fb.normal.iter().map(|n| n.x).collect());
         add("N.Y", fb.normal.iter().map(|n| n.y).collect());
         add("N.Z", fb.normal.iter().map(|n| n.z).collect());
+    }
+    if fb.components.is_none() && passes.iter().any(|p| p.component().is_some()) {
+        return Err("the component passes were not computed for this image".into());
+    }
+    if let Some(components) = &fb.components {
+        for (index, layer) in passes.iter().filter_map(Pass::component) {
+            for (channel, pick) in [("R", 0), ("G", 1), ("B", 2)] {
+                let values = components.iter().map(|c| c[index][pick]).collect();
+                add(&format!("{layer}.{channel}"), values);
+            }
+        }
     }
     if passes.contains(&Pass::ObjectId) {
         channels.push(AnyChannel::new(

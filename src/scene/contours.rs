@@ -114,6 +114,25 @@ pub fn contour(src: &mut Sources, item: &Item<'_, MaterialDesc>) -> Option<Conto
                 lit_width: lit_width as f32,
             },
         ),
+        ContourDesc::Layered {
+            color,
+            width,
+            thinning,
+        } => {
+            let p = format!("{base}.Layered.thinning");
+            if ck.finite(&p, "thinning", thinning) && !(thinning > 0.0 && thinning <= 1.0) {
+                ck.error(&p, format!("thinning must be in (0, 1], found {thinning}"));
+                ok = false;
+            }
+            (
+                "Layered",
+                ContourShader::Layered {
+                    color: colour(&mut ck, "Layered", "color", color),
+                    width: width as f32,
+                    thinning: thinning as f32,
+                },
+            )
+        }
     };
     let mut ok = colours_ok.get() && ok;
     for (name, w) in width_fields(d) {
@@ -142,9 +161,9 @@ pub fn contour(src: &mut Sources, item: &Item<'_, MaterialDesc>) -> Option<Conto
 /// The width fields of a contour shader, by name.
 fn width_fields(d: &ContourDesc) -> Vec<(&'static str, f64)> {
     match *d {
-        ContourDesc::Simple { width, .. } | ContourDesc::FactorColor { width, .. } => {
-            vec![("width", width)]
-        }
+        ContourDesc::Simple { width, .. }
+        | ContourDesc::FactorColor { width, .. }
+        | ContourDesc::Layered { width, .. } => vec![("width", width)],
         ContourDesc::DepthFade {
             near_width,
             far_width,
@@ -163,11 +182,15 @@ fn width_fields(d: &ContourDesc) -> Vec<(&'static str, f64)> {
     }
 }
 
+/// Most mirror/refraction levels contours are drawn through (`contours.ray_depth`).
+pub const MAX_RAY_DEPTH: u32 = 8;
+
 /// The contour contrast of `options` (defaults without them).
 pub fn contrast(src: &mut Sources, options: Option<&Item<'_, OptionsDesc>>) -> ContourContrast {
-    let Some((item, c)) = options.and_then(|o| o.desc.contours.map(|c| (o, c.contrast))) else {
+    let Some((item, contours)) = options.and_then(|o| o.desc.contours.map(|c| (o, c))) else {
         return ContourContrast::default();
     };
+    let c = contours.contrast;
     let mut ck = Checker {
         src,
         file: item.file,
@@ -195,7 +218,17 @@ pub fn contrast(src: &mut Sources, options: Option<&Item<'_, OptionsDesc>>) -> C
             ),
         );
     }
+    if contours.ray_depth > MAX_RAY_DEPTH {
+        ck.error(
+            &item.at(".contours.ray_depth"),
+            format!(
+                "contour ray_depth must be at most {MAX_RAY_DEPTH}, found {}",
+                contours.ray_depth
+            ),
+        );
+    }
     ContourContrast {
+        ray_depth: contours.ray_depth.min(MAX_RAY_DEPTH),
         instance: c.instance,
         object: c.object,
         material: c.material,

@@ -396,6 +396,18 @@ pub enum PassDesc {
     MaterialId,
     /// The contour layer (EXR), or contours composited (PNG).
     Contours,
+    /// Component pass: light seen without scattering (EXR only).
+    Emission,
+    /// Component pass: direct light through the diffuse lobes (EXR only).
+    DiffuseDirect,
+    /// Component pass: indirect light through the diffuse lobes (EXR only).
+    DiffuseIndirect,
+    /// Component pass: light through the glossy and mirror lobes (EXR only).
+    Specular,
+    /// Component pass: refracted or passed-through light (EXR only).
+    Transmission,
+    /// Component pass: light scattered by fog on the camera ray (EXR only).
+    Volume,
 }
 
 /// `lights: [(...)]`: a light.

@@ -72,6 +72,18 @@ pub enum ContourDesc {
         #[serde(default = "quarter")]
         lit_width: f64,
     },
+    /// Width thinning by the layers in front: `width · thinning^k`.
+    Layered {
+        /// Colour, default `(0, 0, 0, 1)`.
+        #[serde(default = "black")]
+        color: V4,
+        /// Width with no layer in front, percent, default 0.5.
+        #[serde(default = "half")]
+        width: f64,
+        /// Factor per layer in front, default 0.5, in (0, 1].
+        #[serde(default = "half_factor")]
+        thinning: f64,
+    },
 }
 
 /// `contours: (...)` in `options`.
@@ -80,6 +92,9 @@ pub enum ContourDesc {
 pub struct ContoursDesc {
     /// Which sample differences make a contour.
     pub contrast: ContrastDesc,
+    /// Mirror/refraction/transparency levels behind the first hit that get contours too,
+    /// default 0, at most 8.
+    pub ray_depth: u32,
 }
 
 /// `contrast: (...)` in `contours`: mental ray's contour contrast.

@@ -465,13 +465,19 @@ fn output(ck: &mut Checker<'_>, path: &str, o: &OutputDesc) -> Option<OutputSpec
             PassDesc::ObjectId => Pass::ObjectId,
             PassDesc::MaterialId => Pass::MaterialId,
             PassDesc::Contours => Pass::Contours,
+            PassDesc::Emission => Pass::Emission,
+            PassDesc::DiffuseDirect => Pass::DiffuseDirect,
+            PassDesc::DiffuseIndirect => Pass::DiffuseIndirect,
+            PassDesc::Specular => Pass::Specular,
+            PassDesc::Transmission => Pass::Transmission,
+            PassDesc::Volume => Pass::Volume,
         };
         let ppath = format!("{path}.passes[{k}]");
         if format == ImageFormat::Png
-            && matches!(
+            && (matches!(
                 pass,
                 Pass::Depth | Pass::Normal | Pass::ObjectId | Pass::MaterialId
-            )
+            ) || pass.component().is_some())
         {
             ck.src.error(
                 ck.file,

@@ -584,3 +584,143 @@ fn dash_o_vector_without_contour_shaders_is_a_usage_error() {
     assert_eq!(crate::common::dir_names(&dir), ["plain.ron"]);
     let _ = std::fs::remove_dir_all(dir);
 }
+
+/// A ball behind the camera, seen only in a mirror facing the camera: no lines at the
+/// default `ray_depth: 0`; with `ray_depth: 1` one closed outline, on the projected circle
+/// of the ball's mirror image (distance 5 + 15) and inside the mirror's region.
+#[test]
+fn an_object_seen_only_in_a_mirror_gets_lines_in_the_mirror_with_ray_depth() {
+    let body = r#"
+    materials: [(name: "ink", shader: Constant(color: (0.8, 0.8, 0.8)),
+                 contour: Simple(color: (0, 0, 0, 1), width: 1.0)),
+                (name: "glass", shader: Mirror(color: (0.9, 0.9, 0.9)))],
+    objects: [(name: "ball", mesh: Sphere(radius: 1.0), material: "ink",
+               approximation: Parametric(u: 96, v: 48)),
+              (name: "mirror", mesh: Inline(vertices: [(-1, 0, -1), (1, 0, -1), (1, 0, 1), (-1, 0, 1)],
+               polygons: [[0, 1, 2, 3]]), material: "glass")],
+    instances: [(name: "ball_1", of: "ball", transform: [Translate((0, -15, 0))]),
+                (name: "mirror_1", of: "mirror")],
+    groups: [(name: "root", members: ["ball_1", "mirror_1"])],
+"#;
+    let (w, h) = (80u32, 60u32);
+    let text = |depth: u32| {
+        scene(
+            w,
+            h,
+            (0.0, -5.0, 0.0),
+            &format!("contours: (ray_depth: {depth})"),
+            body,
+            r#"(file: "m.svg")"#,
+        )
+    };
+    assert!(
+        contours(&text(0)).lines.is_empty(),
+        "the ball is behind the camera"
+    );
+    let img = contours(&text(1));
+    // The mirror image of the ball: radius 1 at distance 5 + 15.
+    let alpha = (1.0f32 / 20.0).asin();
+    let r = alpha.tan() / 20f32.to_radians().tan() * h as f32 / 2.0;
+    let mirror = 1.0 / 5.0 / 20f32.to_radians().tan() * h as f32 / 2.0;
+    let centre = Vec2::new(w as f32, h as f32) / 2.0;
+    assert_eq!(img.lines.len(), 1, "one outline");
+    assert!(img.lines[0].closed);
+    for p in &img.lines[0].points {
+        let d = (p.pos - centre).length();
+        assert!((d - r).abs() < 0.35, "{:?}: {d} vs radius {r}", p.pos);
+        let off = (p.pos - centre).abs();
+        assert!(
+            off.max_element() < mirror,
+            "inside the mirror ({mirror} px)"
+        );
+    }
+}
+
+/// `Layered(width: 2, thinning: 0.5)` on a ball whose right half is seen through a
+/// transparent sheet (`Opacity` 0.3, no contour shader): with `ray_depth: 1` the left half of
+/// the outline (no layer in front) is 2 % of 60 px = 1.2 px wide, the right half (one layer in
+/// front) 0.6 px; at `ray_depth: 0` only the left half is drawn.
+#[test]
+fn layered_contours_thin_by_the_layers_in_front() {
+    let body = r#"
+    materials: [(name: "ink", shader: Constant(color: (0.8, 0.8, 0.8)),
+                 contour: Layered(color: (0, 0, 0, 1), width: 2.0, thinning: 0.5)),
+                (name: "sheet", shader: Opacity(opacity: (0.3, 0.3, 0.3), input: Constant(color: (1, 1, 1))))],
+    objects: [(name: "ball", mesh: Sphere(radius: 1.0), material: "ink",
+               approximation: Parametric(u: 96, v: 48)),
+              (name: "sheet", mesh: Inline(vertices: [(0, -2, -3), (3, -2, -3), (3, -2, 3), (0, -2, 3)],
+               polygons: [[0, 1, 2, 3]]), material: "sheet")],
+    instances: [(name: "ball_1", of: "ball"), (name: "sheet_1", of: "sheet")],
+    groups: [(name: "root", members: ["ball_1", "sheet_1"])],
+"#;
+    let (w, h) = (80u32, 60u32);
+    let centre = w as f32 / 2.0;
+    let widths = |depth: u32| -> Vec<(f32, f32)> {
+        let img = contours(&scene(
+            w,
+            h,
+            (0.0, -5.0, 0.0),
+            &format!("contours: (ray_depth: {depth})"),
+            body,
+            r#"(file: "l.svg")"#,
+        ));
+        img.lines
+            .iter()
+            .flat_map(|l| l.points.iter().map(|p| (p.pos.x, p.width)))
+            .collect()
+    };
+    for depth in [0, 1] {
+        let points = widths(depth);
+        let (mut near, mut behind) = (0, 0);
+        for (x, width) in &points {
+            if (width - 1.2).abs() < 1e-4 {
+                assert!(*x < centre + 0.5, "ray_depth {depth}: full width at x {x}");
+                near += 1;
+            } else {
+                assert!(
+                    (width - 0.6).abs() < 1e-4,
+                    "ray_depth {depth}: width {width}"
+                );
+                assert!(*x > centre - 0.5, "ray_depth {depth}: thinned at x {x}");
+                behind += 1;
+            }
+        }
+        assert!(
+            near > 10,
+            "ray_depth {depth}: {near} points on the left half"
+        );
+        match depth {
+            0 => assert_eq!(behind, 0),
+            _ => assert!(behind > 10, "{behind} points behind the sheet"),
+        }
+    }
+}
+
+/// `Layered(thinning: 0)` and `ray_depth: 9` are located errors.
+#[test]
+fn a_zero_thinning_and_a_too_deep_ray_depth_are_located_errors() {
+    let body = format!(
+        "materials: [(name: \"m\", shader: Lambert(albedo: (0.5, 0.5, 0.5)),\n contour: Layered(thinning: 0))],{QUAD}"
+    );
+    let e = diagnostics(&scene(
+        8,
+        8,
+        (0.0, -5.0, 0.5),
+        "contours: (ray_depth: 9)",
+        &body,
+        r#"(file: "a.svg")"#,
+    ))
+    .unwrap_err();
+    let lines: Vec<&str> = e.lines().filter(|l| l.contains("error:")).collect();
+    assert_eq!(lines.len(), 2, "{e}");
+    assert!(
+        lines[0].starts_with("bad.ron:2:")
+            && lines[0].ends_with(": error: contour ray_depth must be at most 8, found 9"),
+        "{e}"
+    );
+    assert!(
+        lines[1].starts_with("bad.ron:7:")
+            && lines[1].ends_with(": error: thinning must be in (0, 1], found 0"),
+        "{e}"
+    );
+}

@@ -14,6 +14,7 @@ mod cli_bake;
 mod cli_farm;
 mod cli_photons;
 mod cli_plan;
+mod component_passes;
 mod contours;
 mod docs_reference;
 mod environment;

@@ -99,6 +99,16 @@ pub fn eval(m: &MetallicRoughness, wo: Vec3, wi: Vec3) -> Vec3 {
     dielectric * (1.0 - m.metallic) + metal * m.metallic
 }
 
+/// The diffuse base of [`eval`] (its dielectric part's Lambert-like term), for component
+/// passes; the rest of [`eval`] is the glossy highlight.
+pub fn eval_diffuse(m: &MetallicRoughness, wo: Vec3, wi: Vec3) -> Vec3 {
+    if wo.z <= 0.0 || wi.z <= 0.0 || (wo + wi).normalize_or_zero() == Vec3::ZERO {
+        return Vec3::ZERO;
+    }
+    let diffuse = diffuse_weight(wo.z) * diffuse_weight(wi.z) / (1.0 - DIELECTRIC_F0);
+    m.base * (diffuse * FRAC_1_PI) * (1.0 - m.metallic)
+}
+
 /// Solid-angle pdf of [`sample`].
 pub fn pdf(m: &MetallicRoughness, wo: Vec3, wi: Vec3) -> f32 {
     let p = m.p_specular();

@@ -415,6 +415,16 @@ impl Bsdf {
             .fold(Vec3::ZERO, |s, (w, l)| s + *w * l.eval(wo, wi))
     }
 
+    /// The diffuse share of [`Bsdf::eval`]: the Lambert lobes and the diffuse base of a
+    /// metallic-roughness lobe (the rest is glossy), for component passes.
+    pub fn eval_diffuse(&self, wo: Vec3, wi: Vec3) -> Vec3 {
+        self.lobes().iter().fold(Vec3::ZERO, |s, (w, l)| match l {
+            Lobe::Lambert => s + *w * l.eval(wo, wi),
+            Lobe::MetallicRoughness(m) => s + *w * metallic_roughness::eval_diffuse(m, wo, wi),
+            _ => s,
+        })
+    }
+
     /// Solid-angle pdf with which [`Bsdf::sample`] returns the non-delta direction `wi`.
     pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
         self.lobes()

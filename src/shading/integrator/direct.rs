@@ -11,14 +11,27 @@
 
 use glam::Vec3;
 
-use super::{depth_exceeded, light_loop, local, trace, volume, Depth, ShadeContext, Vertex};
+use super::components::{local_component, note, scale, Component, Components};
+use super::{depth_exceeded, light_loop_split, local, trace, volume, Depth, ShadeContext, Vertex};
 use crate::accel::{Hit, Ray};
 use crate::sampling::Sampler;
 use crate::shading::surface::unlit_radiance;
 
 /// Radiance toward the origin of `ray`, which hits the scene at `hit` (a camera ray).
 pub fn radiance(ctx: &ShadeContext<'_>, ray: &Ray, hit: &Hit, sampler: &mut Sampler) -> Vec3 {
-    vertex_radiance(ctx, ray, hit, sampler, Depth::FIRST)
+    vertex_radiance(ctx, ray, hit, sampler, Depth::FIRST, None)
+}
+
+/// [`radiance`] (the same value, bit for bit), also recording it per component into
+/// `parts` when given ([`super::components`]).
+pub fn radiance_split(
+    ctx: &ShadeContext<'_>,
+    ray: &Ray,
+    hit: &Hit,
+    sampler: &mut Sampler,
+    parts: Option<&mut Components>,
+) -> Vec3 {
+    vertex_radiance(ctx, ray, hit, sampler, Depth::FIRST, parts)
 }
 
 fn vertex_radiance(
@@ -27,33 +40,55 @@ fn vertex_radiance(
     hit: &Hit,
     sampler: &mut Sampler,
     depth: Depth,
+    mut parts: Option<&mut Components>,
 ) -> Vec3 {
     let v = Vertex::new(ctx, ray, hit);
     if !v.visible {
         return Vec3::ZERO;
     }
     let mut radiance = v.emitted();
+    note(&mut parts, Component::Emission, radiance);
     if let Some(unlit) = unlit_radiance(&v.shader, v.wo.z) {
+        note(&mut parts, Component::Emission, unlit);
+        scale(&mut parts, v.transmittance);
         return v.transmittance * (radiance + unlit);
     }
     if depth.vertex > ctx.max_depth {
+        scale(&mut parts, v.transmittance);
         return v.transmittance * radiance;
     }
-    radiance += local::radiance(ctx, &v, sampler);
+    let l = local::radiance(ctx, &v, sampler);
+    note(&mut parts, local_component(&v.shader), l);
+    radiance += l;
     let Some(bsdf) = v.bsdf() else {
+        scale(&mut parts, v.transmittance);
         return v.transmittance * radiance;
     };
     radiance += v.shader.ambient();
+    note(&mut parts, Component::DiffuseIndirect, v.shader.ambient());
     if bsdf.has_non_delta() {
-        radiance += light_loop(ctx, &v, &bsdf, sampler, false);
-        radiance += ctx
+        let mut diffuse = Vec3::ZERO;
+        let share = parts.is_some().then_some(&mut diffuse);
+        let direct = light_loop_split(ctx, &v, &bsdf, sampler, false, share);
+        radiance += direct;
+        note(&mut parts, Component::DiffuseDirect, diffuse);
+        note(&mut parts, Component::Specular, direct - diffuse);
+        let photons = ctx
             .photons
             .map_or(Vec3::ZERO, |p| p.radiance(ctx, &v, &bsdf, sampler));
+        radiance += photons;
+        note(&mut parts, Component::DiffuseIndirect, photons);
     }
     for branch in bsdf.delta_branches(v.wo) {
+        let through = if branch.transmits {
+            Component::Transmission
+        } else {
+            Component::Specular
+        };
         let Some(next) = depth.after(ctx, !branch.transmits, branch.transmits) else {
             if let Some((le, _)) = depth_exceeded(ctx, v.frame.to_world(branch.wi)) {
                 radiance += branch.weight * le;
+                note(&mut parts, through, branch.weight * le);
             }
             continue;
         };
@@ -63,10 +98,12 @@ fn vertex_radiance(
         let (hit, lights, _) = trace(ctx, &ray, true);
         let mut incoming = lights;
         if let Some(h) = hit {
-            incoming += vertex_radiance(ctx, &ray, &h, sampler, next);
+            incoming += vertex_radiance(ctx, &ray, &h, sampler, next, None);
             incoming = volume::through_segment(ctx, &ray, &h, incoming, sampler);
         }
         radiance += branch.weight * incoming;
+        note(&mut parts, through, branch.weight * incoming);
     }
+    scale(&mut parts, v.transmittance);
     v.transmittance * radiance
 }

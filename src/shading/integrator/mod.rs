@@ -14,6 +14,7 @@
 //! beyond a reflection/refraction budget sees the environment or black, as the scene's
 //! environment says (`depth_exceeded`).
 
+pub mod components;
 pub mod direct;
 #[cfg(test)]
 pub(crate) mod fixture;
@@ -113,9 +114,21 @@ pub trait PhotonRadiance: Sync {
 
 /// Radiance arriving at the origin of the camera ray `ray` from its first hit `hit`.
 pub fn shade_hit(ctx: &ShadeContext<'_>, ray: &Ray, hit: &Hit, sampler: &mut Sampler) -> Vec3 {
+    shade_hit_split(ctx, ray, hit, sampler, None)
+}
+
+/// [`shade_hit`] (the same value, bit for bit), also recording the radiance per component
+/// into `parts` when given (see [`components`]).
+pub fn shade_hit_split(
+    ctx: &ShadeContext<'_>,
+    ray: &Ray,
+    hit: &Hit,
+    sampler: &mut Sampler,
+    parts: Option<&mut components::Components>,
+) -> Vec3 {
     match ctx.integrator {
-        Integrator::Direct => direct::radiance(ctx, ray, hit, sampler),
-        Integrator::Path => path::radiance(ctx, ray, hit, sampler),
+        Integrator::Direct => direct::radiance_split(ctx, ray, hit, sampler, parts),
+        Integrator::Path => path::radiance_split(ctx, ray, hit, sampler, parts),
     }
 }
 
@@ -281,8 +294,30 @@ pub fn light_loop(
     sampler: &mut Sampler,
     mis: bool,
 ) -> Vec3 {
+    light_loop_split(ctx, v, bsdf, sampler, mis, None)
+}
+
+/// [`light_loop`] (the same value, bit for bit), also adding the share of its diffuse lobes
+/// ([`Bsdf::eval_diffuse`]) to `diffuse` when given (component passes).
+pub fn light_loop_split(
+    ctx: &ShadeContext<'_>,
+    v: &Vertex<'_>,
+    bsdf: &Bsdf,
+    sampler: &mut Sampler,
+    mis: bool,
+    diffuse: Option<&mut Vec3>,
+) -> Vec3 {
     let f = |wi: Vec3, wi_world: Vec3| bsdf.eval(v.wo, wi) * v.bump_shadowing(wi_world);
-    gather(ctx, v, sampler, mis.then_some(bsdf), Response::Bsdf(&f))
+    let fd = |wi: Vec3, wi_world: Vec3| bsdf.eval_diffuse(v.wo, wi) * v.bump_shadowing(wi_world);
+    let share = diffuse.map(|d| (&fd as &dyn Fn(Vec3, Vec3) -> Vec3, d));
+    gather_split(
+        ctx,
+        v,
+        sampler,
+        mis.then_some(bsdf),
+        Response::Bsdf(&f),
+        share,
+    )
 }
 
 /// What a light sample arriving from `wi` (local; `wi_world` in world space) contributes
@@ -303,6 +338,23 @@ pub fn gather(
     mis: Option<&Bsdf>,
     response: Response<'_>,
 ) -> Vec3 {
+    gather_split(ctx, v, sampler, mis, response, None)
+}
+
+/// A share of a light response (its BSDF factor, as in [`Response::Bsdf`]) summed with the
+/// same samples as the whole, and where to add it.
+type Share<'a, 'b> = (&'a dyn Fn(Vec3, Vec3) -> Vec3, &'b mut Vec3);
+
+/// [`gather`], also adding the `share` response's sum (same samples, shadows and weights) to
+/// its target when given.
+fn gather_split(
+    ctx: &ShadeContext<'_>,
+    v: &Vertex<'_>,
+    sampler: &mut Sampler,
+    mis: Option<&Bsdf>,
+    response: Response<'_>,
+    mut share: Option<Share<'_, '_>>,
+) -> Vec3 {
     let mut radiance = Vec3::ZERO;
     for (i, light) in ctx.lights.lights.iter().enumerate() {
         if matches!(light, Light::Ambient { .. }) || !v.material.sees_light(i) {
@@ -314,6 +366,7 @@ pub fn gather(
             (light.sample_count(), Some(sampler.child_seed()))
         };
         let mut sum = Vec3::ZERO;
+        let mut shared = Vec3::ZERO;
         for j in 0..n {
             let u = match child.as_mut() {
                 Some(seed) => Sampler::new(*seed, j).next_2d(),
@@ -363,8 +416,14 @@ pub fn gather(
             };
             let c = if cosine { wi.z * w } else { w };
             sum += f * ls.contribution * shadow * c;
+            if let Some((g, _)) = &share {
+                shared += g(wi, ls.wi) * ls.contribution * shadow * c;
+            }
         }
         radiance += sum / n as f32;
+        if let Some((_, target)) = &mut share {
+            **target += shared / n as f32;
+        }
     }
     radiance
 }

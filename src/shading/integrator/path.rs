@@ -13,7 +13,8 @@
 
 use glam::Vec3;
 
-use super::{depth_exceeded, light_loop, local, trace, volume, Depth, ShadeContext, Vertex};
+use super::components::{local_component, Component, Components, PathLanes};
+use super::{depth_exceeded, light_loop_split, local, trace, volume, Depth, ShadeContext, Vertex};
 use crate::accel::{Hit, Ray};
 use crate::sampling::Sampler;
 use crate::shading::bsdf::Scatter;
@@ -25,6 +26,38 @@ const RR_START: u32 = 3;
 
 /// Radiance toward the origin of the camera ray `ray`, which hits the scene at `hit`.
 pub fn radiance(ctx: &ShadeContext<'_>, ray: &Ray, hit: &Hit, sampler: &mut Sampler) -> Vec3 {
+    radiance_split(ctx, ray, hit, sampler, None)
+}
+
+/// Records the contribution `x` (before the path throughput `beta`) in `parts`: in `first`
+/// at the first hit (no `lanes` yet), else through the first event's `lanes` (`emitted`:
+/// light emitted where the contribution starts, see [`PathLanes::record`]).
+fn record(
+    parts: &mut Option<&mut Components>,
+    lanes: &Option<PathLanes>,
+    beta: Vec3,
+    first: Component,
+    x: Vec3,
+    emitted: bool,
+) {
+    let Some(p) = parts.as_deref_mut() else {
+        return;
+    };
+    match lanes {
+        None => p.add(first, beta * x),
+        Some(l) => l.record(p, x, emitted),
+    }
+}
+
+/// [`radiance`] (the same value, bit for bit), also recording it per component into
+/// `parts` when given ([`super::components`]).
+pub fn radiance_split(
+    ctx: &ShadeContext<'_>,
+    ray: &Ray,
+    hit: &Hit,
+    sampler: &mut Sampler,
+    mut parts: Option<&mut Components>,
+) -> Vec3 {
     let mut radiance = Vec3::ZERO;
     let mut beta = Vec3::ONE;
     let mut depth = Depth::FIRST;
@@ -32,9 +65,14 @@ pub fn radiance(ctx: &ShadeContext<'_>, ray: &Ray, hit: &Hit, sampler: &mut Samp
     let mut hit = Some(*hit);
     // Origin and solid-angle pdf of the last non-delta BSDF sample (None: camera or delta).
     let mut prev: Option<(Vec3, f32)> = None;
+    // Component passes: the throughput per first event, once the path has scattered.
+    let mut lanes: Option<PathLanes> = None;
     while let Some(h) = hit {
         let v = Vertex::new(ctx, &ray, &h);
         beta *= v.transmittance;
+        if let Some(l) = &mut lanes {
+            l.scale(v.transmittance);
+        }
         if !v.visible {
             break;
         }
@@ -55,18 +93,42 @@ pub fn radiance(ctx: &ShadeContext<'_>, ray: &Ray, hit: &Hit, sampler: &mut Samp
                 }
             };
             radiance += beta * le * w;
+            record(&mut parts, &lanes, beta, Component::Emission, le * w, true);
         }
         if let Some(unlit) = unlit_radiance(&v.shader, v.wo.z) {
             radiance += beta * unlit;
+            record(&mut parts, &lanes, beta, Component::Emission, unlit, true);
             break;
         }
         if depth.vertex > ctx.max_depth {
             break;
         }
-        radiance += beta * local::radiance(ctx, &v, sampler);
+        let l = local::radiance(ctx, &v, sampler);
+        radiance += beta * l;
+        record(
+            &mut parts,
+            &lanes,
+            beta,
+            local_component(&v.shader),
+            l,
+            false,
+        );
         let Some(bsdf) = v.bsdf() else { break };
         if bsdf.has_non_delta() {
-            radiance += beta * light_loop(ctx, &v, &bsdf, sampler, true);
+            let mut diffuse = Vec3::ZERO;
+            let share = (parts.is_some() && lanes.is_none()).then_some(&mut diffuse);
+            let direct = light_loop_split(ctx, &v, &bsdf, sampler, true, share);
+            radiance += beta * direct;
+            let glossy = direct - diffuse;
+            record(
+                &mut parts,
+                &lanes,
+                beta,
+                Component::DiffuseDirect,
+                diffuse,
+                false,
+            );
+            record(&mut parts, &lanes, beta, Component::Specular, glossy, false);
         }
         if depth.vertex >= RR_START {
             let q = beta.max_element().min(0.95);
@@ -74,6 +136,9 @@ pub fn radiance(ctx: &ShadeContext<'_>, ray: &Ray, hit: &Hit, sampler: &mut Samp
                 break;
             }
             beta /= q;
+            if let Some(l) = &mut lanes {
+                l.scale(Vec3::splat(1.0 / q));
+            }
         }
         let u = Vec3::new(sampler.next_1d(), sampler.next_1d(), sampler.next_1d());
         let Some(s) = bsdf.sample(v.wo, u) else { break };
@@ -85,9 +150,15 @@ pub fn radiance(ctx: &ShadeContext<'_>, ray: &Ray, hit: &Hit, sampler: &mut Samp
                 power_heuristic(s.pdf, pdf_light)
             }
         };
+        let next_lanes = parts.is_some().then(|| match &lanes {
+            None => PathLanes::first(beta * s.weight(), &s, &bsdf, v.wo),
+            Some(l) => l.after(s.weight()),
+        });
         let Some(next) = depth.after(ctx, s.scatter == Scatter::Reflection, transmits) else {
             if let Some((le, pdf_light)) = depth_exceeded(ctx, v.frame.to_world(s.wi)) {
                 radiance += beta * s.weight() * le * mis(pdf_light);
+                let x = le * mis(pdf_light);
+                record(&mut parts, &next_lanes, beta, Component::Emission, x, true);
             }
             break;
         };
@@ -95,8 +166,13 @@ pub fn radiance(ctx: &ShadeContext<'_>, ray: &Ray, hit: &Hit, sampler: &mut Samp
             break;
         };
         beta *= s.weight();
+        lanes = next_lanes;
         if !s.delta && !transmits {
-            beta *= v.bump_shadowing(v.frame.to_world(s.wi));
+            let b = v.bump_shadowing(v.frame.to_world(s.wi));
+            beta *= b;
+            if let Some(l) = &mut lanes {
+                l.scale(Vec3::splat(b));
+            }
         }
         if !beta.is_finite() || beta.max_element() <= 0.0 {
             break;
@@ -105,10 +181,17 @@ pub fn radiance(ctx: &ShadeContext<'_>, ray: &Ray, hit: &Hit, sampler: &mut Samp
         if let (Some(h), Some(_)) = (&next_hit, ctx.volumes) {
             let seg = volume::segment(ctx, &next_ray, h, sampler);
             radiance += beta * seg.inscattered;
+            let x = seg.inscattered;
+            record(&mut parts, &lanes, beta, Component::Volume, x, false);
             beta *= seg.transmittance;
+            if let Some(l) = &mut lanes {
+                l.scale(seg.transmittance);
+            }
         }
         for (le, pdf_light) in crossed {
             radiance += beta * le * mis(pdf_light);
+            let x = le * mis(pdf_light);
+            record(&mut parts, &lanes, beta, Component::Emission, x, true);
         }
         prev = (!s.delta).then_some((v.sp.surface.p, s.pdf));
         ray = next_ray;
