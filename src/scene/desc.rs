@@ -12,6 +12,7 @@ pub use super::desc_geometry::{
     ApproximationDesc, AxisDesc, BasisDesc, DisplacementDesc, DisplacementModeDesc, MeshDesc,
     ScalarDesc, SpaceDesc,
 };
+pub use super::desc_photon_depth::PhotonDepthDesc;
 pub use super::desc_values::{M4, V3};
 pub use super::nodes_desc::{BumpDesc, InputDesc, NodeDesc, PhenomenonDesc};
 
@@ -79,6 +80,8 @@ pub struct OptionsDesc {
     pub disable: Vec<FeatureDesc>,
     /// Diagnostic view replacing the beauty pass (mental ray `diagnostic …`), default none.
     pub diagnostic: Option<DiagnosticDesc>,
+    /// Photon trace depth (mental ray `photon trace depth`), default unlimited.
+    pub photon_depth: Option<PhotonDepthDesc>,
 }
 
 /// `photon_map: (file: "scene.pmap", rebuild: false)` in `options`.
@@ -205,6 +208,7 @@ impl Default for OptionsDesc {
             photon_map: None,
             disable: Vec::new(),
             diagnostic: None,
+            photon_depth: None,
         }
     }
 }

@@ -28,6 +28,7 @@ pub mod desc;
 pub mod desc_camera;
 pub mod desc_contour;
 pub mod desc_geometry;
+pub mod desc_photon_depth;
 pub mod desc_values;
 pub(crate) mod diagnostics;
 pub(crate) mod environment;

@@ -161,6 +161,7 @@ pub fn settings(src: &mut Sources, options: Option<&Item<'_, OptionsDesc>>) -> R
     let photons = PhotonSettings {
         caustics: map("caustics", o.caustics.as_ref()),
         global_illumination: map("global_illumination", o.global_illumination.as_ref()),
+        depth: o.photon_depth.map(|d| d.depth()).unwrap_or_default(),
     };
     let photon_map = o.photon_map.as_ref().map(|f| {
         if f.file.trim().is_empty() {
