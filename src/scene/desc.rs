@@ -8,6 +8,7 @@ use serde::{Deserialize, Serialize};
 
 pub use super::desc_camera::{LensDesc, SamplesDesc, VolumeDesc};
 pub use super::desc_contour::{ContourDesc, ContoursDesc, ContrastDesc};
+pub use super::desc_diagnostic::{GridSpaceDesc, PhotonQuantityDesc};
 pub use super::desc_geometry::{
     ApproximationDesc, AxisDesc, BasisDesc, DisplacementDesc, DisplacementModeDesc, MeshDesc,
     ScalarDesc, SpaceDesc,
@@ -96,11 +97,25 @@ pub struct PhotonMapFileDesc {
 }
 
 /// `diagnostic:` in `options` (see [`crate::diagnostic::Diagnostic`]).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize, Serialize)]
 #[serde(rename = "Diagnostic", deny_unknown_fields)]
 pub enum DiagnosticDesc {
     /// Samples per pixel as grey levels (mental ray `diagnostic samples on`).
     Samples,
+    /// Grid lines every `size` units of `space` (mental ray `diagnostic grid`).
+    Grid {
+        /// Object, world or camera coordinates.
+        space: GridSpaceDesc,
+        /// Distance between lines, > 0.
+        size: f64,
+    },
+    /// False-colour view of the photon maps (mental ray `diagnostic photon`).
+    Photon {
+        /// Density or irradiance.
+        quantity: PhotonQuantityDesc,
+        /// The value shown red, > 0.
+        max: f64,
+    },
 }
 
 /// An entry of `disable: [...]` in `options`: a kind of shader switched off for the run (see

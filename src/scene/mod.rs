@@ -27,6 +27,7 @@ pub(crate) mod dag;
 pub mod desc;
 pub mod desc_camera;
 pub mod desc_contour;
+pub mod desc_diagnostic;
 pub mod desc_geometry;
 pub mod desc_photon_depth;
 pub mod desc_values;

@@ -15,6 +15,7 @@ mod cli_farm;
 mod cli_photons;
 mod cli_plan;
 mod contours;
+mod diagnostic_views;
 mod docs_reference;
 mod environment;
 mod farm;
