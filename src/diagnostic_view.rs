@@ -88,7 +88,7 @@ pub fn view(
 /// The colour scale of the photon view: black at `t ≤ 0`, then `(t, 0, 1 − t)` from blue to
 /// red, red from `t = 1` on (so the red channel is `t` clamped).
 pub fn false_colour(t: f32) -> Vec3 {
-    if !(t > 0.0) {
+    if t.is_nan() || t <= 0.0 {
         return Vec3::ZERO;
     }
     let t = t.min(1.0);
