@@ -1,23 +1,99 @@
-//! Diagnostic modes (mental ray's `diagnostic samples on`; RON `options.diagnostic`; CLI
-//! `render --diagnostic samples`): the beauty pass replaced by a false-colour view of how
-//! the renderer worked, for tuning a scene's options.
+//! Diagnostic modes (mental ray's `diagnostic samples on`, `diagnostic grid …`,
+//! `diagnostic photon …`; RON `options.diagnostic`; CLI `render --diagnostic samples`): the
+//! beauty pass replaced by a false-colour view of how the renderer worked, for tuning a
+//! scene's options. The grid and photon views are drawn by [`crate::diagnostic_view`].
 
 use glam::Vec3;
 
 /// One diagnostic view.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Diagnostic {
     /// Samples per pixel: grey level `samples taken / most samples a pixel may take`, so
     /// where adaptive sampling refined shows bright (uniform sampling: every pixel 1).
     Samples,
+    /// Coloured grid lines every `size` units of `space` on every surface (mental ray
+    /// `diagnostic grid object|world|camera S`; see [`crate::diagnostic_view`]).
+    Grid {
+        /// The coordinates the lines follow.
+        space: GridSpace,
+        /// Distance between lines, units of `space` (> 0).
+        size: f32,
+    },
+    /// Every material replaced by a false-colour view of the photon maps (mental ray
+    /// `diagnostic photon density|irradiance N`), `max` showing red.
+    Photon {
+        /// What is shown.
+        quantity: PhotonQuantity,
+        /// The value shown at the top of the colour scale (> 0).
+        max: f32,
+    },
+}
+
+/// The coordinates a grid diagnostic follows.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum GridSpace {
+    /// Each object's own coordinates.
+    Object,
+    /// World coordinates.
+    World,
+    /// The render camera's coordinates.
+    Camera,
+}
+
+/// What a photon diagnostic shows at each surface point seen.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PhotonQuantity {
+    /// Photons per unit area (both maps' density estimates, photon counts instead of powers).
+    Density,
+    /// Irradiance, W/m² (both maps' density estimates).
+    Irradiance,
 }
 
 impl Diagnostic {
-    /// Parses a diagnostic's command-line name (`samples`).
+    /// Parses a diagnostic's command-line form: `samples`, `grid:SPACE:SIZE` (`SPACE` one of
+    /// `object`, `world`, `camera`), `photon:density|irradiance:MAX`.
     pub fn parse(text: &str) -> Result<Self, String> {
-        match text.trim() {
-            "samples" => Ok(Self::Samples),
-            other => Err(format!("unknown diagnostic \"{other}\" (expected samples)")),
+        let text = text.trim();
+        let parts: Vec<&str> = text.split(':').collect();
+        let positive = |what: &str, v: &str| -> Result<f32, String> {
+            match v.parse::<f32>() {
+                Ok(x) if x.is_finite() && x > 0.0 => Ok(x),
+                _ => Err(format!("the {what} must be a number > 0, found \"{v}\"")),
+            }
+        };
+        match parts.as_slice() {
+            ["samples"] => Ok(Self::Samples),
+            ["grid", space, size] => {
+                let space = match *space {
+                    "object" => GridSpace::Object,
+                    "world" => GridSpace::World,
+                    "camera" => GridSpace::Camera,
+                    other => {
+                        return Err(format!(
+                            "unknown grid space \"{other}\" (expected object, world or camera)"
+                        ))
+                    }
+                };
+                let size = positive("grid size", size)?;
+                Ok(Self::Grid { space, size })
+            }
+            ["photon", quantity, max] => {
+                let quantity = match *quantity {
+                    "density" => PhotonQuantity::Density,
+                    "irradiance" => PhotonQuantity::Irradiance,
+                    other => {
+                        return Err(format!(
+                            "unknown photon diagnostic \"{other}\" (expected density or irradiance)"
+                        ))
+                    }
+                };
+                let max = positive("photon diagnostic maximum", max)?;
+                Ok(Self::Photon { quantity, max })
+            }
+            _ => Err(format!(
+                "unknown diagnostic \"{text}\" (expected samples, grid:SPACE:SIZE or \
+                 photon:density|irradiance:MAX)"
+            )),
         }
     }
 
@@ -25,6 +101,8 @@ impl Diagnostic {
     pub fn name(self) -> &'static str {
         match self {
             Self::Samples => "samples",
+            Self::Grid { .. } => "grid",
+            Self::Photon { .. } => "photon",
         }
     }
 }
@@ -50,8 +128,34 @@ mod tests {
         );
         assert_eq!(Diagnostic::parse("samples"), Ok(Diagnostic::Samples));
         assert_eq!(
-            Diagnostic::parse("grid").unwrap_err(),
-            "unknown diagnostic \"grid\" (expected samples)"
+            Diagnostic::parse("grid"),
+            Err(
+                "unknown diagnostic \"grid\" (expected samples, grid:SPACE:SIZE or \
+                 photon:density|irradiance:MAX)"
+                    .into()
+            )
+        );
+        assert_eq!(
+            Diagnostic::parse("grid:world:0.5"),
+            Ok(Diagnostic::Grid {
+                space: GridSpace::World,
+                size: 0.5
+            })
+        );
+        assert_eq!(
+            Diagnostic::parse("photon:irradiance:20"),
+            Ok(Diagnostic::Photon {
+                quantity: PhotonQuantity::Irradiance,
+                max: 20.0
+            })
+        );
+        assert_eq!(
+            Diagnostic::parse("grid:world:0"),
+            Err("the grid size must be a number > 0, found \"0\"".into())
+        );
+        assert_eq!(
+            Diagnostic::parse("grid:screen:1"),
+            Err("unknown grid space \"screen\" (expected object, world or camera)".into())
         );
     }
 }

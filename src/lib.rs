@@ -13,6 +13,7 @@ pub mod budget;
 pub mod components;
 pub mod contour;
 pub mod diagnostic;
+pub mod diagnostic_view;
 pub mod exact_sum;
 pub mod farm;
 pub mod features;

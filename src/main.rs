@@ -96,7 +96,8 @@ struct RenderArgs {
     /// a comma-separated list of lens, volume, geometry, displacement, output.
     #[arg(long, value_name = "FEATURES", value_parser = stagelight::features::Features::parse_list)]
     disable: Option<stagelight::features::Features>,
-    /// Replace the beauty pass by a diagnostic view: `samples` (samples per pixel).
+    /// Replace the beauty pass by a diagnostic view: `samples` (samples per pixel),
+    /// `grid:object|world|camera:SIZE` (grid lines), `photon:density|irradiance:MAX`.
     #[arg(long, value_name = "MODE", value_parser = stagelight::diagnostic::Diagnostic::parse)]
     diagnostic: Option<stagelight::diagnostic::Diagnostic>,
     /// Print the per-stage report.

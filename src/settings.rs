@@ -168,6 +168,39 @@ pub struct PhotonSettings {
     /// Global illumination map: photons stored at every diffuse hit, used through final
     /// gathering for indirect diffuse light.
     pub global_illumination: Option<PhotonMapSettings>,
+    /// Most reflections and refractions of one photon (mental ray `photon trace depth`),
+    /// default unlimited.
+    pub depth: PhotonDepth,
+}
+
+/// Most scattering events of one photon (mental ray `photon trace depth r t s`): a photon
+/// that has been reflected `reflection` times (diffuse, glossy or mirror), transmitted
+/// `refraction` times (refraction or pass-through), or scattered `sum` times in all, scatters
+/// no further (its power is counted as truncated). Deposits are not limited: the last hit
+/// still stores its photon.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct PhotonDepth {
+    /// Most reflections.
+    pub reflection: u32,
+    /// Most transmissions.
+    pub refraction: u32,
+    /// Most scattering events of either kind.
+    pub sum: u32,
+}
+
+impl PhotonDepth {
+    /// No limit (photons end by Russian roulette, escape or the tracer's bounce cap).
+    pub const UNLIMITED: Self = Self {
+        reflection: u32::MAX,
+        refraction: u32::MAX,
+        sum: u32::MAX,
+    };
+}
+
+impl Default for PhotonDepth {
+    fn default() -> Self {
+        Self::UNLIMITED
+    }
 }
 
 impl PhotonSettings {

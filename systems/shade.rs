@@ -35,6 +35,7 @@ use crate::adaptive::{refine_flags, PixelSamples, SampleBudget};
 use crate::components::{ContourContrast, ContourShader, Interior};
 use crate::contour::{ContourStore, Probe};
 use crate::diagnostic::{samples_view, Diagnostic};
+use crate::diagnostic_view;
 use crate::farm::{Part, Split};
 use crate::features::Feature;
 use crate::framebuffer::{FrameBuffers, PixelSums};
@@ -249,6 +250,19 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
     }
     if settings.diagnostic == Some(Diagnostic::Samples) {
         fb.beauty = samples_view(&fb.samples, budget.max);
+    }
+    if let (Some(d), Some(g)) = (settings.diagnostic, geometry) {
+        let drawn = diagnostic_view::view(
+            d,
+            g,
+            &rays,
+            camera.world_from_camera,
+            photons,
+            (width, height),
+        );
+        if let Some(beauty) = drawn {
+            fb.beauty = beauty;
+        }
     }
     fb.sums = sums;
     fb.components = components;

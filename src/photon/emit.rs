@@ -415,15 +415,7 @@ impl Emission {
 
     /// A photon from `u ∈ [0,1)⁵` (`u[0]` picks the light); `None` when the sample is void.
     pub fn sample(&self, geometry: &SceneGeometry, u: [f32; 5]) -> Option<EmittedPhoton> {
-        if self.sources.is_empty() {
-            return None;
-        }
-        let n = self.sources.len();
-        let k = self.cdf.partition_point(|&c| c <= u[0]).clamp(1, n) - 1;
-        let prob = self.cdf[k + 1] - self.cdf[k];
-        if prob <= 0.0 {
-            return None;
-        }
+        let (k, prob) = self.pick(u[0])?;
         let mut photon = match &self.aim {
             // The light's share of `u[0]`, rescaled to [0,1), picks the caster.
             Some(aim) => {
@@ -434,6 +426,25 @@ impl Emission {
         };
         photon.power = photon.power * self.sources[k].scale / prob;
         Some(photon)
+    }
+}
+
+impl Emission {
+    /// Index in the [`LightSet`] of the light [`Emission::sample`] takes its photon from for
+    /// the same `u[0]` (`None` where it emits none).
+    pub fn light_index(&self, u0: f32) -> Option<usize> {
+        self.pick(u0).map(|(k, _)| self.sources[k].index)
+    }
+
+    /// The source `u0` picks and its probability; `None` without one.
+    fn pick(&self, u0: f32) -> Option<(usize, f32)> {
+        let n = self.sources.len();
+        if n == 0 {
+            return None;
+        }
+        let k = self.cdf.partition_point(|&c| c <= u0).clamp(1, n) - 1;
+        let prob = self.cdf[k + 1] - self.cdf[k];
+        (prob > 0.0).then_some((k, prob))
     }
 }
 

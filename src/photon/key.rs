@@ -5,7 +5,7 @@
 //! **In the hash:** the stagelight version and file format; the geometry after tessellation
 //! (every instance's triangles, normals and UVs, transform, material slot and bump), the
 //! materials (their shaders, textures, emission and light lists), the lights with their photon
-//! controls, each instance's caster/receiver roles, the seed, the trace depths, face
+//! controls, each instance's caster/receiver roles, the seed, the trace depths and photon trace depth, face
 //! visibility, BVH quality, and per map whether it is built, its photon count, aiming and
 //! progressive passes. **Not in it:** what only reads the maps — gather count, radius,
 //! filter, final-gather rays, progressive `alpha` —
@@ -92,6 +92,10 @@ pub fn photon_key(
         map(settings.photons.caustics),
         map(settings.photons.global_illumination),
     );
+    // Written only when set, so files traced before the limit existed keep their hash.
+    if settings.photons.depth != crate::settings::PhotonDepth::UNLIMITED {
+        let _ = writeln!(h, "photon depth {:?}", settings.photons.depth);
+    }
     h.finish()
 }
 

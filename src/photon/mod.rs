@@ -20,6 +20,7 @@
 //! The path tracer (`Path` integrator) ignores the maps: it is the reference.
 
 pub mod aim;
+pub mod depth;
 pub mod emit;
 pub mod estimate;
 pub mod file;
@@ -27,6 +28,7 @@ pub mod filter;
 pub mod gather_path;
 pub mod kdtree;
 pub mod key;
+pub mod light_lists;
 pub mod pass;
 pub mod progressive;
 pub mod roles;

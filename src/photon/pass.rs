@@ -2,7 +2,9 @@
 //! fixed ranges of photon indices), each from its own Sobol sequence
 //! `Sampler::for_item(seed ⊕ map, photon index, 0)`, gathered in index order — so the map is
 //! the same at any thread count. Lights with their own photon count (mental ray `caustic
-//! photons N` on a light) emit it in a pass of their own ([`trace_map_by_light`]).
+//! photons N` on a light) emit it in a pass of their own ([`trace_map_by_light`]). A surface
+//! keeps only the photons of the lights its material's light list names
+//! ([`super::light_lists`]).
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -10,6 +12,7 @@ use rayon::prelude::*;
 
 use super::emit::Emission;
 use super::kdtree::Photon;
+use super::light_lists::ReceiverLights;
 use super::trace::trace_photon_with_roles;
 use crate::components::PhotonRole;
 use crate::sampling::{hash_combine, Sampler};
@@ -45,6 +48,7 @@ pub fn trace_map(
     let n = u64::from(photons);
     let scale = 1.0 / n.max(1) as f32;
     let seed = hash_combine(&[seed, kind as u32, 0x9407]);
+    let receivers = ReceiverLights::new(ctx.geometry);
     let chunks: Vec<Option<Vec<Photon>>> = (0..n.div_ceil(CHUNK))
         .into_par_iter()
         .map(|c| {
@@ -55,7 +59,9 @@ pub fn trace_map(
             for i in c * CHUNK..((c + 1) * CHUNK).min(n) {
                 let mut sampler = Sampler::for_item(seed, i, 0);
                 let u = [(); 5].map(|_| sampler.next_1d());
-                let Some(emitted) = emission.sample(ctx.geometry, u) else {
+                let (Some(emitted), Some(light)) =
+                    (emission.sample(ctx.geometry, u), emission.light_index(u[0]))
+                else {
                     continue;
                 };
                 let stop = kind == MapKind::Caustics;
@@ -68,7 +74,9 @@ pub fn trace_map(
                     stop,
                     |d| {
                         // Caustic photons go to the caustic map only (see `MapKind::Global`).
-                        if (kind == MapKind::Caustics) == d.caustic {
+                        if (kind == MapKind::Caustics) == d.caustic
+                            && receivers.admits(d.prim, light)
+                        {
                             out.push(d.photon);
                         }
                     },

@@ -18,6 +18,7 @@
 
 use glam::Vec3;
 
+use super::depth::PathDepth;
 use super::kdtree::Photon;
 use crate::accel::Ray;
 use crate::components::PhotonRole;
@@ -39,6 +40,8 @@ pub struct Deposit {
     /// Whether every one of those events was specular (delta) and there was at least one:
     /// an `L S+ D` path, what the caustic map stores.
     pub caustic: bool,
+    /// The world triangle it landed on (its material's light list filters it).
+    pub prim: u32,
 }
 
 /// How a photon's path ended and where its power went, W.
@@ -50,7 +53,8 @@ pub struct Fate {
     pub escaped: Vec3,
     /// Direction of the escaping photon (zero when none escaped).
     pub escape_dir: Vec3,
-    /// Power dropped at [`MAX_BOUNCES`] or by `stop_after_diffuse`.
+    /// Power dropped at [`MAX_BOUNCES`], by `stop_after_diffuse` or at the photon trace
+    /// depth.
     pub truncated: Vec3,
     /// Where the last hit was (the absorbing surface's triangle), if any.
     pub last_prim: Option<u32>,
@@ -84,6 +88,7 @@ pub fn trace_photon_with_roles(
     let mut fate = Fate::default();
     let mut specular_only = true;
     let mut specular_events = 0u32;
+    let mut depth = PathDepth::new(ctx.photon_depth);
     for bounces in 0..MAX_BOUNCES {
         let Some(hit) = ctx.geometry.accel.intersect(&ray) else {
             fate.escaped = power;
@@ -117,6 +122,7 @@ pub fn trace_photon_with_roles(
                 },
                 bounces,
                 caustic: specular_events > 0 && specular_only,
+                prim: hit.prim,
             });
         }
         if !role.casts() {
@@ -154,6 +160,10 @@ pub fn trace_photon_with_roles(
         // above 1 (shading-normal correction) makes this negative, keeping the account exact.
         fate.absorbed += power - next_power;
         if stop_after_diffuse && !specular_only {
+            fate.truncated += next_power;
+            return fate;
+        }
+        if !depth.scatter(s.scatter == Scatter::Transmission) {
             fate.truncated += next_power;
             return fate;
         }

@@ -8,10 +8,12 @@ use serde::{Deserialize, Serialize};
 
 pub use super::desc_camera::{LensDesc, SamplesDesc, VolumeDesc};
 pub use super::desc_contour::{ContourDesc, ContoursDesc, ContrastDesc};
+pub use super::desc_diagnostic::{GridSpaceDesc, PhotonQuantityDesc};
 pub use super::desc_geometry::{
     ApproximationDesc, AxisDesc, BasisDesc, DisplacementDesc, DisplacementModeDesc, MeshDesc,
     ScalarDesc, SpaceDesc,
 };
+pub use super::desc_photon_depth::PhotonDepthDesc;
 pub use super::desc_values::{M4, V3};
 pub use super::nodes_desc::{BumpDesc, InputDesc, NodeDesc, PhenomenonDesc};
 
@@ -79,6 +81,8 @@ pub struct OptionsDesc {
     pub disable: Vec<FeatureDesc>,
     /// Diagnostic view replacing the beauty pass (mental ray `diagnostic …`), default none.
     pub diagnostic: Option<DiagnosticDesc>,
+    /// Photon trace depth (mental ray `photon trace depth`), default unlimited.
+    pub photon_depth: Option<PhotonDepthDesc>,
 }
 
 /// `photon_map: (file: "scene.pmap", rebuild: false)` in `options`.
@@ -93,11 +97,25 @@ pub struct PhotonMapFileDesc {
 }
 
 /// `diagnostic:` in `options` (see [`crate::diagnostic::Diagnostic`]).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize, Serialize)]
 #[serde(rename = "Diagnostic", deny_unknown_fields)]
 pub enum DiagnosticDesc {
     /// Samples per pixel as grey levels (mental ray `diagnostic samples on`).
     Samples,
+    /// Grid lines every `size` units of `space` (mental ray `diagnostic grid`).
+    Grid {
+        /// Object, world or camera coordinates.
+        space: GridSpaceDesc,
+        /// Distance between lines, > 0.
+        size: f64,
+    },
+    /// False-colour view of the photon maps (mental ray `diagnostic photon`).
+    Photon {
+        /// Density or irradiance.
+        quantity: PhotonQuantityDesc,
+        /// The value shown red, > 0.
+        max: f64,
+    },
 }
 
 /// An entry of `disable: [...]` in `options`: a kind of shader switched off for the run (see
@@ -205,6 +223,7 @@ impl Default for OptionsDesc {
             photon_map: None,
             disable: Vec::new(),
             diagnostic: None,
+            photon_depth: None,
         }
     }
 }

@@ -161,6 +161,7 @@ pub fn settings(src: &mut Sources, options: Option<&Item<'_, OptionsDesc>>) -> R
     let photons = PhotonSettings {
         caustics: map("caustics", o.caustics.as_ref()),
         global_illumination: map("global_illumination", o.global_illumination.as_ref()),
+        depth: o.photon_depth.map(|d| d.depth()).unwrap_or_default(),
     };
     let photon_map = o.photon_map.as_ref().map(|f| {
         if f.file.trim().is_empty() {
@@ -196,9 +197,34 @@ pub fn settings(src: &mut Sources, options: Option<&Item<'_, OptionsDesc>>) -> R
             BvhQualityDesc::High => BvhQuality::High,
         },
         disabled: switched_off(&o.disable),
-        diagnostic: o.diagnostic.map(|d| match d {
-            DiagnosticDesc::Samples => crate::diagnostic::Diagnostic::Samples,
-        }),
+        diagnostic: o.diagnostic.map(|d| diagnostic(&mut ck, item, d)),
+    }
+}
+
+/// The diagnostic `d` asks for; a size or maximum that is not a number > 0 is an error.
+fn diagnostic(
+    ck: &mut Checker<'_>,
+    item: &Item<'_, OptionsDesc>,
+    d: DiagnosticDesc,
+) -> crate::diagnostic::Diagnostic {
+    use crate::diagnostic::Diagnostic;
+    let mut positive = |path: &str, name: &str, x: f64| {
+        let path = item.at(path);
+        if ck.finite(&path, name, x) && x <= 0.0 {
+            ck.error(&path, format!("{name} must be positive, found {x}"));
+        }
+        x as f32
+    };
+    match d {
+        DiagnosticDesc::Samples => Diagnostic::Samples,
+        DiagnosticDesc::Grid { space, size } => Diagnostic::Grid {
+            space: space.space(),
+            size: positive(".diagnostic.Grid.size", "size", size),
+        },
+        DiagnosticDesc::Photon { quantity, max } => Diagnostic::Photon {
+            quantity: quantity.quantity(),
+            max: positive(".diagnostic.Photon.max", "max", max),
+        },
     }
 }
 

@@ -6,7 +6,9 @@ use std::path::{Path, PathBuf};
 
 use stagelight::components::LightPhotons;
 use stagelight::frame::Frame;
-use stagelight::scene::desc::{PhotonFilterDesc, PhotonMapDesc, PhotonMapFileDesc};
+use stagelight::scene::desc::{
+    PhotonDepthDesc, PhotonFilterDesc, PhotonMapDesc, PhotonMapFileDesc,
+};
 use stagelight::scene::import::mi::read_mi;
 use stagelight::scene::load_scene;
 
@@ -42,17 +44,43 @@ fn the_seed_caustic_options_map_onto_the_caustic_map() {
             rebuild: false
         })
     );
+    // photon trace depth 4 4: four reflections, four refractions, eight in all.
+    let depth = PhotonDepthDesc {
+        reflection: Some(4),
+        refraction: Some(4),
+        sum: Some(8),
+    };
+    assert_eq!(options.photon_depth, Some(depth));
     let warned: Vec<String> = read
         .warnings
         .iter()
         .map(|w| w.problem.message.clone())
         .collect();
     assert!(
-        !warned
-            .iter()
-            .any(|w| w.contains("\"caustic\"") || w.contains("photonmap")),
+        !warned.iter().any(|w| w.contains("\"caustic\"")
+            || w.contains("photonmap")
+            || w.contains("\"photon\"")),
         "{warned:?}"
     );
+}
+
+#[test]
+fn photon_trace_depth_defaults_its_refraction_and_sum_as_mental_ray() {
+    for (statement, want) in [
+        ("photon trace depth 2\n", (2, 2, 4)),
+        ("photon trace depth 3 1\n", (3, 1, 4)),
+        ("photon trace depth 3 1 2\n", (3, 1, 2)),
+    ] {
+        let text = fixture_text(statement);
+        let read = read_mi(Path::new("depth.mi"), text.as_bytes()).unwrap();
+        assert!(read.warnings.is_empty(), "{:?}", read.warnings);
+        let depth = read.desc.options.unwrap().photon_depth.unwrap();
+        assert_eq!(
+            (depth.reflection, depth.refraction, depth.sum),
+            (Some(want.0), Some(want.1), Some(want.2)),
+            "{statement}"
+        );
+    }
 }
 
 #[test]
@@ -130,6 +158,10 @@ const MALFORMED: &[(&str, &str)] = &[
     (
         "finalgather_accuracy",
         "tests/fixtures/mi_controls/finalgather_accuracy.mi:4:1: error: finalgather accuracy must be at least 1 ray, found 0",
+    ),
+    (
+        "photon_trace_depth",
+        "tests/fixtures/mi_controls/photon_trace_depth.mi:4:14: error: expected depth after photon trace, found a number",
     ),
     (
         "globillum_radius",

@@ -58,6 +58,8 @@ pub struct ShadeContext<'a> {
     pub reflection_depth: u32,
     /// Most refractions per path.
     pub refraction_depth: u32,
+    /// Most reflections and refractions of one photon (the photon pass's limit).
+    pub photon_depth: crate::settings::PhotonDepth,
     /// Photon maps the `Direct` integrator reads (caustics, final gather); `None`: none.
     pub photons: Option<&'a dyn PhotonRadiance>,
     /// Fog around the camera and inside materials (`None`: vacuum everywhere).
@@ -79,6 +81,7 @@ impl<'a> ShadeContext<'a> {
             max_depth: settings.max_depth,
             reflection_depth: settings.reflection_depth,
             refraction_depth: settings.refraction_depth,
+            photon_depth: settings.photons.depth,
             photons: None,
             volumes: None,
         }

@@ -183,6 +183,7 @@ pub fn options(r: &mut Reader, c: &mut Cursor, open: Pos) {
             "finalgather" => photons.final_gather(c, t.pos),
             "diagnostic" => switches::diagnostic(c, t.pos, &mut o.desc),
             "photonmap" => photons.photon_map(c, t.pos),
+            "photon" if c.at_word("trace") => photons.trace_depth(c),
             "photon" => {
                 while c.at_word("file")
                     || c.at_word("trace")

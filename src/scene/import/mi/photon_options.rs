@@ -10,7 +10,8 @@
 //!   always final-gathered here, and final gathering needs that map);
 //! * `photonmap file "…"` and `photonmap rebuild on|off`: `options.photon_map` (the maps
 //!   kept in that file between runs);
-//! * `photon trace depth …` (no photon depth limit in the engine) is read and warned.
+//! * `photon trace depth r [t [s]]`: `options.photon_depth` (most reflections `r`,
+//!   refractions `t`, default `r`, and their sum `s`, default `r + t`).
 //!
 //! Accuracy and filter statements keep their values whether or not the map is on, as in
 //! mental ray; the photon counts come from the lights (`caustic photons N`) or the map's
@@ -19,7 +20,9 @@
 use super::super::rib::Pos;
 use super::cursor::Cursor;
 use super::lexer::Tok;
-use crate::scene::desc::{OptionsDesc, PhotonFilterDesc, PhotonMapDesc, PhotonMapFileDesc};
+use crate::scene::desc::{
+    OptionsDesc, PhotonDepthDesc, PhotonFilterDesc, PhotonMapDesc, PhotonMapFileDesc,
+};
 
 /// mental ray's default cone filter constant.
 const DEFAULT_CONE_K: f64 = 1.1;
@@ -35,6 +38,8 @@ pub struct PhotonOptions {
     file: Option<String>,
     /// `photonmap rebuild on|off` and where it was written.
     rebuild: Option<(bool, Pos)>,
+    /// `photon trace depth …`.
+    depth: Option<PhotonDepthDesc>,
 }
 
 /// One map: switched on, and its knobs.
@@ -135,8 +140,50 @@ impl PhotonOptions {
         }
     }
 
+    /// `photon trace depth r [t [s]]` after the word `photon` (at the word `trace`).
+    pub fn trace_depth(&mut self, c: &mut Cursor) {
+        c.eat_word("trace");
+        if !c.eat_word("depth") {
+            let (p, found) = found(c);
+            c.error(
+                p,
+                format!("expected depth after photon trace, found {found}"),
+            );
+            c.skip_arguments();
+            return;
+        }
+        let what = "photon trace depth";
+        let Some(r) = c.count(what) else {
+            return;
+        };
+        let t = if c.at_number() {
+            let Some(t) = c.count(what) else {
+                return;
+            };
+            t
+        } else {
+            r
+        };
+        let sum = if c.at_number() {
+            let Some(s) = c.count(what) else {
+                return;
+            };
+            s
+        } else {
+            r.saturating_add(t)
+        };
+        self.depth = Some(PhotonDepthDesc {
+            reflection: Some(r),
+            refraction: Some(t),
+            sum: Some(sum),
+        });
+    }
+
     /// Writes the maps that are on into `desc`, warning where `finalgather` cannot hold.
     pub fn apply(self, c: &mut Cursor, desc: &mut OptionsDesc) {
+        if let Some(depth) = self.depth {
+            desc.photon_depth = Some(depth);
+        }
         match (self.file, self.rebuild) {
             (Some(file), rebuild) => {
                 desc.photon_map = Some(PhotonMapFileDesc {
