@@ -42,6 +42,7 @@ mod lights;
 mod mesh_files;
 mod mi;
 mod mi_controls;
+mod obj_materials;
 mod photon_clean;
 mod photon_file;
 mod photon_flags;
