@@ -11,8 +11,9 @@
 //!   overrides apply to every piece.
 //! - An object that writes `material: "…"` keeps it on every face; its MTL files are not read.
 //! - A `mtllib` file that cannot be read is a warning at the `mtllib` line naming the file; a
-//!   `usemtl` name no library defines is a warning at its first `usemtl`; their faces get the
-//!   default material. A malformed MTL file is an error at its line and column.
+//!   `usemtl` name no library defines (when every library was read) is a warning at its
+//!   first `usemtl`; their faces get the default material (when no face gets an MTL
+//!   material the object stays whole). A malformed MTL file is an error at its line and column.
 //!
 //! MTL → material: `Kd` (default 0.8 grey) → `Lambert(albedo)`, or `Phong(diffuse: Kd,
 //! specular: Ks, spec_exp: Ns (default 10))` when `Ks` is above zero; `illum` 4, 6, 7 or 9
@@ -87,7 +88,8 @@ fn expand_object(
     }
     let at = format!("objects[{i}].mesh.Obj.file");
     let name = object.name.clone();
-    let Some(library) = read_libraries(src, file, &at, &obj_path, &faces, &name, read) else {
+    let Some((library, all_read)) = read_libraries(src, file, &at, &obj_path, &faces, &name, read)
+    else {
         return;
     };
     let obj_dir = Path::new(obj_file).parent().unwrap_or(Path::new(""));
@@ -102,6 +104,8 @@ fn expand_object(
         let piece_name = format!("{name}.{}", used.name);
         let material = match library.iter().find(|(m, _)| m.name == used.name) {
             Some((m, lib_dir)) => Some(material(m, &piece_name, &obj_dir.join(lib_dir))),
+            // A library that could not be read may have held it (warned already).
+            None if !all_read => None,
             None => {
                 let files: Vec<&str> = faces.libraries.iter().map(|l| l.file.as_str()).collect();
                 src.push_warning(
@@ -122,6 +126,10 @@ fn expand_object(
             }
         };
         pieces.push((used.name.clone(), (piece_name, material)));
+    }
+    if pieces.iter().all(|(_, (_, m))| m.is_none()) {
+        // Nothing to give the faces: the object stays whole, with the default material.
+        return;
     }
     let added: Vec<MaterialDesc> = pieces.iter().filter_map(|(_, (_, m))| m.clone()).collect();
     desc.materials.extend(added);
@@ -174,7 +182,8 @@ fn obj_file_of(object: &ObjectDesc) -> String {
 }
 
 /// Reads every library of an OBJ: its materials with the library's directory (relative to
-/// the OBJ's), or `None` when one is malformed (the error is recorded).
+/// the OBJ's) and whether every library could be read, or `None` when one is malformed (the
+/// error is recorded).
 fn read_libraries(
     src: &mut Sources,
     file: usize,
@@ -183,8 +192,9 @@ fn read_libraries(
     faces: &FaceMaterials,
     object: &str,
     read: &mut Vec<PathBuf>,
-) -> Option<Vec<(MtlMaterial, PathBuf)>> {
+) -> Option<(Vec<(MtlMaterial, PathBuf)>, bool)> {
     let referrer = src.where_is(file, at);
+    let mut all_read = true;
     let dir = obj_path.parent().unwrap_or(Path::new(""));
     let mut out = Vec::new();
     for lib in &faces.libraries {
@@ -206,6 +216,7 @@ fn read_libraries(
                         help: None,
                     },
                 );
+                all_read = false;
                 continue;
             }
         };
@@ -245,7 +256,7 @@ fn read_libraries(
             }
         }
     }
-    Some(out)
+    Some((out, all_read))
 }
 
 /// The scene material of an MTL material; `dir` is the MTL file's directory relative to

@@ -26,6 +26,7 @@ mod geometry_scene;
 mod geometry_stages;
 mod geometry_surfaces;
 mod gltf;
+mod gltf_cameras;
 mod hard_cases_bake;
 mod hard_cases_bump;
 mod hard_cases_far;

@@ -73,21 +73,21 @@ fn an_obj_with_two_materials_places_one_piece_per_material() {
     );
     let scene = load(&dir, r#"(name: "quads", mesh: Obj(file: "quads.obj"))"#).unwrap();
     assert_eq!(scene.located_warnings, Vec::<String>::new());
-    let placed = placed(&scene);
-    let names: Vec<(&str, &str)> = placed
+    let pieces = placed(&scene);
+    let names: Vec<(&str, &str)> = pieces
         .iter()
         .map(|(n, m, _)| (n.as_str(), m.as_str()))
         .collect();
     assert_eq!(
         names,
         vec![
-            ("quads_1/quads.red", "quads.red"),
-            ("quads_1/quads.blue", "quads.blue")
+            ("world/quads_1/quads.red", "quads.red"),
+            ("world/quads_1/quads.blue", "quads.blue")
         ]
     );
     // Kd/Ks/Ns → Phong; Kd + d + Ke → Opacity over Lambert, emitting.
     assert_eq!(
-        placed[0].2.shader,
+        pieces[0].2.shader,
         Shader::Phong {
             ambient: Vec3::ZERO,
             diffuse: Vec3::new(0.8, 0.0, 0.0),
@@ -96,7 +96,7 @@ fn an_obj_with_two_materials_places_one_piece_per_material() {
         }
     );
     assert_eq!(
-        placed[1].2.shader,
+        pieces[1].2.shader,
         Shader::Opacity {
             opacity: Vec3::splat(0.5),
             input: Box::new(Shader::Lambert {
@@ -104,8 +104,8 @@ fn an_obj_with_two_materials_places_one_piece_per_material() {
             }),
         }
     );
-    assert_eq!(placed[1].2.emission, Vec3::new(0.0, 0.0, 2.0));
-    assert_eq!(placed[0].2.emission, Vec3::ZERO);
+    assert_eq!(pieces[1].2.emission, Vec3::new(0.0, 0.0, 2.0));
+    assert_eq!(pieces[0].2.emission, Vec3::ZERO);
 }
 
 #[test]
@@ -144,14 +144,14 @@ fn one_material_becomes_the_objects_material_and_the_objects_own_wins() {
         &[("tri.obj", obj), ("lib/glass.mtl", PAINT)],
     );
     let scene = load(&dir, r#"(name: "quads", mesh: Obj(file: "tri.obj"))"#).unwrap();
-    let placed = placed(&scene);
-    assert_eq!(placed.len(), 1);
+    let pieces = placed(&scene);
+    assert_eq!(pieces.len(), 1);
     assert_eq!(
-        (placed[0].0.as_str(), placed[0].1.as_str()),
-        ("quads_1", "quads.glass")
+        (pieces[0].0.as_str(), pieces[0].1.as_str()),
+        ("world/quads_1", "quads.glass")
     );
     assert!(matches!(
-        placed[0].2.shader,
+        pieces[0].2.shader,
         Shader::Dielectric { ior, .. } if ior == 1.33
     ));
     // The object's own material: every face, and the MTL is not read at all.
@@ -161,10 +161,10 @@ fn one_material_becomes_the_objects_material_and_the_objects_own_wins() {
         r#"(name: "quads", mesh: Obj(file: "tri.obj"), material: "white")"#,
     )
     .unwrap();
-    let placed = crate::obj_materials::placed(&own);
+    let pieces = placed(&own);
     assert_eq!(
-        (placed[0].0.as_str(), placed[0].1.as_str()),
-        ("quads_1", "white")
+        (pieces[0].0.as_str(), pieces[0].1.as_str()),
+        ("world/quads_1", "white")
     );
     assert_eq!(own.located_warnings, Vec::<String>::new());
 }
@@ -184,9 +184,9 @@ fn a_missing_library_or_material_is_a_warning_naming_it() {
         )]
     );
     // Every face falls back to the default material: one object, no split.
-    let placed = placed(&scene);
-    assert_eq!(placed.len(), 1);
-    assert_eq!(placed[0].1, "<default>");
+    let pieces = placed(&scene);
+    assert_eq!(pieces.len(), 1);
+    assert_eq!(pieces[0].1, "<default>");
 
     std::fs::write(&mtl, "newmtl red\nKd 1 0 0\n").unwrap();
     let scene = load(&dir, r#"(name: "quads", mesh: Obj(file: "quads.obj"))"#).unwrap();
@@ -210,12 +210,14 @@ fn a_malformed_library_is_a_located_error() {
             ("paint.mtl", "newmtl red\nKd 0.8 zero 0\n"),
         ],
     );
-    let err = load(&dir, r#"(name: "quads", mesh: Obj(file: "quads.obj"))"#).unwrap_err();
+    let err = load(&dir, r#"(name: "quads", mesh: Obj(file: "quads.obj"))"#)
+        .err()
+        .expect("a load error");
     let mtl = dir.join("paint.mtl");
     assert_eq!(
         err,
         format!(
-            "{}:2:8: error: invalid MTL file \"{}\": \"zero\" is not a number\n  help: material library of \"{}\", loaded for object \"quads\" at {}:9:39",
+            "{}:2:8: error: invalid MTL file \"{}\": \"zero\" is not a number\n  help: material library of \"{}\", loaded for object \"quads\" at {}:7:47",
             mtl.display(),
             mtl.display(),
             dir.join("quads.obj").display(),
@@ -239,7 +241,9 @@ fn textures_are_found_beside_the_library() {
             ),
         ],
     );
-    let err = load(&dir, r#"(name: "quads", mesh: Obj(file: "quads.obj"))"#).unwrap_err();
+    let err = load(&dir, r#"(name: "quads", mesh: Obj(file: "quads.obj"))"#)
+        .err()
+        .expect("a load error");
     assert!(
         err.contains(&dir.join("mat/tex/wood.png").display().to_string()),
         "{err}"
@@ -269,7 +273,8 @@ fn usemtl_picks_one_materials_faces() {
         &dir,
         r#"(name: "quads", mesh: Obj(file: "quads.obj", usemtl: "green"), material: "white")"#,
     )
-    .unwrap_err();
+    .err()
+    .expect("a load error");
     assert!(
         err.contains("usemtl: no face uses material \"green\": it uses \"red\", \"blue\""),
         "{err}"

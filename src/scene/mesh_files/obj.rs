@@ -644,6 +644,43 @@ mod tests {
     }
 
     #[test]
+    fn libraries_and_each_triangles_material_are_kept() {
+        let obj = [
+            TRI,
+            b"mtllib a.mtl  sub/b.mtl\nf 1 2 3\nusemtl red\nf 1 2 3 1\nusemtl blue\nf 1 2 3\nusemtl red\nf 3 2 1\n",
+        ]
+        .concat();
+        let mut m = parse(&obj).unwrap();
+        let faces = m.materials.clone().unwrap();
+        let files: Vec<(&str, usize, usize)> = faces
+            .libraries
+            .iter()
+            .map(|l| (l.file.as_str(), l.line, l.column))
+            .collect();
+        assert_eq!(files, vec![("a.mtl", 4, 8), ("sub/b.mtl", 4, 15)]);
+        let used: Vec<(&str, usize)> = faces
+            .used
+            .iter()
+            .map(|u| (u.name.as_str(), u.line))
+            .collect();
+        assert_eq!(used, vec![("red", 6), ("blue", 8)]);
+        assert_eq!(faces.of_triangle, vec![NONE, 0, 0, 1, 0]);
+        // Only red's three triangles, over the vertices they use.
+        m.keep_material("red").unwrap();
+        assert_eq!(m.triangles.len(), 3);
+        assert_eq!(m.positions.len(), 3);
+        assert!(m.triangles.iter().flatten().all(|&i| i < 3));
+        assert_eq!(
+            parse(&obj).unwrap().keep_material("green").unwrap_err(),
+            "no face uses material \"green\": it uses \"red\", \"blue\""
+        );
+        let mut before = parse(&obj).unwrap();
+        before.keep_material("").unwrap();
+        assert_eq!(before.triangles, vec![[0, 1, 2]]);
+        assert_eq!(parse(TRI).unwrap().materials, None);
+    }
+
+    #[test]
     fn an_empty_file_is_an_empty_mesh() {
         assert_eq!(parse(b"").unwrap(), MeshData::default());
         assert_eq!(
