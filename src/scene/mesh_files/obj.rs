@@ -358,7 +358,7 @@ impl Reader {
                 .collect()
         });
         let materials =
-            (!self.libraries.is_empty() || !self.used.is_empty()).then(|| FaceMaterials {
+            (!self.libraries.is_empty() || !self.used.is_empty()).then_some(FaceMaterials {
                 libraries: self.libraries,
                 used: self.used,
                 of_triangle: self.triangle_material,
