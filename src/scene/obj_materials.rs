@@ -13,7 +13,8 @@
 //! - A `mtllib` file that cannot be read is a warning at the `mtllib` line naming the file; a
 //!   `usemtl` name no library defines (when every library was read) is a warning at its
 //!   first `usemtl`; their faces get the default material (when no face gets an MTL
-//!   material the object stays whole). A malformed MTL file is an error at its line and column.
+//!   material the object stays whole). A malformed MTL file, or a map naming a file that
+//!   does not exist, is an error at its line and column in the MTL file.
 //!
 //! MTL → material: `Kd` (default 0.8 grey) → `Lambert(albedo)`, or `Phong(diffuse: Kd,
 //! specular: Ks, spec_exp: Ns (default 10))` when `Ks` is above zero; `illum` 4, 6, 7 or 9
@@ -223,6 +224,42 @@ fn read_libraries(
         read.push(path.clone());
         match mtl::parse(&bytes) {
             Ok(materials) => {
+                let help = format!(
+                    "material library of \"{}\", loaded for object \"{object}\" at {referrer}",
+                    obj_path.display()
+                );
+                let mut missing = false;
+                for m in &materials {
+                    for map in [&m.diffuse_map, &m.bump_map].into_iter().flatten() {
+                        let texture = path
+                            .parent()
+                            .unwrap_or(Path::new(""))
+                            .join(map.file.replace('\\', "/"));
+                        if texture.is_file() {
+                            continue;
+                        }
+                        let pos = src.pos(file, at);
+                        src.push(
+                            file,
+                            pos,
+                            Diagnostic {
+                                file: path.clone(),
+                                line: map.line,
+                                column: map.column,
+                                message: format!(
+                                    "material \"{}\": cannot read texture \"{}\": file not found",
+                                    m.name,
+                                    texture.display()
+                                ),
+                                help: Some(help.clone()),
+                            },
+                        );
+                        missing = true;
+                    }
+                }
+                if missing {
+                    return None;
+                }
                 let lib_dir = Path::new(&lib.file)
                     .parent()
                     .unwrap_or(Path::new(""))

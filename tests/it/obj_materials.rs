@@ -244,13 +244,21 @@ fn textures_are_found_beside_the_library() {
     let err = load(&dir, r#"(name: "quads", mesh: Obj(file: "quads.obj"))"#)
         .err()
         .expect("a load error");
-    assert!(
-        err.contains(&dir.join("mat/tex/wood.png").display().to_string()),
-        "{err}"
+    let mtl = dir.join("mat/paint.mtl");
+    let help = format!(
+        "  help: material library of \"{}\", loaded for object \"quads\" at {}:7:47",
+        dir.join("quads.obj").display(),
+        dir.join("scene.ron").display()
     );
-    assert!(
-        err.contains(&dir.join("mat/tex/h.png").display().to_string()),
-        "{err}"
+    assert_eq!(
+        err,
+        format!(
+            "{m}:2:18: error: material \"red\": cannot read texture \"{}\": file not found\n{help}\n\
+             {m}:4:15: error: material \"blue\": cannot read texture \"{}\": file not found\n{help}",
+            dir.join("mat/tex/wood.png").display(),
+            dir.join("mat/tex/h.png").display(),
+            m = mtl.display(),
+        )
     );
 }
 

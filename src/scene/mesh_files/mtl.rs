@@ -53,6 +53,10 @@ pub struct MapRef {
     pub clamp: bool,
     /// `-bm x`: bump multiplier, default 1.
     pub bump_multiplier: f64,
+    /// 1-based line of the map statement.
+    pub line: usize,
+    /// 1-based column of the file name.
+    pub column: usize,
 }
 
 /// One `newmtl` block.
@@ -106,14 +110,18 @@ pub fn parse(bytes: &[u8]) -> Result<Vec<MtlMaterial>, MeshFileError> {
     let mut materials: Vec<MtlMaterial> = Vec::new();
     for (k, line) in bytes.split(|&b| b == b'\n').enumerate() {
         let line = line.strip_suffix(b"\r").unwrap_or(line);
-        statement(&mut materials, line).map_err(|(offset, message)| {
+        statement(&mut materials, line, k + 1).map_err(|(offset, message)| {
             MeshFileError::at_line(k + 1, column(line, offset), message)
         })?;
     }
     Ok(materials)
 }
 
-fn statement(materials: &mut Vec<MtlMaterial>, line: &[u8]) -> Result<(), LineError> {
+fn statement(
+    materials: &mut Vec<MtlMaterial>,
+    line: &[u8],
+    number: usize,
+) -> Result<(), LineError> {
     let words = words(line);
     let Some(&(at, keyword)) = words.first() else {
         return Ok(());
@@ -205,8 +213,10 @@ fn statement(materials: &mut Vec<MtlMaterial>, line: &[u8]) -> Result<(), LineEr
             }
             m.illum = Some(x as u32);
         }
-        b"map_Kd" => m.diffuse_map = Some(map(line, args, at, keyword)?),
-        b"map_Bump" | b"map_bump" | b"bump" => m.bump_map = Some(map(line, args, at, keyword)?),
+        b"map_Kd" => m.diffuse_map = Some(map(line, number, args, at, keyword)?),
+        b"map_Bump" | b"map_bump" | b"bump" => {
+            m.bump_map = Some(map(line, number, args, at, keyword)?)
+        }
         _ => {}
     }
     Ok(())
@@ -264,6 +274,7 @@ fn scalar(
 /// Options (`-name value…`) then the file name, which is the rest of the line.
 fn map(
     line: &[u8],
+    number: usize,
     args: &[(usize, &[u8])],
     at: usize,
     keyword: &[u8],
@@ -272,6 +283,8 @@ fn map(
         file: String::new(),
         clamp: false,
         bump_multiplier: 1.0,
+        line: number,
+        column: 1,
     };
     let mut k = 0;
     let number = |k: usize| -> Option<f64> {
@@ -355,6 +368,7 @@ fn map(
             format!("{} needs a file name", shown(keyword)),
         ));
     };
+    out.column = column(line, start);
     out.file = std::str::from_utf8(&line[start..])
         .map_err(|e| (start + e.valid_up_to(), "the file name is not UTF-8".into()))?
         .trim_end()
@@ -393,6 +407,7 @@ mod tests {
         assert_eq!((red.opacity, red.illum), (Some(0.75), Some(2)));
         let map = red.diffuse_map.as_ref().unwrap();
         assert_eq!((map.file.as_str(), map.clamp), ("tex/red wood.png", true));
+        assert_eq!((map.line, map.column), (11, 29));
         let bump = red.bump_map.as_ref().unwrap();
         assert_eq!((bump.file.as_str(), bump.bump_multiplier), ("h.png", 0.02));
         assert_eq!(m[1].opacity, Some(0.5));
