@@ -10,6 +10,7 @@ pub mod accumulate;
 pub mod adaptive;
 pub mod bake;
 pub mod budget;
+pub mod camera_choice;
 pub mod components;
 pub mod contour;
 pub mod diagnostic;

@@ -76,6 +76,10 @@ enum Command {
 struct RenderArgs {
     /// Scene file (RON).
     scene: PathBuf,
+    /// Render this camera (by name; a glTF file's cameras are named after the file's)
+    /// instead of the scene's render camera.
+    #[arg(long, value_name = "NAME")]
+    camera: Option<String>,
     /// Write the image here instead of the camera's first image output (.png or .exr), or the
     /// contour lines instead of its first vector output (.svg or .eps); added if it has none.
     #[arg(short = 'o', long = "output")]
@@ -634,6 +638,16 @@ fn render(args: RenderArgs) -> ExitCode {
             Ok(p) => p,
             Err(code) => return code,
         };
+    if let Some(name) = &args.camera {
+        if args.part.is_some() {
+            eprintln!("error: --camera cannot be combined with --part\n  help: the merge job renders the scene's render camera; set `render: (camera: …)` in the scene instead");
+            return ExitCode::from(EXIT_USAGE);
+        }
+        if let Err(message) = stagelight::camera_choice::use_camera(&mut scene.world, name) {
+            eprintln!("{message}");
+            return ExitCode::from(EXIT_USAGE);
+        }
+    }
     if let Some(spp) = args.spp {
         // A fixed count overrides the scene's adaptive sampling too.
         settings.spp = spp;

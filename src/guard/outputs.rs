@@ -126,8 +126,10 @@ fn unknown_link() -> SourceLink {
 /// run may rewrite). `text` stands in for the root file when
 /// the scene was loaded from a string.
 pub fn scene_inputs(scene: &Path, text: Option<&str>) -> Vec<PathBuf> {
-    let loaded = crate::scene::include::load_files(scene, text, crate::scene::import::FORMATS);
+    let mut loaded = crate::scene::include::load_files(scene, text, crate::scene::import::FORMATS);
     let mut inputs = Vec::new();
+    // OBJ material libraries and the textures they name are inputs too.
+    crate::scene::obj_materials::expand(&mut loaded.sources, &mut loaded.scenes, &mut inputs);
     for (file, desc) in loaded.sources.files.iter().zip(&loaded.scenes) {
         inputs.push(file.path.clone());
         let Some(desc) = desc else { continue };

@@ -18,6 +18,10 @@ pub enum MeshDesc {
     Obj {
         /// Path of the OBJ file.
         file: String,
+        /// Only the faces written under `usemtl <name>` (`""`: those before any `usemtl`),
+        /// default all faces.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        usemtl: Option<String>,
     },
     /// PLY file (ASCII or binary), relative to the declaring scene file.
     Ply {

@@ -250,6 +250,21 @@ pub fn from_data(data: MeshData) -> BuiltMesh {
     )
 }
 
+/// The faces of one `usemtl` material when an `Obj(…, usemtl: …)` mesh asks for them.
+fn obj_faces(mut data: MeshData, mesh: &super::desc::MeshDesc) -> Result<MeshData, MeshFileError> {
+    if let super::desc::MeshDesc::Obj {
+        usemtl: Some(name), ..
+    } = mesh
+    {
+        data.keep_material(name)
+            .map_err(|message| MeshFileError::Element {
+                path: "usemtl".to_string(),
+                message,
+            })?;
+    }
+    Ok(data)
+}
+
 /// Loads the mesh file that object `it` names, or only checks that it exists when the
 /// object is not `reachable`. Errors are recorded in `src`: an unreadable file at the file
 /// name in the scene; a parse error at its place in the mesh file (line and column), or, for
@@ -266,6 +281,7 @@ pub fn load_file(
     let at = it.at(&format!(".mesh.{}.file", format.variant()));
     let result = if reachable {
         mesh_files::read(format, &path, &mesh_files::gltf_pick(&it.desc.mesh))
+            .and_then(|data| obj_faces(data, &it.desc.mesh))
             .map(|data| Some(from_data(data)))
     } else {
         std::fs::metadata(&path)

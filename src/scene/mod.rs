@@ -46,6 +46,7 @@ pub(crate) mod message;
 pub(crate) mod names;
 pub(crate) mod nodes;
 pub mod nodes_desc;
+pub(crate) mod obj_materials;
 pub(crate) mod photon_flags;
 mod ray_flags;
 pub(crate) mod rebase;
@@ -135,10 +136,14 @@ fn load(
 ) -> Result<LoadedScene, SceneErrors> {
     let LoadedFiles {
         mut sources,
-        scenes,
+        mut scenes,
         content_hash,
         ..
     } = include::load_files(path, text, formats);
+    if sources.has_errors() {
+        return Err(SceneErrors(sources.finish()));
+    }
+    obj_materials::expand(&mut sources, &mut scenes, &mut Vec::new());
     if sources.has_errors() {
         return Err(SceneErrors(sources.finish()));
     }

@@ -49,6 +49,27 @@ fn obj_corpus_parses_to_checked_meshes_or_errors() {
 }
 
 #[test]
+fn mtl_corpus_parses_to_materials_or_located_errors() {
+    use stagelight::scene::mesh_files::{mtl, Location, MeshFileError};
+    for path in corpus("mtl") {
+        let bytes = std::fs::read(&path).unwrap();
+        match mtl::parse(&bytes) {
+            Ok(materials) => {
+                for m in &materials {
+                    assert!(m.opacity.is_none_or(|d| (0.0..=1.0).contains(&d)));
+                    assert!(m.ior.is_none_or(|n| n > 0.0));
+                }
+            }
+            Err(e) => assert!(
+                matches!(e, MeshFileError::Parse { at: Location::Text { line, column }, .. } if line >= 1 && column >= 1),
+                "{}: {e:?}",
+                path.display()
+            ),
+        }
+    }
+}
+
+#[test]
 fn photon_map_corpus_decodes_to_valid_trees_or_errors() {
     let mut decoded = 0;
     for path in corpus("photon_map") {

@@ -8,6 +8,7 @@
 //! variant.
 
 pub mod gltf_file;
+pub mod mtl;
 pub mod obj;
 pub mod ply;
 
@@ -63,7 +64,7 @@ impl MeshFormat {
 /// relative to the declaring scene file).
 pub fn mesh_file(mesh: &MeshDesc) -> Option<(MeshFormat, &str)> {
     match mesh {
-        MeshDesc::Obj { file } => Some((MeshFormat::Obj, file)),
+        MeshDesc::Obj { file, .. } => Some((MeshFormat::Obj, file)),
         MeshDesc::Ply { file } => Some((MeshFormat::Ply, file)),
         MeshDesc::Gltf { file, .. } => Some((MeshFormat::Gltf, file)),
         _ => None,
@@ -120,6 +121,104 @@ pub struct MeshData {
     pub uvs1: Option<Vec<Vec2>>,
     /// Triangles as indices into `positions`.
     pub triangles: Vec<[u32; 3]>,
+    /// OBJ material libraries and per-triangle materials, when the file names either.
+    pub materials: Option<FaceMaterials>,
+}
+
+/// A `mtllib` file an OBJ file names, and where.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct MaterialLibrary {
+    /// The file as written (relative to the OBJ file).
+    pub file: String,
+    /// 1-based line of the `mtllib` statement.
+    pub line: usize,
+    /// 1-based column of the file name.
+    pub column: usize,
+}
+
+/// A material an OBJ file's `usemtl` names, and where it is first named.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct UsedMaterial {
+    /// The material name.
+    pub name: String,
+    /// 1-based line of its first `usemtl`.
+    pub line: usize,
+    /// 1-based column of the name there.
+    pub column: usize,
+}
+
+/// The materials of an OBJ file's faces.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct FaceMaterials {
+    /// `mtllib` files, in order.
+    pub libraries: Vec<MaterialLibrary>,
+    /// Materials named by `usemtl`, in order of first use.
+    pub used: Vec<UsedMaterial>,
+    /// Per triangle: index into `used`, or `u32::MAX` for a triangle written before any
+    /// `usemtl`.
+    pub of_triangle: Vec<u32>,
+}
+
+impl MeshData {
+    /// Keeps only the triangles written under `usemtl name` (`""`: those written before any
+    /// `usemtl`) and the vertices they use; an error names the file's materials when no
+    /// triangle matches.
+    pub fn keep_material(&mut self, name: &str) -> Result<(), String> {
+        let used = self.materials.as_ref().map_or(&[][..], |m| &m.used[..]);
+        let wanted = if name.is_empty() {
+            u32::MAX
+        } else {
+            match used.iter().position(|u| u.name == name) {
+                Some(k) => k as u32,
+                None => {
+                    let names: Vec<String> =
+                        used.iter().map(|u| format!("\"{}\"", u.name)).collect();
+                    let has = if names.is_empty() {
+                        "the file has no usemtl statements".to_string()
+                    } else {
+                        format!("it uses {}", names.join(", "))
+                    };
+                    return Err(format!("no face uses material \"{name}\": {has}"));
+                }
+            }
+        };
+        let of_triangle = self
+            .materials
+            .as_ref()
+            .map(|m| m.of_triangle.clone())
+            .unwrap_or_else(|| vec![u32::MAX; self.triangles.len()]);
+        let mut remap = vec![u32::MAX; self.positions.len()];
+        let mut kept = Vec::new();
+        let mut triangles = Vec::new();
+        for (t, m) in self.triangles.iter().zip(&of_triangle) {
+            if *m != wanted {
+                continue;
+            }
+            triangles.push(t.map(|i| {
+                let old = i as usize;
+                if remap[old] == u32::MAX {
+                    remap[old] = kept.len() as u32;
+                    kept.push(old);
+                }
+                remap[old]
+            }));
+        }
+        if triangles.is_empty() {
+            return Err(format!("no face uses material \"{name}\""));
+        }
+        fn pick<T: Copy>(v: &[T], kept: &[usize]) -> Vec<T> {
+            kept.iter().map(|&i| v[i]).collect()
+        }
+        self.positions = pick(&self.positions, &kept);
+        self.normals = self.normals.as_ref().map(|n| pick(n, &kept));
+        self.uvs = self.uvs.as_ref().map(|u| pick(u, &kept));
+        self.uvs1 = self.uvs1.as_ref().map(|u| pick(u, &kept));
+        if let Some(m) = &mut self.materials {
+            m.of_triangle = vec![wanted; triangles.len()];
+        }
+        self.triangles = triangles;
+        Ok(())
+    }
 }
 
 /// Where in a mesh file a problem is.

@@ -19,14 +19,19 @@
 //! Indices count from 1, or back from −1 (the last element read so far); an index may
 //! refer to an element written later in the file. An index of 0, one before the first
 //! element, or past the last is an error at the face vertex that holds it, as is a `vt` or
-//! `vn` index when the file has no such element. Points (`p`), lines (`l`), smoothing groups,
-//! materials (`mtllib`, `usemtl`) and free-form geometry statements are valid and ignored.
+//! `vn` index when the file has no such element. Points (`p`), lines (`l`), smoothing groups
+//! and free-form geometry statements are valid and ignored.
+//!
+//! Materials: the `mtllib` files (each word one file, as written) and the material each
+//! triangle was written under (`usemtl`, none before the first) are kept in
+//! [`MeshData::materials`] when the file has either; reading the libraries is
+//! [`crate::scene::obj_materials`]'s job.
 
 use std::collections::HashMap;
 
 use glam::{DVec3, Vec2, Vec3};
 
-use super::{column, shown, MeshData, MeshFileError};
+use super::{column, shown, FaceMaterials, MaterialLibrary, MeshData, MeshFileError, UsedMaterial};
 
 /// Valid OBJ statements that carry nothing this reader uses (besides the names it checks).
 const IGNORED: &[&[u8]] = &[
@@ -34,7 +39,6 @@ const IGNORED: &[&[u8]] = &[
     b"p",
     b"l",
     b"s",
-    b"mtllib",
     b"cstype",
     b"deg",
     b"bmat",
@@ -70,7 +74,10 @@ const NONE: u32 = u32::MAX;
 /// Parses an OBJ file (see the module documentation for the rules).
 pub fn parse(bytes: &[u8]) -> Result<MeshData, MeshFileError> {
     let bytes = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(bytes);
-    let mut reader = Reader::default();
+    let mut reader = Reader {
+        current: NONE,
+        ..Reader::default()
+    };
     for (k, line) in bytes.split(|&b| b == b'\n').enumerate() {
         let line = line.strip_suffix(b"\r").unwrap_or(line);
         reader.statement(line).map_err(|(offset, message)| {
@@ -106,6 +113,14 @@ struct Reader {
     model: HashMap<[u32; 3], u32>,
     triangles: Vec<[u32; 3]>,
     forward: Vec<Forward>,
+    /// `mtllib` files in order.
+    libraries: Vec<MaterialLibrary>,
+    /// Materials named by `usemtl`, in order of first use.
+    used: Vec<UsedMaterial>,
+    /// Index into `used` of the current `usemtl` ([`NONE`] before the first).
+    current: u32,
+    /// The material of each triangle (index into `used`, or [`NONE`]).
+    triangle_material: Vec<u32>,
 }
 
 /// An error inside a line: byte offset in the line and message.
@@ -152,7 +167,35 @@ impl Reader {
                 if words.len() < 2 {
                     return Err((start, "usemtl needs a material name".into()));
                 }
-                utf8_name(line, start, "material")
+                utf8_name(line, start, "material")?;
+                let name = String::from_utf8_lossy(&line[words[1].0..])
+                    .trim_end()
+                    .to_string();
+                self.current = match self.used.iter().position(|u| u.name == name) {
+                    Some(k) => k as u32,
+                    None => {
+                        self.used.push(UsedMaterial {
+                            name,
+                            line: self.line,
+                            column: column(line, words[1].0),
+                        });
+                        (self.used.len() - 1) as u32
+                    }
+                };
+                Ok(())
+            }
+            b"mtllib" => {
+                for &(offset, word) in args {
+                    let file = std::str::from_utf8(word).map_err(|_| {
+                        (offset, "the material library name is not UTF-8".to_string())
+                    })?;
+                    self.libraries.push(MaterialLibrary {
+                        file: file.to_string(),
+                        line: self.line,
+                        column: column(line, offset),
+                    });
+                }
+                Ok(())
             }
             _ if keyword.starts_with(b"#") || IGNORED.contains(&keyword) => Ok(()),
             b"ply" if self.line == 1 => Err((
@@ -206,6 +249,7 @@ impl Reader {
         for k in 1..corners.len() - 1 {
             let triangle = [corners[0], corners[k], corners[k + 1]].map(|c| self.vertex(c));
             self.triangles.push(triangle);
+            self.triangle_material.push(self.current);
         }
         Ok(())
     }
@@ -313,12 +357,19 @@ impl Reader {
                 .map(|v| self.normals[v[2] as usize])
                 .collect()
         });
+        let materials =
+            (!self.libraries.is_empty() || !self.used.is_empty()).then_some(FaceMaterials {
+                libraries: self.libraries,
+                used: self.used,
+                of_triangle: self.triangle_material,
+            });
         Ok(MeshData {
             positions,
             normals,
             uvs,
             uvs1: None,
             triangles: self.triangles,
+            materials,
         })
     }
 }
@@ -342,7 +393,7 @@ fn out_of_range(kind: usize, written: i64, count: usize) -> String {
 
 /// The words of a line with their byte offsets, up to a word that starts a comment (`#`)
 /// unless that is the first.
-fn words(line: &[u8]) -> Vec<(usize, &[u8])> {
+pub(super) fn words(line: &[u8]) -> Vec<(usize, &[u8])> {
     let mut out = Vec::new();
     let mut start = None;
     for (k, &b) in line.iter().chain(std::iter::once(&b' ')).enumerate() {
@@ -364,7 +415,7 @@ fn words(line: &[u8]) -> Vec<(usize, &[u8])> {
 
 /// The numbers of a statement's arguments: each must parse as a number, and there must be
 /// a count in `range` (`need` says what is expected).
-fn numbers(
+pub(super) fn numbers(
     args: &[(usize, &[u8])],
     at: usize,
     range: std::ops::RangeInclusive<usize>,
@@ -590,6 +641,43 @@ mod tests {
         let m = parse(b"f 1 2 3\nv 0 0 0\nv 1 0 0\nv 0 1 0\n").unwrap();
         assert_eq!(m.triangles, vec![[0, 1, 2]]);
         assert_eq!(m.positions[2], DVec3::new(0.0, 1.0, 0.0));
+    }
+
+    #[test]
+    fn libraries_and_each_triangles_material_are_kept() {
+        let obj = [
+            TRI,
+            b"mtllib a.mtl  sub/b.mtl\nf 1 2 3\nusemtl red\nf 1 2 3 1\nusemtl blue\nf 1 2 3\nusemtl red\nf 3 2 1\n",
+        ]
+        .concat();
+        let mut m = parse(&obj).unwrap();
+        let faces = m.materials.clone().unwrap();
+        let files: Vec<(&str, usize, usize)> = faces
+            .libraries
+            .iter()
+            .map(|l| (l.file.as_str(), l.line, l.column))
+            .collect();
+        assert_eq!(files, vec![("a.mtl", 4, 8), ("sub/b.mtl", 4, 15)]);
+        let used: Vec<(&str, usize)> = faces
+            .used
+            .iter()
+            .map(|u| (u.name.as_str(), u.line))
+            .collect();
+        assert_eq!(used, vec![("red", 6), ("blue", 8)]);
+        assert_eq!(faces.of_triangle, vec![NONE, 0, 0, 1, 0]);
+        // Only red's three triangles, over the vertices they use.
+        m.keep_material("red").unwrap();
+        assert_eq!(m.triangles.len(), 3);
+        assert_eq!(m.positions.len(), 3);
+        assert!(m.triangles.iter().flatten().all(|&i| i < 3));
+        assert_eq!(
+            parse(&obj).unwrap().keep_material("green").unwrap_err(),
+            "no face uses material \"green\": it uses \"red\", \"blue\""
+        );
+        let mut before = parse(&obj).unwrap();
+        before.keep_material("").unwrap();
+        assert_eq!(before.triangles, vec![[0, 1, 2]]);
+        assert_eq!(parse(TRI).unwrap().materials, None);
     }
 
     #[test]

@@ -685,6 +685,7 @@ fn read(h: &Header, layout: &Layout, mut values: impl Values) -> Result<MeshData
         uvs,
         uvs1: None,
         triangles,
+        materials: None,
     })
 }
 

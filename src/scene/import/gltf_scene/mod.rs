@@ -145,8 +145,8 @@ pub struct Walk<'a> {
     groups: HashMap<usize, Option<String>>,
     /// World-space bounds of the placed meshes (min, max).
     pub bounds: Option<(DVec3, DVec3)>,
-    /// The first camera met: (node, world matrix).
-    pub camera: Option<(usize, DMat4)>,
+    /// Every perspective camera met, in walk order: (node, world matrix).
+    pub cameras: Vec<(usize, DMat4)>,
     /// Every instance of a primitive: (instance name, node, primitive index).
     pub leaves: Vec<(String, usize, usize)>,
     errors: Vec<Diagnostic>,
@@ -279,21 +279,19 @@ impl Walk<'_> {
         }
         stack.push(node.index());
         if let Some(camera) = node.camera() {
-            if self.camera.is_none() {
-                if matches!(
-                    camera.projection(),
-                    gltf::camera::Projection::Perspective(_)
-                ) {
-                    self.camera = Some((node.index(), world));
-                } else {
-                    self.warnings.push(at_file(
-                        self.path,
-                        format!(
-                            "cameras[{}]: ignored an orthographic camera (only perspective cameras are read)",
-                            camera.index()
-                        ),
-                    ));
-                }
+            if matches!(
+                camera.projection(),
+                gltf::camera::Projection::Perspective(_)
+            ) {
+                self.cameras.push((node.index(), world));
+            } else {
+                self.warnings.push(at_file(
+                    self.path,
+                    format!(
+                        "cameras[{}]: ignored an orthographic camera (only perspective cameras are read)",
+                        camera.index()
+                    ),
+                ));
             }
         }
         if let Some(light) = node.light() {
@@ -404,7 +402,7 @@ fn build(path: &Path, _file_name: &str, file: &GltfFile) -> Result<Built, Vec<Di
         materials: HashMap::new(),
         groups: HashMap::new(),
         bounds: None,
-        camera: None,
+        cameras: Vec::new(),
         leaves: Vec::new(),
         errors: Vec::new(),
     };

@@ -1,4 +1,5 @@
-//! Cameras and lights of a glTF scene: the first perspective camera met in the node walk (or
+//! Cameras and lights of a glTF scene: every perspective camera met in the node walk, the first
+//! being the render camera (or
 //! a default framing of the scene's bounds), `KHR_lights_punctual` lights converted to
 //! radiometric units, and the default light of a file that has none.
 //!
@@ -111,71 +112,100 @@ fn rigid(world: &DMat4) -> DMat4 {
     )
 }
 
-/// Adds the render camera (the first perspective camera of the walk, else the default
-/// framing) and returns its name.
+/// Adds every perspective camera of the walk (the first is the render camera, writing
+/// `<stem>.png`; the others `<stem>_<camera>.png`, for `render --camera NAME`), else the
+/// default framing, and returns the render camera's name.
 pub fn camera(w: &mut Walk<'_>) -> String {
     let stem = w
         .path
         .file_stem()
         .map(|s| s.to_string_lossy().into_owned())
         .unwrap_or_else(|| "gltf".into());
-    let outputs = vec![OutputDesc {
-        file: format!("{stem}.png"),
-        format: None,
-        passes: None,
-    }];
-    let found = w.camera.and_then(|(node, world)| {
-        let node = w.file.doc.nodes().nth(node)?;
-        let camera = node.camera()?;
-        let gltf::camera::Projection::Perspective(p) = camera.projection() else {
-            return None;
+    let found: Vec<_> = w
+        .cameras
+        .clone()
+        .into_iter()
+        .filter_map(|(node, world)| {
+            let node = w.file.doc.nodes().nth(node)?;
+            let camera = node.camera()?;
+            let gltf::camera::Projection::Perspective(p) = camera.projection() else {
+                return None;
+            };
+            let label = camera
+                .name()
+                .or(node.name())
+                .map(str::to_string)
+                .unwrap_or_else(|| format!("camera{}", camera.index()));
+            Some((
+                label,
+                (p.yfov() as f64).to_degrees().clamp(1e-3, 179.0),
+                p.aspect_ratio(),
+                PlacementDesc::Matrix(m4(&rigid(&world))),
+            ))
+        })
+        .collect();
+    if found.is_empty() {
+        let (lo, hi) = w.bounds.unwrap_or((DVec3::splat(-1.0), DVec3::splat(1.0)));
+        let centre = (lo + hi) * 0.5;
+        let radius = ((hi - lo).length() * 0.5).max(1e-3);
+        let distance = radius / (DEFAULT_FOV_Y.to_radians() * 0.5).sin() * 1.05;
+        let e = DEFAULT_ELEVATION.to_radians();
+        let eye = centre + DVec3::new(0.0, e.sin(), e.cos()) * distance;
+        let placement = PlacementDesc::LookAt {
+            eye: (eye.x, eye.y, eye.z),
+            target: (centre.x, centre.y, centre.z),
+            up: (0.0, 1.0, 0.0),
         };
-        let label = camera
-            .name()
-            .or(node.name())
-            .map(str::to_string)
-            .unwrap_or_else(|| format!("camera{}", camera.index()));
-        Some((label, p.yfov() as f64, p.aspect_ratio(), world))
-    });
-    let (label, fov_y, aspect, placement) = match found {
-        Some((label, yfov, aspect, world)) => (
-            label,
-            yfov.to_degrees().clamp(1e-3, 179.0),
-            aspect,
-            PlacementDesc::Matrix(m4(&rigid(&world))),
-        ),
-        None => {
-            let (lo, hi) = w.bounds.unwrap_or((DVec3::splat(-1.0), DVec3::splat(1.0)));
-            let centre = (lo + hi) * 0.5;
-            let radius = ((hi - lo).length() * 0.5).max(1e-3);
-            let distance = radius / (DEFAULT_FOV_Y.to_radians() * 0.5).sin() * 1.05;
-            let e = DEFAULT_ELEVATION.to_radians();
-            let eye = centre + DVec3::new(0.0, e.sin(), e.cos()) * distance;
-            (
-                "default_camera".to_string(),
-                DEFAULT_FOV_Y,
-                None,
-                PlacementDesc::LookAt {
-                    eye: (eye.x, eye.y, eye.z),
-                    target: (centre.x, centre.y, centre.z),
-                    up: (0.0, 1.0, 0.0),
-                },
-            )
-        }
-    };
+        return add_camera(
+            w,
+            "default_camera",
+            DEFAULT_FOV_Y,
+            None,
+            placement,
+            &stem,
+            true,
+        );
+    }
+    let mut first = None;
+    for (label, fov_y, aspect, placement) in found {
+        let name = add_camera(w, &label, fov_y, aspect, placement, &stem, first.is_none());
+        first.get_or_insert(name);
+    }
+    first.unwrap_or_default()
+}
+
+/// Adds one camera (its output `<stem>.png` when `main`, else `<stem>_<name>.png`).
+fn add_camera(
+    w: &mut Walk<'_>,
+    label: &str,
+    fov_y: f64,
+    aspect: Option<f32>,
+    placement: PlacementDesc,
+    stem: &str,
+    main: bool,
+) -> String {
     let aspect = aspect
         .map(f64::from)
         .filter(|a| a.is_finite() && *a > 0.0)
         .unwrap_or(4.0 / 3.0);
     let height = ((CAMERA_WIDTH as f64 / aspect).round() as u32).clamp(1, 16384);
-    let name = w.names.take(&label);
+    let name = w.names.take(label);
+    let file = if main {
+        format!("{stem}.png")
+    } else {
+        format!("{stem}_{name}.png")
+    };
     w.desc.cameras.push(CameraDesc {
         name: name.clone(),
         fov_y,
         resolution: (CAMERA_WIDTH, height),
         aspect: None,
         placement,
-        outputs,
+        outputs: vec![OutputDesc {
+            file,
+            format: None,
+            passes: None,
+        }],
         imager: None,
         lens: Vec::new(),
         atmosphere: None,
