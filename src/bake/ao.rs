@@ -1,6 +1,6 @@
 //! Ambient occlusion and the inside-geometry probe: cosine-weighted rays about the shading
-//! normal from a robustly offset origin, traced as one stream per texel through the batch
-//! kernel.
+//! normal from a robustly offset origin, generated as one stream per texel (traced one query
+//! per ray, or through the batch kernel with `STAGELIGHT_RAY_STREAMS=on`).
 
 use glam::Vec3;
 
@@ -28,11 +28,14 @@ pub struct HemisphereRays {
     pub backface_hits: u32,
 }
 
-/// Whether hemisphere rays go through the batch kernel (the default) or one query per ray:
-/// `STAGELIGHT_RAY_STREAMS=off` at the first bake, for A/B measurements. Same results.
+/// Whether a texel's hemisphere rays go through the batch kernel (`STAGELIGHT_RAY_STREAMS=on`
+/// at the first bake) or one query per ray (the default). Same results. One query per ray is
+/// the default because it measured faster on `bake_ao.ron` (a texel's rays share their origin,
+/// so consecutive single-ray traversals find the upper nodes in cache, and the batch lanes'
+/// bookkeeping costs more than the latency they hide: issue 17 note, session 7).
 fn streams() -> bool {
     static CHOICE: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
-    *CHOICE.get_or_init(|| std::env::var("STAGELIGHT_RAY_STREAMS").as_deref() != Ok("off"))
+    *CHOICE.get_or_init(|| std::env::var("STAGELIGHT_RAY_STREAMS").as_deref() == Ok("on"))
 }
 
 /// One sample position's share of a batch of hemisphere rays (see [`trace_hemispheres`]).
@@ -75,7 +78,8 @@ pub fn trace_hemisphere(
     trace_hemispheres(geometry, &[job], max_distance, seed, probe)[0]
 }
 
-/// The hemisphere rays of several points traced as one stream through the batch kernel
+/// The hemisphere rays of several points, generated first and then traced as one stream:
+/// one query per ray, or with `STAGELIGHT_RAY_STREAMS=on` through the batch kernel
 /// ([`crate::accel::Accel::intersect_batch`]: rays interleaved so that their memory misses
 /// overlap). Per point: `count` cosine-weighted rays about `normal`, ray `k` drawn from
 /// `Sampler::new(seed, first + k)`. Directions below the geometric surface (possible with
