@@ -87,14 +87,14 @@ pub struct AccelStats {
     /// SAH cost of the hierarchy: expected node visits plus 0.3 per triangle test, for a ray
     /// that hits the root box (`collapse.rs`; lower is better).
     pub sah_cost: f64,
-    /// Heap bytes of the mesh and the hierarchy: the caller's triangles, the BVH-order copy,
-    /// the index map and the nodes.
+    /// Heap bytes of the mesh and the hierarchy: the triangles (one copy, in BVH order), the
+    /// two index maps between BVH order and the caller's order, and the nodes.
     pub bytes: usize,
 }
 
 /// BVH over world-space triangles. `Send + Sync`: build once, trace from many threads.
 pub struct Accel {
-    triangles: Vec<[Vec3; 3]>,
+    /// The hierarchy; it also holds the triangles (`Bvh::tris`, BVH order).
     bvh: bvh::Bvh,
     counters: counters::Counters,
     /// Ray kinds that see each triangle (`ray_kind.rs`); `None`: every kind sees all.
@@ -103,11 +103,12 @@ pub struct Accel {
 
 impl Accel {
     /// Builds the hierarchy. Degenerate triangles (zero area, non-finite vertices) are kept in
-    /// the index space but never hit.
+    /// the index space but never hit. `triangles` is dropped once the hierarchy holds its
+    /// BVH-order copy.
     pub fn build(triangles: Vec<[Vec3; 3]>, quality: BvhQuality) -> Self {
         let bvh = bvh::build(&triangles, quality);
+        drop(triangles);
         Self {
-            triangles,
             bvh,
             counters: counters::Counters::new(),
             masks: None,
@@ -116,17 +117,17 @@ impl Accel {
 
     /// Number of triangles.
     pub fn len(&self) -> usize {
-        self.triangles.len()
+        self.bvh.tris.len()
     }
 
     /// True when there are no triangles.
     pub fn is_empty(&self) -> bool {
-        self.triangles.is_empty()
+        self.bvh.tris.is_empty()
     }
 
-    /// Vertices of triangle `prim`.
+    /// Vertices of triangle `prim` (index in the order given to [`Accel::build`]).
     pub fn triangle(&self, prim: u32) -> [Vec3; 3] {
-        self.triangles[prim as usize]
+        self.bvh.tris[self.bvh.slot_of[prim as usize] as usize]
     }
 
     /// Closest hit along the ray (`0 < t < t_max`); ties at equal `t` go to the smallest
@@ -192,15 +193,15 @@ impl Accel {
     /// Size and build statistics.
     pub fn stats(&self) -> AccelStats {
         AccelStats {
-            triangles: self.triangles.len(),
-            bvh_triangles: self.bvh.tris.len(),
+            triangles: self.bvh.tris.len(),
+            bvh_triangles: self.bvh.hierarchy_triangles,
             nodes: self.bvh.nodes.len(),
             depth: self.bvh.depth,
             build_seconds: self.bvh.build_seconds,
             sah_cost: self.bvh.sah_cost,
-            bytes: std::mem::size_of_val(self.triangles.as_slice())
-                + std::mem::size_of_val(self.bvh.tris.as_slice())
+            bytes: std::mem::size_of_val(self.bvh.tris.as_slice())
                 + std::mem::size_of_val(self.bvh.prim_ids.as_slice())
+                + std::mem::size_of_val(self.bvh.slot_of.as_slice())
                 + std::mem::size_of_val(self.bvh.nodes.as_slice()),
         }
     }
@@ -225,6 +226,40 @@ mod tests {
             t_max: f32::INFINITY,
         };
         assert!(a.is_empty() && a.intersect(&r).is_none() && !a.occluded(&r));
+    }
+
+    /// One triangle copy: `triangle(prim)` gives back the caller's triangles, degenerate ones
+    /// included, in the caller's order, and the byte count is that copy, two `u32` maps and
+    /// the nodes.
+    #[test]
+    fn triangles_come_back_in_caller_order_from_one_copy() {
+        let mut tris: Vec<[Vec3; 3]> = (0..300)
+            .map(|i| {
+                let c = Vec3::new(
+                    (i as f32 * 0.7).sin(),
+                    (i as f32 * 0.3).cos(),
+                    i as f32 * 0.01,
+                );
+                [c, c + Vec3::X * 0.1, c + Vec3::Y * 0.1]
+            })
+            .collect();
+        tris[0] = [Vec3::ZERO; 3];
+        tris[150] = [Vec3::NAN, Vec3::X, Vec3::Y];
+        tris[299] = [Vec3::ONE; 3];
+        let a = Accel::build(tris.clone(), BvhQuality::Medium);
+        assert_eq!(a.len(), tris.len());
+        for (i, t) in tris.iter().enumerate() {
+            assert_eq!(
+                a.triangle(i as u32).map(|v| v.to_array().map(f32::to_bits)),
+                t.map(|v| v.to_array().map(f32::to_bits)),
+                "triangle {i}"
+            );
+        }
+        let s = a.stats();
+        assert_eq!((s.triangles, s.bvh_triangles), (300, 297));
+        assert_eq!(s.bytes, 300 * (36 + 4 + 4) + s.nodes * 256);
+        let degenerate_only = Accel::build(vec![[Vec3::ONE; 3]; 2], BvhQuality::Fast);
+        assert_eq!(degenerate_only.triangle(1), [Vec3::ONE; 3]);
     }
 
     #[test]

@@ -48,11 +48,7 @@ impl Accel {
     /// # Panics
     /// When `masks` is not one entry per triangle.
     pub fn set_ray_masks(&mut self, masks: Vec<u8>) {
-        assert_eq!(
-            masks.len(),
-            self.triangles.len(),
-            "one ray mask per triangle"
-        );
+        assert_eq!(masks.len(), self.len(), "one ray mask per triangle");
         self.masks = masks.iter().any(|&m| m != ALL_RAYS).then_some(masks);
     }
 

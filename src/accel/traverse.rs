@@ -6,8 +6,12 @@
 //!   `1 + 2γ3`. The only NaN is `0 · ∞` (origin exactly on a plane of an axis the ray does not
 //!   move along); the min/max chain is ordered so that such a slab is ignored, which is the
 //!   conservative answer. The entry distance is clamped at 0 — not at obvhs's 1e-4.
-//! * **Order**: hit children are pushed sorted by entry distance, nearest on top; popped
-//!   entries farther than the current closest hit are skipped.
+//! * **Order**: the single-ray closest-hit kernel visits hit children in the node's
+//!   precomputed order for the ray's octant (`Node::order`; no sort): the nearest is visited
+//!   next, the others are pushed farthest first. The batch lanes push children sorted by
+//!   entry distance, nearest on top (as the single-ray kernel does with
+//!   `STAGELIGHT_TRAVERSAL=sorted`, for A/B runs). Popped entries farther than the current
+//!   closest hit are skipped.
 //! * **Prefetch**: every child pushed is prefetched whole (a node's four cache lines, a
 //!   leaf's triangles), so its misses overlap the work on its siblings (+13–15 % incoherent).
 //! * **Batches** (`closest_batch`, `occluded_batch`): 12 rays traversed interleaved, one node
@@ -35,6 +39,24 @@ pub(super) trait NodeTest {
     fn new(ray: &Ray) -> Self;
     /// Tests the eight children against `[0, t_far]`.
     fn intersect(&self, node: &Node, t_far: f32) -> (u32, [f32; 8]);
+
+    /// The same test, answered in the visiting order `order` (a [`Node::order`] word):
+    /// bit `i` of the mask, entry distance `i` and reference `i` are those of slot
+    /// `order`'s `i`-th slot. Scalar permutation here; the wide kernels permute in registers.
+    #[inline(always)]
+    fn intersect_ordered(&self, node: &Node, t_far: f32, order: u32) -> (u32, [f32; 8], [u32; 8]) {
+        let (mask, entry) = self.intersect(node, t_far);
+        let mut ordered_mask = 0;
+        let mut t = [0f32; 8];
+        let mut r = [0u32; 8];
+        for i in 0..8 {
+            let slot = (order >> (3 * i) & 7) as usize;
+            ordered_mask |= (mask >> slot & 1) << i;
+            t[i] = entry[slot];
+            r[i] = node.child[slot];
+        }
+        (ordered_mask, t, r)
+    }
 }
 
 impl NodeTest for NodeRay {
@@ -227,18 +249,40 @@ pub(crate) fn occluded(bvh: &Bvh, ray: &Ray) -> bool {
     occluded_in::<NodeRay>(bvh, ray)
 }
 
+/// Whether the closest-hit kernel visits children in octant order (the default) rather than
+/// sorted by entry distance: `STAGELIGHT_TRAVERSAL=sorted` (or `sse-sorted`) at the first
+/// query turns the sort back on, for A/B measurements. Both give the same hits.
+pub(super) fn octant_order() -> bool {
+    static CHOICE: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
+    *CHOICE
+        .get_or_init(|| !std::env::var("STAGELIGHT_TRAVERSAL").is_ok_and(|v| v.ends_with("sorted")))
+}
+
 /// Closest hit of `ray` with the node test `N` (SSE: `NodeRay`, the fallback).
 #[inline(always)]
 pub(super) fn closest_in<N: NodeTest>(bvh: &Bvh, ray: &Ray) -> Option<Hit> {
+    if octant_order() {
+        closest_ordered_in::<N, true>(bvh, ray)
+    } else {
+        closest_ordered_in::<N, false>(bvh, ray)
+    }
+}
+
+/// [`closest_in`] with the child order fixed: octant order (`OCTANT`) or sorted.
+#[inline(always)]
+pub(super) fn closest_ordered_in<N: NodeTest, const OCTANT: bool>(
+    bvh: &Bvh,
+    ray: &Ray,
+) -> Option<Hit> {
     if bvh.nodes.is_empty() || !ray_is_valid(ray) {
         return None;
     }
     if stack_bound(bvh.depth) <= SMALL_STACK {
-        closest_with::<_, N>(bvh, ray, ArrayStack::<SMALL_STACK>::new())
+        closest_with::<_, N, OCTANT>(bvh, ray, ArrayStack::<SMALL_STACK>::new())
     } else if stack_bound(bvh.depth) <= ARRAY_STACK {
-        closest_with::<_, N>(bvh, ray, ArrayStack::<ARRAY_STACK>::new())
+        closest_with::<_, N, OCTANT>(bvh, ray, ArrayStack::<ARRAY_STACK>::new())
     } else {
-        closest_with::<_, N>(bvh, ray, Vec::with_capacity(stack_bound(bvh.depth)))
+        closest_with::<_, N, OCTANT>(bvh, ray, Vec::with_capacity(stack_bound(bvh.depth)))
     }
 }
 
@@ -257,6 +301,14 @@ pub(super) fn occluded_in<N: NodeTest>(bvh: &Bvh, ray: &Ray) -> bool {
     }
 }
 
+/// The ray's octant, the index of [`Node::order`]: bit `a` set when direction component `a`
+/// is negative (the sign bit decides, as for the near planes).
+#[inline(always)]
+fn octant(ray: &Ray) -> usize {
+    let d = ray.dir.to_array();
+    (0..3).fold(0, |o, a| o | usize::from(d[a].is_sign_negative()) << a)
+}
+
 #[inline(always)]
 fn leaf_range(r: u32) -> std::ops::Range<usize> {
     let first = (r & FIRST_MASK) as usize;
@@ -265,9 +317,14 @@ fn leaf_range(r: u32) -> std::ops::Range<usize> {
 }
 
 #[inline(always)]
-fn closest_with<S: Stack, N: NodeTest>(bvh: &Bvh, ray: &Ray, mut stack: S) -> Option<Hit> {
+fn closest_with<S: Stack, N: NodeTest, const OCTANT: bool>(
+    bvh: &Bvh,
+    ray: &Ray,
+    mut stack: S,
+) -> Option<Hit> {
     let woop = WoopRay::new(ray.origin, ray.dir);
     let nr = N::new(ray);
+    let octant = octant(ray);
     // Until the first hit, t must be < ray.t_max; afterwards (t, prim) must be smaller.
     // The closest candidate so far as (BVH-order index, b1, b2); its original index is looked
     // up only on an exact tie and once at the end (`prim_ids` is cold).
@@ -288,6 +345,27 @@ fn closest_with<S: Stack, N: NodeTest>(bvh: &Bvh, ray: &Ray, mut stack: S) -> Op
                         cull = t * FAR_SCALE;
                     }
                 }
+            }
+        } else if OCTANT {
+            let node = &bvh.nodes[cur as usize];
+            let (mut mask, tn, child) = nr.intersect_ordered(node, best_t, node.order[octant]);
+            if mask != 0 {
+                // Farthest first, so that the nearest (in octant order) is visited next: it
+                // goes straight to `cur` (its entry distance is ≤ `cull` by the box test).
+                let nearest = mask.trailing_zeros() as usize;
+                mask &= mask - 1;
+                prefetch(bvh, child[nearest]);
+                while mask != 0 {
+                    let i = 31 - mask.leading_zeros() as usize;
+                    mask ^= 1 << i;
+                    prefetch(bvh, child[i]);
+                    stack.push(Entry {
+                        r: child[i],
+                        t: tn[i],
+                    });
+                }
+                cur = child[nearest];
+                continue;
             }
         } else {
             let node = &bvh.nodes[cur as usize];
@@ -765,6 +843,12 @@ mod tests {
                 occluded_batch(&bvh, rays, &mut occ);
                 for (i, r) in rays.iter().enumerate() {
                     assert_eq!(hit_bits(hits[i]), hit_bits(closest(&bvh, r)), "ray {i}");
+                    // Octant order and sorted children: the same hit.
+                    assert_eq!(
+                        hit_bits(closest_ordered_in::<NodeRay, true>(&bvh, r)),
+                        hit_bits(closest_ordered_in::<NodeRay, false>(&bvh, r)),
+                        "ray {i}"
+                    );
                     assert_eq!(occ[i], occluded(&bvh, r), "ray {i}");
                 }
             }

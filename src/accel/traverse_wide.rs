@@ -3,8 +3,8 @@
 //! eight children in one instruction sequence instead of two 4-wide halves).
 //!
 //! * **Dispatch**: [`closest`] and [`occluded`] answer `None` when the CPU lacks AVX2
-//!   (`is_x86_feature_detected!`, cached by std) or when `STAGELIGHT_TRAVERSAL=sse` was set at
-//!   the first query (read once; for A/B measurements); the caller then runs the SSE kernel,
+//!   (`is_x86_feature_detected!`, cached by std) or when `STAGELIGHT_TRAVERSAL=sse` (or
+//!   `sse-sorted`) was set at the first query (read once; for A/B measurements); the caller then runs the SSE kernel,
 //!   which stays the fallback and is tested against this one.
 //! * **Same answers**: the node test makes the same operations as the SSE test, lane by lane
 //!   (subtract, multiply by the exact reciprocal, `max(n, acc)`/`min(f, acc)` in the same
@@ -14,9 +14,11 @@
 //!   the dispatch).
 
 use std::arch::x86_64::{
-    __m256, _mm256_cmp_ps, _mm256_max_ps, _mm256_min_ps, _mm256_movemask_ps, _mm256_mul_ps,
-    _mm256_set1_ps, _mm256_set_m128, _mm256_setzero_ps, _mm256_storeu_ps, _mm256_sub_ps,
-    _CMP_LE_OS,
+    __m256, __m256i, _mm256_and_si256, _mm256_cmp_ps, _mm256_loadu_si256, _mm256_max_ps,
+    _mm256_min_ps, _mm256_movemask_ps, _mm256_mul_ps, _mm256_permutevar8x32_epi32,
+    _mm256_permutevar8x32_ps, _mm256_set1_epi32, _mm256_set1_ps, _mm256_set_m128,
+    _mm256_setr_epi32, _mm256_setzero_ps, _mm256_srlv_epi32, _mm256_storeu_ps, _mm256_storeu_si256,
+    _mm256_sub_ps, _CMP_LE_OS,
 };
 use std::sync::OnceLock;
 
@@ -29,7 +31,7 @@ fn use_avx2() -> bool {
     static CHOICE: OnceLock<bool> = OnceLock::new();
     *CHOICE.get_or_init(|| {
         std::arch::is_x86_feature_detected!("avx2")
-            && std::env::var("STAGELIGHT_TRAVERSAL").as_deref() != Ok("sse")
+            && !std::env::var("STAGELIGHT_TRAVERSAL").is_ok_and(|v| v.starts_with("sse"))
     })
 }
 
@@ -98,6 +100,51 @@ impl NodeTest for NodeRay8 {
 
     #[inline(always)]
     fn intersect(&self, node: &Node, t_far: f32) -> (u32, [f32; 8]) {
+        let (hit, tn) = self.test(node, t_far);
+        // SAFETY: AVX intrinsics; this type exists only inside the AVX2 kernels.
+        unsafe {
+            let mut entry = [0f32; 8];
+            _mm256_storeu_ps(entry.as_mut_ptr(), tn);
+            (_mm256_movemask_ps(hit) as u32, entry)
+        }
+    }
+
+    /// The permutation in registers: the order word's eight 3-bit fields become lane indices
+    /// (variable shifts), and the hit lanes, entry distances and child references are
+    /// permuted with `vpermps`/`vpermd`.
+    #[inline(always)]
+    fn intersect_ordered(&self, node: &Node, t_far: f32, order: u32) -> (u32, [f32; 8], [u32; 8]) {
+        let (hit, tn) = self.test(node, t_far);
+        // SAFETY: AVX2 intrinsics; this type exists only inside the AVX2 kernels. The
+        // unaligned load reads the node's `[u32; 8]` child array through a reference to it,
+        // the stores write local arrays of the same size.
+        unsafe {
+            let lanes = _mm256_and_si256(
+                _mm256_srlv_epi32(
+                    _mm256_set1_epi32(order as i32),
+                    _mm256_setr_epi32(0, 3, 6, 9, 12, 15, 18, 21),
+                ),
+                _mm256_set1_epi32(7),
+            );
+            let mask = _mm256_movemask_ps(_mm256_permutevar8x32_ps(hit, lanes)) as u32;
+            let mut t = [0f32; 8];
+            _mm256_storeu_ps(t.as_mut_ptr(), _mm256_permutevar8x32_ps(tn, lanes));
+            let child = _mm256_loadu_si256(std::ptr::from_ref(&node.child).cast::<__m256i>());
+            let mut r = [0u32; 8];
+            _mm256_storeu_si256(
+                r.as_mut_ptr().cast::<__m256i>(),
+                _mm256_permutevar8x32_epi32(child, lanes),
+            );
+            (mask, t, r)
+        }
+    }
+}
+
+impl NodeRay8 {
+    /// The slab test proper: the hit lanes (all ones where a child is entered) and the entry
+    /// distances.
+    #[inline(always)]
+    fn test(&self, node: &Node, t_far: f32) -> (__m256, __m256) {
         // SAFETY: AVX intrinsics; this type exists only inside the AVX2 kernels. The loads
         // read two `Vec4`s of the node by value (no raw pointers).
         unsafe {
@@ -114,10 +161,7 @@ impl NodeTest for NodeRay8 {
                 tf = _mm256_min_ps(f, tf);
             }
             let tf = _mm256_mul_ps(tf, _mm256_set1_ps(FAR_SCALE_FACTOR));
-            let mask = _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_LE_OS>(tn, tf)) as u32;
-            let mut entry = [0f32; 8];
-            _mm256_storeu_ps(entry.as_mut_ptr(), tn);
-            (mask, entry)
+            (_mm256_cmp_ps::<_CMP_LE_OS>(tn, tf), tn)
         }
     }
 }
@@ -191,6 +235,9 @@ mod tests {
                     unsafe { (closest_avx2(&bvh, r), occluded_avx2(&bvh, r)) };
                 let sse_hit = closest_in::<NodeRay>(&bvh, r);
                 assert_eq!(hit_bits(wide_hit), hit_bits(sse_hit), "{r:?}");
+                // SAFETY: AVX2 was detected above.
+                let wide_sorted = unsafe { closest_sorted_avx2(&bvh, r) };
+                assert_eq!(hit_bits(wide_sorted), hit_bits(sse_hit), "{r:?}");
                 assert_eq!(wide_occ, occluded_in::<NodeRay>(&bvh, r), "{r:?}");
                 hits += usize::from(sse_hit.is_some());
                 for node in bvh.nodes.iter().take(64) {
@@ -199,11 +246,38 @@ mod tests {
                         let wide = unsafe { mask_avx2(node, r, t_far) };
                         let sse = <NodeRay as NodeTest>::intersect(&NodeRay::new(r), node, t_far).0;
                         assert_eq!(wide, sse, "{r:?}");
+                        // The permutation in registers equals the scalar one, every octant
+                        // (entry distances compared where a child is hit: the SSE test
+                        // leaves an empty second group's distances at 0).
+                        for &order in &node.order {
+                            // SAFETY: AVX2 was detected above.
+                            let (wm, wt, wr) = unsafe { ordered_avx2(node, r, t_far, order) };
+                            let (m, t, c) = NodeRay::new(r).intersect_ordered(node, t_far, order);
+                            assert_eq!((wm, wr), (m, c));
+                            for i in (0..8).filter(|i| m >> i & 1 != 0) {
+                                assert_eq!(wt[i].to_bits(), t[i].to_bits());
+                            }
+                        }
                     }
                 }
             }
             assert!(hits > 300, "{hits}");
         }
+    }
+
+    #[target_feature(enable = "avx2")]
+    unsafe fn closest_sorted_avx2(bvh: &Bvh, ray: &Ray) -> Option<Hit> {
+        super::super::traverse::closest_ordered_in::<NodeRay8, false>(bvh, ray)
+    }
+
+    #[target_feature(enable = "avx2")]
+    unsafe fn ordered_avx2(
+        node: &Node,
+        ray: &Ray,
+        t_far: f32,
+        order: u32,
+    ) -> (u32, [f32; 8], [u32; 8]) {
+        <NodeRay8 as NodeTest>::new(ray).intersect_ordered(node, t_far, order)
     }
 
     #[target_feature(enable = "avx2")]

@@ -1,5 +1,6 @@
 //! Ambient occlusion and the inside-geometry probe: cosine-weighted rays about the shading
-//! normal from a robustly offset origin.
+//! normal from a robustly offset origin, generated as one stream per texel (traced one query
+//! per ray, or through the batch kernel with `STAGELIGHT_RAY_STREAMS=on`).
 
 use glam::Vec3;
 
@@ -27,12 +28,35 @@ pub struct HemisphereRays {
     pub backface_hits: u32,
 }
 
+/// Whether a texel's hemisphere rays go through the batch kernel (`STAGELIGHT_RAY_STREAMS=on`
+/// at the first bake) or one query per ray (the default). Same results. One query per ray is
+/// the default because it measured faster on `bake_ao.ron` (a texel's rays share their origin,
+/// so consecutive single-ray traversals find the upper nodes in cache, and the batch lanes'
+/// bookkeeping costs more than the latency they hide: issue 17 note, session 7).
+fn streams() -> bool {
+    static CHOICE: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
+    *CHOICE.get_or_init(|| std::env::var("STAGELIGHT_RAY_STREAMS").as_deref() == Ok("on"))
+}
+
+/// One sample position's share of a batch of hemisphere rays (see [`trace_hemispheres`]).
+#[derive(Debug, Clone, Copy)]
+pub struct HemisphereJob<'a> {
+    /// The point the rays leave from.
+    pub surface: &'a SurfacePoint,
+    /// The shading normal, facing the side being baked.
+    pub normal: Vec3,
+    /// The geometric normal, on the same side.
+    pub ng_facing: Vec3,
+    /// Sample index of the first ray (`Sampler::new(seed, first + k)` draws ray `k`).
+    pub first: u32,
+    /// Rays to trace.
+    pub count: u32,
+}
+
 /// Traces `count` cosine-weighted rays about `normal` (which faces the side being baked)
-/// from `surface`, each drawn from `Sampler::new(seed, first + k)`. Directions below the
-/// geometric surface (possible with interpolated normals) count as occluded. Hits farther
-/// than `max_distance` do not occlude. With `probe`, rays run to infinity so that
-/// `backface_hits` also serves as the inside-geometry test.
-#[allow(clippy::too_many_arguments)] // one batch of rays, fully described; two callers
+/// from `surface`, each drawn from `Sampler::new(seed, first + k)`: [`trace_hemispheres`] for
+/// one point.
+#[allow(clippy::too_many_arguments)] // one batch of rays, fully described
 pub fn trace_hemisphere(
     geometry: &SceneGeometry,
     surface: &SurfacePoint,
@@ -44,21 +68,65 @@ pub fn trace_hemisphere(
     count: u32,
     probe: bool,
 ) -> HemisphereRays {
-    let (t, b) = basis(normal);
-    let mut out = HemisphereRays::default();
-    for k in 0..count {
-        let mut sampler = Sampler::new(seed, first + k);
-        let local = sample_cosine_hemisphere(sampler.next_2d());
-        let dir = t * local.x + b * local.y + normal * local.z;
-        out.rays += 1;
-        if dir.dot(ng_facing) <= 0.0 {
-            continue;
+    let job = HemisphereJob {
+        surface,
+        normal,
+        ng_facing,
+        first,
+        count,
+    };
+    trace_hemispheres(geometry, &[job], max_distance, seed, probe)[0]
+}
+
+/// The hemisphere rays of several points, generated first and then traced as one stream:
+/// one query per ray, or with `STAGELIGHT_RAY_STREAMS=on` through the batch kernel
+/// ([`crate::accel::Accel::intersect_batch`]: rays interleaved so that their memory misses
+/// overlap). Per point: `count` cosine-weighted rays about `normal`, ray `k` drawn from
+/// `Sampler::new(seed, first + k)`. Directions below the geometric surface (possible with
+/// interpolated normals) count as occluded and are not traced. Hits farther than
+/// `max_distance` do not occlude. With `probe`, rays run to infinity so that `backface_hits`
+/// also serves as the inside-geometry test. The results are those of one query per ray, bit
+/// for bit: each ray's hit is the same, and each point's sums are added in ray order.
+pub fn trace_hemispheres(
+    geometry: &SceneGeometry,
+    jobs: &[HemisphereJob<'_>],
+    max_distance: f32,
+    seed: u32,
+    probe: bool,
+) -> Vec<HemisphereRays> {
+    let mut out = vec![HemisphereRays::default(); jobs.len()];
+    let total: usize = jobs.iter().map(|j| j.count as usize).sum();
+    let mut rays = Vec::with_capacity(total);
+    // The point and direction of each traced ray.
+    let mut owners = Vec::with_capacity(total);
+    for (p, job) in jobs.iter().enumerate() {
+        let (t, b) = basis(job.normal);
+        for k in 0..job.count {
+            let mut sampler = Sampler::new(seed, job.first + k);
+            let local = sample_cosine_hemisphere(sampler.next_2d());
+            let dir = t * local.x + b * local.y + job.normal * local.z;
+            out[p].rays += 1;
+            if dir.dot(job.ng_facing) <= 0.0 {
+                continue;
+            }
+            let mut ray = spawn_ray(job.surface, dir);
+            // As an inside-geometry probe the ray looks for the first surface at any
+            // distance; occlusion still counts only hits within `max_distance`.
+            ray.t_max = if probe { f32::INFINITY } else { max_distance };
+            rays.push(ray);
+            owners.push((p, dir));
         }
-        let mut ray = spawn_ray(surface, dir);
-        // As an inside-geometry probe the ray looks for the first surface at any distance;
-        // occlusion still counts only hits within `max_distance`.
-        ray.t_max = if probe { f32::INFINITY } else { max_distance };
-        let hit = geometry.accel.intersect(&ray);
+    }
+    let mut hits = vec![None; rays.len()];
+    if streams() {
+        geometry.accel.intersect_batch(&rays, &mut hits);
+    } else {
+        for (ray, hit) in rays.iter().zip(hits.iter_mut()) {
+            *hit = geometry.accel.intersect(ray);
+        }
+    }
+    for (&(p, dir), hit) in owners.iter().zip(hits) {
+        let out = &mut out[p];
         if let Some(hit) = hit {
             let tri = geometry.accel.triangle(hit.prim);
             let ng = (tri[1] - tri[0]).cross(tri[2] - tri[0]);

@@ -8,7 +8,7 @@ use glam::Vec3;
 use rayon::prelude::*;
 
 use crate::accumulate::SampleMean;
-use crate::bake::ao::{trace_hemisphere, HemisphereRays};
+use crate::bake::ao::{trace_hemisphere, trace_hemispheres, HemisphereJob, HemisphereRays};
 use crate::bake::irradiance::{
     base_color, diffuse_albedo, direct_irradiance, indirect_irradiance_path,
     indirect_irradiance_sample,
@@ -403,7 +403,8 @@ fn texel(
     (values, rays, false)
 }
 
-/// AO rays of every sample position: `samples` rays dealt round-robin over `sites`.
+/// AO rays of every sample position: `samples` rays dealt round-robin over `sites`, traced
+/// as one stream (`trace_hemispheres`).
 fn ao_rays(
     job: &TexelJob<'_>,
     sites: &[Site],
@@ -415,26 +416,23 @@ fn ao_rays(
     let samples = samples.max(1);
     let n = sites.len() as u32;
     let mut first = 0;
-    sites
+    let jobs: Vec<HemisphereJob<'_>> = sites
         .iter()
         .enumerate()
         .map(|(s, site)| {
             let count = samples / n + u32::from((s as u32) < samples % n);
-            let r = trace_hemisphere(
-                job.geometry,
-                &site.surface,
-                site.normal,
-                site.ng,
-                max_distance,
-                seed,
+            let j = HemisphereJob {
+                surface: &site.surface,
+                normal: site.normal,
+                ng_facing: site.ng,
                 first,
                 count,
-                probe,
-            );
+            };
             first += count;
-            r
+            j
         })
-        .collect()
+        .collect();
+    trace_hemispheres(job.geometry, &jobs, max_distance, seed, probe)
 }
 
 /// `n` in the tangent frame of the site's triangle: T = dP/du, B = dP/dv (Gram–Schmidt
