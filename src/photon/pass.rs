@@ -1,5 +1,6 @@
 //! The photon pass for one map: `N` photons emitted and traced in parallel (rayon over
-//! fixed ranges of photon indices), each from its own Sobol sequence
+//! fixed ranges of photon indices, each range traced wide through batch intersections:
+//! [`super::batch`]), each photon from its own Sobol sequence
 //! `Sampler::for_item(seed ⊕ map, photon index, 0)`, gathered in index order — so the map is
 //! the same at any thread count. Lights with their own photon count (mental ray `caustic
 //! photons N` on a light) emit it in a pass of their own ([`trace_map_by_light`]).
@@ -8,11 +9,11 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 use rayon::prelude::*;
 
+use super::batch::{Chunk, Tracing};
 use super::emit::Emission;
 use super::kdtree::Photon;
-use super::trace::trace_photon_with_roles;
 use crate::components::PhotonRole;
-use crate::sampling::{hash_combine, Sampler};
+use crate::sampling::hash_combine;
 use crate::shading::integrator::ShadeContext;
 
 /// Photons per parallel work item.
@@ -42,39 +43,36 @@ pub fn trace_map(
     seed: u32,
     cancel: &AtomicBool,
 ) -> Option<Vec<Photon>> {
+    let map = (ctx, emission, roles, kind);
+    trace_map_with(map, photons, seed, cancel, Tracing::Batched)
+}
+
+/// [`trace_map`] (its `ctx`, `emission`, `roles`, `kind` in `map`) traced as `tracing`
+/// says: the same photons either way.
+pub fn trace_map_with(
+    map: (&ShadeContext<'_>, &Emission, &[PhotonRole], MapKind),
+    photons: u32,
+    seed: u32,
+    cancel: &AtomicBool,
+    tracing: Tracing,
+) -> Option<Vec<Photon>> {
+    let (ctx, emission, roles, kind) = map;
     let n = u64::from(photons);
-    let scale = 1.0 / n.max(1) as f32;
-    let seed = hash_combine(&[seed, kind as u32, 0x9407]);
+    let chunk = Chunk {
+        ctx,
+        emission,
+        roles,
+        kind,
+        seed: hash_combine(&[seed, kind as u32, 0x9407]),
+        scale: 1.0 / n.max(1) as f32,
+    };
     let chunks: Vec<Option<Vec<Photon>>> = (0..n.div_ceil(CHUNK))
         .into_par_iter()
         .map(|c| {
             if cancel.load(Ordering::Relaxed) {
                 return None;
             }
-            let mut out = Vec::new();
-            for i in c * CHUNK..((c + 1) * CHUNK).min(n) {
-                let mut sampler = Sampler::for_item(seed, i, 0);
-                let u = [(); 5].map(|_| sampler.next_1d());
-                let Some(emitted) = emission.sample(ctx.geometry, u) else {
-                    continue;
-                };
-                let stop = kind == MapKind::Caustics;
-                trace_photon_with_roles(
-                    ctx,
-                    roles,
-                    emitted.ray,
-                    emitted.power * scale,
-                    &mut sampler,
-                    stop,
-                    |d| {
-                        // Caustic photons go to the caustic map only (see `MapKind::Global`).
-                        if (kind == MapKind::Caustics) == d.caustic {
-                            out.push(d.photon);
-                        }
-                    },
-                );
-            }
-            Some(out)
+            Some(chunk.trace(c * CHUNK..((c + 1) * CHUNK).min(n), tracing))
         })
         .collect();
     let mut all = Vec::new();

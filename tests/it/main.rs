@@ -45,6 +45,7 @@ mod mi_controls;
 mod photon_clean;
 mod photon_file;
 mod photon_flags;
+mod photon_invisible_light;
 mod photon_lights;
 mod photon_partition;
 mod photon_progressive;
