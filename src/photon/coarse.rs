@@ -36,7 +36,7 @@ pub fn gather_view(caustics: &GatherMap, global: &GatherMap) -> Option<GatherMap
         .photons()
         .iter()
         .enumerate()
-        .filter(|&(i, _)| m == 1 || hash_combine(&[THIN_SEED, i as u32]) % m == 0)
+        .filter(|&(i, _)| m == 1 || hash_combine(&[THIN_SEED, i as u32]).is_multiple_of(m))
         .map(|(_, p)| Photon {
             power: p.power * m as f32,
             ..*p
