@@ -11,13 +11,24 @@ use std::ops::Range;
 
 use super::emit::Emission;
 use super::kdtree::Photon;
-use super::pass::MapKind;
 use super::trace::trace_photon_with_roles;
 use super::walk::Walk;
 use crate::accel::Hit;
 use crate::components::PhotonRole;
 use crate::sampling::Sampler;
 use crate::shading::integrator::ShadeContext;
+
+/// Which map a pass fills.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MapKind {
+    /// Photons at diffuse surfaces after one or more specular bounces only; paths stop at
+    /// their first diffuse scattering.
+    Caustics,
+    /// Photons at every diffuse hit except caustic ones (`L S+ D`, the caustic map's): a
+    /// final-gather ray that meets a caustic would read a few very bright photons, the
+    /// speckles of a caustic seen through one diffuse bounce (`L S+ D D E`, not computed).
+    Global,
+}
 
 /// How a pass traces its photons.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]

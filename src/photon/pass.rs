@@ -9,6 +9,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 use rayon::prelude::*;
 
+pub use super::batch::MapKind;
 use super::batch::{Chunk, Tracing};
 use super::emit::Emission;
 use super::kdtree::Photon;
@@ -18,18 +19,6 @@ use crate::shading::integrator::ShadeContext;
 
 /// Photons per parallel work item.
 const CHUNK: u64 = 4096;
-
-/// Which map a pass fills.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum MapKind {
-    /// Photons at diffuse surfaces after one or more specular bounces only; paths stop at
-    /// their first diffuse scattering.
-    Caustics,
-    /// Photons at every diffuse hit except caustic ones (`L S+ D`, the caustic map's): a
-    /// final-gather ray that meets a caustic would read a few very bright photons, the
-    /// speckles of a caustic seen through one diffuse bounce (`L S+ D D E`, not computed).
-    Global,
-}
 
 /// Emits `photons` photons from `emission` into `ctx`'s scene and returns the ones the map
 /// stores, powers divided by `photons`; `roles[instance slot]` says which surfaces cast and

@@ -18,42 +18,13 @@
 
 use glam::Vec3;
 
-use super::kdtree::Photon;
 use super::walk::Walk;
 use crate::accel::Ray;
 use crate::components::PhotonRole;
 use crate::sampling::Sampler;
 use crate::shading::integrator::ShadeContext;
 
-/// Most surface interactions of one photon.
-pub const MAX_BOUNCES: u32 = 64;
-
-/// A photon at a diffuse (non-delta) surface.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Deposit {
-    /// The photon as a map stores it.
-    pub photon: Photon,
-    /// Scattering events before this hit (0 = straight from the light).
-    pub bounces: u32,
-    /// Whether every one of those events was specular (delta) and there was at least one:
-    /// an `L S+ D` path, what the caustic map stores.
-    pub caustic: bool,
-}
-
-/// How a photon's path ended and where its power went, W.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct Fate {
-    /// Power absorbed by surfaces and dielectric media (Russian roulette included).
-    pub absorbed: Vec3,
-    /// Power that left the scene.
-    pub escaped: Vec3,
-    /// Direction of the escaping photon (zero when none escaped).
-    pub escape_dir: Vec3,
-    /// Power dropped at [`MAX_BOUNCES`] or by `stop_after_diffuse`.
-    pub truncated: Vec3,
-    /// Where the last hit was (the absorbing surface's triangle), if any.
-    pub last_prim: Option<u32>,
-}
+pub use super::walk::{Deposit, Fate, MAX_BOUNCES};
 
 /// Traces a photon along `ray` carrying `power`, calling `deposit` at every diffuse hit. With
 /// `stop_after_diffuse`, the path ends after its first non-specular scattering (no caustic

@@ -8,13 +8,42 @@
 use glam::Vec3;
 
 use super::kdtree::Photon;
-use super::trace::{Deposit, Fate, MAX_BOUNCES};
 use crate::accel::{Hit, Ray};
 use crate::components::PhotonRole;
 use crate::sampling::Sampler;
 use crate::shading::bsdf::{Scatter, TransportMode};
 use crate::shading::integrator::{ShadeContext, Vertex};
 use crate::shading::shadow::shader_transmits_shadows;
+
+/// Most surface interactions of one photon.
+pub const MAX_BOUNCES: u32 = 64;
+
+/// A photon at a diffuse (non-delta) surface.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Deposit {
+    /// The photon as a map stores it.
+    pub photon: Photon,
+    /// Scattering events before this hit (0 = straight from the light).
+    pub bounces: u32,
+    /// Whether every one of those events was specular (delta) and there was at least one:
+    /// an `L S+ D` path, what the caustic map stores.
+    pub caustic: bool,
+}
+
+/// How a photon's path ended and where its power went, W.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Fate {
+    /// Power absorbed by surfaces and dielectric media (Russian roulette included).
+    pub absorbed: Vec3,
+    /// Power that left the scene.
+    pub escaped: Vec3,
+    /// Direction of the escaping photon (zero when none escaped).
+    pub escape_dir: Vec3,
+    /// Power dropped at [`MAX_BOUNCES`] or by `stop_after_diffuse`.
+    pub truncated: Vec3,
+    /// Where the last hit was (the absorbing surface's triangle), if any.
+    pub last_prim: Option<u32>,
+}
 
 /// A photon on its way: its next ray, its power and what happened to it so far.
 #[derive(Debug, Clone)]
