@@ -1095,6 +1095,15 @@ fn bench(args: BenchArgs) -> ExitCode {
             return ExitCode::from(e.exit_code());
         }
     }
+    let photons = frame.outputs.photons.as_ref().map(|maps| {
+        let seconds = frame
+            .report
+            .stages
+            .iter()
+            .find(|s| s.stage == "trace_photons" && s.ran)
+            .map_or(0.0, |s| s.seconds);
+        stagelight::photon::throughput::PhotonThroughput::new(maps, seconds, frame.report.threads)
+    });
     if args.json {
         let value = serde_json::json!({
             "scene": args.scene.display().to_string(),
@@ -1102,6 +1111,7 @@ fn bench(args: BenchArgs) -> ExitCode {
             "total_seconds": frame.report.total_seconds,
             "stages": frame.report.stages,
             "bakes": frame.outputs.bake_reports,
+            "photons": photons,
         });
         match serde_json::to_string_pretty(&value) {
             Ok(j) => println!("{j}"),
@@ -1117,6 +1127,9 @@ fn bench(args: BenchArgs) -> ExitCode {
             frame.report.threads
         );
         print!("{}", frame.report.to_throughput_table());
+        if let Some(p) = photons {
+            println!("{}", p.line());
+        }
         for r in &frame.outputs.bake_reports {
             println!("bake {}", r.summary());
         }

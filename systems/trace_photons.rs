@@ -23,6 +23,7 @@ use crate::components::{Emitter, LightPhotons, Material, PhotonFlags};
 use crate::frame::Slot;
 use crate::image_io::PendingFile;
 use crate::photon::aim::Aim;
+use crate::photon::coarse;
 use crate::photon::emit::bounding_sphere;
 use crate::photon::file::{encode, StoredMap, StoredMaps};
 use crate::photon::key::photon_key;
@@ -208,9 +209,16 @@ fn gather_maps(stored: StoredMaps, settings: &RenderSettings, diagonal: f32) -> 
             }),
         })
     };
+    let caustics = knobs(settings.photons.caustics, stored.caustics);
+    let global = knobs(settings.photons.global_illumination, stored.global);
+    let gather_caustics = match (&caustics, &global) {
+        (Some(c), Some(g)) => coarse::gather_view(c, g),
+        _ => None,
+    };
     PhotonMaps {
-        caustics: knobs(settings.photons.caustics, stored.caustics),
-        global: knobs(settings.photons.global_illumination, stored.global),
+        caustics,
+        global,
+        gather_caustics,
     }
 }
 

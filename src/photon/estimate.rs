@@ -26,7 +26,7 @@ impl PhotonRadiance for PhotonMaps {
             radiance += reflected(c, v, bsdf, &mut scratch);
         }
         if let Some(g) = &self.global {
-            let caustics = self.caustics.as_ref();
+            let caustics = self.gather_caustics.as_ref();
             radiance += final_gather(ctx, g, caustics, v, bsdf, sampler, &mut scratch);
         }
         radiance
@@ -51,7 +51,7 @@ pub fn reflected(
 }
 
 /// Indirect diffuse light at `v`: `final_gather` BSDF-sampled rays, each reading the global
-/// map and the caustic map (if any) where it lands on a diffuse surface, directly or through
+/// map and the caustic map's gather view (if any, [`super::coarse`]) where it lands on a diffuse surface, directly or through
 /// mirrors and glass ([`super::gather_path`]).
 fn final_gather(
     ctx: &ShadeContext<'_>,
@@ -192,6 +192,7 @@ mod tests {
         let maps = PhotonMaps {
             caustics: Some(caustics),
             global: None,
+            gather_caustics: None,
         };
         let mut sampler = Sampler::new(4, 0);
         assert_eq!(maps.radiance(&ctx, &v, &bsdf, &mut sampler), expected);
@@ -240,6 +241,7 @@ mod tests {
         let maps = PhotonMaps {
             caustics: None,
             global: Some(global),
+            gather_caustics: None,
         };
         let (ray, hit) = fixture::hit(&geometry, Vec3::new(0.05, 0.0, 0.5), Vec3::Z);
         let v = Vertex::new(&ctx, &ray, &hit);

@@ -14,12 +14,14 @@
 //!   chain of purely specular surfaces (`S*`: mirrors, glass; [`gather_path`]) to the first
 //!   diffuse surface, where it reads the global map (every diffuse hit, direct ones included,
 //!   except caustic `L S+ D` hits) and the caustic map (those `L S+ D` hits: `L S+ D S* D
-//!   E`). Gather rays that reach lights add nothing (direct light and `L S+ D E` come from the
+//!   E`), thinned to the global map's resolution ([`coarse`]). Gather rays that reach lights add nothing (direct light and `L S+ D E` come from the
 //!   light loop and the caustic map), so no path is counted twice and none is missing (H23).
 //!
 //! The path tracer (`Path` integrator) ignores the maps: it is the reference.
 
 pub mod aim;
+pub mod batch;
+pub mod coarse;
 pub mod depth;
 pub mod emit;
 pub mod estimate;
@@ -33,14 +35,17 @@ pub mod pass;
 pub mod progressive;
 pub mod roles;
 pub mod store;
+pub mod throughput;
 pub mod trace;
+pub mod walk;
 
 use glam::Vec3;
 
+pub use batch::Tracing;
 pub use emit::Emission;
 pub use filter::PhotonFilter;
 pub use kdtree::{Gather, Neighbour, Photon, PhotonMap};
-pub use pass::{trace_map, trace_map_by_light, MapKind};
+pub use pass::{trace_map, trace_map_by_light, trace_map_with, MapKind};
 pub use progressive::Progressive;
 pub use roles::PhotonRoles;
 pub use trace::{trace_photon, trace_photon_with_roles, Deposit, Fate};
@@ -103,6 +108,9 @@ pub struct PhotonMaps {
     pub caustics: Option<GatherMap>,
     /// Global map (every diffuse hit), if global illumination is on.
     pub global: Option<GatherMap>,
+    /// The caustic map as final-gather rays read it ([`coarse::gather_view`]), when both
+    /// maps exist.
+    pub gather_caustics: Option<GatherMap>,
 }
 
 impl PhotonMaps {

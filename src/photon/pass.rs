@@ -1,5 +1,6 @@
 //! The photon pass for one map: `N` photons emitted and traced in parallel (rayon over
-//! fixed ranges of photon indices), each from its own Sobol sequence
+//! fixed ranges of photon indices, each range traced wide through batch intersections:
+//! [`super::batch`]), each photon from its own Sobol sequence
 //! `Sampler::for_item(seed ⊕ map, photon index, 0)`, gathered in index order — so the map is
 //! the same at any thread count. Lights with their own photon count (mental ray `caustic
 //! photons N` on a light) emit it in a pass of their own ([`trace_map_by_light`]). A surface
@@ -10,28 +11,17 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 use rayon::prelude::*;
 
+pub use super::batch::MapKind;
+use super::batch::{Chunk, Tracing};
 use super::emit::Emission;
 use super::kdtree::Photon;
 use super::light_lists::ReceiverLights;
-use super::trace::trace_photon_with_roles;
 use crate::components::PhotonRole;
-use crate::sampling::{hash_combine, Sampler};
+use crate::sampling::hash_combine;
 use crate::shading::integrator::ShadeContext;
 
 /// Photons per parallel work item.
 const CHUNK: u64 = 4096;
-
-/// Which map a pass fills.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum MapKind {
-    /// Photons at diffuse surfaces after one or more specular bounces only; paths stop at
-    /// their first diffuse scattering.
-    Caustics,
-    /// Photons at every diffuse hit except caustic ones (`L S+ D`, the caustic map's): a
-    /// final-gather ray that meets a caustic would read a few very bright photons, the
-    /// speckles of a caustic seen through one diffuse bounce (`L S+ D D E`, not computed).
-    Global,
-}
 
 /// Emits `photons` photons from `emission` into `ctx`'s scene and returns the ones the map
 /// stores, powers divided by `photons`; `roles[instance slot]` says which surfaces cast and
@@ -45,44 +35,37 @@ pub fn trace_map(
     seed: u32,
     cancel: &AtomicBool,
 ) -> Option<Vec<Photon>> {
+    let map = (ctx, emission, roles, kind);
+    trace_map_with(map, photons, seed, cancel, Tracing::Batched)
+}
+
+/// [`trace_map`] (its `ctx`, `emission`, `roles`, `kind` in `map`) traced as `tracing`
+/// says: the same photons either way.
+pub fn trace_map_with(
+    map: (&ShadeContext<'_>, &Emission, &[PhotonRole], MapKind),
+    photons: u32,
+    seed: u32,
+    cancel: &AtomicBool,
+    tracing: Tracing,
+) -> Option<Vec<Photon>> {
+    let (ctx, emission, roles, kind) = map;
     let n = u64::from(photons);
-    let scale = 1.0 / n.max(1) as f32;
-    let seed = hash_combine(&[seed, kind as u32, 0x9407]);
-    let receivers = ReceiverLights::new(ctx.geometry);
+    let chunk = Chunk {
+        ctx,
+        emission,
+        roles,
+        kind,
+        seed: hash_combine(&[seed, kind as u32, 0x9407]),
+        scale: 1.0 / n.max(1) as f32,
+        receivers: ReceiverLights::new(ctx.geometry),
+    };
     let chunks: Vec<Option<Vec<Photon>>> = (0..n.div_ceil(CHUNK))
         .into_par_iter()
         .map(|c| {
             if cancel.load(Ordering::Relaxed) {
                 return None;
             }
-            let mut out = Vec::new();
-            for i in c * CHUNK..((c + 1) * CHUNK).min(n) {
-                let mut sampler = Sampler::for_item(seed, i, 0);
-                let u = [(); 5].map(|_| sampler.next_1d());
-                let (Some(emitted), Some(light)) =
-                    (emission.sample(ctx.geometry, u), emission.light_index(u[0]))
-                else {
-                    continue;
-                };
-                let stop = kind == MapKind::Caustics;
-                trace_photon_with_roles(
-                    ctx,
-                    roles,
-                    emitted.ray,
-                    emitted.power * scale,
-                    &mut sampler,
-                    stop,
-                    |d| {
-                        // Caustic photons go to the caustic map only (see `MapKind::Global`).
-                        if (kind == MapKind::Caustics) == d.caustic
-                            && receivers.admits(d.prim, light)
-                        {
-                            out.push(d.photon);
-                        }
-                    },
-                );
-            }
-            Some(out)
+            Some(chunk.trace(c * CHUNK..((c + 1) * CHUNK).min(n), tracing))
         })
         .collect();
     let mut all = Vec::new();

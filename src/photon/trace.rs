@@ -1,4 +1,4 @@
-//! Tracing one photon: scattering through the materials' BSDFs in importance mode, Russian
+//! Tracing one photon (the interaction itself is [`super::walk`]'s): scattering through the materials' BSDFs in importance mode, Russian
 //! roulette by the scattering weight, deposits at diffuse surfaces, and an exact account of
 //! where its power went (absorbed, escaped, truncated).
 //!
@@ -18,47 +18,13 @@
 
 use glam::Vec3;
 
-use super::depth::PathDepth;
-use super::kdtree::Photon;
+use super::walk::Walk;
 use crate::accel::Ray;
 use crate::components::PhotonRole;
 use crate::sampling::Sampler;
-use crate::shading::bsdf::{Scatter, TransportMode};
-use crate::shading::integrator::{ShadeContext, Vertex};
-use crate::shading::shadow::shader_transmits_shadows;
+use crate::shading::integrator::ShadeContext;
 
-/// Most surface interactions of one photon.
-pub const MAX_BOUNCES: u32 = 64;
-
-/// A photon at a diffuse (non-delta) surface.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Deposit {
-    /// The photon as a map stores it.
-    pub photon: Photon,
-    /// Scattering events before this hit (0 = straight from the light).
-    pub bounces: u32,
-    /// Whether every one of those events was specular (delta) and there was at least one:
-    /// an `L S+ D` path, what the caustic map stores.
-    pub caustic: bool,
-    /// The world triangle it landed on (its material's light list filters it).
-    pub prim: u32,
-}
-
-/// How a photon's path ended and where its power went, W.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct Fate {
-    /// Power absorbed by surfaces and dielectric media (Russian roulette included).
-    pub absorbed: Vec3,
-    /// Power that left the scene.
-    pub escaped: Vec3,
-    /// Direction of the escaping photon (zero when none escaped).
-    pub escape_dir: Vec3,
-    /// Power dropped at [`MAX_BOUNCES`], by `stop_after_diffuse` or at the photon trace
-    /// depth.
-    pub truncated: Vec3,
-    /// Where the last hit was (the absorbing surface's triangle), if any.
-    pub last_prim: Option<u32>,
-}
+pub use super::walk::{Deposit, Fate, MAX_BOUNCES};
 
 /// Traces a photon along `ray` carrying `power`, calling `deposit` at every diffuse hit. With
 /// `stop_after_diffuse`, the path ends after its first non-specular scattering (no caustic
@@ -79,103 +45,18 @@ pub fn trace_photon(
 pub fn trace_photon_with_roles(
     ctx: &ShadeContext<'_>,
     roles: &[PhotonRole],
-    mut ray: Ray,
-    mut power: Vec3,
+    ray: Ray,
+    power: Vec3,
     sampler: &mut Sampler,
     stop_after_diffuse: bool,
     mut deposit: impl FnMut(Deposit),
 ) -> Fate {
-    let mut fate = Fate::default();
-    let mut specular_only = true;
-    let mut specular_events = 0u32;
-    let mut depth = PathDepth::new(ctx.photon_depth);
-    for bounces in 0..MAX_BOUNCES {
-        let Some(hit) = ctx.geometry.accel.intersect(&ray) else {
-            fate.escaped = power;
-            fate.escape_dir = ray.dir.normalize_or_zero();
-            return fate;
-        };
-        fate.last_prim = Some(hit.prim);
-        let v = Vertex::new(ctx, &ray, &hit);
-        let through = power * v.transmittance;
-        fate.absorbed += power - through;
-        power = through;
-        let bsdf = match v.bsdf() {
-            Some(b) if v.visible => b,
-            _ => {
-                fate.absorbed += power;
-                return fate;
-            }
-        };
-        let incoming = -ray.dir.normalize();
-        let role = roles
-            .get(v.sp.instance as usize)
-            .copied()
-            .unwrap_or(PhotonRole::BOTH);
-        if bsdf.has_non_delta() && role.receives() {
-            deposit(Deposit {
-                photon: Photon {
-                    position: v.sp.surface.p,
-                    power,
-                    incoming,
-                    normal: v.ng,
-                },
-                bounces,
-                caustic: specular_events > 0 && specular_only,
-                prim: hit.prim,
-            });
-        }
-        if !role.casts() {
-            fate.absorbed += power;
-            return fate;
-        }
-        let u = Vec3::new(sampler.next_1d(), sampler.next_1d(), sampler.next_1d());
-        let u_rr = sampler.next_1d();
-        let Some(s) = bsdf.sample_transport(v.wo, u, TransportMode::Importance) else {
-            fate.absorbed += power;
-            return fate;
-        };
-        let wi = v.frame.to_world(s.wi);
-        // Adjoint BSDF with shading normals (Veach 1997, §5.3).
-        let ns = v.frame.n;
-        let correction =
-            (incoming.dot(ns) * wi.dot(v.ng)).abs() / (incoming.dot(v.ng) * wi.dot(ns)).abs();
-        let weight = s.weight() * correction;
-        if !weight.is_finite() {
-            fate.absorbed += power;
-            return fate;
-        }
-        let q = weight.max_element().min(1.0);
-        if q.is_nan() || u_rr >= q {
-            fate.absorbed += power;
-            return fate;
-        }
-        if !s.delta {
-            specular_only = false;
-        } else if !(s.wi == -v.wo && shader_transmits_shadows(&v.shader)) {
-            specular_events += 1;
-        }
-        let next_power = power * (weight / q);
-        // What survival does not carry on (a colour-dependent weight) is absorbed; a weight
-        // above 1 (shading-normal correction) makes this negative, keeping the account exact.
-        fate.absorbed += power - next_power;
-        if stop_after_diffuse && !specular_only {
-            fate.truncated += next_power;
-            return fate;
-        }
-        if !depth.scatter(s.scatter == Scatter::Transmission) {
-            fate.truncated += next_power;
-            return fate;
-        }
-        let Some(next) = v.spawn(s.wi, s.scatter == Scatter::Transmission) else {
-            fate.absorbed += next_power;
-            return fate;
-        };
-        power = next_power;
-        ray = next;
+    let mut walk = Walk::new(ctx, ray, power);
+    while walk.live() {
+        let hit = ctx.geometry.accel.intersect(walk.ray());
+        walk.step(ctx, roles, hit, sampler, stop_after_diffuse, &mut deposit);
     }
-    fate.truncated += power;
-    fate
+    walk.fate()
 }
 
 #[cfg(test)]

@@ -50,6 +50,7 @@ mod photon_clean;
 mod photon_depth;
 mod photon_file;
 mod photon_flags;
+mod photon_invisible_light;
 mod photon_light_lists;
 mod photon_lights;
 mod photon_partition;

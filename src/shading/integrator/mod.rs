@@ -9,8 +9,9 @@
 //! adds its emission; if `k ≤ max_depth` it also gathers light (paths of `k + 1` segments)
 //! and continues. Glossy/mirror reflections count against `reflection_depth`, refractions
 //! and transparency against `refraction_depth`; a branch beyond its budget is not traced.
-//! Area lights are seen by camera rays and perfect mirror/refraction rays only when they are
-//! `visible`; BSDF-sampled path-tracer rays see every area light's front face (MIS). A ray
+//! Area lights are seen by camera rays and perfect mirror/refraction rays of the eye's chain
+//! (`E S*`) only when they are `visible`; BSDF-sampled path-tracer rays, and any ray of a
+//! path after its first non-delta scattering, see every area light's front face (MIS). A ray
 //! beyond a reflection/refraction budget sees the environment or black, as the scene's
 //! environment says (`depth_exceeded`).
 
@@ -444,7 +445,8 @@ fn shadow_ray(sp: &ShadingPoint, wi: Vec3, target: Option<SurfacePoint>) -> Ray 
 /// crosses and, when it hits nothing, the environment — `(radiance, light pdf)` of each, the
 /// pdf being the solid-angle density of that light's own sampler (0 if it is not sampled).
 ///
-/// `delta`: a camera ray or a perfect mirror/refraction ray. Those see only `visible` area
+/// `delta`: a camera ray or a perfect mirror/refraction ray of the eye's specular chain
+/// (no non-delta scattering since the camera). Those see only `visible` area
 /// lights, and a visible light is opaque to them: the nearest one in front of the hit ends
 /// the ray (no hit is returned). BSDF-sampled rays see every area light's front face
 /// additively and go on (lights never block light, and MIS needs every light reachable).

@@ -3,7 +3,12 @@
 //! by BSDF sampling (emitting triangles, area lights, the environment) are weighted against
 //! the light strategy, delta scattering keeps full weight. Russian roulette from the third
 //! vertex on (survival probability = largest channel of the throughput, at most 0.95) keeps
-//! long paths unbiased. Rays leaving the scene see the environment (black without one); a
+//! long paths unbiased. Area lights: `visible` is camera visibility (mental ray): the eye's
+//! specular chain `E S*` (the camera ray and perfect mirror/refraction rays after it) sees
+//! only visible lights, as the `Direct` integrator does; once the path has scattered at a
+//! non-delta lobe it carries light, and every light's front face is seen — also through
+//! glass and mirrors, so an invisible light's caustics (`L S+ D … E`) are rendered, as the
+//! photon map renders them. Rays leaving the scene see the environment (black without one); a
 //! bounce beyond a reflection/refraction budget sees what the environment's
 //! `depth_exceeded` says. Every segment that ends at a hit is attenuated by the fog it
 //! crosses and adds single scattering from the lights ([`super::volume`]): unbiased for
@@ -67,6 +72,9 @@ pub fn radiance_split(
     let mut prev: Option<(Vec3, f32)> = None;
     // Component passes: the throughput per first event, once the path has scattered.
     let mut lanes: Option<PathLanes> = None;
+    // Whether the path is still the eye's specular chain `E S*` (camera ray, then only delta
+    // scattering): only then does `visible` hide area lights (see the module doc).
+    let mut eye_chain = true;
     while let Some(h) = hit {
         let v = Vertex::new(ctx, &ray, &h);
         beta *= v.transmittance;
@@ -177,7 +185,8 @@ pub fn radiance_split(
         if !beta.is_finite() || beta.max_element() <= 0.0 {
             break;
         }
-        let (next_hit, _, crossed) = trace(ctx, &next_ray, s.delta);
+        eye_chain &= s.delta;
+        let (next_hit, _, crossed) = trace(ctx, &next_ray, eye_chain);
         if let (Some(h), Some(_)) = (&next_hit, ctx.volumes) {
             let seg = volume::segment(ctx, &next_ray, h, sampler);
             radiance += beta * seg.inscattered;

@@ -306,8 +306,8 @@ impl Light {
     /// Where a ray meets this light, if it is an area light (whose front face only is
     /// seen): the ray parameter, the radiance arriving at the ray origin, and the solid-angle
     /// pdf with which [`Light::sample`] would have chosen that direction from the ray origin.
-    /// `delta`: the ray is a camera or perfect mirror/refraction ray, which sees only
-    /// `visible` lights. Emitting meshes are geometry (see [`LightSet::mesh_pdf`]); the
+    /// `delta`: the ray is a camera ray or a perfect mirror/refraction ray of the eye's
+    /// specular chain, which sees only `visible` lights. Emitting meshes are geometry (see [`LightSet::mesh_pdf`]); the
     /// environment is met by rays that miss everything (see [`LightSet::environment`]).
     pub fn hit(&self, ray: &Ray, delta: bool) -> Option<(f32, Vec3, f32)> {
         let Light::Area(a) = self else {

@@ -1,0 +1,84 @@
+//! Photon-pass benchmarks (issue 16 item 8) on `assets/scenes/caustics.ron`: the global and
+//! caustic passes traced wide through batch intersections against one photon at a time (the
+//! same photons, bit for bit), on 1 thread, in photons emitted per second; and the
+//! `trace_photons` stage on every thread. The one-shot ratio is printed first.
+
+use std::path::PathBuf;
+use std::sync::atomic::AtomicBool;
+use std::time::Instant;
+
+use criterion::{criterion_group, criterion_main, Criterion, Throughput};
+use stagelight::frame::Frame;
+use stagelight::photon::{trace_map_with, Emission, MapKind, Tracing};
+use stagelight::scene::load_scene;
+use stagelight::scene_view::{light_set, WithEnvironment};
+use stagelight::shading::ShadeContext;
+
+const PHOTONS: u32 = 20_000;
+
+fn caustics_scene() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("assets/scenes/caustics.ron")
+}
+
+fn photon_pass(c: &mut Criterion) {
+    let mut scene = load_scene(&caustics_scene()).expect("caustics.ron loads");
+    let mut frame = Frame::new(scene.settings.clone());
+    let stages = stagelight::systems::STAGES;
+    let at = stages
+        .iter()
+        .position(|s| s.name == "trace_photons")
+        .expect("trace_photons stage");
+    stagelight::schedule::run_stages(&stages[..at], &mut scene.world, &mut frame)
+        .expect("stages before trace_photons");
+    let geometry = frame.outputs.geometry.as_ref().expect("geometry");
+    let settings = &frame.inputs.settings;
+    let lights = light_set(&scene.world, Some(geometry), settings, WithEnvironment::No);
+    let emission = Emission::new(&lights, geometry);
+    let ctx = ShadeContext::new(geometry, &lights, settings);
+    let cancel = AtomicBool::new(false);
+    let one = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .expect("thread pool");
+    let pass = |kind, tracing| {
+        let map = (&ctx, &emission, &[][..], kind);
+        one.install(|| trace_map_with(map, PHOTONS, 1, &cancel, tracing).expect("pass"))
+    };
+    for kind in [MapKind::Global, MapKind::Caustics] {
+        let time = |tracing| {
+            let start = Instant::now();
+            let stored = pass(kind, tracing).len();
+            (start.elapsed().as_secs_f64(), stored)
+        };
+        let (single, stored) = time(Tracing::PerPhoton);
+        let (batched, _) = time(Tracing::Batched);
+        println!(
+            "{kind:?}: {PHOTONS} emitted, {stored} stored, 1 thread: per photon {:.0} photons/s, \
+             batched {:.0} photons/s, ratio batched/per-photon {:.3}",
+            f64::from(PHOTONS) / single,
+            f64::from(PHOTONS) / batched,
+            single / batched
+        );
+    }
+    let mut group = c.benchmark_group("photons");
+    group.sample_size(10);
+    group.throughput(Throughput::Elements(u64::from(PHOTONS)));
+    for kind in [MapKind::Global, MapKind::Caustics] {
+        for tracing in [Tracing::Batched, Tracing::PerPhoton] {
+            group.bench_function(format!("{kind:?}_{tracing:?}_1_thread"), |b| {
+                b.iter(|| pass(kind, tracing))
+            });
+        }
+    }
+    group.bench_function("trace_photons_stage_all_threads", |b| {
+        b.iter(|| {
+            stages[at]
+                .run_body(&mut scene.world, &frame)
+                .expect("trace_photons")
+        })
+    });
+    group.finish();
+}
+
+criterion_group!(benches, photon_pass);
+criterion_main!(benches);

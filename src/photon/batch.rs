@@ -1,0 +1,206 @@
+//! Photons traced wide: one work item's photons (a fixed range of photon indices) advance
+//! together, one interaction per round, and each round's rays go through the accelerator's
+//! batch intersection ([`crate::accel::Accel::intersect_batch`], interleaved traversal: the
+//! memory latency of one ray overlaps the others' work). Each photon keeps its own sampler
+//! (`Sampler::for_item(seed, index, 0)`) and [`Walk`], and its deposits are put back in
+//! photon-index order, so a batch stores the same photons in the same order, bit for bit, as
+//! tracing the photons one by one ([`Tracing::PerPhoton`], kept for tests and the bench's
+//! ratio).
+
+use std::ops::Range;
+
+use super::emit::Emission;
+use super::kdtree::Photon;
+use super::light_lists::ReceiverLights;
+use super::trace::trace_photon_with_roles;
+use super::walk::Walk;
+use crate::accel::Hit;
+use crate::components::PhotonRole;
+use crate::sampling::Sampler;
+use crate::shading::integrator::ShadeContext;
+
+/// Which map a pass fills.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MapKind {
+    /// Photons at diffuse surfaces after one or more specular bounces only; paths stop at
+    /// their first diffuse scattering.
+    Caustics,
+    /// Photons at every diffuse hit except caustic ones (`L S+ D`, the caustic map's): a
+    /// final-gather ray that meets a caustic would read a few very bright photons, the
+    /// speckles of a caustic seen through one diffuse bounce (`L S+ D D E`, not computed).
+    Global,
+}
+
+/// How a pass traces its photons.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Tracing {
+    /// A work item's photons advance together through batch intersections (the default).
+    #[default]
+    Batched,
+    /// One photon after the other, one intersection call per ray.
+    PerPhoton,
+}
+
+/// What one work item of a pass traces: the photons `range` of the pass seeded `seed`, each
+/// emitted from `emission` with its power times `scale`, stored for the map `kind`.
+#[derive(Clone, Copy)]
+pub struct Chunk<'a> {
+    /// Scene, lights and settings.
+    pub ctx: &'a ShadeContext<'a>,
+    /// Where photons are emitted.
+    pub emission: &'a Emission,
+    /// Each instance's caster/receiver role (empty: all cast and receive).
+    pub roles: &'a [PhotonRole],
+    /// The map the photons are stored for.
+    pub kind: MapKind,
+    /// The pass's seed.
+    pub seed: u32,
+    /// Power factor (1 / photons in the pass).
+    pub scale: f32,
+    /// Which surfaces keep photons of which lights (material light lists).
+    pub receivers: ReceiverLights<'a>,
+}
+
+impl Chunk<'_> {
+    /// The photons the map stores from photon indices `range`, in index order (each photon's
+    /// deposits in the order it made them).
+    pub fn trace(&self, range: Range<u64>, tracing: Tracing) -> Vec<Photon> {
+        match tracing {
+            Tracing::Batched => self.batched(range),
+            Tracing::PerPhoton => self.per_photon(range),
+        }
+    }
+
+    /// Whether the map stores a deposit of a photon from light `light`: caustic photons go
+    /// to the caustic map only (see [`MapKind::Global`]), and a surface keeps only the lights
+    /// its material's light list names.
+    fn keeps(&self, d: &super::walk::Deposit, light: usize) -> bool {
+        (self.kind == MapKind::Caustics) == d.caustic && self.receivers.admits(d.prim, light)
+    }
+
+    /// The photon `i`'s sampler, after drawing its emission, its first ray and power, and
+    /// the index of the light that emitted it.
+    fn emit(&self, i: u64) -> (Sampler, Option<(Walk, usize)>) {
+        let mut sampler = Sampler::for_item(self.seed, i, 0);
+        let u = [(); 5].map(|_| sampler.next_1d());
+        let walk = match (
+            self.emission.sample(self.ctx.geometry, u),
+            self.emission.light_index(u[0]),
+        ) {
+            (Some(e), Some(light)) => {
+                Some((Walk::new(self.ctx, e.ray, e.power * self.scale), light))
+            }
+            _ => None,
+        };
+        (sampler, walk)
+    }
+
+    fn stop_after_diffuse(&self) -> bool {
+        self.kind == MapKind::Caustics
+    }
+
+    fn per_photon(&self, range: Range<u64>) -> Vec<Photon> {
+        let mut out = Vec::new();
+        for i in range {
+            let (mut sampler, Some((walk, light))) = self.emit(i) else {
+                continue;
+            };
+            trace_photon_with_roles(
+                self.ctx,
+                self.roles,
+                *walk.ray(),
+                walk.power(),
+                &mut sampler,
+                self.stop_after_diffuse(),
+                |d| {
+                    if self.keeps(&d, light) {
+                        out.push(d.photon);
+                    }
+                },
+            );
+        }
+        out
+    }
+
+    fn batched(&self, range: Range<u64>) -> Vec<Photon> {
+        let mut walks: Vec<(u64, Sampler, Walk, usize)> = range
+            .filter_map(|i| {
+                let (sampler, walk) = self.emit(i);
+                walk.map(|(w, light)| (i, sampler, w, light))
+            })
+            .collect();
+        let mut live: Vec<usize> = (0..walks.len()).collect();
+        let (mut rays, mut hits) = (Vec::new(), Vec::<Option<Hit>>::new());
+        // (photon index, photon): sorted stably by index at the end.
+        let mut stored: Vec<(u64, Photon)> = Vec::new();
+        let stop = self.stop_after_diffuse();
+        while !live.is_empty() {
+            rays.clear();
+            rays.extend(live.iter().map(|&w| *walks[w].2.ray()));
+            hits.clear();
+            hits.resize(rays.len(), None);
+            self.ctx.geometry.accel.intersect_batch(&rays, &mut hits);
+            for (&w, hit) in live.iter().zip(&hits) {
+                let (i, sampler, walk, light) = &mut walks[w];
+                let (i, light) = (*i, *light);
+                walk.step(self.ctx, self.roles, *hit, sampler, stop, &mut |d| {
+                    if self.keeps(&d, light) {
+                        stored.push((i, d.photon));
+                    }
+                });
+            }
+            live.retain(|&w| walks[w].2.live());
+        }
+        stored.sort_by_key(|&(i, _)| i);
+        stored.into_iter().map(|(_, p)| p).collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::sync::atomic::AtomicBool;
+
+    use glam::Vec3;
+
+    use super::*;
+    use crate::components::{Emitter, LightShape, Shader};
+    use crate::photon::trace_map_with;
+    use crate::settings::RenderSettings;
+    use crate::shading::integrator::fixture::{self, Object};
+    use crate::shading::lights::LightSet;
+
+    #[test]
+    fn batched_photons_are_the_per_photon_ones_bit_for_bit() {
+        // A grey box with a mirror floor patch and a glass-like ceiling patch around a point
+        // light: photons bounce many times (global) and make caustics (mirror).
+        let geometry = fixture::geometry(vec![
+            Object {
+                triangles: fixture::inward_cube(1.0),
+                material: fixture::lambert(0.7),
+            },
+            Object {
+                triangles: fixture::quad(
+                    Vec3::new(-0.5, -0.5, -0.99),
+                    Vec3::new(1.0, 0.0, 0.0),
+                    Vec3::new(0.0, 1.0, 0.0),
+                ),
+                material: fixture::material(Shader::Mirror { color: Vec3::ONE }),
+            },
+        ]);
+        let position = Vec3::new(0.1, 0.2, 0.3);
+        let e = Emitter::new(LightShape::Point { position }, Vec3::ONE);
+        let lights = LightSet::new(&[e], None, 1);
+        let s = RenderSettings::default();
+        let ctx = ShadeContext::new(&geometry, &lights, &s);
+        let emission = Emission::new(&lights, &geometry);
+        let cancel = AtomicBool::new(false);
+        for kind in [MapKind::Global, MapKind::Caustics] {
+            let map = (&ctx, &emission, &[][..], kind);
+            let batched = trace_map_with(map, 5000, 7, &cancel, Tracing::Batched).unwrap();
+            let single = trace_map_with(map, 5000, 7, &cancel, Tracing::PerPhoton).unwrap();
+            println!("{kind:?}: {} photons stored", batched.len());
+            assert!(batched.len() > 100, "{}", batched.len());
+            assert_eq!(batched, single, "{kind:?}");
+        }
+    }
+}

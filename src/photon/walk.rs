@@ -1,0 +1,210 @@
+//! One photon's walk as a state machine: [`Walk::step`] takes the hit of the walk's current
+//! ray (traced by the caller, alone or in a batch) and performs one surface interaction —
+//! absorption along the segment, the deposit, roles, scattering, Russian roulette — exactly
+//! as [`super::trace`] documents. [`super::trace::trace_photon_with_roles`] steps one walk
+//! with one intersection per call; [`super::batch`] steps many with the accelerator's batch
+//! intersection, with the same results bit for bit.
+
+use glam::Vec3;
+
+use super::depth::PathDepth;
+use super::kdtree::Photon;
+use crate::accel::{Hit, Ray};
+use crate::components::PhotonRole;
+use crate::sampling::Sampler;
+use crate::shading::bsdf::{Scatter, TransportMode};
+use crate::shading::integrator::{ShadeContext, Vertex};
+use crate::shading::shadow::shader_transmits_shadows;
+
+/// Most surface interactions of one photon.
+pub const MAX_BOUNCES: u32 = 64;
+
+/// A photon at a diffuse (non-delta) surface.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Deposit {
+    /// The photon as a map stores it.
+    pub photon: Photon,
+    /// Scattering events before this hit (0 = straight from the light).
+    pub bounces: u32,
+    /// Whether every one of those events was specular (delta) and there was at least one:
+    /// an `L S+ D` path, what the caustic map stores.
+    pub caustic: bool,
+    /// The world triangle it landed on (its material's light list filters it).
+    pub prim: u32,
+}
+
+/// How a photon's path ended and where its power went, W.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Fate {
+    /// Power absorbed by surfaces and dielectric media (Russian roulette included).
+    pub absorbed: Vec3,
+    /// Power that left the scene.
+    pub escaped: Vec3,
+    /// Direction of the escaping photon (zero when none escaped).
+    pub escape_dir: Vec3,
+    /// Power dropped at [`MAX_BOUNCES`], by `stop_after_diffuse` or at the photon trace
+    /// depth.
+    pub truncated: Vec3,
+    /// Where the last hit was (the absorbing surface's triangle), if any.
+    pub last_prim: Option<u32>,
+}
+
+/// A photon on its way: its next ray, its power and what happened to it so far.
+#[derive(Debug, Clone)]
+pub struct Walk {
+    ray: Ray,
+    power: Vec3,
+    fate: Fate,
+    specular_only: bool,
+    specular_events: u32,
+    bounces: u32,
+    depth: PathDepth,
+    live: bool,
+}
+
+impl Walk {
+    /// A photon leaving along `ray` with `power`, stopped at the photon trace depth
+    /// `ctx.photon_depth`.
+    pub fn new(ctx: &ShadeContext<'_>, ray: Ray, power: Vec3) -> Self {
+        Self {
+            ray,
+            power,
+            fate: Fate::default(),
+            specular_only: true,
+            specular_events: 0,
+            bounces: 0,
+            depth: PathDepth::new(ctx.photon_depth),
+            live: true,
+        }
+    }
+
+    /// Whether the walk goes on: its [`Walk::ray`] is to be traced and passed to
+    /// [`Walk::step`].
+    pub fn live(&self) -> bool {
+        self.live
+    }
+
+    /// The ray the walk follows next.
+    pub fn ray(&self) -> &Ray {
+        &self.ray
+    }
+
+    /// The power the photon carries along [`Walk::ray`].
+    pub fn power(&self) -> Vec3 {
+        self.power
+    }
+
+    /// Where the photon's power went (complete once the walk is no longer live).
+    pub fn fate(&self) -> Fate {
+        self.fate
+    }
+
+    /// One interaction at `hit`, the closest hit of [`Walk::ray`] (`None`: it left the
+    /// scene). Draws from `sampler`; calls `deposit` when the photon is stored. With
+    /// `stop_after_diffuse` the walk ends after its first non-specular scattering.
+    pub fn step(
+        &mut self,
+        ctx: &ShadeContext<'_>,
+        roles: &[PhotonRole],
+        hit: Option<Hit>,
+        sampler: &mut Sampler,
+        stop_after_diffuse: bool,
+        deposit: &mut impl FnMut(Deposit),
+    ) {
+        if !self.live {
+            return;
+        }
+        self.live = false;
+        let fate = &mut self.fate;
+        let ray = self.ray;
+        let Some(hit) = hit else {
+            fate.escaped = self.power;
+            fate.escape_dir = ray.dir.normalize_or_zero();
+            return;
+        };
+        fate.last_prim = Some(hit.prim);
+        let v = Vertex::new(ctx, &ray, &hit);
+        let through = self.power * v.transmittance;
+        fate.absorbed += self.power - through;
+        let power = through;
+        let bsdf = match v.bsdf() {
+            Some(b) if v.visible => b,
+            _ => {
+                fate.absorbed += power;
+                return;
+            }
+        };
+        let incoming = -ray.dir.normalize();
+        let role = roles
+            .get(v.sp.instance as usize)
+            .copied()
+            .unwrap_or(PhotonRole::BOTH);
+        if bsdf.has_non_delta() && role.receives() {
+            deposit(Deposit {
+                photon: Photon {
+                    position: v.sp.surface.p,
+                    power,
+                    incoming,
+                    normal: v.ng,
+                },
+                bounces: self.bounces,
+                caustic: self.specular_events > 0 && self.specular_only,
+                prim: hit.prim,
+            });
+        }
+        if !role.casts() {
+            fate.absorbed += power;
+            return;
+        }
+        let u = Vec3::new(sampler.next_1d(), sampler.next_1d(), sampler.next_1d());
+        let u_rr = sampler.next_1d();
+        let Some(s) = bsdf.sample_transport(v.wo, u, TransportMode::Importance) else {
+            fate.absorbed += power;
+            return;
+        };
+        let wi = v.frame.to_world(s.wi);
+        // Adjoint BSDF with shading normals (Veach 1997, §5.3).
+        let ns = v.frame.n;
+        let correction =
+            (incoming.dot(ns) * wi.dot(v.ng)).abs() / (incoming.dot(v.ng) * wi.dot(ns)).abs();
+        let weight = s.weight() * correction;
+        if !weight.is_finite() {
+            fate.absorbed += power;
+            return;
+        }
+        let q = weight.max_element().min(1.0);
+        if q.is_nan() || u_rr >= q {
+            fate.absorbed += power;
+            return;
+        }
+        if !s.delta {
+            self.specular_only = false;
+        } else if !(s.wi == -v.wo && shader_transmits_shadows(&v.shader)) {
+            self.specular_events += 1;
+        }
+        let next_power = power * (weight / q);
+        // What survival does not carry on (a colour-dependent weight) is absorbed; a weight
+        // above 1 (shading-normal correction) makes this negative, keeping the account exact.
+        fate.absorbed += power - next_power;
+        if stop_after_diffuse && !self.specular_only {
+            fate.truncated += next_power;
+            return;
+        }
+        if !self.depth.scatter(s.scatter == Scatter::Transmission) {
+            fate.truncated += next_power;
+            return;
+        }
+        let Some(next) = v.spawn(s.wi, s.scatter == Scatter::Transmission) else {
+            fate.absorbed += next_power;
+            return;
+        };
+        self.power = next_power;
+        self.ray = next;
+        self.bounces += 1;
+        if self.bounces >= MAX_BOUNCES {
+            fate.truncated += next_power;
+            return;
+        }
+        self.live = true;
+    }
+}
