@@ -756,7 +756,7 @@ fn part_run(
             number.index, number.count, number.index
         ));
     }
-    if let Some(message) = component_passes_in_part(number, scene) {
+    if let Some(message) = component_passes_in_part(number, split, scene) {
         return Err(message);
     }
     if split == Split::Samples && settings.adaptive.is_some() {
@@ -773,9 +773,17 @@ fn part_run(
     })
 }
 
-/// Part files carry no component passes: the refusal of `--part` for a camera output that
+/// Tile parts carry the component passes of the pixels they own; a samples part would need
+/// exact component sums: the refusal of `--part … --split samples` for a camera output that
 /// asks for them.
-fn component_passes_in_part(number: PartNumber, scene: &LoadedScene) -> Option<String> {
+fn component_passes_in_part(
+    number: PartNumber,
+    split: Split,
+    scene: &LoadedScene,
+) -> Option<String> {
+    if split == Split::Tiles {
+        return None;
+    }
     let view = stagelight::scene_view::render_view(&scene.world)?;
     view.camera.outputs.iter().find_map(|o| {
         let names: Vec<String> = (o.passes.iter())
@@ -783,7 +791,7 @@ fn component_passes_in_part(number: PartNumber, scene: &LoadedScene) -> Option<S
             .map(|p| format!("{p:?}"))
             .collect();
         (!names.is_empty()).then(|| format!(
-            "--part {}/{} cannot carry the component passes ({}) of {}\n  help: render the component passes on one machine, or leave them out of the farm render's outputs",
+            "--part {}/{} --split samples cannot carry the component passes ({}) of {}\n  help: use --split tiles (the default), or leave them out of the farm render's outputs",
             number.index, number.count, names.join(", "), o.path.display()
         ))
     })

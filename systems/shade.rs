@@ -154,7 +154,10 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
         width,
         sample_offset: first_samples.start,
         cancel: &cancel,
-        components: part.is_none() && wants_components(&camera),
+        // A tile part owns whole pixels, so it keeps their component values exactly; a
+        // samples part would need exact component sums (refused by the CLI).
+        components: part.is_none_or(|p| p.split == crate::farm::Split::Tiles)
+            && wants_components(&camera),
     };
     // Runs `f` on every pixel, rows in parallel, polling for cancellation per pixel (one
     // pixel is at most `max` samples of work).

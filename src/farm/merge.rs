@@ -10,6 +10,7 @@ use super::part::{Part, Split};
 use super::part_file::{PartFile, PartHeader, PartPixels};
 use crate::adaptive::{pixel_alpha, pixel_value};
 use crate::framebuffer::FrameBuffers;
+use glam::Vec3;
 
 /// A part file that was read, with the path it came from.
 pub struct LoadedPart {
@@ -150,6 +151,10 @@ pub fn merge(parts: &[LoadedPart]) -> Result<FrameBuffers, String> {
     let count = h0.part.count;
     let n = width * height;
     let mut total = PartPixels::new(n);
+    // Component passes come only from tile parts, each pixel from its owner.
+    if parts.iter().all(|p| p.file.pixels.components.is_some()) {
+        total.components = Some(vec![[Vec3::ZERO; 6]; n]);
+    }
     for p in parts {
         let px = &p.file.pixels;
         let k = p.file.header.part.index;
@@ -169,6 +174,9 @@ pub fn merge(parts: &[LoadedPart]) -> Result<FrameBuffers, String> {
                 total.normal[i] = px.normal[i];
                 total.object_id[i] = px.object_id[i];
                 total.material_id[i] = px.material_id[i];
+                if let (Some(t), Some(c)) = (&mut total.components, &px.components) {
+                    t[i] = c[i];
+                }
             }
         }
     }
@@ -183,5 +191,6 @@ pub fn merge(parts: &[LoadedPart]) -> Result<FrameBuffers, String> {
         fb.material_id[i] = total.material_id[i];
         fb.samples[i] = taken;
     }
+    fb.components = total.components;
     Ok(fb)
 }

@@ -81,6 +81,7 @@ pub fn part_file(
         normal: fb.normal.clone(),
         object_id: fb.object_id.clone(),
         material_id: fb.material_id.clone(),
+        components: fb.components.clone(),
     };
     Some(part_file::PartFile {
         header: PartHeader {

@@ -58,6 +58,9 @@ pub struct PartPixels {
     pub object_id: Vec<u32>,
     /// Centre-sample material id.
     pub material_id: Vec<u32>,
+    /// Component-pass values (emission … volume, `Pass::COMPONENTS` order) of the pixels a
+    /// tile part owns, when the camera asks for component passes.
+    pub components: Option<Vec<[Vec3; 6]>>,
 }
 
 impl PartPixels {
@@ -72,8 +75,14 @@ impl PartPixels {
             normal: vec![Vec3::ZERO; n],
             object_id: vec![0; n],
             material_id: vec![0; n],
+            components: None,
         }
     }
+}
+
+/// The part channel of component `k`'s colour channel `c`.
+fn component_channel(k: usize, c: usize) -> String {
+    format!("component.{k}.{}", CHANNELS[c])
 }
 
 /// A part file's content.
@@ -123,6 +132,18 @@ fn f32_channels(p: &PartPixels) -> Vec<(String, Vec<f32>)> {
         ("N.Y".into(), p.normal.iter().map(|n| n.y).collect()),
         ("N.Z".into(), p.normal.iter().map(|n| n.z).collect()),
     ]
+    .into_iter()
+    .chain(p.components.iter().flat_map(|values| {
+        (0..6).flat_map(move |k| {
+            (0..3).map(move |c| {
+                (
+                    component_channel(k, c),
+                    values.iter().map(|v| v[k][c]).collect(),
+                )
+            })
+        })
+    }))
+    .collect()
 }
 
 /// FNV-1a over the pixel data in channel order: the `payload` entry of the metadata.
@@ -337,6 +358,17 @@ pub fn decode(bytes: &[u8]) -> std::result::Result<PartFile, String> {
     pixels.depth = f32s("Z")?;
     let (nx, ny, nz) = (f32s("N.X")?, f32s("N.Y")?, f32s("N.Z")?);
     pixels.normal = (0..n).map(|i| Vec3::new(nx[i], ny[i], nz[i])).collect();
+    if find(&component_channel(0, 0)).is_ok() {
+        let mut values = vec![[Vec3::ZERO; 6]; n];
+        for k in 0..6 {
+            for c in 0..3 {
+                for (v, x) in values.iter_mut().zip(f32s(&component_channel(k, c))?) {
+                    v[k][c] = x;
+                }
+            }
+        }
+        pixels.components = Some(values);
+    }
     if payload != payload_hash(&pixels) {
         return Err("damaged part file (its pixel data does not match its checksum)".into());
     }
@@ -354,6 +386,9 @@ mod tests {
         pixels.taken[1] = 3;
         pixels.depth[2] = 4.0;
         pixels.normal[5] = Vec3::Y;
+        let mut components = vec![[Vec3::ZERO; 6]; 6];
+        components[3][4] = Vec3::new(0.25, -1.0, 1e-20);
+        pixels.components = Some(components);
         PartFile {
             header: PartHeader {
                 version: "0.1.0".into(),

@@ -207,12 +207,14 @@ fn component_layers_go_to_exr_only() {
 
     let o = run(bin()
         .current_dir(&dir)
-        .args(["render", "--part", "1/2", "-o", "p.exr"])
+        .args([
+            "render", "--part", "1/2", "--split", "samples", "-o", "p.exr",
+        ])
         .arg(&scene));
     assert_eq!(o.status.code(), Some(2));
     assert_eq!(
         stderr(&o).trim_end(),
-        "error: --part 1/2 cannot carry the component passes (Specular, Emission) of c.exr\n  help: render the component passes on one machine, or leave them out of the farm render's outputs"
+        "error: --part 1/2 --split samples cannot carry the component passes (Specular, Emission) of c.exr\n  help: use --split tiles (the default), or leave them out of the farm render's outputs"
     );
     assert!(!dir.join("p.exr").exists());
 
@@ -226,4 +228,56 @@ fn component_layers_go_to_exr_only() {
         "{}",
         stderr(&o)
     );
+}
+
+/// Tile parts carry the component values of the pixels they own: `merge` writes the same EXR
+/// bytes, layers included, as the single render.
+#[test]
+fn component_passes_go_through_tile_parts_bit_identically() {
+    let dir = scratch("component-parts");
+    let text = r#"Scene(
+    options: (samples: 4),
+    cameras: [(name: "cam", fov_y: 40.0, resolution: (12, 8),
+        placement: LookAt(eye: (0, -3, 3), target: (0, 0, 0)),
+        outputs: [(file: "c.exr", passes: [Beauty, DiffuseDirect, Specular])])],
+    lights: [(name: "sun", kind: Point(position: (1, -1, 3)), intensity: 4.0)],
+    materials: [(name: "plastic", shader: Phong(diffuse: (0.5, 0.4, 0.3), specular: (0.4, 0.4, 0.4), spec_exp: 20))],
+    objects: [(name: "ball", mesh: Sphere(radius: 1), material: "plastic")],
+    instances: [(name: "b", of: "ball")],
+    groups: [(name: "world", members: ["b"])],
+    render: (root: "world", camera: "cam"),
+)
+"#;
+    std::fs::write(dir.join("c.ron"), text).unwrap();
+    let ok = |args: &[&str]| {
+        let o = run(bin().current_dir(&dir).args(args));
+        assert!(o.status.success(), "{args:?}: {}", stderr(&o));
+    };
+    ok(&["render", "c.ron", "-o", "single.exr"]);
+    for k in 1..=3 {
+        let part = format!("{k}/3");
+        let name = format!("part_{k}.exr");
+        ok(&["render", "c.ron", "--part", &part, "-o", &name]);
+    }
+    ok(&[
+        "merge",
+        "part_1.exr",
+        "part_2.exr",
+        "part_3.exr",
+        "-o",
+        "merged.exr",
+    ]);
+    let single = std::fs::read(dir.join("single.exr")).unwrap();
+    assert!(std::fs::read(dir.join("merged.exr")).unwrap() == single);
+    let read = exr::prelude::read_all_flat_layers_from_file(dir.join("single.exr")).unwrap();
+    let lit = read.layer_data[0]
+        .channel_data
+        .list
+        .iter()
+        .filter(|c| {
+            c.name.to_string().starts_with("diffuse_direct")
+                || c.name.to_string().starts_with("specular")
+        })
+        .all(|c| c.sample_data.values_as_f32().any(|v| v > 0.0));
+    assert!(lit, "every requested layer carries light somewhere");
 }
