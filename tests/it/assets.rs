@@ -1,27 +1,10 @@
 //! Every example scene in `assets/scenes/` loads and renders (at a reduced resolution) with
 //! finite, non-negative pixels in every pass.
 
-use std::path::PathBuf;
-
+use crate::common::example_scenes;
 use stagelight::components::{Camera, RenderCamera};
 use stagelight::frame::Frame;
 use stagelight::scene::load_scene;
-
-fn example_scenes() -> Vec<PathBuf> {
-    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("assets/scenes");
-    let mut scenes: Vec<PathBuf> = std::fs::read_dir(&dir)
-        .unwrap()
-        .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.extension().is_some_and(|x| x == "ron"))
-        .collect();
-    scenes.sort();
-    assert!(
-        scenes.len() >= 3,
-        "expected the example scenes in {}",
-        dir.display()
-    );
-    scenes
-}
 
 #[test]
 fn every_example_scene_renders_without_nan_or_inf() {

@@ -14,17 +14,7 @@ use stagelight::scene::load_scene;
 use stagelight::settings::Integrator;
 
 use crate::common::cli::{bin, run, scratch, stderr};
-
-fn example_scenes() -> Vec<PathBuf> {
-    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("assets/scenes");
-    let mut scenes: Vec<PathBuf> = std::fs::read_dir(&dir)
-        .unwrap()
-        .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.extension().is_some_and(|x| x == "ron"))
-        .collect();
-    scenes.sort();
-    scenes
-}
+use crate::common::example_scenes;
 
 /// Renders `path` shrunk to at most 12 pixels across with at most 2 samples (adaptive
 /// sampling capped at 4) with `integrator`; `components`: an EXR output asking for the six

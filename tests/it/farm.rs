@@ -2,8 +2,9 @@
 //! as N parts (N = 1, 2, 3, 7; tiles and samples splits) and merging the part files gives
 //! the single render's frame buffers bit for bit.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
+use crate::common::example_scenes;
 use stagelight::components::{Camera, Pass, RenderCamera};
 use stagelight::farm::merge::{merge, LoadedPart};
 use stagelight::farm::part_file::{decode, encode};
@@ -12,17 +13,6 @@ use stagelight::frame::Frame;
 use stagelight::framebuffer::FrameBuffers;
 use stagelight::image_io::encode_exr;
 use stagelight::scene::load_scene;
-
-fn example_scenes() -> Vec<PathBuf> {
-    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("assets/scenes");
-    let mut scenes: Vec<PathBuf> = std::fs::read_dir(&dir)
-        .unwrap()
-        .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.extension().is_some_and(|x| x == "ron"))
-        .collect();
-    scenes.sort();
-    scenes
-}
 
 /// Renders `path` shrunk to at most 20 pixels across with at most 2 samples (adaptive
 /// sampling capped at 8), as `part` when given. Returns the buffers (with exact sums for a

@@ -21,6 +21,23 @@ use stagelight::components::{
 use stagelight::frame::Frame;
 use stagelight::settings::RenderSettings;
 
+/// Every RON scene in `assets/scenes/`, sorted by path.
+pub fn example_scenes() -> Vec<std::path::PathBuf> {
+    let dir = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("assets/scenes");
+    let mut scenes: Vec<std::path::PathBuf> = std::fs::read_dir(&dir)
+        .unwrap()
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|x| x == "ron"))
+        .collect();
+    scenes.sort();
+    assert!(
+        scenes.len() >= 3,
+        "expected the example scenes in {}",
+        dir.display()
+    );
+    scenes
+}
+
 /// A unit square in the z = 0 plane, `[-h, h]²`, facing +Z.
 pub fn square(h: f32) -> TriMesh {
     TriMesh {
