@@ -23,6 +23,7 @@ import time
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
 SCENE = os.path.join(ROOT, "assets", "scenes", "cornell_box.ron")
+GEOMETRY = os.path.join(ROOT, "assets", "scenes", "lib", "cornell_geometry.ron")
 MATERIALS = os.path.join(ROOT, "assets", "scenes", "lib", "cornell_materials.ron")
 
 NUM = r"-?[0-9]+(?:\.[0-9]*)?(?:[eE][-+]?[0-9]+)?"
@@ -82,7 +83,8 @@ def main():
     import mitsuba as mi
     mi.set_variant(args.variant)
 
-    scene_text = open(SCENE).read()
+    # The camera is in the scene, the objects in the geometry library it includes.
+    scene_text = open(SCENE).read() + open(GEOMETRY).read()
     materials = parse_materials(open(MATERIALS).read())
     eye = triples(re.search(r"eye:\s*\([^)]*\)", scene_text).group(0))[0]
     target = triples(re.search(r"target:\s*\([^)]*\)", scene_text).group(0))[0]
