@@ -20,7 +20,8 @@ Files:
   along +u, right half toward the image's top), a quad with an emissive texture
   (emissiveFactor ½, KHR_materials_emissive_strength 1.5), and a card with an alpha
   cut-out (alphaMode MASK, cutoff ½: alpha 0 on the left half, 1 on the right) in front of
-  a wall, lit at 45° by a directional light (tests/it/gltf_materials.rs).
+  a wall, lit at 45° by a directional light (tests/it/gltf_materials.rs);
+  missing_texture.gltf: a normal texture whose image file does not exist.
 - assets/gltf/lightmap_room.glb: a floor, two walls and a box, each with TEXCOORD_1 laid out
   as unique, non-overlapping lightmap charts, a point light (KHR_lights_punctual) and a
   camera; baked by `stagelight bake assets/gltf/lightmap_room.glb --write-gltf` (README).
@@ -303,6 +304,16 @@ def write_material_textures():
     sun = b.node(name="sun", rotation=[0.0, math.sin(a), 0.0, math.cos(a)], extensions={"KHR_lights_punctual": {"light": 0}})
     nodes = [b.node(name="card", mesh=card), b.node(name="wall", mesh=wall), front_camera(b, 4.0, 0.9), sun]
     b.finish(nodes).save_binary(os.path.join(OUT, "mask.glb"))
+
+    # A normal texture whose image file does not exist.
+    b = Builder()
+    b.gltf.images.append(g.Image(uri="nowhere.png"))
+    b.gltf.textures.append(g.Texture(source=0))
+    b.gltf.materials = [g.Material(name="lost", normalTexture=g.NormalMaterialTexture(index=0))]
+    mesh = facing_quad(b, "quad", 1.0, 0.0, 0)
+    gltf = b.finish([b.node(name="quad", mesh=mesh)])
+    gltf.convert_buffers(g.BufferFormat.DATAURI)
+    gltf.save_json(os.path.join(OUT, "missing_texture.gltf"))
 
 
 def write_lightmap_room():

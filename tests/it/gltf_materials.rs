@@ -193,3 +193,66 @@ fn a_mask_cut_out_lets_camera_and_shadow_rays_through() {
     near(at(-1.03, -1.0), "just outside the shadow's cut edge");
     near(at(-1.3, -1.0), "where the cut half's shadow would be");
 }
+
+fn load_error(text: &str) -> String {
+    match stagelight::scene::load_scene_str(text, Path::new("scene.ron")) {
+        Ok(_) => panic!("expected errors"),
+        Err(e) => e.to_string(),
+    }
+}
+
+fn quad_with(material: &str) -> String {
+    format!(
+        r#"(
+    cameras: [(name: "cam", fov_y: 30, resolution: (8, 8), placement: LookAt(eye: (0, 0, 3), target: (0, 0, 0)))],
+    materials: [{material}],
+    objects: [(name: "quad", material: "m",
+               mesh: Inline(vertices: [(-1, -1, 0), (1, -1, 0), (1, 1, 0)], polygons: [[0, 1, 2]]))],
+    instances: [(name: "q", of: "quad")],
+    groups: [(name: "world", members: ["q"])],
+    render: (root: "world", camera: "cam"),
+)"#
+    )
+}
+
+/// A bump is a height map or a normal map: both, or neither, is a located error.
+#[test]
+fn a_bump_needs_exactly_one_of_height_and_normal_map() {
+    let both = quad_with(
+        r#"(name: "m", shader: Lambert(albedo: (1, 1, 1)), bump: (height: 0.1, normal_map: (0.5, 0.5, 1)))"#,
+    );
+    assert_eq!(
+        load_error(&both),
+        "scene.ron:3:71: error: a bump has both a `height` and a `normal_map`\n  help: give `height: <scalar node>` for a height map, or `normal_map: <colour node>` for a tangent-space normal map"
+    );
+    let neither = quad_with(r#"(name: "m", shader: Lambert(albedo: (1, 1, 1)), bump: (scale: 2))"#);
+    assert_eq!(
+        load_error(&neither),
+        "scene.ron:3:71: error: a bump needs a `height` or a `normal_map`\n  help: give `height: <scalar node>` for a height map, or `normal_map: <colour node>` for a tangent-space normal map"
+    );
+}
+
+/// An `Alpha` node of a file that cannot be read is an error at its `file`, as for `Image`.
+#[test]
+fn an_alpha_node_of_a_missing_file_is_located() {
+    let text = quad_with(
+        r#"(name: "m", shader: Opacity(opacity: (1, 1, 1), input: Lambert(albedo: (1, 1, 1))), bind: {"opacity": Alpha(file: "nowhere.png")})"#,
+    );
+    assert_eq!(
+        load_error(&text),
+        "scene.ron:3:131: error: cannot read image file \"nowhere.png\": No such file or directory (os error 2)\n  help: image textures are PNG or EXR files, relative to the scene file"
+    );
+}
+
+/// A glTF normal texture whose image file does not exist is an error naming the file.
+#[test]
+fn a_missing_gltf_texture_is_an_error() {
+    let errors = match stagelight::scene::load_scene(&Path::new(DIR).join("missing_texture.gltf")) {
+        Ok(_) => panic!("loaded"),
+        Err(e) => e.to_string(),
+    };
+    assert_eq!(
+        errors,
+        format!("{DIR}/missing_texture.gltf:1:1: error: cannot read image file \"{DIR}/nowhere.png\": No such file or directory (os error 2)\n  help: image textures are PNG or EXR files, relative to the scene file")
+    );
+}

@@ -99,7 +99,7 @@ pub fn load(path: &Path, encoding: Option<Encoding>, wrap: Wrap) -> Result<Textu
 
 /// Width, height and top-down pixels of a decoded image; alpha is `None` when the image
 /// has no alpha channel.
-fn rgba(img: image::DynamicImage) -> (u32, u32, Vec<(Vec3, Option<f32>)>) {
+fn rgba(img: image::DynamicImage) -> (u32, u32, Pixels) {
     let has_alpha = img.color().has_alpha();
     let img = img.to_rgba32f();
     let (w, h) = img.dimensions();
@@ -125,7 +125,7 @@ pub fn decode(bytes: &[u8], encoding: Option<Encoding>, wrap: Wrap) -> Result<Te
 fn texture(
     width: u32,
     height: u32,
-    top_down: Vec<(Vec3, Option<f32>)>,
+    top_down: Pixels,
     encoding: Encoding,
     wrap: Wrap,
 ) -> Result<Texture, String> {
@@ -176,10 +176,15 @@ fn texture(
     })
 }
 
+/// Pixels listed top to bottom: colour and alpha (`None`: the image has no alpha).
+type Pixels = Vec<(Vec3, Option<f32>)>;
+
+/// A row width and the pixels an EXR reader fills.
+type ExrPixels = (usize, Pixels);
+
 /// Width, height and top-down RGBA pixels of the first RGB(A) layer of an EXR file (alpha
 /// `None` when the layer has no alpha channel).
-type ExrPixels = (usize, Vec<(Vec3, Option<f32>)>);
-fn read_exr(path: &Path) -> Result<(u32, u32, Vec<(Vec3, Option<f32>)>), String> {
+fn read_exr(path: &Path) -> Result<(u32, u32, Pixels), String> {
     use exr::prelude::*;
     let image = read_first_rgba_layer_from_file(
         path,

@@ -134,9 +134,10 @@ fn material(w: &mut Walk<'_>, m: &gltf::Material<'_>) -> MaterialDesc {
         roughness,
     };
     // Coverage: the share of the surface that is there (glTF's alpha after the mode).
-    let texture_alpha = |x: f64| match &base_texture {
-        Some(t) => Some(node(NodeDesc::Mul(t.alpha(), InputDesc::Number(x)))),
-        None => None,
+    let texture_alpha = |x: f64| {
+        base_texture
+            .as_ref()
+            .map(|t| node(NodeDesc::Mul(t.alpha(), InputDesc::Number(x))))
     };
     let coverage = match m.alpha_mode() {
         gltf::material::AlphaMode::Opaque => None,
