@@ -36,6 +36,8 @@ pub enum Op {
     Position,
     /// World-space shading normal.
     Normal,
+    /// The mesh's interpolated vertex colour (white without vertex colours).
+    VertexColour,
     /// `a` where `⌊u·scale⌋ + ⌊v·scale⌋` is even, `b` where odd.
     Checker {
         /// Coordinates.

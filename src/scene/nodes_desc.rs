@@ -88,6 +88,9 @@ pub enum NodeDesc {
     Position,
     /// World-space shading normal (colour).
     Normal,
+    /// The mesh's interpolated vertex colour (colour, linear; white for meshes without
+    /// vertex colours).
+    VertexColor,
     /// Checkerboard over uv: `a` on even squares, `b` on odd ones.
     Checker {
         /// Coordinates, default `Uv`.
@@ -264,6 +267,7 @@ pub const NODE_NAMES: &[&str] = &[
     "Uv",
     "Position",
     "Normal",
+    "VertexColor",
     "Checker",
     "Disk",
     "Repeat",

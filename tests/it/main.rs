@@ -57,6 +57,7 @@ mod photon_lights;
 mod photon_partition;
 mod photon_progressive;
 mod photons;
+mod ply_colours;
 mod radiometry;
 mod ray_counts;
 mod ray_flags;

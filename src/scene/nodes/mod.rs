@@ -232,6 +232,7 @@ impl Compiler<'_, '_> {
             NodeDesc::Uv => Some((self.prog.push(Op::Uv), Ty::Colour)),
             NodeDesc::Position => Some((self.prog.push(Op::Position), Ty::Colour)),
             NodeDesc::Normal => Some((self.prog.push(Op::Normal), Ty::Colour)),
+            NodeDesc::VertexColor => Some((self.prog.push(Op::VertexColour), Ty::Colour)),
             NodeDesc::Checker { uv, scale, a, b } => {
                 let uv = input!(".Checker.uv", uv);
                 let scale = scalar!(".Checker.scale", scale, "scale");

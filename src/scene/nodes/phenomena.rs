@@ -218,6 +218,7 @@ fn for_each_input(n: &NodeDesc, mut f: impl FnMut(String, &InputDesc)) {
         NodeDesc::Uv
         | NodeDesc::Position
         | NodeDesc::Normal
+        | NodeDesc::VertexColor
         | NodeDesc::Graph(..)
         | NodeDesc::Param(_) => {}
     }

@@ -3,6 +3,8 @@
 //! bump-mapped normal with its tangents. The object's `displacement` in `Bump` mode adds
 //! its amount to the material's bump height.
 //!
+//! **Vertex colours** (PLY `red green blue`) are interpolated like uvs; white without.
+//!
 //! **uv.** Meshes with texture coordinates (OBJ `vt`, inline `uvs`) interpolate them;
 //! generated surfaces (spheres, tori, patches, NURBS, stairs, …) carry their parametric uv.
 //! A mesh without uvs reads uv = (0, 0) everywhere, and its bump tangents come from an
@@ -14,7 +16,7 @@ use glam::{Mat3, Vec3};
 use super::{bump, bumped_normal, normal_map, Inputs};
 use crate::accel::Hit;
 use crate::components::{Displacement, Material, Shader};
-use crate::geometry::{SceneGeometry, ShadingPoint};
+use crate::geometry::{InstanceGeometry, SceneGeometry, ShadingPoint};
 use crate::shading::frame::ShadingFrame;
 use crate::tessellation::displace;
 
@@ -54,6 +56,7 @@ pub fn evaluate(
         uv: sp.uv,
         p,
         n: sp.normal,
+        colour: vertex_colour(inst, idx, b),
     };
     let graph = material.graph.as_deref();
     let mut regs = Vec::with_capacity(graph.map_or(0, |g| g.program.ops.len()));
@@ -138,6 +141,15 @@ pub fn evaluate(
     })
 }
 
+/// The instance's vertex colour at the barycentrics `b` of the triangle `idx` (white when
+/// the mesh has none).
+fn vertex_colour(inst: &InstanceGeometry, idx: [usize; 3], b: [f32; 3]) -> Vec3 {
+    match inst.colours.as_deref() {
+        Some(c) => c[idx[0]] * b[0] + c[idx[1]] * b[1] + c[idx[2]] * b[2],
+        None => Vec3::ONE,
+    }
+}
+
 /// The emitted radiance of `material` at `hit` (W/(sr·m²)): its `emission` times its
 /// emission texture there, if it has one.
 pub fn emission_at(geometry: &SceneGeometry, hit: &Hit, material: &Material) -> Vec3 {
@@ -157,6 +169,7 @@ pub fn emission_at(geometry: &SceneGeometry, hit: &Hit, material: &Material) -> 
         uv: sp.uv,
         p,
         n: sp.normal,
+        colour: vertex_colour(inst, idx, b),
     };
     let graph = material.graph.as_deref().expect("checked above");
     let mut regs = Vec::with_capacity(reg as usize + 1);

@@ -39,6 +39,8 @@ pub struct Inputs {
     pub p: Vec3,
     /// World-space unit shading normal (before bump mapping).
     pub n: Vec3,
+    /// The mesh's interpolated vertex colour (linear RGB; white without vertex colours).
+    pub colour: Vec3,
 }
 
 impl Program {
@@ -64,6 +66,7 @@ impl Program {
                 Op::Uv => inputs.uv.extend(0.0),
                 Op::Position => inputs.p,
                 Op::Normal => inputs.n,
+                Op::VertexColour => inputs.colour,
                 Op::Checker { uv: c, scale, a, b } => {
                     if pattern::checker(uv(c), s(scale)) == 0.0 {
                         r(a)
@@ -168,12 +171,12 @@ pub fn bumped_normal(
     let hu = height(&Inputs {
         uv: inputs.uv + du_uv,
         p: inputs.p + dpdu_obj * d,
-        n: inputs.n,
+        ..*inputs
     });
     let hv = height(&Inputs {
         uv: inputs.uv + dv_uv,
         p: inputs.p + dpdv_obj * d,
-        n: inputs.n,
+        ..*inputs
     });
     bump::perturb(inputs.n, dpdu, dpdv, (hu - h) / d, (hv - h) / d)
 }
@@ -187,6 +190,7 @@ mod tests {
             uv: Vec2::new(u, v),
             p: Vec3::ZERO,
             n: Vec3::Z,
+            colour: Vec3::ONE,
         }
     }
 
