@@ -21,7 +21,9 @@ Files:
   (emissiveFactor ½, KHR_materials_emissive_strength 1.5), and a card with an alpha
   cut-out (alphaMode MASK, cutoff ½: alpha 0 on the left half, 1 on the right) in front of
   a wall, lit at 45° by a directional light (tests/it/gltf_materials.rs);
-  missing_texture.gltf: a normal texture whose image file does not exist.
+  blend.glb: a black mirror card with texture alpha 64/255 (alphaMode BLEND) in front of
+  the white default environment; missing_texture.gltf: a normal texture whose image file
+  does not exist.
 - assets/gltf/lightmap_room.glb: a floor, two walls and a box, each with TEXCOORD_1 laid out
   as unique, non-overlapping lightmap charts, a point light (KHR_lights_punctual) and a
   camera; baked by `stagelight bake assets/gltf/lightmap_room.glb --write-gltf` (README).
@@ -304,6 +306,14 @@ def write_material_textures():
     sun = b.node(name="sun", rotation=[0.0, math.sin(a), 0.0, math.cos(a)], extensions={"KHR_lights_punctual": {"light": 0}})
     nodes = [b.node(name="card", mesh=card), b.node(name="wall", mesh=wall), front_camera(b, 4.0, 0.9), sun]
     b.finish(nodes).save_binary(os.path.join(OUT, "mask.glb"))
+
+    # Alpha blend: a black polished metal card (it reflects nothing) whose texture alpha is
+    # 64/255, in front of the white default environment (no lights).
+    b = Builder()
+    tex = image(b, quadrants(*[(255, 255, 255, 64)] * 4))
+    b.gltf.materials = [g.Material(name="veil", pbrMetallicRoughness=g.PbrMetallicRoughness(baseColorFactor=[0.0, 0.0, 0.0, 1.0], baseColorTexture=g.TextureInfo(index=tex), metallicFactor=1.0, roughnessFactor=0.0), alphaMode=g.BLEND)]
+    mesh = facing_quad(b, "card", 1.0, 0.0, 0)
+    b.finish([b.node(name="card", mesh=mesh), front_camera(b, 3.0, 0.8)]).save_binary(os.path.join(OUT, "blend.glb"))
 
     # A normal texture whose image file does not exist.
     b = Builder()

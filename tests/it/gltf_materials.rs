@@ -256,3 +256,31 @@ fn a_missing_gltf_texture_is_an_error() {
         format!("{DIR}/missing_texture.gltf:1:1: error: cannot read image file \"{DIR}/nowhere.png\": No such file or directory (os error 2)\n  help: image textures are PNG or EXR files, relative to the scene file")
     );
 }
+
+/// `blend.glb`: a card that reflects nothing (black polished metal) with texture alpha
+/// a = 64/255 (`BLEND`) in front of the white environment of radiance 1: rays pass it with
+/// probability 1 − a, so the card's pixels average 1 − a (within 4σ of the binomial noise
+/// over 200² pixels × 4 samples).
+#[test]
+fn a_blended_card_lets_through_one_minus_its_texture_alpha() {
+    let d = desc("blend.glb");
+    assert!(d.materials[0].bind.contains_key("opacity"));
+    let (w, beauty) = render(load("blend.glb"));
+    let (cx, cy) = (w / 2, w / 2);
+    let mut sum = 0.0f64;
+    let mut n = 0usize;
+    for y in cy - 100..cy + 100 {
+        for x in cx - 100..cx + 100 {
+            sum += beauty[y * w + x].x as f64;
+            n += 1;
+        }
+    }
+    let mean = sum / n as f64;
+    let a = 64.0 / 255.0;
+    let sigma = (a * (1.0 - a) / (4.0 * n as f64)).sqrt();
+    assert!(
+        (mean - (1.0 - a)).abs() < 4.0 * sigma,
+        "mean {mean} vs {} (σ {sigma})",
+        1.0 - a
+    );
+}
