@@ -122,6 +122,8 @@ fn textured_graph() -> MaterialGraph {
             height: fbm,
             scale: 0.02,
         }),
+        normal_map: None,
+        emission: None,
     }
 }
 

@@ -15,6 +15,15 @@ Files:
 - bad files: truncated.glb (box.glb cut short), wrong_magic.glb, bad_accessor.glb (an
   accessor reading past its buffer view), missing_buffer.gltf (a buffer file that does not
   exist), points.glb (a POINTS primitive), bad_index.glb (an index past the vertex count).
+- normal_map.glb, emissive.glb, mask.glb: material textures embedded as PNG (written
+  here with zlib): a quad with a tangent-space normal texture (scale 1.5; left half tilted
+  along +u, right half toward the image's top), a quad with an emissive texture
+  (emissiveFactor ½, KHR_materials_emissive_strength 1.5), and a card with an alpha
+  cut-out (alphaMode MASK, cutoff ½: alpha 0 on the left half, 1 on the right) in front of
+  a wall, lit at 45° by a directional light (tests/it/gltf_materials.rs);
+  blend.glb: a black mirror card with texture alpha 64/255 (alphaMode BLEND) in front of
+  the white default environment; missing_texture.gltf: a normal texture whose image file
+  does not exist.
 - assets/gltf/lightmap_room.glb: a floor, two walls and a box, each with TEXCOORD_1 laid out
   as unique, non-overlapping lightmap charts, a point light (KHR_lights_punctual) and a
   camera; baked by `stagelight bake assets/gltf/lightmap_room.glb --write-gltf` (README).
@@ -23,6 +32,7 @@ Files:
 import math
 import os
 import struct
+import zlib
 
 import numpy as np
 import pygltflib as g
@@ -223,6 +233,99 @@ def quads(b, name, faces, chart_origin, chart_size, material):
     return b.mesh(name, p, n, uv0, tris, uv1=uv1, material=material)
 
 
+def png(pixels):
+    """An 8-bit PNG of `pixels` (rows top to bottom of RGB or RGBA tuples)."""
+    channels = len(pixels[0][0])
+    raw = b"".join(b"\0" + bytes(c for px in row for c in px) for row in pixels)
+
+    def chunk(kind, data):
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
+
+    header = struct.pack(">IIBBBBB", len(pixels[0]), len(pixels), 8, 6 if channels == 4 else 2, 0, 0, 0)
+    return b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", header) + chunk(b"IDAT", zlib.compress(raw, 9)) + chunk(b"IEND", b"")
+
+
+def quadrants(tl, tr, bl, br, size=4):
+    """A size² image whose quadrants are the given colours (top-left, top-right, ...)."""
+    h = size // 2
+    return [[(tl if x < h else tr) if y < h else (bl if x < h else br) for x in range(size)] for y in range(size)]
+
+
+def image(b, pixels, wrap=g.CLAMP_TO_EDGE):
+    view = b.view(png(pixels))
+    b.gltf.images.append(g.Image(bufferView=view, mimeType="image/png"))
+    b.gltf.samplers.append(g.Sampler(wrapS=wrap, wrapT=wrap))
+    b.gltf.textures.append(g.Texture(source=len(b.gltf.images) - 1, sampler=len(b.gltf.samplers) - 1))
+    return len(b.gltf.textures) - 1
+
+
+def facing_quad(b, name, half, z, material):
+    """A square [−half, half]² at depth z facing +Z; glTF uv (0, 0) at its top-left corner."""
+    p = [(-half, -half, z), (half, -half, z), (half, half, z), (-half, half, z)]
+    uv = [(0, 1), (1, 1), (1, 0), (0, 0)]
+    return b.mesh(name, p, [(0, 0, 1)] * 4, uv, [[0, 1, 2], [0, 2, 3]], material=material)
+
+
+def front_camera(b, distance, yfov):
+    b.gltf.cameras.append(g.Camera(name="front", type="perspective", perspective=g.Perspective(yfov=yfov, znear=0.1, aspectRatio=1.0)))
+    return b.node(name="eye", camera=len(b.gltf.cameras) - 1, translation=[0.0, 0.0, distance])
+
+
+def write_material_textures():
+    # Normal map: left half (192, 128, 255) tilts along +u, right half (128, 192, 255)
+    # toward the image's top (+y here).
+    b = Builder()
+    left, right = (192, 128, 255), (128, 192, 255)
+    tex = image(b, quadrants(left, right, left, right))
+    b.gltf.materials = [g.Material(name="bumpy", pbrMetallicRoughness=g.PbrMetallicRoughness(baseColorFactor=[0.8, 0.8, 0.8, 1.0], metallicFactor=0.0, roughnessFactor=1.0), normalTexture=g.NormalMaterialTexture(index=tex, scale=1.5))]
+    mesh = facing_quad(b, "quad", 1.0, 0.0, 0)
+    b.finish([b.node(name="quad", mesh=mesh), front_camera(b, 3.0, 0.8)]).save_binary(os.path.join(OUT, "normal_map.glb"))
+
+    # Emissive texture: red, green / blue, grey quadrants; emission = ½ × 1.5 × texel.
+    b = Builder()
+    tex = image(b, quadrants((255, 0, 0), (0, 255, 0), (0, 0, 255), (128, 128, 128)))
+    b.gltf.extensionsUsed = ["KHR_materials_emissive_strength"]
+    b.gltf.materials = [g.Material(name="sign", pbrMetallicRoughness=g.PbrMetallicRoughness(baseColorFactor=[0.0, 0.0, 0.0, 1.0], metallicFactor=0.0, roughnessFactor=1.0), emissiveTexture=g.TextureInfo(index=tex), emissiveFactor=[0.5, 0.5, 0.5], extensions={"KHR_materials_emissive_strength": {"emissiveStrength": 1.5}})]
+    mesh = facing_quad(b, "quad", 1.0, 0.0, 0)
+    b.finish([b.node(name="quad", mesh=mesh), front_camera(b, 3.0, 0.8)]).save_binary(os.path.join(OUT, "emissive.glb"))
+
+    # Alpha cut-out: a black card, alpha 0 on its left half, in front of a grey wall; a
+    # directional light travelling along (−1, 0, −1)/√2 (the node's −Z turned 45° about Y).
+    b = Builder()
+    clear, solid = (255, 255, 255, 0), (255, 255, 255, 255)
+    tex = image(b, quadrants(clear, solid, clear, solid))
+    b.gltf.materials = [
+        g.Material(name="card", pbrMetallicRoughness=g.PbrMetallicRoughness(baseColorFactor=[0.0, 0.0, 0.0, 1.0], baseColorTexture=g.TextureInfo(index=tex), metallicFactor=0.0, roughnessFactor=1.0), alphaMode=g.MASK, alphaCutoff=0.5),
+        g.Material(name="wall", pbrMetallicRoughness=g.PbrMetallicRoughness(baseColorFactor=[0.8, 0.8, 0.8, 1.0], metallicFactor=0.0, roughnessFactor=1.0)),
+    ]
+    card = facing_quad(b, "card", 0.5, 0.0, 0)
+    wall = facing_quad(b, "wall", 3.0, -1.0, 1)
+    b.gltf.extensionsUsed = ["KHR_lights_punctual"]
+    b.gltf.extensions = {"KHR_lights_punctual": {"lights": [{"name": "sun", "type": "directional", "intensity": 683.0}]}}
+    a = math.radians(45) / 2
+    sun = b.node(name="sun", rotation=[0.0, math.sin(a), 0.0, math.cos(a)], extensions={"KHR_lights_punctual": {"light": 0}})
+    nodes = [b.node(name="card", mesh=card), b.node(name="wall", mesh=wall), front_camera(b, 4.0, 0.9), sun]
+    b.finish(nodes).save_binary(os.path.join(OUT, "mask.glb"))
+
+    # Alpha blend: a black polished metal card (it reflects nothing) whose texture alpha is
+    # 64/255, in front of the white default environment (no lights).
+    b = Builder()
+    tex = image(b, quadrants(*[(255, 255, 255, 64)] * 4))
+    b.gltf.materials = [g.Material(name="veil", pbrMetallicRoughness=g.PbrMetallicRoughness(baseColorFactor=[0.0, 0.0, 0.0, 1.0], baseColorTexture=g.TextureInfo(index=tex), metallicFactor=1.0, roughnessFactor=0.0), alphaMode=g.BLEND)]
+    mesh = facing_quad(b, "card", 1.0, 0.0, 0)
+    b.finish([b.node(name="card", mesh=mesh), front_camera(b, 3.0, 0.8)]).save_binary(os.path.join(OUT, "blend.glb"))
+
+    # A normal texture whose image file does not exist.
+    b = Builder()
+    b.gltf.images.append(g.Image(uri="nowhere.png"))
+    b.gltf.textures.append(g.Texture(source=0))
+    b.gltf.materials = [g.Material(name="lost", normalTexture=g.NormalMaterialTexture(index=0))]
+    mesh = facing_quad(b, "quad", 1.0, 0.0, 0)
+    gltf = b.finish([b.node(name="quad", mesh=mesh)])
+    gltf.convert_buffers(g.BufferFormat.DATAURI)
+    gltf.save_json(os.path.join(OUT, "missing_texture.gltf"))
+
+
 def write_lightmap_room():
     b = Builder()
     b.gltf.materials = [
@@ -269,4 +372,5 @@ if __name__ == "__main__":
     write_hierarchy()
     write_two_uv_sets()
     write_bad_files()
+    write_material_textures()
     write_lightmap_room()

@@ -32,6 +32,8 @@ pub struct InstanceGeometry {
     pub first_triangle: u32,
     /// The object's displacement when it is in `Bump` mode (shading normals only).
     pub bump: Option<Arc<Displacement>>,
+    /// The object's vertex colours (linear RGB, one per vertex of `mesh`), if it has them.
+    pub colours: Option<Arc<Vec<Vec3>>>,
 }
 
 /// Everything about a hit that shading needs.

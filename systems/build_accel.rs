@@ -26,7 +26,7 @@ use super::MERGING;
 use crate::accel::Accel;
 use crate::components::{
     BakeRequest, Displacement, DisplacementMode, Instance, Material, MaterialRef, Procedural,
-    RayFlags, Scatter, SceneOrigin, SubdivMesh, Surface, WorldFromObject, ALL_RAYS,
+    RayFlags, Scatter, SceneOrigin, SubdivMesh, Surface, VertexColours, WorldFromObject, ALL_RAYS,
 };
 use crate::geometry::{InstanceGeometry, SceneGeometry};
 use crate::guard::extent::{located, out_of_range, reach};
@@ -142,6 +142,11 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
                 .ok()
                 .filter(|d| displace && d.mode == DisplacementMode::Bump)
                 .map(|d| Arc::new((*d).clone())),
+            colours: world
+                .get::<&VertexColours>(instance.object)
+                .ok()
+                .map(|c| c.0.clone())
+                .filter(|c| c.len() == instance.mesh.positions.len()),
         });
     }
     // Generated geometry is only known now: refuse what the f32 BVH and triangle test cannot

@@ -36,6 +36,8 @@ pub enum Op {
     Position,
     /// World-space shading normal.
     Normal,
+    /// The mesh's interpolated vertex colour (white without vertex colours).
+    VertexColour,
     /// `a` where `⌊u·scale⌋ + ⌊v·scale⌋` is even, `b` where odd.
     Checker {
         /// Coordinates.
@@ -80,6 +82,13 @@ pub enum Op {
     },
     /// An image texture at `uv`.
     Image {
+        /// Coordinates.
+        uv: Reg,
+        /// The decoded image (shared between materials).
+        texture: Arc<Texture>,
+    },
+    /// An image texture's alpha at `uv`, as a scalar (1 where the image has no alpha).
+    ImageAlpha {
         /// Coordinates.
         uv: Reg,
         /// The decoded image (shared between materials).
@@ -165,7 +174,19 @@ pub struct BumpMap {
     pub scale: f32,
 }
 
-/// The node graphs of one material: which parameters they drive and the bump height.
+/// A tangent-space normal map (glTF's `normalTexture`): a colour register holding the
+/// texel `c` in \[0, 1\]³, read as the normal `(2c − 1)·(scale, scale, 1)` in the frame
+/// (tangent, bitangent, normal) of the surface (`shading::texture::normal_map`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct NormalMap {
+    /// Register holding the encoded normal.
+    pub texel: Reg,
+    /// Multiplier of the normal's tangential part.
+    pub scale: f32,
+}
+
+/// The node graphs of one material: which parameters they drive, the bump height, the
+/// normal map and the emission's texture.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct MaterialGraph {
     /// The compiled ops of every binding and of the bump height.
@@ -174,6 +195,18 @@ pub struct MaterialGraph {
     pub bindings: Vec<Binding>,
     /// Bump mapping, if any.
     pub bump: Option<BumpMap>,
+    /// Tangent-space normal mapping, if any.
+    pub normal_map: Option<NormalMap>,
+    /// Register multiplying the material's `emission` per channel (clamped at 0), if any.
+    pub emission: Option<Reg>,
+}
+
+impl MaterialGraph {
+    /// Whether evaluating the material at a point runs the program beyond the bump height
+    /// (bound parameters, a normal map or an emission texture).
+    pub fn runs_at_hits(&self) -> bool {
+        !self.bindings.is_empty() || self.normal_map.is_some() || self.emission.is_some()
+    }
 }
 
 /// Fractal parameters of a noise node, shared by fBm and turbulence
@@ -221,6 +254,9 @@ pub struct Texture {
     pub height: u32,
     /// Linear RGB texels, row `y` = 0 at v = 0, `texels[y·width + x]`.
     pub texels: Vec<Vec3>,
+    /// Alpha of each texel, in the order of `texels`; empty when the image has no alpha
+    /// channel (alpha 1 everywhere).
+    pub alpha: Vec<f32>,
     /// Wrap mode.
     pub wrap: Wrap,
 }

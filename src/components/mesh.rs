@@ -39,6 +39,12 @@ impl TriMesh {
 #[derive(Debug, Clone, PartialEq)]
 pub struct SecondUvs(pub Arc<Vec<Vec2>>);
 
+/// Per-vertex colours of an object's mesh (PLY `red green blue`), linear RGB, one per
+/// vertex of its [`TriMesh`]. Carried by the object entity beside its `Arc<TriMesh>`; the
+/// shader-graph node `VertexColor` reads them.
+#[derive(Debug, Clone, PartialEq)]
+pub struct VertexColours(pub Arc<Vec<Vec3>>);
+
 /// A placed copy of an object: the leaf of the resolved instance DAG. The entity also carries
 /// [`crate::components::WorldFromObject`] and [`crate::components::MaterialRef`].
 #[derive(Debug, Clone)]

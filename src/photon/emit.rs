@@ -24,6 +24,7 @@ use crate::geometry::SceneGeometry;
 use crate::sampling::{sample_cosine_hemisphere, sample_triangle};
 use crate::shading::frame::ShadingFrame;
 use crate::shading::lights::{spot_falloff, AreaShape, Light, LightSet, MeshLight};
+use crate::shading::texture::hit::emission_at;
 
 /// A photon leaving a light: its ray and its flux weight, W (not yet divided by the number of
 /// photons emitted).
@@ -151,7 +152,7 @@ impl Source {
             }
             Light::Environment(_) | Light::Ambient { .. } => return None,
             Light::Mesh(MeshLight { prims, cdf, .. }) => {
-                let (prim, sp, prob) = mesh_point(geometry, prims, cdf, u_pos)?;
+                let (prim, sp, prob, emission) = mesh_point(geometry, prims, cdf, u_pos)?;
                 let material = geometry.material_of(prim);
                 // Two-sided emitters pick a side by the first direction dimension.
                 let (mut n, mut ud, mut sides) = (sp.ng, u_dir, 1.0);
@@ -168,7 +169,7 @@ impl Source {
                 let area = triangle_area(geometry, prim);
                 EmittedPhoton {
                     ray: spawn_ray(&sp, dir),
-                    power: material.emission * (PI * sides * area / prob),
+                    power: emission * (PI * sides * area / prob),
                 }
             }
         };
@@ -241,7 +242,7 @@ impl Source {
             }
             Light::Environment(_) | Light::Ambient { .. } => return None,
             Light::Mesh(MeshLight { prims, cdf, .. }) => {
-                let (prim, sp, prob) = mesh_point(geometry, prims, cdf, u_pos)?;
+                let (prim, sp, prob, emission) = mesh_point(geometry, prims, cdf, u_pos)?;
                 let material = geometry.material_of(prim);
                 let (dir, pdf) = aim.direction(sp.p, pick, u_dir)?;
                 let cos = sp.ng.dot(dir);
@@ -252,7 +253,7 @@ impl Source {
                 let area = triangle_area(geometry, prim);
                 EmittedPhoton {
                     ray: spawn_ray(&sp, dir),
-                    power: material.emission * (area * cos / (pdf * prob)),
+                    power: emission * (area * cos / (pdf * prob)),
                 }
             }
         };
@@ -286,13 +287,14 @@ fn area_point(shape: &AreaShape, u: Vec2) -> (Vec3, Vec3) {
 }
 
 /// A point on an emitting mesh: a triangle by the CDF (by emitted power), a point uniform on
-/// it; returns the triangle, the point and the triangle's probability.
+/// it; returns the triangle, the point, the triangle's probability and the emitted radiance
+/// there (the material's emission times its texture).
 fn mesh_point(
     geometry: &SceneGeometry,
     prims: &[u32],
     cdf: &[f32],
     u: Vec2,
-) -> Option<(u32, SurfacePoint, f32)> {
+) -> Option<(u32, SurfacePoint, f32, Vec3)> {
     let k = cdf.partition_point(|&c| c <= u.x).clamp(1, prims.len()) - 1;
     let (c0, c1) = (cdf[k], cdf[k + 1]);
     if c1 <= c0 {
@@ -301,13 +303,15 @@ fn mesh_point(
     let ux = ((u.x - c0) / (c1 - c0)).clamp(0.0, 1.0 - f32::EPSILON);
     let prim = prims[k];
     let (b1, b2) = sample_triangle(Vec2::new(ux, u.y));
-    let sp = geometry.accel.surface_point(&Hit {
+    let hit = Hit {
         t: 0.0,
         prim,
         b1,
         b2,
-    });
-    Some((prim, sp, c1 - c0))
+    };
+    let sp = geometry.accel.surface_point(&hit);
+    let emission = emission_at(geometry, &hit, geometry.material_of(prim));
+    Some((prim, sp, c1 - c0, emission))
 }
 
 /// Every light with power, and the distribution photons are emitted from.

@@ -27,6 +27,8 @@ pub struct BuiltMesh {
     /// The mesh's second UV set (glTF `TEXCOORD_1`), one per vertex of `mesh`, for bakes
     /// with `uvs: MeshSet(1)`.
     pub uvs1: Option<Vec<Vec2>>,
+    /// The mesh's vertex colours (linear RGB), one per vertex of `mesh`.
+    pub colours: Option<Vec<Vec3>>,
     /// Object-space point subtracted from every position before rounding to f32 (zero when
     /// the mesh lies near its object origin); the instance transforms add it back in f64.
     pub offset: DVec3,
@@ -157,6 +159,7 @@ pub fn build_inline(
                 .collect()
         }),
         None,
+        None,
         triangles,
     )
 }
@@ -168,6 +171,7 @@ fn finish(
     normals: Option<Vec<Vec3>>,
     uvs: Option<Vec<Vec2>>,
     uvs1: Option<Vec<Vec2>>,
+    colours: Option<Vec<Vec3>>,
     triangles: Vec<[u32; 3]>,
 ) -> BuiltMesh {
     let (positions, offset) = super::rebase::centre_positions(&positions);
@@ -194,6 +198,8 @@ fn finish(
     let normals = normals.filter(|n| n.iter().all(|v| v.is_finite()));
     let uvs = uvs.filter(|u| u.iter().all(|t| t.is_finite()));
     let mut uvs1 = uvs1.filter(|u| u.len() == positions.len() && u.iter().all(|t| t.is_finite()));
+    let mut colours =
+        colours.filter(|c| c.len() == positions.len() && c.iter().all(|v| v.is_finite()));
     let mut mesh = TriMesh {
         positions,
         normals,
@@ -205,12 +211,16 @@ fn finish(
         if let Some(u) = &mut uvs1 {
             *u = kept.iter().map(|&i| u[i]).collect();
         }
+        if let Some(c) = &mut colours {
+            *c = kept.iter().map(|&i| c[i]).collect();
+        }
     }
     BuiltMesh {
         mesh,
         dropped,
         dropped_normals: bad_normals,
         uvs1,
+        colours,
         offset,
     }
 }
@@ -246,6 +256,7 @@ pub fn from_data(data: MeshData) -> BuiltMesh {
         data.normals,
         data.uvs,
         data.uvs1,
+        data.colours,
         data.triangles,
     )
 }

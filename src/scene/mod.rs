@@ -290,9 +290,11 @@ fn load(
         .zip(object_geometry)
         .map(|(b, geometry)| {
             let uvs1 = b.as_ref().and_then(|b| b.uvs1.clone()).map(Arc::new);
+            let colours = b.as_ref().and_then(|b| b.colours.clone()).map(Arc::new);
             ObjectParts {
                 mesh: b.map(|b| Arc::new(b.mesh)),
                 uvs1,
+                colours,
                 geometry,
             }
         })

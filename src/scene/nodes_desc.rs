@@ -8,6 +8,10 @@ use serde::{Deserialize, Serialize};
 
 use super::desc_values::V3;
 
+/// The `bind` key of a material's emission (a colour or scalar node multiplying the
+/// constant `emission`), next to the shader's parameters.
+pub const EMISSION: &str = "emission";
+
 /// A node input: a number, a colour `(r, g, b)` or a node.
 #[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(untagged)]
@@ -84,6 +88,9 @@ pub enum NodeDesc {
     Position,
     /// World-space shading normal (colour).
     Normal,
+    /// The mesh's interpolated vertex colour (colour, linear; white for meshes without
+    /// vertex colours).
+    VertexColor,
     /// Checkerboard over uv: `a` on even squares, `b` on odd ones.
     Checker {
         /// Coordinates, default `Uv`.
@@ -197,6 +204,17 @@ pub enum NodeDesc {
         #[serde(default)]
         color_space: Option<EncodingDesc>,
     },
+    /// The alpha channel of an image file at uv (scalar; 1 for images without alpha).
+    Alpha {
+        /// PNG or EXR file, relative to the declaring scene file.
+        file: String,
+        /// Coordinates, default `Uv`.
+        #[serde(default = "uv")]
+        uv: InputDesc,
+        /// `Repeat` (default) or `Clamp`.
+        #[serde(default)]
+        wrap: WrapDesc,
+    },
     /// `a·(1 − t) + b·t`.
     Mix {
         /// Value at t = 0.
@@ -249,6 +267,7 @@ pub const NODE_NAMES: &[&str] = &[
     "Uv",
     "Position",
     "Normal",
+    "VertexColor",
     "Checker",
     "Disk",
     "Repeat",
@@ -256,6 +275,7 @@ pub const NODE_NAMES: &[&str] = &[
     "Fbm",
     "Turbulence",
     "Image",
+    "Alpha",
     "Mix",
     "Smoothstep",
     "Add",
@@ -303,13 +323,19 @@ pub enum ColourSpaceDesc {
     Hsl,
 }
 
-/// `bump: (...)` on a material.
+/// `bump: (...)` on a material: a height map or a tangent-space normal map (one of the
+/// two).
 #[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(rename = "Bump", deny_unknown_fields)]
 pub struct BumpDesc {
     /// Height along the normal (scalar node), object units before `scale`.
-    pub height: InputDesc,
-    /// Multiplier of the height, default 1.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub height: Option<InputDesc>,
+    /// Tangent-space normal map (colour node, e.g. a linear `Image`): the texel `c` is the
+    /// normal `(2c − 1)·(scale, scale, 1)` in the frame (∂P/∂u, bitangent, normal).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub normal_map: Option<InputDesc>,
+    /// Multiplier of the height, or of the normal map's tangential part; default 1.
     #[serde(default = "one_f")]
     pub scale: f64,
 }

@@ -345,10 +345,11 @@ fn material(m: &MtlMaterial, name: &str, dir: &Path) -> MaterialDesc {
             .collect();
     }
     let bump = m.bump_map.as_ref().map(|map| BumpDesc {
-        height: InputDesc::Node(Box::new(NodeDesc::Channel(
+        height: Some(InputDesc::Node(Box::new(NodeDesc::Channel(
             image(map, dir, EncodingDesc::Linear),
             0,
-        ))),
+        )))),
+        normal_map: None,
         scale: map.bump_multiplier,
     });
     MaterialDesc {

@@ -66,6 +66,8 @@ pub struct ObjectParts {
     pub mesh: Option<Arc<TriMesh>>,
     /// Its mesh's second UV set (glTF `TEXCOORD_1`), spawned as [`crate::components::SecondUvs`].
     pub uvs1: Option<Arc<Vec<glam::Vec2>>>,
+    /// Its mesh's vertex colours, spawned as [`crate::components::VertexColours`].
+    pub colours: Option<Arc<Vec<glam::Vec3>>>,
     /// Its geometry components (generator, approximation, displacement).
     pub geometry: Option<ObjectGeometry>,
 }
@@ -171,6 +173,7 @@ pub fn spawn(src: &Sources, m: &Merged<'_>, parts: Parts) -> World {
         let Some(ObjectParts {
             mesh,
             uvs1,
+            colours,
             geometry: Some(geometry),
         }) = parts.objects.get(o)
         else {
@@ -187,6 +190,9 @@ pub fn spawn(src: &Sources, m: &Merged<'_>, parts: Parts) -> World {
             b.add(mesh);
             if let Some(uvs) = uvs1 {
                 b.add(crate::components::SecondUvs(uvs.clone()));
+            }
+            if let Some(colours) = colours {
+                b.add(crate::components::VertexColours(colours.clone()));
             }
         }
         geometry.add_to(&mut b);

@@ -10,14 +10,22 @@
 //! * every other shader blocks (glass included: light refracted by glass is a caustic, which
 //!   shadow rays do not find).
 //!
+//! A bound opacity (a texture driving `opacity`, e.g. a glTF alpha cut-out) is evaluated
+//! at the point the shadow ray crosses, so the shadow has the holes the camera sees.
+//!
 //! A shadow ray crosses at most [`MAX_CROSSINGS`] transmissive surfaces (then it counts as
 //! blocked); the walk is deterministic (closest hits in order along the segment).
 
+use std::borrow::Cow;
+
 use glam::Vec3;
 
-use crate::accel::{spawn_ray, spawn_ray_to, spawn_ray_to_surface, Ray, RayKind, SurfacePoint};
-use crate::components::Shader;
+use crate::accel::{
+    spawn_ray, spawn_ray_to, spawn_ray_to_surface, Hit, Ray, RayKind, SurfacePoint,
+};
+use crate::components::{Material, Shader};
 use crate::geometry::SceneGeometry;
+use crate::shading::texture::hit as textured;
 
 /// Most transmissive surfaces one shadow ray crosses before it counts as blocked.
 pub const MAX_CROSSINGS: u32 = 16;
@@ -41,6 +49,34 @@ pub fn shadow_transmittance(shader: &Shader) -> Option<Vec3> {
 /// Whether any light passes surfaces with this shader.
 pub fn shader_transmits_shadows(shader: &Shader) -> bool {
     shadow_transmittance(shader).is_some()
+}
+
+/// Whether a graph drives the material's `opacity` (its own or an `Opacity` input's).
+fn binds_opacity(material: &Material) -> bool {
+    material.graph.as_deref().is_some_and(|g| {
+        g.bindings
+            .iter()
+            .any(|b| b.param == "opacity" || b.param.ends_with(".opacity"))
+    })
+}
+
+/// Whether shadow rays may pass surfaces of this material somewhere: its shader transmits,
+/// or a texture drives its opacity.
+pub fn material_transmits_shadows(material: &Material) -> bool {
+    shader_transmits_shadows(&material.shader) || binds_opacity(material)
+}
+
+/// The shader a shadow ray meets at `hit`: the material's, with its bound parameters
+/// evaluated there when a texture drives its opacity.
+fn shader_at<'a>(geometry: &SceneGeometry, hit: &Hit, material: &'a Material) -> Cow<'a, Shader> {
+    if !binds_opacity(material) {
+        return Cow::Borrowed(&material.shader);
+    }
+    let sp = geometry.shading_point(hit);
+    match textured::evaluate(geometry, &sp, hit, material) {
+        Some(t) => Cow::Owned(t.shader),
+        None => Cow::Borrowed(&material.shader),
+    }
 }
 
 /// The ray from `from` toward `target` (a surface point, an exact point when its normal is
@@ -78,7 +114,8 @@ pub fn transmittance(
         let Some(hit) = geometry.accel.intersect_as(&ray, RayKind::Shadow) else {
             return t;
         };
-        let Some(tr) = shadow_transmittance(&geometry.material_of(hit.prim).shader) else {
+        let material = geometry.material_of(hit.prim);
+        let Some(tr) = shadow_transmittance(&shader_at(geometry, &hit, material)) else {
             return Vec3::ZERO;
         };
         t *= tr;

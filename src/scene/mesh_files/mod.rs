@@ -119,6 +119,8 @@ pub struct MeshData {
     /// A second set of per-vertex texture coordinates (glTF `TEXCOORD_1`, for lightmaps),
     /// when every vertex has one.
     pub uvs1: Option<Vec<Vec2>>,
+    /// Per-vertex colours (linear RGB; PLY `red green blue`), when every vertex has one.
+    pub colours: Option<Vec<Vec3>>,
     /// Triangles as indices into `positions`.
     pub triangles: Vec<[u32; 3]>,
     /// OBJ material libraries and per-triangle materials, when the file names either.
@@ -213,6 +215,7 @@ impl MeshData {
         self.normals = self.normals.as_ref().map(|n| pick(n, &kept));
         self.uvs = self.uvs.as_ref().map(|u| pick(u, &kept));
         self.uvs1 = self.uvs1.as_ref().map(|u| pick(u, &kept));
+        self.colours = self.colours.as_ref().map(|c| pick(c, &kept));
         if let Some(m) = &mut self.materials {
             m.of_triangle = vec![wanted; triangles.len()];
         }

@@ -368,6 +368,7 @@ impl Reader {
             normals,
             uvs,
             uvs1: None,
+            colours: None,
             triangles: self.triangles,
             materials,
         })

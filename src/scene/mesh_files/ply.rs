@@ -5,8 +5,11 @@
 //! precision they are written with), normals `nx ny nz` (all three or none), texture
 //! coordinates from the first complete pair of `s t`, `u v`, `texture_u texture_v` or
 //! `texture_s texture_t`, and faces from the integer list `vertex_indices` (or
-//! `vertex_index`), fan-triangulated like OBJ polygons. Vertex colours and every other
-//! property or element are read past and ignored (a [`MeshData`] has no colours).
+//! `vertex_index`), fan-triangulated like OBJ polygons, and vertex colours `red green blue`
+//! (all three or none): integer colours are display values (divided by the type's
+//! maximum, `uchar` 255, then decoded from sRGB to linear), floating-point colours are
+//! linear as written. An `alpha` property and every other property or element are read
+//! past and ignored.
 //!
 //! Errors are located: header problems and ASCII data at line and column, binary data at
 //! its byte offset. The header's counts are checked against the size of the data before
@@ -420,6 +423,9 @@ struct Layout {
     position: [usize; 3],
     normal: Option<[usize; 3]>,
     uv: Option<[usize; 2]>,
+    /// The colour properties and, per channel, the divisor of integer types (`None`: a
+    /// floating-point channel, linear as written).
+    colour: Option<[(usize, Option<f64>); 3]>,
     /// The face element and its index list.
     face: Option<(usize, usize)>,
 }
@@ -481,6 +487,15 @@ impl Layout {
                 break;
             }
         }
+        let colour = all(&[b"red", b"green", b"blue"])?.map(|c| {
+            [0, 1, 2].map(|k| {
+                let divisor = match v.properties[c[k]].kind {
+                    Kind::Scalar(ty) if ty.is_integer() => Some(ty.range().1 as f64),
+                    _ => None,
+                };
+                (c[k], divisor)
+            })
+        });
         let face = match element(b"face") {
             None => {
                 if let Some(e) = element(b"tristrips") {
@@ -530,6 +545,7 @@ impl Layout {
             position,
             normal,
             uv,
+            colour,
             face,
         })
     }
@@ -586,6 +602,7 @@ fn read(h: &Header, layout: &Layout, mut values: impl Values) -> Result<MeshData
     let mut positions = Vec::with_capacity(nv);
     let mut normals = layout.normal.map(|_| Vec::with_capacity(nv));
     let mut uvs = layout.uv.map(|_| Vec::with_capacity(nv));
+    let mut colours = layout.colour.map(|_| Vec::with_capacity(nv));
     let mut triangles = Vec::new();
     let mut row = Vec::new();
     let mut corners = Vec::new();
@@ -671,6 +688,15 @@ fn read(h: &Header, layout: &Layout, mut values: impl Values) -> Result<MeshData
                         row[t[1]].as_f64() as f32,
                     ));
                 }
+                if let (Some(c), Some(out)) = (layout.colour, &mut colours) {
+                    out.push(Vec3::from_array(c.map(|(k, divisor)| {
+                        let x = row[k].as_f64();
+                        match divisor {
+                            Some(d) => srgb_to_linear((x / d).clamp(0.0, 1.0)) as f32,
+                            None => x as f32,
+                        }
+                    })));
+                }
             }
         }
     }
@@ -678,15 +704,26 @@ fn read(h: &Header, layout: &Layout, mut values: impl Values) -> Result<MeshData
     if positions.is_empty() {
         normals = None;
         uvs = None;
+        colours = None;
     }
     Ok(MeshData {
         positions,
         normals,
         uvs,
         uvs1: None,
+        colours,
         triangles,
         materials: None,
     })
+}
+
+/// The IEC 61966-2-1 sRGB decoding of `x` in [0, 1].
+fn srgb_to_linear(x: f64) -> f64 {
+    if x <= 0.04045 {
+        x / 12.92
+    } else {
+        ((x + 0.055) / 1.055).powf(2.4)
+    }
 }
 
 fn error_at(at: Location, message: String) -> MeshFileError {

@@ -20,7 +20,9 @@ use glam::{Vec2, Vec3};
 
 use super::desc::{MaterialDesc, V3};
 use super::diagnostics::{suggestion, Sources};
-use super::nodes_desc::{ColourSpaceDesc, EncodingDesc, InputDesc, NodeDesc, WrapDesc, NODE_NAMES};
+use super::nodes_desc::{
+    ColourSpaceDesc, EncodingDesc, InputDesc, NodeDesc, WrapDesc, EMISSION, NODE_NAMES,
+};
 use super::validate::Item;
 use super::validate::Merged;
 use crate::components::Material;
@@ -28,7 +30,9 @@ use crate::shading::texture::bind::{self, ParamType};
 use crate::shading::texture::colour::ColourSpace;
 use crate::shading::texture::image::{self, Encoding, Texture, Wrap};
 use crate::shading::texture::noise::Fractal;
-use crate::shading::texture::{Binding, BumpMap, MaterialGraph, NoiseKind, Op, Program, Reg};
+use crate::shading::texture::{
+    Binding, BumpMap, MaterialGraph, NoiseKind, NormalMap, Op, Program, Reg,
+};
 pub use phenomena::{check_phenomena, Phenomena};
 use phenomena::{ensure_checked, variant_name};
 
@@ -228,6 +232,7 @@ impl Compiler<'_, '_> {
             NodeDesc::Uv => Some((self.prog.push(Op::Uv), Ty::Colour)),
             NodeDesc::Position => Some((self.prog.push(Op::Position), Ty::Colour)),
             NodeDesc::Normal => Some((self.prog.push(Op::Normal), Ty::Colour)),
+            NodeDesc::VertexColor => Some((self.prog.push(Op::VertexColour), Ty::Colour)),
             NodeDesc::Checker { uv, scale, a, b } => {
                 let uv = input!(".Checker.uv", uv);
                 let scale = scalar!(".Checker.scale", scale, "scale");
@@ -354,6 +359,18 @@ impl Compiler<'_, '_> {
                 let texture = self.texture(At { file, path: &fp }, name, *wrap, *color_space);
                 let ((uv, _), texture) = (uv?, texture?);
                 Some((self.prog.push(Op::Image { uv, texture }), Ty::Colour))
+            }
+            NodeDesc::Alpha {
+                file: name,
+                uv,
+                wrap,
+            } => {
+                let uv = input!(".Alpha.uv", uv);
+                let fp = sub(".Alpha.file");
+                // Alpha is linear whatever the colour space: share the default decoding.
+                let texture = self.texture(At { file, path: &fp }, name, *wrap, None);
+                let ((uv, _), texture) = (uv?, texture?);
+                Some((self.prog.push(Op::ImageAlpha { uv, texture }), Ty::Scalar))
             }
             NodeDesc::Mix { a, b, t } => {
                 let a = input!(".Mix.a", a);
@@ -644,18 +661,56 @@ fn compile_material(
     // The bump height first: its registers come first, so the finite differences run only
     // the start of the program.
     let mut bump = None;
+    let mut normal_map = None;
     if let Some(b) = &d.bump {
-        let hp = item.at(".bump.height");
         let sp = item.at(".bump.scale");
-        let h = c.scalar(At { file, path: &hp }, &b.height, &[], "bump height");
         let s = c.finite(At { file, path: &sp }, "bump scale", b.scale);
-        match (h, s) {
-            (Some(height), Some(scale)) => bump = Some(BumpMap { height, scale }),
-            _ => ok = false,
+        ok &= s.is_some();
+        match (&b.height, &b.normal_map) {
+            (Some(height), None) => {
+                let hp = item.at(".bump.height");
+                let h = c.scalar(At { file, path: &hp }, height, &[], "bump height");
+                match (h, s) {
+                    (Some(height), Some(scale)) => bump = Some(BumpMap { height, scale }),
+                    _ => ok = false,
+                }
+            }
+            (None, Some(map)) => {
+                let np = item.at(".bump.normal_map");
+                match (c.input(At { file, path: &np }, map, &[]), s) {
+                    (Some((texel, _)), Some(scale)) => {
+                        normal_map = Some(NormalMap { texel, scale });
+                    }
+                    _ => ok = false,
+                }
+            }
+            (height, _) => {
+                let bp = item.at(".bump");
+                let what = if height.is_some() {
+                    "a bump has both a `height` and a `normal_map`"
+                } else {
+                    "a bump needs a `height` or a `normal_map`"
+                };
+                c.error(
+                    At { file, path: &bp },
+                    what,
+                    Some("give `height: <scalar node>` for a height map, or `normal_map: <colour node>` for a tangent-space normal map".into()),
+                );
+                ok = false;
+            }
+        }
+    }
+    // `emission` is the material's own field, not the shader's: its node multiplies it.
+    let mut emission = None;
+    if let Some(input) = d.bind.get(EMISSION) {
+        let path = item.at(&format!(".bind.{EMISSION}"));
+        match c.input(At { file, path: &path }, input, &[]) {
+            Some((reg, _)) => emission = Some(reg),
+            None => ok = false,
         }
     }
     let mut bindings = Vec::new();
-    for (param, input) in &d.bind {
+    for (param, input) in d.bind.iter().filter(|(p, _)| *p != EMISSION) {
         let path = item.at(&format!(".bind.{param}"));
         let at = At { file, path: &path };
         let want = params.iter().find(|(n, _)| n == param).map(|(_, t)| *t);
@@ -690,5 +745,7 @@ fn compile_material(
         program: c.prog,
         bindings,
         bump,
+        normal_map,
+        emission,
     }))
 }

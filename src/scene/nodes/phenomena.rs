@@ -196,6 +196,7 @@ fn for_each_input(n: &NodeDesc, mut f: impl FnMut(String, &InputDesc)) {
         NodeDesc::Fbm { p, .. } => named("Fbm", &[("p", p)]),
         NodeDesc::Turbulence { p, .. } => named("Turbulence", &[("p", p)]),
         NodeDesc::Image { uv, .. } => named("Image", &[("uv", uv)]),
+        NodeDesc::Alpha { uv, .. } => named("Alpha", &[("uv", uv)]),
         NodeDesc::Mix { a, b, t } => named("Mix", &[("a", a), ("b", b), ("t", t)]),
         NodeDesc::Smoothstep { edge0, edge1, x } => named(
             "Smoothstep",
@@ -217,6 +218,7 @@ fn for_each_input(n: &NodeDesc, mut f: impl FnMut(String, &InputDesc)) {
         NodeDesc::Uv
         | NodeDesc::Position
         | NodeDesc::Normal
+        | NodeDesc::VertexColor
         | NodeDesc::Graph(..)
         | NodeDesc::Param(_) => {}
     }

@@ -195,6 +195,8 @@ pub struct Vertex<'a> {
     pub shader: Cow<'a, Shader>,
     /// Whether a bump map perturbed `sp.normal`.
     pub bumped: bool,
+    /// Emitted radiance here (the material's `emission` times its texture), W/(sr·m²).
+    pub emission: Vec3,
     /// Frame around `sp.normal`.
     pub frame: ShadingFrame,
     /// Direction toward the viewer, local.
@@ -214,12 +216,13 @@ impl<'a> Vertex<'a> {
     pub fn new(ctx: &ShadeContext<'a>, ray: &Ray, hit: &Hit) -> Self {
         let mut sp = ctx.geometry.shading_point(hit);
         let material = &ctx.geometry.materials[sp.material as usize];
-        let (shader, bumped) = match textured::evaluate(ctx.geometry, &sp, hit, material) {
+        let (shader, bumped, emission) = match textured::evaluate(ctx.geometry, &sp, hit, material)
+        {
             Some(t) => {
                 sp.normal = t.normal;
-                (Cow::Owned(t.shader), t.bumped)
+                (Cow::Owned(t.shader), t.bumped, t.emission)
             }
-            None => (Cow::Borrowed(&material.shader), false),
+            None => (Cow::Borrowed(&material.shader), false, material.emission),
         };
         let wo_world = -ray.dir.normalize();
         let front = sp.surface.ng.dot(wo_world) > 0.0;
@@ -247,6 +250,7 @@ impl<'a> Vertex<'a> {
             material,
             shader,
             bumped,
+            emission,
             frame,
             wo: frame.to_local(wo_world),
             transmittance,
@@ -266,7 +270,7 @@ impl<'a> Vertex<'a> {
     /// Radiance emitted toward the viewer.
     pub fn emitted(&self) -> Vec3 {
         if self.visible && (self.front || self.material.two_sided) {
-            self.material.emission
+            self.emission
         } else {
             Vec3::ZERO
         }

@@ -1,11 +1,13 @@
 //! Emitting meshes as one light: every triangle of an emitting material, chosen with
-//! probability ∝ area × emitted radiance, then a uniform point on it.
+//! probability ∝ area × emitted radiance (the material's constant `emission`), then a
+//! uniform point on it, whose radiance is the emission times its texture there.
 
 use glam::{Vec2, Vec3};
 
 use super::{solid_angle_sample, LightSample};
 use crate::accel::Hit;
 use crate::geometry::SceneGeometry;
+use crate::shading::texture::hit::emission_at;
 
 /// All triangles of emitting materials, sampled by area × emitted radiance.
 #[derive(Debug, Clone)]
@@ -81,15 +83,17 @@ impl MeshLight {
         let weight = tri_area * material.emission.max_element();
         let prob = weight / self.total_weight;
         let (b1, b2) = crate::sampling::sample_triangle(Vec2::new(ux, u.y));
-        let sp = geometry.accel.surface_point(&Hit {
+        let hit = Hit {
             t: 0.0,
             prim,
             b1,
             b2,
-        });
+        };
+        let sp = geometry.accel.surface_point(&hit);
         // pdf in area measure is prob / tri_area.
         let mut s = solid_angle_sample(p, sp, material.two_sided, tri_area / prob)?;
-        s.contribution *= material.emission;
+        // Chosen by the constant emission; a texture scales what the chosen point sends.
+        s.contribution *= emission_at(geometry, &hit, material);
         Some(s)
     }
 

@@ -32,7 +32,7 @@ pub use sphere::SphereLight;
 use crate::accel::{gamma, Ray, SurfacePoint};
 use crate::components::{attenuation_factor, Emitter, Environment, LightShape};
 use crate::geometry::SceneGeometry;
-use crate::shading::shadow::shader_transmits_shadows;
+use crate::shading::shadow::material_transmits_shadows;
 
 /// The geometry of an area light.
 #[derive(Debug, Clone, Copy)]
@@ -451,11 +451,8 @@ impl LightSet {
         if let Some(mesh) = geometry.and_then(|g| MeshLight::new(g, mesh_samples)) {
             lights.push(Light::Mesh(mesh));
         }
-        let transmissive_shadows = geometry.is_some_and(|g| {
-            g.materials
-                .iter()
-                .any(|m| shader_transmits_shadows(&m.shader))
-        });
+        let transmissive_shadows =
+            geometry.is_some_and(|g| g.materials.iter().any(material_transmits_shadows));
         let ambient = lights.iter().fold(Vec3::ZERO, |a, l| match l {
             Light::Ambient { radiance } => a + *radiance,
             _ => a,

@@ -1,6 +1,9 @@
 //! Evaluating a material's graph at a ray hit: the inputs (uv, object-space position,
-//! normal), the bound shader, and the bump-mapped normal with its tangents. The object's
-//! `displacement` in `Bump` mode adds its amount to the material's bump height.
+//! normal), the bound shader, the emission's texture, and the normal-mapped and
+//! bump-mapped normal with its tangents. The object's `displacement` in `Bump` mode adds
+//! its amount to the material's bump height.
+//!
+//! **Vertex colours** (PLY `red green blue`) are interpolated like uvs; white without.
 //!
 //! **uv.** Meshes with texture coordinates (OBJ `vt`, inline `uvs`) interpolate them;
 //! generated surfaces (spheres, tori, patches, NURBS, stairs, …) carry their parametric uv.
@@ -10,10 +13,10 @@
 
 use glam::{Mat3, Vec3};
 
-use super::{bump, bumped_normal, Inputs};
+use super::{bump, bumped_normal, normal_map, Inputs};
 use crate::accel::Hit;
 use crate::components::{Displacement, Material, Shader};
-use crate::geometry::{SceneGeometry, ShadingPoint};
+use crate::geometry::{InstanceGeometry, SceneGeometry, ShadingPoint};
 use crate::shading::frame::ShadingFrame;
 use crate::tessellation::displace;
 
@@ -25,8 +28,10 @@ pub struct Textured {
     /// The shading normal (bumped when the material has a bump map), on the side of the
     /// unperturbed normal.
     pub normal: Vec3,
-    /// Whether a bump map changed the normal.
+    /// Whether a bump map or a normal map changed the normal.
     pub bumped: bool,
+    /// Emitted radiance here, W/(sr·m²): the material's `emission` times its texture.
+    pub emission: Vec3,
 }
 
 /// Evaluates the material's graph (bound parameters, bump map) and the object's bump
@@ -51,6 +56,7 @@ pub fn evaluate(
         uv: sp.uv,
         p,
         n: sp.normal,
+        colour: vertex_colour(inst, idx, b),
     };
     let graph = material.graph.as_deref();
     let mut regs = Vec::with_capacity(graph.map_or(0, |g| g.program.ops.len()));
@@ -58,12 +64,18 @@ pub fn evaluate(
         Some(g) => g.bind(&material.shader, &inputs, &mut regs),
         None => material.shader.clone(),
     };
+    let emission = match graph.and_then(|g| g.emission) {
+        Some(r) => material.emission * regs[r as usize].max(Vec3::ZERO),
+        None => material.emission,
+    };
+    let map = graph.and_then(|g| g.normal_map);
     let has_bump = graph.is_some_and(|g| g.bump.is_some());
-    if !has_bump && displacement.is_none() {
+    if !has_bump && map.is_none() && displacement.is_none() {
         return Some(Textured {
             shader,
             normal: sp.normal,
             bumped: false,
+            emission,
         });
     }
     let m = Mat3::from(inst.world_from_object.matrix3);
@@ -72,7 +84,27 @@ pub fn evaluate(
         .uvs
         .as_ref()
         .and_then(|uvs| bump::tangents(pos, idx.map(|i| uvs[i])));
-    let n = sp.normal;
+    let mut n = sp.normal;
+    if let Some(map) = map {
+        let tangents = match uv_tangents {
+            Some((du, dv)) => normal_map::frame(n, m * du, m * dv),
+            None => None,
+        };
+        let (t, b) = tangents.unwrap_or_else(|| {
+            let f = ShadingFrame::from_normal(n);
+            (f.s, f.t)
+        });
+        n = normal_map::perturb(n, t, b, regs[map.texel as usize], map.scale);
+        if !has_bump && displacement.is_none() {
+            return Some(Textured {
+                shader,
+                normal: n,
+                bumped: true,
+                emission,
+            });
+        }
+    }
+    let inputs = Inputs { n, ..inputs };
     let (dpdu, dpdv, du_obj, dv_obj, has_uv) = match uv_tangents {
         Some((du, dv)) => (m * du, m * dv, du, dv, true),
         None => {
@@ -87,7 +119,7 @@ pub fn evaluate(
     // Binding ran the whole program at this point already: its height register is the
     // first value the finite differences ask for.
     let mut at_point = graph
-        .filter(|g| !g.bindings.is_empty())
+        .filter(|g| g.runs_at_hits())
         .and_then(|g| g.bump)
         .map(|b| regs[b.height as usize].x * b.scale);
     let height = |i: &Inputs| {
@@ -105,7 +137,44 @@ pub fn evaluate(
         shader,
         normal,
         bumped: true,
+        emission,
     })
+}
+
+/// The instance's vertex colour at the barycentrics `b` of the triangle `idx` (white when
+/// the mesh has none).
+fn vertex_colour(inst: &InstanceGeometry, idx: [usize; 3], b: [f32; 3]) -> Vec3 {
+    match inst.colours.as_deref() {
+        Some(c) => c[idx[0]] * b[0] + c[idx[1]] * b[1] + c[idx[2]] * b[2],
+        None => Vec3::ONE,
+    }
+}
+
+/// The emitted radiance of `material` at `hit` (W/(sr·m²)): its `emission` times its
+/// emission texture there, if it has one.
+pub fn emission_at(geometry: &SceneGeometry, hit: &Hit, material: &Material) -> Vec3 {
+    let Some(reg) = material.graph.as_deref().and_then(|g| g.emission) else {
+        return material.emission;
+    };
+    let sp = geometry.shading_point(hit);
+    let inst = &geometry.instances[sp.instance as usize];
+    let local = (hit.prim - inst.first_triangle) as usize;
+    let idx = inst.mesh.triangles[local].map(|i| i as usize);
+    let b = [1.0 - hit.b1 - hit.b2, hit.b1, hit.b2];
+    let p = idx
+        .iter()
+        .zip(b)
+        .fold(Vec3::ZERO, |s, (&i, w)| s + inst.mesh.positions[i] * w);
+    let inputs = Inputs {
+        uv: sp.uv,
+        p,
+        n: sp.normal,
+        colour: vertex_colour(inst, idx, b),
+    };
+    let graph = material.graph.as_deref().expect("checked above");
+    let mut regs = Vec::with_capacity(reg as usize + 1);
+    graph.program.run_to(&inputs, &mut regs, reg as usize + 1);
+    material.emission * regs[reg as usize].max(Vec3::ZERO)
 }
 
 /// The amount of a `Bump`-mode displacement shader at `i` (object units, clamped to its

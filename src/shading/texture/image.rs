@@ -52,6 +52,16 @@ impl Texture {
         ]
     }
 
+    /// Bilinear lookup of the alpha channel at `uv` (1 when the image has none).
+    pub fn sample_alpha(&self, uv: Vec2) -> f32 {
+        if self.alpha.is_empty() {
+            return 1.0;
+        }
+        self.taps(uv)
+            .iter()
+            .fold(0.0, |s, &(i, w)| s + self.alpha[i] * w)
+    }
+
     /// Bilinear lookup at `uv`.
     pub fn sample(&self, uv: Vec2) -> Vec3 {
         if self.texels.is_empty() {
@@ -82,30 +92,40 @@ pub fn load(path: &Path, encoding: Option<Encoding>, wrap: Wrap) -> Result<Textu
     let (width, height, top_down) = if exr {
         read_exr(path)?
     } else {
-        let img = image::open(path).map_err(|e| e.to_string())?.to_rgb32f();
-        let (w, h) = img.dimensions();
-        let px = img.pixels().map(|p| Vec3::from(p.0)).collect();
-        (w, h, px)
+        rgba(image::open(path).map_err(|e| e.to_string())?)
     };
     texture(width, height, top_down, encoding, wrap)
+}
+
+/// Width, height and top-down pixels of a decoded image; alpha is `None` when the image
+/// has no alpha channel.
+fn rgba(img: image::DynamicImage) -> (u32, u32, Pixels) {
+    let has_alpha = img.color().has_alpha();
+    let img = img.to_rgba32f();
+    let (w, h) = img.dimensions();
+    let px = img
+        .pixels()
+        .map(|p| {
+            let [r, g, b, a] = p.0;
+            (Vec3::new(r, g, b), has_alpha.then_some(a))
+        })
+        .collect();
+    (w, h, px)
 }
 
 /// Decodes an image file held in memory (a PNG inside a glTF file) into a texture;
 /// `encoding` as for [`load`] (default sRGB).
 pub fn decode(bytes: &[u8], encoding: Option<Encoding>, wrap: Wrap) -> Result<Texture, String> {
-    let img = image::load_from_memory(bytes)
-        .map_err(|e| e.to_string())?
-        .to_rgb32f();
-    let (w, h) = img.dimensions();
-    let px = img.pixels().map(|p| Vec3::from(p.0)).collect();
+    let (w, h, px) = rgba(image::load_from_memory(bytes).map_err(|e| e.to_string())?);
     texture(w, h, px, encoding.unwrap_or(Encoding::Srgb), wrap)
 }
 
-/// A texture from rows listed top to bottom.
+/// A texture from rows listed top to bottom (alpha is linear whatever the encoding; it is
+/// kept when some pixel has one).
 fn texture(
     width: u32,
     height: u32,
-    top_down: Vec<Vec3>,
+    top_down: Pixels,
     encoding: Encoding,
     wrap: Wrap,
 ) -> Result<Texture, String> {
@@ -127,29 +147,57 @@ fn texture(
     let texels = top_down
         .chunks_exact(w)
         .rev()
-        .flat_map(|row| row.iter().map(|&c| decode(c)))
+        .flat_map(|row| row.iter().map(|&(c, _)| decode(c)))
         .collect();
+    let alpha = if top_down.iter().any(|(_, a)| a.is_some()) {
+        top_down
+            .chunks_exact(w)
+            .rev()
+            .flat_map(|row| {
+                row.iter().map(|&(_, a)| {
+                    let a = a.unwrap_or(1.0);
+                    if a.is_finite() {
+                        a.clamp(0.0, 1.0)
+                    } else {
+                        1.0
+                    }
+                })
+            })
+            .collect()
+    } else {
+        Vec::new()
+    };
     Ok(Texture {
         width,
         height,
         texels,
+        alpha,
         wrap,
     })
 }
 
-/// Width, height and top-down RGB pixels of the first RGB(A) layer of an EXR file.
-fn read_exr(path: &Path) -> Result<(u32, u32, Vec<Vec3>), String> {
+/// Pixels listed top to bottom: colour and alpha (`None`: the image has no alpha).
+type Pixels = Vec<(Vec3, Option<f32>)>;
+
+/// A row width and the pixels an EXR reader fills.
+type ExrPixels = (usize, Pixels);
+
+/// Width, height and top-down RGBA pixels of the first RGB(A) layer of an EXR file (alpha
+/// `None` when the layer has no alpha channel).
+fn read_exr(path: &Path) -> Result<(u32, u32, Pixels), String> {
     use exr::prelude::*;
     let image = read_first_rgba_layer_from_file(
         path,
-        |resolution, _| {
+        |resolution, channels| {
+            let alpha = channels.3.is_some().then_some(1.0);
             (
                 resolution.width(),
-                vec![glam::Vec3::ZERO; resolution.width() * resolution.height()],
+                vec![(Vec3::ZERO, alpha); resolution.width() * resolution.height()],
             )
         },
-        |(w, px): &mut (usize, Vec<glam::Vec3>), pos, (r, g, b, _a): (f32, f32, f32, f32)| {
-            px[pos.y() * *w + pos.x()] = glam::Vec3::new(r, g, b);
+        |(w, px): &mut ExrPixels, pos, (r, g, b, a): (f32, f32, f32, f32)| {
+            let slot = &mut px[pos.y() * *w + pos.x()];
+            *slot = (Vec3::new(r, g, b), slot.1.map(|_| a));
         },
     )
     .map_err(|e| e.to_string())?;
@@ -168,6 +216,7 @@ mod tests {
             width: 2,
             height: 2,
             texels: vec![Vec3::X, Vec3::Y, Vec3::Z, Vec3::ONE],
+            alpha: Vec::new(),
             wrap,
         }
     }

@@ -20,11 +20,14 @@ pub mod colour;
 pub mod hit;
 pub mod image;
 pub mod noise;
+pub mod normal_map;
 pub mod pattern;
 
 use glam::{Vec2, Vec3};
 
-pub use crate::components::graph::{Binding, BumpMap, MaterialGraph, NoiseKind, Op, Program, Reg};
+pub use crate::components::graph::{
+    Binding, BumpMap, MaterialGraph, NoiseKind, NormalMap, Op, Program, Reg,
+};
 use crate::components::Shader;
 
 /// What a graph may read at a shading point.
@@ -36,6 +39,8 @@ pub struct Inputs {
     pub p: Vec3,
     /// World-space unit shading normal (before bump mapping).
     pub n: Vec3,
+    /// The mesh's interpolated vertex colour (linear RGB; white without vertex colours).
+    pub colour: Vec3,
 }
 
 impl Program {
@@ -61,6 +66,7 @@ impl Program {
                 Op::Uv => inputs.uv.extend(0.0),
                 Op::Position => inputs.p,
                 Op::Normal => inputs.n,
+                Op::VertexColour => inputs.colour,
                 Op::Checker { uv: c, scale, a, b } => {
                     if pattern::checker(uv(c), s(scale)) == 0.0 {
                         r(a)
@@ -86,6 +92,7 @@ impl Program {
                     NoiseKind::Turbulence => noise::turbulence(r(p), fractal),
                 }),
                 Op::Image { uv: c, texture } => texture.sample(uv(c)),
+                Op::ImageAlpha { uv: c, texture } => Vec3::splat(texture.sample_alpha(uv(c))),
                 Op::Mix { a, b, t } => pattern::mix(r(a), r(b), s(t)),
                 Op::Smoothstep { edge0, edge1, x } => {
                     Vec3::splat(pattern::smoothstep(s(edge0), s(edge1), s(x)))
@@ -109,10 +116,11 @@ pub const BUMP_STEP: f32 = 1e-3;
 
 impl MaterialGraph {
     /// `shader` with every bound parameter replaced by its value at `inputs`; `regs` is
-    /// scratch space.
+    /// scratch space, which holds every register afterwards when the graph
+    /// [`MaterialGraph::runs_at_hits`] (the normal map and emission read them).
     pub fn bind(&self, shader: &Shader, inputs: &Inputs, regs: &mut Vec<Vec3>) -> Shader {
         let mut out = shader.clone();
-        if self.bindings.is_empty() {
+        if !self.runs_at_hits() {
             return out;
         }
         self.program.run(inputs, regs);
@@ -163,12 +171,12 @@ pub fn bumped_normal(
     let hu = height(&Inputs {
         uv: inputs.uv + du_uv,
         p: inputs.p + dpdu_obj * d,
-        n: inputs.n,
+        ..*inputs
     });
     let hv = height(&Inputs {
         uv: inputs.uv + dv_uv,
         p: inputs.p + dpdv_obj * d,
-        n: inputs.n,
+        ..*inputs
     });
     bump::perturb(inputs.n, dpdu, dpdv, (hu - h) / d, (hv - h) / d)
 }
@@ -182,6 +190,7 @@ mod tests {
             uv: Vec2::new(u, v),
             p: Vec3::ZERO,
             n: Vec3::Z,
+            colour: Vec3::ONE,
         }
     }
 
@@ -200,6 +209,8 @@ mod tests {
                 reg: c,
             }],
             bump: None,
+            normal_map: None,
+            emission: None,
         };
         let base = Shader::Lambert { albedo: Vec3::ONE };
         let mut regs = Vec::new();
@@ -225,6 +236,8 @@ mod tests {
                 height: u,
                 scale: 0.5,
             }),
+            normal_map: None,
+            emission: None,
         };
         let t = [Vec3::X, Vec3::Y, Vec3::X, Vec3::Y];
         let mut regs = Vec::new();

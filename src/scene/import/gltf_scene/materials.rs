@@ -1,10 +1,13 @@
 //! glTF materials → `MetallicRoughness` materials: base colour, metallic and roughness
 //! factors, the base colour texture (sRGB) and the metallic-roughness texture (linear: blue
-//! is metalness, green roughness) as shader-graph bindings, emission
-//! (`emissiveFactor × KHR_materials_emissive_strength`, W/(sr·m²)), `doubleSided`, and
-//! `BLEND` with a constant alpha as an `Opacity` wrapper. What is not mapped (normal,
-//! occlusion and emissive textures, `MASK`, textures on `TEXCOORD_1`, texture transforms) is
-//! a located warning.
+//! is metalness, green roughness) as shader-graph bindings, the normal texture as a
+//! tangent-space normal map (`bump: (normal_map: …, scale)`), emission
+//! (`emissiveFactor × KHR_materials_emissive_strength`, W/(sr·m²), times the emissive
+//! texture through the `emission` binding), `doubleSided`, and the alpha modes as an
+//! `Opacity` wrapper whose opacity is the coverage: `MASK` a step at `alphaCutoff` of the
+//! base colour alpha (factor × texture), `BLEND` that alpha itself. The occlusion texture is
+//! not read (the light transport computes occlusion; see docs/gltf.md). What is not mapped
+//! (textures on `TEXCOORD_1`, texture transforms) is a located warning.
 //!
 //! Textures: an image beside the file is bound by its file name; an image inside the file
 //! (a buffer view or a `data:` URI) as `<file>#images[i]`, which the image loader reads from
@@ -13,8 +16,8 @@
 use std::collections::BTreeMap;
 
 use super::{at_file, Walk};
-use crate::scene::desc::{InputDesc, MaterialDesc, NodeDesc, ShaderDesc};
-use crate::scene::nodes_desc::{EncodingDesc, WrapDesc};
+use crate::scene::desc::{BumpDesc, InputDesc, MaterialDesc, NodeDesc, ShaderDesc};
+use crate::scene::nodes_desc::{EncodingDesc, WrapDesc, EMISSION};
 
 /// Warns once about file-level features the reader does not map.
 pub fn warn_unmapped(w: &mut Walk<'_>) {
@@ -87,71 +90,101 @@ fn material(w: &mut Walk<'_>, m: &gltf::Material<'_>) -> MaterialDesc {
     let roughness = (pbr.roughness_factor() as f64).clamp(0.0, 1.0);
     let unit = |x: f64| x.clamp(0.0, 1.0);
     let mut bind = BTreeMap::new();
-    if let Some(info) = pbr.base_color_texture() {
-        if let Some(image) = texture(w, &info, EncodingDesc::Srgb, &at, "base colour") {
-            let factor = InputDesc::Colour((unit(r), unit(g), unit(b)));
-            bind.insert("base_color".to_string(), node(NodeDesc::Mul(image, factor)));
-        }
+    let base_texture = pbr
+        .base_color_texture()
+        .and_then(|info| texture(w, &info, &at, "base colour"));
+    if let Some(t) = &base_texture {
+        let factor = InputDesc::Colour((unit(r), unit(g), unit(b)));
+        let image = t.image(EncodingDesc::Srgb);
+        bind.insert("base_color".to_string(), node(NodeDesc::Mul(image, factor)));
     }
-    if let Some(info) = pbr.metallic_roughness_texture() {
-        if let Some(image) = texture(w, &info, EncodingDesc::Linear, &at, "metallic-roughness") {
-            let channel = |c: u32, f: f64| {
-                node(NodeDesc::Mul(
-                    node(NodeDesc::Channel(image.clone(), c)),
-                    InputDesc::Number(f),
-                ))
-            };
-            bind.insert("metallic".to_string(), channel(2, metallic));
-            bind.insert("roughness".to_string(), channel(1, roughness));
-        }
+    if let Some(t) = pbr
+        .metallic_roughness_texture()
+        .and_then(|info| texture(w, &info, &at, "metallic-roughness"))
+    {
+        let image = t.image(EncodingDesc::Linear);
+        let channel = |c: u32, f: f64| {
+            node(NodeDesc::Mul(
+                node(NodeDesc::Channel(image.clone(), c)),
+                InputDesc::Number(f),
+            ))
+        };
+        bind.insert("metallic".to_string(), channel(2, metallic));
+        bind.insert("roughness".to_string(), channel(1, roughness));
     }
-    let ignored = [
-        ("normal texture", m.normal_texture().is_some()),
-        ("occlusion texture", m.occlusion_texture().is_some()),
-        ("emissive texture", m.emissive_texture().is_some()),
-    ];
-    for (what, present) in ignored {
-        if present {
-            w.warnings.push(at_file(
-                w.path,
-                format!("{at}: ignored its {what} (not supported yet; see docs/gltf.md)"),
-            ));
-        }
-    }
+    let bump = m.normal_texture().and_then(|n| {
+        let t = texture_ref(w, n.tex_coord(), n.texture(), &at, "normal")?;
+        Some(BumpDesc {
+            height: None,
+            normal_map: Some(t.image(EncodingDesc::Linear)),
+            scale: n.scale() as f64,
+        })
+    });
     let strength = m.emissive_strength().unwrap_or(1.0) as f64;
     let [er, eg, eb] = m.emissive_factor().map(|x| (x as f64 * strength).max(0.0));
+    let emits = er > 0.0 || eg > 0.0 || eb > 0.0;
+    let mut emission_map = m
+        .emissive_texture()
+        .filter(|_| emits)
+        .and_then(|info| texture(w, &info, &at, "emissive"))
+        .map(|t| t.image(EncodingDesc::Srgb));
     let mut shader = ShaderDesc::MetallicRoughness {
         base_color: (unit(r), unit(g), unit(b)),
         metallic,
         roughness,
     };
-    match m.alpha_mode() {
-        gltf::material::AlphaMode::Opaque => {}
-        gltf::material::AlphaMode::Mask => w.warnings.push(at_file(
-            w.path,
-            format!(
-                "{at}: alphaMode MASK is read as OPAQUE (alpha cut-outs are not supported yet)"
-            ),
-        )),
-        gltf::material::AlphaMode::Blend => {
-            if pbr.base_color_texture().is_some() {
-                w.warnings.push(at_file(
-                    w.path,
-                    format!("{at}: alphaMode BLEND uses the base colour factor's alpha only (the texture's alpha is ignored)"),
-                ));
-            }
-            if alpha < 1.0 {
-                let a = unit(alpha);
-                shader = ShaderDesc::Opacity {
-                    opacity: (a, a, a),
-                    input: Box::new(shader),
-                };
-                bind = bind
-                    .into_iter()
-                    .map(|(k, v)| (format!("input.{k}"), v))
-                    .collect();
+    // Coverage: the share of the surface that is there (glTF's alpha after the mode).
+    let texture_alpha = |x: f64| {
+        base_texture
+            .as_ref()
+            .map(|t| node(NodeDesc::Mul(t.alpha(), InputDesc::Number(x))))
+    };
+    let coverage = match m.alpha_mode() {
+        gltf::material::AlphaMode::Opaque => None,
+        gltf::material::AlphaMode::Mask => {
+            let cutoff = m.alpha_cutoff().unwrap_or(0.5) as f64;
+            match texture_alpha(alpha) {
+                Some(a) => Some(Coverage::Varying(node(NodeDesc::Smoothstep {
+                    edge0: InputDesc::Number(cutoff),
+                    edge1: InputDesc::Number(cutoff),
+                    x: a,
+                }))),
+                None if alpha >= cutoff => None,
+                None => Some(Coverage::Constant(0.0)),
             }
         }
+        gltf::material::AlphaMode::Blend => match texture_alpha(unit(alpha)) {
+            Some(a) => Some(Coverage::Varying(a)),
+            None if alpha < 1.0 => Some(Coverage::Constant(unit(alpha))),
+            None => None,
+        },
+    };
+    if let Some(coverage) = coverage {
+        shader = ShaderDesc::Opacity {
+            opacity: (1.0, 1.0, 1.0),
+            input: Box::new(shader),
+        };
+        bind = bind
+            .into_iter()
+            .map(|(k, v)| (format!("input.{k}"), v))
+            .collect();
+        let c = match coverage {
+            Coverage::Varying(c) => c,
+            Coverage::Constant(c) => InputDesc::Number(c),
+        };
+        if let (InputDesc::Number(x), ShaderDesc::Opacity { opacity, .. }) = (&c, &mut shader) {
+            *opacity = (*x, *x, *x);
+        } else {
+            bind.insert("opacity".to_string(), c.clone());
+        }
+        // Where the surface is not there, it does not emit either.
+        if emits {
+            let map = emission_map.take().unwrap_or(InputDesc::Number(1.0));
+            emission_map = Some(node(NodeDesc::Mul(map, c)));
+        }
+    }
+    if let Some(map) = emission_map {
+        bind.insert(EMISSION.to_string(), map);
     }
     MaterialDesc {
         name,
@@ -159,33 +192,74 @@ fn material(w: &mut Walk<'_>, m: &gltf::Material<'_>) -> MaterialDesc {
         two_sided: m.double_sided(),
         emission: (er, eg, eb),
         bind,
-        bump: None,
+        bump,
         interior: None,
         contour: None,
         lights: None,
     }
 }
 
-/// The image node of a texture reference, or `None` (with a warning) when it cannot be
-/// bound.
+/// How much of a surface is there: glTF's alpha after the alpha mode.
+enum Coverage {
+    /// The same everywhere.
+    Constant(f64),
+    /// A scalar node (the texture's alpha, cut at the cutoff for `MASK`).
+    Varying(InputDesc),
+}
+
+/// An image of the file bound to a material: its file reference and wrap mode.
+struct TextureRef {
+    file: String,
+    wrap: WrapDesc,
+}
+
+impl TextureRef {
+    /// The image's colour, decoded as `encoding` says.
+    fn image(&self, encoding: EncodingDesc) -> InputDesc {
+        node(NodeDesc::Image {
+            file: self.file.clone(),
+            uv: node(NodeDesc::Uv),
+            wrap: self.wrap,
+            color_space: Some(encoding),
+        })
+    }
+
+    /// The image's alpha (1 for images without one).
+    fn alpha(&self) -> InputDesc {
+        node(NodeDesc::Alpha {
+            file: self.file.clone(),
+            uv: node(NodeDesc::Uv),
+            wrap: self.wrap,
+        })
+    }
+}
+
+/// The image of a texture reference, or `None` (with a warning) when it cannot be bound.
 fn texture(
     w: &mut Walk<'_>,
     info: &gltf::texture::Info<'_>,
-    encoding: EncodingDesc,
     at: &str,
     what: &str,
-) -> Option<InputDesc> {
-    if info.tex_coord() != 0 {
+) -> Option<TextureRef> {
+    texture_ref(w, info.tex_coord(), info.texture(), at, what)
+}
+
+fn texture_ref(
+    w: &mut Walk<'_>,
+    tex_coord: u32,
+    texture: gltf::Texture<'_>,
+    at: &str,
+    what: &str,
+) -> Option<TextureRef> {
+    if tex_coord != 0 {
         w.warnings.push(at_file(
             w.path,
             format!(
-                "{at}: ignored its {what} texture on TEXCOORD_{} (shading reads TEXCOORD_0 only)",
-                info.tex_coord()
+                "{at}: ignored its {what} texture on TEXCOORD_{tex_coord} (shading reads TEXCOORD_0 only)"
             ),
         ));
         return None;
     }
-    let texture = info.texture();
     let image = texture.source();
     let file = match image.source() {
         gltf::image::Source::Uri { uri, .. } if !uri.starts_with("data:") => {
@@ -199,10 +273,5 @@ fn texture(
         (WrappingMode::ClampToEdge, WrappingMode::ClampToEdge) => WrapDesc::Clamp,
         _ => WrapDesc::Repeat,
     };
-    Some(node(NodeDesc::Image {
-        file,
-        uv: node(NodeDesc::Uv),
-        wrap,
-        color_space: Some(encoding),
-    }))
+    Some(TextureRef { file, wrap })
 }
