@@ -1084,6 +1084,10 @@ pub struct BakeDesc {
     /// Also write `<instance>_mask.png`, default false.
     #[serde(default)]
     pub mask: bool,
+    /// Make AO and lightmap texels continuous across UV seams (least-squares stitch),
+    /// default true.
+    #[serde(default = "default_stitch_seams")]
+    pub stitch_seams: bool,
     /// The textures.
     pub outputs: Vec<BakeOutputDesc>,
 }
@@ -1096,6 +1100,9 @@ fn default_texel_samples() -> u32 {
 }
 fn default_padding() -> u32 {
     2
+}
+fn default_stitch_seams() -> bool {
+    true
 }
 
 /// UV source of a bake.
@@ -1130,6 +1137,29 @@ pub struct BakeOutputDesc {
     /// (one value per mesh vertex, written as a PLY with vertex colours).
     #[serde(default, skip_serializing_if = "BakeTargetDesc::is_texture")]
     pub target: BakeTargetDesc,
+    /// Texel-space denoising of an AO or lightmap texture, default off.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub denoise: Option<DenoiseDesc>,
+}
+
+/// `denoise: (passes: 3, sigma_color: 0.5)` on a bake output: the edge-aware à-trous
+/// denoiser (`crate::bake::denoise`).
+#[derive(Debug, Clone, Copy, Deserialize, Serialize)]
+#[serde(rename = "Denoise", deny_unknown_fields)]
+pub struct DenoiseDesc {
+    /// À-trous passes (steps 1, 2, 4, …), 1 … 8, default 3.
+    #[serde(default = "default_denoise_passes")]
+    pub passes: u32,
+    /// Colour edge-stopping width relative to the texel's value, > 0, default 0.5.
+    #[serde(default = "default_sigma_color")]
+    pub sigma_color: f64,
+}
+
+fn default_denoise_passes() -> u32 {
+    3
+}
+fn default_sigma_color() -> f64 {
+    0.5
 }
 
 /// Where a bake output's values go.
