@@ -3,8 +3,12 @@
 //! baked from the surface (the validity mask), lie in the **same UV chart** (never across a
 //! chart border, however close the charts are packed: godotengine/godot#82607), face the
 //! same way (normal weight) and lie on its tangent plane (position weight), with a colour
-//! weight that keeps value edges. Every pass reads the previous pass's texels only, so the
-//! result does not depend on the thread count.
+//! weight that keeps value edges larger than the noise: its width is `sigma_color` standard
+//! deviations of the texel's luminance noise, estimated from the 3 × 3 same-chart
+//! neighbourhood of the input and carried through the passes as SVGF does
+//! (var′ = Σ w² var / (Σ w)²), so more samples (less noise) blur less and the bias vanishes
+//! with the noise. Every pass reads the previous pass's texels only, so the result does not
+//! depend on the thread count.
 
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
@@ -20,8 +24,9 @@ const KERNEL: [f32; 5] = [1.0 / 16.0, 1.0 / 4.0, 3.0 / 8.0, 1.0 / 4.0, 1.0 / 16.
 const NORMAL_POWER: i32 = 64;
 /// Plane distance (in texel sizes, per unit of step) at which the position weight is 1/e.
 const PLANE_TEXELS: f32 = 0.5;
-/// Luminance below which the colour weight compares absolute differences.
-const DARK: f32 = 1e-4;
+/// Smallest noise standard deviation the colour weight assumes (a noiseless texel still
+/// mixes with exactly equal neighbours).
+const MIN_STD: f32 = 1e-6;
 /// No texel.
 const NONE: u32 = u32::MAX;
 
@@ -96,6 +101,33 @@ fn luminance(c: Vec3) -> f32 {
     c.dot(Vec3::new(0.2126, 0.7152, 0.0722))
 }
 
+/// Luminance variance of every baked texel over its 3 × 3 same-chart baked neighbourhood.
+fn local_variance(lum: &[f32], baked: &[bool], guide: &TexelGuide) -> Vec<f32> {
+    let (w, h) = (guide.width as i64, guide.height as i64);
+    (0..h * w)
+        .map(|k| {
+            let (i, j) = (k % w, k / w);
+            let k = k as usize;
+            if !baked[k] || guide.chart[k] == NONE {
+                return 0.0;
+            }
+            let (mut n, mut sum, mut sum2) = (0.0f32, 0.0f32, 0.0f32);
+            for y in (j - 1).max(0)..=(j + 1).min(h - 1) {
+                for x in (i - 1).max(0)..=(i + 1).min(w - 1) {
+                    let q = (y * w + x) as usize;
+                    if baked[q] && guide.chart[q] == guide.chart[k] {
+                        n += 1.0;
+                        sum += lum[q];
+                        sum2 += lum[q] * lum[q];
+                    }
+                }
+            }
+            let mean = sum / n;
+            (sum2 / n - mean * mean).max(0.0)
+        })
+        .collect()
+}
+
 /// Denoises the texels of `image` marked in `baked` (texels baked from the surface; others
 /// are neither read nor written). Returns the filtered image.
 pub fn denoise(
@@ -106,22 +138,26 @@ pub fn denoise(
 ) -> TexelImage {
     let (w, h) = (image.width as i64, image.height as i64);
     let mut current = image.texels.clone();
+    let lum: Vec<f32> = current.iter().map(|&c| luminance(c)).collect();
+    let mut variance = local_variance(&lum, baked, guide);
     for pass in 0..settings.passes {
         let step = 1i64 << pass;
         let plane_scale = PLANE_TEXELS * guide.texel_size * step as f32;
         let sigma = settings.sigma_color;
-        let prev = &current;
-        let next: Vec<Vec3> = (0..h)
+        let (prev, prev_var) = (&current, &variance);
+        let next: Vec<(Vec3, f32)> = (0..h)
             .into_par_iter()
             .flat_map_iter(|j| {
                 (0..w).map(move |i| {
                     let k = (j * w + i) as usize;
                     if !baked[k] || guide.chart[k] == NONE {
-                        return prev[k];
+                        return (prev[k], prev_var[k]);
                     }
-                    let (c, n, p) = (prev[k], guide.normal[k], guide.position[k]);
-                    let l = luminance(c);
+                    let (n, p) = (guide.normal[k], guide.position[k]);
+                    let l = luminance(prev[k]);
+                    let width = sigma * prev_var[k].sqrt().max(MIN_STD);
                     let mut sum = Vec3::ZERO;
+                    let mut var_sum = 0.0f32;
                     let mut weight = 0.0f32;
                     for (dy, ky) in KERNEL.iter().enumerate() {
                         for (dx, kx) in KERNEL.iter().enumerate() {
@@ -140,23 +176,22 @@ pub fn denoise(
                             } else {
                                 1.0
                             };
-                            let lq = luminance(prev[q]);
-                            let scale = sigma * l.abs().max(lq.abs()).max(DARK);
-                            let wc = (-(l - lq).abs() / scale).exp();
+                            let wc = (-(l - luminance(prev[q])).abs() / width).exp();
                             let wgt = kx * ky * wn * wp * wc;
                             sum += prev[q] * wgt;
+                            var_sum += wgt * wgt * prev_var[q];
                             weight += wgt;
                         }
                     }
                     if weight > 0.0 {
-                        sum / weight
+                        (sum / weight, var_sum / (weight * weight))
                     } else {
-                        c
+                        (prev[k], prev_var[k])
                     }
                 })
             })
             .collect();
-        current = next;
+        (current, variance) = next.into_iter().unzip();
     }
     TexelImage {
         texels: current,
@@ -254,5 +289,28 @@ mod tests {
         let out = denoise(&img, &baked, &flat_guide(w, h, w), Denoise::default());
         assert!(out.texels[w as usize..].iter().all(|t| t.x < 1.0));
         assert!(out.texels[..w as usize].iter().all(|t| t.x == 100.0));
+    }
+
+    #[test]
+    fn the_same_bits_at_one_and_three_threads() {
+        let (w, h) = (40, 24);
+        let img = noisy(w, h, 20, 0.8, 0.2, 0.2);
+        let g = flat_guide(w, h, 20);
+        let run = |threads| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap()
+                .install(|| denoise(&img, &img.valid, &g, Denoise::default()))
+        };
+        let (one, three) = (run(1), run(3));
+        let bits = |i: &TexelImage| -> Vec<u32> {
+            i.texels
+                .iter()
+                .flat_map(|t| t.to_array().map(f32::to_bits))
+                .collect()
+        };
+        assert_eq!(bits(&one), bits(&three));
+        assert_ne!(bits(&one), bits(&img), "it filtered");
     }
 }

@@ -152,8 +152,8 @@ pub struct BakeTarget {
 pub struct Denoise {
     /// À-trous passes (step 1, 2, 4, …), 1 … 8.
     pub passes: u32,
-    /// Colour edge-stopping width, relative to the texel's own value (> 0; larger blurs more
-    /// across value edges).
+    /// Colour edge-stopping width in standard deviations of the texel's estimated noise
+    /// (> 0; larger blurs more across value edges).
     pub sigma_color: f32,
 }
 
@@ -161,7 +161,7 @@ impl Default for Denoise {
     fn default() -> Self {
         Self {
             passes: 3,
-            sigma_color: 0.5,
+            sigma_color: 4.0,
         }
     }
 }

@@ -334,7 +334,7 @@ fn denoise_checks(
                 "sigma_color must be a positive finite number, found {}",
                 d.sigma_color
             ),
-            "0.5 (the default) keeps edges where values differ by more than about half",
+            "4.0 (the default) keeps edges larger than four standard deviations of the noise",
         );
     }
     ok.then_some(Denoise {

@@ -1142,7 +1142,7 @@ pub struct BakeOutputDesc {
     pub denoise: Option<DenoiseDesc>,
 }
 
-/// `denoise: (passes: 3, sigma_color: 0.5)` on a bake output: the edge-aware à-trous
+/// `denoise: (passes: 3, sigma_color: 4.0)` on a bake output: the edge-aware à-trous
 /// denoiser (`crate::bake::denoise`).
 #[derive(Debug, Clone, Copy, Deserialize, Serialize)]
 #[serde(rename = "Denoise", deny_unknown_fields)]
@@ -1150,7 +1150,7 @@ pub struct DenoiseDesc {
     /// À-trous passes (steps 1, 2, 4, …), 1 … 8, default 3.
     #[serde(default = "default_denoise_passes")]
     pub passes: u32,
-    /// Colour edge-stopping width relative to the texel's value, > 0, default 0.5.
+    /// Colour edge-stopping width in noise standard deviations, > 0, default 4.
     #[serde(default = "default_sigma_color")]
     pub sigma_color: f64,
 }
@@ -1159,7 +1159,7 @@ fn default_denoise_passes() -> u32 {
     3
 }
 fn default_sigma_color() -> f64 {
-    0.5
+    4.0
 }
 
 /// Where a bake output's values go.

@@ -276,7 +276,7 @@ fn bad_denoise_values_are_refused_where_they_stand() {
         ),
         (
             "(kind: AmbientOcclusion(samples: 16), denoise: (sigma_color: -1.0))",
-            "seams.ron:19:84: error: sigma_color must be a positive finite number, found -1\n  help: 0.5 (the default) keeps edges where values differ by more than about half",
+            "seams.ron:19:84: error: sigma_color must be a positive finite number, found -1\n  help: 4.0 (the default) keeps edges larger than four standard deviations of the noise",
         ),
         ("(kind: Normals(), denoise: ())", "seams.ron:19:50: error: `denoise` filters noisy estimates: only AmbientOcclusion and Lightmap outputs have them, not normals\n  help: remove `denoise` from this output"),
         (
