@@ -282,10 +282,8 @@ mod tests {
         let (w, h) = (16, 16);
         let mut img = noisy(w, h, w, 0.5, 0.5, 0.1);
         let mut baked = img.valid.clone();
-        for k in 0..w as usize {
-            baked[k] = false;
-            img.texels[k] = Vec3::splat(100.0);
-        }
+        baked[..w as usize].fill(false);
+        img.texels[..w as usize].fill(Vec3::splat(100.0));
         let out = denoise(&img, &baked, &flat_guide(w, h, w), Denoise::default());
         assert!(out.texels[w as usize..].iter().all(|t| t.x < 1.0));
         assert!(out.texels[..w as usize].iter().all(|t| t.x == 100.0));

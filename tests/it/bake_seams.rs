@@ -227,18 +227,16 @@ fn the_denoiser_never_mixes_two_charts_packed_side_by_side() {
         min_left_noisy > 0.8 && max_right_noisy < 0.5,
         "the scene gives two very different charts: {min_left_noisy} vs {max_right_noisy}"
     );
-    for k in 0..denoised.len() {
+    for (k, &value) in denoised.iter().enumerate() {
         if left(&k) {
             assert!(
-                denoised[k] >= min_left_noisy,
-                "texel {k} of the open chart darkened to {} (the roofed chart leaked in)",
-                denoised[k]
+                value >= min_left_noisy,
+                "texel {k} of the open chart darkened to {value} (the roofed chart leaked in)"
             );
         } else {
             assert!(
-                denoised[k] <= max_right_noisy,
-                "texel {k} of the roofed chart brightened to {}",
-                denoised[k]
+                value <= max_right_noisy,
+                "texel {k} of the roofed chart brightened to {value}"
             );
         }
     }
