@@ -80,6 +80,7 @@ fn world(samples: u32) -> World {
             texel_samples: 4,
             padding: 2,
             mask: false,
+            stitch_seams: false,
             targets: vec![BakeTarget {
                 kind: BakeKind::AmbientOcclusion {
                     samples,
@@ -88,6 +89,7 @@ fn world(samples: u32) -> World {
                 },
                 format: BakeFormat::Exr,
                 file: None,
+                denoise: None,
             }],
         },
     ));

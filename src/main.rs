@@ -331,6 +331,11 @@ struct SweepArgs {
     /// Worker threads (default: all cores; at most 1024).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=MAX_THREADS as i64))]
     threads: Option<u32>,
+    /// Denoise the swept bakes in texel space (every AO and lightmap output without its own
+    /// `denoise` gets the default one; the reference is not denoised): equal-time error with
+    /// and without the denoiser. Needs `--knob bake_samples=…`.
+    #[arg(long)]
+    denoise: bool,
 }
 
 /// `--integrator` values.
@@ -1166,6 +1171,7 @@ fn sweep(args: SweepArgs) -> ExitCode {
         out: args.out.clone(),
         integrator: args.integrator.map(IntegratorArg::integrator),
         reference_integrator: stagelight::settings::Integrator::Path,
+        denoise: args.denoise,
     };
     let summary = match run_sweep(&opts, systems::run, |step| eprintln!("sweep: {step}")) {
         Ok(s) => s,

@@ -1,5 +1,6 @@
 //! `bake_lightmaps`: bakes every bake request (ambient occlusion, lightmaps, normals,
-//! positions, albedo) into textures and dilates them; the runner writes them with the run's
+//! positions, albedo) into textures, denoises those that ask for it, dilates them and
+//! stitches AO and lightmaps across UV seams (`crate::bake::finish`); the runner writes them with the run's
 //! other files, all or nothing.
 //!
 //! **Reads:** `BakeRequest` + `Name` + `SourceLink` on instance entities; `Emitter` entities;
@@ -156,10 +157,12 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
         }
         // Texels baked from the surface (covered and not inside geometry), before dilation.
         let baked_mask = results.images.first().map(|img| img.valid.clone());
-        let mut dilated = 0;
-        for img in &mut results.images {
-            dilated = crate::bake::dilate::dilate(img, p.request.padding);
-        }
+        let finished = crate::bake::finish::finish(
+            p,
+            &geometry.instances[p.slot].mesh,
+            &mut results.images,
+            baked_mask.as_deref(),
+        );
         let files = encode_request(p, &results, baked_mask.as_deref(), &inputs.bake_dir)?;
         if inputs.write_gltf.is_some() {
             for (target, file) in p.request.targets.iter().zip(&files.pending) {
@@ -169,7 +172,14 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
                 }
             }
         }
-        let mut r = report(p, &results, dilated, start.elapsed().as_secs_f64(), &files);
+        let mut r = report(
+            p,
+            &results,
+            finished.dilated,
+            start.elapsed().as_secs_f64(),
+            &files,
+        );
+        r.seams = finished.seams;
         if inputs.merged_bake.is_some() {
             // The rays are the parts' total; the merge itself traces none.
             r.rays_per_second = 0.0;

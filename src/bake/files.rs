@@ -142,6 +142,7 @@ pub fn report(
             .map(|f| f.path.display().to_string())
             .collect(),
         vertices: None,
+        seams: None,
     }
 }
 

@@ -2,20 +2,25 @@
 //! coverage, the per-texel estimators (ambient occlusion, irradiance), dilation and texture
 //! encoding; request checking ([`request`]), file naming/encoding ([`files`]) and the baked
 //! glTF copy ([`gltf_out`]); per-vertex bakes lay vertices out as texels ([`vertices`]) and
-//! are written as PLY ([`vertex_files`]). The
-//! `bake_lightmaps` stage drives these.
+//! are written as PLY ([`vertex_files`]). UV seams and charts ([`seams`]) drive the
+//! least-squares seam stitch ([`stitch`]) and the chart-respecting texel-space denoiser
+//! ([`denoise`]). The `bake_lightmaps` stage drives these.
 //!
 //! Texel convention: texel `(i, j)` of a `W × H` texture (row `j = 0` at the top of the image)
 //! has its centre at `uv = ((i + 0.5) / W, 1 − (j + 0.5) / H)` — OBJ/OpenGL UVs with `v` up.
 
 pub mod ao;
+pub mod denoise;
 pub mod dilate;
 pub mod files;
+pub mod finish;
 pub mod gltf_out;
 pub mod irradiance;
 pub mod raster;
 pub mod report;
 pub mod request;
+pub mod seams;
+pub mod stitch;
 pub mod texels;
 pub mod texture;
 pub mod uv;
@@ -23,6 +28,6 @@ pub mod vertex_files;
 pub mod vertices;
 
 pub use raster::{rasterize, Coverage, TexelSample};
-pub use report::BakeReport;
+pub use report::{BakeReport, SeamReport};
 pub use texture::TexelImage;
 pub use uv::{bake_resolution, corner_uvs, second_set_corner_uvs, BakeUvError};

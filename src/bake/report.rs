@@ -32,6 +32,53 @@ pub struct BakeReport {
     /// neighbours).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub vertices: Option<u64>,
+    /// UV seams of a texture bake with AO or a lightmap, and the difference across them.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub seams: Option<SeamReport>,
+}
+
+/// The seam metric of one bake: the largest channel difference of the first AO or lightmap
+/// texture read (bilinearly) at the two UV points of each seam sample pair.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct SeamReport {
+    /// Seam edges (mesh edges whose two sides have different UVs).
+    pub edges: u64,
+    /// Sample pairs along them (3 per texel of seam length).
+    pub samples: u64,
+    /// Mean difference before stitching (after dilation).
+    pub mean_before: f64,
+    /// Largest difference before stitching.
+    pub max_before: f64,
+    /// Mean difference of the written texture (equal to before without `stitch_seams`).
+    pub mean_after: f64,
+    /// Largest difference of the written texture.
+    pub max_after: f64,
+    /// Whether the seams were stitched.
+    pub stitched: bool,
+    /// Texels the stitch changed (over all stitched textures of the request).
+    pub texels_changed: u64,
+}
+
+impl SeamReport {
+    /// The seam part of the terminal line.
+    fn summary(&self) -> String {
+        if self.stitched {
+            format!(
+                ", {} seam edges: difference mean {:.4} max {:.4} → stitched mean {:.4} max {:.4} ({} texels changed)",
+                self.edges,
+                self.mean_before,
+                self.max_before,
+                self.mean_after,
+                self.max_after,
+                self.texels_changed
+            )
+        } else {
+            format!(
+                ", {} seam edges: difference mean {:.4} max {:.4} (not stitched)",
+                self.edges, self.mean_before, self.max_before
+            )
+        }
+    }
 }
 
 impl BakeReport {
@@ -49,8 +96,13 @@ impl BakeReport {
                 self.rays_per_second / 1e6
             );
         }
+        let seams = self
+            .seams
+            .filter(|s| s.edges > 0)
+            .map(|s| s.summary())
+            .unwrap_or_default();
         format!(
-            "{}: {}×{} texels, {:.1} texels/unit, {} covered, {} invalid, {} dilated, {} rays in {:.3} s ({:.2} Mrays/s)",
+            "{}: {}×{} texels, {:.1} texels/unit, {} covered, {} invalid, {} dilated, {} rays in {:.3} s ({:.2} Mrays/s){seams}",
             self.name,
             self.width,
             self.height,

@@ -142,6 +142,28 @@ pub struct BakeTarget {
     pub format: BakeFormat,
     /// File name overriding `<instance>_<kind>.<ext>` (relative to the bake output directory).
     pub file: Option<PathBuf>,
+    /// Edge-aware texel-space denoising of this output (`crate::bake::denoise`), if asked.
+    pub denoise: Option<Denoise>,
+}
+
+/// Settings of the texel-space denoiser (an edge-aware à-trous filter that never mixes
+/// texels of different UV charts).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Denoise {
+    /// À-trous passes (step 1, 2, 4, …), 1 … 8.
+    pub passes: u32,
+    /// Colour edge-stopping width in standard deviations of the texel's estimated noise
+    /// (> 0; larger blurs more across value edges).
+    pub sigma_color: f32,
+}
+
+impl Default for Denoise {
+    fn default() -> Self {
+        Self {
+            passes: 3,
+            sigma_color: 4.0,
+        }
+    }
 }
 
 /// A bake request on an instance entity.
@@ -159,6 +181,9 @@ pub struct BakeRequest {
     pub padding: u32,
     /// Also write `<instance>_mask.png` (255 where a texel is covered and valid).
     pub mask: bool,
+    /// Make AO and lightmap texels continuous across UV seams by a least-squares stitch
+    /// after dilation (`crate::bake::stitch`).
+    pub stitch_seams: bool,
     /// Textures to bake.
     pub targets: Vec<BakeTarget>,
 }

@@ -28,8 +28,8 @@ mod environment;
 pub mod graph;
 mod imager;
 pub use bake::{
-    BakeFormat, BakeKind, BakeRequest, BakeResolution, BakeTarget, LightmapStore, NormalSpace,
-    UvSource,
+    BakeFormat, BakeKind, BakeRequest, BakeResolution, BakeTarget, Denoise, LightmapStore,
+    NormalSpace, UvSource,
 };
 pub use environment::{DepthExceeded, Environment, EnvironmentSource, LatLongMap};
 pub use imager::{Imager, ToneMap};

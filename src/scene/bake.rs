@@ -3,14 +3,14 @@
 
 use super::dag::Leaf;
 use super::desc::{
-    BakeDesc, BakeFormatDesc, BakeKindDesc, BakeTargetDesc, LightmapStoreDesc, NormalSpaceDesc,
-    UvsDesc,
+    BakeDesc, BakeFormatDesc, BakeKindDesc, BakeTargetDesc, DenoiseDesc, LightmapStoreDesc,
+    NormalSpaceDesc, UvsDesc,
 };
 use super::diagnostics::Sources;
 use super::validate::{Checker, Merged};
 use crate::components::{
-    BakeFormat, BakeKind, BakeRequest, BakeResolution, BakeTarget, LightmapStore, NormalSpace,
-    UvSource,
+    BakeFormat, BakeKind, BakeRequest, BakeResolution, BakeTarget, Denoise, LightmapStore,
+    NormalSpace, UvSource,
 };
 
 /// One entry per merged instance: the bake request of instances that carry a valid one.
@@ -254,10 +254,20 @@ fn request(
                 BakeFormat::Exr
             }
         };
+        let denoise = match &o.denoise {
+            None => None,
+            Some(d) => {
+                let dp = format!("{path}.outputs[{k}].denoise");
+                let checked = denoise_checks(ck, &dp, d, &kind, format);
+                ok &= checked.is_some();
+                checked
+            }
+        };
         targets.push(BakeTarget {
             kind,
             format,
             file: o.file.as_ref().map(Into::into),
+            denoise,
         });
     }
     ok.then(|| BakeRequest {
@@ -267,7 +277,69 @@ fn request(
         texel_samples: d.texel_samples,
         padding: d.padding,
         mask: d.mask,
+        stitch_seams: d.stitch_seams,
         targets,
+    })
+}
+
+/// A bake output's `denoise`: passes 1 … 8, a positive finite colour width, on an AO or
+/// lightmap texture. Returns the settings when valid.
+fn denoise_checks(
+    ck: &mut Checker<'_>,
+    path: &str,
+    d: &DenoiseDesc,
+    kind: &BakeKind,
+    format: BakeFormat,
+) -> Option<Denoise> {
+    let mut ok = true;
+    let mut error = |ck: &mut Checker<'_>, at: &str, message: String, help: &str| {
+        ck.src.error(ck.file, at, message, Some(help.to_string()));
+        ok = false;
+    };
+    if !matches!(
+        kind,
+        BakeKind::AmbientOcclusion { .. } | BakeKind::Lightmap { .. }
+    ) {
+        error(
+            ck,
+            path,
+            format!(
+                "`denoise` filters noisy estimates: only AmbientOcclusion and Lightmap outputs have them, not {}",
+                kind.suffix()
+            ),
+            "remove `denoise` from this output",
+        );
+    }
+    if format.is_per_vertex() {
+        error(
+            ck,
+            path,
+            "`denoise` filters the texels of a texture; a per-vertex output (`target: Vertices`) has none".into(),
+            "remove `denoise`, or bake a texture (leave `target` out)",
+        );
+    }
+    if d.passes == 0 || d.passes > 8 {
+        error(
+            ck,
+            &format!("{path}.passes"),
+            format!("denoise passes must be 1 … 8, found {}", d.passes),
+            "3 passes (steps 1, 2 and 4 texels) is the default",
+        );
+    }
+    if !d.sigma_color.is_finite() || d.sigma_color <= 0.0 || d.sigma_color > f64::from(f32::MAX) {
+        error(
+            ck,
+            &format!("{path}.sigma_color"),
+            format!(
+                "sigma_color must be a positive finite number, found {}",
+                d.sigma_color
+            ),
+            "4.0 (the default) keeps edges larger than four standard deviations of the noise",
+        );
+    }
+    ok.then_some(Denoise {
+        passes: d.passes,
+        sigma_color: d.sigma_color as f32,
     })
 }
 

@@ -1088,6 +1088,10 @@ pub struct BakeDesc {
     /// Also write `<instance>_mask.png`, default false.
     #[serde(default)]
     pub mask: bool,
+    /// Make AO and lightmap texels continuous across UV seams (least-squares stitch),
+    /// default true.
+    #[serde(default = "default_stitch_seams")]
+    pub stitch_seams: bool,
     /// The textures.
     pub outputs: Vec<BakeOutputDesc>,
 }
@@ -1100,6 +1104,9 @@ fn default_texel_samples() -> u32 {
 }
 fn default_padding() -> u32 {
     2
+}
+fn default_stitch_seams() -> bool {
+    true
 }
 
 /// UV source of a bake.
@@ -1134,6 +1141,29 @@ pub struct BakeOutputDesc {
     /// (one value per mesh vertex, written as a PLY with vertex colours).
     #[serde(default, skip_serializing_if = "BakeTargetDesc::is_texture")]
     pub target: BakeTargetDesc,
+    /// Texel-space denoising of an AO or lightmap texture, default off.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub denoise: Option<DenoiseDesc>,
+}
+
+/// `denoise: (passes: 3, sigma_color: 4.0)` on a bake output: the edge-aware à-trous
+/// denoiser (`crate::bake::denoise`).
+#[derive(Debug, Clone, Copy, Deserialize, Serialize)]
+#[serde(rename = "Denoise", deny_unknown_fields)]
+pub struct DenoiseDesc {
+    /// À-trous passes (steps 1, 2, 4, …), 1 … 8, default 3.
+    #[serde(default = "default_denoise_passes")]
+    pub passes: u32,
+    /// Colour edge-stopping width in noise standard deviations, > 0, default 4.
+    #[serde(default = "default_sigma_color")]
+    pub sigma_color: f64,
+}
+
+fn default_denoise_passes() -> u32 {
+    3
+}
+fn default_sigma_color() -> f64 {
+    4.0
 }
 
 /// Where a bake output's values go.

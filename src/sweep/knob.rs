@@ -61,6 +61,9 @@ pub enum KnobError {
         /// What was expected.
         expected: &'static str,
     },
+    /// `--denoise` with a knob that does not bake.
+    #[error("--denoise filters baked textures, but knob {0} renders images; sweep `--knob bake_samples=…` with it")]
+    DenoiseNeedsBake(&'static str),
     /// The scene has nothing this knob changes.
     #[error("knob {knob} is not in this scene: {why}")]
     Absent {

@@ -37,6 +37,9 @@ pub struct SweepOptions {
     pub integrator: Option<Integrator>,
     /// Integrator of a rendered reference (the path tracer: the converged reference).
     pub reference_integrator: Integrator,
+    /// Denoise the swept bakes (`--denoise`): every AO and lightmap output without its own
+    /// `denoise` gets the default one; the reference is never denoised.
+    pub denoise: bool,
 }
 
 /// Why a sweep failed.
@@ -134,6 +137,23 @@ fn run_once(
     })
 }
 
+/// Gives every AO and lightmap output of every bake request the default denoiser, unless it
+/// has its own.
+fn denoise_bakes(world: &mut World) {
+    use crate::components::{BakeKind, BakeRequest, Denoise};
+    for request in world.query_mut::<&mut BakeRequest>() {
+        for t in &mut request.targets {
+            let noisy = matches!(
+                t.kind,
+                BakeKind::AmbientOcclusion { .. } | BakeKind::Lightmap { .. }
+            );
+            if noisy && !t.format.is_per_vertex() && t.denoise.is_none() {
+                t.denoise = Some(Denoise::default());
+            }
+        }
+    }
+}
+
 /// Reads the R, G, B channels of a linear EXR, with its width and height.
 pub fn read_exr_rgb(path: &Path) -> Result<(Vec<Vec3>, u32, u32), SweepError> {
     use exr::prelude::*;
@@ -182,6 +202,9 @@ pub fn run_sweep(
     {
         let scene = load_scene(&opts.scene)?;
         opts.knob.check(&scene.world, &scene.settings)?;
+        if opts.denoise && !opts.knob.is_bake() {
+            return Err(KnobError::DenoiseNeedsBake(opts.knob.name()).into());
+        }
     }
     std::fs::create_dir_all(&opts.out).map_err(|e| io(&opts.out, e))?;
     let cached = reference_cache(opts)?;
@@ -249,6 +272,9 @@ pub fn run_sweep(
                         s.integrator = integrator;
                     }
                     opts.knob.apply(i, w, s);
+                    if opts.denoise {
+                        denoise_bakes(w);
+                    }
                 },
                 seed as u64,
                 &format!("{i}_{seed}"),
@@ -286,8 +312,13 @@ pub fn run_sweep(
         });
     }
     let _ = std::fs::remove_dir_all(opts.out.join("scratch"));
+    let knob = if opts.denoise {
+        format!("{}+denoise", opts.knob.name())
+    } else {
+        opts.knob.name().to_string()
+    };
     Ok(SweepSummary::new(
-        opts.knob.name(),
+        &knob,
         &opts.scene.display().to_string(),
         rows,
     ))

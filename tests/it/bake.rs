@@ -48,12 +48,14 @@ fn request(
         texel_samples,
         padding,
         mask: false,
+        stitch_seams: false,
         targets: kinds
             .into_iter()
             .map(|kind| BakeTarget {
                 kind,
                 format: BakeFormat::Exr,
                 file: None,
+                denoise: None,
             })
             .collect(),
     }

@@ -53,10 +53,12 @@ fn request(kind: BakeKind, width: u32, height: u32, padding: u32, uvs: UvSource)
         texel_samples: 1,
         padding,
         mask: false,
+        stitch_seams: false,
         targets: vec![BakeTarget {
             kind,
             format: BakeFormat::Exr,
             file: None,
+            denoise: None,
         }],
     }
 }

@@ -9,6 +9,7 @@ mod bad_values;
 mod bad_values_camera;
 mod bad_values_lights;
 mod bake;
+mod bake_seams;
 mod cli;
 mod cli_bake;
 mod cli_farm;

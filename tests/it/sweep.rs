@@ -162,6 +162,46 @@ fn bake_samples_sweep_compares_baked_textures() {
     assert!(rel[0] > rel[1], "{rel:?}");
 }
 
+/// `--denoise`: the swept bakes are denoised in texel space (the reference is not), which at
+/// the same sample count lowers the error against the converged reference; the table names
+/// the knob `bake_samples+denoise`. A render knob refuses it.
+#[test]
+fn denoise_flag_denoises_the_swept_bakes_only() {
+    let (dir, scene) = setup("denoise");
+    let out = dir.join("out");
+    let sweep = |denoise: bool| {
+        let mut cmd = bin();
+        cmd.arg("sweep")
+            .arg(&scene)
+            .args(["--knob", "bake_samples=4", "--reference-spp", "1024"])
+            .arg("--out")
+            .arg(&out);
+        if denoise {
+            cmd.arg("--denoise");
+        }
+        let o = run(&mut cmd);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        std::fs::read_to_string(out.join("sweep.csv")).unwrap()
+    };
+    let plain = sweep(false);
+    let denoised = sweep(true);
+    assert!(plain.starts_with("bake_samples,"), "{plain}");
+    assert!(denoised.starts_with("bake_samples+denoise,"), "{denoised}");
+    let (p, d) = (rel_mse_column(&plain)[0], rel_mse_column(&denoised)[0]);
+    assert!(d < 0.5 * p, "relMSE {p} plain, {d} denoised");
+    let o = run(bin()
+        .arg("sweep")
+        .arg(&scene)
+        .args(["--knob", "spp=1,4", "--denoise"])
+        .arg("--out")
+        .arg(dir.join("r")));
+    assert_eq!(o.status.code(), Some(1));
+    assert_eq!(
+        String::from_utf8_lossy(&o.stderr).trim_end(),
+        "error: --denoise filters baked textures, but knob spp renders images; sweep `--knob bake_samples=…` with it"
+    );
+}
+
 #[test]
 fn knobs_the_scene_lacks_are_errors_and_unknown_knobs_usage_errors() {
     let (dir, scene) = setup("absent");

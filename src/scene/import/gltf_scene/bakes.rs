@@ -29,6 +29,7 @@ pub fn default_bake() -> BakeDesc {
         texel_samples: 4,
         padding: 2,
         mask: false,
+        stitch_seams: true,
         outputs: vec![
             BakeOutputDesc {
                 kind: BakeKindDesc::Lightmap {
@@ -40,6 +41,7 @@ pub fn default_bake() -> BakeDesc {
                 format: BakeFormatDesc::Png8,
                 file: None,
                 target: BakeTargetDesc::Texture,
+                denoise: None,
             },
             BakeOutputDesc {
                 kind: BakeKindDesc::AmbientOcclusion {
@@ -50,6 +52,7 @@ pub fn default_bake() -> BakeDesc {
                 format: BakeFormatDesc::Png8,
                 file: None,
                 target: BakeTargetDesc::Texture,
+                denoise: None,
             },
         ],
     }
@@ -66,6 +69,7 @@ pub fn default_vertex_bake() -> BakeDesc {
         texel_samples: 4,
         padding: 0,
         mask: false,
+        stitch_seams: true,
         outputs: vec![BakeOutputDesc {
             kind: BakeKindDesc::AmbientOcclusion {
                 samples: SAMPLES,
@@ -75,6 +79,7 @@ pub fn default_vertex_bake() -> BakeDesc {
             format: BakeFormatDesc::Ply,
             file: None,
             target: BakeTargetDesc::Vertices,
+            denoise: None,
         }],
     }
 }
