@@ -68,6 +68,9 @@ pub struct ObjectParts {
     pub uvs1: Option<Arc<Vec<glam::Vec2>>>,
     /// Its geometry components (generator, approximation, displacement).
     pub geometry: Option<ObjectGeometry>,
+    /// Per triangle of `mesh`, the material its polygon names (`None`: the instance's),
+    /// spawned as [`crate::components::FaceMaterials`].
+    pub face_materials: Option<Vec<Option<usize>>>,
 }
 
 /// Everything checked and built, ready to spawn (one entry per element of the merged lists;
@@ -120,6 +123,15 @@ pub fn spawn(src: &Sources, m: &Merged<'_>, parts: Parts) -> World {
 
     let mut material_entity: HashMap<Option<usize>, Entity> = HashMap::new();
     let mut used: Vec<Option<usize>> = parts.leaves.iter().map(|l| l.material).collect();
+    for leaf in &parts.leaves {
+        if let Some(faces) = parts
+            .objects
+            .get(leaf.object)
+            .and_then(|o| o.face_materials.as_ref())
+        {
+            used.extend(faces.iter().filter(|f| f.is_some()));
+        }
+    }
     used.sort_by_key(|u| u.map_or(usize::MAX, |i| i));
     used.dedup();
     for key in used {
@@ -172,6 +184,7 @@ pub fn spawn(src: &Sources, m: &Merged<'_>, parts: Parts) -> World {
             mesh,
             uvs1,
             geometry: Some(geometry),
+            face_materials,
         }) = parts.objects.get(o)
         else {
             continue;
@@ -187,6 +200,13 @@ pub fn spawn(src: &Sources, m: &Merged<'_>, parts: Parts) -> World {
             b.add(mesh);
             if let Some(uvs) = uvs1 {
                 b.add(crate::components::SecondUvs(uvs.clone()));
+            }
+            if let Some(faces) = face_materials {
+                let entities = faces
+                    .iter()
+                    .map(|f| f.and_then(|i| material_entity.get(&Some(i)).copied()))
+                    .collect();
+                b.add(crate::components::FaceMaterials(Arc::new(entities)));
             }
         }
         geometry.add_to(&mut b);

@@ -45,6 +45,7 @@ mod lights;
 mod mesh_files;
 mod mi;
 mod mi_controls;
+mod mi_polygon_materials;
 mod obj_materials;
 mod photon_clean;
 mod photon_depth;
