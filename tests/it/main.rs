@@ -46,6 +46,7 @@ mod mesh_files;
 mod mi;
 mod mi_controls;
 mod mi_polygon_materials;
+mod mi_textures;
 mod obj_materials;
 mod photon_clean;
 mod photon_depth;

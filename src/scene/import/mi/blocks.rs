@@ -602,7 +602,7 @@ pub fn material(r: &mut Reader, c: &mut Cursor, open: Pos) {
         c.skip_to_end("material", open);
         return;
     };
-    let mapped = shaders::material(c, &call, &r.raw.shaders, 0);
+    let mapped = shaders::material(c, &call, &r.raw.shaders, &r.raw.textures, 0);
     loop {
         let Some(t) = c.block_token("material", open) else {
             return;
@@ -639,7 +639,7 @@ pub fn material(r: &mut Reader, c: &mut Cursor, open: Pos) {
         }
     }
     c.expect_end("material", open);
-    let Some((shader, lights, exclusive)) = mapped else {
+    let Some((shader, lights, exclusive, bind)) = mapped else {
         return;
     };
     if fresh {
@@ -648,7 +648,7 @@ pub fn material(r: &mut Reader, c: &mut Cursor, open: Pos) {
             shader,
             two_sided: false,
             emission: (0.0, 0.0, 0.0),
-            bind: Default::default(),
+            bind,
             bump: None,
             interior: None,
             lights: None,
@@ -765,5 +765,46 @@ pub fn named_shader(r: &mut Reader, c: &mut Cursor) {
     };
     if fresh {
         r.raw.shaders.insert(name, call);
+    }
+}
+
+/// `color|scalar|vector texture "name" [local] [filter [s]] "file"`: an image file that
+/// `mib_texture_lookup` reads by name (the file relative to the declaring `.mi` file).
+pub fn texture(r: &mut Reader, c: &mut Cursor) {
+    c.eat_word("texture");
+    let Some((name, pos)) = c.string("the texture name") else {
+        return;
+    };
+    let fresh = r.define(c, &name, pos);
+    c.eat_word("local");
+    if c.eat_word("filter") && c.at_number() {
+        let _ = c.number("the filter scale");
+    }
+    if !c.at_string() {
+        let at = c.pos();
+        c.error(
+            at,
+            format!("texture \"{name}\" needs an image file (a procedural texture is not mapped)"),
+        );
+        c.skip_arguments();
+        return;
+    }
+    let Some((file, at)) = c.string("the texture file") else {
+        return;
+    };
+    if fresh {
+        // Image files are relative to the root scene file: rebase an included file's.
+        let root = r.root.file.parent().unwrap_or(std::path::Path::new(""));
+        let file = match c.file.parent() {
+            Some(dir) if dir != root => {
+                let full = dir.join(&file);
+                full.strip_prefix(root)
+                    .map_or(full.clone(), std::path::Path::to_path_buf)
+                    .to_string_lossy()
+                    .into_owned()
+            }
+            _ => file,
+        };
+        r.raw.textures.insert(name, (file, c.located(at)));
     }
 }

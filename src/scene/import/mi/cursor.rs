@@ -7,6 +7,9 @@
 
 use std::path::PathBuf;
 
+/// The types of a `color|scalar|vector texture "name" "file"` statement.
+pub const TEXTURE_TYPES: &[&str] = &["color", "scalar", "vector"];
+
 use super::super::rib::{Located, LocatedProblem, Pos, Problem};
 use super::lexer::{Tok, Token};
 
@@ -161,6 +164,11 @@ impl Cursor {
             return false;
         };
         let space = matches!(self.peek2(), Some(Token { tok: Tok::Word(s), .. }) if s == "space");
+        let texture =
+            matches!(self.peek2(), Some(Token { tok: Tok::Word(s), .. }) if s == "texture");
+        if texture && TEXTURE_TYPES.contains(&w.as_str()) {
+            return true;
+        }
         super::statements::STATEMENTS.contains(&w.as_str())
             && !((w == "camera" || w == "object") && space)
             && !(w == "material" && self.at_instance_material())
