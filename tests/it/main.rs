@@ -44,6 +44,7 @@ mod light_scenes;
 mod lights;
 mod mesh_files;
 mod mi;
+mod mi_contours;
 mod mi_controls;
 mod mi_polygon_materials;
 mod mi_textures;

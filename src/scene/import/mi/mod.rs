@@ -24,6 +24,7 @@
 
 pub mod assemble;
 pub mod blocks;
+pub mod contours;
 pub mod cursor;
 pub mod lexer;
 pub mod model;
