@@ -26,14 +26,38 @@ pub struct InstanceGeometry {
     pub world_from_object: Affine3A,
     /// Transform for normals: inverse transpose of the linear part.
     pub normal_from_object: Mat3,
-    /// Index into [`SceneGeometry::materials`].
+    /// Index into [`SceneGeometry::materials`] (of every triangle without one of its own).
     pub material: u32,
+    /// Per local triangle, its material slot when the object's polygons name their own
+    /// materials ([`crate::components::FaceMaterials`]); `None`: every triangle has `material`.
+    pub face_materials: Option<Arc<Vec<u32>>>,
     /// First world triangle of this instance; its triangles are contiguous.
     pub first_triangle: u32,
     /// The object's displacement when it is in `Bump` mode (shading normals only).
     pub bump: Option<Arc<Displacement>>,
     /// The object's vertex colours (linear RGB, one per vertex of `mesh`), if it has them.
     pub colours: Option<Arc<Vec<Vec3>>>,
+}
+
+impl InstanceGeometry {
+    /// Material slot of the instance's local triangle `local`.
+    pub fn material_of_local(&self, local: usize) -> u32 {
+        self.face_materials
+            .as_ref()
+            .and_then(|f| f.get(local).copied())
+            .unwrap_or(self.material)
+    }
+
+    /// Every material slot the instance's triangles use (its own first), without repeats.
+    pub fn material_slots(&self) -> Vec<u32> {
+        let mut slots = vec![self.material];
+        for &s in self.face_materials.iter().flat_map(|f| f.iter()) {
+            if !slots.contains(&s) {
+                slots.push(s);
+            }
+        }
+        slots
+    }
 }
 
 /// Everything about a hit that shading needs.
@@ -83,10 +107,15 @@ impl SceneGeometry {
         (inst, (prim - inst.first_triangle) as usize)
     }
 
+    /// Material slot (index into [`Self::materials`]) of world triangle `prim`.
+    pub fn material_slot(&self, prim: u32) -> u32 {
+        let (inst, local) = self.locate(prim);
+        inst.material_of_local(local)
+    }
+
     /// Material of world triangle `prim`.
     pub fn material_of(&self, prim: u32) -> &Material {
-        let (inst, _) = self.locate(prim);
-        &self.materials[inst.material as usize]
+        &self.materials[self.material_slot(prim) as usize]
     }
 
     /// Turns a hit into a shading point.
@@ -113,7 +142,7 @@ impl SceneGeometry {
             surface,
             normal,
             uv,
-            material: inst.material,
+            material: inst.material_of_local(local),
             instance: slot,
             prim: hit.prim,
         }

@@ -4,7 +4,7 @@
 //! the objects' `Displacement` in `Bump` mode (kept for shading);
 //! the `SceneOrigin` (copied into the geometry); instances' `RayFlags` (per-triangle ray
 //! masks in the BVH);
-//! `settings.bvh_quality`.
+//! `settings.bvh_quality`; objects' `FaceMaterials` (per-triangle material slots).
 //! **Refuses:** placed triangles beyond the supported coordinate range
 //! (`crate::guard::extent`), located at their object.
 //! **Stops:** when the run is interrupted, even inside obvhs's build (waited for through
@@ -25,8 +25,9 @@ use super::prelude::*;
 use super::MERGING;
 use crate::accel::Accel;
 use crate::components::{
-    BakeRequest, Displacement, DisplacementMode, Instance, Material, MaterialRef, Procedural,
-    RayFlags, Scatter, SceneOrigin, SubdivMesh, Surface, VertexColours, WorldFromObject, ALL_RAYS,
+    BakeRequest, Displacement, DisplacementMode, FaceMaterials, Instance, Material, MaterialRef,
+    Procedural, RayFlags, Scatter, SceneOrigin, SubdivMesh, Surface, VertexColours,
+    WorldFromObject, ALL_RAYS,
 };
 use crate::geometry::{InstanceGeometry, SceneGeometry};
 use crate::guard::extent::{located, out_of_range, reach};
@@ -101,18 +102,34 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
         if frame.cancelled() {
             return Err(StageError::Interrupted);
         }
-        let slot = match material_slot.get(&material_ref.0) {
-            Some(&s) => s,
-            None => {
-                let material = world.get::<&Material>(material_ref.0).map_err(|_| {
-                    StageError::Internal(format!("instance {entity:?} has no material"))
-                })?;
-                let s = materials.len() as u32;
-                materials.push((*material).clone());
-                material_entities.push(material_ref.0);
-                material_slot.insert(material_ref.0, s);
-                s
+        let mut slot_of = |material: Entity| -> Result<u32, StageError> {
+            if let Some(&s) = material_slot.get(&material) {
+                return Ok(s);
             }
+            let m = world.get::<&Material>(material).map_err(|_| {
+                StageError::Internal(format!("instance {entity:?} has no material"))
+            })?;
+            let s = materials.len() as u32;
+            materials.push((*m).clone());
+            material_entities.push(material);
+            material_slot.insert(material, s);
+            Ok(s)
+        };
+        let slot = slot_of(material_ref.0)?;
+        let face_materials = match world.get::<&FaceMaterials>(instance.object) {
+            Ok(faces) if faces.0.len() == instance.mesh.triangles.len() => Some(Arc::new(
+                faces
+                    .0
+                    .iter()
+                    .map(|m| m.map_or(Ok(slot), &mut slot_of))
+                    .collect::<Result<Vec<u32>, _>>()?,
+            )),
+            Ok(_) => {
+                return Err(StageError::Internal(format!(
+                    "the polygon materials of instance {entity:?} do not match its triangles"
+                )))
+            }
+            Err(_) => None,
         };
         let xf = world_from_object.0;
         let first = triangles.len() as u32;
@@ -136,6 +153,7 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
             world_from_object: xf,
             normal_from_object: glam::Mat3::from(xf.matrix3).inverse().transpose(),
             material: slot,
+            face_materials,
             first_triangle: first,
             bump: world
                 .get::<&Displacement>(instance.object)

@@ -45,6 +45,13 @@ pub struct SecondUvs(pub Arc<Vec<Vec2>>);
 #[derive(Debug, Clone, PartialEq)]
 pub struct VertexColours(pub Arc<Vec<Vec3>>);
 
+/// The materials an object's own polygons name (`materials` of an inline mesh, `.mi`
+/// `p "material" …`): one entry per triangle of its [`TriMesh`], `Some` the polygon's
+/// material entity, `None` the material the instance resolves to
+/// ([`crate::components::MaterialRef`]). Carried by the object entity beside its mesh.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FaceMaterials(pub Arc<Vec<Option<Entity>>>);
+
 /// A placed copy of an object: the leaf of the resolved instance DAG. The entity also carries
 /// [`crate::components::WorldFromObject`] and [`crate::components::MaterialRef`].
 #[derive(Debug, Clone)]

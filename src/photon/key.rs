@@ -48,6 +48,9 @@ pub fn photon_key(
             "instance {slot} mesh {id} material {} first {} transform {:?} bump {:?}",
             inst.material, inst.first_triangle, inst.world_from_object, inst.bump
         );
+        if let Some(faces) = &inst.face_materials {
+            let _ = writeln!(h, "faces {faces:?}");
+        }
         if id == next {
             let mesh = &inst.mesh;
             for p in &mesh.positions {

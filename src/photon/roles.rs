@@ -63,11 +63,15 @@ impl PhotonRoles {
     pub fn new(geometry: &SceneGeometry, flags: impl Fn(usize) -> Option<PhotonFlags>) -> Self {
         let mut roles = Self::default();
         for (slot, inst) in geometry.instances.iter().enumerate() {
-            let material = &geometry.materials[inst.material as usize];
+            // An instance whose polygons have several materials casts when any of them does.
+            let role = inst
+                .material_slots()
+                .into_iter()
+                .map(|m| default_caustic_role(&geometry.materials[m as usize]))
+                .max_by_key(|r| r.casts())
+                .unwrap_or(PhotonRole::RECEIVES);
             let f = flags(slot).unwrap_or_default();
-            roles
-                .caustic
-                .push(f.caustic.unwrap_or_else(|| default_caustic_role(material)));
+            roles.caustic.push(f.caustic.unwrap_or(role));
             roles.global.push(f.globillum.unwrap_or(PhotonRole::BOTH));
             roles.explicit_caustic.push(f.caustic.is_some());
         }
@@ -88,9 +92,12 @@ impl PhotonRoles {
         (0..self.caustic.len())
             .filter(|&slot| {
                 let inst = &geometry.instances[slot];
-                let material = &geometry.materials[inst.material as usize];
                 self.caustic[slot].casts()
-                    && (self.explicit_caustic[slot] || makes_caustics(&material.shader))
+                    && (self.explicit_caustic[slot]
+                        || inst
+                            .material_slots()
+                            .into_iter()
+                            .any(|m| makes_caustics(&geometry.materials[m as usize].shader)))
             })
             .collect()
     }

@@ -51,6 +51,11 @@ pub enum MeshDesc {
         /// Per-vertex texture coordinates (optional).
         #[serde(default)]
         uvs: Option<Vec<(f64, f64)>>,
+        /// Per-polygon materials (optional): one material name per polygon, `""` for the
+        /// material the instance resolves to (its override, else the object's `material`).
+        /// A polygon's own material wins over both.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        materials: Option<Vec<String>>,
     },
     /// RenderMan `Sphere radius zmin zmax thetamax`.
     Sphere {

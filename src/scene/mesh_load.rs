@@ -32,6 +32,8 @@ pub struct BuiltMesh {
     /// Object-space point subtracted from every position before rounding to f32 (zero when
     /// the mesh lies near its object origin); the instance transforms add it back in f64.
     pub offset: DVec3,
+    /// For inline meshes, the polygon each kept triangle comes from (empty for mesh files).
+    pub polygon_of: Vec<u32>,
 }
 
 impl BuiltMesh {
@@ -145,12 +147,14 @@ pub fn build_inline(
     let v3 = |v: &V3| Vec3::new(v.0 as f32, v.1 as f32, v.2 as f32);
     let d3 = |v: &V3| DVec3::new(v.0, v.1, v.2);
     let mut triangles = Vec::new();
-    for poly in polygons {
+    let mut polygon_of = Vec::new();
+    for (p, poly) in polygons.iter().enumerate() {
         for k in 1..poly.len().saturating_sub(1) {
             triangles.push([poly[0], poly[k], poly[k + 1]]);
+            polygon_of.push(p as u32);
         }
     }
-    finish(
+    finish_with_polygons(
         vertices.iter().map(d3).collect(),
         normals.map(|n| n.iter().map(v3).collect()),
         uvs.map(|u| {
@@ -161,6 +165,7 @@ pub fn build_inline(
         None,
         None,
         triangles,
+        polygon_of,
     )
 }
 
@@ -174,14 +179,38 @@ fn finish(
     colours: Option<Vec<Vec3>>,
     triangles: Vec<[u32; 3]>,
 ) -> BuiltMesh {
+    finish_with_polygons(positions, normals, uvs, uvs1, colours, triangles, Vec::new())
+}
+
+/// [`finish`], keeping `polygon_of` (one entry per triangle, or empty) in step with the kept
+/// triangles.
+fn finish_with_polygons(
+    positions: Vec<DVec3>,
+    normals: Option<Vec<Vec3>>,
+    uvs: Option<Vec<Vec2>>,
+    uvs1: Option<Vec<Vec2>>,
+    colours: Option<Vec<Vec3>>,
+    triangles: Vec<[u32; 3]>,
+    polygon_of: Vec<u32>,
+) -> BuiltMesh {
     let (positions, offset) = super::rebase::centre_positions(&positions);
     let before = triangles.len();
-    let triangles: Vec<[u32; 3]> = triangles
-        .into_iter()
-        .filter(|t| {
+    let keep: Vec<bool> = triangles
+        .iter()
+        .map(|t| {
             let [a, b, c] = t.map(|i| positions[i as usize].as_dvec3());
             a.is_finite() && b.is_finite() && c.is_finite() && (b - a).cross(c - a) != DVec3::ZERO
         })
+        .collect();
+    let polygon_of: Vec<u32> = polygon_of
+        .into_iter()
+        .zip(&keep)
+        .filter_map(|(p, &k)| k.then_some(p))
+        .collect();
+    let triangles: Vec<[u32; 3]> = triangles
+        .into_iter()
+        .zip(&keep)
+        .filter_map(|(t, &k)| k.then_some(t))
         .collect();
     let dropped = before - triangles.len();
     let normals = normals.filter(|n| n.len() == positions.len());
@@ -222,6 +251,7 @@ fn finish(
         uvs1,
         colours,
         offset,
+        polygon_of,
     }
 }
 

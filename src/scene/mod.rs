@@ -288,14 +288,20 @@ fn load(
     let objects = built
         .into_iter()
         .zip(object_geometry)
-        .map(|(b, geometry)| {
+        .zip(&resolved.polygon_materials)
+        .map(|((b, geometry), polygons)| {
             let uvs1 = b.as_ref().and_then(|b| b.uvs1.clone()).map(Arc::new);
             let colours = b.as_ref().and_then(|b| b.colours.clone()).map(Arc::new);
+            let face_materials = b
+                .as_ref()
+                .zip(polygons.as_ref())
+                .map(|(b, polygons)| b.polygon_of.iter().map(|&p| polygons[p as usize]).collect());
             ObjectParts {
                 mesh: b.map(|b| Arc::new(b.mesh)),
                 uvs1,
                 colours,
                 geometry,
+                face_materials,
             }
         })
         .collect();
@@ -362,6 +368,7 @@ fn build_meshes(src: &mut Sources, m: &Merged<'_>, reachable: &[bool]) -> Vec<Op
                 polygons,
                 normals,
                 uvs,
+                ..
             } => {
                 let mut ck = Checker { src, file: it.file };
                 let ok = mesh_load::check_inline(

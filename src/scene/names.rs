@@ -27,6 +27,9 @@ pub struct Resolved {
     pub object_material: Vec<Option<usize>>,
     /// Material override of each instance.
     pub instance_material: Vec<Option<usize>>,
+    /// Per object, its inline mesh's polygon materials (`Some(None)` for `""`), when it
+    /// names them.
+    pub polygon_materials: Vec<Option<Vec<Option<usize>>>>,
     /// What each instance places.
     pub instance_of: Vec<Option<Target>>,
     /// Instances of each group (unresolved members left out).
@@ -134,6 +137,12 @@ pub fn resolve(src: &mut Sources, m: &Merged<'_>) -> Resolved {
         .map(|it| material_ref(src, it.file, it.at(".material"), &it.desc.material))
         .collect();
 
+    let polygon_materials = m
+        .objects
+        .iter()
+        .map(|it| polygon_materials(src, it, &materials))
+        .collect();
+
     let instance_of = m
         .instances
         .iter()
@@ -231,9 +240,80 @@ pub fn resolve(src: &mut Sources, m: &Merged<'_>) -> Resolved {
     Resolved {
         object_material,
         instance_material,
+        polygon_materials,
         instance_of,
         group_members,
         root,
         camera,
     }
+}
+
+/// Checks and resolves the `materials` of an inline mesh: one per polygon, `""` for the
+/// instance's, each other name a material (an unknown name is reported once, at its first
+/// polygon); not with true displacement, which re-tessellates the polygons.
+fn polygon_materials(
+    src: &mut Sources,
+    it: &Item<'_, crate::scene::desc::ObjectDesc>,
+    materials: &Table<'_>,
+) -> Option<Vec<Option<usize>>> {
+    let crate::scene::desc::MeshDesc::Inline {
+        polygons,
+        materials: Some(names),
+        ..
+    } = &it.desc.mesh
+    else {
+        return None;
+    };
+    let path = it.at(".mesh.Inline.materials");
+    if names.len() != polygons.len() {
+        src.error(
+            it.file,
+            &path,
+            format!(
+                "materials has {} entries but polygons has {}: give one material per polygon",
+                names.len(),
+                polygons.len()
+            ),
+            Some("write \"\" for a polygon that takes the object's material".into()),
+        );
+        return None;
+    }
+    let displaced = it
+        .desc
+        .displacement
+        .as_ref()
+        .is_some_and(|d| d.mode == crate::scene::desc_geometry::DisplacementModeDesc::True);
+    if displaced {
+        src.error(
+            it.file,
+            &path,
+            "per-polygon materials cannot be combined with true displacement",
+            Some("give the displaced polygons an object of their own, or use mode: Bump".into()),
+        );
+        return None;
+    }
+    let mut reported: Vec<&str> = Vec::new();
+    let mut ok = true;
+    let resolved = names
+        .iter()
+        .enumerate()
+        .map(|(k, name)| {
+            if name.is_empty() {
+                return None;
+            }
+            let found = materials.get(name);
+            if found.is_none() && !reported.contains(&name.as_str()) {
+                reported.push(name);
+                src.error(
+                    it.file,
+                    &format!("{path}[{k}]"),
+                    format!("unknown material \"{name}\""),
+                    suggestion(name, &materials.names, "materials"),
+                );
+            }
+            ok &= found.is_some();
+            found
+        })
+        .collect();
+    ok.then_some(resolved)
 }

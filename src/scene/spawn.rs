@@ -70,6 +70,9 @@ pub struct ObjectParts {
     pub colours: Option<Arc<Vec<glam::Vec3>>>,
     /// Its geometry components (generator, approximation, displacement).
     pub geometry: Option<ObjectGeometry>,
+    /// Per triangle of `mesh`, the material its polygon names (`None`: the instance's),
+    /// spawned as [`crate::components::FaceMaterials`].
+    pub face_materials: Option<Vec<Option<usize>>>,
 }
 
 /// Everything checked and built, ready to spawn (one entry per element of the merged lists;
@@ -122,6 +125,15 @@ pub fn spawn(src: &Sources, m: &Merged<'_>, parts: Parts) -> World {
 
     let mut material_entity: HashMap<Option<usize>, Entity> = HashMap::new();
     let mut used: Vec<Option<usize>> = parts.leaves.iter().map(|l| l.material).collect();
+    for leaf in &parts.leaves {
+        if let Some(faces) = parts
+            .objects
+            .get(leaf.object)
+            .and_then(|o| o.face_materials.as_ref())
+        {
+            used.extend(faces.iter().filter(|f| f.is_some()));
+        }
+    }
     used.sort_by_key(|u| u.map_or(usize::MAX, |i| i));
     used.dedup();
     for key in used {
@@ -175,6 +187,7 @@ pub fn spawn(src: &Sources, m: &Merged<'_>, parts: Parts) -> World {
             uvs1,
             colours,
             geometry: Some(geometry),
+            face_materials,
         }) = parts.objects.get(o)
         else {
             continue;
@@ -193,6 +206,13 @@ pub fn spawn(src: &Sources, m: &Merged<'_>, parts: Parts) -> World {
             }
             if let Some(colours) = colours {
                 b.add(crate::components::VertexColours(colours.clone()));
+            }
+            if let Some(faces) = face_materials {
+                let entities = faces
+                    .iter()
+                    .map(|f| f.and_then(|i| material_entity.get(&Some(i)).copied()))
+                    .collect();
+                b.add(crate::components::FaceMaterials(Arc::new(entities)));
             }
         }
         geometry.add_to(&mut b);

@@ -46,9 +46,7 @@ impl Volumes {
 
     /// The medium the segment of `ray` ending at `hit` crosses.
     pub fn medium(&self, geometry: &SceneGeometry, ray: &Ray, hit: &Hit) -> Option<&Fog> {
-        let prim = hit.prim as usize;
-        let slot = geometry.triangle_instance[prim] as usize;
-        let material = geometry.instances[slot].material as usize;
+        let material = geometry.material_slot(hit.prim) as usize;
         if let Some(Some(fog)) = self.interiors.get(material) {
             let ng = geometry.accel.surface_point(hit).ng;
             if ng.dot(ray.dir) > 0.0 {

@@ -99,6 +99,7 @@ pub fn geometry(objects: Vec<Object>) -> SceneGeometry {
             world_from_object: Affine3A::IDENTITY,
             normal_from_object: Mat3::IDENTITY,
             material: slot as u32,
+            face_materials: None,
             first_triangle: triangles.len() as u32,
             bump: None,
             colours: None,

@@ -152,8 +152,7 @@ pub fn shadow_transmittance(
         let Some(hit) = ctx.geometry.accel.intersect_as(&ray, RayKind::Shadow) else {
             return Some(t * along(medium, ray.origin));
         };
-        let slot = ctx.geometry.triangle_instance[hit.prim as usize] as usize;
-        let material = ctx.geometry.instances[slot].material as usize;
+        let material = ctx.geometry.material_slot(hit.prim) as usize;
         let interior = volumes.interiors.get(material).and_then(Option::as_ref);
         // A surface without an interior passes light only if its shader lets shadows
         // through (`shading::shadow`); the medium stays the same across it.

@@ -28,12 +28,12 @@ impl MeshLight {
         let mut prims = Vec::new();
         let mut weights = Vec::new();
         for inst in &g.instances {
-            let m = &g.materials[inst.material as usize];
-            if !m.is_emissive() {
-                continue;
-            }
-            let lum = m.emission.max_element();
             for local in 0..inst.mesh.triangles.len() {
+                let m = &g.materials[inst.material_of_local(local) as usize];
+                if !m.is_emissive() {
+                    continue;
+                }
+                let lum = m.emission.max_element();
                 let prim = inst.first_triangle + local as u32;
                 let t = g.accel.triangle(prim);
                 let area = 0.5 * (t[1] - t[0]).cross(t[2] - t[0]).length();

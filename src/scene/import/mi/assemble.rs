@@ -1,8 +1,8 @@
 //! From the statements to the description: the instance tree is walked from the render
 //! root (object space: transforms composed in f64; camera space: none), each camera and
-//! light instance becomes a camera or light named after the instance, objects with several
-//! polygon materials become one object per material under a group of the object's name,
-//! and materials' light lists are resolved against the light instances.
+//! light instance becomes a camera or light named after the instance, each object one
+//! `Inline` object (per-polygon `materials` when its polygons differ), and materials' light
+//! lists are resolved against the light instances.
 
 use std::collections::{HashMap, HashSet};
 use std::f64::consts::PI;
@@ -258,8 +258,9 @@ fn build(raw: &RawScene, root: &Located, out: &mut Out) {
     }
     let material_names: Vec<&str> = raw.materials.iter().map(|(n, _)| n.as_str()).collect();
 
+    let overridden = raw.instances.iter().any(|(_, i)| i.material.is_some());
     for (name, obj) in &raw.objects {
-        objects_of(name, obj, &material_names, out);
+        objects_of(name, obj, &material_names, overridden, out);
     }
     for (name, inst) in &raw.instances {
         let placed_object = objects.contains_key(inst.of.as_str());
@@ -345,9 +346,12 @@ fn build(raw: &RawScene, root: &Located, out: &mut Out) {
     });
 }
 
-/// One object, or one per polygon material (named `object:material`) under a group named
-/// after the object.
-fn objects_of(name: &str, obj: &RawObject, materials: &[&str], out: &mut Out) {
+/// One `Inline` object per `.mi` object. Polygons that all name one material give the
+/// object that material; otherwise (several materials, polygons without one, or a scene
+/// whose instances override materials, which in mental ray reach only polygons without a
+/// material of their own) each polygon names its own in `materials` (`""`: the inherited
+/// one).
+fn objects_of(name: &str, obj: &RawObject, materials: &[&str], overridden: bool, out: &mut Out) {
     let mut order: Vec<Option<&str>> = Vec::new();
     for p in &obj.polygons {
         let m = p.material.as_deref();
@@ -361,76 +365,39 @@ fn objects_of(name: &str, obj: &RawObject, materials: &[&str], out: &mut Out) {
             order.push(m);
         }
     }
-    let single = order.len() == 1;
-    let mut members = Vec::new();
-    for m in &order {
-        let mut remap: HashMap<u32, u32> = HashMap::new();
-        let mut vertices = Vec::new();
-        let mut polygons = Vec::new();
-        for p in obj.polygons.iter().filter(|p| p.material.as_deref() == *m) {
-            let poly = p
-                .vertices
-                .iter()
-                .map(|&v| {
-                    *remap.entry(v).or_insert_with(|| {
-                        vertices.push(obj.vertices[v as usize]);
-                        (vertices.len() - 1) as u32
-                    })
-                })
-                .collect();
-            polygons.push(poly);
-        }
-        let part = if single {
-            name.to_string()
-        } else {
-            format!("{name}:{}", m.unwrap_or("default"))
-        };
-        let i = out.desc.objects.len();
-        out.paths.push((format!("objects[{i}]"), obj.at.clone()));
-        out.desc.objects.push(ObjectDesc {
-            name: part.clone(),
-            mesh: MeshDesc::Inline {
-                vertices,
-                polygons,
-                normals: None,
-                uvs: None,
-            },
-            material: m.map(str::to_string),
-            approximation: None,
-            displacement: None,
-            derivatives: false,
-            caustic: obj.flags.caustic,
-            globillum: obj.flags.globillum,
-            visible: obj.flags.visible,
-            shadow: obj.flags.shadow,
-            trace: obj.flags.trace,
-        });
-        if !single {
-            let i = out.desc.instances.len();
-            out.paths.push((format!("instances[{i}]"), obj.at.clone()));
-            out.desc.instances.push(InstanceDesc {
-                name: part.clone(),
-                of: part.clone(),
-                transform: Vec::new(),
-                material: None,
-                bake: None,
-                caustic: None,
-                globillum: None,
-                visible: None,
-                shadow: None,
-                trace: None,
-            });
-            members.push(part);
-        }
-    }
-    if !single {
-        let i = out.desc.groups.len();
-        out.paths.push((format!("groups[{i}]"), obj.at.clone()));
-        out.desc.groups.push(GroupDesc {
-            name: name.to_string(),
-            members,
-        });
-    }
+    let per_polygon = order.len() > 1 || (overridden && order.iter().any(Option::is_some));
+    let (material, polygon_materials) = if per_polygon {
+        let names = obj
+            .polygons
+            .iter()
+            .map(|p| p.material.clone().unwrap_or_default())
+            .collect();
+        (None, Some(names))
+    } else {
+        (order.first().copied().flatten().map(str::to_string), None)
+    };
+    let i = out.desc.objects.len();
+    out.paths.push((format!("objects[{i}]"), obj.at.clone()));
+    out.desc.objects.push(ObjectDesc {
+        name: name.to_string(),
+        mesh: MeshDesc::Inline {
+            vertices: obj.vertices.clone(),
+            polygons: obj.polygons.iter().map(|p| p.vertices.clone()).collect(),
+            normals: None,
+            // The `t` references, when every vertex has one.
+            uvs: obj.uvs.iter().copied().collect::<Option<Vec<_>>>(),
+            materials: polygon_materials,
+        },
+        material,
+        approximation: None,
+        displacement: None,
+        derivatives: false,
+        caustic: obj.flags.caustic,
+        globillum: obj.flags.globillum,
+        visible: obj.flags.visible,
+        shadow: obj.flags.shadow,
+        trace: obj.flags.trace,
+    });
 }
 
 /// A camera or light placed by the walk: instance name, element, `world_from_object`, where.

@@ -53,6 +53,7 @@ const OPTIONS: &[&str] = &[
     "photonmap",
     "photon",
     "diagnostic",
+    "contour",
     "filter",
     "scanline",
     "jitter",
@@ -182,6 +183,7 @@ pub fn options(r: &mut Reader, c: &mut Cursor, open: Pos) {
             "globillum" => photons.globillum(c, t.pos),
             "finalgather" => photons.final_gather(c, t.pos),
             "diagnostic" => switches::diagnostic(c, t.pos, &mut o.desc),
+            "contour" => super::contours::option(c, t.pos, &mut o.desc),
             "photonmap" => photons.photon_map(c, t.pos),
             "photon" if c.at_word("trace") => photons.trace_depth(c),
             "photon" => {
@@ -379,8 +381,33 @@ fn output(c: &mut Cursor, outputs: &mut Vec<OutputDesc>) {
     let Some((mut file, file_pos)) = c.string("the output file") else {
         return;
     };
+    let mut format_at = None;
     if c.at_string() {
+        format_at = Some((file.clone(), file_pos));
         file = c.string("the output file").map_or(file, |f| f.0);
+    }
+    if kind == "contour" {
+        // `output "contour" "ps"|"eps" "file"`: the contour lines as PostScript.
+        match format_at {
+            Some((f, _)) if f == "ps" || f == "eps" => {}
+            Some((f, at)) => {
+                c.report(
+                    Problem::error(
+                        at,
+                        format!("contour output format \"{f}\" is not supported"),
+                    )
+                    .with_help("write \"ps\" or \"eps\" (Encapsulated PostScript)"),
+                );
+                return;
+            }
+            None => {}
+        }
+        outputs.push(OutputDesc {
+            file,
+            format: Some(FormatDesc::Eps),
+            passes: Some(vec![PassDesc::Contours]),
+        });
+        return;
     }
     let passes = match kind.as_str() {
         "rgb" | "rgb_h" | "rgb_f" | "rgb_16" | "rgb_fp" => vec![PassDesc::Beauty],
@@ -396,7 +423,7 @@ fn output(c: &mut Cursor, outputs: &mut Vec<OutputDesc>) {
                     kind_pos,
                     format!("output type \"{other}\" is not supported"),
                 )
-                .with_help("expected \"rgb\", \"rgba\", \"z\", \"n\" or \"tag\""),
+                .with_help("expected \"rgb\", \"rgba\", \"z\", \"n\", \"tag\" or \"contour\""),
             );
             return;
         }
@@ -602,7 +629,8 @@ pub fn material(r: &mut Reader, c: &mut Cursor, open: Pos) {
         c.skip_to_end("material", open);
         return;
     };
-    let mapped = shaders::material(c, &call, &r.raw.shaders, 0);
+    let mapped = shaders::material(c, &call, &r.raw.shaders, &r.raw.textures, 0);
+    let mut contour = None;
     loop {
         let Some(t) = c.block_token("material", open) else {
             return;
@@ -617,7 +645,12 @@ pub fn material(r: &mut Reader, c: &mut Cursor, open: Pos) {
         c.advance();
         match w.as_str() {
             "opaque" => {}
-            "shadow" | "photon" | "volume" | "environment" | "displace" | "contour" => {
+            "contour" => {
+                if let Some(call) = c.shader_call("the contour shader") {
+                    contour = super::contours::material_shader(c, &call);
+                }
+            }
+            "shadow" | "photon" | "volume" | "environment" | "displace" => {
                 if let Some(call) = c.shader_call(&format!("the {w} shader")) {
                     let msg = if w == "photon" {
                         format!("photon shader \"{}\" is read but not yet mapped", call.name)
@@ -639,7 +672,7 @@ pub fn material(r: &mut Reader, c: &mut Cursor, open: Pos) {
         }
     }
     c.expect_end("material", open);
-    let Some((shader, lights, exclusive)) = mapped else {
+    let Some((shader, lights, exclusive, bind)) = mapped else {
         return;
     };
     if fresh {
@@ -648,11 +681,11 @@ pub fn material(r: &mut Reader, c: &mut Cursor, open: Pos) {
             shader,
             two_sided: false,
             emission: (0.0, 0.0, 0.0),
-            bind: Default::default(),
+            bind,
             bump: None,
             interior: None,
             lights: None,
-            contour: None,
+            contour,
         };
         r.raw.materials.push((
             name,
@@ -765,5 +798,46 @@ pub fn named_shader(r: &mut Reader, c: &mut Cursor) {
     };
     if fresh {
         r.raw.shaders.insert(name, call);
+    }
+}
+
+/// `color|scalar|vector texture "name" [local] [filter [s]] "file"`: an image file that
+/// `mib_texture_lookup` reads by name (the file relative to the declaring `.mi` file).
+pub fn texture(r: &mut Reader, c: &mut Cursor) {
+    c.eat_word("texture");
+    let Some((name, pos)) = c.string("the texture name") else {
+        return;
+    };
+    let fresh = r.define(c, &name, pos);
+    c.eat_word("local");
+    if c.eat_word("filter") && c.at_number() {
+        let _ = c.number("the filter scale");
+    }
+    if !c.at_string() {
+        let at = c.pos();
+        c.error(
+            at,
+            format!("texture \"{name}\" needs an image file (a procedural texture is not mapped)"),
+        );
+        c.skip_arguments();
+        return;
+    }
+    let Some((file, at)) = c.string("the texture file") else {
+        return;
+    };
+    if fresh {
+        // Image files are relative to the root scene file: rebase an included file's.
+        let root = r.root.file.parent().unwrap_or(std::path::Path::new(""));
+        let file = match c.file.parent() {
+            Some(dir) if dir != root => {
+                let full = dir.join(&file);
+                full.strip_prefix(root)
+                    .map_or(full.clone(), std::path::Path::to_path_buf)
+                    .to_string_lossy()
+                    .into_owned()
+            }
+            _ => file,
+        };
+        r.raw.textures.insert(name, (file, c.located(at)));
     }
 }

@@ -7,6 +7,9 @@
 
 use std::path::PathBuf;
 
+/// The types of a `color|scalar|vector texture "name" "file"` statement.
+pub const TEXTURE_TYPES: &[&str] = &["color", "scalar", "vector"];
+
 use super::super::rib::{Located, LocatedProblem, Pos, Problem};
 use super::lexer::{Tok, Token};
 
@@ -161,8 +164,68 @@ impl Cursor {
             return false;
         };
         let space = matches!(self.peek2(), Some(Token { tok: Tok::Word(s), .. }) if s == "space");
+        let texture =
+            matches!(self.peek2(), Some(Token { tok: Tok::Word(s), .. }) if s == "texture");
+        if texture && TEXTURE_TYPES.contains(&w.as_str()) {
+            return true;
+        }
         super::statements::STATEMENTS.contains(&w.as_str())
             && !((w == "camera" || w == "object") && space)
+            && !(w == "material" && self.at_instance_material())
+    }
+
+    /// Whether the `material` at the cursor is an instance's material (`material ["a" …]`,
+    /// or `material "m"` followed by an instance statement), not a `material` block (whose
+    /// name is followed by `opaque`, a shader, `=`, a shader statement or `end material`).
+    fn at_instance_material(&self) -> bool {
+        let word = |k: usize| match self.tokens.get(self.at + k) {
+            Some(Token {
+                tok: Tok::Word(w), ..
+            }) => Some(w.as_str()),
+            _ => None,
+        };
+        let is_string = matches!(
+            self.tokens.get(self.at + 1),
+            Some(Token {
+                tok: Tok::Str(_),
+                ..
+            })
+        );
+        if matches!(
+            self.tokens.get(self.at + 1),
+            Some(Token {
+                tok: Tok::Punct('['),
+                ..
+            })
+        ) {
+            return true;
+        }
+        // A material's `shadow` names a shader; an instance's is a switch.
+        let shader_follows = matches!(
+            self.tokens.get(self.at + 3),
+            Some(Token {
+                tok: Tok::Str(_) | Tok::Punct('='),
+                ..
+            })
+        );
+        is_string
+            && match word(2) {
+                Some("end") => word(3) == Some("instance"),
+                Some("shadow") => !shader_follows,
+                Some(w) => [
+                    "transform",
+                    "visible",
+                    "trace",
+                    "hide",
+                    "tag",
+                    "motion",
+                    "caustic",
+                    "globillum",
+                    "material",
+                ]
+                .contains(&w),
+                None => false,
+            }
     }
 
     /// The next token of a `kind` block opened at `open`, not consumed; `None` (reported:

@@ -6,7 +6,8 @@
 //! statements, `$include` and `link`), [`blocks`] (`options`, `camera`, `light`,
 //! `material` and `declare phenomenon` blocks; [`photon_options`] maps the photon
 //! statements of `options`, [`switches`] its feature switches), [`object`] (`object … group … end group
-//! end object`), [`shaders`] (the built-in shaders' parameters and what each maps onto)
+//! end object`), [`shaders`] (the built-in shaders' parameters and what each maps onto;
+//! [`textures`] the `mib_texture_*` chains onto shader-graph nodes)
 //! and [`assemble`] (the instance tree → cameras, lights, objects, instances and groups).
 //!
 //! **Conventions.** A mental ray `transform` is the 4×4 matrix, written row by row, that
@@ -23,6 +24,7 @@
 
 pub mod assemble;
 pub mod blocks;
+pub mod contours;
 pub mod cursor;
 pub mod lexer;
 pub mod model;
@@ -31,6 +33,7 @@ pub mod photon_options;
 pub mod shaders;
 pub mod statements;
 pub mod switches;
+pub mod textures;
 
 use std::path::Path;
 

@@ -154,6 +154,8 @@ pub struct RawObject {
     pub at: Located,
     /// Vertex positions (the `v` list resolved against the vector list).
     pub vertices: Vec<V3>,
+    /// Per vertex, its first texture vector (`v i t k`: the x and y of vector `k`).
+    pub uvs: Vec<Option<(f64, f64)>>,
     /// Polygons.
     pub polygons: Vec<RawPolygon>,
     /// Flags.
@@ -221,6 +223,8 @@ pub struct RawScene {
     pub groups: Vec<(String, RawGroup)>,
     /// Named shaders (`shader "n" "type" (…)`) and phenomenon roots, by name.
     pub shaders: HashMap<String, ShaderCall>,
+    /// `color|scalar|vector texture "name" "file"`: the file (as written) and where.
+    pub textures: HashMap<String, (String, Located)>,
     /// `render`.
     pub render: Option<RawRender>,
 }

@@ -81,6 +81,7 @@ pub fn object(r: &mut Reader, c: &mut Cursor, open: Pos) {
     let mut obj = RawObject {
         at: c.located(open),
         vertices: Vec::new(),
+        uvs: Vec::new(),
         polygons: Vec::new(),
         flags: Flags::default(),
     };
@@ -193,6 +194,7 @@ fn group(c: &mut Cursor, obj: &mut RawObject, open: Pos) -> bool {
                     ok = false;
                     continue;
                 };
+                obj.uvs.push(None);
                 match vectors.get(i as usize) {
                     Some(p) => obj.vertices.push(*p),
                     None => {
@@ -215,12 +217,33 @@ fn group(c: &mut Cursor, obj: &mut RawObject, open: Pos) -> bool {
                     || c.at_word("u")
                 {
                     let ref_at = c.pos();
+                    let texture = c.at_word("t");
                     c.advance();
+                    if texture && c.at_number() {
+                        let at = c.pos();
+                        if let Some(k) = c.count("the texture vector index of t") {
+                            match vectors.get(k as usize) {
+                                Some(&(u, v, _)) => {
+                                    let last = obj.uvs.last_mut().expect("pushed with the vertex");
+                                    last.get_or_insert((u, v));
+                                }
+                                None => {
+                                    c.error(at, format!("vector index {k} is out of range (the group has {} vectors)", vectors.len()));
+                                    ok = false;
+                                }
+                            }
+                        }
+                        // Further texture spaces: one is mapped.
+                        while c.at_number() {
+                            c.advance();
+                        }
+                        continue;
+                    }
                     c.skip_arguments();
                     if !warned_refs {
                         c.warn(
                             ref_at,
-                            "vertex normal, texture and derivative references are not mapped",
+                            "vertex normal and derivative references are not mapped",
                         );
                         warned_refs = true;
                     }

@@ -14,13 +14,14 @@
 //! - A material shader's `"lights"` list is the material's light list; `"mode" 2` makes it
 //!   exclusive (every other light).
 
-use std::collections::HashMap;
+use std::collections::{BTreeMap, HashMap};
 
 use super::super::rib::{Located, Pos, Problem};
 use super::cursor::{Cursor, Param, ShaderCall, Value};
 use super::model::LightModel;
 use crate::scene::desc::{
-    DepthExceededDesc, EnvironmentDesc, EnvironmentShaderDesc, LocalLobeDesc, ShaderDesc, V3,
+    DepthExceededDesc, EnvironmentDesc, EnvironmentShaderDesc, InputDesc, LocalLobeDesc,
+    ShaderDesc, V3,
 };
 use crate::scene::suggest::closest;
 
@@ -165,6 +166,34 @@ pub const BUILTINS: &[Builtin] = &[
         ],
     },
     Builtin {
+        name: "mib_texture_lookup",
+        role: Role::Texture,
+        params: &["tex", "coord"],
+    },
+    Builtin {
+        name: "mib_texture_vector",
+        role: Role::Texture,
+        params: &["select", "selspace", "vertex", "project"],
+    },
+    Builtin {
+        name: "mib_texture_remap",
+        role: Role::Texture,
+        params: &[
+            "input",
+            "transform",
+            "repeat",
+            "alt_x",
+            "alt_y",
+            "alt_z",
+            "torus_x",
+            "torus_y",
+            "torus_z",
+            "min",
+            "max",
+            "offset",
+        ],
+    },
+    Builtin {
         name: "mib_shadow_transparency",
         role: Role::Shadow,
         params: &["color", "transp", "mode", "lights"],
@@ -224,12 +253,17 @@ pub fn check(
 /// Typed parameter reads of one shader call, reporting wrong kinds.
 pub struct Params<'a> {
     call: &'a ShaderCall,
+    /// Parameters driven by a texture graph (read as their default, silently).
+    bound: Vec<&'static str>,
 }
 
 impl<'a> Params<'a> {
     /// The parameters of `call`.
     pub fn new(call: &'a ShaderCall) -> Self {
-        Self { call }
+        Self {
+            call,
+            bound: Vec::new(),
+        }
     }
 
     fn get(&self, name: &str) -> Option<&'a Param> {
@@ -253,6 +287,9 @@ impl<'a> Params<'a> {
         let Some(p) = self.get(name) else {
             return default;
         };
+        if self.bound.contains(&name) {
+            return default;
+        }
         match &p.value {
             Value::Nums(n) if n.len() == 3 || n.len() == 4 => (n[0], n[1], n[2]),
             Value::Nums(n) if n.len() == 1 => (n[0], n[0], n[0]),
@@ -348,18 +385,69 @@ fn mul(a: V3, b: V3) -> V3 {
     (a.0 * b.0, a.1 * b.1, a.2 * b.2)
 }
 
-/// A material shader mapped: the shader, its light list and whether that is exclusive.
-pub type MappedMaterial = (ShaderDesc, Option<Vec<(String, Located)>>, bool);
+/// A material shader mapped: the shader, its light list, whether that is exclusive, and its
+/// parameters driven by texture graphs (the material's `bind`).
+pub type MappedMaterial = (
+    ShaderDesc,
+    Option<Vec<(String, Located)>>,
+    bool,
+    BTreeMap<String, InputDesc>,
+);
 
-/// Maps the material shader `call` (named shaders in `named` resolve `= "name"` inputs).
+/// The colour parameters of each material shader a texture may drive, with the parameter
+/// of the shader kind it maps onto.
+const TEXTURED: &[(&str, &[(&str, &str)])] = &[
+    ("mib_illum_lambert", &[("diffuse", "color")]),
+    (
+        "mib_illum_phong",
+        &[("diffuse", "color"), ("specular", "specular")],
+    ),
+    (
+        "mib_illum_blinn",
+        &[("diffuse", "diffuse"), ("specular", "specular")],
+    ),
+    (
+        "mib_illum_cooktorr",
+        &[("diffuse", "diffuse"), ("specular", "specular")],
+    ),
+    (
+        "dgs_material",
+        &[
+            ("diffuse", "diffuse"),
+            ("glossy", "glossy"),
+            ("specular", "specular"),
+        ],
+    ),
+];
+
+/// Maps the material shader `call` (named shaders in `named` resolve `= "name"` inputs,
+/// `textures` the `color texture` declarations that `mib_texture_lookup` names).
 pub fn material(
     c: &mut Cursor,
     call: &ShaderCall,
     named: &HashMap<String, ShaderCall>,
+    textures: &HashMap<String, (String, Located)>,
     depth: usize,
 ) -> Option<MappedMaterial> {
     let b = check(c, call, Role::Material, "material")?;
-    let p = Params::new(call);
+    let mut p = Params::new(call);
+    let mut bind = BTreeMap::new();
+    let scope = super::textures::Scope { named, textures };
+    let textured = TEXTURED
+        .iter()
+        .find(|(n, _)| *n == b.name)
+        .map_or(&[][..], |t| t.1);
+    for &(mi, ours) in textured {
+        let Some(param) = p.get(mi) else { continue };
+        match super::textures::colour_input(c, param, &scope) {
+            Some(Some(graph)) => {
+                bind.insert(ours.to_string(), graph);
+                p.bound.push(mi);
+            }
+            Some(None) => return None,
+            None => {}
+        }
+    }
     let ambient = mul(
         p.color(c, "ambience", (0.0, 0.0, 0.0)),
         p.color(c, "ambient", (0.0, 0.0, 0.0)),
@@ -435,7 +523,7 @@ pub fn material(
             let opacity = p.color(c, "opacity", (1.0, 1.0, 1.0));
             let input = match p.value("input").map(|x| &x.value) {
                 Some(Value::Ref(name)) if depth < 8 => match named.get(name) {
-                    Some(inner) => material(c, &inner.clone(), named, depth + 1)?.0,
+                    Some(inner) => material(c, &inner.clone(), named, textures, depth + 1)?.0,
                     None => {
                         let at = p.value("input").map_or(call.pos, |x| x.value_pos);
                         c.error(at, format!("unknown shader \"{name}\""));
@@ -459,7 +547,7 @@ pub fn material(
     } else {
         None
     };
-    Some((shader, lights, exclusive))
+    Some((shader, lights, exclusive, bind))
 }
 
 /// A light shader mapped.

@@ -150,6 +150,9 @@ impl Reader {
             "instance" => object::instance(self, c, t.pos),
             "instgroup" => object::instgroup(self, c, t.pos),
             "render" => self.render(c, t.pos),
+            w if super::cursor::TEXTURE_TYPES.contains(&w) && c.at_word("texture") => {
+                blocks::texture(self, c)
+            }
             other => {
                 let mut p = Problem::error(t.pos, format!("unknown statement \"{other}\""));
                 if let Some(s) = closest(other, STATEMENTS.iter().copied()) {

@@ -530,6 +530,7 @@ fn polygonal(
                 polygons,
                 normals,
                 uvs,
+                materials: None,
             }
         }
     };
