@@ -1,11 +1,31 @@
 //! Emitting meshes as one light: every triangle of an emitting material, chosen with
 //! probability ∝ area × emitted radiance, then a uniform point on it.
+//!
+//! What a sample needs of its triangle (vertices, unit normal, area over choice probability,
+//! emission) is kept per triangle when the light is made ([`EmittingTriangle`]), so sampling
+//! touches neither the scene's materials nor the BVH's triangle copy; the values are computed
+//! with the same operations as before, so samples are the same bit for bit.
 
 use glam::{Vec2, Vec3};
 
 use super::{solid_angle_sample, LightSample};
-use crate::accel::Hit;
+use crate::accel::{geometric_normal, surface_point_with_normal};
 use crate::geometry::SceneGeometry;
+
+/// One emitting triangle as the light sampler uses it.
+#[derive(Debug, Clone, Copy)]
+pub struct EmittingTriangle {
+    /// World-space vertices.
+    pub tri: [Vec3; 3],
+    /// Unit geometric normal ([`geometric_normal`]).
+    pub ng: Vec3,
+    /// Area over the probability of choosing this triangle: the inverse area pdf.
+    pub inv_pdf_area: f32,
+    /// Emitted radiance.
+    pub emission: Vec3,
+    /// Whether both faces emit.
+    pub two_sided: bool,
+}
 
 /// All triangles of emitting materials, sampled by area × emitted radiance.
 #[derive(Debug, Clone)]
@@ -18,6 +38,8 @@ pub struct MeshLight {
     pub total_weight: f32,
     /// Samples per shading point.
     pub samples: u32,
+    /// What sampling needs of each triangle of `prims` (same order).
+    pub triangles: Vec<EmittingTriangle>,
 }
 
 impl MeshLight {
@@ -53,16 +75,36 @@ impl MeshLight {
             cdf.push((acc / total) as f32);
         }
         *cdf.last_mut().expect("non-empty") = 1.0;
+        let total_weight = total as f32;
+        let triangles = prims
+            .iter()
+            .map(|&prim| {
+                let material = g.material_of(prim);
+                let tri = g.accel.triangle(prim);
+                let tri_area = 0.5 * (tri[1] - tri[0]).cross(tri[2] - tri[0]).length();
+                let weight = tri_area * material.emission.max_element();
+                let prob = weight / total_weight;
+                EmittingTriangle {
+                    tri,
+                    ng: geometric_normal(&tri),
+                    inv_pdf_area: tri_area / prob,
+                    emission: material.emission,
+                    two_sided: material.two_sided,
+                }
+            })
+            .collect();
         Some(Self {
             prims,
             cdf,
-            total_weight: total as f32,
+            total_weight,
             samples: samples.max(1),
+            triangles,
         })
     }
 
-    /// A point on an emitting triangle seen from `p`.
-    pub fn sample(&self, p: Vec3, u: Vec2, geometry: &SceneGeometry) -> Option<LightSample> {
+    /// A point on an emitting triangle seen from `p` (`_geometry`: the scene the light was
+    /// made of; everything sampling needs is kept in the light).
+    pub fn sample(&self, p: Vec3, u: Vec2, _geometry: &SceneGeometry) -> Option<LightSample> {
         let cdf = &self.cdf;
         let k = cdf
             .partition_point(|&c| c <= u.x)
@@ -74,22 +116,12 @@ impl MeshLight {
         } else {
             0.5
         };
-        let prim = self.prims[k];
-        let material = geometry.material_of(prim);
-        let tri = geometry.accel.triangle(prim);
-        let tri_area = 0.5 * (tri[1] - tri[0]).cross(tri[2] - tri[0]).length();
-        let weight = tri_area * material.emission.max_element();
-        let prob = weight / self.total_weight;
+        let e = &self.triangles[k];
         let (b1, b2) = crate::sampling::sample_triangle(Vec2::new(ux, u.y));
-        let sp = geometry.accel.surface_point(&Hit {
-            t: 0.0,
-            prim,
-            b1,
-            b2,
-        });
+        let sp = surface_point_with_normal(&e.tri, b1, b2, e.ng);
         // pdf in area measure is prob / tri_area.
-        let mut s = solid_angle_sample(p, sp, material.two_sided, tri_area / prob)?;
-        s.contribution *= material.emission;
+        let mut s = solid_angle_sample(p, sp, e.two_sided, e.inv_pdf_area)?;
+        s.contribution *= e.emission;
         Some(s)
     }
 
