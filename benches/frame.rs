@@ -1,6 +1,6 @@
 //! Whole-frame benchmarks: the Cornell box at 256×256 with 16 spp through every stage but
 //! output, thread scaling (1 vs 2 workers), plus the `shade` stage alone (shaded samples per
-//! second).
+//! second, with the `Direct` integrator and with the path tracer).
 
 use std::path::PathBuf;
 
@@ -61,6 +61,15 @@ fn shade_only(c: &mut Criterion) {
         .expect("stages before shade");
     group.throughput(Throughput::Elements(256 * 256 * 4));
     group.bench_function("cornell_direct_4spp", |b| {
+        b.iter(|| {
+            stages[shade]
+                .run_body(&mut scene.world, &frame)
+                .expect("shade")
+        })
+    });
+    // The reference path tracer on the same frame (issue 17's samples-per-second target).
+    frame.inputs.settings.integrator = stagelight::settings::Integrator::Path;
+    group.bench_function("cornell_path_4spp", |b| {
         b.iter(|| {
             stages[shade]
                 .run_body(&mut scene.world, &frame)

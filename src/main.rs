@@ -300,6 +300,9 @@ struct BenchArgs {
     /// the physical memory, `ulimit -v` and the cgroup limit.
     #[arg(long = "memory-limit", value_name = "BYTES", value_parser = stagelight::budget::parse_bytes)]
     memory_limit: Option<u64>,
+    /// Radiance integrator (overrides the scene's `options.integrator`).
+    #[arg(long, value_enum)]
+    integrator: Option<IntegratorArg>,
 }
 
 #[derive(Args)]
@@ -1076,6 +1079,9 @@ fn bench(args: BenchArgs) -> ExitCode {
     let mut settings = scene.settings.clone();
     // A bench traces its photons: a kept photon map file would hide their cost.
     settings.photon_map = None;
+    if let Some(integrator) = args.integrator {
+        settings.integrator = integrator.integrator();
+    }
     let mut frame = Frame::new(settings);
     // Outputs land in the scratch directory, under their own file names.
     frame.inputs.outputs.directory = Some(scratch.clone());

@@ -32,7 +32,10 @@ use crate::settings::BvhQuality;
 pub use brute::brute_force_intersect;
 pub use counters::RayCounts;
 pub use ray_kind::{RayKind, MAX_PASSED};
-pub use spawn::{offset_ray_origin, spawn_ray, spawn_ray_to, spawn_ray_to_surface, SHADOW_EPSILON};
+pub use spawn::{
+    geometric_normal, offset_ray_origin, spawn_ray, spawn_ray_to, spawn_ray_to_surface,
+    surface_point_with_normal, SHADOW_EPSILON,
+};
 pub use triangle::{gamma, intersect_triangle, is_degenerate, MACHINE_EPSILON};
 
 /// A ray segment `origin + t·dir`, `t ∈ (0, t_max)`. `dir` need not be unit length; `t` is in
@@ -161,6 +164,10 @@ impl Accel {
     /// When `rays` and `out` differ in length.
     pub fn intersect_batch(&self, rays: &[Ray], out: &mut [Option<Hit>]) {
         self.counters.add_closest(rays.len() as u64);
+        #[cfg(target_arch = "x86_64")]
+        if traverse_wide::closest_batch(&self.bvh, rays, out) {
+            return;
+        }
         traverse::closest_batch(&self.bvh, rays, out);
     }
 
@@ -171,6 +178,10 @@ impl Accel {
     /// When `rays` and `out` differ in length.
     pub fn occluded_batch(&self, rays: &[Ray], out: &mut [bool]) {
         self.counters.add_occlusion(rays.len() as u64);
+        #[cfg(target_arch = "x86_64")]
+        if traverse_wide::occluded_batch(&self.bvh, rays, out) {
+            return;
+        }
         traverse::occluded_batch(&self.bvh, rays, out);
     }
 

@@ -22,19 +22,24 @@ pub const SHADOW_EPSILON: f32 = 1e-4;
 /// Builds the surface point of barycentrics `(b1, b2)` on `tri` with its error bound and unit
 /// geometric normal `(v1 − v0) × (v2 − v0)` (recomputed in `f64` when `f32` underflows).
 pub(crate) fn surface_point(tri: &[Vec3; 3], b1: f32, b2: f32) -> SurfacePoint {
+    surface_point_with_normal(tri, b1, b2, geometric_normal(tri))
+}
+
+/// [`Accel::surface_point`](super::Accel::surface_point) on a triangle whose unit geometric
+/// normal `ng` ([`geometric_normal`]) the caller keeps (e.g. a light's triangles, sampled
+/// over and over): the same point, bit for bit, without recomputing the normal.
+#[inline]
+pub fn surface_point_with_normal(tri: &[Vec3; 3], b1: f32, b2: f32, ng: Vec3) -> SurfacePoint {
     let b0 = 1.0 - b1 - b2;
     let (w0, w1, w2) = (tri[0] * b0, tri[1] * b1, tri[2] * b2);
     let p = w0 + w1 + w2;
     let p_err = gamma(7) * (w0.abs() + w1.abs() + w2.abs());
-    SurfacePoint {
-        p,
-        p_err,
-        ng: geometric_normal(tri),
-    }
+    SurfacePoint { p, p_err, ng }
 }
 
-/// Unit geometric normal of a triangle; `Vec3::ZERO` only for degenerate input.
-pub(crate) fn geometric_normal(tri: &[Vec3; 3]) -> Vec3 {
+/// Unit geometric normal of a triangle, `(v1 − v0) × (v2 − v0)` normalised (in `f64` when
+/// `f32` underflows); `Vec3::ZERO` only for degenerate input.
+pub fn geometric_normal(tri: &[Vec3; 3]) -> Vec3 {
     let n = (tri[1] - tri[0]).cross(tri[2] - tri[0]).normalize_or_zero();
     if n != Vec3::ZERO {
         return n;

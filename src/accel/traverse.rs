@@ -442,9 +442,9 @@ fn occluded_with<S: Stack, N: NodeTest>(bvh: &Bvh, ray: &Ray, mut stack: S) -> b
 /// time by [`ClosestLane::step`]. It does exactly what [`closest_with`] does, in the same
 /// order, so both return identical hits (`batch_equals_single_ray` tests it); the single-ray
 /// kernel keeps its own loop because keeping the state in a struct cost it 5–8 %.
-struct ClosestLane<S> {
+struct ClosestLane<S, N> {
     woop: WoopRay,
-    nr: NodeRay,
+    nr: N,
     /// The closest candidate so far as (BVH-order index, b1, b2); its original index is
     /// looked up only on an exact tie and once at the end (`prim_ids` is cold).
     best: Option<(usize, f32, f32)>,
@@ -456,12 +456,12 @@ struct ClosestLane<S> {
     stack: S,
 }
 
-impl<S: Stack> ClosestLane<S> {
+impl<S: Stack, N: NodeTest> ClosestLane<S, N> {
     #[inline(always)]
     fn new(ray: &Ray, stack: S) -> Self {
         Self {
             woop: WoopRay::new(ray.origin, ray.dir),
-            nr: NodeRay::new(ray),
+            nr: N::new(ray),
             best: None,
             best_t: ray.t_max,
             cull: ray.t_max * FAR_SCALE,
@@ -474,7 +474,7 @@ impl<S: Stack> ClosestLane<S> {
     #[inline(always)]
     fn restart(&mut self, ray: &Ray) {
         self.woop = WoopRay::new(ray.origin, ray.dir);
-        self.nr = NodeRay::new(ray);
+        self.nr = N::new(ray);
         self.best = None;
         self.best_t = ray.t_max;
         self.cull = ray.t_max * FAR_SCALE;
@@ -504,13 +504,9 @@ impl<S: Stack> ClosestLane<S> {
             }
         } else {
             let node = &bvh.nodes[cur as usize];
-            let (mut mask, entry) = self.nr.intersect(node, self.best_t);
+            let (mut mask, tn) = self.nr.intersect(node, self.best_t);
             if mask != 0 {
                 let base = self.stack.len();
-                let tn: [f32; 8] = {
-                    let (a, b) = (entry[0].to_array(), entry[1].to_array());
-                    [a[0], a[1], a[2], a[3], b[0], b[1], b[2], b[3]]
-                };
                 while mask != 0 {
                     let slot = mask.trailing_zeros() as usize;
                     mask &= mask - 1;
@@ -546,21 +542,21 @@ impl<S: Stack> ClosestLane<S> {
 }
 
 /// The state of one occlusion traversal (see [`ClosestLane`]).
-struct OcclusionLane<S> {
+struct OcclusionLane<S, N> {
     woop: WoopRay,
-    nr: NodeRay,
+    nr: N,
     t_max: f32,
     cur: u32,
     hit: bool,
     stack: S,
 }
 
-impl<S: Stack> OcclusionLane<S> {
+impl<S: Stack, N: NodeTest> OcclusionLane<S, N> {
     #[inline(always)]
     fn new(ray: &Ray, stack: S) -> Self {
         Self {
             woop: WoopRay::new(ray.origin, ray.dir),
-            nr: NodeRay::new(ray),
+            nr: N::new(ray),
             t_max: ray.t_max,
             cur: 0,
             hit: false,
@@ -572,7 +568,7 @@ impl<S: Stack> OcclusionLane<S> {
     #[inline(always)]
     fn restart(&mut self, ray: &Ray) {
         self.woop = WoopRay::new(ray.origin, ray.dir);
-        self.nr = NodeRay::new(ray);
+        self.nr = N::new(ray);
         self.t_max = ray.t_max;
         self.cur = 0;
         self.hit = false;
@@ -652,14 +648,26 @@ fn prefetch(bvh: &Bvh, r: u32) {
     let _ = (bvh, r);
 }
 
+/// Closest hits of `rays` into `out` with the SSE node test (the fallback of
+/// `traverse_wide.rs`; `Accel` picks the kernel).
+pub(crate) fn closest_batch(bvh: &Bvh, rays: &[Ray], out: &mut [Option<Hit>]) {
+    closest_batch_in::<NodeRay>(bvh, rays, out);
+}
+
+/// Occlusion of `rays` into `out` with the SSE node test.
+pub(crate) fn occluded_batch(bvh: &Bvh, rays: &[Ray], out: &mut [bool]) {
+    occluded_batch_in::<NodeRay>(bvh, rays, out);
+}
+
 /// Closest hits of `rays` into `out`, [`BATCH_LANES`] rays traversed interleaved: each lane
 /// advances by one node or leaf in turn, so the cache misses of one ray overlap the work of
-/// the others. Results are those of [`closest`], ray by ray.
-pub(crate) fn closest_batch(bvh: &Bvh, rays: &[Ray], out: &mut [Option<Hit>]) {
+/// the others. Results are those of [`closest`], ray by ray, for any node test `N`.
+#[inline(always)]
+pub(super) fn closest_batch_in<N: NodeTest>(bvh: &Bvh, rays: &[Ray], out: &mut [Option<Hit>]) {
     assert_eq!(rays.len(), out.len(), "one result slot per ray");
     if bvh.nodes.is_empty() || stack_bound(bvh.depth) > ARRAY_STACK {
         for (r, o) in rays.iter().zip(out.iter_mut()) {
-            *o = closest(bvh, r);
+            *o = closest_in::<N>(bvh, r);
         }
         return;
     }
@@ -676,7 +684,7 @@ pub(crate) fn closest_batch(bvh: &Bvh, rays: &[Ray], out: &mut [Option<Hit>]) {
         }
         None
     };
-    let mut lanes: [Option<(usize, ClosestLane<ArrayStack<ARRAY_STACK>>)>; BATCH_LANES] =
+    let mut lanes: [Option<(usize, ClosestLane<ArrayStack<ARRAY_STACK>, N>)>; BATCH_LANES] =
         std::array::from_fn(|_| None);
     for slot in lanes.iter_mut() {
         *slot = take(out).map(|i| (i, ClosestLane::new(&rays[i], ArrayStack::new())));
@@ -704,13 +712,14 @@ pub(crate) fn closest_batch(bvh: &Bvh, rays: &[Ray], out: &mut [Option<Hit>]) {
     }
 }
 
-/// Occlusion of `rays` into `out`, interleaved like [`closest_batch`]; results are those of
-/// [`occluded`], ray by ray.
-pub(crate) fn occluded_batch(bvh: &Bvh, rays: &[Ray], out: &mut [bool]) {
+/// Occlusion of `rays` into `out`, interleaved like [`closest_batch_in`]; results are those
+/// of [`occluded`], ray by ray.
+#[inline(always)]
+pub(super) fn occluded_batch_in<N: NodeTest>(bvh: &Bvh, rays: &[Ray], out: &mut [bool]) {
     assert_eq!(rays.len(), out.len(), "one result slot per ray");
     if bvh.nodes.is_empty() || stack_bound(bvh.depth) > ARRAY_STACK {
         for (r, o) in rays.iter().zip(out.iter_mut()) {
-            *o = occluded(bvh, r);
+            *o = occluded_in::<N>(bvh, r);
         }
         return;
     }
@@ -726,7 +735,7 @@ pub(crate) fn occluded_batch(bvh: &Bvh, rays: &[Ray], out: &mut [bool]) {
         }
         None
     };
-    let mut lanes: [Option<(usize, OcclusionLane<ArrayStack<ARRAY_STACK>>)>; BATCH_LANES] =
+    let mut lanes: [Option<(usize, OcclusionLane<ArrayStack<ARRAY_STACK>, N>)>; BATCH_LANES] =
         std::array::from_fn(|_| None);
     for slot in lanes.iter_mut() {
         *slot = take(out).map(|i| (i, OcclusionLane::new(&rays[i], ArrayStack::new())));

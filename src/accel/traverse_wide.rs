@@ -1,7 +1,9 @@
-//! The AVX2 traversal kernels (x86-64 only), selected at run time: the single-ray closest-hit
-//! and occlusion loops of `traverse.rs`, compiled for AVX2, with an 8-wide node test (all
-//! eight children in one instruction sequence instead of two 4-wide halves).
+//! The AVX2 traversal kernels (x86-64 only), selected at run time: the single-ray and batch
+//! closest-hit and occlusion loops of `traverse.rs`, compiled for AVX2, with an 8-wide node
+//! test (all eight children in one instruction sequence instead of two 4-wide halves).
 //!
+//! * **Batches**: [`closest_batch`] and [`occluded_batch`] run the batch kernels of
+//!   `traverse.rs` with the same 8-wide node test in every lane.
 //! * **Dispatch**: [`closest`] and [`occluded`] answer `None` when the CPU lacks AVX2
 //!   (`is_x86_feature_detected!`, cached by std) or when `STAGELIGHT_TRAVERSAL=sse` (or
 //!   `sse-sorted`) was set at the first query (read once; for A/B measurements); the caller then runs the SSE kernel,
@@ -23,7 +25,9 @@ use std::arch::x86_64::{
 use std::sync::OnceLock;
 
 use super::bvh::{Bvh, Node};
-use super::traverse::{closest_in, occluded_in, NodeTest, FAR_SCALE_FACTOR};
+use super::traverse::{
+    closest_batch_in, closest_in, occluded_batch_in, occluded_in, NodeTest, FAR_SCALE_FACTOR,
+};
 use super::{Hit, Ray};
 
 /// Whether the AVX2 kernels run (AVX2 present and not turned off by the environment).
@@ -53,6 +57,44 @@ pub(super) fn occluded(bvh: &Bvh, ray: &Ray) -> Option<bool> {
     }
     // SAFETY: AVX2 was detected on this CPU just above.
     Some(unsafe { occluded_avx2(bvh, ray) })
+}
+
+/// Closest hits of a batch with the AVX2 node test in every lane; false (nothing written)
+/// when the AVX2 kernels do not run here.
+#[inline]
+pub(super) fn closest_batch(bvh: &Bvh, rays: &[Ray], out: &mut [Option<Hit>]) -> bool {
+    if !use_avx2() {
+        return false;
+    }
+    // SAFETY: AVX2 was detected on this CPU just above.
+    unsafe { closest_batch_avx2(bvh, rays, out) };
+    true
+}
+
+/// Occlusion of a batch with the AVX2 node test; false (nothing written) when it does not
+/// run here.
+#[inline]
+pub(super) fn occluded_batch(bvh: &Bvh, rays: &[Ray], out: &mut [bool]) -> bool {
+    if !use_avx2() {
+        return false;
+    }
+    // SAFETY: AVX2 was detected on this CPU just above.
+    unsafe { occluded_batch_avx2(bvh, rays, out) };
+    true
+}
+
+/// # Safety
+/// The CPU must support AVX2.
+#[target_feature(enable = "avx2")]
+unsafe fn closest_batch_avx2(bvh: &Bvh, rays: &[Ray], out: &mut [Option<Hit>]) {
+    closest_batch_in::<NodeRay8>(bvh, rays, out);
+}
+
+/// # Safety
+/// The CPU must support AVX2.
+#[target_feature(enable = "avx2")]
+unsafe fn occluded_batch_avx2(bvh: &Bvh, rays: &[Ray], out: &mut [bool]) {
+    occluded_batch_in::<NodeRay8>(bvh, rays, out);
 }
 
 /// # Safety
@@ -262,6 +304,23 @@ mod tests {
                 }
             }
             assert!(hits > 300, "{hits}");
+            // The AVX2 batch kernels (every length around the lane count) answer as the SSE
+            // single-ray kernel does, ray by ray.
+            for n in [1, 11, 12, 13, rays.len()] {
+                let rays = &rays[..n];
+                let mut batch_hits = vec![None; n];
+                let mut batch_occ = vec![false; n];
+                // SAFETY: AVX2 was detected above.
+                unsafe {
+                    closest_batch_avx2(&bvh, rays, &mut batch_hits);
+                    occluded_batch_avx2(&bvh, rays, &mut batch_occ);
+                }
+                for (i, r) in rays.iter().enumerate() {
+                    let sse_hit = closest_in::<NodeRay>(&bvh, r);
+                    assert_eq!(hit_bits(batch_hits[i]), hit_bits(sse_hit), "{r:?}");
+                    assert_eq!(batch_occ[i], occluded_in::<NodeRay>(&bvh, r), "{r:?}");
+                }
+            }
         }
     }
 

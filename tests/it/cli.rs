@@ -234,6 +234,39 @@ fn bench_reports_throughput_per_stage_and_writes_nothing_here() {
 }
 
 #[test]
+fn bench_integrator_flag_puts_the_path_tracer_in_the_ledger() {
+    let dir = scratch("bench_integrator");
+    let closest = |integrator: &str| {
+        let o = run(bin()
+            .current_dir(&dir)
+            .args([
+                "bench",
+                "--json",
+                "--threads",
+                "1",
+                "--integrator",
+                integrator,
+            ])
+            .arg(asset("test_plane.ron")));
+        assert!(o.status.success(), "{}", stderr(&o));
+        let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+        let shade = v["stages"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|s| s["stage"] == "shade")
+            .unwrap()
+            .clone();
+        assert_eq!(shade["items"], 508 * 380 * 4);
+        shade["rays_closest"].as_u64().unwrap()
+    };
+    // Direct: a camera ray per sample plus a pixel-centre ray (as above); the path tracer
+    // also traces a continuation ray from every sample that hits the lit plane.
+    assert_eq!(closest("direct"), 508 * 380 * 5);
+    assert!(closest("path") > 508 * 380 * 6);
+}
+
+#[test]
 fn integrator_flag_selects_the_path_tracer_deterministically() {
     let dir = scratch("integrator");
     let mut bytes = Vec::new();

@@ -149,6 +149,7 @@ impl Bsdf {
     /// The BSDF of `shader` seen from the front (`front = true`) or back face. `None` for
     /// shaders that do not integrate light (`Constant`, `DefaultSurface`) or that reflect
     /// nothing. Of a `Local` model only its mirror term is a lobe.
+    #[inline]
     pub fn new(shader: &Shader, front: bool) -> Option<Self> {
         let mut b = Self {
             lobes: [(Vec3::ZERO, Lobe::Lambert); MAX_LOBES],
@@ -156,7 +157,7 @@ impl Bsdf {
             prob: [0.0; MAX_LOBES],
         };
         b.push_shader(shader, Vec3::ONE, front);
-        b.finish()
+        b.finish().then_some(b)
     }
 
     /// A BSDF made of the given weighted lobes (energy clamp and probabilities applied).
@@ -169,7 +170,7 @@ impl Bsdf {
         for &(w, l) in lobes {
             b.push(w, l);
         }
-        b.finish()
+        b.finish().then_some(b)
     }
 
     fn push(&mut self, weight: Vec3, lobe: Lobe) {
@@ -369,9 +370,12 @@ impl Bsdf {
         }
     }
 
-    fn finish(mut self) -> Option<Self> {
+    /// Applies the energy clamp and sets the lobe probabilities in place (moving the
+    /// 170-byte value through an `Option` cost two copies per vertex); false when nothing
+    /// is reflected.
+    fn finish(&mut self) -> bool {
         if self.len == 0 {
-            return None;
+            return false;
         }
         let sum = self.lobes[..self.len]
             .iter()
@@ -385,12 +389,12 @@ impl Bsdf {
             .map(|(w, _)| w.max_element())
             .sum();
         if total <= 0.0 {
-            return None;
+            return false;
         }
         for i in 0..self.len {
             self.prob[i] = self.lobes[i].0.max_element() / total;
         }
-        Some(self)
+        true
     }
 
     /// The weighted lobes (after the energy clamp).

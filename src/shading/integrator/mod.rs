@@ -277,6 +277,7 @@ impl<'a> Vertex<'a> {
     }
 
     /// The BSDF of this face.
+    #[inline]
     pub fn bsdf(&self) -> Option<Bsdf> {
         Bsdf::new(&self.shader, self.front)
     }

@@ -1,13 +1,36 @@
 //! Emitting meshes as one light: every triangle of an emitting material, chosen with
 //! probability ∝ area × emitted radiance (the material's constant `emission`), then a
 //! uniform point on it, whose radiance is the emission times its texture there.
+//!
+//! What a sample needs of its triangle (vertices, unit normal, area over choice probability,
+//! emission) is kept per triangle when the light is made ([`EmittingTriangle`]), so sampling
+//! touches neither the scene's materials nor the BVH's triangle copy (except to evaluate an
+//! emission texture); the values are computed with the same operations as before, so samples
+//! are the same bit for bit.
 
 use glam::{Vec2, Vec3};
 
 use super::{solid_angle_sample, LightSample};
-use crate::accel::Hit;
+use crate::accel::{geometric_normal, surface_point_with_normal, Hit};
 use crate::geometry::SceneGeometry;
 use crate::shading::texture::hit::emission_at;
+
+/// One emitting triangle as the light sampler uses it.
+#[derive(Debug, Clone, Copy)]
+pub struct EmittingTriangle {
+    /// World-space vertices.
+    pub tri: [Vec3; 3],
+    /// Unit geometric normal ([`geometric_normal`]).
+    pub ng: Vec3,
+    /// Area over the probability of choosing this triangle: the inverse area pdf.
+    pub inv_pdf_area: f32,
+    /// Emitted radiance.
+    pub emission: Vec3,
+    /// Whether both faces emit.
+    pub two_sided: bool,
+    /// Whether the material has an emission texture (evaluated at the sampled point).
+    pub textured: bool,
+}
 
 /// All triangles of emitting materials, sampled by area × emitted radiance.
 #[derive(Debug, Clone)]
@@ -20,6 +43,8 @@ pub struct MeshLight {
     pub total_weight: f32,
     /// Samples per shading point.
     pub samples: u32,
+    /// What sampling needs of each triangle of `prims` (same order).
+    pub triangles: Vec<EmittingTriangle>,
 }
 
 impl MeshLight {
@@ -55,15 +80,36 @@ impl MeshLight {
             cdf.push((acc / total) as f32);
         }
         *cdf.last_mut().expect("non-empty") = 1.0;
+        let total_weight = total as f32;
+        let triangles = prims
+            .iter()
+            .map(|&prim| {
+                let material = g.material_of(prim);
+                let tri = g.accel.triangle(prim);
+                let tri_area = 0.5 * (tri[1] - tri[0]).cross(tri[2] - tri[0]).length();
+                let weight = tri_area * material.emission.max_element();
+                let prob = weight / total_weight;
+                EmittingTriangle {
+                    tri,
+                    ng: geometric_normal(&tri),
+                    inv_pdf_area: tri_area / prob,
+                    emission: material.emission,
+                    two_sided: material.two_sided,
+                    textured: material.graph.as_deref().is_some_and(|g| g.emission.is_some()),
+                }
+            })
+            .collect();
         Some(Self {
             prims,
             cdf,
-            total_weight: total as f32,
+            total_weight,
             samples: samples.max(1),
+            triangles,
         })
     }
 
-    /// A point on an emitting triangle seen from `p`.
+    /// A point on an emitting triangle seen from `p` (`geometry`: the scene the light was
+    /// made of, read only for emission textures).
     pub fn sample(&self, p: Vec3, u: Vec2, geometry: &SceneGeometry) -> Option<LightSample> {
         let cdf = &self.cdf;
         let k = cdf
@@ -76,24 +122,23 @@ impl MeshLight {
         } else {
             0.5
         };
-        let prim = self.prims[k];
-        let material = geometry.material_of(prim);
-        let tri = geometry.accel.triangle(prim);
-        let tri_area = 0.5 * (tri[1] - tri[0]).cross(tri[2] - tri[0]).length();
-        let weight = tri_area * material.emission.max_element();
-        let prob = weight / self.total_weight;
+        let e = &self.triangles[k];
         let (b1, b2) = crate::sampling::sample_triangle(Vec2::new(ux, u.y));
-        let hit = Hit {
-            t: 0.0,
-            prim,
-            b1,
-            b2,
-        };
-        let sp = geometry.accel.surface_point(&hit);
+        let sp = surface_point_with_normal(&e.tri, b1, b2, e.ng);
         // pdf in area measure is prob / tri_area.
-        let mut s = solid_angle_sample(p, sp, material.two_sided, tri_area / prob)?;
+        let mut s = solid_angle_sample(p, sp, e.two_sided, e.inv_pdf_area)?;
         // Chosen by the constant emission; a texture scales what the chosen point sends.
-        s.contribution *= emission_at(geometry, &hit, material);
+        s.contribution *= if e.textured {
+            let hit = Hit {
+                t: 0.0,
+                prim: self.prims[k],
+                b1,
+                b2,
+            };
+            emission_at(geometry, &hit, geometry.material_of(hit.prim))
+        } else {
+            e.emission
+        };
         Some(s)
     }
 
