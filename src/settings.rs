@@ -125,6 +125,10 @@ pub struct PhotonMapSettings {
     pub gather: u32,
     /// Final-gather rays per shading point (global illumination only; ignored for caustics).
     pub final_gather: u32,
+    /// Global illumination only: final-gather rays read irradiance precomputed at every
+    /// fourth photon (`photon::irradiance`) on Lambertian surfaces; `false` runs the
+    /// `gather`-photon estimate for every ray.
+    pub precompute: bool,
     /// Caustic map only: emit photons only toward the caustic casters' bounding spheres
     /// (aimed emission, same expected value, far more photons stored); `false` emits in
     /// every direction the lights send light.

@@ -15,6 +15,8 @@
 //! number of emitted photons with powers summing (in expectation) to what reaches the
 //! stored surfaces, identical at any thread count.
 
+use std::sync::atomic::AtomicBool;
+
 use hecs::World;
 
 use super::prelude::*;
@@ -26,6 +28,7 @@ use crate::photon::aim::Aim;
 use crate::photon::coarse;
 use crate::photon::emit::bounding_sphere;
 use crate::photon::file::{encode, StoredMap, StoredMaps};
+use crate::photon::irradiance::IrradiancePoints;
 use crate::photon::key::photon_key;
 use crate::photon::progressive::{trace_passes, Progressive};
 use crate::photon::roles::instance_sphere;
@@ -120,7 +123,7 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
     if let Some(at) = &kept {
         match store::load(at, key) {
             Ok(stored) => {
-                let maps = gather_maps(stored, settings, diagonal);
+                let maps = gather_maps(stored, settings, diagonal, &frame.inputs.cancel)?;
                 return Ok(Work::new(maps.stored(), "photons")
                     .with_output(StageOutput::Photons(maps))
                     .reused(format!(
@@ -181,15 +184,22 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
             bytes: encode(&stored),
         })
         .collect();
-    let maps = gather_maps(stored, settings, diagonal);
+    let maps = gather_maps(stored, settings, diagonal, &frame.inputs.cancel)?;
     Ok(Work::new(maps.stored(), "photons")
         .with_output(StageOutput::Photons(maps))
         .with_pending(pending))
 }
 
 /// The maps with the knobs of the estimates that read them (from `settings`, which the
-/// content hash leaves out: they can change without tracing again).
-fn gather_maps(stored: StoredMaps, settings: &RenderSettings, diagonal: f32) -> PhotonMaps {
+/// content hash leaves out: they can change without tracing again), and the irradiance
+/// final-gather rays read, precomputed at photon positions (interrupted when `cancel` is
+/// raised).
+fn gather_maps(
+    stored: StoredMaps,
+    settings: &RenderSettings,
+    diagonal: f32,
+    cancel: &AtomicBool,
+) -> Result<PhotonMaps, StageError> {
     let knobs = |s: Option<PhotonMapSettings>, m: Option<StoredMap>| {
         let (s, m) = (s?, m?);
         Some(GatherMap {
@@ -215,11 +225,23 @@ fn gather_maps(stored: StoredMaps, settings: &RenderSettings, diagonal: f32) -> 
         (Some(c), Some(g)) => coarse::gather_view(c, g),
         _ => None,
     };
-    PhotonMaps {
+    let precompute = settings
+        .photons
+        .global_illumination
+        .is_some_and(|s| s.precompute);
+    let gather_irradiance = match &global {
+        Some(g) if precompute => Some(
+            IrradiancePoints::precompute(g, gather_caustics.as_ref(), cancel)
+                .ok_or(StageError::Interrupted)?,
+        ),
+        _ => None,
+    };
+    Ok(PhotonMaps {
         caustics,
         global,
         gather_caustics,
-    }
+        gather_irradiance,
+    })
 }
 
 /// Each emitter's photon controls, in the order of the light set (entity order).

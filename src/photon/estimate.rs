@@ -5,9 +5,10 @@
 use glam::Vec3;
 
 use super::gather_path::land;
+use super::irradiance::IrradiancePoints;
 use super::{GatherMap, Neighbour, PhotonMaps};
 use crate::sampling::Sampler;
-use crate::shading::bsdf::Bsdf;
+use crate::shading::bsdf::{Bsdf, Lobe};
 use crate::shading::integrator::{PhotonRadiance, ShadeContext, Vertex};
 
 impl PhotonRadiance for PhotonMaps {
@@ -26,8 +27,20 @@ impl PhotonRadiance for PhotonMaps {
             radiance += reflected(c, v, bsdf, &mut scratch);
         }
         if let Some(g) = &self.global {
-            let caustics = self.gather_caustics.as_ref();
-            radiance += final_gather(ctx, g, caustics, v, bsdf, sampler, &mut scratch);
+            let landing = Landing {
+                global: g,
+                caustics: self.gather_caustics.as_ref(),
+                irradiance: self.gather_irradiance.as_ref(),
+            };
+            radiance += final_gather(
+                ctx,
+                &landing,
+                g.final_gather,
+                v,
+                bsdf,
+                sampler,
+                &mut scratch,
+            );
         }
         radiance
     }
@@ -50,20 +63,60 @@ pub fn reflected(
     })
 }
 
-/// Indirect diffuse light at `v`: `final_gather` BSDF-sampled rays, each reading the global
-/// map and the caustic map's gather view (if any, [`super::coarse`]) where it lands on a diffuse surface, directly or through
-/// mirrors and glass ([`super::gather_path`]).
+/// What a final-gather ray reads where it lands on a diffuse surface.
+struct Landing<'m> {
+    /// The global map.
+    global: &'m GatherMap,
+    /// The caustic map's gather view ([`super::coarse`]).
+    caustics: Option<&'m GatherMap>,
+    /// Both maps' irradiance precomputed at photon positions ([`super::irradiance`]).
+    irradiance: Option<&'m IrradiancePoints>,
+}
+
+impl Landing<'_> {
+    /// Radiance the maps give toward `w.wo` at the landing vertex `w` with BSDF `b`: one
+    /// lookup of the precomputed irradiance where every non-delta lobe is Lambertian, the
+    /// per-ray density estimates of both maps otherwise.
+    fn radiance(&self, w: &Vertex<'_>, b: &Bsdf, scratch: &mut Vec<Neighbour>) -> Vec3 {
+        if let Some(points) = self.irradiance {
+            if lambertian(b) {
+                let e = points.at(w.sp.surface.p, w.ng, scratch);
+                return if e == Vec3::ZERO {
+                    e
+                } else {
+                    b.eval(w.wo, Vec3::Z) * e
+                };
+            }
+        }
+        let mut incoming = reflected(self.global, w, b, scratch);
+        if let Some(c) = self.caustics {
+            incoming += reflected(c, w, b, scratch);
+        }
+        incoming
+    }
+}
+
+/// Whether every non-delta lobe of `b` is Lambertian (its reflected radiance is `f·E`).
+fn lambertian(b: &Bsdf) -> bool {
+    b.lobes()
+        .iter()
+        .all(|(_, l)| l.is_delta() || matches!(l, Lobe::Lambert))
+}
+
+/// Indirect diffuse light at `v`: `n` BSDF-sampled rays, each reading the maps where it
+/// lands on a diffuse surface, directly or through mirrors and glass
+/// ([`super::gather_path`]).
 fn final_gather(
     ctx: &ShadeContext<'_>,
-    map: &GatherMap,
-    caustics: Option<&GatherMap>,
+    landing: &Landing<'_>,
+    n: u32,
     v: &Vertex<'_>,
     bsdf: &Bsdf,
     sampler: &mut Sampler,
     scratch: &mut Vec<Neighbour>,
 ) -> Vec3 {
     let seed = sampler.child_seed();
-    let n = map.final_gather.max(1);
+    let n = n.max(1);
     let mut sum = Vec3::ZERO;
     for j in 0..n {
         let mut s = Sampler::new(seed, j);
@@ -80,11 +133,7 @@ fn final_gather(
         let Some(to) = land(ctx, ray, &mut s) else {
             continue;
         };
-        let (w, b) = (&to.vertex, &to.bsdf);
-        let mut incoming = reflected(map, w, b, scratch);
-        if let Some(c) = caustics {
-            incoming += reflected(c, w, b, scratch);
-        }
+        let incoming = landing.radiance(&to.vertex, &to.bsdf, scratch);
         sum += bs.weight() * to.throughput * incoming;
     }
     let l = sum / n as f32;
@@ -193,6 +242,7 @@ mod tests {
             caustics: Some(caustics),
             global: None,
             gather_caustics: None,
+            gather_irradiance: None,
         };
         let mut sampler = Sampler::new(4, 0);
         assert_eq!(maps.radiance(&ctx, &v, &bsdf, &mut sampler), expected);
@@ -204,6 +254,15 @@ mod tests {
 
     #[test]
     fn final_gather_reads_the_global_map_where_its_rays_land() {
+        ceiling_over_a_lit_floor(false);
+    }
+
+    #[test]
+    fn final_gather_reads_the_precomputed_irradiance_where_its_rays_land() {
+        ceiling_over_a_lit_floor(true);
+    }
+
+    fn ceiling_over_a_lit_floor(precompute: bool) {
         // Seen from a grey ceiling (ρc, facing down, 1 above a floor covered by photons of
         // uniform irradiance E): the floor reflects ρf·E/π everywhere within the photons'
         // square, so the ceiling reflects ρc·ρf·E/π times the cosine-weighted fraction of
@@ -238,17 +297,21 @@ mod tests {
             final_gather: 256,
             ..map(photons, 64, 1.0)
         };
+        let none = std::sync::atomic::AtomicBool::new(false);
+        let gather_irradiance =
+            precompute.then(|| IrradiancePoints::precompute(&global, None, &none).unwrap());
         let maps = PhotonMaps {
             caustics: None,
             global: Some(global),
             gather_caustics: None,
+            gather_irradiance,
         };
         let (ray, hit) = fixture::hit(&geometry, Vec3::new(0.05, 0.0, 0.5), Vec3::Z);
         let v = Vertex::new(&ctx, &ray, &hit);
         let bsdf = v.bsdf().unwrap();
         let l = maps.radiance(&ctx, &v, &bsdf, &mut Sampler::new(2, 0));
         let expected = rho_c * rho_f * (power / 0.01) / PI;
-        println!("final gather: {l} (expected {expected})");
+        println!("final gather (precompute {precompute}): {l} (expected {expected})");
         assert!((l.x / expected - 1.0).abs() < 0.05, "{l} vs {expected}");
     }
 }

@@ -28,6 +28,7 @@ pub mod estimate;
 pub mod file;
 pub mod filter;
 pub mod gather_path;
+pub mod irradiance;
 pub mod kdtree;
 pub mod key;
 pub mod light_lists;
@@ -111,6 +112,9 @@ pub struct PhotonMaps {
     /// The caustic map as final-gather rays read it ([`coarse::gather_view`]), when both
     /// maps exist.
     pub gather_caustics: Option<GatherMap>,
+    /// Irradiance precomputed at photon positions for final-gather rays
+    /// ([`irradiance`]), when the global map exists and `precompute` is on.
+    pub gather_irradiance: Option<irradiance::IrradiancePoints>,
 }
 
 impl PhotonMaps {

@@ -85,6 +85,7 @@ mod tests {
             caustics: Some(map(30, 100)),
             global: Some(map(50, 200)),
             gather_caustics: Some(map(3, 100)),
+            gather_irradiance: None,
         };
         let t = PhotonThroughput::new(&maps, 2.0, 4);
         assert_eq!((t.emitted, t.stored), (300, 80));

@@ -147,6 +147,9 @@ pub struct PhotonMapDesc {
     pub gather: u32,
     /// Final-gather rays per shading point (global illumination only), default 16, at least 1.
     pub final_gather: u32,
+    /// Global illumination only: final-gather rays read irradiance precomputed at photon
+    /// positions (default true); false runs the full estimate for every ray.
+    pub precompute: bool,
     /// Caustics only: emit photons only toward the caustic casters, default true.
     pub aim: bool,
     /// Weighting of photons in an estimate, default `Box`.
@@ -197,6 +200,7 @@ impl Default for PhotonMapDesc {
             radius: 0.0,
             gather: 50,
             final_gather: 16,
+            precompute: true,
             aim: true,
             filter: PhotonFilterDesc::Box,
             progressive: None,

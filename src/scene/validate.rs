@@ -289,6 +289,7 @@ fn photon_map(ck: &mut Checker<'_>, path: &str, d: &PhotonMapDesc) -> PhotonMapS
         radius: radius as f32,
         gather: d.gather.max(2),
         final_gather: d.final_gather.max(1),
+        precompute: d.precompute,
         aim: d.aim,
         filter,
         progressive: d.progressive.map(|p| progressive(ck, path, &p)),

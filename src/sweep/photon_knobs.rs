@@ -86,6 +86,7 @@ mod tests {
             radius: 0.0,
             gather: 8,
             final_gather: 1,
+            precompute: true,
             aim: true,
             filter: PhotonFilter::Box,
             progressive: None,

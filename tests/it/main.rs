@@ -49,6 +49,7 @@ mod obj_materials;
 mod photon_clean;
 mod photon_depth;
 mod photon_file;
+mod photon_final_gather;
 mod photon_flags;
 mod photon_invisible_light;
 mod photon_light_lists;

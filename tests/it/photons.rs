@@ -46,6 +46,7 @@ fn gi(photons: u32) -> RenderSettings {
         radius: 0.0,
         gather: 50,
         final_gather: 4,
+        precompute: true,
         aim: true,
         filter: stagelight::settings::PhotonFilter::Box,
         progressive: None,
