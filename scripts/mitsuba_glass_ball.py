@@ -16,7 +16,9 @@ Usage:
 (`render` prints the seconds the render took, the scene load and kernel compile excluded;
 `compare` prints relMSE — mean of (x−r)²/(r²+0.01) — of the whole image against WHOLE_REF and
 of the caustic crop against CROP_REF, the crop's pixels that see the ball left out: a light
-tracer cannot render glass, so CROP_REF is black there; the error with them is printed too.
+tracer cannot render glass, so CROP_REF is black there; the error with them is printed too;
+and of the whole image against the best reference: CROP_REF wherever the ball is not seen,
+WHOLE_REF where it is (the path tracer misses the caustic on the floor).
 `reference` writes the reference of `stagelight sweep --crop 73,50,92,62` (SWEEP_CROP, the
 crop's floor pixels only): WHOLE_REF with that rectangle taken from CROP_REF.)
 """
@@ -102,9 +104,16 @@ def compare(args):
     crop = lambda img: img[y0:y1, x0:x1]
     floor = ~crop(ball_pixels(mi))
     masked = lambda img: crop(img)[floor]
-    print("whole %.3e  crop %.3e  crop mean %.4f (ref %.4f)  [crop with the %d ball pixels: %.3e]" % (
-        rel_mse(test, whole), rel_mse(masked(test), masked(crop_ref)), masked(test).mean(),
-        masked(crop_ref).mean(), int((~floor).sum()), rel_mse(crop(test), crop(crop_ref))))
+    ball = ball_pixels(mi)
+    # The best reference of the whole image: the light tracer wherever it is valid (every
+    # pixel that does not see the ball: it converges the caustic, which the path tracer
+    # misses), the path tracer where the ball is seen.
+    best = np.where(ball[:, :, None], whole, crop_ref)
+    print("whole %.3e  crop %.3e  crop mean %.4f (ref %.4f)  [crop with the %d ball pixels: %.3e]"
+          "  whole vs best ref %.3e" % (
+              rel_mse(test, whole), rel_mse(masked(test), masked(crop_ref)), masked(test).mean(),
+              masked(crop_ref).mean(), int((~floor).sum()), rel_mse(crop(test), crop(crop_ref)),
+              rel_mse(test, best)))
 
 
 def reference(args):
