@@ -1,7 +1,9 @@
 //! Photon-pass benchmarks (issue 16 item 8) on `assets/scenes/caustics.ron`: the global and
 //! caustic passes traced wide through batch intersections against one photon at a time (the
 //! same photons, bit for bit), on 1 thread, in photons emitted per second; and the
-//! `trace_photons` stage on every thread. The one-shot ratio is printed first.
+//! `trace_photons` stage on every thread. Alternating rounds of both (`PHOTON_BENCH_ROUNDS`,
+//! default 5) print their rates and ratio first; `cargo bench --bench photons -- rounds_only`
+//! prints only those (the filter matches no criterion benchmark).
 
 use std::path::PathBuf;
 use std::sync::atomic::AtomicBool;
@@ -44,21 +46,46 @@ fn photon_pass(c: &mut Criterion) {
         let map = (&ctx, &emission, &[][..], kind);
         one.install(|| trace_map_with(map, PHOTONS, 1, &cancel, tracing).expect("pass"))
     };
+    // Alternating rounds (per photon first in even rounds, batched first in odd ones) so a
+    // change of the machine's load hits both alike; each round's ratio and the median.
+    let rounds: usize = std::env::var("PHOTON_BENCH_ROUNDS")
+        .ok()
+        .and_then(|r| r.parse().ok())
+        .unwrap_or(5);
     for kind in [MapKind::Global, MapKind::Caustics] {
         let time = |tracing| {
             let start = Instant::now();
             let stored = pass(kind, tracing).len();
             (start.elapsed().as_secs_f64(), stored)
         };
-        let (single, stored) = time(Tracing::PerPhoton);
-        let (batched, _) = time(Tracing::Batched);
-        println!(
-            "{kind:?}: {PHOTONS} emitted, {stored} stored, 1 thread: per photon {:.0} photons/s, \
-             batched {:.0} photons/s, ratio batched/per-photon {:.3}",
-            f64::from(PHOTONS) / single,
-            f64::from(PHOTONS) / batched,
-            single / batched
-        );
+        let mut ratios = Vec::new();
+        for round in 0..rounds {
+            let order = if round % 2 == 0 {
+                [Tracing::PerPhoton, Tracing::Batched]
+            } else {
+                [Tracing::Batched, Tracing::PerPhoton]
+            };
+            let mut seconds = [0.0; 2];
+            let mut stored = 0;
+            for tracing in order {
+                let (s, n) = time(tracing);
+                seconds[usize::from(tracing == Tracing::Batched)] = s;
+                stored = n;
+            }
+            let [single, batched] = seconds;
+            ratios.push(single / batched);
+            println!(
+                "{kind:?} round {round}: {PHOTONS} emitted, {stored} stored, 1 thread: per photon \
+                 {:.0} photons/s, batched {:.0} photons/s, ratio batched/per-photon {:.3}",
+                f64::from(PHOTONS) / single,
+                f64::from(PHOTONS) / batched,
+                single / batched
+            );
+        }
+        ratios.sort_by(f64::total_cmp);
+        if let Some(median) = ratios.get(ratios.len() / 2) {
+            println!("{kind:?}: median ratio batched/per-photon over {rounds} rounds {median:.3}");
+        }
     }
     let mut group = c.benchmark_group("photons");
     group.sample_size(10);

@@ -12,10 +12,15 @@ filter on both.
 Usage:
   mitsuba_glass_ball.py render OUT.exr --integrator path|ptracer --spp N [--seed S]
   mitsuba_glass_ball.py compare TEST.exr WHOLE_REF.exr CROP_REF.exr
+  mitsuba_glass_ball.py reference OUT.exr WHOLE_REF.exr CROP_REF.exr
 (`render` prints the seconds the render took, the scene load and kernel compile excluded;
 `compare` prints relMSE — mean of (x−r)²/(r²+0.01) — of the whole image against WHOLE_REF and
 of the caustic crop against CROP_REF, the crop's pixels that see the ball left out: a light
-tracer cannot render glass, so CROP_REF is black there; the error with them is printed too.)
+tracer cannot render glass, so CROP_REF is black there; the error with them is printed too;
+and of the whole image against the best reference: CROP_REF wherever the ball is not seen,
+WHOLE_REF where it is (the path tracer misses the caustic on the floor).
+`reference` writes the reference of `stagelight sweep --crop 73,50,92,62` (SWEEP_CROP, the
+crop's floor pixels only): WHOLE_REF with that rectangle taken from CROP_REF.)
 """
 import argparse
 import sys
@@ -24,6 +29,8 @@ import time
 # Caustic crop, pixels [x0, x1) × [y0, y1) of the 128 × 96 image (the bright spot right of
 # the ball and its surroundings).
 CROP = (71, 92, 50, 62)
+# The same crop without the columns that see the ball (x0, y0, x1, y1 as `--crop` takes it).
+SWEEP_CROP = (73, 50, 92, 62)
 
 
 def scene_dict(mi, integrator, spp, seed):
@@ -97,9 +104,28 @@ def compare(args):
     crop = lambda img: img[y0:y1, x0:x1]
     floor = ~crop(ball_pixels(mi))
     masked = lambda img: crop(img)[floor]
-    print("whole %.3e  crop %.3e  crop mean %.4f (ref %.4f)  [crop with the %d ball pixels: %.3e]" % (
-        rel_mse(test, whole), rel_mse(masked(test), masked(crop_ref)), masked(test).mean(),
-        masked(crop_ref).mean(), int((~floor).sum()), rel_mse(crop(test), crop(crop_ref))))
+    ball = ball_pixels(mi)
+    # The best reference of the whole image: the light tracer wherever it is valid (every
+    # pixel that does not see the ball: it converges the caustic, which the path tracer
+    # misses), the path tracer where the ball is seen.
+    best = np.where(ball[:, :, None], whole, crop_ref)
+    print("whole %.3e  crop %.3e  crop mean %.4f (ref %.4f)  [crop with the %d ball pixels: %.3e]"
+          "  whole vs best ref %.3e" % (
+              rel_mse(test, whole), rel_mse(masked(test), masked(crop_ref)), masked(test).mean(),
+              masked(crop_ref).mean(), int((~floor).sum()), rel_mse(crop(test), crop(crop_ref)),
+              rel_mse(test, best)))
+
+
+def reference(args):
+    import numpy as np
+    import mitsuba as mi
+    mi.set_variant("scalar_rgb")
+    whole, crop_ref = load(mi, args.whole), load(mi, args.crop)
+    x0, y0, x1, y1 = SWEEP_CROP
+    out = whole.copy()
+    out[y0:y1, x0:x1] = crop_ref[y0:y1, x0:x1]
+    mi.Bitmap(out.astype(np.float32)).write(args.out)
+    print("wrote %s (crop %d,%d,%d,%d from %s)" % (args.out, x0, y0, x1, y1, args.crop))
 
 
 def main():
@@ -115,8 +141,12 @@ def main():
     c.add_argument("test")
     c.add_argument("whole")
     c.add_argument("crop")
+    f = sub.add_parser("reference")
+    f.add_argument("out")
+    f.add_argument("whole")
+    f.add_argument("crop")
     args = ap.parse_args()
-    return render(args) if args.cmd == "render" else compare(args)
+    return {"render": render, "compare": compare, "reference": reference}[args.cmd](args)
 
 
 if __name__ == "__main__":

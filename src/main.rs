@@ -339,6 +339,10 @@ struct SweepArgs {
     /// and without the denoiser. Needs `--knob bake_samples=…`.
     #[arg(long)]
     denoise: bool,
+    /// Fit and plot the error of pixels [X0, X1) × [Y0, Y1) (e.g. a caustic) instead of the
+    /// whole image's; the table has both.
+    #[arg(long, value_name = "X0,Y0,X1,Y1", value_parser = stagelight::sweep::Crop::parse)]
+    crop: Option<stagelight::sweep::Crop>,
 }
 
 /// `--integrator` values.
@@ -1178,6 +1182,7 @@ fn sweep(args: SweepArgs) -> ExitCode {
         integrator: args.integrator.map(IntegratorArg::integrator),
         reference_integrator: stagelight::settings::Integrator::Path,
         denoise: args.denoise,
+        crop: args.crop,
     };
     let summary = match run_sweep(&opts, systems::run, |step| eprintln!("sweep: {step}")) {
         Ok(s) => s,
@@ -1217,7 +1222,8 @@ fn sweep(args: SweepArgs) -> ExitCode {
         })
     };
     println!(
-        "slope {}; bias plateau: {}; relMSE 1e-2 after {}; 1e-3 after {}",
+        "{}: slope {}; bias plateau: {}; relMSE 1e-2 after {}; 1e-3 after {}",
+        summary.region(),
         summary.slope.map_or("n/a".into(), |s| format!("{s:.2}")),
         if summary.bias_plateau { "yes" } else { "no" },
         fmt(summary.seconds_to_rel_mse_1e2),

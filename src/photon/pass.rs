@@ -36,7 +36,7 @@ pub fn trace_map(
     cancel: &AtomicBool,
 ) -> Option<Vec<Photon>> {
     let map = (ctx, emission, roles, kind);
-    trace_map_with(map, photons, seed, cancel, Tracing::Batched)
+    trace_map_with(map, photons, seed, cancel, Tracing::default())
 }
 
 /// [`trace_map`] (its `ctx`, `emission`, `roles`, `kind` in `map`) traced as `tracing`

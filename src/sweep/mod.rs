@@ -1,11 +1,12 @@
 //! `stagelight sweep`: what accuracy costs in time. Renders (or bakes) a scene once per value
 //! of one accuracy knob and per seed, times every stage, compares each result with a
 //! converged reference, and writes a CSV/JSON table and a log–log plot of relMSE against
-//! seconds.
+//! seconds (of a crop, e.g. a caustic, with `--crop`).
 //!
 //! The driver takes the pipeline as a function (`main.rs` passes the stage table), so this
 //! module does not depend on `systems/`.
 
+pub mod crop;
 pub mod knob;
 pub mod metrics;
 pub mod photon_knobs;
@@ -13,6 +14,7 @@ pub mod plot;
 pub mod report;
 pub mod runner;
 
+pub use crop::Crop;
 pub use knob::{Knob, KnobError};
 pub use metrics::{compare, ErrorMetrics};
 pub use report::{SweepRow, SweepSummary};

@@ -1,5 +1,5 @@
-//! The sweep plot: relMSE against seconds on log–log axes (SVG, via `plotters`), with the
-//! measured points, the fitted line and its slope.
+//! The sweep plot: relMSE (of the crop when the sweep has one) against seconds on log–log
+//! axes (SVG, via `plotters`), with the measured points, the fitted line and its slope.
 
 use plotters::prelude::*;
 
@@ -10,8 +10,8 @@ pub fn svg(summary: &SweepSummary) -> Result<String, String> {
     let points: Vec<(f64, f64)> = summary
         .rows
         .iter()
-        .filter(|r| r.seconds > 0.0 && r.error.rel_mse > 0.0)
-        .map(|r| (r.seconds, r.error.rel_mse))
+        .filter(|r| r.seconds > 0.0 && r.fitted().rel_mse > 0.0)
+        .map(|r| (r.seconds, r.fitted().rel_mse))
         .collect();
     let mut out = String::new();
     {
@@ -31,10 +31,17 @@ pub fn svg(summary: &SweepSummary) -> Result<String, String> {
         let (y0, y1) = ((y0 / 3.0).min(5e-4), (y1 * 3.0).max(2e-2));
         let title = match summary.slope {
             Some(s) => format!(
-                "{} — {}: relMSE vs time (slope {s:.2})",
-                summary.scene, summary.knob
+                "{} — {}: relMSE ({}) vs time (slope {s:.2})",
+                summary.scene,
+                summary.knob,
+                summary.region()
             ),
-            None => format!("{} — {}: relMSE vs time", summary.scene, summary.knob),
+            None => format!(
+                "{} — {}: relMSE ({}) vs time",
+                summary.scene,
+                summary.knob,
+                summary.region()
+            ),
         };
         let mut chart = ChartBuilder::on(&root)
             .caption(title, ("sans-serif", 16))

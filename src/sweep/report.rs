@@ -1,8 +1,10 @@
 //! The sweep table (one row per knob value) and its summary: log–log fit of relMSE against
-//! seconds, bias-plateau flag, and time to reach relMSE 1e-2 and 1e-3.
+//! seconds, bias-plateau flag, and time to reach relMSE 1e-2 and 1e-3 — of the crop's error
+//! when the sweep has a crop, else of the whole image's.
 
 use serde::Serialize;
 
+use crate::sweep::crop::Crop;
 use crate::sweep::metrics::ErrorMetrics;
 
 /// One knob value's measurements.
@@ -15,10 +17,19 @@ pub struct SweepRow {
     pub stage_seconds: Vec<(String, f64)>,
     /// Total seconds of the pipeline (mean over seeds).
     pub seconds: f64,
-    /// Errors against the reference.
+    /// Errors of the whole image against the reference.
     pub error: ErrorMetrics,
+    /// Errors of the crop (`--crop`) against the reference's crop.
+    pub crop_error: Option<ErrorMetrics>,
     /// Seeds rendered.
     pub seeds: u32,
+}
+
+impl SweepRow {
+    /// The error the summary fits and the plot draws: the crop's, else the whole image's.
+    pub fn fitted(&self) -> &ErrorMetrics {
+        self.crop_error.as_ref().unwrap_or(&self.error)
+    }
 }
 
 /// Fit and conclusions over all rows.
@@ -28,6 +39,8 @@ pub struct SweepSummary {
     pub knob: String,
     /// Scene file.
     pub scene: String,
+    /// The crop whose error is fitted (`None`: the whole image).
+    pub crop: Option<Crop>,
     /// Slope of log10(relMSE) against log10(seconds) (−1 for unbiased Monte Carlo).
     pub slope: Option<f64>,
     /// Intercept of that fit.
@@ -44,19 +57,20 @@ pub struct SweepSummary {
 }
 
 impl SweepSummary {
-    /// Fits the rows and draws the conclusions.
-    pub fn new(knob: &str, scene: &str, rows: Vec<SweepRow>) -> Self {
+    /// Fits the rows (their [`SweepRow::fitted`] error; `crop` says which region that is)
+    /// and draws the conclusions.
+    pub fn new(knob: &str, scene: &str, crop: Option<Crop>, rows: Vec<SweepRow>) -> Self {
         let points: Vec<(f64, f64)> = rows
             .iter()
-            .filter(|r| r.seconds > 0.0 && r.error.rel_mse > 0.0)
-            .map(|r| (r.seconds.log10(), r.error.rel_mse.log10()))
+            .filter(|r| r.seconds > 0.0 && r.fitted().rel_mse > 0.0)
+            .map(|r| (r.seconds.log10(), r.fitted().rel_mse.log10()))
             .collect();
         let fit = fit_line(&points);
         let bias_plateau = plateau(&rows);
         let reach = |target: f64| -> Option<f64> {
             let measured = rows
                 .iter()
-                .filter(|r| r.error.rel_mse <= target)
+                .filter(|r| r.fitted().rel_mse <= target)
                 .map(|r| r.seconds)
                 .fold(None, |best: Option<f64>, s| {
                     Some(best.map_or(s, |b| b.min(s)))
@@ -69,6 +83,7 @@ impl SweepSummary {
         Self {
             knob: knob.to_string(),
             scene: scene.to_string(),
+            crop,
             slope: fit.map(|f| f.1),
             intercept: fit.map(|f| f.0),
             bias_plateau,
@@ -78,7 +93,14 @@ impl SweepSummary {
         }
     }
 
-    /// The table as CSV: value, seconds per stage, total seconds, and the error metrics.
+    /// The region the fit is of, for titles: `crop X0,Y0,X1,Y1` or `whole image`.
+    pub fn region(&self) -> String {
+        self.crop
+            .map_or_else(|| "whole image".to_string(), |c| format!("crop {c}"))
+    }
+
+    /// The table as CSV: value, seconds per stage, total seconds, the whole image's error
+    /// metrics, and with a crop the crop's relMSE, bias² and variance.
     pub fn to_csv(&self) -> String {
         let stages: Vec<&str> = self
             .rows
@@ -89,7 +111,11 @@ impl SweepSummary {
         for s in &stages {
             out.push_str(&format!("{s}_seconds,"));
         }
-        out.push_str("total_seconds,mse,rel_mse,max_error,non_finite,bias2,variance,seeds\n");
+        out.push_str("total_seconds,mse,rel_mse,max_error,non_finite,bias2,variance,seeds");
+        if self.crop.is_some() {
+            out.push_str(",crop_rel_mse,crop_bias2,crop_variance");
+        }
+        out.push('\n');
         for r in &self.rows {
             out.push_str(&format!("{},", r.value));
             for (_, s) in &r.stage_seconds {
@@ -97,7 +123,7 @@ impl SweepSummary {
             }
             let e = &r.error;
             out.push_str(&format!(
-                "{:.6},{:.6e},{:.6e},{:.6e},{},{:.6e},{:.6e},{}\n",
+                "{:.6},{:.6e},{:.6e},{:.6e},{},{:.6e},{:.6e},{}",
                 r.seconds,
                 e.mse,
                 e.rel_mse,
@@ -107,6 +133,13 @@ impl SweepSummary {
                 e.variance,
                 r.seeds
             ));
+            if let Some(c) = &r.crop_error {
+                out.push_str(&format!(
+                    ",{:.6e},{:.6e},{:.6e}",
+                    c.rel_mse, c.bias2, c.variance
+                ));
+            }
+            out.push('\n');
         }
         out
     }
@@ -137,14 +170,15 @@ fn plateau(rows: &[SweepRow]) -> bool {
     let Some(last) = sorted.last() else {
         return false;
     };
-    if last.seeds > 1 && last.error.bias2 > last.error.variance && last.error.bias2 > 0.0 {
+    let e = last.fitted();
+    if last.seeds > 1 && e.bias2 > e.variance && e.bias2 > 0.0 {
         return true;
     }
     if sorted.len() < 2 {
         return false;
     }
     let prev = sorted[sorted.len() - 2];
-    last.seconds >= 1.5 * prev.seconds && last.error.rel_mse > 0.9 * prev.error.rel_mse
+    last.seconds >= 1.5 * prev.seconds && e.rel_mse > 0.9 * prev.fitted().rel_mse
 }
 
 #[cfg(test)]
@@ -160,6 +194,7 @@ mod tests {
                 rel_mse,
                 ..Default::default()
             },
+            crop_error: None,
             seeds: 1,
         }
     }
@@ -167,7 +202,7 @@ mod tests {
     #[test]
     fn monte_carlo_convergence_fits_slope_minus_one() {
         let rows = vec![row(1.0, 1e-1), row(4.0, 2.5e-2), row(16.0, 6.25e-3)];
-        let s = SweepSummary::new("spp", "x.ron", rows);
+        let s = SweepSummary::new("spp", "x.ron", None, rows);
         assert!((s.slope.unwrap() + 1.0).abs() < 1e-9);
         assert!(!s.bias_plateau);
         // relMSE 1e-2 is reached (measured) at 16 s; 1e-3 extrapolates to 100 s.
@@ -179,8 +214,46 @@ mod tests {
     #[test]
     fn flat_error_is_a_plateau() {
         let rows = vec![row(1.0, 1e-1), row(4.0, 5e-2), row(16.0, 4.9e-2)];
-        let s = SweepSummary::new("spp", "x.ron", rows);
+        let s = SweepSummary::new("spp", "x.ron", None, rows);
         assert!(s.bias_plateau);
         assert_eq!(s.seconds_to_rel_mse_1e3, None);
+    }
+
+    #[test]
+    fn a_crop_s_error_is_what_is_fitted_and_tabulated() {
+        // The whole image is flat (a plateau) while the crop falls as 1/time.
+        let rows: Vec<SweepRow> = [(1.0, 1e-1), (4.0, 2.5e-2), (16.0, 6.25e-3)]
+            .into_iter()
+            .map(|(t, crop)| SweepRow {
+                crop_error: Some(ErrorMetrics {
+                    rel_mse: crop,
+                    ..Default::default()
+                }),
+                ..row(t, 5e-2)
+            })
+            .collect();
+        let crop = crate::sweep::crop::Crop::parse("1,2,3,4").ok();
+        let s = SweepSummary::new("photons", "x.ron", crop, rows.clone());
+        assert!((s.slope.unwrap() + 1.0).abs() < 1e-9);
+        assert!(!s.bias_plateau);
+        assert_eq!(s.seconds_to_rel_mse_1e2, Some(16.0));
+        assert_eq!(s.region(), "crop 1,2,3,4");
+        let csv = s.to_csv();
+        let mut lines = csv.lines();
+        assert!(lines
+            .next()
+            .unwrap()
+            .ends_with(",seeds,crop_rel_mse,crop_bias2,crop_variance"));
+        assert!(lines
+            .next()
+            .unwrap()
+            .ends_with(",1,1.000000e-1,0.000000e0,0.000000e0"));
+        let whole = SweepSummary::new("photons", "x.ron", None, {
+            let mut r = rows;
+            r.iter_mut().for_each(|r| r.crop_error = None);
+            r
+        });
+        assert!(whole.bias_plateau);
+        assert_eq!(whole.region(), "whole image");
     }
 }

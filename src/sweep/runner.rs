@@ -11,6 +11,7 @@ use crate::scene::load_scene;
 use crate::scene::SceneErrors;
 use crate::schedule::StageError;
 use crate::settings::{Integrator, RenderSettings};
+use crate::sweep::crop::Crop;
 use crate::sweep::knob::{Knob, KnobError};
 use crate::sweep::metrics::compare;
 use crate::sweep::report::{SweepRow, SweepSummary};
@@ -40,6 +41,9 @@ pub struct SweepOptions {
     /// Denoise the swept bakes (`--denoise`): every AO and lightmap output without its own
     /// `denoise` gets the default one; the reference is never denoised.
     pub denoise: bool,
+    /// A pixel rectangle (e.g. a caustic) whose error is fitted and plotted; the whole
+    /// image's is still tabulated.
+    pub crop: Option<Crop>,
 }
 
 /// Why a sweep failed.
@@ -208,11 +212,11 @@ pub fn run_sweep(
     }
     std::fs::create_dir_all(&opts.out).map_err(|e| io(&opts.out, e))?;
     let cached = reference_cache(opts)?;
-    let reference = match &opts.reference {
-        Some(path) => read_exr_rgb(path)?.0,
+    let (reference, ref_width, ref_height) = match &opts.reference {
+        Some(path) => read_exr_rgb(path)?,
         None if cached.exists() => {
             progress(&format!("reference: cached {}", cached.display()));
-            read_exr_rgb(&cached)?.0
+            read_exr_rgb(&cached)?
         }
         None => {
             progress(&format!("reference: {} samples", opts.reference_samples));
@@ -251,9 +255,20 @@ pub fn run_sweep(
                 bytes,
             }])
             .map_err(|(p, e)| io(&p, e))?;
-            r.image
+            (r.image, r.width, r.height)
         }
     };
+    if let Some(c) = opts.crop {
+        if !c.fits(ref_width, ref_height) {
+            return Err(io(
+                opts.reference.as_deref().unwrap_or(&cached),
+                format!(
+                    "the crop {c} (pixels [X0, X1) × [Y0, Y1)) does not fit the reference's {ref_width}×{ref_height} pixels"
+                ),
+            ));
+        }
+    }
+    let reference_crop = opts.crop.map(|c| c.cut(&reference, ref_width));
     let mut rows = Vec::with_capacity(opts.knob.len());
     for i in 0..opts.knob.len() {
         let mut images = Vec::new();
@@ -308,6 +323,10 @@ pub fn run_sweep(
             stage_seconds,
             seconds: seconds / k,
             error: compare(&images, &reference),
+            crop_error: opts.crop.zip(reference_crop.as_ref()).map(|(c, r)| {
+                let cut: Vec<Vec<Vec3>> = images.iter().map(|i| c.cut(i, ref_width)).collect();
+                compare(&cut, r)
+            }),
             seeds: opts.seeds.max(1),
         });
     }
@@ -320,6 +339,7 @@ pub fn run_sweep(
     Ok(SweepSummary::new(
         &knob,
         &opts.scene.display().to_string(),
+        opts.crop,
         rows,
     ))
 }

@@ -81,6 +81,7 @@ mod shading_scenes;
 mod skipped_stages;
 mod stages;
 mod sweep;
+mod sweep_photons;
 mod textures;
 mod vertex_bake;
 mod volume_shaders;
