@@ -179,7 +179,15 @@ fn finish(
     colours: Option<Vec<Vec3>>,
     triangles: Vec<[u32; 3]>,
 ) -> BuiltMesh {
-    finish_with_polygons(positions, normals, uvs, uvs1, colours, triangles, Vec::new())
+    finish_with_polygons(
+        positions,
+        normals,
+        uvs,
+        uvs1,
+        colours,
+        triangles,
+        Vec::new(),
+    )
 }
 
 /// [`finish`], keeping `polygon_of` (one entry per triangle, or empty) in step with the kept

@@ -95,7 +95,10 @@ impl MeshLight {
                     inv_pdf_area: tri_area / prob,
                     emission: material.emission,
                     two_sided: material.two_sided,
-                    textured: material.graph.as_deref().is_some_and(|g| g.emission.is_some()),
+                    textured: material
+                        .graph
+                        .as_deref()
+                        .is_some_and(|g| g.emission.is_some()),
                 }
             })
             .collect();
