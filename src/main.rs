@@ -1217,7 +1217,7 @@ fn sweep(args: SweepArgs) -> ExitCode {
     }
     print!("{}", summary.to_csv());
     let fmt = |s: Option<f64>| {
-        s.map_or("never (plateau or no descent)".to_string(), |s| {
+        s.map_or("not reached (plateau, or no descent within 100× the longest run)".to_string(), |s| {
             format!("{s:.3} s")
         })
     };

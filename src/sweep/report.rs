@@ -32,6 +32,11 @@ impl SweepRow {
     }
 }
 
+/// Farthest an unreached error target is extrapolated along the fit: this many times the
+/// longest run. Beyond it (a nearly flat fit, e.g. of a knob that trades blur for noise)
+/// the target counts as not reached.
+pub const MAX_EXTRAPOLATION: f64 = 100.0;
+
 /// Fit and conclusions over all rows.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct SweepSummary {
@@ -48,7 +53,8 @@ pub struct SweepSummary {
     /// True when the error stops falling although time grows (bias dominates).
     pub bias_plateau: bool,
     /// Seconds to reach relMSE 1e-2 (measured if a row reached it, else extrapolated along
-    /// the fit; `None` when the fit does not fall).
+    /// the fit up to [`MAX_EXTRAPOLATION`] × the longest run; `None` when the fit does not
+    /// fall that fast).
     pub seconds_to_rel_mse_1e2: Option<f64>,
     /// Same for relMSE 1e-3.
     pub seconds_to_rel_mse_1e3: Option<f64>,
@@ -77,7 +83,10 @@ impl SweepSummary {
                 });
             measured.or_else(|| {
                 let (a, b) = fit?;
-                (b < 0.0 && !bias_plateau).then(|| 10f64.powf((target.log10() - a) / b))
+                let longest = rows.iter().map(|r| r.seconds).fold(0.0, f64::max);
+                let t = 10f64.powf((target.log10() - a) / b);
+                (b < 0.0 && !bias_plateau && t.is_finite() && t <= MAX_EXTRAPOLATION * longest)
+                    .then_some(t)
             })
         };
         Self {
@@ -209,6 +218,21 @@ mod tests {
         assert_eq!(s.seconds_to_rel_mse_1e2, Some(16.0));
         assert!((s.seconds_to_rel_mse_1e3.unwrap() - 100.0).abs() < 1e-6);
         assert!(s.to_csv().starts_with("spp,shade_seconds,total_seconds,"));
+    }
+
+    #[test]
+    fn a_nearly_flat_fit_is_not_extrapolated_to_absurd_times() {
+        // A knob that barely moves the error (slope ≈ −0.05, e.g. a photon filter): 1e-2 lies
+        // ~27× past the longest run along the fit and is quoted; 1e-3 would take ~1e21 s,
+        // so the summary says "not reached" instead of a number of that size.
+        let rows = vec![row(1.0, 1.2e-2), row(1.2, 1.19e-2), row(1.4, 1.18e-2)];
+        let s = SweepSummary::new("filter", "x.ron", None, rows);
+        assert!(!s.bias_plateau);
+        let slope = s.slope.unwrap();
+        assert!(slope < 0.0 && slope > -0.1, "{slope}");
+        let t = s.seconds_to_rel_mse_1e2.unwrap();
+        assert!(t > 1.4 && t < MAX_EXTRAPOLATION * 1.4, "{t}");
+        assert_eq!(s.seconds_to_rel_mse_1e3, None);
     }
 
     #[test]
