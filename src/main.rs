@@ -1217,9 +1217,10 @@ fn sweep(args: SweepArgs) -> ExitCode {
     }
     print!("{}", summary.to_csv());
     let fmt = |s: Option<f64>| {
-        s.map_or("not reached (plateau, or no descent within 100× the longest run)".to_string(), |s| {
-            format!("{s:.3} s")
-        })
+        s.map_or(
+            "not reached (plateau, or no descent within 100× the longest run)".to_string(),
+            |s| format!("{s:.3} s"),
+        )
     };
     println!(
         "{}: slope {}; bias plateau: {}; relMSE 1e-2 after {}; 1e-3 after {}",
