@@ -7,7 +7,6 @@
 use std::path::Path;
 
 use glam::Vec3;
-use stagelight::frame::Frame;
 use stagelight::scene::load_scene_str;
 
 /// An open box (floor, back wall, left wall) under a square area light, all surfaces of
@@ -48,13 +47,7 @@ fn scene(shader: &str, precompute: bool) -> String {
 /// The beauty image of `text`.
 fn render(text: &str) -> Vec<Vec3> {
     let mut scene = load_scene_str(text, Path::new("fg.ron")).unwrap_or_else(|e| panic!("{e}"));
-    let mut frame = Frame::new(scene.settings.clone());
-    let stages: Vec<_> = stagelight::systems::STAGES
-        .iter()
-        .copied()
-        .filter(|s| s.name != "write_output")
-        .collect();
-    stagelight::schedule::run_stages(&stages, &mut scene.world, &mut frame).expect("render");
+    let frame = crate::common::render(&mut scene.world, scene.settings.clone());
     frame.outputs.image.expect("image").beauty
 }
 
