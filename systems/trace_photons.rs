@@ -30,7 +30,7 @@ use crate::photon::emit::bounding_sphere;
 use crate::photon::file::{encode, StoredMap, StoredMaps};
 use crate::photon::irradiance::IrradiancePoints;
 use crate::photon::key::photon_key;
-use crate::photon::progressive::{trace_passes, Progressive};
+use crate::photon::progressive::{trace_passes, Progressive, StartRadius};
 use crate::photon::roles::instance_sphere;
 use crate::photon::store::{self, Miss};
 use crate::photon::{
@@ -216,6 +216,12 @@ fn gather_maps(
             progressive: s.progressive.map(|p| Progressive {
                 later: m.later,
                 alpha: p.alpha,
+                // An automatic radius only caps the start at each gather point.
+                start: if s.radius > 0.0 {
+                    StartRadius::Fixed
+                } else {
+                    StartRadius::Nearest
+                },
             }),
         })
     };

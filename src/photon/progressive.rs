@@ -32,6 +32,19 @@ use super::GatherMap;
 use crate::sampling::hash_combine;
 use crate::settings::{PhotonFilter, ProgressiveSettings};
 
+/// How a gather point chooses its first radius `R₀`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum StartRadius {
+    /// The map's radius, as the scene gives it.
+    #[default]
+    Fixed,
+    /// The distance to the point's `gather`-th nearest photon of the first pass, at most
+    /// the map's radius (which then only caps it): the radius the k-nearest estimate would
+    /// use there. Chosen when the scene leaves `radius` automatic, whose 2 % of the scene's
+    /// diagonal is far too wide for a small caustic.
+    Nearest,
+}
+
 /// The passes of a progressive map after the first (the first is [`GatherMap::map`]).
 #[derive(Debug, Clone, Default)]
 pub struct Progressive {
@@ -39,6 +52,8 @@ pub struct Progressive {
     pub later: Vec<PhotonMap>,
     /// Fraction of each pass's photons kept, `0 < α ≤ 1`.
     pub alpha: f32,
+    /// How each gather point's first radius is chosen.
+    pub start: StartRadius,
 }
 
 impl Progressive {
@@ -134,18 +149,44 @@ pub fn estimate(
     scratch: &mut Vec<Neighbour>,
     f: impl Fn(&Photon) -> Vec3,
 ) -> Vec3 {
+    let radius = match progressive.start {
+        StartRadius::Fixed => map.radius,
+        StartRadius::Nearest => {
+            nearest_radius(&map.map, p, normal, map.gather, map.radius, scratch)
+        }
+    };
     let passes = std::iter::once(&map.map).chain(&progressive.later);
     let stats = gather_passes(
         passes,
         p,
         normal,
-        map.radius,
+        radius,
         progressive.alpha,
         map.filter,
         scratch,
         f,
     );
     stats.estimate(1 + progressive.later.len())
+}
+
+/// The radius holding the `k` photons of `map` nearest to `p` (normal filter against
+/// `normal`), at most `r_max`: just past the `k`-th photon's distance, so a gather within it
+/// counts all `k` (the kd-tree's search radius is strict); `r_max` where fewer than `k` lie
+/// within it.
+pub fn nearest_radius(
+    map: &PhotonMap,
+    p: Vec3,
+    normal: Vec3,
+    k: usize,
+    r_max: f32,
+    scratch: &mut Vec<Neighbour>,
+) -> f32 {
+    map.nearest(p, Some(normal), k, r_max, scratch);
+    match scratch.last() {
+        // √ then ² loses at most an ulp or two; 1e-6 keeps the k-th photon inside.
+        Some(last) if scratch.len() == k => (last.dist2.sqrt() * (1.0 + 1e-6)).min(r_max),
+        _ => r_max,
+    }
 }
 
 /// Seed of photon pass `pass` of a map seeded `seed` (pass 0 keeps `seed`).
@@ -178,6 +219,7 @@ pub fn trace_passes(
     let progressive = Progressive {
         later,
         alpha: settings.alpha,
+        start: StartRadius::Fixed,
     };
     Some((first, Some(progressive), emitted))
 }
@@ -293,5 +335,69 @@ mod tests {
         assert!(shrinking.windows(2).all(|w| w[1].1 < w[0].1));
         assert!((-0.45..=-0.20).contains(&s), "slope {s}");
         assert!(f > -0.1, "fixed radius slope {f}");
+    }
+
+    /// The automatic start radius: a gather within [`nearest_radius`] counts exactly the `k`
+    /// nearest photons, and a point with fewer than `k` within the cap keeps the cap.
+    #[test]
+    fn the_nearest_start_radius_holds_exactly_k_photons() {
+        let map = gaussian_pass(2000, 1.0, 7);
+        let mut scratch = Vec::new();
+        for (x, k) in [(0.0, 50), (0.7, 20), (1.5, 8)] {
+            let p = Vec3::new(x, 0.0, 0.0);
+            let r = nearest_radius(&map, p, Vec3::Z, k, 4.0, &mut scratch);
+            assert!(r < 4.0, "x = {x}: {r}");
+            map.nearest(p, Some(Vec3::Z), usize::MAX, r, &mut scratch);
+            assert_eq!(scratch.len(), k, "x = {x}");
+        }
+        // Far out in the tail: fewer than k photons within the cap.
+        let far = Vec3::new(9.0, 0.0, 0.0);
+        assert_eq!(
+            nearest_radius(&map, far, Vec3::Z, 50, 4.0, &mut scratch),
+            4.0
+        );
+    }
+
+    /// A cap far wider than the spot (the automatic radius on a small caustic): starting every
+    /// gather point at the cap blurs the peak of a Gaussian spot to an eighth of its value after
+    /// one pass (relative RMSE > 0.8), starting at the k-nearest radius keeps it within the
+    /// noise of k = 50 photons (< 0.3), and 16 passes shrink that below 0.1.
+    #[test]
+    fn a_nearest_start_radius_keeps_a_small_caustic_sharp() {
+        let exact = 1.0 / (2.0 * std::f64::consts::PI);
+        let mut scratch = Vec::new();
+        let rmse = |start: StartRadius, passes: u32, scratch: &mut Vec<Neighbour>| {
+            let mut sq = 0.0f64;
+            for run in 0..16u32 {
+                let mut maps: Vec<PhotonMap> = (0..passes)
+                    .map(|i| gaussian_pass(2000, 1.0, hash_combine(&[run, i, 3])))
+                    .collect();
+                let first = maps.remove(0);
+                let map = GatherMap {
+                    map: first,
+                    gather: 50,
+                    radius: 4.0,
+                    final_gather: 1,
+                    emitted: 2000,
+                    filter: PhotonFilter::Box,
+                    progressive: None,
+                };
+                let prog = Progressive {
+                    later: maps,
+                    alpha: 0.7,
+                    start,
+                };
+                let e = estimate(&map, &prog, Vec3::ZERO, Vec3::Z, scratch, |_| Vec3::ONE);
+                sq += (f64::from(e.x) - exact).powi(2);
+            }
+            (sq / 16.0).sqrt() / exact
+        };
+        let fixed = rmse(StartRadius::Fixed, 1, &mut scratch);
+        let nearest = rmse(StartRadius::Nearest, 1, &mut scratch);
+        let nearest_16 = rmse(StartRadius::Nearest, 16, &mut scratch);
+        println!("relative RMSE at the peak: fixed {fixed:.3}, nearest {nearest:.3}, nearest after 16 passes {nearest_16:.3}");
+        assert!(fixed > 0.8, "{fixed}");
+        assert!(nearest < 0.3, "{nearest}");
+        assert!(nearest_16 < 0.1, "{nearest_16}");
     }
 }

@@ -140,9 +140,11 @@ fn photon_knobs_sweep_the_caustic_crop_from_the_cli() {
     let (crop, _) = errors(&sweep(&dir, &scene, &reference, "gather_count=4,100"));
     assert!(crop[0] > 1.5 * crop[1], "gather_count: {crop:?}");
 
-    // Progressive passes trace the photons again each pass: the error falls.
+    // Progressive passes trace the photons again each pass: the error falls. (The automatic
+    // radius starts each point at its k-nearest radius, so one pass is already sharp: 3.3e-3,
+    // 8 passes 2.0e-3.)
     let (crop, _) = errors(&sweep(&dir, &scene, &reference, "passes=1,8"));
-    assert!(crop[0] > 2.0 * crop[1], "passes: {crop:?}");
+    assert!(crop[0] > 1.4 * crop[1], "passes: {crop:?}");
 
     // Every filter value is a different estimate of the same caustic.
     let json = sweep(&dir, &scene, &reference, "filter=box,cone,gauss");
