@@ -1,10 +1,11 @@
 //! Ambient occlusion and the inside-geometry probe: cosine-weighted rays about the shading
-//! normal from a robustly offset origin, generated as one stream per texel (traced one query
-//! per ray, or through the batch kernel with `STAGELIGHT_RAY_STREAMS=on`).
+//! normal from a robustly offset origin, generated as one stream per texel. The probe traces
+//! closest hits only until its verdict is certain; occlusion is answered by any-hit queries
+//! (one per ray, or through the batch kernel with `STAGELIGHT_RAY_STREAMS=on`).
 
 use glam::Vec3;
 
-use crate::accel::{spawn_ray, SurfacePoint};
+use crate::accel::{offset_ray_origin, Ray, SurfacePoint};
 use crate::geometry::SceneGeometry;
 use crate::sampling::{sample_cosine_hemisphere, Sampler};
 
@@ -18,21 +19,54 @@ pub fn basis(n: Vec3) -> (Vec3, Vec3) {
 /// The result of a batch of hemisphere rays from one point.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct HemisphereRays {
-    /// Rays traced.
+    /// Rays used: traced, or drawn below the geometric surface (occluded without a query).
+    /// A point found inside geometry stops at the ray that decided it.
     pub rays: u32,
     /// Rays that escaped (no hit within the distance).
     pub open: u32,
     /// Sum of the escaped directions (for bent normals).
     pub open_dir_sum: Vec3,
-    /// Rays whose first hit was the back of a one-sided surface.
-    pub backface_hits: u32,
+    /// The inside-geometry verdict (with a probe): more than the fraction of the point's rays
+    /// first meet the back of a one-sided surface.
+    pub inside: bool,
 }
 
-/// Whether a texel's hemisphere rays go through the batch kernel (`STAGELIGHT_RAY_STREAMS=on`
+/// What a batch of hemisphere rays is traced for.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum HemisphereQuery {
+    /// Ambient occlusion only: one occlusion query per ray, up to the distance.
+    Occlusion,
+    /// The inside-geometry probe only: a point is inside when more than `inside_fraction` of
+    /// its rays first meet the back of a one-sided surface. Tracing stops once the verdict
+    /// is certain; `open` is not computed.
+    Probe {
+        /// Fraction of back-face first hits above which a point is inside.
+        inside_fraction: f32,
+    },
+    /// Both from the same rays: the probe's verdict and, for points not inside, the
+    /// occlusion of every ray (exactly [`HemisphereQuery::Occlusion`]'s).
+    OcclusionAndProbe {
+        /// Fraction of back-face first hits above which a point is inside.
+        inside_fraction: f32,
+    },
+}
+
+impl HemisphereQuery {
+    fn inside_fraction(self) -> Option<f32> {
+        match self {
+            Self::Occlusion => None,
+            Self::Probe { inside_fraction } | Self::OcclusionAndProbe { inside_fraction } => {
+                Some(inside_fraction)
+            }
+        }
+    }
+}
+
+/// Whether a texel's occlusion rays go through the batch kernel (`STAGELIGHT_RAY_STREAMS=on`
 /// at the first bake) or one query per ray (the default). Same results. One query per ray is
 /// the default because it measured faster on `bake_ao.ron` (a texel's rays share their origin,
 /// so consecutive single-ray traversals find the upper nodes in cache, and the batch lanes'
-/// bookkeeping costs more than the latency they hide: issue 17 note, session 7).
+/// bookkeeping costs more than the latency they hide: issue 17 notes, sessions 7 and 9).
 fn streams() -> bool {
     static CHOICE: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
     *CHOICE.get_or_init(|| std::env::var("STAGELIGHT_RAY_STREAMS").as_deref() == Ok("on"))
@@ -66,7 +100,7 @@ pub fn trace_hemisphere(
     seed: u32,
     first: u32,
     count: u32,
-    probe: bool,
+    query: HemisphereQuery,
 ) -> HemisphereRays {
     let job = HemisphereJob {
         surface,
@@ -75,76 +109,408 @@ pub fn trace_hemisphere(
         first,
         count,
     };
-    trace_hemispheres(geometry, &[job], max_distance, seed, probe)[0]
+    trace_hemispheres(geometry, &[job], max_distance, seed, query)[0]
 }
 
-/// The hemisphere rays of several points, generated first and then traced as one stream:
-/// one query per ray, or with `STAGELIGHT_RAY_STREAMS=on` through the batch kernel
-/// ([`crate::accel::Accel::intersect_batch`]: rays interleaved so that their memory misses
-/// overlap). Per point: `count` cosine-weighted rays about `normal`, ray `k` drawn from
-/// `Sampler::new(seed, first + k)`. Directions below the geometric surface (possible with
-/// interpolated normals) count as occluded and are not traced. Hits farther than
-/// `max_distance` do not occlude. With `probe`, rays run to infinity so that `backface_hits`
-/// also serves as the inside-geometry test. The results are those of one query per ray, bit
-/// for bit: each ray's hit is the same, and each point's sums are added in ray order.
+/// The outcome of one drawn ray.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Outcome {
+    /// Below the geometric surface: occluded, not traced.
+    Below,
+    /// Not traced (the point's verdict made it unnecessary).
+    Skipped,
+    /// Waiting for its occlusion query.
+    Pending,
+    /// Traced: whether it escaped within the distance.
+    Traced { open: bool },
+}
+
+/// The hemisphere rays of several points (the sample positions of one texel), generated
+/// first and then traced. Per point: `count` cosine-weighted rays about `normal`, ray `k`
+/// drawn from `Sampler::new(seed, first + k)`. Directions below the geometric surface
+/// (possible with interpolated normals) count as occluded and are not traced. Hits farther
+/// than `max_distance` do not occlude.
+///
+/// With a probe ([`HemisphereQuery::Probe`], [`HemisphereQuery::OcclusionAndProbe`]) a
+/// point's rays are first traced in order as closest-hit queries to infinity, each telling
+/// whether its first hit is the back of a one-sided surface, only until the inside verdict
+/// is certain whatever the remaining rays would show: a point outside is certain once so
+/// many rays have not met a back face that the rest cannot reach the fraction (after about
+/// a quarter of them), a point inside once more than the fraction have. Every other ray
+/// needed for occlusion is an occlusion (any-hit) query up to `max_distance`, one query per
+/// ray, or with `STAGELIGHT_RAY_STREAMS=on` through the batch kernel
+/// ([`crate::accel::Accel::occluded_batch`]). A ray's occlusion is the same from either
+/// query (a hit before `max_distance` exists or not), and each point's sums are added in ray
+/// order, so the results are those of tracing every ray to its first hit, bit for bit.
 pub fn trace_hemispheres(
     geometry: &SceneGeometry,
     jobs: &[HemisphereJob<'_>],
     max_distance: f32,
     seed: u32,
-    probe: bool,
+    query: HemisphereQuery,
 ) -> Vec<HemisphereRays> {
     let mut out = vec![HemisphereRays::default(); jobs.len()];
     let total: usize = jobs.iter().map(|j| j.count as usize).sum();
+    // Each drawn ray (traced ones with their direction in `rays`), point by point.
     let mut rays = Vec::with_capacity(total);
-    // The point and direction of each traced ray.
-    let mut owners = Vec::with_capacity(total);
-    for (p, job) in jobs.iter().enumerate() {
+    let mut outcomes = Vec::with_capacity(total);
+    let mut spans = Vec::with_capacity(jobs.len());
+    for job in jobs {
         let (t, b) = basis(job.normal);
+        // `offset_ray_origin` depends on the direction only through the side of the surface
+        // it leaves on: both origins once per point, the same bits as per ray.
+        let n = job.surface.ng;
+        let above = offset_ray_origin(job.surface.p, job.surface.p_err, n, n);
+        let below = offset_ray_origin(job.surface.p, job.surface.p_err, n, -n);
+        let begin = outcomes.len();
         for k in 0..job.count {
             let mut sampler = Sampler::new(seed, job.first + k);
             let local = sample_cosine_hemisphere(sampler.next_2d());
             let dir = t * local.x + b * local.y + job.normal * local.z;
-            out[p].rays += 1;
             if dir.dot(job.ng_facing) <= 0.0 {
+                outcomes.push(Outcome::Below);
+                rays.push(None);
                 continue;
             }
-            let mut ray = spawn_ray(job.surface, dir);
-            // As an inside-geometry probe the ray looks for the first surface at any
-            // distance; occlusion still counts only hits within `max_distance`.
-            ray.t_max = if probe { f32::INFINITY } else { max_distance };
-            rays.push(ray);
-            owners.push((p, dir));
+            let origin = if dir.dot(n) < 0.0 { below } else { above };
+            outcomes.push(Outcome::Pending);
+            rays.push(Some(Ray {
+                origin,
+                dir,
+                t_max: max_distance,
+            }));
+        }
+        spans.push(begin..outcomes.len());
+    }
+    if let Some(fraction) = query.inside_fraction() {
+        for (p, span) in spans.iter().enumerate() {
+            let inside = probe(
+                geometry,
+                &rays[span.clone()],
+                &mut outcomes[span.clone()],
+                max_distance,
+                fraction,
+                matches!(query, HemisphereQuery::OcclusionAndProbe { .. }),
+            );
+            out[p].inside = inside;
         }
     }
-    let mut hits = vec![None; rays.len()];
-    if streams() {
-        geometry.accel.intersect_batch(&rays, &mut hits);
-    } else {
-        for (ray, hit) in rays.iter().zip(hits.iter_mut()) {
-            *hit = geometry.accel.intersect(ray);
-        }
+    if !matches!(query, HemisphereQuery::Probe { .. }) {
+        occlusion(geometry, &rays, &mut outcomes);
     }
-    for (&(p, dir), hit) in owners.iter().zip(hits) {
+    for (p, span) in spans.iter().enumerate() {
         let out = &mut out[p];
-        if let Some(hit) = hit {
-            let tri = geometry.accel.triangle(hit.prim);
-            let ng = (tri[1] - tri[0]).cross(tri[2] - tri[0]);
-            if ng.dot(dir) > 0.0 && !geometry.material_of(hit.prim).two_sided {
-                out.backface_hits += 1;
+        for (ray, outcome) in rays[span.clone()].iter().zip(&outcomes[span.clone()]) {
+            match outcome {
+                Outcome::Below => out.rays += 1,
+                Outcome::Skipped | Outcome::Pending => {}
+                Outcome::Traced { open } => {
+                    out.rays += 1;
+                    if *open {
+                        out.open += 1;
+                        // A traced ray has a direction.
+                        out.open_dir_sum += ray.map_or(Vec3::ZERO, |r| r.dir);
+                    }
+                }
             }
-        }
-        if hit.is_none_or(|h| h.t >= max_distance) {
-            out.open += 1;
-            out.open_dir_sum += dir;
         }
     }
     out
 }
 
+/// The inside-geometry verdict of one point: its rays traced in order as closest-hit queries
+/// to infinity until the verdict is certain. Traced rays get their occlusion (a first hit
+/// before `max_distance`); once the point is inside, the rest are skipped, and so are the
+/// rest of a point outside unless `occlusion` is wanted (they stay pending).
+fn probe(
+    geometry: &SceneGeometry,
+    rays: &[Option<Ray>],
+    outcomes: &mut [Outcome],
+    max_distance: f32,
+    fraction: f32,
+    occlusion: bool,
+) -> bool {
+    let count = outcomes.len() as u32;
+    let inside = |backface: u32| backface as f32 > fraction * count as f32;
+    let mut backface = 0;
+    // Rays known not to meet a back face first (below the surface, or traced and not).
+    let mut other = outcomes.iter().filter(|o| **o == Outcome::Below).count() as u32;
+    let mut verdict = None;
+    for (ray, outcome) in rays.iter().zip(outcomes.iter_mut()) {
+        if !inside(count - other) {
+            // Outside whatever the remaining rays show.
+            verdict = Some(false);
+            break;
+        }
+        let Some(ray) = ray else { continue };
+        let hit = geometry.accel.intersect(&Ray {
+            t_max: f32::INFINITY,
+            ..*ray
+        });
+        let back = hit.is_some_and(|hit| {
+            let tri = geometry.accel.triangle(hit.prim);
+            let ng = (tri[1] - tri[0]).cross(tri[2] - tri[0]);
+            ng.dot(ray.dir) > 0.0 && !geometry.material_of(hit.prim).two_sided
+        });
+        if back {
+            backface += 1;
+        } else {
+            other += 1;
+        }
+        *outcome = Outcome::Traced {
+            open: hit.is_none_or(|h| h.t >= max_distance),
+        };
+        if inside(backface) {
+            verdict = Some(true);
+            break;
+        }
+    }
+    let inside = verdict.unwrap_or_else(|| inside(backface));
+    if inside || !occlusion {
+        for o in outcomes.iter_mut().filter(|o| **o == Outcome::Pending) {
+            *o = Outcome::Skipped;
+        }
+    }
+    inside
+}
+
+/// Occlusion queries (up to each ray's `t_max`, the distance) for every pending ray: one
+/// query per ray, or one batch (`STAGELIGHT_RAY_STREAMS=on`).
+fn occlusion(geometry: &SceneGeometry, rays: &[Option<Ray>], outcomes: &mut [Outcome]) {
+    if streams() {
+        let (mut batch, mut index) = (Vec::new(), Vec::new());
+        for (i, (ray, outcome)) in rays.iter().zip(outcomes.iter()).enumerate() {
+            if let (Some(ray), Outcome::Pending) = (ray, outcome) {
+                batch.push(*ray);
+                index.push(i);
+            }
+        }
+        let mut hit = vec![false; batch.len()];
+        geometry.accel.occluded_batch(&batch, &mut hit);
+        for (i, hit) in index.into_iter().zip(hit) {
+            outcomes[i] = Outcome::Traced { open: !hit };
+        }
+        return;
+    }
+    for (ray, outcome) in rays.iter().zip(outcomes.iter_mut()) {
+        if let (Some(ray), true) = (ray, *outcome == Outcome::Pending) {
+            *outcome = Outcome::Traced {
+                open: !geometry.accel.occluded(ray),
+            };
+        }
+    }
+}
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::shading::integrator::fixture::{self, Object};
+
+    /// What tracing every ray to its first hit gives (the bake before the probe stopped
+    /// early): rays, escaped rays, their direction sum, back-face first hits.
+    fn reference(
+        geometry: &SceneGeometry,
+        job: &HemisphereJob<'_>,
+        max_distance: f32,
+        seed: u32,
+    ) -> (u32, u32, Vec3, u32) {
+        let (t, b) = basis(job.normal);
+        let (mut open, mut sum, mut back) = (0, Vec3::ZERO, 0);
+        for k in 0..job.count {
+            let local = sample_cosine_hemisphere(Sampler::new(seed, job.first + k).next_2d());
+            let dir = t * local.x + b * local.y + job.normal * local.z;
+            if dir.dot(job.ng_facing) <= 0.0 {
+                continue;
+            }
+            let hit = geometry
+                .accel
+                .intersect(&crate::accel::spawn_ray(job.surface, dir));
+            if let Some(h) = hit {
+                let tri = geometry.accel.triangle(h.prim);
+                let ng = (tri[1] - tri[0]).cross(tri[2] - tri[0]);
+                back += u32::from(ng.dot(dir) > 0.0 && !geometry.material_of(h.prim).two_sided);
+            }
+            if hit.is_none_or(|h| h.t >= max_distance) {
+                open += 1;
+                sum += dir;
+            }
+        }
+        (job.count, open, sum, back)
+    }
+
+    /// A floor (one-sided, facing up), a closed one-sided box sunk into it, a one-sided wall
+    /// standing on it with its back to the probe points, and a two-sided roof.
+    fn scene() -> SceneGeometry {
+        // Its faces: the fixture's cube is wound so that its normals point out.
+        let cube: Vec<[Vec3; 3]> = fixture::inward_cube(0.25)
+            .into_iter()
+            .map(|t| t.map(|v| v + Vec3::new(0.5, 0.5, 0.2)))
+            .collect();
+        let wall = fixture::quad(
+            Vec3::new(-0.5, -1.0, 0.0),
+            Vec3::new(0.0, 0.0, 1.0),
+            Vec3::new(0.0, 2.0, 0.0),
+        );
+        let roof = fixture::quad(
+            Vec3::new(-1.0, -1.0, 0.6),
+            Vec3::new(0.4, 0.0, 0.0),
+            Vec3::new(0.0, 0.5, 0.0),
+        );
+        let mut two_sided = fixture::lambert(0.5);
+        two_sided.two_sided = true;
+        fixture::geometry(vec![
+            Object {
+                triangles: fixture::floor(2.0, 0.0),
+                material: fixture::lambert(0.5),
+            },
+            Object {
+                triangles: cube,
+                material: fixture::lambert(0.5),
+            },
+            Object {
+                triangles: wall,
+                material: fixture::lambert(0.5),
+            },
+            Object {
+                triangles: roof,
+                material: two_sided,
+            },
+        ])
+    }
+
+    /// The probe stops tracing once its verdict is certain and occlusion uses any-hit
+    /// queries, yet every point gets the verdict, the escaped count and the direction sum
+    /// (bit for bit) of tracing every ray to its first hit: inside the box, beside the
+    /// wall's back (about half the rays meet a back face, so the fraction decides), under
+    /// the roof and in the open, at several fractions, distances and ray counts, with a
+    /// tilted shading normal that sends some directions below the surface.
+    #[test]
+    fn early_probe_and_any_hit_occlusion_match_tracing_every_ray() {
+        let g = scene();
+        let points = [
+            Vec3::new(0.5, 0.5, 0.0),
+            Vec3::new(0.45, 0.6, 0.0),
+            Vec3::new(-0.52, 0.1, 0.0),
+            Vec3::new(-0.45, 0.0, 0.0),
+            Vec3::new(-0.49, 0.3, 0.0),
+            Vec3::new(-0.8, -0.8, 0.0),
+            Vec3::new(1.5, -1.5, 0.0),
+            Vec3::new(0.8, 0.5, 0.0),
+        ];
+        // From below: the floor is the first surface up there.
+        let floor_hit = |p: Vec3| fixture::hit(&g, p - Vec3::Z, Vec3::Z).1;
+        let surfaces: Vec<SurfacePoint> = points
+            .iter()
+            .map(|&p| g.accel.surface_point(&floor_hit(p)))
+            .collect();
+        let normals = [Vec3::Z, Vec3::new(0.6, 0.0, 0.8)];
+        let (mut insides, mut outsides) = (0, 0);
+        for (seed, fraction, max_distance, count) in [
+            (1, 0.75, f32::INFINITY, 16),
+            (2, 0.5, 0.3, 16),
+            (3, 0.25, 2.0, 5),
+            (4, 0.75, f32::INFINITY, 8),
+            (5, 0.4, 0.05, 1),
+            (6, 0.5, f32::INFINITY, 64),
+        ] {
+            let jobs: Vec<HemisphereJob<'_>> = surfaces
+                .iter()
+                .zip(normals.iter().cycle())
+                .enumerate()
+                .map(|(i, (s, &normal))| HemisphereJob {
+                    surface: s,
+                    normal,
+                    ng_facing: s.ng,
+                    first: 3 * i as u32,
+                    count,
+                })
+                .collect();
+            let both = trace_hemispheres(
+                &g,
+                &jobs,
+                max_distance,
+                seed,
+                HemisphereQuery::OcclusionAndProbe {
+                    inside_fraction: fraction,
+                },
+            );
+            let probe = trace_hemispheres(
+                &g,
+                &jobs,
+                max_distance,
+                seed,
+                HemisphereQuery::Probe {
+                    inside_fraction: fraction,
+                },
+            );
+            let occlusion =
+                trace_hemispheres(&g, &jobs, max_distance, seed, HemisphereQuery::Occlusion);
+            for (p, job) in jobs.iter().enumerate() {
+                let (rays, open, sum, back) = reference(&g, job, max_distance, seed);
+                let inside = back as f32 > fraction * rays as f32;
+                let case = format!("point {p}, seed {seed}");
+                assert_eq!(
+                    (occlusion[p].rays, occlusion[p].open),
+                    (rays, open),
+                    "{case}"
+                );
+                assert_eq!(
+                    occlusion[p].open_dir_sum.to_array().map(f32::to_bits),
+                    sum.to_array().map(f32::to_bits),
+                    "{case}"
+                );
+                assert_eq!(
+                    (both[p].inside, probe[p].inside),
+                    (inside, inside),
+                    "{case}"
+                );
+                assert!(probe[p].rays <= rays && both[p].rays <= rays, "{case}");
+                if inside {
+                    insides += 1;
+                } else {
+                    outsides += 1;
+                    assert_eq!((both[p].rays, both[p].open), (rays, open), "{case}");
+                    assert_eq!(
+                        both[p].open_dir_sum.to_array().map(f32::to_bits),
+                        sum.to_array().map(f32::to_bits),
+                        "{case}"
+                    );
+                }
+            }
+        }
+        assert!(
+            insides >= 6 && outsides >= 12,
+            "{insides} inside, {outsides} outside"
+        );
+    }
+
+    /// Outside in the open the probe decides after a quarter of the rays and inside a closed
+    /// box after three quarters: it traces fewer rays than it draws.
+    #[test]
+    fn the_probe_stops_when_its_verdict_is_certain() {
+        let g = scene();
+        let hit = |p: Vec3| {
+            g.accel
+                .surface_point(&fixture::hit(&g, p - Vec3::Z, Vec3::Z).1)
+        };
+        let (open, boxed) = (
+            hit(Vec3::new(1.5, -1.5, 0.0)),
+            hit(Vec3::new(0.5, 0.5, 0.0)),
+        );
+        let job = |s| HemisphereJob {
+            surface: s,
+            normal: Vec3::Z,
+            ng_facing: Vec3::Z,
+            first: 0,
+            count: 16,
+        };
+        let query = HemisphereQuery::Probe {
+            inside_fraction: 0.75,
+        };
+        let r = trace_hemispheres(&g, &[job(&open), job(&boxed)], f32::INFINITY, 9, query);
+        // 16 rays: outside is certain after 4 rays miss back faces, inside after 13 meet them.
+        assert_eq!((r[0].inside, r[0].rays), (false, 4));
+        assert_eq!((r[1].inside, r[1].rays), (true, 13));
+    }
 
     #[test]
     fn basis_is_orthonormal() {

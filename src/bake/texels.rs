@@ -8,7 +8,9 @@ use glam::Vec3;
 use rayon::prelude::*;
 
 use crate::accumulate::SampleMean;
-use crate::bake::ao::{trace_hemisphere, trace_hemispheres, HemisphereJob, HemisphereRays};
+use crate::bake::ao::{
+    trace_hemisphere, trace_hemispheres, HemisphereJob, HemisphereQuery, HemisphereRays,
+};
 use crate::bake::irradiance::{
     base_color, diffuse_albedo, direct_irradiance, indirect_irradiance_path,
     indirect_irradiance_sample,
@@ -213,10 +215,12 @@ fn texel(
                 hash_combine(&[texel_seed, 0x9b0e, s as u32]),
                 0,
                 PROBE_RAYS,
-                true,
+                HemisphereQuery::Probe {
+                    inside_fraction: INSIDE_FRACTION,
+                },
             );
             rays += probe.rays as u64;
-            if probe.backface_hits as f32 > INSIDE_FRACTION * probe.rays as f32 {
+            if probe.inside {
                 continue;
             }
         }
@@ -243,11 +247,12 @@ fn texel(
                 })
         {
             let kind_seed = hash_combine(&[texel_seed, k as u32 + 1]);
-            let results = ao_rays(job, &sites, samples, max_distance, kind_seed, true);
+            let query = HemisphereQuery::OcclusionAndProbe {
+                inside_fraction: INSIDE_FRACTION,
+            };
+            let results = ao_rays(job, &sites, samples, max_distance, kind_seed, query);
             rays += results.iter().map(|r| r.rays as u64).sum::<u64>();
-            let inside =
-                |r: &HemisphereRays| r.backface_hits as f32 > INSIDE_FRACTION * r.rays as f32;
-            let keep: Vec<bool> = results.iter().map(|r| !inside(r)).collect();
+            let keep: Vec<bool> = results.iter().map(|r| !r.inside).collect();
             let mut kept = keep.iter();
             sites.retain(|_| *kept.next().unwrap_or(&true));
             let results: Vec<HemisphereRays> = results
@@ -274,7 +279,8 @@ fn texel(
                 let results = match &ao_done {
                     Some((done, results)) if *done == k => results.clone(),
                     _ => {
-                        let r = ao_rays(job, &sites, *samples, *max_distance, kind_seed, false);
+                        let query = HemisphereQuery::Occlusion;
+                        let r = ao_rays(job, &sites, *samples, *max_distance, kind_seed, query);
                         rays += r.iter().map(|r| r.rays as u64).sum::<u64>();
                         r
                     }
@@ -411,7 +417,7 @@ fn ao_rays(
     samples: u32,
     max_distance: f32,
     seed: u32,
-    probe: bool,
+    query: HemisphereQuery,
 ) -> Vec<HemisphereRays> {
     let samples = samples.max(1);
     let n = sites.len() as u32;
@@ -432,7 +438,7 @@ fn ao_rays(
             j
         })
         .collect();
-    trace_hemispheres(job.geometry, &jobs, max_distance, seed, probe)
+    trace_hemispheres(job.geometry, &jobs, max_distance, seed, query)
 }
 
 /// `n` in the tangent frame of the site's triangle: T = dP/du, B = dP/dv (Gram–Schmidt
