@@ -1,5 +1,6 @@
 //! glTF materials → `MetallicRoughness` materials: base colour, metallic and roughness
-//! factors, the base colour texture (sRGB) and the metallic-roughness texture (linear: blue
+//! factors, the base colour texture (sRGB) times the vertex colours (`COLOR_0`, bound only
+//! when a primitive drawn with the material has them) and the metallic-roughness texture (linear: blue
 //! is metalness, green roughness) as shader-graph bindings, the normal texture as a
 //! tangent-space normal map (`bump: (normal_map: …, scale)`), emission
 //! (`emissiveFactor × KHR_materials_emissive_strength`, W/(sr·m²), times the emissive
@@ -59,7 +60,11 @@ pub fn material_name(w: &mut Walk<'_>, index: Option<usize>) -> String {
             },
             two_sided: false,
             emission: (0.0, 0.0, 0.0),
-            bind: BTreeMap::new(),
+            bind: if uses_vertex_colours(w, None) {
+                BTreeMap::from([("base_color".to_string(), node(NodeDesc::VertexColor))])
+            } else {
+                BTreeMap::new()
+            },
             bump: None,
             interior: None,
             contour: None,
@@ -70,6 +75,16 @@ pub fn material_name(w: &mut Walk<'_>, index: Option<usize>) -> String {
     w.desc.materials.push(desc);
     w.materials.insert(index, name.clone());
     name
+}
+
+/// Whether a primitive drawn with glTF material `index` (`None`: the default material) has
+/// vertex colours (`COLOR_0`).
+fn uses_vertex_colours(w: &Walk<'_>, index: Option<usize>) -> bool {
+    w.file
+        .doc
+        .meshes()
+        .flat_map(|m| m.primitives())
+        .any(|p| p.material().index() == index && p.get(&gltf::Semantic::Colors(0)).is_some())
 }
 
 fn node(n: NodeDesc) -> InputDesc {
@@ -93,10 +108,22 @@ fn material(w: &mut Walk<'_>, m: &gltf::Material<'_>) -> MaterialDesc {
     let base_texture = pbr
         .base_color_texture()
         .and_then(|info| texture(w, &info, &at, "base colour"));
-    if let Some(t) = &base_texture {
-        let factor = InputDesc::Colour((unit(r), unit(g), unit(b)));
-        let image = t.image(EncodingDesc::Srgb);
-        bind.insert("base_color".to_string(), node(NodeDesc::Mul(image, factor)));
+    let factor = InputDesc::Colour((unit(r), unit(g), unit(b)));
+    let base = match &base_texture {
+        Some(t) => Some(node(NodeDesc::Mul(
+            t.image(EncodingDesc::Srgb),
+            factor.clone(),
+        ))),
+        None => None,
+    };
+    // COLOR_0 multiplies the base colour (white where a primitive has none).
+    let base = match (base, uses_vertex_colours(w, m.index())) {
+        (Some(base), true) => Some(node(NodeDesc::Mul(base, node(NodeDesc::VertexColor)))),
+        (None, true) => Some(node(NodeDesc::Mul(factor, node(NodeDesc::VertexColor)))),
+        (base, false) => base,
+    };
+    if let Some(base) = base {
+        bind.insert("base_color".to_string(), base);
     }
     if let Some(t) = pbr
         .metallic_roughness_texture()
