@@ -23,6 +23,7 @@ Files:
   a wall, lit at 45° by a directional light (tests/it/gltf_materials.rs);
   blend.glb: a black mirror card with texture alpha 64/255 (alphaMode BLEND) in front of
   the white default environment; missing_texture.gltf: a normal texture whose image file
+  does not exist; missing_texture.glb: a base colour texture whose image file ("bricks")
   does not exist.
 - colours.glb: four quads side by side drawn with one polished metal material (base colour
   factor (0.8, 0.6, 0.5), metallic 1, roughness 0) in the white default environment; three
@@ -331,6 +332,14 @@ def write_material_textures():
     gltf = b.finish([b.node(name="quad", mesh=mesh)])
     gltf.convert_buffers(g.BufferFormat.DATAURI)
     gltf.save_json(os.path.join(OUT, "missing_texture.gltf"))
+
+    # The same in a binary file, the image named, as a base colour texture.
+    b = Builder()
+    b.gltf.images.append(g.Image(uri="nowhere.png", name="bricks"))
+    b.gltf.textures.append(g.Texture(source=0))
+    b.gltf.materials = [g.Material(name="lost", pbrMetallicRoughness=g.PbrMetallicRoughness(baseColorTexture=g.TextureInfo(index=0)))]
+    mesh = facing_quad(b, "quad", 1.0, 0.0, 0)
+    b.finish([b.node(name="quad", mesh=mesh)]).save_binary(os.path.join(OUT, "missing_texture.glb"))
 
 
 def side_quad(b, name, x, material, extra):
