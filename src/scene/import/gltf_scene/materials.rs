@@ -114,13 +114,9 @@ fn material(w: &mut Walk<'_>, m: &gltf::Material<'_>) -> MaterialDesc {
         .base_color_texture()
         .and_then(|info| texture(w, &info, &at, "base colour"));
     let factor = InputDesc::Colour((unit(r), unit(g), unit(b)));
-    let base = match &base_texture {
-        Some(t) => Some(node(NodeDesc::Mul(
-            t.image(EncodingDesc::Srgb),
-            factor.clone(),
-        ))),
-        None => None,
-    };
+    let base = base_texture
+        .as_ref()
+        .map(|t| node(NodeDesc::Mul(t.image(EncodingDesc::Srgb), factor.clone())));
     // COLOR_0 multiplies the base colour (white where a primitive has none).
     let base = match (base, uses_vertex_colours(w, m.index())) {
         (Some(base), true) => Some(node(NodeDesc::Mul(base, node(NodeDesc::VertexColor)))),

@@ -99,6 +99,19 @@ pub fn file_error(path: &Path, e: &MeshFileError) -> Diagnostic {
     }
 }
 
+/// The name of the glTF format in `import::FORMATS`.
+pub const FORMAT_NAME: &str = "glTF";
+
+/// Makes a glTF scene a part of the scene that includes it (`include: ["level.glb"]` in
+/// RON): its materials, objects, instances, groups (the root group, named after the glTF
+/// scene, for the includer to place), cameras, lights and bakes come in; what the file
+/// chose for a scene of its own — the render entry and the white default environment of a
+/// file without lights — does not.
+pub fn as_include(desc: &mut SceneDesc) {
+    desc.render = None;
+    desc.environment = None;
+}
+
 /// Reads a glTF scene (the reader in `import::FORMATS`).
 pub fn read(path: &Path, bytes: &[u8]) -> Result<ReadScene, Vec<Diagnostic>> {
     let dir = path.parent().unwrap_or(Path::new(""));
