@@ -24,7 +24,7 @@ Files:
   blend.glb: a black mirror card with texture alpha 64/255 (alphaMode BLEND) in front of
   the white default environment; missing_texture.gltf: a normal texture whose image file
   does not exist; missing_texture.glb: a base colour texture whose image file ("bricks")
-  does not exist.
+  does not exist; bad_image.glb: an embedded image ("garbage") that is not an image.
 - colours.glb: four quads side by side drawn with one polished metal material (base colour
   factor (0.8, 0.6, 0.5), metallic 1, roughness 0) in the white default environment; three
   carry COLOR_0 as float vec3, normalised u8 vec4 and normalised u16 vec3, the fourth none.
@@ -340,6 +340,14 @@ def write_material_textures():
     b.gltf.materials = [g.Material(name="lost", pbrMetallicRoughness=g.PbrMetallicRoughness(baseColorTexture=g.TextureInfo(index=0)))]
     mesh = facing_quad(b, "quad", 1.0, 0.0, 0)
     b.finish([b.node(name="quad", mesh=mesh)]).save_binary(os.path.join(OUT, "missing_texture.glb"))
+
+    # An embedded image whose bytes are not an image.
+    b = Builder()
+    b.gltf.images.append(g.Image(bufferView=b.view(b"not a picture"), mimeType="image/png", name="garbage"))
+    b.gltf.textures.append(g.Texture(source=0))
+    b.gltf.materials = [g.Material(name="broken", pbrMetallicRoughness=g.PbrMetallicRoughness(baseColorTexture=g.TextureInfo(index=0)))]
+    mesh = facing_quad(b, "quad", 1.0, 0.0, 0)
+    b.finish([b.node(name="quad", mesh=mesh)]).save_binary(os.path.join(OUT, "bad_image.glb"))
 
 
 def side_quad(b, name, x, material, extra):

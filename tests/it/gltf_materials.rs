@@ -4,7 +4,8 @@
 //! `emissiveFactor` and `KHR_materials_emissive_strength` (each texel's radiance at its
 //! pixel), and `alphaMode: MASK` (the card lets the wall and the light through exactly
 //! where alpha < `alphaCutoff`, and its shadow has the hole), and image files that cannot be
-//! read located at their `uri` (`.gltf`) or named by index and name (`.glb`).
+//! read located at their `uri` (`.gltf`) or named by index and name (`.glb`, also an
+//! embedded image that does not decode).
 
 use std::path::Path;
 
@@ -314,4 +315,14 @@ fn a_blended_card_lets_through_one_minus_its_texture_alpha() {
         "mean {mean} vs {} (σ {sigma})",
         1.0 - a
     );
+}
+
+/// An image embedded in a `.glb` that does not decode is named by index and name.
+#[test]
+fn an_embedded_image_that_does_not_decode_is_named() {
+    let errors = match stagelight::scene::load_scene(&Path::new(DIR).join("bad_image.glb")) {
+        Ok(_) => panic!("loaded"),
+        Err(e) => e.to_string(),
+    };
+    assert_eq!(errors, format!("{DIR}/bad_image.glb:1:1: error: cannot read images[0] (\"garbage\") of glTF file \"{DIR}/bad_image.glb\": The image format could not be determined\n  help: glTF images are read as PNG: export the image as PNG"));
 }

@@ -716,6 +716,22 @@ pub fn image_reference(name: &str) -> Option<(&str, usize)> {
     Some((file, index.parse().ok()?))
 }
 
+/// Image `index` of the glTF file at `path` for messages: `images[3] ("bricks")`, or
+/// `images[3]` when it has no name (or the file cannot be read).
+pub fn image_label(path: &Path, index: usize) -> String {
+    let name = crate::limits::read_file(path, crate::limits::MAX_MESH_FILE_BYTES, "glTF file")
+        .ok()
+        .and_then(|bytes| open(&bytes, None).ok())
+        .and_then(|file| {
+            let image = file.doc.images().nth(index)?;
+            image.name().map(str::to_string)
+        });
+    match name {
+        Some(n) => format!("images[{index}] (\"{n}\")"),
+        None => format!("images[{index}]"),
+    }
+}
+
 /// The encoded bytes (PNG, JPEG, …) of image `index` of the glTF file at `path`: a buffer
 /// view, a `data:` URI or a file beside it.
 pub fn image_bytes(path: &Path, index: usize) -> Result<Vec<u8>, String> {
