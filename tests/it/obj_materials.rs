@@ -497,10 +497,15 @@ fn an_instance_of_a_two_material_obj_bakes_each_face_with_its_material() {
             ("quads.obj", TWO_QUADS_UNWRAPPED),
             (
                 "paint.mtl",
-                "newmtl red\nKd 0.8 0 0\nnewmtl blue\nKd 0 0 0.8\n",
+                "newmtl red\nKd 0.8 0 0\nmap_Kd grey.png\nnewmtl blue\nKd 0 0 0.8\n",
             ),
         ],
     );
+    // The red face's colour is Kd times a uniform texture of sRGB 128.
+    image::RgbImage::from_pixel(2, 2, image::Rgb([128, 128, 128]))
+        .save(dir.join("grey.png"))
+        .unwrap();
+    let grey = stagelight::shading::texture::colour::srgb_to_linear(128.0 / 255.0);
     let bake = |object: &str, out: &str| {
         std::fs::write(dir.join("scene.ron"), bake_scene(object)).unwrap();
         let o = crate::common::cli::run_in(&dir, &["bake", "scene.ron", "-o", out]);
@@ -521,7 +526,8 @@ fn an_instance_of_a_two_material_obj_bakes_each_face_with_its_material() {
             "{file}"
         );
     }
-    // Radiance is albedo · E / π with each face's own albedo: red left, blue right.
+    // Radiance is albedo · E / π with each face's own albedo (its texture included): red
+    // left, blue right.
     let (w, e) = read_exr(&dir.join("mtl/irradiance.exr"));
     let (_, l) = read_exr(&dir.join("mtl/radiance.exr"));
     let (lit, shaded) = (
@@ -534,7 +540,7 @@ fn an_instance_of_a_two_material_obj_bakes_each_face_with_its_material() {
     );
     for (k, (e, l)) in e.iter().zip(&l).enumerate() {
         let albedo = if k % w < w / 2 {
-            Vec3::new(0.8, 0.0, 0.0)
+            Vec3::new(0.8 * grey, 0.0, 0.0)
         } else {
             Vec3::new(0.0, 0.0, 0.8)
         };
