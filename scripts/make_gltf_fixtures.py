@@ -23,7 +23,15 @@ Files:
   a wall, lit at 45° by a directional light (tests/it/gltf_materials.rs);
   blend.glb: a black mirror card with texture alpha 64/255 (alphaMode BLEND) in front of
   the white default environment; missing_texture.gltf: a normal texture whose image file
-  does not exist.
+  does not exist; missing_texture.glb: a base colour texture whose image file ("bricks")
+  does not exist; bad_image.glb: an embedded image ("garbage") that is not an image.
+- colours.glb: four quads side by side drawn with one polished metal material (base colour
+  factor (0.8, 0.6, 0.5), metallic 1, roughness 0) in the white default environment; three
+  carry COLOR_0 as float vec3, normalised u8 vec4 and normalised u16 vec3, the fourth none.
+- tangents.glb: three quads side by side with the same uv layout and one uniform normal
+  texture (128, 192, 255), "green up"; their TANGENT is +x (w = +1), +x (w = −1), +y
+  (w = +1). bad_tangent.glb (a TANGENT w of 0.5) and bad_colour.glb (COLOR_0 of unsigned
+  bytes without `normalized`) are malformed.
 - assets/gltf/lightmap_room.glb: a floor, two walls and a box, each with TEXCOORD_1 laid out
   as unique, non-overlapping lightmap charts, a point light (KHR_lights_punctual) and a
   camera; baked by `stagelight bake assets/gltf/lightmap_room.glb --write-gltf` (README).
@@ -325,6 +333,72 @@ def write_material_textures():
     gltf.convert_buffers(g.BufferFormat.DATAURI)
     gltf.save_json(os.path.join(OUT, "missing_texture.gltf"))
 
+    # The same in a binary file, the image named, as a base colour texture.
+    b = Builder()
+    b.gltf.images.append(g.Image(uri="nowhere.png", name="bricks"))
+    b.gltf.textures.append(g.Texture(source=0))
+    b.gltf.materials = [g.Material(name="lost", pbrMetallicRoughness=g.PbrMetallicRoughness(baseColorTexture=g.TextureInfo(index=0)))]
+    mesh = facing_quad(b, "quad", 1.0, 0.0, 0)
+    b.finish([b.node(name="quad", mesh=mesh)]).save_binary(os.path.join(OUT, "missing_texture.glb"))
+
+    # An embedded image whose bytes are not an image.
+    b = Builder()
+    b.gltf.images.append(g.Image(bufferView=b.view(b"not a picture"), mimeType="image/png", name="garbage"))
+    b.gltf.textures.append(g.Texture(source=0))
+    b.gltf.materials = [g.Material(name="broken", pbrMetallicRoughness=g.PbrMetallicRoughness(baseColorTexture=g.TextureInfo(index=0)))]
+    mesh = facing_quad(b, "quad", 1.0, 0.0, 0)
+    b.finish([b.node(name="quad", mesh=mesh)]).save_binary(os.path.join(OUT, "bad_image.glb"))
+
+
+def side_quad(b, name, x, material, extra):
+    """A unit square centred at (x, 0, 0) facing +Z (glTF uv (0, 0) at its top-left corner),
+    with more vertex attributes: name → (numpy array, accessor type, component type,
+    normalized)."""
+    p = [(x - 0.5, -0.5, 0), (x + 0.5, -0.5, 0), (x + 0.5, 0.5, 0), (x - 0.5, 0.5, 0)]
+    uv = [(0, 1), (1, 1), (1, 0), (0, 0)]
+    mesh = b.mesh(name, p, [(0, 0, 1)] * 4, uv, [[0, 1, 2], [0, 2, 3]], material=material)
+    attrs = b.gltf.meshes[mesh].primitives[0].attributes
+    for attr, (array, kind, component, normalized) in extra.items():
+        acc = b.accessor(array, kind, component, g.ARRAY_BUFFER)
+        b.gltf.accessors[acc].normalized = normalized or None
+        setattr(attrs, attr, acc)
+    return mesh
+
+
+def write_vertex_attributes():
+    b = Builder()
+    b.gltf.materials = [g.Material(name="tinted", pbrMetallicRoughness=g.PbrMetallicRoughness(baseColorFactor=[0.8, 0.6, 0.5, 1.0], metallicFactor=1.0, roughnessFactor=0.0))]
+    colours = {
+        "float3": (np.array([(0.25, 0.5, 1.0)] * 4, np.float32), g.VEC3, g.FLOAT, False),
+        "u8": (np.array([(255, 64, 0, 255)] * 4, np.uint8), g.VEC4, g.UNSIGNED_BYTE, True),
+        "u16": (np.array([(0, 32768, 65535)] * 4, np.uint16), g.VEC3, g.UNSIGNED_SHORT, True),
+    }
+    nodes = []
+    for k, (name, colour) in enumerate(colours.items()):
+        mesh = side_quad(b, name, -1.65 + 1.1 * k, 0, {"COLOR_0": colour})
+        nodes.append(b.node(name=name, mesh=mesh))
+    nodes.append(b.node(name="plain", mesh=side_quad(b, "plain", 1.65, 0, {})))
+    b.gltf.cameras.append(g.Camera(name="front", type="perspective", perspective=g.Perspective(yfov=0.5, znear=0.1, aspectRatio=4.0)))
+    nodes.append(b.node(name="eye", camera=0, translation=[0.0, 0.0, 5.0]))
+    b.finish(nodes).save_binary(os.path.join(OUT, "colours.glb"))
+
+    b = Builder()
+    tex = image(b, quadrants(*[(128, 192, 255)] * 4))
+    b.gltf.materials = [g.Material(name="bumpy", pbrMetallicRoughness=g.PbrMetallicRoughness(baseColorFactor=[0.8, 0.8, 0.8, 1.0], metallicFactor=0.0, roughnessFactor=1.0), normalTexture=g.NormalMaterialTexture(index=tex, scale=1.5))]
+    tangents = {"plus": (1, 0, 0, 1), "minus": (1, 0, 0, -1), "turned": (0, 1, 0, 1)}
+    nodes = []
+    for k, (name, t) in enumerate(tangents.items()):
+        mesh = side_quad(b, name, -1.1 + 1.1 * k, 0, {"TANGENT": (np.array([t] * 4, np.float32), g.VEC4, g.FLOAT, False)})
+        nodes.append(b.node(name=name, mesh=mesh))
+    b.finish(nodes).save_binary(os.path.join(OUT, "tangents.glb"))
+
+    b = Builder()
+    side_quad(b, "tilted", 0.0, None, {"TANGENT": (np.array([(1, 0, 0, 0.5)] * 4, np.float32), g.VEC4, g.FLOAT, False)})
+    b.finish([b.node(name="tilted", mesh=0)]).save_binary(os.path.join(OUT, "bad_tangent.glb"))
+    b = Builder()
+    side_quad(b, "raw", 0.0, None, {"COLOR_0": (np.array([(255, 0, 0)] * 4, np.uint8), g.VEC3, g.UNSIGNED_BYTE, False)})
+    b.finish([b.node(name="raw", mesh=0)]).save_binary(os.path.join(OUT, "bad_colour.glb"))
+
 
 def write_lightmap_room():
     b = Builder()
@@ -373,4 +447,5 @@ if __name__ == "__main__":
     write_two_uv_sets()
     write_bad_files()
     write_material_textures()
+    write_vertex_attributes()
     write_lightmap_room()

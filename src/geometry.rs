@@ -37,6 +37,9 @@ pub struct InstanceGeometry {
     pub bump: Option<Arc<Displacement>>,
     /// The object's vertex colours (linear RGB, one per vertex of `mesh`), if it has them.
     pub colours: Option<Arc<Vec<Vec3>>>,
+    /// The object's tangents (object space, `w` the handedness, one per vertex of `mesh`),
+    /// if it has them ([`crate::components::VertexTangents`]).
+    pub tangents: Option<Arc<Vec<glam::Vec4>>>,
 }
 
 impl InstanceGeometry {

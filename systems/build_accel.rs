@@ -4,7 +4,9 @@
 //! the objects' `Displacement` in `Bump` mode (kept for shading);
 //! the `SceneOrigin` (copied into the geometry); instances' `RayFlags` (per-triangle ray
 //! masks in the BVH);
-//! `settings.bvh_quality`; objects' `FaceMaterials` (per-triangle material slots).
+//! `settings.bvh_quality`; objects' `FaceMaterials` (per-triangle material slots; an
+//! instance's own `FaceMaterials` wins over its object's); objects' `VertexColours` and
+//! `VertexTangents`.
 //! **Refuses:** placed triangles beyond the supported coordinate range
 //! (`crate::guard::extent`), located at their object.
 //! **Stops:** when the run is interrupted, even inside obvhs's build (waited for through
@@ -26,7 +28,7 @@ use super::MERGING;
 use crate::accel::Accel;
 use crate::components::{
     BakeRequest, Displacement, DisplacementMode, FaceMaterials, Instance, Material, MaterialRef,
-    Procedural, RayFlags, Scatter, SceneOrigin, SubdivMesh, Surface, VertexColours,
+    Procedural, RayFlags, Scatter, SceneOrigin, SubdivMesh, Surface, VertexColours, VertexTangents,
     WorldFromObject, ALL_RAYS,
 };
 use crate::geometry::{InstanceGeometry, SceneGeometry};
@@ -116,7 +118,8 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
             Ok(s)
         };
         let slot = slot_of(material_ref.0)?;
-        let face_materials = match world.get::<&FaceMaterials>(instance.object) {
+        let own = world.get::<&FaceMaterials>(entity);
+        let face_materials = match own.or_else(|_| world.get::<&FaceMaterials>(instance.object)) {
             Ok(faces) if faces.0.len() == instance.mesh.triangles.len() => Some(Arc::new(
                 faces
                     .0
@@ -165,6 +168,11 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
                 .ok()
                 .map(|c| c.0.clone())
                 .filter(|c| c.len() == instance.mesh.positions.len()),
+            tangents: world
+                .get::<&VertexTangents>(instance.object)
+                .ok()
+                .map(|t| t.0.clone())
+                .filter(|t| t.len() == instance.mesh.positions.len()),
         });
     }
     // Generated geometry is only known now: refuse what the f32 BVH and triangle test cannot

@@ -361,12 +361,7 @@ fn texel(
                 }
                 match store {
                     LightmapStore::Irradiance => e,
-                    LightmapStore::Radiance => {
-                        let albedo = diffuse_albedo(
-                            &job.geometry.materials[sites[0].material as usize].shader,
-                        );
-                        albedo * e / std::f32::consts::PI
-                    }
+                    LightmapStore::Radiance => texel_albedo(job, &sites) * e / std::f32::consts::PI,
                 }
             }
             BakeKind::Normals { space } => {
@@ -407,6 +402,27 @@ fn texel(
         values[k] = value.is_finite().then_some(value);
     }
     (values, rays, false)
+}
+
+/// The diffuse albedo of a texel for `Lightmap(store: Radiance)`: at each sample position,
+/// of that position's material with its texture nodes evaluated; their mean, or exactly
+/// their common value when every position has the same.
+fn texel_albedo(job: &TexelJob<'_>, sites: &[Site]) -> Vec3 {
+    let each: Vec<Vec3> = sites
+        .iter()
+        .map(|site| {
+            let material = &job.geometry.materials[site.material as usize];
+            let sp = job.geometry.shading_point(&site.hit);
+            match textured::evaluate(job.geometry, &sp, &site.hit, material) {
+                Some(t) => diffuse_albedo(&t.shader),
+                None => diffuse_albedo(&material.shader),
+            }
+        })
+        .collect();
+    match each.first() {
+        Some(&first) if each.iter().all(|&a| a == first) => first,
+        _ => each.iter().sum::<Vec3>() / each.len().max(1) as f32,
+    }
 }
 
 /// AO rays of every sample position: `samples` rays dealt round-robin over `sites`, traced

@@ -2,7 +2,7 @@
 
 use std::sync::Arc;
 
-use glam::{Vec2, Vec3};
+use glam::{Vec2, Vec3, Vec4};
 use hecs::Entity;
 
 /// An indexed triangle mesh in object space. Shared by every instance of the object.
@@ -45,10 +45,19 @@ pub struct SecondUvs(pub Arc<Vec<Vec2>>);
 #[derive(Debug, Clone, PartialEq)]
 pub struct VertexColours(pub Arc<Vec<Vec3>>);
 
+/// Per-vertex tangents of an object's mesh (glTF `TANGENT`): object-space unit `xyz` and the
+/// bitangent's handedness `w` = ±1 (B = w · N × T), one per vertex of its [`TriMesh`].
+/// Carried by the object entity beside its `Arc<TriMesh>`; normal maps use them instead of
+/// tangents generated from the uvs.
+#[derive(Debug, Clone, PartialEq)]
+pub struct VertexTangents(pub Arc<Vec<Vec4>>);
+
 /// The materials an object's own polygons name (`materials` of an inline mesh, `.mi`
 /// `p "material" …`): one entry per triangle of its [`TriMesh`], `Some` the polygon's
 /// material entity, `None` the material the instance resolves to
-/// ([`crate::components::MaterialRef`]). Carried by the object entity beside its mesh.
+/// ([`crate::components::MaterialRef`]). Carried by the object entity beside its mesh; an
+/// instance entity carrying its own (all `None`: an instance `material` replacing an OBJ's
+/// MTL materials) uses that instead.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FaceMaterials(pub Arc<Vec<Option<Entity>>>);
 

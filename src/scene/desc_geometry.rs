@@ -22,6 +22,12 @@ pub enum MeshDesc {
         /// default all faces.
         #[serde(default, skip_serializing_if = "Option::is_none")]
         usemtl: Option<String>,
+        /// The scene material of each `usemtl` name's faces (`""`: the faces written before
+        /// any `usemtl`), in the order the loader groups the triangles; `""` as material: the
+        /// one the instance resolves to. Filled from the OBJ's MTL files by
+        /// [`crate::scene::obj_materials`], never read from a scene file.
+        #[serde(skip)]
+        materials: Option<Vec<(String, String)>>,
     },
     /// PLY file (ASCII or binary), relative to the declaring scene file.
     Ply {

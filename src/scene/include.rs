@@ -126,7 +126,10 @@ impl Loader<'_> {
         for w in read.warnings {
             self.out.sources.push_warning(file, w);
         }
-        let scene = read.desc;
+        let mut scene = read.desc;
+        if !self.stack.is_empty() && format.name == import::gltf_scene::FORMAT_NAME {
+            import::gltf_scene::as_include(&mut scene);
+        }
         self.stack.push((key, path.clone()));
         let dir = path.parent().unwrap_or(Path::new("")).to_path_buf();
         for (i, include) in scene.include.iter().enumerate() {

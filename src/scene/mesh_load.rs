@@ -7,7 +7,7 @@
 //! normals are normalised; a normal set with a non-finite or zero-length entry is dropped
 //! whole, as is a non-finite UV set. Normals and UVs are kept only when every vertex has one.
 
-use glam::{DVec3, Vec2, Vec3};
+use glam::{DVec3, Vec2, Vec3, Vec4};
 
 use super::desc::{ObjectDesc, V3};
 use super::diagnostics::{Diagnostic, Sources};
@@ -29,10 +29,14 @@ pub struct BuiltMesh {
     pub uvs1: Option<Vec<Vec2>>,
     /// The mesh's vertex colours (linear RGB), one per vertex of `mesh`.
     pub colours: Option<Vec<Vec3>>,
+    /// The mesh's tangents (glTF `TANGENT`, object space, `w` the handedness), one per
+    /// vertex of `mesh`.
+    pub tangents: Option<Vec<Vec4>>,
     /// Object-space point subtracted from every position before rounding to f32 (zero when
     /// the mesh lies near its object origin); the instance transforms add it back in f64.
     pub offset: DVec3,
-    /// For inline meshes, the polygon each kept triangle comes from (empty for mesh files).
+    /// For inline meshes, the polygon each kept triangle comes from; for an OBJ file with
+    /// per-material faces, the index of each kept triangle's material (empty otherwise).
     pub polygon_of: Vec<u32>,
 }
 
@@ -157,11 +161,14 @@ pub fn build_inline(
     finish_with_polygons(
         vertices.iter().map(d3).collect(),
         normals.map(|n| n.iter().map(v3).collect()),
-        uvs.map(|u| {
-            u.iter()
-                .map(|t| Vec2::new(t.0 as f32, t.1 as f32))
-                .collect()
-        }),
+        [
+            uvs.map(|u| {
+                u.iter()
+                    .map(|t| Vec2::new(t.0 as f32, t.1 as f32))
+                    .collect()
+            }),
+            None,
+        ],
         None,
         None,
         triangles,
@@ -171,21 +178,14 @@ pub fn build_inline(
 
 /// Drops degenerate and non-finite triangles, normalises normals and removes unused
 /// non-finite positions. Indices must be in range.
-fn finish(
-    positions: Vec<DVec3>,
-    normals: Option<Vec<Vec3>>,
-    uvs: Option<Vec<Vec2>>,
-    uvs1: Option<Vec<Vec2>>,
-    colours: Option<Vec<Vec3>>,
-    triangles: Vec<[u32; 3]>,
-) -> BuiltMesh {
+fn finish(data: MeshData) -> BuiltMesh {
     finish_with_polygons(
-        positions,
-        normals,
-        uvs,
-        uvs1,
-        colours,
-        triangles,
+        data.positions,
+        data.normals,
+        [data.uvs, data.uvs1],
+        data.colours,
+        data.tangents,
+        data.triangles,
         Vec::new(),
     )
 }
@@ -195,9 +195,9 @@ fn finish(
 fn finish_with_polygons(
     positions: Vec<DVec3>,
     normals: Option<Vec<Vec3>>,
-    uvs: Option<Vec<Vec2>>,
-    uvs1: Option<Vec<Vec2>>,
+    [uvs, uvs1]: [Option<Vec<Vec2>>; 2],
     colours: Option<Vec<Vec3>>,
+    tangents: Option<Vec<Vec4>>,
     triangles: Vec<[u32; 3]>,
     polygon_of: Vec<u32>,
 ) -> BuiltMesh {
@@ -237,6 +237,8 @@ fn finish_with_polygons(
     let mut uvs1 = uvs1.filter(|u| u.len() == positions.len() && u.iter().all(|t| t.is_finite()));
     let mut colours =
         colours.filter(|c| c.len() == positions.len() && c.iter().all(|v| v.is_finite()));
+    let mut tangents =
+        tangents.filter(|t| t.len() == positions.len() && t.iter().all(|v| v.is_finite()));
     let mut mesh = TriMesh {
         positions,
         normals,
@@ -251,6 +253,9 @@ fn finish_with_polygons(
         if let Some(c) = &mut colours {
             *c = kept.iter().map(|&i| c[i]).collect();
         }
+        if let Some(t) = &mut tangents {
+            *t = kept.iter().map(|&i| t[i]).collect();
+        }
     }
     BuiltMesh {
         mesh,
@@ -258,6 +263,7 @@ fn finish_with_polygons(
         dropped_normals: bad_normals,
         uvs1,
         colours,
+        tangents,
         offset,
         polygon_of,
     }
@@ -289,13 +295,30 @@ fn compact(mesh: &mut TriMesh) -> Vec<usize> {
 
 /// Builds the mesh a mesh file describes (see [`finish`] for what is dropped).
 pub fn from_data(data: MeshData) -> BuiltMesh {
-    finish(
+    finish(data)
+}
+
+/// [`from_data`], but an OBJ with per-material faces (`Obj { materials: Some(…) }`, set
+/// by [`super::obj_materials`]) gets its triangles grouped by material, each triangle's
+/// material index in `polygon_of` (see [`MeshData::group_by_material`]).
+fn from_data_grouped(mut data: MeshData, mesh: &super::desc::MeshDesc) -> BuiltMesh {
+    let super::desc::MeshDesc::Obj {
+        materials: Some(slots),
+        ..
+    } = mesh
+    else {
+        return from_data(data);
+    };
+    let order: Vec<String> = slots.iter().map(|(usemtl, _)| usemtl.clone()).collect();
+    let polygon_of = data.group_by_material(&order);
+    finish_with_polygons(
         data.positions,
         data.normals,
-        data.uvs,
-        data.uvs1,
+        [data.uvs, data.uvs1],
         data.colours,
+        data.tangents,
         data.triangles,
+        polygon_of,
     )
 }
 
@@ -331,7 +354,7 @@ pub fn load_file(
     let result = if reachable {
         mesh_files::read(format, &path, &mesh_files::gltf_pick(&it.desc.mesh))
             .and_then(|data| obj_faces(data, &it.desc.mesh))
-            .map(|data| Some(from_data(data)))
+            .map(|data| Some(from_data_grouped(data, &it.desc.mesh)))
     } else {
         std::fs::metadata(&path)
             .map(|_| None)

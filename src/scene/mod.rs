@@ -289,9 +289,11 @@ fn load(
         .into_iter()
         .zip(object_geometry)
         .zip(&resolved.polygon_materials)
-        .map(|((b, geometry), polygons)| {
+        .zip(&merged.objects)
+        .map(|(((b, geometry), polygons), it)| {
             let uvs1 = b.as_ref().and_then(|b| b.uvs1.clone()).map(Arc::new);
             let colours = b.as_ref().and_then(|b| b.colours.clone()).map(Arc::new);
+            let tangents = b.as_ref().and_then(|b| b.tangents.clone()).map(Arc::new);
             let face_materials = b
                 .as_ref()
                 .zip(polygons.as_ref())
@@ -300,8 +302,16 @@ fn load(
                 mesh: b.map(|b| Arc::new(b.mesh)),
                 uvs1,
                 colours,
+                tangents,
                 geometry,
                 face_materials,
+                instance_material_wins: matches!(
+                    it.desc.mesh,
+                    MeshDesc::Obj {
+                        materials: Some(_),
+                        ..
+                    }
+                ),
             }
         })
         .collect();

@@ -28,7 +28,8 @@ pub struct Resolved {
     /// Material override of each instance.
     pub instance_material: Vec<Option<usize>>,
     /// Per object, its inline mesh's polygon materials (`Some(None)` for `""`), when it
-    /// names them.
+    /// names them; for an OBJ with per-material faces, the material of each of its
+    /// `usemtl` groups.
     pub polygon_materials: Vec<Option<Vec<Option<usize>>>>,
     /// What each instance places.
     pub instance_of: Vec<Option<Target>>,
@@ -256,6 +257,13 @@ fn polygon_materials(
     it: &Item<'_, crate::scene::desc::ObjectDesc>,
     materials: &Table<'_>,
 ) -> Option<Vec<Option<usize>>> {
+    if let crate::scene::desc::MeshDesc::Obj {
+        materials: Some(slots),
+        ..
+    } = &it.desc.mesh
+    {
+        return Some(obj_face_materials(slots, materials));
+    }
     let crate::scene::desc::MeshDesc::Inline {
         polygons,
         materials: Some(names),
@@ -316,4 +324,15 @@ fn polygon_materials(
         })
         .collect();
     ok.then_some(resolved)
+}
+
+/// The materials of an OBJ's `usemtl` groups, as [`crate::scene::obj_materials`] listed
+/// them (it added every material it names), plus a last `None` for faces under a material
+/// the list lacks.
+fn obj_face_materials(slots: &[(String, String)], materials: &Table<'_>) -> Vec<Option<usize>> {
+    slots
+        .iter()
+        .map(|(_, name)| materials.get(name))
+        .chain([None])
+        .collect()
 }

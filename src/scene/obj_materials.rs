@@ -4,11 +4,15 @@
 //! materials named `<object>.<mtl name>`.
 //!
 //! - Faces under one material: the object's `material` becomes it.
-//! - Faces under several: the object becomes a group of the same name holding one object and
-//!   one instance per material, `<object>.<mtl name>`, each `Obj(file: …, usemtl: "<mtl
-//!   name>")` (faces written before any `usemtl`: `<object>.default`, `usemtl: ""`, default
-//!   material). Instances of the object place the group, so transforms and material
-//!   overrides apply to every piece.
+//! - Faces under several: the object stays one object; its mesh gets the material of each
+//!   `usemtl` group (`Obj { materials: Some(…) }`), which the loader turns into per-triangle
+//!   material slots (`FaceMaterials`), its triangles grouped by material in order of first
+//!   use (faces written before any `usemtl` first, with the instance's material). So one
+//!   instance places the whole file and can be baked; an instance's `material` replaces the
+//!   MTL materials on every face. A truly displaced object (re-tessellated, so it cannot
+//!   keep per-triangle slots) is instead split into a group of the same name holding one
+//!   object and one instance per material, `<object>.<mtl name>`, each `Obj(file: …,
+//!   usemtl: "<mtl name>")` (faces before any `usemtl`: `<object>.default`).
 //! - An object that writes `material: "…"` keeps it on every face; its MTL files are not read.
 //! - A `mtllib` file that cannot be read is a warning at the `mtllib` line naming the file; a
 //!   `usemtl` name no library defines (when every library was read) is a warning at its
@@ -22,7 +26,7 @@
 //! in `Opacity`; `Ke` → `emission`; `map_Kd` → the diffuse colour bound to the image (sRGB)
 //! times `Kd`; `map_Bump`/`bump` → `bump` with the image's red channel as height times `-bm`
 //! (object units). Map files are relative to the MTL file, which is relative to the OBJ
-//! file; the loader reads the OBJ again for its pieces (one parse per piece).
+//! file.
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -30,6 +34,7 @@ use std::path::{Path, PathBuf};
 use super::desc::{
     GroupDesc, InstanceDesc, MaterialDesc, MeshDesc, ObjectDesc, SceneDesc, ShaderDesc,
 };
+use super::desc_geometry::DisplacementModeDesc;
 use super::diagnostics::{Diagnostic, Sources};
 use super::mesh_files::mtl::{self, MapRef, MtlMaterial};
 use super::mesh_files::{obj, FaceMaterials, Location, MeshFileError};
@@ -68,6 +73,7 @@ fn expand_object(
     let MeshDesc::Obj {
         file: obj_file,
         usemtl: None,
+        materials: None,
     } = &object.mesh
     else {
         return;
@@ -138,6 +144,28 @@ fn expand_object(
         desc.objects[i].material = material.as_ref().map(|m| m.name.clone());
         return;
     }
+    let displaced = desc.objects[i]
+        .displacement
+        .as_ref()
+        .is_some_and(|d| d.mode == DisplacementModeDesc::True);
+    if !displaced {
+        let slots = pieces
+            .into_iter()
+            .map(|(usemtl, (_, material))| (usemtl, material.map(|m| m.name).unwrap_or_default()))
+            .collect();
+        desc.objects[i].mesh = MeshDesc::Obj {
+            file: obj_file_of(&desc.objects[i]),
+            usemtl: None,
+            materials: Some(slots),
+        };
+        return;
+    }
+    split(desc, i, pieces);
+}
+
+/// Replaces object `i` (truly displaced, so its triangles are re-tessellated and cannot keep
+/// per-triangle materials) by a group of one object and instance per piece.
+fn split(desc: &mut SceneDesc, i: usize, pieces: Vec<(String, Piece)>) {
     let whole = desc.objects[i].clone();
     let mut members = Vec::new();
     for (k, (usemtl, (piece_name, material))) in pieces.into_iter().enumerate() {
@@ -146,6 +174,7 @@ fn expand_object(
             mesh: MeshDesc::Obj {
                 file: obj_file_of(&whole),
                 usemtl: Some(usemtl),
+                materials: None,
             },
             material: material.map(|m| m.name),
             ..whole.clone()

@@ -9,8 +9,9 @@
 //!    `Approximation`, `Displacement` and `DerivativeRequest` when written;
 //! 3. one entity per leaf of the instance DAG: `Name` (the DAG path), `SourceLink` (the
 //!    innermost instance), `Instance` (with an empty mesh for generated objects:
-//!    `procedural::pending_instance`), `WorldFromObject`, `MaterialRef`, and `BakeRequest`
-//!    when the instance has a `bake` entry;
+//!    `procedural::pending_instance`), `WorldFromObject`, `MaterialRef`, `BakeRequest`
+//!    when the instance has a `bake` entry, and `FaceMaterials` (all `None`) when the
+//!    instance's `material` replaces an OBJ's per-face MTL materials;
 //! 4. the scene origin (`SceneOrigin`), when render space is not world space;
 //! 5. every light: `Name`, `SourceLink`, `Emitter`;
 //! 6. every camera: `Name`, `SourceLink`, `Camera`, plus `RenderCamera` on the render camera
@@ -68,11 +69,16 @@ pub struct ObjectParts {
     pub uvs1: Option<Arc<Vec<glam::Vec2>>>,
     /// Its mesh's vertex colours, spawned as [`crate::components::VertexColours`].
     pub colours: Option<Arc<Vec<glam::Vec3>>>,
+    /// Its mesh's tangents, spawned as [`crate::components::VertexTangents`].
+    pub tangents: Option<Arc<Vec<glam::Vec4>>>,
     /// Its geometry components (generator, approximation, displacement).
     pub geometry: Option<ObjectGeometry>,
     /// Per triangle of `mesh`, the material its polygon names (`None`: the instance's),
     /// spawned as [`crate::components::FaceMaterials`].
     pub face_materials: Option<Vec<Option<usize>>>,
+    /// Whether an instance's `material` replaces `face_materials` (an OBJ's MTL materials)
+    /// rather than yielding to them (inline and `.mi` polygon materials).
+    pub instance_material_wins: bool,
 }
 
 /// Everything checked and built, ready to spawn (one entry per element of the merged lists;
@@ -186,8 +192,10 @@ pub fn spawn(src: &Sources, m: &Merged<'_>, parts: Parts) -> World {
             mesh,
             uvs1,
             colours,
+            tangents,
             geometry: Some(geometry),
             face_materials,
+            ..
         }) = parts.objects.get(o)
         else {
             continue;
@@ -206,6 +214,9 @@ pub fn spawn(src: &Sources, m: &Merged<'_>, parts: Parts) -> World {
             }
             if let Some(colours) = colours {
                 b.add(crate::components::VertexColours(colours.clone()));
+            }
+            if let Some(tangents) = tangents {
+                b.add(crate::components::VertexTangents(tangents.clone()));
             }
             if let Some(faces) = face_materials {
                 let entities = faces
@@ -243,6 +254,8 @@ pub fn spawn(src: &Sources, m: &Merged<'_>, parts: Parts) -> World {
         }
     }
 
+    // Leaves whose instance material replaces their object's per-face materials.
+    let mut whole: HashMap<usize, crate::components::FaceMaterials> = HashMap::new();
     for leaf in &parts.leaves {
         let (Some(&object), Some(&material)) = (
             object_entity.get(&leaf.object),
@@ -270,6 +283,21 @@ pub fn spawn(src: &Sources, m: &Merged<'_>, parts: Parts) -> World {
         if !leaf.rays.is_default() {
             // The entity was just spawned, so inserting cannot fail.
             let _ = world.insert_one(entity, leaf.rays);
+        }
+        if let Some(ObjectParts {
+            face_materials: Some(faces),
+            instance_material_wins: true,
+            ..
+        }) = parts.objects.get(leaf.object)
+        {
+            // The object's `material` is unset for these, so the leaf's is the instance's.
+            if leaf.material.is_some() {
+                let none = whole.entry(leaf.object).or_insert_with(|| {
+                    crate::components::FaceMaterials(Arc::new(vec![None; faces.len()]))
+                });
+                // The entity was just spawned, so inserting cannot fail.
+                let _ = world.insert_one(entity, none.clone());
+            }
         }
         if let Some(Some(request)) = parts.bakes.get(leaf.instance) {
             // The entity was just spawned, so inserting cannot fail.

@@ -1,6 +1,7 @@
 //! glTF 2.0: `Gltf(file: …)` meshes (the same box through OBJ, PLY, `.glb`, embedded and
 //! external `.gltf` renders the same bytes), whole glTF files as scenes (hierarchy, shared
-//! meshes, camera, punctual lights), `uvs: MeshSet(1)` bakes on `TEXCOORD_1`, and bad files
+//! meshes, camera, punctual lights; or included by a RON scene under its own group),
+//! `uvs: MeshSet(1)` bakes on `TEXCOORD_1`, and bad files
 //! reported with the element or byte offset (exact texts). Fixtures are written by the
 //! third-party writer `pygltflib` (`scripts/make_gltf_fixtures.py`).
 
@@ -163,6 +164,47 @@ fn an_unknown_mesh_name_lists_the_meshes() {
             "{DIR}/s.ron:2:48: error: invalid glTF file \"{DIR}/hierarchy.glb\": meshes: no mesh named \"teapot\"; the file holds \"tri\"\n  help: loaded for object \"thing\" at {DIR}/s.ron:2:48"
         )
     );
+}
+
+/// A RON scene that includes `hierarchy.glb` places the file's root group (`scene`) where it
+/// wants, under its own group; the file's camera and light come in, its render entry does
+/// not compete with the includer's.
+#[test]
+fn a_ron_scene_places_an_included_gltf_files_nodes_under_its_group() {
+    let text = r#"Scene(
+    include: ["hierarchy.glb"],
+    instances: [(name: "level", of: "scene", transform: [Translate((1, 0.5, 0))])],
+    groups: [(name: "top", members: ["level"])],
+    render: (root: "top", camera: "view"),
+)"#;
+    let scene = stagelight::scene::load_scene_str(text, &Path::new(DIR).join("inc.ron"))
+        .unwrap_or_else(|e| panic!("{e}"));
+    let mut placed: Vec<(String, Vec3)> = scene
+        .world
+        .query::<(&stagelight::components::Name, &Instance, &WorldFromObject)>()
+        .iter()
+        .map(|(n, _, w)| (n.0.clone(), Vec3::from(w.0.translation)))
+        .collect();
+    placed.sort_by(|a, b| a.1.x.total_cmp(&b.1.x));
+    let at: Vec<Vec3> = placed.iter().map(|p| p.1).collect();
+    assert_eq!(
+        at,
+        [
+            Vec3::new(-1.0, 0.5, -5.0),
+            Vec3::new(1.0, 0.5, -5.0),
+            Vec3::new(3.0, 0.5, -5.0)
+        ]
+    );
+    assert!(
+        placed.iter().all(|p| p.0.starts_with("top/level/")),
+        "{placed:?}"
+    );
+    let lights = scene
+        .world
+        .query::<&stagelight::components::Emitter>()
+        .iter()
+        .count();
+    assert_eq!(lights, 1, "the file's punctual light");
 }
 
 /// One mesh used by three nodes under a translated parent: three placements of one shared

@@ -3,7 +3,9 @@
 //! normal map (its closed form under a tilted directional light), the emissive texture with
 //! `emissiveFactor` and `KHR_materials_emissive_strength` (each texel's radiance at its
 //! pixel), and `alphaMode: MASK` (the card lets the wall and the light through exactly
-//! where alpha < `alphaCutoff`, and its shadow has the hole).
+//! where alpha < `alphaCutoff`, and its shadow has the hole), and image files that cannot be
+//! read located at their `uri` (`.gltf`) or named by index and name (`.glb`, also an
+//! embedded image that does not decode).
 
 use std::path::Path;
 
@@ -251,10 +253,40 @@ fn a_missing_gltf_texture_is_an_error() {
         Ok(_) => panic!("loaded"),
         Err(e) => e.to_string(),
     };
+    let help = "  help: expected a PNG file at the image's uri, relative to the glTF file: put the file there, correct the uri, or embed the image (a bufferView or a base64 data: URI)";
+    // A `.gltf` has lines: the error stands at the image's `uri`.
     assert_eq!(
         errors,
-        format!("{DIR}/missing_texture.gltf:1:1: error: cannot read image file \"{DIR}/nowhere.png\": No such file or directory (os error 2)\n  help: image textures are PNG or EXR files, relative to the scene file")
+        format!("{DIR}/missing_texture.gltf:84:14: error: materials[0]: normal texture images[0]: cannot read image file \"{DIR}/nowhere.png\": file not found\n{help}")
     );
+    // A `.glb` has none: the message names the image by index and name.
+    let errors = match stagelight::scene::load_scene(&Path::new(DIR).join("missing_texture.glb")) {
+        Ok(_) => panic!("loaded"),
+        Err(e) => e.to_string(),
+    };
+    assert_eq!(
+        errors,
+        format!("{DIR}/missing_texture.glb:1:1: error: materials[0]: base colour texture images[0] (\"bricks\"): cannot read image file \"{DIR}/nowhere.png\": file not found\n{help}")
+    );
+}
+
+/// An image file that is there but is not an image is reported at its `uri` in a `.gltf`
+/// (by the shared image loader, through the reader's positions).
+#[test]
+fn an_image_that_does_not_decode_is_located_at_its_uri() {
+    let dir = crate::common::cli::scratch_dir("gltf_bad_image");
+    let text = std::fs::read_to_string(Path::new(DIR).join("missing_texture.gltf")).unwrap();
+    std::fs::write(dir.join("model.gltf"), text).unwrap();
+    std::fs::write(dir.join("nowhere.png"), "not a picture").unwrap();
+    let errors = match stagelight::scene::load_scene(&dir.join("model.gltf")) {
+        Ok(_) => panic!("loaded"),
+        Err(e) => e.to_string(),
+    };
+    let at = format!(
+        "{}:84:14: error: cannot read image file",
+        dir.join("model.gltf").display()
+    );
+    assert!(errors.starts_with(&at), "{errors}");
 }
 
 /// `blend.glb`: a card that reflects nothing (black polished metal) with texture alpha
@@ -283,4 +315,14 @@ fn a_blended_card_lets_through_one_minus_its_texture_alpha() {
         "mean {mean} vs {} (σ {sigma})",
         1.0 - a
     );
+}
+
+/// An image embedded in a `.glb` that does not decode is named by index and name.
+#[test]
+fn an_embedded_image_that_does_not_decode_is_named() {
+    let errors = match stagelight::scene::load_scene(&Path::new(DIR).join("bad_image.glb")) {
+        Ok(_) => panic!("loaded"),
+        Err(e) => e.to_string(),
+    };
+    assert_eq!(errors, format!("{DIR}/bad_image.glb:1:1: error: cannot read images[0] (\"garbage\") of glTF file \"{DIR}/bad_image.glb\": The image format could not be determined\n  help: glTF images are read as PNG: export the image as PNG"));
 }

@@ -29,6 +29,7 @@ mod geometry_scene;
 mod geometry_stages;
 mod geometry_surfaces;
 mod gltf;
+mod gltf_attributes;
 mod gltf_cameras;
 mod gltf_materials;
 mod hard_cases_bake;

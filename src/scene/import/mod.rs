@@ -191,7 +191,7 @@ pub const FORMATS: &[Format] = &[
         read: rib::read,
     },
     Format {
-        name: "glTF",
+        name: gltf_scene::FORMAT_NAME,
         extensions: &["gltf", "glb"],
         read: gltf_scene::read,
     },

@@ -5,7 +5,9 @@
 //! foreign file is reported at its byte offset), the JSON (parsed and validated by the `gltf`
 //! crate), and every buffer (the GLB `BIN` chunk, a base64 `data:` URI, or a file beside the
 //! glTF file). [`mesh_data`] reads one mesh (or one of its primitives) into [`MeshData`]:
-//! positions, normals, `TEXCOORD_0` and `TEXCOORD_1`, indices. Accessors are read here, not
+//! positions, normals, `TEXCOORD_0` and `TEXCOORD_1`, `TANGENT` (checked: `w` = ±1),
+//! `COLOR_0` (vec3 or vec4, float or normalised u8/u16, linear; alpha not read; white for
+//! the primitives of a mesh that lack it), indices. Accessors are read here, not
 //! by the crate's iterators: every accessor's byte range is checked against its buffer view
 //! and every view against its buffer before a byte is read, and every index against the
 //! vertex count, so no file can make the reader panic.
@@ -16,7 +18,7 @@
 
 use std::path::Path;
 
-use glam::{DVec3, Vec2, Vec3};
+use glam::{DVec3, Vec2, Vec3, Vec4};
 use gltf::accessor::{DataType, Dimensions};
 
 use super::{Location, MeshData, MeshFileError};
@@ -517,6 +519,9 @@ pub fn mesh_data(file: &GltfFile, pick: &MeshPick) -> Result<MeshData, MeshFileE
     let mut normals: Option<Vec<Vec3>> = Some(Vec::new());
     let mut uv0: Option<Vec<Vec2>> = Some(Vec::new());
     let mut uv1: Option<Vec<Vec2>> = Some(Vec::new());
+    let mut tangents: Option<Vec<Vec4>> = Some(Vec::new());
+    let mut colours: Vec<Vec3> = Vec::new();
+    let mut any_colours = false;
     for prim in chosen {
         let path = format!("meshes[{index}].primitives[{}]", prim.index());
         if prim.mode() != gltf::mesh::Mode::Triangles {
@@ -588,6 +593,42 @@ pub fn mesh_data(file: &GltfFile, pick: &MeshPick) -> Result<MeshData, MeshFileE
                 None => *list = None,
             }
         }
+        match attr(
+            gltf::Semantic::Tangents,
+            "TANGENT",
+            &[DataType::F32],
+            Dimensions::Vec4,
+        )? {
+            Some(a) => {
+                let read = read_tangents(&a, prim)?;
+                if let Some(list) = &mut tangents {
+                    list.extend(read);
+                }
+            }
+            None => tangents = None,
+        }
+        let colour = prim.get(&gltf::Semantic::Colors(0));
+        let dims = match colour.as_ref().map(|a| a.dimensions()) {
+            Some(Dimensions::Vec4) => Dimensions::Vec4,
+            _ => Dimensions::Vec3,
+        };
+        let colour_kinds = [DataType::F32, DataType::U8, DataType::U16];
+        match attr(gltf::Semantic::Colors(0), "COLOR_0", &colour_kinds, dims)? {
+            Some(a) => {
+                if a.kind != DataType::F32 && !a.normalized {
+                    return Err(element(
+                        format!("accessors[{}]", colour.map_or(0, |c| c.index())),
+                        format!(
+                            "COLOR_0: {:?} components must be normalized (\"normalized\": true) to be colours in [0, 1]",
+                            a.kind
+                        ),
+                    ));
+                }
+                any_colours = true;
+                colours.extend((0..n).map(|i| Vec3::from_array([0, 1, 2].map(|c| a.float(i, c)))));
+            }
+            None => colours.extend(std::iter::repeat_n(Vec3::ONE, n)),
+        }
         let corners: Vec<u32> = match prim.indices() {
             Some(acc) => {
                 let a = accessor_bytes(
@@ -630,7 +671,34 @@ pub fn mesh_data(file: &GltfFile, pick: &MeshPick) -> Result<MeshData, MeshFileE
     out.normals = normals.filter(|n| n.len() == out.positions.len());
     out.uvs = uv0.filter(|u| u.len() == out.positions.len());
     out.uvs1 = uv1.filter(|u| u.len() == out.positions.len());
+    out.tangents = tangents.filter(|t| t.len() == out.positions.len());
+    out.colours = Some(colours).filter(|c| any_colours && c.len() == out.positions.len());
     Ok(out)
+}
+
+/// The tangents of a `TANGENT` accessor: finite, a non-zero `xyz` and `w` = ±1 (the
+/// bitangent's handedness) in every element, else an error naming the element.
+fn read_tangents(
+    a: &AccessorBytes<'_>,
+    prim: &gltf::Primitive<'_>,
+) -> Result<Vec<Vec4>, MeshFileError> {
+    let index = prim.get(&gltf::Semantic::Tangents).map_or(0, |t| t.index());
+    (0..a.count)
+        .map(|i| {
+            let t = Vec4::from_array([0, 1, 2, 3].map(|c| a.float(i, c)));
+            let xyz = t.truncate();
+            if !t.is_finite() || xyz.length_squared() == 0.0 || t.w.abs() != 1.0 {
+                return Err(element(
+                    format!("accessors[{index}]"),
+                    format!(
+                        "TANGENT element {i} is ({}, {}, {}, {}): expected a non-zero direction and w = 1 or -1 (the bitangent's sign)",
+                        t.x, t.y, t.z, t.w
+                    ),
+                ));
+            }
+            Ok(xyz.normalize().extend(t.w))
+        })
+        .collect()
 }
 
 /// Reads the mesh `pick` names from a glTF file's bytes (external buffers relative to
@@ -646,6 +714,22 @@ pub fn image_reference(name: &str) -> Option<(&str, usize)> {
     let (file, fragment) = name.rsplit_once('#')?;
     let index = fragment.strip_prefix("images[")?.strip_suffix(']')?;
     Some((file, index.parse().ok()?))
+}
+
+/// Image `index` of the glTF file at `path` for messages: `images[3] ("bricks")`, or
+/// `images[3]` when it has no name (or the file cannot be read).
+pub fn image_label(path: &Path, index: usize) -> String {
+    let name = crate::limits::read_file(path, crate::limits::MAX_MESH_FILE_BYTES, "glTF file")
+        .ok()
+        .and_then(|bytes| open(&bytes, None).ok())
+        .and_then(|file| {
+            let image = file.doc.images().nth(index)?;
+            image.name().map(str::to_string)
+        });
+    match name {
+        Some(n) => format!("images[{index}] (\"{n}\")"),
+        None => format!("images[{index}]"),
+    }
 }
 
 /// The encoded bytes (PNG, JPEG, …) of image `index` of the glTF file at `path`: a buffer

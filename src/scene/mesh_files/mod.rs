@@ -15,7 +15,7 @@ pub mod ply;
 use std::fmt;
 use std::path::Path;
 
-use glam::{DVec3, Vec2, Vec3};
+use glam::{DVec3, Vec2, Vec3, Vec4};
 
 use super::desc::MeshDesc;
 
@@ -119,8 +119,12 @@ pub struct MeshData {
     /// A second set of per-vertex texture coordinates (glTF `TEXCOORD_1`, for lightmaps),
     /// when every vertex has one.
     pub uvs1: Option<Vec<Vec2>>,
-    /// Per-vertex colours (linear RGB; PLY `red green blue`), when every vertex has one.
+    /// Per-vertex colours (linear RGB; PLY `red green blue`, glTF `COLOR_0`), when every
+    /// vertex has one.
     pub colours: Option<Vec<Vec3>>,
+    /// Per-vertex tangents (glTF `TANGENT`: object-space unit `xyz`, handedness `w` = ±1),
+    /// when every vertex has one.
+    pub tangents: Option<Vec<Vec4>>,
     /// Triangles as indices into `positions`.
     pub triangles: Vec<[u32; 3]>,
     /// OBJ material libraries and per-triangle materials, when the file names either.
@@ -216,12 +220,54 @@ impl MeshData {
         self.uvs = self.uvs.as_ref().map(|u| pick(u, &kept));
         self.uvs1 = self.uvs1.as_ref().map(|u| pick(u, &kept));
         self.colours = self.colours.as_ref().map(|c| pick(c, &kept));
+        self.tangents = self.tangents.as_ref().map(|t| pick(t, &kept));
         if let Some(m) = &mut self.materials {
             m.of_triangle = vec![wanted; triangles.len()];
         }
         self.triangles = triangles;
         Ok(())
     }
+
+    /// Orders the triangles by their `usemtl` material as `order` lists them (`""`: the
+    /// faces written before any `usemtl`), each material's triangles in file order, and
+    /// returns each triangle's index in `order` (`order.len()` for a material `order` does
+    /// not list). Grouping keeps the triangle order the pieces of a split file had.
+    pub fn group_by_material(&mut self, order: &[String]) -> Vec<u32> {
+        let slot_of_used: Vec<u32> = self.materials.as_ref().map_or(Vec::new(), |m| {
+            m.used
+                .iter()
+                .map(|u| position_or_end(order, &u.name))
+                .collect()
+        });
+        let before = position_or_end(order, "");
+        let of_triangle = self
+            .materials
+            .as_ref()
+            .map_or(&[][..], |m| &m.of_triangle[..]);
+        let slots: Vec<u32> = (0..self.triangles.len())
+            .map(|t| {
+                of_triangle
+                    .get(t)
+                    .and_then(|&k| slot_of_used.get(k as usize))
+                    .copied()
+                    .unwrap_or(before)
+            })
+            .collect();
+        let mut by_slot: Vec<usize> = (0..self.triangles.len()).collect();
+        by_slot.sort_by_key(|&t| slots[t]);
+        self.triangles = by_slot.iter().map(|&t| self.triangles[t]).collect();
+        if let Some(m) = &mut self.materials {
+            if m.of_triangle.len() == by_slot.len() {
+                m.of_triangle = by_slot.iter().map(|&t| m.of_triangle[t]).collect();
+            }
+        }
+        by_slot.iter().map(|&t| slots[t]).collect()
+    }
+}
+
+/// The index of `name` in `order`, or `order.len()`.
+fn position_or_end(order: &[String], name: &str) -> u32 {
+    order.iter().position(|o| o == name).unwrap_or(order.len()) as u32
 }
 
 /// Where in a mesh file a problem is.

@@ -369,6 +369,7 @@ impl Reader {
             uvs,
             uvs1: None,
             colours: None,
+            tangents: None,
             triangles: self.triangles,
             materials,
         })

@@ -712,6 +712,7 @@ fn read(h: &Header, layout: &Layout, mut values: impl Values) -> Result<MeshData
         uvs,
         uvs1: None,
         colours,
+        tangents: None,
         triangles,
         materials: None,
     })

@@ -589,12 +589,24 @@ impl Compiler<'_, '_> {
             Err(e) => {
                 // Reported whatever `report` says: the same file may be read first from a
                 // body that was checked with other arguments.
-                self.src.error(
-                    at.file,
-                    at.path,
-                    format!("cannot read image file \"{}\": {e}", path.display()),
-                    Some("image textures are PNG or EXR files, relative to the scene file".into()),
-                );
+                let (message, help) = match embedded {
+                    Some((file, index)) => {
+                        let gltf = self.src.files[at.file].dir().join(file);
+                        let image = crate::scene::mesh_files::gltf_file::image_label(&gltf, index);
+                        (
+                            format!(
+                                "cannot read {image} of glTF file \"{}\": {e}",
+                                gltf.display()
+                            ),
+                            "glTF images are read as PNG: export the image as PNG",
+                        )
+                    }
+                    None => (
+                        format!("cannot read image file \"{}\": {e}", path.display()),
+                        "image textures are PNG or EXR files, relative to the scene file",
+                    ),
+                };
+                self.src.error(at.file, at.path, message, Some(help.into()));
                 None
             }
         };

@@ -103,6 +103,7 @@ pub fn geometry(objects: Vec<Object>) -> SceneGeometry {
             first_triangle: triangles.len() as u32,
             bump: None,
             colours: None,
+            tangents: None,
         });
         triangle_instance.extend(std::iter::repeat_n(slot as u32, object.triangles.len()));
         triangles.extend(object.triangles);

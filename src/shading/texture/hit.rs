@@ -3,7 +3,9 @@
 //! bump-mapped normal with its tangents. The object's `displacement` in `Bump` mode adds
 //! its amount to the material's bump height.
 //!
-//! **Vertex colours** (PLY `red green blue`) are interpolated like uvs; white without.
+//! **Vertex colours** (PLY `red green blue`, glTF `COLOR_0`) are interpolated like uvs;
+//! white without. **Tangents** of the mesh (glTF `TANGENT`), when it has them, give normal
+//! maps their frame; otherwise it is generated from the uvs ([`normal_map`]).
 //!
 //! **uv.** Meshes with texture coordinates (OBJ `vt`, inline `uvs`) interpolate them;
 //! generated surfaces (spheres, tori, patches, NURBS, stairs, …) carry their parametric uv.
@@ -19,6 +21,15 @@ use crate::components::{Displacement, Material, Shader};
 use crate::geometry::{InstanceGeometry, SceneGeometry, ShadingPoint};
 use crate::shading::frame::ShadingFrame;
 use crate::tessellation::displace;
+
+/// The mesh's tangent interpolated at barycentrics `b` of the triangle `idx` (object space)
+/// and its handedness (the sign of the interpolated `w`), when the mesh has tangents.
+fn file_tangent(inst: &InstanceGeometry, idx: [usize; 3], b: [f32; 3]) -> Option<(Vec3, f32)> {
+    let tangents = inst.tangents.as_deref()?;
+    let v = idx.map(|i| tangents[i]);
+    let t = v[0] * b[0] + v[1] * b[1] + v[2] * b[2];
+    Some((t.truncate(), if t.w < 0.0 { -1.0 } else { 1.0 }))
+}
 
 /// A shading point's textured material.
 #[derive(Debug, Clone, PartialEq)]
@@ -86,9 +97,10 @@ pub fn evaluate(
         .and_then(|uvs| bump::tangents(pos, idx.map(|i| uvs[i])));
     let mut n = sp.normal;
     if let Some(map) = map {
-        let tangents = match uv_tangents {
-            Some((du, dv)) => normal_map::frame(n, m * du, m * dv),
-            None => None,
+        let tangents = match (file_tangent(inst, idx, b), uv_tangents) {
+            (Some((t, w)), _) => normal_map::frame_from_tangent(n, m * t, w * m.determinant()),
+            (None, Some((du, dv))) => normal_map::frame(n, m * du, m * dv),
+            (None, None) => None,
         };
         let (t, b) = tangents.unwrap_or_else(|| {
             let f = ShadingFrame::from_normal(n);

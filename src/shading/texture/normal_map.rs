@@ -1,7 +1,9 @@
 //! Tangent-space normal maps (glTF's `normalTexture`, `bump: (normal_map: …)`): the shading
 //! normal read from a texel in the frame (tangent, bitangent, normal) of the surface.
 //!
-//! **Tangents** are generated, never read from a file: the tangent `T` is the triangle's
+//! **Tangents** of a mesh that has them (glTF `TANGENT`) are used as written: `T` the
+//! interpolated tangent made orthogonal to `N`, `B = w · N × T` ([`frame_from_tangent`]).
+//! Otherwise they are generated: the tangent `T` is the triangle's
 //! `∂P/∂u` (from its positions and uvs, [`super::bump::tangents`]) made orthogonal to the
 //! interpolated normal `N`, and the bitangent `B = ±N × T`, the sign chosen so that `B`
 //! points along `∂P/∂v` (`v` upwards in the image, stagelight's convention). For a uv layout
@@ -40,6 +42,19 @@ pub fn frame(n: Vec3, dpdu: Vec3, dpdv: Vec3) -> Option<(Vec3, Vec3)> {
     Some((t, b))
 }
 
+/// The frame `(T, B)` around the unit normal `n` from a given tangent `t` (world space) and
+/// handedness `sign`: `T` is `t` made orthogonal to `n`, `B = ±n × T` with the sign of
+/// `sign` (glTF's `w`, times −1 under a mirroring transform). `None` when `t` is (nearly)
+/// parallel to `n`.
+pub fn frame_from_tangent(n: Vec3, t: Vec3, sign: f32) -> Option<(Vec3, Vec3)> {
+    let t = (t - n * n.dot(t)).normalize_or_zero();
+    if t == Vec3::ZERO || !t.is_finite() {
+        return None;
+    }
+    let b = n.cross(t);
+    Some((t, if sign < 0.0 { -b } else { b }))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -67,6 +82,15 @@ mod tests {
         // A texel below the tangent plane keeps the normal.
         let m = perturb(Vec3::Z, Vec3::X, Vec3::Y, Vec3::new(1.0, 0.5, 0.0), 1.0);
         assert_eq!(m, Vec3::Z);
+    }
+
+    #[test]
+    fn a_given_tangent_is_kept_and_its_sign_flips_the_bitangent() {
+        let (t, b) = frame_from_tangent(Vec3::Z, Vec3::new(0.0, 2.0, 0.5), 1.0).unwrap();
+        assert!((t - Vec3::Y).length() < 1e-6 && (b + Vec3::X).length() < 1e-6);
+        let (_, b) = frame_from_tangent(Vec3::Z, Vec3::Y, -1.0).unwrap();
+        assert!((b - Vec3::X).length() < 1e-6);
+        assert!(frame_from_tangent(Vec3::Z, Vec3::Z, 1.0).is_none());
     }
 
     #[test]

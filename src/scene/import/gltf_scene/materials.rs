@@ -1,5 +1,6 @@
 //! glTF materials → `MetallicRoughness` materials: base colour, metallic and roughness
-//! factors, the base colour texture (sRGB) and the metallic-roughness texture (linear: blue
+//! factors, the base colour texture (sRGB) times the vertex colours (`COLOR_0`, bound only
+//! when a primitive drawn with the material has them) and the metallic-roughness texture (linear: blue
 //! is metalness, green roughness) as shader-graph bindings, the normal texture as a
 //! tangent-space normal map (`bump: (normal_map: …, scale)`), emission
 //! (`emissiveFactor × KHR_materials_emissive_strength`, W/(sr·m²), times the emissive
@@ -14,9 +15,14 @@
 //! the glTF file.
 
 use std::collections::BTreeMap;
+use std::path::Path;
 
+use super::json_positions::{value_position, Step};
 use super::{at_file, Walk};
-use crate::scene::desc::{BumpDesc, InputDesc, MaterialDesc, NodeDesc, ShaderDesc};
+use crate::scene::desc::{BumpDesc, InputDesc, MaterialDesc, NodeDesc, SceneDesc, ShaderDesc};
+use crate::scene::import::SourcePos;
+use crate::scene::mesh_files::gltf_file::GltfFile;
+use crate::scene::message::Diagnostic;
 use crate::scene::nodes_desc::{EncodingDesc, WrapDesc, EMISSION};
 
 /// Warns once about file-level features the reader does not map.
@@ -59,7 +65,11 @@ pub fn material_name(w: &mut Walk<'_>, index: Option<usize>) -> String {
             },
             two_sided: false,
             emission: (0.0, 0.0, 0.0),
-            bind: BTreeMap::new(),
+            bind: if uses_vertex_colours(w, None) {
+                BTreeMap::from([("base_color".to_string(), node(NodeDesc::VertexColor))])
+            } else {
+                BTreeMap::new()
+            },
             bump: None,
             interior: None,
             contour: None,
@@ -70,6 +80,16 @@ pub fn material_name(w: &mut Walk<'_>, index: Option<usize>) -> String {
     w.desc.materials.push(desc);
     w.materials.insert(index, name.clone());
     name
+}
+
+/// Whether a primitive drawn with glTF material `index` (`None`: the default material) has
+/// vertex colours (`COLOR_0`).
+fn uses_vertex_colours(w: &Walk<'_>, index: Option<usize>) -> bool {
+    w.file
+        .doc
+        .meshes()
+        .flat_map(|m| m.primitives())
+        .any(|p| p.material().index() == index && p.get(&gltf::Semantic::Colors(0)).is_some())
 }
 
 fn node(n: NodeDesc) -> InputDesc {
@@ -93,10 +113,18 @@ fn material(w: &mut Walk<'_>, m: &gltf::Material<'_>) -> MaterialDesc {
     let base_texture = pbr
         .base_color_texture()
         .and_then(|info| texture(w, &info, &at, "base colour"));
-    if let Some(t) = &base_texture {
-        let factor = InputDesc::Colour((unit(r), unit(g), unit(b)));
-        let image = t.image(EncodingDesc::Srgb);
-        bind.insert("base_color".to_string(), node(NodeDesc::Mul(image, factor)));
+    let factor = InputDesc::Colour((unit(r), unit(g), unit(b)));
+    let base = base_texture
+        .as_ref()
+        .map(|t| node(NodeDesc::Mul(t.image(EncodingDesc::Srgb), factor.clone())));
+    // COLOR_0 multiplies the base colour (white where a primitive has none).
+    let base = match (base, uses_vertex_colours(w, m.index())) {
+        (Some(base), true) => Some(node(NodeDesc::Mul(base, node(NodeDesc::VertexColor)))),
+        (None, true) => Some(node(NodeDesc::Mul(factor, node(NodeDesc::VertexColor)))),
+        (base, false) => base,
+    };
+    if let Some(base) = base {
+        bind.insert("base_color".to_string(), base);
     }
     if let Some(t) = pbr
         .metallic_roughness_texture()
@@ -234,6 +262,110 @@ impl TextureRef {
     }
 }
 
+/// Reports an image file beside the glTF file that cannot be read (missing, a directory,
+/// unreadable): at its `uri` in a `.gltf`, naming the image (index and name) and the
+/// material texture `user` that binds it; once per image.
+fn check_image_file(w: &mut Walk<'_>, image: &gltf::Image<'_>, name: &str, user: &str) {
+    let path = w.path.parent().unwrap_or(Path::new("")).join(name);
+    let reason = match std::fs::metadata(&path) {
+        Ok(m) if m.is_file() => return,
+        Ok(_) => "it is not a file".to_string(),
+        Err(e) => crate::scene::message::io_reason(&e),
+    };
+    let index = image.index();
+    let (line, column) = w
+        .json
+        .and_then(|json| value_position(json, &image_uri(index)))
+        .unwrap_or((1, 1));
+    if w.errors.iter().any(|e| {
+        e.line == line && e.column == column && e.message.contains(&format!("images[{index}]"))
+    }) {
+        return;
+    }
+    let label = match image.name() {
+        Some(n) => format!("images[{index}] (\"{n}\")"),
+        None => format!("images[{index}]"),
+    };
+    w.errors.push(Diagnostic {
+        file: w.path.to_path_buf(),
+        line,
+        column,
+        message: format!(
+            "{user} {label}: cannot read image file \"{}\": {reason}",
+            path.display()
+        ),
+        help: Some(
+            "expected a PNG file at the image's uri, relative to the glTF file: put the file there, correct the uri, or embed the image (a bufferView or a base64 data: URI)".into(),
+        ),
+    });
+}
+
+/// The path of image `index`'s `uri` in the JSON.
+fn image_uri(index: usize) -> [Step<'static>; 3] {
+    [Step::Key("images"), Step::Index(index), Step::Key("uri")]
+}
+
+/// Positions for the shared loader's messages about a `.gltf` file's images (an image file
+/// that is there but does not decode): each material binding and normal map that reads an
+/// image beside the file is located at that image's `uri`.
+pub fn image_positions(
+    desc: &SceneDesc,
+    file: &GltfFile,
+    path: &Path,
+    json: &[u8],
+) -> Vec<(String, SourcePos)> {
+    let uris: Vec<Option<String>> = file
+        .doc
+        .images()
+        .map(|image| match image.source() {
+            gltf::image::Source::Uri { uri, .. } if !uri.starts_with("data:") => {
+                Some(crate::scene::mesh_files::gltf_file::percent_decode(uri))
+            }
+            _ => None,
+        })
+        .collect();
+    let mut out = Vec::new();
+    for (k, m) in desc.materials.iter().enumerate() {
+        let inputs = m
+            .bind
+            .iter()
+            .map(|(key, input)| (format!("materials[{k}].bind.{key}"), input))
+            .chain(
+                m.bump
+                    .iter()
+                    .filter_map(|b| b.normal_map.as_ref())
+                    .map(|input| (format!("materials[{k}].bump.normal_map"), input)),
+            );
+        for (at, input) in inputs {
+            let Some(name) = image_file(input) else {
+                continue;
+            };
+            let Some(index) = uris.iter().position(|u| u.as_deref() == Some(name)) else {
+                continue;
+            };
+            if let Some((line, column)) = value_position(json, &image_uri(index)) {
+                let file = path.to_path_buf();
+                out.push((at, SourcePos { file, line, column }));
+            }
+        }
+    }
+    out
+}
+
+/// The file of the first image node in a binding the reader wrote.
+fn image_file(input: &InputDesc) -> Option<&str> {
+    let InputDesc::Node(node) = input else {
+        return None;
+    };
+    match &**node {
+        NodeDesc::Image { file, .. } | NodeDesc::Alpha { file, .. } => Some(file),
+        NodeDesc::Mul(a, b) => image_file(a).or_else(|| image_file(b)),
+        NodeDesc::Channel(a, _) => image_file(a),
+        NodeDesc::Smoothstep { x, .. } => image_file(x),
+        _ => None,
+    }
+}
+
 /// The image of a texture reference, or `None` (with a warning) when it cannot be bound.
 fn texture(
     w: &mut Walk<'_>,
@@ -263,7 +395,9 @@ fn texture_ref(
     let image = texture.source();
     let file = match image.source() {
         gltf::image::Source::Uri { uri, .. } if !uri.starts_with("data:") => {
-            crate::scene::mesh_files::gltf_file::percent_decode(uri)
+            let name = crate::scene::mesh_files::gltf_file::percent_decode(uri);
+            check_image_file(w, &image, &name, &format!("{at}: {what} texture"));
+            name
         }
         _ => format!("{}#images[{}]", super::file_name_of(w.path), image.index()),
     };

@@ -17,9 +17,13 @@
 //! Names come from the file (node, mesh, material, light and camera names; `node3` and the
 //! like for unnamed ones), made unique with `_2`, `_3`, … and stripped of characters that
 //! could not be part of a file name. Every element is located at the start of the file (a
-//! binary file has no lines); messages name the glTF element (`nodes[3]`).
+//! binary file has no lines); messages name the glTF element (`nodes[3]`). Images are the
+//! exception in a `.gltf`: an image file that cannot be read is reported at its `uri`'s line
+//! and column ([`json_positions`]), and so are the image errors the shared loader finds in
+//! the bindings that use it.
 
 pub mod bakes;
+pub mod json_positions;
 pub mod materials;
 pub mod view;
 
@@ -95,6 +99,19 @@ pub fn file_error(path: &Path, e: &MeshFileError) -> Diagnostic {
     }
 }
 
+/// The name of the glTF format in `import::FORMATS`.
+pub const FORMAT_NAME: &str = "glTF";
+
+/// Makes a glTF scene a part of the scene that includes it (`include: ["level.glb"]` in
+/// RON): its materials, objects, instances, groups (the root group, named after the glTF
+/// scene, for the includer to place), cameras, lights and bakes come in; what the file
+/// chose for a scene of its own — the render entry and the white default environment of a
+/// file without lights — does not.
+pub fn as_include(desc: &mut SceneDesc) {
+    desc.render = None;
+    desc.environment = None;
+}
+
 /// Reads a glTF scene (the reader in `import::FORMATS`).
 pub fn read(path: &Path, bytes: &[u8]) -> Result<ReadScene, Vec<Diagnostic>> {
     let dir = path.parent().unwrap_or(Path::new(""));
@@ -103,9 +120,15 @@ pub fn read(path: &Path, bytes: &[u8]) -> Result<ReadScene, Vec<Diagnostic>> {
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_default();
-    let (desc, warnings, _) = build(path, &file_name, &file)?;
+    let json = (!bytes.starts_with(b"glTF")).then_some(bytes);
+    let (desc, warnings, _) = build(path, &file_name, &file, json)?;
     let mut table = PathTable::default();
     table.insert("", SourcePos::start(path));
+    if let Some(json) = json {
+        for (at, pos) in materials::image_positions(&desc, &file, path, json) {
+            table.insert(at, pos);
+        }
+    }
     Ok(ReadScene {
         desc,
         map: table.into_map(path),
@@ -150,6 +173,8 @@ pub struct Walk<'a> {
     /// Every instance of a primitive: (instance name, node, primitive index).
     pub leaves: Vec<(String, usize, usize)>,
     errors: Vec<Diagnostic>,
+    /// The JSON text of a `.gltf` file (for positions in messages); `None` for a `.glb`.
+    json: Option<&'a [u8]>,
 }
 
 /// What places a node under its parent: an instance of an object or a group, with the
@@ -382,7 +407,12 @@ fn file_name_of(path: &Path) -> String {
 /// What [`build`] returns: the description, warnings and the primitive instances.
 type Built = (SceneDesc, Vec<Diagnostic>, Vec<(String, usize, usize)>);
 
-fn build(path: &Path, _file_name: &str, file: &GltfFile) -> Result<Built, Vec<Diagnostic>> {
+fn build(
+    path: &Path,
+    _file_name: &str,
+    file: &GltfFile,
+    json: Option<&[u8]>,
+) -> Result<Built, Vec<Diagnostic>> {
     let doc = &file.doc;
     let Some(scene) = doc.default_scene().or_else(|| doc.scenes().next()) else {
         return Err(vec![at_file(
@@ -405,6 +435,7 @@ fn build(path: &Path, _file_name: &str, file: &GltfFile) -> Result<Built, Vec<Di
         cameras: Vec::new(),
         leaves: Vec::new(),
         errors: Vec::new(),
+        json,
     };
     materials::warn_unmapped(&mut w);
     let mut members = Vec::new();
@@ -457,7 +488,7 @@ pub fn primitive_instances(
 ) -> Result<Vec<(String, usize, usize)>, Vec<Diagnostic>> {
     let dir = path.parent().unwrap_or(Path::new(""));
     let file = gltf_file::open(bytes, Some(dir)).map_err(|e| vec![file_error(path, &e)])?;
-    build(path, "", &file).map(|(_, _, leaves)| leaves)
+    build(path, "", &file, None).map(|(_, _, leaves)| leaves)
 }
 
 #[cfg(test)]
