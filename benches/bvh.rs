@@ -352,30 +352,41 @@ fn summary(w: &Workload, reps: usize) {
         for &threads in &thread_counts {
             // Wall time, and for 1 thread also the CPU time of the building thread (robust
             // against time-slicing on a shared host).
-            let (best, best_cpu) = (0..reps)
+            // The phases are those of the fastest (wall) build.
+            let (best, best_cpu, phases) = (0..reps)
                 .map(|_| {
                     pool(threads).install(|| {
                         let tris = w.tris.clone();
                         let c0 = thread_cpu_seconds();
-                        let wall = Accel::build(tris, q).build_seconds();
+                        let stats = Accel::build(tris, q).stats();
                         let cpu = match (c0, thread_cpu_seconds()) {
                             (Some(a), Some(b)) if threads == 1 => b - a,
                             _ => f64::NAN,
                         };
-                        (wall, cpu)
+                        (stats.build_seconds, cpu, stats.build_phases)
                     })
                 })
-                .fold((f64::INFINITY, f64::INFINITY), |a, b| {
-                    (a.0.min(b.0), a.1.min(b.1))
-                });
+                .fold(
+                    (f64::INFINITY, f64::INFINITY, Default::default()),
+                    |a, b| {
+                        let (wall, phases) = if b.0 < a.0 { (b.0, b.2) } else { (a.0, a.2) };
+                        (wall, a.1.min(b.1), phases)
+                    },
+                );
             let cpu = if threads == 1 {
                 format!(", {:.0} ms cpu", best_cpu * 1e3)
             } else {
                 String::new()
             };
+            let ms = |s: f64| s * 1e3;
             println!(
-                "build quality={name} threads={threads}: {:.0} ms wall{cpu}",
-                best * 1e3
+                "build quality={name} threads={threads}: {:.0} ms wall{cpu} (prepare {:.0}, ploc {:.0}, reinsertion {:.0}, collapse {:.0}, layout {:.0})",
+                best * 1e3,
+                ms(phases.prepare),
+                ms(phases.ploc),
+                ms(phases.reinsertion),
+                ms(phases.collapse),
+                ms(phases.layout),
             );
         }
         accels.push((name, Accel::build(w.tris.clone(), q)));
