@@ -10,14 +10,17 @@
 //! * First a summary table (best of `${STAGELIGHT_BENCH_REPS:-3}`): Mrays/s per query for 1 and
 //!   2 threads (rayon pools; 1 thread also per CPU-second of the tracing thread), hit counts
 //!   checked against the anchor's (715,018 coherent; 602,740 incoherent for Embree and obvhs,
-//!   602,741 here: see `EXPECTED_HITS_INCOHERENT`), and build times.
+//!   602,741 here: see `EXPECTED_HITS_INCOHERENT`), and build times (wall; 1 thread also CPU
+//!   of the building thread) split by phase (`AccelStats::build_phases`: prepare, PLOC,
+//!   reinsertion, collapse, layout).
 //! * Then criterion groups (10 samples each): `build`, `build/{1,2}t` (thread scaling of the
 //!   Medium build), `trace/{1,2}t`, and `tiny`, a small
 //!   generated scene that needs no data.
 //!
 //! Run: `cargo bench --bench bvh` (add `-- tiny` for the small group only, `-- summary` for
 //! the table only; `STAGELIGHT_BENCH_THREADS="1 2"`, `STAGELIGHT_BENCH_QUALITIES="fast medium"`
-//! select what the table measures).
+//! and `STAGELIGHT_BENCH_API="single batch"` select what the table measures; an API list
+//! naming neither, e.g. `none`, leaves only the build lines).
 
 use std::hint::black_box;
 use std::path::{Path, PathBuf};

@@ -429,6 +429,20 @@ mod tests {
         assert_eq!(Node::EMPTY.order[5], pack_order(std::array::from_fn(|s| s)));
     }
 
+    /// The phases cover the build: each was timed, and together they are the build time up
+    /// to the final `elapsed` call.
+    #[test]
+    fn build_phases_add_up_to_the_build_time() {
+        let bvh = build(&soup(3000), BvhQuality::Medium);
+        let p = bvh.phases;
+        let parts = [p.prepare, p.ploc, p.reinsertion, p.collapse, p.layout];
+        assert!(parts.iter().all(|&t| t > 0.0), "{p:?}");
+        let sum: f64 = parts.iter().sum();
+        assert!(sum <= bvh.build_seconds, "{sum} > {}", bvh.build_seconds);
+        let empty = build(&[[Vec3::ZERO; 3]], BvhQuality::Medium).phases;
+        assert!(empty.prepare > 0.0 && empty.ploc == 0.0 && empty.layout == 0.0);
+    }
+
     #[test]
     fn tiny_and_empty_inputs() {
         assert!(build(&[], BvhQuality::Medium).nodes.is_empty());
