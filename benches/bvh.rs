@@ -10,14 +10,17 @@
 //! * First a summary table (best of `${STAGELIGHT_BENCH_REPS:-3}`): Mrays/s per query for 1 and
 //!   2 threads (rayon pools; 1 thread also per CPU-second of the tracing thread), hit counts
 //!   checked against the anchor's (715,018 coherent; 602,740 incoherent for Embree and obvhs,
-//!   602,741 here: see `EXPECTED_HITS_INCOHERENT`), and build times.
+//!   602,741 here: see `EXPECTED_HITS_INCOHERENT`), and build times (wall; 1 thread also CPU
+//!   of the building thread) split by phase (`AccelStats::build_phases`: prepare, PLOC,
+//!   reinsertion, collapse, layout).
 //! * Then criterion groups (10 samples each): `build`, `build/{1,2}t` (thread scaling of the
 //!   Medium build), `trace/{1,2}t`, and `tiny`, a small
 //!   generated scene that needs no data.
 //!
 //! Run: `cargo bench --bench bvh` (add `-- tiny` for the small group only, `-- summary` for
 //! the table only; `STAGELIGHT_BENCH_THREADS="1 2"`, `STAGELIGHT_BENCH_QUALITIES="fast medium"`
-//! select what the table measures).
+//! and `STAGELIGHT_BENCH_API="single batch"` select what the table measures; an API list
+//! naming neither, e.g. `none`, leaves only the build lines).
 
 use std::hint::black_box;
 use std::path::{Path, PathBuf};
@@ -352,30 +355,41 @@ fn summary(w: &Workload, reps: usize) {
         for &threads in &thread_counts {
             // Wall time, and for 1 thread also the CPU time of the building thread (robust
             // against time-slicing on a shared host).
-            let (best, best_cpu) = (0..reps)
+            // The phases are those of the fastest (wall) build.
+            let (best, best_cpu, phases) = (0..reps)
                 .map(|_| {
                     pool(threads).install(|| {
                         let tris = w.tris.clone();
                         let c0 = thread_cpu_seconds();
-                        let wall = Accel::build(tris, q).build_seconds();
+                        let stats = Accel::build(tris, q).stats();
                         let cpu = match (c0, thread_cpu_seconds()) {
                             (Some(a), Some(b)) if threads == 1 => b - a,
                             _ => f64::NAN,
                         };
-                        (wall, cpu)
+                        (stats.build_seconds, cpu, stats.build_phases)
                     })
                 })
-                .fold((f64::INFINITY, f64::INFINITY), |a, b| {
-                    (a.0.min(b.0), a.1.min(b.1))
-                });
+                .fold(
+                    (f64::INFINITY, f64::INFINITY, Default::default()),
+                    |a, b| {
+                        let (wall, phases) = if b.0 < a.0 { (b.0, b.2) } else { (a.0, a.2) };
+                        (wall, a.1.min(b.1), phases)
+                    },
+                );
             let cpu = if threads == 1 {
                 format!(", {:.0} ms cpu", best_cpu * 1e3)
             } else {
                 String::new()
             };
+            let ms = |s: f64| s * 1e3;
             println!(
-                "build quality={name} threads={threads}: {:.0} ms wall{cpu}",
-                best * 1e3
+                "build quality={name} threads={threads}: {:.0} ms wall{cpu} (prepare {:.0}, ploc {:.0}, reinsertion {:.0}, collapse {:.0}, layout {:.0})",
+                best * 1e3,
+                ms(phases.prepare),
+                ms(phases.ploc),
+                ms(phases.reinsertion),
+                ms(phases.collapse),
+                ms(phases.layout),
             );
         }
         accels.push((name, Accel::build(w.tris.clone(), q)));

@@ -30,6 +30,7 @@ use glam::Vec3;
 use crate::settings::BvhQuality;
 
 pub use brute::brute_force_intersect;
+pub use bvh::BuildPhases;
 pub use counters::RayCounts;
 pub use ray_kind::{RayKind, MAX_PASSED};
 pub use spawn::{
@@ -87,6 +88,8 @@ pub struct AccelStats {
     pub depth: u32,
     /// Wall-clock build time in seconds.
     pub build_seconds: f64,
+    /// The build time by phase.
+    pub build_phases: BuildPhases,
     /// SAH cost of the hierarchy: expected node visits plus 0.3 per triangle test, for a ray
     /// that hits the root box (`collapse.rs`; lower is better).
     pub sah_cost: f64,
@@ -209,6 +212,7 @@ impl Accel {
             nodes: self.bvh.nodes.len(),
             depth: self.bvh.depth,
             build_seconds: self.bvh.build_seconds,
+            build_phases: self.bvh.phases,
             sah_cost: self.bvh.sah_cost,
             bytes: std::mem::size_of_val(self.bvh.tris.as_slice())
                 + std::mem::size_of_val(self.bvh.prim_ids.as_slice())
