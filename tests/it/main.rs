@@ -49,6 +49,7 @@ mod mi;
 mod mi_contours;
 mod mi_controls;
 mod mi_polygon_materials;
+mod mi_surfaces;
 mod mi_textures;
 mod obj_materials;
 mod photon_clean;

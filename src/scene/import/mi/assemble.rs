@@ -1,7 +1,8 @@
 //! From the statements to the description: the instance tree is walked from the render
 //! root (object space: transforms composed in f64; camera space: none), each camera and
 //! light instance becomes a camera or light named after the instance, each object one
-//! `Inline` object (per-polygon `materials` when its polygons differ), and materials' light
+//! `Inline` object (per-polygon `materials` when its polygons differ) and one `Nurbs`
+//! object per free-form surface (a group of them when there are several), and materials' light
 //! lists are resolved against the light instances.
 
 use std::collections::{HashMap, HashSet};
@@ -346,19 +347,106 @@ fn build(raw: &RawScene, root: &Located, out: &mut Out) {
     });
 }
 
-/// One `Inline` object per `.mi` object. Polygons that all name one material give the
-/// object that material; otherwise (several materials, polygons without one, or a scene
-/// whose instances override materials, which in mental ray reach only polygons without a
-/// material of their own) each polygon names its own in `materials` (`""`: the inherited
-/// one).
+/// The stagelight objects of one `.mi` object: its polygons (one `Inline` object) and each
+/// free-form surface (one `Nurbs` object). One part keeps the object's name; several
+/// become a group of that name holding one object and one instance per part, both named
+/// `<object>.<surface>` (`<object>.polygons` for the polygons), so instances of the object
+/// place every part.
 fn objects_of(name: &str, obj: &RawObject, materials: &[&str], overridden: bool, out: &mut Out) {
+    let parts = usize::from(!obj.polygons.is_empty()) + obj.surfaces.len();
+    let part_name = |part: &str| {
+        if parts == 1 {
+            name.to_string()
+        } else {
+            format!("{name}.{part}")
+        }
+    };
+    let mut members = Vec::new();
+    if !obj.polygons.is_empty() {
+        let object = part_name("polygons");
+        if polygons_of(&object, obj, materials, overridden, out) {
+            members.push(object);
+        }
+    }
+    for s in &obj.surfaces {
+        if let (Some(m), Some(at)) = (&s.material, &s.material_at) {
+            if !materials.contains(&m.as_str()) {
+                out.unknown(at, "material", m, materials.to_vec());
+                continue;
+            }
+        }
+        let object = part_name(&s.name);
+        let i = out.desc.objects.len();
+        out.paths.push((format!("objects[{i}]"), s.at.clone()));
+        out.desc.objects.push(ObjectDesc {
+            name: object.clone(),
+            mesh: MeshDesc::Nurbs {
+                degree_u: s.u.degree,
+                degree_v: s.v.degree,
+                count_u: s.u.count,
+                count_v: s.v.count,
+                knots_u: s.u.knots.clone(),
+                knots_v: s.v.knots.clone(),
+                points: s.points.clone(),
+            },
+            material: s.material.clone(),
+            approximation: s.approximation.clone(),
+            displacement: None,
+            derivatives: false,
+            caustic: obj.flags.caustic,
+            globillum: obj.flags.globillum,
+            visible: obj.flags.visible,
+            shadow: obj.flags.shadow,
+            trace: obj.flags.trace,
+        });
+        members.push(object);
+    }
+    if parts < 2 {
+        return;
+    }
+    for m in &members {
+        let i = out.desc.instances.len();
+        out.paths.push((format!("instances[{i}]"), obj.at.clone()));
+        out.desc.instances.push(InstanceDesc {
+            name: m.clone(),
+            of: m.clone(),
+            transform: Vec::new(),
+            material: None,
+            bake: None,
+            caustic: None,
+            globillum: None,
+            visible: None,
+            shadow: None,
+            trace: None,
+        });
+    }
+    let i = out.desc.groups.len();
+    out.paths.push((format!("groups[{i}]"), obj.at.clone()));
+    out.desc.groups.push(GroupDesc {
+        name: name.to_string(),
+        members,
+    });
+}
+
+/// The `Inline` object `object` of the polygons of `obj`. Polygons that all name one
+/// material give the object that material; otherwise (several materials, polygons without
+/// one, or a scene whose instances override materials, which in mental ray reach only
+/// polygons without a material of their own) each polygon names its own in `materials`
+/// (`""`: the inherited one). False when a material is unknown (reported).
+fn polygons_of(
+    object: &str,
+    obj: &RawObject,
+    materials: &[&str],
+    overridden: bool,
+    out: &mut Out,
+) -> bool {
     let mut order: Vec<Option<&str>> = Vec::new();
     for p in &obj.polygons {
         let m = p.material.as_deref();
         if let Some(m) = m {
             if !materials.contains(&m) {
                 out.unknown(&p.at, "material", m, materials.to_vec());
-                return;
+                return false;
             }
         }
         if !order.contains(&m) {
@@ -379,7 +467,7 @@ fn objects_of(name: &str, obj: &RawObject, materials: &[&str], overridden: bool,
     let i = out.desc.objects.len();
     out.paths.push((format!("objects[{i}]"), obj.at.clone()));
     out.desc.objects.push(ObjectDesc {
-        name: name.to_string(),
+        name: object.to_string(),
         mesh: MeshDesc::Inline {
             vertices: obj.vertices.clone(),
             polygons: obj.polygons.iter().map(|p| p.vertices.clone()).collect(),
@@ -398,6 +486,7 @@ fn objects_of(name: &str, obj: &RawObject, materials: &[&str], overridden: bool,
         shadow: obj.flags.shadow,
         trace: obj.flags.trace,
     });
+    true
 }
 
 /// A camera or light placed by the walk: instance name, element, `world_from_object`, where.

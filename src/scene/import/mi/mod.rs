@@ -6,7 +6,7 @@
 //! statements, `$include` and `link`), [`blocks`] (`options`, `camera`, `light`,
 //! `material` and `declare phenomenon` blocks; [`photon_options`] maps the photon
 //! statements of `options`, [`switches`] its feature switches), [`object`] (`object … group … end group
-//! end object`), [`shaders`] (the built-in shaders' parameters and what each maps onto;
+//! end object`; [`surface`] its free-form surfaces), [`shaders`] (the built-in shaders' parameters and what each maps onto;
 //! [`textures`] the `mib_texture_*` chains onto shader-graph nodes)
 //! and [`assemble`] (the instance tree → cameras, lights, objects, instances and groups).
 //!
@@ -32,6 +32,7 @@ pub mod object;
 pub mod photon_options;
 pub mod shaders;
 pub mod statements;
+pub mod surface;
 pub mod switches;
 pub mod textures;
 

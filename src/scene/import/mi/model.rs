@@ -6,7 +6,9 @@ use std::collections::HashMap;
 
 use super::super::rib::Located;
 use super::cursor::ShaderCall;
-use crate::scene::desc::{EnvironmentDesc, MaterialDesc, OptionsDesc, OutputDesc, V3};
+use crate::scene::desc::{
+    ApproximationDesc, EnvironmentDesc, MaterialDesc, OptionsDesc, OutputDesc, V3,
+};
 
 /// Camera space (mental ray's default: instance transformations have no effect) or object
 /// space.
@@ -158,8 +160,42 @@ pub struct RawObject {
     pub uvs: Vec<Option<(f64, f64)>>,
     /// Polygons.
     pub polygons: Vec<RawPolygon>,
+    /// Free-form surfaces, in file order.
+    pub surfaces: Vec<RawSurface>,
     /// Flags.
     pub flags: Flags,
+}
+
+/// One direction of a free-form surface, as a NURBS axis.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RawAxis {
+    /// Polynomial degree (1…7).
+    pub degree: u32,
+    /// Control points along the direction.
+    pub count: u32,
+    /// `count + degree + 1` knots.
+    pub knots: Vec<f64>,
+}
+
+/// A `surface` of a group, as a NURBS surface (`docs/mi.md`, *Free-form surfaces*).
+#[derive(Debug, Clone)]
+pub struct RawSurface {
+    /// The surface's name (what `approximate surface` names).
+    pub name: String,
+    /// Where `surface` is.
+    pub at: Located,
+    /// Its material, when written.
+    pub material: Option<String>,
+    /// Where the material name is.
+    pub material_at: Option<Located>,
+    /// The u direction.
+    pub u: RawAxis,
+    /// The v direction.
+    pub v: RawAxis,
+    /// `u.count × v.count` control points `(x, y, z, w)`, u fastest, weight not premultiplied.
+    pub points: Vec<(f64, f64, f64, f64)>,
+    /// `approximate surface …` naming it.
+    pub approximation: Option<ApproximationDesc>,
 }
 
 /// An `instance` block.
