@@ -46,6 +46,7 @@ mod light_scenes;
 mod lights;
 mod mesh_files;
 mod mi;
+mod mi_contour_shaders;
 mod mi_contours;
 mod mi_controls;
 mod mi_polygon_materials;

@@ -258,6 +258,18 @@ fn build(raw: &RawScene, root: &Located, out: &mut Out) {
         out.desc.materials.push(desc);
     }
     let material_names: Vec<&str> = raw.materials.iter().map(|(n, _)| n.as_str()).collect();
+    // `contour_shader_framefade` at the render camera's frame.
+    let frame = raw
+        .instances
+        .iter()
+        .find(|(n, _)| *n == render.camera.0)
+        .and_then(|(_, i)| raw.cameras.get(&i.of))
+        .map_or(0.0, |c| c.frame);
+    for (m, (_, raw_m)) in out.desc.materials.iter_mut().zip(&raw.materials) {
+        if let Some(f) = &raw_m.frame_fade {
+            m.contour = Some(super::contours::faded(f, frame));
+        }
+    }
 
     let overridden = raw.instances.iter().any(|(_, i)| i.material.is_some());
     for (name, obj) in &raw.objects {

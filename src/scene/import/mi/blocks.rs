@@ -286,6 +286,7 @@ pub fn camera(r: &mut Reader, c: &mut Cursor, open: Pos) {
         aspect: None,
         outputs: Vec::new(),
         environment: None,
+        frame: 0.0,
     };
     loop {
         let Some(t) = c.block_token("camera", open) else {
@@ -300,7 +301,12 @@ pub fn camera(r: &mut Reader, c: &mut Cursor, open: Pos) {
         }
         c.advance();
         match w.as_str() {
-            "frame" => c.skip_arguments(),
+            "frame" => {
+                if c.at_number() {
+                    cam.frame = c.number("the frame number").unwrap_or(0.0);
+                }
+                c.skip_arguments();
+            }
             "focal" => {
                 if c.eat_word("infinity") {
                     c.warn(
@@ -631,6 +637,7 @@ pub fn material(r: &mut Reader, c: &mut Cursor, open: Pos) {
     };
     let mapped = shaders::material(c, &call, &r.raw.shaders, &r.raw.textures, 0);
     let mut contour = None;
+    let mut frame_fade = None;
     loop {
         let Some(t) = c.block_token("material", open) else {
             return;
@@ -647,7 +654,10 @@ pub fn material(r: &mut Reader, c: &mut Cursor, open: Pos) {
             "opaque" => {}
             "contour" => {
                 if let Some(call) = c.shader_call("the contour shader") {
-                    contour = super::contours::material_shader(c, &call);
+                    frame_fade = super::contours::frame_fade(c, &call);
+                    if frame_fade.is_none() {
+                        contour = super::contours::material_shader(c, &call);
+                    }
                 }
             }
             "shadow" | "photon" | "volume" | "environment" | "displace" => {
@@ -694,6 +704,7 @@ pub fn material(r: &mut Reader, c: &mut Cursor, open: Pos) {
                 desc,
                 lights,
                 exclusive,
+                frame_fade,
             },
         ));
     }

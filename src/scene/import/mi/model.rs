@@ -48,6 +48,26 @@ pub struct RawCamera {
     pub outputs: Vec<OutputDesc>,
     /// `environment` shader, mapped.
     pub environment: Option<EnvironmentDesc>,
+    /// `frame N`: the frame number (0 when not written).
+    pub frame: f64,
+}
+
+/// `contour_shader_framefade`: colour and width from the frame number, resolved against
+/// the render camera's `frame` when the scene is assembled.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FrameFade {
+    /// Frame of the first values.
+    pub frame1: f64,
+    /// Frame of the second values.
+    pub frame2: f64,
+    /// Colour at `frame1` and before.
+    pub color1: (f64, f64, f64, f64),
+    /// Colour at `frame2` and after.
+    pub color2: (f64, f64, f64, f64),
+    /// Width at `frame1` and before, percent.
+    pub width1: f64,
+    /// Width at `frame2` and after, percent.
+    pub width2: f64,
 }
 
 /// What a light shader made of its parameters.
@@ -121,6 +141,8 @@ pub struct RawMaterial {
     pub lights: Option<Vec<(String, Located)>>,
     /// `"mode" 2`: the list names the lights to leave out.
     pub exclusive: bool,
+    /// A `contour_shader_framefade` contour, made a `Simple` one for the render frame.
+    pub frame_fade: Option<FrameFade>,
 }
 
 /// One polygon of a group: its material, vertex indices (into the `v` list) and position.

@@ -569,7 +569,7 @@ impl Technique {
 /// Subdivision levels `min max` written after a technique's own numbers.
 fn levels(nums: &[f64], own: usize) -> (u32, u32) {
     match nums.get(own..own + 2) {
-        Some([lo, hi]) => (lo.max(0.0).min(12.0) as u32, hi.max(0.0).min(12.0) as u32),
+        Some([lo, hi]) => (lo.clamp(0.0, 12.0) as u32, hi.clamp(0.0, 12.0) as u32),
         _ => (0, 7),
     }
 }
