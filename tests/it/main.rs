@@ -52,6 +52,7 @@ mod mi_controls;
 mod mi_polygon_materials;
 mod mi_surfaces;
 mod mi_textures;
+mod mi_volumes;
 mod obj_materials;
 mod photon_clean;
 mod photon_depth;

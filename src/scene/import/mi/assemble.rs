@@ -200,7 +200,7 @@ fn build(raw: &RawScene, root: &Located, out: &mut Out) {
             outputs: cam.outputs.clone(),
             imager: None,
             lens: Vec::new(),
-            atmosphere: None,
+            atmosphere: cam.atmosphere.clone(),
         });
         if out.desc.environment.is_none() {
             out.desc.environment = cam.environment.clone();

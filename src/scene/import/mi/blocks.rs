@@ -287,6 +287,7 @@ pub fn camera(r: &mut Reader, c: &mut Cursor, open: Pos) {
         outputs: Vec::new(),
         environment: None,
         frame: 0.0,
+        atmosphere: None,
     };
     loop {
         let Some(t) = c.block_token("camera", open) else {
@@ -335,7 +336,12 @@ pub fn camera(r: &mut Reader, c: &mut Cursor, open: Pos) {
                     cam.environment = shaders::environment(c, &call, &r.raw.shaders);
                 }
             }
-            "lens" | "volume" => {
+            "volume" => {
+                if let Some(call) = c.shader_call("the volume shader") {
+                    cam.atmosphere = super::volumes::volume(c, &call, "camera");
+                }
+            }
+            "lens" => {
                 if let Some(call) = c.shader_call(&format!("the {w} shader")) {
                     c.warn(
                         call.pos,
@@ -638,6 +644,7 @@ pub fn material(r: &mut Reader, c: &mut Cursor, open: Pos) {
     let mapped = shaders::material(c, &call, &r.raw.shaders, &r.raw.textures, 0);
     let mut contour = None;
     let mut frame_fade = None;
+    let mut interior = None;
     loop {
         let Some(t) = c.block_token("material", open) else {
             return;
@@ -660,12 +667,19 @@ pub fn material(r: &mut Reader, c: &mut Cursor, open: Pos) {
                     }
                 }
             }
-            "shadow" | "photon" | "volume" | "environment" | "displace" => {
+            "volume" => {
+                if let Some(call) = c.shader_call("the volume shader") {
+                    interior = super::volumes::volume(c, &call, "material");
+                }
+            }
+            "shadow" | "photon" | "environment" | "displace" => {
                 if let Some(call) = c.shader_call(&format!("the {w} shader")) {
-                    let msg = if w == "photon" {
-                        format!("photon shader \"{}\" is read but not yet mapped", call.name)
-                    } else {
-                        format!("{w} shader \"{}\" is not mapped", call.name)
+                    let n = &call.name;
+                    let msg = match w.as_str() {
+                        "photon" => format!("photon shader \"{n}\" is read but not yet mapped"),
+                        "shadow" => format!("shadow shader \"{n}\" is not mapped: shadows follow the material shader (mib_opacity lets 1 − opacity through, every other shader blocks)"),
+                        "environment" => format!("environment shader \"{n}\" is not mapped: rays leaving this material's surfaces see the scene's environment (the camera's)"),
+                        _ => format!("displace shader \"{n}\" is not mapped: objects with this material render undisplaced"),
                     };
                     c.warn(call.pos, msg);
                 }
@@ -693,7 +707,7 @@ pub fn material(r: &mut Reader, c: &mut Cursor, open: Pos) {
             emission: (0.0, 0.0, 0.0),
             bind,
             bump: None,
-            interior: None,
+            interior,
             lights: None,
             contour,
         };

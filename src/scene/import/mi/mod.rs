@@ -7,7 +7,8 @@
 //! `material` and `declare phenomenon` blocks; [`photon_options`] maps the photon
 //! statements of `options`, [`switches`] its feature switches), [`object`] (`object … group … end group
 //! end object`; [`surface`] its free-form surfaces), [`shaders`] (the built-in shaders' parameters and what each maps onto;
-//! [`textures`] the `mib_texture_*` chains onto shader-graph nodes)
+//! [`textures`] the `mib_texture_*` chains onto shader-graph nodes, [`volumes`] volume
+//! shaders onto fog)
 //! and [`assemble`] (the instance tree → cameras, lights, objects, instances and groups).
 //!
 //! **Conventions.** A mental ray `transform` is the 4×4 matrix, written row by row, that
@@ -35,6 +36,7 @@ pub mod statements;
 pub mod surface;
 pub mod switches;
 pub mod textures;
+pub mod volumes;
 
 use std::path::Path;
 

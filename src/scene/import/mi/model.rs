@@ -50,6 +50,8 @@ pub struct RawCamera {
     pub environment: Option<EnvironmentDesc>,
     /// `frame N`: the frame number (0 when not written).
     pub frame: f64,
+    /// `volume` shader, mapped: the camera's atmosphere.
+    pub atmosphere: Option<crate::scene::desc::VolumeDesc>,
 }
 
 /// `contour_shader_framefade`: colour and width from the frame number, resolved against
