@@ -49,6 +49,7 @@ mod mi;
 mod mi_contour_shaders;
 mod mi_contours;
 mod mi_controls;
+mod mi_displacement;
 mod mi_polygon_materials;
 mod mi_surfaces;
 mod mi_textures;

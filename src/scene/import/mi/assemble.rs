@@ -15,8 +15,9 @@ use super::model::{AreaShape, LightModel, RawLight, RawObject, RawScene, Space};
 use super::statements::Reader;
 use super::MiScene;
 use crate::scene::desc::{
-    CameraDesc, GroupDesc, InstanceDesc, LightDesc, LightKindDesc, MeshDesc, ObjectDesc,
-    PlacementDesc, RenderDesc, SceneDesc, TransformDesc, M4, V3,
+    CameraDesc, DisplacementDesc, DisplacementModeDesc, GroupDesc, InstanceDesc, LightDesc,
+    LightKindDesc, MeshDesc, ObjectDesc, PlacementDesc, RenderDesc, ScalarDesc, SceneDesc,
+    TransformDesc, M4, V3,
 };
 use crate::scene::suggest::closest;
 
@@ -200,7 +201,7 @@ fn build(raw: &RawScene, root: &Located, out: &mut Out) {
             outputs: cam.outputs.clone(),
             imager: None,
             lens: Vec::new(),
-            atmosphere: cam.atmosphere.clone(),
+            atmosphere: cam.atmosphere,
         });
         if out.desc.environment.is_none() {
             out.desc.environment = cam.environment.clone();
@@ -272,8 +273,18 @@ fn build(raw: &RawScene, root: &Located, out: &mut Out) {
     }
 
     let overridden = raw.instances.iter().any(|(_, i)| i.material.is_some());
+    let displaced: HashMap<&str, &ScalarDesc> = raw
+        .materials
+        .iter()
+        .filter_map(|(n, m)| Some((n.as_str(), m.displace.as_ref()?)))
+        .collect();
+    let materials = Materials {
+        names: &material_names,
+        displaced: &displaced,
+        overridden,
+    };
     for (name, obj) in &raw.objects {
-        objects_of(name, obj, &material_names, overridden, out);
+        objects_of(name, obj, &materials, out);
     }
     for (name, inst) in &raw.instances {
         let placed_object = objects.contains_key(inst.of.as_str());
@@ -364,7 +375,29 @@ fn build(raw: &RawScene, root: &Located, out: &mut Out) {
 /// become a group of that name holding one object and one instance per part, both named
 /// `<object>.<surface>` (`<object>.polygons` for the polygons), so instances of the object
 /// place every part.
-fn objects_of(name: &str, obj: &RawObject, materials: &[&str], overridden: bool, out: &mut Out) {
+/// What object building needs of the materials.
+struct Materials<'a> {
+    /// Every material name.
+    names: &'a [&'a str],
+    /// The displacement of each material that has one (`displace "myDisplacement"`).
+    displaced: &'a HashMap<&'a str, &'a ScalarDesc>,
+    /// Whether any instance overrides materials.
+    overridden: bool,
+}
+
+impl Materials<'_> {
+    /// The displacement of objects drawn in material `m`.
+    fn displacement(&self, m: Option<&str>) -> Option<DisplacementDesc> {
+        let shader = (*self.displaced.get(m?)?).clone();
+        Some(DisplacementDesc {
+            shader,
+            bound: None,
+            mode: DisplacementModeDesc::True,
+        })
+    }
+}
+
+fn objects_of(name: &str, obj: &RawObject, materials: &Materials<'_>, out: &mut Out) {
     let parts = usize::from(!obj.polygons.is_empty()) + obj.surfaces.len();
     let part_name = |part: &str| {
         if parts == 1 {
@@ -376,14 +409,14 @@ fn objects_of(name: &str, obj: &RawObject, materials: &[&str], overridden: bool,
     let mut members = Vec::new();
     if !obj.polygons.is_empty() {
         let object = part_name("polygons");
-        if polygons_of(&object, obj, materials, overridden, out) {
+        if polygons_of(&object, obj, materials, out) {
             members.push(object);
         }
     }
     for s in &obj.surfaces {
         if let (Some(m), Some(at)) = (&s.material, &s.material_at) {
-            if !materials.contains(&m.as_str()) {
-                out.unknown(at, "material", m, materials.to_vec());
+            if !materials.names.contains(&m.as_str()) {
+                out.unknown(at, "material", m, materials.names.to_vec());
                 continue;
             }
         }
@@ -403,7 +436,7 @@ fn objects_of(name: &str, obj: &RawObject, materials: &[&str], overridden: bool,
             },
             material: s.material.clone(),
             approximation: s.approximation.clone(),
-            displacement: None,
+            displacement: materials.displacement(s.material.as_deref()),
             derivatives: false,
             caustic: obj.flags.caustic,
             globillum: obj.flags.globillum,
@@ -445,19 +478,14 @@ fn objects_of(name: &str, obj: &RawObject, materials: &[&str], overridden: bool,
 /// one, or a scene whose instances override materials, which in mental ray reach only
 /// polygons without a material of their own) each polygon names its own in `materials`
 /// (`""`: the inherited one). False when a material is unknown (reported).
-fn polygons_of(
-    object: &str,
-    obj: &RawObject,
-    materials: &[&str],
-    overridden: bool,
-    out: &mut Out,
-) -> bool {
+fn polygons_of(object: &str, obj: &RawObject, materials: &Materials<'_>, out: &mut Out) -> bool {
+    let overridden = materials.overridden;
     let mut order: Vec<Option<&str>> = Vec::new();
     for p in &obj.polygons {
         let m = p.material.as_deref();
         if let Some(m) = m {
-            if !materials.contains(&m) {
-                out.unknown(&p.at, "material", m, materials.to_vec());
+            if !materials.names.contains(&m) {
+                out.unknown(&p.at, "material", m, materials.names.to_vec());
                 return false;
             }
         }
@@ -467,7 +495,7 @@ fn polygons_of(
     }
     let per_polygon = order.len() > 1 || (overridden && order.iter().any(Option::is_some));
     let (material, polygon_materials) = if per_polygon {
-        let names = obj
+        let names: Vec<String> = obj
             .polygons
             .iter()
             .map(|p| p.material.clone().unwrap_or_default())
@@ -475,6 +503,25 @@ fn polygons_of(
         (None, Some(names))
     } else {
         (order.first().copied().flatten().map(str::to_string), None)
+    };
+    // Displacement is per object: it needs one material (mental ray displaces per material).
+    let displacement = match &polygon_materials {
+        None => materials.displacement(material.as_deref()),
+        Some(names) => {
+            if let Some(m) = names
+                .iter()
+                .find(|m| materials.displaced.contains_key(m.as_str()))
+            {
+                out.report(
+                    &obj.at,
+                    Problem::warning(
+                        Pos::default(),
+                        format!("object \"{object}\" is not displaced: the displacement of material \"{m}\" applies to whole objects, and its polygons have several materials"),
+                    ),
+                );
+            }
+            None
+        }
     };
     let i = out.desc.objects.len();
     out.paths.push((format!("objects[{i}]"), obj.at.clone()));
@@ -489,8 +536,9 @@ fn polygons_of(
             materials: polygon_materials,
         },
         material,
-        approximation: None,
-        displacement: None,
+        // Polygons are diced only when displaced.
+        approximation: displacement.as_ref().and(obj.approximation.clone()),
+        displacement,
         derivatives: false,
         caustic: obj.flags.caustic,
         globillum: obj.flags.globillum,

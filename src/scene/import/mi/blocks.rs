@@ -8,7 +8,7 @@
 //! shaders are read and reported "read but not yet mapped".
 
 use super::super::rib::{Pos, Problem};
-use super::cursor::Cursor;
+use super::cursor::{Cursor, ShaderCall, Value};
 use super::lexer::{Tok, Token};
 use super::model::{AreaShape, RawCamera, RawLight, RawMaterial, RawOptions, Space};
 use super::photon_options::PhotonOptions;
@@ -16,7 +16,8 @@ use super::shaders;
 use super::statements::Reader;
 use super::switches;
 use crate::scene::desc::{
-    FaceDesc, FormatDesc, MaterialDesc, OptionsDesc, OutputDesc, PassDesc, SamplesDesc,
+    AxisDesc, FaceDesc, FormatDesc, MaterialDesc, OptionsDesc, OutputDesc, PassDesc, SamplesDesc,
+    ScalarDesc,
 };
 use crate::scene::suggest::closest;
 
@@ -645,6 +646,7 @@ pub fn material(r: &mut Reader, c: &mut Cursor, open: Pos) {
     let mut contour = None;
     let mut frame_fade = None;
     let mut interior = None;
+    let mut displace = None;
     loop {
         let Some(t) = c.block_token("material", open) else {
             return;
@@ -670,6 +672,19 @@ pub fn material(r: &mut Reader, c: &mut Cursor, open: Pos) {
             "volume" => {
                 if let Some(call) = c.shader_call("the volume shader") {
                     interior = super::volumes::volume(c, &call, "material");
+                }
+            }
+            "displace"
+                if c.peek().is_some_and(|t| {
+                    matches!(&t.tok, Tok::Str(s) if s == super::statements::TUTORIAL_DISPLACEMENT)
+                }) && r
+                    .raw
+                    .linked
+                    .iter()
+                    .any(|l| l == super::statements::TUTORIAL_DISPLACEMENT) =>
+            {
+                if let Some(call) = c.shader_call("the displace shader") {
+                    displace = tutorial_displacement(c, &call);
                 }
             }
             "shadow" | "photon" | "environment" | "displace" => {
@@ -719,9 +734,44 @@ pub fn material(r: &mut Reader, c: &mut Cursor, open: Pos) {
                 lights,
                 exclusive,
                 frame_fade,
+                displace,
             },
         ));
     }
+}
+
+/// `displace "myDisplacement" ("factor" f)`: the tutorial's `0.01 · sin(u · f · π)` along
+/// the normal (`u`: the first texture space's x), `f` 0 when not written (C's zero).
+fn tutorial_displacement(c: &mut Cursor, call: &ShaderCall) -> Option<ScalarDesc> {
+    let mut factor = 0.0;
+    let mut ok = true;
+    for p in &call.params {
+        match (p.name.as_str(), &p.value) {
+            ("factor", Value::Nums(n)) if n.len() == 1 => factor = n[0],
+            ("factor", _) => {
+                c.error(
+                    p.value_pos,
+                    "parameter \"factor\" of \"myDisplacement\" takes a number",
+                );
+                ok = false;
+            }
+            (other, _) => {
+                c.report(
+                    Problem::error(
+                        p.pos,
+                        format!("unknown parameter \"{other}\" of shader \"myDisplacement\""),
+                    )
+                    .with_help("its one parameter is \"factor\""),
+                );
+                ok = false;
+            }
+        }
+    }
+    ok.then_some(ScalarDesc::Sine {
+        amplitude: 0.01,
+        factor,
+        axis: AxisDesc::U,
+    })
 }
 
 /// `declare phenomenon type "name" (…) shader … root = "…" … end declare`, or `declare

@@ -145,6 +145,9 @@ pub struct RawMaterial {
     pub exclusive: bool,
     /// A `contour_shader_framefade` contour, made a `Simple` one for the render frame.
     pub frame_fade: Option<FrameFade>,
+    /// `displace "myDisplacement" (…)` (the tutorial's library): the displacement of the
+    /// objects drawn in this material.
+    pub displace: Option<crate::scene::desc::ScalarDesc>,
 }
 
 /// One polygon of a group: its material, vertex indices (into the `v` list) and position.
@@ -186,6 +189,8 @@ pub struct RawObject {
     pub polygons: Vec<RawPolygon>,
     /// Free-form surfaces, in file order.
     pub surfaces: Vec<RawSurface>,
+    /// The polygons' `approximate` statement: how a displaced object is diced.
+    pub approximation: Option<ApproximationDesc>,
     /// Flags.
     pub flags: Flags,
 }
@@ -287,4 +292,7 @@ pub struct RawScene {
     pub textures: HashMap<String, (String, Located)>,
     /// `render`.
     pub render: Option<RawRender>,
+    /// `link`ed shader libraries that are built in beyond base, physics and contour (the
+    /// tutorial's `myDisplacement`).
+    pub linked: Vec<String>,
 }

@@ -86,6 +86,7 @@ pub fn object(r: &mut Reader, c: &mut Cursor, open: Pos) {
         uvs: Vec::new(),
         polygons: Vec::new(),
         surfaces: Vec::new(),
+        approximation: None,
         flags: Flags::default(),
     };
     let mut bases = Bases::new();
@@ -344,16 +345,7 @@ fn group(c: &mut Cursor, obj: &mut RawObject, bases: &Bases, open: Pos) -> bool 
                 c.warn(t.pos, what);
             }
             "approximate" => {
-                while c.peek().is_some_and(|t| {
-                    matches!(&t.tok, Tok::Word(w) if w != "end" && w != "v" && w != "p")
-                        || matches!(t.tok, Tok::Num(_))
-                }) {
-                    c.advance();
-                }
-                c.warn(
-                    t.pos,
-                    "\"approximate\" is read but not mapped (polygons are used as written)",
-                );
+                obj.approximation = surface::polygon_approximation(c, t.pos);
             }
             other => {
                 c.report(

@@ -545,6 +545,47 @@ pub fn approximate(c: &mut Cursor, obj: &mut RawObject, failed: &[String], at: P
     }
 }
 
+/// The words of an approximation technique.
+const TECHNIQUE_WORDS: &[&str] = &[
+    "view",
+    "tree",
+    "grid",
+    "delaunay",
+    "any",
+    "regular",
+    "parametric",
+    "spatial",
+    "length",
+    "curvature",
+    "distance",
+    "angle",
+    "fine",
+    "sharp",
+];
+
+/// A polygon group's `approximate [displace] technique …` (after `approximate`): how the
+/// object is diced when it is displaced (polygons without displacement are used as
+/// written). `parametric u v` is `u × v` segments per patch (degree 1).
+pub fn polygon_approximation(c: &mut Cursor, at: Pos) -> Option<ApproximationDesc> {
+    c.eat_word("displace");
+    let mut words: Words = Vec::new();
+    while let Some(t) = c.peek().cloned() {
+        match t.tok {
+            Tok::Word(w) if TECHNIQUE_WORDS.contains(&w.as_str()) => {
+                words.push((w, t.pos, Vec::new()))
+            }
+            Tok::Num(v) if !words.is_empty() => {
+                if let Some(last) = words.last_mut() {
+                    last.2.push(v);
+                }
+            }
+            _ => break,
+        }
+        c.advance();
+    }
+    technique(c, &words, at).map(|t| t.of(1, 1))
+}
+
 /// A mapped approximation technique, before the surface's degrees are known.
 #[derive(Debug, Clone)]
 enum Technique {
@@ -585,22 +626,7 @@ fn technique(c: &mut Cursor, words: &Words, at: Pos) -> Option<Technique> {
         );
         None
     };
-    const KNOWN: &[&str] = &[
-        "view",
-        "tree",
-        "grid",
-        "delaunay",
-        "any",
-        "regular",
-        "parametric",
-        "spatial",
-        "length",
-        "curvature",
-        "distance",
-        "angle",
-        "fine",
-        "sharp",
-    ];
+    const KNOWN: &[&str] = TECHNIQUE_WORDS;
     if let Some((w, pos, _)) = words.iter().find(|(w, _, _)| !KNOWN.contains(&w.as_str())) {
         let mut p = Problem::error(*pos, format!("unknown approximation technique \"{w}\""));
         if let Some(s) = closest(w, KNOWN.iter().copied()) {
