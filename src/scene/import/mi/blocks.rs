@@ -8,7 +8,7 @@
 //! shaders are read and reported "read but not yet mapped".
 
 use super::super::rib::{Pos, Problem};
-use super::cursor::{Cursor, ShaderCall, Value};
+use super::cursor::Cursor;
 use super::lexer::{Tok, Token};
 use super::model::{AreaShape, RawCamera, RawLight, RawMaterial, RawOptions, Space};
 use super::photon_options::PhotonOptions;
@@ -16,8 +16,7 @@ use super::shaders;
 use super::statements::Reader;
 use super::switches;
 use crate::scene::desc::{
-    AxisDesc, FaceDesc, FormatDesc, MaterialDesc, OptionsDesc, OutputDesc, PassDesc, SamplesDesc,
-    ScalarDesc,
+    FaceDesc, FormatDesc, MaterialDesc, OptionsDesc, OutputDesc, PassDesc, SamplesDesc,
 };
 use crate::scene::suggest::closest;
 
@@ -684,7 +683,7 @@ pub fn material(r: &mut Reader, c: &mut Cursor, open: Pos) {
                     .any(|l| l == super::statements::TUTORIAL_DISPLACEMENT) =>
             {
                 if let Some(call) = c.shader_call("the displace shader") {
-                    displace = tutorial_displacement(c, &call);
+                    displace = super::displace::tutorial_displacement(c, &call);
                 }
             }
             "shadow" | "photon" | "environment" | "displace" => {
@@ -738,40 +737,6 @@ pub fn material(r: &mut Reader, c: &mut Cursor, open: Pos) {
             },
         ));
     }
-}
-
-/// `displace "myDisplacement" ("factor" f)`: the tutorial's `0.01 · sin(u · f · π)` along
-/// the normal (`u`: the first texture space's x), `f` 0 when not written (C's zero).
-fn tutorial_displacement(c: &mut Cursor, call: &ShaderCall) -> Option<ScalarDesc> {
-    let mut factor = 0.0;
-    let mut ok = true;
-    for p in &call.params {
-        match (p.name.as_str(), &p.value) {
-            ("factor", Value::Nums(n)) if n.len() == 1 => factor = n[0],
-            ("factor", _) => {
-                c.error(
-                    p.value_pos,
-                    "parameter \"factor\" of \"myDisplacement\" takes a number",
-                );
-                ok = false;
-            }
-            (other, _) => {
-                c.report(
-                    Problem::error(
-                        p.pos,
-                        format!("unknown parameter \"{other}\" of shader \"myDisplacement\""),
-                    )
-                    .with_help("its one parameter is \"factor\""),
-                );
-                ok = false;
-            }
-        }
-    }
-    ok.then_some(ScalarDesc::Sine {
-        amplitude: 0.01,
-        factor,
-        axis: AxisDesc::U,
-    })
 }
 
 /// `declare phenomenon type "name" (…) shader … root = "…" … end declare`, or `declare

@@ -27,6 +27,7 @@ pub mod assemble;
 pub mod blocks;
 pub mod contours;
 pub mod cursor;
+pub mod displace;
 pub mod lexer;
 pub mod model;
 pub mod object;
