@@ -17,6 +17,15 @@ pub enum ContourShader {
         /// Line width, percent of the smaller image dimension.
         width: f32,
     },
+    /// Constant `color` and `width`, drawn only on the outline: where the other side of the
+    /// edge is the background or another object (mental ray's
+    /// `contour_shader_silhouette`); creases and material edges inside an object get no line.
+    Silhouette {
+        /// Line colour (linear RGBA).
+        color: Vec4,
+        /// Line width, percent of the smaller image dimension.
+        width: f32,
+    },
     /// Colour and width interpolated linearly between `near` and `far` camera distances:
     /// `t = clamp((d − near) / (far − near), 0, 1)`, colour `= near_color + t·(far_color −
     /// near_color)`, width likewise.
@@ -83,6 +92,7 @@ impl ContourShader {
     pub fn widths(&self) -> Vec<f32> {
         match *self {
             ContourShader::Simple { width, .. }
+            | ContourShader::Silhouette { width, .. }
             | ContourShader::FactorColor { width, .. }
             | ContourShader::Layered { width, .. } => vec![width],
             ContourShader::DepthFade {

@@ -14,9 +14,14 @@ const LUMINANCE: Vec3 = Vec3::new(0.2126, 0.7152, 0.0722);
 /// Colour (linear RGBA, straight alpha) and width (pixels) of the line at `c` drawn by
 /// `shader`, in an image whose smaller dimension is `min_dimension` pixels; `level`: the
 /// ray level of the crossing's samples (the layers in front, see `ContourStore::level`).
+/// Width 0: no line here (a silhouette shader away from the outline).
 pub fn style(shader: &ContourShader, c: &Crossing, min_dimension: f32, level: u32) -> (Vec4, f32) {
     let (color, percent) = match *shader {
         ContourShader::Simple { color, width } => (color, width),
+        ContourShader::Silhouette { color, width } => {
+            let outline = c.back.is_background() || c.back.object != c.front.object;
+            (color, if outline { width } else { 0.0 })
+        }
         ContourShader::DepthFade {
             near,
             far,
@@ -71,38 +76,55 @@ pub fn style(shader: &ContourShader, c: &Crossing, min_dimension: f32, level: u3
 
 /// Styles every chain of ray level `level` with the contour shader of its material
 /// (`shaders[material − 1]`; chains of materials without one were never linked, and are
-/// dropped if met).
+/// dropped if met). Points the shader gives no width break their chain: the runs of at
+/// least two drawn points between them become the lines.
 pub fn styled_lines(
     chains: Vec<Chain>,
     shaders: &[Option<ContourShader>],
     min_dimension: f32,
     level: u32,
 ) -> Vec<ContourLine> {
-    chains
-        .into_iter()
-        .filter_map(|chain| {
-            let shader = shaders
-                .get(chain.material.checked_sub(1)? as usize)?
-                .as_ref()?;
-            let points = chain
-                .points
-                .iter()
-                .map(|p| {
-                    let (color, width) = style(shader, &p.crossing, min_dimension, level);
-                    ContourPoint {
-                        pos: p.pos,
-                        color,
-                        width,
-                    }
+    let mut lines = Vec::new();
+    for chain in chains {
+        let Some(shader) = chain
+            .material
+            .checked_sub(1)
+            .and_then(|m| shaders.get(m as usize))
+            .and_then(Option::as_ref)
+        else {
+            continue;
+        };
+        let points: Vec<Option<ContourPoint>> = chain
+            .points
+            .iter()
+            .map(|p| {
+                let (color, width) = style(shader, &p.crossing, min_dimension, level);
+                (width > 0.0).then_some(ContourPoint {
+                    pos: p.pos,
+                    color,
+                    width,
                 })
-                .collect();
-            Some(ContourLine {
+            })
+            .collect();
+        if points.iter().all(Option::is_some) {
+            lines.push(ContourLine {
                 material: chain.material,
                 closed: chain.closed,
-                points,
-            })
-        })
-        .collect()
+                points: points.into_iter().flatten().collect(),
+            });
+            continue;
+        }
+        for run in points.split(Option::is_none) {
+            if run.len() >= 2 {
+                lines.push(ContourLine {
+                    material: chain.material,
+                    closed: false,
+                    points: run.iter().flatten().copied().collect(),
+                });
+            }
+        }
+    }
+    lines
 }
 
 #[cfg(test)]
@@ -190,5 +212,41 @@ mod tests {
                 "2·0.5^{level}"
             );
         }
+    }
+
+    #[test]
+    fn a_silhouette_shader_draws_only_the_outline_and_splits_its_chains() {
+        use super::super::linking::{Chain, ChainPoint};
+        let black = Vec4::new(0.0, 0.0, 0.0, 1.0);
+        let shader = ContourShader::Silhouette {
+            color: black,
+            width: 1.0,
+        };
+        let inside = crossing(3.0, Vec3::ONE, Vec3::X);
+        let mut outline = inside;
+        outline.back.object = 2;
+        assert_eq!(style(&shader, &inside, 100.0, 0).1, 0.0, "a crease");
+        assert_eq!(style(&shader, &outline, 100.0, 0), (black, 1.0));
+        // outline, outline, crease, outline, outline, outline: two lines.
+        let kinds = [true, true, false, true, true, true];
+        let chain = Chain {
+            material: 1,
+            closed: true,
+            points: kinds
+                .iter()
+                .enumerate()
+                .map(|(k, &o)| ChainPoint {
+                    pos: Vec2::new(k as f32, 0.0),
+                    crossing: if o { outline } else { inside },
+                })
+                .collect(),
+        };
+        let lines = styled_lines(vec![chain], &[Some(shader)], 100.0, 0);
+        let xs: Vec<Vec<f32>> = lines
+            .iter()
+            .map(|l| l.points.iter().map(|p| p.pos.x).collect())
+            .collect();
+        assert_eq!(xs, [vec![0.0, 1.0], vec![3.0, 4.0, 5.0]]);
+        assert!(lines.iter().all(|l| !l.closed));
     }
 }

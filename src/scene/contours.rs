@@ -46,6 +46,13 @@ pub fn contour(src: &mut Sources, item: &Item<'_, MaterialDesc>) -> Option<Conto
                 width: width as f32,
             },
         ),
+        ContourDesc::Silhouette { color, width } => (
+            "Silhouette",
+            ContourShader::Silhouette {
+                color: colour(&mut ck, "Silhouette", "color", color),
+                width: width as f32,
+            },
+        ),
         ContourDesc::DepthFade {
             near,
             far,
@@ -162,6 +169,7 @@ pub fn contour(src: &mut Sources, item: &Item<'_, MaterialDesc>) -> Option<Conto
 fn width_fields(d: &ContourDesc) -> Vec<(&'static str, f64)> {
     match *d {
         ContourDesc::Simple { width, .. }
+        | ContourDesc::Silhouette { width, .. }
         | ContourDesc::FactorColor { width, .. }
         | ContourDesc::Layered { width, .. } => vec![("width", width)],
         ContourDesc::DepthFade {

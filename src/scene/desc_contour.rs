@@ -20,6 +20,16 @@ pub enum ContourDesc {
         #[serde(default = "half")]
         width: f64,
     },
+    /// Constant colour and width on the outline only (the other side is the background or
+    /// another object).
+    Silhouette {
+        /// Colour, default `(0, 0, 0, 1)`.
+        #[serde(default = "black")]
+        color: V4,
+        /// Width, percent, default 0.5, > 0.
+        #[serde(default = "half")]
+        width: f64,
+    },
     /// Colour and width interpolated between a near and a far distance.
     DepthFade {
         /// Distance of the near values, scene units (≥ 0).

@@ -1,7 +1,8 @@
 //! From the statements to the description: the instance tree is walked from the render
 //! root (object space: transforms composed in f64; camera space: none), each camera and
 //! light instance becomes a camera or light named after the instance, each object one
-//! `Inline` object (per-polygon `materials` when its polygons differ), and materials' light
+//! `Inline` object (per-polygon `materials` when its polygons differ) and one `Nurbs`
+//! object per free-form surface (a group of them when there are several), and materials' light
 //! lists are resolved against the light instances.
 
 use std::collections::{HashMap, HashSet};
@@ -14,8 +15,9 @@ use super::model::{AreaShape, LightModel, RawLight, RawObject, RawScene, Space};
 use super::statements::Reader;
 use super::MiScene;
 use crate::scene::desc::{
-    CameraDesc, GroupDesc, InstanceDesc, LightDesc, LightKindDesc, MeshDesc, ObjectDesc,
-    PlacementDesc, RenderDesc, SceneDesc, TransformDesc, M4, V3,
+    CameraDesc, DisplacementDesc, DisplacementModeDesc, GroupDesc, InstanceDesc, LightDesc,
+    LightKindDesc, MeshDesc, ObjectDesc, PlacementDesc, RenderDesc, ScalarDesc, SceneDesc,
+    TransformDesc, M4, V3,
 };
 use crate::scene::suggest::closest;
 
@@ -199,7 +201,7 @@ fn build(raw: &RawScene, root: &Located, out: &mut Out) {
             outputs: cam.outputs.clone(),
             imager: None,
             lens: Vec::new(),
-            atmosphere: None,
+            atmosphere: cam.atmosphere,
         });
         if out.desc.environment.is_none() {
             out.desc.environment = cam.environment.clone();
@@ -257,10 +259,32 @@ fn build(raw: &RawScene, root: &Located, out: &mut Out) {
         out.desc.materials.push(desc);
     }
     let material_names: Vec<&str> = raw.materials.iter().map(|(n, _)| n.as_str()).collect();
+    // `contour_shader_framefade` at the render camera's frame.
+    let frame = raw
+        .instances
+        .iter()
+        .find(|(n, _)| *n == render.camera.0)
+        .and_then(|(_, i)| raw.cameras.get(&i.of))
+        .map_or(0.0, |c| c.frame);
+    for (m, (_, raw_m)) in out.desc.materials.iter_mut().zip(&raw.materials) {
+        if let Some(f) = &raw_m.frame_fade {
+            m.contour = Some(super::contours::faded(f, frame));
+        }
+    }
 
     let overridden = raw.instances.iter().any(|(_, i)| i.material.is_some());
+    let displaced: HashMap<&str, &ScalarDesc> = raw
+        .materials
+        .iter()
+        .filter_map(|(n, m)| Some((n.as_str(), m.displace.as_ref()?)))
+        .collect();
+    let materials = Materials {
+        names: &material_names,
+        displaced: &displaced,
+        overridden,
+    };
     for (name, obj) in &raw.objects {
-        objects_of(name, obj, &material_names, overridden, out);
+        objects_of(name, obj, &materials, out);
     }
     for (name, inst) in &raw.instances {
         let placed_object = objects.contains_key(inst.of.as_str());
@@ -346,19 +370,123 @@ fn build(raw: &RawScene, root: &Located, out: &mut Out) {
     });
 }
 
-/// One `Inline` object per `.mi` object. Polygons that all name one material give the
-/// object that material; otherwise (several materials, polygons without one, or a scene
-/// whose instances override materials, which in mental ray reach only polygons without a
-/// material of their own) each polygon names its own in `materials` (`""`: the inherited
-/// one).
-fn objects_of(name: &str, obj: &RawObject, materials: &[&str], overridden: bool, out: &mut Out) {
+/// The stagelight objects of one `.mi` object: its polygons (one `Inline` object) and each
+/// free-form surface (one `Nurbs` object). One part keeps the object's name; several
+/// become a group of that name holding one object and one instance per part, both named
+/// `<object>.<surface>` (`<object>.polygons` for the polygons), so instances of the object
+/// place every part.
+/// What object building needs of the materials.
+struct Materials<'a> {
+    /// Every material name.
+    names: &'a [&'a str],
+    /// The displacement of each material that has one (`displace "myDisplacement"`).
+    displaced: &'a HashMap<&'a str, &'a ScalarDesc>,
+    /// Whether any instance overrides materials.
+    overridden: bool,
+}
+
+impl Materials<'_> {
+    /// The displacement of objects drawn in material `m`.
+    fn displacement(&self, m: Option<&str>) -> Option<DisplacementDesc> {
+        let shader = (*self.displaced.get(m?)?).clone();
+        Some(DisplacementDesc {
+            shader,
+            bound: None,
+            mode: DisplacementModeDesc::True,
+        })
+    }
+}
+
+fn objects_of(name: &str, obj: &RawObject, materials: &Materials<'_>, out: &mut Out) {
+    let parts = usize::from(!obj.polygons.is_empty()) + obj.surfaces.len();
+    let part_name = |part: &str| {
+        if parts == 1 {
+            name.to_string()
+        } else {
+            format!("{name}.{part}")
+        }
+    };
+    let mut members = Vec::new();
+    if !obj.polygons.is_empty() {
+        let object = part_name("polygons");
+        if polygons_of(&object, obj, materials, out) {
+            members.push(object);
+        }
+    }
+    for s in &obj.surfaces {
+        if let (Some(m), Some(at)) = (&s.material, &s.material_at) {
+            if !materials.names.contains(&m.as_str()) {
+                out.unknown(at, "material", m, materials.names.to_vec());
+                continue;
+            }
+        }
+        let object = part_name(&s.name);
+        let i = out.desc.objects.len();
+        out.paths.push((format!("objects[{i}]"), s.at.clone()));
+        out.desc.objects.push(ObjectDesc {
+            name: object.clone(),
+            mesh: MeshDesc::Nurbs {
+                degree_u: s.u.degree,
+                degree_v: s.v.degree,
+                count_u: s.u.count,
+                count_v: s.v.count,
+                knots_u: s.u.knots.clone(),
+                knots_v: s.v.knots.clone(),
+                points: s.points.clone(),
+            },
+            material: s.material.clone(),
+            approximation: s.approximation.clone(),
+            displacement: materials.displacement(s.material.as_deref()),
+            derivatives: false,
+            caustic: obj.flags.caustic,
+            globillum: obj.flags.globillum,
+            visible: obj.flags.visible,
+            shadow: obj.flags.shadow,
+            trace: obj.flags.trace,
+        });
+        members.push(object);
+    }
+    if parts < 2 {
+        return;
+    }
+    for m in &members {
+        let i = out.desc.instances.len();
+        out.paths.push((format!("instances[{i}]"), obj.at.clone()));
+        out.desc.instances.push(InstanceDesc {
+            name: m.clone(),
+            of: m.clone(),
+            transform: Vec::new(),
+            material: None,
+            bake: None,
+            caustic: None,
+            globillum: None,
+            visible: None,
+            shadow: None,
+            trace: None,
+        });
+    }
+    let i = out.desc.groups.len();
+    out.paths.push((format!("groups[{i}]"), obj.at.clone()));
+    out.desc.groups.push(GroupDesc {
+        name: name.to_string(),
+        members,
+    });
+}
+
+/// The `Inline` object `object` of the polygons of `obj`. Polygons that all name one
+/// material give the object that material; otherwise (several materials, polygons without
+/// one, or a scene whose instances override materials, which in mental ray reach only
+/// polygons without a material of their own) each polygon names its own in `materials`
+/// (`""`: the inherited one). False when a material is unknown (reported).
+fn polygons_of(object: &str, obj: &RawObject, materials: &Materials<'_>, out: &mut Out) -> bool {
+    let overridden = materials.overridden;
     let mut order: Vec<Option<&str>> = Vec::new();
     for p in &obj.polygons {
         let m = p.material.as_deref();
         if let Some(m) = m {
-            if !materials.contains(&m) {
-                out.unknown(&p.at, "material", m, materials.to_vec());
-                return;
+            if !materials.names.contains(&m) {
+                out.unknown(&p.at, "material", m, materials.names.to_vec());
+                return false;
             }
         }
         if !order.contains(&m) {
@@ -367,7 +495,7 @@ fn objects_of(name: &str, obj: &RawObject, materials: &[&str], overridden: bool,
     }
     let per_polygon = order.len() > 1 || (overridden && order.iter().any(Option::is_some));
     let (material, polygon_materials) = if per_polygon {
-        let names = obj
+        let names: Vec<String> = obj
             .polygons
             .iter()
             .map(|p| p.material.clone().unwrap_or_default())
@@ -376,10 +504,29 @@ fn objects_of(name: &str, obj: &RawObject, materials: &[&str], overridden: bool,
     } else {
         (order.first().copied().flatten().map(str::to_string), None)
     };
+    // Displacement is per object: it needs one material (mental ray displaces per material).
+    let displacement = match &polygon_materials {
+        None => materials.displacement(material.as_deref()),
+        Some(names) => {
+            if let Some(m) = names
+                .iter()
+                .find(|m| materials.displaced.contains_key(m.as_str()))
+            {
+                out.report(
+                    &obj.at,
+                    Problem::warning(
+                        Pos::default(),
+                        format!("object \"{object}\" is not displaced: the displacement of material \"{m}\" applies to whole objects, and its polygons have several materials"),
+                    ),
+                );
+            }
+            None
+        }
+    };
     let i = out.desc.objects.len();
     out.paths.push((format!("objects[{i}]"), obj.at.clone()));
     out.desc.objects.push(ObjectDesc {
-        name: name.to_string(),
+        name: object.to_string(),
         mesh: MeshDesc::Inline {
             vertices: obj.vertices.clone(),
             polygons: obj.polygons.iter().map(|p| p.vertices.clone()).collect(),
@@ -389,8 +536,9 @@ fn objects_of(name: &str, obj: &RawObject, materials: &[&str], overridden: bool,
             materials: polygon_materials,
         },
         material,
-        approximation: None,
-        displacement: None,
+        // Polygons are diced only when displaced.
+        approximation: displacement.as_ref().and(obj.approximation.clone()),
+        displacement,
         derivatives: false,
         caustic: obj.flags.caustic,
         globillum: obj.flags.globillum,
@@ -398,6 +546,7 @@ fn objects_of(name: &str, obj: &RawObject, materials: &[&str], overridden: bool,
         shadow: obj.flags.shadow,
         trace: obj.flags.trace,
     });
+    true
 }
 
 /// A camera or light placed by the walk: instance name, element, `world_from_object`, where.

@@ -286,6 +286,8 @@ pub fn camera(r: &mut Reader, c: &mut Cursor, open: Pos) {
         aspect: None,
         outputs: Vec::new(),
         environment: None,
+        frame: 0.0,
+        atmosphere: None,
     };
     loop {
         let Some(t) = c.block_token("camera", open) else {
@@ -300,7 +302,12 @@ pub fn camera(r: &mut Reader, c: &mut Cursor, open: Pos) {
         }
         c.advance();
         match w.as_str() {
-            "frame" => c.skip_arguments(),
+            "frame" => {
+                if c.at_number() {
+                    cam.frame = c.number("the frame number").unwrap_or(0.0);
+                }
+                c.skip_arguments();
+            }
             "focal" => {
                 if c.eat_word("infinity") {
                     c.warn(
@@ -329,7 +336,12 @@ pub fn camera(r: &mut Reader, c: &mut Cursor, open: Pos) {
                     cam.environment = shaders::environment(c, &call, &r.raw.shaders);
                 }
             }
-            "lens" | "volume" => {
+            "volume" => {
+                if let Some(call) = c.shader_call("the volume shader") {
+                    cam.atmosphere = super::volumes::volume(c, &call, "camera");
+                }
+            }
+            "lens" => {
                 if let Some(call) = c.shader_call(&format!("the {w} shader")) {
                     c.warn(
                         call.pos,
@@ -631,6 +643,9 @@ pub fn material(r: &mut Reader, c: &mut Cursor, open: Pos) {
     };
     let mapped = shaders::material(c, &call, &r.raw.shaders, &r.raw.textures, 0);
     let mut contour = None;
+    let mut frame_fade = None;
+    let mut interior = None;
+    let mut displace = None;
     loop {
         let Some(t) = c.block_token("material", open) else {
             return;
@@ -647,15 +662,38 @@ pub fn material(r: &mut Reader, c: &mut Cursor, open: Pos) {
             "opaque" => {}
             "contour" => {
                 if let Some(call) = c.shader_call("the contour shader") {
-                    contour = super::contours::material_shader(c, &call);
+                    frame_fade = super::contours::frame_fade(c, &call);
+                    if frame_fade.is_none() {
+                        contour = super::contours::material_shader(c, &call);
+                    }
                 }
             }
-            "shadow" | "photon" | "volume" | "environment" | "displace" => {
+            "volume" => {
+                if let Some(call) = c.shader_call("the volume shader") {
+                    interior = super::volumes::volume(c, &call, "material");
+                }
+            }
+            "displace"
+                if c.peek().is_some_and(|t| {
+                    matches!(&t.tok, Tok::Str(s) if s == super::statements::TUTORIAL_DISPLACEMENT)
+                }) && r
+                    .raw
+                    .linked
+                    .iter()
+                    .any(|l| l == super::statements::TUTORIAL_DISPLACEMENT) =>
+            {
+                if let Some(call) = c.shader_call("the displace shader") {
+                    displace = super::displace::tutorial_displacement(c, &call);
+                }
+            }
+            "shadow" | "photon" | "environment" | "displace" => {
                 if let Some(call) = c.shader_call(&format!("the {w} shader")) {
-                    let msg = if w == "photon" {
-                        format!("photon shader \"{}\" is read but not yet mapped", call.name)
-                    } else {
-                        format!("{w} shader \"{}\" is not mapped", call.name)
+                    let n = &call.name;
+                    let msg = match w.as_str() {
+                        "photon" => format!("photon shader \"{n}\" is read but not yet mapped"),
+                        "shadow" => format!("shadow shader \"{n}\" is not mapped: shadows follow the material shader (mib_opacity lets 1 − opacity through, every other shader blocks)"),
+                        "environment" => format!("environment shader \"{n}\" is not mapped: rays leaving this material's surfaces see the scene's environment (the camera's)"),
+                        _ => format!("displace shader \"{n}\" is not mapped: objects with this material render undisplaced"),
                     };
                     c.warn(call.pos, msg);
                 }
@@ -683,7 +721,7 @@ pub fn material(r: &mut Reader, c: &mut Cursor, open: Pos) {
             emission: (0.0, 0.0, 0.0),
             bind,
             bump: None,
-            interior: None,
+            interior,
             lights: None,
             contour,
         };
@@ -694,6 +732,8 @@ pub fn material(r: &mut Reader, c: &mut Cursor, open: Pos) {
                 desc,
                 lights,
                 exclusive,
+                frame_fade,
+                displace,
             },
         ));
     }

@@ -13,12 +13,17 @@
 //! | `contour_shader_curvature ("color", "min_width", "max_width")` | `Curvature` |
 //! | `contour_shader_factorcolor ("factor", "width")` | `FactorColor` |
 //! | `contour_shader_widthfromlight ("color", "min_width", "max_width")` | `WidthFromLight(dark_width: max_width, lit_width: min_width)` |
+//! | `contour_shader_widthfromcolor ("color", "min_width", "max_width")` | `WidthFromLight(dark_width: max_width, lit_width: min_width)`: thick where the material's colour is dark |
+//! | `contour_shader_silhouette ("color", "width")` | `Silhouette(color, width)`: the outline only |
+//! | `contour_shader_layerthinner ("color", "width", "factor")` | `Layered(color, width, thinning: factor)` |
+//! | `contour_shader_framefade ("frame1", "frame2", "color1", "color2", "width1", "width2")` | `Simple`, colour and width interpolated linearly at the render camera's `frame` (clamped to the two frames) |
 //!
 //! `zdelta` (an absolute depth step; ours is relative) warns and keeps the default.
 
 use super::super::rib::{Pos, Problem};
 use super::cursor::{Cursor, ShaderCall, Value};
 use super::lexer::{Tok, Token};
+use super::model::FrameFade;
 use crate::scene::desc::{ContourDesc, ContoursDesc, OptionsDesc};
 use crate::scene::desc_contour::V4;
 use crate::scene::suggest::closest;
@@ -34,6 +39,10 @@ const SHADERS: &[&str] = &[
     "contour_shader_curvature",
     "contour_shader_factorcolor",
     "contour_shader_widthfromlight",
+    "contour_shader_widthfromcolor",
+    "contour_shader_silhouette",
+    "contour_shader_layerthinner",
+    "contour_shader_framefade",
 ];
 
 fn unknown(c: &mut Cursor, call: &ShaderCall, what: &str, known: &[&str]) {
@@ -164,14 +173,65 @@ pub fn material_shader(c: &mut Cursor, call: &ShaderCall) -> Option<ContourDesc>
             factor: width(c, "factor", 0.5),
             width: width(c, "width", 0.5),
         },
-        "contour_shader_widthfromlight" => ContourDesc::WidthFromLight {
+        "contour_shader_silhouette" => ContourDesc::Silhouette {
             color: colour(c, call, "color"),
-            dark_width: width(c, "max_width", 1.0),
-            lit_width: width(c, "min_width", 0.25),
+            width: width(c, "width", 0.5),
         },
+        "contour_shader_layerthinner" => ContourDesc::Layered {
+            color: colour(c, call, "color"),
+            width: width(c, "width", 0.5),
+            thinning: width(c, "factor", 0.5),
+        },
+        "contour_shader_widthfromlight" | "contour_shader_widthfromcolor" => {
+            ContourDesc::WidthFromLight {
+                color: colour(c, call, "color"),
+                dark_width: width(c, "max_width", 1.0),
+                lit_width: width(c, "min_width", 0.25),
+            }
+        }
         _ => {
             unknown(c, call, "contour shader", SHADERS);
             return None;
         }
     })
+}
+
+/// A material's `contour "contour_shader_framefade" (…)`, kept until the render frame is
+/// known; `None` for any other contour shader.
+pub fn frame_fade(c: &mut Cursor, call: &ShaderCall) -> Option<FrameFade> {
+    if call.name != "contour_shader_framefade" {
+        return None;
+    }
+    let frame1 = number(c, call, "frame1", 0.0);
+    let frame2 = number(c, call, "frame2", 0.0);
+    Some(FrameFade {
+        frame1,
+        frame2,
+        color1: colour(c, call, "color1"),
+        color2: colour(c, call, "color2"),
+        width1: number(c, call, "width1", 0.5),
+        width2: number(c, call, "width2", 0.5),
+    })
+}
+
+/// The `Simple` contour a frame fade draws at frame `frame`: `t = (frame − frame1) /
+/// (frame2 − frame1)` clamped to [0, 1] (0 when the frames are equal), colour and width
+/// linear in `t`.
+pub fn faded(f: &FrameFade, frame: f64) -> ContourDesc {
+    let span = f.frame2 - f.frame1;
+    let t = if span == 0.0 {
+        0.0
+    } else {
+        ((frame - f.frame1) / span).clamp(0.0, 1.0)
+    };
+    let mix = |a: f64, b: f64| a + (b - a) * t;
+    ContourDesc::Simple {
+        color: (
+            mix(f.color1.0, f.color2.0),
+            mix(f.color1.1, f.color2.1),
+            mix(f.color1.2, f.color2.2),
+            mix(f.color1.3, f.color2.3),
+        ),
+        width: mix(f.width1, f.width2),
+    }
 }

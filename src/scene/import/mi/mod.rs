@@ -6,8 +6,9 @@
 //! statements, `$include` and `link`), [`blocks`] (`options`, `camera`, `light`,
 //! `material` and `declare phenomenon` blocks; [`photon_options`] maps the photon
 //! statements of `options`, [`switches`] its feature switches), [`object`] (`object … group … end group
-//! end object`), [`shaders`] (the built-in shaders' parameters and what each maps onto;
-//! [`textures`] the `mib_texture_*` chains onto shader-graph nodes)
+//! end object`; [`surface`] its free-form surfaces), [`shaders`] (the built-in shaders' parameters and what each maps onto;
+//! [`textures`] the `mib_texture_*` chains onto shader-graph nodes, [`volumes`] volume
+//! shaders onto fog)
 //! and [`assemble`] (the instance tree → cameras, lights, objects, instances and groups).
 //!
 //! **Conventions.** A mental ray `transform` is the 4×4 matrix, written row by row, that
@@ -26,14 +27,17 @@ pub mod assemble;
 pub mod blocks;
 pub mod contours;
 pub mod cursor;
+pub mod displace;
 pub mod lexer;
 pub mod model;
 pub mod object;
 pub mod photon_options;
 pub mod shaders;
 pub mod statements;
+pub mod surface;
 pub mod switches;
 pub mod textures;
+pub mod volumes;
 
 use std::path::Path;
 

@@ -6,7 +6,9 @@ use std::collections::HashMap;
 
 use super::super::rib::Located;
 use super::cursor::ShaderCall;
-use crate::scene::desc::{EnvironmentDesc, MaterialDesc, OptionsDesc, OutputDesc, V3};
+use crate::scene::desc::{
+    ApproximationDesc, EnvironmentDesc, MaterialDesc, OptionsDesc, OutputDesc, V3,
+};
 
 /// Camera space (mental ray's default: instance transformations have no effect) or object
 /// space.
@@ -46,6 +48,28 @@ pub struct RawCamera {
     pub outputs: Vec<OutputDesc>,
     /// `environment` shader, mapped.
     pub environment: Option<EnvironmentDesc>,
+    /// `frame N`: the frame number (0 when not written).
+    pub frame: f64,
+    /// `volume` shader, mapped: the camera's atmosphere.
+    pub atmosphere: Option<crate::scene::desc::VolumeDesc>,
+}
+
+/// `contour_shader_framefade`: colour and width from the frame number, resolved against
+/// the render camera's `frame` when the scene is assembled.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FrameFade {
+    /// Frame of the first values.
+    pub frame1: f64,
+    /// Frame of the second values.
+    pub frame2: f64,
+    /// Colour at `frame1` and before.
+    pub color1: (f64, f64, f64, f64),
+    /// Colour at `frame2` and after.
+    pub color2: (f64, f64, f64, f64),
+    /// Width at `frame1` and before, percent.
+    pub width1: f64,
+    /// Width at `frame2` and after, percent.
+    pub width2: f64,
 }
 
 /// What a light shader made of its parameters.
@@ -119,6 +143,11 @@ pub struct RawMaterial {
     pub lights: Option<Vec<(String, Located)>>,
     /// `"mode" 2`: the list names the lights to leave out.
     pub exclusive: bool,
+    /// A `contour_shader_framefade` contour, made a `Simple` one for the render frame.
+    pub frame_fade: Option<FrameFade>,
+    /// `displace "myDisplacement" (…)` (the tutorial's library): the displacement of the
+    /// objects drawn in this material.
+    pub displace: Option<crate::scene::desc::ScalarDesc>,
 }
 
 /// One polygon of a group: its material, vertex indices (into the `v` list) and position.
@@ -158,8 +187,44 @@ pub struct RawObject {
     pub uvs: Vec<Option<(f64, f64)>>,
     /// Polygons.
     pub polygons: Vec<RawPolygon>,
+    /// Free-form surfaces, in file order.
+    pub surfaces: Vec<RawSurface>,
+    /// The polygons' `approximate` statement: how a displaced object is diced.
+    pub approximation: Option<ApproximationDesc>,
     /// Flags.
     pub flags: Flags,
+}
+
+/// One direction of a free-form surface, as a NURBS axis.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RawAxis {
+    /// Polynomial degree (1…7).
+    pub degree: u32,
+    /// Control points along the direction.
+    pub count: u32,
+    /// `count + degree + 1` knots.
+    pub knots: Vec<f64>,
+}
+
+/// A `surface` of a group, as a NURBS surface (`docs/mi.md`, *Free-form surfaces*).
+#[derive(Debug, Clone)]
+pub struct RawSurface {
+    /// The surface's name (what `approximate surface` names).
+    pub name: String,
+    /// Where `surface` is.
+    pub at: Located,
+    /// Its material, when written.
+    pub material: Option<String>,
+    /// Where the material name is.
+    pub material_at: Option<Located>,
+    /// The u direction.
+    pub u: RawAxis,
+    /// The v direction.
+    pub v: RawAxis,
+    /// `u.count × v.count` control points `(x, y, z, w)`, u fastest, weight not premultiplied.
+    pub points: Vec<(f64, f64, f64, f64)>,
+    /// `approximate surface …` naming it.
+    pub approximation: Option<ApproximationDesc>,
 }
 
 /// An `instance` block.
@@ -227,4 +292,7 @@ pub struct RawScene {
     pub textures: HashMap<String, (String, Located)>,
     /// `render`.
     pub render: Option<RawRender>,
+    /// `link`ed shader libraries that are built in beyond base, physics and contour (the
+    /// tutorial's `myDisplacement`).
+    pub linked: Vec<String>,
 }

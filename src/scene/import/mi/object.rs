@@ -3,14 +3,16 @@
 //! (`transform`, `material` override, flags) and `instgroup … end instgroup`.
 //!
 //! The `caustic`/`globillum` flags become the photon flags of the object or instance.
-//! Vertex normals and texture references (`v i n j t k`) and `approximate` statements are
-//! read and reported as not mapped; free-form surfaces are an error.
+//! Vertex normals and derivative references and polygon `approximate` statements are read
+//! and reported as not mapped; `basis` declarations, `surface` statements and their
+//! `approximate surface` are read by [`super::surface`].
 
 use super::super::rib::{Pos, Problem};
 use super::cursor::Cursor;
 use super::lexer::Tok;
 use super::model::{Flags, RawGroup, RawInstance, RawObject, RawPolygon};
 use super::statements::Reader;
+use super::surface::{self, Bases};
 use crate::scene::suggest::closest;
 
 const OBJECT: &[&str] = &[
@@ -83,8 +85,11 @@ pub fn object(r: &mut Reader, c: &mut Cursor, open: Pos) {
         vertices: Vec::new(),
         uvs: Vec::new(),
         polygons: Vec::new(),
+        surfaces: Vec::new(),
+        approximation: None,
         flags: Flags::default(),
     };
+    let mut bases = Bases::new();
     let mut failed = false;
     loop {
         let Some(t) = c.block_token("object", open) else {
@@ -117,12 +122,20 @@ pub fn object(r: &mut Reader, c: &mut Cursor, open: Pos) {
                 }
             }
             "group" => {
-                if !group(c, &mut obj, t.pos) {
+                if !group(c, &mut obj, &bases, t.pos) {
                     failed = true;
                 }
             }
-            "basis" | "surface" | "curve" | "connect" => {
-                c.error(t.pos, format!("free-form surfaces (\"{w}\") are not supported; write the object as polygons"));
+            "basis" => {
+                if !surface::basis(c, &mut bases) {
+                    failed = true;
+                }
+            }
+            "surface" | "curve" | "connect" => {
+                c.report(
+                    Problem::error(t.pos, format!("\"{w}\" belongs in a group"))
+                        .with_help("write it between group and end group, after the vertices"),
+                );
                 c.skip_to_end("object", open);
                 return;
             }
@@ -140,8 +153,11 @@ pub fn object(r: &mut Reader, c: &mut Cursor, open: Pos) {
     if failed {
         return;
     }
-    if obj.polygons.is_empty() {
-        c.error(open, format!("object \"{name}\" has no polygons"));
+    if obj.polygons.is_empty() && obj.surfaces.is_empty() {
+        c.error(
+            open,
+            format!("object \"{name}\" has no polygons or surfaces"),
+        );
         return;
     }
     if fresh {
@@ -150,7 +166,7 @@ pub fn object(r: &mut Reader, c: &mut Cursor, open: Pos) {
 }
 
 /// `group … end group`: appends its vertices and polygons to `obj`. False on an error.
-fn group(c: &mut Cursor, obj: &mut RawObject, open: Pos) -> bool {
+fn group(c: &mut Cursor, obj: &mut RawObject, bases: &Bases, open: Pos) -> bool {
     if c.at_string() {
         // `group "merge" eps` and similar options.
         c.advance();
@@ -161,6 +177,7 @@ fn group(c: &mut Cursor, obj: &mut RawObject, open: Pos) -> bool {
     let mut vertex_count = 0u32;
     let mut material: Option<String> = None;
     let mut warned_refs = false;
+    let mut failed_surfaces = Vec::new();
     let mut ok = true;
     // The vector list.
     while c.at_number() {
@@ -291,22 +308,51 @@ fn group(c: &mut Cursor, obj: &mut RawObject, open: Pos) -> bool {
                     at: c.located(t.pos),
                 });
             }
-            "approximate" => {
-                while c.peek().is_some_and(|t| {
-                    matches!(&t.tok, Tok::Word(w) if w != "end" && w != "v" && w != "p")
-                        || matches!(t.tok, Tok::Num(_))
-                }) {
-                    c.advance();
+            "approximate" if c.at_word("surface") => {
+                surface::approximate(c, obj, &failed_surfaces, t.pos)
+            }
+            "surface" => {
+                let counts = (base, vertex_count);
+                if !surface::surface(c, obj, bases, counts, &mut failed_surfaces, t.pos) {
+                    ok = false;
                 }
-                c.warn(
-                    t.pos,
-                    "\"approximate\" is read but not mapped (polygons are used as written)",
+            }
+            "curve" | "trim" | "hole" | "special" => {
+                let what = if w == "curve" {
+                    "free-form curves (\"curve\")".to_string()
+                } else {
+                    format!("\"{w}\" curves on surfaces")
+                };
+                c.report(
+                    Problem::error(t.pos, format!("{what} are not supported")).with_help(
+                        "only whole, untrimmed surfaces are read: remove the trimming curves",
+                    ),
                 );
+                c.skip_arguments();
+                ok = false;
+            }
+            "derivative" | "texture" | "vector" | "volume" | "connect" => {
+                if w != "derivative" && w != "connect" {
+                    c.eat_word("vector");
+                    c.eat_word("texture");
+                }
+                c.skip_arguments();
+                let what = match w.as_str() {
+                    "derivative" => "surface derivative requests are not mapped",
+                    "connect" => "surface connections are not mapped",
+                    _ => "texture surfaces are not mapped (texture coordinates run 0…1 over the surface)",
+                };
+                c.warn(t.pos, what);
+            }
+            "approximate" => {
+                obj.approximation = surface::polygon_approximation(c, t.pos);
             }
             other => {
                 c.report(
                     Problem::error(t.pos, format!("unknown group statement \"{other}\""))
-                        .with_help("a group holds vectors, then v, p and approximate statements"),
+                        .with_help(
+                            "a group holds vectors, then v, p, surface and approximate statements",
+                        ),
                 );
                 c.skip_to_end("group", open);
                 return false;

@@ -19,6 +19,11 @@ use crate::scene::suggest::closest;
 /// Libraries whose shaders are built in.
 pub const BUILT_IN_LIBRARIES: &[&str] = &["base", "physics", "contour"];
 
+/// The tutorial's displacement library (seed 001, §4.4, its C source printed there):
+/// `link "myDisplacement.so"` makes its one shader, `myDisplacement ("factor" f)` =
+/// `0.01 · sin(u · f · π)` along the normal, available as a `displace` shader.
+pub const TUTORIAL_DISPLACEMENT: &str = "myDisplacement";
+
 /// Deepest `$include` nesting.
 const MAX_INCLUDE_DEPTH: usize = 16;
 
@@ -128,7 +133,10 @@ impl Reader {
             }
             "link" => {
                 if let Some((lib, pos)) = c.string("the library of link") {
-                    if !BUILT_IN_LIBRARIES.contains(&library_stem(&lib).as_str()) {
+                    let stem = library_stem(&lib);
+                    if stem == TUTORIAL_DISPLACEMENT.to_ascii_lowercase() {
+                        self.raw.linked.push(TUTORIAL_DISPLACEMENT.to_string());
+                    } else if !BUILT_IN_LIBRARIES.contains(&stem.as_str()) {
                         c.report(
                             Problem::warning(
                                 pos,

@@ -1,0 +1,223 @@
+//! Issue 13: `volume "parti_volume" (…)` in `.mi` materials and cameras becomes homogeneous
+//! fog (a material's `interior`, the camera's `atmosphere`): a transparent box filled with
+//! an absorbing `parti_volume` dims the floor seen through it by exactly
+//! `e^(−extinction · path)` for the camera ray and again for the shadow ray; other volume
+//! shaders warn, and a wrong parameter is an exact located error.
+
+use std::path::Path;
+
+use stagelight::frame::Frame;
+use stagelight::framebuffer::FrameBuffers;
+use stagelight::scene::desc::VolumeDesc;
+use stagelight::scene::import::mi::read_mi;
+use stagelight::scene::load_scene;
+
+/// A camera at the origin looking down −z (the image plane spans ±4/3 by ±1 at distance 1,
+/// 160 × 120), a point light at the eye, a grey floor at z = −2 and, when `volume` is
+/// given, a transparent box (`mib_opacity` 0) over x, y ∈ [−0.3, 0.3], z ∈ [−1.2, −0.8]
+/// whose material has that volume statement.
+fn scene(volume: &str) -> String {
+    format!(
+        r#"link "base.so"
+$include <base.mi>
+link "physics.so"
+$include <physics.mi>
+options "opt"
+samples 0 0
+object space
+end options
+camera "Camera"
+frame 1
+output "rgb" "png" "out.png"
+focal 12.0
+aperture 32.0
+aspect 1.33333333333
+resolution 160 120
+end camera
+instance "Camera_inst" "Camera"
+end instance
+light "Lamp"
+"mib_light_point" ("color" 1.0 1.0 1.0, "atten" false, "shadow" on)
+origin 0.0 0.0 0.0
+end light
+instance "Lamp_inst" "Lamp"
+end instance
+material "grey"
+opaque
+"mib_illum_lambert" ("diffuse" 0.5 0.5 0.5, "lights" [ "Lamp_inst" ])
+end material
+material "fog"
+"mib_opacity" ("opacity" 0 0 0, "input" 0 0 0)
+{volume}
+end material
+object "Floor"
+group
+-3 -3 -2
+3 -3 -2
+3 3 -2
+-3 3 -2
+v 0
+v 1
+v 2
+v 3
+p "grey" 0 1 2 3
+end group
+end object
+instance "Floor_inst" "Floor"
+end instance
+object "Box"
+group
+-0.3 -0.3 -0.8
+0.3 -0.3 -0.8
+0.3 0.3 -0.8
+-0.3 0.3 -0.8
+-0.3 -0.3 -1.2
+0.3 -0.3 -1.2
+0.3 0.3 -1.2
+-0.3 0.3 -1.2
+v 0
+v 1
+v 2
+v 3
+v 4
+v 5
+v 6
+v 7
+p "fog" 0 1 2 3
+p "fog" 4 7 6 5
+p "fog" 0 3 7 4
+p "fog" 1 5 6 2
+p "fog" 0 4 5 1
+p "fog" 3 2 6 7
+end group
+end object
+instance "Box_inst" "Box"
+end instance
+instgroup "rootgrp"
+"Camera_inst" "Lamp_inst" "Floor_inst" "Box_inst"
+end instgroup
+render "rootgrp" "Camera_inst" "opt"
+"#
+    )
+}
+
+fn render(text: &str, name: &str) -> FrameBuffers {
+    let dir = std::env::temp_dir().join(format!("stagelight_mi_vol_{}_{name}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("scene.mi");
+    std::fs::write(&path, text).unwrap();
+    let mut scene = load_scene(&path).unwrap_or_else(|e| panic!("{e}"));
+    let _ = std::fs::remove_dir_all(&dir);
+    let mut settings = scene.settings.clone();
+    settings.spp = 1;
+    settings.adaptive = None;
+    let mut frame = Frame::new(settings);
+    let stages: Vec<_> = stagelight::systems::STAGES
+        .iter()
+        .copied()
+        .filter(|s| s.name != "write_output")
+        .collect();
+    stagelight::schedule::run_stages(&stages, &mut scene.world, &mut frame).unwrap();
+    frame.outputs.image.expect("an image")
+}
+
+#[test]
+fn an_absorbing_parti_volume_dims_what_is_seen_through_it_by_beer_lambert() {
+    let k = 1.5;
+    let fog = format!("volume \"parti_volume\" (\"scatter\" 0 0 0, \"extinction\" {k})");
+    let clear = render(&scene(""), "clear");
+    let dimmed = render(&scene(&fog), "fog");
+    let mut checked = 0;
+    for j in 0..120 {
+        for i in 0..160 {
+            let x = ((f64::from(i) + 0.5) / 160.0 * 2.0 - 1.0) * 4.0 / 3.0;
+            let y = 1.0 - (f64::from(j) + 0.5) / 120.0 * 2.0;
+            let k_px = (j * 160 + i) as usize;
+            let (a, b) = (clear.beauty[k_px], dimmed.beauty[k_px]);
+            if x.abs() < 0.2 && y.abs() < 0.2 {
+                // Camera ray and shadow ray each cross 0.4 / cos θ of the medium.
+                let path = 0.4 * (1.0 + x * x + y * y).sqrt();
+                let want = (-2.0 * k * path).exp();
+                let got = f64::from(b.x) / f64::from(a.x);
+                assert!(
+                    (got - want).abs() < 0.01 * want,
+                    "pixel ({i}, {j}): ratio {got} vs e^(−2·k·{path:.3}) = {want}"
+                );
+                checked += 1;
+            } else if x.abs() > 0.5 || y.abs() > 0.5 {
+                assert_eq!(a, b, "pixel ({i}, {j}) away from the box is unchanged");
+            }
+        }
+    }
+    assert!(checked > 400, "{checked} pixels through the box");
+}
+
+#[test]
+fn parti_volume_maps_onto_fog_in_materials_and_cameras() {
+    let text = scene(
+        "volume \"parti_volume\" (\"scatter\" 0.2 0.3 0.4, \"extinction\" 0.5, \"r\" 1, \"g1\" 0.3, \"min_step_len\" 0.01)",
+    )
+    .replace(
+        "resolution 160 120\n",
+        "resolution 160 120\nvolume \"parti_volume\" (\"scatter\" 0.1 0.1 0.1, \"extinction\" 0.1)\n",
+    );
+    let read = read_mi(Path::new("v.mi"), text.as_bytes()).unwrap();
+    assert!(read.warnings.is_empty(), "{:?}", read.warnings);
+    let fog = read
+        .desc
+        .materials
+        .iter()
+        .find(|m| m.name == "fog")
+        .unwrap();
+    let want = VolumeDesc::Fog {
+        sigma_a: (0.5 - 0.2, 0.5 - 0.3, 0.5 - 0.4),
+        sigma_s: (0.2, 0.3, 0.4),
+        g: 0.3,
+    };
+    assert_eq!(format!("{:?}", fog.interior), format!("{:?}", Some(want)));
+    let atmosphere = VolumeDesc::Fog {
+        sigma_a: (0.0, 0.0, 0.0),
+        sigma_s: (0.1, 0.1, 0.1),
+        g: 0.0,
+    };
+    assert_eq!(
+        format!("{:?}", read.desc.cameras[0].atmosphere),
+        format!("{:?}", Some(atmosphere))
+    );
+}
+
+#[test]
+fn unmapped_volume_shaders_warn_and_bad_parameters_are_located_errors() {
+    let text = scene("volume \"mib_volume\" (\"color\" 1 1 1, \"max\" 2)");
+    let read = read_mi(Path::new("w.mi"), text.as_bytes()).unwrap();
+    let line = text.lines().position(|l| l.contains("mib_volume")).unwrap() + 1;
+    let warnings: Vec<String> = read
+        .warnings
+        .iter()
+        .map(|w| {
+            format!(
+                "{}:{}: {} / {:?}",
+                w.problem.pos.line, w.problem.pos.column, w.problem.message, w.problem.help
+            )
+        })
+        .collect();
+    assert_eq!(
+        warnings,
+        [format!("{line}:8: volume shader \"mib_volume\" is not mapped (a linear fade to \"color\" over \"max\", not a physical medium): the material's interior stays empty / Some(\"parti_volume maps onto homogeneous fog\")")]
+    );
+    let bad = scene("volume \"parti_volume\" (\"extintion\" 1)");
+    let err = read_mi(Path::new("bad.mi"), bad.as_bytes()).unwrap_err();
+    let got: Vec<String> = err
+        .iter()
+        .map(|e| {
+            format!(
+                "{}:{}: {} / {:?}",
+                e.problem.pos.line, e.problem.pos.column, e.problem.message, e.problem.help
+            )
+        })
+        .collect();
+    assert_eq!(
+        got,
+        [format!("{line}:24: unknown parameter \"extintion\" of shader \"parti_volume\" / Some(\"did you mean \\\"extinction\\\"?\")")]
+    );
+}
