@@ -30,14 +30,7 @@ fn scene(w: u32, h: u32, eye: (f32, f32, f32), options: &str, body: &str, output
 fn render(text: &str) -> Frame {
     let mut scene = load_scene_str(text, Path::new("contours_test.ron"))
         .unwrap_or_else(|e| panic!("{e}\n{text}"));
-    let mut frame = Frame::new(scene.settings.clone());
-    let stages: Vec<_> = stagelight::systems::STAGES
-        .iter()
-        .copied()
-        .filter(|s| s.name != "write_output")
-        .collect();
-    stagelight::schedule::run_stages(&stages, &mut scene.world, &mut frame).unwrap();
-    frame
+    crate::common::render(&mut scene.world, scene.settings.clone())
 }
 
 fn contours(text: &str) -> ContourImage {

@@ -7,7 +7,6 @@ use std::path::Path;
 
 use glam::Vec3;
 use stagelight::diagnostic_view::{GRID_COLOURS, GRID_SURFACE};
-use stagelight::frame::Frame;
 use stagelight::scene::desc::{DiagnosticDesc, GridSpaceDesc, PhotonQuantityDesc};
 use stagelight::scene::import::mi::read_mi;
 use stagelight::scene::load_scene_str;
@@ -40,13 +39,7 @@ fn plane(diagnostic: &str, shift: f64) -> String {
 
 fn beauty(text: &str) -> Vec<Vec3> {
     let mut scene = load_scene_str(text, Path::new("view.ron")).unwrap_or_else(|e| panic!("{e}"));
-    let mut frame = Frame::new(scene.settings.clone());
-    let stages: Vec<_> = stagelight::systems::STAGES
-        .iter()
-        .copied()
-        .filter(|s| s.name != "write_output")
-        .collect();
-    stagelight::schedule::run_stages(&stages, &mut scene.world, &mut frame).expect("render");
+    let frame = crate::common::render(&mut scene.world, scene.settings.clone());
     frame.outputs.image.expect("an image").beauty
 }
 

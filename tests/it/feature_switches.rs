@@ -5,7 +5,6 @@
 use std::path::Path;
 
 use glam::Vec3;
-use stagelight::frame::Frame;
 use stagelight::report::StageReport;
 use stagelight::scene::import::mi::read_mi;
 use stagelight::scene::load_scene_str;
@@ -62,13 +61,7 @@ const DISPLACED: &str = ", displacement: (shader: Sine(amplitude: 0.2, factor: 2
 fn render(text: &str) -> (Vec<Vec3>, Vec<StageReport>) {
     let mut scene =
         load_scene_str(text, Path::new("switches.ron")).unwrap_or_else(|e| panic!("{e}"));
-    let mut frame = Frame::new(scene.settings.clone());
-    let stages: Vec<_> = stagelight::systems::STAGES
-        .iter()
-        .copied()
-        .filter(|s| s.name != "write_output")
-        .collect();
-    stagelight::schedule::run_stages(&stages, &mut scene.world, &mut frame).expect("render");
+    let frame = crate::common::render(&mut scene.world, scene.settings.clone());
     let image = frame.outputs.image.expect("an image").beauty;
     (image, frame.report.stages)
 }
@@ -196,13 +189,7 @@ fn the_samples_diagnostic_shows_where_adaptive_sampling_refined() {
     let run = |options: &str| {
         let text = scene(options, "", "", true).replace("samples: 1, ", "");
         let mut scene = load_scene_str(&text, Path::new("d.ron")).unwrap_or_else(|e| panic!("{e}"));
-        let mut frame = Frame::new(scene.settings.clone());
-        let stages: Vec<_> = stagelight::systems::STAGES
-            .iter()
-            .copied()
-            .filter(|s| s.name != "write_output")
-            .collect();
-        stagelight::schedule::run_stages(&stages, &mut scene.world, &mut frame).unwrap();
+        let frame = crate::common::render(&mut scene.world, scene.settings.clone());
         (frame.outputs.image.unwrap(), frame.report.stages)
     };
     let (shaded, _) = run(adaptive);

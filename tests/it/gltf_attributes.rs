@@ -7,20 +7,13 @@
 use std::path::Path;
 
 use glam::Vec3;
-use stagelight::frame::Frame;
 use stagelight::scene::LoadedScene;
 
 const DIR: &str = "tests/fixtures/gltf";
 
 /// Runs every stage but `write_output`; returns (width, beauty).
 fn render(mut scene: LoadedScene) -> (usize, Vec<Vec3>) {
-    let mut frame = Frame::new(scene.settings.clone());
-    let stages: Vec<_> = stagelight::systems::STAGES
-        .iter()
-        .copied()
-        .filter(|s| s.name != "write_output")
-        .collect();
-    stagelight::schedule::run_stages(&stages, &mut scene.world, &mut frame).expect("render");
+    let frame = crate::common::render(&mut scene.world, scene.settings.clone());
     let image = frame.outputs.image.expect("image");
     (image.width as usize, image.beauty)
 }

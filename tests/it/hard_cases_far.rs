@@ -146,13 +146,7 @@ fn cornell(t: f64, placed: bool) -> String {
 fn render(text: &str) -> FrameBuffers {
     let mut scene = stagelight::scene::load_scene_str(text, Path::new("far.ron"))
         .unwrap_or_else(|e| panic!("{e}\n{text}"));
-    let mut frame = Frame::new(scene.settings.clone());
-    let stages: Vec<_> = stagelight::systems::STAGES
-        .iter()
-        .copied()
-        .filter(|s| s.name != "write_output")
-        .collect();
-    stagelight::schedule::run_stages(&stages, &mut scene.world, &mut frame).expect("render");
+    let frame = crate::common::render(&mut scene.world, scene.settings.clone());
     frame.outputs.image.expect("an image")
 }
 
@@ -328,13 +322,7 @@ fn h05_obj_far_from_origin() {
         );
         let mut scene = stagelight::scene::load_scene_str(&text, &dir.join("obj.ron"))
             .unwrap_or_else(|e| panic!("{e}"));
-        let mut frame = Frame::new(scene.settings.clone());
-        let stages: Vec<_> = stagelight::systems::STAGES
-            .iter()
-            .copied()
-            .filter(|s| s.name != "write_output")
-            .collect();
-        stagelight::schedule::run_stages(&stages, &mut scene.world, &mut frame).expect("render");
+        let frame = crate::common::render(&mut scene.world, scene.settings.clone());
         frame.outputs.image.expect("an image").beauty
     };
     let reference = render_at(0.0);

@@ -7,7 +7,6 @@ use std::path::PathBuf;
 
 use glam::Vec3;
 use stagelight::components::{world_from_look_at, Camera, Instance, Name, RenderCamera};
-use stagelight::frame::Frame;
 use stagelight::framebuffer::FrameBuffers;
 use stagelight::scene::{load_scene, read_lat_long, LoadedScene};
 
@@ -24,13 +23,7 @@ fn load(name: &str) -> LoadedScene {
 fn render(scene: &mut LoadedScene, spp: u32) -> FrameBuffers {
     let mut settings = scene.settings.clone();
     settings.spp = spp;
-    let mut frame = Frame::new(settings);
-    let stages: Vec<_> = stagelight::systems::STAGES
-        .iter()
-        .copied()
-        .filter(|s| s.name != "write_output")
-        .collect();
-    stagelight::schedule::run_stages(&stages, &mut scene.world, &mut frame).expect("render");
+    let frame = crate::common::render(&mut scene.world, settings);
     frame.outputs.image.expect("image")
 }
 

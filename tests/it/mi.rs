@@ -5,7 +5,6 @@
 use std::path::{Path, PathBuf};
 
 use stagelight::components::{Camera, LightPhotons, RenderCamera};
-use stagelight::frame::Frame;
 use stagelight::scene::import::mi::read_mi;
 use stagelight::scene::import::to_ron::to_ron;
 use stagelight::scene::{load_scene, load_scene_str, LoadedScene};
@@ -44,13 +43,7 @@ fn render(mut scene: LoadedScene, max_width: u32, spp: u32) -> (u32, u32, Vec<gl
     settings.photon_map = None;
     settings.spp = spp;
     settings.adaptive = None;
-    let mut frame = Frame::new(settings);
-    let stages: Vec<_> = stagelight::systems::STAGES
-        .iter()
-        .copied()
-        .filter(|s| s.name != "write_output")
-        .collect();
-    stagelight::schedule::run_stages(&stages, &mut scene.world, &mut frame).unwrap();
+    let frame = crate::common::render(&mut scene.world, settings);
     (
         size.0,
         size.1,

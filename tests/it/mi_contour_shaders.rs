@@ -7,7 +7,6 @@
 use std::path::{Path, PathBuf};
 
 use stagelight::contour::ContourImage;
-use stagelight::frame::Frame;
 use stagelight::scene::desc::ContourDesc;
 use stagelight::scene::import::mi::read_mi;
 use stagelight::scene::load_scene;
@@ -66,13 +65,7 @@ fn contours(text: &str, name: &str) -> ContourImage {
     let path = write(text, name);
     let mut scene = load_scene(&path).unwrap_or_else(|e| panic!("{e}"));
     let _ = std::fs::remove_dir_all(path.parent().unwrap());
-    let mut frame = Frame::new(scene.settings.clone());
-    let stages: Vec<_> = stagelight::systems::STAGES
-        .iter()
-        .copied()
-        .filter(|s| s.name != "write_output")
-        .collect();
-    stagelight::schedule::run_stages(&stages, &mut scene.world, &mut frame).unwrap();
+    let frame = crate::common::render(&mut scene.world, scene.settings.clone());
     frame.outputs.contours.expect("contour lines")
 }
 

@@ -9,7 +9,6 @@ use std::path::{Path, PathBuf};
 
 use glam::Vec3;
 use stagelight::components::{Camera, RenderCamera};
-use stagelight::frame::Frame;
 use stagelight::framebuffer::FrameBuffers;
 use stagelight::scene::import::mi::read_mi;
 use stagelight::scene::import::to_ron::to_ron;
@@ -35,13 +34,7 @@ fn render(mut scene: LoadedScene) -> (u32, u32, FrameBuffers) {
     let mut settings = scene.settings.clone();
     settings.spp = 1;
     settings.adaptive = None;
-    let mut frame = Frame::new(settings);
-    let stages: Vec<_> = stagelight::systems::STAGES
-        .iter()
-        .copied()
-        .filter(|s| s.name != "write_output")
-        .collect();
-    stagelight::schedule::run_stages(&stages, &mut scene.world, &mut frame).unwrap();
+    let frame = crate::common::render(&mut scene.world, settings);
     (size.0, size.1, frame.outputs.image.expect("an image"))
 }
 

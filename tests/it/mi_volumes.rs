@@ -6,7 +6,6 @@
 
 use std::path::Path;
 
-use stagelight::frame::Frame;
 use stagelight::framebuffer::FrameBuffers;
 use stagelight::scene::desc::VolumeDesc;
 use stagelight::scene::import::mi::read_mi;
@@ -111,13 +110,7 @@ fn render(text: &str, name: &str) -> FrameBuffers {
     let mut settings = scene.settings.clone();
     settings.spp = 1;
     settings.adaptive = None;
-    let mut frame = Frame::new(settings);
-    let stages: Vec<_> = stagelight::systems::STAGES
-        .iter()
-        .copied()
-        .filter(|s| s.name != "write_output")
-        .collect();
-    stagelight::schedule::run_stages(&stages, &mut scene.world, &mut frame).unwrap();
+    let frame = crate::common::render(&mut scene.world, settings);
     frame.outputs.image.expect("an image")
 }
 

@@ -12,7 +12,6 @@
 use std::path::Path;
 
 use glam::Vec3;
-use stagelight::frame::Frame;
 use stagelight::scene::load_scene_str;
 
 const RADIANCE: f32 = 10.0;
@@ -51,13 +50,7 @@ fn render(options: &str, visible: bool) -> Vec<Vec3> {
     let text = scene(options, visible);
     let mut scene =
         load_scene_str(&text, Path::new("invisible.ron")).unwrap_or_else(|e| panic!("{e}"));
-    let mut frame = Frame::new(scene.settings.clone());
-    let stages: Vec<_> = stagelight::systems::STAGES
-        .iter()
-        .copied()
-        .filter(|s| s.name != "write_output")
-        .collect();
-    stagelight::schedule::run_stages(&stages, &mut scene.world, &mut frame).expect("render");
+    let frame = crate::common::render(&mut scene.world, scene.settings.clone());
     frame.outputs.image.expect("image").beauty
 }
 

@@ -10,7 +10,6 @@ use std::path::Path;
 
 use glam::{Vec2, Vec3};
 use stagelight::components::Camera;
-use stagelight::frame::Frame;
 use stagelight::scene::load_scene_str;
 use stagelight::shading::camera::CameraRays;
 
@@ -64,13 +63,7 @@ fn render(options: &str) -> (Vec<Vec3>, Camera) {
         .next()
         .expect("camera")
         .clone();
-    let mut frame = Frame::new(scene.settings.clone());
-    let stages: Vec<_> = stagelight::systems::STAGES
-        .iter()
-        .copied()
-        .filter(|s| s.name != "write_output")
-        .collect();
-    stagelight::schedule::run_stages(&stages, &mut scene.world, &mut frame).expect("render");
+    let frame = crate::common::render(&mut scene.world, scene.settings.clone());
     (frame.outputs.image.expect("image").beauty, camera)
 }
 

@@ -6,7 +6,6 @@
 use std::path::Path;
 
 use glam::Vec3;
-use stagelight::frame::Frame;
 
 const DIR: &str = "tests/fixtures/meshes";
 
@@ -18,13 +17,7 @@ fn render_halves(file: &str) -> (Vec3, Vec3) {
     let mut scene = stagelight::scene::load_scene_str(&scene(file), &Path::new(DIR).join("s.ron"))
         .unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(scene.warnings, Vec::<String>::new());
-    let mut frame = Frame::new(scene.settings.clone());
-    let stages: Vec<_> = stagelight::systems::STAGES
-        .iter()
-        .copied()
-        .filter(|s| s.name != "write_output")
-        .collect();
-    stagelight::schedule::run_stages(&stages, &mut scene.world, &mut frame).expect("render");
+    let frame = crate::common::render(&mut scene.world, scene.settings.clone());
     let image = frame.outputs.image.expect("image");
     let w = image.width as usize;
     (image.beauty[8 * w + 3], image.beauty[8 * w + 12])

@@ -4,7 +4,6 @@
 use std::path::{Path, PathBuf};
 
 use stagelight::components::{Camera, RenderCamera};
-use stagelight::frame::Frame;
 use stagelight::scene::import::rib::read_rib;
 use stagelight::scene::import::to_ron::to_ron;
 use stagelight::scene::{load_scene, load_scene_str};
@@ -32,13 +31,7 @@ fn render_small(mut scene: stagelight::scene::LoadedScene) -> Vec<glam::Vec3> {
     }
     let mut settings = scene.settings.clone();
     settings.spp = settings.spp.min(2);
-    let mut frame = Frame::new(settings);
-    let stages: Vec<_> = stagelight::systems::STAGES
-        .iter()
-        .copied()
-        .filter(|s| s.name != "write_output")
-        .collect();
-    stagelight::schedule::run_stages(&stages, &mut scene.world, &mut frame).unwrap();
+    let frame = crate::common::render(&mut scene.world, settings);
     frame.outputs.image.expect("an image").beauty
 }
 

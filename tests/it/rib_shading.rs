@@ -6,7 +6,6 @@
 use std::path::{Path, PathBuf};
 
 use glam::{DVec3, Vec3};
-use stagelight::frame::Frame;
 use stagelight::scene::load_scene;
 
 /// Writes `text` as `name` in a fresh folder of the temporary directory.
@@ -21,13 +20,7 @@ fn write_rib(name: &str, text: &str) -> PathBuf {
 /// Renders the RIB at `path` at its own resolution, without writing files: the beauty pass.
 fn render(path: &Path) -> (Vec<Vec3>, usize) {
     let mut scene = load_scene(path).unwrap_or_else(|e| panic!("{e}"));
-    let mut frame = Frame::new(scene.settings.clone());
-    let stages: Vec<_> = stagelight::systems::STAGES
-        .iter()
-        .copied()
-        .filter(|s| s.name != "write_output")
-        .collect();
-    stagelight::schedule::run_stages(&stages, &mut scene.world, &mut frame).unwrap();
+    let frame = crate::common::render(&mut scene.world, scene.settings.clone());
     let image = frame.outputs.image.expect("an image");
     (image.beauty, image.width as usize)
 }

@@ -4,7 +4,6 @@ use std::path::PathBuf;
 
 use glam::Vec3;
 use stagelight::components::{Camera, RenderCamera};
-use stagelight::frame::Frame;
 use stagelight::scene::load_scene;
 use stagelight::settings::{Integrator, RenderSettings};
 
@@ -20,13 +19,7 @@ fn render(name: &str, tweak: impl FnOnce(&mut RenderSettings)) -> Vec<Vec3> {
     let mut settings = scene.settings.clone();
     settings.spp = 4;
     tweak(&mut settings);
-    let mut frame = Frame::new(settings);
-    let stages: Vec<_> = stagelight::systems::STAGES
-        .iter()
-        .copied()
-        .filter(|s| s.name != "write_output")
-        .collect();
-    stagelight::schedule::run_stages(&stages, &mut scene.world, &mut frame).expect("render");
+    let frame = crate::common::render(&mut scene.world, settings);
     frame.outputs.image.expect("image").beauty
 }
 

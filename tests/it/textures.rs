@@ -5,19 +5,12 @@
 use std::path::{Path, PathBuf};
 
 use glam::Vec3;
-use stagelight::frame::Frame;
 use stagelight::scene::load_scene_str;
 
 /// Renders `text` as if it were `dir/scene.ron`; returns (width, beauty).
 fn render_in(dir: &Path, text: &str) -> (usize, Vec<Vec3>) {
     let mut scene = load_scene_str(text, &dir.join("scene.ron")).unwrap_or_else(|e| panic!("{e}"));
-    let mut frame = Frame::new(scene.settings.clone());
-    let stages: Vec<_> = stagelight::systems::STAGES
-        .iter()
-        .copied()
-        .filter(|s| s.name != "write_output")
-        .collect();
-    stagelight::schedule::run_stages(&stages, &mut scene.world, &mut frame).expect("render");
+    let frame = crate::common::render(&mut scene.world, scene.settings.clone());
     let image = frame.outputs.image.expect("image");
     (image.width as usize, image.beauty)
 }
