@@ -1,7 +1,8 @@
 //! Diagnostic modes (mental ray's `diagnostic samples on`, `diagnostic grid …`,
-//! `diagnostic photon …`; RON `options.diagnostic`; CLI `render --diagnostic samples`): the
-//! beauty pass replaced by a false-colour view of how the renderer worked, for tuning a
-//! scene's options. The grid and photon views are drawn by [`crate::diagnostic_view`].
+//! `diagnostic photon …`, `diagnostic bsp …`; RON `options.diagnostic`; CLI `render
+//! --diagnostic samples`): the beauty pass replaced by a false-colour view of how the renderer
+//! worked, for tuning a scene's options. The grid, photon and BVH views are drawn by
+//! [`crate::diagnostic_view`].
 
 use glam::Vec3;
 
@@ -27,6 +28,24 @@ pub enum Diagnostic {
         /// The value shown at the top of the colour scale (> 0).
         max: f32,
     },
+    /// What the pixel-centre camera ray cost the ray-tracing hierarchy (mental ray
+    /// `diagnostic bsp depth|size`, for its BSP tree), on the false-colour scale.
+    Bvh {
+        /// What is shown.
+        quantity: BvhQuantity,
+        /// The value shown red; `None`: the tree's depth (`Depth`) or the image's largest
+        /// count (`Size`).
+        max: Option<u32>,
+    },
+}
+
+/// What a BVH diagnostic shows per pixel.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum BvhQuantity {
+    /// The deepest tree level the ray entered (the root's children are level 1).
+    Depth,
+    /// The triangles the ray tested in the leaves it entered.
+    Size,
 }
 
 /// The coordinates a grid diagnostic follows.
@@ -51,7 +70,7 @@ pub enum PhotonQuantity {
 
 impl Diagnostic {
     /// Parses a diagnostic's command-line form: `samples`, `grid:SPACE:SIZE` (`SPACE` one of
-    /// `object`, `world`, `camera`), `photon:density|irradiance:MAX`.
+    /// `object`, `world`, `camera`), `photon:density|irradiance:MAX`, `bvh:depth|size[:MAX]`.
     pub fn parse(text: &str) -> Result<Self, String> {
         let text = text.trim();
         let parts: Vec<&str> = text.split(':').collect();
@@ -90,9 +109,32 @@ impl Diagnostic {
                 let max = positive("photon diagnostic maximum", max)?;
                 Ok(Self::Photon { quantity, max })
             }
+            ["bvh", quantity, max @ ..] if max.len() <= 1 => {
+                let quantity = match *quantity {
+                    "depth" => BvhQuantity::Depth,
+                    "size" => BvhQuantity::Size,
+                    other => {
+                        return Err(format!(
+                            "unknown bvh diagnostic \"{other}\" (expected depth or size)"
+                        ))
+                    }
+                };
+                let max = match max.first() {
+                    None => None,
+                    Some(m) => match m.parse::<u32>() {
+                        Ok(x) if x > 0 => Some(x),
+                        _ => {
+                            return Err(format!(
+                            "the bvh diagnostic maximum must be a whole number > 0, found \"{m}\""
+                        ))
+                        }
+                    },
+                };
+                Ok(Self::Bvh { quantity, max })
+            }
             _ => Err(format!(
-                "unknown diagnostic \"{text}\" (expected samples, grid:SPACE:SIZE or \
-                 photon:density|irradiance:MAX)"
+                "unknown diagnostic \"{text}\" (expected samples, grid:SPACE:SIZE, \
+                 photon:density|irradiance:MAX or bvh:depth|size[:MAX])"
             )),
         }
     }
@@ -103,6 +145,7 @@ impl Diagnostic {
             Self::Samples => "samples",
             Self::Grid { .. } => "grid",
             Self::Photon { .. } => "photon",
+            Self::Bvh { .. } => "bvh",
         }
     }
 }
@@ -130,8 +173,8 @@ mod tests {
         assert_eq!(
             Diagnostic::parse("grid"),
             Err(
-                "unknown diagnostic \"grid\" (expected samples, grid:SPACE:SIZE or \
-                 photon:density|irradiance:MAX)"
+                "unknown diagnostic \"grid\" (expected samples, grid:SPACE:SIZE, \
+                 photon:density|irradiance:MAX or bvh:depth|size[:MAX])"
                     .into()
             )
         );
@@ -152,6 +195,28 @@ mod tests {
         assert_eq!(
             Diagnostic::parse("grid:world:0"),
             Err("the grid size must be a number > 0, found \"0\"".into())
+        );
+        assert_eq!(
+            Diagnostic::parse("bvh:depth"),
+            Ok(Diagnostic::Bvh {
+                quantity: BvhQuantity::Depth,
+                max: None
+            })
+        );
+        assert_eq!(
+            Diagnostic::parse("bvh:size:40"),
+            Ok(Diagnostic::Bvh {
+                quantity: BvhQuantity::Size,
+                max: Some(40)
+            })
+        );
+        assert_eq!(
+            Diagnostic::parse("bvh:size:0"),
+            Err("the bvh diagnostic maximum must be a whole number > 0, found \"0\"".into())
+        );
+        assert_eq!(
+            Diagnostic::parse("bvh:leaves"),
+            Err("unknown bvh diagnostic \"leaves\" (expected depth or size)".into())
         );
         assert_eq!(
             Diagnostic::parse("grid:screen:1"),

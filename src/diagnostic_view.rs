@@ -12,12 +12,17 @@
 //! summed; `Density`: photons per unit area, the estimate with each photon counted once;
 //! `Irradiance`: W/m², the channel mean), shown as `t = value / max` on the scale
 //! [`false_colour`]: black where no photon is in reach, blue for little, red at `max` and above.
+//!
+//! **BVH:** what the pixel-centre ray cost the hierarchy ([`Accel::intersect_with_cost`], the
+//! closest-hit traversal; hidden surfaces count as the tree holds them): `Depth`, the deepest
+//! level entered over the tree's depth; `Size`, the triangles tested over the image's largest
+//! count (or over `max` when given), on the same scale: black where the ray entered nothing.
 
 use glam::{Affine3A, DVec3, Vec2, Vec3};
 use rayon::prelude::*;
 
-use crate::accel::RayKind;
-use crate::diagnostic::{Diagnostic, GridSpace, PhotonQuantity};
+use crate::accel::{Accel, RayKind, TraversalCost};
+use crate::diagnostic::{BvhQuantity, Diagnostic, GridSpace, PhotonQuantity};
 use crate::geometry::SceneGeometry;
 use crate::photon::{Neighbour, PhotonMaps};
 use crate::shading::CameraRays;
@@ -48,10 +53,14 @@ pub fn view(
     photons: Option<&PhotonMaps>,
     (width, height): (usize, usize),
 ) -> Option<Vec<Vec3>> {
-    let hits = centre_hits(geometry, rays, width, height);
+    let hits = || centre_hits(geometry, rays, width, height);
     match d {
         Diagnostic::Samples => None,
+        Diagnostic::Bvh { quantity, max } => {
+            Some(bvh(&geometry.accel, rays, quantity, max, (width, height)))
+        }
         Diagnostic::Grid { space, size } => {
+            let hits = hits();
             let camera_from_world = world_from_camera.inverse();
             let coords: Vec<Option<DVec3>> = hits
                 .iter()
@@ -72,7 +81,8 @@ pub fn view(
             Some(grid(&hits, &coords, f64::from(size), width, height))
         }
         Diagnostic::Photon { quantity, max } => Some(
-            hits.par_iter()
+            hits()
+                .par_iter()
                 .map_init(Vec::new, |scratch, h| {
                     let value = match (h, photons) {
                         (Some(h), Some(maps)) => photon_value(maps, quantity, h, scratch),
@@ -93,6 +103,38 @@ pub fn false_colour(t: f32) -> Vec3 {
     }
     let t = t.min(1.0);
     Vec3::new(t, 0.0, 1.0 - t)
+}
+
+/// The BVH view (see the module header).
+fn bvh(
+    accel: &Accel,
+    rays: &CameraRays,
+    quantity: BvhQuantity,
+    max: Option<u32>,
+    (width, height): (usize, usize),
+) -> Vec<Vec3> {
+    let costs: Vec<Option<TraversalCost>> = (0..width * height)
+        .into_par_iter()
+        .map(|i| {
+            let (x, y) = ((i % width) as f32 + 0.5, (i / width) as f32 + 0.5);
+            let ray = rays.ray(x, y, Vec2::splat(0.5))?;
+            Some(accel.intersect_with_cost(&ray).1)
+        })
+        .collect();
+    let value = |c: &TraversalCost| match quantity {
+        BvhQuantity::Depth => c.deepest,
+        BvhQuantity::Size => c.triangles,
+    };
+    let top = max
+        .unwrap_or_else(|| match quantity {
+            BvhQuantity::Depth => accel.stats().depth,
+            BvhQuantity::Size => costs.iter().flatten().map(value).max().unwrap_or(0),
+        })
+        .max(1);
+    costs
+        .iter()
+        .map(|c| c.map_or(Vec3::ZERO, |c| false_colour(value(&c) as f32 / top as f32)))
+        .collect()
 }
 
 fn centre_hits(

@@ -101,7 +101,8 @@ struct RenderArgs {
     #[arg(long, value_name = "FEATURES", value_parser = stagelight::features::Features::parse_list)]
     disable: Option<stagelight::features::Features>,
     /// Replace the beauty pass by a diagnostic view: `samples` (samples per pixel),
-    /// `grid:object|world|camera:SIZE` (grid lines), `photon:density|irradiance:MAX`.
+    /// `grid:object|world|camera:SIZE` (grid lines), `photon:density|irradiance:MAX`,
+    /// `bvh:depth|size[:MAX]` (what each pixel's ray cost the BVH).
     #[arg(long, value_name = "MODE", value_parser = stagelight::diagnostic::Diagnostic::parse)]
     diagnostic: Option<stagelight::diagnostic::Diagnostic>,
     /// Print the per-stage report.

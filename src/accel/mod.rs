@@ -20,6 +20,7 @@ mod bvh;
 mod counters;
 mod ray_kind;
 mod spawn;
+mod traversal_cost;
 mod traverse;
 #[cfg(target_arch = "x86_64")]
 mod traverse_wide;
@@ -37,6 +38,7 @@ pub use spawn::{
     geometric_normal, offset_ray_origin, spawn_ray, spawn_ray_to, spawn_ray_to_surface,
     surface_point_with_normal, SHADOW_EPSILON,
 };
+pub use traversal_cost::TraversalCost;
 pub use triangle::{gamma, intersect_triangle, is_degenerate, MACHINE_EPSILON};
 
 /// A ray segment `origin + t·dir`, `t ∈ (0, t_max)`. `dir` need not be unit length; `t` is in
@@ -186,6 +188,13 @@ impl Accel {
             return;
         }
         traverse::occluded_batch(&self.bvh, rays, out);
+    }
+
+    /// [`Accel::intersect`]'s hit together with what finding it cost the hierarchy (nodes and
+    /// triangles tested, deepest level entered), for the BVH diagnostic view. A slower,
+    /// instrumented walk of the same traversal; not counted in [`Accel::ray_counts`].
+    pub fn intersect_with_cost(&self, ray: &Ray) -> (Option<Hit>, TraversalCost) {
+        traversal_cost::closest_with_cost(&self.bvh, ray)
     }
 
     /// Surface point of a hit, computed from its barycentrics, with error bounds.

@@ -304,13 +304,13 @@ pub(super) fn occluded_in<N: NodeTest>(bvh: &Bvh, ray: &Ray) -> bool {
 /// The ray's octant, the index of [`Node::order`]: bit `a` set when direction component `a`
 /// is negative (the sign bit decides, as for the near planes).
 #[inline(always)]
-fn octant(ray: &Ray) -> usize {
+pub(super) fn octant(ray: &Ray) -> usize {
     let d = ray.dir.to_array();
     (0..3).fold(0, |o, a| o | usize::from(d[a].is_sign_negative()) << a)
 }
 
 #[inline(always)]
-fn leaf_range(r: u32) -> std::ops::Range<usize> {
+pub(super) fn leaf_range(r: u32) -> std::ops::Range<usize> {
     let first = (r & FIRST_MASK) as usize;
     let count = ((r & !LEAF_BIT) >> COUNT_SHIFT) as usize;
     first..first + count

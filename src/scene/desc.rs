@@ -8,7 +8,7 @@ use serde::{Deserialize, Serialize};
 
 pub use super::desc_camera::{LensDesc, SamplesDesc, VolumeDesc};
 pub use super::desc_contour::{ContourDesc, ContoursDesc, ContrastDesc};
-pub use super::desc_diagnostic::{GridSpaceDesc, PhotonQuantityDesc};
+pub use super::desc_diagnostic::{BvhQuantityDesc, GridSpaceDesc, PhotonQuantityDesc};
 pub use super::desc_geometry::{
     ApproximationDesc, AxisDesc, BasisDesc, DisplacementDesc, DisplacementModeDesc, MeshDesc,
     ScalarDesc, SpaceDesc,
@@ -115,6 +115,15 @@ pub enum DiagnosticDesc {
         quantity: PhotonQuantityDesc,
         /// The value shown red, > 0.
         max: f64,
+    },
+    /// False-colour view of the ray-tracing hierarchy's work (mental ray `diagnostic bsp`).
+    Bvh {
+        /// Deepest level entered or triangles tested.
+        quantity: BvhQuantityDesc,
+        /// The value shown red, > 0; absent: the tree's depth (`Depth`) or the image's
+        /// largest count (`Size`).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        max: Option<u32>,
     },
 }
 

@@ -1,10 +1,10 @@
-//! Scene description of the grid and photon diagnostics' choices (`options.diagnostic:
-//! Grid(space: World, size: 0.5)`, `Photon(quantity: Density, max: 1000)`; see
-//! `docs/scene-format.md`, "Diagnostic modes").
+//! Scene description of the grid, photon and BVH diagnostics' choices (`options.diagnostic:
+//! Grid(space: World, size: 0.5)`, `Photon(quantity: Density, max: 1000)`, `Bvh(quantity:
+//! Depth)`; see `docs/scene-format.md`, "Diagnostic modes").
 
 use serde::{Deserialize, Serialize};
 
-use crate::diagnostic::{GridSpace, PhotonQuantity};
+use crate::diagnostic::{BvhQuantity, GridSpace, PhotonQuantity};
 
 /// `space:` of a grid diagnostic.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
@@ -45,6 +45,26 @@ impl PhotonQuantityDesc {
         match self {
             Self::Density => PhotonQuantity::Density,
             Self::Irradiance => PhotonQuantity::Irradiance,
+        }
+    }
+}
+
+/// `quantity:` of a BVH diagnostic.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename = "BvhQuantity", deny_unknown_fields)]
+pub enum BvhQuantityDesc {
+    /// The deepest tree level each pixel's ray entered.
+    Depth,
+    /// The triangles each pixel's ray tested.
+    Size,
+}
+
+impl BvhQuantityDesc {
+    /// The engine's quantity.
+    pub fn quantity(self) -> BvhQuantity {
+        match self {
+            Self::Depth => BvhQuantity::Depth,
+            Self::Size => BvhQuantity::Size,
         }
     }
 }

@@ -225,6 +225,18 @@ fn diagnostic(
             quantity: quantity.quantity(),
             max: positive(".diagnostic.Photon.max", "max", max),
         },
+        DiagnosticDesc::Bvh { quantity, max } => {
+            if max == Some(0) {
+                ck.error(
+                    &item.at(".diagnostic.Bvh.max"),
+                    "max must be positive, found 0",
+                );
+            }
+            Diagnostic::Bvh {
+                quantity: quantity.quantity(),
+                max,
+            }
+        }
     }
 }
 

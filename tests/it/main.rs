@@ -17,6 +17,7 @@ mod cli_photons;
 mod cli_plan;
 mod component_passes;
 mod contours;
+mod diagnostic_bvh;
 mod diagnostic_views;
 mod docs_reference;
 mod environment;

@@ -1,13 +1,13 @@
 //! The feature switches of an `options` block: `lens`, `volume`, `geometry`, `displace` and
 //! `output` `on|off` become `options.disable` (see [`crate::features::Feature`]); the last
-//! statement for a feature wins. Also `diagnostic samples|grid|photon …` (`options.diagnostic`). Shaders of a switched-off kind are still read and mapped
+//! statement for a feature wins. Also `diagnostic samples|grid|photon|bsp …` (`options.diagnostic`). Shaders of a switched-off kind are still read and mapped
 //! (the switch is a run input, so `stagelight convert` keeps both).
 
 use super::super::rib::Pos;
 use super::cursor::Cursor;
 use super::lexer::Tok;
 use crate::scene::desc::{
-    DiagnosticDesc, FeatureDesc, GridSpaceDesc, OptionsDesc, PhotonQuantityDesc,
+    BvhQuantityDesc, DiagnosticDesc, FeatureDesc, GridSpaceDesc, OptionsDesc, PhotonQuantityDesc,
 };
 
 /// Whether `word` is a feature switch of `options`.
@@ -37,10 +37,10 @@ pub fn switch(c: &mut Cursor, word: &str, desc: &mut OptionsDesc) {
     }
 }
 
-/// `diagnostic samples on|off`, `diagnostic grid off|object|world|camera S` and
-/// `diagnostic photon off|density|irradiance N` after the word `diagnostic` (at `at`) set
-/// `options.diagnostic`; the other diagnostic modes (`bsp`, `finalgather`, …) are read
-/// and warned.
+/// `diagnostic samples on|off`, `diagnostic grid off|object|world|camera S`,
+/// `diagnostic photon off|density|irradiance N` and `diagnostic bsp off|depth|size` after the
+/// word `diagnostic` (at `at`) set `options.diagnostic`; the other diagnostic modes
+/// (`finalgather`, …) are read and warned.
 pub fn diagnostic(c: &mut Cursor, at: Pos, desc: &mut OptionsDesc) {
     if c.eat_word("samples") {
         desc.diagnostic = c.switch().then_some(DiagnosticDesc::Samples);
@@ -98,6 +98,32 @@ pub fn diagnostic(c: &mut Cursor, at: Pos, desc: &mut OptionsDesc) {
         }
         return;
     }
+    if c.eat_word("bsp") {
+        let quantity = if c.eat_word("off") {
+            desc.diagnostic = None;
+            return;
+        } else if c.eat_word("depth") {
+            BvhQuantityDesc::Depth
+        } else if c.eat_word("size") {
+            BvhQuantityDesc::Size
+        } else {
+            let p = c.pos();
+            c.error(
+                p,
+                format!(
+                    "expected off, depth or size after diagnostic bsp, found {}",
+                    found(c)
+                ),
+            );
+            c.skip_arguments();
+            return;
+        };
+        desc.diagnostic = Some(DiagnosticDesc::Bvh {
+            quantity,
+            max: None,
+        });
+        return;
+    }
     let mode = match c.peek().map(|t| &t.tok) {
         Some(Tok::Word(w)) => w.clone(),
         _ => String::new(),
@@ -110,7 +136,7 @@ pub fn diagnostic(c: &mut Cursor, at: Pos, desc: &mut OptionsDesc) {
     c.skip_arguments();
     c.warn(
         at,
-        format!("\"diagnostic {mode}\" is read but not mapped (\"diagnostic samples\", \"grid\" and \"photon\" are)"),
+        format!("\"diagnostic {mode}\" is read but not mapped (\"diagnostic samples\", \"grid\", \"photon\" and \"bsp\" are)"),
     );
 }
 
