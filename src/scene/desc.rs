@@ -1072,6 +1072,29 @@ pub struct InstanceDesc {
     pub trace: Option<bool>,
 }
 
+impl InstanceDesc {
+    /// An instance `name` of `of` placed by `transform`, with nothing else overridden (what
+    /// the importers write for each object they place).
+    pub fn plain(
+        name: impl Into<String>,
+        of: impl Into<String>,
+        transform: Vec<TransformDesc>,
+    ) -> Self {
+        Self {
+            name: name.into(),
+            of: of.into(),
+            transform,
+            material: None,
+            bake: None,
+            caustic: None,
+            globillum: None,
+            visible: None,
+            shadow: None,
+            trace: None,
+        }
+    }
+}
+
 /// `bake: (...)` on an instance of an object: textures to bake (`stagelight bake`).
 #[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(rename = "Bake", deny_unknown_fields)]

@@ -184,18 +184,8 @@ fn split(desc: &mut SceneDesc, i: usize, pieces: Vec<(String, Piece)>) {
         } else {
             desc.objects.push(piece);
         }
-        desc.instances.push(InstanceDesc {
-            name: piece_name.clone(),
-            of: piece_name.clone(),
-            transform: Vec::new(),
-            material: None,
-            bake: None,
-            caustic: None,
-            globillum: None,
-            visible: None,
-            shadow: None,
-            trace: None,
-        });
+        desc.instances
+            .push(InstanceDesc::plain(&piece_name, &piece_name, Vec::new()));
         members.push(piece_name);
     }
     desc.groups.push(GroupDesc {

@@ -185,18 +185,9 @@ fn place(w: &mut Walk<'_>, name: String, of: String, local: &DMat4) -> String {
     } else {
         vec![TransformDesc::Matrix(m4(local))]
     };
-    w.desc.instances.push(InstanceDesc {
-        name: name.clone(),
-        of,
-        transform,
-        material: None,
-        bake: None,
-        caustic: None,
-        globillum: None,
-        visible: None,
-        shadow: None,
-        trace: None,
-    });
+    w.desc
+        .instances
+        .push(InstanceDesc::plain(&name, of, transform));
     name
 }
 

@@ -452,18 +452,9 @@ fn objects_of(name: &str, obj: &RawObject, materials: &Materials<'_>, out: &mut 
     for m in &members {
         let i = out.desc.instances.len();
         out.paths.push((format!("instances[{i}]"), obj.at.clone()));
-        out.desc.instances.push(InstanceDesc {
-            name: m.clone(),
-            of: m.clone(),
-            transform: Vec::new(),
-            material: None,
-            bake: None,
-            caustic: None,
-            globillum: None,
-            visible: None,
-            shadow: None,
-            trace: None,
-        });
+        out.desc
+            .instances
+            .push(InstanceDesc::plain(m, m, Vec::new()));
     }
     let i = out.desc.groups.len();
     out.paths.push((format!("groups[{i}]"), obj.at.clone()));

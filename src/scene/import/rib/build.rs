@@ -1308,18 +1308,11 @@ impl Builder {
                 shadow: None,
                 trace: None,
             });
-            desc.instances.push(InstanceDesc {
-                name: o.name.clone(),
-                of: o.name.clone(),
-                transform: vec![TransformDesc::Matrix(rows(g * o.world_from_object))],
-                material: None,
-                bake: None,
-                caustic: None,
-                globillum: None,
-                visible: None,
-                shadow: None,
-                trace: None,
-            });
+            desc.instances.push(InstanceDesc::plain(
+                &o.name,
+                &o.name,
+                vec![TransformDesc::Matrix(rows(g * o.world_from_object))],
+            ));
             members.push(o.name);
         }
         paths.push(("groups[0]".into(), wfile, wpos));
