@@ -13,6 +13,7 @@ pub use super::desc_geometry::{
     ApproximationDesc, AxisDesc, BasisDesc, DisplacementDesc, DisplacementModeDesc, MeshDesc,
     ScalarDesc, SpaceDesc,
 };
+pub use super::desc_material_shaders::{MaterialEnvironmentDesc, ShadowDesc};
 pub use super::desc_photon_depth::PhotonDepthDesc;
 pub use super::desc_values::{M4, V3};
 pub use super::nodes_desc::{BumpDesc, InputDesc, NodeDesc, PhenomenonDesc};
@@ -644,6 +645,14 @@ pub struct MaterialDesc {
     /// sees, default none (every light). Listed lights light it in renders and bakes.
     #[serde(default)]
     pub lights: Option<Vec<String>>,
+    /// Shadow shader: what shadow rays keep crossing this material, default none (as the
+    /// surface shader implies).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub shadow: Option<ShadowDesc>,
+    /// Material environment: what this material's specular rays see leaving the scene,
+    /// default none (the scene's environment).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub environment: Option<MaterialEnvironmentDesc>,
 }
 
 /// Surface shader.

@@ -391,6 +391,8 @@ fn material(m: &MtlMaterial, name: &str, dir: &Path) -> MaterialDesc {
         interior: None,
         contour: None,
         lights: None,
+        shadow: None,
+        environment: None,
     }
 }
 
