@@ -28,6 +28,7 @@ pub mod desc;
 pub mod desc_camera;
 pub mod desc_contour;
 pub mod desc_diagnostic;
+pub mod desc_environment;
 pub mod desc_geometry;
 pub mod desc_material_shaders;
 pub mod desc_photon_depth;
