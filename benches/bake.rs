@@ -60,7 +60,7 @@ fn world(samples: u32) -> World {
             two_sided: false,
             emission: Vec3::ZERO,
             graph: None,
-            lights: None,
+            ..Default::default()
         },
     ));
     let mesh = Arc::new(terrain(256));

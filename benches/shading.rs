@@ -136,7 +136,7 @@ fn plane_world(shader: Shader, graph: Option<MaterialGraph>) -> World {
             two_sided: false,
             emission: Vec3::ZERO,
             graph: graph.map(std::sync::Arc::new),
-            lights: None,
+            ..Default::default()
         },
     ));
     let h = 5.0;

@@ -52,3 +52,13 @@ pub struct Environment {
     /// What rays beyond a reflection/refraction budget see.
     pub depth_exceeded: DepthExceeded,
 }
+
+/// A material's own environment (mental ray's material `environment` shader): what the
+/// specular rays spawned at that material see when they leave the scene.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MaterialEnvironment {
+    /// Radiance source (intensity already applied).
+    pub source: EnvironmentSource,
+    /// What the material's rays beyond a reflection/refraction budget see.
+    pub depth_exceeded: DepthExceeded,
+}

@@ -9,6 +9,7 @@ use std::sync::Arc;
 use glam::Vec3;
 use hecs::Entity;
 
+use super::environment::MaterialEnvironment;
 use super::graph::MaterialGraph;
 use super::local_model::LocalModel;
 
@@ -260,6 +261,34 @@ pub struct Material {
     /// Light list (mental ray's `"lights"`): indices of the only scene emitters (in entity
     /// order, as the light set lists them) that light this material; `None`: every light.
     pub lights: Option<Arc<[u32]>>,
+    /// Shadow shader (mental ray's material `shadow`): the fraction of light per channel a
+    /// shadow ray keeps when it crosses this material, overriding what the surface shader
+    /// implies (`shading::shadow`); zero blocks. `None`: follow the surface shader.
+    pub shadow: Option<Vec3>,
+    /// Material environment (mental ray's material `environment`): what specular rays
+    /// spawned at this material see when they leave the scene or exceed a trace depth,
+    /// instead of the scene's environment. `None`: the scene's.
+    pub environment: Option<Arc<MaterialEnvironment>>,
+}
+
+impl Default for Material {
+    /// The built-in default: RenderMan's `defaultsurface` (ka 0.2, kd 0.8, white), one-sided,
+    /// not emitting, no graph, every light, shadows and environment as the scene has them.
+    fn default() -> Self {
+        Self {
+            shader: Shader::DefaultSurface {
+                ka: 0.2,
+                kd: 0.8,
+                color: Vec3::ONE,
+            },
+            two_sided: false,
+            emission: Vec3::ZERO,
+            graph: None,
+            lights: None,
+            shadow: None,
+            environment: None,
+        }
+    }
 }
 
 impl Material {

@@ -31,7 +31,9 @@ pub use bake::{
     BakeFormat, BakeKind, BakeRequest, BakeResolution, BakeTarget, Denoise, LightmapStore,
     NormalSpace, UvSource,
 };
-pub use environment::{DepthExceeded, Environment, EnvironmentSource, LatLongMap};
+pub use environment::{
+    DepthExceeded, Environment, EnvironmentSource, LatLongMap, MaterialEnvironment,
+};
 pub use imager::{Imager, ToneMap};
 
 mod volume;

@@ -9,10 +9,14 @@ use serde::{Deserialize, Serialize};
 pub use super::desc_camera::{LensDesc, SamplesDesc, VolumeDesc};
 pub use super::desc_contour::{ContourDesc, ContoursDesc, ContrastDesc};
 pub use super::desc_diagnostic::{BvhQuantityDesc, GridSpaceDesc, PhotonQuantityDesc};
+pub use super::desc_environment::{
+    DepthExceededDesc, EnvironmentDesc, EnvironmentShaderDesc, MaterialEnvironmentDesc,
+};
 pub use super::desc_geometry::{
     ApproximationDesc, AxisDesc, BasisDesc, DisplacementDesc, DisplacementModeDesc, MeshDesc,
     ScalarDesc, SpaceDesc,
 };
+pub use super::desc_material_shaders::ShadowDesc;
 pub use super::desc_photon_depth::PhotonDepthDesc;
 pub use super::desc_values::{M4, V3};
 pub use super::nodes_desc::{BumpDesc, InputDesc, NodeDesc, PhenomenonDesc};
@@ -565,60 +569,6 @@ pub enum LightKindDesc {
     },
 }
 
-/// `environment: (...)`: the scene's environment (mental ray's environment shader).
-#[derive(Debug, Clone, Deserialize, Serialize)]
-#[serde(rename = "Environment", deny_unknown_fields)]
-pub struct EnvironmentDesc {
-    /// Where the radiance comes from.
-    pub shader: EnvironmentShaderDesc,
-    /// Scale of the radiance, default 1, non-negative.
-    #[serde(default = "default_one")]
-    pub intensity: f64,
-    /// Light samples per shading point (direct integrator), default 16.
-    #[serde(default = "default_env_samples")]
-    pub samples: u32,
-    /// What rays beyond a reflection/refraction budget see, default `Environment`.
-    #[serde(default = "default_depth_exceeded")]
-    pub depth_exceeded: DepthExceededDesc,
-}
-
-fn default_env_samples() -> u32 {
-    16
-}
-
-fn default_depth_exceeded() -> DepthExceededDesc {
-    DepthExceededDesc::Environment
-}
-
-/// The environment's radiance.
-#[derive(Debug, Clone, Deserialize, Serialize)]
-#[serde(rename = "EnvironmentShader", deny_unknown_fields)]
-pub enum EnvironmentShaderDesc {
-    /// The same radiance (W/(sr·m²)) from every direction.
-    Constant {
-        /// Linear RGB radiance.
-        color: V3,
-    },
-    /// An equirectangular EXR radiance map, +Y up.
-    LatLong {
-        /// EXR file, relative to the scene file.
-        file: String,
-        /// Rotation about +Y, degrees, default 0.
-        #[serde(default)]
-        rotation: f64,
-    },
-}
-
-/// What rays that exceed a trace-depth budget see.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
-#[serde(rename = "DepthExceeded")]
-pub enum DepthExceededDesc {
-    /// The environment.
-    Environment,
-    /// Black.
-    Black,
-}
-
 fn default_beam() -> f64 {
     2.0
 }
@@ -653,6 +603,14 @@ pub struct MaterialDesc {
     /// sees, default none (every light). Listed lights light it in renders and bakes.
     #[serde(default)]
     pub lights: Option<Vec<String>>,
+    /// Shadow shader: what shadow rays keep crossing this material, default none (as the
+    /// surface shader implies).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub shadow: Option<ShadowDesc>,
+    /// Material environment: what this material's specular rays see leaving the scene,
+    /// default none (the scene's environment).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub environment: Option<MaterialEnvironmentDesc>,
 }
 
 /// Surface shader.

@@ -1,6 +1,7 @@
 //! The plain value types every part of the scene description is written with (`V3`, `M4`).
-//! A leaf: the description modules (`desc`, `desc_camera`, `desc_geometry`, `nodes_desc`)
-//! all use it, so none of them imports another for these (`desc` re-exports them).
+//! A leaf: the description modules (`desc`, `desc_camera`, `desc_environment`,
+//! `desc_geometry`, `desc_material_shaders`, `nodes_desc`) all use it, so none of them
+//! imports another for these (`desc` re-exports them).
 
 /// A 3-vector as written in the file: `(x, y, z)`.
 pub type V3 = (f64, f64, f64);

@@ -42,24 +42,50 @@ pub fn environment(src: &mut Sources, scenes: &[Option<SceneDesc>]) -> Option<En
     if d.samples == 0 {
         ck.error("environment.samples", "samples must be at least 1, found 0");
     }
-    let source = match &d.shader {
+    let source = source(&mut ck, "environment", &d.shader, intensity);
+    if d.samples == 0 {
+        return None;
+    }
+    let source = source?;
+    Some(Environment {
+        source,
+        samples: d.samples,
+        depth_exceeded: match d.depth_exceeded {
+            DepthExceededDesc::Environment => DepthExceeded::Environment,
+            DepthExceededDesc::Black => DepthExceeded::Black,
+        },
+    })
+}
+
+/// Checks an environment's radiance source written at `at` (`environment`, or a material's
+/// `….environment`) and builds it with `intensity` applied (errors recorded).
+pub fn source(
+    ck: &mut Checker<'_>,
+    at: &str,
+    shader: &EnvironmentShaderDesc,
+    intensity: Option<f64>,
+) -> Option<EnvironmentSource> {
+    match shader {
         EnvironmentShaderDesc::Constant { color } => {
-            let c = ck.colour("environment.shader.Constant.color", "color", *color);
-            EnvironmentSource::Constant((c? * intensity?).as_vec3())
+            let c = ck.colour(&format!("{at}.shader.Constant.color"), "color", *color);
+            Some(EnvironmentSource::Constant((c? * intensity?).as_vec3()))
         }
         EnvironmentShaderDesc::LatLong {
             file: name,
             rotation,
         } => {
-            let rot_ok = ck.finite("environment.shader.LatLong.rotation", "rotation", *rotation);
-            let path = ck.src.files[file].dir().join(name);
-            let at = "environment.shader.LatLong.file";
+            let rot_ok = ck.finite(
+                &format!("{at}.shader.LatLong.rotation"),
+                "rotation",
+                *rotation,
+            );
+            let path = ck.src.files[ck.file].dir().join(name);
             let map = match read_exr(&path) {
                 Ok(map) => Some(map),
                 Err(reason) => {
                     ck.src.error(
-                        file,
-                        at,
+                        ck.file,
+                        &format!("{at}.shader.LatLong.file"),
                         format!("cannot use EXR file \"{}\": {reason}", path.display()),
                         Some(
                             "a lat-long environment is an RGB(A) OpenEXR image; the path is \
@@ -71,27 +97,16 @@ pub fn environment(src: &mut Sources, scenes: &[Option<SceneDesc>]) -> Option<En
                 }
             };
             let (mut map, k) = (map?, intensity? as f32);
-            if !rot_ok || d.samples == 0 {
+            if !rot_ok {
                 return None;
             }
             for t in &mut map.texels {
                 *t *= k;
             }
             map.rotation = rotation.to_radians() as f32;
-            EnvironmentSource::LatLong(Arc::new(map))
+            Some(EnvironmentSource::LatLong(Arc::new(map)))
         }
-    };
-    if d.samples == 0 {
-        return None;
     }
-    Some(Environment {
-        source,
-        samples: d.samples,
-        depth_exceeded: match d.depth_exceeded {
-            DepthExceededDesc::Environment => DepthExceeded::Environment,
-            DepthExceededDesc::Black => DepthExceeded::Black,
-        },
-    })
 }
 
 /// Reads the first RGB(A) layer of an EXR file as a lat-long map (rotation 0); every value

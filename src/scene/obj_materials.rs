@@ -381,6 +381,8 @@ fn material(m: &MtlMaterial, name: &str, dir: &Path) -> MaterialDesc {
         interior: None,
         contour: None,
         lights: None,
+        shadow: None,
+        environment: None,
     }
 }
 

@@ -11,7 +11,7 @@ use super::diagnostics::Sources;
 use super::message::Diagnostic;
 use super::validate::Merged;
 use crate::components::{LightPhotons, Material, PhotonFlags, PhotonRole};
-use crate::shading::shadow::shader_transmits_shadows;
+use crate::shading::shadow::material_passes_shadows;
 
 /// Largest valid flag value (3: casts and receives).
 const MAX_FLAG: u8 = 3;
@@ -124,7 +124,7 @@ pub fn warn_shadow_casters<'a>(
         let Some(Some(mat)) = materials.get(material) else {
             continue;
         };
-        if !shader_transmits_shadows(&mat.shader) || seen.contains(&(leaf.instance, material)) {
+        if !material_passes_shadows(mat) || seen.contains(&(leaf.instance, material)) {
             continue;
         }
         seen.push((leaf.instance, material));

@@ -14,9 +14,7 @@ use super::desc::{
     ProgressiveDesc, RenderDesc, SceneDesc,
 };
 use super::diagnostics::Sources;
-use crate::components::{
-    Camera, Emitter, ImageFormat, LightShape, Material, OutputSpec, Pass, Shader,
-};
+use crate::components::{Camera, Emitter, ImageFormat, LightShape, Material, OutputSpec, Pass};
 use crate::features::{Feature, Features};
 use crate::settings::{
     BvhQuality, Face, Integrator, PhotonFilter, PhotonMapFile, PhotonMapSettings, PhotonSettings,
@@ -688,27 +686,24 @@ pub fn material(src: &mut Sources, item: &Item<'_, MaterialDesc>) -> Option<Mate
         file: item.file,
     };
     let emission = ck.colour(&item.at(".emission"), "emission", m.emission);
-    let shader = super::shaders::shader(&mut ck, &item.at(".shader"), &m.shader)?;
+    let shader = super::shaders::shader(&mut ck, &item.at(".shader"), &m.shader);
+    let shadow = super::material_shaders::shadow(&mut ck, &item.at(".shadow"), m.shadow.as_ref());
+    let environment = super::material_shaders::environment(
+        &mut ck,
+        &item.at(".environment"),
+        m.environment.as_ref(),
+    );
     Some(Material {
-        shader,
+        shader: shader?,
         two_sided: m.two_sided,
         emission: emission?.as_vec3(),
-        graph: None,
-        lights: None,
+        shadow: shadow.ok()?,
+        environment: environment.ok()?,
+        ..Material::default()
     })
 }
 
 /// The built-in material used where neither an instance nor its object names one.
 pub fn default_material() -> Material {
-    Material {
-        shader: Shader::DefaultSurface {
-            ka: 0.2,
-            kd: 0.8,
-            color: glam::Vec3::ONE,
-        },
-        two_sided: false,
-        emission: glam::Vec3::ZERO,
-        graph: None,
-        lights: None,
-    }
+    Material::default()
 }

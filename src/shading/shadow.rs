@@ -1,8 +1,11 @@
 //! Shadow shaders: what a shadow ray keeps when it crosses a surface.
 //!
 //! mental ray calls the shadow shader of every object between a light and the point being lit;
-//! an object without one blocks all light. Here the rule is derived from the surface shader,
-//! so that a shadow always matches what a camera sees through the same surface:
+//! an object without one blocks all light. A material's own shadow shader (`Material::shadow`,
+//! RON `shadow:`, `.mi` `mib_shadow_transparency`) decides when it has one: shadow rays keep
+//! its colour per channel, whatever the surface shader (black blocks). Without one the rule
+//! is derived from the surface shader, so that a shadow matches what a camera sees through
+//! the same surface:
 //!
 //! * `Opacity` (`mib_opacity`) lets `1 − opacity` through per channel — exactly the weight of
 //!   its straight pass-through ray — so a partly transparent, coloured sheet tints shadows by
@@ -51,6 +54,21 @@ pub fn shader_transmits_shadows(shader: &Shader) -> bool {
     shadow_transmittance(shader).is_some()
 }
 
+/// What shadow rays keep crossing a material with this shader and shadow shader: the shadow
+/// shader's colour when it has one, else what the surface shader implies; `None` blocks.
+pub fn material_shadow(shadow: Option<Vec3>, shader: &Shader) -> Option<Vec3> {
+    match shadow {
+        Some(t) => (t.max_element() > 0.0).then_some(t),
+        None => shadow_transmittance(shader),
+    }
+}
+
+/// Whether shadow rays pass this material's constant shaders (its shadow shader, or its
+/// surface shader when it has none), ignoring texture-driven opacity.
+pub fn material_passes_shadows(material: &Material) -> bool {
+    material_shadow(material.shadow, &material.shader).is_some()
+}
+
 /// Whether a graph drives the material's `opacity` (its own or an `Opacity` input's).
 fn binds_opacity(material: &Material) -> bool {
     material.graph.as_deref().is_some_and(|g| {
@@ -60,10 +78,13 @@ fn binds_opacity(material: &Material) -> bool {
     })
 }
 
-/// Whether shadow rays may pass surfaces of this material somewhere: its shader transmits,
-/// or a texture drives its opacity.
+/// Whether shadow rays may pass surfaces of this material somewhere: its shadow shader
+/// transmits, or (without one) its shader transmits or a texture drives its opacity.
 pub fn material_transmits_shadows(material: &Material) -> bool {
-    shader_transmits_shadows(&material.shader) || binds_opacity(material)
+    match material.shadow {
+        Some(_) => material_passes_shadows(material),
+        None => shader_transmits_shadows(&material.shader) || binds_opacity(material),
+    }
 }
 
 /// The shader a shadow ray meets at `hit`: the material's, with its bound parameters
@@ -115,7 +136,11 @@ pub fn transmittance(
             return t;
         };
         let material = geometry.material_of(hit.prim);
-        let Some(tr) = shadow_transmittance(&shader_at(geometry, &hit, material)) else {
+        let tr = match material.shadow {
+            Some(_) => material_shadow(material.shadow, &material.shader),
+            None => shadow_transmittance(&shader_at(geometry, &hit, material)),
+        };
+        let Some(tr) = tr else {
             return Vec3::ZERO;
         };
         t *= tr;
@@ -148,5 +173,19 @@ mod tests {
             input: Box::new(Shader::Lambert { albedo: Vec3::ONE }),
         };
         assert_eq!(shadow_transmittance(&opaque), None);
+    }
+
+    #[test]
+    fn a_shadow_shader_overrides_the_surface_shader() {
+        let lambert = Shader::Lambert { albedo: Vec3::ONE };
+        let half = Vec3::splat(0.5);
+        assert_eq!(material_shadow(Some(half), &lambert), Some(half));
+        let sheet = Shader::Opacity {
+            opacity: half,
+            input: Box::new(lambert.clone()),
+        };
+        assert_eq!(material_shadow(Some(Vec3::ZERO), &sheet), None);
+        assert_eq!(material_shadow(None, &sheet), Some(half));
+        assert_eq!(material_shadow(None, &lambert), None);
     }
 }

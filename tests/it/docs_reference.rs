@@ -117,7 +117,9 @@ fn every_accepted_field_and_variant_is_in_the_format_reference() {
         "src/scene/desc.rs",
         "src/scene/desc_camera.rs",
         "src/scene/desc_contour.rs",
+        "src/scene/desc_environment.rs",
         "src/scene/desc_geometry.rs",
+        "src/scene/desc_material_shaders.rs",
         "src/scene/nodes_desc.rs",
     ] {
         let source = std::fs::read_to_string(root.join(file)).unwrap();

@@ -150,7 +150,7 @@ fn materials_resolve_innermost_instance_then_outer_then_object_then_default() {
             two_sided: false,
             emission: Vec3::ZERO,
             graph: None,
-            lights: None,
+            ..Default::default()
         }
     );
     // Only used materials are spawned ("spare" is not).
@@ -171,7 +171,7 @@ fn materials_resolve_innermost_instance_then_outer_then_object_then_default() {
             two_sided: true,
             emission: Vec3::new(2.0, 0.0, 0.0),
             graph: None,
-            lights: None,
+            ..Default::default()
         }
     );
 }

@@ -2,8 +2,8 @@
 //! ([`super::local`]: RenderMan's standard surfaces with the scene's ambient light), direct
 //! light from every light with shadow rays (each light's own sample count), and every delta
 //! branch (mirror, both branches of glass, transparency) traced recursively within the trace
-//! depths; rays that leave the scene see the environment (and visible area lights they
-//! cross).
+//! depths; rays that leave the scene see the environment (the material's own when it has
+//! one, see [`super`]) and visible area lights they cross.
 //! Glossy and diffuse interreflection are not computed (the path tracer does that). Traced
 //! segments cross the scene's fog ([`super::volume`]): attenuation and single scattering.
 //! With caustics or global illumination on, the photon maps add caustics and one bounce of
@@ -12,7 +12,10 @@
 use glam::Vec3;
 
 use super::components::{local_component, note, scale, Component, Components};
-use super::{depth_exceeded, light_loop_split, local, trace, volume, Depth, ShadeContext, Vertex};
+use super::{
+    depth_exceeded_leaving, light_loop_split, local, trace_leaving, volume, Depth, ShadeContext,
+    Vertex,
+};
 use crate::accel::{Hit, Ray};
 use crate::sampling::Sampler;
 use crate::shading::surface::unlit_radiance;
@@ -79,6 +82,7 @@ fn vertex_radiance(
         radiance += photons;
         note(&mut parts, Component::DiffuseIndirect, photons);
     }
+    let own = v.material.environment.as_deref();
     for branch in bsdf.delta_branches(v.wo) {
         let through = if branch.transmits {
             Component::Transmission
@@ -86,7 +90,7 @@ fn vertex_radiance(
             Component::Specular
         };
         let Some(next) = depth.after(ctx, !branch.transmits, branch.transmits) else {
-            if let Some((le, _)) = depth_exceeded(ctx, v.frame.to_world(branch.wi)) {
+            if let Some((le, _)) = depth_exceeded_leaving(ctx, own, v.frame.to_world(branch.wi)) {
                 radiance += branch.weight * le;
                 note(&mut parts, through, branch.weight * le);
             }
@@ -95,7 +99,7 @@ fn vertex_radiance(
         let Some(ray) = v.spawn(branch.wi, branch.transmits) else {
             continue;
         };
-        let (hit, lights, _) = trace(ctx, &ray, true);
+        let (hit, lights, _) = trace_leaving(ctx, &ray, true, own);
         let mut incoming = lights;
         if let Some(h) = hit {
             incoming += vertex_radiance(ctx, &ray, &h, sampler, next, None);

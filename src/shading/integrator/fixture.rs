@@ -26,7 +26,7 @@ pub fn material(shader: Shader) -> Material {
         two_sided: false,
         emission: Vec3::ZERO,
         graph: None,
-        lights: None,
+        ..Default::default()
     }
 }
 

@@ -14,6 +14,13 @@
 //! path after its first non-delta scattering, see every area light's front face (MIS). A ray
 //! beyond a reflection/refraction budget sees the environment or black, as the scene's
 //! environment says (`depth_exceeded`).
+//!
+//! Material environments (`Material::environment`, mental ray's material `environment`
+//! shader): a specular (delta: mirror, refraction, transparency) ray spawned at a material
+//! that has one sees that environment instead of the scene's when it leaves the scene or
+//! exceeds a budget — every traced branch of [`direct`], the delta continuation rays of
+//! [`path`]. Glossy and diffuse rays, final gathering and light sampling keep the scene's
+//! environment (which stays a light).
 
 pub mod components;
 pub mod direct;
@@ -30,12 +37,13 @@ use glam::Vec3;
 use crate::accel::{
     spawn_ray, spawn_ray_to, spawn_ray_to_surface, Hit, Ray, RayKind, SurfacePoint,
 };
-use crate::components::{Material, Shader};
+use crate::components::{DepthExceeded, Material, MaterialEnvironment, Shader};
 use crate::geometry::{SceneGeometry, ShadingPoint};
 use crate::sampling::Sampler;
 use crate::settings::{Face, Integrator, RenderSettings};
 use crate::shading::bsdf::Bsdf;
 use crate::shading::frame::ShadingFrame;
+use crate::shading::lights::environment::source_radiance;
 use crate::shading::lights::{Light, LightSet};
 use crate::shading::mis::power_heuristic;
 use crate::shading::shadow::transmittance;
@@ -460,6 +468,18 @@ pub fn trace(
     ray: &Ray,
     delta: bool,
 ) -> (Option<Hit>, Vec3, Vec<(Vec3, f32)>) {
+    trace_leaving(ctx, ray, delta, None)
+}
+
+/// [`trace`] for a specular ray spawned at a material with its own environment (`own`):
+/// when the ray hits nothing it sees that environment (light pdf 0: it is not a light)
+/// instead of the scene's.
+pub fn trace_leaving(
+    ctx: &ShadeContext<'_>,
+    ray: &Ray,
+    delta: bool,
+    own: Option<&MaterialEnvironment>,
+) -> (Option<Hit>, Vec3, Vec<(Vec3, f32)>) {
     let hit = ctx.geometry.accel.intersect_as(ray, RayKind::Secondary);
     let mut clipped = *ray;
     if let Some(h) = &hit {
@@ -486,7 +506,11 @@ pub fn trace(
             }
         }
     }
-    if hit.is_none() {
+    if let (None, Some(env)) = (&hit, own) {
+        let le = source_radiance(&env.source, ray.dir);
+        direct += le;
+        crossed.push((le, 0.0));
+    } else if hit.is_none() {
         if let Some((le, pdf)) = ctx.lights.environment_along(ray.dir) {
             direct += le;
             crossed.push((le, pdf));
@@ -498,6 +522,20 @@ pub fn trace(
 /// Radiance a ray that is not traced because it exceeds a trace-depth budget brings back:
 /// the environment along it when the scene says so (with its light pdf), else nothing.
 pub fn depth_exceeded(ctx: &ShadeContext<'_>, dir: Vec3) -> Option<(Vec3, f32)> {
+    depth_exceeded_leaving(ctx, None, dir)
+}
+
+/// [`depth_exceeded`] for a specular ray of a material with its own environment (`own`):
+/// that environment (light pdf 0) or black, as its `depth_exceeded` says.
+pub fn depth_exceeded_leaving(
+    ctx: &ShadeContext<'_>,
+    own: Option<&MaterialEnvironment>,
+    dir: Vec3,
+) -> Option<(Vec3, f32)> {
+    if let Some(env) = own {
+        return (env.depth_exceeded == DepthExceeded::Environment)
+            .then(|| (source_radiance(&env.source, dir), 0.0));
+    }
     if ctx.lights.depth_exceeded_sees_environment() {
         ctx.lights.environment_along(dir)
     } else {

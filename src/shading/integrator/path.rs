@@ -10,7 +10,8 @@
 //! glass and mirrors, so an invisible light's caustics (`L S+ D … E`) are rendered, as the
 //! photon map renders them. Rays leaving the scene see the environment (black without one); a
 //! bounce beyond a reflection/refraction budget sees what the environment's
-//! `depth_exceeded` says. Every segment that ends at a hit is attenuated by the fog it
+//! `depth_exceeded` says. Delta rays of a material with its own environment see that one
+//! ([`super`]). Every segment that ends at a hit is attenuated by the fog it
 //! crosses and adds single scattering from the lights ([`super::volume`]): unbiased for
 //! attenuation; light scattered more than once inside a medium is not computed. Local
 //! illumination models ([`super::local`]) are shaded as the Direct integrator shades them
@@ -19,7 +20,10 @@
 use glam::Vec3;
 
 use super::components::{local_component, Component, Components, PathLanes};
-use super::{depth_exceeded, light_loop_split, local, trace, volume, Depth, ShadeContext, Vertex};
+use super::{
+    depth_exceeded_leaving, light_loop_split, local, trace_leaving, volume, Depth, ShadeContext,
+    Vertex,
+};
 use crate::accel::{Hit, Ray};
 use crate::sampling::Sampler;
 use crate::shading::bsdf::Scatter;
@@ -162,8 +166,11 @@ pub fn radiance_split(
             None => PathLanes::first(beta * s.weight(), &s, &bsdf, v.wo),
             Some(l) => l.after(s.weight()),
         });
+        // A delta ray of a material with its own environment sees that one (see `super`).
+        let own = v.material.environment.as_deref().filter(|_| s.delta);
         let Some(next) = depth.after(ctx, s.scatter == Scatter::Reflection, transmits) else {
-            if let Some((le, pdf_light)) = depth_exceeded(ctx, v.frame.to_world(s.wi)) {
+            if let Some((le, pdf_light)) = depth_exceeded_leaving(ctx, own, v.frame.to_world(s.wi))
+            {
                 radiance += beta * s.weight() * le * mis(pdf_light);
                 let x = le * mis(pdf_light);
                 record(&mut parts, &next_lanes, beta, Component::Emission, x, true);
@@ -186,7 +193,7 @@ pub fn radiance_split(
             break;
         }
         eye_chain &= s.delta;
-        let (next_hit, _, crossed) = trace(ctx, &next_ray, eye_chain);
+        let (next_hit, _, crossed) = trace_leaving(ctx, &next_ray, eye_chain, own);
         if let (Some(h), Some(_)) = (&next_hit, ctx.volumes) {
             let seg = volume::segment(ctx, &next_ray, h, sampler);
             radiance += beta * seg.inscattered;

@@ -125,7 +125,8 @@ const MAX_CROSSINGS: usize = 16;
 /// infinitely far, whose last segment crosses no medium). The shells of fog-filled
 /// materials (those with an `interior`) are volume boundaries, not occluders: the ray
 /// passes through them, entering the interior at a front face and returning to the
-/// atmosphere at a back face. Transparent surfaces tint (`shading::shadow`); any other
+/// atmosphere at a back face. Transparent surfaces and shadow shaders tint
+/// (`shading::shadow`); any other
 /// surface blocks (unless `occlude` is false: then
 /// only the starting medium attenuates, over the straight distance).
 pub fn shadow_transmittance(
@@ -158,9 +159,10 @@ pub fn shadow_transmittance(
         // through (`shading::shadow`); the medium stays the same across it.
         let tint = match interior {
             Some(_) => Vec3::ONE,
-            None => crate::shading::shadow::shadow_transmittance(
-                &ctx.geometry.materials[material].shader,
-            )?,
+            None => {
+                let m = &ctx.geometry.materials[material];
+                crate::shading::shadow::material_shadow(m.shadow, &m.shader)?
+            }
         };
         if let Some(f) = medium {
             t *= f.transmittance(hit.t * ray.dir.length());

@@ -62,7 +62,7 @@ pub fn material(world: &mut World, shader: Shader) -> Entity {
             two_sided: false,
             emission: Vec3::ZERO,
             graph: None,
-            lights: None,
+            ..Default::default()
         },
     ))
 }
@@ -242,7 +242,7 @@ pub fn material_full(world: &mut World, shader: Shader, two_sided: bool, emissio
             two_sided,
             emission,
             graph: None,
-            lights: None,
+            ..Default::default()
         },
     ))
 }

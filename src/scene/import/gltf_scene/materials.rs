@@ -74,6 +74,8 @@ pub fn material_name(w: &mut Walk<'_>, index: Option<usize>) -> String {
             interior: None,
             contour: None,
             lights: None,
+            shadow: None,
+            environment: None,
         },
     };
     let name = desc.name.clone();
@@ -224,6 +226,8 @@ fn material(w: &mut Walk<'_>, m: &gltf::Material<'_>) -> MaterialDesc {
         interior: None,
         contour: None,
         lights: None,
+        shadow: None,
+        environment: None,
     }
 }
 

@@ -646,6 +646,7 @@ pub fn material(r: &mut Reader, c: &mut Cursor, open: Pos) {
     let mut frame_fade = None;
     let mut interior = None;
     let mut displace = None;
+    let (mut shadow, mut environment) = (None, None);
     loop {
         let Some(t) = c.block_token("material", open) else {
             return;
@@ -686,13 +687,21 @@ pub fn material(r: &mut Reader, c: &mut Cursor, open: Pos) {
                     displace = super::displace::tutorial_displacement(c, &call);
                 }
             }
-            "shadow" | "photon" | "environment" | "displace" => {
+            "shadow" => {
+                if let Some(call) = c.shader_call("the shadow shader") {
+                    shadow = super::material_shaders::shadow(c, &call, &r.raw.shaders);
+                }
+            }
+            "environment" => {
+                if let Some(call) = c.shader_call("the environment shader") {
+                    environment = super::material_shaders::environment(c, &call, &r.raw.shaders);
+                }
+            }
+            "photon" | "displace" => {
                 if let Some(call) = c.shader_call(&format!("the {w} shader")) {
                     let n = &call.name;
                     let msg = match w.as_str() {
                         "photon" => format!("photon shader \"{n}\" is read but not yet mapped"),
-                        "shadow" => format!("shadow shader \"{n}\" is not mapped: shadows follow the material shader (mib_opacity lets 1 − opacity through, every other shader blocks)"),
-                        "environment" => format!("environment shader \"{n}\" is not mapped: rays leaving this material's surfaces see the scene's environment (the camera's)"),
                         _ => format!("displace shader \"{n}\" is not mapped: objects with this material render undisplaced"),
                     };
                     c.warn(call.pos, msg);
@@ -723,6 +732,8 @@ pub fn material(r: &mut Reader, c: &mut Cursor, open: Pos) {
             bump: None,
             interior,
             lights: None,
+            shadow,
+            environment,
             contour,
         };
         r.raw.materials.push((

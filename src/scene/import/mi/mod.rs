@@ -29,6 +29,7 @@ pub mod contours;
 pub mod cursor;
 pub mod displace;
 pub mod lexer;
+pub mod material_shaders;
 pub mod model;
 pub mod object;
 pub mod photon_options;

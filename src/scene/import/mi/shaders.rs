@@ -36,7 +36,7 @@ pub enum Role {
     Texture,
     /// A photon shader: read, not yet mapped.
     Photon,
-    /// A shadow shader: read, not mapped (shadows follow the material).
+    /// A shadow shader (`mib_shadow_transparency`: the material's `shadow:`).
     Shadow,
 }
 
@@ -196,7 +196,7 @@ pub const BUILTINS: &[Builtin] = &[
     Builtin {
         name: "mib_shadow_transparency",
         role: Role::Shadow,
-        params: &["color", "transp", "mode", "lights"],
+        params: &["color", "transp", "mode", "light", "lights"],
     },
 ];
 

@@ -973,6 +973,8 @@ impl Builder {
             interior: None,
             contour: None,
             lights: None,
+            shadow: None,
+            environment: None,
         };
         let mut lights_off = attrs.lights_off.clone();
         lights_off.sort_unstable();

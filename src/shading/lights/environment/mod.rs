@@ -38,6 +38,32 @@ enum Source {
     },
 }
 
+/// The texel of `map` (rotated by `(cos, sin)` about +Y) seen along the unit world
+/// direction `dir`.
+fn map_radiance(map: &LatLongMap, rotation: (f32, f32), dir: Vec3) -> Vec3 {
+    let uv = direction_to_uv(EnvLight::to_map(rotation, dir));
+    if !uv.is_finite() {
+        return Vec3::ZERO;
+    }
+    let (w, h) = (map.width as usize, map.height as usize);
+    let x = ((uv.x * w as f32) as usize).min(w - 1);
+    let y = ((uv.y * h as f32) as usize).min(h - 1);
+    map.texels[y * w + x]
+}
+
+/// Radiance of an environment source along the world direction `dir` (any length): what a
+/// material's own environment returns (it is looked up, never sampled as a light).
+pub fn source_radiance(source: &EnvironmentSource, dir: Vec3) -> Vec3 {
+    match source {
+        EnvironmentSource::Constant(c) => *c,
+        EnvironmentSource::LatLong(map) => map_radiance(
+            map,
+            (map.rotation.cos(), map.rotation.sin()),
+            dir.normalize_or_zero(),
+        ),
+    }
+}
+
 /// Relative luminance of linear Rec. 709 RGB.
 fn luminance(c: Vec3) -> f32 {
     0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z
@@ -111,16 +137,7 @@ impl EnvLight {
     pub fn radiance(&self, dir: Vec3) -> Vec3 {
         match &self.source {
             Source::Constant(c) => *c,
-            Source::Map { map, rotation, .. } => {
-                let uv = direction_to_uv(Self::to_map(*rotation, dir));
-                if !uv.is_finite() {
-                    return Vec3::ZERO;
-                }
-                let (w, h) = (map.width as usize, map.height as usize);
-                let x = ((uv.x * w as f32) as usize).min(w - 1);
-                let y = ((uv.y * h as f32) as usize).min(h - 1);
-                map.texels[y * w + x]
-            }
+            Source::Map { map, rotation, .. } => map_radiance(map, *rotation, dir),
         }
     }
 
