@@ -114,7 +114,7 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
             .map(|i| i.filter(|_| !off.contains(Feature::Volume)))
             .collect()
     });
-    let volumes = Volumes::new(view.atmosphere, interiors);
+    let volumes = Volumes::with_fade(view.atmosphere, view.fade, interiors);
     let filter = FilterSampler::new(settings.filter);
     let seed = fold_seed(settings.seed);
     let budget = SampleBudget::new(&settings);

@@ -166,12 +166,18 @@ fn parti_volume_maps_onto_fog_in_materials_and_cameras() {
         sigma_a: (0.5 - 0.2, 0.5 - 0.3, 0.5 - 0.4),
         sigma_s: (0.2, 0.3, 0.4),
         g: 0.3,
+        height: None,
+        nonuniform: 0.0,
+        noise_scale: 1.0,
     };
     assert_eq!(format!("{:?}", fog.interior), format!("{:?}", Some(want)));
     let atmosphere = VolumeDesc::Fog {
         sigma_a: (0.0, 0.0, 0.0),
         sigma_s: (0.1, 0.1, 0.1),
         g: 0.0,
+        height: None,
+        nonuniform: 0.0,
+        noise_scale: 1.0,
     };
     assert_eq!(
         format!("{:?}", read.desc.cameras[0].atmosphere),
