@@ -7,7 +7,8 @@
 use hecs::{Entity, World};
 
 use crate::components::{
-    Atmosphere, AtmosphereFade, Camera, Emitter, Fade, Environment, Fog, Imager, Lens, Lenses, RenderCamera,
+    Atmosphere, AtmosphereFade, Camera, Emitter, Environment, Fade, Fog, Imager, Lens, Lenses,
+    RenderCamera,
 };
 use crate::features::{Feature, Features};
 use crate::geometry::SceneGeometry;

@@ -32,8 +32,8 @@ use super::diagnostics::Sources;
 use super::geometry::{Generated, ObjectGeometry};
 use super::validate::{default_material, Merged};
 use crate::components::{
-    Atmosphere, AtmosphereFade, BakeRequest, Camera, ContourShader, Emitter, Fog, Imager, Instance, Interior,
-    Lenses, Material, MaterialRef, Name, RenderCamera, SceneOrigin, SourceLink, TriMesh,
+    Atmosphere, AtmosphereFade, BakeRequest, Camera, ContourShader, Emitter, Fog, Imager, Instance,
+    Interior, Lenses, Material, MaterialRef, Name, RenderCamera, SceneOrigin, SourceLink, TriMesh,
     WorldFromObject,
 };
 use crate::procedural::pending_instance;

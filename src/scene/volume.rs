@@ -60,10 +60,10 @@ fn fade(
 ) -> Option<Fade> {
     let p = format!("{path}.Fade");
     let color = ck.colour(&format!("{p}.color"), "color", color);
-    let opacity = ck
-        .non_negative(&format!("{p}.opacity"), "opacity", opacity)
+    let opacity = Some(opacity)
+        .filter(|&o| ck.finite(&format!("{p}.opacity"), "opacity", o))
         .filter(|&o| {
-            let ok = o <= 1.0;
+            let ok = (0.0..=1.0).contains(&o);
             if !ok {
                 ck.error(
                     &format!("{p}.opacity"),
@@ -106,10 +106,10 @@ fn fog(ck: &mut Checker<'_>, path: &str, d: &VolumeDesc) -> Option<Fog> {
     }
     let height_ok = height.is_none_or(|h| ck.finite(&format!("{p}.height"), "height", h));
     let amount_path = format!("{p}.nonuniform");
-    let amount = ck
-        .non_negative(&amount_path, "nonuniform", nonuniform)
+    let amount = Some(nonuniform)
+        .filter(|&k| ck.finite(&amount_path, "nonuniform", k))
         .filter(|&k| {
-            let ok = k <= 1.0;
+            let ok = (0.0..=1.0).contains(&k);
             if !ok {
                 ck.error(
                     &amount_path,

@@ -536,7 +536,9 @@ pub fn camera_hit(ctx: &ShadeContext<'_>, ray: &Ray) -> CameraHit {
         (Some((t, le, _)), _) => {
             let len = ray.dir.length();
             let seen = match ctx.volumes {
-                Some(v) => volume::seen_through_atmosphere(v, ray.origin, ray.dir / len, t * len, le),
+                Some(v) => {
+                    volume::seen_through_atmosphere(v, ray.origin, ray.dir / len, t * len, le)
+                }
                 None => le,
             };
             CameraHit::Light(seen)

@@ -381,4 +381,77 @@ mod tests {
             "{mean} vs {quadrature}"
         );
     }
+
+    #[test]
+    fn single_scattering_in_noisy_height_bounded_fog_matches_nested_quadrature() {
+        // As above, in fog whose density varies by a noise (amount 0.8) and that ends at
+        // y = 0.6 (the ray runs at y = 0, the light at (0, 1, 1) sits above the top: the
+        // part of each shadow ray above it is clear): L = ∫₀⁴ T(0, t) σs d(x) p I/r² T(x → light) dt with
+        // T = e^(−σt ∫ d) along each path, the density integrated numerically.
+        let (sigma_t, sigma_s, intensity) = (0.6f32, 0.5f32, 2.0f32);
+        let geometry = room();
+        let position = Vec3::new(0.0, 1.0, 1.0);
+        let e = Emitter::new(LightShape::Point { position }, Vec3::splat(intensity));
+        let lights = LightSet::new(&[e], None, 1);
+        let f = Fog {
+            sigma_a: Vec3::splat(sigma_t - sigma_s),
+            sigma_s: Vec3::splat(sigma_s),
+            g: 0.0,
+            height: Some(0.6),
+            density: Some(crate::components::DensityNoise {
+                amount: 0.8,
+                scale: 0.4,
+            }),
+        };
+        let volumes = Volumes::new(Some(f), vec![None, None]);
+        let s = RenderSettings::default();
+        let ctx = ShadeContext::new(&geometry, &lights, &s).with_volumes(volumes.as_ref());
+        let origin = Vec3::new(0.0, 0.0, 1.0);
+        let (ray, hit) = fixture::hit(&geometry, origin, Vec3::X);
+        let n = 8000;
+        let samples: Vec<f64> = (0..n)
+            .map(|i| {
+                let mut sampler = Sampler::for_item(9, i, 0);
+                f64::from(segment(&ctx, &ray, &hit, &mut sampler).inscattered.x)
+            })
+            .collect();
+        let mean = samples.iter().sum::<f64>() / n as f64;
+        let var = samples.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1) as f64;
+        let optical = |a: Vec3, b: Vec3, steps: usize| -> f64 {
+            let d = f64::from((b - a).length()) / steps as f64;
+            (0..steps)
+                .map(|k| {
+                    let p = a.lerp(b, (k as f32 + 0.5) / steps as f32);
+                    f64::from(medium::density(&f, p)) * d
+                })
+                .sum::<f64>()
+                * f64::from(sigma_t)
+        };
+        let steps = 4000;
+        let dt = 4.0 / steps as f64;
+        let along = |t: f64| origin + Vec3::X * t as f32;
+        // Optical depth from the origin to the start of step k (accumulated).
+        let mut tau_edge = 0.0;
+        let mut quadrature = 0.0;
+        for k in 0..steps {
+            let (t0, t) = (k as f64 * dt, (k as f64 + 0.5) * dt);
+            let x = along(t);
+            let tau_eye = tau_edge + optical(along(t0), x, 4);
+            let r2 = f64::from((position - x).length_squared());
+            quadrature += (-tau_eye - optical(x, position, 400)).exp()
+                * f64::from(sigma_s * medium::density(&f, x))
+                / (4.0 * std::f64::consts::PI)
+                * f64::from(intensity)
+                / r2
+                * dt;
+            tau_edge += optical(along(t0), along(t0 + dt), 8);
+        }
+        let z = (mean - quadrature) / (var / n as f64).sqrt();
+        println!("in-scattered {mean} (quadrature {quadrature}, z {z:.2})");
+        assert!(z.abs() < 4.0, "{mean} vs {quadrature}: z = {z}");
+        assert!(
+            (mean / quadrature - 1.0).abs() < 0.03,
+            "{mean} vs {quadrature}"
+        );
+    }
 }

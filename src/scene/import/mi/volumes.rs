@@ -94,7 +94,9 @@ pub fn volume(c: &mut Cursor, call: &ShaderCall, where_: &str) -> Option<VolumeD
         bad(
             c,
             "mode",
-            format!("\"mode\" must be 0 (fog everywhere) or 1 (fog below \"height\"), found {mode}"),
+            format!(
+                "\"mode\" must be 0 (fog everywhere) or 1 (fog below \"height\"), found {mode}"
+            ),
         );
     }
     if !(0.0..=1.0).contains(&nonuniform) {
