@@ -7,7 +7,8 @@
 use hecs::{Entity, World};
 
 use crate::components::{
-    Atmosphere, Camera, Emitter, Environment, Fog, Imager, Lens, Lenses, RenderCamera,
+    Atmosphere, AtmosphereFade, Camera, Emitter, Environment, Fade, Fog, Imager, Lens, Lenses,
+    RenderCamera,
 };
 use crate::features::{Feature, Features};
 use crate::geometry::SceneGeometry;
@@ -23,6 +24,8 @@ pub struct RenderView {
     pub lenses: Vec<Lens>,
     /// The fog the camera sits in, if any.
     pub atmosphere: Option<Fog>,
+    /// Its fade atmosphere (`mib_volume`), if any.
+    pub fade: Option<Fade>,
     /// Its imager (PNG outputs), if any.
     pub imager: Option<Imager>,
 }
@@ -36,6 +39,7 @@ impl RenderView {
         }
         if off.contains(Feature::Volume) {
             self.atmosphere = None;
+            self.fade = None;
         }
         self
     }
@@ -49,14 +53,16 @@ pub fn render_view(world: &World) -> Option<RenderView> {
             &RenderCamera,
             Option<&Lenses>,
             Option<&Atmosphere>,
+            Option<&AtmosphereFade>,
             Option<&Imager>,
         )>()
         .iter()
         .next()
-        .map(|(c, _, l, a, i)| RenderView {
+        .map(|(c, _, l, a, f, i)| RenderView {
             camera: c.clone(),
             lenses: l.map(|l| l.0.clone()).unwrap_or_default(),
             atmosphere: a.map(|a| a.0),
+            fade: f.map(|f| f.0),
             imager: i.copied(),
         })
 }

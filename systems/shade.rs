@@ -8,7 +8,7 @@
 //! `crate::adaptive`): pass 1 takes `min` samples in every pixel; pass 2 refines the pixels
 //! whose own samples or neighbours exceed the contrast, doubling up to `max`.
 //!
-//! **Reads:** the `Camera` with `RenderCamera` (and its `Lenses`, `Atmosphere`, and its
+//! **Reads:** the `Camera` with `RenderCamera` (and its `Lenses`, `Atmosphere` or `AtmosphereFade`, and its
 //! `Imager`'s background, which hides the environment from camera rays); `Interior` of
 //! material entities; `Emitter` entities; the `Environment`; `outputs.geometry` (absent means an empty scene:
 //! every ray misses); `outputs.photons` (the `Direct` integrator's caustics and final gather;
@@ -114,7 +114,7 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
             .map(|i| i.filter(|_| !off.contains(Feature::Volume)))
             .collect()
     });
-    let volumes = Volumes::new(view.atmosphere, interiors);
+    let volumes = Volumes::with_fade(view.atmosphere, view.fade, interiors);
     let filter = FilterSampler::new(settings.filter);
     let seed = fold_seed(settings.seed);
     let budget = SampleBudget::new(&settings);

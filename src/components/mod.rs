@@ -37,7 +37,7 @@ pub use environment::{
 pub use imager::{Imager, ToneMap};
 
 mod volume;
-pub use volume::{Atmosphere, Fog, Interior};
+pub use volume::{Atmosphere, AtmosphereFade, DensityNoise, Fade, Fog, Interior};
 
 mod approximation;
 mod displacement;

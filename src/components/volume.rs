@@ -1,12 +1,14 @@
-//! Volume shaders: homogeneous participating media (fog) filling the space around the camera
-//! (`Atmosphere`, on the camera entity) or the inside of a closed mesh (`Interior`, on a
-//! material entity).
+//! Volume shaders: participating media (fog, homogeneous or with a height bound and a
+//! noise-modulated density) filling the space around the camera (`Atmosphere`, on the camera
+//! entity) or the inside of a closed mesh (`Interior`, on a material entity), and the
+//! camera's linear colour fade (`AtmosphereFade`, mental ray's `mib_volume`).
 
 use glam::Vec3;
 
-/// A homogeneous medium: absorption and scattering coefficients per unit length (1/m, per
-/// RGB channel) and a Henyey–Greenstein phase function.
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// A medium: absorption and scattering coefficients per unit length (1/m, per RGB channel)
+/// scaled by a density (1 everywhere unless `height` or `density` say otherwise) and a
+/// Henyey–Greenstein phase function.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Fog {
     /// Absorption coefficient σa, 1/m.
     pub sigma_a: Vec3,
@@ -14,15 +16,34 @@ pub struct Fog {
     pub sigma_s: Vec3,
     /// Henyey–Greenstein asymmetry in (−1, 1): 0 isotropic, > 0 forward scattering.
     pub g: f32,
+    /// Fog only where world y is below this height (density 0 above); `None`: everywhere.
+    pub height: Option<f32>,
+    /// Density varied by a 3D noise; `None`: uniform (density 1).
+    pub density: Option<DensityNoise>,
+}
+
+/// A density `1 + amount·n(p / scale)` with `n` a deterministic gradient noise clamped to
+/// [−1, 1] (`shading::medium`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DensityNoise {
+    /// How far the density varies about 1, in (0, 1].
+    pub amount: f32,
+    /// Feature size of the noise, scene units (> 0).
+    pub scale: f32,
 }
 
 impl Fog {
+    /// Whether the density is 1 everywhere (closed-form transmittance `e^(−σt·d)`).
+    pub fn is_homogeneous(&self) -> bool {
+        self.height.is_none() && self.density.is_none()
+    }
+
     /// Extinction coefficient σt = σa + σs, 1/m.
     pub fn sigma_t(&self) -> Vec3 {
         self.sigma_a + self.sigma_s
     }
 
-    /// Transmittance `e^(−σt·d)` over a distance `d` (metres).
+    /// Transmittance `e^(−σt·d)` over a distance `d` (metres) of density 1.
     pub fn transmittance(&self, d: f32) -> Vec3 {
         let t = self.sigma_t() * d.max(0.0);
         Vec3::new((-t.x).exp(), (-t.y).exp(), (-t.z).exp())
@@ -38,3 +59,32 @@ pub struct Atmosphere(pub Fog);
 /// shader): it fills every segment that ends on the back face of the material.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Interior(pub Fog);
+
+/// mental ray's `mib_volume` as the camera's atmosphere: every finite camera-side segment of
+/// length `d` blends the radiance toward `color` by `f = opacity · min(d / max, 1)`
+/// (`f = opacity` when `max` is 0): `L' = (1 − f)·L + f·color`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Fade {
+    /// The colour the radiance fades to.
+    pub color: Vec3,
+    /// Largest blend weight, in [0, 1] (`color`'s alpha in `.mi`).
+    pub opacity: f32,
+    /// Distance at which the fade is complete, scene units (≥ 0).
+    pub max: f32,
+}
+
+impl Fade {
+    /// The blend weight toward `color` over a distance `d`.
+    pub fn weight(&self, d: f32) -> f32 {
+        let ramp = if self.max > 0.0 {
+            (d / self.max).clamp(0.0, 1.0)
+        } else {
+            1.0
+        };
+        self.opacity * ramp
+    }
+}
+
+/// The camera's fade atmosphere (instead of a fog [`Atmosphere`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AtmosphereFade(pub Fade);

@@ -46,7 +46,7 @@ pub enum LensDesc {
 #[derive(Debug, Clone, Copy, PartialEq, Deserialize, Serialize)]
 #[serde(rename = "Volume", deny_unknown_fields)]
 pub enum VolumeDesc {
-    /// Homogeneous fog.
+    /// Fog: homogeneous, or bounded by a height, or with a noise-varied density.
     Fog {
         /// Absorption coefficient per channel, 1/m, default `(0, 0, 0)`.
         #[serde(default)]
@@ -57,7 +57,39 @@ pub enum VolumeDesc {
         /// Henyey–Greenstein asymmetry in (−1, 1), default 0 (isotropic).
         #[serde(default)]
         g: f64,
+        /// Fog only below this world y, default none (everywhere).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        height: Option<f64>,
+        /// How much a 3D noise varies the density about 1, in [0, 1], default 0 (uniform).
+        #[serde(default, skip_serializing_if = "is_zero")]
+        nonuniform: f64,
+        /// Feature size of that noise, scene units (> 0), default 1.
+        #[serde(default = "one", skip_serializing_if = "is_one")]
+        noise_scale: f64,
     },
+    /// A linear fade of the radiance toward `color` over `max` (mental ray's `mib_volume`);
+    /// camera `atmosphere` only.
+    Fade {
+        /// The colour every camera-side segment fades to.
+        color: V3,
+        /// Largest blend weight, in [0, 1], default 1.
+        #[serde(default = "one", skip_serializing_if = "is_one")]
+        opacity: f64,
+        /// Distance of the complete fade, scene units (≥ 0; 0: the full `opacity` at once).
+        max: f64,
+    },
+}
+
+fn one() -> f64 {
+    1.0
+}
+
+fn is_one(x: &f64) -> bool {
+    *x == 1.0
+}
+
+fn is_zero(x: &f64) -> bool {
+    *x == 0.0
 }
 
 /// `samples:` in the options: a fixed count per pixel, or adaptive sampling.

@@ -32,8 +32,8 @@ use super::diagnostics::Sources;
 use super::geometry::{Generated, ObjectGeometry};
 use super::validate::{default_material, Merged};
 use crate::components::{
-    Atmosphere, BakeRequest, Camera, ContourShader, Emitter, Fog, Imager, Instance, Interior,
-    Lenses, Material, MaterialRef, Name, RenderCamera, SceneOrigin, SourceLink, TriMesh,
+    Atmosphere, AtmosphereFade, BakeRequest, Camera, ContourShader, Emitter, Fog, Imager, Instance,
+    Interior, Lenses, Material, MaterialRef, Name, RenderCamera, SceneOrigin, SourceLink, TriMesh,
     WorldFromObject,
 };
 use crate::procedural::pending_instance;
@@ -47,8 +47,8 @@ pub struct CameraParts {
     pub imager: Option<Imager>,
     /// Its lens shaders.
     pub lenses: Option<Lenses>,
-    /// Its atmosphere.
-    pub atmosphere: Option<Fog>,
+    /// Its atmosphere (fog or fade).
+    pub atmosphere: Option<super::volume::Atmosphere>,
 }
 
 /// What one material was checked into.
@@ -338,9 +338,15 @@ pub fn spawn(src: &Sources, m: &Merged<'_>, parts: Parts) -> World {
             // The entity was just spawned, so inserting cannot fail.
             let _ = world.insert_one(entity, lenses);
         }
-        if let Some(fog) = cam.atmosphere {
-            // The entity was just spawned, so inserting cannot fail.
-            let _ = world.insert_one(entity, Atmosphere(fog));
+        // The entity was just spawned, so inserting cannot fail.
+        match cam.atmosphere {
+            Some(super::volume::Atmosphere::Fog(fog)) => {
+                let _ = world.insert_one(entity, Atmosphere(fog));
+            }
+            Some(super::volume::Atmosphere::Fade(fade)) => {
+                let _ = world.insert_one(entity, AtmosphereFade(fade));
+            }
+            None => {}
         }
         if Some(i) == parts.render_camera {
             // The entity was just spawned, so inserting cannot fail.

@@ -1,6 +1,7 @@
-//! Volume shaders along ray segments: homogeneous fog as the camera's atmosphere and inside
-//! materials (their `interior`), with transmittance `e^(−σt·d)` on every segment and single
-//! scattering of light into the segment.
+//! Volume shaders along ray segments: fog as the camera's atmosphere and inside materials
+//! (their `interior`), with transmittance `e^(−σt·d)` on every segment (height-bounded and
+//! noisy densities: `shading::medium`) and single scattering of light into the segment; or
+//! the camera's linear fade to a colour (`Fade`, mental ray's `mib_volume`).
 //!
 //! Which medium a segment crosses: the interior of the material whose **back face** ends the
 //! segment (the ray is leaving that object), otherwise the atmosphere. There is no medium
@@ -23,7 +24,7 @@
 use glam::Vec3;
 
 use crate::accel::{Hit, Ray};
-use crate::components::Fog;
+use crate::components::{Fade, Fog};
 use crate::geometry::SceneGeometry;
 
 /// The scene's media: the render camera's atmosphere and each material's interior.
@@ -33,14 +34,28 @@ pub struct Volumes {
     pub atmosphere: Option<Fog>,
     /// Interior of each material, indexed like `SceneGeometry::materials`.
     pub interiors: Vec<Option<Fog>>,
+    /// The camera's fade atmosphere (only without a fog `atmosphere`): segments that cross
+    /// no fog blend toward its colour.
+    pub fade: Option<Fade>,
 }
 
 impl Volumes {
     /// The media, or `None` when there is none (no volume work at all then).
     pub fn new(atmosphere: Option<Fog>, interiors: Vec<Option<Fog>>) -> Option<Self> {
-        (atmosphere.is_some() || interiors.iter().any(Option::is_some)).then_some(Self {
+        Self::with_fade(atmosphere, None, interiors)
+    }
+
+    /// [`Volumes::new`] with the camera's fade atmosphere.
+    pub fn with_fade(
+        atmosphere: Option<Fog>,
+        fade: Option<Fade>,
+        interiors: Vec<Option<Fog>>,
+    ) -> Option<Self> {
+        let any = atmosphere.is_some() || fade.is_some() || interiors.iter().any(Option::is_some);
+        any.then_some(Self {
             atmosphere,
             interiors,
+            fade,
         })
     }
 
@@ -139,6 +154,7 @@ mod tests {
             sigma_a: Vec3::splat(0.3),
             sigma_s: Vec3::new(0.2, 0.5, 0.8),
             g: 0.0,
+            ..Default::default()
         };
         check_inverse_cdf(|u| distance_sample(&fog, 5.0, u), 5.0);
     }

@@ -587,6 +587,7 @@ fn tinted_shadows_through_fog() {
         sigma_a: Vec3::splat(0.1),
         sigma_s: Vec3::ZERO,
         g: 0.0,
+        ..Default::default()
     };
     let lit = 0.8 / std::f32::consts::PI * 10.0 / 16.0;
     let t = Vec3::new(0.5, 0.2, 0.1);

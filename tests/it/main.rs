@@ -25,6 +25,7 @@ mod farm;
 mod farm_bake;
 mod farm_photons;
 mod feature_switches;
+mod fog_height_noise_fade;
 mod fuzz_corpus;
 mod geometry_scene;
 mod geometry_stages;

@@ -572,9 +572,14 @@ pub fn camera_hit(ctx: &ShadeContext<'_>, ray: &Ray) -> CameraHit {
         .min_by(|a, b| a.0.total_cmp(&b.0));
     match (nearest_light, hit) {
         (Some((t, le, _)), _) => {
-            let fog = ctx.volumes.and_then(|v| v.atmosphere.as_ref());
-            let att = fog.map_or(Vec3::ONE, |f| f.transmittance(t * ray.dir.length()));
-            CameraHit::Light(le * att)
+            let len = ray.dir.length();
+            let seen = match ctx.volumes {
+                Some(v) => {
+                    volume::seen_through_atmosphere(v, ray.origin, ray.dir / len, t * len, le)
+                }
+                None => le,
+            };
+            CameraHit::Light(seen)
         }
         (None, Some(h)) => CameraHit::Surface(h),
         (None, None) if ctx.lights.camera_sees_environment => CameraHit::Miss(

@@ -28,6 +28,7 @@ pub mod blocks;
 pub mod contours;
 pub mod cursor;
 pub mod displace;
+pub mod fade;
 pub mod lexer;
 pub mod material_shaders;
 pub mod model;

@@ -1,12 +1,14 @@
-//! Volume shaders of materials and cameras (`volume "shader" (…)`) onto homogeneous fog
-//! (`docs/mi.md`, *Volume shaders*): `parti_volume` (mental ray's `physics` library)
-//! becomes `Fog(sigma_a, sigma_s, g)` — a material's `interior`, a camera's
-//! `atmosphere`. What `Fog` cannot hold (height-limited or non-uniform density, several
-//! lights lists) warns; step lengths and levels are controls of mental ray's ray marching,
-//! which the closed-form transmittance does not need. Any other volume shader warns.
+//! Volume shaders of materials and cameras (`volume "shader" (…)`) onto fog (`docs/mi.md`,
+//! *Volume shaders*): `parti_volume` (mental ray's `physics` library) becomes
+//! `Fog(sigma_a, sigma_s, g, height, nonuniform)` — a material's `interior`, a camera's
+//! `atmosphere` (`mode 1` bounds it below `height`, `nonuniform` varies its density by a
+//! noise). The `lights` list and two differing phase lobes warn; step lengths and levels are
+//! controls of mental ray's ray marching, which the engine does not need. `mib_volume` is
+//! `fade.rs`; any other volume shader warns.
 
 use super::super::rib::Problem;
 use super::cursor::{Cursor, ShaderCall};
+use super::fade::mib_volume;
 use super::shaders::Params;
 use crate::scene::desc::VolumeDesc;
 use crate::scene::suggest::closest;
@@ -32,12 +34,10 @@ const PARTI_VOLUME: &[&str] = &[
 /// The fog of the volume shader `call` of a `where_` (`material` or `camera`), or `None`
 /// (reported) when it is not mapped.
 pub fn volume(c: &mut Cursor, call: &ShaderCall, where_: &str) -> Option<VolumeDesc> {
+    if call.name == "mib_volume" {
+        return mib_volume(c, call, where_);
+    }
     if call.name != "parti_volume" {
-        let what = if call.name == "mib_volume" {
-            "a linear fade to \"color\" over \"max\", not a physical medium"
-        } else {
-            "not a built-in volume shader"
-        };
         let nothing = if where_ == "material" {
             "the material's interior stays empty"
         } else {
@@ -47,11 +47,11 @@ pub fn volume(c: &mut Cursor, call: &ShaderCall, where_: &str) -> Option<VolumeD
             Problem::warning(
                 call.pos,
                 format!(
-                    "volume shader \"{}\" is not mapped ({what}): {nothing}",
+                    "volume shader \"{}\" is not mapped (not a built-in volume shader): {nothing}",
                     call.name
                 ),
             )
-            .with_help("parti_volume maps onto homogeneous fog"),
+            .with_help("parti_volume maps onto fog, mib_volume onto a camera Fade"),
         );
         return None;
     }
@@ -80,22 +80,30 @@ pub fn volume(c: &mut Cursor, call: &ShaderCall, where_: &str) -> Option<VolumeD
     let g2 = params.scalar(c, "g2", 0.0);
     let mode = params.scalar(c, "mode", 0.0);
     let nonuniform = params.scalar(c, "nonuniform", 0.0);
+    let height = params.scalar(c, "height", 0.0);
     let warn = |c: &mut Cursor, name: &str, message: &str| {
         let pos = params.pos(name).unwrap_or(call.pos);
         c.warn(pos, format!("parti_volume: {message}"));
     };
-    if mode != 0.0 {
-        warn(
+    let mut bad = |c: &mut Cursor, name: &str, message: String| {
+        let pos = params.value(name).map_or(call.pos, |p| p.value_pos);
+        c.error(pos, format!("parti_volume: {message}"));
+        ok = false;
+    };
+    if mode != 0.0 && mode != 1.0 {
+        bad(
             c,
             "mode",
-            "mode 1 (fog below \"height\") is not mapped: the medium fills the whole volume",
+            format!(
+                "\"mode\" must be 0 (fog everywhere) or 1 (fog below \"height\"), found {mode}"
+            ),
         );
     }
-    if nonuniform != 0.0 {
-        warn(
+    if !(0.0..=1.0).contains(&nonuniform) {
+        bad(
             c,
             "nonuniform",
-            "non-uniform density is not mapped: the medium is homogeneous",
+            format!("\"nonuniform\" must be between 0 and 1, found {nonuniform}"),
         );
     }
     if params.value("lights").is_some() {
@@ -128,5 +136,8 @@ pub fn volume(c: &mut Cursor, call: &ShaderCall, where_: &str) -> Option<VolumeD
         sigma_a: (absorb(scatter.0), absorb(scatter.1), absorb(scatter.2)),
         sigma_s: scatter,
         g,
+        height: (mode == 1.0).then_some(height),
+        nonuniform,
+        noise_scale: 1.0,
     })
 }
