@@ -168,6 +168,7 @@ fn plane_world(shader: Shader, graph: Option<MaterialGraph>) -> World {
             },
             radiant: Vec3::splat(5.0),
             shadows: true,
+            shadow_factor: 0.0,
             samples: 8,
             visible: false,
             attenuation: None,

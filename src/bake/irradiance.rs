@@ -45,13 +45,13 @@ pub fn direct_irradiance(
                 continue;
             }
             let shadow = if ls.shadows {
-                transmittance(
+                ls.lighten(transmittance(
                     geometry,
                     surface,
                     ls.wi,
                     ls.target,
                     lights.transmissive_shadows,
-                )
+                ))
             } else {
                 Vec3::ONE
             };

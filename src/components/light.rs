@@ -93,6 +93,9 @@ pub struct Emitter {
     pub radiant: Vec3,
     /// Whether shadow rays are traced toward this light.
     pub shadows: bool,
+    /// The fraction of the light that passes occluders, in [0, 1] (mental ray's light
+    /// `factor`; 0: full shadows, 1: none).
+    pub shadow_factor: f32,
     /// Samples per shading point for area lights (1 for delta lights).
     pub samples: u32,
     /// Area lights only: whether camera rays and perfect mirror / refraction rays see the
@@ -117,6 +120,7 @@ impl Emitter {
             shape,
             radiant,
             shadows: true,
+            shadow_factor: 0.0,
             samples,
             visible: false,
             attenuation: None,

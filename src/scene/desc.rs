@@ -463,6 +463,10 @@ pub struct LightDesc {
     /// Whether the light casts shadows, default `true`.
     #[serde(default = "default_true")]
     pub shadows: bool,
+    /// The fraction of the light that passes occluders, in [0, 1] (mental ray's light
+    /// `factor`), default 0 (full shadows).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub shadow_factor: f64,
     /// Samples per shading point (area lights, default 16); delta lights accept only 1.
     #[serde(default)]
     pub samples: Option<u32>,
@@ -487,6 +491,10 @@ pub struct LightDesc {
     /// mental ray's `mib_light_point`/`mib_light_spot` (`Cl` = colour at every distance).
     #[serde(default = "default_true")]
     pub inverse_square: bool,
+}
+
+fn is_zero(x: &f64) -> bool {
+    *x == 0.0
 }
 
 fn default_white() -> V3 {

@@ -545,6 +545,19 @@ pub fn light(src: &mut Sources, item: &Item<'_, LightDesc>) -> Option<Emitter> {
     };
     let color = ck.colour(&item.at(".color"), "color", l.color);
     let intensity = ck.non_negative(&item.at(".intensity"), "intensity", l.intensity);
+    let shadow_factor = ck
+        .non_negative(&item.at(".shadow_factor"), "shadow_factor", l.shadow_factor)
+        .and_then(|f| {
+            if f > 1.0 {
+                ck.error(
+                    &item.at(".shadow_factor"),
+                    format!("shadow_factor must be at most 1, found {f}"),
+                );
+                None
+            } else {
+                Some(f as f32)
+            }
+        });
     let kind = |s: &str| item.at(&format!(".kind.{s}"));
     let is_area = matches!(
         l.kind,
@@ -671,6 +684,7 @@ pub fn light(src: &mut Sources, item: &Item<'_, LightDesc>) -> Option<Emitter> {
         shape,
         radiant: (color? * intensity?).as_vec3(),
         shadows: l.shadows,
+        shadow_factor: shadow_factor?,
         samples: samples?,
         visible: visible?,
         attenuation: attenuation?,

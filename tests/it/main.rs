@@ -46,6 +46,7 @@ mod hostile_signals;
 mod interrupt;
 mod lens_shaders;
 mod light_scenes;
+mod light_shadow_factor;
 mod lights;
 mod mesh_files;
 mod mi;

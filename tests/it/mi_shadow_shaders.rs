@@ -17,7 +17,7 @@ use crate::common::cli::{run_in, scratch, stderr_of};
 
 /// 40 × 40 pixels looking straight down at the floor from z = 4 (fov 40°); the occluder
 /// (`material` `occ`, hidden from the camera) is the square |x|, |y| ≤ 0.5 at z = 1.
-fn scene(occ_material: &str, integrator: &str, with_occluder: bool) -> String {
+pub(crate) fn scene(occ_material: &str, integrator: &str, with_occluder: bool) -> String {
     let members = if with_occluder {
         r#""floor_1", "occ_1""#
     } else {
@@ -50,7 +50,7 @@ fn scene(occ_material: &str, integrator: &str, with_occluder: bool) -> String {
     )
 }
 
-fn render(text: &str) -> Vec<Vec3> {
+pub(crate) fn render(text: &str) -> Vec<Vec3> {
     let mut scene = load_scene_str(text, Path::new("shadow.ron")).unwrap_or_else(|e| panic!("{e}"));
     let settings = scene.settings.clone();
     let frame = crate::common::render(&mut scene.world, settings);
@@ -67,7 +67,7 @@ fn floor_point(i: usize, j: usize) -> (f64, f64) {
 
 /// Checks every pixel: inside the shadow (0.05 from its edge) it is `lit · through`, outside
 /// it equals `lit`. Returns how many shadow pixels were checked.
-fn assert_shadow(lit: &[Vec3], got: &[Vec3], through: Vec3, what: &str) -> usize {
+pub(crate) fn assert_shadow(lit: &[Vec3], got: &[Vec3], through: Vec3, what: &str) -> usize {
     let mut inside = 0;
     for j in 0..40 {
         for i in 0..40 {
@@ -157,7 +157,7 @@ fn shadow_shaders_override_transparent_sheets_and_glass() {
 }
 
 /// Reads an EXR written by a bake: width and linear RGB texels, row 0 at the top.
-fn read_exr(path: &Path) -> (usize, Vec<Vec3>) {
+pub(crate) fn read_exr(path: &Path) -> (usize, Vec<Vec3>) {
     use exr::prelude::*;
     let image = read_first_rgba_layer_from_file(
         path,
@@ -225,7 +225,7 @@ fn a_bake_under_a_grey_shadow_transparency_stores_half_the_irradiance() {
 /// A `.mi` version: a camera at the origin looking down −z (160 × 120), a point light at the
 /// eye, a grey floor at z = −2 and an occluder hidden from the camera at z = −1 over
 /// x, y ∈ [−0.3, 0.3] in material `occ`, whose statements follow its shader.
-fn mi_scene(shadow: &str) -> String {
+pub(crate) fn mi_scene(shadow: &str) -> String {
     format!(
         r#"link "base.so"
 $include <base.mi>

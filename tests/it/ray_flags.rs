@@ -160,14 +160,16 @@ fn trace_false_hides_the_object_from_the_mirror_only() {
     assert_eq!(at(&img, SHADOW), Vec3::ZERO);
 }
 
-/// The §3.2.2 plane with the lamp casting shadows and a lambert card halfway between the
-/// eye (where the lamp is) and the plane, carrying `flags`.
+/// The §3.2.2 plane with the lamp casting full shadows (`"shadow" true`, and `"factor" 0`:
+/// the printed factor 1 would let all the light through) and a lambert card halfway between
+/// the eye (where the lamp is) and the plane, carrying `flags`.
 fn plane_with_card(flags: &str, card: bool) -> String {
     let text = std::fs::read_to_string(
         Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/seeds/mi/plane.mi"),
     )
     .unwrap()
-    .replace("\"shadow\" false", "\"shadow\" true");
+    .replace("\"shadow\" false", "\"shadow\" true")
+    .replace("\"factor\" 1,", "\"factor\" 0,");
     let card_block = format!(
         "material \"card_mtl\"\nopaque\n\"mib_illum_lambert\" (\"diffuse\" 0.4 0.4 0.4, \
          \"lights\" [\"Lamp_inst\"])\nend material\n\nobject \"Card\"\n{flags}\ngroup\n0.2 0.2 0.5\n0.2 -0.2 0.5\n-0.2 -0.2 0.5\n\

@@ -411,17 +411,18 @@ fn gather_split(
                     let target = ls.target.map(|t| t.p);
                     let atmosphere = ctx.volumes.and_then(|vol| vol.atmosphere.as_ref());
                     match shadow_transmittance(ctx, first, atmosphere, target, ls.shadows) {
-                        Some(t) => t,
+                        Some(t) => ls.lighten(t),
+                        None if ls.shadow_factor > 0.0 => ls.lighten(Vec3::ZERO),
                         None => continue,
                     }
                 }
-                None if ls.shadows => transmittance(
+                None if ls.shadows => ls.lighten(transmittance(
                     ctx.geometry,
                     &v.sp.surface,
                     ls.wi,
                     ls.target,
                     ctx.lights.transmissive_shadows,
-                ),
+                )),
                 None => Vec3::ONE,
             };
             if shadow == Vec3::ZERO {

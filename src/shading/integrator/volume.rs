@@ -139,8 +139,10 @@ fn inscatter(
             t_max: to_light.map_or(f32::INFINITY, |d| d * (1.0 - 1e-3)),
         };
         let target = ls.target.map(|q| q.p);
-        let Some(t_light) = shadow_transmittance(ctx, first, Some(fog), target, ls.shadows) else {
-            continue;
+        let t_light = match shadow_transmittance(ctx, first, Some(fog), target, ls.shadows) {
+            Some(t) => ls.lighten(t),
+            None if ls.shadow_factor > 0.0 => ls.lighten(Vec3::ZERO),
+            None => continue,
         };
         let phase = henyey_greenstein(fog.g, dir.dot(ls.wi));
         let (t_eye, sigma_s) = if fog.is_homogeneous() {

@@ -56,6 +56,8 @@ pub struct AreaLight {
     pub radiance: Vec3,
     /// Trace shadow rays.
     pub shadows: bool,
+    /// Light that passes occluders (mental ray `factor`, see [`LightSample::shadow_factor`]).
+    pub shadow_factor: f32,
     /// Samples per shading point.
     pub samples: u32,
     /// Seen by camera rays and perfect mirror / refraction rays.
@@ -87,6 +89,8 @@ pub enum Light {
         intensity: Vec3,
         /// Trace shadow rays.
         shadows: bool,
+        /// Light that passes occluders (mental ray `factor`).
+        shadow_factor: f32,
         /// Near/far attenuation `(start, end)`.
         attenuation: Option<(f32, f32)>,
         /// Whether `intensity` falls off as 1/d².
@@ -108,6 +112,8 @@ pub enum Light {
         intensity: Vec3,
         /// Trace shadow rays.
         shadows: bool,
+        /// Light that passes occluders (mental ray `factor`).
+        shadow_factor: f32,
         /// Near/far attenuation `(start, end)`.
         attenuation: Option<(f32, f32)>,
         /// Whether `intensity` falls off as 1/d².
@@ -121,6 +127,8 @@ pub enum Light {
         irradiance: Vec3,
         /// Trace shadow rays.
         shadows: bool,
+        /// Light that passes occluders (mental ray `factor`).
+        shadow_factor: f32,
     },
     /// Rectangle, disc, sphere or cylinder.
     Area(AreaLight),
@@ -146,11 +154,27 @@ pub struct LightSample {
     pub target: Option<SurfacePoint>,
     /// Whether a shadow ray is needed.
     pub shadows: bool,
+    /// The fraction of the light that passes occluders (mental ray's light `factor`, 0 for
+    /// full shadows): what reaches the point is `factor + (1 − factor)·T` of it, `T` the
+    /// shadow ray's transmittance (see [`LightSample::lighten`]).
+    pub shadow_factor: f32,
     /// Solid-angle pdf of the sample; 0 for delta lights (point, spot, directional), which
     /// no other strategy can reach.
     pub pdf: f32,
     /// Distance to the sampled point (infinite for directional lights and the environment).
     pub distance: f32,
+}
+
+impl LightSample {
+    /// What reaches the point of the light past occluders of transmittance `t`:
+    /// `factor + (1 − factor)·t`, `t` itself (bit for bit) when the factor is 0.
+    pub fn lighten(&self, t: Vec3) -> Vec3 {
+        if self.shadow_factor == 0.0 {
+            t
+        } else {
+            Vec3::splat(self.shadow_factor) + (1.0 - self.shadow_factor) * t
+        }
+    }
 }
 
 impl Light {
@@ -161,6 +185,7 @@ impl Light {
                 shape,
                 radiance: e.radiant,
                 shadows: e.shadows,
+                shadow_factor: e.shadow_factor,
                 samples: e.samples.max(1),
                 visible: e.visible,
                 attenuation: e.attenuation,
@@ -174,6 +199,7 @@ impl Light {
                 position,
                 intensity: e.radiant,
                 shadows: e.shadows,
+                shadow_factor: e.shadow_factor,
                 attenuation: e.attenuation,
                 inverse_square: e.inverse_square,
             },
@@ -191,6 +217,7 @@ impl Light {
                 beam_distribution,
                 intensity: e.radiant,
                 shadows: e.shadows,
+                shadow_factor: e.shadow_factor,
                 attenuation: e.attenuation,
                 inverse_square: e.inverse_square,
             },
@@ -198,6 +225,7 @@ impl Light {
                 direction: direction.normalize_or_zero(),
                 irradiance: e.radiant,
                 shadows: e.shadows,
+                shadow_factor: e.shadow_factor,
             },
             LightShape::Rect {
                 corner,
@@ -240,13 +268,14 @@ impl Light {
                 position,
                 intensity,
                 shadows,
+                shadow_factor,
                 attenuation,
                 inverse_square,
             } => delta_sample(
                 p,
                 *position,
                 *intensity,
-                *shadows,
+                (*shadows, *shadow_factor),
                 (*attenuation, *inverse_square),
             ),
             Light::Spot {
@@ -257,6 +286,7 @@ impl Light {
                 beam_distribution,
                 intensity,
                 shadows,
+                shadow_factor,
                 attenuation,
                 inverse_square,
             } => {
@@ -270,7 +300,7 @@ impl Light {
                     p,
                     *position,
                     *intensity * falloff,
-                    *shadows,
+                    (*shadows, *shadow_factor),
                     (*attenuation, *inverse_square),
                 )
             }
@@ -278,11 +308,13 @@ impl Light {
                 direction,
                 irradiance,
                 shadows,
+                shadow_factor,
             } => Some(LightSample {
                 wi: -*direction,
                 contribution: *irradiance,
                 target: None,
                 shadows: *shadows,
+                shadow_factor: *shadow_factor,
                 pdf: 0.0,
                 distance: f32::INFINITY,
             }),
@@ -295,6 +327,7 @@ impl Light {
                 }?;
                 s.contribution *= a.radiance * attenuation_factor(a.attenuation, s.distance);
                 s.shadows = a.shadows;
+                s.shadow_factor = a.shadow_factor;
                 (s.contribution.max_element() > 0.0 && s.contribution.is_finite()).then_some(s)
             }
             Light::Mesh(m) => m.sample(p, u, geometry?),
@@ -333,7 +366,7 @@ fn delta_sample(
     p: Vec3,
     q: Vec3,
     intensity: Vec3,
-    shadows: bool,
+    (shadows, shadow_factor): (bool, f32),
     falloff: (Option<(f32, f32)>, bool),
 ) -> Option<LightSample> {
     let (attenuation, inverse_square) = falloff;
@@ -356,6 +389,7 @@ fn delta_sample(
             ng: Vec3::ZERO,
         }),
         shadows,
+        shadow_factor,
         pdf: 0.0,
         distance: dist,
     })
@@ -407,6 +441,7 @@ pub(crate) fn solid_angle_sample(
         contribution: Vec3::splat(1.0 / pdf),
         target: Some(target),
         shadows: true,
+        shadow_factor: 0.0,
         pdf,
         distance: dist,
     })

@@ -87,6 +87,7 @@ impl SphereLight {
             contribution: Vec3::splat(1.0 / pdf),
             target: Some(error_target(q, n)),
             shadows: true,
+            shadow_factor: 0.0,
             pdf,
             distance: dist,
         })

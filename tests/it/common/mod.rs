@@ -113,6 +113,7 @@ pub fn light(world: &mut World, shape: LightShape, radiant: Vec3, samples: u32) 
             shape,
             radiant,
             shadows: true,
+            shadow_factor: 0.0,
             samples,
             visible: false,
             attenuation: None,

@@ -81,6 +81,7 @@ pub fn light(w: &mut Walk<'_>, light: &gltf::khr_lights_punctual::Light<'_>, wor
         color: (r as f64, g as f64, b as f64),
         intensity: (light.intensity() as f64 / LUMENS_PER_WATT).max(0.0),
         shadows: true,
+        shadow_factor: 0.0,
         samples: None,
         visible: false,
         attenuation: None,

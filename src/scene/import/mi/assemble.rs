@@ -710,6 +710,11 @@ fn light_desc(
         color,
         intensity: 1.0,
         shadows: shadows && light.shadows,
+        shadow_factor: if shadows && light.shadows {
+            light.shadow_factor
+        } else {
+            0.0
+        },
         samples,
         visible: light.visible && !is_delta,
         attenuation: if directional { None } else { light.attenuation },

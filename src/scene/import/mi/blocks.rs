@@ -602,6 +602,7 @@ pub fn light(r: &mut Reader, c: &mut Cursor, open: Pos) {
                 model: m.model,
                 color: m.color,
                 shadows: m.shadows,
+                shadow_factor: m.shadow_factor,
                 inverse_square: m.physical,
                 attenuation: m.attenuation,
                 origin,

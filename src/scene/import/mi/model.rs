@@ -110,6 +110,8 @@ pub struct RawLight {
     pub color: V3,
     /// Whether it casts shadows.
     pub shadows: bool,
+    /// The fraction of the light that passes occluders (`factor`, 0 when shadows are off).
+    pub shadow_factor: f64,
     /// Whether the inverse-square law applies (`physical_light`) or not (`mib_light_*`).
     pub inverse_square: bool,
     /// `atten` with `start`/`stop`.

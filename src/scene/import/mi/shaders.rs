@@ -559,6 +559,8 @@ pub struct MappedLight {
     pub color: V3,
     /// Casts shadows.
     pub shadows: bool,
+    /// The shadow `factor`: the fraction of the light that passes occluders, in [0, 1].
+    pub shadow_factor: f64,
     /// `physical_light`: inverse-square and power-normalised colour.
     pub physical: bool,
     /// `atten` `(start, stop)`.
@@ -584,18 +586,27 @@ pub fn light(c: &mut Cursor, call: &ShaderCall) -> Option<MappedLight> {
             model: LightModel::Spot { cone },
             color,
             shadows: true,
+            shadow_factor: 0.0,
             physical: true,
             attenuation: None,
         });
     }
     let shadows = p.boolean(c, "shadow", false);
-    if shadows && p.scalar(c, "factor", 0.0) != 0.0 {
-        if let Some(at) = p.pos("factor") {
-            c.warn(
+    let mut shadow_factor = if shadows {
+        p.scalar(c, "factor", 0.0)
+    } else {
+        0.0
+    };
+    if !(0.0..=1.0).contains(&shadow_factor) {
+        let at = p.pos("factor").unwrap_or(call.pos);
+        c.report(
+            Problem::error(
                 at,
-                "shadow \"factor\" (partly transparent shadows) is not mapped; shadows are opaque",
-            );
-        }
+                format!("shadow \"factor\" must be between 0 and 1, found {shadow_factor}"),
+            )
+            .with_help("0 gives full shadows, 1 none"),
+        );
+        shadow_factor = 0.0;
     }
     let attenuation = (b.params.contains(&"atten") && p.boolean(c, "atten", false))
         .then(|| (p.scalar(c, "start", 0.0), p.scalar(c, "stop", 1.0)));
@@ -610,6 +621,7 @@ pub fn light(c: &mut Cursor, call: &ShaderCall) -> Option<MappedLight> {
         model,
         color,
         shadows,
+        shadow_factor,
         physical: false,
         attenuation,
     })

@@ -1252,6 +1252,7 @@ impl Builder {
                 color: l.values.color,
                 intensity: l.values.intensity,
                 shadows: l.shadows,
+                shadow_factor: 0.0,
                 samples: None,
                 visible: false,
                 attenuation: None,

@@ -211,6 +211,7 @@ impl EnvLight {
                 contribution,
                 target: None,
                 shadows: true,
+                shadow_factor: 0.0,
                 pdf,
                 distance: f32::INFINITY,
             },
