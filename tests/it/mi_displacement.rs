@@ -6,6 +6,7 @@
 
 use std::path::Path;
 
+use crate::common::{mi_point_lamp, mi_preamble, BASE};
 use stagelight::framebuffer::FrameBuffers;
 use stagelight::scene::import::mi::read_mi;
 use stagelight::scene::load_scene;
@@ -14,31 +15,10 @@ use stagelight::scene::load_scene;
 /// material with `displace` (when given), seen by a camera at the origin (image plane
 /// ±4/3 by ±1 at distance 1, 160 × 120).
 fn scene(displace: &str) -> String {
+    let preamble = mi_preamble(&format!("{BASE}link \"myDisplacement.so\"\n"), "");
+    let lamp = mi_point_lamp("\"color\" 1.0 1.0 1.0, \"atten\" false");
     format!(
-        r#"link "base.so"
-$include <base.mi>
-link "myDisplacement.so"
-options "opt"
-samples 0 0
-object space
-end options
-camera "Camera"
-frame 1
-output "rgb" "png" "out.png"
-focal 12.0
-aperture 32.0
-aspect 1.33333333333
-resolution 160 120
-end camera
-instance "Camera_inst" "Camera"
-end instance
-light "Lamp"
-"mib_light_point" ("color" 1.0 1.0 1.0, "atten" false)
-origin 0.0 0.0 0.0
-end light
-instance "Lamp_inst" "Lamp"
-end instance
-material "grey"
+        r#"{preamble}{lamp}material "grey"
 opaque
 "mib_illum_lambert" ("diffuse" 0.5 0.5 0.5, "lights" [ "Lamp_inst" ])
 {displace}

@@ -12,6 +12,7 @@ use stagelight::scene::import::mi::read_mi;
 use stagelight::scene::{load_scene, load_scene_str};
 
 use crate::common::cli::{run_in, scratch, stderr_of};
+use crate::common::{mi_preamble, BASE, PHYSICS};
 
 const RED: Vec3 = Vec3::new(1.0, 0.0, 0.0);
 const BLUE: Vec3 = Vec3::new(0.0, 0.0, 1.0);
@@ -188,27 +189,12 @@ fn a_material_environment_scales_and_goes_black_past_the_trace_depth() {
 /// z = −2, x ∈ [−1.5, −0.3] (`left`, whose statements follow its shader) and
 /// x ∈ [0.3, 1.5], y ∈ [−0.5, 0.5], facing the camera.
 fn mi_scene(left: &str) -> String {
+    let preamble = mi_preamble(
+        &format!("{BASE}{PHYSICS}"),
+        "environment \"mib_opacity\" (\"input\" 0 0 1, \"opacity\" 1 1 1)\n",
+    );
     format!(
-        r#"link "base.so"
-$include <base.mi>
-link "physics.so"
-$include <physics.mi>
-options "opt"
-samples 0 0
-object space
-end options
-camera "Camera"
-frame 1
-output "rgb" "png" "out.png"
-focal 12.0
-aperture 32.0
-aspect 1.33333333333
-resolution 160 120
-environment "mib_opacity" ("input" 0 0 1, "opacity" 1 1 1)
-end camera
-instance "Camera_inst" "Camera"
-end instance
-material "left"
+        r#"{preamble}material "left"
 "dgs_material" ("specular" 1 1 1)
 {left}
 end material

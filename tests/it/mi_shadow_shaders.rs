@@ -14,6 +14,7 @@ use stagelight::scene::import::mi::read_mi;
 use stagelight::scene::{load_scene, load_scene_str};
 
 use crate::common::cli::{run_in, scratch, stderr_of};
+use crate::common::{mi_point_lamp, mi_preamble, BASE};
 
 /// 40 × 40 pixels looking straight down at the floor from z = 4 (fov 40°); the occluder
 /// (`material` `occ`, hidden from the camera) is the square |x|, |y| ≤ 0.5 at z = 1.
@@ -226,30 +227,10 @@ fn a_bake_under_a_grey_shadow_transparency_stores_half_the_irradiance() {
 /// eye, a grey floor at z = −2 and an occluder hidden from the camera at z = −1 over
 /// x, y ∈ [−0.3, 0.3] in material `occ`, whose statements follow its shader.
 pub(crate) fn mi_scene(shadow: &str) -> String {
+    let preamble = mi_preamble(BASE, "");
+    let lamp = mi_point_lamp("\"color\" 1.0 1.0 1.0, \"atten\" false, \"shadow\" on");
     format!(
-        r#"link "base.so"
-$include <base.mi>
-options "opt"
-samples 0 0
-object space
-end options
-camera "Camera"
-frame 1
-output "rgb" "png" "out.png"
-focal 12.0
-aperture 32.0
-aspect 1.33333333333
-resolution 160 120
-end camera
-instance "Camera_inst" "Camera"
-end instance
-light "Lamp"
-"mib_light_point" ("color" 1.0 1.0 1.0, "atten" false, "shadow" on)
-origin 0.0 0.0 0.0
-end light
-instance "Lamp_inst" "Lamp"
-end instance
-material "grey"
+        r#"{preamble}{lamp}material "grey"
 opaque
 "mib_illum_lambert" ("diffuse" 0.5 0.5 0.5, "lights" [ "Lamp_inst" ])
 end material

@@ -9,6 +9,7 @@
 use std::f64::consts::PI;
 use std::path::Path;
 
+use crate::common::{mi_point_lamp, mi_preamble, BASE};
 use stagelight::components::{Camera, RenderCamera};
 use stagelight::framebuffer::FrameBuffers;
 use stagelight::scene::desc::{ApproximationDesc, MeshDesc, SpaceDesc};
@@ -18,38 +19,23 @@ use stagelight::scene::{load_scene, LoadedScene};
 /// Options, a camera at the origin looking down −z (focal 12, aperture 32, aspect 4/3,
 /// 160 × 120: the image plane spans ±4/3 by ±1 at distance 1), a point light at the eye and
 /// a grey `mib_illum_lambert`.
-const HEADER: &str = r#"link "base.so"
-$include <base.mi>
-options "opt"
-samples 0 0
-object space
-end options
-camera "Camera"
-frame 1
-output "rgb" "png" "out.png"
-focal 12.0
-aperture 32.0
-aspect 1.33333333333
-resolution 160 120
-end camera
-instance "Camera_inst" "Camera"
-end instance
-light "Lamp"
-"mib_light_point" ("color" 1.0 1.0 1.0, "atten" false)
-origin 0.0 0.0 0.0
-end light
-instance "Lamp_inst" "Lamp"
-end instance
-material "grey"
+fn header() -> String {
+    let preamble = mi_preamble(BASE, "");
+    let lamp = mi_point_lamp("\"color\" 1.0 1.0 1.0, \"atten\" false");
+    format!(
+        r#"{preamble}{lamp}material "grey"
 opaque
 "mib_illum_lambert" ("diffuse" 0.5 0.5 0.5, "lights" [ "Lamp_inst" ])
 end material
-"#;
+"#
+    )
+}
 
 /// Places `object` at z = −1 and renders from the camera.
 fn scene(object: &str) -> String {
+    let header = header();
     format!(
-        r#"{HEADER}{object}
+        r#"{header}{object}
 instance "Thing_inst" "Thing"
 transform
 1.0 0.0 0.0 0.0

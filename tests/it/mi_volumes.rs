@@ -8,6 +8,7 @@
 
 use std::path::Path;
 
+use crate::common::{mi_point_lamp, mi_preamble, BASE, PHYSICS};
 use stagelight::framebuffer::FrameBuffers;
 use stagelight::scene::desc::VolumeDesc;
 use stagelight::scene::import::mi::read_mi;
@@ -18,32 +19,10 @@ use stagelight::scene::load_scene;
 /// given, a transparent box (`mib_opacity` 0) over x, y ∈ [−0.3, 0.3], z ∈ [−1.2, −0.8]
 /// whose material has that volume statement.
 fn scene(volume: &str) -> String {
+    let preamble = mi_preamble(&format!("{BASE}{PHYSICS}"), "");
+    let lamp = mi_point_lamp("\"color\" 1.0 1.0 1.0, \"atten\" false, \"shadow\" on");
     format!(
-        r#"link "base.so"
-$include <base.mi>
-link "physics.so"
-$include <physics.mi>
-options "opt"
-samples 0 0
-object space
-end options
-camera "Camera"
-frame 1
-output "rgb" "png" "out.png"
-focal 12.0
-aperture 32.0
-aspect 1.33333333333
-resolution 160 120
-end camera
-instance "Camera_inst" "Camera"
-end instance
-light "Lamp"
-"mib_light_point" ("color" 1.0 1.0 1.0, "atten" false, "shadow" on)
-origin 0.0 0.0 0.0
-end light
-instance "Lamp_inst" "Lamp"
-end instance
-material "grey"
+        r#"{preamble}{lamp}material "grey"
 opaque
 "mib_illum_lambert" ("diffuse" 0.5 0.5 0.5, "lights" [ "Lamp_inst" ])
 end material

@@ -3,10 +3,12 @@
 
 pub mod cli;
 mod meshes;
+mod mi_text;
 mod rays;
 mod scene_text;
 pub use cli::*;
 pub use meshes::*;
+pub use mi_text::*;
 pub use rays::*;
 pub use scene_text::*;
 
