@@ -383,10 +383,10 @@ fn summary(w: &Workload, reps: usize) {
             };
             let ms = |s: f64| s * 1e3;
             println!(
-                "build quality={name} threads={threads}: {:.0} ms wall{cpu} (prepare {:.0}, ploc {:.0}, reinsertion {:.0}, collapse {:.0}, layout {:.0})",
+                "build quality={name} threads={threads}: {:.0} ms wall{cpu} (prepare {:.0}, hierarchy {:.0}, reinsertion {:.0}, collapse {:.0}, layout {:.0})",
                 best * 1e3,
                 ms(phases.prepare),
-                ms(phases.ploc),
+                ms(phases.hierarchy),
                 ms(phases.reinsertion),
                 ms(phases.collapse),
                 ms(phases.layout),
