@@ -32,6 +32,9 @@ const MID_BINS: usize = 16;
 const MID_NODE: usize = 128;
 /// Nodes with at most this many triangles are split by an exact sweep instead of bins.
 const SWEEP_MAX: usize = 8;
+/// Subtrees of at most this many triangles are binary leaves (the collapse decides how the
+/// triangles of neighbouring leaves share 8-wide leaves of up to three).
+const LEAF_MAX: usize = 2;
 /// Subtrees with more triangles than this build their two halves in parallel.
 const PARALLEL_PRIMS: usize = 4096;
 /// Nodes with more triangles than this bin in parallel chunks of `BIN_CHUNK`.
@@ -199,9 +202,12 @@ pub(crate) fn build(refs: Vec<Bounds3>) -> Bvh2 {
             || (Bounds::EMPTY, Bounds::EMPTY),
             |a, b| (a.0.union(b.0), a.1.union(b.1)),
         );
+    // `2n − 1` slots, the size with one triangle per leaf: every subtree owns a slice of
+    // that size, and slices of leaves of two triangles stay unused (never written, so the
+    // zeroed allocation costs no page for them).
     let mut nodes = vec![Bvh2Node::default(); 2 * n - 1];
-    if n == 1 {
-        nodes[0] = bounds.node(1, 0);
+    if n <= LEAF_MAX {
+        nodes[0] = bounds.node(n as u32, 0);
     } else {
         nodes[0] = bounds.node(0, 1);
         Builder.node(&mut refs, &mut ids, 0, centroids, &mut nodes[1..], 1, 0);
@@ -251,25 +257,25 @@ impl Builder {
         let (left_out, right_out) = rest.split_at_mut(2 * nl - 2);
         let left_base = base + 2;
         let right_base = left_base + (2 * nl - 2) as u32;
-        pair[0] = if nl == 1 {
-            left.node(1, first)
+        pair[0] = if nl <= LEAF_MAX {
+            left.node(nl as u32, first)
         } else {
             left.node(0, left_base)
         };
-        pair[1] = if nr == 1 {
-            right.node(1, first + nl as u32)
+        pair[1] = if nr <= LEAF_MAX {
+            right.node(nr as u32, first + nl as u32)
         } else {
             right.node(0, right_base)
         };
         let (lrefs, rrefs) = refs.split_at_mut(nl);
         let (lids, rids) = ids.split_at_mut(nl);
         let mut left_job = || {
-            if nl > 1 {
+            if nl > LEAF_MAX {
                 self.node(lrefs, lids, first, lc, left_out, left_base, depth + 1);
             }
         };
         let mut right_job = || {
-            if nr > 1 {
+            if nr > LEAF_MAX {
                 let f = first + nl as u32;
                 self.node(rrefs, rids, f, rc, right_out, right_base, depth + 1);
             }
@@ -508,10 +514,14 @@ mod tests {
             depth = depth.max(d);
             let node = &bvh.nodes[i];
             let (lo, hi) = if node.prim_count != 0 {
-                assert_eq!(node.prim_count, 1);
-                let p = bvh.primitive_indices[node.first_index as usize] as usize;
-                assert!(!std::mem::replace(&mut seen[p], true));
-                (refs[p][0], refs[p][1])
+                assert!(node.prim_count as usize <= LEAF_MAX);
+                let (mut lo, mut hi) = (Vec3A::INFINITY, Vec3A::NEG_INFINITY);
+                for k in 0..node.prim_count {
+                    let p = bvh.primitive_indices[(node.first_index + k) as usize] as usize;
+                    assert!(!std::mem::replace(&mut seen[p], true));
+                    (lo, hi) = (lo.min(refs[p][0]), hi.max(refs[p][1]));
+                }
+                (lo, hi)
             } else {
                 let l = node.first_index as usize;
                 assert!(l > i);
