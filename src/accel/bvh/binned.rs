@@ -150,11 +150,10 @@ impl<const N: usize> Bins<N> {
 
     fn add(&mut self, map: &BinMap<N>, refs: &[Bounds]) {
         for &r in refs {
-            let b = map.bins(r.centroid());
-            for axis in 0..3 {
-                let slot = &mut self.bounds[axis][b[axis]];
-                *slot = slot.union(r);
-                self.counts[axis][b[axis]] += 1;
+            let bins = map.bins(r.centroid());
+            for ((bounds, counts), b) in self.bounds.iter_mut().zip(&mut self.counts).zip(bins) {
+                bounds[b] = bounds[b].union(r);
+                counts[b] += 1;
             }
         }
     }
@@ -246,10 +245,12 @@ impl Builder {
             let (nl, left, right) = sweep(refs, ids);
             (nl, left, right, Bounds::EMPTY, Bounds::EMPTY)
         } else {
-            match n {
-                ..=SMALL_NODE => split_binned::<SMALL_BINS>(refs, ids, centroids, depth),
-                ..=MID_NODE => split_binned::<MID_BINS>(refs, ids, centroids, depth),
-                _ => split_binned::<BINS>(refs, ids, centroids, depth),
+            if n <= SMALL_NODE {
+                split_binned::<SMALL_BINS>(refs, ids, centroids, depth)
+            } else if n <= MID_NODE {
+                split_binned::<MID_BINS>(refs, ids, centroids, depth)
+            } else {
+                split_binned::<BINS>(refs, ids, centroids, depth)
             }
         };
         let nr = n - nl;
@@ -349,13 +350,13 @@ fn binned_split<const N: usize>(refs: &[Bounds], map: &BinMap<N>, depth: u32) ->
                 right_area[b] = acc.half_area();
             }
             let (mut acc, mut count) = (Bounds::EMPTY, 0u32);
-            for b in 1..N {
+            for (b, &right) in right_area.iter().enumerate().skip(1) {
                 acc = acc.union(bins.bounds[axis][b - 1]);
                 count += bins.counts[axis][b - 1];
                 if count == 0 || count == n {
                     continue;
                 }
-                let cost = acc.half_area() * count as f32 + right_area[b] * (n - count) as f32;
+                let cost = acc.half_area() * count as f32 + right * (n - count) as f32;
                 if cost < best.map_or(f32::INFINITY, |(c, _, _)| c) {
                     best = Some((cost, axis, b));
                 }
