@@ -11,7 +11,7 @@
 //!   2 threads (rayon pools; 1 thread also per CPU-second of the tracing thread), hit counts
 //!   checked against the anchor's (715,018 coherent; 602,740 incoherent for Embree and obvhs,
 //!   602,741 here: see `EXPECTED_HITS_INCOHERENT`), and build times (wall; 1 thread also CPU
-//!   of the building thread) split by phase (`AccelStats::build_phases`: prepare, PLOC,
+//!   of the building thread) split by phase (`AccelStats::build_phases`: prepare, hierarchy,
 //!   reinsertion, collapse, layout).
 //! * Then criterion groups (10 samples each): `build`, `build/{1,2}t` (thread scaling of the
 //!   Medium build), `trace/{1,2}t`, and `tiny`, a small
@@ -383,10 +383,10 @@ fn summary(w: &Workload, reps: usize) {
             };
             let ms = |s: f64| s * 1e3;
             println!(
-                "build quality={name} threads={threads}: {:.0} ms wall{cpu} (prepare {:.0}, ploc {:.0}, reinsertion {:.0}, collapse {:.0}, layout {:.0})",
+                "build quality={name} threads={threads}: {:.0} ms wall{cpu} (prepare {:.0}, hierarchy {:.0}, reinsertion {:.0}, collapse {:.0}, layout {:.0})",
                 best * 1e3,
                 ms(phases.prepare),
-                ms(phases.ploc),
+                ms(phases.hierarchy),
                 ms(phases.reinsertion),
                 ms(phases.collapse),
                 ms(phases.layout),
@@ -494,8 +494,8 @@ fn criterion_groups(c: &mut Criterion, w: &Workload, group: &str) {
         });
     }
     g.finish();
-    // Build thread scaling: obvhs parallelises PLOC, reinsertion and the radix sort over the
-    // current rayon pool; our node conversion is serial.
+    // Build thread scaling: every pass runs on the current rayon pool (the binned-SAH
+    // builder's subtrees and binning, obvhs's PLOC for the other presets, the collapse).
     for threads in [1, 2] {
         let p = pool(threads);
         let mut g = c.benchmark_group(format!("{group}/build/{threads}t"));

@@ -14,7 +14,7 @@
 
 use std::time::Instant;
 
-use glam::{Vec3, Vec4};
+use glam::{Vec3, Vec3A, Vec4};
 use obvhs::{
     bvh2::{reinsertion::ReinsertionOptimizer, Bvh2},
     ploc::{PlocBuilder, PlocSearchDistance},
@@ -26,6 +26,7 @@ use rayon::prelude::*;
 use super::triangle::is_degenerate;
 use crate::settings::BvhQuality;
 
+mod binned;
 mod collapse;
 
 /// Child reference flag: the child is a leaf.
@@ -143,11 +144,11 @@ pub(crate) struct Bvh {
 /// Wall-clock seconds of each phase of [`build`] (they add up to the build time).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct BuildPhases {
-    /// Degenerate-triangle filter and obvhs's input copy.
+    /// Degenerate-triangle filter and the builder's input (triangle boxes).
     pub prepare: f64,
-    /// obvhs's PLOC build of the binary hierarchy.
-    pub ploc: f64,
-    /// obvhs's reinsertion optimiser on it.
+    /// The binary hierarchy: our binned SAH (`binned.rs`, `Medium`) or obvhs's PLOC.
+    pub hierarchy: f64,
+    /// obvhs's reinsertion optimiser on a PLOC hierarchy (zero for `Medium`).
     pub reinsertion: f64,
     /// The collapse into 8-wide nodes with exact boxes (`collapse.rs`).
     pub collapse: f64,
@@ -209,24 +210,29 @@ pub(crate) fn build(tris: &[[Vec3; 3]], quality: BvhQuality) -> Bvh {
             phases,
         };
     }
-    let ob_tris: Vec<Triangle> = valid
-        .par_iter()
-        .map(|&i| {
-            let [v0, v1, v2] = tris[i as usize];
-            Triangle {
-                v0: v0.into(),
-                v1: v1.into(),
-                v2: v2.into(),
-            }
-        })
-        .collect();
-    phases.prepare = clock.lap();
     let params = build_params(quality);
-    let mut bvh2 = ploc(&ob_tris, &params);
-    drop(ob_tris);
-    phases.ploc = clock.lap();
-    reinsert(&mut bvh2, &params);
-    phases.reinsertion = clock.lap();
+    let bvh2 = if quality == BvhQuality::Medium {
+        let refs: Vec<binned::Bounds3> = valid
+            .par_iter()
+            .map(|&i| {
+                let [v0, v1, v2] = tris[i as usize].map(Vec3A::from);
+                [v0.min(v1).min(v2), v0.max(v1).max(v2)]
+            })
+            .collect();
+        phases.prepare = clock.lap();
+        let bvh2 = binned::build(refs);
+        phases.hierarchy = clock.lap();
+        bvh2
+    } else {
+        let ob_tris = obvhs_triangles(tris, &valid);
+        phases.prepare = clock.lap();
+        let mut bvh2 = ploc(&ob_tris, &params);
+        drop(ob_tris);
+        phases.hierarchy = clock.lap();
+        reinsert(&mut bvh2, &params);
+        phases.reinsertion = clock.lap();
+        bvh2
+    };
     let collapsed = collapse::collapse(&bvh2, params.max_prims_per_leaf.clamp(1, 3));
     drop(bvh2);
     phases.collapse = clock.lap();
@@ -294,6 +300,21 @@ impl PhaseClock {
         self.0 = now;
         seconds
     }
+}
+
+/// obvhs's input: the triangles `valid` names, in that order.
+fn obvhs_triangles(tris: &[[Vec3; 3]], valid: &[u32]) -> Vec<Triangle> {
+    valid
+        .par_iter()
+        .map(|&i| {
+            let [v0, v1, v2] = tris[i as usize];
+            Triangle {
+                v0: v0.into(),
+                v1: v1.into(),
+                v2: v2.into(),
+            }
+        })
+        .collect()
 }
 
 /// The inverse of a permutation of `0..n`: `inverse(p)[p[k]] = k` (one scattered pass; a
@@ -435,12 +456,19 @@ mod tests {
     fn build_phases_add_up_to_the_build_time() {
         let bvh = build(&soup(3000), BvhQuality::Medium);
         let p = bvh.phases;
-        let parts = [p.prepare, p.ploc, p.reinsertion, p.collapse, p.layout];
-        assert!(parts.iter().all(|&t| t > 0.0), "{p:?}");
+        let parts = [p.prepare, p.hierarchy, p.reinsertion, p.collapse, p.layout];
+        // `Medium` builds its own binned-SAH hierarchy: no reinsertion.
+        assert!(
+            parts.iter().all(|&t| t > 0.0) == (p.reinsertion > 0.0),
+            "{p:?}"
+        );
+        assert_eq!(p.reinsertion, 0.0);
+        let fast = build(&soup(3000), BvhQuality::Fast).phases;
+        assert!(fast.hierarchy > 0.0 && fast.reinsertion > 0.0, "{fast:?}");
         let sum: f64 = parts.iter().sum();
         assert!(sum <= bvh.build_seconds, "{sum} > {}", bvh.build_seconds);
         let empty = build(&[[Vec3::ZERO; 3]], BvhQuality::Medium).phases;
-        assert!(empty.prepare > 0.0 && empty.ploc == 0.0 && empty.layout == 0.0);
+        assert!(empty.prepare > 0.0 && empty.hierarchy == 0.0 && empty.layout == 0.0);
     }
 
     #[test]

@@ -432,16 +432,21 @@ fn obvhs_pitfall_deep_hierarchy_neither_crashes_nor_loses_hits() {
         ));
         rays.push(ray(o + Vec3::Z * 8.0, rng.sphere().as_vec3()));
     }
+    // PLOC (`Fast`, `High`) nests these boxes hundreds of levels deep; the binned-SAH
+    // builder of `Medium` splits nested boxes by centroid and stays shallow. The heap stack
+    // must be exercised by at least one quality, and every quality must answer exactly.
+    let mut deepest = 0;
     for q in QUALITIES {
         let accel = Accel::build(tris.clone(), q);
         let depth = accel.stats().depth;
         eprintln!("{q:?}: depth {depth}, {} nodes", accel.stats().nodes);
-        assert!(
-            depth > 16,
-            "scene not deep enough to exercise the heap stack: {depth}"
-        );
+        deepest = deepest.max(depth);
         assert_eq!(mismatches(&accel, &tris, &rays), 0, "{q:?}, depth {depth}");
     }
+    assert!(
+        deepest > 16,
+        "scene not deep enough to exercise the heap stack: {deepest}"
+    );
 }
 
 #[test]

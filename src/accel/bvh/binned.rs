@@ -1,0 +1,609 @@
+//! stagelight's own builder of the binary hierarchy: top-down binned SAH (32 centroid bins
+//! per axis; an exact sweep over the three axes for nodes of at most `SWEEP_MAX` triangles),
+//! one triangle per leaf, written straight into obvhs's `Bvh2` layout for `collapse.rs`.
+//!
+//! * **Parallel and deterministic**: subtrees go to `rayon::join`, large nodes bin in
+//!   parallel chunks; bins merge by min/max and integer counts (exact in any order), so the
+//!   splits, and hence the tree bytes, are the same at any thread count. Each subtree owns a
+//!   fixed slice of the node array: a subtree of `n` triangles has exactly `2n − 1` nodes.
+//! * **Depth-first layout**: a node's two children are adjacent, followed by the left
+//!   child's descendants, then the right child's, so the collapse walks memory in order.
+//! * **Exact boxes**: a leaf's box is its triangle's min/max, an inner node's the union of
+//!   its children's, as `collapse.rs` requires.
+//! * **Extreme geometry**: SAH costs that overflow `f32` (extents around 1e19 and beyond) or
+//!   subtrees deeper than `SAH_DEPTH` fall back to a median split over the bins (or over
+//!   positions when all centroids share one bin), so every split makes progress and the
+//!   recursion stays shallow.
+
+use glam::Vec3A;
+use obvhs::{
+    aabb::Aabb,
+    bvh2::{node::Bvh2Node, Bvh2},
+};
+use rayon::prelude::*;
+
+/// Centroid bins per axis.
+const BINS: usize = 32;
+/// Fewer bins for smaller nodes (`SMALL_BINS` up to `SMALL_NODE` triangles, then
+/// `MID_BINS` up to `MID_NODE`): a node's bins are cleared and swept whatever its size.
+const SMALL_BINS: usize = 8;
+const SMALL_NODE: usize = 32;
+const MID_BINS: usize = 16;
+const MID_NODE: usize = 128;
+/// Nodes with at most this many triangles are split by an exact sweep instead of bins.
+const SWEEP_MAX: usize = 8;
+/// Subtrees of at most this many triangles are binary leaves (the collapse decides how the
+/// triangles of neighbouring leaves share 8-wide leaves of up to three).
+const LEAF_MAX: usize = 2;
+/// Subtrees with more triangles than this build their two halves in parallel.
+const PARALLEL_PRIMS: usize = 4096;
+/// Nodes with more triangles than this bin in parallel chunks of `BIN_CHUNK`.
+const PARALLEL_BINNING: usize = 1 << 16;
+const BIN_CHUNK: usize = 1 << 14;
+/// Below this depth splits minimise the SAH; deeper ones split at the median.
+const SAH_DEPTH: u32 = 48;
+
+/// An axis-aligned box.
+#[derive(Clone, Copy, Debug)]
+struct Bounds {
+    lo: Vec3A,
+    hi: Vec3A,
+}
+
+impl Bounds {
+    const EMPTY: Bounds = Bounds {
+        lo: Vec3A::INFINITY,
+        hi: Vec3A::NEG_INFINITY,
+    };
+
+    #[inline(always)]
+    fn union(self, o: Bounds) -> Bounds {
+        Bounds {
+            lo: self.lo.min(o.lo),
+            hi: self.hi.max(o.hi),
+        }
+    }
+
+    #[inline(always)]
+    fn grow(&mut self, p: Vec3A) {
+        self.lo = self.lo.min(p);
+        self.hi = self.hi.max(p);
+    }
+
+    #[inline(always)]
+    fn half_area(self) -> f32 {
+        let d = self.hi - self.lo;
+        (d.x + d.y) * d.z + d.x * d.y
+    }
+
+    /// The centre, halved before the sum so that it cannot overflow.
+    #[inline(always)]
+    fn centroid(self) -> Vec3A {
+        self.lo * 0.5 + self.hi * 0.5
+    }
+
+    fn node(self, prim_count: u32, first_index: u32) -> Bvh2Node {
+        Bvh2Node::new(
+            Aabb {
+                min: self.lo,
+                max: self.hi,
+            },
+            prim_count,
+            first_index,
+        )
+    }
+}
+
+/// Maps centroids to `N` bins over a node's centroid bounds.
+#[derive(Clone, Copy)]
+struct BinMap<const N: usize> {
+    origin: Vec3A,
+    scale: Vec3A,
+}
+
+impl<const N: usize> BinMap<N> {
+    fn new(centroids: Bounds) -> Self {
+        let extent = centroids.hi - centroids.lo;
+        let scale = Vec3A::from_array(extent.to_array().map(|e| {
+            if e > 0.0 && e.is_finite() {
+                N as f32 / e
+            } else {
+                0.0
+            }
+        }));
+        Self {
+            origin: centroids.lo,
+            scale,
+        }
+    }
+
+    /// The bin of `c` on each axis (NaN from `inf · 0` maps to bin 0).
+    #[inline(always)]
+    fn bins(&self, c: Vec3A) -> [usize; 3] {
+        let t = ((c - self.origin) * self.scale).as_uvec3();
+        t.to_array().map(|b| (b as usize).min(N - 1))
+    }
+
+    /// Whether `c` falls in a bin below `bin` on `axis`, for an axis a split was chosen on:
+    /// its scale is finite and positive and `c − origin` is finite and not negative, so
+    /// `t < bin` is `floor(t) < bin`, the test [`Self::bins`] implies.
+    #[inline(always)]
+    fn below(&self, c: Vec3A, axis: usize, bin: f32) -> bool {
+        (c[axis] - self.origin[axis]) * self.scale[axis] < bin
+    }
+}
+
+/// Boxes and counts of the triangles in each of `N` bins, per axis.
+#[derive(Clone)]
+struct Bins<const N: usize> {
+    bounds: [[Bounds; N]; 3],
+    counts: [[u32; N]; 3],
+}
+
+impl<const N: usize> Bins<N> {
+    fn new() -> Self {
+        Self {
+            bounds: [[Bounds::EMPTY; N]; 3],
+            counts: [[0; N]; 3],
+        }
+    }
+
+    fn add(&mut self, map: &BinMap<N>, refs: &[Bounds]) {
+        for &r in refs {
+            let bins = map.bins(r.centroid());
+            for ((bounds, counts), b) in self.bounds.iter_mut().zip(&mut self.counts).zip(bins) {
+                bounds[b] = bounds[b].union(r);
+                counts[b] += 1;
+            }
+        }
+    }
+
+    fn merge(mut self, o: Self) -> Self {
+        for axis in 0..3 {
+            for b in 0..N {
+                self.bounds[axis][b] = self.bounds[axis][b].union(o.bounds[axis][b]);
+                self.counts[axis][b] += o.counts[axis][b];
+            }
+        }
+        self
+    }
+}
+
+/// How a node is split: on `axis`, bins below `bin` go left.
+struct BinSplit {
+    axis: usize,
+    bin: usize,
+    left: Bounds,
+    right: Bounds,
+}
+
+/// Builds the binary hierarchy over `refs` (each triangle's exact box, indexed by the
+/// primitive index the hierarchy reports).
+pub(crate) fn build(refs: Vec<Bounds3>) -> Bvh2 {
+    let n = refs.len();
+    assert!(n > 0);
+    let mut refs: Vec<Bounds> = refs
+        .into_par_iter()
+        .map(|[lo, hi]| Bounds { lo, hi })
+        .collect();
+    let mut ids: Vec<u32> = (0..n as u32).collect();
+    let (bounds, centroids) = refs
+        .par_iter()
+        .fold(
+            || (Bounds::EMPTY, Bounds::EMPTY),
+            |(b, c), r| {
+                let mut c = c;
+                c.grow(r.centroid());
+                (b.union(*r), c)
+            },
+        )
+        .reduce(
+            || (Bounds::EMPTY, Bounds::EMPTY),
+            |a, b| (a.0.union(b.0), a.1.union(b.1)),
+        );
+    // `2n − 1` slots, the size with one triangle per leaf: every subtree owns a slice of
+    // that size, and slices of leaves of two triangles stay unused (never written, so the
+    // zeroed allocation costs no page for them).
+    let mut nodes = vec![Bvh2Node::default(); 2 * n - 1];
+    if n <= LEAF_MAX {
+        nodes[0] = bounds.node(n as u32, 0);
+    } else {
+        nodes[0] = bounds.node(0, 1);
+        Builder.node(&mut refs, &mut ids, 0, centroids, &mut nodes[1..], 1, 0);
+    }
+    Bvh2 {
+        nodes,
+        primitive_indices: ids,
+        ..Bvh2::default()
+    }
+}
+
+/// A triangle's box as `[min, max]`.
+pub(crate) type Bounds3 = [Vec3A; 2];
+
+struct Builder;
+
+impl Builder {
+    /// Splits the node of `refs`/`ids` (at least two triangles; their first is the
+    /// `first`-th in leaf order) and writes its descendants into `out` (`2n − 2` nodes, the
+    /// first at global index `base`): the two children, then the left child's descendants,
+    /// then the right child's.
+    #[allow(clippy::too_many_arguments)]
+    fn node(
+        &self,
+        refs: &mut [Bounds],
+        ids: &mut [u32],
+        first: u32,
+        centroids: Bounds,
+        out: &mut [Bvh2Node],
+        base: u32,
+        depth: u32,
+    ) {
+        let n = refs.len();
+        debug_assert!(n >= 2 && out.len() == 2 * n - 2);
+        let (nl, left, right, lc, rc) = if n <= SWEEP_MAX {
+            let (nl, left, right) = sweep(refs, ids);
+            (nl, left, right, Bounds::EMPTY, Bounds::EMPTY)
+        } else {
+            if n <= SMALL_NODE {
+                split_binned::<SMALL_BINS>(refs, ids, centroids, depth)
+            } else if n <= MID_NODE {
+                split_binned::<MID_BINS>(refs, ids, centroids, depth)
+            } else {
+                split_binned::<BINS>(refs, ids, centroids, depth)
+            }
+        };
+        let nr = n - nl;
+        let (pair, rest) = out.split_at_mut(2);
+        let (left_out, right_out) = rest.split_at_mut(2 * nl - 2);
+        let left_base = base + 2;
+        let right_base = left_base + (2 * nl - 2) as u32;
+        pair[0] = if nl <= LEAF_MAX {
+            left.node(nl as u32, first)
+        } else {
+            left.node(0, left_base)
+        };
+        pair[1] = if nr <= LEAF_MAX {
+            right.node(nr as u32, first + nl as u32)
+        } else {
+            right.node(0, right_base)
+        };
+        let (lrefs, rrefs) = refs.split_at_mut(nl);
+        let (lids, rids) = ids.split_at_mut(nl);
+        let mut left_job = || {
+            if nl > LEAF_MAX {
+                self.node(lrefs, lids, first, lc, left_out, left_base, depth + 1);
+            }
+        };
+        let mut right_job = || {
+            if nr > LEAF_MAX {
+                let f = first + nl as u32;
+                self.node(rrefs, rids, f, rc, right_out, right_base, depth + 1);
+            }
+        };
+        if n > PARALLEL_PRIMS {
+            rayon::join(left_job, right_job);
+        } else {
+            left_job();
+            right_job();
+        }
+    }
+}
+
+/// Splits a node over `N` bins and partitions its slices: returns the left count, both
+/// boxes and both centroid bounds.
+fn split_binned<const N: usize>(
+    refs: &mut [Bounds],
+    ids: &mut [u32],
+    centroids: Bounds,
+    depth: u32,
+) -> (usize, Bounds, Bounds, Bounds, Bounds) {
+    let map = BinMap::<N>::new(centroids);
+    match binned_split(refs, &map, depth) {
+        Some(s) => {
+            let (nl, lc, rc) = partition(refs, ids, &map, s.axis, s.bin);
+            (nl, s.left, s.right, lc, rc)
+        }
+        None => {
+            // All centroids in one bin on every axis: halve by position.
+            let nl = refs.len() / 2;
+            let fold = |r: &[Bounds]| {
+                r.iter()
+                    .fold((Bounds::EMPTY, Bounds::EMPTY), |(b, mut c), x| {
+                        c.grow(x.centroid());
+                        (b.union(*x), c)
+                    })
+            };
+            let (left, lc) = fold(&refs[..nl]);
+            let (right, rc) = fold(&refs[nl..]);
+            (nl, left, right, lc, rc)
+        }
+    }
+}
+
+/// The binned split of a node: least SAH cost (`A_l·n_l + A_r·n_r`) above `SAH_DEPTH`,
+/// else (or when every cost overflows) the bin boundary nearest the median on the axis with
+/// the most occupied bins. `None` when every axis has a single occupied bin.
+#[inline(never)]
+fn binned_split<const N: usize>(refs: &[Bounds], map: &BinMap<N>, depth: u32) -> Option<BinSplit> {
+    let bins = if refs.len() > PARALLEL_BINNING {
+        refs.par_chunks(BIN_CHUNK)
+            .fold(Bins::<N>::new, |mut bins, chunk| {
+                bins.add(map, chunk);
+                bins
+            })
+            .reduce(Bins::new, Bins::merge)
+    } else {
+        let mut bins = Bins::<N>::new();
+        bins.add(map, refs);
+        bins
+    };
+    let n = refs.len() as u32;
+    let mut best: Option<(f32, usize, usize)> = None;
+    if depth < SAH_DEPTH {
+        for axis in 0..3 {
+            // Right sides: area and count of bins b.. for every b.
+            let mut right_area = [0.0f32; N];
+            let mut acc = Bounds::EMPTY;
+            for b in (1..N).rev() {
+                acc = acc.union(bins.bounds[axis][b]);
+                right_area[b] = acc.half_area();
+            }
+            let (mut acc, mut count) = (Bounds::EMPTY, 0u32);
+            for (b, &right) in right_area.iter().enumerate().skip(1) {
+                acc = acc.union(bins.bounds[axis][b - 1]);
+                count += bins.counts[axis][b - 1];
+                if count == 0 || count == n {
+                    continue;
+                }
+                let cost = acc.half_area() * count as f32 + right * (n - count) as f32;
+                if cost < best.map_or(f32::INFINITY, |(c, _, _)| c) {
+                    best = Some((cost, axis, b));
+                }
+            }
+        }
+    }
+    let (axis, bin) = match best {
+        Some((_, axis, bin)) => (axis, bin),
+        None => {
+            // Median: the axis with the most occupied bins, the boundary nearest n/2.
+            let occupied = |axis: usize| bins.counts[axis].iter().filter(|&&c| c > 0).count();
+            let axis = (0..3).max_by_key(|&a| (occupied(a), 3 - a))?;
+            if occupied(axis) < 2 {
+                return None;
+            }
+            let mut count = 0u32;
+            let mut pick = (u32::MAX, 0);
+            for b in 1..N {
+                count += bins.counts[axis][b - 1];
+                if count == 0 || count == n {
+                    continue;
+                }
+                let off = (2 * count).abs_diff(n);
+                if off < pick.0 {
+                    pick = (off, b);
+                }
+            }
+            (axis, pick.1)
+        }
+    };
+    let fold = |range: std::ops::Range<usize>| {
+        range.fold(Bounds::EMPTY, |acc, b| acc.union(bins.bounds[axis][b]))
+    };
+    Some(BinSplit {
+        axis,
+        bin,
+        left: fold(0..bin),
+        right: fold(bin..N),
+    })
+}
+
+/// Moves the triangles whose centroid falls in a bin below `bin` on `axis` to the front;
+/// returns their count and the centroid bounds of both sides.
+fn partition<const N: usize>(
+    refs: &mut [Bounds],
+    ids: &mut [u32],
+    map: &BinMap<N>,
+    axis: usize,
+    bin: usize,
+) -> (usize, Bounds, Bounds) {
+    let bin = bin as f32;
+    let (mut lc, mut rc) = (Bounds::EMPTY, Bounds::EMPTY);
+    let (mut i, mut j) = (0, refs.len());
+    while i < j {
+        let c = refs[i].centroid();
+        if map.below(c, axis, bin) {
+            lc.grow(c);
+            i += 1;
+        } else {
+            rc.grow(c);
+            j -= 1;
+            refs.swap(i, j);
+            ids.swap(i, j);
+        }
+    }
+    (i, lc, rc)
+}
+
+/// Exact SAH split of a small node: on each axis the triangles sorted by centroid (ties by
+/// position), every split position costed; the slices are reordered by the best axis's order.
+/// Returns the left count and both boxes.
+fn sweep(refs: &mut [Bounds], ids: &mut [u32]) -> (usize, Bounds, Bounds) {
+    let n = refs.len();
+    let mut best = (f32::INFINITY, 0usize, n / 2);
+    let mut orders = [[0u8; SWEEP_MAX]; 3];
+    let mut centroid = [Vec3A::ZERO; SWEEP_MAX];
+    for (c, r) in centroid.iter_mut().zip(refs.iter()) {
+        *c = r.centroid();
+    }
+    for (axis, order) in orders.iter_mut().enumerate() {
+        let order = &mut order[..n];
+        for (k, o) in order.iter_mut().enumerate() {
+            *o = k as u8;
+        }
+        let key = |k: u8| centroid[k as usize][axis];
+        // Insertion sort, stable: ties keep their positions.
+        for i in 1..n {
+            let mut j = i;
+            while j > 0 && key(order[j - 1]).total_cmp(&key(order[j])).is_gt() {
+                order.swap(j - 1, j);
+                j -= 1;
+            }
+        }
+        let mut right_area = [0.0f32; SWEEP_MAX];
+        let mut acc = Bounds::EMPTY;
+        for k in (1..n).rev() {
+            acc = acc.union(refs[order[k] as usize]);
+            right_area[k] = acc.half_area();
+        }
+        let mut acc = Bounds::EMPTY;
+        for k in 1..n {
+            acc = acc.union(refs[order[k - 1] as usize]);
+            let cost = acc.half_area() * k as f32 + right_area[k] * (n - k) as f32;
+            // Ties go to the more balanced split (identical boxes halve).
+            let balance = |k: usize| (2 * k).abs_diff(n);
+            if cost < best.0 || cost == best.0 && balance(k) < balance(best.2) {
+                best = (cost, axis, k);
+            }
+        }
+    }
+    let (_, axis, nl) = best;
+    let order = &orders[axis][..n];
+    let mut r = [Bounds::EMPTY; SWEEP_MAX];
+    let mut d = [0u32; SWEEP_MAX];
+    for (k, &o) in order.iter().enumerate() {
+        r[k] = refs[o as usize];
+        d[k] = ids[o as usize];
+    }
+    refs.copy_from_slice(&r[..n]);
+    ids.copy_from_slice(&d[..n]);
+    let fold = |s: &[Bounds]| s.iter().fold(Bounds::EMPTY, |a, b| a.union(*b));
+    (nl, fold(&refs[..nl]), fold(&refs[nl..]))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn soup(n: usize, seed: u64) -> Vec<Bounds3> {
+        let mut state = seed;
+        let mut rnd = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 40) as f32 / (1u64 << 24) as f32
+        };
+        (0..n)
+            .map(|_| {
+                let c = Vec3A::new(rnd(), rnd() * 0.5, rnd() * 2.0) * 8.0;
+                let e = Vec3A::new(rnd(), rnd(), rnd()) * 0.2;
+                [c - e, c + e]
+            })
+            .collect()
+    }
+
+    /// Every primitive sits in exactly one leaf, leaves hold one, node boxes are the exact
+    /// unions of their children's, children follow their parent; returns the depth.
+    fn check(bvh: &Bvh2, refs: &[Bounds3]) -> usize {
+        let n = refs.len();
+        assert_eq!(bvh.nodes.len(), 2 * n - 1);
+        let mut seen = vec![false; n];
+        let mut stack = vec![(0usize, 1usize)];
+        let mut depth = 0;
+        let bits = |a: Vec3A| a.to_array().map(f32::to_bits);
+        while let Some((i, d)) = stack.pop() {
+            depth = depth.max(d);
+            let node = &bvh.nodes[i];
+            let (lo, hi) = if node.prim_count != 0 {
+                assert!(node.prim_count as usize <= LEAF_MAX);
+                let (mut lo, mut hi) = (Vec3A::INFINITY, Vec3A::NEG_INFINITY);
+                for k in 0..node.prim_count {
+                    let p = bvh.primitive_indices[(node.first_index + k) as usize] as usize;
+                    assert!(!std::mem::replace(&mut seen[p], true));
+                    (lo, hi) = (lo.min(refs[p][0]), hi.max(refs[p][1]));
+                }
+                (lo, hi)
+            } else {
+                let l = node.first_index as usize;
+                assert!(l > i);
+                stack.push((l, d + 1));
+                stack.push((l + 1, d + 1));
+                let (a, b) = (&bvh.nodes[l].aabb, &bvh.nodes[l + 1].aabb);
+                (a.min.min(b.min), a.max.max(b.max))
+            };
+            assert_eq!(bits(node.aabb.min), bits(lo), "node {i}");
+            assert_eq!(bits(node.aabb.max), bits(hi), "node {i}");
+        }
+        assert!(seen.iter().all(|&s| s));
+        depth
+    }
+
+    #[test]
+    fn valid_hierarchy_for_small_and_large_inputs() {
+        for (n, seed) in [
+            (1, 1),
+            (2, 2),
+            (3, 3),
+            (8, 4),
+            (9, 5),
+            (1000, 6),
+            (70_000, 7),
+        ] {
+            let refs = soup(n, seed);
+            let depth = check(&build(refs.clone()), &refs);
+            assert!(
+                depth <= 2 * (n.max(2) as f64).log2().ceil() as usize + 4,
+                "{n}: {depth}"
+            );
+        }
+    }
+
+    /// The tree's bytes do not depend on the thread count (parallel binning above
+    /// `PARALLEL_BINNING` triangles, parallel subtrees above `PARALLEL_PRIMS`).
+    #[test]
+    fn same_hierarchy_at_every_thread_count() {
+        let refs = soup(3 * PARALLEL_BINNING / 2, 9);
+        let at = |threads: usize| {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            pool.install(|| build(refs.clone()))
+        };
+        let (one, three) = (at(1), at(3));
+        assert_eq!(one.primitive_indices, three.primitive_indices);
+        let words = |b: &Bvh2| -> Vec<[u32; 8]> {
+            let bits = |a: Vec3A| a.to_array().map(f32::to_bits);
+            b.nodes
+                .iter()
+                .map(|n| {
+                    let ([a, b, c], [d, e, f]) = (bits(n.aabb.min), bits(n.aabb.max));
+                    [a, b, c, d, e, f, n.prim_count, n.first_index]
+                })
+                .collect()
+        };
+        assert!(words(&one) == words(&three));
+    }
+
+    /// Identical boxes (every centroid in one bin), a geometric progression of sizes and
+    /// positions (SAH costs that overflow `f32`), and extents up to 1e38 all build valid
+    /// hierarchies of logarithmic depth.
+    #[test]
+    fn degenerate_distributions_stay_shallow() {
+        let same = vec![[Vec3A::ZERO, Vec3A::ONE]; 5000];
+        assert!(check(&build(same.clone()), &same) <= 14);
+        let geometric: Vec<Bounds3> = (0..2000)
+            .map(|i| {
+                let s = 1.05f32.powi(i % 1800);
+                [Vec3A::splat(s), Vec3A::splat(s * 1.5)]
+            })
+            .collect();
+        let d = check(&build(geometric.clone()), &geometric);
+        assert!(d <= SAH_DEPTH as usize + 24, "{d}");
+        let mut huge = soup(3000, 11);
+        huge.push([Vec3A::splat(-1.5e38), Vec3A::splat(1.5e38)]);
+        huge.push([Vec3A::splat(1e37), Vec3A::splat(3e38)]);
+        let d = check(&build(huge.clone()), &huge);
+        assert!(d <= 30, "{d}");
+    }
+}
