@@ -13,7 +13,8 @@ use stagelight::scene::import::mi::read_mi;
 use stagelight::scene::load_scene_str;
 
 use crate::common::cli::{run_in, scratch, stderr_of};
-use crate::mi_shadow_shaders::{assert_shadow, mi_scene, read_exr, render, scene};
+use crate::common::read_exr_texels;
+use crate::mi_shadow_shaders::{assert_shadow, mi_scene, render, scene};
 
 const SUN: &str = "intensity: 1.0)]";
 const OCCLUDER: &str = r#"(name: "occ", shader: Lambert(albedo: (0, 0, 0)))"#;
@@ -51,7 +52,7 @@ fn an_irradiance_bake_keeps_the_factor() {
     std::fs::write(dir.join("scene.ron"), text).unwrap();
     let o = run_in(&dir, &["bake", "scene.ron", "-o", "out"]);
     assert!(o.status.success(), "{}", stderr_of(&o));
-    let (w, e) = read_exr(&dir.join("out").join("e.exr"));
+    let (w, e) = read_exr_texels(&dir.join("out").join("e.exr"));
     let mut inside = 0;
     for (k, texel) in e.iter().enumerate() {
         // Texel centres in world units (x, y ∈ [−3, 3], texels 0.125 wide).

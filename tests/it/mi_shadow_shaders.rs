@@ -14,7 +14,7 @@ use stagelight::scene::import::mi::read_mi;
 use stagelight::scene::{load_scene, load_scene_str};
 
 use crate::common::cli::{run_in, scratch, stderr_of};
-use crate::common::{mi_point_lamp, mi_preamble, BASE};
+use crate::common::{mi_point_lamp, mi_preamble, read_exr_texels, BASE};
 
 /// 40 × 40 pixels looking straight down at the floor from z = 4 (fov 40°); the occluder
 /// (`material` `occ`, hidden from the camera) is the square |x|, |y| ≤ 0.5 at z = 1.
@@ -157,20 +157,6 @@ fn shadow_shaders_override_transparent_sheets_and_glass() {
     );
 }
 
-/// Reads an EXR written by a bake: width and linear RGB texels, row 0 at the top.
-pub(crate) fn read_exr(path: &Path) -> (usize, Vec<Vec3>) {
-    use exr::prelude::*;
-    let image = read_first_rgba_layer_from_file(
-        path,
-        |res, _| (res.width(), vec![Vec3::ZERO; res.width() * res.height()]),
-        |(w, px), pos, (r, g, b, _a): (f32, f32, f32, f32)| {
-            px[pos.y() * *w + pos.x()] = Vec3::new(r, g, b)
-        },
-    )
-    .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    image.layer_data.channel_data.pixels
-}
-
 #[test]
 fn a_bake_under_a_grey_shadow_transparency_stores_half_the_irradiance() {
     let dir = scratch("mi6-shadow-bake");
@@ -189,7 +175,7 @@ fn a_bake_under_a_grey_shadow_transparency_stores_half_the_irradiance() {
         std::fs::write(dir.join("scene.ron"), text).unwrap();
         let o = run_in(&dir, &["bake", "scene.ron", "-o", out]);
         assert!(o.status.success(), "{}", stderr_of(&o));
-        read_exr(&dir.join(out).join("e.exr"))
+        read_exr_texels(&dir.join(out).join("e.exr"))
     };
     for (shadow, through) in [
         ("Some(Transparency(color: (0.5, 0.5, 0.5)))", 0.5),

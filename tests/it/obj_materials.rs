@@ -6,6 +6,7 @@
 
 use std::path::{Path, PathBuf};
 
+use crate::common::read_exr_texels;
 use glam::Vec3;
 use stagelight::components::{Material, MaterialRef, Name, Shader};
 use stagelight::scene::LoadedScene;
@@ -475,20 +476,6 @@ fn bake_scene(object: &str) -> String {
     )
 }
 
-/// Reads an EXR written by a bake: width and linear RGB texels, row 0 at the top.
-fn read_exr(path: &Path) -> (usize, Vec<Vec3>) {
-    use exr::prelude::*;
-    let image = read_first_rgba_layer_from_file(
-        path,
-        |res, _| (res.width(), vec![Vec3::ZERO; res.width() * res.height()]),
-        |(w, px), pos, (r, g, b, _a): (f32, f32, f32, f32)| {
-            px[pos.y() * *w + pos.x()] = Vec3::new(r, g, b)
-        },
-    )
-    .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    image.layer_data.channel_data.pixels
-}
-
 #[test]
 fn an_instance_of_a_two_material_obj_bakes_each_face_with_its_material() {
     let dir = dir_with(
@@ -528,8 +515,8 @@ fn an_instance_of_a_two_material_obj_bakes_each_face_with_its_material() {
     }
     // Radiance is albedo · E / π with each face's own albedo (its texture included): red
     // left, blue right.
-    let (w, e) = read_exr(&dir.join("mtl/irradiance.exr"));
-    let (_, l) = read_exr(&dir.join("mtl/radiance.exr"));
+    let (w, e) = read_exr_texels(&dir.join("mtl/irradiance.exr"));
+    let (_, l) = read_exr_texels(&dir.join("mtl/radiance.exr"));
     let (lit, shaded) = (
         e.iter().fold(0f32, |m, v| m.max(v.x)),
         e.iter().fold(9f32, |m, v| m.min(v.x)),

@@ -60,3 +60,17 @@ pub fn facing_quad(name: &str, material: &str, c: Vec3, h: f32) -> String {
 pub fn all_finite(fb: &FrameBuffers) -> bool {
     fb.beauty.iter().all(|c| c.is_finite()) && fb.alpha.iter().all(|a| a.is_finite())
 }
+
+/// Reads an EXR written by a bake: width and linear RGB texels, row 0 at the top.
+pub fn read_exr_texels(path: &Path) -> (usize, Vec<Vec3>) {
+    use exr::prelude::*;
+    let image = read_first_rgba_layer_from_file(
+        path,
+        |res, _| (res.width(), vec![Vec3::ZERO; res.width() * res.height()]),
+        |(w, px), pos, (r, g, b, _a): (f32, f32, f32, f32)| {
+            px[pos.y() * *w + pos.x()] = Vec3::new(r, g, b)
+        },
+    )
+    .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    image.layer_data.channel_data.pixels
+}
