@@ -64,7 +64,35 @@ pub enum Gather {
 pub struct PhotonMap {
     photons: Vec<Photon>,
     axes: Vec<u8>,
+    /// What the search reads at every node, in tree order: 16 bytes instead of a 48-byte
+    /// photon, so four nodes share a cache line.
+    nodes: Vec<SearchNode>,
 }
+
+/// A photon's position, its node's split axis and its coordinate along that axis, packed
+/// for the search.
+#[derive(Debug, Clone, Copy)]
+struct SearchNode {
+    position: Vec3,
+    axis: u32,
+    split: f32,
+}
+
+fn search_nodes(photons: &[Photon], axes: &[u8]) -> Vec<SearchNode> {
+    photons
+        .iter()
+        .zip(axes)
+        .map(|(p, &a)| SearchNode {
+            position: p.position,
+            axis: u32::from(a),
+            split: p.position[usize::from(a).min(2)],
+        })
+        .collect()
+}
+
+/// Deepest pending entry the iterative search can need: one per tree level, and an implicit
+/// median tree of `n < 2³²` nodes (photon indices are `u32`) has at most 32 levels.
+const SEARCH_STACK: usize = 32;
 
 impl PhotonMap {
     /// Builds the tree (deterministic: the same photons in the same order give the same tree).
@@ -73,7 +101,12 @@ impl PhotonMap {
         photons.retain(|p| p.position.is_finite() && p.power.is_finite());
         let mut axes = vec![0u8; photons.len()];
         build(&mut photons, &mut axes);
-        Self { photons, axes }
+        let nodes = search_nodes(&photons, &axes);
+        Self {
+            photons,
+            axes,
+            nodes,
+        }
     }
 
     /// A tree stored earlier: `photons` in tree order and the split axis of each node, as
@@ -84,8 +117,11 @@ impl PhotonMap {
         let finite = photons
             .iter()
             .all(|p| p.position.is_finite() && p.power.is_finite());
-        (photons.len() == axes.len() && axes.iter().all(|&a| a < 3) && finite)
-            .then_some(Self { photons, axes })
+        (photons.len() == axes.len() && axes.iter().all(|&a| a < 3) && finite).then(|| Self {
+            nodes: search_nodes(&photons, &axes),
+            photons,
+            axes,
+        })
     }
 
     /// The split axis of each node, in tree order (0 = x, 1 = y, 2 = z).
@@ -127,6 +163,13 @@ impl PhotonMap {
         if k == 0 || r_max.is_nan() || r_max <= 0.0 || !p.is_finite() {
             return;
         }
+        if k == 1 {
+            // The final-gather irradiance lookup: no heap, the same answer.
+            if let Some(best) = self.nearest_one(p, normal, r_max * r_max) {
+                out.push(best);
+            }
+            return;
+        }
         let mut q = Query {
             p,
             normal,
@@ -134,7 +177,7 @@ impl PhotonMap {
             max_d2: r_max * r_max,
             heap: BinaryHeap::with_capacity(k.min(1024) + 1),
         };
-        self.search(0, self.photons.len(), &mut q);
+        self.search(&mut q);
         out.extend(q.heap.into_sorted_vec().into_iter().map(|e| Neighbour {
             dist2: f32::from_bits(e.0),
             index: e.1,
@@ -193,24 +236,75 @@ impl PhotonMap {
         }
     }
 
-    fn search(&self, lo: usize, hi: usize, q: &mut Query) {
-        if lo >= hi {
-            return;
+    /// The in-order walk of the implicit tree — near side, the node, then the far side
+    /// when its splitting plane is closer than the current bound — with an explicit stack.
+    /// `visit` offers a node and returns the bound after the offer, so nodes are offered in
+    /// exactly the order of the recursive definition (ties keep the first photon offered).
+    fn walk(&self, p: Vec3, mut visit: impl FnMut(usize) -> f32) {
+        // Indexed with `axis & 3`, so the compiler needs no bounds check on the hot path.
+        let p = p.extend(0.0).to_array();
+        // (node, its plane distance, far range) of the nodes whose near side is in progress.
+        let mut stack = [(0u32, 0f32, 0u32, 0u32); SEARCH_STACK];
+        let mut depth = 0;
+        let (mut lo, mut hi) = (0, self.nodes.len().min(u32::MAX as usize) as u32);
+        loop {
+            while lo < hi {
+                let mid = lo + (hi - lo) / 2;
+                let node = &self.nodes[mid as usize];
+                let axis = (node.axis & 3) as usize;
+                let d = p[axis] - node.split;
+                let (near, far) = if d < 0.0 {
+                    ((lo, mid), (mid + 1, hi))
+                } else {
+                    ((mid + 1, hi), (lo, mid))
+                };
+                stack[depth & (SEARCH_STACK - 1)] = (mid, d, far.0, far.1);
+                depth += 1;
+                (lo, hi) = near;
+            }
+            if depth == 0 {
+                return;
+            }
+            depth -= 1;
+            let (mid, d, far_lo, far_hi) = stack[depth & (SEARCH_STACK - 1)];
+            let bound = visit(mid as usize);
+            if d * d < bound {
+                (lo, hi) = (far_lo, far_hi);
+            }
         }
-        let mid = (lo + hi) / 2;
-        let ph = &self.photons[mid];
-        let axis = self.axes[mid] as usize;
-        let d = q.p[axis] - ph.position[axis];
-        let (near, far) = if d < 0.0 {
-            ((lo, mid), (mid + 1, hi))
-        } else {
-            ((mid + 1, hi), (lo, mid))
-        };
-        self.search(near.0, near.1, q);
-        q.offer(ph, mid as u32);
-        if d * d < q.max_d2 {
-            self.search(far.0, far.1, q);
-        }
+    }
+
+    /// The nearest photon strictly within `sqrt(max_d2)` that passes the normal filter: what
+    /// the k-nearest search returns for `k = 1`.
+    fn nearest_one(&self, p: Vec3, normal: Option<Vec3>, max_d2: f32) -> Option<Neighbour> {
+        let mut best: Option<Neighbour> = None;
+        let mut bound = max_d2;
+        self.walk(p, |i| {
+            let d2 = (self.nodes[i].position - p).length_squared();
+            if d2.is_nan() || d2 >= bound {
+                return bound;
+            }
+            if let Some(n) = normal {
+                if self.photons[i].normal.dot(n) <= NORMAL_FILTER {
+                    return bound;
+                }
+            }
+            best = Some(Neighbour {
+                dist2: d2,
+                index: i as u32,
+            });
+            bound = d2;
+            bound
+        });
+        best
+    }
+
+    fn search(&self, q: &mut Query) {
+        let p = q.p;
+        self.walk(p, |i| {
+            q.offer(&self.photons[i], i as u32);
+            q.max_d2
+        });
     }
 }
 
@@ -362,6 +456,76 @@ mod tests {
                 assert_eq!(got, brute, "query {qi}, k {k}, r_max {r_max}");
             }
         }
+    }
+
+    /// The recursive in-order search the iterative walk replaced, offering into a `k = 1`
+    /// "heap": the reference for which photon wins, ties included.
+    fn recursive_nearest_one(
+        map: &PhotonMap,
+        (lo, hi): (usize, usize),
+        p: Vec3,
+        normal: Vec3,
+        best: &mut (f32, Option<u32>),
+    ) {
+        if lo >= hi {
+            return;
+        }
+        let mid = (lo + hi) / 2;
+        let ph = &map.photons()[mid];
+        let axis = map.axes()[mid] as usize;
+        let d = p[axis] - ph.position[axis];
+        let (near, far) = if d < 0.0 {
+            ((lo, mid), (mid + 1, hi))
+        } else {
+            ((mid + 1, hi), (lo, mid))
+        };
+        recursive_nearest_one(map, near, p, normal, best);
+        let d2 = (ph.position - p).length_squared();
+        if d2 < best.0 && ph.normal.dot(normal) > NORMAL_FILTER {
+            *best = (d2, Some(mid as u32));
+        }
+        if d * d < best.0 {
+            recursive_nearest_one(map, far, p, normal, best);
+        }
+    }
+
+    #[test]
+    fn nearest_one_is_the_recursive_search_with_ties_and_the_normal_filter() {
+        // Scattered points, every third one repeated exactly (ties in distance), a quarter
+        // facing the other way (normal filter), on a coarse lattice so plane ties occur too.
+        let mut photons = Vec::new();
+        for (i, p) in scattered(4000, 7).into_iter().enumerate() {
+            let p = (p * 16.0).round() / 16.0;
+            let normal = if i % 4 == 0 { -Vec3::Z } else { Vec3::Z };
+            let ph = Photon {
+                position: p,
+                power: Vec3::ONE,
+                incoming: Vec3::Z,
+                normal,
+            };
+            photons.push(ph);
+            if i % 3 == 0 {
+                photons.push(Photon {
+                    power: Vec3::X,
+                    ..ph
+                });
+            }
+        }
+        let map = PhotonMap::build(photons);
+        let mut out = Vec::new();
+        let mut found = 0;
+        for q in scattered(300, 8) {
+            for r_max in [0.02f32, 0.1, 2.0] {
+                let mut best = (r_max * r_max, None);
+                recursive_nearest_one(&map, (0, map.len()), q, Vec3::Z, &mut best);
+                map.nearest(q, Some(Vec3::Z), 1, r_max, &mut out);
+                let got = out.first().map(|n| (n.dist2, n.index));
+                let want = best.1.map(|i| (best.0, i));
+                assert_eq!(got, want, "query {q}, r_max {r_max}");
+                found += usize::from(got.is_some());
+            }
+        }
+        assert!(found > 600, "only {found} queries found a photon");
     }
 
     #[test]
