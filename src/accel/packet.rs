@@ -282,12 +282,13 @@ mod wide {
         #[inline(always)]
         fn prepare(&mut self, node: &Node, packet: &Packet, rays: u64) {
             // SAFETY: AVX intrinsics; this type exists only inside the AVX2 kernels. The
-            // loads read two `Vec4`s of the node by value (no raw pointers).
+            // loads read two `Vec4`s of the node by value (no raw pointers). No closures
+            // here: they would not inherit the AVX2 target feature.
             unsafe {
-                let plane = |k: usize| -> __m256 {
-                    _mm256_set_m128(node.bounds[1][k].into(), node.bounds[0][k].into())
-                };
-                let planes: [__m256; 6] = std::array::from_fn(plane);
+                let mut planes = [_mm256_setzero_ps(); 6];
+                for (k, p) in planes.iter_mut().enumerate() {
+                    *p = _mm256_set_m128(node.bounds[1][k].into(), node.bounds[0][k].into());
+                }
                 for o in 0..packet.n_origins {
                     if packet.origin_rays[o] & rays == 0 {
                         continue;
@@ -367,24 +368,19 @@ fn bits(mut m: u64) -> impl Iterator<Item = usize> {
     })
 }
 
-/// Calls `trace` for every packet of `rays`, in order; invalid rays (which hit nothing) are
-/// left out.
+/// Fills `packet` with the valid rays of `rays` from `start` on (invalid rays hit nothing
+/// and are left out) until it is full; returns where the next packet starts.
 #[inline(always)]
-fn for_each_packet(rays: &[Ray], packet: &mut Packet, mut trace: impl FnMut(&Packet)) {
+fn fill(rays: &[Ray], start: usize, packet: &mut Packet) -> usize {
     packet.clear();
-    for (i, ray) in rays.iter().enumerate() {
-        if !ray_is_valid(ray) {
-            continue;
+    let mut i = start;
+    while i < rays.len() {
+        if ray_is_valid(&rays[i]) && !packet.add(i, &rays[i]) {
+            break;
         }
-        if !packet.add(i, ray) {
-            trace(packet);
-            packet.clear();
-            packet.add(i, ray);
-        }
+        i += 1;
     }
-    if packet.len > 0 {
-        trace(packet);
-    }
+    i
 }
 
 /// Occlusion of `rays` into `out` with the packet test `T`.
@@ -397,12 +393,15 @@ fn occluded_in<T: PacketTest>(bvh: &Bvh, rays: &[Ray], out: &mut [bool]) {
     let mut packet = Packet::new();
     let mut test = T::new();
     let mut stack: Vec<(u32, u64)> = Vec::with_capacity(8 * bvh.depth as usize + 8);
-    for_each_packet(rays, &mut packet, |p| {
-        let hit = occluded_packet(bvh, p, &mut test, &mut stack);
+    // A plain loop, not closures: a closure would not inherit the AVX2 target feature.
+    let mut next = 0;
+    while next < rays.len() {
+        next = fill(rays, next, &mut packet);
+        let hit = occluded_packet(bvh, &packet, &mut test, &mut stack);
         for i in bits(hit) {
-            out[p.index[i]] = true;
+            out[packet.index[i]] = true;
         }
-    });
+    }
 }
 
 /// The rays of `packet` that are occluded (a mask).
@@ -444,12 +443,14 @@ fn occluded_packet<T: PacketTest>(
             for i in bits(entered[slot] & active) {
                 let woop = &packet.woop[i];
                 let t_max = packet.t_max[i];
-                let hit = leaf_range(child).any(|k| {
-                    woop.intersect(&bvh.tris[k])
+                for k in leaf_range(child) {
+                    if woop
+                        .intersect(&bvh.tris[k])
                         .is_some_and(|(t, _, _)| t < t_max)
-                });
-                if hit {
-                    active &= !(1 << i);
+                    {
+                        active &= !(1 << i);
+                        break;
+                    }
                 }
             }
         }
@@ -476,13 +477,18 @@ fn closest_in<T: PacketTest>(bvh: &Bvh, rays: &[Ray], out: &mut [Option<Hit>]) {
     let mut packet = Packet::new();
     let mut test = T::new();
     let mut stack: Vec<(u32, u64)> = Vec::with_capacity(8 * bvh.depth as usize + 8);
-    let octant_of = |i: usize| octant(&rays[i]);
-    for_each_packet(rays, &mut packet, |p| {
-        let hits = closest_packet(bvh, p, octant_of(p.index[0]), &mut test, &mut stack);
-        for (i, hit) in hits.iter().enumerate().take(p.len) {
-            out[p.index[i]] = *hit;
+    let mut next = 0;
+    while next < rays.len() {
+        next = fill(rays, next, &mut packet);
+        if packet.len == 0 {
+            continue;
         }
-    });
+        let octant = octant(&rays[packet.index[0]]);
+        let hits = closest_packet(bvh, &packet, octant, &mut test, &mut stack);
+        for (i, hit) in hits.iter().enumerate().take(packet.len) {
+            out[packet.index[i]] = *hit;
+        }
+    }
 }
 
 /// The closest hit of each ray of `packet`. Children are visited in the node's order for
