@@ -47,13 +47,15 @@ impl Accel {
     pub fn occluded_packet(&self, rays: &[Ray], out: &mut [bool]) {
         assert_eq!(rays.len(), out.len(), "one result slot per ray");
         self.counters.add_occlusion(rays.len() as u64);
-        #[cfg(target_arch = "x86_64")]
-        if use_avx2() {
-            // SAFETY: AVX2 was detected on this CPU (`use_avx2`).
-            unsafe { occluded_avx2(&self.bvh, rays, out) };
-            return;
-        }
-        occluded_in::<Planes4>(&self.bvh, rays, out);
+        with_scratch(|scratch| {
+            #[cfg(target_arch = "x86_64")]
+            if use_avx2() {
+                // SAFETY: AVX2 was detected on this CPU (`use_avx2`).
+                unsafe { occluded_avx2(&self.bvh, rays, out, scratch) };
+                return;
+            }
+            occluded_in::<Planes4>(&self.bvh, rays, out, scratch);
+        });
     }
 
     /// Closest hits of rays that share few origins: `out[i]` is `self.intersect(&rays[i])`,
@@ -64,14 +66,41 @@ impl Accel {
     pub fn intersect_packet(&self, rays: &[Ray], out: &mut [Option<Hit>]) {
         assert_eq!(rays.len(), out.len(), "one result slot per ray");
         self.counters.add_closest(rays.len() as u64);
-        #[cfg(target_arch = "x86_64")]
-        if use_avx2() {
-            // SAFETY: AVX2 was detected on this CPU (`use_avx2`).
-            unsafe { closest_avx2(&self.bvh, rays, out) };
-            return;
-        }
-        closest_in::<Planes4>(&self.bvh, rays, out);
+        with_scratch(|scratch| {
+            #[cfg(target_arch = "x86_64")]
+            if use_avx2() {
+                // SAFETY: AVX2 was detected on this CPU (`use_avx2`).
+                unsafe { closest_avx2(&self.bvh, rays, out, scratch) };
+                return;
+            }
+            closest_in::<Planes4>(&self.bvh, rays, out, scratch);
+        });
     }
+}
+
+/// A thread's packet and traversal stack, kept between calls (a bake makes one call per
+/// texel: no allocation per call).
+struct Scratch {
+    packet: Packet,
+    stack: Vec<(u32, u64)>,
+}
+
+impl Scratch {
+    fn new() -> Self {
+        Self {
+            packet: Packet::new(),
+            stack: Vec::new(),
+        }
+    }
+}
+
+/// Runs `f` with this thread's [`Scratch`].
+fn with_scratch(f: impl FnOnce(&mut Scratch)) {
+    thread_local! {
+        static SCRATCH: std::cell::RefCell<Option<Box<Scratch>>> =
+            const { std::cell::RefCell::new(None) };
+    }
+    SCRATCH.with_borrow_mut(|s| f(s.get_or_insert_with(|| Box::new(Scratch::new()))));
 }
 
 /// Whether the AVX2 packet kernels run (AVX2 present, not turned off by
@@ -89,16 +118,16 @@ fn use_avx2() -> bool {
 /// The CPU must support AVX2.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
-unsafe fn occluded_avx2(bvh: &Bvh, rays: &[Ray], out: &mut [bool]) {
-    occluded_in::<wide::Planes8>(bvh, rays, out);
+unsafe fn occluded_avx2(bvh: &Bvh, rays: &[Ray], out: &mut [bool], scratch: &mut Scratch) {
+    occluded_in::<wide::Planes8>(bvh, rays, out, scratch);
 }
 
 /// # Safety
 /// The CPU must support AVX2.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
-unsafe fn closest_avx2(bvh: &Bvh, rays: &[Ray], out: &mut [Option<Hit>]) {
-    closest_in::<wide::Planes8>(bvh, rays, out);
+unsafe fn closest_avx2(bvh: &Bvh, rays: &[Ray], out: &mut [Option<Hit>], scratch: &mut Scratch) {
+    closest_in::<wide::Planes8>(bvh, rays, out, scratch);
 }
 
 /// The rays of one packet, ready for traversal: per ray its caller's index, origin, the
@@ -385,19 +414,18 @@ fn fill(rays: &[Ray], start: usize, packet: &mut Packet) -> usize {
 
 /// Occlusion of `rays` into `out` with the packet test `T`.
 #[inline(always)]
-fn occluded_in<T: PacketTest>(bvh: &Bvh, rays: &[Ray], out: &mut [bool]) {
+fn occluded_in<T: PacketTest>(bvh: &Bvh, rays: &[Ray], out: &mut [bool], scratch: &mut Scratch) {
     out.fill(false);
     if bvh.nodes.is_empty() {
         return;
     }
-    let mut packet = Packet::new();
+    let Scratch { packet, stack } = scratch;
     let mut test = T::new();
-    let mut stack: Vec<(u32, u64)> = Vec::with_capacity(8 * bvh.depth as usize + 8);
     // A plain loop, not closures: a closure would not inherit the AVX2 target feature.
     let mut next = 0;
     while next < rays.len() {
-        next = fill(rays, next, &mut packet);
-        let hit = occluded_packet(bvh, &packet, &mut test, &mut stack);
+        next = fill(rays, next, packet);
+        let hit = occluded_packet(bvh, packet, &mut test, stack);
         for i in bits(hit) {
             out[packet.index[i]] = true;
         }
@@ -469,22 +497,26 @@ fn occluded_packet<T: PacketTest>(
 
 /// Closest hits of `rays` into `out` with the packet test `T`.
 #[inline(always)]
-fn closest_in<T: PacketTest>(bvh: &Bvh, rays: &[Ray], out: &mut [Option<Hit>]) {
+fn closest_in<T: PacketTest>(
+    bvh: &Bvh,
+    rays: &[Ray],
+    out: &mut [Option<Hit>],
+    scratch: &mut Scratch,
+) {
     out.fill(None);
     if bvh.nodes.is_empty() {
         return;
     }
-    let mut packet = Packet::new();
+    let Scratch { packet, stack } = scratch;
     let mut test = T::new();
-    let mut stack: Vec<(u32, u64)> = Vec::with_capacity(8 * bvh.depth as usize + 8);
     let mut next = 0;
     while next < rays.len() {
-        next = fill(rays, next, &mut packet);
+        next = fill(rays, next, packet);
         if packet.len == 0 {
             continue;
         }
         let octant = octant(&rays[packet.index[0]]);
-        let hits = closest_packet(bvh, &packet, octant, &mut test, &mut stack);
+        let hits = closest_packet(bvh, packet, octant, &mut test, stack);
         for (i, hit) in hits.iter().enumerate().take(packet.len) {
             out[packet.index[i]] = *hit;
         }
@@ -707,15 +739,16 @@ mod tests {
             );
             let mut occ = vec![true; rays.len()];
             let mut hit = vec![None; rays.len()];
-            occluded_in::<Planes4>(&bvh, &rays, &mut occ);
-            closest_in::<Planes4>(&bvh, &rays, &mut hit);
+            let mut scratch = Scratch::new();
+            occluded_in::<Planes4>(&bvh, &rays, &mut occ, &mut scratch);
+            closest_in::<Planes4>(&bvh, &rays, &mut hit, &mut scratch);
             check(&rays, &occ, &hit, &want_occ, &want_hit, "SSE");
             #[cfg(target_arch = "x86_64")]
             if std::arch::is_x86_feature_detected!("avx2") {
                 // SAFETY: AVX2 was detected just above.
                 unsafe {
-                    occluded_avx2(&bvh, &rays, &mut occ);
-                    closest_avx2(&bvh, &rays, &mut hit);
+                    occluded_avx2(&bvh, &rays, &mut occ, &mut scratch);
+                    closest_avx2(&bvh, &rays, &mut hit, &mut scratch);
                 }
                 check(&rays, &occ, &hit, &want_occ, &want_hit, "AVX2");
             }
