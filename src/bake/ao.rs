@@ -179,12 +179,64 @@ fn trace_with(
     query: HemisphereQuery,
     kernel: Kernel,
 ) -> Vec<HemisphereRays> {
+    thread_local! {
+        static SCRATCH: std::cell::RefCell<Scratch> = std::cell::RefCell::default();
+    }
+    SCRATCH.with(|cell| match cell.try_borrow_mut() {
+        Ok(mut scratch) => {
+            let scratch = &mut *scratch;
+            trace_in(geometry, jobs, max_distance, seed, query, kernel, scratch)
+        }
+        Err(_) => {
+            let scratch = &mut Scratch::default();
+            trace_in(geometry, jobs, max_distance, seed, query, kernel, scratch)
+        }
+    })
+}
+
+/// A thread's working vectors, kept between calls (a bake makes one call per texel).
+#[derive(Default)]
+struct Scratch {
+    /// Each drawn ray (traced ones with their direction), point by point.
+    rays: Vec<Option<Ray>>,
+    outcomes: Vec<Outcome>,
+    /// Each point's rays in `rays`.
+    spans: Vec<std::ops::Range<usize>>,
+    queries: Queries,
+}
+
+/// The probe's and the occlusion queries' working vectors.
+#[derive(Default)]
+struct Queries {
+    states: Vec<ProbeState>,
+    /// The closest hit of each ray, once traced.
+    hits: Vec<Option<Option<crate::accel::Hit>>>,
+    batch: Vec<Ray>,
+    index: Vec<usize>,
+    found: Vec<Option<crate::accel::Hit>>,
+    occluded: Vec<bool>,
+}
+
+/// [`trace_with`] with its working vectors.
+fn trace_in(
+    geometry: &SceneGeometry,
+    jobs: &[HemisphereJob<'_>],
+    max_distance: f32,
+    seed: u32,
+    query: HemisphereQuery,
+    kernel: Kernel,
+    scratch: &mut Scratch,
+) -> Vec<HemisphereRays> {
     let mut out = vec![HemisphereRays::default(); jobs.len()];
-    let total: usize = jobs.iter().map(|j| j.count as usize).sum();
-    // Each drawn ray (traced ones with their direction in `rays`), point by point.
-    let mut rays = Vec::with_capacity(total);
-    let mut outcomes = Vec::with_capacity(total);
-    let mut spans = Vec::with_capacity(jobs.len());
+    let Scratch {
+        rays,
+        outcomes,
+        spans,
+        queries,
+    } = scratch;
+    rays.clear();
+    outcomes.clear();
+    spans.clear();
     for job in jobs {
         let (t, b) = basis(job.normal);
         // `offset_ray_origin` depends on the direction only through the side of the surface
@@ -213,24 +265,24 @@ fn trace_with(
         spans.push(begin..outcomes.len());
     }
     if let Some(fraction) = query.inside_fraction() {
-        let insides = probe(
+        let probe_query = Probe {
+            max_distance,
+            fraction,
+            occlusion: matches!(query, HemisphereQuery::OcclusionAndProbe { .. }),
+            kernel,
+        };
+        probe(
             geometry,
-            &rays,
-            &mut outcomes,
-            &spans,
-            Probe {
-                max_distance,
-                fraction,
-                occlusion: matches!(query, HemisphereQuery::OcclusionAndProbe { .. }),
-                kernel,
-            },
+            rays,
+            outcomes,
+            spans,
+            probe_query,
+            queries,
+            &mut out,
         );
-        for (out, inside) in out.iter_mut().zip(insides) {
-            out.inside = inside;
-        }
     }
     if !matches!(query, HemisphereQuery::Probe { .. }) {
-        occlusion(geometry, &rays, &mut outcomes, kernel);
+        occlusion(geometry, rays, outcomes, kernel, queries);
     }
     for (p, span) in spans.iter().enumerate() {
         let out = &mut out[p];
@@ -354,16 +406,27 @@ fn probe(
     outcomes: &mut [Outcome],
     spans: &[std::ops::Range<usize>],
     probe: Probe,
-) -> Vec<bool> {
-    let mut states = vec![ProbeState::default(); spans.len()];
+    queries: &mut Queries,
+    out: &mut [HemisphereRays],
+) {
+    let Queries {
+        states,
+        hits,
+        batch,
+        index,
+        found,
+        ..
+    } = queries;
+    states.clear();
+    states.resize(spans.len(), ProbeState::default());
     for (state, span) in states.iter_mut().zip(spans) {
         state.other = outcomes[span.clone()]
             .iter()
             .filter(|o| **o == Outcome::Below)
             .count() as u32;
     }
-    let mut hits: Vec<Option<Option<crate::accel::Hit>>> = vec![None; rays.len()];
-    let (mut batch, mut index) = (Vec::new(), Vec::new());
+    hits.clear();
+    hits.resize(rays.len(), None);
     loop {
         for (state, span) in states.iter_mut().zip(spans) {
             if state.verdict.is_none() {
@@ -397,28 +460,25 @@ fn probe(
         if batch.is_empty() {
             break;
         }
-        let mut found = vec![None; batch.len()];
-        closest(geometry, &batch, &mut found, probe.kernel);
-        for (&k, hit) in index.iter().zip(found) {
+        found.clear();
+        found.resize(batch.len(), None);
+        closest(geometry, batch, found, probe.kernel);
+        for (&k, &hit) in index.iter().zip(found.iter()) {
             hits[k] = Some(hit);
         }
     }
-    states
-        .iter()
-        .zip(spans)
-        .map(|(state, span)| {
-            let inside = state.verdict.unwrap_or(false);
-            if inside || !probe.occlusion {
-                for o in outcomes[span.clone()]
-                    .iter_mut()
-                    .filter(|o| **o == Outcome::Pending)
-                {
-                    *o = Outcome::Skipped;
-                }
+    for ((state, span), out) in states.iter().zip(spans).zip(out) {
+        let inside = state.verdict.unwrap_or(false);
+        if inside || !probe.occlusion {
+            for o in outcomes[span.clone()]
+                .iter_mut()
+                .filter(|o| **o == Outcome::Pending)
+            {
+                *o = Outcome::Skipped;
             }
-            inside
-        })
-        .collect()
+        }
+        out.inside = inside;
+    }
 }
 
 /// Closest hits of `rays` with the chosen kernel (see [`Kernel`]).
@@ -446,6 +506,7 @@ fn occlusion(
     rays: &[Option<Ray>],
     outcomes: &mut [Outcome],
     kernel: Kernel,
+    queries: &mut Queries,
 ) {
     if kernel == Kernel::PerRay {
         for (ray, outcome) in rays.iter().zip(outcomes.iter_mut()) {
@@ -457,20 +518,28 @@ fn occlusion(
         }
         return;
     }
-    let (mut batch, mut index) = (Vec::with_capacity(rays.len()), Vec::new());
+    let Queries {
+        batch,
+        index,
+        occluded,
+        ..
+    } = queries;
+    batch.clear();
+    index.clear();
     for (i, (ray, outcome)) in rays.iter().zip(outcomes.iter()).enumerate() {
         if let (Some(ray), Outcome::Pending) = (ray, outcome) {
             batch.push(*ray);
             index.push(i);
         }
     }
-    let mut hit = vec![false; batch.len()];
+    occluded.clear();
+    occluded.resize(batch.len(), false);
     if kernel == Kernel::Batch {
-        geometry.accel.occluded_batch(&batch, &mut hit);
+        geometry.accel.occluded_batch(batch, occluded);
     } else {
-        geometry.accel.occluded_packet(&batch, &mut hit);
+        geometry.accel.occluded_packet(batch, occluded);
     }
-    for (i, hit) in index.into_iter().zip(hit) {
+    for (&i, &hit) in index.iter().zip(occluded.iter()) {
         outcomes[i] = Outcome::Traced { open: !hit };
     }
 }
