@@ -18,6 +18,7 @@
 mod brute;
 mod bvh;
 mod counters;
+mod packet;
 mod ray_kind;
 mod spawn;
 mod traversal_cost;

@@ -1,7 +1,8 @@
 //! Ambient occlusion and the inside-geometry probe: cosine-weighted rays about the shading
 //! normal from a robustly offset origin, generated as one stream per texel. The probe traces
-//! closest hits only until its verdict is certain; occlusion is answered by any-hit queries
-//! (one per ray, or through the batch kernel with `STAGELIGHT_RAY_STREAMS=on`).
+//! closest hits only until its verdict is certain; occlusion is answered by any-hit queries,
+//! a texel's rays traced together in common-origin packets (or one query per ray, or the
+//! batch kernel: `STAGELIGHT_RAY_STREAMS=off`/`on`).
 
 use glam::Vec3;
 
@@ -62,14 +63,31 @@ impl HemisphereQuery {
     }
 }
 
-/// Whether a texel's occlusion rays go through the batch kernel (`STAGELIGHT_RAY_STREAMS=on`
-/// at the first bake) or one query per ray (the default). Same results. One query per ray is
-/// the default because it measured faster on `bake_ao.ron` (a texel's rays share their origin,
-/// so consecutive single-ray traversals find the upper nodes in cache, and the batch lanes'
-/// bookkeeping costs more than the latency they hide: issue 17 notes, sessions 7 and 9).
-fn streams() -> bool {
-    static CHOICE: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
-    *CHOICE.get_or_init(|| std::env::var("STAGELIGHT_RAY_STREAMS").as_deref() == Ok("on"))
+/// How a texel's occlusion rays are traced. All give the same answers, bit for bit.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Kernel {
+    /// Common-origin packets ([`crate::accel::Accel::occluded_packet`]), the default: a
+    /// texel's rays leave from its few sample positions, so the packet computes each node's
+    /// planes minus the origins once and runs the traversal loop once for all of them
+    /// (issue 17, session 11).
+    Packets,
+    /// One query per ray (`STAGELIGHT_RAY_STREAMS=off`).
+    PerRay,
+    /// The interleaved batch kernel (`STAGELIGHT_RAY_STREAMS=on`): measured slower here, the
+    /// rays are coherent and their nodes cache-resident (sessions 7 and 9).
+    Batch,
+}
+
+/// The kernel chosen by `STAGELIGHT_RAY_STREAMS` at the first bake (for A/B runs).
+fn kernel() -> Kernel {
+    static CHOICE: std::sync::OnceLock<Kernel> = std::sync::OnceLock::new();
+    *CHOICE.get_or_init(
+        || match std::env::var("STAGELIGHT_RAY_STREAMS").as_deref() {
+            Ok("on") => Kernel::Batch,
+            Ok("off") => Kernel::PerRay,
+            _ => Kernel::Packets,
+        },
+    )
 }
 
 /// One sample position's share of a batch of hemisphere rays (see [`trace_hemispheres`]).
@@ -137,9 +155,9 @@ enum Outcome {
 /// is certain whatever the remaining rays would show: a point outside is certain once so
 /// many rays have not met a back face that the rest cannot reach the fraction (after about
 /// a quarter of them), a point inside once more than the fraction have. Every other ray
-/// needed for occlusion is an occlusion (any-hit) query up to `max_distance`, one query per
-/// ray, or with `STAGELIGHT_RAY_STREAMS=on` through the batch kernel
-/// ([`crate::accel::Accel::occluded_batch`]). A ray's occlusion is the same from either
+/// needed for occlusion is an occlusion (any-hit) query up to `max_distance`, all of them
+/// traced in common-origin packets ([`crate::accel::Accel::occluded_packet`]; one query per
+/// ray with `STAGELIGHT_RAY_STREAMS=off`, the batch kernel with `on`). A ray's occlusion is the same from either
 /// query (a hit before `max_distance` exists or not), and each point's sums are added in ray
 /// order, so the results are those of tracing every ray to its first hit, bit for bit.
 pub fn trace_hemispheres(
@@ -149,12 +167,76 @@ pub fn trace_hemispheres(
     seed: u32,
     query: HemisphereQuery,
 ) -> Vec<HemisphereRays> {
+    trace_with(geometry, jobs, max_distance, seed, query, kernel())
+}
+
+/// [`trace_hemispheres`] with the given kernel.
+fn trace_with(
+    geometry: &SceneGeometry,
+    jobs: &[HemisphereJob<'_>],
+    max_distance: f32,
+    seed: u32,
+    query: HemisphereQuery,
+    kernel: Kernel,
+) -> Vec<HemisphereRays> {
+    thread_local! {
+        static SCRATCH: std::cell::RefCell<Scratch> = std::cell::RefCell::default();
+    }
+    SCRATCH.with(|cell| match cell.try_borrow_mut() {
+        Ok(mut scratch) => {
+            let scratch = &mut *scratch;
+            trace_in(geometry, jobs, max_distance, seed, query, kernel, scratch)
+        }
+        Err(_) => {
+            let scratch = &mut Scratch::default();
+            trace_in(geometry, jobs, max_distance, seed, query, kernel, scratch)
+        }
+    })
+}
+
+/// A thread's working vectors, kept between calls (a bake makes one call per texel).
+#[derive(Default)]
+struct Scratch {
+    /// Each drawn ray (traced ones with their direction), point by point.
+    rays: Vec<Option<Ray>>,
+    outcomes: Vec<Outcome>,
+    /// Each point's rays in `rays`.
+    spans: Vec<std::ops::Range<usize>>,
+    queries: Queries,
+}
+
+/// The probe's and the occlusion queries' working vectors.
+#[derive(Default)]
+struct Queries {
+    states: Vec<ProbeState>,
+    /// The closest hit of each ray, once traced.
+    hits: Vec<Option<Option<crate::accel::Hit>>>,
+    batch: Vec<Ray>,
+    index: Vec<usize>,
+    found: Vec<Option<crate::accel::Hit>>,
+    occluded: Vec<bool>,
+}
+
+/// [`trace_with`] with its working vectors.
+fn trace_in(
+    geometry: &SceneGeometry,
+    jobs: &[HemisphereJob<'_>],
+    max_distance: f32,
+    seed: u32,
+    query: HemisphereQuery,
+    kernel: Kernel,
+    scratch: &mut Scratch,
+) -> Vec<HemisphereRays> {
     let mut out = vec![HemisphereRays::default(); jobs.len()];
-    let total: usize = jobs.iter().map(|j| j.count as usize).sum();
-    // Each drawn ray (traced ones with their direction in `rays`), point by point.
-    let mut rays = Vec::with_capacity(total);
-    let mut outcomes = Vec::with_capacity(total);
-    let mut spans = Vec::with_capacity(jobs.len());
+    let Scratch {
+        rays,
+        outcomes,
+        spans,
+        queries,
+    } = scratch;
+    rays.clear();
+    outcomes.clear();
+    spans.clear();
     for job in jobs {
         let (t, b) = basis(job.normal);
         // `offset_ray_origin` depends on the direction only through the side of the surface
@@ -183,20 +265,24 @@ pub fn trace_hemispheres(
         spans.push(begin..outcomes.len());
     }
     if let Some(fraction) = query.inside_fraction() {
-        for (p, span) in spans.iter().enumerate() {
-            let inside = probe(
-                geometry,
-                &rays[span.clone()],
-                &mut outcomes[span.clone()],
-                max_distance,
-                fraction,
-                matches!(query, HemisphereQuery::OcclusionAndProbe { .. }),
-            );
-            out[p].inside = inside;
-        }
+        let probe_query = Probe {
+            max_distance,
+            fraction,
+            occlusion: matches!(query, HemisphereQuery::OcclusionAndProbe { .. }),
+            kernel,
+        };
+        probe(
+            geometry,
+            rays,
+            outcomes,
+            spans,
+            probe_query,
+            queries,
+            &mut out,
+        );
     }
     if !matches!(query, HemisphereQuery::Probe { .. }) {
-        occlusion(geometry, &rays, &mut outcomes);
+        occlusion(geometry, rays, outcomes, kernel, queries);
     }
     for (p, span) in spans.iter().enumerate() {
         let out = &mut out[p];
@@ -218,86 +304,243 @@ pub fn trace_hemispheres(
     out
 }
 
-/// The inside-geometry verdict of one point: its rays traced in order as closest-hit queries
-/// to infinity until the verdict is certain. Traced rays get their occlusion (a first hit
-/// before `max_distance`); once the point is inside, the rest are skipped, and so are the
-/// rest of a point outside unless `occlusion` is wanted (they stay pending).
+/// What the inside-geometry probe is asked.
+#[derive(Debug, Clone, Copy)]
+struct Probe {
+    /// Hits at or beyond this do not occlude.
+    max_distance: f32,
+    /// Fraction of back-face first hits above which a point is inside.
+    fraction: f32,
+    /// Whether the rays of a point outside are wanted for occlusion (left pending).
+    occlusion: bool,
+    kernel: Kernel,
+}
+
+/// One point's probe in progress: its rays are consumed in order, as the closest hits come.
+#[derive(Debug, Clone, Copy, Default)]
+struct ProbeState {
+    /// The next ray of the point's span to consume.
+    next: usize,
+    /// Traced rays whose first hit is the back of a one-sided surface.
+    backface: u32,
+    /// Rays known not to meet a back face first (below the surface, or traced and not).
+    other: u32,
+    verdict: Option<bool>,
+}
+
+impl ProbeState {
+    /// Consumes the point's rays in order while their closest hits are in `hits` (`None`:
+    /// not traced yet), exactly as tracing them one by one would, until the verdict is
+    /// certain whatever the remaining rays show, or a hit is missing.
+    fn advance(
+        &mut self,
+        geometry: &SceneGeometry,
+        rays: &[Option<Ray>],
+        hits: &[Option<Option<crate::accel::Hit>>],
+        outcomes: &mut [Outcome],
+        probe: Probe,
+    ) {
+        let count = rays.len() as u32;
+        let inside = |backface: u32| backface as f32 > probe.fraction * count as f32;
+        while self.next < rays.len() {
+            if !inside(count - self.other) {
+                // Outside whatever the remaining rays show.
+                self.verdict = Some(false);
+                return;
+            }
+            let k = self.next;
+            let Some(ray) = rays[k] else {
+                self.next += 1;
+                continue;
+            };
+            let Some(hit) = hits[k] else { return };
+            let back = hit.is_some_and(|hit| {
+                let tri = geometry.accel.triangle(hit.prim);
+                let ng = (tri[1] - tri[0]).cross(tri[2] - tri[0]);
+                ng.dot(ray.dir) > 0.0 && !geometry.material_of(hit.prim).two_sided
+            });
+            if back {
+                self.backface += 1;
+            } else {
+                self.other += 1;
+            }
+            outcomes[k] = Outcome::Traced {
+                open: hit.is_none_or(|h| h.t >= probe.max_distance),
+            };
+            self.next += 1;
+            if inside(self.backface) {
+                self.verdict = Some(true);
+                return;
+            }
+        }
+        self.verdict = Some(inside(self.backface));
+    }
+
+    /// How many more traced rays the verdict needs at least: as many as it takes for the
+    /// rest to fall short of the fraction if none meets a back face, or to exceed it if
+    /// all do. Tracing that many next rays at once traces none that one-by-one tracing
+    /// would not.
+    fn lookahead(&self, count: u32, fraction: f32) -> usize {
+        let inside = |backface: u32| backface as f32 > fraction * count as f32;
+        let to_outside = (1..=count)
+            .find(|k| !inside(count.saturating_sub(self.other + k)))
+            .unwrap_or(count);
+        let to_inside = (1..=count)
+            .find(|k| inside(self.backface + k))
+            .unwrap_or(count);
+        to_outside.min(to_inside).max(1) as usize
+    }
+}
+
+/// The inside-geometry verdict of every point (`spans` into `rays`): each point's rays are
+/// consumed in order as closest-hit queries to infinity until its verdict is certain; the
+/// hits come in rounds, each the fewest next rays of every undecided point that its verdict
+/// needs ([`ProbeState::lookahead`]), traced together (common-origin packets by default).
+/// Traced rays get their occlusion (a first hit before `max_distance`); once a point is
+/// inside, its other rays are skipped, and so are those of a point outside unless occlusion
+/// is wanted (they stay pending). The same rays are traced, and the same verdicts and
+/// outcomes result, as tracing each point's rays one by one.
 fn probe(
     geometry: &SceneGeometry,
     rays: &[Option<Ray>],
     outcomes: &mut [Outcome],
-    max_distance: f32,
-    fraction: f32,
-    occlusion: bool,
-) -> bool {
-    let count = outcomes.len() as u32;
-    let inside = |backface: u32| backface as f32 > fraction * count as f32;
-    let mut backface = 0;
-    // Rays known not to meet a back face first (below the surface, or traced and not).
-    let mut other = outcomes.iter().filter(|o| **o == Outcome::Below).count() as u32;
-    let mut verdict = None;
-    for (ray, outcome) in rays.iter().zip(outcomes.iter_mut()) {
-        if !inside(count - other) {
-            // Outside whatever the remaining rays show.
-            verdict = Some(false);
-            break;
-        }
-        let Some(ray) = ray else { continue };
-        let hit = geometry.accel.intersect(&Ray {
-            t_max: f32::INFINITY,
-            ..*ray
-        });
-        let back = hit.is_some_and(|hit| {
-            let tri = geometry.accel.triangle(hit.prim);
-            let ng = (tri[1] - tri[0]).cross(tri[2] - tri[0]);
-            ng.dot(ray.dir) > 0.0 && !geometry.material_of(hit.prim).two_sided
-        });
-        if back {
-            backface += 1;
-        } else {
-            other += 1;
-        }
-        *outcome = Outcome::Traced {
-            open: hit.is_none_or(|h| h.t >= max_distance),
-        };
-        if inside(backface) {
-            verdict = Some(true);
-            break;
-        }
+    spans: &[std::ops::Range<usize>],
+    probe: Probe,
+    queries: &mut Queries,
+    out: &mut [HemisphereRays],
+) {
+    let Queries {
+        states,
+        hits,
+        batch,
+        index,
+        found,
+        ..
+    } = queries;
+    states.clear();
+    states.resize(spans.len(), ProbeState::default());
+    for (state, span) in states.iter_mut().zip(spans) {
+        state.other = outcomes[span.clone()]
+            .iter()
+            .filter(|o| **o == Outcome::Below)
+            .count() as u32;
     }
-    let inside = verdict.unwrap_or_else(|| inside(backface));
-    if inside || !occlusion {
-        for o in outcomes.iter_mut().filter(|o| **o == Outcome::Pending) {
-            *o = Outcome::Skipped;
-        }
-    }
-    inside
-}
-
-/// Occlusion queries (up to each ray's `t_max`, the distance) for every pending ray: one
-/// query per ray, or one batch (`STAGELIGHT_RAY_STREAMS=on`).
-fn occlusion(geometry: &SceneGeometry, rays: &[Option<Ray>], outcomes: &mut [Outcome]) {
-    if streams() {
-        let (mut batch, mut index) = (Vec::new(), Vec::new());
-        for (i, (ray, outcome)) in rays.iter().zip(outcomes.iter()).enumerate() {
-            if let (Some(ray), Outcome::Pending) = (ray, outcome) {
-                batch.push(*ray);
-                index.push(i);
+    hits.clear();
+    hits.resize(rays.len(), None);
+    loop {
+        for (state, span) in states.iter_mut().zip(spans) {
+            if state.verdict.is_none() {
+                state.advance(
+                    geometry,
+                    &rays[span.clone()],
+                    &hits[span.clone()],
+                    &mut outcomes[span.clone()],
+                    probe,
+                );
             }
         }
-        let mut hit = vec![false; batch.len()];
-        geometry.accel.occluded_batch(&batch, &mut hit);
-        for (i, hit) in index.into_iter().zip(hit) {
-            outcomes[i] = Outcome::Traced { open: !hit };
+        batch.clear();
+        index.clear();
+        for (state, span) in states.iter().zip(spans) {
+            if state.verdict.is_some() {
+                continue;
+            }
+            let want = state.lookahead(span.len() as u32, probe.fraction);
+            let next = span.start + state.next;
+            for k in (next..span.end).filter(|&k| rays[k].is_some()).take(want) {
+                if let Some(ray) = rays[k] {
+                    batch.push(Ray {
+                        t_max: f32::INFINITY,
+                        ..ray
+                    });
+                    index.push(k);
+                }
+            }
+        }
+        if batch.is_empty() {
+            break;
+        }
+        found.clear();
+        found.resize(batch.len(), None);
+        closest(geometry, batch, found, probe.kernel);
+        for (&k, &hit) in index.iter().zip(found.iter()) {
+            hits[k] = Some(hit);
+        }
+    }
+    for ((state, span), out) in states.iter().zip(spans).zip(out) {
+        let inside = state.verdict.unwrap_or(false);
+        if inside || !probe.occlusion {
+            for o in outcomes[span.clone()]
+                .iter_mut()
+                .filter(|o| **o == Outcome::Pending)
+            {
+                *o = Outcome::Skipped;
+            }
+        }
+        out.inside = inside;
+    }
+}
+
+/// Closest hits of `rays` with the chosen kernel (see [`Kernel`]).
+fn closest(
+    geometry: &SceneGeometry,
+    rays: &[Ray],
+    out: &mut [Option<crate::accel::Hit>],
+    kernel: Kernel,
+) {
+    match kernel {
+        Kernel::Packets => geometry.accel.intersect_packet(rays, out),
+        Kernel::Batch => geometry.accel.intersect_batch(rays, out),
+        Kernel::PerRay => {
+            for (ray, out) in rays.iter().zip(out) {
+                *out = geometry.accel.intersect(ray);
+            }
+        }
+    }
+}
+
+/// Occlusion queries (up to each ray's `t_max`, the distance) for every pending ray: in
+/// common-origin packets, one query per ray or one batch (see [`Kernel`]).
+fn occlusion(
+    geometry: &SceneGeometry,
+    rays: &[Option<Ray>],
+    outcomes: &mut [Outcome],
+    kernel: Kernel,
+    queries: &mut Queries,
+) {
+    if kernel == Kernel::PerRay {
+        for (ray, outcome) in rays.iter().zip(outcomes.iter_mut()) {
+            if let (Some(ray), true) = (ray, *outcome == Outcome::Pending) {
+                *outcome = Outcome::Traced {
+                    open: !geometry.accel.occluded(ray),
+                };
+            }
         }
         return;
     }
-    for (ray, outcome) in rays.iter().zip(outcomes.iter_mut()) {
-        if let (Some(ray), true) = (ray, *outcome == Outcome::Pending) {
-            *outcome = Outcome::Traced {
-                open: !geometry.accel.occluded(ray),
-            };
+    let Queries {
+        batch,
+        index,
+        occluded,
+        ..
+    } = queries;
+    batch.clear();
+    index.clear();
+    for (i, (ray, outcome)) in rays.iter().zip(outcomes.iter()).enumerate() {
+        if let (Some(ray), Outcome::Pending) = (ray, outcome) {
+            batch.push(*ray);
+            index.push(i);
         }
+    }
+    occluded.clear();
+    occluded.resize(batch.len(), false);
+    if kernel == Kernel::Batch {
+        geometry.accel.occluded_batch(batch, occluded);
+    } else {
+        geometry.accel.occluded_packet(batch, occluded);
+    }
+    for (&i, &hit) in index.iter().zip(occluded.iter()) {
+        outcomes[i] = Outcome::Traced { open: !hit };
     }
 }
 #[cfg(test)]
@@ -481,6 +724,71 @@ mod tests {
             insides >= 6 && outsides >= 12,
             "{insides} inside, {outsides} outside"
         );
+    }
+
+    /// The three kernels (common-origin packets, one query per ray, interleaved batches)
+    /// give every point the same rays, verdict, escaped count and direction sum, bit for
+    /// bit, for every query: many points in one call (more origins than one packet holds),
+    /// inside the closed box, beside the wall's back, under the roof and in the open.
+    #[test]
+    fn packets_per_ray_and_batch_kernels_agree() {
+        let g = scene();
+        let surfaces: Vec<SurfacePoint> = (0..24)
+            .map(|i| {
+                let p = Vec3::new(-0.9 + 0.08 * i as f32, 0.4 + 0.1 * (i % 3) as f32, 0.0);
+                g.accel
+                    .surface_point(&fixture::hit(&g, p - Vec3::Z, Vec3::Z).1)
+            })
+            .collect();
+        let normals = [
+            Vec3::Z,
+            Vec3::new(0.6, 0.0, 0.8),
+            Vec3::new(0.0, -0.28, 0.96),
+        ];
+        let bits = |r: &HemisphereRays| {
+            (
+                r.rays,
+                r.open,
+                r.open_dir_sum.to_array().map(f32::to_bits),
+                r.inside,
+            )
+        };
+        let mut inside = 0;
+        for (seed, count, max_distance) in [(7, 16, f32::INFINITY), (8, 64, 0.4), (9, 5, 2.0)] {
+            let jobs: Vec<HemisphereJob<'_>> = surfaces
+                .iter()
+                .zip(normals.iter().cycle())
+                .enumerate()
+                .map(|(i, (s, &normal))| HemisphereJob {
+                    surface: s,
+                    normal,
+                    ng_facing: s.ng,
+                    first: 5 * i as u32,
+                    count,
+                })
+                .collect();
+            for query in [
+                HemisphereQuery::Occlusion,
+                HemisphereQuery::Probe {
+                    inside_fraction: 0.5,
+                },
+                HemisphereQuery::OcclusionAndProbe {
+                    inside_fraction: 0.75,
+                },
+            ] {
+                let run = |k| trace_with(&g, &jobs, max_distance, seed, query, k);
+                let packets = run(Kernel::Packets);
+                let per_ray = run(Kernel::PerRay);
+                let batch = run(Kernel::Batch);
+                for p in 0..jobs.len() {
+                    let case = format!("point {p}, seed {seed}, {query:?}");
+                    assert_eq!(bits(&packets[p]), bits(&per_ray[p]), "{case}");
+                    assert_eq!(bits(&batch[p]), bits(&per_ray[p]), "{case}");
+                    inside += usize::from(per_ray[p].inside);
+                }
+            }
+        }
+        assert!(inside >= 4, "{inside} points inside");
     }
 
     /// Outside in the open the probe decides after a quarter of the rays and inside a closed
