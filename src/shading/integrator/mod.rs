@@ -209,6 +209,8 @@ pub struct Vertex<'a> {
     pub frame: ShadingFrame,
     /// Direction toward the viewer, local.
     pub wo: Vec3,
+    /// Direction toward the viewer, world space (the unit reverse of the arriving ray).
+    pub wo_world: Vec3,
     /// Transmittance of the segment that reached this vertex (absorption inside a dielectric).
     pub transmittance: Vec3,
 }
@@ -261,6 +263,7 @@ impl<'a> Vertex<'a> {
             emission,
             frame,
             wo: frame.to_local(wo_world),
+            wo_world,
             transmittance,
         }
     }
@@ -288,6 +291,13 @@ impl<'a> Vertex<'a> {
     #[inline]
     pub fn bsdf(&self) -> Option<Bsdf> {
         Bsdf::new(&self.shader, self.front)
+    }
+
+    /// [`Vertex::bsdf`] written into `bsdf` ([`Bsdf::set_shader`]); false where `bsdf()`
+    /// gives `None`.
+    #[inline]
+    pub fn bsdf_into(&self, bsdf: &mut Bsdf) -> bool {
+        bsdf.set_shader(&self.shader, self.front)
     }
 
     /// A ray leaving along the local direction `wi` if it lies on the geometric side its

@@ -26,7 +26,7 @@ use super::{
 };
 use crate::accel::{Hit, Ray};
 use crate::sampling::Sampler;
-use crate::shading::bsdf::Scatter;
+use crate::shading::bsdf::{Bsdf, Scatter};
 use crate::shading::mis::power_heuristic;
 use crate::shading::surface::unlit_radiance;
 
@@ -79,6 +79,8 @@ pub fn radiance_split(
     // Whether the path is still the eye's specular chain `E S*` (camera ray, then only delta
     // scattering): only then does `visible` hide area lights (see the module doc).
     let mut eye_chain = true;
+    // Refilled at every vertex ([`Vertex::bsdf_into`]).
+    let mut bsdf = Bsdf::empty();
     while let Some(h) = hit {
         let v = Vertex::new(ctx, &ray, &h);
         beta *= v.transmittance;
@@ -125,7 +127,9 @@ pub fn radiance_split(
             l,
             false,
         );
-        let Some(bsdf) = v.bsdf() else { break };
+        if !v.bsdf_into(&mut bsdf) {
+            break;
+        }
         if bsdf.has_non_delta() {
             let mut diffuse = Vec3::ZERO;
             let share = (parts.is_some() && lanes.is_none()).then_some(&mut diffuse);
