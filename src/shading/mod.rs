@@ -16,6 +16,7 @@ pub mod mis;
 pub mod shadow;
 pub mod surface;
 pub mod texture;
+pub mod triangle_normals;
 pub mod volume;
 
 pub use bsdf::{Bsdf, BsdfSample};

@@ -48,6 +48,7 @@ use crate::shading::lights::{Light, LightSet};
 use crate::shading::mis::power_heuristic;
 use crate::shading::shadow::transmittance;
 use crate::shading::texture::{bump, hit as textured};
+use crate::shading::triangle_normals::TriangleNormals;
 use crate::shading::volume::Volumes;
 use volume::shadow_transmittance;
 
@@ -73,6 +74,9 @@ pub struct ShadeContext<'a> {
     pub photons: Option<&'a dyn PhotonRadiance>,
     /// Fog around the camera and inside materials (`None`: vacuum everywhere).
     pub volumes: Option<&'a Volumes>,
+    /// The triangles' unit normals, when kept for this scene (hit points then skip
+    /// recomputing them; the same values).
+    pub normals: Option<&'a TriangleNormals>,
 }
 
 impl<'a> ShadeContext<'a> {
@@ -93,7 +97,14 @@ impl<'a> ShadeContext<'a> {
             photon_depth: settings.photons.depth,
             photons: None,
             volumes: None,
+            normals: None,
         }
+    }
+
+    /// The same context reading the triangles' normals from `normals` (made of `geometry`).
+    pub fn with_normals(mut self, normals: Option<&'a TriangleNormals>) -> Self {
+        self.normals = normals;
+        self
     }
 
     /// The same context reading `photons` (the photon maps, `photon::PhotonMaps`).
@@ -224,7 +235,10 @@ impl<'a> Vertex<'a> {
     /// and its mirror direction above the geometric surface
     /// ([`bump::ensure_valid_reflection`]), so bent normals never shade black.
     pub fn new(ctx: &ShadeContext<'a>, ray: &Ray, hit: &Hit) -> Self {
-        let mut sp = ctx.geometry.shading_point(hit);
+        let mut sp = match ctx.normals {
+            Some(n) => n.shading_point(ctx.geometry, hit),
+            None => ctx.geometry.shading_point(hit),
+        };
         let material = &ctx.geometry.materials[sp.material as usize];
         let (shader, bumped, emission) = match textured::evaluate(ctx.geometry, &sp, hit, material)
         {
