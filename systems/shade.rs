@@ -45,6 +45,7 @@ use crate::scene_view::{light_set, render_view, WithEnvironment};
 use crate::schedule::any_with;
 use crate::shading::integrator::components::{camera_sample, Component, Components};
 use crate::shading::integrator::{camera_hit, CameraHit};
+use crate::shading::material_bsdfs::MaterialBsdfs;
 use crate::shading::triangle_normals::TriangleNormals;
 use crate::shading::{CameraRays, FilterSampler, ShadeContext, Volumes};
 
@@ -143,11 +144,13 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
     let ticker = progress.ticker();
     let photons = frame.outputs.photons.as_ref();
     let normals = geometry.and_then(TriangleNormals::new);
+    let bsdfs = geometry.map(MaterialBsdfs::new);
     let ctx = geometry.map(|g| {
         ShadeContext::new(g, &lights, &settings)
             .with_volumes(volumes.as_ref())
             .with_photons(photons)
             .with_normals(normals.as_ref())
+            .with_bsdfs(bsdfs.as_ref())
     });
     let shade = PixelShader {
         ctx: ctx.as_ref(),

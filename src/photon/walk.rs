@@ -127,8 +127,9 @@ impl Walk {
         let through = self.power * v.transmittance;
         fate.absorbed += self.power - through;
         let power = through;
-        let mut bsdf = Bsdf::empty();
-        if !(v.bsdf_into(&mut bsdf) && v.visible) {
+        let mut scratch = Bsdf::empty();
+        let bsdf = v.bsdf_ref(ctx, &mut scratch);
+        if !(bsdf.reflects() && v.visible) {
             fate.absorbed += power;
             return;
         }

@@ -10,6 +10,7 @@ pub mod frame;
 pub mod fresnel;
 pub mod integrator;
 pub mod lights;
+pub mod material_bsdfs;
 pub mod medium;
 pub mod microfacet;
 pub mod mis;

@@ -178,6 +178,13 @@ impl Bsdf {
         self.len > 0
     }
 
+    /// Whether this BSDF has a lobe (reflects or transmits something); false exactly where
+    /// [`Bsdf::new`] gives `None`.
+    #[inline]
+    pub fn reflects(&self) -> bool {
+        self.len > 0
+    }
+
     /// A BSDF made of the given weighted lobes (energy clamp and probabilities applied).
     pub fn from_lobes(lobes: &[(Vec3, Lobe)]) -> Option<Self> {
         let mut b = Self {

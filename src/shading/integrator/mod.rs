@@ -45,6 +45,7 @@ use crate::shading::bsdf::Bsdf;
 use crate::shading::frame::ShadingFrame;
 use crate::shading::lights::environment::source_radiance;
 use crate::shading::lights::{Light, LightSet};
+use crate::shading::material_bsdfs::MaterialBsdfs;
 use crate::shading::mis::power_heuristic;
 use crate::shading::shadow::transmittance;
 use crate::shading::texture::{bump, hit as textured};
@@ -77,6 +78,9 @@ pub struct ShadeContext<'a> {
     /// The triangles' unit normals, when kept for this scene (hit points then skip
     /// recomputing them; the same values).
     pub normals: Option<&'a TriangleNormals>,
+    /// The materials' BSDFs, when kept for this scene (untextured hits then read theirs
+    /// instead of building it; the same values).
+    pub bsdfs: Option<&'a MaterialBsdfs>,
 }
 
 impl<'a> ShadeContext<'a> {
@@ -98,7 +102,14 @@ impl<'a> ShadeContext<'a> {
             photons: None,
             volumes: None,
             normals: None,
+            bsdfs: None,
         }
+    }
+
+    /// The same context reading untextured hits' BSDFs from `bsdfs` (made of `geometry`).
+    pub fn with_bsdfs(mut self, bsdfs: Option<&'a MaterialBsdfs>) -> Self {
+        self.bsdfs = bsdfs;
+        self
     }
 
     /// The same context reading the triangles' normals from `normals` (made of `geometry`).
@@ -307,11 +318,18 @@ impl<'a> Vertex<'a> {
         Bsdf::new(&self.shader, self.front)
     }
 
-    /// [`Vertex::bsdf`] written into `bsdf` ([`Bsdf::set_shader`]); false where `bsdf()`
-    /// gives `None`.
+    /// [`Vertex::bsdf`] without the `Option` (one that reflects nothing, [`Bsdf::reflects`]
+    /// false, where `bsdf()` gives `None`): the material's kept BSDF when the context keeps
+    /// them and no texture drives this point's shader, else built into `scratch`.
     #[inline]
-    pub fn bsdf_into(&self, bsdf: &mut Bsdf) -> bool {
-        bsdf.set_shader(&self.shader, self.front)
+    pub fn bsdf_ref<'b>(&'b self, ctx: &ShadeContext<'b>, scratch: &'b mut Bsdf) -> &'b Bsdf {
+        match (ctx.bsdfs, &self.shader) {
+            (Some(kept), Cow::Borrowed(_)) => kept.get(self.sp.material, self.front),
+            _ => {
+                scratch.set_shader(&self.shader, self.front);
+                scratch
+            }
+        }
     }
 
     /// A ray leaving along the local direction `wi` if it lies on the geometric side its
