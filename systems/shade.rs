@@ -44,9 +44,9 @@ use crate::sampling::{fold_seed, Sampler};
 use crate::scene_view::{light_set, render_view, WithEnvironment};
 use crate::schedule::any_with;
 use crate::shading::integrator::components::{camera_sample, Component, Components};
+use crate::shading::integrator::material_bsdfs::MaterialBsdfs;
+use crate::shading::integrator::triangle_normals::TriangleNormals;
 use crate::shading::integrator::{camera_hit, CameraHit};
-use crate::shading::material_bsdfs::MaterialBsdfs;
-use crate::shading::triangle_normals::TriangleNormals;
 use crate::shading::{CameraRays, FilterSampler, ShadeContext, Volumes};
 
 /// Run condition: a render camera exists.

@@ -39,8 +39,8 @@ use crate::photon::{
 use crate::sampling::fold_seed;
 use crate::scene_view::{has_render_camera, light_set, WithEnvironment};
 use crate::settings::{Integrator, PhotonMapSettings, RenderSettings};
-use crate::shading::material_bsdfs::MaterialBsdfs;
-use crate::shading::triangle_normals::TriangleNormals;
+use crate::shading::integrator::material_bsdfs::MaterialBsdfs;
+use crate::shading::integrator::triangle_normals::TriangleNormals;
 use crate::shading::ShadeContext;
 
 /// Automatic gather radius as a fraction of the scene's bounding-box diagonal.

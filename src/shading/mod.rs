@@ -10,14 +10,12 @@ pub mod frame;
 pub mod fresnel;
 pub mod integrator;
 pub mod lights;
-pub mod material_bsdfs;
 pub mod medium;
 pub mod microfacet;
 pub mod mis;
 pub mod shadow;
 pub mod surface;
 pub mod texture;
-pub mod triangle_normals;
 pub mod volume;
 
 pub use bsdf::{Bsdf, BsdfSample};

@@ -27,7 +27,9 @@ pub mod direct;
 #[cfg(test)]
 pub(crate) mod fixture;
 pub mod local;
+pub mod material_bsdfs;
 pub mod path;
+pub mod triangle_normals;
 pub mod volume;
 
 use std::borrow::Cow;
@@ -45,12 +47,12 @@ use crate::shading::bsdf::Bsdf;
 use crate::shading::frame::ShadingFrame;
 use crate::shading::lights::environment::source_radiance;
 use crate::shading::lights::{Light, LightSet};
-use crate::shading::material_bsdfs::MaterialBsdfs;
 use crate::shading::mis::power_heuristic;
 use crate::shading::shadow::transmittance;
 use crate::shading::texture::{bump, hit as textured};
-use crate::shading::triangle_normals::TriangleNormals;
 use crate::shading::volume::Volumes;
+use material_bsdfs::MaterialBsdfs;
+use triangle_normals::TriangleNormals;
 use volume::shadow_transmittance;
 
 /// What shading a hit needs from the scene.
