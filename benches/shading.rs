@@ -11,6 +11,9 @@
 //!   `STAGELIGHT_REF_SPP` spp, default 512, another seed) is rendered once and cached under
 //!   the target directory (`stagelight-ref/`). relMSE = mean over pixels and channels of
 //!   (x − r)² / (r² + 10⁻²).
+//! - `sampler/24_dimensions`: a path's worth of sampler dimensions (a Cornell-box path of
+//!   four vertices draws about 24) for 1,024 samples of different pixels — the Sobol
+//!   dimensions eight per call (`sampling/sobol8.rs`).
 
 use std::path::PathBuf;
 
@@ -22,6 +25,7 @@ use stagelight::components::{
     TriMesh, WorldFromObject,
 };
 use stagelight::frame::Frame;
+use stagelight::sampling::Sampler;
 use stagelight::scene::load_scene;
 use stagelight::settings::{Integrator, RenderSettings};
 use stagelight::shading::texture::noise::Fractal;
@@ -312,5 +316,29 @@ fn path_tracer_convergence(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, material_families, path_tracer_convergence);
+/// 24 dimensions of each of 1,024 samples, each sample of its own pixel.
+fn sampler_dimensions(c: &mut Criterion) {
+    let mut group = c.benchmark_group("sampler");
+    group.throughput(Throughput::Elements(24 * 1024));
+    group.bench_function("24_dimensions", |b| {
+        b.iter(|| {
+            let mut sum = 0.0f32;
+            for i in 0..1024u32 {
+                let mut s = Sampler::for_item(7, u64::from(i) * 31, i % 16);
+                for _ in 0..24 {
+                    sum += s.next_1d();
+                }
+            }
+            std::hint::black_box(sum)
+        })
+    });
+    group.finish();
+}
+
+criterion_group!(
+    benches,
+    material_families,
+    path_tracer_convergence,
+    sampler_dimensions
+);
 criterion_main!(benches);

@@ -123,7 +123,13 @@ impl SceneGeometry {
 
     /// Turns a hit into a shading point.
     pub fn shading_point(&self, hit: &Hit) -> ShadingPoint {
-        let surface = self.accel.surface_point(hit);
+        self.shading_point_on(hit, self.accel.surface_point(hit))
+    }
+
+    /// [`Self::shading_point`] of `hit` whose surface point (`accel.surface_point(hit)`)
+    /// the caller already has.
+    #[inline]
+    pub fn shading_point_on(&self, hit: &Hit, surface: SurfacePoint) -> ShadingPoint {
         let slot = self.triangle_instance[hit.prim as usize];
         let inst = &self.instances[slot as usize];
         let local = (hit.prim - inst.first_triangle) as usize;

@@ -4,6 +4,8 @@
 //! Sequences are Owen-scrambled Sobol points (`sobol_burley`), one independent scramble per
 //! pixel; beyond the table's 256 dimensions or 2¹⁶ samples a hash of the same inputs takes over.
 
+mod sobol8;
+
 use glam::{Vec2, Vec3};
 
 /// A 32-bit integer hash with good avalanche (the `lowbias32` finaliser).
@@ -41,16 +43,19 @@ pub fn u32_to_unit(x: u32) -> f32 {
 
 /// A stream of sample dimensions for one (sequence seed, sample index).
 ///
-/// Sobol dimensions are computed four at a time (`sobol_burley::sample_4d`, SIMD on x86-64,
-/// identical values to `sample`) and cached, so consecutive dimensions cost a quarter each.
+/// Sobol dimensions are computed eight at a time ([`sobol8`]: the values of
+/// `sobol_burley::sample_4d` for two dimension sets, bit for bit) and cached, so consecutive
+/// dimensions cost an eighth each; the index scramble they share is made once.
 #[derive(Debug, Clone)]
 pub struct Sampler {
     seed: u32,
     index: u32,
     dimension: u32,
-    /// Which set of four dimensions `cache` holds (`u32::MAX`: none).
-    cached_set: u32,
-    cache: [f32; 4],
+    /// The scrambled index of the Sobol sum ([`sobol8::scrambled_index`]).
+    index_rev: u32,
+    /// Which pair of four-dimension sets `cache` holds (`u32::MAX`: none).
+    cached_pair: u32,
+    cache: [f32; 8],
 }
 
 impl Sampler {
@@ -60,8 +65,9 @@ impl Sampler {
             seed,
             index,
             dimension: 0,
-            cached_set: u32::MAX,
-            cache: [0.0; 4],
+            index_rev: sobol8::scrambled_index(index, seed),
+            cached_pair: u32::MAX,
+            cache: [0.0; 8],
         }
     }
 
@@ -79,12 +85,12 @@ impl Sampler {
         let d = self.dimension;
         self.dimension += 1;
         if d < sobol_burley::NUM_DIMENSIONS && self.index < (1 << 16) {
-            let set = d / 4;
-            if set != self.cached_set {
-                self.cache = sobol_burley::sample_4d(self.index, set, self.seed);
-                self.cached_set = set;
+            let pair = d / 8;
+            if pair != self.cached_pair {
+                self.cache = sobol8::eight(self.index_rev, pair, self.seed);
+                self.cached_pair = pair;
             }
-            self.cache[(d % 4) as usize]
+            self.cache[(d % 8) as usize]
         } else {
             u32_to_unit(hash_combine(&[self.seed, self.index, d]))
         }
@@ -162,7 +168,7 @@ mod tests {
     }
 
     #[test]
-    fn cached_four_dimension_sets_equal_single_dimensions() {
+    fn cached_eight_dimension_pairs_equal_single_dimensions() {
         for index in [0, 1, 7, 1000, 65535] {
             let mut s = Sampler::new(0xdead_beef, index);
             for d in 0..sobol_burley::NUM_DIMENSIONS {

@@ -44,6 +44,8 @@ use crate::sampling::{fold_seed, Sampler};
 use crate::scene_view::{light_set, render_view, WithEnvironment};
 use crate::schedule::any_with;
 use crate::shading::integrator::components::{camera_sample, Component, Components};
+use crate::shading::integrator::material_bsdfs::MaterialBsdfs;
+use crate::shading::integrator::triangle_normals::TriangleNormals;
 use crate::shading::integrator::{camera_hit, CameraHit};
 use crate::shading::{CameraRays, FilterSampler, ShadeContext, Volumes};
 
@@ -141,10 +143,14 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
     );
     let ticker = progress.ticker();
     let photons = frame.outputs.photons.as_ref();
+    let normals = geometry.and_then(TriangleNormals::new);
+    let bsdfs = geometry.map(MaterialBsdfs::new);
     let ctx = geometry.map(|g| {
         ShadeContext::new(g, &lights, &settings)
             .with_volumes(volumes.as_ref())
             .with_photons(photons)
+            .with_normals(normals.as_ref())
+            .with_bsdfs(bsdfs.as_ref())
     });
     let shade = PixelShader {
         ctx: ctx.as_ref(),

@@ -39,6 +39,8 @@ use crate::photon::{
 use crate::sampling::fold_seed;
 use crate::scene_view::{has_render_camera, light_set, WithEnvironment};
 use crate::settings::{Integrator, PhotonMapSettings, RenderSettings};
+use crate::shading::integrator::material_bsdfs::MaterialBsdfs;
+use crate::shading::integrator::triangle_normals::TriangleNormals;
 use crate::shading::ShadeContext;
 
 /// Automatic gather radius as a fraction of the scene's bounding-box diagonal.
@@ -115,7 +117,11 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
         let entity = geometry.instances[slot].entity;
         world.get::<&PhotonFlags>(entity).ok().map(|f| *f)
     });
-    let ctx = ShadeContext::new(geometry, &lights, settings);
+    let normals = TriangleNormals::new(geometry);
+    let bsdfs = MaterialBsdfs::new(geometry);
+    let ctx = ShadeContext::new(geometry, &lights, settings)
+        .with_normals(normals.as_ref())
+        .with_bsdfs(Some(&bsdfs));
     let seed = fold_seed(settings.seed);
     let diagonal = 2.0 * bounding_sphere(geometry).1;
     let key = photon_key(geometry, &lights, &controls, &roles, settings);

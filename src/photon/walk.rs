@@ -12,7 +12,7 @@ use super::kdtree::Photon;
 use crate::accel::{Hit, Ray};
 use crate::components::PhotonRole;
 use crate::sampling::Sampler;
-use crate::shading::bsdf::{Scatter, TransportMode};
+use crate::shading::bsdf::{Bsdf, Scatter, TransportMode};
 use crate::shading::integrator::{ShadeContext, Vertex};
 use crate::shading::shadow::shader_transmits_shadows;
 
@@ -127,14 +127,13 @@ impl Walk {
         let through = self.power * v.transmittance;
         fate.absorbed += self.power - through;
         let power = through;
-        let bsdf = match v.bsdf() {
-            Some(b) if v.visible => b,
-            _ => {
-                fate.absorbed += power;
-                return;
-            }
-        };
-        let incoming = -ray.dir.normalize();
+        let mut scratch = Bsdf::empty();
+        let bsdf = v.bsdf_ref(ctx, &mut scratch);
+        if !(bsdf.reflects() && v.visible) {
+            fate.absorbed += power;
+            return;
+        }
+        let incoming = v.wo_world;
         let role = roles
             .get(v.sp.instance as usize)
             .copied()

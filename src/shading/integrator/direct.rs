@@ -18,6 +18,7 @@ use super::{
 };
 use crate::accel::{Hit, Ray};
 use crate::sampling::Sampler;
+use crate::shading::bsdf::Bsdf;
 use crate::shading::surface::unlit_radiance;
 
 /// Radiance toward the origin of `ray`, which hits the scene at `hit` (a camera ray).
@@ -63,22 +64,24 @@ fn vertex_radiance(
     let l = local::radiance(ctx, &v, sampler);
     note(&mut parts, local_component(&v.shader), l);
     radiance += l;
-    let Some(bsdf) = v.bsdf() else {
+    let mut scratch = Bsdf::empty();
+    let bsdf = v.bsdf_ref(ctx, &mut scratch);
+    if !bsdf.reflects() {
         scale(&mut parts, v.transmittance);
         return v.transmittance * radiance;
-    };
+    }
     radiance += v.shader.ambient();
     note(&mut parts, Component::DiffuseIndirect, v.shader.ambient());
     if bsdf.has_non_delta() {
         let mut diffuse = Vec3::ZERO;
         let share = parts.is_some().then_some(&mut diffuse);
-        let direct = light_loop_split(ctx, &v, &bsdf, sampler, false, share);
+        let direct = light_loop_split(ctx, &v, bsdf, sampler, false, share);
         radiance += direct;
         note(&mut parts, Component::DiffuseDirect, diffuse);
         note(&mut parts, Component::Specular, direct - diffuse);
         let photons = ctx
             .photons
-            .map_or(Vec3::ZERO, |p| p.radiance(ctx, &v, &bsdf, sampler));
+            .map_or(Vec3::ZERO, |p| p.radiance(ctx, &v, bsdf, sampler));
         radiance += photons;
         note(&mut parts, Component::DiffuseIndirect, photons);
     }

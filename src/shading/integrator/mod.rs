@@ -27,7 +27,9 @@ pub mod direct;
 #[cfg(test)]
 pub(crate) mod fixture;
 pub mod local;
+pub mod material_bsdfs;
 pub mod path;
+pub mod triangle_normals;
 pub mod volume;
 
 use std::borrow::Cow;
@@ -49,6 +51,8 @@ use crate::shading::mis::power_heuristic;
 use crate::shading::shadow::transmittance;
 use crate::shading::texture::{bump, hit as textured};
 use crate::shading::volume::Volumes;
+use material_bsdfs::MaterialBsdfs;
+use triangle_normals::TriangleNormals;
 use volume::shadow_transmittance;
 
 /// What shading a hit needs from the scene.
@@ -73,6 +77,12 @@ pub struct ShadeContext<'a> {
     pub photons: Option<&'a dyn PhotonRadiance>,
     /// Fog around the camera and inside materials (`None`: vacuum everywhere).
     pub volumes: Option<&'a Volumes>,
+    /// The triangles' unit normals, when kept for this scene (hit points then skip
+    /// recomputing them; the same values).
+    pub normals: Option<&'a TriangleNormals>,
+    /// The materials' BSDFs, when kept for this scene (untextured hits then read theirs
+    /// instead of building it; the same values).
+    pub bsdfs: Option<&'a MaterialBsdfs>,
 }
 
 impl<'a> ShadeContext<'a> {
@@ -93,7 +103,21 @@ impl<'a> ShadeContext<'a> {
             photon_depth: settings.photons.depth,
             photons: None,
             volumes: None,
+            normals: None,
+            bsdfs: None,
         }
+    }
+
+    /// The same context reading untextured hits' BSDFs from `bsdfs` (made of `geometry`).
+    pub fn with_bsdfs(mut self, bsdfs: Option<&'a MaterialBsdfs>) -> Self {
+        self.bsdfs = bsdfs;
+        self
+    }
+
+    /// The same context reading the triangles' normals from `normals` (made of `geometry`).
+    pub fn with_normals(mut self, normals: Option<&'a TriangleNormals>) -> Self {
+        self.normals = normals;
+        self
     }
 
     /// The same context reading `photons` (the photon maps, `photon::PhotonMaps`).
@@ -209,6 +233,8 @@ pub struct Vertex<'a> {
     pub frame: ShadingFrame,
     /// Direction toward the viewer, local.
     pub wo: Vec3,
+    /// Direction toward the viewer, world space (the unit reverse of the arriving ray).
+    pub wo_world: Vec3,
     /// Transmittance of the segment that reached this vertex (absorption inside a dielectric).
     pub transmittance: Vec3,
 }
@@ -222,7 +248,10 @@ impl<'a> Vertex<'a> {
     /// and its mirror direction above the geometric surface
     /// ([`bump::ensure_valid_reflection`]), so bent normals never shade black.
     pub fn new(ctx: &ShadeContext<'a>, ray: &Ray, hit: &Hit) -> Self {
-        let mut sp = ctx.geometry.shading_point(hit);
+        let mut sp = match ctx.normals {
+            Some(n) => n.shading_point(ctx.geometry, hit),
+            None => ctx.geometry.shading_point(hit),
+        };
         let material = &ctx.geometry.materials[sp.material as usize];
         let (shader, bumped, emission) = match textured::evaluate(ctx.geometry, &sp, hit, material)
         {
@@ -261,6 +290,7 @@ impl<'a> Vertex<'a> {
             emission,
             frame,
             wo: frame.to_local(wo_world),
+            wo_world,
             transmittance,
         }
     }
@@ -288,6 +318,20 @@ impl<'a> Vertex<'a> {
     #[inline]
     pub fn bsdf(&self) -> Option<Bsdf> {
         Bsdf::new(&self.shader, self.front)
+    }
+
+    /// [`Vertex::bsdf`] without the `Option` (one that reflects nothing, [`Bsdf::reflects`]
+    /// false, where `bsdf()` gives `None`): the material's kept BSDF when the context keeps
+    /// them and no texture drives this point's shader, else built into `scratch`.
+    #[inline]
+    pub fn bsdf_ref<'b>(&'b self, ctx: &ShadeContext<'b>, scratch: &'b mut Bsdf) -> &'b Bsdf {
+        match (ctx.bsdfs, &self.shader) {
+            (Some(kept), Cow::Borrowed(_)) => kept.get(self.sp.material, self.front),
+            _ => {
+                scratch.set_shader(&self.shader, self.front);
+                scratch
+            }
+        }
     }
 
     /// A ray leaving along the local direction `wi` if it lies on the geometric side its

@@ -26,7 +26,7 @@ use super::{
 };
 use crate::accel::{Hit, Ray};
 use crate::sampling::Sampler;
-use crate::shading::bsdf::Scatter;
+use crate::shading::bsdf::{Bsdf, Scatter};
 use crate::shading::mis::power_heuristic;
 use crate::shading::surface::unlit_radiance;
 
@@ -79,6 +79,8 @@ pub fn radiance_split(
     // Whether the path is still the eye's specular chain `E S*` (camera ray, then only delta
     // scattering): only then does `visible` hide area lights (see the module doc).
     let mut eye_chain = true;
+    // Where a textured vertex builds its BSDF ([`Vertex::bsdf_ref`]).
+    let mut scratch = Bsdf::empty();
     while let Some(h) = hit {
         let v = Vertex::new(ctx, &ray, &h);
         beta *= v.transmittance;
@@ -125,11 +127,14 @@ pub fn radiance_split(
             l,
             false,
         );
-        let Some(bsdf) = v.bsdf() else { break };
+        let bsdf = v.bsdf_ref(ctx, &mut scratch);
+        if !bsdf.reflects() {
+            break;
+        }
         if bsdf.has_non_delta() {
             let mut diffuse = Vec3::ZERO;
             let share = (parts.is_some() && lanes.is_none()).then_some(&mut diffuse);
-            let direct = light_loop_split(ctx, &v, &bsdf, sampler, true, share);
+            let direct = light_loop_split(ctx, &v, bsdf, sampler, true, share);
             radiance += beta * direct;
             let glossy = direct - diffuse;
             record(
@@ -163,7 +168,7 @@ pub fn radiance_split(
             }
         };
         let next_lanes = parts.is_some().then(|| match &lanes {
-            None => PathLanes::first(beta * s.weight(), &s, &bsdf, v.wo),
+            None => PathLanes::first(beta * s.weight(), &s, bsdf, v.wo),
             Some(l) => l.after(s.weight()),
         });
         // A delta ray of a material with its own environment sees that one (see `super`).
