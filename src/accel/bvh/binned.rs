@@ -471,17 +471,17 @@ fn sweep(refs: &mut [Bounds], ids: &mut [u32]) -> (usize, Bounds, Bounds) {
     }
     for (axis, order) in orders.iter_mut().enumerate() {
         let order = &mut order[..n];
-        for (k, o) in order.iter_mut().enumerate() {
-            *o = k as u8;
-        }
-        let key = |k: u8| centroid[k as usize][axis];
-        // Insertion sort, stable: ties keep their positions.
-        for i in 1..n {
-            let mut j = i;
-            while j > 0 && key(order[j - 1]).total_cmp(&key(order[j])).is_gt() {
-                order.swap(j - 1, j);
-                j -= 1;
-            }
+        // Stable sort by centroid (`total_cmp`; ties keep their positions) as ranks: one
+        // distinct integer per triangle, (total-order key, position), and each triangle's
+        // rank is the number of smaller ones.
+        let keys: [u64; SWEEP_MAX] = std::array::from_fn(|k| {
+            let bits = centroid[k][axis].to_bits() as i32;
+            let total = (bits ^ (((bits >> 31) as u32) >> 1) as i32) as u32 ^ 1 << 31;
+            u64::from(total) << 8 | k as u64
+        });
+        let keys = &keys[..n];
+        for (k, &key) in keys.iter().enumerate() {
+            order[keys.iter().filter(|&&o| o < key).count()] = k as u8;
         }
         let mut right_area = [0.0f32; SWEEP_MAX];
         let mut acc = Bounds::EMPTY;
