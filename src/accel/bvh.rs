@@ -28,7 +28,6 @@ use crate::settings::BvhQuality;
 
 mod binned;
 mod collapse;
-mod huge_pages;
 
 /// Child reference flag: the child is a leaf.
 pub(crate) const LEAF_BIT: u32 = 1 << 31;
@@ -217,14 +216,13 @@ pub(crate) fn build(tris: &[[Vec3; 3]], quality: BvhQuality) -> Bvh {
     }
     let params = build_params(quality);
     let bvh2 = if quality == BvhQuality::Medium {
-        let mut refs = huge_pages::vec_with_capacity(valid.len());
-        valid
+        let refs: Vec<binned::Bounds> = valid
             .par_iter()
             .map(|&i| {
                 let [v0, v1, v2] = tris[i as usize].map(Vec3A::from);
                 binned::Bounds::new(v0.min(v1).min(v2), v0.max(v1).max(v2))
             })
-            .collect_into_vec(&mut refs);
+            .collect();
         phases.prepare = clock.lap();
         let bvh2 = binned::build(refs);
         phases.hierarchy = clock.lap();
@@ -256,11 +254,7 @@ pub(crate) fn build(tris: &[[Vec3; 3]], quality: BvhQuality) -> Bvh {
                 .filter(|&i| is_degenerate(&tris[i as usize])),
         );
     }
-    let mut bvh_tris = huge_pages::vec_with_capacity(prim_ids.len());
-    prim_ids
-        .par_iter()
-        .map(|&i| tris[i as usize])
-        .collect_into_vec(&mut bvh_tris);
+    let bvh_tris: Vec<[Vec3; 3]> = prim_ids.par_iter().map(|&i| tris[i as usize]).collect();
     let slot_of = inverse(&prim_ids);
     let mut nodes = collapsed.nodes;
     nodes

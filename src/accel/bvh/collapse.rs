@@ -111,18 +111,14 @@ pub(crate) fn collapse(bvh2: &Bvh2, max_prims_per_leaf: u32) -> Collapsed {
     let c = Collapser {
         bvh2,
         max_prims_per_leaf,
-        table: {
-            let mut table = super::huge_pages::vec_with_capacity(n);
-            (0..n)
-                .into_par_iter()
-                .map(|_| [AtomicU64::new(0), AtomicU64::new(0)])
-                .collect_into_vec(&mut table);
-            table
-        },
+        table: (0..n)
+            .into_par_iter()
+            .map(|_| [AtomicU64::new(0), AtomicU64::new(0)])
+            .collect(),
     };
     let root = c.cost(0, 0);
     let total_nodes = c.nodes8(0);
-    let mut nodes = super::huge_pages::vec_filled(Node::EMPTY, total_nodes as usize);
+    let mut nodes = vec![Node::EMPTY; total_nodes as usize];
     let mut order = vec![0u32; root.prims as usize];
     c.emit(0, &mut nodes, &mut order, 0, 0);
     Collapsed { nodes, order }
