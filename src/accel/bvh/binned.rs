@@ -223,8 +223,7 @@ pub(crate) fn build(mut refs: Vec<Bounds>) -> Bvh2 {
             |a, b| (a.0.union(b.0), a.1.union(b.1)),
         );
     // `2n − 1` slots, the size with one triangle per leaf: every subtree owns a slice of
-    // that size, and slices of leaves of two triangles stay unused (never written, so the
-    // zeroed allocation costs no page for them).
+    // that size, and slices of leaves of two triangles stay unused (filled with defaults).
     let mut nodes = vec![Bvh2Node::default(); 2 * n - 1];
     if n <= LEAF_MAX {
         nodes[0] = bounds.node(n as u32, 0);
