@@ -95,13 +95,17 @@ impl Node {
                 std::array::from_fn(|s| (0..3).map(|a| centre[s][a] * sign(a)).sum());
             // Filled slots by key (ties by slot), then the empty ones in slot order: one
             // integer per slot ordered as (empty, key by `total_cmp`, slot), sorted.
-            let mut sort_keys: [u64; 8] = std::array::from_fn(|s| {
+            let sort_keys: [u64; 8] = std::array::from_fn(|s| {
                 let bits = key[s].to_bits() as i32;
                 let total = (bits ^ (((bits >> 31) as u32) >> 1) as i32) as u32 ^ 1 << 31;
                 u64::from(self.child[s] == EMPTY_CHILD) << 63 | u64::from(total) << 3 | s as u64
             });
-            sort_keys.sort_unstable();
-            let slots = sort_keys.map(|k| (k & 7) as usize);
+            // The keys are distinct (the slot is in the low bits): each slot's rank is the
+            // number of smaller keys, a branch-free sort of eight.
+            let mut slots = [0usize; 8];
+            for (s, &k) in sort_keys.iter().enumerate() {
+                slots[sort_keys.iter().filter(|&&o| o < k).count()] = s;
+            }
             pack_order(slots)
         })
     }
@@ -212,11 +216,11 @@ pub(crate) fn build(tris: &[[Vec3; 3]], quality: BvhQuality) -> Bvh {
     }
     let params = build_params(quality);
     let bvh2 = if quality == BvhQuality::Medium {
-        let refs: Vec<binned::Bounds3> = valid
+        let refs: Vec<binned::Bounds> = valid
             .par_iter()
             .map(|&i| {
                 let [v0, v1, v2] = tris[i as usize].map(Vec3A::from);
-                [v0.min(v1).min(v2), v0.max(v1).max(v2)]
+                binned::Bounds::new(v0.min(v1).min(v2), v0.max(v1).max(v2))
             })
             .collect();
         phases.prepare = clock.lap();

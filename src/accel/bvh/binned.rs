@@ -43,9 +43,9 @@ const BIN_CHUNK: usize = 1 << 14;
 /// Below this depth splits minimise the SAH; deeper ones split at the median.
 const SAH_DEPTH: u32 = 48;
 
-/// An axis-aligned box.
+/// An axis-aligned box: a triangle's exact box is the builder's input.
 #[derive(Clone, Copy, Debug)]
-struct Bounds {
+pub(crate) struct Bounds {
     lo: Vec3A,
     hi: Vec3A,
 }
@@ -55,6 +55,11 @@ impl Bounds {
         lo: Vec3A::INFINITY,
         hi: Vec3A::NEG_INFINITY,
     };
+
+    /// The box of the points `lo` and `hi` (`lo ≤ hi` on every axis).
+    pub(crate) fn new(lo: Vec3A, hi: Vec3A) -> Bounds {
+        Bounds { lo, hi }
+    }
 
     #[inline(always)]
     fn union(self, o: Bounds) -> Bounds {
@@ -117,11 +122,31 @@ impl<const N: usize> BinMap<N> {
         }
     }
 
-    /// The bin of `c` on each axis (NaN from `inf · 0` maps to bin 0).
+    /// The bin of `c` on each axis (NaN from `inf · 0` maps to bin 0): the position is
+    /// clamped to `[0, N − 1]` in `f32` and truncated by one vector conversion, which is
+    /// what the saturating casts `t as u32` and `.min(N − 1)` give, lane by lane.
     #[inline(always)]
     fn bins(&self, c: Vec3A) -> [usize; 3] {
-        let t = ((c - self.origin) * self.scale).as_uvec3();
-        t.to_array().map(|b| (b as usize).min(N - 1))
+        let t = (c - self.origin) * self.scale;
+        #[cfg(target_arch = "x86_64")]
+        {
+            use std::arch::x86_64::{
+                __m128, _mm_cvtsi128_si32 as lane0, _mm_cvttps_epi32, _mm_max_ps, _mm_min_ps,
+                _mm_set1_ps, _mm_setzero_ps, _mm_shuffle_epi32 as shuffle,
+            };
+            // SAFETY: SSE and SSE2 are part of the x86_64 baseline. `maxps` returns its
+            // second operand when either is NaN, so NaN becomes 0.
+            let b = unsafe {
+                let t = _mm_max_ps(__m128::from(t), _mm_setzero_ps());
+                let b = _mm_cvttps_epi32(_mm_min_ps(t, _mm_set1_ps((N - 1) as f32)));
+                [lane0(b), lane0(shuffle::<1>(b)), lane0(shuffle::<2>(b))]
+            };
+            b.map(|b| b as usize)
+        }
+        #[cfg(not(target_arch = "x86_64"))]
+        {
+            t.as_uvec3().to_array().map(|b| (b as usize).min(N - 1))
+        }
     }
 
     /// Whether `c` falls in a bin below `bin` on `axis`, for an axis a split was chosen on:
@@ -179,13 +204,9 @@ struct BinSplit {
 
 /// Builds the binary hierarchy over `refs` (each triangle's exact box, indexed by the
 /// primitive index the hierarchy reports).
-pub(crate) fn build(refs: Vec<Bounds3>) -> Bvh2 {
+pub(crate) fn build(mut refs: Vec<Bounds>) -> Bvh2 {
     let n = refs.len();
     assert!(n > 0);
-    let mut refs: Vec<Bounds> = refs
-        .into_par_iter()
-        .map(|[lo, hi]| Bounds { lo, hi })
-        .collect();
     let mut ids: Vec<u32> = (0..n as u32).collect();
     let (bounds, centroids) = refs
         .par_iter()
@@ -202,8 +223,7 @@ pub(crate) fn build(refs: Vec<Bounds3>) -> Bvh2 {
             |a, b| (a.0.union(b.0), a.1.union(b.1)),
         );
     // `2n − 1` slots, the size with one triangle per leaf: every subtree owns a slice of
-    // that size, and slices of leaves of two triangles stay unused (never written, so the
-    // zeroed allocation costs no page for them).
+    // that size, and slices of leaves of two triangles stay unused (filled with defaults).
     let mut nodes = vec![Bvh2Node::default(); 2 * n - 1];
     if n <= LEAF_MAX {
         nodes[0] = bounds.node(n as u32, 0);
@@ -217,9 +237,6 @@ pub(crate) fn build(refs: Vec<Bounds3>) -> Bvh2 {
         ..Bvh2::default()
     }
 }
-
-/// A triangle's box as `[min, max]`.
-pub(crate) type Bounds3 = [Vec3A; 2];
 
 struct Builder;
 
@@ -398,8 +415,9 @@ fn binned_split<const N: usize>(refs: &[Bounds], map: &BinMap<N>, depth: u32) ->
     })
 }
 
-/// Moves the triangles whose centroid falls in a bin below `bin` on `axis` to the front;
-/// returns their count and the centroid bounds of both sides.
+/// Moves the triangles whose centroid falls in a bin below `bin` on `axis` to the front
+/// (Hoare: scan from both ends, one swap per misplaced pair); returns their count and the
+/// centroid bounds of both sides.
 fn partition<const N: usize>(
     refs: &mut [Bounds],
     ids: &mut [u32],
@@ -410,19 +428,34 @@ fn partition<const N: usize>(
     let bin = bin as f32;
     let (mut lc, mut rc) = (Bounds::EMPTY, Bounds::EMPTY);
     let (mut i, mut j) = (0, refs.len());
-    while i < j {
-        let c = refs[i].centroid();
-        if map.below(c, axis, bin) {
+    loop {
+        while i < j {
+            let c = refs[i].centroid();
+            if !map.below(c, axis, bin) {
+                break;
+            }
             lc.grow(c);
             i += 1;
-        } else {
+        }
+        while i < j {
+            let c = refs[j - 1].centroid();
+            if map.below(c, axis, bin) {
+                break;
+            }
             rc.grow(c);
             j -= 1;
-            refs.swap(i, j);
-            ids.swap(i, j);
         }
+        if i >= j {
+            return (i, lc, rc);
+        }
+        // `refs[i]` goes right, `refs[j − 1]` left.
+        lc.grow(refs[j - 1].centroid());
+        rc.grow(refs[i].centroid());
+        refs.swap(i, j - 1);
+        ids.swap(i, j - 1);
+        i += 1;
+        j -= 1;
     }
-    (i, lc, rc)
 }
 
 /// Exact SAH split of a small node: on each axis the triangles sorted by centroid (ties by
@@ -438,17 +471,17 @@ fn sweep(refs: &mut [Bounds], ids: &mut [u32]) -> (usize, Bounds, Bounds) {
     }
     for (axis, order) in orders.iter_mut().enumerate() {
         let order = &mut order[..n];
-        for (k, o) in order.iter_mut().enumerate() {
-            *o = k as u8;
-        }
-        let key = |k: u8| centroid[k as usize][axis];
-        // Insertion sort, stable: ties keep their positions.
-        for i in 1..n {
-            let mut j = i;
-            while j > 0 && key(order[j - 1]).total_cmp(&key(order[j])).is_gt() {
-                order.swap(j - 1, j);
-                j -= 1;
-            }
+        // Stable sort by centroid (`total_cmp`; ties keep their positions) as ranks: one
+        // distinct integer per triangle, (total-order key, position), and each triangle's
+        // rank is the number of smaller ones.
+        let keys: [u64; SWEEP_MAX] = std::array::from_fn(|k| {
+            let bits = centroid[k][axis].to_bits() as i32;
+            let total = (bits ^ (((bits >> 31) as u32) >> 1) as i32) as u32 ^ 1 << 31;
+            u64::from(total) << 8 | k as u64
+        });
+        let keys = &keys[..n];
+        for (k, &key) in keys.iter().enumerate() {
+            order[keys.iter().filter(|&&o| o < key).count()] = k as u8;
         }
         let mut right_area = [0.0f32; SWEEP_MAX];
         let mut acc = Bounds::EMPTY;
@@ -485,7 +518,7 @@ fn sweep(refs: &mut [Bounds], ids: &mut [u32]) -> (usize, Bounds, Bounds) {
 mod tests {
     use super::*;
 
-    fn soup(n: usize, seed: u64) -> Vec<Bounds3> {
+    fn soup(n: usize, seed: u64) -> Vec<Bounds> {
         let mut state = seed;
         let mut rnd = move || {
             state ^= state << 13;
@@ -497,14 +530,14 @@ mod tests {
             .map(|_| {
                 let c = Vec3A::new(rnd(), rnd() * 0.5, rnd() * 2.0) * 8.0;
                 let e = Vec3A::new(rnd(), rnd(), rnd()) * 0.2;
-                [c - e, c + e]
+                Bounds::new(c - e, c + e)
             })
             .collect()
     }
 
     /// Every primitive sits in exactly one leaf, leaves hold one, node boxes are the exact
     /// unions of their children's, children follow their parent; returns the depth.
-    fn check(bvh: &Bvh2, refs: &[Bounds3]) -> usize {
+    fn check(bvh: &Bvh2, refs: &[Bounds]) -> usize {
         let n = refs.len();
         assert_eq!(bvh.nodes.len(), 2 * n - 1);
         let mut seen = vec![false; n];
@@ -520,7 +553,7 @@ mod tests {
                 for k in 0..node.prim_count {
                     let p = bvh.primitive_indices[(node.first_index + k) as usize] as usize;
                     assert!(!std::mem::replace(&mut seen[p], true));
-                    (lo, hi) = (lo.min(refs[p][0]), hi.max(refs[p][1]));
+                    (lo, hi) = (lo.min(refs[p].lo), hi.max(refs[p].hi));
                 }
                 (lo, hi)
             } else {
@@ -590,19 +623,19 @@ mod tests {
     /// hierarchies of logarithmic depth.
     #[test]
     fn degenerate_distributions_stay_shallow() {
-        let same = vec![[Vec3A::ZERO, Vec3A::ONE]; 5000];
+        let same = vec![Bounds::new(Vec3A::ZERO, Vec3A::ONE); 5000];
         assert!(check(&build(same.clone()), &same) <= 14);
-        let geometric: Vec<Bounds3> = (0..2000)
+        let geometric: Vec<Bounds> = (0..2000)
             .map(|i| {
                 let s = 1.05f32.powi(i % 1800);
-                [Vec3A::splat(s), Vec3A::splat(s * 1.5)]
+                Bounds::new(Vec3A::splat(s), Vec3A::splat(s * 1.5))
             })
             .collect();
         let d = check(&build(geometric.clone()), &geometric);
         assert!(d <= SAH_DEPTH as usize + 24, "{d}");
         let mut huge = soup(3000, 11);
-        huge.push([Vec3A::splat(-1.5e38), Vec3A::splat(1.5e38)]);
-        huge.push([Vec3A::splat(1e37), Vec3A::splat(3e38)]);
+        huge.push(Bounds::new(Vec3A::splat(-1.5e38), Vec3A::splat(1.5e38)));
+        huge.push(Bounds::new(Vec3A::splat(1e37), Vec3A::splat(3e38)));
         let d = check(&build(huge.clone()), &huge);
         assert!(d <= 30, "{d}");
     }

@@ -277,25 +277,29 @@ impl Collapser<'_> {
                 d.dot(v)
             });
         }
+        // Greedy: repeatedly the least cost over free (child, slot) pairs, the first in
+        // (child, slot) order on ties; taken rows and columns are masked with `f32::MAX`,
+        // which no pick accepts (nor NaN), so each step is one branch-free scan.
+        let mut flat: [f32; 64] = std::array::from_fn(|k| cost[k / 8][k % 8]);
         let mut assignment = [usize::MAX; 8];
         let mut filled = [false; 8];
-        loop {
-            let (mut min_cost, mut min_slot, mut min_child) = (f32::MAX, usize::MAX, usize::MAX);
-            for (c, row) in cost.iter().take(list.len()).enumerate() {
-                if assignment[c] != usize::MAX {
-                    continue;
-                }
-                for (s, (&k, &full)) in row.iter().zip(&filled).enumerate() {
-                    if !full && k < min_cost {
-                        (min_cost, min_slot, min_child) = (k, s, c);
-                    }
-                }
+        for _ in 0..list.len() {
+            let (mut min_cost, mut min_k) = (f32::MAX, usize::MAX);
+            for (k, &v) in flat.iter().enumerate().take(8 * list.len()) {
+                let less = v < min_cost;
+                min_cost = if less { v } else { min_cost };
+                min_k = if less { k } else { min_k };
             }
-            if min_slot == usize::MAX {
+            if min_k == usize::MAX {
                 break;
             }
+            let (min_child, min_slot) = (min_k / 8, min_k % 8);
             filled[min_slot] = true;
             assignment[min_child] = min_slot;
+            flat[8 * min_child..8 * min_child + 8].fill(f32::MAX);
+            for row in flat.chunks_exact_mut(8) {
+                row[min_slot] = f32::MAX;
+            }
         }
         // Children whose costs are not below `f32::MAX` (infinite or NaN centres of huge
         // boxes) are left unassigned by the greedy loop (obvhs then indexes out of bounds):
