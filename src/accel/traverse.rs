@@ -40,6 +40,27 @@ pub(super) trait NodeTest {
     /// Tests the eight children against `[0, t_far]`.
     fn intersect(&self, node: &Node, t_far: f32) -> (u32, [f32; 8]);
 
+    /// Reports the hits of a leaf's triangles `tris` (1 to 3, BVH order) with `t ≤ t_limit`
+    /// to `f`, in triangle order, as `(j, (t, b1, b2))` with `j` the index in `tris`; each is
+    /// exactly what `woop.intersect` answers for that triangle. Stops when `f` returns true.
+    /// One triangle at a time here; the AVX2 kernels test the leaf in SIMD lanes.
+    #[inline(always)]
+    fn leaf_hits(
+        &self,
+        woop: &WoopRay,
+        tris: &[[Vec3; 3]],
+        t_limit: f32,
+        mut f: impl FnMut(usize, (f32, f32, f32)) -> bool,
+    ) {
+        for (j, tri) in tris.iter().enumerate() {
+            if let Some(hit) = woop.intersect(tri) {
+                if hit.0 <= t_limit && f(j, hit) {
+                    return;
+                }
+            }
+        }
+    }
+
     /// The same test, answered in the visiting order `order` (a [`Node::order`] word):
     /// bit `i` of the mask, entry distance `i` and reference `i` are those of slot
     /// `order`'s `i`-th slot. Scalar permutation here; the wide kernels permute in registers.
@@ -334,18 +355,20 @@ fn closest_with<S: Stack, N: NodeTest, const OCTANT: bool>(
     let mut cur = 0u32;
     loop {
         if cur & LEAF_BIT != 0 {
-            for k in leaf_range(cur) {
-                if let Some((t, b1, b2)) = woop.intersect(&bvh.tris[k]) {
-                    let better = t < best_t
-                        || (t == best_t
-                            && best.is_some_and(|(bk, _, _)| bvh.prim_ids[k] < bvh.prim_ids[bk]));
-                    if better {
-                        best = Some((k, b1, b2));
-                        best_t = t;
-                        cull = t * FAR_SCALE;
-                    }
+            let range = leaf_range(cur);
+            let first = range.start;
+            nr.leaf_hits(&woop, &bvh.tris[range], best_t, |j, (t, b1, b2)| {
+                let k = first + j;
+                let better = t < best_t
+                    || (t == best_t
+                        && best.is_some_and(|(bk, _, _)| bvh.prim_ids[k] < bvh.prim_ids[bk]));
+                if better {
+                    best = Some((k, b1, b2));
+                    best_t = t;
+                    cull = t * FAR_SCALE;
                 }
-            }
+                false
+            });
         } else if OCTANT {
             let node = &bvh.nodes[cur as usize];
             let (mut mask, tn, child) = nr.intersect_ordered(node, best_t, node.order[octant]);
@@ -411,12 +434,18 @@ fn occluded_with<S: Stack, N: NodeTest>(bvh: &Bvh, ray: &Ray, mut stack: S) -> b
     let mut cur = 0u32;
     loop {
         if cur & LEAF_BIT != 0 {
-            for k in leaf_range(cur) {
-                if let Some((t, _, _)) = woop.intersect(&bvh.tris[k]) {
-                    if t < ray.t_max {
-                        return true;
-                    }
-                }
+            let mut hit = false;
+            nr.leaf_hits(
+                &woop,
+                &bvh.tris[leaf_range(cur)],
+                ray.t_max,
+                |_, (t, _, _)| {
+                    hit = t < ray.t_max;
+                    hit
+                },
+            );
+            if hit {
+                return true;
             }
         } else {
             let node = &bvh.nodes[cur as usize];
@@ -488,20 +517,23 @@ impl<S: Stack, N: NodeTest> ClosestLane<S, N> {
     fn step(&mut self, bvh: &Bvh) -> bool {
         let cur = self.cur;
         if cur & LEAF_BIT != 0 {
-            for k in leaf_range(cur) {
-                if let Some((t, b1, b2)) = self.woop.intersect(&bvh.tris[k]) {
-                    let better = t < self.best_t
-                        || (t == self.best_t
-                            && self
-                                .best
-                                .is_some_and(|(bk, _, _)| bvh.prim_ids[k] < bvh.prim_ids[bk]));
+            let range = leaf_range(cur);
+            let first = range.start;
+            let (best, best_t, cull) = (&mut self.best, &mut self.best_t, &mut self.cull);
+            let limit = *best_t;
+            self.nr
+                .leaf_hits(&self.woop, &bvh.tris[range], limit, |j, (t, b1, b2)| {
+                    let k = first + j;
+                    let better = t < *best_t
+                        || (t == *best_t
+                            && best.is_some_and(|(bk, _, _)| bvh.prim_ids[k] < bvh.prim_ids[bk]));
                     if better {
-                        self.best = Some((k, b1, b2));
-                        self.best_t = t;
-                        self.cull = t * FAR_SCALE;
+                        *best = Some((k, b1, b2));
+                        *best_t = t;
+                        *cull = t * FAR_SCALE;
                     }
-                }
-            }
+                    false
+                });
         } else {
             let node = &bvh.nodes[cur as usize];
             let (mut mask, tn) = self.nr.intersect(node, self.best_t);
@@ -581,13 +613,20 @@ impl<S: Stack, N: NodeTest> OcclusionLane<S, N> {
     fn step(&mut self, bvh: &Bvh) -> bool {
         let cur = self.cur;
         if cur & LEAF_BIT != 0 {
-            for k in leaf_range(cur) {
-                if let Some((t, _, _)) = self.woop.intersect(&bvh.tris[k]) {
-                    if t < self.t_max {
-                        self.hit = true;
-                        return false;
-                    }
-                }
+            let t_max = self.t_max;
+            let mut hit = false;
+            self.nr.leaf_hits(
+                &self.woop,
+                &bvh.tris[leaf_range(cur)],
+                t_max,
+                |_, (t, _, _)| {
+                    hit = t < t_max;
+                    hit
+                },
+            );
+            if hit {
+                self.hit = true;
+                return false;
             }
         } else {
             let node = &bvh.nodes[cur as usize];

@@ -24,10 +24,14 @@ use std::arch::x86_64::{
 };
 use std::sync::OnceLock;
 
+use glam::Vec3;
+
 use super::bvh::{Bvh, Node};
+use super::leaf_wide::LeafRay4;
 use super::traverse::{
     closest_batch_in, closest_in, occluded_batch_in, occluded_in, NodeTest, FAR_SCALE_FACTOR,
 };
+use super::triangle::WoopRay;
 use super::{Hit, Ray};
 
 /// Whether the AVX2 kernels run (AVX2 present and not turned off by the environment).
@@ -118,6 +122,8 @@ struct NodeRay8 {
     inv: [__m256; 3],
     near: [usize; 3],
     far: [usize; 3],
+    /// The leaf test's constants (`leaf_wide.rs`).
+    leaf: LeafRay4,
 }
 
 impl NodeTest for NodeRay8 {
@@ -137,6 +143,36 @@ impl NodeTest for NodeRay8 {
             inv: [splat(inv.x), splat(inv.y), splat(inv.z)],
             near,
             far: near.map(|n| n ^ 1),
+            leaf: LeafRay4::new(&WoopRay::new(ray.origin, ray.dir)),
+        }
+    }
+
+    /// The leaf's triangles in SIMD lanes (`leaf_wide.rs`); the lanes the vector test cannot
+    /// decide are finished by the scalar test, so every reported hit is the scalar one.
+    #[inline(always)]
+    fn leaf_hits(
+        &self,
+        woop: &WoopRay,
+        tris: &[[Vec3; 3]],
+        t_limit: f32,
+        mut f: impl FnMut(usize, (f32, f32, f32)) -> bool,
+    ) {
+        let lanes = self.leaf.test(tris);
+        let mut todo = lanes.hit | lanes.slow;
+        while todo != 0 {
+            let j = todo.trailing_zeros() as usize;
+            todo &= todo - 1;
+            let hit = if lanes.slow >> j & 1 != 0 {
+                match woop.intersect(&tris[j]) {
+                    Some(hit) => hit,
+                    None => continue,
+                }
+            } else {
+                (lanes.t[j], lanes.b1[j], lanes.b2[j])
+            };
+            if hit.0 <= t_limit && f(j, hit) {
+                return;
+            }
         }
     }
 
@@ -214,7 +250,6 @@ mod tests {
     use super::super::traverse::NodeRay;
     use super::*;
     use crate::settings::BvhQuality;
-    use glam::Vec3;
 
     fn hit_bits(h: Option<Hit>) -> Option<[u32; 4]> {
         h.map(|h| [h.t.to_bits(), h.prim, h.b1.to_bits(), h.b2.to_bits()])
