@@ -52,10 +52,21 @@ pub(super) struct LeafLanes {
     pub(super) b2: [f32; 4],
 }
 
+impl LeafLanes {
+    const MISS: Self = Self {
+        hit: 0,
+        slow: 0,
+        t: [0.0; 4],
+        b1: [0.0; 4],
+        b2: [0.0; 4],
+    };
+}
+
 impl LeafRay4 {
     #[inline(always)]
     pub(super) fn new(woop: &WoopRay) -> Self {
-        let [kx, ky, kz] = woop.axes().map(|k| k as i32);
+        let [kx, ky, kz] = woop.axes();
+        let [kx, ky, kz] = [kx as i32, ky as i32, kz as i32];
         let o = woop.origin();
         let (sx, sy, sz) = woop.shear();
         let ko = [o[kx as usize], o[ky as usize], o[kz as usize]];
@@ -94,7 +105,12 @@ impl LeafRay4 {
     /// translated to the origin (lane 3 repeats lane 2).
     #[inline(always)]
     fn lanes(&self, tris: [&[Vec3; 3]; 3], v: usize) -> [__m128; 3] {
-        let [p0, p1, p2] = tris.map(|t| self.vertex(t, v));
+        // Not `array::map`: it is not inlined here (a call and a `vzeroupper` per use).
+        let [p0, p1, p2] = [
+            self.vertex(tris[0], v),
+            self.vertex(tris[1], v),
+            self.vertex(tris[2], v),
+        ];
         // SAFETY: SSE shuffles on values (AVX2 kernels only).
         unsafe {
             let a = _mm_unpacklo_ps(p0, p1); // x0 x1 y0 y1
@@ -149,6 +165,13 @@ impl LeafRay4 {
                 _mm_or_ps(_mm_cmpgt_ps(e0, zero), _mm_cmpgt_ps(e1, zero)),
                 _mm_cmpgt_ps(e2, zero),
             );
+            let lanes = (1u32 << n) - 1;
+            let zero_lanes = _mm_movemask_ps(any_zero) as u32;
+            let inside = !(_mm_movemask_ps(any_neg) as u32 & _mm_movemask_ps(any_pos) as u32);
+            // Most leaves are missed by every lane: stop before the division.
+            if (zero_lanes | inside) & lanes == 0 {
+                return LeafLanes::MISS;
+            }
             let det = _mm_add_ps(_mm_add_ps(e0, e1), e2);
             let zs0 = _mm_mul_ps(z0, self.sz);
             let zs1 = _mm_mul_ps(z1, self.sz);
@@ -194,11 +217,7 @@ impl LeafRay4 {
                 ),
                 abs(inv_det),
             );
-            let lanes = (1u32 << n) - 1;
-            let zero_lanes = _mm_movemask_ps(any_zero) as u32;
-            let candidate = _mm_movemask_ps(same_sign) as u32
-                & !(_mm_movemask_ps(any_neg) as u32 & _mm_movemask_ps(any_pos) as u32)
-                & !zero_lanes;
+            let candidate = _mm_movemask_ps(same_sign) as u32 & inside & !zero_lanes;
             let sure = _mm_movemask_ps(_mm_cmpgt_ps(t, delta_t)) as u32;
             let mut out = LeafLanes {
                 hit: candidate & sure & lanes,

@@ -34,9 +34,10 @@ const FAR_SCALE: f32 = 1.0 + 2.0 * gamma(3);
 /// The 8-child slab test of one ray, in one instruction set: `intersect` returns the hit mask
 /// (bit `i` for child slot `i`) and the entry distances. Every implementation returns the same
 /// mask for the same ray and node, so the traversal (and the result) does not depend on it.
+/// It also tests leaves (`leaf_hits`), with the scalar test's answers in every implementation.
 pub(super) trait NodeTest {
-    /// Per-ray constants.
-    fn new(ray: &Ray) -> Self;
+    /// Per-ray constants (`woop` is the ray's triangle-test constants, already made).
+    fn new(ray: &Ray, woop: &WoopRay) -> Self;
     /// Tests the eight children against `[0, t_far]`.
     fn intersect(&self, node: &Node, t_far: f32) -> (u32, [f32; 8]);
 
@@ -82,7 +83,7 @@ pub(super) trait NodeTest {
 
 impl NodeTest for NodeRay {
     #[inline(always)]
-    fn new(ray: &Ray) -> Self {
+    fn new(ray: &Ray, _: &WoopRay) -> Self {
         NodeRay::new(ray)
     }
     #[inline(always)]
@@ -110,7 +111,8 @@ impl NodeRay {
         let inv = ray.dir.recip();
         let d = ray.dir.to_array();
         // The sign bit decides (−0.0 counts as negative, matching 1/−0 = −∞).
-        let near = [0, 1, 2].map(|a| 2 * a + usize::from(d[a].is_sign_negative()));
+        let near_plane = |a: usize| 2 * a + usize::from(d[a].is_sign_negative());
+        let near = [near_plane(0), near_plane(1), near_plane(2)];
         Self {
             o: [
                 Vec4::splat(ray.origin.x),
@@ -119,7 +121,7 @@ impl NodeRay {
             ],
             inv: [Vec4::splat(inv.x), Vec4::splat(inv.y), Vec4::splat(inv.z)],
             near,
-            far: near.map(|n| n ^ 1),
+            far: [near[0] ^ 1, near[1] ^ 1, near[2] ^ 1],
         }
     }
 
@@ -344,7 +346,7 @@ fn closest_with<S: Stack, N: NodeTest, const OCTANT: bool>(
     mut stack: S,
 ) -> Option<Hit> {
     let woop = WoopRay::new(ray.origin, ray.dir);
-    let nr = N::new(ray);
+    let nr = N::new(ray, &woop);
     let octant = octant(ray);
     // Until the first hit, t must be < ray.t_max; afterwards (t, prim) must be smaller.
     // The closest candidate so far as (BVH-order index, b1, b2); its original index is looked
@@ -430,7 +432,7 @@ fn closest_with<S: Stack, N: NodeTest, const OCTANT: bool>(
 #[inline(always)]
 fn occluded_with<S: Stack, N: NodeTest>(bvh: &Bvh, ray: &Ray, mut stack: S) -> bool {
     let woop = WoopRay::new(ray.origin, ray.dir);
-    let nr = N::new(ray);
+    let nr = N::new(ray, &woop);
     let mut cur = 0u32;
     loop {
         if cur & LEAF_BIT != 0 {
@@ -488,9 +490,10 @@ struct ClosestLane<S, N> {
 impl<S: Stack, N: NodeTest> ClosestLane<S, N> {
     #[inline(always)]
     fn new(ray: &Ray, stack: S) -> Self {
+        let woop = WoopRay::new(ray.origin, ray.dir);
         Self {
-            woop: WoopRay::new(ray.origin, ray.dir),
-            nr: N::new(ray),
+            nr: N::new(ray, &woop),
+            woop,
             best: None,
             best_t: ray.t_max,
             cull: ray.t_max * FAR_SCALE,
@@ -503,7 +506,7 @@ impl<S: Stack, N: NodeTest> ClosestLane<S, N> {
     #[inline(always)]
     fn restart(&mut self, ray: &Ray) {
         self.woop = WoopRay::new(ray.origin, ray.dir);
-        self.nr = N::new(ray);
+        self.nr = N::new(ray, &self.woop);
         self.best = None;
         self.best_t = ray.t_max;
         self.cull = ray.t_max * FAR_SCALE;
@@ -586,9 +589,10 @@ struct OcclusionLane<S, N> {
 impl<S: Stack, N: NodeTest> OcclusionLane<S, N> {
     #[inline(always)]
     fn new(ray: &Ray, stack: S) -> Self {
+        let woop = WoopRay::new(ray.origin, ray.dir);
         Self {
-            woop: WoopRay::new(ray.origin, ray.dir),
-            nr: N::new(ray),
+            nr: N::new(ray, &woop),
+            woop,
             t_max: ray.t_max,
             cur: 0,
             hit: false,
@@ -600,7 +604,7 @@ impl<S: Stack, N: NodeTest> OcclusionLane<S, N> {
     #[inline(always)]
     fn restart(&mut self, ray: &Ray) {
         self.woop = WoopRay::new(ray.origin, ray.dir);
-        self.nr = N::new(ray);
+        self.nr = N::new(ray, &self.woop);
         self.t_max = ray.t_max;
         self.cur = 0;
         self.hit = false;

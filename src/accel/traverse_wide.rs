@@ -2,6 +2,9 @@
 //! closest-hit and occlusion loops of `traverse.rs`, compiled for AVX2, with an 8-wide node
 //! test (all eight children in one instruction sequence instead of two 4-wide halves).
 //!
+//! * **Leaves**: a leaf's triangles are tested at once in SIMD lanes (`leaf_wide.rs`), each
+//!   lane bit-identical to the scalar watertight test; the SSE fallback tests them one by
+//!   one.
 //! * **Batches**: [`closest_batch`] and [`occluded_batch`] run the batch kernels of
 //!   `traverse.rs` with the same 8-wide node test in every lane.
 //! * **Dispatch**: [`closest`] and [`occluded`] answer `None` when the CPU lacks AVX2
@@ -128,10 +131,13 @@ struct NodeRay8 {
 
 impl NodeTest for NodeRay8 {
     #[inline(always)]
-    fn new(ray: &Ray) -> Self {
+    fn new(ray: &Ray, woop: &WoopRay) -> Self {
         let inv = ray.dir.recip();
         let d = ray.dir.to_array();
-        let near = [0, 1, 2].map(|a| 2 * a + usize::from(d[a].is_sign_negative()));
+        // Written out: `array::map` is not inlined into the AVX2 kernels (a call and a
+        // `vzeroupper` per ray).
+        let near_plane = |a: usize| 2 * a + usize::from(d[a].is_sign_negative());
+        let near = [near_plane(0), near_plane(1), near_plane(2)];
         // SAFETY: `_mm256_set1_ps` needs AVX; this type exists only inside the AVX2 kernels.
         let splat = |x: f32| unsafe { _mm256_set1_ps(x) };
         Self {
@@ -142,8 +148,8 @@ impl NodeTest for NodeRay8 {
             ],
             inv: [splat(inv.x), splat(inv.y), splat(inv.z)],
             near,
-            far: near.map(|n| n ^ 1),
-            leaf: LeafRay4::new(&WoopRay::new(ray.origin, ray.dir)),
+            far: [near[0] ^ 1, near[1] ^ 1, near[2] ^ 1],
+            leaf: LeafRay4::new(woop),
         }
     }
 
@@ -371,11 +377,14 @@ mod tests {
         t_far: f32,
         order: u32,
     ) -> (u32, [f32; 8], [u32; 8]) {
-        <NodeRay8 as NodeTest>::new(ray).intersect_ordered(node, t_far, order)
+        <NodeRay8 as NodeTest>::new(ray, &WoopRay::new(ray.origin, ray.dir))
+            .intersect_ordered(node, t_far, order)
     }
 
     #[target_feature(enable = "avx2")]
     unsafe fn mask_avx2(node: &Node, ray: &Ray, t_far: f32) -> u32 {
-        <NodeRay8 as NodeTest>::new(ray).intersect(node, t_far).0
+        <NodeRay8 as NodeTest>::new(ray, &WoopRay::new(ray.origin, ray.dir))
+            .intersect(node, t_far)
+            .0
     }
 }
