@@ -225,6 +225,66 @@ impl<const N: usize> Stack for ArrayStack<N> {
     }
 }
 
+/// A stack in a borrowed array: the per-thread one of [`take_thread_stack`], reused by every
+/// single-ray query of the thread (a fresh array per query cost a 1 KiB zero fill).
+struct RefStack<'a> {
+    items: &'a mut [Entry; ARRAY_STACK],
+    len: usize,
+}
+
+impl Stack for RefStack<'_> {
+    #[inline(always)]
+    fn push(&mut self, e: Entry) {
+        self.items[self.len] = e;
+        self.len += 1;
+    }
+    #[inline(always)]
+    fn pop(&mut self) -> Option<Entry> {
+        if self.len == 0 {
+            return None;
+        }
+        self.len -= 1;
+        Some(self.items[self.len])
+    }
+    #[inline(always)]
+    fn len(&self) -> usize {
+        self.len
+    }
+    #[inline(always)]
+    fn clear(&mut self) {
+        self.len = 0;
+    }
+    #[inline(always)]
+    fn sort_top(&mut self, from: usize) {
+        sort_descending(&mut self.items[from..self.len]);
+    }
+}
+
+thread_local! {
+    /// The single-ray kernels' stack array, one per thread, taken out for a query and put back.
+    static THREAD_STACK: std::cell::Cell<Option<Box<[Entry; ARRAY_STACK]>>> =
+        const { std::cell::Cell::new(None) };
+}
+
+/// Takes this thread's stack array (a new one when the thread has none, or while it is taken:
+/// a query never runs inside another, so that is only the first). Plain functions, not a
+/// closure around the traversal: a closure would not inherit the AVX2 kernels' target features.
+#[inline(always)]
+fn take_thread_stack() -> Box<[Entry; ARRAY_STACK]> {
+    THREAD_STACK
+        .try_with(std::cell::Cell::take)
+        .ok()
+        .flatten()
+        .unwrap_or_else(|| Box::new([Entry::default(); ARRAY_STACK]))
+}
+
+/// Puts the array back for the thread's next query.
+#[inline(always)]
+fn put_thread_stack(items: Box<[Entry; ARRAY_STACK]>) {
+    // Fails only while the thread is being torn down; the array is then dropped.
+    let _ = THREAD_STACK.try_with(|s| s.set(Some(items)));
+}
+
 impl Stack for Vec<Entry> {
     #[inline(always)]
     fn push(&mut self, e: Entry) {
@@ -254,7 +314,8 @@ fn stack_bound(depth: u32) -> usize {
     8 * depth as usize + 8
 }
 
-/// Array size used for shallow trees (every realistic scene; deeper ones use the heap).
+/// Array size used for shallow trees (every realistic scene; deeper ones use the heap); the
+/// single-ray kernels keep it per thread ([`take_thread_stack`]).
 const ARRAY_STACK: usize = 128;
 
 /// Array size for small scenes: a fresh stack is zeroed per ray, so a quarter of the size
@@ -303,7 +364,14 @@ pub(super) fn closest_ordered_in<N: NodeTest, const OCTANT: bool>(
     if stack_bound(bvh.depth) <= SMALL_STACK {
         closest_with::<_, N, OCTANT>(bvh, ray, ArrayStack::<SMALL_STACK>::new())
     } else if stack_bound(bvh.depth) <= ARRAY_STACK {
-        closest_with::<_, N, OCTANT>(bvh, ray, ArrayStack::<ARRAY_STACK>::new())
+        let mut items = take_thread_stack();
+        let stack = RefStack {
+            items: &mut items,
+            len: 0,
+        };
+        let hit = closest_with::<_, N, OCTANT>(bvh, ray, stack);
+        put_thread_stack(items);
+        hit
     } else {
         closest_with::<_, N, OCTANT>(bvh, ray, Vec::with_capacity(stack_bound(bvh.depth)))
     }
@@ -318,7 +386,14 @@ pub(super) fn occluded_in<N: NodeTest>(bvh: &Bvh, ray: &Ray) -> bool {
     if stack_bound(bvh.depth) <= SMALL_STACK {
         occluded_with::<_, N>(bvh, ray, ArrayStack::<SMALL_STACK>::new())
     } else if stack_bound(bvh.depth) <= ARRAY_STACK {
-        occluded_with::<_, N>(bvh, ray, ArrayStack::<ARRAY_STACK>::new())
+        let mut items = take_thread_stack();
+        let stack = RefStack {
+            items: &mut items,
+            len: 0,
+        };
+        let hit = occluded_with::<_, N>(bvh, ray, stack);
+        put_thread_stack(items);
+        hit
     } else {
         occluded_with::<_, N>(bvh, ray, Vec::with_capacity(stack_bound(bvh.depth)))
     }
@@ -906,6 +981,45 @@ mod tests {
             }
             assert!(hits_some(&bvh, &rays));
         }
+    }
+
+    /// The single-ray kernels take this thread's stack array and put it back: the second
+    /// query of a thread reuses the first one's array (same address), with the same answers.
+    #[test]
+    fn single_ray_queries_reuse_the_thread_stack() {
+        let tris: Vec<[Vec3; 3]> = (0..4000)
+            .map(|i| {
+                let c = Vec3::new((i % 20) as f32, (i / 20 % 20) as f32, (i / 400) as f32);
+                [c, c + Vec3::X * 0.5, c + Vec3::Y * 0.5]
+            })
+            .collect();
+        let bvh = super::super::bvh::build(&tris, crate::settings::BvhQuality::Medium);
+        assert!(stack_bound(bvh.depth) > SMALL_STACK && stack_bound(bvh.depth) <= ARRAY_STACK);
+        let ray = Ray {
+            origin: Vec3::new(3.2, 4.1, -1.0),
+            dir: Vec3::Z,
+            t_max: f32::INFINITY,
+        };
+        std::thread::spawn(move || {
+            let array_address = || {
+                let items = THREAD_STACK
+                    .with(std::cell::Cell::take)
+                    .expect("a stack array");
+                let address = std::ptr::from_ref(&*items) as usize;
+                THREAD_STACK.with(|s| s.set(Some(items)));
+                address
+            };
+            assert!(THREAD_STACK.with(std::cell::Cell::take).is_none());
+            let first = closest(&bvh, &ray).expect("the ray hits the first layer");
+            assert_eq!(first.t, 1.0);
+            let address = array_address();
+            let again = closest(&bvh, &ray).unwrap();
+            assert!(occluded(&bvh, &ray));
+            assert_eq!(hit_bits(Some(again)), hit_bits(Some(first)));
+            assert_eq!(array_address(), address);
+        })
+        .join()
+        .unwrap();
     }
 
     fn hits_some(bvh: &Bvh, rays: &[Ray]) -> bool {
