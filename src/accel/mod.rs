@@ -18,6 +18,8 @@
 mod brute;
 mod bvh;
 mod counters;
+#[cfg(target_arch = "x86_64")]
+mod leaf_wide;
 mod packet;
 mod ray_kind;
 mod spawn;

@@ -34,11 +34,33 @@ const FAR_SCALE: f32 = 1.0 + 2.0 * gamma(3);
 /// The 8-child slab test of one ray, in one instruction set: `intersect` returns the hit mask
 /// (bit `i` for child slot `i`) and the entry distances. Every implementation returns the same
 /// mask for the same ray and node, so the traversal (and the result) does not depend on it.
+/// It also tests leaves (`leaf_hits`), with the scalar test's answers in every implementation.
 pub(super) trait NodeTest {
-    /// Per-ray constants.
-    fn new(ray: &Ray) -> Self;
+    /// Per-ray constants (`woop` is the ray's triangle-test constants, already made).
+    fn new(ray: &Ray, woop: &WoopRay) -> Self;
     /// Tests the eight children against `[0, t_far]`.
     fn intersect(&self, node: &Node, t_far: f32) -> (u32, [f32; 8]);
+
+    /// Reports the hits of a leaf's triangles `tris` (1 to 3, BVH order) with `t ≤ t_limit`
+    /// to `f`, in triangle order, as `(j, (t, b1, b2))` with `j` the index in `tris`; each is
+    /// exactly what `woop.intersect` answers for that triangle. Stops when `f` returns true.
+    /// One triangle at a time here; the AVX2 kernels test the leaf in SIMD lanes.
+    #[inline(always)]
+    fn leaf_hits(
+        &self,
+        woop: &WoopRay,
+        tris: &[[Vec3; 3]],
+        t_limit: f32,
+        mut f: impl FnMut(usize, (f32, f32, f32)) -> bool,
+    ) {
+        for (j, tri) in tris.iter().enumerate() {
+            if let Some(hit) = woop.intersect(tri) {
+                if hit.0 <= t_limit && f(j, hit) {
+                    return;
+                }
+            }
+        }
+    }
 
     /// The same test, answered in the visiting order `order` (a [`Node::order`] word):
     /// bit `i` of the mask, entry distance `i` and reference `i` are those of slot
@@ -61,7 +83,7 @@ pub(super) trait NodeTest {
 
 impl NodeTest for NodeRay {
     #[inline(always)]
-    fn new(ray: &Ray) -> Self {
+    fn new(ray: &Ray, _: &WoopRay) -> Self {
         NodeRay::new(ray)
     }
     #[inline(always)]
@@ -89,7 +111,8 @@ impl NodeRay {
         let inv = ray.dir.recip();
         let d = ray.dir.to_array();
         // The sign bit decides (−0.0 counts as negative, matching 1/−0 = −∞).
-        let near = [0, 1, 2].map(|a| 2 * a + usize::from(d[a].is_sign_negative()));
+        let near_plane = |a: usize| 2 * a + usize::from(d[a].is_sign_negative());
+        let near = [near_plane(0), near_plane(1), near_plane(2)];
         Self {
             o: [
                 Vec4::splat(ray.origin.x),
@@ -98,7 +121,7 @@ impl NodeRay {
             ],
             inv: [Vec4::splat(inv.x), Vec4::splat(inv.y), Vec4::splat(inv.z)],
             near,
-            far: near.map(|n| n ^ 1),
+            far: [near[0] ^ 1, near[1] ^ 1, near[2] ^ 1],
         }
     }
 
@@ -202,6 +225,66 @@ impl<const N: usize> Stack for ArrayStack<N> {
     }
 }
 
+/// A stack in a borrowed array: the per-thread one of [`take_thread_stack`], reused by every
+/// single-ray query of the thread (a fresh array per query cost a 1 KiB zero fill).
+struct RefStack<'a> {
+    items: &'a mut [Entry; ARRAY_STACK],
+    len: usize,
+}
+
+impl Stack for RefStack<'_> {
+    #[inline(always)]
+    fn push(&mut self, e: Entry) {
+        self.items[self.len] = e;
+        self.len += 1;
+    }
+    #[inline(always)]
+    fn pop(&mut self) -> Option<Entry> {
+        if self.len == 0 {
+            return None;
+        }
+        self.len -= 1;
+        Some(self.items[self.len])
+    }
+    #[inline(always)]
+    fn len(&self) -> usize {
+        self.len
+    }
+    #[inline(always)]
+    fn clear(&mut self) {
+        self.len = 0;
+    }
+    #[inline(always)]
+    fn sort_top(&mut self, from: usize) {
+        sort_descending(&mut self.items[from..self.len]);
+    }
+}
+
+thread_local! {
+    /// The single-ray kernels' stack array, one per thread, taken out for a query and put back.
+    static THREAD_STACK: std::cell::Cell<Option<Box<[Entry; ARRAY_STACK]>>> =
+        const { std::cell::Cell::new(None) };
+}
+
+/// Takes this thread's stack array (a new one when the thread has none, or while it is taken:
+/// a query never runs inside another, so that is only the first). Plain functions, not a
+/// closure around the traversal: a closure would not inherit the AVX2 kernels' target features.
+#[inline(always)]
+fn take_thread_stack() -> Box<[Entry; ARRAY_STACK]> {
+    THREAD_STACK
+        .try_with(std::cell::Cell::take)
+        .ok()
+        .flatten()
+        .unwrap_or_else(|| Box::new([Entry::default(); ARRAY_STACK]))
+}
+
+/// Puts the array back for the thread's next query.
+#[inline(always)]
+fn put_thread_stack(items: Box<[Entry; ARRAY_STACK]>) {
+    // Fails only while the thread is being torn down; the array is then dropped.
+    let _ = THREAD_STACK.try_with(|s| s.set(Some(items)));
+}
+
 impl Stack for Vec<Entry> {
     #[inline(always)]
     fn push(&mut self, e: Entry) {
@@ -231,7 +314,8 @@ fn stack_bound(depth: u32) -> usize {
     8 * depth as usize + 8
 }
 
-/// Array size used for shallow trees (every realistic scene; deeper ones use the heap).
+/// Array size used for shallow trees (every realistic scene; deeper ones use the heap); the
+/// single-ray kernels keep it per thread ([`take_thread_stack`]).
 const ARRAY_STACK: usize = 128;
 
 /// Array size for small scenes: a fresh stack is zeroed per ray, so a quarter of the size
@@ -280,7 +364,14 @@ pub(super) fn closest_ordered_in<N: NodeTest, const OCTANT: bool>(
     if stack_bound(bvh.depth) <= SMALL_STACK {
         closest_with::<_, N, OCTANT>(bvh, ray, ArrayStack::<SMALL_STACK>::new())
     } else if stack_bound(bvh.depth) <= ARRAY_STACK {
-        closest_with::<_, N, OCTANT>(bvh, ray, ArrayStack::<ARRAY_STACK>::new())
+        let mut items = take_thread_stack();
+        let stack = RefStack {
+            items: &mut items,
+            len: 0,
+        };
+        let hit = closest_with::<_, N, OCTANT>(bvh, ray, stack);
+        put_thread_stack(items);
+        hit
     } else {
         closest_with::<_, N, OCTANT>(bvh, ray, Vec::with_capacity(stack_bound(bvh.depth)))
     }
@@ -295,7 +386,14 @@ pub(super) fn occluded_in<N: NodeTest>(bvh: &Bvh, ray: &Ray) -> bool {
     if stack_bound(bvh.depth) <= SMALL_STACK {
         occluded_with::<_, N>(bvh, ray, ArrayStack::<SMALL_STACK>::new())
     } else if stack_bound(bvh.depth) <= ARRAY_STACK {
-        occluded_with::<_, N>(bvh, ray, ArrayStack::<ARRAY_STACK>::new())
+        let mut items = take_thread_stack();
+        let stack = RefStack {
+            items: &mut items,
+            len: 0,
+        };
+        let hit = occluded_with::<_, N>(bvh, ray, stack);
+        put_thread_stack(items);
+        hit
     } else {
         occluded_with::<_, N>(bvh, ray, Vec::with_capacity(stack_bound(bvh.depth)))
     }
@@ -323,7 +421,7 @@ fn closest_with<S: Stack, N: NodeTest, const OCTANT: bool>(
     mut stack: S,
 ) -> Option<Hit> {
     let woop = WoopRay::new(ray.origin, ray.dir);
-    let nr = N::new(ray);
+    let nr = N::new(ray, &woop);
     let octant = octant(ray);
     // Until the first hit, t must be < ray.t_max; afterwards (t, prim) must be smaller.
     // The closest candidate so far as (BVH-order index, b1, b2); its original index is looked
@@ -334,18 +432,20 @@ fn closest_with<S: Stack, N: NodeTest, const OCTANT: bool>(
     let mut cur = 0u32;
     loop {
         if cur & LEAF_BIT != 0 {
-            for k in leaf_range(cur) {
-                if let Some((t, b1, b2)) = woop.intersect(&bvh.tris[k]) {
-                    let better = t < best_t
-                        || (t == best_t
-                            && best.is_some_and(|(bk, _, _)| bvh.prim_ids[k] < bvh.prim_ids[bk]));
-                    if better {
-                        best = Some((k, b1, b2));
-                        best_t = t;
-                        cull = t * FAR_SCALE;
-                    }
+            let range = leaf_range(cur);
+            let first = range.start;
+            nr.leaf_hits(&woop, &bvh.tris[range], best_t, |j, (t, b1, b2)| {
+                let k = first + j;
+                let better = t < best_t
+                    || (t == best_t
+                        && best.is_some_and(|(bk, _, _)| bvh.prim_ids[k] < bvh.prim_ids[bk]));
+                if better {
+                    best = Some((k, b1, b2));
+                    best_t = t;
+                    cull = t * FAR_SCALE;
                 }
-            }
+                false
+            });
         } else if OCTANT {
             let node = &bvh.nodes[cur as usize];
             let (mut mask, tn, child) = nr.intersect_ordered(node, best_t, node.order[octant]);
@@ -407,16 +507,22 @@ fn closest_with<S: Stack, N: NodeTest, const OCTANT: bool>(
 #[inline(always)]
 fn occluded_with<S: Stack, N: NodeTest>(bvh: &Bvh, ray: &Ray, mut stack: S) -> bool {
     let woop = WoopRay::new(ray.origin, ray.dir);
-    let nr = N::new(ray);
+    let nr = N::new(ray, &woop);
     let mut cur = 0u32;
     loop {
         if cur & LEAF_BIT != 0 {
-            for k in leaf_range(cur) {
-                if let Some((t, _, _)) = woop.intersect(&bvh.tris[k]) {
-                    if t < ray.t_max {
-                        return true;
-                    }
-                }
+            let mut hit = false;
+            nr.leaf_hits(
+                &woop,
+                &bvh.tris[leaf_range(cur)],
+                ray.t_max,
+                |_, (t, _, _)| {
+                    hit = t < ray.t_max;
+                    hit
+                },
+            );
+            if hit {
+                return true;
             }
         } else {
             let node = &bvh.nodes[cur as usize];
@@ -459,9 +565,10 @@ struct ClosestLane<S, N> {
 impl<S: Stack, N: NodeTest> ClosestLane<S, N> {
     #[inline(always)]
     fn new(ray: &Ray, stack: S) -> Self {
+        let woop = WoopRay::new(ray.origin, ray.dir);
         Self {
-            woop: WoopRay::new(ray.origin, ray.dir),
-            nr: N::new(ray),
+            nr: N::new(ray, &woop),
+            woop,
             best: None,
             best_t: ray.t_max,
             cull: ray.t_max * FAR_SCALE,
@@ -474,7 +581,7 @@ impl<S: Stack, N: NodeTest> ClosestLane<S, N> {
     #[inline(always)]
     fn restart(&mut self, ray: &Ray) {
         self.woop = WoopRay::new(ray.origin, ray.dir);
-        self.nr = N::new(ray);
+        self.nr = N::new(ray, &self.woop);
         self.best = None;
         self.best_t = ray.t_max;
         self.cull = ray.t_max * FAR_SCALE;
@@ -488,20 +595,23 @@ impl<S: Stack, N: NodeTest> ClosestLane<S, N> {
     fn step(&mut self, bvh: &Bvh) -> bool {
         let cur = self.cur;
         if cur & LEAF_BIT != 0 {
-            for k in leaf_range(cur) {
-                if let Some((t, b1, b2)) = self.woop.intersect(&bvh.tris[k]) {
-                    let better = t < self.best_t
-                        || (t == self.best_t
-                            && self
-                                .best
-                                .is_some_and(|(bk, _, _)| bvh.prim_ids[k] < bvh.prim_ids[bk]));
+            let range = leaf_range(cur);
+            let first = range.start;
+            let (best, best_t, cull) = (&mut self.best, &mut self.best_t, &mut self.cull);
+            let limit = *best_t;
+            self.nr
+                .leaf_hits(&self.woop, &bvh.tris[range], limit, |j, (t, b1, b2)| {
+                    let k = first + j;
+                    let better = t < *best_t
+                        || (t == *best_t
+                            && best.is_some_and(|(bk, _, _)| bvh.prim_ids[k] < bvh.prim_ids[bk]));
                     if better {
-                        self.best = Some((k, b1, b2));
-                        self.best_t = t;
-                        self.cull = t * FAR_SCALE;
+                        *best = Some((k, b1, b2));
+                        *best_t = t;
+                        *cull = t * FAR_SCALE;
                     }
-                }
-            }
+                    false
+                });
         } else {
             let node = &bvh.nodes[cur as usize];
             let (mut mask, tn) = self.nr.intersect(node, self.best_t);
@@ -554,9 +664,10 @@ struct OcclusionLane<S, N> {
 impl<S: Stack, N: NodeTest> OcclusionLane<S, N> {
     #[inline(always)]
     fn new(ray: &Ray, stack: S) -> Self {
+        let woop = WoopRay::new(ray.origin, ray.dir);
         Self {
-            woop: WoopRay::new(ray.origin, ray.dir),
-            nr: N::new(ray),
+            nr: N::new(ray, &woop),
+            woop,
             t_max: ray.t_max,
             cur: 0,
             hit: false,
@@ -568,7 +679,7 @@ impl<S: Stack, N: NodeTest> OcclusionLane<S, N> {
     #[inline(always)]
     fn restart(&mut self, ray: &Ray) {
         self.woop = WoopRay::new(ray.origin, ray.dir);
-        self.nr = N::new(ray);
+        self.nr = N::new(ray, &self.woop);
         self.t_max = ray.t_max;
         self.cur = 0;
         self.hit = false;
@@ -581,13 +692,20 @@ impl<S: Stack, N: NodeTest> OcclusionLane<S, N> {
     fn step(&mut self, bvh: &Bvh) -> bool {
         let cur = self.cur;
         if cur & LEAF_BIT != 0 {
-            for k in leaf_range(cur) {
-                if let Some((t, _, _)) = self.woop.intersect(&bvh.tris[k]) {
-                    if t < self.t_max {
-                        self.hit = true;
-                        return false;
-                    }
-                }
+            let t_max = self.t_max;
+            let mut hit = false;
+            self.nr.leaf_hits(
+                &self.woop,
+                &bvh.tris[leaf_range(cur)],
+                t_max,
+                |_, (t, _, _)| {
+                    hit = t < t_max;
+                    hit
+                },
+            );
+            if hit {
+                self.hit = true;
+                return false;
             }
         } else {
             let node = &bvh.nodes[cur as usize];
@@ -863,6 +981,45 @@ mod tests {
             }
             assert!(hits_some(&bvh, &rays));
         }
+    }
+
+    /// The single-ray kernels take this thread's stack array and put it back: the second
+    /// query of a thread reuses the first one's array (same address), with the same answers.
+    #[test]
+    fn single_ray_queries_reuse_the_thread_stack() {
+        let tris: Vec<[Vec3; 3]> = (0..4000)
+            .map(|i| {
+                let c = Vec3::new((i % 20) as f32, (i / 20 % 20) as f32, (i / 400) as f32);
+                [c, c + Vec3::X * 0.5, c + Vec3::Y * 0.5]
+            })
+            .collect();
+        let bvh = super::super::bvh::build(&tris, crate::settings::BvhQuality::Medium);
+        assert!(stack_bound(bvh.depth) > SMALL_STACK && stack_bound(bvh.depth) <= ARRAY_STACK);
+        let ray = Ray {
+            origin: Vec3::new(3.2, 4.1, -1.0),
+            dir: Vec3::Z,
+            t_max: f32::INFINITY,
+        };
+        std::thread::spawn(move || {
+            let array_address = || {
+                let items = THREAD_STACK
+                    .with(std::cell::Cell::take)
+                    .expect("a stack array");
+                let address = std::ptr::from_ref(&*items) as usize;
+                THREAD_STACK.with(|s| s.set(Some(items)));
+                address
+            };
+            assert!(THREAD_STACK.with(std::cell::Cell::take).is_none());
+            let first = closest(&bvh, &ray).expect("the ray hits the first layer");
+            assert_eq!(first.t, 1.0);
+            let address = array_address();
+            let again = closest(&bvh, &ray).unwrap();
+            assert!(occluded(&bvh, &ray));
+            assert_eq!(hit_bits(Some(again)), hit_bits(Some(first)));
+            assert_eq!(array_address(), address);
+        })
+        .join()
+        .unwrap();
     }
 
     fn hits_some(bvh: &Bvh, rays: &[Ray]) -> bool {

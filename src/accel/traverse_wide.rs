@@ -2,6 +2,9 @@
 //! closest-hit and occlusion loops of `traverse.rs`, compiled for AVX2, with an 8-wide node
 //! test (all eight children in one instruction sequence instead of two 4-wide halves).
 //!
+//! * **Leaves**: a leaf's triangles are tested at once in SIMD lanes (`leaf_wide.rs`), each
+//!   lane bit-identical to the scalar watertight test; the SSE fallback tests them one by
+//!   one.
 //! * **Batches**: [`closest_batch`] and [`occluded_batch`] run the batch kernels of
 //!   `traverse.rs` with the same 8-wide node test in every lane.
 //! * **Dispatch**: [`closest`] and [`occluded`] answer `None` when the CPU lacks AVX2
@@ -24,10 +27,14 @@ use std::arch::x86_64::{
 };
 use std::sync::OnceLock;
 
+use glam::Vec3;
+
 use super::bvh::{Bvh, Node};
+use super::leaf_wide::LeafRay4;
 use super::traverse::{
     closest_batch_in, closest_in, occluded_batch_in, occluded_in, NodeTest, FAR_SCALE_FACTOR,
 };
+use super::triangle::WoopRay;
 use super::{Hit, Ray};
 
 /// Whether the AVX2 kernels run (AVX2 present and not turned off by the environment).
@@ -118,14 +125,19 @@ struct NodeRay8 {
     inv: [__m256; 3],
     near: [usize; 3],
     far: [usize; 3],
+    /// The leaf test's constants (`leaf_wide.rs`).
+    leaf: LeafRay4,
 }
 
 impl NodeTest for NodeRay8 {
     #[inline(always)]
-    fn new(ray: &Ray) -> Self {
+    fn new(ray: &Ray, woop: &WoopRay) -> Self {
         let inv = ray.dir.recip();
         let d = ray.dir.to_array();
-        let near = [0, 1, 2].map(|a| 2 * a + usize::from(d[a].is_sign_negative()));
+        // Written out: `array::map` is not inlined into the AVX2 kernels (a call and a
+        // `vzeroupper` per ray).
+        let near_plane = |a: usize| 2 * a + usize::from(d[a].is_sign_negative());
+        let near = [near_plane(0), near_plane(1), near_plane(2)];
         // SAFETY: `_mm256_set1_ps` needs AVX; this type exists only inside the AVX2 kernels.
         let splat = |x: f32| unsafe { _mm256_set1_ps(x) };
         Self {
@@ -136,7 +148,37 @@ impl NodeTest for NodeRay8 {
             ],
             inv: [splat(inv.x), splat(inv.y), splat(inv.z)],
             near,
-            far: near.map(|n| n ^ 1),
+            far: [near[0] ^ 1, near[1] ^ 1, near[2] ^ 1],
+            leaf: LeafRay4::new(woop),
+        }
+    }
+
+    /// The leaf's triangles in SIMD lanes (`leaf_wide.rs`); the lanes the vector test cannot
+    /// decide are finished by the scalar test, so every reported hit is the scalar one.
+    #[inline(always)]
+    fn leaf_hits(
+        &self,
+        woop: &WoopRay,
+        tris: &[[Vec3; 3]],
+        t_limit: f32,
+        mut f: impl FnMut(usize, (f32, f32, f32)) -> bool,
+    ) {
+        let lanes = self.leaf.test(tris);
+        let mut todo = lanes.hit | lanes.slow;
+        while todo != 0 {
+            let j = todo.trailing_zeros() as usize;
+            todo &= todo - 1;
+            let hit = if lanes.slow >> j & 1 != 0 {
+                match woop.intersect(&tris[j]) {
+                    Some(hit) => hit,
+                    None => continue,
+                }
+            } else {
+                (lanes.t[j], lanes.b1[j], lanes.b2[j])
+            };
+            if hit.0 <= t_limit && f(j, hit) {
+                return;
+            }
         }
     }
 
@@ -214,7 +256,6 @@ mod tests {
     use super::super::traverse::NodeRay;
     use super::*;
     use crate::settings::BvhQuality;
-    use glam::Vec3;
 
     fn hit_bits(h: Option<Hit>) -> Option<[u32; 4]> {
         h.map(|h| [h.t.to_bits(), h.prim, h.b1.to_bits(), h.b2.to_bits()])
@@ -336,11 +377,14 @@ mod tests {
         t_far: f32,
         order: u32,
     ) -> (u32, [f32; 8], [u32; 8]) {
-        <NodeRay8 as NodeTest>::new(ray).intersect_ordered(node, t_far, order)
+        <NodeRay8 as NodeTest>::new(ray, &WoopRay::new(ray.origin, ray.dir))
+            .intersect_ordered(node, t_far, order)
     }
 
     #[target_feature(enable = "avx2")]
     unsafe fn mask_avx2(node: &Node, ray: &Ray, t_far: f32) -> u32 {
-        <NodeRay8 as NodeTest>::new(ray).intersect(node, t_far).0
+        <NodeRay8 as NodeTest>::new(ray, &WoopRay::new(ray.origin, ray.dir))
+            .intersect(node, t_far)
+            .0
     }
 }

@@ -81,6 +81,24 @@ impl WoopRay {
         }
     }
 
+    /// The axis permutation `[kx, ky, kz]` (`kz` the dominant direction component).
+    #[inline(always)]
+    pub(crate) fn axes(&self) -> [usize; 3] {
+        [self.kx, self.ky, self.kz]
+    }
+
+    /// The ray origin, in the caller's axis order.
+    #[inline(always)]
+    pub(crate) fn origin(&self) -> [f32; 3] {
+        self.o
+    }
+
+    /// The shear `(sx, sy, sz)`: `x + sx·z`, `y + sy·z`, `z·sz` after the permutation.
+    #[inline(always)]
+    pub(crate) fn shear(&self) -> (f32, f32, f32) {
+        (self.sx, self.sy, self.sz)
+    }
+
     /// Intersects a non-degenerate triangle. Returns `(t, b1, b2)` for a hit with `t > δt`
     /// (conservatively in front of the origin); the caller compares `t` with its `t_max`.
     /// The result depends only on the ray and the triangle, never on a running `t_max`,
