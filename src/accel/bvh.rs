@@ -1,5 +1,6 @@
-//! BVH construction: obvhs builds the binary hierarchy (PLOC, reinsertion), `collapse.rs`
-//! collapses it in parallel into stagelight's own 8-wide node layout (the tree obvhs's CWBVH
+//! BVH construction: the binary hierarchy comes from our own parallel binned SAH
+//! (`bvh/binned.rs`, the `Medium` preset) or from obvhs (PLOC + reinsertion: `Fast`, `High`);
+//! `collapse.rs` collapses it in parallel into stagelight's own 8-wide node layout (the tree obvhs's CWBVH
 //! collapse makes) with *exact* `f32` child boxes, and the triangles are copied into BVH order.
 //! That copy is the only one the `Accel` keeps (the caller's vector is dropped): two index
 //! maps, BVH order → caller's index (`prim_ids`) and back (`slot_of`), answer both kinds of
