@@ -13,6 +13,7 @@ pub mod budget;
 pub mod camera_choice;
 pub mod components;
 pub mod contour;
+pub mod cpu_time;
 pub mod diagnostic;
 pub mod diagnostic_view;
 pub mod exact_sum;

@@ -35,6 +35,14 @@ pub struct StageReport {
     pub rays_per_second: f64,
     /// Rays per second per worker thread (0 when the stage traced none).
     pub rays_per_second_per_thread: f64,
+    /// Process CPU seconds (user + system, all threads) the stage body used; 0 when skipped
+    /// or where the platform has no process CPU clock.
+    pub cpu_seconds: f64,
+    /// Items per CPU second (0 when `cpu_seconds` is 0): what one fully busy thread does, much
+    /// less sensitive than the wall-clock rates to other work on the machine.
+    pub items_per_cpu_second: f64,
+    /// Rays per CPU second (0 when the stage traced none or `cpu_seconds` is 0).
+    pub rays_per_cpu_second: f64,
     /// Files the stage wrote.
     pub files: Vec<PathBuf>,
 }
@@ -56,6 +64,9 @@ impl StageReport {
             rays: 0,
             rays_per_second: 0.0,
             rays_per_second_per_thread: 0.0,
+            cpu_seconds: 0.0,
+            items_per_cpu_second: 0.0,
+            rays_per_cpu_second: 0.0,
             files: Vec::new(),
         }
     }
@@ -114,7 +125,7 @@ impl RunReport {
     /// thread for every stage that ran; skipped stages with their reason.
     pub fn to_throughput_table(&self) -> String {
         let mut out = format!(
-            "{:<16} {:>12} {:<10} {:>10} {:>14} {:>16} {:>12} {:>12} {:>14}\n",
+            "{:<16} {:>12} {:<10} {:>10} {:>14} {:>16} {:>12} {:>12} {:>14} {:>10} {:>14} {:>14}\n",
             "stage",
             "items",
             "unit",
@@ -123,12 +134,15 @@ impl RunReport {
             "items/s/thread",
             "rays",
             "occlusion",
-            "rays/s/thread"
+            "rays/s/thread",
+            "cpu s",
+            "items/cpu-s",
+            "rays/cpu-s"
         );
         for s in &self.stages {
             if s.ran {
                 out.push_str(&format!(
-                    "{:<16} {:>12} {:<10} {:>10.4} {:>14.0} {:>16.0} {:>12} {:>12} {:>14.0}\n",
+                    "{:<16} {:>12} {:<10} {:>10.4} {:>14.0} {:>16.0} {:>12} {:>12} {:>14.0} {:>10.4} {:>14.0} {:>14.0}\n",
                     s.stage,
                     s.items,
                     s.unit,
@@ -137,7 +151,10 @@ impl RunReport {
                     s.items_per_second_per_thread,
                     s.rays,
                     s.rays_occlusion,
-                    s.rays_per_second_per_thread
+                    s.rays_per_second_per_thread,
+                    s.cpu_seconds,
+                    s.items_per_cpu_second,
+                    s.rays_per_cpu_second
                 ));
             } else {
                 out.push_str(&format!("{:<16} skipped: {}\n", s.stage, s.reason));

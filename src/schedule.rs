@@ -219,10 +219,15 @@ pub fn run_stages(
             continue;
         }
         let rays_before = ray_counts(frame);
+        let cpu_before = crate::cpu_time::process_cpu_seconds();
         let t0 = Instant::now();
         let mut work = stage.run_body(world, frame)?;
         pending.append(&mut work.pending);
         let seconds = t0.elapsed().as_secs_f64();
+        let cpu_seconds = match (cpu_before, crate::cpu_time::process_cpu_seconds()) {
+            (Some(a), Some(b)) => (b - a).max(0.0),
+            _ => 0.0,
+        };
         if let Some(output) = work.output {
             if Some(output.slot()) != stage.slot {
                 return Err(StageError::Internal(format!(
@@ -253,6 +258,13 @@ pub fn run_stages(
         };
         let rate = per_second(work.items);
         let ray_rate = per_second(rays.total());
+        let per_cpu_second = |n: u64| {
+            if cpu_seconds > 0.0 {
+                n as f64 / cpu_seconds
+            } else {
+                0.0
+            }
+        };
         frame.report.written.extend(work.files.iter().cloned());
         frame.report.stages.push(StageReport {
             stage: stage.name,
@@ -268,6 +280,9 @@ pub fn run_stages(
             rays: rays.total(),
             rays_per_second: ray_rate,
             rays_per_second_per_thread: ray_rate / threads,
+            cpu_seconds,
+            items_per_cpu_second: per_cpu_second(work.items),
+            rays_per_cpu_second: per_cpu_second(rays.total()),
             files: work.files,
         });
     }

@@ -215,6 +215,18 @@ fn bench_reports_throughput_per_stage_and_writes_nothing_here() {
     assert_eq!(shade["rays_closest"], 508 * 380 * 5);
     assert_eq!(shade["rays_occlusion"], 0);
     assert!(shade["rays_per_second_per_thread"].as_f64().unwrap() > 0.0);
+    // Process CPU time of the stage: positive, the per-CPU-second rates follow from it, and
+    // one worker thread cannot use much more CPU than the wall time it took.
+    let cpu = shade["cpu_seconds"].as_f64().unwrap();
+    let wall = shade["seconds"].as_f64().unwrap();
+    assert!(
+        cpu > 0.0 && cpu <= wall * 1.25 + 0.05,
+        "cpu {cpu} s, wall {wall} s"
+    );
+    let per_cpu = shade["items_per_cpu_second"].as_f64().unwrap();
+    assert!((per_cpu * cpu / (508.0 * 380.0 * 4.0) - 1.0).abs() < 1e-9);
+    let rays_per_cpu = shade["rays_per_cpu_second"].as_f64().unwrap();
+    assert!((rays_per_cpu * cpu / (508.0 * 380.0 * 5.0) - 1.0).abs() < 1e-9);
     assert!(
         std::fs::read_dir(&dir).unwrap().next().is_none(),
         "bench wrote into the working directory"
@@ -228,6 +240,8 @@ fn bench_reports_throughput_per_stage_and_writes_nothing_here() {
     assert!(
         text.contains("items/s/thread")
             && text.contains("rays/s/thread")
+            && text.contains("items/cpu-s")
+            && text.contains("rays/cpu-s")
             && text.contains("skipped: no bake requests"),
         "{text}"
     );
