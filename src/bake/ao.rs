@@ -582,6 +582,28 @@ mod tests {
 
     /// A floor (one-sided, facing up), a closed one-sided box sunk into it, a one-sided wall
     /// standing on it with its back to the probe points, and a two-sided roof.
+    /// One job of `count` rays per surface point, normals taken in turn from `normals`,
+    /// sample indices `stride` apart.
+    fn hemisphere_jobs<'a>(
+        surfaces: &'a [SurfacePoint],
+        normals: &[Vec3],
+        stride: u32,
+        count: u32,
+    ) -> Vec<HemisphereJob<'a>> {
+        surfaces
+            .iter()
+            .zip(normals.iter().cycle())
+            .enumerate()
+            .map(|(i, (s, &normal))| HemisphereJob {
+                surface: s,
+                normal,
+                ng_facing: s.ng,
+                first: stride * i as u32,
+                count,
+            })
+            .collect()
+    }
+
     fn scene() -> SceneGeometry {
         // Its faces: the fixture's cube is wound so that its normals point out.
         let cube: Vec<[Vec3; 3]> = fixture::inward_cube(0.25)
@@ -655,18 +677,7 @@ mod tests {
             (5, 0.4, 0.05, 1),
             (6, 0.5, f32::INFINITY, 64),
         ] {
-            let jobs: Vec<HemisphereJob<'_>> = surfaces
-                .iter()
-                .zip(normals.iter().cycle())
-                .enumerate()
-                .map(|(i, (s, &normal))| HemisphereJob {
-                    surface: s,
-                    normal,
-                    ng_facing: s.ng,
-                    first: 3 * i as u32,
-                    count,
-                })
-                .collect();
+            let jobs = hemisphere_jobs(&surfaces, &normals, 3, count);
             let both = trace_hemispheres(
                 &g,
                 &jobs,
@@ -755,18 +766,7 @@ mod tests {
         };
         let mut inside = 0;
         for (seed, count, max_distance) in [(7, 16, f32::INFINITY), (8, 64, 0.4), (9, 5, 2.0)] {
-            let jobs: Vec<HemisphereJob<'_>> = surfaces
-                .iter()
-                .zip(normals.iter().cycle())
-                .enumerate()
-                .map(|(i, (s, &normal))| HemisphereJob {
-                    surface: s,
-                    normal,
-                    ng_facing: s.ng,
-                    first: 5 * i as u32,
-                    count,
-                })
-                .collect();
+            let jobs = hemisphere_jobs(&surfaces, &normals, 5, count);
             for query in [
                 HemisphereQuery::Occlusion,
                 HemisphereQuery::Probe {
