@@ -13,7 +13,6 @@
 //! space and the estimate falls (½ at a straight edge): a known, documented bias.
 
 use std::cmp::Ordering;
-use std::collections::BinaryHeap;
 
 use glam::Vec3;
 
@@ -69,13 +68,13 @@ pub struct PhotonMap {
     nodes: Vec<SearchNode>,
 }
 
-/// A photon's position, its node's split axis and its coordinate along that axis, packed
-/// for the search.
+/// A photon's position and its node's split axis, packed for the search (the split
+/// coordinate is `position[axis]`).
 #[derive(Debug, Clone, Copy)]
+#[repr(C)]
 struct SearchNode {
-    position: Vec3,
+    position: [f32; 3],
     axis: u32,
-    split: f32,
 }
 
 fn search_nodes(photons: &[Photon], axes: &[u8]) -> Vec<SearchNode> {
@@ -83,11 +82,21 @@ fn search_nodes(photons: &[Photon], axes: &[u8]) -> Vec<SearchNode> {
         .iter()
         .zip(axes)
         .map(|(p, &a)| SearchNode {
-            position: p.position,
-            axis: u32::from(a),
-            split: p.position[usize::from(a).min(2)],
+            position: p.position.to_array(),
+            axis: u32::from(a).min(2),
         })
         .collect()
+}
+
+impl SearchNode {
+    fn position(&self) -> Vec3 {
+        Vec3::from_array(self.position)
+    }
+
+    /// The node's coordinate along its split axis (`axis` is at most 2 by construction).
+    fn split(&self) -> f32 {
+        self.position[self.axis as usize % 3]
+    }
 }
 
 /// Deepest pending entry the iterative search can need: one per tree level, and an implicit
@@ -175,13 +184,11 @@ impl PhotonMap {
             normal,
             k,
             max_d2: r_max * r_max,
-            heap: BinaryHeap::with_capacity(k.min(1024) + 1),
+            found: std::mem::take(out),
         };
         self.search(&mut q);
-        out.extend(q.heap.into_sorted_vec().into_iter().map(|e| Neighbour {
-            dist2: f32::from_bits(e.0),
-            index: e.1,
-        }));
+        *out = q.found;
+        out.sort_unstable_by_key(|n| (n.dist2.to_bits(), n.index));
     }
 
     /// The density estimate `Σ f(photon)·Φ / area` at `p` (normal `normal`) — irradiance for
@@ -251,8 +258,7 @@ impl PhotonMap {
             while lo < hi {
                 let mid = lo + (hi - lo) / 2;
                 let node = &self.nodes[mid as usize];
-                let axis = (node.axis & 3) as usize;
-                let d = p[axis] - node.split;
+                let d = p[(node.axis & 3) as usize] - node.split();
                 let (near, far) = if d < 0.0 {
                     ((lo, mid), (mid + 1, hi))
                 } else {
@@ -280,7 +286,7 @@ impl PhotonMap {
         let mut best: Option<Neighbour> = None;
         let mut bound = max_d2;
         self.walk(p, |i| {
-            let d2 = (self.nodes[i].position - p).length_squared();
+            let d2 = (self.nodes[i].position() - p).length_squared();
             if d2.is_nan() || d2 >= bound {
                 return bound;
             }
@@ -300,44 +306,83 @@ impl PhotonMap {
     }
 
     fn search(&self, q: &mut Query) {
-        let p = q.p;
-        self.walk(p, |i| {
-            q.offer(&self.photons[i], i as u32);
+        self.walk(q.p, |i| {
+            q.offer(&self.nodes[i], &self.photons, i);
             q.max_d2
         });
     }
 }
 
-/// A k-nearest search in progress: a max-heap of (squared distance bits, index).
+/// A k-nearest search in progress. `found` holds the accepted photons; once it holds `k` of
+/// them it is a max-heap by (squared distance bits, index), and `max_d2` is its top's
+/// distance, so a later photon is accepted only when strictly nearer and then replaces the
+/// top: the photons kept are those a push-then-pop heap keeps, in any visiting order.
 struct Query {
     p: Vec3,
     normal: Option<Vec3>,
     k: usize,
     max_d2: f32,
-    heap: BinaryHeap<(u32, u32)>,
+    found: Vec<Neighbour>,
+}
+
+/// Heap order of a gathered photon: non-negative floats order like their bit patterns.
+fn heap_key(n: &Neighbour) -> (u32, u32) {
+    (n.dist2.to_bits(), n.index)
 }
 
 impl Query {
-    fn offer(&mut self, ph: &Photon, index: u32) {
-        let d2 = (ph.position - self.p).length_squared();
+    fn offer(&mut self, node: &SearchNode, photons: &[Photon], i: usize) {
+        let d2 = (node.position() - self.p).length_squared();
         if d2.is_nan() || d2 >= self.max_d2 {
             return;
         }
         if let Some(n) = self.normal {
-            if ph.normal.dot(n) <= NORMAL_FILTER {
+            if photons[i].normal.dot(n) <= NORMAL_FILTER {
                 return;
             }
         }
-        // Non-negative floats order like their bit patterns.
-        self.heap.push((d2.to_bits(), index));
-        if self.heap.len() > self.k {
-            self.heap.pop();
-        }
-        if self.heap.len() == self.k {
-            if let Some(&(top, _)) = self.heap.peek() {
-                self.max_d2 = f32::from_bits(top);
+        let candidate = Neighbour {
+            dist2: d2,
+            index: i as u32,
+        };
+        if self.found.len() < self.k {
+            self.found.push(candidate);
+            if self.found.len() == self.k {
+                make_max_heap(&mut self.found);
+                self.max_d2 = self.found[0].dist2;
             }
+            return;
         }
+        // Full: `d2` is below the top's distance, so the candidate replaces the top.
+        self.found[0] = candidate;
+        sift_down(&mut self.found, 0);
+        self.max_d2 = self.found[0].dist2;
+    }
+}
+
+fn make_max_heap(heap: &mut [Neighbour]) {
+    for i in (0..heap.len() / 2).rev() {
+        sift_down(heap, i);
+    }
+}
+
+fn sift_down(heap: &mut [Neighbour], mut i: usize) {
+    loop {
+        let left = 2 * i + 1;
+        if left >= heap.len() {
+            return;
+        }
+        let right = left + 1;
+        let child = if right < heap.len() && heap_key(&heap[right]) > heap_key(&heap[left]) {
+            right
+        } else {
+            left
+        };
+        if heap_key(&heap[child]) <= heap_key(&heap[i]) {
+            return;
+        }
+        heap.swap(i, child);
+        i = child;
     }
 }
 
@@ -526,6 +571,84 @@ mod tests {
             }
         }
         assert!(found > 600, "only {found} queries found a photon");
+    }
+
+    /// The k-nearest search before the in-place heap: the recursive in-order walk offering
+    /// each photon to a `std` max-heap, pushed and then popped past `k`.
+    fn recursive_k_nearest(
+        map: &PhotonMap,
+        (lo, hi): (usize, usize),
+        p: Vec3,
+        k: usize,
+        bound: &mut f32,
+        heap: &mut std::collections::BinaryHeap<(u32, u32)>,
+    ) {
+        if lo >= hi {
+            return;
+        }
+        let mid = (lo + hi) / 2;
+        let ph = &map.photons()[mid];
+        let axis = map.axes()[mid] as usize;
+        let d = p[axis] - ph.position[axis];
+        let (near, far) = if d < 0.0 {
+            ((lo, mid), (mid + 1, hi))
+        } else {
+            ((mid + 1, hi), (lo, mid))
+        };
+        recursive_k_nearest(map, near, p, k, bound, heap);
+        let d2 = (ph.position - p).length_squared();
+        if d2 < *bound && ph.normal.dot(Vec3::Z) > NORMAL_FILTER {
+            heap.push((d2.to_bits(), mid as u32));
+            if heap.len() > k {
+                heap.pop();
+            }
+            if heap.len() == k {
+                *bound = f32::from_bits(heap.peek().map_or(0, |e| e.0));
+            }
+        }
+        if d * d < *bound {
+            recursive_k_nearest(map, far, p, k, bound, heap);
+        }
+    }
+
+    #[test]
+    fn k_nearest_keeps_the_photons_of_a_push_and_pop_heap_with_ties() {
+        // A coarse lattice with repeated points: many photons at exactly the k-th distance,
+        // where which ones are kept depends on the order they are offered in.
+        let mut photons = Vec::new();
+        for (i, p) in scattered(3000, 11).into_iter().enumerate() {
+            let p = (p * 8.0).round() / 8.0;
+            let normal = if i % 5 == 0 { -Vec3::Z } else { Vec3::Z };
+            for copy in 0..1 + i % 3 {
+                photons.push(Photon {
+                    position: p,
+                    power: Vec3::splat(copy as f32),
+                    incoming: Vec3::Z,
+                    normal,
+                });
+            }
+        }
+        let map = PhotonMap::build(photons);
+        let mut out = Vec::new();
+        let mut full = 0;
+        for q in scattered(200, 12) {
+            let q = (q * 16.0).round() / 16.0;
+            for (k, r_max) in [(2, 0.3f32), (8, 0.3), (64, 0.5), (300, 2.0)] {
+                let mut heap = std::collections::BinaryHeap::new();
+                let mut bound = r_max * r_max;
+                recursive_k_nearest(&map, (0, map.len()), q, k, &mut bound, &mut heap);
+                let want: Vec<(f32, u32)> = heap
+                    .into_sorted_vec()
+                    .into_iter()
+                    .map(|(d2, i)| (f32::from_bits(d2), i))
+                    .collect();
+                map.nearest(q, Some(Vec3::Z), k, r_max, &mut out);
+                let got: Vec<(f32, u32)> = out.iter().map(|n| (n.dist2, n.index)).collect();
+                assert_eq!(got, want, "query {q}, k {k}, r_max {r_max}");
+                full += usize::from(got.len() == k);
+            }
+        }
+        assert!(full > 300, "only {full} gathers were full");
     }
 
     #[test]
