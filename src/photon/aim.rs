@@ -56,6 +56,17 @@ impl Cone {
         }
     }
 
+    /// A direction uniform in the cone from `u`.
+    fn sample(&self, u: Vec2) -> Vec3 {
+        let cos = 1.0 - u.x * self.one_minus_cos;
+        let sin = (1.0 - cos * cos).max(0.0).sqrt();
+        let phi = 2.0 * PI * u.y;
+        let local = Vec3::new(sin * phi.cos(), sin * phi.sin(), cos);
+        ShadingFrame::from_normal(self.axis)
+            .to_world(local)
+            .normalize()
+    }
+
     fn solid_angle(&self) -> f32 {
         2.0 * PI * self.one_minus_cos
     }
@@ -98,6 +109,18 @@ impl Aim {
     /// A unit direction from `x` toward the casters and its solid-angle density, from
     /// `pick ∈ [0,1)` (chooses the cone) and `u ∈ [0,1)²`.
     pub fn direction(&self, x: Vec3, pick: f32, u: Vec2) -> Option<(Vec3, f32)> {
+        if let [sphere] = self.spheres[..] {
+            // One caster (the common case): its cone once, chosen whatever `pick` is, and no
+            // other cone to cover the direction — what the general path computes.
+            let cone = Cone::toward(x, sphere);
+            let total = cone.solid_angle();
+            if total.is_nan() || total <= 0.0 {
+                return None;
+            }
+            let dir = cone.sample(u);
+            let pdf = 1.0 / total;
+            return (dir.is_finite() && pdf > 0.0).then_some((dir, pdf));
+        }
         let total: f32 = self
             .spheres
             .iter()
@@ -117,13 +140,7 @@ impl Aim {
             }
         }
         let cone = Cone::toward(x, self.spheres[chosen]);
-        let cos = 1.0 - u.x * cone.one_minus_cos;
-        let sin = (1.0 - cos * cos).max(0.0).sqrt();
-        let phi = 2.0 * PI * u.y;
-        let local = Vec3::new(sin * phi.cos(), sin * phi.sin(), cos);
-        let dir = ShadingFrame::from_normal(cone.axis)
-            .to_world(local)
-            .normalize();
+        let dir = cone.sample(u);
         // The chosen cone contains its sample; the others are tested.
         let cover = 1 + self
             .spheres

@@ -386,6 +386,9 @@ fn sift_down(heap: &mut [Neighbour], mut i: usize) {
     }
 }
 
+/// Subtrees of at least this many photons are built on two rayon tasks.
+const PARALLEL_BUILD_MIN: usize = 16_384;
+
 /// Median split along the widest axis, recursively; `axes[mid]` records the split.
 fn build(photons: &mut [Photon], axes: &mut [u8]) {
     if photons.len() <= 1 {
@@ -412,8 +415,14 @@ fn build(photons: &mut [Photon], axes: &mut [u8]) {
     axes[mid] = axis as u8;
     let (left, rest) = photons.split_at_mut(mid);
     let (left_axes, rest_axes) = axes.split_at_mut(mid);
-    build(left, left_axes);
-    build(&mut rest[1..], &mut rest_axes[1..]);
+    let right = (&mut rest[1..], &mut rest_axes[1..]);
+    // The two halves are disjoint and built the same way on any thread: same tree bytes.
+    if left.len() >= PARALLEL_BUILD_MIN {
+        rayon::join(|| build(left, left_axes), || build(right.0, right.1));
+    } else {
+        build(left, left_axes);
+        build(right.0, right.1);
+    }
 }
 
 #[cfg(test)]
