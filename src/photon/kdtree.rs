@@ -482,6 +482,31 @@ mod tests {
     }
 
     #[test]
+    fn the_tree_is_the_same_built_on_one_thread_or_two() {
+        // Enough photons that the halves go to rayon tasks (`PARALLEL_BUILD_MIN`), on a
+        // lattice so that split ties occur.
+        let photons: Vec<Photon> = scattered(4 * PARALLEL_BUILD_MIN, 21)
+            .into_iter()
+            .map(|p| Photon {
+                position: (p * 32.0).round(),
+                power: p,
+                incoming: Vec3::Z,
+                normal: Vec3::Z,
+            })
+            .collect();
+        let on = |threads: usize| {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .expect("thread pool");
+            pool.install(|| PhotonMap::build(photons.clone()))
+        };
+        let (one, two) = (on(1), on(2));
+        assert_eq!(one.photons(), two.photons());
+        assert_eq!(one.axes(), two.axes());
+    }
+
+    #[test]
     fn k_nearest_matches_brute_force_on_scattered_points() {
         let photons: Vec<Photon> = scattered(3000, 1)
             .into_iter()
