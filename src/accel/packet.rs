@@ -10,7 +10,9 @@
 //!   all its rays, without a branch per ray.
 //! * **Masks**: a stack entry carries the rays that entered the child (a 64-bit mask; the
 //!   per-ray child masks are transposed with `pmovmskb`), so a ray tests exactly the leaves
-//!   its own traversal reaches, with the same watertight test (`WoopRay::intersect`).
+//!   its own traversal reaches, with the same watertight test (`WoopRay::intersect`; the
+//!   AVX2 kernels test a leaf's triangles against eight of the rays at once with its exact
+//!   arithmetic, `packet_leaf.rs`).
 //!   Occlusion retires a ray at its first hit below its `t_max`; closest hit keeps each ray's
 //!   smallest `(t, original index)` with its own `t` as the far end of its box tests. The
 //!   answers are therefore `occluded`'s and `intersect`'s, ray by ray, bit for bit (the tests
