@@ -21,6 +21,7 @@ mod counters;
 #[cfg(target_arch = "x86_64")]
 mod leaf_wide;
 mod packet;
+mod packet_leaf;
 mod ray_kind;
 mod spawn;
 mod traversal_cost;

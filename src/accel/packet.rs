@@ -10,7 +10,9 @@
 //!   all its rays, without a branch per ray.
 //! * **Masks**: a stack entry carries the rays that entered the child (a 64-bit mask; the
 //!   per-ray child masks are transposed with `pmovmskb`), so a ray tests exactly the leaves
-//!   its own traversal reaches, with the same watertight test (`WoopRay::intersect`).
+//!   its own traversal reaches, with the same watertight test (`WoopRay::intersect`; the
+//!   AVX2 kernels test a leaf's triangles against eight of the rays at once with its exact
+//!   arithmetic, `packet_leaf.rs`).
 //!   Occlusion retires a ray at its first hit below its `t_max`; closest hit keeps each ray's
 //!   smallest `(t, original index)` with its own `t` as the far end of its box tests. The
 //!   answers are therefore `occluded`'s and `intersect`'s, ray by ray, bit for bit (the tests
@@ -23,9 +25,12 @@
 //!   ninth distinct origin (compared bit for bit) comes. Invalid rays are answered without
 //!   traversal. Rays from many origins are still answered exactly, only without the sharing.
 
+use std::ops::Range;
+
 use glam::{Vec3, Vec4};
 
 use super::bvh::{Bvh, Node, EMPTY_CHILD, LEAF_BIT};
+use super::packet_leaf::RayLanes;
 use super::traverse::{leaf_range, octant, FAR_SCALE_FACTOR};
 use super::triangle::{ray_is_valid, WoopRay};
 use super::{Accel, Hit, Ray};
@@ -142,6 +147,8 @@ struct Packet {
     near: [[u8; 3]; PACKET_RAYS],
     t_max: [f32; PACKET_RAYS],
     woop: Vec<WoopRay>,
+    /// The same constants as arrays over the rays (the AVX2 leaf test's ray lanes).
+    lanes: RayLanes<PACKET_RAYS>,
     origins: [Vec3; PACKET_ORIGINS],
     /// The rays leaving from each origin.
     origin_rays: [u64; PACKET_ORIGINS],
@@ -158,6 +165,7 @@ impl Packet {
             near: [[0; 3]; PACKET_RAYS],
             t_max: [0.0; PACKET_RAYS],
             woop: Vec::with_capacity(PACKET_RAYS),
+            lanes: RayLanes::new(),
             origins: [Vec3::ZERO; PACKET_ORIGINS],
             origin_rays: [0; PACKET_ORIGINS],
             n_origins: 0,
@@ -200,7 +208,9 @@ impl Packet {
         // The sign bit decides (−0.0 counts as negative, matching 1/−0 = −∞).
         self.near[i] = [0, 1, 2].map(|a| (2 * a + usize::from(d[a].is_sign_negative())) as u8);
         self.t_max[i] = ray.t_max;
-        self.woop.push(WoopRay::new(ray.origin, ray.dir));
+        let woop = WoopRay::new(ray.origin, ray.dir);
+        self.lanes.set(i, &woop);
+        self.woop.push(woop);
         self.len += 1;
         true
     }
@@ -223,6 +233,72 @@ trait PacketTest {
     fn new() -> Self;
     fn prepare(&mut self, node: &Node, packet: &Packet, rays: u64);
     fn mask(&self, packet: &Packet, i: usize, t_far: f32) -> u32;
+
+    /// The rays of `rays` that hit one of the triangles `range` (a leaf) with `t < t_max`,
+    /// each answer that of `WoopRay::intersect`. One ray and one triangle at a time here;
+    /// the AVX2 test takes eight rays at once (`packet_leaf.rs`).
+    #[inline(always)]
+    fn leaf_occluded(&self, bvh: &Bvh, packet: &Packet, range: Range<usize>, rays: u64) -> u64 {
+        let mut hit = 0;
+        for i in bits(rays) {
+            let woop = &packet.woop[i];
+            let t_max = packet.t_max[i];
+            for k in range.clone() {
+                if woop
+                    .intersect(&bvh.tris[k])
+                    .is_some_and(|(t, _, _)| t < t_max)
+                {
+                    hit |= 1 << i;
+                    break;
+                }
+            }
+        }
+        hit
+    }
+
+    /// Updates the closest candidates `best`, `best_t` of the rays of `rays` with the
+    /// triangles `range` (a leaf), triangle by triangle for each ray, with the answers of
+    /// `WoopRay::intersect`.
+    #[inline(always)]
+    fn leaf_closest(
+        &self,
+        bvh: &Bvh,
+        packet: &Packet,
+        range: Range<usize>,
+        rays: u64,
+        best: &mut Best,
+    ) {
+        for i in bits(rays) {
+            let woop = &packet.woop[i];
+            for k in range.clone() {
+                if let Some(hit) = woop.intersect(&bvh.tris[k]) {
+                    best.offer(bvh, i, k, hit);
+                }
+            }
+        }
+    }
+}
+
+/// Per ray of a packet, the closest candidate as (BVH-order index, b1, b2) and its `t`,
+/// which starts at `t_max` (the single-ray kernel's state).
+struct Best {
+    hit: [Option<(usize, f32, f32)>; PACKET_RAYS],
+    t: [f32; PACKET_RAYS],
+}
+
+impl Best {
+    /// Ray `i` met triangle `k` (BVH order) at `(t, b1, b2)`: kept when nearer, or as near
+    /// with a smaller caller index (the single-ray kernel's rule).
+    #[inline(always)]
+    fn offer(&mut self, bvh: &Bvh, i: usize, k: usize, (t, b1, b2): (f32, f32, f32)) {
+        let better = t < self.t[i]
+            || (t == self.t[i]
+                && self.hit[i].is_some_and(|(bk, _, _)| bvh.prim_ids[k] < bvh.prim_ids[bk]));
+        if better {
+            self.hit[i] = Some((k, b1, b2));
+            self.t[i] = t;
+        }
+    }
 }
 
 /// The SSE test (two groups of four children), the fallback: the operations of
@@ -290,7 +366,10 @@ mod wide {
         _mm256_set1_ps, _mm256_set_m128, _mm256_setzero_ps, _mm256_sub_ps, _CMP_LE_OS,
     };
 
-    use super::{Node, Packet, PacketTest, FAR_SCALE_FACTOR, PACKET_ORIGINS};
+    use std::ops::Range;
+
+    use super::super::packet_leaf::{Group8, LANES};
+    use super::{bits, Best, Bvh, Node, Packet, PacketTest, FAR_SCALE_FACTOR, PACKET_ORIGINS};
 
     /// Planes minus each origin, eight children per register. Only made inside the AVX2
     /// kernels (the type is private to this file), so its methods may use AVX.
@@ -348,6 +427,80 @@ mod wide {
                 }
                 let tf = _mm256_mul_ps(tf, _mm256_set1_ps(FAR_SCALE_FACTOR));
                 _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_LE_OS>(tn, tf)) as u32
+            }
+        }
+
+        /// Eight rays at a time against each triangle (`packet_leaf.rs`); the lanes the
+        /// vector test cannot decide are answered by the scalar test.
+        #[inline(always)]
+        fn leaf_occluded(&self, bvh: &Bvh, packet: &Packet, range: Range<usize>, rays: u64) -> u64 {
+            let mut hit = 0;
+            let mut rest = rays;
+            while rest != 0 {
+                let g = rest.trailing_zeros() as usize / LANES;
+                let at = LANES * g;
+                let mut lanes = (rest >> at) as u32 & 0xff;
+                rest &= !(0xff << at);
+                let group = Group8::load(&packet.lanes, g);
+                for k in range.clone() {
+                    let tri = &bvh.tris[k];
+                    let found = group.test(tri, lanes);
+                    let mut h = 0;
+                    for j in bits(u64::from(found.hit)) {
+                        h |= u32::from(found.t[j] < packet.t_max[at + j]) << j;
+                    }
+                    for j in bits(u64::from(found.slow)) {
+                        let t_max = packet.t_max[at + j];
+                        if packet.woop[at + j]
+                            .intersect(tri)
+                            .is_some_and(|(t, _, _)| t < t_max)
+                        {
+                            h |= 1 << j;
+                        }
+                    }
+                    lanes &= !h;
+                    hit |= u64::from(h) << at;
+                    if lanes == 0 {
+                        break;
+                    }
+                }
+            }
+            hit
+        }
+
+        /// Eight rays at a time against each triangle, in the leaf's order; slow lanes by
+        /// the scalar test.
+        #[inline(always)]
+        fn leaf_closest(
+            &self,
+            bvh: &Bvh,
+            packet: &Packet,
+            range: Range<usize>,
+            rays: u64,
+            best: &mut Best,
+        ) {
+            let mut rest = rays;
+            while rest != 0 {
+                let g = rest.trailing_zeros() as usize / LANES;
+                let at = LANES * g;
+                let lanes = (rest >> at) as u32 & 0xff;
+                rest &= !(0xff << at);
+                let group = Group8::load(&packet.lanes, g);
+                for k in range.clone() {
+                    let tri = &bvh.tris[k];
+                    let found = group.test(tri, lanes);
+                    for j in bits(u64::from(found.hit | found.slow)) {
+                        let hit = if found.slow >> j & 1 != 0 {
+                            match packet.woop[at + j].intersect(tri) {
+                                Some(hit) => hit,
+                                None => continue,
+                            }
+                        } else {
+                            (found.t[j], found.b1[j], found.b2[j])
+                        };
+                        best.offer(bvh, at + j, k, hit);
+                    }
+                }
             }
         }
     }
@@ -468,18 +621,9 @@ fn occluded_packet<T: PacketTest>(
             if child & LEAF_BIT == 0 {
                 continue;
             }
-            for i in bits(entered[slot] & active) {
-                let woop = &packet.woop[i];
-                let t_max = packet.t_max[i];
-                for k in leaf_range(child) {
-                    if woop
-                        .intersect(&bvh.tris[k])
-                        .is_some_and(|(t, _, _)| t < t_max)
-                    {
-                        active &= !(1 << i);
-                        break;
-                    }
-                }
+            let rays = entered[slot] & active;
+            if rays != 0 {
+                active &= !test.leaf_occluded(bvh, packet, leaf_range(child), rays);
             }
         }
         if active == 0 {
@@ -534,10 +678,10 @@ fn closest_packet<T: PacketTest>(
     stack: &mut Vec<(u32, u64)>,
 ) -> [Option<Hit>; PACKET_RAYS] {
     let chunks = packet.len.div_ceil(16);
-    // Per ray: the closest candidate as (BVH-order index, b1, b2) and its `t`, which starts
-    // at `t_max` (the single-ray kernel's state).
-    let mut best: [Option<(usize, f32, f32)>; PACKET_RAYS] = [None; PACKET_RAYS];
-    let mut best_t = packet.t_max;
+    let mut best = Best {
+        hit: [None; PACKET_RAYS],
+        t: packet.t_max,
+    };
     stack.clear();
     stack.push((0, packet.all()));
     while let Some((node_ref, rays)) = stack.pop() {
@@ -546,7 +690,7 @@ fn closest_packet<T: PacketTest>(
         let mut masks = [0u8; PACKET_RAYS];
         let mut any = 0;
         for i in bits(rays) {
-            let m = test.mask(packet, i, best_t[i]);
+            let m = test.mask(packet, i, best.t[i]);
             masks[i] = m as u8;
             any |= m;
         }
@@ -562,21 +706,7 @@ fn closest_packet<T: PacketTest>(
             if any >> slot & 1 == 0 || child & LEAF_BIT == 0 {
                 continue;
             }
-            for i in bits(entered[slot]) {
-                let woop = &packet.woop[i];
-                for k in leaf_range(child) {
-                    if let Some((t, b1, b2)) = woop.intersect(&bvh.tris[k]) {
-                        let better = t < best_t[i]
-                            || (t == best_t[i]
-                                && best[i]
-                                    .is_some_and(|(bk, _, _)| bvh.prim_ids[k] < bvh.prim_ids[bk]));
-                        if better {
-                            best[i] = Some((k, b1, b2));
-                            best_t[i] = t;
-                        }
-                    }
-                }
-            }
+            test.leaf_closest(bvh, packet, leaf_range(child), entered[slot], &mut best);
         }
         // Farthest first, so that the nearest is popped next.
         for k in (0..8).rev() {
@@ -588,8 +718,8 @@ fn closest_packet<T: PacketTest>(
         }
     }
     std::array::from_fn(|i| {
-        best[i].map(|(k, b1, b2)| Hit {
-            t: best_t[i],
+        best.hit[i].map(|(k, b1, b2)| Hit {
+            t: best.t[i],
             prim: bvh.prim_ids[k],
             b1,
             b2,
