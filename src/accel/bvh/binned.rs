@@ -35,16 +35,6 @@ const SWEEP_MAX: usize = 8;
 /// Subtrees of at most this many triangles are binary leaves (the collapse decides how the
 /// triangles of neighbouring leaves share 8-wide leaves of up to three).
 const LEAF_MAX: usize = 2;
-// TEMP experiment knob.
-fn leaf_max() -> usize {
-    static V: std::sync::OnceLock<usize> = std::sync::OnceLock::new();
-    *V.get_or_init(|| {
-        std::env::var("STAGELIGHT_LEAF_MAX")
-            .ok()
-            .and_then(|v| v.parse().ok())
-            .unwrap_or(LEAF_MAX)
-    })
-}
 /// Subtrees with more triangles than this build their two halves in parallel.
 const PARALLEL_PRIMS: usize = 4096;
 /// Nodes with more triangles than this bin in parallel chunks of `BIN_CHUNK`.
@@ -280,9 +270,10 @@ pub(super) fn build_bounded(mut refs: Vec<Bounds>, bounds: Bounds, centroids: Bo
     assert!(n > 0);
     let mut ids: Vec<u32> = (0..n as u32).collect();
     // `2n − 1` slots, the size with one triangle per leaf: every subtree owns a slice of
-    // that size, and slices of leaves of two triangles stay unused (filled with defaults).
-    let mut nodes = vec![Bvh2Node::default(); 2 * n - 1];
-    if n <= leaf_max() {
+    // that size, and slices of leaves of two triangles stay unused (all zeros, the default
+    // node). Zeroed pages from the allocator: no 100 MB fill pass on a million triangles.
+    let mut nodes: Vec<Bvh2Node> = bytemuck::zeroed_vec(2 * n - 1);
+    if n <= LEAF_MAX {
         nodes[0] = bounds.node(n as u32, 0);
     } else {
         nodes[0] = bounds.node(0, 1);
@@ -332,12 +323,12 @@ impl Builder {
         let (left_out, right_out) = rest.split_at_mut(2 * nl - 2);
         let left_base = base + 2;
         let right_base = left_base + (2 * nl - 2) as u32;
-        pair[0] = if nl <= leaf_max() {
+        pair[0] = if nl <= LEAF_MAX {
             left.node(nl as u32, first)
         } else {
             left.node(0, left_base)
         };
-        pair[1] = if nr <= leaf_max() {
+        pair[1] = if nr <= LEAF_MAX {
             right.node(nr as u32, first + nl as u32)
         } else {
             right.node(0, right_base)
@@ -345,12 +336,12 @@ impl Builder {
         let (lrefs, rrefs) = refs.split_at_mut(nl);
         let (lids, rids) = ids.split_at_mut(nl);
         let mut left_job = || {
-            if nl > leaf_max() {
+            if nl > LEAF_MAX {
                 self.node(lrefs, lids, first, lc, left_out, left_base, depth + 1);
             }
         };
         let mut right_job = || {
-            if nr > leaf_max() {
+            if nr > LEAF_MAX {
                 let f = first + nl as u32;
                 self.node(rrefs, rids, f, rc, right_out, right_base, depth + 1);
             }

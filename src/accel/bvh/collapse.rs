@@ -106,15 +106,12 @@ pub(crate) struct Collapsed {
 /// `max_prims_per_leaf` triangles. A leaf's box is its binary node's box, an inner node's box
 /// the union of its children's.
 pub(crate) fn collapse(bvh2: &Bvh2, max_prims_per_leaf: u32) -> Collapsed {
-    use rayon::prelude::*;
     let n = bvh2.nodes.len();
     let c = Collapser {
         bvh2,
         max_prims_per_leaf,
-        table: (0..n)
-            .into_par_iter()
-            .map(|_| [AtomicU64::new(0), AtomicU64::new(0)])
-            .collect(),
+        // Zeroed pages from the allocator, not a 16-byte store per binary node.
+        table: bytemuck::zeroed_vec(n),
     };
     let root = c.cost(0, 0);
     let total_nodes = c.nodes8(0);
