@@ -15,7 +15,7 @@
 
 use std::time::Instant;
 
-use glam::{Vec3, Vec3A, Vec4};
+use glam::{Vec3, Vec4};
 use obvhs::{
     bvh2::{reinsertion::ReinsertionOptimizer, Bvh2},
     ploc::{PlocBuilder, PlocSearchDistance},
@@ -29,6 +29,7 @@ use crate::settings::BvhQuality;
 
 mod binned;
 mod collapse;
+mod prepare;
 
 /// Child reference flag: the child is a leaf.
 pub(crate) const LEAF_BIT: u32 = 1 << 31;
@@ -196,39 +197,26 @@ pub(crate) fn build(tris: &[[Vec3; 3]], quality: BvhQuality) -> Bvh {
     );
     // Every pass goes wide: the gathers (order-preserving collects), PLOC and reinsertion
     // inside obvhs, and the collapse into 8-wide nodes (`collapse.rs`).
-    let valid: Vec<u32> = (0..tris.len() as u32)
-        .into_par_iter()
-        .filter(|&i| !is_degenerate(&tris[i as usize]))
-        .collect();
-    if valid.is_empty() {
-        let prim_ids: Vec<u32> = (0..tris.len() as u32).collect();
-        phases.prepare = clock.lap();
-        return Bvh {
-            nodes: Vec::new(),
-            tris: tris.to_vec(),
-            hierarchy_triangles: 0,
-            slot_of: prim_ids.clone(),
-            prim_ids,
-            depth: 0,
-            sah_cost: 0.0,
-            build_seconds: start.elapsed().as_secs_f64(),
-            phases,
-        };
-    }
     let params = build_params(quality);
-    let bvh2 = if quality == BvhQuality::Medium {
-        let refs: Vec<binned::Bounds> = valid
-            .par_iter()
-            .map(|&i| {
-                let [v0, v1, v2] = tris[i as usize].map(Vec3A::from);
-                binned::Bounds::new(v0.min(v1).min(v2), v0.max(v1).max(v2))
-            })
-            .collect();
+    // `valid`: the caller's index of each triangle the hierarchy sees (`None`: all of them).
+    let (bvh2, valid) = if quality == BvhQuality::Medium {
+        let input = prepare::prepare(tris);
         phases.prepare = clock.lap();
-        let bvh2 = binned::build(refs);
+        if input.refs.is_empty() {
+            return unbuilt(tris, start, phases);
+        }
+        let bvh2 = binned::build_bounded(input.refs, input.bounds, input.centroids);
         phases.hierarchy = clock.lap();
-        bvh2
+        (bvh2, input.valid)
     } else {
+        let valid: Vec<u32> = (0..tris.len() as u32)
+            .into_par_iter()
+            .filter(|&i| !is_degenerate(&tris[i as usize]))
+            .collect();
+        if valid.is_empty() {
+            phases.prepare = clock.lap();
+            return unbuilt(tris, start, phases);
+        }
         let ob_tris = obvhs_triangles(tris, &valid);
         phases.prepare = clock.lap();
         let mut bvh2 = ploc(&ob_tris, &params);
@@ -236,18 +224,20 @@ pub(crate) fn build(tris: &[[Vec3; 3]], quality: BvhQuality) -> Bvh {
         phases.hierarchy = clock.lap();
         reinsert(&mut bvh2, &params);
         phases.reinsertion = clock.lap();
-        bvh2
+        (bvh2, Some(valid))
     };
     let collapsed = collapse::collapse(&bvh2, params.max_prims_per_leaf.clamp(1, 3));
     drop(bvh2);
     phases.collapse = clock.lap();
     let hierarchy_triangles = collapsed.order.len();
-    let mut prim_ids: Vec<u32> = collapsed
-        .order
-        .par_iter()
-        .map(|&i| valid[i as usize])
-        .collect();
-    drop(valid);
+    let mut prim_ids: Vec<u32> = match valid {
+        Some(valid) => collapsed
+            .order
+            .par_iter()
+            .map(|&i| valid[i as usize])
+            .collect(),
+        None => collapsed.order,
+    };
     if hierarchy_triangles < tris.len() {
         prim_ids.par_extend(
             (0..tris.len() as u32)
@@ -286,6 +276,23 @@ pub(crate) fn build(tris: &[[Vec3; 3]], quality: BvhQuality) -> Bvh {
         slot_of,
         depth,
         sah_cost,
+        build_seconds: start.elapsed().as_secs_f64(),
+        phases,
+    }
+}
+
+/// The hierarchy of a scene with no non-degenerate triangle: no nodes, every triangle kept
+/// in the caller's order.
+fn unbuilt(tris: &[[Vec3; 3]], start: Instant, phases: BuildPhases) -> Bvh {
+    let prim_ids: Vec<u32> = (0..tris.len() as u32).collect();
+    Bvh {
+        nodes: Vec::new(),
+        tris: tris.to_vec(),
+        hierarchy_triangles: 0,
+        slot_of: prim_ids.clone(),
+        prim_ids,
+        depth: 0,
+        sah_cost: 0.0,
         build_seconds: start.elapsed().as_secs_f64(),
         phases,
     }

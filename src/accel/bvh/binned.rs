@@ -42,6 +42,8 @@ const PARALLEL_BINNING: usize = 1 << 16;
 const BIN_CHUNK: usize = 1 << 14;
 /// Below this depth splits minimise the SAH; deeper ones split at the median.
 const SAH_DEPTH: u32 = 48;
+/// Nodes with at least this many triangles bin into two sets of bins (see `Bins::add`).
+const DUAL_BINNING: usize = 256;
 
 /// An axis-aligned box: a triangle's exact box is the builder's input.
 #[derive(Clone, Copy, Debug)]
@@ -51,7 +53,7 @@ pub(crate) struct Bounds {
 }
 
 impl Bounds {
-    const EMPTY: Bounds = Bounds {
+    pub(super) const EMPTY: Bounds = Bounds {
         lo: Vec3A::INFINITY,
         hi: Vec3A::NEG_INFINITY,
     };
@@ -62,7 +64,7 @@ impl Bounds {
     }
 
     #[inline(always)]
-    fn union(self, o: Bounds) -> Bounds {
+    pub(super) fn union(self, o: Bounds) -> Bounds {
         Bounds {
             lo: self.lo.min(o.lo),
             hi: self.hi.max(o.hi),
@@ -70,7 +72,7 @@ impl Bounds {
     }
 
     #[inline(always)]
-    fn grow(&mut self, p: Vec3A) {
+    pub(super) fn grow(&mut self, p: Vec3A) {
         self.lo = self.lo.min(p);
         self.hi = self.hi.max(p);
     }
@@ -83,8 +85,16 @@ impl Bounds {
 
     /// The centre, halved before the sum so that it cannot overflow.
     #[inline(always)]
-    fn centroid(self) -> Vec3A {
+    pub(super) fn centroid(self) -> Vec3A {
         self.lo * 0.5 + self.hi * 0.5
+    }
+
+    /// The bits of the box's six planes (for tests comparing boxes exactly).
+    #[cfg(test)]
+    pub(super) fn bits(self) -> [u32; 6] {
+        let [a, b, c] = self.lo.to_array().map(f32::to_bits);
+        let [d, e, f] = self.hi.to_array().map(f32::to_bits);
+        [a, b, c, d, e, f]
     }
 
     fn node(self, prim_count: u32, first_index: u32) -> Bvh2Node {
@@ -107,7 +117,10 @@ struct BinMap<const N: usize> {
 }
 
 impl<const N: usize> BinMap<N> {
+    const POWER_OF_TWO: () = assert!(N.is_power_of_two());
+
     fn new(centroids: Bounds) -> Self {
+        let () = Self::POWER_OF_TWO;
         let extent = centroids.hi - centroids.lo;
         let scale = Vec3A::from_array(extent.to_array().map(|e| {
             if e > 0.0 && e.is_finite() {
@@ -141,7 +154,9 @@ impl<const N: usize> BinMap<N> {
                 let b = _mm_cvttps_epi32(_mm_min_ps(t, _mm_set1_ps((N - 1) as f32)));
                 [lane0(b), lane0(shuffle::<1>(b)), lane0(shuffle::<2>(b))]
             };
-            b.map(|b| b as usize)
+            // `N` is a power of two and `b < N` already: the mask only tells the compiler,
+            // which then drops the bounds checks of the bin updates.
+            b.map(|b| b as usize & (N - 1))
         }
         #[cfg(not(target_arch = "x86_64"))]
         {
@@ -173,23 +188,49 @@ impl<const N: usize> Bins<N> {
         }
     }
 
+    /// Bins `refs`. Consecutive triangles often fall in the same bins (the mesh order, and
+    /// the partitions, keep neighbours together), so each bin update would wait for the
+    /// previous one's store: above `DUAL_BINNING` triangles, even and odd ones go to two
+    /// sets of bins, merged at the end (min/max and integer counts: the same bins).
     fn add(&mut self, map: &BinMap<N>, refs: &[Bounds]) {
-        for &r in refs {
-            let bins = map.bins(r.centroid());
-            for ((bounds, counts), b) in self.bounds.iter_mut().zip(&mut self.counts).zip(bins) {
-                bounds[b] = bounds[b].union(r);
-                counts[b] += 1;
+        if refs.len() < DUAL_BINNING {
+            for &r in refs {
+                self.put(map, r);
             }
+            return;
+        }
+        let mut odd = Self::new();
+        let mut pairs = refs.chunks_exact(2);
+        for pair in &mut pairs {
+            self.put(map, pair[0]);
+            odd.put(map, pair[1]);
+        }
+        for &r in pairs.remainder() {
+            self.put(map, r);
+        }
+        self.merge_from(&odd);
+    }
+
+    #[inline(always)]
+    fn put(&mut self, map: &BinMap<N>, r: Bounds) {
+        let bins = map.bins(r.centroid());
+        for ((bounds, counts), b) in self.bounds.iter_mut().zip(&mut self.counts).zip(bins) {
+            bounds[b] = bounds[b].union(r);
+            counts[b] += 1;
         }
     }
 
-    fn merge(mut self, o: Self) -> Self {
+    fn merge_from(&mut self, o: &Self) {
         for axis in 0..3 {
             for b in 0..N {
                 self.bounds[axis][b] = self.bounds[axis][b].union(o.bounds[axis][b]);
                 self.counts[axis][b] += o.counts[axis][b];
             }
         }
+    }
+
+    fn merge(mut self, o: Self) -> Self {
+        self.merge_from(&o);
         self
     }
 }
@@ -204,10 +245,8 @@ struct BinSplit {
 
 /// Builds the binary hierarchy over `refs` (each triangle's exact box, indexed by the
 /// primitive index the hierarchy reports).
-pub(crate) fn build(mut refs: Vec<Bounds>) -> Bvh2 {
-    let n = refs.len();
-    assert!(n > 0);
-    let mut ids: Vec<u32> = (0..n as u32).collect();
+#[cfg(test)]
+pub(crate) fn build(refs: Vec<Bounds>) -> Bvh2 {
     let (bounds, centroids) = refs
         .par_iter()
         .fold(
@@ -222,9 +261,18 @@ pub(crate) fn build(mut refs: Vec<Bounds>) -> Bvh2 {
             || (Bounds::EMPTY, Bounds::EMPTY),
             |a, b| (a.0.union(b.0), a.1.union(b.1)),
         );
+    build_bounded(refs, bounds, centroids)
+}
+
+/// [`build`] given the union of the boxes (`bounds`) and the bounds of their centroids.
+pub(super) fn build_bounded(mut refs: Vec<Bounds>, bounds: Bounds, centroids: Bounds) -> Bvh2 {
+    let n = refs.len();
+    assert!(n > 0);
+    let mut ids: Vec<u32> = (0..n as u32).collect();
     // `2n − 1` slots, the size with one triangle per leaf: every subtree owns a slice of
-    // that size, and slices of leaves of two triangles stay unused (filled with defaults).
-    let mut nodes = vec![Bvh2Node::default(); 2 * n - 1];
+    // that size, and slices of leaves of two triangles stay unused (all zeros, the default
+    // node). Zeroed pages from the allocator: no 100 MB fill pass on a million triangles.
+    let mut nodes: Vec<Bvh2Node> = bytemuck::zeroed_vec(2 * n - 1);
     if n <= LEAF_MAX {
         nodes[0] = bounds.node(n as u32, 0);
     } else {

@@ -106,15 +106,12 @@ pub(crate) struct Collapsed {
 /// `max_prims_per_leaf` triangles. A leaf's box is its binary node's box, an inner node's box
 /// the union of its children's.
 pub(crate) fn collapse(bvh2: &Bvh2, max_prims_per_leaf: u32) -> Collapsed {
-    use rayon::prelude::*;
     let n = bvh2.nodes.len();
     let c = Collapser {
         bvh2,
         max_prims_per_leaf,
-        table: (0..n)
-            .into_par_iter()
-            .map(|_| [AtomicU64::new(0), AtomicU64::new(0)])
-            .collect(),
+        // Zeroed pages from the allocator, not a 16-byte store per binary node.
+        table: bytemuck::zeroed_vec(n),
     };
     let root = c.cost(0, 0);
     let total_nodes = c.nodes8(0);
@@ -278,27 +275,43 @@ impl Collapser<'_> {
             });
         }
         // Greedy: repeatedly the least cost over free (child, slot) pairs, the first in
-        // (child, slot) order on ties; taken rows and columns are masked with `f32::MAX`,
-        // which no pick accepts (nor NaN), so each step is one branch-free scan.
-        let mut flat: [f32; 64] = std::array::from_fn(|k| cost[k / 8][k % 8]);
+        // (child, slot) order on ties; only costs below `f32::MAX` are taken (not NaN). Each
+        // row keeps its least free entry (first slot on ties), so a pick is the first row
+        // with the least entry; after it only the rows whose entry sat in the taken slot look
+        // again.
+        let row_min = |row: &[f32; 8], filled: &[bool; 8]| -> (f32, usize) {
+            let (mut min_cost, mut min_slot) = (f32::MAX, usize::MAX);
+            for (s, (&v, &f)) in row.iter().zip(filled).enumerate() {
+                let less = v < min_cost && !f;
+                min_cost = if less { v } else { min_cost };
+                min_slot = if less { s } else { min_slot };
+            }
+            (min_cost, min_slot)
+        };
         let mut assignment = [usize::MAX; 8];
         let mut filled = [false; 8];
+        let mut best = [(f32::MAX, usize::MAX); 8];
+        for (b, row) in best.iter_mut().zip(&cost[..list.len()]) {
+            *b = row_min(row, &filled);
+        }
         for _ in 0..list.len() {
-            let (mut min_cost, mut min_k) = (f32::MAX, usize::MAX);
-            for (k, &v) in flat.iter().enumerate().take(8 * list.len()) {
+            let (mut min_cost, mut min_child) = (f32::MAX, usize::MAX);
+            for (c, &(v, _)) in best.iter().enumerate().take(list.len()) {
                 let less = v < min_cost;
                 min_cost = if less { v } else { min_cost };
-                min_k = if less { k } else { min_k };
+                min_child = if less { c } else { min_child };
             }
-            if min_k == usize::MAX {
+            if min_child == usize::MAX {
                 break;
             }
-            let (min_child, min_slot) = (min_k / 8, min_k % 8);
+            let min_slot = best[min_child].1;
             filled[min_slot] = true;
             assignment[min_child] = min_slot;
-            flat[8 * min_child..8 * min_child + 8].fill(f32::MAX);
-            for row in flat.chunks_exact_mut(8) {
-                row[min_slot] = f32::MAX;
+            best[min_child] = (f32::MAX, usize::MAX);
+            for (b, row) in best.iter_mut().zip(&cost[..list.len()]) {
+                if b.1 == min_slot {
+                    *b = row_min(row, &filled);
+                }
             }
         }
         // Children whose costs are not below `f32::MAX` (infinite or NaN centres of huge
