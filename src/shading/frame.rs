@@ -26,6 +26,19 @@ impl ShadingFrame {
         Self { s, t, n }
     }
 
+    /// The frame [`ShadingFrame::from_normal`] gives for `-n`, bit for bit: `(s, −t, −n)`
+    /// (every term of the construction changes sign in pairs, and rounding is symmetric),
+    /// except that `t.y`, a sum `sign + …`, is `+0.0` for both normals when it cancels.
+    #[inline]
+    pub fn flipped(&self) -> Self {
+        let t = -self.t;
+        Self {
+            s: self.s,
+            t: Vec3::new(t.x, if t.y == 0.0 { 0.0 } else { t.y }, t.z),
+            n: -self.n,
+        }
+    }
+
     /// World direction in local coordinates.
     #[inline]
     pub fn to_local(&self, v: Vec3) -> Vec3 {
@@ -42,6 +55,40 @@ impl ShadingFrame {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The components' bit patterns (so `-0.0` and `0.0` differ).
+    fn bits(f: &ShadingFrame) -> [u32; 9] {
+        let [a, b, c] = [f.s, f.t, f.n].map(|v| v.to_array().map(f32::to_bits));
+        [a[0], a[1], a[2], b[0], b[1], b[2], c[0], c[1], c[2]]
+    }
+
+    #[test]
+    fn flipped_equals_the_frame_of_the_opposite_normal_bit_for_bit() {
+        let mut normals = vec![
+            Vec3::Z,
+            Vec3::NEG_Z,
+            Vec3::X,
+            Vec3::new(0.0, -1.0, -0.0),
+            Vec3::new(0.0, 1.0, 0.0),
+            Vec3::new(-0.0, 1.0, -0.0),
+            Vec3::ZERO,
+            Vec3::new(1e-7, 0.0, -1.0).normalize(),
+        ];
+        for i in 0..20_000 {
+            let a = i as f32 * 0.618_034;
+            let z = ((i as f32 * 0.377).fract() * 2.0 - 1.0).clamp(-1.0, 1.0);
+            let r = (1.0 - z * z).sqrt();
+            normals.push(Vec3::new(r * a.cos(), r * a.sin(), z).normalize());
+        }
+        for n in normals {
+            let f = ShadingFrame::from_normal(n);
+            assert_eq!(
+                bits(&f.flipped()),
+                bits(&ShadingFrame::from_normal(-n)),
+                "{n}"
+            );
+        }
+    }
 
     #[test]
     fn frames_are_orthonormal_near_the_poles() {

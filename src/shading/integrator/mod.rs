@@ -239,6 +239,12 @@ pub struct Vertex<'a> {
     pub transmittance: Vec3,
 }
 
+/// Whether two vectors have the same bit patterns.
+#[inline]
+fn same_bits(a: Vec3, b: Vec3) -> bool {
+    a.to_array().map(f32::to_bits) == b.to_array().map(f32::to_bits)
+}
+
 impl<'a> Vertex<'a> {
     /// The vertex where `ray` hits `hit`.
     ///
@@ -278,7 +284,18 @@ impl<'a> Vertex<'a> {
             }
             _ => Vec3::ONE,
         };
-        let frame = ShadingFrame::from_normal(sp.normal);
+        let frame = match ctx.normals.and_then(|t| t.frame(hit.prim)) {
+            // A flat-shaded hit: `sp.normal` is the table's normal or its negation, whose
+            // frame is the kept one or its flip (bit for bit; `-0.0` and `0.0` told apart).
+            Some(kept) if same_bits(sp.normal, ng) => {
+                if front {
+                    *kept
+                } else {
+                    kept.flipped()
+                }
+            }
+            _ => ShadingFrame::from_normal(sp.normal),
+        };
         Self {
             sp,
             ng,
