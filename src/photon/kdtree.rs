@@ -537,14 +537,13 @@ mod tests {
         }
     }
 
-    /// The recursive in-order search the iterative walk replaced, offering into a `k = 1`
-    /// "heap": the reference for which photon wins, ties included.
-    fn recursive_nearest_one(
+    /// The recursive in-order walk the iterative one replaced: the near side, the node
+    /// (`offer` returns the bound after it), then the far side when its plane is closer.
+    fn recursive_walk(
         map: &PhotonMap,
         (lo, hi): (usize, usize),
         p: Vec3,
-        normal: Vec3,
-        best: &mut (f32, Option<u32>),
+        offer: &mut impl FnMut(usize, &Photon) -> f32,
     ) {
         if lo >= hi {
             return;
@@ -558,14 +557,28 @@ mod tests {
         } else {
             ((mid + 1, hi), (lo, mid))
         };
-        recursive_nearest_one(map, near, p, normal, best);
-        let d2 = (ph.position - p).length_squared();
-        if d2 < best.0 && ph.normal.dot(normal) > NORMAL_FILTER {
-            *best = (d2, Some(mid as u32));
+        recursive_walk(map, near, p, offer);
+        if d * d < offer(mid, ph) {
+            recursive_walk(map, far, p, offer);
         }
-        if d * d < best.0 {
-            recursive_nearest_one(map, far, p, normal, best);
-        }
+    }
+
+    /// The recursive search offering into a `k = 1` "heap": the reference for which photon
+    /// wins, ties included.
+    fn recursive_nearest_one(
+        map: &PhotonMap,
+        range: (usize, usize),
+        p: Vec3,
+        normal: Vec3,
+        best: &mut (f32, Option<u32>),
+    ) {
+        recursive_walk(map, range, p, &mut |i, ph| {
+            let d2 = (ph.position - p).length_squared();
+            if d2 < best.0 && ph.normal.dot(normal) > NORMAL_FILTER {
+                *best = (d2, Some(i as u32));
+            }
+            best.0
+        });
     }
 
     #[test]
@@ -607,42 +620,29 @@ mod tests {
         assert!(found > 600, "only {found} queries found a photon");
     }
 
-    /// The k-nearest search before the in-place heap: the recursive in-order walk offering
-    /// each photon to a `std` max-heap, pushed and then popped past `k`.
+    /// The k-nearest search before the in-place heap: the recursive walk offering each
+    /// photon to a `std` max-heap, pushed and then popped past `k`.
     fn recursive_k_nearest(
         map: &PhotonMap,
-        (lo, hi): (usize, usize),
+        range: (usize, usize),
         p: Vec3,
         k: usize,
         bound: &mut f32,
         heap: &mut std::collections::BinaryHeap<(u32, u32)>,
     ) {
-        if lo >= hi {
-            return;
-        }
-        let mid = (lo + hi) / 2;
-        let ph = &map.photons()[mid];
-        let axis = map.axes()[mid] as usize;
-        let d = p[axis] - ph.position[axis];
-        let (near, far) = if d < 0.0 {
-            ((lo, mid), (mid + 1, hi))
-        } else {
-            ((mid + 1, hi), (lo, mid))
-        };
-        recursive_k_nearest(map, near, p, k, bound, heap);
-        let d2 = (ph.position - p).length_squared();
-        if d2 < *bound && ph.normal.dot(Vec3::Z) > NORMAL_FILTER {
-            heap.push((d2.to_bits(), mid as u32));
-            if heap.len() > k {
-                heap.pop();
+        recursive_walk(map, range, p, &mut |i, ph| {
+            let d2 = (ph.position - p).length_squared();
+            if d2 < *bound && ph.normal.dot(Vec3::Z) > NORMAL_FILTER {
+                heap.push((d2.to_bits(), i as u32));
+                if heap.len() > k {
+                    heap.pop();
+                }
+                if heap.len() == k {
+                    *bound = f32::from_bits(heap.peek().map_or(0, |e| e.0));
+                }
             }
-            if heap.len() == k {
-                *bound = f32::from_bits(heap.peek().map_or(0, |e| e.0));
-            }
-        }
-        if d * d < *bound {
-            recursive_k_nearest(map, far, p, k, bound, heap);
-        }
+            *bound
+        });
     }
 
     #[test]

@@ -77,9 +77,9 @@ mod tests {
     use super::*;
     use crate::shading::integrator::fixture::{self, Object};
 
-    #[test]
-    fn table_shading_points_equal_computed_ones() {
-        let g = fixture::geometry(vec![
+    /// A closed cube seen from inside and a floor below it.
+    fn cube_and_floor() -> SceneGeometry {
+        fixture::geometry(vec![
             Object {
                 triangles: fixture::inward_cube(1.5),
                 material: fixture::lambert(0.5),
@@ -88,7 +88,12 @@ mod tests {
                 triangles: fixture::floor(3.0, -0.25),
                 material: fixture::lambert(0.8),
             },
-        ]);
+        ])
+    }
+
+    #[test]
+    fn table_shading_points_equal_computed_ones() {
+        let g = cube_and_floor();
         let normals = TriangleNormals::new(&g).expect("a small scene keeps its table");
         let mut hits = 0;
         for i in 0..200 {
@@ -115,16 +120,7 @@ mod tests {
 
         // A closed cube seen from inside (front faces) and a floor seen from below (back
         // faces), with axis-aligned normals where the frame's sums cancel to zero.
-        let g = fixture::geometry(vec![
-            Object {
-                triangles: fixture::inward_cube(1.5),
-                material: fixture::lambert(0.5),
-            },
-            Object {
-                triangles: fixture::floor(3.0, -0.25),
-                material: fixture::lambert(0.8),
-            },
-        ]);
+        let g = cube_and_floor();
         let normals = TriangleNormals::new(&g).expect("a small scene keeps its table");
         assert!(normals.frame(0).is_some());
         let lights = LightSet::new(&[], None, 1);
