@@ -276,13 +276,7 @@ mod tests {
             eprintln!("no AVX2 on this CPU: the scalar leaf test runs");
             return;
         }
-        let mut state = 0x51f1_5e5d_a2b7_c3e1u64;
-        let mut rnd = move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 40) as f32 / (1u64 << 24) as f32 * 2.0 - 1.0
-        };
+        let mut rnd = crate::accel::test_random::signed_uniform(0x51f1_5e5d_a2b7_c3e1u64);
         let (mut hits, mut slow, mut fast, mut cases) = (0, 0, 0, 0);
         for i in 0..60_000 {
             let scale = [1e-6, 1e-2, 1.0, 1e3, 1e6][i % 5];

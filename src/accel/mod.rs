@@ -236,6 +236,9 @@ impl Accel {
 }
 
 #[cfg(test)]
+mod test_random;
+
+#[cfg(test)]
 mod tests {
     use super::*;
 

@@ -832,13 +832,7 @@ mod tests {
     }
 
     fn rng() -> impl FnMut() -> f32 {
-        let mut state = 0x2545_f491_4f6c_dd1du64;
-        move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 40) as f32 / (1u64 << 24) as f32 * 2.0 - 1.0
-        }
+        crate::accel::test_random::signed_uniform(0x2545_f491_4f6c_dd1du64)
     }
 
     /// Both packet kernels (SSE groups of four, and AVX2 where this CPU has it) and the

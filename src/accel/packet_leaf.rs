@@ -336,13 +336,7 @@ mod tests {
             eprintln!("no AVX2 on this CPU: the scalar leaf test runs");
             return;
         }
-        let mut state = 0x9e37_79b9_7f4a_7c15u64;
-        let mut rnd = move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 40) as f32 / (1u64 << 24) as f32 * 2.0 - 1.0
-        };
+        let mut rnd = crate::accel::test_random::signed_uniform(0x9e37_79b9_7f4a_7c15u64);
         let (mut hits, mut slow, mut fast, mut cases) = (0, 0, 0, 0);
         let mut kz_mixed = 0;
         for i in 0..40_000 {

@@ -912,13 +912,7 @@ mod tests {
     /// hierarchy too deep for the array stack (the batch falls back to single rays).
     #[test]
     fn batch_equals_single_ray() {
-        let mut state = 0x2545_f491_4f6c_dd1du64;
-        let mut rnd = move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 40) as f32 / (1u64 << 24) as f32 * 2.0 - 1.0
-        };
+        let mut rnd = crate::accel::test_random::signed_uniform(0x2545_f491_4f6c_dd1du64);
         let soup: Vec<[Vec3; 3]> = (0..3000)
             .map(|_| {
                 let c = Vec3::new(rnd(), rnd(), rnd()) * 4.0;

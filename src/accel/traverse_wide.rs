@@ -270,13 +270,7 @@ mod tests {
             eprintln!("no AVX2 on this CPU: only the SSE kernel runs");
             return;
         }
-        let mut state = 0x9e37_79b9_7f4a_7c15u64;
-        let mut rnd = move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 40) as f32 / (1u64 << 24) as f32 * 2.0 - 1.0
-        };
+        let mut rnd = crate::accel::test_random::signed_uniform(0x9e37_79b9_7f4a_7c15u64);
         let tris: Vec<[Vec3; 3]> = (0..4000)
             .map(|i| {
                 // Half the triangles on the integer grid, so rays run along box planes.

@@ -489,13 +489,7 @@ mod tests {
     use obvhs::{cwbvh::bvh2_to_cwbvh::bvh2_to_cwbvh, triangle::Triangle};
 
     fn soup(n: usize, seed: u64) -> Vec<[Vec3; 3]> {
-        let mut state = seed;
-        let mut rnd = move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 40) as f32 / (1u64 << 24) as f32 * 2.0 - 1.0
-        };
+        let mut rnd = crate::accel::test_random::signed_uniform(seed);
         (0..n)
             .map(|_| {
                 let c = Vec3::new(rnd(), rnd() * 0.5, rnd() * 2.0) * 8.0;
