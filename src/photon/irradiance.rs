@@ -26,16 +26,19 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use glam::Vec3;
 use rayon::prelude::*;
 
+use super::point_grid::PointGrid;
 use super::{GatherMap, Neighbour, Photon, PhotonMap};
 
 /// One photon in how many carries a precomputed irradiance (Christensen's "every fourth").
 pub const STRIDE: usize = 4;
 
 /// Irradiance at a subset of photon positions, in a kd-tree (each point is stored as a
-/// [`Photon`] whose `power` is the irradiance, W/m²).
+/// [`Photon`] whose `power` is the irradiance, W/m²), and in a grid for the lookups when the
+/// points spread well enough for one ([`PointGrid::build`]; the same answers).
 #[derive(Debug, Clone)]
 pub struct IrradiancePoints {
     points: PhotonMap,
+    grid: Option<Box<PointGrid>>,
     radius: f32,
 }
 
@@ -73,8 +76,10 @@ impl IrradiancePoints {
             .with_min_len(64)
             .map_init(Vec::new, |scratch, site| irradiance(scratch, site))
             .collect();
+        let points = PhotonMap::build(points?);
         Some(Self {
-            points: PhotonMap::build(points?),
+            grid: PointGrid::build(points.photons()).map(Box::new),
+            points,
             radius: global.radius,
         })
     }
@@ -82,8 +87,15 @@ impl IrradiancePoints {
     /// The irradiance at `p` (normal `normal`): the nearest stored point's within the gather
     /// radius, zero when none is that close.
     pub fn at(&self, p: Vec3, normal: Vec3, scratch: &mut Vec<Neighbour>) -> Vec3 {
-        self.points
-            .nearest(p, Some(normal), 1, self.radius, scratch);
+        match &self.grid {
+            Some(grid) => {
+                scratch.clear();
+                scratch.extend(grid.nearest(p, normal, self.radius * self.radius));
+            }
+            None => self
+                .points
+                .nearest(p, Some(normal), 1, self.radius, scratch),
+        }
         scratch.first().map_or(Vec3::ZERO, |nb| {
             self.points.photons()[nb.index as usize].power
         })
@@ -162,6 +174,33 @@ mod tests {
         );
         assert_eq!(points.at(Vec3::ZERO, Vec3::X, &mut scratch), Vec3::ZERO);
         assert!(points.at(Vec3::ZERO, Vec3::Z, &mut scratch).x > 0.0);
+    }
+
+    /// The grid answers every lookup as the kd-tree does, bit for bit: inside and outside
+    /// the discs, across the normal test, near and beyond the radius.
+    #[test]
+    fn grid_lookups_are_the_kd_tree_lookups() {
+        let global = disc(4000, 1e-3, 1.0);
+        let caustics = disc(400, 1e-3, 0.2);
+        let none = AtomicBool::new(false);
+        let with_grid = IrradiancePoints::precompute(&global, Some(&caustics), &none).unwrap();
+        assert!(with_grid.grid.is_some());
+        let tree_only = IrradiancePoints {
+            grid: None,
+            ..with_grid.clone()
+        };
+        let mut scratch = Vec::new();
+        let mut lit = 0;
+        for i in 0..4000 {
+            let a = i as f32 * 0.618_034 * std::f32::consts::TAU;
+            let r = 1.3 * (i as f32 / 4000.0).sqrt();
+            let p = Vec3::new(r * a.cos(), r * a.sin(), (i % 3) as f32 * 0.02);
+            let n = if i % 5 == 0 { Vec3::X } else { Vec3::Z };
+            let e = with_grid.at(p, n, &mut scratch);
+            assert_eq!(e, tree_only.at(p, n, &mut scratch), "at {p}");
+            lit += usize::from(e != Vec3::ZERO);
+        }
+        assert!((2000..3200).contains(&lit), "{lit} lookups found a point");
     }
 
     #[test]

@@ -280,27 +280,25 @@ impl PhotonMap {
         }
     }
 
-    /// The nearest photon strictly within `sqrt(max_d2)` that passes the normal filter: what
-    /// the k-nearest search returns for `k = 1`.
+    /// The nearest photon strictly within `sqrt(max_d2)` that passes the normal filter, ties
+    /// to the least index (the rule of [`super::point_grid::PointGrid::nearest`]): the far
+    /// side of a plane is visited while a photon at the current distance could lie there.
     fn nearest_one(&self, p: Vec3, normal: Option<Vec3>, max_d2: f32) -> Option<Neighbour> {
         let mut best: Option<Neighbour> = None;
-        let mut bound = max_d2;
         self.walk(p, |i| {
             let d2 = (self.nodes[i].position() - p).length_squared();
-            if d2.is_nan() || d2 >= bound {
-                return bound;
+            let better = match best {
+                Some(b) => d2 < b.dist2 || d2 == b.dist2 && (i as u32) < b.index,
+                None => d2 < max_d2,
+            };
+            if better && normal.is_none_or(|n| self.photons[i].normal.dot(n) > NORMAL_FILTER) {
+                best = Some(Neighbour {
+                    dist2: d2,
+                    index: i as u32,
+                });
             }
-            if let Some(n) = normal {
-                if self.photons[i].normal.dot(n) <= NORMAL_FILTER {
-                    return bound;
-                }
-            }
-            best = Some(Neighbour {
-                dist2: d2,
-                index: i as u32,
-            });
-            bound = d2;
-            bound
+            // The walk visits a far side when the plane is strictly nearer than this.
+            best.map_or(max_d2, |b| b.dist2.next_up())
         });
         best
     }
@@ -563,26 +561,24 @@ mod tests {
         }
     }
 
-    /// The recursive search offering into a `k = 1` "heap": the reference for which photon
-    /// wins, ties included.
-    fn recursive_nearest_one(
+    /// The `k = 1` answer by definition: the least squared distance strictly within the
+    /// radius among photons passing the normal filter, ties to the least index.
+    fn brute_nearest_one(
         map: &PhotonMap,
-        range: (usize, usize),
         p: Vec3,
         normal: Vec3,
-        best: &mut (f32, Option<u32>),
-    ) {
-        recursive_walk(map, range, p, &mut |i, ph| {
-            let d2 = (ph.position - p).length_squared();
-            if d2 < best.0 && ph.normal.dot(normal) > NORMAL_FILTER {
-                *best = (d2, Some(i as u32));
-            }
-            best.0
-        });
+        max_d2: f32,
+    ) -> Option<(f32, u32)> {
+        (0..map.len())
+            .map(|i| ((map.photons()[i].position - p).length_squared(), i as u32))
+            .filter(|&(d2, i)| {
+                d2 < max_d2 && map.photons()[i as usize].normal.dot(normal) > NORMAL_FILTER
+            })
+            .min_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)))
     }
 
     #[test]
-    fn nearest_one_is_the_recursive_search_with_ties_and_the_normal_filter() {
+    fn nearest_one_is_the_least_distance_then_index_with_the_normal_filter() {
         // Scattered points, every third one repeated exactly (ties in distance), a quarter
         // facing the other way (normal filter), on a coarse lattice so plane ties occur too.
         let mut photons = Vec::new();
@@ -608,11 +604,9 @@ mod tests {
         let mut found = 0;
         for q in scattered(300, 8) {
             for r_max in [0.02f32, 0.1, 2.0] {
-                let mut best = (r_max * r_max, None);
-                recursive_nearest_one(&map, (0, map.len()), q, Vec3::Z, &mut best);
+                let want = brute_nearest_one(&map, q, Vec3::Z, r_max * r_max);
                 map.nearest(q, Some(Vec3::Z), 1, r_max, &mut out);
                 let got = out.first().map(|n| (n.dist2, n.index));
-                let want = best.1.map(|i| (best.0, i));
                 assert_eq!(got, want, "query {q}, r_max {r_max}");
                 found += usize::from(got.is_some());
             }

@@ -33,6 +33,7 @@ pub mod kdtree;
 pub mod key;
 pub mod light_lists;
 pub mod pass;
+pub mod point_grid;
 pub mod progressive;
 pub mod roles;
 pub mod store;
