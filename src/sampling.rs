@@ -130,6 +130,7 @@ pub fn sample_triangle(u: Vec2) -> (f32, f32) {
 
 /// Cosine-weighted direction about +Z from `u ∈ [0,1)²` (concentric disk mapping);
 /// pdf = cosθ/π.
+#[inline]
 pub fn sample_cosine_hemisphere(u: Vec2) -> Vec3 {
     let d = sample_concentric_disk(u);
     let z = (1.0 - d.length_squared()).max(0.0).sqrt();

@@ -253,6 +253,7 @@ impl<'a> Vertex<'a> {
     /// rotated toward the geometric normal just enough that the view direction is above it
     /// and its mirror direction above the geometric surface
     /// ([`bump::ensure_valid_reflection`]), so bent normals never shade black.
+    #[inline(always)]
     pub fn new(ctx: &ShadeContext<'a>, ray: &Ray, hit: &Hit) -> Self {
         let mut sp = match ctx.normals {
             Some(n) => n.shading_point(ctx.geometry, hit),
@@ -353,6 +354,7 @@ impl<'a> Vertex<'a> {
 
     /// A ray leaving along the local direction `wi` if it lies on the geometric side its
     /// kind requires (reflection: the viewer's side; transmission: the other side).
+    #[inline(always)]
     pub fn spawn(&self, wi_local: Vec3, transmits: bool) -> Option<Ray> {
         let wi = self.frame.to_world(wi_local);
         let side = self.ng.dot(wi);
@@ -450,7 +452,13 @@ fn gather_split(
                 Some(seed) => Sampler::new(*seed, j).next_2d(),
                 None => sampler.next_2d(),
             };
-            let Some(ls) = light.sample(v.sp.surface.p, u, Some(ctx.geometry)) else {
+            // Emitting meshes (the common light of path-traced scenes) sampled inline: the
+            // same call `Light::sample` makes, without returning the sample through memory.
+            let ls = match light {
+                Light::Mesh(m) => m.sample(v.sp.surface.p, u, ctx.geometry),
+                _ => light.sample(v.sp.surface.p, u, Some(ctx.geometry)),
+            };
+            let Some(ls) = ls else {
                 continue;
             };
             let wi = v.frame.to_local(ls.wi);
@@ -536,6 +544,7 @@ pub fn trace(
 /// [`trace`] for a specular ray spawned at a material with its own environment (`own`):
 /// when the ray hits nothing it sees that environment (light pdf 0: it is not a light)
 /// instead of the scene's.
+#[inline(always)]
 pub fn trace_leaving(
     ctx: &ShadeContext<'_>,
     ray: &Ray,
