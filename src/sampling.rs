@@ -81,7 +81,7 @@ impl Sampler {
     }
 
     /// Next value in [0, 1).
-    #[inline]
+    #[inline(always)]
     pub fn next_1d(&mut self) -> f32 {
         let d = self.dimension;
         self.dimension += 1;

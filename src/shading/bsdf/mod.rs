@@ -437,6 +437,7 @@ impl Bsdf {
     }
 
     /// BSDF value of the non-delta lobes for light arriving from `wi` and leaving along `wo`.
+    #[inline]
     pub fn eval(&self, wo: Vec3, wi: Vec3) -> Vec3 {
         self.lobes()
             .iter()
@@ -454,6 +455,7 @@ impl Bsdf {
     }
 
     /// Solid-angle pdf with which [`Bsdf::sample`] returns the non-delta direction `wi`.
+    #[inline]
     pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
         self.lobes()
             .iter()

@@ -390,14 +390,8 @@ pub fn light_loop_split(
     let f = |wi: Vec3, wi_world: Vec3| bsdf.eval(v.wo, wi) * v.bump_shadowing(wi_world);
     let fd = |wi: Vec3, wi_world: Vec3| bsdf.eval_diffuse(v.wo, wi) * v.bump_shadowing(wi_world);
     let share = diffuse.map(|d| (&fd as &dyn Fn(Vec3, Vec3) -> Vec3, d));
-    gather_split(
-        ctx,
-        v,
-        sampler,
-        mis.then_some(bsdf),
-        Response::Bsdf(&f),
-        share,
-    )
+    // The BSDF closure passed by value, so the loop evaluates it inline.
+    gather_with(ctx, v, sampler, mis.then_some(bsdf), f, true, share)
 }
 
 /// What a light sample arriving from `wi` (local; `wi_world` in world space) contributes
@@ -433,6 +427,24 @@ fn gather_split(
     sampler: &mut Sampler,
     mis: Option<&Bsdf>,
     response: Response<'_>,
+    share: Option<Share<'_, '_>>,
+) -> Vec3 {
+    match response {
+        Response::Bsdf(f) => gather_with(ctx, v, sampler, mis, f, true, share),
+        Response::Local(f) => gather_with(ctx, v, sampler, mis, f, false, share),
+    }
+}
+
+/// [`gather_split`] with the response `response` (times `N·L` when `cosine`, as
+/// [`Response::Bsdf`]; whole, as [`Response::Local`]).
+#[inline(always)]
+fn gather_with(
+    ctx: &ShadeContext<'_>,
+    v: &Vertex<'_>,
+    sampler: &mut Sampler,
+    mis: Option<&Bsdf>,
+    response: impl Fn(Vec3, Vec3) -> Vec3,
+    cosine: bool,
     mut share: Option<Share<'_, '_>>,
 ) -> Vec3 {
     let mut radiance = Vec3::ZERO;
@@ -465,10 +477,7 @@ fn gather_split(
             if wi.z <= 0.0 || v.ng.dot(ls.wi) <= 0.0 {
                 continue;
             }
-            let (f, cosine) = match response {
-                Response::Bsdf(f) => (f(wi, ls.wi), true),
-                Response::Local(f) => (f(wi, ls.wi), false),
-            };
+            let f = response(wi, ls.wi);
             if f == Vec3::ZERO {
                 continue;
             }
