@@ -81,7 +81,7 @@ impl Sampler {
     }
 
     /// Next value in [0, 1).
-    #[inline]
+    #[inline(always)]
     pub fn next_1d(&mut self) -> f32 {
         let d = self.dimension;
         self.dimension += 1;
@@ -130,6 +130,7 @@ pub fn sample_triangle(u: Vec2) -> (f32, f32) {
 
 /// Cosine-weighted direction about +Z from `u ∈ [0,1)²` (concentric disk mapping);
 /// pdf = cosθ/π.
+#[inline]
 pub fn sample_cosine_hemisphere(u: Vec2) -> Vec3 {
     let d = sample_concentric_disk(u);
     let z = (1.0 - d.length_squared()).max(0.0).sqrt();

@@ -52,6 +52,7 @@ pub fn geometric_normal(tri: &[Vec3; 3]) -> Vec3 {
 
 /// pbrt-v4 `OffsetRayOrigin`: moves `p` along `n` by `dot(|n|, p_err)` toward the side of `w`
 /// (`+n` when `w` is tangent) and rounds each moved coordinate one ulp further away.
+#[inline(always)]
 pub fn offset_ray_origin(p: Vec3, p_err: Vec3, n: Vec3, w: Vec3) -> Vec3 {
     let d = n.abs().dot(p_err);
     let mut offset = n * d;
@@ -59,19 +60,47 @@ pub fn offset_ray_origin(p: Vec3, p_err: Vec3, n: Vec3, w: Vec3) -> Vec3 {
         offset = -offset;
     }
     let po = p + offset;
-    let mut out = po.to_array();
-    for (i, o) in out.iter_mut().enumerate() {
-        if offset[i] > 0.0 {
-            *o = o.next_up();
-        } else if offset[i] < 0.0 {
-            *o = o.next_down();
+    Vec3::new(
+        step_toward_sign(po.x, offset.x),
+        step_toward_sign(po.y, offset.y),
+        step_toward_sign(po.z, offset.z),
+    )
+}
+
+/// `x.next_up()` where `side > 0`, `x.next_down()` where `side < 0`, `x` otherwise (also for
+/// a NaN `side`): the same bits as those library calls, without branches on data (the signs
+/// of a hit's offset change from ray to ray, so branches on them mispredict).
+#[inline(always)]
+fn step_toward_sign(x: f32, side: f32) -> f32 {
+    let bits = x.to_bits();
+    let magnitude = bits & 0x7fff_ffff;
+    let up = side > 0.0;
+    let down = side < 0.0;
+    let negative = bits >> 31 != 0;
+    // A step up grows a positive number's magnitude and shrinks a negative one's.
+    let grows = up != negative;
+    let stepped = if magnitude == 0 {
+        // From ±0 the smallest subnormal of the step's sign.
+        if up {
+            1
+        } else {
+            0x8000_0001
         }
-    }
-    Vec3::from_array(out)
+    } else if grows {
+        bits.wrapping_add(1)
+    } else {
+        bits.wrapping_sub(1)
+    };
+    // NaN stays; +∞ does not step up, −∞ does not step down (the library's rules).
+    let is_nan = magnitude > 0x7f80_0000;
+    let at_end = magnitude == 0x7f80_0000 && grows;
+    let keep = !(up || down) || is_nan || at_end;
+    f32::from_bits(if keep { bits } else { stepped })
 }
 
 /// A ray leaving the surface point `from` in direction `dir` (any length), offset so that it
 /// cannot re-hit the surface it starts on; `t_max = ∞`.
+#[inline(always)]
 pub fn spawn_ray(from: &SurfacePoint, dir: Vec3) -> Ray {
     Ray {
         origin: offset_ray_origin(from.p, from.p_err, from.ng, dir),
@@ -84,6 +113,7 @@ pub fn spawn_ray(from: &SurfacePoint, dir: Vec3) -> Ray {
 /// a light sample): `dir = target − origin`, so `t = 1` is the target, and `t_max = 1 −`
 /// [`SHADOW_EPSILON`] stops it just short. For targets on a surface with a known error bound
 /// prefer [`spawn_ray_to_surface`].
+#[inline(always)]
 pub fn spawn_ray_to(from: &SurfacePoint, target: Vec3) -> Ray {
     let origin = offset_ray_origin(from.p, from.p_err, from.ng, target - from.p);
     Ray {
@@ -96,6 +126,7 @@ pub fn spawn_ray_to(from: &SurfacePoint, target: Vec3) -> Ray {
 /// A shadow segment between two surface points with both ends offset off their surfaces
 /// (pbrt-v4 `SpawnRayTo(pFrom, nFrom, pTo, nTo)`): `t = 1` is the offset far end, and `t_max =
 /// 1 −` [`SHADOW_EPSILON`].
+#[inline(always)]
 pub fn spawn_ray_to_surface(from: &SurfacePoint, to: &SurfacePoint) -> Ray {
     let pf = offset_ray_origin(from.p, from.p_err, from.ng, to.p - from.p);
     let pt = offset_ray_origin(to.p, to.p_err, to.ng, pf - to.p);
@@ -136,6 +167,68 @@ mod tests {
         // A zero error bound means no offset at all.
         let o = offset_ray_origin(Vec3::ONE, Vec3::ZERO, Vec3::Z, Vec3::Z);
         assert_eq!(o, Vec3::ONE);
+    }
+
+    /// The reference for [`step_toward_sign`]: the library's `next_up` / `next_down`.
+    fn step_with_library(x: f32, side: f32) -> f32 {
+        if side > 0.0 {
+            x.next_up()
+        } else if side < 0.0 {
+            x.next_down()
+        } else {
+            x
+        }
+    }
+
+    #[test]
+    fn branchless_step_equals_next_up_and_next_down_bit_for_bit() {
+        let mut xs = vec![
+            0.0f32,
+            -0.0,
+            f32::MIN_POSITIVE,
+            -f32::MIN_POSITIVE,
+            f32::from_bits(1),
+            f32::from_bits(0x8000_0001),
+            f32::MAX,
+            f32::MIN,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            f32::NAN,
+            -f32::NAN,
+            1.0,
+            -1.0,
+            556.0,
+            -0.1,
+        ];
+        let mut state = 0x9e37_79b9_7f4a_7c15u64;
+        for _ in 0..200_000 {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            xs.push(f32::from_bits((state >> 16) as u32));
+        }
+        let sides = [
+            1.0f32,
+            -1.0,
+            0.0,
+            -0.0,
+            1e-30,
+            -1e-30,
+            f32::NAN,
+            f32::INFINITY,
+        ];
+        for &x in &xs {
+            for &side in &sides {
+                let want = step_with_library(x, side);
+                let got = step_toward_sign(x, side);
+                assert_eq!(
+                    got.to_bits(),
+                    want.to_bits(),
+                    "x {x:e} ({:#010x}), side {side}",
+                    x.to_bits()
+                );
+            }
+        }
     }
 
     #[test]

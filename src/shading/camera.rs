@@ -54,6 +54,7 @@ impl CameraRays {
     /// pixel centres at half-integers) and lens sample `lens_u ∈ [0,1)²` (`(0.5, 0.5)` is the
     /// aperture centre). The direction is unit length, so `t` is distance. `None` where a
     /// projection maps the film position to no direction (outside a fisheye's image circle).
+    #[inline]
     pub fn ray(&self, x: f32, y: f32, lens_u: Vec2) -> Option<Ray> {
         let mut projected = false;
         let (mut origin, mut dir) = (Vec3::ZERO, self.pinhole(x, y));

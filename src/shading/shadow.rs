@@ -102,6 +102,7 @@ fn shader_at<'a>(geometry: &SceneGeometry, hit: &Hit, material: &'a Material) ->
 
 /// The ray from `from` toward `target` (a surface point, an exact point when its normal is
 /// zero, or infinity along `wi` when `None`).
+#[inline(always)]
 fn shadow_ray(from: &SurfacePoint, wi: Vec3, target: Option<&SurfacePoint>) -> Ray {
     match target {
         None => spawn_ray(from, wi),
@@ -114,6 +115,7 @@ fn shadow_ray(from: &SurfacePoint, wi: Vec3, target: Option<&SurfacePoint>) -> R
 /// in the way, 0 when something opaque is, the product of the crossed surfaces' shadow
 /// transmittances otherwise. `tinted`: some material of the scene transmits (otherwise a
 /// cheaper any-hit test decides).
+#[inline(always)]
 pub fn transmittance(
     geometry: &SceneGeometry,
     from: &SurfacePoint,

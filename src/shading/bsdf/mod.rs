@@ -437,6 +437,7 @@ impl Bsdf {
     }
 
     /// BSDF value of the non-delta lobes for light arriving from `wi` and leaving along `wo`.
+    #[inline]
     pub fn eval(&self, wo: Vec3, wi: Vec3) -> Vec3 {
         self.lobes()
             .iter()
@@ -454,6 +455,7 @@ impl Bsdf {
     }
 
     /// Solid-angle pdf with which [`Bsdf::sample`] returns the non-delta direction `wi`.
+    #[inline]
     pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
         self.lobes()
             .iter()
@@ -464,12 +466,14 @@ impl Bsdf {
 
     /// Draws a direction from `u ∈ [0,1)³` (`u.x` chooses the lobe and, re-used, a
     /// dielectric's branch). `None` when the chosen lobe produced no valid direction.
+    #[inline]
     pub fn sample(&self, wo: Vec3, u: Vec3) -> Option<BsdfSample> {
         self.sample_transport(wo, u, TransportMode::Radiance)
     }
 
     /// [`Bsdf::sample`] for the given transported quantity (photon tracing samples with
     /// [`TransportMode::Importance`]; `wo` is then the direction the photon came from).
+    #[inline(always)]
     pub fn sample_transport(&self, wo: Vec3, u: Vec3, mode: TransportMode) -> Option<BsdfSample> {
         if wo.z <= 0.0 {
             return None;

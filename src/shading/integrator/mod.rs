@@ -253,6 +253,7 @@ impl<'a> Vertex<'a> {
     /// rotated toward the geometric normal just enough that the view direction is above it
     /// and its mirror direction above the geometric surface
     /// ([`bump::ensure_valid_reflection`]), so bent normals never shade black.
+    #[inline(always)]
     pub fn new(ctx: &ShadeContext<'a>, ray: &Ray, hit: &Hit) -> Self {
         let mut sp = match ctx.normals {
             Some(n) => n.shading_point(ctx.geometry, hit),
@@ -353,6 +354,7 @@ impl<'a> Vertex<'a> {
 
     /// A ray leaving along the local direction `wi` if it lies on the geometric side its
     /// kind requires (reflection: the viewer's side; transmission: the other side).
+    #[inline(always)]
     pub fn spawn(&self, wi_local: Vec3, transmits: bool) -> Option<Ray> {
         let wi = self.frame.to_world(wi_local);
         let side = self.ng.dot(wi);
@@ -388,14 +390,8 @@ pub fn light_loop_split(
     let f = |wi: Vec3, wi_world: Vec3| bsdf.eval(v.wo, wi) * v.bump_shadowing(wi_world);
     let fd = |wi: Vec3, wi_world: Vec3| bsdf.eval_diffuse(v.wo, wi) * v.bump_shadowing(wi_world);
     let share = diffuse.map(|d| (&fd as &dyn Fn(Vec3, Vec3) -> Vec3, d));
-    gather_split(
-        ctx,
-        v,
-        sampler,
-        mis.then_some(bsdf),
-        Response::Bsdf(&f),
-        share,
-    )
+    // The BSDF closure passed by value, so the loop evaluates it inline.
+    gather_with(ctx, v, sampler, mis.then_some(bsdf), f, true, share)
 }
 
 /// What a light sample arriving from `wi` (local; `wi_world` in world space) contributes
@@ -431,6 +427,24 @@ fn gather_split(
     sampler: &mut Sampler,
     mis: Option<&Bsdf>,
     response: Response<'_>,
+    share: Option<Share<'_, '_>>,
+) -> Vec3 {
+    match response {
+        Response::Bsdf(f) => gather_with(ctx, v, sampler, mis, f, true, share),
+        Response::Local(f) => gather_with(ctx, v, sampler, mis, f, false, share),
+    }
+}
+
+/// [`gather_split`] with the response `response` (times `N·L` when `cosine`, as
+/// [`Response::Bsdf`]; whole, as [`Response::Local`]).
+#[inline(always)]
+fn gather_with(
+    ctx: &ShadeContext<'_>,
+    v: &Vertex<'_>,
+    sampler: &mut Sampler,
+    mis: Option<&Bsdf>,
+    response: impl Fn(Vec3, Vec3) -> Vec3,
+    cosine: bool,
     mut share: Option<Share<'_, '_>>,
 ) -> Vec3 {
     let mut radiance = Vec3::ZERO;
@@ -450,17 +464,20 @@ fn gather_split(
                 Some(seed) => Sampler::new(*seed, j).next_2d(),
                 None => sampler.next_2d(),
             };
-            let Some(ls) = light.sample(v.sp.surface.p, u, Some(ctx.geometry)) else {
+            // Emitting meshes (the common light of path-traced scenes) sampled inline: the
+            // same call `Light::sample` makes, without returning the sample through memory.
+            let ls = match light {
+                Light::Mesh(m) => m.sample(v.sp.surface.p, u, ctx.geometry),
+                _ => light.sample(v.sp.surface.p, u, Some(ctx.geometry)),
+            };
+            let Some(ls) = ls else {
                 continue;
             };
             let wi = v.frame.to_local(ls.wi);
             if wi.z <= 0.0 || v.ng.dot(ls.wi) <= 0.0 {
                 continue;
             }
-            let (f, cosine) = match response {
-                Response::Bsdf(f) => (f(wi, ls.wi), true),
-                Response::Local(f) => (f(wi, ls.wi), false),
-            };
+            let f = response(wi, ls.wi);
             if f == Vec3::ZERO {
                 continue;
             }
@@ -536,6 +553,7 @@ pub fn trace(
 /// [`trace`] for a specular ray spawned at a material with its own environment (`own`):
 /// when the ray hits nothing it sees that environment (light pdf 0: it is not a light)
 /// instead of the scene's.
+#[inline(always)]
 pub fn trace_leaving(
     ctx: &ShadeContext<'_>,
     ray: &Ray,

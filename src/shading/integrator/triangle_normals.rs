@@ -63,7 +63,7 @@ impl TriangleNormals {
 
     /// The shading point of `hit` in `g` (the geometry the table was made of): the same as
     /// [`SceneGeometry::shading_point`], with the normal read from the table.
-    #[inline]
+    #[inline(always)]
     pub fn shading_point(&self, g: &SceneGeometry, hit: &Hit) -> ShadingPoint {
         let tri = g.accel.triangle(hit.prim);
         let surface =

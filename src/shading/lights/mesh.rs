@@ -113,6 +113,7 @@ impl MeshLight {
 
     /// A point on an emitting triangle seen from `p` (`geometry`: the scene the light was
     /// made of, read only for emission textures).
+    #[inline(always)]
     pub fn sample(&self, p: Vec3, u: Vec2, geometry: &SceneGeometry) -> Option<LightSample> {
         let cdf = &self.cdf;
         let k = cdf

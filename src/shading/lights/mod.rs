@@ -412,6 +412,7 @@ pub(crate) fn error_target(q: Vec3, n: Vec3) -> SurfacePoint {
 
 /// Converts an area-measure sample of an emitter at `target` (normal `target.ng`, sampled with
 /// area pdf `1 / inv_pdf_area`) into a solid-angle light sample of radiance 1.
+#[inline]
 pub(crate) fn solid_angle_sample(
     p: Vec3,
     target: SurfacePoint,
