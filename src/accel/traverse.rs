@@ -8,10 +8,11 @@
 //!   conservative answer. The entry distance is clamped at 0 — not at obvhs's 1e-4.
 //! * **Order**: the single-ray closest-hit kernel visits hit children in the node's
 //!   precomputed order for the ray's octant (`Node::order`; no sort): the nearest is visited
-//!   next, the others are pushed farthest first. The batch lanes push children sorted by
-//!   entry distance, nearest on top (as the single-ray kernel does with
-//!   `STAGELIGHT_TRAVERSAL=sorted`, for A/B runs). Popped entries farther than the current
-//!   closest hit are skipped.
+//!   next, the others are pushed farthest first. The batch lanes push them in the same
+//!   order, farthest first, the nearest on top (`NodeTest::push_ordered`: a loop here, one
+//!   compressed block store in the AVX-512 lanes). `STAGELIGHT_TRAVERSAL=sorted` sorts by
+//!   entry distance instead, in both (for A/B runs). Popped entries farther than the
+//!   current closest hit are skipped.
 //! * **Prefetch**: every child pushed is prefetched whole (a node's four cache lines, a
 //!   leaf's triangles), so its misses overlap the work on its siblings (+13–15 % incoherent).
 //! * **Batches** (`closest_batch`, `occluded_batch`): 12 rays traversed interleaved, one node

@@ -6,7 +6,9 @@
 //!   lane bit-identical to the scalar watertight test; the SSE fallback tests them one by
 //!   one.
 //! * **Batches**: [`closest_batch`] and [`occluded_batch`] run the batch kernels of
-//!   `traverse.rs` with the same 8-wide node test in every lane.
+//!   `traverse.rs` with the same 8-wide node test in every lane; where the CPU also has
+//!   AVX-512F/VL, the lanes push the hit children as compressed block stores (`avx512.rs`;
+//!   closest hit in octant order), unless `STAGELIGHT_TRAVERSAL=avx2` (for A/B runs).
 //! * **Dispatch**: [`closest`] and [`occluded`] answer `None` when the CPU lacks AVX2
 //!   (`is_x86_feature_detected!`, cached by std) or when `STAGELIGHT_TRAVERSAL=sse` (or
 //!   `sse-sorted`) was set at the first query (read once; for A/B measurements); the caller then runs the SSE kernel,
@@ -418,22 +420,18 @@ mod tests {
                 let rays = &rays[..n];
                 let mut octant = vec![None; n];
                 let mut sorted = vec![None; n];
-                let mut halves = vec![None; n];
                 let mut occ = vec![false; n];
-                let mut occ_halves = vec![false; n];
                 // SAFETY: AVX2 and AVX-512F/VL were detected above.
                 unsafe {
                     avx512::closest_batch_avx512(&bvh, rays, &mut octant);
                     batch_avx512_sorted(&bvh, rays, &mut sorted);
                     avx512::occluded_batch_avx512(&bvh, rays, &mut occ);
-                    batch_avx512_halves(&bvh, rays, &mut halves, &mut occ_halves);
                 }
                 for (i, r) in rays.iter().enumerate() {
                     let sse_hit = hit_bits(closest_in::<NodeRay>(&bvh, r));
                     assert_eq!(hit_bits(octant[i]), sse_hit, "{r:?}");
                     assert_eq!(hit_bits(sorted[i]), sse_hit, "{r:?}");
-                    assert_eq!(hit_bits(halves[i]), sse_hit, "{r:?}");
-                    assert_eq!(occ_halves[i], occluded_in::<NodeRay>(&bvh, r), "{r:?}");
+
                     assert_eq!(occ[i], occluded_in::<NodeRay>(&bvh, r), "{r:?}");
                 }
             }
@@ -443,15 +441,12 @@ mod tests {
                     for t_far in [r.t_max, 1.0] {
                         for &order in &node.order {
                             // SAFETY: AVX2 and AVX-512F/VL were detected above.
-                            let [block, halves, generic] =
-                                unsafe { pushes_avx512(node, r, t_far, order) };
+                            let [block, generic] = unsafe { pushes_avx512(node, r, t_far, order) };
                             assert_eq!(block, generic, "{r:?}");
-                            assert_eq!(halves, generic, "{r:?}");
                             pushed += block.len();
                         }
                         // SAFETY: AVX2 and AVX-512F/VL were detected above.
-                        let [block, halves, generic] = unsafe { unordered_avx512(node, r, t_far) };
-                        assert_eq!(block, halves);
+                        let [block, generic] = unsafe { unordered_avx512(node, r, t_far) };
                         let want = (0..8)
                             .filter(|&i| {
                                 <NodeRay as NodeTest>::intersect(&NodeRay::new(r), node, t_far).0
@@ -471,19 +466,8 @@ mod tests {
     }
 
     #[target_feature(enable = "avx2,avx512f,avx512vl")]
-    unsafe fn batch_avx512_halves(
-        bvh: &Bvh,
-        rays: &[Ray],
-        hits: &mut [Option<Hit>],
-        occ: &mut [bool],
-    ) {
-        super::super::traverse::closest_batch_in::<avx512::NodeRay8k<true>>(bvh, rays, hits);
-        super::super::traverse::occluded_batch_in::<avx512::NodeRay8k<true>>(bvh, rays, occ);
-    }
-
-    #[target_feature(enable = "avx2,avx512f,avx512vl")]
     unsafe fn batch_avx512_sorted(bvh: &Bvh, rays: &[Ray], out: &mut [Option<Hit>]) {
-        super::super::traverse::closest_batch_ordered_in::<avx512::NodeRay8k<false>, false>(
+        super::super::traverse::closest_batch_ordered_in::<avx512::NodeRay8k, false>(
             bvh, rays, out,
         );
     }
@@ -497,32 +481,28 @@ mod tests {
         ray: &Ray,
         t_far: f32,
         order: u32,
-    ) -> [Vec<(u32, u32)>; 3] {
+    ) -> [Vec<(u32, u32)>; 2] {
         use super::super::traverse::BatchStack;
         let woop = WoopRay::new(ray.origin, ray.dir);
-        let block = <avx512::NodeRay8k<false> as NodeTest>::new(ray, &woop);
-        let halves = <avx512::NodeRay8k<true> as NodeTest>::new(ray, &woop);
+        let block = <avx512::NodeRay8k as NodeTest>::new(ray, &woop);
         let generic = <NodeRay8 as NodeTest>::new(ray, &woop);
-        let mut stacks = [3, 3, 3].map(BatchStack::with_entries);
+        let mut stacks = [3, 3].map(BatchStack::with_entries);
         block.push_ordered(node, t_far, order, &mut stacks[0]);
-        halves.push_ordered(node, t_far, order, &mut stacks[1]);
-        generic.push_ordered(node, t_far, order, &mut stacks[2]);
+        generic.push_ordered(node, t_far, order, &mut stacks[1]);
         stacks.map(|s| s.entries().iter().map(|e| (e.r, e.t.to_bits())).collect())
     }
 
     /// The references (with the entry distances' bits) the AVX-512 block push and the generic
     /// loop put on an empty stack for the occlusion lanes, from the bottom up.
     #[target_feature(enable = "avx2,avx512f,avx512vl")]
-    unsafe fn unordered_avx512(node: &Node, ray: &Ray, t_far: f32) -> [Vec<(u32, u32)>; 3] {
+    unsafe fn unordered_avx512(node: &Node, ray: &Ray, t_far: f32) -> [Vec<(u32, u32)>; 2] {
         use super::super::traverse::BatchStack;
         let woop = WoopRay::new(ray.origin, ray.dir);
-        let block = <avx512::NodeRay8k<false> as NodeTest>::new(ray, &woop);
-        let halves = <avx512::NodeRay8k<true> as NodeTest>::new(ray, &woop);
+        let block = <avx512::NodeRay8k as NodeTest>::new(ray, &woop);
         let generic = <NodeRay8 as NodeTest>::new(ray, &woop);
-        let mut stacks = [0, 0, 0].map(BatchStack::with_entries);
+        let mut stacks = [0, 0].map(BatchStack::with_entries);
         block.push_all(node, t_far, &mut stacks[0]);
-        halves.push_all(node, t_far, &mut stacks[1]);
-        generic.push_all(node, t_far, &mut stacks[2]);
+        generic.push_all(node, t_far, &mut stacks[1]);
         stacks.map(|s| s.entries().iter().map(|e| (e.r, e.t.to_bits())).collect())
     }
 
