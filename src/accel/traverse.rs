@@ -8,11 +8,11 @@
 //!   conservative answer. The entry distance is clamped at 0 — not at obvhs's 1e-4.
 //! * **Order**: the single-ray closest-hit kernel visits hit children in the node's
 //!   precomputed order for the ray's octant (`Node::order`; no sort): the nearest is visited
-//!   next, the others are pushed farthest first. The batch lanes push them in the same
-//!   order, farthest first, the nearest on top (`NodeTest::push_ordered`: a loop here, one
-//!   compressed block store in the AVX-512 lanes). `STAGELIGHT_TRAVERSAL=sorted` sorts by
-//!   entry distance instead, in both (for A/B runs). Popped entries farther than the
-//!   current closest hit are skipped.
+//!   next, the others are pushed farthest first. The AVX-512 batch lanes push them in the
+//!   same order, farthest first, the nearest on top (`NodeTest::push_ordered`, one
+//!   compressed block store); the other batch lanes push them sorted by entry distance,
+//!   nearest on top. `STAGELIGHT_TRAVERSAL=sorted` sorts in every kernel (for A/B runs).
+//!   Popped entries farther than the current closest hit are skipped.
 //! * **Prefetch**: every child pushed is prefetched whole (a node's four cache lines, a
 //!   leaf's triangles), so its misses overlap the work on its siblings (+13–15 % incoherent).
 //! * **Batches** (`closest_batch`, `occluded_batch`): 12 rays traversed interleaved, one node
@@ -37,6 +37,11 @@ const FAR_SCALE: f32 = 1.0 + 2.0 * gamma(3);
 /// mask for the same ray and node, so the traversal (and the result) does not depend on it.
 /// It also tests leaves (`leaf_hits`), with the scalar test's answers in every implementation.
 pub(super) trait NodeTest {
+    /// Whether the batch lanes push children in octant order ([`NodeTest::push_ordered`])
+    /// rather than sorted by entry distance: only where the push is one block store (the
+    /// AVX-512 lanes); with a loop, octant order measured no better than the sort there.
+    const BATCH_OCTANT: bool = false;
+
     /// Per-ray constants (`woop` is the ray's triangle-test constants, already made).
     fn new(ray: &Ray, woop: &WoopRay) -> Self;
     /// Tests the eight children against `[0, t_far]`.
@@ -854,15 +859,16 @@ pub(crate) fn occluded_batch(bvh: &Bvh, rays: &[Ray], out: &mut [bool]) {
 /// the others. Results are those of [`closest`], ray by ray, for any node test `N`.
 #[inline(always)]
 pub(super) fn closest_batch_in<N: NodeTest>(bvh: &Bvh, rays: &[Ray], out: &mut [Option<Hit>]) {
-    if octant_order() {
+    if N::BATCH_OCTANT && octant_order() {
         closest_batch_ordered_in::<N, true>(bvh, rays, out);
     } else {
         closest_batch_ordered_in::<N, false>(bvh, rays, out);
     }
 }
 
-/// [`closest_batch_in`] with the lanes' child order fixed: octant order (`OCTANT`, the
-/// default) or sorted by entry distance (`STAGELIGHT_TRAVERSAL=sorted`).
+/// [`closest_batch_in`] with the lanes' child order fixed: octant order (`OCTANT`: the
+/// default of the AVX-512 lanes) or sorted by entry distance (the others, and every kernel
+/// with `STAGELIGHT_TRAVERSAL=sorted`).
 #[inline(always)]
 pub(super) fn closest_batch_ordered_in<N: NodeTest, const OCTANT: bool>(
     bvh: &Bvh,
@@ -1047,10 +1053,14 @@ mod tests {
                 let rays = &rays[..n];
                 let mut hits = vec![None; n];
                 let mut occ = vec![true; n];
+                let mut octant_hits = vec![None; n];
                 closest_batch(&bvh, rays, &mut hits);
+                closest_batch_ordered_in::<NodeRay, true>(&bvh, rays, &mut octant_hits);
                 occluded_batch(&bvh, rays, &mut occ);
                 for (i, r) in rays.iter().enumerate() {
                     assert_eq!(hit_bits(hits[i]), hit_bits(closest(&bvh, r)), "ray {i}");
+                    // The lanes in octant order (the generic push): the same hit.
+                    assert_eq!(hit_bits(octant_hits[i]), hit_bits(hits[i]), "ray {i}");
                     // Octant order and sorted children: the same hit.
                     assert_eq!(
                         hit_bits(closest_ordered_in::<NodeRay, true>(&bvh, r)),

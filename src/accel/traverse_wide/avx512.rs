@@ -56,6 +56,8 @@ pub(super) unsafe fn occluded_batch_avx512(bvh: &Bvh, rays: &[Ray], out: &mut [b
 pub(super) struct NodeRay8k(NodeRay8);
 
 impl NodeTest for NodeRay8k {
+    const BATCH_OCTANT: bool = true;
+
     #[inline(always)]
     fn new(ray: &Ray, woop: &WoopRay) -> Self {
         Self(NodeRay8::new(ray, woop))
