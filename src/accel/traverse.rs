@@ -8,10 +8,11 @@
 //!   conservative answer. The entry distance is clamped at 0 — not at obvhs's 1e-4.
 //! * **Order**: the single-ray closest-hit kernel visits hit children in the node's
 //!   precomputed order for the ray's octant (`Node::order`; no sort): the nearest is visited
-//!   next, the others are pushed farthest first. The batch lanes push children sorted by
-//!   entry distance, nearest on top (as the single-ray kernel does with
-//!   `STAGELIGHT_TRAVERSAL=sorted`, for A/B runs). Popped entries farther than the current
-//!   closest hit are skipped.
+//!   next, the others are pushed farthest first. The AVX-512 batch lanes push them in the
+//!   same order, farthest first, the nearest on top (`NodeTest::push_ordered`, one
+//!   compressed block store); the other batch lanes push them sorted by entry distance,
+//!   nearest on top. `STAGELIGHT_TRAVERSAL=sorted` sorts in every kernel (for A/B runs).
+//!   Popped entries farther than the current closest hit are skipped.
 //! * **Prefetch**: every child pushed is prefetched whole (a node's four cache lines, a
 //!   leaf's triangles), so its misses overlap the work on its siblings (+13–15 % incoherent).
 //! * **Batches** (`closest_batch`, `occluded_batch`): 12 rays traversed interleaved, one node
@@ -36,6 +37,11 @@ const FAR_SCALE: f32 = 1.0 + 2.0 * gamma(3);
 /// mask for the same ray and node, so the traversal (and the result) does not depend on it.
 /// It also tests leaves (`leaf_hits`), with the scalar test's answers in every implementation.
 pub(super) trait NodeTest {
+    /// Whether the batch lanes push children in octant order ([`NodeTest::push_ordered`])
+    /// rather than sorted by entry distance: only where the push is one block store (the
+    /// AVX-512 lanes); with a loop, octant order measured no better than the sort there.
+    const BATCH_OCTANT: bool = false;
+
     /// Per-ray constants (`woop` is the ray's triangle-test constants, already made).
     fn new(ray: &Ray, woop: &WoopRay) -> Self;
     /// Tests the eight children against `[0, t_far]`.
@@ -78,6 +84,36 @@ pub(super) trait NodeTest {
             r[i] = node.child[slot];
         }
         (ordered_mask, t, r)
+    }
+
+    /// Pushes the children of `node` entered within `[0, t_far]` onto `stack` in the visiting
+    /// order `order` (a [`Node::order`] word), farthest first, so that the nearest is on top
+    /// (the batch lanes). Here through [`NodeTest::intersect_ordered`] and a loop; the AVX-512
+    /// kernels store all of them at once.
+    #[inline(always)]
+    fn push_ordered(&self, node: &Node, t_far: f32, order: u32, stack: &mut BatchStack) {
+        let (mut mask, t, r) = self.intersect_ordered(node, t_far, order);
+        while mask != 0 {
+            let i = 31 - mask.leading_zeros() as usize;
+            mask ^= 1 << i;
+            stack.push(Entry { r: r[i], t: t[i] });
+        }
+    }
+
+    /// Pushes the children of `node` entered within `[0, t_far]` onto `stack` in slot order
+    /// (the last slot on top), with an unspecified entry distance (the occlusion lanes). A
+    /// loop here; the AVX-512 kernels store them as one block.
+    #[inline(always)]
+    fn push_all(&self, node: &Node, t_far: f32, stack: &mut BatchStack) {
+        let (mut mask, _) = self.intersect(node, t_far);
+        while mask != 0 {
+            let slot = mask.trailing_zeros() as usize;
+            mask &= mask - 1;
+            stack.push(Entry {
+                r: node.child[slot],
+                t: 0.0,
+            });
+        }
     }
 }
 
@@ -152,11 +188,13 @@ impl NodeRay {
     }
 }
 
-/// A deferred child: its reference and entry distance.
+/// A deferred child: its reference and entry distance (`repr(C)`: the AVX-512 kernels store
+/// eight of them as one 64-byte vector of `(r, t)` pairs).
 #[derive(Clone, Copy, Default)]
-struct Entry {
-    r: u32,
-    t: f32,
+#[repr(C)]
+pub(super) struct Entry {
+    pub(super) r: u32,
+    pub(super) t: f32,
 }
 
 /// The traversal stack interface (fixed array or heap).
@@ -171,7 +209,7 @@ trait Stack {
 
 /// A stack in a fixed array; `push` past `N` panics (never silently overwrites), and `N` is
 /// chosen from the measured tree depth so that it never happens.
-struct ArrayStack<const N: usize> {
+pub(super) struct ArrayStack<const N: usize> {
     items: [Entry; N],
     len: usize,
 }
@@ -183,7 +221,46 @@ impl<const N: usize> ArrayStack<N> {
             len: 0,
         }
     }
+
+    /// The eight slots above the top, for a kernel that stores a whole block of entries and
+    /// then [`ArrayStack::grow`]s by the number that count (right after). Panics (never
+    /// overwrites) when fewer than eight slots are left; [`BatchStack`] keeps eight beyond
+    /// the traversal bound for it.
+    #[inline(always)]
+    pub(super) fn block(&mut self) -> &mut [Entry; 8] {
+        let len = self.len;
+        (&mut self.items[len..len + 8])
+            .try_into()
+            .expect("eight slots")
+    }
+
+    /// Counts `n ≤ 8` more entries, written through [`ArrayStack::block`], as pushed.
+    #[inline(always)]
+    pub(super) fn grow(&mut self, n: usize) {
+        debug_assert!(n <= 8);
+        self.len += n;
+    }
+
+    /// A stack holding `n` marker entries (references `0..n`, distance −1), for tests.
+    #[cfg(test)]
+    pub(super) fn with_entries(n: usize) -> Self {
+        let mut s = Self::new();
+        for r in 0..n as u32 {
+            s.push(Entry { r, t: -1.0 });
+        }
+        s
+    }
+
+    /// The entries, from the bottom up (for tests).
+    #[cfg(test)]
+    pub(super) fn entries(&self) -> &[Entry] {
+        &self.items[..self.len]
+    }
 }
+
+/// The batch lanes' stack: the deepest traversal an array stack allows, plus the eight slots
+/// a block store writes above the top.
+pub(super) type BatchStack = ArrayStack<{ ARRAY_STACK + 8 }>;
 
 fn sort_descending(s: &mut [Entry]) {
     for i in 1..s.len() {
@@ -548,9 +625,11 @@ fn occluded_with<S: Stack, N: NodeTest>(bvh: &Bvh, ray: &Ray, mut stack: S) -> b
 /// time by [`ClosestLane::step`]. It does exactly what [`closest_with`] does, in the same
 /// order, so both return identical hits (`batch_equals_single_ray` tests it); the single-ray
 /// kernel keeps its own loop because keeping the state in a struct cost it 5–8 %.
-struct ClosestLane<S, N> {
+struct ClosestLane<S, N, const OCTANT: bool> {
     woop: WoopRay,
     nr: N,
+    /// The ray's octant ([`octant`]), for `OCTANT` lanes.
+    octant: usize,
     /// The closest candidate so far as (BVH-order index, b1, b2); its original index is
     /// looked up only on an exact tie and once at the end (`prim_ids` is cold).
     best: Option<(usize, f32, f32)>,
@@ -562,13 +641,14 @@ struct ClosestLane<S, N> {
     stack: S,
 }
 
-impl<S: Stack, N: NodeTest> ClosestLane<S, N> {
+impl<N: NodeTest, const OCTANT: bool> ClosestLane<BatchStack, N, OCTANT> {
     #[inline(always)]
-    fn new(ray: &Ray, stack: S) -> Self {
+    fn new(ray: &Ray, stack: BatchStack) -> Self {
         let woop = WoopRay::new(ray.origin, ray.dir);
         Self {
             nr: N::new(ray, &woop),
             woop,
+            octant: octant(ray),
             best: None,
             best_t: ray.t_max,
             cull: ray.t_max * FAR_SCALE,
@@ -582,6 +662,7 @@ impl<S: Stack, N: NodeTest> ClosestLane<S, N> {
     fn restart(&mut self, ray: &Ray) {
         self.woop = WoopRay::new(ray.origin, ray.dir);
         self.nr = N::new(ray, &self.woop);
+        self.octant = octant(ray);
         self.best = None;
         self.best_t = ray.t_max;
         self.cull = ray.t_max * FAR_SCALE;
@@ -612,6 +693,10 @@ impl<S: Stack, N: NodeTest> ClosestLane<S, N> {
                     }
                     false
                 });
+        } else if OCTANT {
+            let node = &bvh.nodes[cur as usize];
+            self.nr
+                .push_ordered(node, self.best_t, node.order[self.octant], &mut self.stack);
         } else {
             let node = &bvh.nodes[cur as usize];
             let (mut mask, tn) = self.nr.intersect(node, self.best_t);
@@ -661,9 +746,9 @@ struct OcclusionLane<S, N> {
     stack: S,
 }
 
-impl<S: Stack, N: NodeTest> OcclusionLane<S, N> {
+impl<N: NodeTest> OcclusionLane<BatchStack, N> {
     #[inline(always)]
-    fn new(ray: &Ray, stack: S) -> Self {
+    fn new(ray: &Ray, stack: BatchStack) -> Self {
         let woop = WoopRay::new(ray.origin, ray.dir);
         Self {
             nr: N::new(ray, &woop),
@@ -709,15 +794,7 @@ impl<S: Stack, N: NodeTest> OcclusionLane<S, N> {
             }
         } else {
             let node = &bvh.nodes[cur as usize];
-            let (mut mask, _) = self.nr.intersect(node, self.t_max);
-            while mask != 0 {
-                let slot = mask.trailing_zeros() as usize;
-                mask &= mask - 1;
-                self.stack.push(Entry {
-                    r: node.child[slot],
-                    t: 0.0,
-                });
-            }
+            self.nr.push_all(node, self.t_max, &mut self.stack);
         }
         match self.stack.pop() {
             None => false,
@@ -782,6 +859,22 @@ pub(crate) fn occluded_batch(bvh: &Bvh, rays: &[Ray], out: &mut [bool]) {
 /// the others. Results are those of [`closest`], ray by ray, for any node test `N`.
 #[inline(always)]
 pub(super) fn closest_batch_in<N: NodeTest>(bvh: &Bvh, rays: &[Ray], out: &mut [Option<Hit>]) {
+    if N::BATCH_OCTANT && octant_order() {
+        closest_batch_ordered_in::<N, true>(bvh, rays, out);
+    } else {
+        closest_batch_ordered_in::<N, false>(bvh, rays, out);
+    }
+}
+
+/// [`closest_batch_in`] with the lanes' child order fixed: octant order (`OCTANT`: the
+/// default of the AVX-512 lanes) or sorted by entry distance (the others, and every kernel
+/// with `STAGELIGHT_TRAVERSAL=sorted`).
+#[inline(always)]
+pub(super) fn closest_batch_ordered_in<N: NodeTest, const OCTANT: bool>(
+    bvh: &Bvh,
+    rays: &[Ray],
+    out: &mut [Option<Hit>],
+) {
     assert_eq!(rays.len(), out.len(), "one result slot per ray");
     if bvh.nodes.is_empty() || stack_bound(bvh.depth) > ARRAY_STACK {
         for (r, o) in rays.iter().zip(out.iter_mut()) {
@@ -802,7 +895,7 @@ pub(super) fn closest_batch_in<N: NodeTest>(bvh: &Bvh, rays: &[Ray], out: &mut [
         }
         None
     };
-    let mut lanes: [Option<(usize, ClosestLane<ArrayStack<ARRAY_STACK>, N>)>; BATCH_LANES] =
+    let mut lanes: [Option<(usize, ClosestLane<BatchStack, N, OCTANT>)>; BATCH_LANES] =
         std::array::from_fn(|_| None);
     for slot in lanes.iter_mut() {
         *slot = take(out).map(|i| (i, ClosestLane::new(&rays[i], ArrayStack::new())));
@@ -853,7 +946,7 @@ pub(super) fn occluded_batch_in<N: NodeTest>(bvh: &Bvh, rays: &[Ray], out: &mut 
         }
         None
     };
-    let mut lanes: [Option<(usize, OcclusionLane<ArrayStack<ARRAY_STACK>, N>)>; BATCH_LANES] =
+    let mut lanes: [Option<(usize, OcclusionLane<BatchStack, N>)>; BATCH_LANES] =
         std::array::from_fn(|_| None);
     for slot in lanes.iter_mut() {
         *slot = take(out).map(|i| (i, OcclusionLane::new(&rays[i], ArrayStack::new())));
@@ -960,10 +1053,14 @@ mod tests {
                 let rays = &rays[..n];
                 let mut hits = vec![None; n];
                 let mut occ = vec![true; n];
+                let mut octant_hits = vec![None; n];
                 closest_batch(&bvh, rays, &mut hits);
+                closest_batch_ordered_in::<NodeRay, true>(&bvh, rays, &mut octant_hits);
                 occluded_batch(&bvh, rays, &mut occ);
                 for (i, r) in rays.iter().enumerate() {
                     assert_eq!(hit_bits(hits[i]), hit_bits(closest(&bvh, r)), "ray {i}");
+                    // The lanes in octant order (the generic push): the same hit.
+                    assert_eq!(hit_bits(octant_hits[i]), hit_bits(hits[i]), "ray {i}");
                     // Octant order and sorted children: the same hit.
                     assert_eq!(
                         hit_bits(closest_ordered_in::<NodeRay, true>(&bvh, r)),

@@ -6,7 +6,9 @@
 //!   lane bit-identical to the scalar watertight test; the SSE fallback tests them one by
 //!   one.
 //! * **Batches**: [`closest_batch`] and [`occluded_batch`] run the batch kernels of
-//!   `traverse.rs` with the same 8-wide node test in every lane.
+//!   `traverse.rs` with the same 8-wide node test in every lane; where the CPU also has
+//!   AVX-512F/VL, the lanes push the hit children as compressed block stores (`avx512.rs`;
+//!   closest hit in octant order), unless `STAGELIGHT_TRAVERSAL=avx2` (for A/B runs).
 //! * **Dispatch**: [`closest`] and [`occluded`] answer `None` when the CPU lacks AVX2
 //!   (`is_x86_feature_detected!`, cached by std) or when `STAGELIGHT_TRAVERSAL=sse` (or
 //!   `sse-sorted`) was set at the first query (read once; for A/B measurements); the caller then runs the SSE kernel,
@@ -27,6 +29,8 @@ use std::arch::x86_64::{
 };
 use std::sync::OnceLock;
 
+mod avx512;
+
 use glam::Vec3;
 
 use super::bvh::{Bvh, Node};
@@ -43,6 +47,18 @@ fn use_avx2() -> bool {
     *CHOICE.get_or_init(|| {
         std::arch::is_x86_feature_detected!("avx2")
             && !std::env::var("STAGELIGHT_TRAVERSAL").is_ok_and(|v| v.starts_with("sse"))
+    })
+}
+
+/// Whether the AVX-512 batch kernel runs (AVX-512F and VL present, AVX2 kernels on, and not
+/// turned off by `STAGELIGHT_TRAVERSAL=avx2`, for A/B runs).
+fn use_avx512() -> bool {
+    static CHOICE: OnceLock<bool> = OnceLock::new();
+    *CHOICE.get_or_init(|| {
+        use_avx2()
+            && std::arch::is_x86_feature_detected!("avx512f")
+            && std::arch::is_x86_feature_detected!("avx512vl")
+            && !std::env::var("STAGELIGHT_TRAVERSAL").is_ok_and(|v| v.starts_with("avx2"))
     })
 }
 
@@ -70,6 +86,11 @@ pub(super) fn occluded(bvh: &Bvh, ray: &Ray) -> Option<bool> {
 /// when the AVX2 kernels do not run here.
 #[inline]
 pub(super) fn closest_batch(bvh: &Bvh, rays: &[Ray], out: &mut [Option<Hit>]) -> bool {
+    if use_avx512() {
+        // SAFETY: AVX2, AVX-512F and AVX-512VL were detected on this CPU just above.
+        unsafe { avx512::closest_batch_avx512(bvh, rays, out) };
+        return true;
+    }
     if !use_avx2() {
         return false;
     }
@@ -82,6 +103,11 @@ pub(super) fn closest_batch(bvh: &Bvh, rays: &[Ray], out: &mut [Option<Hit>]) ->
 /// run here.
 #[inline]
 pub(super) fn occluded_batch(bvh: &Bvh, rays: &[Ray], out: &mut [bool]) -> bool {
+    if use_avx512() {
+        // SAFETY: AVX2, AVX-512F and AVX-512VL were detected on this CPU just above.
+        unsafe { avx512::occluded_batch_avx512(bvh, rays, out) };
+        return true;
+    }
     if !use_avx2() {
         return false;
     }
@@ -229,6 +255,15 @@ impl NodeRay8 {
     /// distances.
     #[inline(always)]
     fn test(&self, node: &Node, t_far: f32) -> (__m256, __m256) {
+        let (tn, tf) = self.slabs(node, t_far);
+        // SAFETY: AVX intrinsics; this type exists only inside the AVX2 kernels.
+        unsafe { (_mm256_cmp_ps::<_CMP_LE_OS>(tn, tf), tn) }
+    }
+
+    /// The entry and (scaled) exit distances of the eight children: child `i` is entered
+    /// when `tn[i] ≤ tf[i]` (ordered).
+    #[inline(always)]
+    fn slabs(&self, node: &Node, t_far: f32) -> (__m256, __m256) {
         // SAFETY: AVX intrinsics; this type exists only inside the AVX2 kernels. The loads
         // read two `Vec4`s of the node by value (no raw pointers).
         unsafe {
@@ -244,8 +279,7 @@ impl NodeRay8 {
                 tn = _mm256_max_ps(n, tn);
                 tf = _mm256_min_ps(f, tf);
             }
-            let tf = _mm256_mul_ps(tf, _mm256_set1_ps(FAR_SCALE_FACTOR));
-            (_mm256_cmp_ps::<_CMP_LE_OS>(tn, tf), tn)
+            (tn, _mm256_mul_ps(tf, _mm256_set1_ps(FAR_SCALE_FACTOR)))
         }
     }
 }
@@ -264,12 +298,9 @@ mod tests {
     /// The AVX2 kernels (when this CPU has AVX2) give the SSE fallback's answers bit for bit,
     /// and the same node masks, on a soup with axis-parallel, zero-component (both signs),
     /// on-plane and finite-`t_max` rays; the fallback is forced by calling it directly.
-    #[test]
-    fn wide_equals_sse() {
-        if !std::arch::is_x86_feature_detected!("avx2") {
-            eprintln!("no AVX2 on this CPU: only the SSE kernel runs");
-            return;
-        }
+    /// A soup of 4,000 triangles (half on the integer grid) and 3,000 rays with
+    /// axis-parallel, zero-component (both signs), on-plane and finite-`t_max` cases.
+    fn soup_and_rays() -> (Vec<[Vec3; 3]>, Vec<Ray>) {
         let mut rnd = crate::accel::test_random::signed_uniform(0x9e37_79b9_7f4a_7c15u64);
         let tris: Vec<[Vec3; 3]> = (0..4000)
             .map(|i| {
@@ -303,6 +334,16 @@ mod tests {
             };
             rays.push(Ray { origin, dir, t_max });
         }
+        (tris, rays)
+    }
+
+    #[test]
+    fn wide_equals_sse() {
+        if !std::arch::is_x86_feature_detected!("avx2") {
+            eprintln!("no AVX2 on this CPU: only the SSE kernel runs");
+            return;
+        }
+        let (tris, rays) = soup_and_rays();
         for q in [BvhQuality::Fast, BvhQuality::Medium] {
             let bvh = build(&tris, q);
             let mut hits = 0;
@@ -357,6 +398,112 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// The AVX-512 batch kernel (when this CPU has AVX-512F/VL) gives the SSE single-ray
+    /// kernel's answers bit for bit, in octant order and sorted, and its block push stores
+    /// exactly the entries (references and entry-distance bits, same order) that the generic
+    /// loop pushes with the same node test, for every node, octant and `t_far`.
+    #[test]
+    fn avx512_equals_sse() {
+        if !(std::arch::is_x86_feature_detected!("avx2")
+            && std::arch::is_x86_feature_detected!("avx512f")
+            && std::arch::is_x86_feature_detected!("avx512vl"))
+        {
+            eprintln!("no AVX-512F/VL on this CPU: the AVX2 and SSE kernels run");
+            return;
+        }
+        let (tris, rays) = soup_and_rays();
+        for q in [BvhQuality::Fast, BvhQuality::Medium] {
+            let bvh = build(&tris, q);
+            for n in [1, 11, 12, 13, rays.len()] {
+                let rays = &rays[..n];
+                let mut octant = vec![None; n];
+                let mut sorted = vec![None; n];
+                let mut occ = vec![false; n];
+                // SAFETY: AVX2 and AVX-512F/VL were detected above.
+                unsafe {
+                    avx512::closest_batch_avx512(&bvh, rays, &mut octant);
+                    batch_avx512_sorted(&bvh, rays, &mut sorted);
+                    avx512::occluded_batch_avx512(&bvh, rays, &mut occ);
+                }
+                for (i, r) in rays.iter().enumerate() {
+                    let sse_hit = hit_bits(closest_in::<NodeRay>(&bvh, r));
+                    assert_eq!(hit_bits(octant[i]), sse_hit, "{r:?}");
+                    assert_eq!(hit_bits(sorted[i]), sse_hit, "{r:?}");
+
+                    assert_eq!(occ[i], occluded_in::<NodeRay>(&bvh, r), "{r:?}");
+                }
+            }
+            let mut pushed = 0;
+            for r in rays.iter().step_by(7) {
+                for node in bvh.nodes.iter().take(64) {
+                    for t_far in [r.t_max, 1.0] {
+                        for &order in &node.order {
+                            // SAFETY: AVX2 and AVX-512F/VL were detected above.
+                            let [block, generic] = unsafe { pushes_avx512(node, r, t_far, order) };
+                            assert_eq!(block, generic, "{r:?}");
+                            pushed += block.len();
+                        }
+                        // SAFETY: AVX2 and AVX-512F/VL were detected above.
+                        let [block, generic] = unsafe { unordered_avx512(node, r, t_far) };
+                        let want = (0..8)
+                            .filter(|&i| {
+                                <NodeRay as NodeTest>::intersect(&NodeRay::new(r), node, t_far).0
+                                    >> i
+                                    & 1
+                                    != 0
+                            })
+                            .map(|i| node.child[i])
+                            .collect::<Vec<_>>();
+                        assert_eq!(block.iter().map(|e| e.0).collect::<Vec<_>>(), want);
+                        assert_eq!(generic.iter().map(|e| e.0).collect::<Vec<_>>(), want);
+                    }
+                }
+            }
+            assert!(pushed > 1000, "{pushed}");
+        }
+    }
+
+    #[target_feature(enable = "avx2,avx512f,avx512vl")]
+    unsafe fn batch_avx512_sorted(bvh: &Bvh, rays: &[Ray], out: &mut [Option<Hit>]) {
+        super::super::traverse::closest_batch_ordered_in::<avx512::NodeRay8k, false>(
+            bvh, rays, out,
+        );
+    }
+
+    /// The entries the AVX-512 block push and the generic loop (with the AVX2 node test) put
+    /// on a stack that already holds three, as `(reference, entry-distance bits)` from the
+    /// bottom up.
+    #[target_feature(enable = "avx2,avx512f,avx512vl")]
+    unsafe fn pushes_avx512(
+        node: &Node,
+        ray: &Ray,
+        t_far: f32,
+        order: u32,
+    ) -> [Vec<(u32, u32)>; 2] {
+        use super::super::traverse::BatchStack;
+        let woop = WoopRay::new(ray.origin, ray.dir);
+        let block = <avx512::NodeRay8k as NodeTest>::new(ray, &woop);
+        let generic = <NodeRay8 as NodeTest>::new(ray, &woop);
+        let mut stacks = [3, 3].map(BatchStack::with_entries);
+        block.push_ordered(node, t_far, order, &mut stacks[0]);
+        generic.push_ordered(node, t_far, order, &mut stacks[1]);
+        stacks.map(|s| s.entries().iter().map(|e| (e.r, e.t.to_bits())).collect())
+    }
+
+    /// The references (with the entry distances' bits) the AVX-512 block push and the generic
+    /// loop put on an empty stack for the occlusion lanes, from the bottom up.
+    #[target_feature(enable = "avx2,avx512f,avx512vl")]
+    unsafe fn unordered_avx512(node: &Node, ray: &Ray, t_far: f32) -> [Vec<(u32, u32)>; 2] {
+        use super::super::traverse::BatchStack;
+        let woop = WoopRay::new(ray.origin, ray.dir);
+        let block = <avx512::NodeRay8k as NodeTest>::new(ray, &woop);
+        let generic = <NodeRay8 as NodeTest>::new(ray, &woop);
+        let mut stacks = [0, 0].map(BatchStack::with_entries);
+        block.push_all(node, t_far, &mut stacks[0]);
+        generic.push_all(node, t_far, &mut stacks[1]);
+        stacks.map(|s| s.entries().iter().map(|e| (e.r, e.t.to_bits())).collect())
     }
 
     #[target_feature(enable = "avx2")]

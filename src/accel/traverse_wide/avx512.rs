@@ -1,0 +1,156 @@
+//! The AVX-512 batch kernels (x86-64 with AVX-512F and VL, picked at run time by
+//! `traverse_wide.rs`): the batch lanes of `traverse.rs` with the 8-wide node test of
+//! [`NodeRay8`], whose pushes are block stores instead of a loop over the hit mask.
+//!
+//! * **Push**: the node test's `≤` goes straight into a mask register; the child references
+//!   and entry distances are interleaved into eight `(r, t)` pairs, and the hit pairs are
+//!   packed to the bottom with `vpcompressq` (register form) and stored above the stack top;
+//!   the stack grows by the mask's popcount. Closest hit: the pairs in the node's octant
+//!   order for the ray, reversed (the order word becomes lane indices; the distances and
+//!   references are permuted by them), so the farthest goes first and the nearest is popped
+//!   next. Occlusion: slot order, the order of the loop it replaces.
+//! * **256-bit registers only**: the eight pairs are stored as two compressed halves of
+//!   four (the second at the first's popcount), not as one 512-bit register: as fast here
+//!   (A/B in `docs/ray-layer.md`, session 14), and no 512-bit instruction that could lower
+//!   the core's clock for the code that runs after the batch.
+//! * **Same answers**: the node test is [`NodeRay8`]'s (same operations, same ordered `≤`), so
+//!   the pushed children and their order are those of the generic loops
+//!   ([`NodeTest::push_ordered`], [`NodeTest::push_all`]), and the results are the SSE
+//!   kernel's bit for bit (`avx512_equals_sse` in `traverse_wide.rs`).
+
+use std::arch::x86_64::{
+    __m256i, _mm256_and_si256, _mm256_castps_si256, _mm256_cmp_ps_mask, _mm256_loadu_si256,
+    _mm256_maskz_compress_epi64, _mm256_permute2x128_si256, _mm256_permutevar8x32_epi32,
+    _mm256_permutevar8x32_ps, _mm256_set1_epi32, _mm256_setr_epi32, _mm256_srlv_epi32,
+    _mm256_storeu_si256, _mm256_unpackhi_epi32, _mm256_unpacklo_epi32, _CMP_LE_OS,
+};
+
+use glam::Vec3;
+
+use super::super::bvh::{Bvh, Node};
+use super::super::traverse::{closest_batch_in, occluded_batch_in, BatchStack, Entry, NodeTest};
+use super::super::triangle::WoopRay;
+use super::super::{Hit, Ray};
+use super::NodeRay8;
+
+/// Closest hits of a batch with the block pushes in every lane.
+///
+/// # Safety
+/// The CPU must support AVX2, AVX-512F and AVX-512VL.
+#[target_feature(enable = "avx2,avx512f,avx512vl")]
+pub(super) unsafe fn closest_batch_avx512(bvh: &Bvh, rays: &[Ray], out: &mut [Option<Hit>]) {
+    closest_batch_in::<NodeRay8k>(bvh, rays, out);
+}
+
+/// Occlusion of a batch with the block pushes in every lane.
+///
+/// # Safety
+/// The CPU must support AVX2, AVX-512F and AVX-512VL.
+#[target_feature(enable = "avx2,avx512f,avx512vl")]
+pub(super) unsafe fn occluded_batch_avx512(bvh: &Bvh, rays: &[Ray], out: &mut [bool]) {
+    occluded_batch_in::<NodeRay8k>(bvh, rays, out);
+}
+
+/// [`NodeRay8`] with the block pushes. Only made inside the AVX-512 kernels above (the
+/// `NodeTest` methods are reached only through them), so its methods may use AVX-512.
+pub(super) struct NodeRay8k(NodeRay8);
+
+impl NodeTest for NodeRay8k {
+    const BATCH_OCTANT: bool = true;
+
+    #[inline(always)]
+    fn new(ray: &Ray, woop: &WoopRay) -> Self {
+        Self(NodeRay8::new(ray, woop))
+    }
+
+    #[inline(always)]
+    fn leaf_hits(
+        &self,
+        woop: &WoopRay,
+        tris: &[[Vec3; 3]],
+        t_limit: f32,
+        f: impl FnMut(usize, (f32, f32, f32)) -> bool,
+    ) {
+        self.0.leaf_hits(woop, tris, t_limit, f);
+    }
+
+    #[inline(always)]
+    fn intersect(&self, node: &Node, t_far: f32) -> (u32, [f32; 8]) {
+        self.0.intersect(node, t_far)
+    }
+
+    #[inline(always)]
+    fn intersect_ordered(&self, node: &Node, t_far: f32, order: u32) -> (u32, [f32; 8], [u32; 8]) {
+        self.0.intersect_ordered(node, t_far, order)
+    }
+
+    #[inline(always)]
+    fn push_ordered(&self, node: &Node, t_far: f32, order: u32, stack: &mut BatchStack) {
+        let (tn, tf) = self.0.slabs(node, t_far);
+        // SAFETY: AVX2 and AVX-512F/VL intrinsics; this type is used only inside the AVX-512
+        // kernels. The unaligned load reads the node's `[u32; 8]` child array through a
+        // reference to it.
+        let n = unsafe {
+            // Lane j: the slot visited (7 − j)-th, so the farthest is pushed first.
+            let slots = _mm256_and_si256(
+                _mm256_srlv_epi32(
+                    _mm256_set1_epi32(order as i32),
+                    _mm256_setr_epi32(21, 18, 15, 12, 9, 6, 3, 0),
+                ),
+                _mm256_set1_epi32(7),
+            );
+            let tn = _mm256_permutevar8x32_ps(tn, slots);
+            let hit = _mm256_cmp_ps_mask::<_CMP_LE_OS>(tn, _mm256_permutevar8x32_ps(tf, slots));
+            let child = _mm256_loadu_si256(std::ptr::from_ref(&node.child).cast::<__m256i>());
+            store_pairs(
+                _mm256_permutevar8x32_epi32(child, slots),
+                _mm256_castps_si256(tn),
+                hit,
+                stack.block(),
+            );
+            hit.count_ones() as usize
+        };
+        stack.grow(n);
+    }
+
+    #[inline(always)]
+    fn push_all(&self, node: &Node, t_far: f32, stack: &mut BatchStack) {
+        let (tn, tf) = self.0.slabs(node, t_far);
+        // SAFETY: AVX2 and AVX-512F/VL intrinsics; this type is used only inside the AVX-512
+        // kernels. The load reads the node's `[u32; 8]` child array through a reference to it.
+        let n = unsafe {
+            let hit = _mm256_cmp_ps_mask::<_CMP_LE_OS>(tn, tf);
+            let child = _mm256_loadu_si256(std::ptr::from_ref(&node.child).cast::<__m256i>());
+            store_pairs(child, _mm256_castps_si256(tn), hit, stack.block());
+            hit.count_ones() as usize
+        };
+        stack.grow(n);
+    }
+}
+
+/// Stores the pairs `(c[j], t[j])` whose bit `j` is set in `hit` packed to the bottom of
+/// `block`, in `j` order (`Entry` is `repr(C)` `(u32, f32)`), as two compressed halves of
+/// four; the slots above them get unspecified values.
+///
+/// # Safety
+/// The CPU must support AVX2, AVX-512F and AVX-512VL (call only inside the AVX-512 kernels).
+#[inline(always)]
+unsafe fn store_pairs(c: __m256i, t: __m256i, hit: u8, block: &mut [Entry; 8]) {
+    // SAFETY: intrinsics as above; the stores write four entries (32 bytes) each, at
+    // `block[0..4]` and `block[n..n + 4]` with n ≤ 4, through references into `block`.
+    unsafe {
+        let lo = _mm256_unpacklo_epi32(c, t); // pairs 0, 1 | 4, 5
+        let hi = _mm256_unpackhi_epi32(c, t); // pairs 2, 3 | 6, 7
+        let first = _mm256_permute2x128_si256::<0x20>(lo, hi);
+        let second = _mm256_permute2x128_si256::<0x31>(lo, hi);
+        let n = (hit & 15).count_ones() as usize;
+        _mm256_storeu_si256(
+            std::ptr::from_mut(&mut block[..4]).cast(),
+            _mm256_maskz_compress_epi64(hit & 15, first),
+        );
+        _mm256_storeu_si256(
+            std::ptr::from_mut(&mut block[n..n + 4]).cast(),
+            _mm256_maskz_compress_epi64(hit >> 4, second),
+        );
+    }
+}
