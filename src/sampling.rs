@@ -140,6 +140,7 @@ pub fn sample_cosine_hemisphere(u: Vec2) -> Vec3 {
 /// Uniform point on the unit disk (Shirley–Chiu concentric mapping). The angle of the
 /// second wedge, `π/2 − a`, is folded onto `a` (`cos(π/2 − a) = sin a`), so one quarter-turn
 /// polynomial ([`quarter_trig`]) serves both.
+#[inline]
 pub fn sample_concentric_disk(u: Vec2) -> Vec2 {
     let o = 2.0 * u - Vec2::ONE;
     if o.x == 0.0 && o.y == 0.0 {

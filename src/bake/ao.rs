@@ -1,14 +1,17 @@
 //! Ambient occlusion and the inside-geometry probe: cosine-weighted rays about the shading
-//! normal from a robustly offset origin, generated as one stream per texel. The probe traces
-//! closest hits only until its verdict is certain; occlusion is answered by any-hit queries,
-//! a texel's rays traced together in common-origin packets (or one query per ray, or the
-//! batch kernel: `STAGELIGHT_RAY_STREAMS=off`/`on`).
+//! normal from a robustly offset origin, generated as one stream per texel (the directions
+//! in SIMD lanes: `hemisphere_lanes.rs`). The probe traces closest hits only until its
+//! verdict is certain; occlusion is answered by any-hit queries, a texel's rays traced
+//! together in common-origin packets (or one query per ray, or the batch kernel:
+//! `STAGELIGHT_RAY_STREAMS=off`/`on`). Without a distance limit every ray's occlusion comes
+//! first and the probe asks closest hits only of the blocked rays it consumes.
 
 use glam::Vec3;
 
 use crate::accel::{offset_ray_origin, Ray, SurfacePoint};
+use crate::bake::hemisphere_lanes::{DirectionLanes, Frame};
 use crate::geometry::SceneGeometry;
-use crate::sampling::{sample_cosine_hemisphere, Sampler};
+use crate::sampling::Sampler;
 
 /// Two tangents completing an orthonormal basis with `n` as its third axis (the shading
 /// library's frame: Duff et al. 2017).
@@ -160,6 +163,12 @@ enum Outcome {
 /// ray with `STAGELIGHT_RAY_STREAMS=off`, the batch kernel with `on`). A ray's occlusion is the same from either
 /// query (a hit before `max_distance` exists or not), and each point's sums are added in ray
 /// order, so the results are those of tracing every ray to its first hit, bit for bit.
+///
+/// With [`HemisphereQuery::OcclusionAndProbe`] and no distance limit (`max_distance` ∞) the
+/// occlusion queries of all rays come first (one packet pass); a ray found unblocked has no
+/// first hit, so the probe consumes it without a query and traces closest hits only for the
+/// blocked rays it reaches (one query each when there are few). Rays of points found inside
+/// are still reported as not traced: the outcomes are those of the order above.
 pub fn trace_hemispheres(
     geometry: &SceneGeometry,
     jobs: &[HemisphereJob<'_>],
@@ -202,6 +211,8 @@ struct Scratch {
     outcomes: Vec<Outcome>,
     /// Each point's rays in `rays`.
     spans: Vec<std::ops::Range<usize>>,
+    /// One point's sample points and directions.
+    lanes: DirectionLanes,
     queries: Queries,
 }
 
@@ -215,6 +226,8 @@ struct Queries {
     index: Vec<usize>,
     found: Vec<Option<crate::accel::Hit>>,
     occluded: Vec<bool>,
+    /// Each ray's occlusion (by index into the rays), once queried.
+    blocked: Vec<bool>,
 }
 
 /// [`trace_with`] with its working vectors.
@@ -232,6 +245,7 @@ fn trace_in(
         rays,
         outcomes,
         spans,
+        lanes,
         queries,
     } = scratch;
     rays.clear();
@@ -245,10 +259,19 @@ fn trace_in(
         let above = offset_ray_origin(job.surface.p, job.surface.p_err, n, n);
         let below = offset_ray_origin(job.surface.p, job.surface.p_err, n, -n);
         let begin = outcomes.len();
+        // The sample points first, then their directions in SIMD lanes (the same bits as
+        // `t·x + b·y + n·z` of `sample_cosine_hemisphere` one by one).
+        lanes.clear();
         for k in 0..job.count {
-            let mut sampler = Sampler::new(seed, job.first + k);
-            let local = sample_cosine_hemisphere(sampler.next_2d());
-            let dir = t * local.x + b * local.y + job.normal * local.z;
+            lanes.push(Sampler::new(seed, job.first + k).next_2d());
+        }
+        lanes.directions(Frame {
+            t,
+            b,
+            n: job.normal,
+        });
+        for k in 0..job.count as usize {
+            let dir = lanes.direction(k);
             if dir.dot(job.ng_facing) <= 0.0 {
                 outcomes.push(Outcome::Below);
                 rays.push(None);
@@ -264,12 +287,21 @@ fn trace_in(
         }
         spans.push(begin..outcomes.len());
     }
+    // With both queries and no distance limit, a ray's occlusion query also answers the
+    // probe when it finds nothing (no first hit, so no back face): every ray's occlusion is
+    // queried first, in one pass, and the probe traces closest hits only for blocked rays.
+    let occlusion_first =
+        matches!(query, HemisphereQuery::OcclusionAndProbe { .. }) && max_distance == f32::INFINITY;
+    if occlusion_first {
+        occlusion(geometry, rays, outcomes, kernel, queries);
+    }
     if let Some(fraction) = query.inside_fraction() {
         let probe_query = Probe {
             max_distance,
             fraction,
             occlusion: matches!(query, HemisphereQuery::OcclusionAndProbe { .. }),
             kernel,
+            known: occlusion_first,
         };
         probe(
             geometry,
@@ -282,7 +314,15 @@ fn trace_in(
         );
     }
     if !matches!(query, HemisphereQuery::Probe { .. }) {
-        occlusion(geometry, rays, outcomes, kernel, queries);
+        if !occlusion_first {
+            occlusion(geometry, rays, outcomes, kernel, queries);
+        }
+        let blocked = &queries.blocked;
+        for (outcome, &blocked) in outcomes.iter_mut().zip(blocked.iter()) {
+            if *outcome == Outcome::Pending {
+                *outcome = Outcome::Traced { open: !blocked };
+            }
+        }
     }
     for (p, span) in spans.iter().enumerate() {
         let out = &mut out[p];
@@ -314,6 +354,9 @@ struct Probe {
     /// Whether the rays of a point outside are wanted for occlusion (left pending).
     occlusion: bool,
     kernel: Kernel,
+    /// Whether every pending ray's occlusion to infinity is already known (`blocked`): a ray
+    /// that is not blocked has no first hit and needs no closest-hit query.
+    known: bool,
 }
 
 /// One point's probe in progress: its rays are consumed in order, as the closest hits come.
@@ -398,8 +441,9 @@ impl ProbeState {
 /// needs ([`ProbeState::lookahead`]), traced together (common-origin packets by default).
 /// Traced rays get their occlusion (a first hit before `max_distance`); once a point is
 /// inside, its other rays are skipped, and so are those of a point outside unless occlusion
-/// is wanted (they stay pending). The same rays are traced, and the same verdicts and
-/// outcomes result, as tracing each point's rays one by one.
+/// is wanted (they stay pending). With `probe.known` the rays not blocked (`blocked`, queried
+/// to infinity) are known to have no first hit and are consumed without a query. The same
+/// verdicts and outcomes result as tracing each point's rays one by one.
 fn probe(
     geometry: &SceneGeometry,
     rays: &[Option<Ray>],
@@ -415,6 +459,7 @@ fn probe(
         batch,
         index,
         found,
+        blocked,
         ..
     } = queries;
     states.clear();
@@ -427,6 +472,13 @@ fn probe(
     }
     hits.clear();
     hits.resize(rays.len(), None);
+    if probe.known {
+        for ((hit, outcome), &blocked) in hits.iter_mut().zip(outcomes.iter()).zip(blocked.iter()) {
+            if *outcome == Outcome::Pending && !blocked {
+                *hit = Some(None);
+            }
+        }
+    }
     loop {
         for (state, span) in states.iter_mut().zip(spans) {
             if state.verdict.is_none() {
@@ -448,7 +500,8 @@ fn probe(
             let want = state.lookahead(span.len() as u32, probe.fraction);
             let next = span.start + state.next;
             for k in (next..span.end).filter(|&k| rays[k].is_some()).take(want) {
-                if let Some(ray) = rays[k] {
+                // Rays whose hit is known (not blocked) are consumed without a query.
+                if let (Some(ray), None) = (rays[k], hits[k]) {
                     batch.push(Ray {
                         t_max: f32::INFINITY,
                         ..ray
@@ -481,6 +534,11 @@ fn probe(
     }
 }
 
+/// Closest-hit batches smaller than this are traced one query per ray even with
+/// [`Kernel::Packets`]: a packet's fixed cost (its 64-ray state) outweighs the sharing for
+/// the few blocked rays the probe asks about after the occlusion pass (issue 17, session 14).
+const SMALL_CLOSEST_BATCH: usize = 32;
+
 /// Closest hits of `rays` with the chosen kernel (see [`Kernel`]).
 fn closest(
     geometry: &SceneGeometry,
@@ -489,7 +547,14 @@ fn closest(
     kernel: Kernel,
 ) {
     match kernel {
-        Kernel::Packets => geometry.accel.intersect_packet(rays, out),
+        Kernel::Packets if rays.len() >= SMALL_CLOSEST_BATCH => {
+            geometry.accel.intersect_packet(rays, out)
+        }
+        Kernel::Packets => {
+            for (ray, out) in rays.iter().zip(out) {
+                *out = geometry.accel.intersect(ray);
+            }
+        }
         Kernel::Batch => geometry.accel.intersect_batch(rays, out),
         Kernel::PerRay => {
             for (ray, out) in rays.iter().zip(out) {
@@ -499,31 +564,33 @@ fn closest(
     }
 }
 
-/// Occlusion queries (up to each ray's `t_max`, the distance) for every pending ray: in
-/// common-origin packets, one query per ray or one batch (see [`Kernel`]).
+/// Occlusion queries (up to each ray's `t_max`, the distance) for every pending ray, into
+/// `queries.blocked` (by ray; false for the others): in common-origin packets, one query per
+/// ray or one batch (see [`Kernel`]).
 fn occlusion(
     geometry: &SceneGeometry,
     rays: &[Option<Ray>],
-    outcomes: &mut [Outcome],
+    outcomes: &[Outcome],
     kernel: Kernel,
     queries: &mut Queries,
 ) {
-    if kernel == Kernel::PerRay {
-        for (ray, outcome) in rays.iter().zip(outcomes.iter_mut()) {
-            if let (Some(ray), true) = (ray, *outcome == Outcome::Pending) {
-                *outcome = Outcome::Traced {
-                    open: !geometry.accel.occluded(ray),
-                };
-            }
-        }
-        return;
-    }
     let Queries {
         batch,
         index,
         occluded,
+        blocked,
         ..
     } = queries;
+    blocked.clear();
+    blocked.resize(rays.len(), false);
+    if kernel == Kernel::PerRay {
+        for ((ray, outcome), blocked) in rays.iter().zip(outcomes).zip(blocked.iter_mut()) {
+            if let (Some(ray), Outcome::Pending) = (ray, outcome) {
+                *blocked = geometry.accel.occluded(ray);
+            }
+        }
+        return;
+    }
     batch.clear();
     index.clear();
     for (i, (ray, outcome)) in rays.iter().zip(outcomes.iter()).enumerate() {
@@ -540,12 +607,13 @@ fn occlusion(
         geometry.accel.occluded_packet(batch, occluded);
     }
     for (&i, &hit) in index.iter().zip(occluded.iter()) {
-        outcomes[i] = Outcome::Traced { open: !hit };
+        blocked[i] = hit;
     }
 }
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::sampling::sample_cosine_hemisphere;
     use crate::shading::integrator::fixture::{self, Object};
 
     /// What tracing every ray to its first hit gives (the bake before the probe stopped
@@ -818,6 +886,62 @@ mod tests {
         // 16 rays: outside is certain after 4 rays miss back faces, inside after 13 meet them.
         assert_eq!((r[0].inside, r[0].rays), (false, 4));
         assert_eq!((r[1].inside, r[1].rays), (true, 13));
+    }
+
+    /// Without a distance limit the occlusion queries come first and the probe asks closest
+    /// hits only of blocked rays: a point in the open (every ray escapes) gets its verdict
+    /// and its occlusion from occlusion queries alone, and a point under the roof asks at
+    /// most one closest hit per blocked ray. With a distance limit the probe traces its rays
+    /// as closest hits first, as before.
+    #[test]
+    fn unblocked_rays_need_no_closest_hit_query() {
+        let g = scene();
+        let hit = |p: Vec3| {
+            g.accel
+                .surface_point(&fixture::hit(&g, p - Vec3::Z, Vec3::Z).1)
+        };
+        let (open, roofed) = (
+            hit(Vec3::new(1.5, -1.5, 0.0)),
+            hit(Vec3::new(-0.8, -0.8, 0.0)),
+        );
+        let query = HemisphereQuery::OcclusionAndProbe {
+            inside_fraction: 0.75,
+        };
+        let job = |s| HemisphereJob {
+            surface: s,
+            normal: Vec3::Z,
+            ng_facing: Vec3::Z,
+            first: 0,
+            count: 16,
+        };
+        let traced = |surface, max_distance| {
+            let before = g.accel.ray_counts();
+            let r = trace_hemispheres(&g, &[job(surface)], max_distance, 11, query)[0];
+            let after = g.accel.ray_counts();
+            (
+                r,
+                after.closest - before.closest,
+                after.occlusion - before.occlusion,
+            )
+        };
+        // The probe alone would trace its first four rays as closest hits (16 rays, ¾).
+        let (r, closest, occlusion) = traced(&open, f32::INFINITY);
+        assert!(!r.inside && r.rays == 16 && r.open >= 14, "{r:?}");
+        assert!(
+            closest <= u64::from(16 - r.open) && occlusion == 16,
+            "{closest} {r:?}"
+        );
+        let (r, closest, occlusion) = traced(&roofed, f32::INFINITY);
+        let blocked = u64::from(r.rays - r.open);
+        assert!(!r.inside && blocked > 0, "{r:?}");
+        assert!(
+            closest <= blocked && occlusion == 16,
+            "{closest} {occlusion} {r:?}"
+        );
+        // A finite distance: the probe's first rays are closest-hit queries.
+        let (r, closest, _) = traced(&open, 0.5);
+        assert!(!r.inside && r.rays == 16, "{r:?}");
+        assert!(closest >= 4, "{closest}");
     }
 
     #[test]

@@ -15,6 +15,7 @@ pub mod dilate;
 pub mod files;
 pub mod finish;
 pub mod gltf_out;
+pub mod hemisphere_lanes;
 pub mod irradiance;
 pub mod raster;
 pub mod report;
