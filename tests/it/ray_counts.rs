@@ -70,8 +70,9 @@ fn shade_and_bake_report_exact_ray_counts() {
         assert_eq!(shade.rays, shade.rays_closest + shade.rays_occlusion);
         assert!(shade.rays_per_second_per_thread > 0.0);
 
-        // 16 texels, one sample position each, 64 AO rays per position; with that many the
-        // AO rays double as the inside-geometry probe, so they are closest-hit queries.
+        // 16 texels, one sample position each, 64 AO rays per position: occlusion queries
+        // first, then closest hits for the inside-geometry probe only where a ray is blocked
+        // (none on this open scene).
         let bake = report.stage("bake_lightmaps").unwrap();
         assert_eq!(bake.rays, 16 * 64, "{bake:?}");
         assert_eq!(
