@@ -672,6 +672,12 @@ mod tests {
             .collect()
     }
 
+    /// The surface point that a ray from one unit below `p`, going up, meets first.
+    fn floor_point(g: &SceneGeometry, p: Vec3) -> SurfacePoint {
+        g.accel
+            .surface_point(&fixture::hit(g, p - Vec3::Z, Vec3::Z).1)
+    }
+
     fn scene() -> SceneGeometry {
         // Its faces: the fixture's cube is wound so that its normals point out.
         let cube: Vec<[Vec3; 3]> = fixture::inward_cube(0.25)
@@ -864,10 +870,7 @@ mod tests {
     #[test]
     fn the_probe_stops_when_its_verdict_is_certain() {
         let g = scene();
-        let hit = |p: Vec3| {
-            g.accel
-                .surface_point(&fixture::hit(&g, p - Vec3::Z, Vec3::Z).1)
-        };
+        let hit = |p: Vec3| floor_point(&g, p);
         let (open, boxed) = (
             hit(Vec3::new(1.5, -1.5, 0.0)),
             hit(Vec3::new(0.5, 0.5, 0.0)),
@@ -896,10 +899,7 @@ mod tests {
     #[test]
     fn unblocked_rays_need_no_closest_hit_query() {
         let g = scene();
-        let hit = |p: Vec3| {
-            g.accel
-                .surface_point(&fixture::hit(&g, p - Vec3::Z, Vec3::Z).1)
-        };
+        let hit = |p: Vec3| floor_point(&g, p);
         let (open, roofed) = (
             hit(Vec3::new(1.5, -1.5, 0.0)),
             hit(Vec3::new(-0.8, -0.8, 0.0)),
