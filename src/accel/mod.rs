@@ -23,6 +23,8 @@ mod leaf_wide;
 mod packet;
 mod packet_leaf;
 mod ray_kind;
+#[cfg(target_arch = "x86_64")]
+mod small_scene;
 mod spawn;
 mod traversal_cost;
 mod traverse;
@@ -111,6 +113,10 @@ pub struct Accel {
     counters: counters::Counters,
     /// Ray kinds that see each triangle (`ray_kind.rs`); `None`: every kind sees all.
     masks: Option<Vec<u8>>,
+    /// Every triangle in SIMD lane groups when the mesh is small (`small_scene.rs`): single
+    /// rays are then answered without the tree.
+    #[cfg(target_arch = "x86_64")]
+    small: Option<small_scene::SmallScene>,
 }
 
 impl Accel {
@@ -119,11 +125,15 @@ impl Accel {
     /// BVH-order copy.
     pub fn build(triangles: Vec<[Vec3; 3]>, quality: BvhQuality) -> Self {
         let bvh = bvh::build(&triangles, quality);
+        #[cfg(target_arch = "x86_64")]
+        let small = small_scene::SmallScene::build(&triangles, small_scene::max_triangles());
         drop(triangles);
         Self {
             bvh,
             counters: counters::Counters::new(),
             masks: None,
+            #[cfg(target_arch = "x86_64")]
+            small,
         }
     }
 
@@ -147,7 +157,12 @@ impl Accel {
     /// hit nothing.
     pub fn intersect(&self, ray: &Ray) -> Option<Hit> {
         self.counters.add_closest(1);
-        // The widest kernel this CPU runs (`traverse_wide.rs`), else SSE: same answers.
+        // A small mesh without the tree (`small_scene.rs`), else the widest kernel this CPU
+        // runs (`traverse_wide.rs`), else SSE: same answers.
+        #[cfg(target_arch = "x86_64")]
+        if let Some(hit) = self.small.as_ref().and_then(|s| s.closest(ray)) {
+            return hit;
+        }
         #[cfg(target_arch = "x86_64")]
         if let Some(hit) = traverse_wide::closest(&self.bvh, ray) {
             return hit;
@@ -158,6 +173,10 @@ impl Accel {
     /// Whether anything is hit along the ray segment (`0 < t < t_max`).
     pub fn occluded(&self, ray: &Ray) -> bool {
         self.counters.add_occlusion(1);
+        #[cfg(target_arch = "x86_64")]
+        if let Some(hit) = self.small.as_ref().and_then(|s| s.occluded(ray)) {
+            return hit;
+        }
         #[cfg(target_arch = "x86_64")]
         if let Some(hit) = traverse_wide::occluded(&self.bvh, ray) {
             return hit;
