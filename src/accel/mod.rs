@@ -125,9 +125,10 @@ impl Accel {
     /// BVH-order copy.
     pub fn build(triangles: Vec<[Vec3; 3]>, quality: BvhQuality) -> Self {
         let bvh = bvh::build(&triangles, quality);
-        #[cfg(target_arch = "x86_64")]
-        let small = small_scene::SmallScene::build(&triangles, small_scene::max_triangles());
         drop(triangles);
+        #[cfg(target_arch = "x86_64")]
+        let small =
+            small_scene::SmallScene::build(&bvh.tris, &bvh.prim_ids, small_scene::max_triangles());
         Self {
             bvh,
             counters: counters::Counters::new(),

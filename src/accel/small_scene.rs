@@ -2,10 +2,10 @@
 //! single-ray closest-hit and occlusion queries test every triangle in SIMD lanes instead of
 //! walking the tree — no node tests, no stack, no leaf gathers.
 //!
-//! * **Layout**: the non-degenerate triangles, in the caller's order, are kept
-//!   pre-transposed in groups of sixteen (structure of arrays: per vertex, per axis, sixteen
-//!   lanes; one triangle per lane), which the AVX2 kernel reads as two halves of eight and
-//!   the AVX-512 kernel (`small_scene/avx512.rs`) in one register. A ray's axis permutation (`WoopRay`) picks which axis
+//! * **Layout**: the non-degenerate triangles, in the tree's order (so that the triangles of
+//!   a group lie close together and a ray's line misses whole groups more often), are kept
+//!   pre-transposed in groups of eight (structure of arrays: per vertex, per axis, eight
+//!   lanes; one triangle per lane). A ray's axis permutation (`WoopRay`) picks which axis
 //!   arrays a lane reads, so no triangle is shuffled per ray. Spare lanes of the last group
 //!   hold NaN vertices, which every lane test answers as a miss (NaN edge functions make the
 //!   determinant NaN, which fails the sign test, and `NaN == 0` is false, so the lane is not
@@ -14,15 +14,15 @@
 //!   in its order (subtract, shear, edge functions, determinant, `t`, the conservative `δt`
 //!   bound; no fused multiply-add, an exact division), as `leaf_wide.rs` does for four lanes.
 //!   The lanes the scalar test would finish in `f64` (an edge function exactly zero; `t ≤ δt`)
-//!   are *slow* and are decided by the scalar test itself. The closest hit is the least
-//!   `(t, prim)` among hits with `0 < t < t_max`: groups and lanes run in ascending `prim`
-//!   order and only a strictly smaller `t` replaces the best, so a tie goes to the smallest
-//!   `prim` — what the tree and `brute.rs` return. Occlusion stops at the first group with a
-//!   hit below `t_max`.
-//! * **Dispatch** ([`SmallScene::closest`], [`SmallScene::occluded`]): AVX-512 (F) when the
-//!   CPU has it and `STAGELIGHT_TRAVERSAL=avx2…` is not set, else AVX2; `None` when the CPU
+//!   are *slow* and are decided by the scalar test itself. A group whose lanes are all
+//!   outside their triangles (or all behind the origin) stops before the division. The
+//!   closest hit is the least `(t, prim)` among hits with `0 < t < t_max` (ties at equal `t`
+//!   go to the smallest `prim`) — what the tree and `brute.rs` return. Occlusion stops at the
+//!   first group with a hit below `t_max`.
+//! * **Dispatch** ([`SmallScene::closest`], [`SmallScene::occluded`]): `None` when the CPU
 //!   lacks AVX2 or `STAGELIGHT_TRAVERSAL=sse…` was set at the first query; the caller then
-//!   walks the tree. [`SmallScene::build`] makes the path only for meshes of at most
+//!   walks the tree. (A 16-lane AVX-512 kernel was measured and did not pay:
+//!   `docs/ray-layer.md`, issue 17, session 15.) [`SmallScene::build`] makes the path only for meshes of at most
 //!   [`max_triangles`] triangles (`STAGELIGHT_SMALL_SCENE=N` overrides the threshold, `0`
 //!   turns the path off; for A/B runs).
 
@@ -30,7 +30,7 @@ use std::arch::x86_64::{
     __m256, _mm256_add_ps, _mm256_and_ps, _mm256_andnot_ps, _mm256_cmp_ps, _mm256_div_ps,
     _mm256_load_ps, _mm256_max_ps, _mm256_movemask_ps, _mm256_mul_ps, _mm256_or_ps, _mm256_set1_ps,
     _mm256_setzero_ps, _mm256_storeu_ps, _mm256_sub_ps, _mm256_xor_ps, _CMP_EQ_OQ, _CMP_GT_OQ,
-    _CMP_LT_OQ,
+    _CMP_LE_OQ, _CMP_LT_OQ,
 };
 use std::sync::OnceLock;
 
@@ -39,10 +39,8 @@ use glam::Vec3;
 use super::triangle::{gamma, is_degenerate, ray_is_valid, WoopRay};
 use super::{Hit, Ray};
 
-mod avx512;
-
-/// Triangles per group (one per AVX-512 lane, two halves of AVX2 lanes).
-const LANES: usize = 16;
+/// Triangles per group (one per AVX2 lane).
+const LANES: usize = 8;
 
 /// The default largest mesh (triangles given to `Accel::build`) answered without the tree;
 /// measured in `docs/ray-layer.md` (issue 17, session 15).
@@ -57,32 +55,19 @@ pub(super) fn max_triangles() -> usize {
         .unwrap_or(DEFAULT_MAX_TRIANGLES)
 }
 
-/// The kernel this CPU runs, chosen once.
-#[derive(Clone, Copy, PartialEq, Eq, Debug)]
-enum Kernel {
-    /// No AVX2, or `STAGELIGHT_TRAVERSAL=sse…`: the caller walks the tree.
-    Tree,
-    Avx2,
-    Avx512,
-}
-
-fn kernel() -> Kernel {
-    static CHOICE: OnceLock<Kernel> = OnceLock::new();
+/// Whether the AVX2 kernel runs (AVX2 present and not turned off by
+/// `STAGELIGHT_TRAVERSAL=sse…`, read once).
+fn use_avx2() -> bool {
+    static CHOICE: OnceLock<bool> = OnceLock::new();
     *CHOICE.get_or_init(|| {
-        let env = std::env::var("STAGELIGHT_TRAVERSAL").unwrap_or_default();
-        if !std::arch::is_x86_feature_detected!("avx2") || env.starts_with("sse") {
-            Kernel::Tree
-        } else if std::arch::is_x86_feature_detected!("avx512f") && !env.starts_with("avx2") {
-            Kernel::Avx512
-        } else {
-            Kernel::Avx2
-        }
+        std::arch::is_x86_feature_detected!("avx2")
+            && !std::env::var("STAGELIGHT_TRAVERSAL").is_ok_and(|v| v.starts_with("sse"))
     })
 }
 
-/// Sixteen triangles transposed: `v[vertex][axis][lane]`.
+/// Eight triangles transposed: `v[vertex][axis][lane]`.
 #[derive(Clone, Copy)]
-#[repr(C, align(64))]
+#[repr(C, align(32))]
 struct Group {
     v: [[[f32; LANES]; 3]; 3],
 }
@@ -109,37 +94,29 @@ impl Lanes {
     };
 }
 
-/// A group test with per-ray constants (made only inside the `target_feature` functions of
-/// its kernel).
-trait GroupTest {
-    fn new(woop: &WoopRay) -> Self;
-    /// Tests the group's sixteen triangles into `out` (its masks are overwritten, its arrays
-    /// only where `hit` is set); hits at or beyond `t_limit` are left out of `hit` (but not
-    /// of `slow`).
-    fn test(&self, g: &Group, t_limit: f32, out: &mut Lanes);
-}
-
 /// Every non-degenerate triangle of a small mesh in lane groups.
 pub(super) struct SmallScene {
     groups: Vec<Group>,
     /// The same triangles, slot by slot (for the scalar test of slow lanes).
     tris: Vec<[Vec3; 3]>,
-    /// The caller's index of each slot (ascending).
+    /// The caller's index of each slot.
     prims: Vec<u32>,
 }
 
 impl SmallScene {
-    /// The lane groups of `triangles` (degenerate ones left out), or `None` when the mesh has
-    /// more than `max` triangles.
-    pub(super) fn build(triangles: &[[Vec3; 3]], max: usize) -> Option<Self> {
-        if triangles.len() > max {
+    /// The lane groups of `tris` (degenerate ones left out) in the order given, where
+    /// `prims[i]` is the caller's index of `tris[i]`; `None` when there are more than `max`
+    /// triangles. `Accel` gives them in the tree's order, so that the triangles of a group lie
+    /// close together and a ray misses whole groups more often.
+    pub(super) fn build(tris: &[[Vec3; 3]], prims: &[u32], max: usize) -> Option<Self> {
+        if tris.len() > max {
             return None;
         }
-        let (prims, tris): (Vec<u32>, Vec<[Vec3; 3]>) = triangles
+        let (prims, tris): (Vec<u32>, Vec<[Vec3; 3]>) = prims
             .iter()
-            .enumerate()
+            .zip(tris)
             .filter(|(_, t)| !is_degenerate(t))
-            .map(|(i, t)| (i as u32, *t))
+            .map(|(&i, t)| (i, *t))
             .unzip();
         let mut groups = vec![
             Group {
@@ -166,51 +143,35 @@ impl SmallScene {
     /// (the caller walks the tree).
     #[inline]
     pub(super) fn closest(&self, ray: &Ray) -> Option<Option<Hit>> {
-        match kernel() {
-            // SAFETY: AVX-512F (and AVX2) were detected on this CPU.
-            Kernel::Avx512 => Some(unsafe { avx512::closest(self, ray) }),
-            // SAFETY: AVX2 was detected on this CPU.
-            Kernel::Avx2 => Some(unsafe { self.closest_avx2(ray) }),
-            Kernel::Tree => None,
+        if !use_avx2() {
+            return None;
         }
+        // SAFETY: AVX2 was detected on this CPU just above.
+        Some(unsafe { self.closest_avx2(ray) })
     }
 
     /// Occlusion, as `Accel::occluded` answers it; `None` when no SIMD kernel runs here.
     #[inline]
     pub(super) fn occluded(&self, ray: &Ray) -> Option<bool> {
-        match kernel() {
-            // SAFETY: AVX-512F (and AVX2) were detected on this CPU.
-            Kernel::Avx512 => Some(unsafe { avx512::occluded(self, ray) }),
-            // SAFETY: AVX2 was detected on this CPU.
-            Kernel::Avx2 => Some(unsafe { self.occluded_avx2(ray) }),
-            Kernel::Tree => None,
+        if !use_avx2() {
+            return None;
         }
+        // SAFETY: AVX2 was detected on this CPU just above.
+        Some(unsafe { self.occluded_avx2(ray) })
     }
 
     /// # Safety
     /// The CPU must support AVX2.
     #[target_feature(enable = "avx2")]
     unsafe fn closest_avx2(&self, ray: &Ray) -> Option<Hit> {
-        self.closest_with::<LaneRay8>(ray)
-    }
-
-    /// # Safety
-    /// The CPU must support AVX2.
-    #[target_feature(enable = "avx2")]
-    unsafe fn occluded_avx2(&self, ray: &Ray) -> bool {
-        self.occluded_with::<LaneRay8>(ray)
-    }
-
-    /// The closest hit with the group test `K`.
-    #[inline(always)]
-    fn closest_with<K: GroupTest>(&self, ray: &Ray) -> Option<Hit> {
         if !ray_is_valid(ray) {
             return None;
         }
         let woop = WoopRay::new(ray.origin, ray.dir);
-        let lr = K::new(&woop);
+        let lr = LaneRay8::new(&woop);
         let mut best: Option<(usize, f32, f32)> = None;
         let mut best_t = ray.t_max;
+        let mut best_prim = u32::MAX;
         // One scratch per ray: the group tests write only the lanes they report.
         let mut lanes = Lanes::MISS;
         for (gi, g) in self.groups.iter().enumerate() {
@@ -228,32 +189,39 @@ impl SmallScene {
                 } else {
                     (lanes.t[j], lanes.b1[j], lanes.b2[j])
                 };
-                // Ascending slots: a tie keeps the smaller prim.
-                if t < best_t {
+                // The least (t, prim); `t == t_max` only ties with a hit found before.
+                let prim = self.prims[slot];
+                if t < best_t || (t == best_t && best.is_some() && prim < best_prim) {
                     best = Some((slot, b1, b2));
                     best_t = t;
+                    best_prim = prim;
                 }
             }
         }
-        best.map(|(slot, b1, b2)| Hit {
+        best.map(|(_, b1, b2)| Hit {
             t: best_t,
-            prim: self.prims[slot],
+            prim: best_prim,
             b1,
             b2,
         })
     }
 
-    /// Occlusion with the group test `K`: stops at the first group with a hit.
-    #[inline(always)]
-    fn occluded_with<K: GroupTest>(&self, ray: &Ray) -> bool {
+    /// Stops at the first group with a hit.
+    ///
+    /// # Safety
+    /// The CPU must support AVX2.
+    #[target_feature(enable = "avx2")]
+    unsafe fn occluded_avx2(&self, ray: &Ray) -> bool {
         if !ray_is_valid(ray) {
             return false;
         }
         let woop = WoopRay::new(ray.origin, ray.dir);
-        let lr = K::new(&woop);
+        let lr = LaneRay8::new(&woop);
         let mut lanes = Lanes::MISS;
+        // `t ≤ next_down(t_max)` is `t < t_max`.
+        let limit = ray.t_max.next_down();
         for (gi, g) in self.groups.iter().enumerate() {
-            lr.test(g, ray.t_max, &mut lanes);
+            lr.test(g, limit, &mut lanes);
             if lanes.hit != 0 {
                 return true;
             }
@@ -273,7 +241,7 @@ impl SmallScene {
     }
 }
 
-/// Per-ray constants of the 8-lane (AVX2) test, which takes a group as two halves.
+/// Per-ray constants of the 8-lane (AVX2) test.
 struct LaneRay8 {
     /// The axis permutation `[kx, ky, kz]` (each < 3).
     axes: [usize; 3],
@@ -284,7 +252,7 @@ struct LaneRay8 {
     sz: __m256,
 }
 
-impl GroupTest for LaneRay8 {
+impl LaneRay8 {
     #[inline(always)]
     fn new(woop: &WoopRay) -> Self {
         let [kx, ky, kz] = woop.axes();
@@ -301,27 +269,19 @@ impl GroupTest for LaneRay8 {
             sz: splat(sz),
         }
     }
-
-    #[inline(always)]
-    fn test(&self, g: &Group, t_limit: f32, out: &mut Lanes) {
-        out.hit = 0;
-        out.slow = 0;
-        self.test_half(g, 0, t_limit, out);
-        self.test_half(g, 8, t_limit, out);
-    }
 }
 
 impl LaneRay8 {
-    /// Vertex `v` of the eight triangles from lane `first` of the group: `(x, y, z)`
-    /// translated to the origin, in the ray's axis order.
+    /// Vertex `v` of the group's eight triangles: `(x, y, z)` translated to the origin, in
+    /// the ray's axis order.
     #[inline(always)]
-    fn vertex(&self, g: &Group, v: usize, first: usize) -> [__m256; 3] {
+    fn vertex(&self, g: &Group, v: usize) -> [__m256; 3] {
         let [kx, ky, kz] = self.axes;
-        // SAFETY: AVX intrinsics (AVX2 functions only); the aligned loads read eight floats
-        // at lane 0 or 8 of a 16-float array of a `Group`, which is 64-byte aligned with every
-        // array at a multiple of 64 bytes (`first` is 0 or 8).
+        // SAFETY: AVX intrinsics (AVX2 functions only); the aligned loads read the 8-float
+        // arrays of a `Group`, which is 32-byte aligned with every array at a multiple of 32
+        // bytes.
         unsafe {
-            let load = |a: &[f32; LANES]| _mm256_load_ps(a[first..first + 8].as_ptr());
+            let load = |a: &[f32; LANES]| _mm256_load_ps(a.as_ptr());
             [
                 _mm256_sub_ps(load(&g.v[v][kx]), self.o[0]),
                 _mm256_sub_ps(load(&g.v[v][ky]), self.o[1]),
@@ -330,14 +290,18 @@ impl LaneRay8 {
         }
     }
 
-    /// Tests lanes `first..first + 8` (`first` 0 or 8) and writes them into `out`.
+    /// Tests the group's eight triangles into `out` (its masks are overwritten, its arrays
+    /// only where `hit` is set); hits beyond `t_limit` are left out of `hit` (but not of
+    /// `slow`), hits at `t_limit` are kept (ties at equal `t` go to the smaller prim).
     #[inline(always)]
-    fn test_half(&self, g: &Group, first: usize, t_limit: f32, out: &mut Lanes) {
-        let [x0, y0, z0] = self.vertex(g, 0, first);
-        let [x1, y1, z1] = self.vertex(g, 1, first);
-        let [x2, y2, z2] = self.vertex(g, 2, first);
-        // SAFETY: AVX intrinsics on values (AVX2 functions only); the stores write eight
-        // floats at lane `first` (0 or 8) of sixteen-float arrays.
+    fn test(&self, g: &Group, t_limit: f32, out: &mut Lanes) {
+        out.hit = 0;
+        out.slow = 0;
+        let [x0, y0, z0] = self.vertex(g, 0);
+        let [x1, y1, z1] = self.vertex(g, 1);
+        let [x2, y2, z2] = self.vertex(g, 2);
+        // SAFETY: AVX intrinsics on values (AVX2 functions only); the stores write the
+        // eight-float arrays of `out`.
         unsafe {
             let abs = |v: __m256| _mm256_andnot_ps(_mm256_set1_ps(-0.0), v);
             let max3 = |a: __m256, b: __m256, c: __m256| _mm256_max_ps(_mm256_max_ps(a, b), c);
@@ -345,6 +309,7 @@ impl LaneRay8 {
             let eq = |a: __m256, b: __m256| _mm256_cmp_ps::<_CMP_EQ_OQ>(a, b);
             let lt = |a: __m256, b: __m256| _mm256_cmp_ps::<_CMP_LT_OQ>(a, b);
             let gt = |a: __m256, b: __m256| _mm256_cmp_ps::<_CMP_GT_OQ>(a, b);
+            let le = |a: __m256, b: __m256| _mm256_cmp_ps::<_CMP_LE_OQ>(a, b);
             let zero = _mm256_setzero_ps();
             // Shear.
             let x0 = _mm256_add_ps(x0, _mm256_mul_ps(self.sx, z0));
@@ -423,21 +388,299 @@ impl LaneRay8 {
                 abs(inv_det),
             );
             let sure = _mm256_movemask_ps(gt(t, delta_t)) as u32;
-            let near = _mm256_movemask_ps(lt(t, _mm256_set1_ps(t_limit))) as u32;
+            let near = _mm256_movemask_ps(le(t, _mm256_set1_ps(t_limit))) as u32;
             let hit = candidate & sure & near;
-            out.hit |= hit << first;
-            out.slow |= (zero_lanes | (candidate & !sure)) << first;
+            out.hit = hit;
+            out.slow = zero_lanes | (candidate & !sure);
             if hit != 0 {
-                _mm256_storeu_ps(out.t[first..first + 8].as_mut_ptr(), t);
-                _mm256_storeu_ps(
-                    out.b1[first..first + 8].as_mut_ptr(),
-                    _mm256_mul_ps(e1, inv_det),
-                );
-                _mm256_storeu_ps(
-                    out.b2[first..first + 8].as_mut_ptr(),
-                    _mm256_mul_ps(e2, inv_det),
-                );
+                _mm256_storeu_ps(out.t.as_mut_ptr(), t);
+                _mm256_storeu_ps(out.b1.as_mut_ptr(), _mm256_mul_ps(e1, inv_det));
+                _mm256_storeu_ps(out.b2.as_mut_ptr(), _mm256_mul_ps(e2, inv_det));
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::brute_force_intersect;
+    use super::super::bvh::build;
+    use super::super::traverse;
+    use super::*;
+    use crate::settings::BvhQuality;
+
+    fn bits(h: Option<Hit>) -> Option<[u32; 4]> {
+        h.map(|h| [h.t.to_bits(), h.prim, h.b1.to_bits(), h.b2.to_bits()])
+    }
+
+    /// The small path over `tris` in the tree's order, as `Accel::build` makes it.
+    fn small(tris: &[[Vec3; 3]]) -> (SmallScene, super::super::bvh::Bvh) {
+        let bvh = build(tris, BvhQuality::Medium);
+        let s = SmallScene::build(&bvh.tris, &bvh.prim_ids, usize::MAX).unwrap();
+        (s, bvh)
+    }
+
+    /// Small path, brute force and tree agree bit for bit (`t`, `prim`, `b1`, `b2`) on
+    /// random soups of 1 to 70 triangles (sizes that are not multiples of 8 included), on a
+    /// grid so that triangles share edges and vertices and coincide (ties at equal `t`), with
+    /// degenerate and non-finite triangles mixed in, and rays through vertices and edge
+    /// midpoints, axis-parallel and with ±0 components, from on a triangle (t ≈ 0, the slow
+    /// lanes), with finite and infinite `t_max`, and invalid rays. Occlusion likewise.
+    #[test]
+    fn small_path_equals_brute_force_and_tree() {
+        if !use_avx2() {
+            eprintln!("no AVX2 on this CPU: the tree answers");
+            return;
+        }
+        let mut rnd = crate::accel::test_random::signed_uniform(0x5a11_5ce0_e5ee_d123u64);
+        let (mut hits, mut ties, mut slow_cases, mut rays) = (0, 0, 0, 0);
+        for round in 0..400 {
+            let n = 1 + round % 70;
+            let scale = [1e-3, 1.0, 1e4][round % 3];
+            let grid = round % 2 == 0;
+            let mut point = |rnd: &mut dyn FnMut() -> f32| {
+                let p = Vec3::new(rnd(), rnd(), rnd()) * 3.0;
+                (if grid { p.round() } else { p }) * scale
+            };
+            let mut tris: Vec<[Vec3; 3]> = (0..n)
+                .map(|_| [point(&mut rnd), point(&mut rnd), point(&mut rnd)])
+                .collect();
+            // Coincident copies (ties), degenerate and non-finite triangles.
+            if n > 4 {
+                tris[n - 1] = tris[0];
+                tris[n / 2] = [tris[1][0], tris[1][1], tris[1][0]];
+                tris[n / 3][2].x = [f32::NAN, f32::INFINITY][round % 2];
+            }
+            let (s, bvh) = small(&tris);
+            for i in 0..150 {
+                let tri = tris[i % n];
+                let origin = match i % 6 {
+                    0 => tri[0] * 0.25 + tri[1] * 0.5 + tri[2] * 0.25,
+                    _ => point(&mut rnd) * 1.5,
+                };
+                let target = match i % 5 {
+                    0 => tri[i % 3],
+                    1 => (tri[0] + tri[1]) * 0.5,
+                    _ => point(&mut rnd),
+                };
+                let mut dir = target - origin;
+                match i % 11 {
+                    0 => dir = Vec3::new(0.0, -0.0, [1.0, -1.0][round % 2]),
+                    1 => dir.y = -0.0,
+                    2 => dir = Vec3::new(rnd(), 0.0, 0.0),
+                    3 => dir = Vec3::ZERO,
+                    _ => {}
+                }
+                let t_max = match i % 4 {
+                    0 => f32::INFINITY,
+                    1 => 0.5 + rnd().abs(),
+                    2 => 1.0,
+                    _ => 1e30,
+                };
+                let ray = Ray { origin, dir, t_max };
+                let got = s.closest(&ray).unwrap();
+                let want = brute_force_intersect(&tris, &ray);
+                assert_eq!(bits(got), bits(want), "{ray:?} in {tris:?}");
+                assert_eq!(bits(got), bits(traverse::closest(&bvh, &ray)), "{ray:?}");
+                assert_eq!(s.occluded(&ray).unwrap(), want.is_some(), "{ray:?}");
+                assert_eq!(
+                    s.occluded(&ray).unwrap(),
+                    traverse::occluded(&bvh, &ray),
+                    "{ray:?}"
+                );
+                rays += 1;
+                hits += usize::from(want.is_some());
+                if let Some(h) = want {
+                    let copies = tris.iter().filter(|t| **t == tris[h.prim as usize]).count();
+                    ties += usize::from(copies > 1);
+                    slow_cases += usize::from(i % 6 == 0);
+                }
+            }
+        }
+        // Not vacuous: many hits, ties between coincident copies, hits from on a surface.
+        assert!(hits > 20_000, "{hits} of {rays}");
+        assert!(ties > 500, "{ties}");
+        assert!(slow_cases > 1_000, "{slow_cases}");
+    }
+
+    /// Ties at equal `t` go to the smallest prim even when the tree's order puts a larger
+    /// prim first: four copies of one triangle among others, every order of the copies.
+    #[test]
+    fn ties_go_to_the_smallest_prim() {
+        if !use_avx2() {
+            return;
+        }
+        let wall = [
+            Vec3::new(-1.0, -1.0, 2.0),
+            Vec3::new(3.0, -1.0, 2.0),
+            Vec3::new(-1.0, 3.0, 2.0),
+        ];
+        for first in 0..19 {
+            let mut tris: Vec<[Vec3; 3]> = (0..19)
+                .map(|i| {
+                    let c = Vec3::new(i as f32 * 3.0 + 10.0, 0.0, 0.0);
+                    [c, c + Vec3::X, c + Vec3::Y]
+                })
+                .collect();
+            for k in [first, (first + 5) % 19, (first + 11) % 19, 18] {
+                tris[k] = wall;
+            }
+            let smallest = first.min((first + 5) % 19).min((first + 11) % 19);
+            let (s, _) = small(&tris);
+            let ray = Ray {
+                origin: Vec3::new(0.1, 0.2, 0.0),
+                dir: Vec3::Z,
+                t_max: f32::INFINITY,
+            };
+            let hit = s.closest(&ray).unwrap().unwrap();
+            assert_eq!((hit.prim, hit.t), (smallest as u32, 2.0));
+            // t_max exclusive: a segment ending on the wall sees nothing.
+            let short = Ray { t_max: 2.0, ..ray };
+            assert!(s.closest(&short).unwrap().is_none() && !s.occluded(&short).unwrap());
+        }
+    }
+
+    /// A closed low-resolution sphere (48 triangles, under the threshold): rays from inside
+    /// aimed exactly at vertices and edge midpoints never leak, and hit what brute force hits.
+    #[test]
+    fn closed_small_mesh_does_not_leak() {
+        if !use_avx2() {
+            return;
+        }
+        let (rings, segs) = (4, 8);
+        let v = |r: usize, k: usize| {
+            let th = std::f32::consts::PI * r as f32 / rings as f32;
+            let ph = std::f32::consts::TAU * k as f32 / segs as f32;
+            Vec3::new(th.sin() * ph.cos(), th.cos(), th.sin() * ph.sin()) * 2.0
+        };
+        let mut tris = Vec::new();
+        for r in 0..rings {
+            for k in 0..segs {
+                let (a, b, c, d) = (v(r, k), v(r, k + 1), v(r + 1, k), v(r + 1, k + 1));
+                if r > 0 {
+                    tris.push([a, b, c]);
+                }
+                if r + 1 < rings {
+                    tris.push([b, d, c]);
+                }
+            }
+        }
+        assert!(tris.len() <= DEFAULT_MAX_TRIANGLES, "{}", tris.len());
+        let (s, _) = small(&tris);
+        let o = Vec3::new(0.1, -0.05, 0.2);
+        let mut misses = 0;
+        for tri in &tris {
+            for target in [tri[0], tri[1], tri[2], (tri[0] + tri[1]) * 0.5] {
+                let ray = Ray {
+                    origin: o,
+                    dir: target - o,
+                    t_max: f32::INFINITY,
+                };
+                let got = s.closest(&ray).unwrap();
+                assert_eq!(bits(got), bits(brute_force_intersect(&tris, &ray)));
+                misses += usize::from(got.is_none() || !s.occluded(&ray).unwrap());
+            }
+        }
+        assert_eq!(misses, 0);
+    }
+
+    /// Threshold and the degenerate ones: more than `max` triangles make no small path;
+    /// degenerate triangles take no slot, and only they make an all-miss scene.
+    #[test]
+    fn build_threshold_and_degenerate_slots() {
+        let t = [Vec3::ZERO, Vec3::X, Vec3::Y];
+        let ids: Vec<u32> = (0..9).collect();
+        assert!(SmallScene::build(&[t; 9], &ids, 8).is_none());
+        let s = SmallScene::build(&[t; 9], &ids, 9).unwrap();
+        assert_eq!((s.groups.len(), s.tris.len()), (2, 9));
+        let degenerate = [[Vec3::ONE; 3], [Vec3::NAN, Vec3::X, Vec3::Y], t];
+        let s = SmallScene::build(&degenerate, &[0, 1, 2], 64).unwrap();
+        assert_eq!((s.prims.as_slice(), s.groups.len()), ([2].as_slice(), 1));
+    }
+
+    /// Through `Accel`: a small mesh is answered by this path, and every query — plain and by
+    /// ray kind with per-triangle masks (`ray_kind.rs` steps over hidden surfaces through
+    /// `intersect`/`occluded`) — answers as the same `Accel` with the tree only.
+    #[test]
+    fn accel_queries_and_ray_kinds_equal_the_tree() {
+        use super::super::{Accel, RayKind};
+        use crate::components::{ALL_RAYS, CAMERA_RAYS, SECONDARY_RAYS, SHADOW_RAYS};
+        let mut rnd = crate::accel::test_random::signed_uniform(0x0dd5_ca1e_b0a7_0001u64);
+        let tris: Vec<[Vec3; 3]> = (0..45)
+            .map(|_| {
+                let c = Vec3::new(rnd(), rnd(), rnd()) * 2.0;
+                let e = |r: &mut dyn FnMut() -> f32| Vec3::new(r(), r(), r()) * 0.7;
+                [c, c + e(&mut rnd), c + e(&mut rnd)]
+            })
+            .collect();
+        let masks: Vec<u8> = (0..tris.len())
+            .map(|i| [ALL_RAYS, CAMERA_RAYS, SHADOW_RAYS, SECONDARY_RAYS, ALL_RAYS][i % 5])
+            .collect();
+        let mut small = Accel::build(tris.clone(), BvhQuality::Medium);
+        assert_eq!(small.small.is_some(), max_triangles() >= tris.len());
+        let mut tree = Accel::build(tris, BvhQuality::Medium);
+        tree.small = None;
+        small.set_ray_masks(masks.clone());
+        tree.set_ray_masks(masks);
+        for _ in 0..3000 {
+            let ray = Ray {
+                origin: Vec3::new(rnd(), rnd(), rnd()) * 3.0,
+                dir: Vec3::new(rnd(), rnd(), rnd()),
+                t_max: [f32::INFINITY, 2.0][usize::from(rnd() > 0.0)],
+            };
+            assert_eq!(bits(small.intersect(&ray)), bits(tree.intersect(&ray)));
+            assert_eq!(small.occluded(&ray), tree.occluded(&ray));
+            for kind in [RayKind::Camera, RayKind::Shadow, RayKind::Secondary] {
+                assert_eq!(
+                    bits(small.intersect_as(&ray, kind)),
+                    bits(tree.intersect_as(&ray, kind))
+                );
+                assert_eq!(small.occluded_as(&ray, kind), tree.occluded_as(&ray, kind));
+            }
+        }
+    }
+
+    /// `glass.ron`'s floor and a glass block's bottom face are coplanar (y = 0); a ray
+    /// crossing both gets two `t`s a few ulps apart from the watertight test (each triangle is
+    /// translated to the ray origin on its own). The small path returns the least, as brute
+    /// force does; the tree (main 7f32217) returns the block face, whose `t` is larger — its
+    /// box test culls the floor's node once the block face is found (`docs/ray-layer.md`,
+    /// issue 17, session 15).
+    #[test]
+    fn coplanar_faces_give_the_least_t_as_brute_force() {
+        if !use_avx2() {
+            return;
+        }
+        let v = |b: [u32; 3]| Vec3::from_array(b.map(f32::from_bits));
+        let floor = [
+            v([3240099840, 0, 3240099840]),
+            v([3240099840, 0, 1092616192]),
+            v([1092616192, 0, 1092616192]),
+        ];
+        let block = [
+            v([3219547750, 0, 3209481421]),
+            v([3192704205, 0, 1061997773]),
+            v([3219547750, 0, 1061997773]),
+        ];
+        let ray = Ray {
+            origin: v([3219547744, 1012082997, 1033915251]),
+            dir: v([1038690154, 3194083262, 1064828243]),
+            t_max: f32::INFINITY,
+        };
+        let mut tris = vec![floor];
+        tris.extend((1..15).map(|i| {
+            let c = Vec3::new(50.0 + i as f32, 5.0, 0.0);
+            [c, c + Vec3::X, c + Vec3::Y]
+        }));
+        tris.push(block);
+        let (s, _) = small(&tris);
+        let got = s.closest(&ray).unwrap();
+        assert_eq!(bits(got), bits(brute_force_intersect(&tris, &ray)));
+        let hit = got.unwrap();
+        let block_t = WoopRay::new(ray.origin, ray.dir)
+            .intersect(&block)
+            .unwrap()
+            .0;
+        assert!(hit.prim == 0 && hit.t < block_t, "{hit:?} {block_t}");
     }
 }
