@@ -44,7 +44,7 @@ const LANES: usize = 8;
 
 /// The default largest mesh (triangles given to `Accel::build`) answered without the tree;
 /// measured in `docs/ray-layer.md` (issue 17, session 15).
-pub(super) const DEFAULT_MAX_TRIANGLES: usize = 64;
+pub(super) const DEFAULT_MAX_TRIANGLES: usize = 32;
 
 /// The largest mesh answered without the tree: `STAGELIGHT_SMALL_SCENE=N` when set to a
 /// number (0 turns the path off), else [`DEFAULT_MAX_TRIANGLES`].
@@ -438,7 +438,7 @@ mod tests {
             let n = 1 + round % 70;
             let scale = [1e-3, 1.0, 1e4][round % 3];
             let grid = round % 2 == 0;
-            let mut point = |rnd: &mut dyn FnMut() -> f32| {
+            let point = |rnd: &mut dyn FnMut() -> f32| {
                 let p = Vec3::new(rnd(), rnd(), rnd()) * 3.0;
                 (if grid { p.round() } else { p }) * scale
             };
@@ -540,14 +540,14 @@ mod tests {
         }
     }
 
-    /// A closed low-resolution sphere (48 triangles, under the threshold): rays from inside
+    /// A closed low-resolution sphere (32 triangles, at the threshold): rays from inside
     /// aimed exactly at vertices and edge midpoints never leak, and hit what brute force hits.
     #[test]
     fn closed_small_mesh_does_not_leak() {
         if !use_avx2() {
             return;
         }
-        let (rings, segs) = (4, 8);
+        let (rings, segs) = (3, 8);
         let v = |r: usize, k: usize| {
             let th = std::f32::consts::PI * r as f32 / rings as f32;
             let ph = std::f32::consts::TAU * k as f32 / segs as f32;
@@ -606,7 +606,7 @@ mod tests {
         use super::super::{Accel, RayKind};
         use crate::components::{ALL_RAYS, CAMERA_RAYS, SECONDARY_RAYS, SHADOW_RAYS};
         let mut rnd = crate::accel::test_random::signed_uniform(0x0dd5_ca1e_b0a7_0001u64);
-        let tris: Vec<[Vec3; 3]> = (0..45)
+        let tris: Vec<[Vec3; 3]> = (0..30)
             .map(|_| {
                 let c = Vec3::new(rnd(), rnd(), rnd()) * 2.0;
                 let e = |r: &mut dyn FnMut() -> f32| Vec3::new(r(), r(), r()) * 0.7;
