@@ -17,14 +17,15 @@
 //!   are *slow* and are decided by the scalar test itself. A group whose lanes are all
 //!   outside their triangles (or all behind the origin) stops before the division. The
 //!   closest hit is the least `(t, prim)` among hits with `0 < t < t_max` (ties at equal `t`
-//!   go to the smallest `prim`) — what the tree and `brute.rs` return. Occlusion stops at the
-//!   first group with a hit below `t_max`.
+//!   go to the smallest `prim`) — what `brute.rs` returns, and the tree but for coplanar
+//!   faces, where its box cull can drop a hit a few ulps nearer (`docs/ray-layer.md`, issue 17,
+//!   session 15). Occlusion stops at the first group with a hit below `t_max`.
 //! * **Dispatch** ([`SmallScene::closest`], [`SmallScene::occluded`]): `None` when the CPU
 //!   lacks AVX2 or `STAGELIGHT_TRAVERSAL=sse…` was set at the first query; the caller then
-//!   walks the tree. (A 16-lane AVX-512 kernel was measured and did not pay:
-//!   `docs/ray-layer.md`, issue 17, session 15.) [`SmallScene::build`] makes the path only for meshes of at most
+//!   walks the tree. [`SmallScene::build`] makes the path only for meshes of at most
 //!   [`max_triangles`] triangles (`STAGELIGHT_SMALL_SCENE=N` overrides the threshold, `0`
-//!   turns the path off; for A/B runs).
+//!   turns the path off; for A/B runs). A 16-lane AVX-512 kernel was measured and did not
+//!   pay (`docs/ray-layer.md`, issue 17, session 15).
 
 use std::arch::x86_64::{
     __m256, _mm256_add_ps, _mm256_and_ps, _mm256_andnot_ps, _mm256_cmp_ps, _mm256_div_ps,
@@ -241,7 +242,8 @@ impl SmallScene {
     }
 }
 
-/// Per-ray constants of the 8-lane (AVX2) test.
+/// Per-ray constants of the 8-lane (AVX2) test. Made only inside the AVX2 functions above, so
+/// its methods may use AVX2.
 struct LaneRay8 {
     /// The axis permutation `[kx, ky, kz]` (each < 3).
     axes: [usize; 3],
