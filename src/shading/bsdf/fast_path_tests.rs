@@ -6,8 +6,11 @@ use glam::Vec3;
 use super::{Bsdf, BsdfSample, Lobe, TransportMode};
 use crate::sampling::{hash_u32, u32_to_unit};
 
+/// A sample's fields as bits: direction, value, pdf, delta, scatter kind.
+type SampleBits = ([u32; 3], [u32; 3], u32, bool, u8);
+
 /// Every field of a sample as bits (`−0` and `+0` differ, NaNs compare).
-fn bits(s: Option<BsdfSample>) -> Option<([u32; 3], [u32; 3], u32, bool, u8)> {
+fn bits(s: Option<BsdfSample>) -> Option<SampleBits> {
     s.map(|s| {
         (
             s.wi.to_array().map(f32::to_bits),
@@ -65,7 +68,7 @@ fn lone_lambert_fast_paths_equal_the_general_sums_bit_for_bit() {
         assert_eq!(bsdf.lambert_only().is_some(), lone, "{:?}", bsdf.lobes());
         for _ in 0..4000 {
             let (wo, wi) = (direction(&mut k), direction(&mut k));
-            let wo = if k % 5 == 0 { -wo.abs() } else { wo };
+            let wo = if k.is_multiple_of(5) { -wo.abs() } else { wo };
             let e = bsdf.eval(wo, wi).to_array().map(f32::to_bits);
             assert_eq!(e, bsdf.eval_lobes(wo, wi).to_array().map(f32::to_bits));
             assert_eq!(bsdf.pdf(wo, wi).to_bits(), bsdf.pdf_lobes(wo, wi).to_bits());
