@@ -47,33 +47,17 @@ impl ExactSum {
         if mantissa == 0 {
             return;
         }
-        // The term `mantissa · 2^shift` spans limbs `limb` and `limb + 1` (`shift ≤ 253`,
-        // so `limb ≤ 3`): add it to (or, for a negative value, subtract it from) those two
-        // limbs as one 128-bit number and ripple the carry (borrow) upward. The same integer
-        // sum modulo 2³²⁰ as adding the term's two's complement over all limbs.
         let wide = u128::from(mantissa) << (shift % 64);
+        let mut term = [0u64; LIMBS];
         let limb = (shift / 64) as usize;
-        let pair = u128::from(self.limbs[limb]) | u128::from(self.limbs[limb + 1]) << 64;
-        let (pair, mut ripple) = if bits >> 31 == 1 {
-            pair.overflowing_sub(wide)
-        } else {
-            pair.overflowing_add(wide)
-        };
-        self.limbs[limb] = pair as u64;
-        self.limbs[limb + 1] = (pair >> 64) as u64;
-        for l in &mut self.limbs[limb + 2..] {
-            if !ripple {
-                break;
-            }
-            // Carry: the limb steps up by one (ripples on from all ones); borrow: down.
-            let (s, r) = if bits >> 31 == 1 {
-                l.overflowing_sub(1)
-            } else {
-                l.overflowing_add(1)
-            };
-            *l = s;
-            ripple = r;
+        term[limb] = wide as u64;
+        if limb + 1 < LIMBS {
+            term[limb + 1] = (wide >> 64) as u64;
         }
+        if bits >> 31 == 1 {
+            term = negated(term);
+        }
+        self.add_limbs(&term);
     }
 
     /// Adds another exact sum (merging partial sums).
@@ -188,69 +172,6 @@ mod tests {
         assert_eq!(sum(&reversed), whole);
         let reference: f64 = values.iter().map(|&v| f64::from(v)).sum();
         assert!((whole.to_f64() - reference).abs() < 1e-9);
-    }
-
-    /// The term-wide addition `add` replaced: the value's two's complement over all limbs.
-    fn add_by_terms(s: &mut ExactSum, x: f32) {
-        let bits = x.to_bits();
-        let exponent = (bits >> 23) & 0xff;
-        let fraction = u64::from(bits & 0x7f_ffff);
-        if exponent == 0xff || (exponent == 0 && fraction == 0) {
-            return;
-        }
-        let (mantissa, shift) = if exponent == 0 {
-            (fraction, 0)
-        } else {
-            (fraction | 0x80_0000, exponent - 1)
-        };
-        let wide = u128::from(mantissa) << (shift % 64);
-        let mut term = [0u64; LIMBS];
-        let limb = (shift / 64) as usize;
-        term[limb] = wide as u64;
-        term[limb + 1] = (wide >> 64) as u64;
-        if bits >> 31 == 1 {
-            term = negated(term);
-        }
-        s.add_limbs(&term);
-    }
-
-    #[test]
-    fn two_limb_add_equals_the_full_width_term() {
-        // Random bit patterns (every exponent, both signs, subnormals, non-finite), in runs
-        // that cross zero and ripple carries and borrows through every limb.
-        let mut k = 0x1234_5678u32;
-        let mut next = || {
-            k ^= k << 13;
-            k ^= k >> 17;
-            k ^= k << 5;
-            k
-        };
-        for run in 0..200 {
-            let (mut fast, mut full) = (ExactSum::default(), ExactSum::default());
-            for i in 0..500 {
-                let r = next();
-                let x = match (run + i) % 7 {
-                    0 => f32::from_bits(r),
-                    1 => f32::from_bits(r & 0x807f_ffff),
-                    2 => f32::MAX * if r & 1 == 0 { 1.0 } else { -1.0 },
-                    3 => -f32::from_bits(0x0000_0001),
-                    4 => (r % 1000) as f32 * 1e-3 - 0.5,
-                    _ => f32::from_bits(r % 0xff00_0000),
-                };
-                fast.add(x);
-                add_by_terms(&mut full, x);
-                assert_eq!(fast, full, "run {run} step {i} x {x:e}");
-            }
-        }
-        // All-ones limbs: a carry from the lowest limb ripples through every limb.
-        let mut s = ExactSum::from_limbs([u64::MAX; LIMBS]);
-        let mut t = s;
-        s.add(f32::from_bits(1));
-        add_by_terms(&mut t, f32::from_bits(1));
-        assert_eq!(s, t);
-        assert_eq!(s, ExactSum::default());
-        s.add(-f32::from_bits(1));
-        assert_eq!(s.limbs(), [u64::MAX; LIMBS]);
     }
 
     #[test]
