@@ -436,9 +436,31 @@ impl Bsdf {
         self.lobes().iter().any(|(_, l)| l.is_delta())
     }
 
+    /// The weight of the only lobe of a BSDF that is one Lambert lobe chosen with probability
+    /// exactly 1 (the common diffuse material), for the fast paths of [`Bsdf::eval`],
+    /// [`Bsdf::pdf`] and [`Bsdf::sample`]; `None` for every other BSDF.
+    #[inline(always)]
+    fn lambert_only(&self) -> Option<Vec3> {
+        (self.len == 1 && matches!(self.lobes[0].1, Lobe::Lambert) && self.prob[0] == 1.0)
+            .then_some(self.lobes[0].0)
+    }
+
     /// BSDF value of the non-delta lobes for light arriving from `wi` and leaving along `wo`.
-    #[inline]
+    ///
+    /// A lone Lambert lobe is evaluated directly: the same operations as the sum over the
+    /// lobes (`0 + w·f`, the zero kept so a `−0` weight still gives `+0`), without the lobe
+    /// dispatch ([`Bsdf::eval_lobes`]).
+    #[inline(always)]
     pub fn eval(&self, wo: Vec3, wi: Vec3) -> Vec3 {
+        match self.lambert_only() {
+            Some(w) => Vec3::ZERO + w * Vec3::splat(diffuse::eval(wo, wi)),
+            None => self.eval_lobes(wo, wi),
+        }
+    }
+
+    /// [`Bsdf::eval`] as the sum over the lobes (every BSDF).
+    #[inline]
+    fn eval_lobes(&self, wo: Vec3, wi: Vec3) -> Vec3 {
         self.lobes()
             .iter()
             .fold(Vec3::ZERO, |s, (w, l)| s + *w * l.eval(wo, wi))
@@ -455,8 +477,20 @@ impl Bsdf {
     }
 
     /// Solid-angle pdf with which [`Bsdf::sample`] returns the non-delta direction `wi`.
-    #[inline]
+    ///
+    /// A lone Lambert lobe (probability 1) gives its own pdf: the sum `1·p` over one lobe is
+    /// `p` bit for bit (`p ≥ +0`), so no lobe dispatch is needed ([`Bsdf::pdf_lobes`]).
+    #[inline(always)]
     pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
+        match self.lambert_only() {
+            Some(_) => diffuse::pdf(wo, wi),
+            None => self.pdf_lobes(wo, wi),
+        }
+    }
+
+    /// [`Bsdf::pdf`] as the probability-weighted sum over the lobes (every BSDF).
+    #[inline]
+    fn pdf_lobes(&self, wo: Vec3, wi: Vec3) -> f32 {
         self.lobes()
             .iter()
             .zip(&self.prob)
@@ -466,8 +500,42 @@ impl Bsdf {
 
     /// Draws a direction from `u ∈ [0,1)³` (`u.x` chooses the lobe and, re-used, a
     /// dielectric's branch). `None` when the chosen lobe produced no valid direction.
-    #[inline]
+    ///
+    /// A lone Lambert lobe is sampled inline in the caller ([`Bsdf::sample_lambert`], the
+    /// same bits as [`Bsdf::sample_transport`]); other BSDFs go through the general sampler,
+    /// which stays a call.
+    #[inline(always)]
     pub fn sample(&self, wo: Vec3, u: Vec3) -> Option<BsdfSample> {
+        match self.lambert_only() {
+            Some(w) => Self::sample_lambert(w, wo, u),
+            None => self.sample_general(wo, u),
+        }
+    }
+
+    /// [`Bsdf::sample`] of a BSDF that is one Lambert lobe of weight `w` and probability 1:
+    /// what [`Bsdf::sample_transport`] computes for it, without the lobe choice (its `u.x`
+    /// remap is unused by a Lambert lobe) and the dispatch. The pdf and value are those of
+    /// [`Bsdf::pdf`] and [`Bsdf::eval`] (see there why they are the same bits).
+    #[inline(always)]
+    fn sample_lambert(w: Vec3, wo: Vec3, u: Vec3) -> Option<BsdfSample> {
+        if wo.z <= 0.0 {
+            return None;
+        }
+        let wi = diffuse::sample(wo, Vec2::new(u.y, u.z))?;
+        let pdf = diffuse::pdf(wo, wi);
+        let f = Vec3::ZERO + w * Vec3::splat(diffuse::eval(wo, wi));
+        (pdf > 0.0 && pdf.is_finite()).then_some(BsdfSample {
+            wi,
+            f,
+            pdf,
+            delta: false,
+            scatter: Scatter::Diffuse,
+        })
+    }
+
+    /// [`Bsdf::sample`] for any BSDF (radiance transport).
+    #[inline(never)]
+    fn sample_general(&self, wo: Vec3, u: Vec3) -> Option<BsdfSample> {
         self.sample_transport(wo, u, TransportMode::Radiance)
     }
 
@@ -525,8 +593,8 @@ impl Bsdf {
             Lobe::Glossy { dist, .. } => glossy::sample(&dist, wo, u2)?,
             Lobe::MetallicRoughness(m) => metallic_roughness::sample(&m, wo, u2)?,
         };
-        let pdf = self.pdf(wo, wi);
-        let f = self.eval(wo, wi);
+        let pdf = self.pdf_lobes(wo, wi);
+        let f = self.eval_lobes(wo, wi);
         (pdf > 0.0 && pdf.is_finite()).then_some(BsdfSample {
             wi,
             f,
@@ -574,3 +642,6 @@ impl Bsdf {
         out.into_iter().flatten()
     }
 }
+
+#[cfg(test)]
+mod fast_path_tests;
