@@ -36,7 +36,19 @@ pub fn trace_map(
     cancel: &AtomicBool,
 ) -> Option<Vec<Photon>> {
     let map = (ctx, emission, roles, kind);
-    trace_map_with(map, photons, seed, cancel, Tracing::default())
+    trace_map_with(map, photons, seed, cancel, default_tracing())
+}
+
+/// How [`trace_map`] traces: [`Tracing::default`], or batched when the environment variable
+/// `STAGELIGHT_PHOTON_TRACING` is `batched` (a measuring knob: the same photons either way).
+fn default_tracing() -> Tracing {
+    static TRACING: std::sync::OnceLock<Tracing> = std::sync::OnceLock::new();
+    *TRACING.get_or_init(
+        || match std::env::var("STAGELIGHT_PHOTON_TRACING").as_deref() {
+            Ok("batched") => Tracing::Batched,
+            _ => Tracing::default(),
+        },
+    )
 }
 
 /// [`trace_map`] (its `ctx`, `emission`, `roles`, `kind` in `map`) traced as `tracing`
