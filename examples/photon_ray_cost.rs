@@ -1,5 +1,5 @@
 //! What the photon pass's rays cost the accelerator (issue 17, session 15): traces a scene's
-//! caustic photons one by one (as [`Tracing::PerPhoton`] does) with
+//! caustic photons (aimed at the casters, as the stage aims them) one by one (as [`Tracing::PerPhoton`] does) with
 //! `Accel::intersect_with_cost`, and prints the inner nodes and triangles tested per ray,
 //! by where the ray starts (the light, or the instance it leaves) and what it hits. The
 //! photons' paths are those of the pass (the same walk); only their seed differs from the
@@ -11,9 +11,12 @@
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 
+use stagelight::components::PhotonFlags;
 use stagelight::frame::Frame;
+use stagelight::photon::aim::Aim;
+use stagelight::photon::roles::instance_sphere;
 use stagelight::photon::walk::Walk;
-use stagelight::photon::Emission;
+use stagelight::photon::{Emission, MapKind, PhotonRoles};
 use stagelight::sampling::Sampler;
 use stagelight::scene::load_scene;
 use stagelight::scene_view::{light_set, WithEnvironment};
@@ -47,7 +50,18 @@ fn main() {
     let geometry = frame.outputs.geometry.as_ref().expect("geometry");
     let settings = &frame.inputs.settings;
     let lights = light_set(&scene.world, Some(geometry), settings, WithEnvironment::No);
-    let emission = Emission::new(&lights, geometry);
+    // The caustic pass's emission: aimed at the caustic casters, with their roles.
+    let roles = PhotonRoles::new(geometry, |slot| {
+        let entity = geometry.instances[slot].entity;
+        scene.world.get::<&PhotonFlags>(entity).ok().map(|f| *f)
+    });
+    let spheres = roles
+        .caustic_casters(geometry)
+        .into_iter()
+        .filter_map(|slot| instance_sphere(geometry, slot))
+        .collect();
+    let emission = Emission::new(&lights, geometry).aimed(Aim::new(spheres));
+    let roles = roles.for_map(MapKind::Caustics);
     let ctx = ShadeContext::new(geometry, &lights, settings);
     let accel = &geometry.accel;
     let instance = |prim: u32| geometry.triangle_instance[prim as usize];
@@ -73,7 +87,7 @@ fn main() {
             t.nodes += u64::from(cost.nodes);
             t.triangles += u64::from(cost.triangles);
             t.deepest += u64::from(cost.deepest);
-            walk.step(&ctx, &[], hit, &mut sampler, true, &mut |_| {});
+            walk.step(&ctx, roles, hit, &mut sampler, true, &mut |_| {});
             from = to;
         }
     }
