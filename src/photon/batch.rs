@@ -6,12 +6,16 @@
 //! photon-index order, so a batch stores the same photons in the same order, bit for bit, as
 //! tracing the photons one by one ([`Tracing::PerPhoton`]).
 //!
-//! **Per photon is the default**: `benches/photons.rs` measured batched tracing 5–8 % slower
-//! on `caustics.ron` (1 thread, 3 × 41 alternating rounds, median ratio batched/per-photon
-//! 0.95 global, 0.92 caustic; release, load 12–15 on 2 cores): at the few thousand triangles of
-//! these scenes the traversal fits in cache and there is no memory latency to hide, while
-//! the batch pays for the bookkeeping of its rounds. Batched stays for large scenes and the
-//! bench's ratio; both store the same bytes (`batched_photons_are_the_per_photon_ones_bit_for_bit`).
+//! **Which one runs**: [`super::pass`] picks batched tracing in scenes of many triangles
+//! and per-photon tracing in small ones. `benches/photons.rs` measured batched tracing 5–8 %
+//! slower on `caustics.ron` in session 11 (1 thread, 3 × 41 alternating rounds, median ratio
+//! batched/per-photon 0.95 global, 0.92 caustic; load 12–15 on 2 cores): at the few thousand
+//! triangles of the Cornell boxes the traversal fits in cache and there is no memory latency
+//! to hide, while the batch pays for the bookkeeping of its rounds. Since the AVX-512 batch
+//! kernels (session 14) the photon-heavy `caustics.ron` render (1 M caustic photons into an
+//! 18,048-triangle glass ball) is 1.01–1.05× faster batched (session 15,
+//! `docs/ray-layer.md`). Both store the same bytes
+//! (`batched_photons_are_the_per_photon_ones_bit_for_bit`).
 
 use std::ops::Range;
 
@@ -42,8 +46,8 @@ pub enum MapKind {
 pub enum Tracing {
     /// A work item's photons advance together through batch intersections.
     Batched,
-    /// One photon after the other, one intersection call per ray (the default: faster on
-    /// the measured scenes, see the module header).
+    /// One photon after the other, one intersection call per ray (the default; the photon
+    /// pass itself picks batched tracing in large scenes, see the module header).
     #[default]
     PerPhoton,
 }

@@ -1,0 +1,124 @@
+//! What the photon pass's rays cost the accelerator (issue 17, session 15): traces a scene's
+//! caustic photons (aimed at the casters, as the stage aims them) one by one (as [`Tracing::PerPhoton`] does) with
+//! `Accel::intersect_with_cost`, and prints the inner nodes and triangles tested per ray,
+//! by where the ray starts (the light, or the instance it leaves) and what it hits. The
+//! photons' paths are those of the pass (the same walk); only their seed differs from the
+//! `trace_photons` stage's.
+//!
+//! `cargo run --release --example photon_ray_cost -- [SCENE] [PHOTONS]` (defaults:
+//! `assets/scenes/caustics.ron`, 100,000).
+
+use std::collections::BTreeMap;
+use std::path::PathBuf;
+
+use stagelight::components::PhotonFlags;
+use stagelight::frame::Frame;
+use stagelight::photon::aim::Aim;
+use stagelight::photon::roles::instance_sphere;
+use stagelight::photon::walk::Walk;
+use stagelight::photon::{Emission, MapKind, PhotonRoles};
+use stagelight::sampling::Sampler;
+use stagelight::scene::load_scene;
+use stagelight::scene_view::{light_set, WithEnvironment};
+use stagelight::shading::ShadeContext;
+
+/// Sums for one kind of ray.
+#[derive(Default)]
+struct Tally {
+    rays: u64,
+    nodes: u64,
+    triangles: u64,
+    deepest: u64,
+}
+
+fn main() {
+    let mut args = std::env::args().skip(1);
+    let path = args.next().map_or_else(
+        || PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("assets/scenes/caustics.ron"),
+        PathBuf::from,
+    );
+    let photons: u64 = args.next().and_then(|n| n.parse().ok()).unwrap_or(100_000);
+    let mut scene = load_scene(&path).expect("the scene loads");
+    let mut frame = Frame::new(scene.settings.clone());
+    let stages = stagelight::systems::STAGES;
+    let at = stages
+        .iter()
+        .position(|s| s.name == "trace_photons")
+        .expect("trace_photons stage");
+    stagelight::schedule::run_stages(&stages[..at], &mut scene.world, &mut frame)
+        .expect("stages before trace_photons");
+    let geometry = frame.outputs.geometry.as_ref().expect("geometry");
+    let settings = &frame.inputs.settings;
+    let lights = light_set(&scene.world, Some(geometry), settings, WithEnvironment::No);
+    // The caustic pass's emission: aimed at the caustic casters, with their roles.
+    let roles = PhotonRoles::new(geometry, |slot| {
+        let entity = geometry.instances[slot].entity;
+        scene.world.get::<&PhotonFlags>(entity).ok().map(|f| *f)
+    });
+    let spheres = roles
+        .caustic_casters(geometry)
+        .into_iter()
+        .filter_map(|slot| instance_sphere(geometry, slot))
+        .collect();
+    let emission = Emission::new(&lights, geometry).aimed(Aim::new(spheres));
+    let roles = roles.for_map(MapKind::Caustics);
+    let ctx = ShadeContext::new(geometry, &lights, settings);
+    let accel = &geometry.accel;
+    let instance = |prim: u32| geometry.triangle_instance[prim as usize];
+    // (start: instance left or light, end: instance hit or miss) → tally.
+    let mut tallies: BTreeMap<(String, String), Tally> = BTreeMap::new();
+    for i in 0..photons {
+        let mut sampler = Sampler::for_item(0x5e55, i, 0);
+        let u = [(); 5].map(|_| sampler.next_1d());
+        let Some(e) = emission.sample(geometry, u) else {
+            continue;
+        };
+        let mut walk = Walk::new(&ctx, e.ray, e.power);
+        let mut from = "light".to_string();
+        while walk.live() {
+            let (hit, cost) = accel.intersect_with_cost(walk.ray());
+            let to = hit.map_or("miss".to_string(), |h| {
+                let slot = instance(h.prim);
+                let n = geometry.instances[slot as usize].mesh.triangles.len();
+                format!("instance {slot} ({n} tris)")
+            });
+            let t = tallies.entry((from.clone(), to.clone())).or_default();
+            t.rays += 1;
+            t.nodes += u64::from(cost.nodes);
+            t.triangles += u64::from(cost.triangles);
+            t.deepest += u64::from(cost.deepest);
+            walk.step(&ctx, roles, hit, &mut sampler, true, &mut |_| {});
+            from = to;
+        }
+    }
+    let stats = accel.stats();
+    println!(
+        "{}: {photons} caustic photons, {} triangles, {} nodes, depth {}",
+        path.display(),
+        geometry.triangle_count(),
+        stats.nodes,
+        stats.depth
+    );
+    println!("from → to: rays, per ray: inner nodes, triangles, deepest level");
+    let mut all = Tally::default();
+    for ((from, to), t) in &tallies {
+        let per = |x: u64| x as f64 / t.rays as f64;
+        println!(
+            "{from} → {to}: {} rays, {:.1} nodes, {:.1} triangles, {:.1} deep",
+            t.rays,
+            per(t.nodes),
+            per(t.triangles),
+            per(t.deepest)
+        );
+        all.rays += t.rays;
+        all.nodes += t.nodes;
+        all.triangles += t.triangles;
+    }
+    let per = |x: u64| x as f64 / all.rays.max(1) as f64;
+    println!(
+        "all: {} rays, {:.1} nodes, {:.1} triangles per ray",
+        all.rays,
+        per(all.nodes),
+        per(all.triangles)
+    );
+}
