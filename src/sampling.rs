@@ -112,6 +112,27 @@ impl Sampler {
     }
 }
 
+/// `Sampler::new(seed, first + k).next_2d()` for `k in 0..count`, in order, handed to `f`:
+/// the first two dimensions of consecutive samples (a bake texel's hemisphere rays), four
+/// samples per pass of the lane arithmetic ([`sobol8::first_two_of_four`]), the same bits.
+#[inline]
+pub fn first_2d_of_run(seed: u32, first: u32, count: u32, mut f: impl FnMut(Vec2)) {
+    let mut k = 0;
+    // Four at a time while every index is inside the Sobol table (`next_1d`'s condition).
+    while k + 4 <= count && u64::from(first) + u64::from(k) + 4 <= 1 << 16 {
+        let revs: [u32; 4] =
+            std::array::from_fn(|j| sobol8::scrambled_index(first + k + j as u32, seed));
+        let v = sobol8::first_two_of_four(revs, seed);
+        for j in 0..4 {
+            f(Vec2::new(v[2 * j], v[2 * j + 1]));
+        }
+        k += 4;
+    }
+    for k in k..count {
+        f(Sampler::new(seed, first.wrapping_add(k)).next_2d());
+    }
+}
+
 /// Uniform point on a triangle (barycentrics b1, b2) from `u ∈ [0,1)²` (Heitz's low-distortion
 /// square-to-triangle map).
 pub fn sample_triangle(u: Vec2) -> (f32, f32) {
@@ -167,6 +188,29 @@ mod tests {
             let x = a.next_1d();
             assert!((0.0..1.0).contains(&x));
             assert_eq!(x, b.next_1d());
+        }
+    }
+
+    #[test]
+    fn first_2d_of_run_is_next_2d_of_each_sample() {
+        for (first, count) in [
+            (0u32, 64u32),
+            (5, 7),
+            (65_530, 12),
+            (u32::MAX - 2, 3),
+            (100, 0),
+        ] {
+            let mut got = Vec::new();
+            first_2d_of_run(0x5eed, first, count, |v| {
+                got.push(v.to_array().map(f32::to_bits))
+            });
+            let want: Vec<_> = (0..count)
+                .map(|k| {
+                    let v = Sampler::new(0x5eed, first.wrapping_add(k)).next_2d();
+                    v.to_array().map(f32::to_bits)
+                })
+                .collect();
+            assert_eq!(got, want, "first {first} count {count}");
         }
     }
 

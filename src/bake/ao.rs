@@ -11,7 +11,7 @@ use glam::Vec3;
 use crate::accel::{offset_ray_origin, Ray, SurfacePoint};
 use crate::bake::hemisphere_lanes::{DirectionLanes, Frame};
 use crate::geometry::SceneGeometry;
-use crate::sampling::Sampler;
+use crate::sampling::first_2d_of_run;
 
 /// Two tangents completing an orthonormal basis with `n` as its third axis (the shading
 /// library's frame: Duff et al. 2017).
@@ -262,9 +262,7 @@ fn trace_in(
         // The sample points first, then their directions in SIMD lanes (the same bits as
         // `t·x + b·y + n·z` of `sample_cosine_hemisphere` one by one).
         lanes.clear();
-        for k in 0..job.count {
-            lanes.push(Sampler::new(seed, job.first + k).next_2d());
-        }
+        first_2d_of_run(seed, job.first, job.count, |u| lanes.push(u));
         lanes.directions(Frame {
             t,
             b,
@@ -613,7 +611,7 @@ fn occlusion(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sampling::sample_cosine_hemisphere;
+    use crate::sampling::{sample_cosine_hemisphere, Sampler};
     use crate::shading::integrator::fixture::{self, Object};
 
     /// What tracing every ray to its first hit gives (the bake before the probe stopped

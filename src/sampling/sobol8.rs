@@ -110,6 +110,75 @@ const REVERSED_NIBBLE_LOW: [u8; 32] = [
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
 unsafe fn eight_avx2(t: &NibbleTables, index_rev: u32, pair: u32, seed: u32) -> [f32; 8] {
+    use std::arch::x86_64::{__m256i, _mm256_loadu_si256, _mm256_xor_si256};
+    let load = |a: &[u32; 8]| _mm256_loadu_si256(a.as_ptr().cast::<__m256i>());
+    let rows = &t.0[pair as usize];
+    let entry = |q: usize| load(&rows[q][((index_rev >> (28 - 4 * q)) & 0xf) as usize]);
+    let sobol = _mm256_xor_si256(
+        _mm256_xor_si256(entry(0), entry(1)),
+        _mm256_xor_si256(entry(2), entry(3)),
+    );
+    // The per-lane scramble (`sobol_burley::sample_4d`'s, by dimension set and lane).
+    let seed = seed.wrapping_mul(0x9c8f2d3b);
+    let mut scramble = [0u32; 8];
+    for (lane, s) in scramble.iter_mut().enumerate() {
+        *s = seed ^ (2 * pair + (lane / 4) as u32) ^ LANE_SALT[lane % 4];
+    }
+    scrambled_unit_avx2(sobol, &scramble)
+}
+
+/// Dimensions 0 and 1 of four samples (their [`scrambled_index`]es `index_revs`) under
+/// `seed`: `[s0d0, s0d1, s1d0, s1d1, …]`, lane by lane what [`eight`] gives for pair 0
+/// (dimension set 0, lanes 0 and 1). A bake's hemisphere uses only these two dimensions of
+/// each of its samples, so four samples share one pass of the lane arithmetic.
+#[inline]
+pub fn first_two_of_four(index_revs: [u32; 4], seed: u32) -> [f32; 8] {
+    let t = tables();
+    #[cfg(target_arch = "x86_64")]
+    if use_avx2() {
+        // SAFETY: AVX2 was detected on this CPU.
+        return unsafe { first_two_of_four_avx2(t, index_revs, seed) };
+    }
+    let mut out = [0.0; 8];
+    for (k, &rev) in index_revs.iter().enumerate() {
+        out[2 * k..2 * k + 2].copy_from_slice(&eight_in(t, rev, 0, seed)[..2]);
+    }
+    out
+}
+
+/// [`first_two_of_four`] in AVX2: the Sobol sums of lanes 0 and 1 of each sample as one
+/// 64-bit table read per nibble, then [`eight_avx2`]'s scramble on the eight lanes.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn first_two_of_four_avx2(t: &NibbleTables, index_revs: [u32; 4], seed: u32) -> [f32; 8] {
+    use std::arch::x86_64::_mm256_set_epi64x;
+    let rows = &t.0[0];
+    let pair_of = |index_rev: u32| {
+        let mut x = 0u64;
+        for (q, row) in rows.iter().enumerate() {
+            let e = &row[((index_rev >> (28 - 4 * q)) & 0xf) as usize];
+            x ^= u64::from(e[0]) | u64::from(e[1]) << 32;
+        }
+        x as i64
+    };
+    let sobol = _mm256_set_epi64x(
+        pair_of(index_revs[3]),
+        pair_of(index_revs[2]),
+        pair_of(index_revs[1]),
+        pair_of(index_revs[0]),
+    );
+    let seed = seed.wrapping_mul(0x9c8f2d3b);
+    let (d0, d1) = (seed ^ LANE_SALT[0], seed ^ LANE_SALT[1]);
+    scrambled_unit_avx2(sobol, &[d0, d1, d0, d1, d0, d1, d0, d1])
+}
+
+/// The per-lane hash of `scramble`, the Owen scramble of the Sobol sums `sobol` with it, the
+/// bit reversal and the map to `[0, 1)`: `sobol_burley::sample_4d`'s operations after its
+/// Sobol sum, eight lanes per instruction.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+#[inline]
+unsafe fn scrambled_unit_avx2(sobol: std::arch::x86_64::__m256i, scramble: &[u32; 8]) -> [f32; 8] {
     use std::arch::x86_64::{
         __m256i, _mm256_add_epi32, _mm256_and_si256, _mm256_castsi256_ps, _mm256_loadu_si256,
         _mm256_mullo_epi32, _mm256_or_si256, _mm256_set1_epi32, _mm256_set1_epi8, _mm256_set1_ps,
@@ -118,20 +187,8 @@ unsafe fn eight_avx2(t: &NibbleTables, index_rev: u32, pair: u32, seed: u32) -> 
     };
     let load = |a: &[u32; 8]| _mm256_loadu_si256(a.as_ptr().cast::<__m256i>());
     let load_bytes = |a: &[u8; 32]| _mm256_loadu_si256(a.as_ptr().cast::<__m256i>());
-    let rows = &t.0[pair as usize];
-    let entry = |q: usize| load(&rows[q][((index_rev >> (28 - 4 * q)) & 0xf) as usize]);
-    let sobol = _mm256_xor_si256(
-        _mm256_xor_si256(entry(0), entry(1)),
-        _mm256_xor_si256(entry(2), entry(3)),
-    );
-    // The per-lane scramble and its hash (`sobol_burley::parts::hash`).
-    let seed = seed.wrapping_mul(0x9c8f2d3b);
-    let mut scramble = [0u32; 8];
-    for (lane, s) in scramble.iter_mut().enumerate() {
-        *s = seed ^ (2 * pair + (lane / 4) as u32) ^ LANE_SALT[lane % 4];
-    }
     let k = |x: u32| _mm256_set1_epi32(x as i32);
-    let mut h = load(&scramble);
+    let mut h = load(scramble);
     h = _mm256_xor_si256(h, k(0xe6fe3beb));
     h = _mm256_xor_si256(h, _mm256_srli_epi32(h, 16));
     h = _mm256_mullo_epi32(h, k(0x7feb352d));
@@ -201,6 +258,28 @@ mod tests {
                     assert_eq!(got[4..], b, "seed {seed} index {index} pair {pair}");
                     // The baseline lanes agree with whatever ran above.
                     assert_eq!(eight_in(tables(), rev, pair, seed), got);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn first_two_of_four_are_the_first_two_of_eight() {
+        for seed in [0u32, 1, 7, 0xdead_beef, 0x9e37_79b9] {
+            for first in [0u32, 1, 13, 1000, 40_000, 65_532] {
+                let revs: [u32; 4] =
+                    std::array::from_fn(|k| scrambled_index(first + k as u32, seed));
+                let got = first_two_of_four(revs, seed);
+                for (k, &rev) in revs.iter().enumerate() {
+                    let want = eight(rev, 0, seed);
+                    assert_eq!(
+                        got[2 * k..2 * k + 2],
+                        want[..2],
+                        "seed {seed} index {first}+{k}"
+                    );
+                    let index = first + k as u32;
+                    assert_eq!(got[2 * k], sobol_burley::sample(index, 0, seed));
+                    assert_eq!(got[2 * k + 1], sobol_burley::sample(index, 1, seed));
                 }
             }
         }
