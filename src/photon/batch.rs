@@ -26,8 +26,13 @@ use super::trace::trace_photon_with_roles;
 use super::walk::Walk;
 use crate::accel::Hit;
 use crate::components::PhotonRole;
+use crate::geometry::ShadingPoint;
 use crate::sampling::Sampler;
 use crate::shading::integrator::ShadeContext;
+use crate::shading::photon_vertex::PhotonVertex;
+
+/// Walks whose hits' shading points are computed together before they step.
+const BLOCK: usize = 16;
 
 /// Which map a pass fills.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -144,6 +149,7 @@ impl Chunk<'_> {
         let (mut rays, mut hits) = (Vec::new(), Vec::<Option<Hit>>::new());
         // (photon index, photon): sorted stably by index at the end.
         let mut stored: Vec<(u64, Photon)> = Vec::new();
+        let mut points: Vec<Option<ShadingPoint>> = Vec::with_capacity(BLOCK);
         let stop = self.stop_after_diffuse();
         while !live.is_empty() {
             rays.clear();
@@ -151,14 +157,24 @@ impl Chunk<'_> {
             hits.clear();
             hits.resize(rays.len(), None);
             self.ctx.geometry.accel.intersect_batch(&rays, &mut hits);
-            for (&w, hit) in live.iter().zip(&hits) {
-                let (i, sampler, walk, light) = &mut walks[w];
-                let (i, light) = (*i, *light);
-                walk.step(self.ctx, self.roles, *hit, sampler, stop, &mut |d| {
-                    if self.keeps(&d, light) {
-                        stored.push((i, d.photon));
-                    }
-                });
+            for (ws, hs) in live.chunks(BLOCK).zip(hits.chunks(BLOCK)) {
+                // The block's shading points first: their loads (the hit triangle, its
+                // indices and normals) overlap here instead of stalling each interaction.
+                points.clear();
+                points.extend(hs.iter().map(|h| {
+                    h.as_ref()
+                        .map(|h| PhotonVertex::shading_point(self.ctx, h))
+                }));
+                for ((&w, hit), sp) in ws.iter().zip(hs).zip(&points) {
+                    let (i, sampler, walk, light) = &mut walks[w];
+                    let (i, light) = (*i, *light);
+                    let at = hit.as_ref().zip(sp.as_ref());
+                    walk.step_at(self.ctx, self.roles, at, sampler, stop, &mut |d| {
+                        if self.keeps(&d, light) {
+                            stored.push((i, d.photon));
+                        }
+                    });
+                }
             }
             live.retain(|&w| walks[w].2.live());
         }

@@ -13,7 +13,9 @@ use crate::accel::{Hit, Ray};
 use crate::components::PhotonRole;
 use crate::sampling::Sampler;
 use crate::shading::bsdf::{Bsdf, Scatter, TransportMode};
-use crate::shading::integrator::{ShadeContext, Vertex};
+use crate::geometry::ShadingPoint;
+use crate::shading::integrator::ShadeContext;
+use crate::shading::photon_vertex::PhotonVertex;
 use crate::shading::shadow::shader_transmits_shadows;
 
 /// Most surface interactions of one photon.
@@ -114,16 +116,42 @@ impl Walk {
         if !self.live {
             return;
         }
+        let at = hit.map(|h| (h, PhotonVertex::shading_point(ctx, &h)));
+        self.step_at(
+            ctx,
+            roles,
+            at.as_ref().map(|(h, sp)| (h, sp)),
+            sampler,
+            stop_after_diffuse,
+            deposit,
+        );
+    }
+
+    /// [`Walk::step`] at a hit whose shading point the caller computed
+    /// ([`PhotonVertex::shading_point`] of the hit): the same interaction, bit for bit.
+    #[inline(always)]
+    pub fn step_at(
+        &mut self,
+        ctx: &ShadeContext<'_>,
+        roles: &[PhotonRole],
+        hit: Option<(&Hit, &ShadingPoint)>,
+        sampler: &mut Sampler,
+        stop_after_diffuse: bool,
+        deposit: &mut impl FnMut(Deposit),
+    ) {
+        if !self.live {
+            return;
+        }
         self.live = false;
         let fate = &mut self.fate;
         let ray = self.ray;
-        let Some(hit) = hit else {
+        let Some((hit, sp)) = hit else {
             fate.escaped = self.power;
             fate.escape_dir = ray.dir.normalize_or_zero();
             return;
         };
         fate.last_prim = Some(hit.prim);
-        let v = Vertex::new(ctx, &ray, &hit);
+        let v = PhotonVertex::new(ctx, &ray, hit, *sp);
         let through = self.power * v.transmittance;
         fate.absorbed += self.power - through;
         let power = through;

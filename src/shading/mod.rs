@@ -13,6 +13,7 @@ pub mod lights;
 pub mod medium;
 pub mod microfacet;
 pub mod mis;
+pub mod photon_vertex;
 pub mod shadow;
 pub mod surface;
 pub mod texture;
