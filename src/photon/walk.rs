@@ -12,7 +12,7 @@ use super::kdtree::Photon;
 use crate::accel::{Hit, Ray};
 use crate::components::PhotonRole;
 use crate::sampling::Sampler;
-use crate::shading::bsdf::{Bsdf, Scatter, TransportMode};
+use crate::shading::bsdf::{Scatter, TransportMode};
 use crate::geometry::ShadingPoint;
 use crate::shading::integrator::ShadeContext;
 use crate::shading::photon_vertex::PhotonVertex;
@@ -155,7 +155,7 @@ impl Walk {
         let through = self.power * v.transmittance;
         fate.absorbed += self.power - through;
         let power = through;
-        let mut scratch = Bsdf::empty();
+        let mut scratch = None;
         let bsdf = v.bsdf_ref(ctx, &mut scratch);
         if !(bsdf.reflects() && v.visible) {
             fate.absorbed += power;

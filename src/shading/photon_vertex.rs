@@ -132,15 +132,21 @@ impl<'a> PhotonVertex<'a> {
         }
     }
 
-    /// [`Vertex::bsdf_ref`]: the material's kept BSDF when the context keeps them and no
-    /// texture drives this point's shader, else built into `scratch`.
+    /// [`Vertex::bsdf_ref`]'s BSDF: the material's kept BSDF when the context keeps them and
+    /// no texture drives this point's shader, else built in `scratch` (only then: the
+    /// 168-byte empty BSDF is not written at every hit).
     #[inline]
-    pub fn bsdf_ref<'b>(&'b self, ctx: &ShadeContext<'b>, scratch: &'b mut Bsdf) -> &'b Bsdf {
+    pub fn bsdf_ref<'b>(
+        &'b self,
+        ctx: &ShadeContext<'b>,
+        scratch: &'b mut Option<Bsdf>,
+    ) -> &'b Bsdf {
         match (ctx.bsdfs, &self.shader) {
             (Some(kept), Cow::Borrowed(_)) => kept.get(self.sp.material, self.front),
             _ => {
-                scratch.set_shader(&self.shader, self.front);
-                scratch
+                let b = scratch.insert(Bsdf::empty());
+                b.set_shader(&self.shader, self.front);
+                b
             }
         }
     }
