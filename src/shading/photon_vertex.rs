@@ -162,3 +162,160 @@ impl<'a> PhotonVertex<'a> {
         (ok && wi.is_finite()).then(|| spawn_ray(&self.sp.surface, wi))
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use std::sync::Arc;
+
+    use glam::Vec2;
+
+    use super::*;
+    use crate::components::{Displacement, DisplacementMode, ScalarNode, TriMesh, UvAxis};
+    use crate::geometry::SceneGeometry;
+    use crate::settings::RenderSettings;
+    use crate::shading::integrator::fixture::{self, Object};
+    use crate::shading::integrator::material_bsdfs::MaterialBsdfs;
+    use crate::shading::integrator::triangle_normals::TriangleNormals;
+    use crate::shading::lights::LightSet;
+    use crate::shading::texture::{Binding, BumpMap, MaterialGraph, Op, Program};
+
+    /// A closed cube seen from inside with smooth normals bent toward its centre and uvs; a
+    /// coloured glass floor (hit from above and below); a wall panel whose albedo and bump
+    /// a graph drives; a panel with bump displacement.
+    fn scene() -> SceneGeometry {
+        let mut textured = fixture::lambert(0.5);
+        let mut p = Program::default();
+        let uv = p.push(Op::Uv);
+        let scale = p.push(Op::Const(Vec3::splat(4.0)));
+        let a = p.push(Op::Const(Vec3::splat(0.9)));
+        let b = p.push(Op::Const(Vec3::splat(0.1)));
+        let c = p.push(Op::Checker { uv, scale, a, b });
+        let u = p.push(Op::Channel(uv, 0));
+        textured.graph = Some(Arc::new(MaterialGraph {
+            program: p,
+            bindings: vec![Binding {
+                param: "albedo".into(),
+                reg: c,
+            }],
+            bump: Some(BumpMap {
+                height: u,
+                scale: 0.3,
+            }),
+            normal_map: None,
+            emission: None,
+        }));
+        let panel = |x: f32| {
+            fixture::quad(
+                Vec3::new(x, 0.99, -0.7),
+                Vec3::new(0.6, 0.0, 0.0),
+                Vec3::new(0.0, 0.0, 1.4),
+            )
+        };
+        let mut g = fixture::geometry(vec![
+            Object {
+                triangles: fixture::inward_cube(1.0),
+                material: fixture::lambert(0.7),
+            },
+            Object {
+                triangles: fixture::floor(0.8, -0.3),
+                material: fixture::material(Shader::Dielectric {
+                    ior: 1.5,
+                    ior_out: 1.0,
+                    col: Vec3::new(0.9, 0.5, 0.2),
+                }),
+            },
+            Object {
+                triangles: panel(-0.6),
+                material: textured,
+            },
+            Object {
+                triangles: panel(0.2),
+                material: fixture::lambert(0.3),
+            },
+        ]);
+        let cube = &mut g.instances[0];
+        let positions = cube.mesh.positions.clone();
+        cube.mesh = Arc::new(TriMesh {
+            triangles: cube.mesh.triangles.clone(),
+            normals: Some(positions.iter().map(|&p| (-p).normalize()).collect()),
+            uvs: Some(positions.iter().map(|&p| Vec2::new(p.x, p.y)).collect()),
+            positions,
+        });
+        g.instances[3].bump = Some(Arc::new(Displacement {
+            shader: ScalarNode::Sine {
+                amplitude: 0.05,
+                factor: 7.0,
+                axis: UvAxis::U,
+            },
+            bound: None,
+            mode: DisplacementMode::Bump,
+        }));
+        g
+    }
+
+    #[test]
+    fn photon_vertices_are_vertices_bit_for_bit() {
+        let g = scene();
+        let lights = LightSet::default();
+        let s = RenderSettings::default();
+        let normals = TriangleNormals::new(&g).expect("a small scene keeps its table");
+        let bsdfs = MaterialBsdfs::new(&g);
+        let contexts = [
+            ShadeContext::new(&g, &lights, &s),
+            ShadeContext::new(&g, &lights, &s)
+                .with_normals(Some(&normals))
+                .with_bsdfs(Some(&bsdfs)),
+        ];
+        let bits = |v: Vec3| v.to_array().map(f32::to_bits);
+        let mut seen = [0usize; 4];
+        let mut back = 0;
+        for ctx in &contexts {
+            for i in 0..3000 {
+                let a = i as f32 * 0.37;
+                let dir = Vec3::new(a.cos(), a.sin(), (i as f32 * 0.11).sin());
+                let origin = [Vec3::new(0.1, -0.2, 0.3), Vec3::new(-0.2, 0.3, -0.6)][i % 2];
+                let (ray, hit) = fixture::hit(&g, origin, dir);
+                let want = Vertex::new(ctx, &ray, &hit);
+                let sp = PhotonVertex::shading_point(ctx, &hit);
+                let got = PhotonVertex::new(ctx, &ray, &hit, sp);
+                seen[got.sp.instance as usize] += 1;
+                back += usize::from(!got.front);
+                let (w, o) = (&want.sp, &got.sp);
+                assert_eq!(bits(o.surface.p), bits(w.surface.p));
+                assert_eq!(bits(o.surface.p_err), bits(w.surface.p_err));
+                assert_eq!(bits(o.surface.ng), bits(w.surface.ng));
+                assert_eq!(bits(o.normal), bits(w.normal), "ray {i}");
+                assert_eq!(
+                    (o.material, o.instance, o.prim),
+                    (w.material, w.instance, w.prim)
+                );
+                assert_eq!(bits(got.ng), bits(want.ng));
+                assert_eq!((got.front, got.visible), (want.front, want.visible));
+                assert_eq!(*got.shader, *want.shader);
+                assert_eq!(
+                    matches!(got.shader, Cow::Borrowed(_)),
+                    matches!(want.shader, Cow::Borrowed(_))
+                );
+                for (x, y) in [
+                    (got.frame.s, want.frame.s),
+                    (got.frame.t, want.frame.t),
+                    (got.frame.n, want.frame.n),
+                    (got.wo, want.wo),
+                    (got.wo_world, want.wo_world),
+                    (got.transmittance, want.transmittance),
+                ] {
+                    assert_eq!(bits(x), bits(y), "ray {i}");
+                }
+                let (mut a, mut b) = (Bsdf::empty(), None);
+                assert_eq!(got.bsdf_ref(ctx, &mut b), want.bsdf_ref(ctx, &mut a));
+                let wi = Vec3::new(0.3, -0.4, 0.8).normalize();
+                for transmits in [false, true] {
+                    assert_eq!(got.spawn(wi, transmits), want.spawn(wi, transmits));
+                }
+            }
+        }
+        println!("hits per instance {seen:?}, {back} back faces");
+        assert!(seen.iter().all(|&n| n > 50), "{seen:?}");
+        assert!(back > 50, "{back}");
+    }
+}
