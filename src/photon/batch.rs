@@ -161,10 +161,10 @@ impl Chunk<'_> {
                 // The block's shading points first: their loads (the hit triangle, its
                 // indices and normals) overlap here instead of stalling each interaction.
                 points.clear();
-                points.extend(hs.iter().map(|h| {
-                    h.as_ref()
-                        .map(|h| PhotonVertex::shading_point(self.ctx, h))
-                }));
+                points.extend(
+                    hs.iter()
+                        .map(|h| h.as_ref().map(|h| PhotonVertex::shading_point(self.ctx, h))),
+                );
                 for ((&w, hit), sp) in ws.iter().zip(hs).zip(&points) {
                     let (i, sampler, walk, light) = &mut walks[w];
                     let (i, light) = (*i, *light);
