@@ -16,6 +16,12 @@
 //! 18,048-triangle glass ball) is 1.01–1.05× faster batched (session 15,
 //! `docs/ray-layer.md`). Both store the same bytes
 //! (`batched_photons_are_the_per_photon_ones_bit_for_bit`).
+//!
+//! After each round's batch intersection the walks step in blocks of [`BLOCK`]: the block's
+//! shading points (the hit triangle's vertices, its instance, indices and vertex normals, all
+//! loads that miss the cache in a large scene) are computed first in one tight loop, where
+//! their loads overlap, then each walk steps from its point
+//! ([`Walk::step_at`](super::walk::Walk::step_at), [`PhotonVertex`]).
 
 use std::ops::Range;
 
