@@ -352,6 +352,24 @@ impl<'a> Vertex<'a> {
         }
     }
 
+    /// [`Vertex::bsdf_ref`] with a scratch value made only when a point needs one (a path of
+    /// untextured vertices never builds the 168-byte empty BSDF).
+    #[inline]
+    pub fn bsdf_in<'b>(
+        &'b self,
+        ctx: &ShadeContext<'b>,
+        scratch: &'b mut Option<Bsdf>,
+    ) -> &'b Bsdf {
+        match (ctx.bsdfs, &self.shader) {
+            (Some(kept), Cow::Borrowed(_)) => kept.get(self.sp.material, self.front),
+            _ => {
+                let b = scratch.get_or_insert_with(Bsdf::empty);
+                b.set_shader(&self.shader, self.front);
+                b
+            }
+        }
+    }
+
     /// A ray leaving along the local direction `wi` if it lies on the geometric side its
     /// kind requires (reflection: the viewer's side; transmission: the other side).
     #[inline(always)]
@@ -387,8 +405,18 @@ pub fn light_loop_split(
     mis: bool,
     diffuse: Option<&mut Vec3>,
 ) -> Vec3 {
-    let f = |wi: Vec3, wi_world: Vec3| bsdf.eval(v.wo, wi) * v.bump_shadowing(wi_world);
-    let fd = |wi: Vec3, wi_world: Vec3| bsdf.eval_diffuse(v.wo, wi) * v.bump_shadowing(wi_world);
+    // The bump term's per-point part made once, and only at bumped points (inside the loop,
+    // the compiler hoisted it out and computed its division at every point, bumped or not).
+    let bump = v
+        .bumped
+        .then(|| bump::shadowing_roughness(v.ng, v.sp.normal))
+        .flatten();
+    let shadowing = move |wi_world: Vec3| match bump {
+        Some(alpha2) => bump::shadowing_at(alpha2, v.ng, wi_world),
+        None => 1.0,
+    };
+    let f = |wi: Vec3, wi_world: Vec3| bsdf.eval(v.wo, wi) * shadowing(wi_world);
+    let fd = |wi: Vec3, wi_world: Vec3| bsdf.eval_diffuse(v.wo, wi) * shadowing(wi_world);
     let share = diffuse.map(|d| (&fd as &dyn Fn(Vec3, Vec3) -> Vec3, d));
     // The BSDF closure passed by value, so the loop evaluates it inline.
     gather_with(ctx, v, sampler, mis.then_some(bsdf), f, true, share)
