@@ -166,6 +166,7 @@ impl SmallScene {
     /// The CPU must support AVX2.
     #[target_feature(enable = "avx2")]
     unsafe fn closest_avx2(&self, ray: &Ray) -> Option<Hit> {
+        let ray = &read_by_field(ray);
         if !ray_is_valid(ray) {
             return None;
         }
@@ -216,6 +217,7 @@ impl SmallScene {
     /// The CPU must support AVX2.
     #[target_feature(enable = "avx2")]
     unsafe fn occluded_avx2(&self, ray: &Ray) -> bool {
+        let ray = &read_by_field(ray);
         if !ray_is_valid(ray) {
             return false;
         }
@@ -241,6 +243,23 @@ impl SmallScene {
             }
         }
         false
+    }
+}
+
+/// A copy of `ray` read one `f32` field at a time. The caller has just stored the ray (a
+/// shadow or continuation ray made in registers), often as an 8-byte and a 4-byte store per
+/// vector; a wider load across two such stores cannot be forwarded from them and waits for
+/// the stores to retire (≈ 7 % of an occlusion query measured). A 4-byte load lies inside
+/// whichever store wrote its field, so it is forwarded; volatile reads keep the compiler
+/// from merging them into wider loads.
+#[inline(always)]
+fn read_by_field(ray: &Ray) -> Ray {
+    // SAFETY: each pointer comes from a reference to an initialised, aligned `f32` field.
+    let f = |x: &f32| unsafe { std::ptr::read_volatile(x) };
+    Ray {
+        origin: Vec3::new(f(&ray.origin.x), f(&ray.origin.y), f(&ray.origin.z)),
+        dir: Vec3::new(f(&ray.dir.x), f(&ray.dir.y), f(&ray.dir.z)),
+        t_max: f(&ray.t_max),
     }
 }
 
