@@ -260,14 +260,15 @@ impl<'a> Vertex<'a> {
             None => ctx.geometry.shading_point(hit),
         };
         let material = &ctx.geometry.materials[sp.material as usize];
-        let (shader, bumped, emission) = match textured::evaluate(ctx.geometry, &sp, hit, material)
-        {
+        let textured = textured::evaluate(ctx.geometry, &sp, hit, material);
+        let (bumped, emission) = match &textured {
             Some(t) => {
                 sp.normal = t.normal;
-                (Cow::Owned(t.shader), t.bumped, t.emission)
+                (t.bumped, t.emission)
             }
-            None => (Cow::Borrowed(&material.shader), false, material.emission),
+            None => (false, material.emission),
         };
+        let bound = textured.as_ref().map_or(&material.shader, |t| &t.shader);
         let wo_world = -ray.dir.normalize();
         let front = sp.surface.ng.dot(wo_world) > 0.0;
         if !front {
@@ -278,7 +279,7 @@ impl<'a> Vertex<'a> {
             sp.normal = bump::ensure_valid_reflection(ng, wo_world, sp.normal);
         }
         let visible = front || material.shades_back() || ctx.face == Face::Both;
-        let transmittance = match &*shader {
+        let transmittance = match bound {
             Shader::Dielectric { col, .. } if !front => {
                 let d = hit.t * ray.dir.length();
                 Vec3::new(col.x.powf(d), col.y.powf(d), col.z.powf(d))
@@ -303,7 +304,12 @@ impl<'a> Vertex<'a> {
             front,
             visible,
             material,
-            shader,
+            // Made here, in place: a `Cow` made above and moved in was copied whole (64
+            // bytes), its unused bytes read back across older, narrower stores (a stall).
+            shader: match textured {
+                Some(t) => Cow::Owned(t.shader),
+                None => Cow::Borrowed(&material.shader),
+            },
             bumped,
             emission,
             frame,
