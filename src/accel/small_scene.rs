@@ -559,6 +559,75 @@ mod tests {
         assert!(slow_cases > 1_000, "{slow_cases}");
     }
 
+    /// The lanes of a `LaneRay8` (`o`, `sx`, `sy`, `sz`), as bits.
+    ///
+    /// # Safety
+    /// The CPU must support AVX2.
+    #[target_feature(enable = "avx2")]
+    unsafe fn lane_ray_bits(ray: &Ray) -> ([usize; 3], [[u32; LANES]; 6]) {
+        let lr = LaneRay8::new(&read_by_field(ray));
+        let bits = |v: __m256| {
+            let mut a = [0.0f32; LANES];
+            // SAFETY: an unaligned store of eight floats into an eight-float array.
+            unsafe { _mm256_storeu_ps(a.as_mut_ptr(), v) };
+            a.map(f32::to_bits)
+        };
+        let [o0, o1, o2] = lr.o;
+        (
+            lr.axes,
+            [
+                bits(o0),
+                bits(o1),
+                bits(o2),
+                bits(lr.sx),
+                bits(lr.sy),
+                bits(lr.sz),
+            ],
+        )
+    }
+
+    /// The per-ray lane constants made in registers equal `WoopRay::new`'s axis permutation,
+    /// origin and shear bit for bit in every lane: random directions (each axis dominant,
+    /// ties between components, ±0, subnormal and huge components) and origins.
+    #[test]
+    fn lane_ray_constants_equal_the_scalar_woop_ray() {
+        if !use_avx2() {
+            return;
+        }
+        let mut rnd = crate::accel::test_random::signed_uniform(0x1a9e_5eed_0000_0017u64);
+        for i in 0..20_000 {
+            let mut d = Vec3::new(rnd(), rnd(), rnd());
+            match i % 9 {
+                0 => d = Vec3::splat(d.x),
+                1 => d.y = d.x,
+                2 => d.z = -d.y,
+                3 => d = Vec3::new(0.0, -0.0, d.z),
+                4 => d.x = f32::from_bits(1),
+                5 => d *= 1e30,
+                6 => d *= 1e-30,
+                _ => {}
+            }
+            let origin = Vec3::new(rnd(), rnd(), rnd()) * [1e-3, 1.0, 1e4][i % 3];
+            let ray = Ray {
+                origin,
+                dir: d,
+                t_max: f32::INFINITY,
+            };
+            if !ray_is_valid(&ray) {
+                continue;
+            }
+            let woop = WoopRay::new(ray.origin, ray.dir);
+            let axes = woop.axes();
+            let o = woop.origin();
+            let (sx, sy, sz) = woop.shear();
+            let want =
+                [o[axes[0]], o[axes[1]], o[axes[2]], sx, sy, sz].map(|x| [x.to_bits(); LANES]);
+            // SAFETY: AVX2 was detected above.
+            let got = unsafe { lane_ray_bits(&ray) };
+            assert_eq!(got, (axes, want), "{ray:?}");
+        }
+    }
+
     /// Ties at equal `t` go to the smallest prim even when the tree's order puts a larger
     /// prim first: four copies of one triangle among others, every order of the copies.
     #[test]
