@@ -28,10 +28,11 @@
 //!   pay (`docs/ray-layer.md`, issue 17, session 15).
 
 use std::arch::x86_64::{
-    __m256, _mm256_add_ps, _mm256_and_ps, _mm256_andnot_ps, _mm256_cmp_ps, _mm256_div_ps,
-    _mm256_load_ps, _mm256_max_ps, _mm256_movemask_ps, _mm256_mul_ps, _mm256_or_ps, _mm256_set1_ps,
-    _mm256_setzero_ps, _mm256_storeu_ps, _mm256_sub_ps, _mm256_xor_ps, _CMP_EQ_OQ, _CMP_GT_OQ,
-    _CMP_LE_OQ, _CMP_LT_OQ,
+    __m128, __m256, _mm256_add_ps, _mm256_and_ps, _mm256_andnot_ps, _mm256_broadcastss_ps,
+    _mm256_cmp_ps, _mm256_div_ps, _mm256_load_ps, _mm256_max_ps, _mm256_movemask_ps, _mm256_mul_ps,
+    _mm256_or_ps, _mm256_set1_ps, _mm256_setzero_ps, _mm256_storeu_ps, _mm256_sub_ps,
+    _mm256_xor_ps, _mm_blend_ps, _mm_div_ps, _mm_permutevar_ps, _mm_set1_ps, _mm_setr_epi32,
+    _mm_setr_ps, _mm_shuffle_ps, _mm_xor_ps, _CMP_EQ_OQ, _CMP_GT_OQ, _CMP_LE_OQ, _CMP_LT_OQ,
 };
 use std::sync::OnceLock;
 
@@ -165,11 +166,13 @@ impl SmallScene {
     /// The CPU must support AVX2.
     #[target_feature(enable = "avx2")]
     unsafe fn closest_avx2(&self, ray: &Ray) -> Option<Hit> {
+        let ray = &read_by_field(ray);
         if !ray_is_valid(ray) {
             return None;
         }
-        let woop = WoopRay::new(ray.origin, ray.dir);
-        let lr = LaneRay8::new(&woop);
+        let lr = LaneRay8::new(ray);
+        // The scalar test's ray, made only when a slow lane needs it (rare).
+        let mut woop: Option<WoopRay> = None;
         let mut best: Option<(usize, f32, f32)> = None;
         let mut best_t = ray.t_max;
         let mut best_prim = u32::MAX;
@@ -183,6 +186,7 @@ impl SmallScene {
                 todo &= todo - 1;
                 let slot = gi * LANES + j;
                 let (t, b1, b2) = if lanes.slow >> j & 1 != 0 {
+                    let woop = woop.get_or_insert_with(|| WoopRay::new(ray.origin, ray.dir));
                     match woop.intersect(&self.tris[slot]) {
                         Some(hit) => hit,
                         None => continue,
@@ -213,11 +217,11 @@ impl SmallScene {
     /// The CPU must support AVX2.
     #[target_feature(enable = "avx2")]
     unsafe fn occluded_avx2(&self, ray: &Ray) -> bool {
+        let ray = &read_by_field(ray);
         if !ray_is_valid(ray) {
             return false;
         }
-        let woop = WoopRay::new(ray.origin, ray.dir);
-        let lr = LaneRay8::new(&woop);
+        let lr = LaneRay8::new(ray);
         let mut lanes = Lanes::MISS;
         // `t ≤ next_down(t_max)` is `t < t_max`.
         let limit = ray.t_max.next_down();
@@ -230,7 +234,7 @@ impl SmallScene {
             while slow != 0 {
                 let j = slow.trailing_zeros() as usize;
                 slow &= slow - 1;
-                if woop
+                if WoopRay::new(ray.origin, ray.dir)
                     .intersect(&self.tris[gi * LANES + j])
                     .is_some_and(|(t, _, _)| t < ray.t_max)
                 {
@@ -239,6 +243,23 @@ impl SmallScene {
             }
         }
         false
+    }
+}
+
+/// A copy of `ray` read one `f32` field at a time. The caller has just stored the ray (a
+/// shadow or continuation ray made in registers), often as an 8-byte and a 4-byte store per
+/// vector; a wider load across two such stores cannot be forwarded from them and waits for
+/// the stores to retire (≈ 7 % of an occlusion query measured). A 4-byte load lies inside
+/// whichever store wrote its field, so it is forwarded; volatile reads keep the compiler
+/// from merging them into wider loads.
+#[inline(always)]
+fn read_by_field(ray: &Ray) -> Ray {
+    // SAFETY: each pointer comes from a reference to an initialised, aligned `f32` field.
+    let f = |x: &f32| unsafe { std::ptr::read_volatile(x) };
+    Ray {
+        origin: Vec3::new(f(&ray.origin.x), f(&ray.origin.y), f(&ray.origin.z)),
+        dir: Vec3::new(f(&ray.dir.x), f(&ray.dir.y), f(&ray.dir.z)),
+        t_max: f(&ray.t_max),
     }
 }
 
@@ -255,20 +276,53 @@ struct LaneRay8 {
 }
 
 impl LaneRay8 {
+    /// The constants of `ray` (valid, [`ray_is_valid`]): [`WoopRay::new`]'s axis permutation
+    /// and shear, the same bits (`−d[kx] / d[kz]`, `−d[ky] / d[kz]`, `1 / d[kz]` as one
+    /// four-lane IEEE division), made in registers. Reading them out of a `WoopRay` went
+    /// through memory: its origin array, indexed by the permutation, was stored and read back
+    /// with loads of other widths (a failed store-to-load forward, ≈ 6 % of each query).
     #[inline(always)]
-    fn new(woop: &WoopRay) -> Self {
-        let [kx, ky, kz] = woop.axes();
-        let axes = [kx.min(2), ky.min(2), kz.min(2)];
-        let o = woop.origin();
-        let (sx, sy, sz) = woop.shear();
+    fn new(ray: &Ray) -> Self {
+        let (o, d) = (ray.origin, ray.dir);
+        let a = d.abs();
+        // `WoopRay::new`'s choice of the dominant axis, in its order of comparisons.
+        let kz = if a.x > a.y {
+            if a.x > a.z {
+                0
+            } else {
+                2
+            }
+        } else if a.y > a.z {
+            1
+        } else {
+            2
+        };
+        let kx = if kz == 2 { 0 } else { kz + 1 };
+        let ky = if kx == 2 { 0 } else { kx + 1 };
         // SAFETY: AVX intrinsics on values; this type exists only inside the AVX2 functions.
-        let splat = |x: f32| unsafe { _mm256_set1_ps(x) };
-        Self {
-            axes,
-            o: [splat(o[axes[0]]), splat(o[axes[1]]), splat(o[axes[2]])],
-            sx: splat(sx),
-            sy: splat(sy),
-            sz: splat(sz),
+        unsafe {
+            let idx = _mm_setr_epi32(kx as i32, ky as i32, kz as i32, kz as i32);
+            let op = _mm_permutevar_ps(_mm_setr_ps(o.x, o.y, o.z, 0.0), idx);
+            let dp = _mm_permutevar_ps(_mm_setr_ps(d.x, d.y, d.z, 0.0), idx);
+            // (−d[kx], −d[ky], 1, 1) / d[kz]: each lane the scalar division's bits.
+            let dz = _mm_shuffle_ps::<0b1010_1010>(dp, dp);
+            let negated = _mm_xor_ps(dp, _mm_setr_ps(-0.0, -0.0, 0.0, 0.0));
+            let num = _mm_blend_ps::<0b1100>(negated, _mm_set1_ps(1.0));
+            let s = _mm_div_ps(num, dz);
+            let lane = |v: __m128, i: i32| -> __m256 {
+                match i {
+                    0 => _mm256_broadcastss_ps(v),
+                    1 => _mm256_broadcastss_ps(_mm_shuffle_ps::<0b0101_0101>(v, v)),
+                    _ => _mm256_broadcastss_ps(_mm_shuffle_ps::<0b1010_1010>(v, v)),
+                }
+            };
+            Self {
+                axes: [kx, ky, kz],
+                o: [lane(op, 0), lane(op, 1), lane(op, 2)],
+                sx: lane(s, 0),
+                sy: lane(s, 1),
+                sz: lane(s, 2),
+            }
         }
     }
 }
@@ -503,6 +557,75 @@ mod tests {
         assert!(hits > 20_000, "{hits} of {rays}");
         assert!(ties > 500, "{ties}");
         assert!(slow_cases > 1_000, "{slow_cases}");
+    }
+
+    /// The lanes of a `LaneRay8` (`o`, `sx`, `sy`, `sz`), as bits.
+    ///
+    /// # Safety
+    /// The CPU must support AVX2.
+    #[target_feature(enable = "avx2")]
+    unsafe fn lane_ray_bits(ray: &Ray) -> ([usize; 3], [[u32; LANES]; 6]) {
+        let lr = LaneRay8::new(&read_by_field(ray));
+        let bits = |v: __m256| {
+            let mut a = [0.0f32; LANES];
+            // SAFETY: an unaligned store of eight floats into an eight-float array.
+            unsafe { _mm256_storeu_ps(a.as_mut_ptr(), v) };
+            a.map(f32::to_bits)
+        };
+        let [o0, o1, o2] = lr.o;
+        (
+            lr.axes,
+            [
+                bits(o0),
+                bits(o1),
+                bits(o2),
+                bits(lr.sx),
+                bits(lr.sy),
+                bits(lr.sz),
+            ],
+        )
+    }
+
+    /// The per-ray lane constants made in registers equal `WoopRay::new`'s axis permutation,
+    /// origin and shear bit for bit in every lane: random directions (each axis dominant,
+    /// ties between components, ±0, subnormal and huge components) and origins.
+    #[test]
+    fn lane_ray_constants_equal_the_scalar_woop_ray() {
+        if !use_avx2() {
+            return;
+        }
+        let mut rnd = crate::accel::test_random::signed_uniform(0x1a9e_5eed_0000_0017u64);
+        for i in 0..20_000 {
+            let mut d = Vec3::new(rnd(), rnd(), rnd());
+            match i % 9 {
+                0 => d = Vec3::splat(d.x),
+                1 => d.y = d.x,
+                2 => d.z = -d.y,
+                3 => d = Vec3::new(0.0, -0.0, d.z),
+                4 => d.x = f32::from_bits(1),
+                5 => d *= 1e30,
+                6 => d *= 1e-30,
+                _ => {}
+            }
+            let origin = Vec3::new(rnd(), rnd(), rnd()) * [1e-3, 1.0, 1e4][i % 3];
+            let ray = Ray {
+                origin,
+                dir: d,
+                t_max: f32::INFINITY,
+            };
+            if !ray_is_valid(&ray) {
+                continue;
+            }
+            let woop = WoopRay::new(ray.origin, ray.dir);
+            let axes = woop.axes();
+            let o = woop.origin();
+            let (sx, sy, sz) = woop.shear();
+            let want =
+                [o[axes[0]], o[axes[1]], o[axes[2]], sx, sy, sz].map(|x| [x.to_bits(); LANES]);
+            // SAFETY: AVX2 was detected above.
+            let got = unsafe { lane_ray_bits(&ray) };
+            assert_eq!(got, (axes, want), "{ray:?}");
+        }
     }
 
     /// Ties at equal `t` go to the smallest prim even when the tree's order puts a larger

@@ -260,14 +260,15 @@ impl<'a> Vertex<'a> {
             None => ctx.geometry.shading_point(hit),
         };
         let material = &ctx.geometry.materials[sp.material as usize];
-        let (shader, bumped, emission) = match textured::evaluate(ctx.geometry, &sp, hit, material)
-        {
+        let textured = textured::evaluate(ctx.geometry, &sp, hit, material);
+        let (bumped, emission) = match &textured {
             Some(t) => {
                 sp.normal = t.normal;
-                (Cow::Owned(t.shader), t.bumped, t.emission)
+                (t.bumped, t.emission)
             }
-            None => (Cow::Borrowed(&material.shader), false, material.emission),
+            None => (false, material.emission),
         };
+        let bound = textured.as_ref().map_or(&material.shader, |t| &t.shader);
         let wo_world = -ray.dir.normalize();
         let front = sp.surface.ng.dot(wo_world) > 0.0;
         if !front {
@@ -278,7 +279,7 @@ impl<'a> Vertex<'a> {
             sp.normal = bump::ensure_valid_reflection(ng, wo_world, sp.normal);
         }
         let visible = front || material.shades_back() || ctx.face == Face::Both;
-        let transmittance = match &*shader {
+        let transmittance = match bound {
             Shader::Dielectric { col, .. } if !front => {
                 let d = hit.t * ray.dir.length();
                 Vec3::new(col.x.powf(d), col.y.powf(d), col.z.powf(d))
@@ -303,7 +304,12 @@ impl<'a> Vertex<'a> {
             front,
             visible,
             material,
-            shader,
+            // Made here, in place: a `Cow` made above and moved in was copied whole (64
+            // bytes), its unused bytes read back across older, narrower stores (a stall).
+            shader: match textured {
+                Some(t) => Cow::Owned(t.shader),
+                None => Cow::Borrowed(&material.shader),
+            },
             bumped,
             emission,
             frame,
@@ -352,6 +358,24 @@ impl<'a> Vertex<'a> {
         }
     }
 
+    /// [`Vertex::bsdf_ref`] with a scratch value made only when a point needs one (a path of
+    /// untextured vertices never builds the 168-byte empty BSDF).
+    #[inline]
+    pub fn bsdf_in<'b>(
+        &'b self,
+        ctx: &ShadeContext<'b>,
+        scratch: &'b mut Option<Bsdf>,
+    ) -> &'b Bsdf {
+        match (ctx.bsdfs, &self.shader) {
+            (Some(kept), Cow::Borrowed(_)) => kept.get(self.sp.material, self.front),
+            _ => {
+                let b = scratch.get_or_insert_with(Bsdf::empty);
+                b.set_shader(&self.shader, self.front);
+                b
+            }
+        }
+    }
+
     /// A ray leaving along the local direction `wi` if it lies on the geometric side its
     /// kind requires (reflection: the viewer's side; transmission: the other side).
     #[inline(always)]
@@ -387,8 +411,18 @@ pub fn light_loop_split(
     mis: bool,
     diffuse: Option<&mut Vec3>,
 ) -> Vec3 {
-    let f = |wi: Vec3, wi_world: Vec3| bsdf.eval(v.wo, wi) * v.bump_shadowing(wi_world);
-    let fd = |wi: Vec3, wi_world: Vec3| bsdf.eval_diffuse(v.wo, wi) * v.bump_shadowing(wi_world);
+    // The bump term's per-point part made once, and only at bumped points (inside the loop,
+    // the compiler hoisted it out and computed its division at every point, bumped or not).
+    let bump = v
+        .bumped
+        .then(|| bump::shadowing_roughness(v.ng, v.sp.normal))
+        .flatten();
+    let shadowing = move |wi_world: Vec3| match bump {
+        Some(alpha2) => bump::shadowing_at(alpha2, v.ng, wi_world),
+        None => 1.0,
+    };
+    let f = |wi: Vec3, wi_world: Vec3| bsdf.eval(v.wo, wi) * shadowing(wi_world);
+    let fd = |wi: Vec3, wi_world: Vec3| bsdf.eval_diffuse(v.wo, wi) * shadowing(wi_world);
     let share = diffuse.map(|d| (&fd as &dyn Fn(Vec3, Vec3) -> Vec3, d));
     // The BSDF closure passed by value, so the loop evaluates it inline.
     gather_with(ctx, v, sampler, mis.then_some(bsdf), f, true, share)

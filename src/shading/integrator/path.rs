@@ -79,8 +79,8 @@ pub fn radiance_split(
     // Whether the path is still the eye's specular chain `E S*` (camera ray, then only delta
     // scattering): only then does `visible` hide area lights (see the module doc).
     let mut eye_chain = true;
-    // Where a textured vertex builds its BSDF ([`Vertex::bsdf_ref`]).
-    let mut scratch = Bsdf::empty();
+    // Where a textured vertex builds its BSDF ([`Vertex::bsdf_in`]), made at the first one.
+    let mut scratch: Option<Bsdf> = None;
     while let Some(h) = hit {
         let v = Vertex::new(ctx, &ray, &h);
         beta *= v.transmittance;
@@ -127,7 +127,7 @@ pub fn radiance_split(
             l,
             false,
         );
-        let bsdf = v.bsdf_ref(ctx, &mut scratch);
+        let bsdf = v.bsdf_in(ctx, &mut scratch);
         if !bsdf.reflects() {
             break;
         }
@@ -160,15 +160,22 @@ pub fn radiance_split(
         let u = Vec3::new(sampler.next_1d(), sampler.next_1d(), sampler.next_1d());
         let Some(s) = bsdf.sample(v.wo, u) else { break };
         let transmits = s.scatter == Scatter::Transmission;
-        let mis = |pdf_light: f32| {
-            if s.delta {
+        // The closures below take copies, never `&s`: a borrowed sample must live in memory,
+        // and reading the returned `Option<BsdfSample>` back from there stalled (a failed
+        // store-to-load forward, ≈ 1 % of a sample).
+        let (delta, pdf) = (s.delta, s.pdf);
+        let mis = move |pdf_light: f32| {
+            if delta {
                 1.0
             } else {
-                power_heuristic(s.pdf, pdf_light)
+                power_heuristic(pdf, pdf_light)
             }
         };
         let next_lanes = parts.is_some().then(|| match &lanes {
-            None => PathLanes::first(beta * s.weight(), &s, bsdf, v.wo),
+            None => {
+                let first = s;
+                PathLanes::first(beta * first.weight(), &first, bsdf, v.wo)
+            }
             Some(l) => l.after(s.weight()),
         });
         // A delta ray of a material with its own environment sees that one (see `super`).

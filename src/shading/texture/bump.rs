@@ -94,16 +94,33 @@ pub fn ensure_valid_reflection(ng: Vec3, wo: Vec3, n: Vec3) -> Vec3 {
 /// surface whose roughness is set by how far `ns` tilts from `ng`. 1 for an unperturbed
 /// normal; falls toward 0 for light grazing the geometry under a strongly bent normal.
 pub fn shadowing(ng: Vec3, ns: Vec3, wi: Vec3) -> f32 {
+    match shadowing_roughness(ng, ns) {
+        Some(alpha2) => shadowing_at(alpha2, ng, wi),
+        None => 1.0,
+    }
+}
+
+/// The part of [`shadowing`] that does not depend on `wi`: the squared GGX roughness `α²` the
+/// bent normal `ns` stands for, or `None` where the term is 1 for every `wi` (`ns` not
+/// bent away from `ng`). A light loop makes it once per shading point.
+#[inline]
+pub fn shadowing_roughness(ng: Vec3, ns: Vec3) -> Option<f32> {
     let cos_d = ng.dot(ns).abs().min(1.0);
     if cos_d.is_nan() || cos_d >= 1.0 {
-        return 1.0;
+        return None;
     }
+    let cos_d2 = (cos_d * cos_d).max(1e-12);
+    Some((0.125 * (1.0 - cos_d2) / cos_d2).clamp(0.0, 1.0))
+}
+
+/// [`shadowing`] for light from `wi`, given the roughness [`shadowing_roughness`] made of its
+/// normals.
+#[inline]
+pub fn shadowing_at(alpha2: f32, ng: Vec3, wi: Vec3) -> f32 {
     let cos_i = ng.dot(wi);
     if cos_i.is_nan() || cos_i <= 0.0 {
         return 0.0;
     }
-    let cos_d2 = (cos_d * cos_d).max(1e-12);
-    let alpha2 = (0.125 * (1.0 - cos_d2) / cos_d2).clamp(0.0, 1.0);
     let cos_i2 = (cos_i * cos_i).clamp(1e-12, 1.0);
     let tan2_i = (1.0 - cos_i2) / cos_i2;
     2.0 / (1.0 + (1.0 + alpha2 * tan2_i).sqrt())
@@ -112,6 +129,62 @@ pub fn shadowing(ng: Vec3, ns: Vec3, wi: Vec3) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The term as one function (before the split into [`shadowing_roughness`] and
+    /// [`shadowing_at`]), kept to check the split bit for bit.
+    fn shadowing_whole(ng: Vec3, ns: Vec3, wi: Vec3) -> f32 {
+        let cos_d = ng.dot(ns).abs().min(1.0);
+        if cos_d.is_nan() || cos_d >= 1.0 {
+            return 1.0;
+        }
+        let cos_i = ng.dot(wi);
+        if cos_i.is_nan() || cos_i <= 0.0 {
+            return 0.0;
+        }
+        let cos_d2 = (cos_d * cos_d).max(1e-12);
+        let alpha2 = (0.125 * (1.0 - cos_d2) / cos_d2).clamp(0.0, 1.0);
+        let cos_i2 = (cos_i * cos_i).clamp(1e-12, 1.0);
+        let tan2_i = (1.0 - cos_i2) / cos_i2;
+        2.0 / (1.0 + (1.0 + alpha2 * tan2_i).sqrt())
+    }
+
+    #[test]
+    fn split_shadowing_equals_the_whole_term_bit_for_bit() {
+        let mut state = 0x9e37_79b9_7f4a_7c15u64;
+        let mut rnd = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 40) as f32 / (1u64 << 24) as f32 * 2.0 - 1.0
+        };
+        let mut bent = 0;
+        for i in 0..50_000 {
+            let ng = Vec3::new(rnd(), rnd(), rnd()).normalize_or(Vec3::Z);
+            let ns = match i % 5 {
+                0 => ng,
+                1 => -ng,
+                2 => (ng + 1e-4 * Vec3::new(rnd(), rnd(), rnd())).normalize(),
+                3 => Vec3::new(f32::NAN, 0.0, 1.0),
+                _ => Vec3::new(rnd(), rnd(), rnd()).normalize_or(Vec3::X),
+            };
+            let wi = match i % 7 {
+                0 => ng,
+                1 => -ng,
+                2 => Vec3::new(0.0, f32::NAN, 0.0),
+                _ => Vec3::new(rnd(), rnd(), rnd()).normalize_or(Vec3::Y),
+            };
+            let want = shadowing_whole(ng, ns, wi);
+            assert_eq!(
+                shadowing(ng, ns, wi).to_bits(),
+                want.to_bits(),
+                "{ng} {ns} {wi}"
+            );
+            let split = shadowing_roughness(ng, ns).map_or(1.0, |a| shadowing_at(a, ng, wi));
+            assert_eq!(split.to_bits(), want.to_bits());
+            bent += usize::from(want != 1.0);
+        }
+        assert!(bent > 10_000, "{bent}");
+    }
 
     #[test]
     fn tangents_of_a_unit_square_triangle() {
