@@ -14,14 +14,13 @@ use std::borrow::Cow;
 
 use glam::Vec3;
 
-use crate::accel::{spawn_ray, Hit, Ray};
+use crate::accel::{Hit, Ray};
 use crate::components::Shader;
 use crate::geometry::ShadingPoint;
-use crate::settings::Face;
 use crate::shading::bsdf::Bsdf;
 use crate::shading::frame::ShadingFrame;
+use crate::shading::integrator::orient::{bsdf_kept_or_in, orient, spawn_along, Orientation};
 use crate::shading::integrator::{ShadeContext, Vertex};
-use crate::shading::texture::bump;
 
 /// A photon's shading point, oriented toward where the photon came from (the fields of
 /// [`Vertex`] of the same names, with the same values).
@@ -45,12 +44,6 @@ pub struct PhotonVertex<'a> {
     pub wo_world: Vec3,
     /// Transmittance of the segment that reached this vertex (absorption inside a dielectric).
     pub transmittance: Vec3,
-}
-
-/// Whether two vectors have the same bit patterns.
-#[inline]
-fn same_bits(a: Vec3, b: Vec3) -> bool {
-    a.to_array().map(f32::to_bits) == b.to_array().map(f32::to_bits)
 }
 
 impl<'a> From<Vertex<'a>> for PhotonVertex<'a> {
@@ -92,33 +85,14 @@ impl<'a> PhotonVertex<'a> {
         // `Vertex::new` with no texture to evaluate, step for step.
         let mut sp = sp;
         let shader = Cow::Borrowed(&material.shader);
-        let wo_world = -ray.dir.normalize();
-        let front = sp.surface.ng.dot(wo_world) > 0.0;
-        if !front {
-            sp.normal = -sp.normal;
-        }
-        let ng = if front { sp.surface.ng } else { -sp.surface.ng };
-        if sp.normal != ng {
-            sp.normal = bump::ensure_valid_reflection(ng, wo_world, sp.normal);
-        }
-        let visible = front || material.shades_back() || ctx.face == Face::Both;
-        let transmittance = match &*shader {
-            Shader::Dielectric { col, .. } if !front => {
-                let d = hit.t * ray.dir.length();
-                Vec3::new(col.x.powf(d), col.y.powf(d), col.z.powf(d))
-            }
-            _ => Vec3::ONE,
-        };
-        let frame = match ctx.normals.and_then(|t| t.frame(hit.prim)) {
-            Some(kept) if same_bits(sp.normal, ng) => {
-                if front {
-                    *kept
-                } else {
-                    kept.flipped()
-                }
-            }
-            _ => ShadingFrame::from_normal(sp.normal),
-        };
+        let Orientation {
+            ng,
+            front,
+            visible,
+            transmittance,
+            frame,
+            wo_world,
+        } = orient(ctx, ray, hit, &mut sp, material, &shader);
         Self {
             sp,
             ng,
@@ -141,14 +115,7 @@ impl<'a> PhotonVertex<'a> {
         ctx: &ShadeContext<'b>,
         scratch: &'b mut Option<Bsdf>,
     ) -> &'b Bsdf {
-        match (ctx.bsdfs, &self.shader) {
-            (Some(kept), Cow::Borrowed(_)) => kept.get(self.sp.material, self.front),
-            _ => {
-                let b = scratch.insert(Bsdf::empty());
-                b.set_shader(&self.shader, self.front);
-                b
-            }
-        }
+        bsdf_kept_or_in(ctx, self.sp.material, self.front, &self.shader, scratch)
     }
 
     /// [`Vertex::spawn`]: a ray leaving along the local direction `wi` if it lies on the
@@ -156,10 +123,7 @@ impl<'a> PhotonVertex<'a> {
     /// other side).
     #[inline(always)]
     pub fn spawn(&self, wi_local: Vec3, transmits: bool) -> Option<Ray> {
-        let wi = self.frame.to_world(wi_local);
-        let side = self.ng.dot(wi);
-        let ok = if transmits { side < 0.0 } else { side > 0.0 };
-        (ok && wi.is_finite()).then(|| spawn_ray(&self.sp.surface, wi))
+        spawn_along(&self.frame, self.ng, &self.sp.surface, wi_local, transmits)
     }
 }
 

@@ -28,6 +28,7 @@ pub mod direct;
 pub(crate) mod fixture;
 pub mod local;
 pub mod material_bsdfs;
+pub(crate) mod orient;
 pub mod path;
 pub mod triangle_normals;
 pub mod volume;
@@ -52,6 +53,7 @@ use crate::shading::shadow::transmittance;
 use crate::shading::texture::{bump, hit as textured};
 use crate::shading::volume::Volumes;
 use material_bsdfs::MaterialBsdfs;
+use orient::{bsdf_kept_or_in, orient, spawn_along, Orientation};
 use triangle_normals::TriangleNormals;
 use volume::shadow_transmittance;
 
@@ -239,12 +241,6 @@ pub struct Vertex<'a> {
     pub transmittance: Vec3,
 }
 
-/// Whether two vectors have the same bit patterns.
-#[inline]
-fn same_bits(a: Vec3, b: Vec3) -> bool {
-    a.to_array().map(f32::to_bits) == b.to_array().map(f32::to_bits)
-}
-
 impl<'a> Vertex<'a> {
     /// The vertex where `ray` hits `hit`.
     ///
@@ -269,35 +265,14 @@ impl<'a> Vertex<'a> {
             None => (false, material.emission),
         };
         let bound = textured.as_ref().map_or(&material.shader, |t| &t.shader);
-        let wo_world = -ray.dir.normalize();
-        let front = sp.surface.ng.dot(wo_world) > 0.0;
-        if !front {
-            sp.normal = -sp.normal;
-        }
-        let ng = if front { sp.surface.ng } else { -sp.surface.ng };
-        if sp.normal != ng {
-            sp.normal = bump::ensure_valid_reflection(ng, wo_world, sp.normal);
-        }
-        let visible = front || material.shades_back() || ctx.face == Face::Both;
-        let transmittance = match bound {
-            Shader::Dielectric { col, .. } if !front => {
-                let d = hit.t * ray.dir.length();
-                Vec3::new(col.x.powf(d), col.y.powf(d), col.z.powf(d))
-            }
-            _ => Vec3::ONE,
-        };
-        let frame = match ctx.normals.and_then(|t| t.frame(hit.prim)) {
-            // A flat-shaded hit: `sp.normal` is the table's normal or its negation, whose
-            // frame is the kept one or its flip (bit for bit; `-0.0` and `0.0` told apart).
-            Some(kept) if same_bits(sp.normal, ng) => {
-                if front {
-                    *kept
-                } else {
-                    kept.flipped()
-                }
-            }
-            _ => ShadingFrame::from_normal(sp.normal),
-        };
+        let Orientation {
+            ng,
+            front,
+            visible,
+            transmittance,
+            frame,
+            wo_world,
+        } = orient(ctx, ray, hit, &mut sp, material, bound);
         Self {
             sp,
             ng,
@@ -366,24 +341,14 @@ impl<'a> Vertex<'a> {
         ctx: &ShadeContext<'b>,
         scratch: &'b mut Option<Bsdf>,
     ) -> &'b Bsdf {
-        match (ctx.bsdfs, &self.shader) {
-            (Some(kept), Cow::Borrowed(_)) => kept.get(self.sp.material, self.front),
-            _ => {
-                let b = scratch.get_or_insert_with(Bsdf::empty);
-                b.set_shader(&self.shader, self.front);
-                b
-            }
-        }
+        bsdf_kept_or_in(ctx, self.sp.material, self.front, &self.shader, scratch)
     }
 
     /// A ray leaving along the local direction `wi` if it lies on the geometric side its
     /// kind requires (reflection: the viewer's side; transmission: the other side).
     #[inline(always)]
     pub fn spawn(&self, wi_local: Vec3, transmits: bool) -> Option<Ray> {
-        let wi = self.frame.to_world(wi_local);
-        let side = self.ng.dot(wi);
-        let ok = if transmits { side < 0.0 } else { side > 0.0 };
-        (ok && wi.is_finite()).then(|| spawn_ray(&self.sp.surface, wi))
+        spawn_along(&self.frame, self.ng, &self.sp.surface, wi_local, transmits)
     }
 }
 
