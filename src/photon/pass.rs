@@ -1,11 +1,11 @@
 //! The photon pass for one map: `N` photons emitted and traced in parallel (rayon over
 //! fixed ranges of photon indices, each range traced wide through batch intersections in
 //! scenes of many triangles, one photon at a time in small ones: [`super::batch`]), each
-//! photon from its own Sobol sequence `Sampler::for_item(seed ⊕ map, photon index, 0)`, gathered in index order — so the map is
-//! the same at any thread count. Lights with their own photon count (mental ray `caustic
-//! photons N` on a light) emit it in a pass of their own ([`trace_map_by_light`]). A surface
-//! keeps only the photons of the lights its material's light list names
-//! ([`super::light_lists`]).
+//! photon from its own Sobol sequence `Sampler::for_item(seed ⊕ map, photon index, 0)`,
+//! gathered in index order — so the map is the same at any thread count. Lights with their
+//! own photon count (mental ray `caustic photons N` on a light) emit it in a pass of their
+//! own ([`trace_map_by_light`]). A surface keeps only the photons of the lights its
+//! material's light list names ([`super::light_lists`]).
 
 use std::sync::atomic::{AtomicBool, Ordering};
 

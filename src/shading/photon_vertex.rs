@@ -19,7 +19,9 @@ use crate::components::Shader;
 use crate::geometry::ShadingPoint;
 use crate::shading::bsdf::Bsdf;
 use crate::shading::frame::ShadingFrame;
-use crate::shading::integrator::orient::{bsdf_kept_or_in, orient, spawn_along, Orientation};
+use crate::shading::integrator::orient::{
+    bsdf_kept_or_in, orient, shading_point, spawn_along, Orientation,
+};
 use crate::shading::integrator::{ShadeContext, Vertex};
 
 /// A photon's shading point, oriented toward where the photon came from (the fields of
@@ -67,10 +69,7 @@ impl<'a> PhotonVertex<'a> {
     /// normal table when it keeps one).
     #[inline(always)]
     pub fn shading_point(ctx: &ShadeContext<'_>, hit: &Hit) -> ShadingPoint {
-        match ctx.normals {
-            Some(n) => n.shading_point(ctx.geometry, hit),
-            None => ctx.geometry.shading_point(hit),
-        }
+        shading_point(ctx, hit)
     }
 
     /// The vertex where `ray` hits `hit`, whose shading point is `sp`
@@ -106,9 +105,8 @@ impl<'a> PhotonVertex<'a> {
         }
     }
 
-    /// [`Vertex::bsdf_ref`]'s BSDF: the material's kept BSDF when the context keeps them and
-    /// no texture drives this point's shader, else built in `scratch` (only then: the
-    /// 168-byte empty BSDF is not written at every hit).
+    /// [`Vertex::bsdf_ref`]: the material's kept BSDF when the context keeps them and no
+    /// texture drives this point's shader, else built in `scratch`, made only then.
     #[inline]
     pub fn bsdf_ref<'b>(
         &'b self,
@@ -270,7 +268,7 @@ mod tests {
                 ] {
                     assert_eq!(bits(x), bits(y), "ray {i}");
                 }
-                let (mut a, mut b) = (Bsdf::empty(), None);
+                let (mut a, mut b) = (None, None);
                 assert_eq!(got.bsdf_ref(ctx, &mut b), want.bsdf_ref(ctx, &mut a));
                 let wi = Vec3::new(0.3, -0.4, 0.8).normalize();
                 for transmits in [false, true] {

@@ -18,7 +18,6 @@ use super::{
 };
 use crate::accel::{Hit, Ray};
 use crate::sampling::Sampler;
-use crate::shading::bsdf::Bsdf;
 use crate::shading::surface::unlit_radiance;
 
 /// Radiance toward the origin of `ray`, which hits the scene at `hit` (a camera ray).
@@ -64,7 +63,7 @@ fn vertex_radiance(
     let l = local::radiance(ctx, &v, sampler);
     note(&mut parts, local_component(&v.shader), l);
     radiance += l;
-    let mut scratch = Bsdf::empty();
+    let mut scratch = None;
     let bsdf = v.bsdf_ref(ctx, &mut scratch);
     if !bsdf.reflects() {
         scale(&mut parts, v.transmittance);

@@ -53,7 +53,7 @@ use crate::shading::shadow::transmittance;
 use crate::shading::texture::{bump, hit as textured};
 use crate::shading::volume::Volumes;
 use material_bsdfs::MaterialBsdfs;
-use orient::{bsdf_kept_or_in, orient, spawn_along, Orientation};
+use orient::{bsdf_kept_or_in, orient, shading_point, spawn_along, Orientation};
 use triangle_normals::TriangleNormals;
 use volume::shadow_transmittance;
 
@@ -251,10 +251,7 @@ impl<'a> Vertex<'a> {
     /// ([`bump::ensure_valid_reflection`]), so bent normals never shade black.
     #[inline(always)]
     pub fn new(ctx: &ShadeContext<'a>, ray: &Ray, hit: &Hit) -> Self {
-        let mut sp = match ctx.normals {
-            Some(n) => n.shading_point(ctx.geometry, hit),
-            None => ctx.geometry.shading_point(hit),
-        };
+        let mut sp = shading_point(ctx, hit);
         let material = &ctx.geometry.materials[sp.material as usize];
         let textured = textured::evaluate(ctx.geometry, &sp, hit, material);
         let (bumped, emission) = match &textured {
@@ -321,22 +318,10 @@ impl<'a> Vertex<'a> {
 
     /// [`Vertex::bsdf`] without the `Option` (one that reflects nothing, [`Bsdf::reflects`]
     /// false, where `bsdf()` gives `None`): the material's kept BSDF when the context keeps
-    /// them and no texture drives this point's shader, else built into `scratch`.
+    /// them and no texture drives this point's shader, else built into `scratch`, made only
+    /// then (a path of untextured vertices never builds the 168-byte empty BSDF).
     #[inline]
-    pub fn bsdf_ref<'b>(&'b self, ctx: &ShadeContext<'b>, scratch: &'b mut Bsdf) -> &'b Bsdf {
-        match (ctx.bsdfs, &self.shader) {
-            (Some(kept), Cow::Borrowed(_)) => kept.get(self.sp.material, self.front),
-            _ => {
-                scratch.set_shader(&self.shader, self.front);
-                scratch
-            }
-        }
-    }
-
-    /// [`Vertex::bsdf_ref`] with a scratch value made only when a point needs one (a path of
-    /// untextured vertices never builds the 168-byte empty BSDF).
-    #[inline]
-    pub fn bsdf_in<'b>(
+    pub fn bsdf_ref<'b>(
         &'b self,
         ctx: &ShadeContext<'b>,
         scratch: &'b mut Option<Bsdf>,

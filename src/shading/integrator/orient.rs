@@ -2,7 +2,7 @@
 //! made safe, the face, its visibility, the segment's transmittance and the shading frame —
 //! the part of a surface vertex shared by the integrators' [`Vertex`](super::Vertex) and the
 //! photon walk's [`PhotonVertex`](crate::shading::photon_vertex::PhotonVertex), and the
-//! BSDF and spawned-ray helpers both read it through.
+//! shading point, BSDF and spawned-ray helpers both go through.
 
 use std::borrow::Cow;
 
@@ -32,6 +32,16 @@ pub(crate) struct Orientation {
     pub frame: ShadingFrame,
     /// Direction toward the viewer, world space (the unit reverse of the arriving ray).
     pub wo_world: Vec3,
+}
+
+/// The shading point of `hit`, through the context's table of triangle normals when it
+/// keeps one.
+#[inline(always)]
+pub(crate) fn shading_point(ctx: &ShadeContext<'_>, hit: &Hit) -> ShadingPoint {
+    match ctx.normals {
+        Some(n) => n.shading_point(ctx.geometry, hit),
+        None => ctx.geometry.shading_point(hit),
+    }
 }
 
 /// Whether two vectors have the same bit patterns (`-0.0` and `0.0` told apart).

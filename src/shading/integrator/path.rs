@@ -79,7 +79,7 @@ pub fn radiance_split(
     // Whether the path is still the eye's specular chain `E S*` (camera ray, then only delta
     // scattering): only then does `visible` hide area lights (see the module doc).
     let mut eye_chain = true;
-    // Where a textured vertex builds its BSDF ([`Vertex::bsdf_in`]), made at the first one.
+    // Where a textured vertex builds its BSDF ([`Vertex::bsdf_ref`]), made at the first one.
     let mut scratch: Option<Bsdf> = None;
     while let Some(h) = hit {
         let v = Vertex::new(ctx, &ray, &h);
@@ -127,7 +127,7 @@ pub fn radiance_split(
             l,
             false,
         );
-        let bsdf = v.bsdf_in(ctx, &mut scratch);
+        let bsdf = v.bsdf_ref(ctx, &mut scratch);
         if !bsdf.reflects() {
             break;
         }
