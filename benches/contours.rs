@@ -15,9 +15,8 @@ use stagelight::components::{Camera, ContourShader, RenderCamera};
 use stagelight::contour::Probe;
 use stagelight::frame::Frame;
 use stagelight::scene::load_scene;
-use stagelight::schedule::run_stages;
 use stagelight::shading::CameraRays;
-use stagelight::systems::STAGES;
+use stagelight::systems::{run_before, STAGES};
 
 /// The contours scene at `w × h` with `spp`, run up to (not including) `until`.
 fn prepared(w: u32, h: u32, spp: u32, until: &str, contours: bool) -> (World, Frame) {
@@ -42,8 +41,7 @@ fn prepared(w: u32, h: u32, spp: u32, until: &str, contours: bool) -> (World, Fr
     let mut settings = scene.settings.clone();
     settings.spp = spp;
     let mut frame = Frame::new(settings);
-    let end = STAGES.iter().position(|s| s.name == until).unwrap();
-    run_stages(&STAGES[..end], &mut scene.world, &mut frame).expect("stages run");
+    run_before(until, &mut scene.world, &mut frame).expect("stages run");
     (scene.world, frame)
 }
 

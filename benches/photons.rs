@@ -25,12 +25,7 @@ fn caustics_scene() -> PathBuf {
 fn photon_pass(c: &mut Criterion) {
     let mut scene = load_scene(&caustics_scene()).expect("caustics.ron loads");
     let mut frame = Frame::new(scene.settings.clone());
-    let stages = stagelight::systems::STAGES;
-    let at = stages
-        .iter()
-        .position(|s| s.name == "trace_photons")
-        .expect("trace_photons stage");
-    stagelight::schedule::run_stages(&stages[..at], &mut scene.world, &mut frame)
+    stagelight::systems::run_before("trace_photons", &mut scene.world, &mut frame)
         .expect("stages before trace_photons");
     let geometry = frame.outputs.geometry.as_ref().expect("geometry");
     let settings = &frame.inputs.settings;
@@ -97,9 +92,13 @@ fn photon_pass(c: &mut Criterion) {
             });
         }
     }
+    let trace = stagelight::systems::STAGES
+        .iter()
+        .find(|s| s.name == "trace_photons")
+        .expect("trace_photons stage");
     group.bench_function("trace_photons_stage_all_threads", |b| {
         b.iter(|| {
-            stages[at]
+            trace
                 .run_body(&mut scene.world, &frame)
                 .expect("trace_photons")
         })

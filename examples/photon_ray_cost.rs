@@ -40,12 +40,7 @@ fn main() {
     let photons: u64 = args.next().and_then(|n| n.parse().ok()).unwrap_or(100_000);
     let mut scene = load_scene(&path).expect("the scene loads");
     let mut frame = Frame::new(scene.settings.clone());
-    let stages = stagelight::systems::STAGES;
-    let at = stages
-        .iter()
-        .position(|s| s.name == "trace_photons")
-        .expect("trace_photons stage");
-    stagelight::schedule::run_stages(&stages[..at], &mut scene.world, &mut frame)
+    stagelight::systems::run_before("trace_photons", &mut scene.world, &mut frame)
         .expect("stages before trace_photons");
     let geometry = frame.outputs.geometry.as_ref().expect("geometry");
     let settings = &frame.inputs.settings;

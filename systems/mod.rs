@@ -135,6 +135,16 @@ pub fn run(world: &mut World, frame: &mut Frame) -> Result<(), StageError> {
     crate::schedule::run_stages(&STAGES[..end], world, frame)
 }
 
+/// Runs the stages before the one named `name` (as [`run`] would), leaving their outputs in
+/// `frame`: how benches and tools prepare the inputs of one stage.
+pub fn run_before(name: &str, world: &mut World, frame: &mut Frame) -> Result<(), StageError> {
+    let end = STAGES
+        .iter()
+        .position(|s| s.name == name)
+        .ok_or_else(|| StageError::Internal(format!("no stage named {name}")))?;
+    crate::schedule::run_stages(&STAGES[..end], world, frame)
+}
+
 /// What each stage would do for this world and these inputs, without running any.
 pub fn plan(world: &World, frame: &mut Frame) -> Vec<PlannedStage> {
     crate::schedule::plan(STAGES, world, frame)

@@ -53,9 +53,5 @@ pub fn load(text: &str, bake: bool) -> (World, Frame) {
 
 /// Runs the stages before `name` (as the runner would), leaving their outputs in `frame`.
 pub fn run_until(name: &str, world: &mut World, frame: &mut Frame) {
-    let end = super::STAGES
-        .iter()
-        .position(|s| s.name == name)
-        .expect("a stage of the table");
-    crate::schedule::run_stages(&super::STAGES[..end], world, frame).expect("earlier stages run");
+    super::run_before(name, world, frame).expect("earlier stages run");
 }
