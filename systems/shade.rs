@@ -167,6 +167,7 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
         // samples part would need exact component sums (refused by the CLI).
         components: part.is_none_or(|p| p.split == crate::farm::Split::Tiles)
             && wants_components(&camera),
+        variance: budget.refines(),
     };
     // Pass 1: the centre-sample passes and `min` samples everywhere (a tiles part: in its
     // own pixels and, when refinement compares neighbours, those next to them).
@@ -365,6 +366,8 @@ struct PixelShader<'a> {
     cancel: &'a AtomicBool,
     /// Whether to record the component passes.
     components: bool,
+    /// Whether pixels keep their samples' variance (adaptive refinement reads it).
+    variance: bool,
 }
 
 impl PixelShader<'_> {
@@ -448,7 +451,11 @@ impl PixelShader<'_> {
                 Some((_, CameraHit::Miss(le))) => (le, false),
                 None => (Vec3::ZERO, false),
             };
-            samples.add(l, covered);
+            if self.variance {
+                samples.add(l, covered);
+            } else {
+                samples.add_unmeasured(l, covered);
+            }
             if let Some(sums) = sums.as_deref_mut() {
                 if !matches!(hit, Some((_, CameraHit::Surface(_)))) {
                     parts.add(Component::Emission, l);
