@@ -188,20 +188,21 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
         dropped: vec![0; width * height],
     });
     let rows = RowOut::split(&mut fb, sums.as_mut(), components.as_mut(), width, height);
-    let polled = |x: usize, y: usize, f: &dyn Fn(usize, usize) -> Option<PixelResult>| {
-        if cancel.load(Ordering::Relaxed) {
-            stopped.store(true, Ordering::Relaxed);
-            return None;
-        }
-        f(x, y)
-    };
     let totals = if budget.refines() {
         // Every pixel's pass-1 samples decide the refinement, so they are all kept.
         let per_pixel = |f: &(dyn Fn(usize, usize) -> Option<PixelResult> + Sync)| {
             let rows: Vec<Vec<Option<PixelResult>>> = (0..height)
                 .into_par_iter()
                 .map(|y| {
-                    let row = (0..width).map(|x| polled(x, y, f)).collect();
+                    let row = (0..width)
+                        .map(|x| {
+                            if cancel.load(Ordering::Relaxed) {
+                                stopped.store(true, Ordering::Relaxed);
+                                return None;
+                            }
+                            f(x, y)
+                        })
+                        .collect();
                     ticker.tick(1);
                     row
                 })
@@ -234,7 +235,7 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
         for (i, p) in pixels.into_iter().enumerate() {
             let Some(p) = p else { continue };
             let (x, y) = (i % width, i / width);
-            totals = totals + rows[y].store(x, p, owns(x, y));
+            totals = totals + rows[y].store(x, &p, owns(x, y));
         }
         totals
     } else {
@@ -245,9 +246,11 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
             .map(|(y, mut row)| {
                 let mut totals = Totals::default();
                 for x in 0..width {
-                    if let Some(p) = polled(x, y, &|x, y| Some(first_pass(x, y))) {
-                        totals = totals + row.store(x, p, owns(x, y));
+                    if cancel.load(Ordering::Relaxed) {
+                        stopped.store(true, Ordering::Relaxed);
+                        continue;
                     }
+                    totals = totals + row.store(x, &first_pass(x, y), owns(x, y));
                 }
                 ticker.tick(1);
                 totals

@@ -88,8 +88,14 @@ impl<'a> RowOut<'a> {
 
     /// Writes pixel `x` of the row (an empty pixel when this part does not `own` it) and
     /// returns its samples taken and dropped.
-    pub(super) fn store(&mut self, x: usize, p: PixelResult, owned: bool) -> Totals {
-        let p = if owned { p } else { PixelResult::empty() };
+    pub(super) fn store(&mut self, x: usize, p: &PixelResult, owned: bool) -> Totals {
+        let empty;
+        let p = if owned {
+            p
+        } else {
+            empty = PixelResult::empty();
+            &empty
+        };
         if let Some((sums, covered, dropped)) = &mut self.sums {
             sums[x] = *p.samples.sums();
             covered[x] = p.samples.covered;
@@ -190,7 +196,7 @@ mod tests {
         for y in (0..height).rev() {
             for x in (0..width).rev() {
                 let i = y * width + x;
-                totals = totals + rows[y].store(x, pixel(i), i % 5 != 2);
+                totals = totals + rows[y].store(x, &pixel(i), i % 5 != 2);
             }
         }
         assert_eq!(fb, expected);
