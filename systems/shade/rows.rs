@@ -19,10 +19,12 @@ pub(super) struct RowOut<'a> {
     object_id: &'a mut [u32],
     material_id: &'a mut [u32],
     samples: &'a mut [u32],
-    /// Exact sums, covered and dropped counts (a farm part).
-    sums: Option<(&'a mut [[ExactSum; 3]], &'a mut [u32], &'a mut [u32])>,
+    sums: Option<SumsRow<'a>>,
     components: Option<&'a mut [[Vec3; 6]]>,
 }
+
+/// A row of a farm part's exact sums, covered counts and dropped counts.
+type SumsRow<'a> = (&'a mut [[ExactSum; 3]], &'a mut [u32], &'a mut [u32]);
 
 /// Samples taken and dropped, summed over pixels.
 #[derive(Debug, Default, Clone, Copy, PartialEq, Eq)]
