@@ -86,20 +86,37 @@ pub struct PixelSamples {
 impl PixelSamples {
     /// Records one sample: its radiance (`None` when non-finite) and whether it hit.
     pub fn add(&mut self, radiance: Vec3, hit: bool) {
-        self.taken += 1;
-        self.covered += u32::from(hit);
-        if !radiance.is_finite() {
-            self.dropped += 1;
+        if !self.add_to_sums(radiance, hit) {
             return;
         }
-        self.sums[0].add(radiance.x);
-        self.sums[1].add(radiance.y);
-        self.sums[2].add(radiance.z);
         let x = radiance.as_dvec3();
         self.n += 1;
         let d = x - self.mean;
         self.mean += d / self.n as f64;
         self.m2 += d * (x - self.mean);
+    }
+
+    /// Records one sample like [`Self::add`] but without the variance estimate, for a pixel
+    /// that is never refined: the sums and counts (so [`Self::value`], [`Self::alpha`] and
+    /// [`Self::sums`]) are the same bits, and [`Self::converged`] stays false.
+    #[inline]
+    pub fn add_unmeasured(&mut self, radiance: Vec3, hit: bool) {
+        self.add_to_sums(radiance, hit);
+    }
+
+    /// The sums and counts of [`Self::add`]; whether the sample was finite.
+    #[inline(always)]
+    fn add_to_sums(&mut self, radiance: Vec3, hit: bool) -> bool {
+        self.taken += 1;
+        self.covered += u32::from(hit);
+        if !radiance.is_finite() {
+            self.dropped += 1;
+            return false;
+        }
+        self.sums[0].add(radiance.x);
+        self.sums[1].add(radiance.y);
+        self.sums[2].add(radiance.z);
+        true
     }
 
     /// The pixel value: sum over the samples taken.
@@ -213,6 +230,42 @@ mod tests {
         nan.add(Vec3::NAN, true);
         assert_eq!(nan.dropped, 1);
         assert!((nan.value().x - 1.0 / 3.0).abs() < 1e-6);
+    }
+
+    #[test]
+    fn unmeasured_samples_give_the_same_sums_and_counts_bit_for_bit() {
+        let (mut measured, mut unmeasured) = (PixelSamples::default(), PixelSamples::default());
+        let mut state = 0x2545_f491u32;
+        for k in 0..5000u32 {
+            state ^= state << 13;
+            state ^= state >> 17;
+            state ^= state << 5;
+            let v = match k % 97 {
+                0 => f32::NAN,
+                1 => f32::INFINITY,
+                2 => -0.0,
+                3 => f32::from_bits(1),
+                _ => f32::from_bits(state & 0x7f7f_ffff) * if k % 3 == 0 { -1.0 } else { 1.0 },
+            };
+            let radiance = Vec3::new(v, v * 0.5, (k as f32).sqrt());
+            measured.add(radiance, k % 7 != 0);
+            unmeasured.add_unmeasured(radiance, k % 7 != 0);
+            assert_eq!(measured.sums(), unmeasured.sums());
+            assert_eq!(
+                (measured.taken, measured.covered, measured.dropped),
+                (unmeasured.taken, unmeasured.covered, unmeasured.dropped)
+            );
+            assert_eq!(
+                measured.value().to_array().map(f32::to_bits),
+                unmeasured.value().to_array().map(f32::to_bits)
+            );
+            assert_eq!(measured.alpha().to_bits(), unmeasured.alpha().to_bits());
+        }
+        assert!(measured.dropped > 0);
+        assert!(
+            !unmeasured.converged(Vec3::INFINITY),
+            "no variance estimate, never converged"
+        );
     }
 
     #[test]

@@ -23,6 +23,8 @@
 //! the camera's resolution; each pixel depends only on (seed, pixel index, sample index).
 //! The reported work items are the camera samples actually taken.
 
+mod rows;
+
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use glam::{DVec3, Vec2, Vec3};
@@ -48,6 +50,7 @@ use crate::shading::integrator::material_bsdfs::MaterialBsdfs;
 use crate::shading::integrator::triangle_normals::TriangleNormals;
 use crate::shading::integrator::{camera_hit, CameraHit};
 use crate::shading::{CameraRays, FilterSampler, ShadeContext, Volumes};
+use rows::{RowOut, Totals};
 
 /// Run condition: a render camera exists.
 pub fn should_run(world: &World, frame: &Frame) -> Decision {
@@ -164,64 +167,18 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
         // samples part would need exact component sums (refused by the CLI).
         components: part.is_none_or(|p| p.split == crate::farm::Split::Tiles)
             && wants_components(&camera),
+        variance: budget.refines(),
     };
-    // Runs `f` on every pixel, rows in parallel, polling for cancellation per pixel (one
-    // pixel is at most `max` samples of work).
-    let per_pixel = |f: &(dyn Fn(usize, usize) -> Option<PixelResult> + Sync)| {
-        let rows: Vec<Vec<Option<PixelResult>>> = (0..height)
-            .into_par_iter()
-            .map(|y| {
-                let row = (0..width)
-                    .map(|x| {
-                        if cancel.load(Ordering::Relaxed) {
-                            stopped.store(true, Ordering::Relaxed);
-                            return None;
-                        }
-                        f(x, y)
-                    })
-                    .collect();
-                ticker.tick(1);
-                row
-            })
-            .collect();
-        rows.into_iter().flatten().collect::<Vec<_>>()
-    };
-
     // Pass 1: the centre-sample passes and `min` samples everywhere (a tiles part: in its
     // own pixels and, when refinement compares neighbours, those next to them).
     let count = first_samples.len() as u32;
-    let mut pixels = per_pixel(&|x, y| {
+    let first_pass = |x: usize, y: usize| {
         if !part_or_whole.needs_first_pass(x, y, width, height, budget.refines()) {
-            return Some(PixelResult::empty());
+            return PixelResult::empty();
         }
-        Some(shade.first_pass(x, y, count))
-    });
-    if budget.refines() && !stopped.load(Ordering::Relaxed) {
-        let pass1: Vec<PixelSamples> = pixels
-            .iter()
-            .map(|p| p.as_ref().map(|p| p.samples.clone()).unwrap_or_default())
-            .collect();
-        let flags = refine_flags(&pass1, width, height, budget.contrast);
-        // Pass 2: refined pixels double their samples until converged or at `max`.
-        let refined = per_pixel(&|x, y| {
-            let i = y * width + x;
-            let mut p = pixels[i].as_ref()?.clone();
-            if !part_or_whole.owns(x, y, width) {
-                return Some(PixelResult::empty());
-            }
-            if let Some(delta) = flags[i] {
-                shade.refine(&mut p, x, y, &budget, delta);
-            }
-            Some(p)
-        });
-        pixels = refined;
-    }
-    drop(ticker);
-    progress.finish();
-    if stopped.load(Ordering::Relaxed) || cancel.load(Ordering::Relaxed) {
-        return Err(StageError::Interrupted);
-    }
-    let (mut taken, mut dropped) = (0u64, 0u64);
+        shade.first_pass(x, y, count)
+    };
+    let owns = |x: usize, y: usize| part_or_whole.owns(x, y, width);
     let mut components = shade
         .components
         .then(|| vec![[Vec3::ZERO; 6]; width * height]);
@@ -230,30 +187,82 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
         covered: vec![0; width * height],
         dropped: vec![0; width * height],
     });
-    for (i, p) in pixels.into_iter().enumerate() {
-        let Some(mut p) = p else { continue };
-        if !part_or_whole.owns(i % width, i / width, width) {
-            // A neighbour's first pass, computed only for refinement decisions.
-            p = PixelResult::empty();
+    let rows = RowOut::split(&mut fb, sums.as_mut(), components.as_mut(), width, height);
+    let totals = if budget.refines() {
+        // Every pixel's pass-1 samples decide the refinement, so they are all kept.
+        let per_pixel = |f: &(dyn Fn(usize, usize) -> Option<PixelResult> + Sync)| {
+            let rows: Vec<Vec<Option<PixelResult>>> = (0..height)
+                .into_par_iter()
+                .map(|y| {
+                    let row = (0..width)
+                        .map(|x| {
+                            if cancel.load(Ordering::Relaxed) {
+                                stopped.store(true, Ordering::Relaxed);
+                                return None;
+                            }
+                            f(x, y)
+                        })
+                        .collect();
+                    ticker.tick(1);
+                    row
+                })
+                .collect();
+            rows.into_iter().flatten().collect::<Vec<_>>()
+        };
+        let mut pixels = per_pixel(&|x, y| Some(first_pass(x, y)));
+        if !stopped.load(Ordering::Relaxed) {
+            let pass1: Vec<PixelSamples> = pixels
+                .iter()
+                .map(|p| p.as_ref().map(|p| p.samples.clone()).unwrap_or_default())
+                .collect();
+            let flags = refine_flags(&pass1, width, height, budget.contrast);
+            // Pass 2: refined pixels double their samples until converged or at `max`.
+            let refined = per_pixel(&|x, y| {
+                let i = y * width + x;
+                let mut p = pixels[i].as_ref()?.clone();
+                if !owns(x, y) {
+                    return Some(PixelResult::empty());
+                }
+                if let Some(delta) = flags[i] {
+                    shade.refine(&mut p, x, y, &budget, delta);
+                }
+                Some(p)
+            });
+            pixels = refined;
         }
-        if let Some(s) = &mut sums {
-            s.sums[i] = *p.samples.sums();
-            s.covered[i] = p.samples.covered;
-            s.dropped[i] = p.samples.dropped;
+        let mut rows = rows;
+        let mut totals = Totals::default();
+        for (i, p) in pixels.into_iter().enumerate() {
+            let Some(p) = p else { continue };
+            let (x, y) = (i % width, i / width);
+            totals = totals + rows[y].store(x, &p, owns(x, y));
         }
-        fb.beauty[i] = p.samples.value();
-        fb.alpha[i] = p.samples.alpha();
-        fb.depth[i] = p.depth;
-        fb.normal[i] = p.normal;
-        fb.object_id[i] = p.object_id;
-        fb.material_id[i] = p.material_id;
-        fb.samples[i] = p.samples.taken;
-        if let Some(c) = &mut components {
-            c[i] = p.component_values();
-        }
-        taken += u64::from(p.samples.taken);
-        dropped += u64::from(p.samples.dropped);
+        totals
+    } else {
+        // Without refinement a pixel is done after pass 1: each row's worker writes its
+        // pixels straight into the frame buffers.
+        rows.into_par_iter()
+            .enumerate()
+            .map(|(y, mut row)| {
+                let mut totals = Totals::default();
+                for x in 0..width {
+                    if cancel.load(Ordering::Relaxed) {
+                        stopped.store(true, Ordering::Relaxed);
+                        continue;
+                    }
+                    totals = totals + row.store(x, &first_pass(x, y), owns(x, y));
+                }
+                ticker.tick(1);
+                totals
+            })
+            .reduce(Totals::default, |a, b| a + b)
+    };
+    drop(ticker);
+    progress.finish();
+    if stopped.load(Ordering::Relaxed) || cancel.load(Ordering::Relaxed) {
+        return Err(StageError::Interrupted);
     }
+    let Totals { taken, dropped } = totals;
     if dropped > 0 {
         tracing::warn!("{dropped} non-finite samples were dropped");
     }
@@ -360,6 +369,8 @@ struct PixelShader<'a> {
     cancel: &'a AtomicBool,
     /// Whether to record the component passes.
     components: bool,
+    /// Whether pixels keep their samples' variance (adaptive refinement reads it).
+    variance: bool,
 }
 
 impl PixelShader<'_> {
@@ -443,7 +454,11 @@ impl PixelShader<'_> {
                 Some((_, CameraHit::Miss(le))) => (le, false),
                 None => (Vec3::ZERO, false),
             };
-            samples.add(l, covered);
+            if self.variance {
+                samples.add(l, covered);
+            } else {
+                samples.add_unmeasured(l, covered);
+            }
             if let Some(sums) = sums.as_deref_mut() {
                 if !matches!(hit, Some((_, CameraHit::Surface(_)))) {
                     parts.add(Component::Emission, l);
