@@ -38,18 +38,6 @@ use super::{Accel, Hit, Ray};
 /// Rays in one packet (one bit each in a `u64` mask).
 pub(crate) const PACKET_RAYS: usize = 64;
 
-/// Slots per origin in the AVX2 test's table of planes minus origins (six used: a power of
-/// two, so a ray's plane indices need no bounds check).
-const PLANE_SLOTS: usize = 8;
-
-/// The near and far plane per axis (`[near x, far x, near y, …]`) of a ray from origin `o`
-/// with near planes `near`, as indices into a table of [`PLANE_SLOTS`] planes per origin.
-#[inline(always)]
-fn plane_slots(o: usize, near: [u8; 3]) -> [u8; 6] {
-    let base = (PLANE_SLOTS * o) as u8;
-    [0, 1, 2, 3, 4, 5].map(|k| base + (near[k / 2] ^ (k as u8 & 1)))
-}
-
 /// Distinct origins in one packet (a texel's four sample positions, each with the origins
 /// above and below its surface).
 const PACKET_ORIGINS: usize = 8;
@@ -157,10 +145,6 @@ struct Packet {
     inv: [[f32; 3]; PACKET_RAYS],
     /// Near plane per axis (`2·axis`, plus 1 when the direction's sign bit is set).
     near: [[u8; 3]; PACKET_RAYS],
-    /// Per axis, the near and the far plane of the ray's origin as an index into a table of
-    /// [`PLANE_SLOTS`] planes per origin: `PLANE_SLOTS·origin + near` and `… + (near ^ 1)`.
-    /// Below `PACKET_ORIGINS · PLANE_SLOTS`, so the AVX2 test indexes without bounds checks.
-    planes: [[u8; 6]; PACKET_RAYS],
     t_max: [f32; PACKET_RAYS],
     woop: Vec<WoopRay>,
     /// The same constants as arrays over the rays (the AVX2 leaf test's ray lanes).
@@ -179,7 +163,6 @@ impl Packet {
             origin_of: [0; PACKET_RAYS],
             inv: [[0.0; 3]; PACKET_RAYS],
             near: [[0; 3]; PACKET_RAYS],
-            planes: [[0; 6]; PACKET_RAYS],
             t_max: [0.0; PACKET_RAYS],
             woop: Vec::with_capacity(PACKET_RAYS),
             lanes: RayLanes::new(),
@@ -224,7 +207,6 @@ impl Packet {
         self.inv[i] = ray.dir.recip().to_array();
         // The sign bit decides (−0.0 counts as negative, matching 1/−0 = −∞).
         self.near[i] = [0, 1, 2].map(|a| (2 * a + usize::from(d[a].is_sign_negative())) as u8);
-        self.planes[i] = plane_slots(o, self.near[i]);
         self.t_max[i] = ray.t_max;
         let woop = WoopRay::new(ray.origin, ray.dir);
         self.lanes.set(i, &woop);
@@ -387,15 +369,12 @@ mod wide {
     use std::ops::Range;
 
     use super::super::packet_leaf::{Group8, LANES};
-    use super::{
-        bits, Best, Bvh, Node, Packet, PacketTest, FAR_SCALE_FACTOR, PACKET_ORIGINS, PLANE_SLOTS,
-    };
+    use super::{bits, Best, Bvh, Node, Packet, PacketTest, FAR_SCALE_FACTOR, PACKET_ORIGINS};
 
     /// Planes minus each origin, eight children per register. Only made inside the AVX2
     /// kernels (the type is private to this file), so its methods may use AVX.
     pub(super) struct Planes8 {
-        /// `minus[PLANE_SLOTS·origin + plane]` (the last two slots of each origin unused).
-        minus: [__m256; PACKET_ORIGINS * PLANE_SLOTS],
+        minus: [[__m256; 6]; PACKET_ORIGINS],
     }
 
     impl PacketTest for Planes8 {
@@ -404,7 +383,7 @@ mod wide {
             // SAFETY: AVX; this type exists only inside the AVX2 kernels.
             let zero = unsafe { _mm256_setzero_ps() };
             Self {
-                minus: [zero; PACKET_ORIGINS * PLANE_SLOTS],
+                minus: [[zero; 6]; PACKET_ORIGINS],
             }
         }
 
@@ -423,8 +402,7 @@ mod wide {
                         continue;
                     }
                     let origin = packet.origins[o].to_array();
-                    let minus = &mut self.minus[PLANE_SLOTS * o..PLANE_SLOTS * o + 6];
-                    for (k, m) in minus.iter_mut().enumerate() {
+                    for (k, m) in self.minus[o].iter_mut().enumerate() {
                         *m = _mm256_sub_ps(planes[k], _mm256_set1_ps(origin[k / 2]));
                     }
                 }
@@ -433,18 +411,16 @@ mod wide {
 
         #[inline(always)]
         fn mask(&self, packet: &Packet, i: usize, t_far: f32) -> u32 {
-            // The ray's planes minus its origin, near and far per axis; the mask keeps the
-            // index inside the table (it already is: `plane_slots`), so no bounds checks.
-            const LAST: usize = PACKET_ORIGINS * PLANE_SLOTS - 1;
-            let (planes, inv) = (packet.planes[i], packet.inv[i]);
+            let minus = &self.minus[packet.origin_of[i] as usize];
+            let (near, inv) = (packet.near[i], packet.inv[i]);
             // SAFETY: AVX intrinsics; this type exists only inside the AVX2 kernels.
             unsafe {
                 let mut tn = _mm256_setzero_ps();
                 let mut tf = _mm256_set1_ps(t_far);
                 for a in 0..3 {
                     let inv = _mm256_set1_ps(inv[a]);
-                    let n = _mm256_mul_ps(self.minus[planes[2 * a] as usize & LAST], inv);
-                    let f = _mm256_mul_ps(self.minus[planes[2 * a + 1] as usize & LAST], inv);
+                    let n = _mm256_mul_ps(minus[near[a] as usize], inv);
+                    let f = _mm256_mul_ps(minus[near[a] as usize ^ 1], inv);
                     // `max(n, acc)` returns `acc` when either is NaN, as SSE `maxps` does.
                     tn = _mm256_max_ps(n, tn);
                     tf = _mm256_min_ps(f, tf);
@@ -949,55 +925,6 @@ mod tests {
                     let want = i < 16 * chunks && m >> slot & 1 != 0;
                     assert_eq!(rays >> i & 1 != 0, want, "slot {slot}, ray {i}");
                 }
-            }
-        }
-    }
-
-    /// The AVX2 test's plane indices: per axis the near plane (`2·axis`, +1 for a set sign
-    /// bit, −0 included) and the far plane of the ray's own origin, inside the table, and
-    /// the same planes as `origin_of` and `near` name (the SSE test's indices).
-    #[test]
-    fn plane_slots_name_each_rays_near_and_far_planes() {
-        let mut packet = Packet::new();
-        let origins: Vec<Vec3> = (0..PACKET_ORIGINS)
-            .map(|o| Vec3::new(o as f32, -(o as f32), 0.5))
-            .collect();
-        let signs = [1.0f32, -1.0, 0.0, -0.0];
-        let mut n = 0;
-        for (k, &origin) in origins.iter().cycle().take(PACKET_RAYS).enumerate() {
-            let c = |a: usize| signs[(k >> (2 * a)) % 4] * (1.0 + a as f32);
-            let dir = Vec3::new(c(0), c(1), c(2) + 0.25f32.copysign(c(2)));
-            assert!(packet.add(
-                k,
-                &Ray {
-                    origin,
-                    dir,
-                    t_max: 1.0
-                }
-            ));
-            n += 1;
-        }
-        assert_eq!((packet.len, packet.n_origins), (n, PACKET_ORIGINS));
-        for i in 0..packet.len {
-            let o = packet.origin_of[i] as usize;
-            assert_eq!(packet.origins[o], origins[i % PACKET_ORIGINS]);
-            let d = [0, 1, 2].map(|a| {
-                let c = (i >> (2 * a)) % 4;
-                c == 1 || c == 3
-            });
-            for a in 0..3 {
-                let near = 2 * a + usize::from(d[a]);
-                assert_eq!(packet.near[i][a] as usize, near, "ray {i} axis {a}");
-                let slots = packet.planes[i];
-                assert_eq!(slots[2 * a] as usize, PLANE_SLOTS * o + near, "ray {i}");
-                assert_eq!(
-                    slots[2 * a + 1] as usize,
-                    PLANE_SLOTS * o + (near ^ 1),
-                    "ray {i}"
-                );
-                assert!(slots
-                    .iter()
-                    .all(|&s| (s as usize) < PACKET_ORIGINS * PLANE_SLOTS));
             }
         }
     }
