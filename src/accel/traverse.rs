@@ -87,24 +87,6 @@ pub(super) trait NodeTest {
         (ordered_mask, t, r)
     }
 
-    /// The leaf's hits a closest-hit search needs: a subset of what [`NodeTest::leaf_hits`]
-    /// reports (same `j` and values, triangle order) that holds every hit at the smallest
-    /// `t ≤ t_limit`, so the smallest `(t, primitive)` among them is the smallest among all.
-    /// Here all of them; the AVX2 kernels report only the nearest, without a loop.
-    #[inline(always)]
-    fn leaf_nearest(
-        &self,
-        woop: &WoopRay,
-        tris: &[[Vec3; 3]],
-        t_limit: f32,
-        mut f: impl FnMut(usize, (f32, f32, f32)),
-    ) {
-        self.leaf_hits(woop, tris, t_limit, |j, hit| {
-            f(j, hit);
-            false
-        });
-    }
-
     /// Pushes the children of `node` entered within `[0, t_far]` onto `stack` in the visiting
     /// order `order` (a [`Node::order`] word), farthest first, so that the nearest is on top
     /// (the batch lanes). Here through [`NodeTest::intersect_ordered`] and a loop; the AVX-512
@@ -689,20 +671,18 @@ impl<N: NodeTest, const OCTANT: bool> ClosestLane<BatchStack, N, OCTANT> {
         self.stack.clear();
     }
 
-    /// Processes `cur`, a leaf when `LEAF` is true and a node otherwise (the batch sorts its
-    /// lanes by what they visit next, so this test is a constant in each of its loops), and
-    /// pops the next node or leaf into it; false when the traversal is finished.
+    /// Processes `cur` and pops the next node or leaf into it; false when the traversal is
+    /// finished.
     #[inline(always)]
-    fn step<const LEAF: bool>(&mut self, bvh: &Bvh) -> bool {
+    fn step(&mut self, bvh: &Bvh) -> bool {
         let cur = self.cur;
-        debug_assert_eq!(cur & LEAF_BIT != 0, LEAF);
-        if LEAF {
+        if cur & LEAF_BIT != 0 {
             let range = leaf_range(cur);
             let first = range.start;
             let (best, best_t, cull) = (&mut self.best, &mut self.best_t, &mut self.cull);
             let limit = *best_t;
             self.nr
-                .leaf_nearest(&self.woop, &bvh.tris[range], limit, |j, (t, b1, b2)| {
+                .leaf_hits(&self.woop, &bvh.tris[range], limit, |j, (t, b1, b2)| {
                     let k = first + j;
                     let better = t < *best_t
                         || (t == *best_t
@@ -712,6 +692,7 @@ impl<N: NodeTest, const OCTANT: bool> ClosestLane<BatchStack, N, OCTANT> {
                         *best_t = t;
                         *cull = t * FAR_SCALE;
                     }
+                    false
                 });
         } else if OCTANT {
             let node = &bvh.nodes[cur as usize];
@@ -928,67 +909,29 @@ pub(super) fn closest_batch_ordered_in<N: NodeTest, const OCTANT: bool>(
         }
         None
     };
-    // Lane `k` traces ray `index[k]` while bit `k` of `active` is set; an idle lane keeps a
-    // placeholder ray and is never stepped.
-    let idle = Ray {
-        origin: Vec3::ZERO,
-        dir: Vec3::Z,
-        t_max: 0.0,
-    };
-    let mut index = [0usize; BATCH_LANES];
-    let mut active = 0u32;
-    let mut lanes: [ClosestLane<BatchStack, N, OCTANT>; BATCH_LANES] = std::array::from_fn(|k| {
-        let ray = match take(out) {
-            Some(i) => {
-                index[k] = i;
-                active |= 1 << k;
-                &rays[i]
-            }
-            None => &idle,
-        };
-        ClosestLane::new(ray, ArrayStack::new())
-    });
-    // One lane step after the other, as `closest_with` would take them, but in rounds: the
-    // lanes at a node step first, then the lanes at a leaf, so the step's node-or-leaf test
-    // is no longer a guess per step (it was mispredicted one time in three: cachegrind, in
-    // `docs/ray-layer.md`), only the end of each loop is.
-    // A finished lane writes its result and takes the next ray, or goes idle.
-    let mut finish = |lane: &mut ClosestLane<BatchStack, N, OCTANT>, k: usize, active: &mut u32| {
-        out[index[k]] = lane.result(bvh);
-        match take(out) {
-            Some(j) => {
-                lane.restart(&rays[j]);
-                index[k] = j;
-            }
-            None => *active &= !(1 << k),
-        }
-    };
-    while active != 0 {
-        let at_leaf = lanes
-            .iter()
-            .enumerate()
-            .fold(0, |m, (k, lane)| m | (lane.cur >> 31) << k)
-            & active;
-        let mut nodes = active & !at_leaf;
-        while nodes != 0 {
-            let k = nodes.trailing_zeros() as usize;
-            nodes &= nodes - 1;
-            let lane = &mut lanes[k];
-            if lane.step::<false>(bvh) {
+    let mut lanes: [Option<(usize, ClosestLane<BatchStack, N, OCTANT>)>; BATCH_LANES] =
+        std::array::from_fn(|_| None);
+    for slot in lanes.iter_mut() {
+        *slot = take(out).map(|i| (i, ClosestLane::new(&rays[i], ArrayStack::new())));
+    }
+    let mut active = lanes.iter().filter(|l| l.is_some()).count();
+    while active > 0 {
+        for slot in lanes.iter_mut() {
+            let Some((i, lane)) = slot else { continue };
+            if lane.step(bvh) {
                 prefetch(bvh, lane.cur);
-            } else {
-                finish(lane, k, &mut active);
+                continue;
             }
-        }
-        let mut leaves = at_leaf;
-        while leaves != 0 {
-            let k = leaves.trailing_zeros() as usize;
-            leaves &= leaves - 1;
-            let lane = &mut lanes[k];
-            if lane.step::<true>(bvh) {
-                prefetch(bvh, lane.cur);
-            } else {
-                finish(lane, k, &mut active);
+            out[*i] = lane.result(bvh);
+            match take(out) {
+                Some(j) => {
+                    lane.restart(&rays[j]);
+                    *i = j;
+                }
+                None => {
+                    *slot = None;
+                    active -= 1;
+                }
             }
         }
     }

@@ -208,57 +208,6 @@ impl NodeTest for NodeRay8 {
         }
     }
 
-    /// The nearest of the SIMD lanes' hits, picked without a loop over them (the loop's
-    /// branches were mispredicted about five times per photon ray, cachegrind in
-    /// `docs/ray-layer.md`): the hit lanes' smallest `t`, then the lanes at that `t`, almost
-    /// always one. With a slow lane, [`NodeTest::leaf_hits`] reports them all.
-    #[inline(always)]
-    fn leaf_nearest(
-        &self,
-        woop: &WoopRay,
-        tris: &[[Vec3; 3]],
-        t_limit: f32,
-        mut f: impl FnMut(usize, (f32, f32, f32)),
-    ) {
-        let lanes = self.leaf.test(tris);
-        if lanes.slow != 0 {
-            self.leaf_hits(woop, tris, t_limit, |j, hit| {
-                f(j, hit);
-                false
-            });
-            return;
-        }
-        // The hit lanes' distances (finite and positive), +∞ for the others (selected with
-        // masks: a branch per lane was mispredicted as often as the loop it replaces).
-        let t = |j: usize| {
-            let keep = 0u32.wrapping_sub(lanes.hit >> j & 1);
-            f32::from_bits(lanes.t[j].to_bits() & keep | f32::INFINITY.to_bits() & !keep)
-        };
-        let (t0, t1, t2) = (t(0), t(1), t(2));
-        let nearest = t0.min(t1).min(t2);
-        // The hit lanes at the nearest distance, none when it is beyond `t_limit`.
-        let at = (u32::from(t0 == nearest)
-            | u32::from(t1 == nearest) << 1
-            | u32::from(t2 == nearest) << 2)
-            & lanes.hit
-            & 0u32.wrapping_sub(u32::from(nearest <= t_limit));
-        if at == 0 {
-            return;
-        }
-        if at & (at - 1) == 0 {
-            let j = at.trailing_zeros() as usize;
-            f(j, (lanes.t[j], lanes.b1[j], lanes.b2[j]));
-            return;
-        }
-        // Two or three triangles at the same distance (a rare tie): all of them.
-        let mut at = at;
-        while at != 0 {
-            let j = at.trailing_zeros() as usize;
-            at &= at - 1;
-            f(j, (lanes.t[j], lanes.b1[j], lanes.b2[j]));
-        }
-    }
-
     #[inline(always)]
     fn intersect(&self, node: &Node, t_far: f32) -> (u32, [f32; 8]) {
         let (hit, tn) = self.test(node, t_far);

@@ -75,17 +75,6 @@ impl NodeTest for NodeRay8k {
     }
 
     #[inline(always)]
-    fn leaf_nearest(
-        &self,
-        woop: &WoopRay,
-        tris: &[[Vec3; 3]],
-        t_limit: f32,
-        f: impl FnMut(usize, (f32, f32, f32)),
-    ) {
-        self.0.leaf_nearest(woop, tris, t_limit, f);
-    }
-
-    #[inline(always)]
     fn intersect(&self, node: &Node, t_far: f32) -> (u32, [f32; 8]) {
         self.0.intersect(node, t_far)
     }
