@@ -529,10 +529,10 @@ fn closest_with<S: Stack, N: NodeTest, const OCTANT: bool>(
             let (mut mask, tn, child) = nr.intersect_ordered(node, best_t, node.order[octant]);
             if mask != 0 {
                 // Farthest first, so that the nearest (in octant order) is visited next: it
-                // goes straight to `cur` (its entry distance is ≤ `cull` by the box test).
+                // goes straight to `cur` (its entry distance is ≤ `cull` by the box test). It
+                // is not prefetched: its loads are the very next ones, their addresses known.
                 let nearest = mask.trailing_zeros() as usize;
                 mask &= mask - 1;
-                prefetch(bvh, child[nearest]);
                 while mask != 0 {
                     let i = 31 - mask.leading_zeros() as usize;
                     mask ^= 1 << i;
@@ -605,14 +605,22 @@ fn occluded_with<S: Stack, N: NodeTest>(bvh: &Bvh, ray: &Ray, mut stack: S) -> b
         } else {
             let node = &bvh.nodes[cur as usize];
             let (mut mask, _) = nr.intersect(node, ray.t_max);
-            while mask != 0 {
-                let slot = mask.trailing_zeros() as usize;
-                mask &= mask - 1;
-                prefetch(bvh, node.child[slot]);
-                stack.push(Entry {
-                    r: node.child[slot],
-                    t: 0.0,
-                });
+            if mask != 0 {
+                // The last slot hit is visited next (it would be on top of the stack), not
+                // pushed nor prefetched: its loads are the very next ones.
+                let last = 31 - mask.leading_zeros() as usize;
+                mask ^= 1 << last;
+                while mask != 0 {
+                    let slot = mask.trailing_zeros() as usize;
+                    mask &= mask - 1;
+                    prefetch(bvh, node.child[slot]);
+                    stack.push(Entry {
+                        r: node.child[slot],
+                        t: 0.0,
+                    });
+                }
+                cur = node.child[last];
+                continue;
             }
         }
         match stack.pop() {
