@@ -1235,7 +1235,11 @@ mod tests {
             let (mut hit, mut missed) = (0, 0);
             for (i, r) in rays.iter().enumerate() {
                 let octant = occluded_ordered_in::<NodeRay, true>(&bvh, r);
-                assert_eq!(octant, occluded_ordered_in::<NodeRay, false>(&bvh, r), "ray {i}");
+                assert_eq!(
+                    octant,
+                    occluded_ordered_in::<NodeRay, false>(&bvh, r),
+                    "ray {i}"
+                );
                 assert_eq!(octant, closest(&bvh, r).is_some(), "ray {i}");
                 if octant {
                     hit += 1;
