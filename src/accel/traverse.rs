@@ -6,12 +6,13 @@
 //!   `1 + 2γ3`. The only NaN is `0 · ∞` (origin exactly on a plane of an axis the ray does not
 //!   move along); the min/max chain is ordered so that such a slab is ignored, which is the
 //!   conservative answer. The entry distance is clamped at 0 — not at obvhs's 1e-4.
-//! * **Order**: the single-ray closest-hit kernel visits hit children in the node's
-//!   precomputed order for the ray's octant (`Node::order`; no sort): the nearest is visited
-//!   next, the others are pushed farthest first. The AVX-512 batch lanes push them in the
+//! * **Order**: the single-ray kernels (closest hit and occlusion) visit hit children in the
+//!   node's precomputed order for the ray's octant (`Node::order`; no sort): the nearest is
+//!   visited next (not pushed, not prefetched), the others are pushed farthest first. The AVX-512 batch lanes push them in the
 //!   same order, farthest first, the nearest on top (`NodeTest::push_ordered`, one
 //!   compressed block store); the other batch lanes push them sorted by entry distance,
-//!   nearest on top. `STAGELIGHT_TRAVERSAL=sorted` sorts in every kernel (for A/B runs).
+//!   nearest on top. `STAGELIGHT_TRAVERSAL=sorted` sorts in every kernel, and the
+//!   single-ray occlusion kernel then visits the last slot hit first (for A/B runs).
 //!   Popped entries farther than the current closest hit are skipped.
 //! * **Prefetch**: every child pushed is prefetched whole (a node's four cache lines, a
 //!   leaf's triangles), so its misses overlap the work on its siblings (+13–15 % incoherent);
@@ -413,7 +414,8 @@ pub(crate) fn occluded(bvh: &Bvh, ray: &Ray) -> bool {
 
 /// Whether the closest-hit kernel visits children in octant order (the default) rather than
 /// sorted by entry distance: `STAGELIGHT_TRAVERSAL=sorted` (or `sse-sorted`) at the first
-/// query turns the sort back on, for A/B measurements. Both give the same hits.
+/// query turns the sort back on (and slot order in the single-ray occlusion kernel), for A/B
+/// measurements. Both give the same hits.
 pub(super) fn octant_order() -> bool {
     static CHOICE: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
     *CHOICE
@@ -461,19 +463,30 @@ pub(super) fn occluded_in<N: NodeTest>(bvh: &Bvh, ray: &Ray) -> bool {
     if bvh.nodes.is_empty() || !ray_is_valid(ray) {
         return false;
     }
+    if octant_order() {
+        occluded_ordered_in::<N, true>(bvh, ray)
+    } else {
+        occluded_ordered_in::<N, false>(bvh, ray)
+    }
+}
+
+/// [`occluded_in`] with the child order fixed: nearest first in octant order (`OCTANT`) or
+/// the last slot first.
+#[inline(always)]
+fn occluded_ordered_in<N: NodeTest, const OCTANT: bool>(bvh: &Bvh, ray: &Ray) -> bool {
     if stack_bound(bvh.depth) <= SMALL_STACK {
-        occluded_with::<_, N>(bvh, ray, ArrayStack::<SMALL_STACK>::new())
+        occluded_with::<_, N, OCTANT>(bvh, ray, ArrayStack::<SMALL_STACK>::new())
     } else if stack_bound(bvh.depth) <= ARRAY_STACK {
         let mut items = take_thread_stack();
         let stack = RefStack {
             items: &mut items,
             len: 0,
         };
-        let hit = occluded_with::<_, N>(bvh, ray, stack);
+        let hit = occluded_with::<_, N, OCTANT>(bvh, ray, stack);
         put_thread_stack(items);
         hit
     } else {
-        occluded_with::<_, N>(bvh, ray, Vec::with_capacity(stack_bound(bvh.depth)))
+        occluded_with::<_, N, OCTANT>(bvh, ray, Vec::with_capacity(stack_bound(bvh.depth)))
     }
 }
 
@@ -529,10 +542,10 @@ fn closest_with<S: Stack, N: NodeTest, const OCTANT: bool>(
             let (mut mask, tn, child) = nr.intersect_ordered(node, best_t, node.order[octant]);
             if mask != 0 {
                 // Farthest first, so that the nearest (in octant order) is visited next: it
-                // goes straight to `cur` (its entry distance is ≤ `cull` by the box test).
+                // goes straight to `cur` (its entry distance is ≤ `cull` by the box test). It
+                // is not prefetched: its loads are the very next ones, their addresses known.
                 let nearest = mask.trailing_zeros() as usize;
                 mask &= mask - 1;
-                prefetch(bvh, child[nearest]);
                 while mask != 0 {
                     let i = 31 - mask.leading_zeros() as usize;
                     mask ^= 1 << i;
@@ -583,9 +596,14 @@ fn closest_with<S: Stack, N: NodeTest, const OCTANT: bool>(
 }
 
 #[inline(always)]
-fn occluded_with<S: Stack, N: NodeTest>(bvh: &Bvh, ray: &Ray, mut stack: S) -> bool {
+fn occluded_with<S: Stack, N: NodeTest, const OCTANT: bool>(
+    bvh: &Bvh,
+    ray: &Ray,
+    mut stack: S,
+) -> bool {
     let woop = WoopRay::new(ray.origin, ray.dir);
     let nr = N::new(ray, &woop);
+    let octant = octant(ray);
     let mut cur = 0u32;
     loop {
         if cur & LEAF_BIT != 0 {
@@ -602,17 +620,45 @@ fn occluded_with<S: Stack, N: NodeTest>(bvh: &Bvh, ray: &Ray, mut stack: S) -> b
             if hit {
                 return true;
             }
+        } else if OCTANT {
+            // As the closest-hit kernel: the nearest in octant order next, the others pushed
+            // farthest first (the nearest occluder is the likeliest to be found early).
+            let node = &bvh.nodes[cur as usize];
+            let (mut mask, _, child) = nr.intersect_ordered(node, ray.t_max, node.order[octant]);
+            if mask != 0 {
+                let nearest = mask.trailing_zeros() as usize;
+                mask &= mask - 1;
+                while mask != 0 {
+                    let i = 31 - mask.leading_zeros() as usize;
+                    mask ^= 1 << i;
+                    prefetch(bvh, child[i]);
+                    stack.push(Entry {
+                        r: child[i],
+                        t: 0.0,
+                    });
+                }
+                cur = child[nearest];
+                continue;
+            }
         } else {
             let node = &bvh.nodes[cur as usize];
             let (mut mask, _) = nr.intersect(node, ray.t_max);
-            while mask != 0 {
-                let slot = mask.trailing_zeros() as usize;
-                mask &= mask - 1;
-                prefetch(bvh, node.child[slot]);
-                stack.push(Entry {
-                    r: node.child[slot],
-                    t: 0.0,
-                });
+            if mask != 0 {
+                // The last slot hit is visited next (it would be on top of the stack), not
+                // pushed nor prefetched: its loads are the very next ones.
+                let last = 31 - mask.leading_zeros() as usize;
+                mask ^= 1 << last;
+                while mask != 0 {
+                    let slot = mask.trailing_zeros() as usize;
+                    mask &= mask - 1;
+                    prefetch(bvh, node.child[slot]);
+                    stack.push(Entry {
+                        r: node.child[slot],
+                        t: 0.0,
+                    });
+                }
+                cur = node.child[last];
+                continue;
             }
         }
         match stack.pop() {
@@ -1142,6 +1188,69 @@ mod tests {
 
     /// The single-ray kernels take this thread's stack array and put it back: the second
     /// query of a thread reuses the first one's array (same address), with the same answers.
+    /// The occlusion kernel answers the same in octant order (nearest first, the default) as
+    /// in slot order, and both say whether the closest-hit kernel finds a hit, on a soup and
+    /// on a hierarchy deeper than the array stack.
+    #[test]
+    fn occlusion_orders_agree_with_closest_hit() {
+        let mut rnd = crate::accel::test_random::signed_uniform(0x6a09_e667_f3bc_c908u64);
+        let soup: Vec<[Vec3; 3]> = (0..3000)
+            .map(|_| {
+                let c = Vec3::new(rnd(), rnd(), rnd()) * 4.0;
+                [
+                    c,
+                    c + Vec3::new(rnd(), rnd(), rnd()) * 0.3,
+                    c + Vec3::new(rnd(), rnd(), rnd()) * 0.3,
+                ]
+            })
+            .collect();
+        let nested: Vec<[Vec3; 3]> = (0..3000)
+            .map(|i| {
+                let s = 0.997f32.powi(i);
+                [
+                    Vec3::new(-s, -s, i as f32 * 1e-3),
+                    Vec3::new(s, -s, 0.0),
+                    Vec3::new(0.0, s, 0.0),
+                ]
+            })
+            .collect();
+        let rays: Vec<Ray> = (0..3000)
+            .map(|i| {
+                let origin = Vec3::new(rnd(), rnd(), rnd()) * 5.0;
+                let dir = if i % 2 == 0 {
+                    Vec3::new(rnd(), rnd(), rnd().abs() * 3.0) - origin
+                } else {
+                    Vec3::new(rnd(), rnd(), rnd())
+                };
+                let t_max = if i % 3 == 0 {
+                    rnd().abs() * 4.0
+                } else {
+                    f32::INFINITY
+                };
+                Ray { origin, dir, t_max }
+            })
+            .collect();
+        for tris in [soup, nested] {
+            let bvh = super::super::bvh::build(&tris, crate::settings::BvhQuality::Medium);
+            let (mut hit, mut missed) = (0, 0);
+            for (i, r) in rays.iter().enumerate() {
+                let octant = occluded_ordered_in::<NodeRay, true>(&bvh, r);
+                assert_eq!(
+                    octant,
+                    occluded_ordered_in::<NodeRay, false>(&bvh, r),
+                    "ray {i}"
+                );
+                assert_eq!(octant, closest(&bvh, r).is_some(), "ray {i}");
+                if octant {
+                    hit += 1;
+                } else {
+                    missed += 1;
+                }
+            }
+            assert!(hit > 100 && missed > 100, "{hit} occluded, {missed} not");
+        }
+    }
+
     #[test]
     fn single_ray_queries_reuse_the_thread_stack() {
         let tris: Vec<[Vec3; 3]> = (0..4000)
