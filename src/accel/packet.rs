@@ -264,7 +264,12 @@ trait PacketTest {
     /// per-ray masks transposed by [`child_rays`]; the AVX2 test accumulates them in
     /// registers.
     #[inline(always)]
-    fn child_masks(&self, packet: &Packet, rays: u64, t_far: &[f32; PACKET_RAYS]) -> ([u64; 8], u32) {
+    fn child_masks(
+        &self,
+        packet: &Packet,
+        rays: u64,
+        t_far: &[f32; PACKET_RAYS],
+    ) -> ([u64; 8], u32) {
         let mut masks = [0u8; PACKET_RAYS];
         let mut any = 0;
         for i in bits(rays) {
@@ -408,10 +413,10 @@ mod wide {
     use std::arch::x86_64::{
         __m256, __m256i, _mm256_and_si256, _mm256_castps_si256, _mm256_castsi256_ps,
         _mm256_castsi256_si128, _mm256_cmp_ps, _mm256_cmpeq_epi32, _mm256_cvtepu32_epi64,
-        _mm256_extracti128_si256, _mm256_loadu_ps, _mm256_max_ps, _mm256_min_ps, _mm256_movemask_ps,
-        _mm256_mul_ps, _mm256_or_si256, _mm256_set1_epi32, _mm256_set1_ps, _mm256_set_m128,
-        _mm256_setzero_ps, _mm256_setzero_si256, _mm256_slli_epi64, _mm256_storeu_si256,
-        _mm256_sub_ps, _CMP_LE_OS,
+        _mm256_extracti128_si256, _mm256_loadu_ps, _mm256_max_ps, _mm256_min_ps,
+        _mm256_movemask_ps, _mm256_mul_ps, _mm256_or_si256, _mm256_set1_epi32, _mm256_set1_ps,
+        _mm256_set_m128, _mm256_setzero_ps, _mm256_setzero_si256, _mm256_slli_epi64,
+        _mm256_storeu_si256, _mm256_sub_ps, _CMP_LE_OS,
     };
 
     use std::ops::Range;
@@ -526,9 +531,9 @@ mod wide {
                 );
                 let second = _mm256_or_si256(
                     _mm256_cvtepu32_epi64(_mm256_extracti128_si256::<1>(lo)),
-                    _mm256_slli_epi64::<32>(_mm256_cvtepu32_epi64(
-                        _mm256_extracti128_si256::<1>(hi),
-                    )),
+                    _mm256_slli_epi64::<32>(_mm256_cvtepu32_epi64(_mm256_extracti128_si256::<1>(
+                        hi,
+                    ))),
                 );
                 let mut out = [0u64; 8];
                 _mm256_storeu_si256(out.as_mut_ptr().cast::<__m256i>(), first);

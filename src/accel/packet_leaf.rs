@@ -117,7 +117,12 @@ fn shear(dir: glam::Vec3, z_is_x: u32, z_is_y: u32) -> ([f32; 3], [f32; 3]) {
     // four-float arrays.
     unsafe {
         let z_is_z = !(z_is_x | z_is_y);
-        let masks = _mm_castsi128_ps(_mm_setr_epi32(z_is_x as i32, z_is_y as i32, z_is_z as i32, 0));
+        let masks = _mm_castsi128_ps(_mm_setr_epi32(
+            z_is_x as i32,
+            z_is_y as i32,
+            z_is_z as i32,
+            0,
+        ));
         _mm_storeu_ps(signs.as_mut_ptr(), _mm_and_ps(masks, _mm_set1_ps(-0.0)));
         let on_x = _mm_setr_ps(dir.y, dir.z, dir.x, 0.0);
         let on_y = _mm_setr_ps(dir.z, dir.x, dir.y, 0.0);
@@ -143,7 +148,13 @@ fn shear(dir: glam::Vec3, z_is_x: u32, z_is_y: u32) -> ([f32; 3], [f32; 3]) {
 #[inline(always)]
 fn shear(dir: glam::Vec3, z_is_x: u32, z_is_y: u32) -> ([f32; 3], [f32; 3]) {
     let d = dir.to_array();
-    let kz = if z_is_x != 0 { 0 } else if z_is_y != 0 { 1 } else { 2 };
+    let kz = if z_is_x != 0 {
+        0
+    } else if z_is_y != 0 {
+        1
+    } else {
+        2
+    };
     let (kx, ky) = ([1, 2, 0][kz], [2, 0, 1][kz]);
     let sign = |on: bool| if on { -0.0 } else { 0.0 };
     (
@@ -270,12 +281,22 @@ mod wide {
         /// their `t_max` (lane `j` of `t_max`, compared as `t < t_max`), and `t`, `b1`, `b2`
         /// are not stored (no loop over the lanes afterwards). `slow` is `test`'s.
         #[inline(always)]
-        pub(in super::super) fn occludes(&self, tri: &[Vec3; 3], lanes: u32, t_max: __m256) -> Lanes8 {
+        pub(in super::super) fn occludes(
+            &self,
+            tri: &[Vec3; 3],
+            lanes: u32,
+            t_max: __m256,
+        ) -> Lanes8 {
             self.test_in::<true>(tri, lanes, t_max)
         }
 
         #[inline(always)]
-        fn test_in<const OCCLUSION: bool>(&self, tri: &[Vec3; 3], lanes: u32, t_max: __m256) -> Lanes8 {
+        fn test_in<const OCCLUSION: bool>(
+            &self,
+            tri: &[Vec3; 3],
+            lanes: u32,
+            t_max: __m256,
+        ) -> Lanes8 {
             let [x0, y0, z0] = self.vertex(tri[0]);
             let [x1, y1, z1] = self.vertex(tri[1]);
             let [x2, y2, z2] = self.vertex(tri[2]);
@@ -410,7 +431,18 @@ mod lane_set_tests {
     #[test]
     fn set_ray_equals_set_from_the_woop_ray() {
         let mut rnd = crate::accel::test_random::signed_uniform(0x9e37_79b9_7f4a_7c15);
-        let specials = [0.0, -0.0, 1.0, -1.0, 0.5, -2.0, 1e-40, -1e-40, f32::MAX, f32::INFINITY];
+        let specials = [
+            0.0,
+            -0.0,
+            1.0,
+            -1.0,
+            0.5,
+            -2.0,
+            1e-40,
+            -1e-40,
+            f32::MAX,
+            f32::INFINITY,
+        ];
         let mut dirs = Vec::new();
         for &x in &specials {
             for &y in &specials {
