@@ -9,7 +9,8 @@
 //!   kernel's bit for bit. The packet's loop (pop, node fetch, pushes) runs once per node for
 //!   all its rays, without a branch per ray.
 //! * **Masks**: a stack entry carries the rays that entered the child (a 64-bit mask; the
-//!   per-ray child masks are transposed with `pmovmskb`), so a ray tests exactly the leaves
+//!   AVX2 test ORs each ray's bit into the slots it enters, in two registers, the SSE test
+//!   transposes the per-ray child masks with `pmovmskb`), so a ray tests exactly the leaves
 //!   its own traversal reaches, with the same watertight test (`WoopRay::intersect`; the
 //!   AVX2 kernels test a leaf's triangles against eight of the rays at once with its exact
 //!   arithmetic, `packet_leaf.rs`).
@@ -21,6 +22,11 @@
 //! * **Kernels**: AVX2 (the eight children of a node in one register, one ray at a time),
 //!   chosen at run time (`is_x86_feature_detected!`); the SSE test (two groups of four) as the
 //!   fallback, and with `STAGELIGHT_TRAVERSAL=sse` (read once) for A/B runs.
+//! * **Few branches per node** (occlusion): the leaf slots come from one mask, the inner
+//!   children are pushed without a branch each, every origin's planes are made whether it
+//!   has rays in the node or not, the ray lanes' axis permutation is chosen with masks, and
+//!   the leaf test compares `t < t_max` in the vector: their outcomes vary from node to
+//!   node and ray to ray, so branches on them mispredicted (issue 17, session 18).
 //! * **Packing**: rays are taken in order; a packet closes at [`PACKET_RAYS`] rays or when a
 //!   ninth distinct origin (compared bit for bit) comes. Invalid rays are answered without
 //!   traversal. Rays from many origins are still answered exactly, only without the sharing.
@@ -146,6 +152,9 @@ struct Packet {
     /// Near plane per axis (`2·axis`, plus 1 when the direction's sign bit is set).
     near: [[u8; 3]; PACKET_RAYS],
     t_max: [f32; PACKET_RAYS],
+    dir: [Vec3; PACKET_RAYS],
+    /// Each ray's watertight test, made only for the kernels that test leaves one ray at a
+    /// time (`PacketTest::SCALAR_LEAVES`); the others use `lanes` and [`Packet::woop`].
     woop: Vec<WoopRay>,
     /// The same constants as arrays over the rays (the AVX2 leaf test's ray lanes).
     lanes: RayLanes<PACKET_RAYS>,
@@ -164,6 +173,7 @@ impl Packet {
             inv: [[0.0; 3]; PACKET_RAYS],
             near: [[0; 3]; PACKET_RAYS],
             t_max: [0.0; PACKET_RAYS],
+            dir: [Vec3::ZERO; PACKET_RAYS],
             woop: Vec::with_capacity(PACKET_RAYS),
             lanes: RayLanes::new(),
             origins: [Vec3::ZERO; PACKET_ORIGINS],
@@ -180,9 +190,10 @@ impl Packet {
     }
 
     /// Adds ray `index` (valid); false (nothing added) when the packet is full or the ray
-    /// would bring a new origin past [`PACKET_ORIGINS`].
+    /// would bring a new origin past [`PACKET_ORIGINS`]. With `scalar_leaves` the ray's
+    /// `WoopRay` is kept, else its lanes are set without it.
     #[inline(always)]
-    fn add(&mut self, index: usize, ray: &Ray) -> bool {
+    fn add(&mut self, index: usize, ray: &Ray, scalar_leaves: bool) -> bool {
         if self.len == PACKET_RAYS {
             return false;
         }
@@ -208,11 +219,21 @@ impl Packet {
         // The sign bit decides (−0.0 counts as negative, matching 1/−0 = −∞).
         self.near[i] = [0, 1, 2].map(|a| (2 * a + usize::from(d[a].is_sign_negative())) as u8);
         self.t_max[i] = ray.t_max;
-        let woop = WoopRay::new(ray.origin, ray.dir);
-        self.lanes.set(i, &woop);
-        self.woop.push(woop);
+        self.dir[i] = ray.dir;
+        if scalar_leaves {
+            self.woop.push(WoopRay::new(ray.origin, ray.dir));
+        } else {
+            self.lanes.set_ray(i, ray.origin, ray.dir);
+        }
         self.len += 1;
         true
+    }
+
+    /// Ray `i`'s watertight test (for the lanes the vector leaf test leaves to the scalar
+    /// one).
+    #[inline(always)]
+    fn woop(&self, i: usize) -> WoopRay {
+        WoopRay::new(self.origins[self.origin_of[i] as usize], self.dir[i])
     }
 
     /// Every ray of the packet.
@@ -230,9 +251,37 @@ impl Packet {
 /// `i`'s child mask (bit `s` for slot `s`), which is the single-ray test's mask for that ray
 /// and `t_far`, bit for bit.
 trait PacketTest {
+    /// Whether the leaf tests take one ray at a time (`Packet::woop` kept per ray; else
+    /// the ray lanes).
+    const SCALAR_LEAVES: bool = true;
+
     fn new() -> Self;
     fn prepare(&mut self, node: &Node, packet: &Packet, rays: u64);
     fn mask(&self, packet: &Packet, i: usize, t_far: f32) -> u32;
+
+    /// Per child slot the rays of `rays` that enter it (ray `i`'s far end `t_far[i]`), and
+    /// the slots that some ray enters (zero: the entered masks are not computed). Here the
+    /// per-ray masks transposed by [`child_rays`]; the AVX2 test accumulates them in
+    /// registers.
+    #[inline(always)]
+    fn child_masks(
+        &self,
+        packet: &Packet,
+        rays: u64,
+        t_far: &[f32; PACKET_RAYS],
+    ) -> ([u64; 8], u32) {
+        let mut masks = [0u8; PACKET_RAYS];
+        let mut any = 0;
+        for i in bits(rays) {
+            let m = self.mask(packet, i, t_far[i]);
+            masks[i] = m as u8;
+            any |= m;
+        }
+        if any == 0 {
+            return ([0; 8], 0);
+        }
+        (child_rays(&masks, packet.len.div_ceil(16)), any)
+    }
 
     /// The rays of `rays` that hit one of the triangles `range` (a leaf) with `t < t_max`,
     /// each answer that of `WoopRay::intersect`. One ray and one triangle at a time here;
@@ -362,14 +411,20 @@ impl PacketTest for Planes4 {
 mod wide {
     //! The AVX2 packet test: a node's eight children in one register.
     use std::arch::x86_64::{
-        __m256, _mm256_cmp_ps, _mm256_max_ps, _mm256_min_ps, _mm256_movemask_ps, _mm256_mul_ps,
-        _mm256_set1_ps, _mm256_set_m128, _mm256_setzero_ps, _mm256_sub_ps, _CMP_LE_OS,
+        __m256, __m256i, _mm256_and_si256, _mm256_castps_si256, _mm256_castsi256_ps,
+        _mm256_castsi256_si128, _mm256_cmp_ps, _mm256_cmpeq_epi32, _mm256_cvtepu32_epi64,
+        _mm256_extracti128_si256, _mm256_loadu_ps, _mm256_max_ps, _mm256_min_ps,
+        _mm256_movemask_ps, _mm256_mul_ps, _mm256_or_si256, _mm256_set1_epi32, _mm256_set1_ps,
+        _mm256_set_m128, _mm256_setzero_ps, _mm256_setzero_si256, _mm256_slli_epi64,
+        _mm256_storeu_si256, _mm256_sub_ps, _CMP_LE_OS,
     };
 
     use std::ops::Range;
 
     use super::super::packet_leaf::{Group8, LANES};
-    use super::{bits, Best, Bvh, Node, Packet, PacketTest, FAR_SCALE_FACTOR, PACKET_ORIGINS};
+    use super::{
+        bits, Best, Bvh, Node, Packet, PacketTest, FAR_SCALE_FACTOR, PACKET_ORIGINS, PACKET_RAYS,
+    };
 
     /// Planes minus each origin, eight children per register. Only made inside the AVX2
     /// kernels (the type is private to this file), so its methods may use AVX.
@@ -377,40 +432,11 @@ mod wide {
         minus: [[__m256; 6]; PACKET_ORIGINS],
     }
 
-    impl PacketTest for Planes8 {
+    impl Planes8 {
+        /// Ray `i`'s slab test against the node's eight children: lane `s` all ones when
+        /// it enters slot `s` (the single-ray test's operations and order).
         #[inline(always)]
-        fn new() -> Self {
-            // SAFETY: AVX; this type exists only inside the AVX2 kernels.
-            let zero = unsafe { _mm256_setzero_ps() };
-            Self {
-                minus: [[zero; 6]; PACKET_ORIGINS],
-            }
-        }
-
-        #[inline(always)]
-        fn prepare(&mut self, node: &Node, packet: &Packet, rays: u64) {
-            // SAFETY: AVX intrinsics; this type exists only inside the AVX2 kernels. The
-            // loads read two `Vec4`s of the node by value (no raw pointers). No closures
-            // here: they would not inherit the AVX2 target feature.
-            unsafe {
-                let mut planes = [_mm256_setzero_ps(); 6];
-                for (k, p) in planes.iter_mut().enumerate() {
-                    *p = _mm256_set_m128(node.bounds[1][k].into(), node.bounds[0][k].into());
-                }
-                for o in 0..packet.n_origins {
-                    if packet.origin_rays[o] & rays == 0 {
-                        continue;
-                    }
-                    let origin = packet.origins[o].to_array();
-                    for (k, m) in self.minus[o].iter_mut().enumerate() {
-                        *m = _mm256_sub_ps(planes[k], _mm256_set1_ps(origin[k / 2]));
-                    }
-                }
-            }
-        }
-
-        #[inline(always)]
-        fn mask(&self, packet: &Packet, i: usize, t_far: f32) -> u32 {
+        fn entered(&self, packet: &Packet, i: usize, t_far: f32) -> __m256 {
             let minus = &self.minus[packet.origin_of[i] as usize];
             let (near, inv) = (packet.near[i], packet.inv[i]);
             // SAFETY: AVX intrinsics; this type exists only inside the AVX2 kernels.
@@ -426,7 +452,93 @@ mod wide {
                     tf = _mm256_min_ps(f, tf);
                 }
                 let tf = _mm256_mul_ps(tf, _mm256_set1_ps(FAR_SCALE_FACTOR));
-                _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_LE_OS>(tn, tf)) as u32
+                _mm256_cmp_ps::<_CMP_LE_OS>(tn, tf)
+            }
+        }
+    }
+
+    impl PacketTest for Planes8 {
+        const SCALAR_LEAVES: bool = false;
+
+        #[inline(always)]
+        fn new() -> Self {
+            // SAFETY: AVX; this type exists only inside the AVX2 kernels.
+            let zero = unsafe { _mm256_setzero_ps() };
+            Self {
+                minus: [[zero; 6]; PACKET_ORIGINS],
+            }
+        }
+
+        #[inline(always)]
+        fn prepare(&mut self, node: &Node, packet: &Packet, _rays: u64) {
+            // SAFETY: AVX intrinsics; this type exists only inside the AVX2 kernels. The
+            // loads read two `Vec4`s of the node by value (no raw pointers). No closures
+            // here: they would not inherit the AVX2 target feature.
+            unsafe {
+                let mut planes = [_mm256_setzero_ps(); 6];
+                for (k, p) in planes.iter_mut().enumerate() {
+                    *p = _mm256_set_m128(node.bounds[1][k].into(), node.bounds[0][k].into());
+                }
+                // Every origin, also those without rays here: a branch per origin would
+                // mispredict (about once per node), six subtractions do not.
+                for o in 0..packet.n_origins {
+                    let origin = packet.origins[o].to_array();
+                    for (k, m) in self.minus[o].iter_mut().enumerate() {
+                        *m = _mm256_sub_ps(planes[k], _mm256_set1_ps(origin[k / 2]));
+                    }
+                }
+            }
+        }
+
+        #[inline(always)]
+        fn mask(&self, packet: &Packet, i: usize, t_far: f32) -> u32 {
+            // SAFETY: AVX intrinsics; this type exists only inside the AVX2 kernels.
+            unsafe { _mm256_movemask_ps(self.entered(packet, i, t_far)) as u32 }
+        }
+
+        /// The masks accumulated in two registers, one 32-bit lane per child slot (rays
+        /// 0–31 and 32–63): each ray ORs its bit into the slots it enters. No per-ray byte
+        /// stores and no transposition (whose 16-byte load waited for those stores).
+        #[inline(always)]
+        fn child_masks(
+            &self,
+            packet: &Packet,
+            rays: u64,
+            t_far: &[f32; PACKET_RAYS],
+        ) -> ([u64; 8], u32) {
+            // SAFETY: AVX2 intrinsics; this type exists only inside the AVX2 kernels. The
+            // stores write two local arrays of four `u64` each.
+            unsafe {
+                let zero = _mm256_setzero_si256();
+                let (mut lo, mut hi) = (zero, zero);
+                // One loop over the rays (a second would mispredict its exit once more per
+                // node): ray `i`'s bit goes to `lo` (rays 0–31) or `hi` (32–63).
+                for i in bits(rays) {
+                    let c = _mm256_castps_si256(self.entered(packet, i, t_far[i]));
+                    let bit = 1u64 << i;
+                    lo = _mm256_or_si256(lo, _mm256_and_si256(c, _mm256_set1_epi32(bit as i32)));
+                    hi = _mm256_or_si256(
+                        hi,
+                        _mm256_and_si256(c, _mm256_set1_epi32((bit >> 32) as i32)),
+                    );
+                }
+                let none = _mm256_cmpeq_epi32(_mm256_or_si256(lo, hi), zero);
+                let any = !(_mm256_movemask_ps(_mm256_castsi256_ps(none)) as u32) & 0xff;
+                // Slot s: lane s of `lo` in the low half, of `hi` in the high half.
+                let first = _mm256_or_si256(
+                    _mm256_cvtepu32_epi64(_mm256_castsi256_si128(lo)),
+                    _mm256_slli_epi64::<32>(_mm256_cvtepu32_epi64(_mm256_castsi256_si128(hi))),
+                );
+                let second = _mm256_or_si256(
+                    _mm256_cvtepu32_epi64(_mm256_extracti128_si256::<1>(lo)),
+                    _mm256_slli_epi64::<32>(_mm256_cvtepu32_epi64(_mm256_extracti128_si256::<1>(
+                        hi,
+                    ))),
+                );
+                let mut out = [0u64; 8];
+                _mm256_storeu_si256(out.as_mut_ptr().cast::<__m256i>(), first);
+                _mm256_storeu_si256(out.as_mut_ptr().add(4).cast::<__m256i>(), second);
+                (out, any)
             }
         }
 
@@ -442,16 +554,17 @@ mod wide {
                 let mut lanes = (rest >> at) as u32 & 0xff;
                 rest &= !(0xff << at);
                 let group = Group8::load(&packet.lanes, g);
+                // SAFETY: AVX load of eight floats inside `t_max` (at + 8 ≤ 64: `at` is a
+                // multiple of 8 below 64), through a reference.
+                let t_max = unsafe { _mm256_loadu_ps(packet.t_max.as_ptr().add(at)) };
                 for k in range.clone() {
                     let tri = &bvh.tris[k];
-                    let found = group.test(tri, lanes);
-                    let mut h = 0;
-                    for j in bits(u64::from(found.hit)) {
-                        h |= u32::from(found.t[j] < packet.t_max[at + j]) << j;
-                    }
+                    let found = group.occludes(tri, lanes, t_max);
+                    let mut h = found.hit;
                     for j in bits(u64::from(found.slow)) {
                         let t_max = packet.t_max[at + j];
-                        if packet.woop[at + j]
+                        if packet
+                            .woop(at + j)
                             .intersect(tri)
                             .is_some_and(|(t, _, _)| t < t_max)
                         {
@@ -491,7 +604,7 @@ mod wide {
                     let found = group.test(tri, lanes);
                     for j in bits(u64::from(found.hit | found.slow)) {
                         let hit = if found.slow >> j & 1 != 0 {
-                            match packet.woop[at + j].intersect(tri) {
+                            match packet.woop(at + j).intersect(tri) {
                                 Some(hit) => hit,
                                 None => continue,
                             }
@@ -553,11 +666,11 @@ fn bits(mut m: u64) -> impl Iterator<Item = usize> {
 /// Fills `packet` with the valid rays of `rays` from `start` on (invalid rays hit nothing
 /// and are left out) until it is full; returns where the next packet starts.
 #[inline(always)]
-fn fill(rays: &[Ray], start: usize, packet: &mut Packet) -> usize {
+fn fill<T: PacketTest>(rays: &[Ray], start: usize, packet: &mut Packet) -> usize {
     packet.clear();
     let mut i = start;
     while i < rays.len() {
-        if ray_is_valid(&rays[i]) && !packet.add(i, &rays[i]) {
+        if ray_is_valid(&rays[i]) && !packet.add(i, &rays[i], T::SCALAR_LEAVES) {
             break;
         }
         i += 1;
@@ -577,7 +690,7 @@ fn occluded_in<T: PacketTest>(bvh: &Bvh, rays: &[Ray], out: &mut [bool], scratch
     // A plain loop, not closures: a closure would not inherit the AVX2 target feature.
     let mut next = 0;
     while next < rays.len() {
-        next = fill(rays, next, packet);
+        next = fill::<T>(rays, next, packet);
         let hit = occluded_packet(bvh, packet, &mut test, stack);
         for i in bits(hit) {
             out[packet.index[i]] = true;
@@ -586,6 +699,11 @@ fn occluded_in<T: PacketTest>(bvh: &Bvh, rays: &[Ray], out: &mut [bool], scratch
 }
 
 /// The rays of `packet` that are occluded (a mask).
+///
+/// Few data-dependent branches per node (they mispredict on the rays' varying masks): the
+/// leaf and inner children come from one mask of the node's leaf slots, and the inner ones
+/// are pushed without a branch each (every slot is written, the stack top advances only over
+/// the entered inner children), so `stack` is a slice of slots, not a `Vec` of entries.
 #[inline(always)]
 fn occluded_packet<T: PacketTest>(
     bvh: &Bvh,
@@ -593,50 +711,57 @@ fn occluded_packet<T: PacketTest>(
     test: &mut T,
     stack: &mut Vec<(u32, u64)>,
 ) -> u64 {
-    let chunks = packet.len.div_ceil(16);
     let mut active = packet.all();
-    stack.clear();
-    stack.push((0, active));
-    while let Some((node_ref, rays)) = stack.pop() {
+    if stack.len() < STACK_SLOTS {
+        stack.resize(STACK_SLOTS, (0, 0));
+    }
+    stack[0] = (0, active);
+    let mut top = 1;
+    while top > 0 {
+        top -= 1;
+        let (node_ref, rays) = stack[top];
         let rays = rays & active;
         if rays == 0 {
             continue;
         }
         let node = &bvh.nodes[node_ref as usize];
         test.prepare(node, packet, rays);
-        let mut masks = [0u8; PACKET_RAYS];
-        let mut any = 0;
-        for i in bits(rays) {
-            let m = test.mask(packet, i, packet.t_max[i]);
-            masks[i] = m as u8;
-            any |= m;
-        }
-        if any == 0 {
-            continue;
-        }
-        let entered = child_rays(&masks, chunks);
+        let (entered, any) = test.child_masks(packet, rays, &packet.t_max);
+        let leaves = leaf_slots(node);
         // Leaves first: a ray that hits one needs no further nodes.
-        for slot in bits(u64::from(any)) {
-            let child = node.child[slot];
-            if child & LEAF_BIT == 0 {
-                continue;
-            }
+        for slot in bits(u64::from(any & leaves)) {
             let rays = entered[slot] & active;
             if rays != 0 {
-                active &= !test.leaf_occluded(bvh, packet, leaf_range(child), rays);
+                active &= !test.leaf_occluded(bvh, packet, leaf_range(node.child[slot]), rays);
             }
         }
         if active == 0 {
             break;
         }
-        for slot in bits(u64::from(any)) {
-            let child = node.child[slot];
-            if child & LEAF_BIT == 0 {
-                stack.push((child, entered[slot]));
-            }
+        if top + 8 > stack.len() {
+            stack.resize(2 * stack.len(), (0, 0));
+        }
+        let inner = any & !leaves;
+        for (slot, (&child, &rays)) in node.child.iter().zip(&entered).enumerate() {
+            stack[top] = (child, rays);
+            top += (inner >> slot & 1) as usize;
         }
     }
     packet.all() & !active
+}
+
+/// Stack slots kept for the occlusion kernel (it grows when a deep hierarchy needs more).
+const STACK_SLOTS: usize = 128;
+
+/// The slots of `node` that hold leaves (bit `s` for slot `s`; empty slots count as leaves,
+/// they are never entered).
+#[inline(always)]
+fn leaf_slots(node: &Node) -> u32 {
+    let mut leaves = 0;
+    for (slot, &child) in node.child.iter().enumerate() {
+        leaves |= (child >> 31) << slot;
+    }
+    leaves
 }
 
 /// Closest hits of `rays` into `out` with the packet test `T`.
@@ -655,7 +780,7 @@ fn closest_in<T: PacketTest>(
     let mut test = T::new();
     let mut next = 0;
     while next < rays.len() {
-        next = fill(rays, next, packet);
+        next = fill::<T>(rays, next, packet);
         if packet.len == 0 {
             continue;
         }
@@ -677,7 +802,6 @@ fn closest_packet<T: PacketTest>(
     test: &mut T,
     stack: &mut Vec<(u32, u64)>,
 ) -> [Option<Hit>; PACKET_RAYS] {
-    let chunks = packet.len.div_ceil(16);
     let mut best = Best {
         hit: [None; PACKET_RAYS],
         t: packet.t_max,
@@ -687,17 +811,10 @@ fn closest_packet<T: PacketTest>(
     while let Some((node_ref, rays)) = stack.pop() {
         let node = &bvh.nodes[node_ref as usize];
         test.prepare(node, packet, rays);
-        let mut masks = [0u8; PACKET_RAYS];
-        let mut any = 0;
-        for i in bits(rays) {
-            let m = test.mask(packet, i, best.t[i]);
-            masks[i] = m as u8;
-            any |= m;
-        }
+        let (entered, any) = test.child_masks(packet, rays, &best.t);
         if any == 0 {
             continue;
         }
-        let entered = child_rays(&masks, chunks);
         let order = node.order[octant];
         let slot_at = |k: usize| (order >> (3 * k) & 7) as usize;
         for k in 0..8 {
@@ -907,6 +1024,62 @@ mod tests {
                 want_hit[i],
                 "{kernel} closest, ray {i}: {r:?}"
             );
+        }
+    }
+
+    /// Per node and packet, the AVX2 test's entered masks accumulated in registers
+    /// (`Planes8::child_masks`) equal the per-ray masks transposed (the trait's default, the
+    /// SSE test's), for every node of both hierarchies and packets of 1–64 rays, partial
+    /// ray subsets included; and a node no ray enters gives no slot.
+    #[test]
+    fn register_masks_equal_the_transposed_masks() {
+        #[cfg(target_arch = "x86_64")]
+        if std::arch::is_x86_feature_detected!("avx2") {
+            /// # Safety
+            /// The CPU must support AVX2.
+            #[target_feature(enable = "avx2")]
+            unsafe fn check_all(bvh: &Bvh, rays: &[Ray]) -> (usize, usize) {
+                let mut packet = Packet::new();
+                let mut test = <wide::Planes8 as PacketTest>::new();
+                let (mut checked, mut entered_some) = (0, 0);
+                let mut next = 0;
+                while next < rays.len() {
+                    next = fill::<wide::Planes8>(rays, next, &mut packet);
+                    let all = packet.all();
+                    for (n, node) in bvh.nodes.iter().enumerate() {
+                        // All rays, and a sparse subset that varies with the node.
+                        let subset = all & (0x9e37_79b9_7f4a_7c15u64.rotate_left(n as u32 % 64));
+                        for rays in [all, subset] {
+                            test.prepare(node, &packet, rays);
+                            let (got, any) = test.child_masks(&packet, rays, &packet.t_max);
+                            let mut masks = [0u8; PACKET_RAYS];
+                            let mut want_any = 0;
+                            for i in bits(rays) {
+                                let m = test.mask(&packet, i, packet.t_max[i]);
+                                masks[i] = m as u8;
+                                want_any |= m;
+                            }
+                            assert_eq!(any, want_any, "node {n}");
+                            if want_any != 0 {
+                                let want = child_rays(&masks, packet.len.div_ceil(16));
+                                assert_eq!(got, want, "node {n}");
+                                entered_some += 1;
+                            }
+                            checked += 1;
+                        }
+                    }
+                }
+                (checked, entered_some)
+            }
+            let mut rnd = rng();
+            let tris = scene(&mut rnd);
+            let rays = rays(&tris, &mut rnd);
+            for q in [BvhQuality::Fast, BvhQuality::Medium] {
+                let bvh = build(&tris, q);
+                // SAFETY: AVX2 was detected just above.
+                let (checked, entered) = unsafe { check_all(&bvh, &rays) };
+                assert!(checked > 10_000 && entered > 1_000, "{checked} {entered}");
+            }
         }
     }
 

@@ -8,7 +8,9 @@
 //!   leaf and shared by the leaf's triangles. A triangle's vertices are broadcast, the
 //!   lane's origin subtracted per original axis, and the differences put in the lane's
 //!   `kx, ky, kz` order with two `vblendvps` each: the same subtraction the scalar test makes
-//!   after its permutation, so the value is the same.
+//!   after its permutation, so the value is the same. The constants are made from the ray
+//!   itself (`RayLanes::set_ray`: `WoopRay::new`'s axis choice as masks, its three
+//!   divisions in one `divps`), without `WoopRay::new`'s branches.
 //! * **Same answers, bit for bit**: the lanes then make the scalar test's IEEE operations in
 //!   its order (shear, edge functions, determinant, `t`, the conservative `δt` bound), no
 //!   fused multiply-add, an exact division, as `leaf_wide.rs` does with triangles in lanes.
@@ -17,6 +19,7 @@
 //!   propagate a NaN where `f32::max` ignores it; that only makes `δt` NaN, which fails
 //!   `t > δt` and sends the lane to the scalar test.
 
+#[cfg(test)]
 use super::triangle::WoopRay;
 
 /// Rays in one group of lanes.
@@ -41,8 +44,9 @@ impl<const N: usize> RayLanes<N> {
         }
     }
 
-    /// Stores ray `i`'s constants.
-    #[inline(always)]
+    /// Stores ray `i`'s constants from its `WoopRay` (the reference for
+    /// [`RayLanes::set_ray`]).
+    #[cfg(test)]
     pub(super) fn set(&mut self, i: usize, woop: &WoopRay) {
         let o = woop.origin();
         let (sx, sy, sz) = woop.shear();
@@ -57,6 +61,106 @@ impl<const N: usize> RayLanes<N> {
         self.s[1][i] = sy;
         self.s[2][i] = sz;
     }
+}
+
+impl<const N: usize> RayLanes<N> {
+    /// Stores the constants of the ray `origin`, `dir` without making its `WoopRay`: the
+    /// same values as [`RayLanes::set`] with `WoopRay::new(origin, dir)`, bit for bit, but
+    /// the dominant axis is chosen without branches (they mispredict on a hemisphere's
+    /// directions, about once per ray).
+    #[inline(always)]
+    pub(super) fn set_ray(&mut self, i: usize, origin: glam::Vec3, dir: glam::Vec3) {
+        let a = dir.abs();
+        let (x_gt_y, x_gt_z, y_gt_z) = (a.x > a.y, a.x > a.z, a.y > a.z);
+        // `WoopRay::new`'s nested choice: x if it beats y and z, else y if it beats z
+        // (and x did not beat y), else z; the same comparisons, so the same axis. As masks
+        // (all ones for the chosen axis), not indices.
+        let mask = |b: bool| 0u32.wrapping_sub(u32::from(b));
+        let z_is_x = mask(x_gt_y & x_gt_z);
+        let z_is_y = mask(!x_gt_y & y_gt_z);
+        let o = origin.to_array();
+        for (k, &o) in o.iter().enumerate() {
+            self.o[k][i] = o;
+        }
+        let ([sx, sy, sz], [on_x, on_y, on_z]) = shear(dir, z_is_x, z_is_y);
+        // `sel[2·k]`: axis k of the permuted frame is the original x; `sel[2·k + 1]`: y.
+        // (kx, ky, kz) is (y, z, x), (z, x, y) or (x, y, z).
+        self.sel[0][i] = on_z;
+        self.sel[1][i] = on_x;
+        self.sel[2][i] = on_y;
+        self.sel[3][i] = on_z;
+        self.sel[4][i] = on_x;
+        self.sel[5][i] = on_y;
+        self.s[0][i] = sx;
+        self.s[1][i] = sy;
+        self.s[2][i] = sz;
+    }
+}
+
+/// `WoopRay::new`'s shear `(−d[kx] / d[kz], −d[ky] / d[kz], 1 / d[kz])` for the permutation
+/// given by the masks (`z_is_x`: kz is x; `z_is_y`: kz is y; neither: kz is z), and the
+/// masks' sign bits as floats (`−0.0` for the chosen axis, x, y, z). The permuted direction
+/// is selected with vector `and`/`or`, the signs made in a vector too: scalar selects on
+/// these masks were compiled to branches (a float select has no `cmov`), which mispredicted
+/// as often as `WoopRay::new`'s. The three quotients are one `divps`: the same IEEE
+/// divisions, so the same bits.
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+fn shear(dir: glam::Vec3, z_is_x: u32, z_is_y: u32) -> ([f32; 3], [f32; 3]) {
+    use std::arch::x86_64::{
+        _mm_and_ps, _mm_andnot_ps, _mm_castsi128_ps, _mm_div_ps, _mm_or_ps, _mm_set1_epi32,
+        _mm_set1_ps, _mm_setr_epi32, _mm_setr_ps, _mm_shuffle_ps, _mm_storeu_ps, _mm_xor_ps,
+    };
+    let mut out = [0.0f32; 4];
+    let mut signs = [0.0f32; 4];
+    // SAFETY: SSE2 intrinsics (baseline on x86_64) on values; the stores write the local
+    // four-float arrays.
+    unsafe {
+        let z_is_z = !(z_is_x | z_is_y);
+        let masks = _mm_castsi128_ps(_mm_setr_epi32(
+            z_is_x as i32,
+            z_is_y as i32,
+            z_is_z as i32,
+            0,
+        ));
+        _mm_storeu_ps(signs.as_mut_ptr(), _mm_and_ps(masks, _mm_set1_ps(-0.0)));
+        let on_x = _mm_setr_ps(dir.y, dir.z, dir.x, 0.0);
+        let on_y = _mm_setr_ps(dir.z, dir.x, dir.y, 0.0);
+        let on_z = _mm_setr_ps(dir.x, dir.y, dir.z, 0.0);
+        let mx = _mm_castsi128_ps(_mm_set1_epi32(z_is_x as i32));
+        let my = _mm_castsi128_ps(_mm_set1_epi32(z_is_y as i32));
+        // (d[kx], d[ky], d[kz], 0).
+        let d = _mm_or_ps(
+            _mm_or_ps(_mm_and_ps(mx, on_x), _mm_and_ps(my, on_y)),
+            _mm_andnot_ps(_mm_or_ps(mx, my), on_z),
+        );
+        // (−d[kx], −d[ky], 1, 1) / d[kz].
+        let neg = _mm_xor_ps(d, _mm_setr_ps(-0.0, -0.0, 0.0, 0.0));
+        let num = _mm_shuffle_ps::<0b1111_0100>(neg, _mm_set1_ps(1.0));
+        let kz = _mm_shuffle_ps::<0b1010_1010>(d, d);
+        _mm_storeu_ps(out.as_mut_ptr(), _mm_div_ps(num, kz));
+    }
+    ([out[0], out[1], out[2]], [signs[0], signs[1], signs[2]])
+}
+
+/// [`shear`] without SSE.
+#[cfg(not(target_arch = "x86_64"))]
+#[inline(always)]
+fn shear(dir: glam::Vec3, z_is_x: u32, z_is_y: u32) -> ([f32; 3], [f32; 3]) {
+    let d = dir.to_array();
+    let kz = if z_is_x != 0 {
+        0
+    } else if z_is_y != 0 {
+        1
+    } else {
+        2
+    };
+    let (kx, ky) = ([1, 2, 0][kz], [2, 0, 1][kz]);
+    let sign = |on: bool| if on { -0.0 } else { 0.0 };
+    (
+        [-d[kx] / d[kz], -d[ky] / d[kz], 1.0 / d[kz]],
+        [sign(kz == 0), sign(kz == 1), sign(kz == 2)],
+    )
 }
 
 #[cfg(target_arch = "x86_64")]
@@ -169,6 +273,30 @@ mod wide {
         /// reported).
         #[inline(always)]
         pub(in super::super) fn test(&self, tri: &[Vec3; 3], lanes: u32) -> Lanes8 {
+            // SAFETY: AVX on values (AVX2 packet kernels only).
+            self.test_in::<false>(tri, lanes, unsafe { _mm256_setzero_ps() })
+        }
+
+        /// [`Group8::test`] for occlusion: `hit` only has the lanes whose `t` is below
+        /// their `t_max` (lane `j` of `t_max`, compared as `t < t_max`), and `t`, `b1`, `b2`
+        /// are not stored (no loop over the lanes afterwards). `slow` is `test`'s.
+        #[inline(always)]
+        pub(in super::super) fn occludes(
+            &self,
+            tri: &[Vec3; 3],
+            lanes: u32,
+            t_max: __m256,
+        ) -> Lanes8 {
+            self.test_in::<true>(tri, lanes, t_max)
+        }
+
+        #[inline(always)]
+        fn test_in<const OCCLUSION: bool>(
+            &self,
+            tri: &[Vec3; 3],
+            lanes: u32,
+            t_max: __m256,
+        ) -> Lanes8 {
             let [x0, y0, z0] = self.vertex(tri[0]);
             let [x1, y1, z1] = self.vertex(tri[1]);
             let [x2, y2, z2] = self.vertex(tri[2]);
@@ -278,7 +406,9 @@ mod wide {
                 let sure = _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_GT_OQ>(t, delta_t)) as u32;
                 out.hit = candidate & sure & lanes;
                 out.slow = (zero_lanes | (candidate & !sure)) & lanes;
-                if out.hit != 0 {
+                if OCCLUSION {
+                    out.hit &= _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_LT_OQ>(t, t_max)) as u32;
+                } else if out.hit != 0 {
                     _mm256_storeu_ps(out.t.as_mut_ptr(), t);
                     _mm256_storeu_ps(out.b1.as_mut_ptr(), _mm256_mul_ps(e1, inv_det));
                     _mm256_storeu_ps(out.b2.as_mut_ptr(), _mm256_mul_ps(e2, inv_det));
@@ -286,6 +416,68 @@ mod wide {
                 out
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod lane_set_tests {
+    use glam::Vec3;
+
+    use super::*;
+
+    /// `set_ray` (branch-free axis choice) stores what `set` stores from `WoopRay::new`, bit
+    /// for bit: ties between components (|x| = |y|, |x| = |z|, |y| = |z|, all equal), ±0
+    /// components, subnormals, huge and tiny values, infinities and random directions.
+    #[test]
+    fn set_ray_equals_set_from_the_woop_ray() {
+        let mut rnd = crate::accel::test_random::signed_uniform(0x9e37_79b9_7f4a_7c15);
+        let specials = [
+            0.0,
+            -0.0,
+            1.0,
+            -1.0,
+            0.5,
+            -2.0,
+            1e-40,
+            -1e-40,
+            f32::MAX,
+            f32::INFINITY,
+        ];
+        let mut dirs = Vec::new();
+        for &x in &specials {
+            for &y in &specials {
+                for &z in &specials {
+                    dirs.push(Vec3::new(x, y, z));
+                }
+            }
+        }
+        for _ in 0..100_000 {
+            let mut d = Vec3::new(rnd(), rnd(), rnd());
+            match dirs.len() % 5 {
+                0 => d.y = -d.x,
+                1 => d.z = d.y,
+                2 => d.x = d.z,
+                _ => {}
+            }
+            dirs.push(d);
+        }
+        let origin = Vec3::new(0.25, -3.0, 7.5);
+        let (mut want, mut got) = (RayLanes::<1>::new(), RayLanes::<1>::new());
+        let mut axes_seen = [0usize; 3];
+        for d in dirs {
+            let woop = WoopRay::new(origin, d);
+            axes_seen[woop.axes()[2]] += 1;
+            want.set(0, &woop);
+            got.set_ray(0, origin, d);
+            let bits = |l: &RayLanes<1>| {
+                let mut v: Vec<u32> = l.o.iter().map(|a| a[0].to_bits()).collect();
+                v.extend(l.s.iter().map(|a| a[0].to_bits()));
+                v.extend(l.sel.iter().map(|a| a[0].to_bits()));
+                v
+            };
+            assert_eq!(bits(&got), bits(&want), "{d:?}");
+        }
+        assert!(axes_seen.iter().all(|&n| n > 20_000), "{axes_seen:?}");
     }
 }
 
