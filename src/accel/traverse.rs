@@ -505,6 +505,32 @@ pub(super) fn leaf_range(r: u32) -> std::ops::Range<usize> {
     first..first + count
 }
 
+/// The single-ray kernels' step after a node in octant order: the hit children of `mask`
+/// (bit `i` for `child[i]`, entry distance `tn[i]`, nearest first) but the nearest pushed
+/// farthest first and prefetched; the nearest is returned, to be visited next. It is not
+/// prefetched: its loads are the very next ones, their addresses known.
+#[inline(always)]
+fn push_all_but_nearest<S: Stack>(
+    bvh: &Bvh,
+    stack: &mut S,
+    mut mask: u32,
+    tn: &[f32; 8],
+    child: &[u32; 8],
+) -> u32 {
+    let nearest = mask.trailing_zeros() as usize;
+    mask &= mask - 1;
+    while mask != 0 {
+        let i = 31 - mask.leading_zeros() as usize;
+        mask ^= 1 << i;
+        prefetch(bvh, child[i]);
+        stack.push(Entry {
+            r: child[i],
+            t: tn[i],
+        });
+    }
+    child[nearest]
+}
+
 #[inline(always)]
 fn closest_with<S: Stack, N: NodeTest, const OCTANT: bool>(
     bvh: &Bvh,
@@ -539,23 +565,11 @@ fn closest_with<S: Stack, N: NodeTest, const OCTANT: bool>(
             });
         } else if OCTANT {
             let node = &bvh.nodes[cur as usize];
-            let (mut mask, tn, child) = nr.intersect_ordered(node, best_t, node.order[octant]);
+            let (mask, tn, child) = nr.intersect_ordered(node, best_t, node.order[octant]);
             if mask != 0 {
-                // Farthest first, so that the nearest (in octant order) is visited next: it
-                // goes straight to `cur` (its entry distance is ≤ `cull` by the box test). It
-                // is not prefetched: its loads are the very next ones, their addresses known.
-                let nearest = mask.trailing_zeros() as usize;
-                mask &= mask - 1;
-                while mask != 0 {
-                    let i = 31 - mask.leading_zeros() as usize;
-                    mask ^= 1 << i;
-                    prefetch(bvh, child[i]);
-                    stack.push(Entry {
-                        r: child[i],
-                        t: tn[i],
-                    });
-                }
-                cur = child[nearest];
+                // The nearest goes straight to `cur` (its entry distance is ≤ `cull` by the
+                // box test).
+                cur = push_all_but_nearest(bvh, &mut stack, mask, &tn, &child);
                 continue;
             }
         } else {
@@ -624,20 +638,10 @@ fn occluded_with<S: Stack, N: NodeTest, const OCTANT: bool>(
             // As the closest-hit kernel: the nearest in octant order next, the others pushed
             // farthest first (the nearest occluder is the likeliest to be found early).
             let node = &bvh.nodes[cur as usize];
-            let (mut mask, _, child) = nr.intersect_ordered(node, ray.t_max, node.order[octant]);
+            let (mask, _, child) = nr.intersect_ordered(node, ray.t_max, node.order[octant]);
             if mask != 0 {
-                let nearest = mask.trailing_zeros() as usize;
-                mask &= mask - 1;
-                while mask != 0 {
-                    let i = 31 - mask.leading_zeros() as usize;
-                    mask ^= 1 << i;
-                    prefetch(bvh, child[i]);
-                    stack.push(Entry {
-                        r: child[i],
-                        t: 0.0,
-                    });
-                }
-                cur = child[nearest];
+                // Entry distances are not needed: the stack holds zeros.
+                cur = push_all_but_nearest(bvh, &mut stack, mask, &[0.0; 8], &child);
                 continue;
             }
         } else {
@@ -1112,12 +1116,9 @@ mod tests {
         h.map(|h| [h.t.to_bits(), h.prim, h.b1.to_bits(), h.b2.to_bits()])
     }
 
-    /// The batch kernels give the single-ray results bit for bit, for batches shorter and
-    /// longer than the lane count, with invalid rays and finite `t_max` mixed in, and on a
-    /// hierarchy too deep for the array stack (the batch falls back to single rays).
-    #[test]
-    fn batch_equals_single_ray() {
-        let mut rnd = crate::accel::test_random::signed_uniform(0x2545_f491_4f6c_dd1du64);
+    /// A soup of 3,000 small random triangles, and 3,000 nested, shrinking triangles (a
+    /// hierarchy far deeper than the array stack allows).
+    fn soup_and_nested(rnd: &mut impl FnMut() -> f32) -> [Vec<[Vec3; 3]>; 2] {
         let soup: Vec<[Vec3; 3]> = (0..3000)
             .map(|_| {
                 let c = Vec3::new(rnd(), rnd(), rnd()) * 4.0;
@@ -1128,7 +1129,6 @@ mod tests {
                 ]
             })
             .collect();
-        // Nested, shrinking triangles: a hierarchy far deeper than the array stack allows.
         let nested: Vec<[Vec3; 3]> = (0..3000)
             .map(|i| {
                 let s = 0.997f32.powi(i);
@@ -1139,10 +1139,15 @@ mod tests {
                 ]
             })
             .collect();
-        let mut rays: Vec<Ray> = (0..2000)
+        [soup, nested]
+    }
+
+    /// `n` rays from around the meshes of [`soup_and_nested`]: every other one aimed at the
+    /// nested triangles around the origin, every third with a finite `t_max`.
+    fn test_rays(rnd: &mut impl FnMut() -> f32, n: usize) -> Vec<Ray> {
+        (0..n)
             .map(|i| {
                 let origin = Vec3::new(rnd(), rnd(), rnd()) * 5.0;
-                // Every other ray aims at the nested triangles around the origin.
                 let dir = if i % 2 == 0 {
                     Vec3::new(rnd(), rnd(), rnd().abs() * 3.0) - origin
                 } else {
@@ -1155,7 +1160,17 @@ mod tests {
                 };
                 Ray { origin, dir, t_max }
             })
-            .collect();
+            .collect()
+    }
+
+    /// The batch kernels give the single-ray results bit for bit, for batches shorter and
+    /// longer than the lane count, with invalid rays and finite `t_max` mixed in, and on a
+    /// hierarchy too deep for the array stack (the batch falls back to single rays).
+    #[test]
+    fn batch_equals_single_ray() {
+        let mut rnd = crate::accel::test_random::signed_uniform(0x2545_f491_4f6c_dd1du64);
+        let [soup, nested] = soup_and_nested(&mut rnd);
+        let mut rays = test_rays(&mut rnd, 2000);
         rays[5].dir = Vec3::ZERO;
         rays[17].origin.x = f32::NAN;
         rays[40].t_max = -1.0;
@@ -1186,50 +1201,14 @@ mod tests {
         }
     }
 
-    /// The single-ray kernels take this thread's stack array and put it back: the second
-    /// query of a thread reuses the first one's array (same address), with the same answers.
     /// The occlusion kernel answers the same in octant order (nearest first, the default) as
     /// in slot order, and both say whether the closest-hit kernel finds a hit, on a soup and
     /// on a hierarchy deeper than the array stack.
     #[test]
     fn occlusion_orders_agree_with_closest_hit() {
         let mut rnd = crate::accel::test_random::signed_uniform(0x6a09_e667_f3bc_c908u64);
-        let soup: Vec<[Vec3; 3]> = (0..3000)
-            .map(|_| {
-                let c = Vec3::new(rnd(), rnd(), rnd()) * 4.0;
-                [
-                    c,
-                    c + Vec3::new(rnd(), rnd(), rnd()) * 0.3,
-                    c + Vec3::new(rnd(), rnd(), rnd()) * 0.3,
-                ]
-            })
-            .collect();
-        let nested: Vec<[Vec3; 3]> = (0..3000)
-            .map(|i| {
-                let s = 0.997f32.powi(i);
-                [
-                    Vec3::new(-s, -s, i as f32 * 1e-3),
-                    Vec3::new(s, -s, 0.0),
-                    Vec3::new(0.0, s, 0.0),
-                ]
-            })
-            .collect();
-        let rays: Vec<Ray> = (0..3000)
-            .map(|i| {
-                let origin = Vec3::new(rnd(), rnd(), rnd()) * 5.0;
-                let dir = if i % 2 == 0 {
-                    Vec3::new(rnd(), rnd(), rnd().abs() * 3.0) - origin
-                } else {
-                    Vec3::new(rnd(), rnd(), rnd())
-                };
-                let t_max = if i % 3 == 0 {
-                    rnd().abs() * 4.0
-                } else {
-                    f32::INFINITY
-                };
-                Ray { origin, dir, t_max }
-            })
-            .collect();
+        let [soup, nested] = soup_and_nested(&mut rnd);
+        let rays = test_rays(&mut rnd, 3000);
         for tris in [soup, nested] {
             let bvh = super::super::bvh::build(&tris, crate::settings::BvhQuality::Medium);
             let (mut hit, mut missed) = (0, 0);
@@ -1251,6 +1230,8 @@ mod tests {
         }
     }
 
+    /// The single-ray kernels take this thread's stack array and put it back: the second
+    /// query of a thread reuses the first one's array (same address), with the same answers.
     #[test]
     fn single_ray_queries_reuse_the_thread_stack() {
         let tris: Vec<[Vec3; 3]> = (0..4000)
