@@ -154,7 +154,7 @@ struct Packet {
     t_max: [f32; PACKET_RAYS],
     dir: [Vec3; PACKET_RAYS],
     /// Each ray's watertight test, made only for the kernels that test leaves one ray at a
-    /// time (`PacketTest::SCALAR_LEAVES`); the others use `lanes` and [`Packet::woop`].
+    /// time (`PacketTest::SCALAR_LEAVES`); the others use `lanes` and [`Packet::woop_of`].
     woop: Vec<WoopRay>,
     /// The same constants as arrays over the rays (the AVX2 leaf test's ray lanes).
     lanes: RayLanes<PACKET_RAYS>,
@@ -232,7 +232,7 @@ impl Packet {
     /// Ray `i`'s watertight test (for the lanes the vector leaf test leaves to the scalar
     /// one).
     #[inline(always)]
-    fn woop(&self, i: usize) -> WoopRay {
+    fn woop_of(&self, i: usize) -> WoopRay {
         WoopRay::new(self.origins[self.origin_of[i] as usize], self.dir[i])
     }
 
@@ -564,7 +564,7 @@ mod wide {
                     for j in bits(u64::from(found.slow)) {
                         let t_max = packet.t_max[at + j];
                         if packet
-                            .woop(at + j)
+                            .woop_of(at + j)
                             .intersect(tri)
                             .is_some_and(|(t, _, _)| t < t_max)
                         {
@@ -604,7 +604,7 @@ mod wide {
                     let found = group.test(tri, lanes);
                     for j in bits(u64::from(found.hit | found.slow)) {
                         let hit = if found.slow >> j & 1 != 0 {
-                            match packet.woop(at + j).intersect(tri) {
+                            match packet.woop_of(at + j).intersect(tri) {
                                 Some(hit) => hit,
                                 None => continue,
                             }

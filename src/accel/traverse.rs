@@ -8,8 +8,9 @@
 //!   conservative answer. The entry distance is clamped at 0 — not at obvhs's 1e-4.
 //! * **Order**: the single-ray kernels (closest hit and occlusion) visit hit children in the
 //!   node's precomputed order for the ray's octant (`Node::order`; no sort): the nearest is
-//!   visited next (not pushed, not prefetched), the others are pushed farthest first. The AVX-512 batch lanes push them in the
-//!   same order, farthest first, the nearest on top (`NodeTest::push_ordered`, one
+//!   visited next (not pushed, not prefetched), the others are pushed farthest first. The
+//!   AVX-512 batch lanes push them in the same order, farthest first, the nearest on top
+//!   (`NodeTest::push_ordered`, one
 //!   compressed block store); the other batch lanes push them sorted by entry distance,
 //!   nearest on top. `STAGELIGHT_TRAVERSAL=sorted` sorts in every kernel, and the
 //!   single-ray occlusion kernel then visits the last slot hit first (for A/B runs).
@@ -505,10 +506,10 @@ pub(super) fn leaf_range(r: u32) -> std::ops::Range<usize> {
     first..first + count
 }
 
-/// The single-ray kernels' step after a node in octant order: the hit children of `mask`
-/// (bit `i` for `child[i]`, entry distance `tn[i]`, nearest first) but the nearest pushed
-/// farthest first and prefetched; the nearest is returned, to be visited next. It is not
-/// prefetched: its loads are the very next ones, their addresses known.
+/// The single-ray kernels' step after a node in octant order. Of the hit children in `mask`
+/// (bit `i` for `child[i]`, entry distance `tn[i]`, nearest first), all but the nearest are
+/// prefetched and pushed, farthest first; the nearest is returned, to be visited next. It is
+/// not prefetched: its loads are the very next ones, their addresses known.
 #[inline(always)]
 fn push_all_but_nearest<S: Stack>(
     bvh: &Bvh,
