@@ -17,7 +17,10 @@
 //!   Popped entries farther than the current closest hit are skipped.
 //! * **Prefetch**: every child pushed is prefetched whole (a node's four cache lines, a
 //!   leaf's triangles), so its misses overlap the work on its siblings (+13–15 % incoherent);
-//!   the addresses are selected without a branch on the leaf bit (`prefetch_lines`).
+//!   the addresses are selected without a branch on the leaf bit (`prefetch_lines`). The
+//!   AVX-512 single-ray kernels (`traverse_wide/single512.rs`) push as one block store and
+//!   prefetch only the child popped next. A closest-hit candidate's `prim_ids` entry is
+//!   prefetched when it is found (the array is cold; it is read once, at the end).
 //! * **Batches** (`closest_batch`, `occluded_batch`): 12 rays traversed interleaved, one node
 //!   or leaf per ray in turn, each lane's next node prefetched; identical results, 2.5–3×
 //!   the single-ray throughput on incoherent rays.
@@ -87,6 +90,28 @@ pub(super) trait NodeTest {
             r[i] = node.child[slot];
         }
         (ordered_mask, t, r)
+    }
+
+    /// The single-ray kernels' node step: of the children of `node` entered within
+    /// `[0, t_far]`, in the visiting order `order` (a [`Node::order`] word), all but the
+    /// nearest are pushed onto `stack` (with their entry distances), farthest first, and the
+    /// nearest is returned, to be visited next; `None` when no child is entered. Here through
+    /// [`NodeTest::intersect_ordered`] and a loop that prefetches each pushed child
+    /// ([`push_all_but_nearest`]); the AVX-512 single-ray kernels store them as one block.
+    #[inline(always)]
+    fn visit_ordered<S: Stack>(
+        &self,
+        bvh: &Bvh,
+        node: &Node,
+        t_far: f32,
+        order: u32,
+        stack: &mut S,
+    ) -> Option<u32> {
+        let (mask, tn, child) = self.intersect_ordered(node, t_far, order);
+        if mask == 0 {
+            return None;
+        }
+        Some(push_all_but_nearest(bvh, stack, mask, &tn, &child))
     }
 
     /// Pushes the children of `node` entered within `[0, t_far]` onto `stack` in the visiting
@@ -200,14 +225,20 @@ pub(super) struct Entry {
     pub(super) t: f32,
 }
 
-/// The traversal stack interface (fixed array or heap).
-trait Stack {
+/// The traversal stack interface (fixed array or heap). Every implementation keeps eight
+/// slots beyond the traversal bound, so that a kernel may store a whole block of entries above
+/// the top ([`Stack::top_block`]) and then count some of them as pushed ([`Stack::grow`]).
+pub(super) trait Stack {
     fn push(&mut self, e: Entry);
     fn pop(&mut self) -> Option<Entry>;
     fn len(&self) -> usize;
     fn clear(&mut self);
     /// Sorts the entries from `from` to the top so that the smallest `t` is on top.
     fn sort_top(&mut self, from: usize);
+    /// The eight slots above the top (panics, never overwrites, when fewer are left).
+    fn top_block(&mut self) -> &mut [Entry; 8];
+    /// Counts `n ≤ 8` more entries, written through [`Stack::top_block`], as pushed.
+    fn grow(&mut self, n: usize);
 }
 
 /// A stack in a fixed array; `push` past `N` panics (never silently overwrites), and `N` is
@@ -303,12 +334,26 @@ impl<const N: usize> Stack for ArrayStack<N> {
     fn sort_top(&mut self, from: usize) {
         sort_descending(&mut self.items[from..self.len]);
     }
+    #[inline(always)]
+    fn top_block(&mut self) -> &mut [Entry; 8] {
+        self.block()
+    }
+    #[inline(always)]
+    fn grow(&mut self, n: usize) {
+        ArrayStack::grow(self, n);
+    }
+}
+
+/// Eight slots above the top of `items` (the block stores of [`Stack::top_block`]).
+#[inline(always)]
+fn block_at(items: &mut [Entry], len: usize) -> &mut [Entry; 8] {
+    (&mut items[len..len + 8]).try_into().expect("eight slots")
 }
 
 /// A stack in a borrowed array: the per-thread one of [`take_thread_stack`], reused by every
 /// single-ray query of the thread (a fresh array per query cost a 1 KiB zero fill).
 struct RefStack<'a> {
-    items: &'a mut [Entry; ARRAY_STACK],
+    items: &'a mut [Entry; THREAD_STACK_LEN],
     len: usize,
 }
 
@@ -338,11 +383,24 @@ impl Stack for RefStack<'_> {
     fn sort_top(&mut self, from: usize) {
         sort_descending(&mut self.items[from..self.len]);
     }
+    #[inline(always)]
+    fn top_block(&mut self) -> &mut [Entry; 8] {
+        block_at(self.items, self.len)
+    }
+    #[inline(always)]
+    fn grow(&mut self, n: usize) {
+        debug_assert!(n <= 8);
+        self.len += n;
+    }
 }
+
+/// The per-thread stack array's length: the deepest traversal an array stack allows, plus
+/// the eight slots of a block store.
+const THREAD_STACK_LEN: usize = ARRAY_STACK + 8;
 
 thread_local! {
     /// The single-ray kernels' stack array, one per thread, taken out for a query and put back.
-    static THREAD_STACK: std::cell::Cell<Option<Box<[Entry; ARRAY_STACK]>>> =
+    static THREAD_STACK: std::cell::Cell<Option<Box<[Entry; THREAD_STACK_LEN]>>> =
         const { std::cell::Cell::new(None) };
 }
 
@@ -350,41 +408,71 @@ thread_local! {
 /// a query never runs inside another, so that is only the first). Plain functions, not a
 /// closure around the traversal: a closure would not inherit the AVX2 kernels' target features.
 #[inline(always)]
-fn take_thread_stack() -> Box<[Entry; ARRAY_STACK]> {
+fn take_thread_stack() -> Box<[Entry; THREAD_STACK_LEN]> {
     THREAD_STACK
         .try_with(std::cell::Cell::take)
         .ok()
         .flatten()
-        .unwrap_or_else(|| Box::new([Entry::default(); ARRAY_STACK]))
+        .unwrap_or_else(|| Box::new([Entry::default(); THREAD_STACK_LEN]))
 }
 
 /// Puts the array back for the thread's next query.
 #[inline(always)]
-fn put_thread_stack(items: Box<[Entry; ARRAY_STACK]>) {
+fn put_thread_stack(items: Box<[Entry; THREAD_STACK_LEN]>) {
     // Fails only while the thread is being torn down; the array is then dropped.
     let _ = THREAD_STACK.try_with(|s| s.set(Some(items)));
 }
 
-impl Stack for Vec<Entry> {
+/// A stack on the heap, for trees too deep for the array stacks: `n` entries (the traversal
+/// bound) plus the eight slots of a block store, allocated once per query.
+struct HeapStack {
+    items: Vec<Entry>,
+    len: usize,
+}
+
+impl HeapStack {
+    fn new(n: usize) -> Self {
+        Self {
+            items: vec![Entry::default(); n + 8],
+            len: 0,
+        }
+    }
+}
+
+impl Stack for HeapStack {
     #[inline(always)]
     fn push(&mut self, e: Entry) {
-        Vec::push(self, e);
+        self.items[self.len] = e;
+        self.len += 1;
     }
     #[inline(always)]
     fn pop(&mut self) -> Option<Entry> {
-        Vec::pop(self)
+        if self.len == 0 {
+            return None;
+        }
+        self.len -= 1;
+        Some(self.items[self.len])
     }
     #[inline(always)]
     fn len(&self) -> usize {
-        Vec::len(self)
+        self.len
     }
     #[inline(always)]
     fn clear(&mut self) {
-        Vec::clear(self);
+        self.len = 0;
     }
     #[inline(always)]
     fn sort_top(&mut self, from: usize) {
-        sort_descending(&mut self[from..]);
+        sort_descending(&mut self.items[from..self.len]);
+    }
+    #[inline(always)]
+    fn top_block(&mut self) -> &mut [Entry; 8] {
+        block_at(&mut self.items, self.len)
+    }
+    #[inline(always)]
+    fn grow(&mut self, n: usize) {
+        debug_assert!(n <= 8);
+        self.len += n;
     }
 }
 
@@ -443,7 +531,7 @@ pub(super) fn closest_ordered_in<N: NodeTest, const OCTANT: bool>(
         return None;
     }
     if stack_bound(bvh.depth) <= SMALL_STACK {
-        closest_with::<_, N, OCTANT>(bvh, ray, ArrayStack::<SMALL_STACK>::new())
+        closest_with::<_, N, OCTANT>(bvh, ray, ArrayStack::<{ SMALL_STACK + 8 }>::new())
     } else if stack_bound(bvh.depth) <= ARRAY_STACK {
         let mut items = take_thread_stack();
         let stack = RefStack {
@@ -454,7 +542,7 @@ pub(super) fn closest_ordered_in<N: NodeTest, const OCTANT: bool>(
         put_thread_stack(items);
         hit
     } else {
-        closest_with::<_, N, OCTANT>(bvh, ray, Vec::with_capacity(stack_bound(bvh.depth)))
+        closest_with::<_, N, OCTANT>(bvh, ray, HeapStack::new(stack_bound(bvh.depth)))
     }
 }
 
@@ -476,7 +564,7 @@ pub(super) fn occluded_in<N: NodeTest>(bvh: &Bvh, ray: &Ray) -> bool {
 #[inline(always)]
 fn occluded_ordered_in<N: NodeTest, const OCTANT: bool>(bvh: &Bvh, ray: &Ray) -> bool {
     if stack_bound(bvh.depth) <= SMALL_STACK {
-        occluded_with::<_, N, OCTANT>(bvh, ray, ArrayStack::<SMALL_STACK>::new())
+        occluded_with::<_, N, OCTANT>(bvh, ray, ArrayStack::<{ SMALL_STACK + 8 }>::new())
     } else if stack_bound(bvh.depth) <= ARRAY_STACK {
         let mut items = take_thread_stack();
         let stack = RefStack {
@@ -487,7 +575,7 @@ fn occluded_ordered_in<N: NodeTest, const OCTANT: bool>(bvh: &Bvh, ray: &Ray) ->
         put_thread_stack(items);
         hit
     } else {
-        occluded_with::<_, N, OCTANT>(bvh, ray, Vec::with_capacity(stack_bound(bvh.depth)))
+        occluded_with::<_, N, OCTANT>(bvh, ray, HeapStack::new(stack_bound(bvh.depth)))
     }
 }
 
@@ -561,16 +649,19 @@ fn closest_with<S: Stack, N: NodeTest, const OCTANT: bool>(
                     best = Some((k, b1, b2));
                     best_t = t;
                     cull = t * FAR_SCALE;
+                    // The candidate's original index is read at the end: its cache miss
+                    // (`prim_ids` is cold) overlaps the rest of the traversal.
+                    prefetch_ptr(bvh.prim_ids.as_ptr().wrapping_add(k).cast());
                 }
                 false
             });
         } else if OCTANT {
             let node = &bvh.nodes[cur as usize];
-            let (mask, tn, child) = nr.intersect_ordered(node, best_t, node.order[octant]);
-            if mask != 0 {
-                // The nearest goes straight to `cur` (its entry distance is ≤ `cull` by the
-                // box test).
-                cur = push_all_but_nearest(bvh, &mut stack, mask, &tn, &child);
+            // The nearest goes straight to `cur` (its entry distance is ≤ `cull` by the box
+            // test).
+            if let Some(next) = nr.visit_ordered(bvh, node, best_t, node.order[octant], &mut stack)
+            {
+                cur = next;
                 continue;
             }
         } else {
@@ -638,11 +729,12 @@ fn occluded_with<S: Stack, N: NodeTest, const OCTANT: bool>(
         } else if OCTANT {
             // As the closest-hit kernel: the nearest in octant order next, the others pushed
             // farthest first (the nearest occluder is the likeliest to be found early).
+            // (The pushed entry distances are not needed.)
             let node = &bvh.nodes[cur as usize];
-            let (mask, _, child) = nr.intersect_ordered(node, ray.t_max, node.order[octant]);
-            if mask != 0 {
-                // Entry distances are not needed: the stack holds zeros.
-                cur = push_all_but_nearest(bvh, &mut stack, mask, &[0.0; 8], &child);
+            if let Some(next) =
+                nr.visit_ordered(bvh, node, ray.t_max, node.order[octant], &mut stack)
+            {
+                cur = next;
                 continue;
             }
         } else {
@@ -867,7 +959,7 @@ pub(crate) const BATCH_LANES: usize = 12;
 /// single-ray kernels every child pushed on the stack, in the batch kernels the node or leaf a
 /// lane visits next, so that its misses are under way while other work goes on.
 #[inline(always)]
-fn prefetch(bvh: &Bvh, r: u32) {
+pub(super) fn prefetch(bvh: &Bvh, r: u32) {
     #[cfg(target_arch = "x86_64")]
     {
         use std::arch::x86_64::{_mm_prefetch, _MM_HINT_T0};
@@ -879,6 +971,19 @@ fn prefetch(bvh: &Bvh, r: u32) {
     }
     #[cfg(not(target_arch = "x86_64"))]
     let _ = (bvh, r);
+}
+
+/// Prefetches the cache line of `p` (any address: a hint, never a fault).
+#[inline(always)]
+fn prefetch_ptr(p: *const u8) {
+    #[cfg(target_arch = "x86_64")]
+    // SAFETY: `_mm_prefetch` requires SSE, which every x86_64 target has. It is a hint: it
+    // never faults and has no effect on memory, whatever the address.
+    unsafe {
+        std::arch::x86_64::_mm_prefetch::<{ std::arch::x86_64::_MM_HINT_T0 }>(p.cast::<i8>());
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = p;
 }
 
 /// The four addresses [`prefetch`] touches for the reference `r`: a node's four cache lines,
@@ -1040,7 +1145,7 @@ pub(super) fn occluded_batch_in<N: NodeTest>(bvh: &Bvh, rays: &[Ray], out: &mut 
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
 
     #[test]
@@ -1119,7 +1224,7 @@ mod tests {
 
     /// A soup of 3,000 small random triangles, and 3,000 nested, shrinking triangles (a
     /// hierarchy far deeper than the array stack allows).
-    fn soup_and_nested(rnd: &mut impl FnMut() -> f32) -> [Vec<[Vec3; 3]>; 2] {
+    pub(in crate::accel) fn soup_and_nested(rnd: &mut impl FnMut() -> f32) -> [Vec<[Vec3; 3]>; 2] {
         let soup: Vec<[Vec3; 3]> = (0..3000)
             .map(|_| {
                 let c = Vec3::new(rnd(), rnd(), rnd()) * 4.0;
@@ -1145,7 +1250,7 @@ mod tests {
 
     /// `n` rays from around the meshes of [`soup_and_nested`]: every other one aimed at the
     /// nested triangles around the origin, every third with a finite `t_max`.
-    fn test_rays(rnd: &mut impl FnMut() -> f32, n: usize) -> Vec<Ray> {
+    pub(in crate::accel) fn test_rays(rnd: &mut impl FnMut() -> f32, n: usize) -> Vec<Ray> {
         (0..n)
             .map(|i| {
                 let origin = Vec3::new(rnd(), rnd(), rnd()) * 5.0;

@@ -9,6 +9,9 @@
 //!   `traverse.rs` with the same 8-wide node test in every lane; where the CPU also has
 //!   AVX-512F/VL, the lanes push the hit children as compressed block stores (`avx512.rs`;
 //!   closest hit in octant order), unless `STAGELIGHT_TRAVERSAL=avx2` (for A/B runs).
+//! * **Single rays with AVX-512**: where the CPU has AVX-512F/VL, [`closest`] and
+//!   [`occluded`] run `single512.rs`: the same loops, with the hit children stored as one
+//!   compressed block instead of a push loop (and unless `STAGELIGHT_TRAVERSAL=avx2`).
 //! * **Dispatch**: [`closest`] and [`occluded`] answer `None` when the CPU lacks AVX2
 //!   (`is_x86_feature_detected!`, cached by std) or when `STAGELIGHT_TRAVERSAL=sse` (or
 //!   `sse-sorted`) was set at the first query (read once; for A/B measurements); the caller then runs the SSE kernel,
@@ -30,6 +33,7 @@ use std::arch::x86_64::{
 use std::sync::OnceLock;
 
 mod avx512;
+mod single512;
 
 use glam::Vec3;
 
@@ -50,8 +54,8 @@ fn use_avx2() -> bool {
     })
 }
 
-/// Whether the AVX-512 batch kernel runs (AVX-512F and VL present, AVX2 kernels on, and not
-/// turned off by `STAGELIGHT_TRAVERSAL=avx2`, for A/B runs).
+/// Whether the AVX-512 kernels run, batch and single-ray (AVX-512F and VL present, AVX2
+/// kernels on, and not turned off by `STAGELIGHT_TRAVERSAL=avx2`, for A/B runs).
 fn use_avx512() -> bool {
     static CHOICE: OnceLock<bool> = OnceLock::new();
     *CHOICE.get_or_init(|| {
@@ -62,9 +66,14 @@ fn use_avx512() -> bool {
     })
 }
 
-/// Closest hit with the AVX2 kernel; `None` when it does not run here (the caller falls back).
+/// Closest hit with the AVX-512 or AVX2 kernel; `None` when neither runs here (the caller
+/// falls back).
 #[inline]
 pub(super) fn closest(bvh: &Bvh, ray: &Ray) -> Option<Option<Hit>> {
+    if use_avx512() {
+        // SAFETY: AVX2, AVX-512F and AVX-512VL were detected on this CPU just above.
+        return Some(unsafe { single512::closest_avx512(bvh, ray) });
+    }
     if !use_avx2() {
         return None;
     }
@@ -72,9 +81,13 @@ pub(super) fn closest(bvh: &Bvh, ray: &Ray) -> Option<Option<Hit>> {
     Some(unsafe { closest_avx2(bvh, ray) })
 }
 
-/// Occlusion with the AVX2 kernel; `None` when it does not run here.
+/// Occlusion with the AVX-512 or AVX2 kernel; `None` when neither runs here.
 #[inline]
 pub(super) fn occluded(bvh: &Bvh, ray: &Ray) -> Option<bool> {
+    if use_avx512() {
+        // SAFETY: AVX2, AVX-512F and AVX-512VL were detected on this CPU just above.
+        return Some(unsafe { single512::occluded_avx512(bvh, ray) });
+    }
     if !use_avx2() {
         return None;
     }
@@ -300,7 +313,7 @@ mod tests {
     /// on-plane and finite-`t_max` rays; the fallback is forced by calling it directly.
     /// A soup of 4,000 triangles (half on the integer grid) and 3,000 rays with
     /// axis-parallel, zero-component (both signs), on-plane and finite-`t_max` cases.
-    fn soup_and_rays() -> (Vec<[Vec3; 3]>, Vec<Ray>) {
+    pub(super) fn soup_and_rays() -> (Vec<[Vec3; 3]>, Vec<Ray>) {
         let mut rnd = crate::accel::test_random::signed_uniform(0x9e37_79b9_7f4a_7c15u64);
         let tris: Vec<[Vec3; 3]> = (0..4000)
             .map(|i| {
