@@ -238,17 +238,15 @@ mod tests {
         assert!(hits > 3000 && occluded > 3000, "{hits} {occluded}");
     }
 
+    /// A node step's outcome: the child to visit next, and the stack's entries as
+    /// `(reference, entry-distance bits)` from the bottom up.
+    type Step = (Option<u32>, Vec<(u32, u32)>);
+
     /// The entries the block step and the generic step (the AVX2 node test, a loop) put on a
     /// stack that already holds three, as `(reference, entry-distance bits)` from the bottom
     /// up, with the child each returns to visit next.
     #[target_feature(enable = "avx2,avx512f,avx512vl")]
-    unsafe fn steps(
-        bvh: &Bvh,
-        node: &Node,
-        ray: &Ray,
-        t_far: f32,
-        order: u32,
-    ) -> [(Option<u32>, Vec<(u32, u32)>); 2] {
+    unsafe fn steps(bvh: &Bvh, node: &Node, ray: &Ray, t_far: f32, order: u32) -> [Step; 2] {
         let woop = WoopRay::new(ray.origin, ray.dir);
         let block = <NodeRay8s as NodeTest>::new(ray, &woop);
         let generic = <NodeRay8 as NodeTest>::new(ray, &woop);
