@@ -427,12 +427,18 @@ impl PixelShader<'_> {
         let centre = Vec2::new(x as f32 + 0.5, y as f32 + 0.5);
         let lens = self.rays.needs_lens_sample();
         let first = self.sample_offset + samples.taken;
+        // Each sample's sampler is made one sample ahead (`Sampler::for_item_primed`), so its
+        // integer hash chains overlap the previous sample's shading.
+        let mut next = Sampler::for_item_primed(self.seed, pixel, first);
         for s in first..first + count {
             // A pixel may take millions of samples (`--spp`): poll here too.
             if s % 64 == 0 && self.cancel.load(Ordering::Relaxed) {
                 return;
             }
-            let mut sampler = Sampler::for_item(self.seed, pixel, s);
+            let mut sampler = next.clone();
+            if s + 1 < first + count {
+                next = Sampler::for_item_primed(self.seed, pixel, s + 1);
+            }
             let film = centre + self.filter.sample(sampler.next_2d());
             let lens_u = if lens {
                 sampler.next_2d()
