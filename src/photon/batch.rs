@@ -244,7 +244,11 @@ mod tests {
             let mut sorted = stored.clone();
             sorted.sort_by_key(|&(w, _)| w);
             let want: Vec<Photon> = sorted.into_iter().map(|(_, p)| p).collect();
-            assert_eq!(in_walk_order(&stored, walks), want, "{n} deposits, {walks} walks");
+            assert_eq!(
+                in_walk_order(&stored, walks),
+                want,
+                "{n} deposits, {walks} walks"
+            );
         }
     }
 

@@ -221,9 +221,8 @@ impl PhotonMap {
         };
         self.search(&mut q);
         *out = q.found;
-        // One 64-bit key per photon, ordered as (distance bits, index): the keys are
-        // distinct (indices are), so any sort gives this order.
-        out.sort_unstable_by_key(|n| (u64::from(n.dist2.to_bits()) << 32) | u64::from(n.index));
+        // Distinct keys (indices are): any sort gives this order.
+        super::neighbour_sort::sort(out);
     }
 
     /// The density estimate `Σ f(photon)·Φ / area` at `p` (normal `normal`) — irradiance for
@@ -617,7 +616,16 @@ mod tests {
             );
             hi - lo
         };
-        let special = [0.0, -0.0, 1e-40, -1e-40, 3.0e38, -3.0e38, f32::INFINITY, 1.5];
+        let special = [
+            0.0,
+            -0.0,
+            1e-40,
+            -1e-40,
+            3.0e38,
+            -3.0e38,
+            f32::INFINITY,
+            1.5,
+        ];
         let mut sets: Vec<Vec<[f32; 3]>> = vec![vec![[0.0, -0.0, 1.0]]];
         for (n, seed) in [(2usize, 3u64), (9, 4), (100, 5), (1000, 6)] {
             let points = scattered(n, seed);
