@@ -222,7 +222,9 @@ impl PhotonMap {
         self.search(&mut q);
         *out = q.found;
         // Distinct keys (indices are): any sort gives this order.
-        super::neighbour_sort::sort(out);
+        super::neighbour_sort::sort(out, |n| {
+            (u64::from(n.dist2.to_bits()) << 32) | u64::from(n.index)
+        });
     }
 
     /// The density estimate `Σ f(photon)·Φ / area` at `p` (normal `normal`) — irradiance for

@@ -3,44 +3,36 @@
 //! correct sort gives the same order. Large gathers (the fixed-radius reads of the caustic
 //! map's gather view, thousands of photons inside a caustic's focus) take an LSD radix sort
 //! on the key's bytes, skipping the bytes every key shares; small ones the comparison sort.
+//! Generic over the element (the kd-tree's `Neighbour`), so this module imports nothing of
+//! the tree's.
 
-use super::kdtree::Neighbour;
-
-/// From this many photons on, the radix sort.
+/// From this many elements on, the radix sort.
 const RADIX_MIN: usize = 256;
 
-/// The sort key: distance bits, then index.
-fn key(n: &Neighbour) -> u64 {
-    (u64::from(n.dist2.to_bits()) << 32) | u64::from(n.index)
-}
-
-/// Sorts `found` by (squared distance, index); its distances are non-negative.
-pub fn sort(found: &mut Vec<Neighbour>) {
+/// Sorts `found` by `key`, which is distinct for distinct elements.
+pub fn sort<T: Copy>(found: &mut Vec<T>, key: impl Fn(&T) -> u64) {
     if found.len() < RADIX_MIN {
         found.sort_unstable_by_key(key);
     } else {
-        radix_sort(found);
+        radix_sort(found, key);
     }
 }
 
 /// LSD radix sort on the key's eight bytes (each pass stable), a pass only for the bytes in
 /// which the keys differ.
-fn radix_sort(found: &mut Vec<Neighbour>) {
+fn radix_sort<T: Copy>(found: &mut Vec<T>, key: impl Fn(&T) -> u64) {
     let n = found.len();
+    let Some(&first) = found.first() else {
+        return;
+    };
     let mut counts = [[0u32; 256]; 8];
-    for nb in found.iter() {
-        let k = key(nb);
+    for x in found.iter() {
+        let k = key(x);
         for (d, c) in counts.iter_mut().enumerate() {
             c[((k >> (8 * d)) & 0xff) as usize] += 1;
         }
     }
-    let mut other = vec![
-        Neighbour {
-            dist2: 0.0,
-            index: 0
-        };
-        n
-    ];
+    let mut other = vec![first; n];
     for (d, c) in counts.iter().enumerate() {
         if c.iter().any(|&m| m as usize == n) {
             continue;
@@ -51,9 +43,9 @@ fn radix_sort(found: &mut Vec<Neighbour>) {
             *s = sum;
             sum += m;
         }
-        for nb in found.iter() {
-            let at = &mut next[((key(nb) >> (8 * d)) & 0xff) as usize];
-            other[*at as usize] = *nb;
+        for x in found.iter() {
+            let at = &mut next[((key(x) >> (8 * d)) & 0xff) as usize];
+            other[*at as usize] = *x;
             *at += 1;
         }
         std::mem::swap(found, &mut other);
@@ -63,6 +55,17 @@ fn radix_sort(found: &mut Vec<Neighbour>) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A gathered photon's key as the kd-tree makes it.
+    #[derive(Debug, Clone, Copy, PartialEq)]
+    struct Neighbour {
+        dist2: f32,
+        index: u32,
+    }
+
+    fn key(n: &Neighbour) -> u64 {
+        (u64::from(n.dist2.to_bits()) << 32) | u64::from(n.index)
+    }
 
     /// The radix sort and the comparison sort give the same order: distances with ties
     /// (coarse values), zeros, one shared distance, indices above 2¹⁶ and 2²⁴, sizes around
@@ -102,7 +105,7 @@ mod tests {
             found.dedup_by_key(|nb| nb.index);
             let mut want = found.clone();
             want.sort_unstable_by_key(key);
-            radix_sort(&mut found);
+            radix_sort(&mut found, key);
             assert_eq!(found, want, "{n} photons");
         }
     }
