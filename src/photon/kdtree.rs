@@ -637,7 +637,7 @@ mod tests {
                     .enumerate()
                     .map(|(i, p)| {
                         let pick = |j: usize, v: f32| {
-                            if (i + j) % 3 == 0 {
+                            if (i + j).is_multiple_of(3) {
                                 special[(i * 7 + j) % special.len()]
                             } else {
                                 v - 0.5
