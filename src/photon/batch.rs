@@ -145,21 +145,22 @@ impl Chunk<'_> {
     }
 
     fn batched(&self, range: Range<u64>) -> Vec<Photon> {
-        let mut walks: Vec<(u64, Sampler, Walk, usize)> = range
+        let mut walks: Vec<(Sampler, Walk, usize)> = range
             .filter_map(|i| {
                 let (sampler, walk) = self.emit(i);
-                walk.map(|(w, light)| (i, sampler, w, light))
+                walk.map(|(w, light)| (sampler, w, light))
             })
             .collect();
         let mut live: Vec<usize> = (0..walks.len()).collect();
         let (mut rays, mut hits) = (Vec::new(), Vec::<Option<Hit>>::new());
-        // (photon index, photon): sorted stably by index at the end.
-        let mut stored: Vec<(u64, Photon)> = Vec::new();
+        // (walk, photon) in the order made; walks are in photon-index order, so
+        // [`in_walk_order`] puts them back in photon-index order.
+        let mut stored: Vec<(u32, Photon)> = Vec::new();
         let mut points: Vec<Option<ShadingPoint>> = Vec::with_capacity(BLOCK);
         let stop = self.stop_after_diffuse();
         while !live.is_empty() {
             rays.clear();
-            rays.extend(live.iter().map(|&w| *walks[w].2.ray()));
+            rays.extend(live.iter().map(|&w| *walks[w].1.ray()));
             hits.clear();
             hits.resize(rays.len(), None);
             self.ctx.geometry.accel.intersect_batch(&rays, &mut hits);
@@ -172,21 +173,46 @@ impl Chunk<'_> {
                         .map(|h| h.as_ref().map(|h| PhotonVertex::shading_point(self.ctx, h))),
                 );
                 for ((&w, hit), sp) in ws.iter().zip(hs).zip(&points) {
-                    let (i, sampler, walk, light) = &mut walks[w];
-                    let (i, light) = (*i, *light);
+                    let (sampler, walk, light) = &mut walks[w];
+                    let light = *light;
                     let at = hit.as_ref().zip(sp.as_ref());
                     walk.step_at(self.ctx, self.roles, at, sampler, stop, &mut |d| {
                         if self.keeps(&d, light) {
-                            stored.push((i, d.photon));
+                            stored.push((w as u32, d.photon));
                         }
                     });
                 }
             }
-            live.retain(|&w| walks[w].2.live());
+            live.retain(|&w| walks[w].1.live());
         }
-        stored.sort_by_key(|&(i, _)| i);
-        stored.into_iter().map(|(_, p)| p).collect()
+        in_walk_order(&stored, walks.len())
     }
+}
+
+/// The photons of `stored` (walk index below `walks`, photon) ordered by walk, each walk's
+/// in the order given: what a stable sort by walk gives, by counting (a walk deposits at
+/// most once per round, so `stored` is one sorted run per round, up to [`super::walk::MAX_BOUNCES`]).
+fn in_walk_order(stored: &[(u32, Photon)], walks: usize) -> Vec<Photon> {
+    let mut next = vec![0u32; walks + 1];
+    for &(w, _) in stored {
+        next[w as usize + 1] += 1;
+    }
+    for w in 1..next.len() {
+        next[w] += next[w - 1];
+    }
+    let zero = Photon {
+        position: glam::Vec3::ZERO,
+        power: glam::Vec3::ZERO,
+        incoming: glam::Vec3::ZERO,
+        normal: glam::Vec3::ZERO,
+    };
+    let mut out = vec![zero; stored.len()];
+    for &(w, p) in stored {
+        let at = &mut next[w as usize];
+        out[*at as usize] = p;
+        *at += 1;
+    }
+    out
 }
 
 #[cfg(test)]
@@ -201,6 +227,30 @@ mod tests {
     use crate::settings::RenderSettings;
     use crate::shading::integrator::fixture::{self, Object};
     use crate::shading::lights::LightSet;
+
+    /// Counting places the deposits as the stable sort by walk did.
+    #[test]
+    fn walk_order_is_the_stable_sort_by_walk() {
+        let photon = |x: f32| Photon {
+            position: Vec3::new(x, -x, 0.5 * x),
+            power: Vec3::splat(x),
+            incoming: Vec3::Z,
+            normal: Vec3::Y,
+        };
+        for (n, walks) in [(0usize, 0usize), (1, 1), (7, 3), (500, 40), (3000, 4096)] {
+            let stored: Vec<(u32, Photon)> = (0..n)
+                .map(|i| (((i * 7919) % walks.max(1)) as u32, photon(i as f32)))
+                .collect();
+            let mut sorted = stored.clone();
+            sorted.sort_by_key(|&(w, _)| w);
+            let want: Vec<Photon> = sorted.into_iter().map(|(_, p)| p).collect();
+            assert_eq!(
+                in_walk_order(&stored, walks),
+                want,
+                "{n} deposits, {walks} walks"
+            );
+        }
+    }
 
     #[test]
     fn batched_photons_are_the_per_photon_ones_bit_for_bit() {

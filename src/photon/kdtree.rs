@@ -14,7 +14,7 @@
 
 use std::cmp::Ordering;
 
-use glam::Vec3;
+use glam::{Vec3, Vec3A};
 
 use crate::settings::PhotonFilter;
 
@@ -93,9 +93,11 @@ impl SearchNode {
         Vec3::from_array(self.position)
     }
 
-    /// The node's coordinate along its split axis (`axis` is at most 2 by construction).
+    /// The node's coordinate along its split axis (`axis` is at most 2 by construction, so
+    /// the bounds check never fails; a `% 3` here put a multiply and a shift on the walk's
+    /// dependent chain, node load to next node).
     fn split(&self) -> f32 {
-        self.position[self.axis as usize % 3]
+        self.position[self.axis as usize]
     }
 }
 
@@ -107,15 +109,24 @@ impl PhotonMap {
     /// Builds the tree (deterministic: the same photons in the same order give the same tree).
     /// Photons with a non-finite position or power are dropped.
     pub fn build(mut photons: Vec<Photon>) -> Self {
-        photons.retain(|p| p.position.is_finite() && p.power.is_finite());
+        let finite = |p: &Photon| p.position.is_finite() && p.power.is_finite();
+        let key = |(i, p): (usize, &Photon)| BuildKey {
+            position: p.position.to_array(),
+            index: i as u32,
+        };
+        // One pass over the photons makes the keys and checks them (traced photons are
+        // finite); only a map with a dropped photon reads them again.
+        let mut all_finite = true;
         let mut keys: Vec<BuildKey> = photons
             .iter()
             .enumerate()
-            .map(|(i, p)| BuildKey {
-                position: p.position.to_array(),
-                index: i as u32,
-            })
+            .inspect(|(_, p)| all_finite &= finite(p))
+            .map(key)
             .collect();
+        if !all_finite {
+            photons.retain(finite);
+            keys = photons.iter().enumerate().map(key).collect();
+        }
         let mut axes = vec![0u8; keys.len()];
         build(&mut keys, &mut axes);
         // A gather, not an in-place permutation: its loads are independent (following the
@@ -210,9 +221,10 @@ impl PhotonMap {
         };
         self.search(&mut q);
         *out = q.found;
-        // One 64-bit key per photon, ordered as (distance bits, index): the keys are
-        // distinct (indices are), so any sort gives this order.
-        out.sort_unstable_by_key(|n| (u64::from(n.dist2.to_bits()) << 32) | u64::from(n.index));
+        // Distinct keys (indices are): any sort gives this order.
+        super::neighbour_sort::sort(out, |n| {
+            (u64::from(n.dist2.to_bits()) << 32) | u64::from(n.index)
+        });
     }
 
     /// The density estimate `Σ f(photon)·Φ / area` at `p` (normal `normal`) — irradiance for
@@ -433,19 +445,27 @@ fn select_on<const AXIS: usize>(keys: &mut [BuildKey], mid: usize) {
     });
 }
 
+/// The keys' bounding-box extent, `max − min` per axis: [`Vec3A`] lanes (one `minps` and
+/// one `maxps` per key) computing what [`Vec3::min`]/[`Vec3::max`] compute lane by lane
+/// (`if a < b { a } else { b }`, the `minps` rule), so the bits are those of the scalar fold
+/// ([`tests::the_extent_is_the_scalar_folds`]).
+fn extent(keys: &[BuildKey]) -> Vec3 {
+    let (lo, hi) = keys.iter().fold(
+        (Vec3A::splat(f32::INFINITY), Vec3A::splat(f32::NEG_INFINITY)),
+        |(lo, hi), k| {
+            let p = Vec3A::from_array(k.position);
+            (lo.min(p), hi.max(p))
+        },
+    );
+    Vec3::from(hi - lo)
+}
+
 /// Median split along the widest axis, recursively; `axes[mid]` records the split.
 fn build(keys: &mut [BuildKey], axes: &mut [u8]) {
     if keys.len() <= 1 {
         return;
     }
-    let (lo, hi) = keys.iter().fold(
-        (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
-        |(lo, hi), k| {
-            let p = Vec3::from_array(k.position);
-            (lo.min(p), hi.max(p))
-        },
-    );
-    let ext = hi - lo;
+    let ext = extent(keys);
     let axis = if ext.x >= ext.y && ext.x >= ext.z {
         0
     } else if ext.y >= ext.z {
@@ -581,6 +601,72 @@ mod tests {
         let (left_axes, rest_axes) = axes.split_at_mut(mid);
         photon_build(left, left_axes);
         photon_build(&mut rest[1..], &mut rest_axes[1..]);
+    }
+
+    /// [`extent`] in SIMD lanes gives the bits of the scalar [`Vec3`] fold it replaced, for
+    /// signed zeros (`min(0, −0)` keeps the second operand in both), subnormals, huge and
+    /// infinite coordinates, and a lone key.
+    #[test]
+    fn the_extent_is_the_scalar_folds() {
+        let scalar = |keys: &[BuildKey]| {
+            let (lo, hi) = keys.iter().fold(
+                (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
+                |(lo, hi), k| {
+                    let p = Vec3::from_array(k.position);
+                    (lo.min(p), hi.max(p))
+                },
+            );
+            hi - lo
+        };
+        let special = [
+            0.0,
+            -0.0,
+            1e-40,
+            -1e-40,
+            3.0e38,
+            -3.0e38,
+            f32::INFINITY,
+            1.5,
+        ];
+        let mut sets: Vec<Vec<[f32; 3]>> = vec![vec![[0.0, -0.0, 1.0]]];
+        for (n, seed) in [(2usize, 3u64), (9, 4), (100, 5), (1000, 6)] {
+            let points = scattered(n, seed);
+            sets.push(
+                points
+                    .iter()
+                    .enumerate()
+                    .map(|(i, p)| {
+                        let pick = |j: usize, v: f32| {
+                            if (i + j).is_multiple_of(3) {
+                                special[(i * 7 + j) % special.len()]
+                            } else {
+                                v - 0.5
+                            }
+                        };
+                        [pick(0, p.x), pick(1, p.y), pick(2, p.z)]
+                    })
+                    .collect(),
+            );
+            // Only signed zeros on an axis: the extent's sign of zero is what the fold gives.
+            sets.push(
+                (0..n)
+                    .map(|i| [if i % 2 == 0 { 0.0 } else { -0.0 }, i as f32, -0.0])
+                    .collect(),
+            );
+        }
+        for set in sets {
+            let keys: Vec<BuildKey> = set
+                .iter()
+                .enumerate()
+                .map(|(i, &position)| BuildKey {
+                    position,
+                    index: i as u32,
+                })
+                .collect();
+            let (got, want) = (extent(&keys), scalar(&keys));
+            let bits = |v: Vec3| v.to_array().map(f32::to_bits);
+            assert_eq!(bits(got), bits(want), "{set:?}");
+        }
     }
 
     #[test]

@@ -32,6 +32,7 @@ pub mod irradiance;
 pub mod kdtree;
 pub mod key;
 pub mod light_lists;
+pub mod neighbour_sort;
 pub mod pass;
 pub mod point_grid;
 pub mod progressive;
