@@ -245,7 +245,8 @@ pub(crate) fn build(tris: &[[Vec3; 3]], quality: BvhQuality) -> Bvh {
                 .filter(|&i| is_degenerate(&tris[i as usize])),
         );
     }
-    let bvh_tris: Vec<[Vec3; 3]> = prim_ids.par_iter().map(|&i| tris[i as usize]).collect();
+    let mut bvh_tris: Vec<[Vec3; 3]> = super::huge_pages::with_capacity(prim_ids.len());
+    bvh_tris.par_extend(prim_ids.par_iter().map(|&i| tris[i as usize]));
     let slot_of = inverse(&prim_ids);
     let mut nodes = collapsed.nodes;
     nodes

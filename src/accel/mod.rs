@@ -18,6 +18,7 @@
 mod brute;
 mod bvh;
 mod counters;
+mod huge_pages;
 #[cfg(target_arch = "x86_64")]
 mod leaf_wide;
 mod packet;

@@ -115,7 +115,8 @@ pub(crate) fn collapse(bvh2: &Bvh2, max_prims_per_leaf: u32) -> Collapsed {
     };
     let root = c.cost(0, 0);
     let total_nodes = c.nodes8(0);
-    let mut nodes = vec![Node::EMPTY; total_nodes as usize];
+    let mut nodes = crate::accel::huge_pages::with_capacity(total_nodes as usize);
+    nodes.resize(total_nodes as usize, Node::EMPTY);
     let mut order = vec![0u32; root.prims as usize];
     c.emit(0, &mut nodes, &mut order, 0, 0);
     Collapsed { nodes, order }
