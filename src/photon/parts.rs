@@ -1,6 +1,6 @@
 //! A pass's stored photons as its work items made them: one vector per work item, in
 //! photon-index order. The map's kd-tree is built from the parts directly
-//! ([`super::PhotonMap::from_parts`]); concatenating them first copied the whole map once more
+//! ([`super::PhotonMap::from_parts`] of [`PhotonParts::into_parts`]); concatenating them first copied the whole map once more
 //! into fresh pages (28–51 ms of the 1 M-photon `caustics_photons.ron` pass, issue 17).
 
 use super::kdtree::Photon;
@@ -69,5 +69,34 @@ impl FromIterator<Vec<Photon>> for PhotonParts {
             parts.push(part);
         }
         parts
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::Vec3;
+
+    use super::*;
+
+    /// Parts keep their photons in order, drop empty vectors and join back into one vector.
+    #[test]
+    fn parts_join_in_order() {
+        let photon = |x: f32| Photon {
+            position: Vec3::splat(x),
+            power: Vec3::ONE,
+            incoming: Vec3::Z,
+            normal: Vec3::Z,
+        };
+        let all: Vec<Photon> = (0..10).map(|i| photon(i as f32)).collect();
+        let mut parts: PhotonParts = [all[..3].to_vec(), Vec::new(), all[3..4].to_vec()]
+            .into_iter()
+            .collect();
+        parts.append(PhotonParts::from(all[4..].to_vec()));
+        parts.push(Vec::new());
+        assert_eq!((parts.len(), parts.is_empty()), (10, false));
+        assert_eq!(parts.clone().into_parts().len(), 3);
+        assert_eq!(parts.into_vec(), all);
+        assert!(PhotonParts::new().is_empty());
+        assert_eq!(PhotonParts::from(Vec::new()).into_vec(), Vec::new());
     }
 }

@@ -214,7 +214,7 @@ pub fn trace_passes(
     let mut later = Vec::new();
     for pass in 1..settings.passes.max(1) {
         let (photons, n) = trace(pass_seed(seed, pass))?;
-        later.push(PhotonMap::from_parts(photons));
+        later.push(PhotonMap::from_parts(photons.into_parts()));
         emitted += n;
     }
     let progressive = Progressive {
