@@ -173,7 +173,7 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
         let (photons, progressive, emitted) =
             trace_passes(s.progressive, seed, pass).ok_or(StageError::Interrupted)?;
         Ok(Some(StoredMap {
-            map: PhotonMap::build(photons),
+            map: PhotonMap::from_parts(photons.into_parts()),
             later: progressive.map(|p| p.later).unwrap_or_default(),
             emitted,
         }))

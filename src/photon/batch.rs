@@ -100,10 +100,21 @@ impl Chunk<'_> {
         (self.kind == MapKind::Caustics) == d.caustic && self.receivers.admits(d.prim, light)
     }
 
-    /// The photon `i`'s sampler, after drawing its emission, its first ray and power, and
+    /// The sampler of each photon of `range` in turn (`Sampler::for_item(seed, i, 0)`), each
+    /// made one photon ahead ([`Sampler::for_item_primed`]: its seed hash, index scramble and
+    /// first eight Sobol dimensions, integer chains that then run beside the previous
+    /// photon's emission and tracing instead of heading its own; the same stream).
+    fn samplers(&self, range: Range<u64>) -> impl Iterator<Item = Sampler> + '_ {
+        let mut next = Sampler::for_item_primed(self.seed, range.start, 0);
+        range.map(move |i| {
+            std::mem::replace(&mut next, Sampler::for_item_primed(self.seed, i + 1, 0))
+        })
+    }
+
+    /// Photon `sampler`'s sampler, after drawing its emission, its first ray and power, and
     /// the index of the light that emitted it.
-    fn emit(&self, i: u64) -> (Sampler, Option<(Walk, usize)>) {
-        let mut sampler = Sampler::for_item(self.seed, i, 0);
+    #[inline(always)]
+    fn emit(&self, mut sampler: Sampler) -> (Sampler, Option<(Walk, usize)>) {
         let u = [(); 5].map(|_| sampler.next_1d());
         let walk = match (
             self.emission.sample(self.ctx.geometry, u),
@@ -123,8 +134,8 @@ impl Chunk<'_> {
 
     fn per_photon(&self, range: Range<u64>) -> Vec<Photon> {
         let mut out = Vec::new();
-        for i in range {
-            let (mut sampler, Some((walk, light))) = self.emit(i) else {
+        for sampler in self.samplers(range) {
+            let (mut sampler, Some((walk, light))) = self.emit(sampler) else {
                 continue;
             };
             trace_photon_with_roles(
@@ -145,12 +156,13 @@ impl Chunk<'_> {
     }
 
     fn batched(&self, range: Range<u64>) -> Vec<Photon> {
-        let mut walks: Vec<(Sampler, Walk, usize)> = range
-            .filter_map(|i| {
-                let (sampler, walk) = self.emit(i);
-                walk.map(|(w, light)| (sampler, w, light))
-            })
-            .collect();
+        let mut walks: Vec<(Sampler, Walk, usize)> =
+            Vec::with_capacity((range.end - range.start) as usize);
+        for sampler in self.samplers(range) {
+            if let (sampler, Some((walk, light))) = self.emit(sampler) {
+                walks.push((sampler, walk, light));
+            }
+        }
         let mut live: Vec<usize> = (0..walks.len()).collect();
         let (mut rays, mut hits) = (Vec::new(), Vec::<Option<Hit>>::new());
         // (walk, photon) in the order made; walks are in photon-index order, so

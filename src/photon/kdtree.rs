@@ -127,11 +127,46 @@ impl PhotonMap {
             photons.retain(finite);
             keys = photons.iter().enumerate().map(key).collect();
         }
+        Self::from_keys(keys, |i| photons[i as usize])
+    }
+
+    /// [`PhotonMap::build`] of the photons of `parts` in order (the work items' vectors of a
+    /// photon pass, [`super::PhotonParts::into_parts`]), the same tree bit for bit, without concatenating them first: each key
+    /// carries its photon's part and offset, and the photons are gathered into tree order
+    /// straight from the parts (the concatenation faulted and copied a second array of the
+    /// map's size). Falls back to the concatenation when a photon is not finite or the
+    /// (part, offset) pairs do not fit in 32 bits.
+    pub fn from_parts(parts: Vec<Vec<Photon>>) -> Self {
+        let longest = parts.iter().map(Vec::len).max().unwrap_or(0);
+        // Offsets in the low `shift` bits, the part above them.
+        let shift = usize::BITS - longest.leading_zeros();
+        let fits = (parts.len() as u64) << shift <= 1 << 32;
+        let finite = |p: &Photon| p.position.is_finite() && p.power.is_finite();
+        if !fits || !parts.iter().flatten().all(finite) {
+            return Self::build(parts.concat());
+        }
+        let mut keys = Vec::with_capacity(parts.iter().map(Vec::len).sum());
+        for (part, photons) in parts.iter().enumerate() {
+            let base = (part as u64) << shift;
+            keys.extend(photons.iter().enumerate().map(|(i, p)| BuildKey {
+                position: p.position.to_array(),
+                index: (base | i as u64) as u32,
+            }));
+        }
+        let mask = (1u64 << shift).wrapping_sub(1) as u32;
+        Self::from_keys(keys, |i| {
+            parts[(u64::from(i) >> shift) as usize][(i & mask) as usize]
+        })
+    }
+
+    /// The tree of `keys` (each key's `index` names its photon to `photon`): the median
+    /// build, then the photons gathered into tree order.
+    fn from_keys(mut keys: Vec<BuildKey>, photon: impl Fn(u32) -> Photon) -> Self {
         let mut axes = vec![0u8; keys.len()];
         build(&mut keys, &mut axes);
         // A gather, not an in-place permutation: its loads are independent (following the
         // permutation's cycles in place made the whole render 5–8 % slower).
-        let photons: Vec<Photon> = keys.iter().map(|k| photons[k.index as usize]).collect();
+        let photons: Vec<Photon> = keys.iter().map(|k| photon(k.index)).collect();
         for (k, &a) in keys.iter_mut().zip(&axes) {
             k.index = u32::from(a);
         }
@@ -726,6 +761,61 @@ mod tests {
             for (a, b) in map.nodes.iter().zip(&nodes) {
                 assert_eq!((a.position, a.axis), (b.position, b.axis));
             }
+        }
+    }
+
+    /// A map built from a pass's parts is the map of their concatenation, bit for bit: the
+    /// photons in tree order, the axes and the search nodes; with empty parts, one part, a
+    /// lattice full of ties split unevenly, and a non-finite photon (the fallback drops it).
+    #[test]
+    fn a_map_from_parts_is_the_map_of_their_concatenation() {
+        let lattice = |n: usize, seed: u64| -> Vec<Photon> {
+            scattered(n, seed)
+                .into_iter()
+                .enumerate()
+                .map(|(i, p)| Photon {
+                    position: (p * 6.0).round(),
+                    power: Vec3::splat(i as f32),
+                    incoming: Vec3::Z,
+                    normal: Vec3::Y,
+                })
+                .collect()
+        };
+        let mut cases: Vec<Vec<Vec<Photon>>> = vec![
+            vec![],
+            vec![Vec::new(), Vec::new()],
+            vec![lattice(1, 1)],
+            vec![lattice(700, 2)],
+            vec![lattice(300, 3), Vec::new(), lattice(1, 4), lattice(4096, 5)],
+            (0..40).map(|i| lattice(i * 37 % 129, i as u64)).collect(),
+            vec![lattice(3 * PARALLEL_BUILD_MIN, 6), lattice(17, 7)],
+        ];
+        let mut bad = lattice(50, 8);
+        bad[20].position.x = f32::NAN;
+        bad[30].power.y = f32::INFINITY;
+        cases.push(vec![lattice(60, 9), bad, lattice(10, 10)]);
+        for parts in cases {
+            let all: Vec<Photon> = parts.concat();
+            let want = PhotonMap::build(all.clone());
+            let got = PhotonMap::from_parts(parts.clone());
+            let photon_bits = |ps: &[Photon]| -> Vec<[u32; 12]> {
+                ps.iter()
+                    .map(|p| {
+                        let f = [p.position, p.power, p.incoming, p.normal];
+                        std::array::from_fn(|i| f[i / 3][i % 3].to_bits())
+                    })
+                    .collect()
+            };
+            let bits = |m: &PhotonMap| {
+                let p = photon_bits(m.photons());
+                let n: Vec<([u32; 3], u32)> = m
+                    .nodes
+                    .iter()
+                    .map(|n| (n.position.map(f32::to_bits), n.axis))
+                    .collect();
+                (p, m.axes().to_vec(), n)
+            };
+            assert_eq!(bits(&got), bits(&want), "{} photons", all.len());
         }
     }
 

@@ -16,6 +16,7 @@ use super::batch::{Chunk, Tracing};
 use super::emit::Emission;
 use super::kdtree::Photon;
 use super::light_lists::ReceiverLights;
+use super::parts::PhotonParts;
 use crate::components::PhotonRole;
 use crate::sampling::hash_combine;
 use crate::shading::integrator::ShadeContext;
@@ -24,8 +25,9 @@ use crate::shading::integrator::ShadeContext;
 const CHUNK: u64 = 4096;
 
 /// Emits `photons` photons from `emission` into `ctx`'s scene and returns the ones the map
-/// stores, powers divided by `photons`; `roles[instance slot]` says which surfaces cast and
-/// receive (empty: all). `None` when `cancel` was set.
+/// stores, powers divided by `photons`, as the work items' vectors ([`PhotonParts`]);
+/// `roles[instance slot]` says which surfaces cast and receive (empty: all). `None` when
+/// `cancel` was set.
 pub fn trace_map(
     ctx: &ShadeContext<'_>,
     emission: &Emission,
@@ -34,9 +36,9 @@ pub fn trace_map(
     photons: u32,
     seed: u32,
     cancel: &AtomicBool,
-) -> Option<Vec<Photon>> {
+) -> Option<PhotonParts> {
     let map = (ctx, emission, roles, kind);
-    trace_map_with(map, photons, seed, cancel, default_tracing(ctx))
+    trace_parts_with(map, photons, seed, cancel, default_tracing(ctx))
 }
 
 /// Scenes of at least this many triangles trace their photons batched: measured on the
@@ -66,7 +68,7 @@ fn default_tracing(ctx: &ShadeContext<'_>) -> Tracing {
 }
 
 /// [`trace_map`] (its `ctx`, `emission`, `roles`, `kind` in `map`) traced as `tracing`
-/// says: the same photons either way.
+/// says, in one vector: the same photons either way.
 pub fn trace_map_with(
     map: (&ShadeContext<'_>, &Emission, &[PhotonRole], MapKind),
     photons: u32,
@@ -74,6 +76,17 @@ pub fn trace_map_with(
     cancel: &AtomicBool,
     tracing: Tracing,
 ) -> Option<Vec<Photon>> {
+    trace_parts_with(map, photons, seed, cancel, tracing).map(PhotonParts::into_vec)
+}
+
+/// [`trace_map_with`] as the work items' vectors.
+fn trace_parts_with(
+    map: (&ShadeContext<'_>, &Emission, &[PhotonRole], MapKind),
+    photons: u32,
+    seed: u32,
+    cancel: &AtomicBool,
+    tracing: Tracing,
+) -> Option<PhotonParts> {
     let (ctx, emission, roles, kind) = map;
     let n = u64::from(photons);
     let chunk = Chunk {
@@ -94,17 +107,13 @@ pub fn trace_map_with(
             Some(chunk.trace(c * CHUNK..((c + 1) * CHUNK).min(n), tracing))
         })
         .collect();
-    let mut all = Vec::new();
-    for c in chunks {
-        all.extend(c?);
-    }
-    Some(all)
+    chunks.into_iter().collect()
 }
 
 /// [`trace_map`] where the lights in `counts` (`(light index, photons)`) each emit their own
 /// number of photons, seeded apart, and the other lights share `photons` by power. Returns
-/// the stored photons (shared pass first, then by light in `counts` order) and the number
-/// emitted.
+/// the stored photons (shared pass first, then by light in `counts` order; the work items'
+/// vectors) and the number emitted.
 #[allow(clippy::too_many_arguments)] // reason: one pass's inputs, each used once
 pub fn trace_map_by_light(
     ctx: &ShadeContext<'_>,
@@ -115,14 +124,14 @@ pub fn trace_map_by_light(
     counts: &[(usize, u32)],
     seed: u32,
     cancel: &AtomicBool,
-) -> Option<(Vec<Photon>, u64)> {
+) -> Option<(PhotonParts, u64)> {
     if counts.is_empty() {
         let all = trace_map(ctx, emission, roles, kind, photons, seed, cancel)?;
         return Some((all, u64::from(photons)));
     }
     let counted = |i: usize| counts.iter().any(|&(j, _)| j == i);
     let shared = emission.subset(|i| !counted(i));
-    let (mut all, mut emitted) = (Vec::new(), 0u64);
+    let (mut all, mut emitted) = (PhotonParts::new(), 0u64);
     if !shared.is_empty() {
         all = trace_map(ctx, &shared, roles, kind, photons, seed, cancel)?;
         emitted += u64::from(photons);
@@ -133,7 +142,7 @@ pub fn trace_map_by_light(
             continue;
         }
         let light_seed = hash_combine(&[seed, light as u32 + 1, 0x117e]);
-        all.extend(trace_map(ctx, &own, roles, kind, n, light_seed, cancel)?);
+        all.append(trace_map(ctx, &own, roles, kind, n, light_seed, cancel)?);
         emitted += u64::from(n);
     }
     Some((all, emitted))
@@ -168,6 +177,7 @@ mod tests {
             .unwrap();
         let flag = AtomicBool::new(cancel);
         pool.install(|| trace_map(&ctx, &emission, &[], kind, n, 3, &flag))
+            .map(PhotonParts::into_vec)
     }
 
     #[test]

@@ -28,6 +28,7 @@ use std::f32::consts::PI;
 use glam::Vec3;
 
 use super::kdtree::{Neighbour, Photon, PhotonMap};
+use super::parts::PhotonParts;
 use super::GatherMap;
 use crate::sampling::hash_combine;
 use crate::settings::{PhotonFilter, ProgressiveSettings};
@@ -204,8 +205,8 @@ pub fn pass_seed(seed: u32, pass: u32) -> u32 {
 pub fn trace_passes(
     progressive: Option<ProgressiveSettings>,
     seed: u32,
-    mut trace: impl FnMut(u32) -> Option<(Vec<Photon>, u64)>,
-) -> Option<(Vec<Photon>, Option<Progressive>, u64)> {
+    mut trace: impl FnMut(u32) -> Option<(PhotonParts, u64)>,
+) -> Option<(PhotonParts, Option<Progressive>, u64)> {
     let (first, mut emitted) = trace(seed)?;
     let Some(settings) = progressive else {
         return Some((first, None, emitted));
@@ -213,7 +214,7 @@ pub fn trace_passes(
     let mut later = Vec::new();
     for pass in 1..settings.passes.max(1) {
         let (photons, n) = trace(pass_seed(seed, pass))?;
-        later.push(PhotonMap::build(photons));
+        later.push(PhotonMap::from_parts(photons.into_parts()));
         emitted += n;
     }
     let progressive = Progressive {

@@ -161,7 +161,7 @@ impl Walk {
             fate.absorbed += power;
             return;
         }
-        let incoming = v.wo_world;
+        let incoming = Vec3::from(v.wo_world);
         let role = roles
             .get(v.sp.instance as usize)
             .copied()

@@ -12,7 +12,7 @@
 
 use std::borrow::Cow;
 
-use glam::Vec3;
+use glam::{Vec3, Vec3A};
 
 use crate::accel::{Hit, Ray};
 use crate::components::Shader;
@@ -42,8 +42,11 @@ pub struct PhotonVertex<'a> {
     pub frame: ShadingFrame,
     /// Direction back along the arriving ray, local.
     pub wo: Vec3,
-    /// Direction back along the arriving ray, world space (unit).
-    pub wo_world: Vec3,
+    /// Direction back along the arriving ray, world space (unit). In a [`Vec3A`]: the vertex
+    /// is built on the stack in two ways (this module's or [`Vertex::new`]'s), and the walk's
+    /// read of a 12-byte `Vec3` there was an 8-byte load spanning two stores (a failed store
+    /// forward, the walk's hottest instruction); one 16-byte store and load forward.
+    pub wo_world: Vec3A,
     /// Transmittance of the segment that reached this vertex (absorption inside a dielectric).
     pub transmittance: Vec3,
 }
@@ -58,7 +61,7 @@ impl<'a> From<Vertex<'a>> for PhotonVertex<'a> {
             shader: v.shader,
             frame: v.frame,
             wo: v.wo,
-            wo_world: v.wo_world,
+            wo_world: v.wo_world.into(),
             transmittance: v.transmittance,
         }
     }
@@ -100,7 +103,7 @@ impl<'a> PhotonVertex<'a> {
             shader,
             frame,
             wo: frame.to_local(wo_world),
-            wo_world,
+            wo_world: wo_world.into(),
             transmittance,
         }
     }
@@ -263,7 +266,7 @@ mod tests {
                     (got.frame.t, want.frame.t),
                     (got.frame.n, want.frame.n),
                     (got.wo, want.wo),
-                    (got.wo_world, want.wo_world),
+                    (got.wo_world.into(), want.wo_world),
                     (got.transmittance, want.transmittance),
                 ] {
                     assert_eq!(bits(x), bits(y), "ray {i}");
