@@ -381,7 +381,9 @@ mod tests {
     #[test]
     fn wide_equals_sse() {
         if !(std::arch::is_x86_feature_detected!("avx2") && have_bit_ops()) {
-            eprintln!("no AVX2 (or no POPCNT/BMI1/BMI2/LZCNT) on this CPU: only the SSE kernel runs");
+            eprintln!(
+                "no AVX2 (or no POPCNT/BMI1/BMI2/LZCNT) on this CPU: only the SSE kernel runs"
+            );
             return;
         }
         let (tris, rays) = soup_and_rays();

@@ -28,9 +28,7 @@ use std::arch::x86_64::{
 use glam::Vec3;
 
 use super::super::bvh::{Bvh, Node};
-use super::super::traverse::{
-    closest_in, occluded_in, prefetch_child, Entry, NodeTest, Stack,
-};
+use super::super::traverse::{closest_in, occluded_in, prefetch_child, Entry, NodeTest, Stack};
 use super::super::triangle::WoopRay;
 use super::super::{Hit, Ray};
 use super::NodeRay8;
