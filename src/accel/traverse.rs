@@ -981,6 +981,17 @@ pub(super) fn prefetch(bvh: &Bvh, r: u32) {
 /// lanes keep.
 #[inline(always)]
 pub(super) fn prefetch_child(bvh: &Bvh, r: u32) {
+    let first = child_first_byte(bvh, r);
+    for k in 0..4 {
+        prefetch_ptr(first.wrapping_add(64 * k));
+    }
+}
+
+/// The first byte of the node or of the leaf's first triangle that `r` references, made
+/// without a branch on the leaf bit (wrapping pointer arithmetic, no indexing: see
+/// [`prefetch_lines`]).
+#[inline(always)]
+fn child_first_byte(bvh: &Bvh, r: u32) -> *const u8 {
     const TRI: usize = std::mem::size_of::<[Vec3; 3]>();
     let leaf_first = bvh
         .tris
@@ -990,10 +1001,7 @@ pub(super) fn prefetch_child(bvh: &Bvh, r: u32) {
     let node = bvh.nodes.as_ptr().wrapping_add(r as usize).cast::<u8>() as usize;
     // All ones for a leaf, zero for a node.
     let leaf = 0usize.wrapping_sub(usize::from(r & LEAF_BIT != 0));
-    let first = (leaf_first & leaf) | (node & !leaf);
-    for k in 0..4 {
-        prefetch_ptr(first.wrapping_add(64 * k) as *const u8);
-    }
+    ((leaf_first & leaf) | (node & !leaf)) as *const u8
 }
 
 /// Prefetches the cache line of `p` (any address: a hint, never a fault).
@@ -1183,7 +1191,8 @@ pub(super) mod tests {
     }
 
     /// The branch-free prefetch addresses are the ones the branching version took, for every
-    /// node and every leaf (1, 2 and 3 triangles) of a tree.
+    /// node and every leaf (1, 2 and 3 triangles) of a tree; [`prefetch_child`]'s first line
+    /// is the same first byte.
     #[test]
     fn prefetch_lines_are_the_branching_ones() {
         fn branching(bvh: &Bvh, r: u32) -> [*const u8; 4] {
@@ -1223,6 +1232,8 @@ pub(super) mod tests {
                 .filter(|&c| c != EMPTY_CHILD);
             for r in std::iter::once(0).chain(children) {
                 assert_eq!(prefetch_lines(&bvh, r), branching(&bvh, r), "{r:#x}");
+                // The single-ray kernels' prefetch starts at the same first byte.
+                assert_eq!(child_first_byte(&bvh, r), branching(&bvh, r)[0], "{r:#x}");
                 let kind = if r & LEAF_BIT != 0 {
                     leaf_range(r).len()
                 } else {

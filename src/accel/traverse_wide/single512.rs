@@ -10,7 +10,8 @@
 //!   register form) and stored above the stack top, farthest first. The topmost stored pair is
 //!   the nearest child: it is read back as the node visited next, and the stack grows by the
 //!   popcount less one. No loop over the children, so no mispredicted loop exit.
-//! * **Prefetch**: one child per node step, the one popped next (the topmost pushed, or the
+//! * **Prefetch** (`prefetch_child`: four lines from the child's first byte, no clamping
+//!   to a leaf's end): one child per node step, the one popped next (the topmost pushed, or the
 //!   nearest itself when nothing is pushed: no branch), not every pushed child as the AVX2
 //!   kernel does in its push loop; that loop and its mispredicted exit are what the block
 //!   store removes (A/B in `docs/ray-layer.md`, session 19).
