@@ -12,8 +12,9 @@
 //! * **Single rays with AVX-512**: where the CPU has AVX-512F/VL, [`closest`] and
 //!   [`occluded`] run `single512.rs`: the same loops, with the hit children stored as one
 //!   compressed block instead of a push loop (and unless `STAGELIGHT_TRAVERSAL=avx2`).
-//! * **Dispatch**: [`closest`] and [`occluded`] answer `None` when the CPU lacks AVX2
-//!   (`is_x86_feature_detected!`, cached by std) or when `STAGELIGHT_TRAVERSAL=sse` (or
+//! * **Dispatch**: [`closest`] and [`occluded`] answer `None` when the CPU lacks AVX2 or
+//!   the bit operations the single-ray kernels are also compiled with ([`have_bit_ops`]:
+//!   `popcnt`, `bmi1`, `bmi2`, `lzcnt`; `is_x86_feature_detected!`, cached by std) or when `STAGELIGHT_TRAVERSAL=sse` (or
 //!   `sse-sorted`) was set at the first query (read once; for A/B measurements); the caller then runs the SSE kernel,
 //!   which stays the fallback and is tested against this one.
 //! * **Same answers**: the node test makes the same operations as the SSE test, lane by lane
