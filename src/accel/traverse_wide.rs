@@ -12,8 +12,9 @@
 //! * **Single rays with AVX-512**: where the CPU has AVX-512F/VL, [`closest`] and
 //!   [`occluded`] run `single512.rs`: the same loops, with the hit children stored as one
 //!   compressed block instead of a push loop (and unless `STAGELIGHT_TRAVERSAL=avx2`).
-//! * **Dispatch**: [`closest`] and [`occluded`] answer `None` when the CPU lacks AVX2
-//!   (`is_x86_feature_detected!`, cached by std) or when `STAGELIGHT_TRAVERSAL=sse` (or
+//! * **Dispatch**: [`closest`] and [`occluded`] answer `None` when the CPU lacks AVX2 or
+//!   the bit operations the single-ray kernels are also compiled with ([`have_bit_ops`]:
+//!   `popcnt`, `bmi1`, `bmi2`, `lzcnt`; `is_x86_feature_detected!`, cached by std) or when `STAGELIGHT_TRAVERSAL=sse` (or
 //!   `sse-sorted`) was set at the first query (read once; for A/B measurements); the caller then runs the SSE kernel,
 //!   which stays the fallback and is tested against this one.
 //! * **Same answers**: the node test makes the same operations as the SSE test, lane by lane
@@ -45,11 +46,24 @@ use super::traverse::{
 use super::triangle::WoopRay;
 use super::{Hit, Ray};
 
-/// Whether the AVX2 kernels run (AVX2 present and not turned off by the environment).
+/// Whether the CPU has the bit-manipulation instructions the single-ray kernels are compiled
+/// with besides AVX2 (`popcnt`, `tzcnt`/`lzcnt`, `shlx`): every AVX2 CPU made has them; without
+/// them `count_ones` is a table-and-multiply sequence of about ten instructions and
+/// `trailing_zeros` a `bsf` with a zero test.
+pub(super) fn have_bit_ops() -> bool {
+    std::arch::is_x86_feature_detected!("popcnt")
+        && std::arch::is_x86_feature_detected!("bmi1")
+        && std::arch::is_x86_feature_detected!("bmi2")
+        && std::arch::is_x86_feature_detected!("lzcnt")
+}
+
+/// Whether the AVX2 kernels run (AVX2 and the bit operations of [`have_bit_ops`] present,
+/// and not turned off by the environment).
 fn use_avx2() -> bool {
     static CHOICE: OnceLock<bool> = OnceLock::new();
     *CHOICE.get_or_init(|| {
         std::arch::is_x86_feature_detected!("avx2")
+            && have_bit_ops()
             && !std::env::var("STAGELIGHT_TRAVERSAL").is_ok_and(|v| v.starts_with("sse"))
     })
 }
@@ -71,13 +85,14 @@ fn use_avx512() -> bool {
 #[inline]
 pub(super) fn closest(bvh: &Bvh, ray: &Ray) -> Option<Option<Hit>> {
     if use_avx512() {
-        // SAFETY: AVX2, AVX-512F and AVX-512VL were detected on this CPU just above.
+        // SAFETY: AVX2, AVX-512F, AVX-512VL and the bit operations were detected on this
+        // CPU just above (`use_avx512` implies `use_avx2`).
         return Some(unsafe { single512::closest_avx512(bvh, ray) });
     }
     if !use_avx2() {
         return None;
     }
-    // SAFETY: AVX2 was detected on this CPU just above.
+    // SAFETY: AVX2 and the bit operations were detected on this CPU just above.
     Some(unsafe { closest_avx2(bvh, ray) })
 }
 
@@ -85,13 +100,14 @@ pub(super) fn closest(bvh: &Bvh, ray: &Ray) -> Option<Option<Hit>> {
 #[inline]
 pub(super) fn occluded(bvh: &Bvh, ray: &Ray) -> Option<bool> {
     if use_avx512() {
-        // SAFETY: AVX2, AVX-512F and AVX-512VL were detected on this CPU just above.
+        // SAFETY: AVX2, AVX-512F, AVX-512VL and the bit operations were detected on this
+        // CPU just above (`use_avx512` implies `use_avx2`).
         return Some(unsafe { single512::occluded_avx512(bvh, ray) });
     }
     if !use_avx2() {
         return None;
     }
-    // SAFETY: AVX2 was detected on this CPU just above.
+    // SAFETY: AVX2 and the bit operations were detected on this CPU just above.
     Some(unsafe { occluded_avx2(bvh, ray) })
 }
 
@@ -144,15 +160,15 @@ unsafe fn occluded_batch_avx2(bvh: &Bvh, rays: &[Ray], out: &mut [bool]) {
 }
 
 /// # Safety
-/// The CPU must support AVX2.
-#[target_feature(enable = "avx2")]
+/// The CPU must support AVX2 and the bit operations of [`have_bit_ops`].
+#[target_feature(enable = "avx2,popcnt,bmi1,bmi2,lzcnt")]
 unsafe fn closest_avx2(bvh: &Bvh, ray: &Ray) -> Option<Hit> {
     closest_in::<NodeRay8>(bvh, ray)
 }
 
 /// # Safety
-/// The CPU must support AVX2.
-#[target_feature(enable = "avx2")]
+/// The CPU must support AVX2 and the bit operations of [`have_bit_ops`].
+#[target_feature(enable = "avx2,popcnt,bmi1,bmi2,lzcnt")]
 unsafe fn occluded_avx2(bvh: &Bvh, ray: &Ray) -> bool {
     occluded_in::<NodeRay8>(bvh, ray)
 }
@@ -350,10 +366,25 @@ mod tests {
         (tris, rays)
     }
 
+    /// The single-ray AVX2 kernels compiled without the bit operations (the kernels before
+    /// session 20), for [`wide_equals_sse`].
+    #[target_feature(enable = "avx2")]
+    unsafe fn plain_avx2(bvh: &Bvh, ray: &Ray) -> (Option<Hit>, bool) {
+        (
+            closest_in::<NodeRay8>(bvh, ray),
+            occluded_in::<NodeRay8>(bvh, ray),
+        )
+    }
+
+    /// The AVX2 kernels answer as the SSE kernel bit for bit (closest hit in octant and
+    /// sorted order, occlusion, node masks and permutations), and the single-ray kernels
+    /// compiled with the bit operations (`popcnt`, `tzcnt`, …) as those compiled without.
     #[test]
     fn wide_equals_sse() {
-        if !std::arch::is_x86_feature_detected!("avx2") {
-            eprintln!("no AVX2 on this CPU: only the SSE kernel runs");
+        if !(std::arch::is_x86_feature_detected!("avx2") && have_bit_ops()) {
+            eprintln!(
+                "no AVX2 (or no POPCNT/BMI1/BMI2/LZCNT) on this CPU: only the SSE kernel runs"
+            );
             return;
         }
         let (tris, rays) = soup_and_rays();
@@ -361,9 +392,16 @@ mod tests {
             let bvh = build(&tris, q);
             let mut hits = 0;
             for r in &rays {
-                // SAFETY: AVX2 was detected above.
+                // SAFETY: AVX2 and the bit operations were detected above.
                 let (wide_hit, wide_occ) =
                     unsafe { (closest_avx2(&bvh, r), occluded_avx2(&bvh, r)) };
+                // SAFETY: AVX2 was detected above.
+                let (plain_hit, plain_occ) = unsafe { plain_avx2(&bvh, r) };
+                assert_eq!(
+                    (hit_bits(wide_hit), wide_occ),
+                    (hit_bits(plain_hit), plain_occ),
+                    "{r:?}"
+                );
                 let sse_hit = closest_in::<NodeRay>(&bvh, r);
                 assert_eq!(hit_bits(wide_hit), hit_bits(sse_hit), "{r:?}");
                 // SAFETY: AVX2 was detected above.

@@ -10,7 +10,8 @@
 //!   register form) and stored above the stack top, farthest first. The topmost stored pair is
 //!   the nearest child: it is read back as the node visited next, and the stack grows by the
 //!   popcount less one. No loop over the children, so no mispredicted loop exit.
-//! * **Prefetch**: one child per node step, the one popped next (the topmost pushed, or the
+//! * **Prefetch** (`prefetch_child`: four lines from the child's first byte, no clamping
+//!   to a leaf's end): one child per node step, the one popped next (the topmost pushed, or the
 //!   nearest itself when nothing is pushed: no branch), not every pushed child as the AVX2
 //!   kernel does in its push loop; that loop and its mispredicted exit are what the block
 //!   store removes (A/B in `docs/ray-layer.md`, session 19).
@@ -28,7 +29,7 @@ use std::arch::x86_64::{
 use glam::Vec3;
 
 use super::super::bvh::{Bvh, Node};
-use super::super::traverse::{closest_in, occluded_in, prefetch, Entry, NodeTest, Stack};
+use super::super::traverse::{closest_in, occluded_in, prefetch_child, Entry, NodeTest, Stack};
 use super::super::triangle::WoopRay;
 use super::super::{Hit, Ray};
 use super::NodeRay8;
@@ -36,8 +37,9 @@ use super::NodeRay8;
 /// Closest hit with the AVX-512 node step (in octant order, unless sorted: `traverse.rs`).
 ///
 /// # Safety
-/// The CPU must support AVX2, AVX-512F and AVX-512VL.
-#[target_feature(enable = "avx2,avx512f,avx512vl")]
+/// The CPU must support AVX2, AVX-512F, AVX-512VL and the bit operations of
+/// [`super::have_bit_ops`].
+#[target_feature(enable = "avx2,avx512f,avx512vl,popcnt,bmi1,bmi2,lzcnt")]
 pub(super) unsafe fn closest_avx512(bvh: &Bvh, ray: &Ray) -> Option<Hit> {
     closest_in::<NodeRay8s>(bvh, ray)
 }
@@ -45,8 +47,9 @@ pub(super) unsafe fn closest_avx512(bvh: &Bvh, ray: &Ray) -> Option<Hit> {
 /// Occlusion with the AVX-512 node step (in octant order, unless sorted).
 ///
 /// # Safety
-/// The CPU must support AVX2, AVX-512F and AVX-512VL.
-#[target_feature(enable = "avx2,avx512f,avx512vl")]
+/// The CPU must support AVX2, AVX-512F, AVX-512VL and the bit operations of
+/// [`super::have_bit_ops`].
+#[target_feature(enable = "avx2,avx512f,avx512vl,popcnt,bmi1,bmi2,lzcnt")]
 pub(super) unsafe fn occluded_avx512(bvh: &Bvh, ray: &Ray) -> bool {
     occluded_in::<NodeRay8s>(bvh, ray)
 }
@@ -124,7 +127,7 @@ impl NodeTest for NodeRay8s {
             let n = hit.count_ones() as usize;
             // Only the child popped next, after the nearest's subtree, is prefetched: the
             // topmost pushed, or the nearest itself when nothing is pushed (no branch, no loop).
-            prefetch(bvh, block[(n - 1).saturating_sub(1) & 7].r);
+            prefetch_child(bvh, block[(n - 1).saturating_sub(1) & 7].r);
             stack.grow(n - 1);
             Some(next)
         }
@@ -175,6 +178,7 @@ mod tests {
         std::arch::is_x86_feature_detected!("avx2")
             && std::arch::is_x86_feature_detected!("avx512f")
             && std::arch::is_x86_feature_detected!("avx512vl")
+            && super::super::have_bit_ops()
     }
 
     #[target_feature(enable = "avx2")]
@@ -217,7 +221,7 @@ mod tests {
                         hit_bits(closest_ordered_in::<NodeRay, true>(&bvh, r)),
                         occluded_in::<NodeRay>(&bvh, r),
                     );
-                    // SAFETY: AVX2 and AVX-512F/VL were detected above.
+                    // SAFETY: AVX2, AVX-512F/VL and the bit operations were detected above.
                     let (a2, a2_occ) = unsafe { avx2(&bvh, r) };
                     assert_eq!((hit_bits(a2), a2_occ), sse, "ray {i}");
                     // SAFETY: as above.
