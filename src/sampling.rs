@@ -121,7 +121,7 @@ impl Sampler {
     }
 
     /// Next pair of values in [0, 1)².
-    #[inline]
+    #[inline(always)]
     pub fn next_2d(&mut self) -> Vec2 {
         Vec2::new(self.next_1d(), self.next_1d())
     }
