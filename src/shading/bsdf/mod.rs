@@ -524,7 +524,7 @@ impl Bsdf {
         let wi = diffuse::sample(wo, Vec2::new(u.y, u.z))?;
         let pdf = diffuse::pdf(wo, wi);
         let f = Vec3::ZERO + w * Vec3::splat(diffuse::eval(wo, wi));
-        (pdf > 0.0 && pdf.is_finite()).then_some(BsdfSample {
+        crate::sampling::usable_pdf(pdf).then_some(BsdfSample {
             wi,
             f,
             pdf,
@@ -595,7 +595,7 @@ impl Bsdf {
         };
         let pdf = self.pdf_lobes(wo, wi);
         let f = self.eval_lobes(wo, wi);
-        (pdf > 0.0 && pdf.is_finite()).then_some(BsdfSample {
+        crate::sampling::usable_pdf(pdf).then_some(BsdfSample {
             wi,
             f,
             pdf,

@@ -30,6 +30,7 @@ pub mod local;
 pub mod material_bsdfs;
 pub(crate) mod orient;
 pub mod path;
+mod power;
 pub mod triangle_normals;
 pub mod volume;
 
@@ -48,12 +49,12 @@ use crate::shading::bsdf::Bsdf;
 use crate::shading::frame::ShadingFrame;
 use crate::shading::lights::environment::source_radiance;
 use crate::shading::lights::{Light, LightSet};
-use crate::shading::mis::power_heuristic;
 use crate::shading::shadow::transmittance;
 use crate::shading::texture::{bump, hit as textured};
 use crate::shading::volume::Volumes;
 use material_bsdfs::MaterialBsdfs;
 use orient::{bsdf_kept_or_in, orient, shading_point, spawn_along, Orientation};
+use power::power_weight;
 use triangle_normals::TriangleNormals;
 use volume::shadow_transmittance;
 
@@ -491,7 +492,7 @@ fn gather_with(
                 continue;
             }
             let w = match mis {
-                Some(bsdf) if ls.pdf > 0.0 => power_heuristic(ls.pdf, bsdf.pdf(v.wo, wi)),
+                Some(bsdf) if ls.pdf > 0.0 => power_weight(ls.pdf, bsdf.pdf(v.wo, wi)),
                 _ => 1.0,
             };
             let c = if cosine { wi.z * w } else { w };

@@ -20,6 +20,7 @@
 use glam::Vec3;
 
 use super::components::{local_component, Component, Components, PathLanes};
+use super::power::power_weight;
 use super::{
     depth_exceeded_leaving, light_loop_split, local, trace_leaving, volume, Depth, ShadeContext,
     Vertex,
@@ -27,7 +28,6 @@ use super::{
 use crate::accel::{Hit, Ray};
 use crate::sampling::Sampler;
 use crate::shading::bsdf::{Bsdf, Scatter};
-use crate::shading::mis::power_heuristic;
 use crate::shading::surface::unlit_radiance;
 
 /// First vertex at which Russian roulette may end a path.
@@ -103,7 +103,7 @@ pub fn radiance_split(
                         m.emission,
                         m.two_sided,
                     );
-                    power_heuristic(pdf, pdf_light)
+                    power_weight(pdf, pdf_light)
                 }
             };
             radiance += beta * le * w;
@@ -168,7 +168,7 @@ pub fn radiance_split(
             if delta {
                 1.0
             } else {
-                power_heuristic(pdf, pdf_light)
+                power_weight(pdf, pdf_light)
             }
         };
         let next_lanes = parts.is_some().then(|| match &lanes {

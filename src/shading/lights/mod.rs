@@ -434,7 +434,7 @@ pub(crate) fn solid_angle_sample(
         return None;
     }
     let pdf = dist2 / (cos_l * inv_pdf_area);
-    if !(pdf > 0.0 && pdf.is_finite()) {
+    if !crate::sampling::usable_pdf(pdf) {
         return None;
     }
     Some(LightSample {
