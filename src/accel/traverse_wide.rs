@@ -116,14 +116,15 @@ pub(super) fn occluded(bvh: &Bvh, ray: &Ray) -> Option<bool> {
 #[inline]
 pub(super) fn closest_batch(bvh: &Bvh, rays: &[Ray], out: &mut [Option<Hit>]) -> bool {
     if use_avx512() {
-        // SAFETY: AVX2, AVX-512F and AVX-512VL were detected on this CPU just above.
+        // SAFETY: AVX2, AVX-512F, AVX-512VL and the bit operations were detected on this
+        // CPU just above (`use_avx512` implies `use_avx2`).
         unsafe { avx512::closest_batch_avx512(bvh, rays, out) };
         return true;
     }
     if !use_avx2() {
         return false;
     }
-    // SAFETY: AVX2 was detected on this CPU just above.
+    // SAFETY: AVX2 and the bit operations were detected on this CPU just above.
     unsafe { closest_batch_avx2(bvh, rays, out) };
     true
 }
@@ -133,28 +134,29 @@ pub(super) fn closest_batch(bvh: &Bvh, rays: &[Ray], out: &mut [Option<Hit>]) ->
 #[inline]
 pub(super) fn occluded_batch(bvh: &Bvh, rays: &[Ray], out: &mut [bool]) -> bool {
     if use_avx512() {
-        // SAFETY: AVX2, AVX-512F and AVX-512VL were detected on this CPU just above.
+        // SAFETY: AVX2, AVX-512F, AVX-512VL and the bit operations were detected on this
+        // CPU just above (`use_avx512` implies `use_avx2`).
         unsafe { avx512::occluded_batch_avx512(bvh, rays, out) };
         return true;
     }
     if !use_avx2() {
         return false;
     }
-    // SAFETY: AVX2 was detected on this CPU just above.
+    // SAFETY: AVX2 and the bit operations were detected on this CPU just above.
     unsafe { occluded_batch_avx2(bvh, rays, out) };
     true
 }
 
 /// # Safety
-/// The CPU must support AVX2.
-#[target_feature(enable = "avx2")]
+/// The CPU must support AVX2 and the bit operations of [`have_bit_ops`].
+#[target_feature(enable = "avx2,popcnt,bmi1,bmi2,lzcnt")]
 unsafe fn closest_batch_avx2(bvh: &Bvh, rays: &[Ray], out: &mut [Option<Hit>]) {
     closest_batch_in::<NodeRay8>(bvh, rays, out);
 }
 
 /// # Safety
-/// The CPU must support AVX2.
-#[target_feature(enable = "avx2")]
+/// The CPU must support AVX2 and the bit operations of [`have_bit_ops`].
+#[target_feature(enable = "avx2,popcnt,bmi1,bmi2,lzcnt")]
 unsafe fn occluded_batch_avx2(bvh: &Bvh, rays: &[Ray], out: &mut [bool]) {
     occluded_batch_in::<NodeRay8>(bvh, rays, out);
 }
@@ -459,7 +461,8 @@ mod tests {
     fn avx512_equals_sse() {
         if !(std::arch::is_x86_feature_detected!("avx2")
             && std::arch::is_x86_feature_detected!("avx512f")
-            && std::arch::is_x86_feature_detected!("avx512vl"))
+            && std::arch::is_x86_feature_detected!("avx512vl")
+            && have_bit_ops())
         {
             eprintln!("no AVX-512F/VL on this CPU: the AVX2 and SSE kernels run");
             return;
@@ -472,7 +475,7 @@ mod tests {
                 let mut octant = vec![None; n];
                 let mut sorted = vec![None; n];
                 let mut occ = vec![false; n];
-                // SAFETY: AVX2 and AVX-512F/VL were detected above.
+                // SAFETY: AVX2, AVX-512F/VL and the bit operations were detected above.
                 unsafe {
                     avx512::closest_batch_avx512(&bvh, rays, &mut octant);
                     batch_avx512_sorted(&bvh, rays, &mut sorted);

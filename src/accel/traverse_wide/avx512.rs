@@ -36,8 +36,9 @@ use super::NodeRay8;
 /// Closest hits of a batch with the block pushes in every lane.
 ///
 /// # Safety
-/// The CPU must support AVX2, AVX-512F and AVX-512VL.
-#[target_feature(enable = "avx2,avx512f,avx512vl")]
+/// The CPU must support AVX2, AVX-512F, AVX-512VL and the bit operations of
+/// [`have_bit_ops`](super::have_bit_ops).
+#[target_feature(enable = "avx2,avx512f,avx512vl,popcnt,bmi1,bmi2,lzcnt")]
 pub(super) unsafe fn closest_batch_avx512(bvh: &Bvh, rays: &[Ray], out: &mut [Option<Hit>]) {
     closest_batch_in::<NodeRay8k>(bvh, rays, out);
 }
@@ -45,8 +46,9 @@ pub(super) unsafe fn closest_batch_avx512(bvh: &Bvh, rays: &[Ray], out: &mut [Op
 /// Occlusion of a batch with the block pushes in every lane.
 ///
 /// # Safety
-/// The CPU must support AVX2, AVX-512F and AVX-512VL.
-#[target_feature(enable = "avx2,avx512f,avx512vl")]
+/// The CPU must support AVX2, AVX-512F, AVX-512VL and the bit operations of
+/// [`have_bit_ops`](super::have_bit_ops).
+#[target_feature(enable = "avx2,avx512f,avx512vl,popcnt,bmi1,bmi2,lzcnt")]
 pub(super) unsafe fn occluded_batch_avx512(bvh: &Bvh, rays: &[Ray], out: &mut [bool]) {
     occluded_batch_in::<NodeRay8k>(bvh, rays, out);
 }
