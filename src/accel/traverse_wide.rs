@@ -378,9 +378,36 @@ mod tests {
         )
     }
 
+    /// The AVX2 batch kernels compiled without the bit operations (as before session 21),
+    /// for [`wide_equals_sse`].
+    #[target_feature(enable = "avx2")]
+    unsafe fn plain_batch_avx2(
+        bvh: &Bvh,
+        rays: &[Ray],
+        hits: &mut [Option<Hit>],
+        occ: &mut [bool],
+    ) {
+        closest_batch_in::<NodeRay8>(bvh, rays, hits);
+        occluded_batch_in::<NodeRay8>(bvh, rays, occ);
+    }
+
+    /// The AVX-512 batch kernels compiled without the bit operations (as before session 21),
+    /// for [`avx512_equals_sse`].
+    #[target_feature(enable = "avx2,avx512f,avx512vl")]
+    unsafe fn plain_batch_avx512(
+        bvh: &Bvh,
+        rays: &[Ray],
+        hits: &mut [Option<Hit>],
+        occ: &mut [bool],
+    ) {
+        closest_batch_in::<avx512::NodeRay8k>(bvh, rays, hits);
+        occluded_batch_in::<avx512::NodeRay8k>(bvh, rays, occ);
+    }
+
     /// The AVX2 kernels answer as the SSE kernel bit for bit (closest hit in octant and
-    /// sorted order, occlusion, node masks and permutations), and the single-ray kernels
-    /// compiled with the bit operations (`popcnt`, `tzcnt`, …) as those compiled without.
+    /// sorted order, occlusion, node masks and permutations), and the single-ray and batch
+    /// kernels compiled with the bit operations (`popcnt`, `tzcnt`, …) as those compiled
+    /// without.
     #[test]
     fn wide_equals_sse() {
         if !(std::arch::is_x86_feature_detected!("avx2") && have_bit_ops()) {
@@ -439,12 +466,17 @@ mod tests {
                 let rays = &rays[..n];
                 let mut batch_hits = vec![None; n];
                 let mut batch_occ = vec![false; n];
-                // SAFETY: AVX2 was detected above.
+                let mut plain_hits = vec![None; n];
+                let mut plain_occ = vec![false; n];
+                // SAFETY: AVX2 and the bit operations were detected above.
                 unsafe {
                     closest_batch_avx2(&bvh, rays, &mut batch_hits);
                     occluded_batch_avx2(&bvh, rays, &mut batch_occ);
+                    plain_batch_avx2(&bvh, rays, &mut plain_hits, &mut plain_occ);
                 }
                 for (i, r) in rays.iter().enumerate() {
+                    assert_eq!(hit_bits(batch_hits[i]), hit_bits(plain_hits[i]), "{r:?}");
+                    assert_eq!(batch_occ[i], plain_occ[i], "{r:?}");
                     let sse_hit = closest_in::<NodeRay>(&bvh, r);
                     assert_eq!(hit_bits(batch_hits[i]), hit_bits(sse_hit), "{r:?}");
                     assert_eq!(batch_occ[i], occluded_in::<NodeRay>(&bvh, r), "{r:?}");
@@ -456,7 +488,8 @@ mod tests {
     /// The AVX-512 batch kernel (when this CPU has AVX-512F/VL) gives the SSE single-ray
     /// kernel's answers bit for bit, in octant order and sorted, and its block push stores
     /// exactly the entries (references and entry-distance bits, same order) that the generic
-    /// loop pushes with the same node test, for every node, octant and `t_far`.
+    /// loop pushes with the same node test, for every node, octant and `t_far`; the batch
+    /// kernels compiled with the bit operations answer as those compiled without.
     #[test]
     fn avx512_equals_sse() {
         if !(std::arch::is_x86_feature_detected!("avx2")
@@ -475,13 +508,18 @@ mod tests {
                 let mut octant = vec![None; n];
                 let mut sorted = vec![None; n];
                 let mut occ = vec![false; n];
+                let mut plain_hits = vec![None; n];
+                let mut plain_occ = vec![false; n];
                 // SAFETY: AVX2, AVX-512F/VL and the bit operations were detected above.
                 unsafe {
                     avx512::closest_batch_avx512(&bvh, rays, &mut octant);
                     batch_avx512_sorted(&bvh, rays, &mut sorted);
                     avx512::occluded_batch_avx512(&bvh, rays, &mut occ);
+                    plain_batch_avx512(&bvh, rays, &mut plain_hits, &mut plain_occ);
                 }
                 for (i, r) in rays.iter().enumerate() {
+                    assert_eq!(hit_bits(octant[i]), hit_bits(plain_hits[i]), "{r:?}");
+                    assert_eq!(occ[i], plain_occ[i], "{r:?}");
                     let sse_hit = hit_bits(closest_in::<NodeRay>(&bvh, r));
                     assert_eq!(hit_bits(octant[i]), sse_hit, "{r:?}");
                     assert_eq!(hit_bits(sorted[i]), sse_hit, "{r:?}");
