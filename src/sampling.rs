@@ -123,23 +123,9 @@ impl Sampler {
         }
     }
 
-    /// Next pair of values in [0, 1)²: `(next_1d(), next_1d())`, the same bits. When both
-    /// dimensions lie in one cached group of eight (`d % 8 != 7`), one test and one fill
-    /// serve both.
+    /// Next pair of values in [0, 1)².
     #[inline(always)]
     pub fn next_2d(&mut self) -> Vec2 {
-        let d = self.dimension;
-        // `NUM_DIMENSIONS` is a multiple of eight, so `d + 1` is below it too.
-        if d % 8 != 7 && d < sobol_burley::NUM_DIMENSIONS && self.index < (1 << 16) {
-            let pair = d / 8;
-            if pair != self.cached_pair {
-                self.cache = sobol8::eight(self.index_rev, pair, self.seed);
-                self.cached_pair = pair;
-            }
-            self.dimension = d + 2;
-            let k = (d % 8) as usize;
-            return Vec2::new(self.cache[k], self.cache[k + 1]);
-        }
         Vec2::new(self.next_1d(), self.next_1d())
     }
 

@@ -23,9 +23,6 @@ pub struct TriangleNormals {
     normals: Vec<Vec3>,
     /// `ShadingFrame::from_normal` of each normal (empty above [`Self::MAX_FRAMES`]).
     frames: Vec<ShadingFrame>,
-    /// Each triangle's vertices by `prim` (empty above [`Self::MAX_FRAMES`]): a hit's
-    /// triangle in one load, not through the tree's `prim → slot` table first.
-    tris: Vec<[Vec3; 3]>,
 }
 
 impl TriangleNormals {
@@ -45,22 +42,15 @@ impl TriangleNormals {
             let normals: Vec<Vec3> = (0..n as u32)
                 .map(|prim| geometric_normal(&g.accel.triangle(prim)))
                 .collect();
-            let (frames, tris) = if n <= Self::MAX_FRAMES {
-                (
-                    normals
-                        .iter()
-                        .map(|&n| ShadingFrame::from_normal(n))
-                        .collect(),
-                    (0..n as u32).map(|prim| g.accel.triangle(prim)).collect(),
-                )
+            let frames = if n <= Self::MAX_FRAMES {
+                normals
+                    .iter()
+                    .map(|&n| ShadingFrame::from_normal(n))
+                    .collect()
             } else {
-                (Vec::new(), Vec::new())
+                Vec::new()
             };
-            Self {
-                normals,
-                frames,
-                tris,
-            }
+            Self { normals, frames }
         })
     }
 
@@ -75,10 +65,7 @@ impl TriangleNormals {
     /// [`SceneGeometry::shading_point`], with the normal read from the table.
     #[inline(always)]
     pub fn shading_point(&self, g: &SceneGeometry, hit: &Hit) -> ShadingPoint {
-        let tri = match self.tris.get(hit.prim as usize) {
-            Some(&tri) => tri,
-            None => g.accel.triangle(hit.prim),
-        };
+        let tri = g.accel.triangle(hit.prim);
         let surface =
             surface_point_with_normal(&tri, hit.b1, hit.b2, self.normals[hit.prim as usize]);
         g.shading_point_on(hit, surface)
