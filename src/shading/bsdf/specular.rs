@@ -99,7 +99,7 @@ pub fn dielectric_sample(wo: Vec3, eta: f32, mode: TransportMode, uc: f32) -> (D
     }
     let mut reflected = mirror(wo);
     let k = (eta - 1.0) * (eta + 1.0) + cos_i * cos_i;
-    if !(k > 0.0) {
+    if k.is_nan() || k <= 0.0 {
         // Total internal reflection: (R, T) = (1, 0), nothing refracted.
         return (reflected, 1.0);
     }
