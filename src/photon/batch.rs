@@ -160,7 +160,7 @@ impl Chunk<'_> {
             Vec::with_capacity((range.end - range.start) as usize);
         for sampler in self.samplers(range) {
             if let (sampler, Some((walk, light))) = self.emit(sampler) {
-                walks.push((sampler, walk, light));
+                walks.push((sampler, walk.without_fate(), light));
             }
         }
         let mut live: Vec<usize> = (0..walks.len()).collect();

@@ -62,6 +62,8 @@ pub struct Walk {
     bounces: u32,
     depth: PathDepth,
     live: bool,
+    /// Whether [`Walk::fate`] is kept complete (see [`Walk::without_fate`]).
+    keep_fate: bool,
 }
 
 impl Walk {
@@ -77,7 +79,19 @@ impl Walk {
             bounces: 0,
             depth: PathDepth::new(ctx.photon_depth),
             live: true,
+            keep_fate: true,
         }
+    }
+
+    /// The walk for a caller that never reads [`Walk::fate`] (a batch keeps only the
+    /// deposits): with `stop_after_diffuse` it ends at a surface whose BSDF has no delta lobe
+    /// right after the deposit, without drawing the scattering that would end it anyway
+    /// (the sampled lobe is non-delta, so the path is no longer specular-only; or it is
+    /// absorbed). The deposits and the walk's end are the same; only the fate's account of
+    /// that last scattering (and the sampler's draws for it) are left out.
+    pub fn without_fate(mut self) -> Self {
+        self.keep_fate = false;
+        self
     }
 
     /// Whether the walk goes on: its [`Walk::ray`] is to be traced and passed to
@@ -179,6 +193,9 @@ impl Walk {
                 prim: hit.prim,
             });
         }
+        if stop_after_diffuse && !self.keep_fate && !bsdf.has_delta() {
+            return;
+        }
         if !role.casts() {
             fate.absorbed += power;
             return;
@@ -233,5 +250,80 @@ impl Walk {
             return;
         }
         self.live = true;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::components::Shader;
+    use crate::settings::RenderSettings;
+    use crate::shading::integrator::fixture::{self, Object};
+    use crate::shading::lights::LightSet;
+
+    /// A walk without its fate deposits what a full walk deposits and ends at the same
+    /// interaction; at a caustic deposit on a surface with no delta lobe it ends without
+    /// drawing the scattering.
+    #[test]
+    fn a_walk_without_fate_ends_at_the_caustic_deposit_without_drawing() {
+        // Mirror ceiling at z = 1 facing down, grey floor at z = 0.
+        let geometry = fixture::geometry(vec![
+            Object {
+                triangles: fixture::floor(10.0, 0.0),
+                material: fixture::lambert(0.8),
+            },
+            Object {
+                triangles: fixture::quad(
+                    Vec3::new(-10.0, -10.0, 1.0),
+                    Vec3::new(0.0, 20.0, 0.0),
+                    Vec3::new(20.0, 0.0, 0.0),
+                ),
+                material: fixture::material(Shader::Mirror { color: Vec3::ONE }),
+            },
+        ]);
+        let lights = LightSet::default();
+        let s = RenderSettings::default();
+        let ctx = ShadeContext::new(&geometry, &lights, &s);
+        let (mut shortened, mut global_steps) = (0, 0);
+        for i in 0..64u32 {
+            let a = i as f32 * 0.41;
+            let dir = Vec3::new(
+                0.3 * a.cos(),
+                0.3 * a.sin(),
+                if i % 4 == 0 { -1.0 } else { 1.0 },
+            );
+            let ray = Ray {
+                origin: Vec3::new(0.2, 0.1, 0.5),
+                dir,
+                t_max: f32::INFINITY,
+            };
+            for stop in [true, false] {
+                let mut full = Walk::new(&ctx, ray, Vec3::splat(0.5));
+                let mut lean = full.clone().without_fate();
+                let (mut s_full, mut s_lean) = (Sampler::new(i, 0), Sampler::new(i, 0));
+                let (mut d_full, mut d_lean) = (Vec::new(), Vec::new());
+                while full.live() {
+                    assert!(lean.live());
+                    assert_eq!(full.ray(), lean.ray());
+                    let hit = ctx.geometry.accel.intersect(full.ray());
+                    let before = s_lean.clone();
+                    let n = d_lean.len();
+                    full.step(&ctx, &[], hit, &mut s_full, stop, &mut |d| d_full.push(d));
+                    lean.step(&ctx, &[], hit, &mut s_lean, stop, &mut |d| d_lean.push(d));
+                    if stop && d_lean.len() > n {
+                        // A deposit on the Lambert floor: the lean walk drew nothing.
+                        assert!(!lean.live() && !full.live());
+                        assert_eq!(before.clone().next_1d(), s_lean.clone().next_1d());
+                        assert_ne!(before.clone().next_1d(), s_full.clone().next_1d());
+                        shortened += 1;
+                    }
+                    global_steps += usize::from(!stop);
+                }
+                assert!(!lean.live());
+                assert_eq!(d_full, d_lean, "photon {i}, stop {stop}");
+            }
+        }
+        assert!(shortened > 32, "{shortened}");
+        assert!(global_steps > 64, "{global_steps}");
     }
 }

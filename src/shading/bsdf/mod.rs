@@ -581,12 +581,8 @@ impl Bsdf {
             Lobe::Mirror => return delta(specular::mirror(wo), 1.0),
             Lobe::PassThrough => return delta(specular::pass_through(wo), 1.0),
             Lobe::Dielectric { eta } => {
-                let pr = specular::dielectric_reflect_probability(wo, eta);
-                let (r, t) = specular::dielectric_in_mode(wo, eta, mode);
-                return match t {
-                    Some(t) if uc >= pr => delta(t, 1.0 - pr),
-                    _ => delta(r, if t.is_some() { pr } else { 1.0 }),
-                };
+                let (branch, prob) = specular::dielectric_sample(wo, eta, mode, uc);
+                return delta(branch, prob);
             }
             Lobe::Lambert => diffuse::sample(wo, u2)?,
             Lobe::Phong { exponent } => phong::sample(exponent, wo, u2)?,

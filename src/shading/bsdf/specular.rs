@@ -79,6 +79,65 @@ pub fn dielectric_in_mode(
     (reflected, refracted)
 }
 
+/// One branch of a smooth dielectric drawn with `uc ∈ [0,1)`, and the probability of
+/// drawing it: the refracted branch of [`dielectric_in_mode`] when there is one and
+/// `uc ≥` [`dielectric_reflect_probability`], else the reflected one (probability 1 when
+/// nothing is refracted). The same bits as those functions, from one Fresnel evaluation
+/// (their `fresnel_dielectric_rt`, step for step) and one `cosθt`: they computed the Fresnel
+/// terms twice and `cosθt` three times, and normalised the refracted direction also when the
+/// reflected branch was drawn (`dielectric_sample_is_the_two_calls_bit_for_bit`).
+#[inline(always)]
+pub fn dielectric_sample(wo: Vec3, eta: f32, mode: TransportMode, uc: f32) -> (DeltaBranch, f32) {
+    // `fresnel_dielectric_rt(wo.z, eta)` and `refract(wo, Vec3::Z, eta)`, which flip the
+    // same way and share `cos_transmitted`.
+    let mut cos_i = wo.z.clamp(-1.0, 1.0);
+    let (mut eta, mut n) = (eta, Vec3::Z);
+    if cos_i < 0.0 {
+        eta = 1.0 / eta;
+        cos_i = -cos_i;
+        n = -n;
+    }
+    let mut reflected = mirror(wo);
+    let k = (eta - 1.0) * (eta + 1.0) + cos_i * cos_i;
+    if k.is_nan() || k <= 0.0 {
+        // Total internal reflection: (R, T) = (1, 0), nothing refracted.
+        return (reflected, 1.0);
+    }
+    let cos_t = k.sqrt() / eta;
+    let (ec_i, ec_t) = (eta * cos_i, eta * cos_t);
+    let d_parl = ec_i + cos_t;
+    let d_perp = cos_i + ec_t;
+    if d_parl <= 0.0 || d_perp <= 0.0 {
+        return (reflected, 1.0);
+    }
+    let r_parl = (ec_i - cos_t) / d_parl;
+    let r_perp = (cos_i - ec_t) / d_perp;
+    let r = 0.5 * (r_parl * r_parl + r_perp * r_perp);
+    let t_parl = 2.0 / d_parl;
+    let t_perp = 2.0 / d_perp;
+    let t = 0.5 * ec_t * cos_i * (t_parl * t_parl + t_perp * t_perp);
+    // `refract`'s cosine is `wo·Z`, NaN when `wo.x` or `wo.y` is not finite (then nothing
+    // is refracted); otherwise it is `wo.z`, which is not zero here.
+    if !(t > 0.0 && wo.x.is_finite() && wo.y.is_finite()) {
+        return (reflected, 1.0);
+    }
+    let pr = if r + t > 0.0 { r / (r + t) } else { 1.0 };
+    if uc >= pr {
+        let wt = -wo / eta + (cos_i / eta - cos_t) * n;
+        let refracted = DeltaBranch {
+            wi: wt.normalize(),
+            weight: match mode {
+                TransportMode::Radiance => t / (eta * eta),
+                TransportMode::Importance => t,
+            },
+            transmits: true,
+        };
+        return (refracted, 1.0 - pr);
+    }
+    reflected.weight = r;
+    (reflected, pr)
+}
+
 /// Probability of choosing the reflected branch of [`dielectric`] when sampling one branch.
 pub fn dielectric_reflect_probability(wo: Vec3, eta: f32) -> f32 {
     let (r, t) = fresnel_dielectric_rt(wo.z, eta);
@@ -92,6 +151,75 @@ pub fn dielectric_reflect_probability(wo: Vec3, eta: f32) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The branch and probability `Bsdf::sample_transport` took from
+    /// [`dielectric_reflect_probability`] and [`dielectric_in_mode`] before
+    /// [`dielectric_sample`].
+    fn two_calls(wo: Vec3, eta: f32, mode: TransportMode, uc: f32) -> (DeltaBranch, f32) {
+        let pr = dielectric_reflect_probability(wo, eta);
+        let (r, t) = dielectric_in_mode(wo, eta, mode);
+        match t {
+            Some(t) if uc >= pr => (t, 1.0 - pr),
+            _ => (r, if t.is_some() { pr } else { 1.0 }),
+        }
+    }
+
+    #[test]
+    fn dielectric_sample_is_the_two_calls_bit_for_bit() {
+        let bits = |(b, p): (DeltaBranch, f32)| {
+            (
+                b.wi.to_array().map(f32::to_bits),
+                b.weight.to_bits(),
+                b.transmits,
+                p.to_bits(),
+            )
+        };
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut next = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 40) as f32 / (1u64 << 24) as f32
+        };
+        let etas = [1.5, 1.0 / 1.5, 1.0, 1.33, 2.4, 0.5, 1.0 + 1e-7, 1e-3, 1e3];
+        let special = [
+            Vec3::Z,
+            -Vec3::Z,
+            Vec3::X,
+            Vec3::new(0.0, -0.0, 0.0),
+            Vec3::new(1.0, 0.0, 1e-30),
+            Vec3::new(1.0, 0.0, -1e-30),
+            Vec3::new(0.6, 0.0, 0.8) * 1.0001,
+            Vec3::new(0.0, 0.0, 2.0),
+            Vec3::new(0.3, 0.1, f32::NAN),
+            Vec3::new(f32::INFINITY, 0.0, 0.5),
+        ];
+        let mut checked = 0;
+        for mode in [TransportMode::Radiance, TransportMode::Importance] {
+            for &eta in &etas {
+                let random: Vec<Vec3> = (0..2000)
+                    .map(|_| {
+                        let v =
+                            Vec3::new(2.0 * next() - 1.0, 2.0 * next() - 1.0, 2.0 * next() - 1.0);
+                        v.normalize_or(Vec3::Z)
+                    })
+                    .collect();
+                for wo in special.into_iter().chain(random) {
+                    for uc in [0.0, 0.02, 0.04, next(), 0.5, 0.999, 1.0 - f32::EPSILON] {
+                        let want = two_calls(wo, eta, mode, uc);
+                        let got = dielectric_sample(wo, eta, mode, uc);
+                        assert_eq!(
+                            bits(got),
+                            bits(want),
+                            "wo {wo:?} eta {eta} {mode:?} uc {uc}"
+                        );
+                        checked += 1;
+                    }
+                }
+            }
+        }
+        assert!(checked > 200_000);
+    }
 
     /// H14(a): η = 1.5 at normal incidence, T = 1 − ((η−1)/(η+1))² = 0.96. Entering the
     /// glass (wo outside): radiance T/η², importance T; from inside (η → 1/η) radiance is
