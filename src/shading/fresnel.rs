@@ -23,15 +23,24 @@ pub fn fresnel_dielectric_rt(cos_i: f32, eta: f32) -> (f32, f32) {
         eta = 1.0 / eta;
         cos_i = -cos_i;
     }
-    let Some(cos_t) = cos_transmitted(cos_i, eta) else {
-        return (1.0, 0.0);
-    };
+    match fresnel_oriented(cos_i, eta) {
+        Some((r, t, _)) => (r, t),
+        None => (1.0, 0.0),
+    }
+}
+
+/// `(R, T, cosθt)` for an oriented `cos_i ∈ [0, 1]` (the flip of `eta` already made), or
+/// `None` where the interface only reflects — total internal reflection, or grazing incidence
+/// on an index-matched interface (`cos_i = cos_t = 0`) — where `(R, T) = (1, 0)`. The one
+/// Fresnel evaluation behind [`fresnel_dielectric_rt`] and the dielectric's branch sampling.
+#[inline(always)]
+pub(crate) fn fresnel_oriented(cos_i: f32, eta: f32) -> Option<(f32, f32, f32)> {
+    let cos_t = cos_transmitted(cos_i, eta)?;
     let (ec_i, ec_t) = (eta * cos_i, eta * cos_t);
     let d_parl = ec_i + cos_t;
     let d_perp = cos_i + ec_t;
     if d_parl <= 0.0 || d_perp <= 0.0 {
-        // cos_i = cos_t = 0: grazing incidence on an index-matched interface.
-        return (1.0, 0.0);
+        return None;
     }
     let r_parl = (ec_i - cos_t) / d_parl;
     let r_perp = (cos_i - ec_t) / d_perp;
@@ -40,7 +49,7 @@ pub fn fresnel_dielectric_rt(cos_i: f32, eta: f32) -> (f32, f32) {
     let t_parl = 2.0 / d_parl;
     let t_perp = 2.0 / d_perp;
     let t = 0.5 * ec_t * cos_i * (t_parl * t_parl + t_perp * t_perp);
-    (r, t)
+    Some((r, t, cos_t))
 }
 
 /// `cosθt` for `cosθi ∈ [0, 1]` and relative index `eta`, or `None` under total internal

@@ -5,7 +5,7 @@
 
 use glam::Vec3;
 
-use crate::shading::fresnel::{fresnel_dielectric_rt, refract};
+use crate::shading::fresnel::{fresnel_dielectric_rt, fresnel_oriented, refract};
 
 /// One delta-lobe direction with the fraction of radiance it carries.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -83,7 +83,7 @@ pub fn dielectric_in_mode(
 /// drawing it: the refracted branch of [`dielectric_in_mode`] when there is one and
 /// `uc ≥` [`dielectric_reflect_probability`], else the reflected one (probability 1 when
 /// nothing is refracted). The same bits as those functions, from one Fresnel evaluation
-/// (their `fresnel_dielectric_rt`, step for step) and one `cosθt`: they computed the Fresnel
+/// (`fresnel_oriented`, which `fresnel_dielectric_rt` runs) and one `cosθt`: they computed the Fresnel
 /// terms twice and `cosθt` three times, and normalised the refracted direction also when the
 /// reflected branch was drawn (`dielectric_sample_is_the_two_calls_bit_for_bit`).
 #[inline(always)]
@@ -98,24 +98,10 @@ pub fn dielectric_sample(wo: Vec3, eta: f32, mode: TransportMode, uc: f32) -> (D
         n = -n;
     }
     let mut reflected = mirror(wo);
-    let k = (eta - 1.0) * (eta + 1.0) + cos_i * cos_i;
-    if k.is_nan() || k <= 0.0 {
-        // Total internal reflection: (R, T) = (1, 0), nothing refracted.
+    let Some((r, t, cos_t)) = fresnel_oriented(cos_i, eta) else {
+        // Total internal reflection (or grazing on a matched interface): (R, T) = (1, 0).
         return (reflected, 1.0);
-    }
-    let cos_t = k.sqrt() / eta;
-    let (ec_i, ec_t) = (eta * cos_i, eta * cos_t);
-    let d_parl = ec_i + cos_t;
-    let d_perp = cos_i + ec_t;
-    if d_parl <= 0.0 || d_perp <= 0.0 {
-        return (reflected, 1.0);
-    }
-    let r_parl = (ec_i - cos_t) / d_parl;
-    let r_perp = (cos_i - ec_t) / d_perp;
-    let r = 0.5 * (r_parl * r_parl + r_perp * r_perp);
-    let t_parl = 2.0 / d_parl;
-    let t_perp = 2.0 / d_perp;
-    let t = 0.5 * ec_t * cos_i * (t_parl * t_parl + t_perp * t_perp);
+    };
     // `refract`'s cosine is `wo·Z`, NaN when `wo.x` or `wo.y` is not finite (then nothing
     // is refracted); otherwise it is `wo.z`, which is not zero here.
     if !(t > 0.0 && wo.x.is_finite() && wo.y.is_finite()) {
