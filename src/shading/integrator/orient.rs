@@ -74,7 +74,8 @@ pub(crate) fn orient(
     }
     let visible = front || material.shades_back() || ctx.face == Face::Both;
     let transmittance = match shader {
-        Shader::Dielectric { col, .. } if !front => {
+        // `powf(1, d)` is 1 for every `d` (NaN too): clear glass, the default, needs no powers.
+        Shader::Dielectric { col, .. } if !front && *col != Vec3::ONE => {
             let d = hit.t * ray.dir.length();
             Vec3::new(col.x.powf(d), col.y.powf(d), col.z.powf(d))
         }
@@ -137,4 +138,31 @@ pub(crate) fn spawn_along(
     let side = ng.dot(wi);
     let ok = if transmits { side < 0.0 } else { side > 0.0 };
     (ok && wi.is_finite()).then(|| spawn_ray(surface, wi))
+}
+
+#[cfg(test)]
+mod tests {
+    /// Clear glass skips the absorption powers: `powf(1, d)` is exactly 1 for every segment
+    /// length `d` a ray can give, `0`, subnormal, huge, infinite and NaN among them.
+    #[test]
+    fn clear_glass_transmits_one_for_every_length() {
+        let mut lengths = vec![
+            0.0f32,
+            -0.0,
+            f32::from_bits(1),
+            f32::MIN_POSITIVE,
+            1e-20,
+            0.5,
+            1.0,
+            3.7,
+            1e20,
+            f32::MAX,
+            f32::INFINITY,
+            f32::NAN,
+        ];
+        lengths.extend((0..1000).map(|i| (i as f32 * 0.137).exp2() - 1.0));
+        for d in lengths {
+            assert_eq!(1.0f32.powf(d).to_bits(), 1.0f32.to_bits(), "powf(1, {d})");
+        }
+    }
 }

@@ -56,7 +56,9 @@ pub fn perturb(n: Vec3, dpdu: Vec3, dpdv: Vec3, dhdu: f32, dhdv: f32) -> Vec3 {
 /// Cycles' `ensure_valid_specular_reflection(Ng, I, N)`: `n` rotated toward `ng` (both unit,
 /// `ng` on the side of the unit view direction `wo`) until the reflection of `wo` about it is
 /// at least `min(0.9·(wo·ng), 0.01)` above the geometric surface; `n` itself when that holds
-/// already.
+/// already. The test is inline (every hit on a smoothly shaded surface makes it, and almost
+/// every one passes); the rotation is a call.
+#[inline]
 pub fn ensure_valid_reflection(ng: Vec3, wo: Vec3, n: Vec3) -> Vec3 {
     let iz = wo.dot(ng);
     if iz.is_nan() || iz <= 0.0 || !n.is_finite() {
@@ -67,6 +69,13 @@ pub fn ensure_valid_reflection(ng: Vec3, wo: Vec3, n: Vec3) -> Vec3 {
     if r.dot(ng) >= threshold {
         return n;
     }
+    rotate_toward_ng(ng, wo, n, iz, threshold)
+}
+
+/// [`ensure_valid_reflection`]'s rotation of `n` toward `ng`, where the reflection of `wo`
+/// about `n` lies below `threshold` (`iz = wo·ng > 0`, `n` finite).
+#[inline(never)]
+fn rotate_toward_ng(ng: Vec3, wo: Vec3, n: Vec3, iz: f32, threshold: f32) -> Vec3 {
     // Frame with ng as Z and n in the X–Z plane; solve for n'.z so that the reflection has
     // height exactly `threshold` (a quadratic in n'.z²; the larger root is the one nearer ng).
     let x = (n - n.dot(ng) * ng).normalize_or_zero();
