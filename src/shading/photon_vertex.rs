@@ -23,6 +23,7 @@ use crate::shading::integrator::orient::{
     bsdf_kept_or_in, orient, shading_point, spawn_along, Orientation,
 };
 use crate::shading::integrator::{ShadeContext, Vertex};
+use crate::shading::texture::hit::is_textured;
 
 /// A photon's shading point, oriented toward where the photon came from (the fields of
 /// [`Vertex`] of the same names, with the same values).
@@ -81,7 +82,7 @@ impl<'a> PhotonVertex<'a> {
     pub fn new(ctx: &ShadeContext<'a>, ray: &Ray, hit: &Hit, sp: ShadingPoint) -> Self {
         let material = &ctx.geometry.materials[sp.material as usize];
         let inst = &ctx.geometry.instances[sp.instance as usize];
-        if material.graph.is_some() || inst.bump.is_some() {
+        if is_textured(inst, material) {
             return Vertex::new(ctx, ray, hit).into();
         }
         // `Vertex::new` with no texture to evaluate, step for step.
@@ -282,5 +283,27 @@ mod tests {
         println!("hits per instance {seen:?}, {back} back faces");
         assert!(seen.iter().all(|&n| n > 50), "{seen:?}");
         assert!(back > 50, "{back}");
+    }
+
+    /// `is_textured` is exactly where `evaluate` has something to return: the graph-driven
+    /// panel and the displaced panel, not the plain cube, glass floor or panel.
+    #[test]
+    fn is_textured_is_where_evaluate_returns_a_texture() {
+        let g = scene();
+        let mut seen = [0usize; 2];
+        for i in 0..3000 {
+            let a = i as f32 * 0.37;
+            let dir = Vec3::new(a.cos(), a.sin(), (i as f32 * 0.11).sin());
+            let origin = [Vec3::new(0.1, -0.2, 0.3), Vec3::new(-0.2, 0.3, -0.6)][i % 2];
+            let (_, hit) = fixture::hit(&g, origin, dir);
+            let sp = g.shading_point(&hit);
+            let material = &g.materials[sp.material as usize];
+            let inst = &g.instances[sp.instance as usize];
+            let textured = is_textured(inst, material);
+            let evaluated = crate::shading::texture::hit::evaluate(&g, &sp, &hit, material);
+            assert_eq!(textured, evaluated.is_some(), "ray {i}");
+            seen[usize::from(textured)] += 1;
+        }
+        assert!(seen.iter().all(|&n| n > 50), "{seen:?}");
     }
 }

@@ -45,8 +45,18 @@ pub struct Textured {
     pub emission: Vec3,
 }
 
+/// Whether a point of `inst` with `material` has anything for [`evaluate`] to do: a shader
+/// graph (bound parameters, bump or normal map) or the instance's bump displacement.
+#[inline(always)]
+pub fn is_textured(inst: &InstanceGeometry, material: &Material) -> bool {
+    material.graph.is_some() || inst.bump.is_some()
+}
+
 /// Evaluates the material's graph (bound parameters, bump map) and the object's bump
-/// displacement at the shading point `sp` of `hit`; `None` when there is neither.
+/// displacement at the shading point `sp` of `hit`; `None` when there is neither. The test
+/// is inline (every vertex of every path makes it, and an untextured one stops there); the
+/// evaluation is a call.
+#[inline(always)]
 pub fn evaluate(
     geometry: &SceneGeometry,
     sp: &ShadingPoint,
@@ -54,10 +64,21 @@ pub fn evaluate(
     material: &Material,
 ) -> Option<Textured> {
     let inst = &geometry.instances[sp.instance as usize];
-    let displacement = inst.bump.as_deref();
-    if material.graph.is_none() && displacement.is_none() {
+    if !is_textured(inst, material) {
         return None;
     }
+    evaluate_textured(inst, sp, hit, material)
+}
+
+/// [`evaluate`] at a point where [`is_textured`] holds.
+#[inline(never)]
+fn evaluate_textured(
+    inst: &InstanceGeometry,
+    sp: &ShadingPoint,
+    hit: &Hit,
+    material: &Material,
+) -> Option<Textured> {
+    let displacement = inst.bump.as_deref();
     let local = (hit.prim - inst.first_triangle) as usize;
     let idx = inst.mesh.triangles[local].map(|i| i as usize);
     let b = [1.0 - hit.b1 - hit.b2, hit.b1, hit.b2];
