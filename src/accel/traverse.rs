@@ -204,8 +204,8 @@ impl NodeRay {
             let mut tn = Vec4::ZERO;
             let mut tf = t_far;
             for a in 0..3 {
-                let n = (node.bounds[g][self.near[a]] - self.o[a]) * self.inv[a];
-                let f = (node.bounds[g][self.far[a]] - self.o[a]) * self.inv[a];
+                let n = (node.bounds[self.near[a]][g] - self.o[a]) * self.inv[a];
+                let f = (node.bounds[self.far[a]][g] - self.o[a]) * self.inv[a];
                 tn = n.max(tn);
                 tf = f.min(tf);
             }
