@@ -404,7 +404,7 @@ mod tests {
             1e30,
             -7e-20,
             f32::MIN_POSITIVE,
-            0.7071068,
+            std::f32::consts::FRAC_1_SQRT_2,
         ];
         let bits = |w: &WoopRay| {
             (
