@@ -377,7 +377,7 @@ impl PacketTest for Planes4 {
             let origin = packet.origins[o].to_array();
             for g in 0..self.groups {
                 for (k, m) in self.minus[o][g].iter_mut().enumerate() {
-                    *m = node.bounds[g][k] - Vec4::splat(origin[k / 2]);
+                    *m = node.bounds[k][g] - Vec4::splat(origin[k / 2]);
                 }
             }
         }
@@ -415,8 +415,8 @@ mod wide {
         _mm256_castsi256_si128, _mm256_cmp_ps, _mm256_cmpeq_epi32, _mm256_cvtepu32_epi64,
         _mm256_extracti128_si256, _mm256_loadu_ps, _mm256_max_ps, _mm256_min_ps,
         _mm256_movemask_ps, _mm256_mul_ps, _mm256_or_si256, _mm256_set1_epi32, _mm256_set1_ps,
-        _mm256_set_m128, _mm256_setzero_ps, _mm256_setzero_si256, _mm256_slli_epi64,
-        _mm256_storeu_si256, _mm256_sub_ps, _CMP_LE_OS,
+        _mm256_setzero_ps, _mm256_setzero_si256, _mm256_slli_epi64, _mm256_storeu_si256,
+        _mm256_sub_ps, _CMP_LE_OS,
     };
 
     use std::ops::Range;
@@ -471,13 +471,14 @@ mod wide {
 
         #[inline(always)]
         fn prepare(&mut self, node: &Node, packet: &Packet, _rays: u64) {
-            // SAFETY: AVX intrinsics; this type exists only inside the AVX2 kernels. The
-            // loads read two `Vec4`s of the node by value (no raw pointers). No closures
+            // SAFETY: AVX intrinsics; this type exists only inside the AVX2 kernels. Each
+            // load reads one plane `bounds[k]` (two `Vec4`s, 32 bytes) through a pointer to
+            // it. No closures
             // here: they would not inherit the AVX2 target feature.
             unsafe {
                 let mut planes = [_mm256_setzero_ps(); 6];
                 for (k, p) in planes.iter_mut().enumerate() {
-                    *p = _mm256_set_m128(node.bounds[1][k].into(), node.bounds[0][k].into());
+                    *p = _mm256_loadu_ps(node.bounds[k].as_ptr().cast());
                 }
                 // Every origin, also those without rays here: a branch per origin would
                 // mispredict (about once per node), six subtractions do not.

@@ -25,7 +25,8 @@
 //!   or leaf per ray in turn, each lane's next node prefetched; identical results, 2.5–3×
 //!   the single-ray throughput on incoherent rays.
 //! * **Stack**: sized from the tree depth measured at build (a fixed array when that fits, a
-//!   `Vec` otherwise), so it cannot overflow.
+//!   `Vec` otherwise), so it cannot overflow. The single-ray kernels' array is left
+//!   uninitialised in their frame (`FrameStack`: no fill, no per-thread array).
 //! * **Ties**: the closest hit is the smallest `(t, original index)`, so the result does not
 //!   depend on traversal order (the brute-force reference gives the same answer).
 
@@ -203,8 +204,8 @@ impl NodeRay {
             let mut tn = Vec4::ZERO;
             let mut tf = t_far;
             for a in 0..3 {
-                let n = (node.bounds[g][self.near[a]] - self.o[a]) * self.inv[a];
-                let f = (node.bounds[g][self.far[a]] - self.o[a]) * self.inv[a];
+                let n = (node.bounds[self.near[a]][g] - self.o[a]) * self.inv[a];
+                let f = (node.bounds[self.far[a]][g] - self.o[a]) * self.inv[a];
                 tn = n.max(tn);
                 tf = f.min(tf);
             }
@@ -235,8 +236,11 @@ pub(super) trait Stack {
     fn clear(&mut self);
     /// Sorts the entries from `from` to the top so that the smallest `t` is on top.
     fn sort_top(&mut self, from: usize);
-    /// The eight slots above the top (panics, never overwrites, when fewer are left).
-    fn top_block(&mut self) -> &mut [Entry; 8];
+    /// The first of the eight slots above the top (panics, never overwrites, when fewer are
+    /// left). A raw pointer: the slots may be uninitialised ([`FrameStack`]); the caller
+    /// writes entries there before it counts them with [`Stack::grow`], and reads back only
+    /// slots it wrote.
+    fn top_block(&mut self) -> *mut Entry;
     /// Counts `n ≤ 8` more entries, written through [`Stack::top_block`], as pushed.
     fn grow(&mut self, n: usize);
 }
@@ -335,8 +339,8 @@ impl<const N: usize> Stack for ArrayStack<N> {
         sort_descending(&mut self.items[from..self.len]);
     }
     #[inline(always)]
-    fn top_block(&mut self) -> &mut [Entry; 8] {
-        self.block()
+    fn top_block(&mut self) -> *mut Entry {
+        self.block().as_mut_ptr()
     }
     #[inline(always)]
     fn grow(&mut self, n: usize) {
@@ -344,23 +348,40 @@ impl<const N: usize> Stack for ArrayStack<N> {
     }
 }
 
-/// Eight slots above the top of `items` (the block stores of [`Stack::top_block`]).
-#[inline(always)]
-fn block_at(items: &mut [Entry], len: usize) -> &mut [Entry; 8] {
-    (&mut items[len..len + 8]).try_into().expect("eight slots")
-}
-
-/// A stack in a borrowed array: the per-thread one of [`take_thread_stack`], reused by every
-/// single-ray query of the thread (a fresh array per query cost a 1 KiB zero fill).
-struct RefStack<'a> {
-    items: &'a mut [Entry; THREAD_STACK_LEN],
+/// A stack in an uninitialised array in the kernel's frame (the single-ray kernels' stack
+/// for every tree within [`ARRAY_STACK`]): no zero fill per query (1 KiB) and no per-thread
+/// array to take and put back (a TLS access and its `Option<Box>` tests, ~25 instructions per
+/// ray). Slots below `len` are always initialised: [`Stack::push`] writes them, and a kernel
+/// that [`Stack::grow`]s has written the slots it counts through [`Stack::top_block`].
+pub(super) struct FrameStack<const N: usize> {
+    items: [std::mem::MaybeUninit<Entry>; N],
     len: usize,
 }
 
-impl Stack for RefStack<'_> {
+impl<const N: usize> FrameStack<N> {
+    #[inline(always)]
+    pub(super) fn new() -> Self {
+        Self {
+            items: [std::mem::MaybeUninit::uninit(); N],
+            len: 0,
+        }
+    }
+
+    /// The entries, from the bottom up (for tests).
+    #[cfg(test)]
+    pub(super) fn entries(&self) -> Vec<Entry> {
+        // SAFETY: the slots below `len` are initialised (the type's invariant).
+        self.items[..self.len]
+            .iter()
+            .map(|e| unsafe { e.assume_init() })
+            .collect()
+    }
+}
+
+impl<const N: usize> Stack for FrameStack<N> {
     #[inline(always)]
     fn push(&mut self, e: Entry) {
-        self.items[self.len] = e;
+        self.items[self.len] = std::mem::MaybeUninit::new(e);
         self.len += 1;
     }
     #[inline(always)]
@@ -369,7 +390,8 @@ impl Stack for RefStack<'_> {
             return None;
         }
         self.len -= 1;
-        Some(self.items[self.len])
+        // SAFETY: the slots below the old `len` are initialised (the type's invariant).
+        Some(unsafe { self.items[self.len].assume_init() })
     }
     #[inline(always)]
     fn len(&self) -> usize {
@@ -381,11 +403,16 @@ impl Stack for RefStack<'_> {
     }
     #[inline(always)]
     fn sort_top(&mut self, from: usize) {
-        sort_descending(&mut self.items[from..self.len]);
+        let top = &mut self.items[from..self.len];
+        // SAFETY: the slots below `len` are initialised (the type's invariant), and
+        // `MaybeUninit<Entry>` has `Entry`'s layout.
+        let top = unsafe { &mut *(std::ptr::from_mut(top) as *mut [Entry]) };
+        sort_descending(top);
     }
     #[inline(always)]
-    fn top_block(&mut self) -> &mut [Entry; 8] {
-        block_at(self.items, self.len)
+    fn top_block(&mut self) -> *mut Entry {
+        let len = self.len;
+        self.items[len..len + 8].as_mut_ptr().cast()
     }
     #[inline(always)]
     fn grow(&mut self, n: usize) {
@@ -394,34 +421,9 @@ impl Stack for RefStack<'_> {
     }
 }
 
-/// The per-thread stack array's length: the deepest traversal an array stack allows, plus
+/// The single-ray kernels' frame stack: the deepest traversal an array stack allows, plus
 /// the eight slots of a block store.
-const THREAD_STACK_LEN: usize = ARRAY_STACK + 8;
-
-thread_local! {
-    /// The single-ray kernels' stack array, one per thread, taken out for a query and put back.
-    static THREAD_STACK: std::cell::Cell<Option<Box<[Entry; THREAD_STACK_LEN]>>> =
-        const { std::cell::Cell::new(None) };
-}
-
-/// Takes this thread's stack array (a new one when the thread has none, or while it is taken:
-/// a query never runs inside another, so that is only the first). Plain functions, not a
-/// closure around the traversal: a closure would not inherit the AVX2 kernels' target features.
-#[inline(always)]
-fn take_thread_stack() -> Box<[Entry; THREAD_STACK_LEN]> {
-    THREAD_STACK
-        .try_with(std::cell::Cell::take)
-        .ok()
-        .flatten()
-        .unwrap_or_else(|| Box::new([Entry::default(); THREAD_STACK_LEN]))
-}
-
-/// Puts the array back for the thread's next query.
-#[inline(always)]
-fn put_thread_stack(items: Box<[Entry; THREAD_STACK_LEN]>) {
-    // Fails only while the thread is being torn down; the array is then dropped.
-    let _ = THREAD_STACK.try_with(|s| s.set(Some(items)));
-}
+type SingleStack = FrameStack<{ ARRAY_STACK + 8 }>;
 
 /// A stack on the heap, for trees too deep for the array stacks: `n` entries (the traversal
 /// bound) plus the eight slots of a block store, allocated once per query.
@@ -466,8 +468,9 @@ impl Stack for HeapStack {
         sort_descending(&mut self.items[from..self.len]);
     }
     #[inline(always)]
-    fn top_block(&mut self) -> &mut [Entry; 8] {
-        block_at(&mut self.items, self.len)
+    fn top_block(&mut self) -> *mut Entry {
+        let len = self.len;
+        self.items[len..len + 8].as_mut_ptr()
     }
     #[inline(always)]
     fn grow(&mut self, n: usize) {
@@ -483,12 +486,8 @@ fn stack_bound(depth: u32) -> usize {
 }
 
 /// Array size used for shallow trees (every realistic scene; deeper ones use the heap); the
-/// single-ray kernels keep it per thread ([`take_thread_stack`]).
+/// single-ray kernels keep it uninitialised in their frame ([`FrameStack`]).
 const ARRAY_STACK: usize = 128;
-
-/// Array size for small scenes: a fresh stack is zeroed per ray, so a quarter of the size
-/// saves a 1 KiB fill on every ray of scenes like the Cornell box.
-const SMALL_STACK: usize = 32;
 
 /// Closest hit of `ray` with the SSE kernel (the fallback of `traverse_wide.rs`; `Accel`
 /// picks the kernel).
@@ -530,17 +529,8 @@ pub(super) fn closest_ordered_in<N: NodeTest, const OCTANT: bool>(
     if bvh.nodes.is_empty() || !ray_is_valid(ray) {
         return None;
     }
-    if stack_bound(bvh.depth) <= SMALL_STACK {
-        closest_with::<_, N, OCTANT>(bvh, ray, ArrayStack::<{ SMALL_STACK + 8 }>::new())
-    } else if stack_bound(bvh.depth) <= ARRAY_STACK {
-        let mut items = take_thread_stack();
-        let stack = RefStack {
-            items: &mut items,
-            len: 0,
-        };
-        let hit = closest_with::<_, N, OCTANT>(bvh, ray, stack);
-        put_thread_stack(items);
-        hit
+    if stack_bound(bvh.depth) <= ARRAY_STACK {
+        closest_with::<_, N, OCTANT>(bvh, ray, SingleStack::new())
     } else {
         closest_with::<_, N, OCTANT>(bvh, ray, HeapStack::new(stack_bound(bvh.depth)))
     }
@@ -563,17 +553,8 @@ pub(super) fn occluded_in<N: NodeTest>(bvh: &Bvh, ray: &Ray) -> bool {
 /// the last slot first.
 #[inline(always)]
 fn occluded_ordered_in<N: NodeTest, const OCTANT: bool>(bvh: &Bvh, ray: &Ray) -> bool {
-    if stack_bound(bvh.depth) <= SMALL_STACK {
-        occluded_with::<_, N, OCTANT>(bvh, ray, ArrayStack::<{ SMALL_STACK + 8 }>::new())
-    } else if stack_bound(bvh.depth) <= ARRAY_STACK {
-        let mut items = take_thread_stack();
-        let stack = RefStack {
-            items: &mut items,
-            len: 0,
-        };
-        let hit = occluded_with::<_, N, OCTANT>(bvh, ray, stack);
-        put_thread_stack(items);
-        hit
+    if stack_bound(bvh.depth) <= ARRAY_STACK {
+        occluded_with::<_, N, OCTANT>(bvh, ray, SingleStack::new())
     } else {
         occluded_with::<_, N, OCTANT>(bvh, ray, HeapStack::new(stack_bound(bvh.depth)))
     }
@@ -1370,43 +1351,57 @@ pub(super) mod tests {
         }
     }
 
-    /// The single-ray kernels take this thread's stack array and put it back: the second
-    /// query of a thread reuses the first one's array (same address), with the same answers.
+    /// The frame stack (uninitialised slots) keeps exactly what the zero-filled array stack
+    /// keeps through the same pushes, pops, block stores with `grow`, and sorts.
     #[test]
-    fn single_ray_queries_reuse_the_thread_stack() {
-        let tris: Vec<[Vec3; 3]> = (0..4000)
-            .map(|i| {
-                let c = Vec3::new((i % 20) as f32, (i / 20 % 20) as f32, (i / 400) as f32);
-                [c, c + Vec3::X * 0.5, c + Vec3::Y * 0.5]
-            })
-            .collect();
-        let bvh = super::super::bvh::build(&tris, crate::settings::BvhQuality::Medium);
-        assert!(stack_bound(bvh.depth) > SMALL_STACK && stack_bound(bvh.depth) <= ARRAY_STACK);
-        let ray = Ray {
-            origin: Vec3::new(3.2, 4.1, -1.0),
-            dir: Vec3::Z,
-            t_max: f32::INFINITY,
-        };
-        std::thread::spawn(move || {
-            let array_address = || {
-                let items = THREAD_STACK
-                    .with(std::cell::Cell::take)
-                    .expect("a stack array");
-                let address = std::ptr::from_ref(&*items) as usize;
-                THREAD_STACK.with(|s| s.set(Some(items)));
-                address
+    fn frame_stack_equals_array_stack() {
+        let mut rnd = crate::accel::test_random::signed_uniform(0x9e37_79b9_7f4a_7c15u64);
+        let mut frame = FrameStack::<{ 64 + 8 }>::new();
+        let mut array = ArrayStack::<{ 64 + 8 }>::new();
+        let (mut pops, mut blocks) = (0, 0);
+        for step in 0..20_000u32 {
+            let x = rnd();
+            let e = Entry {
+                r: step,
+                t: x * 10.0,
             };
-            assert!(THREAD_STACK.with(std::cell::Cell::take).is_none());
-            let first = closest(&bvh, &ray).expect("the ray hits the first layer");
-            assert_eq!(first.t, 1.0);
-            let address = array_address();
-            let again = closest(&bvh, &ray).unwrap();
-            assert!(occluded(&bvh, &ray));
-            assert_eq!(hit_bits(Some(again)), hit_bits(Some(first)));
-            assert_eq!(array_address(), address);
-        })
-        .join()
-        .unwrap();
+            if x < -0.3 && frame.len() > 0 {
+                let (a, b) = (frame.pop().unwrap(), array.pop().unwrap());
+                assert_eq!((a.r, a.t.to_bits()), (b.r, b.t.to_bits()));
+                pops += 1;
+            } else if x < 0.3 && frame.len() < 64 {
+                frame.push(e);
+                array.push(e);
+            } else if frame.len() <= 56 {
+                let n = (step % 9) as usize;
+                for s in [&mut frame as &mut dyn Stack, &mut array] {
+                    let block = s.top_block();
+                    for j in 0..n {
+                        let t = e.t + j as f32;
+                        // SAFETY: `top_block` points at eight writable slots; j < 8.
+                        unsafe {
+                            block.add(j).write(Entry {
+                                r: step + j as u32,
+                                t,
+                            })
+                        };
+                    }
+                    s.grow(n);
+                    if step % 7 == 0 {
+                        let from = s.len() - n;
+                        s.sort_top(from);
+                    }
+                }
+                blocks += 1;
+            } else {
+                frame.clear();
+                array.clear();
+            }
+            assert_eq!(frame.len(), array.len());
+            let bits = |v: &[Entry]| v.iter().map(|e| (e.r, e.t.to_bits())).collect::<Vec<_>>();
+            assert_eq!(bits(&frame.entries()), bits(array.entries()));
+        }
+        assert!(pops > 1000 && blocks > 1000, "{pops} {blocks}");
     }
 
     fn hits_some(bvh: &Bvh, rays: &[Ray]) -> bool {

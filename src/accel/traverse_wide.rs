@@ -25,11 +25,11 @@
 //!   the dispatch).
 
 use std::arch::x86_64::{
-    __m256, __m256i, _mm256_and_si256, _mm256_cmp_ps, _mm256_loadu_si256, _mm256_max_ps,
-    _mm256_min_ps, _mm256_movemask_ps, _mm256_mul_ps, _mm256_permutevar8x32_epi32,
-    _mm256_permutevar8x32_ps, _mm256_set1_epi32, _mm256_set1_ps, _mm256_set_m128,
-    _mm256_setr_epi32, _mm256_setzero_ps, _mm256_srlv_epi32, _mm256_storeu_ps, _mm256_storeu_si256,
-    _mm256_sub_ps, _CMP_LE_OS,
+    __m256, __m256i, _mm256_and_si256, _mm256_cmp_ps, _mm256_loadu_ps, _mm256_loadu_si256,
+    _mm256_max_ps, _mm256_min_ps, _mm256_movemask_ps, _mm256_mul_ps, _mm256_permutevar8x32_epi32,
+    _mm256_permutevar8x32_ps, _mm256_set1_epi32, _mm256_set1_ps, _mm256_setr_epi32,
+    _mm256_setzero_ps, _mm256_srlv_epi32, _mm256_storeu_ps, _mm256_storeu_si256, _mm256_sub_ps,
+    _CMP_LE_OS,
 };
 use std::sync::OnceLock;
 
@@ -295,12 +295,11 @@ impl NodeRay8 {
     /// when `tn[i] ≤ tf[i]` (ordered).
     #[inline(always)]
     fn slabs(&self, node: &Node, t_far: f32) -> (__m256, __m256) {
-        // SAFETY: AVX intrinsics; this type exists only inside the AVX2 kernels. The loads
-        // read two `Vec4`s of the node by value (no raw pointers).
+        // SAFETY: AVX intrinsics; this type exists only inside the AVX2 kernels. Each load
+        // reads one plane of the node, `bounds[k]`: two `Vec4`s, 32 bytes through a pointer
+        // to them.
         unsafe {
-            let plane = |k: usize| -> __m256 {
-                _mm256_set_m128(node.bounds[1][k].into(), node.bounds[0][k].into())
-            };
+            let plane = |k: usize| -> __m256 { _mm256_loadu_ps(node.bounds[k].as_ptr().cast()) };
             let mut tn = _mm256_setzero_ps();
             let mut tf = _mm256_set1_ps(t_far);
             for a in 0..3 {

@@ -445,7 +445,7 @@ pub(crate) fn sah_cost(nodes: &[Node]) -> f64 {
     let half_area = |node: &Node, slot: usize| -> f64 {
         let (g, l) = (slot / 4, slot % 4);
         let d = [0, 1, 2]
-            .map(|a| f64::from(node.bounds[g][2 * a + 1][l]) - f64::from(node.bounds[g][2 * a][l]));
+            .map(|a| f64::from(node.bounds[2 * a + 1][g][l]) - f64::from(node.bounds[2 * a][g][l]));
         (d[0] + d[1]) * d[2] + d[0] * d[1]
     };
     let mut root_area = 0.0f64;
@@ -455,9 +455,9 @@ pub(crate) fn sah_cost(nodes: &[Node]) -> f64 {
             continue;
         }
         let (g, l) = (slot / 4, slot % 4);
-        let b = &root.bounds[g];
-        lo = lo.min(Vec3::new(b[0][l], b[2][l], b[4][l]));
-        hi = hi.max(Vec3::new(b[1][l], b[3][l], b[5][l]));
+        let b = |k: usize| root.bounds[k][g][l];
+        lo = lo.min(Vec3::new(b(0), b(2), b(4)));
+        hi = hi.max(Vec3::new(b(1), b(3), b(5)));
     }
     let d = (hi - lo).as_dvec3();
     root_area += (d.x + d.y) * d.z + d.x * d.y;
@@ -513,7 +513,7 @@ mod tests {
             .filter(|&s| n.child[s] != EMPTY_CHILD)
             .map(|s| {
                 let (g, l) = (s / 4, s % 4);
-                let b = [0, 1, 2, 3, 4, 5].map(|k| n.bounds[g][k][l].to_bits());
+                let b = [0, 1, 2, 3, 4, 5].map(|k| n.bounds[k][g][l].to_bits());
                 let r = n.child[s];
                 let what = if r & LEAF_BIT != 0 {
                     let first = (r & FIRST_MASK) as usize;

@@ -97,7 +97,7 @@ impl NodeTest for NodeRay8s {
         let (tn, tf) = self.0.slabs(node, t_far);
         // SAFETY: AVX2 and AVX-512F/VL intrinsics; this type is used only inside the AVX-512
         // kernels. The unaligned load reads the node's `[u32; 8]` child array through a
-        // reference to it.
+        // reference to it; `block` is the stack's eight slots above its top.
         unsafe {
             // Lane j: the slot visited (7 − j)-th, so the farthest is stored first.
             let slots = _mm256_and_si256(
@@ -127,7 +127,8 @@ impl NodeTest for NodeRay8s {
             let n = hit.count_ones() as usize;
             // Only the child popped next, after the nearest's subtree, is prefetched: the
             // topmost pushed, or the nearest itself when nothing is pushed (no branch, no loop).
-            prefetch_child(bvh, block[(n - 1).saturating_sub(1) & 7].r);
+            // The slot read is below `n`, written by `store_pairs`.
+            prefetch_child(bvh, (*block.add((n - 1).saturating_sub(1) & 7)).r);
             stack.grow(n - 1);
             Some(next)
         }
@@ -135,27 +136,26 @@ impl NodeTest for NodeRay8s {
 }
 
 /// Stores the pairs `(c[j], t[j])` whose bit `j` is set in `hit` packed to the bottom of
-/// `block`, in `j` order (`Entry` is `repr(C)` `(u32, f32)`), as two compressed halves of
-/// four; the slots above them get unspecified values.
+/// the eight slots at `block`, in `j` order (`Entry` is `repr(C)` `(u32, f32)`), as two
+/// compressed halves of four; the slots above them get unspecified values, and slots
+/// `0..max(4, popcount(hit))` are all written.
 ///
 /// # Safety
-/// The CPU must support AVX2, AVX-512F and AVX-512VL (call only inside the AVX-512 kernels).
+/// The CPU must support AVX2, AVX-512F and AVX-512VL (call only inside the AVX-512 kernels),
+/// and `block` must point at eight writable slots ([`Stack::top_block`]).
 #[inline(always)]
-unsafe fn store_pairs(c: __m256i, t: __m256i, hit: u8, block: &mut [Entry; 8]) {
+unsafe fn store_pairs(c: __m256i, t: __m256i, hit: u8, block: *mut Entry) {
     // SAFETY: intrinsics as above; the stores write four entries (32 bytes) each, at
-    // `block[0..4]` and `block[n..n + 4]` with n ≤ 4, through references into `block`.
+    // `block[0..4]` and `block[n..n + 4]` with n ≤ 4, inside the caller's eight slots.
     unsafe {
         let lo = _mm256_unpacklo_epi32(c, t); // pairs 0, 1 | 4, 5
         let hi = _mm256_unpackhi_epi32(c, t); // pairs 2, 3 | 6, 7
         let first = _mm256_permute2x128_si256::<0x20>(lo, hi);
         let second = _mm256_permute2x128_si256::<0x31>(lo, hi);
         let n = (hit & 15).count_ones() as usize;
+        _mm256_storeu_si256(block.cast(), _mm256_maskz_compress_epi64(hit & 15, first));
         _mm256_storeu_si256(
-            std::ptr::from_mut(&mut block[..4]).cast(),
-            _mm256_maskz_compress_epi64(hit & 15, first),
-        );
-        _mm256_storeu_si256(
-            std::ptr::from_mut(&mut block[n..n + 4]).cast(),
+            block.add(n).cast(),
             _mm256_maskz_compress_epi64(hit >> 4, second),
         );
     }
