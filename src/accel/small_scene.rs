@@ -171,6 +171,8 @@ impl SmallScene {
             return None;
         }
         let lr = LaneRay8::new(ray);
+        // The scalar test's ray, made only when a slow lane needs it (rare).
+        let mut woop: Option<WoopRay> = None;
         let mut best: Option<(usize, f32, f32)> = None;
         let mut best_t = ray.t_max;
         let mut best_prim = u32::MAX;
@@ -184,7 +186,8 @@ impl SmallScene {
                 todo &= todo - 1;
                 let slot = gi * LANES + j;
                 let (t, b1, b2) = if lanes.slow >> j & 1 != 0 {
-                    match slow_lane(ray, &self.tris[slot]) {
+                    let woop = woop.get_or_insert_with(|| WoopRay::new(ray.origin, ray.dir));
+                    match woop.intersect(&self.tris[slot]) {
                         Some(hit) => hit,
                         None => continue,
                     }
@@ -231,7 +234,9 @@ impl SmallScene {
             while slow != 0 {
                 let j = slow.trailing_zeros() as usize;
                 slow &= slow - 1;
-                if slow_lane(ray, &self.tris[gi * LANES + j]).is_some_and(|(t, _, _)| t < ray.t_max)
+                if WoopRay::new(ray.origin, ray.dir)
+                    .intersect(&self.tris[gi * LANES + j])
+                    .is_some_and(|(t, _, _)| t < ray.t_max)
                 {
                     return true;
                 }
@@ -239,15 +244,6 @@ impl SmallScene {
         }
         false
     }
-}
-
-/// The scalar test of a slow lane (an edge function exactly zero, or `t` within its error
-/// bound; rare): out of line and cold, so that the kernels' loops keep no call on their hot
-/// path.
-#[cold]
-#[inline(never)]
-fn slow_lane(ray: &Ray, tri: &[Vec3; 3]) -> Option<(f32, f32, f32)> {
-    WoopRay::new(ray.origin, ray.dir).intersect(tri)
 }
 
 /// A copy of `ray` read one `f32` field at a time. The caller has just stored the ray (a
