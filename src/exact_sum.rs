@@ -48,16 +48,52 @@ impl ExactSum {
             return;
         }
         let wide = u128::from(mantissa) << (shift % 64);
-        let mut term = [0u64; LIMBS];
+        // `shift ≤ 253`, so the term lies in limbs `limb` and `limb + 1 < LIMBS`.
         let limb = (shift / 64) as usize;
-        term[limb] = wide as u64;
-        if limb + 1 < LIMBS {
-            term[limb + 1] = (wide >> 64) as u64;
+        if bits >> 31 == 0 {
+            self.add_at(limb, wide);
+        } else {
+            self.sub_at(limb, wide);
         }
-        if bits >> 31 == 1 {
-            term = negated(term);
+    }
+
+    /// Adds `wide · 2^(64·limb)`: the two limbs it covers, then the carry only as far as
+    /// it goes (integer addition mod 2³²⁰, the same bits as adding the whole term).
+    #[inline(always)]
+    fn add_at(&mut self, limb: usize, wide: u128) {
+        let l = &mut self.limbs;
+        let (s, c0) = l[limb].overflowing_add(wide as u64);
+        l[limb] = s;
+        let (s, c1) = l[limb + 1].overflowing_add((wide >> 64) as u64);
+        let (s, c2) = s.overflowing_add(u64::from(c0));
+        l[limb + 1] = s;
+        let mut carry = c1 | c2;
+        let mut i = limb + 2;
+        while carry && i < LIMBS {
+            let (s, c) = l[i].overflowing_add(1);
+            l[i] = s;
+            carry = c;
+            i += 1;
         }
-        self.add_limbs(&term);
+    }
+
+    /// Subtracts `wide · 2^(64·limb)` (as [`Self::add_at`], with the borrow).
+    #[inline(always)]
+    fn sub_at(&mut self, limb: usize, wide: u128) {
+        let l = &mut self.limbs;
+        let (s, b0) = l[limb].overflowing_sub(wide as u64);
+        l[limb] = s;
+        let (s, b1) = l[limb + 1].overflowing_sub((wide >> 64) as u64);
+        let (s, b2) = s.overflowing_sub(u64::from(b0));
+        l[limb + 1] = s;
+        let mut borrow = b1 | b2;
+        let mut i = limb + 2;
+        while borrow && i < LIMBS {
+            let (s, b) = l[i].overflowing_sub(1);
+            l[i] = s;
+            borrow = b;
+            i += 1;
+        }
     }
 
     /// Adds another exact sum (merging partial sums).
@@ -172,6 +208,88 @@ mod tests {
         assert_eq!(sum(&reversed), whole);
         let reference: f64 = values.iter().map(|&v| f64::from(v)).sum();
         assert!((whole.to_f64() - reference).abs() < 1e-9);
+    }
+
+    /// The former `add`: the whole 320-bit term built, negated for a negative `x`, added.
+    fn add_by_whole_term(s: &mut ExactSum, x: f32) {
+        let bits = x.to_bits();
+        let exponent = (bits >> 23) & 0xff;
+        if exponent == 0xff {
+            return;
+        }
+        let fraction = u64::from(bits & 0x7f_ffff);
+        let (mantissa, shift) = if exponent == 0 {
+            (fraction, 0)
+        } else {
+            (fraction | 0x80_0000, exponent - 1)
+        };
+        let wide = u128::from(mantissa) << (shift % 64);
+        let mut term = [0u64; LIMBS];
+        let limb = (shift / 64) as usize;
+        term[limb] = wide as u64;
+        if limb + 1 < LIMBS {
+            term[limb + 1] = (wide >> 64) as u64;
+        }
+        if bits >> 31 == 1 {
+            term = negated(term);
+        }
+        s.merge(&ExactSum::from_limbs(term));
+    }
+
+    /// `add` (the term's two limbs, then the carry or borrow only as far as it goes) gives
+    /// the bits of adding the whole term, for every kind of f32 (zeros, subnormals, both
+    /// signs, the largest, non-finite) and accumulators whose limbs sit at the carry and
+    /// borrow edges (all ones, zero, sign changes).
+    #[test]
+    fn add_at_two_limbs_equals_adding_the_whole_term() {
+        let mut state = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            state
+        };
+        let edges = [0u64, 1, u64::MAX, u64::MAX - 1, 1 << 63, (1 << 63) - 1];
+        let mut values: Vec<f32> = [
+            0.0,
+            -0.0,
+            f32::from_bits(1),
+            -f32::from_bits(1),
+            f32::MIN_POSITIVE,
+            -f32::MIN_POSITIVE,
+            f32::MAX,
+            f32::MIN,
+            f32::INFINITY,
+            f32::NAN,
+            1.0,
+            -1.0,
+        ]
+        .to_vec();
+        for _ in 0..2000 {
+            values.push(f32::from_bits(next() as u32));
+        }
+        for round in 0..3000 {
+            let mut limbs = [0u64; LIMBS];
+            for l in &mut limbs {
+                *l = if next() % 2 == 0 {
+                    edges[(next() % edges.len() as u64) as usize]
+                } else {
+                    next()
+                };
+            }
+            let (mut fast, mut whole) = (ExactSum::from_limbs(limbs), ExactSum::from_limbs(limbs));
+            for k in 0..8 {
+                let x = values[(round * 8 + k) % values.len()];
+                fast.add(x);
+                add_by_whole_term(&mut whole, x);
+                assert_eq!(
+                    fast,
+                    whole,
+                    "limbs {limbs:x?}, x = {x:e} ({:#x})",
+                    x.to_bits()
+                );
+            }
+        }
     }
 
     #[test]
