@@ -62,7 +62,6 @@ pub fn trace_photon_with_roles(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::components::Shader;
     use crate::settings::RenderSettings;
     use crate::shading::integrator::fixture::{self, Object};
     use crate::shading::lights::LightSet;
@@ -120,20 +119,7 @@ mod tests {
     #[test]
     fn a_photon_via_a_mirror_is_a_caustic_and_stops_after_the_diffuse_hit() {
         // Mirror ceiling at z = 1 facing down, grey floor at z = 0.
-        let geometry = fixture::geometry(vec![
-            Object {
-                triangles: fixture::floor(10.0, 0.0),
-                material: fixture::lambert(0.8),
-            },
-            Object {
-                triangles: fixture::quad(
-                    Vec3::new(-10.0, -10.0, 1.0),
-                    Vec3::new(0.0, 20.0, 0.0),
-                    Vec3::new(20.0, 0.0, 0.0),
-                ),
-                material: fixture::material(Shader::Mirror { color: Vec3::ONE }),
-            },
-        ]);
+        let geometry = fixture::mirror_over_floor();
         let lights = LightSet::default();
         let s = RenderSettings::default();
         let ctx = ShadeContext::new(&geometry, &lights, &s);

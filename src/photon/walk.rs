@@ -256,9 +256,8 @@ impl Walk {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::components::Shader;
     use crate::settings::RenderSettings;
-    use crate::shading::integrator::fixture::{self, Object};
+    use crate::shading::integrator::fixture;
     use crate::shading::lights::LightSet;
 
     /// A walk without its fate deposits what a full walk deposits and ends at the same
@@ -267,20 +266,7 @@ mod tests {
     #[test]
     fn a_walk_without_fate_ends_at_the_caustic_deposit_without_drawing() {
         // Mirror ceiling at z = 1 facing down, grey floor at z = 0.
-        let geometry = fixture::geometry(vec![
-            Object {
-                triangles: fixture::floor(10.0, 0.0),
-                material: fixture::lambert(0.8),
-            },
-            Object {
-                triangles: fixture::quad(
-                    Vec3::new(-10.0, -10.0, 1.0),
-                    Vec3::new(0.0, 20.0, 0.0),
-                    Vec3::new(20.0, 0.0, 0.0),
-                ),
-                material: fixture::material(Shader::Mirror { color: Vec3::ONE }),
-            },
-        ]);
+        let geometry = fixture::mirror_over_floor();
         let lights = LightSet::default();
         let s = RenderSettings::default();
         let ctx = ShadeContext::new(&geometry, &lights, &s);

@@ -55,6 +55,25 @@ pub fn floor(h: f32, z: f32) -> Vec<[Vec3; 3]> {
     )
 }
 
+/// A grey floor (albedo 0.8, `[−10, 10]²` at `z = 0`, facing up) under a mirror ceiling
+/// (the same square at `z = 1`, facing down): a photon reflected by the ceiling is a caustic.
+pub fn mirror_over_floor() -> SceneGeometry {
+    geometry(vec![
+        Object {
+            triangles: floor(10.0, 0.0),
+            material: lambert(0.8),
+        },
+        Object {
+            triangles: quad(
+                Vec3::new(-10.0, -10.0, 1.0),
+                Vec3::new(0.0, 20.0, 0.0),
+                Vec3::new(20.0, 0.0, 0.0),
+            ),
+            material: material(Shader::Mirror { color: Vec3::ONE }),
+        },
+    ])
+}
+
 /// The six faces of the cube `[−h, h]³`, each facing inward.
 pub fn inward_cube(h: f32) -> Vec<[Vec3; 3]> {
     let c = Vec3::splat(-h);
