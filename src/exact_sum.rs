@@ -61,37 +61,31 @@ impl ExactSum {
     /// it goes (integer addition mod 2³²⁰, the same bits as adding the whole term).
     #[inline(always)]
     fn add_at(&mut self, limb: usize, wide: u128) {
-        let l = &mut self.limbs;
-        let (s, c0) = l[limb].overflowing_add(wide as u64);
-        l[limb] = s;
-        let (s, c1) = l[limb + 1].overflowing_add((wide >> 64) as u64);
-        let (s, c2) = s.overflowing_add(u64::from(c0));
-        l[limb + 1] = s;
-        let mut carry = c1 | c2;
-        let mut i = limb + 2;
-        while carry && i < LIMBS {
-            let (s, c) = l[i].overflowing_add(1);
-            l[i] = s;
-            carry = c;
-            i += 1;
-        }
+        self.step_at(limb, wide, u64::overflowing_add);
     }
 
     /// Subtracts `wide · 2^(64·limb)` (as [`Self::add_at`], with the borrow).
     #[inline(always)]
     fn sub_at(&mut self, limb: usize, wide: u128) {
+        self.step_at(limb, wide, u64::overflowing_sub);
+    }
+
+    /// [`Self::add_at`] or [`Self::sub_at`]: `step` is `overflowing_add` or
+    /// `overflowing_sub`, its flag the carry or the borrow, passed up only while it is set.
+    #[inline(always)]
+    fn step_at(&mut self, limb: usize, wide: u128, step: impl Fn(u64, u64) -> (u64, bool)) {
         let l = &mut self.limbs;
-        let (s, b0) = l[limb].overflowing_sub(wide as u64);
+        let (s, c0) = step(l[limb], wide as u64);
         l[limb] = s;
-        let (s, b1) = l[limb + 1].overflowing_sub((wide >> 64) as u64);
-        let (s, b2) = s.overflowing_sub(u64::from(b0));
+        let (s, c1) = step(l[limb + 1], (wide >> 64) as u64);
+        let (s, c2) = step(s, u64::from(c0));
         l[limb + 1] = s;
-        let mut borrow = b1 | b2;
+        let mut carry = c1 | c2;
         let mut i = limb + 2;
-        while borrow && i < LIMBS {
-            let (s, b) = l[i].overflowing_sub(1);
+        while carry && i < LIMBS {
+            let (s, c) = step(l[i], 1);
             l[i] = s;
-            borrow = b;
+            carry = c;
             i += 1;
         }
     }
