@@ -19,6 +19,29 @@ pub struct ExactSum {
     limbs: [u64; LIMBS],
 }
 
+/// A finite, non-zero `x` as `(negative, limb, wide)`: `|x| = wide · 2^(64·limb − 149)`
+/// with `wide` spanning limbs `limb` and `limb + 1 < LIMBS` (`limb ≤ 3`: the exponent's
+/// shift is at most 253). `None` for zeros and non-finite values.
+#[inline(always)]
+fn term_of(x: f32) -> Option<(bool, usize, u128)> {
+    let bits = x.to_bits();
+    let exponent = (bits >> 23) & 0xff;
+    if exponent == 0xff {
+        return None;
+    }
+    let fraction = u64::from(bits & 0x7f_ffff);
+    let (mantissa, shift) = if exponent == 0 {
+        (fraction, 0)
+    } else {
+        (fraction | 0x80_0000, exponent - 1)
+    };
+    if mantissa == 0 {
+        return None;
+    }
+    let wide = u128::from(mantissa) << (shift % 64);
+    Some((bits >> 31 == 1, (shift / 64) as usize, wide))
+}
+
 impl ExactSum {
     /// The sum with these raw limbs (least significant first), as [`ExactSum::limbs`] gave.
     pub fn from_limbs(limbs: [u64; LIMBS]) -> Self {
@@ -33,27 +56,10 @@ impl ExactSum {
     /// Adds `x`; non-finite values are ignored (callers count them as dropped).
     #[inline]
     pub fn add(&mut self, x: f32) {
-        let bits = x.to_bits();
-        let exponent = (bits >> 23) & 0xff;
-        if exponent == 0xff {
-            return;
-        }
-        let fraction = u64::from(bits & 0x7f_ffff);
-        let (mantissa, shift) = if exponent == 0 {
-            (fraction, 0)
-        } else {
-            (fraction | 0x80_0000, exponent - 1)
-        };
-        if mantissa == 0 {
-            return;
-        }
-        let wide = u128::from(mantissa) << (shift % 64);
-        // `shift ≤ 253`, so the term lies in limbs `limb` and `limb + 1 < LIMBS`.
-        let limb = (shift / 64) as usize;
-        if bits >> 31 == 0 {
-            self.add_at(limb, wide);
-        } else {
-            self.sub_at(limb, wide);
+        match term_of(x) {
+            Some((false, limb, wide)) => self.add_at(limb, wide),
+            Some((true, limb, wide)) => self.sub_at(limb, wide),
+            None => {}
         }
     }
 
@@ -206,25 +212,13 @@ mod tests {
 
     /// The former `add`: the whole 320-bit term built, negated for a negative `x`, added.
     fn add_by_whole_term(s: &mut ExactSum, x: f32) {
-        let bits = x.to_bits();
-        let exponent = (bits >> 23) & 0xff;
-        if exponent == 0xff {
+        let Some((negative, limb, wide)) = term_of(x) else {
             return;
-        }
-        let fraction = u64::from(bits & 0x7f_ffff);
-        let (mantissa, shift) = if exponent == 0 {
-            (fraction, 0)
-        } else {
-            (fraction | 0x80_0000, exponent - 1)
         };
-        let wide = u128::from(mantissa) << (shift % 64);
         let mut term = [0u64; LIMBS];
-        let limb = (shift / 64) as usize;
         term[limb] = wide as u64;
-        if limb + 1 < LIMBS {
-            term[limb + 1] = (wide >> 64) as u64;
-        }
-        if bits >> 31 == 1 {
+        term[limb + 1] = (wide >> 64) as u64;
+        if negative {
             term = negated(term);
         }
         s.merge(&ExactSum::from_limbs(term));
