@@ -6,9 +6,11 @@
 //!   lane bit-identical to the scalar watertight test; the SSE fallback tests them one by
 //!   one.
 //! * **Batches**: [`closest_batch`] and [`occluded_batch`] run the batch kernels of
-//!   `traverse.rs` with the same 8-wide node test in every lane; where the CPU also has
-//!   AVX-512F/VL, the lanes push the hit children as compressed block stores (`avx512.rs`;
-//!   closest hit in octant order), unless `STAGELIGHT_TRAVERSAL=avx2` (for A/B runs).
+//!   `traverse.rs` with the same 8-wide node test in every lane, and the lanes push the hit
+//!   children as packed block stores (`block_batch.rs`; closest hit in octant order): packed
+//!   with `vpcompressq` where the CPU also has AVX-512F/VL (unless `STAGELIGHT_TRAVERSAL=avx2`),
+//!   with a `vpermd` table on AVX2 (`pack.rs`; `STAGELIGHT_TRAVERSAL=avx2-loop` keeps the push
+//!   loop and the sort, for A/B runs).
 //! * **Single rays with AVX-512**: where the CPU has AVX-512F/VL, [`closest`] and
 //!   [`occluded`] run `single512.rs`: the same loops, with the hit children stored as one
 //!   compressed block instead of a push loop (and unless `STAGELIGHT_TRAVERSAL=avx2`).
@@ -33,7 +35,8 @@ use std::arch::x86_64::{
 };
 use std::sync::OnceLock;
 
-mod avx512;
+mod block_batch;
+mod pack;
 mod single512;
 
 use glam::Vec3;
@@ -80,6 +83,18 @@ fn use_avx512() -> bool {
     })
 }
 
+/// Whether the AVX2 batch kernels (without AVX-512) push hit children as block stores
+/// (`block_batch.rs`) rather than in a loop over the hit mask: on unless
+/// `STAGELIGHT_TRAVERSAL=avx2-loop` (for A/B runs; read once). The single-ray AVX2 kernels
+/// keep their loop: the same block step measured 0.91–0.93× on coherent rays
+/// (`docs/ray-layer.md`, session 23).
+fn use_avx2_block() -> bool {
+    static CHOICE: OnceLock<bool> = OnceLock::new();
+    *CHOICE.get_or_init(|| {
+        !std::env::var("STAGELIGHT_TRAVERSAL").is_ok_and(|v| v.starts_with("avx2-loop"))
+    })
+}
+
 /// Closest hit with the AVX-512 or AVX2 kernel; `None` when neither runs here (the caller
 /// falls back).
 #[inline]
@@ -118,14 +133,20 @@ pub(super) fn closest_batch(bvh: &Bvh, rays: &[Ray], out: &mut [Option<Hit>]) ->
     if use_avx512() {
         // SAFETY: AVX2, AVX-512F, AVX-512VL and the bit operations were detected on this
         // CPU just above (`use_avx512` implies `use_avx2`).
-        unsafe { avx512::closest_batch_avx512(bvh, rays, out) };
+        unsafe { block_batch::closest_batch_avx512(bvh, rays, out) };
         return true;
     }
     if !use_avx2() {
         return false;
     }
     // SAFETY: AVX2 and the bit operations were detected on this CPU just above.
-    unsafe { closest_batch_avx2(bvh, rays, out) };
+    unsafe {
+        if use_avx2_block() {
+            block_batch::closest_batch_block_avx2(bvh, rays, out);
+        } else {
+            closest_batch_avx2(bvh, rays, out);
+        }
+    }
     true
 }
 
@@ -136,14 +157,20 @@ pub(super) fn occluded_batch(bvh: &Bvh, rays: &[Ray], out: &mut [bool]) -> bool 
     if use_avx512() {
         // SAFETY: AVX2, AVX-512F, AVX-512VL and the bit operations were detected on this
         // CPU just above (`use_avx512` implies `use_avx2`).
-        unsafe { avx512::occluded_batch_avx512(bvh, rays, out) };
+        unsafe { block_batch::occluded_batch_avx512(bvh, rays, out) };
         return true;
     }
     if !use_avx2() {
         return false;
     }
     // SAFETY: AVX2 and the bit operations were detected on this CPU just above.
-    unsafe { occluded_batch_avx2(bvh, rays, out) };
+    unsafe {
+        if use_avx2_block() {
+            block_batch::occluded_batch_block_avx2(bvh, rays, out);
+        } else {
+            occluded_batch_avx2(bvh, rays, out);
+        }
+    }
     true
 }
 
@@ -390,19 +417,6 @@ mod tests {
         occluded_batch_in::<NodeRay8>(bvh, rays, occ);
     }
 
-    /// The AVX-512 batch kernels compiled without the bit operations (as before session 21),
-    /// for [`avx512_equals_sse`].
-    #[target_feature(enable = "avx2,avx512f,avx512vl")]
-    unsafe fn plain_batch_avx512(
-        bvh: &Bvh,
-        rays: &[Ray],
-        hits: &mut [Option<Hit>],
-        occ: &mut [bool],
-    ) {
-        closest_batch_in::<avx512::NodeRay8k>(bvh, rays, hits);
-        occluded_batch_in::<avx512::NodeRay8k>(bvh, rays, occ);
-    }
-
     /// The AVX2 kernels answer as the SSE kernel bit for bit (closest hit in octant and
     /// sorted order, occlusion, node masks and permutations), and the single-ray and batch
     /// kernels compiled with the bit operations (`popcnt`, `tzcnt`, …) as those compiled
@@ -484,117 +498,146 @@ mod tests {
         }
     }
 
-    /// The AVX-512 batch kernel (when this CPU has AVX-512F/VL) gives the SSE single-ray
-    /// kernel's answers bit for bit, in octant order and sorted, and its block push stores
-    /// exactly the entries (references and entry-distance bits, same order) that the generic
-    /// loop pushes with the same node test, for every node, octant and `t_far`; the batch
-    /// kernels compiled with the bit operations answer as those compiled without.
+    /// The batch kernels with block pushes of `P` (octant order and sorted; occlusion), each
+    /// batch's answers.
+    type BatchAnswers = [Vec<Option<Hit>>; 2];
+
+    /// Runs `closest` (octant order), the sorted closest-hit kernel and `occluded` of the block
+    /// batch lanes of `P` on `rays`.
+    #[inline(always)]
+    fn block_batches<P: pack::Pack>(bvh: &Bvh, rays: &[Ray]) -> (BatchAnswers, Vec<bool>) {
+        use super::super::traverse::closest_batch_ordered_in;
+        let n = rays.len();
+        let (mut octant, mut sorted, mut occ) = (vec![None; n], vec![None; n], vec![false; n]);
+        closest_batch_in::<block_batch::NodeRay8k<P>>(bvh, rays, &mut octant);
+        closest_batch_ordered_in::<block_batch::NodeRay8k<P>, false>(bvh, rays, &mut sorted);
+        occluded_batch_in::<block_batch::NodeRay8k<P>>(bvh, rays, &mut occ);
+        ([octant, sorted], occ)
+    }
+
+    /// The entries the block push of `P` and the generic loop (with the AVX2 node test) put on
+    /// a stack that already holds three (octant order) and on an empty one (occlusion: every
+    /// hit child in slot order), as `(reference, entry-distance bits)` from the bottom up.
+    #[inline(always)]
+    fn block_pushes<P: pack::Pack>(
+        node: &Node,
+        ray: &Ray,
+        t_far: f32,
+        order: u32,
+    ) -> [[Vec<(u32, u32)>; 2]; 2] {
+        use super::super::traverse::BatchStack;
+        let woop = WoopRay::new(ray.origin, ray.dir);
+        let block = <block_batch::NodeRay8k<P> as NodeTest>::new(ray, &woop);
+        let generic = <NodeRay8 as NodeTest>::new(ray, &woop);
+        let mut ordered = [3, 3].map(BatchStack::with_entries);
+        block.push_ordered(node, t_far, order, &mut ordered[0]);
+        generic.push_ordered(node, t_far, order, &mut ordered[1]);
+        let mut all = [0, 0].map(BatchStack::with_entries);
+        block.push_all(node, t_far, &mut all[0]);
+        generic.push_all(node, t_far, &mut all[1]);
+        let entries = |s: BatchStack| s.entries().iter().map(|e| (e.r, e.t.to_bits())).collect();
+        [ordered.map(entries), all.map(entries)]
+    }
+
+    /// Block batches and pushes with the AVX2 table ([`pack::Avx2Pack`]).
+    #[target_feature(enable = "avx2,popcnt,bmi1,bmi2,lzcnt")]
+    unsafe fn block_avx2(bvh: &Bvh, rays: &[Ray]) -> (BatchAnswers, Vec<bool>) {
+        block_batches::<pack::Avx2Pack>(bvh, rays)
+    }
+
+    #[target_feature(enable = "avx2,popcnt,bmi1,bmi2,lzcnt")]
+    unsafe fn pushes_avx2(node: &Node, ray: &Ray, t: f32, order: u32) -> [[Vec<(u32, u32)>; 2]; 2] {
+        block_pushes::<pack::Avx2Pack>(node, ray, t, order)
+    }
+
+    /// Block batches with AVX-512 compress ([`pack::Avx512Pack`]), compiled without the bit
+    /// operations (as before session 21).
+    #[target_feature(enable = "avx2,avx512f,avx512vl")]
+    unsafe fn block_avx512(bvh: &Bvh, rays: &[Ray]) -> (BatchAnswers, Vec<bool>) {
+        block_batches::<pack::Avx512Pack>(bvh, rays)
+    }
+
+    #[target_feature(enable = "avx2,avx512f,avx512vl")]
+    unsafe fn pushes_avx512(
+        node: &Node,
+        ray: &Ray,
+        t: f32,
+        order: u32,
+    ) -> [[Vec<(u32, u32)>; 2]; 2] {
+        block_pushes::<pack::Avx512Pack>(node, ray, t, order)
+    }
+
+    /// The block batch kernels — AVX2 with the table (when this CPU has AVX2), AVX-512 with
+    /// compress (when it has AVX-512F/VL), and the dispatched `closest_batch`/`occluded_batch`
+    /// — give the SSE single-ray kernel's answers bit for bit, in octant order and sorted, and
+    /// their block pushes store exactly the entries (references and entry-distance bits, same
+    /// order) that the generic loop pushes with the same node test, for every node, octant and
+    /// `t_far`.
     #[test]
-    fn avx512_equals_sse() {
-        if !(std::arch::is_x86_feature_detected!("avx2")
-            && std::arch::is_x86_feature_detected!("avx512f")
-            && std::arch::is_x86_feature_detected!("avx512vl")
-            && have_bit_ops())
-        {
-            eprintln!("no AVX-512F/VL on this CPU: the AVX2 and SSE kernels run");
+    fn block_batch_equals_sse() {
+        if !(std::arch::is_x86_feature_detected!("avx2") && have_bit_ops()) {
+            eprintln!("no AVX2 on this CPU: only the SSE kernel runs");
             return;
         }
+        let avx512 = std::arch::is_x86_feature_detected!("avx512f")
+            && std::arch::is_x86_feature_detected!("avx512vl");
         let (tris, rays) = soup_and_rays();
         for q in [BvhQuality::Fast, BvhQuality::Medium] {
             let bvh = build(&tris, q);
             for n in [1, 11, 12, 13, rays.len()] {
                 let rays = &rays[..n];
-                let mut octant = vec![None; n];
-                let mut sorted = vec![None; n];
-                let mut occ = vec![false; n];
-                let mut plain_hits = vec![None; n];
-                let mut plain_occ = vec![false; n];
-                // SAFETY: AVX2, AVX-512F/VL and the bit operations were detected above.
-                unsafe {
-                    avx512::closest_batch_avx512(&bvh, rays, &mut octant);
-                    batch_avx512_sorted(&bvh, rays, &mut sorted);
-                    avx512::occluded_batch_avx512(&bvh, rays, &mut occ);
-                    plain_batch_avx512(&bvh, rays, &mut plain_hits, &mut plain_occ);
+                // SAFETY: AVX2 and the bit operations were detected above.
+                let mut runs = vec![unsafe { block_avx2(&bvh, rays) }];
+                if avx512 {
+                    // SAFETY: AVX-512F/VL were detected above.
+                    runs.push(unsafe { block_avx512(&bvh, rays) });
                 }
-                for (i, r) in rays.iter().enumerate() {
-                    assert_eq!(hit_bits(octant[i]), hit_bits(plain_hits[i]), "{r:?}");
-                    assert_eq!(occ[i], plain_occ[i], "{r:?}");
-                    let sse_hit = hit_bits(closest_in::<NodeRay>(&bvh, r));
-                    assert_eq!(hit_bits(octant[i]), sse_hit, "{r:?}");
-                    assert_eq!(hit_bits(sorted[i]), sse_hit, "{r:?}");
-
-                    assert_eq!(occ[i], occluded_in::<NodeRay>(&bvh, r), "{r:?}");
+                let (mut dispatched, mut dispatched_occ) = (vec![None; n], vec![false; n]);
+                assert!(closest_batch(&bvh, rays, &mut dispatched));
+                assert!(occluded_batch(&bvh, rays, &mut dispatched_occ));
+                runs.push(([dispatched.clone(), dispatched], dispatched_occ));
+                for ([octant, sorted], occ) in runs {
+                    for (i, r) in rays.iter().enumerate() {
+                        let sse_hit = hit_bits(closest_in::<NodeRay>(&bvh, r));
+                        assert_eq!(hit_bits(octant[i]), sse_hit, "{r:?}");
+                        assert_eq!(hit_bits(sorted[i]), sse_hit, "{r:?}");
+                        assert_eq!(occ[i], occluded_in::<NodeRay>(&bvh, r), "{r:?}");
+                    }
                 }
             }
             let mut pushed = 0;
             for r in rays.iter().step_by(7) {
                 for node in bvh.nodes.iter().take(64) {
                     for t_far in [r.t_max, 1.0] {
-                        for &order in &node.order {
-                            // SAFETY: AVX2 and AVX-512F/VL were detected above.
-                            let [block, generic] = unsafe { pushes_avx512(node, r, t_far, order) };
-                            assert_eq!(block, generic, "{r:?}");
-                            pushed += block.len();
-                        }
-                        // SAFETY: AVX2 and AVX-512F/VL were detected above.
-                        let [block, generic] = unsafe { unordered_avx512(node, r, t_far) };
-                        let want = (0..8)
-                            .filter(|&i| {
-                                <NodeRay as NodeTest>::intersect(&NodeRay::new(r), node, t_far).0
-                                    >> i
-                                    & 1
-                                    != 0
-                            })
+                        let hit_mask =
+                            <NodeRay as NodeTest>::intersect(&NodeRay::new(r), node, t_far).0;
+                        let want: Vec<u32> = (0..8)
+                            .filter(|&i| hit_mask >> i & 1 != 0)
                             .map(|i| node.child[i])
-                            .collect::<Vec<_>>();
-                        assert_eq!(block.iter().map(|e| e.0).collect::<Vec<_>>(), want);
-                        assert_eq!(generic.iter().map(|e| e.0).collect::<Vec<_>>(), want);
+                            .collect();
+                        for &order in &node.order {
+                            // SAFETY: AVX2 and the bit operations were detected above.
+                            let mut got = vec![unsafe { pushes_avx2(node, r, t_far, order) }];
+                            if avx512 {
+                                // SAFETY: AVX-512F/VL were detected above.
+                                got.push(unsafe { pushes_avx512(node, r, t_far, order) });
+                            }
+                            for [[block, generic], [all_block, all_generic]] in got {
+                                assert_eq!(block, generic, "{r:?}");
+                                // Occlusion pushes: the references (the loop leaves the
+                                // entry distances unset).
+                                for all in [all_block, all_generic] {
+                                    let refs: Vec<u32> = all.iter().map(|e| e.0).collect();
+                                    assert_eq!(refs, want, "{r:?}");
+                                }
+                                pushed += block.len() - 3;
+                            }
+                        }
                     }
                 }
             }
             assert!(pushed > 1000, "{pushed}");
         }
-    }
-
-    #[target_feature(enable = "avx2,avx512f,avx512vl")]
-    unsafe fn batch_avx512_sorted(bvh: &Bvh, rays: &[Ray], out: &mut [Option<Hit>]) {
-        super::super::traverse::closest_batch_ordered_in::<avx512::NodeRay8k, false>(
-            bvh, rays, out,
-        );
-    }
-
-    /// The entries the AVX-512 block push and the generic loop (with the AVX2 node test) put
-    /// on a stack that already holds three, as `(reference, entry-distance bits)` from the
-    /// bottom up.
-    #[target_feature(enable = "avx2,avx512f,avx512vl")]
-    unsafe fn pushes_avx512(
-        node: &Node,
-        ray: &Ray,
-        t_far: f32,
-        order: u32,
-    ) -> [Vec<(u32, u32)>; 2] {
-        use super::super::traverse::BatchStack;
-        let woop = WoopRay::new(ray.origin, ray.dir);
-        let block = <avx512::NodeRay8k as NodeTest>::new(ray, &woop);
-        let generic = <NodeRay8 as NodeTest>::new(ray, &woop);
-        let mut stacks = [3, 3].map(BatchStack::with_entries);
-        block.push_ordered(node, t_far, order, &mut stacks[0]);
-        generic.push_ordered(node, t_far, order, &mut stacks[1]);
-        stacks.map(|s| s.entries().iter().map(|e| (e.r, e.t.to_bits())).collect())
-    }
-
-    /// The references (with the entry distances' bits) the AVX-512 block push and the generic
-    /// loop put on an empty stack for the occlusion lanes, from the bottom up.
-    #[target_feature(enable = "avx2,avx512f,avx512vl")]
-    unsafe fn unordered_avx512(node: &Node, ray: &Ray, t_far: f32) -> [Vec<(u32, u32)>; 2] {
-        use super::super::traverse::BatchStack;
-        let woop = WoopRay::new(ray.origin, ray.dir);
-        let block = <avx512::NodeRay8k as NodeTest>::new(ray, &woop);
-        let generic = <NodeRay8 as NodeTest>::new(ray, &woop);
-        let mut stacks = [0, 0].map(BatchStack::with_entries);
-        block.push_all(node, t_far, &mut stacks[0]);
-        generic.push_all(node, t_far, &mut stacks[1]);
-        stacks.map(|s| s.entries().iter().map(|e| (e.r, e.t.to_bits())).collect())
     }
 
     #[target_feature(enable = "avx2")]

@@ -7,7 +7,7 @@
 //!   mask register, on the lanes already permuted into the ray's octant order, reversed (lane
 //!   `j` is the child visited `(7 − j)`-th); the child references and entry distances are
 //!   interleaved into `(r, t)` pairs, the hit ones packed to the bottom (`vpcompressq`,
-//!   register form) and stored above the stack top, farthest first. The topmost stored pair is
+//!   register form, `pack.rs`) and stored above the stack top, farthest first. The topmost stored pair is
 //!   the nearest child: it is read back as the node visited next, and the stack grows by the
 //!   popcount less one. No loop over the children, so no mispredicted loop exit.
 //! * **Prefetch** (`prefetch_child`: four lines from the child's first byte, no clamping
@@ -20,18 +20,18 @@
 //!   for bit (`single_avx512_equals_avx2_and_sse` below).
 
 use std::arch::x86_64::{
-    __m256i, _mm256_and_si256, _mm256_castps_si256, _mm256_cmp_ps_mask, _mm256_loadu_si256,
-    _mm256_maskz_compress_epi64, _mm256_permute2x128_si256, _mm256_permutevar8x32_epi32,
+    __m256i, _mm256_and_si256, _mm256_loadu_si256, _mm256_permutevar8x32_epi32,
     _mm256_permutevar8x32_ps, _mm256_set1_epi32, _mm256_setr_epi32, _mm256_srlv_epi32,
-    _mm256_storeu_si256, _mm256_unpackhi_epi32, _mm256_unpacklo_epi32, _CMP_LE_OS,
+    _mm256_storeu_si256,
 };
 
 use glam::Vec3;
 
 use super::super::bvh::{Bvh, Node};
-use super::super::traverse::{closest_in, occluded_in, prefetch_child, Entry, NodeTest, Stack};
+use super::super::traverse::{closest_in, occluded_in, prefetch_child, NodeTest, Stack};
 use super::super::triangle::WoopRay;
 use super::super::{Hit, Ray};
+use super::pack::{store_pairs, Avx512Pack, Pack};
 use super::NodeRay8;
 
 /// Closest hit with the AVX-512 node step (in octant order, unless sorted: `traverse.rs`).
@@ -108,7 +108,7 @@ impl NodeTest for NodeRay8s {
                 _mm256_set1_epi32(7),
             );
             let tn = _mm256_permutevar8x32_ps(tn, slots);
-            let hit = _mm256_cmp_ps_mask::<_CMP_LE_OS>(tn, _mm256_permutevar8x32_ps(tf, slots));
+            let hit = Avx512Pack::le_mask(tn, _mm256_permutevar8x32_ps(tf, slots));
             if hit == 0 {
                 return None;
             }
@@ -123,7 +123,7 @@ impl NodeTest for NodeRay8s {
             _mm256_storeu_si256(r.as_mut_ptr().cast::<__m256i>(), child);
             let next = r[(31 - u32::from(hit).leading_zeros()) as usize & 7];
             let block = stack.top_block();
-            store_pairs(child, _mm256_castps_si256(tn), hit, block);
+            store_pairs::<Avx512Pack>(child, tn, hit, block);
             let n = hit.count_ones() as usize;
             // Only the child popped next, after the nearest's subtree, is prefetched: the
             // topmost pushed, or the nearest itself when nothing is pushed (no branch, no loop).
@@ -132,32 +132,6 @@ impl NodeTest for NodeRay8s {
             stack.grow(n - 1);
             Some(next)
         }
-    }
-}
-
-/// Stores the pairs `(c[j], t[j])` whose bit `j` is set in `hit` packed to the bottom of
-/// the eight slots at `block`, in `j` order (`Entry` is `repr(C)` `(u32, f32)`), as two
-/// compressed halves of four; the slots above them get unspecified values, and slots
-/// `0..max(4, popcount(hit))` are all written.
-///
-/// # Safety
-/// The CPU must support AVX2, AVX-512F and AVX-512VL (call only inside the AVX-512 kernels),
-/// and `block` must point at eight writable slots ([`Stack::top_block`]).
-#[inline(always)]
-unsafe fn store_pairs(c: __m256i, t: __m256i, hit: u8, block: *mut Entry) {
-    // SAFETY: intrinsics as above; the stores write four entries (32 bytes) each, at
-    // `block[0..4]` and `block[n..n + 4]` with n ≤ 4, inside the caller's eight slots.
-    unsafe {
-        let lo = _mm256_unpacklo_epi32(c, t); // pairs 0, 1 | 4, 5
-        let hi = _mm256_unpackhi_epi32(c, t); // pairs 2, 3 | 6, 7
-        let first = _mm256_permute2x128_si256::<0x20>(lo, hi);
-        let second = _mm256_permute2x128_si256::<0x31>(lo, hi);
-        let n = (hit & 15).count_ones() as usize;
-        _mm256_storeu_si256(block.cast(), _mm256_maskz_compress_epi64(hit & 15, first));
-        _mm256_storeu_si256(
-            block.add(n).cast(),
-            _mm256_maskz_compress_epi64(hit >> 4, second),
-        );
     }
 }
 
