@@ -9,10 +9,9 @@
 //! * **Order**: the single-ray kernels (closest hit and occlusion) visit hit children in the
 //!   node's precomputed order for the ray's octant (`Node::order`; no sort): the nearest is
 //!   visited next (not pushed, not prefetched), the others are pushed farthest first. The
-//!   AVX-512 batch lanes push them in the same order, farthest first, the nearest on top
-//!   (`NodeTest::push_ordered`, one
-//!   compressed block store); the other batch lanes push them sorted by entry distance,
-//!   nearest on top. `STAGELIGHT_TRAVERSAL=sorted` sorts in every kernel, and the
+//!   block batch lanes (AVX-512 or AVX2) push them in the same order, farthest first, the
+//!   nearest on top (`NodeTest::push_ordered`, one packed block store); the other batch lanes
+//!   push them sorted by entry distance, nearest on top. `STAGELIGHT_TRAVERSAL=sorted` sorts in every kernel, and the
 //!   single-ray occlusion kernel then visits the last slot hit first (for A/B runs).
 //!   Popped entries farther than the current closest hit are skipped.
 //! * **Prefetch**: every child pushed is prefetched whole (a node's four cache lines, a
@@ -46,7 +45,8 @@ const FAR_SCALE: f32 = 1.0 + 2.0 * gamma(3);
 pub(super) trait NodeTest {
     /// Whether the batch lanes push children in octant order ([`NodeTest::push_ordered`])
     /// rather than sorted by entry distance: only where the push is one block store (the
-    /// AVX-512 lanes); with a loop, octant order measured no better than the sort there.
+    /// block lanes, AVX-512 or AVX2); with a loop, octant order measured no better than the
+    /// sort there.
     const BATCH_OCTANT: bool = false;
 
     /// Per-ray constants (`woop` is the ray's triangle-test constants, already made).
@@ -117,7 +117,7 @@ pub(super) trait NodeTest {
 
     /// Pushes the children of `node` entered within `[0, t_far]` onto `stack` in the visiting
     /// order `order` (a [`Node::order`] word), farthest first, so that the nearest is on top
-    /// (the batch lanes). Here through [`NodeTest::intersect_ordered`] and a loop; the AVX-512
+    /// (the batch lanes). Here through [`NodeTest::intersect_ordered`] and a loop; the block
     /// kernels store all of them at once.
     #[inline(always)]
     fn push_ordered(&self, node: &Node, t_far: f32, order: u32, stack: &mut BatchStack) {
@@ -131,7 +131,7 @@ pub(super) trait NodeTest {
 
     /// Pushes the children of `node` entered within `[0, t_far]` onto `stack` in slot order
     /// (the last slot on top), with an unspecified entry distance (the occlusion lanes). A
-    /// loop here; the AVX-512 kernels store them as one block.
+    /// loop here; the block kernels (AVX-512 or AVX2) store them as one block.
     #[inline(always)]
     fn push_all(&self, node: &Node, t_far: f32, stack: &mut BatchStack) {
         let (mut mask, _) = self.intersect(node, t_far);
@@ -1049,7 +1049,7 @@ pub(super) fn closest_batch_in<N: NodeTest>(bvh: &Bvh, rays: &[Ray], out: &mut [
 }
 
 /// [`closest_batch_in`] with the lanes' child order fixed: octant order (`OCTANT`: the
-/// default of the AVX-512 lanes) or sorted by entry distance (the others, and every kernel
+/// default of the block lanes) or sorted by entry distance (the others, and every kernel
 /// with `STAGELIGHT_TRAVERSAL=sorted`).
 #[inline(always)]
 pub(super) fn closest_batch_ordered_in<N: NodeTest, const OCTANT: bool>(
