@@ -18,10 +18,7 @@
 //!   ([`NodeTest::push_ordered`], [`NodeTest::push_all`]), and the results are the SSE
 //!   kernel's bit for bit (`block_batch_equals_sse` in `traverse_wide.rs`).
 
-use std::arch::x86_64::{
-    __m256i, _mm256_and_si256, _mm256_loadu_si256, _mm256_permutevar8x32_epi32,
-    _mm256_permutevar8x32_ps, _mm256_set1_epi32, _mm256_setr_epi32, _mm256_srlv_epi32,
-};
+use std::arch::x86_64::{__m256i, _mm256_loadu_si256, _mm256_permutevar8x32_epi32};
 use std::marker::PhantomData;
 
 use glam::Vec3;
@@ -30,7 +27,7 @@ use super::super::bvh::{Bvh, Node};
 use super::super::traverse::{closest_batch_in, occluded_batch_in, BatchStack, NodeTest};
 use super::super::triangle::WoopRay;
 use super::super::{Hit, Ray};
-use super::pack::{store_pairs, Avx2Pack, Avx512Pack, Pack};
+use super::pack::{reversed_order, store_pairs, Avx2Pack, Avx512Pack, Pack};
 use super::NodeRay8;
 
 /// Closest hits of a batch with the AVX-512 block pushes in every lane.
@@ -113,15 +110,7 @@ impl<P: Pack> NodeTest for NodeRay8k<P> {
         // through a reference to it; the block is the stack's eight slots above its top.
         let n = unsafe {
             // Lane j: the slot visited (7 − j)-th, so the farthest is pushed first.
-            let slots = _mm256_and_si256(
-                _mm256_srlv_epi32(
-                    _mm256_set1_epi32(order as i32),
-                    _mm256_setr_epi32(21, 18, 15, 12, 9, 6, 3, 0),
-                ),
-                _mm256_set1_epi32(7),
-            );
-            let tn = _mm256_permutevar8x32_ps(tn, slots);
-            let hit = P::le_mask(tn, _mm256_permutevar8x32_ps(tf, slots));
+            let (slots, tn, hit) = reversed_order::<P>(tn, tf, order);
             let child = _mm256_loadu_si256(std::ptr::from_ref(&node.child).cast::<__m256i>());
             store_pairs::<P>(
                 _mm256_permutevar8x32_epi32(child, slots),

@@ -1,18 +1,20 @@
-//! Packing a node's hit children into a stack block, shared by the block node steps of
-//! `block_single.rs` and `block_batch.rs`: the child references and entry distances are
-//! interleaved into eight `(r, t)` pairs and the hit pairs packed to the bottom of the block in
-//! lane order, as two halves of four.
+//! Ordering and packing a node's hit children into a stack block, shared by the block node
+//! steps of `single512.rs` (single rays, AVX-512) and `block_batch.rs` (batch lanes, AVX-512 or
+//! AVX2): the hit lanes in the node's octant order reversed ([`reversed_order`]), the child
+//! references and entry distances interleaved into eight `(r, t)` pairs and the hit pairs
+//! packed to the bottom of the block in lane order, as two halves of four ([`store_pairs`]).
 //!
 //! * **Two instruction sets, one layout** ([`Pack`]): with AVX-512F/VL a half is packed by
 //!   `vpcompressq` (register form) and the `≤` mask comes from a mask register
-//!   ([`Avx512Pack`]); on AVX2 alone a half is permuted with `vpermd` by a 16-entry table
-//!   indexed by its four mask bits ([`Avx2Pack`], the left-pack of Lemire & al.): the same
+//!   ([`Avx512Pack`]); on AVX2 alone a half is permuted with `vpermd` by a row of a 16-entry
+//!   table indexed by its four mask bits ([`Avx2Pack`], a table-driven left-pack): the same
 //!   pairs in the same slots, so both give the generic push loop's stack entries.
 
 use std::arch::x86_64::{
-    __m256, __m256i, _mm256_castps_si256, _mm256_cmp_ps, _mm256_cmp_ps_mask, _mm256_load_si256,
-    _mm256_maskz_compress_epi64, _mm256_movemask_ps, _mm256_permute2x128_si256,
-    _mm256_permutevar8x32_epi32, _mm256_storeu_si256, _mm256_unpackhi_epi32, _mm256_unpacklo_epi32,
+    __m256, __m256i, _mm256_and_si256, _mm256_castps_si256, _mm256_cmp_ps, _mm256_cmp_ps_mask,
+    _mm256_load_si256, _mm256_maskz_compress_epi64, _mm256_movemask_ps, _mm256_permute2x128_si256,
+    _mm256_permutevar8x32_epi32, _mm256_permutevar8x32_ps, _mm256_set1_epi32, _mm256_setr_epi32,
+    _mm256_srlv_epi32, _mm256_storeu_si256, _mm256_unpackhi_epi32, _mm256_unpacklo_epi32,
     _CMP_LE_OS,
 };
 
@@ -101,6 +103,35 @@ const fn pack_table() -> [[u32; 8]; 16] {
         m += 1;
     }
     table
+}
+
+/// The slab test's entry and exit distances `tn`, `tf` (slot order) in the visiting order
+/// `order` (a `Node::order` word) reversed — lane `j` is the slot visited `(7 − j)`-th, so a
+/// block stored from them puts the farthest first and the nearest on top — as
+/// `(slots, tn, hit)`: the lanes' slot indices, the permuted entry distances and `P`'s `≤`
+/// mask of the permuted lanes.
+///
+/// # Safety
+/// The CPU must support `P`'s instruction set and AVX2.
+#[inline(always)]
+pub(super) unsafe fn reversed_order<P: Pack>(
+    tn: __m256,
+    tf: __m256,
+    order: u32,
+) -> (__m256i, __m256, u8) {
+    // SAFETY: intrinsics on values, as the caller guarantees.
+    unsafe {
+        let slots = _mm256_and_si256(
+            _mm256_srlv_epi32(
+                _mm256_set1_epi32(order as i32),
+                _mm256_setr_epi32(21, 18, 15, 12, 9, 6, 3, 0),
+            ),
+            _mm256_set1_epi32(7),
+        );
+        let tn = _mm256_permutevar8x32_ps(tn, slots);
+        let hit = P::le_mask(tn, _mm256_permutevar8x32_ps(tf, slots));
+        (slots, tn, hit)
+    }
 }
 
 /// Stores the pairs `(c[j], t[j])` whose bit `j` is set in `hit` packed to the bottom of the

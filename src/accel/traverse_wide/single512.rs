@@ -20,9 +20,7 @@
 //!   for bit (`single_avx512_equals_avx2_and_sse` below).
 
 use std::arch::x86_64::{
-    __m256i, _mm256_and_si256, _mm256_loadu_si256, _mm256_permutevar8x32_epi32,
-    _mm256_permutevar8x32_ps, _mm256_set1_epi32, _mm256_setr_epi32, _mm256_srlv_epi32,
-    _mm256_storeu_si256,
+    __m256i, _mm256_loadu_si256, _mm256_permutevar8x32_epi32, _mm256_storeu_si256,
 };
 
 use glam::Vec3;
@@ -31,7 +29,7 @@ use super::super::bvh::{Bvh, Node};
 use super::super::traverse::{closest_in, occluded_in, prefetch_child, NodeTest, Stack};
 use super::super::triangle::WoopRay;
 use super::super::{Hit, Ray};
-use super::pack::{store_pairs, Avx512Pack, Pack};
+use super::pack::{reversed_order, store_pairs, Avx512Pack};
 use super::NodeRay8;
 
 /// Closest hit with the AVX-512 node step (in octant order, unless sorted: `traverse.rs`).
@@ -100,15 +98,7 @@ impl NodeTest for NodeRay8s {
         // reference to it; `block` is the stack's eight slots above its top.
         unsafe {
             // Lane j: the slot visited (7 − j)-th, so the farthest is stored first.
-            let slots = _mm256_and_si256(
-                _mm256_srlv_epi32(
-                    _mm256_set1_epi32(order as i32),
-                    _mm256_setr_epi32(21, 18, 15, 12, 9, 6, 3, 0),
-                ),
-                _mm256_set1_epi32(7),
-            );
-            let tn = _mm256_permutevar8x32_ps(tn, slots);
-            let hit = Avx512Pack::le_mask(tn, _mm256_permutevar8x32_ps(tf, slots));
+            let (slots, tn, hit) = reversed_order::<Avx512Pack>(tn, tf, order);
             if hit == 0 {
                 return None;
             }
