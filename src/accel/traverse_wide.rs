@@ -7,7 +7,7 @@
 //!   one.
 //! * **Batches**: [`closest_batch`] and [`occluded_batch`] run the batch kernels of
 //!   `traverse.rs` with the same 8-wide node test in every lane, and the lanes push the hit
-//!   children as packed block stores (`block_batch.rs`; closest hit in octant order): packed
+//!   children as packed block stores (`block.rs`; closest hit in octant order): packed
 //!   with `vpcompressq` where the CPU also has AVX-512F/VL (unless `STAGELIGHT_TRAVERSAL=avx2`),
 //!   with a `vpermd` table on AVX2 (`pack.rs`; `STAGELIGHT_TRAVERSAL=avx2-loop` keeps the push
 //!   loop and the sort, for A/B runs).
@@ -35,7 +35,7 @@ use std::arch::x86_64::{
 };
 use std::sync::OnceLock;
 
-mod block_batch;
+mod block;
 mod pack;
 mod single512;
 
@@ -84,7 +84,7 @@ fn use_avx512() -> bool {
 }
 
 /// Whether the AVX2 batch kernels (without AVX-512) push hit children as block stores
-/// (`block_batch.rs`) rather than in a loop over the hit mask: on unless
+/// (`block.rs`) rather than in a loop over the hit mask: on unless
 /// `STAGELIGHT_TRAVERSAL=avx2-loop` (for A/B runs; read once). The single-ray AVX2 kernels
 /// keep their loop: the same block step measured 0.91–0.93× on coherent rays
 /// (`docs/ray-layer.md`, session 23).
@@ -133,7 +133,7 @@ pub(super) fn closest_batch(bvh: &Bvh, rays: &[Ray], out: &mut [Option<Hit>]) ->
     if use_avx512() {
         // SAFETY: AVX2, AVX-512F, AVX-512VL and the bit operations were detected on this
         // CPU just above (`use_avx512` implies `use_avx2`).
-        unsafe { block_batch::closest_batch_avx512(bvh, rays, out) };
+        unsafe { block::closest_batch_avx512(bvh, rays, out) };
         return true;
     }
     if !use_avx2() {
@@ -142,7 +142,7 @@ pub(super) fn closest_batch(bvh: &Bvh, rays: &[Ray], out: &mut [Option<Hit>]) ->
     // SAFETY: AVX2 and the bit operations were detected on this CPU just above.
     unsafe {
         if use_avx2_block() {
-            block_batch::closest_batch_block_avx2(bvh, rays, out);
+            block::closest_batch_block_avx2(bvh, rays, out);
         } else {
             closest_batch_avx2(bvh, rays, out);
         }
@@ -157,7 +157,7 @@ pub(super) fn occluded_batch(bvh: &Bvh, rays: &[Ray], out: &mut [bool]) -> bool 
     if use_avx512() {
         // SAFETY: AVX2, AVX-512F, AVX-512VL and the bit operations were detected on this
         // CPU just above (`use_avx512` implies `use_avx2`).
-        unsafe { block_batch::occluded_batch_avx512(bvh, rays, out) };
+        unsafe { block::occluded_batch_avx512(bvh, rays, out) };
         return true;
     }
     if !use_avx2() {
@@ -166,7 +166,7 @@ pub(super) fn occluded_batch(bvh: &Bvh, rays: &[Ray], out: &mut [bool]) -> bool 
     // SAFETY: AVX2 and the bit operations were detected on this CPU just above.
     unsafe {
         if use_avx2_block() {
-            block_batch::occluded_batch_block_avx2(bvh, rays, out);
+            block::occluded_batch_block_avx2(bvh, rays, out);
         } else {
             occluded_batch_avx2(bvh, rays, out);
         }
@@ -509,9 +509,9 @@ mod tests {
         use super::super::traverse::closest_batch_ordered_in;
         let n = rays.len();
         let (mut octant, mut sorted, mut occ) = (vec![None; n], vec![None; n], vec![false; n]);
-        closest_batch_in::<block_batch::NodeRay8k<P>>(bvh, rays, &mut octant);
-        closest_batch_ordered_in::<block_batch::NodeRay8k<P>, false>(bvh, rays, &mut sorted);
-        occluded_batch_in::<block_batch::NodeRay8k<P>>(bvh, rays, &mut occ);
+        closest_batch_in::<block::NodeRay8k<P>>(bvh, rays, &mut octant);
+        closest_batch_ordered_in::<block::NodeRay8k<P>, false>(bvh, rays, &mut sorted);
+        occluded_batch_in::<block::NodeRay8k<P>>(bvh, rays, &mut occ);
         ([octant, sorted], occ)
     }
 
@@ -527,7 +527,7 @@ mod tests {
     ) -> [[Vec<(u32, u32)>; 2]; 2] {
         use super::super::traverse::BatchStack;
         let woop = WoopRay::new(ray.origin, ray.dir);
-        let block = <block_batch::NodeRay8k<P> as NodeTest>::new(ray, &woop);
+        let block = <block::NodeRay8k<P> as NodeTest>::new(ray, &woop);
         let generic = <NodeRay8 as NodeTest>::new(ray, &woop);
         let mut ordered = [3, 3].map(BatchStack::with_entries);
         block.push_ordered(node, t_far, order, &mut ordered[0]);

@@ -1,5 +1,5 @@
 //! Ordering and packing a node's hit children into a stack block, shared by the block node
-//! steps of `single512.rs` (single rays, AVX-512) and `block_batch.rs` (batch lanes, AVX-512 or
+//! steps of `single512.rs` (single rays, AVX-512) and `block.rs` (batch lanes, AVX-512 or
 //! AVX2): the hit lanes in the node's octant order reversed ([`reversed_order`]), the child
 //! references and entry distances interleaved into eight `(r, t)` pairs and the hit pairs
 //! packed to the bottom of the block in lane order, as two halves of four ([`store_pairs`]).
