@@ -93,14 +93,28 @@ impl Node {
         });
         std::array::from_fn(|octant| {
             let sign = |axis: usize| if octant >> axis & 1 == 0 { 1.0 } else { -1.0 };
-            let key: [f32; 8] =
-                std::array::from_fn(|s| (0..3).map(|a| centre[s][a] * sign(a)).sum());
+            // A filled slot's key is NaN only where its centres overflow (extents near
+            // `f32::MAX`); one NaN for all of them, whatever sign the arithmetic gave.
+            let key: [f32; 8] = std::array::from_fn(|s| {
+                let k: f32 = (0..3).map(|a| centre[s][a] * sign(a)).sum();
+                if k.is_nan() {
+                    f32::NAN
+                } else {
+                    k
+                }
+            });
             // Filled slots by key (ties by slot), then the empty ones in slot order: one
-            // integer per slot ordered as (empty, key by `total_cmp`, slot), sorted.
+            // integer per slot ordered as (empty, key by `total_cmp`, slot), sorted. An empty
+            // slot's key is left out: its box is (+∞, −∞), its centre NaN, and the sign of
+            // `NaN · −1` is the compiler's choice (`mulss` keeps it, a negation flips it), so
+            // the order of the empty slots changed with the build's codegen units.
             let sort_keys: [u64; 8] = std::array::from_fn(|s| {
+                if self.child[s] == EMPTY_CHILD {
+                    return 1 << 63 | s as u64;
+                }
                 let bits = key[s].to_bits() as i32;
                 let total = (bits ^ (((bits >> 31) as u32) >> 1) as i32) as u32 ^ 1 << 31;
-                u64::from(self.child[s] == EMPTY_CHILD) << 63 | u64::from(total) << 3 | s as u64
+                u64::from(total) << 3 | s as u64
             });
             // The keys are distinct (the slot is in the low bits): each slot's rank is the
             // number of smaller keys, a branch-free sort of eight.
@@ -478,20 +492,46 @@ mod tests {
                         .sum()
                 };
                 assert!(slots[..filled].windows(2).all(|w| key(w[0]) <= key(w[1])));
-                // The same order as a comparison sort (ties by slot).
+                // The same order as a comparison sort (ties by slot), the empty slots last in
+                // slot order whatever their (NaN) keys.
                 let mut want: Vec<usize> = (0..8).collect();
                 want.sort_by(|&a, &b| {
                     let empty = |s: usize| node.child[s] == EMPTY_CHILD;
                     empty(a)
                         .cmp(&empty(b))
-                        .then_with(|| key(a).total_cmp(&key(b)))
+                        .then_with(|| match empty(a) {
+                            true => std::cmp::Ordering::Equal,
+                            false => key(a).total_cmp(&key(b)),
+                        })
                         .then(a.cmp(&b))
                 });
                 assert_eq!(slots, want);
+                assert!(slots[filled..].windows(2).all(|w| w[0] < w[1]));
             }
         }
         assert!(partial > 0 && bvh.nodes.len() > 10);
         assert_eq!(Node::EMPTY.order[5], pack_order(std::array::from_fn(|s| s)));
+    }
+
+    /// Empty slots follow the filled ones in slot order whatever NaN their (empty) boxes
+    /// give as keys; before, they were sorted by the NaN's sign, which the compiler chose.
+    #[test]
+    fn empty_slots_come_last_in_slot_order_whatever_their_nan_keys() {
+        let mut node = Node::EMPTY;
+        node.set_child(0, 3, Vec3::splat(1.0), Vec3::splat(2.0));
+        node.set_child(1, 4, Vec3::splat(-2.0), Vec3::splat(-1.0));
+        let negative_nan = f32::from_bits(f32::NAN.to_bits() | 1 << 31);
+        for (slot, nan) in [
+            (2, f32::NAN),
+            (3, negative_nan),
+            (5, f32::NAN),
+            (6, negative_nan),
+        ] {
+            node.bounds[0][slot / 4][slot % 4] = nan;
+        }
+        let orders = node.octant_orders();
+        assert_eq!(orders[0], pack_order([1, 0, 2, 3, 4, 5, 6, 7]));
+        assert_eq!(orders[7], pack_order([0, 1, 2, 3, 4, 5, 6, 7]));
     }
 
     /// The phases cover the build: each was timed, and together they are the build time up
