@@ -272,7 +272,7 @@ pub(super) fn build_bounded(mut refs: Vec<Bounds>, bounds: Bounds, centroids: Bo
     // `2n − 1` slots, the size with one triangle per leaf: every subtree owns a slice of
     // that size, and slices of leaves of two triangles stay unused (all zeros, the default
     // node). Zeroed pages from the allocator: no 100 MB fill pass on a million triangles.
-    let mut nodes: Vec<Bvh2Node> = bytemuck::zeroed_vec(2 * n - 1);
+    let mut nodes: Vec<Bvh2Node> = crate::accel::huge_pages::zeroed(2 * n - 1);
     if n <= LEAF_MAX {
         nodes[0] = bounds.node(n as u32, 0);
     } else {

@@ -111,7 +111,7 @@ pub(crate) fn collapse(bvh2: &Bvh2, max_prims_per_leaf: u32) -> Collapsed {
         bvh2,
         max_prims_per_leaf,
         // Zeroed pages from the allocator, not a 16-byte store per binary node.
-        table: bytemuck::zeroed_vec(n),
+        table: crate::accel::huge_pages::zeroed(n),
     };
     let root = c.cost(0, 0);
     let total_nodes = c.nodes8(0);
