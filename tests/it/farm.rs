@@ -15,7 +15,8 @@ use stagelight::image_io::encode_exr;
 use stagelight::scene::load_scene;
 
 /// Renders `path` shrunk to at most 20 pixels across with at most 2 samples (adaptive
-/// sampling capped at 8), as `part` when given. Returns the buffers (with exact sums for a
+/// sampling capped at 8) and at most 20,000 photons per map (every part traces the whole
+/// maps: they are what most of a part's time went to), as `part` when given. Returns the buffers (with exact sums for a
 /// part), the effective settings' frame and whether the scene samples adaptively.
 fn render(path: &Path, part: Option<Part>) -> (FrameBuffers, Frame) {
     let mut scene = load_scene(path).unwrap_or_else(|e| panic!("{}:\n{e}", path.display()));
@@ -29,6 +30,13 @@ fn render(path: &Path, part: Option<Part>) -> (FrameBuffers, Frame) {
     if let Some(a) = &mut settings.adaptive {
         a.max = a.max.min(8);
         a.min = a.min.min(a.max);
+    }
+    let photons = &mut settings.photons;
+    for map in [&mut photons.caustics, &mut photons.global_illumination]
+        .into_iter()
+        .flatten()
+    {
+        map.photons = map.photons.min(20_000);
     }
     let mut frame = Frame::new(settings);
     frame.inputs.part = part.map(|part| PartRun {
