@@ -4,6 +4,7 @@
 use exr::prelude::*;
 use glam::Vec3;
 
+use crate::image_io::png_codec::{self, PngLayout};
 use crate::image_io::srgb;
 
 /// A baked texture: linear RGB per texel (row 0 at the top) and whether each texel holds a
@@ -102,8 +103,6 @@ impl TexelImage {
                 v.clamp(0.0, 1.0)
             }
         };
-        let mut out = Vec::new();
-        let encoder = image::codecs::png::PngEncoder::new(&mut out);
         if sixteen_bit {
             let mut data = Vec::with_capacity(self.texels.len() * 6);
             for t in &self.texels {
@@ -112,30 +111,15 @@ impl TexelImage {
                     data.extend_from_slice(&v.to_be_bytes());
                 }
             }
-            image::ImageEncoder::write_image(
-                encoder,
-                &data,
-                self.width,
-                self.height,
-                image::ExtendedColorType::Rgb16,
-            )
-            .map_err(|e| e.to_string())?;
+            png_codec::encode_png(&data, self.width, self.height, PngLayout::Rgb16)
         } else {
             let data: Vec<u8> = self
                 .texels
                 .iter()
                 .flat_map(|t| [0, 1, 2].map(|c| (encode(t[c]) * 255.0 + 0.5) as u8))
                 .collect();
-            image::ImageEncoder::write_image(
-                encoder,
-                &data,
-                self.width,
-                self.height,
-                image::ExtendedColorType::Rgb8,
-            )
-            .map_err(|e| e.to_string())?;
+            png_codec::encode_png(&data, self.width, self.height, PngLayout::Rgb8)
         }
-        Ok(out)
     }
 
     /// The validity mask as an 8-bit grey PNG (255 valid, 0 empty).
@@ -145,16 +129,35 @@ impl TexelImage {
             .iter()
             .map(|&v| if v { 255 } else { 0 })
             .collect();
-        let mut out = Vec::new();
-        let encoder = image::codecs::png::PngEncoder::new(&mut out);
-        image::ImageEncoder::write_image(
-            encoder,
-            &data,
-            self.width,
-            self.height,
-            image::ExtendedColorType::L8,
-        )
-        .map_err(|e| e.to_string())?;
-        Ok(out)
+        png_codec::encode_png(&data, self.width, self.height, PngLayout::Grey8)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::image_io::png_codec::{decode_png, Samples};
+
+    /// A 16-bit PNG holds each linear value as round(v · 65535), big-endian as PNG requires
+    /// (a reader gets 0x1234, not the byte-swapped 0x3412 an encoder expecting native-endian
+    /// samples would write); 8-bit as round(v · 255); the mask as 255 and 0.
+    #[test]
+    fn png_bakes_store_the_quantised_values() {
+        let mut img = TexelImage::new(2, 1);
+        img.texels = vec![
+            Vec3::new(0x1234 as f32 / 65535.0, 0.0, 1.0),
+            Vec3::splat(0.5),
+        ];
+        img.valid = vec![true, false];
+        let d = decode_png(&img.encode_png(true, false).unwrap()).unwrap();
+        let want = vec![0x1234, 0, 65535, 32768, 32768, 32768];
+        assert_eq!(
+            (d.width, d.height, d.samples),
+            (2, 1, Samples::Sixteen(want))
+        );
+        let d = decode_png(&img.encode_png(false, false).unwrap()).unwrap();
+        assert_eq!(d.samples, Samples::Eight(vec![18, 0, 255, 128, 128, 128]));
+        let d = decode_png(&img.encode_mask_png().unwrap()).unwrap();
+        assert_eq!((d.channels, d.samples), (1, Samples::Eight(vec![255, 0])));
     }
 }

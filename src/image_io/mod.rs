@@ -1,10 +1,12 @@
-//! Image writers: PNG (8-bit sRGB) and OpenEXR (linear f32 layers), and the all-or-nothing
+//! Image writers: PNG (8-bit sRGB; every PNG read and write goes through [`png_codec`]) and
+//! OpenEXR (linear f32 layers), and the all-or-nothing
 //! commit of a run's files ([`commit_all`]: temporaries, then renames, rolled back on
 //! failure).
 
 mod atomic;
 mod exr_writer;
 pub mod imager;
+pub mod png_codec;
 mod png_writer;
 pub mod srgb;
 

@@ -2,6 +2,7 @@
 
 use crate::components::Imager;
 use crate::framebuffer::FrameBuffers;
+use crate::image_io::png_codec::{self, PngLayout};
 use crate::image_io::srgb::to_u8;
 
 /// Encodes the beauty pass as PNG; with `alpha` the coverage goes into the alpha channel.
@@ -30,14 +31,10 @@ pub fn encode_png(
             data.push(quantize(a));
         }
     }
-    let color = if alpha {
-        image::ExtendedColorType::Rgba8
+    let layout = if alpha {
+        PngLayout::Rgba8
     } else {
-        image::ExtendedColorType::Rgb8
+        PngLayout::Rgb8
     };
-    let mut out = Vec::new();
-    let encoder = image::codecs::png::PngEncoder::new(&mut out);
-    image::ImageEncoder::write_image(encoder, &data, fb.width, fb.height, color)
-        .map_err(|e| e.to_string())?;
-    Ok(out)
+    png_codec::encode_png(&data, fb.width, fb.height, layout)
 }

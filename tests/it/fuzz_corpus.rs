@@ -86,3 +86,50 @@ fn photon_map_corpus_decodes_to_valid_trees_or_errors() {
     }
     assert_eq!(decoded, 1, "only valid.pmap decodes");
 }
+
+/// The PNG corpus decodes to consistent images or errors, as the `png` fuzz target checks;
+/// the hand-made files decode to their known samples (bit depths below 8, palettes and
+/// `tRNS` expanded; 16-bit samples read big-endian) and the damaged ones are errors.
+#[test]
+fn png_corpus_decodes_to_consistent_images_or_errors() {
+    use stagelight::image_io::png_codec::{decode_png, Samples};
+    for path in corpus("png") {
+        let name = path.file_name().unwrap().to_string_lossy().to_string();
+        let decoded = decode_png(&std::fs::read(&path).unwrap());
+        let Ok(img) = decoded else {
+            assert!(name.starts_with("bricks_"), "{name}: {decoded:?}");
+            continue;
+        };
+        let len = match &img.samples {
+            Samples::Eight(s) => s.len(),
+            Samples::Sixteen(s) => s.len(),
+        };
+        assert_eq!(len, img.pixels() * img.channels, "{name}");
+        for p in 0..img.pixels() {
+            assert!(
+                img.rgba(p).iter().all(|v| (0.0..=1.0).contains(v)),
+                "{name}"
+            );
+        }
+        match name.as_str() {
+            "grey_1bit.png" => {
+                assert_eq!((img.width, img.height, img.channels), (8, 2, 1));
+                let bits = [1, 0, 1, 0, 0, 1, 0, 1, 0, 1, 0, 1, 1, 0, 1, 0].map(|b| b * 255);
+                assert_eq!(img.samples, Samples::Eight(bits.to_vec()));
+            }
+            "palette_trns.png" => {
+                assert_eq!((img.width, img.height, img.channels), (4, 2, 4));
+                // Indices 0 1 2 3 / 3 2 1 0; tRNS makes index 0 clear, index 1 half.
+                assert_eq!(img.rgba(0), [1.0, 0.0, 0.0, 0.0]);
+                assert_eq!(img.rgba(1), [0.0, 1.0, 0.0, 128.0 / 255.0]);
+                assert_eq!(img.rgba(4), [1.0, 1.0, 1.0, 1.0]);
+            }
+            "grey_alpha_16.png" => {
+                assert_eq!((img.width, img.height, img.channels), (2, 2, 2));
+                let want = [0x1234, 0xffff, 0, 0x8000, 0xffff, 1, 0xabcd, 0];
+                assert_eq!(img.samples, Samples::Sixteen(want.to_vec()));
+            }
+            _ => {}
+        }
+    }
+}

@@ -317,5 +317,5 @@ fn an_embedded_image_that_does_not_decode_is_named() {
         Ok(_) => panic!("loaded"),
         Err(e) => e.to_string(),
     };
-    assert_eq!(errors, format!("{DIR}/bad_image.glb:1:1: error: cannot read images[0] (\"garbage\") of glTF file \"{DIR}/bad_image.glb\": The image format could not be determined\n  help: glTF images are read as PNG: export the image as PNG"));
+    assert_eq!(errors, format!("{DIR}/bad_image.glb:1:1: error: cannot read images[0] (\"garbage\") of glTF file \"{DIR}/bad_image.glb\": not a PNG file (it does not start with the PNG signature)\n  help: glTF images are read as PNG: export the image as PNG"));
 }

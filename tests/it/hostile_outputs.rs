@@ -95,8 +95,7 @@ fn two_bake_outputs_with_one_file_are_refused_at_check() {
 #[test]
 fn an_output_onto_a_texture_input_is_refused() {
     let dir = scratch_dir("out-texture");
-    let png = image::RgbImage::from_pixel(2, 2, image::Rgb([200, 100, 50]));
-    png.save(dir.join("tex.png")).unwrap();
+    crate::common::png::write_rgb(&dir.join("tex.png"), 2, 2, &[[200, 100, 50]; 4]);
     let before = std::fs::read(dir.join("tex.png")).unwrap();
     let scene = quad_scene("", "").replace(
         r#"shader: Lambert(albedo: (0.5, 0.5, 0.5))"#,

@@ -489,9 +489,7 @@ fn an_instance_of_a_two_material_obj_bakes_each_face_with_its_material() {
         ],
     );
     // The red face's colour is Kd times a uniform texture of sRGB 128.
-    image::RgbImage::from_pixel(2, 2, image::Rgb([128, 128, 128]))
-        .save(dir.join("grey.png"))
-        .unwrap();
+    crate::common::png::write_rgb(&dir.join("grey.png"), 2, 2, &[[128; 3]; 4]);
     let grey = stagelight::shading::texture::colour::srgb_to_linear(128.0 / 255.0);
     let bake = |object: &str, out: &str| {
         std::fs::write(dir.join("scene.ron"), bake_scene(object)).unwrap();

@@ -120,11 +120,7 @@ fn phenomenon_used_twice_renders_each_parameter_set() {
 
 /// A 2×2 RGB PNG, top row red/green, bottom row blue/white (8-bit sRGB codes given).
 fn write_png(path: &Path, codes: [[u8; 3]; 4]) {
-    let mut img = image::RgbImage::new(2, 2);
-    for (i, c) in codes.iter().enumerate() {
-        img.put_pixel((i % 2) as u32, (i / 2) as u32, image::Rgb(*c));
-    }
-    img.save(path).unwrap();
+    crate::common::png::write_rgb(path, 2, 2, &codes);
 }
 
 fn temp_dir(name: &str) -> PathBuf {

@@ -217,8 +217,8 @@ fn scalar(ck: &mut Checker<'_>, dir: &Path, path: &str, d: &ScalarDesc) -> Optio
             let s = num(ck, &format!("{path}.Image.scale"), "scale", *scale);
             let o = num(ck, &format!("{path}.Image.offset"), "offset", *offset);
             let full = dir.join(file);
-            let img = match image::open(&full) {
-                Ok(img) => img.to_luma32f(),
+            let img = match crate::image_io::png_codec::read_png(&full) {
+                Ok(img) => img,
                 Err(e) => {
                     ck.error(
                         &format!("{path}.Image.file"),
@@ -227,12 +227,12 @@ fn scalar(ck: &mut Checker<'_>, dir: &Path, path: &str, d: &ScalarDesc) -> Optio
                     return None;
                 }
             };
-            let (w, h) = img.dimensions();
+            let (w, h) = (img.width, img.height);
             // Image rows run top to bottom; the map's row 0 is v = 0 (the bottom).
-            let texels: Vec<f32> = (0..h)
+            let texels: Vec<f32> = (0..h as usize)
                 .rev()
-                .flat_map(|y| (0..w).map(move |x| (x, y)))
-                .map(|(x, y)| img.get_pixel(x, y).0[0])
+                .flat_map(|y| (0..w as usize).map(move |x| y * w as usize + x))
+                .map(|p| img.luma(p))
                 .collect();
             Some(ScalarNode::Image(ImageMap {
                 width: w,

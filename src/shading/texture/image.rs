@@ -13,6 +13,7 @@ use glam::{Vec2, Vec3};
 
 use super::colour::srgb_to_linear;
 pub use crate::components::graph::{Texture, Wrap};
+use crate::image_io::png_codec::{self, DecodedPng};
 
 /// How the stored numbers relate to linear RGB.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -92,31 +93,28 @@ pub fn load(path: &Path, encoding: Option<Encoding>, wrap: Wrap) -> Result<Textu
     let (width, height, top_down) = if exr {
         read_exr(path)?
     } else {
-        rgba(image::open(path).map_err(|e| e.to_string())?)
+        rgba(&png_codec::read_png(path)?)
     };
     texture(width, height, top_down, encoding, wrap)
 }
 
 /// Width, height and top-down pixels of a decoded image; alpha is `None` when the image
 /// has no alpha channel.
-fn rgba(img: image::DynamicImage) -> (u32, u32, Pixels) {
-    let has_alpha = img.color().has_alpha();
-    let img = img.to_rgba32f();
-    let (w, h) = img.dimensions();
-    let px = img
-        .pixels()
+fn rgba(img: &DecodedPng) -> (u32, u32, Pixels) {
+    let has_alpha = img.has_alpha();
+    let px = (0..img.pixels())
         .map(|p| {
-            let [r, g, b, a] = p.0;
+            let [r, g, b, a] = img.rgba(p);
             (Vec3::new(r, g, b), has_alpha.then_some(a))
         })
         .collect();
-    (w, h, px)
+    (img.width, img.height, px)
 }
 
 /// Decodes an image file held in memory (a PNG inside a glTF file) into a texture;
 /// `encoding` as for [`load`] (default sRGB).
 pub fn decode(bytes: &[u8], encoding: Option<Encoding>, wrap: Wrap) -> Result<Texture, String> {
-    let (w, h, px) = rgba(image::load_from_memory(bytes).map_err(|e| e.to_string())?);
+    let (w, h, px) = rgba(&png_codec::decode_png(bytes)?);
     texture(w, h, px, encoding.unwrap_or(Encoding::Srgb), wrap)
 }
 

@@ -4,6 +4,7 @@
 pub mod cli;
 mod meshes;
 mod mi_text;
+pub mod png;
 mod rays;
 mod scene_text;
 pub use cli::*;
