@@ -125,8 +125,8 @@ pub struct PhotonMapSettings {
     pub gather: u32,
     /// Final-gather rays per shading point (global illumination only; ignored for caustics).
     pub final_gather: u32,
-    /// Global illumination only: final-gather rays read irradiance precomputed at every
-    /// fourth photon (`photon::irradiance`) on Lambertian surfaces; `false` runs the
+    /// Global illumination only: final-gather rays read irradiance at every fourth photon
+    /// (`photon::irradiance`, computed on first use) on Lambertian surfaces; `false` runs the
     /// `gather`-photon estimate for every ray.
     pub precompute: bool,
     /// Caustic map only: emit photons only toward the caustic casters' bounding spheres

@@ -15,8 +15,6 @@
 //! number of emitted photons with powers summing (in expectation) to what reaches the
 //! stored surfaces, identical at any thread count.
 
-use std::sync::atomic::AtomicBool;
-
 use hecs::World;
 
 use super::prelude::*;
@@ -28,7 +26,7 @@ use crate::photon::aim::Aim;
 use crate::photon::coarse;
 use crate::photon::emit::bounding_sphere;
 use crate::photon::file::{encode, StoredMap, StoredMaps};
-use crate::photon::irradiance::IrradiancePoints;
+use crate::photon::irradiance::{IrradianceMaps, IrradiancePoints};
 use crate::photon::key::photon_key;
 use crate::photon::progressive::{trace_passes, Progressive, StartRadius};
 use crate::photon::roles::instance_sphere;
@@ -129,7 +127,7 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
     if let Some(at) = &kept {
         match store::load(at, key) {
             Ok(stored) => {
-                let maps = gather_maps(stored, settings, diagonal, &frame.inputs.cancel)?;
+                let maps = gather_maps(stored, settings, diagonal);
                 return Ok(Work::new(maps.stored(), "photons")
                     .with_output(StageOutput::Photons(maps))
                     .reused(format!(
@@ -190,22 +188,16 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
             bytes: encode(&stored),
         })
         .collect();
-    let maps = gather_maps(stored, settings, diagonal, &frame.inputs.cancel)?;
+    let maps = gather_maps(stored, settings, diagonal);
     Ok(Work::new(maps.stored(), "photons")
         .with_output(StageOutput::Photons(maps))
         .with_pending(pending))
 }
 
 /// The maps with the knobs of the estimates that read them (from `settings`, which the
-/// content hash leaves out: they can change without tracing again), and the irradiance
-/// final-gather rays read, precomputed at photon positions (interrupted when `cancel` is
-/// raised).
-fn gather_maps(
-    stored: StoredMaps,
-    settings: &RenderSettings,
-    diagonal: f32,
-    cancel: &AtomicBool,
-) -> Result<PhotonMaps, StageError> {
+/// content hash leaves out: they can change without tracing again), and the sites of the
+/// irradiance final-gather rays read (each computed on first use, in `shade`).
+fn gather_maps(stored: StoredMaps, settings: &RenderSettings, diagonal: f32) -> PhotonMaps {
     let knobs = |s: Option<PhotonMapSettings>, m: Option<StoredMap>| {
         let (s, m) = (s?, m?);
         Some(GatherMap {
@@ -242,18 +234,18 @@ fn gather_maps(
         .global_illumination
         .is_some_and(|s| s.precompute);
     let gather_irradiance = match &global {
-        Some(g) if precompute => Some(
-            IrradiancePoints::precompute(g, gather_caustics.as_ref(), cancel)
-                .ok_or(StageError::Interrupted)?,
-        ),
+        Some(g) if precompute => Some(IrradiancePoints::new(IrradianceMaps {
+            global: g,
+            caustics: gather_caustics.as_ref(),
+        })),
         _ => None,
     };
-    Ok(PhotonMaps {
+    PhotonMaps {
         caustics,
         global,
         gather_caustics,
         gather_irradiance,
-    })
+    }
 }
 
 /// Each emitter's photon controls, in the order of the light set (entity order).

@@ -5,7 +5,7 @@
 use glam::Vec3;
 
 use super::gather_path::land;
-use super::irradiance::IrradiancePoints;
+use super::irradiance::{IrradianceMaps, IrradiancePoints};
 use super::{GatherMap, Neighbour, PhotonMaps};
 use crate::sampling::Sampler;
 use crate::shading::bsdf::{Bsdf, Lobe};
@@ -69,18 +69,22 @@ struct Landing<'m> {
     global: &'m GatherMap,
     /// The caustic map's gather view ([`super::coarse`]).
     caustics: Option<&'m GatherMap>,
-    /// Both maps' irradiance precomputed at photon positions ([`super::irradiance`]).
+    /// Both maps' irradiance at photon positions ([`super::irradiance`]).
     irradiance: Option<&'m IrradiancePoints>,
 }
 
 impl Landing<'_> {
     /// Radiance the maps give toward `w.wo` at the landing vertex `w` with BSDF `b`: one
-    /// lookup of the precomputed irradiance where every non-delta lobe is Lambertian, the
+    /// lookup of the irradiance at photon positions where every non-delta lobe is Lambertian, the
     /// per-ray density estimates of both maps otherwise.
     fn radiance(&self, w: &Vertex<'_>, b: &Bsdf, scratch: &mut Vec<Neighbour>) -> Vec3 {
         if let Some(points) = self.irradiance {
             if lambertian(b) {
-                let e = points.at(w.sp.surface.p, w.ng, scratch);
+                let maps = IrradianceMaps {
+                    global: self.global,
+                    caustics: self.caustics,
+                };
+                let e = points.at(w.sp.surface.p, w.ng, maps, scratch);
                 return if e == Vec3::ZERO {
                     e
                 } else {
@@ -297,9 +301,12 @@ mod tests {
             final_gather: 256,
             ..map(photons, 64, 1.0)
         };
-        let none = std::sync::atomic::AtomicBool::new(false);
-        let gather_irradiance =
-            precompute.then(|| IrradiancePoints::precompute(&global, None, &none).unwrap());
+        let gather_irradiance = precompute.then(|| {
+            IrradiancePoints::new(IrradianceMaps {
+                global: &global,
+                caustics: None,
+            })
+        });
         let maps = PhotonMaps {
             caustics: None,
             global: Some(global),

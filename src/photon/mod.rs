@@ -116,8 +116,8 @@ pub struct PhotonMaps {
     /// The caustic map as final-gather rays read it ([`coarse::gather_view`]), when both
     /// maps exist.
     pub gather_caustics: Option<GatherMap>,
-    /// Irradiance precomputed at photon positions for final-gather rays
-    /// ([`irradiance`]), when the global map exists and `precompute` is on.
+    /// Irradiance at photon positions for final-gather rays ([`irradiance`], each site
+    /// computed on first use), when the global map exists and `precompute` is on.
     pub gather_irradiance: Option<irradiance::IrradiancePoints>,
 }
 

@@ -160,8 +160,8 @@ pub struct PhotonMapDesc {
     pub gather: u32,
     /// Final-gather rays per shading point (global illumination only), default 16, at least 1.
     pub final_gather: u32,
-    /// Global illumination only: final-gather rays read irradiance precomputed at photon
-    /// positions (default true); false runs the full estimate for every ray.
+    /// Global illumination only: final-gather rays read irradiance at photon positions, each
+    /// computed on first use (default true); false runs the full estimate for every ray.
     pub precompute: bool,
     /// Caustics only: emit photons only toward the caustic casters, default true.
     pub aim: bool,
