@@ -127,7 +127,7 @@ impl PhotonMap {
             photons.retain(finite);
             keys = photons.iter().enumerate().map(key).collect();
         }
-        Self::from_keys(keys, |i| photons[i as usize])
+        Self::from_keys(keys, |i| &photons[i as usize])
     }
 
     /// [`PhotonMap::build`] of the photons of `parts` in order (the work items' vectors of a
@@ -155,18 +155,27 @@ impl PhotonMap {
         }
         let mask = (1u64 << shift).wrapping_sub(1) as u32;
         Self::from_keys(keys, |i| {
-            parts[(u64::from(i) >> shift) as usize][(i & mask) as usize]
+            &parts[(u64::from(i) >> shift) as usize][(i & mask) as usize]
         })
     }
 
     /// The tree of `keys` (each key's `index` names its photon to `photon`): the median
     /// build, then the photons gathered into tree order.
-    fn from_keys(mut keys: Vec<BuildKey>, photon: impl Fn(u32) -> Photon) -> Self {
+    fn from_keys<'p>(mut keys: Vec<BuildKey>, photon: impl Fn(u32) -> &'p Photon) -> Self {
         let mut axes = vec![0u8; keys.len()];
         build(&mut keys, &mut axes);
         // A gather, not an in-place permutation: its loads are independent (following the
-        // permutation's cycles in place made the whole render 5–8 % slower).
-        let photons: Vec<Photon> = keys.iter().map(|k| photon(k.index)).collect();
+        // permutation's cycles in place made the whole render 5–8 % slower). Tree order is
+        // spatial and the photons are in emission order, so every load misses the caches
+        // (and the TLB, in a map of tens of megabytes): each photon's lines are prefetched
+        // `GATHER_AHEAD` photons early (885,577 caustic photons: 68–69 ms → 50–53 ms).
+        let mut photons = Vec::with_capacity(keys.len());
+        for (i, k) in keys.iter().enumerate() {
+            if let Some(ahead) = keys.get(i + GATHER_AHEAD) {
+                prefetch_photon(photon(ahead.index));
+            }
+            photons.push(*photon(k.index));
+        }
         for (k, &a) in keys.iter_mut().zip(&axes) {
             k.index = u32::from(a);
         }
@@ -453,6 +462,28 @@ fn sift_down(heap: &mut [Neighbour], mut i: usize) {
         heap.swap(i, child);
         i = child;
     }
+}
+
+/// How many photons ahead [`PhotonMap::from_keys`] prefetches the one it will gather.
+const GATHER_AHEAD: usize = 16;
+
+/// Prefetches the cache lines of `p` (a hint: no effect on memory or results).
+#[inline(always)]
+fn prefetch_photon(p: &Photon) {
+    #[cfg(target_arch = "x86_64")]
+    {
+        use std::arch::x86_64::{_mm_prefetch, _MM_HINT_T0};
+        let first = std::ptr::from_ref(p).cast::<i8>();
+        let last = first.wrapping_add(std::mem::size_of::<Photon>() - 1);
+        // SAFETY: `_mm_prefetch` requires SSE, which every x86_64 target has. It is a hint:
+        // it never faults and has no effect on memory; both addresses lie inside `*p`.
+        unsafe {
+            _mm_prefetch::<_MM_HINT_T0>(first);
+            _mm_prefetch::<_MM_HINT_T0>(last);
+        }
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = p;
 }
 
 /// Subtrees of at least this many photons are built on two rayon tasks.
