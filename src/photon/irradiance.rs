@@ -13,10 +13,11 @@
 //! ([`OnceLock`]). It depends only on the maps and the site, so whichever thread computes it
 //! first, in whatever order, it has the same bits: images are the same at any thread count,
 //! and the same as computing every site up front (`lazy_values_are_the_eager_ones`). A render
-//! computes only the sites its gather rays reach: a small image, a crop or a farm part no
-//! longer pays for the whole map's estimates (on `caustics.ron` at 8 × 6 pixels they were 8 %
-//! of `trace_photons`). A site whose estimate is not finite (an overflowing photon power)
-//! reads as zero.
+//! computes only the sites its gather rays reach: the photon-heavy 8 × 6-pixel render of
+//! `docs/ray-layer.md` (session 26) no longer spends 8 % of `trace_photons` on estimates it
+//! never reads. In a closed room gather rays reach most sites from anywhere, so a full render
+//! or a farm part computes most of them, now in `shade`. A site whose estimate is not finite
+//! (an overflowing photon power) reads as zero.
 //!
 //! **How it is read.** A final-gather ray landing at `p` with normal `n` on a surface whose
 //! non-delta lobes are all Lambertian takes the irradiance `E` of the nearest site within the
