@@ -14,7 +14,7 @@
 //! first, in whatever order, it has the same bits: images are the same at any thread count,
 //! and the same as computing every site up front (`lazy_values_are_the_eager_ones`). A render
 //! computes only the sites its gather rays reach: the photon-heavy 8 × 6-pixel render of
-//! `docs/ray-layer.md` (session 26) no longer spends 8 % of `trace_photons` on estimates it
+//! `docs/ray-layer.md` (session 26) no longer spends 7 % of `trace_photons` on estimates it
 //! never reads. In a closed room gather rays reach most sites from anywhere, so a full render
 //! or a farm part computes most of them, now in `shade`. A site whose estimate is not finite
 //! (an overflowing photon power) reads as zero.
