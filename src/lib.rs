@@ -28,6 +28,7 @@ pub mod image_io;
 pub mod limits;
 pub mod noise;
 pub mod photon;
+mod prefetch;
 pub mod procedural;
 pub mod progress;
 pub mod report;

@@ -34,6 +34,7 @@ use glam::{Vec3, Vec4};
 use super::bvh::{Bvh, Node, COUNT_SHIFT, EMPTY_CHILD, FIRST_MASK, LEAF_BIT};
 use super::triangle::{gamma, ray_is_valid, WoopRay};
 use super::{Hit, Ray};
+use crate::prefetch::prefetch_line;
 
 /// Far slab distances are scaled by this to make the box test conservative.
 const FAR_SCALE: f32 = 1.0 + 2.0 * gamma(3);
@@ -632,7 +633,7 @@ fn closest_with<S: Stack, N: NodeTest, const OCTANT: bool>(
                     cull = t * FAR_SCALE;
                     // The candidate's original index is read at the end: its cache miss
                     // (`prim_ids` is cold) overlaps the rest of the traversal.
-                    prefetch_ptr(bvh.prim_ids.as_ptr().wrapping_add(k).cast());
+                    prefetch_line(bvh.prim_ids.as_ptr().wrapping_add(k).cast());
                 }
                 false
             });
@@ -941,17 +942,9 @@ pub(crate) const BATCH_LANES: usize = 12;
 /// lane visits next, so that its misses are under way while other work goes on.
 #[inline(always)]
 pub(super) fn prefetch(bvh: &Bvh, r: u32) {
-    #[cfg(target_arch = "x86_64")]
-    {
-        use std::arch::x86_64::{_mm_prefetch, _MM_HINT_T0};
-        for p in prefetch_lines(bvh, r) {
-            // SAFETY: `_mm_prefetch` requires SSE, which every x86_64 target has. It is a
-            // hint: it never faults and has no effect on memory, whatever the address.
-            unsafe { _mm_prefetch::<_MM_HINT_T0>(p.cast::<i8>()) };
-        }
+    for p in prefetch_lines(bvh, r) {
+        prefetch_line(p);
     }
-    #[cfg(not(target_arch = "x86_64"))]
-    let _ = (bvh, r);
 }
 
 /// The single-ray kernels' prefetch of one child reference `r` (the one popped next): four
@@ -964,7 +957,7 @@ pub(super) fn prefetch(bvh: &Bvh, r: u32) {
 pub(super) fn prefetch_child(bvh: &Bvh, r: u32) {
     let first = child_first_byte(bvh, r);
     for k in 0..4 {
-        prefetch_ptr(first.wrapping_add(64 * k));
+        prefetch_line(first.wrapping_add(64 * k));
     }
 }
 
@@ -983,19 +976,6 @@ fn child_first_byte(bvh: &Bvh, r: u32) -> *const u8 {
     // All ones for a leaf, zero for a node.
     let leaf = 0usize.wrapping_sub(usize::from(r & LEAF_BIT != 0));
     ((leaf_first & leaf) | (node & !leaf)) as *const u8
-}
-
-/// Prefetches the cache line of `p` (any address: a hint, never a fault).
-#[inline(always)]
-fn prefetch_ptr(p: *const u8) {
-    #[cfg(target_arch = "x86_64")]
-    // SAFETY: `_mm_prefetch` requires SSE, which every x86_64 target has. It is a hint: it
-    // never faults and has no effect on memory, whatever the address.
-    unsafe {
-        std::arch::x86_64::_mm_prefetch::<{ std::arch::x86_64::_MM_HINT_T0 }>(p.cast::<i8>());
-    }
-    #[cfg(not(target_arch = "x86_64"))]
-    let _ = p;
 }
 
 /// The four addresses [`prefetch`] touches for the reference `r`: a node's four cache lines,

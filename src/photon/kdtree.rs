@@ -16,6 +16,7 @@ use std::cmp::Ordering;
 
 use glam::{Vec3, Vec3A};
 
+use crate::prefetch::prefetch_line;
 use crate::settings::PhotonFilter;
 
 /// Smallest `n_p·n_q` for a photon to count in an estimate at a point with normal `n_q`.
@@ -467,23 +468,13 @@ fn sift_down(heap: &mut [Neighbour], mut i: usize) {
 /// How many photons ahead [`PhotonMap::from_keys`] prefetches the one it will gather.
 const GATHER_AHEAD: usize = 16;
 
-/// Prefetches the cache lines of `p` (a hint: no effect on memory or results).
+/// Prefetches the cache lines of `p` (its first and last byte: a 48-byte photon spans one
+/// or two lines; a hint, no effect on memory or results).
 #[inline(always)]
 fn prefetch_photon(p: &Photon) {
-    #[cfg(target_arch = "x86_64")]
-    {
-        use std::arch::x86_64::{_mm_prefetch, _MM_HINT_T0};
-        let first = std::ptr::from_ref(p).cast::<i8>();
-        let last = first.wrapping_add(std::mem::size_of::<Photon>() - 1);
-        // SAFETY: `_mm_prefetch` requires SSE, which every x86_64 target has. It is a hint:
-        // it never faults and has no effect on memory; both addresses lie inside `*p`.
-        unsafe {
-            _mm_prefetch::<_MM_HINT_T0>(first);
-            _mm_prefetch::<_MM_HINT_T0>(last);
-        }
-    }
-    #[cfg(not(target_arch = "x86_64"))]
-    let _ = p;
+    let first = std::ptr::from_ref(p).cast::<u8>();
+    prefetch_line(first);
+    prefetch_line(first.wrapping_add(std::mem::size_of::<Photon>() - 1));
 }
 
 /// Subtrees of at least this many photons are built on two rayon tasks.
