@@ -21,7 +21,7 @@
 //!   prefetch only the child popped next. A closest-hit candidate's `prim_ids` entry is
 //!   prefetched when it is found (the array is cold; it is read once, at the end).
 //! * **Batches** (`closest_batch`, `occluded_batch`): 12 rays traversed interleaved, one node
-//!   or leaf per ray in turn, each lane's next node prefetched; identical results, 2.5–3×
+//!   or leaf per ray in turn, each lane's next node or leaf prefetched (`prefetch_child`); identical results, 2.5–3×
 //!   the single-ray throughput on incoherent rays.
 //! * **Stack**: sized from the tree depth measured at build (a fixed array when that fits, a
 //!   `Vec` otherwise), so it cannot overflow. The single-ray kernels' array is left
@@ -938,8 +938,8 @@ impl<N: NodeTest> OcclusionLane<BatchStack, N> {
 pub(crate) const BATCH_LANES: usize = 12;
 
 /// Prefetches a node (all four cache lines) or a leaf's triangles (up to three lines): in the
-/// single-ray kernels every child pushed on the stack, in the batch kernels the node or leaf a
-/// lane visits next, so that its misses are under way while other work goes on.
+/// single-ray loop kernels every child pushed on the stack, so that its misses are under way
+/// while other work goes on.
 #[inline(always)]
 pub(super) fn prefetch(bvh: &Bvh, r: u32) {
     for p in prefetch_lines(bvh, r) {
@@ -947,12 +947,13 @@ pub(super) fn prefetch(bvh: &Bvh, r: u32) {
     }
 }
 
-/// The single-ray kernels' prefetch of one child reference `r` (the one popped next): four
+/// The prefetch of one child reference `r`, the one visited next (the single-ray block
+/// kernels' child popped next; the node or leaf a batch lane visits at its next turn): four
 /// lines from its first byte, a node's whole 256 bytes or a leaf's first triangle and the
 /// lines after it (a leaf's ≤ 108 bytes span at most three of them; the rest is a hint
 /// about the triangles that follow). One address, selected without a branch, and no
-/// clamping to the leaf's end: half the address work of [`prefetch_lines`], which the batch
-/// lanes keep.
+/// clamping to the leaf's end: half the address work of [`prefetch_lines`] (in the batch
+/// lanes, about 10 instructions less per step: session 27, `docs/ray-layer.md`).
 #[inline(always)]
 pub(super) fn prefetch_child(bvh: &Bvh, r: u32) {
     let first = child_first_byte(bvh, r);
@@ -1067,7 +1068,7 @@ pub(super) fn closest_batch_ordered_in<N: NodeTest, const OCTANT: bool>(
         for slot in lanes.iter_mut() {
             let Some((i, lane)) = slot else { continue };
             if lane.step(bvh) {
-                prefetch(bvh, lane.cur);
+                prefetch_child(bvh, lane.cur);
                 continue;
             }
             out[*i] = lane.result(bvh);
@@ -1118,7 +1119,7 @@ pub(super) fn occluded_batch_in<N: NodeTest>(bvh: &Bvh, rays: &[Ray], out: &mut 
         for slot in lanes.iter_mut() {
             let Some((i, lane)) = slot else { continue };
             if lane.step(bvh) {
-                prefetch(bvh, lane.cur);
+                prefetch_child(bvh, lane.cur);
                 continue;
             }
             out[*i] = lane.hit;

@@ -39,7 +39,7 @@ mod block;
 mod pack;
 mod single512;
 
-use glam::Vec3;
+use glam::{Vec3, Vec4};
 
 use super::bvh::{Bvh, Node};
 use super::leaf_wide::LeafRay4;
@@ -207,6 +207,10 @@ unsafe fn occluded_avx2(bvh: &Bvh, ray: &Ray) -> bool {
 struct NodeRay8 {
     o: [__m256; 3],
     inv: [__m256; 3],
+    /// Per axis, the byte offset in [`Node::bounds`] of the plane the ray enters (exits)
+    /// through: `32 · (2a + sign)`, below `6 · 32`, so the plane loads need no bounds check
+    /// (the batch lanes reload these from their state at every node, where a checked index
+    /// cost a compare and a branch per plane).
     near: [usize; 3],
     far: [usize; 3],
     /// The leaf test's constants (`leaf_wide.rs`).
@@ -220,7 +224,8 @@ impl NodeTest for NodeRay8 {
         let d = ray.dir.to_array();
         // Written out: `array::map` is not inlined into the AVX2 kernels (a call and a
         // `vzeroupper` per ray).
-        let near_plane = |a: usize| 2 * a + usize::from(d[a].is_sign_negative());
+        const PLANE: usize = std::mem::size_of::<[Vec4; 2]>();
+        let near_plane = |a: usize| PLANE * (2 * a + usize::from(d[a].is_sign_negative()));
         let near = [near_plane(0), near_plane(1), near_plane(2)];
         // SAFETY: `_mm256_set1_ps` needs AVX; this type exists only inside the AVX2 kernels.
         let splat = |x: f32| unsafe { _mm256_set1_ps(x) };
@@ -232,7 +237,7 @@ impl NodeTest for NodeRay8 {
             ],
             inv: [splat(inv.x), splat(inv.y), splat(inv.z)],
             near,
-            far: [near[0] ^ 1, near[1] ^ 1, near[2] ^ 1],
+            far: [near[0] ^ PLANE, near[1] ^ PLANE, near[2] ^ PLANE],
             leaf: LeafRay4::new(woop),
         }
     }
@@ -323,10 +328,16 @@ impl NodeRay8 {
     #[inline(always)]
     fn slabs(&self, node: &Node, t_far: f32) -> (__m256, __m256) {
         // SAFETY: AVX intrinsics; this type exists only inside the AVX2 kernels. Each load
-        // reads one plane of the node, `bounds[k]`: two `Vec4`s, 32 bytes through a pointer
-        // to them.
+        // reads one plane of the node, `bounds[k]` (two `Vec4`s, 32 bytes) at byte offset
+        // `32 k` from the array's start, `k < 6` (`near`/`far`: made only by `new`).
         unsafe {
-            let plane = |k: usize| -> __m256 { _mm256_loadu_ps(node.bounds[k].as_ptr().cast()) };
+            let bounds = std::ptr::from_ref(&node.bounds).cast::<u8>();
+            let plane = |offset: usize| -> __m256 {
+                debug_assert!(
+                    offset.is_multiple_of(32) && offset < std::mem::size_of_val(&node.bounds)
+                );
+                _mm256_loadu_ps(bounds.add(offset).cast())
+            };
             let mut tn = _mm256_setzero_ps();
             let mut tf = _mm256_set1_ps(t_far);
             for a in 0..3 {
