@@ -21,8 +21,8 @@
 //!   prefetch only the child popped next. A closest-hit candidate's `prim_ids` entry is
 //!   prefetched when it is found (the array is cold; it is read once, at the end).
 //! * **Batches** (`closest_batch`, `occluded_batch`): 12 rays traversed interleaved, one node
-//!   or leaf per ray in turn, each lane's next node or leaf prefetched (`prefetch_child`); identical results, 2.5–3×
-//!   the single-ray throughput on incoherent rays.
+//!   or leaf per ray in turn, each lane's next node or leaf prefetched (`prefetch_child`);
+//!   identical results, 2.5–3× the single-ray throughput on incoherent rays.
 //! * **Stack**: sized from the tree depth measured at build (a fixed array when that fits, a
 //!   `Vec` otherwise), so it cannot overflow. The single-ray kernels' array is left
 //!   uninitialised in their frame (`FrameStack`: no fill, no per-thread array).
