@@ -9,7 +9,7 @@
 
 use std::sync::Arc;
 
-use glam::{Affine3A, Mat3, Vec2, Vec3};
+use glam::{Affine3A, Mat3A, Vec2, Vec3, Vec3A};
 use hecs::Entity;
 
 use crate::accel::{Accel, Hit, SurfacePoint};
@@ -24,8 +24,10 @@ pub struct InstanceGeometry {
     pub mesh: Arc<TriMesh>,
     /// Object-to-world transform.
     pub world_from_object: Affine3A,
-    /// Transform for normals: inverse transpose of the linear part.
-    pub normal_from_object: Mat3,
+    /// Transform for normals: inverse transpose of the linear part (in SIMD columns: a hit
+    /// point's normal is transformed with three products and two sums, the scalar ones'
+    /// operations in the same order).
+    pub normal_from_object: Mat3A,
     /// Index into [`SceneGeometry::materials`] (of every triangle without one of its own).
     pub material: u32,
     /// Per local triangle, its material slot when the object's polygons name their own
@@ -137,8 +139,10 @@ impl SceneGeometry {
         let b0 = 1.0 - hit.b1 - hit.b2;
         let mut normal = surface.ng;
         if let Some(ns) = &inst.mesh.normals {
-            let n = inst.normal_from_object * (ns[i0] * b0 + ns[i1] * hit.b1 + ns[i2] * hit.b2);
-            let n = n.normalize_or_zero();
+            // In `Vec3A` lanes, with the scalar operations' order: the same bits.
+            let [n0, n1, n2] = [ns[i0], ns[i1], ns[i2]].map(Vec3A::from);
+            let n = inst.normal_from_object * (n0 * b0 + n1 * hit.b1 + n2 * hit.b2);
+            let n = Vec3::from(n.normalize_or_zero());
             if n != Vec3::ZERO && n.is_finite() {
                 normal = if n.dot(surface.ng) < 0.0 { -n } else { n };
             }

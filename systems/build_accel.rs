@@ -154,7 +154,9 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
             entity,
             mesh: instance.mesh.clone(),
             world_from_object: xf,
-            normal_from_object: glam::Mat3::from(xf.matrix3).inverse().transpose(),
+            normal_from_object: glam::Mat3A::from(
+                glam::Mat3::from(xf.matrix3).inverse().transpose(),
+            ),
             material: slot,
             face_materials,
             first_triangle: first,

@@ -84,11 +84,12 @@ impl Walk {
     }
 
     /// The walk for a caller that never reads [`Walk::fate`] (a batch keeps only the
-    /// deposits): with `stop_after_diffuse` it ends at a surface whose BSDF has no delta lobe
-    /// right after the deposit, without drawing the scattering that would end it anyway
-    /// (the sampled lobe is non-delta, so the path is no longer specular-only; or it is
-    /// absorbed). The deposits and the walk's end are the same; only the fate's account of
-    /// that last scattering (and the sampler's draws for it) are left out.
+    /// deposits). Its fate is left incomplete: the terms booked at every interaction (the
+    /// segment's absorption, the part survival does not carry on, the escape, the last
+    /// triangle) are skipped. With `stop_after_diffuse` it also ends at a surface whose BSDF
+    /// has no delta lobe right after the deposit, without drawing the scattering that would
+    /// end it anyway (the sampled lobe is non-delta, so the path is no longer specular-only;
+    /// or it is absorbed). The deposits and the walk's end are the same.
     pub fn without_fate(mut self) -> Self {
         self.keep_fate = false;
         self
@@ -110,7 +111,8 @@ impl Walk {
         self.power
     }
 
-    /// Where the photon's power went (complete once the walk is no longer live).
+    /// Where the photon's power went (complete once the walk is no longer live, unless it
+    /// was made [`Walk::without_fate`]).
     pub fn fate(&self) -> Fate {
         self.fate
     }
@@ -159,15 +161,22 @@ impl Walk {
         self.live = false;
         let fate = &mut self.fate;
         let ray = self.ray;
+        // The account every interaction keeps (the exits below book their one term each):
+        // left out where no caller reads it (a batch's walks, `Walk::without_fate`).
+        let keep = self.keep_fate;
         let Some((hit, sp)) = hit else {
-            fate.escaped = self.power;
-            fate.escape_dir = ray.dir.normalize_or_zero();
+            if keep {
+                fate.escaped = self.power;
+                fate.escape_dir = ray.dir.normalize_or_zero();
+            }
             return;
         };
-        fate.last_prim = Some(hit.prim);
         let v = PhotonVertex::new(ctx, &ray, hit, *sp);
         let through = self.power * v.transmittance;
-        fate.absorbed += self.power - through;
+        if keep {
+            fate.last_prim = Some(hit.prim);
+            fate.absorbed += self.power - through;
+        }
         let power = through;
         let mut scratch = None;
         let bsdf = v.bsdf_ref(ctx, &mut scratch);
@@ -229,7 +238,9 @@ impl Walk {
         let next_power = power * (weight / q);
         // What survival does not carry on (a colour-dependent weight) is absorbed; a weight
         // above 1 (shading-normal correction) makes this negative, keeping the account exact.
-        fate.absorbed += power - next_power;
+        if keep {
+            fate.absorbed += power - next_power;
+        }
         if stop_after_diffuse && !self.specular_only {
             fate.truncated += next_power;
             return;

@@ -4,7 +4,7 @@
 
 use std::sync::Arc;
 
-use glam::{Affine3A, Mat3, Vec3};
+use glam::{Affine3A, Mat3A, Vec3};
 
 use crate::accel::{Accel, Hit, Ray};
 use crate::components::{Material, Shader, TriMesh};
@@ -116,7 +116,7 @@ pub fn geometry(objects: Vec<Object>) -> SceneGeometry {
             entity: world.spawn(()),
             mesh: Arc::new(mesh),
             world_from_object: Affine3A::IDENTITY,
-            normal_from_object: Mat3::IDENTITY,
+            normal_from_object: Mat3A::IDENTITY,
             material: slot as u32,
             face_materials: None,
             first_triangle: triangles.len() as u32,
