@@ -9,7 +9,7 @@
 //! is rounded one more ulp away. No fixed epsilon is involved anywhere, so the offset scales
 //! with the magnitude of the coordinates (1e-3 … 1e6 and beyond).
 
-use glam::{BVec3A, DVec3, Vec3, Vec3A};
+use glam::{DVec3, Vec3, Vec3A};
 
 use super::triangle::gamma;
 use super::{Ray, SurfacePoint};
@@ -58,102 +58,50 @@ pub fn geometric_normal(tri: &[Vec3; 3]) -> Vec3 {
 
 /// pbrt-v4 `OffsetRayOrigin`: moves `p` along `n` by `dot(|n|, p_err)` toward the side of `w`
 /// (`+n` when `w` is tangent) and rounds each moved coordinate one ulp further away.
-///
-/// In `Vec3A` lanes, with the scalar operations in the same order, and without a branch: the
-/// side is a select, and the three coordinates step together ([`step_toward_signs`]).
 #[inline(always)]
 pub fn offset_ray_origin(p: Vec3, p_err: Vec3, n: Vec3, w: Vec3) -> Vec3 {
-    let (p, p_err, n, w) = (
-        Vec3A::from(p),
-        Vec3A::from(p_err),
-        Vec3A::from(n),
-        Vec3A::from(w),
-    );
     let d = n.abs().dot(p_err);
-    let offset = n * d;
-    let offset = Vec3A::select(BVec3A::splat(w.dot(n) < 0.0), -offset, offset);
-    let po = p + offset;
-    step_toward_signs(po, offset).into()
-}
-
-/// Per lane, `x.next_up()` where `side > 0`, `x.next_down()` where `side < 0`, `x` otherwise
-/// (also for a NaN `side`): the same bits as those library calls, computed on the bit
-/// patterns with lane masks (SSE2, part of x86-64), so no branch on data (the signs of a
-/// hit's offset change from ray to ray: a branch on them mispredicted on about a sixth of
-/// its runs, cachegrind on the photon pass).
-#[cfg(target_arch = "x86_64")]
-#[inline(always)]
-fn step_toward_signs(x: Vec3A, side: Vec3A) -> Vec3A {
-    use std::arch::x86_64::{
-        __m128, __m128i, _mm_add_epi32, _mm_and_si128, _mm_andnot_si128, _mm_castps_si128,
-        _mm_castsi128_ps, _mm_cmpeq_epi32, _mm_cmpgt_epi32, _mm_cmpgt_ps, _mm_cmplt_ps,
-        _mm_or_si128, _mm_set1_epi32, _mm_setzero_ps, _mm_setzero_si128, _mm_srai_epi32,
-        _mm_sub_epi32, _mm_xor_si128,
-    };
-    // SAFETY: SSE2 intrinsics on values; SSE2 is part of every x86-64 CPU.
-    unsafe {
-        // `mask ? a : b`, lane by lane.
-        let pick = |mask: __m128i, a: __m128i, b: __m128i| {
-            _mm_or_si128(_mm_and_si128(mask, a), _mm_andnot_si128(mask, b))
-        };
-        let bits = _mm_castps_si128(__m128::from(x));
-        let side = __m128::from(side);
-        let up = _mm_castps_si128(_mm_cmpgt_ps(side, _mm_setzero_ps()));
-        let down = _mm_castps_si128(_mm_cmplt_ps(side, _mm_setzero_ps()));
-        // A step up grows a positive number's magnitude and shrinks a negative one's.
-        let grows = _mm_xor_si128(up, _mm_srai_epi32::<31>(bits));
-        let magnitude = _mm_and_si128(bits, _mm_set1_epi32(0x7fff_ffff));
-        // ±1 ulp of the magnitude (`grows`: +1, else −1); from ±0 the smallest subnormal of
-        // the step's sign.
-        let one = _mm_set1_epi32(1);
-        let delta = _mm_sub_epi32(_mm_and_si128(grows, _mm_set1_epi32(2)), one);
-        let stepped_nonzero = _mm_add_epi32(bits, delta);
-        let stepped_zero = _mm_xor_si128(
-            _mm_set1_epi32(0x8000_0001_u32 as i32),
-            _mm_and_si128(up, _mm_set1_epi32(i32::MIN)),
-        );
-        let zero = _mm_cmpeq_epi32(magnitude, _mm_setzero_si128());
-        let stepped = pick(zero, stepped_zero, stepped_nonzero);
-        // NaN stays; +∞ does not step up, −∞ does not step down (the library's rules).
-        let inf = _mm_set1_epi32(0x7f80_0000);
-        let is_nan = _mm_cmpgt_epi32(magnitude, inf);
-        let at_end = _mm_and_si128(_mm_cmpeq_epi32(magnitude, inf), grows);
-        let still = _mm_cmpeq_epi32(_mm_or_si128(up, down), _mm_setzero_si128());
-        let keep = _mm_or_si128(_mm_or_si128(still, is_nan), at_end);
-        Vec3A::from(_mm_castsi128_ps(pick(keep, bits, stepped)))
+    let mut offset = n * d;
+    if w.dot(n) < 0.0 {
+        offset = -offset;
     }
-}
-
-/// [`step_toward_signs`] one coordinate at a time (other architectures).
-#[cfg(not(target_arch = "x86_64"))]
-#[inline(always)]
-fn step_toward_signs(x: Vec3A, side: Vec3A) -> Vec3A {
-    Vec3A::new(
-        step_toward_sign(x.x, side.x),
-        step_toward_sign(x.y, side.y),
-        step_toward_sign(x.z, side.z),
+    let po = p + offset;
+    Vec3::new(
+        step_toward_sign(po.x, offset.x),
+        step_toward_sign(po.y, offset.y),
+        step_toward_sign(po.z, offset.z),
     )
 }
 
-/// One coordinate of [`step_toward_signs`], with the same masks.
-#[cfg_attr(target_arch = "x86_64", allow(dead_code))]
+/// `x.next_up()` where `side > 0`, `x.next_down()` where `side < 0`, `x` otherwise (also for
+/// a NaN `side`): the same bits as those library calls, without branches on data (the signs
+/// of a hit's offset change from ray to ray, so branches on them mispredict).
 #[inline(always)]
 fn step_toward_sign(x: f32, side: f32) -> f32 {
     let bits = x.to_bits();
     let magnitude = bits & 0x7fff_ffff;
-    let up = u32::from(side > 0.0);
-    let down = u32::from(side < 0.0);
-    let grows = up ^ (bits >> 31);
-    // All ones where `c` holds.
-    let mask = |c: bool| 0u32.wrapping_sub(u32::from(c));
-    let stepped_nonzero = bits.wrapping_add((grows << 1).wrapping_sub(1));
-    let stepped_zero = 0x8000_0001 ^ (up << 31);
-    let zero = mask(magnitude == 0);
-    let stepped = (stepped_zero & zero) | (stepped_nonzero & !zero);
+    let up = side > 0.0;
+    let down = side < 0.0;
+    let negative = bits >> 31 != 0;
+    // A step up grows a positive number's magnitude and shrinks a negative one's.
+    let grows = up != negative;
+    let stepped = if magnitude == 0 {
+        // From ±0 the smallest subnormal of the step's sign.
+        if up {
+            1
+        } else {
+            0x8000_0001
+        }
+    } else if grows {
+        bits.wrapping_add(1)
+    } else {
+        bits.wrapping_sub(1)
+    };
+    // NaN stays; +∞ does not step up, −∞ does not step down (the library's rules).
     let is_nan = magnitude > 0x7f80_0000;
-    let at_end = magnitude == 0x7f80_0000 && grows != 0;
-    let keep = mask((up | down) == 0 || is_nan || at_end);
-    f32::from_bits((bits & keep) | (stepped & !keep))
+    let at_end = magnitude == 0x7f80_0000 && grows;
+    let keep = !(up || down) || is_nan || at_end;
+    f32::from_bits(if keep { bits } else { stepped })
 }
 
 /// A ray leaving the surface point `from` in direction `dir` (any length), offset so that it
@@ -285,62 +233,7 @@ mod tests {
                     "x {x:e} ({:#010x}), side {side}",
                     x.to_bits()
                 );
-                // Each lane of the vector step, with different neighbours in the others.
-                let lanes = step_toward_signs(Vec3A::new(x, -x, 1.5), Vec3A::new(side, -1.0, side));
-                assert_eq!(
-                    lanes.x.to_bits(),
-                    want.to_bits(),
-                    "lane x: {x:e}, side {side}"
-                );
-                let other = step_with_library(-x, -1.0);
-                assert_eq!(lanes.y.to_bits(), other.to_bits(), "lane y: {x:e}");
-                let third = step_with_library(1.5, side);
-                assert_eq!(lanes.z.to_bits(), third.to_bits(), "lane z: side {side}");
             }
-        }
-    }
-
-    /// The lane version of `OffsetRayOrigin` is the scalar one (Vec3 arithmetic, a branch on
-    /// the side, the library's `next_up`/`next_down`) bit for bit: random points, error
-    /// bounds, normals and directions at many scales, with zero and negative-zero
-    /// components and directions tangent to the normal.
-    #[test]
-    fn offset_equals_the_scalar_offset_bit_for_bit() {
-        let scalar = |p: Vec3, p_err: Vec3, n: Vec3, w: Vec3| {
-            let d = n.abs().dot(p_err);
-            let mut offset = n * d;
-            if w.dot(n) < 0.0 {
-                offset = -offset;
-            }
-            let po = p + offset;
-            Vec3::new(
-                step_with_library(po.x, offset.x),
-                step_with_library(po.y, offset.y),
-                step_with_library(po.z, offset.z),
-            )
-        };
-        let mut rnd = crate::accel::test_random::signed_uniform(0x0ff5_e7a1_9e37_79b9);
-        let bits = |v: Vec3| v.to_array().map(f32::to_bits);
-        for i in 0..200_000 {
-            let scale = [1e-30, 1e-6, 1.0, 1e4, 1e30][i % 5];
-            let mut v = || Vec3::new(rnd(), rnd(), rnd());
-            let mut p = v() * scale;
-            let p_err = v().abs() * scale * 1e-6;
-            let mut n = v().normalize_or(Vec3::Z);
-            let mut w = v();
-            match i % 9 {
-                0 => p.x = 0.0,
-                1 => p.y = -0.0,
-                2 => n = Vec3::new(0.0, -0.0, 1.0),
-                3 => w = n.cross(Vec3::X),
-                4 => n.z = -0.0,
-                _ => {}
-            }
-            assert_eq!(
-                bits(offset_ray_origin(p, p_err, n, w)),
-                bits(scalar(p, p_err, n, w)),
-                "p {p} err {p_err} n {n} w {w}"
-            );
         }
     }
 
