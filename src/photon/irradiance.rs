@@ -51,7 +51,17 @@ pub struct IrradianceMaps<'m> {
     pub caustics: Option<&'m GatherMap>,
 }
 
+/// Each map's photon count and gather-radius bits: global, then the caustic gather view.
+type MapsFingerprint = ((usize, u32), Option<(usize, u32)>);
+
 impl IrradianceMaps<'_> {
+    /// What tells these maps apart from others a caller might pass by mistake: each map's
+    /// photon count and gather radius (checked in debug builds, [`IrradiancePoints::at`]).
+    fn fingerprint(&self) -> MapsFingerprint {
+        let of = |m: &GatherMap| (m.map.len(), m.radius.to_bits());
+        (of(self.global), self.caustics.map(of))
+    }
+
     /// The irradiance both maps estimate at `p` (normal `n`).
     fn irradiance(&self, p: Vec3, n: Vec3, scratch: &mut Vec<Neighbour>) -> Vec3 {
         let mut e = self.global.density(p, n, scratch, |_| Vec3::ONE);
@@ -69,6 +79,9 @@ impl IrradianceMaps<'_> {
 #[derive(Debug, Clone)]
 pub struct IrradiancePoints {
     points: PhotonMap,
+    /// The maps the sites were made from ([`IrradianceMaps::fingerprint`]): the values are
+    /// computed lazily from the maps each lookup passes, which must be these.
+    made_from: MapsFingerprint,
     /// The irradiance at each site (W/m²), by tree index, once computed.
     values: Box<[OnceLock<Vec3>]>,
     grid: Option<Box<PointGrid>>,
@@ -92,6 +105,7 @@ impl IrradiancePoints {
             .collect();
         let points = PhotonMap::build(sites);
         Self {
+            made_from: maps.fingerprint(),
             grid: PointGrid::build(points.photons()).map(Box::new),
             values: (0..points.len()).map(|_| OnceLock::new()).collect(),
             points,
@@ -109,6 +123,11 @@ impl IrradiancePoints {
         maps: IrradianceMaps<'_>,
         scratch: &mut Vec<Neighbour>,
     ) -> Vec3 {
+        debug_assert_eq!(
+            self.made_from,
+            maps.fingerprint(),
+            "IrradiancePoints::at takes the maps its sites were made from"
+        );
         let nearest = match &self.grid {
             Some(grid) => grid.nearest(p, normal, self.radius * self.radius),
             None => {
@@ -194,6 +213,45 @@ mod tests {
         IrradianceMaps {
             global,
             caustics: None,
+        }
+    }
+
+    /// Sites looked up with maps other than their own would cache values of the wrong maps
+    /// without a sound: debug builds stop there (a map missing, another map, another radius).
+    #[test]
+    #[cfg(debug_assertions)]
+    fn lookups_with_other_maps_are_caught_in_debug_builds() {
+        let global = disc(4000, 1e-3, 1.0);
+        let caustics = disc(400, 1e-3, 0.2);
+        let other = disc(3000, 1e-3, 1.0);
+        let mut wider = disc(4000, 1e-3, 1.0);
+        wider.radius = 0.2;
+        let points = IrradiancePoints::new(both(&global, &caustics));
+        let p = Vec3::new(0.05, 0.03, 0.0);
+        let mut scratch = Vec::new();
+        assert!(
+            points
+                .at(p, Vec3::Z, both(&global, &caustics), &mut scratch)
+                .x
+                > 0.0
+        );
+        for maps in [
+            alone(&global),
+            both(&other, &caustics),
+            both(&wider, &caustics),
+        ] {
+            let caught = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+                points.at(p, Vec3::Z, maps, &mut Vec::new())
+            }));
+            let message = caught.expect_err("other maps are caught");
+            let text = message
+                .downcast_ref::<String>()
+                .map(String::as_str)
+                .unwrap_or_default();
+            assert!(
+                text.contains("takes the maps its sites were made from"),
+                "{text}"
+            );
         }
     }
 
