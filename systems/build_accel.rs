@@ -154,8 +154,8 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
             entity,
             mesh: instance.mesh.clone(),
             world_from_object: xf,
-            // Inverted in `Mat3` as before (`Mat3A::inverse` orders its products differently),
-            // then kept in SIMD columns: the same bits either way.
+            // Inverted in `Mat3` as before (the values every earlier image was made with);
+            // only the storage is in SIMD columns.
             normal_from_object: glam::Mat3A::from(
                 glam::Mat3::from(xf.matrix3).inverse().transpose(),
             ),
