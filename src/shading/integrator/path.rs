@@ -29,6 +29,7 @@ use crate::accel::{Hit, Ray};
 use crate::sampling::Sampler;
 use crate::shading::bsdf::{Bsdf, Scatter};
 use crate::shading::surface::unlit_radiance;
+use crate::shading::texture::hit::is_textured;
 
 /// First vertex at which Russian roulette may end a path.
 const RR_START: u32 = 3;
@@ -36,6 +37,19 @@ const RR_START: u32 = 3;
 /// Radiance toward the origin of the camera ray `ray`, which hits the scene at `hit`.
 pub fn radiance(ctx: &ShadeContext<'_>, ray: &Ray, hit: &Hit, sampler: &mut Sampler) -> Vec3 {
     radiance_split(ctx, ray, hit, sampler, None)
+}
+
+/// Whether a vertex at `hit` past the depth limit adds nothing: its material emits nothing
+/// and has no unlit shader, and no texture could change either (what [`Vertex::emitted`] and
+/// [`unlit_radiance`] read there).
+#[inline]
+fn adds_nothing_past_the_depth(ctx: &ShadeContext<'_>, hit: &Hit) -> bool {
+    let g = ctx.geometry;
+    let (inst, local) = g.locate(hit.prim);
+    let material = &g.materials[inst.material_of_local(local) as usize];
+    material.emission == Vec3::ZERO
+        && unlit_radiance(&material.shader, 1.0).is_none()
+        && !is_textured(inst, material)
 }
 
 /// Records the contribution `x` (before the path throughput `beta`) in `parts`: in `first`
@@ -82,6 +96,12 @@ pub fn radiance_split(
     // Where a textured vertex builds its BSDF ([`Vertex::bsdf_ref`]), made at the first one.
     let mut scratch: Option<Bsdf> = None;
     while let Some(h) = hit {
+        // Past the depth limit a vertex only adds what its surface emits or shows unlit (the
+        // light its BSDF sample from the last vertex found); a surface that does neither ends
+        // the path before its vertex is built.
+        if depth.vertex > ctx.max_depth && adds_nothing_past_the_depth(ctx, &h) {
+            break;
+        }
         let v = Vertex::new(ctx, &ray, &h);
         beta *= v.transmittance;
         if let Some(l) = &mut lanes {
@@ -227,4 +247,70 @@ pub fn radiance_split(
         depth = next;
     }
     radiance
+}
+
+#[cfg(test)]
+mod tests {
+    use std::sync::Arc;
+
+    use super::*;
+    use crate::components::{Displacement, DisplacementMode, ScalarNode, Shader, UvAxis};
+    use crate::settings::RenderSettings;
+    use crate::shading::integrator::fixture::{self, Object};
+    use crate::shading::lights::LightSet;
+
+    /// Only a surface that neither emits, nor shows an unlit shader, nor has a texture or
+    /// bump that could change either ends a path past the depth limit unbuilt.
+    #[test]
+    fn only_plain_surfaces_add_nothing_past_the_depth() {
+        let panel = |x: f32| {
+            fixture::quad(
+                Vec3::new(x, -0.2, 1.0),
+                Vec3::new(0.4, 0.0, 0.0),
+                Vec3::new(0.0, 0.4, 0.0),
+            )
+        };
+        let mut emitter = fixture::lambert(0.5);
+        emitter.emission = Vec3::splat(3.0);
+        let unlit = fixture::material(Shader::Constant {
+            color: Vec3::splat(0.5),
+        });
+        let cases = [
+            (fixture::lambert(0.5), true),
+            (emitter, false),
+            (unlit, false),
+            (fixture::lambert(0.5), false),
+        ];
+        let mut g = fixture::geometry(
+            cases
+                .iter()
+                .enumerate()
+                .map(|(i, (m, _))| Object {
+                    triangles: panel(i as f32 - 2.0),
+                    material: m.clone(),
+                })
+                .collect(),
+        );
+        g.instances[3].bump = Some(Arc::new(Displacement {
+            shader: ScalarNode::Sine {
+                amplitude: 0.05,
+                factor: 7.0,
+                axis: UvAxis::U,
+            },
+            bound: None,
+            mode: DisplacementMode::Bump,
+        }));
+        let lights = LightSet::default();
+        let s = RenderSettings::default();
+        let ctx = ShadeContext::new(&g, &lights, &s);
+        for (i, (_, nothing)) in cases.iter().enumerate() {
+            let centre = Vec3::new(i as f32 - 1.8, 0.0, 0.0);
+            let (_, hit) = fixture::hit(&g, centre, Vec3::Z);
+            assert_eq!(
+                adds_nothing_past_the_depth(&ctx, &hit),
+                *nothing,
+                "panel {i}"
+            );
+        }
+    }
 }
