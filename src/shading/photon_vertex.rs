@@ -136,7 +136,7 @@ mod tests {
     use glam::Vec2;
 
     use super::*;
-    use crate::components::{Displacement, DisplacementMode, ScalarNode, TriMesh, UvAxis};
+    use crate::components::TriMesh;
     use crate::geometry::SceneGeometry;
     use crate::settings::RenderSettings;
     use crate::shading::integrator::fixture::{self, Object};
@@ -207,15 +207,7 @@ mod tests {
             uvs: Some(positions.iter().map(|&p| Vec2::new(p.x, p.y)).collect()),
             positions,
         });
-        g.instances[3].bump = Some(Arc::new(Displacement {
-            shader: ScalarNode::Sine {
-                amplitude: 0.05,
-                factor: 7.0,
-                axis: UvAxis::U,
-            },
-            bound: None,
-            mode: DisplacementMode::Bump,
-        }));
+        g.instances[3].bump = Some(fixture::sine_bump());
         g
     }
 

@@ -7,7 +7,9 @@ use std::sync::Arc;
 use glam::{Affine3A, Mat3A, Vec3};
 
 use crate::accel::{Accel, Hit, Ray};
-use crate::components::{Material, Shader, TriMesh};
+use crate::components::{
+    Displacement, DisplacementMode, Material, ScalarNode, Shader, TriMesh, UvAxis,
+};
 use crate::geometry::{InstanceGeometry, SceneGeometry};
 use crate::settings::BvhQuality;
 
@@ -17,6 +19,20 @@ pub struct Object {
     pub triangles: Vec<[Vec3; 3]>,
     /// Its material.
     pub material: Material,
+}
+
+/// A bump displacement (a sine along u) for an instance: points whose shading normal a
+/// texture changes.
+pub fn sine_bump() -> Arc<Displacement> {
+    Arc::new(Displacement {
+        shader: ScalarNode::Sine {
+            amplitude: 0.05,
+            factor: 7.0,
+            axis: UvAxis::U,
+        },
+        bound: None,
+        mode: DisplacementMode::Bump,
+    })
 }
 
 /// A one-sided, non-emitting material with `shader`.

@@ -251,10 +251,8 @@ pub fn radiance_split(
 
 #[cfg(test)]
 mod tests {
-    use std::sync::Arc;
-
     use super::*;
-    use crate::components::{Displacement, DisplacementMode, ScalarNode, Shader, UvAxis};
+    use crate::components::Shader;
     use crate::settings::RenderSettings;
     use crate::shading::integrator::fixture::{self, Object};
     use crate::shading::lights::LightSet;
@@ -291,15 +289,7 @@ mod tests {
                 })
                 .collect(),
         );
-        g.instances[3].bump = Some(Arc::new(Displacement {
-            shader: ScalarNode::Sine {
-                amplitude: 0.05,
-                factor: 7.0,
-                axis: UvAxis::U,
-            },
-            bound: None,
-            mode: DisplacementMode::Bump,
-        }));
+        g.instances[3].bump = Some(fixture::sine_bump());
         let lights = LightSet::default();
         let s = RenderSettings::default();
         let ctx = ShadeContext::new(&g, &lights, &s);
