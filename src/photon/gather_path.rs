@@ -74,9 +74,8 @@ pub fn land<'a>(ctx: &ShadeContext<'a>, ray: Ray, sampler: &mut Sampler) -> Opti
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::components::Shader;
     use crate::settings::RenderSettings;
-    use crate::shading::integrator::fixture::{self, Object};
+    use crate::shading::integrator::fixture;
     use crate::shading::integrator::material_bsdfs::MaterialBsdfs;
     use crate::shading::lights::LightSet;
 
@@ -85,35 +84,8 @@ mod tests {
     /// directly and through a glass floor), the same BSDFs, weights and draws.
     #[test]
     fn landings_through_kept_bsdfs_are_the_built_ones() {
-        let panel = |x: f32| {
-            fixture::quad(
-                Vec3::new(x, 0.99, -0.7),
-                Vec3::new(0.6, 0.0, 0.0),
-                Vec3::new(0.0, 0.0, 1.4),
-            )
-        };
-        let mut g = fixture::geometry(vec![
-            Object {
-                triangles: fixture::inward_cube(1.0),
-                material: fixture::lambert(0.7),
-            },
-            Object {
-                triangles: fixture::floor(0.8, -0.3),
-                material: fixture::material(Shader::Dielectric {
-                    ior: 1.5,
-                    ior_out: 1.0,
-                    col: Vec3::ONE,
-                }),
-            },
-            Object {
-                triangles: panel(-0.6),
-                material: fixture::lambert(0.0),
-            },
-            Object {
-                triangles: panel(0.2),
-                material: fixture::lambert(0.4),
-            },
-        ]);
+        let mut g =
+            fixture::room_with_panels(Vec3::ONE, [fixture::lambert(0.0), fixture::lambert(0.4)]);
         g.instances[3].bump = Some(fixture::sine_bump());
         let lights = LightSet::default();
         let s = RenderSettings::default();

@@ -139,7 +139,7 @@ mod tests {
     use crate::components::TriMesh;
     use crate::geometry::SceneGeometry;
     use crate::settings::RenderSettings;
-    use crate::shading::integrator::fixture::{self, Object};
+    use crate::shading::integrator::fixture;
     use crate::shading::integrator::material_bsdfs::MaterialBsdfs;
     use crate::shading::integrator::triangle_normals::TriangleNormals;
     use crate::shading::lights::LightSet;
@@ -170,35 +170,8 @@ mod tests {
             normal_map: None,
             emission: None,
         }));
-        let panel = |x: f32| {
-            fixture::quad(
-                Vec3::new(x, 0.99, -0.7),
-                Vec3::new(0.6, 0.0, 0.0),
-                Vec3::new(0.0, 0.0, 1.4),
-            )
-        };
-        let mut g = fixture::geometry(vec![
-            Object {
-                triangles: fixture::inward_cube(1.0),
-                material: fixture::lambert(0.7),
-            },
-            Object {
-                triangles: fixture::floor(0.8, -0.3),
-                material: fixture::material(Shader::Dielectric {
-                    ior: 1.5,
-                    ior_out: 1.0,
-                    col: Vec3::new(0.9, 0.5, 0.2),
-                }),
-            },
-            Object {
-                triangles: panel(-0.6),
-                material: textured,
-            },
-            Object {
-                triangles: panel(0.2),
-                material: fixture::lambert(0.3),
-            },
-        ]);
+        let mut g =
+            fixture::room_with_panels(Vec3::new(0.9, 0.5, 0.2), [textured, fixture::lambert(0.3)]);
         let cube = &mut g.instances[0];
         let positions = cube.mesh.positions.clone();
         cube.mesh = Arc::new(TriMesh {

@@ -21,6 +21,42 @@ pub struct Object {
     pub material: Material,
 }
 
+/// A closed cube of half-size 1 (grey Lambert, seen from inside), a glass floor patch of
+/// absorption colour `glass` across it at z = −0.3, and two wall panels at y = 0.99 with the
+/// materials `panels` (instances 0 to 3 in that order).
+pub fn room_with_panels(glass: Vec3, panels: [Material; 2]) -> SceneGeometry {
+    let panel = |x: f32| {
+        quad(
+            Vec3::new(x, 0.99, -0.7),
+            Vec3::new(0.6, 0.0, 0.0),
+            Vec3::new(0.0, 0.0, 1.4),
+        )
+    };
+    let [left, right] = panels;
+    geometry(vec![
+        Object {
+            triangles: inward_cube(1.0),
+            material: lambert(0.7),
+        },
+        Object {
+            triangles: floor(0.8, -0.3),
+            material: material(Shader::Dielectric {
+                ior: 1.5,
+                ior_out: 1.0,
+                col: glass,
+            }),
+        },
+        Object {
+            triangles: panel(-0.6),
+            material: left,
+        },
+        Object {
+            triangles: panel(0.2),
+            material: right,
+        },
+    ])
+}
+
 /// A bump displacement (a sine along u) for an instance: points whose shading normal a
 /// texture changes.
 pub fn sine_bump() -> Arc<Displacement> {
