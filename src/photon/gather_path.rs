@@ -30,6 +30,9 @@ pub struct Landing<'a> {
 /// Follows `ray` through purely specular surfaces (delta branches sampled from `sampler`) to
 /// the first surface that has a non-delta lobe; `None` when it leaves the scene, meets an
 /// invisible face or a surface without a BSDF, or exceeds [`MAX_SPECULAR_BOUNCES`].
+/// Inlined into its caller, the final gather: returned through memory, the landing (a
+/// `Vertex` and a BSDF-sized `Cow`) was copied on its way.
+#[inline(always)]
 pub fn land<'a>(ctx: &ShadeContext<'a>, ray: Ray, sampler: &mut Sampler) -> Option<Landing<'a>> {
     let mut ray = ray;
     let mut throughput = Vec3::ONE;
