@@ -46,11 +46,9 @@ pub fn land<'a>(ctx: &ShadeContext<'a>, ray: Ray, sampler: &mut Sampler) -> Opti
             return None;
         }
         // As `Vertex::bsdf_ref`, but owned by the landing when built.
-        let bsdf = match (ctx.bsdfs, &vertex.shader) {
-            (Some(kept), Cow::Borrowed(_)) => {
-                Cow::Borrowed(kept.get(vertex.sp.material, vertex.front))
-            }
-            _ => Cow::Owned(vertex.bsdf().unwrap_or_else(Bsdf::empty)),
+        let bsdf = match vertex.kept_bsdf(ctx) {
+            Some(kept) => Cow::Borrowed(kept),
+            None => Cow::Owned(vertex.bsdf().unwrap_or_else(Bsdf::empty)),
         };
         if !bsdf.reflects() {
             return None;

@@ -53,7 +53,7 @@ use crate::shading::shadow::transmittance;
 use crate::shading::texture::{bump, hit as textured};
 use crate::shading::volume::Volumes;
 use material_bsdfs::MaterialBsdfs;
-use orient::{bsdf_kept_or_in, orient, shading_point, spawn_along, Orientation};
+use orient::{bsdf_kept_or_in, kept_bsdf, orient, shading_point, spawn_along, Orientation};
 use power::power_weight;
 use triangle_normals::TriangleNormals;
 use volume::shadow_transmittance;
@@ -315,6 +315,14 @@ impl<'a> Vertex<'a> {
     #[inline]
     pub fn bsdf(&self) -> Option<Bsdf> {
         Bsdf::new(&self.shader, self.front)
+    }
+
+    /// The material's kept BSDF for this face, when the context keeps them and no texture
+    /// drives this point's shader (the same value as [`Vertex::bsdf`]); `None` where it must
+    /// be built.
+    #[inline(always)]
+    pub fn kept_bsdf(&self, ctx: &ShadeContext<'a>) -> Option<&'a Bsdf> {
+        kept_bsdf(ctx, self.sp.material, self.front, &self.shader)
     }
 
     /// [`Vertex::bsdf`] without the `Option` (one that reflects nothing, [`Bsdf::reflects`]

@@ -103,9 +103,24 @@ pub(crate) fn orient(
     }
 }
 
-/// The BSDF of a face: the material's kept BSDF when the context keeps them and no texture
-/// drives this point's shader (`shader` borrowed), else built in `scratch`, which is made
-/// only then (a path of untextured vertices never builds the 168-byte empty BSDF).
+/// The material's kept BSDF for a face, when the context keeps them and no texture drives
+/// this point's shader (`shader` borrowed); `None` where the BSDF must be built.
+#[allow(clippy::ptr_arg)] // The `Cow`'s variant is what is read: borrowed is the material's.
+#[inline(always)]
+pub(crate) fn kept_bsdf<'b>(
+    ctx: &ShadeContext<'b>,
+    material: u32,
+    front: bool,
+    shader: &Cow<'_, Shader>,
+) -> Option<&'b Bsdf> {
+    match (ctx.bsdfs, shader) {
+        (Some(kept), Cow::Borrowed(_)) => Some(kept.get(material, front)),
+        _ => None,
+    }
+}
+
+/// The BSDF of a face: its [`kept_bsdf`], else built in `scratch`, which is made only then
+/// (a path of untextured vertices never builds the 168-byte empty BSDF).
 #[inline]
 pub(crate) fn bsdf_kept_or_in<'b>(
     ctx: &ShadeContext<'b>,
@@ -114,9 +129,9 @@ pub(crate) fn bsdf_kept_or_in<'b>(
     shader: &'b Cow<'b, Shader>,
     scratch: &'b mut Option<Bsdf>,
 ) -> &'b Bsdf {
-    match (ctx.bsdfs, shader) {
-        (Some(kept), Cow::Borrowed(_)) => kept.get(material, front),
-        _ => {
+    match kept_bsdf(ctx, material, front, shader) {
+        Some(kept) => kept,
+        None => {
             let b = scratch.get_or_insert_with(Bsdf::empty);
             b.set_shader(shader, front);
             b
