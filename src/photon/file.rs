@@ -4,7 +4,7 @@
 //! matches loads the maps instead of tracing them and renders the same bytes.
 //!
 //! **Layout** (little-endian): the magic line `stagelight photon map\n`, the format version
-//! (`u32`, 1), the content hash (`u64`), a `u32` of present maps (bit 0 caustics, bit 1
+//! (`u32`, 2), the content hash (`u64`), a `u32` of present maps (bit 0 caustics, bit 1
 //! global), then per present map `emitted` (`u64`, over all passes), the number of photon
 //! passes `P` (`u32`, ≥ 1: more for a progressive map) and `P` trees, each the photon count
 //! `n` (`u64`), `n` photons of 12 `f32` (position, power, incoming, normal) and `n` split
@@ -21,7 +21,9 @@ use crate::hash::Fnv64;
 /// The first bytes of every photon map file.
 pub const MAGIC: &[u8] = b"stagelight photon map\n";
 /// The format version this build reads and writes.
-pub const VERSION: u32 = 1;
+/// Format 2: the trees break ties between equal split coordinates by photon index
+/// ([`super::kdtree`]), so a format-1 file's trees are not what this build would make.
+pub const VERSION: u32 = 2;
 /// Bytes of one stored photon (12 `f32` and its axis byte).
 const PHOTON_BYTES: u64 = 12 * 4 + 1;
 /// Most photon passes of one map a file may hold.
@@ -339,7 +341,7 @@ mod tests {
         assert_eq!(decode(&bytes).unwrap_err(), PhotonFileError::Version(7));
         assert_eq!(
             PhotonFileError::Version(7).to_string(),
-            "photon map format 7, but this stagelight reads format 1"
+            "photon map format 7, but this stagelight reads format 2"
         );
     }
 }

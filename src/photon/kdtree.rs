@@ -481,10 +481,9 @@ fn prefetch_photon(p: &Photon) {
 const PARALLEL_BUILD_MIN: usize = 16_384;
 
 /// What the build moves around instead of a 48-byte [`Photon`]: its position and its index
-/// among the photons. The selection compares the same coordinates in the same order, so it
-/// leaves the keys in the permutation it would leave the photons in (`select_nth_unstable_by`
-/// is a comparison algorithm: its moves depend only on the comparisons' outcomes and the
-/// slice length), and the photons follow their keys once at the end.
+/// among the photons (which breaks ties between equal coordinates, [`select_on`]); the
+/// photons follow their keys once at the end. [`PhotonMap::from_parts`]'s indices (part,
+/// then offset) order the photons as their concatenation does, so both build one tree.
 #[derive(Debug, Clone, Copy)]
 #[repr(C)]
 struct BuildKey {
@@ -492,8 +491,9 @@ struct BuildKey {
     index: u32,
 }
 
-/// `keys.select_nth_unstable_by(mid, …)` on coordinate `AXIS`, with the comparison the build
-/// has always used (`partial_cmp`, incomparable as equal).
+/// `keys.select_nth_unstable_by(mid, …)` on coordinate `AXIS` (`partial_cmp`, incomparable as
+/// equal). Which of the photons at the median's coordinate end on which side is the
+/// selection algorithm's choice; [`settle_ties`] then makes it the index order.
 fn select_on<const AXIS: usize>(keys: &mut [BuildKey], mid: usize) {
     keys.select_nth_unstable_by(mid, |a, b| {
         a.position[AXIS]
@@ -502,27 +502,66 @@ fn select_on<const AXIS: usize>(keys: &mut [BuildKey], mid: usize) {
     });
 }
 
-/// The keys' bounding-box extent, `max − min` per axis: [`Vec3A`] lanes (one `minps` and
-/// one `maxps` per key) computing what [`Vec3::min`]/[`Vec3::max`] compute lane by lane
-/// (`if a < b { a } else { b }`, the `minps` rule), so the bits are those of the scalar fold
-/// ([`tests::the_extent_is_the_scalar_folds`]).
-fn extent(keys: &[BuildKey]) -> Vec3 {
-    let (lo, hi) = keys.iter().fold(
+/// After [`select_on`] (`keys[..mid]` at or below the median's coordinate `m` on `axis`,
+/// `keys[mid + 1..]` at or above it): of the photons at `m`, the ones with the smallest
+/// indices fill the lower side's places, the next is the median, the rest go above. The
+/// split is then the one by (coordinate, index), a total order (indices are distinct), so
+/// the two sides are the same *sets* whatever permutation the selection left; the build
+/// recurses to single photons, so the tree does not depend on the standard library's
+/// selection algorithm, which has changed between Rust releases. (Format 1's trees kept the
+/// algorithm's choice: photons on a wall all share one coordinate.) Breaking ties in the
+/// selection's comparison instead took its fast path for runs of equal keys away: the
+/// build took 1.5× as many instructions on the photon-heavy scene.
+fn settle_ties(keys: &mut [BuildKey], mid: usize, axis: usize) {
+    let m = keys[mid].position[axis];
+    let (left, right) = keys.split_at_mut(mid);
+    // Below: those under `m` first; above (after the median): those at `m` first.
+    let under = partition(left, |k| k.position[axis] < m);
+    let at_above = partition(&mut right[1..], |k| k.position[axis] == m);
+    let tied = &mut keys[under..=mid + at_above];
+    tied.select_nth_unstable_by_key(mid - under, |k| k.index);
+}
+
+/// Moves the keys for which `first` holds to the front; returns how many there are.
+fn partition(keys: &mut [BuildKey], first: impl Fn(&BuildKey) -> bool) -> usize {
+    let mut n = 0;
+    for i in 0..keys.len() {
+        if first(&keys[i]) {
+            keys.swap(n, i);
+            n += 1;
+        }
+    }
+    n
+}
+
+/// The keys' bounding box, `(min, max)` per axis: [`Vec3A`] lanes (one `minps` and one
+/// `maxps` per key) computing what [`Vec3::min`]/[`Vec3::max`] compute lane by lane (`if a <
+/// b { a } else { b }`, the `minps` rule), so the extent `max − min` has the bits of the
+/// scalar fold ([`tests::the_extent_is_the_scalar_folds`]).
+fn bounds(keys: &[BuildKey]) -> (Vec3A, Vec3A) {
+    keys.iter().fold(
         (Vec3A::splat(f32::INFINITY), Vec3A::splat(f32::NEG_INFINITY)),
         |(lo, hi), k| {
             let p = Vec3A::from_array(k.position);
             (lo.min(p), hi.max(p))
         },
-    );
-    Vec3::from(hi - lo)
+    )
 }
 
 /// Median split along the widest axis, recursively; `axes[mid]` records the split.
 fn build(keys: &mut [BuildKey], axes: &mut [u8]) {
+    let all = bounds(keys);
+    build_within(keys, axes, all);
+}
+
+/// [`build`] of keys whose [`bounds`] are `(lo, hi)`. Each node computes its two sides'
+/// bounds (which the sides need for their own splits), and they tell it whether a photon
+/// beside the median shares its coordinate: only then are the ties settled.
+fn build_within(keys: &mut [BuildKey], axes: &mut [u8], (lo, hi): (Vec3A, Vec3A)) {
     if keys.len() <= 1 {
         return;
     }
-    let ext = extent(keys);
+    let ext = Vec3::from(hi - lo);
     let axis = if ext.x >= ext.y && ext.x >= ext.z {
         0
     } else if ext.y >= ext.z {
@@ -537,15 +576,26 @@ fn build(keys: &mut [BuildKey], axes: &mut [u8]) {
         _ => select_on::<2>(keys, mid),
     }
     axes[mid] = axis as u8;
+    let m = keys[mid].position[axis];
+    let sides = |keys: &[BuildKey]| (bounds(&keys[..mid]), bounds(&keys[mid + 1..]));
+    let (mut below, mut above) = sides(keys);
+    // Below holds coordinates ≤ m and above ≥ m: a tie shows as below's max or above's min.
+    if below.1[axis] == m || above.0[axis] == m {
+        settle_ties(keys, mid, axis);
+        (below, above) = sides(keys);
+    }
     let (left, rest) = keys.split_at_mut(mid);
     let (left_axes, rest_axes) = axes.split_at_mut(mid);
     let right = (&mut rest[1..], &mut rest_axes[1..]);
     // The two halves are disjoint and built the same way on any thread: same tree bytes.
     if left.len() >= PARALLEL_BUILD_MIN {
-        rayon::join(|| build(left, left_axes), || build(right.0, right.1));
+        rayon::join(
+            || build_within(left, left_axes, below),
+            || build_within(right.0, right.1, above),
+        );
     } else {
-        build(left, left_axes);
-        build(right.0, right.1);
+        build_within(left, left_axes, below);
+        build_within(right.0, right.1, above);
     }
 }
 
@@ -630,14 +680,15 @@ mod tests {
         assert_eq!(one.axes(), two.axes());
     }
 
-    /// The build before [`BuildKey`]: the same median selection on the 48-byte photons.
-    fn photon_build(photons: &mut [Photon], axes: &mut [u8]) {
+    /// The tree by another algorithm: at every node a full stable sort of the photons (with
+    /// their input indices) by the split coordinate, then by index, instead of a selection.
+    fn sorted_build(photons: &mut [(u32, Photon)], axes: &mut [u8]) {
         if photons.len() <= 1 {
             return;
         }
         let (lo, hi) = photons.iter().fold(
             (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
-            |(lo, hi), p| (lo.min(p.position), hi.max(p.position)),
+            |(lo, hi), (_, p)| (lo.min(p.position), hi.max(p.position)),
         );
         let ext = hi - lo;
         let axis = if ext.x >= ext.y && ext.x >= ext.z {
@@ -647,17 +698,18 @@ mod tests {
         } else {
             2
         };
-        let mid = photons.len() / 2;
-        photons.select_nth_unstable_by(mid, |a, b| {
+        photons.sort_by(|(i, a), (j, b)| {
             a.position[axis]
                 .partial_cmp(&b.position[axis])
                 .unwrap_or(Ordering::Equal)
+                .then(i.cmp(j))
         });
+        let mid = photons.len() / 2;
         axes[mid] = axis as u8;
         let (left, rest) = photons.split_at_mut(mid);
         let (left_axes, rest_axes) = axes.split_at_mut(mid);
-        photon_build(left, left_axes);
-        photon_build(&mut rest[1..], &mut rest_axes[1..]);
+        sorted_build(left, left_axes);
+        sorted_build(&mut rest[1..], &mut rest_axes[1..]);
     }
 
     /// [`extent`] in SIMD lanes gives the bits of the scalar [`Vec3`] fold it replaced, for
@@ -720,18 +772,22 @@ mod tests {
                     index: i as u32,
                 })
                 .collect();
-            let (got, want) = (extent(&keys), scalar(&keys));
+            let (lo, hi) = bounds(&keys);
+            let (got, want) = (Vec3::from(hi - lo), scalar(&keys));
             let bits = |v: Vec3| v.to_array().map(f32::to_bits);
             assert_eq!(bits(got), bits(want), "{set:?}");
         }
     }
 
+    /// The tree does not depend on the selection algorithm: the build's `select_nth_unstable`
+    /// and a full stable sort at every node give the same photons in the same order, the
+    /// same axes and search nodes. Coarse lattices (many equal coordinates: without the
+    /// index tie-break, which of the equal photons lands where follows each algorithm's
+    /// moves, and this fails), signed zeros (equal, different bits), photons on a plane and
+    /// repeated photons; sizes around the selection's small-slice thresholds and above the
+    /// parallel split.
     #[test]
-    fn the_tree_is_the_one_built_by_moving_whole_photons() {
-        // Coarse lattices (many equal coordinates, where which of the equal photons lands
-        // where depends on the selection's every move), signed zeros (equal, different
-        // bits), photons on a plane and repeated photons; sizes around the selection's
-        // small-slice thresholds and above the parallel split.
+    fn the_tree_does_not_depend_on_the_selection_algorithm() {
         let mut sets: Vec<Vec<Photon>> = Vec::new();
         for (n, seed, cells) in [
             (5usize, 1u64, 2.0f32),
@@ -771,9 +827,10 @@ mod tests {
         sets.push(vec![grid(1)[0]; 300]);
         for photons in sets {
             let map = PhotonMap::build(photons.clone());
-            let mut want = photons;
-            let mut axes = vec![0u8; want.len()];
-            photon_build(&mut want, &mut axes);
+            let mut indexed: Vec<(u32, Photon)> = (0..).zip(photons).collect();
+            let mut axes = vec![0u8; indexed.len()];
+            sorted_build(&mut indexed, &mut axes);
+            let want: Vec<Photon> = indexed.into_iter().map(|(_, p)| p).collect();
             assert_eq!(map.photons(), &want[..], "{} photons", want.len());
             // Photon powers are their input indices: the permutation itself is the same.
             let order = |p: &[Photon]| p.iter().map(|p| p.power.x).collect::<Vec<_>>();
