@@ -511,7 +511,7 @@ fn select_on<const AXIS: usize>(keys: &mut [BuildKey], mid: usize) {
 /// selection algorithm, which has changed between Rust releases. (Format 1's trees kept the
 /// algorithm's choice: photons on a wall all share one coordinate.) Breaking ties in the
 /// selection's comparison instead took its fast path for runs of equal keys away: the
-/// build took 1.5× as many instructions on the photon-heavy scene.
+/// build took 1.5× as many instructions (tenth of the photon-heavy scene).
 fn settle_ties(keys: &mut [BuildKey], mid: usize, axis: usize) {
     let m = keys[mid].position[axis];
     let (left, right) = keys.split_at_mut(mid);
@@ -712,9 +712,9 @@ mod tests {
         sorted_build(&mut rest[1..], &mut rest_axes[1..]);
     }
 
-    /// [`extent`] in SIMD lanes gives the bits of the scalar [`Vec3`] fold it replaced, for
-    /// signed zeros (`min(0, −0)` keeps the second operand in both), subnormals, huge and
-    /// infinite coordinates, and a lone key.
+    /// The extent of [`bounds`] (`max − min`), in SIMD lanes, gives the bits of the scalar
+    /// [`Vec3`] fold it replaced, for signed zeros (`min(0, −0)` keeps the second operand in
+    /// both), subnormals, huge and infinite coordinates, and a lone key.
     #[test]
     fn the_extent_is_the_scalar_folds() {
         let scalar = |keys: &[BuildKey]| {
