@@ -23,6 +23,7 @@
 //! the camera's resolution; each pixel depends only on (seed, pixel index, sample index).
 //! The reported work items are the camera samples actually taken.
 
+mod packets;
 mod rows;
 
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -32,7 +33,7 @@ use hecs::World;
 use rayon::prelude::*;
 
 use super::prelude::*;
-use crate::accel::RayKind;
+use crate::accel::{Ray, RayKind, PACKET_MIN_RAYS};
 use crate::adaptive::{refine_flags, PixelSamples, SampleBudget};
 use crate::components::{ContourContrast, ContourShader, Interior};
 use crate::contour::{ContourStore, Probe};
@@ -427,6 +428,11 @@ impl PixelShader<'_> {
         let centre = Vec2::new(x as f32 + 0.5, y as f32 + 0.5);
         let lens = self.rays.needs_lens_sample();
         let first = self.sample_offset + samples.taken;
+        // A pinhole's rays share the camera's origin: enough of them go to the tree as packets.
+        if !lens && count as usize >= PACKET_MIN_RAYS {
+            self.take_in_packets(ctx, samples, sums, pixel, centre, first, count);
+            return;
+        }
         // Each sample's sampler is made one sample ahead (`Sampler::for_item_primed`), so its
         // integer hash chains overlap the previous sample's shading.
         let mut next = Sampler::for_item_primed(self.seed, pixel, first);
@@ -449,30 +455,43 @@ impl PixelShader<'_> {
                 .rays
                 .ray(film.x, film.y, lens_u)
                 .map(|ray| (ray, camera_hit(ctx, &ray)));
-            let mut parts = Components::default();
-            let recording = sums.is_some().then_some(&mut parts);
-            let (l, covered) = match hit {
-                Some((ray, CameraHit::Surface(hit))) => (
-                    camera_sample(ctx, &ray, &hit, &mut sampler, recording),
-                    true,
-                ),
-                Some((_, CameraHit::Light(le))) => (le, true),
-                Some((_, CameraHit::Miss(le))) => (le, false),
-                None => (Vec3::ZERO, false),
-            };
-            if self.variance {
-                samples.add(l, covered);
-            } else {
-                samples.add_unmeasured(l, covered);
+            self.add_sample(ctx, hit, &mut sampler, samples, sums.as_deref_mut());
+        }
+    }
+
+    /// Adds one sample to the pixel's `samples` and component `sums`: what its camera ray
+    /// met (`None`: no ray), shaded with `sampler` past its film and lens draws.
+    #[inline(always)]
+    fn add_sample(
+        &self,
+        ctx: &ShadeContext<'_>,
+        hit: Option<(Ray, CameraHit)>,
+        sampler: &mut Sampler,
+        samples: &mut PixelSamples,
+        sums: Option<&mut [DVec3; 6]>,
+    ) {
+        let mut parts = Components::default();
+        let recording = sums.is_some().then_some(&mut parts);
+        let (l, covered) = match hit {
+            Some((ray, CameraHit::Surface(hit))) => {
+                (camera_sample(ctx, &ray, &hit, sampler, recording), true)
             }
-            if let Some(sums) = sums.as_deref_mut() {
-                if !matches!(hit, Some((_, CameraHit::Surface(_)))) {
-                    parts.add(Component::Emission, l);
-                }
-                if l.is_finite() {
-                    for (sum, part) in sums.iter_mut().zip(parts.parts) {
-                        *sum += part.as_dvec3();
-                    }
+            Some((_, CameraHit::Light(le))) => (le, true),
+            Some((_, CameraHit::Miss(le))) => (le, false),
+            None => (Vec3::ZERO, false),
+        };
+        if self.variance {
+            samples.add(l, covered);
+        } else {
+            samples.add_unmeasured(l, covered);
+        }
+        if let Some(sums) = sums {
+            if !matches!(hit, Some((_, CameraHit::Surface(_)))) {
+                parts.add(Component::Emission, l);
+            }
+            if l.is_finite() {
+                for (sum, part) in sums.iter_mut().zip(parts.parts) {
+                    *sum += part.as_dvec3();
                 }
             }
         }

@@ -40,7 +40,7 @@ use crate::settings::BvhQuality;
 pub use brute::brute_force_intersect;
 pub use bvh::BuildPhases;
 pub use counters::RayCounts;
-pub use ray_kind::{RayKind, MAX_PASSED};
+pub use ray_kind::{RayKind, MAX_PASSED, PACKET_MIN_RAYS};
 pub use spawn::{
     geometric_normal, offset_ray_origin, spawn_ray, spawn_ray_to, spawn_ray_to_surface,
     surface_point_with_normal, SHADOW_EPSILON,

@@ -68,6 +68,32 @@ fn render_parts(dir: &Path, count: u32, split: &str, extra: &[&str]) -> Vec<Stri
         .collect()
 }
 
+/// A pinhole's camera rays go to the tree as packets when a pixel takes at least
+/// `PACKET_MIN_RAYS` (8) samples at once, one by one otherwise. At 16 samples the single
+/// render traces each pixel's rays as a packet, while each of four samples-split parts takes
+/// four samples per pixel, one ray at a time: the merge is the single render's bytes, so
+/// the packets gave every sample the same hit (the ball has 256 triangles: the tree, not the
+/// small-scene path).
+#[test]
+fn camera_ray_packets_give_the_one_by_one_samples_bit_for_bit() {
+    let dir = setup("packets");
+    ok(
+        &dir,
+        &["render", "scene.ron", "--spp", "16", "-o", "single.exr"],
+    );
+    let parts = render_parts(&dir, 4, "samples", &["--spp", "16"]);
+    let mut args = vec!["merge"];
+    args.extend(parts.iter().map(String::as_str));
+    args.extend(["-o", "merged.exr"]);
+    ok(&dir, &args);
+    let single = std::fs::read(dir.join("single.exr")).unwrap();
+    let merged = std::fs::read(dir.join("merged.exr")).unwrap();
+    assert!(
+        single == merged,
+        "the packet render differs from the one-by-one parts"
+    );
+}
+
 #[test]
 fn merged_parts_are_byte_identical_to_the_single_render() {
     let dir = setup("identical");

@@ -633,6 +633,13 @@ pub enum CameraHit {
 /// What the camera ray `ray` meets first (see [`CameraHit`]).
 pub fn camera_hit(ctx: &ShadeContext<'_>, ray: &Ray) -> CameraHit {
     let hit = ctx.geometry.accel.intersect_as(ray, RayKind::Camera);
+    camera_hit_with(ctx, ray, hit)
+}
+
+/// [`camera_hit`] for a ray whose closest camera-visible surface hit is `hit` (traced by the
+/// caller, e.g. with a pixel's other rays in one packet): the lights and the environment
+/// along it.
+pub fn camera_hit_with(ctx: &ShadeContext<'_>, ray: &Ray, hit: Option<Hit>) -> CameraHit {
     let mut clipped = *ray;
     if let Some(h) = &hit {
         clipped.t_max = h.t;
