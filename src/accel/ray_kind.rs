@@ -102,13 +102,19 @@ impl Accel {
     /// When `rays` and `out` differ in length.
     pub fn intersect_shared_origin_as(&self, rays: &[Ray], kind: RayKind, out: &mut [Option<Hit>]) {
         assert_eq!(rays.len(), out.len(), "one result slot per ray");
-        if self.masks.is_none() && self.small.is_none() && rays.len() >= PACKET_MIN_RAYS {
+        if self.packs_shared_origin(rays.len()) {
             self.intersect_packet(rays, out);
             return;
         }
         for (ray, hit) in rays.iter().zip(out) {
             *hit = self.intersect_as(ray, kind);
         }
+    }
+
+    /// Whether [`Accel::intersect_shared_origin_as`] traces `n` rays as packets (else one by
+    /// one), so that a caller gathers its rays first only where that pays.
+    pub fn packs_shared_origin(&self, n: usize) -> bool {
+        self.masks.is_none() && self.small.is_none() && n >= PACKET_MIN_RAYS
     }
 
     /// Whether something that rays of `kind` see is on the segment (see
