@@ -430,7 +430,7 @@ impl PixelShader<'_> {
         let first = self.sample_offset + samples.taken;
         // A pinhole's rays share the camera's origin: enough of them go to the tree as packets
         // (not on a small scene, whose lane kernel answers one ray faster than the gathering
-        // costs: the Cornell box's path tracer was 3 % slower through the packet loop).
+        // costs: the Cornell box's path tracer took 3 % more instructions through it).
         if !lens && ctx.geometry.accel.packs_shared_origin(count as usize) {
             self.take_in_packets(ctx, samples, sums, pixel, centre, first, count);
             return;
