@@ -19,8 +19,10 @@
 //!
 //! Run: `cargo bench --bench bvh` (add `-- tiny` for the small group only, `-- summary` for
 //! the table only; `STAGELIGHT_BENCH_THREADS="1 2"`, `STAGELIGHT_BENCH_QUALITIES="fast medium"`
-//! and `STAGELIGHT_BENCH_API="single batch"` select what the table measures; an API list
-//! naming neither, e.g. `none`, leaves only the build lines).
+//! and `STAGELIGHT_BENCH_API="single batch"` select what the table measures; `packet` adds
+//! closest-hit rows traced as common-origin packets of 64 consecutive rays
+//! (`Accel::intersect_packet`, what the `shade` stage does with a pinhole pixel's camera
+//! rays); an API list naming none of them, e.g. `none`, leaves only the build lines).
 
 use std::hint::black_box;
 use std::path::{Path, PathBuf};
@@ -260,13 +262,18 @@ fn generated(nu: usize, nv: usize, res: usize, n_incoherent: usize) -> Workload 
 }
 
 /// Which query a trace runs.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 enum Query {
     Closest,
     Occluded,
     ClosestBatch,
     OccludedBatch,
+    /// Closest hits in common-origin packets of [`PACKET_RAYS`] consecutive rays.
+    ClosestPacket,
 }
+
+/// Rays per packet of [`Query::ClosestPacket`] (the packet kernel's size).
+const PACKET_RAYS: usize = 64;
 
 /// Traces all rays in 4096-ray chunks (the anchor's OpenMP `dynamic, 4096`); returns hits and
 /// the sum of hit distances.
@@ -278,6 +285,17 @@ fn trace(accel: &Accel, rays: &[Ray], query: Query) -> (u64, f64) {
                 Query::ClosestBatch => {
                     let mut out = vec![None; chunk.len()];
                     accel.intersect_batch(chunk, &mut out);
+                    for h in out.iter().flatten() {
+                        hits += 1;
+                        tsum += f64::from(h.t);
+                    }
+                    return (hits, tsum);
+                }
+                Query::ClosestPacket => {
+                    let mut out = vec![None; chunk.len()];
+                    for (rs, os) in chunk.chunks(PACKET_RAYS).zip(out.chunks_mut(PACKET_RAYS)) {
+                        accel.intersect_packet(rs, os);
+                    }
                     for h in out.iter().flatten() {
                         hits += 1;
                         tsum += f64::from(h.t);
@@ -434,6 +452,12 @@ fn summary(w: &Workload, reps: usize) {
                 match api {
                     "single" => rows.push((set.to_string(), rays, single, expected)),
                     "batch" => rows.push((format!("{set}/batch"), rays, batch, expected)),
+                    "packet" if single == Query::Closest => rows.push((
+                        format!("{set}/packet"),
+                        rays,
+                        Query::ClosestPacket,
+                        expected,
+                    )),
                     _ => {}
                 }
             }
