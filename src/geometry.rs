@@ -106,6 +106,22 @@ impl SceneGeometry {
         self.accel.len()
     }
 
+    /// The accelerator's shortcuts past convex instances ([`crate::accel::Shortcuts`]),
+    /// each instance's triangles a part.
+    pub fn shortcuts(&self) -> &crate::accel::Shortcuts {
+        self.accel.shortcuts(|| {
+            let mut parts: Vec<std::ops::Range<u32>> = Vec::new();
+            for (prim, &slot) in self.triangle_instance.iter().enumerate() {
+                let prim = prim as u32;
+                match parts.last_mut() {
+                    Some(r) if self.triangle_instance[r.start as usize] == slot => r.end = prim + 1,
+                    _ => parts.push(prim..prim + 1),
+                }
+            }
+            parts
+        })
+    }
+
     /// Instance and mesh-local triangle index of world triangle `prim`.
     pub fn locate(&self, prim: u32) -> (&InstanceGeometry, usize) {
         let inst = &self.instances[self.triangle_instance[prim as usize] as usize];

@@ -24,6 +24,7 @@ mod leaf_wide;
 mod packet;
 mod packet_leaf;
 mod ray_kind;
+mod shortcut;
 #[cfg(target_arch = "x86_64")]
 mod small_scene;
 mod spawn;
@@ -41,6 +42,7 @@ pub use brute::brute_force_intersect;
 pub use bvh::BuildPhases;
 pub use counters::RayCounts;
 pub use ray_kind::{RayKind, MAX_PASSED, PACKET_MIN_RAYS};
+pub use shortcut::{Shortcut, Shortcuts};
 pub use spawn::{
     geometric_normal, offset_ray_origin, spawn_ray, spawn_ray_to, spawn_ray_to_surface,
     surface_point_with_normal, SHADOW_EPSILON,
@@ -118,6 +120,8 @@ pub struct Accel {
     /// rays are then answered without the tree.
     #[cfg(target_arch = "x86_64")]
     small: Option<small_scene::SmallScene>,
+    /// Shortcuts past convex parts (`shortcut.rs`), made on first use.
+    shortcuts: std::sync::OnceLock<Shortcuts>,
 }
 
 impl Accel {
@@ -136,7 +140,20 @@ impl Accel {
             masks: None,
             #[cfg(target_arch = "x86_64")]
             small,
+            shortcuts: std::sync::OnceLock::new(),
         }
+    }
+
+    /// Whether [`Accel::shortcuts`] were made already.
+    pub fn has_shortcuts(&self) -> bool {
+        self.shortcuts.get().is_some()
+    }
+
+    /// The shortcuts past the convex ones of `parts` (disjoint ranges of triangles, asked
+    /// for on the first call only; `shortcut.rs`).
+    pub fn shortcuts(&self, parts: impl FnOnce() -> Vec<std::ops::Range<u32>>) -> &Shortcuts {
+        self.shortcuts
+            .get_or_init(|| Shortcuts::build(self, &parts()))
     }
 
     /// Number of triangles.
@@ -257,7 +274,7 @@ impl Accel {
 }
 
 #[cfg(test)]
-mod test_random;
+pub(crate) mod test_random;
 
 #[cfg(test)]
 mod tests {

@@ -30,7 +30,7 @@ use super::kdtree::Photon;
 use super::light_lists::ReceiverLights;
 use super::trace::trace_photon_with_roles;
 use super::walk::Walk;
-use crate::accel::Hit;
+use crate::accel::{Hit, Ray, Shortcut, Shortcuts};
 use crate::components::PhotonRole;
 use crate::geometry::ShadingPoint;
 use crate::sampling::Sampler;
@@ -81,6 +81,18 @@ pub struct Chunk<'a> {
     pub scale: f32,
     /// Which surfaces keep photons of which lights (material light lists).
     pub receivers: ReceiverLights<'a>,
+    /// Shortcuts past convex parts for batched rays, where the pass is long enough to repay
+    /// making them ([`shortcuts_pay`]).
+    pub shortcuts: Option<&'a Shortcuts>,
+}
+
+/// Whether a pass of `photons` photons in `geometry` repays making the accelerator's
+/// shortcuts (`accel/shortcut.rs`): making them costs about a microsecond per triangle of a
+/// convex part (the convexity check) and saves about half a microsecond per photon that
+/// meets one, so a pass of fewer than 8 photons per triangle goes without (unless they were
+/// made already: a second pass uses them for nothing).
+pub fn shortcuts_pay(geometry: &crate::geometry::SceneGeometry, photons: u64) -> bool {
+    geometry.accel.has_shortcuts() || photons >= 8 * geometry.triangle_count() as u64
 }
 
 impl Chunk<'_> {
@@ -165,6 +177,12 @@ impl Chunk<'_> {
         }
         let mut live: Vec<usize> = (0..walks.len()).collect();
         let (mut rays, mut hits) = (Vec::new(), Vec::<Option<Hit>>::new());
+        let accel = &self.ctx.geometry.accel;
+        let no_shortcuts = Shortcuts::default();
+        let shortcuts = self.shortcuts.unwrap_or(&no_shortcuts);
+        // Rays traced from a later origin (`Shortcuts`): their index in the round's rays.
+        let mut shortened: Vec<u32> = Vec::new();
+        let (mut retrace, mut again) = (Vec::<(u32, Ray)>::new(), Vec::<Option<Hit>>::new());
         // (walk, photon) in the order made; walks are in photon-index order, so
         // [`in_walk_order`] puts them back in photon-index order.
         let mut stored: Vec<(u32, Photon)> = Vec::new();
@@ -172,10 +190,42 @@ impl Chunk<'_> {
         let stop = self.stop_after_diffuse();
         while !live.is_empty() {
             rays.clear();
-            rays.extend(live.iter().map(|&w| *walks[w].1.ray()));
+            shortened.clear();
+            for (i, &w) in live.iter().enumerate() {
+                let walk = &walks[w].1;
+                let ray = walk.ray();
+                rays.push(
+                    match walk.left().map(|from| shortcuts.shortcut(ray, from)) {
+                        Some(Shortcut::From(later)) => {
+                            shortened.push(i as u32);
+                            later
+                        }
+                        _ => *ray,
+                    },
+                );
+            }
             hits.clear();
             hits.resize(rays.len(), None);
-            self.ctx.geometry.accel.intersect_batch(&rays, &mut hits);
+            accel.intersect_batch(&rays, &mut hits);
+            // The shortened rays' hits as the full queries', or those rays again in full.
+            retrace.clear();
+            for &i in &shortened {
+                let ray = walks[live[i as usize]].1.ray();
+                match Shortcuts::confirm(accel, ray, hits[i as usize]) {
+                    Some(hit) => hits[i as usize] = Some(hit),
+                    None => retrace.push((i, *ray)),
+                }
+            }
+            if !retrace.is_empty() {
+                rays.clear();
+                rays.extend(retrace.iter().map(|&(_, ray)| ray));
+                again.clear();
+                again.resize(rays.len(), None);
+                accel.intersect_batch(&rays, &mut again);
+                for (&(i, _), &hit) in retrace.iter().zip(&again) {
+                    hits[i as usize] = hit;
+                }
+            }
             for (ws, hs) in live.chunks(BLOCK).zip(hits.chunks(BLOCK)) {
                 // The block's shading points first: their loads (the hit triangle, its
                 // indices and normals) overlap here instead of stalling each interaction.
@@ -297,5 +347,45 @@ mod tests {
             assert!(batched.len() > 100, "{}", batched.len());
             assert_eq!(batched, single, "{kind:?}");
         }
+    }
+
+    /// A glass ball in a grey box: batched photons take the accelerator's shortcuts past the
+    /// ball (leaving it and crossing it) and store what photons traced one by one store.
+    #[test]
+    fn batched_photons_through_shortcuts_are_the_per_photon_ones_bit_for_bit() {
+        let ball = crate::accel::test_random::uv_sphere(Vec3::new(0.1, 0.0, -0.3), 0.5, 12, 24);
+        let geometry = fixture::geometry(vec![
+            Object {
+                triangles: fixture::inward_cube(1.0),
+                material: fixture::lambert(0.7),
+            },
+            Object {
+                triangles: ball,
+                material: fixture::material(Shader::Dielectric {
+                    ior: 1.5,
+                    ior_out: 1.0,
+                    col: Vec3::ONE,
+                }),
+            },
+        ]);
+        let position = Vec3::new(0.1, 0.2, 0.6);
+        let e = Emitter::new(LightShape::Point { position }, Vec3::ONE);
+        let lights = LightSet::new(&[e], None, 1);
+        let s = RenderSettings::default();
+        let ctx = ShadeContext::new(&geometry, &lights, &s);
+        let emission = Emission::new(&lights, &geometry);
+        let cancel = AtomicBool::new(false);
+        let photons = 8 * geometry.triangle_count() as u32;
+        assert!(!geometry.accel.has_shortcuts());
+        for kind in [MapKind::Caustics, MapKind::Global] {
+            let map = (&ctx, &emission, &[][..], kind);
+            let batched = trace_map_with(map, photons, 7, &cancel, Tracing::Batched).unwrap();
+            let single = trace_map_with(map, photons, 7, &cancel, Tracing::PerPhoton).unwrap();
+            println!("{kind:?}: {} photons stored", batched.len());
+            assert!(batched.len() > 200, "{}", batched.len());
+            assert_eq!(batched, single, "{kind:?}");
+        }
+        assert!(geometry.accel.has_shortcuts());
+        assert_eq!(geometry.shortcuts().parts(), 1, "the ball");
     }
 }

@@ -12,7 +12,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use rayon::prelude::*;
 
 pub use super::batch::MapKind;
-use super::batch::{Chunk, Tracing};
+use super::batch::{shortcuts_pay, Chunk, Tracing};
 use super::emit::Emission;
 use super::kdtree::Photon;
 use super::light_lists::ReceiverLights;
@@ -97,6 +97,8 @@ fn trace_parts_with(
         seed: hash_combine(&[seed, kind as u32, 0x9407]),
         scale: 1.0 / n.max(1) as f32,
         receivers: ReceiverLights::new(ctx.geometry),
+        shortcuts: (tracing == Tracing::Batched && shortcuts_pay(ctx.geometry, n))
+            .then(|| ctx.geometry.shortcuts()),
     };
     let chunks: Vec<Option<Vec<Photon>>> = (0..n.div_ceil(CHUNK))
         .into_par_iter()

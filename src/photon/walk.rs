@@ -64,6 +64,8 @@ pub struct Walk {
     live: bool,
     /// Whether [`Walk::fate`] is kept complete (see [`Walk::without_fate`]).
     keep_fate: bool,
+    /// The triangle [`Walk::ray`] leaves (`u32::MAX`: the light).
+    left: u32,
 }
 
 impl Walk {
@@ -80,6 +82,7 @@ impl Walk {
             depth: PathDepth::new(ctx.photon_depth),
             live: true,
             keep_fate: true,
+            left: u32::MAX,
         }
     }
 
@@ -104,6 +107,11 @@ impl Walk {
     /// The ray the walk follows next.
     pub fn ray(&self) -> &Ray {
         &self.ray
+    }
+
+    /// The triangle [`Walk::ray`] leaves (`None`: the photon comes from the light).
+    pub fn left(&self) -> Option<u32> {
+        (self.left != u32::MAX).then_some(self.left)
     }
 
     /// The power the photon carries along [`Walk::ray`].
@@ -255,6 +263,7 @@ impl Walk {
         };
         self.power = next_power;
         self.ray = next;
+        self.left = hit.prim;
         self.bounces += 1;
         if self.bounces >= MAX_BOUNCES {
             fate.truncated += next_power;

@@ -1,0 +1,578 @@
+//! Shortcuts past a convex part's own triangles, for rays that start on it: a ray that leaves
+//! the part outward cannot meet it again, and a ray that enters it crosses nothing until it
+//! reaches the part's far side. Such a ray is traced from a later origin — past the part's
+//! box, or from the far end of its chord through a ball inside the part — so the traversal
+//! skips the nodes around its start (a chord of a tessellated ball otherwise tests the boxes
+//! of the patches around both its ends); the hit found is then tested again with the
+//! original ray, which gives the distance and barycentrics the full query gives.
+//!
+//! **Parts** are the caller's triangle ranges (an instance's triangles). A part qualifies when
+//! it has at least [`MIN_TRIANGLES`] triangles, is *convex*: every vertex lies behind every
+//! face's plane (outward = away from the vertices' centroid) within [`CONVEX_TOLERANCE`] of
+//! its size, checked in `f64` for every face against every vertex (blocks of vertices whose
+//! box lies behind the plane are skipped whole), and is *isolated*: no other triangle's box
+//! meets the part's box grown by [`BOX_MARGIN`]. What the shortcut relies on:
+//! - *Leaving* (the ray's direction on the outer side of its face's normal): the part lies
+//!   behind the face's plane, the ray moves away from it, so it meets none of the part's
+//!   triangles; inside the grown box it meets no other triangle. It is traced from where it
+//!   leaves the grown box.
+//! - *Entering* (inner side): the ray starts inside the part (its origin is offset to the inner
+//!   side of its face) and the ball — centred on the vertices' centroid, the radius its least
+//!   distance to a face plane less a margin — lies inside every face's plane, so the segment
+//!   from the origin to the ball's far side lies inside the convex part: it crosses no
+//!   triangle of the part, and (inside the isolated box) none of any other. It is traced from
+//!   the ball's far side.
+//!
+//! **What comes back** is the full query's answer: the later ray's hit is tested again with
+//! the original ray (the watertight test, the kernels' own arithmetic). The two rays
+//! run along one line up to the rounding of the later origin, so they can differ only where
+//! the line passes within rounding of an edge: a hit whose smallest barycentric is below
+//! [`EDGE_GUARD`], a miss of the original ray, or no hit at all is traced again in full
+//! ([`Shortcut::Retrace`]). Grazing rays (direction within [`GRAZING`] of the face's plane)
+//! and rays with a finite `t_max` take no shortcut.
+
+use std::ops::Range;
+
+use glam::{DVec3, Vec3};
+use rayon::prelude::*;
+
+use super::triangle::{is_degenerate, ray_is_valid, WoopRay};
+use super::{Accel, Hit, Ray};
+
+/// Parts with fewer triangles take no shortcut (what they would save is small).
+pub const MIN_TRIANGLES: usize = 64;
+
+/// How far (relative to the part's size) a vertex may lie in front of a face's plane and the
+/// part still count as convex: float rounding of exactly planar quads is ~10⁻⁷.
+pub const CONVEX_TOLERANCE: f64 = 1e-6;
+
+/// How much (relative to the part's size and its coordinates' magnitude) the part's box is
+/// grown, and the inner ball shrunk, beyond the rounding of the later origin.
+pub const BOX_MARGIN: f64 = 1e-5;
+
+/// A hit whose smallest barycentric (with the original ray) is below this is traced again.
+pub const EDGE_GUARD: f32 = 1e-4;
+
+/// Rays whose direction's cosine with the face normal is below this take no shortcut.
+pub const GRAZING: f32 = 1e-3;
+
+/// At most this many parts (the largest) are examined.
+const MAX_PARTS: usize = 16;
+
+/// Vertices per block, and blocks per group, of the convexity check's pruning.
+const BLOCK: usize = 16;
+
+/// One convex, isolated part.
+#[derive(Debug, Clone)]
+struct Part {
+    /// Its triangles (the caller's indices).
+    prims: Range<u32>,
+    /// Outward unit normal of each triangle (zero for a degenerate one).
+    normals: Vec<Vec3>,
+    /// The part's box grown by the margin.
+    lo: Vec3,
+    hi: Vec3,
+    /// The inner ball (radius 0: none).
+    centre: Vec3,
+    radius: f32,
+}
+
+/// The shortcuts of an [`Accel`]'s convex parts ([`Accel::shortcuts`]).
+#[derive(Debug, Clone, Default)]
+pub struct Shortcuts {
+    parts: Vec<Part>,
+}
+
+/// What [`Shortcuts::shortcut`] says about a ray.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Shortcut {
+    /// No shortcut: trace the ray as it is.
+    None,
+    /// Trace this later ray, then hand its hit to [`Shortcuts::confirm`].
+    From(Ray),
+}
+
+impl Shortcuts {
+    /// The shortcuts of `accel`'s parts `parts` (disjoint ranges of its triangles).
+    pub fn build(accel: &Accel, parts: &[Range<u32>]) -> Self {
+        let mut candidates: Vec<Range<u32>> = parts
+            .iter()
+            .filter(|r| r.len() >= MIN_TRIANGLES && r.end as usize <= accel.len())
+            .cloned()
+            .collect();
+        candidates.sort_by_key(|r| (std::cmp::Reverse(r.len()), r.start));
+        candidates.truncate(MAX_PARTS);
+        let boxes: Vec<Option<(Vec3, Vec3)>> = candidates
+            .iter()
+            .map(|r| grown_box(accel, r.clone()))
+            .collect();
+        let isolated = isolated(accel, &candidates, &boxes);
+        let mut parts: Vec<Part> = candidates
+            .into_par_iter()
+            .zip(boxes)
+            .zip(isolated)
+            .filter_map(|((prims, bounds), isolated)| {
+                let (lo, hi) = bounds?;
+                isolated
+                    .then(|| convex_part(accel, prims, lo, hi))
+                    .flatten()
+            })
+            .collect();
+        parts.sort_by_key(|p| p.prims.start);
+        Self { parts }
+    }
+
+    /// Number of parts that take shortcuts.
+    pub fn parts(&self) -> usize {
+        self.parts.len()
+    }
+
+    /// The shortcut for `ray`, spawned from triangle `from`.
+    #[inline]
+    pub fn shortcut(&self, ray: &Ray, from: u32) -> Shortcut {
+        let i = self.parts.partition_point(|p| p.prims.end <= from);
+        let Some(part) = self.parts.get(i).filter(|p| p.prims.contains(&from)) else {
+            return Shortcut::None;
+        };
+        if ray.t_max != f32::INFINITY || !ray.origin.is_finite() || !ray.dir.is_finite() {
+            return Shortcut::None;
+        }
+        let n = part.normals[(from - part.prims.start) as usize];
+        let len = ray.dir.length();
+        let cos = n.dot(ray.dir);
+        let t = if cos > GRAZING * len {
+            leave_box(ray, part.lo, part.hi)
+        } else if cos < -GRAZING * len && part.radius > 0.0 {
+            ball_far_side(ray, part.centre, part.radius)
+        } else {
+            None
+        };
+        match t {
+            Some(t) if t > 0.0 && t.is_finite() => Shortcut::From(Ray {
+                origin: ray.origin + ray.dir * t,
+                dir: ray.dir,
+                t_max: f32::INFINITY,
+            }),
+            _ => Shortcut::None,
+        }
+    }
+
+    /// The original `ray`'s closest hit from `found`, the later ray's: `Some` when it is
+    /// certain, `None` when the ray is to be traced again in full.
+    #[inline]
+    pub fn confirm(accel: &Accel, ray: &Ray, found: Option<Hit>) -> Option<Hit> {
+        let found = found?;
+        // A hit triangle is not degenerate (the hierarchy holds none), so the watertight test
+        // proper is `triangle::intersect_triangle`'s answer for it.
+        if !ray_is_valid(ray) {
+            return None;
+        }
+        let (t, b1, b2) =
+            WoopRay::new(ray.origin, ray.dir).intersect(&accel.triangle(found.prim))?;
+        if t >= ray.t_max {
+            return None;
+        }
+        let b0 = 1.0 - b1 - b2;
+        (b0.min(b1).min(b2) >= EDGE_GUARD).then_some(Hit {
+            t,
+            prim: found.prim,
+            b1,
+            b2,
+        })
+    }
+}
+
+/// Where `ray` leaves the box `lo`–`hi` (its origin inside).
+#[inline]
+fn leave_box(ray: &Ray, lo: Vec3, hi: Vec3) -> Option<f32> {
+    let mut t = f32::INFINITY;
+    for a in 0..3 {
+        let d = ray.dir[a];
+        if d > 0.0 {
+            t = t.min((hi[a] - ray.origin[a]) / d);
+        } else if d < 0.0 {
+            t = t.min((lo[a] - ray.origin[a]) / d);
+        }
+    }
+    Some(t)
+}
+
+/// The far end of `ray`'s chord through the ball (`centre`, `radius`), when the chord is
+/// well inside it (not near the tangent, where the end's rounding grows).
+#[inline]
+fn ball_far_side(ray: &Ray, centre: Vec3, radius: f32) -> Option<f32> {
+    let oc = ray.origin - centre;
+    let a = ray.dir.length_squared();
+    let b = oc.dot(ray.dir);
+    let c = oc.length_squared() - radius * radius;
+    let disc = b * b - a * c;
+    (disc > 0.01 * a * radius * radius).then(|| (-b + disc.sqrt()) / a)
+}
+
+/// The box of the part's non-degenerate triangles, grown by the margin; `None` when it has
+/// none or a non-finite vertex.
+fn grown_box(accel: &Accel, prims: Range<u32>) -> Option<(Vec3, Vec3)> {
+    let (mut lo, mut hi) = (Vec3::INFINITY, Vec3::NEG_INFINITY);
+    for prim in prims {
+        let tri = accel.triangle(prim);
+        if is_degenerate(&tri) {
+            continue;
+        }
+        for v in tri {
+            lo = lo.min(v);
+            hi = hi.max(v);
+        }
+    }
+    if !(lo.is_finite() && hi.is_finite()) {
+        return None;
+    }
+    let scale = f64::from((hi - lo).length().max(lo.abs().max(hi.abs()).max_element()));
+    let grow = (BOX_MARGIN * scale) as f32;
+    Some((lo - Vec3::splat(grow), hi + Vec3::splat(grow)))
+}
+
+/// Whether no triangle outside each part meets the part's grown box (degenerate triangles
+/// are never hit and do not count).
+fn isolated(accel: &Accel, parts: &[Range<u32>], boxes: &[Option<(Vec3, Vec3)>]) -> Vec<bool> {
+    let mut ok: Vec<bool> = boxes.iter().map(Option::is_some).collect();
+    for prim in 0..accel.len() as u32 {
+        let tri = accel.triangle(prim);
+        if is_degenerate(&tri) {
+            continue;
+        }
+        let lo = tri[0].min(tri[1]).min(tri[2]);
+        let hi = tri[0].max(tri[1]).max(tri[2]);
+        for ((part, bounds), ok) in parts.iter().zip(boxes).zip(&mut ok) {
+            if let (true, Some((blo, bhi))) = (*ok, bounds) {
+                if !part.contains(&prim) && lo.cmple(*bhi).all() && hi.cmpge(*blo).all() {
+                    *ok = false;
+                }
+            }
+        }
+    }
+    ok
+}
+
+/// The part `prims` with its normals and inner ball, when it is convex.
+fn convex_part(accel: &Accel, prims: Range<u32>, lo: Vec3, hi: Vec3) -> Option<Part> {
+    let tris: Vec<[DVec3; 3]> = prims
+        .clone()
+        .map(|p| accel.triangle(p))
+        .filter(|t| !is_degenerate(t))
+        .map(|t| t.map(|v| v.as_dvec3()))
+        .collect();
+    let vertices = Vertices::new(&tris);
+    let centroid = vertices.centroid;
+    let size = (hi - lo).as_dvec3().length();
+    let tolerance = CONVEX_TOLERANCE * size;
+    // Each face's outward plane (unit normal, offset), pointing away from the centroid; a
+    // face whose plane passes near the centroid makes the part no solid.
+    let planes: Vec<(DVec3, f64)> = tris
+        .par_iter()
+        .map(|t| {
+            let n = (t[1] - t[0]).cross(t[2] - t[0]).normalize();
+            let n = if n.dot(t[0] - centroid) < 0.0 { -n } else { n };
+            (n, n.dot(t[0]))
+        })
+        .collect();
+    let solid = planes
+        .iter()
+        .all(|&(n, h)| n.is_finite() && h - n.dot(centroid) > 1e-3 * size);
+    if !solid
+        || !planes
+            .par_iter()
+            .all(|&(n, h)| vertices.behind(n, h + tolerance))
+    {
+        return None;
+    }
+    let least = planes
+        .iter()
+        .map(|&(n, h)| h - n.dot(centroid))
+        .fold(f64::INFINITY, f64::min);
+    let scale = size.max(f64::from(lo.abs().max(hi.abs()).max_element()));
+    let radius = least - 2.0 * tolerance - BOX_MARGIN * scale;
+    let mut faces = planes.iter();
+    let normals = prims
+        .clone()
+        .map(|p| {
+            if is_degenerate(&accel.triangle(p)) {
+                Vec3::ZERO
+            } else {
+                faces.next().map_or(Vec3::ZERO, |(n, _)| n.as_vec3())
+            }
+        })
+        .collect();
+    Some(Part {
+        prims,
+        normals,
+        lo,
+        hi,
+        centre: centroid.as_vec3(),
+        radius: if radius > 0.0 { radius as f32 } else { 0.0 },
+    })
+}
+
+/// A part's vertices in spatial blocks, for "is every vertex behind this plane?".
+struct Vertices {
+    points: Vec<DVec3>,
+    /// Box of each block of [`BLOCK`] points, and of each group of [`BLOCK`] blocks.
+    blocks: Vec<(DVec3, DVec3)>,
+    groups: Vec<(DVec3, DVec3)>,
+    centroid: DVec3,
+}
+
+impl Vertices {
+    fn new(tris: &[[DVec3; 3]]) -> Self {
+        let (lo, hi) = tris
+            .iter()
+            .flatten()
+            .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(l, h), &p| {
+                (l.min(p), h.max(p))
+            });
+        let extent = (hi - lo).max(DVec3::splat(f64::MIN_POSITIVE));
+        // Spatial order (a Morton code), equal points next to each other for the dedup.
+        let mut keyed: Vec<(u32, [u64; 3], DVec3)> = tris
+            .iter()
+            .flatten()
+            .map(|&p| {
+                let q = ((p - lo) / extent * 1023.0).as_uvec3();
+                let key = morton(q.x) | morton(q.y) << 1 | morton(q.z) << 2;
+                (key, p.to_array().map(f64::to_bits), p)
+            })
+            .collect();
+        keyed.sort_unstable_by_key(|k| (k.0, k.1));
+        keyed.dedup_by(|a, b| a.1 == b.1);
+        let points: Vec<DVec3> = keyed.into_iter().map(|k| k.2).collect();
+        let centroid = points.iter().sum::<DVec3>() / points.len().max(1) as f64;
+        let bound = |ps: &[DVec3]| {
+            ps.iter()
+                .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(l, h), &p| {
+                    (l.min(p), h.max(p))
+                })
+        };
+        let blocks: Vec<(DVec3, DVec3)> = points.chunks(BLOCK).map(bound).collect();
+        let groups = blocks
+            .chunks(BLOCK)
+            .map(|bs| {
+                bs.iter()
+                    .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(l, h), b| {
+                        (l.min(b.0), h.max(b.1))
+                    })
+            })
+            .collect();
+        Self {
+            points,
+            blocks,
+            groups,
+            centroid,
+        }
+    }
+
+    /// Whether every point `p` has `n·p ≤ h`.
+    fn behind(&self, n: DVec3, h: f64) -> bool {
+        let most = |(lo, hi): &(DVec3, DVec3)| (n * *lo).max(n * *hi).element_sum();
+        self.groups.iter().enumerate().all(|(g, group)| {
+            most(group) <= h
+                || self.blocks[g * BLOCK..((g + 1) * BLOCK).min(self.blocks.len())]
+                    .iter()
+                    .enumerate()
+                    .all(|(b, block)| {
+                        let b = g * BLOCK + b;
+                        most(block) <= h
+                            || self.points[b * BLOCK..((b + 1) * BLOCK).min(self.points.len())]
+                                .iter()
+                                .all(|p| n.dot(*p) <= h)
+                    })
+        })
+    }
+}
+
+/// The bits of a 10-bit `x` spread three apart (a Morton code's one axis).
+fn morton(x: u32) -> u32 {
+    let mut x = x.min(1023);
+    x = (x | x << 16) & 0x0300_00ff;
+    x = (x | x << 8) & 0x0300_f00f;
+    x = (x | x << 4) & 0x030c_30c3;
+    (x | x << 2) & 0x0924_9249
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::Vec3;
+
+    use super::*;
+    use crate::accel::spawn_ray;
+    use crate::accel::test_random::{signed_uniform, uv_sphere};
+    use crate::settings::BvhQuality;
+
+    /// A ball of radius 0.6 at (0, 0, 0.9) (`rings` × `segments` quads) above a floor at
+    /// z = 0 and before a wall at y = 2, as `caustics.ron`; the parts are the three objects.
+    fn ball_scene(ball: Vec<[Vec3; 3]>) -> (Accel, Vec<Range<u32>>) {
+        let floor = vec![
+            [
+                Vec3::new(-3.0, -3.0, 0.0),
+                Vec3::new(3.0, -3.0, 0.0),
+                Vec3::new(3.0, 3.0, 0.0),
+            ],
+            [
+                Vec3::new(-3.0, -3.0, 0.0),
+                Vec3::new(3.0, 3.0, 0.0),
+                Vec3::new(-3.0, 3.0, 0.0),
+            ],
+        ];
+        let wall = vec![
+            [
+                Vec3::new(-3.0, 2.0, 0.0),
+                Vec3::new(3.0, 2.0, 0.0),
+                Vec3::new(3.0, 2.0, 3.0),
+            ],
+            [
+                Vec3::new(-3.0, 2.0, 0.0),
+                Vec3::new(3.0, 2.0, 3.0),
+                Vec3::new(-3.0, 2.0, 3.0),
+            ],
+        ];
+        let n = ball.len() as u32;
+        let parts = vec![0..n, n..n + 2, n + 2..n + 4];
+        let tris = [ball, floor, wall].concat();
+        (Accel::build(tris, BvhQuality::Medium), parts)
+    }
+
+    fn ball() -> Vec<[Vec3; 3]> {
+        uv_sphere(Vec3::new(0.0, 0.0, 0.9), 0.6, 24, 48)
+    }
+
+    /// The query as the photon batch makes it: through the shortcut, the full query where
+    /// the shortcut's answer is not certain. Also says which way it went.
+    fn through(accel: &Accel, shortcuts: &Shortcuts, ray: &Ray, from: u32) -> (Option<Hit>, u8) {
+        match shortcuts.shortcut(ray, from) {
+            Shortcut::None => (accel.intersect(ray), 0),
+            Shortcut::From(later) => {
+                match Shortcuts::confirm(accel, ray, accel.intersect(&later)) {
+                    Some(hit) => (Some(hit), 1),
+                    None => (accel.intersect(ray), 2),
+                }
+            }
+        }
+    }
+
+    /// Rays that leave the ball (reflected outward, refracted out) and rays that cross it
+    /// (refracted in, reflected inside), spawned from hits as the photon walk spawns them,
+    /// get the full query's hit bit for bit; almost all of them through the shortcut.
+    #[test]
+    fn shortcut_answers_are_the_full_queries_bit_for_bit() {
+        let (accel, parts) = ball_scene(ball());
+        let shortcuts = Shortcuts::build(&accel, &parts);
+        assert_eq!(
+            shortcuts.parts(),
+            1,
+            "the ball only (the floor and wall are flat)"
+        );
+        let mut rnd = signed_uniform(0x5eed_ba11);
+        let mut ways = [0usize; 4];
+        let (mut leaving, mut crossing) = (0, 0);
+        for _ in 0..6000 {
+            // From a random point above, at a random point of the ball's upper half.
+            let target = Vec3::new(0.0, 0.0, 0.9)
+                + Vec3::new(rnd(), rnd(), rnd().abs()).normalize_or_zero() * 0.55;
+            let origin = Vec3::new(rnd() * 2.0, rnd() * 2.0, 3.0 + rnd());
+            let first = Ray {
+                origin,
+                dir: target - origin,
+                t_max: f32::INFINITY,
+            };
+            let Some(mut hit) = accel.intersect(&first) else {
+                continue;
+            };
+            // Follow the photon through the ball: each step a random direction on either
+            // side of the face, as reflection and refraction give.
+            for step in 0..4 {
+                let sp = accel.surface_point(&hit);
+                let outward = (sp.p - Vec3::new(0.0, 0.0, 0.9)).normalize_or_zero();
+                let dir = Vec3::new(rnd(), rnd(), rnd()) * 0.7 + outward;
+                let dir = if step % 2 == 0 { -dir } else { dir };
+                let ray = spawn_ray(&sp, dir);
+                let full = accel.intersect(&ray);
+                let (got, way) = through(&accel, &shortcuts, &ray, hit.prim);
+                assert_eq!(got, full, "ray {ray:?} from {}", hit.prim);
+                if hit.prim < parts[0].end {
+                    // Misses are traced again in full (below).
+                    ways[if way == 2 && full.is_none() {
+                        3
+                    } else {
+                        way as usize
+                    }] += 1;
+                    if ray.dir.dot(outward) > 0.0 {
+                        leaving += 1;
+                    } else {
+                        crossing += 1;
+                    }
+                }
+                let Some(next) = full else { break };
+                hit = next;
+            }
+        }
+        println!(
+            "ways (none, shortcut, retraced hit, retraced miss) {ways:?}; \
+             leaving {leaving}, crossing {crossing}"
+        );
+        assert!(leaving > 3000 && crossing > 3000, "{leaving} {crossing}");
+        // Grazing rays and chords near the tangent take none; hits near an edge are traced
+        // again, and so are the rays that leave the scene.
+        let rays = leaving + crossing;
+        assert!(ways[0] < rays / 100, "{ways:?}");
+        assert!(ways[2] < rays / 50, "{ways:?}");
+    }
+
+    /// A part that is not convex (a dent of a tenth of the radius), one that another
+    /// object's box meets (the ball resting on the floor), a small one, and an open flat one
+    /// take no shortcut.
+    #[test]
+    fn only_convex_isolated_parts_take_shortcuts() {
+        let convex = |tris: Vec<[Vec3; 3]>| {
+            let (accel, parts) = ball_scene(tris);
+            Shortcuts::build(&accel, &parts).parts()
+        };
+        assert_eq!(convex(ball()), 1);
+        let top = Vec3::new(0.0, 0.0, 1.5);
+        let dented: Vec<[Vec3; 3]> = ball()
+            .into_iter()
+            .map(|t| {
+                t.map(|v| {
+                    if v == top {
+                        Vec3::new(0.0, 0.0, 1.44)
+                    } else {
+                        v
+                    }
+                })
+            })
+            .collect();
+        assert_ne!(dented, ball(), "the dent moved the pole");
+        assert_eq!(convex(dented), 0);
+        let resting: Vec<[Vec3; 3]> = ball()
+            .into_iter()
+            .map(|t| t.map(|v| v - Vec3::new(0.0, 0.0, 0.3)))
+            .collect();
+        assert_eq!(convex(resting), 0);
+        assert_eq!(convex(uv_sphere(Vec3::new(0.0, 0.0, 0.9), 0.6, 4, 6)), 0);
+        let sheet: Vec<[Vec3; 3]> = (0..40)
+            .map(|i| {
+                let x = i as f32 * 0.01;
+                [
+                    Vec3::new(x, 0.0, 1.0),
+                    Vec3::new(x + 0.01, 0.0, 1.0),
+                    Vec3::new(x, 0.3, 1.0),
+                ]
+            })
+            .chain((0..40).map(|i| {
+                let x = i as f32 * 0.01;
+                [
+                    Vec3::new(x + 0.01, 0.0, 1.0),
+                    Vec3::new(x + 0.01, 0.3, 1.0),
+                    Vec3::new(x, 0.3, 1.0),
+                ]
+            }))
+            .collect();
+        assert_eq!(convex(sheet), 0);
+    }
+}
