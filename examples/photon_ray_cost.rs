@@ -1,7 +1,9 @@
 //! What the photon pass's rays cost the accelerator (issue 17, session 15): traces a scene's
 //! caustic photons (aimed at the casters, as the stage aims them) one by one (as [`Tracing::PerPhoton`] does) with
 //! `Accel::intersect_with_cost`, and prints the inner nodes and triangles tested per ray,
-//! by where the ray starts (the light, or the instance it leaves) and what it hits. The
+//! by where the ray starts (the light, or the instance it leaves) and what it hits, and what
+//! the same rays cost through the accelerator's shortcuts past convex parts (the later ray,
+//! plus the full query where the shortcut's answer is not certain; `Accel::shortcuts`). The
 //! photons' paths are those of the pass (the same walk); only their seed differs from the
 //! `trace_photons` stage's.
 //!
@@ -11,6 +13,7 @@
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 
+use stagelight::accel::{Shortcut, Shortcuts};
 use stagelight::components::PhotonFlags;
 use stagelight::frame::Frame;
 use stagelight::photon::aim::Aim;
@@ -29,6 +32,9 @@ struct Tally {
     nodes: u64,
     triangles: u64,
     deepest: u64,
+    /// Through the shortcuts.
+    short_nodes: u64,
+    short_triangles: u64,
 }
 
 fn main() {
@@ -59,6 +65,7 @@ fn main() {
     let roles = roles.for_map(MapKind::Caustics);
     let ctx = ShadeContext::new(geometry, &lights, settings);
     let accel = &geometry.accel;
+    let shortcuts = geometry.shortcuts();
     let instance = |prim: u32| geometry.triangle_instance[prim as usize];
     // (start: instance left or light, end: instance hit or miss) → tally.
     let mut tallies: BTreeMap<(String, String), Tally> = BTreeMap::new();
@@ -77,7 +84,25 @@ fn main() {
                 let n = geometry.instances[slot as usize].mesh.triangles.len();
                 format!("instance {slot} ({n} tris)")
             });
+            let ray = walk.ray();
+            let (short_nodes, short_triangles) =
+                match walk.left().map(|from| shortcuts.shortcut(ray, from)) {
+                    Some(Shortcut::From(later)) => {
+                        let (found, later_cost) = accel.intersect_with_cost(&later);
+                        let again = match Shortcuts::confirm(accel, ray, found) {
+                            Some(confirmed) => {
+                                assert_eq!(Some(confirmed), hit, "the shortcut's hit");
+                                (0, 0)
+                            }
+                            None => (cost.nodes, cost.triangles),
+                        };
+                        (later_cost.nodes + again.0, later_cost.triangles + again.1)
+                    }
+                    _ => (cost.nodes, cost.triangles),
+                };
             let t = tallies.entry((from.clone(), to.clone())).or_default();
+            t.short_nodes += u64::from(short_nodes);
+            t.short_triangles += u64::from(short_triangles);
             t.rays += 1;
             t.nodes += u64::from(cost.nodes);
             t.triangles += u64::from(cost.triangles);
@@ -88,32 +113,44 @@ fn main() {
     }
     let stats = accel.stats();
     println!(
-        "{}: {photons} caustic photons, {} triangles, {} nodes, depth {}",
+        "{}: {photons} caustic photons, {} triangles, {} nodes, depth {}, {} convex part(s)",
         path.display(),
         geometry.triangle_count(),
         stats.nodes,
-        stats.depth
+        stats.depth,
+        shortcuts.parts()
     );
-    println!("from → to: rays, per ray: inner nodes, triangles, deepest level");
+    println!(
+        "from → to: rays, per ray: inner nodes, triangles, deepest level \
+         | through the shortcuts: inner nodes, triangles"
+    );
     let mut all = Tally::default();
     for ((from, to), t) in &tallies {
         let per = |x: u64| x as f64 / t.rays as f64;
         println!(
-            "{from} → {to}: {} rays, {:.1} nodes, {:.1} triangles, {:.1} deep",
+            "{from} → {to}: {} rays, {:.1} nodes, {:.1} triangles, {:.1} deep \
+             | {:.1} nodes, {:.1} triangles",
             t.rays,
             per(t.nodes),
             per(t.triangles),
-            per(t.deepest)
+            per(t.deepest),
+            per(t.short_nodes),
+            per(t.short_triangles)
         );
         all.rays += t.rays;
         all.nodes += t.nodes;
         all.triangles += t.triangles;
+        all.short_nodes += t.short_nodes;
+        all.short_triangles += t.short_triangles;
     }
     let per = |x: u64| x as f64 / all.rays.max(1) as f64;
     println!(
-        "all: {} rays, {:.1} nodes, {:.1} triangles per ray",
+        "all: {} rays, {:.1} nodes, {:.1} triangles per ray \
+         | through the shortcuts {:.1} nodes, {:.1} triangles",
         all.rays,
         per(all.nodes),
-        per(all.triangles)
+        per(all.triangles),
+        per(all.short_nodes),
+        per(all.short_triangles)
     );
 }

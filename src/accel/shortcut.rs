@@ -33,7 +33,7 @@
 
 use std::ops::Range;
 
-use glam::{DVec3, Vec3};
+use glam::{DVec3, Vec3, Vec3A};
 use rayon::prelude::*;
 
 use super::triangle::{is_degenerate, ray_is_valid, WoopRay};
@@ -58,9 +58,6 @@ pub const GRAZING: f32 = 1e-3;
 
 /// At most this many parts (the largest) are examined.
 const MAX_PARTS: usize = 16;
-
-/// Vertices per block, and blocks per group, of the convexity check's pruning.
-const BLOCK: usize = 16;
 
 /// One convex, isolated part.
 #[derive(Debug, Clone)]
@@ -255,53 +252,45 @@ fn isolated(accel: &Accel, parts: &[Range<u32>], boxes: &[Option<(Vec3, Vec3)>])
 
 /// The part `prims` with its normals and inner ball, when it is convex.
 fn convex_part(accel: &Accel, prims: Range<u32>, lo: Vec3, hi: Vec3) -> Option<Part> {
-    let tris: Vec<[DVec3; 3]> = prims
+    // (index in the part, vertices) of the triangles that can be hit.
+    let tris: Vec<(usize, [DVec3; 3])> = prims
         .clone()
         .map(|p| accel.triangle(p))
-        .filter(|t| !is_degenerate(t))
-        .map(|t| t.map(|v| v.as_dvec3()))
+        .enumerate()
+        .filter(|(_, t)| !is_degenerate(t))
+        .map(|(i, t)| (i, t.map(|v| v.as_dvec3())))
         .collect();
-    let vertices = Vertices::new(&tris);
+    let vertices = Vertices::new(tris.iter().flat_map(|(_, t)| t.iter().copied()));
     let centroid = vertices.centroid;
     let size = (hi - lo).as_dvec3().length();
     let tolerance = CONVEX_TOLERANCE * size;
-    // Each face's outward plane (unit normal, offset), pointing away from the centroid; a
-    // face whose plane passes near the centroid makes the part no solid.
+    // Each face's outward plane (unit normal, offset from the centroid), pointing away from
+    // the centroid; a face whose plane passes near the centroid makes the part no solid.
     let planes: Vec<(DVec3, f64)> = tris
-        .par_iter()
-        .map(|t| {
+        .iter()
+        .map(|(_, t)| {
             let n = (t[1] - t[0]).cross(t[2] - t[0]).normalize();
             let n = if n.dot(t[0] - centroid) < 0.0 { -n } else { n };
-            (n, n.dot(t[0]))
+            (n, n.dot(t[0] - centroid))
         })
         .collect();
     let solid = planes
         .iter()
-        .all(|&(n, h)| n.is_finite() && h - n.dot(centroid) > 1e-3 * size);
+        .all(|&(n, h)| n.is_finite() && h > 1e-3 * size);
     if !solid
         || !planes
             .par_iter()
-            .all(|&(n, h)| vertices.behind(n, h + tolerance))
+            .all(|&(n, h)| vertices.behind(n.as_vec3a(), (h + tolerance) as f32))
     {
         return None;
     }
-    let least = planes
-        .iter()
-        .map(|&(n, h)| h - n.dot(centroid))
-        .fold(f64::INFINITY, f64::min);
+    let least = planes.iter().map(|&(_, h)| h).fold(f64::INFINITY, f64::min);
     let scale = size.max(f64::from(lo.abs().max(hi.abs()).max_element()));
     let radius = least - 2.0 * tolerance - BOX_MARGIN * scale;
-    let mut faces = planes.iter();
-    let normals = prims
-        .clone()
-        .map(|p| {
-            if is_degenerate(&accel.triangle(p)) {
-                Vec3::ZERO
-            } else {
-                faces.next().map_or(Vec3::ZERO, |(n, _)| n.as_vec3())
-            }
-        })
-        .collect();
+    let mut normals = vec![Vec3::ZERO; prims.len()];
+    for ((i, _), (n, _)) in tris.iter().zip(&planes) {
+        normals[*i] = n.as_vec3();
+    }
     Some(Part {
         prims,
         normals,
@@ -312,79 +301,135 @@ fn convex_part(accel: &Accel, prims: Range<u32>, lo: Vec3, hi: Vec3) -> Option<P
     })
 }
 
-/// A part's vertices in spatial blocks, for "is every vertex behind this plane?".
+/// A part's vertices relative to their centroid (`f32`: the values are of the part's size,
+/// so their rounding is ~10⁻⁷ of it, well inside [`CONVEX_TOLERANCE`]) in a tree of eight-wide
+/// nodes, for "is every vertex behind this plane?": a node holds the boxes of its eight
+/// children (structure of arrays: one plane's support for all eight in a few lane
+/// operations), and the lowest level's children are the points themselves (boxes of no
+/// extent). Missing children are points at the centroid, behind every face of a solid part.
 struct Vertices {
-    points: Vec<DVec3>,
-    /// Box of each block of [`BLOCK`] points, and of each group of [`BLOCK`] blocks.
-    blocks: Vec<(DVec3, DVec3)>,
-    groups: Vec<(DVec3, DVec3)>,
+    /// Each level's nodes, the points' level first; the last level has one node.
+    levels: Vec<Vec<Node8>>,
     centroid: DVec3,
 }
 
-impl Vertices {
-    fn new(tris: &[[DVec3; 3]]) -> Self {
-        let (lo, hi) = tris
-            .iter()
-            .flatten()
-            .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(l, h), &p| {
-                (l.min(p), h.max(p))
-            });
-        let extent = (hi - lo).max(DVec3::splat(f64::MIN_POSITIVE));
-        // Spatial order (a Morton code), equal points next to each other for the dedup.
-        let mut keyed: Vec<(u32, [u64; 3], DVec3)> = tris
-            .iter()
-            .flatten()
-            .map(|&p| {
-                let q = ((p - lo) / extent * 1023.0).as_uvec3();
-                let key = morton(q.x) | morton(q.y) << 1 | morton(q.z) << 2;
-                (key, p.to_array().map(f64::to_bits), p)
-            })
-            .collect();
-        keyed.sort_unstable_by_key(|k| (k.0, k.1));
-        keyed.dedup_by(|a, b| a.1 == b.1);
-        let points: Vec<DVec3> = keyed.into_iter().map(|k| k.2).collect();
-        let centroid = points.iter().sum::<DVec3>() / points.len().max(1) as f64;
-        let bound = |ps: &[DVec3]| {
-            ps.iter()
-                .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(l, h), &p| {
-                    (l.min(p), h.max(p))
-                })
-        };
-        let blocks: Vec<(DVec3, DVec3)> = points.chunks(BLOCK).map(bound).collect();
-        let groups = blocks
-            .chunks(BLOCK)
-            .map(|bs| {
-                bs.iter()
-                    .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(l, h), b| {
-                        (l.min(b.0), h.max(b.1))
-                    })
-            })
-            .collect();
-        Self {
-            points,
-            blocks,
-            groups,
-            centroid,
+/// Eight boxes: `lo[axis][child]`, `hi[axis][child]`.
+#[derive(Clone, Copy)]
+struct Node8 {
+    lo: [[f32; 8]; 3],
+    hi: [[f32; 8]; 3],
+}
+
+impl Node8 {
+    const EMPTY: Node8 = Node8 {
+        lo: [[0.0; 8]; 3],
+        hi: [[0.0; 8]; 3],
+    };
+
+    /// The children whose box reaches in front of the plane `n·p = h` (bit `k`: child `k`).
+    #[inline]
+    fn in_front(&self, n: [f32; 3], h: f32) -> u32 {
+        let mut most = [0.0f32; 8];
+        for ((&n, lo), hi) in n.iter().zip(&self.lo).zip(&self.hi) {
+            for ((m, &l), &h) in most.iter_mut().zip(lo).zip(hi) {
+                *m += (n * l).max(n * h);
+            }
         }
+        most.iter()
+            .enumerate()
+            .fold(0, |m, (k, &most)| m | (u32::from(most > h) << k))
     }
 
-    /// Whether every point `p` has `n·p ≤ h`.
-    fn behind(&self, n: DVec3, h: f64) -> bool {
-        let most = |(lo, hi): &(DVec3, DVec3)| (n * *lo).max(n * *hi).element_sum();
-        self.groups.iter().enumerate().all(|(g, group)| {
-            most(group) <= h
-                || self.blocks[g * BLOCK..((g + 1) * BLOCK).min(self.blocks.len())]
-                    .iter()
-                    .enumerate()
-                    .all(|(b, block)| {
-                        let b = g * BLOCK + b;
-                        most(block) <= h
-                            || self.points[b * BLOCK..((b + 1) * BLOCK).min(self.points.len())]
-                                .iter()
-                                .all(|p| n.dot(*p) <= h)
-                    })
-        })
+    /// The box of all eight children.
+    fn bounds(&self) -> ([f32; 3], [f32; 3]) {
+        let lo = self
+            .lo
+            .map(|l| l.iter().copied().fold(f32::INFINITY, f32::min));
+        let hi = self
+            .hi
+            .map(|h| h.iter().copied().fold(f32::NEG_INFINITY, f32::max));
+        (lo, hi)
     }
+}
+
+impl Vertices {
+    fn new(points: impl Iterator<Item = DVec3>) -> Self {
+        // Spatial order (a Morton code), equal points next to each other for the dedup.
+        let mut keyed: Vec<(u32, [u32; 3])> = points
+            .map(|p| (0, p.as_vec3().to_array().map(f32::to_bits)))
+            .collect();
+        let point = |k: &(u32, [u32; 3])| Vec3::from_array(k.1.map(f32::from_bits)).as_dvec3();
+        let (lo, hi) = keyed
+            .iter()
+            .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(l, h), k| {
+                (l.min(point(k)), h.max(point(k)))
+            });
+        let extent = (hi - lo).max(DVec3::splat(f64::MIN_POSITIVE));
+        for k in &mut keyed {
+            let q = ((point(k) - lo) / extent * 1023.0).as_uvec3();
+            k.0 = morton(q.x) | morton(q.y) << 1 | morton(q.z) << 2;
+        }
+        keyed.sort_unstable();
+        keyed.dedup();
+        let centroid = keyed.iter().map(point).sum::<DVec3>() / keyed.len().max(1) as f64;
+        let boxes: Vec<([f32; 3], [f32; 3])> = keyed
+            .iter()
+            .map(|k| {
+                let p = (point(k) - centroid).as_vec3().to_array();
+                (p, p)
+            })
+            .collect();
+        let mut levels = vec![group(&boxes)];
+        while levels.last().is_some_and(|l| l.len() > 1) {
+            let boxes: Vec<_> = levels
+                .last()
+                .map_or(Vec::new(), |l| l.iter().map(Node8::bounds).collect());
+            levels.push(group(&boxes));
+        }
+        Self { levels, centroid }
+    }
+
+    /// Whether every point `p` has `n·p ≤ h` (both relative to the centroid).
+    fn behind(&self, n: Vec3A, h: f32) -> bool {
+        let top = self.levels.len() - 1;
+        self.levels[top]
+            .iter()
+            .enumerate()
+            .all(|(i, _)| self.behind_in(top, i, n.to_array(), h))
+    }
+
+    /// [`Self::behind`] for node `i` of level `level` (0: the points' nodes).
+    fn behind_in(&self, level: usize, i: usize, n: [f32; 3], h: f32) -> bool {
+        let mut front = self.levels[level][i].in_front(n, h);
+        if level == 0 {
+            return front == 0;
+        }
+        while front != 0 {
+            let k = front.trailing_zeros() as usize;
+            front &= front - 1;
+            if !self.behind_in(level - 1, i * 8 + k, n, h) {
+                return false;
+            }
+        }
+        true
+    }
+}
+
+/// `boxes` in nodes of eight (the last one filled with empty children).
+fn group(boxes: &[([f32; 3], [f32; 3])]) -> Vec<Node8> {
+    boxes
+        .chunks(8)
+        .map(|bs| {
+            let mut node = Node8::EMPTY;
+            for (k, (lo, hi)) in bs.iter().enumerate() {
+                for a in 0..3 {
+                    node.lo[a][k] = lo[a];
+                    node.hi[a][k] = hi[a];
+                }
+            }
+            node
+        })
+        .collect()
 }
 
 /// The bits of a 10-bit `x` spread three apart (a Morton code's one axis).

@@ -90,9 +90,19 @@ pub struct Chunk<'a> {
 /// shortcuts (`accel/shortcut.rs`): making them costs about a microsecond per triangle of a
 /// convex part (the convexity check) and saves about half a microsecond per photon that
 /// meets one, so a pass of fewer than 8 photons per triangle goes without (unless they were
-/// made already: a second pass uses them for nothing).
+/// made already: a second pass uses them for nothing). The environment variable
+/// `STAGELIGHT_SHORTCUTS` (`on` or `off`) overrides it (a measuring knob: the same photons
+/// either way).
 pub fn shortcuts_pay(geometry: &crate::geometry::SceneGeometry, photons: u64) -> bool {
-    geometry.accel.has_shortcuts() || photons >= 8 * geometry.triangle_count() as u64
+    static FORCED: std::sync::OnceLock<Option<bool>> = std::sync::OnceLock::new();
+    let forced = FORCED.get_or_init(|| match std::env::var("STAGELIGHT_SHORTCUTS").as_deref() {
+        Ok("on") => Some(true),
+        Ok("off") => Some(false),
+        _ => None,
+    });
+    forced.unwrap_or(
+        geometry.accel.has_shortcuts() || photons >= 8 * geometry.triangle_count() as u64,
+    )
 }
 
 impl Chunk<'_> {
