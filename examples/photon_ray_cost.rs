@@ -85,21 +85,23 @@ fn main() {
                 format!("instance {slot} ({n} tris)")
             });
             let ray = walk.ray();
-            let (short_nodes, short_triangles) =
-                match walk.left().map(|from| shortcuts.shortcut(ray, from)) {
-                    Some(Shortcut::From(later)) => {
-                        let (found, later_cost) = accel.intersect_with_cost(&later);
-                        let again = match Shortcuts::confirm(accel, ray, found) {
-                            Some(confirmed) => {
-                                assert_eq!(Some(confirmed), hit, "the shortcut's hit");
-                                (0, 0)
-                            }
-                            None => (cost.nodes, cost.triangles),
-                        };
-                        (later_cost.nodes + again.0, later_cost.triangles + again.1)
-                    }
-                    _ => (cost.nodes, cost.triangles),
-                };
+            let (short_nodes, short_triangles) = match walk
+                .left()
+                .map(|(from, cos)| shortcuts.shortcut(ray, from, cos))
+            {
+                Some(Shortcut::From(later)) => {
+                    let (found, later_cost) = accel.intersect_with_cost(&later);
+                    let again = match Shortcuts::confirm(accel, ray, found) {
+                        Some(confirmed) => {
+                            assert_eq!(Some(confirmed), hit, "the shortcut's hit");
+                            (0, 0)
+                        }
+                        None => (cost.nodes, cost.triangles),
+                    };
+                    (later_cost.nodes + again.0, later_cost.triangles + again.1)
+                }
+                _ => (cost.nodes, cost.triangles),
+            };
             let t = tallies.entry((from.clone(), to.clone())).or_default();
             t.short_nodes += u64::from(short_nodes);
             t.short_triangles += u64::from(short_triangles);

@@ -64,8 +64,9 @@ const MAX_PARTS: usize = 16;
 struct Part {
     /// Its triangles (the caller's indices).
     prims: Range<u32>,
-    /// Outward unit normal of each triangle (zero for a degenerate one).
-    normals: Vec<Vec3>,
+    /// Whether every triangle's geometric normal (`(v₁ − v₀) × (v₂ − v₀)`) points outward
+    /// (else every one points inward: a part wound both ways takes no shortcuts).
+    ng_outward: bool,
     /// The part's box grown by the margin.
     lo: Vec3,
     hi: Vec3,
@@ -124,9 +125,11 @@ impl Shortcuts {
         self.parts.len()
     }
 
-    /// The shortcut for `ray`, spawned from triangle `from`.
+    /// The shortcut for `ray`, spawned from triangle `from`; `cos_ng` is the cosine between
+    /// its direction and that triangle's geometric normal (`(v₁ − v₀) × (v₂ − v₀)`), as the
+    /// spawning vertex knows it.
     #[inline]
-    pub fn shortcut(&self, ray: &Ray, from: u32) -> Shortcut {
+    pub fn shortcut(&self, ray: &Ray, from: u32, cos_ng: f32) -> Shortcut {
         let i = self.parts.partition_point(|p| p.prims.end <= from);
         let Some(part) = self.parts.get(i).filter(|p| p.prims.contains(&from)) else {
             return Shortcut::None;
@@ -134,12 +137,10 @@ impl Shortcuts {
         if ray.t_max != f32::INFINITY || !ray.origin.is_finite() || !ray.dir.is_finite() {
             return Shortcut::None;
         }
-        let n = part.normals[(from - part.prims.start) as usize];
-        let len = ray.dir.length();
-        let cos = n.dot(ray.dir);
-        let t = if cos > GRAZING * len {
+        let cos = if part.ng_outward { cos_ng } else { -cos_ng };
+        let t = if cos > GRAZING {
             leave_box(ray, part.lo, part.hi)
-        } else if cos < -GRAZING * len && part.radius > 0.0 {
+        } else if cos < -GRAZING && part.radius > 0.0 {
             ball_far_side(ray, part.centre, part.radius)
         } else {
             None
@@ -250,30 +251,35 @@ fn isolated(accel: &Accel, parts: &[Range<u32>], boxes: &[Option<(Vec3, Vec3)>])
     ok
 }
 
-/// The part `prims` with its normals and inner ball, when it is convex.
+/// The part `prims` with its winding and inner ball, when it is convex and wound one way.
 fn convex_part(accel: &Accel, prims: Range<u32>, lo: Vec3, hi: Vec3) -> Option<Part> {
-    // (index in the part, vertices) of the triangles that can be hit.
-    let tris: Vec<(usize, [DVec3; 3])> = prims
+    // The triangles that can be hit.
+    let tris: Vec<[DVec3; 3]> = prims
         .clone()
         .map(|p| accel.triangle(p))
-        .enumerate()
-        .filter(|(_, t)| !is_degenerate(t))
-        .map(|(i, t)| (i, t.map(|v| v.as_dvec3())))
+        .filter(|t| !is_degenerate(t))
+        .map(|t| t.map(|v| v.as_dvec3()))
         .collect();
-    let vertices = Vertices::new(tris.iter().flat_map(|(_, t)| t.iter().copied()));
+    let vertices = Vertices::new(tris.iter().flatten().copied());
     let centroid = vertices.centroid;
     let size = (hi - lo).as_dvec3().length();
     let tolerance = CONVEX_TOLERANCE * size;
     // Each face's outward plane (unit normal, offset from the centroid), pointing away from
     // the centroid; a face whose plane passes near the centroid makes the part no solid.
+    let mut outward = [0usize; 2];
     let planes: Vec<(DVec3, f64)> = tris
         .iter()
-        .map(|(_, t)| {
+        .map(|t| {
             let n = (t[1] - t[0]).cross(t[2] - t[0]).normalize();
-            let n = if n.dot(t[0] - centroid) < 0.0 { -n } else { n };
+            let out = n.dot(t[0] - centroid) >= 0.0;
+            outward[usize::from(out)] += 1;
+            let n = if out { n } else { -n };
             (n, n.dot(t[0] - centroid))
         })
         .collect();
+    if outward[0] != 0 && outward[1] != 0 {
+        return None;
+    }
     let solid = planes
         .iter()
         .all(|&(n, h)| n.is_finite() && h > 1e-3 * size);
@@ -287,13 +293,9 @@ fn convex_part(accel: &Accel, prims: Range<u32>, lo: Vec3, hi: Vec3) -> Option<P
     let least = planes.iter().map(|&(_, h)| h).fold(f64::INFINITY, f64::min);
     let scale = size.max(f64::from(lo.abs().max(hi.abs()).max_element()));
     let radius = least - 2.0 * tolerance - BOX_MARGIN * scale;
-    let mut normals = vec![Vec3::ZERO; prims.len()];
-    for ((i, _), (n, _)) in tris.iter().zip(&planes) {
-        normals[*i] = n.as_vec3();
-    }
     Some(Part {
         prims,
-        normals,
+        ng_outward: outward[1] != 0,
         lo,
         hi,
         centre: centroid.as_vec3(),
@@ -490,7 +492,15 @@ mod tests {
     /// The query as the photon batch makes it: through the shortcut, the full query where
     /// the shortcut's answer is not certain. Also says which way it went.
     fn through(accel: &Accel, shortcuts: &Shortcuts, ray: &Ray, from: u32) -> (Option<Hit>, u8) {
-        match shortcuts.shortcut(ray, from) {
+        let ng = accel
+            .surface_point(&Hit {
+                t: 0.0,
+                prim: from,
+                b1: 0.3,
+                b2: 0.3,
+            })
+            .ng;
+        match shortcuts.shortcut(ray, from, ng.dot(ray.dir.normalize())) {
             Shortcut::None => (accel.intersect(ray), 0),
             Shortcut::From(later) => {
                 match Shortcuts::confirm(accel, ray, accel.intersect(&later)) {

@@ -204,15 +204,16 @@ impl Chunk<'_> {
             for (i, &w) in live.iter().enumerate() {
                 let walk = &walks[w].1;
                 let ray = walk.ray();
-                rays.push(
-                    match walk.left().map(|from| shortcuts.shortcut(ray, from)) {
-                        Some(Shortcut::From(later)) => {
-                            shortened.push(i as u32);
-                            later
-                        }
-                        _ => *ray,
-                    },
-                );
+                let shortcut = walk
+                    .left()
+                    .map(|(from, cos)| shortcuts.shortcut(ray, from, cos));
+                rays.push(match shortcut {
+                    Some(Shortcut::From(later)) => {
+                        shortened.push(i as u32);
+                        later
+                    }
+                    _ => *ray,
+                });
             }
             hits.clear();
             hits.resize(rays.len(), None);

@@ -64,8 +64,10 @@ pub struct Walk {
     live: bool,
     /// Whether [`Walk::fate`] is kept complete (see [`Walk::without_fate`]).
     keep_fate: bool,
-    /// The triangle [`Walk::ray`] leaves (`u32::MAX`: the light).
+    /// The triangle [`Walk::ray`] leaves (`u32::MAX`: the light), and the cosine between
+    /// the ray's direction and that triangle's geometric normal.
     left: u32,
+    left_cos: f32,
 }
 
 impl Walk {
@@ -83,6 +85,7 @@ impl Walk {
             live: true,
             keep_fate: true,
             left: u32::MAX,
+            left_cos: 0.0,
         }
     }
 
@@ -109,9 +112,11 @@ impl Walk {
         &self.ray
     }
 
-    /// The triangle [`Walk::ray`] leaves (`None`: the photon comes from the light).
-    pub fn left(&self) -> Option<u32> {
-        (self.left != u32::MAX).then_some(self.left)
+    /// The triangle [`Walk::ray`] leaves and the cosine between the ray's direction and
+    /// that triangle's geometric normal (`(v₁ − v₀) × (v₂ − v₀)`, unflipped); `None`: the
+    /// photon comes from the light.
+    pub fn left(&self) -> Option<(u32, f32)> {
+        (self.left != u32::MAX).then_some((self.left, self.left_cos))
     }
 
     /// The power the photon carries along [`Walk::ray`].
@@ -264,6 +269,7 @@ impl Walk {
         self.power = next_power;
         self.ray = next;
         self.left = hit.prim;
+        self.left_cos = wi.dot(v.sp.surface.ng);
         self.bounces += 1;
         if self.bounces >= MAX_BOUNCES {
             fate.truncated += next_power;
