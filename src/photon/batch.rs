@@ -296,6 +296,7 @@ mod tests {
 
     use super::*;
     use crate::components::{Emitter, LightShape, Shader};
+    use crate::geometry::SceneGeometry;
     use crate::photon::trace_map_with;
     use crate::settings::RenderSettings;
     use crate::shading::integrator::fixture::{self, Object};
@@ -343,19 +344,29 @@ mod tests {
                 material: fixture::material(Shader::Mirror { color: Vec3::ONE }),
             },
         ]);
-        let position = Vec3::new(0.1, 0.2, 0.3);
+        batched_equal_per_photon(&geometry, Vec3::new(0.1, 0.2, 0.3), 5000, 100);
+    }
+
+    /// Both maps of `photons` photons from a point light at `position`, batched and one by
+    /// one, store the same photons (at least `least` of each).
+    fn batched_equal_per_photon(
+        geometry: &SceneGeometry,
+        position: Vec3,
+        photons: u32,
+        least: usize,
+    ) {
         let e = Emitter::new(LightShape::Point { position }, Vec3::ONE);
         let lights = LightSet::new(&[e], None, 1);
         let s = RenderSettings::default();
-        let ctx = ShadeContext::new(&geometry, &lights, &s);
-        let emission = Emission::new(&lights, &geometry);
+        let ctx = ShadeContext::new(geometry, &lights, &s);
+        let emission = Emission::new(&lights, geometry);
         let cancel = AtomicBool::new(false);
         for kind in [MapKind::Global, MapKind::Caustics] {
             let map = (&ctx, &emission, &[][..], kind);
-            let batched = trace_map_with(map, 5000, 7, &cancel, Tracing::Batched).unwrap();
-            let single = trace_map_with(map, 5000, 7, &cancel, Tracing::PerPhoton).unwrap();
+            let batched = trace_map_with(map, photons, 7, &cancel, Tracing::Batched).unwrap();
+            let single = trace_map_with(map, photons, 7, &cancel, Tracing::PerPhoton).unwrap();
             println!("{kind:?}: {} photons stored", batched.len());
-            assert!(batched.len() > 100, "{}", batched.len());
+            assert!(batched.len() > least, "{}", batched.len());
             assert_eq!(batched, single, "{kind:?}");
         }
     }
@@ -379,23 +390,9 @@ mod tests {
                 }),
             },
         ]);
-        let position = Vec3::new(0.1, 0.2, 0.6);
-        let e = Emitter::new(LightShape::Point { position }, Vec3::ONE);
-        let lights = LightSet::new(&[e], None, 1);
-        let s = RenderSettings::default();
-        let ctx = ShadeContext::new(&geometry, &lights, &s);
-        let emission = Emission::new(&lights, &geometry);
-        let cancel = AtomicBool::new(false);
-        let photons = 8 * geometry.triangle_count() as u32;
         assert!(!geometry.accel.has_shortcuts());
-        for kind in [MapKind::Caustics, MapKind::Global] {
-            let map = (&ctx, &emission, &[][..], kind);
-            let batched = trace_map_with(map, photons, 7, &cancel, Tracing::Batched).unwrap();
-            let single = trace_map_with(map, photons, 7, &cancel, Tracing::PerPhoton).unwrap();
-            println!("{kind:?}: {} photons stored", batched.len());
-            assert!(batched.len() > 200, "{}", batched.len());
-            assert_eq!(batched, single, "{kind:?}");
-        }
+        let photons = 8 * geometry.triangle_count() as u32;
+        batched_equal_per_photon(&geometry, Vec3::new(0.1, 0.2, 0.6), photons, 200);
         assert!(geometry.accel.has_shortcuts());
         assert_eq!(geometry.shortcuts().parts(), 1, "the ball");
     }
