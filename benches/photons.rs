@@ -1,7 +1,8 @@
 //! Photon-pass benchmarks (issue 16 item 8) on `assets/scenes/caustics.ron`: the global and
 //! caustic passes traced wide through batch intersections against one photon at a time (the
-//! same photons, bit for bit), on 1 thread, in photons emitted per second; and the
-//! `trace_photons` stage on every thread. Alternating rounds of both (`PHOTON_BENCH_ROUNDS`,
+//! same photons, bit for bit), on 1 thread, in photons emitted per second, then the batched
+//! passes again through the accelerator's shortcuts past convex parts (`*_Batched_shortcuts`);
+//! and the `trace_photons` stage on every thread. Alternating rounds of both (`PHOTON_BENCH_ROUNDS`,
 //! default 5) print their rates and ratio first; `cargo bench --bench photons -- rounds_only`
 //! prints only those (the filter matches no criterion benchmark).
 
@@ -91,6 +92,19 @@ fn photon_pass(c: &mut Criterion) {
                 b.iter(|| pass(kind, tracing))
             });
         }
+    }
+    // The same batched passes once the accelerator's shortcuts past the glass ball exist
+    // (`accel/shortcut.rs`; a pass of these few photons would not make them itself, and
+    // uses them once made; `STAGELIGHT_SHORTCUTS=off` keeps them out of these rows too).
+    println!(
+        "shortcuts: {} convex part(s) of {} triangles",
+        geometry.shortcuts().parts(),
+        geometry.triangle_count()
+    );
+    for kind in [MapKind::Global, MapKind::Caustics] {
+        group.bench_function(format!("{kind:?}_Batched_shortcuts_1_thread"), |b| {
+            b.iter(|| pass(kind, Tracing::Batched))
+        });
     }
     let trace = stagelight::systems::STAGES
         .iter()

@@ -7,11 +7,12 @@
 //! original ray, which gives the distance and barycentrics the full query gives.
 //!
 //! **Parts** are the caller's triangle ranges (an instance's triangles). A part qualifies when
-//! it has at least [`MIN_TRIANGLES`] triangles, is *convex*: every vertex lies behind every
-//! face's plane (outward = away from the vertices' centroid) within [`CONVEX_TOLERANCE`] of
-//! its size, checked in `f64` for every face against every vertex (blocks of vertices whose
-//! box lies behind the plane are skipped whole), and is *isolated*: no other triangle's box
-//! meets the part's box grown by [`BOX_MARGIN`]. What the shortcut relies on:
+//! it has at least [`MIN_TRIANGLES`] triangles, is wound one way, is *convex*: every vertex
+//! lies behind every face's plane (outward = away from the vertices' centroid) within
+//! [`CONVEX_TOLERANCE`] of its size, checked for every face against every vertex (relative to
+//! the centroid, in a tree of eight-wide boxes whose children behind the plane are skipped
+//! whole), and is *isolated*: no other triangle's box meets the part's box grown by
+//! [`BOX_MARGIN`]. What the shortcut relies on:
 //! - *Leaving* (the ray's direction on the outer side of its face's normal): the part lies
 //!   behind the face's plane, the ray moves away from it, so it meets none of the part's
 //!   triangles; inside the grown box it meets no other triangle. It is traced from where it
@@ -28,7 +29,7 @@
 //! run along one line up to the rounding of the later origin, so they can differ only where
 //! the line passes within rounding of an edge: a hit whose smallest barycentric is below
 //! [`EDGE_GUARD`], a miss of the original ray, or no hit at all is traced again in full
-//! ([`Shortcut::Retrace`]). Grazing rays (direction within [`GRAZING`] of the face's plane)
+//! ([`Shortcuts::confirm`] answers `None`). Grazing rays (direction within [`GRAZING`] of the face's plane)
 //! and rays with a finite `t_max` take no shortcut.
 
 use std::ops::Range;
@@ -139,7 +140,7 @@ impl Shortcuts {
         }
         let cos = if part.ng_outward { cos_ng } else { -cos_ng };
         let t = if cos > GRAZING {
-            leave_box(ray, part.lo, part.hi)
+            Some(leave_box(ray, part.lo, part.hi))
         } else if cos < -GRAZING && part.radius > 0.0 {
             ball_far_side(ray, part.centre, part.radius)
         } else {
@@ -182,7 +183,7 @@ impl Shortcuts {
 
 /// Where `ray` leaves the box `lo`–`hi` (its origin inside).
 #[inline]
-fn leave_box(ray: &Ray, lo: Vec3, hi: Vec3) -> Option<f32> {
+fn leave_box(ray: &Ray, lo: Vec3, hi: Vec3) -> f32 {
     let mut t = f32::INFINITY;
     for a in 0..3 {
         let d = ray.dir[a];
@@ -192,7 +193,7 @@ fn leave_box(ray: &Ray, lo: Vec3, hi: Vec3) -> Option<f32> {
             t = t.min((lo[a] - ray.origin[a]) / d);
         }
     }
-    Some(t)
+    t
 }
 
 /// The far end of `ray`'s chord through the ball (`centre`, `radius`), when the chord is
@@ -394,10 +395,7 @@ impl Vertices {
     /// Whether every point `p` has `n·p ≤ h` (both relative to the centroid).
     fn behind(&self, n: Vec3A, h: f32) -> bool {
         let top = self.levels.len() - 1;
-        self.levels[top]
-            .iter()
-            .enumerate()
-            .all(|(i, _)| self.behind_in(top, i, n.to_array(), h))
+        (0..self.levels[top].len()).all(|i| self.behind_in(top, i, n.to_array(), h))
     }
 
     /// [`Self::behind`] for node `i` of level `level` (0: the points' nodes).
