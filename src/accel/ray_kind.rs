@@ -111,8 +111,27 @@ impl Accel {
         }
     }
 
-    /// Whether [`Accel::intersect_shared_origin_as`] traces `n` rays as packets (else one by
-    /// one), so that a caller gathers its rays first only where that pays.
+    /// Occlusion of rays of `kind` that share an origin (the shadow rays of one shading point
+    /// toward an area light's samples): `out[i]` is `self.occluded_as(&rays[i], kind)` bit
+    /// for bit, traced as common-origin packets ([`Accel::occluded_packet`]) where
+    /// [`Accel::packs_shared_origin`] says so, else one query per ray.
+    ///
+    /// # Panics
+    /// When `rays` and `out` differ in length.
+    pub fn occluded_shared_origin_as(&self, rays: &[Ray], kind: RayKind, out: &mut [bool]) {
+        assert_eq!(rays.len(), out.len(), "one result slot per ray");
+        if self.packs_shared_origin(rays.len()) {
+            self.occluded_packet(rays, out);
+            return;
+        }
+        for (ray, hit) in rays.iter().zip(out) {
+            *hit = self.occluded_as(ray, kind);
+        }
+    }
+
+    /// Whether [`Accel::intersect_shared_origin_as`] and [`Accel::occluded_shared_origin_as`]
+    /// trace `n` rays as packets (else one by one), so that a caller gathers its rays first
+    /// only where that pays.
     pub fn packs_shared_origin(&self, n: usize) -> bool {
         self.masks.is_none() && self.small.is_none() && n >= PACKET_MIN_RAYS
     }

@@ -103,7 +103,7 @@ fn shader_at<'a>(geometry: &SceneGeometry, hit: &Hit, material: &'a Material) ->
 /// The ray from `from` toward `target` (a surface point, an exact point when its normal is
 /// zero, or infinity along `wi` when `None`).
 #[inline(always)]
-fn shadow_ray(from: &SurfacePoint, wi: Vec3, target: Option<&SurfacePoint>) -> Ray {
+pub(crate) fn shadow_ray(from: &SurfacePoint, wi: Vec3, target: Option<&SurfacePoint>) -> Ray {
     match target {
         None => spawn_ray(from, wi),
         Some(t) if t.ng == Vec3::ZERO => spawn_ray_to(from, t.p),

@@ -13,8 +13,8 @@ use glam::Vec3;
 
 use super::components::{local_component, note, scale, Component, Components};
 use super::{
-    depth_exceeded_leaving, light_loop_split, local, trace_leaving, volume, Depth, ShadeContext,
-    Vertex,
+    depth_exceeded_leaving, light_loop_without_mis, local, trace_leaving, volume, Depth,
+    ShadeContext, Vertex,
 };
 use crate::accel::{Hit, Ray};
 use crate::sampling::Sampler;
@@ -74,7 +74,7 @@ fn vertex_radiance(
     if bsdf.has_non_delta() {
         let mut diffuse = Vec3::ZERO;
         let share = parts.is_some().then_some(&mut diffuse);
-        let direct = light_loop_split(ctx, &v, bsdf, sampler, false, share);
+        let direct = light_loop_without_mis(ctx, &v, bsdf, sampler, share);
         radiance += direct;
         note(&mut parts, Component::DiffuseDirect, diffuse);
         note(&mut parts, Component::Specular, direct - diffuse);

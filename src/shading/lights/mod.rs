@@ -169,10 +169,16 @@ impl LightSample {
     /// What reaches the point of the light past occluders of transmittance `t`:
     /// `factor + (1 − factor)·t`, `t` itself (bit for bit) when the factor is 0.
     pub fn lighten(&self, t: Vec3) -> Vec3 {
-        if self.shadow_factor == 0.0 {
+        Self::lighten_by(self.shadow_factor, t)
+    }
+
+    /// [`LightSample::lighten`] for a sample of shadow factor `factor`.
+    #[inline(always)]
+    pub fn lighten_by(factor: f32, t: Vec3) -> Vec3 {
+        if factor == 0.0 {
             t
         } else {
-            Vec3::splat(self.shadow_factor) + (1.0 - self.shadow_factor) * t
+            Vec3::splat(factor) + (1.0 - factor) * t
         }
     }
 }
