@@ -414,7 +414,7 @@ pub fn light_loop_without_mis(
 
 /// [`light_loop_without_mis`] with the shadow rays in packets.
 #[inline(never)]
-fn light_loop_in_packets(
+pub(super) fn light_loop_in_packets(
     ctx: &ShadeContext<'_>,
     v: &Vertex<'_>,
     bsdf: &Bsdf,
