@@ -88,6 +88,7 @@ mod shading_fresnel;
 mod shading_integrators;
 mod shading_metallic_roughness;
 mod shading_scenes;
+mod shadow_packets;
 mod skipped_stages;
 mod stages;
 mod sweep;

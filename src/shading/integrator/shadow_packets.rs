@@ -11,6 +11,8 @@
 //! no ray masks, at least eight rays) and the tree is large enough for packets to pay
 //! ([`PACKET_MIN_TRIANGLES`]); otherwise the loop traces one ray per sample.
 
+use std::sync::OnceLock;
+
 use glam::Vec3;
 
 use super::{ShadeContext, Share, Vertex};
@@ -32,16 +34,32 @@ const ROUND: usize = 16;
 const PACKET_MIN_TRIANGLES: usize = 8192;
 
 /// Whether the light loop without MIS takes [`gather`] for `geometry` lit by `lights`
-/// through `volumes`: some light is sampled often enough for a packet.
+/// through `volumes`: where the packets give the per-sample answers (no fog, no transmissive
+/// shadows, the tree without ray masks) and pay (at least [`PACKET_MIN_TRIANGLES`], some
+/// light sampled often enough for a packet). The environment variable
+/// `STAGELIGHT_SHADOW_PACKETS` (`on` or `off`, read once) overrides whether they pay, for A/B
+/// runs: `on` takes them wherever they give the same answers.
 pub(super) fn pays(geometry: &SceneGeometry, lights: &LightSet, volumes: Option<&Volumes>) -> bool {
-    volumes.is_none()
+    static FORCED: OnceLock<Option<bool>> = OnceLock::new();
+    let forced =
+        FORCED.get_or_init(
+            || match std::env::var("STAGELIGHT_SHADOW_PACKETS").as_deref() {
+                Ok("on") => Some(true),
+                Ok("off") => Some(false),
+                _ => None,
+            },
+        );
+    let exact = volumes.is_none()
         && !lights.transmissive_shadows
-        && lights
-            .lights
-            .iter()
-            .any(|l| l.sample_count() as usize >= PACKET_MIN_RAYS)
-        && geometry.accel.len() >= PACKET_MIN_TRIANGLES
-        && geometry.accel.packs_shared_origin(PACKET_MIN_RAYS)
+        && geometry.accel.packs_shared_origin(PACKET_MIN_RAYS);
+    exact
+        && forced.unwrap_or_else(|| {
+            geometry.accel.len() >= PACKET_MIN_TRIANGLES
+                && lights
+                    .lights
+                    .iter()
+                    .any(|l| l.sample_count() as usize >= PACKET_MIN_RAYS)
+        })
 }
 
 /// The light loop of `gather_with` without MIS (every light sampled its own number of
