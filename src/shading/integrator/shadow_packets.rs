@@ -29,8 +29,8 @@ const ROUND: usize = 16;
 
 /// The fewest triangles for which the packets pay: a smaller tree stays in the first cache
 /// levels, where one query per ray is as fast and the two passes cost more than they save
-/// (measured, `Direct` integrator, 1 thread: 1,924 triangles 0.92×, 18,052 1.09×, 55,494
-/// 1.10×; `docs/ray-layer.md`, session 32).
+/// (measured, `Direct` integrator, 1 thread: 1,924 triangles 0.92× with the packets forced,
+/// 18,052 1.09–1.10×, 55,494 1.15×; `docs/ray-layer.md`, session 32).
 const PACKET_MIN_TRIANGLES: usize = 8192;
 
 /// Whether the light loop without MIS takes [`gather`] for `geometry` lit by `lights`
@@ -110,7 +110,7 @@ struct Drawn {
 /// `share` response the same way: what the per-sample loop of `gather_with` adds up for
 /// this light without MIS, in the same order, with the shadow rays traced in packets.
 #[allow(clippy::too_many_arguments)] // The loop's own inputs, passed through.
-pub(super) fn light_samples_in_packets(
+fn light_samples_in_packets(
     ctx: &ShadeContext<'_>,
     v: &Vertex<'_>,
     light: &Light,
