@@ -81,7 +81,7 @@ fn bake(world: &mut World, seed: u64) -> Frame {
         render: false,
         bake: true,
     };
-    let dir = std::env::temp_dir().join(format!(
+    let dir = crate::common::scratch_root().join(format!(
         "stagelight-bake-test-{}-{seed}-{:?}",
         std::process::id(),
         std::thread::current().id()
@@ -480,7 +480,7 @@ fn indirect_lightmap_agrees_between_diffuse_gather_and_path_tracer() {
             render: false,
             bake: true,
         };
-        frame.inputs.bake_dir = std::env::temp_dir().join(format!(
+        frame.inputs.bake_dir = crate::common::scratch_root().join(format!(
             "stagelight-bake-integrators-{:?}-{}",
             integrator,
             std::process::id()

@@ -14,7 +14,8 @@ use stagelight::scene::load_scene_str;
 use stagelight::sweep::runner::read_exr_rgb;
 
 fn scratch(test: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("stagelight-seams-{test}-{}", std::process::id()));
+    let dir = crate::common::scratch_root()
+        .join(format!("stagelight-seams-{test}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     dir

@@ -10,8 +10,8 @@ fn bin() -> Command {
 }
 
 fn scratch(test: &str) -> PathBuf {
-    let dir =
-        std::env::temp_dir().join(format!("stagelight-cli-bake-{test}-{}", std::process::id()));
+    let dir = crate::common::scratch_root()
+        .join(format!("stagelight-cli-bake-{test}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     dir

@@ -12,8 +12,8 @@ fn asset(name: &str) -> PathBuf {
 
 /// `render --stats-json` on `scene` with extra arguments; returns the `trace_photons` entry.
 fn photon_stage(test: &str, scene: &str, extra: &[&str]) -> serde_json::Value {
-    let dir =
-        std::env::temp_dir().join(format!("stagelight-photons-{test}-{}", std::process::id()));
+    let dir = crate::common::scratch_root()
+        .join(format!("stagelight-photons-{test}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     let json = dir.join("stats.json");

@@ -265,7 +265,7 @@ fn bake_covered(uvs: &str) -> u64 {
         render: false,
         bake: true,
     };
-    frame.inputs.bake_dir = std::env::temp_dir().join(format!(
+    frame.inputs.bake_dir = crate::common::scratch_root().join(format!(
         "stagelight-gltf-bake-{}-{:?}",
         std::process::id(),
         std::thread::current().id()

@@ -70,8 +70,8 @@ fn bake(world: &mut World, tag: &str) -> TexelImage {
         render: false,
         bake: true,
     };
-    frame.inputs.bake_dir =
-        std::env::temp_dir().join(format!("stagelight-hard-bake-{tag}-{}", std::process::id()));
+    frame.inputs.bake_dir = crate::common::scratch_root()
+        .join(format!("stagelight-hard-bake-{tag}-{}", std::process::id()));
     stagelight::systems::run(world, &mut frame).expect("bake");
     use exr::prelude::*;
     let image = read_first_rgba_layer_from_file(

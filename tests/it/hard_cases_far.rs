@@ -234,7 +234,7 @@ fn h05_bake_far_from_origin() {
         bake: true,
     };
     frame.inputs.bake_dir =
-        std::env::temp_dir().join(format!("stagelight-h05-bake-{}", std::process::id()));
+        crate::common::scratch_root().join(format!("stagelight-h05-bake-{}", std::process::id()));
     stagelight::systems::run(&mut scene.world, &mut frame).expect("bake");
     let read = |path: &Path| -> Vec<Vec3> {
         use exr::prelude::*;
@@ -283,7 +283,8 @@ fn h05_bake_far_from_origin() {
 /// file renders the same image as the box written at the origin.
 #[test]
 fn h05_obj_far_from_origin() {
-    let dir = std::env::temp_dir().join(format!("stagelight-h05-obj-{}", std::process::id()));
+    let dir =
+        crate::common::scratch_root().join(format!("stagelight-h05-obj-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let render_at = |t: f64| {
         let corners = [

@@ -248,7 +248,7 @@ fn seed_mi_scenes_render_without_nan_and_their_ron_renders_the_same() {
 #[test]
 fn cli_convert_writes_ron_that_renders_byte_identical() {
     let exe = env!("CARGO_BIN_EXE_stagelight");
-    let tmp = std::env::temp_dir().join(format!("stagelight_mi_{}", std::process::id()));
+    let tmp = crate::common::scratch_root().join(format!("stagelight_mi_{}", std::process::id()));
     std::fs::create_dir_all(&tmp).unwrap();
     let mi = dir("assets/seeds/mi/plane.mi");
     let ron = tmp.join("plane.ron");

@@ -50,7 +50,7 @@ p \"grey\" 0 3 2 1
 end group";
 
 fn write(text: &str, name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!(
+    let dir = crate::common::scratch_root().join(format!(
         "stagelight_mi_cshaders_{}_{name}",
         std::process::id()
     ));

@@ -43,7 +43,8 @@ fn the_contour_statements_map_onto_the_contour_stage() {
 
 #[test]
 fn cli_render_writes_the_eps_with_lines_at_the_silhouette() {
-    let tmp = std::env::temp_dir().join(format!("stagelight_mi_contours_{}", std::process::id()));
+    let tmp = crate::common::scratch_root()
+        .join(format!("stagelight_mi_contours_{}", std::process::id()));
     std::fs::create_dir_all(&tmp).unwrap();
     let scene = tmp.join("square.mi");
     std::fs::copy(fixture(), &scene).unwrap();
@@ -91,8 +92,8 @@ fn cli_render_writes_the_eps_with_lines_at_the_silhouette() {
 #[test]
 fn malformed_contour_statements_give_exact_located_messages() {
     let text = std::fs::read_to_string(fixture()).unwrap();
-    let dir =
-        std::env::temp_dir().join(format!("stagelight_mi_contour_bad_{}", std::process::id()));
+    let dir = crate::common::scratch_root()
+        .join(format!("stagelight_mi_contour_bad_{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let cases = [
         (

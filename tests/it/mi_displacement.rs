@@ -52,8 +52,8 @@ render "rootgrp" "Camera_inst" "opt"
 }
 
 fn render(text: &str, name: &str) -> FrameBuffers {
-    let dir =
-        std::env::temp_dir().join(format!("stagelight_mi_disp_{}_{name}", std::process::id()));
+    let dir = crate::common::scratch_root()
+        .join(format!("stagelight_mi_disp_{}_{name}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join("scene.mi");
     std::fs::write(&path, text).unwrap();

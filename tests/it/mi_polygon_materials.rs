@@ -144,7 +144,8 @@ fn inline_materials_in_ron_render_each_polygon_in_its_material() {
 #[test]
 fn cli_convert_round_trips_polygon_materials() {
     let exe = env!("CARGO_BIN_EXE_stagelight");
-    let tmp = std::env::temp_dir().join(format!("stagelight_mi_polys_{}", std::process::id()));
+    let tmp =
+        crate::common::scratch_root().join(format!("stagelight_mi_polys_{}", std::process::id()));
     std::fs::create_dir_all(&tmp).unwrap();
     let run = |args: &[&Path]| {
         let out = std::process::Command::new(exe).args(args).output().unwrap();

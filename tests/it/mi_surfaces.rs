@@ -115,8 +115,8 @@ fn quarter_disc(r: f64, weights: bool) -> String {
 }
 
 fn load(text: &str, name: &str) -> LoadedScene {
-    let dir =
-        std::env::temp_dir().join(format!("stagelight_mi_surf_{}_{name}", std::process::id()));
+    let dir = crate::common::scratch_root()
+        .join(format!("stagelight_mi_surf_{}_{name}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join("scene.mi");
     std::fs::write(&path, text).unwrap();
@@ -323,7 +323,8 @@ fn several_surfaces_of_one_object_become_a_group_its_instance_places() {
 
 #[test]
 fn cli_convert_round_trips_a_surface_scene() {
-    let dir = std::env::temp_dir().join(format!("stagelight_mi_surf_cli_{}", std::process::id()));
+    let dir = crate::common::scratch_root()
+        .join(format!("stagelight_mi_surf_cli_{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(dir.join("disc.mi"), scene(&quarter_disc(0.9, true))).unwrap();
     let run = |args: &[&str]| {
@@ -421,7 +422,8 @@ fn malformed_surfaces_give_exact_located_messages() {
             format!("bad.mi:{}:1: error: \"surface\" belongs in a group\n  help: write it between group and end group, after the vertices", line(&good, "basis \"bez3\"") + 1),
         ),
     ];
-    let dir = std::env::temp_dir().join(format!("stagelight_mi_surf_bad_{}", std::process::id()));
+    let dir = crate::common::scratch_root()
+        .join(format!("stagelight_mi_surf_bad_{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let mut failures = Vec::new();
     for (bad, want) in cases {

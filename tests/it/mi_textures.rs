@@ -128,7 +128,8 @@ fn mib_texture_lookup_shows_the_texels_where_mental_ray_puts_them() {
 #[test]
 fn malformed_texture_chains_give_exact_located_messages() {
     let text = std::fs::read_to_string(fixture()).unwrap();
-    let dir = std::env::temp_dir().join(format!("stagelight_mi_tex_{}", std::process::id()));
+    let dir =
+        crate::common::scratch_root().join(format!("stagelight_mi_tex_{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let cases = [
         (

@@ -82,7 +82,8 @@ render "rootgrp" "Camera_inst" "opt"
 }
 
 fn render(text: &str, name: &str) -> FrameBuffers {
-    let dir = std::env::temp_dir().join(format!("stagelight_mi_vol_{}_{name}", std::process::id()));
+    let dir = crate::common::scratch_root()
+        .join(format!("stagelight_mi_vol_{}_{name}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join("scene.mi");
     std::fs::write(&path, text).unwrap();
@@ -344,7 +345,7 @@ fn cli_convert_round_trips_height_noise_and_fade_volumes() {
         "volume \"mib_volume\" (\"color\" 0.3 0.5 0.7 0.8, \"max\" 4)",
     );
     for (name, text, needle) in [("fog", fog, "height: -0.2,"), ("fade", fade, "Fade(")] {
-        let dir = std::env::temp_dir().join(format!(
+        let dir = crate::common::scratch_root().join(format!(
             "stagelight_mi_vol_cli_{}_{name}",
             std::process::id()
         ));

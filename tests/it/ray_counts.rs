@@ -34,7 +34,7 @@ fn run(threads: usize) -> Frame {
         render: true,
         bake: true,
     };
-    frame.inputs.bake_dir = std::env::temp_dir().join(format!(
+    frame.inputs.bake_dir = crate::common::scratch_root().join(format!(
         "stagelight-ray-counts-{threads}-{}",
         std::process::id()
     ));

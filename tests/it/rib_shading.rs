@@ -10,7 +10,8 @@ use stagelight::scene::load_scene;
 
 /// Writes `text` as `name` in a fresh folder of the temporary directory.
 fn write_rib(name: &str, text: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("stagelight_rib_shading_{}", std::process::id()));
+    let dir = crate::common::scratch_root()
+        .join(format!("stagelight_rib_shading_{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join(name);
     std::fs::write(&path, text).unwrap();

@@ -577,7 +577,8 @@ fn photon_options() {
 /// field and the range it takes.
 #[test]
 fn out_of_range_integers_name_the_number_the_field_and_the_range() {
-    let dir = std::env::temp_dir().join(format!("stagelight-int-range-{}", std::process::id()));
+    let dir =
+        crate::common::scratch_root().join(format!("stagelight-int-range-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     for (text, expected) in [
         (

@@ -81,7 +81,7 @@ fn environment_bad_exr() {
 /// Two files may not both define the environment.
 #[test]
 fn environment_twice() {
-    let dir = std::env::temp_dir().join("stagelight_env_twice");
+    let dir = crate::common::scratch_root().join("stagelight_env_twice");
     std::fs::create_dir_all(&dir).unwrap();
     let lib = dir.join("lib.ron");
     std::fs::write(

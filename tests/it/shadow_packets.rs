@@ -8,7 +8,7 @@ use std::process::Command;
 /// The PNG bytes of `scene` rendered at 1 spp on `threads` threads with the packets `mode`
 /// (`None`: the default choice).
 fn render(test: &str, scene: &str, mode: Option<&str>, threads: &str) -> Vec<u8> {
-    let dir = std::env::temp_dir().join(format!(
+    let dir = crate::common::scratch_root().join(format!(
         "stagelight-shadow-packets-{test}-{}-{}",
         mode.unwrap_or("default"),
         std::process::id()

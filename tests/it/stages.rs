@@ -219,7 +219,8 @@ fn object_and_material_id_passes_label_what_each_pixel_centre_sees() {
     }
     // The ids reach the EXR as u32 channels.
     let bytes = encode_exr(&fb, &[Pass::Beauty, Pass::ObjectId, Pass::MaterialId]).unwrap();
-    let dir = std::env::temp_dir().join(format!("stagelight-ids-{}.exr", std::process::id()));
+    let dir =
+        crate::common::scratch_root().join(format!("stagelight-ids-{}.exr", std::process::id()));
     std::fs::write(&dir, &bytes).unwrap();
     let read = exr::prelude::read_all_flat_layers_from_file(&dir).unwrap();
     let names: Vec<String> = read.layer_data[0]

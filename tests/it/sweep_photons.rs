@@ -10,7 +10,7 @@ fn bin() -> Command {
 }
 
 fn scratch(test: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!(
+    let dir = crate::common::scratch_root().join(format!(
         "stagelight-sweep-photons-{test}-{}",
         std::process::id()
     ));

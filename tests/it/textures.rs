@@ -124,8 +124,8 @@ fn write_png(path: &Path, codes: [[u8; 3]; 4]) {
 }
 
 fn temp_dir(name: &str) -> PathBuf {
-    let dir =
-        std::env::temp_dir().join(format!("stagelight-textures-{name}-{}", std::process::id()));
+    let dir = crate::common::scratch_root()
+        .join(format!("stagelight-textures-{name}-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     dir
 }

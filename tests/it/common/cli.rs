@@ -12,7 +12,8 @@ pub fn stagelight_in(dir: &Path) -> Command {
 
 /// A fresh, empty scratch directory for test `name`.
 pub fn scratch_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("stagelight-{name}-{}", std::process::id()));
+    let dir =
+        crate::common::scratch_root().join(format!("stagelight-{name}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     dir

@@ -7,11 +7,13 @@ mod mi_text;
 pub mod png;
 mod rays;
 mod scene_text;
+mod scratch;
 pub use cli::*;
 pub use meshes::*;
 pub use mi_text::*;
 pub use rays::*;
 pub use scene_text::*;
+pub use scratch::scratch_root;
 
 use std::sync::Arc;
 
