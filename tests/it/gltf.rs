@@ -113,6 +113,29 @@ fn bad_files_are_located_errors() {
             at("missing_buffer.gltf")
         )]
     );
+    // gltf-json 1.4's validator indexes the POSITION accessor unchecked: a panic before.
+    assert_eq!(
+        load_errors("missing_position_accessor.gltf"),
+        [format!(
+            "{}: meshes[0].primitives[0].attributes.POSITION: invalid glTF: accessor 0 is out of range: the file has 0 accessors",
+            at("missing_position_accessor.gltf")
+        )]
+    );
+    // The glTF crate's `Image::source` unwraps these: a panic before.
+    assert_eq!(
+        load_errors("image_without_source.gltf"),
+        [format!(
+            "{}: images[0]: invalid glTF: an image needs a uri or a bufferView",
+            at("image_without_source.gltf")
+        )]
+    );
+    assert_eq!(
+        load_errors("image_view_without_mime_type.gltf"),
+        [format!(
+            "{}: images[0]: invalid glTF: an image in a bufferView needs its mimeType",
+            at("image_view_without_mime_type.gltf")
+        )]
+    );
     let mesh_error = |f: &str, object: &str, message: &str| {
         [format!(
             "{} \"{DIR}/{f}\": {message}\n  help: loaded for object \"{object}\" at {DIR}/{f}:1:1",

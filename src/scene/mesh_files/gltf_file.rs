@@ -249,9 +249,9 @@ pub fn open(bytes: &[u8], dir: Option<&Path>) -> Result<GltfFile, MeshFileError>
     } else {
         (bytes, None)
     };
-    let doc = match gltf::Gltf::from_slice(json) {
-        Ok(g) => g.document,
-        Err(gltf::Error::Deserialize(e)) => {
+    let root: gltf::json::Root = match gltf::json::deserialize::from_slice(json) {
+        Ok(root) => root,
+        Err(e) => {
             let message = format!("invalid glTF JSON: {e}");
             return Err(if binary {
                 at_byte(20, message)
@@ -259,6 +259,12 @@ pub fn open(bytes: &[u8], dir: Option<&Path>) -> Result<GltfFile, MeshFileError>
                 MeshFileError::at_line(e.line().max(1), e.column().max(1), message)
             });
         }
+    };
+    if let Some((path, message)) = what_the_validator_misses(&root) {
+        return Err(element(path, format!("invalid glTF: {message}")));
+    }
+    let doc = match gltf::Document::from_json(root) {
+        Ok(doc) => doc,
         Err(gltf::Error::Validation(errors)) => {
             let (path, error) = &errors[0];
             let more = match errors.len() {
@@ -297,6 +303,43 @@ pub fn open(bytes: &[u8], dir: Option<&Path>) -> Result<GltfFile, MeshFileError>
         buffers.push(data);
     }
     Ok(GltfFile { doc, buffers })
+}
+
+/// The first problem that the glTF crate (1.4) neither reports nor survives, as an element path
+/// and a message: its validation reads a primitive's `POSITION` accessor without checking the
+/// index, and `Image::source` unwraps an image's `uri`, or the `mimeType` beside its
+/// `bufferView` — each a panic on such a file — so they are checked before either runs.
+fn what_the_validator_misses(root: &gltf::json::Root) -> Option<(String, String)> {
+    use gltf::json::validation::Checked;
+    let positions = Checked::Valid(gltf::json::mesh::Semantic::Positions);
+    let accessor = root.meshes.iter().enumerate().find_map(|(m, mesh)| {
+        mesh.primitives
+            .iter()
+            .enumerate()
+            .find_map(|(p, primitive)| {
+                let index = primitive.attributes.get(&positions)?.value();
+                (index >= root.accessors.len()).then(|| {
+                    (
+                        format!("meshes[{m}].primitives[{p}].attributes.POSITION"),
+                        format!(
+                            "accessor {index} is out of range: the file has {} accessors",
+                            root.accessors.len()
+                        ),
+                    )
+                })
+            })
+    });
+    let image = || {
+        root.images.iter().enumerate().find_map(|(i, image)| {
+            let problem = match (&image.buffer_view, &image.mime_type, &image.uri) {
+                (Some(_), None, _) => "an image in a bufferView needs its mimeType",
+                (None, _, None) => "an image needs a uri or a bufferView",
+                _ => return None,
+            };
+            Some((format!("images[{i}]"), problem.to_string()))
+        })
+    };
+    accessor.or_else(image)
 }
 
 fn validation_text(error: &gltf::json::validation::Error) -> &'static str {
