@@ -163,6 +163,8 @@ pub fn read_parts(
 
 /// Decodes a bake part file; the error says what is wrong with it (the caller names the file).
 pub fn decode(bytes: &[u8]) -> std::result::Result<BakePartFile, String> {
+    use crate::image_io::exr_limits;
+    exr_limits::check_bytes(bytes, exr_limits::MAX_PART_SAMPLES)?;
     let image = read()
         .no_deep_data()
         .largest_resolution_level()

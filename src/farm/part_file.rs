@@ -292,6 +292,8 @@ pub fn encode(part: &PartFile) -> std::result::Result<Vec<u8>, String> {
 
 /// Decodes a part file; the error says what is wrong with it (the caller names the file).
 pub fn decode(bytes: &[u8]) -> std::result::Result<PartFile, String> {
+    use crate::image_io::exr_limits;
+    exr_limits::check_bytes(bytes, exr_limits::MAX_PART_SAMPLES)?;
     let image = read()
         .no_deep_data()
         .largest_resolution_level()

@@ -1,9 +1,11 @@
 //! Image writers: PNG (8-bit sRGB; every PNG read and write goes through [`png_codec`]) and
-//! OpenEXR (linear f32 layers), and the all-or-nothing
+//! OpenEXR (linear f32 layers; every EXR read from outside is size-checked by [`exr_limits`]
+//! first), and the all-or-nothing
 //! commit of a run's files ([`commit_all`]: temporaries, then renames, rolled back on
 //! failure).
 
 mod atomic;
+pub mod exr_limits;
 mod exr_writer;
 pub mod imager;
 pub mod png_codec;

@@ -116,6 +116,8 @@ pub fn read_exr(path: &Path) -> Result<LatLongMap, String> {
     if let Err(e) = std::fs::metadata(path) {
         return Err(io_reason(&e));
     }
+    use crate::image_io::exr_limits;
+    exr_limits::check_file(path, exr_limits::MAX_IMAGE_SAMPLES)?;
     let image = read_first_rgba_layer_from_file(
         path,
         |size: ExrVec2<usize>, _| {

@@ -160,7 +160,9 @@ fn denoise_bakes(world: &mut World) {
 
 /// Reads the R, G, B channels of a linear EXR, with its width and height.
 pub fn read_exr_rgb(path: &Path) -> Result<(Vec<Vec3>, u32, u32), SweepError> {
+    use crate::image_io::exr_limits;
     use exr::prelude::*;
+    exr_limits::check_file(path, exr_limits::MAX_IMAGE_SAMPLES).map_err(|e| io(path, e))?;
     let image = read_first_rgba_layer_from_file(
         path,
         |res, _| {

@@ -133,3 +133,22 @@ fn png_corpus_decodes_to_consistent_images_or_errors() {
         }
     }
 }
+
+/// The EXR corpus decodes to width × height pixels or errors, as the `exr` fuzz target checks;
+/// the file claiming 60000² pixels is refused from its headers.
+#[test]
+fn exr_corpus_decodes_to_consistent_images_or_errors() {
+    use stagelight::shading::texture::image::decode_exr;
+    for path in corpus("exr") {
+        let decoded = decode_exr(&std::fs::read(&path).unwrap());
+        let name = path.file_name().unwrap().to_string_lossy().into_owned();
+        match (name.as_str(), decoded) {
+            ("claims_60000x60000.exr", Err(e)) => {
+                assert!(e.starts_with("a layer of 60000×60000 pixels"), "{e}")
+            }
+            ("tiny_4x4_zip.exr", Ok((w, h, _))) => assert_eq!((w, h), (4, 4)),
+            (_, Ok((w, h, pixels))) => assert_eq!(pixels.len(), w as usize * h as usize, "{name}"),
+            (_, Err(_)) => {}
+        }
+    }
+}

@@ -193,3 +193,59 @@ fn an_endless_archive_or_mi_include_stops_at_the_size_limit() {
         stderr_of(&o)
     );
 }
+
+/// A 15 KB EXR whose header claims 60000 × 60000 RGBA pixels (a consistent chunk table, PIZ
+/// blocks of 32 rows): read as a texture, the `exr` crate allocated its 72 GB up front and the
+/// process aborted. Now its headers are read first and the file is refused, as a texture, as
+/// a sweep reference and as a farm part file.
+#[test]
+fn an_exr_claiming_a_huge_image_is_refused_before_it_is_read() {
+    let dir = scratch_dir("huge-exr");
+    let fixture = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/fixtures/images/claims_60000x60000.exr"
+    );
+    std::fs::copy(fixture, dir.join("huge.exr")).unwrap();
+    let scene = small_scene(&quad_object("quad"), r#"(name: "q", of: "quad")"#, "", "").replace(
+        r#"shader: Lambert(albedo: (0.5, 0.5, 0.5))"#,
+        r#"shader: Lambert(albedo: (1, 1, 1)), bind: {"albedo": Image(file: "huge.exr")}"#,
+    );
+    std::fs::write(dir.join("scene.ron"), scene).unwrap();
+    let claims = "a layer of 60000×60000 pixels in 4 channels: the file claims more than the";
+    let o = run_in(&dir, &["check", "scene.ron"]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr_of(&o));
+    let stderr = stderr_of(&o);
+    assert!(
+        stderr.contains(&format!(
+            ": error: cannot read image file \"huge.exr\": {claims} 268435456 samples (pixels × channels) this input may hold\n"
+        )),
+        "{stderr}"
+    );
+    let plain = small_scene(&quad_object("quad"), r#"(name: "q", of: "quad")"#, "", "");
+    std::fs::write(dir.join("plain.ron"), plain).unwrap();
+    let sweep = [
+        "sweep",
+        "plain.ron",
+        "--knob",
+        "spp=1",
+        "--reference",
+        "huge.exr",
+    ];
+    let o = run_in(&dir, &[&sweep[..], &["--out", "sweep"]].concat());
+    assert_eq!(o.status.code(), Some(1), "{}", stderr_of(&o));
+    assert_eq!(
+        stderr_of(&o),
+        format!(
+            "error: huge.exr: {claims} 268435456 samples (pixels × channels) this input may hold\n"
+        )
+    );
+    // Nothing written (the sweep makes its output directory before it reads the reference).
+    assert!(std::fs::read_dir(dir.join("sweep")).map_or(true, |mut d| d.next().is_none()));
+    let o = run_in(&dir, &["merge", "huge.exr", "-o", "merged.exr"]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr_of(&o));
+    assert_eq!(
+        stderr_of(&o),
+        format!("error: huge.exr: {claims} 4294967296 samples (pixels × channels) this input may hold\nnothing written\n")
+    );
+    assert!(!dir.join("merged.exr").exists());
+}

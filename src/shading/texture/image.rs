@@ -183,22 +183,36 @@ type ExrPixels = (usize, Pixels);
 /// Width, height and top-down RGBA pixels of the first RGB(A) layer of an EXR file (alpha
 /// `None` when the layer has no alpha channel).
 fn read_exr(path: &Path) -> Result<(u32, u32, Pixels), String> {
+    decode_exr(&std::fs::read(path).map_err(|e| e.to_string())?)
+}
+
+/// [`read_exr`] for a file's bytes; its size is checked from the headers first
+/// ([`exr_limits`](crate::image_io::exr_limits)), so a small file claiming a huge image is
+/// refused before anything is allocated for it.
+pub fn decode_exr(bytes: &[u8]) -> Result<(u32, u32, Pixels), String> {
+    use crate::image_io::exr_limits;
     use exr::prelude::*;
-    let image = read_first_rgba_layer_from_file(
-        path,
-        |resolution, channels| {
-            let alpha = channels.3.is_some().then_some(1.0);
-            (
-                resolution.width(),
-                vec![(Vec3::ZERO, alpha); resolution.width() * resolution.height()],
-            )
-        },
-        |(w, px): &mut ExrPixels, pos, (r, g, b, a): (f32, f32, f32, f32)| {
-            let slot = &mut px[pos.y() * *w + pos.x()];
-            *slot = (Vec3::new(r, g, b), slot.1.map(|_| a));
-        },
-    )
-    .map_err(|e| e.to_string())?;
+    exr_limits::check_bytes(bytes, exr_limits::MAX_IMAGE_SAMPLES)?;
+    let image = read()
+        .no_deep_data()
+        .largest_resolution_level()
+        .rgba_channels(
+            |resolution, channels: &RgbaChannels| {
+                let alpha = channels.3.is_some().then_some(1.0);
+                (
+                    resolution.width(),
+                    vec![(Vec3::ZERO, alpha); resolution.width() * resolution.height()],
+                )
+            },
+            |(w, px): &mut ExrPixels, pos, (r, g, b, a): (f32, f32, f32, f32)| {
+                let slot = &mut px[pos.y() * *w + pos.x()];
+                *slot = (Vec3::new(r, g, b), slot.1.map(|_| a));
+            },
+        )
+        .first_valid_layer()
+        .all_attributes()
+        .from_buffered(std::io::Cursor::new(bytes))
+        .map_err(|e| e.to_string())?;
     let size = image.layer_data.size;
     let (_, px) = image.layer_data.channel_data.pixels;
     Ok((size.width() as u32, size.height() as u32, px))

@@ -1,0 +1,91 @@
+//! The size check every EXR read from outside passes first: the file's headers are read, and
+//! a file whose layers claim more samples than its reader allows is refused before the `exr`
+//! crate allocates them. Its readers allocate every layer's samples from the header's data
+//! window, so a 15 KB file claiming 60000×60000 pixels aborted the process with a 72 GB
+//! allocation.
+
+use std::path::Path;
+
+use exr::meta::MetaData;
+
+/// The most samples (pixels × channels, all layers) an input image may hold: textures,
+/// environment maps and sweep references (8192 × 8192 RGBA; 1 GiB as `f32`).
+pub const MAX_IMAGE_SAMPLES: u64 = 1 << 28;
+
+/// The most samples a farm part file may hold (16 GiB as `f32`, as photon map files).
+pub const MAX_PART_SAMPLES: u64 = 1 << 32;
+
+/// Reads the headers of the EXR file at `path` and refuses it when its layers hold more than
+/// `max_samples` samples. A file whose headers cannot be read passes: the full read that
+/// follows reports what is wrong with it.
+pub fn check_file(path: &Path, max_samples: u64) -> Result<(), String> {
+    match MetaData::read_from_file(path, false) {
+        Ok(meta) => check(&meta, max_samples),
+        Err(_) => Ok(()),
+    }
+}
+
+/// [`check_file`] for a file's bytes.
+pub fn check_bytes(bytes: &[u8], max_samples: u64) -> Result<(), String> {
+    match MetaData::read_from_buffered(std::io::Cursor::new(bytes), false) {
+        Ok(meta) => check(&meta, max_samples),
+        Err(_) => Ok(()),
+    }
+}
+
+fn check(meta: &MetaData, max_samples: u64) -> Result<(), String> {
+    let mut samples: u64 = 0;
+    for header in meta.headers.iter() {
+        let size = header.layer_size;
+        let pixels = (size.width() as u64).saturating_mul(size.height() as u64);
+        let channels = header.channels.list.len() as u64;
+        samples = samples.saturating_add(pixels.saturating_mul(channels));
+        if samples > max_samples {
+            return Err(format!(
+                "a layer of {}×{} pixels in {channels} channels: the file claims more than the \
+                 {max_samples} samples (pixels × channels) this input may hold",
+                size.width(),
+                size.height()
+            ));
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A real EXR's header with its windows (and chunk count) patched to claim `size`².
+    fn claiming(size: i32) -> Vec<u8> {
+        use exr::prelude::*;
+        let mut bytes = std::io::Cursor::new(Vec::new());
+        Image::from_channels(
+            (2, 2),
+            SpecificChannels::rgba(|_pos: Vec2<usize>| (0.5_f32, 0.5_f32, 0.5_f32, 1.0_f32)),
+        )
+        .write()
+        .to_buffered(&mut bytes)
+        .unwrap();
+        let mut d = bytes.into_inner();
+        for name in [&b"dataWindow\0box2i\0"[..], &b"displayWindow\0box2i\0"[..]] {
+            let at = d.windows(name.len()).position(|w| w == name).unwrap() + name.len() + 4;
+            d[at + 8..at + 12].copy_from_slice(&(size - 1).to_le_bytes());
+            d[at + 12..at + 16].copy_from_slice(&(size - 1).to_le_bytes());
+        }
+        d
+    }
+
+    #[test]
+    fn a_small_file_claiming_a_huge_image_is_refused_from_its_header() {
+        let e = check_bytes(&claiming(60000), MAX_IMAGE_SAMPLES).unwrap_err();
+        assert_eq!(
+            e,
+            "a layer of 60000×60000 pixels in 4 channels: the file claims more than the \
+             268435456 samples (pixels × channels) this input may hold"
+        );
+        assert_eq!(check_bytes(&claiming(8192), MAX_IMAGE_SAMPLES), Ok(()));
+        assert!(check_bytes(&claiming(8193), MAX_IMAGE_SAMPLES).is_err());
+        assert_eq!(check_bytes(b"not an exr", MAX_IMAGE_SAMPLES), Ok(()));
+    }
+}
