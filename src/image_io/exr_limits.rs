@@ -56,7 +56,7 @@ fn check(meta: &MetaData, max_samples: u64) -> Result<(), String> {
 mod tests {
     use super::*;
 
-    /// A real EXR's header with its windows (and chunk count) patched to claim `size`².
+    /// A real 2×2 EXR with its data and display windows patched to claim `size`².
     fn claiming(size: i32) -> Vec<u8> {
         use exr::prelude::*;
         let mut bytes = std::io::Cursor::new(Vec::new());
