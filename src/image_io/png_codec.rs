@@ -103,6 +103,7 @@ pub fn decode_png(bytes: &[u8]) -> Result<DecodedPng, String> {
     let mut decoder = png::Decoder::new_with_limits(Cursor::new(bytes), limits);
     decoder.set_transformations(png::Transformations::EXPAND);
     let mut reader = decoder.read_info().map_err(|e| e.to_string())?;
+    check_palette(reader.info())?;
     let size = reader
         .output_buffer_size()
         .filter(|&n| n <= MAX_DECODED_BYTES)
@@ -133,6 +134,25 @@ pub fn decode_png(bytes: &[u8]) -> Result<DecodedPng, String> {
         channels,
         samples,
     })
+}
+
+/// Refuses an indexed image whose palette the decoder (png 0.18) would index past its end and
+/// panic: a `PLTE` chunk whose length is not 3 to 768 bytes in whole RGB entries (which the
+/// PNG specification forbids).
+fn check_palette(info: &png::Info) -> Result<(), String> {
+    if info.color_type != png::ColorType::Indexed {
+        return Ok(());
+    }
+    let Some(palette) = &info.palette else {
+        return Ok(());
+    };
+    if palette.is_empty() || palette.len() % 3 != 0 || palette.len() > 768 {
+        return Err(format!(
+            "the PLTE chunk holds {} bytes: a palette is 1 to 256 RGB entries of 3 bytes each",
+            palette.len()
+        ));
+    }
+    Ok(())
 }
 
 /// Reads and decodes the PNG file at `path` (a file that cannot be read gives the system's
@@ -251,6 +271,13 @@ mod tests {
         let e = decode_png(&huge).unwrap_err();
         assert!(e.contains("60000") || e.contains("limit"), "{e}");
         assert!(encode_png(&[0; 5], 2, 2, PngLayout::Grey8).is_err());
+        // Found by the `png` fuzz target (its CRCs made valid): a 2-bit indexed image whose
+        // PLTE chunk holds 44 bytes (14 entries and 2 bytes); the png crate panicked
+        // expanding it.
+        assert_eq!(
+            decode_png(include_bytes!("../../fuzz/corpus/png/bad_plte_length.png")).unwrap_err(),
+            "the PLTE chunk holds 44 bytes: a palette is 1 to 256 RGB entries of 3 bytes each"
+        );
     }
 
     /// CRC-32 (PNG's chunk checksum), for the hand-made header above.
