@@ -212,7 +212,8 @@ pub fn run_sweep(
             return Err(KnobError::DenoiseNeedsBake(opts.knob.name()).into());
         }
     }
-    std::fs::create_dir_all(&opts.out).map_err(|e| io(&opts.out, e))?;
+    // The output directory is made only once the reference is read (or rendered): a bad
+    // `--reference` leaves nothing behind.
     let cached = reference_cache(opts)?;
     let (reference, ref_width, ref_height) = match &opts.reference {
         Some(path) => read_exr_rgb(path)?,
@@ -252,6 +253,7 @@ pub fn run_sweep(
                 texels: r.image.clone(),
             };
             let bytes = texture.encode_exr().map_err(|e| io(&cached, e))?;
+            std::fs::create_dir_all(&opts.out).map_err(|e| io(&opts.out, e))?;
             crate::image_io::commit_all(&[crate::image_io::PendingFile {
                 path: cached.clone(),
                 bytes,
@@ -270,6 +272,7 @@ pub fn run_sweep(
             ));
         }
     }
+    std::fs::create_dir_all(&opts.out).map_err(|e| io(&opts.out, e))?;
     let reference_crop = opts.crop.map(|c| c.cut(&reference, ref_width));
     let mut rows = Vec::with_capacity(opts.knob.len());
     for i in 0..opts.knob.len() {
