@@ -1,14 +1,19 @@
 //! stagelight's own builder of the binary hierarchy: top-down binned SAH (32 centroid bins
 //! per axis; an exact sweep over the three axes for nodes of at most `SWEEP_MAX` triangles),
-//! one triangle per leaf, written straight into obvhs's `Bvh2` layout for `collapse.rs`.
+//! leaves of one or two triangles, written straight into obvhs's `Bvh2` layout for
+//! `collapse.rs`.
 //!
-//! * **Parallel and deterministic**: subtrees go to `rayon::join`, large nodes bin in
-//!   parallel chunks; bins merge by min/max and integer counts (exact in any order), so the
-//!   splits, and hence the tree bytes, are the same at any thread count. Each subtree owns a
-//!   fixed slice of the node array: a subtree of `n` triangles has exactly `2n − 1` nodes.
+//! * **Parallel and deterministic**: subtrees above `PARALLEL_PRIMS` triangles go to
+//!   `rayon::join`, large nodes bin in parallel chunks; bins merge by min/max and integer
+//!   counts (exact in any order), so the splits, and hence the tree bytes, are the same at
+//!   any thread count. Each parallel subtree owns a fixed slice of the node array (`2n − 2`
+//!   slots for the descendants of a node of `n` triangles, the most they can need).
 //! * **Depth-first layout**: a node's two children are adjacent, followed by the left
-//!   child's descendants, then the right child's, so the collapse walks memory in order.
-//! * **Exact boxes**: a leaf's box is its triangle's min/max, an inner node's the union of
+//!   child's descendants, then the right child's, so the collapse walks memory in order. A
+//!   subtree built on one thread is packed: the right child's descendants follow the left
+//!   child's directly, with no slots left for leaves of two triangles that could have split,
+//!   so it fills a prefix of its slice (about 60 %; session 34, `docs/ray-layer.md`).
+//! * **Exact boxes**: a leaf's box is its triangles' min/max, an inner node's the union of
 //!   its children's, as `collapse.rs` requires.
 //! * **Extreme geometry**: SAH costs that overflow `f32` (extents around 1e19 and beyond) or
 //!   subtrees deeper than `SAH_DEPTH` fall back to a median split over the bins (or over
