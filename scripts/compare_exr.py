@@ -1,18 +1,25 @@
 #!/usr/bin/env python3
 """Compares RGB EXR images: relMSE (mean of (x−r)²/(r²+0.01), stagelight's sweep metric), MSE,
-and per-channel means. Usage: compare_exr.py TEST.exr REFERENCE.exr [--png-diff OUT.png]"""
+and per-channel means. Usage: compare_exr.py TEST.exr REFERENCE.exr
+Scan-line EXRs (stagelight's, Blender's) are read by `exr_f32.py`; others need Mitsuba."""
+import os
+import struct
 import sys
 
-import mitsuba as mi
 import numpy as np
 
-mi.set_variant("scalar_rgb")
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import exr_f32  # noqa: E402
 
 
 def load(path):
-    bmp = mi.Bitmap(path)
-    arr = np.array(bmp, dtype=np.float64)
-    return arr[:, :, :3]
+    try:
+        return exr_f32.load_rgb(path)
+    except (KeyError, ValueError, struct.error):
+        import mitsuba as mi
+
+        mi.set_variant("scalar_rgb")
+        return np.array(mi.Bitmap(path), dtype=np.float64)[:, :, :3]
 
 
 def main():
