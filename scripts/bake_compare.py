@@ -1,16 +1,18 @@
 #!/usr/bin/env python3
-"""The numpy side of `scripts/cycles_ao_compare.sh`.
+"""The numpy side of `scripts/cycles_bake_compare.sh`.
 
-  ao_compare.py obj BAKED.ply OUT.obj
+  bake_compare.py obj BAKED.ply OUT.obj
       turns the PLY copy of a mesh that a per-vertex bake writes (positions, normals, s t)
       into an OBJ with the same vertices, normals and UVs, so that stagelight and Blender
       bake exactly one mesh.
-  ao_compare.py error TEST REFERENCE
-      relMSE (mean of (x−r)²/(r²+0.01), stagelight's sweep metric), MSE and means of the AO
-      values over the texels baked in both. TEST and REFERENCE are `.npy` arrays from
-      `cycles_ao_bake.py` (rows bottom-up, RGBA, −1 where Cycles baked nothing) or stagelight AO
-      EXRs `<instance>_ao.exr` (rows top-down) with the mask PNG a bake with `mask: true`
-      writes beside them (`<instance>_mask.png`: where the texel was baked)."""
+  bake_compare.py error TEST REFERENCE
+      relMSE (mean of (x−r)²/(r²+0.01), stagelight's sweep metric), MSE and means over the
+      texels baked in both, and how many of them agree to within 1e-4. TEST and REFERENCE
+      are `.npy` arrays from `cycles_bake.py` (rows bottom-up, RGBA, −1 where Cycles baked
+      nothing) or stagelight EXRs `<instance>_ao.exr` / `<instance>_lightmap.exr` (rows
+      top-down) with the mask PNG a bake with `mask: true` writes beside them
+      (`<instance>_mask.png`: where the texel was baked). Lightmaps are compared as E/π, the
+      value Cycles' diffuse bake without its colour pass writes."""
 import os
 import struct
 import sys
@@ -94,22 +96,24 @@ def png_gray(path):
 
 
 def load(path):
-    """(AO values, baked mask), rows top-down."""
+    """(values, baked mask), rows top-down."""
     if path.endswith(".npy"):
         a = np.load(path)[::-1]
         return a[:, :, 0].astype(np.float64), a[:, :, 0] >= 0.0
-    ao = exr_f32.load_rgb(path)[:, :, 0]
-    mask_png = path[: -len("_ao.exr")] + "_mask.png"
-    return ao, png_gray(mask_png)
+    value = exr_f32.load_rgb(path)[:, :, 0]
+    for suffix, scale in (("_ao.exr", 1.0), ("_lightmap.exr", 1.0 / np.pi)):
+        if path.endswith(suffix):
+            return value * scale, png_gray(path[: -len(suffix)] + "_mask.png")
+    sys.exit("%s: an `_ao.exr` or `_lightmap.exr` bake expected" % path)
 
 
 def error(test, ref):
     (x, mx), (r, mr) = load(test), load(ref)
     m = mx & mr
     d = x[m] - r[m]
-    print("relMSE %.4e  MSE %.4e  mean test %.5f  mean ref %.5f  texels %d (test %d, ref %d)" % (
-        np.mean(d * d / (r[m] * r[m] + 1e-2)), np.mean(d * d), x[m].mean(), r[m].mean(),
-        m.sum(), mx.sum(), mr.sum()))
+    print("relMSE %.4e  MSE %.4e  mean test %.6f  mean ref %.6f  texels %d (test %d, ref %d, "
+          "within 1e-4: %d)" % (np.mean(d * d / (r[m] * r[m] + 1e-2)), np.mean(d * d), x[m].mean(),
+                                r[m].mean(), m.sum(), mx.sum(), mr.sum(), (abs(d) < 1e-4).sum()))
 
 
 def main():
