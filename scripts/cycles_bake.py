@@ -26,11 +26,15 @@ channels RGBA, −1 where Cycles baked nothing) and prints one line per bake:
 Cycles' scene sync, its BVH (Embree) and the texels)."""
 import argparse
 import os
+import sys
 import time
 
 import bpy
 import numpy as np
 from mathutils import Vector
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from cycles_common import black_world, cycles_settings  # noqa: E402
 
 ALBEDO = (0.6, 0.58, 0.55)  # bake_ao.ron's "stone"
 
@@ -51,15 +55,6 @@ def parse():
     p.add_argument("--bounces", type=int, default=2)
     p.add_argument("--indirect-only", action="store_true")
     return p.parse_args()
-
-
-def black_world(scene, ao_distance):
-    scene.world = bpy.data.worlds.new("world")
-    scene.world.use_nodes = True  # deprecated in Blender 5 (always on), needed before it
-    for n in scene.world.node_tree.nodes:
-        if n.type == "BACKGROUND":
-            n.inputs["Strength"].default_value = 0.0
-    scene.world.light_settings.distance = ao_distance
 
 
 def add_sun(scene, spec):
@@ -94,18 +89,8 @@ def setup(a):
     bpy.ops.wm.obj_import(filepath=a.mesh, forward_axis="Y", up_axis="Z")
     obj = bpy.context.selected_objects[0]
     scene = bpy.context.scene
-    scene.render.engine = "CYCLES"
-    c = scene.cycles
-    c.device = "CPU"
-    c.samples = a.samples
-    c.use_adaptive_sampling = False
-    c.use_denoising = False
-    c.seed = a.seed
-    c.max_bounces = c.diffuse_bounces = a.bounces
-    c.sample_clamp_direct = c.sample_clamp_indirect = 0.0
-    scene.render.threads_mode = "FIXED"
-    scene.render.threads = a.threads
-    black_world(scene, a.distance)
+    cycles_settings(scene, a.samples, a.seed, a.bounces, a.threads)
+    black_world(scene).light_settings.distance = a.distance
     if a.kind == "lightmap":
         add_sun(scene, a.sun)
     image = bpy.data.images.new("baked", a.res, a.res, alpha=True, float_buffer=True)

@@ -25,6 +25,7 @@ import bpy
 from mathutils import Matrix, Vector
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from cycles_common import black_world, cycles_settings  # noqa: E402
 from mitsuba_cornell import (  # noqa: E402
     GEOMETRY, MATERIALS, NUM, SCENE, parse_materials, parse_objects, triples)
 
@@ -102,26 +103,12 @@ def setup(a):
         mesh.materials.append(material(mat_name, *materials[mat_name]))
         scene.collection.objects.link(bpy.data.objects.new(name, mesh))
     camera(scene, text)
-    scene.world = bpy.data.worlds.new("black")
-    scene.world.use_nodes = True
-    for n in scene.world.node_tree.nodes:
-        if n.type == "BACKGROUND":
-            n.inputs["Strength"].default_value = 0.0
-    scene.render.engine = "CYCLES"
-    c = scene.cycles
-    c.device = "CPU"
-    c.samples = a.spp
-    c.use_adaptive_sampling = False
-    c.use_denoising = False
-    c.seed = a.seed
+    black_world(scene)
     max_depth = int(re.search(r"max_depth:\s*(\d+)", text).group(1))
-    c.max_bounces = c.diffuse_bounces = max_depth - 1
-    c.sample_clamp_direct = c.sample_clamp_indirect = 0.0
+    c = cycles_settings(scene, a.spp, a.seed, max_depth - 1, a.threads)
     c.blur_glossy = 0.0
     c.pixel_filter_type = "BOX"
     c.filter_width = 1.0
-    scene.render.threads_mode = "FIXED"
-    scene.render.threads = a.threads
     scene.render.use_persistent_data = False
     s = scene.render.image_settings
     s.file_format, s.color_depth, s.exr_codec = "OPEN_EXR", "32", "ZIP"
