@@ -298,7 +298,14 @@ impl Builder {
             nodes[0] = bounds.node(n as u32, 0);
         } else {
             nodes[0] = bounds.node(0, 1);
-            self.node(&mut refs, &mut ids, 0, centroids, &mut nodes[1..], 1, 0);
+            let part = Part {
+                refs: &mut refs,
+                ids: &mut ids,
+                first: 0,
+                centroids,
+                depth: 0,
+            };
+            self.node(part, &mut nodes[1..], 1);
         }
         Bvh2 {
             nodes,
@@ -307,55 +314,32 @@ impl Builder {
         }
     }
 
-    /// Splits the node of `refs`/`ids` (at least two triangles; their first is the
-    /// `first`-th in leaf order) and writes its descendants into `out` (`2n − 2` nodes, the
-    /// first at global index `base`): the two children, then the left child's descendants,
-    /// then the right child's.
-    #[allow(clippy::too_many_arguments)]
-    fn node(
-        &self,
-        refs: &mut [Bounds],
-        ids: &mut [u32],
-        first: u32,
-        centroids: Bounds,
-        out: &mut [Bvh2Node],
-        base: u32,
-        depth: u32,
-    ) {
-        let n = refs.len();
+    /// Splits the node of `part` (at least two triangles) and writes its descendants into
+    /// `out` (`2n − 2` nodes, the first at global index `base`): the two children, then the
+    /// left child's descendants, then the right child's.
+    fn node(&self, part: Part<'_>, out: &mut [Bvh2Node], base: u32) {
+        let n = part.len();
         debug_assert!(n >= 2 && out.len() == 2 * n - 2);
         if n <= self.packed {
-            self.packed(refs, ids, first, centroids, out, base, depth);
+            self.packed(part, out, base);
             return;
         }
-        let (nl, left, right, lc, rc) = split(refs, ids, centroids, depth);
-        let nr = n - nl;
+        let ([left_box, right_box], [left, right]) = part.split();
         let (pair, rest) = out.split_at_mut(2);
-        let (left_out, right_out) = rest.split_at_mut(2 * nl - 2);
+        let (left_out, right_out) = rest.split_at_mut(2 * left.len() - 2);
         let left_base = base + 2;
-        let right_base = left_base + (2 * nl - 2) as u32;
-        pair[0] = if nl <= LEAF_MAX {
-            left.node(nl as u32, first)
-        } else {
-            left.node(0, left_base)
-        };
-        pair[1] = if nr <= LEAF_MAX {
-            right.node(nr as u32, first + nl as u32)
-        } else {
-            right.node(0, right_base)
-        };
-        let (lrefs, rrefs) = refs.split_at_mut(nl);
-        let (lids, rids) = ids.split_at_mut(nl);
+        let right_base = left_base + left_out.len() as u32;
+        pair[0] = left.child(left_box, left_base);
+        pair[1] = right.child(right_box, right_base);
         rayon::join(
             || {
-                if nl > LEAF_MAX {
-                    self.node(lrefs, lids, first, lc, left_out, left_base, depth + 1);
+                if left.len() > LEAF_MAX {
+                    self.node(left, left_out, left_base);
                 }
             },
             || {
-                if nr > LEAF_MAX {
-                    let f = first + nl as u32;
-                    self.node(rrefs, rids, f, rc, right_out, right_base, depth + 1);
+                if right.len() > LEAF_MAX {
+                    self.node(right, right_out, right_base);
                 }
             },
         );
@@ -367,44 +351,76 @@ impl Builder {
     /// number is returned. The rest of `out` is not touched — about 40 % of the `2n − 2`
     /// slots, since most leaves hold two triangles — so its 4 KiB pages are never faulted
     /// in, and the collapse reads the tree from fewer pages.
-    #[allow(clippy::too_many_arguments)]
-    fn packed(
-        &self,
-        refs: &mut [Bounds],
-        ids: &mut [u32],
-        first: u32,
-        centroids: Bounds,
-        out: &mut [Bvh2Node],
-        base: u32,
-        depth: u32,
-    ) -> usize {
-        let n = refs.len();
-        debug_assert!(n >= 2 && out.len() >= 2 * n - 2);
-        let (nl, left, right, lc, rc) = split(refs, ids, centroids, depth);
-        let nr = n - nl;
+    fn packed(&self, part: Part<'_>, out: &mut [Bvh2Node], base: u32) -> usize {
+        debug_assert!(part.len() >= 2 && out.len() >= 2 * part.len() - 2);
+        let ([left_box, right_box], [left, right]) = part.split();
         let left_base = base + 2;
-        out[0] = if nl <= LEAF_MAX {
-            left.node(nl as u32, first)
-        } else {
-            left.node(0, left_base)
-        };
-        let (lrefs, rrefs) = refs.split_at_mut(nl);
-        let (lids, rids) = ids.split_at_mut(nl);
+        out[0] = left.child(left_box, left_base);
         let mut used = 2;
-        if nl > LEAF_MAX {
-            used += self.packed(lrefs, lids, first, lc, &mut out[2..], left_base, depth + 1);
+        if left.len() > LEAF_MAX {
+            used += self.packed(left, &mut out[2..], left_base);
         }
         let right_base = base + used as u32;
-        let f = first + nl as u32;
-        out[1] = if nr <= LEAF_MAX {
-            right.node(nr as u32, f)
-        } else {
-            right.node(0, right_base)
-        };
-        if nr > LEAF_MAX {
-            used += self.packed(rrefs, rids, f, rc, &mut out[used..], right_base, depth + 1);
+        out[1] = right.child(right_box, right_base);
+        if right.len() > LEAF_MAX {
+            used += self.packed(right, &mut out[used..], right_base);
         }
         used
+    }
+}
+
+/// The triangles of one node of the hierarchy being built: their boxes and ids (reordered in
+/// place by the splits), the leaf-order index of the first, the bounds of their centroids and
+/// the node's depth.
+struct Part<'a> {
+    refs: &'a mut [Bounds],
+    ids: &'a mut [u32],
+    first: u32,
+    centroids: Bounds,
+    depth: u32,
+}
+
+impl<'a> Part<'a> {
+    fn len(&self) -> usize {
+        self.refs.len()
+    }
+
+    /// Splits the node in two ([`split`]): the children's boxes and parts.
+    fn split(self) -> ([Bounds; 2], [Part<'a>; 2]) {
+        let Part {
+            refs,
+            ids,
+            first,
+            centroids,
+            depth,
+        } = self;
+        let (nl, left, right, lc, rc) = split(refs, ids, centroids, depth);
+        let (lrefs, rrefs) = refs.split_at_mut(nl);
+        let (lids, rids) = ids.split_at_mut(nl);
+        let part = |refs, ids, first, centroids| Part {
+            refs,
+            ids,
+            first,
+            centroids,
+            depth: depth + 1,
+        };
+        (
+            [left, right],
+            [
+                part(lrefs, lids, first, lc),
+                part(rrefs, rids, first + nl as u32, rc),
+            ],
+        )
+    }
+
+    /// This part's node, of box `bounds`, in its parent's pair: a leaf of its triangles when
+    /// it has at most `LEAF_MAX`, else an inner node whose children start at `children`.
+    fn child(&self, bounds: Bounds, children: u32) -> Bvh2Node {
+        if self.len() <= LEAF_MAX {
+            bounds.node(self.len() as u32, self.first)
+        } else {
+            bounds.node(0, children)
+        }
     }
 }
 
