@@ -2,9 +2,10 @@
 //! (`bvh/binned.rs`, the `Medium` preset) or from obvhs (PLOC + reinsertion: `Fast`, `High`);
 //! `collapse.rs` collapses it in parallel into stagelight's own 8-wide node layout (the tree obvhs's CWBVH
 //! collapse makes) with *exact* `f32` child boxes, and the triangles are copied into BVH order.
-//! That copy is the only one the `Accel` keeps (the caller's vector is dropped): two index
-//! maps, BVH order → caller's index (`prim_ids`) and back (`slot_of`), answer both kinds of
-//! lookup, 8 bytes per triangle instead of a second 36-byte copy.
+//! That copy is the only one the `Accel` keeps (the caller's vector is dropped): each copied
+//! triangle carries its caller's index ([`LeafTri`], 40 bytes), and one index map back
+//! (`slot_of`) answers lookups by the caller's index — 8 bytes per triangle instead of a
+//! second 36-byte copy.
 //!
 //! Why convert: obvhs's CWBVH nodes store child boxes quantised to 8 bits, and its node test
 //! clamps the entry distance to a hard-coded 1e-4 and ignores `tmin`; its traversal stack has
@@ -138,18 +139,31 @@ pub(crate) fn pack_order(slots: [usize; 8]) -> u32 {
 /// The order word of slots 0, 1, …, 7.
 pub(crate) const IDENTITY_ORDER: u32 = 0o76543210;
 
+/// A triangle of the hierarchy with its caller's index (`prim`), 40 bytes. The index lies in
+/// the cache lines of the vertices the leaf test reads (and the traversal prefetches), so
+/// answering a closest hit with it costs no extra miss; read from an array of its own, it
+/// was a cache miss at the end of most incoherent queries (≈ 13 % of their time, session 36
+/// in `docs/ray-layer.md`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[repr(C)]
+pub(crate) struct LeafTri {
+    /// The vertices, first in the struct (the leaf tests read them from its first byte).
+    pub(crate) v: [Vec3; 3],
+    /// The caller's index of the triangle.
+    pub(crate) prim: u32,
+}
+
 /// The built hierarchy.
 pub(crate) struct Bvh {
     /// Nodes; the root is node 0 (none when nothing can be hit).
     pub(crate) nodes: Vec<Node>,
-    /// Every triangle given to [`build`]: the first `hierarchy_triangles` in BVH order (leaf
-    /// order), then the degenerate ones (never referenced by a leaf) in the caller's order.
-    pub(crate) tris: Vec<[Vec3; 3]>,
+    /// Every triangle given to [`build`], each with its caller's index: the first
+    /// `hierarchy_triangles` in BVH order (leaf order), then the degenerate ones (never
+    /// referenced by a leaf) in the caller's order.
+    pub(crate) tris: Vec<LeafTri>,
     /// Triangles referenced by the leaves (the non-degenerate ones).
     pub(crate) hierarchy_triangles: usize,
-    /// Original (caller's) index of each entry of `tris`.
-    pub(crate) prim_ids: Vec<u32>,
-    /// Position in `tris` of each original index: the inverse of `prim_ids`.
+    /// Position in `tris` of each original index: the inverse of the `prim` fields.
     pub(crate) slot_of: Vec<u32>,
     /// Number of node levels on the longest root-to-leaf path.
     pub(crate) depth: u32,
@@ -259,9 +273,13 @@ pub(crate) fn build(tris: &[[Vec3; 3]], quality: BvhQuality) -> Bvh {
                 .filter(|&i| is_degenerate(&tris[i as usize])),
         );
     }
-    let mut bvh_tris: Vec<[Vec3; 3]> = super::huge_pages::with_capacity(prim_ids.len());
-    bvh_tris.par_extend(prim_ids.par_iter().map(|&i| tris[i as usize]));
+    let mut bvh_tris: Vec<LeafTri> = super::huge_pages::with_capacity(prim_ids.len());
+    bvh_tris.par_extend(prim_ids.par_iter().map(|&i| LeafTri {
+        v: tris[i as usize],
+        prim: i,
+    }));
     let slot_of = inverse(&prim_ids);
+    drop(prim_ids);
     let mut nodes = collapsed.nodes;
     nodes
         .par_iter_mut()
@@ -287,7 +305,6 @@ pub(crate) fn build(tris: &[[Vec3; 3]], quality: BvhQuality) -> Bvh {
         nodes,
         tris: bvh_tris,
         hierarchy_triangles,
-        prim_ids,
         slot_of,
         depth,
         sah_cost,
@@ -299,13 +316,16 @@ pub(crate) fn build(tris: &[[Vec3; 3]], quality: BvhQuality) -> Bvh {
 /// The hierarchy of a scene with no non-degenerate triangle: no nodes, every triangle kept
 /// in the caller's order.
 fn unbuilt(tris: &[[Vec3; 3]], start: Instant, phases: BuildPhases) -> Bvh {
-    let prim_ids: Vec<u32> = (0..tris.len() as u32).collect();
     Bvh {
         nodes: Vec::new(),
-        tris: tris.to_vec(),
+        tris: (0..tris.len() as u32)
+            .map(|i| LeafTri {
+                v: tris[i as usize],
+                prim: i,
+            })
+            .collect(),
         hierarchy_triangles: 0,
-        slot_of: prim_ids.clone(),
-        prim_ids,
+        slot_of: (0..tris.len() as u32).collect(),
         depth: 0,
         sah_cost: 0.0,
         build_seconds: start.elapsed().as_secs_f64(),
@@ -429,6 +449,33 @@ mod tests {
             .collect()
     }
 
+    /// Every triangle of the copy carries its caller's index beside its vertices (40 bytes,
+    /// the index in the last four, inside the lines a leaf's prefetch covers), and `slot_of`
+    /// is the inverse of those indices — degenerate triangles and a scene of nothing but
+    /// degenerate ones included.
+    #[test]
+    fn triangles_carry_their_caller_index() {
+        assert_eq!(std::mem::size_of::<LeafTri>(), 40);
+        assert_eq!(std::mem::offset_of!(LeafTri, prim), 36);
+        let mut tris = soup(300);
+        tris[5] = [Vec3::ZERO; 3];
+        tris[77] = [Vec3::X; 3];
+        let flat = vec![[Vec3::ONE; 3]; 4];
+        for (tris, q) in [
+            (&tris, BvhQuality::Fast),
+            (&tris, BvhQuality::Medium),
+            (&tris, BvhQuality::High),
+            (&flat, BvhQuality::Medium),
+        ] {
+            let bvh = build(tris, q);
+            assert_eq!(bvh.tris.len(), tris.len());
+            for (slot, t) in bvh.tris.iter().enumerate() {
+                assert_eq!(t.v, tris[t.prim as usize], "{q:?} slot {slot}");
+                assert_eq!(bvh.slot_of[t.prim as usize] as usize, slot, "{q:?}");
+            }
+        }
+    }
+
     #[test]
     fn every_valid_triangle_is_referenced_once_and_boxes_contain_children() {
         let mut tris = soup(500);
@@ -444,8 +491,8 @@ mod tests {
                     let first = (c & FIRST_MASK) as usize;
                     let count = ((c & !LEAF_BIT) >> COUNT_SHIFT) as usize;
                     for k in first..first + count {
-                        seen[bvh.prim_ids[k] as usize] += 1;
-                        for v in bvh.tris[k] {
+                        seen[bvh.tris[k].prim as usize] += 1;
+                        for v in bvh.tris[k].v {
                             for axis in 0..3 {
                                 let (g, l) = (slot / 4, slot % 4);
                                 assert!(node.bounds[2 * axis][g][l] <= v[axis]);

@@ -11,7 +11,7 @@
 //!   `maxps` may propagate it; that can only make `δt` NaN, which fails `t > δt` and sends the
 //!   lane to the scalar test.
 //! * **Loads**: each vertex is read with one unaligned 16-byte load inside its own triangle
-//!   (vertex 2 from 4 bytes earlier, so nothing past the 36 bytes is read), put in the ray's
+//!   (vertex 2 from 4 bytes earlier, so nothing past its 36 bytes of vertices is read), put in the ray's
 //!   axis order by one `vpermilps` with a per-ray control (no dynamic indexing per
 //!   triangle), and the three triangles are transposed into lanes. A leaf of fewer than three
 //!   triangles reads its last one again (no branch on the count) and masks the extra lanes.
@@ -25,6 +25,7 @@ use std::arch::x86_64::{
 
 use glam::Vec3;
 
+use super::bvh::LeafTri;
 use super::triangle::{gamma, WoopRay};
 
 /// Per-ray constants of the 4-lane leaf test. Made only inside the AVX2 kernels (through
@@ -127,11 +128,11 @@ impl LeafRay4 {
 
     /// Tests the leaf's triangles (1 to 3).
     #[inline(always)]
-    pub(super) fn test(&self, tris: &[[Vec3; 3]]) -> LeafLanes {
+    pub(super) fn test(&self, tris: &[LeafTri]) -> LeafLanes {
         let n = tris.len();
         debug_assert!((1..=3).contains(&n));
         // Three triangles whatever the count: the last one repeated (no branch).
-        let tri = [&tris[0], &tris[1.min(n - 1)], &tris[2.min(n - 1)]];
+        let tri = [&tris[0].v, &tris[1.min(n - 1)].v, &tris[2.min(n - 1)].v];
         let [x0, y0, z0] = self.lanes(tri, 0);
         let [x1, y1, z1] = self.lanes(tri, 1);
         let [x2, y2, z2] = self.lanes(tri, 2);
@@ -247,7 +248,13 @@ mod tests {
     /// The CPU must support AVX2.
     #[target_feature(enable = "avx2")]
     unsafe fn lane_answers(woop: &WoopRay, tris: &[[Vec3; 3]]) -> Vec<(Option<[u32; 3]>, bool)> {
-        let lanes = LeafRay4::new(woop).test(tris);
+        let leaf: Vec<LeafTri> = (0..tris.len() as u32)
+            .map(|prim| LeafTri {
+                v: tris[prim as usize],
+                prim,
+            })
+            .collect();
+        let lanes = LeafRay4::new(woop).test(&leaf);
         assert_eq!((lanes.hit | lanes.slow) >> tris.len(), 0);
         assert_eq!(lanes.hit & lanes.slow, 0);
         (0..tris.len())

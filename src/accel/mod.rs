@@ -132,8 +132,7 @@ impl Accel {
         let bvh = bvh::build(&triangles, quality);
         drop(triangles);
         #[cfg(target_arch = "x86_64")]
-        let small =
-            small_scene::SmallScene::build(&bvh.tris, &bvh.prim_ids, small_scene::max_triangles());
+        let small = small_scene::SmallScene::build(&bvh.tris, small_scene::max_triangles());
         Self {
             bvh,
             counters: counters::Counters::new(),
@@ -168,7 +167,7 @@ impl Accel {
 
     /// Vertices of triangle `prim` (index in the order given to [`Accel::build`]).
     pub fn triangle(&self, prim: u32) -> [Vec3; 3] {
-        self.bvh.tris[self.bvh.slot_of[prim as usize] as usize]
+        self.bvh.tris[self.bvh.slot_of[prim as usize] as usize].v
     }
 
     /// Closest hit along the ray (`0 < t < t_max`); ties at equal `t` go to the smallest
@@ -266,7 +265,6 @@ impl Accel {
             build_phases: self.bvh.phases,
             sah_cost: self.bvh.sah_cost,
             bytes: std::mem::size_of_val(self.bvh.tris.as_slice())
-                + std::mem::size_of_val(self.bvh.prim_ids.as_slice())
                 + std::mem::size_of_val(self.bvh.slot_of.as_slice())
                 + std::mem::size_of_val(self.bvh.nodes.as_slice()),
         }

@@ -294,7 +294,7 @@ trait PacketTest {
             let t_max = packet.t_max[i];
             for k in range.clone() {
                 if woop
-                    .intersect(&bvh.tris[k])
+                    .intersect(&bvh.tris[k].v)
                     .is_some_and(|(t, _, _)| t < t_max)
                 {
                     hit |= 1 << i;
@@ -320,7 +320,7 @@ trait PacketTest {
         for i in bits(rays) {
             let woop = &packet.woop[i];
             for k in range.clone() {
-                if let Some(hit) = woop.intersect(&bvh.tris[k]) {
+                if let Some(hit) = woop.intersect(&bvh.tris[k].v) {
                     best.offer(bvh, i, k, hit);
                 }
             }
@@ -342,7 +342,7 @@ impl Best {
     fn offer(&mut self, bvh: &Bvh, i: usize, k: usize, (t, b1, b2): (f32, f32, f32)) {
         let better = t < self.t[i]
             || (t == self.t[i]
-                && self.hit[i].is_some_and(|(bk, _, _)| bvh.prim_ids[k] < bvh.prim_ids[bk]));
+                && self.hit[i].is_some_and(|(bk, _, _)| bvh.tris[k].prim < bvh.tris[bk].prim));
         if better {
             self.hit[i] = Some((k, b1, b2));
             self.t[i] = t;
@@ -559,7 +559,7 @@ mod wide {
                 // multiple of 8 below 64), through a reference.
                 let t_max = unsafe { _mm256_loadu_ps(packet.t_max.as_ptr().add(at)) };
                 for k in range.clone() {
-                    let tri = &bvh.tris[k];
+                    let tri = &bvh.tris[k].v;
                     let found = group.occludes(tri, lanes, t_max);
                     let mut h = found.hit;
                     for j in bits(u64::from(found.slow)) {
@@ -601,7 +601,7 @@ mod wide {
                 rest &= !(0xff << at);
                 let group = Group8::load(&packet.lanes, g);
                 for k in range.clone() {
-                    let tri = &bvh.tris[k];
+                    let tri = &bvh.tris[k].v;
                     let found = group.test(tri, lanes);
                     for j in bits(u64::from(found.hit | found.slow)) {
                         let hit = if found.slow >> j & 1 != 0 {
@@ -839,7 +839,7 @@ fn closest_packet<T: PacketTest>(
     std::array::from_fn(|i| {
         best.hit[i].map(|(k, b1, b2)| Hit {
             t: best.t[i],
-            prim: bvh.prim_ids[k],
+            prim: bvh.tris[k].prim,
             b1,
             b2,
         })

@@ -38,6 +38,7 @@ use std::sync::OnceLock;
 
 use glam::Vec3;
 
+use super::bvh::LeafTri;
 use super::triangle::{gamma, is_degenerate, ray_is_valid, WoopRay};
 use super::{Hit, Ray};
 
@@ -106,19 +107,18 @@ pub(super) struct SmallScene {
 }
 
 impl SmallScene {
-    /// The lane groups of `tris` (degenerate ones left out) in the order given, where
-    /// `prims[i]` is the caller's index of `tris[i]`; `None` when there are more than `max`
-    /// triangles. `Accel` gives them in the tree's order, so that the triangles of a group lie
-    /// close together and a ray misses whole groups more often.
-    pub(super) fn build(tris: &[[Vec3; 3]], prims: &[u32], max: usize) -> Option<Self> {
+    /// The lane groups of `tris` (degenerate ones left out) in the order given, each with its
+    /// caller's index; `None` when there are more than `max` triangles. `Accel` gives them in
+    /// the tree's order, so that the triangles of a group lie close together and a ray misses
+    /// whole groups more often.
+    pub(super) fn build(tris: &[LeafTri], max: usize) -> Option<Self> {
         if tris.len() > max {
             return None;
         }
-        let (prims, tris): (Vec<u32>, Vec<[Vec3; 3]>) = prims
+        let (prims, tris): (Vec<u32>, Vec<[Vec3; 3]>) = tris
             .iter()
-            .zip(tris)
-            .filter(|(_, t)| !is_degenerate(t))
-            .map(|(&i, t)| (i, *t))
+            .filter(|t| !is_degenerate(&t.v))
+            .map(|t| (t.prim, t.v))
             .unzip();
         let mut groups = vec![
             Group {
@@ -472,7 +472,7 @@ mod tests {
     /// The small path over `tris` in the tree's order, as `Accel::build` makes it.
     fn small(tris: &[[Vec3; 3]]) -> (SmallScene, super::super::bvh::Bvh) {
         let bvh = build(tris, BvhQuality::Medium);
-        let s = SmallScene::build(&bvh.tris, &bvh.prim_ids, usize::MAX).unwrap();
+        let s = SmallScene::build(&bvh.tris, usize::MAX).unwrap();
         (s, bvh)
     }
 
@@ -714,12 +714,19 @@ mod tests {
     #[test]
     fn build_threshold_and_degenerate_slots() {
         let t = [Vec3::ZERO, Vec3::X, Vec3::Y];
-        let ids: Vec<u32> = (0..9).collect();
-        assert!(SmallScene::build(&[t; 9], &ids, 8).is_none());
-        let s = SmallScene::build(&[t; 9], &ids, 9).unwrap();
+        let leaf = |tris: &[[Vec3; 3]]| -> Vec<LeafTri> {
+            (0..tris.len() as u32)
+                .map(|prim| LeafTri {
+                    v: tris[prim as usize],
+                    prim,
+                })
+                .collect()
+        };
+        assert!(SmallScene::build(&leaf(&[t; 9]), 8).is_none());
+        let s = SmallScene::build(&leaf(&[t; 9]), 9).unwrap();
         assert_eq!((s.groups.len(), s.tris.len()), (2, 9));
         let degenerate = [[Vec3::ONE; 3], [Vec3::NAN, Vec3::X, Vec3::Y], t];
-        let s = SmallScene::build(&degenerate, &[0, 1, 2], 64).unwrap();
+        let s = SmallScene::build(&leaf(&degenerate), 64).unwrap();
         assert_eq!((s.prims.as_slice(), s.groups.len()), ([2].as_slice(), 1));
     }
 

@@ -47,10 +47,10 @@ pub(crate) fn closest_with_cost(bvh: &Bvh, ray: &Ray) -> (Option<Hit>, Traversal
         if cur & LEAF_BIT != 0 {
             for k in leaf_range(cur) {
                 cost.triangles += 1;
-                if let Some((t, b1, b2)) = woop.intersect(&bvh.tris[k]) {
+                if let Some((t, b1, b2)) = woop.intersect(&bvh.tris[k].v) {
                     let better = t < best_t
                         || (t == best_t
-                            && best.is_some_and(|(bk, _, _)| bvh.prim_ids[k] < bvh.prim_ids[bk]));
+                            && best.is_some_and(|(bk, _, _)| bvh.tris[k].prim < bvh.tris[bk].prim));
                     if better {
                         best = Some((k, b1, b2));
                         best_t = t;
@@ -72,7 +72,7 @@ pub(crate) fn closest_with_cost(bvh: &Bvh, ray: &Ray) -> (Option<Hit>, Traversal
     }
     let hit = best.map(|(k, b1, b2)| Hit {
         t: best_t,
-        prim: bvh.prim_ids[k],
+        prim: bvh.tris[k].prim,
         b1,
         b2,
     });

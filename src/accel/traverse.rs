@@ -18,8 +18,8 @@
 //!   leaf's triangles), so its misses overlap the work on its siblings (+13–15 % incoherent);
 //!   the addresses are selected without a branch on the leaf bit (`prefetch_lines`). The
 //!   AVX-512 single-ray kernels (`traverse_wide/single512.rs`) push as one block store and
-//!   prefetch only the child popped next. A closest-hit candidate's `prim_ids` entry is
-//!   prefetched when it is found (the array is cold; it is read once, at the end).
+//!   prefetch only the child popped next. A leaf's prefetched lines hold its triangles'
+//!   caller indices too ([`LeafTri`]), so answering the closest hit with one costs no miss.
 //! * **Batches** (`closest_batch`, `occluded_batch`): 12 rays traversed interleaved, one node
 //!   or leaf per ray in turn, each lane's next node or leaf prefetched (`prefetch_child`);
 //!   identical results, 2.5–3× the single-ray throughput on incoherent rays.
@@ -29,9 +29,9 @@
 //! * **Ties**: the closest hit is the smallest `(t, original index)`, so the result does not
 //!   depend on traversal order (the brute-force reference gives the same answer).
 
-use glam::{Vec3, Vec4};
+use glam::Vec4;
 
-use super::bvh::{Bvh, Node, COUNT_SHIFT, EMPTY_CHILD, FIRST_MASK, LEAF_BIT};
+use super::bvh::{Bvh, LeafTri, Node, COUNT_SHIFT, EMPTY_CHILD, FIRST_MASK, LEAF_BIT};
 use super::triangle::{gamma, ray_is_valid, WoopRay};
 use super::{Hit, Ray};
 use crate::prefetch::prefetch_line;
@@ -63,12 +63,12 @@ pub(super) trait NodeTest {
     fn leaf_hits(
         &self,
         woop: &WoopRay,
-        tris: &[[Vec3; 3]],
+        tris: &[LeafTri],
         t_limit: f32,
         mut f: impl FnMut(usize, (f32, f32, f32)) -> bool,
     ) {
         for (j, tri) in tris.iter().enumerate() {
-            if let Some(hit) = woop.intersect(tri) {
+            if let Some(hit) = woop.intersect(&tri.v) {
                 if hit.0 <= t_limit && f(j, hit) {
                     return;
                 }
@@ -612,8 +612,8 @@ fn closest_with<S: Stack, N: NodeTest, const OCTANT: bool>(
     let nr = N::new(ray, &woop);
     let octant = octant(ray);
     // Until the first hit, t must be < ray.t_max; afterwards (t, prim) must be smaller.
-    // The closest candidate so far as (BVH-order index, b1, b2); its original index is looked
-    // up only on an exact tie and once at the end (`prim_ids` is cold).
+    // The closest candidate so far as (BVH-order index, b1, b2); its original index (in the
+    // leaf's lines, already in cache) is read on an exact tie and once at the end.
     let mut best: Option<(usize, f32, f32)> = None;
     let mut best_t = ray.t_max;
     let mut cull = best_t * FAR_SCALE;
@@ -626,14 +626,11 @@ fn closest_with<S: Stack, N: NodeTest, const OCTANT: bool>(
                 let k = first + j;
                 let better = t < best_t
                     || (t == best_t
-                        && best.is_some_and(|(bk, _, _)| bvh.prim_ids[k] < bvh.prim_ids[bk]));
+                        && best.is_some_and(|(bk, _, _)| bvh.tris[k].prim < bvh.tris[bk].prim));
                 if better {
                     best = Some((k, b1, b2));
                     best_t = t;
                     cull = t * FAR_SCALE;
-                    // The candidate's original index is read at the end: its cache miss
-                    // (`prim_ids` is cold) overlaps the rest of the traversal.
-                    prefetch_line(bvh.prim_ids.as_ptr().wrapping_add(k).cast());
                 }
                 false
             });
@@ -668,7 +665,7 @@ fn closest_with<S: Stack, N: NodeTest, const OCTANT: bool>(
                 None => {
                     return best.map(|(k, b1, b2)| Hit {
                         t: best_t,
-                        prim: bvh.prim_ids[k],
+                        prim: bvh.tris[k].prim,
                         b1,
                         b2,
                     })
@@ -757,7 +754,7 @@ struct ClosestLane<S, N, const OCTANT: bool> {
     /// The ray's octant ([`octant`]), for `OCTANT` lanes.
     octant: usize,
     /// The closest candidate so far as (BVH-order index, b1, b2); its original index is
-    /// looked up only on an exact tie and once at the end (`prim_ids` is cold).
+    /// read on an exact tie and once at the end.
     best: Option<(usize, f32, f32)>,
     /// Until the first hit, t must be < ray.t_max; afterwards (t, prim) must be smaller.
     best_t: f32,
@@ -811,7 +808,7 @@ impl<N: NodeTest, const OCTANT: bool> ClosestLane<BatchStack, N, OCTANT> {
                     let k = first + j;
                     let better = t < *best_t
                         || (t == *best_t
-                            && best.is_some_and(|(bk, _, _)| bvh.prim_ids[k] < bvh.prim_ids[bk]));
+                            && best.is_some_and(|(bk, _, _)| bvh.tris[k].prim < bvh.tris[bk].prim));
                     if better {
                         *best = Some((k, b1, b2));
                         *best_t = t;
@@ -855,7 +852,7 @@ impl<N: NodeTest, const OCTANT: bool> ClosestLane<BatchStack, N, OCTANT> {
     fn result(&self, bvh: &Bvh) -> Option<Hit> {
         self.best.map(|(k, b1, b2)| Hit {
             t: self.best_t,
-            prim: bvh.prim_ids[k],
+            prim: bvh.tris[k].prim,
             b1,
             b2,
         })
@@ -967,7 +964,7 @@ pub(super) fn prefetch_child(bvh: &Bvh, r: u32) {
 /// [`prefetch_lines`]).
 #[inline(always)]
 fn child_first_byte(bvh: &Bvh, r: u32) -> *const u8 {
-    const TRI: usize = std::mem::size_of::<[Vec3; 3]>();
+    const TRI: usize = std::mem::size_of::<LeafTri>();
     let leaf_first = bvh
         .tris
         .as_ptr()
@@ -981,7 +978,7 @@ fn child_first_byte(bvh: &Bvh, r: u32) -> *const u8 {
 
 /// The four addresses [`prefetch`] touches for the reference `r`: a node's four cache lines,
 /// or a leaf's first triangle byte, the line after it (at most the last byte) and the last
-/// byte of its last triangle, twice (≤ 3 triangles of 36 bytes span at most three lines).
+/// byte of its last triangle, twice (≤ 3 triangles of 40 bytes span at most three lines).
 ///
 /// **Without a branch on the leaf bit**: both the leaf's and the node's addresses are made
 /// (wrapping pointer arithmetic, no indexing, so a node reference read as a leaf range or
@@ -992,7 +989,7 @@ fn child_first_byte(bvh: &Bvh, r: u32) -> *const u8 {
 /// test, of 3.9 M steps).
 #[inline(always)]
 fn prefetch_lines(bvh: &Bvh, r: u32) -> [*const u8; 4] {
-    const TRI: usize = std::mem::size_of::<[Vec3; 3]>();
+    const TRI: usize = std::mem::size_of::<LeafTri>();
     let range = leaf_range(r);
     let tris = bvh.tris.as_ptr().cast::<u8>();
     let leaf_first = tris.wrapping_add(range.start * TRI) as usize;
@@ -1140,6 +1137,7 @@ pub(super) fn occluded_batch_in<N: NodeTest>(bvh: &Bvh, rays: &[Ray], out: &mut 
 #[cfg(test)]
 pub(super) mod tests {
     use super::*;
+    use glam::Vec3;
 
     #[test]
     fn sort_puts_nearest_on_top() {
@@ -1160,9 +1158,9 @@ pub(super) mod tests {
         fn branching(bvh: &Bvh, r: u32) -> [*const u8; 4] {
             if r & LEAF_BIT != 0 {
                 let range = leaf_range(r);
-                let first = bvh.tris[range.start].as_ptr().cast::<u8>();
-                let last = bvh.tris[range.end - 1].as_ptr().cast::<u8>();
-                let end = last.wrapping_add(std::mem::size_of::<[Vec3; 3]>() - 1);
+                let first = std::ptr::from_ref(&bvh.tris[range.start]).cast::<u8>();
+                let last = std::ptr::from_ref(&bvh.tris[range.end - 1]).cast::<u8>();
+                let end = last.wrapping_add(std::mem::size_of::<LeafTri>() - 1);
                 let mid = first.wrapping_add(64).min(end);
                 [first, mid, end, end]
             } else {

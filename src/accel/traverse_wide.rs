@@ -39,9 +39,9 @@ mod block;
 mod pack;
 mod single512;
 
-use glam::{Vec3, Vec4};
+use glam::Vec4;
 
-use super::bvh::{Bvh, Node};
+use super::bvh::{Bvh, LeafTri, Node};
 use super::leaf_wide::LeafRay4;
 use super::traverse::{
     closest_batch_in, closest_in, occluded_batch_in, occluded_in, NodeTest, FAR_SCALE_FACTOR,
@@ -248,7 +248,7 @@ impl NodeTest for NodeRay8 {
     fn leaf_hits(
         &self,
         woop: &WoopRay,
-        tris: &[[Vec3; 3]],
+        tris: &[LeafTri],
         t_limit: f32,
         mut f: impl FnMut(usize, (f32, f32, f32)) -> bool,
     ) {
@@ -258,7 +258,7 @@ impl NodeTest for NodeRay8 {
             let j = todo.trailing_zeros() as usize;
             todo &= todo - 1;
             let hit = if lanes.slow >> j & 1 != 0 {
-                match woop.intersect(&tris[j]) {
+                match woop.intersect(&tris[j].v) {
                     Some(hit) => hit,
                     None => continue,
                 }
@@ -358,6 +358,7 @@ mod tests {
     use super::super::traverse::NodeRay;
     use super::*;
     use crate::settings::BvhQuality;
+    use glam::Vec3;
 
     fn hit_bits(h: Option<Hit>) -> Option<[u32; 4]> {
         h.map(|h| [h.t.to_bits(), h.prim, h.b1.to_bits(), h.b2.to_bits()])

@@ -605,7 +605,7 @@ mod tests {
             pool.install(|| build(&tris, BvhQuality::Medium))
         };
         let (one, three) = (at(1), at(3));
-        assert_eq!(one.prim_ids, three.prim_ids);
+        assert_eq!(one.tris, three.tris);
         assert_eq!(one.nodes.len(), three.nodes.len());
         for (a, b) in one.nodes.iter().zip(&three.nodes) {
             assert_eq!(a.child, b.child);

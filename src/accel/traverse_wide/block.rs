@@ -31,9 +31,7 @@ use std::arch::x86_64::{
 };
 use std::marker::PhantomData;
 
-use glam::Vec3;
-
-use super::super::bvh::{Bvh, Node};
+use super::super::bvh::{Bvh, LeafTri, Node};
 use super::super::traverse::{
     closest_batch_in, occluded_batch_in, prefetch_child, BatchStack, NodeTest, Stack,
 };
@@ -97,7 +95,7 @@ impl<P: Pack> NodeTest for NodeRay8k<P> {
     fn leaf_hits(
         &self,
         woop: &WoopRay,
-        tris: &[[Vec3; 3]],
+        tris: &[LeafTri],
         t_limit: f32,
         f: impl FnMut(usize, (f32, f32, f32)) -> bool,
     ) {
