@@ -1,14 +1,19 @@
-//! Transparent huge pages for the hierarchy's large arrays (Linux): the wide nodes and the
-//! triangles in BVH order, and the build's temporaries (the triangle boxes, the binary
-//! hierarchy, the collapse's decision table), are allocated with `madvise(MADV_HUGEPAGE)`
-//! before they are written, so that the kernel backs them with 2 MiB pages where it can (THP
-//! in `madvise` mode, the common default). Embree advises its BVH memory the same way.
+//! Transparent huge pages for the hierarchy's kept arrays (Linux): the wide nodes and the
+//! triangles in BVH order are allocated with `madvise(MADV_HUGEPAGE)` before they are
+//! written, so that the kernel backs them with 2 MiB pages where it can (THP in `madvise`
+//! mode, the common default). Embree advises its BVH memory the same way.
 //!
 //! * **Traversal**: incoherent traversal of a large mesh is bound by TLB misses otherwise:
 //!   4 KiB pages give the second-level TLB about 8 MiB of reach, against 70 MB of nodes and
-//!   triangles for a million-triangle mesh.
-//! * **Build time**: a million-triangle build touches about 200 MB of fresh pages; their
-//!   4 KiB faults and clears took about 110 ms of a 750 ms build.
+//!   triangles for a million-triangle mesh (the anchor's incoherent closest hits: 1.45–1.62
+//!   Mrays per CPU-second without the advice, 1.88–1.97 with it; session 36).
+//! * **Not the build's temporaries** (the triangle boxes, the binary hierarchy, the
+//!   collapse's decision table: 4 KiB pages). A fresh 2 MiB page costs far more to fault in
+//!   than the 4 KiB pages a process gets back from the ones just freed — on this project's
+//!   virtual machines, whose free memory goes back to the host, a single render of an
+//!   8.3 M-triangle scene built in 11.0–12.8 s with its temporaries advised and 6.9–7.6 s
+//!   without (session 36 in `docs/ray-layer.md`; session 25 had measured the advice on the
+//!   temporaries as a gain inside the benchmark's process, which reuses its memory).
 //!
 //! Only a hint: contents and results are the same with or without it.
 //! `STAGELIGHT_HUGE_PAGES=off` withholds the advice, for measuring.
@@ -22,20 +27,6 @@ const HUGE: usize = 2 << 20;
 /// An empty vector with room for `len` elements whose whole 2 MiB pages are advised as huge.
 pub(crate) fn with_capacity<T>(len: usize) -> Vec<T> {
     let v: Vec<T> = Vec::with_capacity(len);
-    if enabled() {
-        advise(
-            v.as_ptr().cast(),
-            len.saturating_mul(std::mem::size_of::<T>()),
-        );
-    }
-    v
-}
-
-/// A vector of `len` zeroed elements whose whole 2 MiB pages are advised as huge: the
-/// allocator's zeroed pages are advised before anything touches them, so each first touch
-/// faults in (and clears) a 2 MiB page instead of a 4 KiB one.
-pub(crate) fn zeroed<T: bytemuck::Zeroable>(len: usize) -> Vec<T> {
-    let v: Vec<T> = bytemuck::zeroed_vec(len);
     if enabled() {
         advise(
             v.as_ptr().cast(),
@@ -130,16 +121,6 @@ mod tests {
         }
         let flags = flags.expect("the array's mapping is in smaps");
         assert!(flags.iter().any(|f| f == "hg"), "VmFlags {flags:?}");
-    }
-
-    /// `zeroed` hands out zeros, whether or not its pages were advised.
-    #[test]
-    fn zeroed_arrays_are_zero() {
-        let v: Vec<u64> = zeroed(3 << 20);
-        assert_eq!(v.len(), 3 << 20);
-        assert!(v.iter().all(|&x| x == 0));
-        let small: Vec<u32> = zeroed(5);
-        assert_eq!(small, [0; 5]);
     }
 
     #[test]

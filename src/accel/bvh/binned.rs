@@ -292,8 +292,9 @@ impl Builder {
         // triangles owns a slice of that size, and the slots its leaves of two triangles do not
         // use stay zero (the default node), as do the tails of packed subtrees. Zeroed pages from
         // the allocator: no 100 MB fill pass on a million triangles, and pages nothing is written
-        // to are never faulted in.
-        let mut nodes: Vec<Bvh2Node> = crate::accel::huge_pages::zeroed(2 * n - 1);
+        // to are never faulted in (4 KiB pages: a temporary, not advised as huge, see
+        // `huge_pages.rs`).
+        let mut nodes: Vec<Bvh2Node> = bytemuck::zeroed_vec(2 * n - 1);
         if n <= LEAF_MAX {
             nodes[0] = bounds.node(n as u32, 0);
         } else {

@@ -110,8 +110,9 @@ pub(crate) fn collapse(bvh2: &Bvh2, max_prims_per_leaf: u32) -> Collapsed {
     let c = Collapser {
         bvh2,
         max_prims_per_leaf,
-        // Zeroed pages from the allocator, not a 16-byte store per binary node.
-        table: crate::accel::huge_pages::zeroed(n),
+        // Zeroed pages from the allocator, not a 16-byte store per binary node (a temporary:
+        // 4 KiB pages, see `huge_pages.rs`).
+        table: bytemuck::zeroed_vec(n),
     };
     let root = c.cost(0, 0);
     let total_nodes = c.nodes8(0);

@@ -40,7 +40,9 @@ fn merge(a: Summary, b: Summary) -> Summary {
 /// Boxes, filter and bounds of `tris` (see the module header).
 pub(super) fn prepare(tris: &[[Vec3; 3]]) -> Prepared {
     let n = tris.len();
-    let mut refs: Vec<Bounds> = crate::accel::huge_pages::with_capacity(n);
+    // Not advised as huge pages: a temporary, dropped before anything is traced (see
+    // `huge_pages.rs`).
+    let mut refs: Vec<Bounds> = Vec::with_capacity(n);
     let (degenerate, bounds, centroids) = refs.spare_capacity_mut()[..n]
         .par_chunks_mut(CHUNK)
         .zip(tris.par_chunks(CHUNK))
