@@ -10,15 +10,20 @@ which finds that hit as stagelight's watertight test does: the like-for-like pee
 anchor's `embree_bench.c` is compiled twice into BUILD_DIR, once as it is and once with the
 robust flag set after `rtcNewScene` (the anchor is not changed).
 
-Per round: Embree default, Embree robust, stagelight (`cargo bench --bench bvh -- summary`,
-1 thread, `Medium`, single-ray API); each prints the best of REPS. Printed: every round's
-Mrays per CPU-second, then per query the ratio stagelight / Embree of each round (the
-stagelight run against the two Embree runs just before it) as a range and its median.
+Per round: Embree default, Embree robust, then each stagelight bench binary
+(`--bench summary`, 1 thread, `Medium`, single-ray API); each prints the best of REPS.
+Printed: every round's Mrays per CPU-second, then per stagelight binary and query the ratio
+to each Embree mode of each round (against the Embree runs of the same round) as a range and
+its median. Several binaries (a before and an after) are compared in the same window.
 
 usage: scripts/embree_compare.py [ROUNDS]   (default 3)
+`REPS=1` measures the first build of each process, the one build a render does (best-of-three
+builds reuse memory the first one faulted in).
+
   env: DATA_DIR (default ${TMPDIR:-/tmp}/bvh_anchor_data; generated when missing),
        BUILD_DIR (default ${TMPDIR:-/tmp}/embree_compare_build), REPS (default 3),
-       BENCH (a built `bvh` bench binary; default: built with `cargo bench --no-run`)
+       BENCH (built `bvh` bench binaries, space-separated; default: this checkout's, built
+       with `cargo bench --no-run`)
 """
 
 import os
@@ -73,16 +78,20 @@ def build_embree():
     return bins
 
 
-def build_bench():
+def build_benches():
     if os.environ.get("BENCH"):
-        return os.environ["BENCH"]
+        benches = os.environ["BENCH"].split()
+        for b in benches:
+            if not os.access(b, os.X_OK):
+                fail(f"BENCH: '{b}' is not an executable bench binary")
+        return benches
     out = run(["cargo", "bench", "--bench", "bvh", "--no-run", "--manifest-path",
                os.path.join(ROOT, "Cargo.toml")])
     m = re.search(r"Executable benches/bvh\.rs \(([^)]+)\)", out)
     if not m:
         fail("cargo did not name the bvh bench executable")
     path = m.group(1)
-    return path if os.path.isabs(path) else os.path.join(ROOT, path)
+    return [path if os.path.isabs(path) else os.path.join(ROOT, path)]
 
 
 def embree_round(exe):
@@ -119,28 +128,36 @@ def main():
     if not os.path.exists(os.path.join(DATA, "rays_incoherent.bin")):
         run(["python3", os.path.join(ANCHOR, "gen_scene.py"), DATA])
     embree = build_embree()
-    bench = build_bench()
+    benches = build_benches()
+    ours = [f"stagelight{i + 1}" if len(benches) > 1 else "stagelight"
+            for i in range(len(benches))]
     rows = []
     for i in range(rounds):
         row = {mode: embree_round(exe) for mode, exe in embree.items()}
-        row["stagelight"] = ours_round(bench)
+        for name, bench in zip(ours, benches):
+            row[name] = ours_round(bench)
         rows.append(row)
         print(f"round {i + 1}: " + "; ".join(
             f"{who} build {r['build']:.0f} ms, "
             + " / ".join(f"{r[q]:.2f}" for q in QUERIES)
             for who, r in row.items()), flush=True)
+    if len(benches) > 1:
+        print()
+        for name, bench in zip(ours, benches):
+            print(f"{name}: {bench}")
     print("\nMrays per CPU-second (coherent / incoherent / occlusion), 1 thread, Medium;"
           " hits of the last round:")
-    for who in ("default", "robust", "stagelight"):
+    for who in ["default", "robust"] + ours:
         r = rows[-1][who]
-        print(f"  {who:10} hits " + " / ".join(str(r[q + '_hits']) for q in QUERIES))
+        print(f"  {who:11} hits " + " / ".join(str(r[q + '_hits']) for q in QUERIES))
     print("\nstagelight / Embree per round (range, median); build: stagelight's CPU time"
           " / Embree's:")
-    for mode in ("default", "robust"):
-        for q in QUERIES + ("build",):
-            ratios = [row["stagelight"][q] / row[mode][q] for row in rows]
-            print(f"  {mode:8} {q:10} {min(ratios):.2f}–{max(ratios):.2f}×"
-                  f" (median {statistics.median(ratios):.2f}×)")
+    for name in ours:
+        for mode in ("default", "robust"):
+            for q in QUERIES + ("build",):
+                ratios = [row[name][q] / row[mode][q] for row in rows]
+                print(f"  {name:11} / {mode:8} {q:10} {min(ratios):.2f}–{max(ratios):.2f}×"
+                      f" (median {statistics.median(ratios):.2f}×)")
 
 
 if __name__ == "__main__":
