@@ -16,10 +16,10 @@ Printed: every round's Mrays per CPU-second, then per stagelight binary and quer
 to each Embree mode of each round (against the Embree runs of the same round) as a range and
 its median. Several binaries (a before and an after) are compared in the same window.
 
-usage: scripts/embree_compare.py [ROUNDS]   (default 3)
 `REPS=1` measures the first build of each process, the one build a render does (best-of-three
 builds reuse memory the first one faulted in).
 
+usage: scripts/embree_compare.py [ROUNDS]   (default 3)
   env: DATA_DIR (default ${TMPDIR:-/tmp}/bvh_anchor_data; generated when missing),
        BUILD_DIR (default ${TMPDIR:-/tmp}/embree_compare_build), REPS (default 3),
        BENCH (built `bvh` bench binaries, space-separated; default: this checkout's, built
