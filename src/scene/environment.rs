@@ -112,32 +112,40 @@ pub fn source(
 /// Reads the first RGB(A) layer of an EXR file as a lat-long map (rotation 0); every value
 /// must be finite and non-negative.
 pub fn read_exr(path: &Path) -> Result<LatLongMap, String> {
-    use exr::prelude::{read_first_rgba_layer_from_file, Vec2 as ExrVec2};
+    use exr::prelude::{read, ReadChannels, ReadLayers, RgbaChannels, Vec2 as ExrVec2};
     if let Err(e) = std::fs::metadata(path) {
         return Err(io_reason(&e));
     }
     use crate::image_io::exr_limits;
     exr_limits::check_file(path, exr_limits::MAX_IMAGE_SAMPLES)?;
-    let image = read_first_rgba_layer_from_file(
-        path,
-        |size: ExrVec2<usize>, _| {
-            let n = size.width().saturating_mul(size.height());
-            let texels = if n <= MAX_TEXELS {
-                vec![Vec3::ZERO; n]
-            } else {
-                Vec::new()
-            };
-            (size.width(), texels)
-        },
-        |(w, texels): &mut (usize, Vec<Vec3>),
-         pos: ExrVec2<usize>,
-         (r, g, b, _a): (f32, f32, f32, f32)| {
-            if let Some(t) = texels.get_mut(pos.y() * *w + pos.x()) {
-                *t = Vec3::new(r, g, b);
-            }
-        },
-    )
-    .map_err(|e| format!("not a readable OpenEXR RGB image ({e})"))?;
+    // `read_first_rgba_layer_from_file`'s reader, on the calling thread (see
+    // `texture::image::decode_exr`).
+    let image = read()
+        .no_deep_data()
+        .largest_resolution_level()
+        .rgba_channels(
+            |size: ExrVec2<usize>, _: &RgbaChannels| {
+                let n = size.width().saturating_mul(size.height());
+                let texels = if n <= MAX_TEXELS {
+                    vec![Vec3::ZERO; n]
+                } else {
+                    Vec::new()
+                };
+                (size.width(), texels)
+            },
+            |(w, texels): &mut (usize, Vec<Vec3>),
+             pos: ExrVec2<usize>,
+             (r, g, b, _a): (f32, f32, f32, f32)| {
+                if let Some(t) = texels.get_mut(pos.y() * *w + pos.x()) {
+                    *t = Vec3::new(r, g, b);
+                }
+            },
+        )
+        .first_valid_layer()
+        .all_attributes()
+        .non_parallel()
+        .from_file(path)
+        .map_err(|e| format!("not a readable OpenEXR RGB image ({e})"))?;
     let size = image.layer_data.size;
     let (_, texels) = image.layer_data.channel_data.pixels;
     let (w, h) = (size.width(), size.height());

@@ -163,20 +163,30 @@ pub fn read_exr_rgb(path: &Path) -> Result<(Vec<Vec3>, u32, u32), SweepError> {
     use crate::image_io::exr_limits;
     use exr::prelude::*;
     exr_limits::check_file(path, exr_limits::MAX_IMAGE_SAMPLES).map_err(|e| io(path, e))?;
-    let image = read_first_rgba_layer_from_file(
-        path,
-        |res, _| {
-            (
-                res.width(),
-                res.height(),
-                vec![Vec3::ZERO; res.width() * res.height()],
-            )
-        },
-        |(w, _, px): &mut (usize, usize, Vec<Vec3>), pos, (r, g, b, _a): (f32, f32, f32, f32)| {
-            px[pos.y() * *w + pos.x()] = Vec3::new(r, g, b);
-        },
-    )
-    .map_err(|e| io(path, e))?;
+    // `read_first_rgba_layer_from_file`'s reader, on the calling thread (see
+    // `texture::image::decode_exr`).
+    let image = read()
+        .no_deep_data()
+        .largest_resolution_level()
+        .rgba_channels(
+            |res: Vec2<usize>, _: &RgbaChannels| {
+                (
+                    res.width(),
+                    res.height(),
+                    vec![Vec3::ZERO; res.width() * res.height()],
+                )
+            },
+            |(w, _, px): &mut (usize, usize, Vec<Vec3>),
+             pos,
+             (r, g, b, _a): (f32, f32, f32, f32)| {
+                px[pos.y() * *w + pos.x()] = Vec3::new(r, g, b);
+            },
+        )
+        .first_valid_layer()
+        .all_attributes()
+        .non_parallel()
+        .from_file(path)
+        .map_err(|e| io(path, e))?;
     let (w, h, px) = image.layer_data.channel_data.pixels;
     Ok((px, w as u32, h as u32))
 }

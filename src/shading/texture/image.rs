@@ -211,6 +211,9 @@ pub fn decode_exr(bytes: &[u8]) -> Result<(u32, u32, Pixels), String> {
         )
         .first_valid_layer()
         .all_attributes()
+        // On the calling thread: exr's parallel decoding builds a thread pool of its own per
+        // image (threads beyond `--threads`, left running when the call returns).
+        .non_parallel()
         .from_buffered(std::io::Cursor::new(bytes))
         .map_err(|e| e.to_string())?;
     let size = image.layer_data.size;
