@@ -2,11 +2,14 @@
 //! a file whose layers claim more samples than its reader allows is refused before the `exr`
 //! crate allocates them. Its readers allocate every layer's samples from the header's data
 //! window, so a 15 KB file claiming 60000×60000 pixels aborted the process with a 72 GB
-//! allocation.
+//! allocation. A file whose blocks (tiles, or groups of scan lines) claim more than
+//! [`MAX_BLOCK_BYTES`] is refused too: the crate reserves a chunk's declared size up to the
+//! header's block size before it reads the chunk.
 
 use std::path::Path;
 
-use exr::meta::MetaData;
+use exr::meta::header::Header;
+use exr::meta::{BlockDescription, MetaData};
 
 /// The most samples (pixels × channels, all layers) an input image may hold: textures,
 /// environment maps and sweep references (8192 × 8192 RGBA; 1 GiB as `f32`).
@@ -14,6 +17,13 @@ pub const MAX_IMAGE_SAMPLES: u64 = 1 << 28;
 
 /// The most samples a farm part file may hold (16 GiB as `f32`, as photon map files).
 pub const MAX_PART_SAMPLES: u64 = 1 << 32;
+
+/// The largest block (one tile, or one compression group of scan lines) an input file may
+/// declare, in bytes: 256 MiB, a 4096 × 4096 RGBA `f32` tile (a 32-line block of an 8192-pixel
+/// RGBA `f32` image is 4 MiB). A 470-byte file whose header declared 4.3 GB blocks, inside
+/// the sample budget, made the crate reserve 1.75 GB for its first chunk and ran the fuzzer
+/// out of memory.
+pub const MAX_BLOCK_BYTES: u64 = 256 << 20;
 
 /// Reads the headers of the EXR file at `path` and refuses it when its layers hold more than
 /// `max_samples` samples. A file whose headers cannot be read passes: the full read that
@@ -48,8 +58,28 @@ fn check(meta: &MetaData, max_samples: u64) -> Result<(), String> {
                 size.height()
             ));
         }
+        let block = block_bytes(header);
+        if block > MAX_BLOCK_BYTES {
+            return Err(format!(
+                "blocks (tiles or groups of scan lines) of {block} bytes: more than the \
+                 {MAX_BLOCK_BYTES} bytes one block of this input may hold"
+            ));
+        }
     }
     Ok(())
+}
+
+/// The bytes of one of `header`'s blocks as its header declares them (what the `exr` crate
+/// reserves for a chunk), without overflow.
+fn block_bytes(header: &Header) -> u64 {
+    let pixels = match header.blocks {
+        BlockDescription::Tiles(tiles) => {
+            (tiles.tile_size.width() as u64).saturating_mul(tiles.tile_size.height() as u64)
+        }
+        BlockDescription::ScanLines => (header.compression.scan_lines_per_block() as u64)
+            .saturating_mul(header.layer_size.width() as u64),
+    };
+    pixels.saturating_mul(header.channels.bytes_per_pixel as u64)
 }
 
 #[cfg(test)]
@@ -87,5 +117,23 @@ mod tests {
         assert_eq!(check_bytes(&claiming(8192), MAX_IMAGE_SAMPLES), Ok(()));
         assert!(check_bytes(&claiming(8193), MAX_IMAGE_SAMPLES).is_err());
         assert_eq!(check_bytes(b"not an exr", MAX_IMAGE_SAMPLES), Ok(()));
+    }
+
+    /// The fuzzer's 470-byte file: a layer within the sample budget whose scan-line blocks
+    /// are declared at 4.3 GB each is refused from its header; ordinary blocks pass.
+    #[test]
+    fn a_file_declaring_huge_blocks_is_refused_from_its_header() {
+        let path = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/fuzz/corpus/exr/huge_scan_line_blocks.exr"
+        );
+        let e = check_file(Path::new(path), MAX_IMAGE_SAMPLES).unwrap_err();
+        assert_eq!(
+            e,
+            "blocks (tiles or groups of scan lines) of 4294966784 bytes: more than the \
+             268435456 bytes one block of this input may hold"
+        );
+        // 8192 RGBA `f32` pixels in one scan-line block of the default compression.
+        assert_eq!(check_bytes(&claiming(8192), MAX_IMAGE_SAMPLES), Ok(()));
     }
 }
