@@ -153,6 +153,16 @@ pub(crate) struct LeafTri {
     pub(crate) prim: u32,
 }
 
+impl LeafTri {
+    /// `tris` in their own order, each numbered by its position.
+    pub(crate) fn numbered(tris: &[[Vec3; 3]]) -> Vec<LeafTri> {
+        (0u32..)
+            .zip(tris)
+            .map(|(prim, &v)| LeafTri { v, prim })
+            .collect()
+    }
+}
+
 /// The built hierarchy.
 pub(crate) struct Bvh {
     /// Nodes; the root is node 0 (none when nothing can be hit).
@@ -318,12 +328,7 @@ pub(crate) fn build(tris: &[[Vec3; 3]], quality: BvhQuality) -> Bvh {
 fn unbuilt(tris: &[[Vec3; 3]], start: Instant, phases: BuildPhases) -> Bvh {
     Bvh {
         nodes: Vec::new(),
-        tris: (0..tris.len() as u32)
-            .map(|i| LeafTri {
-                v: tris[i as usize],
-                prim: i,
-            })
-            .collect(),
+        tris: LeafTri::numbered(tris),
         hierarchy_triangles: 0,
         slot_of: (0..tris.len() as u32).collect(),
         depth: 0,

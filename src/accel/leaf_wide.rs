@@ -11,9 +11,9 @@
 //!   `maxps` may propagate it; that can only make `δt` NaN, which fails `t > δt` and sends the
 //!   lane to the scalar test.
 //! * **Loads**: each vertex is read with one unaligned 16-byte load inside its own triangle
-//!   (vertex 2 from 4 bytes earlier, so nothing past its 36 bytes of vertices is read), put in the ray's
-//!   axis order by one `vpermilps` with a per-ray control (no dynamic indexing per
-//!   triangle), and the three triangles are transposed into lanes. A leaf of fewer than three
+//!   (vertex 2 from 4 bytes earlier, so nothing past its 36 bytes of vertices is read), put
+//!   in the ray's axis order by one `vpermilps` with a per-ray control (no dynamic indexing
+//!   per triangle), and the three triangles are transposed into lanes. A leaf of fewer than three
 //!   triangles reads its last one again (no branch on the count) and masks the extra lanes.
 
 use std::arch::x86_64::{
@@ -248,13 +248,7 @@ mod tests {
     /// The CPU must support AVX2.
     #[target_feature(enable = "avx2")]
     unsafe fn lane_answers(woop: &WoopRay, tris: &[[Vec3; 3]]) -> Vec<(Option<[u32; 3]>, bool)> {
-        let leaf: Vec<LeafTri> = (0..tris.len() as u32)
-            .map(|prim| LeafTri {
-                v: tris[prim as usize],
-                prim,
-            })
-            .collect();
-        let lanes = LeafRay4::new(woop).test(&leaf);
+        let lanes = LeafRay4::new(woop).test(&LeafTri::numbered(tris));
         assert_eq!((lanes.hit | lanes.slow) >> tris.len(), 0);
         assert_eq!(lanes.hit & lanes.slow, 0);
         (0..tris.len())

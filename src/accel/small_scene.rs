@@ -714,14 +714,7 @@ mod tests {
     #[test]
     fn build_threshold_and_degenerate_slots() {
         let t = [Vec3::ZERO, Vec3::X, Vec3::Y];
-        let leaf = |tris: &[[Vec3; 3]]| -> Vec<LeafTri> {
-            (0..tris.len() as u32)
-                .map(|prim| LeafTri {
-                    v: tris[prim as usize],
-                    prim,
-                })
-                .collect()
-        };
+        let leaf = LeafTri::numbered;
         assert!(SmallScene::build(&leaf(&[t; 9]), 8).is_none());
         let s = SmallScene::build(&leaf(&[t; 9]), 9).unwrap();
         assert_eq!((s.groups.len(), s.tris.len()), (2, 9));
