@@ -247,46 +247,7 @@ fn seed_mi_scenes_render_without_nan_and_their_ron_renders_the_same() {
 
 #[test]
 fn cli_convert_writes_ron_that_renders_byte_identical() {
-    let exe = env!("CARGO_BIN_EXE_stagelight");
-    let tmp = crate::common::scratch_root().join(format!("stagelight_mi_{}", std::process::id()));
-    std::fs::create_dir_all(&tmp).unwrap();
-    let mi = dir("assets/seeds/mi/plane.mi");
-    let ron = tmp.join("plane.ron");
-    let run = |args: &[&std::ffi::OsStr]| {
-        let out = std::process::Command::new(exe).args(args).output().unwrap();
-        assert!(
-            out.status.success(),
-            "{args:?}\n{}",
-            String::from_utf8_lossy(&out.stderr)
-        );
-        String::from_utf8_lossy(&out.stdout).to_string()
-    };
-    let os = |s: &str| std::ffi::OsString::from(s);
-    let said = run(&[
-        os("convert").as_os_str(),
-        mi.as_os_str(),
-        os("-o").as_os_str(),
-        ron.as_os_str(),
-    ]);
-    assert!(
-        said.ends_with(&format!("wrote {}\n", ron.display())),
-        "{said}"
-    );
-    let (a, b) = (tmp.join("a.png"), tmp.join("b.png"));
-    for (scene, png) in [(&mi, &a), (&ron, &b)] {
-        run(&[
-            os("render").as_os_str(),
-            scene.as_os_str(),
-            os("--spp").as_os_str(),
-            os("1").as_os_str(),
-            os("-o").as_os_str(),
-            png.as_os_str(),
-        ]);
-    }
-    let (a, b) = (std::fs::read(a).unwrap(), std::fs::read(b).unwrap());
-    assert!(a.len() > 1000);
-    assert!(a == b, "the PNGs differ");
-    let _ = std::fs::remove_dir_all(&tmp);
+    crate::common::convert_renders_the_same_png("mi_convert", &dir("assets/seeds/mi/plane.mi"));
 }
 
 /// `(fixture, every message it produces)`.

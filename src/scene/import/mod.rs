@@ -32,6 +32,7 @@
 //! and `include[i]`; the empty path is the file itself.
 
 pub mod gltf_scene;
+pub mod located;
 pub mod mi;
 pub mod rib;
 pub mod ron;

@@ -84,3 +84,40 @@ pub fn run(cmd: &mut Command) -> Output {
 pub fn stderr(o: &Output) -> String {
     stderr_of(o)
 }
+
+/// `stagelight convert SCENE -o NAME.ron` says where it wrote, and that RON renders (1 spp)
+/// to the same PNG bytes as `scene` itself, a non-trivial image.
+pub fn convert_renders_the_same_png(test: &str, scene: &Path) {
+    let tmp = scratch_dir(test);
+    let stem = scene.file_stem().unwrap().to_string_lossy();
+    let ron = tmp.join(format!("{stem}.ron"));
+    let run = |args: &[&std::ffi::OsStr]| {
+        let out = bin().args(args).output().expect("run stagelight");
+        assert!(out.status.success(), "{args:?}\n{}", stderr_of(&out));
+        String::from_utf8_lossy(&out.stdout).into_owned()
+    };
+    let said = run(&[
+        "convert".as_ref(),
+        scene.as_os_str(),
+        "-o".as_ref(),
+        ron.as_os_str(),
+    ]);
+    assert!(
+        said.ends_with(&format!("wrote {}\n", ron.display())),
+        "{said}"
+    );
+    let (a, b) = (tmp.join("a.png"), tmp.join("b.png"));
+    for (scene, png) in [(scene, &a), (&ron, &b)] {
+        let spp: &[&std::ffi::OsStr] = &["--spp".as_ref(), "1".as_ref(), "-o".as_ref()];
+        run(&[
+            &["render".as_ref(), scene.as_os_str()],
+            spp,
+            &[png.as_os_str()],
+        ]
+        .concat());
+    }
+    let (a, b) = (std::fs::read(a).unwrap(), std::fs::read(b).unwrap());
+    assert!(a.len() > 1000);
+    assert!(a == b, "the PNGs differ");
+    let _ = std::fs::remove_dir_all(&tmp);
+}

@@ -10,7 +10,7 @@ use std::f64::consts::PI;
 
 use glam::{DMat4, DVec3};
 
-use super::super::rib::{Located, LocatedProblem, Pos, Problem};
+use super::super::located::{Located, LocatedProblem, Pos, Problem};
 use super::model::{AreaShape, LightModel, RawLight, RawObject, RawScene, Space};
 use super::statements::Reader;
 use super::MiScene;
@@ -107,7 +107,7 @@ pub fn assemble(reader: Reader) -> Result<MiScene, Vec<LocatedProblem>> {
         desc: out.desc,
         paths: out.paths,
         warnings,
-        includes: included,
+        read_files: included,
     })
 }
 

@@ -7,7 +7,7 @@
 //! and `photonmap file` map onto the photon maps (`photon_options.rs`); material `photon`
 //! shaders are read and reported "read but not yet mapped".
 
-use super::super::rib::{Pos, Problem};
+use super::super::located::{Pos, Problem};
 use super::cursor::Cursor;
 use super::lexer::{Tok, Token};
 use super::model::{AreaShape, RawCamera, RawLight, RawMaterial, RawOptions, Space};

@@ -20,7 +20,7 @@
 //!
 //! `zdelta` (an absolute depth step; ours is relative) warns and keeps the default.
 
-use super::super::rib::{Pos, Problem};
+use super::super::located::{Pos, Problem};
 use super::cursor::{Cursor, ShaderCall, Value};
 use super::lexer::{Tok, Token};
 use super::model::FrameFade;

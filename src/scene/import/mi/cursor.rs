@@ -10,7 +10,7 @@ use std::path::PathBuf;
 /// The types of a `color|scalar|vector texture "name" "file"` statement.
 pub const TEXTURE_TYPES: &[&str] = &["color", "scalar", "vector"];
 
-use super::super::rib::{Located, LocatedProblem, Pos, Problem};
+use super::super::located::{Located, LocatedProblem, Pos, Problem};
 use super::lexer::{Tok, Token};
 
 /// Deepest nesting of array values.

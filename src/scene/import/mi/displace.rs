@@ -3,7 +3,7 @@
 //! "myDisplacement" ("factor" f)` is `Sine(amplitude: 0.01, factor: f, axis: U)` on the
 //! objects drawn in the material (`docs/mi.md`, the displacement paragraph).
 
-use super::super::rib::Problem;
+use super::super::located::Problem;
 use super::cursor::{Cursor, ShaderCall, Value};
 use crate::scene::desc::{AxisDesc, ScalarDesc};
 

@@ -4,7 +4,7 @@
 //! `Fade(color: rgb, opacity: alpha, max:)` (`docs/mi.md`, *Volume shaders*). In a material
 //! it warns: `Fade` is a camera atmosphere only.
 
-use super::super::rib::Problem;
+use super::super::located::Problem;
 use super::cursor::{Cursor, ShaderCall, Value};
 use super::shaders::Params;
 use crate::scene::desc::VolumeDesc;

@@ -12,7 +12,7 @@
 
 use std::collections::HashMap;
 
-use super::super::rib::Problem;
+use super::super::located::Problem;
 use super::cursor::{Cursor, Param, ShaderCall, Value};
 use super::shaders::{self, builtin, Role};
 use crate::scene::desc::{MaterialEnvironmentDesc, ShadowDesc};

@@ -43,23 +43,12 @@ pub mod volumes;
 
 use std::path::Path;
 
-use super::rib::{Located, LocatedProblem};
-use super::{PathTable, ReadScene, SourcePos};
-use crate::scene::desc::SceneDesc;
+use super::located::{read_scene, LocatedProblem, LocatedScene};
+use super::ReadScene;
 use crate::scene::message::Diagnostic;
 
-/// What the reader made of one `.mi` file.
-#[derive(Debug, Clone)]
-pub struct MiScene {
-    /// The description.
-    pub desc: SceneDesc,
-    /// Where each element and value was written, by description path, in the order recorded.
-    pub paths: Vec<(String, Located)>,
-    /// What was read but not mapped, located.
-    pub warnings: Vec<LocatedProblem>,
-    /// The `$include` files read (the root file left out).
-    pub includes: Vec<std::path::PathBuf>,
-}
+/// What the reader made of one `.mi` file (its `read_files` are the `$include` files).
+pub type MiScene = LocatedScene;
 
 /// Reads the `.mi` file `path` whose contents are `bytes`. `$include "file"` files are read
 /// from disk relative to the including file. On failure, every error found (warnings left
@@ -70,32 +59,7 @@ pub fn read_mi(path: &Path, bytes: &[u8]) -> Result<MiScene, Vec<LocatedProblem>
     assemble::assemble(reader)
 }
 
-/// The [`super::ReadFn`] of `.mi`: [`read_mi`] with its positions in a [`PathTable`].
+/// The [`super::ReadFn`] of `.mi`: [`read_mi`] with its positions in a [`super::PathTable`].
 pub fn read(path: &Path, bytes: &[u8]) -> Result<ReadScene, Vec<Diagnostic>> {
-    let diagnostic = |p: LocatedProblem| Diagnostic {
-        file: p.file,
-        line: p.problem.pos.line,
-        column: p.problem.pos.column,
-        message: p.problem.message,
-        help: p.problem.help,
-    };
-    let scene =
-        read_mi(path, bytes).map_err(|e| e.into_iter().map(diagnostic).collect::<Vec<_>>())?;
-    let mut table = PathTable::default();
-    for (p, at) in scene.paths {
-        table.insert(
-            p,
-            SourcePos {
-                file: at.file,
-                line: at.pos.line,
-                column: at.pos.column,
-            },
-        );
-    }
-    Ok(ReadScene {
-        desc: scene.desc,
-        map: table.into_map(path),
-        warnings: scene.warnings.into_iter().map(diagnostic).collect(),
-        read_files: scene.includes,
-    })
+    read_scene(path, read_mi(path, bytes))
 }

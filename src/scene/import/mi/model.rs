@@ -4,7 +4,7 @@
 
 use std::collections::HashMap;
 
-use super::super::rib::Located;
+use super::super::located::Located;
 use super::cursor::ShaderCall;
 use crate::scene::desc::{
     ApproximationDesc, EnvironmentDesc, MaterialDesc, OptionsDesc, OutputDesc, V3,

@@ -7,7 +7,7 @@
 //! and reported as not mapped; `basis` declarations, `surface` statements and their
 //! `approximate surface` are read by [`super::surface`].
 
-use super::super::rib::{Pos, Problem};
+use super::super::located::{Pos, Problem};
 use super::cursor::Cursor;
 use super::lexer::Tok;
 use super::model::{Flags, RawGroup, RawInstance, RawObject, RawPolygon};

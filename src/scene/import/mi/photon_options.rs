@@ -17,7 +17,7 @@
 //! mental ray; the photon counts come from the lights (`caustic photons N`) or the map's
 //! default.
 
-use super::super::rib::Pos;
+use super::super::located::Pos;
 use super::cursor::Cursor;
 use super::lexer::Tok;
 use crate::scene::desc::{

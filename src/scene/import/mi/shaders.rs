@@ -16,7 +16,7 @@
 
 use std::collections::{BTreeMap, HashMap};
 
-use super::super::rib::{Located, Pos, Problem};
+use super::super::located::{Located, Pos, Problem};
 use super::cursor::{Cursor, Param, ShaderCall, Value};
 use super::model::LightModel;
 use crate::scene::desc::{

@@ -9,7 +9,7 @@
 
 use std::path::Path;
 
-use super::super::rib::{Located, LocatedProblem, Problem};
+use super::super::located::{Located, LocatedProblem, Problem};
 use super::cursor::Cursor;
 use super::lexer::{tokens, Tok, Token};
 use super::model::{RawRender, RawScene};
@@ -101,7 +101,7 @@ impl Reader {
     }
 
     /// Records that element `name` is defined at `pos`; reports a second definition.
-    pub fn define(&mut self, c: &mut Cursor, name: &str, pos: super::super::rib::Pos) -> bool {
+    pub fn define(&mut self, c: &mut Cursor, name: &str, pos: super::super::located::Pos) -> bool {
         if let Some(first) = self.defined.get(name) {
             let help = format!(
                 "the first is at {}:{}:{}",
@@ -239,7 +239,7 @@ impl Reader {
         }
     }
 
-    fn render(&mut self, c: &mut Cursor, pos: super::super::rib::Pos) {
+    fn render(&mut self, c: &mut Cursor, pos: super::super::located::Pos) {
         let Some(root) = c.string("the root instance group of render") else {
             return;
         };

@@ -18,7 +18,7 @@
 
 use std::collections::HashMap;
 
-use super::super::rib::{Pos, Problem};
+use super::super::located::{Pos, Problem};
 use super::cursor::Cursor;
 use super::lexer::Tok;
 use super::model::{RawAxis, RawObject, RawSurface};

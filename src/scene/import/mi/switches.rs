@@ -3,7 +3,7 @@
 //! statement for a feature wins. Also `diagnostic samples|grid|photon|bsp …` (`options.diagnostic`). Shaders of a switched-off kind are still read and mapped
 //! (the switch is a run input, so `stagelight convert` keeps both).
 
-use super::super::rib::Pos;
+use super::super::located::Pos;
 use super::cursor::Cursor;
 use super::lexer::Tok;
 use crate::scene::desc::{

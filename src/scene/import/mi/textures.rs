@@ -15,7 +15,7 @@
 
 use std::collections::HashMap;
 
-use super::super::rib::{Located, Pos};
+use super::super::located::{Located, Pos};
 use super::cursor::{Cursor, Param, ShaderCall, Value};
 use crate::scene::desc::{InputDesc, NodeDesc, V3};
 use crate::scene::nodes_desc::WrapDesc;

@@ -6,7 +6,7 @@
 //! controls of mental ray's ray marching, which the engine does not need. `mib_volume` is
 //! `fade.rs`; any other volume shader warns.
 
-use super::super::rib::Problem;
+use super::super::located::Problem;
 use super::cursor::{Cursor, ShaderCall};
 use super::fade::mib_volume;
 use super::shaders::Params;

@@ -7,6 +7,7 @@ use std::path::{Path, PathBuf};
 
 use glam::{DMat4, DVec3};
 
+use super::super::located::{Located, LocatedProblem, Pos, Problem};
 use super::camera::{rows, world_mirror, CameraOptions, Display};
 use super::geometry::{self, Primitive, PRIMITIVES};
 use super::lexer;
@@ -14,7 +15,7 @@ use super::params::{parse_type, Args, Declarations, Param};
 use super::parse::{self, Request};
 use super::shaders::{self, LightShader, DISPLACEMENTS, LIGHTS, SURFACES};
 use super::state::{from_rib, rotate, Block, GraphicsState, ShaderCall};
-use super::{Located, LocatedProblem, Pos, Problem, RibScene};
+use super::RibScene;
 use crate::scene::desc::{
     ApproximationDesc, DisplacementDesc, DisplacementModeDesc, FilterDesc, GroupDesc, InstanceDesc,
     LightDesc, LightKindDesc, MaterialDesc, ObjectDesc, OptionsDesc, PassDesc, PhotonMapDesc,
@@ -239,7 +240,7 @@ impl Builder {
             desc,
             paths,
             warnings,
-            archives: files.into_iter().skip(1).collect(),
+            read_files: files.into_iter().skip(1).collect(),
         })
     }
 

@@ -10,7 +10,7 @@
 
 use glam::{DMat3, DMat4, DVec3};
 
-use super::Pos;
+use super::super::located::Pos;
 use crate::scene::desc::{
     CameraDesc, FilterDesc, ImagerDesc, LensDesc, OutputDesc, PassDesc, PlacementDesc, SamplesDesc,
     ToneMapDesc, M4, V3,

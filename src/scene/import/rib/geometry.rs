@@ -6,10 +6,10 @@
 //! primitive variables. Each mesh comes with the positions of its values by path (relative
 //! to `mesh`).
 
+use super::super::located::{Pos, Problem};
 use super::params::{Args, Declarations, Param};
 use super::parse::{Arg, Request};
 use super::state::Attributes;
-use super::{Pos, Problem};
 use crate::scene::desc::{BasisDesc, MeshDesc, V3};
 
 /// Requests that make geometry.

@@ -6,7 +6,7 @@
 //! too). Binary RIB (bytes ≥ 0x80 outside strings and comments) is not supported and is
 //! reported as such.
 
-use super::Pos;
+use super::super::located::{self, CharCursor, LexError, Pos};
 
 /// What a token is.
 #[derive(Debug, Clone, PartialEq)]
@@ -24,30 +24,13 @@ pub enum Tok {
 }
 
 /// A token and where it starts.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Token {
-    /// The token.
-    pub tok: Tok,
-    /// Where its first character is.
-    pub pos: Pos,
-}
-
-/// A lexical error: where and what.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct LexError {
-    /// Where the offending character is.
-    pub pos: Pos,
-    /// What is wrong.
-    pub message: String,
-}
+pub type Token = located::Token<Tok>;
 
 /// Splits `text` into tokens; every lexical error is returned (the lexer skips the
 /// offending character or token and goes on).
 pub fn tokens(text: &str) -> (Vec<Token>, Vec<LexError>) {
     let mut lx = Lexer {
-        chars: text.chars().collect(),
-        at: 0,
-        pos: Pos { line: 1, column: 1 },
+        src: CharCursor::new(text),
         out: Vec::new(),
         errors: Vec::new(),
     };
@@ -56,28 +39,18 @@ pub fn tokens(text: &str) -> (Vec<Token>, Vec<LexError>) {
 }
 
 struct Lexer {
-    chars: Vec<char>,
-    at: usize,
-    pos: Pos,
+    src: CharCursor,
     out: Vec<Token>,
     errors: Vec<LexError>,
 }
 
 impl Lexer {
     fn peek(&self) -> Option<char> {
-        self.chars.get(self.at).copied()
+        self.src.peek()
     }
 
     fn bump(&mut self) -> Option<char> {
-        let c = self.peek()?;
-        self.at += 1;
-        if c == '\n' {
-            self.pos.line += 1;
-            self.pos.column = 1;
-        } else {
-            self.pos.column += 1;
-        }
-        Some(c)
+        self.src.bump()
     }
 
     fn error(&mut self, pos: Pos, message: String) {
@@ -86,7 +59,7 @@ impl Lexer {
 
     fn run(&mut self) {
         while let Some(c) = self.peek() {
-            let pos = self.pos;
+            let pos = self.src.pos();
             match c {
                 c if c.is_whitespace() => {
                     self.bump();

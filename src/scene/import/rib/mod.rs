@@ -29,116 +29,14 @@ pub mod revolve;
 pub mod shaders;
 pub mod state;
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
-use super::{PathTable, ReadScene, SourcePos};
-use crate::scene::desc::SceneDesc;
+use super::located::{read_scene, LocatedProblem, LocatedScene};
+use super::ReadScene;
 use crate::scene::message::Diagnostic;
 
-/// A 1-based line and column (columns count characters).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
-pub struct Pos {
-    /// 1-based line.
-    pub line: usize,
-    /// 1-based column.
-    pub column: usize,
-}
-
-impl Default for Pos {
-    fn default() -> Self {
-        Self { line: 1, column: 1 }
-    }
-}
-
-/// A problem found while reading, located in the file being read.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct Problem {
-    /// Where.
-    pub pos: Pos,
-    /// What.
-    pub message: String,
-    /// A suggestion.
-    pub help: Option<String>,
-    /// A warning (something ignored) rather than an error.
-    pub warning: bool,
-}
-
-impl Problem {
-    /// An error at `pos`.
-    pub fn error(pos: Pos, message: impl Into<String>) -> Self {
-        Self {
-            pos,
-            message: message.into(),
-            help: None,
-            warning: false,
-        }
-    }
-
-    /// A warning at `pos`.
-    pub fn warning(pos: Pos, message: impl Into<String>) -> Self {
-        Self {
-            warning: true,
-            ..Self::error(pos, message)
-        }
-    }
-
-    /// The same problem with a `help:` line.
-    pub fn with_help(mut self, help: impl Into<String>) -> Self {
-        self.help = Some(help.into());
-        self
-    }
-}
-
-/// A position in one of the files read (the root or a `ReadArchive`).
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct Located {
-    /// The file, as the user named it (archives joined to the reading file's folder).
-    pub file: PathBuf,
-    /// Line and column.
-    pub pos: Pos,
-}
-
-/// A problem with its file.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct LocatedProblem {
-    /// The file.
-    pub file: PathBuf,
-    /// The problem.
-    pub problem: Problem,
-}
-
-impl std::fmt::Display for LocatedProblem {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let p = &self.problem;
-        write!(
-            f,
-            "{}:{}:{}: {}: {}",
-            self.file.display(),
-            p.pos.line,
-            p.pos.column,
-            if p.warning { "warning" } else { "error" },
-            p.message
-        )?;
-        if let Some(h) = &p.help {
-            write!(f, "\n  help: {h}")?;
-        }
-        Ok(())
-    }
-}
-
-/// What the reader made of one RIB file.
-#[derive(Debug, Clone)]
-pub struct RibScene {
-    /// The description.
-    pub desc: SceneDesc,
-    /// Where each element and value was written, by description path
-    /// (`objects[3].mesh.Sphere.radius`), in the order recorded.
-    pub paths: Vec<(String, Located)>,
-    /// What was ignored, located.
-    pub warnings: Vec<LocatedProblem>,
-    /// The `ReadArchive` files read (the root file left out).
-    pub archives: Vec<std::path::PathBuf>,
-}
+/// What the reader made of one RIB file (its `read_files` are the `ReadArchive` files).
+pub type RibScene = LocatedScene;
 
 /// Reads the RIB file `path` whose contents are `bytes`. `ReadArchive` files are read from
 /// disk relative to `path`. On failure, every error found (warnings left out).
@@ -146,32 +44,7 @@ pub fn read_rib(path: &Path, bytes: &[u8]) -> Result<RibScene, Vec<LocatedProble
     build::Builder::run(path, bytes)
 }
 
-/// The [`super::ReadFn`] of `.rib`: [`read_rib`] with its positions in a [`PathTable`].
+/// The [`super::ReadFn`] of `.rib`: [`read_rib`] with its positions in a [`super::PathTable`].
 pub fn read(path: &Path, bytes: &[u8]) -> Result<ReadScene, Vec<Diagnostic>> {
-    let diagnostic = |p: LocatedProblem| Diagnostic {
-        file: p.file,
-        line: p.problem.pos.line,
-        column: p.problem.pos.column,
-        message: p.problem.message,
-        help: p.problem.help,
-    };
-    let scene =
-        read_rib(path, bytes).map_err(|e| e.into_iter().map(diagnostic).collect::<Vec<_>>())?;
-    let mut table = PathTable::default();
-    for (p, at) in scene.paths {
-        table.insert(
-            p,
-            SourcePos {
-                file: at.file,
-                line: at.pos.line,
-                column: at.pos.column,
-            },
-        );
-    }
-    Ok(ReadScene {
-        desc: scene.desc,
-        map: table.into_map(path),
-        warnings: scene.warnings.into_iter().map(diagnostic).collect(),
-        read_files: scene.archives,
-    })
+    read_scene(path, read_rib(path, bytes))
 }

@@ -5,8 +5,8 @@
 
 use std::collections::HashMap;
 
+use super::super::located::{Pos, Problem};
 use super::parse::{Arg, Request, Value};
-use super::{Pos, Problem};
 
 /// Storage class of a primitive variable.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -3,8 +3,8 @@
 //! and the `"name" value` parameter list — is read by [`Args`], on behalf of the request
 //! handlers in [`super::build`].
 
+use super::super::located::Pos;
 use super::lexer::{Tok, Token};
-use super::Pos;
 
 /// One argument of a request.
 #[derive(Debug, Clone, PartialEq)]

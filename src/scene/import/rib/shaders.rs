@@ -6,9 +6,9 @@
 //! Every parameter a shader does not have is an error with a suggestion; parameters left
 //! out take the defaults of the RenderMan Interface Specification 3.2.
 
+use super::super::located::{Pos, Problem};
 use super::params::{Param, Ty};
 use super::state::ShaderCall;
-use super::{Pos, Problem};
 use crate::scene::desc::{AxisDesc, LocalLobeDesc, ScalarDesc, ShaderDesc, V3};
 use crate::scene::suggest::suggestion;
 

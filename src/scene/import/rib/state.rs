@@ -8,8 +8,8 @@
 
 use glam::{DMat4, DVec3};
 
+use super::super::located::Pos;
 use super::params::Param;
-use super::Pos;
 use crate::scene::desc::{BasisDesc, V3};
 
 /// A shader named by `Surface`, `Displacement`, `LightSource`, … with its parameters.
