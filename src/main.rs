@@ -672,18 +672,10 @@ fn render(args: RenderArgs) -> ExitCode {
     if args.diagnostic.is_some() {
         settings.diagnostic = args.diagnostic;
     }
-    let overrides = OutputOverrides {
-        first: args.output.clone(),
-        ..OutputOverrides::default()
+    let overrides = match checked_overrides(args.output.clone(), &scene.world) {
+        Ok(o) => o,
+        Err(code) => return code,
     };
-    if let Err(message) = overrides.check() {
-        eprintln!("error: {message}");
-        return ExitCode::from(EXIT_USAGE);
-    }
-    if let Err(message) = overrides.check_contours(&scene.world) {
-        eprintln!("error: {message}");
-        return ExitCode::from(EXIT_USAGE);
-    }
     if args.output.is_some() && !stagelight::scene_view::has_render_camera(&scene.world) {
         eprintln!("error: the scene has no render camera");
         return ExitCode::from(EXIT_USAGE);
@@ -851,22 +843,34 @@ fn merge(args: MergeArgs) -> ExitCode {
             Ok(s) => s,
             Err(code) => return code,
         };
-    let overrides = OutputOverrides {
-        first: args.output.clone(),
-        ..OutputOverrides::default()
+    let overrides = match checked_overrides(args.output.clone(), &scene.world) {
+        Ok(o) => o,
+        Err(code) => return code,
     };
-    if let Err(message) = overrides.check() {
-        eprintln!("error: {message}");
-        return ExitCode::from(EXIT_USAGE);
-    }
-    if let Err(message) = overrides.check_contours(&scene.world) {
-        eprintln!("error: {message}");
-        return ExitCode::from(EXIT_USAGE);
-    }
     let mut frame = Frame::new(scene.settings.clone());
     frame.inputs.outputs = overrides;
     frame.inputs.merged_image = Some(image);
     run_and_report(&scene_path, &mut scene, frame, args.stats, None)
+}
+
+/// The `-o` override of the first output, checked against the scene's outputs and
+/// contours; a usage error is printed and its exit code returned.
+fn checked_overrides(
+    first: Option<PathBuf>,
+    world: &hecs::World,
+) -> Result<OutputOverrides, ExitCode> {
+    let overrides = OutputOverrides {
+        first,
+        ..OutputOverrides::default()
+    };
+    overrides
+        .check()
+        .and_then(|()| overrides.check_contours(world))
+        .map_err(|message| {
+            eprintln!("error: {message}");
+            ExitCode::from(EXIT_USAGE)
+        })?;
+    Ok(overrides)
 }
 
 /// The scene a set of part files came from (`--scene`, else the path in their header),

@@ -12,20 +12,7 @@
 //! item of a list or tuple (a newtype variant such as `Scale((1, 2, 3))` is a one-item
 //! tuple: `Scale[0][2]` is the `3`). An implicit `Some(...)` wrapper is looked through.
 
-/// A 1-based line and column (columns count characters, as `ron` does).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
-pub struct Pos {
-    /// 1-based line.
-    pub line: usize,
-    /// 1-based column.
-    pub column: usize,
-}
-
-impl Default for Pos {
-    fn default() -> Self {
-        Self { line: 1, column: 1 }
-    }
-}
+pub use super::located::Pos;
 
 /// One value of the source and what is inside it.
 #[derive(Debug, Clone, Default)]
