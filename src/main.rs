@@ -46,9 +46,9 @@ enum Command {
     /// Print the stages in order with run/skip and the reason each would get for this scene,
     /// without running any.
     Plan(PlanArgs),
-    /// Write a scene in any readable format (RIB, RON) as the equivalent RON scene.
+    /// Write a scene in any readable format (RIB, .mi, glTF, RON) as the equivalent RON scene.
     Convert {
-        /// Scene file (any readable format: .mi, .rib, .ron).
+        /// Scene file (.ron, .rib, .mi, .gltf or .glb).
         scene: PathBuf,
         /// The RON file to write.
         #[arg(short = 'o', long = "output")]
@@ -64,7 +64,7 @@ enum Command {
     Photons(PhotonsArgs),
     /// Validate a scene without rendering; exit 0 when it is renderable.
     Check {
-        /// Scene file (RON).
+        /// Scene file (.ron, .rib, .mi, .gltf or .glb).
         scene: PathBuf,
         /// Memory budget the estimates are checked against (as for `render`).
         #[arg(long = "memory-limit", value_name = "BYTES", value_parser = stagelight::budget::parse_bytes)]
@@ -74,7 +74,7 @@ enum Command {
 
 #[derive(Args)]
 struct RenderArgs {
-    /// Scene file (RON).
+    /// Scene file (.ron, .rib, .mi, .gltf or .glb).
     scene: PathBuf,
     /// Render this camera (by name; a glTF file's cameras are named after the file's)
     /// instead of the scene's render camera.
@@ -134,7 +134,7 @@ struct RenderArgs {
 
 #[derive(Args)]
 struct PhotonsArgs {
-    /// Scene file (any readable format).
+    /// Scene file (.ron, .rib, .mi, .gltf or .glb).
     scene: PathBuf,
     /// Keep the maps in `DIR/<hash>.pmap` (default: the scene's `photon_map` file).
     #[arg(long = "photon-cache", value_name = "DIR")]
@@ -190,7 +190,7 @@ struct MergeArgs {
 
 #[derive(Args)]
 struct FarmArgs {
-    /// Scene file.
+    /// Scene file (.ron, .rib, .mi, .gltf or .glb).
     scene: PathBuf,
     /// Number of parts (array tasks).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1_000_000))]
@@ -233,7 +233,7 @@ struct FarmArgs {
 
 #[derive(Args)]
 struct BakeArgs {
-    /// Scene file (RON).
+    /// Scene file (.ron, .rib, .mi, .gltf or .glb).
     scene: PathBuf,
     /// Directory for the baked textures (default: the working directory).
     #[arg(short = 'o', long = "output", value_name = "DIR")]
@@ -271,7 +271,7 @@ struct BakeArgs {
 
 #[derive(Args)]
 struct PlanArgs {
-    /// Scene file (RON).
+    /// Scene file (.ron, .rib, .mi, .gltf or .glb).
     scene: PathBuf,
     /// Plan `render --bake` (render and bake).
     #[arg(long, conflicts_with = "bake_only")]
@@ -289,7 +289,7 @@ struct PlanArgs {
 
 #[derive(Args)]
 struct BenchArgs {
-    /// Scene file (RON).
+    /// Scene file (.ron, .rib, .mi, .gltf or .glb).
     scene: PathBuf,
     /// Worker threads (default: all cores; at most 1024).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=MAX_THREADS as i64))]
@@ -308,7 +308,7 @@ struct BenchArgs {
 
 #[derive(Args)]
 struct SweepArgs {
-    /// Scene file (RON).
+    /// Scene file (.ron, .rib, .mi, .gltf or .glb).
     scene: PathBuf,
     /// The knob and its values: spp, adaptive_contrast, light_samples, max_depth, bvh_quality,
     /// tessellation, bake_samples, photons, gather_radius, gather_count, passes, filter
@@ -557,7 +557,8 @@ fn plan(args: PlanArgs) -> ExitCode {
 
 /// `stagelight convert SCENE -o OUT.ron`: checks the scene as `render` would, then writes
 /// its description (as its reader produced it; a RIB file's archives inlined) as RON that
-/// loads into the same description. Written to a temporary name, then renamed.
+/// loads into the same description, its relative input paths rewritten for OUT's directory
+/// (`relocate`). Written to a temporary name, then renamed.
 fn convert(scene: &Path, output: &Path) -> ExitCode {
     use stagelight::scene::import::{reader_for, to_ron::to_ron, FORMATS};
     if let Err(code) = load(scene) {
@@ -596,6 +597,10 @@ fn convert(scene: &Path, output: &Path) -> ExitCode {
             let text: Vec<String> = errors.iter().map(ToString::to_string).collect();
             return fail(text.join("\n"));
         }
+    };
+    let desc = match stagelight::scene::import::relocate::relocate_inputs(desc, scene, output) {
+        Ok(d) => d,
+        Err(message) => return fail(format!("error: {message}")),
     };
     let text = match to_ron(&desc) {
         Ok(t) => t,

@@ -133,33 +133,17 @@ pub fn scene_inputs(scene: &Path, text: Option<&str>) -> Vec<PathBuf> {
     for (file, desc) in loaded.sources.files.iter().zip(&loaded.scenes) {
         inputs.push(file.path.clone());
         let Some(desc) = desc else { continue };
-        let Ok(value) = serde_json::to_value(desc) else {
+        let Ok(mut value) = serde_json::to_value(desc) else {
             continue;
         };
         let mut named = Vec::new();
-        named_files(&value, &mut named);
+        crate::scene::import::relocate::visit_input_files(&mut value, &mut |s| {
+            named.push(s.clone())
+        });
         inputs.extend(named.into_iter().map(|n| file.dir().join(n)));
     }
     inputs.extend(loaded.read_files);
     inputs
-}
-
-/// Strings under a `file` key anywhere in `value`, except inside `outputs` lists (camera
-/// and bake outputs are destinations, not inputs).
-fn named_files(value: &serde_json::Value, out: &mut Vec<String>) {
-    match value {
-        serde_json::Value::Object(map) => {
-            for (key, v) in map {
-                match (key.as_str(), v) {
-                    ("outputs", _) | ("photon_map", _) => {}
-                    ("file", serde_json::Value::String(s)) => out.push(s.clone()),
-                    _ => named_files(v, out),
-                }
-            }
-        }
-        serde_json::Value::Array(items) => items.iter().for_each(|v| named_files(v, out)),
-        _ => {}
-    }
 }
 
 /// The identity of a path for comparison: absolute, `.` and `..` resolved, through the real
@@ -277,16 +261,5 @@ mod tests {
             same_file_key(Path::new("a/./b/../c.png")),
             same_file_key(Path::new("a/c.png"))
         );
-    }
-
-    #[test]
-    fn named_files_skip_outputs() {
-        let v = serde_json::json!({
-            "objects": [{"mesh": {"Obj": {"file": "m.obj"}}}],
-            "cameras": [{"outputs": [{"file": "out.png"}]}],
-        });
-        let mut out = Vec::new();
-        named_files(&v, &mut out);
-        assert_eq!(out, vec!["m.obj".to_string()]);
     }
 }

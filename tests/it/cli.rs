@@ -408,3 +408,17 @@ fn imager_fills_the_background_and_applies_exposure_to_png() {
         stderr(&o)
     );
 }
+
+/// `convert -o` into another directory than the scene's: the RON names the scene's relative
+/// inputs (a RON include, a glTF file's meshes) through the path between the directories,
+/// so it renders the same bytes; without the rewrite, both fail to load there.
+#[test]
+fn convert_into_another_directory_keeps_the_inputs() {
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    for (test, scene) in [
+        ("convert_ron_include", "assets/scenes/cornell_box.ron"),
+        ("convert_glb", "assets/gltf/lightmap_room.glb"),
+    ] {
+        crate::common::convert_renders_the_same_png(test, &root.join(scene));
+    }
+}

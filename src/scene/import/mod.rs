@@ -34,6 +34,7 @@
 pub mod gltf_scene;
 pub mod located;
 pub mod mi;
+pub mod relocate;
 pub mod rib;
 pub mod ron;
 mod ron_integers;
