@@ -778,7 +778,7 @@ fn part_run(
             count: number.count,
             split,
         },
-        scene: args.scene.display().to_string(),
+        scene: part_scene_name(&args.scene),
         scene_hash: stagelight::farm::scene_hash(scene.source_hash, &scene.world),
     })
 }
@@ -878,6 +878,15 @@ fn checked_overrides(
     Ok(overrides)
 }
 
+/// How a part file names its scene: the path as given, made absolute against the working
+/// directory, so that `merge` finds it from any directory.
+fn part_scene_name(scene: &Path) -> String {
+    std::path::absolute(scene)
+        .unwrap_or_else(|_| scene.to_path_buf())
+        .display()
+        .to_string()
+}
+
 /// The scene a set of part files came from (`--scene`, else the path in their header),
 /// loaded and checked against the parts' content hash; `verb` is `render` or `bake`.
 fn part_scene(
@@ -890,6 +899,15 @@ fn part_scene(
         .scene
         .clone()
         .unwrap_or_else(|| PathBuf::from(header_scene));
+    if args.scene.is_none() && !scene_path.exists() {
+        eprintln!(
+            "error: the parts came from the scene {}, which is not there
+  help: pass the scene they came from with --scene SCENE
+nothing written",
+            scene_path.display()
+        );
+        return Err(ExitCode::from(EXIT_ERROR));
+    }
     let scene = load(&scene_path)?;
     let hash = stagelight::farm::scene_hash(scene.source_hash, &scene.world);
     if hash != parts_hash {
@@ -1055,7 +1073,7 @@ fn bake(args: BakeArgs) -> ExitCode {
             count: number.count,
             split: Split::Tiles,
         },
-        scene: args.scene.display().to_string(),
+        scene: part_scene_name(&args.scene),
         scene_hash: stagelight::farm::scene_hash(scene.source_hash, &scene.world),
     });
     if args.write_gltf {

@@ -125,6 +125,48 @@ fn merged_parts_are_byte_identical_to_the_single_render() {
     );
 }
 
+/// Parts name their scene by its absolute path: merged from another directory without
+/// `--scene`, they find the scene the relative `scene.ron` named where they were rendered.
+/// Once that scene is gone, the merge says so and asks for `--scene`, writing nothing.
+#[test]
+fn parts_merged_from_another_directory_find_their_scene() {
+    let dir = setup("elsewhere");
+    ok(&dir, &["render", "scene.ron", "-o", "single.png"]);
+    let parts = render_parts(&dir, 2, "tiles", &[]);
+    let away = dir.join("away");
+    std::fs::create_dir_all(&away).unwrap();
+    let parts: Vec<String> = parts.iter().map(|p| format!("../{p}")).collect();
+    ok(&away, &["merge", &parts[0], &parts[1], "-o", "merged.png"]);
+    assert_eq!(
+        std::fs::read(away.join("merged.png")).unwrap(),
+        std::fs::read(dir.join("single.png")).unwrap()
+    );
+    std::fs::rename(dir.join("scene.ron"), dir.join("moved.ron")).unwrap();
+    let o = stagelight(&away, &["merge", &parts[0], &parts[1], "-o", "again.png"]);
+    assert_eq!(o.status.code(), Some(1));
+    let scene = std::fs::canonicalize(&dir).unwrap().join("scene.ron");
+    assert_eq!(
+        stderr(&o),
+        format!(
+            "error: the parts came from the scene {}, which is not there\n  help: pass the scene they came from with --scene SCENE\nnothing written\n",
+            scene.display()
+        )
+    );
+    assert!(!away.join("again.png").exists());
+    ok(
+        &away,
+        &[
+            "merge",
+            &parts[0],
+            &parts[1],
+            "--scene",
+            "../moved.ron",
+            "-o",
+            "again.png",
+        ],
+    );
+}
+
 #[test]
 fn mismatched_missing_duplicate_and_damaged_parts_are_refused_with_nothing_written() {
     let dir = setup("refusals");
