@@ -260,7 +260,13 @@ fn cli_merge_refuses_incomplete_mixed_and_damaged_bake_parts_and_writes_nothing(
     );
     assert_eq!(o.status.code(), Some(1));
     assert!(
-        stderr_of(&o).starts_with("error: scene.ron changed since the parts were baked"),
+        stderr_of(&o).starts_with(&format!(
+            "error: {} changed since the parts were baked",
+            std::fs::canonicalize(&dir)
+                .unwrap()
+                .join("scene.ron")
+                .display()
+        )),
         "{}",
         stderr_of(&o)
     );
