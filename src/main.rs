@@ -568,7 +568,7 @@ fn convert(scene: &Path, output: &Path) -> ExitCode {
         eprintln!("{message}");
         ExitCode::from(EXIT_ERROR)
     };
-    let inputs = stagelight::guard::outputs::scene_inputs(scene, None);
+    let inputs = stagelight::scene::inputs::scene_inputs(scene, None);
     let key = stagelight::guard::outputs::same_file_key(output);
     if let Some(input) = inputs
         .iter()
@@ -779,7 +779,7 @@ fn part_run(
             split,
         },
         scene: part_scene_name(&args.scene),
-        scene_hash: stagelight::farm::scene_hash(scene.source_hash, &scene.world),
+        scene_hash: stagelight::farm::scene_hash(&args.scene, scene.source_hash, &scene.world),
     })
 }
 
@@ -909,7 +909,7 @@ nothing written",
         return Err(ExitCode::from(EXIT_ERROR));
     }
     let scene = load(&scene_path)?;
-    let hash = stagelight::farm::scene_hash(scene.source_hash, &scene.world);
+    let hash = stagelight::farm::scene_hash(&scene_path, scene.source_hash, &scene.world);
     if hash != parts_hash {
         let done = if verb == "bake" { "baked" } else { "rendered" };
         eprintln!(
@@ -1074,7 +1074,7 @@ fn bake(args: BakeArgs) -> ExitCode {
             split: Split::Tiles,
         },
         scene: part_scene_name(&args.scene),
-        scene_hash: stagelight::farm::scene_hash(scene.source_hash, &scene.world),
+        scene_hash: stagelight::farm::scene_hash(&args.scene, scene.source_hash, &scene.world),
     });
     if args.write_gltf {
         let ext = args

@@ -44,12 +44,15 @@ pub fn settings_hash(settings: &RenderSettings) -> u64 {
         .finish()
 }
 
-/// Content hash of a loaded scene: its files' bytes (scene, includes, RIB archives and `.mi`
-/// includes, as the loaders read them: `source_hash`) and every loaded triangle mesh. Textures and environment maps are
-/// not included: a farm is expected to see the same files on every node.
-pub fn scene_hash(source_hash: u64, world: &hecs::World) -> u64 {
+/// Content hash of the scene at `scene`, loaded as `source_hash` and `world`: its files'
+/// bytes (scene, includes, RIB archives and `.mi` includes, as the loaders read them:
+/// `source_hash`), the bytes of every other input file but the OBJ and PLY meshes (MTL
+/// libraries, textures, displacement and environment maps, glTF files:
+/// [`crate::scene::inputs::inputs_hash`]) and every loaded triangle mesh.
+pub fn scene_hash(scene: &std::path::Path, source_hash: u64, world: &hecs::World) -> u64 {
     let mut h = Fnv64::default();
     h.bytes(&source_hash.to_le_bytes());
+    h.bytes(&crate::scene::inputs::inputs_hash(scene).to_le_bytes());
     for mesh in world.query::<&Arc<TriMesh>>().iter() {
         for p in &mesh.positions {
             for c in p.to_array() {

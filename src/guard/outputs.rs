@@ -121,31 +121,6 @@ fn unknown_link() -> SourceLink {
     }
 }
 
-/// Every input file of the scene at `scene` (as paths the loader opens): the scene files
-/// and each file they name outside their outputs and the `photon_map` file (a cache the
-/// run may rewrite). `text` stands in for the root file when
-/// the scene was loaded from a string.
-pub fn scene_inputs(scene: &Path, text: Option<&str>) -> Vec<PathBuf> {
-    let mut loaded = crate::scene::include::load_files(scene, text, crate::scene::import::FORMATS);
-    let mut inputs = Vec::new();
-    // OBJ material libraries and the textures they name are inputs too.
-    crate::scene::obj_materials::expand(&mut loaded.sources, &mut loaded.scenes, &mut inputs);
-    for (file, desc) in loaded.sources.files.iter().zip(&loaded.scenes) {
-        inputs.push(file.path.clone());
-        let Some(desc) = desc else { continue };
-        let Ok(mut value) = serde_json::to_value(desc) else {
-            continue;
-        };
-        let mut named = Vec::new();
-        crate::scene::import::relocate::visit_input_files(&mut value, &mut |s| {
-            named.push(s.clone())
-        });
-        inputs.extend(named.into_iter().map(|n| file.dir().join(n)));
-    }
-    inputs.extend(loaded.read_files);
-    inputs
-}
-
 /// The identity of a path for comparison: absolute, `.` and `..` resolved, through the real
 /// parent directory when it exists.
 pub fn same_file_key(path: &Path) -> PathBuf {
@@ -248,7 +223,7 @@ pub fn check(
             }
         }
     }
-    clashes(&scene_inputs(scene, None), &outputs)
+    clashes(&crate::scene::inputs::scene_inputs(scene, None), &outputs)
 }
 
 #[cfg(test)]

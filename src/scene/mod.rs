@@ -39,6 +39,7 @@ pub(crate) mod geometry;
 pub(crate) mod imager;
 pub mod import;
 pub(crate) mod include;
+pub mod inputs;
 pub(crate) mod lens;
 pub(crate) mod light_lists;
 pub(crate) mod lights;

@@ -7,8 +7,9 @@ use glam::Vec3;
 use hecs::World;
 
 use crate::frame::{Frame, Tasks};
-use crate::scene::load_scene;
+use crate::hash::Fnv64;
 use crate::scene::SceneErrors;
+use crate::scene::{load_scene, LoadedScene};
 use crate::schedule::StageError;
 use crate::settings::{Integrator, RenderSettings};
 use crate::sweep::crop::Crop;
@@ -191,22 +192,19 @@ pub fn read_exr_rgb(path: &Path) -> Result<(Vec<Vec3>, u32, u32), SweepError> {
     Ok((px, w as u32, h as u32))
 }
 
-/// The cache file of a rendered reference: keyed by the scene text (and its includes'
-/// modification does not count — delete the cache after editing an include), the sample
-/// count, and whether it is a bake.
-fn reference_cache(opts: &SweepOptions) -> Result<PathBuf, SweepError> {
-    let text = std::fs::read(&opts.scene).map_err(|e| io(&opts.scene, e))?;
-    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+/// The cache file of a rendered reference: keyed by the scene's content hash (every file
+/// it reads and every loaded mesh, as farm parts are: [`crate::farm::scene_hash`]), the
+/// sample count, whether it is a bake, and the reference's integrator.
+fn reference_cache(opts: &SweepOptions, scene: &LoadedScene) -> PathBuf {
+    let content = crate::farm::scene_hash(&opts.scene, scene.source_hash, &scene.world);
     let tag = format!(
-        "{}:{}:{:?}",
+        "{content:016x}:{}:{}:{:?}",
         opts.reference_samples,
         opts.knob.is_bake(),
         opts.reference_integrator
     );
-    for b in text.iter().chain(tag.as_bytes()) {
-        h = (h ^ u64::from(*b)).wrapping_mul(0x0100_0000_01b3);
-    }
-    Ok(opts.out.join(format!("reference_{h:016x}.exr")))
+    let h = Fnv64::default().bytes(tag.as_bytes()).finish();
+    opts.out.join(format!("reference_{h:016x}.exr"))
 }
 
 /// Runs the sweep and returns its summary (the caller writes the files).
@@ -215,16 +213,16 @@ pub fn run_sweep(
     pipeline: Pipeline,
     mut progress: impl FnMut(&str),
 ) -> Result<SweepSummary, SweepError> {
-    {
+    let cached = {
         let scene = load_scene(&opts.scene)?;
         opts.knob.check(&scene.world, &scene.settings)?;
         if opts.denoise && !opts.knob.is_bake() {
             return Err(KnobError::DenoiseNeedsBake(opts.knob.name()).into());
         }
-    }
+        reference_cache(opts, &scene)
+    };
     // The output directory is made only once the reference is read (or rendered): a bad
     // `--reference` leaves nothing behind.
-    let cached = reference_cache(opts)?;
     let (reference, ref_width, ref_height) = match &opts.reference {
         Some(path) => read_exr_rgb(path)?,
         None if cached.exists() => {

@@ -366,3 +366,31 @@ fn an_archive_edited_after_the_parts_were_rendered_is_refused() {
     );
     assert!(!dir.join("out.png").exists());
 }
+
+/// The scene's content hash covers its textures: a texture replaced after the parts were
+/// rendered is refused at the merge, the scene file unchanged.
+#[test]
+fn a_texture_edited_after_the_parts_were_rendered_is_refused() {
+    let dir = setup("texture");
+    let texture = |rgb: [u8; 3]| {
+        crate::common::png::write_rgb(&dir.join("t.png"), 2, 2, &[rgb, [255; 3], [255; 3], rgb])
+    };
+    texture([200, 40, 40]);
+    let textured = SCENE.replace(
+        r#"shader: Lambert(albedo: (0.5, 0.5, 0.5))"#,
+        r#"shader: Lambert(albedo: (0.5, 0.5, 0.5)), bind: {"albedo": Image(file: "t.png")}"#,
+    );
+    assert_ne!(textured, SCENE);
+    std::fs::write(dir.join("scene.ron"), textured).unwrap();
+    let parts = render_parts(&dir, 2, "tiles", &[]);
+    ok(&dir, &["merge", &parts[0], &parts[1], "-o", "before.png"]);
+    texture([40, 200, 40]);
+    let o = stagelight(&dir, &["merge", &parts[0], &parts[1], "-o", "out.png"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(
+        stderr(&o).contains("scene.ron changed since the parts were rendered"),
+        "{}",
+        stderr(&o)
+    );
+    assert!(!dir.join("out.png").exists());
+}

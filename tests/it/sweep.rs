@@ -311,3 +311,40 @@ fn adaptive_contrast_sweep_needs_adaptive_samples_and_error_falls() {
     let rel = rel_mse_column(&std::fs::read_to_string(out.join("sweep.csv")).unwrap());
     assert!(rel[0] > rel[1], "{rel:?}");
 }
+
+/// The cached reference is keyed by everything the scene reads: unchanged files reuse it,
+/// an edit of an included file (here the material's albedo) renders a new one.
+#[test]
+fn an_edited_include_renders_a_new_reference() {
+    let dir = scratch("include");
+    let scene = dir.join("scene.ron");
+    let grey = r#"(name: "grey", shader: Lambert(albedo: (0.6, 0.6, 0.6)))"#;
+    let without = SCENE.replace(
+        &format!("materials: [{grey}],"),
+        r#"include: ["materials.ron"],"#,
+    );
+    assert_ne!(without, SCENE);
+    std::fs::write(&scene, without).unwrap();
+    let materials = |albedo: &str| {
+        let text = format!(
+            "Scene(materials: [{}])",
+            grey.replace("0.6, 0.6, 0.6", albedo)
+        );
+        std::fs::write(dir.join("materials.ron"), text).unwrap();
+    };
+    let sweep = || {
+        let o = run(bin()
+            .arg("sweep")
+            .arg(&scene)
+            .args(["--knob", "spp=1", "--reference-spp", "4", "--out"])
+            .arg(dir.join("out")));
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        String::from_utf8_lossy(&o.stderr).contains("reference: cached")
+    };
+    materials("0.6, 0.6, 0.6");
+    assert!(!sweep(), "the first sweep renders its reference");
+    assert!(sweep(), "an unchanged scene reuses it");
+    materials("0.1, 0.1, 0.1");
+    assert!(!sweep(), "an edited include renders a new reference");
+    assert!(sweep());
+}
