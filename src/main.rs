@@ -1122,6 +1122,7 @@ fn bench(args: BenchArgs) -> ExitCode {
         bake: scene.world.query::<&BakeRequest>().iter().next().is_some(),
     };
     frame.inputs.bake_dir = scratch.join("bake");
+    stagelight::bake::files::confine_to_bake_dir(&mut scene.world);
     frame.inputs.budget = budget(args.memory_limit);
     let refused = stagelight::budget::estimate::check(
         &scene.world,

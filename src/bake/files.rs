@@ -79,6 +79,21 @@ pub fn target_file(safe_name: &str, target: &BakeTarget) -> PathBuf {
     })
 }
 
+/// For runs whose files go to a scratch directory (`bench`, `sweep`): every file a bake
+/// request names, made a relative path of its plain components (`/data/rock_ao.exr` →
+/// `data/rock_ao.exr`, `../x.exr` → `x.exr`), so that it lands under the run's bake
+/// directory instead of where the scene would write it.
+pub fn confine_to_bake_dir(world: &mut hecs::World) {
+    for request in world.query_mut::<&mut BakeRequest>() {
+        for file in request.targets.iter_mut().filter_map(|t| t.file.as_mut()) {
+            *file = file
+                .components()
+                .filter(|c| matches!(c, std::path::Component::Normal(_)))
+                .collect();
+        }
+    }
+}
+
 /// Every file a request writes under `dir`, in the order [`encode_request`] writes them
 /// (targets, bent normals, mask), known before baking (output path checks).
 pub fn planned_paths(request: &BakeRequest, dir: &Path) -> Vec<PathBuf> {
@@ -106,6 +121,54 @@ pub fn planned_paths(request: &BakeRequest, dir: &Path) -> Vec<PathBuf> {
         paths.push(dir.join(format!("{safe_name}_mask.png")));
     }
     paths
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn confined_files_keep_only_their_plain_components() {
+        let mut world = hecs::World::new();
+        let target = |file: Option<&str>| BakeTarget {
+            kind: BakeKind::Positions,
+            format: BakeFormat::Exr,
+            file: file.map(PathBuf::from),
+            denoise: None,
+        };
+        let request = BakeRequest {
+            name: "rock".into(),
+            resolution: crate::components::BakeResolution::Fixed {
+                width: 4,
+                height: 4,
+            },
+            uvs: crate::components::UvSource::Mesh,
+            texel_samples: 1,
+            padding: 0,
+            mask: false,
+            stitch_seams: false,
+            targets: vec![
+                target(Some("/data/rock_ao.exr")),
+                target(Some("../../x.exr")),
+                target(Some("sub/./y.png")),
+                target(None),
+            ],
+        };
+        let e = world.spawn((request,));
+        confine_to_bake_dir(&mut world);
+        let files: Vec<Option<PathBuf>> = world
+            .get::<&BakeRequest>(e)
+            .unwrap()
+            .targets
+            .iter()
+            .map(|t| t.file.clone())
+            .collect();
+        let p = |s: &str| Some(PathBuf::from(s));
+        assert_eq!(
+            files,
+            [p("data/rock_ao.exr"), p("x.exr"), p("sub/y.png"), None]
+        );
+    }
 }
 
 /// The report of one baked request.

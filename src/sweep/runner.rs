@@ -101,6 +101,7 @@ fn run_once(
     let mut frame = Frame::new(settings);
     let scratch = opts.out.join("scratch").join(tag);
     frame.inputs.bake_dir = scratch.clone();
+    crate::bake::files::confine_to_bake_dir(&mut scene.world);
     frame.inputs.tasks = Tasks {
         render: !opts.knob.is_bake(),
         bake: opts.knob.is_bake(),

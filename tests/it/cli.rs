@@ -422,3 +422,47 @@ fn convert_into_another_directory_keeps_the_inputs() {
         crate::common::convert_renders_the_same_png(test, &root.join(scene));
     }
 }
+
+/// A bake file named by an absolute or `..` path stays in the bench's scratch directory:
+/// `bench` and `sweep` write nothing outside it (they once wrote, and overwrote, the file the
+/// scene named).
+#[test]
+fn bench_and_sweep_keep_bake_files_named_outside_in_their_scratch() {
+    let dir = scratch("bench_bake_outside");
+    let outside = dir.join("precious.exr");
+    std::fs::write(&outside, "precious").unwrap();
+    let scene = crate::common::small_scene(
+        &crate::common::quad_object("quad"),
+        &format!(
+            r#"(name: "quad_1", of: "quad", bake: (resolution: (8, 8), outputs: [
+                (kind: AmbientOcclusion(samples: 4), file: "{}"),
+                (kind: Albedo, format: Exr, file: "../up.exr")]))"#,
+            outside.display()
+        ),
+        "",
+        "",
+    );
+    let work = dir.join("work");
+    std::fs::create_dir_all(&work).unwrap();
+    std::fs::write(work.join("scene.ron"), scene).unwrap();
+    let o = run(bin()
+        .current_dir(&work)
+        .args(["bench", "--threads", "1", "scene.ron"]));
+    assert!(o.status.success(), "{}", stderr(&o));
+    let o = run(bin().current_dir(&work).args([
+        "sweep",
+        "scene.ron",
+        "--knob",
+        "bake_samples=1",
+        "--reference-spp",
+        "4",
+        "--out",
+        "sweep",
+    ]));
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(std::fs::read(&outside).unwrap(), b"precious");
+    assert!(!dir.join("up.exr").exists());
+    let mut names = crate::common::dir_names(&work);
+    names.sort();
+    assert_eq!(names, ["scene.ron", "sweep"]);
+}
