@@ -364,6 +364,40 @@ impl IntegratorArg {
     }
 }
 
+/// `print!` to standard output without its panic when the reader has gone
+/// (`stagelight plan | head -1`): the process ends quietly with status 0, as a pipeline
+/// expects; any other write error is reported and ends it with status 1.
+macro_rules! out {
+    ($($arg:tt)*) => { write_stdout(format_args!($($arg)*), false) };
+}
+
+/// `println!` with [`out!`]'s handling of a reader that has gone.
+macro_rules! outln {
+    ($($arg:tt)*) => { write_stdout(format_args!($($arg)*), true) };
+}
+
+fn write_stdout(args: std::fmt::Arguments, newline: bool) {
+    use std::io::Write;
+    let mut stdout = std::io::stdout().lock();
+    let written = stdout
+        .write_fmt(args)
+        .and_then(|()| {
+            if newline {
+                stdout.write_all(b"\n")
+            } else {
+                Ok(())
+            }
+        })
+        .and_then(|()| stdout.flush());
+    if let Err(e) = written {
+        if e.kind() == std::io::ErrorKind::BrokenPipe {
+            std::process::exit(0);
+        }
+        eprintln!("error: cannot write to standard output: {e}");
+        std::process::exit(i32::from(EXIT_ERROR));
+    }
+}
+
 fn main() -> ExitCode {
     let _ = tracing_subscriber::fmt()
         .with_writer(std::io::stderr)
@@ -438,7 +472,7 @@ fn check(path: &Path, memory_limit: Option<u64>) -> ExitCode {
                 return code;
             }
             let entities = scene.world.len();
-            println!("{}: ok ({entities} entities)", path.display());
+            outln!("{}: ok ({entities} entities)", path.display());
             ExitCode::SUCCESS
         }
         Err(code) => code,
@@ -529,7 +563,7 @@ fn plan(args: PlanArgs) -> ExitCode {
     let planned = systems::plan(&scene.world, &mut frame);
     if args.json {
         match serde_json::to_string_pretty(&planned) {
-            Ok(j) => println!("{j}"),
+            Ok(j) => outln!("{j}"),
             Err(e) => {
                 eprintln!("error: cannot encode the plan: {e}");
                 return ExitCode::from(EXIT_ERROR);
@@ -542,9 +576,9 @@ fn plan(args: PlanArgs) -> ExitCode {
         (true, false) => "render",
         _ => "bake",
     };
-    println!("plan for {} ({task}):", args.scene.display());
+    outln!("plan for {} ({task}):", args.scene.display());
     for (i, p) in planned.iter().enumerate() {
-        println!(
+        outln!(
             "{:>2} {:<16} {:<4} {}",
             i + 1,
             p.stage,
@@ -613,7 +647,7 @@ fn convert(scene: &Path, output: &Path) -> ExitCode {
         let _ = std::fs::remove_file(&tmp);
         return fail(format!("cannot write {}: {e}", output.display()));
     }
-    println!("{}: wrote {}", scene.display(), output.display());
+    outln!("{}: wrote {}", scene.display(), output.display());
     ExitCode::SUCCESS
 }
 
@@ -1166,24 +1200,24 @@ fn bench(args: BenchArgs) -> ExitCode {
             "photons": photons,
         });
         match serde_json::to_string_pretty(&value) {
-            Ok(j) => println!("{j}"),
+            Ok(j) => outln!("{j}"),
             Err(e) => {
                 eprintln!("error: cannot encode the report: {e}");
                 return ExitCode::from(EXIT_ERROR);
             }
         }
     } else {
-        println!(
+        outln!(
             "{} on {} thread(s)",
             args.scene.display(),
             frame.report.threads
         );
-        print!("{}", frame.report.to_throughput_table());
+        out!("{}", frame.report.to_throughput_table());
         if let Some(p) = photons {
-            println!("{}", p.line());
+            outln!("{}", p.line());
         }
         for r in &frame.outputs.bake_reports {
-            println!("bake {}", r.summary());
+            outln!("bake {}", r.summary());
         }
     }
     ExitCode::SUCCESS
@@ -1244,14 +1278,14 @@ fn sweep(args: SweepArgs) -> ExitCode {
         eprintln!("error: cannot write {}: {e}", p.display());
         return ExitCode::from(EXIT_ERROR);
     }
-    print!("{}", summary.to_csv());
+    out!("{}", summary.to_csv());
     let fmt = |s: Option<f64>| {
         s.map_or(
             "not reached (plateau, or no descent within 100× the longest run)".to_string(),
             |s| format!("{s:.3} s"),
         )
     };
-    println!(
+    outln!(
         "{}: slope {}; bias plateau: {}; relMSE 1e-2 after {}; 1e-3 after {}",
         summary.region(),
         summary.slope.map_or("n/a".into(), |s| format!("{s:.2}")),
@@ -1290,9 +1324,9 @@ fn run_and_report(
         }
     }
     if stats {
-        print!("{}", frame.report.to_table());
+        out!("{}", frame.report.to_table());
         for r in &frame.outputs.bake_reports {
-            println!("bake {}", r.summary());
+            outln!("bake {}", r.summary());
         }
     }
     if let Some(path) = stats_json {

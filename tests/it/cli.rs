@@ -466,3 +466,26 @@ fn bench_and_sweep_keep_bake_files_named_outside_in_their_scratch() {
     names.sort();
     assert_eq!(names, ["scene.ron", "sweep"]);
 }
+
+/// Standard output closed by its reader (`stagelight plan | head -1`): the commands that
+/// print to it end quietly with status 0 instead of panicking on the broken pipe.
+#[test]
+fn a_closed_standard_output_ends_the_command_quietly() {
+    for args in [
+        vec!["plan"],
+        vec!["plan", "--json"],
+        vec!["check"],
+        vec!["bench", "--json"],
+    ] {
+        let (reader, writer) = std::io::pipe().unwrap();
+        drop(reader);
+        let o = bin()
+            .args(&args)
+            .arg(asset("test_plane.ron"))
+            .stdout(writer)
+            .output()
+            .unwrap();
+        assert_eq!(o.status.code(), Some(0), "{args:?}: {}", stderr(&o));
+        assert!(!stderr(&o).contains("panicked"), "{args:?}: {}", stderr(&o));
+    }
+}
