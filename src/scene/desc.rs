@@ -596,7 +596,7 @@ pub struct MaterialDesc {
     #[serde(default)]
     pub emission: V3,
     /// Shader parameters driven by node graphs (`{"albedo": Checker(…)}`), default none.
-    #[serde(default)]
+    #[serde(default, deserialize_with = "super::unique_keys::deserialize")]
     pub bind: std::collections::BTreeMap<String, InputDesc>,
     /// Bump mapping, default none.
     #[serde(default)]

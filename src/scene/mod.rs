@@ -58,6 +58,7 @@ pub(crate) mod samples;
 pub(crate) mod shaders;
 pub(crate) mod spawn;
 pub(crate) mod suggest;
+pub(crate) mod unique_keys;
 pub(crate) mod validate;
 pub(crate) mod volume;
 pub mod world_checks;

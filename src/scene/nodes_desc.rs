@@ -7,6 +7,7 @@ use std::collections::BTreeMap;
 use serde::{Deserialize, Serialize};
 
 use super::desc_values::V3;
+use super::unique_keys::deserialize as unique;
 
 /// The `bind` key of a material's emission (a colour or scalar node multiplying the
 /// constant `emission`), next to the shader's parameters.
@@ -257,7 +258,10 @@ pub enum NodeDesc {
         to: ColourSpaceDesc,
     },
     /// A phenomenon with arguments for some of its interface parameters.
-    Graph(String, #[serde(default)] BTreeMap<String, InputDesc>),
+    Graph(
+        String,
+        #[serde(default, deserialize_with = "unique")] BTreeMap<String, InputDesc>,
+    ),
     /// An interface parameter of the enclosing phenomenon.
     Param(String),
 }
@@ -348,7 +352,7 @@ pub struct PhenomenonDesc {
     pub name: String,
     /// Interface parameters and their defaults (the default fixes the type: a number is a
     /// scalar, `(r, g, b)` a colour), default none.
-    #[serde(default)]
+    #[serde(default, deserialize_with = "unique")]
     pub params: BTreeMap<String, InputDesc>,
     /// The graph's result.
     pub output: InputDesc,

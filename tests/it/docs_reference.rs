@@ -30,6 +30,9 @@ fn accepted_names(source: &str) -> Vec<(String, String)> {
             .trim_end_matches('{')
             .to_string();
         let mut depth = 0i32;
+        // Open parentheses of code lines: the lines inside a tuple variant written over
+        // several lines (`Graph(\n String,\n …\n),`) are its fields, not variants.
+        let mut parens = 0i32;
         let mut rename: Option<String> = None;
         let mut skip = false;
         for line in &lines[j..] {
@@ -49,6 +52,8 @@ fn accepted_names(source: &str) -> Vec<(String, String)> {
             if t.starts_with("///") || t.starts_with("//") || t.starts_with("#[") {
                 continue;
             }
+            let parens_here = parens;
+            parens += t.matches('(').count() as i32 - t.matches(')').count() as i32;
             let ident: String = t
                 .trim_start_matches("pub ")
                 .chars()
@@ -59,6 +64,7 @@ fn accepted_names(source: &str) -> Vec<(String, String)> {
                 && t.trim_start_matches("pub ")[ident.len()..].starts_with(':');
             let variant = is_enum
                 && depth_here == 1
+                && parens_here == 0
                 && ident.chars().next().is_some_and(char::is_uppercase)
                 && !untagged;
             if (field || variant) && !skip {

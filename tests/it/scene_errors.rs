@@ -597,3 +597,37 @@ fn out_of_range_integers_name_the_number_the_field_and_the_range() {
         assert_eq!(got, format!("{}/{expected}", dir.display()));
     }
 }
+
+/// A key given twice in a `bind` map is an error at the repeated key, as a struct field
+/// given twice is (the last value silently won before). The same holds for `Graph(…, {…})`
+/// arguments and phenomenon `params`.
+#[test]
+fn duplicate_bind_key() {
+    check(
+        "duplicate_bind_key.ron",
+        &[concat!(
+            "tests/fixtures/scenes/bad/duplicate_bind_key.ron:3:38: error: key \"albedo\" is given twice in this map\n",
+            "  help: keep one entry for each key",
+        )],
+    );
+    let graph = r#"Scene(phenomena: [(name: "p", params: {"k": 1, "k": 2}, output: (1, 1, 1))])"#;
+    let err = load_scene_str(graph, Path::new("g.ron"))
+        .err()
+        .expect("refused");
+    assert!(
+        err.to_string()
+            .contains("key \"k\" is given twice in this map"),
+        "{err}"
+    );
+    let call = r#"Scene(phenomena: [(name: "p", params: {"k": 1}, output: Param("k"))],
+        materials: [(name: "m", shader: Lambert(albedo: (1, 1, 1)),
+            bind: {"albedo": Graph("p", {"k": 0.5, "k": 0.25})})])"#;
+    let err = load_scene_str(call, Path::new("c.ron"))
+        .err()
+        .expect("refused");
+    assert!(
+        err.to_string()
+            .contains("key \"k\" is given twice in this map"),
+        "{err}"
+    );
+}

@@ -241,6 +241,9 @@ fn ron_message(code: &RonError) -> (String, Option<String>) {
                 }),
             )
         }
+        RonError::Message(text) if text.ends_with(crate::scene::unique_keys::GIVEN_TWICE) => {
+            (text.clone(), Some("keep one entry for each key".into()))
+        }
         RonError::Message(text) => (text.clone(), None),
         RonError::ExpectedComma => (
             "expected comma".into(),
