@@ -138,7 +138,28 @@ fn expand_object(
         // Nothing to give the faces: the object stays whole, with the default material.
         return;
     }
-    let added: Vec<MaterialDesc> = pieces.iter().filter_map(|(_, (_, m))| m.clone()).collect();
+    let mut added: Vec<MaterialDesc> = Vec::new();
+    for (mtl_name, (_, m)) in &pieces {
+        let Some(m) = m else { continue };
+        // A name the scene's own materials hold: said here, at the object, naming the MTL
+        // material (the duplicate-name check would point at the scene's material twice).
+        match desc.materials.iter().position(|d| d.name == m.name) {
+            Some(k) => src.error(
+                file,
+                &at,
+                format!(
+                    "material \"{mtl_name}\" of {} would be named \"{}\", a name already in use",
+                    obj_file,
+                    m.name
+                ),
+                Some(format!(
+                    "the material at {} has it; rename that material, or give object \"{name}\" a `material`",
+                    src.where_is(file, &format!("materials[{k}].name"))
+                )),
+            ),
+            None => added.push(m.clone()),
+        }
+    }
     desc.materials.extend(added);
     if let [(_, (_, material))] = &pieces[..] {
         desc.objects[i].material = material.as_ref().map(|m| m.name.clone());

@@ -536,3 +536,32 @@ fn an_instance_of_a_two_material_obj_bakes_each_face_with_its_material() {
         );
     }
 }
+
+/// An MTL material whose scene name (`<object>.<mtl name>`) a scene material already holds
+/// is an error at the object, naming the MTL material and where the scene's one is (the
+/// duplicate-name check pointed at the scene's material twice).
+#[test]
+fn an_mtl_material_named_like_a_scene_material_is_an_error_at_the_object() {
+    let dir = dir_with(
+        "mtl_name_taken",
+        &[("quads.obj", TWO_QUADS), ("paint.mtl", PAINT)],
+    );
+    let text = scene(r#"(name: "quads", mesh: Obj(file: "quads.obj"))"#).replace(
+        r#"materials: [(name: "white","#,
+        r#"materials: [(name: "quads.red", shader: Lambert(albedo: (1, 0, 0))), (name: "white","#,
+    );
+    let path = dir.join("scene.ron");
+    let err = stagelight::scene::load_scene_str(&text, &path)
+        .err()
+        .expect("refused")
+        .to_string();
+    let at = |line: usize, column: usize| format!("{}:{line}:{column}", path.display());
+    assert_eq!(
+        err,
+        format!(
+            "{}: error: material \"red\" of quads.obj would be named \"quads.red\", a name already in use\n  help: the material at {} has it; rename that material, or give object \"quads\" a `material`",
+            at(7, 47),
+            at(6, 24),
+        )
+    );
+}
