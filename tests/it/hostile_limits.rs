@@ -1,5 +1,6 @@
 //! Issue 18, families 3, 4 and 9: bounded recursion (RON nesting, phenomenon chains),
-//! bounded thread counts and file sizes, and a UTF-8 byte order mark accepted.
+//! bounded phenomenon expansion, bounded thread counts and file sizes, and a UTF-8 byte
+//! order mark accepted.
 
 use crate::common::{quad_object, run_in, scratch_dir, small_scene, stderr_of};
 
@@ -69,6 +70,36 @@ fn a_chain_of_phenomena_beyond_the_limit_is_refused_where_it_starts() {
     assert_eq!(
         stderr_of(&o),
         "scene.ron:13:22: error: phenomenon \"p0\" starts a chain of 3000 nested phenomenon calls (p0 → p1 → … → p2999); the limit is 64\n  help: call fewer phenomena inside each other: inline some of them\n1 error in scene.ron; nothing rendered\n"
+    );
+}
+
+#[test]
+fn phenomena_calling_each_other_twice_stop_at_the_expanded_size_limit() {
+    // p(k) = Mul(p(k-1), p(k-1)) has 2^(k+1) - 1 nodes: p16 is the first past 100,000.
+    let dir = scratch_dir("phenomenon-doubling");
+    let mut phenomena = vec![r#"(name: "p0", output: (0.5, 0.5, 0.5))"#.to_string()];
+    for k in 1..18 {
+        phenomena.push(format!(
+            r#"(name: "p{k}", output: Mul(Graph("p{j}", {{}}), Graph("p{j}", {{}})))"#,
+            j = k - 1
+        ));
+    }
+    let scene = small_scene(
+        &quad_object("quad"),
+        r#"(name: "q", of: "quad")"#,
+        "",
+        &format!("    phenomena: [\n{}\n    ],\n", phenomena.join(",\n")),
+    )
+    .replace(
+        r#"shader: Lambert(albedo: (0.5, 0.5, 0.5))"#,
+        r#"shader: Lambert(albedo: (1, 1, 1)), bind: {"albedo": Graph("p17", {})}"#,
+    );
+    std::fs::write(dir.join("scene.ron"), scene).unwrap();
+    let o = run_in(&dir, &["check", "scene.ron"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert_eq!(
+        stderr_of(&o),
+        "scene.ron:29:45: error: phenomenon \"p15\" called here makes the expanded graph larger than 100000 nodes, the limit for one graph\n  help: every call is expanded in full: call a phenomenon once and pass its result in as a parameter to reuse it (Param(\"x\") used twice costs nothing), or nest fewer calls\n1 error in scene.ron; nothing rendered\n"
     );
 }
 
