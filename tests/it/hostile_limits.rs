@@ -1,6 +1,7 @@
 //! Issue 18, families 3, 4 and 9: bounded recursion (RON nesting, phenomenon chains),
 //! bounded phenomenon expansion, deep group chains flattened in linear memory, bounded
-//! thread counts and file sizes, and a UTF-8 byte order mark accepted.
+//! thread counts and file sizes, and a UTF-8 byte order mark accepted (RON, RIB and its
+//! archives, `.mi`).
 
 use crate::common::{quad_object, run_in, scratch_dir, small_scene, stderr_of};
 
@@ -207,6 +208,26 @@ fn a_byte_order_mark_before_the_scene_is_accepted() {
     std::fs::write(dir.join("scene.ron"), format!("\u{feff}{scene}")).unwrap();
     let o = run_in(&dir, &["check", "scene.ron"]);
     assert!(o.status.success(), "{}", stderr_of(&o));
+}
+
+#[test]
+fn a_byte_order_mark_before_a_rib_an_archive_or_a_mi_file_is_accepted() {
+    let dir = scratch_dir("bom-rib-mi");
+    let bom = "\u{feff}";
+    let rib = "Display \"d.png\" \"file\" \"rgb\"\nFormat 16 16 1\nTranslate 0 0 3\nWorldBegin\nLightSource \"pointlight\" 1 \"intensity\" [10] \"from\" [0 0 -3]\nReadArchive \"ball.rib\"\nWorldEnd\n";
+    std::fs::write(dir.join("bom.rib"), format!("{bom}{rib}")).unwrap();
+    std::fs::write(
+        dir.join("ball.rib"),
+        format!("{bom}Sphere 0.5 -0.5 0.5 360\n"),
+    )
+    .unwrap();
+    let plane = concat!(env!("CARGO_MANIFEST_DIR"), "/assets/seeds/mi/plane.mi");
+    let mi = std::fs::read_to_string(plane).unwrap();
+    std::fs::write(dir.join("bom.mi"), format!("{bom}{mi}")).unwrap();
+    for scene in ["bom.rib", "bom.mi"] {
+        let o = run_in(&dir, &["check", scene]);
+        assert!(o.status.success(), "{scene}: {}", stderr_of(&o));
+    }
 }
 
 #[test]

@@ -249,7 +249,7 @@ impl Builder {
     }
 
     fn read_text(&mut self, bytes: &[u8]) {
-        let text = String::from_utf8_lossy(bytes);
+        let text = super::text::decode(bytes);
         let (tokens, lex_errors) = lexer::tokens(&text);
         let lex_positions: Vec<Pos> = lex_errors.iter().map(|e| e.pos).collect();
         for e in lex_errors {

@@ -1,13 +1,13 @@
 //! The RenderMan RIB reader: ASCII RIB → the format-neutral [`SceneDesc`] with a source
 //! position for every element and value, plus located warnings for what it does not map.
 //!
-//! One module per step: [`lexer`] (tokens with `line:column`), [`parse`] (requests and
-//! their arguments), [`params`] (parameter lists, inline declarations, `Declare`),
-//! [`state`] (the graphics state: attribute and transform stacks), [`build`] (request by
-//! request onto the description), with the request families in [`shaders`] (surfaces,
-//! displacements, lights), [`geometry`] (quadrics, polygons, patches, NURBS, subdivision
-//! meshes; [`revolve`]: paraboloids and hyperboloids) and [`camera`] (options, the camera
-//! and its outputs).
+//! One module per step: [`text`] (the file's bytes as characters), [`lexer`] (tokens with
+//! `line:column`), [`parse`] (requests and their arguments), [`params`] (parameter lists,
+//! inline declarations, `Declare`), [`state`] (the graphics state: attribute and transform
+//! stacks), [`build`] (request by request onto the description), with the request families
+//! in [`shaders`] (surfaces, displacements, lights), [`geometry`] (quadrics, polygons,
+//! patches, NURBS, subdivision meshes; [`revolve`]: paraboloids and hyperboloids) and
+//! [`camera`] (options, the camera and its outputs).
 //!
 //! **Conventions.** RenderMan's camera space is left-handed (+x right, +y up, +z into the
 //! screen) and the transformation current at `WorldBegin` is camera-from-world. stagelight's
@@ -28,6 +28,7 @@ pub mod parse;
 pub mod revolve;
 pub mod shaders;
 pub mod state;
+pub mod text;
 
 use std::path::Path;
 
