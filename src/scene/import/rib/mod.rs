@@ -6,8 +6,9 @@
 //! inline declarations, `Declare`), [`state`] (the graphics state: attribute and transform
 //! stacks), [`build`] (request by request onto the description), with the request families
 //! in [`shaders`] (surfaces, displacements, lights), [`geometry`] (quadrics, polygons,
-//! patches, NURBS, subdivision meshes; [`revolve`]: paraboloids and hyperboloids) and
-//! [`camera`] (options, the camera and its outputs).
+//! patches, NURBS, subdivision meshes; [`revolve`]: paraboloids and hyperboloids),
+//! [`camera`] (options, the camera and its outputs) and [`names`] (object names, chosen
+//! once the whole file is read).
 //!
 //! **Conventions.** RenderMan's camera space is left-handed (+x right, +y up, +z into the
 //! screen) and the transformation current at `WorldBegin` is camera-from-world. stagelight's
@@ -23,6 +24,7 @@ pub mod build;
 pub mod camera;
 pub mod geometry;
 pub mod lexer;
+pub mod names;
 pub mod params;
 pub mod parse;
 pub mod revolve;
