@@ -94,3 +94,34 @@ fn the_cli_renders_the_named_camera_or_lists_the_cameras() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// `yfov` must be in (0, π) and `aspectRatio` greater than 0 (and give a height the reader
+/// makes); each bad value is a located error naming the camera, never clamped in silence.
+#[test]
+fn unusable_yfov_and_aspect_ratio_are_located_errors() {
+    let dir = crate::common::cli::scratch_dir("gltf_cameras_bad_values");
+    let text = TWO_CAMERAS
+        .replace(
+            r#""yfov": 0.8, "znear": 0.01, "aspectRatio": 1.0"#,
+            r#""yfov": 0, "znear": 0.01, "aspectRatio": -1"#,
+        )
+        .replace(
+            r#""yfov": 0.5, "znear": 0.01, "aspectRatio": 2.0"#,
+            r#""yfov": 3.2, "znear": 0.01, "aspectRatio": 1e-9"#,
+        );
+    std::fs::write(dir.join("cams.gltf"), text).unwrap();
+    let o = crate::common::cli::run_in(&dir, &["check", "cams.gltf"]);
+    assert_eq!(o.status.code(), Some(1));
+    let yfov_help = "  help: \"yfov\" is the vertical field of view in radians: 0.8 is about 46°\n";
+    let aspect_help = "  help: \"aspectRatio\" is the image's width / height: 1.5 for 3:2; leave it out for 4:3\n";
+    assert_eq!(
+        crate::common::cli::stderr_of(&o),
+        format!(
+            "cams.gltf:9:69: error: cameras[0] (\"near\"): \"yfov\" must be greater than 0 and less than π radians (180°), found 0\n{yfov_help}\
+             cams.gltf:9:102: error: cameras[0] (\"near\"): \"aspectRatio\" must be greater than 0, found -1\n{aspect_help}\
+             cams.gltf:10:68: error: cameras[1] (\"far\"): \"yfov\" must be greater than 0 and less than π radians (180°), found 3.2\n{yfov_help}\
+             cams.gltf:10:103: error: cameras[1] (\"far\"): \"aspectRatio\" 0.000000001 makes the image 640 pixels wide and 640000000000 high; glTF cameras are read 640 wide and 1 … 16384 high\n{aspect_help}\
+             4 errors in cams.gltf; nothing rendered\n"
+        )
+    );
+}

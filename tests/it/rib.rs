@@ -228,3 +228,32 @@ fn fuzz_corpus_reads_or_reports_located_errors() {
         }
     }
 }
+
+/// The tester's `dup3.rib`: an unnamed sphere and one named `sphere_1`, in either order.
+fn named_sphere_scene(named_first: bool) -> String {
+    let unnamed = "Sphere 0.2 -0.2 0.2 360\n";
+    let named = "AttributeBegin\nAttribute \"identifier\" \"name\" [\"sphere_1\"]\nTranslate -1 0 0\nSphere 0.5 -0.5 0.5 360\nAttributeEnd\n";
+    let (a, b) = if named_first {
+        (named, unnamed)
+    } else {
+        (unnamed, named)
+    };
+    format!("Display \"d.png\" \"file\" \"rgb\"\nFormat 16 16 1\nTranslate 0 0 3\nWorldBegin\nLightSource \"pointlight\" 1 \"intensity\" [10] \"from\" [0 0 -3]\n{a}{b}WorldEnd\n")
+}
+
+#[test]
+fn generated_names_skip_a_name_the_file_gives_in_either_order() {
+    for (named_first, expected) in [
+        (false, ["sphere_2", "sphere_1"]),
+        (true, ["sphere_1", "sphere_2"]),
+    ] {
+        let text = named_sphere_scene(named_first);
+        let path = Path::new("dup3.rib");
+        let read = read_rib(path, text.as_bytes()).unwrap();
+        let names: Vec<&str> = read.desc.objects.iter().map(|o| o.name.as_str()).collect();
+        assert_eq!(names, expected, "named first: {named_first}");
+        if let Err(e) = load_scene_str(&text, path) {
+            panic!("named first: {named_first}: {e}");
+        }
+    }
+}

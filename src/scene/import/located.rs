@@ -138,8 +138,11 @@ pub struct CharCursor {
 }
 
 impl CharCursor {
-    /// At the first character of `text` (line 1, column 1).
+    /// At the first character of `text` (line 1, column 1). A UTF-8 byte order mark
+    /// (editors on Windows write one) is not part of the text and is skipped, as the RON
+    /// reader skips it.
     pub fn new(text: &str) -> Self {
+        let text = text.strip_prefix('\u{feff}').unwrap_or(text);
         Self {
             chars: text.chars().collect(),
             at: 0,
@@ -244,5 +247,11 @@ mod tests {
             ]
         );
         assert_eq!((c.bump(), c.pos()), (None, at(2, 2)));
+    }
+
+    #[test]
+    fn a_byte_order_mark_is_skipped() {
+        let c = CharCursor::new("\u{feff}Sphere");
+        assert_eq!((c.peek(), c.pos()), (Some('S'), Pos { line: 1, column: 1 }));
     }
 }

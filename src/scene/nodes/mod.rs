@@ -13,6 +13,7 @@
 
 mod depth;
 mod phenomena;
+mod size;
 
 use std::sync::Arc;
 
@@ -35,6 +36,7 @@ use crate::shading::texture::{
 };
 pub use phenomena::{check_phenomena, Phenomena};
 use phenomena::{ensure_checked, variant_name};
+use size::Size;
 
 /// The type of a node's value.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -85,6 +87,8 @@ pub(super) struct Compiler<'c, 'a> {
     pub(super) stack: Vec<usize>,
     /// Whether errors are reported (off while re-expanding an already checked body).
     pub(super) report: bool,
+    /// Whether the program has passed [`size::MAX_EXPANDED_NODES`].
+    pub(super) size: Size,
 }
 
 /// Interface parameter values inside a phenomenon body.
@@ -529,25 +533,40 @@ impl Compiler<'_, '_> {
         if !ok || self.ph.cyclic[i] || self.stack.contains(&i) {
             return None;
         }
+        if self.past_size_limit() {
+            self.refuse_oversized_call(at, name);
+            return None;
+        }
         // Defaults for the rest and the body, in the phenomenon's context (checked already).
         let item = &self.ph.items[i];
         let (file, desc, base) = (item.file, item.desc, item.path.clone());
         let report = std::mem::replace(&mut self.report, false);
         self.stack.push(i);
         let mut inner: Vec<(String, Ty, Reg)> = Vec::new();
+        let mut defaults_ok = true;
         for (k, ty) in &checked.params {
             if let Some(g) = given.iter().find(|(n, ..)| n == k) {
                 inner.push(g.clone());
             } else if let Some(d) = desc.params.get(k) {
                 let p = format!("{base}.params.{k}");
-                let (reg, _) = self.input(At { file, path: &p }, d, &[])?;
-                inner.push((k.clone(), *ty, reg));
+                match self.input(At { file, path: &p }, d, &[]) {
+                    Some((reg, _)) => inner.push((k.clone(), *ty, reg)),
+                    None => defaults_ok = false,
+                }
             }
         }
         let p = format!("{base}.output");
-        let out = self.input(At { file, path: &p }, &desc.output, &inner);
+        // A default that failed (only past the size limit: the body was checked) leaves the
+        // body unexpanded; `stack` and `report` are restored either way.
+        let out = defaults_ok
+            .then(|| self.input(At { file, path: &p }, &desc.output, &inner))
+            .flatten();
         self.stack.pop();
         self.report = report;
+        if self.past_size_limit() {
+            self.refuse_oversized_call(at, name);
+            return None;
+        }
         out.map(|(r, _)| (r, output))
     }
 
@@ -658,6 +677,7 @@ fn compile_material(
         prog: Program::default(),
         stack: Vec::new(),
         report: true,
+        size: Size::Within,
     };
     let params = mat.map(|m| bind::names(&m.shader)).unwrap_or_default();
     let shader_name = mat
@@ -753,6 +773,7 @@ fn compile_material(
             None => ok = false,
         }
     }
+    c.count_expanded();
     ok.then_some(Some(MaterialGraph {
         program: c.prog,
         bindings,

@@ -7,6 +7,7 @@ use std::collections::HashMap;
 use std::path::PathBuf;
 use std::sync::Arc;
 
+use super::size::Size;
 use super::{At, Compiler, Ty};
 use crate::scene::diagnostics::Sources;
 use crate::scene::nodes_desc::{InputDesc, NodeDesc, PhenomenonDesc};
@@ -38,6 +39,10 @@ pub struct Phenomena<'a> {
     pub(super) too_deep: Vec<bool>,
     /// Image textures read so far, by (path, clamp, sRGB), `None` when unreadable.
     pub(super) textures: TextureCache,
+    /// Nodes of the compilations done so far (see [`super::size`]).
+    pub(super) expanded: usize,
+    /// Whether the scene's limit on expanded nodes was reported.
+    pub(super) scene_size_reported: bool,
 }
 
 /// Decoded image textures by (path, clamp wrap, explicit sRGB), shared between materials.
@@ -71,6 +76,8 @@ pub fn check_phenomena<'a>(src: &mut Sources, m: &'a Merged<'a>) -> Phenomena<'a
         cyclic: vec![false; n],
         too_deep: vec![false; n],
         textures: HashMap::new(),
+        expanded: 0,
+        scene_size_reported: false,
     };
     find_cycles(src, &mut ph);
     super::depth::check_depth(src, &mut ph);
@@ -260,6 +267,7 @@ pub(super) fn ensure_checked(src: &mut Sources, ph: &mut Phenomena<'_>, i: usize
         prog: Program::default(),
         stack: vec![i],
         report: true,
+        size: Size::Within,
     };
     let mut env = Vec::new();
     let mut params = Vec::new();
@@ -282,6 +290,7 @@ pub(super) fn ensure_checked(src: &mut Sources, ph: &mut Phenomena<'_>, i: usize
     });
     let path = format!("{base}.output");
     let out = c.input(At { file, path: &path }, &desc.output, &env);
+    c.count_expanded();
     let cyclic = c.ph.cyclic[i];
     c.ph.checked[i] = Some(Checked {
         params,

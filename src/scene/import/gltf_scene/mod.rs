@@ -10,7 +10,8 @@
 //!   node's local matrix; any other node is a group (`<node>_group`) placed by an instance
 //!   (`<node>_node`) with the node's matrix, holding one instance per primitive (`<node>` or
 //!   `<node>_<k>`) and the instances of its children; the root is the group `scene`;
-//! - materials ([`materials`]), cameras and `KHR_lights_punctual` lights ([`view`]);
+//! - materials ([`materials`]), cameras (their values checked by [`camera_values`]) and
+//!   `KHR_lights_punctual` lights ([`view`]);
 //! - every instance of a primitive with `TEXCOORD_1` carries the default bake request
 //!   ([`bakes`]), so `stagelight bake model.glb` bakes lightmaps and ambient occlusion.
 //!
@@ -23,6 +24,7 @@
 //! the bindings that use it.
 
 pub mod bakes;
+pub mod camera_values;
 pub mod json_positions;
 pub mod materials;
 pub mod view;
@@ -463,6 +465,9 @@ fn build(
         members,
     });
     let camera = view::camera(&mut w);
+    if !w.errors.is_empty() {
+        return Err(w.errors);
+    }
     view::default_light(&mut w);
     bakes::default_bakes(&mut w);
     let warnings = std::mem::take(&mut w.warnings);

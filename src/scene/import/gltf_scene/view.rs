@@ -9,6 +9,7 @@
 
 use glam::{DMat4, DVec3};
 
+use super::camera_values::{self, CameraValues};
 use super::{at_file, m4, Walk};
 use crate::scene::desc::{
     CameraDesc, DepthExceededDesc, EnvironmentDesc, EnvironmentShaderDesc, LightDesc,
@@ -122,30 +123,31 @@ pub fn camera(w: &mut Walk<'_>) -> String {
         .file_stem()
         .map(|s| s.to_string_lossy().into_owned())
         .unwrap_or_else(|| "gltf".into());
-    let found: Vec<_> = w
-        .cameras
-        .clone()
-        .into_iter()
-        .filter_map(|(node, world)| {
-            let node = w.file.doc.nodes().nth(node)?;
-            let camera = node.camera()?;
-            let gltf::camera::Projection::Perspective(p) = camera.projection() else {
-                return None;
-            };
-            let label = camera
-                .name()
-                .or(node.name())
-                .map(str::to_string)
-                .unwrap_or_else(|| format!("camera{}", camera.index()));
-            Some((
-                label,
-                (p.yfov() as f64).to_degrees().clamp(1e-3, 179.0),
-                p.aspect_ratio(),
-                PlacementDesc::Matrix(m4(&rigid(&world))),
-            ))
-        })
-        .collect();
-    if found.is_empty() {
+    let file = w.file;
+    let mut found = Vec::new();
+    let mut perspective = false;
+    for (node, world) in w.cameras.clone() {
+        let Some(node) = file.doc.nodes().nth(node) else {
+            continue;
+        };
+        let Some(camera) = node.camera() else {
+            continue;
+        };
+        let gltf::camera::Projection::Perspective(p) = camera.projection() else {
+            continue;
+        };
+        perspective = true;
+        let Some(values) = camera_values::check(w, &camera, &p) else {
+            continue;
+        };
+        let label = camera
+            .name()
+            .or(node.name())
+            .map(str::to_string)
+            .unwrap_or_else(|| format!("camera{}", camera.index()));
+        found.push((label, values, PlacementDesc::Matrix(m4(&rigid(&world)))));
+    }
+    if !perspective {
         let (lo, hi) = w.bounds.unwrap_or((DVec3::splat(-1.0), DVec3::splat(1.0)));
         let centre = (lo + hi) * 0.5;
         let radius = ((hi - lo).length() * 0.5).max(1e-3);
@@ -157,19 +159,15 @@ pub fn camera(w: &mut Walk<'_>) -> String {
             target: (centre.x, centre.y, centre.z),
             up: (0.0, 1.0, 0.0),
         };
-        return add_camera(
-            w,
-            "default_camera",
-            DEFAULT_FOV_Y,
-            None,
-            placement,
-            &stem,
-            true,
-        );
+        let values = CameraValues {
+            fov_y: DEFAULT_FOV_Y,
+            height: CAMERA_WIDTH * 3 / 4,
+        };
+        return add_camera(w, "default_camera", &values, placement, &stem, true);
     }
     let mut first = None;
-    for (label, fov_y, aspect, placement) in found {
-        let name = add_camera(w, &label, fov_y, aspect, placement, &stem, first.is_none());
+    for (label, values, placement) in found {
+        let name = add_camera(w, &label, &values, placement, &stem, first.is_none());
         first.get_or_insert(name);
     }
     first.unwrap_or_default()
@@ -179,17 +177,11 @@ pub fn camera(w: &mut Walk<'_>) -> String {
 fn add_camera(
     w: &mut Walk<'_>,
     label: &str,
-    fov_y: f64,
-    aspect: Option<f32>,
+    values: &CameraValues,
     placement: PlacementDesc,
     stem: &str,
     main: bool,
 ) -> String {
-    let aspect = aspect
-        .map(f64::from)
-        .filter(|a| a.is_finite() && *a > 0.0)
-        .unwrap_or(4.0 / 3.0);
-    let height = ((CAMERA_WIDTH as f64 / aspect).round() as u32).clamp(1, 16384);
     let name = w.names.take(label);
     let file = if main {
         format!("{stem}.png")
@@ -198,8 +190,8 @@ fn add_camera(
     };
     w.desc.cameras.push(CameraDesc {
         name: name.clone(),
-        fov_y,
-        resolution: (CAMERA_WIDTH, height),
+        fov_y: values.fov_y,
+        resolution: (CAMERA_WIDTH, values.height),
         aspect: None,
         placement,
         outputs: vec![OutputDesc {

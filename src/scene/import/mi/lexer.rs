@@ -235,4 +235,12 @@ mod tests {
         assert_eq!(e[0].message, "invalid number \"1.2.3\"");
         assert_eq!(e[1].message, "unexpected character '@'");
     }
+
+    #[test]
+    fn a_byte_order_mark_before_the_first_token_is_skipped() {
+        let (t, e) = tokens("\u{feff}options \"opt\"");
+        assert_eq!(e, []);
+        assert_eq!(t[0].tok, Tok::Word("options".into()));
+        assert_eq!(t[0].pos, Pos { line: 1, column: 1 });
+    }
 }

@@ -11,6 +11,7 @@ use super::super::located::{Located, LocatedProblem, Pos, Problem};
 use super::camera::{rows, world_mirror, CameraOptions, Display};
 use super::geometry::{self, Primitive, PRIMITIVES};
 use super::lexer;
+use super::names::{object_names, Requested};
 use super::params::{parse_type, Args, Declarations, Param};
 use super::parse::{self, Request};
 use super::shaders::{self, LightShader, DISPLACEMENTS, LIGHTS, SURFACES};
@@ -129,7 +130,8 @@ struct PendingLight {
 }
 
 struct PendingObject {
-    name: String,
+    /// The name it asks for; the name is chosen at assembly ([`super::names`]).
+    requested: Requested,
     prim: Primitive,
     world_from_object: DMat4,
     material: usize,
@@ -166,7 +168,6 @@ pub struct Builder {
     world: Option<(usize, Pos)>,
     world_ended: bool,
     after_frame_warned: bool,
-    names: HashMap<String, usize>,
     depth: usize,
     /// AIR's caustic light (`LightSource "caustic"`): the caustic photon map, where it was
     /// switched on, and the photon and gather counts from AIR's attributes.
@@ -195,7 +196,6 @@ impl Builder {
             world: None,
             world_ended: false,
             after_frame_warned: false,
-            names: HashMap::new(),
             depth: 0,
             caustics: None,
             photons: None,
@@ -249,7 +249,7 @@ impl Builder {
     }
 
     fn read_text(&mut self, bytes: &[u8]) {
-        let text = String::from_utf8_lossy(bytes);
+        let text = super::text::decode(bytes);
         let (tokens, lex_errors) = lexer::tokens(&text);
         let lex_positions: Vec<Pos> = lex_errors.iter().map(|e| e.pos).collect();
         for e in lex_errors {
@@ -1041,13 +1041,9 @@ impl Builder {
                 pos,
             )
         });
-        let base = attrs.name.clone().unwrap_or_else(|| r.name.to_lowercase());
-        let n = self.names.entry(base.clone()).or_insert(0);
-        *n += 1;
-        let name = if attrs.name.is_some() && *n == 1 && base != "world" {
-            base
-        } else {
-            format!("{base}_{n}")
+        let requested = Requested {
+            base: attrs.name.clone().unwrap_or_else(|| r.name.to_lowercase()),
+            given: attrs.name.is_some(),
         };
         for (i, l) in self.lights.iter_mut().enumerate() {
             if attrs.lights_off.contains(&i) {
@@ -1057,7 +1053,7 @@ impl Builder {
             }
         }
         self.objects.push(PendingObject {
-            name,
+            requested,
             prim,
             world_from_object: attrs.ctm,
             material,
@@ -1282,7 +1278,9 @@ impl Builder {
             desc.materials.push(material);
         }
         let mut members = Vec::new();
-        for (i, o) in self.objects.drain(..).enumerate() {
+        let requested: Vec<Requested> = self.objects.iter().map(|o| o.requested.clone()).collect();
+        let names = object_names(&requested);
+        for (i, (o, name)) in self.objects.drain(..).zip(names).enumerate() {
             let (f, pos) = o.at;
             paths.push((format!("objects[{i}]"), f, pos));
             paths.push((format!("objects[{i}].mesh"), f, pos));
@@ -1300,7 +1298,7 @@ impl Builder {
                 }
             }
             desc.objects.push(ObjectDesc {
-                name: o.name.clone(),
+                name: name.clone(),
                 mesh: o.prim.mesh,
                 material: Some(desc.materials[o.material].name.clone()),
                 approximation: o.approximation.map(|a| a.0),
@@ -1313,11 +1311,11 @@ impl Builder {
                 trace: None,
             });
             desc.instances.push(InstanceDesc::plain(
-                &o.name,
-                &o.name,
+                &name,
+                &name,
                 vec![TransformDesc::Matrix(rows(g * o.world_from_object))],
             ));
-            members.push(o.name);
+            members.push(name);
         }
         paths.push(("groups[0]".into(), wfile, wpos));
         paths.push(("render".into(), wfile, wpos));

@@ -4,9 +4,11 @@
 //! octal escapes), numbers (integers and reals, with exponents), and the array brackets
 //! `[` `]`. `#` starts a comment that runs to the end of the line (structural `##` comments
 //! too). Binary RIB (bytes ≥ 0x80 outside strings and comments) is not supported and is
-//! reported as such.
+//! reported as such, naming the byte. A UTF-8 byte order mark before the first token is
+//! skipped (by [`CharCursor`]).
 
 use super::super::located::{self, CharCursor, LexError, Pos};
+use super::text;
 
 /// What a token is.
 #[derive(Debug, Clone, PartialEq)]
@@ -96,7 +98,7 @@ impl Lexer {
                         pos,
                         format!(
                             "unexpected byte 0x{:02x}: binary RIB is not supported",
-                            u32::from(c).min(0xff)
+                            text::first_byte(c)
                         ),
                     );
                     // One report per run of binary bytes.
@@ -162,7 +164,7 @@ impl Lexer {
                         return;
                     }
                 },
-                c => s.push(c),
+                c => s.push(text::shown(c)),
             }
         }
         self.push(Tok::Str(s), pos);
@@ -241,6 +243,34 @@ mod tests {
                 (p(3, 9), "unexpected character '@'"),
             ]
         );
+    }
+
+    #[test]
+    fn binary_bytes_are_named_by_their_value() {
+        let (_, e) = tokens(&text::decode(
+            b"\xef\xbb\xbfSphere \x89\x01 \xc3\xa9 \xef\xbb\xbf",
+        ));
+        let got: Vec<_> = e.iter().map(|e| (e.pos, e.message.as_str())).collect();
+        assert_eq!(
+            got,
+            vec![
+                (p(1, 8), "unexpected byte 0x89: binary RIB is not supported"),
+                (
+                    p(1, 11),
+                    "unexpected byte 0xc3: binary RIB is not supported"
+                ),
+                (
+                    p(1, 13),
+                    "unexpected byte 0xef: binary RIB is not supported"
+                ),
+            ]
+        );
+    }
+
+    #[test]
+    fn a_string_keeps_a_byte_that_is_not_utf8_as_the_replacement_character() {
+        let (t, _) = tokens(&text::decode(b"\"a\xe9\""));
+        assert_eq!(t[0].tok, Tok::Str("a\u{fffd}".into()));
     }
 
     #[test]

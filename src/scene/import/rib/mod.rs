@@ -1,13 +1,14 @@
 //! The RenderMan RIB reader: ASCII RIB → the format-neutral [`SceneDesc`] with a source
 //! position for every element and value, plus located warnings for what it does not map.
 //!
-//! One module per step: [`lexer`] (tokens with `line:column`), [`parse`] (requests and
-//! their arguments), [`params`] (parameter lists, inline declarations, `Declare`),
-//! [`state`] (the graphics state: attribute and transform stacks), [`build`] (request by
-//! request onto the description), with the request families in [`shaders`] (surfaces,
-//! displacements, lights), [`geometry`] (quadrics, polygons, patches, NURBS, subdivision
-//! meshes; [`revolve`]: paraboloids and hyperboloids) and [`camera`] (options, the camera
-//! and its outputs).
+//! One module per step: [`text`] (the file's bytes as characters), [`lexer`] (tokens with
+//! `line:column`), [`parse`] (requests and their arguments), [`params`] (parameter lists,
+//! inline declarations, `Declare`), [`state`] (the graphics state: attribute and transform
+//! stacks), [`build`] (request by request onto the description), with the request families
+//! in [`shaders`] (surfaces, displacements, lights), [`geometry`] (quadrics, polygons,
+//! patches, NURBS, subdivision meshes; [`revolve`]: paraboloids and hyperboloids),
+//! [`camera`] (options, the camera and its outputs) and [`names`] (object names, chosen
+//! once the whole file is read).
 //!
 //! **Conventions.** RenderMan's camera space is left-handed (+x right, +y up, +z into the
 //! screen) and the transformation current at `WorldBegin` is camera-from-world. stagelight's
@@ -23,11 +24,13 @@ pub mod build;
 pub mod camera;
 pub mod geometry;
 pub mod lexer;
+pub mod names;
 pub mod params;
 pub mod parse;
 pub mod revolve;
 pub mod shaders;
 pub mod state;
+pub mod text;
 
 use std::path::Path;
 
