@@ -249,7 +249,8 @@ fn header(bytes: &[u8]) -> Result<Header, MeshFileError> {
             |at: usize, message: String| MeshFileError::at_line(number, column(line, at), message);
         let w = words(line);
         if number == 1 {
-            if line != b"ply" {
+            // Trailing blanks are allowed here as on every other header line.
+            if line.trim_ascii_end() != b"ply" {
                 return Err(err(0, "a PLY file starts with the line \"ply\"".into()));
             }
             continue;

@@ -334,3 +334,14 @@ fn mutated_files_are_read_or_rejected() {
         }
     }
 }
+
+/// Trailing blanks after the first line's `ply` are allowed, as after every other header
+/// line (a file whose first line was `ply ` was refused).
+#[test]
+fn the_magic_line_may_end_in_blanks() {
+    for magic in ["ply ", "ply\t", "ply \r"] {
+        let file = format!("{magic}\n{}{QUAD}", &HEAD[4..]);
+        let m = parse(file.as_bytes()).unwrap_or_else(|e| panic!("{magic:?}: {e:?}"));
+        assert_eq!(m.positions.len(), 4, "{magic:?}");
+    }
+}
