@@ -123,54 +123,6 @@ pub fn planned_paths(request: &BakeRequest, dir: &Path) -> Vec<PathBuf> {
     paths
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn confined_files_keep_only_their_plain_components() {
-        let mut world = hecs::World::new();
-        let target = |file: Option<&str>| BakeTarget {
-            kind: BakeKind::Positions,
-            format: BakeFormat::Exr,
-            file: file.map(PathBuf::from),
-            denoise: None,
-        };
-        let request = BakeRequest {
-            name: "rock".into(),
-            resolution: crate::components::BakeResolution::Fixed {
-                width: 4,
-                height: 4,
-            },
-            uvs: crate::components::UvSource::Mesh,
-            texel_samples: 1,
-            padding: 0,
-            mask: false,
-            stitch_seams: false,
-            targets: vec![
-                target(Some("/data/rock_ao.exr")),
-                target(Some("../../x.exr")),
-                target(Some("sub/./y.png")),
-                target(None),
-            ],
-        };
-        let e = world.spawn((request,));
-        confine_to_bake_dir(&mut world);
-        let files: Vec<Option<PathBuf>> = world
-            .get::<&BakeRequest>(e)
-            .unwrap()
-            .targets
-            .iter()
-            .map(|t| t.file.clone())
-            .collect();
-        let p = |s: &str| Some(PathBuf::from(s));
-        assert_eq!(
-            files,
-            [p("data/rock_ao.exr"), p("x.exr"), p("sub/y.png"), None]
-        );
-    }
-}
-
 /// The report of one baked request.
 pub fn report(
     p: &PreparedBake,
@@ -237,5 +189,53 @@ fn encode(
             };
             img.encode_png(format == BakeFormat::Png16, color)
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn confined_files_keep_only_their_plain_components() {
+        let mut world = hecs::World::new();
+        let target = |file: Option<&str>| BakeTarget {
+            kind: BakeKind::Positions,
+            format: BakeFormat::Exr,
+            file: file.map(PathBuf::from),
+            denoise: None,
+        };
+        let request = BakeRequest {
+            name: "rock".into(),
+            resolution: crate::components::BakeResolution::Fixed {
+                width: 4,
+                height: 4,
+            },
+            uvs: crate::components::UvSource::Mesh,
+            texel_samples: 1,
+            padding: 0,
+            mask: false,
+            stitch_seams: false,
+            targets: vec![
+                target(Some("/data/rock_ao.exr")),
+                target(Some("../../x.exr")),
+                target(Some("sub/./y.png")),
+                target(None),
+            ],
+        };
+        let e = world.spawn((request,));
+        confine_to_bake_dir(&mut world);
+        let files: Vec<Option<PathBuf>> = world
+            .get::<&BakeRequest>(e)
+            .unwrap()
+            .targets
+            .iter()
+            .map(|t| t.file.clone())
+            .collect();
+        let p = |s: &str| Some(PathBuf::from(s));
+        assert_eq!(
+            files,
+            [p("data/rock_ao.exr"), p("x.exr"), p("sub/y.png"), None]
+        );
     }
 }
