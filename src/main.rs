@@ -886,7 +886,12 @@ fn merge(args: MergeArgs) -> ExitCode {
         Ok(o) => o,
         Err(code) => return code,
     };
-    let mut frame = Frame::new(scene.settings.clone());
+    let mut settings = scene.settings.clone();
+    // Contours and the geometry stages run again in the merge: with the parts' `--disable`.
+    if let Some(recorded) = header.recorded {
+        recorded.apply(&mut settings);
+    }
+    let mut frame = Frame::new(settings);
     frame.inputs.outputs = overrides;
     frame.inputs.merged_image = Some(image);
     run_and_report(&scene_path, &mut scene, frame, args.stats, None)
@@ -978,9 +983,17 @@ fn merge_bake(args: MergeArgs) -> ExitCode {
     };
     let mut settings = scene.settings.clone();
     settings.seed = header.seed;
+    if let Some(recorded) = header.recorded {
+        recorded.apply(&mut settings);
+    }
     if stagelight::farm::settings_hash(&settings) != header.settings_hash {
+        let why = if header.recorded.is_some() {
+            "(written by another stagelight version?)"
+        } else {
+            "(an --integrator override, which parts of this older format do not record?)"
+        };
         eprintln!(
-            "error: the parts were baked with other settings than {} has now (an --integrator override?)\n  help: bake the parts again without overrides\nnothing written",
+            "error: the parts were baked with other settings than {} gives {why}\n  help: bake the parts again with this stagelight\nnothing written",
             scene_path.display()
         );
         return ExitCode::from(EXIT_ERROR);
