@@ -711,6 +711,16 @@ fn render(args: RenderArgs) -> ExitCode {
     if args.diagnostic.is_some() {
         settings.diagnostic = args.diagnostic;
     }
+    if let Some(number) = args.part {
+        // A part file is an EXR whatever else `-o` could name: said before the formats a
+        // render writes.
+        if let Err(message) =
+            stagelight::part_refusals::part_file_output(number, args.output.as_deref())
+        {
+            eprintln!("error: {message}");
+            return ExitCode::from(EXIT_USAGE);
+        }
+    }
     let overrides = match checked_overrides(args.output.clone(), &scene.world) {
         Ok(o) => o,
         Err(code) => return code,
@@ -782,7 +792,8 @@ fn photons(args: PhotonsArgs) -> ExitCode {
     run_and_report(&args.scene, &mut scene, frame, args.stats, None)
 }
 
-/// The part a `render --part K/N` run computes, after checking the flags that go with it.
+/// The part a `render --part K/N` run computes, after checking the flags that go with it
+/// (its `-o PART.exr` is checked before).
 fn part_run(
     args: &RenderArgs,
     number: PartNumber,
@@ -790,21 +801,15 @@ fn part_run(
     settings: &stagelight::settings::RenderSettings,
 ) -> Result<PartRun, String> {
     let split = args.split.split();
-    let exr = args
-        .output
-        .as_ref()
-        .is_some_and(|o| o.extension().is_some_and(|e| e.eq_ignore_ascii_case("exr")));
-    if !exr {
-        return Err(format!(
-            "--part {}/{} writes a part file: give it with -o PART.exr\n  help: e.g. -o part_{}.exr, then `stagelight merge part_*.exr -o image.png`",
-            number.index, number.count, number.index
-        ));
-    }
-    if let Some(message) = component_passes_in_part(number, split, scene) {
+    let diagnostic_flag = args.diagnostic.is_some();
+    if let Some(message) = stagelight::part_refusals::part_refusal(
+        &scene.world,
+        settings,
+        number,
+        split,
+        diagnostic_flag,
+    ) {
         return Err(message);
-    }
-    if split == Split::Samples && settings.adaptive.is_some() {
-        return Err("--split samples cannot divide adaptive sampling (a pixel's second pass depends on all of its first-pass samples)\n  help: use --split tiles, or a fixed count with --spp N".into());
     }
     Ok(PartRun {
         part: stagelight::farm::Part {
@@ -814,30 +819,6 @@ fn part_run(
         },
         scene: part_scene_name(&args.scene),
         scene_hash: stagelight::farm::scene_hash(&args.scene, scene.source_hash, &scene.world),
-    })
-}
-
-/// Tile parts carry the component passes of the pixels they own; a samples part would need
-/// exact component sums: the refusal of `--part … --split samples` for a camera output that
-/// asks for them.
-fn component_passes_in_part(
-    number: PartNumber,
-    split: Split,
-    scene: &LoadedScene,
-) -> Option<String> {
-    if split == Split::Tiles {
-        return None;
-    }
-    let view = stagelight::scene_view::render_view(&scene.world)?;
-    view.camera.outputs.iter().find_map(|o| {
-        let names: Vec<String> = (o.passes.iter())
-            .filter(|p| p.component().is_some())
-            .map(|p| format!("{p:?}"))
-            .collect();
-        (!names.is_empty()).then(|| format!(
-            "--part {}/{} --split samples cannot carry the component passes ({}) of {}\n  help: use --split tiles (the default), or leave them out of the farm render's outputs",
-            number.index, number.count, names.join(", "), o.path.display()
-        ))
     })
 }
 

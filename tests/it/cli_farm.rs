@@ -249,6 +249,18 @@ fn part_flags_are_checked() {
         stderr(&o),
         "error: --part 2/4 writes a part file: give it with -o PART.exr\n  help: e.g. -o part_2.exr, then `stagelight merge part_*.exr -o image.png`\n"
     );
+    // Whatever else `-o` could name, a part file is an EXR: said before the render formats.
+    for output in ["p.ron", "p.png"] {
+        let o = stagelight(
+            &dir,
+            &["render", "scene.ron", "--part", "1/3", "-o", output],
+        );
+        assert_eq!(o.status.code(), Some(2));
+        assert_eq!(
+            stderr(&o),
+            format!("error: --part 1/3 writes a part file, which is an OpenEXR file: -o {output} must end in .exr\n  help: e.g. -o part_1.exr, then `stagelight merge part_*.exr -o image.png`\n")
+        );
+    }
     let o = stagelight(
         &dir,
         &["render", "scene.ron", "--part", "5/4", "-o", "p.exr"],
