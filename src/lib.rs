@@ -15,6 +15,7 @@ pub mod components;
 pub mod contour;
 pub mod cpu_time;
 pub mod diagnostic;
+pub mod diagnostic_needs;
 pub mod diagnostic_view;
 pub mod exact_sum;
 pub mod farm;

@@ -711,6 +711,11 @@ fn render(args: RenderArgs) -> ExitCode {
     if args.diagnostic.is_some() {
         settings.diagnostic = args.diagnostic;
     }
+    if let Some(message) = stagelight::diagnostic_needs::missing(&settings) {
+        eprintln!("error: {message}");
+        let flagged = args.diagnostic.is_some() || args.integrator.is_some();
+        return ExitCode::from(if flagged { EXIT_USAGE } else { EXIT_ERROR });
+    }
     if let Some(number) = args.part {
         // A part file is an EXR whatever else `-o` could name: said before the formats a
         // render writes.

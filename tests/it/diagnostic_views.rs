@@ -203,6 +203,32 @@ fn the_cli_draws_the_grid_view() {
     );
 }
 
+/// The photon view without photon maps to show — none in the scene, or the path integrator,
+/// which builds none — is refused before anything runs (it rendered a black image, exit 0).
+#[test]
+fn the_cli_refuses_a_photon_view_without_photon_maps() {
+    let dir = scratch_dir("diagnostic-photon-refused");
+    std::fs::write(dir.join("plain.ron"), plane("None", 0.0)).unwrap();
+    std::fs::write(dir.join("ball.ron"), ball("None")).unwrap();
+    let refused = |args: &[&str], expected: &str| {
+        let o = run_in(&dir, args);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr_of(&o));
+        let e = stderr_of(&o);
+        assert!(e.starts_with(expected), "{args:?}: {e}");
+        assert!(e.contains("\n  help: "), "{args:?}: {e}");
+    };
+    let photon = ["--diagnostic", "photon:density:1000"];
+    refused(
+        &[&["render", "plain.ron"][..], &photon].concat(),
+        "error: the photon diagnostic shows the photon maps, but this scene builds none",
+    );
+    refused(
+        &[&["render", "ball.ron", "--integrator", "path"][..], &photon].concat(),
+        "error: the photon diagnostic shows the photon maps, but the path integrator",
+    );
+    assert!(!dir.join("grid.png").exists() && !dir.join("ball.png").exists());
+}
+
 /// A diagnostic view cannot be divided into farm parts (the merge writes the shaded sums'
 /// beauty): `--part` with `--diagnostic` or the scene's `diagnostic` option is refused up
 /// front, with nothing written.
