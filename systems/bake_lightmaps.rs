@@ -283,8 +283,7 @@ fn baked_gltf(
     dir: &std::path::Path,
 ) -> Result<crate::image_io::PendingFile, StageError> {
     use crate::bake::gltf_out::{baked_glb, color_source, BakedColors, BakedTexture, TextureSlot};
-    let stem = source.file_stem().unwrap_or_default().to_string_lossy();
-    let path = dir.join(format!("{stem}.glb"));
+    let path = crate::bake::gltf_out::baked_glb_path(source, dir);
     let fail = |message: String| StageError::Write {
         path: path.clone(),
         message,
