@@ -213,8 +213,8 @@ struct FarmArgs {
     /// Slurm partition.
     #[arg(long)]
     partition: Option<String>,
-    /// CPUs (and worker threads) per part.
-    #[arg(long = "cpus-per-task", default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=4096))]
+    /// CPUs (and worker threads) per part (at most 1024, as `render --threads`).
+    #[arg(long = "cpus-per-task", default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=MAX_THREADS as i64))]
     cpus_per_task: u32,
     /// Memory per part, as Slurm writes it (e.g. 4G).
     #[arg(long)]
@@ -1010,9 +1010,8 @@ fn farm(args: FarmArgs) -> ExitCode {
         eprintln!("error: {} has no render camera", args.scene.display());
         return ExitCode::from(EXIT_ERROR);
     }
-    if args.split == SplitArg::Samples && scene.settings.adaptive.is_some() && args.spp.is_none() {
-        eprintln!("error: --split samples cannot divide adaptive sampling\n  help: use --split tiles, or a fixed count with --spp N");
-        return ExitCode::from(EXIT_USAGE);
+    if let Err(code) = farm_refusals(&args, &scene) {
+        return code;
     }
     // A render that traces photon maps gets a photon job before its array.
     let photons = !args.bake && {
@@ -1076,6 +1075,47 @@ fn farm(args: FarmArgs) -> ExitCode {
             ExitCode::from(EXIT_ERROR)
         }
     }
+}
+
+/// Refuses a farm job, before any script is written, that its parts or its merge job would
+/// refuse, with the messages `render --part` and `merge` give: a part that cannot be
+/// divided (a diagnostic view, `--split samples` of adaptive sampling or component passes),
+/// a merge output of no known format (`-o out.jpg`) and outputs that overwrite an input of
+/// the scene or each other.
+fn farm_refusals(args: &FarmArgs, scene: &LoadedScene) -> Result<(), ExitCode> {
+    let mut settings = scene.settings.clone();
+    if let Some(seed) = args.seed {
+        settings.seed = seed;
+    }
+    if let Some(spp) = args.spp {
+        settings.spp = spp;
+        settings.adaptive = None;
+    }
+    let mut frame = Frame::new(settings);
+    if args.bake {
+        frame.inputs.tasks = Tasks {
+            render: false,
+            bake: true,
+        };
+        if let Some(dir) = &args.output {
+            frame.inputs.bake_dir = dir.clone();
+        }
+    } else {
+        let number = PartNumber {
+            index: 1,
+            count: args.parts,
+        };
+        let split = args.split.split();
+        let settings = &frame.inputs.settings;
+        if let Some(message) =
+            stagelight::part_refusals::part_refusal(&scene.world, settings, number, split, false)
+        {
+            eprintln!("error: {message}");
+            return Err(ExitCode::from(EXIT_USAGE));
+        }
+        frame.inputs.outputs = checked_overrides(args.output.clone(), &scene.world)?;
+    }
+    check_outputs(&args.scene, scene, &frame.inputs, None)
 }
 
 fn bake(args: BakeArgs) -> ExitCode {
