@@ -185,7 +185,7 @@ fn mismatched_missing_duplicate_and_damaged_parts_are_refused_with_nothing_writt
     );
     refused(
         &["merge", "part_2.exr", "-o", "out.png"],
-        "error: missing part 1/2\n  help: re-run `stagelight render --part K/2` for it (or resubmit those array indices)\nnothing written\n",
+        "error: missing part 1/2\n  help: re-run `stagelight render --part 1/2` (or resubmit array index 1)\nnothing written\n",
     );
     refused(
         &["merge", "part_1.exr", "part_2.exr", "part_1.exr", "-o", "out.png"],

@@ -251,7 +251,7 @@ fn cli_merge_refuses_incomplete_mixed_and_damaged_bake_parts_and_writes_nothing(
     };
     refused(
         &["merge", "a/bake_part_2_of_2.exr", "-o", "out"],
-        "error: missing part 1/2\n  help: re-run `stagelight bake --part K/2` for it (or resubmit those array indices)\nnothing written\n",
+        "error: missing part 1/2\n  help: re-run `stagelight bake --part 1/2` (or resubmit array index 1)\nnothing written\n",
     );
     refused(
         &["merge", "a/bake_part_1_of_2.exr", "a/bake_part_1_of_2.exr", "a/bake_part_2_of_2.exr", "-o", "out"],
