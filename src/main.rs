@@ -1292,6 +1292,7 @@ fn sweep(args: SweepArgs) -> ExitCode {
             eprintln!("{e}");
             return ExitCode::from(match &e {
                 stagelight::sweep::SweepError::Stage(s) => s.exit_code(),
+                stagelight::sweep::SweepError::Crop(_) => EXIT_USAGE,
                 _ => EXIT_ERROR,
             });
         }
