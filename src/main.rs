@@ -213,8 +213,8 @@ struct FarmArgs {
     /// Slurm partition.
     #[arg(long)]
     partition: Option<String>,
-    /// CPUs (and worker threads) per part.
-    #[arg(long = "cpus-per-task", default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=4096))]
+    /// CPUs (and worker threads) per part (at most 1024, as `render --threads`).
+    #[arg(long = "cpus-per-task", default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=MAX_THREADS as i64))]
     cpus_per_task: u32,
     /// Memory per part, as Slurm writes it (e.g. 4G).
     #[arg(long)]
@@ -711,6 +711,21 @@ fn render(args: RenderArgs) -> ExitCode {
     if args.diagnostic.is_some() {
         settings.diagnostic = args.diagnostic;
     }
+    if let Some(message) = stagelight::diagnostic_needs::missing(&settings) {
+        eprintln!("error: {message}");
+        let flagged = args.diagnostic.is_some() || args.integrator.is_some();
+        return ExitCode::from(if flagged { EXIT_USAGE } else { EXIT_ERROR });
+    }
+    if let Some(number) = args.part {
+        // A part file is an EXR whatever else `-o` could name: said before the formats a
+        // render writes.
+        if let Err(message) =
+            stagelight::part_refusals::part_file_output(number, args.output.as_deref())
+        {
+            eprintln!("error: {message}");
+            return ExitCode::from(EXIT_USAGE);
+        }
+    }
     let overrides = match checked_overrides(args.output.clone(), &scene.world) {
         Ok(o) => o,
         Err(code) => return code,
@@ -782,7 +797,8 @@ fn photons(args: PhotonsArgs) -> ExitCode {
     run_and_report(&args.scene, &mut scene, frame, args.stats, None)
 }
 
-/// The part a `render --part K/N` run computes, after checking the flags that go with it.
+/// The part a `render --part K/N` run computes, after checking the flags that go with it
+/// (its `-o PART.exr` is checked before).
 fn part_run(
     args: &RenderArgs,
     number: PartNumber,
@@ -790,21 +806,15 @@ fn part_run(
     settings: &stagelight::settings::RenderSettings,
 ) -> Result<PartRun, String> {
     let split = args.split.split();
-    let exr = args
-        .output
-        .as_ref()
-        .is_some_and(|o| o.extension().is_some_and(|e| e.eq_ignore_ascii_case("exr")));
-    if !exr {
-        return Err(format!(
-            "--part {}/{} writes a part file: give it with -o PART.exr\n  help: e.g. -o part_{}.exr, then `stagelight merge part_*.exr -o image.png`",
-            number.index, number.count, number.index
-        ));
-    }
-    if let Some(message) = component_passes_in_part(number, split, scene) {
+    let diagnostic_flag = args.diagnostic.is_some();
+    if let Some(message) = stagelight::part_refusals::part_refusal(
+        &scene.world,
+        settings,
+        number,
+        split,
+        diagnostic_flag,
+    ) {
         return Err(message);
-    }
-    if split == Split::Samples && settings.adaptive.is_some() {
-        return Err("--split samples cannot divide adaptive sampling (a pixel's second pass depends on all of its first-pass samples)\n  help: use --split tiles, or a fixed count with --spp N".into());
     }
     Ok(PartRun {
         part: stagelight::farm::Part {
@@ -814,30 +824,6 @@ fn part_run(
         },
         scene: part_scene_name(&args.scene),
         scene_hash: stagelight::farm::scene_hash(&args.scene, scene.source_hash, &scene.world),
-    })
-}
-
-/// Tile parts carry the component passes of the pixels they own; a samples part would need
-/// exact component sums: the refusal of `--part … --split samples` for a camera output that
-/// asks for them.
-fn component_passes_in_part(
-    number: PartNumber,
-    split: Split,
-    scene: &LoadedScene,
-) -> Option<String> {
-    if split == Split::Tiles {
-        return None;
-    }
-    let view = stagelight::scene_view::render_view(&scene.world)?;
-    view.camera.outputs.iter().find_map(|o| {
-        let names: Vec<String> = (o.passes.iter())
-            .filter(|p| p.component().is_some())
-            .map(|p| format!("{p:?}"))
-            .collect();
-        (!names.is_empty()).then(|| format!(
-            "--part {}/{} --split samples cannot carry the component passes ({}) of {}\n  help: use --split tiles (the default), or leave them out of the farm render's outputs",
-            number.index, number.count, names.join(", "), o.path.display()
-        ))
     })
 }
 
@@ -886,7 +872,12 @@ fn merge(args: MergeArgs) -> ExitCode {
         Ok(o) => o,
         Err(code) => return code,
     };
-    let mut frame = Frame::new(scene.settings.clone());
+    let mut settings = scene.settings.clone();
+    // Contours and the geometry stages run again in the merge: with the parts' `--disable`.
+    if let Some(recorded) = header.recorded {
+        recorded.apply(&mut settings);
+    }
+    let mut frame = Frame::new(settings);
     frame.inputs.outputs = overrides;
     frame.inputs.merged_image = Some(image);
     run_and_report(&scene_path, &mut scene, frame, args.stats, None)
@@ -978,9 +969,17 @@ fn merge_bake(args: MergeArgs) -> ExitCode {
     };
     let mut settings = scene.settings.clone();
     settings.seed = header.seed;
+    if let Some(recorded) = header.recorded {
+        recorded.apply(&mut settings);
+    }
     if stagelight::farm::settings_hash(&settings) != header.settings_hash {
+        let why = if header.recorded.is_some() {
+            "(written by another stagelight version?)"
+        } else {
+            "(an --integrator override, which parts of this older format do not record?)"
+        };
         eprintln!(
-            "error: the parts were baked with other settings than {} has now (an --integrator override?)\n  help: bake the parts again without overrides\nnothing written",
+            "error: the parts were baked with other settings than {} gives {why}\n  help: bake the parts again with this stagelight\nnothing written",
             scene_path.display()
         );
         return ExitCode::from(EXIT_ERROR);
@@ -1011,9 +1010,8 @@ fn farm(args: FarmArgs) -> ExitCode {
         eprintln!("error: {} has no render camera", args.scene.display());
         return ExitCode::from(EXIT_ERROR);
     }
-    if args.split == SplitArg::Samples && scene.settings.adaptive.is_some() && args.spp.is_none() {
-        eprintln!("error: --split samples cannot divide adaptive sampling\n  help: use --split tiles, or a fixed count with --spp N");
-        return ExitCode::from(EXIT_USAGE);
+    if let Err(code) = farm_refusals(&args, &scene) {
+        return code;
     }
     // A render that traces photon maps gets a photon job before its array.
     let photons = !args.bake && {
@@ -1077,6 +1075,47 @@ fn farm(args: FarmArgs) -> ExitCode {
             ExitCode::from(EXIT_ERROR)
         }
     }
+}
+
+/// Refuses a farm job, before any script is written, that its parts or its merge job would
+/// refuse, with the messages `render --part` and `merge` give: a part that cannot be
+/// divided (a diagnostic view, `--split samples` of adaptive sampling or component passes),
+/// a merge output of no known format (`-o out.jpg`) and outputs that overwrite an input of
+/// the scene or each other.
+fn farm_refusals(args: &FarmArgs, scene: &LoadedScene) -> Result<(), ExitCode> {
+    let mut settings = scene.settings.clone();
+    if let Some(seed) = args.seed {
+        settings.seed = seed;
+    }
+    if let Some(spp) = args.spp {
+        settings.spp = spp;
+        settings.adaptive = None;
+    }
+    let mut frame = Frame::new(settings);
+    if args.bake {
+        frame.inputs.tasks = Tasks {
+            render: false,
+            bake: true,
+        };
+        if let Some(dir) = &args.output {
+            frame.inputs.bake_dir = dir.clone();
+        }
+    } else {
+        let number = PartNumber {
+            index: 1,
+            count: args.parts,
+        };
+        let split = args.split.split();
+        let settings = &frame.inputs.settings;
+        if let Some(message) =
+            stagelight::part_refusals::part_refusal(&scene.world, settings, number, split, false)
+        {
+            eprintln!("error: {message}");
+            return Err(ExitCode::from(EXIT_USAGE));
+        }
+        frame.inputs.outputs = checked_overrides(args.output.clone(), &scene.world)?;
+    }
+    check_outputs(&args.scene, scene, &frame.inputs, None)
 }
 
 fn bake(args: BakeArgs) -> ExitCode {
@@ -1253,6 +1292,7 @@ fn sweep(args: SweepArgs) -> ExitCode {
             eprintln!("{e}");
             return ExitCode::from(match &e {
                 stagelight::sweep::SweepError::Stage(s) => s.exit_code(),
+                stagelight::sweep::SweepError::Crop(_) => EXIT_USAGE,
                 _ => EXIT_ERROR,
             });
         }

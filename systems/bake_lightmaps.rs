@@ -249,6 +249,9 @@ fn part_file(
             scene: run.scene.clone(),
             scene_hash: run.scene_hash,
             settings_hash: crate::farm::settings_hash(settings),
+            recorded: Some(crate::farm::recorded_settings::RecordedSettings::of(
+                settings,
+            )),
             seed: settings.seed,
             part: run.part,
             width: 0,
@@ -280,8 +283,7 @@ fn baked_gltf(
     dir: &std::path::Path,
 ) -> Result<crate::image_io::PendingFile, StageError> {
     use crate::bake::gltf_out::{baked_glb, color_source, BakedColors, BakedTexture, TextureSlot};
-    let stem = source.file_stem().unwrap_or_default().to_string_lossy();
-    let path = dir.join(format!("{stem}.glb"));
+    let path = crate::bake::gltf_out::baked_glb_path(source, dir);
     let fail = |message: String| StageError::Write {
         path: path.clone(),
         message,

@@ -188,6 +188,13 @@ fn source_json(bytes: &[u8]) -> Result<Value, String> {
     serde_json::from_slice(text).map_err(|e| format!("invalid glTF JSON: {e}"))
 }
 
+/// Where `bake --write-gltf` writes the baked copy of the glTF scene `source`:
+/// `<dir>/<stem>.glb`.
+pub fn baked_glb_path(source: &std::path::Path, dir: &std::path::Path) -> std::path::PathBuf {
+    let stem = source.file_stem().unwrap_or_default().to_string_lossy();
+    dir.join(format!("{stem}.glb"))
+}
+
 /// The baked copy of the glTF file at `source` (read again; its buffers beside it) as GLB
 /// bytes, with `textures` referenced by the materials and `colors` as the baked
 /// primitives' `COLOR_0`.

@@ -1,7 +1,7 @@
 //! The bake part file: one `bake --part K/N` run's texels as a multi-layer OpenEXR file.
 //! Layer `r.m` holds image `m` of request `r` before dilation (`R`, `G`, `B` as f32, `valid`
 //! as u32 0/1); the first layer carries the metadata shared with render parts (format,
-//! version, scene, content and settings hashes, seed, K/N) plus, per request, its name,
+//! version, scene, content and settings hashes, recorded settings, seed, K/N) plus, per request, its name,
 //! image count, rays and invalid texels, and a checksum of all texel data — as `key value`
 //! lines of one text attribute (`super::exr_meta`).
 
@@ -11,11 +11,16 @@ use glam::Vec3;
 use super::bake_part::{BakePartFile, BakePartRequest, LoadedBakePart};
 use super::part::Split;
 use super::part_file::{hex, unhex, Entries, PartHeader};
+use super::recorded_settings::RecordedSettings;
 use crate::bake::TexelImage;
 use crate::hash::Fnv64;
 
 /// The `format` entry of a bake part's metadata.
-pub const FORMAT: &str = "stagelight bake part 1";
+pub const FORMAT: &str = "stagelight bake part 2";
+
+/// The format before the recorded settings (`disable`, `integrator`): still read, as
+/// recording none.
+pub const FORMAT_WITHOUT_SETTINGS: &str = "stagelight bake part 1";
 
 /// FNV-1a over every request's counters and texels: the `payload` entry.
 fn payload_hash(requests: &[BakePartRequest]) -> u64 {
@@ -88,16 +93,30 @@ fn header_attributes(
     h: &PartHeader,
     requests: &[BakePartRequest],
 ) {
+    // A header without recorded settings is one read from an older file: written back in
+    // that file's format.
+    let format = match h.recorded {
+        Some(_) => FORMAT,
+        None => FORMAT_WITHOUT_SETTINGS,
+    };
     let mut pairs: Vec<(String, String)> = vec![
-        ("format".into(), FORMAT.into()),
+        ("format".into(), format.into()),
         ("version".into(), h.version.clone()),
         ("scene".into(), hex(h.scene.as_bytes())),
         ("scene_hash".into(), format!("{:016x}", h.scene_hash)),
         ("settings_hash".into(), format!("{:016x}", h.settings_hash)),
+    ];
+    pairs.extend(
+        h.recorded
+            .map(RecordedSettings::entries)
+            .into_iter()
+            .flatten(),
+    );
+    pairs.extend([
         ("seed".into(), h.seed.to_string()),
         ("part".into(), format!("{}/{}", h.part.index, h.part.count)),
         ("requests".into(), requests.len().to_string()),
-    ];
+    ]);
     for (r, request) in requests.iter().enumerate() {
         pairs.push((
             format!("request.{r}"),
@@ -114,12 +133,15 @@ fn header_attributes(
     super::exr_meta::put(attributes, &pairs);
 }
 
-/// Whether this EXR metadata names the bake part format.
+/// Whether this EXR metadata names a bake part format (this one or the older one).
 fn names_bake_format(meta: &exr::meta::MetaData) -> bool {
     meta.headers
         .first()
         .and_then(super::exr_meta::read_header)
-        .is_some_and(|m| m.get("format").is_some_and(|f| f == FORMAT))
+        .is_some_and(|m| {
+            m.get("format")
+                .is_some_and(|f| f == FORMAT || f == FORMAT_WITHOUT_SETTINGS)
+        })
 }
 
 /// Whether `bytes` are a bake part file (an EXR whose metadata names this format).
@@ -181,7 +203,7 @@ pub fn decode(bytes: &[u8]) -> std::result::Result<BakePartFile, String> {
     let attrs = super::exr_meta::read(&first.attributes)
         .ok_or("not a stagelight bake part file (no `stagelight` attribute)")?;
     let entries = Entries::new(attrs, "bake part file");
-    let header = entries.header(FORMAT, Split::Tiles, 0, 0)?;
+    let header = entries.header(FORMAT, FORMAT_WITHOUT_SETTINGS, Split::Tiles, 0, 0)?;
     let get = |key: &str| entries.get(key);
     let bad = |key: &str| entries.bad(key);
     let count: usize = get("requests")?.parse().map_err(|_| bad("requests"))?;
@@ -270,6 +292,10 @@ mod tests {
                 scene: "scènes/bake.ron".into(),
                 scene_hash: 0xfeed,
                 settings_hash: 3,
+                recorded: Some(RecordedSettings {
+                    disabled: crate::features::Features::NONE,
+                    integrator: crate::settings::Integrator::Path,
+                }),
                 seed: 9,
                 part: Part {
                     index: 2,
@@ -300,6 +326,16 @@ mod tests {
     fn round_trips_every_field_and_is_recognised() {
         let part = sample();
         let bytes = encode(&part).unwrap();
+        assert!(is_bake_part(&bytes));
+        assert_eq!(decode(&bytes).unwrap(), part);
+    }
+
+    #[test]
+    fn files_of_the_format_without_recorded_settings_are_read_and_recognised() {
+        let mut part = sample();
+        part.header.recorded = None;
+        let bytes = encode(&part).unwrap();
+        assert!(String::from_utf8_lossy(&bytes).contains("format stagelight bake part 1\n"));
         assert!(is_bake_part(&bytes));
         assert_eq!(decode(&bytes).unwrap(), part);
     }

@@ -121,25 +121,45 @@ pub fn check_headers(parts: &[(&Path, &PartHeader)], command: &str) -> Result<()
         }
         *slot = Some(path);
     }
-    let missing: Vec<String> = seen
-        .iter()
-        .enumerate()
-        .filter(|(_, s)| s.is_none())
-        .map(|(k, _)| format!("{}/{count}", k + 1))
+    let missing: Vec<u32> = (1..=count)
+        .filter(|k| seen[(k - 1) as usize].is_none())
         .collect();
     if !missing.is_empty() {
-        let shown = if missing.len() > 10 {
-            format!("{} … ({} parts)", missing[..10].join(", "), missing.len())
-        } else {
-            missing.join(", ")
-        };
-        return Err(format!(
-            "missing part{} {shown}\n  help: re-run `stagelight {command} --part K/{count}` for {} (or resubmit those array indices)",
-            if missing.len() == 1 { "" } else { "s" },
-            if missing.len() == 1 { "it" } else { "them" }
-        ));
+        return Err(missing_parts(&missing, count, command));
     }
     Ok(())
+}
+
+/// The refusal of a set without the parts `missing` (in order) of `count`, naming them in
+/// the re-run command and as array indices.
+fn missing_parts(missing: &[u32], count: u32, command: &str) -> String {
+    const SHOWN: usize = 10;
+    let list = |sep: &str, form: &dyn Fn(u32) -> String| {
+        let shown: Vec<String> = missing.iter().take(SHOWN).map(|&k| form(k)).collect();
+        let more = if missing.len() > SHOWN {
+            format!("{sep}…")
+        } else {
+            String::new()
+        };
+        format!("{}{more}", shown.join(sep))
+    };
+    let parts = list(", ", &|k| format!("{k}/{count}"));
+    if let [k] = missing {
+        return format!(
+            "missing part {parts}\n  help: re-run `stagelight {command} --part {k}/{count}` (or resubmit array index {k})"
+        );
+    }
+    let total = if missing.len() > SHOWN {
+        format!(" ({} parts)", missing.len())
+    } else {
+        String::new()
+    };
+    let numbers = |sep: &str| list(sep, &|k| k.to_string());
+    format!(
+        "missing parts {parts}{total}\n  help: re-run `stagelight {command} --part K/{count}` for K = {} (or resubmit array indices {})",
+        numbers(", "),
+        numbers(",")
+    )
 }
 
 /// Merges a complete set of parts into frame buffers (see the module header).
@@ -193,4 +213,31 @@ pub fn merge(parts: &[LoadedPart]) -> Result<FrameBuffers, String> {
     }
     fb.components = total.components;
     Ok(fb)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::missing_parts;
+
+    #[test]
+    fn missing_parts_are_named_in_the_rerun_command() {
+        assert_eq!(
+            missing_parts(&[3], 5, "render"),
+            "missing part 3/5\n  help: re-run `stagelight render --part 3/5` (or resubmit array index 3)"
+        );
+        assert_eq!(
+            missing_parts(&[2, 4], 5, "bake"),
+            "missing parts 2/5, 4/5\n  help: re-run `stagelight bake --part K/5` for K = 2, 4 (or resubmit array indices 2,4)"
+        );
+        let many: Vec<u32> = (1..=12).collect();
+        let e = missing_parts(&many, 12, "render");
+        assert!(
+            e.starts_with("missing parts 1/12, 2/12, 3/12, 4/12, 5/12, 6/12, 7/12, 8/12, 9/12, 10/12, … (12 parts)\n"),
+            "{e}"
+        );
+        assert!(
+            e.ends_with("for K = 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, … (or resubmit array indices 1,2,3,4,5,6,7,8,9,10,…)"),
+            "{e}"
+        );
+    }
 }

@@ -14,6 +14,7 @@ pub mod exr_meta;
 pub mod merge;
 pub mod part;
 pub mod part_file;
+pub mod recorded_settings;
 pub mod slurm;
 
 use std::sync::Arc;
@@ -92,6 +93,7 @@ pub fn part_file(
             scene: run.scene.clone(),
             scene_hash: run.scene_hash,
             settings_hash: settings_hash(settings),
+            recorded: Some(recorded_settings::RecordedSettings::of(settings)),
             seed: settings.seed,
             part: run.part,
             width: fb.width,

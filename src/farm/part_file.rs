@@ -1,9 +1,10 @@
 //! The part file: one farm part's results as an OpenEXR file that holds exactly what an
 //! exact merge needs — per pixel the exact sample sums ([`ExactSum`] limbs as `u32` words),
 //! the sample, coverage and dropped counts, and the centre-sample passes — plus metadata
-//! (format, stagelight version, scene, scene content hash, settings hash, seed, part K/N,
-//! split) as `key value` lines of one EXR text attribute (`super::exr_meta`), and a hash of
-//! the pixel data that catches a damaged file.
+//! (format, stagelight version, scene, scene content hash, settings hash, the recorded
+//! settings of `super::recorded_settings`, seed, part K/N, split) as `key value` lines of one
+//! EXR text attribute (`super::exr_meta`), and a hash of the pixel data that catches a
+//! damaged file.
 
 use std::collections::HashMap;
 
@@ -11,11 +12,16 @@ use exr::prelude::*;
 use glam::Vec3;
 
 use super::part::{Part, Split};
+use super::recorded_settings::RecordedSettings;
 use crate::exact_sum::{ExactSum, LIMBS};
 use crate::hash::Fnv64;
 
 /// The `format` entry of the metadata.
-pub const FORMAT: &str = "stagelight part 2";
+pub const FORMAT: &str = "stagelight part 3";
+
+/// The format before the recorded settings (`disable`, `integrator`): still read, as
+/// recording none.
+pub const FORMAT_WITHOUT_SETTINGS: &str = "stagelight part 2";
 
 /// Everything about a part except its pixels.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -28,6 +34,9 @@ pub struct PartHeader {
     pub scene_hash: u64,
     /// Hash of the effective render settings (scene options plus command-line overrides).
     pub settings_hash: u64,
+    /// The settings the merge applies (`None`: a file of the older format, which records
+    /// none; the merge uses the scene's).
+    pub recorded: Option<RecordedSettings>,
     /// The seed.
     pub seed: u64,
     /// Which part this is.
@@ -212,20 +221,28 @@ impl Entries {
         u64::from_str_radix(&self.get(key)?, 16).map_err(|_| self.bad(key))
     }
 
-    /// The header shared by render and bake parts, after checking the format is `format`.
+    /// The header shared by render and bake parts, after checking the format is `format`
+    /// or the older `without_settings` (which records no settings).
     pub(super) fn header(
         &self,
         format: &str,
+        without_settings: &str,
         split: Split,
         width: u32,
         height: u32,
     ) -> std::result::Result<PartHeader, String> {
         let found = self.get("format")?;
-        if found != format {
+        if found != format && found != without_settings {
             return Err(format!(
                 "part file format \"{found}\" is not \"{format}\" (written by another stagelight version?)"
             ));
         }
+        let recorded = if found == format {
+            let (disable, integrator) = (self.get("disable")?, self.get("integrator")?);
+            Some(RecordedSettings::parse(&disable, &integrator).map_err(|key| self.bad(key))?)
+        } else {
+            None
+        };
         let scene = unhex(&self.get("scene")?)
             .and_then(|b| String::from_utf8(b).ok())
             .ok_or_else(|| self.bad("scene"))?;
@@ -236,6 +253,7 @@ impl Entries {
             scene,
             scene_hash: self.hex64("scene_hash")?,
             settings_hash: self.hex64("settings_hash")?,
+            recorded,
             seed: self.get("seed")?.parse().map_err(|_| self.bad("seed"))?,
             part: Part {
                 index: number.index,
@@ -260,20 +278,37 @@ pub fn encode(part: &PartFile) -> std::result::Result<Vec<u8>, String> {
         channels.push(AnyChannel::new(name.as_str(), FlatSamples::F32(values)));
     }
     let mut attributes = LayerAttributes::default();
-    let pairs: Vec<(String, String)> = [
-        ("format", FORMAT.to_string()),
+    // A header without recorded settings is one read from an older file: written back in
+    // that file's format.
+    let format = match h.recorded {
+        Some(_) => FORMAT,
+        None => FORMAT_WITHOUT_SETTINGS,
+    };
+    let mut pairs: Vec<(String, String)> = [
+        ("format", format.to_string()),
         ("version", h.version.clone()),
         ("scene", hex(h.scene.as_bytes())),
         ("scene_hash", format!("{:016x}", h.scene_hash)),
         ("settings_hash", format!("{:016x}", h.settings_hash)),
-        ("seed", h.seed.to_string()),
-        ("part", format!("{}/{}", h.part.index, h.part.count)),
-        ("split", h.part.split.name().into()),
-        ("payload", format!("{:016x}", payload_hash(p))),
     ]
     .into_iter()
     .map(|(k, v)| (k.to_string(), v))
     .collect();
+    pairs.extend(
+        h.recorded
+            .map(RecordedSettings::entries)
+            .into_iter()
+            .flatten(),
+    );
+    pairs.extend(
+        [
+            ("seed", h.seed.to_string()),
+            ("part", format!("{}/{}", h.part.index, h.part.count)),
+            ("split", h.part.split.name().into()),
+            ("payload", format!("{:016x}", payload_hash(p))),
+        ]
+        .map(|(k, v)| (k.to_string(), v)),
+    );
     super::exr_meta::put(&mut attributes, &pairs);
     let layer = Layer::new(
         (h.width as usize, h.height as usize),
@@ -310,6 +345,7 @@ pub fn decode(bytes: &[u8]) -> std::result::Result<PartFile, String> {
     let size = layer.size;
     let mut header = entries.header(
         FORMAT,
+        FORMAT_WITHOUT_SETTINGS,
         Split::Tiles,
         size.width() as u32,
         size.height() as u32,
@@ -397,6 +433,10 @@ mod tests {
                 scene: "scènes/a.ron".into(),
                 scene_hash: 0xdead_beef,
                 settings_hash: 7,
+                recorded: Some(RecordedSettings {
+                    disabled: crate::features::Features::parse_list("lens,output").unwrap(),
+                    integrator: crate::settings::Integrator::Path,
+                }),
                 seed: 42,
                 part: Part {
                     index: 2,
@@ -419,6 +459,17 @@ mod tests {
         for _ in 0..4 {
             assert!(encode(&part).unwrap() == bytes);
         }
+    }
+
+    #[test]
+    fn files_of_the_format_without_recorded_settings_are_read() {
+        let mut part = sample();
+        part.header.recorded = None;
+        let bytes = encode(&part).unwrap();
+        let text = String::from_utf8_lossy(&bytes);
+        assert!(text.contains("format stagelight part 2\n"));
+        assert!(!text.contains("\ndisable "));
+        assert_eq!(decode(&bytes).unwrap(), part);
     }
 
     #[test]

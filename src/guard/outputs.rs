@@ -4,7 +4,8 @@
 //! The inputs are the scene file, its includes and every file a scene names outside its
 //! outputs (meshes, textures, environment maps, displacement maps); the outputs are the
 //! render camera's files (after `-o`), the bake files of every request (in the bake
-//! directory) and `--stats-json`. Two paths are the same file when they name the same
+//! directory), a bake part's file (`bake --part`), the glTF copy of `bake --write-gltf` and
+//! `--stats-json`. Two paths are the same file when they name the same
 //! directory entry: both are compared absolute, through the real (symlink-free) parent
 //! directory where it exists.
 
@@ -69,6 +70,9 @@ pub fn planned_outputs(
             }
         }
     }
+    if inputs.tasks.bake {
+        out.extend(bake_run_files(inputs));
+    }
     if inputs.tasks.render && !inputs.outputs.discard {
         let camera = world
             .query::<(&Camera, &RenderCamera, Option<&Name>, Option<&SourceLink>)>()
@@ -108,6 +112,27 @@ pub fn planned_outputs(
         out.push(PlannedOutput {
             path: path.to_path_buf(),
             origin: Origin::Flag("--stats-json"),
+        });
+    }
+    out
+}
+
+/// The files a bake writes besides its requests' textures because of its flags: the part
+/// file of `bake --part K/N` and the glTF copy of `bake --write-gltf`, both in the bake
+/// directory.
+fn bake_run_files(inputs: &RunInputs) -> Vec<PlannedOutput> {
+    let mut out = Vec::new();
+    if let (Some(run), false) = (&inputs.part, inputs.tasks.render) {
+        let name = crate::farm::bake_part::part_file_name(run.part.index, run.part.count);
+        out.push(PlannedOutput {
+            path: inputs.bake_dir.join(name),
+            origin: Origin::Flag("--part"),
+        });
+    }
+    if let Some(source) = &inputs.write_gltf {
+        out.push(PlannedOutput {
+            path: crate::bake::gltf_out::baked_glb_path(source, &inputs.bake_dir),
+            origin: Origin::Flag("--write-gltf"),
         });
     }
     out

@@ -59,6 +59,9 @@ pub enum SweepError {
     /// A run failed.
     #[error("{0}")]
     Stage(#[from] StageError),
+    /// `--crop` lies outside the image the runs render (a usage error).
+    #[error("error: {0}")]
+    Crop(String),
     /// Reading or writing a file failed.
     #[error("error: {path}: {message}")]
     Io {
@@ -208,6 +211,24 @@ fn reference_cache(opts: &SweepOptions, scene: &LoadedScene) -> PathBuf {
     opts.out.join(format!("reference_{h:016x}.exr"))
 }
 
+/// Refuses a `--crop` outside the render camera's image before the reference is rendered.
+/// A given `--reference` (read at once) and a bake sweep's texture are checked once read.
+fn check_crop_fits_camera(opts: &SweepOptions, world: &World) -> Result<(), SweepError> {
+    let (Some(c), None, false) = (opts.crop, &opts.reference, opts.knob.is_bake()) else {
+        return Ok(());
+    };
+    let Some(view) = crate::scene_view::render_view(world) else {
+        return Ok(());
+    };
+    let (w, h) = (view.camera.width, view.camera.height);
+    if c.fits(w, h) {
+        return Ok(());
+    }
+    Err(SweepError::Crop(format!(
+        "the crop {c} (pixels [X0, X1) × [Y0, Y1)) does not fit the camera's {w}×{h} pixels\n  help: give X1 ≤ {w} and Y1 ≤ {h}"
+    )))
+}
+
 /// Runs the sweep and returns its summary (the caller writes the files).
 pub fn run_sweep(
     opts: &SweepOptions,
@@ -220,6 +241,7 @@ pub fn run_sweep(
         if opts.denoise && !opts.knob.is_bake() {
             return Err(KnobError::DenoiseNeedsBake(opts.knob.name()).into());
         }
+        check_crop_fits_camera(opts, &scene.world)?;
         reference_cache(opts, &scene)
     };
     // The output directory is made only once the reference is read (or rendered): a bad

@@ -198,3 +198,57 @@ fn bake_without_requests_is_an_error() {
         stderr(&o)
     );
 }
+
+/// `bake --part K/N` writes `DIR/bake_part_K_of_N.exr`: a `--stats-json` of that name is
+/// refused before anything runs, as other clashing outputs are (it failed after the bake
+/// with "file not found" and left the directory behind).
+#[test]
+fn a_stats_json_on_the_bake_part_file_is_refused_up_front() {
+    let dir = scratch("part-stats-clash");
+    write(
+        &dir.join("scene.ron"),
+        &scene("(resolution: (16, 16), outputs: [(kind: AmbientOcclusion(samples: 4))])"),
+    );
+    let o = run(bin().current_dir(&dir).args([
+        "bake",
+        "scene.ron",
+        "--part",
+        "1/2",
+        "-o",
+        "cj3",
+        "--stats-json",
+        "cj3/bake_part_1_of_2.exr",
+    ]));
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert_eq!(
+        stderr(&o),
+        "error: --stats-json cj3/bake_part_1_of_2.exr is also written by --part cj3/bake_part_1_of_2.exr\n  help: give every output its own file, and none the name of an input\n1 error in scene.ron; nothing rendered\n"
+    );
+    assert!(!dir.join("cj3").exists());
+}
+
+/// `bake X.glb --write-gltf` into the glb's own directory would overwrite the scene: refused
+/// before the first stage (exit 2), as other outputs that overwrite an input are (it was
+/// refused only after the whole bake, exit 1).
+#[test]
+fn write_gltf_over_the_source_glb_is_refused_before_baking() {
+    let dir = scratch("write-gltf-over-source");
+    let fixture = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/gltf/two_uv_sets.glb");
+    std::fs::copy(&fixture, dir.join("two_uv_sets.glb")).unwrap();
+    let o = run(bin()
+        .current_dir(&dir)
+        .args(["bake", "two_uv_sets.glb", "--write-gltf"]));
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    let e = stderr(&o);
+    assert!(
+        e.contains("error: --write-gltf ./two_uv_sets.glb would overwrite the scene file two_uv_sets.glb\n  help: "),
+        "{e}"
+    );
+    assert!(!e.contains("wrote"), "{e}");
+    let names: Vec<_> = std::fs::read_dir(&dir).unwrap().collect();
+    assert_eq!(names.len(), 1, "only the source is there");
+    assert_eq!(
+        std::fs::read(dir.join("two_uv_sets.glb")).unwrap(),
+        std::fs::read(&fixture).unwrap()
+    );
+}

@@ -185,7 +185,7 @@ fn mismatched_missing_duplicate_and_damaged_parts_are_refused_with_nothing_writt
     );
     refused(
         &["merge", "part_2.exr", "-o", "out.png"],
-        "error: missing part 1/2\n  help: re-run `stagelight render --part K/2` for it (or resubmit those array indices)\nnothing written\n",
+        "error: missing part 1/2\n  help: re-run `stagelight render --part 1/2` (or resubmit array index 1)\nnothing written\n",
     );
     refused(
         &["merge", "part_1.exr", "part_2.exr", "part_1.exr", "-o", "out.png"],
@@ -249,6 +249,18 @@ fn part_flags_are_checked() {
         stderr(&o),
         "error: --part 2/4 writes a part file: give it with -o PART.exr\n  help: e.g. -o part_2.exr, then `stagelight merge part_*.exr -o image.png`\n"
     );
+    // Whatever else `-o` could name, a part file is an EXR: said before the render formats.
+    for output in ["p.ron", "p.png"] {
+        let o = stagelight(
+            &dir,
+            &["render", "scene.ron", "--part", "1/3", "-o", output],
+        );
+        assert_eq!(o.status.code(), Some(2));
+        assert_eq!(
+            stderr(&o),
+            format!("error: --part 1/3 writes a part file, which is an OpenEXR file: -o {output} must end in .exr\n  help: e.g. -o part_1.exr, then `stagelight merge part_*.exr -o image.png`\n")
+        );
+    }
     let o = stagelight(
         &dir,
         &["render", "scene.ron", "--part", "5/4", "-o", "p.exr"],
@@ -393,4 +405,49 @@ fn a_texture_edited_after_the_parts_were_rendered_is_refused() {
         stderr(&o)
     );
     assert!(!dir.join("out.png").exists());
+}
+
+/// `farm` refuses what its parts or its merge job would refuse, with their messages and
+/// before it writes a script (the merge job failed only after every part had run): an `-o`
+/// of no known format, an `-o` that is an input of the scene, more CPUs per part than
+/// `render --threads` takes, and a diagnostic view, which parts cannot carry.
+#[test]
+fn farm_refuses_what_its_parts_or_merge_would_refuse_before_writing_scripts() {
+    let dir = setup("farm-refusals");
+    crate::common::png::write_rgb(&dir.join("t.png"), 2, 2, &[[200, 40, 40]; 4]);
+    let textured = SCENE.replace(
+        r#"shader: Lambert(albedo: (0.5, 0.5, 0.5))"#,
+        r#"shader: Lambert(albedo: (0.5, 0.5, 0.5)), bind: {"albedo": Image(file: "t.png")}"#,
+    );
+    std::fs::write(dir.join("textured.ron"), textured).unwrap();
+    let farm = |scene: &str, extra: &[&str]| {
+        let mut args = vec!["farm", scene, "--parts", "2", "--out", "job"];
+        args.extend_from_slice(extra);
+        let o = stagelight(&dir, &args);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
+        assert!(!dir.join("job").exists(), "{args:?} wrote scripts");
+        stderr(&o)
+    };
+    for (scene, output) in [("scene.ron", "out.jpg"), ("textured.ron", "t.png")] {
+        let render = stagelight(&dir, &["render", scene, "-o", output]);
+        assert_eq!(render.status.code(), Some(2));
+        assert_eq!(farm(scene, &["--spp", "1", "-o", output]), stderr(&render));
+    }
+    assert!(stderr(&stagelight(
+        &dir,
+        &["render", "textured.ron", "-o", "t.png"]
+    ))
+    .starts_with("error: -o t.png would overwrite an input of the scene t.png\n"));
+    let e = farm("scene.ron", &["--cpus-per-task", "2000"]);
+    assert!(e.contains("2000 is not in 1..=1024"), "{e}");
+    std::fs::write(
+        dir.join("samples.ron"),
+        SCENE.replace("samples: 3", "samples: 3, diagnostic: Samples"),
+    )
+    .unwrap();
+    let e = farm("samples.ron", &[]);
+    assert!(
+        e.starts_with("error: --part 1/2 cannot render a diagnostic view"),
+        "{e}"
+    );
 }

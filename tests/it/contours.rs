@@ -355,6 +355,46 @@ fn farm_parts_merge_into_the_same_contour_files() {
     let _ = std::fs::remove_dir_all(farm);
 }
 
+/// Parts rendered with `--disable output` merge into the files of a single render with that
+/// flag: the merge reads the switched-off features from the parts, so it draws no contour
+/// lines (it drew them, as if the parts had been rendered without the flag).
+#[test]
+fn parts_rendered_with_output_shaders_off_merge_without_contour_lines() {
+    let dir = scratch_dir("contours-disabled-farm");
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/assets/scenes/contours.ron"
+    ))
+    .unwrap()
+    .replace("resolution: (160, 120)", "resolution: (40, 30)")
+    .replace("samples: 4", "samples: 1");
+    std::fs::write(dir.join("contours.ron"), text).unwrap();
+    let (single, farm) = (dir.join("single"), dir.join("farm"));
+    for d in [&single, &farm] {
+        std::fs::create_dir_all(d).unwrap();
+    }
+    let ok = |d: &Path, args: &[&str]| {
+        let o = run_in(d, args);
+        assert!(o.status.success(), "{args:?}: {}", stderr_of(&o));
+    };
+    let scene = "../contours.ron";
+    ok(&single, &["render", scene, "--disable", "output"]);
+    for part in ["1/3", "2/3", "3/3"] {
+        let file = format!("part_{}.exr", &part[..1]);
+        let args = ["render", scene, "--disable", "output", "--part", part, "-o"];
+        ok(&farm, &[&args[..], &[&file]].concat());
+    }
+    ok(&farm, &["merge", "part_1.exr", "part_2.exr", "part_3.exr"]);
+    let svg = std::fs::read_to_string(single.join("contours.svg")).unwrap();
+    assert!(!svg.contains("<polygon"), "{svg}");
+    for name in ["contours.png", "contours.svg"] {
+        let a = std::fs::read(single.join(name)).unwrap();
+        let b = std::fs::read(farm.join(name)).unwrap();
+        assert!(a == b, "{name} differs after the merge");
+    }
+    let _ = std::fs::remove_dir_all(dir);
+}
+
 /// Loads `text`, expecting the errors (or, with `Ok`, the warnings) it reports.
 fn diagnostics(text: &str) -> Result<Vec<String>, String> {
     match load_scene_str(text, Path::new("bad.ron")) {

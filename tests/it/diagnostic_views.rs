@@ -202,3 +202,62 @@ fn the_cli_draws_the_grid_view() {
         stderr_of(&o)
     );
 }
+
+/// The photon view without photon maps to show — none in the scene, or the path integrator,
+/// which builds none — is refused before anything runs (it rendered a black image, exit 0).
+#[test]
+fn the_cli_refuses_a_photon_view_without_photon_maps() {
+    let dir = scratch_dir("diagnostic-photon-refused");
+    std::fs::write(dir.join("plain.ron"), plane("None", 0.0)).unwrap();
+    std::fs::write(dir.join("ball.ron"), ball("None")).unwrap();
+    let refused = |args: &[&str], expected: &str| {
+        let o = run_in(&dir, args);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr_of(&o));
+        let e = stderr_of(&o);
+        assert!(e.starts_with(expected), "{args:?}: {e}");
+        assert!(e.contains("\n  help: "), "{args:?}: {e}");
+    };
+    let photon = ["--diagnostic", "photon:density:1000"];
+    refused(
+        &[&["render", "plain.ron"][..], &photon].concat(),
+        "error: the photon diagnostic shows the photon maps, but this scene builds none",
+    );
+    refused(
+        &[&["render", "ball.ron", "--integrator", "path"][..], &photon].concat(),
+        "error: the photon diagnostic shows the photon maps, but the path integrator",
+    );
+    assert!(!dir.join("grid.png").exists() && !dir.join("ball.png").exists());
+}
+
+/// A diagnostic view cannot be divided into farm parts (the merge writes the shaded sums'
+/// beauty): `--part` with `--diagnostic` or the scene's `diagnostic` option is refused up
+/// front, with nothing written.
+#[test]
+fn the_cli_refuses_a_diagnostic_view_in_farm_parts() {
+    let dir = scratch_dir("diagnostic-part-refused");
+    std::fs::write(dir.join("scene.ron"), plane("None", 0.0)).unwrap();
+    std::fs::write(dir.join("samples.ron"), plane("Samples", 0.0)).unwrap();
+    let refused = |args: &[&str], source: &str| {
+        let o = run_in(&dir, args);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr_of(&o));
+        assert_eq!(
+            stderr_of(&o),
+            format!("error: --part 1/2 cannot render a diagnostic view ({source})\n  help: parts carry the shaded sums, which the merge turns into the beauty image, not the view; render the diagnostic view without --part\n"),
+            "{args:?}"
+        );
+        assert!(!dir.join("p.exr").exists(), "{args:?}");
+    };
+    let part = ["--part", "1/2", "-o", "p.exr"];
+    refused(
+        &[
+            &["render", "scene.ron", "--diagnostic", "samples"][..],
+            &part,
+        ]
+        .concat(),
+        "--diagnostic samples",
+    );
+    refused(
+        &[&["render", "samples.ron"][..], &part].concat(),
+        "the scene's `options: (diagnostic: …)` (samples)",
+    );
+}

@@ -132,7 +132,7 @@ fn a_part_alone_does_not_merge_and_names_the_missing_ones() {
     let e = merge(&[part(2)]).err().unwrap();
     assert_eq!(
         e,
-        "missing parts 1/3, 3/3\n  help: re-run `stagelight render --part K/3` for them (or resubmit those array indices)"
+        "missing parts 1/3, 3/3\n  help: re-run `stagelight render --part K/3` for K = 1, 3 (or resubmit array indices 1,3)"
     );
     let e = merge(&[part(1), part(2), part(2), part(3)]).err().unwrap();
     assert_eq!(

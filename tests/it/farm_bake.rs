@@ -209,6 +209,35 @@ fn cli_bake_parts_merge_into_the_single_bakes_files() {
     }
 }
 
+/// Parts baked with `--integrator path` record it, and the merge (which has no
+/// `--integrator`) bakes with it: the single path-traced bake's bytes. It refused them as
+/// "baked with other settings".
+#[test]
+fn cli_bake_parts_with_an_integrator_override_merge_into_the_single_bake() {
+    let dir = setup("integrator");
+    ok(
+        &dir,
+        &["bake", "scene.ron", "--integrator", "path", "-o", "single"],
+    );
+    bake_parts(&dir, 3, "parts", &["--integrator", "path"]);
+    let parts: Vec<String> = (1..=3)
+        .map(|k| format!("parts/bake_part_{k}_of_3.exr"))
+        .collect();
+    let mut args: Vec<&str> = vec!["merge"];
+    args.extend(parts.iter().map(String::as_str));
+    args.extend(["-o", "merged"]);
+    ok(&dir, &args);
+    let names = dir_names(&dir.join("single"));
+    assert_eq!(dir_names(&dir.join("merged")), names);
+    for name in &names {
+        assert!(
+            std::fs::read(dir.join("single").join(name)).unwrap()
+                == std::fs::read(dir.join("merged").join(name)).unwrap(),
+            "{name} differs"
+        );
+    }
+}
+
 #[test]
 fn cli_merge_refuses_incomplete_mixed_and_damaged_bake_parts_and_writes_nothing() {
     let dir = setup("refusals");
@@ -222,7 +251,7 @@ fn cli_merge_refuses_incomplete_mixed_and_damaged_bake_parts_and_writes_nothing(
     };
     refused(
         &["merge", "a/bake_part_2_of_2.exr", "-o", "out"],
-        "error: missing part 1/2\n  help: re-run `stagelight bake --part K/2` for it (or resubmit those array indices)\nnothing written\n",
+        "error: missing part 1/2\n  help: re-run `stagelight bake --part 1/2` (or resubmit array index 1)\nnothing written\n",
     );
     refused(
         &["merge", "a/bake_part_1_of_2.exr", "a/bake_part_1_of_2.exr", "a/bake_part_2_of_2.exr", "-o", "out"],

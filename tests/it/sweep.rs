@@ -348,3 +348,26 @@ fn an_edited_include_renders_a_new_reference() {
     assert!(!sweep(), "an edited include renders a new reference");
     assert!(sweep());
 }
+
+/// A `--crop` outside the camera's image is refused before the reference is rendered, as a
+/// usage error, leaving no output directory (it was refused after rendering the reference,
+/// which stayed in `--out`).
+#[test]
+fn a_crop_outside_the_camera_is_refused_before_the_reference_is_rendered() {
+    let (dir, scene) = setup("crop-outside");
+    let o = run(bin()
+        .arg("sweep")
+        .arg(&scene)
+        .args(["--knob", "spp=1,2", "--reference-spp", "1"])
+        .args(["--crop", "0,0,100,100"])
+        .arg("--out")
+        .arg(dir.join("o")));
+    let e = String::from_utf8_lossy(&o.stderr).into_owned();
+    assert_eq!(o.status.code(), Some(2), "{e}");
+    assert!(
+        e.contains("error: the crop 0,0,100,100 (pixels [X0, X1) × [Y0, Y1)) does not fit the camera's 64×48 pixels\n  help: give X1 ≤ 64 and Y1 ≤ 48"),
+        "{e}"
+    );
+    assert!(!e.contains("reference:"), "{e}");
+    assert!(!dir.join("o").exists());
+}
