@@ -88,6 +88,10 @@ const MALFORMED: &[(&str, &str)] = &[
         "tests/fixtures/rib/bad_paraboloid.rib:2:1: error: Paraboloid needs rmax > 0, 0 ≤ zmin < zmax and thetamax > 0, found 1 2 1 360",
     ),
     (
+        "bad_pixel_filter",
+        "tests/fixtures/rib/bad_pixel_filter.rib:2:24: error: PixelFilter width must be above 0 and at most 128 pixels, found 0\n  help: a width of 2 to 4 pixels is usual (`PixelFilter \"gaussian\" 2 2`)",
+    ),
+    (
         "bad_number",
         "tests/fixtures/rib/bad_number.rib:2:13: error: invalid number \"1.2.3\"",
     ),

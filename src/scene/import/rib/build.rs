@@ -581,8 +581,20 @@ impl Builder {
             }
             "PixelFilter" => {
                 let (f, pos) = a.string("filter")?;
-                let (xw, _) = a.num("xwidth")?;
+                let (xw, xw_pos) = a.num("xwidth")?;
                 let (yw, _) = a.num("ywidth")?;
+                // Checked here in RIB's terms (a width, at its token): the description's
+                // Gaussian has half of it as radius and a quarter as sigma.
+                let widest = 2.0 * crate::scene::validate::MAX_FILTER_RADIUS;
+                if !(xw > 0.0 && xw <= widest) && f != "box" {
+                    return Err(Problem::error(
+                        xw_pos,
+                        format!("PixelFilter width must be above 0 and at most {widest} pixels, found {xw}"),
+                    )
+                    .with_help(format!(
+                        "a width of 2 to 4 pixels is usual (`PixelFilter \"{f}\" 2 2`)"
+                    )));
+                }
                 if xw != yw {
                     problems.push(Problem::warning(
                         pos,
