@@ -187,6 +187,19 @@ fn an_unknown_mesh_name_lists_the_meshes() {
             "{DIR}/s.ron:2:48: error: invalid glTF file \"{DIR}/hierarchy.glb\": meshes: no mesh named \"teapot\"; the file holds \"tri\"\n  help: loaded for object \"thing\" at {DIR}/s.ron:2:48"
         )
     );
+    // An index past the file's meshes says so (it said "no mesh named").
+    let errors = stagelight::scene::load_scene_str(
+        &text.replace("teapot", "#9"),
+        &Path::new(DIR).join("s.ron"),
+    )
+    .err()
+    .expect("refused");
+    assert_eq!(
+        errors.0[0].to_string(),
+        format!(
+            "{DIR}/s.ron:2:48: error: invalid glTF file \"{DIR}/hierarchy.glb\": meshes: mesh \"#9\" is out of range: the file has one mesh (\"#0\"): \"tri\"\n  help: loaded for object \"thing\" at {DIR}/s.ron:2:48"
+        )
+    );
 }
 
 /// A RON scene that includes `hierarchy.glb` places the file's root group (`scene`) where it

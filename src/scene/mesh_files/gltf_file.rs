@@ -521,17 +521,24 @@ pub fn pick_mesh(doc: &gltf::Document, name: Option<&str>) -> Result<usize, Mesh
             ))
         }
     }
+    let held = meshes.iter().map(label).collect::<Vec<_>>().join(", ");
     if let Some(index) = name.strip_prefix('#').and_then(|i| i.parse::<usize>().ok()) {
         if index < meshes.len() {
             return Ok(index);
         }
+        let has = match meshes.len() {
+            0 => "no meshes".to_string(),
+            1 => format!("one mesh (\"#0\"): {held}"),
+            n => format!("{n} meshes (\"#0\" to \"#{}\"): {held}", n - 1),
+        };
+        return Err(element(
+            "meshes",
+            format!("mesh \"{name}\" is out of range: the file has {has}"),
+        ));
     }
     Err(element(
         "meshes",
-        format!(
-            "no mesh named \"{name}\"; the file holds {}",
-            meshes.iter().map(label).collect::<Vec<_>>().join(", ")
-        ),
+        format!("no mesh named \"{name}\"; the file holds {held}"),
     ))
 }
 
