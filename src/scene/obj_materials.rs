@@ -14,6 +14,7 @@
 //!   object and one instance per material, `<object>.<mtl name>`, each `Obj(file: …,
 //!   usemtl: "<mtl name>")` (faces before any `usemtl`: `<object>.default`).
 //! - An object that writes `material: "…"` keeps it on every face; its MTL files are not read.
+//! - `usemtl` in a file without `mtllib` is a warning at the first `usemtl`.
 //! - A `mtllib` file that cannot be read is a warning at the `mtllib` line naming the file; a
 //!   `usemtl` name no library defines (when every library was read) is a warning at its
 //!   first `usemtl`; their faces get the default material (when no face gets an MTL
@@ -91,6 +92,26 @@ fn expand_object(
     };
     let Some(faces) = data.materials else { return };
     if faces.libraries.is_empty() {
+        // `usemtl` names a material of a library the file never loads: said once, at the
+        // first `usemtl`, since its faces quietly get the default material.
+        if let Some(first) = faces.used.first() {
+            src.push_warning(
+                file,
+                Diagnostic {
+                    file: obj_path.clone(),
+                    line: first.line,
+                    column: first.column,
+                    message: format!(
+                        "usemtl \"{}\" but the file loads no material library (mtllib); its faces use the default material",
+                        first.name
+                    ),
+                    help: Some(format!(
+                        "add `mtllib FILE.mtl` to the OBJ, or give object \"{}\" a `material`",
+                        object.name
+                    )),
+                },
+            );
+        }
         return;
     }
     let at = format!("objects[{i}].mesh.Obj.file");

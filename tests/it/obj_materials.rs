@@ -565,3 +565,26 @@ fn an_mtl_material_named_like_a_scene_material_is_an_error_at_the_object() {
         )
     );
 }
+
+/// `usemtl` in an OBJ that loads no material library is a warning at the first `usemtl`
+/// (its faces quietly got the default material).
+#[test]
+fn usemtl_without_a_library_is_a_warning() {
+    let obj_text = TWO_QUADS.replace("mtllib paint.mtl\n", "");
+    let dir = dir_with("obj_usemtl_no_lib", &[("quads.obj", &obj_text)]);
+    let scene = load(&dir, r#"(name: "quads", mesh: Obj(file: "quads.obj"))"#).unwrap();
+    assert_eq!(
+        scene.located_warnings,
+        vec![format!(
+            "{}:11:8: warning: usemtl \"red\" but the file loads no material library (mtllib); its faces use the default material\n  help: add `mtllib FILE.mtl` to the OBJ, or give object \"quads\" a `material`",
+            dir.join("quads.obj").display()
+        )]
+    );
+    // An object with its own material asks for none of the OBJ's: no warning.
+    let own = load(
+        &dir,
+        r#"(name: "quads", mesh: Obj(file: "quads.obj"), material: "white")"#,
+    )
+    .unwrap();
+    assert_eq!(own.located_warnings, Vec::<String>::new());
+}
