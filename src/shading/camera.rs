@@ -133,19 +133,25 @@ fn thin_lens(
     lens_u: Vec2,
 ) -> Option<(Vec3, Vec3)> {
     let disk = sample_concentric_disk(lens_u) * radius;
-    let (focus_point, offset) = if projected {
+    // `toward` reaches the focus point from the pinhole: `focus_point = origin + toward * t`.
+    let (toward, t, offset) = if projected {
         let d = dir.normalize();
         let (t, b) = d.any_orthonormal_pair();
-        (origin + d * focus, t * disk.x + b * disk.y)
+        (d, focus, t * disk.x + b * disk.y)
     } else {
         if dir.z >= 0.0 {
             return None;
         }
         let t = (-origin.z - focus) / dir.z;
-        (origin + dir * t, Vec3::new(disk.x, disk.y, 0.0))
+        (dir, t, Vec3::new(disk.x, disk.y, 0.0))
     };
+    let focus_point = origin + toward * t;
     let start = origin + offset;
-    let new_dir = (focus_point - start).try_normalize()?;
+    // Beyond about 1.8e19 the squared length of `focus_point - start` overflows f32 and the
+    // ray would be lost (a blank image); the same direction, scaled by 1/t, stays finite.
+    let new_dir = (focus_point - start)
+        .try_normalize()
+        .or_else(|| (toward - offset / t).try_normalize())?;
     Some((start, new_dir))
 }
 
@@ -227,6 +233,30 @@ mod tests {
             assert!(r.origin.z == 0.0 && r.origin.length() <= 0.3 + 1e-6);
             let t = (-5.0 - r.origin.z) / r.dir.z;
             assert!((r.origin + r.dir * t - target).length() < 1e-5);
+        }
+    }
+
+    /// A focus plane so far away that `focus_point - start` overflows when squared (above
+    /// about 1.8e19) still gives every ray, along the pinhole's direction to within the
+    /// lens offset's angle (the image was blank).
+    #[test]
+    fn a_focus_plane_beyond_f32_squares_still_gives_rays() {
+        for (radius, focus_distance) in [(0.01, 1e20), (0.01, 1e30), (1e-30, 1e30)] {
+            let lens = [Lens::ThinLens {
+                radius,
+                focus_distance,
+            }];
+            let rays = CameraRays::with_lenses(&camera(60.0, 32, 32), &lens);
+            let pinhole = CameraRays::new(&camera(60.0, 32, 32));
+            for (x, y) in [(0.0, 0.0), (16.0, 16.0), (31.0, 0.0)] {
+                let r = rays.ray(x, y, Vec2::new(0.3, 0.7)).expect("a ray");
+                let p = pinhole.ray(x, y, C).unwrap();
+                assert!(r.dir.is_finite() && (r.dir.length() - 1.0).abs() < 1e-6);
+                assert!(
+                    r.dir.dot(p.dir.normalize()) > 1.0 - 1e-6,
+                    "{radius} {focus_distance}"
+                );
+            }
         }
     }
 }
