@@ -169,6 +169,7 @@ fn request(
         ok = false;
     }
     let mut targets = Vec::with_capacity(d.outputs.len());
+    let mut bent_normals_seen = false;
     for (k, o) in d.outputs.iter().enumerate() {
         let kp = format!("{path}.outputs[{k}].kind");
         let kind = match &o.kind {
@@ -254,6 +255,22 @@ fn request(
                 BakeFormat::Exr
             }
         };
+        let at = format!("{path}.outputs[{k}]");
+        ok &= file_matches_format(ck, &at, o.file.as_deref(), format);
+        if let BakeKind::AmbientOcclusion {
+            bent_normals: true, ..
+        } = kind
+        {
+            if format != BakeFormat::Ply && std::mem::replace(&mut bent_normals_seen, true) {
+                ck.src.error(
+                    ck.file,
+                    &format!("{at}.kind.AmbientOcclusion.bent_normals"),
+                    format!("a second ambient-occlusion output with bent normals: both would write {name}_bent_normals.exr"),
+                    Some("keep `bent_normals: true` on one AmbientOcclusion output".into()),
+                );
+                ok = false;
+            }
+        }
         let denoise = match &o.denoise {
             None => None,
             Some(d) => {
@@ -280,6 +297,46 @@ fn request(
         stitch_seams: d.stitch_seams,
         targets,
     })
+}
+
+/// A bake output's `file` ends in its format's extension (`.exr`, `.png`, `.ply`), or in
+/// none: a `.png` name over EXR bytes (the default format) is refused at the name.
+fn file_matches_format(
+    ck: &mut Checker<'_>,
+    at: &str,
+    file: Option<&str>,
+    format: BakeFormat,
+) -> bool {
+    let Some(ext) = file
+        .and_then(|f| std::path::Path::new(f).extension())
+        .map(|e| e.to_string_lossy().to_ascii_lowercase())
+    else {
+        return true;
+    };
+    let (wanted, fix) = match format {
+        BakeFormat::Exr => (
+            "exr",
+            "write `format: Png8` (or Png16) for a PNG, or name the file `.exr`",
+        ),
+        BakeFormat::Png8 | BakeFormat::Png16 => (
+            "png",
+            "name the file `.png`, or leave `format` out for an EXR",
+        ),
+        BakeFormat::Ply => ("ply", "name the file `.ply`"),
+    };
+    if ext == wanted {
+        return true;
+    }
+    ck.src.error(
+        ck.file,
+        &format!("{at}.file"),
+        format!(
+            "file \"{}\" ends in .{ext}, but this output is written as {format:?} (.{wanted})",
+            file.unwrap_or_default()
+        ),
+        Some(fix.into()),
+    );
+    false
 }
 
 /// A bake output's `denoise`: passes 1 … 8, a positive finite colour width, on an AO or

@@ -348,7 +348,14 @@ fn per_vertex_outputs_refuse_texture_only_settings() {
             "`format: Ply` is the format of per-vertex bakes: add `target: Vertices`, or write the texture as Exr, Png8 or Png16",
         ),
     ];
-    for (output, message) in cases {
+    assert_refused(&dir, &cases);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Each bake's `outputs: [OUTPUT]` is refused with its message, located in scene.ron, and
+/// nothing is written.
+fn assert_refused(dir: &std::path::Path, cases: &[(&str, &str)]) {
+    for &(output, message) in cases {
         let text = scene(
             STRIP,
             &format!(
@@ -357,7 +364,7 @@ fn per_vertex_outputs_refuse_texture_only_settings() {
             r#""strip_1""#,
         );
         std::fs::write(dir.join("scene.ron"), text).unwrap();
-        let o = run_in(&dir, &["bake", "scene.ron", "-o", "out"]);
+        let o = run_in(dir, &["bake", "scene.ron", "-o", "out"]);
         assert!(!o.status.success(), "{output}");
         let err = stderr_of(&o);
         // `scene.ron:LINE:COLUMN: error: …`, located at the output's field.
@@ -373,5 +380,28 @@ fn per_vertex_outputs_refuse_texture_only_settings() {
         );
         assert!(!dir.join("out").exists(), "nothing is written");
     }
+}
+
+/// Texture outputs whose files would clash or lie about their format are located errors: a
+/// second AO output with bent normals (both wrote one `_bent_normals.exr`, the first lost),
+/// and a file whose extension is not its format's (EXR bytes in `ao.png`).
+#[test]
+fn texture_outputs_refuse_clashing_bent_normals_and_misnamed_files() {
+    let dir = scratch_dir("bake-output-names");
+    let cases = [
+        (
+            "(kind: AmbientOcclusion(bent_normals: true), file: \"a.exr\"), (kind: AmbientOcclusion(max_distance: 0.5, bent_normals: true), file: \"b.exr\")",
+            "a second ambient-occlusion output with bent normals: both would write strip_1_bent_normals.exr",
+        ),
+        (
+            "(kind: AmbientOcclusion(), file: \"ao.png\")",
+            "file \"ao.png\" ends in .png, but this output is written as Exr (.exr)",
+        ),
+        (
+            "(kind: Albedo, format: Png8, file: \"albedo.exr\")",
+            "file \"albedo.exr\" ends in .exr, but this output is written as Png8 (.png)",
+        ),
+    ];
+    assert_refused(&dir, &cases);
     let _ = std::fs::remove_dir_all(&dir);
 }
