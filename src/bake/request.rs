@@ -212,6 +212,13 @@ fn prepare(
     let (w, h) = bake_resolution(request.resolution, world_area, uv_area)
         .map_err(|e| (e.to_string(), None))?;
     let coverage = rasterize(&uvs, w, h, request.texel_samples);
+    if coverage.inside == 0 {
+        // UVs wholly outside the texture: every texel would stay empty (a black map).
+        return Err((
+            "its UVs cover no texel of the texture (they lie outside [0, 1]², or between the sample positions)".into(),
+            Some("bake UVs must lie in the unit square: set `uvs: Unwrap` to generate lightmap UVs".into()),
+        ));
+    }
     let unique = request
         .targets
         .iter()

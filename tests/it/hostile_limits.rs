@@ -297,6 +297,27 @@ fn bake_uvs_at_one_point_are_refused() {
     assert_eq!(crate::common::dir_names(&dir), ["scene.ron"]);
 }
 
+/// UVs wholly outside the unit square cover no texel: refused (the bake wrote an all-zero
+/// texture with exit 0), the same as UVs at one point.
+#[test]
+fn bake_uvs_outside_the_unit_square_are_refused() {
+    let dir = scratch_dir("bake-outside-uvs");
+    let scene = small_scene(
+        r#"(name: "quad", mesh: Inline(vertices: [(-1, -1, 0), (1, -1, 0), (1, 1, 0), (-1, 1, 0)], uvs: [(2, 2), (3, 2), (3, 3), (2, 3)], polygons: [[0, 1, 2, 3]]), material: "grey"),"#,
+        r#"(name: "q", of: "quad", bake: (resolution: (8, 8), uvs: Mesh, outputs: [(kind: AmbientOcclusion(samples: 1))]))"#,
+        "",
+        "",
+    );
+    std::fs::write(dir.join("scene.ron"), scene).unwrap();
+    let o = run_in(&dir, &["bake", "scene.ron"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert_eq!(
+        stderr_of(&o),
+        "scene.ron:7:17: error: bake request on instance \"q\": its UVs cover no texel of the texture (they lie outside [0, 1]², or between the sample positions)\n  help: bake UVs must lie in the unit square: set `uvs: Unwrap` to generate lightmap UVs\n"
+    );
+    assert_eq!(crate::common::dir_names(&dir), ["scene.ron"]);
+}
+
 /// RIB `ReadArchive` and `.mi` `$include` files stop at the scene-file size limit too.
 #[test]
 fn an_endless_archive_or_mi_include_stops_at_the_size_limit() {
