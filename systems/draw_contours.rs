@@ -9,7 +9,8 @@
 //! the scene's `ContourContrast` (defaults without one).
 //! **Writes:** `outputs.contours` (the lines — points, colour and width per point — and the
 //! layer), returned to the runner.
-//! **Runs when:** a shaded image exists, some material has a contour shader, and the run is
+//! **Runs when:** a shaded image exists, some material has a contour shader, an output of
+//! the run shows contours (an SVG or EPS, or a `Contours` pass), and the run is
 //! not a farm part (parts carry no contours: `stagelight merge` draws them from the merged
 //! image, with the geometry stages run again for the bisection rays).
 //! **After this stage:** `outputs.contours` holds lines that depend only on the scene and
@@ -18,7 +19,7 @@
 use hecs::World;
 
 use super::prelude::*;
-use crate::components::{ContourContrast, ContourShader, Name};
+use crate::components::{ContourContrast, ContourShader, ImageFormat, Name, Pass};
 use crate::contour::contrast::{find_crossings, Contrast};
 use crate::contour::linking::link;
 use crate::contour::raster::rasterise;
@@ -54,7 +55,31 @@ pub fn should_run(world: &World, frame: &Frame) -> Decision {
             run.part
         ));
     }
+    if !an_output_shows_contours(world, frame) {
+        return Decision::skip(format!(
+            "no output shows contours ({n} material(s) with a contour shader)"
+        ));
+    }
     Decision::run(format!("{n} material(s) with a contour shader"))
+}
+
+/// Whether a file this run writes shows the lines: an SVG or EPS, or an image with the
+/// `Contours` pass, among the render camera's outputs after the command line's overrides
+/// (none when the run keeps its image in memory).
+fn an_output_shows_contours(world: &World, frame: &Frame) -> bool {
+    let listed = render_view(world)
+        .map(|v| v.camera.outputs)
+        .unwrap_or_default();
+    frame
+        .inputs
+        .outputs
+        .apply(&listed)
+        .unwrap_or_default()
+        .iter()
+        .any(|o| {
+            matches!(o.format, ImageFormat::Svg | ImageFormat::Eps)
+                || o.passes.contains(&Pass::Contours)
+        })
 }
 
 /// Finds, links, styles and rasterises the contour lines.

@@ -11,7 +11,7 @@
 //! | 4 | `trace_photons` | caustics or global illumination on, a `Direct` render, geometry, a light with power | `Emitter`s, `outputs.geometry`, `settings.photons` | `outputs.photons` |
 //! | 5 | `bake_lightmaps` | bake requests, in a run that bakes | `BakeRequest`s, `Emitter`s, `Environment`, `outputs.geometry`, `inputs.bake_dir`, `inputs.write_gltf` | texture files (and the baked glTF copy); `outputs.bake_reports` |
 //! | 6 | `shade` | a render camera, in a run that renders | render camera, lenses, atmosphere, `Interior`s, `Emitter`s, `Environment`, `outputs.geometry`, `outputs.photons` | `outputs.image` |
-//! | 7 | `draw_contours` | a shaded image, a material with a contour shader, not a farm part | `outputs.image` (contour store), `outputs.geometry`, render camera, `ContourShader`s, `ContourContrast` | `outputs.contours` |
+//! | 7 | `draw_contours` | a shaded image, a material with a contour shader, an output showing contours, not a farm part | `outputs.image` (contour store), `outputs.geometry`, render camera, `ContourShader`s, `ContourContrast` | `outputs.contours` |
 //! | 8 | `write_output` | a shaded image and outputs to write | `outputs.image`, `outputs.contours`, camera outputs with `inputs.outputs` overrides, `Imager` | image files, SVG contour lines |
 //! <!-- stage table end -->
 

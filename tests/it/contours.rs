@@ -757,3 +757,51 @@ fn a_zero_thinning_and_a_too_deep_ray_depth_are_located_errors() {
         "{e}"
     );
 }
+
+/// A contour shader with no output that shows contours (a PNG of the beauty only): the stage
+/// is skipped with the reason, and the file is the bytes of the same scene without the
+/// shader; `-o lines.svg` on the command line makes it run.
+#[test]
+fn skipped_when_no_output_shows_contours() {
+    let dir = scratch_dir("contours-unshown");
+    let text = scene(24, 16, (0.0, -5.0, 0.0), "", SPHERE, r#"(file: "s.png")"#);
+    let plain = text.replace(
+        "contour: Simple(color: (0, 0, 0, 1), width: 1.0)",
+        "two_sided: false",
+    );
+    assert_ne!(plain, text);
+    std::fs::write(dir.join("inked.ron"), &text).unwrap();
+    std::fs::write(dir.join("plain.ron"), &plain).unwrap();
+    let stats = |args: &[&str]| {
+        let o = run_in(&dir, args);
+        assert!(o.status.success(), "{}", stderr_of(&o));
+        let json: serde_json::Value =
+            serde_json::from_slice(&std::fs::read(dir.join("stats.json")).unwrap()).unwrap();
+        let stage = json["stages"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|s| s["stage"] == "draw_contours")
+            .cloned()
+            .unwrap();
+        (
+            stage["ran"].as_bool().unwrap(),
+            stage["reason"].as_str().unwrap().to_string(),
+        )
+    };
+    let json = ["--stats-json", "stats.json"];
+    let (ran, reason) = stats(&[&["render", "inked.ron", "-o", "a.png"][..], &json].concat());
+    assert!(!ran);
+    assert_eq!(
+        reason,
+        "no output shows contours (1 material(s) with a contour shader)"
+    );
+    stats(&[&["render", "plain.ron", "-o", "b.png"][..], &json].concat());
+    assert_eq!(
+        std::fs::read(dir.join("a.png")).unwrap(),
+        std::fs::read(dir.join("b.png")).unwrap()
+    );
+    let (ran, _) = stats(&[&["render", "inked.ron", "-o", "lines.svg"][..], &json].concat());
+    assert!(ran);
+    let _ = std::fs::remove_dir_all(&dir);
+}
