@@ -10,7 +10,8 @@
 //! **Reuses:** that file when its content hash ([`crate::photon::key`]) matches: the maps
 //! are loaded, and the report lists the stage as skipped, "loaded from FILE (hash …)".
 //! **Runs when:** the run renders with the `Direct` integrator, caustics or global
-//! illumination is on, geometry exists, and some light emits power.
+//! illumination is on, geometry exists (with a caustic caster when only caustics are on),
+//! and some light emits power.
 //! **After this stage:** `outputs.photons` holds the requested maps, each built from its own
 //! number of emitted photons with powers summing (in expectation) to what reaches the
 //! stored surfaces, identical at any thread count.
@@ -74,6 +75,11 @@ pub fn should_run(world: &World, frame: &Frame) -> Decision {
     if !frame.outputs.has(Slot::Geometry) {
         return Decision::skip("no geometry receives photons");
     }
+    if p.global_illumination.is_none() && nothing_casts_caustics(world) {
+        return Decision::skip(
+            "caustics are on, but nothing casts them (no mirror, glass or other specular material, no instance flagged to cast)",
+        );
+    }
     let lit = world
         .query::<&Emitter>()
         .iter()
@@ -97,6 +103,23 @@ pub fn should_run(world: &World, frame: &Frame) -> Decision {
         (None, None) => String::new(),
     };
     Decision::run(format!("{}{kept}", maps.join(" + ")))
+}
+
+/// Whether nothing in the scene can cast caustic photons: no material that makes caustics
+/// (mirror, glass, a specular term; [`crate::photon::roles::makes_caustics`]) and no instance
+/// flagged to cast them. The caustic map alone would stay empty: every photon is absorbed at
+/// its first surface. Decided from the world, so `plan` gives the same answer before any
+/// geometry exists.
+fn nothing_casts_caustics(world: &World) -> bool {
+    let material = world
+        .query::<&Material>()
+        .iter()
+        .any(|m| crate::photon::roles::makes_caustics(&m.shader));
+    let flagged = world
+        .query::<&PhotonFlags>()
+        .iter()
+        .any(|f| f.caustic.is_some_and(|r| r.casts()));
+    !material && !flagged
 }
 
 /// Traces the requested photon maps.

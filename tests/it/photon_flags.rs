@@ -271,3 +271,48 @@ fn aimed_caustics_agree_with_emission_in_every_direction() {
         assert!(ma > 0.0 && z.abs() < 4.0, "{name}: Z = {z}");
     }
 }
+
+/// Caustics on, global illumination off, and no surface that casts caustics (only Lambert
+/// materials): `trace_photons` skips with the reason instead of tracing 100,000 photons that
+/// are all absorbed at their first surface, and the image is the same bytes.
+#[test]
+fn caustics_without_a_caster_skip_the_photon_pass() {
+    let dir = crate::common::scratch_dir("photons-no-caster");
+    let text = std::fs::read_to_string("tests/fixtures/scenes/nothing_casts_caustics.ron").unwrap();
+    std::fs::write(dir.join("on.ron"), &text).unwrap();
+    let off = text.replace("samples: 4, caustics: ()", "samples: 4");
+    assert_ne!(off, text);
+    std::fs::write(dir.join("off.ron"), off).unwrap();
+    let o = crate::common::run_in(
+        &dir,
+        &[
+            "render",
+            "on.ron",
+            "-o",
+            "on.png",
+            "--stats-json",
+            "on.json",
+        ],
+    );
+    assert!(o.status.success(), "{}", crate::common::stderr_of(&o));
+    let json: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.join("on.json")).unwrap()).unwrap();
+    let stage = json["stages"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|s| s["stage"] == "trace_photons")
+        .unwrap();
+    assert_eq!(stage["ran"], false);
+    assert_eq!(
+        stage["reason"],
+        "caustics are on, but nothing casts them (no mirror, glass or other specular material, no instance flagged to cast)"
+    );
+    let o = crate::common::run_in(&dir, &["render", "off.ron", "-o", "off.png"]);
+    assert!(o.status.success());
+    assert_eq!(
+        std::fs::read(dir.join("on.png")).unwrap(),
+        std::fs::read(dir.join("off.png")).unwrap()
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
