@@ -30,7 +30,7 @@ fn scene(options: &str, lens: &str, displacement: &str, grid: bool) -> String {
     cameras: [(name: "cam", fov_y: 50, resolution: (24, 24),
         placement: LookAt(eye: (0, -3, 3), target: (0, 0, 0), up: (0, 0, 1)),
         {lens}
-        outputs: [(file: "switches.png")])],
+        outputs: [(file: "switches.png", passes: [Beauty, Contours])])],
     lights: [(name: "lamp", kind: Point(position: (1, -1, 3)), intensity: 20)],
     materials: [
         (name: "grey", shader: Lambert(albedo: (0.6, 0.6, 0.6))),
