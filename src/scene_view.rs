@@ -67,6 +67,18 @@ pub fn render_view(world: &World) -> Option<RenderView> {
         })
 }
 
+/// The outputs a run writes for the render camera of `world` (none without one): its
+/// listed outputs with the command line's `overrides` applied.
+pub fn render_outputs(
+    world: &World,
+    overrides: &crate::frame::OutputOverrides,
+) -> Result<Vec<crate::components::OutputSpec>, String> {
+    let listed = render_view(world)
+        .map(|v| v.camera.outputs)
+        .unwrap_or_default();
+    overrides.apply(&listed)
+}
+
 /// Whether the scene has a render camera (cheap; for run conditions).
 pub fn has_render_camera(world: &World) -> bool {
     crate::schedule::any_with::<RenderCamera>(world)

@@ -1,5 +1,9 @@
 //! Render settings: the scene's `options` after command-line overrides.
 
+/// The widest Gaussian pixel filter (truncation radius, pixels): a wider one spreads each
+/// pixel's samples over more of the frame than it covers (issue 18, family 8).
+pub const MAX_FILTER_RADIUS: f64 = 64.0;
+
 /// Pixel reconstruction filter.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum PixelFilter {

@@ -67,13 +67,7 @@ pub fn should_run(world: &World, frame: &Frame) -> Decision {
 /// `Contours` pass, among the render camera's outputs after the command line's overrides
 /// (none when the run keeps its image in memory).
 fn an_output_shows_contours(world: &World, frame: &Frame) -> bool {
-    let listed = render_view(world)
-        .map(|v| v.camera.outputs)
-        .unwrap_or_default();
-    frame
-        .inputs
-        .outputs
-        .apply(&listed)
+    crate::scene_view::render_outputs(world, &frame.inputs.outputs)
         .unwrap_or_default()
         .iter()
         .any(|o| {

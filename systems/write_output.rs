@@ -25,14 +25,7 @@ use crate::scene_view::render_view;
 
 /// The outputs this run writes: the camera's, with the command line's overrides.
 fn outputs(world: &World, frame: &Frame) -> Result<Vec<OutputSpec>, StageError> {
-    let listed = render_view(world)
-        .map(|v| v.camera.outputs)
-        .unwrap_or_default();
-    frame
-        .inputs
-        .outputs
-        .apply(&listed)
-        .map_err(StageError::Internal)
+    crate::scene_view::render_outputs(world, &frame.inputs.outputs).map_err(StageError::Internal)
 }
 
 /// Run condition: an image to write and somewhere to write it.

@@ -21,9 +21,7 @@ use crate::settings::{
     PixelFilter, ProgressiveSettings, RenderSettings,
 };
 
-/// The widest Gaussian pixel filter (truncation radius, pixels): a wider one spreads each
-/// pixel's samples over more of the frame than it covers (issue 18, family 8).
-pub const MAX_FILTER_RADIUS: f64 = 64.0;
+pub use crate::settings::MAX_FILTER_RADIUS;
 
 /// Most progressive photon passes of one map (every pass is kept in memory).
 pub const MAX_PASSES: u32 = 65536;

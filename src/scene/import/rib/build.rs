@@ -585,7 +585,7 @@ impl Builder {
                 let (yw, _) = a.num("ywidth")?;
                 // Checked here in RIB's terms (a width, at its token): the description's
                 // Gaussian has half of it as radius and a quarter as sigma.
-                let widest = 2.0 * crate::scene::validate::MAX_FILTER_RADIUS;
+                let widest = 2.0 * crate::settings::MAX_FILTER_RADIUS;
                 if !(xw > 0.0 && xw <= widest) && f != "box" {
                     return Err(Problem::error(
                         xw_pos,
