@@ -145,6 +145,18 @@ pub fn remove_stale(dir: &Path) -> Vec<PathBuf> {
     done
 }
 
+/// The error of making the directories of an output: where a file stands in the way (the
+/// system's "File exists" or "Not a directory"), it names that file.
+fn not_a_directory(dir: &Path, e: std::io::Error) -> std::io::Error {
+    let Some(blocker) = dir.ancestors().find(|a| a.is_file()) else {
+        return e;
+    };
+    std::io::Error::new(
+        std::io::ErrorKind::NotADirectory,
+        format!("{} is a file, not a directory", blocker.display()),
+    )
+}
+
 /// Writes every file to a temporary sibling, then renames all into place: either every
 /// destination holds its new file, or every destination is as it was before (see the module
 /// documentation for the exact steps). Leftovers of dead processes in the destination
@@ -169,7 +181,7 @@ pub fn commit_all(files: &[PendingFile]) -> Result<Vec<PathBuf>, (PathBuf, std::
         let tmp = temp_path(&f.path);
         let result = (|| {
             if let Some(dir) = f.path.parent().filter(|d| !d.as_os_str().is_empty()) {
-                fs::create_dir_all(dir)?;
+                fs::create_dir_all(dir).map_err(|e| not_a_directory(dir, e))?;
             }
             if f.path.is_dir() {
                 return Err(std::io::Error::new(
@@ -304,6 +316,27 @@ mod tests {
         assert_eq!(path, dir.join("taken.bin"));
         assert_eq!(names(&dir), vec!["old.bin", "taken.bin"]);
         assert_eq!(fs::read(dir.join("old.bin")).unwrap(), b"previous");
+        fs::remove_dir_all(&dir).unwrap();
+    }
+
+    /// An output whose directory path runs through a file names that file (the system said
+    /// "File exists (os error 17)" or "Not a directory (os error 20)").
+    #[test]
+    fn a_file_in_the_directory_path_is_named() {
+        let dir = scratch("file_in_path");
+        fs::write(dir.join("plain"), b"x").unwrap();
+        for path in ["plain/a.bin", "plain/sub/a.bin"] {
+            let files = vec![PendingFile {
+                path: dir.join(path),
+                bytes: vec![1],
+            }];
+            let (_, e) = commit_all(&files).unwrap_err();
+            assert_eq!(
+                e.to_string(),
+                format!("{} is a file, not a directory", dir.join("plain").display())
+            );
+        }
+        assert_eq!(fs::read(dir.join("plain")).unwrap(), b"x");
         fs::remove_dir_all(&dir).unwrap();
     }
 
