@@ -278,44 +278,47 @@ fn objects_without_geometry_get_a_located_warning() {
     );
 }
 
+/// Bake UVs that cannot take a texel are refused, naming why, with nothing written: UVs at
+/// one point (no area), and UVs wholly outside the unit square (the bake wrote an all-zero
+/// texture with exit 0).
 #[test]
-fn bake_uvs_at_one_point_are_refused() {
-    let dir = scratch_dir("bake-point-uvs");
-    let scene = small_scene(
-        r#"(name: "quad", mesh: Inline(vertices: [(-1, -1, 0), (1, -1, 0), (1, 1, 0), (-1, 1, 0)], uvs: [(0.5, 0.5), (0.5, 0.5), (0.5, 0.5), (0.5, 0.5)], polygons: [[0, 1, 2, 3]]), material: "grey"),"#,
-        r#"(name: "q", of: "quad", bake: (texels_per_unit: 8, uvs: Mesh, outputs: [(kind: AmbientOcclusion(samples: 1))]))"#,
-        "",
-        "",
-    );
-    std::fs::write(dir.join("scene.ron"), scene).unwrap();
-    let o = run_in(&dir, &["bake", "scene.ron"]);
-    assert_eq!(o.status.code(), Some(1));
-    assert_eq!(
-        stderr_of(&o),
-        "scene.ron:7:17: error: bake request on instance \"q\": its UVs cover no area (every triangle's UVs lie at one point or on a line)\n  help: give the mesh real UVs, or set `uvs: Unwrap` to generate lightmap UVs\n"
-    );
-    assert_eq!(crate::common::dir_names(&dir), ["scene.ron"]);
-}
-
-/// UVs wholly outside the unit square cover no texel: refused (the bake wrote an all-zero
-/// texture with exit 0), the same as UVs at one point.
-#[test]
-fn bake_uvs_outside_the_unit_square_are_refused() {
-    let dir = scratch_dir("bake-outside-uvs");
-    let scene = small_scene(
-        r#"(name: "quad", mesh: Inline(vertices: [(-1, -1, 0), (1, -1, 0), (1, 1, 0), (-1, 1, 0)], uvs: [(2, 2), (3, 2), (3, 3), (2, 3)], polygons: [[0, 1, 2, 3]]), material: "grey"),"#,
-        r#"(name: "q", of: "quad", bake: (resolution: (8, 8), uvs: Mesh, outputs: [(kind: AmbientOcclusion(samples: 1))]))"#,
-        "",
-        "",
-    );
-    std::fs::write(dir.join("scene.ron"), scene).unwrap();
-    let o = run_in(&dir, &["bake", "scene.ron"]);
-    assert_eq!(o.status.code(), Some(1));
-    assert_eq!(
-        stderr_of(&o),
-        "scene.ron:7:17: error: bake request on instance \"q\": its UVs cover no texel of the texture (they lie outside [0, 1]², or between the sample positions)\n  help: bake UVs must lie in the unit square: set `uvs: Unwrap` to generate lightmap UVs\n"
-    );
-    assert_eq!(crate::common::dir_names(&dir), ["scene.ron"]);
+fn bake_uvs_that_cover_no_texel_are_refused() {
+    let cases = [
+        (
+            "bake-point-uvs",
+            "(0.5, 0.5), (0.5, 0.5), (0.5, 0.5), (0.5, 0.5)",
+            "texels_per_unit: 8",
+            "its UVs cover no area (every triangle's UVs lie at one point or on a line)\n  help: give the mesh real UVs, or set `uvs: Unwrap` to generate lightmap UVs",
+        ),
+        (
+            "bake-outside-uvs",
+            "(2, 2), (3, 2), (3, 3), (2, 3)",
+            "resolution: (8, 8)",
+            "its UVs cover no texel of the texture (they lie outside [0, 1]², or between the sample positions)\n  help: bake UVs must lie in the unit square: set `uvs: Unwrap` to generate lightmap UVs",
+        ),
+    ];
+    for (test, uvs, size, message) in cases {
+        let dir = scratch_dir(test);
+        let scene = small_scene(
+            &format!(
+                r#"(name: "quad", mesh: Inline(vertices: [(-1, -1, 0), (1, -1, 0), (1, 1, 0), (-1, 1, 0)], uvs: [{uvs}], polygons: [[0, 1, 2, 3]]), material: "grey"),"#
+            ),
+            &format!(
+                r#"(name: "q", of: "quad", bake: ({size}, uvs: Mesh, outputs: [(kind: AmbientOcclusion(samples: 1))]))"#
+            ),
+            "",
+            "",
+        );
+        std::fs::write(dir.join("scene.ron"), scene).unwrap();
+        let o = run_in(&dir, &["bake", "scene.ron"]);
+        assert_eq!(o.status.code(), Some(1), "{test}");
+        assert_eq!(
+            stderr_of(&o),
+            format!("scene.ron:7:17: error: bake request on instance \"q\": {message}\n"),
+            "{test}"
+        );
+        assert_eq!(crate::common::dir_names(&dir), ["scene.ron"], "{test}");
+    }
 }
 
 /// RIB `ReadArchive` and `.mi` `$include` files stop at the scene-file size limit too.
