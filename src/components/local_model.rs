@@ -21,13 +21,60 @@ pub enum LocalLobe {
         /// Phong exponent (≥ 0).
         exponent: f32,
     },
+    /// mental ray's `mib_illum_cooktorr` (and `mib_illum_blinn`, the same with one index):
+    /// the Cook–Torrance (1982) specular term as the per-light factor,
+    /// `F(L·H, ior) · D · G / (π · N·V)` — the paper's `R_s = F·D·G / (π (N·L)(N·V))` times
+    /// the `N·L` of the light — with Beckmann `D = exp(−(tan α / m)²) / (m² cos⁴ α)` (`α` the
+    /// angle of `H` from `N`, `m` the roughness, the average microfacet slope), the V-cavity
+    /// `G = min(1, 2 (N·H)(N·V)/(V·H), 2 (N·H)(N·L)/(V·H))` and the unpolarised dielectric
+    /// Fresnel reflectance `F` with one relative index per channel (below 1 read as 1).
+    CookTorrance {
+        /// Average microfacet slope `m` (> 0).
+        roughness: f32,
+        /// Relative index of refraction per channel.
+        ior: Vec3,
+    },
+}
+
+/// The unpolarised Fresnel reflectance of a dielectric of relative index `n` (≥ 1) at
+/// `c = cos θ` (Cook and Torrance 1982, eq. 9): `½ (g−c)²/(g+c)² · (1 + ((c(g+c)−1) /
+/// (c(g−c)+1))²)`, `g² = n² + c² − 1`.
+fn fresnel_ct(c: f32, n: f32) -> f32 {
+    let n = n.max(1.0);
+    let g = (n * n + c * c - 1.0).max(0.0).sqrt();
+    if g + c <= 0.0 {
+        return 1.0;
+    }
+    let a = (g - c) / (g + c);
+    let b = (c * (g + c) - 1.0) / (c * (g - c) + 1.0);
+    0.5 * a * a * (1.0 + b * b)
+}
+
+/// The Cook–Torrance factor of [`LocalLobe::CookTorrance`] without its Fresnel term, and the
+/// cosine `L·H` the Fresnel term takes; `None` where it is zero.
+fn cook_torrance_dg(roughness: f32, wo: Vec3, wi: Vec3) -> Option<(f32, f32)> {
+    if wo.z <= 0.0 || wi.z <= 0.0 {
+        return None;
+    }
+    let h = (wo + wi).normalize_or_zero();
+    let (nh, vh) = (h.z, wo.dot(h));
+    if nh <= 0.0 || vh <= 0.0 {
+        return None;
+    }
+    let m2 = roughness.max(1e-4).powi(2);
+    let cos2 = nh * nh;
+    let tan2 = (1.0 - cos2).max(0.0) / cos2;
+    let d = (-tan2 / m2).exp() / (m2 * cos2 * cos2);
+    let g = (2.0 * nh * wo.z / vh).min(2.0 * nh * wi.z / vh).min(1.0);
+    let v = d * g / (std::f32::consts::PI * wo.z);
+    v.is_finite().then_some((v, wi.dot(h)))
 }
 
 impl LocalLobe {
     /// The lobe for the unit directions `wo` (toward the viewer) and `wi` (toward the light)
-    /// in the local frame whose +Z is the shading normal.
-    pub fn eval(&self, wo: Vec3, wi: Vec3) -> f32 {
-        match *self {
+    /// in the local frame whose +Z is the shading normal, per colour channel.
+    pub fn eval(&self, wo: Vec3, wi: Vec3) -> Vec3 {
+        let scalar = match *self {
             LocalLobe::RenderMan { roughness } => {
                 let h = (wo + wi).normalize_or_zero();
                 let c = h.z.max(0.0);
@@ -47,7 +94,17 @@ impl LocalLobe {
                     c.powf(exponent)
                 }
             }
-        }
+            LocalLobe::CookTorrance { roughness, ior } => {
+                return cook_torrance_dg(roughness, wo, wi).map_or(Vec3::ZERO, |(v, lh)| {
+                    v * Vec3::new(
+                        fresnel_ct(lh, ior.x),
+                        fresnel_ct(lh, ior.y),
+                        fresnel_ct(lh, ior.z),
+                    )
+                });
+            }
+        };
+        Vec3::splat(scalar)
     }
 }
 
@@ -103,11 +160,40 @@ mod tests {
         // Mirror configuration: H = N, full highlight.
         let wo = Vec3::new(0.6, 0.0, 0.8);
         let wi = Vec3::new(-0.6, 0.0, 0.8);
-        assert!((lobe.eval(wo, wi) - 1.0).abs() < 1e-6);
+        assert!((lobe.eval(wo, wi).x - 1.0).abs() < 1e-6);
         // V = N, L at 60°: H at 30°, cos 30°^4.
         let wi = Vec3::new(60f32.to_radians().sin(), 0.0, 0.5);
         let expected = 30f32.to_radians().cos().powi(4);
-        assert!((lobe.eval(Vec3::Z, wi) - expected).abs() < 1e-6);
+        assert!((lobe.eval(Vec3::Z, wi).x - expected).abs() < 1e-6);
+    }
+
+    #[test]
+    fn cook_torrance_lobe_is_the_papers_specular_term() {
+        // Viewer and light along N: H = N, tan α = 0, G = 1, D = 1/m²,
+        // F at normal incidence ((n−1)/(n+1))²: the factor is F / (π m²).
+        let lobe = LocalLobe::CookTorrance {
+            roughness: 0.5,
+            ior: Vec3::new(1.5, 2.0, 1.0),
+        };
+        let v = lobe.eval(Vec3::Z, Vec3::Z);
+        let f = |n: f32| ((n - 1.0) / (n + 1.0)).powi(2);
+        let want = Vec3::new(f(1.5), f(2.0), 0.0) / (std::f32::consts::PI * 0.25);
+        assert!((v - want).abs().max_element() < 1e-6, "{v} vs {want}");
+        // Light at 60° in the plane, viewer along N: H at 30°, L·H = cos 30°.
+        let wi = Vec3::new(60f32.to_radians().sin(), 0.0, 0.5);
+        let (nh, lh) = (30f32.to_radians().cos(), 30f32.to_radians().cos());
+        let tan2 = (1.0 - nh * nh) / (nh * nh);
+        let d = (-tan2 / 0.25).exp() / (0.25 * nh.powi(4));
+        let g = (2.0 * nh * 1.0 / lh).min(2.0 * nh * 0.5 / lh).min(1.0);
+        let n = 1.5f32;
+        let gg = (n * n + lh * lh - 1.0).sqrt();
+        let fr = 0.5
+            * ((gg - lh) / (gg + lh)).powi(2)
+            * (1.0 + ((lh * (gg + lh) - 1.0) / (lh * (gg - lh) + 1.0)).powi(2));
+        let want = fr * d * g / std::f32::consts::PI;
+        assert!((lobe.eval(Vec3::Z, wi).x - want).abs() < 1e-6);
+        // Light below the horizon: nothing.
+        assert_eq!(lobe.eval(Vec3::Z, -Vec3::Z), Vec3::ZERO);
     }
 
     #[test]

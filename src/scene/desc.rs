@@ -919,6 +919,22 @@ pub enum LocalLobeDesc {
         /// Exponent, ≥ 0.
         exponent: f64,
     },
+    /// mental ray `mib_illum_blinn` (`mi_blinn_specular`): `CookTorrance` with one index.
+    Blinn {
+        /// Average microfacet slope, > 0.
+        roughness: f64,
+        /// Relative index of refraction, > 0 (below 1 reflects nothing).
+        ior: f64,
+    },
+    /// mental ray `mib_illum_cooktorr` (`mi_cooktorr_specular`): the Cook–Torrance (1982)
+    /// specular term per light, `F·D·G / (π N·V)`, Beckmann `D` of slope `roughness`,
+    /// dielectric Fresnel `F` with one relative index per channel.
+    CookTorrance {
+        /// Average microfacet slope, > 0.
+        roughness: f64,
+        /// Relative index of refraction per channel, each > 0 (below 1 reflects nothing).
+        ior: V3,
+    },
 }
 
 impl Default for LocalLobeDesc {

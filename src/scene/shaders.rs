@@ -203,6 +203,18 @@ pub fn shader(ck: &mut Checker<'_>, path: &str, desc: &ShaderDesc) -> Option<Sha
                 LocalLobeDesc::Phong { exponent } => LocalLobe::Phong {
                     exponent: s.weight("Local.lobe.Phong.exponent", "exponent", *exponent),
                 },
+                LocalLobeDesc::Blinn { roughness, ior } => LocalLobe::CookTorrance {
+                    roughness: s.positive("Local.lobe.Blinn.roughness", "roughness", *roughness),
+                    ior: Vec3::splat(s.positive("Local.lobe.Blinn.ior", "ior", *ior)),
+                },
+                LocalLobeDesc::CookTorrance { roughness, ior } => LocalLobe::CookTorrance {
+                    roughness: s.positive(
+                        "Local.lobe.CookTorrance.roughness",
+                        "roughness",
+                        *roughness,
+                    ),
+                    ior: s.positive3("Local.lobe.CookTorrance.ior", "ior", *ior),
+                },
             },
             reflection: s.colour("Local.reflection", "reflection", *reflection),
             ambient: s.colour("Local.ambient", "ambient", *ambient),

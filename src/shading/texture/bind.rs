@@ -223,6 +223,10 @@ pub fn visit(shader: &mut Shader, f: &mut dyn FnMut(&'static str, Field<'_>)) {
             match &mut m.lobe {
                 LocalLobe::RenderMan { roughness } => f("roughness", S(roughness, P)),
                 LocalLobe::Phong { exponent } => f("exponent", S(exponent, N)),
+                LocalLobe::CookTorrance { roughness, ior } => {
+                    f("roughness", S(roughness, P));
+                    f("ior", C(ior, P));
+                }
             }
             f("reflection", C(&mut m.reflection, N));
             f("ambient", C(&mut m.ambient, N));
