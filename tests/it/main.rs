@@ -59,6 +59,7 @@ mod mi_polygon_materials;
 mod mi_shadow_shaders;
 mod mi_surfaces;
 mod mi_textures;
+mod mi_tutorial_shaders;
 mod mi_volumes;
 mod obj_materials;
 mod photon_clean;

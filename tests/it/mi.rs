@@ -122,6 +122,52 @@ fn point_light_atten_ramps_linearly_and_ambience_adds() {
     });
 }
 
+/// The plane scene with `shader` (a whole call) in place of its `mib_illum_lambert`.
+fn plane_with(shader: &str) -> String {
+    let text = plane_text();
+    let at = text.find("\"mib_illum_lambert\" (").unwrap();
+    let end = at + text[at..].find("\n)").unwrap() + 2;
+    format!("{}{shader}{}", &text[..at], &text[end..])
+}
+
+/// `mib_illum_blinn`/`mib_illum_cooktorr` keep mental ray's semantics: the diffuse term is
+/// `mib_illum_lambert`'s (no 1/π), the highlight Cook and Torrance's specular term per light,
+/// `F·D·G / (π N·V)`. Light and eye at the origin: `H = V = L`, so `N·H = N·V = 1/d`, `F` is
+/// the normal-incidence `((n−1)/(n+1))²`, `G = min(1, 2 (N·V)²)`.
+#[test]
+fn blinn_and_cooktorr_diffuse_is_lamberts_and_their_highlight_cook_torrances() {
+    let lights = "\"mode\" 1,\n\"lights\" [ \"Lamp_inst\" ]";
+    for name in ["mib_illum_blinn", "mib_illum_cooktorr"] {
+        let text = plane_with(&format!(
+            "\"{name}\" (\n\"diffuse\" 0.8 0.8 0.8,\n\"specular\" 0 0 0,\n{lights}\n)"
+        ));
+        let scene = load_scene_str(&text, &dir(&format!("assets/seeds/mi/{name}.mi"))).unwrap();
+        check_plane(scene, 508, |x, y, z| {
+            0.8 * (-z / (x * x + y * y + z * z).sqrt())
+        });
+    }
+    let highlight = |m: f64, n: f64| {
+        move |x: f64, y: f64, z: f64| {
+            let c = -z / (x * x + y * y + z * z).sqrt();
+            let tan2 = (1.0 - c * c) / (c * c);
+            let d = (-tan2 / (m * m)).exp() / (m * m * c.powi(4));
+            let g = (2.0 * c * c).min(1.0);
+            let f = ((n - 1.0) / (n + 1.0)).powi(2);
+            f * d * g / (std::f64::consts::PI * c)
+        }
+    };
+    let text = plane_with(&format!(
+        "\"mib_illum_blinn\" (\n\"specular\" 1 1 1,\n\"roughness\" 1,\n\"ior\" 3,\n{lights}\n)"
+    ));
+    let scene = load_scene_str(&text, &dir("assets/seeds/mi/blinn.mi")).unwrap();
+    check_plane(scene, 508, highlight(1.0, 3.0));
+    let text = plane_with(&format!(
+        "\"mib_illum_cooktorr\" (\n\"specular\" 1 1 1,\n\"roughness\" 1,\n\"ior\" 3 1.5 2,\n{lights}\n)"
+    ));
+    let scene = load_scene_str(&text, &dir("assets/seeds/mi/cooktorr.mi")).unwrap();
+    check_plane(scene, 508, highlight(1.0, 3.0));
+}
+
 /// The plane scene with a second point light `B` at `(0.6, 0.4, 0)`; the material lists
 /// only `lights`.
 fn two_lights(lights: &str, with_b: bool) -> String {
@@ -274,7 +320,7 @@ const MALFORMED: &[(&str, &str)] = &[
     ),
     (
         "native_light_shader",
-        "tests/fixtures/mi/native_light_shader.mi:10:14: error: unknown light shader \"myLight\"\n  help: built in: mib_light_point, mib_light_spot, mib_light_infinite, physical_light",
+        "tests/fixtures/mi/native_light_shader.mi:10:14: error: unknown light shader \"myLight\"\n  help: the tutorial's \"myLight\" is built in once its library is linked: link \"myLight.so\"",
     ),
     (
         "no_render",

@@ -333,7 +333,8 @@ pub fn camera(r: &mut Reader, c: &mut Cursor, open: Pos) {
             "output" => output(c, &mut cam.outputs),
             "environment" => {
                 if let Some(call) = c.shader_call("the environment shader") {
-                    cam.environment = shaders::environment(c, &call, &r.raw.shaders);
+                    cam.environment = super::tutorial::environment(c, &call, &r.raw.linked)
+                        .unwrap_or_else(|| shaders::environment(c, &call, &r.raw.shaders));
                 }
             }
             "volume" => {
@@ -517,7 +518,8 @@ pub fn light(r: &mut Reader, c: &mut Cursor, open: Pos) {
         c.skip_to_end("light", open);
         return;
     };
-    let mapped = shaders::light(c, &call);
+    let mapped =
+        super::tutorial::light(c, &call, &r.raw.linked).unwrap_or_else(|| shaders::light(c, &call));
     let mut origin = None;
     let mut direction = None;
     let mut spread = None;
@@ -642,7 +644,8 @@ pub fn material(r: &mut Reader, c: &mut Cursor, open: Pos) {
         c.skip_to_end("material", open);
         return;
     };
-    let mapped = shaders::material(c, &call, &r.raw.shaders, &r.raw.textures, 0);
+    let mapped = super::tutorial::material(c, &call, &r.raw.linked)
+        .unwrap_or_else(|| shaders::material(c, &call, &r.raw.shaders, &r.raw.textures, 0));
     let mut contour = None;
     let mut frame_fade = None;
     let mut interior = None;
@@ -695,7 +698,12 @@ pub fn material(r: &mut Reader, c: &mut Cursor, open: Pos) {
             }
             "environment" => {
                 if let Some(call) = c.shader_call("the environment shader") {
-                    environment = super::material_shaders::environment(c, &call, &r.raw.shaders);
+                    environment = super::material_shaders::environment(
+                        c,
+                        &call,
+                        &r.raw.shaders,
+                        &r.raw.linked,
+                    );
                 }
             }
             "photon" | "displace" => {

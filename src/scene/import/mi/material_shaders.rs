@@ -152,13 +152,16 @@ pub fn shadow(
 }
 
 /// The material's `environment:` from its environment shader `call` (mapped as the camera's
-/// environment is), or `None` (reported).
+/// environment is, the tutorial's `myEnvironment` included once `linked`), or `None`
+/// (reported).
 pub fn environment(
     c: &mut Cursor,
     call: &ShaderCall,
     named: &HashMap<String, ShaderCall>,
+    linked: &[String],
 ) -> Option<MaterialEnvironmentDesc> {
-    let env = shaders::environment(c, call, named)?;
+    let env = super::tutorial::environment(c, call, linked)
+        .unwrap_or_else(|| shaders::environment(c, call, named))?;
     Some(MaterialEnvironmentDesc {
         shader: env.shader,
         intensity: env.intensity,

@@ -8,7 +8,7 @@
 //! statements of `options`, [`switches`] its feature switches), [`object`] (`object … group … end group
 //! end object`; [`surface`] its free-form surfaces), [`shaders`] (the built-in shaders' parameters and what each maps onto;
 //! [`textures`] the `mib_texture_*` chains onto shader-graph nodes, [`volumes`] volume
-//! shaders onto fog)
+//! shaders onto fog, [`tutorial`] the tutorial's native shaders once linked)
 //! and [`assemble`] (the instance tree → cameras, lights, objects, instances and groups).
 //!
 //! **Conventions.** A mental ray `transform` is the 4×4 matrix, written row by row, that
@@ -39,6 +39,7 @@ pub mod statements;
 pub mod surface;
 pub mod switches;
 pub mod textures;
+pub mod tutorial;
 pub mod volumes;
 
 use std::path::Path;

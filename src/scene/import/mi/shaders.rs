@@ -6,7 +6,9 @@
 //! stagelight's physically based models):
 //! - `mib_illum_lambert` = ambience·ambient + Σ diffuse·Cl·max(0, N·L), no 1/π: a `Local`
 //!   model with `color = diffuse`, `kd = 1`, `ka = 0`, `ambient = ambience·ambient`;
-//!   `mib_illum_phong` adds `specular·Cl·max(0, R·L)^exponent` (the `Phong` lobe).
+//!   `mib_illum_phong` adds `specular·Cl·max(0, R·L)^exponent` (the `Phong` lobe),
+//!   `mib_illum_cooktorr` `specular·Cl·F·D·G/(π N·V)` (the `CookTorrance` lobe: Cook and
+//!   Torrance's specular term), `mib_illum_blinn` the same with one index (the `Blinn` lobe).
 //! - `mib_light_point`/`mib_light_spot`/`mib_light_infinite`: `Cl = color`, no
 //!   inverse-square law; `atten on` ramps linearly from `start` (1) to `stop` (0).
 //! - `physical_light`: inverse-square; a point or spot of `color` radiates `color / 4π`
@@ -217,6 +219,10 @@ pub fn check(
         let names = BUILTINS.iter().filter(|b| b.role == role).map(|b| b.name);
         let mut p = Problem::error(call.pos, format!("unknown {what} shader \"{}\"", call.name));
         p = match closest(&call.name, names.clone()) {
+            _ if super::tutorial::is_tutorial(&call.name) => p.with_help(format!(
+                "the tutorial's \"{0}\" is built in once its library is linked: link \"{0}.so\"",
+                call.name
+            )),
             Some(s) => p.with_help(format!("did you mean \"{s}\"?")),
             None => p.with_help(format!(
                 "built in: {}",
@@ -404,11 +410,11 @@ const TEXTURED: &[(&str, &[(&str, &str)])] = &[
     ),
     (
         "mib_illum_blinn",
-        &[("diffuse", "diffuse"), ("specular", "specular")],
+        &[("diffuse", "color"), ("specular", "specular")],
     ),
     (
         "mib_illum_cooktorr",
-        &[("diffuse", "diffuse"), ("specular", "specular")],
+        &[("diffuse", "color"), ("specular", "specular")],
     ),
     (
         "dgs_material",
@@ -474,20 +480,29 @@ pub fn material(
             reflection: zero,
             ambient,
         },
-        "mib_illum_blinn" => ShaderDesc::Blinn {
-            ambient,
-            diffuse: p.color(c, "diffuse", zero),
-            specular: p.color(c, "specular", zero),
-            roughness: p.scalar(c, "roughness", 0.2),
-            ior: p.scalar(c, "ior", 1.5),
-        },
-        "mib_illum_cooktorr" => ShaderDesc::CookTorrance {
-            ambient,
-            diffuse: p.color(c, "diffuse", zero),
-            specular: p.color(c, "specular", zero),
-            roughness: p.scalar(c, "roughness", 0.2),
-            ior: p.color(c, "ior", (1.5, 1.5, 1.5)),
-        },
+        "mib_illum_blinn" | "mib_illum_cooktorr" => {
+            let roughness = p.scalar(c, "roughness", 0.2);
+            let lobe = if b.name == "mib_illum_blinn" {
+                LocalLobeDesc::Blinn {
+                    roughness,
+                    ior: p.scalar(c, "ior", 1.5),
+                }
+            } else {
+                LocalLobeDesc::CookTorrance {
+                    roughness,
+                    ior: p.color(c, "ior", (1.5, 1.5, 1.5)),
+                }
+            };
+            ShaderDesc::Local {
+                color: p.color(c, "diffuse", zero),
+                ka: 0.0,
+                kd: 1.0,
+                specular: p.color(c, "specular", zero),
+                lobe,
+                reflection: zero,
+                ambient,
+            }
+        }
         "dgs_material" => {
             for name in ["shiny_u", "shiny_v", "transp"] {
                 if let Some(at) = p.pos(name) {
@@ -646,7 +661,14 @@ pub fn environment(
             call.pos,
             format!("environment shader \"{}\" is not mapped", call.name),
         );
-        p = p.with_help("a mib_opacity with a constant input (directly or as a phenomenon's root) maps onto a constant environment");
+        p = if super::tutorial::is_tutorial(&call.name) {
+            p.with_help(format!(
+                "the tutorial's \"{0}\" is built in once its library is linked: link \"{0}.so\"",
+                call.name
+            ))
+        } else {
+            p.with_help("a mib_opacity with a constant input (directly or as a phenomenon's root) maps onto a constant environment")
+        };
         c.report(p);
         return None;
     }

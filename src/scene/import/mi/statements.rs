@@ -1,7 +1,8 @@
 //! The top-level statements of a `.mi` file: `verbose`, `link`, `$include`, `$ifdef`-free
 //! scene elements (each handed to its block reader) and `render`.
 //!
-//! `link "base.so"` (and `physics`, `contour`) names a library whose shaders are built in;
+//! `link "base.so"` (and `physics`, `contour`) names a library whose shaders are built in,
+//! as does each of the tutorial's libraries (`myLight.so`, … : [`super::tutorial`]);
 //! any other library is native code that cannot be linked (a located warning). `$include
 //! <base.mi>` (and the other built-in libraries' declarations) needs nothing; another
 //! `<library.mi>` is a warning; `$include "file.mi"` reads that file relative to the
@@ -134,8 +135,8 @@ impl Reader {
             "link" => {
                 if let Some((lib, pos)) = c.string("the library of link") {
                     let stem = library_stem(&lib);
-                    if stem == TUTORIAL_DISPLACEMENT.to_ascii_lowercase() {
-                        self.raw.linked.push(TUTORIAL_DISPLACEMENT.to_string());
+                    if let Some(shader) = super::tutorial::library(&stem) {
+                        self.raw.linked.push(shader.to_string());
                     } else if !BUILT_IN_LIBRARIES.contains(&stem.as_str()) {
                         c.report(
                             Problem::warning(
@@ -187,7 +188,10 @@ impl Reader {
         };
         match t.tok {
             Tok::Library(lib) => {
-                if !BUILT_IN_LIBRARIES.contains(&library_stem(&lib).as_str()) {
+                let stem = library_stem(&lib);
+                if !BUILT_IN_LIBRARIES.contains(&stem.as_str())
+                    && super::tutorial::library(&stem).is_none()
+                {
                     c.warn(
                         t.pos,
                         format!("library include <{lib}> declares native shaders; not read"),
