@@ -55,6 +55,7 @@ mod mi_contours;
 mod mi_controls;
 mod mi_displacement;
 mod mi_material_environment;
+mod mi_outputs;
 mod mi_polygon_materials;
 mod mi_shadow_shaders;
 mod mi_surfaces;

@@ -328,7 +328,7 @@ const MALFORMED: &[(&str, &str)] = &[
     ),
     (
         "output_type",
-        "tests/fixtures/mi/output_type.mi:6:8: error: output type \"rgbz\" is not supported\n  help: expected \"rgb\", \"rgba\", \"z\", \"n\", \"tag\" or \"contour\"",
+        "tests/fixtures/mi/output_type.mi:6:8: error: output type \"rgbz\" is not supported\n  help: expected \"rgb\", \"rgba\", \"z\", \"n\", \"tag\" or \"contour\", or a file format (\"png\", \"exr\", \"rgb\", \"tif\", …)",
     ),
     (
         "short_polygon",

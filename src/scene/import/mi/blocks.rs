@@ -28,12 +28,21 @@ fn name_of(c: &mut Cursor, what: &str) -> Option<(String, Pos)> {
 /// then skips it and its arguments.
 fn unknown(c: &mut Cursor, block: &str, known: &[&str]) {
     let Some(t) = c.advance() else { return };
-    let shown = t.tok.describe();
+    let shown = match &t.tok {
+        Tok::Num(_) => "number".to_string(),
+        Tok::Str(s) => format!("string \"{s}\""),
+        other => other.describe(),
+    };
     let mut p = Problem::error(t.pos, format!("unexpected {shown} in {block}"));
     if let Tok::Word(w) = &t.tok {
         if let Some(s) = closest(w, known.iter().copied()) {
             p = p.with_help(format!("did you mean \"{s}\"?"));
         }
+    } else {
+        p = p.with_help(format!(
+            "expected a {block} statement (a word such as \"{}\") or \"end {block}\"",
+            known[0]
+        ));
     }
     c.report(p);
     c.skip_arguments();
@@ -384,29 +393,83 @@ pub fn camera(r: &mut Reader, c: &mut Cursor, open: Pos) {
     }
 }
 
-/// `output "type" ["format"] "file"`: rgb/rgba → colour (plus alpha), z → depth, n → normals,
-/// tag → object ids. PNG and EXR are written; other formats go to a PNG (colour) or EXR
-/// (data) of the same stem, with a warning.
+/// `output ["type"] "format" [options…] "file"` (mental ray's form; the seed: "if you choose
+/// rgb for the format and do not specify the optional parameters type and opt … the type
+/// will default to rgba"). `output "type" "file"` with a data type that is no file format
+/// (`"rgba" "x.png"`) is read too. Types: rgb → colour, rgba → colour and alpha, z → depth,
+/// n → normals, tag → object ids, contour (`ps`/`eps`) → contour lines. The data type a format
+/// gives by default: `zt` z, `nt` n, `tt` tag, `ps`/`eps` contour, every other rgba. PNG and
+/// EXR are written; other formats go to a PNG (colour) or EXR (data) of the same stem, with a
+/// warning; the format's options (numbers: quality, compression) are read and warned.
 fn output(c: &mut Cursor, outputs: &mut Vec<OutputDesc>) {
-    let Some((kind, kind_pos)) = c.string("the output type") else {
+    let Some((first, first_pos)) = c.string("the output type or format") else {
         return;
     };
-    let Some((mut file, file_pos)) = c.string("the output file") else {
-        return;
-    };
-    let mut format_at = None;
+    let mut strings = vec![(first, first_pos)];
     if c.at_string() {
-        format_at = Some((file.clone(), file_pos));
-        file = c.string("the output file").map_or(file, |f| f.0);
+        strings.extend(c.string("the output format or file"));
     }
+    let mut options = None;
+    while c.at_number() {
+        let at = c.pos();
+        let _ = c.number("an output option");
+        options.get_or_insert(at);
+    }
+    if c.at_string() || options.is_some() {
+        let Some(file) = c.string("the output file") else {
+            return;
+        };
+        strings.push(file);
+    }
+    // (type, format, file)
+    let (kind, format, (mut file, file_pos)) = match strings.as_slice() {
+        [(t, tp), (f, fp), file] => (Some((t.clone(), *tp)), Some((f.clone(), *fp)), file.clone()),
+        [(x, xp), file] if is_output_format(x) => (None, Some((x.clone(), *xp)), file.clone()),
+        [(x, xp), file] => (Some((x.clone(), *xp)), None, file.clone()),
+        [_] => {
+            // Reports "expected a string for the output file, found …".
+            let _ = c.string("the output file");
+            return;
+        }
+        _ => return,
+    };
+    if let Some((f, at)) = &format {
+        if !is_output_format(f) {
+            let mut p = Problem::error(*at, format!("unknown output format \"{f}\""));
+            p = match closest(f, OUTPUT_FORMATS.iter().copied()) {
+                Some(s) => p.with_help(format!("did you mean \"{s}\"?")),
+                None => p.with_help("stagelight writes \"png\" and \"exr\"; mental ray's other formats (\"rgb\", \"tif\", \"jpg\", …) become PNG or EXR files"),
+            };
+            c.report(p);
+            return;
+        }
+    }
+    if let Some(at) = options {
+        let f = format.as_ref().map_or("", |f| f.0.as_str());
+        c.warn(
+            at,
+            format!("the options of output format \"{f}\" are read and not used (stagelight writes PNG and EXR with their own settings)"),
+        );
+    }
+    let format_name = format.as_ref().map(|f| f.0.as_str());
+    let (kind, kind_pos) = kind.unwrap_or_else(|| {
+        let t = match format_name {
+            Some("zt") => "z",
+            Some("nt") => "n",
+            Some("tt") => "tag",
+            Some("ps" | "eps") => "contour",
+            _ => "rgba",
+        };
+        (t.to_string(), format.as_ref().map_or(file_pos, |f| f.1))
+    });
     if kind == "contour" {
         // `output "contour" "ps"|"eps" "file"`: the contour lines as PostScript.
-        match format_at {
+        match &format {
             Some((f, _)) if f == "ps" || f == "eps" => {}
             Some((f, at)) => {
                 c.report(
                     Problem::error(
-                        at,
+                        *at,
                         format!("contour output format \"{f}\" is not supported"),
                     )
                     .with_help("write \"ps\" or \"eps\" (Encapsulated PostScript)"),
@@ -431,21 +494,27 @@ fn output(c: &mut Cursor, outputs: &mut Vec<OutputDesc>) {
         "n" => vec![PassDesc::Normal],
         "tag" => vec![PassDesc::ObjectId],
         other => {
-            c.report(
-                Problem::error(
-                    kind_pos,
-                    format!("output type \"{other}\" is not supported"),
-                )
-                .with_help("expected \"rgb\", \"rgba\", \"z\", \"n\", \"tag\" or \"contour\""),
+            let mut p = Problem::error(
+                kind_pos,
+                format!("output type \"{other}\" is not supported"),
             );
+            p = match format_name {
+                Some(_) => p.with_help("expected \"rgb\", \"rgba\", \"z\", \"n\", \"tag\" or \"contour\""),
+                None => p.with_help("expected \"rgb\", \"rgba\", \"z\", \"n\", \"tag\" or \"contour\", or a file format (\"png\", \"exr\", \"rgb\", \"tif\", …)"),
+            };
+            c.report(p);
             return;
         }
     };
-    let colour = passes == [PassDesc::Beauty];
+    let colour = passes
+        .iter()
+        .all(|p| matches!(p, PassDesc::Beauty | PassDesc::Alpha));
     let lower = file.to_ascii_lowercase();
-    let format = if lower.ends_with(".png") && colour {
+    let format = if format_name == Some("png") && colour
+        || format_name.is_none_or(|f| f != "exr") && lower.ends_with(".png") && colour
+    {
         FormatDesc::Png
-    } else if lower.ends_with(".exr") {
+    } else if format_name == Some("exr") || lower.ends_with(".exr") {
         FormatDesc::Exr
     } else {
         let stem = file
@@ -458,9 +527,13 @@ fn output(c: &mut Cursor, outputs: &mut Vec<OutputDesc>) {
             ("exr", FormatDesc::Exr)
         };
         let new = format!("{stem}.{ext}");
+        let what = match format_name {
+            Some(f) => format!("stagelight writes PNG and EXR files, not format \"{f}\""),
+            None => "stagelight writes PNG and EXR files".to_string(),
+        };
         c.warn(
             file_pos,
-            format!("output \"{file}\" is written as \"{new}\" (PNG and EXR files are written)"),
+            format!("output \"{file}\" is written as \"{new}\" ({what})"),
         );
         file = new;
         format
@@ -470,6 +543,18 @@ fn output(c: &mut Cursor, outputs: &mut Vec<OutputDesc>) {
         format: Some(format),
         passes: Some(passes),
     });
+}
+
+/// mental ray's image file formats (`output` statements).
+const OUTPUT_FORMATS: &[&str] = &[
+    "png", "exr", "rgb", "tif", "tifu", "tif3", "tif3u", "tif4", "tif4u", "tif16", "tif16u",
+    "tif32", "tif32u", "tiff", "jpg", "jpeg", "pic", "picz", "alias", "rla", "rlb", "ppm",
+    "qntpal", "qntntsc", "ct", "ctfp", "cth", "st", "vt", "wt", "zt", "nt", "tt", "bit", "cvt",
+    "map", "hdr", "iff", "bmp", "tga", "psd", "ps", "eps",
+];
+
+fn is_output_format(s: &str) -> bool {
+    OUTPUT_FORMATS.contains(&s)
 }
 
 const LIGHT: &[&str] = &[

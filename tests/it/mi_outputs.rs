@@ -1,0 +1,172 @@
+//! `.mi` camera `output` statements in mental ray's form `output ["type"] "format" [opt]
+//! "filename"` (seed 001 §3: a format without a type writes rgba): each form maps onto an
+//! output with its passes and file, formats stagelight cannot write become a PNG or EXR of
+//! the same stem (warned), options are read and warned; bad ones are located errors that
+//! read well.
+
+use std::path::Path;
+
+use stagelight::scene::desc::{FormatDesc, OutputDesc, PassDesc};
+use stagelight::scene::import::mi::read_mi;
+
+use crate::common::cli::{run_in, scratch_dir, stderr_of};
+
+/// A scene whose camera has the `outputs` lines.
+fn scene(outputs: &str) -> String {
+    format!(
+        r#"options "opt"
+object space
+end options
+camera "cam"
+{outputs}
+focal 1
+aperture 1
+aspect 1
+resolution 4 4
+end camera
+instance "cam_inst" "cam" end instance
+light "lamp" "mib_light_point" ("color" 1 1 1) origin 0 0 0 end light
+instance "lamp_inst" "lamp" end instance
+material "mtl" "mib_illum_lambert" ("diffuse" 0.8 0.8 0.8, "lights" ["lamp_inst"]) end material
+object "quad" group
+1 1 -1  1 -1 -1  -1 -1 -1  -1 1 -1
+v 0 v 1 v 2 v 3
+p "mtl" 0 3 2 1
+end group end object
+instance "quad_inst" "quad" end instance
+instgroup "root" "cam_inst" "lamp_inst" "quad_inst" end instgroup
+render "root" "cam_inst" "opt"
+"#
+    )
+}
+
+/// The camera's outputs and the reader's warnings (`line:column: message`).
+fn read(outputs: &str) -> (Vec<OutputDesc>, Vec<String>) {
+    let text = scene(outputs);
+    let read = read_mi(Path::new("out.mi"), text.as_bytes()).unwrap_or_else(|e| panic!("{}", e[0]));
+    let warnings = read
+        .warnings
+        .iter()
+        .map(|w| {
+            let p = w.problem.pos;
+            format!("{}:{}: {}", p.line, p.column, w.problem.message)
+        })
+        .collect();
+    (read.desc.cameras[0].outputs.clone(), warnings)
+}
+
+fn errors(outputs: &str) -> String {
+    let text = scene(outputs);
+    match read_mi(Path::new("out.mi"), text.as_bytes()) {
+        Ok(_) => panic!("reads: {outputs}"),
+        Err(e) => e
+            .iter()
+            .map(|e| e.to_string())
+            .collect::<Vec<_>>()
+            .join("\n"),
+    }
+}
+
+fn out(file: &str, format: FormatDesc, passes: &[PassDesc]) -> String {
+    format!(
+        "{:?}",
+        OutputDesc {
+            file: file.into(),
+            format: Some(format),
+            passes: Some(passes.to_vec()),
+        }
+    )
+}
+
+#[test]
+fn output_forms_map_onto_passes_and_files() {
+    use FormatDesc::{Exr, Png};
+    use PassDesc::{Alpha, Beauty, Depth};
+    let cases: &[(&str, String, &[&str])] = &[
+        // A format alone: its default type, rgba (the seed's "rgb" case too).
+        (
+            "output \"png\" \"test.png\"",
+            out("test.png", Png, &[Beauty, Alpha]),
+            &[],
+        ),
+        (
+            "output \"rgb\" \"test.rgb\"",
+            out("test.png", Png, &[Beauty, Alpha]),
+            &["5:14: output \"test.rgb\" is written as \"test.png\" (stagelight writes PNG and EXR files, not format \"rgb\")"],
+        ),
+        // Type, format, an option number, file.
+        (
+            "output \"rgba\" \"tif\" 1 \"test.tif\"",
+            out("test.png", Png, &[Beauty, Alpha]),
+            &[
+                "5:21: the options of output format \"tif\" are read and not used (stagelight writes PNG and EXR with their own settings)",
+                "5:23: output \"test.tif\" is written as \"test.png\" (stagelight writes PNG and EXR files, not format \"tif\")",
+            ],
+        ),
+        ("output \"rgb\" \"png\" \"x.png\"", out("x.png", Png, &[Beauty]), &[]),
+        (
+            "output \"rgba\" \"exr\" \"x.exr\"",
+            out("x.exr", Exr, &[Beauty, Alpha]),
+            &[],
+        ),
+        // A data type's format, written as EXR.
+        (
+            "output \"z\" \"zt\" \"d.zt\"",
+            out("d.exr", Exr, &[Depth]),
+            &["5:17: output \"d.zt\" is written as \"d.exr\" (stagelight writes PNG and EXR files, not format \"zt\")"],
+        ),
+        (
+            "output \"zt\" \"d.exr\"",
+            out("d.exr", Exr, &[Depth]),
+            &[],
+        ),
+        // A data type and a file (no format): read as before.
+        (
+            "output \"rgba\" \"a.png\"",
+            out("a.png", Png, &[Beauty, Alpha]),
+            &[],
+        ),
+    ];
+    for (line, want, warned) in cases {
+        let (outputs, warnings) = read(line);
+        assert_eq!(outputs.len(), 1, "{line}");
+        assert_eq!(format!("{:?}", outputs[0]), *want, "{line}");
+        assert_eq!(warnings, *warned, "{line}");
+    }
+}
+
+#[test]
+fn bad_output_statements_are_located_errors_that_read_well() {
+    let cases = [
+        (
+            "output \"rgba\" \"pgn\" \"x.png\"",
+            "out.mi:5:15: error: unknown output format \"pgn\"\n  help: did you mean \"png\"?",
+        ),
+        (
+            "output \"rgbz\" \"x.png\"",
+            "out.mi:5:8: error: output type \"rgbz\" is not supported\n  help: expected \"rgb\", \"rgba\", \"z\", \"n\", \"tag\" or \"contour\", or a file format (\"png\", \"exr\", \"rgb\", \"tif\", …)",
+        ),
+        (
+            "output \"rgba\" \"tif\" 1 2",
+            "out.mi:6:1: error: expected a string for the output file, found \"focal\"",
+        ),
+        (
+            "resolution 4 4 4",
+            "out.mi:5:16: error: unexpected number in camera\n  help: expected a camera statement (a word such as \"frame\") or \"end camera\"",
+        ),
+    ];
+    for (line, want) in cases {
+        assert_eq!(errors(line), want, "{line}");
+    }
+}
+
+#[test]
+fn cli_render_of_output_png_writes_an_rgba_png() {
+    let dir = scratch_dir("mi_output_png");
+    std::fs::write(dir.join("test.mi"), scene("output \"png\" \"test.png\"")).unwrap();
+    let o = run_in(&dir, &["render", "test.mi"]);
+    assert!(o.status.success(), "{}", stderr_of(&o));
+    let png = crate::common::png::read(&dir.join("test.png"));
+    assert_eq!((png.width, png.height, png.channels), (4, 4, 4));
+    let _ = std::fs::remove_dir_all(&dir);
+}
