@@ -291,6 +291,75 @@ fn seed_mi_scenes_render_without_nan_and_their_ron_renders_the_same() {
     }
 }
 
+/// `stairs.mi` is `stairs.rib` written for mental ray: the same view (the RIB's `fov 30`
+/// spans the vertical side; the `.mi` aperture is the film width; the same camera placement)
+/// and the same spot cone and penumbra (`spread` = cos coneangle, `cone` = cos(coneangle −
+/// conedeltaangle)).
+#[test]
+fn stairs_mi_frames_and_lights_like_stairs_rib() {
+    use stagelight::components::{Emitter, LightShape};
+    let view = |scene: &LoadedScene| {
+        let (c, _) = scene
+            .world
+            .query::<(&Camera, &RenderCamera)>()
+            .iter()
+            .next()
+            .map(|(c, r)| (c.clone(), *r))
+            .unwrap();
+        (c.fov_y, c.aspect, c.world_from_camera)
+    };
+    let spot = |scene: &LoadedScene| {
+        scene
+            .world
+            .query::<&Emitter>()
+            .iter()
+            .find_map(|e| match &e.shape {
+                LightShape::Spot {
+                    position,
+                    direction,
+                    cone_angle,
+                    penumbra,
+                    ..
+                } => Some((*position, *direction, *cone_angle, *penumbra)),
+                _ => None,
+            })
+            .expect("a spot light")
+    };
+    let mi = load_scene(&dir("assets/seeds/mi/stairs.mi")).unwrap();
+    let rib = load_scene(&dir("assets/seeds/rib/stairs.rib")).unwrap();
+    // stairs.mi writes the RIB's points as they are; the RIB reader mirrors the RIB world
+    // through z = 0 (docs/rib.md). The scene is symmetric in x, so the two worlds are one
+    // half turn about y apart: compare the RIB's turned by it.
+    let turn = glam::Affine3A::from_rotation_y(std::f32::consts::PI);
+    let (a, mut b) = (view(&mi), view(&rib));
+    b.2 = turn * b.2;
+    assert!((a.0 - b.0).abs() < 1e-5, "fov_y {} vs {}", a.0, b.0);
+    assert!((a.0 - 30f32.to_radians()).abs() < 1e-5, "{}", a.0);
+    assert!((a.1 - b.1).abs() < 1e-5);
+    let eye = |m: glam::Affine3A| m.transform_point3(glam::Vec3::ZERO);
+    let ahead = |m: glam::Affine3A| m.transform_vector3(-glam::Vec3::Z).normalize();
+    assert!(
+        eye(a.2).distance(eye(b.2)) < 1e-4,
+        "{} vs {}",
+        eye(a.2),
+        eye(b.2)
+    );
+    assert!(ahead(a.2).distance(ahead(b.2)) < 1e-4);
+    let (p, mut q) = (spot(&mi), spot(&rib));
+    q.0 = turn.transform_point3(q.0);
+    q.1 = turn.transform_vector3(q.1);
+    assert!(p.0.distance(q.0) < 1e-4, "{} vs {}", p.0, q.0);
+    assert!(p.1.distance(q.1) < 1e-4, "{} vs {}", p.1, q.1);
+    assert!(
+        (p.2 - 0.35).abs() < 1e-5 && (q.2 - 0.35).abs() < 1e-5,
+        "{} {}",
+        p.2,
+        q.2
+    );
+    assert!((p.3 - q.3).abs() < 1e-5, "penumbra {} vs {}", p.3, q.3);
+    assert!((p.3 - 5f32.to_radians()).abs() < 1e-5, "{}", p.3);
+}
+
 #[test]
 fn cli_convert_writes_ron_that_renders_byte_identical() {
     crate::common::convert_renders_the_same_png("mi_convert", &dir("assets/seeds/mi/plane.mi"));
