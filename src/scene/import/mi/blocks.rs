@@ -433,7 +433,8 @@ fn output(c: &mut Cursor, outputs: &mut Vec<OutputDesc>) {
         }
         _ => return,
     };
-    if let Some((f, at)) = &format {
+    let contour = kind.as_ref().is_some_and(|k| k.0 == "contour");
+    if let (Some((f, at)), false) = (&format, contour) {
         if !is_output_format(f) {
             let mut p = Problem::error(*at, format!("unknown output format \"{f}\""));
             p = match closest(f, OUTPUT_FORMATS.iter().copied()) {
