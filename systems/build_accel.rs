@@ -57,7 +57,9 @@ pub fn should_run(world: &World, frame: &Frame) -> Decision {
         return Decision::skip("no instance has triangles");
     }
     let tasks = frame.inputs.tasks;
-    let renders = tasks.render && has_render_camera(world);
+    let renders = tasks.render
+        && has_render_camera(world)
+        && crate::scene_view::image_is_read(world, &frame.inputs);
     let bakes = tasks.bake && any_with::<BakeRequest>(world);
     if !renders && !bakes {
         return Decision::skip(if tasks.render {

@@ -66,7 +66,10 @@ pub fn should_run(world: &World, frame: &Frame) -> Decision {
     if maps.is_empty() {
         return Decision::skip("caustics and global illumination are off");
     }
-    if !frame.inputs.tasks.render || !has_render_camera(world) {
+    if !frame.inputs.tasks.render
+        || !has_render_camera(world)
+        || !crate::scene_view::image_is_read(world, &frame.inputs)
+    {
         return Decision::skip("no render camera reads photon maps in this run");
     }
     if frame.inputs.settings.integrator != Integrator::Direct {
