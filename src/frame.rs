@@ -173,6 +173,11 @@ pub struct RunInputs {
     /// Run the stage table only through this stage (`stagelight photons` stops after
     /// `trace_photons`); `None`: every stage.
     pub stop_after: Option<&'static str>,
+    /// The caller reads the rendered image from the frame (library use; the default). The
+    /// command line's `render` clears it: the image is then read only through the camera's
+    /// outputs or a part file, and with neither [`crate::scene_view::image_is_read`] is false and the
+    /// stages that only feed the image skip.
+    pub caller_keeps_image: bool,
 }
 
 impl RunInputs {
@@ -304,6 +309,7 @@ impl Frame {
                 write_gltf: None,
                 photon_cache: None,
                 stop_after: None,
+                caller_keeps_image: true,
             },
             outputs: StageOutputs::default(),
             report: RunReport::default(),

@@ -560,6 +560,8 @@ fn plan(args: PlanArgs) -> ExitCode {
         render: !args.bake_only,
         bake: args.bake || args.bake_only,
     };
+    // Planned as `render` runs it: the image is read only through outputs.
+    frame.inputs.caller_keeps_image = false;
     let planned = systems::plan(&scene.world, &mut frame);
     if args.json {
         match serde_json::to_string_pretty(&planned) {
@@ -753,6 +755,7 @@ fn render(args: RenderArgs) -> ExitCode {
         render: true,
         bake: args.bake,
     };
+    frame.inputs.caller_keeps_image = false;
     run_and_report(
         &args.scene,
         &mut scene,

@@ -79,6 +79,15 @@ pub fn render_outputs(
     overrides.apply(&listed)
 }
 
+/// Whether anyone reads the render camera's image in this run: the caller keeps it
+/// ([`crate::frame::RunInputs::caller_keeps_image`]), a farm part file stores it, or the
+/// camera (after `-o`) has an output to write.
+pub fn image_is_read(world: &World, inputs: &crate::frame::RunInputs) -> bool {
+    inputs.caller_keeps_image
+        || inputs.part.is_some()
+        || render_outputs(world, &inputs.outputs).map_or(true, |outputs| !outputs.is_empty())
+}
+
 /// Whether the scene has a render camera (cheap; for run conditions).
 pub fn has_render_camera(world: &World) -> bool {
     crate::schedule::any_with::<RenderCamera>(world)

@@ -31,6 +31,7 @@ use crate::components::{
     Procedural, RayFlags, Scatter, SceneOrigin, SubdivMesh, Surface, VertexColours, VertexTangents,
     WorldFromObject, ALL_RAYS,
 };
+use crate::features::Feature;
 use crate::geometry::{InstanceGeometry, SceneGeometry};
 use crate::guard::extent::{located, out_of_range, reach};
 use crate::scene_view::has_render_camera;
@@ -48,15 +49,17 @@ pub fn should_run(world: &World, frame: &Frame) -> Decision {
         triangles += inst.mesh.triangles.len();
     }
     // Before the geometry stages run (a plan), generated geometry is still components.
-    let pending = any_with::<Procedural>(world)
-        || any_with::<Scatter>(world)
+    let generates = !frame.inputs.settings.disabled.contains(Feature::Geometry);
+    let pending = generates && (any_with::<Procedural>(world) || any_with::<Scatter>(world))
         || any_with::<Surface>(world)
         || any_with::<SubdivMesh>(world);
     if triangles == 0 && !pending {
         return Decision::skip("no instance has triangles");
     }
     let tasks = frame.inputs.tasks;
-    let renders = tasks.render && has_render_camera(world);
+    let renders = tasks.render
+        && has_render_camera(world)
+        && crate::scene_view::image_is_read(world, &frame.inputs);
     let bakes = tasks.bake && any_with::<BakeRequest>(world);
     if !renders && !bakes {
         return Decision::skip(if tasks.render {

@@ -37,7 +37,7 @@ pub fn should_run(world: &World, frame: &Frame) -> Decision {
     }
     let n = count_with::<ContourShader>(world);
     if n == 0 {
-        return Decision::skip("no material has a contour shader");
+        return Decision::skip("no material in use has a contour shader");
     }
     if frame
         .inputs
@@ -177,7 +177,7 @@ mod tests {
         run_until("draw_contours", &mut world, &mut frame);
         assert_eq!(
             should_run(&world, &frame),
-            Decision::skip("no material has a contour shader")
+            Decision::skip("no material in use has a contour shader")
         );
         assert!(frame.outputs.image.unwrap().contour_store.is_none());
     }

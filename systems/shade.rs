@@ -53,7 +53,11 @@ use crate::shading::integrator::{camera_hit, CameraHit};
 use crate::shading::{CameraRays, FilterSampler, ShadeContext, Volumes};
 use rows::{RowOut, Totals};
 
-/// Run condition: a render camera exists.
+/// Why the image is not rendered when nothing would read it.
+pub const NO_OUTPUTS: &str = "the render camera has no outputs and no part file keeps its image";
+
+/// Run condition: a render camera exists, and its image is read (an output, a part file, or
+/// a caller that keeps the frame).
 pub fn should_run(world: &World, frame: &Frame) -> Decision {
     if !frame.inputs.tasks.render {
         return Decision::skip("this run only bakes");
@@ -67,6 +71,9 @@ pub fn should_run(world: &World, frame: &Frame) -> Decision {
     let Some(view) = render_view(world) else {
         return Decision::skip("no render camera");
     };
+    if !crate::scene_view::image_is_read(world, &frame.inputs) {
+        return Decision::skip(NO_OUTPUTS);
+    }
     let off = frame.inputs.settings.disabled;
     let view = view.without(off);
     let camera = &view.camera;

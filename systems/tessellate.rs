@@ -79,6 +79,16 @@ pub fn should_run(world: &World, frame: &Frame) -> Decision {
         ));
     }
     if surfaces + subdivs + displaced == 0 {
+        let unexpanded = world
+            .query::<&Procedural>()
+            .iter()
+            .filter(|p| expands_to_surface(p))
+            .count();
+        if off.contains(Feature::Geometry) && unexpanded > 0 {
+            return Decision::skip(format!(
+                "geometry shaders disabled ({unexpanded} shape(s) not expanded into surfaces)"
+            ));
+        }
         return if bump > 0 {
             Decision::skip(format!(
                 "no parametric surfaces or true displacement ({bump} bump displacement(s) are left to shading)"

@@ -20,7 +20,7 @@ use hecs::World;
 
 use super::prelude::*;
 use super::MERGING;
-use crate::components::{Emitter, LightPhotons, Material, PhotonFlags};
+use crate::components::{Emitter, LightPhotons, LightShape, Material, PhotonFlags};
 use crate::frame::Slot;
 use crate::image_io::PendingFile;
 use crate::photon::aim::Aim;
@@ -37,7 +37,7 @@ use crate::photon::{
 };
 use crate::sampling::fold_seed;
 use crate::scene_view::{has_render_camera, light_set, WithEnvironment};
-use crate::settings::{Integrator, PhotonMapSettings, RenderSettings};
+use crate::settings::{Integrator, PhotonMapSettings, PhotonSettings, RenderSettings};
 use crate::shading::integrator::material_bsdfs::MaterialBsdfs;
 use crate::shading::integrator::triangle_normals::TriangleNormals;
 use crate::shading::ShadeContext;
@@ -66,7 +66,10 @@ pub fn should_run(world: &World, frame: &Frame) -> Decision {
     if maps.is_empty() {
         return Decision::skip("caustics and global illumination are off");
     }
-    if !frame.inputs.tasks.render || !has_render_camera(world) {
+    if !frame.inputs.tasks.render
+        || !has_render_camera(world)
+        || !crate::scene_view::image_is_read(world, &frame.inputs)
+    {
         return Decision::skip("no render camera reads photon maps in this run");
     }
     if frame.inputs.settings.integrator != Integrator::Direct {
@@ -88,6 +91,11 @@ pub fn should_run(world: &World, frame: &Frame) -> Decision {
     if !lit {
         return Decision::skip("no light has power");
     }
+    if !a_light_emits_photons(world, &p) {
+        return Decision::skip(
+            "no light emits photons for the maps requested (ambient lights send none; every other light has photon energy 0 or 0 photons for them)",
+        );
+    }
     let kept = match (
         &frame.inputs.photon_cache,
         &frame.inputs.settings.photon_map,
@@ -103,6 +111,31 @@ pub fn should_run(world: &World, frame: &Frame) -> Decision {
         (None, None) => String::new(),
     };
     Decision::run(format!("{}{kept}", maps.join(" + ")))
+}
+
+/// Whether some light sends photons into a requested map: an emitting material, or a light
+/// other than an ambient one whose photon power (its `energy`, else its physical power) is
+/// non-zero and whose own photon count for that map (mental ray's `caustic photons` /
+/// `globillum photons`) is not 0. Mirrors what [`run`] traces: ambient lights and zero
+/// power emit nothing, a count of 0 skips the light for that map.
+fn a_light_emits_photons(world: &World, maps: &PhotonSettings) -> bool {
+    if world.query::<&Material>().iter().any(Material::is_emissive) {
+        return true;
+    }
+    world
+        .query::<(&Emitter, Option<&LightPhotons>)>()
+        .iter()
+        .any(|(e, c)| {
+            let c = c.copied().unwrap_or_default();
+            let power = c.energy.unwrap_or(e.radiant);
+            let sends = |map: Option<PhotonMapSettings>, count: Option<u32>| {
+                map.is_some() && count != Some(0)
+            };
+            !matches!(e.shape, LightShape::Ambient)
+                && power.max_element() > 0.0
+                && (sends(maps.caustics, c.caustic_photons)
+                    || sends(maps.global_illumination, c.globillum_photons))
+        })
 }
 
 /// Whether nothing in the scene can cast caustic photons: no material that makes caustics

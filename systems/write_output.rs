@@ -20,7 +20,7 @@ use crate::contour::{output, ContourImage};
 use crate::farm::PartRun;
 use crate::frame::Slot;
 use crate::framebuffer::FrameBuffers;
-use crate::image_io::{encode_exr_with, encode_png, PendingFile};
+use crate::image_io::{encode_alpha_png, encode_exr_with, encode_png, PendingFile};
 use crate::scene_view::render_view;
 
 /// The outputs this run writes: the camera's, with the command line's overrides.
@@ -88,7 +88,8 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
     Ok(Work::new(pending.len() as u64, "files").with_pending(pending))
 }
 
-/// A PNG output: the beauty, with the contours composited when it lists `Contours` (over
+/// A PNG output: the alpha pass alone as a grey image when it lists `Alpha` without `Beauty`
+/// or `Contours`; else the beauty (straight colour beside its alpha with `Alpha`), with the contours composited when it lists `Contours` (over
 /// the beauty when it lists `Beauty` too, else over the imager's background colour, white
 /// without one, as an opaque image).
 fn png(
@@ -98,6 +99,9 @@ fn png(
     imager: Option<&Imager>,
 ) -> Result<Vec<u8>, String> {
     let alpha = out.passes.contains(&Pass::Alpha);
+    if alpha && !out.passes.contains(&Pass::Beauty) && !out.passes.contains(&Pass::Contours) {
+        return encode_alpha_png(fb);
+    }
     let Some(c) = contours.filter(|_| out.passes.contains(&Pass::Contours)) else {
         return encode_png(fb, alpha, imager);
     };

@@ -42,6 +42,13 @@ impl<T> Item<'_, T> {
     }
 }
 
+/// The brightest radiant value a scene may give (W/sr, W/m² or W/(sr·m²) per channel): the
+/// renderer's arithmetic is f32, and radiance divided by a small sampling density or summed
+/// over samples overflows past ~1e30 (light was lost silently). The Sun's radiance is ~2e7.
+pub const MAX_RADIANT: f64 = 1e20;
+
+const RADIANT_HELP: &str = "radiant values above 1e20 overflow f32 arithmetic in sampling; scale the scene's light down (the camera's imager exposure can scale the image back)";
+
 /// Records errors about the values of one element.
 pub struct Checker<'s> {
     /// Where errors go.
@@ -95,6 +102,22 @@ impl Checker<'_> {
             }
         }
         ok.then_some(c)
+    }
+
+    /// A radiant quantity (a light's colour × intensity, an emission, an environment's
+    /// radiance) no brighter than [`MAX_RADIANT`] in any channel; reports it at `path` if it is.
+    pub fn radiant(&mut self, path: &str, what: &str, v: DVec3) -> Option<DVec3> {
+        let brightest = v.max_element();
+        if brightest > MAX_RADIANT {
+            self.src.error(
+                self.file,
+                path,
+                format!("{what} {brightest:e} is brighter than stagelight carries (at most {MAX_RADIANT:e})"),
+                Some(RADIANT_HELP.into()),
+            );
+            return None;
+        }
+        Some(v)
     }
 
     /// A finite, non-negative number.

@@ -5,7 +5,7 @@
 use std::path::Path;
 use std::sync::Arc;
 
-use glam::Vec3;
+use glam::{DVec3, Vec3};
 
 use super::desc::{DepthExceededDesc, EnvironmentShaderDesc, SceneDesc};
 use super::diagnostics::Sources;
@@ -68,7 +68,12 @@ pub fn source(
     match shader {
         EnvironmentShaderDesc::Constant { color } => {
             let c = ck.colour(&format!("{at}.shader.Constant.color"), "color", *color);
-            Some(EnvironmentSource::Constant((c? * intensity?).as_vec3()))
+            let radiance = ck.radiant(
+                &format!("{at}.intensity"),
+                "color × intensity",
+                c? * intensity?,
+            )?;
+            Some(EnvironmentSource::Constant(radiance.as_vec3()))
         }
         EnvironmentShaderDesc::LatLong {
             file: name,
@@ -100,6 +105,15 @@ pub fn source(
             if !rot_ok {
                 return None;
             }
+            let brightest = map
+                .texels
+                .iter()
+                .fold(0.0f32, |m, t| m.max(t.max_element()));
+            ck.radiant(
+                &format!("{at}.intensity"),
+                "the brightest texel × intensity",
+                DVec3::splat(f64::from(brightest) * f64::from(k)),
+            )?;
             for t in &mut map.texels {
                 *t *= k;
             }

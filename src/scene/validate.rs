@@ -680,7 +680,13 @@ pub fn light(src: &mut Sources, item: &Item<'_, LightDesc>) -> Option<Emitter> {
     let visible = super::lights::visible(&mut ck, item, is_area);
     Some(Emitter {
         shape,
-        radiant: (color? * intensity?).as_vec3(),
+        radiant: ck
+            .radiant(
+                &item.at(".intensity"),
+                "color × intensity",
+                color? * intensity?,
+            )?
+            .as_vec3(),
         shadows: l.shadows,
         shadow_factor: shadow_factor?,
         samples: samples?,
@@ -697,7 +703,9 @@ pub fn material(src: &mut Sources, item: &Item<'_, MaterialDesc>) -> Option<Mate
         src,
         file: item.file,
     };
-    let emission = ck.colour(&item.at(".emission"), "emission", m.emission);
+    let emission = ck
+        .colour(&item.at(".emission"), "emission", m.emission)
+        .and_then(|e| ck.radiant(&item.at(".emission"), "emission", e));
     let shader = super::shaders::shader(&mut ck, &item.at(".shader"), &m.shader);
     let shadow = super::material_shaders::shadow(&mut ck, &item.at(".shadow"), m.shadow.as_ref());
     let environment = super::material_shaders::environment(

@@ -59,6 +59,11 @@ pub(crate) fn fresnel_oriented(cos_i: f32, eta: f32) -> Option<(f32, f32, f32)> 
 #[inline]
 fn cos_transmitted(cos_i: f32, eta: f32) -> Option<f32> {
     let k = (eta - 1.0) * (eta + 1.0) + cos_i * cos_i;
+    if k == f32::INFINITY {
+        // η² overflows f32 (η ≳ 1.8e19): sinθt ≤ 1/η < 2⁻⁶³, so cosθt rounds to 1 (the formula
+        // would give ∞ here and NaN reflectances downstream).
+        return Some(1.0);
+    }
     (k > 0.0).then(|| k.sqrt() / eta)
 }
 
@@ -88,6 +93,28 @@ pub fn refract(wi: Vec3, n: Vec3, eta: f32) -> Option<(Vec3, f32)> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn an_index_whose_square_overflows_reflects_almost_everything() {
+        for eta in [1.9e19_f32, 1e20, 1e30, f32::MAX] {
+            for cos_i in [0.0_f32, 0.3, 1.0, -0.5, -1.0] {
+                let (r, t) = fresnel_dielectric_rt(cos_i, eta);
+                assert!(
+                    r.is_finite() && t.is_finite(),
+                    "η {eta} cos {cos_i}: {r} {t}"
+                );
+                assert!((0.999..=1.0).contains(&r), "η {eta} cos {cos_i}: R {r}");
+                assert!(
+                    (r + t - 1.0).abs() < 1e-6,
+                    "η {eta} cos {cos_i}: R + T {}",
+                    r + t
+                );
+            }
+            assert_eq!(cos_transmitted(0.5, eta), Some(1.0));
+        }
+        // Just below the overflow the formula itself still answers.
+        assert!(fr_dielectric(0.5, 1e19).is_finite());
+    }
 
     #[test]
     fn mitsuba_reference_values() {

@@ -80,7 +80,7 @@ fn plan_prints_every_stage_with_its_reason_and_writes_nothing() {
             " 4 trace_photons    skip caustics and global illumination are off",
             " 5 bake_lightmaps   skip 1 bake request(s), but this run does not bake (use `stagelight bake` or `render --bake`)",
             " 6 shade            run  render camera 16×16",
-            " 7 draw_contours    skip no material has a contour shader",
+            " 7 draw_contours    skip no material in use has a contour shader",
             " 8 write_output     run  1 camera output(s)",
         ]
     );

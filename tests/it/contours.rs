@@ -311,7 +311,7 @@ fn skipped_without_contour_shaders_and_output_unchanged() {
         .find(|s| s.stage == "draw_contours")
         .unwrap();
     assert!(!stage.ran);
-    assert_eq!(stage.reason, "no material has a contour shader");
+    assert_eq!(stage.reason, "no material in use has a contour shader");
     let (_, without) = files(false);
     assert_eq!(with.len(), 2);
     assert!(with == without, "byte-identical files");

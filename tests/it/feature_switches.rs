@@ -130,6 +130,27 @@ fn geometry_and_output_off_skip_their_stages() {
     );
 }
 
+/// With geometry shaders off, a `Sphere` is never expanded: `tessellate` says so (not "no
+/// parametric surfaces"), and `build_accel` no longer waits for generated triangles.
+#[test]
+fn geometry_off_gives_the_true_reasons_downstream() {
+    let sphere = |options: &str| {
+        scene(options, "", "", true).replace("Grid(size_x: 6, size_y: 6)", "Sphere(radius: 0.5)")
+    };
+    let (_, report) = render(&sphere(""));
+    assert!(reason(&report, "tessellate").0);
+    let (_, report) = render(&sphere(", disable: [Geometry]"));
+    assert_eq!(
+        reason(&report, "tessellate"),
+        (
+            false,
+            "geometry shaders disabled (1 shape(s) not expanded into surfaces)"
+        )
+    );
+    let (ran, why) = reason(&report, "build_accel");
+    assert!(ran && !why.contains("more to be generated"), "{why}");
+}
+
 #[test]
 fn mi_switches_and_trace_off_map_onto_the_options() {
     let text = std::fs::read_to_string(

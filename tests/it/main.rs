@@ -75,6 +75,7 @@ mod photon_partition;
 mod photon_progressive;
 mod photons;
 mod ply_colours;
+mod png_alpha;
 mod radiometry;
 mod ray_counts;
 mod ray_flags;

@@ -113,13 +113,82 @@ fn a_light_with_its_own_count_emits_it_and_the_estimate_keeps_its_value() {
         .filter(|p| (p.power.x - four_pi / 12000.0).abs() < 1e-6)
         .count();
     assert!(from_b > 5000, "{from_b}");
-    // A count of 0 silences a light; the same scene gives the same map twice.
+    // A count of 0 silences a light (with both silent, the photon pass skips: no map at
+    // all); the same scene gives the same map twice.
     let silent = global_map(&scene(
         4000,
         ", globillum_photons: 0",
         ", globillum_photons: 0",
     ));
-    assert!(silent.is_some_and(|m| m.map.is_empty() && m.emitted == 0));
+    assert!(silent.is_none());
     let again = global_map(&scene(8000, "", ", globillum_photons: 12000")).unwrap();
     assert_eq!(again.map.photons(), own.map.photons());
+}
+
+/// Global illumination on, but no light sends photons into the map — an ambient light only, a
+/// light of photon `energy` 0, a light with `globillum_photons: 0` —: `trace_photons` skips
+/// with the reason (`plan` and the render agree) instead of running and storing nothing, and
+/// the render still succeeds.
+#[test]
+fn lights_that_send_no_photons_skip_the_photon_pass() {
+    let dir = crate::common::scratch_dir("photons-no-emitter");
+    let scene = |light: &str| {
+        format!(
+            r#"Scene(
+    options: (samples: 1, global_illumination: (photons: 1000, gather: 20)),
+    cameras: [(name: "cam", fov_y: 40, resolution: (8, 6), placement: LookAt(eye: (0, 2, 6), target: (0, 0, 0)), outputs: [(file: "out.png")])],
+    lights: [{light}],
+    materials: [(name: "grey", shader: Lambert(albedo: (0.5, 0.5, 0.5)))],
+    objects: [(name: "floor", mesh: Inline(vertices: [(-10, 0, -10), (-10, 0, 10), (10, 0, 10), (10, 0, -10)], polygons: [[0, 1, 2, 3]]), material: "grey")],
+    instances: [(name: "floor_1", of: "floor")],
+    groups: [(name: "world", members: ["floor_1"])],
+    render: (root: "world", camera: "cam"),
+)"#
+        )
+    };
+    let reason = "no light emits photons for the maps requested (ambient lights send none; every other light has photon energy 0 or 0 photons for them)";
+    let point = r#"(name: "key", kind: Point(position: (2, 4, 3)), intensity: 30"#;
+    let cases = [
+        (
+            "ambient",
+            r#"(name: "amb", kind: Ambient, intensity: 0.5)"#.to_string(),
+            false,
+        ),
+        ("energy0", format!("{point}, energy: (0, 0, 0))"), false),
+        ("count0", format!("{point}, globillum_photons: 0)"), false),
+        (
+            "caustics_count_only",
+            format!("{point}, caustic_photons: 0)"),
+            true,
+        ),
+        ("plain", format!("{point})"), true),
+    ];
+    for (name, light, runs) in cases {
+        let file = format!("{name}.ron");
+        std::fs::write(dir.join(&file), scene(&light)).unwrap();
+        let o = crate::common::run_in(&dir, &["plan", &file]);
+        assert!(
+            o.status.success(),
+            "{name}: {}",
+            crate::common::stderr_of(&o)
+        );
+        let plan = String::from_utf8(o.stdout).unwrap();
+        let line = plan
+            .lines()
+            .find(|l| l.contains("trace_photons"))
+            .unwrap_or_else(|| panic!("{name}: {plan}"));
+        if runs {
+            assert!(line.contains(" run "), "{name}: {line}");
+        } else {
+            assert!(line.ends_with(&format!("skip {reason}")), "{name}: {line}");
+            let png = format!("{name}.png");
+            let o = crate::common::run_in(&dir, &["render", &file, "-o", &png]);
+            assert!(
+                o.status.success(),
+                "{name}: {}",
+                crate::common::stderr_of(&o)
+            );
+        }
+    }
+    let _ = std::fs::remove_dir_all(&dir);
 }

@@ -104,3 +104,37 @@ fn environment_twice() {
     assert!(got[0].contains("environment is given twice"), "{errors}");
     assert!(got[0].contains("help: first defined at"), "{errors}");
 }
+
+/// Radiant values beyond 1e20 (a light's colour × intensity whose factors are each in the f32
+/// range, an emission, an environment's colour × intensity) are errors at their value: they
+/// overflowed in sampling and their light was dropped without a word.
+#[test]
+fn radiant_values_beyond_1e20_are_errors() {
+    let text = r#"Scene(
+    environment: (shader: Constant(color: (1e19, 1, 1)), intensity: 20),
+    cameras: [(name: "cam", fov_y: 40, resolution: (4, 4), placement: LookAt(eye: (0, 0, 1), target: (0, 0, 0)))],
+    lights: [
+        (name: "sun", kind: Point(position: (0, 0, 2)), color: (3e38, 1, 1), intensity: 10),
+        (name: "ok", kind: Point(position: (0, 0, 2)), color: (1, 1, 1), intensity: 1e20),
+    ],
+    materials: [(name: "hot", shader: Lambert(albedo: (0.5, 0.5, 0.5)), emission: (0, 2e20, 0))],
+    objects: [(name: "o", mesh: Inline(vertices: [(0, 0, 0), (1, 0, 0), (0, 1, 0)], polygons: [[0, 1, 2]]), material: "hot")],
+    instances: [(name: "i", of: "o")],
+    groups: [(name: "world", members: ["i"])],
+    render: (root: "world", camera: "cam"),
+)"#;
+    let errors = load_scene_str(text, Path::new("bright.ron"))
+        .err()
+        .expect("errors");
+    let got: Vec<String> = errors.0.iter().map(ToString::to_string).collect();
+    let help = "  help: radiant values above 1e20 overflow f32 arithmetic in sampling; scale the scene's light down (the camera's imager exposure can scale the image back)";
+    assert_eq!(
+        got,
+        [
+            format!("bright.ron:2:69: error: color × intensity 2e20 is brighter than stagelight carries (at most 1e20)\n{help}"),
+            format!("bright.ron:5:89: error: color × intensity 3e39 is brighter than stagelight carries (at most 1e20)\n{help}"),
+            format!("bright.ron:8:83: error: emission 2e20 is brighter than stagelight carries (at most 1e20)\n{help}"),
+        ],
+        "\n{errors}"
+    );
+}

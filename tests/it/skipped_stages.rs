@@ -97,3 +97,52 @@ fn unused_stages_change_no_byte_of_the_image() {
         "an unused stage changed the image"
     );
 }
+
+/// A render camera with `outputs: []` rendered from the command line: nothing would read the
+/// image, so `shade` and `build_accel` skip with the reason (they used to render every pixel
+/// and throw it away); `plan` says the same; with `-o` the image is rendered and written.
+#[test]
+fn a_camera_without_outputs_renders_nothing_from_the_command_line() {
+    let dir = crate::common::scratch_dir("no-outputs");
+    let text = std::fs::read_to_string(
+        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("assets/scenes/test_plane.ron"),
+    )
+    .unwrap();
+    let listed = r#"outputs: [(file: "test_plane.png", passes: [Beauty])]"#;
+    assert!(text.contains(listed));
+    let text = text.replace(listed, "outputs: []");
+    std::fs::write(dir.join("none.ron"), text).unwrap();
+    let o = crate::common::run_in(&dir, &["render", "none.ron", "--stats-json", "s.json"]);
+    assert!(o.status.success(), "{}", crate::common::stderr_of(&o));
+    let json: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.join("s.json")).unwrap()).unwrap();
+    let stage = |name: &str| {
+        let s = json["stages"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|s| s["stage"] == name)
+            .unwrap()
+            .clone();
+        (
+            s["ran"].as_bool().unwrap(),
+            s["reason"].as_str().unwrap().to_string(),
+        )
+    };
+    let reason = "the render camera has no outputs and no part file keeps its image";
+    assert_eq!(stage("shade"), (false, reason.to_string()));
+    assert_eq!(
+        stage("build_accel"),
+        (false, "no render camera traces rays".to_string())
+    );
+    let o = crate::common::run_in(&dir, &["plan", "none.ron"]);
+    let plan = String::from_utf8(o.stdout).unwrap();
+    assert!(
+        plan.contains(&format!("shade            skip {reason}")),
+        "{plan}"
+    );
+    let o = crate::common::run_in(&dir, &["render", "none.ron", "-o", "x.png"]);
+    assert!(o.status.success(), "{}", crate::common::stderr_of(&o));
+    assert!(dir.join("x.png").is_file());
+    let _ = std::fs::remove_dir_all(&dir);
+}
