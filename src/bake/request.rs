@@ -89,11 +89,13 @@ pub fn prepare_bakes(
             .and_then(|i| world.get::<&SecondUvs>(i.object).ok().map(|s| s.0.clone()));
         let (textures, vertices) = split_targets(request);
         if let Some(textures) = textures {
+            let unwrap = unwrap_advice(link.as_ref().map(|l| l.file.as_path()));
             match prepare(
                 &textures,
                 slot,
                 geometry,
                 second.as_deref().map(|v| v.as_slice()),
+                &unwrap,
             ) {
                 Ok(p) => prepared.push(p),
                 Err((message, help)) => problems.push(problem(message, help)),
@@ -178,13 +180,40 @@ fn prepare_vertices(request: BakeRequest, slot: usize, geometry: &SceneGeometry)
     }
 }
 
-/// Checks and rasterizes one request; the error is (message, help).
+/// How to get lightmap UVs generated for a request declared in `file`: set `uvs: Unwrap`
+/// in a scene that has the field; a glTF file's bakes are the reader's defaults on its
+/// `TEXCOORD_1`, changed only in the RON that `stagelight convert` writes.
+struct UnwrapAdvice {
+    /// The sentence, starting with a verb.
+    text: String,
+    /// Whether the request comes from a glTF file.
+    gltf: bool,
+}
+
+fn unwrap_advice(file: Option<&std::path::Path>) -> UnwrapAdvice {
+    let gltf = file
+        .and_then(|f| f.extension())
+        .is_some_and(|e| e.eq_ignore_ascii_case("glb") || e.eq_ignore_ascii_case("gltf"));
+    let text = match file {
+        Some(file) if gltf => format!(
+            "write the scene as RON (`stagelight convert {} -o scene.ron`) and set `uvs: Unwrap` in the instance's bake there to generate lightmap UVs (a glTF file's bakes read its TEXCOORD_1)",
+            file.file_name().unwrap_or_default().to_string_lossy()
+        ),
+        _ => "set `uvs: Unwrap` to generate lightmap UVs".into(),
+    };
+    UnwrapAdvice { text, gltf }
+}
+
+/// Checks and rasterizes one request; the error is (message, help). `unwrap` says how to
+/// have lightmap UVs generated for it ([`unwrap_advice`]).
 fn prepare(
     request: &BakeRequest,
     slot: usize,
     geometry: &SceneGeometry,
     second: Option<&[glam::Vec2]>,
+    unwrap: &UnwrapAdvice,
 ) -> Result<PreparedBake, (String, Option<String>)> {
+    let advice = &unwrap.text;
     let inst = &geometry.instances[slot];
     let page = match request.resolution {
         BakeResolution::Fixed { width, height } => width.max(height).max(1),
@@ -206,7 +235,7 @@ fn prepare(
         // All UVs at one point or on a line: nothing could be covered (issue 18, family 8).
         return Err((
             "its UVs cover no area (every triangle's UVs lie at one point or on a line)".into(),
-            Some("give the mesh real UVs, or set `uvs: Unwrap` to generate lightmap UVs".into()),
+            Some(format!("give the mesh real UVs, or {advice}")),
         ));
     }
     let (w, h) = bake_resolution(request.resolution, world_area, uv_area)
@@ -216,7 +245,7 @@ fn prepare(
         // UVs wholly outside the texture: every texel would stay empty (a black map).
         return Err((
             "its UVs cover no texel of the texture (they lie outside [0, 1]², or between the sample positions)".into(),
-            Some("bake UVs must lie in the unit square: set `uvs: Unwrap` to generate lightmap UVs".into()),
+            Some(format!("bake UVs must lie in the unit square: {advice}")),
         ));
     }
     let unique = request
@@ -232,7 +261,11 @@ fn prepare(
                     coverage.inside,
                     target.kind.suffix()
                 ),
-                Some("set `uvs: Unwrap` to generate lightmap UVs".into()),
+                Some(if unwrap.gltf {
+                    format!("give TEXCOORD_1 unique lightmap UVs, or {advice}")
+                } else {
+                    advice.clone()
+                }),
             ));
         }
     }

@@ -15,12 +15,13 @@ use crate::components::{
 
 /// One entry per merged instance: the bake request of instances that carry a valid one.
 /// `has_uvs` tells, per object, whether its mesh carries texture coordinates of set 0 and
-/// of set 1.
+/// of set 1; `None` for a mesh that failed to load, whose UVs are not checked (its own
+/// error says what is wrong; "it has no UVs" would mislead).
 pub fn bake_requests(
     src: &mut Sources,
     m: &Merged<'_>,
     leaves: &[Leaf],
-    has_uvs: &[[bool; 2]],
+    has_uvs: &[Option<[bool; 2]>],
 ) -> Vec<Option<BakeRequest>> {
     m.instances
         .iter()
@@ -50,7 +51,11 @@ pub fn bake_requests(
                     return None;
                 }
             }
-            let has_uvs = has_uvs.get(placed[0].object).copied().unwrap_or([false; 2]);
+            let has_uvs = match has_uvs.get(placed[0].object) {
+                Some(Some(sets)) => *sets,
+                Some(None) => [true; 2],
+                None => [false; 2],
+            };
             request(&mut ck, &path, name, desc, has_uvs)
         })
         .collect()

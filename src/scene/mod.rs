@@ -255,16 +255,21 @@ fn load(
         .collect();
     geometry::scatter::copy_materials(&mut leaves, &scatters, &resolved.object_material);
     geometry::scatter::check_bakes(src, &merged, &leaves);
-    let has_uvs: Vec<[bool; 2]> = merged
+    // `None`: the mesh did not load (its error is reported), so its UVs are not checked.
+    let has_uvs: Vec<Option<[bool; 2]>> = merged
         .objects
         .iter()
         .zip(&built)
         .map(|(it, b)| {
-            [
-                b.as_ref().is_some_and(|b| b.mesh.uvs.is_some())
-                    || geometry::generated_has_uvs(&it.desc.mesh),
-                b.as_ref().is_some_and(|b| b.uvs1.is_some()),
-            ]
+            let generated = !matches!(it.desc.mesh, MeshDesc::Inline { .. })
+                && mesh_files::mesh_file(&it.desc.mesh).is_none();
+            (b.is_some() || generated).then(|| {
+                [
+                    b.as_ref().is_some_and(|b| b.mesh.uvs.is_some())
+                        || geometry::generated_has_uvs(&it.desc.mesh),
+                    b.as_ref().is_some_and(|b| b.uvs1.is_some()),
+                ]
+            })
         })
         .collect();
     let bakes = bake::bake_requests(src, &merged, &leaves, &has_uvs);

@@ -163,7 +163,7 @@ fn bad_files_are_located_errors() {
         mesh_error(
             "points.glb",
             "dots_mesh",
-            "meshes[0].primitives[0]: primitive mode Points is not supported: only triangle lists (mode 4, TRIANGLES)"
+            "meshes[0].primitives[0]: primitive mode Points is not supported: only triangles (mode 4, TRIANGLES; 5, TRIANGLE_STRIP; 6, TRIANGLE_FAN)"
         )
     );
 }

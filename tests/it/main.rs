@@ -34,6 +34,7 @@ mod gltf;
 mod gltf_attributes;
 mod gltf_cameras;
 mod gltf_materials;
+mod gltf_spec;
 mod hard_cases_bake;
 mod hard_cases_bump;
 mod hard_cases_far;

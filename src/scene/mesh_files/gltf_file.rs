@@ -7,7 +7,8 @@
 //! glTF file). [`mesh_data`] reads one mesh (or one of its primitives) into [`MeshData`]:
 //! positions, normals, `TEXCOORD_0` and `TEXCOORD_1`, `TANGENT` (checked: `w` = ±1),
 //! `COLOR_0` (vec3 or vec4, float or normalised u8/u16, linear; alpha not read; white for
-//! the primitives of a mesh that lack it), indices. Accessors are read here, not
+//! the primitives of a mesh that lack it), indices, as triangle lists, strips or fans;
+//! other attributes (`_BATCHID`, joints, …) are ignored. Accessors are read here, not
 //! by the crate's iterators: every accessor's byte range is checked against its buffer view
 //! and every view against its buffer before a byte is read, and every index against the
 //! vertex count, so no file can make the reader panic.
@@ -20,6 +21,7 @@ use std::path::Path;
 
 use glam::{DVec3, Vec2, Vec3, Vec4};
 use gltf::accessor::{DataType, Dimensions};
+use gltf::mesh::Mode;
 
 use super::{Location, MeshData, MeshFileError};
 
@@ -271,10 +273,11 @@ pub fn open(bytes: &[u8], dir: Option<&Path>) -> Result<GltfFile, MeshFileError>
                 1 => String::new(),
                 n => format!(" (and {} more problems)", n - 1),
             };
-            return Err(element(
-                path.to_string(),
-                format!("invalid glTF: {}{more}", validation_text(error)),
-            ));
+            let (path, text) = match invalid_semantic(json, path.as_str()) {
+                Some(named) => named,
+                None => (path.to_string(), validation_text(error).to_string()),
+            };
+            return Err(element(path, format!("invalid glTF: {text}{more}")));
         }
         Err(e) => return Err(at_byte(0, format!("invalid glTF: {e}"))),
     };
@@ -340,6 +343,39 @@ fn what_the_validator_misses(root: &gltf::json::Root) -> Option<(String, String)
         })
     };
     accessor.or_else(image)
+}
+
+/// What the glTF crate writes for an attribute name it does not know (it keeps no name).
+const INVALID_SEMANTIC: &str = "[\"<invalid semantic name>\"]";
+
+/// For a validation error at an attribute name the crate could not read
+/// (`meshes[0].primitives[0].attributes["<invalid semantic name>"]`): the path with the
+/// name as written and a message saying what names are allowed. `None` for other paths.
+fn invalid_semantic(json: &[u8], path: &str) -> Option<(String, String)> {
+    use gltf::json::mesh::Semantic;
+    use gltf::json::validation::Checked;
+    let prefix = path.strip_suffix(INVALID_SEMANTIC)?;
+    let root: serde_json::Value = serde_json::from_slice(json).ok()?;
+    let mut at = &root;
+    for part in prefix.split('.') {
+        let (key, indices) = part.split_once('[').unwrap_or((part, ""));
+        at = at.get(key)?;
+        for index in indices.split('[').filter(|i| !i.is_empty()) {
+            at = at.get(index.strip_suffix(']')?.parse::<usize>().ok()?)?;
+        }
+    }
+    let name = at.as_object()?.keys().find(|k| {
+        matches!(
+            serde_json::from_value::<Checked<Semantic>>(serde_json::Value::String((*k).clone())),
+            Ok(Checked::Invalid) | Err(_)
+        )
+    })?;
+    Some((
+        format!("{prefix}[\"{name}\"]"),
+        format!(
+            "\"{name}\" is not an attribute name: expected POSITION, NORMAL, TANGENT, TEXCOORD_n, COLOR_n, JOINTS_n, WEIGHTS_n, or an application-specific name starting with \"_\""
+        ),
+    ))
 }
 
 fn validation_text(error: &gltf::json::validation::Error) -> &'static str {
@@ -449,7 +485,15 @@ fn accessor_bytes<'a>(
         ));
     };
     let size = accessor.size();
-    let stride = view.stride().unwrap_or(size).max(size);
+    if let Some(stride) = view.stride().filter(|&s| s < size) {
+        return Err(element(
+            format!("bufferViews[{}].byteStride", view.index()),
+            format!(
+                "a stride of {stride} bytes is less than the {size}-byte elements of {path} ({role}): its elements would overlap"
+            ),
+        ));
+    }
+    let stride = view.stride().unwrap_or(size);
     let count = accessor.count();
     let end = match count {
         0 => Some(accessor.offset()),
@@ -543,7 +587,7 @@ pub fn pick_mesh(doc: &gltf::Document, name: Option<&str>) -> Result<usize, Mesh
 }
 
 /// Reads the mesh (or primitive) `pick` names into one [`MeshData`], primitives appended in
-/// order. Only triangle lists are read (mode 4).
+/// order. Triangle lists, strips and fans are read (modes 4, 5, 6).
 pub fn mesh_data(file: &GltfFile, pick: &MeshPick) -> Result<MeshData, MeshFileError> {
     let index = pick_mesh(&file.doc, pick.mesh.as_deref())?;
     let Some(mesh) = file.doc.meshes().nth(index) else {
@@ -574,12 +618,15 @@ pub fn mesh_data(file: &GltfFile, pick: &MeshPick) -> Result<MeshData, MeshFileE
     let mut any_colours = false;
     for prim in chosen {
         let path = format!("meshes[{index}].primitives[{}]", prim.index());
-        if prim.mode() != gltf::mesh::Mode::Triangles {
+        let mode = prim.mode();
+        if !matches!(
+            mode,
+            Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan
+        ) {
             return Err(element(
                 path,
                 format!(
-                    "primitive mode {:?} is not supported: only triangle lists (mode 4, TRIANGLES)",
-                    prim.mode()
+                    "primitive mode {mode:?} is not supported: only triangles (mode 4, TRIANGLES; 5, TRIANGLE_STRIP; 6, TRIANGLE_FAN)"
                 ),
             ));
         }
@@ -703,7 +750,7 @@ pub fn mesh_data(file: &GltfFile, pick: &MeshPick) -> Result<MeshData, MeshFileE
             }
             None => (0..n as u32).collect(),
         };
-        if !corners.len().is_multiple_of(3) {
+        if mode == Mode::Triangles && !corners.len().is_multiple_of(3) {
             return Err(element(
                 path,
                 format!(
@@ -713,9 +760,9 @@ pub fn mesh_data(file: &GltfFile, pick: &MeshPick) -> Result<MeshData, MeshFileE
             ));
         }
         out.triangles.extend(
-            corners
-                .chunks_exact(3)
-                .map(|t| [0, 1, 2].map(|k| t[k] + base as u32)),
+            triangles(mode, &corners)
+                .into_iter()
+                .map(|t| t.map(|v| v + base as u32)),
         );
     }
     out.normals = normals.filter(|n| n.len() == out.positions.len());
@@ -724,6 +771,25 @@ pub fn mesh_data(file: &GltfFile, pick: &MeshPick) -> Result<MeshData, MeshFileE
     out.tangents = tangents.filter(|t| t.len() == out.positions.len());
     out.colours = Some(colours).filter(|c| any_colours && c.len() == out.positions.len());
     Ok(out)
+}
+
+/// The triangles of a primitive's corners (indices, or the vertices in order) as the
+/// specification orders them: a list in threes; a strip's triangle `i` is
+/// `(v[i], v[i + 1 + i % 2], v[i + 2 - i % 2])`, a fan's `(v[i + 1], v[i + 2], v[0])`.
+/// Strip and fan triangles that repeat a vertex (the joins of restarted strips) are left
+/// out; they have no area.
+fn triangles(mode: Mode, c: &[u32]) -> Vec<[u32; 3]> {
+    let joined = |i: usize| match mode {
+        Mode::TriangleFan => [c[i + 1], c[i + 2], c[0]],
+        _ => [c[i], c[i + 1 + i % 2], c[i + 2 - i % 2]],
+    };
+    match mode {
+        Mode::TriangleStrip | Mode::TriangleFan => (0..c.len().saturating_sub(2))
+            .map(joined)
+            .filter(|[a, b, d]| a != b && b != d && a != d)
+            .collect(),
+        _ => c.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect(),
+    }
 }
 
 /// The tangents of a `TANGENT` accessor: finite, a non-zero `xyz` and `w` = ±1 (the
@@ -851,6 +917,29 @@ mod tests {
         assert_eq!(image_reference("a.glb#images[3]"), Some(("a.glb", 3)));
         assert_eq!(image_reference("a.png"), None);
         assert_eq!(image_reference("a.glb#images[x]"), None);
+    }
+
+    #[test]
+    fn strips_and_fans_become_triangles_in_the_specifications_order() {
+        let c = [0, 1, 2, 3, 4];
+        assert_eq!(
+            triangles(Mode::TriangleStrip, &c),
+            [[0, 1, 2], [1, 3, 2], [2, 3, 4]]
+        );
+        assert_eq!(
+            triangles(Mode::TriangleFan, &c),
+            [[1, 2, 0], [2, 3, 0], [3, 4, 0]]
+        );
+        // A restarted strip's joining triangles repeat a vertex: left out.
+        assert_eq!(
+            triangles(Mode::TriangleStrip, &[0, 1, 2, 2, 5, 5, 6, 7]),
+            [[0, 1, 2], [5, 7, 6]]
+        );
+        assert_eq!(
+            triangles(Mode::TriangleStrip, &[0, 1]),
+            Vec::<[u32; 3]>::new()
+        );
+        assert_eq!(triangles(Mode::Triangles, &[0, 1, 2]), [[0, 1, 2]]);
     }
 
     #[test]

@@ -7,8 +7,11 @@
 //! texture through the `emission` binding), `doubleSided`, and the alpha modes as an
 //! `Opacity` wrapper whose opacity is the coverage: `MASK` a step at `alphaCutoff` of the
 //! base colour alpha (factor × texture), `BLEND` that alpha itself. The occlusion texture is
-//! not read (the light transport computes occlusion; see docs/gltf.md). What is not mapped
-//! (textures on `TEXCOORD_1`, texture transforms) is a located warning.
+//! not read (the light transport computes occlusion; see docs/gltf.md). A texture
+//! reference's `KHR_texture_transform` maps the coordinates its image nodes read
+//! ([`texture_transform`]). What is not mapped (textures on `TEXCOORD_1`, mirrored or
+//! per-axis sampler wrap modes, a normal texture's rotation of its normals) is a located
+//! warning.
 //!
 //! Textures: an image beside the file is bound by its file name; an image inside the file
 //! (a buffer view or a `data:` URI) as `<file>#images[i]`, which the image loader reads from
@@ -18,6 +21,7 @@ use std::collections::BTreeMap;
 use std::path::Path;
 
 use super::json_positions::{value_position, Step};
+use super::texture_transform::{self, UvTransform};
 use super::{at_file, Walk};
 use crate::scene::desc::{BumpDesc, InputDesc, MaterialDesc, NodeDesc, SceneDesc, ShaderDesc};
 use crate::scene::import::SourcePos;
@@ -36,7 +40,7 @@ pub fn warn_unmapped(w: &mut Walk<'_>) {
     for ext in w.file.doc.extensions_required() {
         if !matches!(
             ext,
-            "KHR_lights_punctual" | "KHR_materials_emissive_strength"
+            "KHR_lights_punctual" | "KHR_materials_emissive_strength" | "KHR_texture_transform"
         ) {
             w.warnings.push(at_file(
                 w.path,
@@ -105,7 +109,6 @@ fn material(w: &mut Walk<'_>, m: &gltf::Material<'_>) -> MaterialDesc {
         .map(str::to_string)
         .unwrap_or_else(|| format!("material{index}"));
     let name = w.names.take(&label);
-    let at = format!("materials[{index}]");
     let pbr = m.pbr_metallic_roughness();
     let [r, g, b, alpha] = pbr.base_color_factor().map(f64::from);
     let metallic = (pbr.metallic_factor() as f64).clamp(0.0, 1.0);
@@ -114,7 +117,7 @@ fn material(w: &mut Walk<'_>, m: &gltf::Material<'_>) -> MaterialDesc {
     let mut bind = BTreeMap::new();
     let base_texture = pbr
         .base_color_texture()
-        .and_then(|info| texture(w, &info, &at, "base colour"));
+        .and_then(|info| texture(w, &info, index, &BASE_COLOUR));
     let factor = InputDesc::Colour((unit(r), unit(g), unit(b)));
     let base = base_texture
         .as_ref()
@@ -130,7 +133,7 @@ fn material(w: &mut Walk<'_>, m: &gltf::Material<'_>) -> MaterialDesc {
     }
     if let Some(t) = pbr
         .metallic_roughness_texture()
-        .and_then(|info| texture(w, &info, &at, "metallic-roughness"))
+        .and_then(|info| texture(w, &info, index, &METALLIC_ROUGHNESS))
     {
         let image = t.image(EncodingDesc::Linear);
         let channel = |c: u32, f: f64| {
@@ -143,7 +146,8 @@ fn material(w: &mut Walk<'_>, m: &gltf::Material<'_>) -> MaterialDesc {
         bind.insert("roughness".to_string(), channel(1, roughness));
     }
     let bump = m.normal_texture().and_then(|n| {
-        let t = texture_ref(w, n.tex_coord(), n.texture(), &at, "normal")?;
+        let transform = n.extension_value(TRANSFORM).map(texture_transform::parse);
+        let t = texture_ref(w, n.tex_coord(), n.texture(), transform, index, &NORMAL)?;
         Some(BumpDesc {
             height: None,
             normal_map: Some(t.image(EncodingDesc::Linear)),
@@ -156,7 +160,7 @@ fn material(w: &mut Walk<'_>, m: &gltf::Material<'_>) -> MaterialDesc {
     let mut emission_map = m
         .emissive_texture()
         .filter(|_| emits)
-        .and_then(|info| texture(w, &info, &at, "emissive"))
+        .and_then(|info| texture(w, &info, index, &EMISSIVE))
         .map(|t| t.image(EncodingDesc::Srgb));
     let mut shader = ShaderDesc::MetallicRoughness {
         base_color: (unit(r), unit(g), unit(b)),
@@ -239,10 +243,12 @@ enum Coverage {
     Varying(InputDesc),
 }
 
-/// An image of the file bound to a material: its file reference and wrap mode.
+/// An image of the file bound to a material: its file reference, wrap mode and texture
+/// coordinates (`Uv`, or `KHR_texture_transform`'s map of them).
 struct TextureRef {
     file: String,
     wrap: WrapDesc,
+    uv: InputDesc,
 }
 
 impl TextureRef {
@@ -250,7 +256,7 @@ impl TextureRef {
     fn image(&self, encoding: EncodingDesc) -> InputDesc {
         node(NodeDesc::Image {
             file: self.file.clone(),
-            uv: node(NodeDesc::Uv),
+            uv: self.uv.clone(),
             wrap: self.wrap,
             color_space: Some(encoding),
         })
@@ -260,7 +266,7 @@ impl TextureRef {
     fn alpha(&self) -> InputDesc {
         node(NodeDesc::Alpha {
             file: self.file.clone(),
-            uv: node(NodeDesc::Uv),
+            uv: self.uv.clone(),
             wrap: self.wrap,
         })
     }
@@ -370,23 +376,113 @@ fn image_file(input: &InputDesc) -> Option<&str> {
     }
 }
 
+/// The glTF extension that maps a texture reference's coordinates.
+const TRANSFORM: &str = "KHR_texture_transform";
+
+/// A material's texture slot: its name in messages and its keys in the material's JSON.
+struct Slot {
+    what: &'static str,
+    keys: &'static [&'static str],
+}
+
+const BASE_COLOUR: Slot = Slot {
+    what: "base colour",
+    keys: &["pbrMetallicRoughness", "baseColorTexture"],
+};
+const METALLIC_ROUGHNESS: Slot = Slot {
+    what: "metallic-roughness",
+    keys: &["pbrMetallicRoughness", "metallicRoughnessTexture"],
+};
+const NORMAL: Slot = Slot {
+    what: "normal",
+    keys: &["normalTexture"],
+};
+const EMISSIVE: Slot = Slot {
+    what: "emissive",
+    keys: &["emissiveTexture"],
+};
+
+impl Slot {
+    /// The JSON path of `materials[material].<slot>.extensions.KHR_texture_transform.<key>`.
+    fn transform_path<'a>(&self, material: usize, key: &'a str) -> Vec<Step<'a>> {
+        let mut path = vec![Step::Key("materials"), Step::Index(material)];
+        path.extend(self.keys.iter().map(|k| Step::Key(k)));
+        path.extend([
+            Step::Key("extensions"),
+            Step::Key(TRANSFORM),
+            Step::Key(key),
+        ]);
+        path
+    }
+}
+
+/// A diagnostic at `path` in a `.gltf` (at the start of a `.glb`).
+fn located(w: &Walk<'_>, path: &[Step<'_>], message: String) -> Diagnostic {
+    let mut d = at_file(w.path, message);
+    if let Some((line, column)) = w.json.and_then(|json| value_position(json, path)) {
+        d.line = line;
+        d.column = column;
+    }
+    d
+}
+
 /// The image of a texture reference, or `None` (with a warning) when it cannot be bound.
 fn texture(
     w: &mut Walk<'_>,
     info: &gltf::texture::Info<'_>,
-    at: &str,
-    what: &str,
+    material: usize,
+    slot: &Slot,
 ) -> Option<TextureRef> {
-    texture_ref(w, info.tex_coord(), info.texture(), at, what)
+    let transform = info.texture_transform().map(|t| {
+        Ok(UvTransform {
+            offset: t.offset().map(f64::from),
+            rotation: f64::from(t.rotation()),
+            scale: t.scale().map(f64::from),
+            tex_coord: t.tex_coord(),
+        })
+    });
+    texture_ref(
+        w,
+        info.tex_coord(),
+        info.texture(),
+        transform,
+        material,
+        slot,
+    )
 }
 
+/// The image of a texture reference with its `KHR_texture_transform` (`transform`: the
+/// `gltf` crate reads it for texture infos, [`texture_transform::parse`] for the normal
+/// texture, which the crate does not model), or
+/// `None` where it cannot be bound (a warning) or the extension is malformed (an error).
 fn texture_ref(
     w: &mut Walk<'_>,
     tex_coord: u32,
     texture: gltf::Texture<'_>,
-    at: &str,
-    what: &str,
+    transform: Option<Result<UvTransform, texture_transform::Malformed>>,
+    material: usize,
+    slot: &Slot,
 ) -> Option<TextureRef> {
+    let at = format!("materials[{material}]");
+    let what = slot.what;
+    let transform = match transform {
+        None => None,
+        Some(Ok(t)) => Some(t),
+        Some(Err((key, expected))) => {
+            let path = slot.transform_path(material, key);
+            let mut d = located(
+                w,
+                &path,
+                format!("{at}: the {what} texture's {TRANSFORM} \"{key}\" must be {expected}"),
+            );
+            d.help = Some(
+                "the extension's members: \"offset\": [u, v], \"rotation\": radians, \"scale\": [u, v], \"texCoord\": a set index".into(),
+            );
+            w.errors.push(d);
+            return None;
+        }
+    };
+    let tex_coord = transform.and_then(|t| t.tex_coord).unwrap_or(tex_coord);
     if tex_coord != 0 {
         w.warnings.push(at_file(
             w.path,
@@ -395,6 +491,18 @@ fn texture_ref(
             ),
         ));
         return None;
+    }
+    if let Some(t) = transform.filter(|t| what == NORMAL.what && t.rotation != 0.0) {
+        let path = slot.transform_path(material, "rotation");
+        let d = located(
+            w,
+            &path,
+            format!(
+                "{at}: the normal texture's {TRANSFORM} rotation ({} rad) turns where the map is read, not its normals: they stay in the mesh's tangent frame",
+                t.rotation
+            ),
+        );
+        w.warnings.push(d);
     }
     let image = texture.source();
     let file = match image.source() {
@@ -405,11 +513,39 @@ fn texture_ref(
         }
         _ => format!("{}#images[{}]", super::file_name_of(w.path), image.index()),
     };
+    let wrap = wrap(w, &texture, &at, what);
+    let uv = transform.map_or(node(NodeDesc::Uv), |t| t.uv_node());
+    Some(TextureRef { file, wrap, uv })
+}
+
+/// The wrap mode of a texture's sampler: `Clamp` where both axes clamp, else `Repeat`. A
+/// sampler that mirrors, or wraps its axes differently, is read so with a warning naming
+/// the material, the texture and the sampler (an image wraps one way on both axes, and
+/// does not mirror).
+fn wrap(w: &mut Walk<'_>, texture: &gltf::Texture<'_>, at: &str, what: &str) -> WrapDesc {
     use gltf::texture::WrappingMode;
     let sampler = texture.sampler();
-    let wrap = match (sampler.wrap_s(), sampler.wrap_t()) {
+    let (s, t) = (sampler.wrap_s(), sampler.wrap_t());
+    let wrap = match (s, t) {
         (WrappingMode::ClampToEdge, WrappingMode::ClampToEdge) => WrapDesc::Clamp,
         _ => WrapDesc::Repeat,
     };
-    Some(TextureRef { file, wrap })
+    let mirrors = [s, t].contains(&WrappingMode::MirroredRepeat);
+    if let (Some(index), true) = (sampler.index(), mirrors || s != t) {
+        let name = |m: WrappingMode| match m {
+            WrappingMode::ClampToEdge => "CLAMP_TO_EDGE",
+            WrappingMode::MirroredRepeat => "MIRRORED_REPEAT",
+            WrappingMode::Repeat => "REPEAT",
+        };
+        let message = format!(
+            "{at}: the {what} texture (textures[{}]) has samplers[{index}] with wrapS {} and wrapT {}: read as {wrap:?} on both axes (an image wraps one way on both axes, and does not mirror)",
+            texture.index(),
+            name(s),
+            name(t)
+        );
+        if !w.warnings.iter().any(|d| d.message == message) {
+            w.warnings.push(at_file(w.path, message));
+        }
+    }
+    wrap
 }

@@ -12,6 +12,8 @@
 //!   `<node>_<k>`) and the instances of its children; the root is the group `scene`;
 //! - materials ([`materials`]), cameras (their values checked by [`camera_values`]) and
 //!   `KHR_lights_punctual` lights ([`view`]);
+//! - node values the specification forbids (a rotation that is not a unit quaternion, a
+//!   second parent) are errors ([`node_checks`]);
 //! - every instance of a primitive with `TEXCOORD_1` carries the default bake request
 //!   ([`bakes`]), so `stagelight bake model.glb` bakes lightmaps and ambient occlusion.
 //!
@@ -27,6 +29,8 @@ pub mod bakes;
 pub mod camera_values;
 pub mod json_positions;
 pub mod materials;
+pub mod node_checks;
+pub mod texture_transform;
 pub mod view;
 
 use std::collections::{HashMap, HashSet};
@@ -41,6 +45,7 @@ use crate::scene::desc::{
 use crate::scene::mesh_files::gltf_file::{self, GltfFile};
 use crate::scene::mesh_files::MeshFileError;
 use crate::scene::message::Diagnostic;
+use node_checks::local_matrix;
 
 /// Deepest node hierarchy read (deeper is refused, as a cycle would be).
 const MAX_NODE_DEPTH: usize = 64;
@@ -143,11 +148,6 @@ pub fn read(path: &Path, bytes: &[u8]) -> Result<ReadScene, Vec<Diagnostic>> {
 pub fn m4(m: &DMat4) -> M4 {
     let c = m.to_cols_array_2d();
     [0, 1, 2, 3].map(|r| [0, 1, 2, 3].map(|k| c[k][r]))
-}
-
-fn local_matrix(node: &gltf::Node<'_>) -> DMat4 {
-    let cols = node.transform().matrix();
-    DMat4::from_cols_array_2d(&cols.map(|c| c.map(f64::from)))
 }
 
 /// What the node walk collects besides the hierarchy.
@@ -431,6 +431,10 @@ fn build(
         json,
     };
     materials::warn_unmapped(&mut w);
+    node_checks::check(&mut w);
+    if !w.errors.is_empty() {
+        return Err(w.errors);
+    }
     let mut members = Vec::new();
     for node in scene.nodes() {
         let local = local_matrix(&node);

@@ -94,18 +94,27 @@ pub fn light(w: &mut Walk<'_>, light: &gltf::khr_lights_punctual::Light<'_>, wor
 }
 
 /// A rigid camera-to-world matrix from a node's world matrix (scale and shear removed,
-/// looking down −Z).
+/// looking down −Z). Under a mirror (a negative determinant, as a parent scaled by −1 along
+/// one axis gives) the camera keeps where the world matrix sends its view (−Z) and its up
+/// (+Y), and its right is their cross product: a mirror cannot be a camera placement, and
+/// keeping +X instead would turn the picture upside down.
 fn rigid(world: &DMat4) -> DMat4 {
     let z = world.z_axis.truncate().normalize_or_zero();
     let z = if z == DVec3::ZERO { DVec3::Z } else { z };
-    let x0 = world.x_axis.truncate();
-    let x = (x0 - z * x0.dot(z)).normalize_or_zero();
-    let x = if x == DVec3::ZERO {
+    let mirrored = world.determinant() < 0.0;
+    // The axis kept beside z: +X, or +Y under a mirror.
+    let kept = if mirrored { world.y_axis } else { world.x_axis }.truncate();
+    let k = (kept - z * kept.dot(z)).normalize_or_zero();
+    let k = if k == DVec3::ZERO {
         z.any_orthonormal_vector()
     } else {
-        x
+        k
     };
-    let y = z.cross(x);
+    let (x, y) = if mirrored {
+        (k.cross(z), k)
+    } else {
+        (k, z.cross(k))
+    };
     DMat4::from_cols(
         x.extend(0.0),
         y.extend(0.0),
@@ -242,5 +251,21 @@ mod tests {
         assert!((r.z_axis.truncate() - world.z_axis.truncate().normalize()).length() < 1e-12);
         assert!(r.x_axis.dot(r.y_axis).abs() < 1e-12);
         assert_eq!(r.w_axis, world.w_axis);
+    }
+
+    #[test]
+    fn a_mirrored_camera_keeps_its_view_and_its_up() {
+        for (scale, up) in [
+            (DVec3::new(-1.0, 1.0, 1.0), DVec3::Y),
+            (DVec3::new(1.0, -1.0, 1.0), DVec3::NEG_Y),
+            (DVec3::new(2.0, 2.0, -2.0), DVec3::Y),
+        ] {
+            let world = DMat4::from_scale(scale);
+            let r = rigid(&world);
+            let view = -world.z_axis.truncate().normalize();
+            assert_eq!(r.transform_vector3(DVec3::NEG_Z), view, "{scale}");
+            assert_eq!(r.y_axis.truncate(), up, "{scale}");
+            assert!((r.determinant() - 1.0).abs() < 1e-12, "{scale}");
+        }
     }
 }
