@@ -278,7 +278,8 @@ fn vertex_bakes_are_deterministic_and_merge_from_parts() {
 
 /// A glTF primitive without `TEXCOORD_1` bakes AO per vertex by default, and `--write-gltf`
 /// makes it the primitive's `COLOR_0` in the copy (one float RGB per vertex, the PLY's
-/// values), each of the three nodes sharing the mesh with its own copy.
+/// values), each of the three nodes sharing the mesh with its own copy; the copy writes
+/// no empty top-level array.
 #[test]
 fn a_baked_glb_carries_vertex_ao_as_color_0() {
     let dir = scratch_dir("vertex-bake-gltf");
@@ -299,6 +300,19 @@ fn a_baked_glb_carries_vertex_ao_as_color_0() {
     let plys: Vec<&String> = names.iter().filter(|n| n.ends_with("_ao.ply")).collect();
     assert_eq!(plys.len(), 3, "{names:?}");
     let bytes = std::fs::read(dir.join("out/hierarchy.glb")).unwrap();
+    // glTF requires a defined array to hold at least one item (the Khronos validator's
+    // EMPTY_ENTITY): no bake made a texture, so the copy has no `images` (nor `textures`).
+    let json_len = u32::from_le_bytes(bytes[12..16].try_into().unwrap()) as usize;
+    let json: serde_json::Value = serde_json::from_slice(&bytes[20..20 + json_len]).unwrap();
+    let empty: Vec<&String> = json
+        .as_object()
+        .unwrap()
+        .iter()
+        .filter(|(_, v)| v.as_array().is_some_and(|a| a.is_empty()))
+        .map(|(k, _)| k)
+        .collect();
+    assert!(empty.is_empty(), "empty top-level arrays: {empty:?}");
+    assert!(json.get("images").is_none() && json.get("textures").is_none());
     let glb = gltf::Gltf::from_slice(&bytes).expect("a valid glb");
     let blob = glb.blob.clone().expect("a BIN chunk");
     let mut checked = 0;
