@@ -158,6 +158,16 @@ fn bad_files_are_located_errors() {
             "accessors[3]: index 7 (element 2) is out of range: the primitive has 3 vertices"
         )
     );
+    // A NaN in POSITION (glTF allows none in accessor data) was a dropped triangle and a
+    // vertex count that no longer matched the primitive's.
+    assert_eq!(
+        load_errors("nan_position.glb"),
+        mesh_error(
+            "nan_position.glb",
+            "quad_mesh",
+            "accessors[0]: POSITION of meshes[0].primitives[0]: vertex 3 is (NaN, 1, 0): a vertex position must be a finite number"
+        )
+    );
     assert_eq!(
         load_errors("points.glb"),
         mesh_error(

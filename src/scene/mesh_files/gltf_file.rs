@@ -7,7 +7,8 @@
 //! glTF file). [`mesh_data`] reads one mesh (or one of its primitives) into [`MeshData`]:
 //! positions, normals, `TEXCOORD_0` and `TEXCOORD_1`, `TANGENT` (checked: `w` = ±1),
 //! `COLOR_0` (vec3 or vec4, float or normalised u8/u16, linear; alpha not read; white for
-//! the primitives of a mesh that lack it), indices. Accessors are read here, not
+//! the primitives of a mesh that lack it), indices. A non-finite position is an error
+//! naming its accessor, primitive and vertex. Accessors are read here, not
 //! by the crate's iterators: every accessor's byte range is checked against its buffer view
 //! and every view against its buffer before a byte is read, and every index against the
 //! vertex count, so no file can make the reader panic.
@@ -18,7 +19,7 @@
 
 use std::path::Path;
 
-use glam::{DVec3, Vec2, Vec3, Vec4};
+use glam::{Vec2, Vec3, Vec4};
 use gltf::accessor::{DataType, Dimensions};
 
 use super::{Location, MeshData, MeshFileError};
@@ -589,12 +590,22 @@ pub fn mesh_data(file: &GltfFile, pick: &MeshPick) -> Result<MeshData, MeshFileE
                 "the primitive has no POSITION attribute",
             ));
         };
+        let position_accessor = pos.index();
         let pos = accessor_bytes(file, &pos, "POSITION", &[DataType::F32], Dimensions::Vec3)?;
         let base = out.positions.len();
         let n = pos.count;
         for i in 0..n {
-            let p = [0, 1, 2].map(|c| pos.float(i, c) as f64);
-            out.positions.push(DVec3::from_array(p));
+            let p = Vec3::from_array([0, 1, 2].map(|c| pos.float(i, c)));
+            if !p.is_finite() {
+                return Err(element(
+                    format!("accessors[{position_accessor}]"),
+                    format!(
+                        "POSITION of {path}: vertex {i} is ({}, {}, {}): a vertex position must be a finite number",
+                        p.x, p.y, p.z
+                    ),
+                ));
+            }
+            out.positions.push(p.as_dvec3());
         }
         let attr = |semantic: gltf::Semantic,
                     role: &str,
