@@ -340,6 +340,66 @@ fn a_baked_glb_carries_vertex_ao_as_color_0() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// Vertices the bake cannot sample keep their place and get a value
+/// (`tests/fixtures/gltf/loose_vertices.glb`, an L of two quads): vertex 8, at vertex 2's
+/// position and used only by the degenerate triangle (8, 8, 1) the loader drops, gets
+/// vertex 2's value; vertex 9, on no triangle, the value of the nearest vertex (6). The PLY
+/// and the copy's `COLOR_0` keep the file's 10 vertices in its order (before, both got 0).
+#[test]
+fn loose_vertices_keep_their_place_and_take_the_nearest_value() {
+    let dir = scratch_dir("vertex-bake-loose");
+    let source =
+        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/gltf/loose_vertices.glb");
+    let o = run_in(
+        &dir,
+        &[
+            "bake",
+            source.to_str().unwrap(),
+            "-o",
+            "out",
+            "--write-gltf",
+        ],
+    );
+    assert!(o.status.success(), "{}", stderr_of(&o));
+    let ply = BakedPly::read(&dir.join("out/L_ao.ply"));
+    assert_eq!((ply.count, ply.faces), (10, 4));
+    // The fixture's POSITION, in order (scripts/make_gltf_fixtures.py).
+    let positions = [
+        [0.0, 0.0, 0.0],
+        [2.0, 0.0, 0.0],
+        [2.0, 2.0, 0.0],
+        [0.0, 2.0, 0.0],
+        [0.0, 0.0, 0.0],
+        [0.0, 2.0, 0.0],
+        [0.0, 2.0, 2.0],
+        [0.0, 0.0, 2.0],
+        [2.0, 2.0, 0.0],
+        [0.1f32, 2.2, 2.3],
+    ];
+    for (v, p) in positions.iter().enumerate() {
+        assert_eq!(
+            [ply.float(v, "x"), ply.float(v, "y"), ply.float(v, "z")],
+            *p
+        );
+    }
+    let ao: Vec<f32> = (0..10).map(|v| ply.float(v, "baked_r")).collect();
+    assert!(ao[..8].iter().all(|&a| a > 0.5 && a < 1.0), "{ao:?}");
+    assert_eq!(ao[8], ao[2]);
+    assert_eq!(ao[9], ao[6]);
+    let copy = std::fs::read(dir.join("out/loose_vertices.glb")).unwrap();
+    let glb = gltf::Gltf::from_slice(&copy).unwrap();
+    let blob = glb.blob.clone().unwrap();
+    let prim = glb.meshes().last().unwrap().primitives().next().unwrap();
+    let colors = prim.get(&gltf::Semantic::Colors(0)).expect("COLOR_0");
+    assert_eq!(colors.count(), 10);
+    let start = colors.view().unwrap().offset() + colors.offset();
+    for (v, a) in ao.iter().enumerate() {
+        let at = start + v * 12;
+        assert_eq!(f32::from_le_bytes(blob[at..at + 4].try_into().unwrap()), *a);
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 /// What a per-vertex output cannot be is a located scene error.
 #[test]
 fn per_vertex_outputs_refuse_texture_only_settings() {
