@@ -14,8 +14,10 @@
 //! vertex count, so no file can make the reader panic.
 //!
 //! glTF's texture coordinates have `v` growing downwards (the image's first row at `v = 0`);
-//! stagelight's have `v` up (OBJ), so `v` is flipped on reading (`v' = 1 − v`) and on
-//! writing.
+//! stagelight's have `v` up (OBJ), so `v` is flipped on reading (`v' = 1 − v`, one f32
+//! subtraction: exact whenever the result is an f32, e.g. every `v` in [½, 1]) and on
+//! writing. The file holds the f32 nearest `1 − v`, so its UVs match an OBJ's or PLY's
+//! only to within rounding (docs/gltf.md).
 
 use std::path::Path;
 
