@@ -32,6 +32,11 @@ Files:
   texture (128, 192, 255), "green up"; their TANGENT is +x (w = +1), +x (w = −1), +y
   (w = +1). bad_tangent.glb (a TANGENT w of 0.5) and bad_colour.glb (COLOR_0 of unsigned
   bytes without `normalized`) are malformed.
+- nan_position.glb: a quad whose POSITION holds a NaN (vertex 3; the accessor's min/max
+  finite), refused with the accessor and vertex.
+- loose_vertices.glb: an L of a floor and a wall quad (no TEXCOORD_1, so it bakes per
+  vertex) plus vertex 8 at vertex 2's position used only by the degenerate triangle
+  (8, 8, 1), and vertex 9 near vertex 6 used by no triangle (tests/it/vertex_bake.rs).
 - assets/gltf/lightmap_room.glb: a floor, two walls and a box, each with TEXCOORD_1 laid out
   as unique, non-overlapping lightmap charts, a point light (KHR_lights_punctual) and a
   camera; baked by `stagelight bake assets/gltf/lightmap_room.glb --write-gltf` (README).
@@ -208,6 +213,24 @@ def write_bad_files():
     gltf.buffers[0].uri = "nowhere.bin"
     gltf._glb_data = None
     gltf.save_json(os.path.join(OUT, "missing_buffer.gltf"))
+
+
+def write_vertex_bake_edges():
+    b = Builder()
+    b.mesh("quad", [(0, 0, 0), (1, 0, 0), (1, 1, 0), (float("nan"), 1, 0)], [(0, 0, 1)] * 4, [(0, 0)] * 4, [[0, 1, 2], [0, 2, 3]])
+    b.gltf.accessors[0].min = [0.0, 0.0, 0.0]
+    b.gltf.accessors[0].max = [1.0, 1.0, 0.0]
+    b.node(name="quad", mesh=0)
+    b.finish([0]).save_binary(os.path.join(OUT, "nan_position.glb"))
+    b = Builder()
+    floor = [(0, 0, 0), (2, 0, 0), (2, 2, 0), (0, 2, 0)]
+    wall = [(0, 0, 0), (0, 2, 0), (0, 2, 2), (0, 0, 2)]
+    loose = [(2, 2, 0), (0.1, 2.2, 2.3)]
+    normals = [(0, 0, 1)] * 4 + [(1, 0, 0)] * 6
+    triangles = [[8, 8, 1], [0, 1, 2], [0, 2, 3], [4, 5, 6], [4, 6, 7]]
+    b.mesh("L", floor + wall + loose, normals, [(0, 0)] * 10, triangles)
+    b.node(name="L", mesh=0)
+    b.finish([0]).save_binary(os.path.join(OUT, "loose_vertices.glb"))
 
 
 def box_faces(b, name, lo, hi, chart_origin, chart_size, material):
@@ -448,4 +471,5 @@ if __name__ == "__main__":
     write_bad_files()
     write_material_textures()
     write_vertex_attributes()
+    write_vertex_bake_edges()
     write_lightmap_room()

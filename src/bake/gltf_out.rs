@@ -10,7 +10,8 @@
 //! and images the source kept in files or `data:` URIs are embedded too, so the copy stands
 //! alone. Per-vertex bakes become the primitive's `COLOR_0` (float RGB, [`color_source`]
 //! picks which). The JSON is edited as JSON, so everything the reader does not map (animations,
-//! skins, extensions) is kept as it was.
+//! skins, extensions) is kept as it was; a top-level array left empty (`images` when every
+//! bake is per vertex) is left out, as glTF requires of a defined array (≥ 1 item).
 
 use std::path::Path;
 
@@ -298,10 +299,17 @@ pub fn baked_glb(
         }
     }
     pad4(&mut bin, 0);
-    json["buffers"] = json!([{"byteLength": bin.len()}]);
+    if bin.is_empty() {
+        // A buffer's byteLength is at least 1: no bytes, no buffer and no BIN chunk.
+        json["buffers"] = json!([]);
+    } else {
+        json["buffers"] = json!([{"byteLength": bin.len()}]);
+    }
+    drop_empty_arrays(&mut json);
     let mut text = serde_json::to_vec(&json).map_err(|e| e.to_string())?;
     pad4(&mut text, b' ');
-    let total = 12 + 8 + text.len() + 8 + bin.len();
+    let bin_chunk = if bin.is_empty() { 0 } else { 8 + bin.len() };
+    let total = 12 + 8 + text.len() + bin_chunk;
     let mut out = Vec::with_capacity(total);
     out.extend_from_slice(b"glTF");
     out.extend_from_slice(&2u32.to_le_bytes());
@@ -309,8 +317,40 @@ pub fn baked_glb(
     out.extend_from_slice(&(text.len() as u32).to_le_bytes());
     out.extend_from_slice(b"JSON");
     out.extend_from_slice(&text);
-    out.extend_from_slice(&(bin.len() as u32).to_le_bytes());
-    out.extend_from_slice(b"BIN\0");
-    out.extend_from_slice(&bin);
+    if !bin.is_empty() {
+        out.extend_from_slice(&(bin.len() as u32).to_le_bytes());
+        out.extend_from_slice(b"BIN\0");
+        out.extend_from_slice(&bin);
+    }
     Ok(out)
+}
+
+/// Removes every top-level array of `json` that holds nothing (`"images": []`): glTF
+/// requires a defined array to have at least one item (the Khronos validator's
+/// `EMPTY_ENTITY`).
+fn drop_empty_arrays(json: &mut Value) {
+    if let Some(o) = json.as_object_mut() {
+        o.retain(|_, v| v.as_array().is_none_or(|a| !a.is_empty()));
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn empty_top_level_arrays_are_left_out() {
+        let mut json = json!({
+            "asset": {"version": "2.0"},
+            "images": [],
+            "textures": [],
+            "meshes": [{"primitives": []}],
+            "extensionsUsed": [],
+        });
+        drop_empty_arrays(&mut json);
+        assert_eq!(
+            json,
+            json!({"asset": {"version": "2.0"}, "meshes": [{"primitives": []}]})
+        );
+    }
 }

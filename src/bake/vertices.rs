@@ -1,7 +1,8 @@
 //! Per-vertex bakes (`target: Vertices`): the sample positions of each mesh vertex, laid out
 //! as the texels of a [`Coverage`] so the texel estimators, their seeding and the farm's
 //! tile split apply unchanged; and the values read back per vertex, with vertices that got
-//! no value (every sample inside other geometry) filled from their neighbours.
+//! no value (every sample inside other geometry, or on no triangle) filled from their
+//! neighbours or the nearest vertex with a value ([`fill_missing`]).
 //!
 //! Vertex `v` of an `N`-vertex mesh is texel `(v mod W, v div W)` of a `W × H` grid with
 //! `W = ⌈√N⌉`, `H = ⌈N / W⌉` (square, so rows spread over threads and farm tiles).
@@ -162,10 +163,18 @@ pub fn vertex_values(img: &TexelImage, vertices: usize) -> Vec<Option<Vec3>> {
 /// Passes of neighbour filling for vertices without a value.
 const FILL_PASSES: usize = 16;
 
-/// Gives every vertex without a value the mean of its neighbours' values (vertices sharing a
-/// triangle), pass by pass from the previous pass's values (so the order of vertices does
-/// not matter); vertices still without a value after [`FILL_PASSES`] passes (none of their
-/// part of the mesh was baked) become zero. Returns how many vertices were filled.
+/// Gives every vertex without a value one, in three steps:
+/// 1. the mean of its neighbours' values (vertices sharing a triangle), pass by pass from the
+///    previous pass's values (so the order of vertices does not matter), at most
+///    [`FILL_PASSES`] passes;
+/// 2. a vertex still without one — on no triangle of the mesh (unused, or used only by
+///    degenerate triangles the loader dropped) or in a part of the mesh without any value —
+///    takes the value of the nearest vertex that has one after step 1 (object-space
+///    distance, ties to the lower index; a vertex at a baked vertex's position gets exactly
+///    its value);
+/// 3. zero, only when no vertex of the mesh has a value.
+///
+/// Returns how many vertices were filled.
 pub fn fill_missing(mesh: &TriMesh, values: &mut [Option<Vec3>]) -> u64 {
     let mut filled = 0u64;
     let mut neighbours: Vec<Vec<u32>> = vec![Vec::new(); values.len()];
@@ -202,13 +211,65 @@ pub fn fill_missing(mesh: &TriMesh, values: &mut [Option<Vec3>]) -> u64 {
             break;
         }
     }
-    for value in values.iter_mut() {
-        if value.is_none() {
-            *value = Some(Vec3::ZERO);
-            filled += 1;
+    filled + fill_from_nearest(mesh, values)
+}
+
+/// Walks `side` (vertices with their x, moving away from `q.x`) until the x distance alone
+/// exceeds `best`'s distance, keeping in `best` the nearest (squared distance, index; the
+/// lower index on a tie).
+fn scan<'a>(
+    side: impl Iterator<Item = &'a (f64, usize)>,
+    q: glam::DVec3,
+    best: &mut (f64, usize),
+    position: &impl Fn(usize) -> glam::DVec3,
+) {
+    for &(x, w) in side {
+        if (x - q.x) * (x - q.x) > best.0 {
+            break;
+        }
+        let d = position(w).distance_squared(q);
+        if d < best.0 || (d == best.0 && w < best.1) {
+            *best = (d, w);
         }
     }
-    filled
+}
+
+/// Step 2 and 3 of [`fill_missing`]: every vertex without a value takes the value of the
+/// nearest vertex with one (read before any is filled here), or zero when none has one.
+/// Returns how many vertices were filled.
+fn fill_from_nearest(mesh: &TriMesh, values: &mut [Option<Vec3>]) -> u64 {
+    let missing: Vec<usize> = (0..values.len()).filter(|&v| values[v].is_none()).collect();
+    if missing.is_empty() {
+        return 0;
+    }
+    let position = |v: usize| {
+        mesh.positions
+            .get(v)
+            .map_or(glam::DVec3::ZERO, |p| p.as_dvec3())
+    };
+    // The vertices with a value, by x (then index): a query scans outward from its own x
+    // and stops where the x distance alone exceeds the best distance found.
+    let mut known: Vec<(f64, usize)> = (0..values.len())
+        .filter(|&v| values[v].is_some())
+        .map(|v| (position(v).x, v))
+        .collect();
+    known.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+    let found: Vec<(usize, Vec3)> = missing
+        .iter()
+        .map(|&v| {
+            let q = position(v);
+            let mut best = (f64::INFINITY, usize::MAX);
+            let start = known.partition_point(|&(x, _)| x < q.x);
+            scan(known[start..].iter(), q, &mut best, &position);
+            scan(known[..start].iter().rev(), q, &mut best, &position);
+            let value = values.get(best.1).copied().flatten();
+            (v, value.unwrap_or(Vec3::ZERO))
+        })
+        .collect();
+    for &(v, value) in &found {
+        values[v] = Some(value);
+    }
+    found.len() as u64
 }
 
 #[cfg(test)]
@@ -282,6 +343,33 @@ mod tests {
         assert_eq!(filled, 3);
         assert_eq!(values[1], Some(Vec3::splat(2.0)));
         assert_eq!(values[3], Some(Vec3::splat(2.0)));
-        assert_eq!(values[4], Some(Vec3::ZERO), "no neighbours: zero");
+        assert_eq!(
+            values[4],
+            Some(Vec3::splat(3.0)),
+            "no neighbours: the nearest, 2"
+        );
+    }
+
+    /// A vertex on no triangle takes the value of the nearest vertex with one (exactly its
+    /// value at the same position, the lower index on a tie); a mesh with no value at all
+    /// gets zeros.
+    #[test]
+    fn vertices_on_no_triangle_take_the_nearest_value() {
+        let mut mesh = square();
+        mesh.positions.push(Vec3::new(1.0, 1.0, 0.0));
+        mesh.positions.push(Vec3::new(0.5, 2.0, 0.0));
+        mesh.positions.push(Vec3::new(0.5, -0.5, 0.0));
+        let baked = [1.0, 2.0, 3.0, 4.0].map(|x| Some(Vec3::splat(x)));
+        let mut values: Vec<Option<Vec3>> = baked.to_vec();
+        values.extend([None, None, None, None]);
+        assert_eq!(fill_missing(&mesh, &mut values), 4);
+        let got: Vec<f32> = values.iter().map(|v| v.unwrap().x).collect();
+        // 4 at (5, 5, 5): nearest is vertex 2 at (1, 1); 5 sits on vertex 2; 6 at
+        // (0.5, 2) is as far from 2 as from 3: the lower index; 7 at (0.5, -0.5) ties 0
+        // and 1: vertex 0.
+        assert_eq!(got, [1.0, 2.0, 3.0, 4.0, 3.0, 3.0, 3.0, 1.0]);
+        let mut none = vec![None; 5];
+        assert_eq!(fill_missing(&square(), &mut none), 5);
+        assert!(none.iter().all(|v| *v == Some(Vec3::ZERO)));
     }
 }

@@ -3,7 +3,8 @@
 //!
 //! Positions are read in f64 and, when they lie far from the object origin, re-centred
 //! before they are rounded to f32 ([`super::rebase::centre_positions`]); a triangle whose area is zero in f64 arithmetic on
-//! those positions, or that touches a non-finite position, is dropped and counted. Shading
+//! those positions, or that touches a non-finite position, is dropped and counted; no vertex
+//! is removed or reordered (the readers refuse non-finite positions). Shading
 //! normals are normalised; a normal set with a non-finite or zero-length entry is dropped
 //! whole, as is a non-finite UV set. Normals and UVs are kept only when every vertex has one.
 
@@ -176,8 +177,8 @@ pub fn build_inline(
     )
 }
 
-/// Drops degenerate and non-finite triangles, normalises normals and removes unused
-/// non-finite positions. Indices must be in range.
+/// Drops degenerate and non-finite triangles and normalises normals; every vertex keeps its
+/// index. Indices must be in range.
 fn finish(data: MeshData) -> BuiltMesh {
     finish_with_polygons(
         data.positions,
@@ -234,29 +235,24 @@ fn finish_with_polygons(
     };
     let normals = normals.filter(|n| n.iter().all(|v| v.is_finite()));
     let uvs = uvs.filter(|u| u.iter().all(|t| t.is_finite()));
-    let mut uvs1 = uvs1.filter(|u| u.len() == positions.len() && u.iter().all(|t| t.is_finite()));
-    let mut colours =
-        colours.filter(|c| c.len() == positions.len() && c.iter().all(|v| v.is_finite()));
-    let mut tangents =
+    let uvs1 = uvs1.filter(|u| u.len() == positions.len() && u.iter().all(|t| t.is_finite()));
+    let colours = colours.filter(|c| c.len() == positions.len() && c.iter().all(|v| v.is_finite()));
+    let tangents =
         tangents.filter(|t| t.len() == positions.len() && t.iter().all(|v| v.is_finite()));
-    let mut mesh = TriMesh {
+    // The readers refuse non-finite positions and those beyond the f32 range; should the
+    // rounding after re-centring still make one infinite, its triangles were dropped above
+    // and it moves to the origin, so every vertex keeps its index (per-vertex bakes and
+    // the baked glTF copy map values back by index).
+    let positions = positions
+        .into_iter()
+        .map(|p| if p.is_finite() { p } else { Vec3::ZERO })
+        .collect();
+    let mesh = TriMesh {
         positions,
         normals,
         uvs,
         triangles,
     };
-    if mesh.positions.iter().any(|p| !p.is_finite()) {
-        let kept = compact(&mut mesh);
-        if let Some(u) = &mut uvs1 {
-            *u = kept.iter().map(|&i| u[i]).collect();
-        }
-        if let Some(c) = &mut colours {
-            *c = kept.iter().map(|&i| c[i]).collect();
-        }
-        if let Some(t) = &mut tangents {
-            *t = kept.iter().map(|&i| t[i]).collect();
-        }
-    }
     BuiltMesh {
         mesh,
         dropped,
@@ -267,30 +263,6 @@ fn finish_with_polygons(
         offset,
         polygon_of,
     }
-}
-
-/// Keeps only the vertices some triangle uses; returns the old index of each kept vertex.
-fn compact(mesh: &mut TriMesh) -> Vec<usize> {
-    let mut remap = vec![u32::MAX; mesh.positions.len()];
-    let mut kept = Vec::new();
-    for t in &mut mesh.triangles {
-        for i in t.iter_mut() {
-            let old = *i as usize;
-            if remap[old] == u32::MAX {
-                remap[old] = kept.len() as u32;
-                kept.push(old);
-            }
-            *i = remap[old];
-        }
-    }
-    mesh.positions = kept.iter().map(|&i| mesh.positions[i]).collect();
-    if let Some(n) = &mut mesh.normals {
-        *n = kept.iter().map(|&i| n[i]).collect();
-    }
-    if let Some(u) = &mut mesh.uvs {
-        *u = kept.iter().map(|&i| u[i]).collect();
-    }
-    kept
 }
 
 /// Builds the mesh a mesh file describes (see [`finish`] for what is dropped).
@@ -445,12 +417,38 @@ mod tests {
         assert_eq!(built.dropped, 1);
     }
 
+    /// Vertices keep their index whatever is dropped: unused vertices, vertices of dropped
+    /// degenerate triangles and (should one reach here) non-finite positions, which move to
+    /// the origin.
     #[test]
-    fn obj_nan_vertices_are_dropped_and_compacted() {
-        let obj = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nv nan 0 0\nf 1 2 3\nf 1 2 4\n";
-        let built = from_data(super::mesh_files::obj::parse(obj).unwrap());
-        assert_eq!(built.dropped, 1);
-        assert_eq!(built.mesh.positions.len(), 3);
-        assert!(built.mesh.positions.iter().all(|p| p.is_finite()));
+    fn every_vertex_keeps_its_index() {
+        let data = MeshData {
+            positions: vec![
+                DVec3::new(0.0, 0.0, 0.0),
+                DVec3::new(1.0, 0.0, 0.0),
+                DVec3::new(f64::NAN, 0.0, 0.0),
+                DVec3::new(0.0, 1.0, 0.0),
+                DVec3::new(5.0, 5.0, 5.0),
+                DVec3::new(2.0, 0.0, 0.0),
+            ],
+            colours: Some(vec![Vec3::ONE; 6]),
+            triangles: vec![[0, 2, 1], [0, 1, 3], [5, 5, 0]],
+            ..MeshData::default()
+        };
+        let built = from_data(data);
+        assert_eq!(built.dropped, 2);
+        assert_eq!(built.mesh.triangles, vec![[0, 1, 3]]);
+        assert_eq!(
+            built.mesh.positions,
+            [
+                Vec3::ZERO,
+                Vec3::X,
+                Vec3::ZERO,
+                Vec3::Y,
+                Vec3::splat(5.0),
+                Vec3::new(2.0, 0.0, 0.0)
+            ]
+        );
+        assert_eq!(built.colours.map(|c| c.len()), Some(6));
     }
 }

@@ -108,16 +108,16 @@ pub fn load_scene_str(text: &str, path: &Path) -> Result<LoadedScene, SceneError
     load(path, Some(text), import::FORMATS).and_then(world_checks::check_loaded)
 }
 
-/// Parses OBJ text into a checked triangle mesh (degenerate and non-finite triangles
-/// dropped), as the loader does for `Obj(file: …)` meshes. For tools and the fuzz target;
+/// Parses OBJ text into a checked triangle mesh (degenerate triangles dropped, a
+/// non-finite position an error), as the loader does for `Obj(file: …)` meshes. For tools and the fuzz target;
 /// the error is the message the loader would report.
 pub fn parse_obj_bytes(bytes: &[u8]) -> Result<crate::components::TriMesh, String> {
     parse_mesh_bytes(mesh_files::MeshFormat::Obj, bytes)
 }
 
 /// Parses a mesh file of `format` from its bytes into a checked triangle mesh, as the loader
-/// does (degenerate and non-finite triangles dropped, positions in the file's object
-/// space). For tools and the fuzz targets; the error says where and what.
+/// does (degenerate triangles dropped, a non-finite position an error, positions in the
+/// file's object space). For tools and the fuzz targets; the error says where and what.
 pub fn parse_mesh_bytes(
     format: mesh_files::MeshFormat,
     bytes: &[u8],

@@ -67,13 +67,23 @@ fn obj_ply_and_gltf_render_the_same_bytes() {
         assert_eq!(gltf.positions, obj.positions, "{file}");
         assert_eq!(gltf.normals, obj.normals, "{file}");
         assert_eq!(gltf.triangles, obj.triangles, "{file}");
+        // UVs: u as written; v flipped back (`1 − v`, exact where the result is an f32).
+        // The file holds the f32 nearest 1 − v, not 1 − (the OBJ's f32 v), so v agrees only
+        // to within a few f32 steps (below 2⁻²³) — bit for bit where 1 − v is exact (0, ½, 1).
         let (uv_gltf, uv_obj) = (gltf.uvs.unwrap(), obj.uvs.clone().unwrap());
+        let mut rounded = 0;
         for (a, b) in uv_gltf.iter().zip(&uv_obj) {
+            assert_eq!(a.x, b.x, "{file}: u as written");
             assert!(
-                (*a - *b).abs().max_element() < 1e-6,
+                (a.y - b.y).abs() <= 2f32.powi(-23),
                 "{file}: v is flipped back"
             );
+            if [0.0, 0.5, 1.0].contains(&b.y) {
+                assert_eq!(a.y, b.y, "{file}: an exact v");
+            }
+            rounded += usize::from(a.y != b.y);
         }
+        assert!(rounded > 0, "{file}: the box has UVs that 1 − v rounds");
         assert!(image == obj_image, "{file}: the images differ");
     }
     // `mesh` may be left out when the file holds one mesh.
@@ -156,6 +166,16 @@ fn bad_files_are_located_errors() {
             "bad_index.glb",
             "tri_mesh",
             "accessors[3]: index 7 (element 2) is out of range: the primitive has 3 vertices"
+        )
+    );
+    // A NaN in POSITION (glTF allows none in accessor data) was a dropped triangle and a
+    // vertex count that no longer matched the primitive's.
+    assert_eq!(
+        load_errors("nan_position.glb"),
+        mesh_error(
+            "nan_position.glb",
+            "quad_mesh",
+            "accessors[0]: POSITION of meshes[0].primitives[0]: vertex 3 is (NaN, 1, 0): a vertex position must be a finite number"
         )
     );
     assert_eq!(

@@ -4,6 +4,7 @@
 use std::path::Path;
 use std::sync::Arc;
 
+use glam::Vec3;
 use stagelight::components::TriMesh;
 use stagelight::scene::mesh_files::MeshFormat;
 
@@ -246,4 +247,89 @@ fn ply_corpus_parses_to_checked_meshes_or_errors() {
         }
     }
     assert!(loaded >= 2);
+}
+
+/// A NaN or infinite vertex position is an error of `check` at its value in every mesh
+/// format (PLY ASCII at line:column, binary PLY at its byte offset, OBJ at line:column),
+/// instead of a warning about a dropped triangle and a vertex bake that fails late.
+#[test]
+fn non_finite_positions_fail_check_where_they_are() {
+    use crate::common::cli::{run_in, scratch_dir, stderr_of};
+    let dir = scratch_dir("mesh-nan");
+    let head = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n\
+                property float z\nelement face 1\nproperty list uchar int vertex_indices\n\
+                end_header\n";
+    std::fs::write(
+        dir.join("nan.ply"),
+        format!("{head}0 0 0\n1 0 0\n0 nan 0\n3 0 1 2\n"),
+    )
+    .unwrap();
+    let binary_head = head.replace("ascii", "binary_little_endian");
+    let mut binary = binary_head.clone().into_bytes();
+    for x in [0.0f32, 0.0, 0.0, 1.0, 0.0, f32::INFINITY, 0.0, 1.0, 0.0] {
+        binary.extend(x.to_le_bytes());
+    }
+    binary.push(3);
+    for i in 0..3i32 {
+        binary.extend(i.to_le_bytes());
+    }
+    std::fs::write(dir.join("inf_le.ply"), &binary).unwrap();
+    std::fs::write(
+        dir.join("nan.obj"),
+        "v 0 0 0\nv 1 0 0\nv 0 1 nan\nf 1 2 3\n",
+    )
+    .unwrap();
+    // Vertex 1's z: after vertex 0 (12 bytes) and vertex 1's x and y.
+    let z_at = binary_head.len() + 20;
+    let cases = [
+        (
+            "Ply(file: \"nan.ply\")",
+            "nan.ply:12:3: error: invalid PLY file \"nan.ply\": vertex 2 has y = NaN: a vertex position must be a finite number".to_string(),
+        ),
+        (
+            "Ply(file: \"inf_le.ply\")",
+            format!("scene.ron:2:47: error: invalid PLY file \"inf_le.ply\": at byte {z_at}: vertex 1 has z = inf: a vertex position must be a finite number"),
+        ),
+        (
+            "Obj(file: \"nan.obj\")",
+            "nan.obj:3:7: error: invalid OBJ file \"nan.obj\": position z = NaN: a vertex position must be a finite number".to_string(),
+        ),
+    ];
+    for (mesh, expected) in cases {
+        std::fs::write(dir.join("scene.ron"), scene(mesh)).unwrap();
+        let o = run_in(&dir, &["check", "scene.ron"]);
+        assert_eq!(o.status.code(), Some(1), "{mesh}");
+        assert_eq!(
+            stderr_of(&o),
+            format!(
+                "{expected}\n  help: loaded for object \"thing\" at scene.ron:2:47\n\
+                 1 error in scene.ron; nothing rendered\n"
+            ),
+            "{mesh}"
+        );
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// ASCII PLY data is one element per line; blank lines between the elements (here between
+/// the vertex and the face block, as some exporters write) are skipped.
+#[test]
+fn blank_lines_in_ascii_ply_data_are_skipped() {
+    let dir = crate::common::cli::scratch_dir("mesh-blank");
+    std::fs::write(
+        dir.join("blank.ply"),
+        "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n\
+         property float z\nelement face 1\nproperty list uchar int vertex_indices\n\
+         end_header\n0\t0 0\n1 0 0  \n0 1 0\n\n3 0 1 2\n",
+    )
+    .unwrap();
+    let scene = stagelight::scene::load_scene_str(
+        &scene("Ply(file: \"blank.ply\")"),
+        &dir.join("scene.ron"),
+    )
+    .unwrap_or_else(|e| panic!("{}", e.0[0]));
+    let mesh = mesh_of(&scene);
+    assert_eq!(mesh.positions, [Vec3::ZERO, Vec3::X, Vec3::Y]);
+    assert_eq!(mesh.triangles, [[0, 1, 2]]);
+    let _ = std::fs::remove_dir_all(&dir);
 }

@@ -278,7 +278,8 @@ fn vertex_bakes_are_deterministic_and_merge_from_parts() {
 
 /// A glTF primitive without `TEXCOORD_1` bakes AO per vertex by default, and `--write-gltf`
 /// makes it the primitive's `COLOR_0` in the copy (one float RGB per vertex, the PLY's
-/// values), each of the three nodes sharing the mesh with its own copy.
+/// values), each of the three nodes sharing the mesh with its own copy; the copy writes
+/// no empty top-level array.
 #[test]
 fn a_baked_glb_carries_vertex_ao_as_color_0() {
     let dir = scratch_dir("vertex-bake-gltf");
@@ -299,6 +300,19 @@ fn a_baked_glb_carries_vertex_ao_as_color_0() {
     let plys: Vec<&String> = names.iter().filter(|n| n.ends_with("_ao.ply")).collect();
     assert_eq!(plys.len(), 3, "{names:?}");
     let bytes = std::fs::read(dir.join("out/hierarchy.glb")).unwrap();
+    // glTF requires a defined array to hold at least one item (the Khronos validator's
+    // EMPTY_ENTITY): no bake made a texture, so the copy has no `images` (nor `textures`).
+    let json_len = u32::from_le_bytes(bytes[12..16].try_into().unwrap()) as usize;
+    let json: serde_json::Value = serde_json::from_slice(&bytes[20..20 + json_len]).unwrap();
+    let empty: Vec<&String> = json
+        .as_object()
+        .unwrap()
+        .iter()
+        .filter(|(_, v)| v.as_array().is_some_and(|a| a.is_empty()))
+        .map(|(k, _)| k)
+        .collect();
+    assert!(empty.is_empty(), "empty top-level arrays: {empty:?}");
+    assert!(json.get("images").is_none() && json.get("textures").is_none());
     let glb = gltf::Gltf::from_slice(&bytes).expect("a valid glb");
     let blob = glb.blob.clone().expect("a BIN chunk");
     let mut checked = 0;
@@ -323,6 +337,66 @@ fn a_baked_glb_carries_vertex_ao_as_color_0() {
         }
     }
     assert!(checked > 0);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Vertices the bake cannot sample keep their place and get a value
+/// (`tests/fixtures/gltf/loose_vertices.glb`, an L of two quads): vertex 8, at vertex 2's
+/// position and used only by the degenerate triangle (8, 8, 1) the loader drops, gets
+/// vertex 2's value; vertex 9, on no triangle, the value of the nearest vertex (6). The PLY
+/// and the copy's `COLOR_0` keep the file's 10 vertices in its order (before, both got 0).
+#[test]
+fn loose_vertices_keep_their_place_and_take_the_nearest_value() {
+    let dir = scratch_dir("vertex-bake-loose");
+    let source =
+        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/gltf/loose_vertices.glb");
+    let o = run_in(
+        &dir,
+        &[
+            "bake",
+            source.to_str().unwrap(),
+            "-o",
+            "out",
+            "--write-gltf",
+        ],
+    );
+    assert!(o.status.success(), "{}", stderr_of(&o));
+    let ply = BakedPly::read(&dir.join("out/L_ao.ply"));
+    assert_eq!((ply.count, ply.faces), (10, 4));
+    // The fixture's POSITION, in order (scripts/make_gltf_fixtures.py).
+    let positions = [
+        [0.0, 0.0, 0.0],
+        [2.0, 0.0, 0.0],
+        [2.0, 2.0, 0.0],
+        [0.0, 2.0, 0.0],
+        [0.0, 0.0, 0.0],
+        [0.0, 2.0, 0.0],
+        [0.0, 2.0, 2.0],
+        [0.0, 0.0, 2.0],
+        [2.0, 2.0, 0.0],
+        [0.1f32, 2.2, 2.3],
+    ];
+    for (v, p) in positions.iter().enumerate() {
+        assert_eq!(
+            [ply.float(v, "x"), ply.float(v, "y"), ply.float(v, "z")],
+            *p
+        );
+    }
+    let ao: Vec<f32> = (0..10).map(|v| ply.float(v, "baked_r")).collect();
+    assert!(ao[..8].iter().all(|&a| a > 0.5 && a < 1.0), "{ao:?}");
+    assert_eq!(ao[8], ao[2]);
+    assert_eq!(ao[9], ao[6]);
+    let copy = std::fs::read(dir.join("out/loose_vertices.glb")).unwrap();
+    let glb = gltf::Gltf::from_slice(&copy).unwrap();
+    let blob = glb.blob.clone().unwrap();
+    let prim = glb.meshes().last().unwrap().primitives().next().unwrap();
+    let colors = prim.get(&gltf::Semantic::Colors(0)).expect("COLOR_0");
+    assert_eq!(colors.count(), 10);
+    let start = colors.view().unwrap().offset() + colors.offset();
+    for (v, a) in ao.iter().enumerate() {
+        let at = start + v * 12;
+        assert_eq!(f32::from_le_bytes(blob[at..at + 4].try_into().unwrap()), *a);
+    }
     let _ = std::fs::remove_dir_all(&dir);
 }
 

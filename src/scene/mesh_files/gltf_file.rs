@@ -8,18 +8,21 @@
 //! positions, normals, `TEXCOORD_0` and `TEXCOORD_1`, `TANGENT` (checked: `w` = ±1),
 //! `COLOR_0` (vec3 or vec4, float or normalised u8/u16, linear; alpha not read; white for
 //! the primitives of a mesh that lack it), indices, as triangle lists, strips or fans;
-//! other attributes (`_BATCHID`, joints, …) are ignored. Accessors are read here, not
+//! other attributes (`_BATCHID`, joints, …) are ignored. A non-finite position is an error
+//! naming its accessor, primitive and vertex. Accessors are read here, not
 //! by the crate's iterators: every accessor's byte range is checked against its buffer view
 //! and every view against its buffer before a byte is read, and every index against the
 //! vertex count, so no file can make the reader panic.
 //!
 //! glTF's texture coordinates have `v` growing downwards (the image's first row at `v = 0`);
-//! stagelight's have `v` up (OBJ), so `v` is flipped on reading (`v' = 1 − v`) and on
-//! writing.
+//! stagelight's have `v` up (OBJ), so `v` is flipped on reading (`v' = 1 − v`, one f32
+//! subtraction: exact whenever the result is an f32, e.g. every `v` in [½, 1]) and on
+//! writing. The file holds the f32 nearest `1 − v`, so its UVs match an OBJ's or PLY's
+//! only to within rounding (docs/gltf.md).
 
 use std::path::Path;
 
-use glam::{DVec3, Vec2, Vec3, Vec4};
+use glam::{Vec2, Vec3, Vec4};
 use gltf::accessor::{DataType, Dimensions};
 use gltf::mesh::Mode;
 
@@ -636,12 +639,22 @@ pub fn mesh_data(file: &GltfFile, pick: &MeshPick) -> Result<MeshData, MeshFileE
                 "the primitive has no POSITION attribute",
             ));
         };
+        let position_accessor = pos.index();
         let pos = accessor_bytes(file, &pos, "POSITION", &[DataType::F32], Dimensions::Vec3)?;
         let base = out.positions.len();
         let n = pos.count;
         for i in 0..n {
-            let p = [0, 1, 2].map(|c| pos.float(i, c) as f64);
-            out.positions.push(DVec3::from_array(p));
+            let p = Vec3::from_array([0, 1, 2].map(|c| pos.float(i, c)));
+            if !p.is_finite() {
+                return Err(element(
+                    format!("accessors[{position_accessor}]"),
+                    format!(
+                        "POSITION of {path}: vertex {i} is ({}, {}, {}): a vertex position must be a finite number",
+                        p.x, p.y, p.z
+                    ),
+                ));
+            }
+            out.positions.push(p.as_dvec3());
         }
         let attr = |semantic: gltf::Semantic,
                     role: &str,

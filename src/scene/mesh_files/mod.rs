@@ -106,8 +106,10 @@ pub fn read(
 /// normals and texture coordinates, triangles (polygons already fan-triangulated).
 ///
 /// Invariants every reader keeps: `normals` and `uvs`, when present, have one entry per
-/// position; every triangle index is below `positions.len()`. Values are as written (they
-/// may be non-finite or degenerate; [`super::mesh_load`] drops what cannot be rendered).
+/// position; every triangle index is below `positions.len()`; every position is finite and
+/// within the f32 range (a reader refuses others with a located error). Other values are
+/// as written (they may be non-finite or degenerate; [`super::mesh_load`] drops what cannot
+/// be rendered).
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct MeshData {
     /// Vertex positions in object space, as written (f64).

@@ -9,7 +9,8 @@
 //! The rules, as the loader applied them before this reader existed (through `tobj`):
 //! - positions are f64 (`v x y z`, divided by `w` in `v x y z w`; a colour in
 //!   `v x y z r g b` is read and ignored), normals and texture coordinates are rounded to
-//!   f32;
+//!   f32; a position that is not finite (`nan`, `inf`) or lies beyond the f32 range is an
+//!   error at the number (added by stagelight: `tobj` kept it);
 //! - every object or group (`o`, `g`) is a model; within a model each distinct
 //!   `v/vt/vn` triple becomes one vertex, numbered in order of first use, and the models
 //!   are concatenated;
@@ -212,17 +213,15 @@ impl Reader {
 
     fn position(&mut self, args: &[(usize, &[u8])], at: usize) -> Result<(), LineError> {
         let n = numbers(args, at, 3..=6, "a position needs 3 numbers (\"v x y z\")")?;
-        match n.len() {
-            3 | 6 => self.positions.push(DVec3::new(n[0], n[1], n[2])),
+        let position = match n.len() {
+            3 | 6 => DVec3::new(n[0], n[1], n[2]),
             4 if n[3] == 0.0 => {
                 return Err((
                     args[3].0,
                     "the weight w of a position must not be zero".into(),
                 ))
             }
-            4 => self
-                .positions
-                .push(DVec3::new(n[0] / n[3], n[1] / n[3], n[2] / n[3])),
+            4 => DVec3::new(n[0] / n[3], n[1] / n[3], n[2] / n[3]),
             count => {
                 return Err((
                     args[count - 1].0,
@@ -231,7 +230,25 @@ impl Reader {
                 ),
                 ))
             }
+        };
+        for (k, x) in position.to_array().into_iter().enumerate() {
+            let expected = if !x.is_finite() {
+                "a vertex position must be a finite number"
+            } else if x.abs() > f64::from(f32::MAX) {
+                "a vertex position must lie within the f32 range (±3.4e38)"
+            } else {
+                continue;
+            };
+            let weighted = if n.len() == 4 { " (divided by w)" } else { "" };
+            return Err((
+                args[k].0,
+                format!(
+                    "position {} = {x:e}{weighted}: {expected}",
+                    ["x", "y", "z"][k]
+                ),
+            ));
         }
+        self.positions.push(position);
         Ok(())
     }
 
@@ -588,6 +605,38 @@ mod tests {
                 7,
                 "\"3/x\" is not a face vertex: write v, v/vt, v//vn or v/vt/vn with whole numbers"
                     .into()
+            )
+        );
+    }
+
+    /// A position that is NaN, infinite or beyond the f32 range is an error at its number,
+    /// even when no face uses it.
+    #[test]
+    fn non_finite_positions_are_located_at_the_number() {
+        let finite = "a vertex position must be a finite number";
+        assert_eq!(
+            error(b"v 0 0 0\nv 1 nan 0\n"),
+            (2, 5, format!("position y = NaN: {finite}"))
+        );
+        assert_eq!(
+            error(b"v 0 0 0\nv  -inf 0 0 0.5 0.5 0.5\n"),
+            (2, 4, format!("position x = -inf: {finite}"))
+        );
+        assert_eq!(
+            error(b"v 0 0 1e39\n"),
+            (
+                1,
+                7,
+                "position z = 1e39: a vertex position must lie within the f32 range (±3.4e38)"
+                    .into()
+            )
+        );
+        assert_eq!(
+            error(b"v 0 1e300 0 1e-300\n"),
+            (
+                1,
+                5,
+                "position y = inf (divided by w): a vertex position must be a finite number".into()
             )
         );
     }

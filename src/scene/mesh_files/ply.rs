@@ -9,10 +9,12 @@
 //! (all three or none): integer colours are display values (divided by the type's
 //! maximum, `uchar` 255, then decoded from sRGB to linear), floating-point colours are
 //! linear as written. An `alpha` property and every other property or element are read
-//! past and ignored.
+//! past and ignored. ASCII data holds one element per line, its values separated by white
+//! space; blank lines (empty or white space only) between elements are skipped.
 //!
-//! Errors are located: header problems and ASCII data at line and column, binary data at
-//! its byte offset. The header's counts are checked against the size of the data before
+//! A vertex position that is not a finite number (`nan`, `inf`) or lies beyond the f32
+//! range is an error at its value. Errors are located: header problems and ASCII data at
+//! line and column, binary data at its byte offset. The header's counts are checked against the size of the data before
 //! anything is allocated for them, so a header cannot make the reader reserve more than
 //! the file could hold; the data must hold exactly the elements the header declares.
 
@@ -606,6 +608,8 @@ fn read(h: &Header, layout: &Layout, mut values: impl Values) -> Result<MeshData
     let mut colours = layout.colour.map(|_| Vec::with_capacity(nv));
     let mut triangles = Vec::new();
     let mut row = Vec::new();
+    // Where each value of `row` starts, for located position errors.
+    let mut row_at = Vec::new();
     let mut corners = Vec::new();
     for (index, e) in h.elements.iter().enumerate() {
         if e.properties.is_empty() {
@@ -614,9 +618,13 @@ fn read(h: &Header, layout: &Layout, mut values: impl Values) -> Result<MeshData
         for i in 0..e.count {
             values.begin(e, i)?;
             row.clear();
+            row_at.clear();
             for (k, p) in e.properties.iter().enumerate() {
                 match p.kind {
-                    Kind::Scalar(ty) => row.push(values.value(ty, e, i, p)?),
+                    Kind::Scalar(ty) => {
+                        row.push(values.value(ty, e, i, p)?);
+                        row_at.push(values.last());
+                    }
                     Kind::List { count, item } => {
                         let length = values.value(count, e, i, p)?;
                         let length_at = values.last();
@@ -672,12 +680,16 @@ fn read(h: &Header, layout: &Layout, mut values: impl Values) -> Result<MeshData
                             }
                         }
                         row.push(Num::Int(0));
+                        row_at.push(length_at);
                     }
                 }
             }
             values.end(e, i)?;
             if index == layout.vertex {
                 let p = layout.position.map(|k| row[k].as_f64());
+                for (axis, &k) in layout.position.iter().enumerate() {
+                    check_position(p[axis], i, &e.properties[k].name, row_at[k])?;
+                }
                 positions.push(DVec3::from_array(p));
                 if let (Some(n), Some(out)) = (layout.normal, &mut normals) {
                     let n = n.map(|k| row[k].as_f64() as f32);
@@ -719,6 +731,22 @@ fn read(h: &Header, layout: &Layout, mut values: impl Values) -> Result<MeshData
     })
 }
 
+/// Checks one coordinate `x` (property `name`) of vertex `i`, read at `at`: a position must
+/// be a finite number within the f32 range (meshes are traced in f32).
+fn check_position(x: f64, i: usize, name: &[u8], at: Location) -> Result<(), MeshFileError> {
+    let expected = if !x.is_finite() {
+        "a vertex position must be a finite number"
+    } else if x.abs() > f64::from(f32::MAX) {
+        "a vertex position must lie within the f32 range (±3.4e38)"
+    } else {
+        return Ok(());
+    };
+    Err(error_at(
+        at,
+        format!("vertex {i} has {} = {x:e}: {expected}", shown(name)),
+    ))
+}
+
 /// The IEC 61966-2-1 sRGB decoding of `x` in [0, 1].
 fn srgb_to_linear(x: f64) -> f64 {
     if x <= 0.04045 {
@@ -735,7 +763,8 @@ fn error_at(at: Location, message: String) -> MeshFileError {
 /// The lines of ASCII data (split at `\n`).
 type Lines<'a> = std::slice::Split<'a, u8, fn(&u8) -> bool>;
 
-/// ASCII data: one element per line, values separated by white space.
+/// ASCII data: one element per line, values separated by white space; blank lines between
+/// elements are skipped.
 struct Ascii<'a> {
     lines: std::iter::Peekable<Lines<'a>>,
     /// The current line, its number and the words left on it.
@@ -770,27 +799,32 @@ impl<'a> Ascii<'a> {
 
 impl Values for Ascii<'_> {
     fn begin(&mut self, e: &Element, i: usize) -> Result<(), MeshFileError> {
-        match self.lines.next() {
+        while let Some(line) = self.lines.next() {
             // The piece after a final newline is not a line.
-            Some(line) if !(line.is_empty() && self.lines.peek().is_none()) => {
-                self.number += 1;
-                self.line = line.strip_suffix(b"\r").unwrap_or(line);
-                self.words = words(self.line).into_iter();
-                self.last = self.here(0);
-                Ok(())
+            if line.is_empty() && self.lines.peek().is_none() {
+                break;
             }
-            _ => Err(error_at(
-                Location::Text {
-                    line: self.number + 1,
-                    column: 1,
-                },
-                format!(
-                    "the file ends after {} of the {} the header declares",
-                    e.counted(i),
-                    e.counted(e.count)
-                ),
-            )),
+            self.number += 1;
+            // Blank lines (empty or white space only) between elements are skipped.
+            if line.iter().all(|b| b.is_ascii_whitespace()) {
+                continue;
+            }
+            self.line = line.strip_suffix(b"\r").unwrap_or(line);
+            self.words = words(self.line).into_iter();
+            self.last = self.here(0);
+            return Ok(());
         }
+        Err(error_at(
+            Location::Text {
+                line: self.number + 1,
+                column: 1,
+            },
+            format!(
+                "the file ends after {} of the {} the header declares",
+                e.counted(i),
+                e.counted(e.count)
+            ),
+        ))
     }
 
     fn value(

@@ -335,6 +335,90 @@ fn mutated_files_are_read_or_rejected() {
     }
 }
 
+/// A vertex position that is NaN, infinite or beyond the f32 range is an error at its
+/// value (line and column in ASCII, byte offset in binary files).
+#[test]
+fn non_finite_positions_are_located() {
+    let with = |data: &str| format!("{HEAD}{data}");
+    let cases = [
+        (
+            "0 0 0\n1 0 0\nnan 1 0\n0 1 0\n4 0 1 2 3\n",
+            text(12, 1),
+            "x = NaN",
+        ),
+        (
+            "0 0 0\n1 0 0\n1  -inf 0\n0 1 0\n4 0 1 2 3\n",
+            text(12, 4),
+            "y = -inf",
+        ),
+        (
+            "0 0 0\n1 0 0\n1 1 0\n0 1 inf\n4 0 1 2 3\n",
+            text(13, 5),
+            "z = inf",
+        ),
+    ];
+    for (data, at, value) in cases {
+        let vertex = if at == text(13, 5) { 3 } else { 2 };
+        assert_eq!(
+            error(with(data).as_bytes()),
+            (
+                at,
+                format!("vertex {vertex} has {value}: a vertex position must be a finite number")
+            ),
+            "{data:?}"
+        );
+    }
+    assert_eq!(
+        error(with("0 0 0\n1 0 0\n1 1 0\n0 1e39 0\n4 0 1 2 3\n").as_bytes()),
+        (
+            text(13, 3),
+            "vertex 3 has y = 1e39: a vertex position must lie within the f32 range (±3.4e38)"
+                .into()
+        )
+    );
+    // Binary: vertex 2's x (each vertex is 3 floats and a uchar, 13 bytes).
+    let mut bad = binary(true, Scalar::F32);
+    let data = bad.len() - (4 * 13 + 1 + 16);
+    let at = data + 2 * 13;
+    bad[at..at + 4].copy_from_slice(&f32::NAN.to_le_bytes());
+    assert_eq!(
+        error(&bad),
+        (
+            Location::Byte(at as u64),
+            "vertex 2 has x = NaN: a vertex position must be a finite number".into()
+        )
+    );
+}
+
+/// ASCII data holds one element per line; blank lines between elements (empty, white space,
+/// `\r`) are skipped, wherever they are.
+#[test]
+fn blank_lines_between_elements_are_skipped() {
+    for data in [
+        "0 0 0\n1 0 0\n1 1 0\n0 1 0\n\n4 0 1 2 3\n",
+        "\n0 0 0\n  \t\n1 0 0\n1 1 0\r\n\r\n0 1 0\n4 0 1 2 3\n\n\n",
+        "0 0 0\n1 0 0\n1 1 0\n0 1 0\n \n4 0 1 2 3",
+    ] {
+        let m =
+            parse(format!("{HEAD}{data}").as_bytes()).unwrap_or_else(|e| panic!("{data:?}: {e}"));
+        assert_eq!(m.positions.len(), 4, "{data:?}");
+        assert_eq!(m.triangles, [[0, 1, 2], [0, 2, 3]], "{data:?}");
+    }
+    // The end of the data is still found after blank lines, and counted lines include them.
+    assert_eq!(
+        error(format!("{HEAD}0 0 0\n\n1 0 0          \n          \n").as_bytes()),
+        (
+            text(14, 1),
+            "the file ends after 2 vertices of the 4 vertices the header declares".into()
+        )
+    );
+    // An element is one line: values split over two lines are still an error.
+    assert_eq!(
+        error(format!("{HEAD}0 0 0\n1 0\n0\n1 1 0\n0 1 0\n4 0 1 2 3\n").as_bytes()).1,
+        "vertex 1 ends before its \"z\" value (float)"
+    );
+}
+
 /// Trailing blanks after the first line's `ply` are allowed, as after every other header
 /// line (a file whose first line was `ply ` was refused).
 #[test]
