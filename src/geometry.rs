@@ -6,6 +6,15 @@
 //! triangles transformed into world space. Traversal stays one-level (no ray transforms, no
 //! nested stacks) and error bounds are computed on the world-space vertices the ray actually
 //! meets.
+//!
+//! **Mirrored instances.** A transform with a negative determinant reverses a triangle's
+//! winding, so the world triangle of a *mirrored* instance is stored with its last two
+//! corners swapped ([`InstanceGeometry::world_order`]): every geometric normal computed from
+//! world vertices (`SurfacePoint::ng`, and with it one-sided shading, emission, interiors,
+//! photons and bakes) then points to the side its object-space winding calls the front, as
+//! glTF and pbrt define it. A hit's barycentrics weigh the world triangle's corners, so mesh
+//! attributes are read through [`InstanceGeometry::corners`]; unmirrored instances keep the
+//! mesh's order, bit for bit.
 
 use std::sync::Arc;
 
@@ -42,9 +51,49 @@ pub struct InstanceGeometry {
     /// The object's tangents (object space, `w` the handedness, one per vertex of `mesh`),
     /// if it has them ([`crate::components::VertexTangents`]).
     pub tangents: Option<Arc<Vec<glam::Vec4>>>,
+    /// Whether `world_from_object` mirrors (negative determinant): its world triangles have
+    /// their last two corners swapped (see the module documentation).
+    pub mirrored: bool,
 }
 
 impl InstanceGeometry {
+    /// Whether `world_from_object` mirrors space (negative determinant), which makes
+    /// [`Self::world_order`] swap a triangle's last two corners.
+    pub fn mirrors(world_from_object: &Affine3A) -> bool {
+        world_from_object.matrix3.determinant() < 0.0
+    }
+
+    /// A triangle's three per-corner values in the mesh's order, put in the order of its
+    /// world triangle (the order a [`Hit`]'s barycentrics weigh): the last two swapped for a
+    /// mirrored instance, so the world winding keeps the object-space front.
+    #[inline(always)]
+    pub fn world_order<T>(&self, [a, b, c]: [T; 3]) -> [T; 3] {
+        if self.mirrored {
+            [a, c, b]
+        } else {
+            [a, b, c]
+        }
+    }
+
+    /// Mesh vertex indices of local triangle `local`, in the order of its world triangle.
+    #[inline(always)]
+    pub fn corners(&self, local: usize) -> [usize; 3] {
+        self.world_order(self.mesh.triangles[local])
+            .map(|i| i as usize)
+    }
+
+    /// The hit on local triangle `local` at the barycentrics `(b1, b2)` of the mesh's
+    /// corners 1 and 2 (a bake's texel sample), at `t = 0`.
+    pub fn hit_at(&self, local: u32, b1: f32, b2: f32) -> Hit {
+        let (b1, b2) = if self.mirrored { (b2, b1) } else { (b1, b2) };
+        Hit {
+            t: 0.0,
+            prim: self.first_triangle + local,
+            b1,
+            b2,
+        }
+    }
+
     /// Material slot of the instance's local triangle `local`.
     pub fn material_of_local(&self, local: usize) -> u32 {
         self.face_materials
@@ -151,7 +200,7 @@ impl SceneGeometry {
         let slot = self.triangle_instance[hit.prim as usize];
         let inst = &self.instances[slot as usize];
         let local = (hit.prim - inst.first_triangle) as usize;
-        let [i0, i1, i2] = inst.mesh.triangles[local].map(|i| i as usize);
+        let [i0, i1, i2] = inst.corners(local);
         let b0 = 1.0 - hit.b1 - hit.b2;
         let mut normal = surface.ng;
         if let Some(ns) = &inst.mesh.normals {

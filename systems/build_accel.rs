@@ -15,7 +15,8 @@
 //! **Runs when:** at least one instance has triangles and something consumes rays (a render
 //! camera in a run that renders, or bake requests in a run that bakes).
 //! **After this stage:** `outputs.geometry` holds world triangles in instance order (each
-//! instance contiguous), their BVH, and per-instance shading data.
+//! instance contiguous; a mirrored instance's with two corners swapped, so that they keep
+//! their object-space front), their BVH, and per-instance shading data.
 
 use std::collections::HashMap;
 use std::sync::Arc;
@@ -141,8 +142,12 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
         let first = triangles.len() as u32;
         let index = instances.len() as u32;
         let mesh = &instance.mesh;
+        // A mirroring transform reverses the winding: swap two corners back, so the world
+        // triangle's geometric normal is on its object-space front (`geometry.rs`).
+        let mirrored = InstanceGeometry::mirrors(&xf);
         for tri in &mesh.triangles {
-            triangles.push(tri.map(|i| xf.transform_point3(mesh.positions[i as usize])));
+            let [a, b, c] = tri.map(|i| xf.transform_point3(mesh.positions[i as usize]));
+            triangles.push(if mirrored { [a, c, b] } else { [a, b, c] });
             triangle_instance.push(index);
         }
         let mask = world
@@ -180,6 +185,7 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
                 .ok()
                 .map(|t| t.0.clone())
                 .filter(|t| t.len() == instance.mesh.positions.len()),
+            mirrored,
         });
     }
     // Generated geometry is only known now: refuse what the f32 BVH and triangle test cannot

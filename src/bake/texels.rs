@@ -189,13 +189,7 @@ fn texel(
     let mut sites = Vec::with_capacity(slots.len());
     for (s, slot) in slots.iter().enumerate() {
         let Some(ts) = slot else { continue };
-        let prim = job.instance.first_triangle + ts.triangle;
-        let hit = crate::accel::Hit {
-            t: 0.0,
-            prim,
-            b1: ts.b1,
-            b2: ts.b2,
-        };
+        let hit = job.instance.hit_at(ts.triangle, ts.b1, ts.b2);
         let sp = job.geometry.shading_point(&hit);
         let site = Site {
             surface: sp.surface,
@@ -462,7 +456,8 @@ fn ao_rays(
 fn tangent_space(job: &TexelJob<'_>, site: &Site, n: Vec3) -> Vec3 {
     let prim = job.instance.first_triangle + site.triangle as u32;
     let [p0, p1, p2] = job.geometry.accel.triangle(prim);
-    let [t0, t1, t2] = job.uvs[site.triangle];
+    // The uvs in the world triangle's corner order, as its positions.
+    let [t0, t1, t2] = job.instance.world_order(job.uvs[site.triangle]);
     let (e1, e2) = (p1 - p0, p2 - p0);
     let (d1, d2) = (t1 - t0, t2 - t0);
     let det = d1.x * d2.y - d2.x * d1.y;

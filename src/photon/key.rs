@@ -48,6 +48,10 @@ pub fn photon_key(
             "instance {slot} mesh {id} material {} first {} transform {:?} bump {:?}",
             inst.material, inst.first_triangle, inst.world_from_object, inst.bump
         );
+        if inst.mirrored {
+            // Its world triangles keep the object-space front (written since that rule).
+            let _ = writeln!(h, "mirrored, front kept");
+        }
         if let Some(faces) = &inst.face_materials {
             let _ = writeln!(h, "faces {faces:?}");
         }

@@ -63,6 +63,7 @@ mod mi_surfaces;
 mod mi_textures;
 mod mi_tutorial_shaders;
 mod mi_volumes;
+mod mirrored_instances;
 mod obj_materials;
 mod photon_clean;
 mod photon_depth;

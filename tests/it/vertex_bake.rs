@@ -9,8 +9,8 @@ use std::path::{Path, PathBuf};
 use crate::common::cli::{dir_names, run_in, scratch_dir, stderr_of};
 
 /// A PLY written by a per-vertex bake: the header's vertex properties and the raw records.
-struct BakedPly {
-    count: usize,
+pub(crate) struct BakedPly {
+    pub(crate) count: usize,
     properties: Vec<(String, usize)>,
     records: Vec<u8>,
     stride: usize,
@@ -18,7 +18,7 @@ struct BakedPly {
 }
 
 impl BakedPly {
-    fn read(path: &Path) -> BakedPly {
+    pub(crate) fn read(path: &Path) -> BakedPly {
         let bytes = std::fs::read(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
         let end = b"end_header\n";
         let at = bytes.windows(end.len()).position(|w| w == end).unwrap() + end.len();
@@ -71,7 +71,7 @@ impl BakedPly {
         panic!("no property {name}");
     }
 
-    fn float(&self, v: usize, name: &str) -> f32 {
+    pub(crate) fn float(&self, v: usize, name: &str) -> f32 {
         let o = v * self.stride + self.offset(name);
         f32::from_le_bytes(self.records[o..o + 4].try_into().unwrap())
     }

@@ -175,6 +175,7 @@ pub fn geometry(objects: Vec<Object>) -> SceneGeometry {
             bump: None,
             colours: None,
             tangents: None,
+            mirrored: false,
         });
         triangle_instance.extend(std::iter::repeat_n(slot as u32, object.triangles.len()));
         triangles.extend(object.triangles);

@@ -80,7 +80,7 @@ fn evaluate_textured(
 ) -> Option<Textured> {
     let displacement = inst.bump.as_deref();
     let local = (hit.prim - inst.first_triangle) as usize;
-    let idx = inst.mesh.triangles[local].map(|i| i as usize);
+    let idx = inst.corners(local);
     let b = [1.0 - hit.b1 - hit.b2, hit.b1, hit.b2];
     let pos = idx.map(|i| inst.mesh.positions[i]);
     let p = pos[0] * b[0] + pos[1] * b[1] + pos[2] * b[2];
@@ -192,7 +192,7 @@ pub fn emission_at(geometry: &SceneGeometry, hit: &Hit, material: &Material) -> 
     let sp = geometry.shading_point(hit);
     let inst = &geometry.instances[sp.instance as usize];
     let local = (hit.prim - inst.first_triangle) as usize;
-    let idx = inst.mesh.triangles[local].map(|i| i as usize);
+    let idx = inst.corners(local);
     let b = [1.0 - hit.b1 - hit.b2, hit.b1, hit.b2];
     let p = idx
         .iter()
