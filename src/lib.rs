@@ -27,6 +27,7 @@ pub mod guard;
 pub mod hash;
 pub mod image_io;
 pub mod limits;
+pub mod log_format;
 pub mod noise;
 pub mod part_refusals;
 pub mod photon;

@@ -401,10 +401,8 @@ fn write_stdout(args: std::fmt::Arguments, newline: bool) {
 fn main() -> ExitCode {
     let _ = tracing_subscriber::fmt()
         .with_writer(std::io::stderr)
-        .with_target(false)
-        .without_time()
-        // Colour codes only for a terminal: logs and pipes get plain text.
-        .with_ansi(std::io::stderr().is_terminal())
+        // `FILE: warning: …`, as the scene's located warnings print.
+        .event_format(stagelight::log_format::DiagnosticStyle)
         .try_init();
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
@@ -594,9 +592,14 @@ fn plan(args: PlanArgs) -> ExitCode {
 /// `stagelight convert SCENE -o OUT.ron`: checks the scene as `render` would, then writes
 /// its description (as its reader produced it; a RIB file's archives inlined) as RON that
 /// loads into the same description, its relative input paths rewritten for OUT's directory
-/// (`relocate`). Written to a temporary name, then renamed.
+/// (`relocate`; a missing directory is created, as `render -o` creates one). Written
+/// atomically (`commit_all`): on failure neither the file nor the created directory stays.
 fn convert(scene: &Path, output: &Path) -> ExitCode {
     use stagelight::scene::import::{reader_for, to_ron::to_ron, FORMATS};
+    let file = stagelight::guard::dir_flags::usable_file("-o", output, "scene.ron");
+    if let Err(code) = usable_paths(&[file]) {
+        return code;
+    }
     if let Err(code) = load(scene) {
         return code;
     }
@@ -619,7 +622,10 @@ fn convert(scene: &Path, output: &Path) -> ExitCode {
     }
     let bytes = match std::fs::read(scene) {
         Ok(b) => b,
-        Err(e) => return fail(format!("cannot read {}: {e}", scene.display())),
+        Err(e) => {
+            let reason = stagelight::guard::io_reason(&e);
+            return fail(format!("error: cannot read {}: {reason}", scene.display()));
+        }
     };
     let format = match reader_for(FORMATS, scene) {
         Ok(f) => f,
@@ -634,23 +640,61 @@ fn convert(scene: &Path, output: &Path) -> ExitCode {
             return fail(text.join("\n"));
         }
     };
+    // The output's directory must exist for `relocate` to find its real path.
+    let dir = output.parent().filter(|d| !d.as_os_str().is_empty());
+    let created = dir.and_then(|d| {
+        d.ancestors()
+            .filter(|a| !a.as_os_str().is_empty() && !a.exists())
+            .last()
+    });
+    let created = created.map(Path::to_path_buf);
+    let undo = |message: String| {
+        if let Some(c) = &created {
+            let _ = std::fs::remove_dir_all(c);
+        }
+        fail(message)
+    };
+    if let (Some(dir), Some(_)) = (dir, &created) {
+        if let Err(e) = std::fs::create_dir_all(dir) {
+            let reason = stagelight::guard::io_reason(&e);
+            return undo(format!("error: cannot create {}: {reason}", dir.display()));
+        }
+    }
     let desc = match stagelight::scene::import::relocate::relocate_inputs(desc, scene, output) {
         Ok(d) => d,
-        Err(message) => return fail(format!("error: {message}")),
+        Err(message) => return undo(format!("error: {message}")),
     };
     let text = match to_ron(&desc) {
         Ok(t) => t,
-        Err(e) => return fail(format!("cannot write {} as RON: {e}", scene.display())),
+        Err(e) => {
+            return undo(format!(
+                "error: cannot write {} as RON: {e}",
+                scene.display()
+            ))
+        }
     };
-    let mut tmp = output.as_os_str().to_owned();
-    tmp.push(".tmp");
-    let tmp = PathBuf::from(tmp);
-    if let Err(e) = std::fs::write(&tmp, text).and_then(|()| std::fs::rename(&tmp, output)) {
-        let _ = std::fs::remove_file(&tmp);
-        return fail(format!("cannot write {}: {e}", output.display()));
+    let file = stagelight::image_io::PendingFile {
+        path: output.to_path_buf(),
+        bytes: text.into_bytes(),
+    };
+    if let Err((p, e)) = stagelight::image_io::commit_all(&[file]) {
+        let reason = stagelight::guard::io_reason(&e);
+        return undo(format!("error: cannot write {}: {reason}", p.display()));
     }
     outln!("{}: wrote {}", scene.display(), output.display());
     ExitCode::SUCCESS
+}
+
+/// Refuses, before the scene is read, the paths of flags a run would write into that cannot
+/// be used (`guard::dir_flags`): a usage error, exit 2.
+fn usable_paths(checks: &[Result<(), String>]) -> Result<(), ExitCode> {
+    match checks.iter().find_map(|c| c.as_ref().err()) {
+        None => Ok(()),
+        Some(message) => {
+            eprintln!("error: {message}");
+            Err(ExitCode::from(EXIT_USAGE))
+        }
+    }
 }
 
 fn set_threads(threads: Option<u32>) -> Result<(), ExitCode> {
@@ -687,6 +731,15 @@ fn prepare(
 }
 
 fn render(args: RenderArgs) -> ExitCode {
+    use stagelight::guard::dir_flags::{usable_dir, usable_file};
+    let cache = args.photon_cache.as_deref();
+    let out = args.output.as_deref();
+    if let Err(code) = usable_paths(&[
+        cache.map_or(Ok(()), |d| usable_dir("--photon-cache", d)),
+        out.map_or(Ok(()), |f| usable_file("-o", f, "out.png")),
+    ]) {
+        return code;
+    }
     let (mut scene, mut settings) =
         match prepare(&args.scene, args.threads, args.seed, args.integrator) {
             Ok(p) => p,
@@ -767,6 +820,11 @@ fn render(args: RenderArgs) -> ExitCode {
 
 /// `stagelight photons`: the stages through `trace_photons`, keeping the maps.
 fn photons(args: PhotonsArgs) -> ExitCode {
+    let cache = args.photon_cache.as_deref();
+    let dir = |d| stagelight::guard::dir_flags::usable_dir("--photon-cache", d);
+    if let Err(code) = usable_paths(&[cache.map_or(Ok(()), dir)]) {
+        return code;
+    }
     let (mut scene, settings) = match prepare(&args.scene, args.threads, args.seed, None) {
         Ok(p) => p,
         Err(code) => return code,
@@ -837,6 +895,10 @@ fn merge(args: MergeArgs) -> ExitCode {
         .is_some_and(|p| stagelight::farm::bake_part_file::is_bake_part_file(p))
     {
         return merge_bake(args);
+    }
+    let file = |f| stagelight::guard::dir_flags::usable_file("-o", f, "out.png");
+    if let Err(code) = usable_paths(&[args.output.as_deref().map_or(Ok(()), file)]) {
+        return code;
     }
     if let Some(out) = &args.output {
         if args
@@ -940,8 +1002,14 @@ nothing written",
     let hash = stagelight::farm::scene_hash(&scene_path, scene.source_hash, &scene.world);
     if hash != parts_hash {
         let done = if verb == "bake" { "baked" } else { "rendered" };
+        // With --scene given, that scene is the one to use: only new parts help.
+        let help = if args.scene.is_some() {
+            format!("{verb} the parts again from {}", scene_path.display())
+        } else {
+            format!("{verb} the parts again, or pass the scene they came from with --scene")
+        };
         eprintln!(
-            "error: {} changed since the parts were {done} (content hash {hash:016x}, the parts have {parts_hash:016x})\n  help: {verb} the parts again, or pass the scene they came from with --scene\nnothing written",
+            "error: {} changed since the parts were {done} (content hash {hash:016x}, the parts have {parts_hash:016x})\n  help: {help}\nnothing written",
             scene_path.display(),
         );
         return Err(ExitCode::from(EXIT_ERROR));
@@ -954,6 +1022,10 @@ nothing written",
 fn merge_bake(args: MergeArgs) -> ExitCode {
     use stagelight::farm::bake_part::merge;
     use stagelight::farm::bake_part_file::read_parts;
+    let dir = |d| stagelight::guard::dir_flags::usable_dir("-o", d);
+    if let Err(code) = usable_paths(&[args.output.as_deref().map_or(Ok(()), dir)]) {
+        return code;
+    }
     let merged = match read_parts(&args.parts).and_then(|parts| {
         let header = parts[0].file.header.clone();
         merge(&parts).map(|merged| (header, merged))
@@ -1000,6 +1072,17 @@ fn merge_bake(args: MergeArgs) -> ExitCode {
 }
 
 fn farm(args: FarmArgs) -> ExitCode {
+    use stagelight::guard::dir_flags::{usable_dir, usable_file};
+    let output = args.output.as_deref().map_or(Ok(()), |o| {
+        if args.bake {
+            usable_dir("-o", o)
+        } else {
+            usable_file("-o", o, "out.exr")
+        }
+    });
+    if let Err(code) = usable_paths(&[usable_dir("--out", &args.out), output]) {
+        return code;
+    }
     let scene = match load(&args.scene) {
         Ok(s) => s,
         Err(code) => return code,
@@ -1122,6 +1205,10 @@ fn farm_refusals(args: &FarmArgs, scene: &LoadedScene) -> Result<(), ExitCode> {
 }
 
 fn bake(args: BakeArgs) -> ExitCode {
+    let dir = |d| stagelight::guard::dir_flags::usable_dir("-o", d);
+    if let Err(code) = usable_paths(&[args.output.as_deref().map_or(Ok(()), dir)]) {
+        return code;
+    }
     let (mut scene, settings) = match prepare(&args.scene, args.threads, args.seed, args.integrator)
     {
         Ok(p) => p,
@@ -1268,6 +1355,10 @@ fn bench(args: BenchArgs) -> ExitCode {
 fn sweep(args: SweepArgs) -> ExitCode {
     use stagelight::sweep::{run_sweep, Knob, SweepOptions};
     if let Err(code) = set_threads(args.threads) {
+        return code;
+    }
+    if let Err(code) = usable_paths(&[stagelight::guard::dir_flags::usable_dir("--out", &args.out)])
+    {
         return code;
     }
     let knob = match Knob::parse(&args.knob) {

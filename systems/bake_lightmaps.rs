@@ -147,6 +147,7 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
             r.vertices = Some(mesh.positions.len() as u64);
             if inputs.merged_bake.is_some() {
                 r.rays_per_second = 0.0;
+                r.merged_parts = true;
             }
             reports.push(r);
             pending.extend(baked.files.pending);
@@ -183,6 +184,7 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
         if inputs.merged_bake.is_some() {
             // The rays are the parts' total; the merge itself traces none.
             r.rays_per_second = 0.0;
+            r.merged_parts = true;
         }
         reports.push(r);
         pending.extend(files.pending);

@@ -191,7 +191,9 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
                         at.path.display()
                     )));
             }
-            Err(Miss::Unreadable(why)) => tracing::warn!("{why}"),
+            Err(Miss::Unreadable(why)) => {
+                tracing::warn!(file = %at.path.display(), "{why}");
+            }
             Err(_) => {}
         }
     }

@@ -158,6 +158,7 @@ pub fn report(
             .collect(),
         vertices: None,
         seams: None,
+        merged_parts: false,
     }
 }
 

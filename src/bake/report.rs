@@ -35,6 +35,11 @@ pub struct BakeReport {
     /// UV seams of a texture bake with AO or a lightmap, and the difference across them.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub seams: Option<SeamReport>,
+    /// True for a `merge` of bake parts: `rays` is the parts' total, traced in their own
+    /// runs, `seconds` the merge's own time, and no ray rate is known (`rays_per_second` 0;
+    /// the terminal line says `n/a`).
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub merged_parts: bool,
 }
 
 /// The seam metric of one bake: the largest channel difference of the first AO or lightmap
@@ -84,16 +89,11 @@ impl SeamReport {
 impl BakeReport {
     /// One line for the terminal.
     pub fn summary(&self) -> String {
+        let rays = self.rays_summary();
         if let Some(vertices) = self.vertices {
             return format!(
-                "{}: {vertices} vertices, {} baked, {} invalid, {} filled from neighbours, {} rays in {:.3} s ({:.2} Mrays/s)",
-                self.name,
-                self.covered_texels,
-                self.invalid_texels,
-                self.dilated_texels,
-                self.rays,
-                self.seconds,
-                self.rays_per_second / 1e6
+                "{}: {vertices} vertices, {} baked, {} invalid, {} filled from neighbours, {rays}",
+                self.name, self.covered_texels, self.invalid_texels, self.dilated_texels,
             );
         }
         let seams = self
@@ -102,7 +102,7 @@ impl BakeReport {
             .map(|s| s.summary())
             .unwrap_or_default();
         format!(
-            "{}: {}×{} texels, {:.1} texels/unit, {} covered, {} invalid, {} dilated, {} rays in {:.3} s ({:.2} Mrays/s){seams}",
+            "{}: {}×{} texels, {:.1} texels/unit, {} covered, {} invalid, {} dilated, {rays}{seams}",
             self.name,
             self.width,
             self.height,
@@ -110,9 +110,24 @@ impl BakeReport {
             self.covered_texels,
             self.invalid_texels,
             self.dilated_texels,
-            self.rays,
-            self.seconds,
-            self.rays_per_second / 1e6
         )
+    }
+
+    /// `N rays in S s (R Mrays/s)`; for merged parts, whose time is not the rays' time,
+    /// `N rays traced by the parts (Mrays/s n/a), merged in S s`.
+    fn rays_summary(&self) -> String {
+        if self.merged_parts {
+            format!(
+                "{} rays traced by the parts (Mrays/s n/a), merged in {:.3} s",
+                self.rays, self.seconds
+            )
+        } else {
+            format!(
+                "{} rays in {:.3} s ({:.2} Mrays/s)",
+                self.rays,
+                self.seconds,
+                self.rays_per_second / 1e6
+            )
+        }
     }
 }

@@ -4,6 +4,7 @@
 //!
 //! - [`extent`]: coordinates beyond what `f32` tracing supports;
 //! - [`outputs`]: outputs that would overwrite an input or each other;
+//! - [`dir_flags`]: output paths and directories of flags that run through a file;
 //! - [`empty`]: placed objects without geometry (a located warning);
 //! - [`limits`]: hard limits (worker threads, file sizes);
 //! - [`interrupt`]: SIGINT and SIGTERM stop a run within [`interrupt::GRACE`];
@@ -14,6 +15,7 @@
 
 pub use crate::scene::world_checks::{empty, extent};
 pub mod cancellable;
+pub mod dir_flags;
 pub mod interrupt;
 pub use crate::limits;
 pub mod locate;

@@ -34,13 +34,14 @@ pub struct PlannedOutput {
     pub origin: Origin,
 }
 
-/// A refused output: the text printed (located for scene elements) and whether a flag caused
-/// it (a usage error, exit 2) or the scene (exit 1).
+/// A refused output: the text printed (located for scene elements) and whether a flag takes
+/// part in it (a usage error, exit 2: `-o` or `--stats-json` is the output, or the earlier
+/// output it clashes with) or only the scene (exit 1).
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Clash {
     /// The complete message, `file:line:col: error: …` or `error: …`, with a `help:` line.
     pub text: String,
-    /// True when a command-line flag names the refused output.
+    /// True when a command-line flag names the refused output or the one it clashes with.
     pub usage: bool,
 }
 
@@ -178,6 +179,8 @@ pub fn clashes(inputs: &[PathBuf], outputs: &[PlannedOutput]) -> Vec<Clash> {
     let mut found = Vec::new();
     for (i, out) in outputs.iter().enumerate() {
         let key = same_file_key(&out.path);
+        // A clash a flag takes part in is a usage error, whichever of the two it names.
+        let mut flagged = matches!(out.origin, Origin::Flag(_));
         let problem = if let Some(k) = input_keys.iter().position(|k| *k == key) {
             let what = if k == 0 {
                 "the scene file"
@@ -190,6 +193,7 @@ pub fn clashes(inputs: &[PathBuf], outputs: &[PlannedOutput]) -> Vec<Clash> {
                 inputs[k].display()
             ))
         } else if let Some((_, first)) = seen.iter().find(|(k, _)| *k == key) {
+            flagged |= matches!(outputs[*first].origin, Origin::Flag(_));
             Some(format!(
                 "{} is also written by {}",
                 describe(out),
@@ -200,7 +204,9 @@ pub fn clashes(inputs: &[PathBuf], outputs: &[PlannedOutput]) -> Vec<Clash> {
         };
         seen.push((key, i));
         if let Some(message) = problem {
-            found.push(clash(out, message));
+            let mut refused = clash(out, message);
+            refused.usage = flagged;
+            found.push(refused);
         }
     }
     found

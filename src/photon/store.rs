@@ -75,31 +75,28 @@ pub fn load(at: &Location, key: u64) -> Result<StoredMaps, Miss> {
     let meta = match std::fs::metadata(path) {
         Ok(m) => m,
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Err(Miss::Absent),
-        Err(e) => return Err(unreadable(path, &e.to_string())),
+        Err(e) => return Err(unreadable(&e.to_string())),
     };
     if !meta.is_file() {
-        return Err(unreadable(path, "not a regular file"));
+        return Err(unreadable("not a regular file"));
     }
     if meta.len() > MAX_FILE_BYTES {
-        return Err(unreadable(
-            path,
-            &format!(
-                "{} bytes is more than the {MAX_FILE_BYTES}-byte limit",
-                meta.len()
-            ),
-        ));
+        return Err(unreadable(&format!(
+            "{} bytes is more than the {MAX_FILE_BYTES}-byte limit",
+            meta.len()
+        )));
     }
-    let bytes = std::fs::read(path).map_err(|e| unreadable(path, &e.to_string()))?;
+    let bytes = std::fs::read(path).map_err(|e| unreadable(&e.to_string()))?;
     match super::file::peek_key(&bytes) {
         Some(k) if k != key => return Err(Miss::Stale(k)),
         _ => {}
     }
-    decode(&bytes).map_err(|e: PhotonFileError| unreadable(path, &e.to_string()))
+    decode(&bytes).map_err(|e: PhotonFileError| unreadable(&e.to_string()))
 }
 
-fn unreadable(path: &Path, why: &str) -> Miss {
+/// The warning about a kept file that cannot be read (printed after the file's path).
+fn unreadable(why: &str) -> Miss {
     Miss::Unreadable(format!(
-        "cannot reuse photon map file {}: {why}; tracing the photons again and rewriting it",
-        path.display()
+        "cannot reuse this photon map file: {why}; tracing the photons again and rewriting it"
     ))
 }

@@ -132,7 +132,12 @@ impl Serialize for SamplesDesc {
     }
 }
 
-const ADAPTIVE_FIELDS: &[&str] = &["min", "max", "contrast"];
+/// The fields of adaptive `samples`, as `ron`'s unknown-field error lists them.
+pub const ADAPTIVE_FIELDS: &[&str] = &["min", "max", "contrast"];
+
+/// How messages name adaptive `samples`. `ron` names an unknown or missing field after the
+/// nearest named struct (here `Options`), so the reader renames errors from this visitor.
+pub const ADAPTIVE_NAME: &str = "adaptive samples";
 
 impl<'de> Deserialize<'de> for SamplesDesc {
     fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
@@ -166,16 +171,25 @@ impl<'de> Visitor<'de> for SamplesVisitor {
                 "min" if min.is_none() => min = Some(map.next_value::<u64>()?),
                 "max" if max.is_none() => max = Some(map.next_value::<u64>()?),
                 "contrast" if contrast.is_none() => contrast = Some(map.next_value::<V3>()?),
-                "min" | "max" | "contrast" => return Err(de::Error::duplicate_field("samples")),
+                "min" | "max" | "contrast" => {
+                    return Err(de::Error::custom(format!(
+                        "field \"{key}\" is given twice in {ADAPTIVE_NAME}"
+                    )))
+                }
                 other => return Err(de::Error::unknown_field(other, ADAPTIVE_FIELDS)),
             }
         }
         Ok(SamplesDesc::Adaptive {
-            min: min.ok_or_else(|| de::Error::missing_field("min"))?,
-            max: max.ok_or_else(|| de::Error::missing_field("max"))?,
+            min: min.ok_or_else(|| missing("min"))?,
+            max: max.ok_or_else(|| missing("max"))?,
             contrast: contrast.unwrap_or((0.1, 0.1, 0.1)),
         })
     }
+}
+
+/// A required field of adaptive `samples` left out, named in the message.
+fn missing<E: de::Error>(field: &str) -> E {
+    E::custom(format!("missing field \"{field}\" in {ADAPTIVE_NAME}"))
 }
 
 #[cfg(test)]

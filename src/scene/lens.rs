@@ -38,7 +38,7 @@ pub fn lenses(src: &mut Sources, item: &Item<'_, CameraDesc>) -> Option<Lenses> 
                         if matches!(l, Lens::Shift { .. }) {
                             "a Shift lens (an off-axis pinhole) must be the first lens"
                         } else {
-                            "a projection lens (Fisheye, Spherical) must be the first lens"
+                            "a projection lens (Fisheye, Spherical, Shift) must be the first lens"
                         },
                         Some(help.into()),
                     );

@@ -294,7 +294,7 @@ fn load(
             ));
         }
     }
-    warnings.extend(geometry::warnings(&merged, &object_geometry));
+    geometry::warnings(&mut sources, &merged, &object_geometry);
     let objects = built
         .into_iter()
         .zip(object_geometry)

@@ -362,3 +362,58 @@ fn farm_bake_scripts_run_as_slurm_would_give_the_local_bake() {
     );
     assert_eq!(o.status.code(), Some(2), "--spp does not apply to bakes");
 }
+
+/// A bake merge's `--stats` line gives the parts' rays with the merge's own time: no rate
+/// from those two (it printed "0.00 Mrays/s"). A scene edited since the parts were baked,
+/// given with `--scene`, asks for new parts (not for `--scene` again). A `-o` that is a file
+/// is refused before the merge.
+#[test]
+fn cli_merge_stats_give_no_ray_rate_and_an_edited_scene_asks_for_new_parts() {
+    let dir = setup("merge-stats");
+    bake_parts(&dir, 2, "parts", &[]);
+    let parts = ["parts/bake_part_1_of_2.exr", "parts/bake_part_2_of_2.exr"];
+    // A texture directory that is a file is refused before the merge (exit 2).
+    std::fs::write(dir.join("afile"), "x").unwrap();
+    let o = run_in(&dir, &["merge", parts[0], parts[1], "-o", "afile"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(
+        stderr_of(&o),
+        "error: -o afile: afile is a file, not a directory\n  help: give a directory (it is created when missing)\n"
+    );
+    let o = run_in(
+        &dir,
+        &["merge", parts[0], parts[1], "-o", "merged", "--stats"],
+    );
+    assert!(o.status.success(), "{}", stderr_of(&o));
+    let stdout = String::from_utf8_lossy(&o.stdout).into_owned();
+    let bakes: Vec<&str> = stdout.lines().filter(|l| l.starts_with("bake ")).collect();
+    assert_eq!(bakes.len(), 2, "{stdout}");
+    for line in bakes {
+        assert!(
+            line.contains(" rays traced by the parts (Mrays/s n/a), merged in ")
+                && !line.contains("Mrays/s)"),
+            "{line}"
+        );
+    }
+    std::fs::write(dir.join("scene.ron"), SCENE.replace("seed: 5", "seed: 6")).unwrap();
+    let o = run_in(
+        &dir,
+        &[
+            "merge",
+            parts[0],
+            parts[1],
+            "-o",
+            "again",
+            "--scene",
+            "scene.ron",
+        ],
+    );
+    assert_eq!(o.status.code(), Some(1));
+    let e = stderr_of(&o);
+    assert!(
+        e.starts_with("error: scene.ron changed since the parts were baked")
+            && e.ends_with("\n  help: bake the parts again from scene.ron\nnothing written\n"),
+        "{e}"
+    );
+    assert!(!dir.join("again").exists());
+}

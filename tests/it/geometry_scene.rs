@@ -597,3 +597,19 @@ fn check_accepts_the_geometry_examples() {
         ok(bin().arg("check").arg(asset(name)).output().unwrap());
     }
 }
+
+/// An approximation that does nothing is a located warning at the setting, in the
+/// documented `file:line:column: warning:` style ("a inline mesh" before, unlocated).
+#[test]
+fn an_approximation_without_effect_is_a_located_warning() {
+    let dir = crate::common::scratch_dir("approx-warning");
+    let object = r#"(name: "flat", mesh: Inline(vertices: [(-1, -1, 0), (1, -1, 0), (1, 1, 0)], polygons: [[0, 1, 2]]), material: "grey", approximation: Parametric(u: 4, v: 4)),"#;
+    let scene = crate::common::small_scene(object, r#"(name: "f", of: "flat")"#, "", "");
+    std::fs::write(dir.join("scene.ron"), scene).unwrap();
+    let o = crate::common::run_in(&dir, &["check", "scene.ron"]);
+    assert!(o.status.success(), "{}", crate::common::stderr_of(&o));
+    assert_eq!(
+        crate::common::stderr_of(&o),
+        "scene.ron:5:142: warning: object \"flat\": the approximation has no effect on an inline mesh without true displacement\n  help: leave `approximation` out: a polygon mesh is diced only for `displacement: (…, mode: True)`\n"
+    );
+}

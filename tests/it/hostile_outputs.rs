@@ -180,3 +180,22 @@ fn an_output_onto_a_rib_archive_is_refused() {
     );
     assert_eq!(dir_names(&dir), ["part.exr", "scene.rib"]);
 }
+
+/// An `-o` that is also one of the scene's own outputs is a usage error (exit 2) like an
+/// `-o` over an input: a flag takes part in the clash (it exited 1, as a scene error).
+#[test]
+fn an_output_flag_equal_to_a_scene_output_is_a_usage_error() {
+    let dir = scratch_dir("out-flag-scene-output");
+    std::fs::write(
+        dir.join("scene.ron"),
+        quad_scene(r#"(file: "a.png"), (file: "b.exr", passes: [Depth])"#, ""),
+    )
+    .unwrap();
+    let o = run_in(&dir, &["render", "scene.ron", "-o", "b.exr"]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr_of(&o));
+    assert_eq!(
+        stderr_of(&o),
+        format!("scene.ron:9:15: error: camera \"cam\" output 2 (\"b.exr\") is also written by -o b.exr\n{HELP}\n1 error in scene.ron; nothing rendered\n")
+    );
+    assert_eq!(dir_names(&dir), ["scene.ron"]);
+}

@@ -13,6 +13,7 @@ mod bake_seams;
 mod cli;
 mod cli_bake;
 mod cli_farm;
+mod cli_paths;
 mod cli_photons;
 mod cli_plan;
 mod component_passes;

@@ -549,7 +549,7 @@ fn lens_volume_and_adaptive_samples() {
                 "{f}:5:16: error: a ThinLens needs exactly one of `radius` and `fstop`\n  help: e.g. `ThinLens(radius: 0.05, focus_distance: 4.0)`"
             ),
             &format!(
-                "{f}:5:70: error: a projection lens (Fisheye, Spherical) must be the first lens\n  help: a projection replaces the pinhole, so it must come first in `lens`"
+                "{f}:5:70: error: a projection lens (Fisheye, Spherical, Shift) must be the first lens\n  help: a projection replaces the pinhole, so it must come first in `lens`"
             ),
             &format!("{f}:5:124: error: focus_distance must be positive, found 0"),
             &format!("{f}:6:40: error: sigma_s must not be negative, found -0.2"),
@@ -595,6 +595,37 @@ fn out_of_range_integers_name_the_number_the_field_and_the_range() {
         let errors = stagelight::scene::load_scene(&path).err().expect("refused");
         let got = errors.0[0].to_string();
         assert_eq!(got, format!("{}/{expected}", dir.display()));
+    }
+}
+
+/// A decimal where a whole number belongs: `ron` read `1` and said "expected comma" at the
+/// `.`; the message names the number from its first digit and the range the field takes
+/// (the least value the loader accepts, 1 for `resolution`, not 0). Adaptive `samples`
+/// names itself in an unknown field's message (it said "in Options").
+#[test]
+fn decimals_for_whole_numbers_and_adaptive_samples_fields_are_named() {
+    for (text, expected) in [
+        (
+            "Scene(\n  options: (seed: 1.5),\n)\n",
+            "d.ron:2:19: error: expected a whole number, found 1.5\n  help: `seed` takes a whole number from 0 to 18446744073709551615",
+        ),
+        (
+            "Scene(\n  cameras: [(name: \"c\", resolution: (32.5, 24))],\n)\n",
+            "d.ron:2:38: error: expected a whole number, found 32.5\n  help: `resolution` takes a whole number from 1 to 4294967295",
+        ),
+        (
+            "Scene(\n  cameras: [(name: \"c\", resolution: (-32, 24))],\n)\n",
+            "d.ron:2:39: error: integer -32 is out of range for `resolution`\n  help: `resolution` takes a whole number from 1 to 4294967295",
+        ),
+        (
+            "Scene(\n  options: (samples: (zzz: 1)),\n)\n",
+            "d.ron:2:23: error: unknown field \"zzz\" in adaptive samples\n  help: expected \"min\", \"max\" or \"contrast\"",
+        ),
+    ] {
+        let err = load_scene_str(text, Path::new("d.ron"))
+            .err()
+            .expect("refused");
+        assert_eq!(err.0[0].to_string(), expected, "{text}");
     }
 }
 

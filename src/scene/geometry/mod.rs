@@ -209,10 +209,9 @@ fn check_object(
     })
 }
 
-/// Notes on settings that have no effect (an approximation of a flat mesh without true
-/// displacement).
-pub fn warnings(m: &Merged<'_>, geometry: &[Option<ObjectGeometry>]) -> Vec<String> {
-    let mut out = Vec::new();
+/// Located warnings on settings that have no effect (an approximation of a flat mesh
+/// without true displacement), at the setting.
+pub fn warnings(src: &mut Sources, m: &Merged<'_>, geometry: &[Option<ObjectGeometry>]) {
     for (it, g) in m.objects.iter().zip(geometry) {
         let Some(g) = g else { continue };
         let polygonal = is_loaded(&it.desc.mesh)
@@ -225,14 +224,24 @@ pub fn warnings(m: &Merged<'_>, geometry: &[Option<ObjectGeometry>]) -> Vec<Stri
             .as_ref()
             .is_some_and(|d| d.mode == DisplacementMode::True);
         if polygonal && g.approximation.is_some() && !displaced {
-            out.push(format!(
-                "object \"{}\": the approximation has no effect on a {} without true displacement",
-                it.desc.name,
-                kind_name(&it.desc.mesh)
-            ));
+            let kind = kind_name(&it.desc.mesh);
+            let article = if kind.starts_with(['a', 'e', 'i', 'o', 'u', 'O']) {
+                "an"
+            } else {
+                "a"
+            };
+            let pos = src.pos(it.file, &it.at(".approximation"));
+            let message = format!(
+                "object \"{}\": the approximation has no effect on {article} {kind} without true displacement",
+                it.desc.name
+            );
+            let help = "leave `approximation` out: a polygon mesh is diced only for `displacement: (…, mode: True)`";
+            src.push_warning(
+                it.file,
+                super::diagnostics::Diagnostic::at(pos, message, Some(help.into())),
+            );
         }
     }
-    out
 }
 
 /// Where an object's checks report: the object's name and the path of its `mesh` value.

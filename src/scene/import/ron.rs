@@ -47,6 +47,13 @@ pub fn read(path: &Path, bytes: &[u8]) -> Result<ReadScene, Vec<Diagnostic>> {
                     (d.message, d.help) = (message, Some(help));
                 }
             }
+            if let RonError::ExpectedComma = err.code {
+                if let Some((line, column, message, help)) =
+                    super::ron_integers::decimal(text, d.line, d.column)
+                {
+                    (d.line, d.column, d.message, d.help) = (line, column, message, Some(help));
+                }
+            }
             if let RonError::MissingStructField { .. } = err.code {
                 let close = Pos {
                     line: d.line,
@@ -185,6 +192,13 @@ fn in_outer(outer: &Option<String>) -> String {
         .unwrap_or_default()
 }
 
+/// The name of a value that a hand-written visitor reads (whose errors `ron` names after
+/// the enclosing struct), known by its field list.
+fn hand_written_name(expected: &[&str]) -> Option<String> {
+    use crate::scene::desc_camera::{ADAPTIVE_FIELDS, ADAPTIVE_NAME};
+    (expected == ADAPTIVE_FIELDS).then(|| ADAPTIVE_NAME.to_string())
+}
+
 fn ron_message(code: &RonError) -> (String, Option<String>) {
     match code {
         RonError::NoSuchStructField {
@@ -192,7 +206,10 @@ fn ron_message(code: &RonError) -> (String, Option<String>) {
             found,
             outer,
         } => (
-            format!("unknown field \"{found}\"{}", in_outer(outer)),
+            format!(
+                "unknown field \"{found}\"{}",
+                in_outer(&hand_written_name(expected).or(outer.clone()))
+            ),
             suggestion(found, expected, "fields"),
         ),
         RonError::NoSuchEnumVariant {
