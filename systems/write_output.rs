@@ -20,7 +20,7 @@ use crate::contour::{output, ContourImage};
 use crate::farm::PartRun;
 use crate::frame::Slot;
 use crate::framebuffer::FrameBuffers;
-use crate::image_io::{encode_exr_with, encode_png, PendingFile};
+use crate::image_io::{encode_alpha_png, encode_exr_with, encode_png, PendingFile};
 use crate::scene_view::render_view;
 
 /// The outputs this run writes: the camera's, with the command line's overrides.
@@ -88,7 +88,8 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
     Ok(Work::new(pending.len() as u64, "files").with_pending(pending))
 }
 
-/// A PNG output: the beauty, with the contours composited when it lists `Contours` (over
+/// A PNG output: the alpha pass alone as a grey image when it lists `Alpha` without `Beauty`
+/// or `Contours`; else the beauty, with the contours composited when it lists `Contours` (over
 /// the beauty when it lists `Beauty` too, else over the imager's background colour, white
 /// without one, as an opaque image).
 fn png(
@@ -99,6 +100,9 @@ fn png(
 ) -> Result<Vec<u8>, String> {
     let alpha = out.passes.contains(&Pass::Alpha);
     let Some(c) = contours.filter(|_| out.passes.contains(&Pass::Contours)) else {
+        if alpha && !out.passes.contains(&Pass::Beauty) {
+            return encode_alpha_png(fb);
+        }
         return encode_png(fb, alpha, imager);
     };
     let mut composed = fb.clone();

@@ -14,4 +14,4 @@ pub mod srgb;
 
 pub use atomic::{commit_all, commit_state, remove_stale, PendingFile};
 pub use exr_writer::{encode_exr, encode_exr_with};
-pub use png_writer::encode_png;
+pub use png_writer::{encode_alpha_png, encode_png};

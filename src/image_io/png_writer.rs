@@ -1,4 +1,5 @@
-//! PNG encoding of the beauty pass (8-bit sRGB, RGB or RGBA).
+//! PNG encoding of the beauty pass (8-bit sRGB, RGB or RGBA), or of the alpha pass alone
+//! (8-bit grey, linear coverage).
 
 use crate::components::Imager;
 use crate::framebuffer::FrameBuffers;
@@ -37,4 +38,15 @@ pub fn encode_png(
         PngLayout::Rgb8
     };
     png_codec::encode_png(&data, fb.width, fb.height, layout)
+}
+
+/// Encodes the alpha pass alone as a grey PNG: the pixel coverage, linear (0 empty, 255
+/// covered), as RenderMan's `Display … "a"` writes it.
+pub fn encode_alpha_png(fb: &FrameBuffers) -> Result<Vec<u8>, String> {
+    let data: Vec<u8> = fb
+        .alpha
+        .iter()
+        .map(|&a| (a.clamp(0.0, 1.0) * 255.0 + 0.5) as u8)
+        .collect();
+    png_codec::encode_png(&data, fb.width, fb.height, PngLayout::Grey8)
 }
