@@ -63,8 +63,8 @@ pub(super) struct PendingInstance {
     pub world_from_object: DMat4,
     /// A material other than the object's (an `ObjectInstance` with other attributes).
     pub material: Option<usize>,
-    /// The name it asks for (`None`: its object's name; a `base` of `""`: its object's
-    /// name numbered).
+    /// The name it asks for (`None`: its object's name; one not `given`: its object's name
+    /// numbered).
     pub requested: Option<Requested>,
     pub at: (usize, Pos),
 }
