@@ -86,6 +86,7 @@ mod ray_layer;
 mod ray_spawn;
 mod rib;
 mod rib_shading;
+mod rib_structure;
 mod scene_errors;
 mod scene_errors_lights;
 mod scene_load;

@@ -184,6 +184,34 @@ const MALFORMED: &[(&str, &str)] = &[
         "tests/fixtures/rib/unterminated_string.rib:1:28: error: unterminated string (a string ends on its line)",
     ),
     (
+        "spot_cone_angle",
+        "tests/fixtures/rib/spot_cone_angle.rib:2:39: error: coneangle of \"spotlight\" must be above 0 and at most π/2 radians (90°), found -1\n  help: light-shader angles are in radians: 0.5236 is 30°",
+    ),
+    (
+        "singular_camera",
+        "tests/fixtures/rib/singular_camera.rib:1:1: error: the camera transformation is singular after this Scale: it cannot place a camera\n  help: the transformation current at WorldBegin is camera-from-world and must be invertible (no scale by 0)",
+    ),
+    (
+        "empty_polygon",
+        "tests/fixtures/rib/empty_polygon.rib:2:13: error: Polygon needs at least 3 vertices, found 0",
+    ),
+    (
+        "motion_count",
+        "tests/fixtures/rib/motion_count.rib:5:1: error: the motion block opened at 2:1 gives 3 times but holds 2 requests\n  help: write one request per time, all of the same kind",
+    ),
+    (
+        "unknown_object",
+        "tests/fixtures/rib/unknown_object.rib:5:16: error: unknown object handle \"bal\"\n  help: did you mean \"ball\"?",
+    ),
+    (
+        "displacement_parameters",
+        "tests/fixtures/rib/displacement_parameters.rib:2:28: error: unknown axis \"q\" of \"sine\"\n  help: expected \"s\", \"t\" or \"st\"\ntests/fixtures/rib/displacement_parameters.rib:3:33: error: parameter \"amplitude\" of displacement \"sine\" takes one float\ntests/fixtures/rib/displacement_parameters.rib:4:21: error: unknown parameter \"Km\" of displacement \"sine\"\n  help: expected \"amplitude\", \"factor\" or \"axis\"",
+    ),
+    (
+        "later_frame_syntax",
+        "tests/fixtures/rib/later_frame_syntax.rib:9:15: error: invalid number \"1.2.3\"",
+    ),
+    (
         "wrong_kind",
         "tests/fixtures/rib/wrong_kind.rib:2:13: error: expected a number for dy of Translate, found a string",
     ),

@@ -14,108 +14,22 @@ use super::lexer;
 use super::names::{object_names, Requested};
 use super::params::{parse_type, Args, Declarations, Param};
 use super::parse::{self, Request};
+use super::requests::{self, SILENT};
+use super::retained::{Defining, Motion, Retained, Sample};
 use super::shaders::{self, LightShader, DISPLACEMENTS, LIGHTS, SURFACES};
 use super::state::{from_rib, rotate, Block, GraphicsState, ShaderCall};
 use super::RibScene;
 use crate::scene::desc::{
-    ApproximationDesc, DisplacementDesc, DisplacementModeDesc, FilterDesc, GroupDesc, InstanceDesc,
-    LightDesc, LightKindDesc, MaterialDesc, ObjectDesc, OptionsDesc, PassDesc, PhotonMapDesc,
-    RenderDesc, SceneDesc, ShaderDesc, SpaceDesc, TransformDesc, V3,
+    ApproximationDesc, DisplacementDesc, FilterDesc, GroupDesc, InstanceDesc, LightDesc,
+    LightKindDesc, MaterialDesc, ObjectDesc, OptionsDesc, PassDesc, PhotonMapDesc, RenderDesc,
+    SceneDesc, TransformDesc, V3,
 };
-use crate::scene::nodes_desc::{EncodingDesc, InputDesc, NodeDesc, WrapDesc};
 use crate::scene::suggest::suggestion;
 
 /// Deepest `ReadArchive` nesting.
 const MAX_ARCHIVE_DEPTH: usize = 16;
 
-/// Requests read and deliberately not mapped (a warning each).
-const IGNORED: &[&str] = &[
-    "Hider",
-    "Option",
-    "MakeTexture",
-    "MakeShadow",
-    "MakeCubeFaceEnvironment",
-    "MakeLatLongEnvironment",
-    "MotionBegin",
-    "MotionEnd",
-    "ShadingInterpolation",
-    "Orientation",
-    "ReverseOrientation",
-    "Atmosphere",
-    "Interior",
-    "Exterior",
-    "DepthOfField",
-    "Shutter",
-    "Quantize",
-    "Procedural",
-    "Points",
-    "Curves",
-    "Blobby",
-    "Geometry",
-    "ObjectBegin",
-    "ObjectEnd",
-    "ObjectInstance",
-    "Bound",
-    "Detail",
-    "DetailRange",
-    "GeometricApproximation",
-    "TrimCurve",
-    "Matte",
-    "ColorSamples",
-    "RelativeDetail",
-    "CropWindow",
-    "FrameAspectRatio",
-    "Perspective",
-    "Skew",
-    "Deformation",
-    "Illuminance",
-];
-
-/// Requests understood (for "did you mean").
-const KNOWN: &[&str] = &[
-    "version",
-    "FrameBegin",
-    "FrameEnd",
-    "WorldBegin",
-    "WorldEnd",
-    "Format",
-    "Projection",
-    "ScreenWindow",
-    "Clipping",
-    "PixelSamples",
-    "PixelFilter",
-    "PixelVariance",
-    "ShadingRate",
-    "Exposure",
-    "Imager",
-    "Display",
-    "AttributeBegin",
-    "AttributeEnd",
-    "TransformBegin",
-    "TransformEnd",
-    "Identity",
-    "Translate",
-    "Rotate",
-    "Scale",
-    "ConcatTransform",
-    "Transform",
-    "CoordinateSystem",
-    "CoordSysTransform",
-    "Color",
-    "Opacity",
-    "Sides",
-    "ReadArchive",
-    "Surface",
-    "Displacement",
-    "LightSource",
-    "AreaLightSource",
-    "Illuminate",
-    "Attribute",
-    "Declare",
-    "Basis",
-];
-
-struct PendingLight {
+pub(super) struct PendingLight {
     name: String,
     values: shaders::LightValues,
     /// Maps shader space to RIB world space (pre-world lights are completed at WorldBegin).
@@ -125,45 +39,70 @@ struct PendingLight {
     shadows: bool,
     at: (usize, Pos),
     /// Whether some primitive has it on / off.
-    used_on: bool,
-    used_off: bool,
+    pub used_on: bool,
+    pub used_off: bool,
 }
 
-struct PendingObject {
+/// One object of the description: a mesh with its material, displacement and shading rate.
+pub(super) struct PendingObject {
     /// The name it asks for; the name is chosen at assembly ([`super::names`]).
-    requested: Requested,
-    prim: Primitive,
-    world_from_object: DMat4,
-    material: usize,
-    approximation: Option<(ApproximationDesc, Pos)>,
-    displacement: Option<(DisplacementDesc, Vec<(String, Pos)>)>,
-    at: (usize, Pos),
+    pub requested: Requested,
+    pub prim: Primitive,
+    /// Index into the materials.
+    pub material: usize,
+    pub approximation: Option<(ApproximationDesc, Pos)>,
+    pub displacement: Option<(DisplacementDesc, Vec<(String, Pos)>)>,
+    pub at: (usize, Pos),
 }
 
-struct PendingMaterial {
-    desc: MaterialDesc,
-    paths: Vec<(String, Pos)>,
-    at: (usize, Pos),
+/// One instance of the description, placing an object.
+pub(super) struct PendingInstance {
+    /// Index into the objects.
+    pub object: usize,
+    /// RIB world ← object space.
+    pub world_from_object: DMat4,
+    /// A material other than the object's (an `ObjectInstance` with other attributes).
+    pub material: Option<usize>,
+    /// The name it asks for (`None`: its object's name; one not `given`: its object's name
+    /// numbered).
+    pub requested: Option<Requested>,
+    pub at: (usize, Pos),
+}
+
+pub(super) struct PendingMaterial {
+    pub desc: MaterialDesc,
+    pub paths: Vec<(String, Pos)>,
+    pub at: (usize, Pos),
     /// Lights switched off by `Illuminate` where the material was used (indices into the
     /// light list): the material's light list is every other light.
-    lights_off: Vec<usize>,
+    pub lights_off: Vec<usize>,
 }
 
 /// The reader's state over one root file and its archives.
 pub struct Builder {
-    files: Vec<PathBuf>,
-    file: usize,
-    decls: Declarations,
-    gs: GraphicsState,
+    pub(super) files: Vec<PathBuf>,
+    pub(super) file: usize,
+    pub(super) decls: Declarations,
+    pub(super) gs: GraphicsState,
     cam: CameraOptions,
     problems: Vec<(usize, Problem)>,
-    lights: Vec<PendingLight>,
+    pub(super) lights: Vec<PendingLight>,
     handles: HashMap<String, usize>,
-    objects: Vec<PendingObject>,
-    materials: Vec<PendingMaterial>,
-    material_keys: HashMap<String, usize>,
+    pub(super) objects: Vec<PendingObject>,
+    pub(super) instances: Vec<PendingInstance>,
+    pub(super) materials: Vec<PendingMaterial>,
+    pub(super) material_keys: HashMap<String, usize>,
     /// Surface calls (file, position) whose parameter problems were reported.
-    surfaces_reported: HashSet<(usize, Pos)>,
+    pub(super) surfaces_reported: HashSet<(usize, Pos)>,
+    /// Object definitions (`ObjectBegin`).
+    pub(super) retained: Retained,
+    /// The motion block being read, and whether the file was told motion blur is not
+    /// rendered.
+    motion: Option<Motion>,
+    motion_warned: bool,
+    /// The transformation request before `WorldBegin` that made the current transformation
+    /// singular (the camera transformation cannot be one).
+    singular_at: Option<(usize, Pos, String)>,
     coordsys: HashMap<String, DMat4>,
     world: Option<(usize, Pos)>,
     world_ended: bool,
@@ -189,9 +128,14 @@ impl Builder {
             lights: Vec::new(),
             handles: HashMap::new(),
             objects: Vec::new(),
+            instances: Vec::new(),
             materials: Vec::new(),
             material_keys: HashMap::new(),
             surfaces_reported: HashSet::new(),
+            retained: Retained::default(),
+            motion: None,
+            motion_warned: false,
+            singular_at: None,
             coordsys: HashMap::new(),
             world: None,
             world_ended: false,
@@ -271,6 +215,12 @@ impl Builder {
     }
 
     fn finish_blocks(&mut self) {
+        if let Some(m) = self.motion.take() {
+            self.problems.push((
+                0,
+                Problem::error(m.pos, "MotionBegin is never closed by MotionEnd"),
+            ));
+        }
         let open: Vec<(Block, Pos)> = self.gs.open().collect();
         for (b, pos) in open {
             self.problems.push((
@@ -291,17 +241,23 @@ impl Builder {
     }
 
     fn request(&mut self, r: &Request) {
-        if self.world_ended && !matches!(r.name.as_str(), "FrameEnd" | "version") {
-            if !self.after_frame_warned {
-                self.after_frame_warned = true;
-                self.push(Problem::warning(
-                    r.pos,
-                    format!(
-                        "ignored \"{}\" and everything after it: only the first frame is read",
-                        r.name
-                    ),
-                ));
+        if self.world_ended && !self.after_world(r) {
+            return;
+        }
+        if SILENT.contains(&r.name.as_str()) {
+            return;
+        }
+        let in_motion = !matches!(r.name.as_str(), "MotionBegin" | "MotionEnd");
+        if let (Some(m), true) = (&mut self.motion, in_motion) {
+            if let Sample::Drop(problem) = m.sample(r) {
+                if let Some(p) = problem {
+                    self.push(p);
+                }
+                return;
             }
+        }
+        if let Some(w) = self.retained.outside_definition(r) {
+            self.push(w);
             return;
         }
         let mut problems = Vec::new();
@@ -311,6 +267,41 @@ impl Builder {
         for p in problems {
             self.push(p);
         }
+        if !self.in_world() {
+            // The request that makes the camera transformation singular, for WorldBegin.
+            if invertible(self.gs.attrs.ctm) {
+                self.singular_at = None;
+            } else if self.singular_at.is_none() {
+                self.singular_at = Some((self.file, r.pos, format!("this {}", r.name)));
+            }
+        }
+    }
+
+    /// Whether a request after the first `WorldEnd` is read: only the `FrameEnd` that
+    /// closes the first frame is. Later frames are not rendered (one warning); they were
+    /// checked for syntax only.
+    fn after_world(&mut self, r: &Request) -> bool {
+        match r.name.as_str() {
+            "version" => return true,
+            "FrameEnd" if self.gs.inside(Block::Frame) => return true,
+            _ => {}
+        }
+        if !self.after_frame_warned {
+            self.after_frame_warned = true;
+            self.push(Problem::warning(
+                r.pos,
+                if r.name == "FrameBegin" {
+                    "ignored this frame and every later one: only the first frame is rendered"
+                        .to_string()
+                } else {
+                    format!(
+                        "ignored \"{}\" and everything after it: only the first frame is read",
+                        r.name
+                    )
+                },
+            ));
+        }
+        false
     }
 
     fn in_world(&self) -> bool {
@@ -342,7 +333,9 @@ impl Builder {
             ));
             return Ok(());
         }
-        if (PRIMITIVES.contains(&name) || name == "AreaLightSource") && !self.in_world() {
+        let placed = PRIMITIVES.contains(&name) && self.retained.defining.is_none()
+            || matches!(name, "AreaLightSource" | "ObjectInstance");
+        if placed && !self.in_world() {
             return Err(Problem::error(r.pos, format!("{name} before WorldBegin"))
                 .with_help("geometry and lights go between WorldBegin and WorldEnd"));
         }
@@ -362,10 +355,29 @@ impl Builder {
                     return Err(Problem::error(r.pos, "WorldBegin inside the world block"));
                 }
                 self.world = Some((self.file, r.pos));
-                self.cam.camera_from_world = Some((self.gs.attrs.ctm, r.pos));
-                self.coordsys
-                    .insert("camera".into(), self.gs.attrs.ctm.inverse());
-                let m_inv = self.gs.attrs.ctm.inverse();
+                let camera = if invertible(self.gs.attrs.ctm) {
+                    self.gs.attrs.ctm
+                } else {
+                    let (file, pos, name) = self.singular_at.take().unwrap_or_else(|| {
+                        (
+                            self.file,
+                            r.pos,
+                            "the transformation current at WorldBegin".into(),
+                        )
+                    });
+                    self.problems.push((
+                        file,
+                        Problem::error(
+                            pos,
+                            format!("the camera transformation is singular after {name}: it cannot place a camera"),
+                        )
+                        .with_help("the transformation current at WorldBegin is camera-from-world and must be invertible (no scale by 0)"),
+                    ));
+                    DMat4::IDENTITY
+                };
+                self.cam.camera_from_world = Some((camera, r.pos));
+                self.coordsys.insert("camera".into(), camera.inverse());
+                let m_inv = camera.inverse();
                 for l in &mut self.lights {
                     if l.pre_world {
                         l.to_world = m_inv * l.to_world;
@@ -493,7 +505,7 @@ impl Builder {
                 return self.shader(name, r, a, problems);
             }
             "Illuminate" => {
-                let handle = self.handle(&mut a)?;
+                let handle = self.handle(&mut a, "light handle")?;
                 let (on, _) = a.num("onoff")?;
                 let Some(&i) = self.handles.get(&handle.0) else {
                     return Err(Problem::error(
@@ -510,8 +522,16 @@ impl Builder {
             "Format" => {
                 let (w, wp) = a.count("xresolution", 1)?;
                 let (h, _) = a.count("yresolution", 1)?;
-                let (pa, _) = a.num("pixelaspectratio")?;
-                let pa = if pa > 0.0 { pa } else { 1.0 };
+                let (pa, ppos) = a.num("pixelaspectratio")?;
+                let pa = if pa > 0.0 {
+                    pa
+                } else {
+                    problems.push(Problem::warning(
+                        ppos,
+                        format!("pixel aspect ratio {pa} is not positive: using 1 (square pixels, the display's default)"),
+                    ));
+                    1.0
+                };
                 self.cam.format = Some(((w as u32, h as u32, pa), wp));
             }
             "Projection" => {
@@ -568,9 +588,17 @@ impl Builder {
                 }
             }
             "PixelSamples" => {
-                let (x, _) = a.num("xsamples")?;
-                let (y, _) = a.num("ysamples")?;
-                let n = (x.max(1.0).ceil() * y.max(1.0).ceil()).min(1e6) as u64;
+                let (x, xpos) = a.num("xsamples")?;
+                let (y, ypos) = a.num("ysamples")?;
+                let low = [(x, xpos), (y, ypos)].into_iter().find(|(v, _)| *v < 1.0);
+                let (x, y) = (x.max(1.0).ceil(), y.max(1.0).ceil());
+                if let Some((v, pos)) = low {
+                    problems.push(Problem::warning(
+                        pos,
+                        format!("PixelSamples {v} is below 1, taken as 1: rendering {x} × {y} samples per pixel"),
+                    ));
+                }
+                let n = (x * y).min(1e6) as u64;
                 self.cam.samples = Some((n, r.pos));
             }
             "PixelVariance" => {
@@ -657,22 +685,103 @@ impl Builder {
                 return Ok(());
             }
             "Display" => return self.display(a, problems),
-            _ if PRIMITIVES.contains(&name) => self.primitive(r, problems),
-            _ if IGNORED.contains(&name) => {
-                problems.push(Problem::warning(
-                    r.pos,
-                    format!("ignored request \"{name}\""),
-                ));
+            "ObjectBegin" => {
+                let (handle, _) = self.handle(&mut a, "object handle")?;
+                if let Some(d) = &self.retained.defining {
+                    return Err(Problem::error(
+                        r.pos,
+                        format!(
+                            "ObjectBegin inside the object definition opened at {}:{}",
+                            d.pos.line, d.pos.column
+                        ),
+                    )
+                    .with_help("close it with ObjectEnd first"));
+                }
+                self.gs.begin(Block::Object, r.pos);
+                // The object's own space: its transformations apply where it is instanced.
+                self.gs.attrs.ctm = DMat4::IDENTITY;
+                self.retained.defining = Some(Defining {
+                    handle,
+                    pos: r.pos,
+                    prims: Vec::new(),
+                });
             }
+            "ObjectEnd" => {
+                let ended = self.end(Block::Object, r.pos);
+                if !self.gs.inside(Block::Object) {
+                    if let Some(d) = self.retained.defining.take() {
+                        self.retained.defined.insert(d.handle, d.prims);
+                    }
+                }
+                ended?;
+            }
+            "ObjectInstance" => {
+                let (handle, hpos) = self.handle(&mut a, "object handle")?;
+                let Some(mut prims) = self.retained.defined.remove(&handle) else {
+                    let names: Vec<&str> =
+                        self.retained.defined.keys().map(String::as_str).collect();
+                    let shown = if handle.parse::<f64>().is_ok() {
+                        handle.clone()
+                    } else {
+                        format!("\"{handle}\"")
+                    };
+                    let mut e = Problem::error(hpos, format!("unknown object handle {shown}"));
+                    e.help = suggestion(&handle, &names, "objects (ObjectBegin)");
+                    return Err(e);
+                };
+                self.instance(&mut prims, r, problems);
+                self.retained.defined.insert(handle, prims);
+            }
+            "MotionBegin" => {
+                let mut n = 0;
+                while !a.done() {
+                    a.num("times")?;
+                    n += 1;
+                }
+                if let Some(m) = &self.motion {
+                    return Err(Problem::error(
+                        r.pos,
+                        format!(
+                            "MotionBegin inside the motion block opened at {}:{}",
+                            m.pos.line, m.pos.column
+                        ),
+                    ));
+                }
+                if !self.motion_warned {
+                    self.motion_warned = true;
+                    problems.push(Problem::warning(
+                        r.pos,
+                        "motion blur is not rendered: each motion block uses its first time \
+                         sample",
+                    ));
+                }
+                self.motion = Some(Motion {
+                    pos: r.pos,
+                    times: n,
+                    first: None,
+                    count: 0,
+                    mixed: false,
+                });
+            }
+            "MotionEnd" => {
+                let m = self
+                    .motion
+                    .take()
+                    .ok_or_else(|| Problem::error(r.pos, "MotionEnd without MotionBegin"))?;
+                if let Some(p) = m.end(r.pos) {
+                    problems.push(p);
+                }
+            }
+            _ if PRIMITIVES.contains(&name) => self.primitive(r, problems),
             _ => {
-                let mut all: Vec<&str> = KNOWN.to_vec();
-                all.extend(PRIMITIVES);
-                let mut e = Problem::error(r.pos, format!("unknown request \"{name}\""));
-                e.help = suggestion(name, &all, "requests").filter(|h| h.starts_with("did"));
-                return Err(e);
+                if let Some(w) = requests::ignored(name, r.pos) {
+                    problems.push(w);
+                    return Ok(());
+                }
+                return Err(requests::unknown(name, r.pos));
             }
         }
-        let checked = !PRIMITIVES.contains(&name) && !IGNORED.contains(&name);
+        let checked = !PRIMITIVES.contains(&name);
         if checked && !a.done() {
             let extra = r.args.last().map_or(r.pos, |x| x.pos);
             problems.push(Problem::error(
@@ -683,15 +792,24 @@ impl Builder {
         Ok(())
     }
 
+    /// Closes `block`. The light list is an attribute: a light declared inside an ended
+    /// block (other than a transform block) is off from here on, until `Illuminate`.
     fn end(&mut self, block: Block, pos: Pos) -> Result<(), Problem> {
-        self.gs.end(block).map_err(|m| Problem::error(pos, m))
+        let ended = self.gs.end(block).map_err(|m| Problem::error(pos, m));
+        let attrs = &mut self.gs.attrs;
+        attrs
+            .lights_off
+            .extend(attrs.lights_known..self.lights.len());
+        attrs.lights_known = self.lights.len();
+        ended
     }
 
-    fn handle(&self, a: &mut Args<'_>) -> Result<(String, Pos), Problem> {
+    /// A light or object handle: a number or a string.
+    fn handle(&self, a: &mut Args<'_>, what: &str) -> Result<(String, Pos), Problem> {
         if a.peek_is_string() {
-            a.string("light handle")
+            a.string(what)
         } else {
-            let (v, p) = a.num("light handle")?;
+            let (v, p) = a.num(what)?;
             Ok((format!("{v}"), p))
         }
     }
@@ -743,7 +861,7 @@ impl Builder {
     ) -> Result<(), Problem> {
         let (name, npos) = a.string("shader name")?;
         let handle = if matches!(kind, "LightSource" | "AreaLightSource") {
-            Some(self.handle(&mut a)?)
+            Some(self.handle(&mut a, "light handle")?)
         } else {
             None
         };
@@ -787,7 +905,11 @@ impl Builder {
         }
         match kind {
             "Surface" => self.gs.attrs.surface = Some(call),
-            "Displacement" => self.gs.attrs.displacement = Some(call),
+            "Displacement" => {
+                // Its problems are reported here, whether or not a primitive uses it.
+                shaders::displacement(&call, problems);
+                self.gs.attrs.displacement = Some(call);
+            }
             "AreaLightSource" => {
                 for p in &call.params {
                     if !matches!(p.name.as_str(), "intensity" | "lightcolor") {
@@ -818,6 +940,7 @@ impl Builder {
                     used_on: false,
                     used_off: false,
                 });
+                self.gs.attrs.lights_known = self.lights.len();
             }
         }
         Ok(())
@@ -862,7 +985,9 @@ impl Builder {
         let (name, pos) = a.string("name")?;
         let (ty, tpos) = a.string("type")?;
         let (mode, mpos) = a.string("mode")?;
-        let params = a.params(&self.decls, problems);
+        // Display parameters are the display driver's (`quantize`, `dither`, `compression`,
+        // …): none is mapped, and an undeclared one is no error.
+        let params = a.params_lenient(&self.decls, problems);
         for p in params {
             problems.push(ignored_param(&p, "Display"));
         }
@@ -920,249 +1045,6 @@ impl Builder {
         }
         self.cam.displays.push(Display { file, pos, passes });
         Ok(())
-    }
-
-    fn primitive(&mut self, r: &Request, problems: &mut Vec<Problem>) {
-        let Some(prim) = geometry::primitive(r, &self.gs.attrs, &self.decls, problems) else {
-            return;
-        };
-        let surface_reported = match self.gs.attrs.surface.clone() {
-            Some(s) => self.reported_surface(&s),
-            None => false,
-        };
-        let attrs = &self.gs.attrs;
-        let cs = prim.color.unwrap_or(attrs.color);
-        let os = prim.opacity.unwrap_or(attrs.opacity);
-        let mut sp = Vec::new();
-        let surface = shaders::surface(attrs.surface.as_ref(), cs, &mut sp);
-        let mut bind = match &surface.texture {
-            Some((t, tpos)) => self.texture_bind(t, *tpos, cs, &mut sp),
-            None => Default::default(),
-        };
-        // Parameter problems are reported once, at the Surface request.
-        if !surface_reported {
-            problems.extend(sp);
-        }
-        let mut shader = surface.shader;
-        let mut spaths: Vec<(String, Pos)> = surface
-            .paths
-            .into_iter()
-            .map(|(p, pos)| (format!(".shader{p}"), pos))
-            .collect();
-        if os != (1.0, 1.0, 1.0) {
-            shader = ShaderDesc::Opacity {
-                opacity: os,
-                input: Box::new(shader),
-            };
-            spaths = spaths
-                .into_iter()
-                .map(|(p, pos)| (p.replacen(".shader", ".shader.Opacity.input", 1), pos))
-                .collect();
-            bind = bind
-                .into_iter()
-                .map(|(k, v)| (format!("input.{k}"), v))
-                .collect();
-        }
-        if let Some((_, tpos)) = &surface.texture {
-            for k in bind.keys() {
-                spaths.push((format!(".bind.{k}"), *tpos));
-            }
-        }
-        let emission = attrs.area_light.as_ref().map(|c| {
-            let find = |n: &str| c.params.iter().find(|p| p.name == n);
-            let i = find("intensity").map_or(1.0, Param::num);
-            let col = find("lightcolor").map_or((1.0, 1.0, 1.0), Param::triple);
-            (col.0 * i, col.1 * i, col.2 * i)
-        });
-        let at_pos = attrs.surface.as_ref().map_or(r.pos, |s| s.pos);
-        let at_file = attrs.surface.as_ref().map_or(self.file, |s| s.file);
-        let desc = MaterialDesc {
-            name: String::new(),
-            shader,
-            two_sided: attrs.sides == 2,
-            emission: emission.unwrap_or((0.0, 0.0, 0.0)),
-            bind,
-            bump: None,
-            interior: None,
-            contour: None,
-            lights: None,
-            shadow: None,
-            environment: None,
-        };
-        let mut lights_off = attrs.lights_off.clone();
-        lights_off.sort_unstable();
-        lights_off.dedup();
-        let key = format!(
-            "{:?}|{:?}|{}|{:?}|{}|{:?}",
-            desc.shader,
-            desc.bind,
-            desc.two_sided,
-            desc.emission,
-            at_pos.line * 100_000 + at_pos.column,
-            lights_off
-        );
-        let material = match self.material_keys.get(&key) {
-            Some(&m) => m,
-            None => {
-                let m = self.materials.len();
-                let base = attrs
-                    .surface
-                    .as_ref()
-                    .map_or("defaultsurface", |s| s.name.as_str());
-                let mut desc = desc;
-                desc.name = format!("{base}_{}", m + 1);
-                self.materials.push(PendingMaterial {
-                    desc,
-                    paths: spaths,
-                    at: (at_file, at_pos),
-                    lights_off,
-                });
-                self.material_keys.insert(key, m);
-                m
-            }
-        };
-        let displacement = attrs.displacement.as_ref().and_then(|d| {
-            let mut dp = Vec::new();
-            let shader = shaders::displacement(d, &mut dp)?;
-            let mut paths = vec![(String::new(), d.pos), (".shader".to_string(), d.pos)];
-            let bound = attrs.displacement_bound.map(|(b, pos)| {
-                paths.push((".bound".into(), pos));
-                b
-            });
-            Some((
-                DisplacementDesc {
-                    shader,
-                    bound,
-                    mode: if attrs.true_displacement {
-                        DisplacementModeDesc::True
-                    } else {
-                        DisplacementModeDesc::Bump
-                    },
-                },
-                paths,
-            ))
-        });
-        let approximation = attrs.shading_rate.map(|(rate, pos)| {
-            (
-                ApproximationDesc::Spatial {
-                    edge: rate.sqrt(),
-                    space: SpaceDesc::Raster,
-                    min_subdiv: 0,
-                    max_subdiv: 7,
-                },
-                pos,
-            )
-        });
-        let requested = Requested {
-            base: attrs.name.clone().unwrap_or_else(|| r.name.to_lowercase()),
-            given: attrs.name.is_some(),
-        };
-        for (i, l) in self.lights.iter_mut().enumerate() {
-            if attrs.lights_off.contains(&i) {
-                l.used_off = true;
-            } else {
-                l.used_on = true;
-            }
-        }
-        self.objects.push(PendingObject {
-            requested,
-            prim,
-            world_from_object: attrs.ctm,
-            material,
-            approximation,
-            displacement,
-            at: (self.file, r.pos),
-        });
-    }
-
-    /// `paintedplastic`'s `texturename` as a binding of the `Local` colour: `Cs` times the
-    /// image, looked up at RenderMan's `(s, t)` (`t` runs down the image, so the image's
-    /// `v` is `1 − t`), values taken as stored (linear). RenderMan texture files (`.tex`,
-    /// `.tx`, TIFF) are not read: the PNG or EXR of the same name beside them is, with a
-    /// warning; without one the texture is white.
-    fn texture_bind(
-        &self,
-        name: &str,
-        pos: Pos,
-        cs: V3,
-        problems: &mut Vec<Problem>,
-    ) -> std::collections::BTreeMap<String, InputDesc> {
-        let mut bind = std::collections::BTreeMap::new();
-        let dir = self.files[self.file]
-            .parent()
-            .map(Path::to_path_buf)
-            .unwrap_or_default();
-        let root = self.files[0]
-            .parent()
-            .map(Path::to_path_buf)
-            .unwrap_or_default();
-        let written = Path::new(name);
-        let readable = |p: &Path| {
-            p.extension()
-                .and_then(|e| e.to_str())
-                .is_some_and(|e| matches!(e.to_ascii_lowercase().as_str(), "png" | "exr"))
-        };
-        let candidates: Vec<PathBuf> = if readable(written) {
-            vec![written.to_path_buf()]
-        } else {
-            ["png", "exr"]
-                .iter()
-                .map(|e| written.with_extension(e))
-                .collect()
-        };
-        let Some(found) = candidates.into_iter().find(|c| dir.join(c).is_file()) else {
-            problems.push(Problem::warning(
-                pos,
-                format!(
-                    "ignored \"texturename\" \"{name}\": no PNG or EXR file of that name \
-                     (RenderMan texture files are not read): the surface is untextured"
-                ),
-            ));
-            return bind;
-        };
-        if found.as_path() != written {
-            problems.push(Problem::warning(
-                pos,
-                format!(
-                    "reading \"{}\" for texture \"{name}\": stagelight reads PNG and EXR",
-                    found.display()
-                ),
-            ));
-        }
-        let full = dir.join(&found);
-        let file = full
-            .strip_prefix(&root)
-            .map(Path::to_path_buf)
-            .unwrap_or(full)
-            .display()
-            .to_string();
-        let node = |n: NodeDesc| InputDesc::Node(Box::new(n));
-        let uv = || node(NodeDesc::Uv);
-        let st = node(NodeDesc::Combine(
-            node(NodeDesc::Channel(uv(), 0)),
-            node(NodeDesc::Sub(
-                InputDesc::Number(1.0),
-                node(NodeDesc::Channel(uv(), 1)),
-            )),
-            InputDesc::Number(0.0),
-        ));
-        let image = node(NodeDesc::Image {
-            file,
-            uv: st,
-            wrap: WrapDesc::Repeat,
-            color_space: Some(EncodingDesc::Linear),
-        });
-        bind.insert(
-            "color".to_string(),
-            node(NodeDesc::Mul(InputDesc::Colour(cs), image)),
-        );
-        bind
-    }
-
-    /// Whether the problems of this surface call were already reported (by an earlier
-    /// primitive using it).
-    fn reported_surface(&mut self, s: &ShaderCall) -> bool {
-        !self.surfaces_reported.insert((s.file, s.pos))
     }
 
     /// The description and the paths of its values.
@@ -1289,18 +1171,15 @@ impl Builder {
             }
             desc.materials.push(material);
         }
-        let mut members = Vec::new();
         let requested: Vec<Requested> = self.objects.iter().map(|o| o.requested.clone()).collect();
         let names = object_names(&requested);
-        for (i, (o, name)) in self.objects.drain(..).zip(names).enumerate() {
+        for (i, (o, name)) in self.objects.drain(..).zip(&names).enumerate() {
             let (f, pos) = o.at;
             paths.push((format!("objects[{i}]"), f, pos));
             paths.push((format!("objects[{i}].mesh"), f, pos));
             for (p, vpos) in &o.prim.paths {
                 paths.push((format!("objects[{i}].mesh{p}"), f, *vpos));
             }
-            paths.push((format!("instances[{i}]"), f, pos));
-            paths.push((format!("instances[{i}].transform[0]"), f, pos));
             if let Some((_, p)) = &o.approximation {
                 paths.push((format!("objects[{i}].approximation"), f, *p));
             }
@@ -1322,11 +1201,40 @@ impl Builder {
                 shadow: None,
                 trace: None,
             });
-            desc.instances.push(InstanceDesc::plain(
+        }
+        // An instance of a primitive takes its object's name; an `ObjectInstance` its
+        // identifier, else its object's name numbered.
+        let requested: Vec<Requested> = self
+            .instances
+            .iter()
+            .map(|i| match &i.requested {
+                None => Requested {
+                    base: names[i.object].clone(),
+                    given: true,
+                },
+                Some(r) if r.given => r.clone(),
+                Some(_) => Requested {
+                    base: names[i.object].clone(),
+                    given: false,
+                },
+            })
+            .collect();
+        let instance_names = object_names(&requested);
+        let mut members = Vec::new();
+        for (i, (inst, name)) in self.instances.drain(..).zip(instance_names).enumerate() {
+            let (f, pos) = inst.at;
+            paths.push((format!("instances[{i}]"), f, pos));
+            paths.push((format!("instances[{i}].transform[0]"), f, pos));
+            let mut instance = InstanceDesc::plain(
                 &name,
-                &name,
-                vec![TransformDesc::Matrix(rows(g * o.world_from_object))],
-            ));
+                &names[inst.object],
+                vec![TransformDesc::Matrix(rows(g * inst.world_from_object))],
+            );
+            if let Some(m) = inst.material {
+                paths.push((format!("instances[{i}].material"), f, pos));
+                instance.material = Some(desc.materials[m].name.clone());
+            }
+            desc.instances.push(instance);
             members.push(name);
         }
         paths.push(("groups[0]".into(), wfile, wpos));
@@ -1341,6 +1249,12 @@ impl Builder {
         });
         (desc, paths)
     }
+}
+
+/// Whether `m` can be inverted (its determinant finite and not 0).
+fn invertible(m: DMat4) -> bool {
+    let det = m.determinant();
+    det.is_finite() && det != 0.0
 }
 
 fn vec3(a: &mut Args<'_>, names: [&str; 3]) -> Result<DVec3, Problem> {
@@ -1360,7 +1274,7 @@ fn ignored_param(p: &Param, request: &str) -> Problem {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::desc::MeshDesc;
+    use crate::scene::desc::{MeshDesc, ShaderDesc};
 
     fn read(text: &str) -> RibScene {
         Builder::run(Path::new("t.rib"), text.as_bytes()).unwrap_or_else(|e| {

@@ -32,6 +32,7 @@ pub const PRIMITIVES: &[&str] = &[
 ];
 
 /// A primitive read: its mesh, value paths, and a constant `Cs`/`Os` it carries.
+#[derive(Debug, Clone)]
 pub struct Primitive {
     /// The mesh.
     pub mesh: MeshDesc,
@@ -432,6 +433,14 @@ fn polygonal(
     }
     let params = a.params(decls, problems);
     let (pts, ppos, weights) = points(req, &params, problems)?;
+    if matches!(name, "Polygon" | "GeneralPolygon") && pts.len() < 3 {
+        let at = find(&params, "P").or(find(&params, "Pw"));
+        problems.push(Problem::error(
+            at.map_or(req.pos, Param::pos),
+            format!("{name} needs at least 3 vertices, found {}", pts.len()),
+        ));
+        return None;
+    }
     let used = ["P", "Pw", "N", "st", "s", "t"];
     let (color, opacity) = constant_colours(req, &params, problems, &used);
     let n = pts.len();

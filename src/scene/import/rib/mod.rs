@@ -7,8 +7,10 @@
 //! stacks), [`build`] (request by request onto the description), with the request families
 //! in [`shaders`] (surfaces, displacements, lights), [`geometry`] (quadrics, polygons,
 //! patches, NURBS, subdivision meshes; [`revolve`]: paraboloids and hyperboloids),
-//! [`camera`] (options, the camera and its outputs) and [`names`] (object names, chosen
-//! once the whole file is read).
+//! [`camera`] (options, the camera and its outputs), [`retained`] (`ObjectBegin`
+//! definitions and motion blocks), `place` (a primitive and the current attributes onto an
+//! object, a material and an instance), [`requests`] (which RI requests are mapped, ignored
+//! or silent) and [`names`] (object names, chosen once the whole file is read).
 //!
 //! **Conventions.** RenderMan's camera space is left-handed (+x right, +y up, +z into the
 //! screen) and the transformation current at `WorldBegin` is camera-from-world. stagelight's
@@ -27,6 +29,9 @@ pub mod lexer;
 pub mod names;
 pub mod params;
 pub mod parse;
+mod place;
+pub mod requests;
+pub mod retained;
 pub mod revolve;
 pub mod shaders;
 pub mod state;

@@ -501,7 +501,12 @@ impl<'a> Args<'a> {
                 (Value::Num(_) | Value::Nums(_), _) => {
                     let n = value.value.nums().map_or(0, <[f64]>::len);
                     let per = decl.components();
-                    if n == 0 || n % per != 0 {
+                    // Per-vertex values may be none: the primitive says how many it needs.
+                    let per_vertex = matches!(
+                        decl.class,
+                        Class::Vertex | Class::Varying | Class::FaceVarying
+                    );
+                    if n == 0 && !per_vertex || n % per != 0 {
                         problems.push(Problem::error(
                             value.pos,
                             format!(

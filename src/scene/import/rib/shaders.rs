@@ -405,6 +405,24 @@ pub fn light(call: &ShaderCall, problems: &mut Vec<Problem>) -> LightValues {
     };
     let v = Values::read(call, "light", specs, problems);
     let zero = (0.0, 0.0, 0.0);
+    let default_cone = 30f64.to_radians();
+    let spot = specs == SPOT;
+    let mut cone = if spot { v.num(4, default_cone) } else { 0.0 };
+    if let Some(p) = v.found.get(4).copied().flatten().filter(|_| spot) {
+        if !(cone > 0.0 && cone <= std::f64::consts::FRAC_PI_2) {
+            problems.push(
+                Problem::error(
+                    p.pos(),
+                    format!(
+                        "coneangle of \"spotlight\" must be above 0 and at most π/2 radians \
+                         (90°), found {cone}"
+                    ),
+                )
+                .with_help("light-shader angles are in radians: 0.5236 is 30°"),
+            );
+            cone = default_cone;
+        }
+    }
     let shader = match call.name.as_str() {
         "ambientlight" => LightShader::Ambient,
         "pointlight" => LightShader::Point {
@@ -417,7 +435,7 @@ pub fn light(call: &ShaderCall, problems: &mut Vec<Problem>) -> LightValues {
         _ => LightShader::Spot {
             from: v.triple(2, zero),
             to: v.triple(3, (0.0, 0.0, 1.0)),
-            cone: v.num(4, 30f64.to_radians()),
+            cone,
             delta: v.num(5, 5f64.to_radians()),
             beam: v.num(6, 2.0),
         },

@@ -76,8 +76,12 @@ pub struct Attributes {
     pub basis: (BasisState, BasisState),
     /// `Attribute "light" "shadows"`: whether lights declared from here cast shadows.
     pub light_shadows: bool,
-    /// Lights switched off by `Illuminate handle 0` (indices into the light list).
+    /// Lights switched off by `Illuminate handle 0`, or declared inside an attribute block
+    /// that has ended (indices into the light list).
     pub lights_off: Vec<usize>,
+    /// How many lights were declared when these attributes were current: the lights
+    /// declared later inside a block are off once it ends (the light list is an attribute).
+    pub lights_known: usize,
 }
 
 impl Default for Attributes {
@@ -97,6 +101,7 @@ impl Default for Attributes {
             basis: (BasisState::default(), BasisState::default()),
             light_shadows: false,
             lights_off: Vec::new(),
+            lights_known: 0,
         }
     }
 }
@@ -112,6 +117,8 @@ pub enum Block {
     Attribute,
     /// `TransformBegin`.
     Transform,
+    /// `ObjectBegin`: an object definition, with attributes of its own.
+    Object,
 }
 
 impl Block {
@@ -122,6 +129,7 @@ impl Block {
             Block::World => "WorldBegin",
             Block::Attribute => "AttributeBegin",
             Block::Transform => "TransformBegin",
+            Block::Object => "ObjectBegin",
         }
     }
 
@@ -132,6 +140,7 @@ impl Block {
             Block::World => "WorldEnd",
             Block::Attribute => "AttributeEnd",
             Block::Transform => "TransformEnd",
+            Block::Object => "ObjectEnd",
         }
     }
 }
@@ -154,11 +163,24 @@ impl GraphicsState {
 
     /// Closes the innermost block, which must be `block`. `Err` names what is open
     /// instead (and where) — the blocks inside `block` are then closed with it — or that
-    /// `block` is not open at all (nothing is closed).
+    /// `block` is not open at all (nothing is closed). A block opened outside an object
+    /// definition is not closed from inside it.
     pub fn end(&mut self, block: Block) -> Result<(), String> {
         let Some(at) = self.stack.iter().rposition(|(b, _, _)| *b == block) else {
             return Err(format!("{} without {}", block.end(), block.begin()));
         };
+        if let Some((_, pos, _)) = self.stack[at + 1..]
+            .iter()
+            .rev()
+            .find(|(b, _, _)| *b == Block::Object)
+        {
+            return Err(format!(
+                "{} inside the object definition opened by ObjectBegin at {}:{}",
+                block.end(),
+                pos.line,
+                pos.column
+            ));
+        }
         let inner = (at + 1 < self.stack.len()).then(|| {
             let (b, pos, _) = &self.stack[self.stack.len() - 1];
             format!(
