@@ -67,8 +67,15 @@ impl InstanceGeometry {
     /// world triangle (the order a [`Hit`]'s barycentrics weigh): the last two swapped for a
     /// mirrored instance, so the world winding keeps the object-space front.
     #[inline(always)]
-    pub fn world_order<T>(&self, [a, b, c]: [T; 3]) -> [T; 3] {
-        if self.mirrored {
+    pub fn world_order<T>(&self, corners: [T; 3]) -> [T; 3] {
+        Self::in_world_order(self.mirrored, corners)
+    }
+
+    /// [`Self::world_order`] for an instance that `mirrored` says mirrors: the one rule the
+    /// flattening (`build_accel`) and every attribute lookup share.
+    #[inline(always)]
+    pub fn in_world_order<T>(mirrored: bool, [a, b, c]: [T; 3]) -> [T; 3] {
+        if mirrored {
             [a, c, b]
         } else {
             [a, b, c]

@@ -146,8 +146,8 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
         // triangle's geometric normal is on its object-space front (`geometry.rs`).
         let mirrored = InstanceGeometry::mirrors(&xf);
         for tri in &mesh.triangles {
-            let [a, b, c] = tri.map(|i| xf.transform_point3(mesh.positions[i as usize]));
-            triangles.push(if mirrored { [a, c, b] } else { [a, b, c] });
+            let corners = tri.map(|i| xf.transform_point3(mesh.positions[i as usize]));
+            triangles.push(InstanceGeometry::in_world_order(mirrored, corners));
             triangle_instance.push(index);
         }
         let mask = world
