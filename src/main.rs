@@ -445,15 +445,23 @@ fn load(path: &Path) -> Result<LoadedScene, ExitCode> {
         }
         Err(errors) => {
             eprintln!("{errors}");
-            let n = errors.0.len();
             eprintln!(
-                "{n} error{} in {}; nothing rendered",
-                if n == 1 { "" } else { "s" },
+                "{}{} in {}; nothing rendered",
+                counted(errors.0.len(), "error"),
+                match errors.1.len() {
+                    0 => String::new(),
+                    n => format!(" and {}", counted(n, "warning")),
+                },
                 path.display()
             );
             Err(ExitCode::from(EXIT_ERROR))
         }
     }
+}
+
+/// `1 error`, `2 errors`.
+fn counted(n: usize, noun: &str) -> String {
+    format!("{n} {noun}{}", if n == 1 { "" } else { "s" })
 }
 
 fn check(path: &Path, memory_limit: Option<u64>) -> ExitCode {
@@ -505,10 +513,9 @@ fn check_run(
         for d in &refused {
             eprintln!("{d}");
         }
-        let n = refused.len();
         eprintln!(
-            "{n} error{} in {}; nothing rendered",
-            if n == 1 { "" } else { "s" },
+            "{} in {}; nothing rendered",
+            counted(refused.len(), "error"),
             path.display()
         );
         return Err(ExitCode::from(EXIT_ERROR));
@@ -531,10 +538,9 @@ fn check_outputs(
     for c in &clashes {
         eprintln!("{}", c.text);
     }
-    let n = clashes.len();
     eprintln!(
-        "{n} error{} in {}; nothing rendered",
-        if n == 1 { "" } else { "s" },
+        "{} in {}; nothing rendered",
+        counted(clashes.len(), "error"),
         path.display()
     );
     Err(ExitCode::from(if clashes.iter().any(|c| c.usage) {

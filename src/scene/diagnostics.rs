@@ -95,4 +95,10 @@ impl Sources {
         self.errors.sort_by_key(|(key, _)| *key);
         self.errors.into_iter().map(|(_, d)| d).collect()
     }
+
+    /// The scene refused: its errors ([`Sources::finish`]) with the warnings found so far.
+    pub fn refuse(self) -> SceneErrors {
+        let warnings = self.warnings();
+        SceneErrors(self.finish(), warnings)
+    }
 }

@@ -144,17 +144,23 @@ impl fmt::Display for Shown<'_> {
     }
 }
 
-/// Every problem found in a scene, reported together, ordered by file then position.
+/// Every problem found in a scene, reported together, ordered by file then position: the
+/// errors (`.0`) and the located warnings found before the errors stopped the load (`.1`,
+/// each the complete text as printed, `file:line:col: warning: …`). A refused scene's
+/// warnings are shown with its errors, as a compiler shows both: an ignored request or an
+/// unused value is often the clue to the error.
 #[derive(Debug, Clone, PartialEq, Eq)]
-pub struct SceneErrors(pub Vec<Diagnostic>);
+pub struct SceneErrors(pub Vec<Diagnostic>, pub Vec<String>);
 
+/// The warnings first (in file and position order), then the errors.
 impl fmt::Display for SceneErrors {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        for (i, d) in self.0.iter().enumerate() {
+        let errors = self.0.iter().map(|d| d.to_string());
+        for (i, line) in self.1.iter().cloned().chain(errors).enumerate() {
             if i > 0 {
                 writeln!(f)?;
             }
-            write!(f, "{d}")?;
+            f.write_str(&line)?;
         }
         Ok(())
     }

@@ -146,11 +146,11 @@ fn load(
         ..
     } = include::load_files(path, text, formats);
     if sources.has_errors() {
-        return Err(SceneErrors(sources.finish()));
+        return Err(sources.refuse());
     }
     obj_materials::expand(&mut sources, &mut scenes, &mut Vec::new());
     if sources.has_errors() {
-        return Err(SceneErrors(sources.finish()));
+        return Err(sources.refuse());
     }
     let src = &mut sources;
     let merged = validate::merge(src, &scenes);
@@ -274,7 +274,7 @@ fn load(
         .collect();
     let bakes = bake::bake_requests(src, &merged, &leaves, &has_uvs);
     if sources.has_errors() {
-        return Err(SceneErrors(sources.finish()));
+        return Err(sources.refuse());
     }
 
     let mut warnings = Vec::new();

@@ -103,3 +103,4 @@ mod sweep_photons;
 mod textures;
 mod vertex_bake;
 mod volume_shaders;
+mod warnings_with_errors;

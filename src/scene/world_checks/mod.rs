@@ -11,10 +11,10 @@ use super::{LoadedScene, SceneErrors};
 /// objects without geometry.
 pub fn check_loaded(mut scene: LoadedScene) -> Result<LoadedScene, SceneErrors> {
     let errors = extent::check_world(&scene.world);
+    scene.located_warnings.extend(empty::warnings(&scene.world));
     if errors.is_empty() {
-        scene.located_warnings.extend(empty::warnings(&scene.world));
         Ok(scene)
     } else {
-        Err(SceneErrors(errors))
+        Err(SceneErrors(errors, scene.located_warnings))
     }
 }
