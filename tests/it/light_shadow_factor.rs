@@ -36,6 +36,28 @@ fn a_quarter_of_the_light_passes_the_occluder_in_both_integrators() {
     }
 }
 
+/// Factor 1 lets all the light through: no shadow ray is traced (the image is the one of a
+/// light with `shadows: false`, and its `shade` stage counts as many occlusion rays).
+#[test]
+fn a_factor_of_one_traces_no_shadow_rays() {
+    let shadowed = scene(OCCLUDER, "Direct", true);
+    let run = |text: &str| {
+        let mut scene =
+            load_scene_str(text, Path::new("shadow.ron")).unwrap_or_else(|e| panic!("{e}"));
+        let settings = scene.settings.clone();
+        crate::common::render(&mut scene.world, settings)
+    };
+    let none = run(&with_factor(&shadowed, "1"));
+    let off = run(&shadowed.replace(SUN, "intensity: 1.0, shadows: false)]"));
+    let traced = run(&with_factor(&shadowed, "0.999"));
+    let occlusion = |f: &stagelight::frame::Frame| f.report.stage("shade").unwrap().rays_occlusion;
+    assert_eq!(occlusion(&none), 0);
+    assert_eq!(occlusion(&off), 0);
+    assert!(occlusion(&traced) > 0);
+    let beauty = |f: &stagelight::frame::Frame| f.outputs.image.as_ref().unwrap().beauty.clone();
+    assert_eq!(beauty(&none), beauty(&off));
+}
+
 #[test]
 fn an_irradiance_bake_keeps_the_factor() {
     let dir = scratch("light-shadow-factor-bake");

@@ -184,8 +184,14 @@ impl LightSample {
 }
 
 impl Light {
-    /// Prepares a scene emitter for sampling.
+    /// Prepares a scene emitter for sampling. A light whose shadow factor is 1 lets all of
+    /// its light pass occluders, so it traces no shadow rays: `factor + (1 − factor)·T` is
+    /// 1 for every `T`, the value an unshadowed light gives, bit for bit.
     pub fn from_emitter(e: &Emitter) -> Self {
+        let e = &Emitter {
+            shadows: e.shadows && e.shadow_factor < 1.0,
+            ..e.clone()
+        };
         let area = |shape| {
             Light::Area(AreaLight {
                 shape,
