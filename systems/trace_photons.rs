@@ -281,8 +281,12 @@ fn gather_maps(stored: StoredMaps, settings: &RenderSettings, diagonal: f32) -> 
             }),
         })
     };
-    let caustics = knobs(settings.photons.caustics, stored.caustics);
-    let global = knobs(settings.photons.global_illumination, stored.global);
+    // An empty map adds nothing: without it no estimate is made and no final-gather ray is
+    // traced (an empty global map stays while the caustic map has photons, which its
+    // final-gather rays read).
+    let caustics = knobs(settings.photons.caustics, stored.caustics).filter(|c| c.stored() > 0);
+    let global = knobs(settings.photons.global_illumination, stored.global)
+        .filter(|g| g.stored() > 0 || caustics.is_some());
     let gather_caustics = match (&caustics, &global) {
         (Some(c), Some(g)) => coarse::gather_view(c, g),
         _ => None,
@@ -359,6 +363,27 @@ mod tests {
             "stored fraction {fraction} vs {p}"
         );
         assert_eq!(photons_of(&world, &frame).0, stored, "same seed, same map");
+    }
+
+    /// A spot aimed away from everything stores no photon: the maps are dropped, so the
+    /// shading traces no final-gather ray into an empty map.
+    #[test]
+    fn an_empty_global_map_is_dropped() {
+        let text = scene(
+            "global_illumination: (photons: 2000, gather: 8)",
+            "",
+            "",
+            &[],
+        )
+        .replace(
+            "Point(position: (0, 0, 2))",
+            "Spot(position: (0, 0, 2), target: (0, 0, 5), cone_angle: 20)",
+        );
+        let (mut world, mut frame) = load(&text, false);
+        run_until("trace_photons", &mut world, &mut frame);
+        let (stored, maps) = photons_of(&world, &frame);
+        assert_eq!(stored, 0);
+        assert!(maps.global.is_none() && maps.caustics.is_none());
     }
 
     #[test]

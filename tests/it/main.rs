@@ -27,6 +27,7 @@ mod farm_bake;
 mod farm_photons;
 mod feature_switches;
 mod fog_height_noise_fade;
+mod fog_light_at_eye;
 mod fuzz_corpus;
 mod geometry_scene;
 mod geometry_stages;

@@ -1,9 +1,11 @@
 //! The checks of a loaded scene that need the spawned world: the supported extent
-//! ([`extent`]) and objects without geometry ([`empty`]). `load_scene` runs them, so every
+//! ([`extent`]), objects without geometry ([`empty`]) and lights at a foggy eye
+//! ([`light_at_eye`]). `load_scene` runs them, so every
 //! caller of the loader gets them.
 
 pub mod empty;
 pub mod extent;
+pub mod light_at_eye;
 
 use super::{LoadedScene, SceneErrors};
 
@@ -12,6 +14,9 @@ use super::{LoadedScene, SceneErrors};
 pub fn check_loaded(mut scene: LoadedScene) -> Result<LoadedScene, SceneErrors> {
     let errors = extent::check_world(&scene.world);
     scene.located_warnings.extend(empty::warnings(&scene.world));
+    scene
+        .located_warnings
+        .extend(light_at_eye::warnings(&scene.world));
     if errors.is_empty() {
         Ok(scene)
     } else {
