@@ -299,14 +299,12 @@ pub fn flatten(
                 );
                 if !rounded.is_finite() || rounded.matrix3.determinant() == 0.0 {
                     let it = &m.instances[inst];
+                    let (why, help) = unusable_in_f32(&world, rounded.is_finite());
                     src.error(
                         it.file,
                         &it.at(".transform"),
-                        format!(
-                            "the transform of \"{path}\" composed along its path does not fit \
-                             in f32 or is not invertible"
-                        ),
-                        None,
+                        format!("the transform of \"{path}\" composed along its path {why}"),
+                        Some(help.into()),
                     );
                     continue;
                 }
@@ -334,6 +332,32 @@ pub fn flatten(
         }
     }
     leaves
+}
+
+/// Why a composed transform cannot be rendered in f32 (`finite`: its f32 rounding is finite),
+/// and what to do.
+fn unusable_in_f32(world: &DAffine3, finite: bool) -> (String, &'static str) {
+    let det = world.matrix3.determinant();
+    if !finite {
+        (
+            "does not fit in f32 (a value beyond ±3.4e38)".into(),
+            "scale the scene's units down, or the mesh itself instead of its instance",
+        )
+    } else if det != 0.0 && det.is_finite() {
+        (
+            format!(
+                "scales space so little that its determinant ({det:.3e}) underflows f32, and \
+                 the renderer needs its inverse"
+            ),
+            "scale the mesh itself (or the scene's units) so each instance scales by more \
+             than about 1e-12",
+        )
+    } else {
+        (
+            "is singular (it flattens space): not invertible".into(),
+            "give every axis a non-zero scale",
+        )
+    }
 }
 
 #[cfg(test)]

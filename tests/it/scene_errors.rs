@@ -223,6 +223,19 @@ fn zero_scale() {
     );
 }
 
+/// Scales every value of which fits f32 but whose composition does not: a determinant that
+/// underflows (its inverse is needed), a product beyond f32's range.
+#[test]
+fn tiny_and_huge_scales() {
+    check(
+        "tiny_and_huge_scales.ron",
+        &[
+            "tests/fixtures/scenes/bad/tiny_and_huge_scales.ron:3:54: error: the transform of \"world/tiny\" composed along its path scales space so little that its determinant (1.000e-60) underflows f32, and the renderer needs its inverse\n  help: scale the mesh itself (or the scene's units) so each instance scales by more than about 1e-12",
+            "tests/fixtures/scenes/bad/tiny_and_huge_scales.ron:4:46: error: the transform of \"world/huge\" composed along its path does not fit in f32 (a value beyond ±3.4e38)\n  help: scale the scene's units down, or the mesh itself instead of its instance",
+        ],
+    );
+}
+
 /// NaN and inf literals where colours are expected.
 #[test]
 fn nan_colour() {
