@@ -639,11 +639,12 @@ fn convert(scene: &Path, output: &Path) -> ExitCode {
             return fail(format!("{}: {reason}\n  help: {help}", scene.display()))
         }
     };
+    // The scene loaded above (its warnings printed): the reader accepts it again.
     let desc = match (format.read)(scene, &bytes) {
         Ok(read) => read.desc,
-        Err(errors) => {
-            let text: Vec<String> = errors.iter().map(ToString::to_string).collect();
-            return fail(text.join("\n"));
+        Err(failure) => {
+            let errors = failure.errors.iter().map(ToString::to_string);
+            return fail(errors.collect::<Vec<_>>().join("\n"));
         }
     };
     // The output's directory must exist for `relocate` to find its real path.

@@ -18,7 +18,7 @@ fuzz_target!(|data: &[u8]| {
         assert!(mesh.uvs.as_ref().is_none_or(|v| v.len() == n));
     }
     let path = std::path::Path::new("fuzz.glb");
-    if let Err(errors) = stagelight::scene::import::gltf_scene::read(path, data) {
-        assert!(!errors.is_empty());
+    if let Err(failure) = stagelight::scene::import::gltf_scene::read(path, data) {
+        assert!(!failure.errors.is_empty());
     }
 });

@@ -106,10 +106,13 @@ impl Loader<'_> {
         self.out.content_hash.bytes(bytes);
         let read = match (format.read)(&path, bytes) {
             Ok(read) => read,
-            Err(errors) => {
+            Err(failure) => {
                 let file = self.register(SourceMap::empty(&path), None);
-                for d in errors {
+                for d in failure.errors {
                     self.out.sources.push(file, d.pos(), d);
+                }
+                for w in failure.warnings {
+                    self.out.sources.push_warning(file, w);
                 }
                 return;
             }

@@ -246,7 +246,13 @@ fn my_environment_is_its_colour_for_rays_that_leave_the_scene() {
 fn error_of(text: &str) -> String {
     match load_scene_str(text, Path::new("test.mi")) {
         Ok(_) => panic!("loads:\n{text}"),
-        Err(e) => e.to_string(),
+        // The errors alone (the file's warnings come with them: `e.1`).
+        Err(e) => {
+            e.0.iter()
+                .map(ToString::to_string)
+                .collect::<Vec<_>>()
+                .join("\n")
+        }
     }
 }
 

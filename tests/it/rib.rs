@@ -197,7 +197,8 @@ const MALFORMED: &[(&str, &str)] = &[
     ),
     (
         "motion_count",
-        "tests/fixtures/rib/motion_count.rib:5:1: error: the motion block opened at 2:1 gives 3 times but holds 2 requests\n  help: write one request per time, all of the same kind",
+        "tests/fixtures/rib/motion_count.rib:2:1: warning: motion blur is not rendered: each motion block uses its first time sample\n\
+         tests/fixtures/rib/motion_count.rib:5:1: error: the motion block opened at 2:1 gives 3 times but holds 2 requests\n  help: write one request per time, all of the same kind",
     ),
     (
         "unknown_object",
@@ -209,7 +210,9 @@ const MALFORMED: &[(&str, &str)] = &[
     ),
     (
         "later_frame_syntax",
-        "tests/fixtures/rib/later_frame_syntax.rib:9:15: error: invalid number \"1.2.3\"",
+        // The warning is the clue: the error is in a frame that is never rendered.
+        "tests/fixtures/rib/later_frame_syntax.rib:7:1: warning: ignored this frame and every later one: only the first frame is rendered\n\
+         tests/fixtures/rib/later_frame_syntax.rib:9:15: error: invalid number \"1.2.3\"",
     ),
     (
         "wrong_kind",

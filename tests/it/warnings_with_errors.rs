@@ -1,5 +1,6 @@
 //! A refused scene shows the warnings found before its errors, as a compiler does: an
-//! ignored request or an unused value is often the clue to the error.
+//! ignored request or an unused value is often the clue to the error — whether the reader
+//! itself refused the file (RIB, `.mi`) or validation did.
 
 use stagelight::scene::load_scene;
 
@@ -70,4 +71,43 @@ fn the_library_error_carries_the_warnings() {
     assert!(refused.1[0].contains(": warning: material \"ink\" has a contour shader"));
     let shown = refused.to_string();
     assert!(shown.find("warning:") < shown.find("error:"), "{shown}");
+}
+
+#[test]
+fn a_rib_reader_warning_is_shown_with_a_reader_error() {
+    let dir = scratch_dir("warn-err-rib-reader");
+    let text = RIB.replace("Sphere 1 -1 1 360", "Sphere 1 -1 1 360 extra");
+    std::fs::write(dir.join("a.rib"), text).unwrap();
+    for command in ["render", "convert"] {
+        let o = run_in(&dir, &[command, "a.rib", "-o", "o.ron"]);
+        assert_eq!(o.status.code(), Some(1));
+        assert_eq!(
+            stderr_of(&o),
+            "a.rib:1:1: warning: ignored request \"Hider\"\n\
+             a.rib:7:19: error: unknown request \"extra\"\n\
+             1 error and 1 warning in a.rib; nothing rendered\n",
+            "{command}"
+        );
+        assert_eq!(dir_names(&dir), ["a.rib"]);
+    }
+}
+
+#[test]
+fn a_mi_reader_warning_is_shown_with_a_reader_error() {
+    let dir = scratch_dir("warn-err-mi-reader");
+    let plane = std::fs::read_to_string("assets/seeds/mi/plane.mi").unwrap();
+    let text = plane.replace("samples -1 2\n", "samples -1 2\nbogus_option 3\n");
+    let line = 1 + text.lines().position(|l| l == "bogus_option 3").unwrap();
+    let output = 1 + text.lines().position(|l| l.starts_with("output")).unwrap();
+    std::fs::write(dir.join("p.mi"), text).unwrap();
+    let o = run_in(&dir, &["check", "p.mi"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert_eq!(
+        stderr_of(&o),
+        format!(
+            "p.mi:{output}:14: warning: output \"test.rgb\" is written as \"test.png\" (stagelight writes PNG and EXR files, not format \"rgb\")\n\
+             p.mi:{line}:1: error: unknown option \"bogus_option\"\n\
+             1 error and 1 warning in p.mi; nothing rendered\n"
+        )
+    );
 }

@@ -4,7 +4,7 @@
 
 use std::path::{Path, PathBuf};
 
-use super::{PathTable, ReadScene, SourcePos};
+use super::{PathTable, ReadFailure, ReadScene, SourcePos};
 use crate::scene::desc::SceneDesc;
 use crate::scene::message::Diagnostic;
 
@@ -194,11 +194,17 @@ pub struct LocatedScene {
 pub fn read_scene(
     path: &Path,
     read: Result<LocatedScene, Vec<LocatedProblem>>,
-) -> Result<ReadScene, Vec<Diagnostic>> {
-    let scene = read.map_err(|e| {
-        e.into_iter()
-            .map(LocatedProblem::diagnostic)
-            .collect::<Vec<_>>()
+) -> Result<ReadScene, ReadFailure> {
+    let scene = read.map_err(|problems| {
+        let (warnings, errors): (Vec<_>, Vec<_>) =
+            problems.into_iter().partition(|p| p.problem.warning);
+        ReadFailure {
+            errors: errors.into_iter().map(LocatedProblem::diagnostic).collect(),
+            warnings: warnings
+                .into_iter()
+                .map(LocatedProblem::diagnostic)
+                .collect(),
+        }
     })?;
     let mut table = PathTable::default();
     for (p, at) in scene.paths {

@@ -67,9 +67,29 @@ pub struct ReadScene {
     pub read_files: Vec<PathBuf>,
 }
 
+/// A reader's refusal of one file: every located error, and the located warnings found on the
+/// way (shown with the errors: an ignored request is often the clue to an error).
+#[derive(Debug, Default)]
+pub struct ReadFailure {
+    /// The errors, in the reader's order (file, then position).
+    pub errors: Vec<Diagnostic>,
+    /// The warnings.
+    pub warnings: Vec<Diagnostic>,
+}
+
+/// Errors alone.
+impl From<Vec<Diagnostic>> for ReadFailure {
+    fn from(errors: Vec<Diagnostic>) -> Self {
+        Self {
+            errors,
+            warnings: Vec::new(),
+        }
+    }
+}
+
 /// A reader: bytes of one file (its path as the user named it) → [`ReadScene`], or every
-/// located error found.
-pub type ReadFn = fn(path: &Path, bytes: &[u8]) -> Result<ReadScene, Vec<Diagnostic>>;
+/// located problem found.
+pub type ReadFn = fn(path: &Path, bytes: &[u8]) -> Result<ReadScene, ReadFailure>;
 
 /// A reader's index of positions, behind a [`SourceMap`].
 pub trait PositionIndex: fmt::Debug + Send + Sync {

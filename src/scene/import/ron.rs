@@ -18,7 +18,7 @@ use crate::scene::nodes_desc::NodeDesc;
 use crate::scene::suggest::suggestion;
 
 /// Reads one RON scene file (the [`super::ReadFn`] of `.ron`).
-pub fn read(path: &Path, bytes: &[u8]) -> Result<ReadScene, Vec<Diagnostic>> {
+pub fn read(path: &Path, bytes: &[u8]) -> Result<ReadScene, super::ReadFailure> {
     let text = std::str::from_utf8(bytes).map_err(|e| vec![not_utf8(path, bytes, &e)])?;
     // A UTF-8 byte order mark (editors on Windows write one) is not part of the scene; the
     // columns of line 1 are then counted as the editor shows them.
@@ -63,7 +63,7 @@ pub fn read(path: &Path, bytes: &[u8]) -> Result<ReadScene, Vec<Diagnostic>> {
                     (d.line, d.column) = (open.line, open.column);
                 }
             }
-            Err(vec![d])
+            Err(vec![d].into())
         }
     }
 }
@@ -336,14 +336,14 @@ mod tests {
     fn syntax_errors_and_bad_bytes_are_located_in_the_file() {
         let errors =
             read(Path::new("s.ron"), b"Scene(\n  objects: [] cameras: [],\n)").unwrap_err();
-        let got: Vec<String> = errors.iter().map(ToString::to_string).collect();
+        let got: Vec<String> = errors.errors.iter().map(ToString::to_string).collect();
         assert_eq!(
             got,
             ["s.ron:2:15: error: expected comma\n  help: separate fields and list items with `,`"]
         );
         let errors = read(Path::new("s.ron"), b"Scene(\n  // caf\xff\n)").unwrap_err();
         assert_eq!(
-            errors[0].to_string(),
+            errors.errors[0].to_string(),
             "s.ron:2:9: error: invalid UTF-8\n  help: a RON scene file is UTF-8 text"
         );
     }

@@ -61,8 +61,8 @@ fn fields(text: &str) -> Vec<(String, usize)> {
 
 /// The fake format's reader: every unparsable line is an error (all collected), an unknown
 /// kind is a located warning.
-fn read_fake(path: &Path, bytes: &[u8]) -> Result<ReadScene, Vec<Diagnostic>> {
-    let text = std::str::from_utf8(bytes).map_err(|_| Vec::new())?;
+fn read_fake(path: &Path, bytes: &[u8]) -> Result<ReadScene, super::ReadFailure> {
+    let text = std::str::from_utf8(bytes).map_err(|_| super::ReadFailure::default())?;
     let mut desc = SceneDesc::default();
     let mut table = PathTable::default();
     let (mut errors, mut warnings) = (Vec::new(), Vec::new());
@@ -112,7 +112,7 @@ fn read_fake(path: &Path, bytes: &[u8]) -> Result<ReadScene, Vec<Diagnostic>> {
         }
     }
     if !errors.is_empty() {
-        return Err(errors);
+        return Err(super::ReadFailure { errors, warnings });
     }
     Ok(ReadScene {
         desc,

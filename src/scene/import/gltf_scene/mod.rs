@@ -38,7 +38,7 @@ use std::path::Path;
 
 use glam::{DMat4, DVec3};
 
-use super::{PathTable, ReadScene, SourcePos};
+use super::{PathTable, ReadFailure, ReadScene, SourcePos};
 use crate::scene::desc::{
     GroupDesc, InstanceDesc, MeshDesc, ObjectDesc, RenderDesc, SceneDesc, TransformDesc, M4,
 };
@@ -120,7 +120,7 @@ pub fn as_include(desc: &mut SceneDesc) {
 }
 
 /// Reads a glTF scene (the reader in `import::FORMATS`).
-pub fn read(path: &Path, bytes: &[u8]) -> Result<ReadScene, Vec<Diagnostic>> {
+pub fn read(path: &Path, bytes: &[u8]) -> Result<ReadScene, ReadFailure> {
     let dir = path.parent().unwrap_or(Path::new(""));
     let file = gltf_file::open(bytes, Some(dir)).map_err(|e| vec![file_error(path, &e)])?;
     let file_name = path
@@ -200,6 +200,14 @@ fn node_label(node: &gltf::Node<'_>) -> String {
 }
 
 impl Walk<'_> {
+    /// The file refused: its errors with the warnings found so far.
+    fn refusal(&mut self) -> ReadFailure {
+        ReadFailure {
+            errors: std::mem::take(&mut self.errors),
+            warnings: std::mem::take(&mut self.warnings),
+        }
+    }
+
     fn object(&mut self, mesh: &gltf::Mesh<'_>, p: usize, material: String) -> String {
         if let Some(name) = self.objects.get(&(mesh.index(), p)) {
             return name.clone();
@@ -405,13 +413,14 @@ fn build(
     _file_name: &str,
     file: &GltfFile,
     json: Option<&[u8]>,
-) -> Result<Built, Vec<Diagnostic>> {
+) -> Result<Built, ReadFailure> {
     let doc = &file.doc;
     let Some(scene) = doc.default_scene().or_else(|| doc.scenes().next()) else {
         return Err(vec![at_file(
             path,
             "the glTF file holds no scene: nothing to render",
-        )]);
+        )]
+        .into());
     };
     let mut names = Names::default();
     let mut desc = SceneDesc::default();
@@ -433,7 +442,7 @@ fn build(
     materials::warn_unmapped(&mut w);
     node_checks::check(&mut w);
     if !w.errors.is_empty() {
-        return Err(w.errors);
+        return Err(w.refusal());
     }
     let mut members = Vec::new();
     for node in scene.nodes() {
@@ -452,16 +461,19 @@ fn build(
         }
     }
     if !w.errors.is_empty() {
-        return Err(w.errors);
+        return Err(w.refusal());
     }
     if members.is_empty() {
-        return Err(vec![at_file(
-            path,
-            format!(
-                "scenes[{}]: the scene places no mesh: nothing to render",
-                scene.index()
-            ),
-        )]);
+        return Err(ReadFailure {
+            errors: vec![at_file(
+                path,
+                format!(
+                    "scenes[{}]: the scene places no mesh: nothing to render",
+                    scene.index()
+                ),
+            )],
+            warnings: std::mem::take(&mut w.warnings),
+        });
     }
     let root = w.names.take(scene.name().unwrap_or("scene"));
     w.desc.groups.push(GroupDesc {
@@ -470,7 +482,7 @@ fn build(
     });
     let camera = view::camera(&mut w);
     if !w.errors.is_empty() {
-        return Err(w.errors);
+        return Err(w.refusal());
     }
     view::default_light(&mut w);
     bakes::default_bakes(&mut w);
@@ -488,7 +500,9 @@ pub fn primitive_instances(
 ) -> Result<Vec<(String, usize, usize)>, Vec<Diagnostic>> {
     let dir = path.parent().unwrap_or(Path::new(""));
     let file = gltf_file::open(bytes, Some(dir)).map_err(|e| vec![file_error(path, &e)])?;
-    build(path, "", &file, None).map(|(_, _, leaves)| leaves)
+    build(path, "", &file, None)
+        .map(|(_, _, leaves)| leaves)
+        .map_err(|failure| failure.errors)
 }
 
 #[cfg(test)]

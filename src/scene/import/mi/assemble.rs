@@ -98,11 +98,11 @@ pub fn assemble(reader: Reader) -> Result<MiScene, Vec<LocatedProblem>> {
         problems,
     };
     build(&raw, &root, &mut out);
-    let (errors, warnings): (Vec<_>, Vec<_>) =
-        out.problems.into_iter().partition(|p| !p.problem.warning);
-    if !errors.is_empty() {
-        return Err(errors);
+    if out.problems.iter().any(|p| !p.problem.warning) {
+        // The warnings go with the errors (each says which it is).
+        return Err(out.problems);
     }
+    let warnings = out.problems;
     Ok(MiScene {
         desc: out.desc,
         paths: out.paths,

@@ -46,14 +46,13 @@ use std::path::Path;
 
 use super::located::{read_scene, LocatedProblem, LocatedScene};
 use super::ReadScene;
-use crate::scene::message::Diagnostic;
 
 /// What the reader made of one `.mi` file (its `read_files` are the `$include` files).
 pub type MiScene = LocatedScene;
 
 /// Reads the `.mi` file `path` whose contents are `bytes`. `$include "file"` files are read
-/// from disk relative to the including file. On failure, every error found (warnings left
-/// out).
+/// from disk relative to the including file. On failure, every problem found (the warnings
+/// too: `problem.warning`).
 pub fn read_mi(path: &Path, bytes: &[u8]) -> Result<MiScene, Vec<LocatedProblem>> {
     let mut reader = statements::Reader::new(path);
     reader.read_file(path, bytes, 0);
@@ -61,6 +60,6 @@ pub fn read_mi(path: &Path, bytes: &[u8]) -> Result<MiScene, Vec<LocatedProblem>
 }
 
 /// The [`super::ReadFn`] of `.mi`: [`read_mi`] with its positions in a [`super::PathTable`].
-pub fn read(path: &Path, bytes: &[u8]) -> Result<ReadScene, Vec<Diagnostic>> {
+pub fn read(path: &Path, bytes: &[u8]) -> Result<ReadScene, super::ReadFailure> {
     read_scene(path, read_mi(path, bytes))
 }

@@ -148,25 +148,21 @@ impl Builder {
         b.read_text(bytes);
         b.finish_blocks();
         let scene = b.assemble();
-        let mut errors = Vec::new();
-        let mut warnings = Vec::new();
         let files = std::mem::take(&mut b.files);
         let mut problems = std::mem::take(&mut b.problems);
         problems.sort_by_key(|(f, p)| (*f, p.pos));
-        for (f, p) in problems {
-            let lp = LocatedProblem {
+        let problems: Vec<LocatedProblem> = problems
+            .into_iter()
+            .map(|(f, problem)| LocatedProblem {
                 file: files[f].clone(),
-                problem: p,
-            };
-            if lp.problem.warning {
-                warnings.push(lp);
-            } else {
-                errors.push(lp);
-            }
+                problem,
+            })
+            .collect();
+        if problems.iter().any(|p| !p.problem.warning) {
+            // The warnings go with the errors (each says which it is), in position order.
+            return Err(problems);
         }
-        if !errors.is_empty() {
-            return Err(errors);
-        }
+        let warnings = problems;
         let (desc, paths) = scene;
         let paths = paths
             .into_iter()

@@ -41,18 +41,17 @@ use std::path::Path;
 
 use super::located::{read_scene, LocatedProblem, LocatedScene};
 use super::ReadScene;
-use crate::scene::message::Diagnostic;
 
 /// What the reader made of one RIB file (its `read_files` are the `ReadArchive` files).
 pub type RibScene = LocatedScene;
 
 /// Reads the RIB file `path` whose contents are `bytes`. `ReadArchive` files are read from
-/// disk relative to `path`. On failure, every error found (warnings left out).
+/// disk relative to `path`. On failure, every problem found (the warnings too: `problem.warning`).
 pub fn read_rib(path: &Path, bytes: &[u8]) -> Result<RibScene, Vec<LocatedProblem>> {
     build::Builder::run(path, bytes)
 }
 
 /// The [`super::ReadFn`] of `.rib`: [`read_rib`] with its positions in a [`super::PathTable`].
-pub fn read(path: &Path, bytes: &[u8]) -> Result<ReadScene, Vec<Diagnostic>> {
+pub fn read(path: &Path, bytes: &[u8]) -> Result<ReadScene, super::ReadFailure> {
     read_scene(path, read_rib(path, bytes))
 }
