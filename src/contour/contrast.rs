@@ -72,6 +72,16 @@ pub struct Crossing {
     pub back: ContourSample,
 }
 
+impl Crossing {
+    /// Whether the edge is an outline: the back side is the background or another placed
+    /// object — a different instance, so also another copy of the same object (mental ray's
+    /// silhouette compares the instance tags its contour store keeps). Creases and material
+    /// edges within one instance are not.
+    pub fn is_outline(&self) -> bool {
+        self.back.is_background() || self.back.instance != self.front.instance
+    }
+}
+
 /// The crossings of a store's sample grid, by grid edge.
 #[derive(Debug, Clone, PartialEq)]
 pub struct EdgeCrossings {

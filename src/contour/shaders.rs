@@ -19,8 +19,7 @@ pub fn style(shader: &ContourShader, c: &Crossing, min_dimension: f32, level: u3
     let (color, percent) = match *shader {
         ContourShader::Simple { color, width } => (color, width),
         ContourShader::Silhouette { color, width } => {
-            let outline = c.back.is_background() || c.back.object != c.front.object;
-            (color, if outline { width } else { 0.0 })
+            (color, if c.is_outline() { width } else { 0.0 })
         }
         ContourShader::DepthFade {
             near,
@@ -41,7 +40,7 @@ pub fn style(shader: &ContourShader, c: &Crossing, min_dimension: f32, level: u3
             min_width,
             max_width,
         } => {
-            let angle = if c.back.is_background() || c.back.object != c.front.object {
+            let angle = if c.is_outline() {
                 std::f32::consts::PI
             } else {
                 c.front.normal.dot(c.back.normal).clamp(-1.0, 1.0).acos()
@@ -214,6 +213,27 @@ mod tests {
         }
     }
 
+    /// Another placed copy of the same object behind the edge is another object to the
+    /// outline shaders: a silhouette line, and the curvature shader's widest.
+    #[test]
+    fn another_instance_of_the_same_object_is_an_outline() {
+        let black = Vec4::new(0.0, 0.0, 0.0, 1.0);
+        let mut copy = crossing(3.0, Vec3::ONE, Vec3::Z);
+        copy.back.instance = 2;
+        assert_eq!(copy.back.object, copy.front.object);
+        let silhouette = ContourShader::Silhouette {
+            color: black,
+            width: 1.0,
+        };
+        assert_eq!(style(&silhouette, &copy, 100.0, 0), (black, 1.0));
+        let curvature = ContourShader::Curvature {
+            color: black,
+            min_width: 0.0,
+            max_width: 2.0,
+        };
+        assert_eq!(style(&curvature, &copy, 100.0, 0), (black, 2.0), "180°");
+    }
+
     #[test]
     fn a_silhouette_shader_draws_only_the_outline_and_splits_its_chains() {
         use super::super::linking::{Chain, ChainPoint};
@@ -224,6 +244,7 @@ mod tests {
         };
         let inside = crossing(3.0, Vec3::ONE, Vec3::X);
         let mut outline = inside;
+        outline.back.instance = 2;
         outline.back.object = 2;
         assert_eq!(style(&shader, &inside, 100.0, 0).1, 0.0, "a crease");
         assert_eq!(style(&shader, &outline, 100.0, 0), (black, 1.0));

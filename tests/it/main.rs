@@ -17,6 +17,7 @@ mod cli_paths;
 mod cli_photons;
 mod cli_plan;
 mod component_passes;
+mod contour_instances;
 mod contours;
 mod diagnostic_bvh;
 mod diagnostic_views;
