@@ -15,6 +15,12 @@
 //! glTF and pbrt define it. A hit's barycentrics weigh the world triangle's corners, so mesh
 //! attributes are read through [`InstanceGeometry::corners`]; unmirrored instances keep the
 //! mesh's order, bit for bit.
+//!
+//! **Reversed orientation.** An object marked [`crate::components::ReverseOrientation`]
+//! (RenderMan's `ReverseOrientation`, `Orientation "inside"`) has its front on the
+//! object-space back: the same swap, so its instances' world triangles are stored swapped
+//! unless they also mirror (the two cancel). Everything above then follows the reversed
+//! front through the same rule.
 
 use std::sync::Arc;
 
@@ -51,31 +57,41 @@ pub struct InstanceGeometry {
     /// The object's tangents (object space, `w` the handedness, one per vertex of `mesh`),
     /// if it has them ([`crate::components::VertexTangents`]).
     pub tangents: Option<Arc<Vec<glam::Vec4>>>,
-    /// Whether `world_from_object` mirrors (negative determinant): its world triangles have
-    /// their last two corners swapped (see the module documentation).
+    /// Whether `world_from_object` mirrors (negative determinant).
     pub mirrored: bool,
+    /// Whether the object's orientation is reversed (its front is the object-space back).
+    pub reversed: bool,
 }
 
 impl InstanceGeometry {
     /// Whether `world_from_object` mirrors space (negative determinant), which makes
-    /// [`Self::world_order`] swap a triangle's last two corners.
+    /// [`Self::world_order`] swap a triangle's last two corners (unless the object's
+    /// orientation is reversed).
     pub fn mirrors(world_from_object: &Affine3A) -> bool {
         world_from_object.matrix3.determinant() < 0.0
     }
 
-    /// A triangle's three per-corner values in the mesh's order, put in the order of its
-    /// world triangle (the order a [`Hit`]'s barycentrics weigh): the last two swapped for a
-    /// mirrored instance, so the world winding keeps the object-space front.
+    /// Whether the world triangles have their last two corners swapped: a mirrored instance
+    /// of an object with its orientation as modelled, or an unmirrored one of an object with
+    /// its orientation reversed.
     #[inline(always)]
-    pub fn world_order<T>(&self, corners: [T; 3]) -> [T; 3] {
-        Self::in_world_order(self.mirrored, corners)
+    pub fn swapped(&self) -> bool {
+        self.mirrored != self.reversed
     }
 
-    /// [`Self::world_order`] for an instance that `mirrored` says mirrors: the one rule the
-    /// flattening (`build_accel`) and every attribute lookup share.
+    /// A triangle's three per-corner values in the mesh's order, put in the order of its
+    /// world triangle (the order a [`Hit`]'s barycentrics weigh): the last two swapped when
+    /// [`Self::swapped`], so the world winding's front is the object's front.
     #[inline(always)]
-    pub fn in_world_order<T>(mirrored: bool, [a, b, c]: [T; 3]) -> [T; 3] {
-        if mirrored {
+    pub fn world_order<T>(&self, corners: [T; 3]) -> [T; 3] {
+        Self::in_world_order(self.swapped(), corners)
+    }
+
+    /// [`Self::world_order`] for an instance whose triangles `swapped` says are swapped: the
+    /// one rule the flattening (`build_accel`) and every attribute lookup share.
+    #[inline(always)]
+    pub fn in_world_order<T>(swapped: bool, [a, b, c]: [T; 3]) -> [T; 3] {
+        if swapped {
             [a, c, b]
         } else {
             [a, b, c]
@@ -92,7 +108,7 @@ impl InstanceGeometry {
     /// The hit on local triangle `local` at the barycentrics `(b1, b2)` of the mesh's
     /// corners 1 and 2 (a bake's texel sample), at `t = 0`.
     pub fn hit_at(&self, local: u32, b1: f32, b2: f32) -> Hit {
-        let (b1, b2) = if self.mirrored { (b2, b1) } else { (b1, b2) };
+        let (b1, b2) = if self.swapped() { (b2, b1) } else { (b1, b2) };
         Hit {
             t: 0.0,
             prim: self.first_triangle + local,

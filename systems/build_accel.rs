@@ -5,8 +5,8 @@
 //! the `SceneOrigin` (copied into the geometry); instances' `RayFlags` (per-triangle ray
 //! masks in the BVH);
 //! `settings.bvh_quality`; objects' `FaceMaterials` (per-triangle material slots; an
-//! instance's own `FaceMaterials` wins over its object's); objects' `VertexColours` and
-//! `VertexTangents`.
+//! instance's own `FaceMaterials` wins over its object's); objects' `VertexColours`,
+//! `VertexTangents` and `ReverseOrientation`.
 //! **Refuses:** placed triangles beyond the supported coordinate range
 //! (`crate::guard::extent`), located at their object.
 //! **Stops:** when the run is interrupted, even inside obvhs's build (waited for through
@@ -16,7 +16,8 @@
 //! camera in a run that renders, or bake requests in a run that bakes).
 //! **After this stage:** `outputs.geometry` holds world triangles in instance order (each
 //! instance contiguous; a mirrored instance's with two corners swapped, so that they keep
-//! their object-space front), their BVH, and per-instance shading data.
+//! their object-space front, and so are those of an unmirrored instance of an object whose
+//! orientation is reversed), their BVH, and per-instance shading data.
 
 use std::collections::HashMap;
 use std::sync::Arc;
@@ -29,8 +30,8 @@ use super::MERGING;
 use crate::accel::Accel;
 use crate::components::{
     BakeRequest, Displacement, DisplacementMode, FaceMaterials, Instance, Material, MaterialRef,
-    Procedural, RayFlags, Scatter, SceneOrigin, SubdivMesh, Surface, VertexColours, VertexTangents,
-    WorldFromObject, ALL_RAYS,
+    Procedural, RayFlags, ReverseOrientation, Scatter, SceneOrigin, SubdivMesh, Surface,
+    VertexColours, VertexTangents, WorldFromObject, ALL_RAYS,
 };
 use crate::features::Feature;
 use crate::geometry::{InstanceGeometry, SceneGeometry};
@@ -143,11 +144,16 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
         let index = instances.len() as u32;
         let mesh = &instance.mesh;
         // A mirroring transform reverses the winding: swap two corners back, so the world
-        // triangle's geometric normal is on its object-space front (`geometry.rs`).
+        // triangle's geometric normal is on its object-space front (`geometry.rs`); an object
+        // whose orientation is reversed swaps them once more.
         let mirrored = InstanceGeometry::mirrors(&xf);
+        let reversed = world.satisfies::<&ReverseOrientation>(instance.object);
         for tri in &mesh.triangles {
             let corners = tri.map(|i| xf.transform_point3(mesh.positions[i as usize]));
-            triangles.push(InstanceGeometry::in_world_order(mirrored, corners));
+            triangles.push(InstanceGeometry::in_world_order(
+                mirrored != reversed,
+                corners,
+            ));
             triangle_instance.push(index);
         }
         let mask = world
@@ -186,6 +192,7 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
                 .map(|t| t.0.clone())
                 .filter(|t| t.len() == instance.mesh.positions.len()),
             mirrored,
+            reversed,
         });
     }
     // Generated geometry is only known now: refuse what the f32 BVH and triangle test cannot

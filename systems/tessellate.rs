@@ -297,6 +297,37 @@ mod tests {
         assert!(!should_run(&world, &frame).run, "nothing left to dice");
     }
 
+    /// True displacement of an object whose orientation is reversed moves the surface along
+    /// the reversed normal: a constant 0.25 shrinks a sphere of radius 0.5 to 0.25 instead of
+    /// growing it to 0.75.
+    #[test]
+    fn true_displacement_follows_a_reversed_orientation() {
+        let radius = |reverse: bool| {
+            let object = format!(
+                r#"(name: "ball", mesh: Sphere(radius: 0.5), approximation: Parametric(u: 8, v: 4),
+                    displacement: (shader: Constant(0.25), mode: True),
+                    reverse_orientation: {reverse}),"#
+            );
+            let (mut world, mut frame) = load(&scene("", "", &object, &["ball"]), false);
+            run_until("tessellate", &mut world, &mut frame);
+            run(&mut world, &frame).unwrap();
+            let mut radii: Vec<f32> = Vec::new();
+            for (mesh, name) in world.query::<(&Arc<TriMesh>, &Name)>().iter() {
+                if name.0 == "ball" {
+                    radii.extend(mesh.positions.iter().map(|p| p.length()));
+                }
+            }
+            assert!(!radii.is_empty());
+            let (lo, hi) = radii
+                .iter()
+                .fold((f32::MAX, f32::MIN), |(a, b), &r| (a.min(r), b.max(r)));
+            assert!(hi - lo < 1e-5, "{lo}..{hi}");
+            lo
+        };
+        assert!((radius(false) - 0.75).abs() < 1e-5);
+        assert!((radius(true) - 0.25).abs() < 1e-5);
+    }
+
     #[test]
     fn skipped_without_surfaces_or_displacement() {
         let (world, frame) = load(&scene("", "", "", &[]), false);

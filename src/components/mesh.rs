@@ -61,6 +61,13 @@ pub struct VertexTangents(pub Arc<Vec<Vec4>>);
 #[derive(Debug, Clone, PartialEq)]
 pub struct FaceMaterials(pub Arc<Vec<Option<Entity>>>);
 
+/// Marker on an object entity: its front is the object-space back (the side its winding
+/// calls the back). `build_accel` swaps two corners of its world triangles, as it does for a
+/// mirroring instance (see `crate::geometry`), so every geometric normal, one-sided shading,
+/// emission and bump follow the reversed front.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ReverseOrientation;
+
 /// A placed copy of an object: the leaf of the resolved instance DAG. The entity also carries
 /// [`crate::components::WorldFromObject`] and [`crate::components::MaterialRef`].
 #[derive(Debug, Clone)]

@@ -19,7 +19,9 @@ pub use contour::{ContourContrast, ContourShader};
 pub use light::{attenuation_factor, Emitter, LightShape};
 pub use local_model::{LocalLobe, LocalModel};
 pub use material::{Material, MaterialRef, Shader};
-pub use mesh::{FaceMaterials, Instance, SecondUvs, TriMesh, VertexColours, VertexTangents};
+pub use mesh::{
+    FaceMaterials, Instance, ReverseOrientation, SecondUvs, TriMesh, VertexColours, VertexTangents,
+};
 pub use naming::{Name, SourceLink};
 pub use transform::{SceneOrigin, WorldFromObject};
 

@@ -52,6 +52,10 @@ pub fn photon_key(
             // Its world triangles keep the object-space front (written since that rule).
             let _ = writeln!(h, "mirrored, front kept");
         }
+        if inst.reversed {
+            // Its front is the object-space back (its world triangles are swapped once more).
+            let _ = writeln!(h, "orientation reversed");
+        }
         if let Some(faces) = &inst.face_materials {
             let _ = writeln!(h, "faces {faces:?}");
         }

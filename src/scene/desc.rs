@@ -1001,6 +1001,11 @@ pub struct ObjectDesc {
     /// Store surface derivatives dP/du, dP/dv when tessellating, default false.
     #[serde(default)]
     pub derivatives: bool,
+    /// The front is the object-space back (RenderMan's and pbrt's `ReverseOrientation`):
+    /// one-sided materials, emission and the normals that shading, bump and true
+    /// displacement use face the other way, default false.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub reverse_orientation: bool,
     /// Caustic photon role (mental ray `caustic`): 0 none, 1 casts, 2 receives, 3 both;
     /// default from the material (specular casts, non-specular receives).
     #[serde(default)]

@@ -19,8 +19,8 @@ use super::desc::{MeshDesc, ObjectDesc};
 use super::diagnostics::Sources;
 use super::validate::{Checker, Item, Merged};
 use crate::components::{
-    Approximation, DerivativeRequest, Displacement, DisplacementMode, Procedural, Scatter,
-    SubdivMesh, Surface,
+    Approximation, DerivativeRequest, Displacement, DisplacementMode, Procedural,
+    ReverseOrientation, ScalarNode, Scatter, SubdivMesh, Surface,
 };
 use crate::tessellation::GeometryError;
 
@@ -55,6 +55,8 @@ pub struct ObjectGeometry {
     pub displacement: Option<Displacement>,
     /// Whether surface derivatives are requested.
     pub derivatives: bool,
+    /// Whether its front is the object-space back ([`ReverseOrientation`]).
+    pub reverse_orientation: bool,
 }
 
 impl ObjectGeometry {
@@ -74,6 +76,9 @@ impl ObjectGeometry {
         }
         if self.derivatives {
             b.add(DerivativeRequest);
+        }
+        if self.reverse_orientation {
+            b.add(ReverseOrientation);
         }
     }
 }
@@ -201,12 +206,35 @@ fn check_object(
         );
         ok = false;
     }
+    if d.reverse_orientation && is_scatter {
+        ck.error(
+            &it.at(".reverse_orientation"),
+            "a scatter has no surface of its own: reverse the orientation of the prototype",
+        );
+        ok = false;
+    }
+    let displacement = displacement.map(|x| along_front(x, d.reverse_orientation));
     ok.then_some(ObjectGeometry {
         generated,
         approximation,
         displacement,
         derivatives: d.derivatives,
+        reverse_orientation: d.reverse_orientation,
     })
+}
+
+/// The displacement of an object whose orientation is `reversed`: true displacement moves
+/// the object-space surface along its object-space normal in `tessellate`, so it is negated
+/// to move along the reversed normal; bump displacement already follows the shading normal,
+/// which is on the side of the (reversed) front.
+fn along_front(d: Displacement, reversed: bool) -> Displacement {
+    if !(reversed && d.mode == DisplacementMode::True) {
+        return d;
+    }
+    Displacement {
+        shader: ScalarNode::Product(vec![ScalarNode::Constant(-1.0), d.shader]),
+        ..d
+    }
 }
 
 /// Located warnings on settings that have no effect (an approximation of a flat mesh

@@ -176,6 +176,7 @@ pub fn geometry(objects: Vec<Object>) -> SceneGeometry {
             colours: None,
             tangents: None,
             mirrored: false,
+            reversed: false,
         });
         triangle_instance.extend(std::iter::repeat_n(slot as u32, object.triangles.len()));
         triangles.extend(object.triangles);

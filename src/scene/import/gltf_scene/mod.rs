@@ -244,6 +244,7 @@ impl Walk<'_> {
             approximation: None,
             displacement: None,
             derivatives: false,
+            reverse_orientation: false,
             caustic: None,
             globillum: None,
             visible: None,

@@ -12,6 +12,7 @@ use super::camera::{rows, world_mirror, CameraOptions, Display};
 use super::geometry::{self, Primitive, PRIMITIVES};
 use super::lexer;
 use super::names::{object_names, Requested};
+use super::orientation;
 use super::params::{parse_type, Args, Declarations, Param};
 use super::parse::{self, Request};
 use super::requests::{self, SILENT};
@@ -52,6 +53,8 @@ pub(super) struct PendingObject {
     pub material: usize,
     pub approximation: Option<(ApproximationDesc, Pos)>,
     pub displacement: Option<(DisplacementDesc, Vec<(String, Pos)>)>,
+    /// Inside out: its front is the object-space back.
+    pub reverse_orientation: bool,
     pub at: (usize, Pos),
 }
 
@@ -460,6 +463,16 @@ impl Builder {
                 }
                 self.gs.attrs.sides = n as u32;
             }
+            "Orientation" => {
+                let (token, pos) = a.string("orientation")?;
+                let camera_from_current = match self.cam.camera_from_world {
+                    Some((camera_from_world, _)) => camera_from_world * self.gs.attrs.ctm,
+                    None => self.gs.attrs.ctm,
+                };
+                let rh = orientation::right_handed(camera_from_current);
+                self.gs.attrs.inside_out = orientation::inside_out(&token, rh, pos)?;
+            }
+            "ReverseOrientation" => self.gs.attrs.inside_out = !self.gs.attrs.inside_out,
             "ShadingRate" => {
                 let (v, pos) = a.num("size")?;
                 if v.is_nan() || v <= 0.0 {
@@ -1191,6 +1204,7 @@ impl Builder {
                 approximation: o.approximation.map(|a| a.0),
                 displacement: o.displacement.map(|d| d.0),
                 derivatives: false,
+                reverse_orientation: o.reverse_orientation,
                 caustic: None,
                 globillum: None,
                 visible: None,

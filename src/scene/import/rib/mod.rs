@@ -9,7 +9,8 @@
 //! patches, NURBS, subdivision meshes; [`revolve`]: paraboloids and hyperboloids),
 //! [`camera`] (options, the camera and its outputs), [`retained`] (`ObjectBegin`
 //! definitions and motion blocks), `place` (a primitive and the current attributes onto an
-//! object, a material and an instance), [`requests`] (which RI requests are mapped, ignored
+//! object, a material and an instance), [`orientation`] (`Orientation`,
+//! `ReverseOrientation`: which primitives are inside out), [`requests`] (which RI requests are mapped, ignored
 //! or silent) and [`names`] (object names, chosen once the whole file is read).
 //!
 //! **Conventions.** RenderMan's camera space is left-handed (+x right, +y up, +z into the
@@ -20,13 +21,16 @@
 //! that already mirrors (`Scale 1 1 -1`) needs no mirror. Every primitive keeps its RIB
 //! object space; its instance carries the matrix `mirror · world-from-object`. `Rotate`
 //! takes degrees, light-shader angles (`coneangle`, `conedeltaangle`) radians; missing
-//! parameters take the values of the RenderMan Interface Specification 3.2.
+//! parameters take the values of the RenderMan Interface Specification 3.2. A primitive's
+//! object-space front is RenderMan's outside; an inside-out one (see [`orientation`]) is an
+//! object with `reverse_orientation`.
 
 pub mod build;
 pub mod camera;
 pub mod geometry;
 pub mod lexer;
 pub mod names;
+pub mod orientation;
 pub mod params;
 pub mod parse;
 mod place;

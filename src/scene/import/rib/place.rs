@@ -1,6 +1,6 @@
 //! A primitive onto the description: its material (the surface shader, `Cs`, `Os`,
 //! `Sides`, the area light and the lights switched off, shared by every primitive with the
-//! same ones), its displacement and shading rate, one object and the instance that places
+//! same ones), its displacement, shading rate and orientation, one object and the instance that places
 //! it — or, inside `ObjectBegin`, the primitive kept for [`super::retained`] to place at
 //! each `ObjectInstance` with the attributes current there.
 
@@ -29,15 +29,18 @@ pub(super) struct Look {
     pub displacement: Option<(DisplacementDesc, Vec<(String, Pos)>)>,
     /// The shading rate as an approximation, and where it was written.
     pub approximation: Option<(ApproximationDesc, Pos)>,
+    /// Whether the primitive is inside out (`Orientation`, `ReverseOrientation`).
+    pub reverse_orientation: bool,
 }
 
 impl Look {
     /// What an object made with this look shares with every instance placing it.
     fn object_key(&self) -> String {
         format!(
-            "{:?}|{:?}",
+            "{:?}|{:?}|{}",
             self.displacement.as_ref().map(|d| &d.0),
-            self.approximation.as_ref().map(|a| &a.0)
+            self.approximation.as_ref().map(|a| &a.0),
+            self.reverse_orientation
         )
     }
 }
@@ -72,6 +75,7 @@ impl Builder {
             material: look.material,
             approximation: look.approximation,
             displacement: look.displacement,
+            reverse_orientation: look.reverse_orientation,
             at: (self.file, r.pos),
         });
         self.instances.push(PendingInstance {
@@ -108,6 +112,7 @@ impl Builder {
                         material,
                         approximation: look.approximation,
                         displacement: look.displacement,
+                        reverse_orientation: look.reverse_orientation,
                         at: rp.at,
                     });
                     rp.variants.insert(key, o);
@@ -269,6 +274,7 @@ impl Builder {
             material,
             displacement,
             approximation,
+            reverse_orientation: attrs.inside_out,
         }
     }
 

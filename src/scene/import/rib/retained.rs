@@ -8,8 +8,8 @@
 //! inherit its attributes where it is instanced, so attribute requests inside a definition
 //! are located warnings. Each retained mesh becomes one object of the description, placed
 //! by one instance per `ObjectInstance`; an instance whose attributes make another
-//! material names it as the instance's material, one with another displacement or shading
-//! rate places another object with the same mesh.
+//! material names it as the instance's material, one with another displacement, shading
+//! rate or orientation places another object with the same mesh.
 //!
 //! `MotionBegin [times] … MotionEnd` holds one request per time: the first (the first time
 //! sample) is read, the others are checked to be the same request and dropped. Motion blur
@@ -56,7 +56,8 @@ pub struct RetainedPrim {
     pub base: String,
     /// File and position of the request.
     pub at: (usize, Pos),
-    /// Objects of the description made of it so far, by displacement and shading rate.
+    /// Objects of the description made of it so far, by displacement, shading rate and
+    /// orientation.
     pub variants: HashMap<String, usize>,
 }
 

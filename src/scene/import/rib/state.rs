@@ -64,6 +64,10 @@ pub struct Attributes {
     pub area_light: Option<ShaderCall>,
     /// `Sides`, default 2.
     pub sides: u32,
+    /// Whether the current orientation differs from the handedness of the current
+    /// coordinate system (primitives are inside out), default false (`Orientation
+    /// "outside"`). No transformation changes it (see [`super::orientation`]).
+    pub inside_out: bool,
     /// `Attribute "render" "truedisplacement"`, default off (bump).
     pub true_displacement: bool,
     /// `Attribute "displacementbound" "sphere"` and where it was written.
@@ -94,6 +98,7 @@ impl Default for Attributes {
             displacement: None,
             area_light: None,
             sides: 2,
+            inside_out: false,
             true_displacement: false,
             displacement_bound: None,
             name: None,
