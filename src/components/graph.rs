@@ -236,13 +236,38 @@ pub enum ColourSpace {
     Hsl,
 }
 
-/// What happens outside `[0, 1)²`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// What happens outside `[0, 1)` along one texture axis.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Wrap {
-    /// The image tiles the plane.
+    /// The image tiles the axis.
     Repeat,
     /// Coordinates are clamped: edge texels extend outward.
     Clamp,
+    /// The image tiles the axis mirrored every other period (glTF's `MIRRORED_REPEAT`):
+    /// `u ∈ [1, 2)` reads `2 − u`, `u ∈ [−1, 0)` reads `−u`; continuous at whole numbers.
+    Mirror,
+}
+
+/// The wrap of each texture axis: `u` across the image (its columns), `v` up it (its rows).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct UvWrap {
+    /// Along u.
+    pub u: Wrap,
+    /// Along v.
+    pub v: Wrap,
+}
+
+impl UvWrap {
+    /// The same wrap on both axes.
+    pub const fn both(wrap: Wrap) -> Self {
+        Self { u: wrap, v: wrap }
+    }
+}
+
+impl From<Wrap> for UvWrap {
+    fn from(wrap: Wrap) -> Self {
+        Self::both(wrap)
+    }
 }
 
 /// A decoded texture.
@@ -257,6 +282,6 @@ pub struct Texture {
     /// Alpha of each texel, in the order of `texels`; empty when the image has no alpha
     /// channel (alpha 1 everywhere).
     pub alpha: Vec<f32>,
-    /// Wrap mode.
-    pub wrap: Wrap,
+    /// Wrap mode of each axis.
+    pub wrap: UvWrap,
 }

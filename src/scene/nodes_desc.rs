@@ -198,7 +198,7 @@ pub enum NodeDesc {
         /// Coordinates, default `Uv`.
         #[serde(default = "uv")]
         uv: InputDesc,
-        /// `Repeat` (default) or `Clamp`.
+        /// `Repeat` (default), `Clamp`, `Mirror` or `PerAxis(u: …, v: …)`.
         #[serde(default)]
         wrap: WrapDesc,
         /// `Srgb` or `Linear`; default sRGB for PNG, linear for EXR.
@@ -212,7 +212,7 @@ pub enum NodeDesc {
         /// Coordinates, default `Uv`.
         #[serde(default = "uv")]
         uv: InputDesc,
-        /// `Repeat` (default) or `Clamp`.
+        /// `Repeat` (default), `Clamp`, `Mirror` or `PerAxis(u: …, v: …)`.
         #[serde(default)]
         wrap: WrapDesc,
     },
@@ -293,15 +293,63 @@ pub const NODE_NAMES: &[&str] = &[
     "Param",
 ];
 
-/// Image wrap mode.
+/// Image wrap mode: one for both axes (`wrap: Mirror`), or one per axis
+/// (`wrap: PerAxis(u: Mirror, v: Clamp)`).
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, Serialize)]
-#[serde(rename = "Wrap")]
+#[serde(rename = "Wrap", deny_unknown_fields)]
 pub enum WrapDesc {
     /// Tile.
     #[default]
     Repeat,
     /// Extend the edge texels.
     Clamp,
+    /// Tile, mirrored every other period (glTF's `MIRRORED_REPEAT`).
+    Mirror,
+    /// A wrap per axis.
+    PerAxis {
+        /// Along u (across the image), default `Repeat`.
+        #[serde(default)]
+        u: AxisWrapDesc,
+        /// Along v (up the image), default `Repeat`.
+        #[serde(default)]
+        v: AxisWrapDesc,
+    },
+}
+
+impl WrapDesc {
+    /// The wrap of the u and the v axis.
+    pub fn axes(self) -> (AxisWrapDesc, AxisWrapDesc) {
+        let both = |a| (a, a);
+        match self {
+            WrapDesc::Repeat => both(AxisWrapDesc::Repeat),
+            WrapDesc::Clamp => both(AxisWrapDesc::Clamp),
+            WrapDesc::Mirror => both(AxisWrapDesc::Mirror),
+            WrapDesc::PerAxis { u, v } => (u, v),
+        }
+    }
+
+    /// The description of wrapping u and v so: one mode when they agree, else `PerAxis`.
+    pub fn from_axes(u: AxisWrapDesc, v: AxisWrapDesc) -> Self {
+        match (u, v) {
+            (AxisWrapDesc::Repeat, AxisWrapDesc::Repeat) => WrapDesc::Repeat,
+            (AxisWrapDesc::Clamp, AxisWrapDesc::Clamp) => WrapDesc::Clamp,
+            (AxisWrapDesc::Mirror, AxisWrapDesc::Mirror) => WrapDesc::Mirror,
+            (u, v) => WrapDesc::PerAxis { u, v },
+        }
+    }
+}
+
+/// The wrap of one image axis in `PerAxis(u: …, v: …)`.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Deserialize, Serialize)]
+#[serde(rename = "AxisWrap")]
+pub enum AxisWrapDesc {
+    /// Tile.
+    #[default]
+    Repeat,
+    /// Extend the edge texel.
+    Clamp,
+    /// Tile, mirrored every other period.
+    Mirror,
 }
 
 /// How an image's numbers are encoded.
@@ -402,5 +450,51 @@ mod tests {
         // Nodes with every field defaulted land here too; the loader re-parses them.
         assert!(matches!(parse("Fbm()"), InputDesc::Invalid(_)));
         assert!(matches!(parse("Checker"), InputDesc::Invalid(_)));
+    }
+
+    fn image_wrap(text: &str) -> WrapDesc {
+        let InputDesc::Node(n) = parse(text) else {
+            panic!("{text}")
+        };
+        let NodeDesc::Image { wrap, .. } = *n else {
+            panic!("{text}")
+        };
+        wrap
+    }
+
+    #[test]
+    fn wraps_parse_for_both_axes_or_per_axis_and_write_back_as_read() {
+        use AxisWrapDesc as A;
+        assert_eq!(image_wrap(r#"Image(file: "t.png")"#), WrapDesc::Repeat);
+        assert_eq!(
+            image_wrap(r#"Image(file: "t.png", wrap: Mirror)"#),
+            WrapDesc::Mirror
+        );
+        assert_eq!(WrapDesc::Mirror.axes(), (A::Mirror, A::Mirror));
+        let per_axis = WrapDesc::PerAxis {
+            u: A::Mirror,
+            v: A::Clamp,
+        };
+        assert_eq!(
+            image_wrap(r#"Image(file: "t.png", wrap: PerAxis(u: Mirror, v: Clamp))"#),
+            per_axis
+        );
+        // An axis left out repeats.
+        assert_eq!(
+            image_wrap(r#"Image(file: "t.png", wrap: PerAxis(v: Clamp))"#).axes(),
+            (A::Repeat, A::Clamp)
+        );
+        // One mode where the axes agree.
+        assert_eq!(WrapDesc::from_axes(A::Clamp, A::Clamp), WrapDesc::Clamp);
+        assert_eq!(WrapDesc::from_axes(A::Mirror, A::Clamp), per_axis);
+        // `convert` writes what the reader reads back.
+        for wrap in [WrapDesc::Clamp, WrapDesc::Mirror, per_axis] {
+            let text = ron::ser::to_string_pretty(
+                &wrap,
+                ron::ser::PrettyConfig::default().struct_names(true),
+            )
+            .unwrap();
+            assert_eq!(ron::from_str::<WrapDesc>(&text).unwrap(), wrap, "{text}");
+        }
     }
 }

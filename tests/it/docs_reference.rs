@@ -158,6 +158,7 @@ const SECTION_OF: &[(&str, &str)] = &[
     ("Phenomenon", "Shader graphs"),
     ("Bump", "Shader graphs"),
     ("Wrap", "Shader graphs"),
+    ("AxisWrap", "Shader graphs"),
     ("Encoding", "Shader graphs"),
     ("ColourSpace", "Shader graphs"),
     ("Basis", "Free-form surfaces"),

@@ -3,7 +3,8 @@
 //! named; `KHR_texture_transform` maps the coordinates an image is read at; triangle strips
 //! and fans are read; rotations that are not unit quaternions, a node with two parents and
 //! a `byteStride` shorter than its elements are located errors; a mesh that fails to load
-//! gets no follow-on UV error; a camera under a mirroring parent keeps its view and up.
+//! gets no follow-on UV error; a camera under a mirroring parent keeps its view and up; a
+//! sampler's wrap modes apply per axis, mirrored repeat included.
 
 use std::path::{Path, PathBuf};
 
@@ -447,28 +448,149 @@ fn a_camera_under_a_mirroring_parent_keeps_its_view_and_up() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
-/// A sampler that mirrors, or wraps its two axes differently, is read as one wrap mode with
-/// a warning naming the material, the texture and the sampler.
-#[test]
-fn a_mirrored_or_mixed_sampler_is_a_warning_naming_it() {
-    let dir = scratch_dir("gltf_spec_sampler");
-    crate::common::png::write_rgb(&dir.join("tex.png"), 1, 1, &[[200, 100, 50]]);
-    let material = r#"{"name": "m", "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}],
-  "samplers": [{"wrapS": 33648, "wrapT": 10497}],
-  "textures": [{"source": 0, "sampler": 0}],
-  "images": [{"uri": "tex.png"}"#;
-    let text = quad(PLAIN_UVS, &LIST)
+/// The quad file with a base colour texture `image` read through `sampler` (a
+/// `"samplers"` entry, or `""` for glTF's default: repeat on both axes).
+fn sampled_quad(uvs: [[f32; 2]; 4], image: &str, sampler: &str) -> String {
+    let (samplers, reference) = if sampler.is_empty() {
+        (String::new(), "")
+    } else {
+        (format!(r#""samplers": [{sampler}],"#), r#", "sampler": 0"#)
+    };
+    let material = format!(
+        r#"{{"name": "m", "pbrMetallicRoughness": {{"metallicFactor": 0, "baseColorTexture": {{"index": 0}}}}}}],
+  {samplers}
+  "textures": [{{"source": 0{reference}}}],
+  "images": [{{"uri": "{image}"}}"#
+    );
+    quad(uvs, &LIST)
         .replace("PRIMITIVE", PRIMITIVE)
-        .replace("MATERIALS", material)
+        .replace("MATERIALS", &material)
         .replace("NODES", r#"{"mesh": 0}"#)
-        .replace("ROOTS", "0");
-    write(&dir, "mirror.gltf", &text);
+        .replace("ROOTS", "0")
+}
+
+/// A sampler with `wrapS` `MIRRORED_REPEAT` and `wrapT` `CLAMP_TO_EDGE` wraps each axis its
+/// own way, without a warning: the image on u ∈ [0, 2] is the image beside its mirror image
+/// (a texture twice as wide, clamped, on u ∈ [0, 1] renders the same pixels), t ∈ [−½, 1½]
+/// clamps, and the loaded texture reads u = 1.25 as u = 0.75 and u = −0.25 as u = 0.25.
+/// `convert` writes the wrap as `PerAxis(u: Mirror, v: Clamp)`, read back as the same
+/// texture; a wrap mode glTF does not define is an error naming the modes.
+#[test]
+fn a_mirrored_and_clamped_sampler_wraps_each_axis_as_gltf_says() {
+    use stagelight::components::graph::{Op, UvWrap, Wrap};
+    let dir = scratch_dir("gltf_spec_sampler");
+    let texels: Vec<[u8; 3]> = (0..16u8)
+        .map(|k| [k * 16, 255 - k * 13, ((k as u32 * 97) % 251) as u8])
+        .collect();
+    crate::common::png::write_rgb(&dir.join("tex.png"), 4, 4, &texels);
+    // Each row of the image followed by the same row reversed.
+    let beside: Vec<[u8; 3]> = texels
+        .chunks(4)
+        .flat_map(|row| row.iter().chain(row.iter().rev()).copied())
+        .collect();
+    crate::common::png::write_rgb(&dir.join("beside.png"), 8, 4, &beside);
+    let mirror_clamp = r#"{"wrapS": 33648, "wrapT": 33071}"#;
+    let clamp = r#"{"wrapS": 33071, "wrapT": 33071}"#;
+    let wide = [[0.0, -0.5], [2.0, -0.5], [2.0, 1.5], [0.0, 1.5]];
+    let narrow = [[0.0, -0.5], [1.0, -0.5], [1.0, 1.5], [0.0, 1.5]];
+    write(
+        &dir,
+        "mirror.gltf",
+        &sampled_quad(wide, "tex.png", mirror_clamp),
+    );
+    write(
+        &dir,
+        "beside.gltf",
+        &sampled_quad(narrow, "beside.png", clamp),
+    );
+    write(&dir, "repeat.gltf", &sampled_quad(wide, "tex.png", ""));
+
     let o = run_in(&dir, &["check", "mirror.gltf"]);
-    assert_eq!(o.status.code(), Some(0));
+    assert_eq!((o.status.code(), stderr_of(&o)), (Some(0), String::new()));
+
+    let mirrored = render_included(&dir, "mirror.gltf");
+    let want = render_included(&dir, "beside.gltf");
+    let repeated = render_included(&dir, "repeat.gltf");
+    let largest = |a: &[Vec3], b: &[Vec3]| {
+        a.iter()
+            .zip(b)
+            .map(|(a, b)| (*a - *b).abs().max_element())
+            .fold(0.0f32, f32::max)
+    };
+    assert!(
+        largest(&mirrored, &want) < 1e-6,
+        "{}",
+        largest(&mirrored, &want)
+    );
+    assert!(
+        largest(&repeated, &want) > 0.05,
+        "the wrap changes the picture"
+    );
+
+    // A mode glTF does not define is the file's error, named by its JSON path.
+    let bad = r#"{"wrapS": 33648, "wrapT": 12345}"#;
+    write(&dir, "bad.gltf", &sampled_quad(wide, "tex.png", bad));
+    let o = run_in(&dir, &["check", "bad.gltf"]);
+    assert_eq!(o.status.code(), Some(1));
     assert_eq!(
         stderr_of(&o),
-        "mirror.gltf:1:1: warning: materials[0]: the base colour texture (textures[0]) has samplers[0] with wrapS MIRRORED_REPEAT and wrapT REPEAT: read as Repeat on both axes (an image wraps one way on both axes, and does not mirror)\n"
+        "bad.gltf:1:1: error: invalid glTF file: samplers[0].wrapT: invalid glTF: not a wrap mode: expected 33071 (CLAMP_TO_EDGE), 33648 (MIRRORED_REPEAT) or 10497 (REPEAT)\n\
+         1 error in bad.gltf; nothing rendered\n"
     );
+
+    // The loaded texture: u mirrors, v clamps.
+    let textures = |file: &str| -> Vec<_> {
+        let scene =
+            stagelight::scene::load_scene(&dir.join(file)).unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(scene.warnings, Vec::<String>::new());
+        let ops: Vec<Op> = scene
+            .world
+            .query::<&stagelight::components::Material>()
+            .iter()
+            .filter_map(|m| m.graph.clone())
+            .flat_map(|g| g.program.ops.clone())
+            .collect();
+        ops.into_iter()
+            .filter_map(|op| match op {
+                Op::Image { texture, .. } => Some(texture),
+                _ => None,
+            })
+            .collect()
+    };
+    let loaded = textures("mirror.gltf");
+    assert_eq!(loaded.len(), 1);
+    let t = &loaded[0];
+    let mirror_clamp = UvWrap {
+        u: Wrap::Mirror,
+        v: Wrap::Clamp,
+    };
+    assert_eq!(t.wrap, mirror_clamp);
+    let at = |u: f32, v: f32| t.sample(glam::Vec2::new(u, v));
+    let same = |(u0, v0), (u1, v1)| {
+        let (a, b) = (at(u0, v0), at(u1, v1));
+        assert!(
+            (a - b).abs().max_element() < 1e-6,
+            "({u0}, {v0}): {a} vs ({u1}, {v1}): {b}"
+        );
+    };
+    for v in [0.125, 0.6] {
+        same((1.25, v), (0.75, v));
+        same((-0.25, v), (0.25, v));
+        same((1.875, v), (0.125, v));
+    }
+    same((0.375, -3.0), (0.375, 0.0));
+    same((0.375, 7.0), (0.375, 1.0));
+
+    // Converted to RON: the per-axis wrap is written, and read back as the same texture.
+    let o = run_in(&dir, &["convert", "mirror.gltf", "-o", "mirror.ron"]);
+    assert!(o.status.success(), "{}", stderr_of(&o));
+    let ron = std::fs::read_to_string(dir.join("mirror.ron")).unwrap();
+    let compact: String = ron.split_whitespace().collect();
+    assert!(
+        compact.contains("wrap:PerAxis(u:Mirror,v:Clamp,),"),
+        "{ron}"
+    );
+    assert_eq!(textures("mirror.ron"), loaded);
     let _ = std::fs::remove_dir_all(&dir);
 }
 

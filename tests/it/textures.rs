@@ -182,6 +182,76 @@ fn image_texture_is_decoded_upright_and_sampled_bilinearly() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
+/// `wrap: PerAxis(u: Mirror, v: Clamp)`: u ∈ [0, 2] shows the image beside its mirror
+/// image (the same pixels as a twice-as-wide image of both, clamped, on u ∈ [0, 1]) and
+/// v ∈ [−½, 1½] extends the edge rows; repeating u instead changes the picture.
+#[test]
+fn a_per_axis_wrap_mirrors_one_axis_and_clamps_the_other() {
+    let dir = temp_dir("per_axis_wrap");
+    let texels: Vec<[u8; 3]> = (0..16u8)
+        .map(|k| [k * 16, 255 - k * 13, ((k as u32 * 97) % 251) as u8])
+        .collect();
+    crate::common::png::write_rgb(&dir.join("tex.png"), 4, 4, &texels);
+    let beside: Vec<[u8; 3]> = texels
+        .chunks(4)
+        .flat_map(|row| row.iter().chain(row.iter().rev()).copied())
+        .collect();
+    crate::common::png::write_rgb(&dir.join("beside.png"), 8, 4, &beside);
+    let image = |file: &str, su: u32, wrap: &str| {
+        let m = format!(
+            r#"(name: "m", shader: Constant(color: (0, 0, 0)),
+               bind: {{"color": Image(file: "{file}", uv: Sub(Mul(Uv, ({su}, 2, 0)), (0, 0.5, 0)),
+                                     wrap: {wrap})}})"#
+        );
+        render_in(&dir, &quad_scene(&m, "", 24, 1)).1
+    };
+    let mirrored = image("tex.png", 2, "PerAxis(u: Mirror, v: Clamp)");
+    let want = image("beside.png", 1, "Clamp");
+    let repeated = image("tex.png", 2, "PerAxis(u: Repeat, v: Clamp)");
+    let largest = |a: &[Vec3], b: &[Vec3]| {
+        a.iter()
+            .zip(b)
+            .map(|(a, b)| (*a - *b).abs().max_element())
+            .fold(0.0f32, f32::max)
+    };
+    assert!(
+        largest(&mirrored, &want) < 1e-6,
+        "{}",
+        largest(&mirrored, &want)
+    );
+    assert!(largest(&repeated, &want) > 0.05);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// A wrap mode that is not one, or a field `PerAxis` does not have, is a located error
+/// naming what is expected.
+#[test]
+fn bad_wrap_modes_are_located_errors() {
+    let wrap = |w: &str| {
+        let m = format!(
+            r#"(name: "m", shader: Lambert(albedo: (1, 1, 1)),
+               bind: {{"albedo": Image(file: "tex.png", wrap: {w})}})"#
+        );
+        load_errors(&quad_scene(&m, "", 8, 1))
+    };
+    assert_eq!(
+        wrap("Mirorr"),
+        "scene.ron:7:62: error: unknown variant \"Mirorr\" of Wrap\n  help: did you mean \"Mirror\"?"
+    );
+    assert_eq!(
+        wrap("PerAxis(u: Mirror, v: Wrap)"),
+        "scene.ron:7:84: error: unknown variant \"Wrap\" of AxisWrap\n  help: expected \"Repeat\", \"Clamp\" or \"Mirror\""
+    );
+    assert_eq!(
+        wrap("PerAxis(u: PerAxis)"),
+        "scene.ron:7:73: error: unknown variant \"PerAxis\" of AxisWrap\n  help: expected \"Repeat\", \"Clamp\" or \"Mirror\""
+    );
+    assert_eq!(
+        wrap("PerAxis(u: Mirror, w: Clamp)"),
+        "scene.ron:7:81: error: unknown field \"w\" in PerAxis\n  help: did you mean \"u\"?"
+    );
+}
+
 #[test]
 fn exr_textures_are_linear_and_png_can_be_declared_linear() {
     use stagelight::shading::texture::image::{load, Encoding, Wrap};

@@ -278,7 +278,7 @@ pub fn open(bytes: &[u8], dir: Option<&Path>) -> Result<GltfFile, MeshFileError>
             };
             let (path, text) = match invalid_semantic(json, path.as_str()) {
                 Some(named) => named,
-                None => (path.to_string(), validation_text(error).to_string()),
+                None => (path.to_string(), validation_text(path.as_str(), error)),
             };
             return Err(element(path, format!("invalid glTF: {text}{more}")));
         }
@@ -381,8 +381,12 @@ fn invalid_semantic(json: &[u8], path: &str) -> Option<(String, String)> {
     ))
 }
 
-fn validation_text(error: &gltf::json::validation::Error) -> &'static str {
+/// What the validator's `error` at `path` means; a sampler's wrap mode names the modes.
+fn validation_text(path: &str, error: &gltf::json::validation::Error) -> String {
     use gltf::json::validation::Error as E;
+    if matches!(error, E::Invalid) && (path.ends_with(".wrapS") || path.ends_with(".wrapT")) {
+        return "not a wrap mode: expected 33071 (CLAMP_TO_EDGE), 33648 (MIRRORED_REPEAT) or 10497 (REPEAT)".into();
+    }
     match error {
         E::IndexOutOfBounds => "an index is out of range",
         E::Invalid => "an invalid value",
@@ -390,6 +394,7 @@ fn validation_text(error: &gltf::json::validation::Error) -> &'static str {
         E::Oversize => "a size or offset is too large",
         E::Unsupported => "a required extension is not supported",
     }
+    .into()
 }
 
 /// The checked bytes of an accessor: its view's slice, element offset, stride and size.

@@ -22,14 +22,15 @@ use glam::{Vec2, Vec3};
 use super::desc::{MaterialDesc, V3};
 use super::diagnostics::{suggestion, Sources};
 use super::nodes_desc::{
-    ColourSpaceDesc, EncodingDesc, InputDesc, NodeDesc, WrapDesc, EMISSION, NODE_NAMES,
+    AxisWrapDesc, ColourSpaceDesc, EncodingDesc, InputDesc, NodeDesc, WrapDesc, EMISSION,
+    NODE_NAMES,
 };
 use super::validate::Item;
 use super::validate::Merged;
 use crate::components::Material;
 use crate::shading::texture::bind::{self, ParamType};
 use crate::shading::texture::colour::ColourSpace;
-use crate::shading::texture::image::{self, Encoding, Texture, Wrap};
+use crate::shading::texture::image::{self, Encoding, Texture, UvWrap, Wrap};
 use crate::shading::texture::noise::Fractal;
 use crate::shading::texture::{
     Binding, BumpMap, MaterialGraph, NoiseKind, NormalMap, Op, Program, Reg,
@@ -578,18 +579,20 @@ impl Compiler<'_, '_> {
         enc: Option<EncodingDesc>,
     ) -> Option<Arc<Texture>> {
         let path = self.src.files[at.file].dir().join(name);
-        let key = (
-            path.clone(),
-            wrap == WrapDesc::Clamp,
-            enc.map(|e| e == EncodingDesc::Srgb),
-        );
+        let axis = |a| match a {
+            AxisWrapDesc::Repeat => Wrap::Repeat,
+            AxisWrapDesc::Clamp => Wrap::Clamp,
+            AxisWrapDesc::Mirror => Wrap::Mirror,
+        };
+        let (u, v) = wrap.axes();
+        let wrap = UvWrap {
+            u: axis(u),
+            v: axis(v),
+        };
+        let key = (path.clone(), wrap, enc.map(|e| e == EncodingDesc::Srgb));
         if let Some(t) = self.ph.textures.get(&key) {
             return t.clone();
         }
-        let wrap = match wrap {
-            WrapDesc::Repeat => Wrap::Repeat,
-            WrapDesc::Clamp => Wrap::Clamp,
-        };
         let enc = enc.map(|e| match e {
             EncodingDesc::Srgb => Encoding::Srgb,
             EncodingDesc::Linear => Encoding::Linear,

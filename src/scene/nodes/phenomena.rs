@@ -12,7 +12,7 @@ use super::{At, Compiler, Ty};
 use crate::scene::diagnostics::Sources;
 use crate::scene::nodes_desc::{InputDesc, NodeDesc, PhenomenonDesc};
 use crate::scene::validate::{Item, Merged};
-use crate::shading::texture::image::Texture;
+use crate::shading::texture::image::{Texture, UvWrap};
 use crate::shading::texture::Program;
 
 /// What checking a phenomenon found.
@@ -46,7 +46,7 @@ pub struct Phenomena<'a> {
 }
 
 /// Decoded image textures by (path, clamp wrap, explicit sRGB), shared between materials.
-pub(super) type TextureCache = HashMap<(PathBuf, bool, Option<bool>), Option<Arc<Texture>>>;
+pub(super) type TextureCache = HashMap<(PathBuf, UvWrap, Option<bool>), Option<Arc<Texture>>>;
 
 /// Checks every phenomenon (duplicate names, cycles, bodies, defaults).
 pub fn check_phenomena<'a>(src: &mut Sources, m: &'a Merged<'a>) -> Phenomena<'a> {

@@ -1,5 +1,5 @@
 //! Image textures: PNG or EXR files decoded once at scene load into linear RGB texels and
-//! sampled bilinearly at the surface uv.
+//! sampled bilinearly at the surface uv, each axis wrapped as its [`Wrap`] says.
 //!
 //! Conventions: texel `(x, y)` covers `u ∈ [x/w, (x+1)/w)`, `v ∈ [y/h, (y+1)/h)` with its
 //! centre at `((x + ½)/w, (y + ½)/h)`; `v = 0` is the **bottom** row of the image file (as in
@@ -12,7 +12,7 @@ use std::path::Path;
 use glam::{Vec2, Vec3};
 
 use super::colour::srgb_to_linear;
-pub use crate::components::graph::{Texture, Wrap};
+pub use crate::components::graph::{Texture, UvWrap, Wrap};
 use crate::image_io::png_codec::{self, DecodedPng};
 
 /// How the stored numbers relate to linear RGB.
@@ -37,10 +37,10 @@ impl Texture {
         let (x0, y0) = (x.floor(), y.floor());
         let (fx, fy) = (x - x0, y - y0);
         let index = |xi: i64, yi: i64| {
-            let (xi, yi) = match self.wrap {
-                Wrap::Repeat => (xi.rem_euclid(w), yi.rem_euclid(h)),
-                Wrap::Clamp => (xi.clamp(0, w - 1), yi.clamp(0, h - 1)),
-            };
+            let (xi, yi) = (
+                wrap_texel(self.wrap.u, xi, w),
+                wrap_texel(self.wrap.v, yi, h),
+            );
             (yi * w + xi) as usize
         };
         // Large but finite coordinates saturate in the cast; wrapping keeps them in range.
@@ -74,6 +74,26 @@ impl Texture {
     }
 }
 
+/// The texel of an axis of `n` texels that texel index `i` (any integer, outside the
+/// image too) reads under `wrap`. Wrapping whole texels keeps every bilinear footprint
+/// right across an edge: `Mirror` extends the image by its reflection (texel `n` reads
+/// `n − 1`, texel `−1` reads `0`), so the filter there blends mirrored texels.
+fn wrap_texel(wrap: Wrap, i: i64, n: i64) -> i64 {
+    match wrap {
+        Wrap::Repeat => i.rem_euclid(n),
+        Wrap::Clamp => i.clamp(0, n - 1),
+        Wrap::Mirror => {
+            // `2n` cannot overflow: a texture's side is a `u32`.
+            let m = i.rem_euclid(2 * n);
+            if m < n {
+                m
+            } else {
+                2 * n - 1 - m
+            }
+        }
+    }
+}
+
 /// Whether a file name is read as EXR (by extension, case-insensitive).
 pub fn is_exr(path: &Path) -> bool {
     path.extension()
@@ -81,9 +101,14 @@ pub fn is_exr(path: &Path) -> bool {
         .is_some_and(|e| e.eq_ignore_ascii_case("exr"))
 }
 
-/// Reads a PNG or EXR file (chosen by extension) into a texture. `encoding: None` picks the
+/// Reads a PNG or EXR file (chosen by extension) into a texture wrapped as `wrap` (one
+/// [`Wrap`] for both axes, or a [`UvWrap`]). `encoding: None` picks the
 /// file kind's default (PNG: sRGB, EXR: linear). Non-finite or negative EXR values become 0.
-pub fn load(path: &Path, encoding: Option<Encoding>, wrap: Wrap) -> Result<Texture, String> {
+pub fn load(
+    path: &Path,
+    encoding: Option<Encoding>,
+    wrap: impl Into<UvWrap>,
+) -> Result<Texture, String> {
     let exr = is_exr(path);
     let encoding = encoding.unwrap_or(if exr {
         Encoding::Linear
@@ -95,7 +120,7 @@ pub fn load(path: &Path, encoding: Option<Encoding>, wrap: Wrap) -> Result<Textu
     } else {
         rgba(&png_codec::read_png(path)?)
     };
-    texture(width, height, top_down, encoding, wrap)
+    texture(width, height, top_down, encoding, wrap.into())
 }
 
 /// Width, height and top-down pixels of a decoded image; alpha is `None` when the image
@@ -112,10 +137,14 @@ fn rgba(img: &DecodedPng) -> (u32, u32, Pixels) {
 }
 
 /// Decodes an image file held in memory (a PNG inside a glTF file) into a texture;
-/// `encoding` as for [`load`] (default sRGB).
-pub fn decode(bytes: &[u8], encoding: Option<Encoding>, wrap: Wrap) -> Result<Texture, String> {
+/// `encoding` and `wrap` as for [`load`] (default sRGB).
+pub fn decode(
+    bytes: &[u8],
+    encoding: Option<Encoding>,
+    wrap: impl Into<UvWrap>,
+) -> Result<Texture, String> {
     let (w, h, px) = rgba(&png_codec::decode_png(bytes)?);
-    texture(w, h, px, encoding.unwrap_or(Encoding::Srgb), wrap)
+    texture(w, h, px, encoding.unwrap_or(Encoding::Srgb), wrap.into())
 }
 
 /// A texture from rows listed top to bottom (alpha is linear whatever the encoding; it is
@@ -125,7 +154,7 @@ fn texture(
     height: u32,
     top_down: Pixels,
     encoding: Encoding,
-    wrap: Wrap,
+    wrap: UvWrap,
 ) -> Result<Texture, String> {
     if width == 0 || height == 0 {
         return Err("the image is empty".into());
@@ -225,15 +254,115 @@ pub fn decode_exr(bytes: &[u8]) -> Result<(u32, u32, Pixels), String> {
 mod tests {
     use super::*;
 
-    fn tex(wrap: Wrap) -> Texture {
+    fn tex(wrap: impl Into<UvWrap>) -> Texture {
         // 2×2: bottom row (v = 0) red, green; top row blue, white.
         Texture {
             width: 2,
             height: 2,
             texels: vec![Vec3::X, Vec3::Y, Vec3::Z, Vec3::ONE],
             alpha: Vec::new(),
+            wrap: wrap.into(),
+        }
+    }
+
+    /// 4×2 texels whose value is `x + 10·y` (a grey), so a lookup names what it read.
+    fn ramp(wrap: UvWrap) -> Texture {
+        Texture {
+            width: 4,
+            height: 2,
+            texels: (0..8)
+                .map(|i| Vec3::splat((i % 4) as f32 + 10.0 * (i / 4) as f32))
+                .collect(),
+            alpha: Vec::new(),
             wrap,
         }
+    }
+
+    fn grey(t: &Texture, u: f32, v: f32) -> f32 {
+        let c = t.sample(Vec2::new(u, v));
+        assert!(c.x == c.y && c.y == c.z, "{c}");
+        c.x
+    }
+
+    /// glTF's mirrored repeat of a coordinate into `[0, 1]`: `u` for an even period,
+    /// `1 − frac(u)` for an odd one.
+    fn mirrored(u: f32) -> f32 {
+        let period = u.floor();
+        let f = u - period;
+        if (period as i64).rem_euclid(2) == 0 {
+            f
+        } else {
+            1.0 - f
+        }
+    }
+
+    #[test]
+    fn mirror_reads_the_reflected_coordinate() {
+        let t = ramp(UvWrap::both(Wrap::Mirror));
+        let near = |a: f32, b: f32| (a - b).abs() < 1e-5;
+        // Texel centres are at u = 0.125, 0.375, 0.625, 0.875 (texels 0 … 3).
+        for (u, want) in [
+            (0.875, 3.0),
+            (1.125, 3.0),
+            (1.375, 2.0),
+            (1.875, 0.0),
+            (2.125, 0.0),
+            (-0.125, 0.0),
+            (-0.375, 1.0),
+            (-1.125, 3.0),
+        ] {
+            assert!(near(grey(&t, u, 0.25), want), "u = {u}");
+        }
+        // Between centres, the filter reads mirrored texels: u = 1.25 is u = 0.75 (half
+        // texel 2, half texel 3); u = −0.25 is u = 0.25 (texels 0 and 1).
+        assert!(near(grey(&t, 1.25, 0.25), 2.5));
+        assert!(near(grey(&t, 1.25, 0.25), grey(&t, 0.75, 0.25)));
+        assert!(near(grey(&t, -0.25, 0.25), 0.5));
+        assert!(near(grey(&t, -0.25, 0.25), grey(&t, 0.25, 0.25)));
+        // Continuous at whole numbers: the edge texel on both sides of u = 1 and u = 0
+        // (repeat blends in the far edge there).
+        assert!(near(grey(&t, 1.0, 0.25), 3.0));
+        assert!(near(grey(&t, 0.0, 0.25), 0.0));
+        assert!(near(
+            grey(&ramp(UvWrap::both(Wrap::Repeat)), 1.0, 0.25),
+            1.5
+        ));
+        // Everywhere: the clamped lookup at the mirrored coordinate, on both axes.
+        let clamp = ramp(UvWrap::both(Wrap::Clamp));
+        for i in -300..300 {
+            let u = i as f32 / 37.0;
+            let v = 0.3 - i as f32 / 53.0;
+            let (a, b) = (grey(&t, u, v), grey(&clamp, mirrored(u), mirrored(v)));
+            assert!((a - b).abs() < 1e-3, "({u}, {v}): {a} vs {b}");
+        }
+    }
+
+    #[test]
+    fn each_axis_wraps_its_own_way() {
+        let t = ramp(UvWrap {
+            u: Wrap::Mirror,
+            v: Wrap::Clamp,
+        });
+        // v clamps: below the image the bottom row, above it the top row (values + 10).
+        assert!((grey(&t, 1.125, -0.7) - 3.0).abs() < 1e-5);
+        assert!((grey(&t, 1.125, 5.3) - 13.0).abs() < 1e-5);
+        assert!((grey(&t, -0.375, 1.75) - 11.0).abs() < 1e-5);
+        // The other way round: u clamps, v mirrors (rows 0, 1 | 1, 0 | 0, 1 …).
+        let t = ramp(UvWrap {
+            u: Wrap::Clamp,
+            v: Wrap::Mirror,
+        });
+        assert!((grey(&t, -2.0, 1.25) - 10.0).abs() < 1e-5);
+        assert!((grey(&t, 7.0, 1.75) - 3.0).abs() < 1e-5);
+        assert!((grey(&t, 7.0, 2.25) - 3.0).abs() < 1e-5);
+        assert!((grey(&t, 0.125, -0.25) - 0.0).abs() < 1e-5);
+        // Repeat on u, mirror on v.
+        let t = ramp(UvWrap {
+            u: Wrap::Repeat,
+            v: Wrap::Mirror,
+        });
+        assert!((grey(&t, 1.125, 1.25) - 10.0).abs() < 1e-5);
+        assert!((grey(&t, -0.125, 1.25) - 13.0).abs() < 1e-5);
     }
 
     #[test]
@@ -281,8 +410,9 @@ mod tests {
             Vec2::splat(1e30),
             Vec2::splat(-f32::MAX),
         ] {
-            assert!(tex(Wrap::Repeat).sample(uv).is_finite());
-            assert!(tex(Wrap::Clamp).sample(uv).is_finite());
+            for wrap in [Wrap::Repeat, Wrap::Clamp, Wrap::Mirror] {
+                assert!(tex(wrap).sample(uv).is_finite());
+            }
         }
     }
 }

@@ -27,7 +27,7 @@ use crate::scene::desc::{BumpDesc, InputDesc, MaterialDesc, NodeDesc, SceneDesc,
 use crate::scene::import::SourcePos;
 use crate::scene::mesh_files::gltf_file::GltfFile;
 use crate::scene::message::Diagnostic;
-use crate::scene::nodes_desc::{EncodingDesc, WrapDesc, EMISSION};
+use crate::scene::nodes_desc::{AxisWrapDesc, EncodingDesc, WrapDesc, EMISSION};
 
 /// Warns once about file-level features the reader does not map.
 pub fn warn_unmapped(w: &mut Walk<'_>) {
@@ -513,39 +513,22 @@ fn texture_ref(
         }
         _ => format!("{}#images[{}]", super::file_name_of(w.path), image.index()),
     };
-    let wrap = wrap(w, &texture, &at, what);
+    let wrap = wrap(&texture);
     let uv = transform.map_or(node(NodeDesc::Uv), |t| t.uv_node());
     Some(TextureRef { file, wrap, uv })
 }
 
-/// The wrap mode of a texture's sampler: `Clamp` where both axes clamp, else `Repeat`. A
-/// sampler that mirrors, or wraps its axes differently, is read so with a warning naming
-/// the material, the texture and the sampler (an image wraps one way on both axes, and
-/// does not mirror).
-fn wrap(w: &mut Walk<'_>, texture: &gltf::Texture<'_>, at: &str, what: &str) -> WrapDesc {
+/// The wrap of a texture's sampler, axis by axis: `wrapS` is u (across the image), `wrapT`
+/// is v; `CLAMP_TO_EDGE` → `Clamp`, `MIRRORED_REPEAT` → `Mirror`, `REPEAT` → `Repeat`
+/// (one mode when both axes agree, else `PerAxis`). glTF's t runs down the image where v
+/// runs up it, which no wrap mode tells apart.
+fn wrap(texture: &gltf::Texture<'_>) -> WrapDesc {
     use gltf::texture::WrappingMode;
-    let sampler = texture.sampler();
-    let (s, t) = (sampler.wrap_s(), sampler.wrap_t());
-    let wrap = match (s, t) {
-        (WrappingMode::ClampToEdge, WrappingMode::ClampToEdge) => WrapDesc::Clamp,
-        _ => WrapDesc::Repeat,
+    let axis = |m: WrappingMode| match m {
+        WrappingMode::ClampToEdge => AxisWrapDesc::Clamp,
+        WrappingMode::MirroredRepeat => AxisWrapDesc::Mirror,
+        WrappingMode::Repeat => AxisWrapDesc::Repeat,
     };
-    let mirrors = [s, t].contains(&WrappingMode::MirroredRepeat);
-    if let (Some(index), true) = (sampler.index(), mirrors || s != t) {
-        let name = |m: WrappingMode| match m {
-            WrappingMode::ClampToEdge => "CLAMP_TO_EDGE",
-            WrappingMode::MirroredRepeat => "MIRRORED_REPEAT",
-            WrappingMode::Repeat => "REPEAT",
-        };
-        let message = format!(
-            "{at}: the {what} texture (textures[{}]) has samplers[{index}] with wrapS {} and wrapT {}: read as {wrap:?} on both axes (an image wraps one way on both axes, and does not mirror)",
-            texture.index(),
-            name(s),
-            name(t)
-        );
-        if !w.warnings.iter().any(|d| d.message == message) {
-            w.warnings.push(at_file(w.path, message));
-        }
-    }
-    wrap
+    let sampler = texture.sampler();
+    WrapDesc::from_axes(axis(sampler.wrap_s()), axis(sampler.wrap_t()))
 }
