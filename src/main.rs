@@ -62,7 +62,9 @@ enum Command {
     /// Trace a scene's photon maps once and keep them (in `--photon-cache DIR` or the
     /// scene's `photon_map` file) for later renders, sweeps and farm parts to load.
     Photons(PhotonsArgs),
-    /// Validate a scene without rendering; exit 0 when it is renderable.
+    /// Validate a scene without rendering; exit 0 when nothing known before the first stage
+    /// stops a render (adaptive tessellation past the budget is a warning: it is known only
+    /// once diced).
     Check {
         /// Scene file (.ron, .rib, .mi, .gltf or .glb).
         scene: PathBuf,
@@ -122,7 +124,7 @@ struct RenderArgs {
     /// `samples` (a range of every pixel's sample indices).
     #[arg(long, value_enum, default_value = "tiles", requires = "part")]
     split: SplitArg,
-    /// Memory budget in bytes (suffix K, M, G, T allowed); default: the smallest of half
+    /// Memory budget in bytes (binary suffixes K, M, G, T; KB… and KiB… mean the same); default: the smallest of half
     /// the physical memory, `ulimit -v` and the cgroup limit.
     #[arg(long = "memory-limit", value_name = "BYTES", value_parser = stagelight::budget::parse_bytes)]
     memory_limit: Option<u64>,
@@ -254,7 +256,7 @@ struct BakeArgs {
     /// path-traced reference integrator); overrides the scene's `options.integrator`.
     #[arg(long, value_enum)]
     integrator: Option<IntegratorArg>,
-    /// Memory budget in bytes (suffix K, M, G, T allowed); default: the smallest of half
+    /// Memory budget in bytes (binary suffixes K, M, G, T; KB… and KiB… mean the same); default: the smallest of half
     /// the physical memory, `ulimit -v` and the cgroup limit.
     #[arg(long = "memory-limit", value_name = "BYTES", value_parser = stagelight::budget::parse_bytes)]
     memory_limit: Option<u64>,
@@ -297,7 +299,7 @@ struct BenchArgs {
     /// Print the report as JSON on stdout.
     #[arg(long)]
     json: bool,
-    /// Memory budget in bytes (suffix K, M, G, T allowed); default: the smallest of half
+    /// Memory budget in bytes (binary suffixes K, M, G, T; KB… and KiB… mean the same); default: the smallest of half
     /// the physical memory, `ulimit -v` and the cgroup limit.
     #[arg(long = "memory-limit", value_name = "BYTES", value_parser = stagelight::budget::parse_bytes)]
     memory_limit: Option<u64>,
@@ -344,6 +346,10 @@ struct SweepArgs {
     /// whole image's; the table has both.
     #[arg(long, value_name = "X0,Y0,X1,Y1", value_parser = stagelight::sweep::Crop::parse)]
     crop: Option<stagelight::sweep::Crop>,
+    /// Memory budget of every run (as for `render`); every knob value, and the reference
+    /// when it is rendered, is checked against it before the first run.
+    #[arg(long = "memory-limit", value_name = "BYTES", value_parser = stagelight::budget::parse_bytes)]
+    memory_limit: Option<u64>,
 }
 
 /// `--integrator` values.
@@ -476,6 +482,11 @@ fn check(path: &Path, memory_limit: Option<u64>) -> ExitCode {
             frame.inputs.budget = budget(memory_limit);
             if let Err(code) = check_run(path, &scene, &frame.inputs, None) {
                 return code;
+            }
+            // Adaptive approximations are diced (and refused past the budget) only by a
+            // render: what can be known now is their worst case.
+            for w in stagelight::budget::worst_case::warnings(&scene.world, &frame.inputs.budget) {
+                eprintln!("{}", w.with_severity(stagelight::scene::Severity::Warning));
             }
             let entities = scene.world.len();
             outln!("{}: ok ({entities} entities)", path.display());
@@ -1386,6 +1397,7 @@ fn sweep(args: SweepArgs) -> ExitCode {
         reference_integrator: stagelight::settings::Integrator::Path,
         denoise: args.denoise,
         crop: args.crop,
+        budget: budget(args.memory_limit),
     };
     let summary = match run_sweep(&opts, systems::run, |step| eprintln!("sweep: {step}")) {
         Ok(s) => s,
@@ -1420,20 +1432,7 @@ fn sweep(args: SweepArgs) -> ExitCode {
         return ExitCode::from(EXIT_ERROR);
     }
     out!("{}", summary.to_csv());
-    let fmt = |s: Option<f64>| {
-        s.map_or(
-            "not reached (plateau, or no descent within 100× the longest run)".to_string(),
-            |s| format!("{s:.3} s"),
-        )
-    };
-    outln!(
-        "{}: slope {}; bias plateau: {}; relMSE 1e-2 after {}; 1e-3 after {}",
-        summary.region(),
-        summary.slope.map_or("n/a".into(), |s| format!("{s:.2}")),
-        if summary.bias_plateau { "yes" } else { "no" },
-        fmt(summary.seconds_to_rel_mse_1e2),
-        fmt(summary.seconds_to_rel_mse_1e3)
-    );
+    outln!("{}", summary.conclusion());
     for f in &files {
         eprintln!("wrote {}", f.path.display());
     }

@@ -22,7 +22,8 @@ use rayon::prelude::*;
 
 use super::prelude::*;
 use super::MERGING;
-use crate::budget::estimate::max_triangles;
+use crate::budget::estimate::{approximation_at, max_triangles, BYTES_PER_TRIANGLE};
+use crate::budget::human;
 use crate::components::{
     Approximation, DerivativeRequest, Displacement, DisplacementMode, GeneratedFrom, Instance,
     LengthSpace, Name, Procedural, SubdivMesh, Surface, Technique, TriMesh, WorldFromObject,
@@ -32,6 +33,38 @@ use crate::tessellation::{
     tessellate_mesh, tessellate_subdiv, tessellate_surface, GeometryError, Options, RasterView,
     Tessellation,
 };
+
+/// Why an object cannot be tessellated. Rates past the memory budget are a located error at
+/// the object's approximation (what to change), in the words of the load-time estimates.
+fn refusal(world: &World, frame: &Frame, job: &Job, err: GeometryError) -> StageError {
+    let GeometryError::TooManyTriangles { triangles, limit } = err else {
+        return StageError::Geometry {
+            object: job.name.clone(),
+            message: err.to_string(),
+        };
+    };
+    let Some(at) = approximation_at(world, job.entity) else {
+        return StageError::Geometry {
+            object: job.name.clone(),
+            message: err.to_string(),
+        };
+    };
+    StageError::Scene(vec![crate::scene::Diagnostic {
+        file: at.file,
+        line: at.line,
+        column: at.column,
+        message: format!(
+            "object \"{}\": its approximation would make {triangles} triangles, about {}, more than the {limit} the memory budget of {} allows one object",
+            job.name,
+            human(triangles.saturating_mul(BYTES_PER_TRIANGLE)),
+            frame.inputs.budget
+        ),
+        help: Some(
+            "coarsen the approximation (a larger `edge` or `distance`, a smaller `max_subdiv`), or raise the budget with --memory-limit BYTES"
+                .into(),
+        ),
+    }])
+}
 
 /// What an object is tessellated from.
 enum Input {
@@ -223,10 +256,7 @@ pub fn run(world: &mut World, frame: &Frame) -> Result<Work, StageError> {
 
     let mut triangles = 0u64;
     for (job, result) in jobs.into_iter().zip(results) {
-        let t = result.map_err(|err| StageError::Geometry {
-            object: job.name.clone(),
-            message: err.to_string(),
-        })?;
+        let t = result.map_err(|err| refusal(world, frame, &job, err))?;
         triangles += t.mesh.triangles.len() as u64;
         let e = job.entity;
         let gone = |_| StageError::Internal(format!("entity {e:?} vanished"));

@@ -4,14 +4,15 @@
 //! | element | estimate |
 //! | --- | --- |
 //! | render camera | pixels × [`BYTES_PER_PIXEL`] (frame buffers, per-pixel sample state of both adaptive passes, encoded outputs) |
-//! | object | placed triangles × [`BYTES_PER_TRIANGLE`] (world copy, BVH build and nodes, shading data): loaded meshes by their triangles, grids by `2·nx·ny`, surfaces with a `Parametric`/`Regular` approximation by their rates before dicing, scatters by copies × prototype triangles (+ [`BYTES_PER_INSTANCE`] per copy) |
+//! | object | placed triangles × [`BYTES_PER_TRIANGLE`] (world copy, BVH build and nodes, shading data): loaded meshes by their triangles, grids by `2·nx·ny`, surfaces with a `Parametric`/`Regular` approximation by their rates before dicing (located at the `approximation`), scatters by copies × prototype triangles (+ [`BYTES_PER_INSTANCE`] per copy) |
 //! | photon map | emitted photons × [`BYTES_PER_PHOTON`] |
 //! | bake request | texels × (targets + 1) × [`BYTES_PER_TEXEL`] |
 //!
 //! Adaptive approximations (spatial, curvature) and subdivision meshes are not estimated at
 //! load: their rates depend on the diced surface. The tessellator checks the triangle count
-//! its rates give before it dices ([`max_triangles`]), so those fail at `tessellate` with the
-//! same message instead of allocating. The constants come from peak resident memory measured
+//! its rates give before it dices ([`max_triangles`]), so those fail at `tessellate`, located
+//! at the approximation, instead of allocating; `check` warns about an adaptive surface
+//! whose worst case exceeds that limit ([`super::worst_case`]). The constants come from peak resident memory measured
 //! on a 2 M-triangle and a 4 M-pixel scene (README, *Reliability*).
 
 use std::collections::HashMap;
@@ -20,12 +21,13 @@ use hecs::{Entity, World};
 
 use super::{human, Budget};
 use crate::components::{
-    Approximation, BakeRequest, BakeResolution, Camera, Instance, Name, Procedural, RenderCamera,
-    Scatter, SourceLink, SubdivMesh, Surface, Technique, TriMesh,
+    Approximation, ApproximationLink, BakeRequest, BakeResolution, Camera, Instance, Name,
+    Procedural, RenderCamera, Scatter, SourceLink, SubdivMesh, Surface, Technique, TriMesh,
 };
 use crate::scene::Diagnostic;
 use crate::settings::RenderSettings;
 use crate::tasks::Tasks;
+use crate::tessellation::rates::MAX_FIXED_RATE;
 use crate::tessellation::PatchSource;
 
 /// Peak bytes per pixel of the render camera (measured: 806 MB peak for a 2000×2000 EXR
@@ -93,36 +95,25 @@ fn named(world: &World, e: Entity) -> (String, Option<SourceLink>) {
     (name, world.get::<&SourceLink>(e).ok().map(|l| (*l).clone()))
 }
 
-/// Triangles an object's own geometry becomes, when that is known before the stages run.
-fn object_triangles(world: &World, object: Entity) -> Option<(u64, String)> {
-    if let Ok(mesh) = world.get::<&std::sync::Arc<TriMesh>>(object) {
-        return Some((mesh.triangles.len() as u64, "triangles".into()));
+/// Where an object's triangle count is decided by its approximation: the written
+/// `approximation` value ([`ApproximationLink`]), else the object.
+pub fn approximation_at(world: &World, object: Entity) -> Option<SourceLink> {
+    match world.get::<&ApproximationLink>(object) {
+        Ok(l) => Some(l.0.clone()),
+        Err(_) => world.get::<&SourceLink>(object).ok().map(|l| (*l).clone()),
     }
-    if let Ok(p) = world.get::<&Procedural>(object) {
-        if let Procedural::Grid(g) = *p {
-            let t = 2 * u64::from(g.nx) * u64::from(g.ny);
-            return Some((t, format!("triangles of a {}×{} grid", g.nx, g.ny)));
-        }
-    }
-    let approx = world
+}
+
+/// The approximation an object is diced with (its own, else the default).
+pub fn approximation_of(world: &World, object: Entity) -> Approximation {
+    world
         .get::<&Approximation>(object)
-        .map_or_else(|_| Approximation::default(), |a| *a);
-    let per_patch = |patches: u64| -> Option<(u64, String)> {
-        match approx.technique {
-            Technique::Parametric { u, v } => {
-                let (u, v) = (u64::from(u.clamp(1, 4096)), u64::from(v.clamp(1, 4096)));
-                Some((
-                    2 * patches * u * v,
-                    format!("triangles of {patches} patch(es) diced {u}×{v}"),
-                ))
-            }
-            Technique::Regular { u, v } => {
-                let (u, v) = (u64::from(u.clamp(1, 4096)), u64::from(v.clamp(1, 4096)));
-                Some((2 * u * v, format!("triangles of a surface diced {u}×{v}")))
-            }
-            _ => None,
-        }
-    };
+        .map_or_else(|_| Approximation::default(), |a| *a)
+}
+
+/// Patches of an object's parametric surface (patch meshes, NURBS, quadrics, and the
+/// generators that expand to a quadric), before any stage runs.
+pub fn surface_patches(world: &World, object: Entity) -> Option<u64> {
     if let Ok(s) = world.get::<&Surface>(object) {
         let patches = match &*s {
             Surface::Patches(m) => crate::tessellation::patch::PatchMeshSource::new(m)
@@ -135,17 +126,57 @@ fn object_triangles(world: &World, object: Entity) -> Option<(u64, String)> {
                 .ok()
                 .map(|p| p.patch_count()),
         }?;
-        return per_patch(patches as u64);
+        return Some(patches as u64);
+    }
+    let p = world.get::<&Procedural>(object).ok()?;
+    let Ok(crate::procedural::Expanded::Surface(Surface::Quadric(q))) =
+        crate::procedural::expand(&p)
+    else {
+        return None;
+    };
+    let patches = crate::tessellation::quadric::QuadricSource::new(&q)
+        .ok()?
+        .patch_count();
+    Some(patches as u64)
+}
+
+/// Triangles an object's own geometry becomes, when that is known before the stages run,
+/// and whether its approximation decides them.
+fn object_triangles(world: &World, object: Entity) -> Option<(u64, String, bool)> {
+    if let Ok(mesh) = world.get::<&std::sync::Arc<TriMesh>>(object) {
+        return Some((mesh.triangles.len() as u64, "triangles".into(), false));
     }
     if let Ok(p) = world.get::<&Procedural>(object) {
-        if let Ok(crate::procedural::Expanded::Surface(Surface::Quadric(q))) =
-            crate::procedural::expand(&p)
-        {
-            let patches = crate::tessellation::quadric::QuadricSource::new(&q)
-                .ok()?
-                .patch_count();
-            return per_patch(patches as u64);
+        if let Procedural::Grid(g) = *p {
+            let t = 2 * u64::from(g.nx) * u64::from(g.ny);
+            return Some((t, format!("triangles of a {}×{} grid", g.nx, g.ny), false));
         }
+    }
+    let approx = approximation_of(world, object);
+    let per_patch = |patches: u64| -> Option<(u64, String, bool)> {
+        let clamp = |r: u32| u64::from(r.clamp(1, MAX_FIXED_RATE));
+        match approx.technique {
+            Technique::Parametric { u, v } => {
+                let (u, v) = (clamp(u), clamp(v));
+                Some((
+                    2 * patches * u * v,
+                    format!("triangles of {patches} patch(es) diced {u}×{v}"),
+                    true,
+                ))
+            }
+            Technique::Regular { u, v } => {
+                let (u, v) = (clamp(u), clamp(v));
+                Some((
+                    2 * u * v,
+                    format!("triangles of a surface diced {u}×{v}"),
+                    true,
+                ))
+            }
+            _ => None,
+        }
+    };
+    if let Some(patches) = surface_patches(world, object) {
+        return per_patch(patches);
     }
     if let Ok(m) = world.get::<&SubdivMesh>(object) {
         // Every face becomes at least one patch per corner after the first refinement.
@@ -182,21 +213,27 @@ pub fn estimates(world: &World, settings: &RenderSettings, tasks: Tasks) -> Vec<
         let copies = instances[&object];
         let (name, at) = named(world, object);
         let scatter = world.get::<&Scatter>(object).ok().map(|s| *s);
-        let (bytes, what) = if let Some(s) = scatter {
-            let proto = object_triangles(world, s.prototype).map_or(0, |(t, _)| t);
+        let (bytes, what, at) = if let Some(s) = scatter {
+            let proto = object_triangles(world, s.prototype).map_or(0, |(t, ..)| t);
             let n = copies.saturating_mul(u64::from(s.count));
             (
                 n.saturating_mul(proto.saturating_mul(BYTES_PER_TRIANGLE) + BYTES_PER_INSTANCE),
                 format!("{n} scattered copies of {proto} triangles"),
+                at,
             )
         } else {
             match object_triangles(world, object) {
-                Some((t, what)) => (
+                Some((t, what, by_approximation)) => (
                     t.saturating_mul(copies).saturating_mul(BYTES_PER_TRIANGLE),
                     if copies > 1 {
                         format!("{copies} placed copies of {t} {what}")
                     } else {
                         format!("{t} {what}")
+                    },
+                    if by_approximation {
+                        approximation_at(world, object)
+                    } else {
+                        at
                     },
                 ),
                 None => continue,

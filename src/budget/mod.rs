@@ -10,6 +10,7 @@
 
 pub mod estimate;
 pub mod probe;
+pub mod worst_case;
 
 use std::fmt;
 
@@ -103,18 +104,24 @@ pub fn human(bytes: u64) -> String {
 }
 
 /// Parses `--memory-limit`: bytes, optionally with a binary suffix `K`, `M`, `G`, `T`
-/// (`KiB`… also accepted). The error is clap's message.
+/// (1G = 2³⁰ bytes), in any case; `KiB`… and `KB`, `MB`, `GB`, `TB` mean the same binary
+/// units (as Slurm's `--mem`, Docker's `--memory` and the JVM's `-Xmx` read them). The error
+/// is clap's message.
 pub fn parse_bytes(text: &str) -> Result<u64, String> {
     let t = text.trim();
     let digits = t.trim_end_matches(|c: char| c.is_ascii_alphabetic());
     let suffix = t[digits.len()..].to_ascii_lowercase();
     let shift = match suffix.as_str() {
         "" | "b" => 0,
-        "k" | "kib" => 10,
-        "m" | "mib" => 20,
-        "g" | "gib" => 30,
-        "t" | "tib" => 40,
-        _ => return Err(format!("unknown unit \"{suffix}\" (use K, M, G or T)")),
+        "k" | "kb" | "kib" => 10,
+        "m" | "mb" | "mib" => 20,
+        "g" | "gb" | "gib" => 30,
+        "t" | "tb" | "tib" => 40,
+        _ => {
+            return Err(format!(
+                "unknown unit \"{suffix}\" (use K, M, G or T, binary: 1G = 1073741824 bytes; KB, MB, GB, TB and KiB… mean the same)"
+            ))
+        }
     };
     let n: u64 = digits
         .trim()
@@ -136,6 +143,15 @@ mod tests {
         assert_eq!(parse_bytes("1000"), Ok(1000));
         assert_eq!(parse_bytes("64M"), Ok(64 << 20));
         assert_eq!(parse_bytes("2GiB"), Ok(2 << 30));
+        // Decimal-looking suffixes are the same binary units (as Slurm and Docker read them).
+        assert_eq!(parse_bytes("1GB"), Ok(1 << 30));
+        assert_eq!(parse_bytes("3mb"), Ok(3 << 20));
+        assert_eq!(parse_bytes("2KB"), parse_bytes("2K"));
+        assert_eq!(parse_bytes("1TB"), Ok(1 << 40));
+        assert_eq!(
+            parse_bytes("3Q"),
+            Err("unknown unit \"q\" (use K, M, G or T, binary: 1G = 1073741824 bytes; KB, MB, GB, TB and KiB… mean the same)".into())
+        );
         assert!(parse_bytes("0").is_err());
         assert!(parse_bytes("3Q").is_err());
         assert_eq!(human(512), "512 B");

@@ -78,3 +78,9 @@ impl Default for Approximation {
         }
     }
 }
+
+/// Where an object's `approximation` is written (on objects that write one), so that a
+/// refusal of the triangles it would make points at the value to change; objects without
+/// one are located at their own `SourceLink`.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct ApproximationLink(pub super::SourceLink);

@@ -46,7 +46,7 @@ mod displacement;
 mod procedural;
 mod surface;
 
-pub use approximation::{Approximation, LengthSpace, Technique};
+pub use approximation::{Approximation, ApproximationLink, LengthSpace, Technique};
 pub use displacement::{
     DerivativeRequest, Displacement, DisplacementMode, ImageMap, ScalarNode, SurfaceDerivatives,
     UvAxis,

@@ -68,7 +68,7 @@ use std::sync::Arc;
 
 use glam::{DAffine3, DVec3};
 
-pub use diagnostics::{Diagnostic, SceneErrors};
+pub use diagnostics::{Diagnostic, SceneErrors, Severity};
 pub use environment::read_exr as read_lat_long;
 
 use crate::settings::RenderSettings;

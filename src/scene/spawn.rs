@@ -6,7 +6,8 @@
 //! 2. objects used by at least one leaf, or by the scatter of a used object: `Name`,
 //!    `SourceLink`, and `Arc<TriMesh>` for loaded meshes or the generator component
 //!    (`Procedural`, `Surface`, `SubdivMesh`, `Scatter`) for generated ones, plus
-//!    `Approximation`, `Displacement` and `DerivativeRequest` when written;
+//!    `Approximation` (with its `ApproximationLink`), `Displacement` and
+//!    `DerivativeRequest` when written;
 //! 3. one entity per leaf of the instance DAG: `Name` (the DAG path), `SourceLink` (the
 //!    innermost instance), `Instance` (with an empty mesh for generated objects:
 //!    `procedural::pending_instance`), `WorldFromObject`, `MaterialRef`, `BakeRequest`
@@ -227,6 +228,10 @@ pub fn spawn(src: &Sources, m: &Merged<'_>, parts: Parts) -> World {
             }
         }
         geometry.add_to(&mut b);
+        if geometry.approximation.is_some() {
+            let at = src.pos(it.file, &it.at(".approximation"));
+            b.add(crate::components::ApproximationLink(SourceLink::from(at)));
+        }
         object_entity.insert(o, world.spawn(b.build()));
     }
     // Scatters name other objects: link them now that every object has its entity.

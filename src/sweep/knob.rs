@@ -64,6 +64,14 @@ pub enum KnobError {
     /// `--denoise` with a knob that does not bake.
     #[error("--denoise filters baked textures, but knob {0} renders images; sweep `--knob bake_samples=…` with it")]
     DenoiseNeedsBake(&'static str),
+    /// A value is given twice (each value is one row of the table).
+    #[error("knob {knob}: the value {value} is given twice; give each value once (every value is one row of the table)")]
+    Repeated {
+        /// Knob name as written.
+        knob: String,
+        /// The repeated value, as the table writes it.
+        value: String,
+    },
     /// The scene has nothing this knob changes.
     #[error("knob {knob} is not in this scene: {why}")]
     Absent {
@@ -107,7 +115,7 @@ impl Knob {
             return Err(KnobError::Syntax(text.to_string()));
         }
         let positive = "a whole number ≥ 1";
-        Ok(match name {
+        let knob = match name {
             "spp" | "samples" => Knob::Spp(parse_list(name, values, positive, |&v: &u32| v >= 1)?),
             "light_samples" => {
                 Knob::LightSamples(parse_list(name, values, positive, |&v: &u32| v >= 1)?)
@@ -172,7 +180,19 @@ impl Knob {
                 })?)
             }
             other => return Err(KnobError::Unknown(other.to_string())),
-        })
+        };
+        // Values are compared as the table writes them, so `0.5` and `0.50` are the same.
+        let mut seen = std::collections::HashSet::new();
+        if let Some(value) = (0..knob.len())
+            .map(|i| knob.label(i))
+            .find(|l| !seen.insert(l.clone()))
+        {
+            return Err(KnobError::Repeated {
+                knob: name.to_string(),
+                value,
+            });
+        }
+        Ok(knob)
     }
 
     /// The knob's name in tables.
@@ -225,6 +245,30 @@ impl Knob {
             Knob::GatherRadius(v) => v[i].to_string(),
             Knob::Passes(v) => v[i].to_string(),
             Knob::PhotonFilter(v) => filter_label(v[i]),
+        }
+    }
+
+    /// The value indices from the cheapest setting to the costliest, for the knobs whose
+    /// values order their cost: more samples, depth, photons, gather count or passes cost
+    /// more; a smaller tessellation factor or adaptive contrast costs more. `None` for the
+    /// knobs whose values imply no order of time (`bvh_quality`, `gather_radius` with its
+    /// automatic 0, `filter`).
+    pub fn cost_order(&self) -> Option<Vec<usize>> {
+        fn by<T: Copy>(v: &[T], key: impl Fn(T) -> f64) -> Vec<usize> {
+            let mut order: Vec<usize> = (0..v.len()).collect();
+            order.sort_by(|&a, &b| key(v[a]).total_cmp(&key(v[b])));
+            order
+        }
+        match self {
+            Knob::Spp(v)
+            | Knob::LightSamples(v)
+            | Knob::MaxDepth(v)
+            | Knob::BakeSamples(v)
+            | Knob::Photons(v)
+            | Knob::GatherCount(v)
+            | Knob::Passes(v) => Some(by(v, f64::from)),
+            Knob::Tessellation(v) | Knob::AdaptiveContrast(v) => Some(by(v, |x| -f64::from(x))),
+            Knob::BvhQuality(_) | Knob::GatherRadius(_) | Knob::PhotonFilter(_) => None,
         }
     }
 
@@ -354,14 +398,18 @@ fn photon_maps(settings: &mut RenderSettings, f: impl Fn(&mut PhotonMapSettings)
     }
 }
 
-/// Multiplies a technique's tolerance by `factor` (rates divided for the uniform ones).
+/// Multiplies a technique's tolerance by `factor` (rates divided for the uniform ones, within
+/// the tessellator's `1..=MAX_FIXED_RATE`). What the result costs is checked against the
+/// memory budget before the sweep runs (`budget_check`).
 fn scale_tolerance(t: &mut Technique, factor: f32) {
+    use crate::tessellation::rates::MAX_FIXED_RATE;
+    let scale = |r: u32| ((r as f32 / factor).round() as u32).clamp(1, MAX_FIXED_RATE);
     match t {
         Technique::Curvature { distance, .. } => *distance *= factor,
         Technique::Spatial { edge, .. } => *edge *= factor,
         Technique::Parametric { u, v } | Technique::Regular { u, v } => {
-            *u = ((*u as f32 / factor).round() as u32).max(1);
-            *v = ((*v as f32 / factor).round() as u32).max(1);
+            *u = scale(*u);
+            *v = scale(*v);
         }
     }
 }
@@ -394,6 +442,37 @@ mod tests {
             Err(KnobError::Value { .. })
         ));
         assert!(matches!(Knob::parse("spp"), Err(KnobError::Syntax(_))));
+    }
+
+    #[test]
+    fn a_repeated_value_is_refused_naming_it() {
+        assert_eq!(
+            Knob::parse("spp=1,4,1").unwrap_err().to_string(),
+            "knob spp: the value 1 is given twice; give each value once (every value is one row of the table)"
+        );
+        // Compared as the table writes them.
+        assert_eq!(
+            Knob::parse("tessellation=0.5,1,0.50").unwrap_err(),
+            KnobError::Repeated {
+                knob: "tessellation".into(),
+                value: "0.5".into()
+            }
+        );
+        assert!(matches!(
+            Knob::parse("filter=cone,cone:1.1"),
+            Err(KnobError::Repeated { .. })
+        ));
+        assert!(Knob::parse("spp=4,1,16").is_ok());
+    }
+
+    #[test]
+    fn cost_order_runs_from_the_cheapest_setting() {
+        let order = |k: &str| Knob::parse(k).unwrap().cost_order();
+        assert_eq!(order("spp=4,1,16"), Some(vec![1, 0, 2]));
+        assert_eq!(order("tessellation=1,4,0.5"), Some(vec![1, 0, 2]));
+        assert_eq!(order("adaptive_contrast=0.05,0.2"), Some(vec![1, 0]));
+        assert_eq!(order("filter=box,gauss"), None);
+        assert_eq!(order("bvh_quality=fast,high"), None);
     }
 
     #[test]

@@ -1,6 +1,11 @@
 //! The sweep table (one row per knob value) and its summary: log–log fit of relMSE against
-//! seconds, bias-plateau flag, and time to reach relMSE 1e-2 and 1e-3 — of the crop's error
-//! when the sweep has a crop, else of the whole image's.
+//! seconds, bias-plateau flag, and the measured time to reach relMSE 1e-2 and 1e-3 — of the
+//! crop's error when the sweep has a crop, else of the whole image's.
+//!
+//! The summary draws no conclusion the rows cannot carry: no fit from fewer than
+//! [`MIN_FIT_POINTS`] points or from times that do not rise with the knob's cost (runs too
+//! short to time), no plateau verdict from such times, and no time to reach an error that
+//! no row reached (the smallest measured error is given instead; nothing is extrapolated).
 
 use serde::Serialize;
 
@@ -32,10 +37,9 @@ impl SweepRow {
     }
 }
 
-/// Farthest an unreached error target is extrapolated along the fit: this many times the
-/// longest run. Beyond it (a nearly flat fit, e.g. of a knob that trades blur for noise)
-/// the target counts as not reached.
-pub const MAX_EXTRAPOLATION: f64 = 100.0;
+/// Fewest points (rows with a positive time and error) a slope is fitted to: a line through
+/// two noisy points is exact and says nothing about the trend.
+pub const MIN_FIT_POINTS: usize = 3;
 
 /// Fit and conclusions over all rows.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -46,60 +50,115 @@ pub struct SweepSummary {
     pub scene: String,
     /// The crop whose error is fitted (`None`: the whole image).
     pub crop: Option<Crop>,
-    /// Slope of log10(relMSE) against log10(seconds) (−1 for unbiased Monte Carlo).
+    /// Slope of log10(relMSE) against log10(seconds) (−1 for unbiased Monte Carlo); `None`
+    /// when the rows cannot carry a fit (`no_fit` says why).
     pub slope: Option<f64>,
     /// Intercept of that fit.
     pub intercept: Option<f64>,
-    /// True when the error stops falling although time grows (bias dominates).
-    pub bias_plateau: bool,
-    /// Seconds to reach relMSE 1e-2 (measured if a row reached it, else extrapolated along
-    /// the fit up to [`MAX_EXTRAPOLATION`] × the longest run; `None` when the fit does not
-    /// fall that fast).
+    /// Why there is no fit: too few points, or times that do not rise with the knob's cost.
+    pub no_fit: Option<String>,
+    /// True when the error stops falling although time grows (bias dominates); `None` when
+    /// the times cannot tell (they do not rise with the knob's cost, or there is one row of
+    /// one seed).
+    pub bias_plateau: Option<bool>,
+    /// Seconds of the quickest row whose relMSE is at most 1e-2 (`None`: no row reached it;
+    /// never extrapolated).
     pub seconds_to_rel_mse_1e2: Option<f64>,
     /// Same for relMSE 1e-3.
     pub seconds_to_rel_mse_1e3: Option<f64>,
+    /// The smallest relMSE any row measured (what an unreached target is compared with).
+    pub smallest_rel_mse: Option<f64>,
     /// The rows.
     pub rows: Vec<SweepRow>,
 }
 
 impl SweepSummary {
     /// Fits the rows (their [`SweepRow::fitted`] error; `crop` says which region that is)
-    /// and draws the conclusions.
-    pub fn new(knob: &str, scene: &str, crop: Option<Crop>, rows: Vec<SweepRow>) -> Self {
+    /// and draws the conclusions. `cost_order` lists the row indices from the cheapest
+    /// setting to the costliest when the knob implies one ([`crate::sweep::Knob::cost_order`]):
+    /// the rows' times must rise along it for a fit or a plateau verdict.
+    pub fn new(
+        knob: &str,
+        scene: &str,
+        crop: Option<Crop>,
+        rows: Vec<SweepRow>,
+        cost_order: Option<&[usize]>,
+    ) -> Self {
+        let disorder = cost_order.and_then(|order| timing_disorder(knob, &rows, order));
         let points: Vec<(f64, f64)> = rows
             .iter()
             .filter(|r| r.seconds > 0.0 && r.fitted().rel_mse > 0.0)
             .map(|r| (r.seconds.log10(), r.fitted().rel_mse.log10()))
             .collect();
-        let fit = fit_line(&points);
-        let bias_plateau = plateau(&rows);
+        let (fit, no_fit) = match (points.len(), &disorder) {
+            (n, _) if n < MIN_FIT_POINTS => (
+                None,
+                Some(format!(
+                    "{n} {} with a measured time and error; a fit needs {MIN_FIT_POINTS} or more",
+                    if n == 1 { "value" } else { "values" }
+                )),
+            ),
+            (_, Some(why)) => (None, Some(why.clone())),
+            (_, None) => match fit_line(&points) {
+                Some(f) => (Some(f), None),
+                None => (None, Some("every value took the same time".to_string())),
+            },
+        };
+        let bias_plateau = if disorder.is_some() {
+            None
+        } else {
+            plateau(&rows)
+        };
         let reach = |target: f64| -> Option<f64> {
-            let measured = rows
-                .iter()
+            rows.iter()
                 .filter(|r| r.fitted().rel_mse <= target)
                 .map(|r| r.seconds)
-                .fold(None, |best: Option<f64>, s| {
-                    Some(best.map_or(s, |b| b.min(s)))
-                });
-            measured.or_else(|| {
-                let (a, b) = fit?;
-                let longest = rows.iter().map(|r| r.seconds).fold(0.0, f64::max);
-                let t = 10f64.powf((target.log10() - a) / b);
-                (b < 0.0 && !bias_plateau && t.is_finite() && t <= MAX_EXTRAPOLATION * longest)
-                    .then_some(t)
-            })
+                .min_by(f64::total_cmp)
         };
+        let smallest_rel_mse = rows
+            .iter()
+            .map(|r| r.fitted().rel_mse)
+            .filter(|e| e.is_finite())
+            .min_by(f64::total_cmp);
         Self {
             knob: knob.to_string(),
             scene: scene.to_string(),
             crop,
             slope: fit.map(|f| f.1),
             intercept: fit.map(|f| f.0),
+            no_fit,
             bias_plateau,
             seconds_to_rel_mse_1e2: reach(1e-2),
             seconds_to_rel_mse_1e3: reach(1e-3),
+            smallest_rel_mse,
             rows,
         }
+    }
+
+    /// The line `sweep` prints under the table: the region, the slope (or why there is
+    /// none), the plateau verdict and the measured times to relMSE 1e-2 and 1e-3.
+    pub fn conclusion(&self) -> String {
+        let fit = match (self.slope, &self.no_fit) {
+            (Some(s), _) => format!("slope {s:.2}"),
+            (None, Some(why)) => format!("no fit ({why})"),
+            (None, None) => "no fit".to_string(),
+        };
+        let plateau = match self.bias_plateau {
+            Some(true) => "yes",
+            Some(false) => "no",
+            None => "n/a",
+        };
+        let reached = |s: Option<f64>| match (s, self.smallest_rel_mse) {
+            (Some(s), _) => format!("after {s:.3} s"),
+            (None, Some(e)) => format!("not reached (the smallest measured relMSE is {e:.2e})"),
+            (None, None) => "not reached".to_string(),
+        };
+        format!(
+            "{}: {fit}; bias plateau: {plateau}; relMSE 1e-2 {}; 1e-3 {}",
+            self.region(),
+            reached(self.seconds_to_rel_mse_1e2),
+            reached(self.seconds_to_rel_mse_1e3)
+        )
     }
 
     /// The region the fit is of, for titles: `crop X0,Y0,X1,Y1` or `whole image`.
@@ -171,23 +230,36 @@ pub fn fit_line(points: &[(f64, f64)]) -> Option<(f64, f64)> {
     Some((my - b * mx, b))
 }
 
+/// The first pair of settings, in the knob's cost order, whose costlier one took no longer:
+/// the times are noise (runs too short to time), so neither a fit nor a plateau verdict.
+fn timing_disorder(knob: &str, rows: &[SweepRow], order: &[usize]) -> Option<String> {
+    order.windows(2).find_map(|w| {
+        let (cheap, costly) = (rows.get(w[0])?, rows.get(w[1])?);
+        (costly.seconds <= cheap.seconds).then(|| {
+            format!(
+                "the times do not rise with the knob's cost: {knob} = {} took {:.3} s, {knob} = {} {:.3} s; runs this short are timed by noise, sweep costlier values",
+                costly.value, costly.seconds, cheap.value, cheap.seconds
+            )
+        })
+    })
+}
+
 /// A bias plateau: the costliest row took at least 1.5× the time of the one before it but its
 /// relMSE fell by less than 10 %, or (with several seeds) bias² exceeds the variance there.
-fn plateau(rows: &[SweepRow]) -> bool {
+/// `None` from one row of one seed.
+fn plateau(rows: &[SweepRow]) -> Option<bool> {
     let mut sorted: Vec<&SweepRow> = rows.iter().collect();
     sorted.sort_by(|a, b| a.seconds.total_cmp(&b.seconds));
-    let Some(last) = sorted.last() else {
-        return false;
-    };
+    let last = sorted.last()?;
     let e = last.fitted();
     if last.seeds > 1 && e.bias2 > e.variance && e.bias2 > 0.0 {
-        return true;
+        return Some(true);
     }
     if sorted.len() < 2 {
-        return false;
+        return (last.seeds > 1).then_some(false);
     }
     let prev = sorted[sorted.len() - 2];
-    last.seconds >= 1.5 * prev.seconds && e.rel_mse > 0.9 * prev.fitted().rel_mse
+    Some(last.seconds >= 1.5 * prev.seconds && e.rel_mse > 0.9 * prev.fitted().rel_mse)
 }
 
 #[cfg(test)]
@@ -208,38 +280,77 @@ mod tests {
         }
     }
 
+    /// Rows of an increasing knob: index order is cost order.
+    const RISING: Option<&[usize]> = Some(&[0, 1, 2]);
+
     #[test]
     fn monte_carlo_convergence_fits_slope_minus_one() {
         let rows = vec![row(1.0, 1e-1), row(4.0, 2.5e-2), row(16.0, 6.25e-3)];
-        let s = SweepSummary::new("spp", "x.ron", None, rows);
+        let s = SweepSummary::new("spp", "x.ron", None, rows, RISING);
         assert!((s.slope.unwrap() + 1.0).abs() < 1e-9);
-        assert!(!s.bias_plateau);
-        // relMSE 1e-2 is reached (measured) at 16 s; 1e-3 extrapolates to 100 s.
+        assert_eq!((s.bias_plateau, s.no_fit.as_deref()), (Some(false), None));
+        // relMSE 1e-2 is reached (measured) at 16 s; 1e-3 by no row: not extrapolated.
         assert_eq!(s.seconds_to_rel_mse_1e2, Some(16.0));
-        assert!((s.seconds_to_rel_mse_1e3.unwrap() - 100.0).abs() < 1e-6);
+        assert_eq!(s.seconds_to_rel_mse_1e3, None);
+        assert_eq!(
+            s.conclusion(),
+            "whole image: slope -1.00; bias plateau: no; relMSE 1e-2 after 16.000 s; 1e-3 not reached (the smallest measured relMSE is 6.25e-3)"
+        );
         assert!(s.to_csv().starts_with("spp,shade_seconds,total_seconds,"));
     }
 
     #[test]
-    fn a_nearly_flat_fit_is_not_extrapolated_to_absurd_times() {
-        // A knob that barely moves the error (slope ≈ −0.05, e.g. a photon filter): 1e-2 lies
-        // ~27× past the longest run along the fit and is quoted; 1e-3 would take ~1e21 s,
-        // so the summary says "not reached" instead of a number of that size.
-        let rows = vec![row(1.0, 1.2e-2), row(1.2, 1.19e-2), row(1.4, 1.18e-2)];
-        let s = SweepSummary::new("filter", "x.ron", None, rows);
-        assert!(!s.bias_plateau);
-        let slope = s.slope.unwrap();
-        assert!(slope < 0.0 && slope > -0.1, "{slope}");
-        let t = s.seconds_to_rel_mse_1e2.unwrap();
-        assert!(t > 1.4 && t < MAX_EXTRAPOLATION * 1.4, "{t}");
+    fn a_target_below_every_measured_error_is_not_reached() {
+        // A steep fit (slope ≈ −6) would put 1e-3 inside the measured times; no row reached it.
+        let rows = vec![row(1.0, 2e-2), row(1.1, 1e-2), row(1.2, 4.6e-3)];
+        let s = SweepSummary::new("spp", "x.ron", None, rows, RISING);
+        assert!(s.slope.unwrap() < -5.0);
+        assert_eq!(s.seconds_to_rel_mse_1e2, Some(1.1));
         assert_eq!(s.seconds_to_rel_mse_1e3, None);
+        assert_eq!(s.smallest_rel_mse, Some(4.6e-3));
+    }
+
+    #[test]
+    fn times_that_do_not_rise_with_the_knob_give_no_fit_and_no_plateau_verdict() {
+        // `--knob spp=4,1,16`: the 4-spp run was timed quicker than the 1-spp run.
+        let mut rows = vec![row(0.010, 4.6e-3), row(0.012, 5.0e-3), row(0.04, 4.5e-3)];
+        for (r, v) in rows.iter_mut().zip(["4", "1", "16"]) {
+            r.value = v.into();
+        }
+        let s = SweepSummary::new("spp", "x.ron", None, rows, Some(&[1, 0, 2]));
+        assert_eq!((s.slope, s.bias_plateau), (None, None));
+        assert_eq!(
+            s.conclusion(),
+            "whole image: no fit (the times do not rise with the knob's cost: spp = 4 took 0.010 s, spp = 1 0.012 s; runs this short are timed by noise, sweep costlier values); bias plateau: n/a; relMSE 1e-2 after 0.010 s; 1e-3 not reached (the smallest measured relMSE is 4.50e-3)"
+        );
+        // A knob without a cost order is fitted whatever its times.
+        let rows = vec![row(1.4, 1e-2), row(1.0, 2e-2), row(1.2, 1.5e-2)];
+        let s = SweepSummary::new("filter", "x.ron", None, rows, None);
+        assert!(s.slope.is_some() && s.no_fit.is_none());
+    }
+
+    #[test]
+    fn two_points_are_not_fitted() {
+        let rows = vec![row(1.0, 1e-1), row(4.0, 2.5e-2)];
+        let s = SweepSummary::new("spp", "x.ron", None, rows, Some(&[0, 1]));
+        assert_eq!(s.slope, None);
+        assert_eq!(
+            s.no_fit.as_deref(),
+            Some("2 values with a measured time and error; a fit needs 3 or more")
+        );
+        assert_eq!(s.bias_plateau, Some(false));
+        let s = SweepSummary::new("spp", "x.ron", None, vec![row(1.0, 1e-1)], Some(&[0]));
+        assert_eq!(s.bias_plateau, None);
+        assert!(s.conclusion().starts_with(
+            "whole image: no fit (1 value with a measured time and error; a fit needs 3 or more); bias plateau: n/a;"
+        ));
     }
 
     #[test]
     fn flat_error_is_a_plateau() {
         let rows = vec![row(1.0, 1e-1), row(4.0, 5e-2), row(16.0, 4.9e-2)];
-        let s = SweepSummary::new("spp", "x.ron", None, rows);
-        assert!(s.bias_plateau);
+        let s = SweepSummary::new("spp", "x.ron", None, rows, RISING);
+        assert_eq!(s.bias_plateau, Some(true));
         assert_eq!(s.seconds_to_rel_mse_1e3, None);
     }
 
@@ -257,9 +368,9 @@ mod tests {
             })
             .collect();
         let crop = crate::sweep::crop::Crop::parse("1,2,3,4").ok();
-        let s = SweepSummary::new("photons", "x.ron", crop, rows.clone());
+        let s = SweepSummary::new("photons", "x.ron", crop, rows.clone(), RISING);
         assert!((s.slope.unwrap() + 1.0).abs() < 1e-9);
-        assert!(!s.bias_plateau);
+        assert_eq!(s.bias_plateau, Some(false));
         assert_eq!(s.seconds_to_rel_mse_1e2, Some(16.0));
         assert_eq!(s.region(), "crop 1,2,3,4");
         let csv = s.to_csv();
@@ -272,12 +383,18 @@ mod tests {
             .next()
             .unwrap()
             .ends_with(",1,1.000000e-1,0.000000e0,0.000000e0"));
-        let whole = SweepSummary::new("photons", "x.ron", None, {
-            let mut r = rows;
-            r.iter_mut().for_each(|r| r.crop_error = None);
-            r
-        });
-        assert!(whole.bias_plateau);
+        let whole = SweepSummary::new(
+            "photons",
+            "x.ron",
+            None,
+            {
+                let mut r = rows;
+                r.iter_mut().for_each(|r| r.crop_error = None);
+                r
+            },
+            RISING,
+        );
+        assert_eq!(whole.bias_plateau, Some(true));
         assert_eq!(whole.region(), "whole image");
     }
 }

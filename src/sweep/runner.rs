@@ -6,12 +6,13 @@ use std::path::{Path, PathBuf};
 use glam::Vec3;
 use hecs::World;
 
+use crate::budget::Budget;
 use crate::frame::{Frame, Tasks};
 use crate::hash::Fnv64;
-use crate::scene::SceneErrors;
-use crate::scene::{load_scene, LoadedScene};
+use crate::scene::{load_scene, Diagnostic, LoadedScene, SceneErrors};
 use crate::schedule::StageError;
 use crate::settings::{Integrator, RenderSettings};
+use crate::sweep::budget_check::{self, Runs};
 use crate::sweep::crop::Crop;
 use crate::sweep::knob::{Knob, KnobError};
 use crate::sweep::metrics::compare;
@@ -45,6 +46,8 @@ pub struct SweepOptions {
     /// A pixel rectangle (e.g. a caustic) whose error is fitted and plotted; the whole
     /// image's is still tabulated.
     pub crop: Option<Crop>,
+    /// The memory budget of every run (checked for every setting before the first run).
+    pub budget: Budget,
 }
 
 /// Why a sweep failed.
@@ -56,6 +59,14 @@ pub enum SweepError {
     /// The knob cannot be swept here.
     #[error("error: {0}")]
     Knob(#[from] KnobError),
+    /// A setting of the sweep would not fit the memory budget (found before any run).
+    #[error("{}", budget_text(scene, refusals))]
+    Budget {
+        /// The scene file.
+        scene: PathBuf,
+        /// Every refusal, located.
+        refusals: Vec<Diagnostic>,
+    },
     /// A run failed.
     #[error("{0}")]
     Stage(#[from] StageError),
@@ -70,6 +81,18 @@ pub enum SweepError {
         /// What went wrong.
         message: String,
     },
+}
+
+/// The refusals, then `N error(s) in SCENE; nothing swept`.
+fn budget_text(scene: &Path, refusals: &[Diagnostic]) -> String {
+    let mut text: String = refusals.iter().map(|d| format!("{d}\n")).collect();
+    let n = refusals.len();
+    text.push_str(&format!(
+        "{n} error{} in {}; nothing swept",
+        if n == 1 { "" } else { "s" },
+        scene.display()
+    ));
+    text
 }
 
 fn io(path: &Path, message: impl std::fmt::Display) -> SweepError {
@@ -102,13 +125,12 @@ fn run_once(
     // Every run traces its own photons: a kept photon map file would hide their cost.
     settings.photon_map = None;
     let mut frame = Frame::new(settings);
+    // The tessellator refuses adaptive rates that would not fit (known only once diced).
+    frame.inputs.budget = opts.budget.clone();
     let scratch = opts.out.join("scratch").join(tag);
     frame.inputs.bake_dir = scratch.clone();
     crate::bake::files::confine_to_bake_dir(&mut scene.world);
-    frame.inputs.tasks = Tasks {
-        render: !opts.knob.is_bake(),
-        bake: opts.knob.is_bake(),
-    };
+    frame.inputs.tasks = tasks(opts);
     // Nothing is written into the user's directories: the image is compared in memory.
     frame.inputs.outputs.discard = true;
     pipeline(&mut scene.world, &mut frame)?;
@@ -143,6 +165,76 @@ fn run_once(
             .map(|s| (s.stage.to_string(), s.seconds))
             .collect(),
         seconds: frame.report.total_seconds,
+    })
+}
+
+/// What every run of the sweep does: render, or bake for a bake knob.
+fn tasks(opts: &SweepOptions) -> Tasks {
+    Tasks {
+        render: !opts.knob.is_bake(),
+        bake: opts.knob.is_bake(),
+    }
+}
+
+/// How the reference run configures the scene: the scene's own knob setting except the
+/// sample count, which it raises, and the reference's integrator.
+fn configure_reference(opts: &SweepOptions) -> impl Fn(&mut World, &mut RenderSettings) + '_ {
+    move |world, settings| {
+        match opts.knob {
+            Knob::BakeSamples(_) => {
+                Knob::BakeSamples(vec![opts.reference_samples]).apply(0, world, settings)
+            }
+            _ => {
+                settings.spp = opts.reference_samples;
+                settings.adaptive = None;
+            }
+        }
+        settings.integrator = opts.reference_integrator;
+    }
+}
+
+/// How the run of knob value `i` configures the scene.
+fn configure_value(opts: &SweepOptions, i: usize) -> impl Fn(&mut World, &mut RenderSettings) + '_ {
+    move |world, settings| {
+        if let Some(integrator) = opts.integrator {
+            settings.integrator = integrator;
+        }
+        opts.knob.apply(i, world, settings);
+        if opts.denoise {
+            denoise_bakes(world);
+        }
+    }
+}
+
+/// Refuses, before the first run, a sweep whose reference (when rendered) or any knob value
+/// would not fit the memory budget.
+fn check_budget(opts: &SweepOptions, reference_runs: bool) -> Result<(), SweepError> {
+    let reference = configure_reference(opts);
+    let values: Vec<_> = (0..opts.knob.len())
+        .map(|i| configure_value(opts, i))
+        .collect();
+    let runs = Runs {
+        scene: &opts.scene,
+        tasks: tasks(opts),
+        budget: &opts.budget,
+        reference: &reference,
+        reference_runs,
+        values: values
+            .iter()
+            .enumerate()
+            .map(|(i, c)| {
+                let c: budget_check::Configure<'_> = c;
+                (format!("{}={}", opts.knob.name(), opts.knob.label(i)), c)
+            })
+            .collect(),
+    };
+    let refusals = budget_check::refusals(&runs)?;
+    if refusals.is_empty() {
+        return Ok(());
+    }
+    Err(SweepError::Budget {
+        scene: opts.scene.clone(),
+        refusals,
     })
 }
 
@@ -244,6 +336,7 @@ pub fn run_sweep(
         check_crop_fits_camera(opts, &scene.world)?;
         reference_cache(opts, &scene)
     };
+    check_budget(opts, opts.reference.is_none() && !cached.exists())?;
     // The output directory is made only once the reference is read (or rendered): a bad
     // `--reference` leaves nothing behind.
     let (reference, ref_width, ref_height) = match &opts.reference {
@@ -254,26 +347,10 @@ pub fn run_sweep(
         }
         None => {
             progress(&format!("reference: {} samples", opts.reference_samples));
-            let samples = opts.reference_samples;
-            let knob = opts.knob.clone();
-            let integrator = opts.reference_integrator;
             let r = run_once(
                 opts,
                 pipeline,
-                move |world, settings| {
-                    // The reference keeps the scene's own knob setting except the sample
-                    // count, which it raises.
-                    match knob {
-                        Knob::BakeSamples(_) => {
-                            Knob::BakeSamples(vec![samples]).apply(0, world, settings)
-                        }
-                        _ => {
-                            settings.spp = samples;
-                            settings.adaptive = None;
-                        }
-                    }
-                    settings.integrator = integrator;
-                },
+                configure_reference(opts),
                 0x05ee_d0ef,
                 "reference",
             )?;
@@ -318,15 +395,7 @@ pub fn run_sweep(
             let r = run_once(
                 opts,
                 pipeline,
-                |w, s| {
-                    if let Some(integrator) = opts.integrator {
-                        s.integrator = integrator;
-                    }
-                    opts.knob.apply(i, w, s);
-                    if opts.denoise {
-                        denoise_bakes(w);
-                    }
-                },
+                configure_value(opts, i),
                 seed as u64,
                 &format!("{i}_{seed}"),
             )?;
@@ -377,5 +446,6 @@ pub fn run_sweep(
         &opts.scene.display().to_string(),
         opts.crop,
         rows,
+        opts.knob.cost_order().as_deref(),
     ))
 }

@@ -4,24 +4,9 @@
 //! space): had anything of the estimated size been allocated, the process would abort
 //! instead of printing the refusal.
 
-use std::process::Command;
-
-use crate::common::{quad_object, run_in, scratch_dir, small_scene, stderr_of};
+use crate::common::{quad_object, run_in, run_limited, scratch_dir, small_scene, stderr_of};
 
 const HELP_TAIL: &str = ", or raise the budget with --memory-limit BYTES";
-
-/// Runs `stagelight args…` in `dir` under a 4 GiB address-space limit.
-fn run_limited(dir: &std::path::Path, args: &[&str]) -> std::process::Output {
-    let bin = env!("CARGO_BIN_EXE_stagelight");
-    Command::new("sh")
-        .arg("-c")
-        .arg(format!("ulimit -v 4194304 && exec \"{bin}\" \"$@\""))
-        .arg("sh")
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .expect("run stagelight")
-}
 
 #[test]
 fn a_100000_squared_frame_is_refused_before_allocating() {
@@ -63,7 +48,7 @@ fn grids_surfaces_scatters_photons_and_bakes_are_estimated_from_their_parameters
     let budget = "more than the memory budget of 1.0 GiB (--memory-limit)";
     let expected = [
         format!("scene.ron:5:9: error: object \"floor\": 536870912 triangles of a 16384×16384 grid need about 192.0 GiB, {budget}\n  help: use fewer or coarser triangles{HELP_TAIL}"),
-        format!("scene.ron:6:9: error: object \"ball\": 268435456 triangles of 8 patch(es) diced 4096×4096 need about 96.0 GiB, {budget}\n  help: use fewer or coarser triangles{HELP_TAIL}"),
+        format!("scene.ron:6:64: error: object \"ball\": 268435456 triangles of 8 patch(es) diced 4096×4096 need about 96.0 GiB, {budget}\n  help: use fewer or coarser triangles{HELP_TAIL}"),
         format!("scene.ron:9:9: error: object \"pebbles\": 10000000 scattered copies of 256 triangles need about 920.3 GiB, {budget}\n  help: use fewer or coarser triangles{HELP_TAIL}"),
         format!("scene.ron:17:25: error: options.caustics: the 4000000000 photons of the photon map need about 953.7 GiB, {budget}\n  help: emit fewer photons{HELP_TAIL}"),
         format!("scene.ron:12:12: error: bake request on instance \"g\": 2 texture(s) of 16384×16384 texels need about 64.0 GiB, {budget}\n  help: lower the bake resolution{HELP_TAIL}"),
@@ -78,8 +63,11 @@ fn grids_surfaces_scatters_photons_and_bakes_are_estimated_from_their_parameters
     );
 }
 
+/// An adaptive approximation's triangles are known only once diced: `check` warns, at the
+/// approximation, that its worst case (every patch edge at 2^max_subdiv segments) exceeds
+/// the budget, and `render` refuses it at `tessellate`, located at the same value.
 #[test]
-fn a_tiny_spatial_edge_fails_at_tessellate_before_dicing() {
+fn a_tiny_spatial_edge_warns_at_check_and_fails_at_tessellate_before_dicing() {
     let dir = scratch_dir("budget-spatial");
     let scene = small_scene(
         r#"(name: "ball", mesh: Sphere(radius: 1), approximation: Spatial(edge: 0.000001, max_subdiv: 12)),"#,
@@ -91,8 +79,21 @@ fn a_tiny_spatial_edge_fails_at_tessellate_before_dicing() {
     let o = run_in(&dir, &["check", "scene.ron", "--memory-limit", "1G"]);
     assert!(
         o.status.success(),
-        "adaptive rates are only known at tessellate"
+        "a worst case is a warning: {}",
+        stderr_of(&o)
     );
+    assert_eq!(
+        stderr_of(&o),
+        "scene.ron:5:64: warning: object \"ball\": its adaptive approximation may make up to 268435456 triangles (8 patch(es) × 4096² at max_subdiv 12, about 96.0 GiB), more than the 2796202 the memory budget of 1.0 GiB (--memory-limit) allows one object; render refuses it if dicing makes more\n  help: adaptive rates usually stay far below this bound; to be sure it fits, set `max_subdiv: 8` (at most 1048576 triangles), or raise the budget with --memory-limit BYTES\n"
+    );
+    assert_eq!(
+        String::from_utf8_lossy(&o.stdout),
+        "scene.ron: ok (5 entities)\n"
+    );
+    // Within the budget's bound, no warning.
+    let o = run_in(&dir, &["check", "scene.ron", "--memory-limit", "100G"]);
+    assert!(o.status.success());
+    assert_eq!(stderr_of(&o), "");
     let o = run_limited(
         &dir,
         &[
@@ -107,9 +108,74 @@ fn a_tiny_spatial_edge_fails_at_tessellate_before_dicing() {
     assert_eq!(o.status.code(), Some(1), "{}", stderr_of(&o));
     assert_eq!(
         stderr_of(&o),
-        "error: object \"ball\": its approximation would make 268435456 triangles, more than the 2796202 the memory budget allows (coarsen the approximation, or raise --memory-limit)\n"
+        "scene.ron:5:64: error: object \"ball\": its approximation would make 268435456 triangles, about 96.0 GiB, more than the 2796202 the memory budget of 1.0 GiB (--memory-limit) allows one object\n  help: coarsen the approximation (a larger `edge` or `distance`, a smaller `max_subdiv`), or raise the budget with --memory-limit BYTES\n"
     );
     assert!(!dir.join("out.png").exists());
+}
+
+/// A raster-space approximation around the camera (points behind it want the finest rate):
+/// the same warning at `check`, the same located refusal at `render`.
+#[test]
+fn a_raster_approximation_around_the_camera_is_warned_and_refused_where_it_is_written() {
+    let dir = scratch_dir("budget-raster");
+    let scene = small_scene(
+        r#"(name: "dome", mesh: Sphere(radius: 10),
+            approximation: Spatial(edge: 0.5, space: Raster, max_subdiv: 12)),"#,
+        r#"(name: "d", of: "dome")"#,
+        "",
+        "",
+    );
+    std::fs::write(dir.join("scene.ron"), scene).unwrap();
+    let o = run_in(&dir, &["check", "scene.ron", "--memory-limit", "4G"]);
+    assert!(o.status.success(), "{}", stderr_of(&o));
+    assert!(
+        stderr_of(&o).starts_with("scene.ron:6:28: warning: object \"dome\": its adaptive approximation may make up to 268435456 triangles"),
+        "{}",
+        stderr_of(&o)
+    );
+    let o = run_limited(
+        &dir,
+        &[
+            "render",
+            "scene.ron",
+            "-o",
+            "out.png",
+            "--memory-limit",
+            "4G",
+        ],
+    );
+    assert_eq!(o.status.code(), Some(1), "{}", stderr_of(&o));
+    assert!(
+        stderr_of(&o)
+            .starts_with("scene.ron:6:28: error: object \"dome\": its approximation would make "),
+        "{}",
+        stderr_of(&o)
+    );
+    assert!(!dir.join("out.png").exists());
+}
+
+/// `--memory-limit` reads `KB`, `MB`, `GB`, `TB` as the binary units `K`, `M`, `G`, `T`.
+#[test]
+fn a_memory_limit_in_gb_is_the_binary_unit() {
+    let dir = scratch_dir("budget-units");
+    let scene = small_scene(&quad_object("quad"), r#"(name: "q", of: "quad")"#, "", "");
+    std::fs::write(dir.join("scene.ron"), scene).unwrap();
+    let o = run_in(&dir, &["check", "scene.ron", "--memory-limit", "1KB"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(
+        stderr_of(&o).contains("more than the memory budget of 1.0 KiB (--memory-limit)"),
+        "{}",
+        stderr_of(&o)
+    );
+    let o = run_in(&dir, &["check", "scene.ron", "--memory-limit", "1GB"]);
+    assert!(o.status.success(), "{}", stderr_of(&o));
+    let o = run_in(&dir, &["check", "scene.ron", "--memory-limit", "1Q"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr_of(&o).contains("unknown unit \"q\" (use K, M, G or T, binary: 1G = 1073741824 bytes; KB, MB, GB, TB and KiB… mean the same)"),
+        "{}",
+        stderr_of(&o)
+    );
 }
 
 #[test]

@@ -102,6 +102,7 @@ mod shadow_packets;
 mod skipped_stages;
 mod stages;
 mod sweep;
+mod sweep_budget;
 mod sweep_photons;
 mod textures;
 mod vertex_bake;

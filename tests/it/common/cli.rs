@@ -27,6 +27,21 @@ pub fn run_in(dir: &Path, args: &[&str]) -> Output {
         .expect("run stagelight")
 }
 
+/// Runs `stagelight args…` in `dir` under a 4 GiB address-space limit (`ulimit -v`): had
+/// anything of a refused estimate's size been allocated, the process would abort instead of
+/// printing the refusal.
+pub fn run_limited(dir: &Path, args: &[&str]) -> Output {
+    let bin = env!("CARGO_BIN_EXE_stagelight");
+    Command::new("sh")
+        .arg("-c")
+        .arg(format!("ulimit -v 4194304 && exec \"{bin}\" \"$@\""))
+        .arg("sh")
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .expect("run stagelight")
+}
+
 /// The process's stderr as text.
 pub fn stderr_of(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
