@@ -12,6 +12,7 @@ use hecs::Entity;
 use super::environment::MaterialEnvironment;
 use super::graph::MaterialGraph;
 use super::local_model::LocalModel;
+use super::photon_shader::PhotonShader;
 
 /// Surface shaders: the mental ray illumination models, the RenderMan standard surfaces and
 /// the physically based building blocks (mirror, glass, `dgs`, opacity).
@@ -269,6 +270,10 @@ pub struct Material {
     /// spawned at this material see when they leave the scene or exceed a trace depth,
     /// instead of the scene's environment. `None`: the scene's.
     pub environment: Option<Arc<MaterialEnvironment>>,
+    /// Photon shader (mental ray's material `photon`; AIR's caustic attributes): what
+    /// photons do here instead of what the surface shader implies. `None`: follow the
+    /// surface shader.
+    pub photon: Option<PhotonShader>,
 }
 
 impl Default for Material {
@@ -287,6 +292,7 @@ impl Default for Material {
             lights: None,
             shadow: None,
             environment: None,
+            photon: None,
         }
     }
 }

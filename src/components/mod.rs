@@ -59,5 +59,8 @@ pub use surface::{CubicBasis, NurbsSurface, PatchKind, PatchMesh, Quadric, Subdi
 mod photon_flags;
 pub use photon_flags::{LightPhotons, PhotonFlags, PhotonRole};
 
+mod photon_shader;
+pub use photon_shader::PhotonShader;
+
 mod ray_flags;
 pub use ray_flags::{RayFlags, ALL_RAYS, CAMERA_RAYS, SECONDARY_RAYS, SHADOW_RAYS};

@@ -44,6 +44,21 @@ impl PhotonRadiance for PhotonMaps {
         }
         radiance
     }
+
+    fn caustic_irradiance(&self, v: &Vertex<'_>) -> Vec3 {
+        let Some(c) = &self.caustics else {
+            return Vec3::ZERO;
+        };
+        let mut scratch = Vec::new();
+        let n = v.frame.n;
+        c.density(v.sp.surface.p, v.ng, &mut scratch, |ph| {
+            if ph.incoming.dot(n) > 0.0 {
+                Vec3::ONE
+            } else {
+                Vec3::ZERO
+            }
+        })
+    }
 }
 
 /// Density estimate of the light `map` reflects at `v` through `bsdf`.

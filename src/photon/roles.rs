@@ -5,7 +5,8 @@
 //! **Defaults** (an instance without an explicit flag, see `docs/scene-format.md`):
 //! - caustic map: a surface whose material can scatter specularly (mirror, glass,
 //!   transparency, a mirror term) casts; every surface receives (a photon is stored only
-//!   where the material has a non-specular lobe);
+//!   where the material has a non-specular lobe); a material's photon shader decides both
+//!   instead (casts where it reflects or refracts, receives where it stores);
 //! - global map: every surface casts and receives.
 //!
 //! A photon reaching a surface that does not cast for its map is absorbed there; one
@@ -40,8 +41,12 @@ pub fn makes_caustics(shader: &Shader) -> bool {
     }
 }
 
-/// The caustic role of a material without an explicit flag.
+/// The caustic role of a material without an explicit flag: with a photon shader, casts
+/// where it reflects or refracts photons and receives where it stores them.
 pub fn default_caustic_role(material: &Material) -> PhotonRole {
+    if let Some(p) = &material.photon {
+        return PhotonRole(u8::from(p.scatters()) | (u8::from(p.stores()) << 1));
+    }
     if scatters_specularly(&material.shader) {
         PhotonRole::BOTH
     } else {
@@ -94,10 +99,13 @@ impl PhotonRoles {
                 let inst = &geometry.instances[slot];
                 self.caustic[slot].casts()
                     && (self.explicit_caustic[slot]
-                        || inst
-                            .material_slots()
-                            .into_iter()
-                            .any(|m| makes_caustics(&geometry.materials[m as usize].shader)))
+                        || inst.material_slots().into_iter().any(|m| {
+                            let material = &geometry.materials[m as usize];
+                            match &material.photon {
+                                Some(p) => p.scatters(),
+                                None => makes_caustics(&material.shader),
+                            }
+                        }))
             })
             .collect()
     }

@@ -13,7 +13,7 @@ use crate::accel::{Hit, Ray};
 use crate::components::PhotonRole;
 use crate::geometry::ShadingPoint;
 use crate::sampling::Sampler;
-use crate::shading::bsdf::{Scatter, TransportMode};
+use crate::shading::bsdf::{Bsdf, Scatter, TransportMode};
 use crate::shading::integrator::ShadeContext;
 use crate::shading::photon_vertex::PhotonVertex;
 use crate::shading::shadow::shader_transmits_shadows;
@@ -192,8 +192,19 @@ impl Walk {
         }
         let power = through;
         let mut scratch = None;
-        let bsdf = v.bsdf_ref(ctx, &mut scratch);
-        if !(bsdf.reflects() && v.visible) {
+        let photon_bsdf;
+        // A material's photon shader replaces what its surface shader implies for photons.
+        let (bsdf, stores) = match &ctx.geometry.materials[v.sp.material as usize].photon {
+            Some(p) => {
+                photon_bsdf = Bsdf::for_photons(p, v.front);
+                (&photon_bsdf, p.stores())
+            }
+            None => {
+                let b = v.bsdf_ref(ctx, &mut scratch);
+                (b, b.has_non_delta())
+            }
+        };
+        if !((bsdf.reflects() || stores) && v.visible) {
             fate.absorbed += power;
             return;
         }
@@ -202,7 +213,7 @@ impl Walk {
             .get(v.sp.instance as usize)
             .copied()
             .unwrap_or(PhotonRole::BOTH);
-        if bsdf.has_non_delta() && role.receives() {
+        if stores && role.receives() {
             deposit(Deposit {
                 photon: Photon {
                     position: v.sp.surface.p,
@@ -218,7 +229,7 @@ impl Walk {
         if stop_after_diffuse && !self.keep_fate && !bsdf.has_delta() {
             return;
         }
-        if !role.casts() {
+        if !(role.casts() && bsdf.reflects()) {
             fate.absorbed += power;
             return;
         }

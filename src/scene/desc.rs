@@ -16,7 +16,7 @@ pub use super::desc_geometry::{
     ApproximationDesc, AxisDesc, BasisDesc, DisplacementDesc, DisplacementModeDesc, MeshDesc,
     ScalarDesc, SpaceDesc,
 };
-pub use super::desc_material_shaders::ShadowDesc;
+pub use super::desc_material_shaders::{PhotonShaderDesc, ShadowDesc};
 pub use super::desc_photon_depth::PhotonDepthDesc;
 pub use super::desc_values::{M4, V3};
 pub use super::nodes_desc::{BumpDesc, InputDesc, NodeDesc, PhenomenonDesc};
@@ -619,6 +619,10 @@ pub struct MaterialDesc {
     /// default none (the scene's environment).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub environment: Option<MaterialEnvironmentDesc>,
+    /// Photon shader: what photons do at this material, default none (as the surface shader
+    /// implies).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub photon: Option<PhotonShaderDesc>,
 }
 
 /// Surface shader.

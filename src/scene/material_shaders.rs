@@ -1,15 +1,15 @@
-//! A material's `shadow:` and `environment:` shaders (mental ray's material shadow and
-//! environment shaders): checked and turned into `Material::shadow` and
-//! `Material::environment`.
+//! A material's `shadow:`, `environment:` and `photon:` shaders (mental ray's material
+//! shadow, environment and photon shaders): checked and turned into `Material::shadow`,
+//! `Material::environment` and `Material::photon`.
 
 use std::sync::Arc;
 
 use glam::Vec3;
 
 use super::checker::Checker;
-use super::desc::{DepthExceededDesc, MaterialEnvironmentDesc, ShadowDesc};
+use super::desc::{DepthExceededDesc, MaterialEnvironmentDesc, PhotonShaderDesc, ShadowDesc};
 use super::environment::source;
-use crate::components::{DepthExceeded, MaterialEnvironment};
+use crate::components::{DepthExceeded, MaterialEnvironment, PhotonShader};
 
 /// The shadow transmittance of `shadow:` at `at` (`Ok(None)` when absent); `Err` after
 /// recording an error.
@@ -55,4 +55,61 @@ pub fn environment(
             DepthExceededDesc::Black => DepthExceeded::Black,
         },
     })))
+}
+
+/// The photon shader of `photon:` at `at` (`Ok(None)` when absent); `Err` after recording
+/// an error.
+pub fn photon(
+    ck: &mut Checker<'_>,
+    at: &str,
+    d: Option<&PhotonShaderDesc>,
+) -> Result<Option<PhotonShader>, ()> {
+    let Some(PhotonShaderDesc::Caustic {
+        specular,
+        refraction,
+        ior,
+    }) = d
+    else {
+        return Ok(None);
+    };
+    let mut fraction = |field: &str, what: &str, v| {
+        let path = format!("{at}.Caustic.{field}");
+        let c = ck.colour(&path, what, v)?;
+        let mut ok = true;
+        for (k, x) in c.to_array().into_iter().enumerate() {
+            if x > 1.0 {
+                ck.src.error(
+                    ck.file,
+                    &format!("{path}[{k}]"),
+                    format!("{what} must be at most 1, found {x}"),
+                    Some("it is the fraction of each photon's power that goes on".into()),
+                );
+                ok = false;
+            }
+        }
+        ok.then(|| c.as_vec3())
+    };
+    let specular = fraction("specular", "photon specular colour", *specular);
+    let refraction = fraction("refraction", "photon refraction colour", *refraction);
+    let ior_path = format!("{at}.Caustic.ior");
+    let ior = ck
+        .finite(&ior_path, "photon refraction index", *ior)
+        .then_some(*ior);
+    let ior = ior.filter(|&x| {
+        if x <= 0.0 {
+            ck.error(
+                &ior_path,
+                format!("photon refraction index must be above 0, found {x}"),
+            );
+        }
+        x > 0.0
+    });
+    match (specular, refraction, ior) {
+        (Some(specular), Some(refraction), Some(ior)) => Ok(Some(PhotonShader {
+            specular,
+            refraction,
+            ior: ior as f32,
+        })),
+        _ => Err(()),
+    }
 }

@@ -425,6 +425,7 @@ fn material(m: &MtlMaterial, name: &str, dir: &Path) -> MaterialDesc {
         lights: None,
         shadow: None,
         environment: None,
+        photon: None,
     }
 }
 

@@ -713,12 +713,14 @@ pub fn material(src: &mut Sources, item: &Item<'_, MaterialDesc>) -> Option<Mate
         &item.at(".environment"),
         m.environment.as_ref(),
     );
+    let photon = super::material_shaders::photon(&mut ck, &item.at(".photon"), m.photon.as_ref());
     Some(Material {
         shader: shader?,
         two_sided: m.two_sided,
         emission: emission?.as_vec3(),
         shadow: shadow.ok()?,
         environment: environment.ok()?,
+        photon: photon.ok()?,
         ..Material::default()
     })
 }

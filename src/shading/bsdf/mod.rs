@@ -26,7 +26,7 @@ use glam::{Vec2, Vec3};
 use self::glossy::Fresnel;
 use self::specular::DeltaBranch;
 pub use self::specular::TransportMode;
-use crate::components::Shader;
+use crate::components::{PhotonShader, Shader};
 use crate::shading::microfacet::Distribution;
 
 /// Most lobes a material has (`dgs` inside `Opacity`: diffuse, glossy, mirror, pass-through).
@@ -183,6 +183,21 @@ impl Bsdf {
     #[inline]
     pub fn reflects(&self) -> bool {
         self.len > 0
+    }
+
+    /// What photons scatter by at a material with the photon shader `p`, seen from the front
+    /// (`front = true`) or back face: a mirror lobe weighted by `p.specular` and a smooth
+    /// dielectric of index `p.ior` weighted by `p.refraction` (energy clamp applied). It may
+    /// have no lobe (`p` absorbs every photon; [`Bsdf::reflects`] is then false).
+    pub fn for_photons(p: &PhotonShader, front: bool) -> Self {
+        let mut b = Self::empty();
+        b.push(p.specular, Lobe::Mirror);
+        let eta = if front { p.ior } else { 1.0 / p.ior };
+        b.push(p.refraction, Lobe::Dielectric { eta });
+        if !b.finish() {
+            b.len = 0;
+        }
+        b
     }
 
     /// A BSDF made of the given weighted lobes (energy clamp and probabilities applied).

@@ -6,6 +6,8 @@
 //! specular·Σ Cl·lobe`, `A` the scene's ambient light ([`crate::shading::LightSet::ambient`]),
 //! the sums over every light with its own sample count and shadow rays (RenderMan lights
 //! cast none unless asked). The mirror term is a BSDF lobe and traced by the integrator.
+//! A material with a photon shader (AIR's caustic attributes) also gets AIR's `caustic`
+//! light: the caustic map's irradiance `E` in the diffuse sum, `color·kd·E`.
 //! Both integrators call this at every vertex they shade; the path tracer continues only
 //! through the delta lobes (mirror, transparency), so a local model gathers no indirect
 //! light beyond its ambient term — as in the renderers it comes from.
@@ -37,6 +39,13 @@ pub fn radiance(ctx: &ShadeContext<'_>, v: &Vertex<'_>, sampler: &mut Sampler) -
 /// The terms of `m` at `v`.
 fn model(ctx: &ShadeContext<'_>, v: &Vertex<'_>, m: &LocalModel, sampler: &mut Sampler) -> Vec3 {
     let mut l = m.ambient_term(ctx.lights.ambient);
+    // AIR's `caustic` light: a material with a photon shader receives the caustic map's
+    // irradiance in its diffuse sum, `color · kd · E` (its `Cl` arrives along the normal).
+    if let (Some(_), Some(photons)) = (&v.material.photon, ctx.photons) {
+        if m.kd > 0.0 && m.color != Vec3::ZERO {
+            l += m.color * m.kd * photons.caustic_irradiance(v);
+        }
+    }
     if (m.kd > 0.0 && m.color != Vec3::ZERO) || m.specular != Vec3::ZERO {
         let wo = v.wo.normalize_or_zero();
         let f = |wi: Vec3, _: Vec3| m.per_light(wo, wi);

@@ -155,6 +155,13 @@ pub trait PhotonRadiance: Sync {
         bsdf: &Bsdf,
         sampler: &mut Sampler,
     ) -> Vec3;
+
+    /// Irradiance the caustic map gives at `v` from photons arriving on the front of its
+    /// shading normal, W/m² (what AIR's `caustic` light delivers to a `Local` model's diffuse
+    /// sum); zero without a caustic map.
+    fn caustic_irradiance(&self, _v: &Vertex<'_>) -> Vec3 {
+        Vec3::ZERO
+    }
 }
 
 /// Radiance arriving at the origin of the camera ray `ray` from its first hit `hit`.

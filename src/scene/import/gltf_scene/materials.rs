@@ -80,6 +80,7 @@ pub fn material_name(w: &mut Walk<'_>, index: Option<usize>) -> String {
             lights: None,
             shadow: None,
             environment: None,
+            photon: None,
         },
     };
     let name = desc.name.clone();
@@ -232,6 +233,7 @@ fn material(w: &mut Walk<'_>, m: &gltf::Material<'_>) -> MaterialDesc {
         lights: None,
         shadow: None,
         environment: None,
+        photon: None,
     }
 }
 

@@ -830,6 +830,7 @@ pub fn material(r: &mut Reader, c: &mut Cursor, open: Pos) {
             shadow,
             environment,
             contour,
+            photon: None,
         };
         r.raw.materials.push((
             name,

@@ -22,8 +22,8 @@ use super::state::{from_rib, rotate, Block, GraphicsState, ShaderCall};
 use super::RibScene;
 use crate::scene::desc::{
     ApproximationDesc, DisplacementDesc, FilterDesc, GroupDesc, InstanceDesc, LightDesc,
-    LightKindDesc, MaterialDesc, ObjectDesc, OptionsDesc, PassDesc, PhotonMapDesc, RenderDesc,
-    SceneDesc, TransformDesc, V3,
+    LightKindDesc, MaterialDesc, ObjectDesc, OptionsDesc, PassDesc, RenderDesc, SceneDesc,
+    TransformDesc, V3,
 };
 use crate::scene::suggest::suggestion;
 
@@ -69,6 +69,8 @@ pub(super) struct PendingInstance {
     /// The name it asks for (`None`: its object's name; one not `given`: its object's name
     /// numbered).
     pub requested: Option<Requested>,
+    /// Its caustic flag from AIR's caustic attributes (used when caustics are on).
+    pub caustic: u8,
     pub at: (usize, Pos),
 }
 
@@ -88,7 +90,7 @@ pub struct Builder {
     pub(super) decls: Declarations,
     pub(super) gs: GraphicsState,
     cam: CameraOptions,
-    problems: Vec<(usize, Problem)>,
+    pub(super) problems: Vec<(usize, Problem)>,
     pub(super) lights: Vec<PendingLight>,
     handles: HashMap<String, usize>,
     pub(super) objects: Vec<PendingObject>,
@@ -113,9 +115,12 @@ pub struct Builder {
     depth: usize,
     /// AIR's caustic light (`LightSource "caustic"`): the caustic photon map, where it was
     /// switched on, and the photon and gather counts from AIR's attributes.
-    caustics: Option<(usize, Pos)>,
-    photons: Option<(u32, Pos)>,
-    gather: Option<(u32, Pos)>,
+    pub(super) caustics: Option<(usize, Pos)>,
+    pub(super) photons: Option<(u32, Pos)>,
+    pub(super) gather: Option<(u32, Pos)>,
+    /// Every AIR caustic attribute read (file, position, class, name): warned about when no
+    /// `LightSource "caustic"` switches caustics on.
+    pub(super) caustic_attributes: Vec<(usize, Pos, String, String)>,
 }
 
 impl Builder {
@@ -147,6 +152,7 @@ impl Builder {
             caustics: None,
             photons: None,
             gather: None,
+            caustic_attributes: Vec::new(),
         };
         b.read_text(bytes);
         b.finish_blocks();
@@ -959,6 +965,9 @@ impl Builder {
         let (class, cpos) = a.string("name")?;
         let params = a.params_lenient(&self.decls, problems);
         for p in params {
+            if self.air_caustic_attribute(&class, &p, problems) {
+                continue;
+            }
             match (class.as_str(), p.name.as_str()) {
                 ("displacementbound", "sphere") if p.nums().len() == 1 => {
                     self.gs.attrs.displacement_bound = Some((p.num(), p.pos()));
@@ -973,12 +982,6 @@ impl Builder {
                 }
                 ("light", "shadows") if p.decl.ty == super::params::Ty::Str => {
                     self.gs.attrs.light_shadows = p.str() == "on";
-                }
-                ("light", "nphotons") if p.nums().len() == 1 && p.num() >= 1.0 => {
-                    self.photons = Some((p.num().min(f64::from(u32::MAX)) as u32, p.pos()));
-                }
-                ("caustic", "ngather") if p.nums().len() == 1 && p.num() >= 2.0 => {
-                    self.gather = Some((p.num().min(f64::from(u32::MAX)) as u32, p.pos()));
                 }
                 _ => problems.push(Problem::warning(
                     p.name_pos,
@@ -1082,19 +1085,7 @@ impl Builder {
         if let Some((_, p)) = self.cam.filter {
             paths.push(("options.filter".into(), wfile, p));
         }
-        if let (Some((f, p)), Some(o)) = (self.caustics, desc.options.as_mut()) {
-            let mut map = PhotonMapDesc::default();
-            paths.push(("options.caustics".into(), f, p));
-            if let Some((n, pos)) = self.photons {
-                map.photons = n;
-                paths.push(("options.caustics.photons".into(), f, pos));
-            }
-            if let Some((n, pos)) = self.gather {
-                map.gather = n;
-                paths.push(("options.caustics.gather".into(), f, pos));
-            }
-            o.caustics = Some(map);
-        }
+        self.caustic_map(&mut desc, &mut paths);
         for l in &self.lights {
             if !l.used_on && l.used_off {
                 self.problems.push((
@@ -1162,6 +1153,7 @@ impl Builder {
                 inverse_square: true,
             });
         }
+        let caustics_on = self.caustics.is_some();
         for (i, m) in self.materials.iter().enumerate() {
             paths.push((format!("materials[{i}]"), m.at.0, m.at.1));
             paths.push((format!("materials[{i}].shader"), m.at.0, m.at.1));
@@ -1169,6 +1161,10 @@ impl Builder {
                 paths.push((format!("materials[{i}]{p}"), m.at.0, *pos));
             }
             let mut material = m.desc.clone();
+            if !caustics_on {
+                // AIR's caustic attributes do nothing without its caustic light (warned).
+                material.photon = None;
+            }
             if !m.lights_off.is_empty() {
                 // `Illuminate handle 0`: lit by every light written but those.
                 let names = self
@@ -1243,6 +1239,11 @@ impl Builder {
             if let Some(m) = inst.material {
                 paths.push((format!("instances[{i}].material"), f, pos));
                 instance.material = Some(desc.materials[m].name.clone());
+            }
+            if caustics_on {
+                // AIR: only the caustic attributes make a primitive cast or receive.
+                paths.push((format!("instances[{i}].caustic"), f, pos));
+                instance.caustic = Some(inst.caustic);
             }
             desc.instances.push(instance);
             members.push(name);

@@ -27,6 +27,7 @@
 
 pub mod build;
 pub mod camera;
+mod caustics;
 pub mod geometry;
 pub mod lexer;
 pub mod names;

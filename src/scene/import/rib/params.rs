@@ -174,6 +174,8 @@ const PREDECLARED: &[(&str, &str)] = &[
     ("nphotons", "uniform integer"),
     ("ngather", "uniform integer"),
     ("maxpixeldist", "uniform float"),
+    ("refractioncolor", "uniform color"),
+    ("refractionindex", "uniform float"),
 ];
 
 impl Default for Declarations {

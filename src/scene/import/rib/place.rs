@@ -83,6 +83,7 @@ impl Builder {
             world_from_object,
             material: None,
             requested: None,
+            caustic: attrs.caustic.flag(),
             at: (self.file, r.pos),
         });
     }
@@ -128,6 +129,7 @@ impl Builder {
                     base: attrs.name.clone().unwrap_or_default(),
                     given: attrs.name.is_some(),
                 }),
+                caustic: attrs.caustic.flag(),
                 at: (self.file, r.pos),
             });
         }
@@ -184,6 +186,9 @@ impl Builder {
             let col = find("lightcolor").map_or((1.0, 1.0, 1.0), Param::triple);
             (col.0 * i, col.1 * i, col.2 * i)
         });
+        let (photon, ppaths) = self.photon_shader();
+        spaths.extend(ppaths);
+        let attrs = &self.gs.attrs;
         let at_pos = attrs.surface.as_ref().map_or(at, |s| s.pos);
         let at_file = attrs.surface.as_ref().map_or(self.file, |s| s.file);
         let desc = MaterialDesc {
@@ -198,18 +203,20 @@ impl Builder {
             lights: None,
             shadow: None,
             environment: None,
+            photon,
         };
         let mut lights_off = attrs.lights_off.clone();
         lights_off.sort_unstable();
         lights_off.dedup();
         let key = format!(
-            "{:?}|{:?}|{}|{:?}|{}|{:?}",
+            "{:?}|{:?}|{}|{:?}|{}|{:?}|{:?}",
             desc.shader,
             desc.bind,
             desc.two_sided,
             desc.emission,
             at_pos.line * 100_000 + at_pos.column,
-            lights_off
+            lights_off,
+            desc.photon
         );
         let material = match self.material_keys.get(&key) {
             Some(&m) => m,

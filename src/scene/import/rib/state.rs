@@ -86,6 +86,36 @@ pub struct Attributes {
     /// How many lights were declared when these attributes were current: the lights
     /// declared later inside a block are off once it ends (the light list is an attribute).
     pub lights_known: usize,
+    /// AIR's caustic attributes of the primitives that follow.
+    pub caustic: CausticAttributes,
+}
+
+/// AIR's `Attribute "caustic" …` of a primitive, each with where it was written.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct CausticAttributes {
+    /// `"color specularcolor"`: the reflected fraction of a photon's power.
+    pub specular: Option<(V3, Pos)>,
+    /// `"color refractioncolor"`: the refracted fraction.
+    pub refraction: Option<(V3, Pos)>,
+    /// `"float refractionindex"`.
+    pub ior: Option<(f64, Pos)>,
+    /// `"integer ngather"`: the primitive receives caustics.
+    pub ngather: Option<Pos>,
+}
+
+impl CausticAttributes {
+    /// Whether any photon attribute (the colours, the index) is written.
+    pub fn shapes_photons(&self) -> bool {
+        self.specular.is_some() || self.refraction.is_some() || self.ior.is_some()
+    }
+
+    /// The primitive's caustic flag (mental ray's `caustic`: 1 casts, 2 receives): it casts
+    /// where a colour is not black, receives where `ngather` is written.
+    pub fn flag(&self) -> u8 {
+        let lit = |c: Option<(V3, Pos)>| c.is_some_and(|((r, g, b), _)| r.max(g).max(b) > 0.0);
+        u8::from(lit(self.specular) || lit(self.refraction))
+            | (u8::from(self.ngather.is_some()) << 1)
+    }
 }
 
 impl Default for Attributes {
@@ -107,6 +137,7 @@ impl Default for Attributes {
             light_shadows: false,
             lights_off: Vec::new(),
             lights_known: 0,
+            caustic: CausticAttributes::default(),
         }
     }
 }
