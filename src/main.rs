@@ -945,9 +945,7 @@ fn merge(args: MergeArgs) -> ExitCode {
     };
     let mut settings = scene.settings.clone();
     // Contours and the geometry stages run again in the merge: with the parts' `--disable`.
-    if let Some(recorded) = header.recorded {
-        recorded.apply(&mut settings);
-    }
+    header.recorded.apply(&mut settings);
     let mut frame = Frame::new(settings);
     frame.inputs.outputs = overrides;
     frame.inputs.merged_image = Some(image);
@@ -1050,17 +1048,10 @@ fn merge_bake(args: MergeArgs) -> ExitCode {
     };
     let mut settings = scene.settings.clone();
     settings.seed = header.seed;
-    if let Some(recorded) = header.recorded {
-        recorded.apply(&mut settings);
-    }
+    header.recorded.apply(&mut settings);
     if stagelight::farm::settings_hash(&settings) != header.settings_hash {
-        let why = if header.recorded.is_some() {
-            "(written by another stagelight version?)"
-        } else {
-            "(an --integrator override, which parts of this older format do not record?)"
-        };
         eprintln!(
-            "error: the parts were baked with other settings than {} gives {why}\n  help: bake the parts again with this stagelight\nnothing written",
+            "error: the parts were baked with other settings than {} gives (written by another stagelight version?)\n  help: bake the parts again with this stagelight\nnothing written",
             scene_path.display()
         );
         return ExitCode::from(EXIT_ERROR);
