@@ -95,13 +95,8 @@ struct RenderArgs {
     /// Random seed (overrides the scene's `options.seed`).
     #[arg(long)]
     seed: Option<u64>,
-    /// Radiance integrator (overrides the scene's `options.integrator`).
-    #[arg(long, value_enum)]
-    integrator: Option<IntegratorArg>,
-    /// Switch kinds of shaders off for this run, added to the scene's `options.disable`:
-    /// a comma-separated list of lens, volume, geometry, displacement, output.
-    #[arg(long, value_name = "FEATURES", value_parser = stagelight::features::Features::parse_list)]
-    disable: Option<stagelight::features::Features>,
+    #[command(flatten)]
+    stages: StageFlags,
     /// Replace the beauty pass by a diagnostic view: `samples` (samples per pixel),
     /// `grid:object|world|camera:SIZE` (grid lines), `photon:density|irradiance:MAX`,
     /// `bvh:depth|size[:MAX]` (what each pixel's ray cost the BVH).
@@ -128,10 +123,35 @@ struct RenderArgs {
     /// the physical memory, `ulimit -v` and the cgroup limit.
     #[arg(long = "memory-limit", value_name = "BYTES", value_parser = stagelight::budget::parse_bytes)]
     memory_limit: Option<u64>,
+}
+
+/// The `render` flags that decide which stages run, shared with `plan` so that it plans
+/// the same run.
+#[derive(Args)]
+struct StageFlags {
+    /// Radiance integrator (overrides the scene's `options.integrator`).
+    #[arg(long, value_enum)]
+    integrator: Option<IntegratorArg>,
+    /// Switch kinds of shaders off for this run, added to the scene's `options.disable`:
+    /// a comma-separated list of lens, volume, geometry, displacement, output.
+    #[arg(long, value_name = "FEATURES", value_parser = stagelight::features::Features::parse_list)]
+    disable: Option<stagelight::features::Features>,
     /// Load the photon maps from `DIR/<hash>.pmap` when that file exists, else trace them
     /// and keep them there (overrides the scene's `photon_map` file).
     #[arg(long = "photon-cache", value_name = "DIR")]
     photon_cache: Option<PathBuf>,
+}
+
+impl StageFlags {
+    /// Applies `--integrator` and `--disable` to `settings`.
+    fn apply(&self, settings: &mut stagelight::settings::RenderSettings) {
+        if let Some(integrator) = self.integrator {
+            settings.integrator = integrator.integrator();
+        }
+        if let Some(off) = self.disable {
+            settings.disabled = settings.disabled.union(off);
+        }
+    }
 }
 
 #[derive(Args)]
@@ -281,9 +301,8 @@ struct PlanArgs {
     /// Plan `stagelight bake` (bake only).
     #[arg(long = "bake-only")]
     bake_only: bool,
-    /// Radiance integrator (overrides the scene's `options.integrator`).
-    #[arg(long, value_enum)]
-    integrator: Option<IntegratorArg>,
+    #[command(flatten)]
+    stages: StageFlags,
     /// Print the plan as JSON on stdout.
     #[arg(long)]
     json: bool,
@@ -567,10 +586,9 @@ fn plan(args: PlanArgs) -> ExitCode {
         Err(code) => return code,
     };
     let mut settings = scene.settings.clone();
-    if let Some(integrator) = args.integrator {
-        settings.integrator = integrator.integrator();
-    }
+    args.stages.apply(&mut settings);
     let mut frame = Frame::new(settings);
+    frame.inputs.photon_cache = args.stages.photon_cache.clone();
     frame.inputs.tasks = Tasks {
         render: !args.bake_only,
         bake: args.bake || args.bake_only,
@@ -750,7 +768,7 @@ fn prepare(
 
 fn render(args: RenderArgs) -> ExitCode {
     use stagelight::guard::dir_flags::{usable_dir, usable_file};
-    let cache = args.photon_cache.as_deref();
+    let cache = args.stages.photon_cache.as_deref();
     let out = args.output.as_deref();
     if let Err(code) = usable_paths(&[
         cache.map_or(Ok(()), |d| usable_dir("--photon-cache", d)),
@@ -758,11 +776,10 @@ fn render(args: RenderArgs) -> ExitCode {
     ]) {
         return code;
     }
-    let (mut scene, mut settings) =
-        match prepare(&args.scene, args.threads, args.seed, args.integrator) {
-            Ok(p) => p,
-            Err(code) => return code,
-        };
+    let (mut scene, mut settings) = match prepare(&args.scene, args.threads, args.seed, None) {
+        Ok(p) => p,
+        Err(code) => return code,
+    };
     if let Some(name) = &args.camera {
         if args.part.is_some() {
             eprintln!("error: --camera cannot be combined with --part\n  help: the merge job renders the scene's render camera; set `render: (camera: …)` in the scene instead");
@@ -778,15 +795,13 @@ fn render(args: RenderArgs) -> ExitCode {
         settings.spp = spp;
         settings.adaptive = None;
     }
-    if let Some(off) = args.disable {
-        settings.disabled = settings.disabled.union(off);
-    }
+    args.stages.apply(&mut settings);
     if args.diagnostic.is_some() {
         settings.diagnostic = args.diagnostic;
     }
     if let Some(message) = stagelight::diagnostic_needs::missing(&settings) {
         eprintln!("error: {message}");
-        let flagged = args.diagnostic.is_some() || args.integrator.is_some();
+        let flagged = args.diagnostic.is_some() || args.stages.integrator.is_some();
         return ExitCode::from(if flagged { EXIT_USAGE } else { EXIT_ERROR });
     }
     if let Some(number) = args.part {
@@ -821,7 +836,7 @@ fn render(args: RenderArgs) -> ExitCode {
     frame.inputs.budget = budget(args.memory_limit);
     frame.inputs.outputs = overrides;
     frame.inputs.part = part;
-    frame.inputs.photon_cache = args.photon_cache.clone();
+    frame.inputs.photon_cache = args.stages.photon_cache.clone();
     frame.inputs.tasks = Tasks {
         render: true,
         bake: args.bake,
@@ -957,9 +972,7 @@ fn merge(args: MergeArgs) -> ExitCode {
     };
     let mut settings = scene.settings.clone();
     // Contours and the geometry stages run again in the merge: with the parts' `--disable`.
-    if let Some(recorded) = header.recorded {
-        recorded.apply(&mut settings);
-    }
+    header.recorded.apply(&mut settings);
     let mut frame = Frame::new(settings);
     frame.inputs.outputs = overrides;
     frame.inputs.merged_image = Some(image);
@@ -1062,17 +1075,10 @@ fn merge_bake(args: MergeArgs) -> ExitCode {
     };
     let mut settings = scene.settings.clone();
     settings.seed = header.seed;
-    if let Some(recorded) = header.recorded {
-        recorded.apply(&mut settings);
-    }
+    header.recorded.apply(&mut settings);
     if stagelight::farm::settings_hash(&settings) != header.settings_hash {
-        let why = if header.recorded.is_some() {
-            "(written by another stagelight version?)"
-        } else {
-            "(an --integrator override, which parts of this older format do not record?)"
-        };
         eprintln!(
-            "error: the parts were baked with other settings than {} gives {why}\n  help: bake the parts again with this stagelight\nnothing written",
+            "error: the parts were baked with other settings than {} gives (written by another stagelight version?)\n  help: bake the parts again with this stagelight\nnothing written",
             scene_path.display()
         );
         return ExitCode::from(EXIT_ERROR);

@@ -88,6 +88,44 @@ pub fn image_is_read(world: &World, inputs: &crate::frame::RunInputs) -> bool {
         || render_outputs(world, &inputs.outputs).map_or(true, |outputs| !outputs.is_empty())
 }
 
+/// Whether this run draws contour lines on the render camera's image (an image being
+/// shaded aside): `Ok` with the number of materials with a contour shader when one exists,
+/// output shaders are on, the run is not a farm part and an output shows contours (an SVG
+/// or EPS, or a `Contours` pass, after `-o`); else `Err` with the reason. `draw_contours`
+/// runs by it, `shade` keeps the contour store by it, and a merge rebuilds the geometry
+/// (for the bisection rays) only for it.
+pub fn contours_drawn(world: &World, inputs: &crate::frame::RunInputs) -> Result<usize, String> {
+    use crate::components::{ContourShader, ImageFormat, Pass};
+    let n = crate::schedule::count_with::<ContourShader>(world);
+    if n == 0 {
+        return Err("no material in use has a contour shader".into());
+    }
+    if inputs.settings.disabled.contains(Feature::Output) {
+        return Err(format!(
+            "output shaders disabled ({n} material(s) with a contour shader)"
+        ));
+    }
+    if let Some(run) = &inputs.part {
+        return Err(format!(
+            "{}: contours are drawn when the parts are merged",
+            run.part
+        ));
+    }
+    let shown = render_outputs(world, &inputs.outputs)
+        .unwrap_or_default()
+        .iter()
+        .any(|o| {
+            matches!(o.format, ImageFormat::Svg | ImageFormat::Eps)
+                || o.passes.contains(&Pass::Contours)
+        });
+    if !shown {
+        return Err(format!(
+            "no output shows contours ({n} material(s) with a contour shader)"
+        ));
+    }
+    Ok(n)
+}
+
 /// Whether the scene has a render camera (cheap; for run conditions).
 pub fn has_render_camera(world: &World) -> bool {
     crate::schedule::any_with::<RenderCamera>(world)

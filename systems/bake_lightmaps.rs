@@ -251,9 +251,7 @@ fn part_file(
             scene: run.scene.clone(),
             scene_hash: run.scene_hash,
             settings_hash: crate::farm::settings_hash(settings),
-            recorded: Some(crate::farm::recorded_settings::RecordedSettings::of(
-                settings,
-            )),
+            recorded: crate::farm::recorded_settings::RecordedSettings::of(settings),
             seed: settings.seed,
             part: run.part,
             width: 0,

@@ -13,7 +13,8 @@
 //! `crate::guard::cancellable`).
 //! **Writes:** `outputs.geometry` (returned to the runner).
 //! **Runs when:** at least one instance has triangles and something consumes rays (a render
-//! camera in a run that renders, or bake requests in a run that bakes).
+//! camera in a run that renders, or bake requests in a run that bakes); in a merge, only when
+//! it draws contours (`super::merge_skip`).
 //! **After this stage:** `outputs.geometry` holds world triangles in instance order (each
 //! instance contiguous; a mirrored instance's with two corners swapped, so that they keep
 //! their object-space front, and so are those of an unmirrored instance of an object whose
@@ -26,7 +27,6 @@ use glam::Vec3;
 use hecs::{Entity, World};
 
 use super::prelude::*;
-use super::MERGING;
 use crate::accel::Accel;
 use crate::components::{
     BakeRequest, Displacement, DisplacementMode, FaceMaterials, Instance, Material, MaterialRef,
@@ -41,8 +41,8 @@ use crate::schedule::any_with;
 
 /// Run condition: instances with triangles, and a render camera to trace for.
 pub fn should_run(world: &World, frame: &Frame) -> Decision {
-    if super::merged_without_contours(world, frame) {
-        return Decision::skip(MERGING);
+    if let Some(why) = super::merge_skip(world, frame) {
+        return Decision::skip(why);
     }
     let mut instances = 0usize;
     let mut triangles = 0usize;

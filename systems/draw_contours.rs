@@ -9,17 +9,18 @@
 //! the scene's `ContourContrast` (defaults without one).
 //! **Writes:** `outputs.contours` (the lines — points, colour and width per point — and the
 //! layer), returned to the runner.
-//! **Runs when:** a shaded image exists, some material has a contour shader, an output of
-//! the run shows contours (an SVG or EPS, or a `Contours` pass), and the run is
-//! not a farm part (parts carry no contours: `stagelight merge` draws them from the merged
-//! image, with the geometry stages run again for the bisection rays).
+//! **Runs when:** a shaded image exists, some material has a contour shader, output shaders
+//! are on, an output of the run shows contours (an SVG or EPS, or a `Contours` pass), and the
+//! run is not a farm part (parts carry no contours: `stagelight merge` draws them from the
+//! merged image, with the geometry stages run again for the bisection rays) — one answer,
+//! `crate::scene_view::contours_drawn`, shared with `shade` and the merge's geometry stages.
 //! **After this stage:** `outputs.contours` holds lines that depend only on the scene and
 //! the image (not on the thread count), and a layer of the camera's resolution.
 
 use hecs::World;
 
 use super::prelude::*;
-use crate::components::{ContourContrast, ContourShader, ImageFormat, Name, Pass};
+use crate::components::{ContourContrast, ContourShader, Name};
 use crate::contour::contrast::{find_crossings, Contrast};
 use crate::contour::linking::link;
 use crate::contour::raster::rasterise;
@@ -27,53 +28,19 @@ use crate::contour::shaders::styled_lines;
 use crate::contour::{ContourImage, Probe};
 use crate::frame::Slot;
 use crate::scene_view::render_view;
-use crate::schedule::count_with;
 use crate::shading::CameraRays;
 
-/// Run condition: an image, contour shaders, and not a farm part.
+/// Run condition: an image, and contours to draw
+/// ([`crate::scene_view::contours_drawn`]: contour shaders, output shaders on, not a farm
+/// part, an output showing them).
 pub fn should_run(world: &World, frame: &Frame) -> Decision {
     if !frame.outputs.has(Slot::Image) {
         return Decision::skip("no shaded image");
     }
-    let n = count_with::<ContourShader>(world);
-    if n == 0 {
-        return Decision::skip("no material in use has a contour shader");
+    match crate::scene_view::contours_drawn(world, &frame.inputs) {
+        Ok(n) => Decision::run(format!("{n} material(s) with a contour shader")),
+        Err(why) => Decision::skip(why),
     }
-    if frame
-        .inputs
-        .settings
-        .disabled
-        .contains(crate::features::Feature::Output)
-    {
-        return Decision::skip(format!(
-            "output shaders disabled ({n} material(s) with a contour shader)"
-        ));
-    }
-    if let Some(run) = &frame.inputs.part {
-        return Decision::skip(format!(
-            "{}: contours are drawn when the parts are merged",
-            run.part
-        ));
-    }
-    if !an_output_shows_contours(world, frame) {
-        return Decision::skip(format!(
-            "no output shows contours ({n} material(s) with a contour shader)"
-        ));
-    }
-    Decision::run(format!("{n} material(s) with a contour shader"))
-}
-
-/// Whether a file this run writes shows the lines: an SVG or EPS, or an image with the
-/// `Contours` pass, among the render camera's outputs after the command line's overrides
-/// (none when the run keeps its image in memory).
-fn an_output_shows_contours(world: &World, frame: &Frame) -> bool {
-    crate::scene_view::render_outputs(world, &frame.inputs.outputs)
-        .unwrap_or_default()
-        .iter()
-        .any(|o| {
-            matches!(o.format, ImageFormat::Svg | ImageFormat::Eps)
-                || o.passes.contains(&Pass::Contours)
-        })
 }
 
 /// Finds, links, styles and rasterises the contour lines.

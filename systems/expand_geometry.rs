@@ -8,7 +8,8 @@
 //! `GeneratedFrom`. Each scatter leaf instance is despawned and replaced by `count` prototype
 //! instances (`Instance`, `WorldFromObject`, `MaterialRef`, `Name` = `leaf/i`,
 //! `GeneratedFrom`); the `Scatter` component is removed.
-//! **Runs when:** any entity carries `Procedural` or `Scatter`.
+//! **Runs when:** any entity carries `Procedural` or `Scatter` (in a merge, only when it
+//! draws contours: `super::merge_skip`).
 //! **After this stage:** no `Procedural` or `Scatter` is left; curved shapes wait as `Surface`
 //! for `tessellate`, flat ones are meshes.
 
@@ -17,7 +18,6 @@ use std::sync::Arc;
 use hecs::{Entity, World};
 
 use super::prelude::*;
-use super::MERGING;
 use crate::components::{
     GeneratedFrom, Instance, MaterialRef, Name, Procedural, Scatter, TriMesh, WorldFromObject,
 };
@@ -27,8 +27,8 @@ use crate::schedule::count_with;
 
 /// Run condition: procedural geometry components exist.
 pub fn should_run(world: &World, frame: &Frame) -> Decision {
-    if super::merged_without_contours(world, frame) {
-        return Decision::skip(MERGING);
+    if let Some(why) = super::merge_skip(world, frame) {
+        return Decision::skip(why);
     }
     let shaders = count_with::<Procedural>(world);
     let scatters = count_with::<Scatter>(world);

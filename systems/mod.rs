@@ -42,10 +42,19 @@ mod prelude {
 /// Why the stages that only feed rendering skip in `stagelight merge`.
 pub const MERGING: &str = "the image is merged from part files";
 
-/// Whether a geometry stage skips because the image is merged from part files: it does
-/// unless contours are drawn, whose bisection rays need the scene geometry.
-pub fn merged_without_contours(world: &World, frame: &Frame) -> bool {
-    frame.inputs.merging() && !crate::schedule::any_with::<crate::components::ContourShader>(world)
+/// Why a geometry stage skips in `stagelight merge`, if it does: always unless the merge
+/// draws contours ([`crate::scene_view::contours_drawn`]), whose contour store and
+/// bisection rays need the scene geometry. The reason is [`MERGING`], followed by why no
+/// contours are drawn when a material has a contour shader.
+pub fn merge_skip(world: &World, frame: &Frame) -> Option<String> {
+    if !frame.inputs.merging() {
+        return None;
+    }
+    if !crate::schedule::any_with::<crate::components::ContourShader>(world) {
+        return Some(MERGING.into());
+    }
+    let why = crate::scene_view::contours_drawn(world, &frame.inputs).err()?;
+    Some(format!("{MERGING}; no contours are drawn: {why}"))
 }
 
 /// The ordered stage table.

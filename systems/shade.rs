@@ -14,8 +14,9 @@
 //! every ray misses); `outputs.photons` (the `Direct` integrator's caustics and final gather;
 //! absent: none); `settings` (spp or adaptive samples, filter, seed, face, integrator,
 //! trace depths).
-//! **Writes:** `outputs.image` (with the samples each pixel took and, when some material has
-//! a contour shader, the contour store: what each pixel centre sees; when an output asks
+//! **Writes:** `outputs.image` (with the samples each pixel took and, when the run draws
+//! contours (`crate::scene_view::contours_drawn`), the contour store: what each pixel
+//! centre sees; when an output asks
 //! for a component pass and the run is not a farm part, the component passes), returned to
 //! the runner.
 //! **Runs when:** the run renders and a render camera exists.
@@ -35,7 +36,7 @@ use rayon::prelude::*;
 use super::prelude::*;
 use crate::accel::{Ray, RayKind};
 use crate::adaptive::{refine_flags, PixelSamples, SampleBudget};
-use crate::components::{ContourContrast, ContourShader, Interior};
+use crate::components::{ContourContrast, Interior};
 use crate::contour::{ContourStore, Probe};
 use crate::diagnostic::{samples_view, Diagnostic};
 use crate::diagnostic_view;
@@ -45,7 +46,6 @@ use crate::framebuffer::{FrameBuffers, PixelSums};
 use crate::progress::Progress;
 use crate::sampling::{fold_seed, Sampler};
 use crate::scene_view::{light_set, render_view, WithEnvironment};
-use crate::schedule::any_with;
 use crate::shading::integrator::components::{camera_sample, Component, Components};
 use crate::shading::integrator::material_bsdfs::MaterialBsdfs;
 use crate::shading::integrator::triangle_normals::TriangleNormals;
@@ -296,16 +296,11 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
     Ok(Work::new(taken, "samples").with_output(StageOutput::Image(fb)))
 }
 
-/// The contour store of the shaded (or merged) image `fb`, when some material has a contour
-/// shader and the run is not a farm part (see `draw_contours`). Its samples are the pixel
+/// The contour store of the shaded (or merged) image `fb`, when the run draws contours
+/// ([`crate::scene_view::contours_drawn`]). Its samples are the pixel
 /// centres' first hits, which need no random numbers: a merge recomputes them exactly.
 fn contour_store(world: &World, frame: &Frame, fb: &FrameBuffers) -> Option<ContourStore> {
-    if frame.inputs.part.is_some()
-        || !any_with::<ContourShader>(world)
-        || frame.inputs.settings.disabled.contains(Feature::Output)
-    {
-        return None;
-    }
+    crate::scene_view::contours_drawn(world, &frame.inputs).ok()?;
     let view = render_view(world)?.without(frame.inputs.settings.disabled);
     let rays = CameraRays::with_lenses(&view.camera, &view.lenses);
     let probe = Probe::new(frame.outputs.geometry.as_ref(), &rays);

@@ -8,7 +8,8 @@
 //! **Writes:** on each such object: an `Arc<TriMesh>` (also into every `Instance` of it),
 //! `SurfaceDerivatives` when requested, `GeneratedFrom`; removes the consumed `Surface`,
 //! `SubdivMesh` and true `Displacement`. Bump displacement is left in place for shading.
-//! **Runs when:** any parametric surface, subdivision mesh or true displacement exists.
+//! **Runs when:** any parametric surface, subdivision mesh or true displacement exists (in a
+//! merge, only when it draws contours: `super::merge_skip`).
 //! **After this stage:** every object is a triangle mesh with normals and uvs; shared patch
 //! edges are diced identically (no cracks, bitwise); displaced meshes carry normals of the
 //! displaced surface.
@@ -21,7 +22,6 @@ use hecs::{Entity, World};
 use rayon::prelude::*;
 
 use super::prelude::*;
-use super::MERGING;
 use crate::budget::estimate::{approximation_at, max_triangles, BYTES_PER_TRIANGLE};
 use crate::budget::human;
 use crate::components::{
@@ -100,8 +100,8 @@ fn census(world: &World, off: Features) -> (usize, usize, usize, usize) {
 
 /// Run condition: parametric surfaces, subdivision meshes or true displacement exist.
 pub fn should_run(world: &World, frame: &Frame) -> Decision {
-    if super::merged_without_contours(world, frame) {
-        return Decision::skip(MERGING);
+    if let Some(why) = super::merge_skip(world, frame) {
+        return Decision::skip(why);
     }
     let off = frame.inputs.settings.disabled;
     let (surfaces, subdivs, displaced, bump) = census(world, off);

@@ -101,11 +101,11 @@ pub fn should_run(world: &World, frame: &Frame) -> Decision {
         &frame.inputs.settings.photon_map,
     ) {
         (Some(dir), _) => format!(
-            "; kept in {}/<hash>.pmap, loaded when the hash matches",
+            "; runs unless {}/<hash>.pmap holds these maps (then they are loaded from it and the stage is reported skipped; the hash needs the built geometry), else keeps them there",
             dir.display()
         ),
         (None, Some(f)) => format!(
-            "; kept in {}, loaded when its hash matches",
+            "; runs unless {} holds these maps (same hash: then they are loaded from it and the stage is reported skipped; the hash needs the built geometry), else keeps them there",
             f.path.display()
         ),
         (None, None) => String::new(),

@@ -15,6 +15,7 @@ use std::path::{Path, PathBuf};
 use super::part::TILE;
 use super::part_file::PartHeader;
 use crate::bake::TexelImage;
+use glam::Vec3;
 
 /// The texels of one request that one part computes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -106,6 +107,7 @@ pub struct MergedBake {
 }
 
 /// Merges a complete set of bake parts (see the module header); the error names the files.
+/// A part with a value or a valid flag in a texel it does not own is refused as damaged.
 pub fn merge(parts: &[LoadedBakePart]) -> Result<MergedBake, String> {
     let headers: Vec<(&Path, &PartHeader)> = parts
         .iter()
@@ -141,8 +143,10 @@ pub fn merge(parts: &[LoadedBakePart]) -> Result<MergedBake, String> {
             .first()
             .map_or((0, 0), |img| (img.width, img.height))
     }));
-    let mut by_index: Vec<&BakePartFile> = parts.iter().map(|p| &p.file).collect();
-    by_index.sort_by_key(|f| f.header.part.index);
+    // The parts in part order (`paths[k]`: where part k + 1 came from, for messages).
+    let mut paths: Vec<usize> = (0..parts.len()).collect();
+    paths.sort_by_key(|&p| parts[p].file.header.part.index);
+    let by_index: Vec<&BakePartFile> = paths.iter().map(|&p| &parts[p].file).collect();
     let mut requests = Vec::with_capacity(first.file.requests.len());
     for (r, template) in first.file.requests.iter().enumerate() {
         let mut images: Vec<TexelImage> = template
@@ -155,10 +159,22 @@ pub fn merge(parts: &[LoadedBakePart]) -> Result<MergedBake, String> {
             for j in 0..img.height {
                 for i in 0..w {
                     let owner = owner_of_texel(firsts[r], w, count, i, j);
-                    let source = &by_index[(owner - 1) as usize].requests[r].images[m];
                     let idx = (j * w + i) as usize;
-                    img.texels[idx] = source.texels[idx];
-                    img.valid[idx] = source.valid[idx];
+                    for (k, part) in by_index.iter().enumerate() {
+                        let source = &part.requests[r].images[m];
+                        if k + 1 == owner as usize {
+                            img.texels[idx] = source.texels[idx];
+                            img.valid[idx] = source.valid[idx];
+                        } else if source.valid[idx] || source.texels[idx] != Vec3::ZERO {
+                            let path = &parts[paths[k]].path;
+                            return Err(format!(
+                                "{}: damaged bake part file (texel ({i}, {j}) of `{}` holds a value, but it belongs to part {owner}/{count}, not to this part {}/{count})",
+                                path.display(),
+                                template.name,
+                                k + 1
+                            ));
+                        }
+                    }
                 }
             }
         }
@@ -175,6 +191,64 @@ pub fn merge(parts: &[LoadedBakePart]) -> Result<MergedBake, String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::farm::part::{Part, Split};
+    use crate::farm::recorded_settings::RecordedSettings;
+
+    /// Part `index` of 2 of one 32×16 request (tile 1 is part 1's, tile 2 part 2's).
+    fn bake_part(index: u32) -> LoadedBakePart {
+        let mut image = TexelImage::new(32, 16);
+        for j in 0..16 {
+            for i in 0..32 {
+                if owner_of_texel(0, 32, 2, i, j) == index {
+                    image.texels[(j * 32 + i) as usize] = Vec3::ONE;
+                    image.valid[(j * 32 + i) as usize] = true;
+                }
+            }
+        }
+        LoadedBakePart {
+            path: format!("b{index}.exr").into(),
+            file: BakePartFile {
+                header: PartHeader {
+                    version: "0".into(),
+                    scene: "s.ron".into(),
+                    scene_hash: 1,
+                    settings_hash: 2,
+                    recorded: RecordedSettings {
+                        disabled: crate::features::Features::NONE,
+                        integrator: crate::settings::Integrator::Direct,
+                    },
+                    seed: 0,
+                    part: Part {
+                        index,
+                        count: 2,
+                        split: Split::Tiles,
+                    },
+                    width: 0,
+                    height: 0,
+                },
+                requests: vec![BakePartRequest {
+                    name: "floor".into(),
+                    images: vec![image],
+                    rays: 1,
+                    invalid: 0,
+                }],
+            },
+        }
+    }
+
+    #[test]
+    fn a_bake_part_with_texels_outside_its_tiles_is_refused() {
+        let merged = merge(&[bake_part(2), bake_part(1)]).unwrap();
+        assert!(merged.requests[0].images[0].valid.iter().all(|&v| v));
+        let mut a = bake_part(2);
+        a.file.header.part.index = 1;
+        let mut b = bake_part(1);
+        b.file.header.part.index = 2;
+        assert_eq!(
+            merge(&[b, a]).err().unwrap(),
+            "b1.exr: damaged bake part file (texel (0, 0) of `floor` holds a value, but it belongs to part 1/2, not to this part 2/2)"
+        );
+    }
 
     #[test]
     fn tiles_are_numbered_across_requests_and_dealt_round_robin() {

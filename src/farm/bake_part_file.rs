@@ -2,27 +2,27 @@
 //! Layer `r.m` holds image `m` of request `r` before dilation (`R`, `G`, `B` as f32, `valid`
 //! as u32 0/1); the first layer carries the metadata shared with render parts (format,
 //! version, scene, content and settings hashes, recorded settings, seed, K/N) plus, per request, its name,
-//! image count, rays and invalid texels, and a checksum of all texel data — as `key value`
-//! lines of one text attribute (`super::exr_meta`).
+//! image count, rays and invalid texels, and a checksum of every other entry and all texel
+//! data — as `key value` lines of one text attribute (`super::exr_meta`).
 
 use exr::prelude::*;
 use glam::Vec3;
 
 use super::bake_part::{BakePartFile, BakePartRequest, LoadedBakePart};
 use super::part::Split;
-use super::part_file::{hex, unhex, Entries, PartHeader};
-use super::recorded_settings::RecordedSettings;
+use super::part_file::{hex, shared_entries, unhex, Entries, PartHeader, CHECKSUM};
 use crate::bake::TexelImage;
 use crate::hash::Fnv64;
 
 /// The `format` entry of a bake part's metadata.
-pub const FORMAT: &str = "stagelight bake part 2";
+pub const FORMAT: &str = "stagelight bake part 3";
 
-/// The format before the recorded settings (`disable`, `integrator`): still read, as
-/// recording none.
-pub const FORMAT_WITHOUT_SETTINGS: &str = "stagelight bake part 1";
+/// Earlier formats, whose checksum covered only the texel data: recognised as bake parts
+/// and refused with a message that asks for the parts to be baked again.
+pub const OLDER_FORMATS: &[&str] = &["stagelight bake part 2", "stagelight bake part 1"];
 
-/// FNV-1a over every request's counters and texels: the `payload` entry.
+/// FNV-1a over every request's counters and texels (what the `checksum` entry covers
+/// besides the other entries).
 fn payload_hash(requests: &[BakePartRequest]) -> u64 {
     let mut h = Fnv64::default();
     for r in requests {
@@ -93,30 +93,16 @@ fn header_attributes(
     h: &PartHeader,
     requests: &[BakePartRequest],
 ) {
-    // A header without recorded settings is one read from an older file: written back in
-    // that file's format.
-    let format = match h.recorded {
-        Some(_) => FORMAT,
-        None => FORMAT_WITHOUT_SETTINGS,
-    };
-    let mut pairs: Vec<(String, String)> = vec![
-        ("format".into(), format.into()),
-        ("version".into(), h.version.clone()),
-        ("scene".into(), hex(h.scene.as_bytes())),
-        ("scene_hash".into(), format!("{:016x}", h.scene_hash)),
-        ("settings_hash".into(), format!("{:016x}", h.settings_hash)),
-    ];
-    pairs.extend(
-        h.recorded
-            .map(RecordedSettings::entries)
-            .into_iter()
-            .flatten(),
-    );
-    pairs.extend([
-        ("seed".into(), h.seed.to_string()),
-        ("part".into(), format!("{}/{}", h.part.index, h.part.count)),
-        ("requests".into(), requests.len().to_string()),
-    ]);
+    let mut pairs = entries_of(h, requests);
+    let checksum = super::exr_meta::checksum(&pairs, payload_hash(requests));
+    pairs.push((CHECKSUM.into(), format!("{checksum:016x}")));
+    super::exr_meta::put(attributes, &pairs);
+}
+
+/// The metadata entries of a bake part without the checksum, in order.
+fn entries_of(h: &PartHeader, requests: &[BakePartRequest]) -> Vec<(String, String)> {
+    let mut pairs = shared_entries(FORMAT, h);
+    pairs.push(("requests".into(), requests.len().to_string()));
     for (r, request) in requests.iter().enumerate() {
         pairs.push((
             format!("request.{r}"),
@@ -129,18 +115,18 @@ fn header_attributes(
             ),
         ));
     }
-    pairs.push(("payload".into(), format!("{:016x}", payload_hash(requests))));
-    super::exr_meta::put(attributes, &pairs);
+    pairs
 }
 
-/// Whether this EXR metadata names a bake part format (this one or the older one).
+/// Whether this EXR metadata names a bake part format (this one or an older one, which the
+/// decoder refuses with its own message).
 fn names_bake_format(meta: &exr::meta::MetaData) -> bool {
     meta.headers
         .first()
         .and_then(super::exr_meta::read_header)
         .is_some_and(|m| {
             m.get("format")
-                .is_some_and(|f| f == FORMAT || f == FORMAT_WITHOUT_SETTINGS)
+                .is_some_and(|f| f == FORMAT || OLDER_FORMATS.contains(&f.as_str()))
         })
 }
 
@@ -203,7 +189,7 @@ pub fn decode(bytes: &[u8]) -> std::result::Result<BakePartFile, String> {
     let attrs = super::exr_meta::read(&first.attributes)
         .ok_or("not a stagelight bake part file (no `stagelight` attribute)")?;
     let entries = Entries::new(attrs, "bake part file");
-    let header = entries.header(FORMAT, FORMAT_WITHOUT_SETTINGS, Split::Tiles, 0, 0)?;
+    let header = entries.header(FORMAT, OLDER_FORMATS, "bake", Split::Tiles, 0, 0)?;
     let get = |key: &str| entries.get(key);
     let bad = |key: &str| entries.bad(key);
     let count: usize = get("requests")?.parse().map_err(|_| bad("requests"))?;
@@ -232,9 +218,7 @@ pub fn decode(bytes: &[u8]) -> std::result::Result<BakePartFile, String> {
             invalid: invalid.parse().map_err(|_| bad(&key))?,
         });
     }
-    if entries.hex64("payload")? != payload_hash(&requests) {
-        return Err("damaged bake part file (its texel data does not match its checksum)".into());
-    }
+    entries.check_checksum(&entries_of(&header, &requests), payload_hash(&requests))?;
     Ok(BakePartFile { header, requests })
 }
 
@@ -292,10 +276,10 @@ mod tests {
                 scene: "scènes/bake.ron".into(),
                 scene_hash: 0xfeed,
                 settings_hash: 3,
-                recorded: Some(RecordedSettings {
+                recorded: crate::farm::recorded_settings::RecordedSettings {
                     disabled: crate::features::Features::NONE,
                     integrator: crate::settings::Integrator::Path,
-                }),
+                },
                 seed: 9,
                 part: Part {
                     index: 2,
@@ -331,13 +315,38 @@ mod tests {
     }
 
     #[test]
-    fn files_of_the_format_without_recorded_settings_are_read_and_recognised() {
-        let mut part = sample();
-        part.header.recorded = None;
-        let bytes = encode(&part).unwrap();
-        assert!(String::from_utf8_lossy(&bytes).contains("format stagelight bake part 1\n"));
-        assert!(is_bake_part(&bytes));
-        assert_eq!(decode(&bytes).unwrap(), part);
+    fn the_checksum_covers_the_part_number_seed_and_request_counters() {
+        let bytes = encode(&sample()).unwrap();
+        let edited = crate::farm::part_file::tests::edited;
+        for (from, to) in [
+            ("\npart 2/3\n", "\npart 3/3\n"),
+            ("\nseed 9\n", "\nseed 8\n"),
+            ("\nintegrator path\n", "\nintegrator ptah\n"),
+            (" 77 1\n", " 78 1\n"),
+        ] {
+            let e = decode(&edited(&bytes, from, to)).unwrap_err();
+            let expected = if from.contains("integrator") {
+                "damaged bake part file (entry `integrator` is malformed)"
+            } else {
+                "damaged bake part file (its metadata or data do not match its checksum)"
+            };
+            assert_eq!(e, expected, "{from:?} → {to:?}");
+        }
+    }
+
+    #[test]
+    fn files_of_an_older_format_are_recognised_and_refused_with_the_rebake_help() {
+        let bytes = encode(&sample()).unwrap();
+        let old = crate::farm::part_file::tests::edited(
+            &bytes,
+            "format stagelight bake part 3",
+            "format stagelight bake part 2",
+        );
+        assert!(is_bake_part(&old));
+        assert_eq!(
+            decode(&old).unwrap_err(),
+            "bake part file of the older format \"stagelight bake part 2\", whose checksum leaves out its part number and settings (this stagelight writes \"stagelight bake part 3\")\n  help: bake the parts again with this stagelight (`stagelight bake --part K/N`)"
+        );
     }
 
     #[test]

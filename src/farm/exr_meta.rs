@@ -20,6 +20,18 @@ pub fn put(attributes: &mut LayerAttributes, pairs: &[(String, String)]) {
     );
 }
 
+/// The checksum of a part file: FNV-1a over `pairs` as [`put`] writes them and the hash of
+/// the file's `data`. A file stores it as its last entry, computed over the other entries;
+/// the reader recomputes it over the entries as its decoded content writes them, so an
+/// edited entry (a part number, a seed) fails it as a changed pixel does.
+pub fn checksum(pairs: &[(String, String)], data: u64) -> u64 {
+    let mut h = crate::hash::Fnv64::default();
+    for (k, v) in pairs {
+        h.bytes(format!("{k} {v}\n").as_bytes());
+    }
+    h.bytes(&data.to_le_bytes()).finish()
+}
+
 /// The pairs stored by [`put`] in these attributes; `None` when there is no such attribute.
 pub fn read(other: &exr::meta::header::LayerAttributes) -> Option<HashMap<String, String>> {
     lines(&other.other)

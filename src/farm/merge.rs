@@ -9,6 +9,7 @@ use std::path::{Path, PathBuf};
 use super::part::{Part, Split};
 use super::part_file::{PartFile, PartHeader, PartPixels};
 use crate::adaptive::{pixel_alpha, pixel_value};
+use crate::exact_sum::ExactSum;
 use crate::framebuffer::FrameBuffers;
 use glam::Vec3;
 
@@ -162,7 +163,25 @@ fn missing_parts(missing: &[u32], count: u32, command: &str) -> String {
     )
 }
 
-/// Merges a complete set of parts into frame buffers (see the module header).
+/// Whether pixel `i` of a part holds nothing, as every pixel outside a tile part's own
+/// tiles must (its samples, counts and centre-sample passes are those of no sample).
+fn is_empty(px: &PartPixels, i: usize) -> bool {
+    px.sums[i].iter().all(|s| *s == ExactSum::default())
+        && px.taken[i] == 0
+        && px.covered[i] == 0
+        && px.dropped[i] == 0
+        && px.depth[i] == f32::INFINITY
+        && px.normal[i] == Vec3::ZERO
+        && px.object_id[i] == 0
+        && px.material_id[i] == 0
+        && px
+            .components
+            .as_ref()
+            .is_none_or(|c| c[i].iter().all(|v| *v == Vec3::ZERO))
+}
+
+/// Merges a complete set of parts into frame buffers (see the module header); a tile part
+/// with samples outside its own tiles is refused as damaged.
 pub fn merge(parts: &[LoadedPart]) -> Result<FrameBuffers, String> {
     check_set(parts)?;
     let h0 = &parts[0].file.header;
@@ -181,6 +200,14 @@ pub fn merge(parts: &[LoadedPart]) -> Result<FrameBuffers, String> {
         for i in 0..n {
             let owner = Part::owner_of(split, count, i % width, i / width, width);
             if split == Split::Tiles && owner != k {
+                if !is_empty(px, i) {
+                    return Err(format!(
+                        "{}: damaged part file (pixel ({}, {}) holds samples, but it belongs to part {owner}/{count}, not to this part {k}/{count})",
+                        p.path.display(),
+                        i % width,
+                        i / width
+                    ));
+                }
                 continue;
             }
             for c in 0..3 {
@@ -217,7 +244,67 @@ pub fn merge(parts: &[LoadedPart]) -> Result<FrameBuffers, String> {
 
 #[cfg(test)]
 mod tests {
-    use super::missing_parts;
+    use super::*;
+    use crate::farm::recorded_settings::RecordedSettings;
+
+    /// Part `index` of 2 of a 32×16 image (tile 1 is part 1's, tile 2 part 2's), each
+    /// owned pixel with one sample.
+    fn tile_part(index: u32) -> LoadedPart {
+        let (width, height) = (32u32, 16u32);
+        let mut pixels = PartPixels::new((width * height) as usize);
+        for i in 0..pixels.taken.len() {
+            if Part::owner_of(Split::Tiles, 2, i % 32, i / 32, 32) == index {
+                pixels.sums[i][0].add(0.5);
+                pixels.taken[i] = 1;
+            }
+        }
+        LoadedPart {
+            path: format!("p{index}.exr").into(),
+            file: PartFile {
+                header: PartHeader {
+                    version: "0".into(),
+                    scene: "s.ron".into(),
+                    scene_hash: 1,
+                    settings_hash: 2,
+                    recorded: RecordedSettings {
+                        disabled: crate::features::Features::NONE,
+                        integrator: crate::settings::Integrator::Direct,
+                    },
+                    seed: 0,
+                    part: Part {
+                        index,
+                        count: 2,
+                        split: Split::Tiles,
+                    },
+                    width,
+                    height,
+                },
+                pixels,
+            },
+        }
+    }
+
+    #[test]
+    fn a_tile_part_with_samples_outside_its_tiles_is_refused() {
+        let whole = merge(&[tile_part(1), tile_part(2)]).unwrap();
+        assert!(whole.samples.iter().all(|&s| s == 1));
+        // Part 2's pixels under part 1's label (and the other way round).
+        let mut a = tile_part(2);
+        a.file.header.part.index = 1;
+        let mut b = tile_part(1);
+        b.file.header.part.index = 2;
+        assert_eq!(
+            merge(&[a, b]).err().unwrap(),
+            "p2.exr: damaged part file (pixel (16, 0) holds samples, but it belongs to part 2/2, not to this part 1/2)"
+        );
+        // A centre-sample pass alone counts too.
+        let mut a = tile_part(1);
+        a.file.pixels.depth[31] = 1.0;
+        assert_eq!(
+            merge(&[a, tile_part(2)]).err().unwrap(),
+            "p1.exr: damaged part file (pixel (31, 0) holds samples, but it belongs to part 2/2, not to this part 1/2)"
+        );
+    }
 
     #[test]
     fn missing_parts_are_named_in_the_rerun_command() {

@@ -93,7 +93,7 @@ pub fn part_file(
             scene: run.scene.clone(),
             scene_hash: run.scene_hash,
             settings_hash: settings_hash(settings),
-            recorded: Some(recorded_settings::RecordedSettings::of(settings)),
+            recorded: recorded_settings::RecordedSettings::of(settings),
             seed: settings.seed,
             part: run.part,
             width: fb.width,

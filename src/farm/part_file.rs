@@ -3,8 +3,8 @@
 //! the sample, coverage and dropped counts, and the centre-sample passes — plus metadata
 //! (format, stagelight version, scene, scene content hash, settings hash, the recorded
 //! settings of `super::recorded_settings`, seed, part K/N, split) as `key value` lines of one
-//! EXR text attribute (`super::exr_meta`), and a hash of the pixel data that catches a
-//! damaged file.
+//! EXR text attribute (`super::exr_meta`), ending in a checksum of every other entry and the
+//! pixel data that catches a damaged or edited file.
 
 use std::collections::HashMap;
 
@@ -17,11 +17,12 @@ use crate::exact_sum::{ExactSum, LIMBS};
 use crate::hash::Fnv64;
 
 /// The `format` entry of the metadata.
-pub const FORMAT: &str = "stagelight part 3";
+pub const FORMAT: &str = "stagelight part 4";
 
-/// The format before the recorded settings (`disable`, `integrator`): still read, as
-/// recording none.
-pub const FORMAT_WITHOUT_SETTINGS: &str = "stagelight part 2";
+/// Earlier formats, whose checksum covered only the pixel data: refused with a message that
+/// asks for the parts to be rendered again (their part number and settings could have been
+/// edited unnoticed).
+pub const OLDER_FORMATS: &[&str] = &["stagelight part 3", "stagelight part 2"];
 
 /// Everything about a part except its pixels.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -34,9 +35,8 @@ pub struct PartHeader {
     pub scene_hash: u64,
     /// Hash of the effective render settings (scene options plus command-line overrides).
     pub settings_hash: u64,
-    /// The settings the merge applies (`None`: a file of the older format, which records
-    /// none; the merge uses the scene's).
-    pub recorded: Option<RecordedSettings>,
+    /// The settings the merge applies.
+    pub recorded: RecordedSettings,
     /// The seed.
     pub seed: u64,
     /// Which part this is.
@@ -155,9 +155,11 @@ fn f32_channels(p: &PartPixels) -> Vec<(String, Vec<f32>)> {
     .collect()
 }
 
-/// FNV-1a over the pixel data in channel order: the `payload` entry of the metadata.
-fn payload_hash(p: &PartPixels) -> u64 {
+/// FNV-1a over the image size and the pixel data in channel order (what the `checksum`
+/// entry covers besides the other entries).
+fn payload_hash(width: u32, height: u32, p: &PartPixels) -> u64 {
     let mut h = Fnv64::default();
+    h.bytes(&width.to_le_bytes()).bytes(&height.to_le_bytes());
     for (name, values) in u32_channels(p) {
         h.bytes(name.as_bytes());
         for v in &values {
@@ -222,27 +224,31 @@ impl Entries {
     }
 
     /// The header shared by render and bake parts, after checking the format is `format`
-    /// or the older `without_settings` (which records no settings).
+    /// (an older one of `older` is refused with the help to run `stagelight <command>
+    /// --part K/N` again).
     pub(super) fn header(
         &self,
         format: &str,
-        without_settings: &str,
+        older: &[&str],
+        command: &str,
         split: Split,
         width: u32,
         height: u32,
     ) -> std::result::Result<PartHeader, String> {
         let found = self.get("format")?;
-        if found != format && found != without_settings {
+        if older.contains(&found.as_str()) {
+            return Err(format!(
+                "{} of the older format \"{found}\", whose checksum leaves out its part number and settings (this stagelight writes \"{format}\")\n  help: {command} the parts again with this stagelight (`stagelight {command} --part K/N`)",
+                self.kind
+            ));
+        }
+        if found != format {
             return Err(format!(
                 "part file format \"{found}\" is not \"{format}\" (written by another stagelight version?)"
             ));
         }
-        let recorded = if found == format {
-            let (disable, integrator) = (self.get("disable")?, self.get("integrator")?);
-            Some(RecordedSettings::parse(&disable, &integrator).map_err(|key| self.bad(key))?)
-        } else {
-            None
-        };
+        let recorded = RecordedSettings::parse(&self.get("disable")?, &self.get("integrator")?)
+            .map_err(|key| self.bad(key))?;
         let scene = unhex(&self.get("scene")?)
             .and_then(|b| String::from_utf8(b).ok())
             .ok_or_else(|| self.bad("scene"))?;
@@ -264,6 +270,53 @@ impl Entries {
             height,
         })
     }
+
+    /// Checks the `checksum` entry against `entries` (the file's other entries as its
+    /// decoded content writes them) and the hash of its `data`.
+    pub(super) fn check_checksum(
+        &self,
+        entries: &[(String, String)],
+        data: u64,
+    ) -> std::result::Result<(), String> {
+        if self.hex64(CHECKSUM)? != super::exr_meta::checksum(entries, data) {
+            return Err(format!(
+                "damaged {} (its metadata or data do not match its checksum)",
+                self.kind
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// The key of the checksum entry, the last one.
+pub(super) const CHECKSUM: &str = "checksum";
+
+/// The metadata entries shared by render and bake parts, in order, from `format` through
+/// `part` (without the checksum).
+pub(super) fn shared_entries(format: &str, h: &PartHeader) -> Vec<(String, String)> {
+    let mut pairs: Vec<(String, String)> = [
+        ("format", format.to_string()),
+        ("version", h.version.clone()),
+        ("scene", hex(h.scene.as_bytes())),
+        ("scene_hash", format!("{:016x}", h.scene_hash)),
+        ("settings_hash", format!("{:016x}", h.settings_hash)),
+    ]
+    .into_iter()
+    .map(|(k, v)| (k.to_string(), v))
+    .collect();
+    pairs.extend(h.recorded.entries());
+    pairs.extend([
+        ("seed".into(), h.seed.to_string()),
+        ("part".into(), format!("{}/{}", h.part.index, h.part.count)),
+    ]);
+    pairs
+}
+
+/// The metadata entries of a render part without the checksum, in order.
+fn entries_of(h: &PartHeader) -> Vec<(String, String)> {
+    let mut pairs = shared_entries(FORMAT, h);
+    pairs.push(("split".into(), h.part.split.name().into()));
+    pairs
 }
 
 /// Encodes a part file.
@@ -278,37 +331,9 @@ pub fn encode(part: &PartFile) -> std::result::Result<Vec<u8>, String> {
         channels.push(AnyChannel::new(name.as_str(), FlatSamples::F32(values)));
     }
     let mut attributes = LayerAttributes::default();
-    // A header without recorded settings is one read from an older file: written back in
-    // that file's format.
-    let format = match h.recorded {
-        Some(_) => FORMAT,
-        None => FORMAT_WITHOUT_SETTINGS,
-    };
-    let mut pairs: Vec<(String, String)> = [
-        ("format", format.to_string()),
-        ("version", h.version.clone()),
-        ("scene", hex(h.scene.as_bytes())),
-        ("scene_hash", format!("{:016x}", h.scene_hash)),
-        ("settings_hash", format!("{:016x}", h.settings_hash)),
-    ]
-    .into_iter()
-    .map(|(k, v)| (k.to_string(), v))
-    .collect();
-    pairs.extend(
-        h.recorded
-            .map(RecordedSettings::entries)
-            .into_iter()
-            .flatten(),
-    );
-    pairs.extend(
-        [
-            ("seed", h.seed.to_string()),
-            ("part", format!("{}/{}", h.part.index, h.part.count)),
-            ("split", h.part.split.name().into()),
-            ("payload", format!("{:016x}", payload_hash(p))),
-        ]
-        .map(|(k, v)| (k.to_string(), v)),
-    );
+    let mut pairs = entries_of(h);
+    let checksum = super::exr_meta::checksum(&pairs, payload_hash(h.width, h.height, p));
+    pairs.push((CHECKSUM.into(), format!("{checksum:016x}")));
     super::exr_meta::put(&mut attributes, &pairs);
     let layer = Layer::new(
         (h.width as usize, h.height as usize),
@@ -345,14 +370,14 @@ pub fn decode(bytes: &[u8]) -> std::result::Result<PartFile, String> {
     let size = layer.size;
     let mut header = entries.header(
         FORMAT,
-        FORMAT_WITHOUT_SETTINGS,
+        OLDER_FORMATS,
+        "render",
         Split::Tiles,
         size.width() as u32,
         size.height() as u32,
     )?;
     header.part.split =
         Split::from_name(&entries.get("split")?).ok_or_else(|| entries.bad("split"))?;
-    let payload = entries.hex64("payload")?;
     let n = size.area();
     let find = |name: &str| {
         layer
@@ -407,14 +432,13 @@ pub fn decode(bytes: &[u8]) -> std::result::Result<PartFile, String> {
         }
         pixels.components = Some(values);
     }
-    if payload != payload_hash(&pixels) {
-        return Err("damaged part file (its pixel data does not match its checksum)".into());
-    }
+    let data = payload_hash(header.width, header.height, &pixels);
+    entries.check_checksum(&entries_of(&header), data)?;
     Ok(PartFile { header, pixels })
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
 
     fn sample() -> PartFile {
@@ -433,10 +457,10 @@ mod tests {
                 scene: "scènes/a.ron".into(),
                 scene_hash: 0xdead_beef,
                 settings_hash: 7,
-                recorded: Some(RecordedSettings {
+                recorded: RecordedSettings {
                     disabled: crate::features::Features::parse_list("lens,output").unwrap(),
                     integrator: crate::settings::Integrator::Path,
-                }),
+                },
                 seed: 42,
                 part: Part {
                     index: 2,
@@ -461,15 +485,57 @@ mod tests {
         }
     }
 
+    /// `bytes` with the metadata text `from` replaced by `to` (the same length, so the EXR
+    /// stays readable), as a user editing the header in place would.
+    pub(crate) fn edited(bytes: &[u8], from: &str, to: &str) -> Vec<u8> {
+        assert_eq!(from.len(), to.len());
+        let at = bytes
+            .windows(from.len())
+            .position(|w| w == from.as_bytes())
+            .unwrap_or_else(|| panic!("no {from:?} in the file"));
+        let mut out = bytes.to_vec();
+        out[at..at + to.len()].copy_from_slice(to.as_bytes());
+        out
+    }
+
     #[test]
-    fn files_of_the_format_without_recorded_settings_are_read() {
-        let mut part = sample();
-        part.header.recorded = None;
-        let bytes = encode(&part).unwrap();
-        let text = String::from_utf8_lossy(&bytes);
-        assert!(text.contains("format stagelight part 2\n"));
-        assert!(!text.contains("\ndisable "));
-        assert_eq!(decode(&bytes).unwrap(), part);
+    fn the_checksum_covers_every_entry_the_merge_relies_on() {
+        let bytes = encode(&sample()).unwrap();
+        for (from, to) in [
+            ("\npart 2/3\n", "\npart 3/3\n"),
+            ("\npart 2/3\n", "\npart 2/4\n"),
+            ("\nseed 42\n", "\nseed 43\n"),
+            ("\nsplit samples\n", "\nsplit tiles\n\n\n"),
+            ("\ndisable lens,output\n", "\ndisable output\n\n\n\n\n\n"),
+            (
+                "\nscene_hash 00000000deadbeef\n",
+                "\nscene_hash 00000000deadbeee\n",
+            ),
+            (
+                "\nsettings_hash 0000000000000007\n",
+                "\nsettings_hash 0000000000000008\n",
+            ),
+        ] {
+            let e = decode(&edited(&bytes, from, to)).unwrap_err();
+            assert_eq!(
+                e, "damaged part file (its metadata or data do not match its checksum)",
+                "{from:?} → {to:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn files_of_an_older_format_are_refused_with_the_rerun_help() {
+        let bytes = encode(&sample()).unwrap();
+        let old = edited(
+            &bytes,
+            "format stagelight part 4",
+            "format stagelight part 3",
+        );
+        assert_eq!(
+            decode(&old).unwrap_err(),
+            "part file of the older format \"stagelight part 3\", whose checksum leaves out its part number and settings (this stagelight writes \"stagelight part 4\")\n  help: render the parts again with this stagelight (`stagelight render --part K/N`)"
+        );
     }
 
     #[test]

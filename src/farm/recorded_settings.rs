@@ -2,9 +2,8 @@
 //! stages with the settings the parts ran with rather than the scene's: the switched-off
 //! features (`--disable`, which decides whether the merge draws contours and how it
 //! tessellates) and the integrator (`--integrator`, part of the settings a bake merge checks).
-//! They are the `disable` and `integrator` entries of the part metadata; files written before
-//! these entries existed (render format 2, bake format 1) record nothing, and their merge uses
-//! the scene's own settings, as it did when they were written.
+//! They are the `disable` and `integrator` entries of the part metadata (covered by its
+//! checksum, like every entry).
 
 use crate::features::Features;
 use crate::settings::{Integrator, RenderSettings};

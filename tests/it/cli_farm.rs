@@ -240,6 +240,102 @@ fn mismatched_missing_duplicate_and_damaged_parts_are_refused_with_nothing_writt
     assert!(!dir.join("out.png").exists());
 }
 
+/// `bytes` with the part-file metadata text `from` replaced by `to` (the same length), as
+/// editing the `stagelight` header attribute in place does.
+fn edited(bytes: &[u8], from: &str, to: &str) -> Vec<u8> {
+    let at = bytes
+        .windows(from.len())
+        .position(|w| w == from.as_bytes())
+        .unwrap_or_else(|| panic!("no {from:?} in the part file"));
+    let mut out = bytes.to_vec();
+    out[at..at + to.len()].copy_from_slice(to.as_bytes());
+    out
+}
+
+#[test]
+fn parts_whose_label_or_seed_was_edited_are_refused_as_damaged() {
+    let dir = setup("edited");
+    render_parts(&dir, 3, "tiles", &[]);
+    let read = |name: &str| std::fs::read(dir.join(name)).unwrap();
+    // Part 2's and part 3's labels swapped, the pixels untouched.
+    std::fs::write(
+        dir.join("q2.exr"),
+        edited(&read("part_2.exr"), "\npart 2/3\n", "\npart 3/3\n"),
+    )
+    .unwrap();
+    std::fs::write(
+        dir.join("q3.exr"),
+        edited(&read("part_3.exr"), "\npart 3/3\n", "\npart 2/3\n"),
+    )
+    .unwrap();
+    // Every part's seed changed alike.
+    for k in 1..=3 {
+        let part = read(&format!("part_{k}.exr"));
+        std::fs::write(
+            dir.join(format!("s{k}.exr")),
+            edited(&part, "\nseed 0\n", "\nseed 5\n"),
+        )
+        .unwrap();
+    }
+    for (args, file) in [
+        (
+            ["merge", "part_1.exr", "q2.exr", "q3.exr", "-o", "out.png"],
+            "q2.exr",
+        ),
+        (
+            ["merge", "s1.exr", "s2.exr", "s3.exr", "-o", "out.png"],
+            "s1.exr",
+        ),
+    ] {
+        let o = stagelight(&dir, &args);
+        assert_eq!(o.status.code(), Some(1), "{args:?}");
+        assert_eq!(
+            stderr(&o),
+            format!("error: {file}: damaged part file (its metadata or data do not match its checksum)\nnothing written\n"),
+            "{args:?}"
+        );
+        assert!(!dir.join("out.png").exists(), "{args:?} wrote a file");
+    }
+    // A part of the format before the checksum covered the metadata.
+    std::fs::write(
+        dir.join("old.exr"),
+        edited(
+            &read("part_1.exr"),
+            "format stagelight part 4",
+            "format stagelight part 3",
+        ),
+    )
+    .unwrap();
+    let o = stagelight(
+        &dir,
+        &[
+            "merge",
+            "old.exr",
+            "part_2.exr",
+            "part_3.exr",
+            "-o",
+            "out.png",
+        ],
+    );
+    assert_eq!(o.status.code(), Some(1));
+    assert_eq!(
+        stderr(&o),
+        "error: old.exr: part file of the older format \"stagelight part 3\", whose checksum leaves out its part number and settings (this stagelight writes \"stagelight part 4\")\n  help: render the parts again with this stagelight (`stagelight render --part K/N`)\nnothing written\n"
+    );
+    assert!(!dir.join("out.png").exists());
+    ok(
+        &dir,
+        &[
+            "merge",
+            "part_1.exr",
+            "part_2.exr",
+            "part_3.exr",
+            "-o",
+            "out.png",
+        ],
+    );
+}
+
 #[test]
 fn part_flags_are_checked() {
     let dir = setup("flags");

@@ -107,6 +107,47 @@ fn plan_prints_every_stage_with_its_reason_and_writes_nothing() {
     assert_eq!(left.len(), 1, "plan wrote nothing but the scene is there");
 }
 
+/// `plan` takes the `render` flags that decide which stages run: `--disable` and
+/// `--photon-cache` (with `--integrator`), and says that a photon map file it cannot check
+/// without the geometry may make `trace_photons` load the maps instead.
+#[test]
+fn plan_takes_disable_and_photon_cache_as_render_does() {
+    let dir = scratch("flags");
+    let path = dir.join("scene.ron");
+    write(
+        &path,
+        &scene("global_illumination: (photons: 500, gather: 8)"),
+    );
+    let plan = |args: &[&str]| {
+        let o = run(bin().arg("plan").arg(&path).args(args).current_dir(&dir));
+        assert!(o.status.success(), "{args:?}: {}", text(&o.stderr));
+        text(&o.stdout)
+    };
+    let out = plan(&["--disable", "geometry", "--photon-cache", "cache"]);
+    assert!(
+        out.contains("\n 1 expand_geometry  skip geometry shaders disabled (1 geometry shader(s), 0 scatter(s) left empty)\n"),
+        "{out}"
+    );
+    assert!(
+        out.contains("\n 4 trace_photons    run  global illumination (500 photons); runs unless cache/<hash>.pmap holds these maps (then they are loaded from it and the stage is reported skipped; the hash needs the built geometry), else keeps them there\n"),
+        "{out}"
+    );
+    let out = plan(&["--integrator", "path", "--disable", "output"]);
+    assert!(
+        out.contains("\n 4 trace_photons    skip the path integrator does not read photon maps\n"),
+        "{out}"
+    );
+    let o = run(bin().arg("plan").arg(&path).args(["--disable", "lenses"]));
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        text(&o.stderr).starts_with("error: invalid value 'lenses' for '--disable <FEATURES>'"),
+        "{}",
+        text(&o.stderr)
+    );
+    let left: Vec<_> = std::fs::read_dir(&dir).unwrap().collect();
+    assert_eq!(left.len(), 1, "plan wrote nothing but the scene is there");
+}
+
 #[test]
 fn the_plan_is_what_the_run_does() {
     for (options, tasks) in [

@@ -395,6 +395,105 @@ fn parts_rendered_with_output_shaders_off_merge_without_contour_lines() {
     let _ = std::fs::remove_dir_all(dir);
 }
 
+/// The `merge --stats` table's row of `stage`: whether it ran, its rays and its reason.
+fn merge_row(stats: &str, stage: &str) -> (bool, u64, String) {
+    let line = stats
+        .lines()
+        .find(|l| l.split_whitespace().next() == Some(stage))
+        .unwrap_or_else(|| panic!("no {stage} row in\n{stats}"));
+    let fields: Vec<&str> = line.split_whitespace().collect();
+    let ran = fields[1] == "yes";
+    // stage ran seconds items [unit] items/s rays reason…: the rays follow the rate.
+    let rays_at = if fields[4].parse::<f64>().is_ok() {
+        5
+    } else {
+        6
+    };
+    let reason = fields[rays_at + 1..].join(" ");
+    (ran, fields[rays_at].parse().unwrap(), reason)
+}
+
+/// A merge that draws no contours — a contour shader, but no output shows contours, or
+/// parts rendered with `--disable output` — builds no geometry and traces no rays: the
+/// geometry stages skip with the reason, `shade` keeps no contour store. The files are the
+/// single render's bytes.
+#[test]
+fn a_merge_that_draws_no_contours_builds_no_geometry() {
+    let dir = scratch_dir("contours-merge-undrawn");
+    let unshown = scene(24, 16, (0.0, -5.0, 0.0), "", SPHERE, r#"(file: "s.png")"#);
+    let shown = scene(
+        24,
+        16,
+        (0.0, -5.0, 0.0),
+        "",
+        SPHERE,
+        r#"(file: "s.png", passes: [Beauty, Contours])"#,
+    );
+    let ok = |d: &Path, args: &[&str]| {
+        let o = run_in(d, args);
+        assert!(o.status.success(), "{args:?}: {}", stderr_of(&o));
+        String::from_utf8_lossy(&o.stdout).to_string() + &stderr_of(&o)
+    };
+    for (name, text, flags, why) in [
+        (
+            "unshown",
+            &unshown,
+            &[][..],
+            "no output shows contours (1 material(s) with a contour shader)",
+        ),
+        (
+            "disabled",
+            &shown,
+            &["--disable", "output"][..],
+            "output shaders disabled (1 material(s) with a contour shader)",
+        ),
+    ] {
+        let d = dir.join(name);
+        std::fs::create_dir_all(d.join("farm")).unwrap();
+        std::fs::write(d.join("s.ron"), text).unwrap();
+        ok(&d, &[&["render", "s.ron"][..], flags].concat());
+        for k in 1..=2 {
+            let (part, file) = (format!("{k}/2"), format!("p{k}.exr"));
+            let args = ["render", "../s.ron", "--part", &part, "-o", &file];
+            ok(&d.join("farm"), &[&args[..], flags].concat());
+        }
+        let stats = ok(&d.join("farm"), &["merge", "p1.exr", "p2.exr", "--stats"]);
+        for stage in ["expand_geometry", "tessellate", "build_accel"] {
+            assert_eq!(
+                merge_row(&stats, stage),
+                (
+                    false,
+                    0,
+                    format!("the image is merged from part files; no contours are drawn: {why}")
+                ),
+                "{name}: {stats}"
+            );
+        }
+        assert_eq!(merge_row(&stats, "shade").1, 0, "{name}: {stats}");
+        assert_eq!(
+            merge_row(&stats, "draw_contours"),
+            (false, 0, why.to_string()),
+            "{name}: {stats}"
+        );
+        assert!(
+            std::fs::read(d.join("s.png")).unwrap() == std::fs::read(d.join("farm/s.png")).unwrap(),
+            "{name}: s.png differs after the merge"
+        );
+    }
+    // With the lines shown, the merge builds the geometry and draws them.
+    let d = dir.join("shown");
+    std::fs::create_dir_all(&d).unwrap();
+    std::fs::write(d.join("s.ron"), &shown).unwrap();
+    for k in 1..=2 {
+        let (part, file) = (format!("{k}/2"), format!("p{k}.exr"));
+        ok(&d, &["render", "s.ron", "--part", &part, "-o", &file]);
+    }
+    let stats = ok(&d, &["merge", "p1.exr", "p2.exr", "--stats"]);
+    assert!(merge_row(&stats, "build_accel").0, "{stats}");
+    assert!(merge_row(&stats, "draw_contours").0, "{stats}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 /// Loads `text`, expecting the errors (or, with `Ok`, the warnings) it reports.
 fn diagnostics(text: &str) -> Result<Vec<String>, String> {
     match load_scene_str(text, Path::new("bad.ron")) {

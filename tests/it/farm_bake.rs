@@ -261,7 +261,17 @@ fn cli_merge_refuses_incomplete_mixed_and_damaged_bake_parts_and_writes_nothing(
         &["merge", "a/bake_part_1_of_2.exr", "b/bake_part_2_of_2.exr", "-o", "out"],
         "error: b/bake_part_2_of_2.exr and a/bake_part_1_of_2.exr are parts of different bakes: seed 9 vs 5\n  help: merge only the parts of one `stagelight bake --part K/N` run\nnothing written\n",
     );
+    // Part labels swapped in place, the texels untouched.
     let bytes = std::fs::read(dir.join("a/bake_part_2_of_2.exr")).unwrap();
+    let from = b"\npart 2/2\n";
+    let at = bytes.windows(from.len()).position(|w| w == from).unwrap();
+    let mut relabelled = bytes.clone();
+    relabelled[at..at + from.len()].copy_from_slice(b"\npart 1/2\n");
+    std::fs::write(dir.join("relabelled.exr"), relabelled).unwrap();
+    refused(
+        &["merge", "relabelled.exr", "a/bake_part_1_of_2.exr", "-o", "out"],
+        "error: relabelled.exr: damaged bake part file (its metadata or data do not match its checksum)\nnothing written\n",
+    );
     std::fs::write(dir.join("cut.exr"), &bytes[..bytes.len() - 100]).unwrap();
     let o = run_in(
         &dir,
