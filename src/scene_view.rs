@@ -126,6 +126,31 @@ pub fn contours_drawn(world: &World, inputs: &crate::frame::RunInputs) -> Result
     Ok(n)
 }
 
+/// Why nothing in this run traces rays into the scene geometry (`None`: something does — a
+/// render camera whose image is read, or a bake). The geometry stages skip by it: without
+/// a reader, shapes expanded, surfaces diced and a hierarchy built are thrown away.
+pub fn geometry_unused(world: &World, inputs: &crate::frame::RunInputs) -> Option<&'static str> {
+    let tasks = inputs.tasks;
+    let renders = tasks.render && has_render_camera(world) && image_is_read(world, inputs);
+    let bakes = tasks.bake && crate::schedule::any_with::<crate::components::BakeRequest>(world);
+    match (renders || bakes, tasks.render) {
+        (true, _) => None,
+        (false, true) => Some("no render camera traces rays"),
+        (false, false) => Some("nothing in this run traces rays"),
+    }
+}
+
+/// [`geometry_unused`] for the stages that make geometry (`expand_geometry`, `tessellate`):
+/// only where a render camera exists, so that a library caller running them on a world
+/// without a camera still gets the meshes it asked for.
+pub fn geometry_discarded(world: &World, inputs: &crate::frame::RunInputs) -> Option<&'static str> {
+    if has_render_camera(world) {
+        geometry_unused(world, inputs)
+    } else {
+        None
+    }
+}
+
 /// Whether the scene has a render camera (cheap; for run conditions).
 pub fn has_render_camera(world: &World) -> bool {
     crate::schedule::any_with::<RenderCamera>(world)

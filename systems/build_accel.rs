@@ -29,14 +29,13 @@ use hecs::{Entity, World};
 use super::prelude::*;
 use crate::accel::Accel;
 use crate::components::{
-    BakeRequest, Displacement, DisplacementMode, FaceMaterials, Instance, Material, MaterialRef,
-    Procedural, RayFlags, ReverseOrientation, Scatter, SceneOrigin, SubdivMesh, Surface,
-    VertexColours, VertexTangents, WorldFromObject, ALL_RAYS,
+    Displacement, DisplacementMode, FaceMaterials, Instance, Material, MaterialRef, Procedural,
+    RayFlags, ReverseOrientation, Scatter, SceneOrigin, SubdivMesh, Surface, VertexColours,
+    VertexTangents, WorldFromObject, ALL_RAYS,
 };
 use crate::features::Feature;
 use crate::geometry::{InstanceGeometry, SceneGeometry};
 use crate::guard::extent::{located, out_of_range, reach};
-use crate::scene_view::has_render_camera;
 use crate::schedule::any_with;
 
 /// Run condition: instances with triangles, and a render camera to trace for.
@@ -58,17 +57,8 @@ pub fn should_run(world: &World, frame: &Frame) -> Decision {
     if triangles == 0 && !pending {
         return Decision::skip("no instance has triangles");
     }
-    let tasks = frame.inputs.tasks;
-    let renders = tasks.render
-        && has_render_camera(world)
-        && crate::scene_view::image_is_read(world, &frame.inputs);
-    let bakes = tasks.bake && any_with::<BakeRequest>(world);
-    if !renders && !bakes {
-        return Decision::skip(if tasks.render {
-            "no render camera traces rays"
-        } else {
-            "nothing in this run traces rays"
-        });
+    if let Some(why) = crate::scene_view::geometry_unused(world, &frame.inputs) {
+        return Decision::skip(why);
     }
     if pending {
         return Decision::run(format!(

@@ -8,8 +8,9 @@
 //! `GeneratedFrom`. Each scatter leaf instance is despawned and replaced by `count` prototype
 //! instances (`Instance`, `WorldFromObject`, `MaterialRef`, `Name` = `leaf/i`,
 //! `GeneratedFrom`); the `Scatter` component is removed.
-//! **Runs when:** any entity carries `Procedural` or `Scatter` (in a merge, only when it
-//! draws contours: `super::merge_skip`).
+//! **Runs when:** any entity carries `Procedural` or `Scatter` and something traces rays into
+//! the geometry (`scene_view::geometry_discarded`; in a merge, only when it draws contours:
+//! `super::merge_skip`).
 //! **After this stage:** no `Procedural` or `Scatter` is left; curved shapes wait as `Surface`
 //! for `tessellate`, flat ones are meshes.
 
@@ -39,6 +40,9 @@ pub fn should_run(world: &World, frame: &Frame) -> Decision {
         return Decision::skip(format!(
             "geometry shaders disabled ({shaders} geometry shader(s), {scatters} scatter(s) left empty)"
         ));
+    }
+    if let Some(why) = crate::scene_view::geometry_discarded(world, &frame.inputs) {
+        return Decision::skip(why);
     }
     Decision::run(format!(
         "{shaders} geometry shader(s), {scatters} scatter(s)"

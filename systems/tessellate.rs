@@ -8,8 +8,9 @@
 //! **Writes:** on each such object: an `Arc<TriMesh>` (also into every `Instance` of it),
 //! `SurfaceDerivatives` when requested, `GeneratedFrom`; removes the consumed `Surface`,
 //! `SubdivMesh` and true `Displacement`. Bump displacement is left in place for shading.
-//! **Runs when:** any parametric surface, subdivision mesh or true displacement exists (in a
-//! merge, only when it draws contours: `super::merge_skip`).
+//! **Runs when:** any parametric surface, subdivision mesh or true displacement exists and
+//! something traces rays into the geometry (`scene_view::geometry_discarded`: a render whose
+//! image is read, or a bake; in a merge, only when it draws contours: `super::merge_skip`).
 //! **After this stage:** every object is a triangle mesh with normals and uvs; shared patch
 //! edges are diced identically (no cracks, bitwise); displaced meshes carry normals of the
 //! displaced surface.
@@ -129,6 +130,9 @@ pub fn should_run(world: &World, frame: &Frame) -> Decision {
         } else {
             Decision::skip("no parametric surfaces or displacement")
         };
+    }
+    if let Some(why) = crate::scene_view::geometry_discarded(world, &frame.inputs) {
+        return Decision::skip(why);
     }
     if off.contains(Feature::Displacement) {
         return Decision::run(format!(

@@ -80,7 +80,7 @@ pub fn should_run(world: &World, frame: &Frame) -> Decision {
     }
     if p.global_illumination.is_none() && nothing_casts_caustics(world) {
         return Decision::skip(
-            "caustics are on, but nothing casts them (no mirror, glass or other specular material, no instance flagged to cast)",
+            "caustics are on, but nothing casts them (no mirror, glass or other specular material, no photon shader that reflects or refracts, no instance flagged to cast)",
         );
     }
     let lit = world
@@ -144,10 +144,9 @@ fn a_light_emits_photons(world: &World, maps: &PhotonSettings) -> bool {
 /// its first surface. Decided from the world, so `plan` gives the same answer before any
 /// geometry exists.
 fn nothing_casts_caustics(world: &World) -> bool {
-    let material = world
-        .query::<&Material>()
-        .iter()
-        .any(|m| crate::photon::roles::makes_caustics(&m.shader));
+    let material = world.query::<&Material>().iter().any(|m| {
+        crate::photon::roles::makes_caustics(&m.shader) || m.photon.is_some_and(|p| p.scatters())
+    });
     let flagged = world
         .query::<&PhotonFlags>()
         .iter()

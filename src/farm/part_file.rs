@@ -242,6 +242,22 @@ impl Entries {
                 self.kind
             ));
         }
+        let kind = |f: &str| {
+            if f.starts_with("stagelight bake part") {
+                Some("bake")
+            } else if f.starts_with("stagelight part") {
+                Some("render")
+            } else {
+                None
+            }
+        };
+        if let (Some(got), Some(want)) = (kind(&found), kind(format)) {
+            if got != want {
+                return Err(format!(
+                    "a {got} part file, not a {want} part file like the first part\n  help: merge the parts of one render, or of one bake"
+                ));
+            }
+        }
         if found != format {
             return Err(format!(
                 "part file format \"{found}\" is not \"{format}\" (written by another stagelight version?)"

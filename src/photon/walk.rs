@@ -194,17 +194,20 @@ impl Walk {
         let mut scratch = None;
         let photon_bsdf;
         // A material's photon shader replaces what its surface shader implies for photons.
-        let (bsdf, stores) = match &ctx.geometry.materials[v.sp.material as usize].photon {
+        // One that refracts is an interface: photons inside meet its back faces, one-sided
+        // surface shader or not (they would otherwise die inside a closed object).
+        let (bsdf, stores, interface) = match &ctx.geometry.materials[v.sp.material as usize].photon
+        {
             Some(p) => {
                 photon_bsdf = Bsdf::for_photons(p, v.front);
-                (&photon_bsdf, p.stores())
+                (&photon_bsdf, p.stores(), p.refraction.max_element() > 0.0)
             }
             None => {
                 let b = v.bsdf_ref(ctx, &mut scratch);
-                (b, b.has_non_delta())
+                (b, b.has_non_delta(), false)
             }
         };
-        if !((bsdf.reflects() || stores) && v.visible) {
+        if !((bsdf.reflects() || stores) && (v.visible || interface)) {
             fate.absorbed += power;
             return;
         }

@@ -261,6 +261,16 @@ fn cli_merge_refuses_incomplete_mixed_and_damaged_bake_parts_and_writes_nothing(
         &["merge", "a/bake_part_1_of_2.exr", "b/bake_part_2_of_2.exr", "-o", "out"],
         "error: b/bake_part_2_of_2.exr and a/bake_part_1_of_2.exr are parts of different bakes: seed 9 vs 5\n  help: merge only the parts of one `stagelight bake --part K/N` run\nnothing written\n",
     );
+    // A render part among bake parts: said as such, not as another version's file.
+    let o = run_in(
+        &dir,
+        &["render", "scene.ron", "--part", "2/2", "-o", "r2.exr"],
+    );
+    assert!(o.status.success(), "{}", stderr_of(&o));
+    refused(
+        &["merge", "a/bake_part_1_of_2.exr", "r2.exr", "-o", "out"],
+        "error: r2.exr: a render part file, not a bake part file like the first part\n  help: merge the parts of one render, or of one bake\nnothing written\n",
+    );
     // Part labels swapped in place, the texels untouched.
     let bytes = std::fs::read(dir.join("a/bake_part_2_of_2.exr")).unwrap();
     let from = b"\npart 2/2\n";

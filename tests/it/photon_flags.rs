@@ -306,7 +306,7 @@ fn caustics_without_a_caster_skip_the_photon_pass() {
     assert_eq!(stage["ran"], false);
     assert_eq!(
         stage["reason"],
-        "caustics are on, but nothing casts them (no mirror, glass or other specular material, no instance flagged to cast)"
+        "caustics are on, but nothing casts them (no mirror, glass or other specular material, no photon shader that reflects or refracts, no instance flagged to cast)"
     );
     let o = crate::common::run_in(&dir, &["render", "off.ron", "-o", "off.png"]);
     assert!(o.status.success());

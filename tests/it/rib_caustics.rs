@@ -175,3 +175,57 @@ fn a_ron_photon_shader_out_of_range_is_a_located_error() {
          bad.ron:2:127: error: photon refraction index must be above 0, found 0"
     );
 }
+
+/// A lit ball over a floor whose material's photon shader is `photon`, the ball's instance
+/// with `flags`, at 16×12.
+fn ball_over_floor(photon: &str, flags: &str, two_sided: bool) -> String {
+    format!(
+        r#"Scene(
+    options: (samples: 1, caustics: (photons: 20000, gather: 50)),
+    cameras: [(name: "cam", fov_y: 50, resolution: (16, 12),
+        placement: LookAt(eye: (0, -4, 3), target: (0, 0, 0), up: (0, 0, 1)), outputs: [(file: "o.png")])],
+    lights: [(name: "l", kind: Point(position: (0, 0, 3)), intensity: 20)],
+    materials: [
+        (name: "floor", shader: Lambert(albedo: (0.8, 0.8, 0.8))),
+        (name: "ball", shader: Lambert(albedo: (0.5, 0.5, 0.5)), two_sided: {two_sided},
+         photon: Some(Caustic({photon}))),
+    ],
+    objects: [
+        (name: "floor", mesh: Grid(size_x: 6, size_y: 6), material: "floor"),
+        (name: "ball", mesh: Sphere(radius: 0.6), material: "ball", approximation: Parametric(u: 32, v: 16)),
+    ],
+    instances: [(name: "f", of: "floor"), (name: "b", of: "ball"{flags}, transform: [Translate((0, 0, 1.2))])],
+    groups: [(name: "world", members: ["f", "b"])],
+    render: (root: "world", camera: "cam"),
+)"#
+    )
+}
+
+/// A photon shader alone makes a caster: `trace_photons` runs for a Lambert ball whose
+/// photon shader reflects (it skipped: "nothing casts them"), and stores photons.
+#[test]
+fn a_photon_shader_alone_casts_caustics() {
+    let dir = scratch_dir("photon-shader-casts");
+    let mirror = "specular: (1, 1, 1), refraction: (0, 0, 0), ior: 1";
+    std::fs::write(dir.join("a.ron"), ball_over_floor(mirror, "", false)).unwrap();
+    let (_, stage) = photon_stage(&dir, Path::new("a.ron"));
+    assert_eq!(stage["ran"], true, "{stage}");
+    assert!(stage["items"].as_u64().unwrap() > 1000, "{stage}");
+}
+
+/// Photons refracted into a closed one-sided object leave it through its back faces, as
+/// from a two-sided one: the same photons are stored (they died inside before).
+#[test]
+fn a_refracting_photon_shader_passes_photons_out_of_a_one_sided_object() {
+    let dir = scratch_dir("photon-shader-one-sided");
+    let glass = "specular: (0, 0, 0), refraction: (1, 1, 1), ior: 1.5";
+    let flags = ", caustic: Some(1)";
+    let stored = |two_sided: bool| {
+        std::fs::write(dir.join("b.ron"), ball_over_floor(glass, flags, two_sided)).unwrap();
+        let (_, stage) = photon_stage(&dir, Path::new("b.ron"));
+        stage["items"].as_u64().unwrap()
+    };
+    let (one, two) = (stored(false), stored(true));
+    assert!(two > 1000, "{two}");
+    assert_eq!(one, two);
+}

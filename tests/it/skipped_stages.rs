@@ -146,3 +146,55 @@ fn a_camera_without_outputs_renders_nothing_from_the_command_line() {
     assert!(dir.join("x.png").is_file());
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// The same with shapes to expand and dice: with no output to read the image, the geometry
+/// stages skip too (a sphere was expanded and diced, then thrown away); with `-o` they run.
+#[test]
+fn a_camera_without_outputs_expands_and_dices_nothing() {
+    let dir = crate::common::scratch_dir("no-outputs-geometry");
+    let text = r#"Scene(
+    materials: [(name: "grey", shader: Lambert(albedo: (0.5, 0.5, 0.5)))],
+    lights: [(name: "p", kind: Point(position: (0, -6, 3)), intensity: 5.0)],
+    objects: [(name: "ball", mesh: Sphere(radius: 1.0), material: "grey")],
+    instances: [(name: "b", of: "ball")],
+    groups: [(name: "world", members: ["b"])],
+    cameras: [(name: "cam", fov_y: 40.0, resolution: (8, 8),
+        placement: LookAt(eye: (0, -6, 3), target: (0, 0, 0)), outputs: [])],
+    render: (root: "world", camera: "cam"),
+)"#;
+    std::fs::write(dir.join("none.ron"), text).unwrap();
+    let stages = |args: &[&str]| {
+        let o = crate::common::run_in(&dir, args);
+        assert!(o.status.success(), "{}", crate::common::stderr_of(&o));
+        let json: serde_json::Value =
+            serde_json::from_slice(&std::fs::read(dir.join("s.json")).unwrap()).unwrap();
+        ["expand_geometry", "tessellate", "build_accel"].map(|name| {
+            let s = json["stages"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .find(|s| s["stage"] == name)
+                .unwrap()
+                .clone();
+            (
+                s["ran"].as_bool().unwrap(),
+                s["reason"].as_str().unwrap().to_string(),
+            )
+        })
+    };
+    let skipped = (false, "no render camera traces rays".to_string());
+    assert_eq!(
+        stages(&["render", "none.ron", "--stats-json", "s.json"]),
+        [skipped.clone(), skipped.clone(), skipped]
+    );
+    let ran = stages(&[
+        "render",
+        "none.ron",
+        "-o",
+        "x.png",
+        "--stats-json",
+        "s.json",
+    ]);
+    assert!(ran.iter().all(|(ran, _)| *ran), "{ran:?}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
