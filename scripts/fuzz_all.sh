@@ -12,7 +12,7 @@ cd "$(dirname "$0")/../fuzz"
 # Inputs per target: its executions per second here (session 33) times about 30 s.
 declare -A RUNS=(
     [scene_ron]=80000 [obj_text]=600000 [ply]=500000 [rib]=8000 [gltf]=300000
-    [mi]=40000 [photon_map]=2000000 [mtl]=1000000 [png]=300000 [exr]=30000
+    [mi]=40000 [photon_map]=2000000 [mtl]=1000000 [png]=300000 [exr]=30000 [part_file]=30000
 )
 targets=("$@")
 if [ ${#targets[@]} -eq 0 ]; then

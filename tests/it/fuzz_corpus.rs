@@ -155,3 +155,28 @@ fn exr_corpus_decodes_to_consistent_images_or_errors() {
         }
     }
 }
+
+/// The `part_file` target's checks: a part file that decodes (as a render or a bake part)
+/// encodes again and decodes to the same header.
+#[test]
+fn part_file_corpus_decodes_and_round_trips_or_is_refused() {
+    use stagelight::farm::{bake_part_file, part_file};
+    let mut decoded = 0;
+    for path in corpus("part_file") {
+        let bytes = std::fs::read(&path).unwrap();
+        if let Ok(part) = part_file::decode(&bytes) {
+            let back = part_file::decode(&part_file::encode(&part).unwrap()).unwrap();
+            assert_eq!(back.header, part.header, "{}", path.display());
+            decoded += 1;
+        }
+        if let Ok(part) = bake_part_file::decode(&bytes) {
+            let back = bake_part_file::decode(&bake_part_file::encode(&part).unwrap()).unwrap();
+            assert_eq!(back.header, part.header, "{}", path.display());
+            decoded += 1;
+        }
+    }
+    assert!(
+        decoded >= 2,
+        "the corpus holds a render part and a bake part"
+    );
+}
