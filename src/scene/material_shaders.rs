@@ -20,20 +20,35 @@ pub fn shadow(ck: &mut Checker<'_>, at: &str, d: Option<&ShadowDesc>) -> Result<
         Some(ShadowDesc::Transparency { color }) => *color,
     };
     let path = format!("{at}.Transparency.color");
-    let c = ck.colour(&path, "shadow transparency", color).ok_or(())?;
+    let help = "a shadow shader can only dim light: 0 blocks, 1 lets all through";
+    fraction(ck, &path, "shadow transparency", color, help)
+        .map(Some)
+        .ok_or(())
+}
+
+/// The colour `v` at `path` as a fraction per channel, each in [0, 1]; `None` after
+/// recording an error (every channel above 1 located, with `help`).
+fn fraction(
+    ck: &mut Checker<'_>,
+    path: &str,
+    what: &str,
+    v: super::desc_values::V3,
+    help: &str,
+) -> Option<Vec3> {
+    let c = ck.colour(path, what, v)?;
     let mut ok = true;
     for (k, x) in c.to_array().into_iter().enumerate() {
         if x > 1.0 {
             ck.src.error(
                 ck.file,
                 &format!("{path}[{k}]"),
-                format!("shadow transparency must be at most 1, found {x}"),
-                Some("a shadow shader can only dim light: 0 blocks, 1 lets all through".into()),
+                format!("{what} must be at most 1, found {x}"),
+                Some(help.into()),
             );
             ok = false;
         }
     }
-    ok.then_some(Some(c.as_vec3())).ok_or(())
+    ok.then(|| c.as_vec3())
 }
 
 /// The material environment of `environment:` at `at` (`Ok(None)` when absent); `Err`
@@ -72,25 +87,11 @@ pub fn photon(
     else {
         return Ok(None);
     };
-    let mut fraction = |field: &str, what: &str, v| {
-        let path = format!("{at}.Caustic.{field}");
-        let c = ck.colour(&path, what, v)?;
-        let mut ok = true;
-        for (k, x) in c.to_array().into_iter().enumerate() {
-            if x > 1.0 {
-                ck.src.error(
-                    ck.file,
-                    &format!("{path}[{k}]"),
-                    format!("{what} must be at most 1, found {x}"),
-                    Some("it is the fraction of each photon's power that goes on".into()),
-                );
-                ok = false;
-            }
-        }
-        ok.then(|| c.as_vec3())
-    };
-    let specular = fraction("specular", "photon specular colour", *specular);
-    let refraction = fraction("refraction", "photon refraction colour", *refraction);
+    let help = "it is the fraction of each photon's power that goes on";
+    let mut colour =
+        |field: &str, what: &str, v| fraction(ck, &format!("{at}.Caustic.{field}"), what, v, help);
+    let specular = colour("specular", "photon specular colour", *specular);
+    let refraction = colour("refraction", "photon refraction colour", *refraction);
     let ior_path = format!("{at}.Caustic.ior");
     let ior = ck
         .finite(&ior_path, "photon refraction index", *ior)
