@@ -124,7 +124,17 @@ fn photon_knobs_sweep_the_caustic_crop_from_the_cli() {
         "the caustic dominates the error: {crop:?} vs {whole:?}"
     );
     assert_eq!(json["crop"]["x0"], 35);
-    assert!(json["slope"].as_f64().unwrap() < 0.0, "{json}");
+    // Fitted where the times rise with the photon count; runs this short can come out of
+    // order under load, and then the summary says so instead of fitting noise.
+    match json["slope"].as_f64() {
+        Some(slope) => assert!(slope < 0.0, "{json}"),
+        None => assert!(
+            json["no_fit"]
+                .as_str()
+                .is_some_and(|why| why.starts_with("the times do not rise")),
+            "{json}"
+        ),
+    }
     let csv = std::fs::read_to_string(dir.join("photons/sweep.csv")).unwrap();
     assert!(csv
         .lines()
