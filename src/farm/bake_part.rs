@@ -191,8 +191,6 @@ pub fn merge(parts: &[LoadedBakePart]) -> Result<MergedBake, String> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::farm::part::{Part, Split};
-    use crate::farm::recorded_settings::RecordedSettings;
 
     /// Part `index` of 2 of one 32×16 request (tile 1 is part 1's, tile 2 part 2's).
     fn bake_part(index: u32) -> LoadedBakePart {
@@ -208,24 +206,7 @@ mod tests {
         LoadedBakePart {
             path: format!("b{index}.exr").into(),
             file: BakePartFile {
-                header: PartHeader {
-                    version: "0".into(),
-                    scene: "s.ron".into(),
-                    scene_hash: 1,
-                    settings_hash: 2,
-                    recorded: RecordedSettings {
-                        disabled: crate::features::Features::NONE,
-                        integrator: crate::settings::Integrator::Direct,
-                    },
-                    seed: 0,
-                    part: Part {
-                        index,
-                        count: 2,
-                        split: Split::Tiles,
-                    },
-                    width: 0,
-                    height: 0,
-                },
+                header: PartHeader::for_tests(index, 0, 0),
                 requests: vec![BakePartRequest {
                     name: "floor".into(),
                     images: vec![image],

@@ -245,7 +245,6 @@ pub fn merge(parts: &[LoadedPart]) -> Result<FrameBuffers, String> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::farm::recorded_settings::RecordedSettings;
 
     /// Part `index` of 2 of a 32×16 image (tile 1 is part 1's, tile 2 part 2's), each
     /// owned pixel with one sample.
@@ -261,24 +260,7 @@ mod tests {
         LoadedPart {
             path: format!("p{index}.exr").into(),
             file: PartFile {
-                header: PartHeader {
-                    version: "0".into(),
-                    scene: "s.ron".into(),
-                    scene_hash: 1,
-                    settings_hash: 2,
-                    recorded: RecordedSettings {
-                        disabled: crate::features::Features::NONE,
-                        integrator: crate::settings::Integrator::Direct,
-                    },
-                    seed: 0,
-                    part: Part {
-                        index,
-                        count: 2,
-                        split: Split::Tiles,
-                    },
-                    width,
-                    height,
-                },
+                header: PartHeader::for_tests(index, width, height),
                 pixels,
             },
         }

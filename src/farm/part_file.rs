@@ -47,6 +47,32 @@ pub struct PartHeader {
     pub height: u32,
 }
 
+#[cfg(test)]
+impl PartHeader {
+    /// Part `index` of 2 (tiles) of a fixed scene and settings, `width`×`height`: the
+    /// header the merge tests build their parts with.
+    pub(crate) fn for_tests(index: u32, width: u32, height: u32) -> Self {
+        Self {
+            version: "0".into(),
+            scene: "s.ron".into(),
+            scene_hash: 1,
+            settings_hash: 2,
+            recorded: super::recorded_settings::RecordedSettings {
+                disabled: crate::features::Features::NONE,
+                integrator: crate::settings::Integrator::Direct,
+            },
+            seed: 0,
+            part: super::part::Part {
+                index,
+                count: 2,
+                split: super::part::Split::Tiles,
+            },
+            width,
+            height,
+        }
+    }
+}
+
 /// Per-pixel results of one part (row-major, full image size; pixels the part does not
 /// compute are zero).
 #[derive(Debug, Clone, PartialEq, Default)]
