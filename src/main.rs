@@ -440,6 +440,7 @@ fn main() -> ExitCode {
             };
         }
     };
+    let _ = REFUSED_OUTCOME.set(refused_outcome(&cli.command));
     match cli.command {
         Command::Check {
             scene,
@@ -470,18 +471,47 @@ fn load(path: &Path) -> Result<LoadedScene, ExitCode> {
         }
         Err(errors) => {
             eprintln!("{errors}");
-            eprintln!(
-                "{}{} in {}; nothing rendered",
-                counted(errors.0.len(), "error"),
-                match errors.1.len() {
-                    0 => String::new(),
-                    n => format!(" and {}", counted(n, "warning")),
-                },
-                path.display()
-            );
+            eprintln!("{}", refusal_line(errors.0.len(), errors.1.len(), path));
             Err(ExitCode::from(EXIT_ERROR))
         }
     }
+}
+
+/// What a refused run did not do, for the last line of its report (`1 error in a.rib;
+/// nothing baked`): set once from the command, before anything is read.
+static REFUSED_OUTCOME: std::sync::OnceLock<&'static str> = std::sync::OnceLock::new();
+
+/// The tail of a refusal's count line for `command` (`check` only counts: it writes nothing).
+fn refused_outcome(command: &Command) -> &'static str {
+    match command {
+        Command::Check { .. } => "",
+        Command::Plan(_) => "; nothing planned",
+        Command::Convert { .. } => "; nothing converted",
+        Command::Merge(_) => "; nothing merged",
+        Command::Farm(_) => "; no scripts written",
+        Command::Photons(_) => "; no photon map written",
+        Command::Render(_) => "; nothing rendered",
+        Command::Bake(_) => "; nothing baked",
+        Command::Bench(_) => "; nothing measured",
+        Command::Sweep(_) => "; nothing swept",
+    }
+}
+
+/// The count line that ends a refusal: `2 errors and 1 warning in a.rib; nothing rendered`.
+fn refusal_line(errors: usize, warnings: usize, path: &Path) -> String {
+    format!(
+        "{}{} in {}{}",
+        counted(errors, "error"),
+        match warnings {
+            0 => String::new(),
+            n => format!(" and {}", counted(n, "warning")),
+        },
+        path.display(),
+        REFUSED_OUTCOME
+            .get()
+            .copied()
+            .unwrap_or("; nothing rendered")
+    )
 }
 
 /// `1 error`, `2 errors`.
@@ -543,11 +573,7 @@ fn check_run(
         for d in &refused {
             eprintln!("{d}");
         }
-        eprintln!(
-            "{} in {}; nothing rendered",
-            counted(refused.len(), "error"),
-            path.display()
-        );
+        eprintln!("{}", refusal_line(refused.len(), 0, path));
         return Err(ExitCode::from(EXIT_ERROR));
     }
     check_outputs(path, scene, inputs, stats_json)
@@ -568,11 +594,7 @@ fn check_outputs(
     for c in &clashes {
         eprintln!("{}", c.text);
     }
-    eprintln!(
-        "{} in {}; nothing rendered",
-        counted(clashes.len(), "error"),
-        path.display()
-    );
+    eprintln!("{}", refusal_line(clashes.len(), 0, path));
     Err(ExitCode::from(if clashes.iter().any(|c| c.usage) {
         EXIT_USAGE
     } else {

@@ -222,7 +222,7 @@ fn a_stats_json_on_the_bake_part_file_is_refused_up_front() {
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     assert_eq!(
         stderr(&o),
-        "error: --stats-json cj3/bake_part_1_of_2.exr is also written by --part cj3/bake_part_1_of_2.exr\n  help: give every output its own file, and none the name of an input\n1 error in scene.ron; nothing rendered\n"
+        "error: --stats-json cj3/bake_part_1_of_2.exr is also written by --part cj3/bake_part_1_of_2.exr\n  help: give every output its own file, and none the name of an input\n1 error in scene.ron; nothing baked\n"
     );
     assert!(!dir.join("cj3").exists());
 }

@@ -122,7 +122,7 @@ fn unusable_yfov_and_aspect_ratio_are_located_errors() {
              cams.gltf:9:102: error: cameras[0] (\"near\"): \"aspectRatio\" must be greater than 0, found -1\n{aspect_help}\
              cams.gltf:10:68: error: cameras[1] (\"far\"): \"yfov\" must be greater than 0 and less than π radians (180°), found 3.2\n{yfov_help}\
              cams.gltf:10:103: error: cameras[1] (\"far\"): \"aspectRatio\" 0.000000001 makes the image 640 pixels wide and 640000000000 high; glTF cameras are read 640 wide and 1 … 16384 high\n{aspect_help}\
-             4 errors and 1 warning in cams.gltf; nothing rendered\n"
+             4 errors and 1 warning in cams.gltf\n"
         )
     );
 }

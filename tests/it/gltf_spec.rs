@@ -123,7 +123,7 @@ fn application_specific_attributes_are_read_past_and_unknown_names_named() {
     assert_eq!(
         stderr_of(&o),
         "bad.gltf:1:1: error: invalid glTF file: meshes[0].primitives[0].attributes[\"BATCHID\"]: invalid glTF: \"BATCHID\" is not an attribute name: expected POSITION, NORMAL, TANGENT, TEXCOORD_n, COLOR_n, JOINTS_n, WEIGHTS_n, or an application-specific name starting with \"_\"\n\
-         1 error in bad.gltf; nothing rendered\n"
+         1 error in bad.gltf\n"
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
@@ -258,7 +258,7 @@ fn strips_and_fans_are_read_and_a_failed_mesh_gets_no_follow_on_error() {
         stderr_of(&o),
         "mode0.gltf:1:1: error: invalid glTF file \"mode0.gltf\": meshes[0].primitives[0]: primitive mode Points is not supported: only triangles (mode 4, TRIANGLES; 5, TRIANGLE_STRIP; 6, TRIANGLE_FAN)\n\
          \x20 help: loaded for object \"quad_mesh\" at mode0.gltf:1:1\n\
-         1 error in mode0.gltf; nothing rendered\n"
+         1 error in mode0.gltf\n"
     );
     // The same for a PLY file that does not load under a bake on `uvs: Mesh`.
     write(
@@ -320,7 +320,7 @@ fn non_unit_rotations_second_parents_and_short_strides_are_errors() {
         format!(
             "long.gltf:{line}:17: error: nodes[0] (\"spin\"): \"rotation\" [0, 0, 2, 0] has length 2: a rotation must be a unit quaternion (length within 0.001 of 1)\n\
              \x20 help: write the rotation normalised (divide each component by the length); a scale belongs in \"scale\"\n\
-             1 error in long.gltf; nothing rendered\n"
+             1 error in long.gltf\n"
         )
     );
     let o = run_in(&dir, &["check", "zero.gltf"]);
@@ -329,7 +329,7 @@ fn non_unit_rotations_second_parents_and_short_strides_are_errors() {
         format!(
             "zero.gltf:{line}:17: error: nodes[0] (\"spin\"): \"rotation\" [0, 0, 0, 0] has length 0: a rotation must be a unit quaternion (length within 0.001 of 1)\n\
              \x20 help: write a unit quaternion [x, y, z, w]; no rotation is [0, 0, 0, 1]\n\
-             1 error in zero.gltf; nothing rendered\n"
+             1 error in zero.gltf\n"
         )
     );
     // 0.7072² + 0.7072² = 1.00026…: normalised, a rotation by 90° about z.
@@ -368,7 +368,7 @@ fn non_unit_rotations_second_parents_and_short_strides_are_errors() {
         format!(
             "two.gltf:{at}:{column_b}: error: nodes[0] (\"leaf\") is a child of nodes[1] and of nodes[2]: a glTF node has at most one parent\n\
              \x20 help: list the node under one parent; to show a mesh twice, give it to two nodes\n\
-             1 error in two.gltf; nothing rendered\n"
+             1 error in two.gltf\n"
         )
     );
 
@@ -382,7 +382,7 @@ fn non_unit_rotations_second_parents_and_short_strides_are_errors() {
         stderr_of(&o),
         "stride.gltf:1:1: error: invalid glTF file \"stride.gltf\": bufferViews[0].byteStride: a stride of 8 bytes is less than the 12-byte elements of accessors[0] (POSITION): its elements would overlap\n\
          \x20 help: loaded for object \"quad_mesh\" at stride.gltf:1:1\n\
-         1 error in stride.gltf; nothing rendered\n"
+         1 error in stride.gltf\n"
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
@@ -535,7 +535,7 @@ fn a_mirrored_and_clamped_sampler_wraps_each_axis_as_gltf_says() {
     assert_eq!(
         stderr_of(&o),
         "bad.gltf:1:1: error: invalid glTF file: samplers[0].wrapT: invalid glTF: not a wrap mode: expected 33071 (CLAMP_TO_EDGE), 33648 (MIRRORED_REPEAT) or 10497 (REPEAT)\n\
-         1 error in bad.gltf; nothing rendered\n"
+         1 error in bad.gltf\n"
     );
 
     // The loaded texture: u mirrors, v clamps.

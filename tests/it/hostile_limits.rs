@@ -70,7 +70,7 @@ fn a_chain_of_phenomena_beyond_the_limit_is_refused_where_it_starts() {
     assert_eq!(o.status.code(), Some(1));
     assert_eq!(
         stderr_of(&o),
-        "scene.ron:13:22: error: phenomenon \"p0\" starts a chain of 3000 nested phenomenon calls (p0 → p1 → … → p2999); the limit is 64\n  help: call fewer phenomena inside each other: inline some of them\n1 error in scene.ron; nothing rendered\n"
+        "scene.ron:13:22: error: phenomenon \"p0\" starts a chain of 3000 nested phenomenon calls (p0 → p1 → … → p2999); the limit is 64\n  help: call fewer phenomena inside each other: inline some of them\n1 error in scene.ron\n"
     );
 }
 
@@ -100,7 +100,7 @@ fn phenomena_calling_each_other_twice_stop_at_the_expanded_size_limit() {
     assert_eq!(o.status.code(), Some(1));
     assert_eq!(
         stderr_of(&o),
-        "scene.ron:29:45: error: phenomenon \"p15\" called here makes the expanded graph larger than 100000 nodes, the limit for one graph\n  help: every call is expanded in full: call a phenomenon once and pass its result in as a parameter to reuse it (Param(\"x\") used twice costs nothing), or nest fewer calls\n1 error in scene.ron; nothing rendered\n"
+        "scene.ron:29:45: error: phenomenon \"p15\" called here makes the expanded graph larger than 100000 nodes, the limit for one graph\n  help: every call is expanded in full: call a phenomenon once and pass its result in as a parameter to reuse it (Param(\"x\") used twice costs nothing), or nest fewer calls\n1 error in scene.ron\n"
     );
 }
 
@@ -179,7 +179,7 @@ fn many_materials_calling_a_large_phenomenon_stop_at_the_scene_limit() {
     assert_eq!(o.status.code(), Some(1));
     assert_eq!(
         stderr_of(&o),
-        "scene.ron:16:68: error: phenomenon \"p15\" called here makes the scene's expanded graphs larger than 1000000 nodes together, the limit for one scene\n  help: every call is expanded in full: call a phenomenon once and pass its result in as a parameter to reuse it (Param(\"x\") used twice costs nothing), or nest fewer calls\n1 error in scene.ron; nothing rendered\n"
+        "scene.ron:16:68: error: phenomenon \"p15\" called here makes the scene's expanded graphs larger than 1000000 nodes together, the limit for one scene\n  help: every call is expanded in full: call a phenomenon once and pass its result in as a parameter to reuse it (Param(\"x\") used twice costs nothing), or nest fewer calls\n1 error in scene.ron\n"
     );
 }
 
@@ -197,7 +197,7 @@ fn an_endless_include_stops_at_the_size_limit() {
     assert_eq!(o.status.code(), Some(1));
     assert_eq!(
         stderr_of(&o),
-        "scene.ron:2:15: error: cannot read include file \"zero.ron\": larger than 64 MiB, the limit for a scene file\n1 error in scene.ron; nothing rendered\n"
+        "scene.ron:2:15: error: cannot read include file \"zero.ron\": larger than 64 MiB, the limit for a scene file\n1 error in scene.ron\n"
     );
 }
 

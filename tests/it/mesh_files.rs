@@ -303,7 +303,7 @@ fn non_finite_positions_fail_check_where_they_are() {
             stderr_of(&o),
             format!(
                 "{expected}\n  help: loaded for object \"thing\" at scene.ron:2:47\n\
-                 1 error in scene.ron; nothing rendered\n"
+                 1 error in scene.ron\n"
             ),
             "{mesh}"
         );

@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use stagelight::components::LightPhotons;
 use stagelight::frame::Frame;
 use stagelight::scene::desc::{
-    PhotonDepthDesc, PhotonFilterDesc, PhotonMapDesc, PhotonMapFileDesc,
+    FaceDesc, PhotonDepthDesc, PhotonFilterDesc, PhotonMapDesc, PhotonMapFileDesc,
 };
 use stagelight::scene::import::mi::read_mi;
 use stagelight::scene::load_scene;
@@ -184,5 +184,20 @@ fn malformed_controls_give_exact_located_messages() {
             Err(e) => e.to_string(),
         };
         assert_eq!(got.trim_end(), *expected, "{stem}");
+    }
+}
+
+/// mental ray's default is `face both` (seed 000: "The default is face both"): an options
+/// block without `face` gives two-sided shading, `face front` one-sided.
+#[test]
+fn face_defaults_to_both_as_in_mental_ray() {
+    for (statement, want) in [
+        ("", FaceDesc::Both),
+        ("face both\n", FaceDesc::Both),
+        ("face front\n", FaceDesc::Front),
+    ] {
+        let text = fixture_text(&format!("caustic on\n{statement}"));
+        let read = read_mi(Path::new("face.mi"), text.as_bytes()).unwrap();
+        assert_eq!(read.desc.options.unwrap().face, want, "{statement:?}");
     }
 }

@@ -4,7 +4,7 @@
 
 use stagelight::scene::load_scene;
 
-use crate::common::{dir_names, run_in, scratch_dir, stderr_of};
+use crate::common::{dir_names, refused_tail, run_in, scratch_dir, stderr_of};
 
 const RIB: &str = r#"Hider "hidden"
 Format 32 32 1
@@ -55,7 +55,7 @@ fn a_validation_warning_is_shown_with_a_validation_error() {
         "s.ron:3:18: warning: material \"ink\" has a contour shader, but no camera output shows contours\n  \
          help: add an output such as `(file: \"lines.svg\")` or a `Contours` pass\n\
          s.ron:4:73: error: intensity must not be negative, found -10\n\
-         1 error and 1 warning in s.ron; nothing rendered\n"
+         1 error and 1 warning in s.ron\n"
     );
 }
 
@@ -83,9 +83,12 @@ fn a_rib_reader_warning_is_shown_with_a_reader_error() {
         assert_eq!(o.status.code(), Some(1));
         assert_eq!(
             stderr_of(&o),
-            "a.rib:1:1: warning: ignored request \"Hider\"\n\
-             a.rib:7:19: error: unknown request \"extra\"\n\
-             1 error and 1 warning in a.rib; nothing rendered\n",
+            format!(
+                "a.rib:1:1: warning: ignored request \"Hider\"\n\
+                 a.rib:7:19: error: unknown request \"extra\"\n\
+                 1 error and 1 warning in a.rib{}\n",
+                refused_tail(command)
+            ),
             "{command}"
         );
         assert_eq!(dir_names(&dir), ["a.rib"]);
@@ -107,7 +110,7 @@ fn a_mi_reader_warning_is_shown_with_a_reader_error() {
         format!(
             "p.mi:{output}:14: warning: output \"test.rgb\" is written as \"test.png\" (stagelight writes PNG and EXR files, not format \"rgb\")\n\
              p.mi:{line}:1: error: unknown option \"bogus_option\"\n\
-             1 error and 1 warning in p.mi; nothing rendered\n"
+             1 error and 1 warning in p.mi\n"
         )
     );
 }

@@ -136,3 +136,17 @@ pub fn convert_renders_the_same_png(test: &str, scene: &Path) {
     assert!(a == b, "the PNGs differ");
     let _ = std::fs::remove_dir_all(&tmp);
 }
+
+/// What the last line of a refusal says `command` did not do: `1 error in a.ron; nothing
+/// rendered` (render), `…; nothing baked` (bake), `…; nothing converted` (convert), and no
+/// tail for `check`, which only counts.
+pub fn refused_tail(command: &str) -> &'static str {
+    match command {
+        "check" => "",
+        "render" => "; nothing rendered",
+        "bake" => "; nothing baked",
+        "convert" => "; nothing converted",
+        "farm" => "; no scripts written",
+        other => panic!("no refusal tail for {other}"),
+    }
+}

@@ -83,7 +83,12 @@ pub fn options(r: &mut Reader, c: &mut Cursor, open: Pos) {
     let fresh = r.define(c, &name, pos);
     let mut o = RawOptions {
         at: c.located(open),
-        desc: OptionsDesc::default(),
+        // mental ray's default is `face both` (seed 000: "The default is face both"); the
+        // RON default is one-sided.
+        desc: OptionsDesc {
+            face: FaceDesc::Both,
+            ..OptionsDesc::default()
+        },
         space: Space::Camera,
         shadows: true,
     };
