@@ -116,6 +116,9 @@ pub struct BsdfSample {
     pub delta: bool,
     /// Kind of scattering.
     pub scatter: Scatter,
+    /// Whether the direction is the straight pass-through of a partly transparent surface
+    /// (`Opacity`): the ray goes on unbent, as a shadow ray crossing the surface does.
+    pub pass_through: bool,
 }
 
 impl BsdfSample {
@@ -545,6 +548,7 @@ impl Bsdf {
             pdf,
             delta: false,
             scatter: Scatter::Diffuse,
+            pass_through: false,
         })
     }
 
@@ -578,6 +582,7 @@ impl Bsdf {
         };
         let u2 = Vec2::new(u.y, u.z);
         let (w, lobe) = self.lobes[k];
+        let pass_through = matches!(lobe, Lobe::PassThrough);
         let delta = |b: DeltaBranch, prob: f32| {
             let cos = b.wi.z.abs();
             (cos > 0.0 && prob > 0.0).then(|| BsdfSample {
@@ -590,6 +595,7 @@ impl Bsdf {
                 } else {
                     Scatter::Reflection
                 },
+                pass_through,
             })
         };
         let wi = match lobe {
@@ -616,6 +622,7 @@ impl Bsdf {
             } else {
                 Scatter::Reflection
             },
+            pass_through: false,
         })
     }
 

@@ -624,6 +624,20 @@ pub fn trace_leaving(
     delta: bool,
     own: Option<&MaterialEnvironment>,
 ) -> (Option<Hit>, Vec3, Vec<(Vec3, f32)>) {
+    trace_leaving_from(ctx, ray, delta, own, None)
+}
+
+/// [`trace_leaving`] for a ray that continues a path from `behind` through straight
+/// pass-throughs (`None`: from its own origin): the area lights it meets give their radiance
+/// and pdf as seen from there ([`Light::hit_from`]).
+#[inline(always)]
+pub fn trace_leaving_from(
+    ctx: &ShadeContext<'_>,
+    ray: &Ray,
+    delta: bool,
+    own: Option<&MaterialEnvironment>,
+    behind: Option<Vec3>,
+) -> (Option<Hit>, Vec3, Vec<(Vec3, f32)>) {
     let hit = ctx.geometry.accel.intersect_as(ray, RayKind::Secondary);
     let mut clipped = *ray;
     if let Some(h) = &hit {
@@ -644,7 +658,11 @@ pub fn trace_leaving(
     let mut crossed = Vec::new();
     if !delta {
         for light in &ctx.lights.lights {
-            if let Some((_, radiance, pdf)) = light.hit(&clipped, false) {
+            let found = match behind {
+                None => light.hit(&clipped, false),
+                Some(p) => light.hit_from(&clipped, p),
+            };
+            if let Some((_, radiance, pdf)) = found {
                 direct += radiance;
                 crossed.push((radiance, pdf));
             }

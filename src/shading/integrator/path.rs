@@ -16,18 +16,23 @@
 //! attenuation; light scattered more than once inside a medium is not computed. Local
 //! illumination models ([`super::local`]) are shaded as the Direct integrator shades them
 //! (ambient term, every light, no MIS) and continue only through their delta lobes.
+//! The straight pass-through of a partly transparent surface (`Opacity`) that shadow rays
+//! also cross is a null event: the lights found beyond it are weighted against next-event
+//! estimation at the last non-delta vertex, with that vertex's pdf, and measured from there
+//! ([`crate::shading::lights::Light::hit_from`]).
 
 use glam::Vec3;
 
 use super::components::{local_component, Component, Components, PathLanes};
 use super::power::power_weight;
 use super::{
-    depth_exceeded_leaving, light_loop_split, local, trace_leaving, volume, Depth, ShadeContext,
-    Vertex,
+    depth_exceeded_leaving, light_loop_split, local, trace_leaving_from, volume, Depth,
+    ShadeContext, Vertex,
 };
 use crate::accel::{Hit, Ray};
 use crate::sampling::Sampler;
 use crate::shading::bsdf::{Bsdf, Scatter};
+use crate::shading::shadow::material_transmits_shadows;
 use crate::shading::surface::unlit_radiance;
 use crate::shading::texture::hit::is_textured;
 
@@ -87,6 +92,7 @@ pub fn radiance_split(
     let mut ray = *ray;
     let mut hit = Some(*hit);
     // Origin and solid-angle pdf of the last non-delta BSDF sample (None: camera or delta).
+    // A straight pass-through that shadow rays also cross keeps it (see `null` below).
     let mut prev: Option<(Vec3, f32)> = None;
     // Component passes: the throughput per first event, once the path has scattered.
     let mut lanes: Option<PathLanes> = None;
@@ -180,10 +186,20 @@ pub fn radiance_split(
         let u = Vec3::new(sampler.next_1d(), sampler.next_1d(), sampler.next_1d());
         let Some(s) = bsdf.sample(v.wo, u) else { break };
         let transmits = s.scatter == Scatter::Transmission;
+        // A straight pass-through (`Opacity`) of a surface that shadow rays cross too is a
+        // null event: next-event estimation at the last non-delta vertex already reached the
+        // lights beyond it through the same surface, so what this ray finds is weighted
+        // against that estimate from there — with that vertex's pdf — not counted in full
+        // as after a mirror (which counted light through a transparent sheet twice).
+        let null = s.pass_through && prev.is_some() && material_transmits_shadows(v.material);
         // The closures below take copies, never `&s`: a borrowed sample must live in memory,
         // and reading the returned `Option<BsdfSample>` back from there stalled (a failed
         // store-to-load forward, ≈ 1 % of a sample).
-        let (delta, pdf) = (s.delta, s.pdf);
+        let (delta, pdf) = match prev {
+            Some((_, pdf)) if null => (false, pdf),
+            _ => (s.delta, s.pdf),
+        };
+        let behind = prev.filter(|_| null).map(|(p, _)| p);
         let mis = move |pdf_light: f32| {
             if delta {
                 1.0
@@ -225,7 +241,7 @@ pub fn radiance_split(
             break;
         }
         eye_chain &= s.delta;
-        let (next_hit, _, crossed) = trace_leaving(ctx, &next_ray, eye_chain, own);
+        let (next_hit, _, crossed) = trace_leaving_from(ctx, &next_ray, eye_chain, own, behind);
         if let (Some(h), Some(_)) = (&next_hit, ctx.volumes) {
             let seg = volume::segment(ctx, &next_ray, h, sampler);
             radiance += beta * seg.inscattered;
@@ -241,7 +257,9 @@ pub fn radiance_split(
             let x = le * mis(pdf_light);
             record(&mut parts, &lanes, beta, Component::Emission, x, true);
         }
-        prev = (!s.delta).then_some((v.sp.surface.p, s.pdf));
+        if !null {
+            prev = (!s.delta).then_some((v.sp.surface.p, s.pdf));
+        }
         ray = next_ray;
         hit = next_hit;
         depth = next;

@@ -370,6 +370,33 @@ impl Light {
         let att = attenuation_factor(a.attenuation, t * ray.dir.length());
         (att > 0.0).then_some((t, a.radiance * att, pdf))
     }
+
+    /// [`Light::hit`] (not the eye's chain) for a ray that goes on, unbent, from a path
+    /// vertex at `p` through straight pass-throughs: the same light point, with the distance
+    /// ramp and the solid-angle pdf measured from `p` — what next-event estimation at `p`
+    /// used for the same direction, so that the two strategies are weighted against each
+    /// other as if the pass-throughs were not there.
+    pub fn hit_from(&self, ray: &Ray, p: Vec3) -> Option<(f32, Vec3, f32)> {
+        let Light::Area(a) = self else {
+            return None;
+        };
+        let (t, pdf) = match &a.shape {
+            AreaShape::Rect(r) => r.hit(ray),
+            AreaShape::Disc(d) => d.hit(ray),
+            AreaShape::Sphere(s) => s.hit(ray),
+            AreaShape::Cylinder(c) => c.hit(ray),
+        }?;
+        let near = t * ray.dir.length();
+        let far = (ray.origin + ray.dir * t - p).length();
+        // The area shapes' pdfs are `d²/(cos·area)` with the same cosine along one line; the
+        // sphere's is the cone it subtends from the sampling point.
+        let pdf = match &a.shape {
+            AreaShape::Sphere(s) => s.cone_pdf(p)?,
+            _ => pdf * (far / near) * (far / near),
+        };
+        let att = attenuation_factor(a.attenuation, far);
+        (att > 0.0 && pdf.is_finite() && pdf > 0.0).then_some((t, a.radiance * att, pdf))
+    }
 }
 
 /// A sample of a point-like light at `q` with intensity `intensity` (W/sr), its near/far
