@@ -201,3 +201,35 @@ fn face_defaults_to_both_as_in_mental_ray() {
         assert_eq!(read.desc.options.unwrap().face, want, "{statement:?}");
     }
 }
+
+/// The physics library's photon shaders of `dgs_material` and `dielectric_material` scatter
+/// photons as their materials scatter light — what the photon pass does with every BSDF — so
+/// the seed's caustics scene reads them without a warning; another photon shader is still
+/// reported, at the shader's name.
+#[test]
+fn material_photon_twins_map_and_other_photon_shaders_warn() {
+    let path = dir("assets/seeds/mi/caustics.mi");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let photon_warnings = |text: &str| -> Vec<String> {
+        let read = read_mi(Path::new("caustics.mi"), text.as_bytes()).unwrap();
+        read.warnings
+            .iter()
+            .filter(|w| w.problem.message.contains("photon shader"))
+            .map(|w| {
+                format!(
+                    "{}:{}: {}",
+                    w.problem.pos.line, w.problem.pos.column, w.problem.message
+                )
+            })
+            .collect()
+    };
+    assert_eq!(photon_warnings(&text), Vec::<String>::new());
+    let other = text.replace(
+        "photon \"dgs_material_photon\" ()",
+        "photon \"mib_photon_basic\" ()",
+    );
+    assert_eq!(
+        photon_warnings(&other),
+        ["73:8: photon shader \"mib_photon_basic\" is read but not yet mapped"]
+    );
+}

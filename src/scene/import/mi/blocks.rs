@@ -74,6 +74,15 @@ const OPTIONS: &[&str] = &[
     "end",
 ];
 
+/// Whether `photon` is the physics library's photon shader of the material shader
+/// `material` (`dgs_material_photon` of `dgs_material`, `dielectric_material_photon` of
+/// `dielectric_material`): it scatters photons as the material scatters light, which is what
+/// the photon pass does with every material's BSDF, so it maps without a warning.
+fn is_photon_twin(material: &str, photon: &str) -> bool {
+    matches!(material, "dgs_material" | "dielectric_material")
+        && photon.strip_suffix("_photon") == Some(material)
+}
+
 /// `options "name" … end options`.
 pub fn options(r: &mut Reader, c: &mut Cursor, open: Pos) {
     let Some((name, pos)) = name_of(c, "options") else {
@@ -798,13 +807,17 @@ pub fn material(r: &mut Reader, c: &mut Cursor, open: Pos) {
                 }
             }
             "photon" | "displace" => {
-                if let Some(call) = c.shader_call(&format!("the {w} shader")) {
-                    let n = &call.name;
+                if let Some(photon) = c.shader_call(&format!("the {w} shader")) {
+                    let n = &photon.name;
+                    if w == "photon" && is_photon_twin(&call.name, n) {
+                        // Photons scatter through the material's own BSDF: what the twin does.
+                        continue;
+                    }
                     let msg = match w.as_str() {
                         "photon" => format!("photon shader \"{n}\" is read but not yet mapped"),
                         _ => format!("displace shader \"{n}\" is not mapped: objects with this material render undisplaced"),
                     };
-                    c.warn(call.pos, msg);
+                    c.warn(photon.pos, msg);
                 }
             }
             other => {
