@@ -91,6 +91,7 @@ mod rib_caustics;
 mod rib_orientation;
 mod rib_shading;
 mod rib_structure;
+mod rib_tutorial_shaders;
 mod scene_errors;
 mod scene_errors_lights;
 mod scene_load;

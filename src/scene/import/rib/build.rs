@@ -19,6 +19,7 @@ use super::requests::{self, SILENT};
 use super::retained::{Defining, Motion, Retained, Sample};
 use super::shaders::{self, LightShader, DISPLACEMENTS, LIGHTS, SURFACES};
 use super::state::{from_rib, rotate, Block, GraphicsState, ShaderCall};
+use super::tutorial;
 use super::RibScene;
 use crate::scene::desc::{
     ApproximationDesc, DisplacementDesc, FilterDesc, GroupDesc, InstanceDesc, LightDesc,
@@ -678,6 +679,17 @@ impl Builder {
             "Imager" => {
                 let (n, pos) = a.string("name")?;
                 let params = a.params(&self.decls, problems);
+                if n == "myImager" {
+                    // The tutorial's imager (seed 001 §3.3) replaces each pixel by a pattern
+                    // of raster coordinates: no stage of stagelight's imager makes one.
+                    problems.push(Problem::warning(
+                        pos,
+                        "ignored Imager \"myImager\": the tutorial's imager paints every pixel \
+                         with a pattern of raster coordinates, which stagelight's imager cannot"
+                            .to_string(),
+                    ));
+                    return Ok(());
+                }
                 if n != "background" {
                     problems.push(Problem::warning(
                         pos,
@@ -894,11 +906,12 @@ impl Builder {
             self.caustics = Some((self.file, r.pos));
             return Ok(());
         }
-        let known: &[&str] = match kind {
-            "Surface" => SURFACES,
-            "Displacement" => DISPLACEMENTS,
-            "AreaLightSource" => &["arealight"],
-            _ => LIGHTS,
+        // The standard shaders and the tutorial's (`super::tutorial`), known by name.
+        let known: Vec<&str> = match kind {
+            "Surface" => [SURFACES, tutorial::SURFACES].concat(),
+            "Displacement" => [DISPLACEMENTS, tutorial::DISPLACEMENTS].concat(),
+            "AreaLightSource" => vec!["arealight"],
+            _ => [LIGHTS, tutorial::LIGHTS].concat(),
         };
         if !known.contains(&name.as_str()) {
             let what = kind.to_lowercase();
@@ -911,7 +924,7 @@ impl Builder {
                     _ => format!("ignored {what} shader \"{name}\": not one of ours"),
                 },
             );
-            w.help = suggestion(&name, known, "shaders");
+            w.help = suggestion(&name, &known, "shaders");
             problems.push(w);
             if kind == "Surface" {
                 self.gs.attrs.surface = None;
@@ -1105,9 +1118,16 @@ impl Builder {
                 let p = t.transform_point3(DVec3::new(v.0, v.1, v.2));
                 (p.x, p.y, p.z)
             };
+            // RenderMan's point and spot lights fall off as 1/d²; the tutorial's `myLight`
+            // ramps from `near` to `far` instead.
+            let mut falloff = (true, None);
             let kind = match l.values.shader {
                 LightShader::Ambient => LightKindDesc::Ambient,
                 LightShader::Point { from } => LightKindDesc::Point { position: pt(from) },
+                LightShader::Ramp { from, near, far } => {
+                    falloff = (false, Some((near, far)));
+                    LightKindDesc::Point { position: pt(from) }
+                }
                 LightShader::Distant { from, to } => {
                     let (a, b) = (pt(from), pt(to));
                     LightKindDesc::Directional {
@@ -1146,11 +1166,11 @@ impl Builder {
                 shadow_factor: 0.0,
                 samples: None,
                 visible: false,
-                attenuation: None,
+                attenuation: falloff.1,
                 energy: None,
                 caustic_photons: None,
                 globillum_photons: None,
-                inverse_square: true,
+                inverse_square: falloff.0,
             });
         }
         let caustics_on = self.caustics.is_some();

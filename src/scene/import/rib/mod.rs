@@ -5,7 +5,7 @@
 //! `line:column`), [`parse`] (requests and their arguments), [`params`] (parameter lists,
 //! inline declarations, `Declare`), [`state`] (the graphics state: attribute and transform
 //! stacks), [`build`] (request by request onto the description), with the request families
-//! in [`shaders`] (surfaces, displacements, lights), [`geometry`] (quadrics, polygons,
+//! in [`shaders`] (surfaces, displacements, lights; the tutorial's own in [`tutorial`]), [`geometry`] (quadrics, polygons,
 //! patches, NURBS, subdivision meshes; [`revolve`]: paraboloids and hyperboloids),
 //! [`camera`] (options, the camera and its outputs), [`retained`] (`ObjectBegin`
 //! definitions and motion blocks), `place` (a primitive and the current attributes onto an
@@ -41,6 +41,7 @@ pub mod revolve;
 pub mod shaders;
 pub mod state;
 pub mod text;
+pub mod tutorial;
 
 use std::path::Path;
 

@@ -146,10 +146,10 @@ impl Builder {
         let cs = prim.color.unwrap_or(attrs.color);
         let os = prim.opacity.unwrap_or(attrs.opacity);
         let mut sp = Vec::new();
-        let surface = shaders::surface(attrs.surface.as_ref(), cs, &mut sp);
+        let surface = shaders::surface(attrs.surface.as_ref(), cs, os, &mut sp);
         let mut bind = match &surface.texture {
             Some((t, tpos)) => self.texture_bind(t, *tpos, cs, &mut sp),
-            None => Default::default(),
+            None => surface.bind.clone(),
         };
         // Parameter problems are reported once, at the Surface request.
         if !surface_reported {
@@ -175,9 +175,14 @@ impl Builder {
                 .map(|(k, v)| (format!("input.{k}"), v))
                 .collect();
         }
-        if let Some((_, tpos)) = &surface.texture {
+        let bind_pos = match (&surface.texture, &attrs.surface) {
+            (Some((_, tpos)), _) => Some(*tpos),
+            (None, Some(s)) if !surface.bind.is_empty() => Some(s.pos),
+            _ => None,
+        };
+        if let Some(pos) = bind_pos {
             for k in bind.keys() {
-                spaths.push((format!(".bind.{k}"), *tpos));
+                spaths.push((format!(".bind.{k}"), pos));
             }
         }
         let emission = attrs.area_light.as_ref().map(|c| {

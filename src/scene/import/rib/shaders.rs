@@ -1,7 +1,10 @@
 //! The RenderMan standard shaders as stagelight descriptions: `Surface` (`constant`,
 //! `matte`, `metal`, `shinymetal`, `plastic`, `paintedplastic`, `defaultsurface`),
-//! `Displacement` (stagelight's `sine`, standing in for the tutorial's `myDisplacement`),
+//! `Displacement` (stagelight's `sine`),
 //! and `LightSource` (`pointlight`, `spotlight`, `distantlight`, `ambientlight`).
+//!
+//! The tutorial's own shaders (`mySurface`, `simplemirror`, `myLight`, `myDisplacement`) are
+//! in [`super::tutorial`].
 //!
 //! Every parameter a shader does not have is an error with a suggestion; parameters left
 //! out take the defaults of the RenderMan Interface Specification 3.2.
@@ -9,12 +12,15 @@
 use super::super::located::{Pos, Problem};
 use super::params::{Param, Ty};
 use super::state::ShaderCall;
+use super::tutorial;
 use crate::scene::desc::{AxisDesc, LocalLobeDesc, ScalarDesc, ShaderDesc, V3};
+use crate::scene::nodes_desc::InputDesc;
 use crate::scene::suggest::suggestion;
+use std::collections::BTreeMap;
 
 /// Kinds of shader parameter value.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Kind {
+pub(super) enum Kind {
     Float,
     Color,
     Point,
@@ -23,7 +29,7 @@ enum Kind {
 
 /// One parameter a shader takes: name, kind, description path of its value (or `None`
 /// when it has no field of its own; surfaces list their fields in [`surface`]).
-type Spec = (&'static str, Kind, Option<&'static str>);
+pub(super) type Spec = (&'static str, Kind, Option<&'static str>);
 
 const CONSTANT: &[Spec] = &[];
 const MATTE: &[Spec] = &[("Ka", Kind::Float, None), ("Kd", Kind::Float, None)];
@@ -75,12 +81,17 @@ pub const DISPLACEMENTS: &[&str] = &["sine"];
 
 /// Looks up the parameters of a call: checks names against `specs` and kinds, returns the
 /// values by spec index. Unknown parameters are errors.
-struct Values<'a> {
-    found: Vec<Option<&'a Param>>,
+pub(super) struct Values<'a> {
+    pub(super) found: Vec<Option<&'a Param>>,
 }
 
 impl<'a> Values<'a> {
-    fn read(call: &'a ShaderCall, what: &str, specs: &[Spec], problems: &mut Vec<Problem>) -> Self {
+    pub(super) fn read(
+        call: &'a ShaderCall,
+        what: &str,
+        specs: &[Spec],
+        problems: &mut Vec<Problem>,
+    ) -> Self {
         let mut found = vec![None; specs.len()];
         for p in &call.params {
             let Some(i) = specs.iter().position(|s| s.0 == p.name) else {
@@ -123,11 +134,11 @@ impl<'a> Values<'a> {
         Self { found }
     }
 
-    fn num(&self, i: usize, default: f64) -> f64 {
+    pub(super) fn num(&self, i: usize, default: f64) -> f64 {
         self.found[i].map_or(default, Param::num)
     }
 
-    fn triple(&self, i: usize, default: V3) -> V3 {
+    pub(super) fn triple(&self, i: usize, default: V3) -> V3 {
         self.found[i].map_or(default, Param::triple)
     }
 
@@ -144,9 +155,12 @@ pub struct Surface {
     pub paths: Vec<(String, Pos)>,
     /// `paintedplastic`'s `texturename`, as written, with its position.
     pub texture: Option<(String, Pos)>,
+    /// Parameters driven by node graphs (the tutorial's `mySurface` pattern).
+    pub bind: BTreeMap<String, InputDesc>,
 }
 
-/// The surface shader of `call` (`None`: `defaultsurface`) with colour `cs`.
+/// The surface shader of `call` (`None`: `defaultsurface`) with colour `cs` and opacity
+/// `os`; the tutorial's shaders are [`super::tutorial::surface`].
 ///
 /// `constant` and `defaultsurface` are light-independent and map onto their own shaders;
 /// `matte`, `metal`, `shinymetal`, `plastic` and `paintedplastic` become `Local` models with
@@ -160,7 +174,10 @@ pub struct Surface {
 /// - `plastic`: `Cs·(Ka·ambient() + Kd·diffuse(Nf)) + specularcolor·Ks·specular(Nf, V,
 ///   roughness)`;
 /// - `paintedplastic`: `plastic` with `Cs` times `texture(texturename)`.
-pub fn surface(call: Option<&ShaderCall>, cs: V3, problems: &mut Vec<Problem>) -> Surface {
+pub fn surface(call: Option<&ShaderCall>, cs: V3, os: V3, problems: &mut Vec<Problem>) -> Surface {
+    if let Some(c) = call.filter(|c| tutorial::SURFACES.contains(&c.name.as_str())) {
+        return tutorial::surface(c, os, problems);
+    }
     let name = call.map_or("defaultsurface", |c| c.name.as_str());
     let specs = match name {
         "constant" => CONSTANT,
@@ -285,6 +302,7 @@ pub fn surface(call: Option<&ShaderCall>, cs: V3, problems: &mut Vec<Problem>) -
         shader,
         paths,
         texture,
+        bind: BTreeMap::new(),
     }
 }
 
@@ -295,9 +313,12 @@ const SINE: &[Spec] = &[
 ];
 
 /// stagelight's `sine` displacement: `amplitude · sin(coord · factor · π)` along the
-/// normal, over `s`, `t` or both (`"st"`: the sum) — the tutorial's `myDisplacement`
+/// normal, over `s`, `t` or both (`"st"`: the sum) — the tutorial's `myDisplacement` with parameters
 /// (defaults: amplitude 0.1, factor 20, axis "st").
 pub fn displacement(call: &ShaderCall, problems: &mut Vec<Problem>) -> Option<ScalarDesc> {
+    if call.name == "myDisplacement" {
+        return tutorial::displacement(call, problems);
+    }
     let v = Values::read(call, "displacement", SINE, problems);
     let amplitude = v.num(0, 0.1);
     let factor = v.num(1, 20.0);
@@ -380,6 +401,16 @@ pub enum LightShader {
         /// `beamdistribution`.
         beam: f64,
     },
+    /// The tutorial's `myLight`: a point light whose `Cl` ramps linearly from full at `near`
+    /// to none at `far`, with no 1/d² ([`super::tutorial::light`]).
+    Ramp {
+        /// `from`.
+        from: V3,
+        /// `near`.
+        near: f64,
+        /// `far`.
+        far: f64,
+    },
 }
 
 /// A light shader call read: shape, intensity, colour, and value paths (relative to the
@@ -397,6 +428,9 @@ pub struct LightValues {
 
 /// Reads a `LightSource` call of one of [`LIGHTS`].
 pub fn light(call: &ShaderCall, problems: &mut Vec<Problem>) -> LightValues {
+    if call.name == "myLight" {
+        return tutorial::light(call, problems);
+    }
     let specs = match call.name.as_str() {
         "ambientlight" => AMBIENT,
         "pointlight" => POINT,

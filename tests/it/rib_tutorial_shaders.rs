@@ -1,0 +1,261 @@
+//! The tutorial's RSL shaders built into the RIB reader (seed 001; `docs/rib.md`, *The
+//! tutorial's shaders*): each renders the closed form of its printed source per pixel
+//! (`myLight`, `mySurface`, `simplemirror`) or reads as the description its source computes
+//! (`myDisplacement`); unknown parameters are located errors with "did you mean"; the seed's
+//! scenes that call them read without a fallback warning.
+
+use std::path::{Path, PathBuf};
+
+use glam::{DVec3, Vec3};
+use stagelight::scene::desc::{AxisDesc, ScalarDesc};
+use stagelight::scene::import::rib::read_rib;
+use stagelight::scene::load_scene;
+
+/// Writes `text` as `name` in a fresh folder of the temporary directory.
+fn write_rib(name: &str, text: &str) -> PathBuf {
+    let dir = crate::common::scratch_root()
+        .join(format!("stagelight_rib_tutorial_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+/// Renders the RIB at `path` at its own resolution: the beauty pass.
+fn render(path: &Path) -> Vec<Vec3> {
+    let mut scene = load_scene(path).unwrap_or_else(|e| panic!("{e}"));
+    let frame = crate::common::render(&mut scene.world, scene.settings.clone());
+    frame.outputs.image.expect("an image").beauty
+}
+
+const N: usize = 40;
+
+/// A square image of one ray per pixel centre, no gamma, 90° field of view, then `world`.
+fn scene(world: &str) -> String {
+    format!(
+        "Format {N} {N} 1\nPixelSamples 1 1\nPixelFilter \"gaussian\" 0.0001 0.0001\n\
+         Exposure 1 1\nProjection \"perspective\" \"fov\" [90]\nWorldBegin\n{world}WorldEnd\n"
+    )
+}
+
+/// The RIB camera-space direction through the centre of pixel `(x, y)` (row 0 at the top),
+/// scaled to z = 1.
+fn ray(x: usize, y: usize) -> DVec3 {
+    let sx = -1.0 + 2.0 * (x as f64 + 0.5) / N as f64;
+    let sy = 1.0 - 2.0 * (y as f64 + 0.5) / N as f64;
+    DVec3::new(sx, sy, 1.0)
+}
+
+/// The unit square `[-1, 1]²` at z = 0 as a bilinear patch.
+const PATCH: &str = "Patch \"bilinear\" \"P\" [ -1 -1 0 1 -1 0 -1 1 0 1 1 0 ]\n";
+
+/// Asserts every pixel of `got` is `expected(x, y)` within 1e-3 (where it is `Some`).
+fn assert_closed_form(got: &[Vec3], mut expected: impl FnMut(usize, usize) -> Option<DVec3>) {
+    let mut checked = 0;
+    for y in 0..N {
+        for x in 0..N {
+            let Some(e) = expected(x, y) else { continue };
+            let g = got[y * N + x].as_dvec3();
+            assert!(
+                (g - e).abs().max_element() < 1e-3,
+                "pixel ({x}, {y}): {g} vs the closed form {e}"
+            );
+            checked += 1;
+        }
+    }
+    assert!(checked > N * N / 2, "{checked} pixels checked");
+}
+
+#[test]
+fn my_light_fades_linearly_from_near_to_far_without_inverse_square() {
+    // myLight at the eye (from (0,0,0)), a matte wall at z = 6 (Kd 1): Cs·Kd·Cl·cos with
+    // Cl = intensity·lightcolor·(1 − (len − near)/(far − near)), 1 below near.
+    let (near, far, intensity, z) = (6.5, 9.0, 2.0, 6.0);
+    let path = write_rib(
+        "my_light.rib",
+        &scene(&format!(
+            "LightSource \"myLight\" 1 \"float intensity\" [{intensity}] \"float near\" \
+             [{near}] \"float far\" [{far}] \"color lightcolor\" [1 0.5 0.25]\n\
+             Surface \"matte\" \"Kd\" [1]\nTranslate 0 0 {z}\nScale 8 8 1\n{PATCH}"
+        )),
+    );
+    let beauty = render(&path);
+    let mut ramped = 0;
+    assert_closed_form(&beauty, |x, y| {
+        let len = (ray(x, y) * z).length();
+        let cos = z / len;
+        let brightness = if len < near {
+            1.0
+        } else if len > far {
+            0.0
+        } else {
+            1.0 - (len - near) / (far - near)
+        };
+        ramped += usize::from(brightness > 0.05 && brightness < 0.95);
+        Some(DVec3::new(1.0, 0.5, 0.25) * (intensity * brightness * cos))
+    });
+    // The ramp is exercised, not only its ends (1/d² would give other values everywhere).
+    assert!(ramped > 100, "{ramped} pixels on the ramp");
+}
+
+#[test]
+fn my_surface_is_the_repeated_soft_disk_times_ka_ambient() {
+    // Only an ambient light: Ci = myCs·Ka·ambient(), myCs = mix(red, yellow, inDisk) over
+    // (mod(10s, 1), mod(10t, 1)); the patch at z = 1 fills the 90° view exactly.
+    let path = write_rib(
+        "my_surface.rib",
+        &scene(&format!(
+            "LightSource \"ambientlight\" 1 \"intensity\" [0.8]\n\
+             Surface \"mySurface\" \"Ka\" [0.5]\nTranslate 0 0 1\n{PATCH}"
+        )),
+    );
+    let beauty = render(&path);
+    let smoothstep = |a: f64, b: f64, x: f64| {
+        let t = ((x - a) / (b - a)).clamp(0.0, 1.0);
+        t * t * (3.0 - 2.0 * t)
+    };
+    let mut inside = 0;
+    assert_closed_form(&beauty, |x, y| {
+        let r = ray(x, y);
+        let (s, t) = ((r.x + 1.0) / 2.0, (r.y + 1.0) / 2.0);
+        let (ss, tt) = ((s * 10.0).rem_euclid(1.0), (t * 10.0).rem_euclid(1.0));
+        let dist = ((ss - 0.5).powi(2) + (tt - 0.5).powi(2)).sqrt();
+        let in_disk = 1.0 - smoothstep(0.3, 0.5, dist);
+        inside += usize::from(in_disk > 0.99);
+        Some(DVec3::new(1.0, in_disk, 0.0) * (0.5 * 0.8))
+    });
+    assert!(inside > 100, "{inside} pixels inside a disk");
+}
+
+#[test]
+fn simplemirror_shows_the_traced_reflection() {
+    // A mirror facing the camera at z = 2 reflects a constant wall behind the eye.
+    let path = write_rib(
+        "simplemirror.rib",
+        &scene(&format!(
+            "AttributeBegin\nSurface \"simplemirror\"\nColor [1 1 0]\nTranslate 0 0 2\n\
+             Scale 10 10 1\n{PATCH}AttributeEnd\n\
+             AttributeBegin\nSurface \"constant\"\nColor [0.2 0.6 0.9]\nTranslate 0 0 -1\n\
+             Scale 100 100 1\n{PATCH}AttributeEnd\n"
+        )),
+    );
+    let beauty = render(&path);
+    assert_closed_form(&beauty, |_, _| Some(DVec3::new(0.2, 0.6, 0.9)));
+}
+
+#[test]
+fn my_displacement_is_the_sum_of_the_printed_sines() {
+    let path = write_rib(
+        "my_displacement.rib",
+        &scene(&format!(
+            "Attribute \"render\" \"truedisplacement\" [1]\n\
+             Displacement \"myDisplacement\"\nTranslate 0 0 3\n{PATCH}"
+        )),
+    );
+    let bytes = std::fs::read(&path).unwrap();
+    let desc = read_rib(&path, &bytes).unwrap().desc;
+    let d = desc.objects[0].displacement.as_ref().expect("displaced");
+    let sine = |axis| ScalarDesc::Sine {
+        amplitude: 0.1,
+        factor: 20.0,
+        axis,
+    };
+    assert_eq!(
+        format!("{:?}", d.shader),
+        format!(
+            "{:?}",
+            ScalarDesc::Sum(vec![sine(AxisDesc::V), sine(AxisDesc::U)])
+        )
+    );
+}
+
+#[test]
+fn unknown_parameters_of_the_tutorial_shaders_are_located_errors() {
+    let path = write_rib(
+        "tutorial_params.rib",
+        &scene(
+            "LightSource \"myLight\" 1 \"float nearr\" [3]\n\
+             Surface \"mySurface\" \"float roughnes\" [0.2]\n\
+             Displacement \"myDisplacement\" \"float amp\" [1]\n\
+             Sphere 1 -1 1 360\n\
+             Surface \"simplemirror\" \"Kr\" [1]\nSphere 1 -1 1 360\n",
+        ),
+    );
+    let bytes = std::fs::read(&path).unwrap();
+    let Err(errors) = read_rib(&path, &bytes) else {
+        panic!("accepted")
+    };
+    let shown: Vec<String> = errors
+        .iter()
+        .map(|e| e.to_string().replace(&path.display().to_string(), "t.rib"))
+        .collect();
+    assert_eq!(
+        shown,
+        [
+            "t.rib:7:25: error: unknown parameter \"nearr\" of light \"myLight\"\n  help: did \
+             you mean \"near\"?",
+            "t.rib:8:21: error: unknown parameter \"roughnes\" of surface \"mySurface\"\n  \
+             help: did you mean \"roughness\"?",
+            "t.rib:9:31: error: unknown parameter \"amp\" of displacement \"myDisplacement\"\n  \
+             help: no parameters are defined",
+            "t.rib:11:24: error: unknown parameter \"Kr\" of surface \"simplemirror\"\n  help: \
+             no parameters are defined",
+        ]
+    );
+}
+
+#[test]
+fn the_seed_scenes_calling_the_tutorial_shaders_read_without_a_fallback() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/seeds/rib");
+    for (file, calls) in [
+        ("test_sphere.rib", &["\"myLight\"", "\"mySurface\""][..]),
+        ("aircaustics.rib", &["\"simplemirror\""][..]),
+        (
+            "shadertest_light.rib",
+            &["\"myLight\"", "\"mySurface\""][..],
+        ),
+        ("shadertest_displace.rib", &["\"myDisplacement\""][..]),
+        ("shadertest_bump.rib", &["\"myDisplacement\""][..]),
+    ] {
+        let path = root.join(file);
+        let bytes = std::fs::read(&path).unwrap();
+        let text = String::from_utf8_lossy(&bytes);
+        for call in calls {
+            assert!(text.contains(call), "{file} calls {call}");
+        }
+        let scene = read_rib(&path, &bytes).unwrap_or_else(|e| panic!("{file}: {e:?}"));
+        for w in &scene.warnings {
+            let w = w.to_string();
+            assert!(
+                !w.contains("unknown surface shader") && !w.contains("shader \""),
+                "{file}: {w}"
+            );
+        }
+        if file == "test_sphere.rib" {
+            // The light is kept: ambientlight and myLight.
+            assert_eq!(scene.desc.lights.len(), 2, "{file}");
+        }
+    }
+}
+
+#[test]
+fn my_imager_is_ignored_with_the_reason() {
+    let path = write_rib(
+        "my_imager.rib",
+        "Imager \"myImager\"\nWorldBegin\nSphere 1 -1 1 360\nWorldEnd\n",
+    );
+    let bytes = std::fs::read(&path).unwrap();
+    let scene = read_rib(&path, &bytes).unwrap();
+    let shown: Vec<String> = scene
+        .warnings
+        .iter()
+        .map(|w| w.to_string().replace(&path.display().to_string(), "t.rib"))
+        .collect();
+    assert_eq!(
+        shown,
+        [
+            "t.rib:1:8: warning: ignored Imager \"myImager\": the tutorial's imager paints every \
+          pixel with a pattern of raster coordinates, which stagelight's imager cannot"
+        ]
+    );
+}
