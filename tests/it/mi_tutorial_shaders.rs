@@ -283,3 +283,26 @@ fn tutorial_shaders_without_their_link_are_located_errors_that_say_so() {
         )
     );
 }
+
+/// A misspelt `link` of a tutorial library names the one meant and lists what is built in.
+#[test]
+fn a_misspelt_tutorial_library_link_suggests_the_library() {
+    let text = "link \"myLigth.so\"\n";
+    let read = stagelight::scene::import::mi::read_mi(Path::new("l.mi"), text.as_bytes());
+    let warnings = match read {
+        Ok(r) => r.warnings,
+        Err(problems) => problems,
+    };
+    let w = warnings
+        .iter()
+        .find(|w| w.problem.message.contains("cannot be linked"))
+        .expect("a link warning");
+    assert_eq!(
+        w.problem.help.as_deref(),
+        Some(
+            "did you mean \"myLight.so\"? built in: the base, physics and contour libraries and \
+             the tutorial's myLight.so, mySurface.so, myDefaultSurface.so, myEnvironment.so, \
+             myDisplacement.so"
+        )
+    );
+}

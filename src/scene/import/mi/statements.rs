@@ -20,6 +20,31 @@ use crate::scene::suggest::closest;
 /// Libraries whose shaders are built in.
 pub const BUILT_IN_LIBRARIES: &[&str] = &["base", "physics", "contour"];
 
+/// The help of a `link` to a library that is not built in: a did-you-mean when the stem is
+/// close to a built-in one, and the list of what is built in.
+fn link_help(stem: &str) -> String {
+    let tutorial = super::tutorial::library_names();
+    // Stems are compared in lower case, as `link` matches them.
+    let known: Vec<(String, &str)> = BUILT_IN_LIBRARIES
+        .iter()
+        .copied()
+        .chain(tutorial.iter().copied())
+        .map(|n| (n.to_ascii_lowercase(), n))
+        .collect();
+    let guess = closest(stem, known.iter().map(|(lower, _)| lower.as_str()))
+        .and_then(|g| known.iter().find(|(lower, _)| lower == g))
+        .map(|(_, n)| format!("did you mean \"{n}.so\"? "))
+        .unwrap_or_default();
+    format!(
+        "{guess}built in: the base, physics and contour libraries and the tutorial's {}",
+        tutorial
+            .iter()
+            .map(|n| format!("{n}.so"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    )
+}
+
 /// The tutorial's displacement library (seed 001, §4.4, its C source printed there):
 /// `link "myDisplacement.so"` makes its one shader, `myDisplacement ("factor" f)` =
 /// `0.01 · sin(u · f · π)` along the normal, available as a `displace` shader.
@@ -143,7 +168,7 @@ impl Reader {
                                 pos,
                                 format!("native shader library \"{lib}\" cannot be linked; its shaders are unavailable"),
                             )
-                            .with_help("built in: the base, physics and contour libraries"),
+                            .with_help(link_help(&stem)),
                         );
                     }
                 }

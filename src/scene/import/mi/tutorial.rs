@@ -34,6 +34,11 @@ pub fn is_tutorial(name: &str) -> bool {
     SHADERS.iter().any(|(n, _)| *n == name)
 }
 
+/// The tutorial's libraries, by shader name (each library holds one shader).
+pub fn library_names() -> Vec<&'static str> {
+    SHADERS.iter().map(|(n, _)| *n).collect()
+}
+
 /// The tutorial shader whose library stem (`mylight` of `myLight.so`) is `stem`.
 pub fn library(stem: &str) -> Option<&'static str> {
     SHADERS
