@@ -11,7 +11,6 @@ use stagelight::farm::{PartNumber, PartRun, Split};
 use stagelight::frame::{Frame, OutputOverrides, RunInputs, Tasks};
 use stagelight::guard::limits::MAX_THREADS;
 use stagelight::guard::outputs::same_file_key;
-use stagelight::scene::load_scene;
 use stagelight::scene::LoadedScene;
 use stagelight::systems;
 
@@ -457,8 +456,10 @@ fn main() -> ExitCode {
     }
 }
 
-fn load(path: &Path) -> Result<LoadedScene, ExitCode> {
-    match load_scene(path) {
+/// Loads the scene at `path`, its image textures counted against `budget` before they are
+/// decoded, printing its warnings (or its errors).
+fn load(path: &Path, budget: &stagelight::budget::Budget) -> Result<LoadedScene, ExitCode> {
+    match stagelight::scene::load_scene_within(path, budget) {
         Ok(scene) => {
             for w in &scene.located_warnings {
                 eprintln!("{w}");
@@ -490,7 +491,7 @@ fn counted(n: usize, noun: &str) -> String {
 }
 
 fn check(path: &Path, memory_limit: Option<u64>) -> ExitCode {
-    match load(path) {
+    match load(path, &budget(memory_limit)) {
         Ok(scene) => {
             // What `render --bake` would write and need, with the scene's own outputs.
             let mut frame = Frame::new(scene.settings.clone());
@@ -581,7 +582,7 @@ fn check_outputs(
 }
 
 fn plan(args: PlanArgs) -> ExitCode {
-    let scene = match load(&args.scene) {
+    let scene = match load(&args.scene, &budget(None)) {
         Ok(s) => s,
         Err(code) => return code,
     };
@@ -635,7 +636,7 @@ fn convert(scene: &Path, output: &Path) -> ExitCode {
     if let Err(code) = usable_paths(&[file]) {
         return code;
     }
-    if let Err(code) = load(scene) {
+    if let Err(code) = load(scene, &budget(None)) {
         return code;
     }
     let fail = |message: String| {
@@ -753,9 +754,10 @@ fn prepare(
     threads: Option<u32>,
     seed: Option<u64>,
     integrator: Option<IntegratorArg>,
+    memory_limit: Option<u64>,
 ) -> Result<(LoadedScene, stagelight::settings::RenderSettings), ExitCode> {
     set_threads(threads)?;
-    let scene = load(scene)?;
+    let scene = load(scene, &budget(memory_limit))?;
     let mut settings = scene.settings.clone();
     if let Some(seed) = seed {
         settings.seed = seed;
@@ -776,7 +778,13 @@ fn render(args: RenderArgs) -> ExitCode {
     ]) {
         return code;
     }
-    let (mut scene, mut settings) = match prepare(&args.scene, args.threads, args.seed, None) {
+    let (mut scene, mut settings) = match prepare(
+        &args.scene,
+        args.threads,
+        args.seed,
+        None,
+        args.memory_limit,
+    ) {
         Ok(p) => p,
         Err(code) => return code,
     };
@@ -858,7 +866,13 @@ fn photons(args: PhotonsArgs) -> ExitCode {
     if let Err(code) = usable_paths(&[cache.map_or(Ok(()), dir)]) {
         return code;
     }
-    let (mut scene, settings) = match prepare(&args.scene, args.threads, args.seed, None) {
+    let (mut scene, settings) = match prepare(
+        &args.scene,
+        args.threads,
+        args.seed,
+        None,
+        args.memory_limit,
+    ) {
         Ok(p) => p,
         Err(code) => return code,
     };
@@ -1029,7 +1043,7 @@ nothing written",
         );
         return Err(ExitCode::from(EXIT_ERROR));
     }
-    let scene = load(&scene_path)?;
+    let scene = load(&scene_path, &budget(None))?;
     let hash = stagelight::farm::scene_hash(&scene_path, scene.source_hash, &scene.world);
     if hash != parts_hash {
         let done = if verb == "bake" { "baked" } else { "rendered" };
@@ -1107,7 +1121,7 @@ fn farm(args: FarmArgs) -> ExitCode {
     if let Err(code) = usable_paths(&[usable_dir("--out", &args.out), output]) {
         return code;
     }
-    let scene = match load(&args.scene) {
+    let scene = match load(&args.scene, &budget(None)) {
         Ok(s) => s,
         Err(code) => return code,
     };
@@ -1233,8 +1247,13 @@ fn bake(args: BakeArgs) -> ExitCode {
     if let Err(code) = usable_paths(&[args.output.as_deref().map_or(Ok(()), dir)]) {
         return code;
     }
-    let (mut scene, settings) = match prepare(&args.scene, args.threads, args.seed, args.integrator)
-    {
+    let (mut scene, settings) = match prepare(
+        &args.scene,
+        args.threads,
+        args.seed,
+        args.integrator,
+        args.memory_limit,
+    ) {
         Ok(p) => p,
         Err(code) => return code,
     };
@@ -1290,7 +1309,7 @@ fn bench(args: BenchArgs) -> ExitCode {
     if let Err(code) = set_threads(args.threads) {
         return code;
     }
-    let mut scene = match load(&args.scene) {
+    let mut scene = match load(&args.scene, &budget(args.memory_limit)) {
         Ok(s) => s,
         Err(code) => return code,
     };
