@@ -1010,6 +1010,10 @@ fn checked_overrides(
             eprintln!("error: {message}");
             ExitCode::from(EXIT_USAGE)
         })?;
+    let listed = stagelight::scene_view::render_view(world).map(|v| v.camera.outputs);
+    if let Some(warning) = overrides.png_drops_passes(&listed.unwrap_or_default()) {
+        eprintln!("warning: {warning}");
+    }
     Ok(overrides)
 }
 

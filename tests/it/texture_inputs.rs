@@ -1,7 +1,8 @@
 //! Image texture inputs: a texture is counted against the run's memory budget from its
 //! header before it is decoded; an EXR texture with only a `Y` (or one) channel reads as grey,
 //! one with no channels a texture reads is a located error naming them; a PNG palette index
-//! past the palette is a located error.
+//! past the palette is a located error; and a `.png` `-o` that drops passes of the output it
+//! replaces says so.
 
 use std::path::Path;
 
@@ -184,4 +185,27 @@ fn a_palette_index_past_the_palette_is_a_located_error() {
             position(&text, "p.png")
         )
     );
+}
+
+/// `-o o.png` replacing an EXR output of four passes warns that three are dropped; a PNG
+/// output, or an EXR `-o`, says nothing.
+#[test]
+fn a_png_o_that_drops_passes_warns() {
+    let dir = scratch_dir("png-o-passes");
+    grey_png(&dir, "t.png", 2);
+    let text = scene(
+        &["t.png"],
+        "(file: \"out.exr\", passes: [Beauty, Depth, Normal, Specular])",
+    );
+    std::fs::write(dir.join("scene.ron"), &text).unwrap();
+    let o = run_in(&dir, &["render", "scene.ron", "-o", "o.png"]);
+    assert!(o.status.success(), "{}", stderr_of(&o));
+    assert_eq!(
+        stderr_of(&o),
+        "warning: -o o.png replaces the camera's output \"out.exr\" and drops its passes Depth, Normal, Specular: a PNG holds only Beauty, Alpha and Contours\n  help: give -o an .exr file to keep every pass\nwrote o.png\n"
+    );
+    assert!(dir.join("o.png").exists());
+    let o = run_in(&dir, &["render", "scene.ron", "-o", "o.exr"]);
+    assert!(o.status.success(), "{}", stderr_of(&o));
+    assert_eq!(stderr_of(&o), "wrote o.exr\n");
 }
