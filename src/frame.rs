@@ -67,6 +67,33 @@ impl OutputOverrides {
         Ok(())
     }
 
+    /// The warning for a `.png` `-o` that replaces a camera output (of those the camera
+    /// lists as `outputs`) with passes a PNG cannot hold, naming the dropped passes; `None`
+    /// when nothing is dropped.
+    pub fn png_drops_passes(&self, outputs: &[OutputSpec]) -> Option<String> {
+        let path = self.first.as_ref()?;
+        if self.discard || format_from_extension(path).ok()? != ImageFormat::Png {
+            return None;
+        }
+        let replaced = outputs.iter().find(|o| !is_vector(o.format))?;
+        let dropped: Vec<String> = replaced
+            .passes
+            .iter()
+            .filter(|p| !png_holds(**p))
+            .map(|p| format!("{p:?}"))
+            .collect();
+        if dropped.is_empty() {
+            return None;
+        }
+        Some(format!(
+            "-o {} replaces the camera's output \"{}\" and drops its pass{} {}: a PNG holds only Beauty, Alpha and Contours\n  help: give -o an .exr file to keep every pass",
+            path.display(),
+            replaced.path.display(),
+            if dropped.len() == 1 { "" } else { "es" },
+            dropped.join(", ")
+        ))
+    }
+
     /// The outputs the run writes for a camera that lists `outputs`.
     pub fn apply(&self, outputs: &[OutputSpec]) -> Result<Vec<OutputSpec>, String> {
         if self.discard {
@@ -84,7 +111,7 @@ impl OutputOverrides {
                 None => vec![Pass::Beauty],
             };
             if format == ImageFormat::Png {
-                passes.retain(|p| matches!(p, Pass::Beauty | Pass::Alpha | Pass::Contours));
+                passes.retain(|p| png_holds(*p));
                 if passes.is_empty() {
                     passes.push(Pass::Beauty);
                 }
@@ -111,6 +138,11 @@ impl OutputOverrides {
         }
         Ok(outputs)
     }
+}
+
+/// Whether a PNG output can hold `pass`.
+fn png_holds(pass: Pass) -> bool {
+    matches!(pass, Pass::Beauty | Pass::Alpha | Pass::Contours)
 }
 
 /// Whether `format` is a vector drawing of the contour lines rather than an image.

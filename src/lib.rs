@@ -28,6 +28,7 @@ pub mod hash;
 pub mod image_io;
 pub mod limits;
 pub mod log_format;
+pub mod memory_budget;
 pub mod noise;
 pub mod part_refusals;
 pub mod photon;

@@ -11,7 +11,6 @@ use stagelight::farm::{PartNumber, PartRun, Split};
 use stagelight::frame::{Frame, OutputOverrides, RunInputs, Tasks};
 use stagelight::guard::limits::MAX_THREADS;
 use stagelight::guard::outputs::same_file_key;
-use stagelight::scene::load_scene;
 use stagelight::scene::LoadedScene;
 use stagelight::systems;
 
@@ -458,8 +457,10 @@ fn main() -> ExitCode {
     }
 }
 
-fn load(path: &Path) -> Result<LoadedScene, ExitCode> {
-    match load_scene(path) {
+/// Loads the scene at `path`, its image textures counted against `budget` before they are
+/// decoded, printing its warnings (or its errors).
+fn load(path: &Path, budget: &stagelight::budget::Budget) -> Result<LoadedScene, ExitCode> {
+    match stagelight::scene::load_scene_within(path, budget) {
         Ok(scene) => {
             for w in &scene.located_warnings {
                 eprintln!("{w}");
@@ -520,7 +521,7 @@ fn counted(n: usize, noun: &str) -> String {
 }
 
 fn check(path: &Path, memory_limit: Option<u64>) -> ExitCode {
-    match load(path) {
+    match load(path, &budget(memory_limit)) {
         Ok(scene) => {
             // What `render --bake` would write and need, with the scene's own outputs.
             let mut frame = Frame::new(scene.settings.clone());
@@ -603,7 +604,7 @@ fn check_outputs(
 }
 
 fn plan(args: PlanArgs) -> ExitCode {
-    let scene = match load(&args.scene) {
+    let scene = match load(&args.scene, &budget(None)) {
         Ok(s) => s,
         Err(code) => return code,
     };
@@ -657,7 +658,7 @@ fn convert(scene: &Path, output: &Path) -> ExitCode {
     if let Err(code) = usable_paths(&[file]) {
         return code;
     }
-    if let Err(code) = load(scene) {
+    if let Err(code) = load(scene, &budget(None)) {
         return code;
     }
     let fail = |message: String| {
@@ -775,9 +776,10 @@ fn prepare(
     threads: Option<u32>,
     seed: Option<u64>,
     integrator: Option<IntegratorArg>,
+    memory_limit: Option<u64>,
 ) -> Result<(LoadedScene, stagelight::settings::RenderSettings), ExitCode> {
     set_threads(threads)?;
-    let scene = load(scene)?;
+    let scene = load(scene, &budget(memory_limit))?;
     let mut settings = scene.settings.clone();
     if let Some(seed) = seed {
         settings.seed = seed;
@@ -798,7 +800,13 @@ fn render(args: RenderArgs) -> ExitCode {
     ]) {
         return code;
     }
-    let (mut scene, mut settings) = match prepare(&args.scene, args.threads, args.seed, None) {
+    let (mut scene, mut settings) = match prepare(
+        &args.scene,
+        args.threads,
+        args.seed,
+        None,
+        args.memory_limit,
+    ) {
         Ok(p) => p,
         Err(code) => return code,
     };
@@ -880,7 +888,13 @@ fn photons(args: PhotonsArgs) -> ExitCode {
     if let Err(code) = usable_paths(&[cache.map_or(Ok(()), dir)]) {
         return code;
     }
-    let (mut scene, settings) = match prepare(&args.scene, args.threads, args.seed, None) {
+    let (mut scene, settings) = match prepare(
+        &args.scene,
+        args.threads,
+        args.seed,
+        None,
+        args.memory_limit,
+    ) {
         Ok(p) => p,
         Err(code) => return code,
     };
@@ -1018,6 +1032,10 @@ fn checked_overrides(
             eprintln!("error: {message}");
             ExitCode::from(EXIT_USAGE)
         })?;
+    let listed = stagelight::scene_view::render_view(world).map(|v| v.camera.outputs);
+    if let Some(warning) = overrides.png_drops_passes(&listed.unwrap_or_default()) {
+        eprintln!("warning: {warning}");
+    }
     Ok(overrides)
 }
 
@@ -1051,7 +1069,7 @@ nothing written",
         );
         return Err(ExitCode::from(EXIT_ERROR));
     }
-    let scene = load(&scene_path)?;
+    let scene = load(&scene_path, &budget(None))?;
     let hash = stagelight::farm::scene_hash(&scene_path, scene.source_hash, &scene.world);
     if hash != parts_hash {
         let done = if verb == "bake" { "baked" } else { "rendered" };
@@ -1129,7 +1147,7 @@ fn farm(args: FarmArgs) -> ExitCode {
     if let Err(code) = usable_paths(&[usable_dir("--out", &args.out), output]) {
         return code;
     }
-    let scene = match load(&args.scene) {
+    let scene = match load(&args.scene, &budget(None)) {
         Ok(s) => s,
         Err(code) => return code,
     };
@@ -1255,8 +1273,13 @@ fn bake(args: BakeArgs) -> ExitCode {
     if let Err(code) = usable_paths(&[args.output.as_deref().map_or(Ok(()), dir)]) {
         return code;
     }
-    let (mut scene, settings) = match prepare(&args.scene, args.threads, args.seed, args.integrator)
-    {
+    let (mut scene, settings) = match prepare(
+        &args.scene,
+        args.threads,
+        args.seed,
+        args.integrator,
+        args.memory_limit,
+    ) {
         Ok(p) => p,
         Err(code) => return code,
     };
@@ -1312,7 +1335,7 @@ fn bench(args: BenchArgs) -> ExitCode {
     if let Err(code) = set_threads(args.threads) {
         return code;
     }
-    let mut scene = match load(&args.scene) {
+    let mut scene = match load(&args.scene, &budget(args.memory_limit)) {
         Ok(s) => s,
         Err(code) => return code,
     };

@@ -8,7 +8,8 @@ use libfuzzer_sys::fuzz_target;
 use stagelight::shading::texture::image::decode_exr;
 
 fuzz_target!(|data: &[u8]| {
-    if let Ok((width, height, pixels)) = decode_exr(data) {
-        assert_eq!(pixels.len(), width as usize * height as usize);
+    if let Ok((width, height, texels, alpha)) = decode_exr(data) {
+        assert_eq!(texels.len(), width as usize * height as usize);
+        assert!(alpha.is_empty() || alpha.len() == texels.len());
     }
 });

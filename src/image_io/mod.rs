@@ -9,6 +9,7 @@ pub mod exr_limits;
 mod exr_writer;
 pub mod imager;
 pub mod png_codec;
+mod png_palette;
 mod png_writer;
 pub mod srgb;
 

@@ -4,9 +4,12 @@
 //!
 //! * **Decoding**: any colour type and bit depth; palettes, bit depths below 8 and `tRNS`
 //!   transparency are expanded, so an image is 1 (grey), 2 (grey, alpha), 3 (RGB) or 4 (RGBA)
-//!   channels of 8- or 16-bit samples. The decoder may allocate at most
-//!   [`MAX_DECODED_BYTES`], so a small file that claims huge dimensions is refused, not
-//!   allocated. [`DecodedPng::rgba`] and [`DecodedPng::luma`] give samples as `f32` in
+//!   channels of 8- or 16-bit samples. An image may hold at most [`MAX_IMAGE_SAMPLES`]
+//!   samples (pixels × channels once expanded, the limit of EXR inputs) and the decoder may
+//!   allocate at most [`MAX_DECODED_BYTES`], so a small file that claims huge dimensions is
+//!   refused from its header ([`read_header`]), not allocated. An indexed image's palette and
+//!   indices are checked first ([`png_palette`](super::png_palette)): an index past the
+//!   palette is an error, as the PNG specification says. [`DecodedPng::rgba`] and [`DecodedPng::luma`] give samples as `f32` in
 //!   `[0, 1]` (`v / 255`, `v / 65535`); luma weighs RGB by Rec. 709's 0.2126, 0.7152,
 //!   0.0722 in integers, truncated to the sample type before the division.
 //! * **Encoding**: 8-bit grey, RGB and RGBA, and 16-bit RGB with big-endian samples (as PNG
@@ -16,8 +19,10 @@ use std::io::Cursor;
 use std::path::Path;
 
 /// The most bytes the decoder allocates for one image (512 MiB: a 16-bit RGBA image of
-/// 8,192 × 8,192 pixels).
+/// 8,192 × 8,192 pixels, [`MAX_IMAGE_SAMPLES`] samples of two bytes).
 pub const MAX_DECODED_BYTES: usize = 512 << 20;
+
+pub use super::exr_limits::MAX_IMAGE_SAMPLES;
 
 /// The eight bytes every PNG file starts with.
 const SIGNATURE: [u8; 8] = [0x89, b'P', b'N', b'G', 0x0d, 0x0a, 0x1a, 0x0a];
@@ -92,8 +97,27 @@ impl DecodedPng {
     }
 }
 
-/// Decodes a PNG file held in memory.
-pub fn decode_png(bytes: &[u8]) -> Result<DecodedPng, String> {
+/// What a PNG file's header says of the image [`decode_png`] makes of it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct PngHeader {
+    /// Pixels per row.
+    pub width: u32,
+    /// Rows.
+    pub height: u32,
+    /// Channels once expanded: 1 grey, 2 grey and alpha, 3 RGB, 4 RGBA.
+    pub channels: usize,
+    /// Bytes of the decoded samples.
+    pub decoded_bytes: u64,
+}
+
+impl PngHeader {
+    /// Pixels in the image.
+    pub fn pixels(&self) -> u64 {
+        u64::from(self.width) * u64::from(self.height)
+    }
+}
+
+fn decoder(bytes: &[u8]) -> Result<png::Decoder<Cursor<&[u8]>>, String> {
     if !bytes.starts_with(&SIGNATURE) {
         return Err("not a PNG file (it does not start with the PNG signature)".into());
     }
@@ -102,21 +126,59 @@ pub fn decode_png(bytes: &[u8]) -> Result<DecodedPng, String> {
     };
     let mut decoder = png::Decoder::new_with_limits(Cursor::new(bytes), limits);
     decoder.set_transformations(png::Transformations::EXPAND);
-    let mut reader = decoder.read_info().map_err(|e| e.to_string())?;
-    check_palette(reader.info())?;
-    let size = reader
+    Ok(decoder)
+}
+
+/// The header of `reader`'s image, refused when it holds more than [`MAX_IMAGE_SAMPLES`]
+/// samples or the decoder would allocate more than [`MAX_DECODED_BYTES`].
+fn header_of(reader: &png::Reader<Cursor<&[u8]>>) -> Result<PngHeader, String> {
+    let info = reader.info();
+    super::png_palette::check_length(info)?;
+    let (width, height) = (info.width, info.height);
+    let channels = reader.output_color_type().0.samples();
+    let samples = u64::from(width) * u64::from(height) * channels as u64;
+    if samples > MAX_IMAGE_SAMPLES {
+        return Err(format!(
+            "a {width}×{height} image in {channels} channel(s): the file claims more than the \
+             {MAX_IMAGE_SAMPLES} samples (pixels × channels) this input may hold"
+        ));
+    }
+    let decoded_bytes = reader
         .output_buffer_size()
         .filter(|&n| n <= MAX_DECODED_BYTES)
         .ok_or_else(|| {
-            let info = reader.info();
             format!(
-                "a {} × {} PNG image is larger than the {} MiB a decoded image may take",
-                info.width,
-                info.height,
+                "a {width} × {height} PNG image is larger than the {} MiB a decoded image may take",
                 MAX_DECODED_BYTES >> 20
             )
         })?;
-    let mut buf = vec![0u8; size];
+    Ok(PngHeader {
+        width,
+        height,
+        channels,
+        decoded_bytes: decoded_bytes as u64,
+    })
+}
+
+/// Reads a PNG file's header (the chunks before the image data) without decoding the image;
+/// an image [`decode_png`] would refuse for its size is refused here.
+pub fn read_header(bytes: &[u8]) -> Result<PngHeader, String> {
+    let reader = decoder(bytes)?.read_info().map_err(|e| e.to_string())?;
+    header_of(&reader)
+}
+
+/// Decodes a PNG file held in memory.
+pub fn decode_png(bytes: &[u8]) -> Result<DecodedPng, String> {
+    let mut reader = decoder(bytes)?.read_info().map_err(|e| e.to_string())?;
+    let header = header_of(&reader)?;
+    super::png_palette::check_indices(
+        bytes,
+        reader.info(),
+        png::Limits {
+            bytes: MAX_DECODED_BYTES,
+        },
+    )?;
+    let mut buf = vec![0u8; header.decoded_bytes as usize];
     let frame = reader.next_frame(&mut buf).map_err(|e| e.to_string())?;
     buf.truncate(frame.buffer_size());
     let channels = frame.color_type.samples();
@@ -134,25 +196,6 @@ pub fn decode_png(bytes: &[u8]) -> Result<DecodedPng, String> {
         channels,
         samples,
     })
-}
-
-/// Refuses an indexed image whose palette the decoder (png 0.18) would index past its end and
-/// panic: a `PLTE` chunk whose length is not 3 to 768 bytes in whole RGB entries (which the
-/// PNG specification forbids).
-fn check_palette(info: &png::Info) -> Result<(), String> {
-    if info.color_type != png::ColorType::Indexed {
-        return Ok(());
-    }
-    let Some(palette) = &info.palette else {
-        return Ok(());
-    };
-    if palette.is_empty() || palette.len() % 3 != 0 || palette.len() > 768 {
-        return Err(format!(
-            "the PLTE chunk holds {} bytes: a palette is 1 to 256 RGB entries of 3 bytes each",
-            palette.len()
-        ));
-    }
-    Ok(())
 }
 
 /// Reads and decodes the PNG file at `path` (a file that cannot be read gives the system's
@@ -277,6 +320,94 @@ mod tests {
         assert_eq!(
             decode_png(include_bytes!("../../fuzz/corpus/png/bad_plte_length.png")).unwrap_err(),
             "the PLTE chunk holds 44 bytes: a palette is 1 to 256 RGB entries of 3 bytes each"
+        );
+    }
+
+    /// An indexed image of `depth` bits with `palette` (RGB triples) and packed `rows`.
+    fn indexed(depth: png::BitDepth, width: u32, palette: &[u8], rows: &[u8]) -> Vec<u8> {
+        let mut out = Vec::new();
+        let height = 2;
+        let mut encoder = png::Encoder::new(&mut out, width, height);
+        encoder.set_color(png::ColorType::Indexed);
+        encoder.set_depth(depth);
+        encoder.set_palette(palette.to_vec());
+        let mut writer = encoder.write_header().unwrap();
+        writer.write_image_data(rows).unwrap();
+        writer.finish().unwrap();
+        out
+    }
+
+    /// An index past the palette's last entry is an error naming the first such pixel (the
+    /// decoder would expand it to opaque black), at 8 bits and packed below 8 bits; indices
+    /// within the palette decode to its colours.
+    #[test]
+    fn a_palette_index_past_the_palette_is_an_error() {
+        let two = [0, 0, 0, 255, 128, 0];
+        let bad = indexed(png::BitDepth::Eight, 4, &two, &[0, 1, 1, 0, 1, 0, 0, 5]);
+        assert_eq!(
+            decode_png(&bad).unwrap_err(),
+            "pixel (3, 1) has palette index 5, but the PLTE chunk holds 2 entries (indices 0 to 1)"
+        );
+        // 4 bits: row 0 is 0x01 0x30 → indices 0, 1, 3, 0; three entries.
+        let three = [0, 0, 0, 255, 128, 0, 10, 20, 30];
+        let bad = indexed(png::BitDepth::Four, 4, &three, &[0x01, 0x30, 0x00, 0x00]);
+        assert_eq!(
+            decode_png(&bad).unwrap_err(),
+            "pixel (2, 0) has palette index 3, but the PLTE chunk holds 3 entries (indices 0 to 2)"
+        );
+        let one = indexed(png::BitDepth::One, 3, &[7, 8, 9], &[0x00, 0x40]);
+        assert_eq!(
+            decode_png(&one).unwrap_err(),
+            "pixel (1, 1) has palette index 1, but the PLTE chunk holds 1 entry (indices 0 to 0)"
+        );
+        let good = indexed(png::BitDepth::Four, 4, &three, &[0x01, 0x20, 0x22, 0x10]);
+        let d = decode_png(&good).unwrap();
+        assert_eq!(d.channels, 3);
+        assert_eq!(
+            d.samples,
+            Samples::Eight(vec![
+                0, 0, 0, 255, 128, 0, 10, 20, 30, 0, 0, 0, //
+                10, 20, 30, 10, 20, 30, 255, 128, 0, 0, 0, 0
+            ])
+        );
+    }
+
+    /// The sample limit is the EXR inputs' (pixels × channels once expanded): a grey image
+    /// of 16,384 × 16,384 pixels is within it, one row more is not; the header alone decides.
+    #[test]
+    fn the_header_is_refused_past_the_sample_limit() {
+        let claiming = |width: u32, height: u32| {
+            let good = encode_png(&[1, 2, 3, 4], 2, 2, PngLayout::Grey8).unwrap();
+            let mut ihdr = b"IHDR".to_vec();
+            ihdr.extend_from_slice(&width.to_be_bytes());
+            ihdr.extend_from_slice(&height.to_be_bytes());
+            ihdr.extend_from_slice(&[8, 0, 0, 0, 0]);
+            let mut bytes = good[..8].to_vec();
+            bytes.extend_from_slice(&13u32.to_be_bytes());
+            bytes.extend_from_slice(&ihdr);
+            bytes.extend_from_slice(&crc32(&ihdr).to_be_bytes());
+            bytes.extend_from_slice(&good[33..]);
+            bytes
+        };
+        assert_eq!(
+            read_header(&claiming(16384, 16384)),
+            Ok(PngHeader {
+                width: 16384,
+                height: 16384,
+                channels: 1,
+                decoded_bytes: 1 << 28
+            })
+        );
+        assert_eq!(
+            read_header(&claiming(16384, 16385)).unwrap_err(),
+            "a 16384×16385 image in 1 channel(s): the file claims more than the 268435456 \
+             samples (pixels × channels) this input may hold"
+        );
+        // Decoding refuses it the same way, before allocating.
+        assert_eq!(
+            decode_png(&claiming(23000, 23000)).unwrap_err(),
+            "a 23000×23000 image in 1 channel(s): the file claims more than the 268435456 \
+             samples (pixels × channels) this input may hold"
         );
     }
 

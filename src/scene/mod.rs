@@ -71,6 +71,7 @@ use glam::{DAffine3, DVec3};
 pub use diagnostics::{Diagnostic, SceneErrors, Severity};
 pub use environment::read_exr as read_lat_long;
 
+use crate::memory_budget::Budget;
 use crate::settings::RenderSettings;
 use checker::Checker;
 use desc::MeshDesc;
@@ -97,15 +98,23 @@ pub struct LoadedScene {
     pub source_hash: u64,
 }
 
-/// Loads and validates the scene at `path`.
+/// Loads and validates the scene at `path`, with no memory budget.
 pub fn load_scene(path: &Path) -> Result<LoadedScene, SceneErrors> {
-    load(path, None, import::FORMATS).and_then(world_checks::check_loaded)
+    load_scene_within(path, &Budget::unlimited())
+}
+
+/// Loads and validates the scene at `path`; image textures are counted against `budget`
+/// from their headers before they are decoded (one that takes the textures past it is a
+/// located error at its `file`).
+pub fn load_scene_within(path: &Path, budget: &Budget) -> Result<LoadedScene, SceneErrors> {
+    load(path, None, import::FORMATS, budget).and_then(world_checks::check_loaded)
 }
 
 /// Loads a scene from `text` as if it were the file at `path` (includes and OBJ files are
-/// still read from disk, relative to `path`).
+/// still read from disk, relative to `path`), with no memory budget.
 pub fn load_scene_str(text: &str, path: &Path) -> Result<LoadedScene, SceneErrors> {
-    load(path, Some(text), import::FORMATS).and_then(world_checks::check_loaded)
+    load(path, Some(text), import::FORMATS, &Budget::unlimited())
+        .and_then(world_checks::check_loaded)
 }
 
 /// Parses OBJ text into a checked triangle mesh (degenerate triangles dropped, a
@@ -138,6 +147,7 @@ fn load(
     path: &Path,
     text: Option<&str>,
     formats: &[import::Format],
+    budget: &Budget,
 ) -> Result<LoadedScene, SceneErrors> {
     let LoadedFiles {
         mut sources,
@@ -182,7 +192,7 @@ fn load(
         .iter()
         .map(|mat| validate::material(src, mat))
         .collect();
-    let mut phenomena = nodes::check_phenomena(src, &merged);
+    let mut phenomena = nodes::check_phenomena(src, &merged, budget);
     nodes::attach(src, &merged, &mut phenomena, &mut materials);
     let contour_shaders: Vec<_> = merged
         .materials

@@ -10,7 +10,7 @@ use std::path::Path;
 use hecs::World;
 
 use crate::budget::Budget;
-use crate::scene::{load_scene, Diagnostic, SceneErrors};
+use crate::scene::{load_scene_within, Diagnostic, SceneErrors};
 use crate::settings::RenderSettings;
 use crate::tasks::Tasks;
 
@@ -67,7 +67,7 @@ pub fn refusals(runs: &Runs<'_>) -> Result<Vec<Diagnostic>, SceneErrors> {
 
 /// One configuration's refusals under the budget, located as `render` locates them.
 fn estimate(runs: &Runs<'_>, configure: Configure<'_>) -> Result<Vec<Diagnostic>, SceneErrors> {
-    let mut scene = load_scene(runs.scene)?;
+    let mut scene = load_scene_within(runs.scene, runs.budget)?;
     let mut settings = scene.settings.clone();
     configure(&mut scene.world, &mut settings);
     let refused = crate::budget::estimate::check(&scene.world, &settings, runs.tasks, runs.budget);

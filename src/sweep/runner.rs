@@ -9,7 +9,7 @@ use hecs::World;
 use crate::budget::Budget;
 use crate::frame::{Frame, Tasks};
 use crate::hash::Fnv64;
-use crate::scene::{load_scene, Diagnostic, LoadedScene, SceneErrors};
+use crate::scene::{load_scene_within, Diagnostic, LoadedScene, SceneErrors};
 use crate::schedule::StageError;
 use crate::settings::{Integrator, RenderSettings};
 use crate::sweep::budget_check::{self, Runs};
@@ -118,7 +118,7 @@ fn run_once(
     seed: u64,
     tag: &str,
 ) -> Result<RunResult, SweepError> {
-    let mut scene = load_scene(&opts.scene)?;
+    let mut scene = load_scene_within(&opts.scene, &opts.budget)?;
     let mut settings = scene.settings.clone();
     configure(&mut scene.world, &mut settings);
     settings.seed = settings.seed.wrapping_add(seed);
@@ -328,7 +328,7 @@ pub fn run_sweep(
     mut progress: impl FnMut(&str),
 ) -> Result<SweepSummary, SweepError> {
     let cached = {
-        let scene = load_scene(&opts.scene)?;
+        let scene = load_scene_within(&opts.scene, &opts.budget)?;
         opts.knob.check(&scene.world, &scene.settings)?;
         if opts.denoise && !opts.knob.is_bake() {
             return Err(KnobError::DenoiseNeedsBake(opts.knob.name()).into());

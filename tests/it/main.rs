@@ -106,6 +106,7 @@ mod stages;
 mod sweep;
 mod sweep_budget;
 mod sweep_photons;
+mod texture_inputs;
 mod textures;
 mod vertex_bake;
 mod volume_shaders;

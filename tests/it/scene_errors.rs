@@ -544,7 +544,7 @@ fn shader_graph() {
             ),
             concat!(
                 "tests/fixtures/scenes/bad/shader_graph.ron:10:66: error: cannot read image file \"tests/fixtures/scenes/bad/missing.png\": No such file or directory (os error 2)\n",
-                "  help: image textures are PNG or EXR files, relative to the scene file",
+                "  help: image textures are PNG files, or EXR files with R, G and B, Y or a single channel, relative to the scene file",
             ),
         ],
     );

@@ -142,7 +142,7 @@ fn ron_scene(light: &str) -> String {
 }
 
 fn errors(text: &str, path: &str) -> Vec<String> {
-    match load(Path::new(path), Some(text), WITH_FAKE) {
+    match load(Path::new(path), Some(text), WITH_FAKE, &Default::default()) {
         Ok(_) => panic!("{path} loaded"),
         Err(e) => e.0.iter().map(ToString::to_string).collect(),
     }
@@ -176,7 +176,13 @@ fn a_validation_error_in_another_format_prints_like_ron_at_its_recorded_position
 #[test]
 fn other_format_elements_carry_their_positions_and_warnings_are_located() {
     let light = "(name: \"key\", kind: Point(position: (0, 5, 0)))";
-    let scene = load(Path::new("scene.pts"), Some(&fake_scene(light)), WITH_FAKE).unwrap();
+    let scene = load(
+        Path::new("scene.pts"),
+        Some(&fake_scene(light)),
+        WITH_FAKE,
+        &Default::default(),
+    )
+    .unwrap();
     assert_eq!(
         scene.located_warnings,
         ["scene.pts:3:1: warning: ignored request \"hider\""]

@@ -14,6 +14,7 @@
 mod depth;
 mod phenomena;
 mod size;
+mod textures;
 
 use std::sync::Arc;
 
@@ -598,14 +599,30 @@ impl Compiler<'_, '_> {
             EncodingDesc::Linear => Encoding::Linear,
         });
         let embedded = crate::scene::mesh_files::gltf_file::image_reference(name);
-        let loaded = match embedded {
+        let exr = embedded.is_none() && image::is_exr(&path);
+        let bytes = match embedded {
             Some((file, index)) => {
                 let gltf = self.src.files[at.file].dir().join(file);
                 crate::scene::mesh_files::gltf_file::image_bytes(&gltf, index)
-                    .and_then(|bytes| image::decode(&bytes, enc, wrap))
             }
-            None => image::load(&path, enc, wrap),
+            None => std::fs::read(&path).map_err(|e| e.to_string()),
         };
+        // Counted against the budget from the header, before anything is decoded.
+        let size = bytes
+            .as_deref()
+            .map_err(Clone::clone)
+            .and_then(|b| image::footprint(b, exr));
+        if let Ok(size) = &size {
+            if let Err((message, help)) = self.ph.textures.admit(name, size) {
+                self.src.error(at.file, at.path, message, Some(help));
+                self.ph.textures.insert(key, None);
+                return None;
+            }
+        }
+        let loaded = size.and_then(|_| {
+            let bytes = bytes.unwrap_or_default();
+            image::decode_file(&bytes, exr, enc, wrap)
+        });
         let t = match loaded {
             Ok(t) => Some(Arc::new(t)),
             Err(e) => {
@@ -625,7 +642,7 @@ impl Compiler<'_, '_> {
                     }
                     None => (
                         format!("cannot read image file \"{}\": {e}", path.display()),
-                        "image textures are PNG or EXR files, relative to the scene file",
+                        "image textures are PNG files, or EXR files with R, G and B, Y or a single channel, relative to the scene file",
                     ),
                 };
                 self.src.error(at.file, at.path, message, Some(help.into()));

@@ -4,15 +4,14 @@
 //! [`super`].
 
 use std::collections::HashMap;
-use std::path::PathBuf;
-use std::sync::Arc;
 
 use super::size::Size;
+use super::textures::Textures;
 use super::{At, Compiler, Ty};
+use crate::memory_budget::Budget;
 use crate::scene::diagnostics::Sources;
 use crate::scene::nodes_desc::{InputDesc, NodeDesc, PhenomenonDesc};
 use crate::scene::validate::{Item, Merged};
-use crate::shading::texture::image::{Texture, UvWrap};
 use crate::shading::texture::Program;
 
 /// What checking a phenomenon found.
@@ -37,19 +36,17 @@ pub struct Phenomena<'a> {
     /// Phenomena whose call chains nest deeper than the limit (never expanded; see
     /// [`super::nodes_depth`]).
     pub(super) too_deep: Vec<bool>,
-    /// Image textures read so far, by (path, clamp, sRGB), `None` when unreadable.
-    pub(super) textures: TextureCache,
+    /// Image textures read so far, counted against the run's memory budget.
+    pub(super) textures: Textures,
     /// Nodes of the compilations done so far (see [`super::size`]).
     pub(super) expanded: usize,
     /// Whether the scene's limit on expanded nodes was reported.
     pub(super) scene_size_reported: bool,
 }
 
-/// Decoded image textures by (path, clamp wrap, explicit sRGB), shared between materials.
-pub(super) type TextureCache = HashMap<(PathBuf, UvWrap, Option<bool>), Option<Arc<Texture>>>;
-
-/// Checks every phenomenon (duplicate names, cycles, bodies, defaults).
-pub fn check_phenomena<'a>(src: &mut Sources, m: &'a Merged<'a>) -> Phenomena<'a> {
+/// Checks every phenomenon (duplicate names, cycles, bodies, defaults); the image textures
+/// they and the materials read are counted against `budget`.
+pub fn check_phenomena<'a>(src: &mut Sources, m: &'a Merged<'a>, budget: &Budget) -> Phenomena<'a> {
     let mut by_name = HashMap::new();
     for (i, it) in m.phenomena.iter().enumerate() {
         if let Some(&first) = by_name.get(it.desc.name.as_str()) {
@@ -75,7 +72,7 @@ pub fn check_phenomena<'a>(src: &mut Sources, m: &'a Merged<'a>) -> Phenomena<'a
         checked: vec![None; n],
         cyclic: vec![false; n],
         too_deep: vec![false; n],
-        textures: HashMap::new(),
+        textures: Textures::new(budget.clone()),
         expanded: 0,
         scene_size_reported: false,
     };

@@ -5,13 +5,19 @@
 //! centre at `((x + ½)/w, (y + ½)/h)`; `v = 0` is the **bottom** row of the image file (as in
 //! OBJ and RenderMan `t` flipped), so a texture shows upright on a quad whose uv (0, 0) is
 //! its lower-left corner. 8-bit PNG codes are decoded with the sRGB curve unless the node says
-//! `Linear`; EXR values are taken as linear unless it says `Srgb`.
+//! `Linear`; EXR values are taken as linear unless it says `Srgb`. An EXR file's R, G and B
+//! are read, else its Y, else its one colour channel (grey); see [`exr_channels`].
+//!
+//! A file's [`footprint`] is read from its header before it is decoded (the scene loader
+//! counts it against the run's memory budget), and decoding fills the texture's texel and
+//! alpha arrays straight from the decoder's samples, with no larger intermediate.
 
 use std::path::Path;
 
 use glam::{Vec2, Vec3};
 
 use super::colour::srgb_to_linear;
+use super::exr_channels;
 pub use crate::components::graph::{Texture, UvWrap, Wrap};
 use crate::image_io::png_codec::{self, DecodedPng};
 
@@ -101,6 +107,48 @@ pub fn is_exr(path: &Path) -> bool {
         .is_some_and(|e| e.eq_ignore_ascii_case("exr"))
 }
 
+/// What a texture file takes once decoded, read from its header alone.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Footprint {
+    /// Texels per row.
+    pub width: u32,
+    /// Rows.
+    pub height: u32,
+    /// Peak bytes of reading it: the file, the decoder's samples (PNG) and the texture's
+    /// texels (12 bytes each) and alpha (4 bytes each, when the image has alpha).
+    pub bytes: u64,
+}
+
+/// Bytes of one texel's colour (`Vec3`) and of its alpha.
+const TEXEL_BYTES: u64 = 12;
+const ALPHA_BYTES: u64 = 4;
+
+/// The [`Footprint`] of a PNG or EXR file's bytes (`exr`: read as EXR), from its header; a
+/// file its reader refuses for its size or channels is refused here, before decoding.
+pub fn footprint(bytes: &[u8], exr: bool) -> Result<Footprint, String> {
+    let (width, height, decoded, alpha) = if exr {
+        let layer = exr_channels::choose(bytes)?;
+        (layer.width, layer.height, 0, layer.alpha)
+    } else {
+        let h = png_codec::read_header(bytes)?;
+        (
+            h.width,
+            h.height,
+            h.decoded_bytes,
+            matches!(h.channels, 2 | 4),
+        )
+    };
+    let pixels = u64::from(width) * u64::from(height);
+    let per_texel = TEXEL_BYTES + if alpha { ALPHA_BYTES } else { 0 };
+    Ok(Footprint {
+        width,
+        height,
+        bytes: (bytes.len() as u64)
+            .saturating_add(decoded)
+            .saturating_add(pixels.saturating_mul(per_texel)),
+    })
+}
+
 /// Reads a PNG or EXR file (chosen by extension) into a texture wrapped as `wrap` (one
 /// [`Wrap`] for both axes, or a [`UvWrap`]). `encoding: None` picks the
 /// file kind's default (PNG: sRGB, EXR: linear). Non-finite or negative EXR values become 0.
@@ -109,31 +157,24 @@ pub fn load(
     encoding: Option<Encoding>,
     wrap: impl Into<UvWrap>,
 ) -> Result<Texture, String> {
-    let exr = is_exr(path);
-    let encoding = encoding.unwrap_or(if exr {
-        Encoding::Linear
-    } else {
-        Encoding::Srgb
-    });
-    let (width, height, top_down) = if exr {
-        read_exr(path)?
-    } else {
-        rgba(&png_codec::read_png(path)?)
-    };
-    texture(width, height, top_down, encoding, wrap.into())
+    let bytes = std::fs::read(path).map_err(|e| e.to_string())?;
+    decode_file(&bytes, is_exr(path), encoding, wrap)
 }
 
-/// Width, height and top-down pixels of a decoded image; alpha is `None` when the image
-/// has no alpha channel.
-fn rgba(img: &DecodedPng) -> (u32, u32, Pixels) {
-    let has_alpha = img.has_alpha();
-    let px = (0..img.pixels())
-        .map(|p| {
-            let [r, g, b, a] = img.rgba(p);
-            (Vec3::new(r, g, b), has_alpha.then_some(a))
-        })
-        .collect();
-    (img.width, img.height, px)
+/// [`load`] for a file's bytes (`exr`: read as EXR, else PNG).
+pub fn decode_file(
+    bytes: &[u8],
+    exr: bool,
+    encoding: Option<Encoding>,
+    wrap: impl Into<UvWrap>,
+) -> Result<Texture, String> {
+    if exr {
+        let (width, height, texels, alpha) = decode_exr(bytes)?;
+        let encoding = encoding.unwrap_or(Encoding::Linear);
+        texture(width, height, texels, alpha, encoding, wrap.into())
+    } else {
+        decode(bytes, encoding, wrap)
+    }
 }
 
 /// Decodes an image file held in memory (a PNG inside a glTF file) into a texture;
@@ -143,57 +184,68 @@ pub fn decode(
     encoding: Option<Encoding>,
     wrap: impl Into<UvWrap>,
 ) -> Result<Texture, String> {
-    let (w, h, px) = rgba(&png_codec::decode_png(bytes)?);
-    texture(w, h, px, encoding.unwrap_or(Encoding::Srgb), wrap.into())
+    let img = png_codec::decode_png(bytes)?;
+    let (texels, alpha) = png_texels(&img);
+    drop(img);
+    let encoding = encoding.unwrap_or(Encoding::Srgb);
+    texture(texels.0, texels.1, texels.2, alpha, encoding, wrap.into())
 }
 
-/// A texture from rows listed top to bottom (alpha is linear whatever the encoding; it is
-/// kept when some pixel has one).
+/// Width, height and the bottom-up colours of a decoded PNG, and its bottom-up alpha (empty
+/// when the image has none): the texture's arrays, filled straight from the samples.
+fn png_texels(img: &DecodedPng) -> ((u32, u32, Vec<Vec3>), Vec<f32>) {
+    let w = img.width as usize;
+    let bottom_up = || {
+        (0..img.height as usize)
+            .rev()
+            .flat_map(move |y| y * w..(y + 1) * w)
+    };
+    let texels = bottom_up()
+        .map(|p| {
+            let [r, g, b, _] = img.rgba(p);
+            Vec3::new(r, g, b)
+        })
+        .collect();
+    let alpha = if img.has_alpha() {
+        bottom_up().map(|p| img.rgba(p)[3]).collect()
+    } else {
+        Vec::new()
+    };
+    ((img.width, img.height, texels), alpha)
+}
+
+/// A texture from bottom-up colours as stored and bottom-up alpha (empty: none; alpha is
+/// linear whatever the encoding): colours are decoded in place (negative or non-finite ones
+/// become 0), alpha clamped to `[0, 1]` (non-finite: 1).
 fn texture(
     width: u32,
     height: u32,
-    top_down: Pixels,
+    mut texels: Vec<Vec3>,
+    mut alpha: Vec<f32>,
     encoding: Encoding,
     wrap: UvWrap,
 ) -> Result<Texture, String> {
     if width == 0 || height == 0 {
         return Err("the image is empty".into());
     }
-    let decode = |c: Vec3| {
-        let c = Vec3::select(c.cmpge(Vec3::ZERO) & c.is_finite_mask(), c, Vec3::ZERO);
-        match encoding {
-            Encoding::Linear => c,
+    for c in &mut texels {
+        let v = Vec3::select(c.cmpge(Vec3::ZERO) & c.is_finite_mask(), *c, Vec3::ZERO);
+        *c = match encoding {
+            Encoding::Linear => v,
             Encoding::Srgb => Vec3::new(
-                srgb_to_linear(c.x),
-                srgb_to_linear(c.y),
-                srgb_to_linear(c.z),
+                srgb_to_linear(v.x),
+                srgb_to_linear(v.y),
+                srgb_to_linear(v.z),
             ),
-        }
-    };
-    let w = width as usize;
-    let texels = top_down
-        .chunks_exact(w)
-        .rev()
-        .flat_map(|row| row.iter().map(|&(c, _)| decode(c)))
-        .collect();
-    let alpha = if top_down.iter().any(|(_, a)| a.is_some()) {
-        top_down
-            .chunks_exact(w)
-            .rev()
-            .flat_map(|row| {
-                row.iter().map(|&(_, a)| {
-                    let a = a.unwrap_or(1.0);
-                    if a.is_finite() {
-                        a.clamp(0.0, 1.0)
-                    } else {
-                        1.0
-                    }
-                })
-            })
-            .collect()
-    } else {
-        Vec::new()
-    };
+        };
+    }
+    for a in &mut alpha {
+        *a = if a.is_finite() {
+            a.clamp(0.0, 1.0)
+        } else {
+            1.0
+        };
+    }
     Ok(Texture {
         width,
         height,
@@ -203,51 +255,15 @@ fn texture(
     })
 }
 
-/// Pixels listed top to bottom: colour and alpha (`None`: the image has no alpha).
-type Pixels = Vec<(Vec3, Option<f32>)>;
-
-/// A row width and the pixels an EXR reader fills.
-type ExrPixels = (usize, Pixels);
-
-/// Width, height and top-down RGBA pixels of the first RGB(A) layer of an EXR file (alpha
-/// `None` when the layer has no alpha channel).
-fn read_exr(path: &Path) -> Result<(u32, u32, Pixels), String> {
-    decode_exr(&std::fs::read(path).map_err(|e| e.to_string())?)
-}
-
-/// [`read_exr`] for a file's bytes; its size is checked from the headers first
-/// ([`exr_limits`](crate::image_io::exr_limits)), so a small file claiming a huge image is
-/// refused before anything is allocated for it.
-pub fn decode_exr(bytes: &[u8]) -> Result<(u32, u32, Pixels), String> {
-    use crate::image_io::exr_limits;
-    use exr::prelude::*;
-    exr_limits::check_bytes(bytes, exr_limits::MAX_IMAGE_SAMPLES)?;
-    let image = read()
-        .no_deep_data()
-        .largest_resolution_level()
-        .rgba_channels(
-            |resolution, channels: &RgbaChannels| {
-                let alpha = channels.3.is_some().then_some(1.0);
-                (
-                    resolution.width(),
-                    vec![(Vec3::ZERO, alpha); resolution.width() * resolution.height()],
-                )
-            },
-            |(w, px): &mut ExrPixels, pos, (r, g, b, a): (f32, f32, f32, f32)| {
-                let slot = &mut px[pos.y() * *w + pos.x()];
-                *slot = (Vec3::new(r, g, b), slot.1.map(|_| a));
-            },
-        )
-        .first_valid_layer()
-        .all_attributes()
-        // On the calling thread: exr's parallel decoding builds a thread pool of its own per
-        // image (threads beyond `--threads`, left running when the call returns).
-        .non_parallel()
-        .from_buffered(std::io::Cursor::new(bytes))
-        .map_err(|e| e.to_string())?;
-    let size = image.layer_data.size;
-    let (_, px) = image.layer_data.channel_data.pixels;
-    Ok((size.width() as u32, size.height() as u32, px))
+/// Width, height, bottom-up colours and bottom-up alpha (empty when the layer has none) of an
+/// EXR file's bytes: the first layer with R, G and B, else the first with Y, else the first
+/// with one colour channel (grey fills R, G and B; see [`exr_channels`]). Its size is checked
+/// from the headers first ([`exr_limits`](crate::image_io::exr_limits)), so a small file
+/// claiming a huge image is refused before anything is allocated for it.
+pub fn decode_exr(bytes: &[u8]) -> Result<(u32, u32, Vec<Vec3>, Vec<f32>), String> {
+    let layer = exr_channels::choose(bytes)?;
+    let texels = exr_channels::read_layer(bytes, &layer)?;
+    Ok((layer.width, layer.height, texels.colours, texels.alpha))
 }
 
 #[cfg(test)]

@@ -17,6 +17,7 @@
 pub mod bind;
 pub mod bump;
 pub mod colour;
+pub mod exr_channels;
 pub mod hit;
 pub mod image;
 pub mod noise;
