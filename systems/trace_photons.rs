@@ -52,16 +52,15 @@ pub fn should_run(world: &World, frame: &Frame) -> Decision {
     }
     let p = frame.inputs.settings.photons;
     let maps: Vec<String> = [
-        ("caustics", p.caustics),
-        ("global illumination", p.global_illumination),
+        ("caustics", MapKind::Caustics, p.caustics),
+        (
+            "global illumination",
+            MapKind::Global,
+            p.global_illumination,
+        ),
     ]
     .into_iter()
-    .filter_map(|(name, m)| {
-        m.map(|m| match m.progressive {
-            Some(p) => format!("{name} ({} photons × {} passes)", m.photons, p.passes),
-            None => format!("{name} ({} photons)", m.photons),
-        })
-    })
+    .filter_map(|(name, kind, m)| m.map(|m| format!("{name} ({})", emitted_text(world, kind, m))))
     .collect();
     if maps.is_empty() {
         return Decision::skip("caustics and global illumination are off");
@@ -111,6 +110,42 @@ pub fn should_run(world: &World, frame: &Frame) -> Decision {
         (None, None) => String::new(),
     };
     Decision::run(format!("{}{kept}", maps.join(" + ")))
+}
+
+/// The photons one pass of the map `kind` emits, as the reason says them: the map's
+/// `photons` (`m.photons`), shared by the lights without a count of their own for it, plus
+/// each light's own count (mental ray's `caustic photons` / `globillum photons`), as
+/// [`trace_map_by_light`] emits them — `5000000 photons, the lights' own counts`.
+fn emitted_text(world: &World, kind: MapKind, m: PhotonMapSettings) -> String {
+    let mut shared = world.query::<&Material>().iter().any(Material::is_emissive);
+    let mut own = 0u64;
+    for (e, c) in world.query::<(&Emitter, Option<&LightPhotons>)>().iter() {
+        let c = c.copied().unwrap_or_default();
+        let power = c.energy.unwrap_or(e.radiant);
+        if matches!(e.shape, LightShape::Ambient) || power.max_element() <= 0.0 {
+            continue; // emits nothing
+        }
+        let count = match kind {
+            MapKind::Caustics => c.caustic_photons,
+            MapKind::Global => c.globillum_photons,
+        };
+        match count {
+            Some(n) => own += u64::from(n),
+            None => shared = true,
+        }
+    }
+    let passes = m
+        .progressive
+        .map_or(String::new(), |p| format!(" × {} passes", p.passes));
+    let map = u64::from(m.photons);
+    match (shared, own) {
+        (_, 0) => format!("{map} photons{passes}"),
+        (false, own) => format!("{own} photons{passes}, the lights' own counts"),
+        (true, own) => format!(
+            "{} photons{passes}: {map} shared by the lights without a count, {own} the lights' own counts",
+            map + own
+        ),
+    }
 }
 
 /// Whether some light sends photons into a requested map: an emitting material, or a light
@@ -362,6 +397,40 @@ mod tests {
             "stored fraction {fraction} vs {p}"
         );
         assert_eq!(photons_of(&world, &frame).0, stored, "same seed, same map");
+    }
+
+    /// The reason says the photons the pass emits: a light's own count replaces the map's
+    /// `photons` for that light, and the lights without one share the map's.
+    #[test]
+    fn the_reason_counts_the_lights_own_photons_as_emitted() {
+        let base = scene(
+            "global_illumination: (photons: 2000, gather: 8)",
+            "",
+            "",
+            &[],
+        );
+        let own = "(name: \"lamp\", kind: Point(position: (0, 0, 2)), intensity: 2.0, globillum_photons: 700)";
+        let lamp = "(name: \"lamp\", kind: Point(position: (0, 0, 2)), intensity: 2.0)";
+        assert!(base.contains(lamp), "{base}");
+        let second = "(name: \"lamp2\", kind: Point(position: (0, 0, 2)), intensity: 1.0, globillum_photons: 500)";
+        for (text, reason, emitted) in [
+            (
+                base.replace(lamp, own),
+                "global illumination (700 photons, the lights' own counts)",
+                700,
+            ),
+            (
+                base.replace(lamp, &format!("{lamp}, {second}")),
+                "global illumination (2500 photons: 2000 shared by the lights without a count, 500 the lights' own counts)",
+                2500,
+            ),
+        ] {
+            let (mut world, mut frame) = load(&text, false);
+            run_until("trace_photons", &mut world, &mut frame);
+            assert_eq!(should_run(&world, &frame), Decision::run(reason));
+            let (_, maps) = photons_of(&world, &frame);
+            assert_eq!(maps.global.as_ref().unwrap().emitted, emitted);
+        }
     }
 
     /// A spot aimed away from everything stores no photon: the maps are dropped, so the

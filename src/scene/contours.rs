@@ -309,11 +309,18 @@ pub fn check_pairing(
             }
             shown = true;
             if !shaders {
+                let help = src.syntax(c.file).help(
+                    "give a material a contour shader, e.g. `contour: Simple(color: (0, 0, 0, 1), width: 0.5)`",
+                    "give a material a contour shader, e.g. `contour \"contour_shader_simple\" (\"color\" 0 0 0 1, \"width\" 0.5)`",
+                );
                 src.error(
                     c.file,
                     &c.at(&format!(".outputs[{k}].file")),
-                    format!("output \"{}\" shows contours, but no material has a contour shader", o.file),
-                    Some("give a material a contour shader, e.g. `contour: Simple(color: (0, 0, 0, 1), width: 0.5)`".into()),
+                    format!(
+                        "output \"{}\" shows contours, but no material has a contour shader",
+                        o.file
+                    ),
+                    Some(help),
                 );
             }
         }
@@ -323,6 +330,10 @@ pub fn check_pairing(
     }
     for m in materials.iter().filter(|m| m.desc.contour.is_some()) {
         let pos = src.pos(m.file, &m.at(".contour"));
+        let help = src.syntax(m.file).help(
+            "add an output such as `(file: \"lines.svg\")` or a `Contours` pass",
+            "add a camera output such as `output \"contour\" \"ps\" \"lines.ps\"`",
+        );
         src.push_warning(
             m.file,
             Diagnostic::at(
@@ -331,7 +342,7 @@ pub fn check_pairing(
                     "material \"{}\" has a contour shader, but no camera output shows contours",
                     m.desc.name
                 ),
-                Some("add an output such as `(file: \"lines.svg\")` or a `Contours` pass".into()),
+                Some(help),
             ),
         );
     }

@@ -9,6 +9,7 @@ use std::path::{Path, PathBuf};
 use super::import::SourceMap;
 pub use super::message::{Diagnostic, SceneErrors, Severity, SourcePos};
 pub use super::suggest::suggestion;
+use super::syntax::Syntax;
 
 /// A scene file that was read: its display path and where its values are.
 #[derive(Debug, Clone)]
@@ -17,6 +18,8 @@ pub struct SourceFile {
     pub path: PathBuf,
     /// Positions of the values, from the file's reader.
     pub map: SourceMap,
+    /// The syntax it is written in (help texts show what to write in it).
+    pub syntax: Syntax,
 }
 
 impl SourceFile {
@@ -44,6 +47,11 @@ impl Sources {
         self.files
             .get(file)
             .map_or_else(|| SourcePos::start(Path::new("")), |f| f.map.locate(path))
+    }
+
+    /// The syntax file `file` is written in (RON when there is no such file).
+    pub fn syntax(&self, file: usize) -> Syntax {
+        self.files.get(file).map_or(Syntax::Ron, |f| f.syntax)
     }
 
     /// `file:line:col` of the value at `path`, for help texts.

@@ -17,6 +17,7 @@ use super::desc::SceneDesc;
 use super::diagnostics::{Diagnostic, SourceFile, Sources};
 use super::import::{self, SourceMap, SourcePos};
 pub use super::message::io_reason;
+use super::syntax::Syntax;
 use crate::hash::Fnv64;
 use crate::limits::{read_file, MAX_SCENE_FILE_BYTES};
 
@@ -52,7 +53,7 @@ pub fn load_files(root: &Path, text: Option<&str>, formats: &[import::Format]) -
     };
     let key = canonical(root);
     let failed = |loader: &mut Loader<'_>, message: String, help: Option<String>| {
-        let file = loader.register(SourceMap::empty(root), None);
+        let file = loader.register(SourceMap::empty(root), Syntax::default(), None);
         let at = SourcePos::start(root);
         let d = Diagnostic::at(at.clone(), message, help);
         loader.out.sources.push(file, at, d);
@@ -93,9 +94,12 @@ fn canonical(path: &Path) -> PathBuf {
 }
 
 impl Loader<'_> {
-    fn register(&mut self, map: SourceMap, scene: Option<SceneDesc>) -> usize {
+    fn register(&mut self, map: SourceMap, syntax: Syntax, scene: Option<SceneDesc>) -> usize {
         let path = map.file().to_path_buf();
-        self.out.sources.files.push(SourceFile { path, map });
+        self.out
+            .sources
+            .files
+            .push(SourceFile { path, map, syntax });
         self.out.scenes.push(scene);
         self.out.scenes.len() - 1
     }
@@ -107,7 +111,7 @@ impl Loader<'_> {
         let read = match (format.read)(&path, bytes) {
             Ok(read) => read,
             Err(failure) => {
-                let file = self.register(SourceMap::empty(&path), None);
+                let file = self.register(SourceMap::empty(&path), format.syntax, None);
                 for d in failure.errors {
                     self.out.sources.push(file, d.pos(), d);
                 }
@@ -117,7 +121,7 @@ impl Loader<'_> {
                 return;
             }
         };
-        let file = self.register(read.map, None);
+        let file = self.register(read.map, format.syntax, None);
         // Files the reader read itself (RIB archives, `.mi` includes) are part of the scene's
         // content: an edited archive must change the farm's scene hash.
         for extra in &read.read_files {

@@ -58,6 +58,7 @@ pub(crate) mod samples;
 pub(crate) mod shaders;
 pub(crate) mod spawn;
 pub(crate) mod suggest;
+pub mod syntax;
 pub(crate) mod unique_keys;
 pub(crate) mod validate;
 pub(crate) mod volume;
@@ -87,8 +88,8 @@ pub struct LoadedScene {
     pub world: hecs::World,
     /// Settings from the scene's `options`.
     pub settings: RenderSettings,
-    /// Non-fatal notes about elements (e.g. `mesh "x": dropped 3 degenerate triangles`),
-    /// printed after `warning: `.
+    /// Non-fatal notes not tied to a place in a scene file, printed after `warning: `
+    /// (none today: what the mesh loader drops is a located warning).
     pub warnings: Vec<String>,
     /// Located warnings from the readers and validation, each a complete text as printed:
     /// `file:line:col: warning: …` (plus a `help:` line), in file and position order.
@@ -287,19 +288,23 @@ fn load(
         return Err(sources.refuse());
     }
 
-    let mut warnings = Vec::new();
+    // What the mesh loader dropped, located at the object's mesh.
     for (it, b) in merged.objects.iter().zip(&built) {
         let Some(b) = b else { continue };
         let name = &it.desc.name;
+        let mut warn = |message: String| {
+            let pos = sources.pos(it.file, &it.at(".mesh"));
+            sources.push_warning(it.file, Diagnostic::at(pos, message, None));
+        };
         if b.dropped > 0 {
             let s = if b.dropped == 1 { "" } else { "s" };
-            warnings.push(format!(
+            warn(format!(
                 "mesh \"{name}\": dropped {} degenerate triangle{s}",
                 b.dropped
             ));
         }
         if b.dropped_normals {
-            warnings.push(format!(
+            warn(format!(
                 "mesh \"{name}\": ignored its normals (one is non-finite or zero)"
             ));
         }
@@ -369,7 +374,7 @@ fn load(
     Ok(LoadedScene {
         world,
         settings,
-        warnings,
+        warnings: Vec::new(),
         located_warnings: sources.warnings(),
         source_hash: content_hash.finish(),
     })

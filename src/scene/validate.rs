@@ -171,7 +171,7 @@ pub fn settings(src: &mut Sources, options: Option<&Item<'_, OptionsDesc>>) -> R
             rebuild: f.rebuild,
         }
     });
-    RenderSettings {
+    let settings = RenderSettings {
         photons,
         photon_map,
         spp,
@@ -194,7 +194,32 @@ pub fn settings(src: &mut Sources, options: Option<&Item<'_, OptionsDesc>>) -> R
         },
         disabled: switched_off(&o.disable),
         diagnostic: o.diagnostic.map(|d| diagnostic(&mut ck, item, d)),
-    }
+    };
+    unmet_diagnostic(&mut ck, item, &settings);
+    settings
+}
+
+/// Refuses, at the options' `diagnostic`, a photon view the scene's own options cannot draw
+/// (`crate::diagnostic_needs`), with the help written in the scene's syntax: `check` refuses
+/// what `render` would.
+fn unmet_diagnostic(ck: &mut Checker<'_>, item: &Item<'_, OptionsDesc>, settings: &RenderSettings) {
+    use crate::diagnostic_needs::{unmet, Unmet};
+    let Some(unmet) = unmet(settings) else {
+        return;
+    };
+    let syntax = ck.src.syntax(ck.file);
+    let help = match unmet {
+        Unmet::NoPhotonMaps => syntax.help(
+            "turn on `caustics: (…)` or `global_illumination: (…)` in the scene's options",
+            "add `caustic on` or `globillum on` to the options block",
+        ),
+        Unmet::PathIntegrator => syntax.help(
+            "set `integrator: Direct` in the scene's options",
+            "the photon view needs the Direct integrator",
+        ),
+    };
+    ck.src
+        .error(ck.file, &item.at(".diagnostic"), unmet.reason(), Some(help));
 }
 
 /// The diagnostic `d` asks for; a size or maximum that is not a number > 0 is an error.

@@ -61,6 +61,7 @@ mod mi_displacement;
 mod mi_material_environment;
 mod mi_outputs;
 mod mi_polygon_materials;
+mod mi_scene_messages;
 mod mi_shadow_shaders;
 mod mi_surfaces;
 mod mi_textures;

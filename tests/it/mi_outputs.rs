@@ -135,6 +135,49 @@ fn output_forms_map_onto_passes_and_files() {
     }
 }
 
+/// Types deeper than 8 bits per channel: named as PNG they are written 8-bit, with a warning
+/// at the type (and its help naming EXR); in a format stagelight does not write they go to
+/// an EXR of the same stem, which keeps their precision, as data types do.
+#[test]
+fn deep_output_types_warn_as_png_and_keep_their_precision_elsewhere() {
+    use FormatDesc::{Exr, Png};
+    use PassDesc::{Alpha, Beauty};
+    let cases: &[(&str, String, &[&str])] = &[
+        (
+            "output \"rgba_16\" \"png\" \"u1.png\"",
+            out("u1.png", Png, &[Beauty, Alpha]),
+            &["5:8: output type \"rgba_16\" is 16 bits per channel, but \"u1.png\" is written as an 8-bit PNG"],
+        ),
+        (
+            "output \"rgb_fp\" \"f.png\"",
+            out("f.png", Png, &[Beauty]),
+            &["5:8: output type \"rgb_fp\" is floating point, but \"f.png\" is written as an 8-bit PNG"],
+        ),
+        (
+            "output \"rgba_h\" \"ct\" \"h.ct\"",
+            out("h.exr", Exr, &[Beauty, Alpha]),
+            &["5:22: output \"h.ct\" is written as \"h.exr\" (stagelight writes PNG and EXR files, not format \"ct\")"],
+        ),
+        (
+            "output \"rgba_fp\" \"exr\" \"f.exr\"",
+            out("f.exr", Exr, &[Beauty, Alpha]),
+            &[],
+        ),
+    ];
+    for (line, want, warned) in cases {
+        let (outputs, warnings) = read(line);
+        assert_eq!(format!("{:?}", outputs[0]), *want, "{line}");
+        assert_eq!(warnings, *warned, "{line}");
+    }
+    // The help names the format that keeps the precision.
+    let text = scene("output \"rgba_16\" \"png\" \"u1.png\"");
+    let read = read_mi(Path::new("out.mi"), text.as_bytes()).unwrap();
+    assert_eq!(
+        read.warnings[0].problem.help.as_deref(),
+        Some("name an .exr file (or format \"exr\") to keep its precision")
+    );
+}
+
 #[test]
 fn bad_output_statements_are_located_errors_that_read_well() {
     let cases = [

@@ -203,9 +203,20 @@ fn inline_polygons_are_fan_triangulated_and_degenerates_dropped() {
     let junk = named(&scene.world, "junk");
     let mesh = scene.world.get::<&Arc<TriMesh>>(junk).unwrap();
     assert_eq!(mesh.triangles, vec![[0, 1, 2]]);
-    assert_eq!(
-        scene.warnings,
-        ["mesh \"junk\": dropped 2 degenerate triangles"]
+    // Located at the object's mesh.
+    assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
+    let dropped: Vec<&String> = scene
+        .located_warnings
+        .iter()
+        .filter(|w| w.contains("degenerate"))
+        .collect();
+    assert_eq!(dropped.len(), 1, "{:?}", scene.located_warnings);
+    assert!(
+        dropped[0].ends_with(
+            "good/main.ron:33:19: warning: mesh \"junk\": dropped 2 degenerate triangles"
+        ),
+        "{}",
+        dropped[0]
     );
     // Objects not reachable from the root are not spawned.
     assert!(scene.world.query::<&Name>().iter().all(|n| n.0 != "unused"));

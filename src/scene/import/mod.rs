@@ -50,6 +50,7 @@ use super::desc::SceneDesc;
 use super::message::Diagnostic;
 pub use super::message::SourcePos;
 use super::nodes_desc::NodeDesc;
+use super::syntax::Syntax;
 
 /// What one reader produced from one file.
 #[derive(Debug)]
@@ -198,6 +199,8 @@ pub struct Format {
     pub extensions: &'static [&'static str],
     /// The reader.
     pub read: ReadFn,
+    /// The syntax its files are written in (for help texts).
+    pub syntax: Syntax,
 }
 
 /// Every scene format, by extension (compared case-insensitively).
@@ -206,21 +209,25 @@ pub const FORMATS: &[Format] = &[
         name: "RON",
         extensions: &["ron"],
         read: ron::read,
+        syntax: Syntax::Ron,
     },
     Format {
         name: "RIB",
         extensions: &["rib"],
         read: rib::read,
+        syntax: Syntax::Rib,
     },
     Format {
         name: gltf_scene::FORMAT_NAME,
         extensions: &["gltf", "glb"],
         read: gltf_scene::read,
+        syntax: Syntax::Gltf,
     },
     Format {
         name: "mental ray",
         extensions: &["mi"],
         read: mi::read,
+        syntax: Syntax::Mi,
     },
 ];
 

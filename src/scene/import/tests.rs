@@ -19,6 +19,7 @@ const WITH_FAKE: &[Format] = &[
         name: "fake",
         extensions: &["pts"],
         read: read_fake,
+        syntax: crate::scene::syntax::Syntax::Ron,
     },
 ];
 

@@ -141,6 +141,14 @@ fn build(raw: &RawScene, root: &Located, out: &mut Out) {
     if let Some(o) = options {
         out.desc.options = Some(o.desc.clone());
         out.paths.push(("options".into(), o.at.clone()));
+        for (path, at) in raw
+            .option_statements
+            .get(&render.options.0)
+            .into_iter()
+            .flatten()
+        {
+            out.paths.push((format!("options{path}"), at.clone()));
+        }
     }
     let instances: HashMap<&str, usize> = raw
         .instances

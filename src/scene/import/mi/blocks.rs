@@ -15,6 +15,7 @@ use super::photon_options::PhotonOptions;
 use super::shaders;
 use super::statements::Reader;
 use super::switches;
+use super::unmapped_options;
 use crate::scene::desc::{
     FaceDesc, FormatDesc, MaterialDesc, OptionsDesc, OutputDesc, PassDesc, SamplesDesc,
 };
@@ -63,9 +64,6 @@ const OPTIONS: &[&str] = &[
     "photon",
     "diagnostic",
     "contour",
-    "filter",
-    "scanline",
-    "jitter",
     "lens",
     "volume",
     "geometry",
@@ -104,6 +102,7 @@ pub fn options(r: &mut Reader, c: &mut Cursor, open: Pos) {
     let mut contrast = (0.1, 0.1, 0.1);
     let mut samples: Option<(i64, i64)> = None;
     let mut photons = PhotonOptions::default();
+    let mut statements: Vec<(&'static str, _)> = Vec::new();
     // `trace off`: no reflection or refraction rays, whatever the trace depth says.
     let mut traced = true;
     loop {
@@ -172,15 +171,7 @@ pub fn options(r: &mut Reader, c: &mut Cursor, open: Pos) {
                         "\"face back\" is not supported; front faces are rendered",
                     );
                 } else {
-                    let (p, f) = (
-                        c.pos(),
-                        c.peek()
-                            .map_or("the end of the file".into(), |t| t.tok.describe()),
-                    );
-                    c.error(
-                        p,
-                        format!("expected front, back or both after face, found {f}"),
-                    );
+                    face_error(c);
                 }
             }
             "shadow" => {
@@ -205,7 +196,10 @@ pub fn options(r: &mut Reader, c: &mut Cursor, open: Pos) {
             "caustic" => photons.caustic(c, t.pos),
             "globillum" => photons.globillum(c, t.pos),
             "finalgather" => photons.final_gather(c, t.pos),
-            "diagnostic" => switches::diagnostic(c, t.pos, &mut o.desc),
+            "diagnostic" => {
+                switches::diagnostic(c, t.pos, &mut o.desc);
+                statements.push((".diagnostic", c.located(t.pos)));
+            }
             "contour" => super::contours::option(c, t.pos, &mut o.desc),
             "photonmap" => photons.photon_map(c, t.pos),
             "photon" if c.at_word("trace") => photons.trace_depth(c),
@@ -231,22 +225,11 @@ pub fn options(r: &mut Reader, c: &mut Cursor, open: Pos) {
                 c.warn(t.pos, format!("\"{w}\" is read but not yet mapped"));
             }
             w if switches::is_switch(w) => switches::switch(c, w, &mut o.desc),
-            "filter" | "scanline" | "jitter" => {
-                while c.at_word("box")
-                    || c.at_word("triangle")
-                    || c.at_word("gauss")
-                    || c.at_word("mitchell")
-                    || c.at_word("lanczos")
-                    || c.at_word("rapid")
-                {
-                    c.advance();
-                }
-                c.skip_arguments();
-                c.warn(t.pos, format!("option \"{w}\" is read but not mapped"));
-            }
+            w if unmapped_options::is_unmapped(w) => unmapped_options::read(c, w, t.pos),
             other => {
                 let mut p = Problem::error(t.pos, format!("unknown option \"{other}\""));
-                if let Some(s) = closest(other, OPTIONS.iter().copied()) {
+                let known = OPTIONS.iter().copied().chain(unmapped_options::names());
+                if let Some(s) = closest(other, known) {
                     p = p.with_help(format!("did you mean \"{s}\"?"));
                 }
                 c.report(p);
@@ -274,8 +257,35 @@ pub fn options(r: &mut Reader, c: &mut Cursor, open: Pos) {
         };
     }
     if fresh {
+        r.raw.option_statements.insert(name.clone(), statements);
         r.raw.options.insert(name, o);
     }
+}
+
+/// `face` followed by something other than `front`, `back` or `both`: one error (with a
+/// did-you-mean for a misspelt word, which is taken as the statement's argument).
+fn face_error(c: &mut Cursor) {
+    let (p, f) = (
+        c.pos(),
+        c.peek()
+            .map_or("the end of the file".into(), |t| t.tok.describe()),
+    );
+    let mut problem = Problem::error(
+        p,
+        format!("expected front, back or both after face, found {f}"),
+    );
+    if let Some(Token {
+        tok: Tok::Word(w), ..
+    }) = c.peek()
+    {
+        if w != "end" {
+            if let Some(s) = closest(w, ["front", "back", "both"]) {
+                problem = problem.with_help(format!("did you mean \"{s}\"?"));
+            }
+            c.advance();
+        }
+    }
+    c.report(problem);
 }
 
 const CAMERA: &[&str] = &[
@@ -524,10 +534,20 @@ fn output(c: &mut Cursor, outputs: &mut Vec<OutputDesc>) {
     let colour = passes
         .iter()
         .all(|p| matches!(p, PassDesc::Beauty | PassDesc::Alpha));
+    let deep = deeper_than_8_bits(&kind);
     let lower = file.to_ascii_lowercase();
     let format = if format_name == Some("png") && colour
         || format_name.is_none_or(|f| f != "exr") && lower.ends_with(".png") && colour
     {
+        if let Some(depth) = deep {
+            c.report(
+                Problem::warning(
+                    kind_pos,
+                    format!("output type \"{kind}\" is {depth}, but \"{file}\" is written as an 8-bit PNG"),
+                )
+                .with_help("name an .exr file (or format \"exr\") to keep its precision"),
+            );
+        }
         FormatDesc::Png
     } else if format_name == Some("exr") || lower.ends_with(".exr") {
         FormatDesc::Exr
@@ -536,7 +556,8 @@ fn output(c: &mut Cursor, outputs: &mut Vec<OutputDesc>) {
             .rsplit_once('.')
             .map_or(file.as_str(), |(s, _)| s)
             .to_string();
-        let (ext, format) = if colour {
+        // A type deeper than PNG's 8 bits keeps its precision in EXR, as data does.
+        let (ext, format) = if colour && deep.is_none() {
             ("png", FormatDesc::Png)
         } else {
             ("exr", FormatDesc::Exr)
@@ -558,6 +579,18 @@ fn output(c: &mut Cursor, outputs: &mut Vec<OutputDesc>) {
         format: Some(format),
         passes: Some(passes),
     });
+}
+
+/// How an output type deeper than 8 bits per channel is described (`rgba_16`: "16 bits per
+/// channel"; `_h`, `_f`, `_fp`: "floating point"); `None` for the 8-bit `rgb`/`rgba`.
+fn deeper_than_8_bits(kind: &str) -> Option<&'static str> {
+    if kind.ends_with("_16") {
+        Some("16 bits per channel")
+    } else if kind.ends_with("_h") || kind.ends_with("_f") || kind.ends_with("_fp") {
+        Some("floating point")
+    } else {
+        None
+    }
 }
 
 /// mental ray's image file formats (`output` statements).

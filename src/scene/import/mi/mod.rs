@@ -5,8 +5,10 @@
 //! and the shader parameter lists `("name" value, …)`), [`statements`] (the top-level
 //! statements, `$include` and `link`), [`blocks`] (`options`, `camera`, `light`,
 //! `material` and `declare phenomenon` blocks; [`photon_options`] maps the photon
-//! statements of `options`, [`switches`] its feature switches), [`object`] (`object … group … end group
-//! end object`; [`surface`] its free-form surfaces), [`shaders`] (the built-in shaders' parameters and what each maps onto;
+//! statements of `options`, [`switches`] its feature switches, [`unmapped_options`] the
+//! standard options read and warned), [`object`] (`object … group … end group
+//! end object`; [`surface`] its free-form surfaces, [`transform`] an instance `transform`,
+//! a homogeneous one divided by its `w`), [`shaders`] (the built-in shaders' parameters and what each maps onto;
 //! [`textures`] the `mib_texture_*` chains onto shader-graph nodes, [`volumes`] volume
 //! shaders onto fog, [`tutorial`] the tutorial's native shaders once linked)
 //! and [`assemble`] (the instance tree → cameras, lights, objects, instances and groups).
@@ -39,7 +41,9 @@ pub mod statements;
 pub mod surface;
 pub mod switches;
 pub mod textures;
+pub mod transform;
 pub mod tutorial;
+pub mod unmapped_options;
 pub mod volumes;
 
 use std::path::Path;

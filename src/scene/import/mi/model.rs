@@ -276,6 +276,9 @@ pub struct RawRender {
 pub struct RawScene {
     /// `options` blocks.
     pub options: HashMap<String, RawOptions>,
+    /// Where statements of each `options` block were written, by block name: the
+    /// description path under `options` (`.diagnostic`) and the statement's position.
+    pub option_statements: HashMap<String, Vec<(&'static str, Located)>>,
     /// `camera` blocks.
     pub cameras: HashMap<String, RawCamera>,
     /// `light` blocks.

@@ -409,7 +409,10 @@ pub fn instance(r: &mut Reader, c: &mut Cursor, open: Pos) {
                     };
                     let mut a = [0.0; 16];
                     a.copy_from_slice(&m);
-                    inst.transform = Some(a);
+                    match super::transform::affine(&a, t.pos) {
+                        Ok(a) => inst.transform = Some(a),
+                        Err(problem) => c.report(problem),
+                    }
                     inst.transform_at = Some(c.located(t.pos));
                 }
             }
