@@ -465,9 +465,6 @@ fn load(path: &Path, budget: &stagelight::budget::Budget) -> Result<LoadedScene,
             for w in &scene.located_warnings {
                 eprintln!("{w}");
             }
-            for w in &scene.warnings {
-                eprintln!("warning: {w}");
-            }
             Ok(scene)
         }
         Err(errors) => {

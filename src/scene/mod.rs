@@ -88,9 +88,6 @@ pub struct LoadedScene {
     pub world: hecs::World,
     /// Settings from the scene's `options`.
     pub settings: RenderSettings,
-    /// Non-fatal notes not tied to a place in a scene file, printed after `warning: `
-    /// (none today: what the mesh loader drops is a located warning).
-    pub warnings: Vec<String>,
     /// Located warnings from the readers and validation, each a complete text as printed:
     /// `file:line:col: warning: …` (plus a `help:` line), in file and position order.
     pub located_warnings: Vec<String>,
@@ -374,7 +371,6 @@ fn load(
     Ok(LoadedScene {
         world,
         settings,
-        warnings: Vec::new(),
         located_warnings: sources.warnings(),
         source_hash: content_hash.finish(),
     })

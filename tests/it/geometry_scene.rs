@@ -275,7 +275,7 @@ fn approximation_displacement_and_derivatives_become_components() {
     assert!(w
         .get::<&stagelight::components::SurfaceDerivatives>(tube)
         .is_ok());
-    assert!(s.warnings.is_empty(), "{:?}", s.warnings);
+    assert!(s.located_warnings.is_empty(), "{:?}", s.located_warnings);
 }
 
 #[test]

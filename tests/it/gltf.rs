@@ -32,7 +32,7 @@ fn render_mesh(mesh: &str) -> (TriMesh, Vec<[u32; 3]>) {
     );
     let mut scene = stagelight::scene::load_scene_str(&text, &Path::new(DIR).join("render.ron"))
         .unwrap_or_else(|e| panic!("{mesh}: {e}"));
-    assert_eq!(scene.warnings, Vec::<String>::new());
+    assert_eq!(scene.located_warnings, Vec::<String>::new());
     let meshes: Vec<TriMesh> = scene
         .world
         .query::<&Arc<TriMesh>>()
@@ -477,7 +477,7 @@ fn the_room_asset_loads_with_its_bake_requests() {
         .collect();
     names.sort();
     assert_eq!(names, ["crate", "floor", "walls"]);
-    assert_eq!(scene.warnings, Vec::<String>::new());
+    assert_eq!(scene.located_warnings, Vec::<String>::new());
 }
 
 /// A file without a camera is framed by the default camera: it looks at the centre of the

@@ -21,7 +21,7 @@ fn render(mut scene: LoadedScene) -> (usize, Vec<Vec3>) {
 fn load_ron(text: &str) -> LoadedScene {
     let scene = stagelight::scene::load_scene_str(text, &Path::new(DIR).join("s.ron"))
         .unwrap_or_else(|e| panic!("{e}"));
-    assert_eq!(scene.warnings, Vec::<String>::new());
+    assert_eq!(scene.located_warnings, Vec::<String>::new());
     scene
 }
 
@@ -87,7 +87,7 @@ fn color_0_is_read_linear_in_every_encoding() {
 fn color_0_multiplies_the_base_colour() {
     let scene = stagelight::scene::load_scene(&Path::new(DIR).join("colours.glb"))
         .unwrap_or_else(|e| panic!("{e}"));
-    assert_eq!(scene.warnings, Vec::<String>::new());
+    assert_eq!(scene.located_warnings, Vec::<String>::new());
     let (w, beauty) = render(scene);
     let h = beauty.len() / w;
     let half_w = 5.0 * (0.25f32).tan() * w as f32 / h as f32;

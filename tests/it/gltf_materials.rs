@@ -25,7 +25,7 @@ fn render(mut scene: LoadedScene) -> (usize, Vec<Vec3>) {
 fn load(file: &str) -> LoadedScene {
     let scene = stagelight::scene::load_scene(&Path::new(DIR).join(file))
         .unwrap_or_else(|e| panic!("{file}: {e}"));
-    assert_eq!(scene.warnings, Vec::<String>::new(), "{file}");
+    assert_eq!(scene.located_warnings, Vec::<String>::new(), "{file}");
     scene
 }
 

@@ -156,7 +156,7 @@ fn render_included(dir: &Path, file: &str) -> Vec<Vec3> {
     );
     let mut scene = stagelight::scene::load_scene_str(&text, &dir.join("view.ron"))
         .unwrap_or_else(|e| panic!("{e}"));
-    assert_eq!(scene.warnings, Vec::<String>::new());
+    assert_eq!(scene.located_warnings, Vec::<String>::new());
     let frame = crate::common::render(&mut scene.world, scene.settings.clone());
     frame.outputs.image.expect("image").beauty
 }
@@ -542,7 +542,7 @@ fn a_mirrored_and_clamped_sampler_wraps_each_axis_as_gltf_says() {
     let textures = |file: &str| -> Vec<_> {
         let scene =
             stagelight::scene::load_scene(&dir.join(file)).unwrap_or_else(|e| panic!("{e}"));
-        assert_eq!(scene.warnings, Vec::<String>::new());
+        assert_eq!(scene.located_warnings, Vec::<String>::new());
         let ops: Vec<Op> = scene
             .world
             .query::<&stagelight::components::Material>()

@@ -153,7 +153,7 @@ fn obj_and_ply_render_the_same_bytes() {
         let mut scene =
             stagelight::scene::load_scene_str(&text, &Path::new(DIR).join("render.ron"))
                 .unwrap_or_else(|e| panic!("{mesh}: {e}"));
-        assert_eq!(scene.warnings, Vec::<String>::new());
+        assert_eq!(scene.located_warnings, Vec::<String>::new());
         let mesh = mesh_of(&scene);
         let mut frame = stagelight::frame::Frame::new(scene.settings.clone());
         let stages: Vec<_> = stagelight::systems::STAGES

@@ -16,7 +16,7 @@ const DIR: &str = "tests/fixtures/meshes";
 fn render_halves(file: &str) -> (Vec3, Vec3) {
     let mut scene = stagelight::scene::load_scene_str(&scene(file), &Path::new(DIR).join("s.ron"))
         .unwrap_or_else(|e| panic!("{e}"));
-    assert_eq!(scene.warnings, Vec::<String>::new());
+    assert_eq!(scene.located_warnings, Vec::<String>::new());
     let frame = crate::common::render(&mut scene.world, scene.settings.clone());
     let image = frame.outputs.image.expect("image");
     let w = image.width as usize;
