@@ -39,7 +39,7 @@ pub use environment::{
 pub use imager::{Imager, ToneMap};
 
 mod volume;
-pub use volume::{Atmosphere, AtmosphereFade, DensityNoise, Fade, Fog, Interior};
+pub use volume::{Atmosphere, AtmosphereFade, DensityNoise, Fade, Falloff, Fog, Interior};
 
 mod approximation;
 mod displacement;

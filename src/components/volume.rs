@@ -60,24 +60,40 @@ pub struct Atmosphere(pub Fog);
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Interior(pub Fog);
 
-/// mental ray's `mib_volume` as the camera's atmosphere: every finite camera-side segment of
-/// length `d` blends the radiance toward `color` by `f = opacity · min(d / max, 1)`
-/// (`f = opacity` when `max` is 0): `L' = (1 − f)·L + f·color`.
+/// A colour fade as the camera's atmosphere (mental ray's `mib_volume`, RenderMan's `fog`):
+/// every finite camera-side segment of length `d` blends the radiance toward `color` by
+/// `f = opacity · min(d / max, 1)` (linear) or `f = opacity · (1 − e^(−d / max))`
+/// (exponential), `f = opacity` when `max` is 0: `L' = (1 − f)·L + f·color`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Fade {
     /// The colour the radiance fades to.
     pub color: Vec3,
     /// Largest blend weight, in [0, 1] (`color`'s alpha in `.mi`).
     pub opacity: f32,
-    /// Distance at which the fade is complete, scene units (≥ 0).
+    /// Distance at which the linear fade is complete, or over which the exponential one
+    /// leaves 1/e of the radiance; scene units (≥ 0).
     pub max: f32,
+    /// How the weight grows with distance.
+    pub falloff: Falloff,
+}
+
+/// How a [`Fade`]'s weight grows with distance.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Falloff {
+    /// `min(d / max, 1)`.
+    Linear,
+    /// `1 − e^(−d / max)`.
+    Exponential,
 }
 
 impl Fade {
     /// The blend weight toward `color` over a distance `d`.
     pub fn weight(&self, d: f32) -> f32 {
         let ramp = if self.max > 0.0 {
-            (d / self.max).clamp(0.0, 1.0)
+            match self.falloff {
+                Falloff::Linear => (d / self.max).clamp(0.0, 1.0),
+                Falloff::Exponential => -(-(d / self.max).max(0.0)).exp_m1(),
+            }
         } else {
             1.0
         };
@@ -88,3 +104,23 @@ impl Fade {
 /// The camera's fade atmosphere (instead of a fog [`Atmosphere`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct AtmosphereFade(pub Fade);
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_exponential_fade_leaves_half_at_max_ln_2() {
+        let fade = |falloff| Fade {
+            color: Vec3::ONE,
+            opacity: 0.8,
+            max: 2.0,
+            falloff,
+        };
+        let half = 2.0 * std::f32::consts::LN_2;
+        assert!((fade(Falloff::Exponential).weight(half) - 0.4).abs() < 1e-6);
+        assert_eq!(fade(Falloff::Exponential).weight(0.0), 0.0);
+        assert!((fade(Falloff::Linear).weight(1.0) - 0.4).abs() < 1e-6);
+        assert!((fade(Falloff::Linear).weight(5.0) - 0.8).abs() < 1e-6);
+    }
+}

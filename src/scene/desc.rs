@@ -6,7 +6,7 @@
 
 use serde::{Deserialize, Serialize};
 
-pub use super::desc_camera::{LensDesc, SamplesDesc, VolumeDesc};
+pub use super::desc_camera::{FalloffDesc, LensDesc, SamplesDesc, VolumeDesc};
 pub use super::desc_contour::{ContourDesc, ContoursDesc, ContrastDesc};
 pub use super::desc_diagnostic::{BvhQuantityDesc, GridSpaceDesc, PhotonQuantityDesc};
 pub use super::desc_environment::{

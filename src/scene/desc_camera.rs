@@ -67,17 +67,38 @@ pub enum VolumeDesc {
         #[serde(default = "one", skip_serializing_if = "is_one")]
         noise_scale: f64,
     },
-    /// A linear fade of the radiance toward `color` over `max` (mental ray's `mib_volume`);
-    /// camera `atmosphere` only.
+    /// A fade of the radiance toward `color` over `max`, linear (mental ray's `mib_volume`)
+    /// or exponential (RenderMan's `fog`); camera `atmosphere` only.
     Fade {
         /// The colour every camera-side segment fades to.
         color: V3,
         /// Largest blend weight, in [0, 1], default 1.
         #[serde(default = "one", skip_serializing_if = "is_one")]
         opacity: f64,
-        /// Distance of the complete fade, scene units (≥ 0; 0: the full `opacity` at once).
+        /// `Linear`: distance of the complete fade; `Exponential`: the distance over which
+        /// the radiance keeps 1/e; scene units (≥ 0; 0: the full `opacity` at once).
         max: f64,
+        /// How the blend weight grows with distance, default `Linear`.
+        #[serde(default, skip_serializing_if = "FalloffDesc::is_linear")]
+        falloff: FalloffDesc,
     },
+}
+
+/// How a `Fade` grows with the length `l` of a segment.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, Serialize)]
+#[serde(rename = "Falloff")]
+pub enum FalloffDesc {
+    /// `opacity · min(l / max, 1)` (mental ray's `mib_volume`).
+    #[default]
+    Linear,
+    /// `opacity · (1 − e^(−l / max))` (RenderMan's standard `fog`).
+    Exponential,
+}
+
+impl FalloffDesc {
+    fn is_linear(&self) -> bool {
+        *self == FalloffDesc::Linear
+    }
 }
 
 fn one() -> f64 {

@@ -1,10 +1,10 @@
 //! Checks volume shaders (`atmosphere` on a camera, `interior` on a material) and builds
 //! their [`Fog`] (or the camera's [`Fade`]).
 
-use super::desc::{CameraDesc, MaterialDesc, VolumeDesc};
+use super::desc::{CameraDesc, FalloffDesc, MaterialDesc, VolumeDesc};
 use super::diagnostics::Sources;
 use super::validate::{Checker, Item};
-use crate::components::{DensityNoise, Fade, Fog};
+use crate::components::{DensityNoise, Fade, Falloff, Fog};
 
 /// A camera's atmosphere: fog or a fade.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -28,7 +28,16 @@ pub fn atmosphere(src: &mut Sources, item: &Item<'_, CameraDesc>) -> Option<Atmo
             color,
             opacity,
             max,
-        } => fade(&mut ck, &path, color, opacity, max).map(Atmosphere::Fade),
+            falloff,
+        } => fade(&mut ck, &path, color, opacity, max).map(|f| {
+            Atmosphere::Fade(Fade {
+                falloff: match falloff {
+                    FalloffDesc::Linear => Falloff::Linear,
+                    FalloffDesc::Exponential => Falloff::Exponential,
+                },
+                ..f
+            })
+        }),
         VolumeDesc::Fog { .. } => fog(&mut ck, &path, d).map(Atmosphere::Fog),
     }
 }
@@ -77,6 +86,7 @@ fn fade(
         color: color?.as_vec3(),
         opacity: opacity? as f32,
         max: max? as f32,
+        falloff: Falloff::Linear,
     })
 }
 

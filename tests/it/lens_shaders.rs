@@ -27,7 +27,7 @@ fn edge_scene(d: f64, lens: &str, fov_y: f64, w: u32, h: u32, samples: u32) -> S
 }
 
 /// The row-averaged horizontal profile of the beauty (red channel).
-fn profile(fb: &stagelight::framebuffer::FrameBuffers) -> Vec<f64> {
+pub(crate) fn profile(fb: &stagelight::framebuffer::FrameBuffers) -> Vec<f64> {
     let (w, h) = (fb.width as usize, fb.height as usize);
     (0..w)
         .map(|x| {
@@ -42,7 +42,7 @@ fn profile(fb: &stagelight::framebuffer::FrameBuffers) -> Vec<f64> {
 /// Width of the blur of an edge, pixels: the line-spread function (differences of adjacent
 /// pixels) of a uniform disk of radius r has variance r²/4, plus 1/6 px² from pixel
 /// integration and the discrete sampling; the diameter is 4·sqrt(σ² − 1/6).
-fn blur_diameter(p: &[f64]) -> f64 {
+pub(crate) fn blur_diameter(p: &[f64]) -> f64 {
     let q: Vec<f64> = p.windows(2).map(|w| w[1] - w[0]).collect();
     let total: f64 = q.iter().sum();
     let mean: f64 = q.iter().enumerate().map(|(i, v)| i as f64 * v).sum::<f64>() / total;
@@ -59,7 +59,7 @@ fn blur_diameter(p: &[f64]) -> f64 {
 /// `f`, for a point at depth `d`: the aperture disk maps through the focus point to a disk of
 /// radius a·|d − f|/(f·d) in units of tan(angle) on the image plane, which spans
 /// 2·tan(fov_y/2) over the image height.
-fn circle_of_confusion(a: f64, f: f64, d: f64, fov_y_deg: f64, height: u32) -> f64 {
+pub(crate) fn circle_of_confusion(a: f64, f: f64, d: f64, fov_y_deg: f64, height: u32) -> f64 {
     let pixels_per_tan = f64::from(height) / (2.0 * (fov_y_deg.to_radians() / 2.0).tan());
     2.0 * a * (d - f).abs() / (f * d) * pixels_per_tan
 }

@@ -89,6 +89,7 @@ mod ray_layer;
 mod ray_spawn;
 mod rib;
 mod rib_caustics;
+mod rib_options;
 mod rib_orientation;
 mod rib_shading;
 mod rib_structure;

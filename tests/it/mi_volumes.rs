@@ -10,7 +10,7 @@ use std::path::Path;
 
 use crate::common::{mi_point_lamp, mi_preamble, BASE, PHYSICS};
 use stagelight::framebuffer::FrameBuffers;
-use stagelight::scene::desc::VolumeDesc;
+use stagelight::scene::desc::{FalloffDesc, VolumeDesc};
 use stagelight::scene::import::mi::read_mi;
 use stagelight::scene::load_scene;
 
@@ -276,6 +276,7 @@ fn mib_volume_on_the_camera_maps_onto_a_fade() {
             color: (0.2, 0.4, 0.6),
             opacity: 0.5,
             max: 3.5,
+            falloff: FalloffDesc::Linear,
         })
     );
     // Without alpha the fog is fully opaque at `max`.
@@ -288,6 +289,7 @@ fn mib_volume_on_the_camera_maps_onto_a_fade() {
             color: (1.0, 1.0, 1.0),
             opacity: 1.0,
             max: 2.0,
+            falloff: FalloffDesc::Linear,
         })
     );
 }

@@ -101,7 +101,7 @@ const MALFORMED: &[(&str, &str)] = &[
     ),
     (
         "display_mode",
-        "tests/fixtures/rib/display_mode.rib:1:26: error: display mode \"rgbaz\" is not supported\n  help: expected \"rgb\", \"rgba\", \"a\" or \"z\"",
+        "tests/fixtures/rib/display_mode.rib:1:26: error: display mode \"Ci\" is not supported\n  help: expected one of \"rgb\", \"rgba\", \"rgbz\", \"rgbaz\", \"a\", \"az\", \"z\", \"N\" or \"P\"",
     ),
     (
         "geometry_before_world",
@@ -161,7 +161,7 @@ const MALFORMED: &[(&str, &str)] = &[
     ),
     (
         "undeclared_parameter",
-        "tests/fixtures/rib/undeclared_parameter.rib:2:28: error: undeclared parameter \"near\"\n  help: declare it first (Declare \"near\" \"float\") or write its type inline (\"float near\")",
+        "tests/fixtures/rib/undeclared_parameter.rib:2:19: error: undeclared parameter \"near\"\n  help: declare it first (Declare \"near\" \"float\") or write its type inline (\"float near\")",
     ),
     (
         "unexpected_character",

@@ -7,7 +7,7 @@
 use super::super::located::Problem;
 use super::cursor::{Cursor, ShaderCall, Value};
 use super::shaders::Params;
-use crate::scene::desc::VolumeDesc;
+use crate::scene::desc::{FalloffDesc, VolumeDesc};
 use crate::scene::suggest::closest;
 
 /// The parameters of `mib_volume`.
@@ -87,5 +87,6 @@ pub fn mib_volume(c: &mut Cursor, call: &ShaderCall, where_: &str) -> Option<Vol
         color,
         opacity,
         max,
+        falloff: FalloffDesc::Linear,
     })
 }

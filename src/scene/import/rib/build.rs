@@ -8,12 +8,14 @@ use std::path::{Path, PathBuf};
 use glam::{DMat4, DVec3};
 
 use super::super::located::{Located, LocatedProblem, Pos, Problem};
-use super::camera::{rows, world_mirror, CameraOptions, Display};
+use super::atmosphere::{camera_atmosphere, RiFog};
+use super::camera::{rows, world_mirror, CameraOptions, DepthOfField};
+use super::display;
 use super::geometry::{self, Primitive, PRIMITIVES};
 use super::lexer;
 use super::names::{object_names, Requested};
 use super::orientation;
-use super::params::{parse_type, Args, Declarations, Param};
+use super::params::{parse_type, Args, Declarations, Param, ParamOwner};
 use super::parse::{self, Request};
 use super::requests::{self, SILENT};
 use super::retained::{Defining, Motion, Retained, Sample};
@@ -23,8 +25,7 @@ use super::tutorial;
 use super::RibScene;
 use crate::scene::desc::{
     ApproximationDesc, DisplacementDesc, FilterDesc, GroupDesc, InstanceDesc, LightDesc,
-    LightKindDesc, MaterialDesc, ObjectDesc, OptionsDesc, PassDesc, RenderDesc, SceneDesc,
-    TransformDesc, V3,
+    LightKindDesc, MaterialDesc, ObjectDesc, OptionsDesc, RenderDesc, SceneDesc, TransformDesc, V3,
 };
 use crate::scene::suggest::suggestion;
 
@@ -72,6 +73,8 @@ pub(super) struct PendingInstance {
     pub requested: Option<Requested>,
     /// Its caustic flag from AIR's caustic attributes (used when caustics are on).
     pub caustic: u8,
+    /// Its `Atmosphere "fog"`.
+    pub atmosphere: Option<RiFog>,
     pub at: (usize, Pos),
 }
 
@@ -329,6 +332,7 @@ impl Builder {
                 | "Exposure"
                 | "Imager"
                 | "Display"
+                | "DepthOfField"
         );
         if option && self.in_world() {
             problems.push(Problem::warning(
@@ -593,6 +597,8 @@ impl Builder {
                 }
                 self.cam.screen = Some((s, r.pos));
             }
+            "DepthOfField" => self.cam.depth_of_field = depth_of_field(r, &mut a)?,
+            "Atmosphere" => return self.atmosphere(r, a, problems),
             "Clipping" => {
                 let (near, _) = a.num("near")?;
                 let (far, _) = a.num("far")?;
@@ -678,7 +684,12 @@ impl Builder {
             }
             "Imager" => {
                 let (n, pos) = a.string("name")?;
-                let params = a.params(&self.decls, problems);
+                let owner = ParamOwner {
+                    what: "imager \"background\"".into(),
+                    names: &["background"],
+                };
+                let owner = (n == "background").then_some(&owner);
+                let params = a.params_of(&self.decls, owner, problems);
                 if n == "myImager" {
                     // The tutorial's imager (seed 001 §3.3) replaces each pixel by a pattern
                     // of raster coordinates: no stage of stagelight's imager makes one.
@@ -711,7 +722,14 @@ impl Builder {
                 }
                 return Ok(());
             }
-            "Display" => return self.display(a, problems),
+            "Display" => {
+                let d = display::read(a, &self.decls, problems)?;
+                if !d.append {
+                    self.cam.displays.clear();
+                }
+                self.cam.displays.extend(d.display);
+                return Ok(());
+            }
             "ObjectBegin" => {
                 let (handle, _) = self.handle(&mut a, "object handle")?;
                 if let Some(d) = &self.retained.defining {
@@ -892,7 +910,14 @@ impl Builder {
         } else {
             None
         };
-        let params = a.params(&self.decls, problems);
+        // A shader of ours names its parameters, so an undeclared one is a parameter it
+        // does not take.
+        let known = shaders::parameter_names(kind, &name);
+        let owner = known.as_ref().map(|(what, names)| ParamOwner {
+            what: what.clone(),
+            names,
+        });
+        let params = a.params_of(&self.decls, owner.as_ref(), problems);
         let call = ShaderCall {
             name: name.clone(),
             pos: r.pos,
@@ -1006,81 +1031,33 @@ impl Builder {
         Ok(())
     }
 
-    fn display(&mut self, mut a: Args<'_>, problems: &mut Vec<Problem>) -> Result<(), Problem> {
-        let (name, pos) = a.string("name")?;
-        let (ty, tpos) = a.string("type")?;
-        let (mode, mpos) = a.string("mode")?;
-        // Display parameters are the display driver's (`quantize`, `dither`, `compression`,
-        // …): none is mapped, and an undeclared one is no error.
-        let params = a.params_lenient(&self.decls, problems);
-        for p in params {
-            problems.push(ignored_param(&p, "Display"));
-        }
-        let (append, name) = match name.strip_prefix('+') {
-            Some(n) => (true, n.to_string()),
-            None => (false, name),
-        };
-        if !matches!(
-            ty.as_str(),
-            "file" | "tiff" | "framebuffer" | "png" | "exr" | "openexr"
-        ) {
-            problems.push(Problem::warning(
-                tpos,
-                format!("display type \"{ty}\" is not supported: writing a file"),
-            ));
-        }
-        let passes = match mode.as_str() {
-            "rgb" => vec![PassDesc::Beauty],
-            "rgba" => vec![PassDesc::Beauty, PassDesc::Alpha],
-            "z" => vec![PassDesc::Depth],
-            "a" => vec![PassDesc::Alpha],
-            other => {
-                return Err(Problem::error(
-                    mpos,
-                    format!("display mode \"{other}\" is not supported"),
-                )
-                .with_help("expected \"rgb\", \"rgba\", \"a\" or \"z\""));
-            }
-        };
-        let depth = passes.contains(&PassDesc::Depth);
-        let path = Path::new(&name);
-        let ext = path
-            .extension()
-            .and_then(|e| e.to_str())
-            .map(str::to_ascii_lowercase);
-        let file = match ext.as_deref() {
-            Some("png") if !depth => name.clone(),
-            Some("exr") => name.clone(),
-            _ => {
-                let new = path
-                    .with_extension(if depth { "exr" } else { "png" })
-                    .display()
-                    .to_string();
-                problems.push(Problem::warning(
-                    pos,
-                    format!(
-                        "writing \"{new}\" for display \"{name}\": stagelight writes PNG and EXR"
-                    ),
-                ));
-                new
-            }
-        };
-        if !append {
-            self.cam.displays.clear();
-        }
-        self.cam.displays.push(Display { file, pos, passes });
-        Ok(())
-    }
-
     /// The description and the paths of its values.
     fn assemble(&mut self) -> (SceneDesc, Vec<(String, usize, Pos)>) {
         let mut paths: Vec<(String, usize, Pos)> = Vec::new();
         let (wfile, wpos) = self.world.unwrap_or((0, Pos::default()));
         let m = self.cam.camera_from_world.map_or(DMat4::IDENTITY, |c| c.0);
         let g = world_mirror(m);
-        let (camera, cpaths) = self.cam.camera(wpos);
+        let (mut camera, cpaths) = self.cam.camera(wpos);
         for (p, pos) in cpaths {
             paths.push((format!("cameras[0]{p}"), wfile, pos));
+        }
+        let scale = self.cam.world_per_camera_unit();
+        if let Some((fade, fog)) = camera_atmosphere(&self.instances, scale, &mut self.problems) {
+            let (file, pos) = fog.at;
+            paths.push(("cameras[0].atmosphere".into(), file, pos));
+            let (_, dpos) = fog.values.distance;
+            let (_, bpos) = fog.values.background;
+            paths.push((
+                "cameras[0].atmosphere.Fade.max".into(),
+                file,
+                dpos.unwrap_or(pos),
+            ));
+            paths.push((
+                "cameras[0].atmosphere.Fade.color".into(),
+                file,
+                bpos.unwrap_or(pos),
+            ));
+            camera.atmosphere = Some(fade);
         }
         let mut desc = SceneDesc {
             options: Some(OptionsDesc {
@@ -1293,6 +1270,36 @@ fn vec3(a: &mut Args<'_>, names: [&str; 3]) -> Result<DVec3, Problem> {
     let y = a.num(names[1])?.0;
     let z = a.num(names[2])?.0;
     Ok(DVec3::new(x, y, z))
+}
+
+/// `DepthOfField fstop focallength focaldistance` (`None`: no arguments or an infinite
+/// `fstop`, RISpec 3.2's way to turn depth of field off — `RI_INFINITY` is 1e38).
+fn depth_of_field(r: &Request, a: &mut Args<'_>) -> Result<Option<DepthOfField>, Problem> {
+    if a.done() {
+        return Ok(None);
+    }
+    let (fstop, _) = a.num("fstop")?;
+    let (focal, _) = a.num("focallength")?;
+    let (focus, focus_pos) = a.num("focaldistance")?;
+    if fstop >= 1e30 {
+        return Ok(None);
+    }
+    if !(fstop > 0.0 && focal > 0.0 && focal.is_finite() && focus > 0.0 && focus.is_finite()) {
+        return Err(Problem::error(
+            r.pos,
+            format!(
+                "DepthOfField needs fstop > 0, focallength > 0 and focaldistance > 0, found \
+                 {fstop} {focal} {focus}"
+            ),
+        )
+        .with_help("`DepthOfField` without arguments turns depth of field off"));
+    }
+    Ok(Some(DepthOfField {
+        radius: focal / (2.0 * fstop),
+        focus,
+        pos: r.pos,
+        focus_pos,
+    }))
 }
 
 fn ignored_param(p: &Param, request: &str) -> Problem {

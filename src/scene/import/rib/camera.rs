@@ -1,8 +1,9 @@
 //! The RIB options that make the camera, its outputs and the render options: `Format`,
 //! `Projection`, `ScreenWindow`, `PixelSamples`, `PixelFilter`, `Exposure`, `Imager`,
-//! `Display`, and the camera transformation current at `WorldBegin`.
+//! `Display`, `DepthOfField`, and the camera transformation current at `WorldBegin`.
 //!
-//! An off-centre `ScreenWindow` becomes a `Shift` lens (an off-axis pinhole).
+//! An off-centre `ScreenWindow` becomes a `Shift` lens (an off-axis pinhole), `DepthOfField`
+//! a `ThinLens` after it.
 //!
 //! RI spec 3.2 defaults: `Format 640 480 1`, perspective `fov` 90° across the shorter side
 //! of the screen window, `PixelSamples 2 2`, `PixelFilter "gaussian" 2 2`, `Exposure 1 1`
@@ -27,6 +28,20 @@ pub struct Display {
     pub passes: Vec<PassDesc>,
 }
 
+/// `DepthOfField`: RISpec 3.2's lens of diameter `focallength / fstop` focused at
+/// `focaldistance`, both in camera-space units.
+#[derive(Debug, Clone, Copy)]
+pub struct DepthOfField {
+    /// Aperture radius, `focallength / (2 · fstop)`, camera-space units.
+    pub radius: f64,
+    /// `focaldistance`, camera-space units.
+    pub focus: f64,
+    /// Where the request is.
+    pub pos: Pos,
+    /// Where `focaldistance` is.
+    pub focus_pos: Pos,
+}
+
 /// The camera options as written so far (`None`: not written, the RI default applies).
 #[derive(Debug, Clone, Default)]
 pub struct CameraOptions {
@@ -48,6 +63,9 @@ pub struct CameraOptions {
     pub background: Option<(V3, Pos)>,
     /// The displays.
     pub displays: Vec<Display>,
+    /// `DepthOfField fstop focallength focaldistance` as a thin lens in camera-space units
+    /// (`None`: a pinhole — not written, no arguments, or an infinite `fstop`).
+    pub depth_of_field: Option<DepthOfField>,
     /// Camera-from-world (the transformation at `WorldBegin`) and where `WorldBegin` is.
     pub camera_from_world: Option<(DMat4, Pos)>,
 }
@@ -110,6 +128,20 @@ impl CameraOptions {
         let (m, wpos) = self
             .camera_from_world
             .unwrap_or((DMat4::IDENTITY, world_pos));
+        let mut lens = lens;
+        if let Some(d) = self.depth_of_field {
+            // Camera-space lengths in world units: the camera's uniform scale is dropped below.
+            let world_per_camera = self.world_per_camera_unit();
+            let k = lens.len();
+            paths.push((format!(".lens[{k}]"), d.pos));
+            paths.push((format!(".lens[{k}].ThinLens.radius"), d.pos));
+            paths.push((format!(".lens[{k}].ThinLens.focus_distance"), d.focus_pos));
+            lens.push(LensDesc::ThinLens {
+                radius: Some(d.radius * world_per_camera),
+                fstop: None,
+                focus_distance: d.focus * world_per_camera,
+            });
+        }
         paths.push((".placement".into(), wpos));
         paths.push((".placement.Matrix[0]".into(), wpos));
         let g = world_mirror(m);
@@ -166,6 +198,18 @@ impl CameraOptions {
             },
             paths,
         )
+    }
+
+    /// The world length of a camera-space unit: the inverse of the camera transformation's
+    /// uniform scale (1 before `WorldBegin` or when it does not scale).
+    pub fn world_per_camera_unit(&self) -> f64 {
+        let m = self.camera_from_world.map_or(DMat4::IDENTITY, |c| c.0);
+        let s = DMat3::from_mat4(m).determinant().abs().cbrt();
+        if s > 0.0 && s.is_finite() {
+            1.0 / s
+        } else {
+            1.0
+        }
     }
 
     /// `samples` of the options.

@@ -25,9 +25,11 @@
 //! object-space front is RenderMan's outside; an inside-out one (see [`orientation`]) is an
 //! object with `reverse_orientation`.
 
+pub mod atmosphere;
 pub mod build;
 pub mod camera;
 mod caustics;
+pub mod display;
 pub mod geometry;
 pub mod lexer;
 pub mod names;

@@ -7,6 +7,17 @@ use std::collections::HashMap;
 
 use super::super::located::{Pos, Problem};
 use super::parse::{Arg, Request, Value};
+use crate::scene::suggest::suggestion;
+
+/// The shader a parameter list belongs to, when it is one of ours: an undeclared name is then
+/// reported as a parameter the shader does not take (declaring it would not help), with the
+/// shader's own parameter it is closest to.
+pub struct ParamOwner<'a> {
+    /// How messages name the shader: `surface "plastic"`.
+    pub what: String,
+    /// The parameters the shader takes.
+    pub names: &'a [&'a str],
+}
 
 /// Storage class of a primitive variable.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -162,6 +173,7 @@ const PREDECLARED: &[(&str, &str)] = &[
     ("conedeltaangle", "uniform float"),
     ("beamdistribution", "uniform float"),
     ("background", "uniform color"),
+    ("distance", "uniform float"),
     ("fov", "uniform float"),
     ("amplitude", "uniform float"),
     ("factor", "uniform float"),
@@ -414,14 +426,26 @@ impl<'a> Args<'a> {
     /// The remaining arguments as a parameter list, each checked against its declaration.
     /// Errors are collected in `problems`; bad entries are left out.
     pub fn params(self, decls: &Declarations, problems: &mut Vec<Problem>) -> Vec<Param> {
-        self.read_params(decls, problems, false)
+        self.read_params(decls, problems, false, None)
+    }
+
+    /// [`Args::params`] for a call of a shader we have (`owner`): an undeclared name is
+    /// `unknown parameter "roughnes" of surface "plastic"` with "did you mean" among the
+    /// shader's parameters, the message the name gets once declared.
+    pub fn params_of(
+        self,
+        decls: &Declarations,
+        owner: Option<&ParamOwner<'_>>,
+        problems: &mut Vec<Problem>,
+    ) -> Vec<Param> {
+        self.read_params(decls, problems, false, owner)
     }
 
     /// [`Args::params`] for requests whose parameters are renderer-specific (`Attribute`,
     /// `Option`): an undeclared name is not an error; its type is taken from its value (a
     /// string or a float per number), and the caller warns that it is ignored.
     pub fn params_lenient(self, decls: &Declarations, problems: &mut Vec<Problem>) -> Vec<Param> {
-        self.read_params(decls, problems, true)
+        self.read_params(decls, problems, true, None)
     }
 
     fn read_params(
@@ -429,6 +453,7 @@ impl<'a> Args<'a> {
         decls: &Declarations,
         problems: &mut Vec<Problem>,
         lenient: bool,
+        owner: Option<&ParamOwner<'_>>,
     ) -> Vec<Param> {
         if self.inner > 0 {
             let arg = &self.req.args[self.at];
@@ -482,6 +507,19 @@ impl<'a> Args<'a> {
                         ..decl
                     };
                     (token.clone(), decl)
+                }
+                Err(message)
+                    if message.starts_with("undeclared")
+                        && owner.is_some_and(|o| !o.names.contains(&token.as_str())) =>
+                {
+                    let Some(owner) = owner else { continue };
+                    let mut e = Problem::error(
+                        name_arg.pos,
+                        format!("unknown parameter \"{token}\" of {}", owner.what),
+                    );
+                    e.help = suggestion(&token, owner.names, "parameters");
+                    problems.push(e);
+                    continue;
                 }
                 Err(message) => {
                     let help = message.starts_with("undeclared").then(|| {

@@ -84,6 +84,7 @@ impl Builder {
             material: None,
             requested: None,
             caustic: attrs.caustic.flag(),
+            atmosphere: attrs.atmosphere,
             at: (self.file, r.pos),
         });
     }
@@ -130,6 +131,7 @@ impl Builder {
                     given: attrs.name.is_some(),
                 }),
                 caustic: attrs.caustic.flag(),
+                atmosphere: attrs.atmosphere,
                 at: (self.file, r.pos),
             });
         }

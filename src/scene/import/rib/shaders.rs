@@ -1,7 +1,8 @@
 //! The RenderMan standard shaders as stagelight descriptions: `Surface` (`constant`,
 //! `matte`, `metal`, `shinymetal`, `plastic`, `paintedplastic`, `defaultsurface`),
 //! `Displacement` (stagelight's `sine`),
-//! and `LightSource` (`pointlight`, `spotlight`, `distantlight`, `ambientlight`).
+//! `LightSource` (`pointlight`, `spotlight`, `distantlight`, `ambientlight`) and
+//! `Atmosphere` (`fog`).
 //!
 //! The tutorial's own shaders (`mySurface`, `simplemirror`, `myLight`, `myDisplacement`) are
 //! in [`super::tutorial`].
@@ -147,6 +148,48 @@ impl<'a> Values<'a> {
     }
 }
 
+/// The parameters of the surface `name` (`defaultsurface`'s for a surface we do not have).
+fn surface_specs(name: &str) -> &'static [Spec] {
+    match name {
+        "constant" => CONSTANT,
+        "matte" => MATTE,
+        "metal" => METAL,
+        "shinymetal" => SHINY_METAL,
+        "plastic" => PLASTIC,
+        "paintedplastic" => PAINTED_PLASTIC,
+        _ => DEFAULT_SURFACE,
+    }
+}
+
+/// The parameters of the light `name` (`spotlight`'s for any other).
+fn light_specs(name: &str) -> &'static [Spec] {
+    match name {
+        "ambientlight" => AMBIENT,
+        "pointlight" => POINT,
+        "distantlight" => DISTANT,
+        _ => SPOT,
+    }
+}
+
+/// How messages name a shader of ours called by `request` (`Surface`, `Displacement`,
+/// `LightSource`, `AreaLightSource`, `Atmosphere`) and the parameters it takes; `None` for a
+/// shader we do not have (its parameters are read as declared, and it is ignored).
+pub fn parameter_names(request: &str, name: &str) -> Option<(String, Vec<&'static str>)> {
+    if let Some((what, specs)) = tutorial::parameter_names(request, name) {
+        return Some((format!("{what} \"{name}\""), specs));
+    }
+    let names = |specs: &[Spec]| specs.iter().map(|s| s.0).collect::<Vec<_>>();
+    let (what, specs): (&str, Vec<&'static str>) = match request {
+        "Surface" if SURFACES.contains(&name) => ("surface", names(surface_specs(name))),
+        "Displacement" if DISPLACEMENTS.contains(&name) => ("displacement", names(SINE)),
+        "LightSource" if LIGHTS.contains(&name) => ("light", names(light_specs(name))),
+        "AreaLightSource" if name == "arealight" => ("light", vec!["intensity", "lightcolor"]),
+        "Atmosphere" if name == "fog" => ("atmosphere", names(FOG)),
+        _ => return None,
+    };
+    Some((format!("{what} \"{name}\""), specs))
+}
+
 /// A surface shader with the value paths of its parameters (relative to the shader).
 pub struct Surface {
     /// The shader.
@@ -179,15 +222,7 @@ pub fn surface(call: Option<&ShaderCall>, cs: V3, os: V3, problems: &mut Vec<Pro
         return tutorial::surface(c, os, problems);
     }
     let name = call.map_or("defaultsurface", |c| c.name.as_str());
-    let specs = match name {
-        "constant" => CONSTANT,
-        "matte" => MATTE,
-        "metal" => METAL,
-        "shinymetal" => SHINY_METAL,
-        "plastic" => PLASTIC,
-        "paintedplastic" => PAINTED_PLASTIC,
-        _ => DEFAULT_SURFACE,
-    };
+    let specs = surface_specs(name);
     let v = match call {
         Some(c) if SURFACES.contains(&name) => Values::read(c, "surface", specs, problems),
         _ => Values {
@@ -342,6 +377,47 @@ pub fn displacement(call: &ShaderCall, problems: &mut Vec<Problem>) -> Option<Sc
     }
 }
 
+const FOG: &[Spec] = &[
+    ("distance", Kind::Float, None),
+    ("background", Kind::Color, None),
+];
+
+/// The standard volume shader `fog` (RISpec 3.2, an `Atmosphere`):
+/// `Ci = mix(Ci, background, 1 − exp(−length(I) / distance))`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FogValues {
+    /// `distance` (default 1), camera-space units, above 0, and where it is written.
+    pub distance: (f64, Option<Pos>),
+    /// `background` (default black) and where it is written.
+    pub background: (V3, Option<Pos>),
+}
+
+impl FogValues {
+    /// The same distance and background (wherever they are written).
+    pub fn same_fog(&self, other: &FogValues) -> bool {
+        self.distance.0 == other.distance.0 && self.background.0 == other.background.0
+    }
+}
+
+/// Reads an `Atmosphere "fog"` call: `None` when a value is wrong (reported).
+pub fn fog(call: &ShaderCall, problems: &mut Vec<Problem>) -> Option<FogValues> {
+    let before = problems.len();
+    let v = Values::read(call, "atmosphere", FOG, problems);
+    let distance = v.num(0, 1.0);
+    if let Some(p) = v.found[0] {
+        if !(distance > 0.0 && distance.is_finite()) {
+            problems.push(Problem::error(
+                p.pos(),
+                format!("distance of \"fog\" must be above 0, found {distance}"),
+            ));
+        }
+    }
+    (problems.len() == before).then(|| FogValues {
+        distance: (distance, v.found[0].map(Param::pos)),
+        background: (v.triple(1, (0.0, 0.0, 0.0)), v.found[1].map(Param::pos)),
+    })
+}
+
 const AMBIENT: &[Spec] = &[
     ("intensity", Kind::Float, Some("intensity")),
     ("lightcolor", Kind::Color, Some("color")),
@@ -431,12 +507,7 @@ pub fn light(call: &ShaderCall, problems: &mut Vec<Problem>) -> LightValues {
     if call.name == "myLight" {
         return tutorial::light(call, problems);
     }
-    let specs = match call.name.as_str() {
-        "ambientlight" => AMBIENT,
-        "pointlight" => POINT,
-        "distantlight" => DISTANT,
-        _ => SPOT,
-    };
+    let specs = light_specs(&call.name);
     let v = Values::read(call, "light", specs, problems);
     let zero = (0.0, 0.0, 0.0);
     let default_cone = 30f64.to_radians();

@@ -9,6 +9,7 @@
 use glam::{DMat4, DVec3};
 
 use super::super::located::Pos;
+use super::atmosphere::RiFog;
 use super::params::Param;
 use crate::scene::desc::{BasisDesc, V3};
 
@@ -88,6 +89,8 @@ pub struct Attributes {
     pub lights_known: usize,
     /// AIR's caustic attributes of the primitives that follow.
     pub caustic: CausticAttributes,
+    /// `Atmosphere "fog"`, default none.
+    pub atmosphere: Option<RiFog>,
 }
 
 /// AIR's `Attribute "caustic" …` of a primitive, each with where it was written.
@@ -138,6 +141,7 @@ impl Default for Attributes {
             lights_off: Vec::new(),
             lights_known: 0,
             caustic: CausticAttributes::default(),
+            atmosphere: None,
         }
     }
 }

@@ -50,6 +50,19 @@ const MY_LIGHT: &[Spec] = &[
     ("from", Kind::Point, Some("kind.Point.position")),
 ];
 
+/// The owner text and parameter names of the tutorial shader `name` for `request`
+/// (`Surface`, `LightSource`, `Displacement`), for the reader's unknown-parameter message.
+pub fn parameter_names(request: &str, name: &str) -> Option<(&'static str, Vec<&'static str>)> {
+    let names = |specs: &[Spec]| specs.iter().map(|s| s.0).collect::<Vec<_>>();
+    match request {
+        "Surface" if name == "mySurface" => Some(("surface", names(MY_SURFACE))),
+        "Surface" if SURFACES.contains(&name) => Some(("surface", names(NONE))),
+        "LightSource" if LIGHTS.contains(&name) => Some(("light", names(MY_LIGHT))),
+        "Displacement" if DISPLACEMENTS.contains(&name) => Some(("displacement", names(NONE))),
+        _ => None,
+    }
+}
+
 /// The `(path below the shader, position)` of each written parameter of `specs`.
 fn written_paths(specs: &[Spec], v: &Values<'_>, prefix: &str) -> Vec<(String, Pos)> {
     specs
