@@ -135,10 +135,15 @@ fn a_misspelt_shader_parameter_is_named_with_the_shaders_own() {
         errors("WorldBegin\nLightSource \"pointlight\" 1 \"intensty\" [2]\nWorldEnd\n"),
         "t.rib:2:28: error: unknown parameter \"intensty\" of light \"pointlight\"\n  help: did you mean \"intensity\"?"
     );
+    // The tutorial's shaders name their own parameters the same way.
+    assert_eq!(
+        errors("WorldBegin\nLightSource \"myLight\" 1 \"nearr\" [2]\nWorldEnd\n"),
+        "t.rib:2:25: error: unknown parameter \"nearr\" of light \"myLight\"\n  help: did you mean \"near\"?"
+    );
     // A shader we do not have still takes declared parameters only.
     assert_eq!(
         errors("WorldBegin\nSurface \"wood\" \"grain\" [ 3 ]\nSphere 1 -1 1 360\nWorldEnd\n"),
-        "t.rib:2:9: warning: unknown surface shader \"wood\": using \"defaultsurface\"\n  help: expected \"constant\", \"matte\", \"metal\", \"shinymetal\", \"plastic\", \"paintedplastic\" or \"defaultsurface\"\n\
+        "t.rib:2:9: warning: unknown surface shader \"wood\": using \"defaultsurface\"\n  help: expected one of \"constant\", \"matte\", \"metal\", \"shinymetal\", \"plastic\", \"paintedplastic\", \"defaultsurface\", \"mySurface\" or \"simplemirror\"\n\
          t.rib:2:16: error: undeclared parameter \"grain\"\n  help: declare it first (Declare \"grain\" \"float\") or write its type inline (\"float grain\")"
     );
 }
