@@ -76,6 +76,18 @@ impl AreaLight {
             AreaShape::Cylinder(c) => c.start + c.frame.n * (0.5 * c.length),
         }
     }
+
+    /// Ray parameter and solid-angle pdf (from the ray origin) where `ray` meets the shape's
+    /// emitting face.
+    #[inline(always)]
+    fn shape_hit(&self, ray: &Ray) -> Option<(f32, f32)> {
+        match &self.shape {
+            AreaShape::Rect(r) => r.hit(ray),
+            AreaShape::Disc(d) => d.hit(ray),
+            AreaShape::Sphere(s) => s.hit(ray),
+            AreaShape::Cylinder(c) => c.hit(ray),
+        }
+    }
 }
 
 /// A light prepared for sampling (world space).
@@ -361,12 +373,7 @@ impl Light {
         if delta && !a.visible {
             return None;
         }
-        let (t, pdf) = match &a.shape {
-            AreaShape::Rect(r) => r.hit(ray),
-            AreaShape::Disc(d) => d.hit(ray),
-            AreaShape::Sphere(s) => s.hit(ray),
-            AreaShape::Cylinder(c) => c.hit(ray),
-        }?;
+        let (t, pdf) = a.shape_hit(ray)?;
         let att = attenuation_factor(a.attenuation, t * ray.dir.length());
         (att > 0.0).then_some((t, a.radiance * att, pdf))
     }
@@ -380,12 +387,7 @@ impl Light {
         let Light::Area(a) = self else {
             return None;
         };
-        let (t, pdf) = match &a.shape {
-            AreaShape::Rect(r) => r.hit(ray),
-            AreaShape::Disc(d) => d.hit(ray),
-            AreaShape::Sphere(s) => s.hit(ray),
-            AreaShape::Cylinder(c) => c.hit(ray),
-        }?;
+        let (t, pdf) = a.shape_hit(ray)?;
         let near = t * ray.dir.length();
         let far = (ray.origin + ray.dir * t - p).length();
         // The area shapes' pdfs are `d²/(cos·area)` with the same cosine along one line; the
