@@ -1068,6 +1068,26 @@ nothing written",
     }
     let scene = load(&scene_path, &budget(None))?;
     let hash = stagelight::farm::scene_hash(&scene_path, scene.source_hash, &scene.world);
+    let recorded = Path::new(header_scene);
+    let other_scene = args.scene.is_some()
+        && stagelight::guard::outputs::same_file_key(&scene_path)
+            != stagelight::guard::outputs::same_file_key(recorded);
+    if hash != parts_hash && other_scene {
+        // The parts record their scene: a different file is not an edit of it.
+        let help = if recorded.exists() {
+            format!(
+                "leave out --scene to merge with {header_scene}, or {verb} the parts again from {}",
+                scene_path.display()
+            )
+        } else {
+            format!("{verb} the parts again from {}", scene_path.display())
+        };
+        eprintln!(
+            "error: the parts came from the scene {header_scene}, not from {} (content hash {hash:016x}, the parts have {parts_hash:016x})\n  help: {help}\nnothing written",
+            scene_path.display(),
+        );
+        return Err(ExitCode::from(EXIT_ERROR));
+    }
     if hash != parts_hash {
         let done = if verb == "bake" { "baked" } else { "rendered" };
         // With --scene given, that scene is the one to use: only new parts help.
@@ -1144,7 +1164,7 @@ fn farm(args: FarmArgs) -> ExitCode {
     if let Err(code) = usable_paths(&[usable_dir("--out", &args.out), output]) {
         return code;
     }
-    let scene = match load(&args.scene, &budget(None)) {
+    let mut scene = match load(&args.scene, &budget(None)) {
         Ok(s) => s,
         Err(code) => return code,
     };
@@ -1157,7 +1177,7 @@ fn farm(args: FarmArgs) -> ExitCode {
         eprintln!("error: {} has no render camera", args.scene.display());
         return ExitCode::from(EXIT_ERROR);
     }
-    if let Err(code) = farm_refusals(&args, &scene) {
+    if let Err(code) = farm_refusals(&args, &mut scene) {
         return code;
     }
     // A render that traces photon maps gets a photon job before its array.
@@ -1205,7 +1225,11 @@ fn farm(args: FarmArgs) -> ExitCode {
         eprintln!("wrote {}", path.display());
     }
     if !args.submit {
-        eprintln!("submit with: bash {}", job.out.join("submit.sh").display());
+        let submit = job.out.join("submit.sh");
+        eprintln!(
+            "submit with: bash {}",
+            stagelight::farm::slurm::quote(&submit.to_string_lossy())
+        );
         return ExitCode::SUCCESS;
     }
     match std::process::Command::new("bash")
@@ -1228,8 +1252,9 @@ fn farm(args: FarmArgs) -> ExitCode {
 /// refuse, with the messages `render --part` and `merge` give: a part that cannot be
 /// divided (a diagnostic view, `--split samples` of adaptive sampling or component passes),
 /// a merge output of no known format (`-o out.jpg`) and outputs that overwrite an input of
-/// the scene or each other.
-fn farm_refusals(args: &FarmArgs, scene: &LoadedScene) -> Result<(), ExitCode> {
+/// the scene or each other; and more parts than there is work for (for a bake, found by
+/// running the geometry stages on `scene`) and a render whose merge would write nothing.
+fn farm_refusals(args: &FarmArgs, scene: &mut LoadedScene) -> Result<(), ExitCode> {
     let mut settings = scene.settings.clone();
     if let Some(seed) = args.seed {
         settings.seed = seed;
@@ -1261,8 +1286,36 @@ fn farm_refusals(args: &FarmArgs, scene: &LoadedScene) -> Result<(), ExitCode> {
             return Err(ExitCode::from(EXIT_USAGE));
         }
         frame.inputs.outputs = checked_overrides(args.output.clone(), &scene.world)?;
+        let refusal =
+            stagelight::part_refusals::no_outputs_refusal(&scene.world, &frame.inputs.outputs)
+                .map(|m| (m, EXIT_ERROR))
+                .or_else(|| {
+                    stagelight::part_refusals::part_count_refusal(
+                        &scene.world,
+                        &frame.inputs.settings,
+                        args.parts,
+                        split,
+                    )
+                    .map(|m| (m, EXIT_USAGE))
+                });
+        if let Some((message, code)) = refusal {
+            eprintln!("error: {message}");
+            return Err(ExitCode::from(code));
+        }
     }
-    check_outputs(&args.scene, scene, &frame.inputs, None)
+    check_outputs(&args.scene, scene, &frame.inputs, None)?;
+    if args.bake {
+        let refusal = stagelight::part_refusals::bake_part_count_refusal(
+            &mut scene.world,
+            &mut frame,
+            args.parts,
+        );
+        if let Some(message) = refusal {
+            eprintln!("error: {message}");
+            return Err(ExitCode::from(EXIT_USAGE));
+        }
+    }
+    Ok(())
 }
 
 fn bake(args: BakeArgs) -> ExitCode {

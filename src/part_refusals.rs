@@ -1,12 +1,17 @@
 //! What a farm part refuses before anything runs: `render --part K/N` checks it, and so does
 //! `stagelight farm` before it writes scripts whose every part would be refused. The
-//! messages are the user's, with a `help:` line; the caller exits with status 2.
+//! messages are the user's, with a `help:` line; the caller exits with status 2. Also what
+//! only `farm` refuses: more parts than there is work for ([`part_count_refusal`],
+//! [`bake_part_count_refusal`]) and a render whose merge would write nothing
+//! ([`no_outputs_refusal`]).
 
 use std::path::Path;
 
 use hecs::World;
 
+use crate::farm::part::{plural, tile_count, useful_parts, TILE};
 use crate::farm::{PartNumber, Split};
+use crate::frame::{Frame, OutputOverrides};
 use crate::settings::RenderSettings;
 
 /// Whether `-o path` names a part file (`.exr`); the refusal says what to give instead.
@@ -76,5 +81,80 @@ fn component_passes_in_samples_part(
             "--part {}/{} --split samples cannot carry the component passes ({}) of {}\n  help: use --split tiles (the default), or leave them out of the farm render's outputs",
             number.index, number.count, names.join(", "), o.path.display()
         ))
+    })
+}
+
+/// The refusal of `farm --parts N` for a render when some of the N parts would compute
+/// nothing: more parts than the image has tiles (`--split tiles`) or than a pixel takes
+/// samples (`--split samples`; a part without samples would still trace the centre-sample
+/// passes or nothing at all). The message names the largest useful N.
+pub fn part_count_refusal(
+    world: &World,
+    settings: &RenderSettings,
+    count: u32,
+    split: Split,
+) -> Option<String> {
+    let camera = crate::scene_view::render_view(world)?.camera;
+    let (w, h) = (camera.width, camera.height);
+    let spp = crate::adaptive::SampleBudget::new(settings).min;
+    let most = useful_parts(split, w, h, spp);
+    if u64::from(count) <= most {
+        return None;
+    }
+    let idle = u64::from(count) - most;
+    let (work, help) = match split {
+        Split::Tiles => (
+            format!(
+                "the {w}×{h} image has only {} of {TILE}×{TILE} pixels, so {} would own no tile",
+                plural(most, "tile", "tiles"),
+                plural(idle, "part", "parts")
+            ),
+            format!("use --parts {most} or fewer"),
+        ),
+        Split::Samples => (
+            format!(
+                "a pixel takes only {}, so {} would take none",
+                plural(most, "sample", "samples"),
+                plural(idle, "part", "parts")
+            ),
+            format!(
+                "use --parts {most} or fewer, more samples (--spp), or --split tiles (up to {} parts)",
+                tile_count(w, h)
+            ),
+        ),
+    };
+    Some(format!(
+        "--parts {count} is more parts than there is work for: {work}\n  help: {help}"
+    ))
+}
+
+/// The refusal of `farm --bake --parts N` when some of the N parts would own no texel: more
+/// parts than the bake requests have tiles of [`TILE`]×[`TILE`] texels. The sizes of
+/// density-sized and per-vertex requests come from the built geometry, so this runs the
+/// geometry stages on `world` (through `frame`, which must bake). A scene whose requests
+/// cannot be prepared is left to the parts to report (`None`).
+pub fn bake_part_count_refusal(world: &mut World, frame: &mut Frame, count: u32) -> Option<String> {
+    crate::systems::run_before("bake_lightmaps", world, frame).ok()?;
+    let prepared =
+        crate::bake::request::prepare_bakes(world, frame.outputs.geometry.as_ref()).ok()?;
+    let tiles = crate::systems::bake_lightmaps::bake_tiles(&prepared);
+    if u64::from(count) <= tiles {
+        return None;
+    }
+    Some(format!(
+        "--parts {count} is more parts than there is work for: the bake {} only {} of {TILE}×{TILE} texels, so {} would own no texel\n  help: use --parts {tiles} or fewer",
+        if prepared.len() == 1 { "request has" } else { "requests have" },
+        plural(tiles, "tile", "tiles"),
+        plural(u64::from(count) - tiles, "part", "parts")
+    ))
+}
+
+/// The refusal of `farm` for a render whose merge would write nothing: the render camera
+/// has no outputs and `-o` names none (`overrides`). A plain `render` skips `shade` for the
+/// same reason.
+pub fn no_outputs_refusal(world: &World, overrides: &OutputOverrides) -> Option<String> {
+    let outputs = crate::scene_view::render_outputs(world, overrides).ok()?;
+    outputs.is_empty().then(|| {
+        "the render camera has no outputs, so the merge job would write nothing after every part rendered\n  help: name the merged image with -o FILE, e.g. -o image.png".to_string()
     })
 }

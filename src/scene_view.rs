@@ -10,6 +10,7 @@ use crate::components::{
     Atmosphere, AtmosphereFade, Camera, Emitter, Environment, Fade, Fog, Imager, Lens, Lenses,
     RenderCamera,
 };
+use crate::farm::part::Share;
 use crate::features::{Feature, Features};
 use crate::geometry::SceneGeometry;
 use crate::settings::RenderSettings;
@@ -127,23 +128,45 @@ pub fn contours_drawn(world: &World, inputs: &crate::frame::RunInputs) -> Result
 }
 
 /// Why nothing in this run traces rays into the scene geometry (`None`: something does — a
-/// render camera whose image is read, or a bake). The geometry stages skip by it: without
-/// a reader, shapes expanded, surfaces diced and a hierarchy built are thrown away.
-pub fn geometry_unused(world: &World, inputs: &crate::frame::RunInputs) -> Option<&'static str> {
+/// render camera whose image is read, or a bake). A render part that computes nothing
+/// ([`part_share`]) reads no geometry either: the reason is then the part's. The geometry
+/// stages skip by it: without a reader, shapes expanded, surfaces diced and a hierarchy
+/// built are thrown away.
+pub fn geometry_unused(world: &World, inputs: &crate::frame::RunInputs) -> Option<String> {
     let tasks = inputs.tasks;
-    let renders = tasks.render && has_render_camera(world) && image_is_read(world, inputs);
+    let idle = match part_share(world, inputs) {
+        Some(Share::Nothing(why)) => Some(why),
+        _ => None,
+    };
+    let renders =
+        tasks.render && has_render_camera(world) && image_is_read(world, inputs) && idle.is_none();
     let bakes = tasks.bake && crate::schedule::any_with::<crate::components::BakeRequest>(world);
-    match (renders || bakes, tasks.render) {
-        (true, _) => None,
-        (false, true) => Some("no render camera traces rays"),
-        (false, false) => Some("nothing in this run traces rays"),
+    match (renders || bakes, tasks.render, idle) {
+        (true, ..) => None,
+        (false, _, Some(why)) => Some(why),
+        (false, true, None) => Some("no render camera traces rays".into()),
+        (false, false, None) => Some("nothing in this run traces rays".into()),
     }
+}
+
+/// What a render part (`render --part K/N`) computes of the render camera's image
+/// ([`crate::farm::Part::share`]); `None` when the run renders no part or there is no
+/// render camera. A part with no pixels or samples to compute skips `shade` and the stages
+/// that feed only it, and writes an empty part file.
+pub fn part_share(world: &World, inputs: &crate::frame::RunInputs) -> Option<Share> {
+    let run = inputs.part.as_ref()?;
+    if !inputs.tasks.render || inputs.merging() {
+        return None;
+    }
+    let camera = render_view(world)?.camera;
+    let spp = crate::adaptive::SampleBudget::new(&inputs.settings).min;
+    Some(run.part.share(camera.width, camera.height, spp))
 }
 
 /// [`geometry_unused`] for the stages that make geometry (`expand_geometry`, `tessellate`):
 /// only where a render camera exists, so that a library caller running them on a world
 /// without a camera still gets the meshes it asked for.
-pub fn geometry_discarded(world: &World, inputs: &crate::frame::RunInputs) -> Option<&'static str> {
+pub fn geometry_discarded(world: &World, inputs: &crate::frame::RunInputs) -> Option<String> {
     if has_render_camera(world) {
         geometry_unused(world, inputs)
     } else {

@@ -37,7 +37,8 @@ use crate::bake::texels::TexelResults;
 use crate::bake::texels::{evaluate, TexelJob};
 use crate::bake::vertex_files::{encode_vertex_request, VertexValues};
 use crate::components::{BakeFormat, BakeKind, BakeRequest};
-use crate::farm::bake_part::{first_tiles, BakePartFile, BakePartRequest, TexelOwner};
+use crate::farm::bake_part::{first_tiles, tiles_of, BakePartFile, BakePartRequest, TexelOwner};
+use crate::farm::part::{plural, TILE};
 use crate::farm::PartRun;
 use crate::progress::Progress;
 use crate::sampling::{fold_seed, hash_combine};
@@ -81,6 +82,7 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
             .iter()
             .map(|p| (p.coverage.width, p.coverage.height)),
     );
+    let idle = idle_part(frame, &prepared);
     let mut pending = Vec::new();
     let mut reports = Vec::new();
     let mut part_requests = Vec::new();
@@ -204,9 +206,42 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
             &inputs.bake_dir,
         )?);
     }
-    Ok(Work::new(texels_baked, "texels")
+    let work = Work::new(texels_baked, "texels")
         .with_pending(pending)
-        .with_output(StageOutput::BakeReports(reports)))
+        .with_output(StageOutput::BakeReports(reports));
+    Ok(match idle {
+        Some(why) => work.reused(why),
+        None => work,
+    })
+}
+
+/// Why a bake part (`bake --part K/N`) owns no texel, if it owns none: `K` is past the
+/// number of tiles of all `prepared` requests. It traces no rays and writes an empty part
+/// file; the stage is then reported skipped for this reason. (The texture sizes of
+/// density-sized and per-vertex requests come from the built geometry, so this is known
+/// only here, after the geometry stages.)
+fn idle_part(frame: &Frame, prepared: &[PreparedBake]) -> Option<String> {
+    let run = frame.inputs.part.as_ref()?;
+    if frame.inputs.merged_bake.is_some() {
+        return None;
+    }
+    let tiles = bake_tiles(prepared);
+    let (k, n) = (run.part.index, run.part.count);
+    (u64::from(k) > tiles).then(|| {
+        format!(
+            "part {k}/{n} owns no texel: the bake {} {} of {TILE}×{TILE} texels; its part file is written empty",
+            if prepared.len() == 1 { "request has" } else { "requests have" },
+            plural(tiles, "tile", "tiles")
+        )
+    })
+}
+
+/// The texel tiles of all `prepared` requests, which a bake's parts share out.
+pub fn bake_tiles(prepared: &[PreparedBake]) -> u64 {
+    prepared
+        .iter()
+        .map(|p| tiles_of(p.coverage.width, p.coverage.height))
+        .sum()
 }
 
 /// The texels of request `index` as merged from farm parts, checked against the request the

@@ -10,9 +10,9 @@
 //! | 3 | `build_accel` | instances with triangles (or geometry pending) and a render camera or bake request in this run | `Instance`, `WorldFromObject`, `MaterialRef`, `Material`, bump `Displacement`, `settings.bvh_quality` | `outputs.geometry` |
 //! | 4 | `trace_photons` | caustics or global illumination on (caustics with a caster), a `Direct` render, geometry, a light with power | `Emitter`s, `outputs.geometry`, `settings.photons` | `outputs.photons` |
 //! | 5 | `bake_lightmaps` | bake requests, in a run that bakes | `BakeRequest`s, `Emitter`s, `Environment`, `outputs.geometry`, `inputs.bake_dir`, `inputs.write_gltf` | texture files (and the baked glTF copy); `outputs.bake_reports` |
-//! | 6 | `shade` | a render camera, in a run that renders | render camera, lenses, atmosphere, `Interior`s, `Emitter`s, `Environment`, `outputs.geometry`, `outputs.photons` | `outputs.image` |
+//! | 6 | `shade` | a render camera, in a run that renders (a farm part: one that owns pixels or samples) | render camera, lenses, atmosphere, `Interior`s, `Emitter`s, `Environment`, `outputs.geometry`, `outputs.photons` | `outputs.image` |
 //! | 7 | `draw_contours` | a shaded image, a material with a contour shader, an output showing contours, not a farm part | `outputs.image` (contour store), `outputs.geometry`, render camera, `ContourShader`s, `ContourContrast` | `outputs.contours` |
-//! | 8 | `write_output` | a shaded image and outputs to write | `outputs.image`, `outputs.contours`, camera outputs with `inputs.outputs` overrides, `Imager` | image files, SVG contour lines |
+//! | 8 | `write_output` | a shaded image and outputs to write, or a farm part that owns nothing (its empty part file) | `outputs.image`, `outputs.contours`, camera outputs with `inputs.outputs` overrides, `Imager` | image files, SVG contour lines |
 //! <!-- stage table end -->
 
 pub mod bake_lightmaps;
@@ -106,7 +106,7 @@ pub const STAGES: &[Stage] = &[
     },
     Stage {
         name: "shade",
-        runs_when: "a render camera, in a run that renders",
+        runs_when: "a render camera, in a run that renders (a farm part: one that owns pixels or samples)",
         reads: "render camera, lenses, atmosphere, `Interior`s, `Emitter`s, `Environment`, `outputs.geometry`, `outputs.photons`",
         writes: "`outputs.image`",
         slot: Some(Slot::Image),
@@ -124,7 +124,7 @@ pub const STAGES: &[Stage] = &[
     },
     Stage {
         name: "write_output",
-        runs_when: "a shaded image and outputs to write",
+        runs_when: "a shaded image and outputs to write, or a farm part that owns nothing (its empty part file)",
         reads: "`outputs.image`, `outputs.contours`, camera outputs with `inputs.outputs` overrides, `Imager`",
         writes: "image files, SVG contour lines",
         slot: None,

@@ -19,10 +19,15 @@
 //! centre sees; when an output asks
 //! for a component pass and the run is not a farm part, the component passes), returned to
 //! the runner.
-//! **Runs when:** the run renders and a render camera exists.
+//! **Runs when:** the run renders and a render camera exists, and the image is read; a farm
+//! part must own pixels or samples (`crate::farm::part::Share`), or else it writes an empty
+//! part file without shading.
 //! **After this stage:** `outputs.image` holds finite beauty, alpha, depth and normal buffers of
 //! the camera's resolution; each pixel depends only on (seed, pixel index, sample index).
-//! The reported work items are the camera samples actually taken.
+//! The reported work items are the camera samples actually taken: with adaptive sampling a
+//! tiles part also takes the first pass of the pixels around its tiles (refinement compares
+//! neighbours), and counts those samples, which its part file does not keep; so the parts'
+//! samples (and rays) add up to more than the single render's.
 
 mod packets;
 mod rows;
@@ -40,6 +45,7 @@ use crate::components::{ContourContrast, Interior};
 use crate::contour::{ContourStore, Probe};
 use crate::diagnostic::{samples_view, Diagnostic};
 use crate::diagnostic_view;
+use crate::farm::part::Share;
 use crate::farm::{Part, Split};
 use crate::features::Feature;
 use crate::framebuffer::{FrameBuffers, PixelSums};
@@ -74,6 +80,10 @@ pub fn should_run(world: &World, frame: &Frame) -> Decision {
     if !crate::scene_view::image_is_read(world, &frame.inputs) {
         return Decision::skip(NO_OUTPUTS);
     }
+    let share = crate::scene_view::part_share(world, &frame.inputs);
+    if let Some(Share::Nothing(why)) = share {
+        return Decision::skip(format!("{why}; its part file is written empty"));
+    }
     let off = frame.inputs.settings.disabled;
     let view = view.without(off);
     let camera = &view.camera;
@@ -96,8 +106,14 @@ pub fn should_run(world: &World, frame: &Frame) -> Decision {
             reason += &format!(", {} shaders disabled", f.name());
         }
     }
-    if let Some(run) = &frame.inputs.part {
-        reason += &format!(", {}", run.part);
+    match (share, &frame.inputs.part) {
+        (Some(Share::CentresOnly(why)), _) => {
+            reason += &format!(
+                ", {why}; it computes only the centre-sample passes (depth, normal, ids), which the merge takes from part 1"
+            );
+        }
+        (_, Some(run)) => reason += &format!(", {}", run.part),
+        _ => {}
     }
     Decision::run(reason)
 }
@@ -218,6 +234,12 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
             rows.into_iter().flatten().collect::<Vec<_>>()
         };
         let mut pixels = per_pixel(&|x, y| Some(first_pass(x, y)));
+        // A tiles part's first pass around its tiles: traced, so counted, but not kept.
+        let around: u64 = (pixels.iter().enumerate())
+            .filter(|(i, _)| !owns(i % width, i / width))
+            .filter_map(|(_, p)| p.as_ref())
+            .map(|p| u64::from(p.samples.taken))
+            .sum();
         if !stopped.load(Ordering::Relaxed) {
             let pass1: Vec<PixelSamples> = pixels
                 .iter()
@@ -239,7 +261,10 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
             pixels = refined;
         }
         let mut rows = rows;
-        let mut totals = Totals::default();
+        let mut totals = Totals {
+            taken: around,
+            dropped: 0,
+        };
         for (i, p) in pixels.into_iter().enumerate() {
             let Some(p) = p else { continue };
             let (x, y) = (i % width, i / width);
@@ -294,6 +319,34 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
     fb.components = components;
     fb.contour_store = contour_store(world, frame, &fb);
     Ok(Work::new(taken, "samples").with_output(StageOutput::Image(fb)))
+}
+
+/// The frame buffers of a render part that computes nothing ([`Share::Nothing`]), as
+/// `shade` would have returned them: no samples, nothing hit, zero exact sums, and zero
+/// component passes where a tile part carries them. `write_output` writes them as the
+/// part's (empty) part file, so that the set of parts stays complete for the merge.
+pub fn idle_part_image(world: &World, frame: &Frame) -> Option<FrameBuffers> {
+    let share = crate::scene_view::part_share(world, &frame.inputs)?;
+    if !matches!(share, Share::Nothing(_)) {
+        return None;
+    }
+    let camera = render_view(world)?
+        .without(frame.inputs.settings.disabled)
+        .camera;
+    let n = camera.width as usize * camera.height as usize;
+    let mut fb = FrameBuffers::new(camera.width, camera.height);
+    fb.sums = Some(PixelSums {
+        sums: vec![Default::default(); n],
+        covered: vec![0; n],
+        dropped: vec![0; n],
+    });
+    let tiles = frame
+        .inputs
+        .part
+        .as_ref()
+        .is_some_and(|r| r.part.split == Split::Tiles);
+    fb.components = (tiles && wants_components(&camera)).then(|| vec![[Vec3::ZERO; 6]; n]);
+    Some(fb)
 }
 
 /// The contour store of the shaded (or merged) image `fb`, when the run draws contours

@@ -21,6 +21,7 @@ use hecs::World;
 use super::prelude::*;
 use super::MERGING;
 use crate::components::{Emitter, LightPhotons, LightShape, Material, PhotonFlags};
+use crate::farm::part::Share;
 use crate::frame::Slot;
 use crate::image_io::PendingFile;
 use crate::photon::aim::Aim;
@@ -70,6 +71,15 @@ pub fn should_run(world: &World, frame: &Frame) -> Decision {
         || !crate::scene_view::image_is_read(world, &frame.inputs)
     {
         return Decision::skip("no render camera reads photon maps in this run");
+    }
+    match crate::scene_view::part_share(world, &frame.inputs) {
+        Some(Share::Nothing(why)) => return Decision::skip(why),
+        Some(Share::CentresOnly(why)) => {
+            return Decision::skip(format!(
+                "{why}; its centre-sample passes read no photon maps"
+            ))
+        }
+        _ => {}
     }
     if frame.inputs.settings.integrator != Integrator::Direct {
         return Decision::skip("the path integrator does not read photon maps");

@@ -17,6 +17,7 @@ use crate::components::{ImageFormat, Imager, OutputSpec, Pass};
 use crate::contour::eps::encode_eps;
 use crate::contour::svg::encode_svg;
 use crate::contour::{output, ContourImage};
+use crate::farm::part::Share;
 use crate::farm::PartRun;
 use crate::frame::Slot;
 use crate::framebuffer::FrameBuffers;
@@ -31,6 +32,12 @@ fn outputs(world: &World, frame: &Frame) -> Result<Vec<OutputSpec>, StageError> 
 /// Run condition: an image to write and somewhere to write it.
 pub fn should_run(world: &World, frame: &Frame) -> Decision {
     if !frame.outputs.has(Slot::Image) {
+        if let (Some(run), Some(Share::Nothing(_))) = (
+            &frame.inputs.part,
+            crate::scene_view::part_share(world, &frame.inputs),
+        ) {
+            return Decision::run(format!("{}: the part file, empty", run.part));
+        }
         return Decision::skip("no shaded image");
     }
     if frame.inputs.outputs.discard {
@@ -49,7 +56,7 @@ pub fn should_run(world: &World, frame: &Frame) -> Decision {
 /// Encodes and writes every output.
 pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
     if let Some(run) = &frame.inputs.part {
-        return write_part(run, frame);
+        return write_part(run, world, frame);
     }
     let outputs = outputs(world, frame)?;
     let imager = render_view(world).and_then(|v| v.imager);
@@ -128,12 +135,17 @@ fn no_lines(fb: &FrameBuffers) -> ContourImage {
 }
 
 /// A farm part's run writes its part file (to `-o`) instead of the camera outputs.
-fn write_part(run: &PartRun, frame: &Frame) -> Result<Work, StageError> {
-    let fb = frame
-        .outputs
-        .image
-        .as_ref()
-        .ok_or_else(|| StageError::Internal("no image to write".into()))?;
+/// A part that computes nothing (`shade` skipped) writes the empty part file.
+fn write_part(run: &PartRun, world: &World, frame: &Frame) -> Result<Work, StageError> {
+    let idle;
+    let fb = match frame.outputs.image.as_ref() {
+        Some(fb) => fb,
+        None => {
+            idle = super::shade::idle_part_image(world, frame)
+                .ok_or_else(|| StageError::Internal("no image to write".into()))?;
+            &idle
+        }
+    };
     let path = frame
         .inputs
         .outputs

@@ -155,6 +155,75 @@ impl Part {
     }
 }
 
+/// What one part computes of a `width`×`height` image with `spp` samples per pixel (the
+/// adaptive minimum for the tiles split, where it does not matter).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Share {
+    /// Samples of some pixels.
+    Samples,
+    /// No samples, only the centre-sample passes (depth, normal, ids), which the merge takes
+    /// from part 1 of a samples split; the reason says why it takes no samples.
+    CentresOnly(String),
+    /// Nothing: its part file is empty. The reason says why.
+    Nothing(String),
+}
+
+/// Number of [`TILE`]×[`TILE`] tiles of a `width`×`height` image.
+pub fn tile_count(width: u32, height: u32) -> u64 {
+    u64::from(width).div_ceil(TILE as u64) * u64::from(height).div_ceil(TILE as u64)
+}
+
+/// The most parts that each get work when `split` divides a `width`×`height` image with
+/// `spp` samples per pixel: its tiles, or its samples per pixel.
+pub fn useful_parts(split: Split, width: u32, height: u32, spp: u32) -> u64 {
+    match split {
+        Split::Tiles => tile_count(width, height),
+        Split::Samples => u64::from(spp),
+    }
+}
+
+impl Part {
+    /// What this part computes of a `width`×`height` image with `spp` samples per pixel.
+    pub fn share(&self, width: u32, height: u32, spp: u32) -> Share {
+        let (k, n) = (self.index, self.count);
+        match self.split {
+            Split::Tiles => {
+                let tiles = tile_count(width, height);
+                if u64::from(k) <= tiles {
+                    return Share::Samples;
+                }
+                Share::Nothing(format!(
+                    "{self} owns no tile: the {width}×{height} image has {}",
+                    plural(
+                        tiles,
+                        &format!("tile of {TILE}×{TILE} pixels"),
+                        &format!("tiles of {TILE}×{TILE} pixels")
+                    )
+                ))
+            }
+            Split::Samples => {
+                if !self.samples(spp).is_empty() {
+                    return Share::Samples;
+                }
+                let why = format!(
+                    "{self} takes no samples: {} per pixel, fewer than the {n} parts",
+                    plural(u64::from(spp), "sample", "samples"),
+                );
+                if k == 1 {
+                    Share::CentresOnly(why)
+                } else {
+                    Share::Nothing(why)
+                }
+            }
+        }
+    }
+}
+
+/// `n` and the noun for that many.
+pub(crate) fn plural(n: u64, one: &str, many: &str) -> String {
+    format!("{n} {}", if n == 1 { one } else { many })
+}
+
 impl fmt::Display for Part {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(f, "part {}/{} ({})", self.index, self.count, self.split)
