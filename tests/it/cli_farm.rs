@@ -551,3 +551,328 @@ fn farm_refuses_what_its_parts_or_merge_would_refuse_before_writing_scripts() {
         "{e}"
     );
 }
+
+/// The `(ran, reason)` of each stage in a `--stats-json` file.
+fn stage_reasons(path: &Path) -> Vec<(String, bool, String)> {
+    let v: serde_json::Value = serde_json::from_slice(&std::fs::read(path).unwrap()).unwrap();
+    v["stages"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|s| {
+            (
+                s["stage"].as_str().unwrap().to_string(),
+                s["ran"].as_bool().unwrap(),
+                s["reason"].as_str().unwrap().to_string(),
+            )
+        })
+        .collect()
+}
+
+/// The stage `name` of a `--stats-json` file: whether it ran and why.
+fn stage(path: &Path, name: &str) -> (bool, String) {
+    let (_, ran, reason) = stage_reasons(path)
+        .into_iter()
+        .find(|(s, ..)| s == name)
+        .unwrap_or_else(|| panic!("no stage {name}"));
+    (ran, reason)
+}
+
+/// A part with no work (the 40×24 image has 6 tiles; 3 samples per pixel) skips `shade`
+/// and the geometry stages, which only it would read, and still writes its part file,
+/// empty: the merge of such a set is the single render's bytes. Part 1 of a samples split
+/// without samples of its own still traces the centre-sample passes, which the merge takes
+/// from it. They all ran every stage ("shade yes 0 samples").
+#[test]
+fn a_part_with_no_work_skips_its_stages_and_writes_an_empty_part_file() {
+    let dir = setup("idle");
+    ok(&dir, &["render", "scene.ron", "-o", "single.exr"]);
+    let tiles = "part 7/7 (tiles) owns no tile: the 40×24 image has 6 tiles of 16×16 pixels";
+    ok(
+        &dir,
+        &[
+            "render",
+            "scene.ron",
+            "--part",
+            "7/7",
+            "-o",
+            "part_7.exr",
+            "--stats-json",
+            "p7.json",
+        ],
+    );
+    let json = dir.join("p7.json");
+    for name in ["tessellate", "build_accel"] {
+        assert_eq!(stage(&json, name), (false, tiles.to_string()), "{name}");
+    }
+    assert_eq!(
+        stage(&json, "shade"),
+        (false, format!("{tiles}; its part file is written empty"))
+    );
+    assert_eq!(
+        stage(&json, "write_output"),
+        (true, "part 7/7 (tiles): the part file, empty".to_string())
+    );
+    let parts = render_parts(&dir, 7, "tiles", &[]);
+    let mut args = vec!["merge"];
+    args.extend(parts.iter().map(String::as_str));
+    args.extend(["-o", "merged.exr"]);
+    ok(&dir, &args);
+    assert!(
+        std::fs::read(dir.join("single.exr")).unwrap()
+            == std::fs::read(dir.join("merged.exr")).unwrap()
+    );
+
+    // 3 samples among 5 parts: 0..0, 0..1, 1..1, 1..2, 2..3.
+    for k in [1, 3] {
+        let part = format!("{k}/5");
+        let json = format!("s{k}.json");
+        let out = format!("s{k}.exr");
+        ok(
+            &dir,
+            &[
+                "render",
+                "scene.ron",
+                "--part",
+                &part,
+                "--split",
+                "samples",
+                "-o",
+                &out,
+                "--stats-json",
+                &json,
+            ],
+        );
+    }
+    let idle = "part 3/5 (samples) takes no samples: 3 samples per pixel, fewer than the 5 parts";
+    let json = dir.join("s3.json");
+    assert_eq!(stage(&json, "build_accel"), (false, idle.to_string()));
+    assert_eq!(
+        stage(&json, "shade"),
+        (false, format!("{idle}; its part file is written empty"))
+    );
+    let json = dir.join("s1.json");
+    assert!(stage(&json, "build_accel").0);
+    assert_eq!(
+        stage(&json, "shade"),
+        (
+            true,
+            "render camera 40×24, part 1/5 (samples) takes no samples: 3 samples per pixel, fewer than the 5 parts; it computes only the centre-sample passes (depth, normal, ids), which the merge takes from part 1".to_string()
+        )
+    );
+    let parts = render_parts(&dir, 5, "samples", &[]);
+    let mut args = vec!["merge"];
+    args.extend(parts.iter().map(String::as_str));
+    args.extend(["-o", "merged.exr"]);
+    ok(&dir, &args);
+    assert!(
+        std::fs::read(dir.join("single.exr")).unwrap()
+            == std::fs::read(dir.join("merged.exr")).unwrap()
+    );
+}
+
+/// `farm` refuses more parts than there is work for, naming the largest useful count, and
+/// a render whose merge would write nothing (the camera has no outputs, no `-o`), before
+/// it writes a script. It wrote 40 scripts' worth of idle parts, and a job whose merge
+/// wrote nothing and exited 0.
+#[test]
+fn farm_refuses_idle_parts_and_a_render_that_writes_nothing() {
+    let dir = setup("farm-idle");
+    let farm = |scene: &str, extra: &[&str], code: i32| {
+        let mut args = vec!["farm", scene, "--out", "job"];
+        args.extend_from_slice(extra);
+        let o = stagelight(&dir, &args);
+        assert_eq!(o.status.code(), Some(code), "{args:?}: {}", stderr(&o));
+        assert!(!dir.join("job").exists(), "{args:?} wrote scripts");
+        stderr(&o)
+    };
+    assert_eq!(
+        farm("scene.ron", &["--parts", "7"], 2),
+        "error: --parts 7 is more parts than there is work for: the 40×24 image has only 6 tiles of 16×16 pixels, so 1 part would own no tile\n  help: use --parts 6 or fewer\n"
+    );
+    assert_eq!(
+        farm("scene.ron", &["--parts", "100000"], 2),
+        "error: --parts 100000 is more parts than there is work for: the 40×24 image has only 6 tiles of 16×16 pixels, so 99994 parts would own no tile\n  help: use --parts 6 or fewer\n"
+    );
+    assert_eq!(
+        farm("scene.ron", &["--parts", "5", "--split", "samples", "--spp", "2"], 2),
+        "error: --parts 5 is more parts than there is work for: a pixel takes only 2 samples, so 3 parts would take none\n  help: use --parts 2 or fewer, more samples (--spp), or --split tiles (up to 6 parts)\n"
+    );
+    std::fs::write(
+        dir.join("silent.ron"),
+        SCENE.replace(r#"outputs: [(file: "view.png")]"#, "outputs: []"),
+    )
+    .unwrap();
+    assert_eq!(
+        farm("silent.ron", &["--parts", "2"], 1),
+        "error: the render camera has no outputs, so the merge job would write nothing after every part rendered\n  help: name the merged image with -o FILE, e.g. -o image.png\n"
+    );
+    ok(&dir, &["farm", "scene.ron", "--parts", "6", "--out", "six"]);
+    ok(
+        &dir,
+        &[
+            "farm",
+            "silent.ron",
+            "--parts",
+            "2",
+            "--out",
+            "named",
+            "-o",
+            "m.png",
+        ],
+    );
+}
+
+/// The `submit with:` hint quotes the path as the scripts do: pasted into bash it runs
+/// `submit.sh` of a directory with a space, a `$` and a quote in its name.
+#[test]
+fn the_submit_hint_is_shell_quoted() {
+    let dir = setup("farm-quote");
+    let out = "we ird/out $x 'q'";
+    let o = stagelight(&dir, &["farm", "scene.ron", "--parts", "2", "--out", out]);
+    let e = stderr(&o);
+    let hint = e.lines().last().unwrap();
+    let script = std::path::absolute(dir.join(out))
+        .unwrap()
+        .join("submit.sh");
+    let quoted = format!("'{}'", script.display().to_string().replace('\'', r"'\''"));
+    assert_eq!(hint, format!("submit with: bash {quoted}"));
+    // bash reads the quoted word back as the path.
+    let word = hint.strip_prefix("submit with: bash ").unwrap();
+    let echoed = Command::new("bash")
+        .args(["-c", &format!("printf %s {word}")])
+        .output()
+        .unwrap();
+    assert_eq!(
+        String::from_utf8_lossy(&echoed.stdout),
+        script.display().to_string()
+    );
+}
+
+/// `merge --scene other.ron` with parts rendered from `scene.ron` says which scene the parts
+/// came from (they record it); it said "other.ron changed since the parts were rendered".
+#[test]
+fn merge_with_another_scene_names_the_scene_the_parts_came_from() {
+    let dir = setup("other-scene");
+    std::fs::write(
+        dir.join("other.ron"),
+        SCENE.replace("samples: 3", "samples: 2"),
+    )
+    .unwrap();
+    let parts = render_parts(&dir, 2, "tiles", &[]);
+    let o = stagelight(
+        &dir,
+        &[
+            "merge",
+            &parts[0],
+            &parts[1],
+            "--scene",
+            "other.ron",
+            "-o",
+            "m.png",
+        ],
+    );
+    assert_eq!(o.status.code(), Some(1));
+    let recorded = std::path::absolute(dir.join("scene.ron")).unwrap();
+    let e = stderr(&o);
+    let (first, rest) = e.split_once(" (content hash ").unwrap();
+    assert_eq!(
+        first,
+        format!(
+            "error: the parts came from the scene {}, not from other.ron",
+            recorded.display()
+        )
+    );
+    assert!(
+        rest.ends_with(&format!(
+            ")\n  help: leave out --scene to merge with {}, or render the parts again from other.ron\nnothing written\n",
+            recorded.display()
+        )),
+        "{e}"
+    );
+    assert!(!dir.join("m.png").exists());
+}
+
+/// With adaptive sampling a tiles part takes the first pass (`min` samples) of the pixels
+/// around its tiles too, and its report counts them: the parts' samples add up to the single
+/// render's plus `min` for every such pixel of every part. They were left out (the parts'
+/// samples added up to the single render's while their rays did not).
+#[test]
+fn adaptive_tile_parts_count_the_first_pass_around_their_tiles() {
+    let dir = setup("adaptive-counts");
+    let adaptive = SCENE.replace(
+        "samples: 3",
+        "samples: (min: 2, max: 8, contrast: (0.02, 0.02, 0.02))",
+    );
+    std::fs::write(dir.join("scene.ron"), adaptive).unwrap();
+    let samples = |json: &str| {
+        let v: serde_json::Value =
+            serde_json::from_slice(&std::fs::read(dir.join(json)).unwrap()).unwrap();
+        let shade = v["stages"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|s| s["stage"] == "shade")
+            .cloned();
+        shade.unwrap()["items"].as_u64().unwrap()
+    };
+    ok(
+        &dir,
+        &[
+            "render",
+            "scene.ron",
+            "-o",
+            "single.exr",
+            "--stats-json",
+            "single.json",
+        ],
+    );
+    let (w, h, n) = (40usize, 24usize, 3u32);
+    let owner = |x: usize, y: usize| ((y / 16) * w.div_ceil(16) + x / 16) as u32 % n + 1;
+    let mut parts_total = 0;
+    let mut around = 0;
+    for k in 1..=n {
+        let part = format!("{k}/{n}");
+        let json = format!("p{k}.json");
+        let out = format!("part_{k}.exr");
+        ok(
+            &dir,
+            &[
+                "render",
+                "scene.ron",
+                "--part",
+                &part,
+                "-o",
+                &out,
+                "--stats-json",
+                &json,
+            ],
+        );
+        parts_total += samples(&json);
+        around += (0..h)
+            .flat_map(|y| (0..w).map(move |x| (x, y)))
+            .filter(|&(x, y)| owner(x, y) != k)
+            .filter(|&(x, y)| {
+                (y.saturating_sub(1)..(y + 2).min(h))
+                    .any(|ny| (x.saturating_sub(1)..(x + 2).min(w)).any(|nx| owner(nx, ny) == k))
+            })
+            .count() as u64;
+    }
+    assert!(around > 0);
+    assert_eq!(parts_total, samples("single.json") + 2 * around);
+    ok(
+        &dir,
+        &[
+            "merge",
+            "part_1.exr",
+            "part_2.exr",
+            "part_3.exr",
+            "-o",
+            "merged.exr",
+        ],
+    );
+    assert!(
+        std::fs::read(dir.join("single.exr")).unwrap()
+            == std::fs::read(dir.join("merged.exr")).unwrap()
+    );
+}

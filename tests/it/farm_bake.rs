@@ -437,3 +437,85 @@ fn cli_merge_stats_give_no_ray_rate_and_an_edited_scene_asks_for_new_parts() {
     );
     assert!(!dir.join("again").exists());
 }
+
+/// A bake part past the last texel tile (the requests have 6 + 4 tiles) traces no rays and
+/// is reported skipped with the reason, and still writes its (empty) part file: the merge
+/// gives the single bake's files. `farm --bake` refuses more parts than tiles. Part 11/11
+/// reported "bake_lightmaps yes 0 texels", and `farm --bake --parts 40` wrote its scripts.
+#[test]
+fn a_bake_part_without_texels_is_skipped_and_farm_refuses_idle_bake_parts() {
+    let dir = setup("idle");
+    ok(&dir, &["bake", "scene.ron", "-o", "single"]);
+    ok(
+        &dir,
+        &[
+            "bake",
+            "scene.ron",
+            "--part",
+            "11/11",
+            "-o",
+            "parts",
+            "--stats-json",
+            "p11.json",
+        ],
+    );
+    let v: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.join("p11.json")).unwrap()).unwrap();
+    let bake = v["stages"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|s| s["stage"] == "bake_lightmaps")
+        .unwrap()
+        .clone();
+    assert_eq!(bake["ran"], false);
+    assert_eq!(
+        bake["reason"],
+        "part 11/11 owns no texel: the bake requests have 10 tiles of 16×16 texels; its part file is written empty"
+    );
+    bake_parts(&dir, 11, "parts", &[]);
+    let mut args = vec!["merge".to_string()];
+    args.extend((1..=11).map(|k| format!("parts/bake_part_{k}_of_11.exr")));
+    args.extend(["-o".into(), "merged".into()]);
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    ok(&dir, &args);
+    let names = dir_names(&dir.join("single"));
+    assert_eq!(dir_names(&dir.join("merged")), names);
+    for name in &names {
+        assert!(
+            std::fs::read(dir.join("single").join(name)).unwrap()
+                == std::fs::read(dir.join("merged").join(name)).unwrap(),
+            "{name} differs"
+        );
+    }
+    let o = run_in(
+        &dir,
+        &[
+            "farm",
+            "scene.ron",
+            "--bake",
+            "--parts",
+            "11",
+            "--out",
+            "job",
+        ],
+    );
+    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(
+        stderr_of(&o),
+        "error: --parts 11 is more parts than there is work for: the bake requests have only 10 tiles of 16×16 texels, so 1 part would own no texel\n  help: use --parts 10 or fewer\n"
+    );
+    assert!(!dir.join("job").exists());
+    ok(
+        &dir,
+        &[
+            "farm",
+            "scene.ron",
+            "--bake",
+            "--parts",
+            "10",
+            "--out",
+            "job",
+        ],
+    );
+}
