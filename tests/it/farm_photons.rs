@@ -23,7 +23,10 @@ fn script(dir: &Path, name: &str, task: Option<u32>) -> String {
 #[test]
 fn the_photon_job_traces_once_and_every_part_loads_its_maps() {
     let dir = scratch("farm-photons");
-    let text = crate::photon_file::scene(40.0, 20, "");
+    // Three tiles across, so that each of the 3 parts owns one (a part past the last tile
+    // would skip `trace_photons` for that reason).
+    let text = crate::photon_file::scene(40.0, 20, "")
+        .replace("resolution: (12, 10)", "resolution: (40, 10)");
     std::fs::write(dir.join("scene.ron"), &text).unwrap();
     let o = run(bin()
         .current_dir(&dir)
