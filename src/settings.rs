@@ -27,6 +27,12 @@ pub enum Face {
     Front,
     /// Every surface is treated as two-sided.
     Both,
+    /// Back faces of one-sided materials are left out of the rays altogether (mental ray's
+    /// `face front`, RenderMan's `Sides 1`): camera, shadow, reflection, refraction,
+    /// gathering and photon rays go on through them as if they were not there
+    /// (`build_accel` marks their triangles [`crate::components::FRONT_ONLY`]). Ambient
+    /// occlusion bakes still see them.
+    Cull,
 }
 
 /// BVH build quality: more time building for faster tracing.

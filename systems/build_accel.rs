@@ -4,6 +4,8 @@
 //! the objects' `Displacement` in `Bump` mode (kept for shading);
 //! the `SceneOrigin` (copied into the geometry); instances' `RayFlags` (per-triangle ray
 //! masks in the BVH);
+//! `settings.face` (with `Cull`, the triangles of one-sided materials are marked
+//! `FRONT_ONLY` in those masks: no ray sees their back faces);
 //! `settings.bvh_quality`; objects' `FaceMaterials` (per-triangle material slots; an
 //! instance's own `FaceMaterials` wins over its object's); objects' `VertexColours`,
 //! `VertexTangents` and `ReverseOrientation`.
@@ -31,12 +33,13 @@ use crate::accel::Accel;
 use crate::components::{
     Displacement, DisplacementMode, FaceMaterials, Instance, Material, MaterialRef, Procedural,
     RayFlags, ReverseOrientation, Scatter, SceneOrigin, SubdivMesh, Surface, VertexColours,
-    VertexTangents, WorldFromObject, ALL_RAYS,
+    VertexTangents, WorldFromObject, ALL_RAYS, FRONT_ONLY,
 };
 use crate::features::Feature;
 use crate::geometry::{InstanceGeometry, SceneGeometry};
 use crate::guard::extent::{located, out_of_range, reach};
 use crate::schedule::any_with;
+use crate::settings::Face;
 
 /// Run condition: instances with triangles, and a render camera to trace for.
 pub fn should_run(world: &World, frame: &Frame) -> Decision {
@@ -89,6 +92,7 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
     let mut triangle_instance = Vec::with_capacity(total);
     let mut too_far: Vec<(Entity, f32)> = Vec::new();
     let mut ray_masks: Vec<u8> = Vec::new();
+    let cull = frame.inputs.settings.face == Face::Cull;
     let displace = !frame
         .inputs
         .settings
@@ -149,7 +153,18 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
         let mask = world
             .get::<&RayFlags>(entity)
             .map_or(ALL_RAYS, |f| f.mask());
-        ray_masks.resize(triangles.len(), mask);
+        if cull {
+            let front_only = |slot: u32| {
+                let one_sided = !materials[slot as usize].shades_back();
+                mask | if one_sided { FRONT_ONLY } else { 0 }
+            };
+            match &face_materials {
+                Some(slots) => ray_masks.extend(slots.iter().map(|&s| front_only(s))),
+                None => ray_masks.resize(triangles.len(), front_only(slot)),
+            }
+        } else {
+            ray_masks.resize(triangles.len(), mask);
+        }
         let r = reach(triangles[first as usize..].iter().flatten().copied());
         if out_of_range(r) && !too_far.iter().any(|(o, _)| *o == instance.object) {
             too_far.push((instance.object, r));

@@ -1,8 +1,10 @@
 //! Queries by ray kind: surfaces that a kind of ray does not see (mental ray `visible`,
-//! `shadow`, `trace` off; see [`crate::components::RayFlags`]) are passed through.
+//! `shadow`, `trace` off; see [`crate::components::RayFlags`]) are passed through, and so
+//! are the back faces of triangles marked [`FRONT_ONLY`] (`face: Cull`), for every kind.
 //!
 //! The masks are per triangle and optional: without them ([`Accel::set_ray_masks`] never
-//! called, or every triangle seen by every kind) each query is the plain one, bit for bit.
+//! called, or every triangle seen by every kind from both sides) each query is the plain
+//! one, bit for bit.
 //! With them, a hit on a surface the kind does not see is stepped over: the ray is spawned
 //! again from that hit ([`spawn_ray`], error-bounded) along the same direction and the search
 //! goes on, at most [`MAX_PASSED`] times. The hit returned carries `t` along the caller's
@@ -10,9 +12,9 @@
 
 use glam::Vec3;
 
-use super::spawn::spawn_ray;
-use super::{Accel, Hit, Ray};
-use crate::components::{ALL_RAYS, CAMERA_RAYS, SECONDARY_RAYS, SHADOW_RAYS};
+use super::spawn::{geometric_normal, spawn_ray};
+use super::{Accel, Hit, Ray, SurfacePoint};
+use crate::components::{ALL_RAYS, CAMERA_RAYS, FRONT_ONLY, SECONDARY_RAYS, SHADOW_RAYS};
 
 /// Fewest rays [`Accel::intersect_shared_origin_as`] traces as a packet. Coherent primary
 /// rays of the 1 M-triangle anchor mesh, one thread, per CPU-second, packets of
@@ -48,8 +50,9 @@ impl RayKind {
 
 impl Accel {
     /// Sets which ray kinds see each triangle (`masks[prim]`, bits of
-    /// [`crate::components::RayFlags::mask`]); when every triangle is seen by every kind
-    /// the masks are dropped and queries stay the plain ones.
+    /// [`crate::components::RayFlags::mask`], and [`FRONT_ONLY`] where no ray sees its
+    /// back face); when every triangle is seen by every kind from both sides the masks are
+    /// dropped and queries stay the plain ones.
     ///
     /// # Panics
     /// When `masks` is not one entry per triangle.
@@ -70,15 +73,38 @@ impl Accel {
             .is_none_or(|m| m[prim as usize] & kind.bit() != 0)
     }
 
+    /// Whether triangle `prim` is marked [`FRONT_ONLY`]: rays pass through its back face.
+    #[inline]
+    pub fn culls_back(&self, prim: u32) -> bool {
+        self.masks
+            .as_ref()
+            .is_some_and(|m| m[prim as usize] & FRONT_ONLY != 0)
+    }
+
+    /// Whether a ray along `dir` meets triangle `prim` on its front face: the rule shading
+    /// uses (`ng · −dir/|dir| > 0`, `ng` the unit [`geometric_normal`]).
+    #[inline]
+    pub fn meets_front(&self, prim: u32, dir: Vec3) -> bool {
+        geometric_normal(&self.triangle(prim)).dot(-dir.normalize()) > 0.0
+    }
+
+    /// Whether rays of `kind` along `dir` see the hit on triangle `prim`: the kind's bit, and
+    /// the front face where the triangle is [`FRONT_ONLY`].
+    #[inline]
+    fn sees_along(&self, masks: &[u8], prim: u32, dir: Vec3, kind: RayKind) -> bool {
+        let m = masks[prim as usize];
+        m & kind.bit() != 0 && (m & FRONT_ONLY == 0 || self.meets_front(prim, dir))
+    }
+
     /// Closest hit that rays of `kind` see (see [`Accel::intersect`]).
     pub fn intersect_as(&self, ray: &Ray, kind: RayKind) -> Option<Hit> {
-        if self.masks.is_none() {
+        let Some(masks) = &self.masks else {
             return self.intersect(ray);
-        }
+        };
         let mut next = *ray;
         for _ in 0..=MAX_PASSED {
             let hit = self.intersect(&next)?;
-            if self.sees(hit.prim, kind) {
+            if self.sees_along(masks, hit.prim, ray.dir, kind) {
                 if next == *ray {
                     return Some(hit);
                 }
@@ -148,8 +174,14 @@ impl Accel {
 
     /// The rest of `ray` beyond `hit` (`None` when nothing of the segment is left).
     fn pass(&self, ray: &Ray, hit: &Hit) -> Option<Ray> {
-        let sp = self.surface_point(hit);
-        let mut next = spawn_ray(&sp, ray.dir);
+        Self::beyond(ray, &self.surface_point(hit))
+    }
+
+    /// The rest of `ray` beyond the point `sp` it meets (`None` when nothing of the segment
+    /// is left): spawned from `sp` (error-bounded) along the same direction, ending where
+    /// `ray` ends.
+    pub fn beyond(ray: &Ray, sp: &SurfacePoint) -> Option<Ray> {
+        let mut next = spawn_ray(sp, ray.dir);
         if ray.t_max.is_finite() {
             let end: Vec3 = ray.origin + ray.dir * ray.t_max;
             next.t_max = (end - next.origin).dot(ray.dir) / ray.dir.length_squared();
@@ -172,6 +204,35 @@ mod tests {
             Vec3::new(3.0, -1.0, z),
             Vec3::new(-1.0, 3.0, z),
         ]
+    }
+
+    #[test]
+    fn front_only_triangles_are_passed_from_behind_by_every_kind() {
+        let mut a = Accel::build(vec![wall(1.0), wall(2.0)], BvhQuality::Fast);
+        // Both walls face +z: a ray along +z meets their backs.
+        a.set_ray_masks(vec![ALL_RAYS | FRONT_ONLY, ALL_RAYS]);
+        assert!(a.has_ray_masks());
+        assert!(a.culls_back(0) && !a.culls_back(1));
+        let up = Ray {
+            origin: Vec3::ZERO,
+            dir: Vec3::Z,
+            t_max: f32::INFINITY,
+        };
+        for kind in [RayKind::Camera, RayKind::Shadow, RayKind::Secondary] {
+            let hit = a.intersect_as(&up, kind).unwrap();
+            assert_eq!(hit.prim, 1, "{kind:?}");
+            assert!((hit.t - 2.0).abs() < 1e-5);
+            assert!(!a.occluded_as(&Ray { t_max: 1.5, ..up }, kind), "{kind:?}");
+        }
+        // From above, the front: seen.
+        let down = Ray {
+            origin: Vec3::new(0.0, 0.0, 1.5),
+            dir: Vec3::NEG_Z,
+            t_max: f32::INFINITY,
+        };
+        assert!(a.meets_front(0, down.dir) && !a.meets_front(0, up.dir));
+        assert_eq!(a.intersect_as(&down, RayKind::Camera).unwrap().prim, 0);
+        assert!(a.occluded_as(&down, RayKind::Shadow));
     }
 
     #[test]

@@ -63,4 +63,4 @@ mod photon_shader;
 pub use photon_shader::PhotonShader;
 
 mod ray_flags;
-pub use ray_flags::{RayFlags, ALL_RAYS, CAMERA_RAYS, SECONDARY_RAYS, SHADOW_RAYS};
+pub use ray_flags::{RayFlags, ALL_RAYS, CAMERA_RAYS, FRONT_ONLY, SECONDARY_RAYS, SHADOW_RAYS};

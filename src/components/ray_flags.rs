@@ -9,6 +9,10 @@ pub const SHADOW_RAYS: u8 = 2;
 pub const SECONDARY_RAYS: u8 = 4;
 /// Every bit: seen by every kind of ray (the default).
 pub const ALL_RAYS: u8 = CAMERA_RAYS | SHADOW_RAYS | SECONDARY_RAYS;
+/// Bit of a triangle's ray mask (beside the kinds of [`RayFlags::mask`], never in it): no
+/// ray sees the triangle's back face (`face: Cull` on a one-sided material), rays go on
+/// through it.
+pub const FRONT_ONLY: u8 = 8;
 
 /// The explicit ray flags of a placed instance, resolved along its DAG path like the photon
 /// flags (the closest instance that sets a flag wins, then the object's own). `None`: on.

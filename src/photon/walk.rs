@@ -9,7 +9,7 @@ use glam::Vec3;
 
 use super::depth::PathDepth;
 use super::kdtree::Photon;
-use crate::accel::{Hit, Ray};
+use crate::accel::{Accel, Hit, Ray, MAX_PASSED};
 use crate::components::PhotonRole;
 use crate::geometry::ShadingPoint;
 use crate::sampling::Sampler;
@@ -64,6 +64,8 @@ pub struct Walk {
     live: bool,
     /// Whether [`Walk::fate`] is kept complete (see [`Walk::without_fate`]).
     keep_fate: bool,
+    /// Culled back faces (`face: Cull`) passed since the last interaction.
+    passed: u32,
     /// The triangle [`Walk::ray`] leaves (`u32::MAX`: the light), and the cosine between
     /// the ray's direction and that triangle's geometric normal.
     left: u32,
@@ -84,6 +86,7 @@ impl Walk {
             depth: PathDepth::new(ctx.photon_depth),
             live: true,
             keep_fate: true,
+            passed: 0,
             left: u32::MAX,
             left_cos: 0.0,
         }
@@ -184,6 +187,23 @@ impl Walk {
             }
             return;
         };
+        // A culled back face (`face: Cull`) is not there for photons either: the photon goes
+        // on along the same line, power and path untouched (at most `MAX_PASSED` in a row).
+        let accel = &ctx.geometry.accel;
+        if accel.culls_back(hit.prim) && !accel.meets_front(hit.prim, ray.dir) {
+            match Accel::beyond(&ray, &sp.surface) {
+                Some(next) if self.passed < MAX_PASSED => {
+                    self.passed += 1;
+                    self.ray = next;
+                    // The shortcut past a convex part assumes a scattered ray: trace in full.
+                    self.left = u32::MAX;
+                    self.live = true;
+                }
+                _ => fate.truncated += self.power,
+            }
+            return;
+        }
+        self.passed = 0;
         let v = PhotonVertex::new(ctx, &ray, hit, *sp);
         let through = self.power * v.transmittance;
         if keep {
@@ -299,6 +319,66 @@ mod tests {
     use crate::settings::RenderSettings;
     use crate::shading::integrator::fixture;
     use crate::shading::lights::LightSet;
+
+    /// `face: Cull`: a photon meeting the back of a one-sided sheet goes on untouched to
+    /// the floor behind it (no bounce), where without the culling it is absorbed.
+    #[test]
+    fn a_photon_passes_a_culled_back_face_untouched() {
+        use crate::components::{ALL_RAYS, FRONT_ONLY};
+        // A sheet at z = 1 facing down over a floor at z = 0 facing up.
+        let sheet: Vec<[Vec3; 3]> = fixture::floor(1.0, 1.0)
+            .into_iter()
+            .map(|[a, b, c]| [a, c, b])
+            .collect();
+        let floor = fixture::floor(3.0, 0.0);
+        let first_sheet = floor.len();
+        let mut geometry = fixture::geometry(vec![
+            fixture::Object {
+                triangles: floor,
+                material: fixture::lambert(0.5),
+            },
+            fixture::Object {
+                triangles: sheet,
+                material: fixture::lambert(0.5),
+            },
+        ]);
+        let mut masks = vec![ALL_RAYS; geometry.accel.len()];
+        for m in &mut masks[first_sheet..] {
+            *m |= FRONT_ONLY;
+        }
+        let lights = LightSet::default();
+        let s = RenderSettings::default();
+        for culled in [false, true] {
+            if culled {
+                geometry.accel.set_ray_masks(masks.clone());
+            }
+            let ctx = ShadeContext::new(&geometry, &lights, &s);
+            let ray = Ray {
+                origin: Vec3::new(0.1, 0.2, 2.0),
+                dir: Vec3::NEG_Z,
+                t_max: f32::INFINITY,
+            };
+            let mut walk = Walk::new(&ctx, ray, Vec3::ONE);
+            let mut sampler = Sampler::new(1, 0);
+            let mut deposits = Vec::new();
+            while walk.live() {
+                let hit = ctx.geometry.accel.intersect(walk.ray());
+                walk.step(&ctx, &[], hit, &mut sampler, true, &mut |d| {
+                    deposits.push(d)
+                });
+            }
+            if culled {
+                assert_eq!(deposits.len(), 1);
+                let d = deposits[0];
+                assert!(d.photon.position.z.abs() < 1e-4, "{d:?}");
+                assert_eq!((d.photon.power, d.bounces), (Vec3::ONE, 0));
+                assert!((d.prim as usize) < first_sheet);
+            } else {
+                assert!(deposits.is_empty());
+                assert_eq!(walk.fate().absorbed, Vec3::ONE);
+            }
+        }
+    }
 
     /// A walk without its fate deposits what a full walk deposits and ends at the same
     /// interaction; at a caustic deposit on a surface with no delta lobe it ends without

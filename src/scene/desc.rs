@@ -274,10 +274,13 @@ fn default_radius() -> f64 {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename = "Face")]
 pub enum FaceDesc {
-    /// Front faces only.
+    /// Front faces only: back faces of one-sided materials are black and block light.
     Front,
     /// Both faces.
     Both,
+    /// Back faces of one-sided materials are left out of every ray (mental ray's `face
+    /// front`).
+    Cull,
 }
 
 /// BVH build quality.

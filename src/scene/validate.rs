@@ -186,6 +186,7 @@ pub fn settings(src: &mut Sources, options: Option<&Item<'_, OptionsDesc>>) -> R
         face: match o.face {
             FaceDesc::Front => Face::Front,
             FaceDesc::Both => Face::Both,
+            FaceDesc::Cull => Face::Cull,
         },
         bvh_quality: match o.bvh_quality {
             BvhQualityDesc::Fast => BvhQuality::Fast,

@@ -23,6 +23,7 @@ mod diagnostic_bvh;
 mod diagnostic_views;
 mod docs_reference;
 mod environment;
+mod face_cull;
 mod farm;
 mod farm_bake;
 mod farm_photons;

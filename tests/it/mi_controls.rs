@@ -188,13 +188,15 @@ fn malformed_controls_give_exact_located_messages() {
 }
 
 /// mental ray's default is `face both` (seed 000: "The default is face both"): an options
-/// block without `face` gives two-sided shading, `face front` one-sided.
+/// block without `face` gives two-sided shading, `face front` one-sided with the back faces
+/// left out of the rays (`Cull`, seed 000: "with face front, the back side would not be
+/// visible").
 #[test]
 fn face_defaults_to_both_as_in_mental_ray() {
     for (statement, want) in [
         ("", FaceDesc::Both),
         ("face both\n", FaceDesc::Both),
-        ("face front\n", FaceDesc::Front),
+        ("face front\n", FaceDesc::Cull),
     ] {
         let text = fixture_text(&format!("caustic on\n{statement}"));
         let read = read_mi(Path::new("face.mi"), text.as_bytes()).unwrap();

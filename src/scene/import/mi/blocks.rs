@@ -164,7 +164,8 @@ pub fn options(r: &mut Reader, c: &mut Cursor, open: Pos) {
                 if c.eat_word("both") {
                     o.desc.face = FaceDesc::Both;
                 } else if c.eat_word("front") {
-                    o.desc.face = FaceDesc::Front;
+                    // Back faces left out of the rays, as mental ray does (seed 000).
+                    o.desc.face = FaceDesc::Cull;
                 } else if c.eat_word("back") {
                     c.warn(
                         t.pos,

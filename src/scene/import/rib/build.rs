@@ -24,7 +24,7 @@ use super::state::{from_rib, rotate, Block, GraphicsState, ShaderCall};
 use super::tutorial;
 use super::RibScene;
 use crate::scene::desc::{
-    ApproximationDesc, DisplacementDesc, FilterDesc, GroupDesc, InstanceDesc, LightDesc,
+    ApproximationDesc, DisplacementDesc, FaceDesc, FilterDesc, GroupDesc, InstanceDesc, LightDesc,
     LightKindDesc, MaterialDesc, ObjectDesc, OptionsDesc, RenderDesc, SceneDesc, TransformDesc, V3,
 };
 use crate::scene::suggest::suggestion;
@@ -1063,6 +1063,9 @@ impl Builder {
             options: Some(OptionsDesc {
                 samples: self.cam.samples(),
                 filter: self.cam.filter(),
+                // `Sides 1` (one-sided materials): only the outside is visible, the inside
+                // is left out of every ray (RISpec 3.2, "Orientation and Sides").
+                face: FaceDesc::Cull,
                 ..OptionsDesc::default()
             }),
             cameras: vec![camera],
