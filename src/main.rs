@@ -788,12 +788,14 @@ fn prepare(
 }
 
 fn render(args: RenderArgs) -> ExitCode {
-    use stagelight::guard::dir_flags::{usable_dir, usable_file};
+    use stagelight::guard::dir_flags::{usable_cache_dir, usable_file};
     let cache = args.stages.photon_cache.as_deref();
     let out = args.output.as_deref();
+    let stats_json = args.stats_json.as_deref();
     if let Err(code) = usable_paths(&[
-        cache.map_or(Ok(()), |d| usable_dir("--photon-cache", d)),
+        cache.map_or(Ok(()), |d| usable_cache_dir("--photon-cache", d)),
         out.map_or(Ok(()), |f| usable_file("-o", f, "out.png")),
+        stats_json.map_or(Ok(()), |f| usable_file("--stats-json", f, "stats.json")),
     ]) {
         return code;
     }
@@ -881,7 +883,7 @@ fn render(args: RenderArgs) -> ExitCode {
 /// `stagelight photons`: the stages through `trace_photons`, keeping the maps.
 fn photons(args: PhotonsArgs) -> ExitCode {
     let cache = args.photon_cache.as_deref();
-    let dir = |d| stagelight::guard::dir_flags::usable_dir("--photon-cache", d);
+    let dir = |d| stagelight::guard::dir_flags::usable_cache_dir("--photon-cache", d);
     if let Err(code) = usable_paths(&[cache.map_or(Ok(()), dir)]) {
         return code;
     }
@@ -1266,8 +1268,14 @@ fn farm_refusals(args: &FarmArgs, scene: &LoadedScene) -> Result<(), ExitCode> {
 }
 
 fn bake(args: BakeArgs) -> ExitCode {
-    let dir = |d| stagelight::guard::dir_flags::usable_dir("-o", d);
-    if let Err(code) = usable_paths(&[args.output.as_deref().map_or(Ok(()), dir)]) {
+    use stagelight::guard::dir_flags::{usable_dir, usable_file};
+    let stats_json = args.stats_json.as_deref();
+    if let Err(code) = usable_paths(&[
+        args.output
+            .as_deref()
+            .map_or(Ok(()), |d| usable_dir("-o", d)),
+        stats_json.map_or(Ok(()), |f| usable_file("--stats-json", f, "stats.json")),
+    ]) {
         return code;
     }
     let (mut scene, settings) = match prepare(
