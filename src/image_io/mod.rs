@@ -6,6 +6,7 @@
 
 mod atomic;
 pub mod exr_limits;
+pub mod exr_magic;
 mod exr_writer;
 pub mod imager;
 pub mod png_codec;
