@@ -3,7 +3,8 @@
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use std::sync::atomic::Ordering;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
 
 use clap::{Args, Parser, Subcommand};
 use stagelight::components::BakeRequest;
@@ -1427,12 +1428,15 @@ fn bench(args: BenchArgs) -> ExitCode {
 }
 
 fn sweep(args: SweepArgs) -> ExitCode {
-    use stagelight::sweep::{run_sweep, Knob, SweepOptions};
+    use stagelight::sweep::{run_sweep, Knob, SweepFiles, SweepOptions};
     if let Err(code) = set_threads(args.threads) {
         return code;
     }
-    if let Err(code) = usable_paths(&[stagelight::guard::dir_flags::usable_dir("--out", &args.out)])
-    {
+    let reference = args.reference.as_deref();
+    if let Err(code) = usable_paths(&[
+        stagelight::guard::dir_flags::usable_dir("--out", &args.out),
+        reference.map_or(Ok(()), stagelight::sweep::reference_file::usable),
+    ]) {
         return code;
     }
     let knob = match Knob::parse(&args.knob) {
@@ -1454,7 +1458,17 @@ fn sweep(args: SweepArgs) -> ExitCode {
         denoise: args.denoise,
         crop: args.crop,
         budget: budget(args.memory_limit),
+        cancel: Arc::new(AtomicBool::new(false)),
+        files: Arc::new(SweepFiles::new(&args.out)),
     };
+    // SIGINT and SIGTERM stop the sweep as they stop a render: exit 130, no file of its own
+    // left (its scratch textures and the reference it cached are removed).
+    let (finished, written) = (opts.files.clone(), opts.files.clone());
+    stagelight::guard::interrupt::install_with(
+        opts.cancel.clone(),
+        move || finished.result_in_place(),
+        move || written.remove_all(),
+    );
     let summary = match run_sweep(&opts, systems::run, |step| eprintln!("sweep: {step}")) {
         Ok(s) => s,
         Err(e) => {
@@ -1483,7 +1497,12 @@ fn sweep(args: SweepArgs) -> ExitCode {
         path: args.out.join(name),
         bytes: text.into_bytes(),
     });
-    if let Err((p, e)) = stagelight::image_io::commit_all(&files) {
+    if opts.cancel.load(Ordering::SeqCst) {
+        opts.files.remove_all();
+        eprintln!("{}", stagelight::stage_error::StageError::Interrupted);
+        return ExitCode::from(stagelight::stage_error::EXIT_INTERRUPTED);
+    }
+    if let Err((p, e)) = opts.files.commit_result(&files) {
         eprintln!("error: cannot write {}: {e}", p.display());
         return ExitCode::from(EXIT_ERROR);
     }
