@@ -3,7 +3,8 @@
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use std::sync::atomic::Ordering;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
 
 use clap::{Args, Parser, Subcommand};
 use stagelight::components::BakeRequest;
@@ -788,12 +789,14 @@ fn prepare(
 }
 
 fn render(args: RenderArgs) -> ExitCode {
-    use stagelight::guard::dir_flags::{usable_dir, usable_file};
+    use stagelight::guard::dir_flags::{usable_cache_dir, usable_file};
     let cache = args.stages.photon_cache.as_deref();
     let out = args.output.as_deref();
+    let stats_json = args.stats_json.as_deref();
     if let Err(code) = usable_paths(&[
-        cache.map_or(Ok(()), |d| usable_dir("--photon-cache", d)),
+        cache.map_or(Ok(()), |d| usable_cache_dir("--photon-cache", d)),
         out.map_or(Ok(()), |f| usable_file("-o", f, "out.png")),
+        stats_json.map_or(Ok(()), |f| usable_file("--stats-json", f, "stats.json")),
     ]) {
         return code;
     }
@@ -881,7 +884,7 @@ fn render(args: RenderArgs) -> ExitCode {
 /// `stagelight photons`: the stages through `trace_photons`, keeping the maps.
 fn photons(args: PhotonsArgs) -> ExitCode {
     let cache = args.photon_cache.as_deref();
-    let dir = |d| stagelight::guard::dir_flags::usable_dir("--photon-cache", d);
+    let dir = |d| stagelight::guard::dir_flags::usable_cache_dir("--photon-cache", d);
     if let Err(code) = usable_paths(&[cache.map_or(Ok(()), dir)]) {
         return code;
     }
@@ -1319,8 +1322,14 @@ fn farm_refusals(args: &FarmArgs, scene: &mut LoadedScene) -> Result<(), ExitCod
 }
 
 fn bake(args: BakeArgs) -> ExitCode {
-    let dir = |d| stagelight::guard::dir_flags::usable_dir("-o", d);
-    if let Err(code) = usable_paths(&[args.output.as_deref().map_or(Ok(()), dir)]) {
+    use stagelight::guard::dir_flags::{usable_dir, usable_file};
+    let stats_json = args.stats_json.as_deref();
+    if let Err(code) = usable_paths(&[
+        args.output
+            .as_deref()
+            .map_or(Ok(()), |d| usable_dir("-o", d)),
+        stats_json.map_or(Ok(()), |f| usable_file("--stats-json", f, "stats.json")),
+    ]) {
         return code;
     }
     let (mut scene, settings) = match prepare(
@@ -1472,12 +1481,15 @@ fn bench(args: BenchArgs) -> ExitCode {
 }
 
 fn sweep(args: SweepArgs) -> ExitCode {
-    use stagelight::sweep::{run_sweep, Knob, SweepOptions};
+    use stagelight::sweep::{run_sweep, Knob, SweepFiles, SweepOptions};
     if let Err(code) = set_threads(args.threads) {
         return code;
     }
-    if let Err(code) = usable_paths(&[stagelight::guard::dir_flags::usable_dir("--out", &args.out)])
-    {
+    let reference = args.reference.as_deref();
+    if let Err(code) = usable_paths(&[
+        stagelight::guard::dir_flags::usable_dir("--out", &args.out),
+        reference.map_or(Ok(()), stagelight::sweep::reference_file::usable),
+    ]) {
         return code;
     }
     let knob = match Knob::parse(&args.knob) {
@@ -1499,7 +1511,17 @@ fn sweep(args: SweepArgs) -> ExitCode {
         denoise: args.denoise,
         crop: args.crop,
         budget: budget(args.memory_limit),
+        cancel: Arc::new(AtomicBool::new(false)),
+        files: Arc::new(SweepFiles::new(&args.out)),
     };
+    // SIGINT and SIGTERM stop the sweep as they stop a render: exit 130, no file of its own
+    // left (its scratch textures and the reference it cached are removed).
+    let (finished, written) = (opts.files.clone(), opts.files.clone());
+    stagelight::guard::interrupt::install_with(
+        opts.cancel.clone(),
+        move || finished.result_in_place(),
+        move || written.remove_all(),
+    );
     let summary = match run_sweep(&opts, systems::run, |step| eprintln!("sweep: {step}")) {
         Ok(s) => s,
         Err(e) => {
@@ -1528,7 +1550,12 @@ fn sweep(args: SweepArgs) -> ExitCode {
         path: args.out.join(name),
         bytes: text.into_bytes(),
     });
-    if let Err((p, e)) = stagelight::image_io::commit_all(&files) {
+    if opts.cancel.load(Ordering::SeqCst) {
+        opts.files.remove_all();
+        eprintln!("{}", stagelight::stage_error::StageError::Interrupted);
+        return ExitCode::from(stagelight::stage_error::EXIT_INTERRUPTED);
+    }
+    if let Err((p, e)) = opts.files.commit_result(&files) {
         eprintln!("error: cannot write {}: {e}", p.display());
         return ExitCode::from(EXIT_ERROR);
     }

@@ -85,6 +85,12 @@ pub fn should_run(world: &World, frame: &Frame) -> Decision {
         return Decision::skip(format!("{why}; its part file is written empty"));
     }
     let off = frame.inputs.settings.disabled;
+    // What `--disable lens,volume` leaves out, named only where the scene has it.
+    let lenses_off = off.contains(Feature::Lens) && !view.lenses.is_empty();
+    let volumes_off = off.contains(Feature::Volume)
+        && (view.atmosphere.is_some()
+            || view.fade.is_some()
+            || world.query::<&Interior>().iter().next().is_some());
     let view = view.without(off);
     let camera = &view.camera;
     let mut reason = format!("render camera {}×{}", camera.width, camera.height);
@@ -101,8 +107,8 @@ pub fn should_run(world: &World, frame: &Frame) -> Decision {
     if let Some(d) = frame.inputs.settings.diagnostic {
         reason += &format!(", diagnostic {}", d.name());
     }
-    for f in [Feature::Lens, Feature::Volume] {
-        if off.contains(f) {
+    for (f, left_out) in [(Feature::Lens, lenses_off), (Feature::Volume, volumes_off)] {
+        if left_out {
             reason += &format!(", {} shaders disabled", f.name());
         }
     }

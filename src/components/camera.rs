@@ -97,6 +97,11 @@ pub struct OutputSpec {
     pub passes: Vec<Pass>,
 }
 
+/// Where a camera's outputs name their files in the scene (`file:line:column` of each
+/// output's `file`, parallel to [`Camera::outputs`]), for messages about an output path.
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub struct OutputLinks(pub Vec<super::SourceLink>);
+
 /// A pinhole camera looking down its local −Z axis, +Y up.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Camera {

@@ -13,7 +13,8 @@ mod naming;
 mod transform;
 
 pub use camera::{
-    world_from_look_at, Camera, ImageFormat, Lens, Lenses, OutputSpec, Pass, RenderCamera,
+    world_from_look_at, Camera, ImageFormat, Lens, Lenses, OutputLinks, OutputSpec, Pass,
+    RenderCamera,
 };
 pub use contour::{ContourContrast, ContourShader};
 pub use light::{attenuation_factor, Emitter, LightShape};

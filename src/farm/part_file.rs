@@ -392,9 +392,16 @@ pub fn encode(part: &PartFile) -> std::result::Result<Vec<u8>, String> {
     Ok(cursor.into_inner())
 }
 
+/// Why a file that is not an EXR file (a scene, a PNG) is no part file.
+const NOT_EXR: &str =
+    "not a part file: it is not an EXR file\n  help: merge the EXR part files that `stagelight render --part K/N -o PART.exr` (or `stagelight bake --part K/N`) writes";
+
 /// Decodes a part file; the error says what is wrong with it (the caller names the file).
 pub fn decode(bytes: &[u8]) -> std::result::Result<PartFile, String> {
     use crate::image_io::exr_limits;
+    if !crate::image_io::exr_magic::could_be_exr(bytes) {
+        return Err(NOT_EXR.into());
+    }
     exr_limits::check_bytes(bytes, exr_limits::MAX_PART_SAMPLES)?;
     let image = read()
         .no_deep_data()
@@ -585,7 +592,9 @@ pub(crate) mod tests {
         let bytes = encode(&sample()).unwrap();
         let e = decode(&bytes[..bytes.len() / 2]).unwrap_err();
         assert!(e.contains("truncated") || e.starts_with("damaged"), "{e}");
-        let e = decode(b"not an exr").unwrap_err();
+        assert_eq!(decode(b"not an exr").unwrap_err(), NOT_EXR);
+        assert_eq!(decode(b"\x89PNG\r\n\x1a\n").unwrap_err(), NOT_EXR);
+        let e = decode(&bytes[..3]).unwrap_err();
         assert!(e.starts_with("not a readable EXR file"), "{e}");
     }
 }

@@ -18,15 +18,33 @@ use crate::stage_error::{StageError, EXIT_INTERRUPTED};
 /// How long a signalled run may take to stop by itself before the process exits.
 pub const GRACE: Duration = Duration::from_millis(250);
 
-/// Installs the SIGINT/SIGTERM handler for a run that polls `cancel`.
+/// Installs the SIGINT/SIGTERM handler for a run that polls `cancel` and commits its files
+/// once, at its end.
 pub fn install(cancel: Arc<AtomicBool>) {
+    install_with(cancel, commit_state::committed, || {});
+}
+
+/// Installs the SIGINT/SIGTERM handler for a run that polls `cancel` and may write files of
+/// its own before its result (a sweep's scratch textures and cached reference): if the run
+/// has not stopped [`GRACE`] after the signal, and once a commit under way has finished,
+/// `finished` says whether the result is in place; if it is not, `clean_up` removes what the
+/// run wrote and the process exits with status 130.
+///
+/// The handler is installed even where the signal was ignored when the process started (a
+/// background job of a script, `cmd &`): every command that runs stages stops on SIGINT.
+pub fn install_with(
+    cancel: Arc<AtomicBool>,
+    finished: impl Fn() -> bool + Send + 'static,
+    clean_up: impl Fn() + Send + 'static,
+) {
     let _ = ctrlc::set_handler(move || {
         cancel.store(true, Ordering::SeqCst);
         std::thread::sleep(GRACE);
         while commit_state::committing() {
             std::thread::sleep(Duration::from_millis(5));
         }
-        if !commit_state::committed() {
+        if !finished() {
+            clean_up();
             eprintln!("{}", StageError::Interrupted);
             std::process::exit(i32::from(EXIT_INTERRUPTED));
         }

@@ -4,7 +4,9 @@
 //!
 //! - [`extent`]: coordinates beyond what `f32` tracing supports;
 //! - [`outputs`]: outputs that would overwrite an input or each other;
-//! - [`dir_flags`]: output paths and directories of flags that run through a file;
+//! - [`dir_flags`]: output paths and directories of flags that cannot be used (a file in the
+//!   way, a directory that takes no file or cannot be created);
+//! - [`writable`]: whether a path could be written, tried before the first stage;
 //! - [`empty`]: placed objects without geometry (a located warning);
 //! - [`limits`]: hard limits (worker threads, file sizes);
 //! - [`interrupt`]: SIGINT and SIGTERM stop a run within [`interrupt::GRACE`];
@@ -20,5 +22,6 @@ pub mod interrupt;
 pub use crate::limits;
 pub mod locate;
 pub mod outputs;
+pub mod writable;
 
 pub use crate::scene::message::io_reason;

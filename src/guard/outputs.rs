@@ -1,5 +1,6 @@
-//! Output paths that would overwrite an input or each other (issue 18, family 5), refused
-//! before anything runs: `check` and every command that writes files run the same test.
+//! Output paths that would overwrite an input or each other (issue 18, family 5), or that
+//! cannot be written ([`super::writable`]), refused before anything runs: `check` and every
+//! command that writes files run the same test.
 //!
 //! The inputs are the scene file, its includes and every file a scene names outside its
 //! outputs (meshes, textures, environment maps, displacement maps); the outputs are the
@@ -13,7 +14,7 @@ use std::path::{Component, Path, PathBuf};
 
 use hecs::World;
 
-use crate::components::{BakeRequest, Camera, Name, RenderCamera, SourceLink};
+use crate::components::{BakeRequest, Camera, Name, OutputLinks, RenderCamera, SourceLink};
 use crate::frame::RunInputs;
 
 /// Who asked for an output file: a command-line flag or a scene element.
@@ -32,6 +33,10 @@ pub struct PlannedOutput {
     pub path: PathBuf,
     /// Who asked for it.
     pub origin: Origin,
+    /// Whether the run surely writes it, so that its directory must take it: not a photon
+    /// map file that is there (a run may only read it), nor a camera output of a part run
+    /// (which writes its part file instead; the merge writes the outputs).
+    pub surely_written: bool,
 }
 
 /// A refused output: the text printed (located for scene elements) and whether a flag takes
@@ -67,6 +72,7 @@ pub fn planned_outputs(
                         link.clone().unwrap_or_else(unknown_link),
                         format!("bake request on instance \"{}\"", request.name),
                     ),
+                    surely_written: true,
                 });
             }
         }
@@ -75,29 +81,7 @@ pub fn planned_outputs(
         out.extend(bake_run_files(inputs));
     }
     if inputs.tasks.render && !inputs.outputs.discard {
-        let camera = world
-            .query::<(&Camera, &RenderCamera, Option<&Name>, Option<&SourceLink>)>()
-            .iter()
-            .next()
-            .map(|(c, _, n, l)| (c.clone(), n.cloned(), l.cloned()));
-        if let Some((camera, name, link)) = camera {
-            let name = name.map_or_else(|| "?".to_string(), |n| n.0);
-            let applied = inputs.outputs.apply(&camera.outputs).unwrap_or_default();
-            for (k, spec) in applied.into_iter().enumerate() {
-                let origin = if k == 0 && inputs.outputs.first.is_some() {
-                    Origin::Flag("-o")
-                } else {
-                    Origin::Scene(
-                        link.clone().unwrap_or_else(unknown_link),
-                        format!("camera \"{name}\" output {}", k + 1),
-                    )
-                };
-                out.push(PlannedOutput {
-                    path: spec.path,
-                    origin,
-                });
-            }
-        }
+        out.extend(camera_outputs(world, inputs));
     }
     if let (true, None, Some(file)) = (
         inputs.tasks.render && inputs.settings.photons.any(),
@@ -107,15 +91,59 @@ pub fn planned_outputs(
         out.push(PlannedOutput {
             path: file.path.clone(),
             origin: Origin::Scene(unknown_link(), "options photon_map file".to_string()),
+            surely_written: !file.path.is_file(),
         });
     }
     if let Some(path) = stats_json {
         out.push(PlannedOutput {
             path: path.to_path_buf(),
             origin: Origin::Flag("--stats-json"),
+            surely_written: true,
         });
     }
     out
+}
+
+/// The render camera's outputs after `-o`: the one `-o` names is the flag's, every other is
+/// located at its `file` in the scene (at the camera where that is not known).
+fn camera_outputs(world: &World, inputs: &RunInputs) -> Vec<PlannedOutput> {
+    let mut query = world.query::<(
+        &Camera,
+        &RenderCamera,
+        Option<&Name>,
+        Option<&SourceLink>,
+        Option<&OutputLinks>,
+    )>();
+    let Some((camera, _, name, link, links)) = query.iter().next() else {
+        return Vec::new();
+    };
+    let name = name.map_or("?", |n| n.0.as_str());
+    let applied = inputs.outputs.apply(&camera.outputs).unwrap_or_default();
+    // A part run writes its part file (`-o`) instead of the camera's outputs.
+    let part = inputs.part.is_some();
+    applied
+        .into_iter()
+        .enumerate()
+        .map(|(k, spec)| {
+            // `-o` replaces one output in place, or is added after the camera's own.
+            let flagged = inputs.outputs.first.as_ref() == Some(&spec.path)
+                && camera.outputs.get(k) != Some(&spec);
+            let origin = if flagged {
+                Origin::Flag("-o")
+            } else {
+                let at = links.and_then(|l| l.0.get(k)).or(link);
+                Origin::Scene(
+                    at.cloned().unwrap_or_else(unknown_link),
+                    format!("camera \"{name}\" output {}", k + 1),
+                )
+            };
+            PlannedOutput {
+                path: spec.path,
+                origin,
+                surely_written: flagged || !part,
+            }
+        })
+        .collect()
 }
 
 /// The files a bake writes besides its requests' textures because of its flags: the part
@@ -128,12 +156,14 @@ fn bake_run_files(inputs: &RunInputs) -> Vec<PlannedOutput> {
         out.push(PlannedOutput {
             path: inputs.bake_dir.join(name),
             origin: Origin::Flag("--part"),
+            surely_written: true,
         });
     }
     if let Some(source) = &inputs.write_gltf {
         out.push(PlannedOutput {
             path: crate::bake::gltf_out::baked_glb_path(source, &inputs.bake_dir),
             origin: Origin::Flag("--write-gltf"),
+            surely_written: true,
         });
     }
     out
@@ -222,14 +252,20 @@ fn describe(out: &PlannedOutput) -> String {
 
 fn clash(out: &PlannedOutput, message: String) -> Clash {
     let help = "give every output its own file, and none the name of an input";
+    refusal(out, format!("{message}\n  help: {help}"))
+}
+
+/// `text` (a message and its help line) as the refusal of `out`: located at the scene
+/// element that names it, or a usage error of its flag.
+fn refusal(out: &PlannedOutput, text: String) -> Clash {
     match &out.origin {
         Origin::Flag(_) => Clash {
-            text: format!("error: {message}\n  help: {help}"),
+            text: format!("error: {text}"),
             usage: true,
         },
         Origin::Scene(link, _) => Clash {
             text: format!(
-                "{}:{}:{}: error: {message}\n  help: {help}",
+                "{}:{}:{}: error: {text}",
                 link.file.display(),
                 link.line,
                 link.column
@@ -237,6 +273,38 @@ fn clash(out: &PlannedOutput, message: String) -> Clash {
             usage: false,
         },
     }
+}
+
+/// Refuses every output the run surely writes whose path cannot be written
+/// ([`super::writable`]): a directory, a path through a file, a directory that takes no new
+/// file or cannot be created. Each directory is tried once.
+pub fn unwritable(outputs: &[PlannedOutput]) -> Vec<Clash> {
+    let mut tried: Vec<(PathBuf, Option<super::writable::PathProblem>)> = Vec::new();
+    let mut found = Vec::new();
+    for out in outputs.iter().filter(|o| o.surely_written) {
+        let problem = if out.path.is_dir() {
+            Some(super::writable::PathProblem::IsADirectory)
+        } else {
+            let dir = out
+                .path
+                .parent()
+                .filter(|d| !d.as_os_str().is_empty())
+                .unwrap_or(Path::new("."))
+                .to_path_buf();
+            match tried.iter().find(|(d, _)| *d == dir) {
+                Some((_, problem)) => problem.clone(),
+                None => {
+                    let problem = super::writable::dir_problem(&dir);
+                    tried.push((dir, problem.clone()));
+                    problem
+                }
+            }
+        };
+        if let Some(problem) = problem {
+            found.push(refusal(out, problem.text(&describe(out))));
+        }
+    }
+    found
 }
 
 /// Everything refused for a run of the scene at `scene`.
@@ -254,7 +322,9 @@ pub fn check(
             }
         }
     }
-    clashes(&crate::scene::inputs::scene_inputs(scene, None), &outputs)
+    let mut refused = clashes(&crate::scene::inputs::scene_inputs(scene, None), &outputs);
+    refused.extend(unwritable(&outputs));
+    refused
 }
 
 #[cfg(test)]

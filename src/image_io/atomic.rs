@@ -146,15 +146,32 @@ pub fn remove_stale(dir: &Path) -> Vec<PathBuf> {
 }
 
 /// The error of making the directories of an output: where a file stands in the way (the
-/// system's "File exists" or "Not a directory"), it names that file.
+/// system's "File exists" or "Not a directory"), it names that file; else it names the
+/// directory and the system's reason (`/proc/x` cannot be created: not "file not found").
 fn not_a_directory(dir: &Path, e: std::io::Error) -> std::io::Error {
     let Some(blocker) = dir.ancestors().find(|a| a.is_file()) else {
-        return e;
+        return std::io::Error::other(format!(
+            "cannot create the directory {}: {}",
+            dir.display(),
+            os_reason(&e)
+        ));
     };
     std::io::Error::new(
         std::io::ErrorKind::NotADirectory,
         format!("{} is a file, not a directory", blocker.display()),
     )
+}
+
+/// The system's reason for `e`, as a sentence fragment (`permission denied`, `no such file
+/// or directory`, `read-only file system`), without its error number.
+pub fn os_reason(e: &std::io::Error) -> String {
+    let text = e.to_string();
+    let text = text.split(" (os error").next().unwrap_or(&text);
+    let mut chars = text.chars();
+    match chars.next() {
+        Some(first) => first.to_lowercase().chain(chars).collect(),
+        None => text.to_string(),
+    }
 }
 
 /// Writes every file to a temporary sibling, then renames all into place: either every
@@ -321,6 +338,20 @@ mod tests {
 
     /// An output whose directory path runs through a file names that file (the system said
     /// "File exists (os error 17)" or "Not a directory (os error 20)").
+    #[test]
+    fn a_directory_that_cannot_be_created_is_named_with_the_reason() {
+        let files = [PendingFile {
+            path: PathBuf::from("/proc/stagelight-no-dir/a.png"),
+            bytes: b"a".to_vec(),
+        }];
+        let (path, e) = commit_all(&files).unwrap_err();
+        assert_eq!(path, files[0].path);
+        assert_eq!(
+            e.to_string(),
+            "cannot create the directory /proc/stagelight-no-dir: no such file or directory"
+        );
+    }
+
     #[test]
     fn a_file_in_the_directory_path_is_named() {
         let dir = scratch("file_in_path");

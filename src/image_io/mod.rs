@@ -6,6 +6,7 @@
 
 mod atomic;
 pub mod exr_limits;
+pub mod exr_magic;
 mod exr_writer;
 pub mod imager;
 pub mod png_codec;
@@ -13,6 +14,6 @@ mod png_palette;
 mod png_writer;
 pub mod srgb;
 
-pub use atomic::{commit_all, commit_state, remove_stale, PendingFile};
+pub use atomic::{commit_all, commit_state, os_reason, remove_stale, PendingFile};
 pub use exr_writer::{encode_exr, encode_exr_with};
 pub use png_writer::{encode_alpha_png, encode_png};

@@ -252,6 +252,12 @@ fn load(
     for (parts, c) in cameras.iter_mut().zip(&merged.cameras) {
         let desc = rebase::camera(c.desc, origin);
         parts.camera = validate::camera(src, &rebased(c, &desc));
+        parts.output_links = (0..c.desc.outputs.len())
+            .map(|k| {
+                src.pos(c.file, &c.at(&format!(".outputs[{k}].file")))
+                    .into()
+            })
+            .collect();
     }
     let lights: Vec<_> = merged
         .lights

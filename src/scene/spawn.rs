@@ -34,8 +34,8 @@ use super::geometry::{Generated, ObjectGeometry};
 use super::validate::{default_material, Merged};
 use crate::components::{
     Atmosphere, AtmosphereFade, BakeRequest, Camera, ContourShader, Emitter, Fog, Imager, Instance,
-    Interior, Lenses, Material, MaterialRef, Name, RenderCamera, SceneOrigin, SourceLink, TriMesh,
-    WorldFromObject,
+    Interior, Lenses, Material, MaterialRef, Name, OutputLinks, RenderCamera, SceneOrigin,
+    SourceLink, TriMesh, WorldFromObject,
 };
 use crate::procedural::pending_instance;
 
@@ -50,6 +50,8 @@ pub struct CameraParts {
     pub lenses: Option<Lenses>,
     /// Its atmosphere (fog or fade).
     pub atmosphere: Option<super::volume::Atmosphere>,
+    /// Where each of its outputs names its file.
+    pub output_links: Vec<SourceLink>,
 }
 
 /// What one material was checked into.
@@ -334,6 +336,7 @@ pub fn spawn(src: &Sources, m: &Merged<'_>, parts: Parts) -> World {
             Name(it.desc.name.clone()),
             SourceLink::from(it.pos.clone()),
             camera,
+            OutputLinks(cam.output_links),
         ));
         if let Some(imager) = cam.imager {
             // The entity was just spawned, so inserting cannot fail.

@@ -9,14 +9,17 @@
 pub mod budget_check;
 pub mod crop;
 pub mod knob;
+pub mod leftovers;
 pub mod metrics;
 pub mod photon_knobs;
 pub mod plot;
+pub mod reference_file;
 pub mod report;
 pub mod runner;
 
 pub use crop::Crop;
 pub use knob::{Knob, KnobError};
+pub use leftovers::SweepFiles;
 pub use metrics::{compare, ErrorMetrics};
 pub use report::{SweepRow, SweepSummary};
 pub use runner::{run_sweep, Pipeline, SweepError, SweepOptions};

@@ -2,6 +2,8 @@
 //! the pipeline it is given, and compares each result with the reference.
 
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
 
 use glam::Vec3;
 use hecs::World;
@@ -15,6 +17,7 @@ use crate::settings::{Integrator, RenderSettings};
 use crate::sweep::budget_check::{self, Runs};
 use crate::sweep::crop::Crop;
 use crate::sweep::knob::{Knob, KnobError};
+use crate::sweep::leftovers::SweepFiles;
 use crate::sweep::metrics::compare;
 use crate::sweep::report::{SweepRow, SweepSummary};
 
@@ -48,6 +51,10 @@ pub struct SweepOptions {
     pub crop: Option<Crop>,
     /// The memory budget of every run (checked for every setting before the first run).
     pub budget: Budget,
+    /// Set by SIGINT or SIGTERM: every run polls it, and the sweep stops between runs.
+    pub cancel: Arc<AtomicBool>,
+    /// What the sweep writes before its result, removed when it ends without one.
+    pub files: Arc<SweepFiles>,
 }
 
 /// Why a sweep failed.
@@ -125,15 +132,17 @@ fn run_once(
     // Every run traces its own photons: a kept photon map file would hide their cost.
     settings.photon_map = None;
     let mut frame = Frame::new(settings);
+    frame.inputs.cancel = opts.cancel.clone();
     // The tessellator refuses adaptive rates that would not fit (known only once diced).
     frame.inputs.budget = opts.budget.clone();
-    let scratch = opts.out.join("scratch").join(tag);
+    let scratch = opts.files.scratch().join(tag);
     frame.inputs.bake_dir = scratch.clone();
     crate::bake::files::confine_to_bake_dir(&mut scene.world);
     frame.inputs.tasks = tasks(opts);
     // Nothing is written into the user's directories: the image is compared in memory.
     frame.inputs.outputs.discard = true;
     pipeline(&mut scene.world, &mut frame)?;
+    stop_if_cancelled(opts)?;
     let image = if opts.knob.is_bake() {
         let path = frame
             .report
@@ -321,8 +330,31 @@ fn check_crop_fits_camera(opts: &SweepOptions, world: &World) -> Result<(), Swee
     )))
 }
 
-/// Runs the sweep and returns its summary (the caller writes the files).
+/// Ends the sweep when SIGINT or SIGTERM has set its cancel flag.
+fn stop_if_cancelled(opts: &SweepOptions) -> Result<(), SweepError> {
+    if opts.cancel.load(Ordering::SeqCst) {
+        return Err(StageError::Interrupted.into());
+    }
+    Ok(())
+}
+
+/// Runs the sweep and returns its summary (the caller writes the files). However it ends, its
+/// scratch directory is removed; interrupted, everything it wrote is
+/// ([`SweepFiles::remove_all`]).
 pub fn run_sweep(
+    opts: &SweepOptions,
+    pipeline: Pipeline,
+    progress: impl FnMut(&str),
+) -> Result<SweepSummary, SweepError> {
+    let result = sweep_runs(opts, pipeline, progress);
+    match &result {
+        Err(SweepError::Stage(StageError::Interrupted)) => opts.files.remove_all(),
+        _ => opts.files.remove_scratch(),
+    }
+    result
+}
+
+fn sweep_runs(
     opts: &SweepOptions,
     pipeline: Pipeline,
     mut progress: impl FnMut(&str),
@@ -361,6 +393,8 @@ pub fn run_sweep(
                 texels: r.image.clone(),
             };
             let bytes = texture.encode_exr().map_err(|e| io(&cached, e))?;
+            stop_if_cancelled(opts)?;
+            opts.files.cached_reference(&cached);
             std::fs::create_dir_all(&opts.out).map_err(|e| io(&opts.out, e))?;
             crate::image_io::commit_all(&[crate::image_io::PendingFile {
                 path: cached.clone(),
@@ -387,6 +421,7 @@ pub fn run_sweep(
         let mut images = Vec::new();
         let (mut seconds, mut stage_seconds): (f64, Vec<(String, f64)>) = (0.0, Vec::new());
         for seed in 0..opts.seeds.max(1) {
+            stop_if_cancelled(opts)?;
             progress(&format!(
                 "{} = {} (seed {seed})",
                 opts.knob.name(),
@@ -435,7 +470,6 @@ pub fn run_sweep(
             seeds: opts.seeds.max(1),
         });
     }
-    let _ = std::fs::remove_dir_all(opts.out.join("scratch"));
     let knob = if opts.denoise {
         format!("{}+denoise", opts.knob.name())
     } else {

@@ -876,3 +876,25 @@ fn adaptive_tile_parts_count_the_first_pass_around_their_tiles() {
             == std::fs::read(dir.join("merged.exr")).unwrap()
     );
 }
+
+/// A file that is not an EXR file (a scene, a PNG) given to `merge` is said not to be a part
+/// file, with what part files are; it is not called truncated.
+#[test]
+fn merging_a_file_that_is_not_an_exr_says_it_is_not_a_part_file() {
+    let dir = setup("merge-not-exr");
+    std::fs::write(dir.join("x.png"), b"\x89PNG\r\n\x1a\n\0\0\0\rIHDR").unwrap();
+    for file in ["scene.ron", "x.png"] {
+        let o = stagelight(&dir, &["merge", file]);
+        assert_eq!(o.status.code(), Some(1), "{file}");
+        assert_eq!(
+            stderr(&o),
+            format!("error: {file}: not a part file: it is not an EXR file\n  help: merge the EXR part files that `stagelight render --part K/N -o PART.exr` (or `stagelight bake --part K/N`) writes\nnothing written\n")
+        );
+    }
+    let mut names: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().into_string().unwrap())
+        .collect();
+    names.sort();
+    assert_eq!(names, ["scene.ron", "x.png"]);
+}

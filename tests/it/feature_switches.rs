@@ -224,3 +224,23 @@ fn the_samples_diagnostic_shows_where_adaptive_sampling_refined() {
     let (ran, why) = reason(&report, "shade");
     assert!(ran && why.contains("diagnostic samples"), "{why}");
 }
+
+/// `shade`'s reason names the lens and volume shaders it leaves out only where the scene has
+/// some, as `tessellate` names switched-off displacement only where there is some.
+#[test]
+fn shade_names_disabled_lens_and_volume_shaders_only_when_the_scene_has_them() {
+    let plain = ", disable: [Lens, Volume]";
+    let (_, report) = render(&scene(plain, "", "", false));
+    assert_eq!(reason(&report, "shade"), (true, "render camera 24×24"));
+    let (_, report) = render(&scene(plain, LENS, "", false));
+    assert_eq!(
+        reason(&report, "shade"),
+        (true, "render camera 24×24, lens shaders disabled")
+    );
+    let fog = "atmosphere: Fog(sigma_a: (0.1, 0.1, 0.1), sigma_s: (0.2, 0.2, 0.2), g: 0),";
+    let (_, report) = render(&scene(plain, fog, "", false));
+    assert_eq!(
+        reason(&report, "shade"),
+        (true, "render camera 24×24, volume shaders disabled")
+    );
+}

@@ -66,7 +66,7 @@ fn two_camera_outputs_with_one_file_are_refused_at_check() {
     )
     .unwrap();
     for command in ["check", "render"] {
-        let expected = format!("scene.ron:9:15: error: camera \"cam\" output 2 (\"a.exr\") is also written by camera \"cam\" output 1 (\"a.exr\")\n{HELP}\n1 error in scene.ron{}\n", refused_tail(command));
+        let expected = format!("scene.ron:10:97: error: camera \"cam\" output 2 (\"a.exr\") is also written by camera \"cam\" output 1 (\"a.exr\")\n{HELP}\n1 error in scene.ron{}\n", refused_tail(command));
         let o = run_in(&dir, &[command, "scene.ron"]);
         assert_eq!(o.status.code(), Some(1), "{command}");
         assert_eq!(stderr_of(&o), expected, "{command}");
@@ -151,10 +151,12 @@ fn a_failing_second_output_leaves_the_first_as_it_was() {
             "s.json",
         ],
     );
+    // Refused before the first stage now (it failed at the commit, which rolled back the
+    // first file: `src/image_io/atomic.rs` tests that roll-back).
     assert_eq!(o.status.code(), Some(1));
     assert_eq!(
         stderr_of(&o),
-        "error: cannot write b.exr: is a directory; no file of this run was written\n"
+        "scene.ron:10:97: error: camera \"cam\" output 2 (\"b.exr\") is a directory\n  help: give the path of a file, not of a directory\n1 error in scene.ron; nothing rendered\n"
     );
     assert_eq!(std::fs::read(dir.join("a.exr")).unwrap(), b"previous run");
     assert_eq!(dir_names(&dir), ["a.exr", "b.exr", "scene.ron"]);
@@ -197,7 +199,7 @@ fn an_output_flag_equal_to_a_scene_output_is_a_usage_error() {
     assert_eq!(o.status.code(), Some(2), "{}", stderr_of(&o));
     assert_eq!(
         stderr_of(&o),
-        format!("scene.ron:9:15: error: camera \"cam\" output 2 (\"b.exr\") is also written by -o b.exr\n{HELP}\n1 error in scene.ron; nothing rendered\n")
+        format!("scene.ron:10:97: error: camera \"cam\" output 2 (\"b.exr\") is also written by -o b.exr\n{HELP}\n1 error in scene.ron; nothing rendered\n")
     );
     assert_eq!(dir_names(&dir), ["scene.ron"]);
 }

@@ -1,6 +1,8 @@
 //! Issue 18, family 7: SIGTERM stops a run like SIGINT (exit 130, nothing written), a run
 //! stops within half a second even inside one pixel's samples, and the hidden temporaries a
-//! killed process left are removed by the next run into the same directory.
+//! killed process left are removed by the next run into the same directory. A sweep stops
+//! the same way and removes what it wrote (its scratch textures, the reference it cached);
+//! SIGINT stops a run even when it was ignored at the start (a script's background job).
 
 use std::process::Stdio;
 use std::time::{Duration, Instant};
@@ -17,13 +19,24 @@ fn signal_after(
     signal: &str,
     delay: Duration,
 ) -> (Option<i32>, f64, String) {
-    let mut child = stagelight_in(dir)
-        .args(args)
+    let mut cmd = stagelight_in(dir);
+    cmd.args(args);
+    signal_command(cmd, signal, || std::thread::sleep(delay))
+}
+
+/// Starts `cmd`, sends `signal` once `ready` returns; returns the exit code, the seconds
+/// from the signal to the exit, and stderr.
+fn signal_command(
+    mut cmd: std::process::Command,
+    signal: &str,
+    ready: impl FnOnce(),
+) -> (Option<i32>, f64, String) {
+    let mut child = cmd
         .stdout(Stdio::null())
         .stderr(Stdio::piped())
         .spawn()
         .expect("start stagelight");
-    std::thread::sleep(delay);
+    ready();
     let sent = Instant::now();
     let status = std::process::Command::new("kill")
         .args([signal, &child.id().to_string()])
@@ -120,4 +133,133 @@ fn sigint_inside_the_bvh_build_exits_130_within_half_a_second() {
     eprintln!("stopped {seconds:.3} s after SIGINT inside the BVH build");
     assert!(seconds < 0.5, "took {seconds:.3} s after SIGINT");
     assert_eq!(dir_names(&dir), ["scene.ron"]);
+}
+
+/// `stagelight args…` in `dir` with SIGINT ignored, as a script's `cmd &` starts it.
+fn with_sigint_ignored(dir: &std::path::Path, args: &[&str]) -> std::process::Command {
+    let mut cmd = std::process::Command::new("sh");
+    cmd.arg("-c")
+        .arg("trap '' INT; exec \"$0\" \"$@\"")
+        .arg(env!("CARGO_BIN_EXE_stagelight"))
+        .args(args)
+        .current_dir(dir);
+    cmd
+}
+
+#[test]
+fn sigterm_during_a_sweep_exits_130_and_writes_nothing() {
+    let dir = scratch_dir("sigterm-sweep");
+    std::fs::write(
+        dir.join("scene.ron"),
+        small_scene(&quad_object("quad"), r#"(name: "q", of: "quad")"#, "", ""),
+    )
+    .unwrap();
+    // 10⁹ samples per pixel of the reference: it would never end.
+    let args = [
+        "sweep",
+        "scene.ron",
+        "--knob",
+        "spp=1,2",
+        "--reference-spp",
+        "1000000000",
+        "--out",
+        "out",
+    ];
+    let (code, _, stderr) = signal_after(&dir, &args, "-TERM", Duration::from_millis(700));
+    assert_eq!(code, Some(130), "{stderr}");
+    assert_eq!(
+        stderr,
+        "sweep: reference: 1000000000 samples\ninterrupted; no output written\n"
+    );
+    assert_eq!(dir_names(&dir), ["scene.ron"]);
+}
+
+#[test]
+fn a_bake_sweep_interrupted_after_its_reference_removes_its_scratch_and_reference() {
+    let dir = scratch_dir("sigterm-bake-sweep");
+    let bake = r#", bake: (resolution: (16, 16), outputs: [(kind: AmbientOcclusion(samples: 4))])"#;
+    std::fs::write(
+        dir.join("scene.ron"),
+        small_scene(
+            &quad_object("quad"),
+            &format!(r#"(name: "q", of: "quad"{bake})"#),
+            "",
+            "",
+        ),
+    )
+    .unwrap();
+    let out = dir.join("out");
+    let mut cmd = stagelight_in(&dir);
+    // The reference and the first value are quick; 10⁸ samples per texel are not.
+    cmd.args([
+        "sweep",
+        "scene.ron",
+        "--knob",
+        "bake_samples=1,100000000",
+        "--reference-spp",
+        "1",
+        "--out",
+        "out",
+    ]);
+    let (code, _, stderr) = signal_command(cmd, "-TERM", || {
+        let start = Instant::now();
+        // The reference is cached and the scratch directory made before the last value runs.
+        while !(out.join("scratch").exists()
+            && std::fs::read_dir(&out).is_ok_and(|d| {
+                d.filter_map(|e| e.ok())
+                    .any(|e| e.file_name().to_string_lossy().starts_with("reference_"))
+            }))
+        {
+            assert!(start.elapsed() < Duration::from_secs(60), "no reference");
+            std::thread::sleep(Duration::from_millis(10));
+        }
+        std::thread::sleep(Duration::from_millis(300));
+    });
+    assert_eq!(code, Some(130), "{stderr}");
+    assert!(
+        stderr.ends_with("interrupted; no output written\n"),
+        "{stderr}"
+    );
+    assert_eq!(dir_names(&dir), ["scene.ron"]);
+}
+
+#[test]
+fn sigint_stops_render_and_sweep_even_when_ignored_at_the_start() {
+    let dir = scratch_dir("sigint-ignored");
+    std::fs::write(
+        dir.join("scene.ron"),
+        small_scene(&quad_object("quad"), r#"(name: "q", of: "quad")"#, "", ""),
+    )
+    .unwrap();
+    for args in [
+        &[
+            "render",
+            "scene.ron",
+            "-o",
+            "out.exr",
+            "--spp",
+            "1000000000",
+        ][..],
+        &[
+            "sweep",
+            "scene.ron",
+            "--knob",
+            "spp=1,2",
+            "--reference-spp",
+            "1000000000",
+            "--out",
+            "out",
+        ][..],
+    ] {
+        let cmd = with_sigint_ignored(&dir, args);
+        let (code, _, stderr) = signal_command(cmd, "-INT", || {
+            std::thread::sleep(Duration::from_millis(700))
+        });
+        assert_eq!(code, Some(130), "{args:?}: {stderr}");
+        assert!(
+            stderr.ends_with("interrupted; no output written\n"),
+            "{args:?}: {stderr}"
+        );
+        assert_eq!(dir_names(&dir), ["scene.ron"], "{args:?}");
+    }
 }

@@ -382,3 +382,41 @@ fn a_crop_outside_the_camera_is_refused_before_the_reference_is_rendered() {
     assert!(!e.contains("reference:"), "{e}");
     assert!(!dir.join("o").exists());
 }
+
+/// A `--reference` that is not an EXR file (a PNG, a scene) is a usage error naming the flag
+/// and what it takes, before the scene is read; nothing is written.
+#[test]
+fn a_reference_that_is_not_an_exr_file_is_refused_naming_the_flag() {
+    let (dir, scene) = setup("reference-png");
+    std::fs::write(dir.join("ref.png"), b"\x89PNG\r\n\x1a\n\0\0\0\rIHDR").unwrap();
+    let help = "  help: give a linear EXR image of the runs' size (without --reference, the sweep renders one and caches it in --out)";
+    for (reference, said) in [
+        (
+            "ref.png",
+            "--reference ref.png is not an EXR file".to_string(),
+        ),
+        (
+            "scene.ron",
+            "--reference scene.ron is not an EXR file".to_string(),
+        ),
+        (
+            "missing.exr",
+            "--reference missing.exr: cannot read it: file not found".to_string(),
+        ),
+    ] {
+        let o = run(bin().current_dir(&dir).arg("sweep").arg(&scene).args([
+            "--knob",
+            "spp=1,2",
+            "--reference",
+            reference,
+            "--out",
+            "o",
+        ]));
+        assert_eq!(o.status.code(), Some(2), "{reference}");
+        assert_eq!(
+            String::from_utf8_lossy(&o.stderr),
+            format!("error: {said}\n{help}\n")
+        );
+        assert!(!dir.join("o").exists());
+    }
+}
