@@ -78,7 +78,12 @@ impl<'a> RowOut<'a> {
         let (mut material_id, mut samples) = (&mut material_id[..], &mut samples[..]);
         let mut sums = sums.map(|s| {
             let environment = s.environment.as_mut().map(|e| &mut e[..]);
-            (&mut s.sums[..], &mut s.covered[..], &mut s.dropped[..], environment)
+            (
+                &mut s.sums[..],
+                &mut s.covered[..],
+                &mut s.dropped[..],
+                environment,
+            )
         });
         let mut components = components.map(|c| &mut c[..]);
         let mut environment = environment.as_mut().map(|e| &mut e[..]);
@@ -93,7 +98,12 @@ impl<'a> RowOut<'a> {
                 samples: next_row(&mut samples, width),
                 sums: sums.as_mut().map(|(s, c, d, e)| {
                     let e = e.as_mut().map(|e| next_row(e, width));
-                    (next_row(s, width), next_row(c, width), next_row(d, width), e)
+                    (
+                        next_row(s, width),
+                        next_row(c, width),
+                        next_row(d, width),
+                        e,
+                    )
                 }),
                 components: components.as_mut().map(|c| next_row(c, width)),
                 environment: environment.as_mut().map(|e| next_row(e, width)),
