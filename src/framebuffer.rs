@@ -36,6 +36,13 @@ pub struct FrameBuffers {
     /// The component passes per pixel (linear RGB, in the order of `Pass::COMPONENTS`;
     /// they sum to `beauty`), kept only when an output asks for one.
     pub components: Option<Vec<[Vec3; 6]>>,
+    /// The environment's share of `beauty` per pixel: the radiance of the camera samples
+    /// that missed every surface (alpha 0), summed like the beauty (its part of the same
+    /// plain average of the pixel's samples), so `beauty − environment` is what the pixel's
+    /// surfaces contribute. Kept only when an output writes straight alpha (a PNG with
+    /// `Beauty` and `Alpha`) and the camera can see an environment, or in a farm part's
+    /// merge (see [`PixelSums::environment`]).
+    pub environment: Option<Vec<Vec3>>,
 }
 
 /// Exact per-pixel sample sums and counts (see [`FrameBuffers::sums`]).
@@ -47,6 +54,10 @@ pub struct PixelSums {
     pub covered: Vec<u32>,
     /// Non-finite samples dropped.
     pub dropped: Vec<u32>,
+    /// Exact sums of the R, G, B radiance of the samples that missed every surface (the
+    /// environment's share, [`FrameBuffers::environment`]), kept whenever the camera can
+    /// see an environment, so that any merge output can use them.
+    pub environment: Option<Vec<[ExactSum; 3]>>,
 }
 
 impl FrameBuffers {
@@ -66,6 +77,7 @@ impl FrameBuffers {
             sums: None,
             contour_store: None,
             components: None,
+            environment: None,
         }
     }
 }

@@ -89,6 +89,14 @@ pub fn image_is_read(world: &World, inputs: &crate::frame::RunInputs) -> bool {
         || render_outputs(world, &inputs.outputs).map_or(true, |outputs| !outputs.is_empty())
 }
 
+/// Whether an output of this run (after `-o`) writes straight alpha
+/// ([`crate::components::OutputSpec::writes_straight_alpha`]): the outputs that need the
+/// environment's share of partly covered pixels to take it out of their colour.
+pub fn straight_alpha_written(world: &World, inputs: &crate::frame::RunInputs) -> bool {
+    render_outputs(world, &inputs.outputs)
+        .is_ok_and(|outputs| outputs.iter().any(|o| o.writes_straight_alpha()))
+}
+
 /// Whether this run draws contour lines on the render camera's image (an image being
 /// shaded aside): `Ok` with the number of materials with a contour shader when one exists,
 /// output shaders are on, the run is not a farm part and an output shows contours (an SVG

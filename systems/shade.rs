@@ -17,8 +17,10 @@
 //! **Writes:** `outputs.image` (with the samples each pixel took and, when the run draws
 //! contours (`crate::scene_view::contours_drawn`), the contour store: what each pixel
 //! centre sees; when an output asks
-//! for a component pass and the run is not a farm part, the component passes), returned to
-//! the runner.
+//! for a component pass and the run is not a farm part, the component passes; when the
+//! camera sees an environment and an output writes straight alpha, or the run is a farm part,
+//! the environment's share of each pixel: `keeps_environment_share`), returned to the
+//! runner.
 //! **Runs when:** the run renders and a render camera exists, and the image is read; a farm
 //! part must own pixels or samples (`crate::farm::part::Share`), or else it writes an empty
 //! part file without shading.
@@ -40,12 +42,13 @@ use rayon::prelude::*;
 
 use super::prelude::*;
 use crate::accel::{Ray, RayKind};
-use crate::adaptive::{refine_flags, PixelSamples, SampleBudget};
+use crate::adaptive::{pixel_value, refine_flags, PixelSamples, SampleBudget};
 use crate::components::{ContourContrast, Interior};
 use crate::contour::{ContourStore, Probe};
 use crate::diagnostic::{samples_view, Diagnostic};
 use crate::diagnostic_view;
 use crate::farm::part::Share;
+use crate::exact_sum::ExactSum;
 use crate::farm::{Part, Split};
 use crate::features::Feature;
 use crate::framebuffer::{FrameBuffers, PixelSums};
@@ -56,7 +59,7 @@ use crate::shading::integrator::components::{camera_sample, Component, Component
 use crate::shading::integrator::material_bsdfs::MaterialBsdfs;
 use crate::shading::integrator::triangle_normals::TriangleNormals;
 use crate::shading::integrator::{camera_hit, CameraHit};
-use crate::shading::{CameraRays, FilterSampler, ShadeContext, Volumes};
+use crate::shading::{CameraRays, FilterSampler, LightSet, ShadeContext, Volumes};
 use rows::{RowOut, Totals};
 
 /// Why the image is not rendered when nothing would read it.
@@ -163,6 +166,7 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
         ));
     }
     let first_samples = part_or_whole.samples(budget.min);
+    let environment = keeps_environment_share(world, frame, &lights);
 
     let mut fb = FrameBuffers::new(camera.width, camera.height);
     let cancel = frame.inputs.cancel.clone();
@@ -198,6 +202,7 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
         components: part.is_none_or(|p| p.split == crate::farm::Split::Tiles)
             && wants_components(&camera),
         variance: budget.refines(),
+        environment,
     };
     // Pass 1: the centre-sample passes and `min` samples everywhere (a tiles part: in its
     // own pixels and, when refinement compares neighbours, those next to them).
@@ -216,7 +221,9 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
         sums: vec![Default::default(); width * height],
         covered: vec![0; width * height],
         dropped: vec![0; width * height],
+        environment: environment.then(|| vec![Default::default(); width * height]),
     });
+    fb.environment = environment.then(|| vec![Vec3::ZERO; width * height]);
     let rows = RowOut::split(&mut fb, sums.as_mut(), components.as_mut(), width, height);
     let totals = if budget.refines() {
         // Every pixel's pass-1 samples decide the refinement, so they are all kept.
@@ -307,6 +314,7 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
     }
     if settings.diagnostic == Some(Diagnostic::Samples) {
         fb.beauty = samples_view(&fb.samples, budget.max);
+        fb.environment = None;
     }
     if let (Some(d), Some(g)) = (settings.diagnostic, geometry) {
         let drawn = diagnostic_view::view(
@@ -319,6 +327,7 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
         );
         if let Some(beauty) = drawn {
             fb.beauty = beauty;
+            fb.environment = None;
         }
     }
     fb.sums = sums;
@@ -378,6 +387,19 @@ fn contour_store(world: &World, frame: &Frame, fb: &FrameBuffers) -> Option<Cont
     Some(store)
 }
 
+/// Whether the pixels keep the environment's share (the radiance of their samples that
+/// missed every surface, `FrameBuffers::environment`): only where the camera can see an
+/// environment (one exists and no imager `background` replaces it) and the share is read —
+/// by an output that writes straight alpha, which takes it out of a partly covered pixel's
+/// colour, or by a farm part, whose merge may write such an output. Other renders add
+/// nothing to their sample loop.
+fn keeps_environment_share(world: &World, frame: &Frame, lights: &LightSet) -> bool {
+    lights.camera_sees_environment
+        && lights.environment.is_some()
+        && (frame.inputs.part.is_some()
+            || crate::scene_view::straight_alpha_written(world, &frame.inputs))
+}
+
 /// Whether some output of `camera` asks for a component pass (emission, diffuse, …).
 fn wants_components(camera: &crate::components::Camera) -> bool {
     camera
@@ -396,6 +418,9 @@ struct PixelResult {
     samples: PixelSamples,
     /// Sums of the finite samples' components (only when component passes are asked for).
     components: Option<Box<[DVec3; 6]>>,
+    /// Exact sums of the radiance of the samples that missed every surface (only when the
+    /// environment's share is kept, `keeps_environment_share`).
+    environment: Option<Box<[ExactSum; 3]>>,
 }
 
 impl PixelResult {
@@ -408,6 +433,7 @@ impl PixelResult {
             material_id: 0,
             samples: PixelSamples::default(),
             components: None,
+            environment: None,
         }
     }
 
@@ -416,6 +442,13 @@ impl PixelResult {
         let n = f64::from(self.samples.taken.max(1));
         let sums = self.components.as_deref().copied().unwrap_or_default();
         sums.map(|s| (s / n).as_vec3())
+    }
+
+    /// The environment's share of the pixel value: its missed samples' radiance summed over
+    /// the samples taken, rounded as the beauty is (`pixel_value`).
+    fn environment_value(&self) -> Vec3 {
+        let sums = self.environment.as_deref().copied().unwrap_or_default();
+        pixel_value(&sums, self.samples.taken)
     }
 }
 
@@ -433,6 +466,8 @@ struct PixelShader<'a> {
     components: bool,
     /// Whether pixels keep their samples' variance (adaptive refinement reads it).
     variance: bool,
+    /// Whether pixels keep the environment's share (`keeps_environment_share`).
+    environment: bool,
 }
 
 impl PixelShader<'_> {
@@ -476,8 +511,12 @@ impl PixelShader<'_> {
         if self.components && result.components.is_none() {
             result.components = Some(Box::default());
         }
+        if self.environment && result.environment.is_none() {
+            result.environment = Some(Box::default());
+        }
         let samples = &mut result.samples;
         let mut sums = result.components.as_deref_mut();
+        let mut missed = result.environment.as_deref_mut();
         let pixel = (y * self.width + x) as u64;
         let Some(ctx) = self.ctx else {
             // An empty scene: every sample misses.
@@ -493,7 +532,7 @@ impl PixelShader<'_> {
         // (not on a small scene, whose lane kernel answers one ray faster than the gathering
         // costs: the Cornell box's path tracer took 3 % more instructions through it).
         if !lens && ctx.geometry.accel.packs_shared_origin(count as usize) {
-            self.take_in_packets(ctx, samples, sums, pixel, centre, first, count);
+            self.take_in_packets(ctx, samples, sums, missed, pixel, centre, first, count);
             return;
         }
         // Each sample's sampler is made one sample ahead (`Sampler::for_item_primed`), so its
@@ -518,12 +557,14 @@ impl PixelShader<'_> {
                 .rays
                 .ray(film.x, film.y, lens_u)
                 .map(|ray| (ray, camera_hit(ctx, &ray)));
-            self.add_sample(ctx, hit, &mut sampler, samples, sums.as_deref_mut());
+            let sums = sums.as_deref_mut();
+            self.add_sample(ctx, hit, &mut sampler, samples, sums, missed.as_deref_mut());
         }
     }
 
-    /// Adds one sample to the pixel's `samples` and component `sums`: what its camera ray
-    /// met (`None`: no ray), shaded with `sampler` past its film and lens draws.
+    /// Adds one sample to the pixel's `samples`, component `sums` and, when it missed every
+    /// surface, `missed` (the environment's share): what its camera ray met (`None`: no
+    /// ray), shaded with `sampler` past its film and lens draws.
     #[inline(always)]
     fn add_sample(
         &self,
@@ -532,6 +573,7 @@ impl PixelShader<'_> {
         sampler: &mut Sampler,
         samples: &mut PixelSamples,
         sums: Option<&mut [DVec3; 6]>,
+        missed: Option<&mut [ExactSum; 3]>,
     ) {
         let mut parts = Components::default();
         let recording = sums.is_some().then_some(&mut parts);
@@ -540,7 +582,15 @@ impl PixelShader<'_> {
                 (camera_sample(ctx, &ray, &hit, sampler, recording), true)
             }
             Some((_, CameraHit::Light(le))) => (le, true),
-            Some((_, CameraHit::Miss(le))) => (le, false),
+            Some((_, CameraHit::Miss(le))) => {
+                if let Some(missed) = missed {
+                    // As `PixelSamples` sums the beauty (non-finite values left out).
+                    missed[0].add(le.x);
+                    missed[1].add(le.y);
+                    missed[2].add(le.z);
+                }
+                (le, false)
+            }
             None => (Vec3::ZERO, false),
         };
         if self.variance {

@@ -115,10 +115,18 @@ fn png(
     let mut composed = fb.clone();
     if out.passes.contains(&Pass::Beauty) {
         output::composite(&mut composed.beauty, &mut composed.alpha, c, None);
+        // The lines cover the environment share as they cover the rest of the beauty.
+        if let Some(environment) = &mut composed.environment {
+            for (e, line) in environment.iter_mut().zip(&c.layer) {
+                *e *= 1.0 - line.w;
+            }
+        }
         return encode_png(&composed, alpha, imager);
     }
     let paper = imager.and_then(|i| i.background).unwrap_or(Vec3::ONE);
     output::composite(&mut composed.beauty, &mut composed.alpha, c, Some(paper));
+    // The paper hides what the camera saw.
+    composed.environment = None;
     encode_png(&composed, alpha, None)
 }
 

@@ -102,6 +102,16 @@ pub struct OutputSpec {
 #[derive(Debug, Clone, PartialEq, Eq, Default)]
 pub struct OutputLinks(pub Vec<super::SourceLink>);
 
+impl OutputSpec {
+    /// Whether the file stores colour beside an alpha channel as straight (unassociated)
+    /// colour: a PNG with `Beauty` and `Alpha` (EXR keeps premultiplied colour).
+    pub fn writes_straight_alpha(&self) -> bool {
+        self.format == ImageFormat::Png
+            && self.passes.contains(&Pass::Beauty)
+            && self.passes.contains(&Pass::Alpha)
+    }
+}
+
 /// A pinhole camera looking down its local −Z axis, +Y up.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Camera {

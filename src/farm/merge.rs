@@ -178,6 +178,10 @@ fn is_empty(px: &PartPixels, i: usize) -> bool {
             .components
             .as_ref()
             .is_none_or(|c| c[i].iter().all(|v| *v == Vec3::ZERO))
+        && px
+            .environment
+            .as_ref()
+            .is_none_or(|e| e[i].iter().all(|s| *s == ExactSum::default()))
 }
 
 /// Merges a complete set of parts into frame buffers (see the module header); a tile part
@@ -193,6 +197,10 @@ pub fn merge(parts: &[LoadedPart]) -> Result<FrameBuffers, String> {
     // Component passes come only from tile parts, each pixel from its owner.
     if parts.iter().all(|p| p.file.pixels.components.is_some()) {
         total.components = Some(vec![[Vec3::ZERO; 6]; n]);
+    }
+    // The environment's share: the exact sums add like the beauty's.
+    if parts.iter().all(|p| p.file.pixels.environment.is_some()) {
+        total.environment = Some(vec![[ExactSum::default(); 3]; n]);
     }
     for p in parts {
         let px = &p.file.pixels;
@@ -216,6 +224,11 @@ pub fn merge(parts: &[LoadedPart]) -> Result<FrameBuffers, String> {
             total.taken[i] += px.taken[i];
             total.covered[i] += px.covered[i];
             total.dropped[i] += px.dropped[i];
+            if let (Some(t), Some(e)) = (&mut total.environment, &px.environment) {
+                for c in 0..3 {
+                    t[i][c].merge(&e[i][c]);
+                }
+            }
             if owner == k {
                 total.depth[i] = px.depth[i];
                 total.normal[i] = px.normal[i];
@@ -239,6 +252,11 @@ pub fn merge(parts: &[LoadedPart]) -> Result<FrameBuffers, String> {
         fb.samples[i] = taken;
     }
     fb.components = total.components;
+    fb.environment = total.environment.map(|sums| {
+        (sums.iter().zip(&total.taken))
+            .map(|(s, &taken)| pixel_value(s, taken))
+            .collect()
+    });
     Ok(fb)
 }
 

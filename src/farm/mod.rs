@@ -86,6 +86,7 @@ pub fn part_file(
         object_id: fb.object_id.clone(),
         material_id: fb.material_id.clone(),
         components: fb.components.clone(),
+        environment: sums.environment.clone(),
     };
     Some(part_file::PartFile {
         header: PartHeader {

@@ -1,6 +1,7 @@
 //! The part file: one farm part's results as an OpenEXR file that holds exactly what an
 //! exact merge needs — per pixel the exact sample sums ([`ExactSum`] limbs as `u32` words),
-//! the sample, coverage and dropped counts, and the centre-sample passes — plus metadata
+//! the sample, coverage and dropped counts, the centre-sample passes and, when the camera
+//! sees an environment, the exact sums of the samples that missed every surface — plus metadata
 //! (format, stagelight version, scene, scene content hash, settings hash, the recorded
 //! settings of `super::recorded_settings`, seed, part K/N, split) as `key value` lines of one
 //! EXR text attribute (`super::exr_meta`), ending in a checksum of every other entry and the
@@ -17,12 +18,17 @@ use crate::exact_sum::{ExactSum, LIMBS};
 use crate::hash::Fnv64;
 
 /// The `format` entry of the metadata.
-pub const FORMAT: &str = "stagelight part 4";
+pub const FORMAT: &str = "stagelight part 5";
 
 /// Earlier formats, whose checksum covered only the pixel data: refused with a message that
 /// asks for the parts to be rendered again (their part number and settings could have been
 /// edited unnoticed).
 pub const OLDER_FORMATS: &[&str] = &["stagelight part 3", "stagelight part 2"];
+
+/// The format before the environment's share was kept: refused with a message that asks
+/// for the parts to be rendered again (a merge could not take the environment out of a
+/// partly covered pixel's straight colour, [`PartPixels::environment`]).
+pub const WITHOUT_ENVIRONMENT: &str = "stagelight part 4";
 
 /// Everything about a part except its pixels.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -96,6 +102,9 @@ pub struct PartPixels {
     /// Component-pass values (emission … volume, `Pass::COMPONENTS` order) of the pixels a
     /// tile part owns, when the camera asks for component passes.
     pub components: Option<Vec<[Vec3; 6]>>,
+    /// Exact sums of the R, G, B radiance of the samples that missed every surface, when
+    /// the camera sees an environment (`crate::framebuffer::PixelSums::environment`).
+    pub environment: Option<Vec<[ExactSum; 3]>>,
 }
 
 impl PartPixels {
@@ -111,6 +120,7 @@ impl PartPixels {
             object_id: vec![0; n],
             material_id: vec![0; n],
             components: None,
+            environment: None,
         }
     }
 }
@@ -135,21 +145,37 @@ fn sum_channel(c: usize, word: usize) -> String {
     format!("sum.{}.{word:02}", CHANNELS[c])
 }
 
-/// The u32 channels of a part, by name, in a fixed order.
-fn u32_channels(p: &PartPixels) -> Vec<(String, Vec<u32>)> {
-    let mut out = Vec::new();
+/// The channel of word `word` of the environment sums' colour channel `c`.
+fn environment_channel(c: usize, word: usize) -> String {
+    format!("environment.{}.{word:02}", CHANNELS[c])
+}
+
+/// The channels `name(c, word)` holding the 32-bit words of exact sums `sums`.
+fn sum_words(
+    sums: &[[ExactSum; 3]],
+    name: fn(usize, usize) -> String,
+    out: &mut Vec<(String, Vec<u32>)>,
+) {
     for c in 0..3 {
         for word in 0..2 * LIMBS {
-            let values = p
-                .sums
+            let values = sums
                 .iter()
                 .map(|s| {
                     let limb = s[c].limbs()[word / 2];
                     (limb >> (32 * (word % 2))) as u32
                 })
                 .collect();
-            out.push((sum_channel(c, word), values));
+            out.push((name(c, word), values));
         }
+    }
+}
+
+/// The u32 channels of a part, by name, in a fixed order.
+fn u32_channels(p: &PartPixels) -> Vec<(String, Vec<u32>)> {
+    let mut out = Vec::new();
+    sum_words(&p.sums, sum_channel, &mut out);
+    if let Some(environment) = &p.environment {
+        sum_words(environment, environment_channel, &mut out);
     }
     out.push(("taken".into(), p.taken.clone()));
     out.push(("covered".into(), p.covered.clone()));
@@ -416,6 +442,11 @@ pub fn decode(bytes: &[u8]) -> std::result::Result<PartFile, String> {
     let attrs = super::exr_meta::read(&layer.attributes)
         .ok_or("not a stagelight part file (no `stagelight` attribute)")?;
     let entries = Entries::new(attrs, "part file");
+    if entries.get("format")? == WITHOUT_ENVIRONMENT {
+        return Err(format!(
+            "part file of the older format \"{WITHOUT_ENVIRONMENT}\", which leaves out the environment's share of partly covered pixels (this stagelight writes \"{FORMAT}\")\n  help: render the parts again with this stagelight (`stagelight render --part K/N`)"
+        ));
+    }
     let size = layer.size;
     let mut header = entries.header(
         FORMAT,
@@ -450,17 +481,26 @@ pub fn decode(bytes: &[u8]) -> std::result::Result<PartFile, String> {
         )),
     };
     let mut pixels = PartPixels::new(n);
-    for c in 0..3 {
-        let words: Vec<Vec<u32>> = (0..2 * LIMBS)
-            .map(|w| u32s(&sum_channel(c, w)))
-            .collect::<std::result::Result<_, _>>()?;
-        for (i, s) in pixels.sums.iter_mut().enumerate() {
-            let mut limbs = [0u64; LIMBS];
-            for (l, limb) in limbs.iter_mut().enumerate() {
-                *limb = u64::from(words[2 * l][i]) | (u64::from(words[2 * l + 1][i]) << 32);
+    let read_sums = |name: fn(usize, usize) -> String, sums: &mut [[ExactSum; 3]]| {
+        for c in 0..3 {
+            let words: Vec<Vec<u32>> = (0..2 * LIMBS)
+                .map(|w| u32s(&name(c, w)))
+                .collect::<std::result::Result<_, _>>()?;
+            for (i, s) in sums.iter_mut().enumerate() {
+                let mut limbs = [0u64; LIMBS];
+                for (l, limb) in limbs.iter_mut().enumerate() {
+                    *limb = u64::from(words[2 * l][i]) | (u64::from(words[2 * l + 1][i]) << 32);
+                }
+                s[c] = ExactSum::from_limbs(limbs);
             }
-            s[c] = ExactSum::from_limbs(limbs);
         }
+        Ok::<_, String>(())
+    };
+    read_sums(sum_channel, &mut pixels.sums)?;
+    if find(&environment_channel(0, 0)).is_ok() {
+        let mut environment = vec![[ExactSum::default(); 3]; n];
+        read_sums(environment_channel, &mut environment)?;
+        pixels.environment = Some(environment);
     }
     pixels.taken = u32s("taken")?;
     pixels.covered = u32s("covered")?;
@@ -500,6 +540,10 @@ pub(crate) mod tests {
         let mut components = vec![[Vec3::ZERO; 6]; 6];
         components[3][4] = Vec3::new(0.25, -1.0, 1e-20);
         pixels.components = Some(components);
+        let mut environment = vec![[ExactSum::default(); 3]; 6];
+        environment[1][2].add(0.75);
+        environment[4][0].add(3e-20);
+        pixels.environment = Some(environment);
         PartFile {
             header: PartHeader {
                 version: "0.1.0".into(),
@@ -578,12 +622,21 @@ pub(crate) mod tests {
         let bytes = encode(&sample()).unwrap();
         let old = edited(
             &bytes,
-            "format stagelight part 4",
+            "format stagelight part 5",
             "format stagelight part 3",
         );
         assert_eq!(
             decode(&old).unwrap_err(),
-            "part file of the older format \"stagelight part 3\", whose checksum leaves out its part number and settings (this stagelight writes \"stagelight part 4\")\n  help: render the parts again with this stagelight (`stagelight render --part K/N`)"
+            "part file of the older format \"stagelight part 3\", whose checksum leaves out its part number and settings (this stagelight writes \"stagelight part 5\")\n  help: render the parts again with this stagelight (`stagelight render --part K/N`)"
+        );
+        let old = edited(
+            &bytes,
+            "format stagelight part 5",
+            "format stagelight part 4",
+        );
+        assert_eq!(
+            decode(&old).unwrap_err(),
+            "part file of the older format \"stagelight part 4\", which leaves out the environment's share of partly covered pixels (this stagelight writes \"stagelight part 5\")\n  help: render the parts again with this stagelight (`stagelight render --part K/N`)"
         );
     }
 

@@ -23,6 +23,8 @@ impl Imager {
     }
 
     /// Composites the background behind a pixel of coverage `alpha`: colour and new alpha.
+    /// `c` is the pixel's surfaces' share: the background replaces the environment, which
+    /// camera rays then do not see (`encode_png` leaves any environment share out first).
     pub fn composite(&self, c: Vec3, alpha: f32) -> (Vec3, f32) {
         match self.background {
             Some(b) => (c + b * (1.0 - alpha.clamp(0.0, 1.0)), 1.0),

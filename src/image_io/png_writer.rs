@@ -11,11 +11,16 @@ use crate::image_io::srgb::to_u8;
 /// Encodes the beauty pass as PNG; with `alpha` the coverage goes into the alpha channel.
 /// An imager (background, exposure, tone map, gamma) replaces the plain sRGB encoding.
 ///
-/// The frame buffer's colour is premultiplied by coverage (as in EXR); PNG's alpha is
-/// straight (unassociated, PNG specification §3.3 "alpha channel"), so with `alpha` a partly
-/// covered pixel's colour is divided by its alpha before it is encoded — otherwise every
-/// viewer composites dark fringes. Pixels of alpha 0 (the environment, nothing) keep their
-/// colour; opaque pixels are unchanged.
+/// The frame buffer's colour is premultiplied by coverage (as in EXR) and, where camera
+/// samples missed every surface, holds the environment they saw:
+/// `c = surface·a + environment·(1 − a)`. PNG's alpha is straight (unassociated, PNG
+/// specification §3.3 "alpha channel"), so with `alpha` a partly covered pixel is written
+/// with its surfaces' own colour `(c − E) / a`, `E` its environment share
+/// ([`FrameBuffers::environment`], zero where the buffers keep none) — the viewer composites
+/// its own background behind it; dividing `c` alone would leave a halo of the environment's
+/// colour around every silhouette, and not dividing, dark fringes. Pixels of alpha 0 (the
+/// environment, nothing) keep their colour; opaque pixels are unchanged. An imager's
+/// `background` replaces the environment the same way: it is composited behind `c − E`.
 pub fn encode_png(
     fb: &FrameBuffers,
     alpha: bool,
@@ -24,19 +29,31 @@ pub fn encode_png(
     let channels = if alpha { 4 } else { 3 };
     let mut data = Vec::with_capacity(fb.beauty.len() * channels);
     let quantize = |v: f32| (v.clamp(0.0, 1.0) * 255.0 + 0.5) as u8;
+    let background = imager.and_then(|im| im.background).is_some();
+    let environment = |i: usize| fb.environment.as_ref().map_or(Vec3::ZERO, |e| e[i]);
     for (i, c) in fb.beauty.iter().enumerate() {
         let straight = |c: Vec3, a: f32| if alpha { unpremultiply(c, a) } else { c };
+        let a = fb.alpha[i];
+        // What is composited over a background (the imager's, or the viewer's): the
+        // surfaces' share, without the environment the missed samples saw.
+        let over = |c: Vec3| {
+            if background || (alpha && a > 0.0 && a < 1.0) {
+                c - environment(i)
+            } else {
+                c
+            }
+        };
         let a = match imager {
             Some(im) => {
-                let (c, a) = im.composite(*c, fb.alpha[i]);
+                let (c, a) = im.composite(over(*c), a);
                 let c = straight(c, a);
                 data.extend_from_slice(&[c.x, c.y, c.z].map(|v| quantize(im.encode(v))));
                 a
             }
             None => {
-                let c = straight(*c, fb.alpha[i]);
+                let c = straight(over(*c), a);
                 data.extend_from_slice(&[to_u8(c.x), to_u8(c.y), to_u8(c.z)]);
-                fb.alpha[i]
+                a
             }
         };
         if alpha {
@@ -107,6 +124,28 @@ mod tests {
             bytes(encode_png(&fb, false, None).unwrap()),
             (3, vec![quarter; 3])
         );
+    }
+
+    #[test]
+    fn the_environment_share_is_left_out_of_a_partly_covered_pixels_straight_colour() {
+        // A quarter of the pixel covered by a surface of 0.2, the rest sees an environment
+        // of 1: c = 0.2·0.25 + 1·0.75, E = 0.75, straight colour 0.2 (not c / a = 3.2).
+        let mut fb = one_pixel(Vec3::splat(0.8), 0.25);
+        fb.environment = Some(vec![Vec3::splat(0.75)]);
+        let (_, s) = bytes(encode_png(&fb, true, None).unwrap());
+        assert_eq!(s, vec![to_u8(0.2), to_u8(0.2), to_u8(0.2), 64]);
+        // Without an alpha channel the environment stays behind the surface.
+        let (_, s) = bytes(encode_png(&fb, false, None).unwrap());
+        assert_eq!(s, vec![to_u8(0.8); 3]);
+        // An imager background replaces the environment: 0.05 + 0.75·0.4.
+        let imager = Imager {
+            background: Some(Vec3::splat(0.4)),
+            gamma: Some(1.0),
+            ..Imager::default()
+        };
+        let (_, s) = bytes(encode_png(&fb, true, Some(&imager)).unwrap());
+        let v = (0.35f32 * 255.0 + 0.5) as u8;
+        assert_eq!(s, vec![v, v, v, 255]);
     }
 
     #[test]

@@ -10,6 +10,7 @@ use glam::{DVec3, Vec2, Vec3};
 use super::PixelShader;
 use crate::accel::{Hit, Ray, RayKind};
 use crate::adaptive::PixelSamples;
+use crate::exact_sum::ExactSum;
 use crate::sampling::Sampler;
 use crate::shading::integrator::camera_hit_with;
 use crate::shading::ShadeContext;
@@ -26,6 +27,7 @@ impl PixelShader<'_> {
         ctx: &ShadeContext<'_>,
         samples: &mut PixelSamples,
         mut sums: Option<&mut [DVec3; 6]>,
+        mut missed: Option<&mut [ExactSum; 3]>,
         pixel: u64,
         centre: Vec2,
         first: u32,
@@ -73,7 +75,8 @@ impl PixelShader<'_> {
                     let ray = rays[slot[k]];
                     (ray, camera_hit_with(ctx, &ray, hits[slot[k]]))
                 });
-                self.add_sample(ctx, hit, &mut sampler, samples, sums.as_deref_mut());
+                let sums = sums.as_deref_mut();
+                self.add_sample(ctx, hit, &mut sampler, samples, sums, missed.as_deref_mut());
             }
             start += n as u32;
         }

@@ -21,10 +21,16 @@ pub(super) struct RowOut<'a> {
     samples: &'a mut [u32],
     sums: Option<SumsRow<'a>>,
     components: Option<&'a mut [[Vec3; 6]]>,
+    environment: Option<&'a mut [Vec3]>,
 }
 
-/// A row of a farm part's exact sums, covered counts and dropped counts.
-type SumsRow<'a> = (&'a mut [[ExactSum; 3]], &'a mut [u32], &'a mut [u32]);
+/// A row of a farm part's exact sums, covered counts, dropped counts and environment sums.
+type SumsRow<'a> = (
+    &'a mut [[ExactSum; 3]],
+    &'a mut [u32],
+    &'a mut [u32],
+    Option<&'a mut [[ExactSum; 3]]>,
+);
 
 /// Samples taken and dropped, summed over pixels.
 #[derive(Debug, Default, Clone, Copy, PartialEq, Eq)]
@@ -47,8 +53,8 @@ impl Add for Totals {
 }
 
 impl<'a> RowOut<'a> {
-    /// The `height` rows of `width` pixels of `fb`, `sums` and `components` (row-major
-    /// buffers of `width × height` values).
+    /// The `height` rows of `width` pixels of `fb` (with its environment share when it
+    /// keeps one), `sums` and `components` (row-major buffers of `width × height` values).
     pub(super) fn split(
         fb: &'a mut FrameBuffers,
         sums: Option<&'a mut PixelSums>,
@@ -64,13 +70,23 @@ impl<'a> RowOut<'a> {
             object_id,
             material_id,
             samples,
+            environment,
             ..
         } = fb;
         let (mut beauty, mut alpha, mut depth) = (&mut beauty[..], &mut alpha[..], &mut depth[..]);
         let (mut normal, mut object_id) = (&mut normal[..], &mut object_id[..]);
         let (mut material_id, mut samples) = (&mut material_id[..], &mut samples[..]);
-        let mut sums = sums.map(|s| (&mut s.sums[..], &mut s.covered[..], &mut s.dropped[..]));
+        let mut sums = sums.map(|s| {
+            let environment = s.environment.as_mut().map(|e| &mut e[..]);
+            (
+                &mut s.sums[..],
+                &mut s.covered[..],
+                &mut s.dropped[..],
+                environment,
+            )
+        });
         let mut components = components.map(|c| &mut c[..]);
+        let mut environment = environment.as_mut().map(|e| &mut e[..]);
         (0..height)
             .map(|_| RowOut {
                 beauty: next_row(&mut beauty, width),
@@ -80,10 +96,17 @@ impl<'a> RowOut<'a> {
                 object_id: next_row(&mut object_id, width),
                 material_id: next_row(&mut material_id, width),
                 samples: next_row(&mut samples, width),
-                sums: sums
-                    .as_mut()
-                    .map(|(s, c, d)| (next_row(s, width), next_row(c, width), next_row(d, width))),
+                sums: sums.as_mut().map(|(s, c, d, e)| {
+                    let e = e.as_mut().map(|e| next_row(e, width));
+                    (
+                        next_row(s, width),
+                        next_row(c, width),
+                        next_row(d, width),
+                        e,
+                    )
+                }),
                 components: components.as_mut().map(|c| next_row(c, width)),
+                environment: environment.as_mut().map(|e| next_row(e, width)),
             })
             .collect()
     }
@@ -98,10 +121,13 @@ impl<'a> RowOut<'a> {
             empty = PixelResult::empty();
             &empty
         };
-        if let Some((sums, covered, dropped)) = &mut self.sums {
+        if let Some((sums, covered, dropped, environment)) = &mut self.sums {
             sums[x] = *p.samples.sums();
             covered[x] = p.samples.covered;
             dropped[x] = p.samples.dropped;
+            if let Some(e) = environment {
+                e[x] = p.environment.as_deref().copied().unwrap_or_default();
+            }
         }
         self.beauty[x] = p.samples.value();
         self.alpha[x] = p.samples.alpha();
@@ -112,6 +138,9 @@ impl<'a> RowOut<'a> {
         self.samples[x] = p.samples.taken;
         if let Some(c) = &mut self.components {
             c[x] = p.component_values();
+        }
+        if let Some(e) = &mut self.environment {
+            e[x] = p.environment_value();
         }
         Totals {
             taken: u64::from(p.samples.taken),
@@ -145,6 +174,8 @@ mod tests {
             samples.add(Vec3::NAN, true);
         }
         let c = DVec3::new(i as f64, 0.5, -(i as f64));
+        let mut environment = [ExactSum::default(); 3];
+        environment[i % 3].add(i as f32 * 0.25);
         PixelResult {
             depth: i as f32 + 0.25,
             normal: Vec3::new(i as f32, 1.0, 2.0),
@@ -152,6 +183,7 @@ mod tests {
             material_id: i as u32 * 5 + 1,
             samples,
             components: Some(Box::new([c, c * 2.0, c, c, c * 3.0, c])),
+            environment: Some(Box::new(environment)),
         }
     }
 
@@ -165,6 +197,12 @@ mod tests {
         sums.sums[i] = *p.samples.sums();
         sums.covered[i] = p.samples.covered;
         sums.dropped[i] = p.samples.dropped;
+        if let Some(e) = &mut sums.environment {
+            e[i] = p.environment.as_deref().copied().unwrap_or_default();
+        }
+        if let Some(e) = &mut fb.environment {
+            e[i] = p.environment_value();
+        }
         fb.beauty[i] = p.samples.value();
         fb.alpha[i] = p.samples.alpha();
         fb.depth[i] = p.depth;
@@ -183,13 +221,18 @@ mod tests {
             sums: vec![Default::default(); n],
             covered: vec![0; n],
             dropped: vec![0; n],
+            environment: Some(vec![Default::default(); n]),
         };
-        let (mut expected, mut expected_sums) = (FrameBuffers::new(5, 3), empty_sums());
+        let with_environment = || FrameBuffers {
+            environment: Some(vec![Vec3::ZERO; n]),
+            ..FrameBuffers::new(5, 3)
+        };
+        let (mut expected, mut expected_sums) = (with_environment(), empty_sums());
         let mut expected_comps = vec![[Vec3::ZERO; 6]; n];
         for i in 0..n {
             flat(&mut expected, &mut expected_sums, &mut expected_comps, i);
         }
-        let (mut fb, mut sums) = (FrameBuffers::new(5, 3), empty_sums());
+        let (mut fb, mut sums) = (with_environment(), empty_sums());
         let mut comps = vec![[Vec3::ZERO; 6]; n];
         let mut rows = RowOut::split(&mut fb, Some(&mut sums), Some(&mut comps), width, height);
         assert_eq!(rows.len(), height);
@@ -203,6 +246,8 @@ mod tests {
         }
         assert_eq!(fb, expected);
         assert_eq!(sums, expected_sums);
+        let environment = expected.environment.as_ref().unwrap();
+        assert!(environment.iter().filter(|e| **e != Vec3::ZERO).count() > n / 2);
         assert_eq!(comps, expected_comps);
         let taken = expected.samples.iter().map(|&s| u64::from(s)).sum();
         let dropped = expected_sums.dropped.iter().map(|&d| u64::from(d)).sum();

@@ -301,7 +301,7 @@ fn parts_whose_label_or_seed_was_edited_are_refused_as_damaged() {
         dir.join("old.exr"),
         edited(
             &read("part_1.exr"),
-            "format stagelight part 4",
+            "format stagelight part 5",
             "format stagelight part 3",
         ),
     )
@@ -320,7 +320,7 @@ fn parts_whose_label_or_seed_was_edited_are_refused_as_damaged() {
     assert_eq!(o.status.code(), Some(1));
     assert_eq!(
         stderr(&o),
-        "error: old.exr: part file of the older format \"stagelight part 3\", whose checksum leaves out its part number and settings (this stagelight writes \"stagelight part 4\")\n  help: render the parts again with this stagelight (`stagelight render --part K/N`)\nnothing written\n"
+        "error: old.exr: part file of the older format \"stagelight part 3\", whose checksum leaves out its part number and settings (this stagelight writes \"stagelight part 5\")\n  help: render the parts again with this stagelight (`stagelight render --part K/N`)\nnothing written\n"
     );
     assert!(!dir.join("out.png").exists());
     ok(
