@@ -112,10 +112,8 @@ fn transform(ck: &mut Checker<'_>, path: &str, t: &TransformDesc) -> Option<DAff
         )?)),
         TransformDesc::Matrix(m) => {
             let a = ck.affine(&format!("{path}.Matrix[0]"), "transform matrix", m)?;
-            let cols = [a.matrix3.x_axis, a.matrix3.y_axis, a.matrix3.z_axis];
-            let scale = cols.iter().map(|c| c.length()).product::<f64>();
-            let det = a.matrix3.determinant();
-            if scale == 0.0 || det.abs() <= 1e-12 * scale {
+            if super::desc_values::is_singular(&a.matrix3) {
+                let det = a.matrix3.determinant();
                 ck.error(
                     path,
                     format!("transform matrix is singular (determinant {det}): not invertible"),

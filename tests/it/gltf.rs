@@ -102,6 +102,8 @@ fn load_errors(file: &str) -> Vec<String> {
 #[test]
 fn bad_files_are_located_errors() {
     let at = |f: &str| format!("{DIR}/{f}:1:1: error: invalid glTF file");
+    let located =
+        |f: &str, line_column: &str| format!("{DIR}/{f}:{line_column}: error: invalid glTF file");
     assert_eq!(
         load_errors("truncated.glb"),
         [format!(
@@ -116,11 +118,11 @@ fn bad_files_are_located_errors() {
             at("wrong_magic.glb")
         )]
     );
+    // A .gltf's error is at the element's line and column: the buffer's uri.
     assert_eq!(
         load_errors("missing_buffer.gltf"),
         [format!(
-            "{}: buffers[0].uri: cannot read \"{DIR}/nowhere.bin\": file not found",
-            at("missing_buffer.gltf")
+            "{DIR}/missing_buffer.gltf:78:14: error: invalid glTF file: buffers[0].uri: cannot read \"{DIR}/nowhere.bin\": file not found"
         )]
     );
     // gltf-json 1.4's validator indexes the POSITION accessor unchecked: a panic before.
@@ -128,7 +130,7 @@ fn bad_files_are_located_errors() {
         load_errors("missing_position_accessor.gltf"),
         [format!(
             "{}: meshes[0].primitives[0].attributes.POSITION: invalid glTF: accessor 0 is out of range: the file has 0 accessors",
-            at("missing_position_accessor.gltf")
+            located("missing_position_accessor.gltf", "6:78")
         )]
     );
     // The glTF crate's `Image::source` unwraps these: a panic before.
@@ -136,14 +138,14 @@ fn bad_files_are_located_errors() {
         load_errors("image_without_source.gltf"),
         [format!(
             "{}: images[0]: invalid glTF: an image needs a uri or a bufferView",
-            at("image_without_source.gltf")
+            located("image_without_source.gltf", "47:3")
         )]
     );
     assert_eq!(
         load_errors("image_view_without_mime_type.gltf"),
         [format!(
             "{}: images[0]: invalid glTF: an image in a bufferView needs its mimeType",
-            at("image_view_without_mime_type.gltf")
+            located("image_view_without_mime_type.gltf", "47:3")
         )]
     );
     let mesh_error = |f: &str, object: &str, message: &str| {

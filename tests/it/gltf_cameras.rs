@@ -117,7 +117,7 @@ fn unusable_yfov_and_aspect_ratio_are_located_errors() {
     assert_eq!(
         crate::common::cli::stderr_of(&o),
         format!(
-            "cams.gltf:1:1: warning: cameras[2]: ignored an orthographic camera (only perspective cameras are read)\n\
+            "cams.gltf:11:5: warning: cameras[2]: ignored an orthographic camera (only perspective cameras are read)\n\
              cams.gltf:9:69: error: cameras[0] (\"near\"): \"yfov\" must be greater than 0 and less than π radians (180°), found 0\n{yfov_help}\
              cams.gltf:9:102: error: cameras[0] (\"near\"): \"aspectRatio\" must be greater than 0, found -1\n{aspect_help}\
              cams.gltf:10:68: error: cameras[1] (\"far\"): \"yfov\" must be greater than 0 and less than π radians (180°), found 3.2\n{yfov_help}\

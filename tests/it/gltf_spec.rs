@@ -14,7 +14,7 @@ use stagelight::components::Camera;
 use crate::common::cli::{run_in, scratch_dir, stderr_of};
 
 /// Standard base64 with padding.
-fn base64(bytes: &[u8]) -> String {
+pub(crate) fn base64(bytes: &[u8]) -> String {
     const A: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
     let mut out = String::new();
     for chunk in bytes.chunks(3) {
@@ -36,7 +36,7 @@ fn base64(bytes: &[u8]) -> String {
 /// A unit quad in z = 0 (corners (0,0), (1,0), (1,1), (0,1)) with `TEXCOORD_0` = `uvs`, the
 /// indices `indices` (u16) and a float `_BATCHID` per vertex; `PRIMITIVE`, `MATERIALS`,
 /// `NODES` and `ROOTS` are left for the caller to fill in.
-fn quad(uvs: [[f32; 2]; 4], indices: &[u16]) -> String {
+pub(crate) fn quad(uvs: [[f32; 2]; 4], indices: &[u16]) -> String {
     let mut bytes = Vec::new();
     for p in [
         [0.0f32, 0.0, 0.0],
@@ -83,13 +83,13 @@ fn quad(uvs: [[f32; 2]; 4], indices: &[u16]) -> String {
 }
 
 /// The quad's two triangles, counter-clockwise seen from +z.
-const LIST: [u16; 6] = [0, 1, 2, 0, 2, 3];
-const PLAIN_UVS: [[f32; 2]; 4] = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
-const PRIMITIVE: &str = r#"{"attributes": {"POSITION": 0, "TEXCOORD_0": 1, "_BATCHID": 2}, "indices": 3, "material": 0}"#;
-const MATERIAL: &str = r#"{"name": "m", "pbrMetallicRoughness": {"metallicFactor": 0}}"#;
+pub(crate) const LIST: [u16; 6] = [0, 1, 2, 0, 2, 3];
+pub(crate) const PLAIN_UVS: [[f32; 2]; 4] = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+pub(crate) const PRIMITIVE: &str = r#"{"attributes": {"POSITION": 0, "TEXCOORD_0": 1, "_BATCHID": 2}, "indices": 3, "material": 0}"#;
+pub(crate) const MATERIAL: &str = r#"{"name": "m", "pbrMetallicRoughness": {"metallicFactor": 0}}"#;
 
 /// The quad file with one node placing the mesh.
-fn one_node(primitive: &str, node: &str) -> String {
+pub(crate) fn one_node(primitive: &str, node: &str) -> String {
     quad(PLAIN_UVS, &LIST)
         .replace("PRIMITIVE", primitive)
         .replace("MATERIALS", MATERIAL)
@@ -97,7 +97,7 @@ fn one_node(primitive: &str, node: &str) -> String {
         .replace("ROOTS", "0")
 }
 
-fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
+pub(crate) fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
     let path = dir.join(name);
     std::fs::write(&path, text).unwrap();
     path
@@ -117,13 +117,18 @@ fn application_specific_attributes_are_read_past_and_unknown_names_named() {
         String::from_utf8_lossy(&o.stdout)
     );
     let bad = PRIMITIVE.replace("_BATCHID", "BATCHID");
-    write(&dir, "bad.gltf", &one_node(&bad, r#"{"mesh": 0}"#));
+    let text = one_node(&bad, r#"{"mesh": 0}"#);
+    write(&dir, "bad.gltf", &text);
     let o = run_in(&dir, &["check", "bad.gltf"]);
     assert_eq!(o.status.code(), Some(1));
+    // At the attribute's value, where the name is.
     assert_eq!(
         stderr_of(&o),
-        "bad.gltf:1:1: error: invalid glTF file: meshes[0].primitives[0].attributes[\"BATCHID\"]: invalid glTF: \"BATCHID\" is not an attribute name: expected POSITION, NORMAL, TANGENT, TEXCOORD_n, COLOR_n, JOINTS_n, WEIGHTS_n, or an application-specific name starting with \"_\"\n\
-         1 error in bad.gltf\n"
+        format!(
+            "bad.gltf:{}: error: invalid glTF file: meshes[0].primitives[0].attributes[\"BATCHID\"]: invalid glTF: \"BATCHID\" is not an attribute name: expected POSITION, NORMAL, TANGENT, TEXCOORD_n, COLOR_n, JOINTS_n, WEIGHTS_n, or an application-specific name starting with \"_\"\n\
+             1 error in bad.gltf\n",
+            crate::gltf_validity::after(&text, "\"BATCHID\": ")
+        )
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
@@ -529,13 +534,17 @@ fn a_mirrored_and_clamped_sampler_wraps_each_axis_as_gltf_says() {
 
     // A mode glTF does not define is the file's error, named by its JSON path.
     let bad = r#"{"wrapS": 33648, "wrapT": 12345}"#;
-    write(&dir, "bad.gltf", &sampled_quad(wide, "tex.png", bad));
+    let text = sampled_quad(wide, "tex.png", bad);
+    write(&dir, "bad.gltf", &text);
     let o = run_in(&dir, &["check", "bad.gltf"]);
     assert_eq!(o.status.code(), Some(1));
     assert_eq!(
         stderr_of(&o),
-        "bad.gltf:1:1: error: invalid glTF file: samplers[0].wrapT: invalid glTF: not a wrap mode: expected 33071 (CLAMP_TO_EDGE), 33648 (MIRRORED_REPEAT) or 10497 (REPEAT)\n\
-         1 error in bad.gltf\n"
+        format!(
+            "bad.gltf:{}: error: invalid glTF file: samplers[0].wrapT: invalid glTF: not a wrap mode: expected 33071 (CLAMP_TO_EDGE), 33648 (MIRRORED_REPEAT) or 10497 (REPEAT)\n\
+             1 error in bad.gltf\n",
+            crate::gltf_validity::after(&text, "\"wrapT\": ")
+        )
     );
 
     // The loaded texture: u mirrors, v clamps.

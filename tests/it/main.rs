@@ -39,6 +39,7 @@ mod gltf_attributes;
 mod gltf_cameras;
 mod gltf_materials;
 mod gltf_spec;
+mod gltf_validity;
 mod hard_cases_bake;
 mod hard_cases_bump;
 mod hard_cases_far;

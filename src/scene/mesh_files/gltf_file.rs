@@ -2,10 +2,12 @@
 //! container and the mesh reader.
 //!
 //! [`open`] reads the container: the GLB header and chunks (checked here, so a truncated or
-//! foreign file is reported at its byte offset), the JSON (parsed and validated by the `gltf`
-//! crate), and every buffer (the GLB `BIN` chunk, a base64 `data:` URI, or a file beside the
+//! foreign file is reported at its byte offset), the glTF version ([`version`]), the JSON
+//! (parsed and validated by the `gltf` crate; its error paths are given in the JSON's names,
+//! [`json_names`]), and every buffer (the GLB `BIN` chunk, a base64 `data:` URI, or a file beside the
 //! glTF file). [`mesh_data`] reads one mesh (or one of its primitives) into [`MeshData`]:
-//! positions, normals, `TEXCOORD_0` and `TEXCOORD_1`, `TANGENT` (checked: `w` = ±1),
+//! positions, normals, `TEXCOORD_0` and `TEXCOORD_1` (integers must be normalised unless
+//! the file uses `KHR_mesh_quantization`), `TANGENT` (checked: `w` = ±1),
 //! `COLOR_0` (vec3 or vec4, float or normalised u8/u16, linear; alpha not read; white for
 //! the primitives of a mesh that lack it), indices, as triangle lists, strips or fans;
 //! other attributes (`_BATCHID`, joints, …) are ignored. A non-finite position is an error
@@ -27,6 +29,8 @@ use gltf::accessor::{DataType, Dimensions};
 use gltf::mesh::Mode;
 
 use super::{Location, MeshData, MeshFileError};
+
+pub mod version;
 
 /// GLB chunk type of the JSON chunk (`"JSON"` little-endian).
 const CHUNK_JSON: u32 = 0x4E4F_534A;
@@ -257,6 +261,12 @@ pub fn open(bytes: &[u8], dir: Option<&Path>) -> Result<GltfFile, MeshFileError>
     let root: gltf::json::Root = match gltf::json::deserialize::from_slice(json) {
         Ok(root) => root,
         Err(e) => {
+            if let Some(refusal) = serde_json::from_slice::<serde_json::Value>(json)
+                .ok()
+                .and_then(|root| version::refusal_of_value(&root))
+            {
+                return Err(refusal);
+            }
             let message = format!("invalid glTF JSON: {e}");
             return Err(if binary {
                 at_byte(20, message)
@@ -265,6 +275,7 @@ pub fn open(bytes: &[u8], dir: Option<&Path>) -> Result<GltfFile, MeshFileError>
             });
         }
     };
+    version::check(&root.asset)?;
     if let Some((path, message)) = what_the_validator_misses(&root) {
         return Err(element(path, format!("invalid glTF: {message}")));
     }
@@ -278,7 +289,11 @@ pub fn open(bytes: &[u8], dir: Option<&Path>) -> Result<GltfFile, MeshFileError>
             };
             let (path, text) = match invalid_semantic(json, path.as_str()) {
                 Some(named) => named,
-                None => (path.to_string(), validation_text(path.as_str(), error)),
+                None => {
+                    let path = json_names(path.as_str());
+                    let text = validation_text(&path, error);
+                    (path, text)
+                }
             };
             return Err(element(path, format!("invalid glTF: {text}{more}")));
         }
@@ -381,11 +396,44 @@ fn invalid_semantic(json: &[u8], path: &str) -> Option<(String, String)> {
     ))
 }
 
-/// What the validator's `error` at `path` means; a sampler's wrap mode names the modes.
+/// A validation path as the JSON spells it: the `gltf` crate names extension members by
+/// its Rust fields in camel case (`extensions.khrLightsPunctual.lights[0]`), the file by
+/// the extension's name (`extensions.KHR_lights_punctual.lights[0]`).
+pub fn json_names(path: &str) -> String {
+    path.split('.')
+        .map(|part| {
+            let (key, rest) = part.split_at(part.find('[').unwrap_or(part.len()));
+            let Some(words) = key
+                .strip_prefix("khr")
+                .filter(|w| w.starts_with(|c: char| c.is_ascii_uppercase()))
+            else {
+                return part.to_string();
+            };
+            let mut name = String::from("KHR");
+            for c in words.chars() {
+                if c.is_ascii_uppercase() {
+                    name.push('_');
+                }
+                name.push(c.to_ascii_lowercase());
+            }
+            name + rest
+        })
+        .collect::<Vec<_>>()
+        .join(".")
+}
+
+/// What the validator's `error` at `path` (in the JSON's names) means; a sampler's wrap
+/// mode and a light's type name the values allowed.
 fn validation_text(path: &str, error: &gltf::json::validation::Error) -> String {
     use gltf::json::validation::Error as E;
     if matches!(error, E::Invalid) && (path.ends_with(".wrapS") || path.ends_with(".wrapT")) {
         return "not a wrap mode: expected 33071 (CLAMP_TO_EDGE), 33648 (MIRRORED_REPEAT) or 10497 (REPEAT)".into();
+    }
+    if matches!(error, E::Invalid)
+        && path.starts_with("extensions.KHR_lights_punctual.lights[")
+        && path.ends_with("].type")
+    {
+        return "not a light type: expected \"directional\", \"point\" or \"spot\"".into();
     }
     match error {
         E::IndexOutOfBounds => "an index is out of range",
@@ -692,6 +740,10 @@ pub fn mesh_data(file: &GltfFile, pick: &MeshPick) -> Result<MeshData, MeshFileE
             None => normals = None,
         }
         let uv_kinds = [DataType::F32, DataType::U8, DataType::U16];
+        let quantized = file
+            .doc
+            .extensions_used()
+            .any(|e| e == "KHR_mesh_quantization");
         for (set, list) in [(0u32, &mut uv0), (1, &mut uv1)] {
             let role = format!("TEXCOORD_{set}");
             match attr(
@@ -701,6 +753,18 @@ pub fn mesh_data(file: &GltfFile, pick: &MeshPick) -> Result<MeshData, MeshFileE
                 Dimensions::Vec2,
             )? {
                 Some(a) => {
+                    if a.kind != DataType::F32 && !a.normalized && !quantized {
+                        let index = prim
+                            .get(&gltf::Semantic::TexCoords(set))
+                            .map_or(0, |c| c.index());
+                        return Err(element(
+                            format!("accessors[{index}]"),
+                            format!(
+                                "{role}: {:?} components must be normalized (\"normalized\": true) to be texture coordinates (unnormalized integers need KHR_mesh_quantization)",
+                                a.kind
+                            ),
+                        ));
+                    }
                     if let Some(list) = list {
                         list.extend((0..n).map(|i| Vec2::new(a.float(i, 0), 1.0 - a.float(i, 1))));
                     }

@@ -30,6 +30,43 @@ pub fn value_position(json: &[u8], path: &[Step<'_>]) -> Option<(usize, usize)> 
     (s.at < json.len()).then(|| line_column(json, s.at))
 }
 
+/// The steps of an element path as messages write it: `meshes[0].attributes["_ID"]` →
+/// `meshes`, 0, `attributes`, `_ID`; `None` for text that is not such a path.
+pub fn parse_path(path: &str) -> Option<Vec<Step<'_>>> {
+    let mut steps = Vec::new();
+    let mut rest = path;
+    while !rest.is_empty() {
+        rest = rest.strip_prefix('.').unwrap_or(rest);
+        if let Some(quoted) = rest.strip_prefix("[\"") {
+            let (key, after) = quoted.split_once("\"]")?;
+            steps.push(Step::Key(key));
+            rest = after;
+        } else if let Some(index) = rest.strip_prefix('[') {
+            let (index, after) = index.split_once(']')?;
+            steps.push(Step::Index(index.parse().ok()?));
+            rest = after;
+        } else {
+            let end = rest.find(['.', '[']).unwrap_or(rest.len());
+            if end == 0 {
+                return None;
+            }
+            steps.push(Step::Key(&rest[..end]));
+            rest = &rest[end..];
+        }
+    }
+    Some(steps)
+}
+
+/// The line and column of the element an error path names (`accessors[3].count`), or of
+/// the nearest enclosing element that is in the file (a missing member's object); `None`
+/// when the path is not one or not even its first step is there.
+pub fn element_position(json: &[u8], path: &str) -> Option<(usize, usize)> {
+    let steps = parse_path(path)?;
+    (1..=steps.len())
+        .rev()
+        .find_map(|n| value_position(json, &steps[..n]))
+}
+
 /// Line and column of byte `at` (1-based; a byte that is not UTF-8 counts as a character).
 fn line_column(text: &[u8], at: usize) -> (usize, usize) {
     let before = &text[..at];
@@ -164,6 +201,29 @@ mod tests {
         assert_eq!(value_position(JSON.as_bytes(), &path), Some((5, 26)));
         let path = [Step::Key("images"), Step::Index(0)];
         assert_eq!(value_position(JSON.as_bytes(), &path), Some((4, 5)));
+    }
+
+    #[test]
+    fn error_paths_are_parsed_and_located_at_their_nearest_element() {
+        assert_eq!(
+            parse_path("images[1].uri"),
+            Some(vec![Step::Key("images"), Step::Index(1), Step::Key("uri")])
+        );
+        assert_eq!(
+            parse_path("a[0][2][\"_X.y\"]"),
+            Some(vec![
+                Step::Key("a"),
+                Step::Index(0),
+                Step::Index(2),
+                Step::Key("_X.y")
+            ])
+        );
+        assert_eq!(parse_path("a[x]"), None);
+        let json = JSON.as_bytes();
+        assert_eq!(element_position(json, "images[1].uri"), Some((5, 26)));
+        // images[0] has no uri: its object.
+        assert_eq!(element_position(json, "images[0].uri"), Some((4, 5)));
+        assert_eq!(element_position(json, "textures[0]"), None);
     }
 
     #[test]

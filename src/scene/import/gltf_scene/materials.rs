@@ -22,32 +22,93 @@ use std::path::Path;
 
 use super::json_positions::{value_position, Step};
 use super::texture_transform::{self, UvTransform};
-use super::{at_file, Walk};
+use super::Walk;
 use crate::scene::desc::{BumpDesc, InputDesc, MaterialDesc, NodeDesc, SceneDesc, ShaderDesc};
 use crate::scene::import::SourcePos;
 use crate::scene::mesh_files::gltf_file::GltfFile;
 use crate::scene::message::Diagnostic;
 use crate::scene::nodes_desc::{AxisWrapDesc, EncodingDesc, WrapDesc, EMISSION};
 
-/// Warns once about file-level features the reader does not map.
+/// Material extensions this reader reads (`KHR_materials_emissive_strength`) or has no use
+/// for: `MSFT_lightmap` holds a baked lightmap (what `--write-gltf` writes), light the path
+/// tracer computes itself, as for the occlusion texture.
+const MATERIAL_EXTENSIONS_READ: [&str; 2] = ["KHR_materials_emissive_strength", "MSFT_lightmap"];
+
+/// How many materials a warning about an unread extension names before "and N more".
+const MATERIALS_NAMED: usize = 4;
+
+/// Warns once about file-level features the reader does not map: animations, each material
+/// extension it does not read (naming the materials that use it), and each other extension
+/// the file requires that it does not support.
 pub fn warn_unmapped(w: &mut Walk<'_>) {
     if w.file.doc.animations().count() > 0 {
-        w.warnings.push(at_file(
-            w.path,
-            "ignored the file's animations (the scene is read at rest)",
-        ));
+        let d = located(
+            w,
+            &[Step::Key("animations")],
+            "ignored the file's animations (the scene is read at rest)".into(),
+        );
+        w.warnings.push(d);
     }
-    for ext in w.file.doc.extensions_required() {
+    // Each unread extension: the (index, name) of the materials using it.
+    let mut unread: BTreeMap<String, Vec<(usize, Option<&str>)>> = BTreeMap::new();
+    for (i, m) in w.file.doc.as_json().materials.iter().enumerate() {
+        let others = m.extensions.iter().flat_map(|e| e.others.keys());
+        for ext in others {
+            if !MATERIAL_EXTENSIONS_READ.contains(&ext.as_str()) {
+                let name = super::given(m.name.as_deref());
+                unread.entry(ext.clone()).or_default().push((i, name));
+            }
+        }
+    }
+    for (ext, users) in &unread {
+        let mut named: Vec<String> = users
+            .iter()
+            .take(MATERIALS_NAMED)
+            .map(|(i, name)| match name {
+                Some(n) => format!("materials[{i}] (\"{n}\")"),
+                None => format!("materials[{i}]"),
+            })
+            .collect();
+        if users.len() > MATERIALS_NAMED {
+            named.push(format!("{} more", users.len() - MATERIALS_NAMED));
+        }
+        let list = match named.split_last() {
+            Some((last, [])) => last.clone(),
+            Some((last, rest)) => format!("{} and {last}", rest.join(", ")),
+            None => String::new(),
+        };
+        let first = users[0].0;
+        let path = [
+            Step::Key("materials"),
+            Step::Index(first),
+            Step::Key("extensions"),
+            Step::Key(ext),
+        ];
+        let d = located(
+            w,
+            &path,
+            format!(
+                "ignored \"{ext}\" on {list}: this reader does not support the extension, so the material{} render{} without it",
+                if users.len() == 1 { "" } else { "s" },
+                if users.len() == 1 { "s" } else { "" },
+            ),
+        );
+        w.warnings.push(d);
+    }
+    for (k, ext) in w.file.doc.extensions_required().enumerate() {
         if !matches!(
             ext,
             "KHR_lights_punctual" | "KHR_materials_emissive_strength" | "KHR_texture_transform"
-        ) {
-            w.warnings.push(at_file(
-                w.path,
+        ) && !unread.contains_key(ext)
+        {
+            let d = located(
+                w,
+                &[Step::Key("extensionsRequired"), Step::Index(k)],
                 format!(
                     "extensionsRequired: ignored \"{ext}\", which this reader does not support"
                 ),
-            ));
+            );
+            w.warnings.push(d);
         }
     }
 }
@@ -105,8 +166,7 @@ fn node(n: NodeDesc) -> InputDesc {
 
 fn material(w: &mut Walk<'_>, m: &gltf::Material<'_>) -> MaterialDesc {
     let index = m.index().unwrap_or(0);
-    let label = m
-        .name()
+    let label = super::given(m.name())
         .map(str::to_string)
         .unwrap_or_else(|| format!("material{index}"));
     let name = w.names.take(&label);
@@ -418,14 +478,10 @@ impl Slot {
     }
 }
 
-/// A diagnostic at `path` in a `.gltf` (at the start of a `.glb`).
+/// A diagnostic at `path` (or its nearest enclosing element) in a `.gltf`, at the start
+/// of a `.glb`.
 fn located(w: &Walk<'_>, path: &[Step<'_>], message: String) -> Diagnostic {
-    let mut d = at_file(w.path, message);
-    if let Some((line, column)) = w.json.and_then(|json| value_position(json, path)) {
-        d.line = line;
-        d.column = column;
-    }
-    d
+    super::at_element(w, path, message)
 }
 
 /// The image of a texture reference, or `None` (with a warning) when it cannot be bound.
@@ -486,12 +542,17 @@ fn texture_ref(
     };
     let tex_coord = transform.and_then(|t| t.tex_coord).unwrap_or(tex_coord);
     if tex_coord != 0 {
-        w.warnings.push(at_file(
-            w.path,
+        let mut path = vec![Step::Key("materials"), Step::Index(material)];
+        path.extend(slot.keys.iter().map(|k| Step::Key(k)));
+        path.push(Step::Key("texCoord"));
+        let d = located(
+            w,
+            &path,
             format!(
                 "{at}: ignored its {what} texture on TEXCOORD_{tex_coord} (shading reads TEXCOORD_0 only)"
             ),
-        ));
+        );
+        w.warnings.push(d);
         return None;
     }
     if let Some(t) = transform.filter(|t| what == NORMAL.what && t.rotation != 0.0) {

@@ -13,21 +13,27 @@
 //! - materials ([`materials`]), cameras (their values checked by [`camera_values`]) and
 //!   `KHR_lights_punctual` lights ([`view`]);
 //! - node values the specification forbids (a rotation that is not a unit quaternion, a
-//!   second parent) are errors ([`node_checks`]);
+//!   transform that is not finite or is both a matrix and TRS, a second parent) are errors
+//!   ([`node_checks`]); a node whose transform flattens space (a zero scale: a hidden
+//!   instance) is skipped with everything under it, with a warning;
+//! - light values outside `KHR_lights_punctual`'s ranges are errors ([`light_values`]);
+//!   skins, morph targets, animations and unread material extensions are warnings;
 //! - every instance of a primitive with `TEXCOORD_1` carries the default bake request
 //!   ([`bakes`]), so `stagelight bake model.glb` bakes lightmaps and ambient occlusion.
 //!
 //! Names come from the file (node, mesh, material, light and camera names; `node3` and the
-//! like for unnamed ones), made unique with `_2`, `_3`, … and stripped of characters that
-//! could not be part of a file name. Every element is located at the start of the file (a
-//! binary file has no lines); messages name the glTF element (`nodes[3]`). Images are the
-//! exception in a `.gltf`: an image file that cannot be read is reported at its `uri`'s line
-//! and column ([`json_positions`]), and so are the image errors the shared loader finds in
-//! the bindings that use it.
+//! like for unnamed or empty-named ones, an unnamed node's yielding to the file's own node
+//! names), made unique with `_2`, `_3`, … and stripped of characters that could not be part
+//! of a file name. Messages name the glTF element by its JSON path (`nodes[3]`,
+//! `extensions.KHR_lights_punctual.lights[0]`); in a `.gltf` they are placed at that
+//! element's line and column ([`json_positions`]), in a `.glb` (no lines) at the start of the
+//! file. An image file that cannot be read is reported at its `uri`, and so are the image
+//! errors the shared loader finds in the bindings that use it.
 
 pub mod bakes;
 pub mod camera_values;
 pub mod json_positions;
+pub mod light_values;
 pub mod materials;
 pub mod node_checks;
 pub mod texture_transform;
@@ -45,6 +51,7 @@ use crate::scene::desc::{
 use crate::scene::mesh_files::gltf_file::{self, GltfFile};
 use crate::scene::mesh_files::MeshFileError;
 use crate::scene::message::Diagnostic;
+use json_positions::Step;
 use node_checks::local_matrix;
 
 /// Deepest node hierarchy read (deeper is refused, as a cycle would be).
@@ -56,23 +63,62 @@ pub struct Names {
     used: HashSet<String>,
 }
 
+/// `preferred` made safe for a file name: letters, digits, `_`, `-`, `.`; others become
+/// `_`, and `_` goes before an empty name or one starting with `.`.
+fn safe(preferred: &str) -> String {
+    let mut base: String = preferred
+        .chars()
+        .map(|c| {
+            if c.is_alphanumeric() || matches!(c, '_' | '-' | '.') {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect();
+    if base.is_empty() || base.starts_with('.') {
+        base.insert(0, '_');
+    }
+    base
+}
+
+/// An element's name from the file, `None` for none or an empty one (both get the
+/// element's fallback name, such as `node3`).
+pub fn given(name: Option<&str>) -> Option<&str> {
+    name.filter(|n| !n.is_empty())
+}
+
+/// Every node's label, by index: its name, or `node<i>` for one without (or with an
+/// empty name), which yields to the file's names: `node4` becomes `node4_2` when a node
+/// of the file is named `node4`.
+fn node_labels(doc: &gltf::Document) -> Vec<String> {
+    let named: HashSet<String> = doc
+        .nodes()
+        .filter_map(|n| given(n.name()))
+        .map(safe)
+        .collect();
+    doc.nodes()
+        .map(|node| match given(node.name()) {
+            Some(name) => name.to_string(),
+            None => {
+                let base = format!("node{}", node.index());
+                let mut label = base.clone();
+                let mut k = 2;
+                while named.contains(&label) {
+                    label = format!("{base}_{k}");
+                    k += 1;
+                }
+                label
+            }
+        })
+        .collect()
+}
+
 impl Names {
     /// `preferred` made safe (letters, digits, `_`, `-`, `.`; others become `_`) and unique
     /// (`_2`, `_3`, … appended).
     pub fn take(&mut self, preferred: &str) -> String {
-        let mut base: String = preferred
-            .chars()
-            .map(|c| {
-                if c.is_alphanumeric() || matches!(c, '_' | '-' | '.') {
-                    c
-                } else {
-                    '_'
-                }
-            })
-            .collect();
-        if base.is_empty() || base.starts_with('.') {
-            base.insert(0, '_');
-        }
+        let base = safe(preferred);
         let mut name = base.clone();
         let mut k = 2;
         while !self.used.insert(name.clone()) {
@@ -88,8 +134,37 @@ pub fn at_file(path: &Path, message: impl Into<String>) -> Diagnostic {
     Diagnostic::at(SourcePos::start(path), message, None)
 }
 
-/// The diagnostic for a container or mesh error of the file at `path`.
-pub fn file_error(path: &Path, e: &MeshFileError) -> Diagnostic {
+/// A diagnostic at the JSON element `path` (`nodes[2].skin`) in a `.gltf`, or at the
+/// nearest enclosing element that is there; at the start of a `.glb`.
+pub fn at_element(w: &Walk<'_>, path: &[Step<'_>], message: impl Into<String>) -> Diagnostic {
+    let mut d = at_file(w.path, message);
+    if let Some(json) = w.json {
+        if let Some((line, column)) = (1..=path.len())
+            .rev()
+            .find_map(|n| json_positions::value_position(json, &path[..n]))
+        {
+            (d.line, d.column) = (line, column);
+        }
+    }
+    d
+}
+
+/// `[1, 0.5]`: numbers as a JSON file writes them.
+fn numbers(values: &[f32]) -> String {
+    let list: Vec<String> = values.iter().map(f32::to_string).collect();
+    format!("[{}]", list.join(", "))
+}
+
+/// Pushes warning `d` unless the same message was given already (an element met twice).
+pub fn warn_once(w: &mut Walk<'_>, d: Diagnostic) {
+    if !w.warnings.iter().any(|x| x.message == d.message) {
+        w.warnings.push(d);
+    }
+}
+
+/// The diagnostic for a container or mesh error of the file at `path`: at the line and
+/// column of the element it names in a `.gltf` (`json`: its text), else at the start.
+pub fn file_error(path: &Path, e: &MeshFileError, json: Option<&[u8]>) -> Diagnostic {
     use crate::scene::mesh_files::Location;
     match e {
         MeshFileError::Parse {
@@ -102,7 +177,15 @@ pub fn file_error(path: &Path, e: &MeshFileError) -> Diagnostic {
             message: format!("invalid glTF file: {message}"),
             help: None,
         },
-        other => at_file(path, format!("invalid glTF file: {other}")),
+        other => {
+            let mut d = at_file(path, format!("invalid glTF file: {other}"));
+            if let (MeshFileError::Element { path, .. }, Some(json)) = (other, json) {
+                if let Some((line, column)) = json_positions::element_position(json, path) {
+                    (d.line, d.column) = (line, column);
+                }
+            }
+            d
+        }
     }
 }
 
@@ -122,12 +205,12 @@ pub fn as_include(desc: &mut SceneDesc) {
 /// Reads a glTF scene (the reader in `import::FORMATS`).
 pub fn read(path: &Path, bytes: &[u8]) -> Result<ReadScene, ReadFailure> {
     let dir = path.parent().unwrap_or(Path::new(""));
-    let file = gltf_file::open(bytes, Some(dir)).map_err(|e| vec![file_error(path, &e)])?;
+    let json = (!bytes.starts_with(b"glTF")).then_some(bytes);
+    let file = gltf_file::open(bytes, Some(dir)).map_err(|e| vec![file_error(path, &e, json)])?;
     let file_name = path
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_default();
-    let json = (!bytes.starts_with(b"glTF")).then_some(bytes);
     let (desc, warnings, _) = build(path, &file_name, &file, json)?;
     let mut table = PathTable::default();
     table.insert("", SourcePos::start(path));
@@ -177,6 +260,8 @@ pub struct Walk<'a> {
     errors: Vec<Diagnostic>,
     /// The JSON text of a `.gltf` file (for positions in messages); `None` for a `.glb`.
     json: Option<&'a [u8]>,
+    /// Each node's label (`node_labels`).
+    node_labels: Vec<String>,
 }
 
 /// What places a node under its parent: an instance of an object or a group, with the
@@ -193,13 +278,69 @@ fn place(w: &mut Walk<'_>, name: String, of: String, local: &DMat4) -> String {
     name
 }
 
-fn node_label(node: &gltf::Node<'_>) -> String {
-    node.name()
-        .map(str::to_string)
-        .unwrap_or_else(|| format!("node{}", node.index()))
-}
-
 impl Walk<'_> {
+    /// The label of `node` (its name, or its fallback name).
+    fn node_label(&self, node: &gltf::Node<'_>) -> String {
+        self.node_labels[node.index()].clone()
+    }
+
+    /// Warnings for what of `node` and its mesh is not read: its skin, its morph weights,
+    /// and the mesh's morph targets (once per mesh).
+    fn warn_unread_animation(&mut self, node: &gltf::Node<'_>) {
+        let i = node.index();
+        if node.skin().is_some() {
+            let path = [Step::Key("nodes"), Step::Index(i), Step::Key("skin")];
+            let d = at_element(
+                self,
+                &path,
+                format!("nodes[{i}]: ignored its skin (the mesh is read in its bind pose)"),
+            );
+            warn_once(self, d);
+        }
+        if let Some(weights) = node.weights() {
+            let path = [Step::Key("nodes"), Step::Index(i), Step::Key("weights")];
+            let d = at_element(
+                self,
+                &path,
+                format!(
+                    "nodes[{i}]: ignored its morph weights {} (the mesh is read in its base shape, without its morph targets)",
+                    numbers(weights)
+                ),
+            );
+            warn_once(self, d);
+        }
+        let Some(mesh) = node.mesh() else { return };
+        let Some(p) = mesh.primitives().position(|p| p.morph_targets().len() > 0) else {
+            return;
+        };
+        let m = mesh.index();
+        let label = match given(mesh.name()) {
+            Some(n) => format!("meshes[{m}] (\"{n}\")"),
+            None => format!("meshes[{m}]"),
+        };
+        let weights = match mesh.weights() {
+            Some(w) if w.iter().any(|&x| x != 0.0) => {
+                format!("; its default weights {} are not applied", numbers(w))
+            }
+            _ => String::new(),
+        };
+        let path = [
+            Step::Key("meshes"),
+            Step::Index(m),
+            Step::Key("primitives"),
+            Step::Index(p),
+            Step::Key("targets"),
+        ];
+        let d = at_element(
+            self,
+            &path,
+            format!(
+                "{label}: ignored its morph targets (the mesh is read in its base shape, without them){weights}"
+            ),
+        );
+        warn_once(self, d);
+    }
+
     /// The file refused: its errors with the warnings found so far.
     fn refusal(&mut self) -> ReadFailure {
         ReadFailure {
@@ -212,8 +353,7 @@ impl Walk<'_> {
         if let Some(name) = self.objects.get(&(mesh.index(), p)) {
             return name.clone();
         }
-        let label = mesh
-            .name()
+        let label = given(mesh.name())
             .map(str::to_string)
             .unwrap_or_else(|| format!("mesh{}", mesh.index()));
         let count = mesh.primitives().count();
@@ -298,10 +438,19 @@ impl Walk<'_> {
             } else {
                 format!("the node hierarchy is deeper than {MAX_NODE_DEPTH} levels")
             };
-            self.errors.push(at_file(
-                self.path,
-                format!("nodes[{}]: {why}", node.index()),
-            ));
+            let path = [Step::Key("nodes"), Step::Index(node.index())];
+            let d = at_element(self, &path, format!("nodes[{}]: {why}", node.index()));
+            self.errors.push(d);
+            return None;
+        }
+        if let Some((key, message)) = node_checks::hidden(&node) {
+            let path = [
+                Step::Key("nodes"),
+                Step::Index(node.index()),
+                Step::Key(key),
+            ];
+            let d = at_element(self, &path, message);
+            warn_once(self, d);
             return None;
         }
         stack.push(node.index());
@@ -312,30 +461,25 @@ impl Walk<'_> {
             ) {
                 self.cameras.push((node.index(), world));
             } else {
-                self.warnings.push(at_file(
-                    self.path,
+                let path = [Step::Key("cameras"), Step::Index(camera.index())];
+                let d = at_element(
+                    self,
+                    &path,
                     format!(
                         "cameras[{}]: ignored an orthographic camera (only perspective cameras are read)",
                         camera.index()
                     ),
-                ));
+                );
+                warn_once(self, d);
             }
         }
         if let Some(light) = node.light() {
             view::light(self, &light, &world);
         }
-        if node.skin().is_some() || node.weights().is_some() {
-            self.warnings.push(at_file(
-                self.path,
-                format!(
-                    "nodes[{}]: ignored its skin and morph weights (the mesh is read in its bind pose)",
-                    node.index()
-                ),
-            ));
-        }
+        self.warn_unread_animation(&node);
         let mut result = None;
         let memo = self.groups.get(&node.index()).cloned();
-        let label = node_label(&node);
+        let label = self.node_label(&node);
         let mut members = Vec::new();
         if let Some(mesh) = node.mesh() {
             let prims: Vec<gltf::Primitive<'_>> = mesh.primitives().collect();
@@ -363,7 +507,7 @@ impl Walk<'_> {
         }
         for child in node.children() {
             let local = local_matrix(&child);
-            let child_label = node_label(&child);
+            let child_label = self.node_label(&child);
             let child_index = child.index();
             let placed = self.walk(child, world * local, stack);
             if memo.is_some() {
@@ -439,6 +583,7 @@ fn build(
         leaves: Vec::new(),
         errors: Vec::new(),
         json,
+        node_labels: node_labels(doc),
     };
     materials::warn_unmapped(&mut w);
     node_checks::check(&mut w);
@@ -448,7 +593,7 @@ fn build(
     let mut members = Vec::new();
     for node in scene.nodes() {
         let local = local_matrix(&node);
-        let label = node_label(&node);
+        let label = w.node_label(&node);
         let index = node.index();
         if let Some(of) = w.walk(node, local, &mut Vec::new()) {
             let lone = w.objects.values().any(|o| *o == of);
@@ -465,18 +610,21 @@ fn build(
         return Err(w.refusal());
     }
     if members.is_empty() {
+        let at = [Step::Key("scenes"), Step::Index(scene.index())];
+        let error = at_element(
+            &w,
+            &at,
+            format!(
+                "scenes[{}]: the scene places no mesh: nothing to render",
+                scene.index()
+            ),
+        );
         return Err(ReadFailure {
-            errors: vec![at_file(
-                path,
-                format!(
-                    "scenes[{}]: the scene places no mesh: nothing to render",
-                    scene.index()
-                ),
-            )],
+            errors: vec![error],
             warnings: std::mem::take(&mut w.warnings),
         });
     }
-    let root = w.names.take(scene.name().unwrap_or("scene"));
+    let root = w.names.take(given(scene.name()).unwrap_or("scene"));
     w.desc.groups.push(GroupDesc {
         name: root.clone(),
         members,
@@ -500,7 +648,7 @@ pub fn primitive_instances(
     bytes: &[u8],
 ) -> Result<Vec<(String, usize, usize)>, Vec<Diagnostic>> {
     let dir = path.parent().unwrap_or(Path::new(""));
-    let file = gltf_file::open(bytes, Some(dir)).map_err(|e| vec![file_error(path, &e)])?;
+    let file = gltf_file::open(bytes, Some(dir)).map_err(|e| vec![file_error(path, &e, None)])?;
     build(path, "", &file, None)
         .map(|(_, _, leaves)| leaves)
         .map_err(|failure| failure.errors)

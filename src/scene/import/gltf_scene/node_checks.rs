@@ -1,13 +1,20 @@
 //! Node values glTF 2.0 forbids and the `gltf` crate accepts: a `rotation` that is not a unit
-//! quaternion, and a node listed as the child of two parents. Each is an error naming the
-//! node (at the value's line and column in a `.gltf`, at the start of a `.glb`), never
-//! repaired in silence; a rotation whose length is within [`ROTATION_TOLERANCE`] of 1
-//! (written with few digits) is normalised by [`local_matrix`].
+//! quaternion, a `translation`, `scale` or `matrix` that is not finite, a `matrix` beside
+//! `translation`/`rotation`/`scale` (the validator's NODE_MATRIX_TRS), and a node listed as
+//! the child of two parents. Each is one error naming the node (at the value's line and
+//! column in a `.gltf`, at the start of a `.glb`), never repaired in silence; a rotation
+//! whose length is within [`ROTATION_TOLERANCE`] of 1 (written with few digits) is
+//! normalised by [`local_matrix`].
+//!
+//! A node whose transform flattens space (`"scale": [0, 0, 0]`, glTF's way to hide an
+//! instance) is valid glTF but cannot be placed: [`hidden`] says so, and the walk skips the
+//! node and everything under it with a warning.
 
-use glam::DMat4;
+use glam::{DMat3, DMat4};
 
 use super::json_positions::{value_position, Step};
 use super::{at_file, Walk};
+use crate::scene::desc_values::is_singular;
 use crate::scene::message::Diagnostic;
 
 /// How far from 1 a rotation quaternion's length may be: closer, it is normalised (exporters
@@ -41,15 +48,116 @@ pub fn local_matrix(node: &gltf::Node<'_>) -> DMat4 {
     DMat4::from_cols_array_2d(&transform.matrix().map(|c| c.map(f64::from)))
 }
 
-/// Errors for every node of the file with a rotation that is not a unit quaternion or with
-/// a second parent, in node order.
+/// The first component of `values` that is not finite, with its index.
+fn not_finite(values: &[f32]) -> Option<(usize, f32)> {
+    values
+        .iter()
+        .copied()
+        .enumerate()
+        .find(|(_, v)| !v.is_finite())
+}
+
+/// The error for a node with both `matrix` and TRS properties, or with a `translation`,
+/// `scale` or `matrix` that is not finite (one per node: the first found).
+fn transform_error(w: &Walk<'_>, node: &gltf::Node<'_>) -> Option<Diagnostic> {
+    let json = &w.file.doc.as_json().nodes[node.index()];
+    let trs: Vec<&str> = [
+        ("translation", json.translation.is_some()),
+        ("rotation", json.rotation.is_some()),
+        ("scale", json.scale.is_some()),
+    ]
+    .into_iter()
+    .filter_map(|(key, present)| present.then_some(key))
+    .collect();
+    if json.matrix.is_some() && !trs.is_empty() {
+        let list = trs
+            .iter()
+            .map(|k| format!("\"{k}\""))
+            .collect::<Vec<_>>()
+            .join(", ");
+        return Some(located(
+            w,
+            node.index(),
+            "matrix",
+            format!(
+                "{}: has both \"matrix\" and {list}: a glTF node's transform is a matrix or translation/rotation/scale, not both",
+                label(node)
+            ),
+            "keep one of the two: the matrix, or the translation, rotation and scale it is made of",
+        ));
+    }
+    let help = "write finite numbers: glTF's are 32-bit floats, so a value beyond ±3.4e38 reads as infinite";
+    if let Some(m) = json.matrix {
+        if let Some((k, v)) = not_finite(&m) {
+            return Some(located(
+                w,
+                node.index(),
+                "matrix",
+                format!(
+                    "{}: \"matrix\" element {k} is {v}: a transform must be finite",
+                    label(node)
+                ),
+                help,
+            ));
+        }
+    }
+    for (key, values) in [("translation", json.translation), ("scale", json.scale)] {
+        let Some(values) = values else { continue };
+        if not_finite(&values).is_some() {
+            let [x, y, z] = values;
+            return Some(located(
+                w,
+                node.index(),
+                key,
+                format!(
+                    "{}: \"{key}\" [{x}, {y}, {z}] is not finite: a transform must be finite",
+                    label(node)
+                ),
+                help,
+            ));
+        }
+    }
+    None
+}
+
+/// Why `node` cannot be placed although it is valid glTF: its local transform flattens
+/// space (a zero scale hides an instance), as the JSON key to locate and a warning; `None`
+/// for a placeable node.
+pub fn hidden(node: &gltf::Node<'_>) -> Option<(&'static str, String)> {
+    let m = local_matrix(node);
+    if !m.is_finite() || !is_singular(&DMat3::from_mat4(m)) {
+        return None;
+    }
+    let (key, what) = match node.transform() {
+        gltf::scene::Transform::Decomposed {
+            scale: [x, y, z], ..
+        } => ("scale", format!("\"scale\" [{x}, {y}, {z}]")),
+        gltf::scene::Transform::Matrix { .. } => (
+            "matrix",
+            format!("\"matrix\" (determinant {})", m.determinant()),
+        ),
+    };
+    Some((
+        key,
+        format!(
+            "{}: skipped it and the nodes under it: its {what} flattens space (a hidden instance), and a flat transform cannot be rendered",
+            label(node)
+        ),
+    ))
+}
+
+/// Errors for every node of the file with a rotation that is not a unit quaternion, a
+/// transform that is not finite or is both a matrix and TRS, or with a second parent, in
+/// node order.
 pub fn check(w: &mut Walk<'_>) {
     let file = w.file;
     let doc = &file.doc;
     let mut parent: Vec<Option<usize>> = vec![None; doc.nodes().count()];
     let mut errors = Vec::new();
     for node in doc.nodes() {
-        if let gltf::scene::Transform::Decomposed { rotation, .. } = node.transform() {
+        if let Some(error) = transform_error(w, &node) {
+            errors.push(error);
+        } else if let gltf::scene::Transform::Decomposed { rotation, .. } = node.transform() {
             let len = length(rotation);
             if !len.is_finite() || (len - 1.0).abs() > ROTATION_TOLERANCE {
                 let [x, y, z, q] = rotation;
@@ -90,8 +198,8 @@ pub fn check(w: &mut Walk<'_>) {
     w.errors.extend(errors);
 }
 
-/// An error at `nodes[index].<key>` in a `.gltf`, else at the start of the file.
-fn located(w: &Walk<'_>, index: usize, key: &str, message: String, help: &str) -> Diagnostic {
+/// A diagnostic at `nodes[index].<key>` in a `.gltf`, else at the start of the file.
+pub fn located(w: &Walk<'_>, index: usize, key: &str, message: String, help: &str) -> Diagnostic {
     let path = [Step::Key("nodes"), Step::Index(index), Step::Key(key)];
     let mut d = at_file(w.path, message);
     if let Some((line, column)) = w.json.and_then(|json| value_position(json, &path)) {

@@ -10,7 +10,9 @@
 use glam::{DMat4, DVec3};
 
 use super::camera_values::{self, CameraValues};
-use super::{at_file, m4, Walk};
+use super::json_positions::Step;
+use super::light_values;
+use super::{at_element, given, m4, warn_once, Walk};
 use crate::scene::desc::{
     CameraDesc, DepthExceededDesc, EnvironmentDesc, EnvironmentShaderDesc, LightDesc,
     LightKindDesc, OutputDesc, PlacementDesc,
@@ -28,11 +30,14 @@ pub const DEFAULT_FOV_Y: f64 = 45.0;
 /// Elevation of the default camera above the bounds' centre, degrees.
 pub const DEFAULT_ELEVATION: f64 = 20.0;
 
-/// Adds the light of `light` placed at `world`.
+/// Adds the light of `light` placed at `world`, unless one of its values is outside the
+/// extension's range (errors from [`light_values::check`]).
 pub fn light(w: &mut Walk<'_>, light: &gltf::khr_lights_punctual::Light<'_>, world: &DMat4) {
     use gltf::khr_lights_punctual::Kind;
-    let label = light
-        .name()
+    if !light_values::check(w, light) {
+        return;
+    }
+    let label = given(light.name())
         .map(str::to_string)
         .unwrap_or_else(|| format!("light{}", light.index()));
     let name = w.names.take(&label);
@@ -55,8 +60,9 @@ pub fn light(w: &mut Walk<'_>, light: &gltf::khr_lights_punctual::Light<'_>, wor
             inner_cone_angle,
             outer_cone_angle,
         } => {
-            let outer = (outer_cone_angle as f64).to_degrees().clamp(1e-3, 90.0);
-            let inner = (inner_cone_angle as f64).to_degrees().clamp(0.0, outer);
+            // In range: 0 ≤ inner < outer ≤ π/2 (light_values::check).
+            let outer = (outer_cone_angle as f64).to_degrees();
+            let inner = (inner_cone_angle as f64).to_degrees();
             LightKindDesc::Spot {
                 position: v3(position),
                 target: v3(position + direction),
@@ -67,20 +73,29 @@ pub fn light(w: &mut Walk<'_>, light: &gltf::khr_lights_punctual::Light<'_>, wor
         }
     };
     if light.range().is_some() {
-        w.warnings.push(at_file(
-            w.path,
+        let path = [
+            Step::Key("extensions"),
+            Step::Key("KHR_lights_punctual"),
+            Step::Key("lights"),
+            Step::Index(light.index()),
+            Step::Key("range"),
+        ];
+        let d = at_element(
+            w,
+            &path,
             format!(
-                "lights[{}]: ignored its range (lights fall off with the inverse square law only)",
-                light.index()
+                "{}: ignored its range (lights fall off with the inverse square law only)",
+                light_values::label(light)
             ),
-        ));
+        );
+        warn_once(w, d);
     }
     let [r, g, b] = light.color();
     w.desc.lights.push(LightDesc {
         name,
         kind,
         color: (r as f64, g as f64, b as f64),
-        intensity: (light.intensity() as f64 / LUMENS_PER_WATT).max(0.0),
+        intensity: light.intensity() as f64 / LUMENS_PER_WATT,
         shadows: true,
         shadow_factor: 0.0,
         samples: None,
@@ -149,9 +164,8 @@ pub fn camera(w: &mut Walk<'_>) -> String {
         let Some(values) = camera_values::check(w, &camera, &p) else {
             continue;
         };
-        let label = camera
-            .name()
-            .or(node.name())
+        let label = given(camera.name())
+            .or(given(node.name()))
             .map(str::to_string)
             .unwrap_or_else(|| format!("camera{}", camera.index()));
         found.push((label, values, PlacementDesc::Matrix(m4(&rigid(&world)))));
