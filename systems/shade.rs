@@ -345,15 +345,19 @@ pub fn idle_part_image(world: &World, frame: &Frame) -> Option<FrameBuffers> {
     if !matches!(share, Share::Nothing(_)) {
         return None;
     }
-    let camera = render_view(world)?
-        .without(frame.inputs.settings.disabled)
-        .camera;
+    let view = render_view(world)?.without(frame.inputs.settings.disabled);
+    let camera = view.camera;
     let n = camera.width as usize * camera.height as usize;
     let mut fb = FrameBuffers::new(camera.width, camera.height);
+    // The environment's sums, zero, where a part with work keeps them
+    // (`keeps_environment_share`: every part of a merge must carry them for it to keep them).
+    let sees_environment = crate::scene_view::environment(world).is_some()
+        && view.imager.and_then(|i| i.background).is_none();
     fb.sums = Some(PixelSums {
         sums: vec![Default::default(); n],
         covered: vec![0; n],
         dropped: vec![0; n],
+        environment: sees_environment.then(|| vec![Default::default(); n]),
     });
     let tiles = frame
         .inputs
