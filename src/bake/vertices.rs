@@ -394,8 +394,7 @@ mod tests {
             let mesh = fan(triangles);
             for texel_samples in [1, 4, 9, 16, 64] {
                 let cov = vertex_coverage(&mesh, &Affine3A::IDENTITY, texel_samples);
-                let slots: Vec<TexelSample> =
-                    cov.texel(0, 0).iter().flatten().copied().collect();
+                let slots: Vec<TexelSample> = cov.texel(0, 0).iter().flatten().copied().collect();
                 assert_eq!(slots.len(), cov.per_texel as usize);
                 for s in &slots {
                     let l0 = 1.0 - s.b1 - s.b2;

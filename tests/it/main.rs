@@ -10,6 +10,7 @@ mod bad_values_camera;
 mod bad_values_lights;
 mod bake;
 mod bake_seams;
+mod bake_unwrap;
 mod cli;
 mod cli_bake;
 mod cli_farm;
