@@ -40,6 +40,8 @@ pub struct PreparedBake {
     pub coverage: Coverage,
     /// World-space area of the instance (for texel density).
     pub world_area: f64,
+    /// Where the request stands in the scene file, when it came from one.
+    pub link: Option<SourceLink>,
 }
 
 impl PreparedBake {
@@ -104,12 +106,18 @@ pub fn prepare_bakes(
                 second.as_deref().map(|v| v.as_slice()),
                 &unwrap,
             ) {
-                Ok(p) => prepared.push(p),
+                Ok(p) => prepared.push(PreparedBake {
+                    link: link.clone(),
+                    ..p
+                }),
                 Err((message, help)) => problems.push(problem(message, help)),
             }
         }
         if let Some(vertices) = vertices {
-            prepared.push(prepare_vertices(vertices, slot, geometry));
+            prepared.push(PreparedBake {
+                link: link.clone(),
+                ..prepare_vertices(vertices, slot, geometry)
+            });
         }
     }
     if problems.is_empty() {
@@ -184,6 +192,7 @@ fn prepare_vertices(request: BakeRequest, slot: usize, geometry: &SceneGeometry)
         slot,
         coverage,
         world_area,
+        link: None,
     }
 }
 
@@ -311,6 +320,7 @@ fn prepare(
         uvs,
         coverage,
         world_area,
+        link: None,
     })
 }
 

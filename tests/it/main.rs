@@ -9,6 +9,7 @@ mod bad_values;
 mod bad_values_camera;
 mod bad_values_lights;
 mod bake;
+mod bake_png_range;
 mod bake_seams;
 mod bake_unwrap;
 mod cli;
