@@ -30,7 +30,8 @@ use std::time::Instant;
 use hecs::World;
 
 use super::prelude::*;
-use crate::bake::files::{encode_request, report};
+use crate::bake::clipping::{clip_warning, clipped_texels};
+use crate::bake::files::{encode_request, report, safe_name, target_file};
 use crate::bake::request::prepare_bakes;
 use crate::bake::request::PreparedBake;
 use crate::bake::texels::TexelResults;
@@ -167,6 +168,7 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
             baked_mask.as_deref(),
         );
         let files = encode_request(p, &results, baked_mask.as_deref(), &inputs.bake_dir)?;
+        warn_clipped_outputs(p, &results.images);
         if inputs.write_gltf.is_some() {
             for (target, file) in p.request.targets.iter().zip(&files.pending) {
                 if target.format != BakeFormat::Exr {
@@ -371,6 +373,29 @@ fn baked_gltf(
     }
     let bytes = baked_glb(source, &textures, &colors).map_err(fail)?;
     Ok(crate::image_io::PendingFile { path, bytes })
+}
+
+/// Warns, located at the request, about each PNG output of `p` whose values its range
+/// clips (`crate::bake::clipping`).
+fn warn_clipped_outputs(p: &PreparedBake, images: &[crate::bake::TexelImage]) {
+    for (target, img) in p.request.targets.iter().zip(images) {
+        let Some(clipped) = clipped_texels(img, target) else {
+            continue;
+        };
+        let file = target_file(&safe_name(&p.request), target);
+        let (message, help) = clip_warning(&clipped, target, &file.to_string_lossy());
+        let text = format!(
+            "bake request on instance \"{}\": {message}\n  help: {help}",
+            p.request.name
+        );
+        match &p.link {
+            Some(l) => {
+                let at = format!("{}:{}:{}", l.file.display(), l.line, l.column);
+                tracing::warn!(file = %at, "{text}");
+            }
+            None => tracing::warn!("{text}"),
+        }
+    }
 }
 
 #[cfg(test)]

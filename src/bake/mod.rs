@@ -2,7 +2,8 @@
 //! coverage, the per-texel estimators (ambient occlusion, irradiance), dilation and texture
 //! encoding; request checking ([`request`]), file naming/encoding ([`files`]) and the baked
 //! glTF copy ([`gltf_out`]); per-vertex bakes lay vertices out as texels ([`vertices`]) and
-//! are written as PLY ([`vertex_files`]). UV seams and charts ([`seams`]) drive the
+//! are written as PLY ([`vertex_files`]); PNG outputs that clip their values are counted for a
+//! warning ([`clipping`]). UV seams and charts ([`seams`]) drive the
 //! least-squares seam stitch ([`stitch`]) and the chart-respecting texel-space denoiser
 //! ([`denoise`]). The `bake_lightmaps` stage drives these.
 //!
@@ -10,6 +11,7 @@
 //! has its centre at `uv = ((i + 0.5) / W, 1 − (j + 0.5) / H)` — OBJ/OpenGL UVs with `v` up.
 
 pub mod ao;
+pub mod clipping;
 pub mod denoise;
 pub mod dilate;
 pub mod files;

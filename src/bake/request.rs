@@ -9,7 +9,8 @@ use hecs::{Entity, World};
 
 use super::{bake_resolution, corner_uvs, rasterize, second_set_corner_uvs, Coverage};
 use crate::components::{
-    BakeKind, BakeRequest, BakeResolution, BakeTarget, Instance, SecondUvs, SourceLink, UvSource,
+    BakeKind, BakeRequest, BakeResolution, BakeTarget, Instance, SecondUvs, SourceLink, TriMesh,
+    UvSource,
 };
 use crate::geometry::SceneGeometry;
 use crate::scene::Diagnostic;
@@ -20,6 +21,12 @@ use crate::stage_error::StageError;
 const OVERLAP_TOLERANCE: f64 = 1e-3;
 /// UV page size used when generating lightmap UVs for density-sized bakes.
 const UNWRAP_PAGE: u32 = 1024;
+/// The UV area of charts packed without padding on an [`UNWRAP_PAGE`] page, when sizing a
+/// bake from texel density, is multiplied by this before the size is chosen: the packer
+/// rounds every chart up to whole texels of that page, so a chart that fills a power of
+/// two's worth of texels (a 2 × 2 quad at 32 texels/unit: 64) would otherwise round up to
+/// the next (128), at twice the requested density.
+const PACKING_ROUNDING: f64 = 1.02;
 
 /// A request checked and rasterized, ready to bake.
 pub struct PreparedBake {
@@ -33,6 +40,8 @@ pub struct PreparedBake {
     pub coverage: Coverage,
     /// World-space area of the instance (for texel density).
     pub world_area: f64,
+    /// Where the request stands in the scene file, when it came from one.
+    pub link: Option<SourceLink>,
 }
 
 impl PreparedBake {
@@ -97,12 +106,18 @@ pub fn prepare_bakes(
                 second.as_deref().map(|v| v.as_slice()),
                 &unwrap,
             ) {
-                Ok(p) => prepared.push(p),
+                Ok(p) => prepared.push(PreparedBake {
+                    link: link.clone(),
+                    ..p
+                }),
                 Err((message, help)) => problems.push(problem(message, help)),
             }
         }
         if let Some(vertices) = vertices {
-            prepared.push(prepare_vertices(vertices, slot, geometry));
+            prepared.push(PreparedBake {
+                link: link.clone(),
+                ..prepare_vertices(vertices, slot, geometry)
+            });
         }
     }
     if problems.is_empty() {
@@ -177,6 +192,7 @@ fn prepare_vertices(request: BakeRequest, slot: usize, geometry: &SceneGeometry)
         slot,
         coverage,
         world_area,
+        link: None,
     }
 }
 
@@ -213,39 +229,68 @@ fn prepare(
     second: Option<&[glam::Vec2]>,
     unwrap: &UnwrapAdvice,
 ) -> Result<PreparedBake, (String, Option<String>)> {
-    let advice = &unwrap.text;
     let inst = &geometry.instances[slot];
-    let page = match request.resolution {
-        BakeResolution::Fixed { width, height } => width.max(height).max(1),
-        BakeResolution::Density { max_size, .. } => max_size.clamp(1, UNWRAP_PAGE),
-    };
-    let uvs = match (request.uvs, second) {
+    let generated = generates_uvs(request.uvs, &inst.mesh);
+    let world_area: f64 = (0..inst.mesh.triangles.len())
+        .map(|t| {
+            let [a, b, c] = geometry.accel.triangle(inst.first_triangle + t as u32);
+            0.5 * (b - a).cross(c - a).length() as f64
+        })
+        .sum();
+    let corner_uvs_for = |page: u32, padding: u32| match (request.uvs, second) {
         (UvSource::SecondSet, Some(second)) => second_set_corner_uvs(&inst.mesh, second),
-        _ => corner_uvs(&inst.mesh, request.uvs, page, request.padding),
-    }
-    .map_err(|e| (e.to_string(), None))?;
-    let mut world_area = 0.0f64;
-    let mut uv_area = 0.0f64;
-    for (t, uv) in uvs.iter().enumerate() {
-        let [a, b, c] = geometry.accel.triangle(inst.first_triangle + t as u32);
-        world_area += 0.5 * (b - a).cross(c - a).length() as f64;
-        uv_area += 0.5 * ((uv[1] - uv[0]).perp_dot(uv[2] - uv[0]) as f64).abs();
-    }
+        _ => corner_uvs(&inst.mesh, request.uvs, page, padding),
+    };
+    let (uvs, (w, h)) = match request.resolution {
+        BakeResolution::Density { .. } if generated => {
+            // Measure the charts' UV area packed without padding, choose the size from it,
+            // then pack for that size with the padding, which so holds in its texels.
+            let measured = corner_uvs_for(UNWRAP_PAGE, 0).map_err(|e| (e.to_string(), None))?;
+            let measured_area = uv_area(&measured) * PACKING_ROUNDING;
+            let size = bake_resolution(request.resolution, world_area, measured_area)
+                .map_err(|e| (e.to_string(), None))?;
+            let uvs = corner_uvs_for(size.0.max(size.1), request.padding)
+                .map_err(|e| (e.to_string(), None))?;
+            (uvs, size)
+        }
+        _ => {
+            let page = match request.resolution {
+                BakeResolution::Fixed { width, height } => width.max(height).max(1),
+                BakeResolution::Density { max_size, .. } => max_size.clamp(1, UNWRAP_PAGE),
+            };
+            let uvs = corner_uvs_for(page, request.padding).map_err(|e| (e.to_string(), None))?;
+            let size = bake_resolution(request.resolution, world_area, uv_area(&uvs))
+                .map_err(|e| (e.to_string(), None))?;
+            (uvs, size)
+        }
+    };
+    let advice = if generated {
+        fit_advice(request, w, h)
+    } else {
+        unwrap.text.clone()
+    };
+    let uv_area = uv_area(&uvs);
     if uv_area.is_nan() || uv_area <= 0.0 {
         // All UVs at one point or on a line: nothing could be covered (issue 18, family 8).
         return Err((
             "its UVs cover no area (every triangle's UVs lie at one point or on a line)".into(),
-            Some(format!("give the mesh real UVs, or {advice}")),
+            Some(if generated {
+                advice
+            } else {
+                format!("give the mesh real UVs, or {advice}")
+            }),
         ));
     }
-    let (w, h) = bake_resolution(request.resolution, world_area, uv_area)
-        .map_err(|e| (e.to_string(), None))?;
     let coverage = rasterize(&uvs, w, h, request.texel_samples);
     if coverage.inside == 0 {
         // UVs wholly outside the texture: every texel would stay empty (a black map).
         return Err((
             "its UVs cover no texel of the texture (they lie outside [0, 1]², or between the sample positions)".into(),
-            Some(format!("bake UVs must lie in the unit square: {advice}")),
+            Some(if generated {
+                advice.clone()
+            } else {
+                format!("bake UVs must lie in the unit square: {advice}")
+            }),
         ));
     }
     let unique = request
@@ -261,7 +306,7 @@ fn prepare(
                     coverage.inside,
                     target.kind.suffix()
                 ),
-                Some(if unwrap.gltf {
+                Some(if unwrap.gltf && !generated {
                     format!("give TEXCOORD_1 unique lightmap UVs, or {advice}")
                 } else {
                     advice.clone()
@@ -275,5 +320,40 @@ fn prepare(
         uvs,
         coverage,
         world_area,
+        link: None,
     })
+}
+
+/// Whether a request's UVs are generated by the unwrapper: `uvs: Unwrap`, or `Auto` on a
+/// mesh without UVs.
+fn generates_uvs(source: UvSource, mesh: &TriMesh) -> bool {
+    match source {
+        UvSource::Unwrap => true,
+        UvSource::MeshOrUnwrap => mesh.uvs.is_none(),
+        UvSource::Mesh | UvSource::SecondSet => false,
+    }
+}
+
+/// The help when generated UVs overlap or cover no texel of the `width × height` texture:
+/// the charts, packed with their padding, do not fit it (the unwrapper spreads them over
+/// several pages), so it needs more texels or less padding.
+fn fit_advice(request: &BakeRequest, width: u32, height: u32) -> String {
+    let size = match request.resolution {
+        BakeResolution::Fixed { .. } => "raise `resolution`",
+        BakeResolution::Density { max_size, .. } if width.max(height) >= max_size => {
+            "raise `max_size`"
+        }
+        BakeResolution::Density { .. } => "raise `texels_per_unit`",
+    };
+    format!(
+        "the generated lightmap UVs do not fit a {width}×{height} texture with `padding: {}`: {size}, or lower `padding`",
+        request.padding
+    )
+}
+
+/// The area the corner UVs `uvs` cover (in the unit square's units).
+fn uv_area(uvs: &[[glam::Vec2; 3]]) -> f64 {
+    uvs.iter()
+        .map(|uv| 0.5 * ((uv[1] - uv[0]).perp_dot(uv[2] - uv[0]) as f64).abs())
+        .sum()
 }

@@ -356,6 +356,7 @@ fn texel(
                 match store {
                     LightmapStore::Irradiance => e,
                     LightmapStore::Radiance => texel_albedo(job, &sites) * e / std::f32::consts::PI,
+                    LightmapStore::IrradianceOverPi => e / std::f32::consts::PI,
                 }
             }
             BakeKind::Normals { space } => {

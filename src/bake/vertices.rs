@@ -10,10 +10,12 @@
 //! Sample positions: the vertex's dual cell — in every triangle around it, the quad of the
 //! vertex, the two edge midpoints beside it and the centroid (a third of the triangle's
 //! area), split into two triangles of equal area. The `k²` sample slots (the request's
-//! `texel_samples` rounded up as for textures) are stratified over these pieces by world
-//! area, so each triangle gets samples in proportion to its area (area-weighted), and placed
-//! in each piece by a fixed low-discrepancy pattern: no randomness, so the positions are the
-//! same in every run.
+//! `texel_samples` rounded up as for textures) are dealt to these pieces by world area
+//! ([`deal_slots`]), so each triangle gets samples in proportion to its area
+//! (area-weighted), and the slots of a piece are stratified inside it by a fixed
+//! low-discrepancy pattern ([`point_in_piece`]) that keeps every position strictly inside
+//! the piece: never on the vertex or a triangle edge, which a neighbouring face's plane may
+//! contain. No randomness: the positions are the same in every run.
 
 use glam::{Affine3A, Vec2, Vec3};
 
@@ -71,6 +73,39 @@ fn dual_cell_point(corner: usize, half: usize, a: f64, b: f64) -> [f64; 3] {
     [0, 1, 2].map(|i| wv * vertex[i] + wp * p[i] + wq * q[i])
 }
 
+/// The piece of each of `slots` slots: slot `s` goes to the piece that holds the point
+/// `(s + ½) / slots` of the cell's area (pieces laid end to end by their weight `.3`), so
+/// each piece gets slots in proportion to its area.
+fn deal_slots(pieces: &[(u32, usize, usize, f64)], slots: usize) -> Vec<usize> {
+    let total: f64 = pieces.iter().map(|p| p.3).sum();
+    let mut piece = 0;
+    let mut before = 0.0;
+    (0..slots)
+        .map(|s| {
+            let u = (s as f64 + 0.5) / slots as f64 * total;
+            while piece + 1 < pieces.len() && before + pieces[piece].3 <= u {
+                before += pieces[piece].3;
+                piece += 1;
+            }
+            piece
+        })
+        .collect()
+}
+
+/// Golden ratio conjugate, the step of the second coordinate's sequence.
+const GOLDEN: f64 = 0.618_033_988_749_894_9;
+
+/// The point `(a, b)` for [`dual_cell_point`] of slot `j` of the `m` slots a piece holds:
+/// `a = (j + ½) / m` (strata of equal area from the vertex outward) and the golden-ratio
+/// sequence `b = frac(½ + j · φ⁻¹)`, both strictly inside `(0, 1)`: the point lies inside the
+/// piece, never on the vertex or on the triangle's edges, where a neighbouring face's plane
+/// may contain it (a floor's vertex at the foot of a wall).
+fn point_in_piece(j: usize, m: usize) -> (f64, f64) {
+    let a = (j as f64 + 0.5) / m as f64;
+    let b = (0.5 + j as f64 * GOLDEN).fract().clamp(1e-6, 1.0 - 1e-6);
+    (a, b)
+}
+
 /// The sample positions of every vertex of `mesh` (placed by `world_from_object`, for the
 /// area weights) with `texel_samples` (rounded up to `k²`) slots per vertex.
 pub fn vertex_coverage(
@@ -110,18 +145,16 @@ pub fn vertex_coverage(
         if pieces.is_empty() || total <= 0.0 {
             continue;
         }
-        let mut piece = 0;
-        let mut before = 0.0;
-        for s in 0..per_texel {
-            let u = (s as f64 + 0.5) / per_texel as f64 * total;
-            while piece + 1 < pieces.len() && before + pieces[piece].3 <= u {
-                before += pieces[piece].3;
-                piece += 1;
-            }
-            let (t, c, half, weight) = pieces[piece];
-            let a = ((u - before) / weight).clamp(0.0, 1.0);
-            // Golden-ratio sequence for the second coordinate.
-            let b = (0.5 + s as f64 * 0.618_033_988_749_894_9).fract();
+        let piece_of_slot = deal_slots(&pieces, per_texel);
+        let mut slots_in = vec![0usize; pieces.len()];
+        for &p in &piece_of_slot {
+            slots_in[p] += 1;
+        }
+        let mut placed = vec![0usize; pieces.len()];
+        for (s, &p) in piece_of_slot.iter().enumerate() {
+            let (t, c, half, _) = pieces[p];
+            let (a, b) = point_in_piece(placed[p], slots_in[p]);
+            placed[p] += 1;
             let l = dual_cell_point(c, half, a, b);
             samples[v * per_texel + s] = Some(TexelSample {
                 triangle: t,
@@ -333,6 +366,52 @@ mod tests {
             (mean - Vec3::new(7.0 / 24.0, 7.0 / 24.0, 0.0)).length() < 0.02,
             "{mean}"
         );
+    }
+
+    /// A fan of `n` triangles around vertex 0 (45° each, in the plane z = 0).
+    fn fan(n: usize) -> TriMesh {
+        let mut positions = vec![Vec3::ZERO];
+        for i in 0..=n {
+            let angle = i as f32 * std::f32::consts::FRAC_PI_4;
+            positions.push(Vec3::new(angle.cos(), angle.sin(), 0.0));
+        }
+        TriMesh {
+            positions,
+            normals: None,
+            uvs: None,
+            triangles: (0..n as u32).map(|i| [0, i + 1, i + 2]).collect(),
+        }
+    }
+
+    /// Every sample position lies strictly inside its triangle (all three barycentric
+    /// weights positive: not on the vertex, not on an edge) for every number of triangles
+    /// around the vertex and of slots, the counts where a slot's stratum once fell exactly
+    /// on a boundary between pieces and its position collapsed onto the vertex (2 × 4
+    /// triangles ÷ 4 slots, 2 × 2 ÷ 1, …); and no two slots of a vertex share a position.
+    #[test]
+    fn sample_positions_never_sit_on_the_vertex_or_an_edge() {
+        for triangles in 1..=8 {
+            let mesh = fan(triangles);
+            for texel_samples in [1, 4, 9, 16, 64] {
+                let cov = vertex_coverage(&mesh, &Affine3A::IDENTITY, texel_samples);
+                let slots: Vec<TexelSample> = cov.texel(0, 0).iter().flatten().copied().collect();
+                assert_eq!(slots.len(), cov.per_texel as usize);
+                for s in &slots {
+                    let l0 = 1.0 - s.b1 - s.b2;
+                    assert!(
+                        l0 < 1.0 - 1e-4 && s.b1 > 1e-4 && s.b2 > 1e-4,
+                        "{triangles} triangles, {texel_samples} samples: {s:?}"
+                    );
+                    assert!(l0 + 1e-6 >= s.b1 && l0 + 1e-6 >= s.b2, "{s:?}");
+                }
+                for (i, s) in slots.iter().enumerate() {
+                    assert!(
+                        !slots[..i].contains(s),
+                        "{triangles} triangles, {texel_samples} samples: {s:?} twice"
+                    );
+                }
+            }
+        }
     }
 
     #[test]

@@ -43,6 +43,9 @@ pub enum LightmapStore {
     Irradiance,
     /// Outgoing diffuse radiance `albedo · E / π`, W/(sr·m²) (radiance × albedo).
     Radiance,
+    /// `E / π`: the outgoing radiance of a white diffuse surface (1 under a white sky of
+    /// radiance 1), independent of the material.
+    IrradianceOverPi,
 }
 
 /// Space of baked normals.

@@ -231,6 +231,7 @@ fn request(
                     store: match store {
                         LightmapStoreDesc::Irradiance => LightmapStore::Irradiance,
                         LightmapStoreDesc::Radiance => LightmapStore::Radiance,
+                        LightmapStoreDesc::IrradianceOverPi => LightmapStore::IrradianceOverPi,
                     },
                 }
             }

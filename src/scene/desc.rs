@@ -1236,7 +1236,7 @@ pub enum BakeKindDesc {
         /// Indirect bounces, default 2.
         #[serde(default = "default_bake_depth")]
         max_depth: u32,
-        /// `Irradiance` (default, W/m²) or `Radiance` (albedo·E/π).
+        /// `Irradiance` (default, W/m²), `Radiance` (albedo·E/π) or `IrradianceOverPi` (E/π).
         #[serde(default)]
         store: LightmapStoreDesc,
     },
@@ -1268,6 +1268,9 @@ pub enum LightmapStoreDesc {
     Irradiance,
     /// Outgoing diffuse radiance albedo·E/π.
     Radiance,
+    /// E/π: the radiance a white diffuse surface would reflect (1 under a white sky of
+    /// radiance 1), the lightmap a viewer multiplies by the base colour.
+    IrradianceOverPi,
 }
 
 /// Space of baked normals.

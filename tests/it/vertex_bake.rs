@@ -168,6 +168,46 @@ fn vertex_ao_beside_a_wall_is_one_half() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// A fan of four triangles on the floor around a vertex at the wall's foot (and two more
+/// vertices there, each on one triangle): at every point of the floor beside the 200 × 100
+/// wall, within 1 of it, AO is ½ + ½ · x / √(x² + 100²) ∈ [½, 0.505], so each vertex's
+/// dual cell averages to ½ within 4σ + 0.005 — at 1 and at 4 sample positions, the counts
+/// at which a slot's stratum fell exactly on a boundary between the cell's pieces and
+/// every position of the vertex collapsed onto the vertex itself, in the wall's plane, where
+/// no ray meets the wall (AO 1).
+#[test]
+fn vertex_ao_at_the_foot_of_a_wall_is_one_half_at_any_sample_count() {
+    let dir = scratch_dir("vertex-bake-foot");
+    let fan = r#"(name: "fan", mesh: Inline(
+            vertices: [(0, 0, 0), (0, 1, 0), (-1, 1, 0), (-1, 0, 0), (-1, -1, 0), (0, -1, 0)],
+            polygons: [[0, 1, 2], [0, 2, 3], [0, 3, 4], [0, 4, 5]]),
+            material: "grey"),"#;
+    let samples = 1024;
+    let sigma = (0.25f64 / samples as f64).sqrt();
+    for texel_samples in [1, 4] {
+        let text = scene(
+            fan,
+            &format!(
+                r#"(name: "fan_1", of: "fan", bake: (texel_samples: {texel_samples}, outputs: [
+                (kind: AmbientOcclusion(samples: {samples}), target: Vertices)]))"#
+            ),
+            r#""fan_1""#,
+        );
+        let out = format!("out{texel_samples}");
+        bake(&dir, &text, &out, &[]);
+        let ply = BakedPly::read(&dir.join(out).join("fan_1_ao.ply"));
+        assert_eq!(ply.count, 6);
+        for v in 0..ply.count {
+            let ao = ply.float(v, "baked_r") as f64;
+            assert!(
+                (ao - 0.5).abs() < 4.0 * sigma + 0.005,
+                "{texel_samples} sample positions: vertex {v}: AO {ao}"
+            );
+        }
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 /// With `max_distance: R`, a point at distance x from the wall is occluded by the directions
 /// whose horizontal component toward the wall exceeds x/R: AO = 1 − (acos a − a√(1−a²))/π,
 /// a = x/R. Tiny triangles (1 mm) at x = 0.1 … 0.9 make each vertex a point.

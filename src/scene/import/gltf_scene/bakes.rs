@@ -1,6 +1,9 @@
 //! The default bake request of a glTF scene: every instance of a primitive that has a
-//! second UV set (`TEXCOORD_1`, lightmap UVs) bakes, on that set, an irradiance lightmap
-//! (direct plus two bounces of indirect light) and ambient occlusion into 8-bit PNGs at
+//! second UV set (`TEXCOORD_1`, lightmap UVs) bakes, on that set, a lightmap of `E / π`
+//! (direct plus two bounces of indirect light; the light a white diffuse surface reflects,
+//! which a viewer multiplies by the base colour: 1 under the white environment a glTF without
+//! lights gets, where the irradiance E = π would clip an 8-bit PNG to white everywhere) and
+//! ambient occlusion into 8-bit PNGs at
 //! [`TEXELS_PER_UNIT`] texels per unit (at most [`MAX_SIZE`]); every instance of a primitive
 //! without it bakes ambient occlusion per vertex ([`default_vertex_bake`]). `stagelight bake
 //! model.glb --write-gltf` puts both back into a copy of the file (textures in the
@@ -36,7 +39,7 @@ pub fn default_bake() -> BakeDesc {
                     indirect: true,
                     samples: SAMPLES,
                     max_depth: 2,
-                    store: LightmapStoreDesc::Irradiance,
+                    store: LightmapStoreDesc::IrradianceOverPi,
                 },
                 format: BakeFormatDesc::Png8,
                 file: None,
