@@ -127,6 +127,7 @@ fn textured_graph() -> MaterialGraph {
             scale: 0.02,
         }),
         normal_map: None,
+        object_normal: None,
         emission: None,
     }
 }

@@ -64,6 +64,16 @@ pub enum Op {
         /// Colour outside.
         outside: Reg,
     },
+    /// The tutorial's stairs blend over v: the weight of a step's tread (`up`) normal
+    /// (`shading::texture::pattern::steps`).
+    Steps {
+        /// Coordinates (v read).
+        uv: Reg,
+        /// Steps per unit of v.
+        steps: Reg,
+        /// Half-width of the blend at each edge, in steps.
+        fuzz: Reg,
+    },
     /// `(mod(u·scale, 1), mod(v·scale, 1), 0)`.
     Repeat {
         /// Coordinates.
@@ -186,7 +196,7 @@ pub struct NormalMap {
 }
 
 /// The node graphs of one material: which parameters they drive, the bump height, the
-/// normal map and the emission's texture.
+/// normal map, the object-space normal and the emission's texture.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct MaterialGraph {
     /// The compiled ops of every binding and of the bump height.
@@ -197,15 +207,21 @@ pub struct MaterialGraph {
     pub bump: Option<BumpMap>,
     /// Tangent-space normal mapping, if any.
     pub normal_map: Option<NormalMap>,
+    /// Register holding an object-space shading normal (`bump: (object_normal: …)`), if
+    /// any: it replaces the surface's normal (`shading::texture::object_normal`).
+    pub object_normal: Option<Reg>,
     /// Register multiplying the material's `emission` per channel (clamped at 0), if any.
     pub emission: Option<Reg>,
 }
 
 impl MaterialGraph {
     /// Whether evaluating the material at a point runs the program beyond the bump height
-    /// (bound parameters, a normal map or an emission texture).
+    /// (bound parameters, a normal map, an object-space normal or an emission texture).
     pub fn runs_at_hits(&self) -> bool {
-        !self.bindings.is_empty() || self.normal_map.is_some() || self.emission.is_some()
+        !self.bindings.is_empty()
+            || self.normal_map.is_some()
+            || self.object_normal.is_some()
+            || self.emission.is_some()
     }
 }
 

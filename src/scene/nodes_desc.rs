@@ -78,6 +78,12 @@ fn half_f() -> f64 {
 fn four() -> u32 {
     4
 }
+fn four_steps() -> InputDesc {
+    num(4.0)
+}
+fn stair_fuzz() -> InputDesc {
+    num(0.05)
+}
 
 /// A shader node.
 #[derive(Debug, Clone, Deserialize, Serialize)]
@@ -127,6 +133,20 @@ pub enum NodeDesc {
         /// Outside, default `(1, 0, 0)`.
         #[serde(default = "red")]
         outside: InputDesc,
+    },
+    /// The tutorial's stairs over v (seed 001 §4.2): how much of a step's tread (`up`)
+    /// rather than its riser (`front`) shades the point, 0…1 (scalar), with the printed
+    /// linear blend of half-width `fuzz` (in steps) around each edge.
+    Steps {
+        /// Coordinates (v read), default `Uv`.
+        #[serde(default = "uv")]
+        uv: InputDesc,
+        /// Steps per unit of v (scalar), default 4.
+        #[serde(default = "four_steps")]
+        steps: InputDesc,
+        /// Half-width of the blend at each edge, in steps (scalar), default 0.05.
+        #[serde(default = "stair_fuzz")]
+        fuzz: InputDesc,
     },
     /// Repeated coordinates `(mod(u·scale, 1), mod(v·scale, 1), 0)` (colour).
     Repeat {
@@ -274,6 +294,7 @@ pub const NODE_NAMES: &[&str] = &[
     "VertexColor",
     "Checker",
     "Disk",
+    "Steps",
     "Repeat",
     "Noise",
     "Fbm",
@@ -375,8 +396,8 @@ pub enum ColourSpaceDesc {
     Hsl,
 }
 
-/// `bump: (...)` on a material: a height map or a tangent-space normal map (one of the
-/// two).
+/// `bump: (...)` on a material: a height map, a tangent-space normal map or an object-space
+/// normal (one of the three).
 #[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(rename = "Bump", deny_unknown_fields)]
 pub struct BumpDesc {
@@ -387,7 +408,13 @@ pub struct BumpDesc {
     /// normal `(2c − 1)·(scale, scale, 1)` in the frame (∂P/∂u, bitangent, normal).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub normal_map: Option<InputDesc>,
-    /// Multiplier of the height, or of the normal map's tangential part; default 1.
+    /// Object-space shading normal (colour node, e.g. `Mix` of two directions): transformed
+    /// like the object's normals, normalised and turned onto the side being shaded — the
+    /// RenderMan `ntransform("object", "current", …)` of a shader that sets its own `Nf`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub object_normal: Option<InputDesc>,
+    /// Multiplier of the height, or of the normal map's tangential part; default 1 (must
+    /// be 1 with an `object_normal`).
     #[serde(default = "one_f")]
     pub scale: f64,
 }

@@ -411,6 +411,7 @@ fn material(m: &MtlMaterial, name: &str, dir: &Path) -> MaterialDesc {
             0,
         )))),
         normal_map: None,
+        object_normal: None,
         scale: map.bump_multiplier,
     });
     MaterialDesc {

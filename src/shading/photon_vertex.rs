@@ -95,7 +95,7 @@ impl<'a> PhotonVertex<'a> {
             transmittance,
             frame,
             wo_world,
-        } = orient(ctx, ray, hit, &mut sp, material, &shader);
+        } = orient(ctx, ray, hit, &mut sp, material, &shader, false);
         Self {
             sp,
             ng,
@@ -168,6 +168,7 @@ mod tests {
                 scale: 0.3,
             }),
             normal_map: None,
+            object_normal: None,
             emission: None,
         }));
         let mut g =

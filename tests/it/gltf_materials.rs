@@ -210,20 +210,38 @@ fn quad_with(material: &str) -> String {
     )
 }
 
-/// A bump is a height map or a normal map: both, or neither, is a located error.
+/// A bump is a height map, a normal map or an object-space normal: two, or none, is a
+/// located error, and so is a `scale` on an object-space normal.
 #[test]
-fn a_bump_needs_exactly_one_of_height_and_normal_map() {
+fn a_bump_needs_exactly_one_of_height_normal_map_and_object_normal() {
+    let help = "\n  help: give one: `height: <scalar node>` for a height map, `normal_map: <colour node>` for a tangent-space normal map, or `object_normal: <colour node>` for an object-space normal";
     let both = quad_with(
         r#"(name: "m", shader: Lambert(albedo: (1, 1, 1)), bump: (height: 0.1, normal_map: (0.5, 0.5, 1)))"#,
     );
     assert_eq!(
         load_error(&both),
-        "scene.ron:3:71: error: a bump has both a `height` and a `normal_map`\n  help: give `height: <scalar node>` for a height map, or `normal_map: <colour node>` for a tangent-space normal map"
+        format!("scene.ron:3:71: error: a bump has both a `height` and a `normal_map`{help}")
+    );
+    let two = quad_with(
+        r#"(name: "m", shader: Lambert(albedo: (1, 1, 1)), bump: (normal_map: (0.5, 0.5, 1), object_normal: (0, 0, 1)))"#,
+    );
+    assert_eq!(
+        load_error(&two),
+        format!(
+            "scene.ron:3:71: error: a bump has both a `normal_map` and an `object_normal`{help}"
+        )
     );
     let neither = quad_with(r#"(name: "m", shader: Lambert(albedo: (1, 1, 1)), bump: (scale: 2))"#);
     assert_eq!(
         load_error(&neither),
-        "scene.ron:3:71: error: a bump needs a `height` or a `normal_map`\n  help: give `height: <scalar node>` for a height map, or `normal_map: <colour node>` for a tangent-space normal map"
+        format!("scene.ron:3:71: error: a bump needs a `height`, a `normal_map` or an `object_normal`{help}")
+    );
+    let scaled = quad_with(
+        r#"(name: "m", shader: Lambert(albedo: (1, 1, 1)), bump: (object_normal: (0, 0, 1), scale: 2))"#,
+    );
+    assert_eq!(
+        load_error(&scaled),
+        "scene.ron:3:105: error: a bump's `scale` does not apply to an `object_normal`, found 2\n  help: leave `scale` out: the object-space normal is used as given"
     );
 }
 

@@ -1,5 +1,5 @@
 //! Checking shader graphs and compiling them: every material's `bind` entries and `bump`
-//! height, with the phenomena they call, become one flat [`Program`] per material
+//! (height, normal map or object-space normal), with the phenomena they call, become one flat [`Program`] per material
 //! ([`MaterialGraph`]).
 //!
 //! Errors are located at the offending value: an unknown node (re-parsed from the source
@@ -275,6 +275,13 @@ impl Compiler<'_, '_> {
                     outside: o,
                 });
                 Some((r, ti.join(to)))
+            }
+            NodeDesc::Steps { uv, steps, fuzz } => {
+                let uv = input!(".Steps.uv", uv);
+                let steps = scalar!(".Steps.steps", steps, "steps");
+                let fuzz = scalar!(".Steps.fuzz", fuzz, "fuzz");
+                let ((uv, _), steps, fuzz) = (uv?, steps?, fuzz?);
+                Some((self.prog.push(Op::Steps { uv, steps, fuzz }), Ty::Scalar))
             }
             NodeDesc::Repeat { uv, scale } => {
                 let uv = input!(".Repeat.uv", uv);
@@ -714,12 +721,13 @@ fn compile_material(
     // the start of the program.
     let mut bump = None;
     let mut normal_map = None;
+    let mut object_normal = None;
     if let Some(b) = &d.bump {
         let sp = item.at(".bump.scale");
         let s = c.finite(At { file, path: &sp }, "bump scale", b.scale);
         ok &= s.is_some();
-        match (&b.height, &b.normal_map) {
-            (Some(height), None) => {
+        match (&b.height, &b.normal_map, &b.object_normal) {
+            (Some(height), None, None) => {
                 let hp = item.at(".bump.height");
                 let h = c.scalar(At { file, path: &hp }, height, &[], "bump height");
                 match (h, s) {
@@ -727,7 +735,7 @@ fn compile_material(
                     _ => ok = false,
                 }
             }
-            (None, Some(map)) => {
+            (None, Some(map), None) => {
                 let np = item.at(".bump.normal_map");
                 match (c.input(At { file, path: &np }, map, &[]), s) {
                     (Some((texel, _)), Some(scale)) => {
@@ -736,17 +744,45 @@ fn compile_material(
                     _ => ok = false,
                 }
             }
-            (height, _) => {
+            (None, None, Some(normal)) => {
+                let op = item.at(".bump.object_normal");
+                match c.input(At { file, path: &op }, normal, &[]) {
+                    Some((reg, _)) => object_normal = Some(reg),
+                    None => ok = false,
+                }
+                if s.is_some_and(|s| s != 1.0) {
+                    c.error(
+                        At { file, path: &sp },
+                        format!(
+                            "a bump's `scale` does not apply to an `object_normal`, found {}",
+                            b.scale
+                        ),
+                        Some("leave `scale` out: the object-space normal is used as given".into()),
+                    );
+                    ok = false;
+                }
+            }
+            (height, map, normal) => {
                 let bp = item.at(".bump");
-                let what = if height.is_some() {
-                    "a bump has both a `height` and a `normal_map`"
-                } else {
-                    "a bump needs a `height` or a `normal_map`"
+                let given: Vec<&str> = [
+                    (height.is_some(), "a `height`"),
+                    (map.is_some(), "a `normal_map`"),
+                    (normal.is_some(), "an `object_normal`"),
+                ]
+                .into_iter()
+                .filter_map(|(g, name)| g.then_some(name))
+                .collect();
+                let what = match given.as_slice() {
+                    [] => {
+                        "a bump needs a `height`, a `normal_map` or an `object_normal`".to_string()
+                    }
+                    [a, b] => format!("a bump has both {a} and {b}"),
+                    _ => "a bump has a `height`, a `normal_map` and an `object_normal`".to_string(),
                 };
                 c.error(
                     At { file, path: &bp },
                     what,
-                    Some("give `height: <scalar node>` for a height map, or `normal_map: <colour node>` for a tangent-space normal map".into()),
+                    Some("give one: `height: <scalar node>` for a height map, `normal_map: <colour node>` for a tangent-space normal map, or `object_normal: <colour node>` for an object-space normal".into()),
                 );
                 ok = false;
             }
@@ -799,6 +835,7 @@ fn compile_material(
         bindings,
         bump,
         normal_map,
+        object_normal,
         emission,
     }))
 }

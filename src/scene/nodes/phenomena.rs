@@ -195,6 +195,9 @@ fn for_each_input(n: &NodeDesc, mut f: impl FnMut(String, &InputDesc)) {
                 ("outside", outside),
             ],
         ),
+        NodeDesc::Steps { uv, steps, fuzz } => {
+            named("Steps", &[("uv", uv), ("steps", steps), ("fuzz", fuzz)])
+        }
         NodeDesc::Repeat { uv, scale } => named("Repeat", &[("uv", uv), ("scale", scale)]),
         NodeDesc::Noise { p, .. } => named("Noise", &[("p", p)]),
         NodeDesc::Fbm { p, .. } => named("Fbm", &[("p", p)]),

@@ -262,18 +262,20 @@ impl<'a> Vertex<'a> {
     /// shading normal is then made safe (hard case H11): turned toward the viewer's side and
     /// rotated toward the geometric normal just enough that the view direction is above it
     /// and its mirror direction above the geometric surface
-    /// ([`bump::ensure_valid_reflection`]), so bent normals never shade black.
+    /// ([`bump::ensure_valid_reflection`]), so bent normals never shade black — except an
+    /// object-space normal under a local illumination model, used as given
+    /// ([`textured::Textured::exact`]).
     #[inline(always)]
     pub fn new(ctx: &ShadeContext<'a>, ray: &Ray, hit: &Hit) -> Self {
         let mut sp = shading_point(ctx, hit);
         let material = &ctx.geometry.materials[sp.material as usize];
         let textured = textured::evaluate(ctx.geometry, &sp, hit, material);
-        let (bumped, emission) = match &textured {
+        let (bumped, exact, emission) = match &textured {
             Some(t) => {
                 sp.normal = t.normal;
-                (t.bumped, t.emission)
+                (t.bumped, t.exact, t.emission)
             }
-            None => (false, material.emission),
+            None => (false, false, material.emission),
         };
         let bound = textured.as_ref().map_or(&material.shader, |t| &t.shader);
         let Orientation {
@@ -283,7 +285,7 @@ impl<'a> Vertex<'a> {
             transmittance,
             frame,
             wo_world,
-        } = orient(ctx, ray, hit, &mut sp, material, bound);
+        } = orient(ctx, ray, hit, &mut sp, material, bound, exact);
         Self {
             sp,
             ng,

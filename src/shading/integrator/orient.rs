@@ -52,8 +52,9 @@ fn same_bits(a: Vec3, b: Vec3) -> bool {
 
 /// Turns `sp.normal` toward the viewer and makes it safe (hard case H11: rotated toward the
 /// geometric normal just enough that the view direction is above it and its mirror direction
-/// above the geometric surface, [`bump::ensure_valid_reflection`]); `shader` is the shader
-/// bound at this point (its absorption colour gives the transmittance inside a dielectric).
+/// above the geometric surface, [`bump::ensure_valid_reflection`]) unless `exact` (a normal
+/// to use as given: only turned toward the viewer); `shader` is the shader bound at this
+/// point (its absorption colour gives the transmittance inside a dielectric).
 #[inline(always)]
 pub(crate) fn orient(
     ctx: &ShadeContext<'_>,
@@ -62,6 +63,7 @@ pub(crate) fn orient(
     sp: &mut ShadingPoint,
     material: &Material,
     shader: &Shader,
+    exact: bool,
 ) -> Orientation {
     let wo_world = -ray.dir.normalize();
     let front = sp.surface.ng.dot(wo_world) > 0.0;
@@ -69,7 +71,7 @@ pub(crate) fn orient(
         sp.normal = -sp.normal;
     }
     let ng = if front { sp.surface.ng } else { -sp.surface.ng };
-    if sp.normal != ng {
+    if sp.normal != ng && !exact {
         sp.normal = bump::ensure_valid_reflection(ng, wo_world, sp.normal);
     }
     let visible = front || material.shades_back() || ctx.face == Face::Both;

@@ -1,6 +1,6 @@
 //! Evaluating a material's graph at a ray hit: the inputs (uv, object-space position,
-//! normal), the bound shader, the emission's texture, and the normal-mapped and
-//! bump-mapped normal with its tangents. The object's `displacement` in `Bump` mode adds
+//! normal), the bound shader, the emission's texture, and the normal-mapped, object-space
+//! ([`object_normal`]) and bump-mapped normal with its tangents. The object's `displacement` in `Bump` mode adds
 //! its amount to the material's bump height.
 //!
 //! **Vertex colours** (PLY `red green blue`, glTF `COLOR_0`) are interpolated like uvs;
@@ -15,7 +15,7 @@
 
 use glam::{Mat3, Vec3};
 
-use super::{bump, bumped_normal, normal_map, Inputs};
+use super::{bump, bumped_normal, normal_map, object_normal, Inputs};
 use crate::accel::Hit;
 use crate::components::{Displacement, Material, Shader};
 use crate::geometry::{InstanceGeometry, SceneGeometry, ShadingPoint};
@@ -39,8 +39,12 @@ pub struct Textured {
     /// The shading normal (bumped when the material has a bump map), on the side of the
     /// unperturbed normal.
     pub normal: Vec3,
-    /// Whether a bump map or a normal map changed the normal.
+    /// Whether a bump map, a normal map or an object-space normal changed the normal.
     pub bumped: bool,
+    /// Whether `normal` is to be used exactly as given, not made safe (hard case H11): an
+    /// object-space normal under a local illumination model, which evaluates its formula
+    /// for any normal as its shading language does (RenderMan's `Nf`).
+    pub exact: bool,
     /// Emitted radiance here, W/(sr·m²): the material's `emission` times its texture.
     pub emission: Vec3,
 }
@@ -101,12 +105,14 @@ fn evaluate_textured(
         None => material.emission,
     };
     let map = graph.and_then(|g| g.normal_map);
+    let object = graph.and_then(|g| g.object_normal);
     let has_bump = graph.is_some_and(|g| g.bump.is_some());
-    if !has_bump && map.is_none() && displacement.is_none() {
+    if !has_bump && map.is_none() && object.is_none() && displacement.is_none() {
         return Some(Textured {
             shader,
             normal: sp.normal,
             bumped: false,
+            exact: false,
             emission,
         });
     }
@@ -117,6 +123,20 @@ fn evaluate_textured(
         .as_ref()
         .and_then(|uvs| bump::tangents(pos, idx.map(|i| uvs[i])));
     let mut n = sp.normal;
+    if let Some(r) = object {
+        let on = regs[r as usize];
+        n = object_normal::to_world(inst.normal_from_object, on, sp.surface.ng, n);
+        if displacement.is_none() {
+            let exact = object_normal::is_local(&shader);
+            return Some(Textured {
+                shader,
+                normal: n,
+                bumped: true,
+                exact,
+                emission,
+            });
+        }
+    }
     if let Some(map) = map {
         let tangents = match (file_tangent(inst, idx, b), uv_tangents) {
             (Some((t, w)), _) => normal_map::frame_from_tangent(n, m * t, w * m.determinant()),
@@ -133,6 +153,7 @@ fn evaluate_textured(
                 shader,
                 normal: n,
                 bumped: true,
+                exact: false,
                 emission,
             });
         }
@@ -170,6 +191,7 @@ fn evaluate_textured(
         shader,
         normal,
         bumped: true,
+        exact: false,
         emission,
     })
 }

@@ -9,7 +9,7 @@
 //! [`Inputs`]; the bound parameters are written into a copy of the material's constant
 //! shader ([`bind`]), so BSDFs see plain constants.
 //!
-//! Node families, one file each: [`pattern`] (checker, disk, smoothstep, uv repeat),
+//! Node families, one file each: [`pattern`] (checker, disk, stairs, smoothstep, uv repeat),
 //! [`noise`] (Perlin, fBm, turbulence), [`image`] (PNG/EXR textures), [`colour`]
 //! (RGB/HSV/HSL), [`bump`] (bump mapping and the shading-normal safeguards). Everything is
 //! deterministic: a node's value depends only on its inputs and parameters.
@@ -22,6 +22,7 @@ pub mod hit;
 pub mod image;
 pub mod noise;
 pub mod normal_map;
+pub mod object_normal;
 pub mod pattern;
 
 use glam::{Vec2, Vec3};
@@ -85,6 +86,9 @@ impl Program {
                 } => {
                     let t = pattern::disk(uv(c), *center, s(radius), s(fuzz));
                     pattern::mix(r(outside), r(inside), t)
+                }
+                Op::Steps { uv: c, steps, fuzz } => {
+                    Vec3::splat(pattern::steps(uv(c).y, s(steps), s(fuzz)))
                 }
                 Op::Repeat { uv: c, scale } => pattern::repeat(uv(c), s(scale)).extend(0.0),
                 Op::Noise { p, kind, fractal } => Vec3::splat(match kind {
@@ -211,6 +215,7 @@ mod tests {
             }],
             bump: None,
             normal_map: None,
+            object_normal: None,
             emission: None,
         };
         let base = Shader::Lambert { albedo: Vec3::ONE };
@@ -238,6 +243,7 @@ mod tests {
                 scale: 0.5,
             }),
             normal_map: None,
+            object_normal: None,
             emission: None,
         };
         let t = [Vec3::X, Vec3::Y, Vec3::X, Vec3::Y];

@@ -1,5 +1,5 @@
-//! Procedural 2-D patterns over texture coordinates: checker, the seed's fuzzy disk,
-//! RenderMan's `smoothstep`, and uv repetition (`mod(s·10, 1)`).
+//! Procedural 2-D patterns over texture coordinates: checker, the seed's fuzzy disk, the
+//! seed's stairs blend, RenderMan's `smoothstep`, and uv repetition (`mod(s·10, 1)`).
 
 use glam::{Vec2, Vec3};
 
@@ -51,6 +51,42 @@ pub fn repeat(uv: Vec2, scale: f32) -> Vec2 {
     Vec2::new(fract(uv.x * scale), fract(uv.y * scale))
 }
 
+/// The seed's `stairs` shader (§4.2, its last version, with `fuzz`) as one number: the
+/// weight `w` of a step's tread normal `up` against its riser normal `front` at `v`, the
+/// shader's `Nf = (1 − w)·front + w·up`. With `sv = mod(v·steps, 1)` (the riser below
+/// `sv = ½`, the tread above) the printed branches give
+///
+/// - `sv < ½ − fuzz`: 0; but where `sv ≤ fuzz` above the bottom edge (`v·steps > fuzz`) the
+///   tread below blends in: `w = ½ − sv/(2·fuzz)`;
+/// - `sv > ½ + fuzz`: 1; but where `sv ≥ 1 − fuzz` below the top edge
+///   (`v < 1 − fuzz/steps`) the riser above blends in: `w = 1 − (sv − 1 + fuzz)/(2·fuzz)`;
+/// - otherwise (the edge in the middle of a step): `w = (sv − ½ + fuzz)/(2·fuzz)`.
+///
+/// `w` is ½ on every edge between steps and in [0, 1] for every `fuzz > 0`. A `fuzz` of 0
+/// or less (or NaN) is the first printed version, without a blend: 0 for `sv < ½`, else 1.
+pub fn steps(v: f32, steps: f32, fuzz: f32) -> f32 {
+    let x = v * steps;
+    let sv = fract(x);
+    if fuzz.is_nan() || fuzz <= 0.0 {
+        return if sv < 0.5 { 0.0 } else { 1.0 };
+    }
+    if sv < 0.5 - fuzz {
+        if sv > fuzz || x <= fuzz {
+            0.0
+        } else {
+            0.5 - sv / (2.0 * fuzz)
+        }
+    } else if sv > 0.5 + fuzz {
+        if sv < 1.0 - fuzz || v >= 1.0 - fuzz / steps {
+            1.0
+        } else {
+            1.0 - (sv - 1.0 + fuzz) / (2.0 * fuzz)
+        }
+    } else {
+        (sv - 0.5 + fuzz) / (2.0 * fuzz)
+    }
+}
+
 /// `mix(a, b, t) = a·(1 − t) + b·t`.
 pub fn mix(a: Vec3, b: Vec3, t: f32) -> Vec3 {
     a * (1.0 - t) + b * t
@@ -90,6 +126,35 @@ mod tests {
         // Without fuzz the edge is sharp.
         assert_eq!(disk(Vec2::new(0.89, 0.5), c, 0.4, 0.0), 1.0);
         assert_eq!(disk(Vec2::new(0.91, 0.5), c, 0.4, 0.0), 0.0);
+    }
+
+    #[test]
+    fn steps_follows_the_printed_branches() {
+        // steps 4, fuzz 0.1: sv = mod(4v, 1); v = 0.25·(k + sv).
+        let w = |k: f32, sv: f32| steps(0.25 * (k + sv), 4.0, 0.1);
+        let near = |a: f32, b: f32| (a - b).abs() < 1e-5;
+        // Riser and tread away from the edges.
+        assert_eq!(w(1.0, 0.3), 0.0);
+        assert_eq!(w(1.0, 0.7), 1.0);
+        // Middle edge: (sv − 0.5 + fuzz)/(2·fuzz).
+        assert!(near(w(1.0, 0.5), 0.5));
+        assert!(near(w(1.0, 0.45), 0.25));
+        assert!(near(w(1.0, 0.58), 0.9));
+        // Bottom of a step above the first: ½ − sv/(2·fuzz).
+        assert!(near(w(1.0, 0.05), 0.25));
+        assert!(near(w(2.0, 0.0), 0.5));
+        // Top of a step below the last: 1 − (sv − 1 + fuzz)/(2·fuzz).
+        assert!(near(w(1.0, 0.95), 0.75));
+        assert!(near(w(1.0, 0.99), 0.55));
+        // The bottom edge (v·steps ≤ fuzz) is all riser, the top (v ≥ 1 − fuzz/steps) all
+        // tread.
+        assert_eq!(w(0.0, 0.05), 0.0);
+        assert_eq!(w(0.0, 0.0), 0.0);
+        assert_eq!(w(3.0, 0.95), 1.0);
+        // Without fuzz, the first printed version.
+        assert_eq!(steps(0.3, 4.0, 0.0), 0.0);
+        assert_eq!(steps(0.375, 4.0, 0.0), 1.0);
+        assert_eq!(steps(0.25, 4.0, -1.0), 0.0);
     }
 
     #[test]

@@ -212,6 +212,7 @@ fn material(w: &mut Walk<'_>, m: &gltf::Material<'_>) -> MaterialDesc {
         Some(BumpDesc {
             height: None,
             normal_map: Some(t.image(EncodingDesc::Linear)),
+            object_normal: None,
             scale: n.scale() as f64,
         })
     });

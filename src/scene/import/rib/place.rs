@@ -187,6 +187,12 @@ impl Builder {
                 spaths.push((format!(".bind.{k}"), pos));
             }
         }
+        spaths.extend(
+            surface
+                .bump_paths
+                .iter()
+                .map(|(p, pos)| (format!(".bump{p}"), *pos)),
+        );
         let emission = attrs.area_light.as_ref().map(|c| {
             let find = |n: &str| c.params.iter().find(|p| p.name == n);
             let i = find("intensity").map_or(1.0, Param::num);
@@ -204,7 +210,7 @@ impl Builder {
             two_sided: attrs.sides == 2,
             emission: emission.unwrap_or((0.0, 0.0, 0.0)),
             bind,
-            bump: None,
+            bump: surface.bump,
             interior: None,
             contour: None,
             lights: None,
@@ -216,9 +222,10 @@ impl Builder {
         lights_off.sort_unstable();
         lights_off.dedup();
         let key = format!(
-            "{:?}|{:?}|{}|{:?}|{}|{:?}|{:?}",
+            "{:?}|{:?}|{:?}|{}|{:?}|{}|{:?}|{:?}",
             desc.shader,
             desc.bind,
+            desc.bump,
             desc.two_sided,
             desc.emission,
             at_pos.line * 100_000 + at_pos.column,

@@ -4,8 +4,8 @@
 //! `LightSource` (`pointlight`, `spotlight`, `distantlight`, `ambientlight`) and
 //! `Atmosphere` (`fog`).
 //!
-//! The tutorial's own shaders (`mySurface`, `simplemirror`, `myLight`, `myDisplacement`) are
-//! in [`super::tutorial`].
+//! The tutorial's own shaders (`mySurface`, `simplemirror`, `stairs`, `myLight`,
+//! `myDisplacement`) are in [`super::tutorial`].
 //!
 //! Every parameter a shader does not have is an error with a suggestion; parameters left
 //! out take the defaults of the RenderMan Interface Specification 3.2.
@@ -15,7 +15,7 @@ use super::params::{Param, Ty};
 use super::state::ShaderCall;
 use super::tutorial;
 use crate::scene::desc::{AxisDesc, LocalLobeDesc, ScalarDesc, ShaderDesc, V3};
-use crate::scene::nodes_desc::InputDesc;
+use crate::scene::nodes_desc::{BumpDesc, InputDesc};
 use crate::scene::suggest::suggestion;
 use std::collections::BTreeMap;
 
@@ -200,6 +200,10 @@ pub struct Surface {
     pub texture: Option<(String, Pos)>,
     /// Parameters driven by node graphs (the tutorial's `mySurface` pattern).
     pub bind: BTreeMap<String, InputDesc>,
+    /// The material's bump (the tutorial's `stairs` normal).
+    pub bump: Option<BumpDesc>,
+    /// `(path below the bump, position)` of the bump and its written parameters.
+    pub bump_paths: Vec<(String, Pos)>,
 }
 
 /// The surface shader of `call` (`None`: `defaultsurface`) with colour `cs` and opacity
@@ -219,7 +223,7 @@ pub struct Surface {
 /// - `paintedplastic`: `plastic` with `Cs` times `texture(texturename)`.
 pub fn surface(call: Option<&ShaderCall>, cs: V3, os: V3, problems: &mut Vec<Problem>) -> Surface {
     if let Some(c) = call.filter(|c| tutorial::SURFACES.contains(&c.name.as_str())) {
-        return tutorial::surface(c, os, problems);
+        return tutorial::surface(c, cs, os, problems);
     }
     let name = call.map_or("defaultsurface", |c| c.name.as_str());
     let specs = surface_specs(name);
@@ -338,6 +342,8 @@ pub fn surface(call: Option<&ShaderCall>, cs: V3, os: V3, problems: &mut Vec<Pro
         paths,
         texture,
         bind: BTreeMap::new(),
+        bump: None,
+        bump_paths: Vec::new(),
     }
 }
 

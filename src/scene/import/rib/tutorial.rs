@@ -1,6 +1,7 @@
 //! The tutorial's RenderMan shaders (seed 001 prints their RSL source), built in by name:
 //! `Surface "mySurface"` (§3.3, the repeated soft disk lit as `plastic`), `Surface
-//! "simplemirror"` (§4.4, the RAT's traced mirror), `LightSource "myLight"` (§3.3, a point
+//! "simplemirror"` (§4.4, the RAT's traced mirror), `Surface "stairs"` (§4.2, `plastic` with
+//! an object-space normal that fakes steps), `LightSource "myLight"` (§3.3, a point
 //! light fading linearly from `near` to `far`) and `Displacement "myDisplacement"` (§3.3,
 //! `0.1·sin(20πt) + 0.1·sin(20πs)` along the normal). A RenderMan renderer loads a shader
 //! compiled from its `.sl` file; stagelight compiles no RSL, so the name alone selects the
@@ -17,10 +18,10 @@ use super::super::located::{Pos, Problem};
 use super::shaders::{Kind, LightShader, LightValues, Spec, Surface, Values};
 use super::state::ShaderCall;
 use crate::scene::desc::{AxisDesc, LocalLobeDesc, ScalarDesc, ShaderDesc, V3};
-use crate::scene::nodes_desc::{InputDesc, NodeDesc};
+use crate::scene::nodes_desc::{BumpDesc, InputDesc, NodeDesc};
 
 /// The tutorial's surface shaders.
-pub const SURFACES: &[&str] = &["mySurface", "simplemirror"];
+pub const SURFACES: &[&str] = &["mySurface", "simplemirror", "stairs"];
 
 /// The tutorial's light shaders.
 pub const LIGHTS: &[&str] = &["myLight"];
@@ -35,6 +36,18 @@ const MY_SURFACE: &[Spec] = &[
     ("Ks", Kind::Float, Some("specular")),
     ("roughness", Kind::Float, Some("lobe.RenderMan.roughness")),
     ("specularcolor", Kind::Color, Some("specular")),
+];
+
+/// `stairs(float Ka = 1, Kd = 0.5, Ks = 0.5, roughness = 0.1; color specularcolor = 1;
+/// float steps = 4, fuzz = 0.05)` (§4.2's last version).
+const STAIRS: &[Spec] = &[
+    ("Ka", Kind::Float, Some("ka")),
+    ("Kd", Kind::Float, Some("kd")),
+    ("Ks", Kind::Float, Some("specular")),
+    ("roughness", Kind::Float, Some("lobe.RenderMan.roughness")),
+    ("specularcolor", Kind::Color, Some("specular")),
+    ("steps", Kind::Float, None),
+    ("fuzz", Kind::Float, None),
 ];
 
 /// `simplemirror ( )` and `myDisplacement()` take no parameters.
@@ -56,6 +69,7 @@ pub fn parameter_names(request: &str, name: &str) -> Option<(&'static str, Vec<&
     let names = |specs: &[Spec]| specs.iter().map(|s| s.0).collect::<Vec<_>>();
     match request {
         "Surface" if name == "mySurface" => Some(("surface", names(MY_SURFACE))),
+        "Surface" if name == "stairs" => Some(("surface", names(STAIRS))),
         "Surface" if SURFACES.contains(&name) => Some(("surface", names(NONE))),
         "LightSource" if LIGHTS.contains(&name) => Some(("light", names(MY_LIGHT))),
         "Displacement" if DISPLACEMENTS.contains(&name) => Some(("displacement", names(NONE))),
@@ -72,7 +86,7 @@ fn written_paths(specs: &[Spec], v: &Values<'_>, prefix: &str) -> Vec<(String, P
         .collect()
 }
 
-/// The tutorial's surface `call` (one of [`SURFACES`]) with opacity `os`:
+/// The tutorial's surface `call` (one of [`SURFACES`]) with colour `cs` and opacity `os`:
 ///
 /// - `mySurface`: `Ci = Os·(myCs·(Ka·ambient() + Kd·diffuse(Nf)) + specularcolor·Ks·
 ///   specular(Nf, V, roughness))` with `myCs = Os·mix(red, yellow, 1 − smoothstep(0.3, 0.5,
@@ -81,8 +95,12 @@ fn written_paths(specs: &[Spec], v: &Values<'_>, prefix: &str) -> Vec<(String, P
 ///   outside: (1, 0, 0))` (times `Os`). `Cs` is not used: the RSL never reads it.
 /// - `simplemirror`: `Ci = Os·trace(P, reflect(I, N))` — a `Local` with nothing but a white
 ///   traced mirror reflection.
-pub fn surface(call: &ShaderCall, os: V3, problems: &mut Vec<Problem>) -> Surface {
+/// - `stairs`: [`stairs`].
+pub fn surface(call: &ShaderCall, cs: V3, os: V3, problems: &mut Vec<Problem>) -> Surface {
     let black = (0.0, 0.0, 0.0);
+    if call.name == "stairs" {
+        return stairs(call, cs, problems);
+    }
     if call.name == "simplemirror" {
         Values::read(call, "surface", NONE, problems);
         return Surface {
@@ -98,6 +116,8 @@ pub fn surface(call: &ShaderCall, os: V3, problems: &mut Vec<Problem>) -> Surfac
             paths: vec![(".Local".into(), call.pos)],
             texture: None,
             bind: BTreeMap::new(),
+            bump: None,
+            bump_paths: Vec::new(),
         };
     }
     let v = Values::read(call, "surface", MY_SURFACE, problems);
@@ -137,6 +157,66 @@ pub fn surface(call: &ShaderCall, os: V3, problems: &mut Vec<Problem>) -> Surfac
         paths,
         texture: None,
         bind: BTreeMap::from([("color".to_string(), disk)]),
+        bump: None,
+        bump_paths: Vec::new(),
+    }
+}
+
+/// `stairs` (§4.2, the version with `fuzz`): `Ci = Os·(Cs·(Ka·ambient() + Kd·diffuse(Nf)) +
+/// specularcolor·Ks·specular(Nf, V, roughness))` — `plastic`'s formula — with `Nf` the
+/// object-space riser normal `front = (0, −1, 0)` or tread normal `up = (0, 0, 1)` chosen by
+/// `sv = mod(v·steps, 1)` and blended linearly within `fuzz` of each edge: `plastic`'s
+/// `Local` with `bump: (object_normal: Mix(a: (0, −1, 0), b: (0, 0, 1), t: Steps(steps,
+/// fuzz)))` (the blend weight is [`crate::shading::texture::pattern::steps`]).
+fn stairs(call: &ShaderCall, cs: V3, problems: &mut Vec<Problem>) -> Surface {
+    let black = (0.0, 0.0, 0.0);
+    let v = Values::read(call, "surface", STAIRS, problems);
+    let ks = v.num(2, 0.5);
+    let sc = v.triple(4, (1.0, 1.0, 1.0));
+    let shader = ShaderDesc::Local {
+        color: cs,
+        ka: v.num(0, 1.0),
+        kd: v.num(1, 0.5),
+        specular: (ks * sc.0, ks * sc.1, ks * sc.2),
+        lobe: LocalLobeDesc::RenderMan {
+            roughness: v.num(3, 0.1),
+        },
+        reflection: black,
+        ambient: black,
+    };
+    let mut paths = vec![(".Local".to_string(), call.pos)];
+    paths.extend(written_paths(STAIRS, &v, ".Local"));
+    let steps = NodeDesc::Steps {
+        uv: InputDesc::Node(Box::new(NodeDesc::Uv)),
+        steps: InputDesc::Number(v.num(5, 4.0)),
+        fuzz: InputDesc::Number(v.num(6, 0.05)),
+    };
+    let normal = NodeDesc::Mix {
+        a: InputDesc::Colour((0.0, -1.0, 0.0)),
+        b: InputDesc::Colour((0.0, 0.0, 1.0)),
+        t: InputDesc::Node(Box::new(steps)),
+    };
+    let mut bump_paths = vec![
+        (String::new(), call.pos),
+        (".object_normal".to_string(), call.pos),
+    ];
+    for (i, field) in [(5, "steps"), (6, "fuzz")] {
+        if let Some(p) = v.found[i] {
+            bump_paths.push((format!(".object_normal.Mix.t.Steps.{field}"), p.pos()));
+        }
+    }
+    Surface {
+        shader,
+        paths,
+        texture: None,
+        bind: BTreeMap::new(),
+        bump: Some(BumpDesc {
+            height: None,
+            normal_map: None,
+            object_normal: Some(InputDesc::Node(Box::new(normal))),
+            scale: 1.0,
+        }),
+        bump_paths,
     }
 }
 
