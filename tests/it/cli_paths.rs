@@ -181,7 +181,7 @@ fn scene_outputs_that_cannot_be_written_are_refused_at_their_file_before_the_fir
             "; nothing rendered",
         ),
         (
-            &["farm", "scene.ron", "--parts", "2", "--out", "f"][..],
+            &["farm", "scene.ron", "--parts", "1", "--out", "f"][..],
             "; no scripts written",
         ),
     ] {

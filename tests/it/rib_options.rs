@@ -143,7 +143,7 @@ fn a_misspelt_shader_parameter_is_named_with_the_shaders_own() {
     // A shader we do not have still takes declared parameters only.
     assert_eq!(
         errors("WorldBegin\nSurface \"wood\" \"grain\" [ 3 ]\nSphere 1 -1 1 360\nWorldEnd\n"),
-        "t.rib:2:9: warning: unknown surface shader \"wood\": using \"defaultsurface\"\n  help: expected one of \"constant\", \"matte\", \"metal\", \"shinymetal\", \"plastic\", \"paintedplastic\", \"defaultsurface\", \"mySurface\" or \"simplemirror\"\n\
+        "t.rib:2:9: warning: unknown surface shader \"wood\": using \"defaultsurface\"\n  help: expected one of \"constant\", \"matte\", \"metal\", \"shinymetal\", \"plastic\", \"paintedplastic\", \"defaultsurface\", \"mySurface\", \"simplemirror\" or \"stairs\"\n\
          t.rib:2:16: error: undeclared parameter \"grain\"\n  help: declare it first (Declare \"grain\" \"float\") or write its type inline (\"float grain\")"
     );
 }
