@@ -1308,17 +1308,29 @@ fn farm_refusals(args: &FarmArgs, scene: &mut LoadedScene) -> Result<(), ExitCod
     }
     check_outputs(&args.scene, scene, &frame.inputs, None)?;
     if args.bake {
-        let refusal = stagelight::part_refusals::bake_part_count_refusal(
-            &mut scene.world,
-            &mut frame,
-            args.parts,
-        );
+        let refusal =
+            bake_tile_count(&mut scene.world, &mut frame).and_then(|(tiles, requests)| {
+                stagelight::part_refusals::bake_part_count_refusal(args.parts, tiles, requests)
+            });
         if let Some(message) = refusal {
             eprintln!("error: {message}");
             return Err(ExitCode::from(EXIT_USAGE));
         }
     }
     Ok(())
+}
+
+/// The bake's tiles and requests, after running the geometry stages on `world` (through
+/// `frame`, which must bake): the sizes of density-sized and per-vertex requests come from the
+/// built geometry. `None` for a scene whose requests cannot be prepared (its parts report it).
+fn bake_tile_count(world: &mut hecs::World, frame: &mut Frame) -> Option<(u64, usize)> {
+    systems::run_before("bake_lightmaps", world, frame).ok()?;
+    let prepared =
+        stagelight::bake::request::prepare_bakes(world, frame.outputs.geometry.as_ref()).ok()?;
+    Some((
+        systems::bake_lightmaps::bake_tiles(&prepared),
+        prepared.len(),
+    ))
 }
 
 fn bake(args: BakeArgs) -> ExitCode {

@@ -11,7 +11,7 @@ use hecs::World;
 
 use crate::farm::part::{plural, tile_count, useful_parts, TILE};
 use crate::farm::{PartNumber, Split};
-use crate::frame::{Frame, OutputOverrides};
+use crate::frame::OutputOverrides;
 use crate::settings::RenderSettings;
 
 /// Whether `-o path` names a part file (`.exr`); the refusal says what to give instead.
@@ -129,21 +129,16 @@ pub fn part_count_refusal(
 }
 
 /// The refusal of `farm --bake --parts N` when some of the N parts would own no texel: more
-/// parts than the bake requests have tiles of [`TILE`]×[`TILE`] texels. The sizes of
-/// density-sized and per-vertex requests come from the built geometry, so this runs the
-/// geometry stages on `world` (through `frame`, which must bake). A scene whose requests
-/// cannot be prepared is left to the parts to report (`None`).
-pub fn bake_part_count_refusal(world: &mut World, frame: &mut Frame, count: u32) -> Option<String> {
-    crate::systems::run_before("bake_lightmaps", world, frame).ok()?;
-    let prepared =
-        crate::bake::request::prepare_bakes(world, frame.outputs.geometry.as_ref()).ok()?;
-    let tiles = crate::systems::bake_lightmaps::bake_tiles(&prepared);
+/// parts than the bake requests have tiles of [`TILE`]×[`TILE`] texels (`tiles`, over
+/// `requests` requests). The sizes of density-sized and per-vertex requests come from the
+/// built geometry, so the caller counts the tiles after the geometry stages.
+pub fn bake_part_count_refusal(count: u32, tiles: u64, requests: usize) -> Option<String> {
     if u64::from(count) <= tiles {
         return None;
     }
     Some(format!(
         "--parts {count} is more parts than there is work for: the bake {} only {} of {TILE}×{TILE} texels, so {} would own no texel\n  help: use --parts {tiles} or fewer",
-        if prepared.len() == 1 { "request has" } else { "requests have" },
+        if requests == 1 { "request has" } else { "requests have" },
         plural(tiles, "tile", "tiles"),
         plural(u64::from(count) - tiles, "part", "parts")
     ))
