@@ -333,3 +333,23 @@ fn blank_lines_in_ascii_ply_data_are_skipped() {
     assert_eq!(mesh.triangles, [[0, 1, 2]]);
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A line ending in a backslash continues on the next (the OBJ specification's line
+/// continuation): a quad written over three lines is two triangles.
+#[test]
+fn continued_lines_are_one_statement() {
+    let loaded = load("Obj(file: \"continued.obj\")").expect("continued.obj loads");
+    let mesh = mesh_of(&loaded);
+    assert_eq!(mesh.triangles.len(), 2);
+    assert!(mesh.positions.contains(&Vec3::new(1.0, 0.0, 0.0)));
+}
+
+/// An error inside a continued statement names the line and column where the word is.
+#[test]
+fn errors_in_continued_lines_keep_their_place() {
+    expect(
+        "continued_bad.obj",
+        "5:5",
+        "position index 9 is out of range: the file has 3 positions",
+    );
+}

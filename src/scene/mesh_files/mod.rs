@@ -10,6 +10,7 @@
 pub mod gltf_file;
 pub mod mtl;
 pub mod obj;
+mod obj_lines;
 pub mod ply;
 
 use std::fmt;

@@ -17,6 +17,10 @@
 //! - a face `a b c d …` is fan-triangulated into `(a, b, c), (a, c, d), …`;
 //! - normals (texture coordinates) are kept only when every face vertex names one.
 //!
+//! A line ending in a backslash continues on the next one (the OBJ specification's line
+//! continuation; [`super::obj_lines`]): errors still name the line and column where the
+//! offending word was written.
+//!
 //! Indices count from 1, or back from −1 (the last element read so far); an index may
 //! refer to an element written later in the file. An index of 0, one before the first
 //! element, or past the last is an error at the face vertex that holds it, as is a `vt` or
@@ -32,7 +36,8 @@ use std::collections::HashMap;
 
 use glam::{DVec3, Vec2, Vec3};
 
-use super::{column, shown, FaceMaterials, MaterialLibrary, MeshData, MeshFileError, UsedMaterial};
+use super::obj_lines::{logical_lines, LogicalLine};
+use super::{shown, FaceMaterials, MaterialLibrary, MeshData, MeshFileError, UsedMaterial};
 
 /// Valid OBJ statements that carry nothing this reader uses (besides the names it checks).
 const IGNORED: &[&[u8]] = &[
@@ -79,10 +84,10 @@ pub fn parse(bytes: &[u8]) -> Result<MeshData, MeshFileError> {
         current: NONE,
         ..Reader::default()
     };
-    for (k, line) in bytes.split(|&b| b == b'\n').enumerate() {
-        let line = line.strip_suffix(b"\r").unwrap_or(line);
-        reader.statement(line).map_err(|(offset, message)| {
-            MeshFileError::at_line(k + 1, column(line, offset), message)
+    for line in logical_lines(bytes) {
+        reader.statement(&line).map_err(|(offset, message)| {
+            let (line, column) = line.at(offset);
+            MeshFileError::at_line(line, column, message)
         })?;
     }
     reader.finish()
@@ -103,8 +108,6 @@ struct Forward {
 /// What an OBJ file has said so far.
 #[derive(Default)]
 struct Reader {
-    /// 1-based number of the line being read.
-    line: usize,
     positions: Vec<DVec3>,
     uvs: Vec<Vec2>,
     normals: Vec<Vec3>,
@@ -128,8 +131,8 @@ struct Reader {
 type LineError = (usize, String);
 
 impl Reader {
-    fn statement(&mut self, line: &[u8]) -> Result<(), LineError> {
-        self.line += 1;
+    fn statement(&mut self, logical: &LogicalLine<'_>) -> Result<(), LineError> {
+        let line: &[u8] = &logical.text;
         let words = words(line);
         let Some(&(at, keyword)) = words.first() else {
             return Ok(());
@@ -156,7 +159,7 @@ impl Reader {
                     .push(Vec3::new(n[0] as f32, n[1] as f32, n[2] as f32));
                 Ok(())
             }
-            b"f" => self.face(line, args, at),
+            b"f" => self.face(logical, args, at),
             b"o" | b"g" => {
                 let what = if keyword == b"o" { "object" } else { "group" };
                 utf8_name(line, at + keyword.len(), what)?;
@@ -175,11 +178,8 @@ impl Reader {
                 self.current = match self.used.iter().position(|u| u.name == name) {
                     Some(k) => k as u32,
                     None => {
-                        self.used.push(UsedMaterial {
-                            name,
-                            line: self.line,
-                            column: column(line, words[1].0),
-                        });
+                        let (line, column) = logical.at(words[1].0);
+                        self.used.push(UsedMaterial { name, line, column });
                         (self.used.len() - 1) as u32
                     }
                 };
@@ -190,16 +190,17 @@ impl Reader {
                     let file = std::str::from_utf8(word).map_err(|_| {
                         (offset, "the material library name is not UTF-8".to_string())
                     })?;
+                    let (line, column) = logical.at(offset);
                     self.libraries.push(MaterialLibrary {
                         file: file.to_string(),
-                        line: self.line,
-                        column: column(line, offset),
+                        line,
+                        column,
                     });
                 }
                 Ok(())
             }
             _ if keyword.starts_with(b"#") || IGNORED.contains(&keyword) => Ok(()),
-            b"ply" if self.line == 1 => Err((
+            b"ply" if logical.first_line() == 1 => Err((
                 at,
                 "\"ply\" is not an OBJ statement: this is a PLY file (load it with Ply(file: …))"
                     .into(),
@@ -252,7 +253,12 @@ impl Reader {
         Ok(())
     }
 
-    fn face(&mut self, line: &[u8], args: &[(usize, &[u8])], at: usize) -> Result<(), LineError> {
+    fn face(
+        &mut self,
+        line: &LogicalLine<'_>,
+        args: &[(usize, &[u8])],
+        at: usize,
+    ) -> Result<(), LineError> {
         if args.len() < 3 {
             return Err((
                 at,
@@ -274,7 +280,7 @@ impl Reader {
     /// The `[v, vt, vn]` element indices of a face vertex `v`, `v/vt`, `v//vn` or `v/vt/vn`.
     fn face_vertex(
         &mut self,
-        line: &[u8],
+        line: &LogicalLine<'_>,
         offset: usize,
         word: &[u8],
     ) -> Result<[u32; 3], LineError> {
@@ -318,9 +324,10 @@ impl Reader {
                 return Err((offset, out_of_range(kind, written, count as usize)));
             }
             if index >= count {
+                let (line, column) = line.at(offset);
                 self.forward.push(Forward {
-                    line: self.line,
-                    column: column(line, offset),
+                    line,
+                    column,
                     kind,
                     written,
                     index: index as u32,
@@ -486,6 +493,32 @@ mod tests {
     }
 
     const TRI: &[u8] = b"v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+
+    #[test]
+    fn a_backslash_continues_a_statement_and_errors_keep_their_place() {
+        let m = parse(b"v 0 0 0\nv 1 0 \\\r\n 0\nv 1 1 0\nv 0 1 0\nf 1 2 \\\n  3 4\n").unwrap();
+        assert_eq!(m.triangles, vec![[0, 1, 2], [0, 2, 3]]);
+        assert_eq!(m.positions[1], DVec3::new(1.0, 0.0, 0.0));
+        // The bad index 9 is on line 5, column 5, inside the face begun on line 4.
+        assert_eq!(
+            error(&[TRI, b"f 1 2 \\\n    9\nv 0 0 1\n"].concat()),
+            (
+                5,
+                5,
+                "position index 9 is out of range: the file has 4 positions".into()
+            )
+        );
+        // A word after the joined line is located too.
+        assert_eq!(
+            error(&[TRI, b"f 1 \\\n 2 x\n"].concat()),
+            (
+                5,
+                4,
+                "\"x\" is not a face vertex: write v, v/vt, v//vn or v/vt/vn with whole numbers"
+                    .into()
+            )
+        );
+    }
 
     #[test]
     fn quads_share_vertices_and_fan() {
