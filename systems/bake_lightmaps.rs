@@ -348,7 +348,9 @@ fn baked_gltf(
         };
         let slot = match kind {
             BakeKind::AmbientOcclusion { .. } => TextureSlot::Occlusion,
-            BakeKind::Lightmap { .. } => TextureSlot::Lightmap,
+            BakeKind::Lightmap { scale, .. } => TextureSlot::Lightmap {
+                factor: 1.0 / f64::from(*scale),
+            },
             _ => continue,
         };
         textures.push(BakedTexture {

@@ -75,9 +75,21 @@ pub fn clip_warning(clipped: &Clipped, target: &BakeTarget, file: &str) -> (Stri
         } => format!(
             "{exr}, or store `Lightmap(store: IrradianceOverPi)` (E / π: 1 under a white sky of radiance 1)"
         ),
+        BakeKind::Lightmap { scale, .. } if clipped.max > 1.0 => format!(
+            "{exr}, or lower the lightmap's `scale` (now {scale}; {} fits the largest value), which multiplies the stored value (a glTF copy's `lightmapFactor` undoes it)",
+            two_digits_down(f64::from(scale) / f64::from(clipped.max))
+        ),
         _ => exr.to_string(),
     };
     (message, help)
+}
+
+/// `x > 0` rounded down to two significant digits, written without float noise.
+fn two_digits_down(x: f64) -> String {
+    let exponent = x.log10().floor() as i32 - 1;
+    let digits = (x / 10f64.powi(exponent)).floor();
+    let decimals = (-exponent).max(0) as usize;
+    format!("{:.*}", decimals, digits * 10f64.powi(exponent))
 }
 
 #[cfg(test)]
@@ -123,5 +135,34 @@ mod tests {
         );
         let inside = image(&[0.0, 1.0, 1.0 + 1e-6, -1e-6], &[true; 4]);
         assert_eq!(clipped_texels(&inside, &ao), None);
+    }
+
+    /// A lightmap's help names the `scale` that fits its largest value.
+    #[test]
+    fn a_scaled_lightmap_is_told_the_scale_that_fits() {
+        let kind = BakeKind::Lightmap {
+            indirect: true,
+            samples: 4,
+            max_depth: 2,
+            store: LightmapStore::IrradianceOverPi,
+            scale: 0.5,
+        };
+        let clipped = Clipped {
+            texels: 3,
+            of: 10,
+            max: 1.04,
+            min: 0.2,
+        };
+        let (message, help) = clip_warning(&clipped, &target(kind, BakeFormat::Png8), "a.png");
+        assert_eq!(
+            message,
+            "3 of 10 texels of \"a.png\" lie outside the 8-bit PNG's range [0, 1] and were clipped (largest value 1.040)"
+        );
+        assert_eq!(
+            help,
+            "write it as EXR (`format: Exr`) to keep the full range, or lower the lightmap's `scale` (now 0.5; 0.48 fits the largest value), which multiplies the stored value (a glTF copy's `lightmapFactor` undoes it)"
+        );
+        assert_eq!(two_digits_down(0.000_123_9), "0.00012");
+        assert_eq!(two_digits_down(37.9), "37");
     }
 }

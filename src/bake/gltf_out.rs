@@ -32,12 +32,16 @@ pub struct BakedTexture<'a> {
 }
 
 /// Which material slot a baked texture fills.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub enum TextureSlot {
     /// `occlusionTexture` (red channel, `TEXCOORD_1`).
     Occlusion,
-    /// `extensions.MSFT_lightmap.lightmapTexture` (`TEXCOORD_1`).
-    Lightmap,
+    /// `extensions.MSFT_lightmap.lightmapTexture` (`TEXCOORD_1`), with the `lightmapFactor`
+    /// a viewer multiplies it by (the inverse of the bake's `scale`).
+    Lightmap {
+        /// The `lightmapFactor` of each channel.
+        factor: f64,
+    },
 }
 
 /// Per-vertex baked values of one primitive instance, written as its `COLOR_0`.
@@ -65,11 +69,16 @@ pub fn color_source(
             .iter()
             .find(|(k, _)| matches!(k, BakeKind::Lightmap { .. } | BakeKind::Albedo))
     };
-    let (_, values) = ao.or_else(colour)?;
+    let (kind, values) = ao.or_else(colour)?;
+    // A lightmap stored at a `scale` other than 1 is undone: `COLOR_0` has no factor.
+    let unscale = match kind {
+        BakeKind::Lightmap { scale, .. } => 1.0 / scale,
+        _ => 1.0,
+    };
     Some(
         values
             .iter()
-            .map(|v| v.clamp(glam::Vec3::ZERO, glam::Vec3::ONE))
+            .map(|v| (*v * unscale).clamp(glam::Vec3::ZERO, glam::Vec3::ONE))
             .map(|v| if v.is_nan() { glam::Vec3::ZERO } else { v })
             .collect(),
     )
@@ -282,13 +291,12 @@ pub fn baked_glb(
         let m = &mut json["materials"][material];
         match t.slot {
             TextureSlot::Occlusion => m["occlusionTexture"] = reference,
-            TextureSlot::Lightmap => {
+            TextureSlot::Lightmap { factor } => {
                 lightmaps = true;
                 if !m["extensions"].is_object() {
                     m["extensions"] = json!({});
                 }
-                m["extensions"]["MSFT_lightmap"] =
-                    json!({"lightmapTexture": reference, "lightmapFactor": [1.0, 1.0, 1.0]});
+                m["extensions"]["MSFT_lightmap"] = json!({"lightmapTexture": reference, "lightmapFactor": [factor, factor, factor]});
             }
         }
     }

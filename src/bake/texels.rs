@@ -297,6 +297,7 @@ fn texel(
                 samples,
                 max_depth,
                 store,
+                scale,
             } => {
                 let mut e = Vec3::ZERO;
                 for (s, site) in sites.iter().enumerate() {
@@ -353,11 +354,13 @@ fn texel(
                     rays += samples as u64 * (*max_depth as u64 + 1);
                     e += sum.mean_over(samples as u64);
                 }
-                match store {
+                let stored = match store {
                     LightmapStore::Irradiance => e,
                     LightmapStore::Radiance => texel_albedo(job, &sites) * e / std::f32::consts::PI,
                     LightmapStore::IrradianceOverPi => e / std::f32::consts::PI,
-                }
+                };
+                // Exact at the default scale of 1.
+                stored * *scale
             }
             BakeKind::Normals { space } => {
                 let n = sites

@@ -81,6 +81,8 @@ pub enum BakeKind {
         max_depth: u32,
         /// Irradiance or radiance × albedo.
         store: LightmapStore,
+        /// Multiplies the stored value (a glTF copy's `lightmapFactor` is its inverse).
+        scale: f32,
     },
     /// Shading normals.
     Normals {

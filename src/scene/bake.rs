@@ -216,11 +216,22 @@ fn request(
                 samples,
                 max_depth,
                 store,
+                scale,
             } => {
                 if *samples == 0 {
                     ck.error(
                         &format!("{kp}.Lightmap.samples"),
                         "samples must be at least 1",
+                    );
+                    ok = false;
+                }
+                let stored_scale = *scale as f32;
+                if !(stored_scale.is_finite() && stored_scale > 0.0) {
+                    ck.error(
+                        &format!("{kp}.Lightmap.scale"),
+                        format!(
+                            "scale must be a positive number (it multiplies the stored value), found {scale}"
+                        ),
                     );
                     ok = false;
                 }
@@ -233,6 +244,7 @@ fn request(
                         LightmapStoreDesc::Radiance => LightmapStore::Radiance,
                         LightmapStoreDesc::IrradianceOverPi => LightmapStore::IrradianceOverPi,
                     },
+                    scale: stored_scale,
                 }
             }
             BakeKindDesc::Normals { space } => BakeKind::Normals {

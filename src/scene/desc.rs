@@ -1239,6 +1239,13 @@ pub enum BakeKindDesc {
         /// `Irradiance` (default, W/m²), `Radiance` (albedo·E/π) or `IrradianceOverPi` (E/π).
         #[serde(default)]
         store: LightmapStoreDesc,
+        /// Multiplies the stored value, default 1 (headroom in an 8-bit PNG: 0.5 stores half
+        /// the value; a glTF copy's `lightmapFactor` is its inverse).
+        #[serde(
+            default = "default_lightmap_scale",
+            skip_serializing_if = "is_unit_scale"
+        )]
+        scale: f64,
     },
     /// Shading normals.
     Normals {
@@ -1257,6 +1264,12 @@ fn default_bake_samples() -> u32 {
 }
 fn default_bake_depth() -> u32 {
     2
+}
+fn default_lightmap_scale() -> f64 {
+    1.0
+}
+fn is_unit_scale(scale: &f64) -> bool {
+    *scale == 1.0
 }
 
 /// What a lightmap stores.

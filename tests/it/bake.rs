@@ -364,6 +364,7 @@ fn bakes_are_identical_at_one_and_two_threads() {
                     samples: 8,
                     max_depth: 2,
                     store: stagelight::components::LightmapStore::Irradiance,
+                    scale: 1.0,
                 },
             ];
             world
@@ -400,6 +401,7 @@ fn lightmap_of_a_point_lit_plane_matches_the_inverse_square_law() {
         samples: 1,
         max_depth: 0,
         store: stagelight::components::LightmapStore::Irradiance,
+        scale: 1.0,
     };
     world
         .insert_one(e, request(vec![kind], 8, 8, 1, 0))
@@ -468,6 +470,7 @@ fn indirect_lightmap_agrees_between_diffuse_gather_and_path_tracer() {
             samples: 512,
             max_depth: 3,
             store: stagelight::components::LightmapStore::Irradiance,
+            scale: 1.0,
         };
         world
             .insert_one(floor, request(vec![kind], 4, 4, 1, 0))

@@ -219,6 +219,7 @@ fn h25_no_light_leaks_under_a_penetrating_wall() {
         samples: 1,
         max_depth: 0,
         store: LightmapStore::Irradiance,
+        scale: 1.0,
     };
     let mut req = request(kind, 256, 256, 2, UvSource::Mesh);
     req.texel_samples = 4;

@@ -2,7 +2,9 @@
 //! second UV set (`TEXCOORD_1`, lightmap UVs) bakes, on that set, a lightmap of `E / π`
 //! (direct plus two bounces of indirect light; the light a white diffuse surface reflects,
 //! which a viewer multiplies by the base colour: 1 under the white environment a glTF without
-//! lights gets, where the irradiance E = π would clip an 8-bit PNG to white everywhere) and
+//! lights gets, where the irradiance E = π would clip an 8-bit PNG to white everywhere),
+//! stored at [`LIGHTMAP_SCALE`] (half: the sky's 1 and the estimate's noise around it fit the
+//! PNG; the `--write-gltf` copy's `lightmapFactor` of 2 restores E / π), and
 //! ambient occlusion into 8-bit PNGs at
 //! [`TEXELS_PER_UNIT`] texels per unit (at most [`MAX_SIZE`]); every instance of a primitive
 //! without it bakes ambient occlusion per vertex ([`default_vertex_bake`]). `stagelight bake
@@ -15,6 +17,9 @@ use crate::scene::desc::{
     UvsDesc,
 };
 
+/// The default lightmap's `scale`: E / π is stored halved, so light up to twice the white
+/// sky's (and the noise of its estimate) fits an 8-bit PNG.
+pub const LIGHTMAP_SCALE: f64 = 0.5;
 /// Texel density of the default bakes (texels per world unit).
 pub const TEXELS_PER_UNIT: f64 = 32.0;
 /// Largest side of a default bake texture.
@@ -40,6 +45,7 @@ pub fn default_bake() -> BakeDesc {
                     samples: SAMPLES,
                     max_depth: 2,
                     store: LightmapStoreDesc::IrradianceOverPi,
+                    scale: LIGHTMAP_SCALE,
                 },
                 format: BakeFormatDesc::Png8,
                 file: None,
