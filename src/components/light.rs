@@ -107,7 +107,9 @@ pub struct Emitter {
     pub attenuation: Option<(f32, f32)>,
     /// Point and spot lights: whether the arriving light falls off as 1/d² (physical);
     /// `false` is mental ray's `mib_light_point`/`mib_light_spot`, whose `Cl` is the
-    /// intensity itself at every distance (times the near/far ramp).
+    /// intensity itself at every distance (times the near/far ramp). Area shapes: `false`
+    /// makes each sample a point light of intensity `radiant` at a point of the shape
+    /// (mental ray's area shape on those shaders; `shading::lights::area_points`).
     pub inverse_square: bool,
 }
 

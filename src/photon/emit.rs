@@ -23,7 +23,7 @@ use crate::accel::{spawn_ray, Hit, Ray, SurfacePoint};
 use crate::geometry::SceneGeometry;
 use crate::sampling::{sample_cosine_hemisphere, sample_triangle};
 use crate::shading::frame::ShadingFrame;
-use crate::shading::lights::{spot_falloff, AreaShape, Light, LightSet, MeshLight};
+use crate::shading::lights::{spot_falloff, uniform_sphere, Light, LightSet, MeshLight};
 use crate::shading::texture::hit::emission_at;
 
 /// A photon leaving a light: its ray and its flux weight, W (not yet divided by the number of
@@ -64,7 +64,9 @@ impl Source {
                 ..
             } => *intensity * spot_solid_angle(*cos_outer, *cos_inner, *beam_distribution),
             Light::Directional { irradiance, .. } => *irradiance * (PI * bounds.1 * bounds.1),
-            Light::Area(a) => a.radiance * (PI * area_of(&a.shape)),
+            // A non-physical area light is a point light spread over its shape.
+            Light::Area(a) if a.points => a.radiance * (4.0 * PI),
+            Light::Area(a) => a.radiance * (PI * a.shape.area()),
             // The environment sends no photons (documented limitation); ambient light is
             // not light transport.
             Light::Environment(_) | Light::Ambient { .. } => Vec3::ZERO,
@@ -143,10 +145,14 @@ impl Source {
                 let origin = centre - *direction * (1.01 * radius) + frame.s * d.x + frame.t * d.y;
                 from_point(origin, *direction, self.physical)
             }
+            Light::Area(a) if a.points => {
+                let (q, _) = a.shape.point(u_pos);
+                from_point(q, uniform_sphere(u_dir), self.physical)
+            }
             Light::Area(a) => {
                 // A point on the shape and its outward normal; light shapes are not scene
                 // geometry, so the photon starts exactly there.
-                let (q, n) = area_point(&a.shape, u_pos);
+                let (q, n) = a.shape.point(u_pos);
                 let dir = ShadingFrame::from_normal(n).to_world(sample_cosine_hemisphere(u_dir));
                 from_point(q, dir, self.physical)
             }
@@ -228,8 +234,16 @@ impl Source {
                     power: self.physical / (PI * radius * radius * pdf),
                 }
             }
+            Light::Area(a) if a.points => {
+                let (q, _) = a.shape.point(u_pos);
+                let (dir, pdf) = aim.direction(q, pick, u_dir)?;
+                EmittedPhoton {
+                    ray: ray(q, dir),
+                    power: self.physical / (4.0 * PI * pdf),
+                }
+            }
             Light::Area(a) => {
-                let (q, n) = area_point(&a.shape, u_pos);
+                let (q, n) = a.shape.point(u_pos);
                 let (dir, pdf) = aim.direction(q, pick, u_dir)?;
                 let cos = n.dot(dir);
                 if cos <= 0.0 {
@@ -237,7 +251,7 @@ impl Source {
                 }
                 EmittedPhoton {
                     ray: ray(q, dir),
-                    power: a.radiance * (area_of(&a.shape) * cos / pdf),
+                    power: a.radiance * (a.shape.area() * cos / pdf),
                 }
             }
             Light::Environment(_) | Light::Ambient { .. } => return None,
@@ -264,26 +278,6 @@ impl Source {
 fn valid(photon: EmittedPhoton) -> Option<EmittedPhoton> {
     (photon.power.is_finite() && photon.ray.dir.is_finite() && photon.ray.origin.is_finite())
         .then_some(photon)
-}
-
-/// A point on an area light's shape (uniform by area) and its outward normal.
-fn area_point(shape: &AreaShape, u: Vec2) -> (Vec3, Vec3) {
-    match shape {
-        AreaShape::Rect(r) => (r.corner + r.edge_u * u.x + r.edge_v * u.y, r.normal),
-        AreaShape::Disc(d) => {
-            let p = crate::sampling::sample_concentric_disk(u) * d.radius;
-            (d.center + d.frame.s * p.x + d.frame.t * p.y, d.frame.n)
-        }
-        AreaShape::Sphere(s) => {
-            let n = uniform_sphere(u);
-            (s.center + n * s.radius, n)
-        }
-        AreaShape::Cylinder(c) => {
-            let phi = 2.0 * PI * u.y;
-            let n = c.frame.s * phi.cos() + c.frame.t * phi.sin();
-            (c.start + c.frame.n * (u.x * c.length) + n * c.radius, n)
-        }
-    }
 }
 
 /// A point on an emitting mesh: a triangle by the CDF (by emitted power), a point uniform on
@@ -456,27 +450,9 @@ fn mean(v: Vec3) -> f32 {
     (v.x + v.y + v.z) / 3.0
 }
 
-/// Emitting area of a light shape, m².
-fn area_of(shape: &AreaShape) -> f32 {
-    match shape {
-        AreaShape::Rect(r) => r.area,
-        AreaShape::Disc(d) => PI * d.radius * d.radius,
-        AreaShape::Sphere(s) => 4.0 * PI * s.radius * s.radius,
-        AreaShape::Cylinder(c) => 2.0 * PI * c.radius * c.length,
-    }
-}
-
 fn triangle_area(geometry: &SceneGeometry, prim: u32) -> f32 {
     let t = geometry.accel.triangle(prim);
     0.5 * (t[1] - t[0]).cross(t[2] - t[0]).length()
-}
-
-/// Uniform direction on the unit sphere.
-fn uniform_sphere(u: Vec2) -> Vec3 {
-    let z = 1.0 - 2.0 * u.x;
-    let r = (1.0 - z * z).max(0.0).sqrt();
-    let phi = 2.0 * PI * u.y;
-    Vec3::new(r * phi.cos(), r * phi.sin(), z)
 }
 
 /// `∫ falloff dω` over a spot's cone, sr (midpoint rule in cosθ, 4096 steps).

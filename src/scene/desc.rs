@@ -492,6 +492,8 @@ pub struct LightDesc {
     pub globillum_photons: Option<u32>,
     /// Point and spot lights: whether `Cl` falls off as 1/d², default `true`; `false` is
     /// mental ray's `mib_light_point`/`mib_light_spot` (`Cl` = colour at every distance).
+    /// Area kinds: `false` makes each light sample a point light of `Cl` = colour at a
+    /// point of the shape (mental ray's area shape on those shaders).
     #[serde(default = "default_true")]
     pub inverse_square: bool,
 }

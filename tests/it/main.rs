@@ -58,6 +58,7 @@ mod light_shadow_factor;
 mod lights;
 mod mesh_files;
 mod mi;
+mod mi_area_lights;
 mod mi_contour_shaders;
 mod mi_contours;
 mod mi_controls;

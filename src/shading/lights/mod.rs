@@ -11,6 +11,7 @@
 //! distance `d` from the emitting point by a linear ramp, on top of the inverse-square law
 //! (which the solid-angle conversion already contains for area lights).
 
+mod area_points;
 mod cylinder;
 mod disc;
 pub mod environment;
@@ -22,6 +23,7 @@ use std::sync::Arc;
 
 use glam::{Vec2, Vec3};
 
+pub use area_points::uniform_sphere;
 pub use cylinder::CylinderLight;
 pub use disc::DiscLight;
 pub use environment::EnvLight;
@@ -64,6 +66,11 @@ pub struct AreaLight {
     pub visible: bool,
     /// Near/far attenuation `(start, end)`.
     pub attenuation: Option<(f32, f32)>,
+    /// mental ray's non-physical area light (an area shape on `mib_light_point` or
+    /// `mib_light_spot`; [`Emitter::inverse_square`] false): each sample is a point light of
+    /// intensity `radiance` at a point of the shape, without distance falloff; rays do not
+    /// meet the shape (see `area_points.rs`).
+    pub points: bool,
 }
 
 impl AreaLight {
@@ -211,8 +218,9 @@ impl Light {
                 shadows: e.shadows,
                 shadow_factor: e.shadow_factor,
                 samples: e.samples.max(1),
-                visible: e.visible,
+                visible: e.visible && e.inverse_square,
                 attenuation: e.attenuation,
+                points: !e.inverse_square,
             })
         };
         match e.shape {
@@ -342,6 +350,7 @@ impl Light {
                 pdf: 0.0,
                 distance: f32::INFINITY,
             }),
+            Light::Area(a) if a.points => area_points::point_sample(a, p, u),
             Light::Area(a) => {
                 let mut s = match &a.shape {
                     AreaShape::Rect(r) => r.sample(p, u),
@@ -370,7 +379,7 @@ impl Light {
         let Light::Area(a) = self else {
             return None;
         };
-        if delta && !a.visible {
+        if (delta && !a.visible) || a.points {
             return None;
         }
         let (t, pdf) = a.shape_hit(ray)?;
@@ -387,6 +396,9 @@ impl Light {
         let Light::Area(a) = self else {
             return None;
         };
+        if a.points {
+            return None;
+        }
         let (t, pdf) = a.shape_hit(ray)?;
         let near = t * ray.dir.length();
         let far = (ray.origin + ray.dir * t - p).length();

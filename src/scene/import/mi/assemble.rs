@@ -652,9 +652,21 @@ fn light_desc(
                 )
             }
         };
-        // Area lights are physical: the same power as the point light of this colour.
-        if area > 0.0 {
+        // A physical light's area shape emits the same power as its point light; on a
+        // non-physical shader (`mib_light_point`, `mib_light_spot`) each light sample is a
+        // point light of this colour on the shape, without falloff, and the samples are
+        // averaged (seed 001, §3.2.2: "you have to divide by the number of samples").
+        if physical && area > 0.0 {
             color = scale(color, 1.0 / (PI * area));
+        }
+        if !physical && light.visible {
+            out.report(
+                at,
+                Problem::warning(
+                    Pos::default(),
+                    format!("light \"{name}\": `visible` is not drawn: an area shape on a light shader without distance falloff lights the scene as point lights spread over the shape, which rays do not meet (use `physical_light` for a visible area light)"),
+                ),
+            );
         }
         kind
     } else {
@@ -726,9 +738,10 @@ fn light_desc(
             0.0
         },
         samples,
-        visible: light.visible && !is_delta,
+        visible: light.visible && !is_delta && physical,
         attenuation: if directional { None } else { light.attenuation },
-        inverse_square: physical || !is_delta || directional,
+        // Area shapes follow the shader too: without falloff, point lights over the shape.
+        inverse_square: physical || directional,
         energy: light.energy,
         caustic_photons: light.caustic_photons,
         globillum_photons: light.globillum_photons,
