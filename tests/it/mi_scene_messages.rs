@@ -265,3 +265,61 @@ fn plan_reports_the_photons_the_lights_own_counts_emit() {
         "{line}"
     );
 }
+
+/// `quad_inst` placed through `levels` nested instance groups (identity transforms); the
+/// root holds the outermost.
+fn chain(levels: usize) -> String {
+    let mut extra = String::new();
+    let mut inner = "quad_inst".to_string();
+    for k in 0..levels {
+        extra += &format!(
+            "instgroup \"g{k}\" \"{inner}\" end instgroup\ninstance \"i{k}\" \"g{k}\" end instance\n"
+        );
+        inner = format!("i{k}");
+    }
+    scene("", "", &extra).replace(
+        "\"Lamp_inst\" \"quad_inst\" end instgroup",
+        &format!("\"Lamp_inst\" \"{inner}\" end instgroup"),
+    )
+}
+
+/// Exporters write each transform node as an instgroup and an instance: a 200-deep chain
+/// (no cycle) renders as the quad placed directly; past 1,000 levels the error says so,
+/// and a real cycle is still "contains itself" (both used to be "contains itself" past 64).
+#[test]
+fn deep_instance_group_chains_are_read_and_only_cycles_contain_themselves() {
+    let dir = scratch_dir("mi-deep-chain");
+    let image = |name: &str, text: &str| {
+        std::fs::write(dir.join(name), text).unwrap();
+        let o = run_in(&dir, &["render", name, "--spp", "1", "-o", "out.png"]);
+        assert!(o.status.success(), "{}", stderr_of(&o));
+        std::fs::read(dir.join("out.png")).unwrap()
+    };
+    let direct = image("direct.mi", &scene("", "", ""));
+    let chained = image("chain.mi", &chain(200));
+    assert!(
+        direct == chained,
+        "the 200-deep chain renders the directly placed quad"
+    );
+    let errors = read_mi(Path::new("c.mi"), chain(1001).as_bytes()).unwrap_err();
+    let messages: Vec<String> = errors
+        .iter()
+        .filter(|p| !p.problem.warning)
+        .map(|p| p.problem.message.clone())
+        .collect();
+    assert_eq!(
+        messages,
+        ["instgroup \"g0\" is nested more than 1000 instance groups deep"]
+    );
+    let cycle = chain(3).replace(
+        "instgroup \"g0\" \"quad_inst\" end instgroup",
+        "instgroup \"g0\" \"quad_inst\" \"i2\" end instgroup",
+    );
+    let errors = read_mi(Path::new("c.mi"), cycle.as_bytes()).unwrap_err();
+    assert!(
+        errors
+            .iter()
+            .any(|p| p.problem.message == "instgroup \"g2\" contains itself"),
+        "{errors:?}"
+    );
+}

@@ -21,8 +21,10 @@ use crate::scene::desc::{
 };
 use crate::scene::suggest::closest;
 
-/// Deepest instance-group nesting followed (a guard against cycles).
-const MAX_DEPTH: usize = 64;
+/// Deepest instance-group nesting followed (cycles are found by the walk itself; this bounds
+/// its recursion). Exporters write every transform node as an instgroup and an instance, so
+/// a long joint chain nests deeply.
+const MAX_DEPTH: usize = 1000;
 
 struct Out {
     /// Every element name defined, including elements that failed (already reported).
@@ -565,7 +567,16 @@ struct Walk<'a> {
 
 impl<'a> Walk<'a> {
     fn group(&mut self, name: &str, w: DMat4, depth: usize, at: &Located, out: &mut Out) {
-        if depth > MAX_DEPTH || !self.visiting.insert(name.to_string()) {
+        if depth > MAX_DEPTH {
+            out.error(
+                at,
+                format!(
+                    "instgroup \"{name}\" is nested more than {MAX_DEPTH} instance groups deep"
+                ),
+            );
+            return;
+        }
+        if !self.visiting.insert(name.to_string()) {
             out.error(at, format!("instgroup \"{name}\" contains itself"));
             return;
         }
