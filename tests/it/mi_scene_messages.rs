@@ -323,3 +323,51 @@ fn deep_instance_group_chains_are_read_and_only_cycles_contain_themselves() {
         "{errors:?}"
     );
 }
+
+/// Maya's exporter names the material shader (`shader "sh1" "mib_illum_lambert" (…)`) and
+/// refers to it (`material "mtl" opaque = "sh1" shadow = "sh1" end material`): the seed's
+/// plane renders the same bytes as with the shader written inline (the material shader as
+/// its own shadow shader is stagelight's rule without one), and an unknown name is an
+/// error at the reference with a suggestion.
+#[test]
+fn a_named_material_shader_renders_as_the_inline_one() {
+    let seed = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/seeds/mi/plane.mi"),
+    )
+    .unwrap();
+    let (a, b) = (
+        seed.find("material \"mtl\"").unwrap(),
+        seed.find("end material").unwrap() + "end material".len(),
+    );
+    let shader = seed[a..b]
+        .replace("material \"mtl\"\nopaque\n", "shader \"sh1\"\n")
+        .replace("\nend material", "");
+    let named = format!(
+        "{}{shader}\nmaterial \"mtl\"\nopaque\n    = \"sh1\"\n    shadow = \"sh1\"\nend material{}",
+        &seed[..a],
+        &seed[b..]
+    );
+    let dir = scratch_dir("mi-named-material");
+    std::fs::write(dir.join("inline.mi"), &seed).unwrap();
+    std::fs::write(dir.join("named.mi"), &named).unwrap();
+    let image = |name: &str| {
+        let o = run_in(&dir, &["render", name, "--spp", "1", "-o", "out.png"]);
+        assert!(o.status.success(), "{}", stderr_of(&o));
+        std::fs::read(dir.join("out.png")).unwrap()
+    };
+    assert!(image("inline.mi") == image("named.mi"));
+    let bad = named.replace("    = \"sh1\"", "    = \"sh2\"");
+    let line = line_of(&bad, "    = \"sh2\"");
+    let errors = read_mi(Path::new("bad.mi"), bad.as_bytes()).unwrap_err();
+    let errors: Vec<String> = errors
+        .iter()
+        .filter(|p| !p.problem.warning)
+        .map(|p| p.to_string())
+        .collect();
+    assert_eq!(
+        errors,
+        [format!(
+            "bad.mi:{line}:7: error: no shader named \"sh2\" is defined before the material shader\n  help: did you mean \"sh1\"?"
+        )]
+    );
+}

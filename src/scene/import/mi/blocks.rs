@@ -366,18 +366,21 @@ pub fn camera(r: &mut Reader, c: &mut Cursor, open: Pos) {
             }
             "output" => output(c, &mut cam.outputs),
             "environment" => {
-                if let Some(call) = c.shader_call("the environment shader") {
+                if let Some(call) = c.shader_call_or_named("the environment shader", &r.raw.shaders)
+                {
                     cam.environment = super::tutorial::environment(c, &call, &r.raw.linked)
                         .unwrap_or_else(|| shaders::environment(c, &call, &r.raw.shaders));
                 }
             }
             "volume" => {
-                if let Some(call) = c.shader_call("the volume shader") {
+                if let Some(call) = c.shader_call_or_named("the volume shader", &r.raw.shaders) {
                     cam.atmosphere = super::volumes::volume(c, &call, "camera");
                 }
             }
             "lens" => {
-                if let Some(call) = c.shader_call(&format!("the {w} shader")) {
+                if let Some(call) =
+                    c.shader_call_or_named(&format!("the {w} shader"), &r.raw.shaders)
+                {
                     c.warn(
                         call.pos,
                         format!("{w} shader \"{}\" is not mapped", call.name),
@@ -648,7 +651,7 @@ pub fn light(r: &mut Reader, c: &mut Cursor, open: Pos) {
         return;
     };
     let fresh = r.define(c, &name, pos);
-    let Some(call) = c.shader_call("the light shader") else {
+    let Some(call) = c.shader_call_or_named("the light shader", &r.raw.shaders) else {
         c.skip_to_end("light", open);
         return;
     };
@@ -774,7 +777,7 @@ pub fn material(r: &mut Reader, c: &mut Cursor, open: Pos) {
     };
     let fresh = r.define(c, &name, pos);
     c.eat_word("opaque");
-    let Some(call) = c.shader_call("the material shader") else {
+    let Some(call) = c.shader_call_or_named("the material shader", &r.raw.shaders) else {
         c.skip_to_end("material", open);
         return;
     };
@@ -800,7 +803,7 @@ pub fn material(r: &mut Reader, c: &mut Cursor, open: Pos) {
         match w.as_str() {
             "opaque" => {}
             "contour" => {
-                if let Some(call) = c.shader_call("the contour shader") {
+                if let Some(call) = c.shader_call_or_named("the contour shader", &r.raw.shaders) {
                     frame_fade = super::contours::frame_fade(c, &call);
                     if frame_fade.is_none() {
                         contour = super::contours::material_shader(c, &call);
@@ -808,7 +811,7 @@ pub fn material(r: &mut Reader, c: &mut Cursor, open: Pos) {
                 }
             }
             "volume" => {
-                if let Some(call) = c.shader_call("the volume shader") {
+                if let Some(call) = c.shader_call_or_named("the volume shader", &r.raw.shaders) {
                     interior = super::volumes::volume(c, &call, "material");
                 }
             }
@@ -821,17 +824,17 @@ pub fn material(r: &mut Reader, c: &mut Cursor, open: Pos) {
                     .iter()
                     .any(|l| l == super::statements::TUTORIAL_DISPLACEMENT) =>
             {
-                if let Some(call) = c.shader_call("the displace shader") {
+                if let Some(call) = c.shader_call_or_named("the displace shader", &r.raw.shaders) {
                     displace = super::displace::tutorial_displacement(c, &call);
                 }
             }
             "shadow" => {
-                if let Some(call) = c.shader_call("the shadow shader") {
+                if let Some(call) = c.shader_call_or_named("the shadow shader", &r.raw.shaders) {
                     shadow = super::material_shaders::shadow(c, &call, &r.raw.shaders);
                 }
             }
             "environment" => {
-                if let Some(call) = c.shader_call("the environment shader") {
+                if let Some(call) = c.shader_call_or_named("the environment shader", &r.raw.shaders) {
                     environment = super::material_shaders::environment(
                         c,
                         &call,
@@ -841,7 +844,7 @@ pub fn material(r: &mut Reader, c: &mut Cursor, open: Pos) {
                 }
             }
             "photon" | "displace" => {
-                if let Some(photon) = c.shader_call(&format!("the {w} shader")) {
+                if let Some(photon) = c.shader_call_or_named(&format!("the {w} shader"), &r.raw.shaders) {
                     let n = &photon.name;
                     if w == "photon" && is_photon_twin(&call.name, n) {
                         // Photons scatter through the material's own BSDF: what the twin does.

@@ -408,6 +408,42 @@ impl Cursor {
         Some(ShaderCall { name, pos, params })
     }
 
+    /// [`Self::shader_call`], or a named shader given by reference (`= "name"`, as Maya's
+    /// exporter writes `material "m" = "sh1"`): the call that `shader "name" "type" (…)`
+    /// defined in `named`, located at the reference. An unknown name is an error with a
+    /// suggestion among the named shaders.
+    pub fn shader_call_or_named(
+        &mut self,
+        what: &str,
+        named: &std::collections::HashMap<String, ShaderCall>,
+    ) -> Option<ShaderCall> {
+        if !self.eat_punct('=') {
+            return self.shader_call(what);
+        }
+        let (name, pos) = self.string(&format!("the shader named for {what}"))?;
+        match named.get(&name) {
+            Some(call) => Some(ShaderCall {
+                pos,
+                ..call.clone()
+            }),
+            None => {
+                let mut p = Problem::error(
+                    pos,
+                    format!("no shader named \"{name}\" is defined before {what}"),
+                );
+                let known = named.keys().map(String::as_str);
+                p = match crate::scene::suggest::closest(&name, known) {
+                    Some(s) => p.with_help(format!("did you mean \"{s}\"?")),
+                    None => p.with_help(format!(
+                        "define it first: shader \"{name}\" \"mib_illum_lambert\" (…)"
+                    )),
+                };
+                self.report(p);
+                None
+            }
+        }
+    }
+
     /// Reads `( "name" value, … )` of shader `shader`.
     pub fn params(&mut self, shader: &str) -> Option<Vec<Param>> {
         let open = self.pos();

@@ -63,6 +63,12 @@ pub fn shadow(
     named: &HashMap<String, ShaderCall>,
 ) -> Option<ShadowDesc> {
     let call = resolve(call, named);
+    // A material shader as its own shadow shader (Maya's exporter writes `shadow =
+    // "sh1"` beside `= "sh1"`): shadows follow the material shader, stagelight's rule
+    // without a shadow shader.
+    if builtin(&call.name).is_some_and(|b| b.role == shaders::Role::Material) {
+        return None;
+    }
     if builtin(&call.name).is_none() {
         c.report(
             Problem::warning(
