@@ -7,6 +7,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 
 use clap::{Args, Parser, Subcommand};
+use stagelight::bake::gltf_copy_refusals;
 use stagelight::components::BakeRequest;
 use stagelight::farm::{PartNumber, PartRun, Split};
 use stagelight::frame::{Frame, OutputOverrides, RunInputs, Tasks};
@@ -208,6 +209,10 @@ struct MergeArgs {
     /// Print the per-stage report.
     #[arg(long)]
     stats: bool,
+    /// Bake parts of a glTF scene: also write `DIR/<scene>.glb`, the copy whose materials
+    /// reference the merged textures, as `bake --write-gltf` writes it (docs/gltf.md).
+    #[arg(long = "write-gltf")]
+    write_gltf: bool,
 }
 
 #[derive(Args)]
@@ -251,6 +256,10 @@ struct FarmArgs {
     /// `-o` is then the texture directory of the merge.
     #[arg(long, conflicts_with_all = ["spp", "split"])]
     bake: bool,
+    /// With `--bake` of a glTF scene: the merge job also writes the baked glTF copy
+    /// (`merge --write-gltf`) into the texture directory.
+    #[arg(long = "write-gltf")]
+    write_gltf: bool,
 }
 
 #[derive(Args)]
@@ -283,10 +292,11 @@ struct BakeArgs {
     /// Bake only part K of N (1-based; interleaved 16×16 texel tiles of all requests) and
     /// write it undilated as `bake_part_K_of_N.exr` into the output directory, for
     /// `stagelight merge`.
-    #[arg(long, value_name = "K/N", conflicts_with = "write_gltf")]
+    #[arg(long, value_name = "K/N")]
     part: Option<PartNumber>,
     /// Also write `DIR/<scene>.glb`: a copy of the glTF scene whose materials reference the
-    /// baked textures (lightmap and occlusion on TEXCOORD_1; docs/gltf.md).
+    /// baked textures (lightmap and occlusion on TEXCOORD_1; docs/gltf.md). Not with
+    /// `--part`: `merge --write-gltf` writes the copy of a bake done in parts.
     #[arg(long = "write-gltf")]
     write_gltf: bool,
 }
@@ -989,6 +999,11 @@ fn merge(args: MergeArgs) -> ExitCode {
             return ExitCode::from(EXIT_ERROR);
         }
     };
+    if args.write_gltf {
+        let refusal = gltf_copy_refusals::render_parts_refusal(&args.parts[0]);
+        eprintln!("error: {refusal}");
+        return ExitCode::from(EXIT_USAGE);
+    }
     let image = match stagelight::farm::merge::merge(&parts) {
         Ok(image) => image,
         Err(message) => {
@@ -1128,6 +1143,13 @@ fn merge_bake(args: MergeArgs) -> ExitCode {
         }
     };
     let (header, merged) = merged;
+    if args.write_gltf {
+        let scene = args.scene.as_deref().unwrap_or(Path::new(&header.scene));
+        if let Some(refusal) = gltf_copy_refusals::scene_refusal(scene) {
+            eprintln!("error: {refusal}");
+            return ExitCode::from(EXIT_USAGE);
+        }
+    }
     let (scene_path, mut scene) = match part_scene(&args, &header.scene, header.scene_hash, "bake")
     {
         Ok(s) => s,
@@ -1151,12 +1173,27 @@ fn merge_bake(args: MergeArgs) -> ExitCode {
     if let Some(dir) = args.output {
         frame.inputs.bake_dir = dir;
     }
+    if args.write_gltf {
+        // The copy `bake --write-gltf` writes: same path rule, same bytes.
+        frame.inputs.write_gltf = Some(scene_path.clone());
+    }
     frame.inputs.merged_bake = Some(merged);
     run_and_report(&scene_path, &mut scene, frame, args.stats, None)
 }
 
 fn farm(args: FarmArgs) -> ExitCode {
     use stagelight::guard::dir_flags::{usable_dir, usable_file};
+    if args.write_gltf {
+        let refusal = if args.bake {
+            gltf_copy_refusals::scene_refusal(&args.scene)
+        } else {
+            Some(gltf_copy_refusals::render_farm_refusal())
+        };
+        if let Some(refusal) = refusal {
+            eprintln!("error: {refusal}");
+            return ExitCode::from(EXIT_USAGE);
+        }
+    }
     let output = args.output.as_deref().map_or(Ok(()), |o| {
         if args.bake {
             usable_dir("-o", o)
@@ -1202,6 +1239,7 @@ fn farm(args: FarmArgs) -> ExitCode {
             parts: args.parts,
             split: args.split.split(),
             bake: args.bake,
+            write_gltf: args.write_gltf,
             photons,
             spp: args.spp,
             seed: args.seed,
@@ -1255,7 +1293,8 @@ fn farm(args: FarmArgs) -> ExitCode {
 /// refuse, with the messages `render --part` and `merge` give: a part that cannot be
 /// divided (a diagnostic view, `--split samples` of adaptive sampling or component passes),
 /// a merge output of no known format (`-o out.jpg`) and outputs that overwrite an input of
-/// the scene or each other; and more parts than there is work for (for a bake, found by
+/// the scene or each other (for a bake the textures and, with `--write-gltf`, the glTF copy
+/// the merge job writes); and more parts than there is work for (for a bake, found by
 /// running the geometry stages on `scene`) and a render whose merge would write nothing.
 fn farm_refusals(args: &FarmArgs, scene: &mut LoadedScene) -> Result<(), ExitCode> {
     let mut settings = scene.settings.clone();
@@ -1274,6 +1313,10 @@ fn farm_refusals(args: &FarmArgs, scene: &mut LoadedScene) -> Result<(), ExitCod
         };
         if let Some(dir) = &args.output {
             frame.inputs.bake_dir = dir.clone();
+        }
+        if args.write_gltf {
+            // The merge job's glTF copy, checked with its textures.
+            frame.inputs.write_gltf = Some(args.scene.clone());
         }
     } else {
         let number = PartNumber {
@@ -1335,6 +1378,11 @@ fn bake_tile_count(world: &mut hecs::World, frame: &mut Frame) -> Option<(u64, u
 
 fn bake(args: BakeArgs) -> ExitCode {
     use stagelight::guard::dir_flags::{usable_dir, usable_file};
+    if let (Some(number), true) = (args.part, args.write_gltf) {
+        let refusal = gltf_copy_refusals::part_refusal(number.index, number.count);
+        eprintln!("error: {refusal}");
+        return ExitCode::from(EXIT_USAGE);
+    }
     let stats_json = args.stats_json.as_deref();
     if let Err(code) = usable_paths(&[
         args.output
@@ -1380,15 +1428,8 @@ fn bake(args: BakeArgs) -> ExitCode {
         scene_hash: stagelight::farm::scene_hash(&args.scene, scene.source_hash, &scene.world),
     });
     if args.write_gltf {
-        let ext = args
-            .scene
-            .extension()
-            .map(|e| e.to_string_lossy().to_ascii_lowercase());
-        if !matches!(ext.as_deref(), Some("gltf" | "glb")) {
-            eprintln!(
-                "error: --write-gltf needs a glTF scene (.gltf or .glb), not {}",
-                args.scene.display()
-            );
+        if let Some(refusal) = gltf_copy_refusals::scene_refusal(&args.scene) {
+            eprintln!("error: {refusal}");
             return ExitCode::from(EXIT_USAGE);
         }
         frame.inputs.write_gltf = Some(args.scene.clone());

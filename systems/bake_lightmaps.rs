@@ -23,7 +23,8 @@
 //! Farm parts (`crate::farm::bake_part`): a `bake --part K/N` run (`inputs.part`) bakes only
 //! its texel tiles and writes them undilated as one bake part file instead of textures; a
 //! merge (`inputs.merged_bake`) takes every texel from the merged parts and dilates and
-//! encodes them exactly as a single bake does.
+//! encodes them exactly as a single bake does (and with `inputs.write_gltf`, from `merge
+//! --write-gltf`, writes the same glTF copy).
 
 use std::time::Instant;
 

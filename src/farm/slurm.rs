@@ -3,7 +3,8 @@
 //! K/N`), a merge job that waits for the whole array
 //! (`--dependency=afterok:<array>`), and `submit.sh`, which submits both with `sbatch` and
 //! prints their job ids. The scripts are plain, commented bash that a user can read, edit
-//! and submit by hand.
+//! and submit by hand. A bake of a glTF scene with `--write-gltf` gets the flag on its merge
+//! command only (`merge --write-gltf` writes the baked glTF copy; parts cannot).
 //!
 //! Photon maps: when the render traces photon maps, a photon job runs first
 //! (`stagelight photons SCENE --photon-cache OUT/photons`), the array waits for it
@@ -33,6 +34,9 @@ pub struct FarmJob {
     pub split: Split,
     /// Bake the scene's bake requests instead of rendering its camera.
     pub bake: bool,
+    /// A bake of a glTF scene whose merge also writes the baked glTF copy
+    /// (`merge --write-gltf`).
+    pub write_gltf: bool,
     /// Where the merge writes (`-o`); `None`: the camera's outputs (a bake: the working
     /// directory).
     pub output: Option<PathBuf>,
@@ -162,7 +166,11 @@ pub fn scripts(job: &FarmJob) -> Vec<Script> {
     let _ = writeln!(
         merge,
         "# stagelight farm: merges the {n} part files into the outputs of a local {}.",
-        if job.bake { "bake" } else { "render" }
+        match (job.bake, job.write_gltf) {
+            (true, true) => "bake --write-gltf (the textures and the baked glTF copy)",
+            (true, false) => "bake",
+            _ => "render",
+        }
     );
     common_directives(&mut merge, job, "stagelight-merge", "merge.log");
     merge.push_str("#SBATCH --ntasks=1\n#SBATCH --cpus-per-task=1\nset -euo pipefail\n");
@@ -181,9 +189,10 @@ pub fn scripts(job: &FarmJob) -> Vec<Script> {
         .as_ref()
         .map(|o| format!(" -o {}", q(o)))
         .unwrap_or_default();
+    let write_gltf = if job.write_gltf { " --write-gltf" } else { "" };
     let _ = writeln!(
         merge,
-        "exec {} merge --scene {} \"${{parts[@]}}\"{output}",
+        "exec {} merge --scene {} \"${{parts[@]}}\"{output}{write_gltf}",
         q(&job.exe),
         q(&job.scene)
     );
@@ -277,6 +286,8 @@ pub struct JobOptions {
     pub split: Split,
     /// Bake instead of render.
     pub bake: bool,
+    /// With `bake`: the merge writes the baked glTF copy (`merge --write-gltf`).
+    pub write_gltf: bool,
     /// The render traces photon maps (a photon job runs before the array).
     pub photons: bool,
     /// `--spp` for every part.
@@ -350,6 +361,7 @@ pub fn job(
         parts: options.parts,
         split: options.split,
         bake: options.bake,
+        write_gltf: options.bake && options.write_gltf,
         output: output.map(absolute),
         render_args,
         photons: options.photons && !options.bake,
@@ -394,6 +406,7 @@ mod tests {
             parts: 4,
             split: Split::Tiles,
             bake: false,
+            write_gltf: false,
             output: Some("/farm/final.png".into()),
             render_args: vec!["--spp".into(), "16".into()],
             photons: false,
@@ -448,8 +461,33 @@ mod tests {
             "{merge}"
         );
         assert!(
-            merge.contains("\"${parts[@]}\" -o '/farm/textures'"),
+            merge.contains("\"${parts[@]}\" -o '/farm/textures'\n"),
             "{merge}"
+        );
+    }
+
+    #[test]
+    fn a_gltf_bake_merge_writes_the_baked_gltf_copy() {
+        let mut j = job();
+        j.bake = true;
+        j.write_gltf = true;
+        j.scene = "/scenes/model.glb".into();
+        j.output = None;
+        let s = scripts(&j);
+        let merge = &s[1].text;
+        assert!(
+            merge.contains(
+                "exec '/opt/bin/stagelight' merge --scene '/scenes/model.glb' \"${parts[@]}\" --write-gltf\n"
+            ),
+            "{merge}"
+        );
+        assert!(
+            merge.contains("local bake --write-gltf (the textures and the baked glTF copy)"),
+            "{merge}"
+        );
+        assert!(
+            !s[0].text.contains("--write-gltf"),
+            "the parts bake without it"
         );
     }
 

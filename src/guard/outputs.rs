@@ -5,7 +5,8 @@
 //! The inputs are the scene file, its includes and every file a scene names outside its
 //! outputs (meshes, textures, environment maps, displacement maps); the outputs are the
 //! render camera's files (after `-o`), the bake files of every request (in the bake
-//! directory), a bake part's file (`bake --part`), the glTF copy of `bake --write-gltf` and
+//! directory), a bake part's file (`bake --part`), the glTF copy of `--write-gltf` (`bake`,
+//! `merge` of bake parts, and `farm --bake`'s merge job, checked by `farm`) and
 //! `--stats-json`. Two paths are the same file when they name the same
 //! directory entry: both are compared absolute, through the real (symlink-free) parent
 //! directory where it exists.
@@ -147,8 +148,8 @@ fn camera_outputs(world: &World, inputs: &RunInputs) -> Vec<PlannedOutput> {
 }
 
 /// The files a bake writes besides its requests' textures because of its flags: the part
-/// file of `bake --part K/N` and the glTF copy of `bake --write-gltf`, both in the bake
-/// directory.
+/// file of `bake --part K/N` and the glTF copy of `--write-gltf` (`bake`, `merge` of bake
+/// parts), both in the bake directory.
 fn bake_run_files(inputs: &RunInputs) -> Vec<PlannedOutput> {
     let mut out = Vec::new();
     if let (Some(run), false) = (&inputs.part, inputs.tasks.render) {

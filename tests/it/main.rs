@@ -28,6 +28,7 @@ mod environment;
 mod face_cull;
 mod farm;
 mod farm_bake;
+mod farm_gltf;
 mod farm_photons;
 mod feature_switches;
 mod fog_height_noise_fade;
