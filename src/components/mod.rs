@@ -37,7 +37,7 @@ pub use bake::{
 pub use environment::{
     DepthExceeded, Environment, EnvironmentSource, LatLongMap, MaterialEnvironment,
 };
-pub use imager::{Imager, ToneMap};
+pub use imager::{Imager, ImagerPattern, ToneMap};
 
 mod volume;
 pub use volume::{Atmosphere, AtmosphereFade, DensityNoise, Fade, Falloff, Fog, Interior};

@@ -9,6 +9,7 @@ pub mod exr_limits;
 pub mod exr_magic;
 mod exr_writer;
 pub mod imager;
+mod imager_pattern;
 pub mod png_codec;
 mod png_palette;
 mod png_writer;

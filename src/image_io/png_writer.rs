@@ -21,6 +21,9 @@ use crate::image_io::srgb::to_u8;
 /// colour around every silhouette, and not dividing, dark fringes. Pixels of alpha 0 (the
 /// environment, nothing) keep their colour; opaque pixels are unchanged. An imager's
 /// `background` replaces the environment the same way: it is composited behind `c − E`.
+/// An imager's `pattern` replaces every pixel: its colour is written as display values
+/// (RenderMan runs the imager after exposure, so gain, tone map and gamma do not apply) with
+/// alpha 1.
 pub fn encode_png(
     fb: &FrameBuffers,
     alpha: bool,
@@ -44,6 +47,16 @@ pub fn encode_png(
             }
         };
         let a = match imager {
+            Some(Imager {
+                pattern: Some(pattern),
+                ..
+            }) => {
+                // The imager's pattern replaces the pixel: display values, alpha 1.
+                let (x, y) = (i % fb.width as usize, i / fb.width as usize);
+                let c = pattern.paint(x as u32, y as u32, fb.width, fb.height);
+                data.extend_from_slice(&[c.x, c.y, c.z].map(quantize));
+                1.0
+            }
             Some(im) => {
                 let (c, a) = im.composite(over(*c), a);
                 let c = straight(c, a);
@@ -155,6 +168,27 @@ mod tests {
             let (_, s) = bytes(encode_png(&one_pixel(c, a), true, None).unwrap());
             assert_eq!(s[..3], [to_u8(0.2), to_u8(0.3), to_u8(0.4)]);
         }
+    }
+
+    #[test]
+    fn an_imager_pattern_replaces_every_pixel_with_display_values_and_alpha_one() {
+        // 2 × 1, nothing covered: the disk of radius 0.3 around (0.25, 0.5) covers the
+        // left pixel's centre (0.25, 0.5), not the right one's (0.75, 0.5).
+        let fb = FrameBuffers::new(2, 1);
+        let imager = Imager {
+            gain: 4.0,
+            gamma: Some(2.2),
+            pattern: Some(crate::components::ImagerPattern::Disk {
+                center: glam::Vec2::new(0.25, 0.5),
+                radius: 0.3,
+                fuzz: 0.0,
+                inside: Vec3::new(1.0, 1.0, 0.0),
+                outside: Vec3::new(0.5, 0.0, 0.0),
+            }),
+            ..Imager::default()
+        };
+        let (_, s) = bytes(encode_png(&fb, true, Some(&imager)).unwrap());
+        assert_eq!(s, vec![255, 255, 0, 255, 128, 0, 0, 255]);
     }
 
     #[test]

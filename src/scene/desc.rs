@@ -323,7 +323,8 @@ pub struct CameraDesc {
     /// Files to write, default none.
     #[serde(default)]
     pub outputs: Vec<OutputDesc>,
-    /// Output shader for PNG outputs (background, exposure, tone map, gamma), default none.
+    /// Output shader for PNG outputs (background, exposure, tone map, gamma, pattern), default
+    /// none.
     #[serde(default)]
     pub imager: Option<ImagerDesc>,
     /// Lens shaders applied in order after the pinhole, default none.
@@ -334,7 +335,8 @@ pub struct CameraDesc {
     pub atmosphere: Option<VolumeDesc>,
 }
 
-/// `imager: (...)` on a camera: RenderMan `Exposure gain gamma` and `Imager "background"`.
+/// `imager: (...)` on a camera: RenderMan `Exposure gain gamma`, `Imager "background"` and the
+/// seed tutorial's `Imager "myImager"` (`pattern`).
 #[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(rename = "Imager", deny_unknown_fields)]
 pub struct ImagerDesc {
@@ -350,6 +352,52 @@ pub struct ImagerDesc {
     /// Display gamma, default none (the sRGB curve).
     #[serde(default)]
     pub gamma: Option<f64>,
+    /// A pattern of raster position painted over every pixel (colour and alpha 1), default
+    /// none: the seed tutorial's `Imager "myImager"`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pattern: Option<ImagerPatternDesc>,
+}
+
+/// `pattern: …` of an imager: what it paints over every pixel, in raster coordinates
+/// normalised by the resolution (`(x + ½, y + ½) / (width, height)`, row 0 at the top).
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize, Serialize)]
+#[serde(rename = "ImagerPattern", deny_unknown_fields)]
+pub enum ImagerPatternDesc {
+    /// `mix(outside, inside, 1 − smoothstep(radius − fuzz, radius + fuzz, distance))` of the
+    /// distance from `center` (the `Disk` shader-graph node's formula, over the image).
+    Disk {
+        /// Centre, default `(0.5, 0.5)`.
+        #[serde(default = "pattern_centre")]
+        center: (f64, f64),
+        /// Radius ≥ 0, default 0.4.
+        #[serde(default = "pattern_radius")]
+        radius: f64,
+        /// Half-width ≥ 0 of the soft edge, default 0 (a hard edge).
+        #[serde(default)]
+        fuzz: f64,
+        /// Colour inside, default `(0, 0, 1)`.
+        #[serde(default = "pattern_blue")]
+        inside: V3,
+        /// Colour outside, default `(1, 0, 0)`.
+        #[serde(default = "pattern_red")]
+        outside: V3,
+    },
+}
+
+fn pattern_centre() -> (f64, f64) {
+    (0.5, 0.5)
+}
+
+fn pattern_radius() -> f64 {
+    0.4
+}
+
+fn pattern_blue() -> V3 {
+    (0.0, 0.0, 1.0)
+}
+
+fn pattern_red() -> V3 {
+    (1.0, 0.0, 0.0)
 }
 
 fn default_gain() -> f64 {

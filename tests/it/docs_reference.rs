@@ -170,6 +170,7 @@ const SECTION_OF: &[(&str, &str)] = &[
     ("LightKind", "`Light`"),
     ("Placement", "`Camera`"),
     ("ToneMap", "`Imager`"),
+    ("ImagerPattern", "`Imager`"),
     ("Pass", "`Output`"),
     ("Format", "`Output`"),
     ("Transform", "`Instance`"),

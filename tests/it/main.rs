@@ -99,6 +99,7 @@ mod rib_options;
 mod rib_orientation;
 mod rib_shading;
 mod rib_structure;
+mod rib_tutorial_imager;
 mod rib_tutorial_shaders;
 mod scene_errors;
 mod scene_errors_lights;

@@ -684,30 +684,45 @@ impl Builder {
             }
             "Imager" => {
                 let (n, pos) = a.string("name")?;
-                let owner = ParamOwner {
+                let background = ParamOwner {
                     what: "imager \"background\"".into(),
                     names: &["background"],
                 };
-                let owner = (n == "background").then_some(&owner);
+                let named = tutorial::parameter_names("Imager", &n);
+                let tutorial_owner = named.as_ref().map(|(what, names)| ParamOwner {
+                    what: format!("{what} \"{n}\""),
+                    names,
+                });
+                let owner = if n == "background" {
+                    Some(&background)
+                } else {
+                    tutorial_owner.as_ref()
+                };
                 let params = a.params_of(&self.decls, owner, problems);
-                if n == "myImager" {
-                    // The tutorial's imager (seed 001 §3.3) replaces each pixel by a pattern
-                    // of raster coordinates: no stage of stagelight's imager makes one.
-                    problems.push(Problem::warning(
-                        pos,
-                        "ignored Imager \"myImager\": the tutorial's imager paints every pixel \
-                         with a pattern of raster coordinates, which stagelight's imager cannot"
-                            .to_string(),
-                    ));
+                if tutorial::IMAGERS.contains(&n.as_str()) {
+                    // The tutorial's imager (seed 001 §3.2.3) paints a pattern of raster
+                    // position over every pixel; it replaces any imager called before.
+                    let call = ShaderCall {
+                        name: n.clone(),
+                        pos: r.pos,
+                        file: self.file,
+                        params,
+                    };
+                    self.cam.pattern = Some((tutorial::imager(&call, problems), pos));
+                    self.cam.background = None;
                     return Ok(());
                 }
                 if n != "background" {
-                    problems.push(Problem::warning(
+                    let mut w = Problem::warning(
                         pos,
-                        format!("ignored Imager \"{n}\": only \"background\" is supported"),
-                    ));
+                        format!("ignored imager shader \"{n}\": not one of ours"),
+                    );
+                    let known = [&["background"][..], tutorial::IMAGERS].concat();
+                    w.help = suggestion(&n, &known, "shaders");
+                    problems.push(w);
                     return Ok(());
                 }
+                self.cam.pattern = None;
                 for p in params {
                     if p.name == "background" && p.nums().len() == 3 {
                         self.cam.background = Some((p.triple(), p.pos()));

@@ -1,5 +1,6 @@
 //! The RIB options that make the camera, its outputs and the render options: `Format`,
-//! `Projection`, `ScreenWindow`, `PixelSamples`, `PixelFilter`, `Exposure`, `Imager`,
+//! `Projection`, `ScreenWindow`, `PixelSamples`, `PixelFilter`, `Exposure`, `Imager`
+//! (`"background"`, or the tutorial's `"myImager"` as the imager's `pattern`),
 //! `Display`, `DepthOfField`, and the camera transformation current at `WorldBegin`.
 //!
 //! An off-centre `ScreenWindow` becomes a `Shift` lens (an off-axis pinhole), `DepthOfField`
@@ -13,8 +14,8 @@ use glam::{DMat3, DMat4, DVec3};
 
 use super::super::located::Pos;
 use crate::scene::desc::{
-    CameraDesc, FilterDesc, ImagerDesc, LensDesc, OutputDesc, PassDesc, PlacementDesc, SamplesDesc,
-    ToneMapDesc, M4, V3,
+    CameraDesc, FilterDesc, ImagerDesc, ImagerPatternDesc, LensDesc, OutputDesc, PassDesc,
+    PlacementDesc, SamplesDesc, ToneMapDesc, M4, V3,
 };
 
 /// One `Display` output.
@@ -61,6 +62,8 @@ pub struct CameraOptions {
     pub exposure: Option<((f64, f64), Pos)>,
     /// `Imager "background"` colour and where.
     pub background: Option<(V3, Pos)>,
+    /// `Imager "myImager"` as the imager's pattern and where its name is.
+    pub pattern: Option<(ImagerPatternDesc, Pos)>,
     /// The displays.
     pub displays: Vec<Display>,
     /// `DepthOfField fstop focallength focaldistance` as a thin lens in camera-space units
@@ -178,11 +181,16 @@ impl CameraOptions {
         if let Some((_, p)) = self.background {
             paths.push((".imager.background".into(), p));
         }
+        if let Some((_, p)) = self.pattern {
+            paths.push((".imager.pattern".into(), p));
+            paths.push((".imager.pattern.Disk".into(), p));
+        }
         let imager = ImagerDesc {
             background: self.background.map(|b| b.0),
             gain,
             tone_map: ToneMapDesc::None,
             gamma: Some(gamma),
+            pattern: self.pattern.map(|p| p.0),
         };
         (
             CameraDesc {

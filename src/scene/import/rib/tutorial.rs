@@ -2,8 +2,9 @@
 //! `Surface "mySurface"` (§3.3, the repeated soft disk lit as `plastic`), `Surface
 //! "simplemirror"` (§4.4, the RAT's traced mirror), `Surface "stairs"` (§4.2, `plastic` with
 //! an object-space normal that fakes steps), `LightSource "myLight"` (§3.3, a point
-//! light fading linearly from `near` to `far`) and `Displacement "myDisplacement"` (§3.3,
-//! `0.1·sin(20πt) + 0.1·sin(20πs)` along the normal). A RenderMan renderer loads a shader
+//! light fading linearly from `near` to `far`), `Displacement "myDisplacement"` (§3.3,
+//! `0.1·sin(20πt) + 0.1·sin(20πs)` along the normal) and `Imager "myImager"` (§3.2.3, the
+//! soft disk painted over every pixel in raster space). A RenderMan renderer loads a shader
 //! compiled from its `.sl` file; stagelight compiles no RSL, so the name alone selects the
 //! printed source (`docs/rib.md`, *The tutorial's shaders*). Where the tutorial prints a
 //! shader of the same name more than once, the last version is the one built in.
@@ -17,7 +18,7 @@ use std::collections::BTreeMap;
 use super::super::located::{Pos, Problem};
 use super::shaders::{Kind, LightShader, LightValues, Spec, Surface, Values};
 use super::state::ShaderCall;
-use crate::scene::desc::{AxisDesc, LocalLobeDesc, ScalarDesc, ShaderDesc, V3};
+use crate::scene::desc::{AxisDesc, ImagerPatternDesc, LocalLobeDesc, ScalarDesc, ShaderDesc, V3};
 use crate::scene::nodes_desc::{BumpDesc, InputDesc, NodeDesc};
 
 /// The tutorial's surface shaders.
@@ -28,6 +29,9 @@ pub const LIGHTS: &[&str] = &["myLight"];
 
 /// The tutorial's displacement shaders.
 pub const DISPLACEMENTS: &[&str] = &["myDisplacement"];
+
+/// The tutorial's imager shaders.
+pub const IMAGERS: &[&str] = &["myImager"];
 
 /// `mySurface(float Ka = 1, Kd = 0.5, Ks = 0.5, roughness = 0.1; color specularcolor = 1)`.
 const MY_SURFACE: &[Spec] = &[
@@ -50,7 +54,7 @@ const STAIRS: &[Spec] = &[
     ("fuzz", Kind::Float, None),
 ];
 
-/// `simplemirror ( )` and `myDisplacement()` take no parameters.
+/// `simplemirror ( )`, `myDisplacement()` and `myImager()` take no parameters.
 const NONE: &[Spec] = &[];
 
 /// `myLight(float intensity = 1, near = 1, far = 10; color lightcolor = 1; point from =
@@ -64,7 +68,7 @@ const MY_LIGHT: &[Spec] = &[
 ];
 
 /// The owner text and parameter names of the tutorial shader `name` for `request`
-/// (`Surface`, `LightSource`, `Displacement`), for the reader's unknown-parameter message.
+/// (`Surface`, `LightSource`, `Displacement`, `Imager`), for the reader's unknown-parameter message.
 pub fn parameter_names(request: &str, name: &str) -> Option<(&'static str, Vec<&'static str>)> {
     let names = |specs: &[Spec]| specs.iter().map(|s| s.0).collect::<Vec<_>>();
     match request {
@@ -73,6 +77,7 @@ pub fn parameter_names(request: &str, name: &str) -> Option<(&'static str, Vec<&
         "Surface" if SURFACES.contains(&name) => Some(("surface", names(NONE))),
         "LightSource" if LIGHTS.contains(&name) => Some(("light", names(MY_LIGHT))),
         "Displacement" if DISPLACEMENTS.contains(&name) => Some(("displacement", names(NONE))),
+        "Imager" if IMAGERS.contains(&name) => Some(("imager", names(NONE))),
         _ => None,
     }
 }
@@ -247,4 +252,21 @@ pub fn displacement(call: &ShaderCall, problems: &mut Vec<Problem>) -> Option<Sc
         axis,
     };
     Some(ScalarDesc::Sum(vec![sine(AxisDesc::V), sine(AxisDesc::U)]))
+}
+
+/// `myImager()` (§3.2.3, the last version: the disk with the `fuzz` diff applied):
+/// `here = (xcomp(P)/xres, ycomp(P)/yres, 0)`, `inDisk = 1 − smoothstep(radius − fuzz,
+/// radius + fuzz, distance((0.5, 0.5, 0), here))` with `radius` 0.4 and `fuzz` 0.1,
+/// `Ci = mix(red, yellow, inDisk)`, `Oi = 1`, `alpha = 1` — the imager's `Disk` pattern. Its
+/// variables are locals of the RSL (its comment says some should be parameters), so a call
+/// takes no parameters.
+pub fn imager(call: &ShaderCall, problems: &mut Vec<Problem>) -> ImagerPatternDesc {
+    Values::read(call, "imager", NONE, problems);
+    ImagerPatternDesc::Disk {
+        center: (0.5, 0.5),
+        radius: 0.4,
+        fuzz: 0.1,
+        inside: (1.0, 1.0, 0.0),
+        outside: (1.0, 0.0, 0.0),
+    }
 }
