@@ -121,3 +121,24 @@ fn malformed_contour_statements_give_exact_located_messages() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// `max_level` outside 1 … 9 is read as the nearest level followed, with a warning at the
+/// value (it was clamped silently).
+#[test]
+fn a_max_level_outside_the_levels_followed_warns() {
+    let text = std::fs::read_to_string(fixture()).unwrap();
+    for (written, ray_depth) in [("20", 8), ("0", 0)] {
+        let bad = text.replace("\"max_level\" 1\n", &format!("\"max_level\" {written}\n"));
+        let read = read_mi(Path::new("c.mi"), bad.as_bytes()).unwrap();
+        let warnings: Vec<String> = read.warnings.iter().map(|w| w.to_string()).collect();
+        let used = if written == "20" { 9 } else { 1 };
+        assert_eq!(
+            warnings,
+            [format!("c.mi:18:13: warning: \"max_level\" {written} is read as {used}: contours follow 1 to 9 levels (the first hit and up to 8 mirror, refraction or transparency levels behind it; RON `ray_depth` 0 to 8)")]
+        );
+        assert_eq!(
+            read.desc.options.unwrap().contours.unwrap().ray_depth,
+            ray_depth
+        );
+    }
+}

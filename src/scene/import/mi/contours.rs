@@ -7,7 +7,7 @@
 //! | `.mi` | RON |
 //! | --- | --- |
 //! | `contour store "contour_store_function" ()` | `contours: (…)` present |
-//! | `contour contrast "contour_contrast_function_levels" (…)` | `contrast`: `ndelta` → `normal_angle` (degrees), `diff_mat` → `material`, `diff_label` → `object`, `diff_index` → `instance`, `max_level` → `ray_depth` (`max_level − 1`) |
+//! | `contour contrast "contour_contrast_function_levels" (…)` | `contrast`: `ndelta` → `normal_angle` (degrees), `diff_mat` → `material`, `diff_label` → `object`, `diff_index` → `instance`, `max_level` → `ray_depth` (`max_level − 1`; outside 1 … 9 the nearest, with a warning) |
 //! | `contour_shader_simple ("color", "width")` | `Simple(color, width)` |
 //! | `contour_shader_depthfade ("near_z", "far_z", "near_color", "far_color", "near_width", "far_width")` | `DepthFade` (distances as positive numbers) |
 //! | `contour_shader_curvature ("color", "min_width", "max_width")` | `Curvature` |
@@ -139,7 +139,18 @@ pub fn option(c: &mut Cursor, at: Pos, desc: &mut OptionsDesc) {
     k.object = number(c, &call, "diff_label", f64::from(u8::from(k.object))) != 0.0;
     k.instance = number(c, &call, "diff_index", f64::from(u8::from(k.instance))) != 0.0;
     let levels = number(c, &call, "max_level", 1.0);
-    contours.ray_depth = (levels.max(1.0) - 1.0).min(8.0) as u32;
+    let used = levels.clamp(1.0, 9.0).floor();
+    if used != levels {
+        if let Some(p) = call.params.iter().rev().find(|p| p.name == "max_level") {
+            c.warn(
+                p.value_pos,
+                format!(
+                    "\"max_level\" {levels} is read as {used}: contours follow 1 to 9 levels (the first hit and up to 8 mirror, refraction or transparency levels behind it; RON `ray_depth` 0 to 8)"
+                ),
+            );
+        }
+    }
+    contours.ray_depth = (used - 1.0) as u32;
     if let Some(p) = call.params.iter().find(|p| p.name == "zdelta") {
         c.warn(
             p.pos,
