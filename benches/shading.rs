@@ -191,6 +191,7 @@ fn plane_world(shader: Shader, graph: Option<MaterialGraph>) -> World {
             height: 64,
             aspect: 1.0,
             outputs: vec![],
+            space_scale: 1.0,
         },
         RenderCamera,
     ));

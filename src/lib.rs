@@ -11,6 +11,7 @@ pub mod adaptive;
 pub mod bake;
 pub mod budget;
 pub mod camera_choice;
+pub mod camera_space;
 pub mod components;
 pub mod contour;
 pub mod cpu_time;

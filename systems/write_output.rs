@@ -3,7 +3,8 @@
 //! all or nothing.
 //!
 //! **Reads:** `outputs.image`; `outputs.contours` (absent: no lines); the render `Camera`'s `outputs` as redirected by
-//! `inputs.outputs` (`-o`, `bench`'s scratch directory) and its `Imager` (PNG only).
+//! `inputs.outputs` (`-o`, `bench`'s scratch directory), its `Imager` (PNG only) and its
+//! placement and lenses (the camera-space passes, `crate::camera_space`).
 //! **Writes:** files, handed to the runner encoded (`Work::pending`), which commits them.
 //! **Runs when:** a shaded image exists and the camera (or the command line) lists outputs.
 //! **After the run:** every output file exists complete, or none was touched.
@@ -13,6 +14,7 @@ use hecs::World;
 use super::prelude::*;
 use glam::{Vec3, Vec4};
 
+use crate::camera_space::CameraSpace;
 use crate::components::{ImageFormat, Imager, OutputSpec, Pass};
 use crate::contour::eps::encode_eps;
 use crate::contour::svg::encode_svg;
@@ -66,15 +68,22 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
         .as_ref()
         .ok_or_else(|| StageError::Internal("no image to write".into()))?;
     let contours = frame.outputs.contours.as_ref();
+    // The lenses `shade` traced with: the camera-space passes follow its centre rays.
+    let camera_space = render_view(world)
+        .map(|v| v.without(frame.inputs.settings.disabled))
+        .map(|v| CameraSpace::new(&v.camera, &v.lenses));
     let mut pending = Vec::with_capacity(outputs.len());
     for out in &outputs {
         let bytes = match out.format {
             ImageFormat::Png => png(fb, contours, out, imager.as_ref()),
             ImageFormat::Exr => {
-                let extra = match contours {
+                let mut extra = match contours {
                     Some(c) if out.passes.contains(&Pass::Contours) => output::exr_channels(c),
                     _ => Vec::new(),
                 };
+                if let Some(space) = &camera_space {
+                    extra.extend(space.exr_channels(fb, &out.passes));
+                }
                 encode_exr_with(fb, &out.passes, extra)
             }
             ImageFormat::Svg => Ok(encode_svg(contours.unwrap_or(&no_lines(fb))).into_bytes()),

@@ -11,10 +11,20 @@ pub enum Pass {
     Beauty,
     /// Coverage: 1 where a surface was hit, 0 for the background.
     Alpha,
-    /// Camera-space distance along the ray to the first hit (`Z`); infinity for misses.
+    /// Distance along the pixel centre's ray to the first hit (`Z`); infinity for misses.
     Depth,
     /// World-space shading normal at the first hit (`N.x`, `N.y`, `N.z`).
     Normal,
+    /// Camera-space depth of the pixel centre's first hit (`Z`): its coordinate along the
+    /// view axis, positive in front of the camera, in camera-space units (RenderMan's `z`);
+    /// infinity for misses. See [`crate::camera_space`].
+    CameraDepth,
+    /// The pixel centre's shading normal in camera space (`N.X`, `N.Y`, `N.Z`: +x right, +y
+    /// up, +z forward, RenderMan's left-handed camera space); zero for misses.
+    CameraNormal,
+    /// The pixel centre's first hit in camera space (`P.X`, `P.Y`, `P.Z`, the axes of
+    /// `CameraNormal`, camera-space units: RenderMan's `P`); zero for misses.
+    CameraPosition,
     /// Which placed object the pixel centre sees (`id.object`, u32): 1 + the instance's index
     /// in the flattened scene (instances in entity order, i.e. declaration order of the DAG
     /// leaves); 0 for the background.
@@ -56,6 +66,24 @@ impl Pass {
         Pass::Transmission,
         Pass::Volume,
     ];
+
+    /// The camera-space passes, derived from the centre-sample passes when written
+    /// ([`crate::camera_space`]).
+    pub const CAMERA_SPACE: [Pass; 3] =
+        [Pass::CameraDepth, Pass::CameraNormal, Pass::CameraPosition];
+
+    /// The pass that writes this one's EXR channels too, and those channels (`Z` of
+    /// `Depth` and `CameraDepth`, `N.X N.Y N.Z` of `Normal` and `CameraNormal`): one file
+    /// cannot hold both.
+    pub fn same_channels_as(&self) -> Option<(Pass, &'static str)> {
+        match self {
+            Pass::Depth => Some((Pass::CameraDepth, "channel Z")),
+            Pass::CameraDepth => Some((Pass::Depth, "channel Z")),
+            Pass::Normal => Some((Pass::CameraNormal, "channels N.X N.Y N.Z")),
+            Pass::CameraNormal => Some((Pass::Normal, "channels N.X N.Y N.Z")),
+            _ => None,
+        }
+    }
 
     /// For a component pass: its index in [`Pass::COMPONENTS`] and its EXR layer name.
     pub fn component(&self) -> Option<(usize, &'static str)> {
@@ -128,6 +156,9 @@ pub struct Camera {
     pub aspect: f32,
     /// Files to write.
     pub outputs: Vec<OutputSpec>,
+    /// Camera-space length of one world unit, the unit of the `CameraDepth` and
+    /// `CameraPosition` passes (1; a RIB camera transformation's uniform scale).
+    pub space_scale: f32,
 }
 
 /// Marks the camera named by the scene's `render` entry.

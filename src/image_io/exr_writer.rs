@@ -1,5 +1,7 @@
 //! OpenEXR encoding: linear f32 channels for every requested pass (`R G B A`, `Z`,
 //! `N.X N.Y N.Z`, the component passes' `emission.R …`), one layer, lossless compression.
+//! The camera-space passes (`Z`, `N.X …`, `P.X …`) and the contour layer come in as extra
+//! channels (`crate::camera_space`, `crate::contour::output`).
 
 use exr::prelude::*;
 
@@ -17,6 +19,17 @@ pub fn encode_exr_with(
     passes: &[Pass],
     extra: Vec<(&str, Vec<f32>)>,
 ) -> std::result::Result<Vec<u8>, String> {
+    for (pass, first) in [
+        (Pass::CameraDepth, "Z"),
+        (Pass::CameraNormal, "N.X"),
+        (Pass::CameraPosition, "P.X"),
+    ] {
+        if passes.contains(&pass) && !extra.iter().any(|(name, _)| *name == first) {
+            return Err(format!(
+                "the {pass:?} pass was not derived for this image (it needs the camera)"
+            ));
+        }
+    }
     let mut channels: SmallVec<[AnyChannel<FlatSamples>; 4]> = SmallVec::new();
     let mut add = |name: &str, values: Vec<f32>| {
         channels.push(AnyChannel::new(name, FlatSamples::F32(values)));

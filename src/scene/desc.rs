@@ -333,6 +333,10 @@ pub struct CameraDesc {
     /// Volume shader filling the scene around the camera, default none.
     #[serde(default)]
     pub atmosphere: Option<VolumeDesc>,
+    /// Camera-space length of one world unit (the unit of `CameraDepth` and
+    /// `CameraPosition`), > 0, default 1.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub space_scale: Option<f64>,
 }
 
 /// `imager: (...)` on a camera: RenderMan `Exposure gain gamma`, `Imager "background"` and the
@@ -477,6 +481,12 @@ pub enum PassDesc {
     Depth,
     /// World-space normal at the first hit.
     Normal,
+    /// Camera-space depth of the first hit, along the view axis (EXR only).
+    CameraDepth,
+    /// Camera-space normal at the first hit (EXR only).
+    CameraNormal,
+    /// Camera-space position of the first hit (EXR only).
+    CameraPosition,
     /// Object id of the first hit (EXR only).
     ObjectId,
     /// Material id of the first hit (EXR only).

@@ -403,6 +403,20 @@ pub fn camera(src: &mut Sources, item: &Item<'_, CameraDesc>) -> Option<Camera> 
         }
         None => f64::from(c.resolution.0) / f64::from(c.resolution.1.max(1)),
     };
+    let space_scale = match c.space_scale {
+        Some(k) => {
+            let path = item.at(".space_scale");
+            if ck.finite(&path, "space_scale", k) && !(k > 0.0 && (k as f32).is_normal()) {
+                ck.error(
+                    &path,
+                    format!("space_scale must be positive (the camera-space length of one world unit), found {k}"),
+                );
+            }
+            ok &= k > 0.0 && (k as f32).is_normal();
+            k as f32
+        }
+        None => 1.0,
+    };
     let placement = placement(&mut ck, &item.at(".placement"), &c.placement);
     let mut outputs = Vec::new();
     for (k, o) in c.outputs.iter().enumerate() {
@@ -422,6 +436,7 @@ pub fn camera(src: &mut Sources, item: &Item<'_, CameraDesc>) -> Option<Camera> 
         height: c.resolution.1,
         aspect: aspect as f32,
         outputs,
+        space_scale,
     })
 }
 
@@ -523,6 +538,9 @@ fn output(ck: &mut Checker<'_>, path: &str, o: &OutputDesc) -> Option<OutputSpec
             PassDesc::Alpha => Pass::Alpha,
             PassDesc::Depth => Pass::Depth,
             PassDesc::Normal => Pass::Normal,
+            PassDesc::CameraDepth => Pass::CameraDepth,
+            PassDesc::CameraNormal => Pass::CameraNormal,
+            PassDesc::CameraPosition => Pass::CameraPosition,
             PassDesc::ObjectId => Pass::ObjectId,
             PassDesc::MaterialId => Pass::MaterialId,
             PassDesc::Contours => Pass::Contours,
@@ -538,7 +556,8 @@ fn output(ck: &mut Checker<'_>, path: &str, o: &OutputDesc) -> Option<OutputSpec
             && (matches!(
                 pass,
                 Pass::Depth | Pass::Normal | Pass::ObjectId | Pass::MaterialId
-            ) || pass.component().is_some())
+            ) || pass.component().is_some()
+                || Pass::CAMERA_SPACE.contains(&pass))
         {
             ck.src.error(
                 ck.file,
@@ -549,6 +568,19 @@ fn output(ck: &mut Checker<'_>, path: &str, o: &OutputDesc) -> Option<OutputSpec
             ok = false;
         } else if passes.contains(&pass) {
             ck.error(&ppath, format!("pass {pass:?} is listed twice"));
+            ok = false;
+        } else if let Some((other, channels)) =
+            pass.same_channels_as().filter(|(o, _)| passes.contains(o))
+        {
+            ck.src.error(
+                ck.file,
+                &ppath,
+                format!(
+                    "the {other:?} and {pass:?} passes both write the EXR {channels}: one file \
+                     cannot hold both"
+                ),
+                Some(format!("write the {pass:?} pass to another .exr output")),
+            );
             ok = false;
         }
         passes.push(pass);

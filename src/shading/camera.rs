@@ -56,6 +56,20 @@ impl CameraRays {
     /// projection maps the film position to no direction (outside a fisheye's image circle).
     #[inline]
     pub fn ray(&self, x: f32, y: f32, lens_u: Vec2) -> Option<Ray> {
+        let (origin, dir) = self.camera_space_ray(x, y, lens_u)?;
+        let dir = self.world_from_camera.transform_vector3(dir).normalize();
+        let origin = self.world_from_camera.transform_point3(origin);
+        (dir.is_finite() && origin.is_finite()).then_some(Ray {
+            origin,
+            dir,
+            t_max: f32::INFINITY,
+        })
+    }
+
+    /// The ray of [`CameraRays::ray`] in the camera's own frame (−z forward, +y up): its
+    /// origin and its direction, not normalised.
+    #[inline]
+    pub fn camera_space_ray(&self, x: f32, y: f32, lens_u: Vec2) -> Option<(Vec3, Vec3)> {
         let mut projected = false;
         let (mut origin, mut dir) = (Vec3::ZERO, self.pinhole(x, y));
         for lens in &self.lenses {
@@ -80,13 +94,7 @@ impl CameraRays {
                 }
             }
         }
-        let dir = self.world_from_camera.transform_vector3(dir).normalize();
-        let origin = self.world_from_camera.transform_point3(origin);
-        (dir.is_finite() && origin.is_finite()).then_some(Ray {
-            origin,
-            dir,
-            t_max: f32::INFINITY,
-        })
+        Some((origin, dir))
     }
 
     /// Camera-space pinhole direction (not normalised: z = −1).
@@ -171,6 +179,7 @@ mod tests {
             height: h,
             aspect: w as f32 / h as f32,
             outputs: vec![],
+            space_scale: 1.0,
         }
     }
 

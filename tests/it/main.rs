@@ -12,6 +12,7 @@ mod bake;
 mod bake_png_range;
 mod bake_seams;
 mod bake_unwrap;
+mod camera_passes;
 mod cli;
 mod cli_bake;
 mod cli_farm;

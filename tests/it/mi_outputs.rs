@@ -81,7 +81,7 @@ fn out(file: &str, format: FormatDesc, passes: &[PassDesc]) -> String {
 #[test]
 fn output_forms_map_onto_passes_and_files() {
     use FormatDesc::{Exr, Png};
-    use PassDesc::{Alpha, Beauty, Depth};
+    use PassDesc::{Alpha, Beauty, CameraDepth};
     let cases: &[(&str, String, &[&str])] = &[
         // A format alone: its default type, rgba (the seed's "rgb" case too).
         (
@@ -112,12 +112,12 @@ fn output_forms_map_onto_passes_and_files() {
         // A data type's format, written as EXR.
         (
             "output \"z\" \"zt\" \"d.zt\"",
-            out("d.exr", Exr, &[Depth]),
+            out("d.exr", Exr, &[CameraDepth]),
             &["5:17: output \"d.zt\" is written as \"d.exr\" (stagelight writes PNG and EXR files, not format \"zt\")"],
         ),
         (
             "output \"zt\" \"d.exr\"",
-            out("d.exr", Exr, &[Depth]),
+            out("d.exr", Exr, &[CameraDepth]),
             &[],
         ),
         // A data type and a file (no format): read as before.

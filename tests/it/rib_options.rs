@@ -62,30 +62,47 @@ fn display_modes_of_the_seed_map_onto_passes() {
     let outputs = &s.desc.cameras[0].outputs;
     assert_eq!(outputs.len(), 1);
     assert_eq!(outputs[0].file, "headN.exr");
-    assert_eq!(outputs[0].passes, Some(vec![PassDesc::Normal]));
+    assert_eq!(outputs[0].passes, Some(vec![PassDesc::CameraNormal]));
+    // RenderMan's values (camera space): no warning that they differ, P is written too.
     assert_eq!(
         warnings(&s),
         [
-            "t.rib:1:28: warning: display mode \"P\" (position) is not written: stagelight has no position pass, so \"headP.tif\" is not made",
+            "t.rib:1:9: warning: writing \"headP.exr\" for display \"headP.tif\": stagelight writes PNG and EXR",
             "t.rib:1:32: warning: ignored parameter \"quantize\" of Display",
             "t.rib:2:9: warning: writing \"headN.exr\" for display \"headN.tif\": stagelight writes PNG and EXR",
-            "t.rib:2:28: warning: display mode \"N\": the normals (EXR channels N.X N.Y N.Z) are world-space shading normals, not RenderMan's camera-space N",
             "t.rib:2:32: warning: ignored parameter \"quantize\" of Display",
+        ]
+    );
+    // With '+', both files.
+    let s = read(&format!(
+        "Display \"headP.tif\" \"file\" \"P\"\nDisplay \"+headN.tif\" \"file\" \"N\"\n{WORLD}"
+    ));
+    let outputs = &s.desc.cameras[0].outputs;
+    assert_eq!(
+        outputs
+            .iter()
+            .map(|o| (o.file.as_str(), o.passes.clone().unwrap()))
+            .collect::<Vec<_>>(),
+        [
+            ("headP.exr", vec![PassDesc::CameraPosition]),
+            ("headN.exr", vec![PassDesc::CameraNormal])
         ]
     );
 }
 
 #[test]
 fn every_standard_display_mode_has_its_passes() {
-    use PassDesc::{Alpha, Beauty, Depth};
+    use PassDesc::{Alpha, Beauty, CameraDepth, CameraNormal, CameraPosition};
     for (mode, passes, file) in [
         ("rgb", vec![Beauty], "o.png"),
         ("rgba", vec![Beauty, Alpha], "o.png"),
-        ("rgbz", vec![Beauty, Depth], "o.exr"),
-        ("rgbaz", vec![Beauty, Alpha, Depth], "o.exr"),
+        ("rgbz", vec![Beauty, CameraDepth], "o.exr"),
+        ("rgbaz", vec![Beauty, Alpha, CameraDepth], "o.exr"),
         ("a", vec![Alpha], "o.png"),
-        ("az", vec![Alpha, Depth], "o.exr"),
-        ("z", vec![Depth], "o.exr"),
+        ("az", vec![Alpha, CameraDepth], "o.exr"),
+        ("z", vec![CameraDepth], "o.exr"),
+        ("N", vec![CameraNormal], "o.exr"),
+        ("P", vec![CameraPosition], "o.exr"),
     ] {
         let s = read(&format!("Display \"o.png\" \"file\" \"{mode}\"\n{WORLD}"));
         let out = &s.desc.cameras[0].outputs[0];
@@ -94,13 +111,10 @@ fn every_standard_display_mode_has_its_passes() {
             (file, Some(&passes))
         );
         let w = warnings(&s);
-        if passes.contains(&Depth) {
+        if file == "o.exr" {
             assert_eq!(
                 w,
-                [
-                    "t.rib:1:9: warning: writing \"o.exr\" for display \"o.png\": depth and normals are written to EXR only".to_string(),
-                    format!("t.rib:1:24: warning: display mode \"{mode}\": the depth (EXR channel Z) is the distance along each pixel's centre ray, not RenderMan's camera-space z"),
-                ],
+                ["t.rib:1:9: warning: writing \"o.exr\" for display \"o.png\": depth, normals and positions are written to EXR only"],
                 "{mode}"
             );
         } else {

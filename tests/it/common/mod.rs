@@ -105,6 +105,7 @@ pub fn camera(world: &mut World, eye: Vec3, target: Vec3, fov_deg: f32, w: u32, 
                 format: ImageFormat::Exr,
                 passes: vec![Pass::Beauty, Pass::Depth, Pass::Normal],
             }],
+            space_scale: 1.0,
         },
         RenderCamera,
     ))

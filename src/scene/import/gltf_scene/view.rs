@@ -225,6 +225,7 @@ fn add_camera(
         imager: None,
         lens: Vec::new(),
         atmosphere: None,
+        space_scale: None,
     });
     name
 }

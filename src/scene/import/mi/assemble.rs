@@ -212,6 +212,7 @@ fn build(raw: &RawScene, root: &Located, out: &mut Out) {
             imager: None,
             lens: Vec::new(),
             atmosphere: cam.atmosphere,
+            space_scale: None,
         });
         if out.desc.environment.is_none() {
             out.desc.environment = cam.environment.clone();

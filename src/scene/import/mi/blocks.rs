@@ -519,7 +519,9 @@ fn output(c: &mut Cursor, outputs: &mut Vec<OutputDesc>) {
         "rgba" | "rgba_h" | "rgba_f" | "rgba_16" | "rgba_fp" => {
             vec![PassDesc::Beauty, PassDesc::Alpha]
         }
-        "z" => vec![PassDesc::Depth],
+        // mental ray's depth buffer: the camera-space Z of the frontmost object, a depth
+        // along the view axis (not the distance along the ray).
+        "z" => vec![PassDesc::CameraDepth],
         "n" => vec![PassDesc::Normal],
         "tag" => vec![PassDesc::ObjectId],
         other => {

@@ -742,7 +742,7 @@ impl Builder {
                 if !d.append {
                     self.cam.displays.clear();
                 }
-                self.cam.displays.extend(d.display);
+                self.cam.displays.push(d.display);
                 return Ok(());
             }
             "ObjectBegin" => {

@@ -4,7 +4,8 @@
 //! `Display`, `DepthOfField`, and the camera transformation current at `WorldBegin`.
 //!
 //! An off-centre `ScreenWindow` becomes a `Shift` lens (an off-axis pinhole), `DepthOfField`
-//! a `ThinLens` after it.
+//! a `ThinLens` after it. The camera transformation's uniform scale, dropped from the
+//! placement, becomes the camera's `space_scale` (the unit of the `z` and `P` displays).
 //!
 //! RI spec 3.2 defaults: `Format 640 480 1`, perspective `fov` 90° across the shorter side
 //! of the screen window, `PixelSamples 2 2`, `PixelFilter "gaussian" 2 2`, `Exposure 1 1`
@@ -203,6 +204,7 @@ impl CameraOptions {
                 imager: Some(imager),
                 lens,
                 atmosphere: None,
+                space_scale: self.space_scale(),
             },
             paths,
         )
@@ -218,6 +220,14 @@ impl CameraOptions {
         } else {
             1.0
         }
+    }
+
+    /// The camera's `space_scale`: the camera-space length of one world unit, which the
+    /// camera-space passes (`z`, `P`) are measured in; `None` when the camera
+    /// transformation does not scale (within 1e-9).
+    pub fn space_scale(&self) -> Option<f64> {
+        let s = 1.0 / self.world_per_camera_unit();
+        ((s - 1.0).abs() > 1e-9).then_some(s)
     }
 
     /// `samples` of the options.

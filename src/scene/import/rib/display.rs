@@ -1,12 +1,12 @@
 //! `Display name type mode`: the output file and its passes.
 //!
 //! RISpec 3.2's modes: `rgb`, `rgba`, `rgbz`, `rgbaz`, `a`, `az`, `z`; and the output
-//! variables stagelight has a pass for: `N` (the Normal pass). `P` (position) has no pass: a
-//! located warning says it is not written. The depth (`z`) is stagelight's Depth pass — the
-//! distance along each pixel's centre ray — and the normal its world-space shading normal,
-//! not RenderMan's camera-space `z` and `N`: a warning says so. Depth and normals are written
-//! to EXR only: another file name becomes the `.exr` of the same stem (a warning), as in the
-//! `.mi` reader; colour and alpha go to PNG unless the name ends in `.exr`.
+//! variables `N` and `P`. The depth (`z`), normals (`N`) and positions (`P`) are what a
+//! RenderMan renderer writes: camera-space values (stagelight's `CameraDepth`,
+//! `CameraNormal` and `CameraPosition` passes, in RenderMan's left-handed camera space, not
+//! the reader's mirrored world; see `crate::camera_space`). They are written to EXR only:
+//! another file name becomes the `.exr` of the same stem (a warning), as in the `.mi`
+//! reader; colour and alpha go to PNG unless the name ends in `.exr`.
 
 use std::path::Path;
 
@@ -23,8 +23,8 @@ const MODES: &[&str] = &["rgb", "rgba", "rgbz", "rgbaz", "a", "az", "z", "N", "P
 pub struct DisplayRequest {
     /// `+name`: added to the displays, not replacing them.
     pub append: bool,
-    /// The output, `None` for a mode stagelight does not write (`P`).
-    pub display: Option<Display>,
+    /// The output.
+    pub display: Display,
 }
 
 /// Reads a `Display` request's arguments.
@@ -57,50 +57,25 @@ pub fn read(
     let passes = match mode.as_str() {
         "rgb" => vec![PassDesc::Beauty],
         "rgba" => vec![PassDesc::Beauty, PassDesc::Alpha],
-        "rgbz" => vec![PassDesc::Beauty, PassDesc::Depth],
-        "rgbaz" => vec![PassDesc::Beauty, PassDesc::Alpha, PassDesc::Depth],
+        "rgbz" => vec![PassDesc::Beauty, PassDesc::CameraDepth],
+        "rgbaz" => vec![PassDesc::Beauty, PassDesc::Alpha, PassDesc::CameraDepth],
         "a" => vec![PassDesc::Alpha],
-        "az" => vec![PassDesc::Alpha, PassDesc::Depth],
-        "z" => vec![PassDesc::Depth],
-        "N" => vec![PassDesc::Normal],
-        "P" => {
-            problems.push(Problem::warning(
-                mpos,
-                format!(
-                    "display mode \"P\" (position) is not written: stagelight has no position \
-                     pass, so \"{name}\" is not made"
-                ),
-            ));
-            return Ok(DisplayRequest {
-                append,
-                display: None,
-            });
-        }
+        "az" => vec![PassDesc::Alpha, PassDesc::CameraDepth],
+        "z" => vec![PassDesc::CameraDepth],
+        "N" => vec![PassDesc::CameraNormal],
+        "P" => vec![PassDesc::CameraPosition],
         other => {
             let mut e = Problem::error(mpos, format!("display mode \"{other}\" is not supported"));
             e.help = suggestion(other, MODES, "display modes");
             return Err(e);
         }
     };
-    if passes.contains(&PassDesc::Depth) {
-        problems.push(Problem::warning(
-            mpos,
-            format!(
-                "display mode \"{mode}\": the depth (EXR channel Z) is the distance along each \
-                 pixel's centre ray, not RenderMan's camera-space z"
-            ),
-        ));
-    }
-    if passes.contains(&PassDesc::Normal) {
-        problems.push(Problem::warning(
-            mpos,
-            "display mode \"N\": the normals (EXR channels N.X N.Y N.Z) are world-space shading \
-             normals, not RenderMan's camera-space N",
-        ));
-    }
-    let data = passes
-        .iter()
-        .any(|p| matches!(p, PassDesc::Depth | PassDesc::Normal));
+    let data = passes.iter().any(|p| {
+        matches!(
+            p,
+            PassDesc::CameraDepth | PassDesc::CameraNormal | PassDesc::CameraPosition
+        )
+    });
     let path = Path::new(&name);
     let ext = path
         .extension()
@@ -115,7 +90,7 @@ pub fn read(
                 .display()
                 .to_string();
             let why = if data && ext.as_deref() == Some("png") {
-                "depth and normals are written to EXR only"
+                "depth, normals and positions are written to EXR only"
             } else {
                 "stagelight writes PNG and EXR"
             };
@@ -128,7 +103,7 @@ pub fn read(
     };
     Ok(DisplayRequest {
         append,
-        display: Some(Display { file, pos, passes }),
+        display: Display { file, pos, passes },
     })
 }
 
