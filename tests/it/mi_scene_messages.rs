@@ -327,8 +327,8 @@ fn deep_instance_group_chains_are_read_and_only_cycles_contain_themselves() {
 /// Maya's exporter names the material shader (`shader "sh1" "mib_illum_lambert" (…)`) and
 /// refers to it (`material "mtl" opaque = "sh1" shadow = "sh1" end material`): the seed's
 /// plane renders the same bytes as with the shader written inline (the material shader as
-/// its own shadow shader is stagelight's rule without one), and an unknown name is an
-/// error at the reference with a suggestion.
+/// its own shadow shader is stagelight's rule without one, with a warning that says so),
+/// and an unknown name is an error at the reference with a suggestion.
 #[test]
 fn a_named_material_shader_renders_as_the_inline_one() {
     let seed = std::fs::read_to_string(
@@ -356,6 +356,12 @@ fn a_named_material_shader_renders_as_the_inline_one() {
         std::fs::read(dir.join("out.png")).unwrap()
     };
     assert!(image("inline.mi") == image("named.mi"));
+    let o = run_in(&dir, &["check", "named.mi"]);
+    assert!(
+        stderr_of(&o).contains("warning: material shader \"mib_illum_lambert\" as the shadow shader: shadows follow the material shader, as without one (an opaque surface blocks the light)"),
+        "{}",
+        stderr_of(&o)
+    );
     let bad = named.replace("    = \"sh1\"", "    = \"sh2\"");
     let line = line_of(&bad, "    = \"sh2\"");
     let errors = read_mi(Path::new("bad.mi"), bad.as_bytes()).unwrap_err();

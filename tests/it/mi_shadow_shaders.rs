@@ -402,10 +402,6 @@ fn bad_shadow_shaders_give_exact_located_messages() {
             shader(r#""colour" 1 1 1"#),
             format!("bad.mi:{s}:35: error: unknown parameter \"colour\" of shader \"mib_shadow_transparency\"\n  help: did you mean \"color\"?"),
         ),
-        (
-            mi_scene(r#"shadow "mib_illum_lambert" ()"#),
-            format!("bad.mi:{s}:8: error: \"mib_illum_lambert\" is not a shadow shader"),
-        ),
     ];
     let dir = scratch("mi6-shadow-bad");
     let mut failures = Vec::new();

@@ -67,6 +67,13 @@ pub fn shadow(
     // "sh1"` beside `= "sh1"`): shadows follow the material shader, stagelight's rule
     // without a shadow shader.
     if builtin(&call.name).is_some_and(|b| b.role == shaders::Role::Material) {
+        c.warn(
+            call.pos,
+            format!(
+                "material shader \"{}\" as the shadow shader: shadows follow the material shader, as without one (an opaque surface blocks the light)",
+                call.name
+            ),
+        );
         return None;
     }
     if builtin(&call.name).is_none() {
