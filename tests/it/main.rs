@@ -98,6 +98,7 @@ mod rib_orientation;
 mod rib_shading;
 mod rib_structure;
 mod rib_tutorial_shaders;
+mod rib_values;
 mod scene_errors;
 mod scene_errors_lights;
 mod scene_load;
