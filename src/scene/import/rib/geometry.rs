@@ -175,8 +175,16 @@ fn constant_colours(
     let (mut color, mut opacity) = (None, None);
     for p in params {
         match p.name.as_str() {
-            "Cs" if p.nums().len() == 3 => color = Some(p.triple()),
-            "Os" if p.nums().len() == 3 => opacity = Some(p.triple()),
+            "Cs" | "Os" if p.nums().len() == 3 => {
+                let v = p.triple();
+                let at = [0, 1, 2].map(|k| p.value.item(k));
+                let what = format!("parameter \"{}\" of {}", p.name, req.name);
+                match super::shaders::check_colour(&what, p.name == "Os", [v.0, v.1, v.2], at) {
+                    Err(e) => problems.push(e),
+                    Ok(()) if p.name == "Cs" => color = Some(v),
+                    Ok(()) => opacity = Some(v),
+                }
+            }
             n if used.contains(&n) => {}
             n => problems.push(Problem::warning(
                 p.name_pos,
