@@ -95,6 +95,7 @@ mod rib;
 mod rib_caustics;
 mod rib_options;
 mod rib_orientation;
+mod rib_primitive_variables;
 mod rib_shading;
 mod rib_structure;
 mod rib_tutorial_shaders;
