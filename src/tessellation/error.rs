@@ -68,6 +68,12 @@ impl fmt::Display for GeometryError {
 
 impl std::error::Error for GeometryError {}
 
+/// `value` as the shortest decimal that reads back as it (`0.3`, not `0.30000001192092896`):
+/// the number as the scene wrote it, for messages.
+pub(crate) fn as_written(value: f32) -> f64 {
+    value.to_string().parse().unwrap_or(value as f64)
+}
+
 /// Checks that `value` is finite.
 pub(crate) fn finite(parameter: &'static str, value: f32) -> Result<f64, GeometryError> {
     if value.is_finite() {
@@ -85,7 +91,7 @@ pub(crate) fn positive(parameter: &'static str, value: f32) -> Result<f64, Geome
     } else {
         Err(GeometryError::OutOfRange {
             parameter,
-            value: v,
+            value: as_written(value),
             expected: "> 0",
         })
     }
@@ -99,7 +105,7 @@ pub(crate) fn sweep(parameter: &'static str, degrees: f32) -> Result<f64, Geomet
     } else {
         Err(GeometryError::OutOfRange {
             parameter,
-            value: v,
+            value: as_written(degrees),
             expected: "(0, 360] degrees",
         })
     }

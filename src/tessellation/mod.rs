@@ -32,7 +32,7 @@ pub mod subdiv;
 use glam::{DAffine3, DVec2, DVec3};
 
 pub use error::GeometryError;
-pub(crate) use error::{finite, positive, sweep};
+pub(crate) use error::{as_written, finite, positive, sweep};
 
 use crate::components::{
     Approximation, Displacement, SubdivMesh, Surface, SurfaceDerivatives, TriMesh,

@@ -10,7 +10,7 @@ use std::f64::consts::{FRAC_PI_2, TAU};
 use glam::{DVec2, DVec3};
 
 use super::grid::GridTopology;
-use super::{finite, positive, sweep, GeometryError, PatchSource, SurfaceSample};
+use super::{as_written, finite, positive, sweep, GeometryError, PatchSource, SurfaceSample};
 use crate::components::Quadric;
 
 /// Validated parameters (f64, radians).
@@ -64,10 +64,15 @@ impl QuadricSource {
                 let z0 = finite("z_min", s.z_min)?.clamp(-r, r);
                 let z1 = finite("z_max", s.z_max)?.clamp(z0, r);
                 if z1 <= z0 {
+                    // Quote z_max as written, not clamped.
                     return Err(GeometryError::OutOfRange {
                         parameter: "z_max",
-                        value: z1,
-                        expected: "> z_min",
+                        value: as_written(s.z_max),
+                        expected: if s.z_max > s.z_min {
+                            "> z_min, both clamped to [-radius, radius]"
+                        } else {
+                            "> z_min"
+                        },
                     });
                 }
                 let (a0, a1) = ((z0 / r).asin(), (z1 / r).asin());
@@ -80,7 +85,7 @@ impl QuadricSource {
                 if z0 == z1 {
                     return Err(GeometryError::OutOfRange {
                         parameter: "z_max",
-                        value: z1,
+                        value: as_written(c.z_max),
                         expected: "≠ z_min",
                     });
                 }
@@ -98,7 +103,7 @@ impl QuadricSource {
                 if h == 0.0 {
                     return Err(GeometryError::OutOfRange {
                         parameter: "height",
-                        value: h,
+                        value: as_written(c.height),
                         expected: "≠ 0",
                     });
                 }
@@ -119,7 +124,7 @@ impl QuadricSource {
                 if !(range > 0.0 && range <= TAU + 1e-12) {
                     return Err(GeometryError::OutOfRange {
                         parameter: "phi_max",
-                        value: t.phi_max as f64,
+                        value: as_written(t.phi_max),
                         expected: "phi_min < phi_max ≤ phi_min + 360",
                     });
                 }

@@ -286,3 +286,22 @@ fn fog_on_some_primitives_only_or_another_volume_shader_is_a_warning() {
         "t.rib:2:29: error: distance of \"fog\" must be above 0, found 0"
     );
 }
+
+#[test]
+fn a_projection_other_than_perspective_is_a_located_error() {
+    // Not a perspective picture with a warning: stagelight has no orthographic camera.
+    for name in ["orthographic", "fisheye"] {
+        assert_eq!(
+            errors(&format!("Projection \"{name}\"\n{WORLD}")),
+            format!(
+                "t.rib:1:12: error: Projection \"{name}\" is not supported: stagelight's camera \
+                 makes perspective projections only\n  help: use Projection \"perspective\" \
+                 \"fov\" [degrees]"
+            )
+        );
+    }
+    assert_eq!(
+        errors(&format!("Projection \"perspective\" \"fov\" [30]\n{WORLD}")),
+        "ok"
+    );
+}

@@ -202,3 +202,46 @@ fn display_mode_a_writes_the_alpha_as_a_grey_png() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn illuminate_takes_an_area_light_handle() {
+    let area = "AttributeBegin\nAreaLightSource \"arealight\" 3 \"intensity\" [2]\n\
+                Translate 0 0 1\nDisk 0 0.3 360\n";
+    // Switched on: accepted without a word (an emitting surface lights every primitive).
+    let on = format!("{HEAD}{area}Illuminate 3 1\nAttributeEnd\nIlluminate 3 1\nWorldEnd\n");
+    let s = read(&on);
+    assert!(s.warnings.is_empty(), "{:?}", s.warnings);
+    assert!(s.desc.materials.iter().all(|m| m.lights.is_none()));
+    // Switched off: a located warning that it stays on, for every primitive.
+    let off = format!("{HEAD}{area}Illuminate 3 0\nAttributeEnd\nSphere 1 -1 1 360\nWorldEnd\n");
+    assert_eq!(
+        warnings(&off),
+        [
+            "t.rib:9:14: warning: Illuminate cannot switch off area light 3: its surfaces light \
+             every primitive\n  help: only LightSource lights can be switched off: an emitting \
+             surface is no light of a light list"
+        ]
+    );
+    // A LightSource taking the handle over is switched as one.
+    let over = format!(
+        "{HEAD}{area}AttributeEnd\nLightSource \"pointlight\" 3\nIlluminate 3 0\n\
+         Sphere 1 -1 1 360\nWorldEnd\n"
+    );
+    let s = read(&over);
+    assert!(s
+        .desc
+        .materials
+        .iter()
+        .any(|m| m.lights == Some(Vec::new())));
+    // An unknown handle is still an error.
+    let Err(unknown) = read_rib(
+        Path::new("t.rib"),
+        format!("{HEAD}Illuminate 4 0\nWorldEnd\n").as_bytes(),
+    ) else {
+        panic!("refused");
+    };
+    assert_eq!(
+        unknown.iter().map(ToString::to_string).collect::<Vec<_>>(),
+        ["t.rib:5:12: error: unknown light handle 4"]
+    );
+}

@@ -97,6 +97,8 @@ pub struct Builder {
     pub(super) problems: Vec<(usize, Problem)>,
     pub(super) lights: Vec<PendingLight>,
     handles: HashMap<String, usize>,
+    /// `AreaLightSource` handles (an emitting surface is no light of a light list).
+    area_handles: HashSet<String>,
     pub(super) objects: Vec<PendingObject>,
     pub(super) instances: Vec<PendingInstance>,
     pub(super) materials: Vec<PendingMaterial>,
@@ -139,6 +141,7 @@ impl Builder {
             problems: Vec::new(),
             lights: Vec::new(),
             handles: HashMap::new(),
+            area_handles: HashSet::new(),
             objects: Vec::new(),
             instances: Vec::new(),
             materials: Vec::new(),
@@ -456,8 +459,13 @@ impl Builder {
                 }
             }
             "Color" | "Opacity" => {
-                let c = vec3(&mut a, ["red", "green", "blue"])?;
-                let c = (c.x, c.y, c.z);
+                let mut c = [0.0; 3];
+                let mut at = [Pos::default(); 3];
+                for (k, channel) in ["red", "green", "blue"].iter().enumerate() {
+                    (c[k], at[k]) = a.num(channel)?;
+                }
+                shaders::check_colour(name, name == "Opacity", c, at)?;
+                let c = (c[0], c[1], c[2]);
                 if name == "Color" {
                     self.gs.attrs.color = c;
                 } else {
@@ -526,16 +534,35 @@ impl Builder {
             }
             "Illuminate" => {
                 let handle = self.handle(&mut a, "light handle")?;
-                let (on, _) = a.num("onoff")?;
-                let Some(&i) = self.handles.get(&handle.0) else {
-                    return Err(Problem::error(
-                        handle.1,
-                        format!("unknown light handle {}", handle.0),
-                    ));
-                };
-                self.gs.attrs.lights_off.retain(|&l| l != i);
-                if on == 0.0 {
-                    self.gs.attrs.lights_off.push(i);
+                let (on, on_pos) = a.num("onoff")?;
+                if self.area_handles.contains(&handle.0) {
+                    if on == 0.0 {
+                        problems.push(
+                            Problem::warning(
+                                on_pos,
+                                format!(
+                                    "Illuminate cannot switch off area light {}: its surfaces \
+                                     light every primitive",
+                                    handle.0
+                                ),
+                            )
+                            .with_help(
+                                "only LightSource lights can be switched off: an emitting \
+                                 surface is no light of a light list",
+                            ),
+                        );
+                    }
+                } else {
+                    let Some(&i) = self.handles.get(&handle.0) else {
+                        return Err(Problem::error(
+                            handle.1,
+                            format!("unknown light handle {}", handle.0),
+                        ));
+                    };
+                    self.gs.attrs.lights_off.retain(|&l| l != i);
+                    if on == 0.0 {
+                        self.gs.attrs.lights_off.push(i);
+                    }
                 }
             }
             "Attribute" => return self.attribute(a, problems),
@@ -559,10 +586,16 @@ impl Builder {
                 self.cam.projection = Some(r.pos);
                 let params = a.params(&self.decls, problems);
                 if kind != "perspective" {
-                    problems.push(Problem::warning(
-                        pos,
-                        format!("Projection \"{kind}\" is not supported: rendering a perspective projection"),
-                    ));
+                    problems.push(
+                        Problem::error(
+                            pos,
+                            format!(
+                                "Projection \"{kind}\" is not supported: stagelight's camera \
+                                 makes perspective projections only"
+                            ),
+                        )
+                        .with_help("use Projection \"perspective\" \"fov\" [degrees]"),
+                    );
                 }
                 for p in params {
                     if p.name == "fov" && p.nums().len() == 1 {
@@ -990,12 +1023,17 @@ impl Builder {
                     }
                 }
                 self.gs.attrs.area_light = Some(call);
+                if let Some((h, _)) = handle {
+                    self.handles.remove(&h);
+                    self.area_handles.insert(h);
+                }
             }
             _ => {
                 let values = shaders::light(&call, problems);
                 let n = self.lights.len();
                 let lname = format!("{name}_{}", n + 1);
                 if let Some((h, _)) = handle {
+                    self.area_handles.remove(&h);
                     self.handles.insert(h, n);
                 }
                 self.lights.push(PendingLight {

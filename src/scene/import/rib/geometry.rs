@@ -9,6 +9,7 @@
 use super::super::located::{Pos, Problem};
 use super::params::{Args, Declarations, Param};
 use super::parse::{Arg, Request};
+use super::primvars::{mesh_variables, FaceLayout};
 use super::state::Attributes;
 use crate::scene::desc::{BasisDesc, MeshDesc, V3};
 
@@ -175,8 +176,16 @@ fn constant_colours(
     let (mut color, mut opacity) = (None, None);
     for p in params {
         match p.name.as_str() {
-            "Cs" if p.nums().len() == 3 => color = Some(p.triple()),
-            "Os" if p.nums().len() == 3 => opacity = Some(p.triple()),
+            "Cs" | "Os" if p.nums().len() == 3 => {
+                let v = p.triple();
+                let at = [0, 1, 2].map(|k| p.value.item(k));
+                let what = format!("parameter \"{}\" of {}", p.name, req.name);
+                match super::shaders::check_colour(&what, p.name == "Os", [v.0, v.1, v.2], at) {
+                    Err(e) => problems.push(e),
+                    Ok(()) if p.name == "Cs" => color = Some(v),
+                    Ok(()) => opacity = Some(v),
+                }
+            }
             n if used.contains(&n) => {}
             n => problems.push(Problem::warning(
                 p.name_pos,
@@ -203,8 +212,9 @@ fn find<'p>(params: &'p [Param], name: &str) -> Option<&'p Param> {
 type PointList = (Vec<V3>, Vec<Pos>, Option<Vec<f64>>);
 /// A patch's basis, its vertex counts in u and v, its periodicity in u and v, and where it was written.
 type PatchShape = (BasisDesc, usize, usize, bool, bool, Pos);
-/// Polygon faces (vertex indices) and where each index was written.
-type FaceList = (Vec<Vec<u32>>, Vec<Vec<Pos>>);
+/// Polygon faces (vertex indices), where each index was written, and where the faces lie
+/// among the face-corner and per-face values.
+type FaceList = (Vec<Vec<u32>>, Vec<Vec<Pos>>, FaceLayout);
 
 /// The triples of `P` (or of `Pw` divided by w, when `homogeneous_ok` is false it must
 /// have w = 1), with the position of each point.
@@ -332,6 +342,8 @@ fn polygonal(
                 return None;
             }
             let mut loop_of = Vec::new();
+            // The polygon (uniform value) each loop belongs to.
+            let mut polygon_of: Vec<usize> = (0..nverts.len()).collect();
             if let Some((l, larr)) = &loops {
                 let sum: usize = l.iter().map(|&n| n as usize).sum();
                 if sum != nverts.len() {
@@ -350,19 +362,28 @@ fn polygonal(
                         "ignored the holes of PointsGeneralPolygons: only outer loops are used",
                     ));
                 }
-                for &n in l {
+                polygon_of.clear();
+                for (polygon, &n) in l.iter().enumerate() {
                     loop_of.extend((0..n).map(|k| k == 0));
+                    polygon_of.extend(std::iter::repeat_n(polygon, n as usize));
                 }
             }
+            let mut layout = FaceLayout {
+                corners: verts.len(),
+                faces: loops.as_ref().map_or(nverts.len(), |(l, _)| l.len()),
+                ..FaceLayout::default()
+            };
             for (f, &n) in nverts.iter().enumerate() {
                 let n = n as usize;
                 if loop_of.get(f).copied().unwrap_or(true) {
                     fv.push(verts[at..at + n].to_vec());
                     fp.push((at..at + n).map(|i| varr.item(i)).collect());
+                    layout.first_corner.push(at);
+                    layout.uniform.push(polygon_of.get(f).copied().unwrap_or(0));
                 }
                 at += n;
             }
-            faces = Some((fv, fp));
+            faces = Some((fv, fp, layout));
             if name == "SubdivisionMesh" && !a.done() && !a.peek_is_string() {
                 // Tags, their argument counts, integer and float arguments.
                 let tags = a.any("tags").map_err(|e| problems.push(e)).ok()?;
@@ -505,8 +526,13 @@ fn polygonal(
                 .collect(),
         }
     } else {
-        let (polygons, fpos) =
-            faces.unwrap_or_else(|| (vec![(0..n as u32).collect()], vec![ppos.clone()]));
+        let (polygons, fpos, layout) = faces.unwrap_or_else(|| {
+            (
+                vec![(0..n as u32).collect()],
+                vec![ppos.clone()],
+                FaceLayout::single(n),
+            )
+        });
         for (f, face) in fpos.iter().enumerate() {
             for (k, pos) in face.iter().enumerate() {
                 let variant = if name == "SubdivisionMesh" {
@@ -524,21 +550,18 @@ fn polygonal(
                 polygons,
             }
         } else {
-            push_points(&mut paths, ".Inline.vertices", &ppos);
-            let normals = find(&params, "N")
-                .filter(|p| p.nums().len() == 3 * n)
-                .map(|p| {
-                    p.nums()
-                        .chunks_exact(3)
-                        .map(|c| (c[0], c[1], c[2]))
-                        .collect()
-                });
-            let uvs = uvs(&params, n);
+            let vars = mesh_variables(name, &params, pts, ppos, polygons, &layout, problems)?;
+            push_points(&mut paths, ".Inline.vertices", &vars.vertex_pos);
+            paths.extend(
+                vars.paths
+                    .into_iter()
+                    .map(|(p, pos)| (format!(".Inline{p}"), pos)),
+            );
             MeshDesc::Inline {
-                vertices: pts,
-                polygons,
-                normals,
-                uvs,
+                vertices: vars.vertices,
+                polygons: vars.polygons,
+                normals: vars.normals,
+                uvs: vars.uvs,
                 materials: None,
             }
         }
@@ -556,22 +579,6 @@ fn push_points(paths: &mut Vec<(String, Pos)>, field: &str, pos: &[Pos]) {
     for (i, p) in pos.iter().enumerate() {
         paths.push((format!("{field}[{i}]"), *p));
     }
-}
-
-/// Per-vertex `st` (or `s` and `t`) as uvs.
-fn uvs(params: &[Param], n: usize) -> Option<Vec<(f64, f64)>> {
-    if let Some(st) = find(params, "st").filter(|p| p.nums().len() == 2 * n) {
-        return Some(st.nums().chunks_exact(2).map(|c| (c[0], c[1])).collect());
-    }
-    let s = find(params, "s").filter(|p| p.nums().len() == n)?;
-    let t = find(params, "t").filter(|p| p.nums().len() == n)?;
-    Some(
-        s.nums()
-            .iter()
-            .copied()
-            .zip(t.nums().iter().copied())
-            .collect(),
-    )
 }
 
 /// The basis of a `Patch`/`PatchMesh` of type `ty` under the current `Basis`.

@@ -6,7 +6,8 @@
 //! inline declarations, `Declare`), [`state`] (the graphics state: attribute and transform
 //! stacks), [`build`] (request by request onto the description), with the request families
 //! in [`shaders`] (surfaces, displacements, lights; the tutorial's own in [`tutorial`]), [`geometry`] (quadrics, polygons,
-//! patches, NURBS, subdivision meshes; [`revolve`]: paraboloids and hyperboloids),
+//! patches, NURBS, subdivision meshes; [`revolve`]: paraboloids and hyperboloids;
+//! [`primvars`]: the `N` and `st` of polygon meshes per vertex, face corner or face),
 //! [`camera`] (options, the camera and its outputs), [`retained`] (`ObjectBegin`
 //! definitions and motion blocks), `place` (a primitive and the current attributes onto an
 //! object, a material and an instance), [`orientation`] (`Orientation`,
@@ -37,6 +38,7 @@ pub mod orientation;
 pub mod params;
 pub mod parse;
 mod place;
+pub mod primvars;
 pub mod requests;
 pub mod retained;
 pub mod revolve;

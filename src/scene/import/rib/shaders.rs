@@ -206,6 +206,29 @@ pub struct Surface {
     pub bump_paths: Vec<(String, Pos)>,
 }
 
+/// Checks a colour written as `what` (`Color`, `Opacity`, `parameter "Cs" of Sphere`): every
+/// channel finite and not negative, an opacity (`opacity`: true) at most 1. `Err`: one
+/// located error for the whole value, at its first channel out of range (`at`: where each
+/// channel is written).
+pub fn check_colour(what: &str, opacity: bool, c: [f64; 3], at: [Pos; 3]) -> Result<(), Problem> {
+    let bad = |x: f64| !x.is_finite() || x < 0.0 || opacity && x > 1.0;
+    let Some(k) = c.iter().position(|&x| bad(x)) else {
+        return Ok(());
+    };
+    let found = format!("{} {} {}", c[0], c[1], c[2]);
+    Err(if !c[k].is_finite() {
+        Problem::error(at[k], format!("{what} must be finite, found {found}"))
+    } else if opacity {
+        Problem::error(
+            at[k],
+            format!("{what} must be between 0 and 1 in every channel, found {found}"),
+        )
+        .with_help("an opacity is the fraction of light a surface stops: 1 is opaque, 0 invisible")
+    } else {
+        Problem::error(at[k], format!("{what} must not be negative, found {found}"))
+    })
+}
+
 /// The surface shader of `call` (`None`: `defaultsurface`) with colour `cs` and opacity
 /// `os`; the tutorial's shaders are [`super::tutorial::surface`].
 ///
@@ -328,10 +351,11 @@ pub fn surface(call: Option<&ShaderCall>, cs: V3, os: V3, problems: &mut Vec<Pro
         ShaderDesc::DefaultSurface { .. } => "DefaultSurface",
         _ => "Local",
     };
-    let mut paths = vec![(
-        format!(".{variant}"),
-        call.map_or(Pos::default(), |c| c.pos),
-    )];
+    // Without a `Surface` request the material's own position (the primitive's) stands.
+    let mut paths: Vec<(String, Pos)> = call
+        .map(|c| (format!(".{variant}"), c.pos))
+        .into_iter()
+        .collect();
     for (i, field) in fields {
         if let Some(p) = v.found[i] {
             paths.push((format!(".{variant}.{field}"), p.pos()));
