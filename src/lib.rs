@@ -32,6 +32,7 @@ pub mod log_format;
 pub mod memory_budget;
 pub mod noise;
 pub mod part_refusals;
+pub mod pattern;
 pub mod photon;
 mod prefetch;
 pub mod procedural;

@@ -25,24 +25,12 @@ impl ImagerPattern {
                 fuzz,
                 inside,
                 outside,
-            } => {
-                let in_disk = 1.0 - smoothstep(radius - fuzz, radius + fuzz, here.distance(center));
-                outside * (1.0 - in_disk) + inside * in_disk
-            }
+            } => crate::pattern::mix(
+                outside,
+                inside,
+                crate::pattern::disk(here, center, radius, fuzz),
+            ),
         }
-    }
-}
-
-/// RSL `smoothstep(min, max, v)`: 0 below `min`, 1 at and above `max`, `t²(3 − 2t)` of
-/// `t = (v − min)/(max − min)` between (a step at `min` when `min = max`).
-fn smoothstep(min: f32, max: f32, v: f32) -> f32 {
-    if v < min {
-        0.0
-    } else if v >= max {
-        1.0
-    } else {
-        let t = ((v - min) / (max - min)).clamp(0.0, 1.0);
-        t * t * (3.0 - 2.0 * t)
     }
 }
 
@@ -73,15 +61,5 @@ mod tests {
             "{c}"
         );
         assert!(g > 0.0 && g < 1.0);
-    }
-
-    #[test]
-    fn smoothstep_is_the_rsl_hermite_step() {
-        assert_eq!(smoothstep(0.3, 0.5, 0.29), 0.0);
-        assert_eq!(smoothstep(0.3, 0.5, 0.5), 1.0);
-        assert!((smoothstep(0.3, 0.5, 0.4) - 0.5).abs() < 1e-6);
-        assert!((smoothstep(0.0, 1.0, 0.25) - 0.15625).abs() < 1e-6);
-        assert_eq!(smoothstep(0.4, 0.4, 0.39), 0.0);
-        assert_eq!(smoothstep(0.4, 0.4, 0.4), 1.0);
     }
 }

@@ -23,7 +23,7 @@ pub mod image;
 pub mod noise;
 pub mod normal_map;
 pub mod object_normal;
-pub mod pattern;
+pub use crate::pattern;
 
 use glam::{Vec2, Vec3};
 

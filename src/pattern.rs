@@ -1,5 +1,7 @@
 //! Procedural 2-D patterns over texture coordinates: checker, the seed's fuzzy disk, the
-//! seed's stairs blend, RenderMan's `smoothstep`, and uv repetition (`mod(s·10, 1)`).
+//! seed's stairs blend, RenderMan's `smoothstep`, and uv repetition (`mod(s·10, 1)`). Plain
+//! arithmetic on glam values, shared by the shader graphs (`shading::texture`) and the
+//! imager's pattern (`image_io::imager_pattern`), which may not depend on each other.
 
 use glam::{Vec2, Vec3};
 
@@ -165,5 +167,16 @@ mod tests {
             "{r}"
         );
         assert_eq!(fract(f32::INFINITY), 0.0);
+    }
+
+    /// The RSL's Hermite step, also at a zero-width band (moved from the imager's copy).
+    #[test]
+    fn smoothstep_is_the_rsl_hermite_step() {
+        assert_eq!(smoothstep(0.3, 0.5, 0.29), 0.0);
+        assert_eq!(smoothstep(0.3, 0.5, 0.5), 1.0);
+        assert!((smoothstep(0.3, 0.5, 0.4) - 0.5).abs() < 1e-6);
+        assert!((smoothstep(0.0, 1.0, 0.25) - 0.15625).abs() < 1e-6);
+        assert_eq!(smoothstep(0.4, 0.4, 0.39), 0.0);
+        assert_eq!(smoothstep(0.4, 0.4, 0.4), 1.0);
     }
 }
