@@ -90,7 +90,24 @@ fn census(world: &World, off: Features) -> (usize, usize, usize, usize) {
     let surfaces = world.query::<&Surface>().iter().count() + pending;
     let subdivs = world.query::<&SubdivMesh>().iter().count();
     let (mut displaced, mut bump) = (0, 0);
-    for d in world.query::<&Displacement>().iter() {
+    // A shape left unexpanded (geometry shaders disabled) has nothing to displace.
+    let unexpanded = |procedural: bool, geometry: bool| {
+        procedural && !geometry && off.contains(Feature::Geometry)
+    };
+    for (d, procedural, surface, subdiv, mesh) in world
+        .query::<(
+            &Displacement,
+            Option<&Procedural>,
+            Option<&Surface>,
+            Option<&SubdivMesh>,
+            Option<&Arc<TriMesh>>,
+        )>()
+        .iter()
+    {
+        let geometry = surface.is_some() || subdiv.is_some() || mesh.is_some();
+        if unexpanded(procedural.is_some(), geometry) {
+            continue;
+        }
         match d.mode {
             DisplacementMode::True => displaced += 1,
             DisplacementMode::Bump => bump += 1,

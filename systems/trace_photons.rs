@@ -89,7 +89,7 @@ pub fn should_run(world: &World, frame: &Frame) -> Decision {
     }
     if p.global_illumination.is_none() && nothing_casts_caustics(world) {
         return Decision::skip(
-            "caustics are on, but nothing casts them (no mirror, glass or other specular material, no photon shader that reflects or refracts, no instance flagged to cast)",
+            "caustics are on, but nothing casts them (no mirror, glass or other specular material, no photon shader that reflects or refracts; a caustic flag on a diffuse surface casts none)",
         );
     }
     let lit = world
@@ -184,19 +184,15 @@ fn a_light_emits_photons(world: &World, maps: &PhotonSettings) -> bool {
 }
 
 /// Whether nothing in the scene can cast caustic photons: no material that makes caustics
-/// (mirror, glass, a specular term; [`crate::photon::roles::makes_caustics`]) and no instance
-/// flagged to cast them. The caustic map alone would stay empty: every photon is absorbed at
-/// its first surface. Decided from the world, so `plan` gives the same answer before any
-/// geometry exists.
+/// (mirror, glass, a specular term; [`crate::photon::roles::makes_caustics`]) and no photon
+/// shader that reflects or refracts. A caustic flag does not make a diffuse surface a caster:
+/// its photons are absorbed or scattered diffusely, never on an `L S+ D` path. The caustic
+/// map alone would stay empty. Decided from the world, so `plan` gives the same answer
+/// before any geometry exists.
 fn nothing_casts_caustics(world: &World) -> bool {
-    let material = world.query::<&Material>().iter().any(|m| {
+    !world.query::<&Material>().iter().any(|m| {
         crate::photon::roles::makes_caustics(&m.shader) || m.photon.is_some_and(|p| p.scatters())
-    });
-    let flagged = world
-        .query::<&PhotonFlags>()
-        .iter()
-        .any(|f| f.caustic.is_some_and(|r| r.casts()));
-    !material && !flagged
+    })
 }
 
 /// Traces the requested photon maps.

@@ -33,7 +33,7 @@ use std::ops::Range;
 use super::emit::Emission;
 use super::kdtree::Photon;
 use super::light_lists::ReceiverLights;
-use super::trace::trace_photon_with_roles;
+use super::trace::walk_to_end;
 use super::walk::Walk;
 use crate::accel::{Hit, Ray, Shortcut, Shortcuts};
 use crate::components::PhotonRole;
@@ -147,9 +147,10 @@ impl Chunk<'_> {
             self.emission.sample(self.ctx.geometry, u),
             self.emission.light_index(u[0]),
         ) {
-            (Some(e), Some(light)) => {
-                Some((Walk::new(self.ctx, e.ray, e.power * self.scale), light))
-            }
+            (Some(e), Some(light)) => Some((
+                Walk::new(self.ctx, e.ray, e.power * self.scale).with_falloff(e.falloff),
+                light,
+            )),
             _ => None,
         };
         (sampler, walk)
@@ -165,11 +166,10 @@ impl Chunk<'_> {
             let (mut sampler, Some((walk, light))) = self.emit(sampler) else {
                 continue;
             };
-            trace_photon_with_roles(
+            walk_to_end(
                 self.ctx,
                 self.roles,
-                *walk.ray(),
-                walk.power(),
+                walk,
                 &mut sampler,
                 self.stop_after_diffuse(),
                 |d| {

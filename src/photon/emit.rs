@@ -7,8 +7,10 @@
 //! `Φ = π·L·A` each (twice for two-sided emission); directional `Φ = E·π·R²` through a disc
 //! of the scene's bounding-sphere radius `R` facing the light. With an [`Aim`] (caustic maps),
 //! photons leave only toward the caustic casters, powers divided by the density of the
-//! aimed directions (see [`super::aim`]). The environment emits no
-//! photons, and lights' near/far `attenuation` is not applied to photons. A light is chosen
+//! aimed directions (see [`super::aim`]). The environment emits no photons. A light's
+//! distance terms beyond 1/d² (no inverse-square falloff, near/far `attenuation`) go with its
+//! photons as a [`Falloff`] applied at their first hit, unless the light has an `energy`
+//! (mental ray's photon power, plain 1/d²). A light is chosen
 //! with probability proportional to its (channel-mean) power; every photon's power is its
 //! emitted flux divided by that probability, so the mean power per photon is the total power
 //! of the scene's lights. A new light shape adds one arm to [`Source::from_light`] and one to
@@ -20,6 +22,7 @@ use glam::{Vec2, Vec3};
 
 use super::aim::Aim;
 use crate::accel::{spawn_ray, Hit, Ray, SurfacePoint};
+use crate::components::attenuation_factor;
 use crate::geometry::SceneGeometry;
 use crate::sampling::{sample_cosine_hemisphere, sample_triangle};
 use crate::shading::frame::ShadingFrame;
@@ -34,6 +37,53 @@ pub struct EmittedPhoton {
     pub ray: Ray,
     /// Flux weight, W.
     pub power: Vec3,
+    /// The light's distance terms, applied at the photon's first hit (`None`: plain 1/d²).
+    pub falloff: Option<Falloff>,
+}
+
+/// What a light's direct contribution does with distance beyond the 1/d² that photon
+/// density gives by itself: a photon's power is multiplied by [`Falloff::factor`] of the
+/// distance from where it left the light to its first hit, so photon and direct lighting
+/// agree for lights without inverse-square falloff (`inverse_square: false`) or with near/far
+/// `attenuation`. Not used for lights with an `energy` (mental ray's photon power, which
+/// falls off as 1/d² whatever the light shader does).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Falloff {
+    /// Whether the light's direct contribution falls off as 1/d².
+    pub inverse_square: bool,
+    /// Near/far attenuation `(start, end)`.
+    pub attenuation: Option<(f32, f32)>,
+}
+
+impl Falloff {
+    /// The factor at distance `d` from the light: `d²` without inverse-square falloff,
+    /// times the attenuation ramp.
+    pub fn factor(self, d: f32) -> f32 {
+        let spread = if self.inverse_square { 1.0 } else { d * d };
+        spread * attenuation_factor(self.attenuation, d)
+    }
+
+    /// The falloff of `light` (`None` where it is plain 1/d²).
+    fn of(light: &Light) -> Option<Self> {
+        let (inverse_square, attenuation) = match light {
+            Light::Point {
+                inverse_square,
+                attenuation,
+                ..
+            }
+            | Light::Spot {
+                inverse_square,
+                attenuation,
+                ..
+            } => (*inverse_square, *attenuation),
+            Light::Area(a) => (!a.points, a.attenuation),
+            _ => (true, None),
+        };
+        (!inverse_square || attenuation.is_some()).then_some(Self {
+            inverse_square,
+            attenuation,
+        })
+    }
 }
 
 /// One light prepared for photon emission.
@@ -48,6 +98,8 @@ struct Source {
     physical: Vec3,
     /// Factor from the physical power to `power` per channel (1 without `energy`).
     scale: Vec3,
+    /// The distance terms its photons take at their first hit (none with an `energy`).
+    falloff: Option<Falloff>,
     /// Directional lights: centre and radius of the scene's bounding sphere.
     bounds: (Vec3, f32),
 }
@@ -87,6 +139,7 @@ impl Source {
             power,
             physical: power,
             scale: Vec3::ONE,
+            falloff: Falloff::of(light),
             bounds,
         }
     }
@@ -101,6 +154,8 @@ impl Source {
             ratio(energy.z, self.power.z),
         );
         self.power *= self.scale;
+        // mental ray's photon energy falls off as 1/d² whatever the light shader does.
+        self.falloff = None;
         self
     }
 
@@ -108,6 +163,7 @@ impl Source {
     fn emit(&self, geometry: &SceneGeometry, u: [f32; 4]) -> Option<EmittedPhoton> {
         let (u_pos, u_dir) = (Vec2::new(u[0], u[1]), Vec2::new(u[2], u[3]));
         let from_point = |origin: Vec3, dir: Vec3, power: Vec3| EmittedPhoton {
+            falloff: None,
             ray: Ray {
                 origin,
                 dir,
@@ -174,6 +230,7 @@ impl Source {
                 let dir = ShadingFrame::from_normal(n).to_world(sample_cosine_hemisphere(ud));
                 let area = triangle_area(geometry, prim);
                 EmittedPhoton {
+                    falloff: None,
                     ray: spawn_ray(&sp, dir),
                     power: emission * (PI * sides * area / prob),
                 }
@@ -200,6 +257,7 @@ impl Source {
             Light::Point { position, .. } => {
                 let (dir, pdf) = aim.direction(*position, pick, u_dir)?;
                 EmittedPhoton {
+                    falloff: None,
                     ray: ray(*position, dir),
                     power: self.physical / (4.0 * PI * pdf),
                 }
@@ -220,6 +278,7 @@ impl Source {
                 }
                 let falloff = spot_falloff(cos, *cos_outer, *cos_inner, *beam_distribution);
                 EmittedPhoton {
+                    falloff: None,
                     ray: ray(*position, dir),
                     power: *intensity * (falloff / pdf),
                 }
@@ -230,6 +289,7 @@ impl Source {
                 let (origin, pdf) = aim.beam_point(plane, *direction, pick, u_pos)?;
                 // Irradiance E = Φ / (π R²) crossing the plane, over the area density.
                 EmittedPhoton {
+                    falloff: None,
                     ray: ray(origin, *direction),
                     power: self.physical / (PI * radius * radius * pdf),
                 }
@@ -238,6 +298,7 @@ impl Source {
                 let (q, _) = a.shape.point(u_pos);
                 let (dir, pdf) = aim.direction(q, pick, u_dir)?;
                 EmittedPhoton {
+                    falloff: None,
                     ray: ray(q, dir),
                     power: self.physical / (4.0 * PI * pdf),
                 }
@@ -250,6 +311,7 @@ impl Source {
                     return None;
                 }
                 EmittedPhoton {
+                    falloff: None,
                     ray: ray(q, dir),
                     power: a.radiance * (a.shape.area() * cos / pdf),
                 }
@@ -266,6 +328,7 @@ impl Source {
                 }
                 let area = triangle_area(geometry, prim);
                 EmittedPhoton {
+                    falloff: None,
                     ray: spawn_ray(&sp, dir),
                     power: emission * (area * cos / (pdf * prob)),
                 }
@@ -423,6 +486,7 @@ impl Emission {
             None => self.sources[k].emit(geometry, [u[1], u[2], u[3], u[4]])?,
         };
         photon.power = photon.power * self.sources[k].scale / prob;
+        photon.falloff = self.sources[k].falloff;
         Some(photon)
     }
 }

@@ -49,9 +49,28 @@ pub fn trace_photon_with_roles(
     power: Vec3,
     sampler: &mut Sampler,
     stop_after_diffuse: bool,
+    deposit: impl FnMut(Deposit),
+) -> Fate {
+    walk_to_end(
+        ctx,
+        roles,
+        Walk::new(ctx, ray, power),
+        sampler,
+        stop_after_diffuse,
+        deposit,
+    )
+}
+
+/// [`trace_photon_with_roles`] for a walk already started (a photon with its light's
+/// [`super::emit::Falloff`]).
+pub fn walk_to_end(
+    ctx: &ShadeContext<'_>,
+    roles: &[PhotonRole],
+    mut walk: Walk,
+    sampler: &mut Sampler,
+    stop_after_diffuse: bool,
     mut deposit: impl FnMut(Deposit),
 ) -> Fate {
-    let mut walk = Walk::new(ctx, ray, power);
     while walk.live() {
         let hit = ctx.geometry.accel.intersect(walk.ray());
         walk.step(ctx, roles, hit, sampler, stop_after_diffuse, &mut deposit);

@@ -8,6 +8,7 @@
 use glam::Vec3;
 
 use super::depth::PathDepth;
+use super::emit::Falloff;
 use super::kdtree::Photon;
 use crate::accel::{Accel, Hit, Ray, MAX_PASSED};
 use crate::components::PhotonRole;
@@ -70,6 +71,9 @@ pub struct Walk {
     /// the ray's direction and that triangle's geometric normal.
     left: u32,
     left_cos: f32,
+    /// The light's distance terms, still to be applied at the first hit, and where the
+    /// photon left the light ([`Walk::with_falloff`]).
+    falloff: Option<(Falloff, Vec3)>,
 }
 
 impl Walk {
@@ -89,7 +93,16 @@ impl Walk {
             passed: 0,
             left: u32::MAX,
             left_cos: 0.0,
+            falloff: None,
         }
+    }
+
+    /// The walk of a photon whose light has distance terms beyond 1/d² (`falloff`): its
+    /// power is multiplied by their factor at the distance of its first hit from the ray's
+    /// origin, where it left the light.
+    pub fn with_falloff(mut self, falloff: Option<Falloff>) -> Self {
+        self.falloff = falloff.map(|f| (f, self.ray.origin));
+        self
     }
 
     /// The walk for a caller that never reads [`Walk::fate`] (a batch keeps only the
@@ -204,6 +217,9 @@ impl Walk {
             return;
         }
         self.passed = 0;
+        if let Some((falloff, from)) = self.falloff.take() {
+            self.power *= falloff.factor(sp.surface.p.distance(from));
+        }
         let v = PhotonVertex::new(ctx, &ray, hit, *sp);
         let through = self.power * v.transmittance;
         if keep {

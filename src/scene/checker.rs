@@ -9,6 +9,7 @@ use glam::{DAffine3, DMat3, DVec3};
 use super::desc::{M4, V3};
 use super::diagnostics::Sources;
 use super::import::SourcePos;
+use super::message::Diagnostic;
 
 /// One element of the merged scene: where it was written and what it says.
 #[derive(Debug)]
@@ -61,6 +62,13 @@ impl Checker<'_> {
     /// Records an error at `path`.
     pub fn error(&mut self, path: &str, message: impl Into<String>) {
         self.src.error(self.file, path, message, None);
+    }
+
+    /// Records a warning at `path`, with `help`.
+    pub fn warn(&mut self, path: &str, message: impl Into<String>, help: &str) {
+        let pos = self.src.pos(self.file, path);
+        let diagnostic = Diagnostic::at(pos, message, Some(help.into()));
+        self.src.push_warning(self.file, diagnostic);
     }
 
     /// Whether `x` is finite and fits in f32 (every value ends up in f32); reports it at

@@ -351,7 +351,13 @@ fn load(
         material: l.material,
         photon: l.photon,
     });
-    photon_flags::warn_shadow_casters(&mut sources, &merged, placed, &checked);
+    photon_flags::warn_shadow_casters(
+        &mut sources,
+        &merged,
+        placed,
+        &checked,
+        settings.photons.caustics.is_some(),
+    );
     let parts = spawn::Parts {
         cameras,
         render_camera: resolved.camera,

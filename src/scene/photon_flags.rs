@@ -11,6 +11,7 @@ use super::diagnostics::Sources;
 use super::message::Diagnostic;
 use super::validate::Merged;
 use crate::components::{LightPhotons, Material, PhotonFlags, PhotonRole};
+use crate::photon::roles::makes_caustics;
 use crate::shading::shadow::material_passes_shadows;
 
 /// Largest valid flag value (3: casts and receives).
@@ -106,13 +107,21 @@ pub struct PlacedFlags<'a> {
 }
 
 /// Warns, once per instance and material, about leaves whose explicit caustic flag casts
-/// while their material lets shadow rays through. `materials[i]` is the checked material `i`.
+/// while their material lets shadow rays through and sends caustic photons on (it reflects
+/// or refracts them): only then is the light it transmits carried twice. Nothing to warn
+/// about without a caustic map (`caustic_map` false), or for a material that only passes
+/// light straight through (an `Opacity` over a diffuse shader: photons that pass it are
+/// direct light, never stored as caustics). `materials[i]` is the checked material `i`.
 pub fn warn_shadow_casters<'a>(
     src: &mut Sources,
     m: &Merged<'_>,
     leaves: impl Iterator<Item = PlacedFlags<'a>>,
     materials: &[Option<&Material>],
+    caustic_map: bool,
 ) {
+    if !caustic_map {
+        return;
+    }
     let mut seen = Vec::new();
     for leaf in leaves {
         let Some(role) = leaf.photon.caustic.filter(|r| r.casts()) else {
@@ -124,7 +133,12 @@ pub fn warn_shadow_casters<'a>(
         let Some(Some(mat)) = materials.get(material) else {
             continue;
         };
-        if !material_passes_shadows(mat) || seen.contains(&(leaf.instance, material)) {
+        let sends_caustics =
+            makes_caustics(&mat.shader) || mat.photon.is_some_and(|p| p.scatters());
+        if !material_passes_shadows(mat)
+            || !sends_caustics
+            || seen.contains(&(leaf.instance, material))
+        {
             continue;
         }
         seen.push((leaf.instance, material));

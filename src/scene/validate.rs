@@ -279,6 +279,7 @@ fn switched_off(list: &[FeatureDesc]) -> Features {
 
 /// Checks one photon map's knobs (`path` is the map's field in `options`).
 fn photon_map(ck: &mut Checker<'_>, path: &str, d: &PhotonMapDesc) -> PhotonMapSettings {
+    other_maps_fields(ck, path, d);
     if d.photons == 0 {
         ck.error(
             &format!("{path}.photons"),
@@ -327,6 +328,43 @@ fn photon_map(ck: &mut Checker<'_>, path: &str, d: &PhotonMapDesc) -> PhotonMapS
         aim: d.aim,
         filter,
         progressive: d.progressive.map(|p| progressive(ck, path, &p)),
+    }
+}
+
+/// Warns about a field set away from its default on the map it does nothing for:
+/// `final_gather` and `precompute` belong to `global_illumination`, `aim` to `caustics`.
+fn other_maps_fields(ck: &mut Checker<'_>, path: &str, d: &PhotonMapDesc) {
+    let default = PhotonMapDesc::default();
+    let caustics = path.ends_with(".caustics");
+    let misplaced: &[(&str, bool, &str)] = if caustics {
+        &[
+            (
+                "final_gather",
+                d.final_gather != default.final_gather,
+                "global_illumination",
+            ),
+            (
+                "precompute",
+                d.precompute != default.precompute,
+                "global_illumination",
+            ),
+        ]
+    } else {
+        &[("aim", d.aim != default.aim, "caustics")]
+    };
+    let this = if caustics {
+        "caustics"
+    } else {
+        "global_illumination"
+    };
+    for &(field, set, owner) in misplaced {
+        if set {
+            ck.warn(
+                &format!("{path}.{field}"),
+                format!("{field} has no effect on the {this} map: it is a setting of {owner}"),
+                &format!("move it into `{owner}: (…)`, or remove it"),
+            );
+        }
     }
 }
 

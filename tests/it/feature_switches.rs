@@ -149,6 +149,30 @@ fn geometry_off_gives_the_true_reasons_downstream() {
     );
     let (ran, why) = reason(&report, "build_accel");
     assert!(ran && !why.contains("more to be generated"), "{why}");
+    // A displaced sphere left unexpanded has nothing to displace either: `tessellate` does
+    // not run with 0 triangles (its true displacement counted the unexpanded shape's).
+    let displaced = |options: &str| {
+        scene(options, "", "", false)
+            .replace(
+                "Inline(vertices: [(-1, -1, 0), (1, -1, 0), (1, 1, 0), (-1, 1, 0)],\n            polygons: [[0, 1, 2, 3]])",
+                "Sphere(radius: 0.5)",
+            )
+            .replace(
+                r#"material: "red")"#,
+                r#"material: "red", displacement: (shader: Sine(amplitude: 0.1, factor: 8)))"#,
+            )
+    };
+    assert!(displaced("").contains("Sphere(radius: 0.5), material: \"red\", displacement"));
+    let (_, report) = render(&displaced(""));
+    assert!(reason(&report, "tessellate").0);
+    let (_, report) = render(&displaced(", disable: [Geometry]"));
+    assert_eq!(
+        reason(&report, "tessellate"),
+        (
+            false,
+            "geometry shaders disabled (1 shape(s) not expanded into surfaces)"
+        )
+    );
 }
 
 #[test]

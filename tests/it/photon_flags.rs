@@ -162,18 +162,25 @@ fn a_flag_out_of_range_is_a_located_error() {
     );
 }
 
+/// A flagged caustic caster whose material lets shadow rays through and refracts photons
+/// (glass with a `Transparency` shadow shader) carries its transmitted light twice: warned.
+/// Not warned: the same without a caustic map, and an `Opacity` over a diffuse shader, whose
+/// pass-through photons are direct light, never stored as caustics.
 #[test]
 fn a_caustic_caster_with_a_shadow_shader_is_warned_about() {
-    let text = ball_scene(BOTH_MAPS, Flags::default()).replace(
+    let flag = |text: &str| {
+        text.replace(
+            "approximation: Parametric(u: 32, v: 16)",
+            "approximation: Parametric(u: 32, v: 16), caustic: 1",
+        )
+    };
+    let glass = ball_scene(BOTH_MAPS, Flags::default()).replace(
         r#"(name: "glass", shader: Dielectric(ior: 1.5)),"#,
-        r#"(name: "glass", shader: Opacity(opacity: (0.5, 0.5, 0.5), input: Lambert(albedo: (0.5, 0.5, 0.5)))),"#,
+        r#"(name: "glass", shader: Dielectric(ior: 1.5), shadow: Transparency(color: (0.9, 0.9, 0.9))),"#,
     );
-    assert!(load(&text).located_warnings.is_empty());
-    let flagged = text.replace(
-        "approximation: Parametric(u: 32, v: 16)",
-        "approximation: Parametric(u: 32, v: 16), caustic: 1",
-    );
-    let warnings = load(&flagged).located_warnings;
+    assert!(glass.contains("shadow: Transparency") && flag(&glass) != glass);
+    assert!(load(&glass).located_warnings.is_empty());
+    let warnings = load(&flag(&glass)).located_warnings;
     assert_eq!(warnings.len(), 1, "{warnings:?}");
     assert!(
         warnings[0].contains("ball.ron:")
@@ -184,6 +191,16 @@ fn a_caustic_caster_with_a_shadow_shader_is_warned_about() {
         "{}",
         warnings[0]
     );
+    // Without a caustic map nothing is counted twice.
+    let no_caustics = flag(&glass).replace(BOTH_MAPS, "global_illumination: (photons: 2000)");
+    assert!(load(&no_caustics).located_warnings.is_empty());
+    // An Opacity over a diffuse shader passes photons straight through: direct light.
+    let veil = ball_scene(BOTH_MAPS, Flags::default()).replace(
+        r#"(name: "glass", shader: Dielectric(ior: 1.5)),"#,
+        r#"(name: "glass", shader: Opacity(opacity: (0.5, 0.5, 0.5), input: Lambert(albedo: (0.5, 0.5, 0.5)))),"#,
+    );
+    assert!(veil.contains("Opacity(") && flag(&veil) != veil);
+    assert!(load(&flag(&veil)).located_warnings.is_empty());
 }
 
 /// The caustic map's stored fraction of emitted photons.
@@ -306,7 +323,7 @@ fn caustics_without_a_caster_skip_the_photon_pass() {
     assert_eq!(stage["ran"], false);
     assert_eq!(
         stage["reason"],
-        "caustics are on, but nothing casts them (no mirror, glass or other specular material, no photon shader that reflects or refracts, no instance flagged to cast)"
+        "caustics are on, but nothing casts them (no mirror, glass or other specular material, no photon shader that reflects or refracts; a caustic flag on a diffuse surface casts none)"
     );
     let o = crate::common::run_in(&dir, &["render", "off.ron", "-o", "off.png"]);
     assert!(o.status.success());
