@@ -21,6 +21,7 @@ mod cli_photons;
 mod cli_plan;
 mod component_passes;
 mod contour_instances;
+mod contour_stacking;
 mod contours;
 mod diagnostic_bvh;
 mod diagnostic_views;
