@@ -23,6 +23,7 @@ mod component_passes;
 mod contour_instances;
 mod contour_stacking;
 mod contours;
+mod contours_not_drawn;
 mod diagnostic_bvh;
 mod diagnostic_views;
 mod docs_reference;
