@@ -1682,6 +1682,19 @@ fn run_and_report(
         );
         return ExitCode::from(EXIT_ERROR);
     }
+    // Outputs of contour lines in a run that draws none are not written: said per file.
+    let unwritten = (frame.inputs.tasks.render && frame.inputs.stop_after.is_none())
+        .then(|| stagelight::scene_view::unwritten_outputs(&scene.world, &frame.inputs))
+        .flatten();
+    if let Some(u) = &unwritten {
+        for path in &u.paths {
+            eprintln!(
+                "{}: warning: not written, no contours are drawn: {}",
+                path.display(),
+                u.why
+            );
+        }
+    }
     for path in &frame.report.written {
         eprintln!("wrote {}", path.display());
     }
@@ -1691,7 +1704,7 @@ fn run_and_report(
                 eprintln!("photon maps {}", r.reason);
             }
         }
-    } else if frame.report.written.is_empty() && frame.inputs.tasks.render {
+    } else if frame.report.written.is_empty() && frame.inputs.tasks.render && unwritten.is_none() {
         eprintln!("note: the render camera has no outputs; nothing written (use -o FILE)");
     }
     ExitCode::SUCCESS

@@ -86,7 +86,65 @@ pub fn render_outputs(
 pub fn image_is_read(world: &World, inputs: &crate::frame::RunInputs) -> bool {
     inputs.caller_keeps_image
         || inputs.part.is_some()
-        || render_outputs(world, &inputs.outputs).map_or(true, |outputs| !outputs.is_empty())
+        || written_outputs(world, inputs).map_or(true, |outputs| !outputs.is_empty())
+}
+
+/// The render outputs (after `-o`) this run writes: all of them but the
+/// [`unwritten_outputs`].
+pub fn written_outputs(
+    world: &World,
+    inputs: &crate::frame::RunInputs,
+) -> Result<Vec<crate::components::OutputSpec>, String> {
+    let mut outputs = render_outputs(world, &inputs.outputs)?;
+    if let Some(unwritten) = unwritten_outputs(world, inputs) {
+        outputs.retain(|o| !unwritten.paths.contains(&o.path));
+    }
+    Ok(outputs)
+}
+
+/// Render outputs that a run does not write, and why.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Unwritten {
+    /// Their paths, in the camera's output order.
+    pub paths: Vec<std::path::PathBuf>,
+    /// Why no contour lines are drawn ([`contours_drawn`]'s reason).
+    pub why: String,
+}
+
+impl Unwritten {
+    /// The words of the run report and of the warning:
+    /// `"lines.eps" not written, no contours are drawn: output shaders disabled (…)`.
+    pub fn reason(&self) -> String {
+        let names: Vec<String> = self
+            .paths
+            .iter()
+            .map(|p| format!("\"{}\"", p.display()))
+            .collect();
+        format!(
+            "{} not written, no contours are drawn: {}",
+            names.join(", "),
+            self.why
+        )
+    }
+}
+
+/// The outputs that hold only contour lines (SVG, EPS) in a run that draws none
+/// ([`contours_drawn`] says no: output shaders disabled, every contrast criterion off):
+/// they are not written, rather than written empty. `None` when there are none, and for a
+/// farm part (it writes its part file; the merge writes the outputs).
+pub fn unwritten_outputs(world: &World, inputs: &crate::frame::RunInputs) -> Option<Unwritten> {
+    use crate::components::ImageFormat;
+    if inputs.part.is_some() {
+        return None;
+    }
+    let why = contours_drawn(world, inputs).err()?;
+    let paths: Vec<std::path::PathBuf> = render_outputs(world, &inputs.outputs)
+        .ok()?
+        .into_iter()
+        .filter(|o| matches!(o.format, ImageFormat::Svg | ImageFormat::Eps))
+        .map(|o| o.path)
+        .collect();
+    (!paths.is_empty()).then_some(Unwritten { paths, why })
 }
 
 /// Whether an output of this run (after `-o`) writes straight alpha
@@ -99,8 +157,9 @@ pub fn straight_alpha_written(world: &World, inputs: &crate::frame::RunInputs) -
 
 /// Whether this run draws contour lines on the render camera's image (an image being
 /// shaded aside): `Ok` with the number of materials with a contour shader when one exists,
-/// output shaders are on, the run is not a farm part and an output shows contours (an SVG
-/// or EPS, or a `Contours` pass, after `-o`); else `Err` with the reason. `draw_contours`
+/// output shaders are on, the run is not a farm part, some contrast criterion is on and an
+/// output shows contours (an SVG or EPS, or a `Contours` pass, after `-o`); else `Err` with
+/// the reason. `draw_contours`
 /// runs by it, `shade` keeps the contour store by it, and a merge rebuilds the geometry
 /// (for the bisection rays) only for it.
 pub fn contours_drawn(world: &World, inputs: &crate::frame::RunInputs) -> Result<usize, String> {
@@ -118,6 +177,17 @@ pub fn contours_drawn(world: &World, inputs: &crate::frame::RunInputs) -> Result
         return Err(format!(
             "{}: contours are drawn when the parts are merged",
             run.part
+        ));
+    }
+    let contrast = world
+        .query::<&crate::components::ContourContrast>()
+        .iter()
+        .next()
+        .copied()
+        .unwrap_or_default();
+    if !contrast.any_on() {
+        return Err(format!(
+            "every contour contrast criterion is off ({n} material(s) with a contour shader)"
         ));
     }
     let shown = render_outputs(world, &inputs.outputs)

@@ -10,8 +10,8 @@
 //! **Writes:** `outputs.contours` (the lines — points, colour and width per point — and the
 //! layer), returned to the runner.
 //! **Runs when:** a shaded image exists, some material has a contour shader, output shaders
-//! are on, an output of the run shows contours (an SVG or EPS, or a `Contours` pass), and the
-//! run is not a farm part (parts carry no contours: `stagelight merge` draws them from the
+//! are on, some contrast criterion is on (`ContourContrast::any_on`), an output of the run
+//! shows contours (an SVG or EPS, or a `Contours` pass), and the run is not a farm part (parts carry no contours: `stagelight merge` draws them from the
 //! merged image, with the geometry stages run again for the bisection rays) — one answer,
 //! `crate::scene_view::contours_drawn`, shared with `shade` and the merge's geometry stages.
 //! **After this stage:** `outputs.contours` holds lines that depend only on the scene and
@@ -32,15 +32,18 @@ use crate::shading::CameraRays;
 
 /// Run condition: an image, and contours to draw
 /// ([`crate::scene_view::contours_drawn`]: contour shaders, output shaders on, not a farm
-/// part, an output showing them).
+/// part, a contrast criterion on, an output showing them).
 pub fn should_run(world: &World, frame: &Frame) -> Decision {
+    // Why no contours are drawn comes first: it is also why `shade` made no image when
+    // the only outputs hold contour lines.
+    let n = match crate::scene_view::contours_drawn(world, &frame.inputs) {
+        Ok(n) => n,
+        Err(why) => return Decision::skip(why),
+    };
     if !frame.outputs.has(Slot::Image) {
         return Decision::skip("no shaded image");
     }
-    match crate::scene_view::contours_drawn(world, &frame.inputs) {
-        Ok(n) => Decision::run(format!("{n} material(s) with a contour shader")),
-        Err(why) => Decision::skip(why),
-    }
+    Decision::run(format!("{n} material(s) with a contour shader"))
 }
 
 /// Finds, links, styles and rasterises the contour lines.

@@ -11,8 +11,8 @@
 //! | 4 | `trace_photons` | caustics or global illumination on (caustics with a caster), a `Direct` render, geometry, a light with power | `Emitter`s, `outputs.geometry`, `settings.photons` | `outputs.photons` |
 //! | 5 | `bake_lightmaps` | bake requests, in a run that bakes | `BakeRequest`s, `Emitter`s, `Environment`, `outputs.geometry`, `inputs.bake_dir`, `inputs.write_gltf` | texture files (and the baked glTF copy); `outputs.bake_reports` |
 //! | 6 | `shade` | a render camera, in a run that renders (a farm part: one that owns pixels or samples) | render camera, lenses, atmosphere, `Interior`s, `Emitter`s, `Environment`, `outputs.geometry`, `outputs.photons` | `outputs.image` |
-//! | 7 | `draw_contours` | a shaded image, a material with a contour shader, an output showing contours, not a farm part | `outputs.image` (contour store), `outputs.geometry`, render camera, `ContourShader`s, `ContourContrast` | `outputs.contours` |
-//! | 8 | `write_output` | a shaded image and outputs to write, or a farm part that owns nothing (its empty part file) | `outputs.image`, `outputs.contours`, camera outputs with `inputs.outputs` overrides, `Imager` | image files, SVG contour lines |
+//! | 7 | `draw_contours` | a shaded image, a material with a contour shader, a contrast criterion on, an output showing contours, not a farm part | `outputs.image` (contour store), `outputs.geometry`, render camera, `ContourShader`s, `ContourContrast` | `outputs.contours` |
+//! | 8 | `write_output` | a shaded image and outputs to write (SVG/EPS only when contours are drawn), or a farm part that owns nothing (its empty part file) | `outputs.image`, `outputs.contours`, camera outputs with `inputs.outputs` overrides, `Imager` | image files, SVG contour lines |
 //! <!-- stage table end -->
 
 pub mod bake_lightmaps;
@@ -115,7 +115,7 @@ pub const STAGES: &[Stage] = &[
     },
     Stage {
         name: "draw_contours",
-        runs_when: "a shaded image, a material with a contour shader, an output showing contours, not a farm part",
+        runs_when: "a shaded image, a material with a contour shader, a contrast criterion on, an output showing contours, not a farm part",
         reads: "`outputs.image` (contour store), `outputs.geometry`, render camera, `ContourShader`s, `ContourContrast`",
         writes: "`outputs.contours`",
         slot: Some(Slot::Contours),
@@ -124,7 +124,7 @@ pub const STAGES: &[Stage] = &[
     },
     Stage {
         name: "write_output",
-        runs_when: "a shaded image and outputs to write, or a farm part that owns nothing (its empty part file)",
+        runs_when: "a shaded image and outputs to write (SVG/EPS only when contours are drawn), or a farm part that owns nothing (its empty part file)",
         reads: "`outputs.image`, `outputs.contours`, camera outputs with `inputs.outputs` overrides, `Imager`",
         writes: "image files, SVG contour lines",
         slot: None,

@@ -81,7 +81,13 @@ pub fn should_run(world: &World, frame: &Frame) -> Decision {
         return Decision::skip("no render camera");
     };
     if !crate::scene_view::image_is_read(world, &frame.inputs) {
-        return Decision::skip(NO_OUTPUTS);
+        // Outputs that would be left unwritten read no image either.
+        return match crate::scene_view::unwritten_outputs(world, &frame.inputs) {
+            Some(unwritten) => {
+                Decision::skip(format!("nothing reads the image: {}", unwritten.reason()))
+            }
+            None => Decision::skip(NO_OUTPUTS),
+        };
     }
     let share = crate::scene_view::part_share(world, &frame.inputs);
     if let Some(Share::Nothing(why)) = share {

@@ -2,17 +2,21 @@
 //! EXR) and the contour lines into SVG and EPS; the runner writes them with the run's other files,
 //! all or nothing.
 //!
-//! **Reads:** `outputs.image`; `outputs.contours` (absent: no lines); the render `Camera`'s `outputs` as redirected by
+//! **Reads:** `outputs.image`; `outputs.contours`; the render `Camera`'s `outputs` as redirected by
 //! `inputs.outputs` (`-o`, `bench`'s scratch directory), its `Imager` (PNG only) and its
 //! placement and lenses (the camera-space passes, `crate::camera_space`).
 //! **Writes:** files, handed to the runner encoded (`Work::pending`), which commits them.
 //! **Runs when:** a shaded image exists and the camera (or the command line) lists outputs.
+//! SVG and EPS outputs hold only contour lines: a run that draws none
+//! (`crate::scene_view::unwritten_outputs`: output shaders disabled, every contrast
+//! criterion off) leaves them unwritten, its reason names them, and with no other output
+//! the stage is skipped.
 //! **After the run:** every output file exists complete, or none was touched.
 
 use hecs::World;
 
 use super::prelude::*;
-use glam::{Vec3, Vec4};
+use glam::Vec3;
 
 use crate::camera_space::CameraSpace;
 use crate::components::{ImageFormat, Imager, OutputSpec, Pass};
@@ -26,13 +30,22 @@ use crate::framebuffer::FrameBuffers;
 use crate::image_io::{encode_alpha_png, encode_exr_with, encode_png, PendingFile};
 use crate::scene_view::render_view;
 
-/// The outputs this run writes: the camera's, with the command line's overrides.
+/// The outputs this run writes: the camera's, with the command line's overrides, less the
+/// contour-only ones when no contours are drawn ([`crate::scene_view::written_outputs`]).
 fn outputs(world: &World, frame: &Frame) -> Result<Vec<OutputSpec>, StageError> {
-    crate::scene_view::render_outputs(world, &frame.inputs.outputs).map_err(StageError::Internal)
+    crate::scene_view::written_outputs(world, &frame.inputs).map_err(StageError::Internal)
 }
 
-/// Run condition: an image to write and somewhere to write it.
+/// Run condition: an image to write and somewhere to write it. SVG and EPS outputs are
+/// left unwritten when the run draws no contours, and the reason says so.
 pub fn should_run(world: &World, frame: &Frame) -> Decision {
+    let unwritten = (frame.inputs.part.is_none() && !frame.inputs.outputs.discard)
+        .then(|| crate::scene_view::unwritten_outputs(world, &frame.inputs))
+        .flatten();
+    let n = outputs(world, frame).map_or(0, |o| o.len());
+    if let (Some(unwritten), 0) = (&unwritten, n) {
+        return Decision::skip(unwritten.reason());
+    }
     if !frame.outputs.has(Slot::Image) {
         if let (Some(run), Some(Share::Nothing(_))) = (
             &frame.inputs.part,
@@ -48,11 +61,13 @@ pub fn should_run(world: &World, frame: &Frame) -> Decision {
     if let Some(run) = &frame.inputs.part {
         return Decision::run(format!("{}: the part file", run.part));
     }
-    let n = outputs(world, frame).map_or(0, |o| o.len());
     if n == 0 {
         return Decision::skip("render camera has no outputs");
     }
-    Decision::run(format!("{n} camera output(s)"))
+    match unwritten {
+        Some(unwritten) => Decision::run(format!("{n} camera output(s); {}", unwritten.reason())),
+        None => Decision::run(format!("{n} camera output(s)")),
+    }
 }
 
 /// Encodes and writes every output.
@@ -86,8 +101,19 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
                 }
                 encode_exr_with(fb, &out.passes, extra)
             }
-            ImageFormat::Svg => Ok(encode_svg(contours.unwrap_or(&no_lines(fb))).into_bytes()),
-            ImageFormat::Eps => Ok(encode_eps(contours.unwrap_or(&no_lines(fb))).into_bytes()),
+            ImageFormat::Svg | ImageFormat::Eps => {
+                let Some(c) = contours else {
+                    return Err(StageError::Internal(format!(
+                        "no contour lines for {}",
+                        out.path.display()
+                    )));
+                };
+                if out.format == ImageFormat::Svg {
+                    Ok(encode_svg(c).into_bytes())
+                } else {
+                    Ok(encode_eps(c).into_bytes())
+                }
+            }
         }
         .map_err(|message| StageError::Write {
             path: out.path.clone(),
@@ -137,18 +163,6 @@ fn png(
     // The paper hides what the camera saw.
     composed.environment = None;
     encode_png(&composed, alpha, None)
-}
-
-/// No contour lines, for an image of `fb`'s size (contours were not drawn: no material in
-/// use has a contour shader).
-fn no_lines(fb: &FrameBuffers) -> ContourImage {
-    ContourImage {
-        width: fb.width,
-        height: fb.height,
-        lines: Vec::new(),
-        material_names: Vec::new(),
-        layer: vec![Vec4::ZERO; fb.beauty.len()],
-    }
 }
 
 /// A farm part's run writes its part file (to `-o`) instead of the camera outputs.

@@ -127,8 +127,9 @@ pub struct ContourContrast {
     /// Where the normals differ by more than this angle, degrees (default 60; 180 or more:
     /// never).
     pub normal_angle: f32,
-    /// Where the depths differ by more than this fraction of the nearer one (default 0.25).
-    pub depth: f32,
+    /// Where the depths differ by more than this fraction of the nearer one (default 0.25;
+    /// `None`: never).
+    pub depth: Option<f32>,
     /// Between a surface and the background: silhouettes (default on).
     pub background: bool,
     /// How many mirror, refraction or transparency levels behind the first hit also get
@@ -144,9 +145,23 @@ impl Default for ContourContrast {
             object: true,
             material: true,
             normal_angle: 60.0,
-            depth: 0.25,
+            depth: Some(0.25),
             background: true,
             ray_depth: 0,
         }
+    }
+}
+
+impl ContourContrast {
+    /// Whether some criterion can make an edge: with every one off (no instance, object,
+    /// material or background switch, a `normal_angle` of 180° or more, no `depth`) no
+    /// contour is ever drawn.
+    pub fn any_on(&self) -> bool {
+        self.instance
+            || self.object
+            || self.material
+            || self.normal_angle < 180.0
+            || self.depth.is_some()
+            || self.background
     }
 }

@@ -54,8 +54,11 @@ impl Contrast {
         if a.normal.dot(b.normal) < self.cos_angle {
             return true;
         }
+        let Some(fraction) = c.depth else {
+            return false;
+        };
         let near = a.depth.min(b.depth);
-        (a.depth - b.depth).abs() > c.depth * near
+        (a.depth - b.depth).abs() > fraction * near
     }
 }
 
@@ -199,12 +202,52 @@ mod tests {
             object: false,
             material: false,
             normal_angle: 180.0,
-            depth: f32::INFINITY,
+            depth: None,
             background: false,
             ray_depth: 0,
         });
         for b in [ContourSample::BACKGROUND, surface(2, 2, -Vec3::Z, 9.0)] {
             assert!(!none.differs(&a, &b));
+        }
+    }
+
+    #[test]
+    fn depth_none_never_differs_by_depth_and_all_off_draws_nothing() {
+        let no_depth = ContourContrast {
+            depth: None,
+            ..ContourContrast::default()
+        };
+        let a = surface(1, 1, Vec3::Z, 2.0);
+        assert!(!Contrast::new(no_depth).differs(&a, &surface(1, 1, Vec3::Z, 90.0)));
+        assert!(
+            Contrast::new(ContourContrast::default()).differs(&a, &surface(1, 1, Vec3::Z, 90.0))
+        );
+        assert!(no_depth.any_on());
+        let off = ContourContrast {
+            instance: false,
+            object: false,
+            material: false,
+            normal_angle: 180.0,
+            depth: None,
+            background: false,
+            ray_depth: 2,
+        };
+        assert!(!off.any_on());
+        for on in [
+            ContourContrast {
+                background: true,
+                ..off
+            },
+            ContourContrast {
+                normal_angle: 179.0,
+                ..off
+            },
+            ContourContrast {
+                depth: Some(0.25),
+                ..off
+            },
+        ] {
+            assert!(on.any_on(), "{on:?}");
         }
     }
 }

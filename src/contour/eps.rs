@@ -1,13 +1,14 @@
 //! The Encapsulated PostScript writer of contour lines (mental ray's "Contour PS"): the
 //! same filled polygons as the SVG ([`super::outline`]), one `fill` per line, coloured per
-//! material, with the image size as `%%BoundingBox` (1 unit = 1 pixel, y up as PostScript
+//! layer and drawn in the stacking order of [`super::stacking`] (as the SVG and the PNG
+//! composite), with the image size as `%%BoundingBox` (1 unit = 1 pixel, y up as PostScript
 //! wants it). PostScript has no transparency: colours are drawn opaque (alpha ignored).
 
 use std::fmt::Write;
 
 use glam::Vec4;
 
-use super::outline::material_groups;
+use super::outline::layer_groups;
 use super::ContourImage;
 
 /// Polygon points written per text line (keeps lines under DSC's 255 characters).
@@ -23,7 +24,7 @@ pub fn encode_eps(image: &ContourImage) -> String {
          /f {{ closepath fill }} bind def\n%%EndProlog\n"
     );
     let height = h as f32;
-    for group in material_groups(image) {
+    for group in layer_groups(image) {
         let _ = writeln!(out, "% material {}", comment_safe(&group.name));
         let _ = writeln!(out, "gsave {} setrgbcolor", rgb(group.color));
         for shape in &group.shapes {

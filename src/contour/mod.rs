@@ -8,7 +8,9 @@
 //! 5. [`raster`]: the anti-aliased RGBA contour layer;
 //!
 //! and the writers read the result: [`svg`] and [`eps`] (vector lines, both from the shapes
-//! of [`outline`]) and [`output`] (the EXR layer and the PNG composite).
+//! of [`outline`]) and [`output`] (the EXR layer and the PNG composite). [`stacking`] is
+//! the one order lines are drawn in, bottom to top, by the raster layer and both vector
+//! writers alike.
 
 pub mod contrast;
 pub mod eps;
@@ -17,6 +19,7 @@ pub mod outline;
 pub mod output;
 pub mod raster;
 pub mod shaders;
+pub mod stacking;
 pub mod store;
 pub mod svg;
 

@@ -1,9 +1,13 @@
 //! The vector shape of contour lines, shared by the SVG and EPS writers: each line as one
 //! filled polygon outlining its varying width (round caps and joins as the raster layer
-//! draws them, mitred where the turn is gentle), grouped by material in a fixed order.
+//! draws them, mitred where the turn is gentle), grouped in the layers of the stacking order
+//! ([`super::stacking`]) that the raster layer follows too.
+
+use std::collections::HashSet;
 
 use glam::{Vec2, Vec4};
 
+use super::stacking::layers;
 use super::{ContourImage, ContourLine};
 
 /// Points of a half circle (cap) or of a round join.
@@ -18,29 +22,31 @@ pub struct LineShape {
     pub polygon: Vec<Vec2>,
 }
 
-/// The lines of one material.
+/// One layer of lines ([`super::stacking::Layer`]): consecutive lines of one material.
 #[derive(Debug, Clone, PartialEq)]
-pub struct MaterialGroup {
+pub struct LayerGroup {
     /// The material's name (`material-N` when unnamed).
     pub name: String,
+    /// A name for this group alone: the material's name for its first layer, then
+    /// `name-2`, `name-3`, … (any name already given gets the next free number), so that
+    /// SVG `id`s stay unique when a material's lines lie in several layers.
+    pub id: String,
     /// The colour of its first line.
     pub color: Vec4,
     /// Its lines, in the image's line order.
     pub shapes: Vec<LineShape>,
 }
 
-/// The image's lines grouped by material (ascending material index), each as its shape.
-pub fn material_groups(image: &ContourImage) -> Vec<MaterialGroup> {
-    let mut materials: Vec<u32> = image.lines.iter().map(|l| l.material).collect();
-    materials.sort_unstable();
-    materials.dedup();
-    materials
+/// The image's lines in stacking order ([`super::stacking::layers`], bottom to top), one
+/// group per layer, each line as its shape.
+pub fn layer_groups(image: &ContourImage) -> Vec<LayerGroup> {
+    let mut used: HashSet<String> = HashSet::new();
+    layers(&image.lines)
         .into_iter()
-        .map(|m| {
-            let shapes: Vec<LineShape> = image
-                .lines
+        .map(|layer| {
+            let m = layer.material;
+            let shapes: Vec<LineShape> = image.lines[layer.lines]
                 .iter()
-                .filter(|l| l.material == m)
                 .map(|l| LineShape {
                     color: mean_color(l),
                     polygon: outline(l),
@@ -51,8 +57,15 @@ pub fn material_groups(image: &ContourImage) -> Vec<MaterialGroup> {
                 .get(m as usize - 1)
                 .cloned()
                 .unwrap_or_else(|| format!("material-{m}"));
-            MaterialGroup {
+            let mut id = name.clone();
+            let mut k = 1;
+            while !used.insert(id.clone()) {
+                k += 1;
+                id = format!("{name}-{k}");
+            }
+            LayerGroup {
                 name,
+                id,
                 color: shapes[0].color,
                 shapes,
             }

@@ -5,10 +5,11 @@
 //! line, `clamp(h + ½ − d, 0, min(1, 2h))` for distance `d` and half-width `h`, which sums
 //! to exactly the width across a straight line. Each line takes, per pixel, the coverage
 //! of its nearest segment (joints are not counted twice) and is composited `over` the lines
-//! before it, in line order.
+//! below it, in the stacking order of [`super::stacking`] (the one the SVG and EPS follow).
 
 use glam::{Vec2, Vec4};
 
+use super::stacking::layers;
 use super::ContourLine;
 
 /// The layer of `lines` on a `width × height` image (premultiplied RGBA, row-major).
@@ -19,7 +20,10 @@ pub fn rasterise(lines: &[ContourLine], width: u32, height: u32) -> Vec<Vec4> {
     // this line touched.
     let mut best: Vec<(f32, Vec4)> = vec![(0.0, Vec4::ZERO); w * h];
     let mut touched: Vec<usize> = Vec::new();
-    for line in lines {
+    let stacked = layers(lines)
+        .into_iter()
+        .flat_map(|layer| &lines[layer.lines]);
+    for line in stacked {
         let n = line.points.len();
         let segments = if line.closed { n } else { n - 1 };
         for k in 0..segments {

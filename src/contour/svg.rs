@@ -1,4 +1,6 @@
-//! The SVG writer of contour lines: one `<g>` per material (its name as `id`, its first
+//! The SVG writer of contour lines: one `<g>` per layer of the stacking order
+//! ([`super::stacking`], bottom to top as the PNG composite draws them; a layer is a run of
+//! lines of one material: its name as `id`, `name-2`, … for its later layers, its first
 //! line's colour as `fill`), each line a filled polygon outlining its varying width (the
 //! shapes of [`super::outline`]), in pixel coordinates with the image size as `viewBox`.
 
@@ -6,7 +8,7 @@ use std::fmt::Write;
 
 use glam::Vec4;
 
-use super::outline::material_groups;
+use super::outline::layer_groups;
 use super::ContourImage;
 
 /// The SVG document of `image`'s lines.
@@ -15,9 +17,9 @@ pub fn encode_svg(image: &ContourImage) -> String {
     let mut out = format!(
         "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" viewBox=\"0 0 {w} {h}\">\n"
     );
-    for group in material_groups(image) {
-        let name = escape(&group.name);
-        let _ = writeln!(out, "<g id=\"{name}\" {}>", paint(group.color));
+    for group in layer_groups(image) {
+        let id = escape(&group.id);
+        let _ = writeln!(out, "<g id=\"{id}\" {}>", paint(group.color));
         for shape in &group.shapes {
             let own = if shape.color == group.color {
                 String::new()

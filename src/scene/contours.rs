@@ -217,14 +217,15 @@ pub fn contrast(src: &mut Sources, options: Option<&Item<'_, OptionsDesc>>) -> C
         );
     }
     let depth = format!("{path}.depth");
-    if ck.finite(&depth, "depth", c.depth) && c.depth <= 0.0 {
-        ck.error(
-            &depth,
-            format!(
-                "depth must be positive (a fraction of the nearer depth), found {}",
-                c.depth
-            ),
-        );
+    if let Some(d) = c.depth {
+        if ck.finite(&depth, "depth", d) && d <= 0.0 {
+            ck.src.error(
+                ck.file,
+                &depth,
+                format!("depth must be positive (a fraction of the nearer depth), found {d}"),
+                Some("for no contours at depth jumps, write `depth: None`".into()),
+            );
+        }
     }
     if contours.ray_depth > MAX_RAY_DEPTH {
         ck.error(
@@ -241,9 +242,35 @@ pub fn contrast(src: &mut Sources, options: Option<&Item<'_, OptionsDesc>>) -> C
         object: c.object,
         material: c.material,
         normal_angle: c.normal_angle as f32,
-        depth: c.depth as f32,
+        depth: c.depth.map(|d| d as f32),
         background: c.background,
     }
+}
+
+/// A contrast with every criterion off while some material has a contour shader: no line
+/// can be drawn (`draw_contours` is skipped, contour-only outputs are not written), a
+/// warning at `contours.contrast`.
+pub fn check_contrast_off(
+    src: &mut Sources,
+    options: Option<&Item<'_, OptionsDesc>>,
+    materials: &[Item<'_, MaterialDesc>],
+    contrast: &ContourContrast,
+) {
+    let Some(item) = options.filter(|o| o.desc.contours.is_some()) else {
+        return;
+    };
+    if contrast.any_on() || !materials.iter().any(|m| m.desc.contour.is_some()) {
+        return;
+    }
+    let pos = src.pos(item.file, &item.at(".contours.contrast"));
+    src.push_warning(
+        item.file,
+        Diagnostic::at(
+            pos,
+            "every contour contrast criterion is off: no contour lines are drawn, and SVG and EPS outputs are not written",
+            Some("turn one on, e.g. `background: true`; to draw no contours, leave out the materials' `contour` shaders".into()),
+        ),
+    );
 }
 
 /// An SVG or EPS output (`format`): it holds the contour lines only (`passes`, if given, is

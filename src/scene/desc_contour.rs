@@ -119,8 +119,9 @@ pub struct ContrastDesc {
     pub material: bool,
     /// Normal angle threshold, degrees, default 60 (in (0, 180]; 180: off).
     pub normal_angle: f64,
-    /// Relative depth jump threshold, default 0.25 (> 0).
-    pub depth: f64,
+    /// Relative depth jump threshold, default 0.25 (> 0); `None`: depth jumps make no
+    /// contour.
+    pub depth: Option<f64>,
     /// Silhouettes against the background, default `true`.
     pub background: bool,
 }
@@ -132,7 +133,7 @@ impl Default for ContrastDesc {
             object: true,
             material: true,
             normal_angle: 60.0,
-            depth: 0.25,
+            depth: Some(0.25),
             background: true,
         }
     }

@@ -198,6 +198,7 @@ fn load(
         .map(|m| contours::contour(src, m))
         .collect();
     let contrast = contours::contrast(src, merged.options.as_ref());
+    contours::check_contrast_off(src, merged.options.as_ref(), &merged.materials, &contrast);
     contours::check_pairing(src, &merged.cameras, &merged.materials);
     light_lists::attach(src, &merged, &mut materials);
     let materials: Vec<MaterialParts> = materials
