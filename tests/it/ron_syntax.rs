@@ -60,7 +60,7 @@ fn nodes_called_in_the_wrong_style_name_their_form() {
     );
     for (input, message) in [
         (
-            "Mix(Uv, 1)",
+            "Mix((1, 0, 0), 1)",
             "Mix takes named inputs: Mix(a: …, b: …, t: …)",
         ),
         (
