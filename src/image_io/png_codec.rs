@@ -337,6 +337,20 @@ mod tests {
         out
     }
 
+    /// An indexed-colour PNG without its `PLTE` chunk says the chunk is missing (it said
+    /// "the PLTE chunk holds 0 entries (indices 0 to 0)").
+    #[test]
+    fn a_palette_image_without_its_palette_says_so() {
+        let png = indexed(png::BitDepth::Eight, 2, &[0, 0, 0], &[0, 0, 0, 0]);
+        let at = png.windows(4).position(|w| w == b"PLTE").unwrap() - 4;
+        let len = u32::from_be_bytes(png[at..at + 4].try_into().unwrap()) as usize;
+        let without: Vec<u8> = [&png[..at], &png[at + 12 + len..]].concat();
+        assert_eq!(
+            decode_png(&without).unwrap_err(),
+            "the PLTE chunk is missing: an indexed-colour (palette) PNG needs its palette"
+        );
+    }
+
     /// An index past the palette's last entry is an error naming the first such pixel (the
     /// decoder would expand it to opaque black), at 8 bits and packed below 8 bits; indices
     /// within the palette decode to its colours.

@@ -31,7 +31,12 @@ pub fn check_indices(bytes: &[u8], info: &png::Info, limits: png::Limits) -> Res
     if info.color_type != png::ColorType::Indexed {
         return Ok(());
     }
-    let entries = info.palette.as_ref().map_or(0, |p| p.len() / 3);
+    let Some(palette) = info.palette.as_ref() else {
+        return Err(
+            "the PLTE chunk is missing: an indexed-colour (palette) PNG needs its palette".into(),
+        );
+    };
+    let entries = palette.len() / 3;
     let depth = info.bit_depth as usize;
     if entries >= 1 << depth {
         return Ok(());

@@ -253,7 +253,7 @@ fn an_alpha_node_of_a_missing_file_is_located() {
     );
     assert_eq!(
         load_error(&text),
-        "scene.ron:3:131: error: cannot read image file \"nowhere.png\": No such file or directory (os error 2)\n  help: image textures are PNG files, or EXR files with R, G and B, Y or a single channel, relative to the scene file"
+        "scene.ron:3:131: error: cannot read image file \"nowhere.png\": file not found\n  help: image textures are PNG files, or EXR files with R, G and B, Y or a single channel, relative to the scene file"
     );
 }
 

@@ -108,6 +108,7 @@ mod rib_structure;
 mod rib_tutorial_imager;
 mod rib_tutorial_shaders;
 mod rib_values;
+mod ron_syntax;
 mod scene_errors;
 mod scene_errors_lights;
 mod scene_load;

@@ -217,12 +217,21 @@ fn scalar(ck: &mut Checker<'_>, dir: &Path, path: &str, d: &ScalarDesc) -> Optio
             let s = num(ck, &format!("{path}.Image.scale"), "scale", *scale);
             let o = num(ck, &format!("{path}.Image.offset"), "offset", *offset);
             let full = dir.join(file);
-            let img = match crate::image_io::png_codec::read_png(&full) {
+            let read = std::fs::read(&full)
+                .map_err(|e| crate::scene::message::io_reason(&e))
+                .and_then(|bytes| crate::image_io::png_codec::decode_png(&bytes));
+            let img = match read {
                 Ok(img) => img,
                 Err(e) => {
-                    ck.error(
+                    ck.src.error(
+                        ck.file,
                         &format!("{path}.Image.file"),
                         format!("cannot read image file \"{}\": {e}", full.display()),
+                        Some(
+                            "displacement images must be PNG files (read as grey), relative to \
+                             the scene file; save an EXR height map as a 16-bit grey PNG"
+                                .into(),
+                        ),
                     );
                     return None;
                 }

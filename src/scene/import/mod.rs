@@ -37,6 +37,9 @@ pub mod mi;
 pub mod relocate;
 pub mod rib;
 pub mod ron;
+mod ron_brackets;
+mod ron_forms;
+mod ron_hints;
 mod ron_integers;
 mod ron_spans;
 pub mod to_ron;
@@ -245,6 +248,12 @@ fn known_formats(formats: &[Format]) -> String {
 /// caller locates the error: the file itself for the root, the include entry for an
 /// include).
 pub fn reader_for<'f>(formats: &'f [Format], path: &Path) -> Result<&'f Format, (String, String)> {
+    if path.is_dir() {
+        return Err((
+            "this is a directory, not a scene file".into(),
+            format!("give a scene file; {}", known_formats(formats)),
+        ));
+    }
     let Some(ext) = path
         .extension()
         .map(|e| e.to_string_lossy().to_ascii_lowercase())

@@ -24,7 +24,13 @@ pub fn read(path: &Path, bytes: &[u8]) -> Result<ReadScene, super::ReadFailure> 
     // columns of line 1 are then counted as the editor shows them.
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let index = SpanIndex::new(text);
-    match parse(text) {
+    let parsed = parse(text);
+    if parsed.is_ok() {
+        if let Some(style) = wrong_call_style(path, &index, None) {
+            return Err(vec![style].into());
+        }
+    }
+    match parsed {
         Ok(desc) => Ok(ReadScene {
             desc,
             map: SourceMap::new(
@@ -40,6 +46,14 @@ pub fn read(path: &Path, bytes: &[u8]) -> Result<ReadScene, super::ReadFailure> 
         Err(err) => {
             let mut d = from_ron(path, &err);
             (d.line, d.column) = skip_whitespace(text, d.line, d.column);
+            let at = Pos {
+                line: d.line,
+                column: d.column,
+            };
+            if let Some(style) = wrong_call_style(path, &index, Some(at)) {
+                return Err(vec![style].into());
+            }
+            let before = (d.line, d.column, d.message.clone());
             if let RonError::IntegerOutOfBounds = err.code {
                 if let Some((message, help)) =
                     super::ron_integers::out_of_range(text, d.line, d.column)
@@ -63,9 +77,33 @@ pub fn read(path: &Path, bytes: &[u8]) -> Result<ReadScene, super::ReadFailure> 
                     (d.line, d.column) = (open.line, open.column);
                 }
             }
+            if before == (d.line, d.column, d.message.clone()) {
+                if let Some(hint) = super::ron_hints::explain(text, &err.code, at) {
+                    (d.line, d.column) = (hint.at.line, hint.at.column);
+                    (d.message, d.help) = (hint.message, Some(hint.help));
+                }
+            }
             Err(vec![d].into())
         }
     }
+}
+
+/// The first shader node written with named inputs where it takes them in order
+/// (`Channel(input: Uv, channel: 1)`), if it comes before `limit`: `ron` reads it as
+/// something else and misnames the problem (`expected comma`, `unknown node "input"`).
+fn wrong_call_style(path: &Path, index: &SpanIndex, limit: Option<Pos>) -> Option<Diagnostic> {
+    let (at, name) = index.first_with_fields(&super::ron_forms::positional_names())?;
+    if limit.is_some_and(|limit| at >= limit) {
+        return None;
+    }
+    let (message, help) = super::ron_forms::named_instead_of_positional(&name)?;
+    Some(Diagnostic {
+        file: path.to_path_buf(),
+        line: at.line,
+        column: at.column,
+        message,
+        help: Some(help),
+    })
 }
 
 /// How deep values may nest in a RON scene file (parentheses and brackets inside each
@@ -132,7 +170,17 @@ impl PositionIndex for RonIndex {
             parse(&text)
         };
         Some(result.map_err(|e| {
-            let d = from_ron(&self.file, &e);
+            let mut d = from_ron(&self.file, &e);
+            if let RonError::ExpectedIdentifier = e.code {
+                let at = Pos {
+                    line: d.line,
+                    column: d.column,
+                };
+                if let Some(hint) = super::ron_hints::explain(&text, &e.code, at) {
+                    (d.line, d.column) = (hint.at.line, hint.at.column);
+                    (d.message, d.help) = (hint.message, Some(hint.help));
+                }
+            }
             let (line, column) = if d.line <= 1 {
                 (pos.line, pos.column + d.column.saturating_sub(1))
             } else {
@@ -339,7 +387,7 @@ mod tests {
         let got: Vec<String> = errors.errors.iter().map(ToString::to_string).collect();
         assert_eq!(
             got,
-            ["s.ron:2:15: error: expected comma\n  help: separate fields and list items with `,`"]
+            ["s.ron:2:14: error: expected comma\n  help: add ',' here"]
         );
         let errors = read(Path::new("s.ron"), b"Scene(\n  // caf\xff\n)").unwrap_err();
         assert_eq!(

@@ -99,6 +99,24 @@ impl SpanIndex {
         None
     }
 
+    /// The first value (in text order) written as `Name(field: …)` with one of `names`:
+    /// its position and name.
+    pub fn first_with_fields(&self, names: &[&str]) -> Option<(Pos, String)> {
+        let mut todo: Vec<&Node> = self.root.iter().collect();
+        let mut first: Option<(Pos, String)> = None;
+        while let Some(node) = todo.pop() {
+            if let Some(name) = node.name.as_deref() {
+                let earlier = first.as_ref().is_none_or(|(p, _)| node.pos < *p);
+                if !node.fields.is_empty() && names.contains(&name) && earlier {
+                    first = Some((node.pos, name.to_string()));
+                }
+            }
+            todo.extend(node.items.iter());
+            todo.extend(node.fields.iter().map(|(_, v)| v));
+        }
+        first
+    }
+
     /// Position of the value at `path`, only if it is written in the text.
     #[cfg(test)]
     pub fn find(&self, path: &str) -> Option<Pos> {

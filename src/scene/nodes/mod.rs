@@ -144,7 +144,7 @@ impl Compiler<'_, '_> {
     pub(super) fn input(&mut self, at: At<'_>, d: &InputDesc, env: &Env) -> Option<(Reg, Ty)> {
         match d {
             InputDesc::Number(x) => {
-                let x = self.finite(at, "a number", *x)?;
+                let x = self.finite(at, &number_name(at.path), *x)?;
                 Some((self.constant(Vec3::splat(x)), Ty::Scalar))
             }
             InputDesc::Colour(v) => {
@@ -612,7 +612,7 @@ impl Compiler<'_, '_> {
                 let gltf = self.src.files[at.file].dir().join(file);
                 crate::scene::mesh_files::gltf_file::image_bytes(&gltf, index)
             }
-            None => std::fs::read(&path).map_err(|e| e.to_string()),
+            None => std::fs::read(&path).map_err(|e| crate::scene::message::io_reason(&e)),
         };
         // Counted against the budget from the header, before anything is decoded.
         let size = bytes
@@ -658,6 +658,17 @@ impl Compiler<'_, '_> {
         };
         self.ph.textures.insert(key, t.clone());
         t
+    }
+}
+
+/// How a number input is named in a message: its field or `bind` key (`scale`, `albedo`),
+/// else "a number" (an input given in order, `Add(1, NaN)`).
+fn number_name(path: &str) -> String {
+    let last = path.rsplit('.').next().unwrap_or_default();
+    if !last.is_empty() && last.chars().all(|c| c.is_alphanumeric() || c == '_') {
+        last.to_string()
+    } else {
+        "a number".into()
     }
 }
 

@@ -1,0 +1,210 @@
+//! RON written by hand, the way a tester wrote it: each mistake reported as what it is, at
+//! the place to fix it — shader nodes called in the wrong style, a file ending inside an
+//! unclosed bracket, a list left open, `Box()`, `Obj("x.obj")`, a missing comma, text
+//! after the scene — and the loader's nits (a missing image file, a non-finite node input,
+//! a directory given as a scene, a palette PNG without its palette, an EXR displacement).
+
+use std::path::Path;
+
+use stagelight::scene::load_scene_str;
+
+/// The first error of `text` read as `s.ron`.
+fn first_error(text: &str) -> String {
+    let errors = load_scene_str(text, Path::new("s.ron"))
+        .err()
+        .unwrap_or_else(|| panic!("loaded without errors:\n{text}"));
+    errors.0[0].to_string()
+}
+
+/// A scene whose material binds `albedo` to `input`, on one line (line 3).
+fn bound(input: &str) -> String {
+    format!(
+        "Scene(\n  cameras: [(name: \"c\", fov_y: 40, resolution: (4, 4), placement: LookAt(eye: (0, 0, 5), target: (0, 0, 0), up: (0, 1, 0)))],\n  materials: [(name: \"m\", shader: Lambert(albedo: (1, 1, 1)), bind: {{\"albedo\": {input}}})],\n  objects: [(name: \"q\", mesh: Sphere(radius: 1), material: \"m\")],\n  instances: [(name: \"i\", of: \"q\")],\n  groups: [(name: \"w\", members: [\"i\"])],\n  render: (root: \"w\", camera: \"c\"),\n)\n"
+    )
+}
+
+/// Column of the bound input on line 3.
+const INPUT: usize = 80;
+
+#[test]
+fn nodes_called_in_the_wrong_style_name_their_form() {
+    let positional = "help: write the inputs without names, in that order";
+    for (input, message) in [
+        (
+            "Channel(input: Uv, channel: 1)",
+            "Channel takes its inputs in order: Channel(<colour>, <channel index>)",
+        ),
+        // `ron` said `unknown node "c"` here.
+        (
+            "Luminance(c: Uv)",
+            "Luminance takes its inputs in order: Luminance(<colour>)",
+        ),
+        (
+            "Add(a: Uv, b: 1)",
+            "Add takes its inputs in order: Add(<a>, <b>)",
+        ),
+    ] {
+        assert_eq!(
+            first_error(&bound(input)),
+            format!("s.ron:3:{INPUT}: error: {message}\n  {positional}"),
+            "{input}"
+        );
+    }
+    // Nested: the inner node is named.
+    assert_eq!(
+        first_error(&bound("Mix(a: Uv, b: 1, t: Channel(c: Uv, k: 0))")),
+        format!(
+            "s.ron:3:{}: error: Channel takes its inputs in order: Channel(<colour>, <channel index>)\n  {positional}",
+            INPUT + 20
+        )
+    );
+    for (input, message) in [
+        (
+            "Mix((1, 0, 0), 1)",
+            "Mix takes named inputs: Mix(a: …, b: …, t: …)",
+        ),
+        (
+            "Convert((1, 0, 0))",
+            "Convert takes named inputs: Convert(input: …, from: Rgb, to: Rgb)",
+        ),
+        (
+            "Image(\"ok.png\")",
+            "Image takes named fields: Image(file: \"ok.png\")",
+        ),
+    ] {
+        let name = input.split('(').next().unwrap();
+        assert_eq!(
+            first_error(&bound(input)),
+            format!("s.ron:3:{INPUT}: error: {message}\n  help: write each field as `name: value`; docs/scene-format.md lists the fields of {name}"),
+            "{input}"
+        );
+    }
+    // The documented forms still load (positional `Mix` as before).
+    for input in [
+        "Channel(Uv, 1)",
+        "Mix(a: Uv, b: 1, t: 0.5)",
+        "Mix(Uv, 1, 0.5)",
+    ] {
+        assert!(
+            load_scene_str(&bound(input), Path::new("s.ron")).is_ok(),
+            "{input}"
+        );
+    }
+}
+
+/// A minimal scene, its lines as written.
+const SCENE: &[&str] = &[
+    "Scene(",
+    "  cameras: [(name: \"c\", fov_y: 40, resolution: (4, 4), placement: LookAt(eye: (0, 0, 5), target: (0, 0, 0), up: (0, 1, 0)))],",
+    "  objects: [(name: \"q\", mesh: Sphere(radius: 1))],",
+    "  instances: [(name: \"i\", of: \"q\")],",
+    "  groups: [(name: \"w\", members: [\"i\"])],",
+    "  render: (root: \"w\", camera: \"c\"),",
+    ")",
+];
+
+/// [`SCENE`] with line `line` (1-based) replaced.
+fn with_line(line: usize, text: &str) -> String {
+    let mut lines: Vec<&str> = SCENE.to_vec();
+    lines[line - 1] = text;
+    lines.join("\n") + "\n"
+}
+
+#[test]
+fn syntax_errors_say_what_is_missing_where() {
+    assert!(load_scene_str(&with_line(1, "Scene("), Path::new("s.ron")).is_ok());
+    let cases = [
+        // `render: (` never closed: `ron` said "expected comma" at 8:1 of a 7-line file.
+        (
+            with_line(6, "  render: (root: \"w\", camera: \"c\","),
+            "s.ron:7:2: error: the file ends inside an unclosed `(`\n  help: the `(` opened at 6:11 is not closed: close it with `)`",
+        ),
+        // The scene's own `(` never closed.
+        (
+            SCENE[..6].join("\n") + "\n",
+            "s.ron:6:36: error: the file ends inside an unclosed `(`\n  help: the `(` opened at 1:6 is not closed: close it with `)`",
+        ),
+        // `ron` said "expected Group(…) but found render(…)".
+        (
+            with_line(5, "  groups: [(name: \"w\", members: [\"i\"]),"),
+            "s.ron:6:3: error: the list opened at 5:11 is not closed\n  help: add `]` before `render:`",
+        ),
+        (
+            with_line(3, "  objects: [(name: \"q\", mesh: Obj(\"x.obj\"))],"),
+            "s.ron:3:31: error: Obj takes named fields: Obj(file: \"x.obj\")\n  help: write each field as `name: value`; docs/scene-format.md lists the fields of Obj",
+        ),
+        // A missing comma at the end of a line (and a comment after it).
+        (
+            with_line(4, "  instances: [(name: \"i\", of: \"q\")] // the instance"),
+            "s.ron:4:36: error: expected comma\n  help: add ',' here",
+        ),
+        (
+            with_line(7, ");"),
+            "s.ron:7:2: error: unexpected text after the scene\n  help: there is text after the scene's closing `)` at 7:1; a file holds exactly one `Scene(...)`: delete the text after it",
+        ),
+    ];
+    for (text, expected) in cases {
+        assert_eq!(first_error(&text), expected, "\n{text}");
+    }
+    let boxed = SCENE
+        .join("\n")
+        .replace("Scene(", "Scene(\n  options: (filter: Box()),");
+    assert_eq!(
+        first_error(&boxed),
+        "s.ron:2:21: error: Box takes no value: write it bare as Box\n  help: delete the `(…)` after Box"
+    );
+}
+
+#[test]
+fn a_missing_image_and_a_non_finite_input_are_named() {
+    assert_eq!(
+        first_error(&bound("Image(file: \"tests/fixtures/nowhere.png\")")),
+        format!("s.ron:3:{}: error: cannot read image file \"tests/fixtures/nowhere.png\": file not found\n  help: image textures are PNG files, or EXR files with R, G and B, Y or a single channel, relative to the scene file", INPUT + 12)
+    );
+    // It said "a number must be a finite number".
+    assert_eq!(
+        first_error(&bound("Checker(scale: NaN)")),
+        format!(
+            "s.ron:3:{}: error: scale must be a finite number, found NaN",
+            INPUT + 15
+        )
+    );
+}
+
+#[test]
+fn a_displacement_image_that_is_not_png_says_what_displacement_reads() {
+    let dir = crate::common::scratch_dir("ron-syntax-displacement");
+    std::fs::write(dir.join("h.exr"), b"v/1\x01 not really").unwrap();
+    let text = with_line(
+        3,
+        "  objects: [(name: \"q\", mesh: Sphere(radius: 1), displacement: (shader: Image(file: \"h.exr\")))],",
+    );
+    let path = dir.join("s.ron");
+    std::fs::write(&path, text).unwrap();
+    let err = stagelight::scene::load_scene(&path).err().expect("refused");
+    assert_eq!(
+        err.0[0].to_string(),
+        format!(
+            "{}:3:85: error: cannot read image file \"{}\": not a PNG file (it does not start with the PNG signature)\n  help: displacement images must be PNG files (read as grey), relative to the scene file; save an EXR height map as a 16-bit grey PNG",
+            path.display(),
+            dir.join("h.exr").display()
+        )
+    );
+}
+
+#[test]
+fn check_of_a_directory_says_it_is_a_directory() {
+    let dir = crate::common::scratch_dir("ron-syntax-check-dir");
+    let out = crate::common::run_in(&dir, &["check", "."]);
+    assert!(!out.status.success());
+    assert_eq!(
+        String::from_utf8_lossy(&out.stderr)
+            .lines()
+            .take(2)
+            .collect::<Vec<_>>(),
+        [
+            ".:1:1: error: this is a directory, not a scene file",
+            "  help: give a scene file; known scene formats: .ron, .rib, .gltf, .glb, .mi",
+        ]
+    );
+}
