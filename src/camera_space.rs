@@ -1,6 +1,7 @@
 //! The camera-space passes (`CameraDepth`, `CameraNormal`, `CameraPosition`): RenderMan's
-//! output variables `z`, `N` and `P`, derived when an output is written from the
-//! centre-sample passes `shade` stores (the distance along each pixel centre's ray, the
+//! output variables `z`, `N` and `P`, derived when an output is written
+//! ([`crate::exr_output`], the one EXR writer of camera outputs, which takes the camera) from
+//! the centre-sample passes `shade` stores (the distance along each pixel centre's ray, the
 //! world-space shading normal) and the camera. Farm parts carry those two already, so a
 //! merge writes the single render's bytes without carrying more.
 //!
@@ -13,7 +14,10 @@
 
 use glam::{Mat3, Vec2, Vec3};
 
+use hecs::World;
+
 use crate::components::{Camera, Lens, Pass};
+use crate::features::Features;
 use crate::framebuffer::FrameBuffers;
 use crate::shading::camera::CameraRays;
 
@@ -45,6 +49,13 @@ impl CameraSpace {
         }
     }
 
+    /// The camera space of `world`'s render camera as `shade` traces it: with its lenses,
+    /// unless `off` switches lens shaders off; `None` without a render camera.
+    pub fn of_render_camera(world: &World, off: Features) -> Option<Self> {
+        let view = crate::scene_view::render_view(world)?.without(off);
+        Some(Self::new(&view.camera, &view.lenses))
+    }
+
     /// Camera-space position of the hit `depth` along the centre ray of pixel `(x, y)`
     /// (zero where it missed).
     pub fn position(&self, x: u32, y: u32, depth: f32) -> Vec3 {
@@ -70,8 +81,9 @@ impl CameraSpace {
         Vec3::new(c.x, c.y, -c.z)
     }
 
-    /// The EXR channels of the camera-space passes among `passes`, per pixel of `fb`.
-    pub fn exr_channels(
+    /// The EXR channels of the camera-space passes among `passes`, per pixel of `fb`
+    /// (written by [`crate::exr_output`]).
+    pub(crate) fn exr_channels(
         &self,
         fb: &FrameBuffers,
         passes: &[Pass],

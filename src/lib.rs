@@ -19,6 +19,7 @@ pub mod diagnostic;
 pub mod diagnostic_needs;
 pub mod diagnostic_view;
 pub mod exact_sum;
+pub mod exr_output;
 pub mod farm;
 pub mod features;
 pub mod frame;

@@ -1567,13 +1567,14 @@ fn sweep(args: SweepArgs) -> ExitCode {
         cancel: Arc::new(AtomicBool::new(false)),
         files: Arc::new(SweepFiles::new(&args.out)),
     };
-    // SIGINT and SIGTERM stop the sweep as they stop a render: exit 130, no file of its own
-    // left (its scratch textures and the reference it cached are removed).
+    // SIGINT and SIGTERM stop the sweep as they stop a render: exit 130, no result written
+    // (its scratch textures are removed; a reference it cached, complete, stays for the next
+    // sweep).
     let (finished, written) = (opts.files.clone(), opts.files.clone());
     stagelight::guard::interrupt::install_with(
         opts.cancel.clone(),
         move || finished.result_in_place(),
-        move || written.remove_all(),
+        move || written.remove_partial(),
     );
     let summary = match run_sweep(&opts, systems::run, |step| eprintln!("sweep: {step}")) {
         Ok(s) => s,
@@ -1604,7 +1605,7 @@ fn sweep(args: SweepArgs) -> ExitCode {
         bytes: text.into_bytes(),
     });
     if opts.cancel.load(Ordering::SeqCst) {
-        opts.files.remove_all();
+        opts.files.remove_partial();
         eprintln!("{}", stagelight::stage_error::StageError::Interrupted);
         return ExitCode::from(stagelight::stage_error::EXIT_INTERRUPTED);
     }

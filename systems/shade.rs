@@ -2,7 +2,8 @@
 //! the camera's lens shaders, radiance from the chosen integrator (direct lighting with traced
 //! mirror/refraction rays, or the reference path tracer), the camera segment through the
 //! atmosphere or a material interior, pixel filter, and the centre-sample passes (depth,
-//! normal).
+//! normal, ids; not in a part of a samples split other than part 1, whose centre passes the
+//! merge takes).
 //!
 //! Samples per pixel: `spp` everywhere, or adaptive (`settings.adaptive`, see
 //! `crate::adaptive`): pass 1 takes `min` samples in every pixel; pass 2 refines the pixels
@@ -209,9 +210,11 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
             && wants_components(&camera),
         variance: budget.refines(),
         environment,
+        centres: part_or_whole.traces_centres(),
     };
-    // Pass 1: the centre-sample passes and `min` samples everywhere (a tiles part: in its
-    // own pixels and, when refinement compares neighbours, those next to them).
+    // Pass 1: the centre-sample passes (not in a samples part other than 1) and `min`
+    // samples everywhere (a tiles part: in its own pixels and, when refinement compares
+    // neighbours, those next to them).
     let count = first_samples.len() as u32;
     let first_pass = |x: usize, y: usize| {
         if !part_or_whole.needs_first_pass(x, y, width, height, budget.refines()) {
@@ -478,13 +481,17 @@ struct PixelShader<'a> {
     variance: bool,
     /// Whether pixels keep the environment's share (`keeps_environment_share`).
     environment: bool,
+    /// Whether to trace the centre-sample passes (not in a samples part other than 1:
+    /// `Part::traces_centres`).
+    centres: bool,
 }
 
 impl PixelShader<'_> {
-    /// The centre-sample passes and samples `0..count` of pixel `(x, y)`.
+    /// The centre-sample passes (where this run traces them) and samples `0..count` of
+    /// pixel `(x, y)`.
     fn first_pass(&self, x: usize, y: usize, count: u32) -> PixelResult {
         let mut result = PixelResult::empty();
-        if let Some(ctx) = self.ctx {
+        if let Some(ctx) = self.ctx.filter(|_| self.centres) {
             // Through the aperture centre.
             let centre = Vec2::new(x as f32 + 0.5, y as f32 + 0.5);
             if let Some(ray) = self.rays.ray(centre.x, centre.y, Vec2::splat(0.5)) {

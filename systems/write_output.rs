@@ -4,7 +4,7 @@
 //!
 //! **Reads:** `outputs.image`; `outputs.contours`; the render `Camera`'s `outputs` as redirected by
 //! `inputs.outputs` (`-o`, `bench`'s scratch directory), its `Imager` (PNG only) and its
-//! placement and lenses (the camera-space passes, `crate::camera_space`).
+//! placement and lenses (the camera-space passes, derived by `crate::exr_output`).
 //! **Writes:** files, handed to the runner encoded (`Work::pending`), which commits them.
 //! **Runs when:** a shaded image exists and the camera (or the command line) lists outputs.
 //! SVG and EPS outputs hold only contour lines: a run that draws none
@@ -23,11 +23,12 @@ use crate::components::{ImageFormat, Imager, OutputSpec, Pass};
 use crate::contour::eps::encode_eps;
 use crate::contour::svg::encode_svg;
 use crate::contour::{output, ContourImage};
+use crate::exr_output::encode_exr_with;
 use crate::farm::part::Share;
 use crate::farm::PartRun;
 use crate::frame::Slot;
 use crate::framebuffer::FrameBuffers;
-use crate::image_io::{encode_alpha_png, encode_exr_with, encode_png, PendingFile};
+use crate::image_io::{encode_alpha_png, encode_png, PendingFile};
 use crate::scene_view::render_view;
 
 /// The outputs this run writes: the camera's, with the command line's overrides, less the
@@ -84,22 +85,18 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
         .ok_or_else(|| StageError::Internal("no image to write".into()))?;
     let contours = frame.outputs.contours.as_ref();
     // The lenses `shade` traced with: the camera-space passes follow its centre rays.
-    let camera_space = render_view(world)
-        .map(|v| v.without(frame.inputs.settings.disabled))
-        .map(|v| CameraSpace::new(&v.camera, &v.lenses));
+    let camera_space = CameraSpace::of_render_camera(world, frame.inputs.settings.disabled)
+        .ok_or_else(|| StageError::Internal("no render camera".into()))?;
     let mut pending = Vec::with_capacity(outputs.len());
     for out in &outputs {
         let bytes = match out.format {
             ImageFormat::Png => png(fb, contours, out, imager.as_ref()),
             ImageFormat::Exr => {
-                let mut extra = match contours {
+                let extra = match contours {
                     Some(c) if out.passes.contains(&Pass::Contours) => output::exr_channels(c),
                     _ => Vec::new(),
                 };
-                if let Some(space) = &camera_space {
-                    extra.extend(space.exr_channels(fb, &out.passes));
-                }
-                encode_exr_with(fb, &out.passes, extra)
+                encode_exr_with(fb, &camera_space, &out.passes, extra)
             }
             ImageFormat::Svg | ImageFormat::Eps => {
                 let Some(c) = contours else {

@@ -7,6 +7,7 @@
 //! | object | placed triangles × [`BYTES_PER_TRIANGLE`] (world copy, BVH build and nodes, shading data): loaded meshes by their triangles, grids by `2·nx·ny`, surfaces with a `Parametric`/`Regular` approximation by their rates before dicing (located at the `approximation`), scatters by copies × prototype triangles (+ [`BYTES_PER_INSTANCE`] per copy) |
 //! | photon map | emitted photons × [`BYTES_PER_PHOTON`] |
 //! | bake request | texels × (targets + 1) × [`BYTES_PER_TEXEL`] |
+//! | image texture | its decoded texels and alpha (12 and 4 bytes each), located at its `file` ([`DecodedImage`], spawned by the loader, which also refuses a texture whose reading alone would not fit) |
 //!
 //! Adaptive approximations (spatial, curvature) and subdivision meshes are not estimated at
 //! load: their rates depend on the diced surface. The tessellator checks the triangle count
@@ -21,8 +22,8 @@ use hecs::{Entity, World};
 
 use super::{human, Budget};
 use crate::components::{
-    Approximation, ApproximationLink, BakeRequest, BakeResolution, Camera, Instance, Name,
-    Procedural, RenderCamera, Scatter, SourceLink, SubdivMesh, Surface, Technique, TriMesh,
+    Approximation, ApproximationLink, BakeRequest, BakeResolution, Camera, DecodedImage, Instance,
+    Name, Procedural, RenderCamera, Scatter, SourceLink, SubdivMesh, Surface, Technique, TriMesh,
 };
 use crate::scene::Diagnostic;
 use crate::settings::RenderSettings;
@@ -186,7 +187,8 @@ fn object_triangles(world: &World, object: Entity) -> Option<(u64, String, bool)
 }
 
 /// Every element's estimate for a run doing `tasks` with `settings`, in a fixed order
-/// (camera, objects in entity order, photon maps, bake requests).
+/// (camera, objects in entity order, photon maps, bake requests, image textures in the order
+/// read).
 pub fn estimates(world: &World, settings: &RenderSettings, tasks: Tasks) -> Vec<Estimate> {
     let mut out = Vec::new();
     if tasks.render {
@@ -317,6 +319,23 @@ pub fn estimates(world: &World, settings: &RenderSettings, tasks: Tasks) -> Vec<
                 help: "lower the bake resolution",
             });
         }
+    }
+    // Image textures, decoded at load: their texels stay for the whole run.
+    let mut images: Vec<(Entity, DecodedImage)> = world
+        .query::<(Entity, &DecodedImage)>()
+        .iter()
+        .map(|(e, d)| (e, *d))
+        .collect();
+    images.sort_by_key(|(e, _)| e.to_bits());
+    for (e, image) in images {
+        let (name, at) = named(world, e);
+        out.push(Estimate {
+            element: format!("image \"{name}\""),
+            at,
+            what: format!("the texels of a {}×{} image", image.width, image.height),
+            bytes: image.bytes,
+            help: "use a smaller image (or fewer)",
+        });
     }
     out
 }

@@ -63,5 +63,8 @@ pub use photon_flags::{LightPhotons, PhotonFlags, PhotonRole};
 mod photon_shader;
 pub use photon_shader::PhotonShader;
 
+mod decoded_image;
+pub use decoded_image::DecodedImage;
+
 mod ray_flags;
 pub use ray_flags::{RayFlags, ALL_RAYS, CAMERA_RAYS, FRONT_ONLY, SECONDARY_RAYS, SHADOW_RAYS};

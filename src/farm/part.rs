@@ -143,6 +143,17 @@ impl Part {
             .any(|ny| (x.saturating_sub(1)..(x + 2).min(width)).any(|nx| self.owns(nx, ny, width)))
     }
 
+    /// Whether this part traces the centre-sample passes (depth, normal, ids) of the pixels
+    /// it computes: every part of a tiles split (of its own pixels), only part 1 of a samples
+    /// split, whose merge takes them from part 1 alone; the other parts' files hold none
+    /// (depth +∞, normal and ids zero).
+    pub fn traces_centres(&self) -> bool {
+        match self.split {
+            Split::Tiles => true,
+            Split::Samples => self.index == 1,
+        }
+    }
+
     /// The sample indices this part takes of a pixel with `spp` samples.
     pub fn samples(&self, spp: u32) -> Range<u32> {
         match self.split {

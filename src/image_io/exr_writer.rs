@@ -1,35 +1,22 @@
-//! OpenEXR encoding: linear f32 channels for every requested pass (`R G B A`, `Z`,
-//! `N.X N.Y N.Z`, the component passes' `emission.R …`), one layer, lossless compression.
-//! The camera-space passes (`Z`, `N.X …`, `P.X …`) and the contour layer come in as extra
-//! channels (`crate::camera_space`, `crate::contour::output`).
+//! OpenEXR encoding of frame buffers: linear f32 channels for every pass the frame buffers
+//! hold (`R G B A`, `Z`, `N.X N.Y N.Z`, the component passes' `emission.R …`, u32 ids), one
+//! layer, lossless compression, beside channels the caller derived (the camera-space passes'
+//! `Z`, `N.X …`, `P.X …` and the contour layer). Only [`crate::exr_output`], which derives
+//! the camera-space passes from the camera, calls it: every camera output goes through there.
 
 use exr::prelude::*;
 
 use crate::components::Pass;
 use crate::framebuffer::FrameBuffers;
 
-/// Encodes the requested passes into an EXR file in memory.
-pub fn encode_exr(fb: &FrameBuffers, passes: &[Pass]) -> std::result::Result<Vec<u8>, String> {
-    encode_exr_with(fb, passes, Vec::new())
-}
-
-/// [`encode_exr`] plus `extra` f32 channels of the same size (e.g. the contour layer).
-pub fn encode_exr_with(
+/// Encodes the passes among `passes` that `fb` holds, and the `derived` f32 channels of the
+/// same size, into an EXR file in memory. The camera-space passes are not `fb`'s: they come
+/// in `derived` ([`crate::exr_output`] derives them).
+pub(crate) fn encode_passes(
     fb: &FrameBuffers,
     passes: &[Pass],
-    extra: Vec<(&str, Vec<f32>)>,
+    derived: Vec<(&str, Vec<f32>)>,
 ) -> std::result::Result<Vec<u8>, String> {
-    for (pass, first) in [
-        (Pass::CameraDepth, "Z"),
-        (Pass::CameraNormal, "N.X"),
-        (Pass::CameraPosition, "P.X"),
-    ] {
-        if passes.contains(&pass) && !extra.iter().any(|(name, _)| *name == first) {
-            return Err(format!(
-                "the {pass:?} pass was not derived for this image (it needs the camera)"
-            ));
-        }
-    }
     let mut channels: SmallVec<[AnyChannel<FlatSamples>; 4]> = SmallVec::new();
     let mut add = |name: &str, values: Vec<f32>| {
         channels.push(AnyChannel::new(name, FlatSamples::F32(values)));
@@ -74,7 +61,7 @@ pub fn encode_exr_with(
             FlatSamples::U32(fb.material_id.clone()),
         ));
     }
-    for (name, values) in extra {
+    for (name, values) in derived {
         channels.push(AnyChannel::new(name, FlatSamples::F32(values)));
     }
     let size = (fb.width as usize, fb.height as usize);

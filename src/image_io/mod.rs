@@ -16,5 +16,5 @@ mod png_writer;
 pub mod srgb;
 
 pub use atomic::{commit_all, commit_state, os_reason, remove_stale, PendingFile};
-pub use exr_writer::{encode_exr, encode_exr_with};
+pub(crate) use exr_writer::encode_passes;
 pub use png_writer::{encode_alpha_png, encode_png};

@@ -370,6 +370,14 @@ fn load(
         origin,
     };
     let mut world = spawn::spawn(&sources, &merged, parts);
+    // The decoded image textures, for the run-wide memory estimate.
+    for t in phenomena.decoded_textures() {
+        world.spawn((
+            crate::components::Name(t.name.clone()),
+            crate::components::SourceLink::from(t.at.clone()),
+            t.image,
+        ));
+    }
     if let Some(env) = environment {
         world.spawn((crate::components::Name("environment".into()), env));
     }

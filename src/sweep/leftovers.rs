@@ -1,7 +1,13 @@
-//! What a sweep writes before its result, and removing it when the sweep is interrupted
+//! What a sweep writes before its result, and what is removed when the sweep is interrupted
 //! (SIGINT or SIGTERM: exit 130, no output file) or fails: the bake runs' textures in
-//! `OUT/scratch/` (removed after every ending), and the reference it rendered and cached in
-//! `OUT` and `OUT` itself when this sweep created them (removed when interrupted).
+//! `OUT/scratch/` (the partial outputs of the runs, removed after every ending) and `OUT`
+//! itself when this sweep created it and nothing else is in it.
+//!
+//! The reference a sweep rendered is expensive and complete once committed (written to a
+//! temporary and renamed; the interrupt handler waits for a commit under way), so it is
+//! kept, with its directory, whatever ends the sweep: the next sweep of the same scene and
+//! reference settings reads it instead of rendering it again (its name is their hash,
+//! `runner::reference_cache`).
 //!
 //! The result (`sweep.csv`, `sweep.json`, `sweep.svg`) is committed through
 //! [`SweepFiles::commit_result`], which the interrupt handler waits for: once it is in
@@ -19,8 +25,6 @@ pub struct SweepFiles {
     out: PathBuf,
     /// The first directory of `out`'s path that was missing when the sweep started.
     created: Option<PathBuf>,
-    /// The reference this sweep rendered and cached.
-    reference: Mutex<Option<PathBuf>>,
     /// Whether the result is in place; held while it is committed.
     result: Mutex<bool>,
 }
@@ -36,7 +40,6 @@ impl SweepFiles {
         Self {
             out: out.to_path_buf(),
             created,
-            reference: Mutex::new(None),
             result: Mutex::new(false),
         }
     }
@@ -46,27 +49,24 @@ impl SweepFiles {
         self.out.join("scratch")
     }
 
-    /// Records the reference this sweep cached at `path`.
-    pub fn cached_reference(&self, path: &Path) {
-        if let Ok(mut r) = self.reference.lock() {
-            *r = Some(path.to_path_buf());
-        }
-    }
-
     /// Removes the scratch directory.
     pub fn remove_scratch(&self) {
         let _ = std::fs::remove_dir_all(self.scratch());
     }
 
-    /// Removes everything this sweep wrote: the scratch directory, the reference it cached,
-    /// and the output directory when the sweep created it.
-    pub fn remove_all(&self) {
+    /// Removes what an interrupted sweep leaves unfinished: the scratch directory, and the
+    /// directories of `out` this sweep created, from `out` up, as long as they are empty. A
+    /// reference it cached there is complete, so it stays, and so does its directory.
+    pub fn remove_partial(&self) {
         self.remove_scratch();
-        if let Some(path) = self.reference.lock().ok().and_then(|r| r.clone()) {
-            let _ = std::fs::remove_file(path);
-        }
-        if let Some(dir) = &self.created {
-            let _ = std::fs::remove_dir_all(dir);
+        let Some(created) = &self.created else {
+            return;
+        };
+        for dir in self.out.ancestors() {
+            // `remove_dir` removes only an empty directory.
+            if std::fs::remove_dir(dir).is_err() || dir == created {
+                break;
+            }
         }
     }
 
@@ -88,29 +88,39 @@ impl SweepFiles {
 mod tests {
     use super::*;
 
+    fn names(dir: &Path) -> Vec<String> {
+        let mut names: Vec<_> = std::fs::read_dir(dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().into_string().unwrap())
+            .collect();
+        names.sort();
+        names
+    }
+
     #[test]
-    fn only_what_the_sweep_made_is_removed() {
+    fn scratch_and_empty_created_directories_go_and_a_cached_reference_stays() {
         let root =
             std::env::temp_dir().join(format!("stagelight-leftovers-{}", std::process::id()));
         let _ = std::fs::remove_dir_all(&root);
         std::fs::create_dir_all(&root).unwrap();
         std::fs::write(root.join("mine.txt"), b"x").unwrap();
-        // An existing output directory stays, with what was there before.
+        // An existing output directory stays, with what was there before and the reference.
         let files = SweepFiles::new(&root);
         std::fs::create_dir_all(files.scratch().join("0_0")).unwrap();
         std::fs::write(root.join("reference_1.exr"), b"r").unwrap();
-        files.cached_reference(&root.join("reference_1.exr"));
-        files.remove_all();
-        let names: Vec<_> = std::fs::read_dir(&root)
-            .unwrap()
-            .map(|e| e.unwrap().file_name().into_string().unwrap())
-            .collect();
-        assert_eq!(names, ["mine.txt"]);
-        // A created one goes, from its first created directory down.
+        files.remove_partial();
+        assert_eq!(names(&root), ["mine.txt", "reference_1.exr"]);
+        // A created one goes, from its first created directory down, when it is empty.
         let files = SweepFiles::new(&root.join("new/out"));
         std::fs::create_dir_all(files.scratch()).unwrap();
-        files.remove_all();
+        files.remove_partial();
         assert!(!root.join("new").exists());
+        // A created one that holds a cached reference stays, with the reference alone.
+        let files = SweepFiles::new(&root.join("kept/out"));
+        std::fs::create_dir_all(files.scratch()).unwrap();
+        std::fs::write(root.join("kept/out/reference_2.exr"), b"r").unwrap();
+        files.remove_partial();
+        assert_eq!(names(&root.join("kept/out")), ["reference_2.exr"]);
         std::fs::remove_dir_all(&root).unwrap();
     }
 }

@@ -339,8 +339,9 @@ fn stop_if_cancelled(opts: &SweepOptions) -> Result<(), SweepError> {
 }
 
 /// Runs the sweep and returns its summary (the caller writes the files). However it ends, its
-/// scratch directory is removed; interrupted, everything it wrote is
-/// ([`SweepFiles::remove_all`]).
+/// scratch directory is removed; interrupted, so is an output directory it created that
+/// holds nothing else ([`SweepFiles::remove_partial`]). A reference it rendered and cached
+/// stays for the next sweep.
 pub fn run_sweep(
     opts: &SweepOptions,
     pipeline: Pipeline,
@@ -348,7 +349,7 @@ pub fn run_sweep(
 ) -> Result<SweepSummary, SweepError> {
     let result = sweep_runs(opts, pipeline, progress);
     match &result {
-        Err(SweepError::Stage(StageError::Interrupted)) => opts.files.remove_all(),
+        Err(SweepError::Stage(StageError::Interrupted)) => opts.files.remove_partial(),
         _ => opts.files.remove_scratch(),
     }
     result
@@ -394,7 +395,8 @@ fn sweep_runs(
             };
             let bytes = texture.encode_exr().map_err(|e| io(&cached, e))?;
             stop_if_cancelled(opts)?;
-            opts.files.cached_reference(&cached);
+            // Committed whole (or not at all), it outlives an interruption of the runs that
+            // follow: the next sweep of this scene and reference settings reads it.
             std::fs::create_dir_all(&opts.out).map_err(|e| io(&opts.out, e))?;
             crate::image_io::commit_all(&[crate::image_io::PendingFile {
                 path: cached.clone(),

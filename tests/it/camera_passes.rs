@@ -3,7 +3,9 @@
 //! pixel while `Depth` grows as `d/cos`, normal (0, 0, −1) and positions on the pixel rays at
 //! `z = d`; RIB displays `P`, `z` and `N` write RenderMan's camera space (scaled by the camera
 //! transformation, not the reader's mirrored world); the passes merge from farm parts (tiles
-//! and samples splits) byte-identically; a file cannot hold `Depth` and `CameraDepth`.
+//! and samples splits) byte-identically, through `merge` and through the library's EXR writer,
+//! which derives them itself from merged buffers; a file cannot hold `Depth` and
+//! `CameraDepth`.
 
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -238,6 +240,76 @@ fn camera_space_passes_merge_from_parts_byte_identically() {
         assert!(
             std::fs::read(dir.join(&merged)).unwrap() == single,
             "{split}: the merged file differs from the single render"
+        );
+    }
+}
+
+/// The merged frame buffers of parts, straight from `farm::merge` (they carry only the
+/// centre-sample depth and normal, and never went through `write_output`), written by the
+/// library's EXR writer with the render camera: the camera-space passes are derived there,
+/// so the file is the single `render`'s bytes for both splits.
+#[test]
+fn the_exr_writer_derives_camera_space_passes_of_merged_buffers_itself() {
+    use stagelight::camera_space::CameraSpace;
+    use stagelight::components::Pass;
+    use stagelight::farm::merge::{merge, LoadedPart};
+    use stagelight::farm::part_file::{decode, encode};
+    use stagelight::farm::{part_file, Part, PartRun, Split};
+    use stagelight::frame::Frame;
+
+    let dir = scratch("camera-passes-writer");
+    let text = plane_scene(
+        r#"(file: "c.exr", passes: [Beauty, CameraDepth, CameraNormal, CameraPosition])"#,
+    )
+    .replace("Scene(\n", "Scene(\n    options: (samples: 2),\n");
+    std::fs::write(dir.join("p.ron"), &text).unwrap();
+    ok(&dir, &["render", "p.ron"]);
+    let single = std::fs::read(dir.join("c.exr")).unwrap();
+    let passes = [
+        Pass::Beauty,
+        Pass::CameraDepth,
+        Pass::CameraNormal,
+        Pass::CameraPosition,
+    ];
+    let stages: Vec<_> = stagelight::systems::STAGES
+        .iter()
+        .copied()
+        .filter(|s| s.name != "write_output")
+        .collect();
+    for (split, count) in [(Split::Samples, 2), (Split::Tiles, 3)] {
+        let mut camera = None;
+        let parts: Vec<LoadedPart> = (1..=count)
+            .map(|index| {
+                let mut scene = load_scene_str(&text, &dir.join("p.ron")).unwrap();
+                let mut frame = Frame::new(scene.settings.clone());
+                let run = PartRun {
+                    part: Part {
+                        index,
+                        count,
+                        split,
+                    },
+                    scene: "p.ron".into(),
+                    scene_hash: 1,
+                };
+                frame.inputs.part = Some(run.clone());
+                stagelight::schedule::run_stages(&stages, &mut scene.world, &mut frame).unwrap();
+                camera = CameraSpace::of_render_camera(&scene.world, Default::default());
+                // A tiles part past the image's one tile writes the empty part file.
+                let fb = (frame.outputs.image.take())
+                    .or_else(|| stagelight::systems::shade::idle_part_image(&scene.world, &frame))
+                    .unwrap();
+                let file = part_file(&run, &frame.inputs.settings, &fb).unwrap();
+                LoadedPart {
+                    path: format!("part_{index}.exr").into(),
+                    file: decode(&encode(&file).unwrap()).unwrap(),
+                }
+            })
+            .collect();
+        let merged = merge(&parts).unwrap();
+        let bytes = stagelight::exr_output::encode_exr(&merged, &camera.unwrap(), &passes).unwrap();
+        assert!(
+            bytes == single,
+            "{split}: the written file differs from render's"
         );
     }
 }

@@ -1,24 +1,25 @@
 //! Farm parts merge exactly: for every example scene (at a reduced resolution), rendering it
 //! as N parts (N = 1, 2, 3, 7; tiles and samples splits) and merging the part files gives
-//! the single render's frame buffers bit for bit.
+//! the single render's frame buffers bit for bit, and the same camera-space passes.
 
 use std::path::Path;
 
 use crate::common::example_scenes;
+use stagelight::camera_space::CameraSpace;
 use stagelight::components::{Camera, Pass, RenderCamera};
+use stagelight::exr_output::encode_exr;
 use stagelight::farm::merge::{merge, LoadedPart};
 use stagelight::farm::part_file::{decode, encode};
 use stagelight::farm::{part_file, Part, PartRun, Split};
 use stagelight::frame::Frame;
 use stagelight::framebuffer::FrameBuffers;
-use stagelight::image_io::encode_exr;
 use stagelight::scene::load_scene;
 
 /// Renders `path` shrunk to at most 20 pixels across with at most 2 samples (adaptive
 /// sampling capped at 8) and at most 20,000 photons per map (every part traces the whole
 /// maps: they are what most of a part's time went to), as `part` when given. Returns the buffers (with exact sums for a
-/// part), the effective settings' frame and whether the scene samples adaptively.
-fn render(path: &Path, part: Option<Part>) -> (FrameBuffers, Frame) {
+/// part), the effective settings' frame and the camera space the EXR writer derives from.
+fn render(path: &Path, part: Option<Part>) -> (FrameBuffers, Frame, CameraSpace) {
     let mut scene = load_scene(path).unwrap_or_else(|e| panic!("{}:\n{e}", path.display()));
     for (camera, _) in scene.world.query_mut::<(&mut Camera, &RenderCamera)>() {
         let scale = (20.0 / camera.width.max(camera.height) as f32).min(1.0);
@@ -56,12 +57,14 @@ fn render(path: &Path, part: Option<Part>) -> (FrameBuffers, Frame) {
     let fb = (frame.outputs.image.take())
         .or_else(|| stagelight::systems::shade::idle_part_image(&scene.world, &frame))
         .expect("an image");
-    (fb, frame)
+    let camera = CameraSpace::of_render_camera(&scene.world, frame.inputs.settings.disabled)
+        .expect("a render camera");
+    (fb, frame, camera)
 }
 
 /// Part `part` of `path`, through its part file as `stagelight merge` reads it.
 fn part_of(path: &Path, part: Part) -> LoadedPart {
-    let (fb, frame) = render(path, Some(part));
+    let (fb, frame, _) = render(path, Some(part));
     let run = frame.inputs.part.as_ref().unwrap();
     let file = part_file(run, &frame.inputs.settings, &fb).expect("a part keeps its sums");
     let bytes = encode(&file).unwrap();
@@ -71,8 +74,9 @@ fn part_of(path: &Path, part: Part) -> LoadedPart {
     }
 }
 
-/// Every pass, as bytes, and the per-pixel sample counts.
-fn bits(fb: &FrameBuffers) -> (Vec<u8>, Vec<u32>) {
+/// Every pass (the camera-space passes of `camera` in a second file: they share channel
+/// names with `Depth` and `Normal`), as bytes, and the per-pixel sample counts.
+fn bits(fb: &FrameBuffers, camera: &CameraSpace) -> (Vec<u8>, Vec<u8>, Vec<u32>) {
     let all = [
         Pass::Beauty,
         Pass::Depth,
@@ -80,15 +84,19 @@ fn bits(fb: &FrameBuffers) -> (Vec<u8>, Vec<u32>) {
         Pass::ObjectId,
         Pass::MaterialId,
     ];
-    (encode_exr(fb, &all).unwrap(), fb.samples.clone())
+    (
+        encode_exr(fb, camera, &all).unwrap(),
+        encode_exr(fb, camera, &Pass::CAMERA_SPACE).unwrap(),
+        fb.samples.clone(),
+    )
 }
 
 #[test]
 fn every_example_scene_merges_bit_identically_for_any_part_count_and_split() {
     for path in example_scenes() {
-        let (single, frame) = render(&path, None);
+        let (single, frame, camera) = render(&path, None);
         let adaptive = frame.inputs.settings.adaptive.is_some();
-        let expected = bits(&single);
+        let expected = bits(&single, &camera);
         for split in [Split::Tiles, Split::Samples] {
             if split == Split::Samples && adaptive {
                 continue;
@@ -108,7 +116,7 @@ fn every_example_scene_merges_bit_identically_for_any_part_count_and_split() {
                     .collect();
                 let merged = merge(&parts).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
                 assert!(
-                    bits(&merged) == expected,
+                    bits(&merged, &camera) == expected,
                     "{}: {count} parts, {split} split differ from the single render",
                     path.display()
                 );

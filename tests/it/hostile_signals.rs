@@ -1,7 +1,8 @@
 //! Issue 18, family 7: SIGTERM stops a run like SIGINT (exit 130, nothing written), a run
 //! stops within half a second even inside one pixel's samples, and the hidden temporaries a
 //! killed process left are removed by the next run into the same directory. A sweep stops
-//! the same way and removes what it wrote (its scratch textures, the reference it cached);
+//! the same way and removes its scratch textures, but keeps a reference it cached, for the
+//! next sweep;
 //! SIGINT stops a run even when it was ignored at the start (a script's background job).
 
 use std::process::Stdio;
@@ -174,53 +175,99 @@ fn sigterm_during_a_sweep_exits_130_and_writes_nothing() {
     assert_eq!(dir_names(&dir), ["scene.ron"]);
 }
 
+/// The names in `dir` that start with `reference_` (a sweep's cached references).
+fn references(dir: &std::path::Path) -> Vec<String> {
+    dir_names(dir)
+        .into_iter()
+        .filter(|n| n.starts_with("reference_"))
+        .collect()
+}
+
+/// A sweep interrupted after its reference was cached (a bake sweep, whose scratch textures
+/// exist then too, and a render sweep) removes its scratch directory but keeps the complete
+/// reference, which the next sweep of the scene reads instead of rendering it again.
 #[test]
-fn a_bake_sweep_interrupted_after_its_reference_removes_its_scratch_and_reference() {
-    let dir = scratch_dir("sigterm-bake-sweep");
+fn a_sweep_interrupted_after_its_reference_keeps_it_for_the_next_sweep() {
     let bake = r#", bake: (resolution: (16, 16), outputs: [(kind: AmbientOcclusion(samples: 4))])"#;
-    std::fs::write(
-        dir.join("scene.ron"),
-        small_scene(
-            &quad_object("quad"),
-            &format!(r#"(name: "q", of: "quad"{bake})"#),
-            "",
-            "",
+    // The reference and the first value are quick; 10⁸ samples per texel or pixel are not.
+    for (name, instance, slow, quick) in [
+        (
+            "bake",
+            format!(r#"(name: "q", of: "quad"{bake})"#),
+            "bake_samples=1,100000000",
+            "bake_samples=1",
         ),
-    )
-    .unwrap();
-    let out = dir.join("out");
-    let mut cmd = stagelight_in(&dir);
-    // The reference and the first value are quick; 10⁸ samples per texel are not.
-    cmd.args([
-        "sweep",
-        "scene.ron",
-        "--knob",
-        "bake_samples=1,100000000",
-        "--reference-spp",
-        "1",
-        "--out",
-        "out",
-    ]);
-    let (code, _, stderr) = signal_command(cmd, "-TERM", || {
-        let start = Instant::now();
-        // The reference is cached and the scratch directory made before the last value runs.
-        while !(out.join("scratch").exists()
-            && std::fs::read_dir(&out).is_ok_and(|d| {
-                d.filter_map(|e| e.ok())
-                    .any(|e| e.file_name().to_string_lossy().starts_with("reference_"))
-            }))
-        {
-            assert!(start.elapsed() < Duration::from_secs(60), "no reference");
-            std::thread::sleep(Duration::from_millis(10));
-        }
-        std::thread::sleep(Duration::from_millis(300));
-    });
-    assert_eq!(code, Some(130), "{stderr}");
-    assert!(
-        stderr.ends_with("interrupted; no output written\n"),
-        "{stderr}"
-    );
-    assert_eq!(dir_names(&dir), ["scene.ron"]);
+        (
+            "render",
+            r#"(name: "q", of: "quad")"#.to_string(),
+            "spp=1,100000000",
+            "spp=1",
+        ),
+    ] {
+        let dir = scratch_dir(&format!("sigterm-{name}-sweep"));
+        std::fs::write(
+            dir.join("scene.ron"),
+            small_scene(&quad_object("quad"), &instance, "", ""),
+        )
+        .unwrap();
+        let out = dir.join("out");
+        let sweep = |knob: &str| {
+            let mut cmd = stagelight_in(&dir);
+            cmd.args([
+                "sweep",
+                "scene.ron",
+                "--knob",
+                knob,
+                "--reference-spp",
+                "1",
+                "--out",
+                "out",
+            ]);
+            cmd
+        };
+        let (code, _, stderr) = signal_command(sweep(slow), "-TERM", || {
+            let start = Instant::now();
+            // The reference is cached (and a bake sweep's scratch directory made) before the
+            // last value runs.
+            while !((name == "render" || out.join("scratch").exists())
+                && out.exists()
+                && !references(&out).is_empty())
+            {
+                assert!(
+                    start.elapsed() < Duration::from_secs(60),
+                    "{name}: no reference"
+                );
+                std::thread::sleep(Duration::from_millis(10));
+            }
+            std::thread::sleep(Duration::from_millis(300));
+        });
+        assert_eq!(code, Some(130), "{name}: {stderr}");
+        assert!(
+            stderr.ends_with("interrupted; no output written\n"),
+            "{name}: {stderr}"
+        );
+        assert_eq!(dir_names(&dir), ["out", "scene.ron"], "{name}");
+        let kept = references(&out);
+        assert_eq!(dir_names(&out), kept, "{name}: the reference alone is left");
+        assert_eq!(kept.len(), 1, "{name}");
+        let reference = out.join(&kept[0]);
+        let bytes = std::fs::read(&reference).unwrap();
+        // The next sweep reads it instead of rendering its reference again.
+        let o = sweep(quick).output().unwrap();
+        assert!(o.status.success(), "{name}: {}", stderr_of(&o));
+        let stderr = stderr_of(&o);
+        assert!(
+            stderr.starts_with(&format!("sweep: reference: cached out/{}\n", kept[0])),
+            "{name}: {stderr}"
+        );
+        assert!(!stderr.contains("reference: 1 samples"), "{name}: {stderr}");
+        assert_eq!(std::fs::read(&reference).unwrap(), bytes, "{name}");
+        assert_eq!(
+            dir_names(&out),
+            [kept[0].as_str(), "sweep.csv", "sweep.json", "sweep.svg"],
+            "{name}"
+        );
+    }
 }
 
 #[test]

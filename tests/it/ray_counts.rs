@@ -1,8 +1,11 @@
 //! The throughput ledger counts rays per stage exactly: closest-hit and occlusion queries
-//! traced by `shade` and `bake_lightmaps` (issue 6, section 3).
+//! traced by `shade` and `bake_lightmaps` (issue 6, section 3); a farm part of a samples split
+//! other than part 1 traces no pixel-centre rays (the merge takes the centre passes from
+//! part 1).
 
 use std::path::Path;
 
+use stagelight::farm::{Part, PartRun, Split};
 use stagelight::frame::{Frame, Tasks};
 
 /// A 2×2 plane every camera ray hits, a point light above it (one shadow ray per hit), a
@@ -86,6 +89,71 @@ fn shade_and_bake_report_exact_ray_counts() {
                 0,
                 "{quiet} traces nothing"
             );
+        }
+    }
+}
+
+/// Renders part `index` of 2 of a samples split of [`SCENE`] (2 of its 4 samples per pixel).
+fn samples_part(index: u32) -> Frame {
+    let mut scene =
+        stagelight::scene::load_scene_str(SCENE, Path::new("counts.ron")).expect("scene loads");
+    let mut frame = Frame::new(scene.settings.clone());
+    frame.inputs.part = Some(PartRun {
+        part: Part {
+            index,
+            count: 2,
+            split: Split::Samples,
+        },
+        scene: "counts.ron".into(),
+        scene_hash: 1,
+    });
+    let stages: Vec<_> = stagelight::systems::STAGES
+        .iter()
+        .copied()
+        .filter(|s| s.name != "write_output")
+        .collect();
+    stagelight::schedule::run_stages(&stages, &mut scene.world, &mut frame)
+        .expect("render the part");
+    frame
+}
+
+/// Part 1 of a samples split traces the pixel-centre rays of the depth, normal and id passes
+/// beside its samples' camera rays; part 2 traces only its samples' (its part file holds no
+/// centre passes: depth +∞, normal and ids zero, where part 1's see the plane everywhere).
+#[test]
+fn only_part_1_of_a_samples_split_traces_the_centre_passes() {
+    let pixels = 12 * 8;
+    for (index, centre_rays) in [(1, pixels), (2, 0)] {
+        let frame = samples_part(index);
+        let shade = frame.report.stage("shade").unwrap();
+        assert_eq!(
+            shade.items,
+            pixels * 2,
+            "part {index}: its 2 samples per pixel"
+        );
+        assert_eq!(
+            shade.rays_closest,
+            pixels * 2 + centre_rays,
+            "part {index}: camera rays"
+        );
+        assert_eq!(
+            shade.rays_occlusion,
+            pixels * 2,
+            "part {index}: shadow rays"
+        );
+        let fb = frame.outputs.image.as_ref().unwrap();
+        if index == 1 {
+            assert!(
+                fb.depth.iter().all(|d| d.is_finite()),
+                "part 1 sees the plane"
+            );
+            assert!(fb.object_id.iter().all(|&id| id == 1));
+            assert!(fb.material_id.iter().all(|&id| id == 1));
+        } else {
+            assert!(fb.depth.iter().all(|&d| d == f32::INFINITY));
+            assert!(fb.normal.iter().all(|&n| n == glam::Vec3::ZERO));
+            assert!(fb.object_id.iter().all(|&id| id == 0));
+            assert!(fb.material_id.iter().all(|&id| id == 0));
         }
     }
 }

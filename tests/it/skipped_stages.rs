@@ -7,9 +7,10 @@
 use std::path::PathBuf;
 use std::time::Instant;
 
+use stagelight::camera_space::CameraSpace;
 use stagelight::components::{Camera, Pass, RenderCamera};
+use stagelight::exr_output::encode_exr;
 use stagelight::frame::Frame;
-use stagelight::image_io::encode_exr;
 use stagelight::scene::{load_scene, LoadedScene};
 use stagelight::schedule::{run_stages, Stage};
 use stagelight::systems::STAGES;
@@ -76,8 +77,10 @@ fn render(stages: &[Stage]) -> Vec<u8> {
         .filter(|s| s.name != "write_output")
         .collect();
     run_stages(&table, &mut scene.world, &mut frame).expect("render");
+    let camera = CameraSpace::of_render_camera(&scene.world, Default::default()).unwrap();
     encode_exr(
         frame.outputs.image.as_ref().expect("image"),
+        &camera,
         &[Pass::Beauty, Pass::Depth, Pass::Normal],
     )
     .unwrap()

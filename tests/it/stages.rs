@@ -4,9 +4,10 @@
 use crate::common;
 
 use glam::{Affine3A, Vec3};
+use stagelight::camera_space::CameraSpace;
 use stagelight::components::{LightShape, Pass, Shader};
+use stagelight::exr_output::encode_exr;
 use stagelight::frame::Frame;
-use stagelight::image_io::encode_exr;
 use stagelight::settings::{PixelFilter, RenderSettings};
 
 fn lit_world() -> hecs::World {
@@ -132,6 +133,11 @@ fn report_counts_work_items() {
     assert_eq!(frame.report.stage("shade").unwrap().items, 40 * 30 * 8);
 }
 
+/// The camera space of [`lit_world`]'s camera, which the EXR writer derives from.
+fn lit_camera() -> CameraSpace {
+    CameraSpace::of_render_camera(&lit_world(), Default::default()).unwrap()
+}
+
 fn render_with_threads(threads: usize) -> Frame {
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
@@ -154,8 +160,9 @@ fn same_bytes_at_one_and_two_threads() {
         Pass::ObjectId,
         Pass::MaterialId,
     ];
-    let ea = encode_exr(a.outputs.image.as_ref().unwrap(), &passes).unwrap();
-    let eb = encode_exr(b.outputs.image.as_ref().unwrap(), &passes).unwrap();
+    let camera = lit_camera();
+    let ea = encode_exr(a.outputs.image.as_ref().unwrap(), &camera, &passes).unwrap();
+    let eb = encode_exr(b.outputs.image.as_ref().unwrap(), &camera, &passes).unwrap();
     assert!(ea == eb, "EXR bytes differ between 1 and 2 threads");
     assert_eq!(a.report.threads, 1);
     assert_eq!(b.report.threads, 2);
@@ -218,7 +225,12 @@ fn object_and_material_id_passes_label_what_each_pixel_centre_sees() {
         assert_eq!(fb.object_id[i] == 0, fb.material_id[i] == 0);
     }
     // The ids reach the EXR as u32 channels.
-    let bytes = encode_exr(&fb, &[Pass::Beauty, Pass::ObjectId, Pass::MaterialId]).unwrap();
+    let bytes = encode_exr(
+        &fb,
+        &lit_camera(),
+        &[Pass::Beauty, Pass::ObjectId, Pass::MaterialId],
+    )
+    .unwrap();
     let dir =
         crate::common::scratch_root().join(format!("stagelight-ids-{}.exr", std::process::id()));
     std::fs::write(&dir, &bytes).unwrap();

@@ -1,5 +1,5 @@
 //! Image texture inputs: a texture is counted against the run's memory budget from its
-//! header before it is decoded; an EXR texture with only a `Y` (or one) channel reads as grey,
+//! header before it is decoded, and once decoded in the run-wide estimate; an EXR texture with only a `Y` (or one) channel reads as grey,
 //! one with no channels a texture reads is a located error naming them; a PNG palette index
 //! past the palette is a located error; and a `.png` `-o` that drops passes of the output it
 //! replaces says so.
@@ -102,6 +102,40 @@ fn textures_are_counted_together() {
             position(&text, "b.png")
         )
     );
+}
+
+/// The run-wide estimate counts decoded textures with the camera, geometry, photons and
+/// bakes: a 1024×512 grey PNG (6 MiB of texels; 6.5 MiB with its samples while it is read)
+/// and an 80×80 camera (1.6 MiB of frame buffers) each fit a 7 MiB budget, together they do
+/// not, and the run is refused before rendering, naming the largest element (the image, at
+/// its `file`) and the total.
+#[test]
+fn decoded_textures_count_in_the_run_wide_estimate() {
+    let dir = scratch_dir("texture-budget-run");
+    let data = vec![128u8; 1024 * 512];
+    let png = encode_png(&data, 1024, 512, PngLayout::Grey8).unwrap();
+    std::fs::write(dir.join("wide.png"), png).unwrap();
+    let text = scene(&["wide.png"], "(file: \"out.png\")")
+        .replace("resolution: (8, 8)", "resolution: (80, 80)");
+    std::fs::write(dir.join("scene.ron"), &text).unwrap();
+    for args in [
+        &["check", "scene.ron", "--memory-limit", "7M"][..],
+        &["render", "scene.ron", "--memory-limit", "7M"],
+    ] {
+        let expected = format!(
+            "scene.ron:{}: error: image \"wide.png\": the texels of a 1024×512 image need about 6.0 MiB, and the whole run about 7.6 MiB, more than the memory budget of 7.0 MiB (--memory-limit)\n{BUDGET_HELP}\n1 error in scene.ron{}\n",
+            position(&text, "wide.png"),
+            crate::common::refused_tail(args[0])
+        );
+        let o = run_limited(&dir, args);
+        assert_eq!(o.status.code(), Some(1), "{args:?}: {}", stderr_of(&o));
+        assert_eq!(stderr_of(&o), expected, "{args:?}");
+    }
+    assert!(!dir.join("out.png").exists());
+    // With room for both it renders.
+    let o = run_in(&dir, &["render", "scene.ron", "--memory-limit", "8M"]);
+    assert!(o.status.success(), "{}", stderr_of(&o));
+    assert!(dir.join("out.png").exists());
 }
 
 /// Writes an EXR of 2×2 pixels with `channels` (name, four values top-down).

@@ -39,6 +39,7 @@ use crate::shading::texture::{
 pub use phenomena::{check_phenomena, Phenomena};
 use phenomena::{ensure_checked, variant_name};
 use size::Size;
+pub use textures::DecodedTexture;
 
 /// The type of a node's value.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -631,7 +632,11 @@ impl Compiler<'_, '_> {
             image::decode_file(&bytes, exr, enc, wrap)
         });
         let t = match loaded {
-            Ok(t) => Some(Arc::new(t)),
+            Ok(t) => {
+                let at = self.src.pos(at.file, at.path);
+                self.ph.textures.list(name, at, &t);
+                Some(Arc::new(t))
+            }
             Err(e) => {
                 // Reported whatever `report` says: the same file may be read first from a
                 // body that was checked with other arguments.

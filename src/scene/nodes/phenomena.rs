@@ -44,6 +44,13 @@ pub struct Phenomena<'a> {
     pub(super) scene_size_reported: bool,
 }
 
+impl Phenomena<'_> {
+    /// Every image texture the scene's graphs decoded, in the order read.
+    pub fn decoded_textures(&self) -> &[super::DecodedTexture] {
+        self.textures.listed()
+    }
+}
+
 /// Checks every phenomenon (duplicate names, cycles, bodies, defaults); the image textures
 /// they and the materials read are counted against `budget`.
 pub fn check_phenomena<'a>(src: &mut Sources, m: &'a Merged<'a>, budget: &Budget) -> Phenomena<'a> {

@@ -123,6 +123,14 @@ pub struct Footprint {
 const TEXEL_BYTES: u64 = 12;
 const ALPHA_BYTES: u64 = 4;
 
+/// Bytes of a decoded texture's texels and alpha (what it keeps for the run, without the
+/// file and the decoder's samples its [`Footprint`] adds while it is read).
+pub fn decoded_bytes(texture: &Texture) -> u64 {
+    (texture.texels.len() as u64)
+        .saturating_mul(TEXEL_BYTES)
+        .saturating_add((texture.alpha.len() as u64).saturating_mul(ALPHA_BYTES))
+}
+
 /// The [`Footprint`] of a PNG or EXR file's bytes (`exr`: read as EXR), from its header; a
 /// file its reader refuses for its size or channels is refused here, before decoding.
 pub fn footprint(bytes: &[u8], exr: bool) -> Result<Footprint, String> {
