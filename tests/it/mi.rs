@@ -409,7 +409,7 @@ const MALFORMED: &[(&str, &str)] = &[
     ),
     (
         "two_errors",
-        "tests/fixtures/mi/two_errors.mi:5:14: error: unexpected character '@'\ntests/fixtures/mi/two_errors.mi:6:1: error: expected a number for resolution, found \"focal\"\ntests/fixtures/mi/two_errors.mi:12:37: error: unknown parameter \"difuse\" of shader \"mib_illum_lambert\"\n  help: did you mean \"diffuse\"?",
+        "tests/fixtures/mi/two_errors.mi:5:14: error: unexpected character '@'\ntests/fixtures/mi/two_errors.mi:12:37: error: unknown parameter \"difuse\" of shader \"mib_illum_lambert\"\n  help: did you mean \"diffuse\"?",
     ),
     (
         "unclosed_options",

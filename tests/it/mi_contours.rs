@@ -150,11 +150,11 @@ fn a_max_level_outside_the_levels_followed_warns() {
 fn dash_o_svg_without_contour_shaders_helps_in_mi_terms() {
     let mut plain = std::fs::read_to_string(fixture()).unwrap();
     for first in [
-        "contour store",
-        "contour contrast",
-        "contour \"contour_shader_simple\"",
+        "\ncontour store",
+        "\ncontour contrast",
+        "\ncontour \"contour_shader_simple\"",
     ] {
-        let start = plain.find(first).unwrap();
+        let start = plain.find(first).unwrap() + 1;
         let end = start + plain[start..].find(")\n").unwrap() + 2;
         plain.replace_range(start..end, "");
     }
