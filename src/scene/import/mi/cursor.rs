@@ -279,7 +279,7 @@ impl Cursor {
         self.lex_error_before
             .splice(at..=at, before.into_iter().take(n).chain([after]));
         self.token_files
-            .splice(at..at, std::iter::repeat(index).take(n));
+            .splice(at..at, std::iter::repeat_n(index, n));
         self.tokens.splice(at..at, toks);
     }
 
