@@ -854,7 +854,7 @@ fn render(args: RenderArgs) -> ExitCode {
             return ExitCode::from(EXIT_USAGE);
         }
     }
-    let overrides = match checked_overrides(args.output.clone(), &scene.world) {
+    let overrides = match checked_overrides(args.output.clone(), &scene.world, &args.scene) {
         Ok(o) => o,
         Err(code) => return code,
     };
@@ -1017,7 +1017,7 @@ fn merge(args: MergeArgs) -> ExitCode {
             Ok(s) => s,
             Err(code) => return code,
         };
-    let overrides = match checked_overrides(args.output.clone(), &scene.world) {
+    let overrides = match checked_overrides(args.output.clone(), &scene.world, &scene_path) {
         Ok(o) => o,
         Err(code) => return code,
     };
@@ -1035,14 +1035,19 @@ fn merge(args: MergeArgs) -> ExitCode {
 fn checked_overrides(
     first: Option<PathBuf>,
     world: &hecs::World,
+    scene_path: &Path,
 ) -> Result<OutputOverrides, ExitCode> {
     let overrides = OutputOverrides {
         first,
         ..OutputOverrides::default()
     };
+    // The help speaks the scene file's language (`.mi` statements for a mental ray scene).
+    let syntax =
+        stagelight::scene::import::reader_for(stagelight::scene::import::FORMATS, scene_path)
+            .map_or_else(|_| Default::default(), |f| f.syntax);
     overrides
         .check()
-        .and_then(|()| overrides.check_contours(world))
+        .and_then(|()| overrides.check_contours(world, syntax))
         .map_err(|message| {
             eprintln!("error: {message}");
             ExitCode::from(EXIT_USAGE)
@@ -1331,7 +1336,7 @@ fn farm_refusals(args: &FarmArgs, scene: &mut LoadedScene) -> Result<(), ExitCod
             eprintln!("error: {message}");
             return Err(ExitCode::from(EXIT_USAGE));
         }
-        frame.inputs.outputs = checked_overrides(args.output.clone(), &scene.world)?;
+        frame.inputs.outputs = checked_overrides(args.output.clone(), &scene.world, &args.scene)?;
         let refusal =
             stagelight::part_refusals::no_outputs_refusal(&scene.world, &frame.inputs.outputs)
                 .map(|m| (m, EXIT_ERROR))

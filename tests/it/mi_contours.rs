@@ -142,3 +142,30 @@ fn a_max_level_outside_the_levels_followed_warns() {
         );
     }
 }
+
+/// `-o lines.svg` on a `.mi` scene without contour shaders says what to add in `.mi`
+/// statements (the options' store and contrast functions, a material's contour shader),
+/// not in RON.
+#[test]
+fn dash_o_svg_without_contour_shaders_helps_in_mi_terms() {
+    let mut plain = std::fs::read_to_string(fixture()).unwrap();
+    for first in [
+        "\ncontour store",
+        "\ncontour contrast",
+        "\ncontour \"contour_shader_simple\"",
+    ] {
+        let start = plain.find(first).unwrap() + 1;
+        let end = start + plain[start..].find(")\n").unwrap() + 2;
+        plain.replace_range(start..end, "");
+    }
+    let plain = plain.replace("output \"contour\" \"eps\" \"square.eps\"\n", "");
+    let dir = crate::common::cli::scratch_dir("mi-contours-dash-o");
+    std::fs::write(dir.join("plain.mi"), plain).unwrap();
+    let o = crate::common::cli::run_in(&dir, &["render", "plain.mi", "-o", "lines.svg"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(
+        crate::common::cli::stderr_of(&o).trim_end(),
+        "error: -o lines.svg writes contour lines, but no material of the scene has a contour shader\n  help: add `contour store \"contour_store_function\" ()` and `contour contrast \"contour_contrast_function_levels\" ()` to the options and `contour \"contour_shader_simple\" (\"color\" 0 0 0 1, \"width\" 0.5)` to a material, or write a .png or .exr"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

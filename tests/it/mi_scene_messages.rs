@@ -220,13 +220,13 @@ fn the_contour_output_help_is_written_in_mi_syntax() {
             "\"lights\" [\"Lamp_inst\"]) end material",
             "\"lights\" [\"Lamp_inst\"])\ncontour \"contour_shader_simple\" (\"color\" 0 0 0 1, \"width\" 0.5)\nend material",
         );
-    // Located at the material (the reader records the block, not its `contour` line).
-    let line = line_of(&text, "material \"mtl\"");
+    // Located at the contour shader (the reader records where each value was written).
+    let line = line_of(&text, "contour \"contour_shader_simple\"");
     let (code, err, _) = run("mi-contour-help", "c.mi", &text, &["check"]);
     assert_eq!(code, Some(0), "{err}");
     assert!(
         err.contains(&format!(
-            "c.mi:{line}:1: warning: material \"mtl\" has a contour shader, but no camera output shows contours\n  \
+            "c.mi:{line}:9: warning: material \"mtl\" has a contour shader, but no camera output shows contours\n  \
              help: add a camera output such as `output \"contour\" \"ps\" \"lines.ps\"`\n"
         )),
         "{err}"

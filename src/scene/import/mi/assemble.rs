@@ -143,14 +143,7 @@ fn build(raw: &RawScene, root: &Located, out: &mut Out) {
     if let Some(o) = options {
         out.desc.options = Some(o.desc.clone());
         out.paths.push(("options".into(), o.at.clone()));
-        for (path, at) in raw
-            .option_statements
-            .get(&render.options.0)
-            .into_iter()
-            .flatten()
-        {
-            out.paths.push((format!("options{path}"), at.clone()));
-        }
+        o.values.extend_under("options", &mut out.paths);
     }
     let instances: HashMap<&str, usize> = raw
         .instances
@@ -202,6 +195,8 @@ fn build(raw: &RawScene, root: &Located, out: &mut Out) {
     for (name, cam, w, at) in cameras {
         let i = out.desc.cameras.len();
         out.paths.push((format!("cameras[{i}]"), at));
+        cam.values
+            .extend_under(&format!("cameras[{i}]"), &mut out.paths);
         out.desc.cameras.push(CameraDesc {
             name,
             fov_y: cam.fov_y,
@@ -224,6 +219,9 @@ fn build(raw: &RawScene, root: &Located, out: &mut Out) {
             Some(desc) => {
                 let i = out.desc.lights.len();
                 out.paths.push((format!("lights[{i}]"), at));
+                light
+                    .values
+                    .extend_under(&format!("lights[{i}]"), &mut out.paths);
                 out.desc.lights.push(desc);
             }
             None => {
@@ -267,6 +265,8 @@ fn build(raw: &RawScene, root: &Located, out: &mut Out) {
         }
         let i = out.desc.materials.len();
         out.paths.push((format!("materials[{i}]"), m.at.clone()));
+        m.values
+            .extend_under(&format!("materials[{i}]"), &mut out.paths);
         out.desc.materials.push(desc);
     }
     let material_names: Vec<&str> = raw.materials.iter().map(|(n, _)| n.as_str()).collect();
@@ -687,7 +687,8 @@ fn light_desc(
             (_, Some(d), _) if distant => LightKindDesc::Directional { direction: v3(d) },
             (Some(p), Some(d), Some(spread)) => {
                 if !(-1.0..1.0).contains(&spread) || spread < 0.0 {
-                    out.error(at, format!("light \"{name}\": spread must be the cosine of the cone, in [0, 1), found {spread}"));
+                    let spread_at = light.values.get(".kind.Spot.cone_angle").unwrap_or(at);
+                    out.error(spread_at, format!("light \"{name}\": spread must be the cosine of the cone, in [0, 1), found {spread}"));
                     return None;
                 }
                 let outer = spread.acos().to_degrees();

@@ -98,11 +98,11 @@ pub fn options(r: &mut Reader, c: &mut Cursor, open: Pos) {
         },
         space: Space::Camera,
         shadows: true,
+        values: Default::default(),
     };
     let mut contrast = (0.1, 0.1, 0.1);
     let mut samples: Option<(i64, i64)> = None;
     let mut photons = PhotonOptions::default();
-    let mut statements: Vec<(&'static str, _)> = Vec::new();
     // `trace off`: no reflection or refraction rays, whatever the trace depth says.
     let mut traced = true;
     loop {
@@ -119,6 +119,7 @@ pub fn options(r: &mut Reader, c: &mut Cursor, open: Pos) {
         c.advance();
         match w.as_str() {
             "samples" => {
+                o.values.record(".samples", c.located(c.pos()));
                 let Some(a) = c.number("samples") else {
                     continue;
                 };
@@ -140,6 +141,10 @@ pub fn options(r: &mut Reader, c: &mut Cursor, open: Pos) {
             }
             "trace" => {
                 if c.eat_word("depth") {
+                    let at = c.located(c.pos());
+                    for path in [".reflection_depth", ".refraction_depth", ".max_depth"] {
+                        o.values.record(path, at.clone());
+                    }
                     let Some(a) = c.count("trace depth") else {
                         continue;
                     };
@@ -199,9 +204,9 @@ pub fn options(r: &mut Reader, c: &mut Cursor, open: Pos) {
             "finalgather" => photons.final_gather(c, t.pos),
             "diagnostic" => {
                 switches::diagnostic(c, t.pos, &mut o.desc);
-                statements.push((".diagnostic", c.located(t.pos)));
+                o.values.record(".diagnostic", c.located(t.pos));
             }
-            "contour" => super::contours::option(c, t.pos, &mut o.desc),
+            "contour" => super::contours::option(c, t.pos, &mut o.desc, &mut o.values),
             "photonmap" => photons.photon_map(c, t.pos),
             "photon" if c.at_word("trace") => photons.trace_depth(c),
             "photon" => {
@@ -258,7 +263,6 @@ pub fn options(r: &mut Reader, c: &mut Cursor, open: Pos) {
         };
     }
     if fresh {
-        r.raw.option_statements.insert(name.clone(), statements);
         r.raw.options.insert(name, o);
     }
 }
@@ -322,7 +326,10 @@ pub fn camera(r: &mut Reader, c: &mut Cursor, open: Pos) {
         environment: None,
         frame: 0.0,
         atmosphere: None,
+        values: Default::default(),
     };
+    // Where focal and aperture were written (the field of view is made of them).
+    let (mut focal_at, mut aperture_at) = (None, None);
     loop {
         let Some(t) = c.block_token("camera", open) else {
             return;
@@ -348,23 +355,46 @@ pub fn camera(r: &mut Reader, c: &mut Cursor, open: Pos) {
                         t.pos,
                         "orthographic cameras (focal infinity) are not supported",
                     );
-                } else if let Some(v) = c.number("focal") {
-                    focal = v;
+                } else {
+                    let at = c.pos();
+                    if let Some(v) = c.number("focal") {
+                        focal = v;
+                        focal_at = Some(at);
+                    }
                 }
             }
             "aperture" => {
+                let at = c.pos();
                 if let Some(v) = c.number("aperture") {
                     aperture = v;
+                    aperture_at = Some(at);
                 }
             }
-            "aspect" => cam.aspect = c.number("aspect"),
+            "aspect" => {
+                cam.values.record(".aspect", c.located(c.pos()));
+                cam.aspect = c.number("aspect");
+            }
             "resolution" => {
-                let (Some(w), Some(h)) = (c.count("resolution"), c.count("resolution")) else {
+                let width_at = c.located(c.pos());
+                let Some(w) = c.count("resolution") else {
+                    continue;
+                };
+                let height_at = c.located(c.pos());
+                let Some(h) = c.count("resolution") else {
                     continue;
                 };
                 cam.resolution = (w, h);
+                cam.values.record(".resolution[0]", width_at);
+                cam.values.record(".resolution[1]", height_at);
             }
-            "output" => output(c, &mut cam.outputs),
+            "output" => {
+                let before = cam.outputs.len();
+                output(c, &mut cam.outputs);
+                for k in before..cam.outputs.len() {
+                    cam.values
+                        .record(format!(".outputs[{k}]"), c.located(t.pos));
+                }
+            }
             "environment" => {
                 if let Some(call) = c.shader_call_or_named("the environment shader", &r.raw.shaders)
                 {
@@ -374,6 +404,7 @@ pub fn camera(r: &mut Reader, c: &mut Cursor, open: Pos) {
             }
             "volume" => {
                 if let Some(call) = c.shader_call_or_named("the volume shader", &r.raw.shaders) {
+                    cam.values.record(".atmosphere", c.located(call.pos));
                     cam.atmosphere = super::volumes::volume(c, &call, "camera");
                 }
             }
@@ -403,8 +434,9 @@ pub fn camera(r: &mut Reader, c: &mut Cursor, open: Pos) {
     }
     c.expect_end("camera", open);
     if focal <= 0.0 || aperture <= 0.0 {
+        let at = if focal <= 0.0 { focal_at } else { aperture_at };
         c.error(
-            open,
+            at.unwrap_or(open),
             format!(
                 "camera \"{name}\" needs focal > 0 and aperture > 0, found {focal} and {aperture}"
             ),
@@ -416,6 +448,9 @@ pub fn camera(r: &mut Reader, c: &mut Cursor, open: Pos) {
         .unwrap_or(f64::from(cam.resolution.0.max(1)) / f64::from(cam.resolution.1.max(1)));
     // The aperture is the film width; the film height is aperture / aspect.
     cam.fov_y = 2.0 * (aperture / (2.0 * focal * aspect)).atan().to_degrees();
+    if let Some(at) = aperture_at.or(focal_at) {
+        cam.values.record(".fov_y", c.located(at));
+    }
     if fresh {
         r.raw.cameras.insert(name, cam);
     }
@@ -659,6 +694,8 @@ pub fn light(r: &mut Reader, c: &mut Cursor, open: Pos) {
     };
     let mapped =
         super::tutorial::light(c, &call, &r.raw.linked).unwrap_or_else(|| shaders::light(c, &call));
+    let mut values = super::value_positions::ValuePositions::default();
+    super::param_paths::record(c, &call, None, &mut values);
     let mut origin = None;
     let mut direction = None;
     let mut spread = None;
@@ -677,6 +714,11 @@ pub fn light(r: &mut Reader, c: &mut Cursor, open: Pos) {
             break;
         }
         c.advance();
+        // Where the statement's values start, under each path they may become.
+        let at = c.located(c.pos());
+        for path in light_value_paths(w) {
+            values.record(*path, at.clone());
+        }
         match w.as_str() {
             "origin" => origin = vec3(c, "origin"),
             "direction" => direction = vec3(c, "direction"),
@@ -754,8 +796,26 @@ pub fn light(r: &mut Reader, c: &mut Cursor, open: Pos) {
                 energy,
                 caustic_photons,
                 globillum_photons,
+                values,
             },
         );
+    }
+}
+
+/// The description paths (below `lights[i]`) the values of light statement `w` may become.
+fn light_value_paths(w: &str) -> &'static [&'static str] {
+    match w {
+        "origin" => &[".kind.Point.position", ".kind.Spot.position"],
+        "direction" => &[".kind.Directional.direction", ".kind.Spot.target"],
+        "spread" => &[".kind.Spot.cone_angle"],
+        "rectangle" => &[".kind.Rect", ".samples"],
+        "disc" => &[".kind.Disc", ".samples"],
+        "sphere" => &[".kind.Sphere", ".samples"],
+        "cylinder" => &[".kind.Cylinder", ".samples"],
+        "energy" => &[".energy"],
+        "caustic" => &[".caustic_photons"],
+        "globillum" => &[".globillum_photons"],
+        _ => &[],
     }
 }
 
@@ -785,6 +845,8 @@ pub fn material(r: &mut Reader, c: &mut Cursor, open: Pos) {
     };
     let mapped = super::tutorial::material(c, &call, &r.raw.linked)
         .unwrap_or_else(|| shaders::material(c, &call, &r.raw.shaders, &r.raw.textures, 0));
+    let mut values = super::value_positions::ValuePositions::default();
+    super::param_paths::record(c, &call, Some(".shader"), &mut values);
     let mut contour = None;
     let mut frame_fade = None;
     let mut interior = None;
@@ -806,6 +868,7 @@ pub fn material(r: &mut Reader, c: &mut Cursor, open: Pos) {
             "opaque" => {}
             "contour" => {
                 if let Some(call) = c.shader_call_or_named("the contour shader", &r.raw.shaders) {
+                    super::param_paths::record(c, &call, Some(".contour"), &mut values);
                     frame_fade = super::contours::frame_fade(c, &call);
                     if frame_fade.is_none() {
                         contour = super::contours::material_shader(c, &call);
@@ -814,6 +877,7 @@ pub fn material(r: &mut Reader, c: &mut Cursor, open: Pos) {
             }
             "volume" => {
                 if let Some(call) = c.shader_call_or_named("the volume shader", &r.raw.shaders) {
+                    values.record(".interior", c.located(call.pos));
                     interior = super::volumes::volume(c, &call, "material");
                 }
             }
@@ -832,11 +896,13 @@ pub fn material(r: &mut Reader, c: &mut Cursor, open: Pos) {
             }
             "shadow" => {
                 if let Some(call) = c.shader_call_or_named("the shadow shader", &r.raw.shaders) {
+                    values.record(".shadow", c.located(call.pos));
                     shadow = super::material_shaders::shadow(c, &call, &r.raw.shaders);
                 }
             }
             "environment" => {
                 if let Some(call) = c.shader_call_or_named("the environment shader", &r.raw.shaders) {
+                    values.record(".environment", c.located(call.pos));
                     environment = super::material_shaders::environment(
                         c,
                         &call,
@@ -898,6 +964,7 @@ pub fn material(r: &mut Reader, c: &mut Cursor, open: Pos) {
                 exclusive,
                 frame_fade,
                 displace,
+                values,
             },
         ));
     }
@@ -1032,7 +1099,8 @@ pub fn texture(r: &mut Reader, c: &mut Cursor) {
     if fresh {
         // Image files are relative to the root scene file: rebase an included file's.
         let root = r.root.file.parent().unwrap_or(std::path::Path::new(""));
-        let file = match c.file.parent() {
+        let written_in = c.located(at).file;
+        let file = match written_in.parent() {
             Some(dir) if dir != root => {
                 let full = dir.join(&file);
                 full.strip_prefix(root)

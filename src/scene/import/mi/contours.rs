@@ -24,6 +24,7 @@ use super::super::located::{Pos, Problem};
 use super::cursor::{Cursor, ShaderCall, Value};
 use super::lexer::{Tok, Token};
 use super::model::FrameFade;
+use super::value_positions::ValuePositions;
 use crate::scene::desc::{ContourDesc, ContoursDesc, OptionsDesc};
 use crate::scene::desc_contour::V4;
 use crate::scene::suggest::closest;
@@ -91,8 +92,9 @@ fn colour(c: &mut Cursor, call: &ShaderCall, name: &str) -> V4 {
     }
 }
 
-/// `contour store "function" (…)` or `contour contrast "function" (…)` in `options`.
-pub fn option(c: &mut Cursor, at: Pos, desc: &mut OptionsDesc) {
+/// `contour store "function" (…)` or `contour contrast "function" (…)` in `options`; where
+/// their values were written goes to `values` (below `options`).
+pub fn option(c: &mut Cursor, at: Pos, desc: &mut OptionsDesc, values: &mut ValuePositions) {
     let store = c.eat_word("store");
     if !store && !c.eat_word("contrast") {
         let (pos, found) = match c.peek() {
@@ -123,6 +125,15 @@ pub fn option(c: &mut Cursor, at: Pos, desc: &mut OptionsDesc) {
         return;
     };
     let contours = desc.contours.get_or_insert_with(ContoursDesc::default);
+    let whole = if store {
+        ".contours"
+    } else {
+        ".contours.contrast"
+    };
+    if values.get(".contours").is_none() {
+        values.record(".contours", c.located(call.pos));
+    }
+    super::param_paths::record(c, &call, Some(whole), values);
     if store {
         if !STORE.contains(&call.name.as_str()) {
             unknown(c, &call, "contour store function", STORE);

@@ -73,26 +73,57 @@ pub struct ShaderCall {
     pub pos: Pos,
     /// The parameters in written order.
     pub params: Vec<Param>,
+    /// The file the parameters were written in (a named shader's: where it was defined).
+    pub file: PathBuf,
 }
 
-/// One file's tokens being read.
+/// One file's tokens being read, with the tokens of the files `$include`d inside its
+/// blocks spliced in where each `$include` was (mental ray's include is textual).
 pub struct Cursor {
-    /// The file, as the user named it (includes joined to the including file's folder).
+    /// The file the cursor was made for, as the user named it (includes joined to the
+    /// including file's folder).
     pub file: PathBuf,
     tokens: Vec<Token>,
+    /// Per token, its file (an index into `files`).
+    token_files: Vec<usize>,
+    /// The cursor's file first, then every file spliced in, with the file that included it.
+    files: Vec<(PathBuf, Option<usize>)>,
     at: usize,
-    /// Problems found in this file.
+    /// The files being read around the cursor's file, outermost first (an include of one of
+    /// them is a cycle).
+    pub outer: Vec<PathBuf>,
+    /// Problems found in this file and the files spliced into it.
     pub problems: Vec<LocatedProblem>,
+    /// Per token (and one past the last), whether a lexical error lies just before it: a
+    /// value missing there was reported already, as the bad token.
+    lex_error_before: Vec<bool>,
 }
 
 impl Cursor {
     /// A cursor at the first of `tokens` of `file`.
     pub fn new(file: PathBuf, tokens: Vec<Token>) -> Self {
+        let n = tokens.len();
         Self {
-            file,
+            file: file.clone(),
             tokens,
+            token_files: vec![0; n],
+            files: vec![(file, None)],
             at: 0,
+            outer: Vec::new(),
             problems: Vec::new(),
+            lex_error_before: vec![false; n + 1],
+        }
+    }
+
+    /// Reports the lexical errors of the cursor's file, remembering that each broke the
+    /// token after it.
+    pub fn lex_errors(&mut self, errors: Vec<super::super::located::LexError>) {
+        let before = after_errors(&self.tokens, &errors);
+        for (flag, b) in self.lex_error_before.iter_mut().zip(before) {
+            *flag |= b;
+        }
+        for e in errors {
+            self.error(e.pos, e.message);
         }
     }
 
@@ -123,18 +154,41 @@ impl Cursor {
             .unwrap_or_default()
     }
 
-    /// The position `pos` in this file.
+    /// The file of the next token (of the last one at the end), an index into `files`.
+    fn current_index(&self) -> usize {
+        let k = self.at.min(self.tokens.len().saturating_sub(1));
+        self.token_files.get(k).copied().unwrap_or(0)
+    }
+
+    /// The file a position of a token near the cursor is in: the nearest token at or
+    /// before the cursor written at `pos` (the position of a token just read or peeked),
+    /// else the next token's file.
+    fn file_of(&self, pos: Pos) -> PathBuf {
+        if self.files.len() == 1 {
+            return self.file.clone();
+        }
+        let here = self.at.min(self.tokens.len().saturating_sub(1));
+        let f = (0..=here)
+            .rev()
+            .find(|&k| self.tokens.get(k).is_some_and(|t| t.pos == pos))
+            .or(Some(here))
+            .and_then(|k| self.token_files.get(k).copied())
+            .unwrap_or(0);
+        self.files[f].0.clone()
+    }
+
+    /// The position `pos` in the file it was written in.
     pub fn located(&self, pos: Pos) -> Located {
         Located {
-            file: self.file.clone(),
+            file: self.file_of(pos),
             pos,
         }
     }
 
-    /// Records a problem.
+    /// Records a problem (in the file its position is in).
     pub fn report(&mut self, problem: Problem) {
         self.problems.push(LocatedProblem {
-            file: self.file.clone(),
+            file: self.file_of(problem.pos),
             problem,
         });
     }
@@ -147,6 +201,92 @@ impl Cursor {
     /// Records a warning at `pos`.
     pub fn warn(&mut self, pos: Pos, message: impl Into<String>) {
         self.report(Problem::warning(pos, message));
+    }
+
+    /// Every problem, by file (the cursor's file first, then the spliced files in reading
+    /// order) and position.
+    pub fn take_problems(&mut self) -> Vec<LocatedProblem> {
+        let rank = |p: &LocatedProblem| {
+            self.files
+                .iter()
+                .position(|(f, _)| *f == p.file)
+                .unwrap_or(0)
+        };
+        let mut problems = std::mem::take(&mut self.problems);
+        problems.sort_by_cached_key(|p| (rank(p), p.problem.pos));
+        problems
+    }
+
+    /// The files spliced into the cursor's file, in reading order.
+    pub fn spliced(&self) -> impl Iterator<Item = &PathBuf> {
+        self.files.iter().skip(1).map(|(f, _)| f)
+    }
+
+    /// The include chain of the next token's file: the files around the cursor's file,
+    /// the cursor's file, and the spliced files down to the next token's, outermost first.
+    pub fn chain(&self) -> Vec<PathBuf> {
+        let mut f = Some(self.current_index());
+        let mut inner = Vec::new();
+        while let Some(i) = f {
+            inner.push(self.files[i].0.clone());
+            f = self.files[i].1;
+        }
+        inner.reverse();
+        let mut chain = self.outer.clone();
+        chain.extend(inner);
+        chain
+    }
+
+    /// Reads the `$include`s at the cursor in place (inside a block, where the block reads
+    /// on from the included file's tokens).
+    pub fn splice_includes(&mut self) {
+        while self.at_word("$include") {
+            self.splice_include();
+        }
+    }
+
+    /// `$include` inside a block: reads the file the include names and splices its tokens
+    /// in at the cursor (the `$include` and its file name consumed). Errors are reported at
+    /// the file name; a library include needs nothing.
+    fn splice_include(&mut self) {
+        let chain = self.chain();
+        let including = self.current_index();
+        self.advance();
+        let Some((file, bytes)) = super::include::target(self, &chain) else {
+            return;
+        };
+        let index = self.files.len();
+        self.files.push((file.clone(), Some(including)));
+        let Ok(text) = std::str::from_utf8(&bytes) else {
+            self.problems.push(LocatedProblem {
+                file,
+                problem: Problem::error(Pos::default(), "the file is not UTF-8 text"),
+            });
+            return;
+        };
+        let (toks, errors) = super::lexer::tokens(text);
+        let before = after_errors(&toks, &errors);
+        for e in errors {
+            self.problems.push(LocatedProblem {
+                file: file.clone(),
+                problem: Problem::error(e.pos, e.message),
+            });
+        }
+        let n = toks.len();
+        let at = self.at;
+        // The flag of the token after the include (index n of `before`) joins its own.
+        let after = self.lex_error_before[at] || before[n];
+        self.lex_error_before
+            .splice(at..=at, before.into_iter().take(n).chain([after]));
+        self.token_files
+            .splice(at..at, std::iter::repeat_n(index, n));
+        self.tokens.splice(at..at, toks);
+    }
+
+    /// Whether a lexical error lies just before the next token: a value or name missing
+    /// there is the bad token the lexer reported, not a second problem.
+    pub fn after_lex_error(&self) -> bool {
+        self.lex_error_before.get(self.at).copied().unwrap_or(false)
     }
 
     /// Whether the next token is the word `w`.
@@ -230,7 +370,9 @@ impl Cursor {
 
     /// The next token of a `kind` block opened at `open`, not consumed; `None` (reported:
     /// the block is not closed) at the end of the file or at a top-level statement.
+    /// An `$include` there is read in place: its tokens are the block's next ones.
     pub fn block_token(&mut self, kind: &str, open: Pos) -> Option<Token> {
+        self.splice_includes();
         if self.peek().is_none() || self.at_statement() {
             self.error(
                 open,
@@ -303,7 +445,9 @@ impl Cursor {
             }
             _ => {
                 let (pos, found) = (self.pos(), self.found());
-                self.error(pos, format!("expected a string for {what}, found {found}"));
+                if !self.after_lex_error() {
+                    self.error(pos, format!("expected a string for {what}, found {found}"));
+                }
                 None
             }
         }
@@ -320,7 +464,9 @@ impl Cursor {
             }
             _ => {
                 let (pos, found) = (self.pos(), self.found());
-                self.error(pos, format!("expected a number for {what}, found {found}"));
+                if !self.after_lex_error() {
+                    self.error(pos, format!("expected a number for {what}, found {found}"));
+                }
                 None
             }
         }
@@ -404,8 +550,14 @@ impl Cursor {
     /// Reads `"shader" ( params )`.
     pub fn shader_call(&mut self, what: &str) -> Option<ShaderCall> {
         let (name, pos) = self.string(what)?;
+        let file = self.file_of(pos);
         let params = self.params(&name)?;
-        Some(ShaderCall { name, pos, params })
+        Some(ShaderCall {
+            name,
+            pos,
+            params,
+            file,
+        })
     }
 
     /// [`Self::shader_call`], or a named shader given by reference (`= "name"`, as Maya's
@@ -464,9 +616,16 @@ impl Cursor {
                 self.error(open, format!("unclosed '(' of shader \"{shader}\""));
                 return None;
             }
-            let (name, pos) = self.string(&format!("a parameter name of \"{shader}\""))?;
+            let Some((name, pos)) = self.string(&format!("a parameter name of \"{shader}\""))
+            else {
+                self.skip_past_list();
+                return None;
+            };
             let value_pos = self.pos();
-            let value = self.value(&name, 0)?;
+            let Some(value) = self.value(&name, 0) else {
+                self.skip_past_list();
+                return None;
+            };
             params.push(Param {
                 name,
                 pos,
@@ -475,21 +634,47 @@ impl Cursor {
             });
             if !self.eat_punct(',') && !self.at_punct(')') {
                 let (at, found) = (self.pos(), self.found());
-                self.error(
-                    at,
-                    format!("expected ',' or ')' after parameter, found {found}"),
-                );
+                if !self.after_lex_error() {
+                    self.error(
+                        at,
+                        format!("expected ',' or ')' after parameter, found {found}"),
+                    );
+                }
+                self.skip_past_list();
                 return None;
             }
         }
     }
 
+    /// Error recovery in a parameter list whose `(` was read: skips to just after its `)`
+    /// (nested lists skipped whole), so that one bad parameter is one error and the rest of
+    /// the list is not read as statements. Stops before `end` or a top-level statement
+    /// when the `)` is missing.
+    fn skip_past_list(&mut self) {
+        let mut depth = 0usize;
+        while let Some(t) = self.peek() {
+            match &t.tok {
+                Tok::Punct('(' | '[' | '{') => depth += 1,
+                Tok::Punct(')' | ']' | '}') if depth > 0 => depth -= 1,
+                Tok::Punct(')') => {
+                    self.at += 1;
+                    return;
+                }
+                Tok::Word(w) if w == "end" || self.at_statement() => return,
+                _ => {}
+            }
+            self.at += 1;
+        }
+    }
+
     fn value(&mut self, param: &str, depth: usize) -> Option<Value> {
         let Some(t) = self.peek().cloned() else {
-            self.error(
-                self.pos(),
-                format!("missing value of parameter \"{param}\""),
-            );
+            if !self.after_lex_error() {
+                self.error(
+                    self.pos(),
+                    format!("missing value of parameter \"{param}\""),
+                );
+            }
             return None;
         };
         match t.tok {
@@ -561,15 +746,28 @@ impl Cursor {
                 Some(Value::Struct)
             }
             other => {
-                self.error(
-                    t.pos,
-                    format!(
-                        "expected a value for parameter \"{param}\", found {}",
-                        other.describe()
-                    ),
-                );
+                if !self.after_lex_error() {
+                    self.error(
+                        t.pos,
+                        format!(
+                            "expected a value for parameter \"{param}\", found {}",
+                            other.describe()
+                        ),
+                    );
+                }
                 None
             }
         }
     }
+}
+
+/// Per token of `tokens` (and one past the last), whether one of `errors` lies between the
+/// token before it and it.
+fn after_errors(tokens: &[Token], errors: &[super::super::located::LexError]) -> Vec<bool> {
+    let mut before = vec![false; tokens.len() + 1];
+    for e in errors {
+        let k = tokens.partition_point(|t| t.pos <= e.pos);
+        before[k] = true;
+    }
+    before
 }

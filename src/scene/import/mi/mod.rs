@@ -2,8 +2,9 @@
 //! position for every element and value, plus located warnings for what it does not map.
 //!
 //! One module per step: [`lexer`] (tokens with `line:column`), [`cursor`] (a file's tokens
-//! and the shader parameter lists `("name" value, …)`), [`statements`] (the top-level
-//! statements, `$include` and `link`), [`blocks`] (`options`, `camera`, `light`,
+//! and the shader parameter lists `("name" value, …)`), [`include`] (an `$include`d file,
+//! at the top level or spliced into a block), [`statements`] (the top-level
+//! statements, `incremental`, `$include` and `link`), [`blocks`] (`options`, `camera`, `light`,
 //! `material` and `declare phenomenon` blocks; [`photon_options`] maps the photon
 //! statements of `options`, [`switches`] its feature switches, [`unmapped_options`] the
 //! standard options read and warned), [`object`] (`object … group … end group
@@ -12,6 +13,8 @@
 //! [`textures`] the `mib_texture_*` chains onto shader-graph nodes, [`volumes`] volume
 //! shaders onto fog, [`tutorial`] the tutorial's native shaders once linked)
 //! and [`assemble`] (the instance tree → cameras, lights, objects, instances and groups).
+//! [`value_positions`] keeps where each element's values were written ([`param_paths`]:
+//! where each shader parameter lands), so that a validation error points at the value.
 //!
 //! **Conventions.** A mental ray `transform` is the 4×4 matrix, written row by row, that
 //! takes *world* space to the instance's *object* space with row vectors
@@ -31,10 +34,12 @@ pub mod contours;
 pub mod cursor;
 pub mod displace;
 pub mod fade;
+pub mod include;
 pub mod lexer;
 pub mod material_shaders;
 pub mod model;
 pub mod object;
+pub mod param_paths;
 pub mod photon_options;
 pub mod shaders;
 pub mod statements;
@@ -44,6 +49,7 @@ pub mod textures;
 pub mod transform;
 pub mod tutorial;
 pub mod unmapped_options;
+pub mod value_positions;
 pub mod volumes;
 
 use std::path::Path;
@@ -59,7 +65,7 @@ pub type MiScene = LocatedScene;
 /// too: `problem.warning`).
 pub fn read_mi(path: &Path, bytes: &[u8]) -> Result<MiScene, Vec<LocatedProblem>> {
     let mut reader = statements::Reader::new(path);
-    reader.read_file(path, bytes, 0);
+    reader.read_file(path, bytes);
     assemble::assemble(reader)
 }
 

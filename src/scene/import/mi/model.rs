@@ -6,6 +6,7 @@ use std::collections::HashMap;
 
 use super::super::located::Located;
 use super::cursor::ShaderCall;
+use super::value_positions::ValuePositions;
 use crate::scene::desc::{
     ApproximationDesc, EnvironmentDesc, MaterialDesc, OptionsDesc, OutputDesc, V3,
 };
@@ -31,6 +32,8 @@ pub struct RawOptions {
     pub space: Space,
     /// `shadow off` turns every light's shadows off.
     pub shadows: bool,
+    /// Where its values were written (below `options`).
+    pub values: ValuePositions,
 }
 
 /// A `camera` block.
@@ -52,6 +55,8 @@ pub struct RawCamera {
     pub frame: f64,
     /// `volume` shader, mapped: the camera's atmosphere.
     pub atmosphere: Option<crate::scene::desc::VolumeDesc>,
+    /// Where its values were written (below `cameras[i]`).
+    pub values: ValuePositions,
 }
 
 /// `contour_shader_framefade`: colour and width from the frame number, resolved against
@@ -132,6 +137,8 @@ pub struct RawLight {
     pub caustic_photons: Option<u32>,
     /// `globillum photons N`.
     pub globillum_photons: Option<u32>,
+    /// Where its values were written (below `lights[i]`).
+    pub values: ValuePositions,
 }
 
 /// A `material` block.
@@ -150,6 +157,8 @@ pub struct RawMaterial {
     /// `displace "myDisplacement" (…)` (the tutorial's library): the displacement of the
     /// objects drawn in this material.
     pub displace: Option<crate::scene::desc::ScalarDesc>,
+    /// Where its values were written (below `materials[i]`).
+    pub values: ValuePositions,
 }
 
 /// One polygon of a group: its material, vertex indices (into the `v` list) and position.
@@ -271,14 +280,11 @@ pub struct RawRender {
 }
 
 /// Everything the statements of all files wrote, by name (the first definition of a name
-/// wins; a second one is reported).
+/// wins; a second one is reported, unless it is `incremental`: then it replaces the first).
 #[derive(Debug, Clone, Default)]
 pub struct RawScene {
     /// `options` blocks.
     pub options: HashMap<String, RawOptions>,
-    /// Where statements of each `options` block were written, by block name: the
-    /// description path under `options` (`.diagnostic`) and the statement's position.
-    pub option_statements: HashMap<String, Vec<(&'static str, Located)>>,
     /// `camera` blocks.
     pub cameras: HashMap<String, RawCamera>,
     /// `light` blocks.
@@ -300,4 +306,20 @@ pub struct RawScene {
     /// `link`ed shader libraries that are built in beyond base, physics and contour (the
     /// tutorial's `myDisplacement`).
     pub linked: Vec<String>,
+}
+
+impl RawScene {
+    /// Forgets the element `name`, whatever its kind (an `incremental` definition replaces
+    /// it).
+    pub fn forget(&mut self, name: &str) {
+        self.options.remove(name);
+        self.cameras.remove(name);
+        self.lights.remove(name);
+        self.materials.retain(|(n, _)| n != name);
+        self.objects.retain(|(n, _)| n != name);
+        self.instances.retain(|(n, _)| n != name);
+        self.groups.retain(|(n, _)| n != name);
+        self.shaders.remove(name);
+        self.textures.remove(name);
+    }
 }

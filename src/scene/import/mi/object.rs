@@ -179,8 +179,12 @@ fn group(c: &mut Cursor, obj: &mut RawObject, bases: &Bases, open: Pos) -> bool 
     let mut warned_refs = false;
     let mut failed_surfaces = Vec::new();
     let mut ok = true;
-    // The vector list.
-    while c.at_number() {
+    // The vector list (an `$include` may hold some of it).
+    loop {
+        c.splice_includes();
+        if !c.at_number() {
+            break;
+        }
         let Some(v) = c.numbers(3, "a vector of the group") else {
             c.skip_to_end("group", open);
             return false;

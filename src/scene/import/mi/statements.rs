@@ -1,12 +1,11 @@
 //! The top-level statements of a `.mi` file: `verbose`, `link`, `$include`, `$ifdef`-free
-//! scene elements (each handed to its block reader) and `render`.
+//! scene elements (each handed to its block reader, `incremental` before one replacing the
+//! element of that name defined earlier) and `render`.
 //!
 //! `link "base.so"` (and `physics`, `contour`) names a library whose shaders are built in,
 //! as does each of the tutorial's libraries (`myLight.so`, … : [`super::tutorial`]);
-//! any other library is native code that cannot be linked (a located warning). `$include
-//! <base.mi>` (and the other built-in libraries' declarations) needs nothing; another
-//! `<library.mi>` is a warning; `$include "file.mi"` reads that file relative to the
-//! including one, at most 16 levels deep.
+//! any other library is native code that cannot be linked (a located warning). `$include`
+//! is [`super::include`]'s: here at the top level, inside blocks spliced in by the cursor.
 
 use std::path::Path;
 
@@ -50,14 +49,12 @@ fn link_help(stem: &str) -> String {
 /// `0.01 · sin(u · f · π)` along the normal, available as a `displace` shader.
 pub const TUTORIAL_DISPLACEMENT: &str = "myDisplacement";
 
-/// Deepest `$include` nesting.
-const MAX_INCLUDE_DEPTH: usize = 16;
-
 /// The top-level statements.
 pub const STATEMENTS: &[&str] = &[
     "verbose",
     "link",
     "$include",
+    "incremental",
     "options",
     "camera",
     "light",
@@ -68,6 +65,23 @@ pub const STATEMENTS: &[&str] = &[
     "instance",
     "instgroup",
     "render",
+];
+
+/// The definitions `incremental` may stand before (seed 000: "the next options, camera,
+/// texture, light, material, object, instance, or instance group definition"; and named
+/// shaders).
+const INCREMENTAL: &[&str] = &[
+    "options",
+    "camera",
+    "light",
+    "material",
+    "shader",
+    "object",
+    "instance",
+    "instgroup",
+    "color",
+    "scalar",
+    "vector",
 ];
 
 /// Reads files statement by statement into a [`RawScene`].
@@ -82,10 +96,13 @@ pub struct Reader {
     /// Where each element name was first defined (also for elements that failed, so
     /// references to them are not reported a second time).
     pub defined: std::collections::HashMap<String, Located>,
-    /// The files being read, outermost first (an include of one of them is a cycle).
+    /// The files being read around the one being read, outermost first (an include of one
+    /// of them is a cycle).
     reading: Vec<std::path::PathBuf>,
     /// Every `$include` file read, in reading order.
     pub included: Vec<std::path::PathBuf>,
+    /// Whether the definition being read follows `incremental`.
+    incremental: bool,
 }
 
 impl Reader {
@@ -101,11 +118,12 @@ impl Reader {
             defined: Default::default(),
             reading: Vec::new(),
             included: Vec::new(),
+            incremental: false,
         }
     }
 
-    /// Reads one file (`depth` levels of `$include` down).
-    pub fn read_file(&mut self, path: &Path, bytes: &[u8], depth: usize) {
+    /// Reads one file (inside the files of `reading`, which include it).
+    pub fn read_file(&mut self, path: &Path, bytes: &[u8]) {
         let Ok(text) = std::str::from_utf8(bytes) else {
             self.problems.push(LocatedProblem {
                 file: path.to_path_buf(),
@@ -115,19 +133,39 @@ impl Reader {
         };
         let (toks, lex_errors) = tokens(text);
         let mut c = Cursor::new(path.to_path_buf(), toks);
-        for e in lex_errors {
-            c.error(e.pos, e.message);
-        }
+        c.outer = self.reading.clone();
+        c.lex_errors(lex_errors);
         while let Some(t) = c.advance() {
-            self.statement(&mut c, t, depth);
+            self.statement(&mut c, t);
         }
-        let mut problems = std::mem::take(&mut c.problems);
-        problems.sort_by_key(|p| p.problem.pos);
-        self.problems.extend(problems);
+        self.included.extend(c.spliced().cloned());
+        self.problems.extend(c.take_problems());
     }
 
-    /// Records that element `name` is defined at `pos`; reports a second definition.
+    /// Records that element `name` is defined at `pos`; reports a second definition. After
+    /// `incremental` the name must be defined already, and the earlier element is
+    /// forgotten: the definition being read replaces it. True when the definition is to be
+    /// kept.
     pub fn define(&mut self, c: &mut Cursor, name: &str, pos: super::super::located::Pos) -> bool {
+        if std::mem::take(&mut self.incremental) {
+            if self.defined.contains_key(name) {
+                self.raw.forget(name);
+            } else {
+                let mut p = Problem::error(
+                    pos,
+                    format!("incremental \"{name}\": no element \"{name}\" is defined before"),
+                );
+                p = match closest(name, self.defined.keys().map(String::as_str)) {
+                    Some(s) => p.with_help(format!("did you mean \"{s}\"?")),
+                    None => p.with_help(
+                        "incremental changes an element defined earlier; leave it out to define a new one",
+                    ),
+                };
+                c.report(p);
+            }
+            self.defined.insert(name.to_string(), c.located(pos));
+            return true;
+        }
         if let Some(first) = self.defined.get(name) {
             let help = format!(
                 "the first is at {}:{}:{}",
@@ -142,7 +180,7 @@ impl Reader {
         true
     }
 
-    fn statement(&mut self, c: &mut Cursor, t: Token, depth: usize) {
+    fn statement(&mut self, c: &mut Cursor, t: Token) {
         let word = match &t.tok {
             Tok::Word(w) => w.clone(),
             other => {
@@ -173,7 +211,8 @@ impl Reader {
                     }
                 }
             }
-            "$include" => self.include(c, depth),
+            "$include" => self.include(c),
+            "incremental" => self.incremental(c, t.pos),
             "options" => blocks::options(self, c, t.pos),
             "camera" => blocks::camera(self, c, t.pos),
             "light" => blocks::light(self, c, t.pos),
@@ -193,79 +232,58 @@ impl Reader {
                     p = p.with_help(format!("did you mean \"{s}\"?"));
                 }
                 c.report(p);
-                // Resynchronise at the next statement keyword.
-                while c.peek().is_some_and(
-                    |t| !matches!(&t.tok, Tok::Word(w) if STATEMENTS.contains(&w.as_str())),
-                ) {
-                    c.advance();
-                }
+                resynchronise(c);
             }
         }
     }
 
-    fn include(&mut self, c: &mut Cursor, depth: usize) {
-        let Some(t) = c.advance() else {
-            c.error(
-                c.pos(),
-                "expected a file after $include, found the end of the file",
+    /// `incremental` before a definition: the definition replaces the element of that name
+    /// defined earlier (each block's `define` takes the flag).
+    fn incremental(&mut self, c: &mut Cursor, pos: super::super::located::Pos) {
+        let next = match c.peek() {
+            Some(Token {
+                tok: Tok::Word(w), ..
+            }) if INCREMENTAL.contains(&w.as_str()) => c.advance(),
+            _ => None,
+        };
+        let Some(next) = next else {
+            let found = c
+                .peek()
+                .map_or("the end of the file".into(), |t| t.tok.describe());
+            let at = c.peek().map_or(pos, |t| t.pos);
+            let mut p = Problem::error(
+                at,
+                format!("expected a definition after incremental, found {found}"),
             );
+            if let Some(Token {
+                tok: Tok::Word(w), ..
+            }) = c.peek()
+            {
+                if let Some(s) = closest(w, INCREMENTAL.iter().copied()) {
+                    p = p.with_help(format!("did you mean \"{s}\"?"));
+                }
+                c.advance();
+                resynchronise(c);
+            }
+            c.report(p);
             return;
         };
-        match t.tok {
-            Tok::Library(lib) => {
-                let stem = library_stem(&lib);
-                if !BUILT_IN_LIBRARIES.contains(&stem.as_str())
-                    && super::tutorial::library(&stem).is_none()
-                {
-                    c.warn(
-                        t.pos,
-                        format!("library include <{lib}> declares native shaders; not read"),
-                    );
-                }
-            }
-            Tok::Str(name) => {
-                let file = c.file.parent().unwrap_or(Path::new("")).join(&name);
-                if depth + 1 > MAX_INCLUDE_DEPTH {
-                    c.error(t.pos, format!("includes nest deeper than {MAX_INCLUDE_DEPTH} files (an include cycle?)"));
-                    return;
-                }
-                if self.reading.contains(&file) || file == c.file {
-                    c.error(t.pos, format!("\"{}\" includes itself", file.display()));
-                    return;
-                }
-                let read = crate::limits::read_file(
-                    &file,
-                    crate::limits::MAX_SCENE_FILE_BYTES,
-                    "scene file",
-                );
-                match read {
-                    Ok(bytes) => {
-                        self.included.push(file.clone());
-                        self.reading.push(c.file.clone());
-                        self.read_file(&file, &bytes, depth + 1);
-                        self.reading.pop();
-                    }
-                    Err(e) => {
-                        let why = if e.kind() == std::io::ErrorKind::NotFound {
-                            "file not found".to_string()
-                        } else {
-                            e.to_string()
-                        };
-                        c.error(
-                            t.pos,
-                            format!("cannot read include \"{}\": {why}", file.display()),
-                        );
-                    }
-                }
-            }
-            other => c.error(
-                t.pos,
-                format!(
-                    "expected a file name or <library> after $include, found {}",
-                    other.describe()
-                ),
-            ),
-        }
+        self.incremental = true;
+        self.statement(c, next);
+        self.incremental = false;
+    }
+
+    /// `$include` at the top level: reads the file in place (its statements, then the
+    /// including file's next ones).
+    fn include(&mut self, c: &mut Cursor) {
+        let chain = c.chain();
+        let Some((file, bytes)) = super::include::target(c, &chain) else {
+            return;
+        };
+        self.included.push(file.clone());
+        let outer = std::mem::replace(&mut self.reading, chain);
+        self.read_file(&file, &bytes);
+        self.reading = outer;
     }
 
     fn render(&mut self, c: &mut Cursor, pos: super::super::located::Pos) {
@@ -293,6 +311,16 @@ impl Reader {
             camera: (camera.0, at(camera.1)),
             options: (options.0, at(options.1)),
         });
+    }
+}
+
+/// Error recovery: skips to the next statement keyword.
+fn resynchronise(c: &mut Cursor) {
+    while c
+        .peek()
+        .is_some_and(|t| !matches!(&t.tok, Tok::Word(w) if STATEMENTS.contains(&w.as_str())))
+    {
+        c.advance();
     }
 }
 
