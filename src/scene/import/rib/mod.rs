@@ -7,7 +7,8 @@
 //! stacks), [`build`] (request by request onto the description), with the request families
 //! in [`shaders`] (surfaces, displacements, lights; the tutorial's own in [`tutorial`]), [`geometry`] (quadrics, polygons,
 //! patches, NURBS, subdivision meshes; [`revolve`]: paraboloids and hyperboloids;
-//! [`primvars`]: the `N` and `st` of polygon meshes per vertex, face corner or face),
+//! [`primvars`]: the `N` and `st` of polygon meshes per vertex, face corner or face;
+//! [`surface_vars`]: those of patches, `NuPatch` and subdivision meshes in every class),
 //! [`camera`] (options, the camera and its outputs), [`retained`] (`ObjectBegin`
 //! definitions and motion blocks), `place` (a primitive and the current attributes onto an
 //! object, a material and an instance), [`orientation`] (`Orientation`,
@@ -32,6 +33,7 @@ pub mod camera;
 mod caustics;
 pub mod display;
 pub mod geometry;
+mod holes;
 pub mod lexer;
 pub mod names;
 pub mod orientation;
@@ -44,6 +46,7 @@ pub mod retained;
 pub mod revolve;
 pub mod shaders;
 pub mod state;
+pub mod surface_vars;
 pub mod text;
 pub mod tutorial;
 
