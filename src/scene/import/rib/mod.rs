@@ -27,6 +27,7 @@
 //! object-space front is RenderMan's outside; an inside-out one (see [`orientation`]) is an
 //! object with `reverse_orientation`.
 
+mod area_lights;
 pub mod atmosphere;
 pub mod build;
 pub mod camera;
