@@ -220,7 +220,7 @@ fn a_count_that_fits_no_class_is_a_located_error_naming_the_counts() {
     };
     assert_eq!(
         e,
-        "t.rib:3:74: error: parameter \"N\" of PatchMesh takes 18 (3 per vertex, 6 vertices), \
+        "t.rib:3:75: error: parameter \"N\" of PatchMesh takes 18 (3 per vertex, 6 vertices), \
          24 (3 per patch corner, 8 patch corners), 6 (3 per patch, 2 patches) or 3 (constant) \
          numbers, found 12"
     );
