@@ -32,6 +32,7 @@ fn bspline_sheet() -> Surface {
         u_wrap: false,
         v_wrap: false,
         points,
+        vars: Default::default(),
     })
 }
 

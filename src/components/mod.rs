@@ -55,7 +55,10 @@ pub use displacement::{
 pub use procedural::{
     Cone, Cylinder, Disk, GeneratedFrom, Grid, Procedural, Scatter, Sphere, Stairs, Torus,
 };
-pub use surface::{CubicBasis, NurbsSurface, PatchKind, PatchMesh, Quadric, SubdivMesh, Surface};
+pub use surface::{
+    CubicBasis, NurbsSurface, PatchKind, PatchMesh, Quadric, SubdivMesh, Surface, SurfaceValues,
+    SurfaceVariables,
+};
 
 mod photon_flags;
 pub use photon_flags::{LightPhotons, PhotonFlags, PhotonRole};

@@ -49,6 +49,8 @@ pub struct PatchMesh {
     pub v_wrap: bool,
     /// Control points, `nu × nv`, u fastest.
     pub points: Vec<Vec3>,
+    /// User texture coordinates and normals (RenderMan's `s`, `t`, `N`), default none.
+    pub vars: SurfaceVariables,
 }
 
 impl PatchMesh {
@@ -62,6 +64,7 @@ impl PatchMesh {
             u_wrap: false,
             v_wrap: false,
             points: points.to_vec(),
+            vars: SurfaceVariables::default(),
         }
     }
 }
@@ -88,6 +91,8 @@ pub struct NurbsSurface {
     pub knots_v: Vec<f32>,
     /// Control points `(x, y, z)` with weight `w > 0`, u fastest.
     pub points: Vec<Vec4>,
+    /// User texture coordinates and normals (RenderMan's `s`, `t`, `N`), default none.
+    pub vars: SurfaceVariables,
 }
 
 /// An analytic quadric surface (produced by `expand_geometry` from a geometry shader).
@@ -142,4 +147,49 @@ pub struct SubdivMesh {
     pub face_sizes: Vec<u32>,
     /// Vertex indices of all faces, concatenated, counter-clockwise seen from outside.
     pub face_indices: Vec<u32>,
+    /// User texture coordinates and normals (RenderMan's `s`, `t`, `N`), default none.
+    pub vars: SurfaceVariables,
+}
+
+/// Values of one primitive variable (`s`, `t` in `x`; `N` as a vector) over a patch mesh,
+/// NURBS surface or subdivision mesh.
+#[derive(Debug, Clone, PartialEq)]
+pub enum SurfaceValues {
+    /// One per control point, interpolated like the positions (RenderMan's `vertex`: the
+    /// patch basis, the NURBS basis with the points' weights, Catmull-Clark refinement).
+    Control(Vec<Vec3>),
+    /// Interpolated bilinearly over each patch from its corners (RenderMan's `varying`,
+    /// `facevarying`, `uniform` and `constant`, expanded): four per patch — patch meshes
+    /// and NURBS, u-fastest patch order, NURBS counting every knot span, empty ones too —
+    /// at its corners (0,0), (1,0), (0,1), (1,1); one per face corner for subdivision
+    /// meshes (in `face_indices` order), linear over each face.
+    Corners(Vec<Vec3>),
+}
+
+impl SurfaceValues {
+    /// The values, whichever the interpolation.
+    pub fn values(&self) -> &[Vec3] {
+        match self {
+            SurfaceValues::Control(v) | SurfaceValues::Corners(v) => v,
+        }
+    }
+}
+
+/// The user texture coordinates and normals of a surface; a missing one keeps the
+/// surface's own (its parametric `u`, `v`, its geometric normal).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct SurfaceVariables {
+    /// Texture coordinate `s` (the uv's u), in `x`.
+    pub s: Option<SurfaceValues>,
+    /// Texture coordinate `t` (the uv's v), in `x`.
+    pub t: Option<SurfaceValues>,
+    /// Shading normals (normalised where used).
+    pub normals: Option<SurfaceValues>,
+}
+
+impl SurfaceVariables {
+    /// No variable given.
+    pub fn is_empty(&self) -> bool {
+        self.s.is_none() && self.t.is_none() && self.normals.is_none()
+    }
 }

@@ -14,7 +14,7 @@ pub use super::desc_environment::{
 };
 pub use super::desc_geometry::{
     ApproximationDesc, AxisDesc, BasisDesc, DisplacementDesc, DisplacementModeDesc, MeshDesc,
-    ScalarDesc, SpaceDesc,
+    ScalarDesc, SpaceDesc, SurfaceValuesDesc, SurfaceVariablesDesc,
 };
 pub use super::desc_material_shaders::{PhotonShaderDesc, ShadowDesc};
 pub use super::desc_photon_depth::PhotonDepthDesc;

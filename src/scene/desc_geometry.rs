@@ -185,6 +185,9 @@ pub enum MeshDesc {
         v_wrap: bool,
         /// `nu × nv` control points, u fastest.
         points: Vec<V3>,
+        /// User texture coordinates and normals (RenderMan's `s`, `t`, `N`), default none.
+        #[serde(default, skip_serializing_if = "SurfaceVariablesDesc::is_empty")]
+        variables: SurfaceVariablesDesc,
     },
     /// A NURBS surface (no trimming curves).
     Nurbs {
@@ -202,6 +205,9 @@ pub enum MeshDesc {
         knots_v: Vec<f64>,
         /// `count_u × count_v` points `(x, y, z, w)`, u fastest, weight `w > 0`.
         points: Vec<(f64, f64, f64, f64)>,
+        /// User texture coordinates and normals (RenderMan's `s`, `t`, `N`), default none.
+        #[serde(default, skip_serializing_if = "SurfaceVariablesDesc::is_empty")]
+        variables: SurfaceVariablesDesc,
     },
     /// A Catmull-Clark subdivision surface over a polygon control mesh.
     Subdiv {
@@ -209,6 +215,9 @@ pub enum MeshDesc {
         vertices: Vec<V3>,
         /// Faces (≥ 3 indices each), counter-clockwise seen from outside; manifold.
         polygons: Vec<Vec<u32>>,
+        /// User texture coordinates and normals (RenderMan's `s`, `t`, `N`), default none.
+        #[serde(default, skip_serializing_if = "SurfaceVariablesDesc::is_empty")]
+        variables: SurfaceVariablesDesc,
     },
     /// Copies of another object scattered over the mesh of a third.
     Scatter {
@@ -232,6 +241,41 @@ pub enum MeshDesc {
         #[serde(default = "yes")]
         align_to_normal: bool,
     },
+}
+
+/// Values of one variable of a `PatchMesh`, `Nurbs` or `Subdiv` mesh.
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[serde(rename = "Values")]
+pub enum SurfaceValuesDesc<T> {
+    /// One per control point, interpolated like the positions.
+    Control(Vec<T>),
+    /// Four per patch (patch meshes, NURBS: u-fastest patches, every NURBS knot span
+    /// counted, empty ones too) at its corners (0,0), (1,0), (0,1), (1,1), or one per face
+    /// corner (subdivision meshes), interpolated bilinearly (linearly over a face).
+    Corners(Vec<T>),
+}
+
+/// User texture coordinates and normals of a `PatchMesh`, `Nurbs` or `Subdiv` mesh; one
+/// not given keeps the surface's own (its parameters, its geometric normal).
+#[derive(Debug, Clone, Default, PartialEq, Deserialize, Serialize)]
+#[serde(rename = "Variables", deny_unknown_fields)]
+pub struct SurfaceVariablesDesc {
+    /// Texture coordinate s (the uv's u).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub s: Option<SurfaceValuesDesc<f64>>,
+    /// Texture coordinate t (the uv's v).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub t: Option<SurfaceValuesDesc<f64>>,
+    /// Shading normals.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub normals: Option<SurfaceValuesDesc<V3>>,
+}
+
+impl SurfaceVariablesDesc {
+    /// No variable given.
+    pub fn is_empty(&self) -> bool {
+        self.s.is_none() && self.t.is_none() && self.normals.is_none()
+    }
 }
 
 /// Patch type and basis of a `PatchMesh`.

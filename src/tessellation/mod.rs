@@ -16,6 +16,8 @@
 //! | [`patch`] | bilinear and bicubic patch meshes |
 //! | [`nurbs`] | NURBS surfaces |
 //! | [`subdiv`] | Catmull-Clark refinement to a quad control cage |
+//! | [`variables`] | user texture coordinates and normals on patch meshes and NURBS |
+//! | [`subdiv_variables`] | the same on subdivision meshes' limit cages |
 //! | [`polymesh`] | triangle meshes as patch sources (for displacement) |
 
 pub mod complex;
@@ -28,6 +30,8 @@ pub mod polymesh;
 pub mod quadric;
 pub mod rates;
 pub mod subdiv;
+pub mod subdiv_variables;
+pub mod variables;
 
 use glam::{DAffine3, DVec2, DVec3};
 
@@ -116,8 +120,22 @@ pub fn tessellate_surface(
     opts: &Options,
 ) -> Result<Tessellation, GeometryError> {
     match surface {
-        Surface::Patches(mesh) => complex::tessellate(&patch::PatchMeshSource::new(mesh)?, opts),
-        Surface::Nurbs(n) => complex::tessellate(&nurbs::NurbsSource::new(n)?, opts),
+        Surface::Patches(mesh) => {
+            let src = patch::PatchMeshSource::new(mesh)?;
+            if mesh.vars.is_empty() {
+                complex::tessellate(&src, opts)
+            } else {
+                complex::tessellate(&variables::Varied::patches(&src, mesh)?, opts)
+            }
+        }
+        Surface::Nurbs(n) => {
+            let src = nurbs::NurbsSource::new(n)?;
+            if n.vars.is_empty() {
+                complex::tessellate(&src, opts)
+            } else {
+                complex::tessellate(&variables::Varied::nurbs(&src, n)?, opts)
+            }
+        }
         Surface::Quadric(q) => complex::tessellate(&quadric::QuadricSource::new(q)?, opts),
     }
 }

@@ -197,6 +197,20 @@ impl NurbsSource {
         })
     }
 
+    /// The knot segment of `patch` among all `(count_u − degree_u) × (count_v − degree_v)`
+    /// segments, empty ones included, u fastest (RenderMan's uniform value index).
+    pub fn segment(&self, patch: usize) -> usize {
+        let (i, j) = self.topo.cell(patch);
+        let (ku, kv) = (self.u.spans[i].0, self.v.spans[j].0);
+        (ku - self.u.degree) + (kv - self.v.degree) * (self.count_u - self.u.degree)
+    }
+
+    /// The number of knot segments of `s`, empty ones included (see [`Self::segment`]).
+    pub fn segments(s: &NurbsSurface) -> usize {
+        let along = |count: u32, degree: u32| count.saturating_sub(degree) as usize;
+        along(s.count_u, s.degree_u) * along(s.count_v, s.degree_v)
+    }
+
     /// Position and derivatives per unit knot parameter on spans (`ku`, `kv`).
     fn local(&self, ku: usize, kv: usize, tu: f64, tv: f64) -> (DVec3, DVec3, DVec3) {
         let (nu, du) = self.u.basis(ku, tu);
@@ -280,6 +294,7 @@ mod tests {
             knots_u: vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
             knots_v: vec![0.0, 0.0, 1.0, 1.0],
             points,
+            vars: Default::default(),
         }
     }
 

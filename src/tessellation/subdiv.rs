@@ -181,19 +181,45 @@ pub fn levels_for(approx: &Approximation) -> (u32, u32) {
     }
 }
 
-/// Refines `mesh` and returns the limit quad cage.
+/// Refines `mesh` and returns the limit quad cage, with the mesh's user texture
+/// coordinates and normals (see [`super::subdiv_variables`]) at its quad corners.
 pub fn limit_cage(mesh: &SubdivMesh, approx: &Approximation) -> Result<QuadCage, GeometryError> {
     let (min, max) = levels_for(approx);
-    let mut p = poly(mesh)?;
+    let base = poly(mesh)?;
+    let mut p = base.clone();
     let mut level = 0;
     loop {
         p = refine(&p)?;
         level += 1;
         let limit = limit_positions(&p)?;
         if level >= max || (level >= min && fine_enough(&p, &limit, approx)) {
-            return Ok(cage(p, limit));
+            let mut cage = cage(p, limit);
+            if !mesh.vars.is_empty() {
+                let shape = (base.faces.as_slice(), base.positions.len());
+                super::subdiv_variables::apply(&mut cage, &mesh.vars, shape, level, |values| {
+                    refine_limit(&base.faces, values, level)
+                })?;
+            }
+            return Ok(cage);
         }
     }
+}
+
+/// `values` (one per control vertex) refined `levels` times over `faces` by the position
+/// rules and pushed to their limit: one per vertex of the refined mesh.
+fn refine_limit(
+    faces: &[Vec<u32>],
+    values: &[DVec3],
+    levels: u32,
+) -> Result<Vec<DVec3>, GeometryError> {
+    let mut p = Poly {
+        positions: values.to_vec(),
+        faces: faces.to_vec(),
+    };
+    for _ in 0..levels {
+        p = refine(&p)?;
+    }
+    limit_positions(&p)
 }
 
 /// Whether the refined mesh meets an adaptive tolerance.
@@ -308,6 +334,7 @@ mod tests {
             positions,
             face_sizes: vec![4; 6],
             face_indices: faces.iter().flatten().copied().collect(),
+            vars: Default::default(),
         }
     }
 

@@ -221,6 +221,7 @@ fn adjacent_patches_of_different_rates_share_their_edge_bitwise() {
         u_wrap: false,
         v_wrap: false,
         points,
+        vars: Default::default(),
     });
     let t = run(
         &mesh,
@@ -337,6 +338,7 @@ fn cube() -> SubdivMesh {
         positions,
         face_sizes: vec![4; 6],
         face_indices: faces.iter().flatten().copied().collect(),
+        vars: Default::default(),
     }
 }
 

@@ -212,16 +212,40 @@ fn illuminate_takes_an_area_light_handle() {
     let s = read(&on);
     assert!(s.warnings.is_empty(), "{:?}", s.warnings);
     assert!(s.desc.materials.iter().all(|m| m.lights.is_none()));
-    // Switched off: a located warning that it stays on, for every primitive.
-    let off = format!("{HEAD}{area}Illuminate 3 0\nAttributeEnd\nSphere 1 -1 1 360\nWorldEnd\n");
+    // Switched off inside the block: `AttributeEnd` switches it on again, so the sphere
+    // after it is lit, without a word (RISpec: the light list is an attribute).
+    let emission_of_disk = |s: &RibScene| {
+        let name = s.desc.objects[0].material.clone().expect("a material");
+        let m = s.desc.materials.iter().find(|m| m.name == name).unwrap();
+        m.emission
+    };
+    let restored =
+        format!("{HEAD}{area}Illuminate 3 0\nAttributeEnd\nSphere 1 -1 1 360\nWorldEnd\n");
+    let s = read(&restored);
+    assert!(s.warnings.is_empty(), "{:?}", s.warnings);
+    assert_eq!(emission_of_disk(&s), (2.0, 2.0, 2.0));
+    // Off for every primitive but its own disk: switched off for the whole scene, the
+    // disk emits nothing.
+    let dark = format!("{HEAD}{area}AttributeEnd\nIlluminate 3 0\nSphere 1 -1 1 360\nWorldEnd\n");
+    let s = read(&dark);
+    assert!(s.warnings.is_empty(), "{:?}", s.warnings);
+    assert_eq!(emission_of_disk(&s), (0.0, 0.0, 0.0));
+    // Off for some primitives only: it stays on, with a located warning naming both counts.
+    let some = format!(
+        "{HEAD}{area}AttributeEnd\nSphere 1 -1 1 360\nIlluminate 3 0\nSphere 1 -1 1 360\n\
+         Sphere 2 -2 2 360\nWorldEnd\n"
+    );
     assert_eq!(
-        warnings(&off),
+        warnings(&some),
         [
-            "t.rib:9:14: warning: Illuminate cannot switch off area light 3: its surfaces light \
-             every primitive\n  help: only LightSource lights can be switched off: an emitting \
-             surface is no light of a light list"
+            "t.rib:11:14: warning: Illuminate cannot switch off area light 3 for the 2 \
+             primitives declared while it is off: it lights 1 other primitive, and an area \
+             light's surfaces light every primitive or none\n  help: it stays on for every \
+             primitive; it is switched off when every primitive but its own surfaces is \
+             declared while it is off"
         ]
     );
+    assert_eq!(emission_of_disk(&read(&some)), (2.0, 2.0, 2.0));
     // A LightSource taking the handle over is switched as one.
     let over = format!(
         "{HEAD}{area}AttributeEnd\nLightSource \"pointlight\" 3\nIlluminate 3 0\n\

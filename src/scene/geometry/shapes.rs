@@ -6,15 +6,15 @@ use glam::{Vec3, Vec4};
 use super::{num, report, Ctx, Generated};
 use crate::components::{
     Cone, CubicBasis, Cylinder, Disk, Grid, NurbsSurface, PatchKind, PatchMesh, Procedural, Sphere,
-    Stairs, SubdivMesh, Surface, Torus,
+    Stairs, SubdivMesh, Surface, SurfaceValues, SurfaceVariables, Torus,
 };
 use crate::procedural;
-use crate::scene::desc::{BasisDesc, MeshDesc};
+use crate::scene::desc::{BasisDesc, MeshDesc, SurfaceValuesDesc, SurfaceVariablesDesc, V3};
 use crate::scene::mesh_load;
 use crate::scene::validate::Checker;
 use crate::tessellation::nurbs::NurbsSource;
 use crate::tessellation::patch::PatchMeshSource;
-use crate::tessellation::{subdiv, GeometryError};
+use crate::tessellation::{subdiv, variables, GeometryError, PatchSource};
 
 /// Checks a generated mesh description (not `Obj`, `Inline` or `Scatter`) and builds its
 /// component.
@@ -27,9 +27,11 @@ pub fn generator(ck: &mut Checker<'_>, ctx: &Ctx<'_>, mesh: &MeshDesc) -> Option
             u_wrap,
             v_wrap,
             points,
+            variables,
         } => {
             let at = format!("{}.PatchMesh", ctx.base);
             let points = control_points(ck, &format!("{at}.points"), points)?;
+            let vars = surface_variables(ck, &at, variables)?;
             let mesh = PatchMesh {
                 kind: match basis {
                     BasisDesc::Bilinear => PatchKind::Bilinear,
@@ -42,11 +44,25 @@ pub fn generator(ck: &mut Checker<'_>, ctx: &Ctx<'_>, mesh: &MeshDesc) -> Option
                 u_wrap: *u_wrap,
                 v_wrap: *v_wrap,
                 points,
+                vars,
             };
-            if let Err(e) = PatchMeshSource::new(&mesh) {
+            let checked = PatchMeshSource::new(&mesh).and_then(|src| {
+                let corners = 4 * src.patch_count();
+                variables::check(&mesh.vars, mesh.points.len(), corners, "patch mesh")
+            });
+            if let Err(e) = checked {
                 let field = match &e {
                     GeometryError::BadCount { message } if message.contains(": u:") => "nu",
                     GeometryError::BadCount { message } if message.contains(": v:") => "nv",
+                    GeometryError::BadCount { message } if message.contains(": s:") => {
+                        "variables.s"
+                    }
+                    GeometryError::BadCount { message } if message.contains(": t:") => {
+                        "variables.t"
+                    }
+                    GeometryError::BadCount { message } if message.contains(": normals:") => {
+                        "variables.normals"
+                    }
                     _ => "points",
                 };
                 report(ck, ctx.object, "patch mesh", &at, Some(field), &e);
@@ -62,8 +78,10 @@ pub fn generator(ck: &mut Checker<'_>, ctx: &Ctx<'_>, mesh: &MeshDesc) -> Option
             knots_u,
             knots_v,
             points,
+            variables,
         } => {
             let at = format!("{}.Nurbs", ctx.base);
+            let vars = surface_variables(ck, &at, variables)?;
             let mut ok = true;
             let mut knots = |ck: &mut Checker<'_>, name: &str, ks: &[f64]| -> Vec<f32> {
                 ks.iter()
@@ -102,9 +120,25 @@ pub fn generator(ck: &mut Checker<'_>, ctx: &Ctx<'_>, mesh: &MeshDesc) -> Option
                 knots_u,
                 knots_v,
                 points: pts,
+                vars,
             };
-            if let Err(e) = NurbsSource::new(&surface) {
+            let checked = NurbsSource::new(&surface).and_then(|_| {
+                let corners = 4 * NurbsSource::segments(&surface);
+                variables::check(&surface.vars, surface.points.len(), corners, "nurbs")
+            });
+            if let Err(e) = checked {
                 let field = match &e {
+                    GeometryError::BadCount { message } if message.starts_with("nurbs: s:") => {
+                        "variables.s".into()
+                    }
+                    GeometryError::BadCount { message } if message.starts_with("nurbs: t:") => {
+                        "variables.t".into()
+                    }
+                    GeometryError::BadCount { message }
+                        if message.starts_with("nurbs: normals:") =>
+                    {
+                        "variables.normals".into()
+                    }
                     GeometryError::BadCount { message } => {
                         let dir = if message.contains(": v:") { "v" } else { "u" };
                         if message.contains("control points") {
@@ -131,9 +165,19 @@ pub fn generator(ck: &mut Checker<'_>, ctx: &Ctx<'_>, mesh: &MeshDesc) -> Option
             }
             Some(Generated::Surface(Surface::Nurbs(surface)))
         }
-        MeshDesc::Subdiv { vertices, polygons } => {
+        MeshDesc::Subdiv {
+            vertices,
+            polygons,
+            variables,
+        } => {
             let at = format!("{}.Subdiv", ctx.base);
             if !mesh_load::check_inline(ck, &at, vertices, polygons, None, None) {
+                return None;
+            }
+            let vars = surface_variables(ck, &at, variables)?;
+            let corners = polygons.iter().map(Vec::len).sum();
+            if let Err(e) = variables::check(&vars, vertices.len(), corners, "subdivision mesh") {
+                report(ck, ctx.object, "subdiv", &at, Some("variables"), &e);
                 return None;
             }
             let mesh = SubdivMesh {
@@ -143,6 +187,7 @@ pub fn generator(ck: &mut Checker<'_>, ctx: &Ctx<'_>, mesh: &MeshDesc) -> Option
                     .collect(),
                 face_sizes: polygons.iter().map(|p| p.len() as u32).collect(),
                 face_indices: polygons.iter().flatten().copied().collect(),
+                vars,
             };
             // One level of refinement finds non-manifold edges.
             let one_level = crate::components::Approximation {
@@ -158,6 +203,57 @@ pub fn generator(ck: &mut Checker<'_>, ctx: &Ctx<'_>, mesh: &MeshDesc) -> Option
         }
         other => procedural_shape(ck, ctx, other).map(Generated::Procedural),
     }
+}
+
+/// The user texture coordinates and normals of a surface (each value not finite reported
+/// at `at.variables.<name>…[k]`).
+fn surface_variables(
+    ck: &mut Checker<'_>,
+    at: &str,
+    vars: &SurfaceVariablesDesc,
+) -> Option<SurfaceVariables> {
+    let mut ok = true;
+    let mut values = |name: &str, v: &SurfaceValuesDesc<Vec3>| -> SurfaceValues {
+        let (variant, list) = match v {
+            SurfaceValuesDesc::Control(l) => ("Control", l),
+            SurfaceValuesDesc::Corners(l) => ("Corners", l),
+        };
+        if let Some(k) = list.iter().position(|x| !x.is_finite()) {
+            ck.error(
+                &format!("{at}.variables.{name}.{variant}[{k}]"),
+                format!("{name} values must be finite numbers"),
+            );
+            ok = false;
+        }
+        match v {
+            SurfaceValuesDesc::Control(_) => SurfaceValues::Control(list.clone()),
+            SurfaceValuesDesc::Corners(_) => SurfaceValues::Corners(list.clone()),
+        }
+    };
+    let scalar = |v: &SurfaceValuesDesc<f64>| -> SurfaceValuesDesc<Vec3> {
+        let map = |l: &Vec<f64>| l.iter().map(|&x| Vec3::new(x as f32, 0.0, 0.0)).collect();
+        match v {
+            SurfaceValuesDesc::Control(l) => SurfaceValuesDesc::Control(map(l)),
+            SurfaceValuesDesc::Corners(l) => SurfaceValuesDesc::Corners(map(l)),
+        }
+    };
+    let vector = |v: &SurfaceValuesDesc<V3>| -> SurfaceValuesDesc<Vec3> {
+        let map = |l: &Vec<V3>| {
+            l.iter()
+                .map(|p| Vec3::new(p.0 as f32, p.1 as f32, p.2 as f32))
+                .collect()
+        };
+        match v {
+            SurfaceValuesDesc::Control(l) => SurfaceValuesDesc::Control(map(l)),
+            SurfaceValuesDesc::Corners(l) => SurfaceValuesDesc::Corners(map(l)),
+        }
+    };
+    let out = SurfaceVariables {
+        s: vars.s.as_ref().map(|v| values("s", &scalar(v))),
+        t: vars.t.as_ref().map(|v| values("t", &scalar(v))),
+        normals: vars.normals.as_ref().map(|v| values("normals", &vector(v))),
+    };
+    ok.then_some(out)
 }
 
 /// Finite control points (each bad coordinate reported at `path[k][c]`).

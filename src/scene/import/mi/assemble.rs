@@ -444,6 +444,7 @@ fn objects_of(name: &str, obj: &RawObject, materials: &Materials<'_>, out: &mut 
                 knots_u: s.u.knots.clone(),
                 knots_v: s.v.knots.clone(),
                 points: s.points.clone(),
+                variables: Default::default(),
             },
             material: s.material.clone(),
             approximation: s.approximation.clone(),

@@ -8,6 +8,7 @@ use std::path::{Path, PathBuf};
 use glam::{DMat4, DVec3};
 
 use super::super::located::{Located, LocatedProblem, Pos, Problem};
+use super::area_lights::AreaLights;
 use super::atmosphere::{camera_atmosphere, RiFog};
 use super::camera::{rows, world_mirror, CameraOptions, DepthOfField};
 use super::display;
@@ -85,6 +86,8 @@ pub(super) struct PendingMaterial {
     /// Lights switched off by `Illuminate` where the material was used (indices into the
     /// light list): the material's light list is every other light.
     pub lights_off: Vec<usize>,
+    /// The area light whose surfaces have the material (its emission).
+    pub area_light: Option<usize>,
 }
 
 /// The reader's state over one root file and its archives.
@@ -97,8 +100,9 @@ pub struct Builder {
     pub(super) problems: Vec<(usize, Problem)>,
     pub(super) lights: Vec<PendingLight>,
     handles: HashMap<String, usize>,
-    /// `AreaLightSource` handles (an emitting surface is no light of a light list).
-    area_handles: HashSet<String>,
+    /// `AreaLightSource` handles and the primitives they light (an emitting surface is no
+    /// light of a light list).
+    pub(super) area_lights: AreaLights,
     pub(super) objects: Vec<PendingObject>,
     pub(super) instances: Vec<PendingInstance>,
     pub(super) materials: Vec<PendingMaterial>,
@@ -141,7 +145,7 @@ impl Builder {
             problems: Vec::new(),
             lights: Vec::new(),
             handles: HashMap::new(),
-            area_handles: HashSet::new(),
+            area_lights: AreaLights::default(),
             objects: Vec::new(),
             instances: Vec::new(),
             materials: Vec::new(),
@@ -535,23 +539,10 @@ impl Builder {
             "Illuminate" => {
                 let handle = self.handle(&mut a, "light handle")?;
                 let (on, on_pos) = a.num("onoff")?;
-                if self.area_handles.contains(&handle.0) {
-                    if on == 0.0 {
-                        problems.push(
-                            Problem::warning(
-                                on_pos,
-                                format!(
-                                    "Illuminate cannot switch off area light {}: its surfaces \
-                                     light every primitive",
-                                    handle.0
-                                ),
-                            )
-                            .with_help(
-                                "only LightSource lights can be switched off: an emitting \
-                                 surface is no light of a light list",
-                            ),
-                        );
-                    }
+                if let Some(id) = self.area_lights.id(&handle.0) {
+                    let off = &mut self.gs.attrs.area_lights_off;
+                    self.area_lights
+                        .illuminate(id, on != 0.0, (self.file, on_pos), off);
                 } else {
                     let Some(&i) = self.handles.get(&handle.0) else {
                         return Err(Problem::error(
@@ -1023,17 +1014,16 @@ impl Builder {
                     }
                 }
                 self.gs.attrs.area_light = Some(call);
-                if let Some((h, _)) = handle {
-                    self.handles.remove(&h);
-                    self.area_handles.insert(h);
-                }
+                let h = handle.map_or_else(String::new, |(h, _)| h);
+                self.handles.remove(&h);
+                self.gs.attrs.area_light_id = Some(self.area_lights.define(&h));
             }
             _ => {
                 let values = shaders::light(&call, problems);
                 let n = self.lights.len();
                 let lname = format!("{name}_{}", n + 1);
                 if let Some((h, _)) = handle {
-                    self.area_handles.remove(&h);
+                    self.area_lights.forget(&h);
                     self.handles.insert(h, n);
                 }
                 self.lights.push(PendingLight {
@@ -1207,6 +1197,9 @@ impl Builder {
             });
         }
         let caustics_on = self.caustics.is_some();
+        // Area lights off for every primitive they could light emit nothing.
+        let (dark, warnings) = self.area_lights.finish();
+        self.problems.extend(warnings);
         for (i, m) in self.materials.iter().enumerate() {
             paths.push((format!("materials[{i}]"), m.at.0, m.at.1));
             paths.push((format!("materials[{i}].shader"), m.at.0, m.at.1));
@@ -1214,6 +1207,9 @@ impl Builder {
                 paths.push((format!("materials[{i}]{p}"), m.at.0, *pos));
             }
             let mut material = m.desc.clone();
+            if m.area_light.is_some_and(|a| dark.contains(&a)) {
+                material.emission = (0.0, 0.0, 0.0);
+            }
             if !caustics_on {
                 // AIR's caustic attributes do nothing without its caustic light (warned).
                 material.photon = None;

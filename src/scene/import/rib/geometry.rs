@@ -11,7 +11,8 @@ use super::params::{Args, Declarations, Param};
 use super::parse::{Arg, Request};
 use super::primvars::{mesh_variables, FaceLayout};
 use super::state::Attributes;
-use crate::scene::desc::{BasisDesc, MeshDesc, V3};
+use super::surface_vars::{surface_variables, Shape};
+use crate::scene::desc::{BasisDesc, MeshDesc, SurfaceVariablesDesc, V3};
 
 /// Requests that make geometry.
 pub const PRIMITIVES: &[&str] = &[
@@ -298,16 +299,15 @@ fn polygonal(
     let mut patch: Option<PatchShape> = None;
     let mut nurbs = None;
     let mut subdiv_tags = None;
+    // Polygons with holes, cut into triangles once the points are read: the loops of each
+    // (`PointsGeneralPolygons`), or the loop sizes of a `GeneralPolygon`.
+    let mut general: Option<(Vec<Vec<Loop>>, Pos)> = None;
+    let mut general_sizes: Option<(Vec<u32>, Pos)> = None;
     match name {
         "Polygon" => {}
         "GeneralPolygon" => {
             let (loops, arr) = counts(&mut a, "nvertices", problems)?;
-            if loops.len() != 1 {
-                problems.push(Problem::warning(
-                    arr.pos,
-                    "ignored the holes of GeneralPolygon: only its outer loop is used",
-                ));
-            }
+            general_sizes = Some((loops, arr.pos));
         }
         "PointsPolygons" | "PointsGeneralPolygons" | "SubdivisionMesh" => {
             if name == "SubdivisionMesh" {
@@ -341,7 +341,6 @@ fn polygonal(
                 ));
                 return None;
             }
-            let mut loop_of = Vec::new();
             // The polygon (uniform value) each loop belongs to.
             let mut polygon_of: Vec<usize> = (0..nverts.len()).collect();
             if let Some((l, larr)) = &loops {
@@ -356,15 +355,9 @@ fn polygonal(
                     ));
                     return None;
                 }
-                if l.iter().any(|&n| n > 1) {
-                    problems.push(Problem::warning(
-                        larr.pos,
-                        "ignored the holes of PointsGeneralPolygons: only outer loops are used",
-                    ));
-                }
+                general = Some((vec![Vec::new(); l.len()], larr.pos));
                 polygon_of.clear();
                 for (polygon, &n) in l.iter().enumerate() {
-                    loop_of.extend((0..n).map(|k| k == 0));
                     polygon_of.extend(std::iter::repeat_n(polygon, n as usize));
                 }
             }
@@ -375,11 +368,19 @@ fn polygonal(
             };
             for (f, &n) in nverts.iter().enumerate() {
                 let n = n as usize;
-                if loop_of.get(f).copied().unwrap_or(true) {
-                    fv.push(verts[at..at + n].to_vec());
-                    fp.push((at..at + n).map(|i| varr.item(i)).collect());
-                    layout.first_corner.push(at);
-                    layout.uniform.push(polygon_of.get(f).copied().unwrap_or(0));
+                let polygon = polygon_of.get(f).copied().unwrap_or(0);
+                let face = Loop {
+                    points: verts[at..at + n].to_vec(),
+                    at: (at..at + n).map(|i| varr.item(i)).collect(),
+                    first_corner: at,
+                };
+                if let Some((polygons, _)) = &mut general {
+                    polygons[polygon].push(face);
+                } else {
+                    fv.push(face.points);
+                    fp.push(face.at);
+                    layout.corners_of.push((at..at + n).collect());
+                    layout.uniform.push(polygon);
                 }
                 at += n;
             }
@@ -462,6 +463,43 @@ fn polygonal(
         ));
         return None;
     }
+    if let Some((sizes, at)) = general_sizes {
+        let total: usize = sizes.iter().map(|&s| s as usize).sum();
+        if total != pts.len() {
+            problems.push(Problem::error(
+                at,
+                format!(
+                    "GeneralPolygon has {} points, but nvertices adds up to {total}",
+                    pts.len()
+                ),
+            ));
+            return None;
+        }
+        let mut loops = Vec::new();
+        let mut first = 0;
+        for &s in &sizes {
+            let s = s as usize;
+            loops.push(Loop {
+                points: (first as u32..(first + s) as u32).collect(),
+                at: ppos[first..first + s].to_vec(),
+                first_corner: first,
+            });
+            first += s;
+        }
+        general = Some((vec![loops], at));
+        faces = Some((
+            Vec::new(),
+            Vec::new(),
+            FaceLayout {
+                corners: total,
+                faces: 1,
+                ..FaceLayout::default()
+            },
+        ));
+    }
+    if let (Some((polygons, at)), Some((fv, fp, layout))) = (&general, &mut faces) {
+        cut_holes(name, polygons, *at, &pts, (fv, fp, layout), problems);
+    }
     let used = ["P", "Pw", "N", "st", "s", "t"];
     let (color, opacity) = constant_colours(req, &params, problems, &used);
     let n = pts.len();
@@ -492,6 +530,15 @@ fn polygonal(
             return None;
         }
         push_points(&mut paths, ".PatchMesh.points", &ppos);
+        let shape = Shape::Grid {
+            control: n,
+            patches: (
+                patches_along(basis, nu, u_wrap),
+                patches_along(basis, nv, v_wrap),
+            ),
+            wrap: (u_wrap, v_wrap),
+        };
+        let variables = variables(name, &params, &shape, ".PatchMesh", &mut paths, problems)?;
         MeshDesc::PatchMesh {
             basis,
             nu: nu as u32,
@@ -499,6 +546,7 @@ fn polygonal(
             u_wrap,
             v_wrap,
             points: pts,
+            variables,
         }
     } else if let Some(((nu, uo, ku, kupos), (nv, vo, kv, kvpos))) = nurbs {
         if n != nu * nv {
@@ -510,6 +558,12 @@ fn polygonal(
         }
         let w = weights.unwrap_or_else(|| vec![1.0; n]);
         push_points(&mut paths, ".Nurbs.points", &ppos);
+        let shape = Shape::Grid {
+            control: n,
+            patches: ((nu + 1).saturating_sub(uo), (nv + 1).saturating_sub(vo)),
+            wrap: (false, false),
+        };
+        let variables = variables(name, &params, &shape, ".Nurbs", &mut paths, problems)?;
         paths.push((".Nurbs.knots_u".into(), kupos));
         paths.push((".Nurbs.knots_v".into(), kvpos));
         MeshDesc::Nurbs {
@@ -524,6 +578,7 @@ fn polygonal(
                 .zip(&w)
                 .map(|(p, &w)| (p.0, p.1, p.2, w))
                 .collect(),
+            variables,
         }
     } else {
         let (polygons, fpos, layout) = faces.unwrap_or_else(|| {
@@ -545,9 +600,15 @@ fn polygonal(
         }
         if name == "SubdivisionMesh" {
             push_points(&mut paths, ".Subdiv.vertices", &ppos);
+            let shape = Shape::Mesh {
+                control: n,
+                faces: &polygons,
+            };
+            let variables = variables(name, &params, &shape, ".Subdiv", &mut paths, problems)?;
             MeshDesc::Subdiv {
                 vertices: pts,
                 polygons,
+                variables,
             }
         } else {
             let vars = mesh_variables(name, &params, pts, ppos, polygons, &layout, problems)?;
@@ -572,6 +633,108 @@ fn polygonal(
         color,
         opacity,
     })
+}
+
+/// One loop of a polygon: its point indices, where each was written, and the index of its
+/// first corner among all corners written.
+#[derive(Debug, Clone)]
+struct Loop {
+    points: Vec<u32>,
+    at: Vec<Pos>,
+    first_corner: usize,
+}
+
+/// Makes the faces of `polygons` (each its outline then its holes, all their corners
+/// counted in `layout`): a polygon without holes is one face, one with holes the
+/// triangles of [`super::holes::triangulate`]. A polygon the triangulation cannot cut
+/// (degenerate) keeps its outline only, with a warning at `at`.
+fn cut_holes(
+    name: &str,
+    polygons: &[Vec<Loop>],
+    at: Pos,
+    points: &[V3],
+    (faces, face_pos, layout): (&mut Vec<Vec<u32>>, &mut Vec<Vec<Pos>>, &mut FaceLayout),
+    problems: &mut Vec<Problem>,
+) {
+    for (polygon, loops) in polygons.iter().enumerate() {
+        let Some(outline) = loops.first() else {
+            continue;
+        };
+        let mut push = |corners: &[(usize, usize)]| {
+            faces.push(corners.iter().map(|&(l, k)| loops[l].points[k]).collect());
+            face_pos.push(corners.iter().map(|&(l, k)| loops[l].at[k]).collect());
+            layout.corners_of.push(
+                corners
+                    .iter()
+                    .map(|&(l, k)| loops[l].first_corner + k)
+                    .collect(),
+            );
+            layout.uniform.push(polygon);
+        };
+        let whole: Vec<(usize, usize)> = (0..outline.points.len()).map(|k| (0, k)).collect();
+        let in_range = loops
+            .iter()
+            .all(|l| l.points.iter().all(|&i| (i as usize) < points.len()));
+        if loops.len() == 1 || !in_range {
+            push(&whole); // out-of-range indices are reported by validation
+            continue;
+        }
+        // Corner k of the concatenated loops → (loop, position in it).
+        let local: Vec<(usize, usize)> = loops
+            .iter()
+            .enumerate()
+            .flat_map(|(l, lp)| (0..lp.points.len()).map(move |k| (l, k)))
+            .collect();
+        let point_loops: Vec<Vec<u32>> = loops.iter().map(|l| l.points.clone()).collect();
+        match super::holes::triangulate(points, &point_loops) {
+            Some(triangles) => {
+                for t in triangles {
+                    push(&t.map(|c| local[c]));
+                }
+            }
+            None => {
+                problems.push(Problem::warning(
+                    at,
+                    format!(
+                        "ignored the holes of polygon {polygon} of {name}: its loops do not \
+                         make a polygon that can be cut into triangles"
+                    ),
+                ));
+                push(&whole);
+            }
+        }
+    }
+}
+
+/// The `N`, `st`, `s`, `t` of a surface (see [`super::surface_vars`]), with their paths
+/// below `variant` pushed onto `paths`. `None` after a located error.
+fn variables(
+    name: &str,
+    params: &[Param],
+    shape: &Shape<'_>,
+    variant: &str,
+    paths: &mut Vec<(String, Pos)>,
+    problems: &mut Vec<Problem>,
+) -> Option<SurfaceVariablesDesc> {
+    let (vars, vpaths) = surface_variables(name, params, shape, problems)?;
+    paths.extend(
+        vpaths
+            .into_iter()
+            .map(|(p, pos)| (format!("{variant}{p}"), pos)),
+    );
+    Some(vars)
+}
+
+/// Patches along one direction of `n` points in `basis` (RenderMan's count; 0 when `n` is
+/// too small, which validation reports).
+fn patches_along(basis: BasisDesc, n: usize, wrap: bool) -> usize {
+    match (basis, wrap) {
+        (BasisDesc::Bilinear, true) | (BasisDesc::BSpline | BasisDesc::CatmullRom, true) => n,
+        (BasisDesc::Bilinear, false) => n.saturating_sub(1),
+        (BasisDesc::Bezier, true) => n / 3,
+        (BasisDesc::Bezier, false) => n.saturating_sub(1) / 3,
+        (_, false) => n.saturating_sub(3),
+    }
 }
 
 fn push_points(paths: &mut Vec<(String, Pos)>, field: &str, pos: &[Pos]) {

@@ -7,7 +7,8 @@
 //! stacks), [`build`] (request by request onto the description), with the request families
 //! in [`shaders`] (surfaces, displacements, lights; the tutorial's own in [`tutorial`]), [`geometry`] (quadrics, polygons,
 //! patches, NURBS, subdivision meshes; [`revolve`]: paraboloids and hyperboloids;
-//! [`primvars`]: the `N` and `st` of polygon meshes per vertex, face corner or face),
+//! [`primvars`]: the `N` and `st` of polygon meshes per vertex, face corner or face;
+//! [`surface_vars`]: those of patches, `NuPatch` and subdivision meshes in every class),
 //! [`camera`] (options, the camera and its outputs), [`retained`] (`ObjectBegin`
 //! definitions and motion blocks), `place` (a primitive and the current attributes onto an
 //! object, a material and an instance), [`orientation`] (`Orientation`,
@@ -26,12 +27,14 @@
 //! object-space front is RenderMan's outside; an inside-out one (see [`orientation`]) is an
 //! object with `reverse_orientation`.
 
+mod area_lights;
 pub mod atmosphere;
 pub mod build;
 pub mod camera;
 mod caustics;
 pub mod display;
 pub mod geometry;
+mod holes;
 pub mod lexer;
 pub mod names;
 pub mod orientation;
@@ -44,6 +47,7 @@ pub mod retained;
 pub mod revolve;
 pub mod shaders;
 pub mod state;
+pub mod surface_vars;
 pub mod text;
 pub mod tutorial;
 

@@ -221,8 +221,9 @@ impl Builder {
         let mut lights_off = attrs.lights_off.clone();
         lights_off.sort_unstable();
         lights_off.dedup();
+        let area_light = attrs.area_light_id.filter(|_| emission.is_some());
         let key = format!(
-            "{:?}|{:?}|{:?}|{}|{:?}|{}|{:?}|{:?}",
+            "{:?}|{:?}|{:?}|{}|{:?}|{}|{:?}|{:?}|{:?}",
             desc.shader,
             desc.bind,
             desc.bump,
@@ -230,7 +231,8 @@ impl Builder {
             desc.emission,
             at_pos.line * 100_000 + at_pos.column,
             lights_off,
-            desc.photon
+            desc.photon,
+            area_light
         );
         let material = match self.material_keys.get(&key) {
             Some(&m) => m,
@@ -247,6 +249,7 @@ impl Builder {
                     paths: spaths,
                     at: (at_file, at_pos),
                     lights_off,
+                    area_light,
                 });
                 self.material_keys.insert(key, m);
                 m
@@ -284,6 +287,8 @@ impl Builder {
                 pos,
             )
         });
+        self.area_lights
+            .place(attrs.area_light_id, &attrs.area_lights_off);
         for (i, l) in self.lights.iter_mut().enumerate() {
             if attrs.lights_off.contains(&i) {
                 l.used_off = true;

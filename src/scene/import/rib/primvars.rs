@@ -1,4 +1,4 @@
-//! The `N` and `st` (or `s` and `t`) primitive variables of polygon meshes (`Polygon`,
+//! The `N` and `st` (or `s` and/or `t`) primitive variables of polygon meshes (`Polygon`,
 //! `GeneralPolygon`, `PointsPolygons`, `PointsGeneralPolygons`): one value per vertex, per
 //! face corner (`facevarying`) or, for `N`, per face (`uniform`) or one for all
 //! (`constant`). stagelight meshes carry one normal and one uv per vertex, so a point whose
@@ -15,9 +15,9 @@ use crate::scene::desc::V3;
 /// How a polygon mesh's faces lie in its face-corner and per-face value lists.
 #[derive(Debug, Clone, Default)]
 pub struct FaceLayout {
-    /// For each face made, the index of its first corner among all corners written (hole
-    /// loops, which are not made, keep their corners in the count).
-    pub first_corner: Vec<usize>,
+    /// For each face made, the index of each of its vertices among all corners written
+    /// (the triangles of a polygon with holes name the corners of its loops).
+    pub corners_of: Vec<Vec<usize>>,
     /// For each face made, the index of its value among the per-face (`uniform`) values.
     pub uniform: Vec<usize>,
     /// Number of face corners written (the length of the vertex index list).
@@ -30,7 +30,7 @@ impl FaceLayout {
     /// One face through every point (`Polygon`, `GeneralPolygon`).
     pub fn single(points: usize) -> Self {
         Self {
-            first_corner: vec![0],
+            corners_of: vec![(0..points).collect()],
             uniform: vec![0],
             corners: points,
             faces: 1,
@@ -204,16 +204,25 @@ pub fn mesh_variables(
         }
         None => None,
     };
-    // `st`, or `s` and `t` (both needed), as one or two variables.
+    // `st`, or `s` and `t` as two variables, each replacing its default alone: a polygon
+    // has no parametric coordinates, so the one not given is 0 (as with neither given).
+    const DEFAULT: Var<'static> = Var {
+        per: Per::Whole,
+        data: &[0.0],
+        width: 1,
+    };
     let mut uv: Vec<Var<'_>> = Vec::new();
     if let Some(p) = find("st") {
         paths.push((".uvs".to_string(), p.pos()));
         uv.push(read(p, (2, false), mesh, problems)?);
-    } else if let (Some(s), Some(t)) = (find("s"), find("t")) {
-        paths.push((".uvs".to_string(), s.pos()));
-        let s = read(s, (1, false), mesh, problems)?;
-        let t = read(t, (1, false), mesh, problems)?;
-        uv.extend([s, t]);
+    } else if let Some(first) = find("s").or(find("t")) {
+        paths.push((".uvs".to_string(), first.pos()));
+        for name in ["s", "t"] {
+            uv.push(match find(name) {
+                Some(p) => read(p, (1, false), mesh, problems)?,
+                None => DEFAULT,
+            });
+        }
     }
     let vars: Vec<&Var<'_>> = normal.iter().chain(&uv).collect();
     let width: usize = vars.iter().map(|v| v.width).sum();
@@ -250,14 +259,15 @@ pub fn mesh_variables(
         let mut assigned = vec![false; n];
         let mut copies: HashMap<(usize, Vec<u64>), u32> = HashMap::new();
         for (f, face) in polygons.iter_mut().enumerate() {
-            let first = layout.first_corner.get(f).copied().unwrap_or(0);
+            let corners = layout.corners_of.get(f);
             let uniform = layout.uniform.get(f).copied().unwrap_or(0);
             for (k, index) in face.iter_mut().enumerate() {
                 let p = *index as usize;
                 if p >= n {
                     continue; // reported by validation, at the index
                 }
-                let value = value_at(p, first + k, uniform);
+                let corner = corners.and_then(|c| c.get(k)).copied().unwrap_or(k);
+                let value = value_at(p, corner, uniform);
                 if !assigned[p] {
                     assigned[p] = true;
                     values[p] = value;

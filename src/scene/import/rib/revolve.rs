@@ -51,6 +51,7 @@ fn revolve(profile: &[(f64, f64)], theta_max: f64) -> MeshDesc {
         knots_u,
         knots_v,
         points,
+        variables: Default::default(),
     }
 }
 
@@ -105,6 +106,7 @@ pub fn hyperboloid(p1: V3, p2: V3, theta_max: f64) -> Result<MeshDesc, String> {
         knots_u,
         knots_v: vec![0.0, 0.0, 1.0, 1.0],
         points,
+        variables: Default::default(),
     })
 }
 
@@ -123,6 +125,7 @@ mod tests {
             knots_u,
             knots_v,
             points,
+            ..
         } = mesh
         else {
             panic!("{mesh:?}")

@@ -63,6 +63,11 @@ pub struct Attributes {
     pub displacement: Option<ShaderCall>,
     /// `AreaLightSource` in effect, default none.
     pub area_light: Option<ShaderCall>,
+    /// The area light (see [`super::area_lights`]) whose surfaces the primitives that
+    /// follow are.
+    pub area_light_id: Option<usize>,
+    /// Area lights switched off by `Illuminate handle 0` for the primitives that follow.
+    pub area_lights_off: Vec<usize>,
     /// `Sides`, default 2.
     pub sides: u32,
     /// Whether the current orientation differs from the handedness of the current
@@ -130,6 +135,8 @@ impl Default for Attributes {
             surface: None,
             displacement: None,
             area_light: None,
+            area_light_id: None,
+            area_lights_off: Vec::new(),
             sides: 2,
             inside_out: false,
             true_displacement: false,
