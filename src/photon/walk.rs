@@ -219,6 +219,11 @@ impl Walk {
         self.passed = 0;
         if let Some((falloff, from)) = self.falloff.take() {
             self.power *= falloff.factor(sp.surface.p.distance(from));
+            // d² beyond f32 (a surface ~1e19 from a light without 1/d²): no estimate to
+            // make, and no infinity or NaN carried into the map.
+            if !self.power.is_finite() {
+                self.power = Vec3::ZERO;
+            }
         }
         let v = PhotonVertex::new(ctx, &ray, hit, *sp);
         let through = self.power * v.transmittance;
@@ -394,6 +399,49 @@ mod tests {
                 assert_eq!(walk.fate().absorbed, Vec3::ONE);
             }
         }
+    }
+
+    /// A light without 1/d² (`Falloff`): the first hit's power is times d², and times the
+    /// attenuation ramp; a d² past f32 gives no infinite or NaN photon.
+    #[test]
+    fn the_first_hit_takes_the_lights_distance_terms() {
+        use crate::photon::emit::Falloff;
+        let geometry = fixture::geometry(vec![fixture::Object {
+            triangles: fixture::floor(100.0, 0.0),
+            material: fixture::lambert(0.5),
+        }]);
+        let lights = LightSet::default();
+        let s = RenderSettings::default();
+        let ctx = ShadeContext::new(&geometry, &lights, &s);
+        let first_deposit = |height: f32, falloff: Falloff| {
+            let ray = Ray {
+                origin: Vec3::new(0.0, 0.0, height),
+                dir: Vec3::NEG_Z,
+                t_max: f32::INFINITY,
+            };
+            let mut walk = Walk::new(&ctx, ray, Vec3::splat(1e10)).with_falloff(Some(falloff));
+            let hit = ctx.geometry.accel.intersect(walk.ray());
+            let mut got = None;
+            walk.step(&ctx, &[], hit, &mut Sampler::new(1, 0), true, &mut |d| {
+                got.get_or_insert(d.photon.power);
+            });
+            got
+        };
+        let no_falloff = Falloff {
+            inverse_square: false,
+            attenuation: None,
+        };
+        let d3 = first_deposit(3.0, no_falloff).expect("a deposit on the floor");
+        assert!((d3.x / 9e10 - 1.0).abs() < 1e-5, "{d3}");
+        let ramp = Falloff {
+            inverse_square: true,
+            attenuation: Some((2.0, 4.0)),
+        };
+        let r3 = first_deposit(3.0, ramp).expect("a deposit on the floor");
+        assert!((r3.x / 5e9 - 1.0).abs() < 1e-5, "{r3}");
+        // 1e15 away: d² × 1e10 is past f32; stored with no power, never infinite.
+        let far = first_deposit(1e15, no_falloff);
+        assert_eq!(far, Some(Vec3::ZERO));
     }
 
     /// A walk without its fate deposits what a full walk deposits and ends at the same
