@@ -5,7 +5,6 @@
 use std::path::{Path, PathBuf};
 
 use stagelight::components::LightPhotons;
-use stagelight::frame::Frame;
 use stagelight::scene::desc::{
     FaceDesc, PhotonDepthDesc, PhotonFilterDesc, PhotonMapDesc, PhotonMapFileDesc,
 };
@@ -134,13 +133,7 @@ fn the_seed_caustics_scene_traces_caustic_photons() {
     let mut settings = scene.settings.clone();
     // Keep the maps in memory (the seed names a photon map file).
     settings.photon_map = None;
-    let mut frame = Frame::new(settings);
-    let stages: Vec<_> = stagelight::systems::STAGES
-        .iter()
-        .copied()
-        .take_while(|s| s.name != "bake_lightmaps")
-        .collect();
-    stagelight::schedule::run_stages(&stages, &mut scene.world, &mut frame).unwrap();
+    let frame = crate::common::through_photons(&mut scene.world, settings);
     let maps = frame.outputs.photons.expect("trace_photons ran");
     let stored = maps.caustics.map_or(0, |m| m.map.len());
     assert!(stored > 100, "{stored} caustic photons stored");

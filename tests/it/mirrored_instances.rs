@@ -294,15 +294,7 @@ fn a_mirrored_emitter_emits_from_its_object_space_front() {
     // Photons: the power the global map stores on the floor.
     let stored = |transform: &str| {
         let source = text(transform, "global_illumination: (photons: 4000)");
-        let mut scene = stagelight::scene::load_scene_str(&source, Path::new("panel.ron"))
-            .unwrap_or_else(|e| panic!("{e}"));
-        let mut frame = stagelight::frame::Frame::new(scene.settings.clone());
-        let stages: Vec<_> = stagelight::systems::STAGES
-            .iter()
-            .copied()
-            .take_while(|s| s.name != "bake_lightmaps")
-            .collect();
-        stagelight::schedule::run_stages(&stages, &mut scene.world, &mut frame).expect("photons");
+        let frame = crate::common::photon_frame(&source, "panel.ron");
         frame
             .outputs
             .photons

@@ -4,11 +4,7 @@
 //! unlimited one exactly (a photon cannot refract a third time through one convex ball);
 //! a reflection or sum limit keeps a subset of the unlimited map's photons.
 
-use std::path::Path;
-
-use stagelight::frame::Frame;
 use stagelight::photon::Photon;
-use stagelight::scene::load_scene_str;
 
 /// A glass ball (radius 0.6, centre height 0.9) over a floor under a point light; a caustic
 /// map of 4000 photons aimed at the ball; `depth` is the `photon_depth` text, if any.
@@ -41,14 +37,7 @@ fn scene(depth: &str) -> String {
 
 fn caustic_photons(depth: &str) -> Vec<Photon> {
     let text = scene(depth);
-    let mut scene = load_scene_str(&text, Path::new("ball.ron")).unwrap_or_else(|e| panic!("{e}"));
-    let mut frame = Frame::new(scene.settings.clone());
-    let stages: Vec<_> = stagelight::systems::STAGES
-        .iter()
-        .copied()
-        .take_while(|s| s.name != "bake_lightmaps")
-        .collect();
-    stagelight::schedule::run_stages(&stages, &mut scene.world, &mut frame).expect("photons");
+    let frame = crate::common::photon_frame(&text, "ball.ron");
     frame
         .outputs
         .photons

@@ -6,11 +6,7 @@
 //! plain 1/d² photons. Before, every photon fell off as 1/d² and ignored `attenuation`: a
 //! non-inverse-square light's indirect light was a tenth of the path tracer's.
 
-use std::path::Path;
-
-use stagelight::frame::Frame;
 use stagelight::photon::GatherMap;
-use stagelight::scene::load_scene_str;
 
 /// Half the side of the floor (z = 0) and the light's height above its centre.
 const HALF: f64 = 2.0;
@@ -38,15 +34,7 @@ fn scene(light: &str) -> String {
 
 /// The global map's stored power, W (only first hits: bounces leave the open scene).
 fn stored(light: &str) -> f64 {
-    let mut scene =
-        load_scene_str(&scene(light), Path::new("floor.ron")).unwrap_or_else(|e| panic!("{e}"));
-    let mut frame = Frame::new(scene.settings.clone());
-    let stages: Vec<_> = stagelight::systems::STAGES
-        .iter()
-        .copied()
-        .take_while(|s| s.name != "bake_lightmaps")
-        .collect();
-    stagelight::schedule::run_stages(&stages, &mut scene.world, &mut frame).expect("photons");
+    let frame = crate::common::photon_frame(&scene(light), "floor.ron");
     let map: GatherMap = frame.outputs.photons.and_then(|m| m.global).expect("map");
     f64::from(map.map.total_power().x)
 }

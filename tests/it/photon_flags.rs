@@ -64,14 +64,7 @@ fn load(text: &str) -> LoadedScene {
 
 /// Runs the stages up to and including `trace_photons`.
 fn photon_pass(scene: &mut LoadedScene, settings: RenderSettings) -> Frame {
-    let mut frame = Frame::new(settings);
-    let stages: Vec<_> = stagelight::systems::STAGES
-        .iter()
-        .copied()
-        .take_while(|s| s.name != "bake_lightmaps")
-        .collect();
-    stagelight::schedule::run_stages(&stages, &mut scene.world, &mut frame).expect("photon pass");
-    frame
+    crate::common::through_photons(&mut scene.world, settings)
 }
 
 fn maps(text: &str) -> (Option<GatherMap>, Option<GatherMap>) {

@@ -2,11 +2,7 @@
 //! receives none of its caustic or global photons, and every other surface keeps exactly the
 //! photons it has without the list.
 
-use std::path::Path;
-
-use stagelight::frame::Frame;
 use stagelight::photon::{Photon, PhotonMaps};
-use stagelight::scene::load_scene_str;
 
 /// A floor in two halves (`left` x < 0 with material `left`, `right` x > 0) under a
 /// downward-facing mirror at height 3, lit by point lights `a` (over the left half) and `b`
@@ -48,14 +44,7 @@ fn scene(b_photons: u32, list: &str) -> String {
 }
 
 fn maps(text: &str) -> PhotonMaps {
-    let mut scene = load_scene_str(text, Path::new("floor.ron")).unwrap_or_else(|e| panic!("{e}"));
-    let mut frame = Frame::new(scene.settings.clone());
-    let stages: Vec<_> = stagelight::systems::STAGES
-        .iter()
-        .copied()
-        .take_while(|s| s.name != "bake_lightmaps")
-        .collect();
-    stagelight::schedule::run_stages(&stages, &mut scene.world, &mut frame).expect("photons");
+    let frame = crate::common::photon_frame(text, "floor.ron");
     frame.outputs.photons.expect("photon maps")
 }
 

@@ -2,11 +2,7 @@
 //! photons (`(0, 0, 0)`: mental ray's light without energy, no photons) and
 //! `caustic_photons` / `globillum_photons` give a light its own photon count.
 
-use std::path::Path;
-
-use stagelight::frame::Frame;
 use stagelight::photon::GatherMap;
-use stagelight::scene::load_scene_str;
 
 /// A grey floor under two point lights (`a` at height 1, `b` at height 2, intensity 1 each),
 /// a global map of `photons` photons; `a` and `b` carry the extra fields given.
@@ -31,14 +27,7 @@ fn scene(photons: u32, a: &str, b: &str) -> String {
 }
 
 fn global_map(text: &str) -> Option<GatherMap> {
-    let mut scene = load_scene_str(text, Path::new("floor.ron")).unwrap_or_else(|e| panic!("{e}"));
-    let mut frame = Frame::new(scene.settings.clone());
-    let stages: Vec<_> = stagelight::systems::STAGES
-        .iter()
-        .copied()
-        .take_while(|s| s.name != "bake_lightmaps")
-        .collect();
-    stagelight::schedule::run_stages(&stages, &mut scene.world, &mut frame).expect("photons");
+    let frame = crate::common::photon_frame(text, "floor.ron");
     frame.outputs.photons.and_then(|m| m.global)
 }
 

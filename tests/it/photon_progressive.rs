@@ -2,13 +2,9 @@
 //! hard case H21) on an analytic caustic — a point light over a perfect mirror lights a
 //! diffuse ceiling as its mirror image would: `E(x) = I·(H + h) / d³`.
 
-use std::path::Path;
-
 use glam::Vec3;
-use stagelight::frame::Frame;
 use stagelight::photon::progressive::gather_passes;
 use stagelight::photon::{GatherMap, PhotonMap};
-use stagelight::scene::load_scene_str;
 use stagelight::settings::PhotonFilter;
 
 /// Light height `h` over the mirror (z = 0) and ceiling height `H`.
@@ -47,20 +43,11 @@ fn scene(caustics: &str) -> String {
 /// The caustic map of `scene(caustics)`, traced on `threads` threads.
 fn caustic_map(caustics: &str, threads: usize) -> GatherMap {
     let text = scene(caustics);
-    let mut scene =
-        load_scene_str(&text, Path::new("mirror.ron")).unwrap_or_else(|e| panic!("{e}"));
-    let mut frame = Frame::new(scene.settings.clone());
-    let stages: Vec<_> = stagelight::systems::STAGES
-        .iter()
-        .copied()
-        .take_while(|s| s.name != "bake_lightmaps")
-        .collect();
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()
         .unwrap();
-    pool.install(|| stagelight::schedule::run_stages(&stages, &mut scene.world, &mut frame))
-        .expect("photon pass");
+    let frame = pool.install(|| crate::common::photon_frame(&text, "mirror.ron"));
     frame
         .outputs
         .photons

@@ -23,14 +23,7 @@ use stagelight::shading::{LightSet, ShadeContext};
 /// that renders).
 fn photon_pass(world: &mut World, settings: RenderSettings) -> Frame {
     common::camera(world, Vec3::new(0.0, -1.0, 30.0), Vec3::ZERO, 10.0, 1, 1);
-    let mut frame = Frame::new(settings);
-    let stages: Vec<_> = stagelight::systems::STAGES
-        .iter()
-        .copied()
-        .take_while(|s| s.name != "bake_lightmaps")
-        .collect();
-    stagelight::schedule::run_stages(&stages, world, &mut frame).expect("photon pass");
-    frame
+    common::through_photons(world, settings)
 }
 
 /// Geometry of a world built by the first stages.

@@ -4,6 +4,7 @@
 pub mod cli;
 mod meshes;
 mod mi_text;
+mod photon_pass;
 pub mod png;
 mod rays;
 mod scene_text;
@@ -11,6 +12,7 @@ mod scratch;
 pub use cli::*;
 pub use meshes::*;
 pub use mi_text::*;
+pub use photon_pass::*;
 pub use rays::*;
 pub use scene_text::*;
 pub use scratch::scratch_root;
