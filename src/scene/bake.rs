@@ -85,8 +85,10 @@ fn request(
         }
         (None, Some(density)) => {
             let p = format!("{path}.texels_per_unit");
-            if !ck.finite(&p, "texels_per_unit", density) || density <= 0.0 {
-                if density.is_finite() {
+            let finite = ck.finite(&p, "texels_per_unit", density);
+            if !finite || density <= 0.0 {
+                // A value past f32's range was reported by `finite` already.
+                if finite {
                     ck.error(
                         &p,
                         format!("texels_per_unit must be positive, found {density}"),

@@ -321,6 +321,26 @@ fn bake_uvs_that_cover_no_texel_are_refused() {
     }
 }
 
+/// A bake density past f32's range is one error: it also said `texels_per_unit must be
+/// positive, found 1000000000000000000000000000000000000000`, which is false.
+#[test]
+fn a_bake_density_past_f32_is_one_error() {
+    let dir = scratch_dir("bake-density-1e39");
+    let scene = small_scene(
+        r#"(name: "quad", mesh: Grid(size_x: 1, size_y: 1), material: "grey"),"#,
+        r#"(name: "q", of: "quad", bake: (texels_per_unit: 1e39, outputs: [(kind: AmbientOcclusion(samples: 1))]))"#,
+        "",
+        "",
+    );
+    std::fs::write(dir.join("scene.ron"), scene).unwrap();
+    let o = run_in(&dir, &["check", "scene.ron"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert_eq!(
+        stderr_of(&o),
+        "scene.ron:7:65: error: texels_per_unit 1e39 is beyond the f32 range\n1 error in scene.ron\n"
+    );
+}
+
 /// RIB `ReadArchive` and `.mi` `$include` files stop at the scene-file size limit too.
 #[test]
 fn an_endless_archive_or_mi_include_stops_at_the_size_limit() {
