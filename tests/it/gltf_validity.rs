@@ -333,6 +333,41 @@ fn fallback_node_names_yield_to_the_files_names() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// A repeated name's suffix skips the file's own node names: nodes `box`, `box`, `box_2` are
+/// `box`, `box_3`, `box_2` (the second `box` took `box_2`, and the user's `box_2` became
+/// `box_2_2`, so `box_2_lightmap.png` belonged to the wrong node), in either order.
+#[test]
+fn repeated_names_skip_the_files_node_names() {
+    let dir = scratch_dir("gltf_validity_repeats");
+    for (list, roots) in [
+        (
+            r#"{"name": "box", "mesh": 0}, {"name": "box", "mesh": 0}, {"name": "box_2", "mesh": 0, "translation": [5, 0, 0]}"#,
+            "0, 1, 2",
+        ),
+        (
+            r#"{"name": "box_2", "mesh": 0, "translation": [5, 0, 0]}, {"name": "box", "mesh": 0}, {"name": "box", "mesh": 0}"#,
+            "0, 1, 2",
+        ),
+    ] {
+        let path = write(&dir, "repeats.gltf", &nodes(list, roots));
+        assert_eq!(instance_names(&path), ["box", "box_2", "box_3"], "{list}");
+        // `box_2` is the user's node (the one moved to x = 5).
+        let scene = stagelight::scene::load_scene(&path).unwrap_or_else(|e| panic!("{e}"));
+        let moved: Vec<(String, f32)> = scene
+            .world
+            .query::<(
+                &stagelight::components::BakeRequest,
+                &stagelight::components::WorldFromObject,
+            )>()
+            .iter()
+            .map(|(r, m)| (r.name.clone(), m.0.translation.x))
+            .filter(|(_, x)| *x != 0.0)
+            .collect();
+        assert_eq!(moved, [("box_2".to_string(), 5.0)], "{list}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 /// Integer `TEXCOORD_0` must be normalised (the specification's accessor types; raw integers
 /// need `KHR_mesh_quantization`), like `COLOR_0`.
 #[test]

@@ -61,6 +61,9 @@ const MAX_NODE_DEPTH: usize = 64;
 #[derive(Debug, Default)]
 pub struct Names {
     used: HashSet<String>,
+    /// The file's own node names (made safe): a repeat's `_2`, `_3`, … skips them, so a
+    /// node the user named `box_2` keeps that name beside two nodes named `box`.
+    reserved: HashSet<String>,
 }
 
 /// `preferred` made safe for a file name: letters, digits, `_`, `-`, `.`; others become
@@ -115,17 +118,29 @@ fn node_labels(doc: &gltf::Document) -> Vec<String> {
 }
 
 impl Names {
+    /// Names that keep the node names `reserved` for their nodes (see [`Names::reserved`]).
+    fn reserving(reserved: HashSet<String>) -> Self {
+        Self {
+            used: HashSet::new(),
+            reserved,
+        }
+    }
+
     /// `preferred` made safe (letters, digits, `_`, `-`, `.`; others become `_`) and unique
-    /// (`_2`, `_3`, … appended).
+    /// (`_2`, `_3`, … appended, skipping the file's own node names).
     pub fn take(&mut self, preferred: &str) -> String {
         let base = safe(preferred);
-        let mut name = base.clone();
+        if self.used.insert(base.clone()) {
+            return base;
+        }
         let mut k = 2;
-        while !self.used.insert(name.clone()) {
-            name = format!("{base}_{k}");
+        loop {
+            let name = format!("{base}_{k}");
+            if !self.reserved.contains(&name) && self.used.insert(name.clone()) {
+                return name;
+            }
             k += 1;
         }
-        name
     }
 }
 
@@ -567,7 +582,12 @@ fn build(
         )]
         .into());
     };
-    let mut names = Names::default();
+    let mut names = Names::reserving(
+        doc.nodes()
+            .filter_map(|n| given(n.name()))
+            .map(safe)
+            .collect(),
+    );
     let mut desc = SceneDesc::default();
     let mut w = Walk {
         file,
@@ -666,6 +686,24 @@ mod tests {
         assert_eq!(n.take("a/b c"), "a_b_c");
         assert_eq!(n.take(""), "_");
         assert_eq!(n.take("../x"), "_.._x");
+    }
+
+    /// A repeat's suffix skips the file's node names: with nodes `box`, `box`, `box_2`,
+    /// the second `box` is `box_3` whichever comes first (it took `box_2`, and the user's
+    /// `box_2` became `box_2_2`).
+    #[test]
+    fn repeats_skip_the_files_node_names() {
+        let reserved = || ["box", "box_2"].map(String::from).into_iter().collect();
+        let mut n = Names::reserving(reserved());
+        assert_eq!(
+            [n.take("box"), n.take("box"), n.take("box_2")],
+            ["box", "box_3", "box_2"]
+        );
+        let mut n = Names::reserving(reserved());
+        assert_eq!(
+            [n.take("box_2"), n.take("box"), n.take("box")],
+            ["box_2", "box", "box_3"]
+        );
     }
 
     #[test]
