@@ -12,7 +12,7 @@ use glam::{DVec3, Vec2, Vec3, Vec4};
 
 use super::desc::{ObjectDesc, V3};
 use super::diagnostics::{Diagnostic, Sources};
-use super::mesh_files::{self, Location, MeshData, MeshFileError, MeshFormat};
+use super::mesh_files::{self, Location, MeshData, MeshFileError, MeshFormat, PartialAttributes};
 use super::validate::{Checker, Item};
 use crate::components::TriMesh;
 
@@ -25,6 +25,8 @@ pub struct BuiltMesh {
     pub dropped: usize,
     /// Whether a normal set was dropped because of a bad entry.
     pub dropped_normals: bool,
+    /// Attributes the file gives some face vertices and not others, dropped (OBJ).
+    pub partial: PartialAttributes,
     /// The mesh's second UV set (glTF `TEXCOORD_1`), one per vertex of `mesh`, for bakes
     /// with `uvs: MeshSet(1)`.
     pub uvs1: Option<Vec<Vec2>>,
@@ -180,15 +182,19 @@ pub fn build_inline(
 /// Drops degenerate and non-finite triangles and normalises normals; every vertex keeps its
 /// index. Indices must be in range.
 fn finish(data: MeshData) -> BuiltMesh {
-    finish_with_polygons(
-        data.positions,
-        data.normals,
-        [data.uvs, data.uvs1],
-        data.colours,
-        data.tangents,
-        data.triangles,
-        Vec::new(),
-    )
+    let partial = data.partial;
+    BuiltMesh {
+        partial,
+        ..finish_with_polygons(
+            data.positions,
+            data.normals,
+            [data.uvs, data.uvs1],
+            data.colours,
+            data.tangents,
+            data.triangles,
+            Vec::new(),
+        )
+    }
 }
 
 /// [`finish`], keeping `polygon_of` (one entry per triangle, or empty) in step with the kept
@@ -257,6 +263,7 @@ fn finish_with_polygons(
         mesh,
         dropped,
         dropped_normals: bad_normals,
+        partial: PartialAttributes::default(),
         uvs1,
         colours,
         tangents,
@@ -283,15 +290,18 @@ fn from_data_grouped(mut data: MeshData, mesh: &super::desc::MeshDesc) -> BuiltM
     };
     let order: Vec<String> = slots.iter().map(|(usemtl, _)| usemtl.clone()).collect();
     let polygon_of = data.group_by_material(&order);
-    finish_with_polygons(
-        data.positions,
-        data.normals,
-        [data.uvs, data.uvs1],
-        data.colours,
-        data.tangents,
-        data.triangles,
-        polygon_of,
-    )
+    BuiltMesh {
+        partial: data.partial,
+        ..finish_with_polygons(
+            data.positions,
+            data.normals,
+            [data.uvs, data.uvs1],
+            data.colours,
+            data.tangents,
+            data.triangles,
+            polygon_of,
+        )
+    }
 }
 
 /// The faces of one `usemtl` material when an `Obj(…, usemtl: …)` mesh asks for them.

@@ -287,19 +287,15 @@ fn load(
             })
         })
         .collect();
-    let bakes = bake::bake_requests(src, &merged, &leaves, &has_uvs);
-    if sources.has_errors() {
-        return Err(sources.refuse());
-    }
-
     // What the mesh loader dropped, located at the object's mesh.
     for (it, b) in merged.objects.iter().zip(&built) {
         let Some(b) = b else { continue };
         let name = &it.desc.name;
-        let mut warn = |message: String| {
-            let pos = sources.pos(it.file, &it.at(".mesh"));
-            sources.push_warning(it.file, Diagnostic::at(pos, message, None));
+        let mut warn_with = |message: String, help: Option<String>| {
+            let pos = src.pos(it.file, &it.at(".mesh"));
+            src.push_warning(it.file, Diagnostic::at(pos, message, help));
         };
+        let mut warn = |message: String| warn_with(message, None);
         if b.dropped > 0 {
             let s = if b.dropped == 1 { "" } else { "s" };
             warn(format!(
@@ -312,7 +308,24 @@ fn load(
                 "mesh \"{name}\": ignored its normals (one is non-finite or zero)"
             ));
         }
+        let file = mesh_files::mesh_file(&it.desc.mesh).map_or("", |(_, f)| f);
+        for (what, statement, at) in [
+            ("texture coordinates", "vt", b.partial.uvs),
+            ("normals", "vn", b.partial.normals),
+        ] {
+            if let Some((line, column)) = at {
+                warn_with(
+                    format!("mesh \"{name}\": has no {what}: the face vertex at {file}:{line}:{column} names no `{statement}` while others do"),
+                    Some(format!("a mesh keeps {what} only when every face vertex names one: give that face's vertices `{statement}` indices")),
+                );
+            }
+        }
     }
+    let bakes = bake::bake_requests(src, &merged, &leaves, &has_uvs);
+    if sources.has_errors() {
+        return Err(sources.refuse());
+    }
+
     geometry::warnings(&mut sources, &merged, &object_geometry);
     let objects = built
         .into_iter()

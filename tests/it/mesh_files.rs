@@ -97,6 +97,31 @@ fn face_with_missing_vn() {
     );
 }
 
+/// Texture coordinates and normals that some faces name and one does not are dropped for the
+/// whole mesh with a warning at the object's mesh naming the face vertex that lacks them
+/// (they were dropped silently, and a bake with `uvs: Mesh` then said the mesh had none).
+#[test]
+fn attributes_some_faces_leave_out_are_dropped_with_a_warning() {
+    let scene = load("Obj(file: \"partial_vt_vn.obj\")").unwrap_or_else(|e| panic!("{e:?}"));
+    let mesh = mesh_of(&scene);
+    assert_eq!((mesh.uvs.is_some(), mesh.normals.is_some()), (false, false));
+    assert_eq!(
+        scene.located_warnings,
+        [
+            format!("{DIR}/scene.ron:2:37: warning: mesh \"thing\": has no texture coordinates: the face vertex at partial_vt_vn.obj:14:3 names no `vt` while others do\n  help: a mesh keeps texture coordinates only when every face vertex names one: give that face's vertices `vt` indices"),
+            format!("{DIR}/scene.ron:2:37: warning: mesh \"thing\": has no normals: the face vertex at partial_vt_vn.obj:14:3 names no `vn` while others do\n  help: a mesh keeps normals only when every face vertex names one: give that face's vertices `vn` indices"),
+        ]
+    );
+    // A file whose faces all name them keeps them, with no warning.
+    let scene = load("Obj(file: \"box.obj\")").unwrap_or_else(|e| panic!("{e:?}"));
+    assert!(mesh_of(&scene).uvs.is_some());
+    assert!(
+        scene.located_warnings.is_empty(),
+        "{:?}",
+        scene.located_warnings
+    );
+}
+
 /// An object name that is not UTF-8 is an error at its first bad byte.
 #[test]
 fn name_that_is_not_utf8() {

@@ -132,6 +132,20 @@ pub struct MeshData {
     pub triangles: Vec<[u32; 3]>,
     /// OBJ material libraries and per-triangle materials, when the file names either.
     pub materials: Option<FaceMaterials>,
+    /// Attributes some face vertices name and others do not (OBJ), so the mesh has none.
+    pub partial: PartialAttributes,
+}
+
+/// Where an OBJ file first leaves out an attribute that other face vertices name (`v//vn`
+/// beside `v/vt/vn`): `(line, column)` of that face vertex, 1-based, for texture
+/// coordinates and normals. The attribute is dropped for the whole mesh (a mesh keeps one
+/// only when every vertex has one); the loader warns there.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct PartialAttributes {
+    /// The first face vertex without `vt`, when others have one.
+    pub uvs: Option<(usize, usize)>,
+    /// The first face vertex without `vn`, when others have one.
+    pub normals: Option<(usize, usize)>,
 }
 
 /// A `mtllib` file an OBJ file names, and where.

@@ -15,7 +15,8 @@
 //!   `v/vt/vn` triple becomes one vertex, numbered in order of first use, and the models
 //!   are concatenated;
 //! - a face `a b c d …` is fan-triangulated into `(a, b, c), (a, c, d), …`;
-//! - normals (texture coordinates) are kept only when every face vertex names one.
+//! - normals (texture coordinates) are kept only when every face vertex names one; where some
+//!   do and others do not, [`super::PartialAttributes`] says where the first one without is.
 //!
 //! A line ending in a backslash continues on the next one (the OBJ specification's line
 //! continuation; [`super::obj_lines`]): errors still name the line and column where the
@@ -37,7 +38,9 @@ use std::collections::HashMap;
 use glam::{DVec3, Vec2, Vec3};
 
 use super::obj_lines::{logical_lines, LogicalLine};
-use super::{shown, FaceMaterials, MaterialLibrary, MeshData, MeshFileError, UsedMaterial};
+use super::{
+    shown, FaceMaterials, MaterialLibrary, MeshData, MeshFileError, PartialAttributes, UsedMaterial,
+};
 
 /// Valid OBJ statements that carry nothing this reader uses (besides the names it checks).
 const IGNORED: &[&[u8]] = &[
@@ -125,6 +128,9 @@ struct Reader {
     current: u32,
     /// The material of each triangle (index into `used`, or [`NONE`]).
     triangle_material: Vec<u32>,
+    /// `(line, column)` of the first face vertex without `vt` (`[1]`) and without `vn`
+    /// (`[2]`); `[0]` unused.
+    first_without: [Option<(usize, usize)>; 3],
 }
 
 /// An error inside a line: byte offset in the line and message.
@@ -335,6 +341,11 @@ impl Reader {
             }
             out[kind] = index as u32;
         }
+        for (index, first) in out.iter().zip(&mut self.first_without).skip(1) {
+            if *index == NONE && first.is_none() {
+                *first = Some(line.at(offset));
+            }
+        }
         Ok(out)
     }
 
@@ -369,6 +380,14 @@ impl Reader {
             (!self.vertices.is_empty() && self.vertices.iter().all(|v| v[kind] != NONE))
                 .then_some(())
         };
+        // Dropped because some face vertices name it and others do not.
+        let partial = |kind: usize| {
+            self.first_without[kind].filter(|_| self.vertices.iter().any(|v| v[kind] != NONE))
+        };
+        let partial = PartialAttributes {
+            uvs: partial(1),
+            normals: partial(2),
+        };
         let uvs = attribute(1).map(|()| {
             self.vertices
                 .iter()
@@ -396,6 +415,7 @@ impl Reader {
             tangents: None,
             triangles: self.triangles,
             materials,
+            partial,
         })
     }
 }

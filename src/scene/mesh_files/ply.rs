@@ -728,6 +728,7 @@ fn read(h: &Header, layout: &Layout, mut values: impl Values) -> Result<MeshData
         tangents: None,
         triangles,
         materials: None,
+        partial: Default::default(),
     })
 }
 
