@@ -4,7 +4,8 @@
 //! `KHR_lights_punctual` values outside the extension's ranges are errors naming the light
 //! (never clamped), error paths use the file's names (`KHR_lights_punctual`); morph
 //! targets, skins and material extensions the reader does not read are located warnings;
-//! glTF 1.0, 3.0 and a newer `minVersion` are refused; unnamed and empty-named nodes get
+//! glTF 1.0, 3.0 and a newer `minVersion` are refused; a node listed twice as a root or a
+//! child is an error; unnamed and empty-named nodes get
 //! fallback names that yield to the file's; integer `TEXCOORD_n` must be normalised.
 
 use std::path::Path;
@@ -365,6 +366,51 @@ fn repeated_names_skip_the_files_node_names() {
             .collect();
         assert_eq!(moved, [("box_2".to_string(), 5.0)], "{list}");
     }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A node listed twice among the scene's roots or among one node's children is an error at
+/// the list (the specification's `uniqueItems`): it made two coincident instances.
+#[test]
+fn repeated_roots_and_children_are_errors() {
+    let dir = scratch_dir("gltf_validity_unique");
+    let roots = nodes(
+        r#"{"name": "box", "mesh": 0}, {"name": "lid", "mesh": 0}"#,
+        "0, 1, 1",
+    );
+    write(&dir, "roots.gltf", &roots);
+    let o = run_in(&dir, &["check", "roots.gltf"]);
+    // At the scene's `nodes` list.
+    let at = after(&roots, "{\"nodes\": ");
+    assert_eq!(
+        (o.status.code(), stderr_of(&o)),
+        (
+            Some(1),
+            format!(
+                "roots.gltf:{at}: error: nodes[1] (\"lid\") is listed twice in the nodes of scenes[0]: a scene's root nodes are unique\n\
+                 \x20 help: list each root node once; to show a mesh twice, give it to two nodes\n\
+                 1 error in roots.gltf\n"
+            )
+        )
+    );
+    let children = nodes(
+        r#"{"name": "box", "mesh": 0}, {"name": "pair", "children": [0, 0]}"#,
+        "1",
+    );
+    write(&dir, "children.gltf", &children);
+    let o = run_in(&dir, &["check", "children.gltf"]);
+    let at = after(&children, "\"children\": ");
+    assert_eq!(
+        (o.status.code(), stderr_of(&o)),
+        (
+            Some(1),
+            format!(
+                "children.gltf:{at}: error: nodes[0] (\"box\") is listed twice in the children of nodes[1]: a node's children are unique\n\
+                 \x20 help: list each child once; to show a mesh twice, give it to two nodes\n\
+                 1 error in children.gltf\n"
+            )
+        )
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }
 

@@ -607,6 +607,7 @@ fn build(
     };
     materials::warn_unmapped(&mut w);
     node_checks::check(&mut w);
+    node_checks::check_roots(&mut w, &scene);
     if !w.errors.is_empty() {
         return Err(w.refusal());
     }

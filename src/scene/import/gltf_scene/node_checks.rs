@@ -190,10 +190,52 @@ pub fn check(w: &mut Walk<'_>) {
                     ),
                     "list the node under one parent; to show a mesh twice, give it to two nodes",
                 )),
-                Some(_) => {}
+                Some(_) => errors.push(located(
+                    w,
+                    node.index(),
+                    "children",
+                    format!(
+                        "{} is listed twice in the children of nodes[{}]: a node's children are unique",
+                        label(&child),
+                        node.index()
+                    ),
+                    "list each child once; to show a mesh twice, give it to two nodes",
+                )),
                 None => *slot = Some(node.index()),
             }
         }
+    }
+    w.errors.extend(errors);
+}
+
+/// An error for each node listed twice among the roots of `scene` (the specification's
+/// `uniqueItems`; it made two coincident instances, `box` and `box_2`).
+pub fn check_roots(w: &mut Walk<'_>, scene: &gltf::Scene<'_>) {
+    let mut seen = std::collections::HashSet::new();
+    let mut errors = Vec::new();
+    for node in scene.nodes() {
+        if seen.insert(node.index()) {
+            continue;
+        }
+        let path = [
+            Step::Key("scenes"),
+            Step::Index(scene.index()),
+            Step::Key("nodes"),
+        ];
+        let mut d = at_file(
+            w.path,
+            format!(
+                "{} is listed twice in the nodes of scenes[{}]: a scene's root nodes are unique",
+                label(&node),
+                scene.index()
+            ),
+        );
+        if let Some((line, column)) = w.json.and_then(|json| value_position(json, &path)) {
+            (d.line, d.column) = (line, column);
+        }
+        d.help =
+            Some("list each root node once; to show a mesh twice, give it to two nodes".into());
+        errors.push(d);
     }
     w.errors.extend(errors);
 }
