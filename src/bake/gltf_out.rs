@@ -5,7 +5,8 @@
 //! clone of the primitive's material (or of glTF's default material) — with the ambient
 //! occlusion as `occlusionTexture` and the lightmap as the `MSFT_lightmap` extension's
 //! `lightmapTexture`, both on `TEXCOORD_1`, and the node gets its own copy of the mesh
-//! (sharing the accessors) pointing at that material. The textures are the baked PNG files,
+//! (sharing the accessors) pointing at that material; the last user of a mesh (material)
+//! takes the original, so none is left unused. The textures are the baked PNG files,
 //! byte for byte, embedded as buffer views. All buffers are merged into the one `BIN` chunk
 //! and images the source kept in files or `data:` URIs are embedded too, so the copy stands
 //! alone. Per-vertex bakes become the primitive's `COLOR_0` (float RGB, [`color_source`]
@@ -84,7 +85,9 @@ pub fn color_source(
     )
 }
 
-/// The index of node `node`'s own copy of its mesh (made on first use).
+/// The index of node `node`'s own copy of its mesh (made on first use): the mesh itself when
+/// no other node shows it (so the last of the nodes sharing a mesh takes it, and no mesh is
+/// left unused), else a copy.
 fn mesh_copy(
     json: &mut Value,
     node_mesh: &mut Vec<(usize, usize)>,
@@ -96,6 +99,14 @@ fn mesh_copy(
     let Some(mesh) = json["nodes"][node]["mesh"].as_u64() else {
         return Err(format!("nodes[{node}] has no mesh"));
     };
+    let users = list(json, "nodes")
+        .iter()
+        .filter(|n| n["mesh"].as_u64() == Some(mesh))
+        .count();
+    if users == 1 {
+        node_mesh.push((node, mesh as usize));
+        return Ok(mesh as usize);
+    }
     let copy = json["meshes"][mesh as usize].clone();
     let meshes = list(json, "meshes");
     meshes.push(copy);
@@ -103,6 +114,18 @@ fn mesh_copy(
     json["nodes"][node]["mesh"] = json!(m);
     node_mesh.push((node, m));
     Ok(m)
+}
+
+/// How many primitives of the file's meshes use material `m`.
+fn material_users(json: &Value, m: u64) -> usize {
+    json["meshes"].as_array().map_or(0, |meshes| {
+        meshes
+            .iter()
+            .filter_map(|mesh| mesh["primitives"].as_array())
+            .flatten()
+            .filter(|p| p["material"].as_u64() == Some(m))
+            .count()
+    })
 }
 
 /// Adds `c.values` as a float VEC3 accessor and makes it `COLOR_0` of the primitive in the
@@ -268,13 +291,20 @@ pub fn baked_glb(
                         t.node, t.primitive
                     ));
                 }
-                let copy = match prim["material"].as_u64() {
-                    Some(m) => json["materials"][m as usize].clone(),
-                    None => json!({"name": "default"}),
+                let m = match prim["material"].as_u64() {
+                    // The material itself when no other primitive uses it (none is left
+                    // unused), else a copy.
+                    Some(m) if material_users(&json, m) == 1 => m as usize,
+                    source => {
+                        let copy = match source {
+                            Some(m) => json["materials"][m as usize].clone(),
+                            None => json!({"name": "default"}),
+                        };
+                        let materials = list(&mut json, "materials");
+                        materials.push(copy);
+                        materials.len() - 1
+                    }
                 };
-                let materials = list(&mut json, "materials");
-                materials.push(copy);
-                let m = materials.len() - 1;
                 json["meshes"][mesh_copy]["primitives"][t.primitive]["material"] = json!(m);
                 prim_material.push((key, m));
                 m

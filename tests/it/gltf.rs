@@ -465,6 +465,63 @@ fn a_baked_glb_embeds_the_baked_pngs() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// Two baked nodes sharing a mesh and its material: the baked copy gives each its own mesh
+/// and material with its own textures, and leaves no mesh or material unused (the last node
+/// takes the original; the copy kept the original mesh and material unused, which glTF
+/// validators flag).
+#[test]
+fn a_baked_glb_leaves_no_mesh_or_material_unused() {
+    use crate::common::cli;
+    use crate::gltf_spec::{quad, LIST, MATERIAL, PLAIN_UVS};
+    let dir = cli::scratch("gltf_write_gltf_shared");
+    let text = quad(PLAIN_UVS, &LIST)
+        .replace(
+            "PRIMITIVE",
+            r#"{"attributes": {"POSITION": 0, "TEXCOORD_0": 1, "TEXCOORD_1": 1}, "indices": 3, "material": 0}"#,
+        )
+        .replace("MATERIALS", MATERIAL)
+        .replace(
+            "NODES",
+            r#"{"name": "a", "mesh": 0}, {"name": "b", "mesh": 0, "translation": [2, 0, 0]}"#,
+        )
+        .replace("ROOTS", "0, 1");
+    let source = crate::gltf_spec::write(&dir, "shared.gltf", &text);
+    let out = dir.join("out");
+    let o = cli::run(cli::bin().args([
+        "bake",
+        source.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--write-gltf",
+        "--threads",
+        "1",
+    ]));
+    assert!(o.status.success(), "{}", cli::stderr(&o));
+    let bytes = std::fs::read(out.join("shared.glb")).unwrap();
+    let json_len = u32::from_le_bytes(bytes[12..16].try_into().unwrap()) as usize;
+    let json: serde_json::Value = serde_json::from_slice(&bytes[20..20 + json_len]).unwrap();
+    let nodes = json["nodes"].as_array().unwrap();
+    let meshes: Vec<u64> = nodes.iter().map(|n| n["mesh"].as_u64().unwrap()).collect();
+    assert_eq!(json["meshes"].as_array().unwrap().len(), 2);
+    assert_ne!(meshes[0], meshes[1]);
+    let materials: Vec<u64> = meshes
+        .iter()
+        .map(|&m| {
+            json["meshes"][m as usize]["primitives"][0]["material"]
+                .as_u64()
+                .unwrap()
+        })
+        .collect();
+    assert_eq!(json["materials"].as_array().unwrap().len(), 2);
+    assert_ne!(materials[0], materials[1]);
+    let occlusion: Vec<&serde_json::Value> = materials
+        .iter()
+        .map(|&m| &json["materials"][m as usize]["occlusionTexture"]["index"])
+        .collect();
+    assert_ne!(occlusion[0], occlusion[1]);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 /// The example asset loads with a default bake request on each of its three primitive
 /// instances (all have TEXCOORD_1), its camera and its light.
 #[test]
