@@ -92,6 +92,65 @@ fn nodes_called_in_the_wrong_style_name_their_form() {
     }
 }
 
+#[test]
+fn named_field_nodes_called_in_order_name_their_form_at_the_call() {
+    // `ron` said `unknown field "Uv" in Mix` (at the `Uv`), `found invalid std identifier
+    // "8", try the raw identifier `r#8` instead`, `expected comma` or `expected colon`.
+    for (input, form) in [
+        ("Mix(Uv, 1)", "Mix(a: …, b: …, t: …)"),
+        ("Mix(1, Uv)", "Mix(a: …, b: …, t: …)"),
+        ("Mix(a: Uv, Uv)", "Mix(a: …, b: …, t: …)"),
+        ("Smoothstep(Uv, 1)", "Smoothstep(edge0: …, edge1: …, x: …)"),
+        ("Convert(Uv)", "Convert(input: …, from: Rgb, to: Rgb)"),
+        ("Checker(8)", "Checker(uv: Uv, scale: 2, a: 1, b: 0)"),
+        (
+            "Disk(Uv)",
+            "Disk(uv: Uv, center: (0.5, 0.5), radius: 0.4, fuzz: 0, inside: (0, 0, 1), outside: (1, 0, 0))",
+        ),
+        ("Steps(2)", "Steps(uv: Uv, steps: 4, fuzz: 0.05)"),
+        ("Repeat(Uv, scale: 3)", "Repeat(uv: Uv, scale: 10)"),
+        ("Noise(2)", "Noise(p: Position, frequency: 1, seed: 0)"),
+        (
+            "Fbm(Position)",
+            "Fbm(p: Position, frequency: 1, octaves: 4, lacunarity: 2, gain: 0.5, seed: 0)",
+        ),
+        (
+            "Turbulence(Position)",
+            "Turbulence(p: Position, frequency: 1, octaves: 4, lacunarity: 2, gain: 0.5, seed: 0)",
+        ),
+    ] {
+        let name = input.split('(').next().unwrap();
+        assert_eq!(
+            first_error(&bound(input)),
+            format!("s.ron:3:{INPUT}: error: {name} takes named inputs: {form}\n  help: write each field as `name: value`; docs/scene-format.md lists the fields of {name}"),
+            "{input}"
+        );
+    }
+    for (input, form) in [
+        ("Image(Uv)", "Image(file: \"…\")"),
+        ("Alpha(Uv)", "Alpha(file: \"…\")"),
+    ] {
+        let name = input.split('(').next().unwrap();
+        assert_eq!(
+            first_error(&bound(input)),
+            format!("s.ron:3:{INPUT}: error: {name} takes named fields: {form}\n  help: write each field as `name: value`; docs/scene-format.md lists the fields of {name}"),
+            "{input}"
+        );
+    }
+    // Nested: the inner call is reported; a misspelt field keeps `ron`'s message.
+    assert_eq!(
+        first_error(&bound("Mix(a: Checker(8), b: 1, t: 0.5)")),
+        format!("s.ron:3:{}: error: Checker takes named inputs: Checker(uv: Uv, scale: 2, a: 1, b: 0)\n  help: write each field as `name: value`; docs/scene-format.md lists the fields of Checker", INPUT + 7)
+    );
+    assert_eq!(
+        first_error(&bound("Checker(sclae: 2)")),
+        format!(
+            "s.ron:3:{}: error: unknown field \"sclae\" in Checker\n  help: did you mean \"scale\"?",
+            INPUT + 8
+        )
+    );
+}
+
 /// A minimal scene, its lines as written.
 const SCENE: &[&str] = &[
     "Scene(",

@@ -171,15 +171,18 @@ impl PositionIndex for RonIndex {
         };
         Some(result.map_err(|e| {
             let mut d = from_ron(&self.file, &e);
-            if let RonError::ExpectedIdentifier = e.code {
-                let at = Pos {
-                    line: d.line,
-                    column: d.column,
-                };
-                if let Some(hint) = super::ron_hints::explain(&text, &e.code, at) {
-                    (d.line, d.column) = (hint.at.line, hint.at.column);
-                    (d.message, d.help) = (hint.message, Some(hint.help));
-                }
+            let at = Pos {
+                line: d.line,
+                column: d.column,
+            };
+            let hint = super::ron_hints::positional_call(&text, at).or_else(|| {
+                matches!(e.code, RonError::ExpectedIdentifier)
+                    .then(|| super::ron_hints::explain(&text, &e.code, at))
+                    .flatten()
+            });
+            if let Some(hint) = hint {
+                (d.line, d.column) = (hint.at.line, hint.at.column);
+                (d.message, d.help) = (hint.message, Some(hint.help));
             }
             let (line, column) = if d.line <= 1 {
                 (pos.line, pos.column + d.column.saturating_sub(1))
