@@ -1,8 +1,9 @@
 //! RON written by hand, the way a tester wrote it: each mistake reported as what it is, at
 //! the place to fix it — shader nodes called in the wrong style, a file ending inside an
-//! unclosed bracket, a list left open, `Box()`, `Obj("x.obj")`, a missing comma, text
-//! after the scene — and the loader's nits (a missing image file, a non-finite node input,
-//! a directory given as a scene, a palette PNG without its palette, an EXR displacement).
+//! unclosed bracket, a `(` left open before the next field or element, a list left open,
+//! `Box()`, `Obj("x.obj")`, a missing comma, text after the scene — and the loader's nits
+//! (a missing image file, a non-finite node input, a directory given as a scene, a palette
+//! PNG without its palette, an EXR displacement).
 
 use std::path::Path;
 
@@ -211,6 +212,42 @@ fn syntax_errors_say_what_is_missing_where() {
     assert_eq!(
         first_error(&boxed),
         "s.ron:2:21: error: Box takes no value: write it bare as Box\n  help: delete the `(…)` after Box"
+    );
+}
+
+#[test]
+fn an_unclosed_parenthesis_before_the_next_field_or_element_is_named_where_it_opened() {
+    let scene = SCENE.join("\n") + "\n";
+    let first = |prefix: &str| first_error(&scene.replace("Scene(", &format!("Scene(\n{prefix}")));
+    // A node call: `ron` said `unknown field "bind" in Lambert`.
+    assert_eq!(
+        first("  materials: [(name: \"m\", shader: Lambert(albedo: (0.5, 0.5, 0.5), bind: {\"albedo\": Uv})],"),
+        "s.ron:2:68: error: the `(` of Lambert opened at 2:42 is not closed\n  help: close it with `)` at 2:66, before `bind:`"
+    );
+    // A material tuple before the next element: `ron` said `expected identifier`.
+    assert_eq!(
+        first("  materials: [\n    (name: \"m\", shader: Lambert(albedo: (0.5, 0.5, 0.5)),\n    (name: \"n\", shader: Plastic()),\n  ],"),
+        "s.ron:4:5: error: the `(` opened at 3:5 is not closed\n  help: close it with `)` at 3:57, before `(`"
+    );
+    // The options struct: `ron` said `unknown field "cameras" in Options`.
+    assert_eq!(
+        first("  options: (samples: 4, filter: Box,"),
+        "s.ron:3:3: error: the `(` of `options:` opened at 2:12 is not closed\n  help: close it with `)` at 2:36, before `cameras:`"
+    );
+    // A closer of another kind: `ron` said `expected comma`.
+    assert_eq!(
+        first_error(&with_line(3, "  objects: [(name: \"q\", mesh: Sphere(radius: 1)],")),
+        "s.ron:3:48: error: the `(` opened at 3:13 is not closed\n  help: close it with `)` at 3:48, before `]`"
+    );
+    // A list element and its list: `ron` said `unknown field "render" in Group`.
+    assert_eq!(
+        first_error(&with_line(5, "  groups: [(name: \"w\", members: [\"i\"],")),
+        "s.ron:6:3: error: the `(` opened at 5:12 and the `[` opened at 5:11 are not closed\n  help: close them with `)]` at 5:38, before `render:`"
+    );
+    // A misspelt field is not an unclosed bracket: closing one does not get past it.
+    assert_eq!(
+        first("  materials: [(name: \"m\", shader: Lambert(albedo: (0.5, 0.5, 0.5), bnd: 1)],"),
+        "s.ron:2:68: error: unknown field \"bnd\" in Lambert\n  help: expected \"albedo\""
     );
 }
 

@@ -78,7 +78,16 @@ pub fn read(path: &Path, bytes: &[u8]) -> Result<ReadScene, super::ReadFailure> 
                 }
             }
             if before == (d.line, d.column, d.message.clone()) {
-                if let Some(hint) = super::ron_hints::explain(text, &err.code, at) {
+                let first_error = |t: &str| {
+                    parse(t).err().map(|e| {
+                        let (line, column) =
+                            skip_whitespace(t, e.span.start.line, e.span.start.col);
+                        Pos { line, column }
+                    })
+                };
+                let hint = super::ron_unclosed::explain(text, at, first_error)
+                    .or_else(|| super::ron_hints::explain(text, &err.code, at));
+                if let Some(hint) = hint {
                     (d.line, d.column) = (hint.at.line, hint.at.column);
                     (d.message, d.help) = (hint.message, Some(hint.help));
                 }
