@@ -1,5 +1,6 @@
 //! RIB polygons with holes: the first loop of a `GeneralPolygon` (of each polygon of a
-//! `PointsGeneralPolygons`) is its outline, the others are holes, which show what is behind.
+//! `PointsGeneralPolygons`) is its outline, the others are holes, which show what is behind;
+//! a polygon too intricate to cut within the step limit is a located error.
 
 use std::path::Path;
 
@@ -64,5 +65,41 @@ fn points_general_polygons_cut_each_polygon_by_its_own_holes() {
     assert!(
         white.abs_diff(512) <= 24,
         "{white} white pixels, expected 512 ± one row"
+    );
+}
+
+#[test]
+fn a_polygon_too_intricate_to_cut_is_a_located_error_not_a_hang() {
+    // A comb of 10,000 teeth with a hole along its back: every cut along the back sees the
+    // whole comb. The former clipping took 7 s of CPU on it; the cut stops at its step
+    // limit (docs/rib.md, Holes) and says so at `nvertices`.
+    let mut points = vec![(0.0, 0.0), (20_000.0, 0.0)];
+    for t in (0..10_000).rev() {
+        let x = 2.0 * t as f64;
+        points.extend([
+            (x + 2.0, 1.0),
+            (x + 1.5, 4.0),
+            (x + 1.0, 4.0),
+            (x + 1.0, 1.0),
+        ]);
+    }
+    points.dedup();
+    let outline = points.len();
+    points.extend([(1.5, 0.25), (1.5, 0.75), (19_999.5, 0.75), (19_999.5, 0.25)]);
+    let p: Vec<String> = points.iter().map(|(x, y)| format!("{x} {y} 0")).collect();
+    let text = format!(
+        "Format 32 32 1\nWorldBegin\nGeneralPolygon [{outline} 4] \"P\" [{}]\nWorldEnd\n",
+        p.join(" ")
+    );
+    let start = std::time::Instant::now();
+    let errors = load_scene_str(&text, Path::new("t.rib"))
+        .err()
+        .expect("refused");
+    assert!(start.elapsed().as_secs_f64() < 10.0);
+    assert_eq!(
+        errors.0[0].to_string(),
+        "t.rib:3:16: error: polygon 0 of GeneralPolygon is too intricate to cut around its \
+         holes: its 40006 corners take more than 200000000 steps\n  help: split it into \
+         several polygons, each with its own holes (docs/rib.md, Holes)"
     );
 }

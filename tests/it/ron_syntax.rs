@@ -1,8 +1,9 @@
 //! RON written by hand, the way a tester wrote it: each mistake reported as what it is, at
 //! the place to fix it — shader nodes called in the wrong style, a file ending inside an
-//! unclosed bracket, a list left open, `Box()`, `Obj("x.obj")`, a missing comma, text
-//! after the scene — and the loader's nits (a missing image file, a non-finite node input,
-//! a directory given as a scene, a palette PNG without its palette, an EXR displacement).
+//! unclosed bracket, a `(` left open before the next field or element, a list left open,
+//! `Box()`, `Obj("x.obj")`, a missing comma, text after the scene — and the loader's nits
+//! (a missing image file, a non-finite node input, a directory given as a scene, a palette
+//! PNG without its palette, an EXR displacement).
 
 use std::path::Path;
 
@@ -92,6 +93,65 @@ fn nodes_called_in_the_wrong_style_name_their_form() {
     }
 }
 
+#[test]
+fn named_field_nodes_called_in_order_name_their_form_at_the_call() {
+    // `ron` said `unknown field "Uv" in Mix` (at the `Uv`), `found invalid std identifier
+    // "8", try the raw identifier `r#8` instead`, `expected comma` or `expected colon`.
+    for (input, form) in [
+        ("Mix(Uv, 1)", "Mix(a: …, b: …, t: …)"),
+        ("Mix(1, Uv)", "Mix(a: …, b: …, t: …)"),
+        ("Mix(a: Uv, Uv)", "Mix(a: …, b: …, t: …)"),
+        ("Smoothstep(Uv, 1)", "Smoothstep(edge0: …, edge1: …, x: …)"),
+        ("Convert(Uv)", "Convert(input: …, from: Rgb, to: Rgb)"),
+        ("Checker(8)", "Checker(uv: Uv, scale: 2, a: 1, b: 0)"),
+        (
+            "Disk(Uv)",
+            "Disk(uv: Uv, center: (0.5, 0.5), radius: 0.4, fuzz: 0, inside: (0, 0, 1), outside: (1, 0, 0))",
+        ),
+        ("Steps(2)", "Steps(uv: Uv, steps: 4, fuzz: 0.05)"),
+        ("Repeat(Uv, scale: 3)", "Repeat(uv: Uv, scale: 10)"),
+        ("Noise(2)", "Noise(p: Position, frequency: 1, seed: 0)"),
+        (
+            "Fbm(Position)",
+            "Fbm(p: Position, frequency: 1, octaves: 4, lacunarity: 2, gain: 0.5, seed: 0)",
+        ),
+        (
+            "Turbulence(Position)",
+            "Turbulence(p: Position, frequency: 1, octaves: 4, lacunarity: 2, gain: 0.5, seed: 0)",
+        ),
+    ] {
+        let name = input.split('(').next().unwrap();
+        assert_eq!(
+            first_error(&bound(input)),
+            format!("s.ron:3:{INPUT}: error: {name} takes named inputs: {form}\n  help: write each field as `name: value`; docs/scene-format.md lists the fields of {name}"),
+            "{input}"
+        );
+    }
+    for (input, form) in [
+        ("Image(Uv)", "Image(file: \"…\")"),
+        ("Alpha(Uv)", "Alpha(file: \"…\")"),
+    ] {
+        let name = input.split('(').next().unwrap();
+        assert_eq!(
+            first_error(&bound(input)),
+            format!("s.ron:3:{INPUT}: error: {name} takes named fields: {form}\n  help: write each field as `name: value`; docs/scene-format.md lists the fields of {name}"),
+            "{input}"
+        );
+    }
+    // Nested: the inner call is reported; a misspelt field keeps `ron`'s message.
+    assert_eq!(
+        first_error(&bound("Mix(a: Checker(8), b: 1, t: 0.5)")),
+        format!("s.ron:3:{}: error: Checker takes named inputs: Checker(uv: Uv, scale: 2, a: 1, b: 0)\n  help: write each field as `name: value`; docs/scene-format.md lists the fields of Checker", INPUT + 7)
+    );
+    assert_eq!(
+        first_error(&bound("Checker(sclae: 2)")),
+        format!(
+            "s.ron:3:{}: error: unknown field \"sclae\" in Checker\n  help: did you mean \"scale\"?",
+            INPUT + 8
+        )
+    );
+}
+
 /// A minimal scene, its lines as written.
 const SCENE: &[&str] = &[
     "Scene(",
@@ -152,6 +212,42 @@ fn syntax_errors_say_what_is_missing_where() {
     assert_eq!(
         first_error(&boxed),
         "s.ron:2:21: error: Box takes no value: write it bare as Box\n  help: delete the `(…)` after Box"
+    );
+}
+
+#[test]
+fn an_unclosed_parenthesis_before_the_next_field_or_element_is_named_where_it_opened() {
+    let scene = SCENE.join("\n") + "\n";
+    let first = |prefix: &str| first_error(&scene.replace("Scene(", &format!("Scene(\n{prefix}")));
+    // A node call: `ron` said `unknown field "bind" in Lambert`.
+    assert_eq!(
+        first("  materials: [(name: \"m\", shader: Lambert(albedo: (0.5, 0.5, 0.5), bind: {\"albedo\": Uv})],"),
+        "s.ron:2:68: error: the `(` of Lambert opened at 2:42 is not closed\n  help: close it with `)` at 2:66, before `bind:`"
+    );
+    // A material tuple before the next element: `ron` said `expected identifier`.
+    assert_eq!(
+        first("  materials: [\n    (name: \"m\", shader: Lambert(albedo: (0.5, 0.5, 0.5)),\n    (name: \"n\", shader: Plastic()),\n  ],"),
+        "s.ron:4:5: error: the `(` opened at 3:5 is not closed\n  help: close it with `)` at 3:57, before `(`"
+    );
+    // The options struct: `ron` said `unknown field "cameras" in Options`.
+    assert_eq!(
+        first("  options: (samples: 4, filter: Box,"),
+        "s.ron:3:3: error: the `(` of `options:` opened at 2:12 is not closed\n  help: close it with `)` at 2:36, before `cameras:`"
+    );
+    // A closer of another kind: `ron` said `expected comma`.
+    assert_eq!(
+        first_error(&with_line(3, "  objects: [(name: \"q\", mesh: Sphere(radius: 1)],")),
+        "s.ron:3:48: error: the `(` opened at 3:13 is not closed\n  help: close it with `)` at 3:48, before `]`"
+    );
+    // A list element and its list: `ron` said `unknown field "render" in Group`.
+    assert_eq!(
+        first_error(&with_line(5, "  groups: [(name: \"w\", members: [\"i\"],")),
+        "s.ron:6:3: error: the `(` opened at 5:12 and the `[` opened at 5:11 are not closed\n  help: close them with `)]` at 5:38, before `render:`"
+    );
+    // A misspelt field is not an unclosed bracket: closing one does not get past it.
+    assert_eq!(
+        first("  materials: [(name: \"m\", shader: Lambert(albedo: (0.5, 0.5, 0.5), bnd: 1)],"),
+        "s.ron:2:68: error: unknown field \"bnd\" in Lambert\n  help: expected \"albedo\""
     );
 }
 

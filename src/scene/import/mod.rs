@@ -42,6 +42,7 @@ mod ron_forms;
 mod ron_hints;
 mod ron_integers;
 mod ron_spans;
+mod ron_unclosed;
 pub mod to_ron;
 
 use std::collections::HashMap;

@@ -78,7 +78,16 @@ pub fn read(path: &Path, bytes: &[u8]) -> Result<ReadScene, super::ReadFailure> 
                 }
             }
             if before == (d.line, d.column, d.message.clone()) {
-                if let Some(hint) = super::ron_hints::explain(text, &err.code, at) {
+                let first_error = |t: &str| {
+                    parse(t).err().map(|e| {
+                        let (line, column) =
+                            skip_whitespace(t, e.span.start.line, e.span.start.col);
+                        Pos { line, column }
+                    })
+                };
+                let hint = super::ron_unclosed::explain(text, at, first_error)
+                    .or_else(|| super::ron_hints::explain(text, &err.code, at));
+                if let Some(hint) = hint {
                     (d.line, d.column) = (hint.at.line, hint.at.column);
                     (d.message, d.help) = (hint.message, Some(hint.help));
                 }
@@ -171,15 +180,18 @@ impl PositionIndex for RonIndex {
         };
         Some(result.map_err(|e| {
             let mut d = from_ron(&self.file, &e);
-            if let RonError::ExpectedIdentifier = e.code {
-                let at = Pos {
-                    line: d.line,
-                    column: d.column,
-                };
-                if let Some(hint) = super::ron_hints::explain(&text, &e.code, at) {
-                    (d.line, d.column) = (hint.at.line, hint.at.column);
-                    (d.message, d.help) = (hint.message, Some(hint.help));
-                }
+            let at = Pos {
+                line: d.line,
+                column: d.column,
+            };
+            let hint = super::ron_hints::positional_call(&text, at).or_else(|| {
+                matches!(e.code, RonError::ExpectedIdentifier)
+                    .then(|| super::ron_hints::explain(&text, &e.code, at))
+                    .flatten()
+            });
+            if let Some(hint) = hint {
+                (d.line, d.column) = (hint.at.line, hint.at.column);
+                (d.message, d.help) = (hint.message, Some(hint.help));
             }
             let (line, column) = if d.line <= 1 {
                 (pos.line, pos.column + d.column.saturating_sub(1))

@@ -18,9 +18,25 @@ pub const POSITIONAL_NODES: &[(&str, &str)] = &[
     ("Param", "Param(\"<parameter>\")"),
 ];
 
-/// Nodes whose inputs are named, each with its form (the nodes with only optional fields
-/// are left out: written positionally they read as `ron`'s own message says).
+/// Nodes whose inputs are named, each with its form (as the node table of
+/// `docs/scene-format.md` writes it: fields with defaults show them).
 const NAMED_NODES: &[(&str, &str)] = &[
+    ("Checker", "Checker(uv: Uv, scale: 2, a: 1, b: 0)"),
+    (
+        "Disk",
+        "Disk(uv: Uv, center: (0.5, 0.5), radius: 0.4, fuzz: 0, inside: (0, 0, 1), outside: (1, 0, 0))",
+    ),
+    ("Steps", "Steps(uv: Uv, steps: 4, fuzz: 0.05)"),
+    ("Repeat", "Repeat(uv: Uv, scale: 10)"),
+    ("Noise", "Noise(p: Position, frequency: 1, seed: 0)"),
+    (
+        "Fbm",
+        "Fbm(p: Position, frequency: 1, octaves: 4, lacunarity: 2, gain: 0.5, seed: 0)",
+    ),
+    (
+        "Turbulence",
+        "Turbulence(p: Position, frequency: 1, octaves: 4, lacunarity: 2, gain: 0.5, seed: 0)",
+    ),
     ("Mix", "Mix(a: …, b: …, t: …)"),
     ("Smoothstep", "Smoothstep(edge0: …, edge1: …, x: …)"),
     ("Convert", "Convert(input: …, from: Rgb, to: Rgb)"),
@@ -32,6 +48,12 @@ const FILE_VARIANTS: &[&str] = &["Obj", "Ply", "Gltf", "LatLong", "Image", "Alph
 /// The names of [`POSITIONAL_NODES`].
 pub fn positional_names() -> Vec<&'static str> {
     POSITIONAL_NODES.iter().map(|(name, _)| *name).collect()
+}
+
+/// Whether shader node or file variant `name` takes named fields (so a value written
+/// without a name inside its parentheses is a call in the wrong style).
+pub fn takes_named_fields(name: &str) -> bool {
+    NAMED_NODES.iter().any(|(n, _)| *n == name) || FILE_VARIANTS.contains(&name)
 }
 
 /// The message for `name(field: …)` where `name` takes its inputs in order.

@@ -8,7 +8,7 @@ use ron::error::Error as RonError;
 
 use super::located::Pos;
 use super::ron_brackets::{char_offset, end_of_last_line, scan, unclosed_at_end};
-use super::ron_forms::positional_instead_of_named;
+use super::ron_forms::{positional_instead_of_named, takes_named_fields};
 
 /// A better message for a `ron` error.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -27,6 +27,9 @@ pub fn explain(text: &str, code: &RonError, at: Pos) -> Option<Hint> {
     let chars: Vec<char> = text.chars().collect();
     let offset = char_offset(text, at.line, at.column);
     if let Some(hint) = ends_inside_bracket(text, offset) {
+        return Some(hint);
+    }
+    if let Some(hint) = positional_call(text, at) {
         return Some(hint);
     }
     if let Some(hint) = list_open_before_field(text, &chars, offset, at) {
@@ -174,6 +177,95 @@ fn positional_fields(text: &str, chars: &[char], offset: usize) -> Option<Hint> 
         message,
         help,
     })
+}
+
+/// Any error inside the parentheses of a node (or file variant) that takes named fields,
+/// when a value up to the error is written without its name (`Mix(Uv, 1)`: `ron` said
+/// `unknown field "Uv" in Mix`; `Checker(8)`: `found invalid std identifier "8"`): the
+/// call in the wrong style, reported at the node's name with its form.
+pub fn positional_call(text: &str, at: Pos) -> Option<Hint> {
+    let chars: Vec<char> = text.chars().collect();
+    let offset = char_offset(text, at.line, at.column);
+    let call = *scan(text, offset).open.last()?;
+    if call.bracket != '(' {
+        return None;
+    }
+    let paren = char_offset(text, call.pos.line, call.pos.column);
+    let (start, name) = identifier_before(&chars, paren)?;
+    if !takes_named_fields(&name) {
+        return None;
+    }
+    let values = top_level_values(&chars, paren + 1, offset);
+    let unnamed = values.iter().any(|&v| !named_value_at(&chars, v));
+    if !unnamed {
+        return None;
+    }
+    let first: String = values
+        .first()
+        .filter(|&&v| chars[v] == '"')
+        .map(|&v| {
+            let len = chars[v + 1..]
+                .iter()
+                .position(|&c| c == '"' || c == '\n')
+                .map_or(1, |n| n + 2);
+            chars[v..(v + len).min(chars.len())].iter().collect()
+        })
+        .unwrap_or_default();
+    let (message, help) = positional_instead_of_named(&name, &first);
+    Some(Hint {
+        at: pos_of(&chars, start),
+        message,
+        help,
+    })
+}
+
+/// Where each value (or `name: value` field) between `from` and `upto` starts, at the
+/// top level of the parentheses that open just before `from` (strings skipped); a value
+/// that starts at `upto` counts.
+fn top_level_values(chars: &[char], from: usize, upto: usize) -> Vec<usize> {
+    let mut starts = Vec::new();
+    let mut depth = 0usize;
+    let mut expect_value = true;
+    let mut i = from;
+    while i < chars.len() && i <= upto {
+        let c = chars[i];
+        if c.is_whitespace() {
+            i += 1;
+            continue;
+        }
+        if depth == 0 && expect_value && c != ',' && !matches!(c, ')' | ']' | '}') {
+            starts.push(i);
+            expect_value = false;
+        }
+        match c {
+            '"' => {
+                i += 1;
+                while i < chars.len() && chars[i] != '"' {
+                    i += if chars[i] == '\\' { 2 } else { 1 };
+                }
+            }
+            '(' | '[' | '{' => depth += 1,
+            ')' | ']' | '}' if depth == 0 => break,
+            ')' | ']' | '}' => depth -= 1,
+            ',' if depth == 0 => expect_value = true,
+            _ => {}
+        }
+        i += 1;
+    }
+    starts
+}
+
+/// Whether the value at `at` is written `name: …`.
+fn named_value_at(chars: &[char], at: usize) -> bool {
+    let name = identifier_at(chars, at);
+    if !name.starts_with(|c: char| c.is_alphabetic() || c == '_') {
+        return false;
+    }
+    let mut after = at + name.chars().count();
+    while chars.get(after).is_some_and(|c| c.is_whitespace()) {
+        after += 1;
+    }
+    chars.get(after) == Some(&':') && chars.get(after + 1) != Some(&':')
 }
 
 /// A missing comma, reported just after the value it should follow.

@@ -647,7 +647,8 @@ struct Loop {
 /// Makes the faces of `polygons` (each its outline then its holes, all their corners
 /// counted in `layout`): a polygon without holes is one face, one with holes the
 /// triangles of [`super::holes::triangulate`]. A polygon the triangulation cannot cut
-/// (degenerate) keeps its outline only, with a warning at `at`.
+/// (degenerate) keeps its outline only, with a warning at `at`; one too intricate to cut
+/// within the step limit is an error at `at`.
 fn cut_holes(
     name: &str,
     polygons: &[Vec<Loop>],
@@ -687,12 +688,30 @@ fn cut_holes(
             .collect();
         let point_loops: Vec<Vec<u32>> = loops.iter().map(|l| l.points.clone()).collect();
         match super::holes::triangulate(points, &point_loops) {
-            Some(triangles) => {
+            Ok(triangles) => {
                 for t in triangles {
                     push(&t.map(|c| local[c]));
                 }
             }
-            None => {
+            Err(super::holes::Uncut::TooIntricate) => {
+                problems.push(
+                    Problem::error(
+                        at,
+                        format!(
+                            "polygon {polygon} of {name} is too intricate to cut around its \
+                             holes: its {} corners take more than {} steps",
+                            local.len(),
+                            super::holes::MAX_STEPS
+                        ),
+                    )
+                    .with_help(
+                        "split it into several polygons, each with its own holes \
+                         (docs/rib.md, Holes)",
+                    ),
+                );
+                push(&whole);
+            }
+            Err(super::holes::Uncut::Degenerate) => {
                 problems.push(Problem::warning(
                     at,
                     format!(
