@@ -11,6 +11,7 @@ mod bad_values_lights;
 mod bake;
 mod bake_png_range;
 mod bake_seams;
+mod bake_stitch_range;
 mod bake_unwrap;
 mod camera_passes;
 mod cli;
