@@ -10,6 +10,7 @@ mod bad_values_camera;
 mod bad_values_lights;
 mod bake;
 mod bake_png_range;
+mod bake_rays;
 mod bake_seams;
 mod bake_stitch_range;
 mod bake_unwrap;
