@@ -62,6 +62,11 @@ pub fn should_run(world: &World, frame: &Frame) -> Decision {
 pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
     // Phase 1: check and rasterize every request before baking anything.
     let prepared = prepare_bakes(world, frame.outputs.geometry.as_ref())?;
+    for p in &prepared {
+        for (message, help) in &p.warnings {
+            warn_at_request(p, message, help);
+        }
+    }
     let geometry = frame
         .outputs
         .geometry
@@ -387,17 +392,23 @@ fn warn_clipped_outputs(p: &PreparedBake, images: &[crate::bake::TexelImage]) {
         };
         let file = target_file(&safe_name(&p.request), target);
         let (message, help) = clip_warning(&clipped, target, &file.to_string_lossy());
-        let text = format!(
-            "bake request on instance \"{}\": {message}\n  help: {help}",
-            p.request.name
-        );
-        match &p.link {
-            Some(l) => {
-                let at = format!("{}:{}:{}", l.file.display(), l.line, l.column);
-                tracing::warn!(file = %at, "{text}");
-            }
-            None => tracing::warn!("{text}"),
+        warn_at_request(p, &message, &help);
+    }
+}
+
+/// Warns, located at the request when it came from a scene file:
+/// `bake request on instance "NAME": MESSAGE` with the help.
+fn warn_at_request(p: &PreparedBake, message: &str, help: &str) {
+    let text = format!(
+        "bake request on instance \"{}\": {message}\n  help: {help}",
+        p.request.name
+    );
+    match &p.link {
+        Some(l) => {
+            let at = format!("{}:{}:{}", l.file.display(), l.line, l.column);
+            tracing::warn!(file = %at, "{text}");
         }
+        None => tracing::warn!("{text}"),
     }
 }
 

@@ -13,6 +13,7 @@
 pub mod ao;
 pub mod clipping;
 pub mod denoise;
+pub mod density;
 pub mod dilate;
 pub mod files;
 pub mod finish;

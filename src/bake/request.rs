@@ -7,6 +7,7 @@ use std::collections::HashMap;
 
 use hecs::{Entity, World};
 
+use super::density::{placed_area, uv_area, uv_placement};
 use super::{bake_resolution, corner_uvs, rasterize, second_set_corner_uvs, Coverage};
 use crate::components::{
     BakeKind, BakeRequest, BakeResolution, BakeTarget, Instance, SecondUvs, SourceLink, TriMesh,
@@ -27,6 +28,9 @@ const UNWRAP_PAGE: u32 = 1024;
 /// two's worth of texels (a 2 × 2 quad at 32 texels/unit: 64) would otherwise round up to
 /// the next (128), at twice the requested density.
 const PACKING_ROUNDING: f64 = 1.02;
+/// Share of a request's UV area that may lie outside the unit square without a warning
+/// (rounding of UVs written at 0 or 1).
+const OUTSIDE_TOLERANCE: f64 = 1e-6;
 
 /// A request checked and rasterized, ready to bake.
 pub struct PreparedBake {
@@ -38,10 +42,15 @@ pub struct PreparedBake {
     pub uvs: Vec<[glam::Vec2; 3]>,
     /// Texel coverage at the chosen resolution.
     pub coverage: Coverage,
-    /// World-space area of the instance (for texel density).
+    /// World-space area of the part of the instance that is baked: the whole instance, less
+    /// the triangles' parts whose UVs lie outside the unit square (for the report's texel
+    /// density).
     pub world_area: f64,
     /// Where the request stands in the scene file, when it came from one.
     pub link: Option<SourceLink>,
+    /// Warnings about the request, (message, help), for the bake stage to print located at
+    /// the request.
+    pub warnings: Vec<(String, String)>,
 }
 
 impl PreparedBake {
@@ -97,6 +106,8 @@ pub fn prepare_bakes(
             .ok()
             .and_then(|i| world.get::<&SecondUvs>(i.object).ok().map(|s| s.0.clone()));
         let (textures, vertices) = split_targets(request);
+        // Warnings about the kinds go with the first part of a split request only.
+        let mut kind_warnings = kind_warnings(request);
         if let Some(textures) = textures {
             let unwrap = unwrap_advice(link.as_ref().map(|l| l.file.as_path()));
             match prepare(
@@ -106,16 +117,20 @@ pub fn prepare_bakes(
                 second.as_deref().map(|v| v.as_slice()),
                 &unwrap,
             ) {
-                Ok(p) => prepared.push(PreparedBake {
-                    link: link.clone(),
-                    ..p
-                }),
+                Ok(mut p) => {
+                    p.warnings.splice(0..0, std::mem::take(&mut kind_warnings));
+                    prepared.push(PreparedBake {
+                        link: link.clone(),
+                        ..p
+                    })
+                }
                 Err((message, help)) => problems.push(problem(message, help)),
             }
         }
         if let Some(vertices) = vertices {
             prepared.push(PreparedBake {
                 link: link.clone(),
+                warnings: std::mem::take(&mut kind_warnings),
                 ..prepare_vertices(vertices, slot, geometry)
             });
         }
@@ -180,19 +195,14 @@ fn prepare_vertices(request: BakeRequest, slot: usize, geometry: &SceneGeometry)
         &inst.world_from_object,
         request.texel_samples,
     );
-    let world_area = (0..inst.mesh.triangles.len())
-        .map(|t| {
-            let [a, b, c] = geometry.accel.triangle(inst.first_triangle + t as u32);
-            0.5 * (b - a).cross(c - a).length() as f64
-        })
-        .sum();
     PreparedBake {
         uvs: super::vertices::no_uvs(&inst.mesh),
         request,
         slot,
         coverage,
-        world_area,
+        world_area: placed_area(&inst.mesh, &inst.world_from_object),
         link: None,
+        warnings: Vec::new(),
     }
 }
 
@@ -231,12 +241,8 @@ fn prepare(
 ) -> Result<PreparedBake, (String, Option<String>)> {
     let inst = &geometry.instances[slot];
     let generated = generates_uvs(request.uvs, &inst.mesh);
-    let world_area: f64 = (0..inst.mesh.triangles.len())
-        .map(|t| {
-            let [a, b, c] = geometry.accel.triangle(inst.first_triangle + t as u32);
-            0.5 * (b - a).cross(c - a).length() as f64
-        })
-        .sum();
+    // In f64 from the object-space mesh: the same wherever the instance is placed.
+    let world_area = placed_area(&inst.mesh, &inst.world_from_object);
     let corner_uvs_for = |page: u32, padding: u32| match (request.uvs, second) {
         (UvSource::SecondSet, Some(second)) => second_set_corner_uvs(&inst.mesh, second),
         _ => corner_uvs(&inst.mesh, request.uvs, page, padding),
@@ -293,6 +299,22 @@ fn prepare(
             }),
         ));
     }
+    let placement = uv_placement(&inst.mesh, &inst.world_from_object, &uvs);
+    let mut warnings = Vec::new();
+    if placement.outside_share > OUTSIDE_TOLERANCE {
+        // Partly outside: the inside part bakes, the rest of the surface gets no texels.
+        warnings.push((
+            format!(
+                "{} of its UV area lies outside the unit square [0, 1]²; that part of the surface is not baked",
+                percent(placement.outside_share)
+            ),
+            if generated {
+                advice.clone()
+            } else {
+                format!("bake UVs must lie in the unit square: {advice}")
+            },
+        ));
+    }
     let unique = request
         .targets
         .iter()
@@ -319,8 +341,9 @@ fn prepare(
         slot,
         uvs,
         coverage,
-        world_area,
+        world_area: placement.baked_world_area,
         link: None,
+        warnings,
     })
 }
 
@@ -351,9 +374,39 @@ fn fit_advice(request: &BakeRequest, width: u32, height: u32) -> String {
     )
 }
 
-/// The area the corner UVs `uvs` cover (in the unit square's units).
-fn uv_area(uvs: &[[glam::Vec2; 3]]) -> f64 {
-    uvs.iter()
-        .map(|uv| 0.5 * ((uv[1] - uv[0]).perp_dot(uv[2] - uv[0]) as f64).abs())
-        .sum()
+/// A share as a percentage for messages: one decimal, never rounded to 0 or 100.
+fn percent(share: f64) -> String {
+    let p = share * 100.0;
+    if p < 0.1 {
+        "less than 0.1%".into()
+    } else if p > 99.9 {
+        "more than 99.9%".into()
+    } else {
+        format!("{p:.1}%")
+    }
+}
+
+/// Warnings about a request's kinds: a lightmap with `indirect: true` and `max_depth: 0`
+/// gathers no indirect light (its bounces are `max_depth`).
+fn kind_warnings(request: &BakeRequest) -> Vec<(String, String)> {
+    request
+        .targets
+        .iter()
+        .filter(|t| {
+            matches!(
+                t.kind,
+                BakeKind::Lightmap {
+                    indirect: true,
+                    max_depth: 0,
+                    ..
+                }
+            )
+        })
+        .map(|_| {
+            (
+                "`Lightmap(indirect: true, max_depth: 0)` bakes no indirect light: `max_depth` counts its bounces, and 0 allows none".into(),
+                "set `max_depth: 1` or more for indirect light, or `indirect: false` for direct light only".into(),
+            )
+        })
+        .collect()
 }

@@ -3,7 +3,9 @@
 //! globally): minimise Σ_pairs (read(a) − read(b))² + λ Σ_texels (x − x₀)² over the texels
 //! the pairs read, per channel, by conjugate gradients on the normal equations
 //! (DᵀD + λI) x = λ x₀. Sequential and in a fixed order, so deterministic. Texels no pair
-//! reads are not touched.
+//! reads are not touched. A channel whose seams already read alike (every pair's difference
+//! exactly 0) is left as it is, and every stitched value is kept within the range of the
+//! baked values of the taps its pairs mix (so AO stays ≤ 1 and irradiance ≥ 0).
 
 use glam::Vec3;
 
@@ -16,6 +18,9 @@ const LAMBDA: f64 = 0.01;
 const TOLERANCE: f64 = 1e-9;
 /// Most conjugate-gradient iterations.
 const MAX_ITERATIONS: usize = 2000;
+/// A pair reads alike when its two sides differ by at most this fraction of its largest tap
+/// (a few f32 ulps: the bilinear weights are f32).
+const MATCH_TOLERANCE: f64 = 1e-6;
 
 /// One seam pair as a sparse row of D: unknown index and weight (read(a) − read(b)).
 type Row = Vec<(u32, f64)>;
@@ -56,9 +61,14 @@ pub fn stitch(image: &mut TexelImage, seams: &Seams) -> u64 {
             .iter()
             .map(|&t| image.texels[t][c] as f64)
             .collect();
+        if rows.iter().all(|row| reads_alike(row, &x0)) {
+            continue;
+        }
+        let range = tap_ranges(&rows, &x0);
         let x = solve(&rows, &x0);
         for (k, &t) in texel_of.iter().enumerate() {
-            let v = x[k] as f32;
+            let (low, high) = range[k];
+            let v = x[k].clamp(low, high) as f32;
             if v != image.texels[t][c] {
                 changed[k] = true;
             }
@@ -68,6 +78,36 @@ pub fn stitch(image: &mut TexelImage, seams: &Seams) -> u64 {
         }
     }
     changed.iter().filter(|&&c| c).count() as u64
+}
+
+/// Whether the two sides of one pair read alike at the values `x`: their difference is at
+/// most [`MATCH_TOLERANCE`] of the largest tap (the f32 rounding of the bilinear weights).
+fn reads_alike(row: &Row, x: &[f64]) -> bool {
+    let difference: f64 = row.iter().map(|&(u, w)| w * x[u as usize]).sum();
+    let largest = row
+        .iter()
+        .map(|&(u, _)| x[u as usize].abs())
+        .fold(0.0, f64::max);
+    difference.abs() <= MATCH_TOLERANCE * largest
+}
+
+/// Per unknown, the lowest and highest value in `x0` of every tap of every pair that reads
+/// it: the range its stitched value may take.
+fn tap_ranges(rows: &[Row], x0: &[f64]) -> Vec<(f64, f64)> {
+    let mut range: Vec<(f64, f64)> = x0.iter().map(|&v| (v, v)).collect();
+    for row in rows {
+        let (low, high) = row
+            .iter()
+            .map(|&(u, _)| x0[u as usize])
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| {
+                (l.min(v), h.max(v))
+            });
+        for &(u, _) in row {
+            let r = &mut range[u as usize];
+            *r = (r.0.min(low), r.1.max(high));
+        }
+    }
+    range
 }
 
 /// y = (DᵀD + λI) x.
@@ -174,6 +214,23 @@ mod tests {
         }
         // The green channel agreed already: unchanged to the last bit or nearly.
         assert!(img.texels.iter().all(|t| (t.y - 0.5).abs() < 1e-6));
+    }
+
+    #[test]
+    fn stitched_values_stay_within_the_taps_and_matching_seams_are_left_alone() {
+        let (mut img, seams) = two_sided();
+        let before = img.clone();
+        stitch(&mut img, &seams);
+        for c in 0..3 {
+            let low = before.texels.iter().map(|t| t[c]).fold(f32::MAX, f32::min);
+            let high = before.texels.iter().map(|t| t[c]).fold(f32::MIN, f32::max);
+            assert!(img.texels.iter().all(|t| (low..=high).contains(&t[c])));
+        }
+        let (mut flat, seams) = two_sided();
+        flat.texels.iter_mut().for_each(|t| *t = Vec3::ONE);
+        let before = flat.clone();
+        assert_eq!(stitch(&mut flat, &seams), 0);
+        assert_eq!(flat, before);
     }
 
     #[test]

@@ -62,7 +62,8 @@ pub struct TexelJob<'a> {
 pub struct TexelResults {
     /// Images, aligned with the kinds; a trailing extra image holds bent normals if asked.
     pub images: Vec<TexelImage>,
-    /// Rays traced.
+    /// Rays traced: every query the evaluation made of the scene's accelerator, as the
+    /// accelerator counts them (the stage's ray count is the sum over requests).
     pub rays: u64,
     /// Covered texels rejected as inside geometry.
     pub invalid: u64,
@@ -94,7 +95,8 @@ pub fn evaluate(
             BakeKind::AmbientOcclusion { .. } | BakeKind::Lightmap { .. }
         )
     });
-    let rays = AtomicU64::new(0);
+    // Counted by the accelerator, which counts every query: exact once the rows are done.
+    let rays_before = job.geometry.accel.ray_counts();
     let invalid = AtomicU64::new(0);
     let stopped = AtomicBool::new(false);
     let rows: Vec<Vec<TexelValues>> = (0..h)
@@ -104,7 +106,6 @@ pub fn evaluate(
                 stopped.store(true, Ordering::Relaxed);
                 return Vec::new();
             }
-            let mut row_rays = 0u64;
             let row = (0..w)
                 .map(|i| {
                     // Poll per texel: one texel is at most its rays of work.
@@ -115,15 +116,13 @@ pub fn evaluate(
                     if job.owns.is_some_and(|owns| !owns(i, j)) {
                         return vec![None; n_images];
                     }
-                    let (values, r, bad) = texel(job, i, j, n_images, bent, needs_probe);
-                    row_rays += r;
+                    let (values, bad) = texel(job, i, j, n_images, bent, needs_probe);
                     if bad {
                         invalid.fetch_add(1, Ordering::Relaxed);
                     }
                     values
                 })
                 .collect();
-            rays.fetch_add(row_rays, Ordering::Relaxed);
             progress.tick(1);
             row
         })
@@ -145,7 +144,7 @@ pub fn evaluate(
     }
     Some(TexelResults {
         images,
-        rays: rays.into_inner(),
+        rays: job.geometry.accel.ray_counts().since(rays_before).total(),
         invalid: invalid.into_inner(),
     })
 }
@@ -161,7 +160,7 @@ struct Site {
     hit: crate::accel::Hit,
 }
 
-/// Evaluates texel `(i, j)`: values per image, rays traced, whether it was rejected.
+/// Evaluates texel `(i, j)`: values per image, whether it was rejected.
 fn texel(
     job: &TexelJob<'_>,
     i: u32,
@@ -169,15 +168,14 @@ fn texel(
     n_images: usize,
     bent: bool,
     needs_probe: bool,
-) -> (TexelValues, u64, bool) {
+) -> (TexelValues, bool) {
     let mut values: TexelValues = vec![None; n_images];
     let slots = job.coverage.texel(i, j);
     if slots.iter().all(Option::is_none) {
-        return (values, 0, false);
+        return (values, false);
     }
     let texel_index = j as u64 * job.coverage.width as u64 + i as u64;
     let texel_seed = hash_combine(&[job.seed, texel_index as u32, (texel_index >> 32) as u32]);
-    let mut rays = 0u64;
     // With enough AO rays per sample position, they double as the inside probe.
     let filled = slots.iter().filter(|s| s.is_some()).count() as u32;
     let ao_probe = needs_probe
@@ -213,7 +211,6 @@ fn texel(
                     inside_fraction: INSIDE_FRACTION,
                 },
             );
-            rays += probe.rays as u64;
             if probe.inside {
                 continue;
             }
@@ -221,7 +218,7 @@ fn texel(
         sites.push(site);
     }
     if sites.is_empty() {
-        return (values, rays, true);
+        return (values, true);
     }
     // AO rays of each sample position, traced first when they are the probe; positions found
     // inside geometry are dropped with their rays.
@@ -245,7 +242,6 @@ fn texel(
                 inside_fraction: INSIDE_FRACTION,
             };
             let results = ao_rays(job, &sites, samples, max_distance, kind_seed, query);
-            rays += results.iter().map(|r| r.rays as u64).sum::<u64>();
             let keep: Vec<bool> = results.iter().map(|r| !r.inside).collect();
             let mut kept = keep.iter();
             sites.retain(|_| *kept.next().unwrap_or(&true));
@@ -256,7 +252,7 @@ fn texel(
                 .map(|(r, _)| r)
                 .collect();
             if sites.is_empty() {
-                return (values, rays, true);
+                return (values, true);
             }
             ao_done = Some((k, results));
         }
@@ -274,9 +270,7 @@ fn texel(
                     Some((done, results)) if *done == k => results.clone(),
                     _ => {
                         let query = HemisphereQuery::Occlusion;
-                        let r = ao_rays(job, &sites, *samples, *max_distance, kind_seed, query);
-                        rays += r.iter().map(|r| r.rays as u64).sum::<u64>();
-                        r
+                        ao_rays(job, &sites, *samples, *max_distance, kind_seed, query)
                     }
                 };
                 let open: u32 = results.iter().map(|r| r.open).sum();
@@ -311,12 +305,6 @@ fn texel(
                         site.ng,
                         &mut sampler,
                     );
-                    rays += job
-                        .lights
-                        .lights
-                        .iter()
-                        .map(|l| l.sample_count() as u64)
-                        .sum::<u64>();
                 }
                 e /= n_sites as f32;
                 if *indirect && *max_depth > 0 {
@@ -351,7 +339,6 @@ fn texel(
                             ),
                         });
                     }
-                    rays += samples as u64 * (*max_depth as u64 + 1);
                     e += sum.mean_over(samples as u64);
                 }
                 let stored = match store {
@@ -399,7 +386,7 @@ fn texel(
         };
         values[k] = value.is_finite().then_some(value);
     }
-    (values, rays, false)
+    (values, false)
 }
 
 /// The diffuse albedo of a texel for `Lightmap(store: Radiance)`: at each sample position,

@@ -90,7 +90,12 @@ fn unwrap(mesh: &TriMesh, page: u32, padding: u32) -> Result<Vec<[Vec2; 3]>, Bak
         .collect())
 }
 
-/// Texture size of a request: explicit, or from texel density with power-of-two rounding.
+/// Relative tolerance of the texel side a density asks for before it is rounded up to a
+/// power of two: a side up to 10⁻⁶ (about 8 f32 ulps) above a power of two takes that power.
+pub const SIDE_TOLERANCE: f64 = 1e-6;
+
+/// Texture size of a request: explicit, or from texel density with power-of-two rounding
+/// (a side within [`SIDE_TOLERANCE`] above a power of two rounds down to it).
 /// `world_area` is the instance's surface area in world units², `uv_area` the area its UVs
 /// cover in the unit square.
 pub fn bake_resolution(
@@ -109,6 +114,9 @@ pub fn bake_resolution(
             } else {
                 1.0
             };
+            // A side a few f32 ulps above a power of two is that power: the mesh's
+            // coordinates are f32, so an exact 8 comes out as 8.0000001.
+            let side = side * (1.0 - SIDE_TOLERANCE);
             let pow2 = (side.clamp(1.0, 1e9).ceil() as u64)
                 .next_power_of_two()
                 .min(u32::MAX as u64) as u32;
@@ -139,6 +147,32 @@ mod tests {
             max_size: 512,
         };
         assert_eq!(bake_resolution(capped, 4.0, 1.0).unwrap(), (512, 512));
+    }
+
+    #[test]
+    fn a_side_a_few_ulps_above_a_power_of_two_takes_that_power() {
+        let r = BakeResolution::Density {
+            texels_per_unit: 40.0,
+            max_size: 4096,
+        };
+        // A 0.2 quad of f32 corners (±0.1): area 0.0400000012, side 8.0000001.
+        let area = (2.0 * 0.1f32 as f64).powi(2);
+        assert_eq!(bake_resolution(r, area, 1.0).unwrap(), (8, 8));
+        assert_eq!(
+            bake_resolution(r, 0.04 * (1.0 + 1e-7), 1.0).unwrap(),
+            (8, 8)
+        );
+        // Clearly above: the next power.
+        assert_eq!(bake_resolution(r, 0.04 * 1.0001, 1.0).unwrap(), (16, 16));
+        // Exact powers at other sizes: 1 m² at 64, 256 and 1024 texels/m.
+        for n in [64u32, 256, 1024] {
+            let r = BakeResolution::Density {
+                texels_per_unit: n as f32,
+                max_size: 4096,
+            };
+            assert_eq!(bake_resolution(r, 1.0, 1.0).unwrap(), (n, n));
+            assert_eq!(bake_resolution(r, 1.01, 1.0).unwrap(), (2 * n, 2 * n));
+        }
     }
 
     #[test]

@@ -6,7 +6,7 @@
 //! | render camera | pixels × [`BYTES_PER_PIXEL`] (frame buffers, per-pixel sample state of both adaptive passes, encoded outputs) |
 //! | object | placed triangles × [`BYTES_PER_TRIANGLE`] (world copy, BVH build and nodes, shading data): loaded meshes by their triangles, grids by `2·nx·ny`, surfaces with a `Parametric`/`Regular` approximation by their rates before dicing (located at the `approximation`), scatters by copies × prototype triangles (+ [`BYTES_PER_INSTANCE`] per copy) |
 //! | photon map | emitted photons × [`BYTES_PER_PHOTON`] |
-//! | bake request | texels × (targets + 1) × [`BYTES_PER_TEXEL`] |
+//! | bake request | texels × (targets + 1) × [`BYTES_PER_TEXEL`]; a density-sized texture at the size the bake gives it from the placed mesh's area and UVs (`crate::bake::density`), or at `max_size` where those are known only later (generated UVs, diced or displaced surfaces) |
 //! | image texture | its decoded texels and alpha (12 and 4 bytes each), located at its `file` ([`DecodedImage`], spawned by the loader, which also refuses a texture whose reading alone would not fit) |
 //!
 //! Adaptive approximations (spatial, curvature) and subdivision meshes are not estimated at
@@ -22,8 +22,9 @@ use hecs::{Entity, World};
 
 use super::{human, Budget};
 use crate::components::{
-    Approximation, ApproximationLink, BakeRequest, BakeResolution, Camera, DecodedImage, Instance,
-    Name, Procedural, RenderCamera, Scatter, SourceLink, SubdivMesh, Surface, Technique, TriMesh,
+    Approximation, ApproximationLink, BakeRequest, BakeResolution, Camera, DecodedImage,
+    Displacement, DisplacementMode, Instance, Name, Procedural, RenderCamera, Scatter, SecondUvs,
+    SourceLink, SubdivMesh, Surface, Technique, TriMesh, UvSource, WorldFromObject,
 };
 use crate::scene::Diagnostic;
 use crate::settings::RenderSettings;
@@ -303,10 +304,7 @@ pub fn estimates(world: &World, settings: &RenderSettings, tasks: Tasks) -> Vec<
         requests.sort_by_key(|(e, _)| e.to_bits());
         for (e, r) in requests {
             let (_, at) = named(world, e);
-            let (w, h) = match r.resolution {
-                BakeResolution::Fixed { width, height } => (width, height),
-                BakeResolution::Density { max_size, .. } => (max_size, max_size),
-            };
+            let (w, h) = bake_size(world, e, &r);
             let texels = u64::from(w) * u64::from(h);
             let textures = r.targets.len() as u64 + 1;
             out.push(Estimate {
@@ -338,6 +336,43 @@ pub fn estimates(world: &World, settings: &RenderSettings, tasks: Tasks) -> Vec<
         });
     }
     out
+}
+
+/// The texture size of bake request `r` on instance `e`: a fixed resolution as written; a
+/// density-sized one as the bake will size it (`crate::bake::density`) when its mesh and UVs
+/// are known before any stage runs (a loaded mesh, not truly displaced, baked on its own or
+/// its second UV set), else `max_size` (generated UVs, surfaces diced later).
+fn bake_size(world: &World, e: Entity, r: &BakeRequest) -> (u32, u32) {
+    let max_size = match r.resolution {
+        BakeResolution::Fixed { width, height } => return (width, height),
+        BakeResolution::Density { max_size, .. } => (max_size, max_size),
+    };
+    let (Ok(instance), Ok(placement)) =
+        (world.get::<&Instance>(e), world.get::<&WorldFromObject>(e))
+    else {
+        return max_size;
+    };
+    let mesh = &instance.mesh;
+    let displaced = world
+        .get::<&Displacement>(instance.object)
+        .is_ok_and(|d| d.mode == DisplacementMode::True);
+    if mesh.triangles.is_empty() || displaced {
+        return max_size;
+    }
+    let uvs = match (r.uvs, &mesh.uvs) {
+        (UvSource::Mesh | UvSource::MeshOrUnwrap, Some(_)) => {
+            crate::bake::corner_uvs(mesh, r.uvs, 1, 0).ok()
+        }
+        (UvSource::SecondSet, _) => world
+            .get::<&SecondUvs>(instance.object)
+            .ok()
+            .and_then(|s| crate::bake::second_set_corner_uvs(mesh, &s.0).ok()),
+        _ => None,
+    };
+    uvs.and_then(|uvs| {
+        crate::bake::density::mesh_uv_resolution(r.resolution, mesh, &placement.0, &uvs).ok()
+    })
+    .unwrap_or(max_size)
 }
 
 /// The refusals of a run under `budget`: every element whose estimate alone exceeds it, or,
