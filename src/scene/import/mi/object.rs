@@ -80,14 +80,22 @@ pub fn object(r: &mut Reader, c: &mut Cursor, open: Pos) {
         return;
     };
     let fresh = r.define(c, &name, pos);
+    // An incremental object starts from the earlier one: flags not written keep their
+    // values, and the geometry is kept unless the block writes a group (then its groups
+    // replace the earlier geometry whole).
+    let earlier = r.earlier.as_mut().and_then(|e| e.object.take());
+    let mut keeps_earlier_geometry = earlier.is_some();
     let mut obj = RawObject {
         at: c.located(open),
-        vertices: Vec::new(),
-        uvs: Vec::new(),
-        polygons: Vec::new(),
-        surfaces: Vec::new(),
-        approximation: None,
-        flags: Flags::default(),
+        ..earlier.unwrap_or(RawObject {
+            at: c.located(open),
+            vertices: Vec::new(),
+            uvs: Vec::new(),
+            polygons: Vec::new(),
+            surfaces: Vec::new(),
+            approximation: None,
+            flags: Flags::default(),
+        })
     };
     let mut bases = Bases::new();
     let mut failed = false;
@@ -122,6 +130,13 @@ pub fn object(r: &mut Reader, c: &mut Cursor, open: Pos) {
                 }
             }
             "group" => {
+                if std::mem::take(&mut keeps_earlier_geometry) {
+                    obj.vertices.clear();
+                    obj.uvs.clear();
+                    obj.polygons.clear();
+                    obj.surfaces.clear();
+                    obj.approximation = None;
+                }
                 if !group(c, &mut obj, &bases, t.pos) {
                     failed = true;
                 }
@@ -374,18 +389,32 @@ pub fn instance(r: &mut Reader, c: &mut Cursor, open: Pos) {
         return;
     };
     let fresh = r.define(c, &name, pos);
-    let Some((of, of_pos)) = c.string("the element the instance places") else {
-        c.skip_to_end("instance", open);
-        return;
+    // An incremental instance starts from the earlier one: the element placed may be
+    // left out, and what the block does not write keeps its value.
+    let earlier = r.earlier.as_mut().and_then(|e| e.instance.take());
+    let (of, of_at) = match earlier {
+        Some(ref e) if !c.at_string() => (e.of.clone(), e.of_at.clone()),
+        _ => {
+            let Some((of, of_pos)) = c.string("the element the instance places") else {
+                c.skip_to_end("instance", open);
+                return;
+            };
+            (of, c.located(of_pos))
+        }
     };
     let mut inst = RawInstance {
         at: c.located(open),
         of,
-        of_at: c.located(of_pos),
-        transform: None,
-        transform_at: None,
-        material: None,
-        flags: Flags::default(),
+        of_at,
+        ..earlier.unwrap_or(RawInstance {
+            at: c.located(open),
+            of: String::new(),
+            of_at: c.located(open),
+            transform: None,
+            transform_at: None,
+            material: None,
+            flags: Flags::default(),
+        })
     };
     loop {
         let Some(t) = c.block_token("instance", open) else {
