@@ -249,7 +249,7 @@ pub fn options(r: &mut Reader, c: &mut Cursor, open: Pos) {
     }
     let statements = c.record(start);
     c.expect_end("options", open);
-    photons.apply(c, &mut o.desc);
+    photons.apply(c, &mut o.desc, &mut o.values);
     if !traced {
         o.desc.reflection_depth = 0;
         o.desc.refraction_depth = 0;
