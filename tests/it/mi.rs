@@ -405,7 +405,7 @@ const MALFORMED: &[(&str, &str)] = &[
     ),
     (
         "singular_transform",
-        "tests/fixtures/mi/singular_transform.mi:19:1: error: the transform of instance \"quad_inst\" is singular",
+        "tests/fixtures/mi/singular_transform.mi:19:11: error: the transform of instance \"quad_inst\" is singular",
     ),
     (
         "two_errors",

@@ -142,7 +142,7 @@ fn the_seed_caustics_scene_traces_caustic_photons() {
 const MALFORMED: &[(&str, &str)] = &[
     (
         "caustic_accuracy",
-        "tests/fixtures/mi_controls/caustic_accuracy.mi:4:1: error: caustic accuracy must be at least 2 photons per estimate, found 1",
+        "tests/fixtures/mi_controls/caustic_accuracy.mi:4:18: error: caustic accuracy must be at least 2 photons per estimate, found 1",
     ),
     (
         "caustic_filter",
@@ -150,7 +150,7 @@ const MALFORMED: &[(&str, &str)] = &[
     ),
     (
         "finalgather_accuracy",
-        "tests/fixtures/mi_controls/finalgather_accuracy.mi:4:1: error: finalgather accuracy must be at least 1 ray, found 0",
+        "tests/fixtures/mi_controls/finalgather_accuracy.mi:4:22: error: finalgather accuracy must be at least 1 ray, found 0",
     ),
     (
         "photon_trace_depth",

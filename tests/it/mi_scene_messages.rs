@@ -93,13 +93,13 @@ fn a_homogeneous_transform_is_divided_by_its_w_and_renders_as_the_affine_one() {
     assert!(image[60 * 160 + 80].x > 0.0 && image[0] == glam::Vec3::ZERO);
 }
 
-/// A projective matrix (last column not (0, 0, 0, w)) or w = 0 is refused at the
-/// `transform`, describing the last column as the file wrote it.
+/// A projective matrix (last column not (0, 0, 0, w)) or w = 0 is refused at the number
+/// out of place, describing the last column as the file wrote it.
 #[test]
 fn a_projective_transform_is_refused_as_written() {
-    for (matrix, found) in [
-        ("1 0 0 0  0 1 0 0  0 0 1 -1  0 0 2 1", "(0, 0, -1, 1)"),
-        ("1 0 0 0  0 1 0 0  0 0 1 0  0 0 2 0", "(0, 0, 0, 0)"),
+    for (matrix, found, column) in [
+        ("1 0 0 0  0 1 0 0  0 0 1 -1  0 0 2 1", "(0, 0, -1, 1)", 35),
+        ("1 0 0 0  0 1 0 0  0 0 1 0  0 0 2 0", "(0, 0, 0, 0)", 44),
     ] {
         let text = scene("", matrix, "");
         let line = line_of(&text, "transform");
@@ -108,7 +108,7 @@ fn a_projective_transform_is_refused_as_written() {
         assert_eq!(
             err,
             format!(
-                "p.mi:{line}:1: error: the last column of a transform must be (0, 0, 0, w) with w ≠ 0, found {found}\n  \
+                "p.mi:{line}:{column}: error: the last column of a transform must be (0, 0, 0, w) with w ≠ 0, found {found}\n  \
                  help: an instance transform is affine, written row by row with the translation in the last row: \
                  its last column is (0, 0, 0, 1), or (0, 0, 0, w) for a matrix scaled by w\n\
                  1 error in p.mi\n"

@@ -1,6 +1,7 @@
 //! `.mi` value errors are located at the value: a bad camera `resolution`, light `spread`,
-//! contour contrast value or contour width points at its own `line:column` (not at the
-//! element's instance or block), and one bad value is one error (no cascade through the
+//! contour contrast value, contour width, photon option (`caustic accuracy`, `finalgather
+//! accuracy`, `photonmap file`), object vertex or instance `transform` points at its own
+//! `line:column` (not at the element's instance or block), and one bad value is one error (no cascade through the
 //! rest of its parameter list, none after the lexer's own error).
 
 use std::path::{Path, PathBuf};
@@ -117,4 +118,77 @@ fn one_bad_contour_value_is_one_error() {
         assert_eq!(messages(&dir, &bad), want);
     }
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A quad lit by a point light; `options`, `object` and `instance` go into those blocks.
+fn small(options: &str, object: &str, instance: &str) -> String {
+    format!(
+        "options \"opt\"
+object space
+{options}
+end options
+camera \"cam\" resolution 8 6 focal 1 aperture 1 end camera
+light \"lamp\" \"mib_light_point\" (\"color\" 1 1 1) origin 0 0 0 end light
+material \"mtl\" \"mib_illum_lambert\" (\"diffuse\" 0.8 0.8 0.8, \"lights\" [\"lamp_inst\"]) end material
+object \"quad\" group
+{object}1 -1 -1  -1 -1 -1  -1 1 -1
+v 0 v 1 v 2 v 3
+p \"mtl\" 0 3 2 1
+end group end object
+instance \"cam_inst\" \"cam\" end instance
+instance \"lamp_inst\" \"lamp\" end instance
+instance \"quad_inst\" \"quad\" {instance} end instance
+instgroup \"root\" \"cam_inst\" \"lamp_inst\" \"quad_inst\" end instgroup
+render \"root\" \"cam_inst\" \"opt\"
+"
+    )
+}
+
+#[test]
+fn photon_object_and_instance_values_point_at_the_value() {
+    let dir = dir("photon_object_instance");
+    let ok_vertex = "1 1 -1  ";
+    let identity = "transform 1 0 0 0  0 1 0 0  0 0 1 0  0 0 0 1";
+    let cases = [
+        (
+            small("caustic on\ncaustic accuracy 0", ok_vertex, identity),
+            "bad.mi:4:18: error: caustic accuracy must be at least 2 photons per estimate, found 0",
+        ),
+        (
+            small("globillum on\nfinalgather accuracy 0", ok_vertex, identity),
+            "bad.mi:4:22: error: finalgather accuracy must be at least 1 ray, found 0",
+        ),
+        (
+            small("caustic on\nphotonmap file \"\"", ok_vertex, identity),
+            "bad.mi:4:16: error: photon_map file is empty: name the file the photon maps are kept in, e.g. \"scene.pmap\"",
+        ),
+        (
+            small("", "1 1e39 -1  ", identity),
+            "bad.mi:9:3: error: vertex 1e39 is beyond the f32 range",
+        ),
+        (
+            small("", ok_vertex, "transform 0 0 0 0  0 0 0 0  0 0 0 0  0 0 0 1"),
+            "bad.mi:15:39: error: the transform of instance \"quad_inst\" is singular",
+        ),
+        (
+            small("", ok_vertex, "transform 1e300 0 0 0  0 1 0 0  0 0 1 0  0 0 0 1"),
+            "bad.mi:15:39: error: transform matrix is singular",
+        ),
+    ];
+    for (bad, want) in cases {
+        let got = messages(&dir, &bad);
+        let first = got.lines().next().unwrap();
+        // The determinant's digits left out of the last message.
+        match want.strip_suffix("is singular") {
+            Some(prefix) if want.contains("transform matrix") => {
+                assert!(first.starts_with(prefix), "{got}")
+            }
+            _ => assert_eq!(first, want),
+        }
+        assert_eq!(
+            got.lines().filter(|l| l.contains("error:")).count(),
+            1,
+            "{got}"
+        );
+    }
 }

@@ -335,6 +335,11 @@ fn build(raw: &RawScene, root: &Located, out: &mut Out) {
         };
         let i = out.desc.instances.len();
         out.paths.push((format!("instances[{i}]"), inst.at.clone()));
+        if let (false, Some(at)) = (transform.is_empty(), &inst.transform_at) {
+            // The matrix as a whole (singular, beyond f32): at its first number.
+            out.paths
+                .push((format!("instances[{i}].transform"), at.clone()));
+        }
         out.desc.instances.push(InstanceDesc {
             name: name.clone(),
             of: inst.of.clone(),

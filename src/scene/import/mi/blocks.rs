@@ -9,6 +9,7 @@
 
 use super::super::located::{Pos, Problem};
 use super::cursor::Cursor;
+use super::incremental;
 use super::lexer::{Tok, Token};
 use super::model::{AreaShape, RawCamera, RawLight, RawMaterial, RawOptions, Space};
 use super::photon_options::PhotonOptions;
@@ -88,6 +89,7 @@ pub fn options(r: &mut Reader, c: &mut Cursor, open: Pos) {
         return;
     };
     let fresh = r.define(c, &name, pos);
+    let earlier = incremental::earlier_body(r, "options");
     let mut o = RawOptions {
         at: c.located(open),
         // mental ray's default is `face both` (seed 000: "The default is face both"); the
@@ -105,6 +107,8 @@ pub fn options(r: &mut Reader, c: &mut Cursor, open: Pos) {
     let mut photons = PhotonOptions::default();
     // `trace off`: no reflection or refraction rays, whatever the trace depth says.
     let mut traced = true;
+    let start = c.index();
+    incremental::replay_statements(c, earlier.as_ref());
     loop {
         let Some(t) = c.block_token("options", open) else {
             return;
@@ -243,8 +247,9 @@ pub fn options(r: &mut Reader, c: &mut Cursor, open: Pos) {
             }
         }
     }
+    let statements = c.record(start);
     c.expect_end("options", open);
-    photons.apply(c, &mut o.desc);
+    photons.apply(c, &mut o.desc, &mut o.values);
     if !traced {
         o.desc.reflection_depth = 0;
         o.desc.refraction_depth = 0;
@@ -263,6 +268,7 @@ pub fn options(r: &mut Reader, c: &mut Cursor, open: Pos) {
         };
     }
     if fresh {
+        incremental::keep(r, &name, "options", Default::default(), statements);
         r.raw.options.insert(name, o);
     }
 }
@@ -316,6 +322,7 @@ pub fn camera(r: &mut Reader, c: &mut Cursor, open: Pos) {
         return;
     };
     let fresh = r.define(c, &name, pos);
+    let earlier = incremental::earlier_body(r, "camera");
     let (mut focal, mut aperture) = (1.0f64, 1.0f64);
     let mut cam = RawCamera {
         at: c.located(open),
@@ -330,6 +337,10 @@ pub fn camera(r: &mut Reader, c: &mut Cursor, open: Pos) {
     };
     // Where focal and aperture were written (the field of view is made of them).
     let (mut focal_at, mut aperture_at) = (None, None);
+    let start = c.index();
+    let replayed = incremental::replay_statements(c, earlier.as_ref());
+    // Whether the incremental block's own `output` statements replaced the earlier list.
+    let mut outputs_restated = false;
     loop {
         let Some(t) = c.block_token("camera", open) else {
             return;
@@ -388,6 +399,12 @@ pub fn camera(r: &mut Reader, c: &mut Cursor, open: Pos) {
                 cam.values.record(".resolution[1]", height_at);
             }
             "output" => {
+                if c.index() > replayed && !outputs_restated {
+                    // The outputs are one list: an incremental block that states any
+                    // replaces the earlier ones.
+                    cam.outputs.clear();
+                    outputs_restated = true;
+                }
                 let before = cam.outputs.len();
                 output(c, &mut cam.outputs);
                 for k in before..cam.outputs.len() {
@@ -432,6 +449,7 @@ pub fn camera(r: &mut Reader, c: &mut Cursor, open: Pos) {
             }
         }
     }
+    let statements = c.record(start);
     c.expect_end("camera", open);
     if focal <= 0.0 || aperture <= 0.0 {
         let at = if focal <= 0.0 { focal_at } else { aperture_at };
@@ -452,6 +470,7 @@ pub fn camera(r: &mut Reader, c: &mut Cursor, open: Pos) {
         cam.values.record(".fov_y", c.located(at));
     }
     if fresh {
+        incremental::keep(r, &name, "camera", Default::default(), statements);
         r.raw.cameras.insert(name, cam);
     }
 }
@@ -688,7 +707,10 @@ pub fn light(r: &mut Reader, c: &mut Cursor, open: Pos) {
         return;
     };
     let fresh = r.define(c, &name, pos);
-    let Some(call) = c.shader_call_or_named("the light shader", &r.raw.shaders) else {
+    let earlier = incremental::earlier_body(r, "light");
+    let Some((call, head)) =
+        incremental::head_call(r, c, earlier.as_ref(), "the light shader", true)
+    else {
         c.skip_to_end("light", open);
         return;
     };
@@ -702,6 +724,8 @@ pub fn light(r: &mut Reader, c: &mut Cursor, open: Pos) {
     let mut area = None;
     let mut visible = false;
     let (mut energy, mut caustic_photons, mut globillum_photons) = (None, None, None);
+    let start = c.index();
+    incremental::replay_statements(c, earlier.as_ref());
     loop {
         let Some(t) = c.block_token("light", open) else {
             return;
@@ -775,9 +799,11 @@ pub fn light(r: &mut Reader, c: &mut Cursor, open: Pos) {
             }
         }
     }
+    let statements = c.record(start);
     c.expect_end("light", open);
     let Some(m) = mapped else { return };
     if fresh {
+        incremental::keep(r, &name, "light", head, statements);
         r.raw.lights.insert(
             name,
             RawLight {
@@ -838,8 +864,11 @@ pub fn material(r: &mut Reader, c: &mut Cursor, open: Pos) {
         return;
     };
     let fresh = r.define(c, &name, pos);
+    let earlier = incremental::earlier_body(r, "material");
     c.eat_word("opaque");
-    let Some(call) = c.shader_call_or_named("the material shader", &r.raw.shaders) else {
+    let Some((call, head)) =
+        incremental::head_call(r, c, earlier.as_ref(), "the material shader", true)
+    else {
         c.skip_to_end("material", open);
         return;
     };
@@ -852,6 +881,8 @@ pub fn material(r: &mut Reader, c: &mut Cursor, open: Pos) {
     let mut interior = None;
     let mut displace = None;
     let (mut shadow, mut environment) = (None, None);
+    let start = c.index();
+    incremental::replay_statements(c, earlier.as_ref());
     loop {
         let Some(t) = c.block_token("material", open) else {
             return;
@@ -870,9 +901,10 @@ pub fn material(r: &mut Reader, c: &mut Cursor, open: Pos) {
                 if let Some(call) = c.shader_call_or_named("the contour shader", &r.raw.shaders) {
                     super::param_paths::record(c, &call, Some(".contour"), &mut values);
                     frame_fade = super::contours::frame_fade(c, &call);
-                    if frame_fade.is_none() {
-                        contour = super::contours::material_shader(c, &call);
-                    }
+                    contour = match frame_fade {
+                        None => super::contours::material_shader(c, &call),
+                        Some(_) => None,
+                    };
                 }
             }
             "volume" => {
@@ -936,11 +968,13 @@ pub fn material(r: &mut Reader, c: &mut Cursor, open: Pos) {
             }
         }
     }
+    let statements = c.record(start);
     c.expect_end("material", open);
     let Some((shader, lights, exclusive, bind)) = mapped else {
         return;
     };
     if fresh {
+        incremental::keep(r, &name, "material", head, statements);
         let desc = MaterialDesc {
             name: name.clone(),
             shader,
@@ -1064,10 +1098,13 @@ pub fn named_shader(r: &mut Reader, c: &mut Cursor) {
         return;
     };
     let fresh = r.define(c, &name, pos);
-    let Some(call) = c.shader_call("the shader") else {
+    let earlier = incremental::earlier_body(r, "shader");
+    let Some((call, head)) = incremental::head_call(r, c, earlier.as_ref(), "the shader", false)
+    else {
         return;
     };
     if fresh {
+        incremental::keep(r, &name, "shader", head, Default::default());
         r.raw.shaders.insert(name, call);
     }
 }

@@ -97,6 +97,16 @@ pub struct Cursor {
     /// Per token (and one past the last), whether a lexical error lies just before it: a
     /// value missing there was reported already, as the bad token.
     lex_error_before: Vec<bool>,
+    /// The entries of `files` that only replayed tokens come from (not `$include`d here).
+    replayed_files: Vec<usize>,
+}
+
+/// Tokens a block read, each with the file it was written in: what an `incremental`
+/// definition of the element replays before its own statements.
+#[derive(Debug, Clone, Default)]
+pub struct Recorded {
+    /// Runs of tokens written in one file, in reading order.
+    runs: Vec<(PathBuf, Vec<Token>)>,
 }
 
 impl Cursor {
@@ -112,7 +122,62 @@ impl Cursor {
             outer: Vec::new(),
             problems: Vec::new(),
             lex_error_before: vec![false; n + 1],
+            replayed_files: Vec::new(),
         }
+    }
+
+    /// Where the cursor is, for [`Self::record`] (and to tell replayed tokens, which lie
+    /// before the end [`Self::replay`] returns, from the block's own).
+    pub fn index(&self) -> usize {
+        self.at
+    }
+
+    /// The tokens from `from` (an earlier [`Self::index`]) to the cursor, each with its
+    /// file; the `$include "file"` statements among them are left out (their files' tokens
+    /// follow them, spliced in).
+    pub fn record(&self, from: usize) -> Recorded {
+        let mut runs: Vec<(PathBuf, Vec<Token>)> = Vec::new();
+        let mut k = from;
+        while k < self.at.min(self.tokens.len()) {
+            let t = &self.tokens[k];
+            if matches!(&t.tok, Tok::Word(w) if w == "$include") {
+                k += 2;
+                continue;
+            }
+            let file = &self.files[self.token_files[k]].0;
+            match runs.last_mut() {
+                Some((f, run)) if f == file => run.push(t.clone()),
+                _ => runs.push((file.clone(), vec![t.clone()])),
+            }
+            k += 1;
+        }
+        Recorded { runs }
+    }
+
+    /// Inserts `recorded` at the cursor: its tokens are read next, located in the files
+    /// they were written in (the problems they raise again are the ones reported when they
+    /// were first read, which the reader drops as repeats). Returns the index just past
+    /// them.
+    pub fn replay(&mut self, recorded: &Recorded) -> usize {
+        let at = self.at;
+        let mut k = at;
+        for (file, run) in &recorded.runs {
+            let index = match self.files.iter().position(|(f, _)| f == file) {
+                Some(i) => i,
+                None => {
+                    self.files.push((file.clone(), None));
+                    self.replayed_files.push(self.files.len() - 1);
+                    self.files.len() - 1
+                }
+            };
+            let n = run.len();
+            self.tokens.splice(k..k, run.iter().cloned());
+            self.token_files.splice(k..k, std::iter::repeat_n(index, n));
+            self.lex_error_before
+                .splice(k..k, std::iter::repeat_n(false, n));
+            k += n;
+        }
+        k
     }
 
     /// Reports the lexical errors of the cursor's file, remembering that each broke the
@@ -219,7 +284,12 @@ impl Cursor {
 
     /// The files spliced into the cursor's file, in reading order.
     pub fn spliced(&self) -> impl Iterator<Item = &PathBuf> {
-        self.files.iter().skip(1).map(|(f, _)| f)
+        self.files
+            .iter()
+            .enumerate()
+            .skip(1)
+            .filter(|(i, _)| !self.replayed_files.contains(i))
+            .map(|(_, (f, _))| f)
     }
 
     /// The include chain of the next token's file: the files around the cursor's file,

@@ -4,7 +4,7 @@
 //! One module per step: [`lexer`] (tokens with `line:column`), [`cursor`] (a file's tokens
 //! and the shader parameter lists `("name" value, …)`), [`include`] (an `$include`d file,
 //! at the top level or spliced into a block), [`statements`] (the top-level
-//! statements, `incremental`, `$include` and `link`), [`blocks`] (`options`, `camera`, `light`,
+//! statements, `incremental` ([`incremental`]: the changed element keeps its earlier values), `$include` and `link`), [`blocks`] (`options`, `camera`, `light`,
 //! `material` and `declare phenomenon` blocks; [`photon_options`] maps the photon
 //! statements of `options`, [`switches`] its feature switches, [`unmapped_options`] the
 //! standard options read and warned), [`object`] (`object … group … end group
@@ -35,6 +35,7 @@ pub mod cursor;
 pub mod displace;
 pub mod fade;
 pub mod include;
+pub mod incremental;
 pub mod lexer;
 pub mod material_shaders;
 pub mod model;

@@ -249,7 +249,7 @@ pub struct RawInstance {
     pub of_at: Located,
     /// `transform`: 16 numbers, row by row, world → object with row vectors.
     pub transform: Option<[f64; 16]>,
-    /// Where `transform` is.
+    /// Where the `transform`'s first number is (errors about the matrix point there).
     pub transform_at: Option<Located>,
     /// `material "m"` override.
     pub material: Option<(String, Located)>,

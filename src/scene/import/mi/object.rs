@@ -80,14 +80,22 @@ pub fn object(r: &mut Reader, c: &mut Cursor, open: Pos) {
         return;
     };
     let fresh = r.define(c, &name, pos);
+    // An incremental object starts from the earlier one: flags not written keep their
+    // values, and the geometry is kept unless the block writes a group (then its groups
+    // replace the earlier geometry whole).
+    let earlier = r.earlier.as_mut().and_then(|e| e.object.take());
+    let mut keeps_earlier_geometry = earlier.is_some();
     let mut obj = RawObject {
         at: c.located(open),
-        vertices: Vec::new(),
-        uvs: Vec::new(),
-        polygons: Vec::new(),
-        surfaces: Vec::new(),
-        approximation: None,
-        flags: Flags::default(),
+        ..earlier.unwrap_or(RawObject {
+            at: c.located(open),
+            vertices: Vec::new(),
+            uvs: Vec::new(),
+            polygons: Vec::new(),
+            surfaces: Vec::new(),
+            approximation: None,
+            flags: Flags::default(),
+        })
     };
     let mut bases = Bases::new();
     let mut failed = false;
@@ -122,6 +130,13 @@ pub fn object(r: &mut Reader, c: &mut Cursor, open: Pos) {
                 }
             }
             "group" => {
+                if std::mem::take(&mut keeps_earlier_geometry) {
+                    obj.vertices.clear();
+                    obj.uvs.clear();
+                    obj.polygons.clear();
+                    obj.surfaces.clear();
+                    obj.approximation = None;
+                }
                 if !group(c, &mut obj, &bases, t.pos) {
                     failed = true;
                 }
@@ -173,6 +188,8 @@ fn group(c: &mut Cursor, obj: &mut RawObject, bases: &Bases, open: Pos) -> bool 
         c.skip_arguments();
     }
     let mut vectors: Vec<(f64, f64, f64)> = Vec::new();
+    // Where each vector's three numbers are (a vertex's error points at its number).
+    let mut vector_at: Vec<[Pos; 3]> = Vec::new();
     let base = obj.vertices.len() as u32;
     let mut vertex_count = 0u32;
     let mut material: Option<String> = None;
@@ -185,11 +202,18 @@ fn group(c: &mut Cursor, obj: &mut RawObject, bases: &Bases, open: Pos) -> bool 
         if !c.at_number() {
             break;
         }
-        let Some(v) = c.numbers(3, "a vector of the group") else {
-            c.skip_to_end("group", open);
-            return false;
-        };
+        let mut v = [0.0; 3];
+        let mut at = [Pos::default(); 3];
+        for k in 0..3 {
+            at[k] = c.pos();
+            let Some(x) = c.number("a vector of the group") else {
+                c.skip_to_end("group", open);
+                return false;
+            };
+            v[k] = x;
+        }
         vectors.push((v[0], v[1], v[2]));
+        vector_at.push(at);
     }
     loop {
         let Some(t) = c.block_token("group", open) else {
@@ -217,7 +241,12 @@ fn group(c: &mut Cursor, obj: &mut RawObject, bases: &Bases, open: Pos) -> bool 
                 };
                 obj.uvs.push(None);
                 match vectors.get(i as usize) {
-                    Some(p) => obj.vertices.push(*p),
+                    Some(p) => {
+                        if !within_f32(c, *p, vector_at[i as usize]) {
+                            ok = false;
+                        }
+                        obj.vertices.push(*p)
+                    }
                     None => {
                         c.error(
                             at,
@@ -367,6 +396,19 @@ fn group(c: &mut Cursor, obj: &mut RawObject, bases: &Bases, open: Pos) -> bool 
     ok
 }
 
+/// Whether each coordinate of the vertex `p` (its numbers at `at`) fits the f32 the
+/// renderer keeps positions in; reports each that does not at its number.
+fn within_f32(c: &mut Cursor, p: (f64, f64, f64), at: [Pos; 3]) -> bool {
+    let mut ok = true;
+    for (x, at) in [p.0, p.1, p.2].into_iter().zip(at) {
+        if x.abs() > f64::from(f32::MAX) {
+            c.error(at, format!("vertex {x:e} is beyond the f32 range"));
+            ok = false;
+        }
+    }
+    ok
+}
+
 /// `instance "name" "element" … end instance`.
 pub fn instance(r: &mut Reader, c: &mut Cursor, open: Pos) {
     let Some((name, pos)) = c.string("the name of the instance") else {
@@ -374,18 +416,32 @@ pub fn instance(r: &mut Reader, c: &mut Cursor, open: Pos) {
         return;
     };
     let fresh = r.define(c, &name, pos);
-    let Some((of, of_pos)) = c.string("the element the instance places") else {
-        c.skip_to_end("instance", open);
-        return;
+    // An incremental instance starts from the earlier one: the element placed may be
+    // left out, and what the block does not write keeps its value.
+    let earlier = r.earlier.as_mut().and_then(|e| e.instance.take());
+    let (of, of_at) = match earlier {
+        Some(ref e) if !c.at_string() => (e.of.clone(), e.of_at.clone()),
+        _ => {
+            let Some((of, of_pos)) = c.string("the element the instance places") else {
+                c.skip_to_end("instance", open);
+                return;
+            };
+            (of, c.located(of_pos))
+        }
     };
     let mut inst = RawInstance {
         at: c.located(open),
         of,
-        of_at: c.located(of_pos),
-        transform: None,
-        transform_at: None,
-        material: None,
-        flags: Flags::default(),
+        of_at,
+        ..earlier.unwrap_or(RawInstance {
+            at: c.located(open),
+            of: String::new(),
+            of_at: c.located(open),
+            transform: None,
+            transform_at: None,
+            material: None,
+            flags: Flags::default(),
+        })
     };
     loop {
         let Some(t) = c.block_token("instance", open) else {
@@ -407,17 +463,23 @@ pub fn instance(r: &mut Reader, c: &mut Cursor, open: Pos) {
         match w.as_str() {
             "transform" => {
                 if c.at_number() {
-                    let Some(m) = c.numbers(16, "the transform (16 numbers)") else {
-                        c.skip_to_end("instance", open);
-                        return;
-                    };
                     let mut a = [0.0; 16];
-                    a.copy_from_slice(&m);
-                    match super::transform::affine(&a, t.pos) {
+                    let mut at = [Pos::default(); 16];
+                    for k in 0..16 {
+                        at[k] = c.pos();
+                        let Some(x) = c.number("the transform (16 numbers)") else {
+                            c.skip_to_end("instance", open);
+                            return;
+                        };
+                        a[k] = x;
+                    }
+                    match super::transform::affine(&a, &at) {
                         Ok(a) => inst.transform = Some(a),
                         Err(problem) => c.report(problem),
                     }
-                    inst.transform_at = Some(c.located(t.pos));
+                    // The matrix is the value: errors about it as a whole point at its
+                    // first number.
+                    inst.transform_at = Some(c.located(at[0]));
                 }
             }
             "motion" => {

@@ -20,6 +20,7 @@
 use super::super::located::Pos;
 use super::cursor::Cursor;
 use super::lexer::Tok;
+use super::value_positions::ValuePositions;
 use crate::scene::desc::{
     OptionsDesc, PhotonDepthDesc, PhotonFilterDesc, PhotonMapDesc, PhotonMapFileDesc,
 };
@@ -34,8 +35,8 @@ pub struct PhotonOptions {
     globillum: Map,
     /// `finalgather on|off` and where it was written.
     final_gather: Option<(bool, Pos)>,
-    /// `photonmap file "…"`.
-    file: Option<String>,
+    /// `photonmap file "…"` and where the file name was written.
+    file: Option<(String, Pos)>,
     /// `photonmap rebuild on|off` and where it was written.
     rebuild: Option<(bool, Pos)>,
     /// `photon trace depth …`.
@@ -47,6 +48,8 @@ pub struct PhotonOptions {
 struct Map {
     on: bool,
     desc: PhotonMapDesc,
+    /// Where its values were written, by description path below the map (`.gather`).
+    values: Vec<(&'static str, Pos)>,
 }
 
 impl PhotonOptions {
@@ -94,15 +97,20 @@ impl PhotonOptions {
     pub fn final_gather(&mut self, c: &mut Cursor, at: Pos) {
         if c.eat_word("accuracy") {
             c.eat_word("view");
+            let value = c.pos();
             let Some(rays) = c.count("finalgather accuracy") else {
                 return;
             };
             if rays == 0 {
-                c.error(at, "finalgather accuracy must be at least 1 ray, found 0");
+                c.error(
+                    value,
+                    "finalgather accuracy must be at least 1 ray, found 0",
+                );
                 c.skip_arguments();
                 return;
             }
             self.globillum.desc.final_gather = rays;
+            self.globillum.values.push((".final_gather", value));
             if c.at_number() {
                 c.skip_arguments();
                 c.warn(
@@ -125,7 +133,7 @@ impl PhotonOptions {
     /// `photonmap file "…"` / `photonmap rebuild on|off` after the word `photonmap`.
     pub fn photon_map(&mut self, c: &mut Cursor, at: Pos) {
         if c.eat_word("file") {
-            if let Some((file, _)) = c.string("the photon map file") {
+            if let Some(file) = c.string("the photon map file") {
                 self.file = Some(file);
             }
         } else if c.eat_word("rebuild") {
@@ -179,13 +187,25 @@ impl PhotonOptions {
         });
     }
 
-    /// Writes the maps that are on into `desc`, warning where `finalgather` cannot hold.
-    pub fn apply(self, c: &mut Cursor, desc: &mut OptionsDesc) {
+    /// Writes the maps that are on into `desc`, warning where `finalgather` cannot hold;
+    /// where their values were written goes into `values` (below `options`).
+    pub fn apply(self, c: &mut Cursor, desc: &mut OptionsDesc, values: &mut ValuePositions) {
         if let Some(depth) = self.depth {
             desc.photon_depth = Some(depth);
         }
+        for (map, path) in [
+            (&self.caustic, ".caustics"),
+            (&self.globillum, ".global_illumination"),
+        ] {
+            if map.on {
+                for (value, at) in &map.values {
+                    values.record(format!("{path}{value}"), c.located(*at));
+                }
+            }
+        }
         match (self.file, self.rebuild) {
-            (Some(file), rebuild) => {
+            (Some((file, at)), rebuild) => {
+                values.record(".photon_map.file", c.located(at));
                 desc.photon_map = Some(PhotonMapFileDesc {
                     file,
                     rebuild: rebuild.is_some_and(|(on, _)| on),
@@ -219,18 +239,20 @@ impl PhotonOptions {
 fn map_statement(map: &mut Map, c: &mut Cursor, at: Pos, name: &str) {
     if c.eat_word("accuracy") {
         let what = format!("{name} accuracy");
+        let value = c.pos();
         let Some(n) = c.count(&what) else {
             return;
         };
         if n < 2 {
             c.error(
-                at,
+                value,
                 format!("{what} must be at least 2 photons per estimate, found {n}"),
             );
             c.skip_arguments();
             return;
         }
         map.desc.gather = n;
+        map.values.push((".gather", value));
         if c.at_number() {
             let p = c.pos();
             let Some(r) = c.number(&what) else {
@@ -242,6 +264,7 @@ fn map_statement(map: &mut Map, c: &mut Cursor, at: Pos, name: &str) {
                 return;
             }
             map.desc.radius = r;
+            map.values.push((".radius", p));
         }
         return;
     }

@@ -103,6 +103,11 @@ pub struct Reader {
     pub included: Vec<std::path::PathBuf>,
     /// Whether the definition being read follows `incremental`.
     incremental: bool,
+    /// The element the definition being read changes (set by [`Self::define`]; `None`
+    /// for a fresh definition).
+    pub earlier: Option<super::incremental::Earlier>,
+    /// The tokens of each statement block, by element name, for `incremental`.
+    pub bodies: std::collections::HashMap<String, super::incremental::Body>,
 }
 
 impl Reader {
@@ -119,6 +124,8 @@ impl Reader {
             reading: Vec::new(),
             included: Vec::new(),
             incremental: false,
+            earlier: None,
+            bodies: Default::default(),
         }
     }
 
@@ -140,15 +147,35 @@ impl Reader {
         }
         self.included.extend(c.spliced().cloned());
         self.problems.extend(c.take_problems());
+        // An incremental definition reads the earlier one's tokens again: their problems
+        // were reported when first read.
+        let mut seen = std::collections::HashSet::new();
+        self.problems.retain(|p| seen.insert(p.to_string()));
     }
 
     /// Records that element `name` is defined at `pos`; reports a second definition. After
     /// `incremental` the name must be defined already, and the earlier element is
-    /// forgotten: the definition being read replaces it. True when the definition is to be
-    /// kept.
+    /// forgotten, what it was kept in [`Self::earlier`]: the definition being read starts
+    /// from it and replaces it. True when the definition is to be kept.
     pub fn define(&mut self, c: &mut Cursor, name: &str, pos: super::super::located::Pos) -> bool {
+        self.earlier = None;
         if std::mem::take(&mut self.incremental) {
             if self.defined.contains_key(name) {
+                self.earlier = Some(super::incremental::Earlier {
+                    body: self.bodies.remove(name),
+                    object: self
+                        .raw
+                        .objects
+                        .iter()
+                        .find(|(n, _)| n == name)
+                        .map(|(_, o)| o.clone()),
+                    instance: self
+                        .raw
+                        .instances
+                        .iter()
+                        .find(|(n, _)| n == name)
+                        .map(|(_, i)| i.clone()),
+                });
                 self.raw.forget(name);
             } else {
                 let mut p = Problem::error(

@@ -9,13 +9,16 @@
 
 use super::super::located::{Pos, Problem};
 
-/// The affine matrix of the 16 numbers `m` (row by row) of the `transform` at `at`, `w`
-/// divided out; else the located error describing the last column as written.
-pub fn affine(m: &[f64; 16], at: Pos) -> Result<[f64; 16], Problem> {
+/// The affine matrix of the 16 numbers `m` (row by row, each written at `at`), `w`
+/// divided out; else the error describing the last column as written, at its first
+/// number out of place.
+pub fn affine(m: &[f64; 16], at: &[Pos; 16]) -> Result<[f64; 16], Problem> {
     let column = [m[3], m[7], m[11], m[15]];
     let w = column[3];
     let homogeneous = column[..3].iter().all(|&x| x == 0.0) && w.is_finite() && w != 0.0;
     if !homogeneous {
+        let wrong = (0..3).find(|&k| column[k] != 0.0).unwrap_or(3);
+        let at = at[4 * wrong + 3];
         let shown: Vec<String> = column.iter().map(|x| format!("{x}")).collect();
         return Err(Problem::error(
             at,
@@ -38,7 +41,16 @@ pub fn affine(m: &[f64; 16], at: Pos) -> Result<[f64; 16], Problem> {
 mod tests {
     use super::*;
 
-    const AT: Pos = Pos { line: 3, column: 1 };
+    /// The numbers written one a column on line 3.
+    const AT: [Pos; 16] = {
+        let mut at = [Pos { line: 3, column: 1 }; 16];
+        let mut k = 0;
+        while k < 16 {
+            at[k].column = 1 + 2 * k;
+            k += 1;
+        }
+        at
+    };
 
     /// Seed 001 §3.2.2's sphere transform: scale 0.2 and translation (0, 0, 2), scaled by
     /// 0.2 — the identity scale and a translation of 10.
@@ -47,7 +59,7 @@ mod tests {
         let m = [
             0.2, 0.0, 0.0, 0.0, 0.0, 0.2, 0.0, 0.0, 0.0, 0.0, 0.2, 0.0, 0.0, 0.0, 2.0, 0.2,
         ];
-        let a = affine(&m, AT).unwrap();
+        let a = affine(&m, &AT).unwrap();
         assert_eq!(
             a,
             [1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 10.0, 1.0]
@@ -58,17 +70,17 @@ mod tests {
     fn a_projective_matrix_or_w_zero_is_refused_as_written() {
         let mut m = [0.0; 16];
         (m[0], m[5], m[10], m[11], m[15]) = (1.0, 1.0, 1.0, -1.0, 1.0);
-        let e = affine(&m, AT).unwrap_err();
+        let e = affine(&m, &AT).unwrap_err();
         assert_eq!(
             e.message,
             "the last column of a transform must be (0, 0, 0, w) with w ≠ 0, found (0, 0, -1, 1)"
         );
-        assert_eq!(e.pos, AT);
+        // At the number out of place: the third row's last.
+        assert_eq!(e.pos, AT[11]);
         m[11] = 0.0;
         m[15] = 0.0;
-        assert!(affine(&m, AT)
-            .unwrap_err()
-            .message
-            .ends_with("found (0, 0, 0, 0)"));
+        let e = affine(&m, &AT).unwrap_err();
+        assert!(e.message.ends_with("found (0, 0, 0, 0)"));
+        assert_eq!(e.pos, AT[15]);
     }
 }
