@@ -626,6 +626,13 @@ fn plan(args: PlanArgs) -> ExitCode {
     };
     // Planned as `render` runs it: the image is read only through outputs.
     frame.inputs.caller_keeps_image = false;
+    frame.inputs.budget = budget(None);
+    // What `check` and `render` refuse before the first stage (the memory budget, outputs
+    // that would overwrite an input or each other) is refused here too: no plan of a run
+    // that would not start.
+    if let Err(code) = check_run(&args.scene, &scene, &frame.inputs, None) {
+        return code;
+    }
     let planned = systems::plan(&scene.world, &mut frame);
     if args.json {
         match serde_json::to_string_pretty(&planned) {
