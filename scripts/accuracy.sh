@@ -18,7 +18,7 @@ sweep() {
 sweep cornell_spp_path assets/scenes/cornell_box.ron --knob spp=1,2,4,8,16,32 --integrator path --reference-spp 256 --seeds 2
 # The same knob with the direct-lighting integrator: it converges to a different (biased) image.
 sweep cornell_spp_direct assets/scenes/cornell_box.ron --knob spp=1,4,16,64 --integrator direct --reference-spp 256
-# Light samples per shading point (emitting ceiling quad), direct lighting, 4 spp.
+# Light samples per shading point (emitting ceiling quad), direct lighting, the scene's 16 spp.
 sweep cornell_light_samples assets/scenes/cornell_box.ron --knob light_samples=1,4,16,64 --integrator direct --reference-spp 256
 # BVH build quality: same image, different time.
 sweep cornell_bvh assets/scenes/cornell_box.ron --knob bvh_quality=fast,medium,high --integrator direct --reference-spp 256

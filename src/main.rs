@@ -399,6 +399,16 @@ impl IntegratorArg {
     }
 }
 
+/// `eprintln!` without its panic when standard error is closed (`stagelight sweep … 2>&1 |
+/// head -2`): a message that cannot be written is dropped, and the command runs on to its
+/// usual exit status.
+macro_rules! errln {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stderr(), $($arg)*);
+    }};
+}
+
 /// `print!` to standard output without its panic when the reader has gone
 /// (`stagelight plan | head -1`): the process ends quietly with status 0, as a pipeline
 /// expects; any other write error is reported and ends it with status 1.
@@ -428,7 +438,7 @@ fn write_stdout(args: std::fmt::Arguments, newline: bool) {
         if e.kind() == std::io::ErrorKind::BrokenPipe {
             std::process::exit(0);
         }
-        eprintln!("error: cannot write to standard output: {e}");
+        errln!("error: cannot write to standard output: {e}");
         std::process::exit(i32::from(EXIT_ERROR));
     }
 }
@@ -474,13 +484,13 @@ fn load(path: &Path, budget: &stagelight::budget::Budget) -> Result<LoadedScene,
     match stagelight::scene::load_scene_within(path, budget) {
         Ok(scene) => {
             for w in &scene.located_warnings {
-                eprintln!("{w}");
+                errln!("{w}");
             }
             Ok(scene)
         }
         Err(errors) => {
-            eprintln!("{errors}");
-            eprintln!("{}", refusal_line(errors.0.len(), errors.1.len(), path));
+            errln!("{errors}");
+            errln!("{}", refusal_line(errors.0.len(), errors.1.len(), path));
             Err(ExitCode::from(EXIT_ERROR))
         }
     }
@@ -544,7 +554,7 @@ fn check(path: &Path, memory_limit: Option<u64>) -> ExitCode {
             // Adaptive approximations are diced (and refused past the budget) only by a
             // render: what can be known now is their worst case.
             for w in stagelight::budget::worst_case::warnings(&scene.world, &frame.inputs.budget) {
-                eprintln!("{}", w.with_severity(stagelight::scene::Severity::Warning));
+                errln!("{}", w.with_severity(stagelight::scene::Severity::Warning));
             }
             let entities = scene.world.len();
             outln!("{}: ok ({entities} entities)", path.display());
@@ -580,9 +590,9 @@ fn check_run(
     if !refused.is_empty() {
         let refused = stagelight::guard::locate::options_located(path, refused);
         for d in &refused {
-            eprintln!("{d}");
+            errln!("{d}");
         }
-        eprintln!("{}", refusal_line(refused.len(), 0, path));
+        errln!("{}", refusal_line(refused.len(), 0, path));
         return Err(ExitCode::from(EXIT_ERROR));
     }
     check_outputs(path, scene, inputs, stats_json)
@@ -601,9 +611,9 @@ fn check_outputs(
         return Ok(());
     }
     for c in &clashes {
-        eprintln!("{}", c.text);
+        errln!("{}", c.text);
     }
-    eprintln!("{}", refusal_line(clashes.len(), 0, path));
+    errln!("{}", refusal_line(clashes.len(), 0, path));
     Err(ExitCode::from(if clashes.iter().any(|c| c.usage) {
         EXIT_USAGE
     } else {
@@ -626,12 +636,19 @@ fn plan(args: PlanArgs) -> ExitCode {
     };
     // Planned as `render` runs it: the image is read only through outputs.
     frame.inputs.caller_keeps_image = false;
+    frame.inputs.budget = budget(None);
+    // What `check` and `render` refuse before the first stage (the memory budget, outputs
+    // that would overwrite an input or each other) is refused here too: no plan of a run
+    // that would not start.
+    if let Err(code) = check_run(&args.scene, &scene, &frame.inputs, None) {
+        return code;
+    }
     let planned = systems::plan(&scene.world, &mut frame);
     if args.json {
         match serde_json::to_string_pretty(&planned) {
             Ok(j) => outln!("{j}"),
             Err(e) => {
-                eprintln!("error: cannot encode the plan: {e}");
+                errln!("error: cannot encode the plan: {e}");
                 return ExitCode::from(EXIT_ERROR);
             }
         }
@@ -670,7 +687,7 @@ fn convert(scene: &Path, output: &Path) -> ExitCode {
         return code;
     }
     let fail = |message: String| {
-        eprintln!("{message}");
+        errln!("{message}");
         ExitCode::from(EXIT_ERROR)
     };
     let inputs = stagelight::scene::inputs::scene_inputs(scene, None);
@@ -679,7 +696,7 @@ fn convert(scene: &Path, output: &Path) -> ExitCode {
         .iter()
         .find(|i| stagelight::guard::outputs::same_file_key(i) == key)
     {
-        eprintln!(
+        errln!(
             "error: -o {} would overwrite the scene input {}\n  help: write the RON scene to another file",
             output.display(),
             input.display()
@@ -758,7 +775,7 @@ fn usable_paths(checks: &[Result<(), String>]) -> Result<(), ExitCode> {
     match checks.iter().find_map(|c| c.as_ref().err()) {
         None => Ok(()),
         Some(message) => {
-            eprintln!("error: {message}");
+            errln!("error: {message}");
             Err(ExitCode::from(EXIT_USAGE))
         }
     }
@@ -770,7 +787,7 @@ fn set_threads(threads: Option<u32>) -> Result<(), ExitCode> {
             .num_threads(threads as usize)
             .build_global()
         {
-            eprintln!("error: cannot start {threads} worker threads: {e}");
+            errln!("error: cannot start {threads} worker threads: {e}");
             return Err(ExitCode::from(EXIT_ERROR));
         }
     }
@@ -822,11 +839,11 @@ fn render(args: RenderArgs) -> ExitCode {
     };
     if let Some(name) = &args.camera {
         if args.part.is_some() {
-            eprintln!("error: --camera cannot be combined with --part\n  help: the merge job renders the scene's render camera; set `render: (camera: …)` in the scene instead");
+            errln!("error: --camera cannot be combined with --part\n  help: the merge job renders the scene's render camera; set `render: (camera: …)` in the scene instead");
             return ExitCode::from(EXIT_USAGE);
         }
         if let Err(message) = stagelight::camera_choice::use_camera(&mut scene.world, name) {
-            eprintln!("{message}");
+            errln!("{message}");
             return ExitCode::from(EXIT_USAGE);
         }
     }
@@ -840,7 +857,7 @@ fn render(args: RenderArgs) -> ExitCode {
         settings.diagnostic = args.diagnostic;
     }
     if let Some(message) = stagelight::diagnostic_needs::missing(&settings) {
-        eprintln!("error: {message}");
+        errln!("error: {message}");
         let flagged = args.diagnostic.is_some() || args.stages.integrator.is_some();
         return ExitCode::from(if flagged { EXIT_USAGE } else { EXIT_ERROR });
     }
@@ -850,7 +867,7 @@ fn render(args: RenderArgs) -> ExitCode {
         if let Err(message) =
             stagelight::part_refusals::part_file_output(number, args.output.as_deref())
         {
-            eprintln!("error: {message}");
+            errln!("error: {message}");
             return ExitCode::from(EXIT_USAGE);
         }
     }
@@ -859,14 +876,14 @@ fn render(args: RenderArgs) -> ExitCode {
         Err(code) => return code,
     };
     if args.output.is_some() && !stagelight::scene_view::has_render_camera(&scene.world) {
-        eprintln!("error: the scene has no render camera");
+        errln!("error: the scene has no render camera");
         return ExitCode::from(EXIT_USAGE);
     }
     let part = match args.part {
         Some(number) => match part_run(&args, number, &scene, &settings) {
             Ok(run) => Some(run),
             Err(message) => {
-                eprintln!("error: {message}");
+                errln!("error: {message}");
                 return ExitCode::from(EXIT_USAGE);
             }
         },
@@ -909,7 +926,7 @@ fn photons(args: PhotonsArgs) -> ExitCode {
         Err(code) => return code,
     };
     if args.photon_cache.is_none() && settings.photon_map.is_none() {
-        eprintln!(
+        errln!(
             "error: nowhere to keep the photon maps of {}\n  help: give --photon-cache DIR, or add `photon_map: (file: \"scene.pmap\")` to the scene's options",
             args.scene.display()
         );
@@ -927,7 +944,7 @@ fn photons(args: PhotonsArgs) -> ExitCode {
         .iter()
         .find(|p| p.stage == "trace_photons" && !p.run)
     {
-        eprintln!(
+        errln!(
             "error: {} traces no photons: {}\n  help: photon maps are built for `caustics: (…)` or `global_illumination: (…)` in options, with the Direct integrator",
             args.scene.display(),
             p.reason
@@ -985,7 +1002,7 @@ fn merge(args: MergeArgs) -> ExitCode {
             .iter()
             .any(|p| same_file_key(p) == same_file_key(out))
         {
-            eprintln!(
+            errln!(
                 "error: -o {} is one of the part files being merged\n  help: write the merged image to a new file",
                 out.display()
             );
@@ -995,19 +1012,19 @@ fn merge(args: MergeArgs) -> ExitCode {
     let parts = match stagelight::farm::merge::read_parts(&args.parts) {
         Ok(parts) => parts,
         Err(message) => {
-            eprintln!("error: {message}\nnothing written");
+            errln!("error: {message}\nnothing written");
             return ExitCode::from(EXIT_ERROR);
         }
     };
     if args.write_gltf {
         let refusal = gltf_copy_refusals::render_parts_refusal(&args.parts[0]);
-        eprintln!("error: {refusal}");
+        errln!("error: {refusal}");
         return ExitCode::from(EXIT_USAGE);
     }
     let image = match stagelight::farm::merge::merge(&parts) {
         Ok(image) => image,
         Err(message) => {
-            eprintln!("error: {message}\nnothing written");
+            errln!("error: {message}\nnothing written");
             return ExitCode::from(EXIT_ERROR);
         }
     };
@@ -1049,12 +1066,12 @@ fn checked_overrides(
         .check()
         .and_then(|()| overrides.check_contours(world, syntax))
         .map_err(|message| {
-            eprintln!("error: {message}");
+            errln!("error: {message}");
             ExitCode::from(EXIT_USAGE)
         })?;
     let listed = stagelight::scene_view::render_view(world).map(|v| v.camera.outputs);
     if let Some(warning) = overrides.png_drops_passes(&listed.unwrap_or_default()) {
-        eprintln!("warning: {warning}");
+        errln!("warning: {warning}");
     }
     Ok(overrides)
 }
@@ -1081,7 +1098,7 @@ fn part_scene(
         .clone()
         .unwrap_or_else(|| PathBuf::from(header_scene));
     if args.scene.is_none() && !scene_path.exists() {
-        eprintln!(
+        errln!(
             "error: the parts came from the scene {}, which is not there
   help: pass the scene they came from with --scene SCENE
 nothing written",
@@ -1105,7 +1122,7 @@ nothing written",
         } else {
             format!("{verb} the parts again from {}", scene_path.display())
         };
-        eprintln!(
+        errln!(
             "error: the parts came from the scene {header_scene}, not from {} (content hash {hash:016x}, the parts have {parts_hash:016x})\n  help: {help}\nnothing written",
             scene_path.display(),
         );
@@ -1119,7 +1136,7 @@ nothing written",
         } else {
             format!("{verb} the parts again, or pass the scene they came from with --scene")
         };
-        eprintln!(
+        errln!(
             "error: {} changed since the parts were {done} (content hash {hash:016x}, the parts have {parts_hash:016x})\n  help: {help}\nnothing written",
             scene_path.display(),
         );
@@ -1143,7 +1160,7 @@ fn merge_bake(args: MergeArgs) -> ExitCode {
     }) {
         Ok(m) => m,
         Err(message) => {
-            eprintln!("error: {message}\nnothing written");
+            errln!("error: {message}\nnothing written");
             return ExitCode::from(EXIT_ERROR);
         }
     };
@@ -1151,7 +1168,7 @@ fn merge_bake(args: MergeArgs) -> ExitCode {
     if args.write_gltf {
         let scene = args.scene.as_deref().unwrap_or(Path::new(&header.scene));
         if let Some(refusal) = gltf_copy_refusals::scene_refusal(scene) {
-            eprintln!("error: {refusal}");
+            errln!("error: {refusal}");
             return ExitCode::from(EXIT_USAGE);
         }
     }
@@ -1164,7 +1181,7 @@ fn merge_bake(args: MergeArgs) -> ExitCode {
     settings.seed = header.seed;
     header.recorded.apply(&mut settings);
     if stagelight::farm::settings_hash(&settings) != header.settings_hash {
-        eprintln!(
+        errln!(
             "error: the parts were baked with other settings than {} gives (written by another stagelight version?)\n  help: bake the parts again with this stagelight\nnothing written",
             scene_path.display()
         );
@@ -1195,7 +1212,7 @@ fn farm(args: FarmArgs) -> ExitCode {
             Some(gltf_copy_refusals::render_farm_refusal())
         };
         if let Some(refusal) = refusal {
-            eprintln!("error: {refusal}");
+            errln!("error: {refusal}");
             return ExitCode::from(EXIT_USAGE);
         }
     }
@@ -1215,11 +1232,11 @@ fn farm(args: FarmArgs) -> ExitCode {
     };
     if args.bake {
         if scene.world.query::<&BakeRequest>().iter().next().is_none() {
-            eprintln!("error: {} has no bake requests", args.scene.display());
+            errln!("error: {} has no bake requests", args.scene.display());
             return ExitCode::from(EXIT_ERROR);
         }
     } else if !stagelight::scene_view::has_render_camera(&scene.world) {
-        eprintln!("error: {} has no render camera", args.scene.display());
+        errln!("error: {} has no render camera", args.scene.display());
         return ExitCode::from(EXIT_ERROR);
     }
     if let Err(code) = farm_refusals(&args, &mut scene) {
@@ -1256,23 +1273,23 @@ fn farm(args: FarmArgs) -> ExitCode {
     ) {
         Ok(job) => job,
         Err(message) => {
-            eprintln!("error: {message}");
+            errln!("error: {message}");
             return ExitCode::from(EXIT_ERROR);
         }
     };
     let written = match stagelight::farm::slurm::write(&job) {
         Ok(w) => w,
         Err(message) => {
-            eprintln!("error: {message}");
+            errln!("error: {message}");
             return ExitCode::from(EXIT_ERROR);
         }
     };
     for path in &written {
-        eprintln!("wrote {}", path.display());
+        errln!("wrote {}", path.display());
     }
     if !args.submit {
         let submit = job.out.join("submit.sh");
-        eprintln!(
+        errln!(
             "submit with: bash {}",
             stagelight::farm::slurm::quote(&submit.to_string_lossy())
         );
@@ -1284,11 +1301,11 @@ fn farm(args: FarmArgs) -> ExitCode {
     {
         Ok(status) if status.success() => ExitCode::SUCCESS,
         Ok(status) => {
-            eprintln!("error: submitting with sbatch failed ({status})");
+            errln!("error: submitting with sbatch failed ({status})");
             ExitCode::from(EXIT_ERROR)
         }
         Err(e) => {
-            eprintln!("error: cannot run bash to submit: {e}");
+            errln!("error: cannot run bash to submit: {e}");
             ExitCode::from(EXIT_ERROR)
         }
     }
@@ -1333,7 +1350,7 @@ fn farm_refusals(args: &FarmArgs, scene: &mut LoadedScene) -> Result<(), ExitCod
         if let Some(message) =
             stagelight::part_refusals::part_refusal(&scene.world, settings, number, split, false)
         {
-            eprintln!("error: {message}");
+            errln!("error: {message}");
             return Err(ExitCode::from(EXIT_USAGE));
         }
         frame.inputs.outputs = checked_overrides(args.output.clone(), &scene.world, &args.scene)?;
@@ -1350,7 +1367,7 @@ fn farm_refusals(args: &FarmArgs, scene: &mut LoadedScene) -> Result<(), ExitCod
                     .map(|m| (m, EXIT_USAGE))
                 });
         if let Some((message, code)) = refusal {
-            eprintln!("error: {message}");
+            errln!("error: {message}");
             return Err(ExitCode::from(code));
         }
     }
@@ -1361,7 +1378,7 @@ fn farm_refusals(args: &FarmArgs, scene: &mut LoadedScene) -> Result<(), ExitCod
                 stagelight::part_refusals::bake_part_count_refusal(args.parts, tiles, requests)
             });
         if let Some(message) = refusal {
-            eprintln!("error: {message}");
+            errln!("error: {message}");
             return Err(ExitCode::from(EXIT_USAGE));
         }
     }
@@ -1385,7 +1402,7 @@ fn bake(args: BakeArgs) -> ExitCode {
     use stagelight::guard::dir_flags::{usable_dir, usable_file};
     if let (Some(number), true) = (args.part, args.write_gltf) {
         let refusal = gltf_copy_refusals::part_refusal(number.index, number.count);
-        eprintln!("error: {refusal}");
+        errln!("error: {refusal}");
         return ExitCode::from(EXIT_USAGE);
     }
     let stats_json = args.stats_json.as_deref();
@@ -1408,7 +1425,7 @@ fn bake(args: BakeArgs) -> ExitCode {
         Err(code) => return code,
     };
     if scene.world.query::<&BakeRequest>().iter().next().is_none() {
-        eprintln!(
+        errln!(
             "error: {} has no bake requests\n  help: add `bake: (resolution: (512, 512), outputs: [(kind: AmbientOcclusion())])` to an instance",
             args.scene.display()
         );
@@ -1434,7 +1451,7 @@ fn bake(args: BakeArgs) -> ExitCode {
     });
     if args.write_gltf {
         if let Some(refusal) = gltf_copy_refusals::scene_refusal(&args.scene) {
-            eprintln!("error: {refusal}");
+            errln!("error: {refusal}");
             return ExitCode::from(EXIT_USAGE);
         }
         frame.inputs.write_gltf = Some(args.scene.clone());
@@ -1481,7 +1498,7 @@ fn bench(args: BenchArgs) -> ExitCode {
     );
     if !refused.is_empty() {
         for d in stagelight::guard::locate::options_located(&args.scene, refused) {
-            eprintln!("{d}");
+            errln!("{d}");
         }
         return ExitCode::from(EXIT_ERROR);
     }
@@ -1492,7 +1509,7 @@ fn bench(args: BenchArgs) -> ExitCode {
     match result {
         Ok(()) => {}
         Err(e) => {
-            eprintln!("{e}");
+            errln!("{e}");
             return ExitCode::from(e.exit_code());
         }
     }
@@ -1517,7 +1534,7 @@ fn bench(args: BenchArgs) -> ExitCode {
         match serde_json::to_string_pretty(&value) {
             Ok(j) => outln!("{j}"),
             Err(e) => {
-                eprintln!("error: cannot encode the report: {e}");
+                errln!("error: cannot encode the report: {e}");
                 return ExitCode::from(EXIT_ERROR);
             }
         }
@@ -1553,7 +1570,7 @@ fn sweep(args: SweepArgs) -> ExitCode {
     let knob = match Knob::parse(&args.knob) {
         Ok(k) => k,
         Err(e) => {
-            eprintln!("error: {e}");
+            errln!("error: {e}");
             return ExitCode::from(EXIT_USAGE);
         }
     };
@@ -1581,13 +1598,15 @@ fn sweep(args: SweepArgs) -> ExitCode {
         move || finished.result_in_place(),
         move || written.remove_partial(),
     );
-    let summary = match run_sweep(&opts, systems::run, |step| eprintln!("sweep: {step}")) {
+    let summary = match run_sweep(&opts, systems::run, |step| errln!("sweep: {step}")) {
         Ok(s) => s,
         Err(e) => {
-            eprintln!("{e}");
+            errln!("{e}");
             return ExitCode::from(match &e {
                 stagelight::sweep::SweepError::Stage(s) => s.exit_code(),
-                stagelight::sweep::SweepError::Crop(_) => EXIT_USAGE,
+                stagelight::sweep::SweepError::Crop(_)
+                | stagelight::sweep::SweepError::ReferenceSize(_) => EXIT_USAGE,
+                stagelight::sweep::SweepError::Knob(k) if k.is_usage() => EXIT_USAGE,
                 _ => EXIT_ERROR,
             });
         }
@@ -1596,7 +1615,7 @@ fn sweep(args: SweepArgs) -> ExitCode {
     let svg = match stagelight::sweep::plot::svg(&summary) {
         Ok(s) => s,
         Err(e) => {
-            eprintln!("error: cannot draw the plot: {e}");
+            errln!("error: cannot draw the plot: {e}");
             return ExitCode::from(EXIT_ERROR);
         }
     };
@@ -1611,17 +1630,17 @@ fn sweep(args: SweepArgs) -> ExitCode {
     });
     if opts.cancel.load(Ordering::SeqCst) {
         opts.files.remove_partial();
-        eprintln!("{}", stagelight::stage_error::StageError::Interrupted);
+        errln!("{}", stagelight::stage_error::StageError::Interrupted);
         return ExitCode::from(stagelight::stage_error::EXIT_INTERRUPTED);
     }
     if let Err((p, e)) = opts.files.commit_result(&files) {
-        eprintln!("error: cannot write {}: {e}", p.display());
+        errln!("error: cannot write {}: {e}", p.display());
         return ExitCode::from(EXIT_ERROR);
     }
     out!("{}", summary.to_csv());
     outln!("{}", summary.conclusion());
     for f in &files {
-        eprintln!("wrote {}", f.path.display());
+        errln!("wrote {}", f.path.display());
     }
     ExitCode::SUCCESS
 }
@@ -1646,7 +1665,7 @@ fn run_and_report(
     match systems::run(&mut scene.world, &mut frame) {
         Ok(()) => {}
         Err(e) => {
-            eprintln!("{e}");
+            errln!("{e}");
             return ExitCode::from(e.exit_code());
         }
     }
@@ -1667,7 +1686,7 @@ fn run_and_report(
         let json = match serde_json::to_string_pretty(&value) {
             Ok(j) => j,
             Err(e) => {
-                eprintln!("error: cannot encode the report: {e}");
+                errln!("error: cannot encode the report: {e}");
                 return ExitCode::from(EXIT_ERROR);
             }
         };
@@ -1677,11 +1696,11 @@ fn run_and_report(
         });
     }
     if frame.cancelled() {
-        eprintln!("{}", stagelight::stage_error::StageError::Interrupted);
+        errln!("{}", stagelight::stage_error::StageError::Interrupted);
         return ExitCode::from(stagelight::stage_error::EXIT_INTERRUPTED);
     }
     if let Err((p, e)) = stagelight::image_io::commit_all(&frame.held_files) {
-        eprintln!(
+        errln!(
             "error: cannot write {}: {}; no file of this run was written",
             p.display(),
             stagelight::guard::io_reason(&e)
@@ -1694,7 +1713,7 @@ fn run_and_report(
         .flatten();
     if let Some(u) = &unwritten {
         for path in &u.paths {
-            eprintln!(
+            errln!(
                 "{}: warning: not written, no contours are drawn: {}",
                 path.display(),
                 u.why
@@ -1702,16 +1721,16 @@ fn run_and_report(
         }
     }
     for path in &frame.report.written {
-        eprintln!("wrote {}", path.display());
+        errln!("wrote {}", path.display());
     }
     if frame.inputs.stop_after.is_some() {
         for r in frame.report.stages.iter().filter(|r| !r.ran) {
             if r.stage == "trace_photons" {
-                eprintln!("photon maps {}", r.reason);
+                errln!("photon maps {}", r.reason);
             }
         }
     } else if frame.report.written.is_empty() && frame.inputs.tasks.render && unwritten.is_none() {
-        eprintln!("note: the render camera has no outputs; nothing written (use -o FILE)");
+        errln!("note: the render camera has no outputs; nothing written (use -o FILE)");
     }
     ExitCode::SUCCESS
 }

@@ -45,6 +45,10 @@ pub struct StageReport {
     pub rays_per_cpu_second: f64,
     /// Files the stage wrote.
     pub files: Vec<PathBuf>,
+    /// True when the stage's items were done by the parts a `merge` reads, in their own
+    /// runs: no item rate is known (`items_per_second` 0; the `--stats` table says `n/a`).
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub merged_parts: bool,
 }
 
 impl StageReport {
@@ -68,6 +72,7 @@ impl StageReport {
             items_per_cpu_second: 0.0,
             rays_per_cpu_second: 0.0,
             files: Vec::new(),
+            merged_parts: false,
         }
     }
 }
@@ -100,14 +105,19 @@ impl RunReport {
             "stage", "ran", "seconds", "items", "unit", "items/s", "rays"
         ));
         for s in &self.stages {
+            let rate = if s.merged_parts {
+                "n/a".to_string()
+            } else {
+                format!("{:.0}", s.items_per_second)
+            };
             out.push_str(&format!(
-                "{:<16} {:<4} {:>9.4} {:>12} {:<10} {:>14.0} {:>12}  {}\n",
+                "{:<16} {:<4} {:>9.4} {:>12} {:<10} {:>14} {:>12}  {}\n",
                 s.stage,
                 if s.ran { "yes" } else { "no" },
                 s.seconds,
                 s.items,
                 s.unit,
-                s.items_per_second,
+                rate,
                 s.rays,
                 s.reason
             ));
@@ -162,5 +172,53 @@ impl RunReport {
         }
         out.push_str(&format!("total {:.4} s\n", self.total_seconds));
         out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A merge's `shade` counts the samples its parts took: no rate in the table (`n/a`) or
+    /// the JSON (`items_per_second` 0, `merged_parts: true`), where a run's stage has both.
+    #[test]
+    fn merged_parts_have_no_rate() {
+        let stage = |merged_parts: bool| StageReport {
+            ran: true,
+            seconds: 0.001,
+            items: 2_000_000,
+            unit: "samples",
+            items_per_second: if merged_parts { 0.0 } else { 2e9 },
+            merged_parts,
+            ..StageReport::skipped("shade", "render camera 4×4".into())
+        };
+        let report = |merged_parts| RunReport {
+            threads: 1,
+            stages: vec![stage(merged_parts)],
+            ..RunReport::default()
+        };
+        let row = |merged_parts| {
+            report(merged_parts)
+                .to_table()
+                .lines()
+                .nth(1)
+                .unwrap()
+                .to_string()
+        };
+        let words = |r: String| -> Vec<String> {
+            r.split_whitespace().take(6).map(str::to_string).collect()
+        };
+        assert_eq!(
+            words(row(true)),
+            ["shade", "yes", "0.0010", "2000000", "samples", "n/a"]
+        );
+        assert_eq!(
+            words(row(false)),
+            ["shade", "yes", "0.0010", "2000000", "samples", "2000000000"]
+        );
+        let json = |merged_parts| serde_json::to_value(report(merged_parts)).unwrap();
+        assert_eq!(json(true)["stages"][0]["merged_parts"], true);
+        assert_eq!(json(true)["stages"][0]["items_per_second"], 0.0);
+        assert!(json(false)["stages"][0].get("merged_parts").is_none());
     }
 }

@@ -58,6 +58,9 @@ pub struct Work {
     /// instead of computing it: the report lists the stage as skipped for this reason,
     /// while its output is stored as usual.
     pub reused: Option<String>,
+    /// Set when the items were done by the parts a merge reads, in their own runs: the
+    /// report gives no rate for them (`n/a`), only the merge's own time.
+    pub merged_parts: bool,
 }
 
 impl Work {
@@ -70,7 +73,14 @@ impl Work {
             pending: Vec::new(),
             output: None,
             reused: None,
+            merged_parts: false,
         }
+    }
+
+    /// The same work, its items done by the merged parts in their own runs (no rate).
+    pub fn by_merged_parts(mut self) -> Self {
+        self.merged_parts = true;
+        self
     }
 
     /// The same work, reported as skipped because its output was reused (`reason`).
@@ -256,7 +266,9 @@ pub fn run_stages(
                 0.0
             }
         };
-        let rate = per_second(work.items);
+        // Items the merged parts did in their own runs have no rate here.
+        let items_rate = if work.merged_parts { 0 } else { work.items };
+        let rate = per_second(items_rate);
         let ray_rate = per_second(rays.total());
         let per_cpu_second = |n: u64| {
             if cpu_seconds > 0.0 {
@@ -281,9 +293,10 @@ pub fn run_stages(
             rays_per_second: ray_rate,
             rays_per_second_per_thread: ray_rate / threads,
             cpu_seconds,
-            items_per_cpu_second: per_cpu_second(work.items),
+            items_per_cpu_second: per_cpu_second(items_rate),
             rays_per_cpu_second: per_cpu_second(rays.total()),
             files: work.files,
+            merged_parts: work.merged_parts,
         });
     }
     if frame.cancelled() {

@@ -63,14 +63,25 @@ pub fn should_run(world: &World, frame: &Frame) -> Decision {
     if let Some(why) = crate::scene_view::geometry_unused(world, &frame.inputs) {
         return Decision::skip(why);
     }
-    if pending {
-        return Decision::run(format!(
-            "{instances} instance(s) with {triangles} triangles so far, more to be generated"
-        ));
-    }
-    Decision::run(format!(
-        "{instances} instance(s) with {triangles} triangles"
-    ))
+    // True displacement re-dices its meshes in `tessellate`: their count is not final yet.
+    let displaces = !frame
+        .inputs
+        .settings
+        .disabled
+        .contains(Feature::Displacement)
+        && world
+            .query::<&Displacement>()
+            .iter()
+            .any(|d| d.mode == DisplacementMode::True);
+    let counted = format!("{instances} instance(s) with {triangles} triangles");
+    Decision::run(match (pending, displaces) {
+        (true, true) => format!("{counted} so far (before displacement), more to be generated"),
+        (true, false) => format!("{counted} so far, more to be generated"),
+        (false, true) => {
+            format!("{counted} before displacement, which dices the displaced meshes again")
+        }
+        (false, false) => counted,
+    })
 }
 
 /// Builds the scene geometry.
@@ -255,6 +266,27 @@ mod tests {
         };
         assert_eq!(g.instances.len(), 1);
         assert_eq!(g.triangle_instance, vec![0, 0]);
+    }
+
+    /// A plan's count of a truly displaced mesh is its count before `tessellate` dices it.
+    #[test]
+    fn a_displaced_mesh_is_counted_before_displacement() {
+        let bumpy = r#"(name: "bumpy", mesh: Inline(vertices: [(-1, -1, 1), (1, -1, 1), (1, 1, 1), (-1, 1, 1)],
+            polygons: [[0, 1, 2, 3]]), material: "grey",
+            displacement: (shader: Sine(amplitude: 0.2, factor: 2), bound: 0.2),
+            approximation: Parametric(u: 8, v: 8)),"#;
+        let (world, mut frame) = load(&scene("", "", bumpy, &["bumpy_inst"]), false);
+        assert_eq!(
+            should_run(&world, &frame),
+            Decision::run(
+                "2 instance(s) with 4 triangles before displacement, which dices the displaced meshes again"
+            )
+        );
+        frame.inputs.settings.disabled.insert(Feature::Displacement);
+        assert_eq!(
+            should_run(&world, &frame),
+            Decision::run("2 instance(s) with 4 triangles")
+        );
     }
 
     #[test]

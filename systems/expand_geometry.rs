@@ -60,6 +60,8 @@ fn name_of(world: &World, e: Entity) -> String {
 /// Expands every geometry shader, then every scatter.
 pub fn run(world: &mut World, _frame: &Frame) -> Result<Work, StageError> {
     let mut triangles = 0u64;
+    // Quadrics become surfaces (diced later by `tessellate`), the rest triangles.
+    let mut surfaces = 0u64;
     let mut shaders: Vec<(Entity, Procedural)> = world
         .query::<(Entity, &Procedural)>()
         .iter()
@@ -85,7 +87,10 @@ pub fn run(world: &mut World, _frame: &Frame) -> Result<Work, StageError> {
             )
             .map_err(gone)?;
         match out {
-            Expanded::Surface(s) => world.insert_one(e, s).map_err(gone)?,
+            Expanded::Surface(s) => {
+                surfaces += 1;
+                world.insert_one(e, s).map_err(gone)?
+            }
             Expanded::Mesh(m) => {
                 triangles += m.triangles.len() as u64;
                 install_mesh(world, e, Arc::new(m)).map_err(gone)?;
@@ -179,7 +184,17 @@ pub fn run(world: &mut World, _frame: &Frame) -> Result<Work, StageError> {
             .remove_one::<Scatter>(e)
             .map_err(|_| StageError::Internal(format!("entity {e:?} vanished")))?;
     }
-    Ok(Work::new(triangles, "triangles"))
+    Ok(made(triangles, surfaces))
+}
+
+/// What the stage made, in one unit: the triangles it generated, or, when it made only
+/// surfaces (quadrics, whose triangles `tessellate` makes and counts), the surfaces.
+fn made(triangles: u64, surfaces: u64) -> Work {
+    if triangles == 0 && surfaces > 0 {
+        Work::new(surfaces, "surfaces")
+    } else {
+        Work::new(triangles, "triangles")
+    }
 }
 
 #[cfg(test)]
@@ -199,10 +214,8 @@ mod tests {
         let (mut world, frame) = load(&text, false);
         assert!(should_run(&world, &frame).run);
         let work = run(&mut world, &frame).unwrap();
-        assert_eq!(
-            work.items, 0,
-            "a quadric waits for tessellation: no triangles yet"
-        );
+        // A quadric waits for tessellation: one surface made, no triangles yet.
+        assert_eq!((work.items, work.unit), (1, "surfaces"));
         assert_eq!(count_with::<Procedural>(&world), 0);
         assert_eq!(count_with::<Surface>(&world), 1);
         assert!(!should_run(&world, &frame).run);

@@ -140,7 +140,10 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
         let taken = fb.samples.iter().map(|&s| u64::from(s)).sum();
         let mut fb = fb.clone();
         fb.contour_store = contour_store(world, frame, &fb);
-        return Ok(Work::new(taken, "samples").with_output(StageOutput::Image(fb)));
+        // The parts took the samples in their own runs: no rate (`n/a`), as for bake parts.
+        return Ok(Work::new(taken, "samples")
+            .by_merged_parts()
+            .with_output(StageOutput::Image(fb)));
     }
     let view = render_view(world).ok_or_else(|| StageError::Internal("no render camera".into()))?;
     let off = frame.inputs.settings.disabled;

@@ -8,6 +8,7 @@
 //! commit the exit waits for it to finish (or roll back), and a finished commit is
 //! reported by the run as usual.
 
+use std::io::Write;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 use std::time::Duration;
@@ -45,7 +46,8 @@ pub fn install_with(
         }
         if !finished() {
             clean_up();
-            eprintln!("{}", StageError::Interrupted);
+            // Not `eprintln!`, which panics when standard error is closed.
+            let _ = writeln!(std::io::stderr(), "{}", StageError::Interrupted);
             std::process::exit(i32::from(EXIT_INTERRUPTED));
         }
     });

@@ -25,8 +25,12 @@ pub struct Runs<'a> {
     pub tasks: Tasks,
     /// The budget every run has.
     pub budget: &'a Budget,
-    /// The reference run's configuration: the scene's own knob setting.
+    /// The reference run's configuration (its knob setting the most accurate one for a knob
+    /// whose accuracy is a setting: `reference_setting`).
     pub reference: Configure<'a>,
+    /// The reference's configuration with the scene's own knob setting: what the scene
+    /// itself refuses.
+    pub own: Configure<'a>,
     /// Whether the reference is rendered (not given with `--reference`, not cached).
     pub reference_runs: bool,
     /// Each knob value as `NAME=VALUE`, with its configuration.
@@ -37,13 +41,28 @@ pub struct Runs<'a> {
 /// the scene's own setting has too is shown once, as `render` shows it; one that only a
 /// knob value brings names the value.
 pub fn refusals(runs: &Runs<'_>) -> Result<Vec<Diagnostic>, SceneErrors> {
-    let own = estimate(runs, runs.reference)?;
+    let own = estimate(runs, runs.own)?;
+    let values = runs
+        .values
+        .iter()
+        .map(|(value, configure)| Ok((value, estimate(runs, *configure)?)))
+        .collect::<Result<Vec<_>, SceneErrors>>()?;
     let mut shown: Vec<Diagnostic> = Vec::new();
     if runs.reference_runs {
-        shown.extend(own.iter().cloned());
+        for d in estimate(runs, runs.reference)? {
+            // A reference at a knob value's setting is refused with that value, below.
+            if own.contains(&d) {
+                shown.push(d);
+            } else if !values.iter().any(|(_, refused)| refused.contains(&d)) {
+                shown.push(Diagnostic {
+                    message: format!("the reference, {}", d.message),
+                    ..d
+                });
+            }
+        }
     }
-    for (value, configure) in &runs.values {
-        for d in estimate(runs, *configure)? {
+    for (value, refused) in values {
+        for d in refused {
             if own.contains(&d) {
                 if !shown.contains(&d) {
                     shown.push(d);

@@ -72,6 +72,14 @@ pub enum KnobError {
         /// The repeated value, as the table writes it.
         value: String,
     },
+    /// The swept runs' integrator ignores what this knob changes (a flat table).
+    #[error("knob {knob} changes nothing in the swept runs: {why}\n  help: sweep it with `--integrator direct`, or under the path integrator sweep spp or max_depth")]
+    IgnoredByPath {
+        /// Knob name.
+        knob: &'static str,
+        /// Why the path integrator ignores it.
+        why: &'static str,
+    },
     /// The scene has nothing this knob changes.
     #[error("knob {knob} is not in this scene: {why}")]
     Absent {
@@ -80,6 +88,14 @@ pub enum KnobError {
         /// What is missing.
         why: &'static str,
     },
+}
+
+impl KnobError {
+    /// Whether the command line, not the scene, is at fault (exit 2): the knob's text, a
+    /// knob the swept integrator ignores, or `--denoise` with a render knob.
+    pub fn is_usage(&self) -> bool {
+        !matches!(self, KnobError::Absent { .. })
+    }
 }
 
 fn parse_list<T: std::str::FromStr>(

@@ -8,12 +8,14 @@
 
 pub mod budget_check;
 pub mod crop;
+pub mod integrator_check;
 pub mod knob;
 pub mod leftovers;
 pub mod metrics;
 pub mod photon_knobs;
 pub mod plot;
 pub mod reference_file;
+pub mod reference_setting;
 pub mod report;
 pub mod runner;
 

@@ -1,5 +1,7 @@
 //! `sweep --reference FILE`, refused before the scene is read when the sweep could not
-//! compare with it: a file that cannot be read, or one that is not an EXR image.
+//! compare with it: a file that cannot be read, or one that is not an EXR image; and, once
+//! read, before any run, one whose width and height are not the runs' (a bake sweep's
+//! texture size is known after its first run).
 
 use std::path::Path;
 
@@ -23,4 +25,17 @@ pub fn usable(path: &Path) -> Result<(), String> {
             crate::scene::message::io_reason(&e)
         )),
     }
+}
+
+/// The refusal (without `error: `) of a `--reference` of `found` pixels (width, height) for
+/// runs of `runs` pixels: compared pixel by pixel, it would be misaligned.
+pub fn size_mismatch(path: &Path, found: (u32, u32), runs: (u32, u32)) -> String {
+    format!(
+        "--reference {} is {}×{} pixels, the runs render {}×{}\n  help: {EXPECTED}",
+        path.display(),
+        found.0,
+        found.1,
+        runs.0,
+        runs.1
+    )
 }

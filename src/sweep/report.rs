@@ -4,8 +4,10 @@
 //!
 //! The summary draws no conclusion the rows cannot carry: no fit from fewer than
 //! [`MIN_FIT_POINTS`] points or from times that do not rise with the knob's cost (runs too
-//! short to time), no plateau verdict from such times, and no time to reach an error that
-//! no row reached (the smallest measured error is given instead; nothing is extrapolated).
+//! short to time), no plateau verdict from such disordered times (two rows in cost order do
+//! carry one: the costlier's error fell by less than 10 % for 1.5× the time, or not), and no
+//! time to reach an error that no row reached (the smallest measured error is given
+//! instead; nothing is extrapolated).
 
 use serde::Serialize;
 
@@ -50,6 +52,9 @@ pub struct SweepSummary {
     pub scene: String,
     /// The crop whose error is fitted (`None`: the whole image).
     pub crop: Option<Crop>,
+    /// What the rows are compared with: `FILE (--reference)`, or the rendered reference's
+    /// integrator, samples and knob setting (`path tracer, 1024 samples, max_depth=16`).
+    pub reference: Option<String>,
     /// Slope of log10(relMSE) against log10(seconds) (−1 for unbiased Monte Carlo); `None`
     /// when the rows cannot carry a fit (`no_fit` says why).
     pub slope: Option<f64>,
@@ -124,6 +129,7 @@ impl SweepSummary {
             knob: knob.to_string(),
             scene: scene.to_string(),
             crop,
+            reference: None,
             slope: fit.map(|f| f.1),
             intercept: fit.map(|f| f.0),
             no_fit,
@@ -133,6 +139,12 @@ impl SweepSummary {
             smallest_rel_mse,
             rows,
         }
+    }
+
+    /// The same summary, saying what its rows were compared with.
+    pub fn with_reference(mut self, reference: String) -> Self {
+        self.reference = Some(reference);
+        self
     }
 
     /// The line `sweep` prints under the table: the region, the slope (or why there is

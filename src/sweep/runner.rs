@@ -16,9 +16,12 @@ use crate::schedule::StageError;
 use crate::settings::{Integrator, RenderSettings};
 use crate::sweep::budget_check::{self, Runs};
 use crate::sweep::crop::Crop;
+use crate::sweep::integrator_check;
 use crate::sweep::knob::{Knob, KnobError};
 use crate::sweep::leftovers::SweepFiles;
 use crate::sweep::metrics::compare;
+use crate::sweep::reference_file;
+use crate::sweep::reference_setting::{self, reference_setting};
 use crate::sweep::report::{SweepRow, SweepSummary};
 
 /// Runs the stage table over a world (`systems::run`, passed in by the CLI).
@@ -80,6 +83,9 @@ pub enum SweepError {
     /// `--crop` lies outside the image the runs render (a usage error).
     #[error("error: {0}")]
     Crop(String),
+    /// `--reference` is not of the runs' size (a usage error).
+    #[error("error: {0}")]
+    ReferenceSize(String),
     /// Reading or writing a file failed.
     #[error("error: {path}: {message}")]
     Io {
@@ -185,10 +191,24 @@ fn tasks(opts: &SweepOptions) -> Tasks {
     }
 }
 
-/// How the reference run configures the scene: the scene's own knob setting except the
-/// sample count, which it raises, and the reference's integrator.
+/// How the reference run configures the scene: the scene's own knob setting, except the
+/// sample count, which it raises, and a knob whose accuracy is a setting (`max_depth`,
+/// `tessellation`), which takes its most accurate value ([`reference_setting`]); and the
+/// reference's integrator.
 fn configure_reference(opts: &SweepOptions) -> impl Fn(&mut World, &mut RenderSettings) + '_ {
+    configure_reference_at(opts, true)
+}
+
+/// [`configure_reference`], with the most accurate knob setting when `accurate`, else with
+/// the scene's own.
+fn configure_reference_at(
+    opts: &SweepOptions,
+    accurate: bool,
+) -> impl Fn(&mut World, &mut RenderSettings) + '_ {
     move |world, settings| {
+        if let Some(setting) = reference_setting(&opts.knob, settings).filter(|_| accurate) {
+            setting.apply(0, world, settings);
+        }
         match opts.knob {
             Knob::BakeSamples(_) => {
                 Knob::BakeSamples(vec![opts.reference_samples]).apply(0, world, settings)
@@ -219,6 +239,7 @@ fn configure_value(opts: &SweepOptions, i: usize) -> impl Fn(&mut World, &mut Re
 /// would not fit the memory budget.
 fn check_budget(opts: &SweepOptions, reference_runs: bool) -> Result<(), SweepError> {
     let reference = configure_reference(opts);
+    let own = configure_reference_at(opts, false);
     let values: Vec<_> = (0..opts.knob.len())
         .map(|i| configure_value(opts, i))
         .collect();
@@ -227,6 +248,7 @@ fn check_budget(opts: &SweepOptions, reference_runs: bool) -> Result<(), SweepEr
         tasks: tasks(opts),
         budget: &opts.budget,
         reference: &reference,
+        own: &own,
         reference_runs,
         values: values
             .iter()
@@ -299,15 +321,19 @@ pub fn read_exr_rgb(path: &Path) -> Result<(Vec<Vec3>, u32, u32), SweepError> {
 
 /// The cache file of a rendered reference: keyed by the scene's content hash (every file
 /// it reads and every loaded mesh, as farm parts are: [`crate::farm::scene_hash`]), the
-/// sample count, whether it is a bake, and the reference's integrator.
-fn reference_cache(opts: &SweepOptions, scene: &LoadedScene) -> PathBuf {
+/// sample count, whether it is a bake, the reference's integrator and its knob setting
+/// (`max_depth=16`, when the knob's accuracy is a setting).
+fn reference_cache(opts: &SweepOptions, scene: &LoadedScene, setting: Option<&str>) -> PathBuf {
     let content = crate::farm::scene_hash(&opts.scene, scene.source_hash, &scene.world);
-    let tag = format!(
+    let mut tag = format!(
         "{content:016x}:{}:{}:{:?}",
         opts.reference_samples,
         opts.knob.is_bake(),
         opts.reference_integrator
     );
+    if let Some(setting) = setting {
+        tag = format!("{tag}:{setting}");
+    }
     let h = Fnv64::default().bytes(tag.as_bytes()).finish();
     opts.out.join(format!("reference_{h:016x}.exr"))
 }
@@ -348,9 +374,11 @@ pub fn run_sweep(
     progress: impl FnMut(&str),
 ) -> Result<SweepSummary, SweepError> {
     let result = sweep_runs(opts, pipeline, progress);
+    // A failed sweep, like an interrupted one, leaves no output directory it created
+    // behind, unless a reference it rendered is cached there.
     match &result {
-        Err(SweepError::Stage(StageError::Interrupted)) => opts.files.remove_partial(),
-        _ => opts.files.remove_scratch(),
+        Ok(_) => opts.files.remove_scratch(),
+        Err(_) => opts.files.remove_partial(),
     }
     result
 }
@@ -360,26 +388,55 @@ fn sweep_runs(
     pipeline: Pipeline,
     mut progress: impl FnMut(&str),
 ) -> Result<SweepSummary, SweepError> {
-    let cached = {
+    let (cached, setting, camera_size) = {
         let scene = load_scene_within(&opts.scene, &opts.budget)?;
         opts.knob.check(&scene.world, &scene.settings)?;
+        let integrator = opts.integrator.unwrap_or(scene.settings.integrator);
+        integrator_check::check(&opts.knob, integrator)?;
         if opts.denoise && !opts.knob.is_bake() {
             return Err(KnobError::DenoiseNeedsBake(opts.knob.name()).into());
         }
         check_crop_fits_camera(opts, &scene.world)?;
-        reference_cache(opts, &scene)
+        let setting =
+            reference_setting(&opts.knob, &scene.settings).map(|k| reference_setting::describe(&k));
+        let camera_size = crate::scene_view::render_view(&scene.world)
+            .map(|v| (v.camera.width, v.camera.height))
+            .filter(|_| !opts.knob.is_bake());
+        (
+            reference_cache(opts, &scene, setting.as_deref()),
+            setting,
+            camera_size,
+        )
     };
+    let rendered = describe_rendered(opts, setting.as_deref());
+    let with_setting = setting.map_or_else(String::new, |s| format!(", {s}"));
     check_budget(opts, opts.reference.is_none() && !cached.exists())?;
-    // The output directory is made only once the reference is read (or rendered): a bad
-    // `--reference` leaves nothing behind.
+    // The output directory is made only once the reference is read (or rendered) and its
+    // size checked: a bad `--reference` leaves nothing behind.
     let (reference, ref_width, ref_height) = match &opts.reference {
-        Some(path) => read_exr_rgb(path)?,
+        Some(path) => {
+            let (image, width, height) = read_exr_rgb(path)?;
+            if let Some(size) = camera_size.filter(|&s| s != (width, height)) {
+                return Err(SweepError::ReferenceSize(reference_file::size_mismatch(
+                    path,
+                    (width, height),
+                    size,
+                )));
+            }
+            (image, width, height)
+        }
         None if cached.exists() => {
-            progress(&format!("reference: cached {}", cached.display()));
+            progress(&format!(
+                "reference: cached {}{with_setting}",
+                cached.display()
+            ));
             read_exr_rgb(&cached)?
         }
         None => {
-            progress(&format!("reference: {} samples", opts.reference_samples));
+            progress(&format!(
+                "reference: {} samples{with_setting}",
+                opts.reference_samples
+            ));
             let r = run_once(
                 opts,
                 pipeline,
@@ -436,15 +493,21 @@ fn sweep_runs(
                 seed as u64,
                 &format!("{i}_{seed}"),
             )?;
-            if r.image.len() != reference.len() {
-                return Err(io(
-                    opts.reference.as_deref().unwrap_or(Path::new("reference")),
-                    format!(
-                        "reference has {} pixels, the render {}",
-                        reference.len(),
-                        r.image.len()
+            if (r.width, r.height) != (ref_width, ref_height) {
+                return Err(match &opts.reference {
+                    Some(path) => SweepError::ReferenceSize(reference_file::size_mismatch(
+                        path,
+                        (ref_width, ref_height),
+                        (r.width, r.height),
+                    )),
+                    None => io(
+                        &cached,
+                        format!(
+                            "the cached reference is {ref_width}×{ref_height}, the run {}×{}",
+                            r.width, r.height
+                        ),
                     ),
-                ));
+                });
             }
             seconds += r.seconds;
             if stage_seconds.is_empty() {
@@ -477,11 +540,30 @@ fn sweep_runs(
     } else {
         opts.knob.name().to_string()
     };
+    let reference = match &opts.reference {
+        Some(path) => format!("{} (--reference)", path.display()),
+        None => rendered,
+    };
     Ok(SweepSummary::new(
         &knob,
         &opts.scene.display().to_string(),
         opts.crop,
         rows,
         opts.knob.cost_order().as_deref(),
-    ))
+    )
+    .with_reference(reference))
+}
+
+/// What a rendered reference is, for the progress line and the summary: `path tracer, 1024
+/// samples`, with the knob's setting when the reference sets it (`, max_depth=16`).
+fn describe_rendered(opts: &SweepOptions, setting: Option<&str>) -> String {
+    let integrator = match opts.reference_integrator {
+        Integrator::Path => "path tracer",
+        Integrator::Direct => "direct lighting",
+    };
+    let mut text = format!("{integrator}, {} samples", opts.reference_samples);
+    if let Some(setting) = setting {
+        text.push_str(&format!(", {setting}"));
+    }
+    text
 }

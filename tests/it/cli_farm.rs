@@ -125,6 +125,32 @@ fn merged_parts_are_byte_identical_to_the_single_render() {
     );
 }
 
+/// `merge --stats` counts the samples the parts took, in their own runs: `shade` gives no
+/// rate for them (`n/a`, as merged bake parts say), not samples over the merge's time.
+#[test]
+fn a_merge_s_stats_give_no_sample_rate() {
+    let dir = setup("merge-stats");
+    let parts = render_parts(&dir, 2, "tiles", &[]);
+    let o = stagelight(
+        &dir,
+        &["merge", &parts[0], &parts[1], "-o", "merged.png", "--stats"],
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let stdout = String::from_utf8_lossy(&o.stdout).into_owned();
+    let shade: Vec<&str> = stdout
+        .lines()
+        .find(|l| l.starts_with("shade "))
+        .unwrap_or_else(|| panic!("no shade row:\n{stdout}"))
+        .split_whitespace()
+        .collect();
+    // stage, ran, seconds, items (40×24 pixels × 3 samples), unit, items/s.
+    assert_eq!(
+        (shade[1], shade[3], shade[4], shade[5]),
+        ("yes", "2880", "samples", "n/a"),
+        "{stdout}"
+    );
+}
+
 /// Parts name their scene by its absolute path: merged from another directory without
 /// `--scene`, they find the scene the relative `scene.ron` named where they were rendered.
 /// Once that scene is gone, the merge says so and asks for `--scene`, writing nothing.

@@ -273,3 +273,39 @@ fn dash_o_is_a_run_input_that_leaves_the_scene_alone() {
         "error: cannot tell the output format of x.tiff: use a .png, .exr, .svg or .eps extension"
     );
 }
+
+/// `plan` refuses, with `check`'s message and exit status, what `check` and `render` refuse
+/// before the first stage: a 100000² frame past the memory budget, and an output that would
+/// overwrite the scene file. It printed a plan and exited 0.
+#[test]
+fn plan_refuses_what_check_refuses_before_the_first_stage() {
+    let dir = scratch("refused");
+    let path = dir.join("scene.ron");
+    let huge = scene("").replace("resolution: (16, 16)", "resolution: (100000, 100000)");
+    let self_output = scene("").replace(
+        r#"outputs: [(file: "view.png")]"#,
+        r#"outputs: [(file: "scene.ron", format: Exr)]"#,
+    );
+    for (text_of_scene, why) in [
+        (huge, "the frame buffers of 100000×100000 pixels"),
+        (self_output, "would overwrite the scene file scene.ron"),
+    ] {
+        write(&path, &text_of_scene);
+        let plan = run(bin().args(["plan", "scene.ron"]).current_dir(&dir));
+        let check = run(bin().args(["check", "scene.ron"]).current_dir(&dir));
+        assert_eq!(
+            (plan.status.code(), check.status.code()),
+            (Some(1), Some(1))
+        );
+        assert_eq!(text(&plan.stdout), "");
+        let (p, c) = (text(&plan.stderr), text(&check.stderr));
+        assert!(p.contains(why), "{p}");
+        assert_eq!(
+            p,
+            c.replace(
+                "1 error in scene.ron\n",
+                "1 error in scene.ron; nothing planned\n"
+            )
+        );
+    }
+}

@@ -132,6 +132,7 @@ mod stages;
 mod sweep;
 mod sweep_budget;
 mod sweep_photons;
+mod sweep_reference;
 mod texture_inputs;
 mod textures;
 mod vertex_bake;

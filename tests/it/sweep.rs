@@ -207,7 +207,8 @@ fn denoise_flag_denoises_the_swept_bakes_only() {
         .args(["--knob", "spp=1,4", "--denoise"])
         .arg("--out")
         .arg(dir.join("r")));
-    assert_eq!(o.status.code(), Some(1));
+    // A usage error, as README says of them all.
+    assert_eq!(o.status.code(), Some(2));
     assert_eq!(
         String::from_utf8_lossy(&o.stderr).trim_end(),
         "error: --denoise filters baked textures, but knob spp renders images; sweep `--knob bake_samples=…` with it"
