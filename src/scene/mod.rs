@@ -374,8 +374,15 @@ fn load(
     let mut world = spawn::spawn(&sources, &merged, parts);
     // The decoded image textures, environment maps and displacement images, for the
     // run-wide memory estimate.
-    let textures = phenomena.decoded_textures().iter().map(|t| (&t.name, &t.at, t.image));
-    let others = sources.images.listed().iter().map(|i| (&i.name, &i.at, i.image));
+    let textures = phenomena
+        .decoded_textures()
+        .iter()
+        .map(|t| (&t.name, &t.at, t.image));
+    let others = sources
+        .images
+        .listed()
+        .iter()
+        .map(|i| (&i.name, &i.at, i.image));
     for (name, at, image) in textures.chain(others) {
         world.spawn((
             crate::components::Name(name.clone()),

@@ -6,8 +6,8 @@ use std::sync::Arc;
 
 use super::{height_map, num, report};
 use crate::components::{
-    Approximation, DecodedImage, Displacement, DisplacementMode, ImageMap, LengthSpace, ScalarNode, Technique,
-    UvAxis, ImageContent,
+    Approximation, DecodedImage, Displacement, DisplacementMode, ImageContent, ImageMap,
+    LengthSpace, ScalarNode, Technique, UvAxis,
 };
 use crate::scene::desc::{
     ApproximationDesc, AxisDesc, DisplacementDesc, DisplacementModeDesc, ScalarDesc, SpaceDesc,
@@ -227,9 +227,7 @@ fn scalar(ck: &mut Checker<'_>, dir: &Path, path: &str, d: &ScalarDesc) -> Optio
                 .and_then(|b| height_map::footprint(b, exr));
             if let Ok((size, peak)) = size {
                 if let Err((message, help)) =
-                    ck.src
-                        .images
-                        .admit(file, size, ImageContent::Heights, peak)
+                    ck.src.images.admit(file, size, ImageContent::Heights, peak)
                 {
                     ck.src.error(ck.file, &file_at, message, Some(help));
                     return None;

@@ -123,7 +123,10 @@ mod tests {
             &[("R", vec![1.0]), ("G", vec![2.0]), ("B", vec![4.0])],
         );
         let l = decode(&rgb, true).unwrap().texels[0];
-        assert!((l - (0.2126 + 2.0 * 0.7152 + 4.0 * 0.0722)).abs() < 1e-6, "{l}");
+        assert!(
+            (l - (0.2126 + 2.0 * 0.7152 + 4.0 * 0.0722)).abs() < 1e-6,
+            "{l}"
+        );
     }
 
     /// A non-finite height is refused naming its pixel (from the top left); a file without a

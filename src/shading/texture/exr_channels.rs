@@ -209,6 +209,11 @@ impl Heights {
     }
 }
 
+/// The refusal of a file the reader could not read (truncated, corrupt).
+fn unreadable(e: exr::error::Error) -> String {
+    format!("not a readable OpenEXR image ({e})")
+}
+
 /// Rec. 709 luminance of linear R, G and B.
 fn luminance(r: f32, g: f32, b: f32) -> f32 {
     0.2126 * r + 0.7152 * g + 0.0722 * b
@@ -233,7 +238,7 @@ pub fn read_grey(bytes: &[u8], layer: &ChosenLayer) -> Result<Vec<f32>, String> 
                 .all_attributes()
                 .non_parallel()
                 .from_buffered(Cursor::new(bytes))
-                .map_err(|e| e.to_string())?
+                .map_err(unreadable)?
                 .layer_data
                 .channel_data
                 .pixels
@@ -250,7 +255,7 @@ pub fn read_grey(bytes: &[u8], layer: &ChosenLayer) -> Result<Vec<f32>, String> 
                 .all_attributes()
                 .non_parallel()
                 .from_buffered(Cursor::new(bytes))
-                .map_err(|e| e.to_string())?
+                .map_err(unreadable)?
                 .layer_data
                 .channel_data
                 .pixels

@@ -92,7 +92,10 @@ mod tests {
         // 1024×512: 6 MiB of texels, 4 MiB of tables (+ 12 KiB of row headers and the
         // marginal), 2 MiB of weights while they are built.
         assert_eq!(texel_bytes(1024, 512), 6 << 20);
-        assert_eq!(table_bytes(1024, 512), (4 << 20) + 512 * (4 + 56) + 1025 * 4);
+        assert_eq!(
+            table_bytes(1024, 512),
+            (4 << 20) + 512 * (4 + 56) + 1025 * 4
+        );
         assert_eq!(building_bytes(1024, 512), (2 << 20) + 1025 * 8);
         assert_eq!(peak_bytes(1024, 512, false), 6 << 20);
     }
