@@ -8,6 +8,8 @@
 //! | photon map | emitted photons × [`BYTES_PER_PHOTON`] |
 //! | bake request | texels × (targets + 1) × [`BYTES_PER_TEXEL`]; a density-sized texture at the size the bake gives it from the placed mesh's area and UVs (`crate::bake::density`), or at `max_size` where those are known only later (generated UVs, diced or displaced surfaces) |
 //! | image texture | its decoded texels and alpha (12 and 4 bytes each), located at its `file` ([`DecodedImage`], spawned by the loader, which also refuses a texture whose reading alone would not fit) |
+//! | environment map | its radiance texels (12 bytes each); the scene environment's also its importance-sampling tables (8 bytes per texel and 60 per row) and the weights they are built from (4 bytes per texel), located at its `file` (`shading::lights::environment::footprint`; the loader refuses a map whose reading alone would not fit) |
+//! | displacement image | its heights (4 bytes each), located at its `file` (the loader refuses an image whose reading alone would not fit) |
 //!
 //! Adaptive approximations (spatial, curvature) and subdivision meshes are not estimated at
 //! load: their rates depend on the diced surface. The tessellator checks the triangle count
@@ -188,8 +190,8 @@ fn object_triangles(world: &World, object: Entity) -> Option<(u64, String, bool)
 }
 
 /// Every element's estimate for a run doing `tasks` with `settings`, in a fixed order
-/// (camera, objects in entity order, photon maps, bake requests, image textures in the order
-/// read).
+/// (camera, objects in entity order, photon maps, bake requests, then the decoded images:
+/// image textures in the order read, environment maps and displacement images).
 pub fn estimates(world: &World, settings: &RenderSettings, tasks: Tasks) -> Vec<Estimate> {
     let mut out = Vec::new();
     if tasks.render {
@@ -318,7 +320,8 @@ pub fn estimates(world: &World, settings: &RenderSettings, tasks: Tasks) -> Vec<
             });
         }
     }
-    // Image textures, decoded at load: their texels stay for the whole run.
+    // Images decoded at load (textures, environment maps, displacement images): their texels
+    // stay for the whole run.
     let mut images: Vec<(Entity, DecodedImage)> = world
         .query::<(Entity, &DecodedImage)>()
         .iter()
@@ -330,7 +333,7 @@ pub fn estimates(world: &World, settings: &RenderSettings, tasks: Tasks) -> Vec<
         out.push(Estimate {
             element: format!("image \"{name}\""),
             at,
-            what: format!("the texels of a {}×{} image", image.width, image.height),
+            what: image.describe(),
             bytes: image.bytes,
             help: "use a smaller image (or fewer)",
         });

@@ -67,7 +67,7 @@ mod photon_shader;
 pub use photon_shader::PhotonShader;
 
 mod decoded_image;
-pub use decoded_image::DecodedImage;
+pub use decoded_image::{DecodedImage, ImageContent};
 
 mod ray_flags;
 pub use ray_flags::{RayFlags, ALL_RAYS, CAMERA_RAYS, FRONT_ONLY, SECONDARY_RAYS, SHADOW_RAYS};

@@ -414,11 +414,12 @@ pub enum ScalarDesc {
         #[serde(default)]
         seed: u64,
     },
-    /// A greyscale PNG sampled at the surface uv (bilinear, repeat).
+    /// A height map sampled at the surface uv (bilinear, repeat): a PNG read as grey 0…1,
+    /// or an EXR's float heights as stored.
     Image {
-        /// PNG file, relative to the declaring scene file.
+        /// PNG or EXR file, relative to the declaring scene file.
         file: String,
-        /// Multiplier of the texel value (0…1), default 1.
+        /// Multiplier of the texel value (a PNG's 0…1, an EXR's height), default 1.
         #[serde(default = "one")]
         scale: f64,
         /// Added after scaling, default 0.

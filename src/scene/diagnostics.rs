@@ -7,6 +7,7 @@
 use std::path::{Path, PathBuf};
 
 use super::import::SourceMap;
+use super::loaded_images::LoadedImages;
 pub use super::message::{Diagnostic, SceneErrors, Severity, SourcePos};
 pub use super::suggest::suggestion;
 use super::syntax::Syntax;
@@ -37,6 +38,9 @@ type Keyed = ((usize, usize, usize), Diagnostic);
 pub struct Sources {
     /// Files in load order (root first, then includes depth-first).
     pub files: Vec<SourceFile>,
+    /// The environment maps and displacement images decoded so far, and the budget they
+    /// are counted against (set by the loader; unlimited by default).
+    pub images: LoadedImages,
     errors: Vec<Keyed>,
     warnings: Vec<Keyed>,
 }

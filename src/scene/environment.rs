@@ -11,7 +11,10 @@ use super::desc::{DepthExceededDesc, EnvironmentShaderDesc, SceneDesc};
 use super::diagnostics::Sources;
 use super::include::io_reason;
 use super::validate::Checker;
-use crate::components::{DepthExceeded, Environment, EnvironmentSource, LatLongMap};
+use crate::components::{
+    DecodedImage, DepthExceeded, Environment, EnvironmentSource, ImageContent, LatLongMap,
+};
+use crate::shading::lights::environment::footprint;
 
 /// Most texels a lat-long map may have (64 Mi: 16k × 4k maps fit).
 const MAX_TEXELS: usize = 1 << 26;
@@ -42,7 +45,7 @@ pub fn environment(src: &mut Sources, scenes: &[Option<SceneDesc>]) -> Option<En
     if d.samples == 0 {
         ck.error("environment.samples", "samples must be at least 1, found 0");
     }
-    let source = source(&mut ck, "environment", &d.shader, intensity);
+    let source = source(&mut ck, "environment", &d.shader, intensity, true);
     if d.samples == 0 {
         return None;
     }
@@ -58,12 +61,16 @@ pub fn environment(src: &mut Sources, scenes: &[Option<SceneDesc>]) -> Option<En
 }
 
 /// Checks an environment's radiance source written at `at` (`environment`, or a material's
-/// `….environment`) and builds it with `intensity` applied (errors recorded).
+/// `….environment`) and builds it with `intensity` applied (errors recorded). A lat-long
+/// map is counted against the run's memory budget from its header before it is read, with
+/// its sampling tables when it is `sampled` (the scene's environment, also a light), and
+/// listed once read for the run-wide estimate.
 pub fn source(
     ck: &mut Checker<'_>,
     at: &str,
     shader: &EnvironmentShaderDesc,
     intensity: Option<f64>,
+    sampled: bool,
 ) -> Option<EnvironmentSource> {
     match shader {
         EnvironmentShaderDesc::Constant { color } => {
@@ -85,12 +92,21 @@ pub fn source(
                 *rotation,
             );
             let path = ck.src.files[ck.file].dir().join(name);
+            let file_at = format!("{at}.shader.LatLong.file");
+            let content = ImageContent::EnvironmentMap { sampled };
+            if let Some(size) = lat_long_size(&path) {
+                let bytes = footprint::peak_bytes(size.0, size.1, sampled);
+                if let Err((message, help)) = ck.src.images.admit(name, size, content, bytes) {
+                    ck.src.error(ck.file, &file_at, message, Some(help));
+                    return None;
+                }
+            }
             let map = match read_exr(&path) {
                 Ok(map) => Some(map),
                 Err(reason) => {
                     ck.src.error(
                         ck.file,
-                        &format!("{at}.shader.LatLong.file"),
+                        &file_at,
                         format!("cannot use EXR file \"{}\": {reason}", path.display()),
                         Some(
                             "a lat-long environment is an RGB(A) OpenEXR image; the path is \
@@ -118,9 +134,34 @@ pub fn source(
                 *t *= k;
             }
             map.rotation = rotation.to_radians() as f32;
+            let pos = ck.src.pos(ck.file, &file_at);
+            let image = DecodedImage {
+                width: map.width,
+                height: map.height,
+                bytes: footprint::peak_bytes(map.width, map.height, sampled),
+                content,
+            };
+            ck.src.images.list(name, pos, image);
             Some(EnvironmentSource::LatLong(Arc::new(map)))
         }
     }
+}
+
+/// The size of the layer [`read_exr`] reads (the first with R, G and B), from the file's
+/// headers; `None` when they cannot be read or no layer has those channels (the read then
+/// says what is wrong).
+fn lat_long_size(path: &Path) -> Option<(u32, u32)> {
+    let meta = exr::meta::MetaData::read_from_file(path, false).ok()?;
+    let header = meta.headers.iter().find(|h| {
+        ["R", "G", "B"]
+            .iter()
+            .all(|n| h.channels.list.iter().any(|c| c.name.to_string() == *n))
+    })?;
+    let size = header.layer_size;
+    Some((
+        u32::try_from(size.width()).ok()?,
+        u32::try_from(size.height()).ok()?,
+    ))
 }
 
 /// Reads the first RGB(A) layer of an EXR file as a lat-long map (rotation 0); every value

@@ -62,7 +62,7 @@ pub fn environment(
         return Ok(None);
     };
     let intensity = ck.non_negative(&format!("{at}.intensity"), "intensity", d.intensity);
-    let source = source(ck, at, &d.shader, intensity).ok_or(())?;
+    let source = source(ck, at, &d.shader, intensity, false).ok_or(())?;
     Ok(Some(Arc::new(MaterialEnvironment {
         source,
         depth_exceeded: match d.depth_exceeded {

@@ -43,6 +43,7 @@ pub mod inputs;
 pub(crate) mod lens;
 pub(crate) mod light_lists;
 pub(crate) mod lights;
+pub(crate) mod loaded_images;
 pub(crate) mod material_shaders;
 pub mod mesh_files;
 pub(crate) mod mesh_load;
@@ -160,6 +161,7 @@ fn load(
     if sources.has_errors() {
         return Err(sources.refuse());
     }
+    sources.images = loaded_images::LoadedImages::new(budget.clone());
     let src = &mut sources;
     let merged = validate::merge(src, &scenes);
     let settings = validate::settings(src, merged.options.as_ref());
@@ -383,12 +385,22 @@ fn load(
         origin,
     };
     let mut world = spawn::spawn(&sources, &merged, parts);
-    // The decoded image textures, for the run-wide memory estimate.
-    for t in phenomena.decoded_textures() {
+    // The decoded image textures, environment maps and displacement images, for the
+    // run-wide memory estimate.
+    let textures = phenomena
+        .decoded_textures()
+        .iter()
+        .map(|t| (&t.name, &t.at, t.image));
+    let others = sources
+        .images
+        .listed()
+        .iter()
+        .map(|i| (&i.name, &i.at, i.image));
+    for (name, at, image) in textures.chain(others) {
         world.spawn((
-            crate::components::Name(t.name.clone()),
-            crate::components::SourceLink::from(t.at.clone()),
-            t.image,
+            crate::components::Name(name.clone()),
+            crate::components::SourceLink::from(at.clone()),
+            image,
         ));
     }
     if let Some(env) = environment {

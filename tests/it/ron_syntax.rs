@@ -268,7 +268,7 @@ fn a_missing_image_and_a_non_finite_input_are_named() {
 }
 
 #[test]
-fn a_displacement_image_that_is_not_png_says_what_displacement_reads() {
+fn a_displacement_image_that_is_not_an_image_says_what_displacement_reads() {
     let dir = crate::common::scratch_dir("ron-syntax-displacement");
     std::fs::write(dir.join("h.exr"), b"v/1\x01 not really").unwrap();
     let text = with_line(
@@ -281,7 +281,7 @@ fn a_displacement_image_that_is_not_png_says_what_displacement_reads() {
     assert_eq!(
         err.0[0].to_string(),
         format!(
-            "{}:3:85: error: cannot read image file \"{}\": not a PNG file (it does not start with the PNG signature)\n  help: displacement images must be PNG files (read as grey), relative to the scene file; save an EXR height map as a 16-bit grey PNG",
+            "{}:3:85: error: cannot read image file \"{}\": not a readable OpenEXR image (not supported: too new file feature flags)\n  help: displacement images are PNG files (read as grey 0…1) or EXR files (heights as stored: Y, a single channel, or the luminance of R, G and B), relative to the scene file",
             path.display(),
             dir.join("h.exr").display()
         )

@@ -4,10 +4,10 @@
 use std::path::Path;
 use std::sync::Arc;
 
-use super::{num, report};
+use super::{height_map, num, report};
 use crate::components::{
-    Approximation, Displacement, DisplacementMode, ImageMap, LengthSpace, ScalarNode, Technique,
-    UvAxis,
+    Approximation, DecodedImage, Displacement, DisplacementMode, ImageContent, ImageMap,
+    LengthSpace, ScalarNode, Technique, UvAxis,
 };
 use crate::scene::desc::{
     ApproximationDesc, AxisDesc, DisplacementDesc, DisplacementModeDesc, ScalarDesc, SpaceDesc,
@@ -217,32 +217,49 @@ fn scalar(ck: &mut Checker<'_>, dir: &Path, path: &str, d: &ScalarDesc) -> Optio
             let s = num(ck, &format!("{path}.Image.scale"), "scale", *scale);
             let o = num(ck, &format!("{path}.Image.offset"), "offset", *offset);
             let full = dir.join(file);
-            let read = std::fs::read(&full)
-                .map_err(|e| crate::scene::message::io_reason(&e))
-                .and_then(|bytes| crate::image_io::png_codec::decode_png(&bytes));
+            let file_at = format!("{path}.Image.file");
+            let exr = crate::shading::texture::image::is_exr(&full);
+            let bytes = std::fs::read(&full).map_err(|e| crate::scene::message::io_reason(&e));
+            // Counted against the budget from the header, before anything is decoded.
+            let size = bytes
+                .as_deref()
+                .map_err(Clone::clone)
+                .and_then(|b| height_map::footprint(b, exr));
+            if let Ok((size, peak)) = size {
+                if let Err((message, help)) =
+                    ck.src.images.admit(file, size, ImageContent::Heights, peak)
+                {
+                    ck.src.error(ck.file, &file_at, message, Some(help));
+                    return None;
+                }
+            }
+            let read = size.and_then(|_| height_map::decode(&bytes.unwrap_or_default(), exr));
             let img = match read {
                 Ok(img) => img,
                 Err(e) => {
                     ck.src.error(
                         ck.file,
-                        &format!("{path}.Image.file"),
+                        &file_at,
                         format!("cannot read image file \"{}\": {e}", full.display()),
                         Some(
-                            "displacement images must be PNG files (read as grey), relative to \
-                             the scene file; save an EXR height map as a 16-bit grey PNG"
+                            "displacement images are PNG files (read as grey 0…1) or EXR files \
+                             (heights as stored: Y, a single channel, or the luminance of R, G \
+                             and B), relative to the scene file"
                                 .into(),
                         ),
                     );
                     return None;
                 }
             };
-            let (w, h) = (img.width, img.height);
-            // Image rows run top to bottom; the map's row 0 is v = 0 (the bottom).
-            let texels: Vec<f32> = (0..h as usize)
-                .rev()
-                .flat_map(|y| (0..w as usize).map(move |x| y * w as usize + x))
-                .map(|p| img.luma(p))
-                .collect();
+            let (w, h, texels) = (img.width, img.height, img.texels);
+            let pos = ck.src.pos(ck.file, &file_at);
+            let image = DecodedImage {
+                width: w,
+                height: h,
+                bytes: height_map::held_bytes(w, h),
+                content: ImageContent::Heights,
+            };
+            ck.src.images.list(file, pos, image);
             Some(ScalarNode::Image(ImageMap {
                 width: w,
                 height: h,

@@ -10,6 +10,7 @@
 //! `expand_geometry` and `tessellate` consume (see `docs/geometry.md`).
 
 pub(crate) mod dicing;
+pub(crate) mod height_map;
 pub(crate) mod scatter;
 pub(crate) mod shapes;
 

@@ -10,7 +10,7 @@ use std::collections::HashMap;
 use std::path::PathBuf;
 use std::sync::Arc;
 
-use crate::components::DecodedImage;
+use crate::components::{DecodedImage, ImageContent};
 use crate::memory_budget::{human, Budget};
 use crate::scene::diagnostics::SourcePos;
 use crate::shading::texture::image::{decoded_bytes, Footprint, Texture, UvWrap};
@@ -72,6 +72,7 @@ impl Textures {
                 width: texture.width,
                 height: texture.height,
                 bytes: decoded_bytes(texture),
+                content: ImageContent::Texture,
             },
         });
     }
@@ -90,9 +91,8 @@ impl Textures {
             return Ok(());
         }
         let what = format!(
-            "image \"{name}\": the texels of a {}×{} image need about {}",
-            size.width,
-            size.height,
+            "image \"{name}\": {} need about {}",
+            ImageContent::Texture.describe(size.width, size.height),
             human(size.bytes)
         );
         let together = if self.budget.fits(size.bytes) {

@@ -78,6 +78,11 @@ impl Texels {
 /// Chooses the layer and channels a texture reads from an EXR file's headers, after the
 /// size check every EXR input passes ([`exr_limits`]).
 pub fn choose(bytes: &[u8]) -> Result<ChosenLayer, String> {
+    choose_for(bytes, "an image texture")
+}
+
+/// [`choose`] for the input named `reader` in its refusal (`a displacement image`).
+pub fn choose_for(bytes: &[u8], reader: &str) -> Result<ChosenLayer, String> {
     exr_limits::check_bytes(bytes, exr_limits::MAX_IMAGE_SAMPLES)?;
     let meta = MetaData::read_from_buffered(Cursor::new(bytes), false)
         .map_err(|e| format!("not a readable OpenEXR image ({e})"))?;
@@ -109,7 +114,7 @@ pub fn choose(bytes: &[u8]) -> Result<ChosenLayer, String> {
     let Some((i, colour)) = rgb.or_else(luminance).or_else(single) else {
         let found: Vec<String> = layers.concat();
         return Err(format!(
-            "no layer has the channels an image texture reads (R, G and B; or Y; or a single \
+            "no layer has the channels {reader} reads (R, G and B; or Y; or a single \
              channel, each with an optional A): the file has {}",
             if found.is_empty() {
                 "no channels".to_string()
@@ -176,4 +181,85 @@ pub fn read_layer(bytes: &[u8], layer: &ChosenLayer) -> Result<Texels, String> {
         }
     };
     Ok(pixels)
+}
+
+/// Rows of heights, filled bottom-up from pixels given from the top left.
+struct Heights {
+    width: usize,
+    height: usize,
+    values: Vec<f32>,
+}
+
+impl Heights {
+    fn new(width: usize, height: usize) -> Self {
+        Self {
+            width,
+            height,
+            values: vec![0.0; width * height],
+        }
+    }
+
+    fn set(&mut self, x: usize, y: usize, value: f32) {
+        let Some(row) = self.height.checked_sub(y + 1) else {
+            return;
+        };
+        if let Some(v) = self.values.get_mut(row * self.width + x) {
+            *v = value;
+        }
+    }
+}
+
+/// The refusal of a file the reader could not read (truncated, corrupt).
+fn unreadable(e: exr::error::Error) -> String {
+    format!("not a readable OpenEXR image ({e})")
+}
+
+/// Rec. 709 luminance of linear R, G and B.
+fn luminance(r: f32, g: f32, b: f32) -> f32 {
+    0.2126 * r + 0.7152 * g + 0.0722 * b
+}
+
+/// Reads the chosen layer as one value per pixel, bottom row first (a displacement image's
+/// heights): a grey channel's value, or the Rec. 709 luminance of R, G and B, as stored
+/// (16- or 32-bit float; negative values kept). `A` is not read. On the calling thread, as
+/// [`read_layer`].
+pub fn read_grey(bytes: &[u8], layer: &ChosenLayer) -> Result<Vec<f32>, String> {
+    let reader = read().no_deep_data().largest_resolution_level();
+    let heights = match &layer.colour {
+        Colour::Rgb => {
+            reader
+                .rgba_channels(
+                    |size, _: &RgbaChannels| Heights::new(size.width(), size.height()),
+                    |h: &mut Heights, pos, (r, g, b, _): (f32, f32, f32, f32)| {
+                        h.set(pos.x(), pos.y(), luminance(r, g, b))
+                    },
+                )
+                .first_valid_layer()
+                .all_attributes()
+                .non_parallel()
+                .from_buffered(Cursor::new(bytes))
+                .map_err(unreadable)?
+                .layer_data
+                .channel_data
+                .pixels
+        }
+        Colour::Grey(name) => {
+            reader
+                .specific_channels()
+                .required(name.as_str())
+                .collect_pixels(
+                    |size, _: &(ChannelDescription,)| Heights::new(size.width(), size.height()),
+                    |h: &mut Heights, pos, (v,): (f32,)| h.set(pos.x(), pos.y(), v),
+                )
+                .first_valid_layer()
+                .all_attributes()
+                .non_parallel()
+                .from_buffered(Cursor::new(bytes))
+                .map_err(unreadable)?
+                .layer_data
+                .channel_data
+                .pixels
+        }
+    };
+    Ok(heights.values)
 }

@@ -47,6 +47,11 @@ impl Distribution1D {
         self.integral
     }
 
+    /// Bytes of its heap allocations (cells and CDF, by capacity).
+    pub fn heap_bytes(&self) -> u64 {
+        ((self.func.capacity() + self.cdf.capacity()) * std::mem::size_of::<f32>()) as u64
+    }
+
     /// Number of cells.
     pub fn len(&self) -> usize {
         self.func.len()
@@ -99,6 +104,17 @@ impl Distribution2D {
     /// ∫ func over the unit square.
     pub fn integral(&self) -> f64 {
         self.marginal.integral()
+    }
+
+    /// Bytes of its heap allocations: the rows (the `Distribution1D`s and their cells and
+    /// CDFs, by capacity) and the marginal's cells and CDF.
+    pub fn heap_bytes(&self) -> u64 {
+        let row_structs = self.rows.capacity() * std::mem::size_of::<Distribution1D>();
+        self.rows
+            .iter()
+            .fold(row_structs as u64 + self.marginal.heap_bytes(), |sum, r| {
+                sum + r.heap_bytes()
+            })
     }
 
     /// A point of the unit square (x along a row, y across rows) and its density.

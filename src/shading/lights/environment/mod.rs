@@ -8,6 +8,7 @@
 //! lookup), so the sampler follows the map exactly.
 
 pub mod distribution;
+pub mod footprint;
 
 use std::f32::consts::PI;
 
@@ -112,6 +113,15 @@ impl EnvLight {
             source,
             samples: env.samples.max(1),
             depth_exceeded_environment: env.depth_exceeded == DepthExceeded::Environment,
+        }
+    }
+
+    /// Bytes of the heap allocations of its sampling tables (0 for a constant environment);
+    /// the map's texels are the loader's, shared.
+    pub fn table_bytes(&self) -> u64 {
+        match &self.source {
+            Source::Constant(_) => 0,
+            Source::Map { distribution, .. } => distribution.heap_bytes(),
         }
     }
 
