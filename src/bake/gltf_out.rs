@@ -18,6 +18,10 @@ use std::path::Path;
 
 use serde_json::{json, Value};
 
+pub use super::glb_build::TextureSlot;
+use super::glb_build::{
+    add_float_accessor, add_view, encode_glb, list, pad4, use_lightmap_extension, wire_texture,
+};
 use crate::scene::mesh_files::gltf_file;
 
 /// One baked texture of one primitive instance.
@@ -30,19 +34,6 @@ pub struct BakedTexture<'a> {
     pub slot: TextureSlot,
     /// The encoded PNG.
     pub png: &'a [u8],
-}
-
-/// Which material slot a baked texture fills.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum TextureSlot {
-    /// `occlusionTexture` (red channel, `TEXCOORD_1`).
-    Occlusion,
-    /// `extensions.MSFT_lightmap.lightmapTexture` (`TEXCOORD_1`), with the `lightmapFactor`
-    /// a viewer multiplies it by (the inverse of the bake's `scale`).
-    Lightmap {
-        /// The `lightmapFactor` of each channel.
-        factor: f64,
-    },
 }
 
 /// Per-vertex baked values of one primitive instance, written as its `COLOR_0`.
@@ -151,55 +142,10 @@ fn add_colors(
             count.unwrap_or(0)
         ));
     }
-    let mut data = Vec::with_capacity(c.values.len() * 12);
-    let (mut lo, mut hi) = (
-        glam::Vec3::splat(f32::INFINITY),
-        glam::Vec3::splat(f32::NEG_INFINITY),
-    );
-    for v in &c.values {
-        lo = lo.min(*v);
-        hi = hi.max(*v);
-        for x in v.to_array() {
-            data.extend_from_slice(&x.to_le_bytes());
-        }
-    }
-    let view = add_view(json, bin, &data);
-    let accessors = list(json, "accessors");
-    accessors.push(json!({
-        "bufferView": view,
-        "componentType": 5126,
-        "count": c.values.len(),
-        "type": "VEC3",
-        "min": lo.to_array(),
-        "max": hi.to_array(),
-    }));
-    let accessor = accessors.len() - 1;
+    let values: Vec<[f32; 3]> = c.values.iter().map(|v| v.to_array()).collect();
+    let accessor = add_float_accessor(json, bin, &values, "VEC3", true, None);
     json["meshes"][mesh]["primitives"][c.primitive]["attributes"]["COLOR_0"] = json!(accessor);
     Ok(())
-}
-
-fn pad4(bytes: &mut Vec<u8>, fill: u8) {
-    while !bytes.len().is_multiple_of(4) {
-        bytes.push(fill);
-    }
-}
-
-/// Appends `data` to `bin` as a new buffer view of buffer 0; returns its index.
-fn add_view(json: &mut Value, bin: &mut Vec<u8>, data: &[u8]) -> usize {
-    pad4(bin, 0);
-    let offset = bin.len();
-    bin.extend_from_slice(data);
-    let views = list(json, "bufferViews");
-    views.push(json!({"buffer": 0, "byteOffset": offset, "byteLength": data.len()}));
-    views.len() - 1
-}
-
-/// The array `json[key]`, created empty when missing.
-fn list<'a>(json: &'a mut Value, key: &str) -> &'a mut Vec<Value> {
-    if !json[key].is_array() {
-        json[key] = json!([]);
-    }
-    json[key].as_array_mut().expect("made an array")
 }
 
 fn mime(bytes: &[u8]) -> &'static str {
@@ -221,8 +167,18 @@ fn source_json(bytes: &[u8]) -> Result<Value, String> {
     serde_json::from_slice(text).map_err(|e| format!("invalid glTF JSON: {e}"))
 }
 
-/// Where `bake --write-gltf` writes the baked copy of the glTF scene `source`:
-/// `<dir>/<stem>.glb`.
+/// Whether `--write-gltf` of `scene` writes the copy of a glTF file (a `.gltf` or `.glb`,
+/// in any case) rather than the standalone file of another scene
+/// ([`super::gltf_export`]).
+pub fn is_gltf_scene(scene: &Path) -> bool {
+    let ext = scene
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase());
+    matches!(ext.as_deref(), Some("gltf" | "glb"))
+}
+
+/// Where `bake --write-gltf` of `source` writes its baked glTF (the copy of a glTF scene, or
+/// the standalone file of another scene): `<dir>/<stem>.glb`.
 pub fn baked_glb_path(source: &std::path::Path, dir: &std::path::Path) -> std::path::PathBuf {
     let stem = source.file_stem().unwrap_or_default().to_string_lossy();
     dir.join(format!("{stem}.glb"))
@@ -310,66 +266,12 @@ pub fn baked_glb(
                 m
             }
         };
-        let view = add_view(&mut json, &mut bin, t.png);
-        let images = list(&mut json, "images");
-        images.push(json!({"bufferView": view, "mimeType": "image/png"}));
-        let image = images.len() - 1;
-        let textures = list(&mut json, "textures");
-        textures.push(json!({"source": image}));
-        let texture = textures.len() - 1;
-        let reference = json!({"index": texture, "texCoord": 1});
-        let m = &mut json["materials"][material];
-        match t.slot {
-            TextureSlot::Occlusion => m["occlusionTexture"] = reference,
-            TextureSlot::Lightmap { factor } => {
-                lightmaps = true;
-                if !m["extensions"].is_object() {
-                    m["extensions"] = json!({});
-                }
-                m["extensions"]["MSFT_lightmap"] = json!({"lightmapTexture": reference, "lightmapFactor": [factor, factor, factor]});
-            }
-        }
+        lightmaps |= wire_texture(&mut json, &mut bin, material, t.slot, t.png);
     }
     if lightmaps {
-        let used = list(&mut json, "extensionsUsed");
-        if !used.iter().any(|e| e == "MSFT_lightmap") {
-            used.push(json!("MSFT_lightmap"));
-        }
+        use_lightmap_extension(&mut json);
     }
-    pad4(&mut bin, 0);
-    if bin.is_empty() {
-        // A buffer's byteLength is at least 1: no bytes, no buffer and no BIN chunk.
-        json["buffers"] = json!([]);
-    } else {
-        json["buffers"] = json!([{"byteLength": bin.len()}]);
-    }
-    drop_empty_arrays(&mut json);
-    let mut text = serde_json::to_vec(&json).map_err(|e| e.to_string())?;
-    pad4(&mut text, b' ');
-    let bin_chunk = if bin.is_empty() { 0 } else { 8 + bin.len() };
-    let total = 12 + 8 + text.len() + bin_chunk;
-    let mut out = Vec::with_capacity(total);
-    out.extend_from_slice(b"glTF");
-    out.extend_from_slice(&2u32.to_le_bytes());
-    out.extend_from_slice(&(total as u32).to_le_bytes());
-    out.extend_from_slice(&(text.len() as u32).to_le_bytes());
-    out.extend_from_slice(b"JSON");
-    out.extend_from_slice(&text);
-    if !bin.is_empty() {
-        out.extend_from_slice(&(bin.len() as u32).to_le_bytes());
-        out.extend_from_slice(b"BIN\0");
-        out.extend_from_slice(&bin);
-    }
-    Ok(out)
-}
-
-/// Removes every top-level array of `json` that holds nothing (`"images": []`): glTF
-/// requires a defined array to have at least one item (the Khronos validator's
-/// `EMPTY_ENTITY`).
-fn drop_empty_arrays(json: &mut Value) {
-    if let Some(o) = json.as_object_mut() {
-        o.retain(|_, v| v.as_array().is_none_or(|a| !a.is_empty()));
-    }
+    encode_glb(json, bin)
 }
 
 #[cfg(test)]
@@ -377,18 +279,12 @@ mod tests {
     use super::*;
 
     #[test]
-    fn empty_top_level_arrays_are_left_out() {
-        let mut json = json!({
-            "asset": {"version": "2.0"},
-            "images": [],
-            "textures": [],
-            "meshes": [{"primitives": []}],
-            "extensionsUsed": [],
-        });
-        drop_empty_arrays(&mut json);
-        assert_eq!(
-            json,
-            json!({"asset": {"version": "2.0"}, "meshes": [{"primitives": []}]})
-        );
+    fn gltf_and_glb_scenes_are_copied_in_any_case_of_extension() {
+        for copied in ["a.gltf", "dir/b.GLB", "c.Gltf"] {
+            assert!(is_gltf_scene(Path::new(copied)), "{copied}");
+        }
+        for exported in ["a.ron", "b.rib", "c", "d.glb.ron", "e.mi"] {
+            assert!(!is_gltf_scene(Path::new(exported)), "{exported}");
+        }
     }
 }

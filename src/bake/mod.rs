@@ -17,6 +17,7 @@ pub mod density;
 pub mod dilate;
 pub mod files;
 pub mod finish;
+pub mod glb_build;
 pub mod gltf_copy_refusals;
 pub mod gltf_out;
 pub mod hemisphere_lanes;
