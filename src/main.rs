@@ -209,8 +209,8 @@ struct MergeArgs {
     /// Print the per-stage report.
     #[arg(long)]
     stats: bool,
-    /// Bake parts of a glTF scene: also write `DIR/<scene>.glb`, the copy whose materials
-    /// reference the merged textures, as `bake --write-gltf` writes it (docs/gltf.md).
+    /// Bake parts: also write `DIR/<scene>.glb` with the merged textures applied, as `bake
+    /// --write-gltf` writes it (docs/gltf.md).
     #[arg(long = "write-gltf")]
     write_gltf: bool,
 }
@@ -256,8 +256,8 @@ struct FarmArgs {
     /// `-o` is then the texture directory of the merge.
     #[arg(long, conflicts_with_all = ["spp", "split"])]
     bake: bool,
-    /// With `--bake` of a glTF scene: the merge job also writes the baked glTF copy
-    /// (`merge --write-gltf`) into the texture directory.
+    /// With `--bake`: the merge job also writes the baked glTF (`merge --write-gltf`) into
+    /// the texture directory.
     #[arg(long = "write-gltf")]
     write_gltf: bool,
 }
@@ -294,9 +294,11 @@ struct BakeArgs {
     /// `stagelight merge`.
     #[arg(long, value_name = "K/N")]
     part: Option<PartNumber>,
-    /// Also write `DIR/<scene>.glb`: a copy of the glTF scene whose materials reference the
-    /// baked textures (lightmap and occlusion on TEXCOORD_1; docs/gltf.md). Not with
-    /// `--part`: `merge --write-gltf` writes the copy of a bake done in parts.
+    /// Also write `DIR/<scene>.glb` with the bakes applied (lightmap and occlusion on
+    /// TEXCOORD_1, per-vertex bakes as COLOR_0; docs/gltf.md): for a glTF scene a copy whose
+    /// materials reference the baked textures, for any other scene a standalone glTF of its
+    /// baked geometry. Not with `--part`: `merge --write-gltf` writes it for a bake done in
+    /// parts.
     #[arg(long = "write-gltf")]
     write_gltf: bool,
 }
@@ -1165,13 +1167,6 @@ fn merge_bake(args: MergeArgs) -> ExitCode {
         }
     };
     let (header, merged) = merged;
-    if args.write_gltf {
-        let scene = args.scene.as_deref().unwrap_or(Path::new(&header.scene));
-        if let Some(refusal) = gltf_copy_refusals::scene_refusal(scene) {
-            errln!("error: {refusal}");
-            return ExitCode::from(EXIT_USAGE);
-        }
-    }
     let (scene_path, mut scene) = match part_scene(&args, &header.scene, header.scene_hash, "bake")
     {
         Ok(s) => s,
@@ -1205,16 +1200,9 @@ fn merge_bake(args: MergeArgs) -> ExitCode {
 
 fn farm(args: FarmArgs) -> ExitCode {
     use stagelight::guard::dir_flags::{usable_dir, usable_file};
-    if args.write_gltf {
-        let refusal = if args.bake {
-            gltf_copy_refusals::scene_refusal(&args.scene)
-        } else {
-            Some(gltf_copy_refusals::render_farm_refusal())
-        };
-        if let Some(refusal) = refusal {
-            errln!("error: {refusal}");
-            return ExitCode::from(EXIT_USAGE);
-        }
+    if args.write_gltf && !args.bake {
+        errln!("error: {}", gltf_copy_refusals::render_farm_refusal());
+        return ExitCode::from(EXIT_USAGE);
     }
     let output = args.output.as_deref().map_or(Ok(()), |o| {
         if args.bake {
@@ -1337,7 +1325,7 @@ fn farm_refusals(args: &FarmArgs, scene: &mut LoadedScene) -> Result<(), ExitCod
             frame.inputs.bake_dir = dir.clone();
         }
         if args.write_gltf {
-            // The merge job's glTF copy, checked with its textures.
+            // The merge job's baked glTF, checked with its textures.
             frame.inputs.write_gltf = Some(args.scene.clone());
         }
     } else {
@@ -1450,10 +1438,6 @@ fn bake(args: BakeArgs) -> ExitCode {
         scene_hash: stagelight::farm::scene_hash(&args.scene, scene.source_hash, &scene.world),
     });
     if args.write_gltf {
-        if let Some(refusal) = gltf_copy_refusals::scene_refusal(&args.scene) {
-            errln!("error: {refusal}");
-            return ExitCode::from(EXIT_USAGE);
-        }
         frame.inputs.write_gltf = Some(args.scene.clone());
     }
     run_and_report(

@@ -94,8 +94,9 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
     let mut reports = Vec::new();
     let mut part_requests = Vec::new();
     let mut texels_baked = 0u64;
-    let mut baked_pngs: Vec<(String, BakeKind, Vec<u8>)> = Vec::new();
-    let mut vertex_colors: Vec<(String, VertexValues)> = Vec::new();
+    // For `--write-gltf`: each request's (index) PNGs and per-vertex values.
+    let mut baked_pngs: Vec<(usize, BakeKind, Vec<u8>)> = Vec::new();
+    let mut vertex_colors: Vec<(usize, VertexValues)> = Vec::new();
     for (index, p) in prepared.iter().enumerate() {
         let start = Instant::now();
         let mut results = if let Some(merged) = &inputs.merged_bake {
@@ -161,7 +162,7 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
             reports.push(r);
             pending.extend(baked.files.pending);
             if inputs.write_gltf.is_some() {
-                vertex_colors.push((p.request.name.clone(), baked.values));
+                vertex_colors.push((index, baked.values));
             }
             continue;
         }
@@ -178,8 +179,7 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
         if inputs.write_gltf.is_some() {
             for (target, file) in p.request.targets.iter().zip(&files.pending) {
                 if target.format != BakeFormat::Exr {
-                    let name = p.request.name.clone();
-                    baked_pngs.push((name, target.kind.clone(), file.bytes.clone()));
+                    baked_pngs.push((index, target.kind.clone(), file.bytes.clone()));
                 }
             }
         }
@@ -207,12 +207,22 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
         pending.push(part_file(run, frame, part_requests)?);
     }
     if let Some(source) = &inputs.write_gltf {
-        pending.push(baked_gltf(
-            source,
-            &baked_pngs,
-            &vertex_colors,
-            &inputs.bake_dir,
-        )?);
+        let baked = BakedOutputs {
+            prepared: &prepared,
+            pngs: &baked_pngs,
+            vertex_colors: &vertex_colors,
+        };
+        let path = crate::bake::gltf_out::baked_glb_path(source, &inputs.bake_dir);
+        let bytes = if crate::bake::gltf_out::is_gltf_scene(source) {
+            baked_gltf(source, &baked, &path)
+        } else {
+            standalone_gltf(world, geometry, &baked)
+        };
+        let bytes = bytes.map_err(|message| StageError::Write {
+            path: path.clone(),
+            message,
+        })?;
+        pending.push(crate::image_io::PendingFile { path, bytes });
     }
     let work = Work::new(texels_baked, "texels")
         .with_pending(pending)
@@ -317,70 +327,120 @@ fn part_file(
     Ok(crate::image_io::PendingFile { path, bytes })
 }
 
-/// The glTF copy of `source` referencing the baked PNGs (`bake --write-gltf`), as
-/// `<dir>/<stem>.glb`.
+/// What a bake wrote that the baked glTF file (`--write-gltf`) takes: per request (by its
+/// index in `prepared`) the PNG textures and the per-vertex values.
+struct BakedOutputs<'a> {
+    prepared: &'a [PreparedBake],
+    pngs: &'a [(usize, BakeKind, Vec<u8>)],
+    vertex_colors: &'a [(usize, VertexValues)],
+}
+
+/// The glTF copy of `source` referencing the baked PNGs (`bake --write-gltf` of a glTF
+/// scene), to be written at `path`.
 fn baked_gltf(
     source: &std::path::Path,
-    pngs: &[(String, BakeKind, Vec<u8>)],
-    vertex_colors: &[(String, VertexValues)],
-    dir: &std::path::Path,
-) -> Result<crate::image_io::PendingFile, StageError> {
+    baked: &BakedOutputs<'_>,
+    path: &std::path::Path,
+) -> Result<Vec<u8>, String> {
     use crate::bake::gltf_out::{baked_glb, color_source, BakedColors, BakedTexture, TextureSlot};
-    let path = crate::bake::gltf_out::baked_glb_path(source, dir);
-    let fail = |message: String| StageError::Write {
-        path: path.clone(),
-        message,
-    };
     let same = |a: &std::path::Path, b: &std::path::Path| matches!((a.canonicalize(), b.canonicalize()), (Ok(x), Ok(y)) if x == y);
-    if same(&path, source) {
-        return Err(fail(
-            "it is the glTF file being baked; bake into another directory (-o DIR)".into(),
-        ));
+    if same(path, source) {
+        return Err("it is the glTF file being baked; bake into another directory (-o DIR)".into());
     }
-    let bytes = std::fs::read(source).map_err(|e| fail(e.to_string()))?;
+    let bytes = std::fs::read(source).map_err(|e| e.to_string())?;
     let leaves =
         crate::scene::import::gltf_scene::primitive_instances(source, &bytes).map_err(|e| {
-            fail(
-                e.iter()
-                    .map(|d| d.message.clone())
-                    .collect::<Vec<_>>()
-                    .join("; "),
-            )
+            e.iter()
+                .map(|d| d.message.clone())
+                .collect::<Vec<_>>()
+                .join("; ")
         })?;
+    let leaf = |index: usize| {
+        let name = &baked.prepared[index].request.name;
+        leaves
+            .iter()
+            .find(|(n, ..)| n == name)
+            .map(|(_, node, primitive)| (*node, *primitive))
+    };
     let mut textures = Vec::new();
-    for (name, kind, png) in pngs {
-        let Some((_, node, primitive)) = leaves.iter().find(|(n, ..)| n == name) else {
+    for (index, kind, png) in baked.pngs {
+        let (Some((node, primitive)), Some(slot)) = (leaf(*index), TextureSlot::of(kind)) else {
             continue;
         };
-        let slot = match kind {
-            BakeKind::AmbientOcclusion { .. } => TextureSlot::Occlusion,
-            BakeKind::Lightmap { scale, .. } => TextureSlot::Lightmap {
-                factor: 1.0 / f64::from(*scale),
-            },
-            _ => continue,
-        };
         textures.push(BakedTexture {
-            node: *node,
-            primitive: *primitive,
+            node,
+            primitive,
             slot,
             png,
         });
     }
     let mut colors = Vec::new();
-    for (name, targets) in vertex_colors {
-        let Some((_, node, primitive)) = leaves.iter().find(|(n, ..)| n == name) else {
+    for (index, targets) in baked.vertex_colors {
+        let Some((node, primitive)) = leaf(*index) else {
             continue;
         };
         if let Some(values) = color_source(targets) {
             colors.push(BakedColors {
-                node: *node,
-                primitive: *primitive,
+                node,
+                primitive,
                 values,
             });
         }
     }
-    let bytes = baked_glb(source, &textures, &colors).map_err(fail)?;
-    Ok(crate::image_io::PendingFile { path, bytes })
+    baked_glb(source, &textures, &colors)
+}
+
+/// The standalone glTF file of a scene that is not glTF (`bake scene.ron --write-gltf`):
+/// every placed instance as a node, the baked ones with their textures or vertex colours
+/// (`crate::bake::gltf_export`).
+fn standalone_gltf(
+    world: &World,
+    geometry: &crate::geometry::SceneGeometry,
+    baked: &BakedOutputs<'_>,
+) -> Result<Vec<u8>, String> {
+    use crate::bake::gltf_export::{standalone_glb, ExportedInstance, InstanceBake};
+    use crate::bake::gltf_out::{color_source, TextureSlot};
+    use crate::components::Name;
+    let name_of = |entity: hecs::Entity| world.get::<&Name>(entity).ok().map(|n| n.0.clone());
+    let mut instances: Vec<ExportedInstance<'_>> = geometry
+        .instances
+        .iter()
+        .enumerate()
+        .map(|(slot, inst)| ExportedInstance {
+            name: name_of(inst.entity).unwrap_or_else(|| format!("instance{slot}")),
+            bake: None,
+        })
+        .collect();
+    for (index, p) in baked.prepared.iter().enumerate() {
+        let exported = &mut instances[p.slot];
+        exported.name = p.request.name.clone();
+        exported.bake = Some(if p.per_vertex() {
+            let values = baked
+                .vertex_colors
+                .iter()
+                .find(|(i, _)| *i == index)
+                .and_then(|(_, targets)| color_source(targets));
+            InstanceBake::Colors(values)
+        } else {
+            let textures = baked
+                .pngs
+                .iter()
+                .filter(|(i, ..)| *i == index)
+                .filter_map(|(_, kind, png)| Some((TextureSlot::of(kind)?, png.as_slice())))
+                .collect();
+            InstanceBake::Textures {
+                uvs: &p.uvs,
+                textures,
+            }
+        });
+    }
+    let material_names: Vec<String> = geometry
+        .material_entities
+        .iter()
+        .enumerate()
+        .map(|(k, &e)| name_of(e).unwrap_or_else(|| format!("material{k}")))
+        .collect();
+    standalone_glb(geometry, &instances, &material_names)
 }
 
 /// Warns, located at the request, about each PNG output of `p` whose values its range

@@ -19,6 +19,7 @@ pub mod files;
 pub mod finish;
 pub mod glb_build;
 pub mod gltf_copy_refusals;
+pub mod gltf_export;
 pub mod gltf_out;
 pub mod hemisphere_lanes;
 pub mod irradiance;

@@ -1,8 +1,9 @@
 //! The baked glTF copy of a bake done in parts: `merge --write-gltf` of the bake parts of a
 //! `.glb` or `.gltf` scene writes the copy `bake --write-gltf` writes, byte for byte, beside
-//! the same textures; `farm --bake --write-gltf` puts the flag on its merge job. Render parts,
-//! render farms, scenes that are not glTF, `bake --part` and a copy that would overwrite the
-//! scene are refused before anything is written.
+//! the same textures; `farm --bake --write-gltf` puts the flag on its merge job (of any
+//! scene: a RON scene's merge writes its standalone glTF). Render parts, render farms,
+//! `bake --part` and a copy that would overwrite the scene are refused before anything is
+//! written.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -179,12 +180,11 @@ const RON: &str = r#"Scene(
 )
 "#;
 
-const NOT_GLTF_HELP: &str = "  help: the baked copy is a copy of the glTF file with the baked textures wired in; leave out --write-gltf for other scenes\n";
-
-/// `merge --write-gltf` of render parts, and of the bake parts of a RON scene (the recorded
-/// scene, or `--scene`), is a usage error (exit 2) that names why, and writes nothing.
+/// `merge --write-gltf` of render parts is a usage error (exit 2) that names why, and writes
+/// nothing; the bake parts of a RON scene (the recorded scene, or `--scene`) merge with it
+/// (they were refused: `--write-gltf needs a glTF scene`).
 #[test]
-fn merge_write_gltf_refuses_render_parts_and_scenes_that_are_not_gltf() {
+fn merge_write_gltf_refuses_render_parts_and_takes_bake_parts_of_any_scene() {
     let dir = scratch_dir("farm-gltf-merge-refusals");
     std::fs::write(dir.join("scene.ron"), RON).unwrap();
     for k in 1..=2 {
@@ -203,22 +203,30 @@ fn merge_write_gltf_refuses_render_parts_and_scenes_that_are_not_gltf() {
     };
     refused(
         &["merge", "r1.exr", "r2.exr", "-o", "out.png", "--write-gltf"],
-        "error: --write-gltf needs bake parts (of `stagelight bake --part K/N`), not render parts: r1.exr is a render part file\n  help: the glTF copy holds baked textures; merge the render without --write-gltf\n",
+        "error: --write-gltf needs bake parts (of `stagelight bake --part K/N`), not render parts: r1.exr is a render part file\n  help: the baked glTF holds baked textures; merge the render without --write-gltf\n",
     );
     refused(
         &["merge", "r2.exr", "r1.exr", "--write-gltf"],
-        "error: --write-gltf needs bake parts (of `stagelight bake --part K/N`), not render parts: r2.exr is a render part file\n  help: the glTF copy holds baked textures; merge the render without --write-gltf\n",
+        "error: --write-gltf needs bake parts (of `stagelight bake --part K/N`), not render parts: r2.exr is a render part file\n  help: the baked glTF holds baked textures; merge the render without --write-gltf\n",
     );
     let parts = ["parts/bake_part_1_of_2.exr", "parts/bake_part_2_of_2.exr"];
-    let recorded = std::fs::canonicalize(&dir).unwrap().join("scene.ron");
-    refused(
-        &["merge", parts[0], parts[1], "-o", "out", "--write-gltf"],
-        &format!(
-            "error: --write-gltf needs a glTF scene (.gltf or .glb), not {}\n{NOT_GLTF_HELP}",
-            recorded.display()
-        ),
+    assert_eq!(
+        dir_names(&dir),
+        ["parts", "r1.exr", "r2.exr", "scene.ron"],
+        "nothing was written"
     );
-    refused(
+    // The bake parts of a RON scene merge with the flag (the standalone glTF of the scene;
+    // `tests/it/gltf_export.rs`), through the recorded scene or `--scene`.
+    ok(
+        &dir,
+        &["merge", parts[0], parts[1], "-o", "gltf", "--write-gltf"],
+    );
+    assert_eq!(
+        dir_names(&dir.join("gltf")),
+        ["floor_1_ao.png", "scene.glb"]
+    );
+    ok(
+        &dir,
         &[
             "merge",
             parts[1],
@@ -226,15 +234,13 @@ fn merge_write_gltf_refuses_render_parts_and_scenes_that_are_not_gltf() {
             "--scene",
             "scene.ron",
             "-o",
-            "out",
+            "gltf2",
             "--write-gltf",
         ],
-        &format!("error: --write-gltf needs a glTF scene (.gltf or .glb), not scene.ron\n{NOT_GLTF_HELP}"),
     );
-    assert_eq!(
-        dir_names(&dir),
-        ["parts", "r1.exr", "r2.exr", "scene.ron"],
-        "nothing was written"
+    assert!(
+        std::fs::read(dir.join("gltf/scene.glb")).unwrap()
+            == std::fs::read(dir.join("gltf2/scene.glb")).unwrap()
     );
     // Without the flag the same parts merge.
     ok(&dir, &["merge", parts[0], parts[1], "-o", "out"]);
@@ -263,14 +269,14 @@ fn bake_part_with_write_gltf_points_to_merge_write_gltf() {
     assert_eq!(o.status.code(), Some(2), "{}", stderr_of(&o));
     assert_eq!(
         stderr_of(&o),
-        "error: --write-gltf cannot be used with --part 2/3: a bake part writes its undilated texels into a part file, not the textures the glTF copy references\n  help: bake the parts without --write-gltf, then `stagelight merge --write-gltf bake_part_*.exr` writes the glTF copy (`stagelight farm --bake --write-gltf` puts it on the merge job)\n"
+        "error: --write-gltf cannot be used with --part 2/3: a bake part writes its undilated texels into a part file, not the textures the baked glTF references\n  help: bake the parts without --write-gltf, then `stagelight merge --write-gltf bake_part_*.exr` writes the baked glTF (`stagelight farm --bake --write-gltf` puts it on the merge job)\n"
     );
     assert!(!dir.join("parts").exists());
     let _ = std::fs::remove_dir_all(&dir);
 }
 
-/// `farm --write-gltf` of a render, or of a bake of a RON scene, is a usage error naming
-/// why; a glTF copy that would overwrite the scene (the default texture directory, beside
+/// `farm --write-gltf` of a render is a usage error naming why (of a bake of a RON scene it
+/// was too; now its merge job carries the flag); a glTF copy that would overwrite the scene (the default texture directory, beside
 /// the glb) is refused by `farm` before any script and by `merge` before any texture, as
 /// `bake --write-gltf` refuses it.
 #[test]
@@ -287,9 +293,10 @@ fn farm_and_merge_refuse_a_write_gltf_they_could_not_honour_before_writing() {
     refused(
         &dir,
         &["farm", "scene.ron", "--write-gltf", "--parts", "2", "--out", "job"],
-        "error: --write-gltf needs --bake: the glTF copy holds baked textures, and a render farm bakes none\n  help: add --bake to bake the scene on the farm (the merge job then writes the copy), or leave out --write-gltf\n",
+        "error: --write-gltf needs --bake: the baked glTF holds baked textures, and a render farm bakes none\n  help: add --bake to bake the scene on the farm (the merge job then writes the baked glTF), or leave out --write-gltf\n",
     );
-    refused(
+    // A bake farm of a RON scene takes it (its merge writes the standalone glTF).
+    ok(
         &dir,
         &[
             "farm",
@@ -301,8 +308,9 @@ fn farm_and_merge_refuse_a_write_gltf_they_could_not_honour_before_writing() {
             "--out",
             "job",
         ],
-        &format!("error: --write-gltf needs a glTF scene (.gltf or .glb), not scene.ron\n{NOT_GLTF_HELP}"),
     );
+    let merge = std::fs::read_to_string(dir.join("job/merge.sbatch")).unwrap();
+    assert!(merge.contains(" --write-gltf\n"), "{merge}");
     let over_the_scene = "error: --write-gltf ./two_uv_sets.glb would overwrite the scene file two_uv_sets.glb\n  help: give every output its own file, and none the name of an input\n1 error in two_uv_sets.glb; no scripts written\n";
     refused(
         &scene_dir,

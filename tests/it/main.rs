@@ -48,6 +48,7 @@ mod geometry_surfaces;
 mod gltf;
 mod gltf_attributes;
 mod gltf_cameras;
+mod gltf_export;
 mod gltf_materials;
 mod gltf_spec;
 mod gltf_validity;
