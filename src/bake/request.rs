@@ -222,7 +222,7 @@ fn unwrap_advice(file: Option<&std::path::Path>) -> UnwrapAdvice {
         .is_some_and(|e| e.eq_ignore_ascii_case("glb") || e.eq_ignore_ascii_case("gltf"));
     let text = match file {
         Some(file) if gltf => format!(
-            "write the scene as RON (`stagelight convert {} -o scene.ron`) and set `uvs: Unwrap` in the instance's bake there to generate lightmap UVs (a glTF file's bakes read its TEXCOORD_1)",
+            "write the scene as RON (`stagelight convert {} -o scene.ron`) and set `uvs: Unwrap` in the instance's bake there to generate lightmap UVs (a glTF file's bakes read its TEXCOORD_1); `stagelight bake scene.ron --write-gltf` then writes the glTF with them as TEXCOORD_1",
             file.file_name().unwrap_or_default().to_string_lossy()
         ),
         _ => "set `uvs: Unwrap` to generate lightmap UVs".into(),

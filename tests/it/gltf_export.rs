@@ -377,3 +377,71 @@ fn a_standalone_glb_over_an_input_of_the_scene_is_refused() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A per-vertex bake of a RON scene becomes `COLOR_0` of its node: the floor under the box
+/// bakes AO per vertex, and each written vertex carries the value of its mesh vertex — the
+/// PLY's, in the same order of vertices (the floor's four corners, open to the sky but for
+/// the box: below 1) — with no bake UVs or textures.
+#[test]
+fn a_per_vertex_bake_becomes_color_0() {
+    let dir = scratch_dir("gltf-export-vertices");
+    let scene = SCENE.replace(
+        r#"bake: (resolution: (64, 64), uvs: Unwrap, outputs: ["#,
+        r#"bake: (outputs: [(kind: AmbientOcclusion(samples: 64), target: Vertices)]), nobake: ("#,
+    );
+    let scene = scene.replace(
+        r#", nobake: (
+                     (kind: Lightmap(indirect: true, samples: 64, max_depth: 2,
+                                     store: IrradianceOverPi, scale: 0.5), format: Png8),
+                     (kind: AmbientOcclusion(samples: 64), format: Png8)]))"#,
+        ")",
+    );
+    std::fs::write(dir.join("scene.ron"), &scene).unwrap();
+    ok(
+        &dir,
+        &[
+            "bake",
+            "scene.ron",
+            "-o",
+            "out",
+            "--write-gltf",
+            "--threads",
+            "1",
+        ],
+    );
+    assert_eq!(dir_names(&dir.join("out")), ["f_ao.ply", "scene.glb"]);
+    let bytes = std::fs::read(dir.join("out/scene.glb")).unwrap();
+    let glb = gltf::Gltf::from_slice(&bytes).expect("a valid glb");
+    let blob = glb.blob.clone().expect("a BIN chunk");
+    let prim = glb
+        .nodes()
+        .next()
+        .unwrap()
+        .mesh()
+        .unwrap()
+        .primitives()
+        .next()
+        .unwrap();
+    assert_eq!(prim.material().name(), Some("f_baked"));
+    assert!(prim.get(&gltf::Semantic::TexCoords(1)).is_none());
+    assert_eq!(glb.images().count(), 0);
+    let reader = prim.reader(|_| Some(&blob));
+    let positions: Vec<[f32; 3]> = reader.read_positions().unwrap().collect();
+    let colors: Vec<[f32; 3]> = reader.read_colors(0).unwrap().into_rgb_f32().collect();
+    let ply = crate::vertex_bake::BakedPly::read(&dir.join("out/f_ao.ply"));
+    assert_eq!((positions.len(), ply.count), (4, 4));
+    for (p, c) in positions.iter().zip(&colors) {
+        // The PLY's vertex at this corner (the PLY may be in object space: x − 3).
+        let v = (0..ply.count)
+            .find(|&v| {
+                let x = ply.float(v, "x");
+                (x == p[0] || x + 3.0 == p[0])
+                    && (ply.float(v, "y"), ply.float(v, "z")) == (p[1], p[2])
+            })
+            .unwrap_or_else(|| panic!("{p:?} is not a vertex of the PLY"));
+        let ao = ply.float(v, "baked_r");
+        assert_eq!(*c, [ao, ao, ao], "{p:?}");
+        assert!(ao > 0.5 && ao < 1.0, "{ao}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -626,7 +626,7 @@ fn the_overlap_hint_of_a_gltf_bake_says_how_to_unwrap() {
             "overlap.gltf:1:1: error: bake request on instance \"q\": its UVs overlap (\
              "
         ) && err.contains(
-            "\n  help: give TEXCOORD_1 unique lightmap UVs, or write the scene as RON (`stagelight convert overlap.gltf -o scene.ron`) and set `uvs: Unwrap` in the instance's bake there to generate lightmap UVs (a glTF file's bakes read its TEXCOORD_1)\n"
+            "\n  help: give TEXCOORD_1 unique lightmap UVs, or write the scene as RON (`stagelight convert overlap.gltf -o scene.ron`) and set `uvs: Unwrap` in the instance's bake there to generate lightmap UVs (a glTF file's bakes read its TEXCOORD_1); `stagelight bake scene.ron --write-gltf` then writes the glTF with them as TEXCOORD_1\n"
         ),
         "{err}"
     );
