@@ -1,7 +1,8 @@
 //! Texture baking: UV sources and bake resolution, texel rasterization with conservative
 //! coverage, the per-texel estimators (ambient occlusion, irradiance), dilation and texture
 //! encoding; request checking ([`request`]), file naming/encoding ([`files`]) and the baked
-//! glTF copy ([`gltf_out`]) and what `--write-gltf` refuses ([`gltf_copy_refusals`]); per-vertex bakes lay vertices out as texels ([`vertices`]) and
+//! glTF copy ([`gltf_out`]), the standalone baked glTF of other scenes ([`gltf_export`]), the
+//! GLB pieces both build with ([`glb_build`]) and what `--write-gltf` refuses ([`gltf_copy_refusals`]); per-vertex bakes lay vertices out as texels ([`vertices`]) and
 //! are written as PLY ([`vertex_files`]); PNG outputs that clip their values are counted for a
 //! warning ([`clipping`]). UV seams and charts ([`seams`]) drive the
 //! least-squares seam stitch ([`stitch`]) and the chart-respecting texel-space denoiser
