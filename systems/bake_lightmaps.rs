@@ -6,8 +6,9 @@
 //! **Reads:** `BakeRequest` + `Name` + `SourceLink` on instance entities; `Emitter` entities;
 //! `outputs.geometry`; `inputs.bake_dir`; `inputs.write_gltf`; `settings.seed`.
 //! **Writes:** texture files (encoded, in `Work::pending`, committed by the runner), and
-//! with `inputs.write_gltf` the glTF copy referencing them (`crate::bake::gltf_out`;
-//! per-vertex bakes as `COLOR_0`);
+//! with `inputs.write_gltf` the baked glTF referencing them (per-vertex bakes as
+//! `COLOR_0`): the copy of a glTF scene (`crate::bake::gltf_out`), else a standalone file of
+//! the placed geometry (`crate::bake::gltf_export`);
 //! `outputs.bake_reports`.
 //! **Runs when:** the run bakes (`stagelight bake` or `render --bake`) and at least one
 //! instance carries a bake request.
