@@ -58,7 +58,7 @@ fn contours(c: &mut Criterion) {
     group.bench_function("draw_1920x1080", |b| {
         b.iter(|| {
             let probe = Probe::new(frame.outputs.geometry.as_ref(), &rays);
-            let store = probe.store(fb.width, fb.height, &fb.beauty);
+            let store = probe.store(fb.width, fb.height, &fb.beauty, 0);
             let work = draw.run_body(&mut world, &frame).unwrap();
             (store.samples.len(), work.items)
         })

@@ -381,26 +381,20 @@ pub fn idle_part_image(world: &World, frame: &Frame) -> Option<FrameBuffers> {
 }
 
 /// The contour store of the shaded (or merged) image `fb`, when the run draws contours
-/// ([`crate::scene_view::contours_drawn`]). Its samples are the pixel
-/// centres' first hits, which need no random numbers: a merge recomputes them exactly.
+/// ([`crate::scene_view::contours_drawn`]). Its samples are what the pixel centres' rays
+/// see on each level, each pixel's path walked once through the levels and no further than
+/// it goes ([`Probe::walk`]); they need no random numbers: a merge recomputes them exactly.
 fn contour_store(world: &World, frame: &Frame, fb: &FrameBuffers) -> Option<ContourStore> {
     crate::scene_view::contours_drawn(world, &frame.inputs).ok()?;
     let view = render_view(world)?.without(frame.inputs.settings.disabled);
     let rays = CameraRays::with_lenses(&view.camera, &view.lenses);
-    let probe = Probe::new(frame.outputs.geometry.as_ref(), &rays);
-    let mut store = probe.store(fb.width, fb.height, &fb.beauty);
     let ray_depth = world
         .query::<&ContourContrast>()
         .iter()
         .next()
         .map_or(0, |c| c.ray_depth);
-    for level in 1..=ray_depth {
-        let probe = Probe::new(frame.outputs.geometry.as_ref(), &rays).at_level(level);
-        store
-            .deeper
-            .push(probe.store(fb.width, fb.height, &fb.beauty));
-    }
-    Some(store)
+    let probe = Probe::new(frame.outputs.geometry.as_ref(), &rays);
+    Some(probe.store(fb.width, fb.height, &fb.beauty, ray_depth))
 }
 
 /// Whether the pixels keep the environment's share (the radiance of their samples that

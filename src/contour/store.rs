@@ -3,6 +3,7 @@
 //! frame buffers, which carry the store from `shade`) and that place edges between samples.
 
 use std::collections::HashMap;
+use std::ops::RangeInclusive;
 use std::sync::Arc;
 
 use glam::{Vec2, Vec3};
@@ -56,34 +57,68 @@ impl<'a> Probe<'a> {
         self
     }
 
-    /// What the camera sees at film position `film` (pixels), colour zero.
+    /// What the camera sees at film position `film` (pixels) on the probe's level, colour
+    /// zero: the path from the camera walked to that level (it stops where the path ends).
     pub fn sample(&self, film: Vec2) -> ContourSample {
+        let mut last = ContourSample::BACKGROUND;
+        self.walk(film, self.level..=self.level, |_, s| last = s);
+        last
+    }
+
+    /// Walks the path of the pixel centre's ray once, up to the last level of `levels`,
+    /// giving `visit` the sample (colour zero) of each level of `levels` in order: level 0
+    /// is what the camera ray hits, level `k` what the ray leaving level `k − 1`'s hit along
+    /// its strongest delta branch hits. Where the path ends no more rays are traced: the
+    /// levels behind a ray that left the scene are [`ContourSample::BACKGROUND`], those
+    /// behind a surface without a delta branch [`ContourSample::ABSENT`].
+    pub fn walk(
+        &self,
+        film: Vec2,
+        levels: RangeInclusive<u32>,
+        mut visit: impl FnMut(u32, ContourSample),
+    ) {
+        let (first, deepest) = (*levels.start(), *levels.end());
+        // The path ended before level `from`: every level from there on is `sample`.
+        let ended =
+            |from: u32, sample: ContourSample, visit: &mut dyn FnMut(u32, ContourSample)| {
+                for level in from.max(first)..=deepest {
+                    visit(level, sample);
+                }
+            };
         let Some(g) = self.geometry else {
-            return ContourSample::BACKGROUND;
+            return ended(0, ContourSample::BACKGROUND, &mut visit);
         };
-        let Some(ray) = self.rays.ray(film.x, film.y, Vec2::splat(0.5)) else {
-            return ContourSample::BACKGROUND;
+        let Some(mut ray) = self.rays.ray(film.x, film.y, Vec2::splat(0.5)) else {
+            return ended(0, ContourSample::BACKGROUND, &mut visit);
         };
         let Some(mut hit) = g.accel.intersect_as(&ray, RayKind::Camera) else {
-            return ContourSample::BACKGROUND;
+            return ended(0, ContourSample::BACKGROUND, &mut visit);
         };
-        let mut ray = ray;
-        let mut depth = hit.t;
-        if self.level > 0 {
-            depth *= ray.dir.length();
+        // Level 0's depth is the camera ray's parameter; deeper levels' the length of the
+        // path, summed hit by hit.
+        if levels.contains(&0) {
+            visit(0, self.surface_sample(g, &hit, hit.t));
         }
-        for _ in 0..self.level {
+        let mut path = hit.t * ray.dir.length();
+        for level in 1..=deepest {
             let Some(next) = delta_continuation(g, &ray, &hit) else {
-                return ContourSample::ABSENT;
+                return ended(level, ContourSample::ABSENT, &mut visit);
             };
             ray = next;
             let Some(h) = g.accel.intersect_as(&ray, RayKind::Secondary) else {
-                return ContourSample::BACKGROUND;
+                return ended(level, ContourSample::BACKGROUND, &mut visit);
             };
             hit = h;
-            depth += hit.t * ray.dir.length();
+            path += hit.t * ray.dir.length();
+            if level >= first {
+                visit(level, self.surface_sample(g, &hit, path));
+            }
         }
-        let sp = g.shading_point(&hit);
+    }
+
+    /// The sample of the surface at `hit`, `depth` away along the path, colour zero.
+    fn surface_sample(&self, g: &SceneGeometry, hit: &Hit, depth: f32) -> ContourSample {
+        let sp = g.shading_point(hit);
         ContourSample {
             instance: sp.instance + 1,
             object: self.objects[sp.instance as usize],
@@ -94,27 +129,41 @@ impl<'a> Probe<'a> {
         }
     }
 
-    /// The store of a `width × height` image whose pixels were shaded `beauty`.
-    pub fn store(&self, width: u32, height: u32, beauty: &[Vec3]) -> ContourStore {
-        let samples = (0..height)
+    /// The store of a `width × height` image whose pixels were shaded `beauty`, with the
+    /// stores of levels `1 ..= ray_depth` behind it (see [`ContourStore::deeper`]). Each
+    /// pixel's path is walked once for all levels ([`Probe::walk`]).
+    pub fn store(&self, width: u32, height: u32, beauty: &[Vec3], ray_depth: u32) -> ContourStore {
+        let levels = ray_depth as usize + 1;
+        let w = width as usize;
+        // Per row, its samples level by level: level `l` of pixel `x` at `l·width + x`.
+        let rows: Vec<Vec<ContourSample>> = (0..height)
             .into_par_iter()
-            .flat_map_iter(|y| {
-                (0..width).map(move |x| {
-                    let mut s = self.sample(ContourStore::position(x, y));
-                    if !s.is_background() {
-                        s.color = beauty[(y * width + x) as usize];
-                    }
-                    s
-                })
+            .map(|y| {
+                let mut row = vec![ContourSample::BACKGROUND; levels * w];
+                for x in 0..width {
+                    self.walk(ContourStore::position(x, y), 0..=ray_depth, |l, mut s| {
+                        if !s.is_background() {
+                            s.color = beauty[(y * width + x) as usize];
+                        }
+                        row[l as usize * w + x as usize] = s;
+                    });
+                }
+                row
             })
             .collect();
-        ContourStore {
+        let level_store = |l: usize| ContourStore {
             width,
             height,
-            samples,
-            level: self.level,
+            samples: rows
+                .iter()
+                .flat_map(|r| r[l * w..(l + 1) * w].iter().copied())
+                .collect(),
+            level: l as u32,
             deeper: Vec::new(),
-        }
+        };
+        let mut store = level_store(0);
+        store.deeper = (1..levels).map(level_store).collect();
+        store
     }
 }
 

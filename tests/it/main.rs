@@ -25,6 +25,7 @@ mod cli_photons;
 mod cli_plan;
 mod component_passes;
 mod contour_instances;
+mod contour_levels;
 mod contour_stacking;
 mod contours;
 mod contours_not_drawn;
