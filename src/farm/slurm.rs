@@ -461,7 +461,9 @@ mod tests {
             "{merge}"
         );
         assert!(
-            merge.contains("\"${parts[@]}\" -o '/farm/textures'\n"),
+            merge.contains(
+                "\"${parts[@]}\" --threads \"${SLURM_CPUS_PER_TASK:-1}\" -o '/farm/textures'\n"
+            ),
             "{merge}"
         );
     }

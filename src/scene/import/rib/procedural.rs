@@ -176,7 +176,7 @@ mod tests {
                 file: "a.rib".into(),
                 pos: Pos {
                     line: 1,
-                    column: 35
+                    column: 34
                 }
             })
         );
