@@ -126,6 +126,7 @@ impl OutputOverrides {
                 path: path.clone(),
                 format,
                 passes,
+                beauty_alpha: replaced.is_none_or(|k| outputs[k].beauty_alpha),
             };
             match replaced {
                 Some(k) => outputs[k] = spec,

@@ -206,6 +206,9 @@ struct MergeArgs {
     /// The scene the parts were rendered from (default: the path recorded in the parts).
     #[arg(long)]
     scene: Option<PathBuf>,
+    /// Worker threads (default: all cores; at most 1024).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=MAX_THREADS as i64))]
+    threads: Option<u32>,
     /// Print the per-stage report.
     #[arg(long)]
     stats: bool,
@@ -987,6 +990,9 @@ fn part_run(
 }
 
 fn merge(args: MergeArgs) -> ExitCode {
+    if let Err(code) = set_threads(args.threads) {
+        return code;
+    }
     if args
         .parts
         .first()

@@ -23,7 +23,7 @@ use crate::components::{ImageFormat, Imager, OutputSpec, Pass};
 use crate::contour::eps::encode_eps;
 use crate::contour::svg::encode_svg;
 use crate::contour::{output, ContourImage};
-use crate::exr_output::encode_exr_with;
+use crate::exr_output::encode_output;
 use crate::farm::part::Share;
 use crate::farm::PartRun;
 use crate::frame::Slot;
@@ -96,7 +96,7 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
                     Some(c) if out.passes.contains(&Pass::Contours) => output::exr_channels(c),
                     _ => Vec::new(),
                 };
-                encode_exr_with(fb, &camera_space, &out.passes, extra)
+                encode_output(fb, &camera_space, out, extra)
             }
             ImageFormat::Svg | ImageFormat::Eps => {
                 let Some(c) = contours else {

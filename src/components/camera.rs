@@ -123,6 +123,9 @@ pub struct OutputSpec {
     pub format: ImageFormat,
     /// Passes written into the file.
     pub passes: Vec<Pass>,
+    /// Whether `Beauty` brings the coverage as the EXR channel `A` (the `Alpha` pass always
+    /// writes it; PNG files write alpha only with the `Alpha` pass).
+    pub beauty_alpha: bool,
 }
 
 /// Where a camera's outputs name their files in the scene (`file:line:column` of each
@@ -131,6 +134,13 @@ pub struct OutputSpec {
 pub struct OutputLinks(pub Vec<super::SourceLink>);
 
 impl OutputSpec {
+    /// Whether its EXR file holds the coverage as channel `A`: with the `Alpha` pass, or
+    /// with `Beauty` unless `beauty_alpha` is false.
+    pub fn exr_alpha(&self) -> bool {
+        self.passes.contains(&Pass::Alpha)
+            || self.beauty_alpha && self.passes.contains(&Pass::Beauty)
+    }
+
     /// Whether the file stores colour beside an alpha channel as straight (unassociated)
     /// colour: a PNG with `Beauty` and `Alpha` (EXR keeps premultiplied colour).
     pub fn writes_straight_alpha(&self) -> bool {

@@ -192,7 +192,7 @@ pub fn scripts(job: &FarmJob) -> Vec<Script> {
     let write_gltf = if job.write_gltf { " --write-gltf" } else { "" };
     let _ = writeln!(
         merge,
-        "exec {} merge --scene {} \"${{parts[@]}}\"{output}{write_gltf}",
+        "exec {} merge --scene {} \"${{parts[@]}}\" --threads \"${{SLURM_CPUS_PER_TASK:-1}}\"{output}{write_gltf}",
         q(&job.exe),
         q(&job.scene)
     );
@@ -431,7 +431,7 @@ mod tests {
         let merge = &s[1].text;
         assert!(
             merge.contains(
-                "merge --scene '/scenes/it'\\''s.ron' \"${parts[@]}\" -o '/farm/final.png'"
+                "merge --scene '/scenes/it'\\''s.ron' \"${parts[@]}\" --threads \"${SLURM_CPUS_PER_TASK:-1}\" -o '/farm/final.png'"
             ),
             "{merge}"
         );
@@ -461,7 +461,9 @@ mod tests {
             "{merge}"
         );
         assert!(
-            merge.contains("\"${parts[@]}\" -o '/farm/textures'\n"),
+            merge.contains(
+                "\"${parts[@]}\" --threads \"${SLURM_CPUS_PER_TASK:-1}\" -o '/farm/textures'\n"
+            ),
             "{merge}"
         );
     }
@@ -477,7 +479,7 @@ mod tests {
         let merge = &s[1].text;
         assert!(
             merge.contains(
-                "exec '/opt/bin/stagelight' merge --scene '/scenes/model.glb' \"${parts[@]}\" --write-gltf\n"
+                "exec '/opt/bin/stagelight' merge --scene '/scenes/model.glb' \"${parts[@]}\" --threads \"${SLURM_CPUS_PER_TASK:-1}\" --write-gltf\n"
             ),
             "{merge}"
         );

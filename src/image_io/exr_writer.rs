@@ -10,11 +10,13 @@ use crate::components::Pass;
 use crate::framebuffer::FrameBuffers;
 
 /// Encodes the passes among `passes` that `fb` holds, and the `derived` f32 channels of the
-/// same size, into an EXR file in memory. The camera-space passes are not `fb`'s: they come
-/// in `derived` ([`crate::exr_output`] derives them).
+/// same size, into an EXR file in memory; the coverage goes in as channel `A` when `alpha`
+/// says so. The camera-space passes are not `fb`'s: they come in `derived`
+/// ([`crate::exr_output`] derives them).
 pub(crate) fn encode_passes(
     fb: &FrameBuffers,
     passes: &[Pass],
+    alpha: bool,
     derived: Vec<(&str, Vec<f32>)>,
 ) -> std::result::Result<Vec<u8>, String> {
     let mut channels: SmallVec<[AnyChannel<FlatSamples>; 4]> = SmallVec::new();
@@ -27,7 +29,7 @@ pub(crate) fn encode_passes(
         add("G", fb.beauty.iter().map(|c| c.y).collect());
         add("B", fb.beauty.iter().map(|c| c.z).collect());
     }
-    if beauty || passes.contains(&Pass::Alpha) {
+    if alpha {
         add("A", fb.alpha.clone());
     }
     if passes.contains(&Pass::Depth) {

@@ -303,6 +303,7 @@ pub fn vector_output(
         path: PathBuf::from(&o.file),
         format,
         passes: vec![Pass::Contours],
+        beauty_alpha: true,
     })
 }
 

@@ -453,6 +453,10 @@ pub struct OutputDesc {
     /// Passes, default `[Beauty]`.
     #[serde(default)]
     pub passes: Option<Vec<PassDesc>>,
+    /// EXR: whether `Beauty` writes the coverage as channel `A` beside `R G B` (default
+    /// true); with `false` only the `Alpha` pass writes it (RIB's `rgb` and `rgbz` displays).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub beauty_alpha: Option<bool>,
 }
 
 /// Output file format.

@@ -627,6 +627,7 @@ fn output(ck: &mut Checker<'_>, path: &str, o: &OutputDesc) -> Option<OutputSpec
         path: PathBuf::from(&o.file),
         format,
         passes,
+        beauty_alpha: o.beauty_alpha.unwrap_or(true),
     })
 }
 

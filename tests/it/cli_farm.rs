@@ -151,6 +151,57 @@ fn a_merge_s_stats_give_no_sample_rate() {
     );
 }
 
+/// `merge --threads N` runs on N worker threads, as `render` and `bake` do (the report says
+/// so), and the merged bytes do not depend on it; the flag is checked as theirs is.
+#[test]
+fn a_merge_runs_on_the_threads_given_with_the_same_bytes() {
+    let dir = setup("merge-threads");
+    let parts = render_parts(&dir, 2, "tiles", &[]);
+    for threads in ["1", "2"] {
+        let out = format!("merged_{threads}.exr");
+        let o = stagelight(
+            &dir,
+            &[
+                "merge",
+                &parts[0],
+                &parts[1],
+                "--threads",
+                threads,
+                "-o",
+                &out,
+                "--stats",
+            ],
+        );
+        assert!(o.status.success(), "{}", stderr(&o));
+        let stdout = String::from_utf8_lossy(&o.stdout).into_owned();
+        let total = stdout
+            .lines()
+            .find(|l| l.starts_with("total "))
+            .unwrap_or_else(|| panic!("no total:\n{stdout}"));
+        assert!(
+            total.ends_with(&format!(" s on {threads} thread(s)")),
+            "{total}"
+        );
+    }
+    assert!(
+        std::fs::read(dir.join("merged_1.exr")).unwrap()
+            == std::fs::read(dir.join("merged_2.exr")).unwrap(),
+        "the merge differs between 1 and 2 threads"
+    );
+    for bad in ["0", "1025"] {
+        let render = stagelight(&dir, &["render", "scene.ron", "--threads", bad]);
+        let merge = stagelight(&dir, &["merge", &parts[0], "--threads", bad]);
+        assert_eq!(merge.status.code(), render.status.code(), "--threads {bad}");
+        let first = |o: &std::process::Output| stderr(o).lines().next().unwrap_or("").to_string();
+        assert_eq!(first(&merge), first(&render), "--threads {bad}");
+        assert!(
+            first(&merge).contains("'--threads <THREADS>'"),
+            "{}",
+            first(&merge)
+        );
+    }
+}
+
 /// Parts name their scene by its absolute path: merged from another directory without
 /// `--scene`, they find the scene the relative `scene.ron` named where they were rendered.
 /// Once that scene is gone, the merge says so and asks for `--scene`, writing nothing.

@@ -30,6 +30,7 @@ fn render(path: &Path, integrator: Integrator, components: bool) -> FrameBuffers
                 path: PathBuf::from("components.exr"),
                 format: ImageFormat::Exr,
                 passes: Pass::COMPONENTS.to_vec(),
+                beauty_alpha: true,
             });
         }
     }

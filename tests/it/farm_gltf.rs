@@ -132,7 +132,7 @@ fn a_three_part_farm_bake_with_write_gltf_gives_the_local_baked_copy() {
     let at = std::fs::canonicalize(&dir).unwrap();
     assert!(
         exec.ends_with(&format!(
-            " merge --scene '{}' \"${{parts[@]}}\" -o '{}' --write-gltf",
+            " merge --scene '{}' \"${{parts[@]}}\" --threads \"${{SLURM_CPUS_PER_TASK:-1}}\" -o '{}' --write-gltf",
             at.join(scene).display(),
             at.join("farmed").display()
         )),

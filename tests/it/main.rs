@@ -115,6 +115,7 @@ mod rib_holes;
 mod rib_options;
 mod rib_orientation;
 mod rib_primitive_variables;
+mod rib_procedural;
 mod rib_shading;
 mod rib_structure;
 mod rib_surface_variables;

@@ -74,6 +74,7 @@ fn out(file: &str, format: FormatDesc, passes: &[PassDesc]) -> String {
             file: file.into(),
             format: Some(format),
             passes: Some(passes.to_vec()),
+            beauty_alpha: None,
         }
     )
 }

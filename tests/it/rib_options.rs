@@ -110,6 +110,9 @@ fn every_standard_display_mode_has_its_passes() {
             (out.file.as_str(), out.passes.as_ref()),
             (file, Some(&passes))
         );
+        // An EXR of colour without `a` writes no alpha channel.
+        let no_alpha = (mode == "rgbz").then_some(false);
+        assert_eq!(out.beauty_alpha, no_alpha, "{mode}");
         let w = warnings(&s);
         if file == "o.exr" {
             assert_eq!(
@@ -131,6 +134,54 @@ fn every_standard_display_mode_has_its_passes() {
         errors(&format!("Display \"o.exr\" \"file\" \"Z\"\n{WORLD}")),
         "t.rib:1:24: error: display mode \"Z\" is not supported\n  help: did you mean \"z\"?"
     );
+}
+
+/// The channels of each display mode's EXR file are those its letters name (EXR sorts them
+/// by name), and a PNG of colour has an alpha channel only with `a`.
+#[test]
+fn every_display_mode_writes_exactly_the_channels_its_letters_name() {
+    use crate::common::cli::{run_in, scratch_dir, stderr_of};
+    let modes: [(&str, &[&str]); 9] = [
+        ("rgb", &["B", "G", "R"]),
+        ("rgba", &["A", "B", "G", "R"]),
+        ("rgbz", &["B", "G", "R", "Z"]),
+        ("rgbaz", &["A", "B", "G", "R", "Z"]),
+        ("a", &["A"]),
+        ("az", &["A", "Z"]),
+        ("z", &["Z"]),
+        ("N", &["N.X", "N.Y", "N.Z"]),
+        ("P", &["P.X", "P.Y", "P.Z"]),
+    ];
+    let dir = scratch_dir("rib-display-channels");
+    let mut rib = String::new();
+    for (k, (mode, _)) in modes.iter().enumerate() {
+        let plus = if k == 0 { "" } else { "+" };
+        rib += &format!("Display \"{plus}{mode}.exr\" \"file\" \"{mode}\"\n");
+    }
+    rib += "Display \"+rgb.png\" \"file\" \"rgb\"\nDisplay \"+rgba.png\" \"file\" \"rgba\"\n\
+             Format 4 4 1\nPixelSamples 1 1\nTranslate 0 0 3\nWorldBegin\nSphere 1 -1 1 360\nWorldEnd\n";
+    std::fs::write(dir.join("modes.rib"), rib).unwrap();
+    let o = run_in(&dir, &["render", "modes.rib"]);
+    assert!(o.status.success(), "{}", stderr_of(&o));
+    for (mode, expected) in modes {
+        let path = dir.join(format!("{mode}.exr"));
+        let image = exr::prelude::read_all_flat_layers_from_file(&path)
+            .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        let names: Vec<String> = image.layer_data[0]
+            .channel_data
+            .list
+            .iter()
+            .map(|c| c.name.to_string())
+            .collect();
+        assert_eq!(names, expected, "mode {mode}");
+    }
+    for (name, channels) in [("rgb.png", 3), ("rgba.png", 4)] {
+        let png =
+            stagelight::image_io::png_codec::decode_png(&std::fs::read(dir.join(name)).unwrap())
+                .unwrap();
+        assert_eq!(png.channels, channels, "{name}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]

@@ -221,6 +221,7 @@ fn add_camera(
             file,
             format: None,
             passes: None,
+            beauty_alpha: None,
         }],
         imager: None,
         lens: Vec::new(),

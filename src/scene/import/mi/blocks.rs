@@ -565,6 +565,7 @@ fn output(c: &mut Cursor, outputs: &mut Vec<OutputDesc>) {
             file,
             format: Some(FormatDesc::Eps),
             passes: Some(vec![PassDesc::Contours]),
+            beauty_alpha: None,
         });
         return;
     }
@@ -638,6 +639,7 @@ fn output(c: &mut Cursor, outputs: &mut Vec<OutputDesc>) {
         file,
         format: Some(format),
         passes: Some(passes),
+        beauty_alpha: None,
     });
 }
 

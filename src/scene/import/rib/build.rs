@@ -1,5 +1,5 @@
 //! Request by request onto the description: the dispatcher over the graphics state,
-//! `ReadArchive`, and the final assembly (mirror, names, materials, instances, one group
+//! `ReadArchive` (and `Procedural "DelayedReadArchive"`, read the same way), and the final assembly (mirror, names, materials, instances, one group
 //! `world`, the camera `camera`).
 
 use std::collections::{HashMap, HashSet};
@@ -18,6 +18,7 @@ use super::names::{object_names, Requested};
 use super::orientation;
 use super::params::{parse_type, Args, Declarations, Param, ParamOwner};
 use super::parse::{self, Request};
+use super::procedural::{self, ProceduralCall};
 use super::requests::{self, SILENT};
 use super::retained::{Defining, Motion, Retained, Sample};
 use super::shaders::{self, LightShader, DISPLACEMENTS, LIGHTS, SURFACES};
@@ -531,8 +532,25 @@ impl Builder {
             }
             "ReadArchive" => {
                 let (f, pos) = a.string("filename")?;
-                self.archive(&f, pos);
+                self.archive(&f, pos, name);
             }
+            "Procedural" | "Procedural2" => match procedural::read(r, &mut a)? {
+                ProceduralCall::Archive { file, pos } => {
+                    if !self.in_world() && self.retained.defining.is_none() {
+                        return Err(Problem::error(
+                            r.pos,
+                            "Procedural \"DelayedReadArchive\" before WorldBegin",
+                        )
+                        .with_help("geometry and lights go between WorldBegin and WorldEnd"));
+                    }
+                    self.archive(&file, pos, "DelayedReadArchive");
+                }
+                ProceduralCall::Missing(w) => {
+                    // The plug-in's arguments are not read.
+                    problems.push(w);
+                    return Ok(());
+                }
+            },
             "Surface" | "Displacement" | "AreaLightSource" | "LightSource" => {
                 return self.shader(name, r, a, problems);
             }
@@ -898,11 +916,13 @@ impl Builder {
         }
     }
 
-    fn archive(&mut self, name: &str, pos: Pos) {
+    /// Reads the archive file `name` (relative to the file being read) here, for `request`
+    /// (`ReadArchive` or `DelayedReadArchive`), at the file name's position `pos`.
+    fn archive(&mut self, name: &str, pos: Pos, request: &str) {
         if self.depth >= MAX_ARCHIVE_DEPTH {
             self.push(Problem::error(
                 pos,
-                format!("ReadArchive nests deeper than {MAX_ARCHIVE_DEPTH} files"),
+                format!("{request} nests deeper than {MAX_ARCHIVE_DEPTH} files"),
             ));
             return;
         }

@@ -28,6 +28,8 @@ pub struct Display {
     pub pos: Pos,
     /// Passes.
     pub passes: Vec<PassDesc>,
+    /// `Some(false)`: an EXR file whose mode names colour but no alpha (`rgb`, `rgbz`).
+    pub beauty_alpha: Option<bool>,
 }
 
 /// `DepthOfField`: RISpec 3.2's lens of diameter `focallength / fstop` focused at
@@ -172,6 +174,7 @@ impl CameraOptions {
                     file: d.file.clone(),
                     format: None,
                     passes: Some(d.passes.clone()),
+                    beauty_alpha: d.beauty_alpha,
                 }
             })
             .collect();

@@ -6,7 +6,8 @@
 //! `CameraNormal` and `CameraPosition` passes, in RenderMan's left-handed camera space, not
 //! the reader's mirrored world; see `crate::camera_space`). They are written to EXR only:
 //! another file name becomes the `.exr` of the same stem (a warning), as in the `.mi`
-//! reader; colour and alpha go to PNG unless the name ends in `.exr`.
+//! reader; colour and alpha go to PNG unless the name ends in `.exr`. A file holds the
+//! channels its mode's letters name: `rgbz` writes `R G B Z`, no `A`.
 
 use std::path::Path;
 
@@ -101,9 +102,21 @@ pub fn read(
             new
         }
     };
+    // The channels are those the mode's letters name: colour without `a` writes no alpha
+    // (an EXR's `Beauty` otherwise brings the coverage as `A`; a PNG writes it only with
+    // `Alpha`).
+    let exr = file.to_ascii_lowercase().ends_with(".exr");
+    let beauty_alpha =
+        (exr && passes.contains(&PassDesc::Beauty) && !passes.contains(&PassDesc::Alpha))
+            .then_some(false);
     Ok(DisplayRequest {
         append,
-        display: Display { file, pos, passes },
+        display: Display {
+            file,
+            pos,
+            passes,
+            beauty_alpha,
+        },
     })
 }
 

@@ -12,7 +12,8 @@
 //! [`camera`] (options, the camera and its outputs), [`retained`] (`ObjectBegin`
 //! definitions and motion blocks), `place` (a primitive and the current attributes onto an
 //! object, a material and an instance), [`orientation`] (`Orientation`,
-//! `ReverseOrientation`: which primitives are inside out), [`requests`] (which RI requests are mapped, ignored
+//! `ReverseOrientation`: which primitives are inside out), [`procedural`] (`Procedural`:
+//! `DelayedReadArchive` read as `ReadArchive`, the others warned as missing geometry), [`requests`] (which RI requests are mapped, ignored
 //! or silent) and [`names`] (object names, chosen once the whole file is read).
 //!
 //! **Conventions.** RenderMan's camera space is left-handed (+x right, +y up, +z into the
@@ -42,6 +43,7 @@ pub mod params;
 pub mod parse;
 mod place;
 pub mod primvars;
+pub mod procedural;
 pub mod requests;
 pub mod retained;
 pub mod revolve;

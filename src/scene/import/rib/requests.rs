@@ -1,5 +1,7 @@
 //! The RenderMan Interface request names and what the reader does with each: the requests
-//! it maps (handled in [`super::build`], [`super::retained`] and [`super::geometry`]), the
+//! it maps (handled in [`super::build`], [`super::retained`], [`super::geometry`] and
+//! [`super::procedural`], which reads `Procedural "DelayedReadArchive"` as `ReadArchive` and
+//! warns that the other procedurals' geometry is missing), the
 //! standard requests of RISpec 3.2 and 3.4 (and PRMan's RIS requests) it reads and
 //! deliberately leaves out — a located warning each, some saying what that means — and
 //! `ArchiveRecord`, a comment, accepted silently. Any other name is an unknown request: a
@@ -46,6 +48,8 @@ pub const MAPPED: &[&str] = &[
     "Orientation",
     "ReverseOrientation",
     "ReadArchive",
+    "Procedural",
+    "Procedural2",
     "Surface",
     "Displacement",
     "LightSource",
@@ -105,7 +109,6 @@ const IGNORED: &[(&str, Option<&str>)] = &[
     ("Points", None),
     ("Curves", None),
     ("Blobby", None),
-    ("Procedural", None),
     ("Geometry", None),
     ("HierarchicalSubdivisionMesh", None),
     ("Volume", None),

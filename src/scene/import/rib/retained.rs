@@ -44,6 +44,8 @@ const IN_DEFINITION: &[&str] = &[
     "ObjectBegin",
     "ObjectEnd",
     "ReadArchive",
+    "Procedural",
+    "Procedural2",
 ];
 
 /// One primitive of an object definition.
