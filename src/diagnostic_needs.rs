@@ -5,10 +5,7 @@
 //! options ask for such a view (located, help in the scene's syntax); the CLI refuses one its
 //! flags make ([`missing`]).
 
-use std::path::Path;
-
 use crate::diagnostic::Diagnostic;
-use crate::scene::syntax::{convert_command, Helps, Syntax};
 use crate::settings::{Integrator, RenderSettings};
 
 /// Why a photon view cannot be drawn.
@@ -45,31 +42,16 @@ pub fn unmet(settings: &RenderSettings) -> Option<Unmet> {
     None
 }
 
-/// Why the diagnostic view of `settings` cannot be drawn, with a `help:` line written in
-/// the `syntax` of the scene file `scene`; `None` when it can (or there is none).
-pub fn missing(settings: &RenderSettings, syntax: Syntax, scene: &Path) -> Option<String> {
+/// Why the diagnostic view of `settings` cannot be drawn, with a `help:` line; `None` when
+/// it can (or there is none). `no_maps_help` is what turns a photon map on in the scene's
+/// format (`crate::format_helps::photon_maps_help`).
+pub fn missing(settings: &RenderSettings, no_maps_help: &str) -> Option<String> {
     let unmet = unmet(settings)?;
     let help = match unmet {
-        Unmet::NoPhotonMaps => photon_maps_help(syntax, scene),
+        Unmet::NoPhotonMaps => no_maps_help,
         Unmet::PathIntegrator => {
-            "render the photon view with the Direct integrator (--integrator direct)".into()
+            "render the photon view with the Direct integrator (--integrator direct)"
         }
     };
     Some(format!("{}\n  help: {help}", unmet.reason()))
-}
-
-/// How the scene file `scene`, written in `syntax`, turns a photon map on: RON's
-/// `caustics:`/`global_illumination:` options, `.mi`'s `caustic on`/`globillum on`, RIB's
-/// AIR caustic light; a glTF file has none, so its help converts the scene to RON.
-pub fn photon_maps_help(syntax: Syntax, scene: &Path) -> String {
-    let ron = "turn on `caustics: (…)` or `global_illumination: (…)` in the scene's options";
-    syntax.help_each(Helps {
-        ron,
-        mi: "add `caustic on` or `globillum on` to the options block",
-        rib: "add AIR's caustic light, `LightSource \"caustic\" 1`, which turns the caustic photon map on",
-        gltf: &format!(
-            "glTF has no photon maps: write the scene as RON (`{}`) and {ron} there",
-            convert_command(scene)
-        ),
-    })
 }

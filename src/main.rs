@@ -861,9 +861,10 @@ fn render(args: RenderArgs) -> ExitCode {
     if args.diagnostic.is_some() {
         settings.diagnostic = args.diagnostic;
     }
-    if let Some(message) =
-        stagelight::diagnostic_needs::missing(&settings, scene_syntax(&args.scene), &args.scene)
-    {
+    if let Some(message) = stagelight::diagnostic_needs::missing(
+        &settings,
+        &stagelight::format_helps::photon_maps_help(scene_syntax(&args.scene), &args.scene),
+    ) {
         errln!("error: {message}");
         let flagged = args.diagnostic.is_some() || args.stages.integrator.is_some();
         return ExitCode::from(if flagged { EXIT_USAGE } else { EXIT_ERROR });
@@ -958,8 +959,7 @@ fn photons(args: PhotonsArgs) -> ExitCode {
         .iter()
         .find(|p| p.stage == "trace_photons" && !p.run)
     {
-        let on =
-            stagelight::diagnostic_needs::photon_maps_help(scene_syntax(&args.scene), &args.scene);
+        let on = stagelight::format_helps::photon_maps_help(scene_syntax(&args.scene), &args.scene);
         errln!(
             "error: {} traces no photons: {}\n  help: photon maps are built for caustics or global illumination, with the Direct integrator: {on}",
             args.scene.display(),
