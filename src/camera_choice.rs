@@ -2,9 +2,12 @@
 //! its cameras (a RON scene's `cameras` entries, a glTF file's perspective cameras), so the
 //! run renders that camera's view, resolution and outputs.
 
+use std::path::Path;
+
 use hecs::{Entity, World};
 
 use crate::components::{Camera, Name, RenderCamera};
+use crate::scene::syntax::{convert_command, Helps, Syntax};
 
 /// The names of the scene's cameras, in entity order.
 pub fn camera_names(world: &World) -> Vec<String> {
@@ -15,6 +18,26 @@ pub fn camera_names(world: &World) -> Vec<String> {
         .collect();
     cameras.sort_by_key(|(e, _)| e.to_bits());
     cameras.into_iter().map(|(_, n)| n).collect()
+}
+
+/// How the scene file `scene`, written in `syntax`, chooses its render camera, as a help
+/// for `render --camera NAME` where only the scene's own render camera can be rendered (a
+/// farm part, whose merge renders that camera): RON's `render: (camera: …)`, the camera
+/// instance of a `.mi` `render` statement; a RIB file declares one camera, and a glTF file
+/// renders its first, so those leave out `--camera` or move to RON.
+pub fn render_camera_help(syntax: Syntax, scene: &Path, name: &str) -> String {
+    let ron = format!("set `render: (camera: \"{name}\")` in the scene instead");
+    syntax.help_each(Helps {
+        ron: &ron,
+        mi: &format!(
+            "name that camera instance in the scene's `render` statement instead (`render \"…\" \"{name}\" \"…\"`)"
+        ),
+        rib: "a RIB file declares one camera (the transformation current at `WorldBegin`, named \"camera\"): leave out --camera",
+        gltf: &format!(
+            "a glTF file renders the first camera of its nodes: write the scene as RON (`{}`) and set `render: (camera: \"{name}\")` there",
+            convert_command(scene)
+        ),
+    })
 }
 
 /// Makes the camera named `name` the render camera. An unknown name is an error message

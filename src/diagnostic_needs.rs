@@ -43,13 +43,12 @@ pub fn unmet(settings: &RenderSettings) -> Option<Unmet> {
 }
 
 /// Why the diagnostic view of `settings` cannot be drawn, with a `help:` line; `None` when
-/// it can (or there is none).
-pub fn missing(settings: &RenderSettings) -> Option<String> {
+/// it can (or there is none). `no_maps_help` is what turns a photon map on in the scene's
+/// format (`crate::format_helps::photon_maps_help`).
+pub fn missing(settings: &RenderSettings, no_maps_help: &str) -> Option<String> {
     let unmet = unmet(settings)?;
     let help = match unmet {
-        Unmet::NoPhotonMaps => {
-            "turn on `caustics: (…)` or `global_illumination: (…)` in the scene's options"
-        }
+        Unmet::NoPhotonMaps => no_maps_help,
         Unmet::PathIntegrator => {
             "render the photon view with the Direct integrator (--integrator direct)"
         }

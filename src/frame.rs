@@ -25,7 +25,7 @@ use crate::geometry::SceneGeometry;
 use crate::image_io::PendingFile;
 use crate::photon::PhotonMaps;
 use crate::report::RunReport;
-use crate::scene::syntax::Syntax;
+use crate::scene::syntax::{convert_command, Helps, Syntax};
 use crate::settings::RenderSettings;
 pub use crate::tasks::Tasks;
 
@@ -53,18 +53,32 @@ impl OutputOverrides {
     }
 
     /// Checks that a vector `-o` (.svg, .eps) has contour lines to draw in `world`; the
-    /// error is the message for the user, its help written in the scene's `syntax` (what
-    /// to add to a mental ray `.mi` file, or to RON).
-    pub fn check_contours(&self, world: &hecs::World, syntax: Syntax) -> Result<(), String> {
+    /// error is the message for the user, its help written in the `syntax` of the scene
+    /// file `scene` (what to add to a mental ray `.mi` file or to RON; RIB and glTF have no
+    /// contour shaders, so their help converts the scene to RON first).
+    pub fn check_contours(
+        &self,
+        world: &hecs::World,
+        syntax: Syntax,
+        scene: &Path,
+    ) -> Result<(), String> {
         let Some(path) = &self.first else {
             return Ok(());
         };
         let vector = format_from_extension(path).is_ok_and(is_vector);
         if vector && world.query::<&ContourShader>().iter().next().is_none() {
-            let help = syntax.help(
-                "give a material `contour: Simple(color: (0, 0, 0, 1), width: 0.5)`",
-                "add `contour store \"contour_store_function\" ()` and `contour contrast \"contour_contrast_function_levels\" ()` to the options and `contour \"contour_shader_simple\" (\"color\" 0 0 0 1, \"width\" 0.5)` to a material",
+            let ron = "give a material `contour: Simple(color: (0, 0, 0, 1), width: 0.5)`";
+            let converted = format!(
+                "{} has no contour shaders: write the scene as RON (`{}`) and {ron} there",
+                syntax.name(),
+                convert_command(scene)
             );
+            let help = syntax.help_each(Helps {
+                ron,
+                mi: "add `contour store \"contour_store_function\" ()` and `contour contrast \"contour_contrast_function_levels\" ()` to the options and `contour \"contour_shader_simple\" (\"color\" 0 0 0 1, \"width\" 0.5)` to a material",
+                rib: &converted,
+                gltf: &converted,
+            });
             return Err(format!(
                 "-o {} writes contour lines, but no material of the scene has a contour shader\n  help: {help}, or write a .png or .exr",
                 path.display()

@@ -22,6 +22,7 @@ pub mod exact_sum;
 pub mod exr_output;
 pub mod farm;
 pub mod features;
+pub mod format_helps;
 pub mod frame;
 pub mod framebuffer;
 pub mod geometry;

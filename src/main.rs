@@ -844,7 +844,12 @@ fn render(args: RenderArgs) -> ExitCode {
     };
     if let Some(name) = &args.camera {
         if args.part.is_some() {
-            errln!("error: --camera cannot be combined with --part\n  help: the merge job renders the scene's render camera; set `render: (camera: …)` in the scene instead");
+            let help = stagelight::camera_choice::render_camera_help(
+                scene_syntax(&args.scene),
+                &args.scene,
+                name,
+            );
+            errln!("error: --camera cannot be combined with --part\n  help: the merge job renders the scene's render camera; {help}");
             return ExitCode::from(EXIT_USAGE);
         }
         if let Err(message) = stagelight::camera_choice::use_camera(&mut scene.world, name) {
@@ -861,7 +866,10 @@ fn render(args: RenderArgs) -> ExitCode {
     if args.diagnostic.is_some() {
         settings.diagnostic = args.diagnostic;
     }
-    if let Some(message) = stagelight::diagnostic_needs::missing(&settings) {
+    if let Some(message) = stagelight::diagnostic_needs::missing(
+        &settings,
+        &stagelight::format_helps::photon_maps_help(scene_syntax(&args.scene), &args.scene),
+    ) {
         errln!("error: {message}");
         let flagged = args.diagnostic.is_some() || args.stages.integrator.is_some();
         return ExitCode::from(if flagged { EXIT_USAGE } else { EXIT_ERROR });
@@ -931,9 +939,16 @@ fn photons(args: PhotonsArgs) -> ExitCode {
         Err(code) => return code,
     };
     if args.photon_cache.is_none() && settings.photon_map.is_none() {
+        let file = stagelight::scene::syntax::Helps {
+            ron: ", or add `photon_map: (file: \"scene.pmap\")` to the scene's options",
+            mi: ", or add `photonmap file \"scene.pmap\"` to the options block",
+            rib: " (a RIB file names no photon map file)",
+            gltf: " (a glTF file names no photon map file)",
+        };
         errln!(
-            "error: nowhere to keep the photon maps of {}\n  help: give --photon-cache DIR, or add `photon_map: (file: \"scene.pmap\")` to the scene's options",
-            args.scene.display()
+            "error: nowhere to keep the photon maps of {}\n  help: give --photon-cache DIR{}",
+            args.scene.display(),
+            scene_syntax(&args.scene).help_each(file)
         );
         return ExitCode::from(EXIT_USAGE);
     }
@@ -949,8 +964,9 @@ fn photons(args: PhotonsArgs) -> ExitCode {
         .iter()
         .find(|p| p.stage == "trace_photons" && !p.run)
     {
+        let on = stagelight::format_helps::photon_maps_help(scene_syntax(&args.scene), &args.scene);
         errln!(
-            "error: {} traces no photons: {}\n  help: photon maps are built for `caustics: (…)` or `global_illumination: (…)` in options, with the Direct integrator",
+            "error: {} traces no photons: {}\n  help: photon maps are built for caustics or global illumination, with the Direct integrator: {on}",
             args.scene.display(),
             p.reason
         );
@@ -1067,12 +1083,10 @@ fn checked_overrides(
         ..OutputOverrides::default()
     };
     // The help speaks the scene file's language (`.mi` statements for a mental ray scene).
-    let syntax =
-        stagelight::scene::import::reader_for(stagelight::scene::import::FORMATS, scene_path)
-            .map_or_else(|_| Default::default(), |f| f.syntax);
+    let syntax = scene_syntax(scene_path);
     overrides
         .check()
-        .and_then(|()| overrides.check_contours(world, syntax))
+        .and_then(|()| overrides.check_contours(world, syntax, scene_path))
         .map_err(|message| {
             errln!("error: {message}");
             ExitCode::from(EXIT_USAGE)
@@ -1082,6 +1096,13 @@ fn checked_overrides(
         errln!("warning: {warning}");
     }
     Ok(overrides)
+}
+
+/// The syntax the scene file at `path` is written in (by its extension, as the readers
+/// are chosen; RON when none takes it), so that a help shows what to write in that file.
+fn scene_syntax(path: &Path) -> stagelight::scene::syntax::Syntax {
+    stagelight::scene::import::reader_for(stagelight::scene::import::FORMATS, path)
+        .map_or_else(|_| Default::default(), |f| f.syntax)
 }
 
 /// How a part file names its scene: the path as given, made absolute against the working
@@ -1144,9 +1165,11 @@ nothing written",
         } else {
             format!("{verb} the parts again, or pass the scene they came from with --scene")
         };
+        // The hash covers every file the scene reads, and the parts record only the hash:
+        // name the scene and the files it reads.
         errln!(
             "error: {} changed since the parts were {done} (content hash {hash:016x}, the parts have {parts_hash:016x})\n  help: {help}\nnothing written",
-            scene_path.display(),
+            stagelight::farm::changed_scene::changed_content(&scene_path),
         );
         return Err(ExitCode::from(EXIT_ERROR));
     }
@@ -1419,8 +1442,21 @@ fn bake(args: BakeArgs) -> ExitCode {
         Err(code) => return code,
     };
     if scene.world.query::<&BakeRequest>().iter().next().is_none() {
+        let ron = "add `bake: (resolution: (512, 512), outputs: [(kind: AmbientOcclusion())])` to an instance";
+        let syntax = scene_syntax(&args.scene);
+        let converted = format!(
+            "a {} file asks for no bakes: write the scene as RON (`{}`) and {ron} there",
+            syntax.name(),
+            stagelight::scene::syntax::convert_command(&args.scene)
+        );
+        let help = syntax.help_each(stagelight::scene::syntax::Helps {
+            ron,
+            mi: &converted,
+            rib: &converted,
+            gltf: &converted,
+        });
         errln!(
-            "error: {} has no bake requests\n  help: add `bake: (resolution: (512, 512), outputs: [(kind: AmbientOcclusion())])` to an instance",
+            "error: {} has no bake requests\n  help: {help}",
             args.scene.display()
         );
         return ExitCode::from(EXIT_ERROR);

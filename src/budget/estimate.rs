@@ -25,8 +25,9 @@ use hecs::{Entity, World};
 use super::{human, Budget};
 use crate::components::{
     Approximation, ApproximationLink, BakeRequest, BakeResolution, Camera, DecodedImage,
-    Displacement, DisplacementMode, Instance, Name, Procedural, RenderCamera, Scatter, SecondUvs,
-    SourceLink, SubdivMesh, Surface, Technique, TriMesh, UvSource, WorldFromObject,
+    Displacement, DisplacementMode, Instance, Name, Procedural, RenderCamera, ResolutionLink,
+    Scatter, SecondUvs, SourceLink, SubdivMesh, Surface, Technique, TriMesh, UvSource,
+    WorldFromObject,
 };
 use crate::scene::Diagnostic;
 use crate::settings::RenderSettings;
@@ -197,6 +198,10 @@ pub fn estimates(world: &World, settings: &RenderSettings, tasks: Tasks) -> Vec<
     if tasks.render {
         for (e, c, _) in world.query::<(Entity, &Camera, &RenderCamera)>().iter() {
             let (name, at) = named(world, e);
+            // Located at the resolution's width, the value to change.
+            let at = world
+                .get::<&ResolutionLink>(e)
+                .map_or(at, |l| Some(l.0.clone()));
             let pixels = u64::from(c.width) * u64::from(c.height);
             out.push(Estimate {
                 element: format!("camera \"{name}\""),

@@ -133,6 +133,13 @@ pub struct OutputSpec {
 #[derive(Debug, Clone, PartialEq, Eq, Default)]
 pub struct OutputLinks(pub Vec<super::SourceLink>);
 
+/// Where a camera's resolution is written (its width: the first number of RON's
+/// `resolution`, `.mi`'s `resolution`, RIB's `Format`), or the camera itself when the
+/// resolution is the default, so that a refusal of the frame's size points at the value to
+/// change.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct ResolutionLink(pub super::SourceLink);
+
 impl OutputSpec {
     /// Whether its EXR file holds the coverage as channel `A`: with the `Alpha` pass, or
     /// with `Beauty` unless `beauty_alpha` is false.

@@ -14,7 +14,7 @@ mod transform;
 
 pub use camera::{
     world_from_look_at, Camera, ImageFormat, Lens, Lenses, OutputLinks, OutputSpec, Pass,
-    RenderCamera,
+    RenderCamera, ResolutionLink,
 };
 pub use contour::{ContourContrast, ContourShader};
 pub use light::{attenuation_factor, Emitter, LightShape};

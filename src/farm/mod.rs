@@ -10,6 +10,7 @@
 
 pub mod bake_part;
 pub mod bake_part_file;
+pub mod changed_scene;
 pub mod exr_meta;
 pub mod merge;
 pub mod part;

@@ -261,6 +261,7 @@ fn load(
                     .into()
             })
             .collect();
+        parts.resolution_link = Some(src.pos(c.file, &c.at(".resolution[0]")).into());
     }
     let lights: Vec<_> = merged
         .lights

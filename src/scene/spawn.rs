@@ -52,6 +52,8 @@ pub struct CameraParts {
     pub atmosphere: Option<super::volume::Atmosphere>,
     /// Where each of its outputs names its file.
     pub output_links: Vec<SourceLink>,
+    /// Where its resolution's width is written (the camera when it is not).
+    pub resolution_link: Option<SourceLink>,
 }
 
 /// What one material was checked into.
@@ -338,6 +340,10 @@ pub fn spawn(src: &Sources, m: &Merged<'_>, parts: Parts) -> World {
             camera,
             OutputLinks(cam.output_links),
         ));
+        if let Some(link) = cam.resolution_link {
+            // The entity was just spawned, so inserting cannot fail.
+            let _ = world.insert_one(entity, crate::components::ResolutionLink(link));
+        }
         if let Some(imager) = cam.imager {
             // The entity was just spawned, so inserting cannot fail.
             let _ = world.insert_one(entity, imager);

@@ -20,11 +20,57 @@ pub enum Syntax {
 impl Syntax {
     /// The help text for this syntax: `mi` for a mental ray file, `ron` for the others (RIB
     /// and glTF have no statement for the options and outputs these helps name; RON is
-    /// what `stagelight convert` turns them into).
+    /// what `stagelight convert` turns them into). Where a RIB or glTF scene can meet the
+    /// help, [`Self::help_each`] says what to do in those.
     pub fn help(self, ron: &str, mi: &str) -> String {
         match self {
             Self::Mi => mi.to_string(),
             Self::Ron | Self::Rib | Self::Gltf => ron.to_string(),
         }
     }
+
+    /// The help text for this syntax, one written for each.
+    pub fn help_each(self, helps: Helps<'_>) -> String {
+        match self {
+            Self::Ron => helps.ron,
+            Self::Mi => helps.mi,
+            Self::Rib => helps.rib,
+            Self::Gltf => helps.gltf,
+        }
+        .to_string()
+    }
+
+    /// The format's name as messages write it: `RIB`, `glTF`, `.mi`, `RON`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Ron => "RON",
+            Self::Rib => "RIB",
+            Self::Mi => ".mi",
+            Self::Gltf => "glTF",
+        }
+    }
+}
+
+/// One help text per syntax, for [`Syntax::help_each`].
+#[derive(Debug, Clone, Copy)]
+pub struct Helps<'a> {
+    /// For a RON scene.
+    pub ron: &'a str,
+    /// For a mental ray `.mi` scene.
+    pub mi: &'a str,
+    /// For a RIB scene.
+    pub rib: &'a str,
+    /// For a glTF scene.
+    pub gltf: &'a str,
+}
+
+/// The command that writes the scene at `scene` as RON beside it (`stagelight convert
+/// scene.rib -o scene.ron`), for helps that need what only RON can say.
+pub fn convert_command(scene: &std::path::Path) -> String {
+    let ron = scene.with_extension("ron");
+    format!(
+        "stagelight convert {} -o {}",
+        scene.display(),
+        ron.display()
+    )
 }

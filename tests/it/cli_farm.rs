@@ -544,8 +544,9 @@ fn an_archive_edited_after_the_parts_were_rendered_is_refused() {
         &["merge", "part_1.exr", "part_2.exr", "-o", "out.png"],
     );
     assert_eq!(o.status.code(), Some(1));
+    // The scene file is unchanged: the message names the archive it reads too.
     assert!(
-        stderr(&o).contains("scene.rib changed since the parts were rendered"),
+        stderr(&o).contains("/scene.rib or a file it reads (ball.rib) changed since the parts were rendered (content hash "),
         "{}",
         stderr(&o)
     );
@@ -573,7 +574,7 @@ fn a_texture_edited_after_the_parts_were_rendered_is_refused() {
     let o = stagelight(&dir, &["merge", &parts[0], &parts[1], "-o", "out.png"]);
     assert_eq!(o.status.code(), Some(1));
     assert!(
-        stderr(&o).contains("scene.ron changed since the parts were rendered"),
+        stderr(&o).contains("/scene.ron or a file it reads (t.png) changed since the parts were rendered (content hash "),
         "{}",
         stderr(&o)
     );
@@ -974,4 +975,49 @@ fn merging_a_file_that_is_not_an_exr_says_it_is_not_a_part_file() {
         .collect();
     names.sort();
     assert_eq!(names, ["scene.ron", "x.png"]);
+}
+
+/// A `.mi` scene's `$include`d file edited after the parts were rendered: the merge names
+/// the scene and the files it includes, not the unchanged scene alone (tester report 45,
+/// problem 4); the parts record one hash, so it cannot say which of them changed.
+#[test]
+fn an_include_edited_after_the_parts_were_rendered_is_named_with_the_scene() {
+    let dir = scratch("cli-farm-mi-include");
+    let scene = r#"link "base.so"
+$include <base.mi>
+options "opt" samples 0 0 object space end options
+camera "Cam" output "rgb" "png" "out.png" focal 1 aperture 1 aspect 1 resolution 16 12 end camera
+instance "Cam_inst" "Cam" transform 1 0 0 0  0 1 0 0  0 0 1 0  0 0 -5 1 end instance
+$include "mat.mi"
+object "Tri" group
+$include "verts.mi"
+v 0 v 1 v 2  p "m" 0 1 2 end group end object
+instance "Tri_inst" "Tri" material "m" end instance
+instgroup "root" "Cam_inst" "Tri_inst" end instgroup
+render "root" "Cam_inst" "opt"
+"#;
+    std::fs::write(dir.join("m.mi"), scene).unwrap();
+    let material = |grey: f64| {
+        let text = format!("material \"m\" opaque \"mib_illum_lambert\" (\"ambient\" {grey} {grey} {grey}) end material\n");
+        std::fs::write(dir.join("mat.mi"), text).unwrap();
+    };
+    material(1.0);
+    std::fs::write(dir.join("verts.mi"), "0 0 0  1 0 0  0 1 0\n").unwrap();
+    for k in 1..=2 {
+        let part = format!("{k}/2");
+        let name = format!("p{k}.exr");
+        ok(&dir, &["render", "m.mi", "--part", &part, "-o", &name]);
+    }
+    // Only the included material changes: m.mi's bytes are the same.
+    material(0.5);
+    let o = stagelight(&dir, &["merge", "p1.exr", "p2.exr", "-o", "out.png"]);
+    assert_eq!(o.status.code(), Some(1));
+    let err = stderr(&o);
+    let named = "/m.mi or a file it reads (mat.mi, verts.mi) changed since the parts were rendered (content hash ";
+    assert!(err.starts_with("error: ") && err.contains(named), "{err}");
+    assert!(
+        err.ends_with(")\n  help: render the parts again, or pass the scene they came from with --scene\nnothing written\n"),
+        "{err}"
+    );
+    assert!(!dir.join("out.png").exists());
 }

@@ -21,7 +21,7 @@ fn a_100000_squared_frame_is_refused_before_allocating() {
         &["render", "scene.ron", "-o", "out.png"],
     ] {
         let expected = format!(
-            "scene.ron:9:15: error: camera \"cam\": the frame buffers of 100000×100000 pixels need about 2.3 TiB, more than the memory budget of 4.0 GiB (the address-space limit (ulimit -v))\n  help: lower the camera's resolution{HELP_TAIL}\n1 error in scene.ron{}\n",
+            "scene.ron:9:55: error: camera \"cam\": the frame buffers of 100000×100000 pixels need about 2.3 TiB, more than the memory budget of 4.0 GiB (the address-space limit (ulimit -v))\n  help: lower the camera's resolution{HELP_TAIL}\n1 error in scene.ron{}\n",
             refused_tail(args[0])
         );
         let o = run_limited(&dir, args);
@@ -201,6 +201,30 @@ fn a_scene_within_the_budget_renders() {
     assert_eq!(o.status.code(), Some(1));
     assert_eq!(
         stderr_of(&o),
-        "scene.ron:9:15: error: camera \"cam\": the frame buffers of 8×8 pixels need about 16.0 KiB, more than the memory budget of 1.0 KiB (--memory-limit)\n  help: lower the camera's resolution, or raise the budget with --memory-limit BYTES\n1 error in scene.ron\n"
+        "scene.ron:9:55: error: camera \"cam\": the frame buffers of 8×8 pixels need about 16.0 KiB, more than the memory budget of 1.0 KiB (--memory-limit)\n  help: lower the camera's resolution, or raise the budget with --memory-limit BYTES\n1 error in scene.ron\n"
     );
+}
+
+/// The frame's refusal is located at the value to change, the resolution's width: RIB's
+/// `Format`, `.mi`'s `resolution`, RON's `resolution` (tester report 45, problem 5: it was
+/// located at the `WorldBegin` and at the camera instance).
+#[test]
+fn a_frame_over_the_budget_is_located_at_its_resolution() {
+    let dir = scratch_dir("budget-frame-located");
+    let rib = "Display \"out.png\" \"file\" \"rgb\"\nFormat 64 64 1\nProjection \"perspective\" \"fov\" 40\nTranslate 0 0 5\nWorldBegin\nPolygon \"P\" [-1 -1 0  1 -1 0  1 1 0  -1 1 0]\nWorldEnd\n";
+    std::fs::write(dir.join("f.rib"), rib).unwrap();
+    let mi = "link \"base.so\"\n$include <base.mi>\noptions \"opt\" samples 0 0 object space end options\ncamera \"Cam\" output \"rgb\" \"png\" \"out.png\" focal 1 aperture 1 aspect 1\n  resolution 64 64\nend camera\ninstance \"Cam_inst\" \"Cam\" transform 1 0 0 0  0 1 0 0  0 0 1 0  0 0 -5 1 end instance\nmaterial \"m\" opaque \"mib_illum_lambert\" (\"ambient\" 1 1 1) end material\nobject \"Tri\" group 0 0 0  1 0 0  0 1 0  v 0 v 1 v 2  p \"m\" 0 1 2 end group end object\ninstance \"Tri_inst\" \"Tri\" material \"m\" end instance\ninstgroup \"root\" \"Cam_inst\" \"Tri_inst\" end instgroup\nrender \"root\" \"Cam_inst\" \"opt\"\n";
+    std::fs::write(dir.join("f.mi"), mi).unwrap();
+    let refusal = "the frame buffers of 64×64 pixels need about 1.0 MiB, more than the memory budget of 64.0 KiB (--memory-limit)\n  help: lower the camera's resolution, or raise the budget with --memory-limit BYTES";
+    for (scene, at) in [
+        ("f.rib", "f.rib:2:8: error: camera \"camera\""),
+        ("f.mi", "f.mi:5:14: error: camera \"Cam_inst\""),
+    ] {
+        let o = run_in(&dir, &["check", scene, "--memory-limit", "64K"]);
+        assert_eq!(o.status.code(), Some(1), "{}", stderr_of(&o));
+        assert_eq!(
+            stderr_of(&o),
+            format!("{at}: {refusal}\n1 error in {scene}\n")
+        );
+    }
 }

@@ -138,6 +138,7 @@ mod sweep;
 mod sweep_budget;
 mod sweep_photons;
 mod sweep_reference;
+mod syntax_helps;
 mod texture_inputs;
 mod textures;
 mod vertex_bake;

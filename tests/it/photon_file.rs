@@ -237,7 +237,7 @@ fn photons_without_a_place_to_keep_them_or_without_maps_is_refused() {
     assert_eq!(o.status.code(), Some(1));
     assert_eq!(
         stderr_of(&o),
-        "error: scene.ron traces no photons: caustics and global illumination are off\n  help: photon maps are built for `caustics: (…)` or `global_illumination: (…)` in options, with the Direct integrator\n"
+        "error: scene.ron traces no photons: caustics and global illumination are off\n  help: photon maps are built for caustics or global illumination, with the Direct integrator: turn on `caustics: (…)` or `global_illumination: (…)` in the scene's options\n"
     );
     assert!(!dir.join("cache").exists());
     let _ = std::fs::remove_dir_all(&dir);
