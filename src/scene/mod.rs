@@ -21,6 +21,7 @@
 //! The format is documented in `docs/scene-format.md`.
 
 pub(crate) mod bake;
+pub(crate) mod camera_rotation;
 pub(crate) mod checker;
 pub(crate) mod contours;
 pub(crate) mod dag;

@@ -6,6 +6,7 @@ use std::path::{Path, PathBuf};
 
 use glam::{DAffine3, DMat3, DVec3};
 
+use super::camera_rotation::snapped_rotation;
 pub use super::checker::{Checker, Item};
 use super::desc::{
     BvhQualityDesc, CameraDesc, DiagnosticDesc, FaceDesc, FeatureDesc, FilterDesc, FormatDesc,
@@ -511,18 +512,16 @@ fn placement(ck: &mut Checker<'_>, path: &str, p: &PlacementDesc) -> Option<DAff
         PlacementDesc::Matrix(m) => {
             let mpath = format!("{path}.Matrix[0]");
             let a = ck.affine(&mpath, "camera matrix", m)?;
-            let r = a.matrix3;
-            let gram = r.transpose() * r;
-            let off = (gram - DMat3::IDENTITY).to_cols_array();
-            if off.iter().any(|e| e.abs() > 1e-4) || r.determinant() <= 0.0 {
+            // A rotation rounded to a few digits is the rotation it rounds.
+            let Some(rotation) = snapped_rotation(a.matrix3) else {
                 ck.error(
                     &mpath,
                     "a camera matrix must be rigid: orthonormal rotation with determinant 1, \
                      no scale, shear or mirroring",
                 );
                 return None;
-            }
-            Some(a)
+            };
+            Some(DAffine3::from_mat3_translation(rotation, a.translation))
         }
     }
 }

@@ -16,6 +16,7 @@ mod bake_request_warnings;
 mod bake_seams;
 mod bake_stitch_range;
 mod bake_unwrap;
+mod camera_matrix_rounding;
 mod camera_passes;
 mod cli;
 mod cli_bake;

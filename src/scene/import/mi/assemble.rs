@@ -8,10 +8,12 @@
 use std::collections::{HashMap, HashSet};
 use std::f64::consts::PI;
 
-use glam::{DMat4, DVec3};
+use glam::{DAffine3, DMat3, DMat4, DVec3};
+
+use crate::scene::camera_rotation::{near_similarity, snapped_camera_from_world, uniform_scale};
 
 use super::super::located::{Located, LocatedProblem, Pos, Problem};
-use super::model::{AreaShape, LightModel, RawLight, RawObject, RawScene, Space};
+use super::model::{AreaShape, LightModel, RawCamera, RawLight, RawObject, RawScene, Space};
 use super::statements::Reader;
 use super::MiScene;
 use crate::scene::desc::{
@@ -68,7 +70,30 @@ pub fn world_from_object(m: &[f64; 16]) -> Option<DMat4> {
     // column-vector `object_from_world`.
     let object_from_world = DMat4::from_cols_array(m);
     let det = object_from_world.determinant();
-    (det.is_finite() && det.abs() > 1e-12).then(|| object_from_world.inverse())
+    // Inverted as the affine transform it is (`transform::affine` divided out `w`), so the
+    // bottom row stays exactly (0, 0, 0, 1): a general 4×4 inverse of a rotation rounded to
+    // 4 digits leaves (−0, 0, −0, 0.9999999999999999).
+    (det.is_finite() && det.abs() > 1e-12)
+        .then(|| DMat4::from(DAffine3::from_mat4(object_from_world).inverse()))
+}
+
+/// A camera's `world_from_camera` with its rotation snapped and without its uniform scale, and the camera's
+/// `space_scale` (the camera-space length of one world unit: the scale of the camera
+/// instance's `transform`, `None` when it does not scale). A uniform scale does not change
+/// a perspective image; RIB's camera transformation drops it the same way.
+fn without_uniform_scale(w: DMat4) -> (DMat4, Option<f64>) {
+    // The rotation rounded to a few digits in the `transform` as written
+    // (`camera_from_world`) is the rotation it rounds.
+    let camera_from_world = DAffine3::from_mat4(w).inverse();
+    let snapped = snapped_camera_from_world(DMat4::from(camera_from_world));
+    let w = DMat4::from(DAffine3::from_mat4(snapped).inverse());
+    let s = uniform_scale(DMat3::from_mat4(w));
+    if s == 1.0 {
+        return (w, None);
+    }
+    let k = 1.0 / s;
+    let unscaled = DMat4::from_cols(w.x_axis * k, w.y_axis * k, w.z_axis * k, w.w_axis);
+    (unscaled, Some(k))
 }
 
 fn to_m4(m: DMat4) -> M4 {
@@ -185,16 +210,20 @@ fn build(raw: &RawScene, root: &Located, out: &mut Out) {
     };
     walk.group(
         render.root.0.as_str(),
-        DMat4::IDENTITY,
+        (DMat4::IDENTITY, None),
         0,
         &render.root.1,
         out,
     );
     let (cameras, lights) = (walk.cameras, walk.lights);
 
-    for (name, cam, w, at) in cameras {
+    for (name, cam, w, at, matrix_at) in cameras {
         let i = out.desc.cameras.len();
         out.paths.push((format!("cameras[{i}]"), at));
+        // Errors about the camera matrix point at the `transform` that made it one.
+        out.paths
+            .push((format!("cameras[{i}].placement.Matrix[0]"), matrix_at));
+        let (w, space_scale) = without_uniform_scale(w);
         cam.values
             .extend_under(&format!("cameras[{i}]"), &mut out.paths);
         out.desc.cameras.push(CameraDesc {
@@ -207,7 +236,7 @@ fn build(raw: &RawScene, root: &Located, out: &mut Out) {
             imager: None,
             lens: Vec::new(),
             atmosphere: cam.atmosphere,
-            space_scale: None,
+            space_scale,
         });
         if out.desc.environment.is_none() {
             out.desc.environment = cam.environment.clone();
@@ -562,18 +591,41 @@ fn polygons_of(object: &str, obj: &RawObject, materials: &Materials<'_>, out: &m
 /// A camera or light placed by the walk: instance name, element, `world_from_object`, where.
 type Placed<'a, T> = (String, &'a T, DMat4, Located);
 
+/// A camera placed by the walk, and where its matrix is written: the `transform` after
+/// which the composed matrix stopped being a camera's (a rotation and uniform scale), else
+/// the camera instance's own `transform` (or the instance).
+type PlacedCamera<'a> = (String, &'a RawCamera, DMat4, Located, Located);
+
+/// A composed `world_from_object` and the `transform` after which it stopped being a
+/// camera's (`None` while it is one).
+type Composed<'a> = (DMat4, Option<&'a Located>);
+
+/// Whether `w` can place a camera: a rotation (within the rounding the camera validation
+/// snaps) times a uniform scale, not mirrored.
+fn camera_like(w: DMat4) -> bool {
+    let l = DMat3::from_mat4(w);
+    near_similarity(l) && l.determinant() > 0.0
+}
+
 struct Walk<'a> {
     raw: &'a RawScene,
     instances: &'a HashMap<&'a str, usize>,
     groups: &'a HashMap<&'a str, usize>,
     space: Space,
-    cameras: Vec<Placed<'a, super::model::RawCamera>>,
+    cameras: Vec<PlacedCamera<'a>>,
     lights: Vec<Placed<'a, RawLight>>,
     visiting: HashSet<String>,
 }
 
 impl<'a> Walk<'a> {
-    fn group(&mut self, name: &str, w: DMat4, depth: usize, at: &Located, out: &mut Out) {
+    fn group(
+        &mut self,
+        name: &str,
+        parent: Composed<'a>,
+        depth: usize,
+        at: &Located,
+        out: &mut Out,
+    ) {
         if depth > MAX_DEPTH {
             out.error(
                 at,
@@ -597,9 +649,17 @@ impl<'a> Walk<'a> {
                 (Some(m), Space::Object) => world_from_object(m).unwrap_or(DMat4::IDENTITY),
                 _ => DMat4::IDENTITY,
             };
-            let w = w * local;
+            let w = parent.0 * local;
+            let non_camera_at = match parent.1 {
+                _ if camera_like(w) => None,
+                Some(at) => Some(at),
+                None => inst.transform_at.as_ref(),
+            };
             if let Some(cam) = self.raw.cameras.get(&inst.of) {
-                self.cameras.push((iname.clone(), cam, w, inst.at.clone()));
+                let matrix_at = non_camera_at.or(inst.transform_at.as_ref());
+                let matrix_at = matrix_at.unwrap_or(&inst.at).clone();
+                self.cameras
+                    .push((iname.clone(), cam, w, inst.at.clone(), matrix_at));
             } else if let Some(light) = self.raw.lights.get(&inst.of) {
                 let name = if self.lights.iter().any(|l| &l.0 == iname) {
                     format!("{iname}#{}", self.lights.len())
@@ -608,7 +668,7 @@ impl<'a> Walk<'a> {
                 };
                 self.lights.push((name, light, w, inst.at.clone()));
             } else if self.groups.contains_key(inst.of.as_str()) {
-                self.group(&inst.of, w, depth + 1, m_at, out);
+                self.group(&inst.of, (w, non_camera_at), depth + 1, m_at, out);
             }
         }
         self.visiting.remove(name);

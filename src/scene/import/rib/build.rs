@@ -5,7 +5,7 @@
 use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
 
-use glam::{DMat4, DVec3};
+use glam::{DMat3, DMat4, DVec3};
 
 use super::super::located::{Located, LocatedProblem, Pos, Problem};
 use super::area_lights::AreaLights;
@@ -25,6 +25,7 @@ use super::shaders::{self, LightShader, DISPLACEMENTS, LIGHTS, SURFACES};
 use super::state::{from_rib, rotate, Block, GraphicsState, ShaderCall};
 use super::tutorial;
 use super::RibScene;
+use crate::scene::camera_rotation::{near_similarity, snapped_camera_from_world};
 use crate::scene::desc::{
     ApproximationDesc, DisplacementDesc, FaceDesc, FilterDesc, GroupDesc, InstanceDesc, LightDesc,
     LightKindDesc, MaterialDesc, ObjectDesc, OptionsDesc, RenderDesc, SceneDesc, TransformDesc, V3,
@@ -119,6 +120,10 @@ pub struct Builder {
     /// The transformation request before `WorldBegin` that made the current transformation
     /// singular (the camera transformation cannot be one).
     singular_at: Option<(usize, Pos, String)>,
+    /// The transformation request before `WorldBegin` after which the current
+    /// transformation stopped being a camera's (a rotation, within rounding, and a uniform
+    /// scale, mirrored or not): errors about the camera matrix point at it.
+    non_rigid_at: Option<(usize, Pos)>,
     coordsys: HashMap<String, DMat4>,
     world: Option<(usize, Pos)>,
     world_ended: bool,
@@ -156,6 +161,7 @@ impl Builder {
             motion: None,
             motion_warned: false,
             singular_at: None,
+            non_rigid_at: None,
             coordsys: HashMap::new(),
             world: None,
             world_ended: false,
@@ -291,6 +297,13 @@ impl Builder {
             } else if self.singular_at.is_none() {
                 self.singular_at = Some((self.file, r.pos, format!("this {}", r.name)));
             }
+            if self.world.is_none() {
+                if near_similarity(DMat3::from_mat4(self.gs.attrs.ctm)) {
+                    self.non_rigid_at = None;
+                } else if self.non_rigid_at.is_none() {
+                    self.non_rigid_at = Some((self.file, r.pos));
+                }
+            }
         }
     }
 
@@ -374,7 +387,8 @@ impl Builder {
                 }
                 self.world = Some((self.file, r.pos));
                 let camera = if invertible(self.gs.attrs.ctm) {
-                    self.gs.attrs.ctm
+                    // A rotation rounded to a few digits (`0.707`) is the rotation it rounds.
+                    snapped_camera_from_world(self.gs.attrs.ctm)
                 } else {
                     let (file, pos, name) = self.singular_at.take().unwrap_or_else(|| {
                         (
@@ -1102,7 +1116,12 @@ impl Builder {
         let g = world_mirror(m);
         let (mut camera, cpaths) = self.cam.camera(wpos);
         for (p, pos) in cpaths {
-            paths.push((format!("cameras[0]{p}"), wfile, pos));
+            // The matrix is where the request that made it no camera's is.
+            let (file, pos) = match self.non_rigid_at {
+                Some(at) if p == ".placement.Matrix[0]" => at,
+                _ => (wfile, pos),
+            };
+            paths.push((format!("cameras[0]{p}"), file, pos));
         }
         let scale = self.cam.world_per_camera_unit();
         if let Some((fade, fog)) = camera_atmosphere(&self.instances, scale, &mut self.problems) {

@@ -14,6 +14,7 @@
 use glam::{DMat3, DMat4, DVec3};
 
 use super::super::located::Pos;
+use crate::scene::camera_rotation::uniform_scale;
 use crate::scene::desc::{
     CameraDesc, FilterDesc, ImagerDesc, ImagerPatternDesc, LensDesc, OutputDesc, PassDesc,
     PlacementDesc, SamplesDesc, ToneMapDesc, M4, V3,
@@ -155,8 +156,7 @@ impl CameraOptions {
         let a = g * m.inverse() * flip;
         // Keep the rotation: a uniform scale of the camera does not change the image.
         let l = DMat3::from_mat4(a);
-        let s = l.determinant().abs().cbrt();
-        let r = if s > 0.0 { l * (1.0 / s) } else { l };
+        let r = l * (1.0 / uniform_scale(l));
         let placement = DMat4::from_cols(
             r.x_axis.extend(0.0),
             r.y_axis.extend(0.0),
@@ -217,20 +217,16 @@ impl CameraOptions {
     /// uniform scale (1 before `WorldBegin` or when it does not scale).
     pub fn world_per_camera_unit(&self) -> f64 {
         let m = self.camera_from_world.map_or(DMat4::IDENTITY, |c| c.0);
-        let s = DMat3::from_mat4(m).determinant().abs().cbrt();
-        if s > 0.0 && s.is_finite() {
-            1.0 / s
-        } else {
-            1.0
-        }
+        1.0 / uniform_scale(DMat3::from_mat4(m))
     }
 
     /// The camera's `space_scale`: the camera-space length of one world unit, which the
     /// camera-space passes (`z`, `P`) are measured in; `None` when the camera
-    /// transformation does not scale (within 1e-9).
+    /// transformation does not scale (a rotation rounded to a few digits does not:
+    /// `camera_rotation::uniform_scale`).
     pub fn space_scale(&self) -> Option<f64> {
         let s = 1.0 / self.world_per_camera_unit();
-        ((s - 1.0).abs() > 1e-9).then_some(s)
+        (s != 1.0).then_some(s)
     }
 
     /// `samples` of the options.
