@@ -112,6 +112,8 @@ mod tests {
     }
 
     #[test]
+    // The values are 1/√2 as files round it, on purpose.
+    #[allow(clippy::approx_constant)]
     fn rounded_rotations_snap_to_the_exact_one() {
         let exact = DMat3::from_rotation_y(std::f64::consts::FRAC_PI_4);
         for c in [0.71, 0.707, 0.7071, 0.70710678] {
