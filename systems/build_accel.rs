@@ -16,7 +16,9 @@
 //! **Writes:** `outputs.geometry` (returned to the runner).
 //! **Runs when:** at least one instance has triangles and something consumes rays (a render
 //! camera in a run that renders, or bake requests in a run that bakes); in a merge, only when
-//! it draws contours (`super::merge_skip`).
+//! it draws contours (`super::merge_skip`). A bake merge (`inputs.merged_bake`) places the
+//! triangles without building the BVH ([`Accel::without_hierarchy`]): it reads them and
+//! traces no ray.
 //! **After this stage:** `outputs.geometry` holds world triangles in instance order (each
 //! instance contiguous; a mirrored instance's with two corners swapped, so that they keep
 //! their object-space front, and so are those of an unmirrored instance of an object whose
@@ -74,14 +76,18 @@ pub fn should_run(world: &World, frame: &Frame) -> Decision {
             .iter()
             .any(|d| d.mode == DisplacementMode::True);
     let counted = format!("{instances} instance(s) with {triangles} triangles");
-    Decision::run(match (pending, displaces) {
+    let mut why = match (pending, displaces) {
         (true, true) => format!("{counted} so far (before displacement), more to be generated"),
         (true, false) => format!("{counted} so far, more to be generated"),
         (false, true) => {
             format!("{counted} before displacement, which dices the displaced meshes again")
         }
         (false, false) => counted,
-    })
+    };
+    if frame.inputs.merged_bake.is_some() {
+        why.push_str("; placed without a BVH: a bake merge traces no rays");
+    }
+    Decision::run(why)
 }
 
 /// Builds the scene geometry.
@@ -222,15 +228,22 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
         ));
     }
     let count = triangles.len() as u64;
-    // obvhs cannot poll the cancel flag: build on a thread of its own and stop waiting
-    // when the run is interrupted.
-    let quality = frame.inputs.settings.bvh_quality;
-    let built = crate::guard::cancellable::until_cancelled(&frame.inputs.cancel, move || {
-        Accel::build(triangles, quality)
-    })
-    .map_err(|e| StageError::Internal(format!("cannot start the BVH build: {e}")))?;
-    let Some(mut accel) = built else {
-        return Err(StageError::Interrupted);
+    let mut accel = if frame.inputs.merged_bake.is_some() {
+        // A bake merge reads the placed triangles (texel coverage, seams, mesh lights) and
+        // takes every texel from the parts: it traces no ray, so no hierarchy is built.
+        Accel::without_hierarchy(triangles)
+    } else {
+        // obvhs cannot poll the cancel flag: build on a thread of its own and stop waiting
+        // when the run is interrupted.
+        let quality = frame.inputs.settings.bvh_quality;
+        let built = crate::guard::cancellable::until_cancelled(&frame.inputs.cancel, move || {
+            Accel::build(triangles, quality)
+        })
+        .map_err(|e| StageError::Internal(format!("cannot start the BVH build: {e}")))?;
+        let Some(accel) = built else {
+            return Err(StageError::Interrupted);
+        };
+        accel
     };
     accel.set_ray_masks(ray_masks);
     let geometry = SceneGeometry {

@@ -323,6 +323,12 @@ pub(crate) fn build(tris: &[[Vec3; 3]], quality: BvhQuality) -> Bvh {
     }
 }
 
+/// Every triangle in the caller's order and no hierarchy over them, for a run that reads
+/// triangles but traces no ray (a bake merge): nothing can be hit.
+pub(crate) fn unindexed(tris: &[[Vec3; 3]]) -> Bvh {
+    unbuilt(tris, Instant::now(), BuildPhases::default())
+}
+
 /// The hierarchy of a scene with no non-degenerate triangle: no nodes, every triangle kept
 /// in the caller's order.
 fn unbuilt(tris: &[[Vec3; 3]], start: Instant, phases: BuildPhases) -> Bvh {

@@ -143,6 +143,20 @@ impl Accel {
         }
     }
 
+    /// The triangles without a hierarchy, for a run that reads them ([`Accel::triangle`],
+    /// [`Accel::len`]) but traces no ray — a bake merge, whose texels come from the parts:
+    /// every ray misses. Building the hierarchy there was most of the merge's time.
+    pub fn without_hierarchy(triangles: Vec<[Vec3; 3]>) -> Self {
+        Self {
+            bvh: bvh::unindexed(&triangles),
+            counters: counters::Counters::new(),
+            masks: None,
+            #[cfg(target_arch = "x86_64")]
+            small: None,
+            shortcuts: std::sync::OnceLock::new(),
+        }
+    }
+
     /// Whether [`Accel::shortcuts`] were made already.
     pub fn has_shortcuts(&self) -> bool {
         self.shortcuts.get().is_some()
@@ -293,6 +307,42 @@ mod tests {
             t_max: f32::INFINITY,
         };
         assert!(a.is_empty() && a.intersect(&r).is_none() && !a.occluded(&r));
+    }
+
+    /// Without a hierarchy the triangles come back in the caller's order and every query
+    /// misses, single, batched or as a packet — even a ray straight through a triangle, which
+    /// the built accelerator hits.
+    #[test]
+    fn triangles_without_a_hierarchy_are_read_but_never_hit() {
+        let tris: Vec<[Vec3; 3]> = (0..40)
+            .map(|i| {
+                let z = i as f32;
+                [
+                    Vec3::new(-1.0, -1.0, z),
+                    Vec3::new(1.0, -1.0, z),
+                    Vec3::new(0.0, 1.0, z),
+                ]
+            })
+            .collect();
+        let ray = Ray {
+            origin: Vec3::new(0.0, 0.0, -1.0),
+            dir: Vec3::Z,
+            t_max: f32::INFINITY,
+        };
+        let built = Accel::build(tris.clone(), BvhQuality::Medium);
+        assert_eq!(built.intersect(&ray).map(|h| h.prim), Some(0));
+        let bare = Accel::without_hierarchy(tris.clone());
+        assert_eq!(bare.len(), 40);
+        for (i, t) in tris.iter().enumerate() {
+            assert_eq!(bare.triangle(i as u32), *t);
+        }
+        assert!(bare.intersect(&ray).is_none() && !bare.occluded(&ray));
+        let rays = vec![ray; 9];
+        let mut hits = vec![None; 9];
+        bare.intersect_batch(&rays, &mut hits);
+        let mut blocked = vec![true; 9];
+        bare.occluded_batch(&rays, &mut blocked);
+        assert!(hits.iter().all(Option::is_none) && blocked.iter().all(|b| !b));
     }
 
     /// One triangle copy: `triangle(prim)` gives back the caller's triangles, degenerate ones

@@ -188,7 +188,7 @@ fn cli_bake_parts_merge_into_the_single_bakes_files() {
             "bake_part_3_of_3.exr"
         ]
     );
-    ok(
+    let o = run_in(
         &dir,
         &[
             "merge",
@@ -197,7 +197,22 @@ fn cli_bake_parts_merge_into_the_single_bakes_files() {
             "parts/bake_part_2_of_3.exr",
             "-o",
             "merged",
+            "--stats",
         ],
+    );
+    assert!(o.status.success(), "{}", stderr_of(&o));
+    // The merge places the triangles (coverage, seams) but traces nothing: no BVH.
+    let report = String::from_utf8_lossy(&o.stdout).to_string() + &stderr_of(&o);
+    let row = report
+        .lines()
+        .find(|l| l.starts_with("build_accel"))
+        .unwrap_or_else(|| panic!("no build_accel row in {report}"));
+    assert!(
+        row.contains(" yes ")
+            && row.ends_with(
+                "2 instance(s) with 4 triangles; placed without a BVH: a bake merge traces no rays"
+            ),
+        "{row}"
     );
     assert_eq!(dir_names(&dir.join("merged")), expected);
     for name in &expected {
