@@ -142,6 +142,7 @@ mod sweep_reference;
 mod syntax_helps;
 mod texture_inputs;
 mod textures;
+mod trace_depths;
 mod vertex_bake;
 mod volume_shaders;
 mod warnings_with_errors;
