@@ -90,6 +90,7 @@ mod mi_value_positions;
 mod mi_volumes;
 mod mirrored_instances;
 mod obj_materials;
+mod object_labels;
 mod photon_clean;
 mod photon_depth;
 mod photon_falloff;
