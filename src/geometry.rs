@@ -61,9 +61,17 @@ pub struct InstanceGeometry {
     pub mirrored: bool,
     /// Whether the object's orientation is reversed (its front is the object-space back).
     pub reversed: bool,
+    /// The object's label ([`crate::components::ObjectLabel`]), if it has one.
+    pub label: Option<u32>,
 }
 
 impl InstanceGeometry {
+    /// What the `ObjectId` pass writes where instance `index` (this one) is seen: its
+    /// object's label, else 1 + `index` (0 is the background's).
+    pub fn object_id(&self, index: u32) -> u32 {
+        self.label.unwrap_or(index + 1)
+    }
+
     /// Whether `world_from_object` mirrors space (negative determinant), which makes
     /// [`Self::world_order`] swap a triangle's last two corners (unless the object's
     /// orientation is reversed).

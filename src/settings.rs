@@ -85,8 +85,10 @@ pub struct RenderSettings {
     pub filter: PixelFilter,
     /// Seed of every random decision.
     pub seed: u64,
-    /// Maximum trace depth (1 = camera rays and their shadow rays only): the most surface
-    /// interactions a light path may have between the light and the camera.
+    /// Maximum trace depth: the most surface interactions a light path may have between the
+    /// light and the camera. Vertices up to it are lit and trace on, the next one only adds
+    /// its emission (1 = direct light only: a mirror's rays are still traced, within
+    /// `reflection_depth`, and see emitters but no lit surfaces).
     pub max_depth: u32,
     /// Most glossy or mirror reflections along one path.
     pub reflection_depth: u32,

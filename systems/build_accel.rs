@@ -33,9 +33,9 @@ use hecs::{Entity, World};
 use super::prelude::*;
 use crate::accel::Accel;
 use crate::components::{
-    Displacement, DisplacementMode, FaceMaterials, Instance, Material, MaterialRef, Procedural,
-    RayFlags, ReverseOrientation, Scatter, SceneOrigin, SubdivMesh, Surface, VertexColours,
-    VertexTangents, WorldFromObject, ALL_RAYS, FRONT_ONLY,
+    Displacement, DisplacementMode, FaceMaterials, Instance, Material, MaterialRef, ObjectLabel,
+    Procedural, RayFlags, ReverseOrientation, Scatter, SceneOrigin, SubdivMesh, Surface,
+    VertexColours, VertexTangents, WorldFromObject, ALL_RAYS, FRONT_ONLY,
 };
 use crate::features::Feature;
 use crate::geometry::{InstanceGeometry, SceneGeometry};
@@ -215,6 +215,7 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
                 .filter(|t| t.len() == instance.mesh.positions.len()),
             mirrored,
             reversed,
+            label: world.get::<&ObjectLabel>(instance.object).ok().map(|l| l.0),
         });
     }
     // Generated geometry is only known now: refuse what the f32 BVH and triangle test cannot

@@ -496,7 +496,8 @@ impl PixelShader<'_> {
                     let sp = ctx.geometry.shading_point(&hit);
                     result.depth = hit.t;
                     result.normal = sp.normal;
-                    result.object_id = sp.instance + 1;
+                    result.object_id =
+                        ctx.geometry.instances[sp.instance as usize].object_id(sp.instance);
                     result.material_id = sp.material + 1;
                 }
             }

@@ -25,9 +25,10 @@ pub enum Pass {
     /// The pixel centre's first hit in camera space (`P.X`, `P.Y`, `P.Z`, the axes of
     /// `CameraNormal`, camera-space units: RenderMan's `P`); zero for misses.
     CameraPosition,
-    /// Which placed object the pixel centre sees (`id.object`, u32): 1 + the instance's index
-    /// in the flattened scene (instances in entity order, i.e. declaration order of the DAG
-    /// leaves); 0 for the background.
+    /// Which placed object the pixel centre sees (`id.object`, u32): its object's label
+    /// ([`crate::components::ObjectLabel`], `.mi` `tag`) where it has one, else 1 + the
+    /// instance's index in the flattened scene (instances in entity order, i.e. declaration
+    /// order of the DAG leaves); 0 for the background.
     ObjectId,
     /// Which material the pixel centre sees (`id.material`, u32): 1 + the material's index
     /// among the materials in use; 0 for the background.

@@ -5,6 +5,7 @@
 
 mod camera;
 mod contour;
+mod label;
 mod light;
 mod local_model;
 mod material;
@@ -17,6 +18,7 @@ pub use camera::{
     RenderCamera, ResolutionLink,
 };
 pub use contour::{ContourContrast, ContourShader};
+pub use label::ObjectLabel;
 pub use light::{attenuation_factor, Emitter, LightShape};
 pub use local_model::{LocalLobe, LocalModel};
 pub use material::{Material, MaterialRef, Shader};

@@ -1094,6 +1094,10 @@ pub struct ObjectDesc {
     /// Seen by reflection, refraction and gathering rays (mental ray `trace`), default true.
     #[serde(default)]
     pub trace: Option<bool>,
+    /// The value the `ObjectId` pass writes where its instances are seen (mental ray's
+    /// object `tag`); default none: 1 + the placed instance's index.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub label: Option<u32>,
 }
 
 /// `instances: [(...)]`: a placed copy of an object or a group.

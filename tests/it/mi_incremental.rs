@@ -153,7 +153,7 @@ fn incremental_options_keep_the_statements_not_repeated() {
     let (o, b) = (d.options.unwrap(), base.options.unwrap());
     assert_eq!(
         (o.reflection_depth, o.refraction_depth, o.max_depth),
-        (1, 1, 2)
+        (1, 1, 3)
     );
     // `samples 0 2` (adaptive 1…16) and `object space` (the quad placed at z −5) kept.
     assert_eq!(debug(&o.samples), debug(&b.samples));

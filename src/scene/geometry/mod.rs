@@ -20,7 +20,7 @@ use super::desc::{MeshDesc, ObjectDesc};
 use super::diagnostics::Sources;
 use super::validate::{Checker, Item, Merged};
 use crate::components::{
-    Approximation, DerivativeRequest, Displacement, DisplacementMode, Procedural,
+    Approximation, DerivativeRequest, Displacement, DisplacementMode, ObjectLabel, Procedural,
     ReverseOrientation, ScalarNode, Scatter, SubdivMesh, Surface,
 };
 use crate::tessellation::GeometryError;
@@ -58,6 +58,8 @@ pub struct ObjectGeometry {
     pub derivatives: bool,
     /// Whether its front is the object-space back ([`ReverseOrientation`]).
     pub reverse_orientation: bool,
+    /// Its label ([`ObjectLabel`]), if written.
+    pub label: Option<u32>,
 }
 
 impl ObjectGeometry {
@@ -80,6 +82,9 @@ impl ObjectGeometry {
         }
         if self.reverse_orientation {
             b.add(ReverseOrientation);
+        }
+        if let Some(label) = self.label {
+            b.add(ObjectLabel(label));
         }
     }
 }
@@ -214,6 +219,13 @@ fn check_object(
         );
         ok = false;
     }
+    if d.label.is_some() && is_scatter {
+        ck.error(
+            &it.at(".label"),
+            "a scatter has no surface of its own: label the prototype",
+        );
+        ok = false;
+    }
     let displacement = displacement.map(|x| along_front(x, d.reverse_orientation));
     ok.then_some(ObjectGeometry {
         generated,
@@ -221,6 +233,7 @@ fn check_object(
         displacement,
         derivatives: d.derivatives,
         reverse_orientation: d.reverse_orientation,
+        label: d.label,
     })
 }
 

@@ -177,6 +177,7 @@ pub fn geometry(objects: Vec<Object>) -> SceneGeometry {
             tangents: None,
             mirrored: false,
             reversed: false,
+            label: None,
         });
         triangle_instance.extend(std::iter::repeat_n(slot as u32, object.triangles.len()));
         triangles.extend(object.triangles);

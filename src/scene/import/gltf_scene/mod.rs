@@ -405,6 +405,7 @@ impl Walk<'_> {
             visible: None,
             shadow: None,
             trace: None,
+            label: None,
         });
         self.objects.insert((mesh.index(), p), name.clone());
         name

@@ -490,6 +490,7 @@ fn objects_of(name: &str, obj: &RawObject, materials: &Materials<'_>, out: &mut 
             visible: obj.flags.visible,
             shadow: obj.flags.shadow,
             trace: obj.flags.trace,
+            label: obj.flags.label,
         });
         members.push(object);
     }
@@ -584,6 +585,7 @@ fn polygons_of(object: &str, obj: &RawObject, materials: &Materials<'_>, out: &m
         visible: obj.flags.visible,
         shadow: obj.flags.shadow,
         trace: obj.flags.trace,
+        label: obj.flags.label,
     });
     true
 }

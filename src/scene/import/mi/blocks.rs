@@ -158,13 +158,17 @@ pub fn options(r: &mut Reader, c: &mut Cursor, open: Pos) {
                         a
                     };
                     let s = if c.at_number() {
-                        c.count("trace depth").unwrap_or(a + b)
+                        c.count("trace depth").unwrap_or(a.saturating_add(b))
                     } else {
-                        a + b
+                        a.saturating_add(b)
                     };
-                    o.desc.reflection_depth = a;
-                    o.desc.refraction_depth = b;
-                    o.desc.max_depth = s.max(1);
+                    // mental ray counts reflection and refraction rays (the camera ray
+                    // is level 0) and shades the hit of every ray it traces: a path of
+                    // `s` such rays ends at vertex `s + 1`, lit, and no budget exceeds
+                    // the sum.
+                    o.desc.reflection_depth = a.min(s);
+                    o.desc.refraction_depth = b.min(s);
+                    o.desc.max_depth = s.saturating_add(1);
                 } else {
                     traced = c.switch();
                 }

@@ -185,6 +185,8 @@ pub struct Flags {
     pub caustic: Option<u8>,
     /// `globillum N`: global-illumination photon mode 0–3.
     pub globillum: Option<u8>,
+    /// `tag [label] N`: the object's label (read on instances too, not used there).
+    pub label: Option<u32>,
 }
 
 /// An `object` block with its polygon group.

@@ -52,6 +52,9 @@ fn flag(c: &mut Cursor, w: &str, flags: &mut Flags) -> bool {
         }
         "tag" => {
             c.eat_word("label");
+            if let Some(label) = c.count("tag") {
+                flags.label = Some(label);
+            }
             c.skip_arguments();
         }
         _ => return false,

@@ -1294,6 +1294,7 @@ impl Builder {
                 visible: None,
                 shadow: None,
                 trace: None,
+                label: None,
             });
         }
         // An instance of a primitive takes its object's name; an `ObjectInstance` its
