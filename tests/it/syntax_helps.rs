@@ -366,3 +366,19 @@ fn photon_and_camera_helps_of_a_gltf_scene_convert_it_to_ron_first() {
          (`stagelight convert q.gltf -o q.ron`) and set `render: (camera: \"cam\")` there\n"
     );
 }
+
+/// A `ShadingRate` over a RIB polygon without true displacement dices nothing: the help says
+/// when RIB dices a polygon, not RON's `approximation` and `displacement` fields.
+#[test]
+fn a_shading_rate_on_a_rib_polygon_is_helped_in_rib_terms() {
+    let text = "Display \"out.png\" \"file\" \"rgb\"\nFormat 16 12 1\nProjection \"perspective\" \"fov\" 40\nTranslate 0 0 5\nWorldBegin\nShadingRate 4\nPolygon \"P\" [0 0 0 1 0 0 0 1 0]\nWorldEnd\n";
+    let (code, err) = run("help-rate-polygon-rib", "p.rib", text, &["check", "p.rib"]);
+    assert_eq!(code, Some(0), "{err}");
+    assert_eq!(
+        err,
+        "p.rib:6:13: warning: object \"polygon_1\": the approximation has no effect on an inline \
+         mesh without true displacement\n  help: a polygon is diced only under true displacement \
+         (a `Displacement` shader with `Attribute \"render\" \"truedisplacement\" [1]`): give \
+         `ShadingRate` only to the surfaces it dices (inside their `AttributeBegin`/`AttributeEnd`)\n"
+    );
+}
