@@ -1101,8 +1101,7 @@ fn checked_overrides(
 /// The syntax the scene file at `path` is written in (by its extension, as the readers
 /// are chosen; RON when none takes it), so that a help shows what to write in that file.
 fn scene_syntax(path: &Path) -> stagelight::scene::syntax::Syntax {
-    stagelight::scene::import::reader_for(stagelight::scene::import::FORMATS, path)
-        .map_or_else(|_| Default::default(), |f| f.syntax)
+    stagelight::scene::import::syntax_of(path)
 }
 
 /// How a part file names its scene: the path as given, made absolute against the working

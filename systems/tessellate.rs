@@ -30,10 +30,14 @@ use crate::components::{
     LengthSpace, Name, Procedural, SubdivMesh, Surface, Technique, TriMesh, WorldFromObject,
 };
 use crate::procedural::{expands_to_surface, install_mesh};
+use crate::scene::syntax::Helps;
 use crate::tessellation::{
     tessellate_mesh, tessellate_subdiv, tessellate_surface, GeometryError, Options, RasterView,
     Tessellation,
 };
+
+/// The help of a refusal past the memory budget in a RON (or glTF) scene.
+const COARSEN_RON: &str = "coarsen the approximation (a larger `edge` or `distance`, a smaller `max_subdiv`), or raise the budget with --memory-limit BYTES";
 
 /// Why an object cannot be tessellated. Rates past the memory budget are a located error at
 /// the object's approximation (what to change), in the words of the load-time estimates.
@@ -50,6 +54,7 @@ fn refusal(world: &World, frame: &Frame, job: &Job, err: GeometryError) -> Stage
             message: err.to_string(),
         };
     };
+    let syntax = crate::scene::import::syntax_of(&at.file);
     StageError::Scene(vec![crate::scene::Diagnostic {
         file: at.file,
         line: at.line,
@@ -61,8 +66,12 @@ fn refusal(world: &World, frame: &Frame, job: &Job, err: GeometryError) -> Stage
             frame.inputs.budget
         ),
         help: Some(
-            "coarsen the approximation (a larger `edge` or `distance`, a smaller `max_subdiv`), or raise the budget with --memory-limit BYTES"
-                .into(),
+            syntax.help_each(Helps {
+                ron: COARSEN_RON,
+                mi: "coarsen the approximation (a larger `spatial` edge or `distance`, a smaller max subdivision), or raise the budget with --memory-limit BYTES",
+                rib: "coarsen the dicing (a larger `ShadingRate`), or raise the budget with --memory-limit BYTES",
+                gltf: COARSEN_RON,
+            }),
         ),
     }])
 }

@@ -16,6 +16,8 @@ use super::estimate::{
 };
 use super::{human, Budget};
 use crate::components::{Instance, Name, Technique};
+use crate::scene::import::syntax_of;
+use crate::scene::syntax::Helps;
 use crate::scene::Diagnostic;
 use crate::tessellation::rates::MAX_LEVEL;
 
@@ -66,10 +68,17 @@ pub fn warnings(world: &World, budget: &Budget) -> Vec<Diagnostic> {
             .rev()
             .find(|&l| worst(patches, l) <= limit);
         let help = match fitting {
-            Some(l) => format!(
-                "adaptive rates usually stay far below this bound; to be sure it fits, set `max_subdiv: {l}` (at most {} triangles), or raise the budget with --memory-limit BYTES",
-                worst(patches, l)
-            ),
+            Some(l) => {
+                let at_most = worst(patches, l);
+                let min = approx.min_subdiv;
+                let bound = syntax_of(&file).help_each(Helps {
+                    ron: &format!("set `max_subdiv: {l}` (at most {at_most} triangles)"),
+                    mi: &format!("end the `approximate` technique with the subdivision bounds `{min} {l}` (at most {at_most} triangles)"),
+                    rib: &format!("write the scene as RON and set `max_subdiv: {l}` there (at most {at_most} triangles; a RIB `ShadingRate` subdivides up to {level} times)"),
+                    gltf: &format!("set `max_subdiv: {l}` (at most {at_most} triangles)"),
+                });
+                format!("adaptive rates usually stay far below this bound; to be sure it fits, {bound}, or raise the budget with --memory-limit BYTES")
+            }
             None => "adaptive rates usually stay far below this bound; to be sure it fits, coarsen the approximation, or raise the budget with --memory-limit BYTES".to_string(),
         };
         out.push(Diagnostic {

@@ -147,11 +147,15 @@ pub fn contour(src: &mut Sources, item: &Item<'_, MaterialDesc>) -> Option<Conto
         if !ck.finite(&path, name, w) {
             ok = false;
         } else if w <= 0.0 {
+            let help = ck.src.syntax(ck.file).help(
+                "widths are in percent of the smaller image dimension, e.g. `width: 0.5`; to draw no contours, leave out `contour`",
+                "widths are in percent of the smaller image dimension, e.g. `\"width\" 0.5`; to draw no contours, leave out the material's `contour` shader",
+            );
             ck.src.error(
                 ck.file,
                 &path,
                 format!("contour {name} must be positive, found {w}"),
-                Some("widths are in percent of the smaller image dimension, e.g. `width: 0.5`; to draw no contours, leave out `contour`".into()),
+                Some(help),
             );
             ok = false;
         } else if w > 100.0 {

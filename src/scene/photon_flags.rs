@@ -9,6 +9,7 @@
 use super::desc::LightDesc;
 use super::diagnostics::Sources;
 use super::message::Diagnostic;
+use super::syntax::{Helps, Syntax};
 use super::validate::Merged;
 use crate::components::{LightPhotons, Material, PhotonFlags, PhotonRole};
 use crate::photon::roles::makes_caustics;
@@ -150,13 +151,29 @@ pub fn warn_shadow_casters<'a>(
             (o.file, o.at(".caustic"))
         };
         let pos = src.pos(file, &path);
+        let syntax = src.syntax(file);
+        let flag = match syntax {
+            Syntax::Mi => format!(" (caustic {})", role.0),
+            // AIR's rule sets the flag: a caustic colour that is not black casts.
+            Syntax::Rib => String::new(),
+            Syntax::Ron | Syntax::Gltf => format!(" (caustic: {})", role.0),
+        };
         let message = format!(
-            "\"{}\" casts caustics (caustic: {}) but its material \"{}\" lets shadow rays \
-             through: the light it transmits is counted twice, by shadow rays and by caustic \
-             photons",
-            leaf.path, role.0, m.materials[material].desc.name
+            "\"{}\" casts caustics{flag} but its material \"{}\" lets shadow rays through: \
+             the light it transmits is counted twice, by shadow rays and by caustic photons",
+            leaf.path, m.materials[material].desc.name
         );
-        let help = "set `caustic: 0` or `caustic: 2` on it, or make the material opaque";
-        src.push_warning(file, Diagnostic::at(pos, message, Some(help.into())));
+        let mi = if mat.shadow.is_some() {
+            "set `caustic 0` or `caustic 2` on it, or leave out the material's `shadow` shader"
+        } else {
+            "set `caustic 0` or `caustic 2` on it, or make the material opaque"
+        };
+        let help = syntax.help_each(Helps {
+            ron: "set `caustic: 0` or `caustic: 2` on it, or make the material opaque",
+            mi,
+            rib: "make it opaque (`Opacity 1 1 1`), or make its `Attribute \"caustic\"` colours black so that it casts no caustics",
+            gltf: "set `caustic: 0` or `caustic: 2` on it, or make the material opaque",
+        });
+        src.push_warning(file, Diagnostic::at(pos, message, Some(help)));
     }
 }

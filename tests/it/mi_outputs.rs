@@ -214,3 +214,39 @@ fn cli_render_of_output_png_writes_an_rgba_png() {
     assert_eq!((png.width, png.height, png.channels), (4, 4, 4));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// The channels of an EXR output are those its type names, as RIB's `Display` modes: `rgb`
+/// (and its deeper `_16`, `_h`, `_fp` forms) writes no alpha channel, `rgba` writes `A`
+/// (EXR sorts the channels by name).
+#[test]
+fn an_rgb_exr_output_writes_no_alpha_channel_and_rgba_does() {
+    let types: [(&str, &[&str]); 6] = [
+        ("rgb", &["B", "G", "R"]),
+        ("rgb_16", &["B", "G", "R"]),
+        ("rgb_h", &["B", "G", "R"]),
+        ("rgb_fp", &["B", "G", "R"]),
+        ("rgba", &["A", "B", "G", "R"]),
+        ("rgba_fp", &["A", "B", "G", "R"]),
+    ];
+    let outputs: Vec<String> = types
+        .iter()
+        .map(|(t, _)| format!("output \"{t}\" \"exr\" \"{t}.exr\""))
+        .collect();
+    let dir = scratch_dir("mi_output_exr_channels");
+    std::fs::write(dir.join("c.mi"), scene(&outputs.join("\n"))).unwrap();
+    let o = run_in(&dir, &["render", "c.mi"]);
+    assert!(o.status.success(), "{}", stderr_of(&o));
+    for (kind, expected) in types {
+        let path = dir.join(format!("{kind}.exr"));
+        let image = exr::prelude::read_all_flat_layers_from_file(&path)
+            .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        let names: Vec<String> = image.layer_data[0]
+            .channel_data
+            .list
+            .iter()
+            .map(|c| c.name.to_string())
+            .collect();
+        assert_eq!(names, expected, "output type {kind}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

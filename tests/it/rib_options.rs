@@ -8,21 +8,16 @@ use std::path::Path;
 use stagelight::components::{Camera, RenderCamera};
 use stagelight::framebuffer::FrameBuffers;
 use stagelight::scene::desc::{FalloffDesc, LensDesc, PassDesc, VolumeDesc};
-use stagelight::scene::import::rib::{read_rib, RibScene};
+use stagelight::scene::import::rib::RibScene;
+
+use crate::common::read_rib_text;
 use stagelight::scene::load_scene_str;
 
 use crate::lens_shaders::{blur_diameter, circle_of_confusion, profile};
 
+/// The scene read from `text` as `t.rib` (a panic shows the reader's errors).
 fn read(text: &str) -> RibScene {
-    read_rib(Path::new("t.rib"), text.as_bytes()).unwrap_or_else(|e| {
-        panic!(
-            "{}",
-            e.iter()
-                .map(ToString::to_string)
-                .collect::<Vec<_>>()
-                .join("\n")
-        )
-    })
+    read_rib_text(text)
 }
 
 fn warnings(s: &RibScene) -> Vec<String> {

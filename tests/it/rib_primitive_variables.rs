@@ -7,7 +7,9 @@ use std::path::{Path, PathBuf};
 
 use glam::{Vec2, Vec3};
 use stagelight::scene::desc::MeshDesc;
-use stagelight::scene::import::rib::{read_rib, RibScene};
+use stagelight::scene::import::rib::RibScene;
+
+use crate::common::read_rib_text;
 use stagelight::scene::{load_scene, load_scene_str};
 
 /// Writes `text` as `name` in a fresh folder of the temporary directory.
@@ -28,16 +30,9 @@ fn render(path: &Path) -> (Vec<Vec3>, usize) {
     (image.beauty, image.width as usize)
 }
 
+/// The scene read from `text` as `t.rib` (a panic shows the reader's errors).
 fn read(text: &str) -> RibScene {
-    read_rib(Path::new("t.rib"), text.as_bytes()).unwrap_or_else(|e| {
-        panic!(
-            "{}",
-            e.iter()
-                .map(ToString::to_string)
-                .collect::<Vec<_>>()
-                .join("\n")
-        )
-    })
+    read_rib_text(text)
 }
 
 /// Every message of a refused file.

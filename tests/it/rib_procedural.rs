@@ -10,6 +10,7 @@ use stagelight::scene::import::rib::read_rib;
 use stagelight::scene::import::to_ron::to_ron;
 
 use crate::common::cli::scratch_dir;
+use crate::common::read_rib_at;
 
 const HEAD: &str = "Format 16 16 1\nTranslate 0 0 8\nWorldBegin\n";
 
@@ -29,15 +30,7 @@ fn messages(dir: &Path, text: &str) -> Vec<String> {
 /// The RON of the description read from `text` as `dir/main.rib`, which must have no
 /// warnings.
 fn ron(dir: &Path, text: &str) -> String {
-    let s = read_rib(&dir.join("main.rib"), text.as_bytes()).unwrap_or_else(|e| {
-        panic!(
-            "{}",
-            e.iter()
-                .map(ToString::to_string)
-                .collect::<Vec<_>>()
-                .join("\n")
-        )
-    });
+    let s = read_rib_at(&dir.join("main.rib"), text);
     let w: Vec<String> = s.warnings.iter().map(ToString::to_string).collect();
     assert!(w.is_empty(), "{w:?}");
     to_ron(&s.desc).unwrap()

@@ -7,18 +7,13 @@ use std::path::Path;
 use stagelight::components::{Camera, RenderCamera};
 use stagelight::scene::desc::TransformDesc;
 use stagelight::scene::import::rib::{read_rib, RibScene};
+
+use crate::common::read_rib_text;
 use stagelight::scene::load_scene_str;
 
+/// The scene read from `text` as `t.rib` (a panic shows the reader's errors).
 fn read(text: &str) -> RibScene {
-    read_rib(Path::new("t.rib"), text.as_bytes()).unwrap_or_else(|e| {
-        panic!(
-            "{}",
-            e.iter()
-                .map(ToString::to_string)
-                .collect::<Vec<_>>()
-                .join("\n")
-        )
-    })
+    read_rib_text(text)
 }
 
 fn warnings(text: &str) -> Vec<String> {

@@ -8,7 +8,9 @@ use std::path::{Path, PathBuf};
 
 use glam::{Vec2, Vec3};
 use stagelight::scene::desc::{MeshDesc, SurfaceValuesDesc};
-use stagelight::scene::import::rib::{read_rib, RibScene};
+use stagelight::scene::import::rib::RibScene;
+
+use crate::common::read_rib_text;
 use stagelight::scene::{load_scene, load_scene_str};
 use stagelight::shading::texture::image::{load, Encoding, Texture};
 
@@ -32,16 +34,9 @@ fn render(name: &str, text: &str) -> (Vec<Vec3>, usize) {
     (image.beauty, image.width as usize)
 }
 
+/// The scene read from `text` as `t.rib` (a panic shows the reader's errors).
 fn read(text: &str) -> RibScene {
-    read_rib(Path::new("t.rib"), text.as_bytes()).unwrap_or_else(|e| {
-        panic!(
-            "{}",
-            e.iter()
-                .map(ToString::to_string)
-                .collect::<Vec<_>>()
-                .join("\n")
-        )
-    })
+    read_rib_text(text)
 }
 
 fn bricks() -> PathBuf {

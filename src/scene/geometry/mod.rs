@@ -277,10 +277,16 @@ pub fn warnings(src: &mut Sources, m: &Merged<'_>, geometry: &[Option<ObjectGeom
                 "object \"{}\": the approximation has no effect on {article} {kind} without true displacement",
                 it.desc.name
             );
-            let help = "leave `approximation` out: a polygon mesh is diced only for `displacement: (…, mode: True)`";
+            let ron = "leave `approximation` out: a polygon mesh is diced only for `displacement: (…, mode: True)`";
+            let help = src.syntax(it.file).help_each(super::syntax::Helps {
+                ron,
+                mi: ron,
+                rib: "a polygon is diced only under true displacement (a `Displacement` shader with `Attribute \"render\" \"truedisplacement\" [1]`): give `ShadingRate` only to the surfaces it dices (inside their `AttributeBegin`/`AttributeEnd`)",
+                gltf: ron,
+            });
             src.push_warning(
                 it.file,
-                super::diagnostics::Diagnostic::at(pos, message, Some(help.into())),
+                super::diagnostics::Diagnostic::at(pos, message, Some(help)),
             );
         }
     }

@@ -235,6 +235,12 @@ pub const FORMATS: &[Format] = &[
     },
 ];
 
+/// The syntax the scene file at `path` is written in, by its extension as the readers are
+/// chosen (RON when none takes it), so that a help shows what to write in that file.
+pub fn syntax_of(path: &Path) -> Syntax {
+    reader_for(FORMATS, path).map_or_else(|_| Syntax::default(), |f| f.syntax)
+}
+
 /// The known extensions as a help text: `known scene formats: .ron`.
 fn known_formats(formats: &[Format]) -> String {
     let list: Vec<String> = formats

@@ -7,6 +7,7 @@ mod mi_text;
 mod photon_pass;
 pub mod png;
 mod rays;
+mod rib_text;
 mod scene_text;
 mod scratch;
 pub use cli::*;
@@ -14,6 +15,7 @@ pub use meshes::*;
 pub use mi_text::*;
 pub use photon_pass::*;
 pub use rays::*;
+pub use rib_text::*;
 pub use scene_text::*;
 pub use scratch::scratch_root;
 

@@ -639,11 +639,17 @@ fn output(c: &mut Cursor, outputs: &mut Vec<OutputDesc>) {
         file = new;
         format
     };
+    // The channels are those the type names: `rgb` writes no alpha (an EXR's `Beauty`
+    // otherwise brings the coverage as `A`; a PNG writes it only with `Alpha`), `rgba` does.
+    let beauty_alpha = (matches!(format, FormatDesc::Exr)
+        && passes.contains(&PassDesc::Beauty)
+        && !passes.contains(&PassDesc::Alpha))
+    .then_some(false);
     outputs.push(OutputDesc {
         file,
         format: Some(format),
         passes: Some(passes),
-        beauty_alpha: None,
+        beauty_alpha,
     });
 }
 
