@@ -14,6 +14,7 @@ use crate::hash::Fnv64;
 use crate::scene::{load_scene_within, Diagnostic, LoadedScene, SceneErrors};
 use crate::schedule::StageError;
 use crate::settings::{Integrator, RenderSettings};
+use crate::sweep::bake_reference;
 use crate::sweep::budget_check::{self, Runs};
 use crate::sweep::crop::Crop;
 use crate::sweep::integrator_check;
@@ -402,7 +403,7 @@ fn sweep_runs(
     pipeline: Pipeline,
     mut progress: impl FnMut(&str),
 ) -> Result<SweepSummary, SweepError> {
-    let (cached, setting, camera_size) = {
+    let (cached, setting, camera_size, bake) = {
         let scene = load_scene_within(&opts.scene, &opts.budget)?;
         opts.knob.check(&scene.world, &scene.settings)?;
         let integrator = opts.integrator.unwrap_or(scene.settings.integrator);
@@ -430,13 +431,23 @@ fn sweep_runs(
         let camera_size = crate::scene_view::render_view(&scene.world)
             .map(|v| (v.camera.width, v.camera.height))
             .filter(|_| !opts.knob.is_bake());
+        let bake = opts.knob.is_bake().then(|| {
+            bake_reference::describe(
+                &scene.world,
+                opts.reference_samples,
+                opts.reference_integrator,
+            )
+        });
         (
             reference_cache(opts, &scene, key.as_deref()),
             setting,
             camera_size,
+            bake,
         )
     };
-    let rendered = describe_rendered(opts, setting.as_deref());
+    let rendered = bake
+        .clone()
+        .unwrap_or_else(|| describe_rendered(opts, setting.as_deref()));
     let with_setting = setting.map_or_else(String::new, |s| format!(", {s}"));
     check_budget(opts, opts.reference.is_none() && !cached.exists())?;
     // The output directory is made only once the reference is read (or rendered) and its
@@ -461,10 +472,13 @@ fn sweep_runs(
             read_exr_rgb(&cached)?
         }
         None => {
-            progress(&format!(
-                "reference: {} samples{with_setting}",
-                opts.reference_samples
-            ));
+            progress(&match &bake {
+                Some(bake) => format!("reference: {bake}"),
+                None => format!(
+                    "reference: {} samples{with_setting}",
+                    opts.reference_samples
+                ),
+            });
             let r = run_once(
                 opts,
                 pipeline,
