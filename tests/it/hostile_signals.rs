@@ -263,7 +263,10 @@ fn a_sweep_interrupted_after_its_reference_keeps_it_for_the_next_sweep() {
             ""
         };
         assert!(
-            stderr.starts_with(&format!("sweep: reference: cached out/{}{depth}\n", kept[0])),
+            stderr.starts_with(&format!(
+                "sweep: reference: cached out/{}{depth}\n",
+                kept[0]
+            )),
             "{name}: {stderr}"
         );
         assert!(!stderr.contains("reference: 1 samples"), "{name}: {stderr}");
