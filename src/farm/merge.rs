@@ -94,9 +94,16 @@ pub fn check_headers(parts: &[(&Path, &PartHeader)], command: &str) -> Result<()
             );
         }
         if h.settings_hash != h0.settings_hash {
+            // The settings a part records are named; the rest only its hash covers.
+            if let Some((what, a, b)) = h0.recorded.first_difference(h.recorded) {
+                return differs(what, a, b);
+            }
+            if h.version != h0.version {
+                return differs("stagelight version", h0.version.clone(), h.version.clone());
+            }
             return differs(
                 "render settings",
-                format!("{:016x}", h0.settings_hash),
+                format!("{:016x}{}", h0.settings_hash, unrecorded_settings(command)),
                 format!("{:016x}", h.settings_hash),
             );
         }
@@ -129,6 +136,17 @@ pub fn check_headers(parts: &[(&Path, &PartHeader)], command: &str) -> Result<()
         return Err(missing_parts(&missing, count, command));
     }
     Ok(())
+}
+
+/// What differs between parts whose settings hashes differ although their scene, seed,
+/// recorded settings and stagelight version agree: what `command` can override that the
+/// part files keep only in the hash.
+fn unrecorded_settings(command: &str) -> &'static str {
+    if command == "render" {
+        " (scene, seed, integrator and disabled features agree, so the parts were rendered with different `--spp` or `--diagnostic`, which a part file records only in this hash)"
+    } else {
+        " (scene, seed, integrator and disabled features agree, and `bake` overrides nothing else: the parts were baked by different builds of this stagelight version)"
+    }
 }
 
 /// The refusal of a set without the parts `missing` (in order) of `count`, naming them in
@@ -325,6 +343,49 @@ mod tests {
         assert!(
             e.ends_with("for K = 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, … (or resubmit array indices 1,2,3,4,5,6,7,8,9,10,…)"),
             "{e}"
+        );
+    }
+
+    #[test]
+    fn parts_of_different_settings_name_what_differs() {
+        let refusal = |edit: &dyn Fn(&mut PartHeader), command| {
+            let a = PartHeader::for_tests(1, 4, 4);
+            let mut b = PartHeader::for_tests(2, 4, 4);
+            b.settings_hash = 3;
+            edit(&mut b);
+            let parts = [(Path::new("p1.exr"), &a), (Path::new("p2.exr"), &b)];
+            check_headers(&parts, command).unwrap_err()
+        };
+        let help = "\n  help: merge only the parts of one `stagelight render --part K/N` run";
+        assert_eq!(
+            refusal(
+                &|h| h.recorded.integrator = crate::settings::Integrator::Path,
+                "render"
+            ),
+            format!(
+                "p2.exr and p1.exr are parts of different renders: integrator path vs direct{help}"
+            )
+        );
+        assert_eq!(
+            refusal(
+                &|h| h.recorded.disabled = crate::features::Features::parse_list("lens").unwrap(),
+                "render"
+            ),
+            format!("p2.exr and p1.exr are parts of different renders: disabled features lens vs none{help}")
+        );
+        assert_eq!(
+            refusal(&|h| h.version = "1".into(), "render"),
+            format!(
+                "p2.exr and p1.exr are parts of different renders: stagelight version 1 vs 0{help}"
+            )
+        );
+        assert_eq!(
+            refusal(&|_| {}, "render"),
+            format!("p2.exr and p1.exr are parts of different renders: render settings 0000000000000003 vs 0000000000000002 (scene, seed, integrator and disabled features agree, so the parts were rendered with different `--spp` or `--diagnostic`, which a part file records only in this hash){help}")
+        );
+        assert_eq!(
+            refusal(&|_| {}, "bake"),
+            "p2.exr and p1.exr are parts of different bakes: render settings 0000000000000003 vs 0000000000000002 (scene, seed, integrator and disabled features agree, and `bake` overrides nothing else: the parts were baked by different builds of this stagelight version)\n  help: merge only the parts of one `stagelight bake --part K/N` run"
         );
     }
 }

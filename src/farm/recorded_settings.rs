@@ -48,6 +48,18 @@ impl RecordedSettings {
         ]
     }
 
+    /// The first recorded setting in which `other` differs from these, as `(what, these,
+    /// other's)`: `("integrator", "direct", "path")`, `("disabled features", "none",
+    /// "lens")`; `None` when they agree.
+    pub(super) fn first_difference(self, other: Self) -> Option<(&'static str, String, String)> {
+        let names = ["disabled features", "integrator"];
+        names
+            .into_iter()
+            .zip(self.entries().into_iter().zip(other.entries()))
+            .find(|(_, (a, b))| a != b)
+            .map(|(what, (a, b))| (what, a.1, b.1))
+    }
+
     /// The settings recorded as the entries `disable` and `integrator`; the error is the
     /// key of the malformed entry.
     pub(super) fn parse(disable: &str, integrator: &str) -> Result<Self, &'static str> {

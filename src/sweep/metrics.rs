@@ -1,5 +1,6 @@
 //! Error of an image (or baked texture) against a reference: MSE, relMSE, maximum error,
-//! non-finite values, and — over several seeds — bias² and variance.
+//! non-finite values, and — over several seeds — bias² and variance (`None` from one seed,
+//! which cannot tell them apart: the CSV leaves them empty, the JSON writes `null`).
 
 use glam::Vec3;
 use serde::Serialize;
@@ -18,10 +19,10 @@ pub struct ErrorMetrics {
     pub max_error: f64,
     /// Channels that are NaN or infinite, over all seeds.
     pub non_finite: u64,
-    /// Mean over channels of (mean over seeds − reference)² (0 with one seed).
-    pub bias2: f64,
-    /// Mean over channels of the variance across seeds (0 with one seed).
-    pub variance: f64,
+    /// Mean over channels of (mean over seeds − reference)² (`None` with one seed).
+    pub bias2: Option<f64>,
+    /// Mean over channels of the variance across seeds (`None` with one seed).
+    pub variance: Option<f64>,
 }
 
 /// Compares the images of several seeds (same size as `reference`) with the reference.
@@ -74,8 +75,8 @@ pub fn compare(images: &[Vec<Vec3>], reference: &[Vec3]) -> ErrorMetrics {
                 var += (sum2 - count * mean * mean).max(0.0) / (count - 1.0);
             }
         }
-        m.bias2 = bias2 / n;
-        m.variance = var / n;
+        m.bias2 = Some(bias2 / n);
+        m.variance = Some(var / n);
     }
     m
 }
@@ -90,7 +91,7 @@ mod tests {
         let m = compare(&[r.clone(), r.clone()], &r);
         assert_eq!(
             (m.mse, m.rel_mse, m.max_error, m.bias2, m.variance),
-            (0.0, 0.0, 0.0, 0.0, 0.0)
+            (0.0, 0.0, 0.0, Some(0.0), Some(0.0))
         );
     }
 
@@ -101,7 +102,8 @@ mod tests {
         let a = vec![Vec3::splat(1.0)];
         let b = vec![Vec3::splat(3.0)];
         let m = compare(&[a, b], &r);
-        assert!((m.bias2 - 4.0).abs() < 1e-12 && (m.variance - 2.0).abs() < 1e-12);
+        let (bias2, variance) = (m.bias2.unwrap(), m.variance.unwrap());
+        assert!((bias2 - 4.0).abs() < 1e-12 && (variance - 2.0).abs() < 1e-12);
         assert!((m.mse - 5.0).abs() < 1e-12 && m.max_error == 3.0);
     }
 
@@ -112,5 +114,7 @@ mod tests {
         let m = compare(&[img], &r);
         assert_eq!(m.non_finite, 1);
         assert_eq!(m.mse, 0.0);
+        // One seed cannot split its error into bias and variance.
+        assert_eq!((m.bias2, m.variance), (None, None));
     }
 }

@@ -6,6 +6,7 @@
 //! The driver takes the pipeline as a function (`main.rs` passes the stage table), so this
 //! module does not depend on `systems/`.
 
+pub mod bake_reference;
 pub mod budget_check;
 pub mod crop;
 pub mod integrator_check;

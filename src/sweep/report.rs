@@ -180,7 +180,8 @@ impl SweepSummary {
     }
 
     /// The table as CSV: value, seconds per stage, total seconds, the whole image's error
-    /// metrics, and with a crop the crop's relMSE, bias² and variance.
+    /// metrics, and with a crop the crop's relMSE, bias² and variance. Bias² and variance
+    /// are empty in rows of one seed, which cannot estimate them.
     pub fn to_csv(&self) -> String {
         let stages: Vec<&str> = self
             .rows
@@ -203,26 +204,33 @@ impl SweepSummary {
             }
             let e = &r.error;
             out.push_str(&format!(
-                "{:.6},{:.6e},{:.6e},{:.6e},{},{:.6e},{:.6e},{}",
+                "{:.6},{:.6e},{:.6e},{:.6e},{},{},{},{}",
                 r.seconds,
                 e.mse,
                 e.rel_mse,
                 e.max_error,
                 e.non_finite,
-                e.bias2,
-                e.variance,
+                estimate(e.bias2),
+                estimate(e.variance),
                 r.seeds
             ));
             if let Some(c) = &r.crop_error {
                 out.push_str(&format!(
-                    ",{:.6e},{:.6e},{:.6e}",
-                    c.rel_mse, c.bias2, c.variance
+                    ",{:.6e},{},{}",
+                    c.rel_mse,
+                    estimate(c.bias2),
+                    estimate(c.variance)
                 ));
             }
             out.push('\n');
         }
         out
     }
+}
+
+/// A bias² or variance cell: empty when one seed could not estimate it.
+fn estimate(value: Option<f64>) -> String {
+    value.map_or_else(String::new, |v| format!("{v:.6e}"))
 }
 
 /// Least-squares line `y = a + b·x`; `None` with fewer than two distinct x.
@@ -264,8 +272,10 @@ fn plateau(rows: &[SweepRow]) -> Option<bool> {
     sorted.sort_by(|a, b| a.seconds.total_cmp(&b.seconds));
     let last = sorted.last()?;
     let e = last.fitted();
-    if last.seeds > 1 && e.bias2 > e.variance && e.bias2 > 0.0 {
-        return Some(true);
+    if let (Some(bias2), Some(variance)) = (e.bias2, e.variance) {
+        if bias2 > variance && bias2 > 0.0 {
+            return Some(true);
+        }
     }
     if sorted.len() < 2 {
         return (last.seeds > 1).then_some(false);
@@ -391,10 +401,14 @@ mod tests {
             .next()
             .unwrap()
             .ends_with(",seeds,crop_rel_mse,crop_bias2,crop_variance"));
-        assert!(lines
-            .next()
-            .unwrap()
-            .ends_with(",1,1.000000e-1,0.000000e0,0.000000e0"));
+        assert!(lines.next().unwrap().ends_with(",,,1,1.000000e-1,,"));
+        // One seed estimates neither bias² nor variance: null in the JSON, not 0.
+        let json = serde_json::to_value(&s).unwrap();
+        assert_eq!(json["rows"][0]["error"]["bias2"], serde_json::Value::Null);
+        assert_eq!(
+            json["rows"][0]["crop_error"]["variance"],
+            serde_json::Value::Null
+        );
         let whole = SweepSummary::new(
             "photons",
             "x.ron",

@@ -14,6 +14,7 @@ use crate::hash::Fnv64;
 use crate::scene::{load_scene_within, Diagnostic, LoadedScene, SceneErrors};
 use crate::schedule::StageError;
 use crate::settings::{Integrator, RenderSettings};
+use crate::sweep::bake_reference;
 use crate::sweep::budget_check::{self, Runs};
 use crate::sweep::crop::Crop;
 use crate::sweep::integrator_check;
@@ -21,7 +22,7 @@ use crate::sweep::knob::{Knob, KnobError};
 use crate::sweep::leftovers::SweepFiles;
 use crate::sweep::metrics::compare;
 use crate::sweep::reference_file;
-use crate::sweep::reference_setting::{self, reference_setting};
+use crate::sweep::reference_setting::{self, reference_depth, reference_setting, ReferenceDepth};
 use crate::sweep::report::{SweepRow, SweepSummary};
 
 /// Runs the stage table over a world (`systems::run`, passed in by the CLI).
@@ -193,7 +194,8 @@ fn tasks(opts: &SweepOptions) -> Tasks {
 
 /// How the reference run configures the scene: the scene's own knob setting, except the
 /// sample count, which it raises, and a knob whose accuracy is a setting (`max_depth`,
-/// `tessellation`), which takes its most accurate value ([`reference_setting`]); and the
+/// `tessellation`), which takes its most accurate value ([`reference_setting`]); the trace
+/// depth, raised when the swept runs read photon maps ([`reference_depth`]); and the
 /// reference's integrator.
 fn configure_reference(opts: &SweepOptions) -> impl Fn(&mut World, &mut RenderSettings) + '_ {
     configure_reference_at(opts, true)
@@ -209,6 +211,9 @@ fn configure_reference_at(
         if let Some(setting) = reference_setting(&opts.knob, settings).filter(|_| accurate) {
             setting.apply(0, world, settings);
         }
+        if let Some(depth) = rendered_depth(opts, settings).setting() {
+            depth.apply(0, world, settings);
+        }
         match opts.knob {
             Knob::BakeSamples(_) => {
                 Knob::BakeSamples(vec![opts.reference_samples]).apply(0, world, settings)
@@ -220,6 +225,16 @@ fn configure_reference_at(
         }
         settings.integrator = opts.reference_integrator;
     }
+}
+
+/// The trace depth of a rendered reference on a scene with `scene` settings (a bake's
+/// reference keeps the scene's: no bake reads photon maps).
+fn rendered_depth(opts: &SweepOptions, scene: &RenderSettings) -> ReferenceDepth {
+    if opts.knob.is_bake() {
+        return ReferenceDepth::Scene(scene.max_depth);
+    }
+    let swept = opts.integrator.unwrap_or(scene.integrator);
+    reference_depth(&opts.knob, scene, swept)
 }
 
 /// How the run of knob value `i` configures the scene.
@@ -388,7 +403,7 @@ fn sweep_runs(
     pipeline: Pipeline,
     mut progress: impl FnMut(&str),
 ) -> Result<SweepSummary, SweepError> {
-    let (cached, setting, camera_size) = {
+    let (cached, setting, camera_size, bake) = {
         let scene = load_scene_within(&opts.scene, &opts.budget)?;
         opts.knob.check(&scene.world, &scene.settings)?;
         let integrator = opts.integrator.unwrap_or(scene.settings.integrator);
@@ -397,18 +412,42 @@ fn sweep_runs(
             return Err(KnobError::DenoiseNeedsBake(opts.knob.name()).into());
         }
         check_crop_fits_camera(opts, &scene.world)?;
-        let setting =
-            reference_setting(&opts.knob, &scene.settings).map(|k| reference_setting::describe(&k));
+        let knob_setting = reference_setting(&opts.knob, &scene.settings);
+        let depth = rendered_depth(opts, &scene.settings);
+        // The cache key holds the settings the reference changes; the description also
+        // says the depth it keeps.
+        let key = knob_setting
+            .iter()
+            .chain(depth.setting().as_ref())
+            .map(reference_setting::describe)
+            .collect::<Vec<_>>();
+        let description = knob_setting
+            .iter()
+            .map(reference_setting::describe)
+            .chain(depth.describe().filter(|_| !opts.knob.is_bake()))
+            .collect::<Vec<_>>();
+        let key = (!key.is_empty()).then(|| key.join(", "));
+        let setting = (!description.is_empty()).then(|| description.join(", "));
         let camera_size = crate::scene_view::render_view(&scene.world)
             .map(|v| (v.camera.width, v.camera.height))
             .filter(|_| !opts.knob.is_bake());
+        let bake = opts.knob.is_bake().then(|| {
+            bake_reference::describe(
+                &scene.world,
+                opts.reference_samples,
+                opts.reference_integrator,
+            )
+        });
         (
-            reference_cache(opts, &scene, setting.as_deref()),
+            reference_cache(opts, &scene, key.as_deref()),
             setting,
             camera_size,
+            bake,
         )
     };
-    let rendered = describe_rendered(opts, setting.as_deref());
+    let rendered = bake
+        .clone()
+        .unwrap_or_else(|| describe_rendered(opts, setting.as_deref()));
     let with_setting = setting.map_or_else(String::new, |s| format!(", {s}"));
     check_budget(opts, opts.reference.is_none() && !cached.exists())?;
     // The output directory is made only once the reference is read (or rendered) and its
@@ -433,10 +472,13 @@ fn sweep_runs(
             read_exr_rgb(&cached)?
         }
         None => {
-            progress(&format!(
-                "reference: {} samples{with_setting}",
-                opts.reference_samples
-            ));
+            progress(&match &bake {
+                Some(bake) => format!("reference: {bake}"),
+                None => format!(
+                    "reference: {} samples{with_setting}",
+                    opts.reference_samples
+                ),
+            });
             let r = run_once(
                 opts,
                 pipeline,

@@ -170,7 +170,7 @@ fn sigterm_during_a_sweep_exits_130_and_writes_nothing() {
     assert_eq!(code, Some(130), "{stderr}");
     assert_eq!(
         stderr,
-        "sweep: reference: 1000000000 samples\ninterrupted; no output written\n"
+        "sweep: reference: 1000000000 samples, max_depth=4 (the scene's, as in the swept runs)\ninterrupted; no output written\n"
     );
     assert_eq!(dir_names(&dir), ["scene.ron"]);
 }
@@ -256,8 +256,17 @@ fn a_sweep_interrupted_after_its_reference_keeps_it_for_the_next_sweep() {
         let o = sweep(quick).output().unwrap();
         assert!(o.status.success(), "{name}: {}", stderr_of(&o));
         let stderr = stderr_of(&o);
+        // A rendered reference states its trace depth; a bake's has none.
+        let depth = if name == "render" {
+            ", max_depth=4 (the scene's, as in the swept runs)"
+        } else {
+            ""
+        };
         assert!(
-            stderr.starts_with(&format!("sweep: reference: cached out/{}\n", kept[0])),
+            stderr.starts_with(&format!(
+                "sweep: reference: cached out/{}{depth}\n",
+                kept[0]
+            )),
             "{name}: {stderr}"
         );
         assert!(!stderr.contains("reference: 1 samples"), "{name}: {stderr}");

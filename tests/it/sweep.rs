@@ -172,6 +172,16 @@ fn bake_samples_sweep_compares_baked_textures() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let rel = rel_mse_column(&std::fs::read_to_string(out.join("sweep.csv")).unwrap());
     assert!(rel[0] > rel[1], "{rel:?}");
+    // The reference is the scene's AO bake at 1024 rays per texel, not a path-traced image.
+    assert!(
+        String::from_utf8_lossy(&o.stderr)
+            .starts_with("sweep: reference: AO bake, 1024 rays per texel\n"),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let json: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("sweep.json")).unwrap()).unwrap();
+    assert_eq!(json["reference"], "AO bake, 1024 rays per texel");
 }
 
 /// `--denoise`: the swept bakes are denoised in texel space (the reference is not), which at

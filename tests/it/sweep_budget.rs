@@ -141,7 +141,7 @@ fn adaptive_rates_past_the_budget_fail_at_tessellate_in_a_sweep() {
     assert_eq!(o.status.code(), Some(1), "{}", stderr_of(&o));
     assert_eq!(
         stderr_of(&o),
-        "sweep: reference: 4 samples, tessellation=0.5\nscene.ron:5:82: error: object \"ball\": its approximation would make 268435456 triangles, about 96.0 GiB, more than the 2796202 the memory budget of 1.0 GiB (--memory-limit) allows one object\n  help: coarsen the approximation (a larger `edge` or `distance`, a smaller `max_subdiv`), or raise the budget with --memory-limit BYTES\n"
+        "sweep: reference: 4 samples, tessellation=0.5, max_depth=4 (the scene's, as in the swept runs)\nscene.ron:5:82: error: object \"ball\": its approximation would make 268435456 triangles, about 96.0 GiB, more than the 2796202 the memory budget of 1.0 GiB (--memory-limit) allows one object\n  help: coarsen the approximation (a larger `edge` or `distance`, a smaller `max_subdiv`), or raise the budget with --memory-limit BYTES\n"
     );
     assert!(!dir.join("o").exists());
 }

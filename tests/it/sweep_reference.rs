@@ -118,6 +118,77 @@ fn max_depth_is_measured_against_a_deep_reference() {
     );
 }
 
+/// The mean of every channel of every `OUT/reference_*.exr` (the cached references).
+fn reference_mean(out: &Path) -> f64 {
+    let files: Vec<PathBuf> = std::fs::read_dir(out)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| {
+            p.file_name()
+                .unwrap()
+                .to_string_lossy()
+                .starts_with("reference_")
+        })
+        .collect();
+    assert_eq!(files.len(), 1, "{files:?}");
+    let (px, _, _) = stagelight::sweep::runner::read_exr_rgb(&files[0]).unwrap();
+    px.iter().map(|p| f64::from(p.x + p.y + p.z)).sum::<f64>() / (3 * px.len()) as f64
+}
+
+/// The tester's case: the global photon map carries every bounce, but the photon and spp
+/// sweeps of a final-gathering scene were scored against a path tracer cut at the scene's
+/// depth. Now its reference is at depth 16 and says so; under `--integrator path` the runs
+/// are cut at the scene's depth as the reference is, which keeps it (and says so). In the
+/// white box the depth-16 reference is far brighter than the depth-2 one.
+#[test]
+fn a_photon_map_scene_is_measured_against_a_deep_reference() {
+    let gi = BOX.replace(
+        "max_depth: 2)",
+        "max_depth: 2, global_illumination: (photons: 2000, gather: 16, final_gather: 4))",
+    );
+    let dir = setup("photon-depth", &gi);
+    let args = |out: &'static str, integrator: &'static str| {
+        [
+            "scene.ron",
+            "--knob",
+            "spp=1,2",
+            "--integrator",
+            integrator,
+            "--reference-spp",
+            "16",
+            "--out",
+            out,
+        ]
+    };
+    let o = sweep(&dir, &args("gi", "direct"));
+    assert!(o.status.success(), "{}", stderr(&o));
+    let raised =
+        "max_depth=16 (the scene's is 2, but the swept runs' photon maps carry light past it)";
+    assert!(
+        stderr(&o).starts_with(&format!("sweep: reference: 16 samples, {raised}\n")),
+        "{}",
+        stderr(&o)
+    );
+    assert_eq!(
+        summary(&dir.join("gi"))["reference"],
+        format!("path tracer, 16 samples, {raised}")
+    );
+    let o = sweep(&dir, &args("path", "path"));
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(
+        summary(&dir.join("path"))["reference"],
+        "path tracer, 16 samples, max_depth=2 (the scene's, as in the swept runs)"
+    );
+    let (deep, cut) = (
+        reference_mean(&dir.join("gi")),
+        reference_mean(&dir.join("path")),
+    );
+    assert!(
+        deep > 1.3 * cut,
+        "reference means: depth 16 {deep}, depth 2 {cut}"
+    );
+}
+
 /// A coarsely diced ball (4 × 4 patches) under a sun.
 const BALL: &str = r#"Scene(
     options: (samples: 16),
@@ -159,7 +230,7 @@ fn tessellation_is_measured_against_the_finest_dicing() {
     );
     assert_eq!(
         summary(&dir.join("out"))["reference"],
-        "path tracer, 64 samples, tessellation=0.25"
+        "path tracer, 64 samples, tessellation=0.25, max_depth=4 (the scene's, as in the swept runs)"
     );
 }
 
