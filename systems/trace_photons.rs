@@ -81,6 +81,11 @@ pub fn should_run(world: &World, frame: &Frame) -> Decision {
         }
         _ => {}
     }
+    if let Some(why) = crate::image_reads::samples_unread(world, &frame.inputs) {
+        return Decision::skip(format!(
+            "{why}; photon maps are read only by the shaded samples"
+        ));
+    }
     if frame.inputs.settings.integrator != Integrator::Direct {
         return Decision::skip("the path integrator does not read photon maps");
     }

@@ -18,6 +18,7 @@ mod bake_stitch_range;
 mod bake_unwrap;
 mod camera_matrix_rounding;
 mod camera_passes;
+mod centre_passes_only;
 mod cli;
 mod cli_bake;
 mod cli_farm;
