@@ -81,10 +81,18 @@ pub fn should_run(world: &World, frame: &Frame) -> Decision {
         }
         _ => {}
     }
+    // The photon view shows the maps from the pixel-centre rays; nothing else reads them
+    // without samples.
+    let photon_view = matches!(
+        frame.inputs.settings.diagnostic,
+        Some(crate::diagnostic::Diagnostic::Photon { .. })
+    );
     if let Some(why) = crate::image_reads::samples_unread(world, &frame.inputs) {
-        return Decision::skip(format!(
-            "{why}; photon maps are read only by the shaded samples"
-        ));
+        if !photon_view {
+            return Decision::skip(format!(
+                "{why}; photon maps are read only by the shaded samples"
+            ));
+        }
     }
     if frame.inputs.settings.integrator != Integrator::Direct {
         return Decision::skip("the path integrator does not read photon maps");

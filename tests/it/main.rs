@@ -32,6 +32,7 @@ mod contour_stacking;
 mod contours;
 mod contours_not_drawn;
 mod diagnostic_bvh;
+mod diagnostic_centre_rays;
 mod diagnostic_views;
 mod displacement_exr;
 mod docs_reference;
