@@ -104,6 +104,7 @@ mod photon_lights;
 mod photon_map_fields;
 mod photon_partition;
 mod photon_progressive;
+mod photon_receivers;
 mod photons;
 mod ply_colours;
 mod png_alpha;
