@@ -29,6 +29,7 @@ pub mod geometry;
 pub mod guard;
 pub mod hash;
 pub mod image_io;
+pub mod image_reads;
 pub mod limits;
 pub mod log_format;
 pub mod memory_budget;

@@ -122,6 +122,9 @@ pub fn should_run(world: &World, frame: &Frame) -> Decision {
             reason += &format!(", {} shaders disabled", f.name());
         }
     }
+    if let Some(why) = crate::image_reads::samples_unread(world, &frame.inputs) {
+        reason += &format!(", only the pixel-centre rays: {why}");
+    }
     match (share, &frame.inputs.part) {
         (Some(Share::CentresOnly(why)), _) => {
             reason += &format!(
@@ -166,6 +169,8 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
     let filter = FilterSampler::new(settings.filter);
     let seed = fold_seed(settings.seed);
     let budget = SampleBudget::new(&settings);
+    // Nothing reads a sample: only the pixel-centre rays are traced.
+    let centres_only = crate::image_reads::samples_unread(world, &frame.inputs).is_some();
     let (width, height) = (camera.width as usize, camera.height as usize);
     let part = frame.inputs.part.as_ref().map(|r| r.part);
     let whole = Part::whole();
@@ -175,13 +180,18 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
             "adaptive sampling cannot be split by samples".into(),
         ));
     }
-    let first_samples = part_or_whole.samples(budget.min);
-    let environment = keeps_environment_share(world, frame, &lights);
+    let first_samples = if centres_only {
+        0..0
+    } else {
+        part_or_whole.samples(budget.min)
+    };
+    let refines = budget.refines() && !centres_only;
+    let environment = keeps_environment_share(world, frame, &lights) && !centres_only;
 
     let mut fb = FrameBuffers::new(camera.width, camera.height);
     let cancel = frame.inputs.cancel.clone();
     let stopped = AtomicBool::new(false);
-    let passes = if budget.refines() { 2 } else { 1 };
+    let passes = if refines { 2 } else { 1 };
     let progress = Progress::start(
         frame.inputs.progress,
         "shade",
@@ -211,7 +221,7 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
         // samples part would need exact component sums (refused by the CLI).
         components: part.is_none_or(|p| p.split == crate::farm::Split::Tiles)
             && wants_components(&camera),
-        variance: budget.refines(),
+        variance: refines,
         environment,
         centres: part_or_whole.traces_centres(),
     };
@@ -220,7 +230,7 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
     // neighbours, those next to them).
     let count = first_samples.len() as u32;
     let first_pass = |x: usize, y: usize| {
-        if !part_or_whole.needs_first_pass(x, y, width, height, budget.refines()) {
+        if !part_or_whole.needs_first_pass(x, y, width, height, refines) {
             return PixelResult::empty();
         }
         shade.first_pass(x, y, count)
@@ -237,7 +247,7 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
     });
     fb.environment = environment.then(|| vec![Vec3::ZERO; width * height]);
     let rows = RowOut::split(&mut fb, sums.as_mut(), components.as_mut(), width, height);
-    let totals = if budget.refines() {
+    let totals = if refines {
         // Every pixel's pass-1 samples decide the refinement, so they are all kept.
         let per_pixel = |f: &(dyn Fn(usize, usize) -> Option<PixelResult> + Sync)| {
             let rows: Vec<Vec<Option<PixelResult>>> = (0..height)
@@ -345,6 +355,10 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
     fb.sums = sums;
     fb.components = components;
     fb.contour_store = contour_store(world, frame, &fb);
+    if centres_only {
+        let traced = (width * height) as u64;
+        return Ok(Work::new(traced, "centre rays").with_output(StageOutput::Image(fb)));
+    }
     Ok(Work::new(taken, "samples").with_output(StageOutput::Image(fb)))
 }
 

@@ -11,7 +11,8 @@
 //! are loaded, and the report lists the stage as skipped, "loaded from FILE (hash …)".
 //! **Runs when:** the run renders with the `Direct` integrator, caustics or global
 //! illumination is on, geometry exists (with a caustic caster when only caustics are on),
-//! and some light emits power.
+//! some instance receives photons for a map that is on and some material stores them
+//! (`crate::photon::receivers`), and some light emits power.
 //! **After this stage:** `outputs.photons` holds the requested maps, each built from its own
 //! number of emitted photons with powers summing (in expectation) to what reaches the
 //! stored surfaces, identical at any thread count.
@@ -31,6 +32,7 @@ use crate::photon::file::{encode, StoredMap, StoredMaps};
 use crate::photon::irradiance::{IrradianceMaps, IrradiancePoints};
 use crate::photon::key::photon_key;
 use crate::photon::progressive::{trace_passes, Progressive, StartRadius};
+use crate::photon::receivers::nothing_receives;
 use crate::photon::roles::instance_sphere;
 use crate::photon::store::{self, Miss};
 use crate::photon::{
@@ -81,6 +83,19 @@ pub fn should_run(world: &World, frame: &Frame) -> Decision {
         }
         _ => {}
     }
+    // The photon view shows the maps from the pixel-centre rays; nothing else reads them
+    // without samples.
+    let photon_view = matches!(
+        frame.inputs.settings.diagnostic,
+        Some(crate::diagnostic::Diagnostic::Photon { .. })
+    );
+    if let Some(why) = crate::image_reads::samples_unread(world, &frame.inputs) {
+        if !photon_view {
+            return Decision::skip(format!(
+                "{why}; photon maps are read only by the shaded samples"
+            ));
+        }
+    }
     if frame.inputs.settings.integrator != Integrator::Direct {
         return Decision::skip("the path integrator does not read photon maps");
     }
@@ -91,6 +106,9 @@ pub fn should_run(world: &World, frame: &Frame) -> Decision {
         return Decision::skip(
             "caustics are on, but nothing casts them (no mirror, glass or other specular material, no photon shader that reflects or refracts; a caustic flag on a diffuse surface casts none)",
         );
+    }
+    if let Some(why) = nothing_stored(world, &p) {
+        return Decision::skip(why);
     }
     let lit = world
         .query::<&Emitter>()
@@ -192,6 +210,41 @@ fn a_light_emits_photons(world: &World, maps: &PhotonSettings) -> bool {
 fn nothing_casts_caustics(world: &World) -> bool {
     !world.query::<&Material>().iter().any(|m| {
         crate::photon::roles::makes_caustics(&m.shader) || m.photon.is_some_and(|p| p.scatters())
+    })
+}
+
+/// Why no requested map can store a photon ([`nothing_receives`]: no instance receives for
+/// it, or no material stores), or `None` when one can:
+/// `global illumination is on, but no instance receives photons (globillum 0 or 1 …)`.
+fn nothing_stored(world: &World, p: &PhotonSettings) -> Option<String> {
+    let requested: Vec<(&str, MapKind)> = [
+        ("caustics", MapKind::Caustics, p.caustics.is_some()),
+        (
+            "global illumination",
+            MapKind::Global,
+            p.global_illumination.is_some(),
+        ),
+    ]
+    .into_iter()
+    .filter(|r| r.2)
+    .map(|(name, kind, _)| (name, kind))
+    .collect();
+    let mut whys = Vec::new();
+    for &(name, kind) in &requested {
+        whys.push((name, nothing_receives(world, kind)?));
+    }
+    Some(match whys.as_slice() {
+        [(name, why)] => {
+            let verb = if *name == "caustics" { "are" } else { "is" };
+            format!("{name} {verb} on, but {why}")
+        }
+        _ => {
+            let each: Vec<String> = whys.iter().map(|(n, w)| format!("{n}: {w}")).collect();
+            format!(
+                "caustics and global illumination are on, but no photon can be stored ({})",
+                each.join("; ")
+            )
+        }
     })
 }
 

@@ -37,6 +37,7 @@ pub mod parts;
 pub mod pass;
 pub mod point_grid;
 pub mod progressive;
+pub mod receivers;
 pub mod roles;
 pub mod store;
 pub mod throughput;

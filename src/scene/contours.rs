@@ -325,13 +325,13 @@ fn shows_contours(o: &OutputDesc) -> bool {
         .is_some_and(|p| p.contains(&PassDesc::Contours))
 }
 
-/// Contour outputs need a contour shader (errors), and contour shaders an output that shows
-/// them (warnings, at each shader).
+/// Contour outputs need a contour shader (errors). Returns whether some output shows
+/// contours, for [`warn_unshown_shaders`].
 pub fn check_pairing(
     src: &mut Sources,
     cameras: &[Item<'_, CameraDesc>],
     materials: &[Item<'_, MaterialDesc>],
-) {
+) -> bool {
     let shaders = materials.iter().any(|m| m.desc.contour.is_some());
     let mut shown = false;
     for c in cameras {
@@ -357,25 +357,43 @@ pub fn check_pairing(
             }
         }
     }
+    shown
+}
+
+/// Contour shaders need an output that shows them: when none does (`shown` false), a
+/// warning at each shader, saying why it draws nothing — its material placed by no instance
+/// (`used[k]` false for material `k`), else no camera output showing contours.
+pub fn warn_unshown_shaders(
+    src: &mut Sources,
+    materials: &[Item<'_, MaterialDesc>],
+    shown: bool,
+    used: &[bool],
+) {
     if shown {
         return;
     }
-    for m in materials.iter().filter(|m| m.desc.contour.is_some()) {
+    for (k, m) in materials.iter().enumerate() {
+        if m.desc.contour.is_none() {
+            continue;
+        }
         let pos = src.pos(m.file, &m.at(".contour"));
-        let help = src.syntax(m.file).help(
-            "add an output such as `(file: \"lines.svg\")` or a `Contours` pass",
-            "add a camera output such as `output \"contour\" \"ps\" \"lines.ps\"`",
-        );
-        src.push_warning(
-            m.file,
-            Diagnostic::at(
-                pos,
+        let name = &m.desc.name;
+        let (message, help) = if used.get(k).copied().unwrap_or(true) {
+            (
                 format!(
-                    "material \"{}\" has a contour shader, but no camera output shows contours",
-                    m.desc.name
+                    "material \"{name}\" has a contour shader, but no camera output shows contours"
                 ),
-                Some(help),
-            ),
-        );
+                src.syntax(m.file).help(
+                    "add an output such as `(file: \"lines.svg\")` or a `Contours` pass",
+                    "add a camera output such as `output \"contour\" \"ps\" \"lines.ps\"`",
+                ),
+            )
+        } else {
+            (
+                format!("material \"{name}\" has a contour shader, but no instance uses the material: its contours are never drawn"),
+                format!("contours are drawn around the objects placed with a material; place one with \"{name}\", or leave out its contour shader"),
+            )
+        };
+        src.push_warning(m.file, Diagnostic::at(pos, message, Some(help)));
     }
 }

@@ -202,7 +202,7 @@ fn load(
         .collect();
     let contrast = contours::contrast(src, merged.options.as_ref());
     contours::check_contrast_off(src, merged.options.as_ref(), &merged.materials, &contrast);
-    contours::check_pairing(src, &merged.cameras, &merged.materials);
+    let contours_shown = contours::check_pairing(src, &merged.cameras, &merged.materials);
     light_lists::attach(src, &merged, &mut materials);
     let materials: Vec<MaterialParts> = materials
         .into_iter()
@@ -273,6 +273,8 @@ fn load(
         })
         .collect();
     geometry::scatter::copy_materials(&mut leaves, &scatters, &resolved.object_material);
+    let used = used_materials(merged.materials.len(), &leaves, &resolved.polygon_materials);
+    contours::warn_unshown_shaders(src, &merged.materials, contours_shown, &used);
     geometry::scatter::check_bakes(src, &merged, &leaves);
     // `None`: the mesh did not load (its error is reported), so its UVs are not checked.
     let has_uvs: Vec<Option<[bool; 2]>> = merged
@@ -422,6 +424,29 @@ fn load(
         located_warnings: sources.warnings(),
         source_hash: content_hash.finish(),
     })
+}
+
+/// Which of `count` materials an instance places: a leaf's material (its instance's, its
+/// object's, a scatter's prototype's) or one of its object's polygon materials — the
+/// materials `spawn` makes entities of.
+fn used_materials(
+    count: usize,
+    leaves: &[dag::Leaf],
+    polygon_materials: &[Option<Vec<Option<usize>>>],
+) -> Vec<bool> {
+    let mut used = vec![false; count];
+    let mut mark = |m: Option<usize>| {
+        if let Some(u) = m.and_then(|m| used.get_mut(m)) {
+            *u = true;
+        }
+    };
+    for leaf in leaves {
+        mark(leaf.material);
+        if let Some(Some(polygons)) = polygon_materials.get(leaf.object) {
+            polygons.iter().for_each(|&m| mark(m));
+        }
+    }
+    used
 }
 
 /// The same element with a rebased description (see [`rebase`]).

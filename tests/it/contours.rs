@@ -568,6 +568,28 @@ fn a_contour_shader_no_output_shows_is_a_located_warning() {
     );
 }
 
+/// A contour shader on a material no instance places draws nothing because of that, not
+/// for want of an output: the warning says so (it said "no camera output shows contours").
+#[test]
+fn a_contour_shader_on_an_unused_material_says_it_is_unused() {
+    let body = format!(
+        "materials: [(name: \"m\", shader: Lambert(albedo: (0.5, 0.5, 0.5))),\n (name: \"ink\", shader: Lambert(albedo: (0.5, 0.5, 0.5)),\n contour: Simple())],{QUAD}"
+    );
+    let w = diagnostics(&scene(
+        8,
+        8,
+        (0.0, -5.0, 0.5),
+        "",
+        &body,
+        r#"(file: "a.png")"#,
+    ))
+    .unwrap();
+    assert_eq!(
+        w,
+        ["bad.ron:8:11: warning: material \"ink\" has a contour shader, but no instance uses the material: its contours are never drawn\n  help: contours are drawn around the objects placed with a material; place one with \"ink\", or leave out its contour shader"]
+    );
+}
+
 /// Each text's numbers, in pairs, as points.
 fn point_lists(shapes: impl Iterator<Item = String>) -> Vec<Vec<Vec2>> {
     shapes
