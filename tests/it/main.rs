@@ -51,6 +51,7 @@ mod gltf;
 mod gltf_attributes;
 mod gltf_cameras;
 mod gltf_export;
+mod gltf_export_exr;
 mod gltf_materials;
 mod gltf_spec;
 mod gltf_validity;
