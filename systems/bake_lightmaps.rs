@@ -34,12 +34,14 @@ use hecs::World;
 use super::prelude::*;
 use crate::bake::clipping::{clip_warning, clipped_texels};
 use crate::bake::files::{encode_request, report, safe_name, target_file};
+use crate::bake::glb_build::TextureSlot;
+use crate::bake::gltf_textures::gltf_texture;
 use crate::bake::request::prepare_bakes;
 use crate::bake::request::PreparedBake;
 use crate::bake::texels::TexelResults;
 use crate::bake::texels::{evaluate, TexelJob};
 use crate::bake::vertex_files::{encode_vertex_request, VertexValues};
-use crate::components::{BakeFormat, BakeKind, BakeRequest};
+use crate::components::{BakeKind, BakeRequest};
 use crate::farm::bake_part::{first_tiles, tiles_of, BakePartFile, BakePartRequest, TexelOwner};
 use crate::farm::part::{plural, TILE};
 use crate::farm::PartRun;
@@ -95,8 +97,9 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
     let mut reports = Vec::new();
     let mut part_requests = Vec::new();
     let mut texels_baked = 0u64;
-    // For `--write-gltf`: each request's (index) PNGs and per-vertex values.
-    let mut baked_pngs: Vec<(usize, BakeKind, Vec<u8>)> = Vec::new();
+    // For `--write-gltf`: each request's (index) textures with their slots, and per-vertex
+    // values.
+    let mut baked_pngs: Vec<(usize, TextureSlot, Vec<u8>)> = Vec::new();
     let mut vertex_colors: Vec<(usize, VertexValues)> = Vec::new();
     for (index, p) in prepared.iter().enumerate() {
         let start = Instant::now();
@@ -177,10 +180,18 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
         );
         let files = encode_request(p, &results, baked_mask.as_deref(), &inputs.bake_dir)?;
         warn_clipped_outputs(p, &results.images);
-        if inputs.write_gltf.is_some() {
-            for (target, file) in p.request.targets.iter().zip(&files.pending) {
-                if target.format != BakeFormat::Exr {
-                    baked_pngs.push((index, target.kind.clone(), file.bytes.clone()));
+        if let Some(source) = &inputs.write_gltf {
+            // PNG outputs byte for byte, EXR ones as a PNG of the same texels.
+            let targets = p.request.targets.iter().zip(&files.pending);
+            for ((target, file), img) in targets.zip(&results.images) {
+                let texture = gltf_texture(target, img, &file.bytes).map_err(|message| {
+                    StageError::Write {
+                        path: crate::bake::gltf_out::baked_glb_path(source, &inputs.bake_dir),
+                        message,
+                    }
+                })?;
+                if let Some((slot, png)) = texture {
+                    baked_pngs.push((index, slot, png));
                 }
             }
         }
@@ -329,10 +340,11 @@ fn part_file(
 }
 
 /// What a bake wrote that the baked glTF file (`--write-gltf`) takes: per request (by its
-/// index in `prepared`) the PNG textures and the per-vertex values.
+/// index in `prepared`) the PNG textures with their material slots
+/// (`crate::bake::gltf_textures`) and the per-vertex values.
 struct BakedOutputs<'a> {
     prepared: &'a [PreparedBake],
-    pngs: &'a [(usize, BakeKind, Vec<u8>)],
+    pngs: &'a [(usize, TextureSlot, Vec<u8>)],
     vertex_colors: &'a [(usize, VertexValues)],
 }
 
@@ -343,7 +355,7 @@ fn baked_gltf(
     baked: &BakedOutputs<'_>,
     path: &std::path::Path,
 ) -> Result<Vec<u8>, String> {
-    use crate::bake::gltf_out::{baked_glb, color_source, BakedColors, BakedTexture, TextureSlot};
+    use crate::bake::gltf_out::{baked_glb, color_source, BakedColors, BakedTexture};
     let same = |a: &std::path::Path, b: &std::path::Path| matches!((a.canonicalize(), b.canonicalize()), (Ok(x), Ok(y)) if x == y);
     if same(path, source) {
         return Err("it is the glTF file being baked; bake into another directory (-o DIR)".into());
@@ -364,14 +376,14 @@ fn baked_gltf(
             .map(|(_, node, primitive)| (*node, *primitive))
     };
     let mut textures = Vec::new();
-    for (index, kind, png) in baked.pngs {
-        let (Some((node, primitive)), Some(slot)) = (leaf(*index), TextureSlot::of(kind)) else {
+    for (index, slot, png) in baked.pngs {
+        let Some((node, primitive)) = leaf(*index) else {
             continue;
         };
         textures.push(BakedTexture {
             node,
             primitive,
-            slot,
+            slot: *slot,
             png,
         });
     }
@@ -400,7 +412,7 @@ fn standalone_gltf(
     baked: &BakedOutputs<'_>,
 ) -> Result<Vec<u8>, String> {
     use crate::bake::gltf_export::{standalone_glb, ExportedInstance, InstanceBake};
-    use crate::bake::gltf_out::{color_source, TextureSlot};
+    use crate::bake::gltf_out::color_source;
     use crate::components::Name;
     let name_of = |entity: hecs::Entity| world.get::<&Name>(entity).ok().map(|n| n.0.clone());
     let mut instances: Vec<ExportedInstance<'_>> = geometry
@@ -427,7 +439,7 @@ fn standalone_gltf(
                 .pngs
                 .iter()
                 .filter(|(i, ..)| *i == index)
-                .filter_map(|(_, kind, png)| Some((TextureSlot::of(kind)?, png.as_slice())))
+                .map(|(_, slot, png)| (*slot, png.as_slice()))
                 .collect();
             InstanceBake::Textures {
                 uvs: &p.uvs,

@@ -82,6 +82,44 @@ impl Vertex {
     }
 }
 
+/// The attributes of one mesh primitive as they are written: each a float accessor, in a
+/// view of its own, appended to `json` and `bin`.
+struct Attributes<'a> {
+    json: &'a mut Value,
+    bin: &'a mut Vec<u8>,
+    /// The written vertices.
+    vertices: &'a [Vertex],
+    /// The primitive's `attributes` object.
+    map: Value,
+}
+
+impl Attributes<'_> {
+    /// Writes attribute `name`, each vertex's `value` (every vertex has one, or none has and
+    /// nothing is written), with its `min` and `max` when `bounds`; returns its accessor.
+    fn add<const N: usize>(
+        &mut self,
+        name: &str,
+        bounds: bool,
+        value: impl Fn(&Vertex) -> Option<[f32; N]>,
+    ) -> Option<usize> {
+        let values: Vec<[f32; N]> = self.vertices.iter().filter_map(value).collect();
+        if values.is_empty() {
+            return None;
+        }
+        let kind = if N == 2 { "VEC2" } else { "VEC3" };
+        let accessor = add_float_accessor(
+            self.json,
+            self.bin,
+            &values,
+            kind,
+            bounds,
+            Some(ARRAY_BUFFER),
+        );
+        self.map[name] = json!(accessor);
+        Some(accessor)
+    }
+}
+
 /// A glTF UV (`v` down) of a stagelight UV (`v` up).
 fn gltf_uv(uv: Vec2) -> [f32; 2] {
     [uv.x, 1.0 - uv.y]
@@ -115,57 +153,22 @@ pub fn standalone_glb(
         }
         let vertices = corner_vertices(geometry, inst, exported.bake.as_ref())?;
         let (unique, indices) = weld(&vertices);
-        let mut attributes = json!({});
-        let positions: Vec<[f32; 3]> = unique.iter().map(|v| v.position).collect();
-        attributes["POSITION"] = json!(add_float_accessor(
-            &mut json,
-            &mut bin,
-            &positions,
-            "VEC3",
-            true,
-            Some(ARRAY_BUFFER)
-        ));
-        let normals: Vec<[f32; 3]> = unique.iter().map(|v| v.normal).collect();
-        attributes["NORMAL"] = json!(add_float_accessor(
-            &mut json,
-            &mut bin,
-            &normals,
-            "VEC3",
-            false,
-            Some(ARRAY_BUFFER)
-        ));
-        if unique[0].uv0.is_some() {
-            let uvs: Vec<[f32; 2]> = unique.iter().filter_map(|v| v.uv0).collect();
-            attributes["TEXCOORD_0"] = json!(add_float_accessor(
-                &mut json,
-                &mut bin,
-                &uvs,
-                "VEC2",
-                false,
-                Some(ARRAY_BUFFER)
-            ));
-        }
-        if unique[0].uv1.is_some() {
-            let uvs: Vec<[f32; 2]> = unique.iter().filter_map(|v| v.uv1).collect();
-            let accessor =
-                add_float_accessor(&mut json, &mut bin, &uvs, "VEC2", false, Some(ARRAY_BUFFER));
-            attributes["TEXCOORD_1"] = json!(accessor);
-            // glTF numbers texture coordinate sets from 0 without gaps: a mesh without UVs
-            // of its own has the bake's as `TEXCOORD_0` too.
-            if attributes.get("TEXCOORD_0").is_none() {
-                attributes["TEXCOORD_0"] = json!(accessor);
-            }
-        }
-        if unique[0].color.is_some() {
-            let colors: Vec<[f32; 3]> = unique.iter().filter_map(|v| v.color).collect();
-            attributes["COLOR_0"] = json!(add_float_accessor(
-                &mut json,
-                &mut bin,
-                &colors,
-                "VEC3",
-                true,
-                Some(ARRAY_BUFFER)
-            ));
+        let mut written = Attributes {
+            json: &mut json,
+            bin: &mut bin,
+            vertices: &unique,
+            map: json!({}),
+        };
+        written.add("POSITION", true, |v| Some(v.position));
+        written.add("NORMAL", false, |v| Some(v.normal));
+        written.add("TEXCOORD_0", false, |v| v.uv0);
+        let bake_uvs = written.add("TEXCOORD_1", false, |v| v.uv1);
+        written.add("COLOR_0", true, |v| v.color);
+        let mut attributes = written.map;
+        // glTF numbers texture coordinate sets from 0 without gaps: a mesh without UVs of
+        // its own has the bake's as `TEXCOORD_0` too.
+        if let (Some(accessor), false) = (bake_uvs, attributes.get("TEXCOORD_0").is_some()) {
+            attributes["TEXCOORD_0"] = json!(accessor);
         }
         let index_bytes: Vec<u8> = indices.iter().flat_map(|i| i.to_le_bytes()).collect();
         let view = add_view_for(

@@ -2,7 +2,8 @@
 //! coverage, the per-texel estimators (ambient occlusion, irradiance), dilation and texture
 //! encoding; request checking ([`request`]), file naming/encoding ([`files`]) and the baked
 //! glTF copy ([`gltf_out`]), the standalone baked glTF of other scenes ([`gltf_export`]), the
-//! GLB pieces both build with ([`glb_build`]) and what `--write-gltf` refuses ([`gltf_copy_refusals`]); per-vertex bakes lay vertices out as texels ([`vertices`]) and
+//! GLB pieces both build with ([`glb_build`]), the PNG each embeds for an AO or lightmap
+//! output, EXR ones included ([`gltf_textures`]), and what `--write-gltf` refuses ([`gltf_copy_refusals`]); per-vertex bakes lay vertices out as texels ([`vertices`]) and
 //! are written as PLY ([`vertex_files`]); PNG outputs that clip their values are counted for a
 //! warning ([`clipping`]). UV seams and charts ([`seams`]) drive the
 //! least-squares seam stitch ([`stitch`]) and the chart-respecting texel-space denoiser
@@ -22,6 +23,7 @@ pub mod glb_build;
 pub mod gltf_copy_refusals;
 pub mod gltf_export;
 pub mod gltf_out;
+pub mod gltf_textures;
 pub mod hemisphere_lanes;
 pub mod irradiance;
 pub mod raster;

@@ -81,7 +81,8 @@ pub enum BakeKind {
         max_depth: u32,
         /// Irradiance or radiance × albedo.
         store: LightmapStore,
-        /// Multiplies the stored value (a glTF copy's `lightmapFactor` is its inverse).
+        /// Multiplies the stored value (a baked glTF's `lightmapFactor` undoes it: its inverse
+        /// for a PNG, the EXR's largest value over it for an EXR, `crate::bake::gltf_textures`).
         scale: f32,
     },
     /// Shading normals.

@@ -53,6 +53,8 @@ mod gltf;
 mod gltf_attributes;
 mod gltf_cameras;
 mod gltf_export;
+mod gltf_export_exr;
+mod gltf_export_geometry;
 mod gltf_materials;
 mod gltf_spec;
 mod gltf_validity;
