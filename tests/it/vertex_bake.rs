@@ -140,7 +140,7 @@ fn vertex_ao_beside_a_wall_is_one_half() {
     assert!(o.status.success(), "{}", stderr_of(&o));
     let report = String::from_utf8_lossy(&o.stdout).into_owned() + &stderr_of(&o);
     // The rays are the stage's: the AO rays' occlusion queries (9 × samples) and the
-    // closest hits the inside probe asks of the blocked ones.
+    // inside probe's closest hits.
     let stage_rays: u64 = report
         .lines()
         .find(|l| l.starts_with("bake_lightmaps"))
