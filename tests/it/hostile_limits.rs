@@ -287,7 +287,12 @@ fn a_bake_of_an_instance_with_only_degenerate_triangles_says_it_has_no_triangles
     let bake = r#"(name: "f", of: "flat", bake: (resolution: (4, 4), uvs: Mesh, outputs: [(kind: AmbientOcclusion(samples: 1))]))"#;
     let quad = crate::common::quad_object("quad");
     for (test, objects, instances, line) in [
-        ("bake-degenerate-alone", flat.to_string(), bake.to_string(), 7),
+        (
+            "bake-degenerate-alone",
+            flat.to_string(),
+            bake.to_string(),
+            7,
+        ),
         (
             "bake-degenerate-beside",
             format!("{flat}\n        {quad}"),

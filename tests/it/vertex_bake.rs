@@ -204,7 +204,10 @@ fn stats_json_reports_a_per_vertex_bake_in_vertices() {
             .find(|s| s["stage"] == "bake_lightmaps")
             .cloned()
             .unwrap();
-        (v["bakes"].clone(), (stage["items"].clone(), stage["unit"].clone()))
+        (
+            v["bakes"].clone(),
+            (stage["items"].clone(), stage["unit"].clone()),
+        )
     };
     let keys = |bake: &serde_json::Value| -> Vec<String> {
         let mut keys: Vec<String> = bake.as_object().unwrap().keys().cloned().collect();
@@ -248,7 +251,11 @@ fn stats_json_reports_a_per_vertex_bake_in_vertices() {
     assert_eq!(keys(&bakes[0]), keys(strip_json));
     let texture = &bakes[1];
     assert_eq!(
-        (&texture["width"], &texture["height"], &texture["covered_texels"]),
+        (
+            &texture["width"],
+            &texture["height"],
+            &texture["covered_texels"]
+        ),
         (&4.into(), &4.into(), &16.into())
     );
     assert!(texture.get("vertices").is_none(), "{texture}");
