@@ -823,13 +823,15 @@ mod tests {
     }
 
     /// Outside in the open the probe decides after a quarter of the rays and inside a closed
-    /// box after three quarters: it traces fewer rays than it draws.
+    /// box after three quarters: it traces fewer rays than it draws. (The open point is on
+    /// the wall's front side, where no ray can meet a back face: the probe's grazing rays
+    /// would meet the wall's back from the other side.)
     #[test]
     fn the_probe_stops_when_its_verdict_is_certain() {
         let g = scene();
         let hit = |p: Vec3| floor_point(&g, p);
         let (open, boxed) = (
-            hit(Vec3::new(1.5, -1.5, 0.0)),
+            hit(Vec3::new(-1.5, 1.5, 0.0)),
             hit(Vec3::new(0.5, 0.5, 0.0)),
         );
         let job = |s| HemisphereJob {
