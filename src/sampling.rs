@@ -184,6 +184,16 @@ pub fn sample_cosine_hemisphere(u: Vec2) -> Vec3 {
     Vec3::new(d.x, d.y, z)
 }
 
+/// Direction uniform in solid angle over the hemisphere about +Z from `u ∈ [0,1)²`
+/// (z = 1 − u.x, so z ∈ (0, 1]); pdf = 1/(2π).
+#[inline]
+pub fn sample_uniform_hemisphere(u: Vec2) -> Vec3 {
+    let z = 1.0 - u.x;
+    let r = (1.0 - z * z).max(0.0).sqrt();
+    let (sin, cos) = (std::f32::consts::TAU * u.y).sin_cos();
+    Vec3::new(r * cos, r * sin, z)
+}
+
 /// Uniform point on the unit disk (Shirley–Chiu concentric mapping). The angle of the
 /// second wedge, `π/2 − a`, is folded onto `a` (`cos(π/2 − a) = sin a`), so one quarter-turn
 /// polynomial ([`quarter_trig`]) serves both.

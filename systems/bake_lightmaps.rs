@@ -236,13 +236,24 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
         })?;
         pending.push(crate::image_io::PendingFile { path, bytes });
     }
-    let work = Work::new(texels_baked, "texels")
+    let work = Work::new(texels_baked, work_unit(&prepared))
         .with_pending(pending)
         .with_output(StageOutput::BakeReports(reports));
     Ok(match idle {
         Some(why) => work.reused(why),
         None => work,
     })
+}
+
+/// What the stage's items count: the texels of texture bakes and the vertices of per-vertex
+/// bakes (a per-vertex bake's texels are its vertices).
+fn work_unit(prepared: &[PreparedBake]) -> &'static str {
+    let vertices = prepared.iter().filter(|p| p.per_vertex()).count();
+    match vertices {
+        0 => "texels",
+        n if n == prepared.len() => "vertices",
+        _ => "texels+vertices",
+    }
 }
 
 /// Why a bake part (`bake --part K/N`) owns no texel, if it owns none: `K` is past the

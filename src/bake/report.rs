@@ -1,9 +1,14 @@
-//! What a bake request did: the per-object bake report.
+//! What a bake request did: the per-object bake report, and its JSON (`--stats-json`), which
+//! reports a per-vertex bake in vertices, without the texture fields.
 
-use serde::Serialize;
+use serde::ser::SerializeMap;
+use serde::{Serialize, Serializer};
 
-/// The report of one bake request.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+/// The report of one bake request. In JSON a per-vertex bake (`vertices` set) has
+/// `vertices`, `baked_vertices`, `invalid_vertices` and `filled_vertices` in place of
+/// `width`, `height`, `texels_per_unit`, `covered_texels`, `invalid_texels` and
+/// `dilated_texels` (the grid its vertices are laid out on is internal).
+#[derive(Debug, Clone, PartialEq)]
 pub struct BakeReport {
     /// Instance name.
     pub name: String,
@@ -30,16 +35,44 @@ pub struct BakeReport {
     /// For a per-vertex bake (`target: Vertices`): the mesh's vertex count (its texels are
     /// the vertices laid out on a grid; `dilated_texels` counts vertices filled from their
     /// neighbours).
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub vertices: Option<u64>,
     /// UV seams of a texture bake with AO or a lightmap, and the difference across them.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub seams: Option<SeamReport>,
     /// True for a `merge` of bake parts: `rays` is the parts' total, traced in their own
     /// runs, `seconds` the merge's own time, and no ray rate is known (`rays_per_second` 0;
     /// the terminal line says `n/a`).
-    #[serde(skip_serializing_if = "std::ops::Not::not")]
     pub merged_parts: bool,
+}
+
+impl Serialize for BakeReport {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        let mut map = serializer.serialize_map(None)?;
+        map.serialize_entry("name", &self.name)?;
+        if let Some(vertices) = self.vertices {
+            map.serialize_entry("vertices", &vertices)?;
+            map.serialize_entry("baked_vertices", &self.covered_texels)?;
+            map.serialize_entry("invalid_vertices", &self.invalid_texels)?;
+            map.serialize_entry("filled_vertices", &self.dilated_texels)?;
+        } else {
+            map.serialize_entry("width", &self.width)?;
+            map.serialize_entry("height", &self.height)?;
+            map.serialize_entry("texels_per_unit", &self.texels_per_unit)?;
+            map.serialize_entry("covered_texels", &self.covered_texels)?;
+            map.serialize_entry("invalid_texels", &self.invalid_texels)?;
+            map.serialize_entry("dilated_texels", &self.dilated_texels)?;
+        }
+        map.serialize_entry("rays", &self.rays)?;
+        map.serialize_entry("seconds", &self.seconds)?;
+        map.serialize_entry("rays_per_second", &self.rays_per_second)?;
+        map.serialize_entry("files", &self.files)?;
+        if let Some(seams) = &self.seams {
+            map.serialize_entry("seams", seams)?;
+        }
+        if self.merged_parts {
+            map.serialize_entry("merged_parts", &true)?;
+        }
+        map.end()
+    }
 }
 
 /// The seam metric of one bake: the largest channel difference of the first AO or lightmap

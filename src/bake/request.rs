@@ -28,6 +28,10 @@ const UNWRAP_PAGE: u32 = 1024;
 /// two's worth of texels (a 2 × 2 quad at 32 texels/unit: 64) would otherwise round up to
 /// the next (128), at twice the requested density.
 const PACKING_ROUNDING: f64 = 1.02;
+/// The problem of a request whose instance has nothing to bake: no triangle that is not
+/// degenerate (the scene has no geometry at all, or the mesh's triangles were all dropped
+/// as degenerate while other instances have some).
+const NO_TRIANGLES: &str = "the instance has no triangles";
 /// Share of a request's UV area that may lie outside the unit square without a warning
 /// (rounding of UVs written at 0 or 1).
 const OUTSIDE_TOLERANCE: f64 = 1e-6;
@@ -98,9 +102,14 @@ pub fn prepare_bakes(
             help,
         };
         let (Some(&slot), Some(geometry)) = (slot_of.get(entity), geometry) else {
-            problems.push(problem("the instance has no triangles".into(), None));
+            problems.push(problem(NO_TRIANGLES.into(), None));
             continue;
         };
+        if !has_triangles(&geometry.instances[slot]) {
+            // Not "its UVs cover no area": no UVs would help a mesh without triangles.
+            problems.push(problem(NO_TRIANGLES.into(), None));
+            continue;
+        }
         let second = world
             .get::<&Instance>(*entity)
             .ok()
@@ -184,6 +193,20 @@ fn split_targets(request: &BakeRequest) -> (Option<BakeRequest>, Option<BakeRequ
         })
     };
     (with(texture, request.mask), with(vertex, false))
+}
+
+/// Whether the instance has a triangle that is not degenerate where it is placed (the
+/// loader drops degenerate triangles, which may leave a mesh with none).
+fn has_triangles(inst: &crate::geometry::InstanceGeometry) -> bool {
+    let world = |i: u32| {
+        let p = inst.mesh.positions.get(i as usize).copied();
+        inst.world_from_object
+            .transform_point3(p.unwrap_or(glam::Vec3::NAN))
+    };
+    inst.mesh
+        .triangles
+        .iter()
+        .any(|t| !crate::accel::is_degenerate(&t.map(world)))
 }
 
 /// A per-vertex request: every vertex of the instance's mesh as a texel

@@ -24,14 +24,14 @@ use crate::sampling::{hash_combine, Sampler};
 use crate::shading::texture::hit as textured;
 use crate::shading::LightSet;
 
-/// Rays of the inside-geometry probe per sample position.
+/// Rays of the inside-geometry probe per sample position, whatever the AO sample count: the
+/// probe has its own rays (uniform in solid angle about the geometric normal), so the verdict
+/// does not depend on the AO rays and the AO of a position kept is not conditioned on them.
 const PROBE_RAYS: u32 = 8;
-/// Ambient-occlusion rays per sample position from which the AO rays themselves serve as the
-/// inside-geometry probe (no separate probe rays are traced).
-const AO_PROBE_MIN_RAYS: u32 = 8;
 /// A sample position is inside geometry when more than this fraction of probe rays first meet
 /// the back of a one-sided surface (inside a closed mesh it is all of them; beside the back of
-/// a one-sided wall about half).
+/// a one-sided wall about half; under the back of a 2 × 2 plane 0.5 above, about 0.6 of the
+/// hemisphere's solid angle).
 const INSIDE_FRACTION: f32 = 0.75;
 
 /// Inputs of one request's texel evaluation.
@@ -176,13 +176,6 @@ fn texel(
     }
     let texel_index = j as u64 * job.coverage.width as u64 + i as u64;
     let texel_seed = hash_combine(&[job.seed, texel_index as u32, (texel_index >> 32) as u32]);
-    // With enough AO rays per sample position, they double as the inside probe.
-    let filled = slots.iter().filter(|s| s.is_some()).count() as u32;
-    let ao_probe = needs_probe
-        && job.kinds.iter().any(|k| {
-            matches!(k, BakeKind::AmbientOcclusion { samples, .. } if *samples >= AO_PROBE_MIN_RAYS * filled)
-        });
-    let needs_probe = needs_probe && !ao_probe;
     // Sample positions, minus those found inside other geometry.
     let mut sites = Vec::with_capacity(slots.len());
     for (s, slot) in slots.iter().enumerate() {
@@ -198,10 +191,11 @@ fn texel(
             hit,
         };
         if needs_probe {
+            // About the geometric normal: which side of the surface the point is on.
             let probe = trace_hemisphere(
                 job.geometry,
                 &site.surface,
-                site.normal,
+                site.ng,
                 site.ng,
                 f32::INFINITY,
                 hash_combine(&[texel_seed, 0x9b0e, s as u32]),
@@ -220,43 +214,6 @@ fn texel(
     if sites.is_empty() {
         return (values, true);
     }
-    // AO rays of each sample position, traced first when they are the probe; positions found
-    // inside geometry are dropped with their rays.
-    let mut ao_done: Option<(usize, Vec<HemisphereRays>)> = None;
-    if ao_probe {
-        if let Some((k, (samples, max_distance))) =
-            job.kinds
-                .iter()
-                .enumerate()
-                .find_map(|(k, kind)| match kind {
-                    BakeKind::AmbientOcclusion {
-                        samples,
-                        max_distance,
-                        ..
-                    } => Some((k, (*samples, *max_distance))),
-                    _ => None,
-                })
-        {
-            let kind_seed = hash_combine(&[texel_seed, k as u32 + 1]);
-            let query = HemisphereQuery::OcclusionAndProbe {
-                inside_fraction: INSIDE_FRACTION,
-            };
-            let results = ao_rays(job, &sites, samples, max_distance, kind_seed, query);
-            let keep: Vec<bool> = results.iter().map(|r| !r.inside).collect();
-            let mut kept = keep.iter();
-            sites.retain(|_| *kept.next().unwrap_or(&true));
-            let results: Vec<HemisphereRays> = results
-                .into_iter()
-                .zip(&keep)
-                .filter(|(_, k)| **k)
-                .map(|(r, _)| r)
-                .collect();
-            if sites.is_empty() {
-                return (values, true);
-            }
-            ao_done = Some((k, results));
-        }
-    }
     let n_sites = sites.len() as u32;
     for (k, kind) in job.kinds.iter().enumerate() {
         let kind_seed = hash_combine(&[texel_seed, k as u32 + 1]);
@@ -266,13 +223,7 @@ fn texel(
                 max_distance,
                 bent_normals,
             } => {
-                let results = match &ao_done {
-                    Some((done, results)) if *done == k => results.clone(),
-                    _ => {
-                        let query = HemisphereQuery::Occlusion;
-                        ao_rays(job, &sites, *samples, *max_distance, kind_seed, query)
-                    }
-                };
+                let results = ao_rays(job, &sites, *samples, *max_distance, kind_seed);
                 let open: u32 = results.iter().map(|r| r.open).sum();
                 let traced: u32 = results.iter().map(|r| r.rays).sum();
                 let dir_sum: Vec3 = results.iter().map(|r| r.open_dir_sum).sum();
@@ -418,7 +369,6 @@ fn ao_rays(
     samples: u32,
     max_distance: f32,
     seed: u32,
-    query: HemisphereQuery,
 ) -> Vec<HemisphereRays> {
     let samples = samples.max(1);
     let n = sites.len() as u32;
@@ -439,7 +389,13 @@ fn ao_rays(
             j
         })
         .collect();
-    trace_hemispheres(job.geometry, &jobs, max_distance, seed, query)
+    trace_hemispheres(
+        job.geometry,
+        &jobs,
+        max_distance,
+        seed,
+        HemisphereQuery::Occlusion,
+    )
 }
 
 /// `n` in the tangent frame of the site's triangle: T = dP/du, B = dP/dv (Gram–Schmidt

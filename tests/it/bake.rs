@@ -334,6 +334,75 @@ fn texels_inside_geometry_are_invalid_not_black() {
     assert!(px[0].x > 0.5);
 }
 
+/// 1 − F of a point on the axis below the centre of a parallel `2a × 2a` square at height
+/// `c`: F is four times the form factor of a corner rectangle (A = B = a/c).
+fn below_square_ao(a: f64, c: f64) -> f64 {
+    let x = a / c;
+    let q = (1.0 + x * x).sqrt();
+    let corner = (x / q * (x / q).atan()) * 2.0 / (2.0 * std::f64::consts::PI);
+    1.0 - 4.0 * corner
+}
+
+/// A 1 cm patch 0.5 below a 2 × 2 one-sided plane that faces away from it (the patch sees
+/// its back face) is not inside anything: at every AO sample count every texel is valid
+/// and the mean AO is 1 − F (0.169) within four binomial standard errors — the same as
+/// under the plane turned to face the patch. (The AO rays used to double as the inside
+/// probe from 8 rays per position: a position survived only with at most ¾ of its rays on
+/// back faces, so AO was biased to ≥ 0.25 and whole texels fell invalid as the count grew.)
+#[test]
+fn ao_under_the_back_of_an_open_plane_is_unbiased_at_every_sample_count() {
+    let exact = below_square_ao(1.0, 0.5);
+    assert!((exact - 0.169).abs() < 1e-3, "{exact}");
+    for facing_patch in [false, true] {
+        for samples in [16, 32, 64, 128, 256] {
+            let mut world = World::new();
+            let patch = spawn(&mut world, square_uv(0.005, 0.0, 1.0), Affine3A::IDENTITY);
+            // Facing +Z (away from the patch), or turned over to face it.
+            let turn = if facing_patch {
+                Affine3A::from_rotation_x(std::f32::consts::PI)
+            } else {
+                Affine3A::IDENTITY
+            };
+            spawn(
+                &mut world,
+                common::square(1.0),
+                Affine3A::from_translation(Vec3::new(0.0, 0.0, 0.5)) * turn,
+            );
+            world
+                .insert_one(patch, request(vec![ao(samples)], 8, 8, 4, 0))
+                .unwrap();
+            let frame = bake(&mut world, 46);
+            let case = format!("{samples} rays, plane facing the patch: {facing_patch}");
+            assert_eq!(frame.outputs.bake_reports[0].invalid_texels, 0, "{case}");
+            let (_, _, px) = baked(&frame, "target_ao.exr");
+            let mean = px.iter().map(|c| f64::from(c.x)).sum::<f64>() / px.len() as f64;
+            let se = (exact * (1.0 - exact) / (px.len() as f64 * f64::from(samples))).sqrt();
+            assert!(
+                (mean - exact).abs() <= 4.0 * se,
+                "{case}: mean AO {mean}, exact {exact}, standard error {se}"
+            );
+        }
+    }
+}
+
+/// A floor 0.5 below a same-size one-sided plane facing up (away from it): no floor texel is
+/// inside anything, so none is invalid.
+#[test]
+fn a_floor_under_the_back_of_a_same_size_plane_has_no_invalid_texels() {
+    let mut world = World::new();
+    let floor = spawn(&mut world, square_uv(1.0, 0.0, 1.0), Affine3A::IDENTITY);
+    spawn(
+        &mut world,
+        common::square(1.0),
+        Affine3A::from_translation(Vec3::new(0.0, 0.0, 0.5)),
+    );
+    world
+        .insert_one(floor, request(vec![ao(64)], 16, 16, 4, 0))
+        .unwrap();
+    let frame = bake(&mut world, 47);
+    assert_eq!(frame.outputs.bake_reports[0].invalid_texels, 0);
+}
+
 #[test]
 fn bakes_are_identical_at_one_and_two_threads() {
     let run = |threads: usize| {

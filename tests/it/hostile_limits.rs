@@ -278,6 +278,45 @@ fn objects_without_geometry_get_a_located_warning() {
     );
 }
 
+/// A bake of an instance whose triangles were all dropped as degenerate (its four corners at
+/// one point) says the instance has no triangles, alone and beside an instance that has
+/// some; it said "its UVs cover no area" with the help to generate UVs, which cannot help.
+#[test]
+fn a_bake_of_an_instance_with_only_degenerate_triangles_says_it_has_no_triangles() {
+    let flat = r#"(name: "flat", mesh: Inline(vertices: [(1, 1, 1), (1, 1, 1), (1, 1, 1), (1, 1, 1)], uvs: [(0, 0), (1, 0), (1, 1), (0, 1)], polygons: [[0, 1, 2, 3]]), material: "grey"),"#;
+    let bake = r#"(name: "f", of: "flat", bake: (resolution: (4, 4), uvs: Mesh, outputs: [(kind: AmbientOcclusion(samples: 1))]))"#;
+    let quad = crate::common::quad_object("quad");
+    for (test, objects, instances, line) in [
+        (
+            "bake-degenerate-alone",
+            flat.to_string(),
+            bake.to_string(),
+            7,
+        ),
+        (
+            "bake-degenerate-beside",
+            format!("{flat}\n        {quad}"),
+            format!(r#"{bake}, (name: "q", of: "quad")"#),
+            8,
+        ),
+    ] {
+        let dir = scratch_dir(test);
+        let scene = small_scene(&objects, &instances, "", "");
+        std::fs::write(dir.join("scene.ron"), scene).unwrap();
+        let o = run_in(&dir, &["bake", "scene.ron"]);
+        assert_eq!(o.status.code(), Some(1), "{test}");
+        let stderr = stderr_of(&o);
+        assert!(
+            stderr.ends_with(&format!(
+                "scene.ron:{line}:17: error: bake request on instance \"f\": the instance has no triangles\n"
+            )),
+            "{test}: {stderr}"
+        );
+        assert_eq!(stderr.matches("error:").count(), 1, "{test}: {stderr}");
+        assert_eq!(crate::common::dir_names(&dir), ["scene.ron"], "{test}");
+    }
+}
+
 /// Bake UVs that cannot take a texel are refused, naming why, with nothing written: UVs at
 /// one point (no area), and UVs wholly outside the unit square (the bake wrote an all-zero
 /// texture with exit 0).

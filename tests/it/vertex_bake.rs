@@ -140,7 +140,7 @@ fn vertex_ao_beside_a_wall_is_one_half() {
     assert!(o.status.success(), "{}", stderr_of(&o));
     let report = String::from_utf8_lossy(&o.stdout).into_owned() + &stderr_of(&o);
     // The rays are the stage's: the AO rays' occlusion queries (9 × samples) and the
-    // closest hits the inside probe asks of the blocked ones.
+    // inside probe's closest hits.
     let stage_rays: u64 = report
         .lines()
         .find(|l| l.starts_with("bake_lightmaps"))
@@ -173,6 +173,93 @@ fn vertex_ao_beside_a_wall_is_one_half() {
         (ply.float(2, "x"), ply.float(2, "y"), ply.float(2, "z")),
         (0.0, -1.0, 0.0)
     );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// `--stats-json` reports a per-vertex bake in vertices: `vertices` (the mesh's), and the
+/// baked, invalid and neighbour-filled vertices, without the texture fields (`width`,
+/// `height`, `texels_per_unit`, `covered_texels`: the grid the vertices are laid out on);
+/// the stage counts vertices when every request is per vertex and both units when a texture
+/// bake runs beside it.
+#[test]
+fn stats_json_reports_a_per_vertex_bake_in_vertices() {
+    let dir = scratch_dir("vertex-bake-json");
+    let strip = r#"(name: "strip_1", of: "strip", bake: (outputs: [
+                (kind: AmbientOcclusion(samples: 4), target: Vertices)]))"#;
+    let tile = r#"(name: "tile", mesh: Inline(
+            vertices: [(-3, -1, 0), (-2, -1, 0), (-2, 1, 0), (-3, 1, 0)],
+            uvs: [(0, 0), (1, 0), (1, 1), (0, 1)], polygons: [[0, 1, 2, 3]]),
+            material: "grey"),"#;
+    let tile_1 = r#"(name: "tile_1", of: "tile", bake: (resolution: (4, 4), uvs: Mesh,
+                outputs: [(kind: AmbientOcclusion(samples: 4))]))"#;
+    let stats = |text: &str, out: &str| {
+        let json = format!("{out}.json");
+        bake(&dir, text, out, &["--stats-json", &json]);
+        let v: serde_json::Value =
+            serde_json::from_slice(&std::fs::read(dir.join(&json)).unwrap()).unwrap();
+        let stage = v["stages"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|s| s["stage"] == "bake_lightmaps")
+            .cloned()
+            .unwrap();
+        (
+            v["bakes"].clone(),
+            (stage["items"].clone(), stage["unit"].clone()),
+        )
+    };
+    let keys = |bake: &serde_json::Value| -> Vec<String> {
+        let mut keys: Vec<String> = bake.as_object().unwrap().keys().cloned().collect();
+        keys.sort();
+        keys
+    };
+    let (bakes, stage) = stats(&scene(STRIP, strip, r#""strip_1""#), "alone");
+    let strip_json = &bakes[0];
+    assert_eq!(
+        keys(strip_json),
+        [
+            "baked_vertices",
+            "files",
+            "filled_vertices",
+            "invalid_vertices",
+            "name",
+            "rays",
+            "rays_per_second",
+            "seconds",
+            "vertices"
+        ]
+    );
+    assert_eq!(
+        (
+            &strip_json["vertices"],
+            &strip_json["baked_vertices"],
+            &strip_json["invalid_vertices"],
+            &strip_json["filled_vertices"]
+        ),
+        (&9.into(), &9.into(), &0.into(), &0.into())
+    );
+    assert_eq!(stage, (9.into(), "vertices".into()));
+    let (bakes, stage) = stats(
+        &scene(
+            &format!("{STRIP}\n        {tile}"),
+            &format!("{strip}, {tile_1}"),
+            r#""strip_1", "tile_1""#,
+        ),
+        "mixed",
+    );
+    assert_eq!(keys(&bakes[0]), keys(strip_json));
+    let texture = &bakes[1];
+    assert_eq!(
+        (
+            &texture["width"],
+            &texture["height"],
+            &texture["covered_texels"]
+        ),
+        (&4.into(), &4.into(), &16.into())
+    );
+    assert!(texture.get("vertices").is_none(), "{texture}");
+    assert_eq!(stage, (25.into(), "texels+vertices".into()));
     let _ = std::fs::remove_dir_all(&dir);
 }
 
