@@ -52,6 +52,7 @@ mod gltf_attributes;
 mod gltf_cameras;
 mod gltf_export;
 mod gltf_materials;
+mod gltf_names;
 mod gltf_spec;
 mod gltf_validity;
 mod hard_cases_bake;
