@@ -21,6 +21,7 @@ pub mod finish;
 pub mod glb_build;
 pub mod gltf_copy_refusals;
 pub mod gltf_export;
+pub mod gltf_orphans;
 pub mod gltf_out;
 pub mod hemisphere_lanes;
 pub mod irradiance;

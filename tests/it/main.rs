@@ -53,6 +53,7 @@ mod gltf_cameras;
 mod gltf_export;
 mod gltf_materials;
 mod gltf_names;
+mod gltf_rebake;
 mod gltf_spec;
 mod gltf_validity;
 mod hard_cases_bake;
