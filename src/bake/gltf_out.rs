@@ -10,7 +10,8 @@
 //! byte for byte, embedded as buffer views. All buffers are merged into the one `BIN` chunk
 //! and images the source kept in files or `data:` URIs are embedded too, so the copy stands
 //! alone. Per-vertex bakes become the primitive's `COLOR_0` (float RGB, [`color_source`]
-//! picks which). The JSON is edited as JSON, so everything the reader does not map (animations,
+//! picks which); what a replacement leaves unreferenced (an earlier bake's textures in a
+//! baked copy baked again, a replaced `COLOR_0`) goes ([`super::gltf_orphans`]). The JSON is edited as JSON, so everything the reader does not map (animations,
 //! skins, extensions) is kept as it was; a top-level array left empty (`images` when every
 //! bake is per vertex) is left out, as glTF requires of a defined array (≥ 1 item).
 
@@ -22,6 +23,7 @@ pub use super::glb_build::TextureSlot;
 use super::glb_build::{
     add_float_accessor, add_view, encode_glb, list, pad4, use_lightmap_extension, wire_texture,
 };
+use super::gltf_orphans::Orphans;
 use crate::scene::mesh_files::gltf_file;
 
 /// One baked texture of one primitive instance.
@@ -120,11 +122,12 @@ fn material_users(json: &Value, m: u64) -> usize {
 }
 
 /// Adds `c.values` as a float VEC3 accessor and makes it `COLOR_0` of the primitive in the
-/// mesh copy `mesh` (replacing any `COLOR_0` it had). The count must be the primitive's
-/// vertex count.
+/// mesh copy `mesh` (replacing any `COLOR_0` it had: the new accessor takes its index when
+/// nothing else uses it). The count must be the primitive's vertex count.
 fn add_colors(
     json: &mut Value,
     bin: &mut Vec<u8>,
+    orphans: &mut Orphans,
     mesh: usize,
     c: &BakedColors,
 ) -> Result<(), String> {
@@ -142,9 +145,14 @@ fn add_colors(
             count.unwrap_or(0)
         ));
     }
+    let replaced = prim["attributes"]["COLOR_0"].as_u64();
     let values: Vec<[f32; 3]> = c.values.iter().map(|v| v.to_array()).collect();
     let accessor = add_float_accessor(json, bin, &values, "VEC3", true, None);
     json["meshes"][mesh]["primitives"][c.primitive]["attributes"]["COLOR_0"] = json!(accessor);
+    if let Some(replaced) = replaced {
+        let attributes = format!("/meshes/{mesh}/primitives/{}/attributes", c.primitive);
+        orphans.reuse_accessor(json, replaced as usize, &attributes);
+    }
     Ok(())
 }
 
@@ -230,9 +238,10 @@ pub fn baked_glb(
     let mut node_mesh: Vec<(usize, usize)> = Vec::new();
     let mut prim_material: Vec<((usize, usize), usize)> = Vec::new();
     let mut lightmaps = false;
+    let mut orphans = Orphans::default();
     for c in colors {
         let mesh_copy = mesh_copy(&mut json, &mut node_mesh, c.node)?;
-        add_colors(&mut json, &mut bin, mesh_copy, c)?;
+        add_colors(&mut json, &mut bin, &mut orphans, mesh_copy, c)?;
     }
     for t in textures {
         let mesh_copy = mesh_copy(&mut json, &mut node_mesh, t.node)?;
@@ -266,11 +275,22 @@ pub fn baked_glb(
                 m
             }
         };
+        let reference = match t.slot {
+            TextureSlot::Occlusion => format!("/materials/{material}/occlusionTexture"),
+            TextureSlot::Lightmap { .. } => {
+                format!("/materials/{material}/extensions/MSFT_lightmap/lightmapTexture")
+            }
+        };
+        let replaced = json.pointer(&reference).and_then(|t| t["index"].as_u64());
         lightmaps |= wire_texture(&mut json, &mut bin, material, t.slot, t.png);
+        if let Some(replaced) = replaced {
+            orphans.reuse_texture(&mut json, replaced as usize, &reference);
+        }
     }
     if lightmaps {
         use_lightmap_extension(&mut json);
     }
+    orphans.drop(&mut json, &mut bin);
     encode_glb(json, bin)
 }
 

@@ -22,6 +22,7 @@ pub mod finish;
 pub mod glb_build;
 pub mod gltf_copy_refusals;
 pub mod gltf_export;
+pub mod gltf_orphans;
 pub mod gltf_out;
 pub mod gltf_textures;
 pub mod hemisphere_lanes;

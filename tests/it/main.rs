@@ -56,6 +56,8 @@ mod gltf_export;
 mod gltf_export_exr;
 mod gltf_export_geometry;
 mod gltf_materials;
+mod gltf_names;
+mod gltf_rebake;
 mod gltf_spec;
 mod gltf_validity;
 mod hard_cases_bake;

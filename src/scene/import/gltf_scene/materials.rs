@@ -122,7 +122,7 @@ pub fn material_name(w: &mut Walk<'_>, index: Option<usize>) -> String {
     let desc = match index.and_then(|i| w.file.doc.materials().nth(i)) {
         Some(m) => material(w, &m),
         None => MaterialDesc {
-            name: w.names.take("gltf_default_material"),
+            name: w.names.materials.take("gltf_default_material"),
             shader: ShaderDesc::MetallicRoughness {
                 base_color: (1.0, 1.0, 1.0),
                 metallic: 1.0,
@@ -166,10 +166,10 @@ fn node(n: NodeDesc) -> InputDesc {
 
 fn material(w: &mut Walk<'_>, m: &gltf::Material<'_>) -> MaterialDesc {
     let index = m.index().unwrap_or(0);
-    let label = super::given(m.name())
-        .map(str::to_string)
-        .unwrap_or_else(|| format!("material{index}"));
-    let name = w.names.take(&label);
+    let name = match super::given(m.name()) {
+        Some(given) => w.names.materials.take_given(given),
+        None => w.names.materials.take(&format!("material{index}")),
+    };
     let pbr = m.pbr_metallic_roughness();
     let [r, g, b, alpha] = pbr.base_color_factor().map(f64::from);
     let metallic = (pbr.metallic_factor() as f64).clamp(0.0, 1.0);

@@ -22,9 +22,9 @@
 //!   ([`bakes`]), so `stagelight bake model.glb` bakes lightmaps and ambient occlusion.
 //!
 //! Names come from the file (node, mesh, material, light and camera names; `node3` and the
-//! like for unnamed or empty-named ones, an unnamed node's yielding to the file's own node
-//! names), made unique with `_2`, `_3`, … and stripped of characters that could not be part
-//! of a file name. Messages name the glTF element by its JSON path (`nodes[3]`,
+//! like for unnamed or empty-named ones), made unique per namespace with `_2`, `_3`, … and
+//! stripped of characters that could not be part of a file name; a made-up name never
+//! takes one the file gives ([`names`]). Messages name the glTF element by its JSON path (`nodes[3]`,
 //! `extensions.KHR_lights_punctual.lights[0]`); in a `.gltf` they are placed at that
 //! element's line and column ([`json_positions`]), in a `.glb` (no lines) at the start of the
 //! file. An image file that cannot be read is reported at its `uri`, and so are the image
@@ -35,11 +35,12 @@ pub mod camera_values;
 pub mod json_positions;
 pub mod light_values;
 pub mod materials;
+pub mod names;
 pub mod node_checks;
 pub mod texture_transform;
 pub mod view;
 
-use std::collections::{HashMap, HashSet};
+use std::collections::HashMap;
 use std::path::Path;
 
 use glam::{DMat4, DVec3};
@@ -52,97 +53,12 @@ use crate::scene::mesh_files::gltf_file::{self, GltfFile};
 use crate::scene::mesh_files::MeshFileError;
 use crate::scene::message::Diagnostic;
 use json_positions::Step;
+pub use names::given;
+use names::{node_labels, SceneNames};
 use node_checks::local_matrix;
 
 /// Deepest node hierarchy read (deeper is refused, as a cycle would be).
 const MAX_NODE_DEPTH: usize = 64;
-
-/// Unique, file-name-safe element names.
-#[derive(Debug, Default)]
-pub struct Names {
-    used: HashSet<String>,
-    /// The file's own node names (made safe): a repeat's `_2`, `_3`, … skips them, so a
-    /// node the user named `box_2` keeps that name beside two nodes named `box`.
-    reserved: HashSet<String>,
-}
-
-/// `preferred` made safe for a file name: letters, digits, `_`, `-`, `.`; others become
-/// `_`, and `_` goes before an empty name or one starting with `.`.
-fn safe(preferred: &str) -> String {
-    let mut base: String = preferred
-        .chars()
-        .map(|c| {
-            if c.is_alphanumeric() || matches!(c, '_' | '-' | '.') {
-                c
-            } else {
-                '_'
-            }
-        })
-        .collect();
-    if base.is_empty() || base.starts_with('.') {
-        base.insert(0, '_');
-    }
-    base
-}
-
-/// An element's name from the file, `None` for none or an empty one (both get the
-/// element's fallback name, such as `node3`).
-pub fn given(name: Option<&str>) -> Option<&str> {
-    name.filter(|n| !n.is_empty())
-}
-
-/// Every node's label, by index: its name, or `node<i>` for one without (or with an
-/// empty name), which yields to the file's names: `node4` becomes `node4_2` when a node
-/// of the file is named `node4`.
-fn node_labels(doc: &gltf::Document) -> Vec<String> {
-    let named: HashSet<String> = doc
-        .nodes()
-        .filter_map(|n| given(n.name()))
-        .map(safe)
-        .collect();
-    doc.nodes()
-        .map(|node| match given(node.name()) {
-            Some(name) => name.to_string(),
-            None => {
-                let base = format!("node{}", node.index());
-                let mut label = base.clone();
-                let mut k = 2;
-                while named.contains(&label) {
-                    label = format!("{base}_{k}");
-                    k += 1;
-                }
-                label
-            }
-        })
-        .collect()
-}
-
-impl Names {
-    /// Names that keep the node names `reserved` for their nodes (see [`Names::reserved`]).
-    fn reserving(reserved: HashSet<String>) -> Self {
-        Self {
-            used: HashSet::new(),
-            reserved,
-        }
-    }
-
-    /// `preferred` made safe (letters, digits, `_`, `-`, `.`; others become `_`) and unique
-    /// (`_2`, `_3`, … appended, skipping the file's own node names).
-    pub fn take(&mut self, preferred: &str) -> String {
-        let base = safe(preferred);
-        if self.used.insert(base.clone()) {
-            return base;
-        }
-        let mut k = 2;
-        loop {
-            let name = format!("{base}_{k}");
-            if !self.reserved.contains(&name) && self.used.insert(name.clone()) {
-                return name;
-            }
-            k += 1;
-        }
-    }
-}
 
 /// A diagnostic at the start of `path` (glTF files are located by element, not by line).
 pub fn at_file(path: &Path, message: impl Into<String>) -> Diagnostic {
@@ -252,8 +168,8 @@ pub fn m4(m: &DMat4) -> M4 {
 pub struct Walk<'a> {
     /// The file.
     pub file: &'a GltfFile,
-    /// Element names.
-    pub names: &'a mut Names,
+    /// Element names, one table per namespace.
+    pub names: &'a mut SceneNames,
     /// The scene being built.
     pub desc: &'a mut SceneDesc,
     /// Located warnings.
@@ -297,6 +213,22 @@ impl Walk<'_> {
     /// The label of `node` (its name, or its fallback name).
     fn node_label(&self, node: &gltf::Node<'_>) -> String {
         self.node_labels[node.index()].clone()
+    }
+
+    /// The instance name of node `index` labelled `label` (the node's own name, which only
+    /// a node of that name takes, or its made-up `node3`).
+    fn node_instance(&mut self, index: usize, label: &str) -> String {
+        let named = self
+            .file
+            .doc
+            .nodes()
+            .nth(index)
+            .is_some_and(|n| given(n.name()).is_some());
+        if named {
+            self.names.instances.take_given(label)
+        } else {
+            self.names.instances.take(label)
+        }
     }
 
     /// Warnings for what of `node` and its mesh is not read: its skin, its morph weights,
@@ -372,7 +304,7 @@ impl Walk<'_> {
             .map(str::to_string)
             .unwrap_or_else(|| format!("mesh{}", mesh.index()));
         let count = mesh.primitives().count();
-        let name = self.names.take(&if count > 1 {
+        let name = self.names.objects.take(&if count > 1 {
             format!("{label}_mesh_{p}")
         } else {
             format!("{label}_mesh")
@@ -510,11 +442,11 @@ impl Walk<'_> {
                     if lone {
                         result = Some(object);
                     } else {
-                        let inst = self.names.take(&if prims.len() > 1 {
-                            format!("{label}_{p}")
+                        let inst = if prims.len() > 1 {
+                            self.names.instances.take(&format!("{label}_{p}"))
                         } else {
-                            label.clone()
-                        });
+                            self.node_instance(node.index(), &label)
+                        };
                         self.leaves.push((inst.clone(), node.index(), p));
                         members.push(place(self, inst, object, &DMat4::IDENTITY));
                     }
@@ -531,11 +463,11 @@ impl Walk<'_> {
             }
             if let Some(of) = placed {
                 let lone = self.objects.values().any(|o| *o == of);
-                let name = self.names.take(&if lone {
-                    child_label
+                let name = if lone {
+                    self.node_instance(child_index, &child_label)
                 } else {
-                    format!("{child_label}_node")
-                });
+                    self.names.instances.take(&format!("{child_label}_node"))
+                };
                 if lone {
                     self.leaves.push((name.clone(), child_index, 0));
                 }
@@ -547,7 +479,7 @@ impl Walk<'_> {
             return memo;
         }
         if result.is_none() && !members.is_empty() {
-            let group = self.names.take(&format!("{label}_group"));
+            let group = self.names.objects.take(&format!("{label}_group"));
             self.desc.groups.push(GroupDesc {
                 name: group.clone(),
                 members,
@@ -583,12 +515,7 @@ fn build(
         )]
         .into());
     };
-    let mut names = Names::reserving(
-        doc.nodes()
-            .filter_map(|n| given(n.name()))
-            .map(safe)
-            .collect(),
-    );
+    let mut names = SceneNames::of(doc, &scene);
     let mut desc = SceneDesc::default();
     let mut w = Walk {
         file,
@@ -619,9 +546,11 @@ fn build(
         let index = node.index();
         if let Some(of) = w.walk(node, local, &mut Vec::new()) {
             let lone = w.objects.values().any(|o| *o == of);
-            let name = w
-                .names
-                .take(&if lone { label } else { format!("{label}_node") });
+            let name = if lone {
+                w.node_instance(index, &label)
+            } else {
+                w.names.instances.take(&format!("{label}_node"))
+            };
             if lone {
                 w.leaves.push((name.clone(), index, 0));
             }
@@ -646,7 +575,10 @@ fn build(
             warnings: std::mem::take(&mut w.warnings),
         });
     }
-    let root = w.names.take(given(scene.name()).unwrap_or("scene"));
+    let root = match given(scene.name()) {
+        Some(name) => w.names.objects.take_given(name),
+        None => w.names.objects.take("scene"),
+    };
     w.desc.groups.push(GroupDesc {
         name: root.clone(),
         members,
@@ -679,34 +611,6 @@ pub fn primitive_instances(
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn names_are_made_safe_and_unique() {
-        let mut n = Names::default();
-        assert_eq!(n.take("Cube"), "Cube");
-        assert_eq!(n.take("Cube"), "Cube_2");
-        assert_eq!(n.take("a/b c"), "a_b_c");
-        assert_eq!(n.take(""), "_");
-        assert_eq!(n.take("../x"), "_.._x");
-    }
-
-    /// A repeat's suffix skips the file's node names: with nodes `box`, `box`, `box_2`,
-    /// the second `box` is `box_3` whichever comes first (it took `box_2`, and the user's
-    /// `box_2` became `box_2_2`).
-    #[test]
-    fn repeats_skip_the_files_node_names() {
-        let reserved = || ["box", "box_2"].map(String::from).into_iter().collect();
-        let mut n = Names::reserving(reserved());
-        assert_eq!(
-            [n.take("box"), n.take("box"), n.take("box_2")],
-            ["box", "box_3", "box_2"]
-        );
-        let mut n = Names::reserving(reserved());
-        assert_eq!(
-            [n.take("box_2"), n.take("box"), n.take("box")],
-            ["box_2", "box", "box_3"]
-        );
-    }
 
     #[test]
     fn matrices_are_written_row_major() {

@@ -37,10 +37,10 @@ pub fn light(w: &mut Walk<'_>, light: &gltf::khr_lights_punctual::Light<'_>, wor
     if !light_values::check(w, light) {
         return;
     }
-    let label = given(light.name())
-        .map(str::to_string)
-        .unwrap_or_else(|| format!("light{}", light.index()));
-    let name = w.names.take(&label);
+    let name = match given(light.name()) {
+        Some(given) => w.names.lights.take_given(given),
+        None => w.names.lights.take(&format!("light{}", light.index())),
+    };
     let position = world.transform_point3(DVec3::ZERO);
     let direction = world.transform_vector3(DVec3::NEG_Z).normalize_or_zero();
     let v3 = |v: DVec3| (v.x, v.y, v.z);
@@ -164,10 +164,13 @@ pub fn camera(w: &mut Walk<'_>) -> String {
         let Some(values) = camera_values::check(w, &camera, &p) else {
             continue;
         };
-        let label = given(camera.name())
-            .or(given(node.name()))
-            .map(str::to_string)
-            .unwrap_or_else(|| format!("camera{}", camera.index()));
+        // The camera's own name, else a made-up one: its node's, or `camera<i>`.
+        let label = match given(camera.name()) {
+            Some(name) => Ok(name.to_string()),
+            None => Err(given(node.name())
+                .map(str::to_string)
+                .unwrap_or_else(|| format!("camera{}", camera.index()))),
+        };
         found.push((label, values, PlacementDesc::Matrix(m4(&rigid(&world)))));
     }
     if !perspective {
@@ -186,26 +189,30 @@ pub fn camera(w: &mut Walk<'_>) -> String {
             fov_y: DEFAULT_FOV_Y,
             height: CAMERA_WIDTH * 3 / 4,
         };
-        return add_camera(w, "default_camera", &values, placement, &stem, true);
+        let name = w.names.cameras.take("default_camera");
+        return add_camera(w, name, &values, placement, &stem, true);
     }
     let mut first = None;
     for (label, values, placement) in found {
-        let name = add_camera(w, &label, &values, placement, &stem, first.is_none());
+        let name = match label {
+            Ok(given) => w.names.cameras.take_given(&given),
+            Err(made_up) => w.names.cameras.take(&made_up),
+        };
+        let name = add_camera(w, name, &values, placement, &stem, first.is_none());
         first.get_or_insert(name);
     }
     first.unwrap_or_default()
 }
 
-/// Adds one camera (its output `<stem>.png` when `main`, else `<stem>_<name>.png`).
+/// Adds camera `name` (its output `<stem>.png` when `main`, else `<stem>_<name>.png`).
 fn add_camera(
     w: &mut Walk<'_>,
-    label: &str,
+    name: String,
     values: &CameraValues,
     placement: PlacementDesc,
     stem: &str,
     main: bool,
 ) -> String {
-    let name = w.names.take(label);
     let file = if main {
         format!("{stem}.png")
     } else {
