@@ -71,7 +71,7 @@ fn value_errors_point_at_the_value() {
         ),
         (
             replaced(&text, "\"width\" 1.0", "\"width\" -1.0"),
-            "bad.mi:76:9: error: contour width must be positive, found -1\n  help: widths are in percent of the smaller image dimension, e.g. `width: 0.5`; to draw no contours, leave out `contour`",
+            "bad.mi:76:9: error: contour width must be positive, found -1\n  help: widths are in percent of the smaller image dimension, e.g. `\"width\" 0.5`; to draw no contours, leave out the material's `contour` shader",
         ),
         (
             replaced(&text, "\"color\" 1.0 0.0 0.0 1.0,", "\"color\" 1.0 0.0 0.0 5.0,"),

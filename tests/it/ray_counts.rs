@@ -73,11 +73,14 @@ fn shade_and_bake_report_exact_ray_counts() {
         assert_eq!(shade.rays, shade.rays_closest + shade.rays_occlusion);
         assert!(shade.rays_per_second_per_thread > 0.0);
 
-        // 16 texels, one sample position each, 64 AO rays per position: occlusion queries
-        // first, then closest hits for the inside-geometry probe only where a ray is blocked
-        // (none on this open scene).
+        // 16 texels, one sample position each: the inside-geometry probe's own rays
+        // (closest hits, 8 drawn; "inside" needs more than 3/4 of them to meet back faces,
+        // so on this open scene the first 2 misses make "outside" certain) and then 64 AO
+        // occlusion rays per position.
         let bake = report.stage("bake_lightmaps").unwrap();
-        assert_eq!(bake.rays, 16 * 64, "{bake:?}");
+        assert_eq!(bake.rays_closest, 16 * 2, "{bake:?}");
+        assert_eq!(bake.rays_occlusion, 16 * 64, "{bake:?}");
+        assert_eq!(bake.rays, 16 * 2 + 16 * 64, "{bake:?}");
         assert_eq!(
             bake.rays, frame.outputs.bake_reports[0].rays,
             "the bake's own count agrees"
