@@ -36,22 +36,8 @@ fn cornell_gi(side: u32, outputs: &str) -> String {
 
 /// The `--stats-json` row of `name`: (ran, reason, items, unit, rays).
 fn stage(dir: &Path, name: &str) -> (bool, String, u64, String, u64) {
-    let json: serde_json::Value =
-        serde_json::from_slice(&std::fs::read(dir.join("stats.json")).unwrap()).unwrap();
-    let s = json["stages"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .find(|s| s["stage"] == name)
-        .unwrap()
-        .clone();
-    (
-        s["ran"].as_bool().unwrap(),
-        s["reason"].as_str().unwrap().to_string(),
-        s["items"].as_u64().unwrap(),
-        s["unit"].as_str().unwrap().to_string(),
-        s["rays"].as_u64().unwrap(),
-    )
+    let r = crate::common::stage_row(&dir.join("stats.json"), name);
+    (r.ran, r.reason, r.items, r.unit, r.rays)
 }
 
 fn render_stats(dir: &Path) {

@@ -33,19 +33,8 @@ fn ball(options: &str, outputs: &str) -> String {
 /// `(ran, reason)` of `stage` in the `--stats-json` file `stats.json` in `dir`, checked
 /// against its row of the `--stats` table in `stdout`.
 fn stage(dir: &Path, stdout: &str, name: &str) -> (bool, String) {
-    let json: serde_json::Value =
-        serde_json::from_slice(&std::fs::read(dir.join("stats.json")).unwrap()).unwrap();
-    let s = json["stages"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .find(|s| s["stage"] == name)
-        .unwrap()
-        .clone();
-    let (ran, reason) = (
-        s["ran"].as_bool().unwrap(),
-        s["reason"].as_str().unwrap().to_string(),
-    );
+    let r = crate::common::stage_row(&dir.join("stats.json"), name);
+    let (ran, reason) = (r.ran, r.reason);
     let row = stdout
         .lines()
         .find(|l| l.split_whitespace().next() == Some(name))

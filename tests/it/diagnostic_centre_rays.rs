@@ -45,21 +45,8 @@ fn fnv1a(bytes: &[u8]) -> u64 {
 
 /// `(ran, reason, items, unit)` of `name` in `stats.json`.
 fn stage(dir: &Path, name: &str) -> (bool, String, u64, String) {
-    let json: serde_json::Value =
-        serde_json::from_slice(&std::fs::read(dir.join("stats.json")).unwrap()).unwrap();
-    let s = json["stages"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .find(|s| s["stage"] == name)
-        .unwrap()
-        .clone();
-    (
-        s["ran"].as_bool().unwrap(),
-        s["reason"].as_str().unwrap().to_string(),
-        s["items"].as_u64().unwrap(),
-        s["unit"].as_str().unwrap().to_string(),
-    )
+    let r = crate::common::stage_row(&dir.join("stats.json"), name);
+    (r.ran, r.reason, r.items, r.unit)
 }
 
 #[test]

@@ -117,20 +117,9 @@ fn a_camera_without_outputs_renders_nothing_from_the_command_line() {
     std::fs::write(dir.join("none.ron"), text).unwrap();
     let o = crate::common::run_in(&dir, &["render", "none.ron", "--stats-json", "s.json"]);
     assert!(o.status.success(), "{}", crate::common::stderr_of(&o));
-    let json: serde_json::Value =
-        serde_json::from_slice(&std::fs::read(dir.join("s.json")).unwrap()).unwrap();
     let stage = |name: &str| {
-        let s = json["stages"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .find(|s| s["stage"] == name)
-            .unwrap()
-            .clone();
-        (
-            s["ran"].as_bool().unwrap(),
-            s["reason"].as_str().unwrap().to_string(),
-        )
+        let r = crate::common::stage_row(&dir.join("s.json"), name);
+        (r.ran, r.reason)
     };
     let reason = "the render camera has no outputs and no part file keeps its image";
     assert_eq!(stage("shade"), (false, reason.to_string()));

@@ -10,6 +10,7 @@ mod rays;
 mod rib_text;
 mod scene_text;
 mod scratch;
+mod stats_json;
 pub use cli::*;
 pub use meshes::*;
 pub use mi_text::*;
@@ -18,6 +19,7 @@ pub use rays::*;
 pub use rib_text::*;
 pub use scene_text::*;
 pub use scratch::scratch_root;
+pub use stats_json::*;
 
 use std::sync::Arc;
 
