@@ -318,6 +318,17 @@ struct PlanArgs {
     bake_only: bool,
     #[command(flatten)]
     stages: StageFlags,
+    /// Plan the render of this camera (by name) instead of the scene's render camera, as
+    /// `render --camera` renders it.
+    #[arg(long)]
+    camera: Option<String>,
+    /// Plan a render that writes its image here (.png or .exr, or .svg/.eps for contours),
+    /// as `render -o` writes it: a camera without outputs then runs its stages.
+    #[arg(short = 'o', long = "output")]
+    output: Option<PathBuf>,
+    /// Samples per pixel, as `render --spp` (a fixed count overrides adaptive sampling).
+    #[arg(long)]
+    spp: Option<u32>,
     /// Print the plan as JSON on stdout.
     #[arg(long)]
     json: bool,
@@ -627,13 +638,38 @@ fn check_outputs(
 }
 
 fn plan(args: PlanArgs) -> ExitCode {
-    let scene = match load(&args.scene, &budget(None)) {
+    let out = args.output.as_deref();
+    let file = |f| stagelight::guard::dir_flags::usable_file("-o", f, "out.png");
+    if let Err(code) = usable_paths(&[out.map_or(Ok(()), file)]) {
+        return code;
+    }
+    let mut scene = match load(&args.scene, &budget(None)) {
         Ok(s) => s,
         Err(code) => return code,
     };
+    // The camera and the image a `render` with the same flags would use.
+    if let Some(name) = &args.camera {
+        if let Err(message) = stagelight::camera_choice::use_camera(&mut scene.world, name) {
+            errln!("{message}");
+            return ExitCode::from(EXIT_USAGE);
+        }
+    }
+    let overrides = match checked_overrides(args.output.clone(), &scene.world, &args.scene) {
+        Ok(o) => o,
+        Err(code) => return code,
+    };
+    if args.output.is_some() && !stagelight::scene_view::has_render_camera(&scene.world) {
+        errln!("error: the scene has no render camera");
+        return ExitCode::from(EXIT_USAGE);
+    }
     let mut settings = scene.settings.clone();
+    if let Some(spp) = args.spp {
+        settings.spp = spp;
+        settings.adaptive = None;
+    }
     args.stages.apply(&mut settings);
     let mut frame = Frame::new(settings);
+    frame.inputs.outputs = overrides;
     frame.inputs.photon_cache = args.stages.photon_cache.clone();
     frame.inputs.tasks = Tasks {
         render: !args.bake_only,

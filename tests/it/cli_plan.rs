@@ -309,3 +309,59 @@ fn plan_refuses_what_check_refuses_before_the_first_stage() {
         );
     }
 }
+
+/// `plan --camera NAME -o FILE` plans the render those flags make: a camera without outputs
+/// skips `shade` (as `render --camera` would render nothing), with `-o` it runs, and the
+/// plan's `shade` row then says what `render` with the same flags reports.
+#[test]
+fn plan_takes_camera_and_output_as_render_does() {
+    let dir = scratch("camera");
+    let path = dir.join("scene.ron");
+    let two = scene("").replace(
+        r#"outputs: [(file: "view.png")])],"#,
+        r#"outputs: [(file: "view.png")]),
+              (name: "side", fov_y: 40.0, resolution: (8, 8),
+               placement: LookAt(eye: (4, 0, 1), target: (0, 0, 0)), outputs: [])],"#,
+    );
+    assert_ne!(two, scene(""));
+    write(&path, &two);
+    let shade_row = |args: &[&str]| {
+        let o = run(bin().arg("plan").arg(&path).args(args).current_dir(&dir));
+        assert!(o.status.success(), "{args:?}: {}", text(&o.stderr));
+        let out = text(&o.stdout);
+        out.lines()
+            .find(|l| l.split_whitespace().nth(1) == Some("shade"))
+            .unwrap_or_else(|| panic!("no shade row in\n{out}"))
+            .to_string()
+    };
+    assert!(shade_row(&[]).contains("shade            run "));
+    let side = shade_row(&["--camera", "side"]);
+    assert_eq!(
+        side,
+        " 6 shade            skip the render camera has no outputs and no part file keeps its image"
+    );
+    let written = shade_row(&["--camera", "side", "-o", "side.exr", "--spp", "2"]);
+    assert!(written.contains("shade            run "), "{written}");
+    // The run agrees, and the plan wrote nothing.
+    assert!(!dir.join("side.exr").exists());
+    let o = run(bin()
+        .args([
+            "render",
+            "scene.ron",
+            "--camera",
+            "side",
+            "-o",
+            "side.exr",
+            "--spp",
+            "2",
+        ])
+        .args(["--stats-json", "s.json"])
+        .current_dir(&dir));
+    assert!(o.status.success(), "{}", text(&o.stderr));
+    let row = crate::common::stage_row(&dir.join("s.json"), "shade");
+    assert!(row.ran);
+    assert_eq!((row.items, row.unit.as_str()), (8 * 8 * 2, "samples"));
+    let o = run(bin().arg("plan").arg(&path).args(["--camera", "top"]));
+    assert_eq!(o.status.code(), Some(2));
+    assert!(text(&o.stderr).contains("\"top\""), "{}", text(&o.stderr));
+}
