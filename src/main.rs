@@ -798,10 +798,7 @@ fn convert(scene: &Path, output: &Path) -> ExitCode {
             ))
         }
     };
-    let file = stagelight::image_io::PendingFile {
-        path: output.to_path_buf(),
-        bytes: text.into_bytes(),
-    };
+    let file = stagelight::image_io::PendingFile::new(output.to_path_buf(), text.into_bytes());
     if let Err((p, e)) = stagelight::image_io::commit_all(&[file]) {
         let reason = stagelight::guard::io_reason(&e);
         return undo(format!("error: cannot write {}: {reason}", p.display()));
@@ -1685,9 +1682,8 @@ fn sweep(args: SweepArgs) -> ExitCode {
         ("sweep.json", json),
         ("sweep.svg", svg),
     ]
-    .map(|(name, text)| stagelight::image_io::PendingFile {
-        path: args.out.join(name),
-        bytes: text.into_bytes(),
+    .map(|(name, text)| {
+        stagelight::image_io::PendingFile::new(args.out.join(name), text.into_bytes())
     });
     if opts.cancel.load(Ordering::SeqCst) {
         opts.files.remove_partial();
@@ -1751,10 +1747,12 @@ fn run_and_report(
                 return ExitCode::from(EXIT_ERROR);
             }
         };
-        frame.held_files.push(stagelight::image_io::PendingFile {
-            path: path.to_path_buf(),
-            bytes: json.into_bytes(),
-        });
+        frame
+            .held_files
+            .push(stagelight::image_io::PendingFile::new(
+                path.to_path_buf(),
+                json.into_bytes(),
+            ));
     }
     if frame.cancelled() {
         errln!("{}", stagelight::stage_error::StageError::Interrupted);

@@ -234,7 +234,7 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
             path: path.clone(),
             message,
         })?;
-        pending.push(crate::image_io::PendingFile { path, bytes });
+        pending.push(crate::image_io::PendingFile::new(path, bytes));
     }
     let work = Work::new(texels_baked, work_unit(&prepared))
         .with_pending(pending)
@@ -347,7 +347,7 @@ fn part_file(
             path: path.clone(),
             message,
         })?;
-    Ok(crate::image_io::PendingFile { path, bytes })
+    Ok(crate::image_io::PendingFile::new(path, bytes))
 }
 
 /// What a bake wrote that the baked glTF file (`--write-gltf`) takes: per request (by its

@@ -334,10 +334,10 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
     };
     let pending: Vec<PendingFile> = kept
         .into_iter()
-        .map(|at| PendingFile {
-            path: at.path,
-            bytes: encode(&stored),
-        })
+        // Shared: farm parts run without the photon job trace the same maps into the same
+        // file at once (`--photon-cache DIR/<hash>.pmap`, or the scene's `photon_map`: same
+        // hash, same bytes); each renames its complete copy over it, and none fails.
+        .map(|at| PendingFile::shared(at.path, encode(&stored)))
         .collect();
     let maps = gather_maps(stored, settings, diagonal);
     Ok(Work::new(maps.stored(), "photons")

@@ -116,10 +116,7 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
             path: out.path.clone(),
             message,
         })?;
-        pending.push(PendingFile {
-            path: out.path.clone(),
-            bytes,
-        });
+        pending.push(PendingFile::new(out.path.clone(), bytes));
     }
     if frame.cancelled() {
         return Err(StageError::Interrupted);
@@ -189,7 +186,7 @@ fn write_part(run: &PartRun, world: &World, frame: &Frame) -> Result<Work, Stage
     if frame.cancelled() {
         return Err(StageError::Interrupted);
     }
-    Ok(Work::new(1, "files").with_pending(vec![PendingFile { path, bytes }]))
+    Ok(Work::new(1, "files").with_pending(vec![PendingFile::new(path, bytes)]))
 }
 
 #[cfg(test)]

@@ -37,16 +37,13 @@ pub fn encode_request(
         let color = matches!(target.kind, BakeKind::Lightmap { .. } | BakeKind::Albedo);
         let signed = matches!(target.kind, BakeKind::Normals { .. });
         let bytes = encode(img, target.format, color, signed).map_err(write_error(&file))?;
-        pending.push(PendingFile {
-            path: dir.join(file),
-            bytes,
-        });
+        pending.push(PendingFile::new(dir.join(file), bytes));
     }
     if results.images.len() > p.request.targets.len() {
         let img = &results.images[results.images.len() - 1];
         let path = dir.join(format!("{safe_name}_bent_normals.exr"));
         let bytes = img.encode_exr().map_err(write_error(&path))?;
-        pending.push(PendingFile { path, bytes });
+        pending.push(PendingFile::new(path, bytes));
     }
     if p.request.mask {
         if let Some(first) = results.images.first() {
@@ -57,7 +54,7 @@ pub fn encode_request(
                 mask.valid = baked.to_vec();
             }
             let bytes = mask.encode_mask_png().map_err(write_error(&path))?;
-            pending.push(PendingFile { path, bytes });
+            pending.push(PendingFile::new(path, bytes));
         }
     }
     Ok(BakedFiles { pending })

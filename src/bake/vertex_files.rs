@@ -49,10 +49,10 @@ pub fn encode_vertex_request(
             .into_iter()
             .map(Option::unwrap_or_default)
             .collect();
-        pending.push(PendingFile {
-            path: dir.join(target_file(&safe_name, target)),
-            bytes: encode_ply(mesh, &target.kind, &p.request.name, &per_vertex),
-        });
+        pending.push(PendingFile::new(
+            dir.join(target_file(&safe_name, target)),
+            encode_ply(mesh, &target.kind, &p.request.name, &per_vertex),
+        ));
         values.push((target.kind.clone(), per_vertex));
     }
     VertexBake {

@@ -3,13 +3,21 @@
 //! [`commit_all`] works in three steps, and says exactly what each failure leaves:
 //!
 //! 1. **Temporaries.** Every file is written and synced under a hidden temporary name in its
-//!    destination directory, `.<name>.<pid>.tmp`. A failure here removes every temporary
-//!    and touches no destination.
+//!    destination directory, `.<name>.<n>.<pid>.tmp` (`n` counts this process's
+//!    temporaries, so threads committing the same file do not share one). A failure here
+//!    removes every temporary and touches no destination.
 //! 2. **Renames.** Each destination that already exists (a file from an earlier run) is
 //!    first renamed aside to `.<name>.<pid>.bak`; then the temporary is renamed into place.
 //!    A failure here (a destination that is a directory, a vanished directory) undoes every
 //!    rename made so far: new files are removed and the previous files are renamed back, so
-//!    every destination holds exactly what it held before the run.
+//!    every destination holds exactly what it held before the run. **Shared** files
+//!    ([`PendingFile::shared`]: photon map files, which other processes may write at the same
+//!    moment) come after every other file, each by one rename of its temporary over the
+//!    destination: a reader sees the previous complete file or the new one, never a gap or
+//!    a partial file, and any number of processes writing the same file all succeed (the
+//!    last rename stays). A shared file that cannot be renamed undoes the other files as
+//!    above; a shared file renamed before it in the same commit stays (it is complete, and
+//!    another process may have written it too).
 //! 3. **Clean-up.** Only after every file is in place are the `.bak` files removed.
 //!
 //! A process killed (SIGKILL, power loss) in step 1 or 2 leaves hidden `.tmp`/`.bak` files;
@@ -19,6 +27,7 @@
 use std::fs;
 use std::io::Write;
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicU64, Ordering};
 
 /// Whether a commit is under way or has finished in this process, for the signal handler
 /// ([`crate::guard::interrupt`]): it must not end the process in the middle of a commit.
@@ -65,6 +74,31 @@ pub struct PendingFile {
     pub path: PathBuf,
     /// Encoded bytes.
     pub bytes: Vec<u8>,
+    /// Replaced by one rename, after the other files, rather than moved aside and restored
+    /// on failure (see the module documentation): a cache file that other processes may
+    /// write at the same time and whose every complete version is valid to its readers.
+    pub shared: bool,
+}
+
+impl PendingFile {
+    /// A file of the run: in place with the others, or the previous file kept.
+    pub fn new(path: PathBuf, bytes: Vec<u8>) -> Self {
+        Self {
+            path,
+            bytes,
+            shared: false,
+        }
+    }
+
+    /// A cache file that concurrent runs may write too (a photon map file: farm parts share
+    /// `--photon-cache DIR/<hash>.pmap`, and a reader checks the hash inside).
+    pub fn shared(path: PathBuf, bytes: Vec<u8>) -> Self {
+        Self {
+            path,
+            bytes,
+            shared: true,
+        }
+    }
 }
 
 fn sibling(path: &Path, pid: u32, ext: &str) -> PathBuf {
@@ -75,8 +109,16 @@ fn sibling(path: &Path, pid: u32, ext: &str) -> PathBuf {
     path.with_file_name(format!(".{name}.{pid}.{ext}"))
 }
 
+/// `.<name>.<n>.<pid>.tmp`, `n` new on every call: unique among this process's threads too
+/// (a leftover's `name` reads as `<name>.<n>`, which is only removed).
 fn temp_path(path: &Path) -> PathBuf {
-    sibling(path, std::process::id(), "tmp")
+    static NEXT: AtomicU64 = AtomicU64::new(0);
+    let n = NEXT.fetch_add(1, Ordering::Relaxed);
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    path.with_file_name(format!(".{name}.{n}.{}.tmp", std::process::id()))
 }
 
 fn backup_path(path: &Path) -> PathBuf {
@@ -111,9 +153,10 @@ fn process_alive(pid: u32) -> bool {
     proc_root.join(pid.to_string()).exists()
 }
 
-/// Removes the leftovers of dead stagelight processes in `dir`: `.<name>.<pid>.tmp` files,
-/// and `.<name>.<pid>.bak` files (renamed back to `name` when that is missing, since then
-/// the process died between moving the old file aside and putting the new one in place).
+/// Removes the leftovers of dead stagelight processes in `dir`: `.<name>.<n>.<pid>.tmp` files
+/// (`.<name>.<pid>.tmp` from earlier releases), and `.<name>.<pid>.bak` files (renamed back
+/// to `name` when that is missing, since then the process died between moving the old file
+/// aside and putting the new one in place).
 /// Returns the paths removed or restored.
 pub fn remove_stale(dir: &Path) -> Vec<PathBuf> {
     let mut done = Vec::new();
@@ -221,37 +264,20 @@ pub fn commit_all(files: &[PendingFile]) -> Result<Vec<PathBuf>, (PathBuf, std::
     }
     // (destination, backup of its previous file if there was one), in rename order.
     let mut placed: Vec<(PathBuf, Option<PathBuf>)> = Vec::with_capacity(files.len());
-    for (f, tmp) in files.iter().zip(&temps) {
-        let result = (|| {
-            let backup = if f.path.is_file() {
-                let b = backup_path(&f.path);
-                fs::rename(&f.path, &b)?;
-                Some(b)
-            } else {
-                None
-            };
-            let renamed = fs::rename(tmp, &f.path);
-            if let Err(e) = renamed {
-                if let Some(b) = &backup {
-                    let _ = fs::rename(b, &f.path);
-                }
-                return Err(e);
-            }
-            Ok(backup)
-        })();
+    let pairs = || files.iter().zip(&temps);
+    let own = pairs().filter(|(f, _)| !f.shared);
+    let shared = pairs().filter(|(f, _)| f.shared);
+    for (f, tmp) in own.chain(shared) {
+        let result = if f.shared {
+            fs::rename(tmp, &f.path).map(|()| None)
+        } else {
+            replace_keeping_backup(tmp, &f.path)
+        };
         match result {
-            Ok(backup) => placed.push((f.path.clone(), backup)),
+            Ok(backup) if !f.shared => placed.push((f.path.clone(), backup)),
+            Ok(_) => {}
             Err(e) => {
-                for (dest, backup) in placed.iter().rev() {
-                    match backup {
-                        Some(b) => {
-                            let _ = fs::rename(b, dest);
-                        }
-                        None => {
-                            let _ = fs::remove_file(dest);
-                        }
-                    }
-                }
+                undo(&placed);
                 for t in &temps {
                     let _ = fs::remove_file(t);
                 }
@@ -265,7 +291,41 @@ pub fn commit_all(files: &[PendingFile]) -> Result<Vec<PathBuf>, (PathBuf, std::
             let _ = fs::remove_file(b);
         }
     }
-    Ok(placed.into_iter().map(|(dest, _)| dest).collect())
+    Ok(files.iter().map(|f| f.path.clone()).collect())
+}
+
+/// Moves the file at `dest` (if any) aside to its `.bak`, then renames `tmp` into place;
+/// a failing rename puts the previous file back. Returns the `.bak`.
+fn replace_keeping_backup(tmp: &Path, dest: &Path) -> std::io::Result<Option<PathBuf>> {
+    let backup = if dest.is_file() {
+        let b = backup_path(dest);
+        fs::rename(dest, &b)?;
+        Some(b)
+    } else {
+        None
+    };
+    if let Err(e) = fs::rename(tmp, dest) {
+        if let Some(b) = &backup {
+            let _ = fs::rename(b, dest);
+        }
+        return Err(e);
+    }
+    Ok(backup)
+}
+
+/// Undoes the renames of `placed` (latest first): a new file is removed, a previous one
+/// renamed back from its `.bak`.
+fn undo(placed: &[(PathBuf, Option<PathBuf>)]) {
+    for (dest, backup) in placed.iter().rev() {
+        match backup {
+            Some(b) => {
+                let _ = fs::rename(b, dest);
+            }
+            None => {
+                let _ = fs::remove_file(dest);
+            }
+        }
+    }
 }
 
 #[cfg(test)]
@@ -294,14 +354,8 @@ mod tests {
     fn writes_files_and_leaves_no_temporaries() {
         let dir = scratch("ok");
         let files = vec![
-            PendingFile {
-                path: dir.join("a.bin"),
-                bytes: vec![1, 2, 3],
-            },
-            PendingFile {
-                path: dir.join("sub/b.bin"),
-                bytes: vec![4],
-            },
+            PendingFile::new(dir.join("a.bin"), vec![1, 2, 3]),
+            PendingFile::new(dir.join("sub/b.bin"), vec![4]),
         ];
         commit_all(&files).unwrap();
         assert_eq!(fs::read(dir.join("a.bin")).unwrap(), vec![1, 2, 3]);
@@ -316,18 +370,9 @@ mod tests {
         fs::write(dir.join("old.bin"), b"previous").unwrap();
         fs::create_dir_all(dir.join("taken.bin")).unwrap();
         let files = vec![
-            PendingFile {
-                path: dir.join("new.bin"),
-                bytes: vec![1],
-            },
-            PendingFile {
-                path: dir.join("old.bin"),
-                bytes: vec![2],
-            },
-            PendingFile {
-                path: dir.join("taken.bin"),
-                bytes: vec![3],
-            },
+            PendingFile::new(dir.join("new.bin"), vec![1]),
+            PendingFile::new(dir.join("old.bin"), vec![2]),
+            PendingFile::new(dir.join("taken.bin"), vec![3]),
         ];
         let (path, _) = commit_all(&files).unwrap_err();
         assert_eq!(path, dir.join("taken.bin"));
@@ -340,10 +385,10 @@ mod tests {
     /// "File exists (os error 17)" or "Not a directory (os error 20)").
     #[test]
     fn a_directory_that_cannot_be_created_is_named_with_the_reason() {
-        let files = [PendingFile {
-            path: PathBuf::from("/proc/stagelight-no-dir/a.png"),
-            bytes: b"a".to_vec(),
-        }];
+        let files = [PendingFile::new(
+            PathBuf::from("/proc/stagelight-no-dir/a.png"),
+            b"a".to_vec(),
+        )];
         let (path, e) = commit_all(&files).unwrap_err();
         assert_eq!(path, files[0].path);
         assert_eq!(
@@ -357,10 +402,7 @@ mod tests {
         let dir = scratch("file_in_path");
         fs::write(dir.join("plain"), b"x").unwrap();
         for path in ["plain/a.bin", "plain/sub/a.bin"] {
-            let files = vec![PendingFile {
-                path: dir.join(path),
-                bytes: vec![1],
-            }];
+            let files = vec![PendingFile::new(dir.join(path), vec![1])];
             let (_, e) = commit_all(&files).unwrap_err();
             assert_eq!(
                 e.to_string(),
@@ -389,9 +431,126 @@ mod tests {
         fs::remove_dir_all(&dir).unwrap();
     }
 
+    /// Eight writers at once, forty rounds: each commits its own output and the same shared
+    /// cache file (identical bytes, as content-addressed entries are). Every commit
+    /// succeeds, and a reader that polls the cache file meanwhile only ever finds it whole:
+    /// never missing (it existed before the first round) and never part-written. Moving
+    /// the file aside first, as an ordinary output is, made a second writer's rename fail
+    /// with "file not found" and left a moment with no file.
+    #[test]
+    fn concurrent_commits_of_one_shared_file_all_succeed_and_it_stays_whole() {
+        use std::sync::atomic::AtomicBool;
+        use std::sync::{Arc, Barrier};
+        const WRITERS: usize = 8;
+        const ROUNDS: usize = 40;
+        let dir = scratch("shared");
+        let cache = dir.join("cache/e904a1777226d411.pmap");
+        let bytes: Vec<u8> = (0..256 * 1024).map(|i| (i * 7 % 251) as u8).collect();
+        commit_all(&[PendingFile::shared(cache.clone(), bytes.clone())]).unwrap();
+        let barrier = Arc::new(Barrier::new(WRITERS));
+        let stop = Arc::new(AtomicBool::new(false));
+        let reader = {
+            let (cache, bytes, stop) = (cache.clone(), bytes.clone(), stop.clone());
+            std::thread::spawn(move || {
+                let mut reads = 0u32;
+                while !stop.load(Ordering::SeqCst) {
+                    let read = fs::read(&cache).map_err(|e| e.to_string());
+                    assert!(
+                        read.as_ref() == Ok(&bytes),
+                        "read {:?}",
+                        read.map(|b| b.len())
+                    );
+                    reads += 1;
+                }
+                reads
+            })
+        };
+        let writers: Vec<_> = (0..WRITERS)
+            .map(|k| {
+                let (dir, cache, bytes, barrier) =
+                    (dir.clone(), cache.clone(), bytes.clone(), barrier.clone());
+                std::thread::spawn(move || {
+                    let mut failures = Vec::new();
+                    for round in 0..ROUNDS {
+                        let files = [
+                            PendingFile::new(dir.join(format!("p{k}.exr")), vec![k as u8; 64]),
+                            PendingFile::shared(cache.clone(), bytes.clone()),
+                        ];
+                        barrier.wait();
+                        if let Err((p, e)) = commit_all(&files) {
+                            failures
+                                .push(format!("writer {k}, round {round}: {}: {e}", p.display()));
+                        }
+                    }
+                    failures
+                })
+            })
+            .collect();
+        let failures: Vec<String> = writers
+            .into_iter()
+            .flat_map(|w| w.join().unwrap())
+            .collect();
+        stop.store(true, Ordering::SeqCst);
+        let reads = reader.join().expect("the reader saw the cache file whole");
+        assert_eq!(failures, Vec::<String>::new(), "every commit succeeds");
+        assert!(reads > 0);
+        assert_eq!(fs::read(&cache).unwrap(), bytes);
+        assert_eq!(names(&dir.join("cache")), vec!["e904a1777226d411.pmap"]);
+        for k in 0..WRITERS {
+            assert_eq!(
+                fs::read(dir.join(format!("p{k}.exr"))).unwrap(),
+                vec![k as u8; 64]
+            );
+        }
+        fs::remove_dir_all(&dir).unwrap();
+    }
+
+    /// A shared file is renamed after the other files: when one of those fails, the shared
+    /// file still holds what it held (here, listed first, it would have been in place).
+    #[test]
+    fn a_failing_output_leaves_a_shared_file_as_it_was() {
+        let dir = scratch("shared_rollback");
+        fs::write(dir.join("maps.pmap"), b"previous maps").unwrap();
+        fs::write(dir.join("old.exr"), b"previous image").unwrap();
+        fs::create_dir_all(dir.join("taken.exr")).unwrap();
+        fs::write(dir.join("taken.exr/x"), b"x").unwrap();
+        let files = vec![
+            PendingFile::shared(dir.join("maps.pmap"), b"new maps".to_vec()),
+            PendingFile::new(dir.join("old.exr"), b"new image".to_vec()),
+            PendingFile::new(dir.join("taken.exr"), b"y".to_vec()),
+        ];
+        let (path, _) = commit_all(&files).unwrap_err();
+        assert_eq!(path, dir.join("taken.exr"));
+        assert_eq!(names(&dir), vec!["maps.pmap", "old.exr", "taken.exr"]);
+        assert_eq!(fs::read(dir.join("maps.pmap")).unwrap(), b"previous maps");
+        assert_eq!(fs::read(dir.join("old.exr")).unwrap(), b"previous image");
+        let placed = commit_all(&files[..2]).unwrap();
+        assert_eq!(placed, vec![dir.join("maps.pmap"), dir.join("old.exr")]);
+        assert_eq!(fs::read(dir.join("maps.pmap")).unwrap(), b"new maps");
+        assert_eq!(names(&dir), vec!["maps.pmap", "old.exr", "taken.exr"]);
+        fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn temporaries_are_unique_and_read_as_leftovers_of_this_process() {
+        let (a, b) = (
+            temp_path(Path::new("d/a.pmap")),
+            temp_path(Path::new("d/a.pmap")),
+        );
+        assert_ne!(a, b);
+        let name = a.file_name().unwrap().to_str().unwrap();
+        let (stem, pid, backup) = parse_leftover(name).unwrap();
+        assert!(stem.starts_with("a.pmap."), "{stem}");
+        assert_eq!((pid, backup), (std::process::id(), false));
+    }
+
     #[test]
     fn leftover_names_parse() {
         assert_eq!(parse_leftover(".a.png.12.tmp"), Some(("a.png", 12, false)));
+        assert_eq!(
+            parse_leftover(".a.png.3.12.tmp"),
+            Some(("a.png.3", 12, false))
+        );
         assert_eq!(parse_leftover(".a.png.12.bak"), Some(("a.png", 12, true)));
         assert_eq!(parse_leftover(".a.png.x12.tmp"), None);
         assert_eq!(parse_leftover("a.png.12.tmp"), None);

@@ -495,12 +495,14 @@ fn sweep_runs(
             let bytes = texture.encode_exr().map_err(|e| io(&cached, e))?;
             stop_if_cancelled(opts)?;
             // Committed whole (or not at all), it outlives an interruption of the runs that
-            // follow: the next sweep of this scene and reference settings reads it.
+            // follow: the next sweep of this scene and reference settings reads it. Shared:
+            // its name is the hash of what it holds, so sweeps into one directory at once
+            // all write it (the last rename stays).
             std::fs::create_dir_all(&opts.out).map_err(|e| io(&opts.out, e))?;
-            crate::image_io::commit_all(&[crate::image_io::PendingFile {
-                path: cached.clone(),
+            crate::image_io::commit_all(&[crate::image_io::PendingFile::shared(
+                cached.clone(),
                 bytes,
-            }])
+            )])
             .map_err(|(p, e)| io(&p, e))?;
             (r.image, r.width, r.height)
         }

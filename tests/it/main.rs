@@ -97,6 +97,7 @@ mod mi_volumes;
 mod mirrored_instances;
 mod obj_materials;
 mod object_labels;
+mod photon_cache_race;
 mod photon_clean;
 mod photon_depth;
 mod photon_falloff;
