@@ -3,11 +3,15 @@
 //! engine or Blender.
 //!
 //! Every placed instance with triangles (in entity order, as `build_accel` placed it) is one
-//! node named by the instance, without a transform: its mesh holds the instance's triangles
-//! as baked (after tessellation, displacement and geometry shaders) in **world space** —
-//! render space plus the scene origin, in f64, rounded once to f32 (render space itself when
-//! the scene was not rebased) — in the world triangles' winding (a mirrored instance's corners
-//! swapped, so the front stays the front). Attributes: `POSITION` (with `min`/`max`),
+//! node named by the instance; its mesh holds the instance's triangles as baked (after
+//! tessellation, displacement and geometry shaders) in the world triangles' winding (a
+//! mirrored instance's corners swapped, so the front stays the front). Where the vertices go
+//! is [`super::gltf_translation`]'s rule: in **world space** — render space plus the scene
+//! origin, in f64, rounded once to f32 — under a node without a transform (every instance of
+//! a scene that was not rebased, and of a rebased one when f32 world coordinates keep its
+//! shape), else in render space under a node whose `translation` is the scene origin, so a
+//! small part far from the origin keeps its shape (node translation + vertex = the traced
+//! world position). Attributes: `POSITION` (with `min`/`max`),
 //! `NORMAL` (the mesh's shading normals in world space, else the triangle's normal),
 //! `TEXCOORD_0` (the mesh's own UVs; without them the bake's, the same accessor, since glTF
 //! numbers the sets without gaps), `TEXCOORD_1` (the bake's UVs) and
@@ -25,13 +29,14 @@
 
 use std::collections::HashMap;
 
-use glam::{Vec2, Vec3};
+use glam::{DVec3, Vec2, Vec3};
 use serde_json::{json, Value};
 
 use super::glb_build::{
     add_float_accessor, add_view_for, encode_glb, list, use_lightmap_extension, wire_texture,
     TextureSlot, ARRAY_BUFFER, ELEMENT_ARRAY_BUFFER,
 };
+use super::gltf_translation::{node_translation, written_position};
 use crate::geometry::{InstanceGeometry, SceneGeometry};
 
 /// What an instance's bake puts in the file.
@@ -151,7 +156,8 @@ pub fn standalone_glb(
         if inst.mesh.triangles.is_empty() {
             continue;
         }
-        let vertices = corner_vertices(geometry, inst, exported.bake.as_ref())?;
+        let translation = node_translation(geometry.origin, &render_triangles(inst));
+        let vertices = corner_vertices(geometry, inst, translation, exported.bake.as_ref())?;
         let (unique, indices) = weld(&vertices);
         let mut written = Attributes {
             json: &mut json,
@@ -215,7 +221,12 @@ pub fn standalone_glb(
         }));
         let mesh = meshes.len() - 1;
         let node_list = list(&mut json, "nodes");
-        node_list.push(json!({"name": exported.name, "mesh": mesh}));
+        let mut node = json!({"name": exported.name, "mesh": mesh});
+        if translation != DVec3::ZERO {
+            // An f32 value (the scene origin, which f32 holds exactly), in its f64 digits.
+            node["translation"] = json!(translation.to_array());
+        }
+        node_list.push(node);
         nodes.push(node_list.len() - 1);
     }
     json["scenes"] = json!([{"nodes": nodes}]);
@@ -255,11 +266,26 @@ fn push_material(json: &mut Value, name: String, material: &crate::components::M
     materials.len() - 1
 }
 
+/// The render-space corners of `inst`'s triangles in world order: the triangles the bake
+/// traced.
+fn render_triangles(inst: &InstanceGeometry) -> Vec<[Vec3; 3]> {
+    (0..inst.mesh.triangles.len())
+        .map(|local| {
+            inst.corners(local).map(|i| {
+                inst.world_from_object
+                    .transform_point3(inst.mesh.positions[i])
+            })
+        })
+        .collect()
+}
+
 /// The corners of `inst`'s triangles in world order, three per triangle, with every
-/// attribute the file writes.
+/// attribute the file writes; positions relative to the node's `translation`
+/// ([`written_position`]).
 fn corner_vertices(
     geometry: &SceneGeometry,
     inst: &InstanceGeometry,
+    translation: DVec3,
     bake: Option<&InstanceBake<'_>>,
 ) -> Result<Vec<Vertex>, String> {
     let mesh = &inst.mesh;
@@ -274,9 +300,9 @@ fn corner_vertices(
     if colors.is_some_and(|c| c.len() != mesh.positions.len()) {
         return Err("the per-vertex bake does not match the instance's vertices".into());
     }
-    let world = |p: Vec3| -> [f32; 3] {
+    let position = |p: Vec3| -> [f32; 3] {
         let render = inst.world_from_object.transform_point3(p);
-        (render.as_dvec3() + geometry.origin).as_vec3().to_array()
+        written_position(render, geometry.origin, translation).to_array()
     };
     let mut out = Vec::with_capacity(mesh.triangles.len() * 3);
     for local in 0..mesh.triangles.len() {
@@ -301,7 +327,7 @@ fn corner_vertices(
                 })
                 .unwrap_or(face);
             out.push(Vertex {
-                position: world(mesh.positions[i]),
+                position: position(mesh.positions[i]),
                 normal: normal.to_array(),
                 uv0: mesh.uvs.as_ref().map(|uvs| gltf_uv(uvs[i])),
                 uv1: bake_corner.map(|c| gltf_uv(c[k])),

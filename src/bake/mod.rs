@@ -1,7 +1,8 @@
 //! Texture baking: UV sources and bake resolution, texel rasterization with conservative
 //! coverage, the per-texel estimators (ambient occlusion, irradiance), dilation and texture
 //! encoding; request checking ([`request`]), file naming/encoding ([`files`]) and the baked
-//! glTF copy ([`gltf_out`]), the standalone baked glTF of other scenes ([`gltf_export`]), the
+//! glTF copy ([`gltf_out`]), the standalone baked glTF of other scenes ([`gltf_export`]; where it puts each
+//! instance's vertices: [`gltf_translation`]), the
 //! GLB pieces both build with ([`glb_build`]), the PNG each embeds for an AO or lightmap
 //! output, EXR ones included ([`gltf_textures`]), and what `--write-gltf` refuses ([`gltf_copy_refusals`]); per-vertex bakes lay vertices out as texels ([`vertices`]) and
 //! are written as PLY ([`vertex_files`]); PNG outputs that clip their values are counted for a
@@ -25,6 +26,7 @@ pub mod gltf_export;
 pub mod gltf_orphans;
 pub mod gltf_out;
 pub mod gltf_textures;
+pub mod gltf_translation;
 pub mod hemisphere_lanes;
 pub mod irradiance;
 pub mod raster;

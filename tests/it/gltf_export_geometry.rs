@@ -3,7 +3,8 @@
 //! no bakes: converted to RON, a bake added, as the `bake` help says), mirrored instances
 //! (a negative-determinant transform baked into the vertices must reverse the corners, as
 //! glTF's front is counter-clockwise under an identity node) and a scene far from the
-//! origin, which the renderer rebases (the `.glb` holds true world coordinates).
+//! origin, which the renderer rebases (the `.glb` translates its node by the scene origin
+//! and holds the traced render-space vertices: together the true world coordinates).
 
 use std::path::Path;
 
@@ -252,10 +253,11 @@ fn a_mirrored_instance_keeps_its_front_face() {
 }
 
 /// A floor two million units from the origin (the loader rebases the scene: it is traced
-/// within a unit of the render-space origin) is written at its true world coordinates:
-/// each corner the f64 sum of the scene's translation and vertex rounded once to f32
-/// (x = 1000000.3 ± 0.75, not representable: 1000001.0625 and 999999.5625), with POSITION's
-/// bounds those corners.
+/// within a unit of the render-space origin): its node is translated by the scene origin
+/// (10⁶, −2·10⁶, 500), which f32 holds exactly, and its vertices are the traced render-space
+/// ones, so translation + vertex, in f64 rounded once to f32 as a loader's f32 world space
+/// would hold it, is each world corner (x = 1000000.3 ± 0.75, not representable:
+/// 1000001.0625 and 999999.5625), and POSITION's bounds are the written vertices'.
 #[test]
 fn a_far_scene_is_written_at_its_world_coordinates() {
     let dir = scratch_dir("gltf-export-far");
@@ -276,7 +278,26 @@ fn a_far_scene_is_written_at_its_world_coordinates() {
     std::fs::write(dir.join("scene.ron"), scene).unwrap();
     ok(&dir, &["bake", "scene.ron", "-o", "out", "--write-gltf"]);
     let path = dir.join("out/scene.glb");
-    let written = read_glb(&path);
+    let bytes = std::fs::read(&path).unwrap();
+    let glb = gltf::Gltf::from_slice(&bytes).unwrap();
+    let blob = glb.blob.clone().unwrap();
+    let node = glb.nodes().next().unwrap();
+    let gltf::scene::Transform::Decomposed { translation, .. } = node.transform() else {
+        panic!("a translation");
+    };
+    assert_eq!(translation, [1000000.0, -2000000.0, 500.0]);
+    let prim = node.mesh().unwrap().primitives().next().unwrap();
+    let local: Vec<Vec3> = prim
+        .reader(|_| Some(&blob))
+        .read_positions()
+        .unwrap()
+        .map(Vec3::from)
+        .collect();
+    let compose =
+        |p: [f32; 3]| [0, 1, 2].map(|a| (f64::from(translation[a]) + f64::from(p[a])) as f32);
+    let mut composed: Vec<[f32; 3]> = local.iter().map(|p| compose(p.to_array())).collect();
+    composed.sort_by(|a, b| a.partial_cmp(b).unwrap());
+    composed.dedup();
     let world = |x: f64, y: f64| [(1000000.3 + x) as f32, (-2000000.0 + y) as f32, 500.25f32];
     let mut want = vec![
         world(-0.75, -0.75),
@@ -285,21 +306,15 @@ fn a_far_scene_is_written_at_its_world_coordinates() {
         world(-0.75, 0.75),
     ];
     want.sort_by(|a, b| a.partial_cmp(b).unwrap());
-    assert_eq!(corners(&written.nodes[0].1), want);
+    assert_eq!(composed, want);
     assert_eq!(f64::from(want[0][0]), 999999.5625);
     assert_eq!(f64::from(want[3][0]), 1000001.0625);
-    let bytes = std::fs::read(&path).unwrap();
-    let glb = gltf::Gltf::from_slice(&bytes).unwrap();
-    let bounds = glb
-        .meshes()
-        .next()
-        .unwrap()
-        .primitives()
-        .next()
-        .unwrap()
-        .bounding_box();
+    let bounds = prim.bounding_box();
+    let lo = local.iter().fold(Vec3::INFINITY, |m, p| m.min(*p));
+    let hi = local.iter().fold(Vec3::NEG_INFINITY, |m, p| m.max(*p));
+    assert_eq!((bounds.min, bounds.max), (lo.to_array(), hi.to_array()));
     assert_eq!(
-        (bounds.min, bounds.max),
+        (compose(bounds.min), compose(bounds.max)),
         (world(-0.75, -0.75), world(0.75, 0.75))
     );
     // The scene was rebased: the renderer traced it near the origin.
@@ -312,5 +327,20 @@ fn a_far_scene_is_written_at_its_world_coordinates() {
         geometry.origin,
         glam::DVec3::new(1000000.0, -2000000.0, 500.0)
     );
+    // The written vertices are the traced render-space corners, bit for bit.
+    let indices: Vec<u32> = prim
+        .reader(|_| Some(&blob))
+        .read_indices()
+        .unwrap()
+        .into_u32()
+        .collect();
+    let written: Vec<[Vec3; 3]> = indices
+        .chunks(3)
+        .map(|t| [0, 1, 2].map(|k| local[t[k] as usize]))
+        .collect();
+    let traced: Vec<[Vec3; 3]> = (0..geometry.triangle_count() as u32)
+        .map(|t| geometry.accel.triangle(t))
+        .collect();
+    assert_eq!(written, traced);
     let _ = std::fs::remove_dir_all(&dir);
 }

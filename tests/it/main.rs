@@ -54,6 +54,7 @@ mod gltf_attributes;
 mod gltf_cameras;
 mod gltf_export;
 mod gltf_export_exr;
+mod gltf_export_far;
 mod gltf_export_geometry;
 mod gltf_materials;
 mod gltf_names;
