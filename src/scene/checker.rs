@@ -10,6 +10,7 @@ use super::desc::{M4, V3};
 use super::diagnostics::Sources;
 use super::import::SourcePos;
 use super::message::Diagnostic;
+use super::syntax::Helps;
 
 /// One element of the merged scene: where it was written and what it says.
 #[derive(Debug)]
@@ -102,10 +103,7 @@ impl Checker<'_> {
         let mut ok = true;
         for (k, x) in c.to_array().into_iter().enumerate() {
             if x < 0.0 {
-                self.error(
-                    &format!("{path}[{k}]"),
-                    format!("{what} must not be negative, found {x}"),
-                );
+                self.negative(&format!("{path}[{k}]"), what, x);
                 ok = false;
             }
         }
@@ -134,10 +132,23 @@ impl Checker<'_> {
             return None;
         }
         if x < 0.0 {
-            self.error(path, format!("{what} must not be negative, found {x}"));
+            self.negative(path, what, x);
             return None;
         }
         Some(x)
+    }
+
+    /// Reports the negative `x` of `what` at `path`, with what to write instead.
+    fn negative(&mut self, path: &str, what: &str, x: f64) {
+        self.src.error(
+            self.file,
+            path,
+            format!("{what} must not be negative, found {x}"),
+            Some(format!(
+                "{what} takes 0 or more: write {} if only the sign is wrong",
+                -x
+            )),
+        );
     }
 
     /// A finite row-major matrix (each non-finite entry reported at `path[r][c]`).
@@ -160,12 +171,23 @@ impl Checker<'_> {
         // (0, 0, 0, 1): the rows above are the transform.
         let exact = [0.0, 0.0, 0.0, 1.0];
         if (0..4).any(|j| (m[3][j] - exact[j]).abs() > BOTTOM_ROW_TOLERANCE) {
-            self.error(
+            let neutral = "an affine transform's last row is (0, 0, 0, 1): a projective matrix cannot place anything";
+            let help = self.src.syntax(self.file).help_each(Helps {
+                ron: "the rows are written in order with the translation in the last column, \
+                      `((a, b, c, tx), (d, e, f, ty), (g, h, i, tz), (0, 0, 0, 1))`: a matrix \
+                      written column by column (translation in the last row) must be transposed",
+                mi: neutral,
+                rib: neutral,
+                gltf: neutral,
+            });
+            self.src.error(
+                self.file,
                 &format!("{path}[3]"),
                 format!(
                     "the last row of a {what} must be (0, 0, 0, 1), found {}",
                     tuple(&m[3])
                 ),
+                Some(help),
             );
             return None;
         }

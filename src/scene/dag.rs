@@ -73,6 +73,19 @@ pub fn instance_transforms(src: &mut Sources, m: &Merged<'_>) -> Vec<Option<DAff
         .collect()
 }
 
+/// What to write instead of a scale with a zero factor.
+const SCALE_HELP: &str = "every factor must be non-zero: 1 keeps an axis as it is, and a thin \
+     object takes a small factor such as 0.001 (a negative factor mirrors)";
+
+/// What to write instead of a zero rotation axis (only RON writes `Rotate`).
+const AXIS_HELP: &str =
+    "the axis is the direction to turn about: `axis: (0, 1, 0)` turns about y, `(1, 0, 0)` about x";
+
+/// What a singular matrix does wrong (RON's `Matrix`, a RIB transformation): format-neutral.
+const SINGULAR_HELP: &str = "the matrix flattens space onto a plane, a line or a point (a scale \
+     of 0, or two axes mapped to the same direction): every axis must keep a non-zero length \
+     and a direction of its own";
+
 fn transform(ck: &mut Checker<'_>, path: &str, t: &TransformDesc) -> Option<DAffine3> {
     match t {
         TransformDesc::Scale(s) => {
@@ -86,7 +99,7 @@ fn transform(ck: &mut Checker<'_>, path: &str, t: &TransformDesc) -> Option<DAff
                          invertible",
                         s.x, s.y, s.z
                     ),
-                    None,
+                    Some(SCALE_HELP.into()),
                 );
                 return None;
             }
@@ -97,9 +110,11 @@ fn transform(ck: &mut Checker<'_>, path: &str, t: &TransformDesc) -> Option<DAff
             let ok = ck.finite(&format!("{path}.Rotate.degrees"), "degrees", *degrees);
             let a = a?.normalize_or_zero();
             if a == DVec3::ZERO {
-                ck.error(
+                ck.src.error(
+                    ck.file,
                     &format!("{path}.Rotate.axis"),
                     "rotation axis must not be zero",
+                    Some(AXIS_HELP.into()),
                 );
                 return None;
             }
@@ -114,9 +129,11 @@ fn transform(ck: &mut Checker<'_>, path: &str, t: &TransformDesc) -> Option<DAff
             let a = ck.affine(&format!("{path}.Matrix[0]"), "transform matrix", m)?;
             if super::desc_values::is_singular(&a.matrix3) {
                 let det = a.matrix3.determinant();
-                ck.error(
+                ck.src.error(
+                    ck.file,
                     path,
                     format!("transform matrix is singular (determinant {det}): not invertible"),
+                    Some(SINGULAR_HELP.into()),
                 );
                 return None;
             }

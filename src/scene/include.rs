@@ -140,13 +140,14 @@ impl Loader<'_> {
         self.stack.push((key, path.clone()));
         let dir = path.parent().unwrap_or(Path::new("")).to_path_buf();
         for (i, include) in scene.include.iter().enumerate() {
-            self.include(file, i, &dir.join(include));
+            self.include(file, i, include, &dir.join(include));
         }
         self.stack.pop();
         self.out.scenes[file] = Some(scene);
     }
 
-    fn include(&mut self, from: usize, i: usize, path: &Path) {
+    /// Follows include `i` of file `from`, written `written` and resolved to `path`.
+    fn include(&mut self, from: usize, i: usize, written: &str, path: &Path) {
         let at = format!("include[{i}]");
         let key = canonical(path);
         if let Some(start) = self.stack.iter().position(|(k, _)| *k == key) {
@@ -189,7 +190,9 @@ impl Loader<'_> {
             Ok(bytes) => self.read_file(format, path.to_path_buf(), key, &bytes),
             Err(e) => {
                 let message = cannot_read(io_reason(&e));
-                self.out.sources.error(from, &at, message, None);
+                let naming = &self.out.sources.files[from].path;
+                let help = super::missing_file::help_if_missing(written, path, naming);
+                self.out.sources.error(from, &at, message, help);
             }
         }
     }

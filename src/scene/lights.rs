@@ -13,7 +13,16 @@ fn radius(ck: &mut Checker<'_>, path: &str, r: f64) -> Option<f32> {
         return None;
     }
     if r <= 0.0 {
-        ck.error(path, format!("radius must be positive, found {r}"));
+        ck.src.error(
+            ck.file,
+            path,
+            format!("radius must be positive, found {r}"),
+            Some(
+                "the radius is the light's size in scene units, above 0 (such as 0.5); a light \
+                 with no size is a point light"
+                    .into(),
+            ),
+        );
         return None;
     }
     Some(r as f32)

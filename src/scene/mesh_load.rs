@@ -348,11 +348,12 @@ pub fn load_file(
     match result {
         Ok(b) => b,
         Err(MeshFileError::Read { reason }) => {
+            let help = super::missing_file::help_if_missing(file, &path, &src.files[it.file].path);
             src.error(
                 it.file,
                 &at,
                 format!("cannot read {kind} file \"{}\": {reason}", path.display()),
-                None,
+                help,
             );
             None
         }

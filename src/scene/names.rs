@@ -9,6 +9,8 @@
 use std::collections::HashMap;
 
 use super::diagnostics::{suggestion, Sources};
+use super::suggest::closest;
+use super::syntax::{Helps, Syntax};
 use super::validate::{Item, Merged};
 
 /// What an instance's `of` names.
@@ -45,11 +47,20 @@ pub struct Resolved {
 struct Table<'a> {
     map: HashMap<&'a str, usize>,
     names: Vec<&'a str>,
+    /// Whether some entry has an empty name (reported where it is).
+    unnamed: bool,
 }
 
 impl<'a> Table<'a> {
     fn get(&self, name: &str) -> Option<usize> {
         self.map.get(name).copied()
+    }
+
+    /// Whether a reference to the unknown `name` is worth reporting: not when an entry of
+    /// this kind has an empty name (it may be the one meant: its own error says so), unless
+    /// a defined name is close enough to suggest.
+    fn reports_unknown(&self, name: &str) -> bool {
+        !self.unnamed || closest(name, self.names.iter().copied()).is_some()
     }
 }
 
@@ -58,10 +69,12 @@ impl<'a> Table<'a> {
 fn table<'a>(src: &mut Sources, kind: &str, entries: &[(usize, &str, &'a str)]) -> Table<'a> {
     let mut map: HashMap<&'a str, usize> = HashMap::new();
     let mut names = Vec::new();
+    let mut unnamed = false;
     for (i, &(file, path, name)) in entries.iter().enumerate() {
         let name_path = format!("{path}.name");
         if name.is_empty() {
             src.error(file, &name_path, format!("{kind} name is empty"), None);
+            unnamed = true;
             continue;
         }
         match map.get(name) {
@@ -84,7 +97,11 @@ fn table<'a>(src: &mut Sources, kind: &str, entries: &[(usize, &str, &'a str)]) 
             }
         }
     }
-    Table { map, names }
+    Table {
+        map,
+        names,
+        unnamed,
+    }
 }
 
 fn entries<'a, T>(
@@ -117,7 +134,7 @@ pub fn resolve(src: &mut Sources, m: &Merged<'_>) -> Resolved {
     let material_ref = |src: &mut Sources, file: usize, path: String, name: &Option<String>| {
         let name = name.as_deref()?;
         let found = materials.get(name);
-        if found.is_none() {
+        if found.is_none() && materials.reports_unknown(name) {
             src.error(
                 file,
                 &path,
@@ -150,7 +167,7 @@ pub fn resolve(src: &mut Sources, m: &Merged<'_>) -> Resolved {
         .map(|it| {
             let name = it.desc.of.as_str();
             let found = shapes.get(name).map(target);
-            if found.is_none() {
+            if found.is_none() && shapes.reports_unknown(name) {
                 src.error(
                     it.file,
                     &it.at(".of"),
@@ -177,9 +194,14 @@ pub fn resolve(src: &mut Sources, m: &Merged<'_>) -> Resolved {
                             "instance \"{name}\" is listed twice in group \"{}\"",
                             it.desc.name
                         ),
-                        None,
+                        Some(listed_twice_help(
+                            src.syntax(it.file),
+                            name,
+                            &m.instances[i].desc.of,
+                        )),
                     ),
                     Some(i) => members.push(i),
+                    None if !instances.reports_unknown(name) => {}
                     None => {
                         let help = match shapes.get(name).map(target) {
                             Some(Target::Object(_)) => Some(format!(
@@ -216,6 +238,7 @@ pub fn resolve(src: &mut Sources, m: &Merged<'_>) -> Resolved {
                      `groups: [(name: \"world\", members: [\"{name}_1\"])]`"
                 )),
             ),
+            None if !shapes.reports_unknown(name) => {}
             None => {
                 let groups: Vec<&str> = m.groups.iter().map(|g| g.desc.name.as_str()).collect();
                 src.error(
@@ -228,7 +251,7 @@ pub fn resolve(src: &mut Sources, m: &Merged<'_>) -> Resolved {
         }
         let name = r.desc.camera.as_str();
         camera = cameras.get(name);
-        if camera.is_none() {
+        if camera.is_none() && cameras.reports_unknown(name) {
             src.error(
                 r.file,
                 "render.camera",
@@ -247,6 +270,24 @@ pub fn resolve(src: &mut Sources, m: &Merged<'_>) -> Resolved {
         root,
         camera,
     }
+}
+
+/// What to write instead of a group member listed twice: a group places each instance once,
+/// so a second copy of `of` is a second instance of it.
+fn listed_twice_help(syntax: Syntax, name: &str, of: &str) -> String {
+    let neutral = format!(
+        "a group places each of its instances once: remove this \"{name}\", or give \"{of}\" a second instance (with a transform of its own) and list that"
+    );
+    syntax.help_each(Helps {
+        ron: &format!(
+            "a group places each of its instances once: remove this \"{name}\", or add a second instance such as `(name: \"{name}_2\", of: \"{of}\", transform: [Translate((2, 0, 0))])` and list that"
+        ),
+        mi: &format!(
+            "an instgroup places each of its instances once: remove this \"{name}\", or add a second `instance` of \"{of}\" with a `transform` of its own and list that"
+        ),
+        rib: &neutral,
+        gltf: &neutral,
+    })
 }
 
 /// Checks and resolves the `materials` of an inline mesh: one per polygon, `""` for the
@@ -310,7 +351,10 @@ fn polygon_materials(
                 return None;
             }
             let found = materials.get(name);
-            if found.is_none() && !reported.contains(&name.as_str()) {
+            if found.is_none()
+                && !reported.contains(&name.as_str())
+                && materials.reports_unknown(name)
+            {
                 reported.push(name);
                 src.error(
                     it.file,

@@ -268,9 +268,11 @@ impl Fields<'_, '_, '_> {
         };
         for (k, x) in c.to_array().into_iter().enumerate() {
             if x > 1.0 {
-                self.ck.error(
+                self.ck.src.error(
+                    self.ck.file,
                     &format!("{path}[{k}]"),
                     format!("{what} must be at most 1 (energy conservation), found {x}"),
+                    Some(fraction_help(what)),
                 );
                 self.ok = false;
             }
@@ -330,4 +332,17 @@ impl Fields<'_, '_, '_> {
         }
         c.as_vec3()
     }
+}
+
+/// What a colour channel above 1 should be instead: opacity is coverage, the other
+/// colours are the fraction of light sent on.
+fn fraction_help(what: &str) -> String {
+    if what == "opacity" {
+        return "opacity is 0 (clear) to 1 (opaque) per channel".into();
+    }
+    format!(
+        "{what} is the fraction of the light arriving that goes on, 0 to 1 per channel (0.8 is \
+         a bright white): a surface that gives off light of its own needs an emission, not more \
+         {what}"
+    )
 }

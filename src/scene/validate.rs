@@ -15,6 +15,7 @@ use super::desc::{
     ProgressiveDesc, RenderDesc, SceneDesc,
 };
 use super::diagnostics::Sources;
+use super::syntax::Helps;
 use crate::components::{Camera, Emitter, ImageFormat, LightShape, Material, OutputSpec, Pass};
 use crate::features::{Feature, Features};
 use crate::settings::{
@@ -409,12 +410,22 @@ pub fn camera(src: &mut Sources, item: &Item<'_, CameraDesc>) -> Option<Camera> 
     let mut ok = true;
     let fov_path = item.at(".fov_y");
     if ck.finite(&fov_path, "fov_y", c.fov_y) && !(c.fov_y > 0.0 && c.fov_y < 180.0) {
-        ck.error(
+        let wide = if c.fov_y >= 180.0 {
+            "; a view of 180° or more needs a fisheye lens, `lens: [Fisheye(fov: 180)]`"
+        } else {
+            ""
+        };
+        ck.src.error(
+            ck.file,
             &fov_path,
             format!(
                 "fov_y must be between 0 and 180 degrees (exclusive), found {}",
                 c.fov_y
             ),
+            Some(format!(
+                "fov_y is the full vertical angle of the view in degrees, such as 40 (a normal \
+                 lens) or 90 (a wide one){wide}"
+            )),
         );
         ok = false;
     }
@@ -424,9 +435,15 @@ pub fn camera(src: &mut Sources, item: &Item<'_, CameraDesc>) -> Option<Camera> 
         .enumerate()
     {
         if n == 0 {
-            ck.error(
+            let help = ck.src.syntax(ck.file).help(
+                "the image is width × height pixels, each at least 1: `resolution: (640, 480)`",
+                "the image is width × height pixels, each at least 1: `resolution 640 480`",
+            );
+            ck.src.error(
+                ck.file,
                 &item.at(&format!(".resolution[{k}]")),
                 format!("resolution {what} must be at least 1, found 0"),
+                Some(help),
             );
             ok = false;
         }
@@ -479,6 +496,24 @@ pub fn camera(src: &mut Sources, item: &Item<'_, CameraDesc>) -> Option<Camera> 
     })
 }
 
+/// The help for an `up` parallel to the view direction `forward` (a unit vector): an axis
+/// far from it.
+fn up_help(forward: DVec3) -> String {
+    let axes = [
+        (DVec3::Y, "(0, 1, 0)"),
+        (DVec3::Z, "(0, 0, 1)"),
+        (DVec3::X, "(1, 0, 0)"),
+    ];
+    let far = axes
+        .iter()
+        .find(|(a, _)| a.dot(forward).abs() < 0.9)
+        .map_or("(0, 1, 0)", |(_, text)| text);
+    format!(
+        "up is the direction that is up in the image; it must lean away from the line from eye \
+         to target: `up: {far}` does for this view"
+    )
+}
+
 fn placement(ck: &mut Checker<'_>, path: &str, p: &PlacementDesc) -> Option<DAffine3> {
     match p {
         PlacementDesc::LookAt { eye, target, up } => {
@@ -488,18 +523,26 @@ fn placement(ck: &mut Checker<'_>, path: &str, p: &PlacementDesc) -> Option<DAff
             let (eye, target, up) = (eye_v?, target_v?, up_v?);
             let forward = (target - eye).normalize_or_zero();
             if forward == DVec3::ZERO {
-                ck.error(
+                ck.src.error(
+                    ck.file,
                     &format!("{path}.LookAt.target"),
                     "target must differ from eye",
+                    Some(
+                        "the camera at eye looks toward target: make target the point to look \
+                         at, such as the middle of the scene"
+                            .into(),
+                    ),
                 );
                 return None;
             }
             let z = -forward;
             let x = up.cross(z).normalize_or_zero();
             if x == DVec3::ZERO || up.length() < 1e-12 {
-                ck.error(
+                ck.src.error(
+                    ck.file,
                     &format!("{path}.LookAt.up"),
                     "up must not be zero or parallel to the view direction",
+                    Some(up_help(forward)),
                 );
                 return None;
             }
@@ -514,10 +557,24 @@ fn placement(ck: &mut Checker<'_>, path: &str, p: &PlacementDesc) -> Option<DAff
             let a = ck.affine(&mpath, "camera matrix", m)?;
             // A rotation rounded to a few digits is the rotation it rounds.
             let Some(rotation) = snapped_rotation(a.matrix3) else {
-                ck.error(
+                let neutral = "a camera is placed by a rotation and a translation only: its \
+                               axes must be at right angles and not mirrored";
+                let help = ck.src.syntax(ck.file).help_each(Helps {
+                    ron: "the 3×3 part must be a rotation (columns of length 1 at right angles, \
+                          determinant 1): scale the objects instead, or place the camera with \
+                          `LookAt(eye: …, target: …, up: …)`",
+                    mi: "a camera instance's transform may rotate, move and scale evenly, but \
+                         not shear, stretch unevenly or mirror: scale the objects' instances \
+                         instead",
+                    rib: neutral,
+                    gltf: neutral,
+                });
+                ck.src.error(
+                    ck.file,
                     &mpath,
                     "a camera matrix must be rigid: orthonormal rotation with determinant 1, \
                      no scale, shear or mirroring",
+                    Some(help),
                 );
                 return None;
             };
@@ -561,9 +618,19 @@ fn output(ck: &mut Checker<'_>, path: &str, o: &OutputDesc) -> Option<OutputSpec
     }
     let descs = o.passes.clone().unwrap_or_else(|| vec![PassDesc::Beauty]);
     if descs.is_empty() {
-        ck.error(
+        let neutral = "list the passes the output writes, such as Beauty";
+        let help = ck.src.syntax(ck.file).help_each(Helps {
+            ron: "leave out `passes` to write the Beauty pass, or list the passes to write, \
+                  such as `passes: [Beauty, Alpha]`",
+            mi: neutral,
+            rib: neutral,
+            gltf: neutral,
+        });
+        ck.src.error(
+            ck.file,
             &format!("{path}.passes"),
             "an output needs at least one pass",
+            Some(help),
         );
         return None;
     }
@@ -604,7 +671,14 @@ fn output(ck: &mut Checker<'_>, path: &str, o: &OutputDesc) -> Option<OutputSpec
             );
             ok = false;
         } else if passes.contains(&pass) {
-            ck.error(&ppath, format!("pass {pass:?} is listed twice"));
+            ck.src.error(
+                ck.file,
+                &ppath,
+                format!("pass {pass:?} is listed twice"),
+                Some(format!(
+                    "an output writes each pass once: remove this {pass:?}"
+                )),
+            );
             ok = false;
         } else if let Some((other, channels)) =
             pass.same_channels_as().filter(|(o, _)| passes.contains(o))
@@ -698,9 +772,16 @@ pub fn light(src: &mut Sources, item: &Item<'_, LightDesc>) -> Option<Emitter> {
             if ck.finite(&cone_path, "cone_angle", *cone_angle)
                 && !(*cone_angle > 0.0 && *cone_angle <= 90.0)
             {
-                ck.error(
+                ck.src.error(
+                    ck.file,
                     &cone_path,
                     format!("cone_angle must be in (0, 90] degrees, found {cone_angle}"),
+                    Some(
+                        "cone_angle is the angle in degrees from the spot's axis to the edge of \
+                         its cone (90 lights a half space, a cone 180° across); a light that \
+                         shines every way is a point light"
+                            .into(),
+                    ),
                 );
                 ok = false;
             }

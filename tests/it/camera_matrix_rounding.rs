@@ -158,6 +158,13 @@ fn check(test: &str, name: &str, text: &str) -> (Option<i32>, String) {
     (o.status.code(), stderr_of(&o))
 }
 
+const MI_RIGID_HELP: &str = "a camera instance's transform may rotate, move and scale evenly, \
+                             but not shear, stretch unevenly or mirror: scale the objects' \
+                             instances instead";
+
+const RIB_RIGID_HELP: &str = "a camera is placed by a rotation and a translation only: its axes \
+                              must be at right angles and not mirrored";
+
 const NOT_RIGID: &str = "error: a camera matrix must be rigid: orthonormal rotation with \
                          determinant 1, no scale, shear or mirroring";
 
@@ -169,7 +176,10 @@ fn a_sheared_or_projective_mi_matrix_is_refused_at_the_matrix() {
     let sheared = mi_scene("1 0 0 0  0.3 1 0 0  0 0 1 0  0 0 -5 1", IDENTITY);
     let (code, err) = check("mi-shear-camera", "s.mi", &sheared);
     assert_eq!(code, Some(1));
-    assert_eq!(err, format!("s.mi:5:43: {NOT_RIGID}\n1 error in s.mi\n"));
+    assert_eq!(
+        err,
+        format!("s.mi:5:43: {NOT_RIGID}\n  help: {MI_RIGID_HELP}\n1 error in s.mi\n")
+    );
     // Through an instance group: at the group instance's transform that shears.
     let nested = sheared
         .replace(
@@ -184,7 +194,10 @@ fn a_sheared_or_projective_mi_matrix_is_refused_at_the_matrix() {
         );
     let (code, err) = check("mi-shear-rig", "s.mi", &nested);
     assert_eq!(code, Some(1));
-    assert_eq!(err, format!("s.mi:10:37: {NOT_RIGID}\n1 error in s.mi\n"));
+    assert_eq!(
+        err,
+        format!("s.mi:10:37: {NOT_RIGID}\n  help: {MI_RIGID_HELP}\n1 error in s.mi\n")
+    );
 
     let projective = mi_scene(BACK_5, "1 0 0 0  0 1 0 0  0 0 1 -1  0 0 0 1");
     let (code, err) = check("mi-projective-row", "p.mi", &projective);
@@ -205,11 +218,17 @@ fn a_sheared_rib_camera_is_refused_at_the_request_that_shears_it() {
     let text = rib_scene("Rotate 30 0 1 0\nScale 1 2 1\nTranslate 0 0 5");
     let (code, err) = check("rib-shear-camera", "s.rib", &text);
     assert_eq!(code, Some(1));
-    assert_eq!(err, format!("s.rib:4:1: {NOT_RIGID}\n1 error in s.rib\n"));
+    assert_eq!(
+        err,
+        format!("s.rib:4:1: {NOT_RIGID}\n  help: {RIB_RIGID_HELP}\n1 error in s.rib\n")
+    );
     let text = rib_scene("ConcatTransform [1 0 0 0  0.3 1 0 0  0 0 1 0  0 0 5 1]");
     let (code, err) = check("rib-shear-concat", "s.rib", &text);
     assert_eq!(code, Some(1));
-    assert_eq!(err, format!("s.rib:3:1: {NOT_RIGID}\n1 error in s.rib\n"));
+    assert_eq!(
+        err,
+        format!("s.rib:3:1: {NOT_RIGID}\n  help: {RIB_RIGID_HELP}\n1 error in s.rib\n")
+    );
 }
 
 /// A RON transform matrix whose bottom row a general inverse left a few bits off is
@@ -234,7 +253,10 @@ fn a_ron_bottom_row_a_few_bits_off_is_affine_a_projective_one_is_refused() {
     assert_eq!(code, Some(1));
     assert_eq!(
         err,
-        "t.ron:3:102: error: the last row of a transform matrix must be (0, 0, 0, 1), found (0, 0, -1, 1)\n\
+        "t.ron:3:102: error: the last row of a transform matrix must be (0, 0, 0, 1), found (0, 0, -1, 1)\n  \
+         help: the rows are written in order with the translation in the last column, \
+         `((a, b, c, tx), (d, e, f, ty), (g, h, i, tz), (0, 0, 0, 1))`: a matrix written column by \
+         column (translation in the last row) must be transposed\n\
          1 error in t.ron\n"
     );
 }

@@ -287,9 +287,9 @@ fn bad_fog_bounds_and_fades_are_located_errors() {
     assert_eq!(
         report("fade.ron"),
         [
-            format!("{f}:4:37: error: color must not be negative, found -1"),
+            format!("{f}:4:37: error: color must not be negative, found -1\n  help: color takes 0 or more: write 1 if only the sign is wrong"),
             format!("{f}:4:54: error: opacity must be between 0 and 1, found 1.5"),
-            format!("{f}:4:64: error: max must not be negative, found -2"),
+            format!("{f}:4:64: error: max must not be negative, found -2\n  help: max takes 0 or more: write 2 if only the sign is wrong"),
         ]
     );
 }

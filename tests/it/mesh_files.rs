@@ -143,7 +143,8 @@ fn missing_file() {
     assert_eq!(
         obj_errors("nothing.obj"),
         [format!(
-            "{DIR}/scene.ron:2:47: error: cannot read OBJ file \"{DIR}/nothing.obj\": file not found"
+            "{DIR}/scene.ron:2:47: error: cannot read OBJ file \"{DIR}/nothing.obj\": file not found\n  \
+             help: \"nothing.obj\" is read relative to {DIR}/scene.ron, the file that names it"
         )]
     );
 }

@@ -77,7 +77,7 @@ fn errors_inside_a_block_include_are_located_in_the_included_file() {
     let cases = [
         (
             "resolution 0 3\nfocal 1\naperture 1\n",
-            "camera_body.mi:1:12: error: resolution width must be at least 1, found 0",
+            "camera_body.mi:1:12: error: resolution width must be at least 1, found 0\n  help: the image is width × height pixels, each at least 1: `resolution 640 480`",
         ),
         (
             "resolution 4 3\nfocul 1\n",

@@ -293,7 +293,7 @@ fn values_of_an_incremental_block_are_located_in_it() {
     let text = rich("incremental camera \"cam\"\nresolution 0 3\nend camera");
     assert_eq!(
         load("own", &[("x.mi", &text)]),
-        "x.mi:25:12: error: resolution width must be at least 1, found 0"
+        "x.mi:25:12: error: resolution width must be at least 1, found 0\n  help: the image is width × height pixels, each at least 1: `resolution 640 480`"
     );
 }
 
@@ -305,7 +305,7 @@ fn kept_values_stay_located_where_they_were_written() {
         .replace("resolution 8 6", "resolution 0 6");
     assert_eq!(
         load("kept", &[("x.mi", &bad)]),
-        "x.mi:7:12: error: resolution width must be at least 1, found 0"
+        "x.mi:7:12: error: resolution width must be at least 1, found 0\n  help: the image is width × height pixels, each at least 1: `resolution 640 480`"
     );
     let main = rich("$include \"change.mi\"").replace("resolution 8 6", "resolution 0 6");
     assert_eq!(
@@ -319,7 +319,7 @@ fn kept_values_stay_located_where_they_were_written() {
                 )
             ]
         ),
-        "x.mi:7:12: error: resolution width must be at least 1, found 0"
+        "x.mi:7:12: error: resolution width must be at least 1, found 0\n  help: the image is width × height pixels, each at least 1: `resolution 640 480`"
     );
 }
 

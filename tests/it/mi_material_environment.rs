@@ -353,7 +353,7 @@ fn bad_material_environments_give_exact_located_messages() {
     check(
         "bad.ron",
         &ron(&RED_MIRROR.replace("(1, 0, 0))", "(1, 0, 0)), intensity: -1")),
-        format!("bad.ron:{at}:75: error: intensity must not be negative, found -1"),
+        format!("bad.ron:{at}:75: error: intensity must not be negative, found -1\n  help: intensity takes 0 or more: write 1 if only the sign is wrong"),
     );
     check(
         "bad.ron",

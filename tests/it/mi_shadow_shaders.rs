@@ -442,7 +442,7 @@ fn bad_shadow_shaders_give_exact_located_messages() {
     check(
         "bad.ron",
         &ron("(-0.5, 0.5, 0.5)"),
-        format!("bad.ron:{at}:93: error: shadow transparency must not be negative, found -0.5"),
+        format!("bad.ron:{at}:93: error: shadow transparency must not be negative, found -0.5\n  help: shadow transparency takes 0 or more: write 0.5 if only the sign is wrong"),
     );
     // A shader that is not built in warns and keeps the surface shader's shadows.
     let native = mi_scene(r#"shadow "my_shadow" ("k" 1)"#);

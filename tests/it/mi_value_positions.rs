@@ -47,11 +47,11 @@ fn value_errors_point_at_the_value() {
     let cases = [
         (
             replaced(&text, "resolution 128 96", "resolution 0 96"),
-            "bad.mi:29:12: error: resolution width must be at least 1, found 0",
+            "bad.mi:29:12: error: resolution width must be at least 1, found 0\n  help: the image is width × height pixels, each at least 1: `resolution 640 480`",
         ),
         (
             replaced(&text, "resolution 128 96", "resolution 128 0"),
-            "bad.mi:29:16: error: resolution height must be at least 1, found 0",
+            "bad.mi:29:16: error: resolution height must be at least 1, found 0\n  help: the image is width × height pixels, each at least 1: `resolution 640 480`",
         ),
         (
             replaced(&text, "focal 12.0", "focal 0"),

@@ -186,7 +186,7 @@ fn missing_obj() {
     check(
         "missing_obj.ron",
         &[
-            "tests/fixtures/scenes/bad/missing_obj.ron:2:47: error: cannot read OBJ file \"tests/fixtures/scenes/bad/meshes/bunny.obj\": file not found",
+            "tests/fixtures/scenes/bad/missing_obj.ron:2:47: error: cannot read OBJ file \"tests/fixtures/scenes/bad/meshes/bunny.obj\": file not found\n  help: \"meshes/bunny.obj\" is read relative to tests/fixtures/scenes/bad/missing_obj.ron, the file that names it",
         ],
     );
 }
@@ -197,7 +197,7 @@ fn missing_include() {
     check(
         "missing_include.ron",
         &[
-            "tests/fixtures/scenes/bad/missing_include.ron:2:36: error: cannot read include file \"tests/fixtures/scenes/bad/lib/nothing_here.ron\": file not found",
+            "tests/fixtures/scenes/bad/missing_include.ron:2:36: error: cannot read include file \"tests/fixtures/scenes/bad/lib/nothing_here.ron\": file not found\n  help: \"lib/nothing_here.ron\" is read relative to tests/fixtures/scenes/bad/missing_include.ron, the file that names it",
         ],
     );
 }
@@ -208,7 +208,7 @@ fn singular_matrix() {
     check(
         "singular_matrix.ron",
         &[
-            "tests/fixtures/scenes/bad/singular_matrix.ron:6:13: error: transform matrix is singular (determinant 0): not invertible",
+            "tests/fixtures/scenes/bad/singular_matrix.ron:6:13: error: transform matrix is singular (determinant 0): not invertible\n  help: the matrix flattens space onto a plane, a line or a point (a scale of 0, or two axes mapped to the same direction): every axis must keep a non-zero length and a direction of its own",
         ],
     );
 }
@@ -219,7 +219,7 @@ fn zero_scale() {
     check(
         "zero_scale.ron",
         &[
-            "tests/fixtures/scenes/bad/zero_scale.ron:3:91: error: scale (1, 0, 1) has a zero component: the transform is not invertible",
+            "tests/fixtures/scenes/bad/zero_scale.ron:3:91: error: scale (1, 0, 1) has a zero component: the transform is not invertible\n  help: every factor must be non-zero: 1 keeps an axis as it is, and a thin object takes a small factor such as 0.001 (a negative factor mirrors)",
         ],
     );
 }
@@ -255,7 +255,7 @@ fn fov_range() {
     check(
         "fov_range.ron",
         &[
-            "tests/fixtures/scenes/bad/fov_range.ron:3:36: error: fov_y must be between 0 and 180 degrees (exclusive), found 180",
+            "tests/fixtures/scenes/bad/fov_range.ron:3:36: error: fov_y must be between 0 and 180 degrees (exclusive), found 180\n  help: fov_y is the full vertical angle of the view in degrees, such as 40 (a normal lens) or 90 (a wide one); a view of 180° or more needs a fisheye lens, `lens: [Fisheye(fov: 180)]`",
         ],
     );
 }
@@ -266,7 +266,7 @@ fn resolution_zero() {
     check(
         "resolution_zero.ron",
         &[
-            "tests/fixtures/scenes/bad/resolution_zero.ron:3:58: error: resolution height must be at least 1, found 0",
+            "tests/fixtures/scenes/bad/resolution_zero.ron:3:58: error: resolution height must be at least 1, found 0\n  help: the image is width × height pixels, each at least 1: `resolution: (640, 480)`",
         ],
     );
 }
@@ -308,18 +308,18 @@ fn several() {
         "several.ron",
         &[
             "tests/fixtures/scenes/bad/several.ron:2:24: error: samples must be at least 1, found 0",
-            "tests/fixtures/scenes/bad/several.ron:4:59: error: albedo must not be negative, found -0.1",
-            "tests/fixtures/scenes/bad/several.ron:6:91: error: cone_angle must be in (0, 90] degrees, found 95",
+            "tests/fixtures/scenes/bad/several.ron:4:59: error: albedo must not be negative, found -0.1\n  help: albedo takes 0 or more: write 0.1 if only the sign is wrong",
+            "tests/fixtures/scenes/bad/several.ron:6:91: error: cone_angle must be in (0, 90] degrees, found 95\n  help: cone_angle is the angle in degrees from the spot's axis to the edge of its cone (90 lights a half space, a cone 180° across); a light that shines every way is a point light",
             "tests/fixtures/scenes/bad/several.ron:6:105: error: penumbra must be in [0, cone_angle] = [0, 95] degrees, found 100",
-            "tests/fixtures/scenes/bad/several.ron:6:122: error: intensity must not be negative, found -1",
+            "tests/fixtures/scenes/bad/several.ron:6:122: error: intensity must not be negative, found -1\n  help: intensity takes 0 or more: write 1 if only the sign is wrong",
             "tests/fixtures/scenes/bad/several.ron:7:109: error: vertex index 3 is out of range: the mesh has 3 vertices, 0 to 2",
             "tests/fixtures/scenes/bad/several.ron:7:113: error: a polygon needs at least 3 vertex indices, found 2",
             concat!(
                 "tests/fixtures/scenes/bad/several.ron:8:52: error: unknown material \"glod\"\n",
                 "  help: did you mean \"gold\"?",
             ),
-            "tests/fixtures/scenes/bad/several.ron:10:36: error: fov_y must be between 0 and 180 degrees (exclusive), found 0",
-            "tests/fixtures/scenes/bad/several.ron:10:101: error: target must differ from eye",
+            "tests/fixtures/scenes/bad/several.ron:10:36: error: fov_y must be between 0 and 180 degrees (exclusive), found 0\n  help: fov_y is the full vertical angle of the view in degrees, such as 40 (a normal lens) or 90 (a wide one)",
+            "tests/fixtures/scenes/bad/several.ron:10:101: error: target must differ from eye\n  help: the camera at eye looks toward target: make target the point to look at, such as the middle of the scene",
         ],
     );
 }
@@ -330,7 +330,7 @@ fn error_in_include() {
     check(
         "error_in_include.ron",
         &[
-            "tests/fixtures/scenes/bad/lib/broken_materials.ron:4:71: error: emission must not be negative, found -1",
+            "tests/fixtures/scenes/bad/lib/broken_materials.ron:4:71: error: emission must not be negative, found -1\n  help: emission takes 0 or more: write 1 if only the sign is wrong",
         ],
     );
 }
@@ -390,7 +390,7 @@ fn camera_matrix() {
     check(
         "camera_matrix.ron",
         &[
-            "tests/fixtures/scenes/bad/camera_matrix.ron:3:78: error: a camera matrix must be rigid: orthonormal rotation with determinant 1, no scale, shear or mirroring",
+            "tests/fixtures/scenes/bad/camera_matrix.ron:3:78: error: a camera matrix must be rigid: orthonormal rotation with determinant 1, no scale, shear or mirroring\n  help: the 3×3 part must be a rotation (columns of length 1 at right angles, determinant 1): scale the objects instead, or place the camera with `LookAt(eye: …, target: …, up: …)`",
         ],
     );
 }
@@ -488,8 +488,8 @@ fn transform_values() {
         "transform_values.ron",
         &[
             "tests/fixtures/scenes/bad/transform_values.ron:4:56: error: translation must be a finite number, found -inf",
-            "tests/fixtures/scenes/bad/transform_values.ron:4:83: error: rotation axis must not be zero",
-            "tests/fixtures/scenes/bad/transform_values.ron:5:95: error: the last row of a transform matrix must be (0, 0, 0, 1), found (0, 0, 1, 1)",
+            "tests/fixtures/scenes/bad/transform_values.ron:4:83: error: rotation axis must not be zero\n  help: the axis is the direction to turn about: `axis: (0, 1, 0)` turns about y, `(1, 0, 0)` about x",
+            "tests/fixtures/scenes/bad/transform_values.ron:5:95: error: the last row of a transform matrix must be (0, 0, 0, 1), found (0, 0, 1, 1)\n  help: the rows are written in order with the translation in the last column, `((a, b, c, tx), (d, e, f, ty), (g, h, i, tz), (0, 0, 0, 1))`: a matrix written column by column (translation in the last row) must be transposed",
         ],
     );
 }
@@ -566,7 +566,7 @@ fn lens_volume_and_adaptive_samples() {
                 "{f}:5:70: error: a projection lens (Fisheye, Spherical, Shift) must be the first lens\n  help: a projection replaces the pinhole, so it must come first in `lens`"
             ),
             &format!("{f}:5:124: error: focus_distance must be positive, found 0"),
-            &format!("{f}:6:40: error: sigma_s must not be negative, found -0.2"),
+            &format!("{f}:6:40: error: sigma_s must not be negative, found -0.2\n  help: sigma_s takes 0 or more: write 0.2 if only the sign is wrong"),
             &format!("{f}:6:55: error: g must be between -1 and 1 (exclusive), found 1"),
             &format!("{f}:7:99: error: sigma_a 1e39 is beyond the f32 range"),
         ],
@@ -581,7 +581,7 @@ fn photon_options() {
         &[
             "tests/fixtures/scenes/bad/photon_options.ron:2:35: error: photons must be at least 1, found 0",
             "tests/fixtures/scenes/bad/photon_options.ron:2:46: error: gather must be at least 2 (the estimate divides by k − 1), found 1",
-            "tests/fixtures/scenes/bad/photon_options.ron:2:80: error: radius must not be negative, found -1",
+            "tests/fixtures/scenes/bad/photon_options.ron:2:80: error: radius must not be negative, found -1\n  help: radius takes 0 or more: write 1 if only the sign is wrong",
             "tests/fixtures/scenes/bad/photon_options.ron:2:98: error: final_gather must be at least 1, found 0",
         ],
     );

@@ -24,9 +24,9 @@ fn area_lights() {
         "area_lights.ron",
         &[
             "tests/fixtures/scenes/bad/area_lights.ron:3:59: error: normal must not be zero",
-            "tests/fixtures/scenes/bad/area_lights.ron:3:78: error: radius must be positive, found 0",
+            "tests/fixtures/scenes/bad/area_lights.ron:3:78: error: radius must be positive, found 0\n  help: the radius is the light's size in scene units, above 0 (such as 0.5); a light with no size is a point light",
             "tests/fixtures/scenes/bad/area_lights.ron:4:46: error: center must be a finite number, found NaN",
-            "tests/fixtures/scenes/bad/area_lights.ron:4:63: error: radius must be positive, found -1",
+            "tests/fixtures/scenes/bad/area_lights.ron:4:63: error: radius must be positive, found -1\n  help: the radius is the light's size in scene units, above 0 (such as 0.5); a light with no size is a point light",
             "tests/fixtures/scenes/bad/area_lights.ron:5:59: error: end must differ from start",
             concat!(
                 "tests/fixtures/scenes/bad/area_lights.ron:6:64: error: only area lights can be visible (a point, spot or directional light has no surface)\n",
@@ -58,7 +58,7 @@ fn environment_missing() {
                 "  help: a lat-long environment is an RGB(A) OpenEXR image; the path is relative to this scene file",
             ),
             "tests/fixtures/scenes/bad/environment_missing.ron:2:75: error: rotation must be a finite number, found NaN",
-            "tests/fixtures/scenes/bad/environment_missing.ron:2:92: error: intensity must not be negative, found -2",
+            "tests/fixtures/scenes/bad/environment_missing.ron:2:92: error: intensity must not be negative, found -2\n  help: intensity takes 0 or more: write 2 if only the sign is wrong",
             "tests/fixtures/scenes/bad/environment_missing.ron:2:105: error: samples must be at least 1, found 0",
         ],
     );

@@ -38,7 +38,8 @@ fn a_rib_reader_warning_is_shown_with_a_validation_error() {
     assert_eq!(
         stderr_of(&o),
         "a.rib:1:1: warning: ignored request \"Hider\"\n\
-         a.rib:6:40: error: intensity must not be negative, found -3\n\
+         a.rib:6:40: error: intensity must not be negative, found -3\n  \
+         help: intensity takes 0 or more: write 3 if only the sign is wrong\n\
          1 error and 1 warning in a.rib; nothing rendered\n"
     );
     assert_eq!(dir_names(&dir), ["a.rib"]);
@@ -54,7 +55,8 @@ fn a_validation_warning_is_shown_with_a_validation_error() {
         stderr_of(&o),
         "s.ron:3:18: warning: material \"ink\" has a contour shader, but no camera output shows contours\n  \
          help: add an output such as `(file: \"lines.svg\")` or a `Contours` pass\n\
-         s.ron:4:73: error: intensity must not be negative, found -10\n\
+         s.ron:4:73: error: intensity must not be negative, found -10\n  \
+         help: intensity takes 0 or more: write 10 if only the sign is wrong\n\
          1 error and 1 warning in s.ron\n"
     );
 }

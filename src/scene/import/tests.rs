@@ -159,8 +159,8 @@ fn a_validation_error_in_another_format_prints_like_ron_at_its_recorded_position
     assert_eq!(
         errors(&fake_scene(BAD_LIGHT), "scene.pts"),
         [
-            "scene.pts:2:62: error: color must not be negative, found -1",
-            "scene.pts:2:87: error: intensity must not be negative, found -2",
+            "scene.pts:2:62: error: color must not be negative, found -1\n  help: color takes 0 or more: write 1 if only the sign is wrong",
+            "scene.pts:2:87: error: intensity must not be negative, found -2\n  help: intensity takes 0 or more: write 2 if only the sign is wrong",
         ]
     );
     // The same light in RON: the same messages, at RON's positions (RON's index knows the
@@ -168,8 +168,8 @@ fn a_validation_error_in_another_format_prints_like_ron_at_its_recorded_position
     assert_eq!(
         errors(&ron_scene(BAD_LIGHT), "scene.ron"),
         [
-            "scene.ron:3:69: error: color must not be negative, found -1",
-            "scene.ron:3:90: error: intensity must not be negative, found -2",
+            "scene.ron:3:69: error: color must not be negative, found -1\n  help: color takes 0 or more: write 1 if only the sign is wrong",
+            "scene.ron:3:90: error: intensity must not be negative, found -2\n  help: intensity takes 0 or more: write 2 if only the sign is wrong",
         ]
     );
 }
