@@ -171,7 +171,8 @@ pub fn is_vector(format: ImageFormat) -> bool {
     matches!(format, ImageFormat::Svg | ImageFormat::Eps)
 }
 
-/// The output format named by a file's extension (`.png`, `.exr`, `.svg`, `.eps`).
+/// The output format named by a file's extension (`.png`, `.exr`, `.svg`, `.eps`); the error
+/// is the message for the user, with its `help:` line.
 pub fn format_from_extension(path: &Path) -> Result<ImageFormat, String> {
     let ext = path
         .extension()
@@ -183,7 +184,7 @@ pub fn format_from_extension(path: &Path) -> Result<ImageFormat, String> {
         Some("svg") => Ok(ImageFormat::Svg),
         Some("eps") => Ok(ImageFormat::Eps),
         _ => Err(format!(
-            "cannot tell the output format of {}: use a .png, .exr, .svg or .eps extension",
+            "cannot tell the output format of {} from its extension\n  help: name a .png or .exr file for the image, or an .svg or .eps file for the contour lines",
             path.display()
         )),
     }

@@ -622,11 +622,36 @@ fn check_outputs(
     inputs: &RunInputs,
     stats_json: Option<&Path>,
 ) -> Result<(), ExitCode> {
-    let clashes = stagelight::guard::outputs::check(path, &scene.world, inputs, stats_json);
+    refuse_clashes(
+        path,
+        &stagelight::guard::outputs::check(path, &scene.world, inputs, stats_json),
+    )
+}
+
+/// Refuses a merge — or, from `farm`, its merge job — whose outputs would overwrite one of
+/// the part files it reads: exit 2 when a flag names the output, 1 when the scene does.
+fn check_part_files(
+    path: &Path,
+    scene: &LoadedScene,
+    inputs: &RunInputs,
+    parts: &stagelight::guard::part_files::PartFiles,
+) -> Result<(), ExitCode> {
+    let outputs = stagelight::guard::outputs::planned_outputs(&scene.world, inputs, None);
+    refuse_clashes(
+        path,
+        &stagelight::guard::part_files::clashes(parts, &outputs),
+    )
+}
+
+/// Prints `clashes` and the count line; exit 2 when a flag takes part in one, else 1.
+fn refuse_clashes(
+    path: &Path,
+    clashes: &[stagelight::guard::outputs::Clash],
+) -> Result<(), ExitCode> {
     if clashes.is_empty() {
         return Ok(());
     }
-    for c in &clashes {
+    for c in clashes {
         errln!("{}", c.text);
     }
     errln!("{}", refusal_line(clashes.len(), 0, path));
@@ -1042,12 +1067,17 @@ fn merge(args: MergeArgs) -> ExitCode {
     if let Err(code) = set_threads(args.threads) {
         return code;
     }
+    // SIGINT and SIGTERM stop a merge as they stop a render — exit 130, nothing written —
+    // from its start: reading and adding the parts cannot poll the flag, so the handler's
+    // deadline ends it there (nothing is written before the commit).
+    let cancel = Arc::new(AtomicBool::new(false));
+    stagelight::guard::interrupt::install(cancel.clone());
     if args
         .parts
         .first()
         .is_some_and(|p| stagelight::farm::bake_part_file::is_bake_part_file(p))
     {
-        return merge_bake(args);
+        return merge_bake(args, cancel);
     }
     let file = |f| stagelight::guard::dir_flags::usable_file("-o", f, "out.png");
     if let Err(code) = usable_paths(&[args.output.as_deref().map_or(Ok(()), file)]) {
@@ -1101,6 +1131,11 @@ fn merge(args: MergeArgs) -> ExitCode {
     let mut frame = Frame::new(settings);
     frame.inputs.outputs = overrides;
     frame.inputs.merged_image = Some(image);
+    frame.inputs.cancel = cancel;
+    let parts = stagelight::guard::part_files::PartFiles::Given(&args.parts);
+    if let Err(code) = check_part_files(&scene_path, &scene, &frame.inputs, &parts) {
+        return code;
+    }
     run_and_report(&scene_path, &mut scene, frame, args.stats, None)
 }
 
@@ -1209,8 +1244,9 @@ nothing written",
 }
 
 /// `stagelight merge` of bake parts: assembles the texels, then bakes the scene's requests
-/// from them (dilation and encoding as a single bake) into `-o DIR`.
-fn merge_bake(args: MergeArgs) -> ExitCode {
+/// from them (dilation and encoding as a single bake) into `-o DIR`; `cancel` is the flag
+/// the merge's SIGINT/SIGTERM handler sets.
+fn merge_bake(args: MergeArgs, cancel: Arc<AtomicBool>) -> ExitCode {
     use stagelight::farm::bake_part::merge;
     use stagelight::farm::bake_part_file::read_parts;
     let dir = |d| stagelight::guard::dir_flags::usable_dir("-o", d);
@@ -1256,6 +1292,11 @@ fn merge_bake(args: MergeArgs) -> ExitCode {
         frame.inputs.write_gltf = Some(scene_path.clone());
     }
     frame.inputs.merged_bake = Some(merged);
+    frame.inputs.cancel = cancel;
+    let parts = stagelight::guard::part_files::PartFiles::Given(&args.parts);
+    if let Err(code) = check_part_files(&scene_path, &scene, &frame.inputs, &parts) {
+        return code;
+    }
     run_and_report(&scene_path, &mut scene, frame, args.stats, None)
 }
 
@@ -1275,13 +1316,26 @@ fn farm(args: FarmArgs) -> ExitCode {
     if let Err(code) = usable_paths(&[usable_dir("--out", &args.out), output]) {
         return code;
     }
+    if let Some(message) = stagelight::farm::slurm::directive_refusal(&args.out) {
+        errln!("error: {message}");
+        return ExitCode::from(EXIT_USAGE);
+    }
+    if args.submit && !stagelight::farm::slurm::sbatch_on_path() {
+        // Said before any script is written: a run that fails writes nothing.
+        let submit = std::path::absolute(args.out.join("submit.sh")).unwrap_or_default();
+        errln!(
+            "error: --submit needs `sbatch`, which is not on PATH (is this a Slurm submit host?)\n  help: leave out --submit to write the scripts, then run `bash {}` on a machine where sbatch works",
+            stagelight::farm::slurm::quote(&submit.to_string_lossy())
+        );
+        return ExitCode::from(EXIT_ERROR);
+    }
     let mut scene = match load(&args.scene, &budget(None)) {
         Ok(s) => s,
         Err(code) => return code,
     };
     if args.bake {
         if scene.world.query::<&BakeRequest>().iter().next().is_none() {
-            errln!("error: {} has no bake requests", args.scene.display());
+            errln!("{}", no_bake_requests(&args.scene));
             return ExitCode::from(EXIT_ERROR);
         }
     } else if !stagelight::scene_view::has_render_camera(&scene.world) {
@@ -1421,6 +1475,13 @@ fn farm_refusals(args: &FarmArgs, scene: &mut LoadedScene) -> Result<(), ExitCod
         }
     }
     check_outputs(&args.scene, scene, &frame.inputs, None)?;
+    // The merge job reads the part files the array writes into `--out`.
+    let parts = stagelight::guard::part_files::PartFiles::Farm {
+        dir: &args.out,
+        count: args.parts,
+        bake: args.bake,
+    };
+    check_part_files(&args.scene, scene, &frame.inputs, &parts)?;
     if args.bake {
         let refusal =
             bake_tile_count(&mut scene.world, &mut frame).and_then(|(tiles, requests)| {
@@ -1474,23 +1535,7 @@ fn bake(args: BakeArgs) -> ExitCode {
         Err(code) => return code,
     };
     if scene.world.query::<&BakeRequest>().iter().next().is_none() {
-        let ron = "add `bake: (resolution: (512, 512), outputs: [(kind: AmbientOcclusion())])` to an instance";
-        let syntax = scene_syntax(&args.scene);
-        let converted = format!(
-            "a {} file asks for no bakes: write the scene as RON (`{}`) and {ron} there",
-            syntax.name(),
-            stagelight::scene::syntax::convert_command(&args.scene)
-        );
-        let help = syntax.help_each(stagelight::scene::syntax::Helps {
-            ron,
-            mi: &converted,
-            rib: &converted,
-            gltf: &converted,
-        });
-        errln!(
-            "error: {} has no bake requests\n  help: {help}",
-            args.scene.display()
-        );
+        errln!("{}", no_bake_requests(&args.scene));
         return ExitCode::from(EXIT_ERROR);
     }
     let mut frame = Frame::new(settings);
@@ -1520,6 +1565,28 @@ fn bake(args: BakeArgs) -> ExitCode {
         frame,
         args.stats,
         args.stats_json.as_deref(),
+    )
+}
+
+/// The refusal of `bake` (and `farm --bake`) for a scene without bake requests, its help in
+/// the scene file's language.
+fn no_bake_requests(scene: &Path) -> String {
+    let ron = "add `bake: (resolution: (512, 512), outputs: [(kind: AmbientOcclusion())])` to an instance";
+    let syntax = scene_syntax(scene);
+    let converted = format!(
+        "a {} file asks for no bakes: write the scene as RON (`{}`) and {ron} there",
+        syntax.name(),
+        stagelight::scene::syntax::convert_command(scene)
+    );
+    let help = syntax.help_each(stagelight::scene::syntax::Helps {
+        ron,
+        mi: &converted,
+        rib: &converted,
+        gltf: &converted,
+    });
+    format!(
+        "error: {} has no bake requests\n  help: {help}",
+        scene.display()
     )
 }
 
@@ -1663,7 +1730,8 @@ fn sweep(args: SweepArgs) -> ExitCode {
             return ExitCode::from(match &e {
                 stagelight::sweep::SweepError::Stage(s) => s.exit_code(),
                 stagelight::sweep::SweepError::Crop(_)
-                | stagelight::sweep::SweepError::ReferenceSize(_) => EXIT_USAGE,
+                | stagelight::sweep::SweepError::ReferenceSize(_)
+                | stagelight::sweep::SweepError::Reference(_) => EXIT_USAGE,
                 stagelight::sweep::SweepError::Knob(k) if k.is_usage() => EXIT_USAGE,
                 _ => EXIT_ERROR,
             });

@@ -169,6 +169,11 @@ pub fn read_parts(
     Ok(parts)
 }
 
+/// The help for a bake part file that cannot be decoded (cut short by a part killed while
+/// writing it, or by a full disk).
+const UNREADABLE_HELP: &str =
+    "help: bake this part again (`stagelight bake --part K/N`); a part file is whole once its bake has exited with status 0";
+
 /// Why a file that is not an EXR file (a scene, a PNG) is no bake part file.
 const NOT_EXR: &str =
     "not a bake part file: it is not an EXR file\n  help: merge the EXR part files that `stagelight bake --part K/N` writes";
@@ -188,13 +193,16 @@ pub fn decode(bytes: &[u8]) -> std::result::Result<BakePartFile, String> {
         .all_attributes()
         .non_parallel()
         .from_buffered(std::io::Cursor::new(bytes))
-        .map_err(|e| format!("not a readable EXR file ({e}); it may be truncated"))?;
+        .map_err(|e| {
+            format!("not a readable EXR file ({e}); it may be truncated\n  {UNREADABLE_HELP}")
+        })?;
     let layers = &image.layer_data;
-    let first = layers
-        .first()
-        .ok_or("not a stagelight bake part file (no layers)")?;
+    let not_part = |why: &str| {
+        format!("not a stagelight bake part file ({why})\n  help: merge the EXR part files that `stagelight bake --part K/N` writes")
+    };
+    let first = layers.first().ok_or_else(|| not_part("no layers"))?;
     let attrs = super::exr_meta::read(&first.attributes)
-        .ok_or("not a stagelight bake part file (no `stagelight` attribute)")?;
+        .ok_or_else(|| not_part("no `stagelight` attribute"))?;
     let entries = Entries::new(attrs, "bake part file");
     let header = entries.header(FORMAT, OLDER_FORMATS, "bake", Split::Tiles, 0, 0)?;
     let get = |key: &str| entries.get(key);

@@ -16,6 +16,7 @@ pub mod merge;
 pub mod part;
 pub mod part_file;
 pub mod recorded_settings;
+pub mod sbatch_directive;
 pub mod slurm;
 
 use std::sync::Arc;

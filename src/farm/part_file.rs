@@ -418,9 +418,18 @@ pub fn encode(part: &PartFile) -> std::result::Result<Vec<u8>, String> {
     Ok(cursor.into_inner())
 }
 
+/// What to merge instead of a file that is no part file.
+const PART_FILES_HELP: &str =
+    "help: merge the EXR part files that `stagelight render --part K/N -o PART.exr` (or `stagelight bake --part K/N`) writes";
+
 /// Why a file that is not an EXR file (a scene, a PNG) is no part file.
 const NOT_EXR: &str =
     "not a part file: it is not an EXR file\n  help: merge the EXR part files that `stagelight render --part K/N -o PART.exr` (or `stagelight bake --part K/N`) writes";
+
+/// The help for a part file that cannot be decoded (cut short by a part killed while
+/// writing it, or by a full disk).
+const UNREADABLE_HELP: &str =
+    "help: render this part again (`stagelight render --part K/N -o PART.exr`); a part file is whole once its render has exited with status 0";
 
 /// Decodes a part file; the error says what is wrong with it (the caller names the file).
 pub fn decode(bytes: &[u8]) -> std::result::Result<PartFile, String> {
@@ -437,10 +446,13 @@ pub fn decode(bytes: &[u8]) -> std::result::Result<PartFile, String> {
         .all_attributes()
         .non_parallel()
         .from_buffered(std::io::Cursor::new(bytes))
-        .map_err(|e| format!("not a readable EXR file ({e}); it may be truncated"))?;
+        .map_err(|e| {
+            format!("not a readable EXR file ({e}); it may be truncated\n  {UNREADABLE_HELP}")
+        })?;
     let layer = image.layer_data;
-    let attrs = super::exr_meta::read(&layer.attributes)
-        .ok_or("not a stagelight part file (no `stagelight` attribute)")?;
+    let attrs = super::exr_meta::read(&layer.attributes).ok_or_else(|| {
+        format!("not a stagelight part file (no `stagelight` attribute): an EXR image, not a part of a render\n  {PART_FILES_HELP}")
+    })?;
     let entries = Entries::new(attrs, "part file");
     if entries.get("format")? == WITHOUT_ENVIRONMENT {
         return Err(format!(

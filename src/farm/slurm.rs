@@ -16,6 +16,7 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use super::part::Split;
+use super::sbatch_directive;
 
 /// What to write scripts for.
 #[derive(Debug, Clone)]
@@ -107,13 +108,27 @@ fn part_command(job: &FarmJob, n: u32, extra: &str) -> String {
     }
 }
 
+/// A path in a comment line of a script: a line break in it would end the comment (and
+/// the `#SBATCH` lines after it would be read as commands), so it is written `\n`.
+fn comment_path(p: &Path) -> String {
+    p.to_string_lossy()
+        .replace('\n', "\\n")
+        .replace('\r', "\\r")
+}
+
+/// The directives every job has: its name, its working directory and its log, the paths
+/// written for sbatch's own parser ([`sbatch_directive`]).
 fn common_directives(s: &mut String, job: &FarmJob, name: &str, log: &str) {
     let _ = writeln!(s, "#SBATCH --job-name={name}");
-    let _ = writeln!(s, "#SBATCH --chdir={}", job.workdir.display());
+    let _ = writeln!(
+        s,
+        "#SBATCH --chdir={}",
+        sbatch_directive::word(&job.workdir.to_string_lossy())
+    );
     let _ = writeln!(
         s,
         "#SBATCH --output={}",
-        job.out.join("logs").join(log).display()
+        sbatch_directive::word(&sbatch_directive::log_pattern(&job.out.join("logs"), log))
     );
     if let Some(p) = &job.partition {
         let _ = writeln!(s, "#SBATCH --partition={p}");
@@ -135,12 +150,12 @@ pub fn scripts(job: &FarmJob) -> Vec<Script> {
     let _ = writeln!(
         render,
         "# stagelight farm: part $SLURM_ARRAY_TASK_ID of {n} of {} ({what}).",
-        job.scene.display(),
+        comment_path(&job.scene),
     );
     let _ = writeln!(
         render,
         "# A failed task is requeued by Slurm; re-run one by hand with\n#   sbatch --array=K {}",
-        job.out.join("render.sbatch").display()
+        comment_path(&job.out.join("render.sbatch"))
     );
     common_directives(&mut render, job, "stagelight-render", "part_%a.log");
     let _ = writeln!(render, "#SBATCH --array=1-{n}");
@@ -201,8 +216,8 @@ pub fn scripts(job: &FarmJob) -> Vec<Script> {
     let _ = writeln!(
         photons,
         "# stagelight farm: traces the photon maps of {} once into {}; every part loads them.",
-        job.scene.display(),
-        photon_cache(&job.out).display()
+        comment_path(&job.scene),
+        comment_path(&photon_cache(&job.out))
     );
     common_directives(&mut photons, job, "stagelight-photons", "photons.log");
     let _ = writeln!(photons, "#SBATCH --ntasks=1");
@@ -320,6 +335,41 @@ fn plain(what: &str, value: &Option<String>) -> Result<(), String> {
         }
         _ => Ok(()),
     }
+}
+
+/// Whether `sbatch` is an executable file in a directory of `PATH`, where `submit.sh` (run
+/// by bash with this process's environment) looks for it.
+pub fn sbatch_on_path() -> bool {
+    let Some(paths) = std::env::var_os("PATH") else {
+        return false;
+    };
+    std::env::split_paths(&paths).any(|dir| {
+        let file = dir.join("sbatch");
+        let Ok(meta) = std::fs::metadata(&file) else {
+            return false;
+        };
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::PermissionsExt;
+            meta.is_file() && meta.permissions().mode() & 0o111 != 0
+        }
+        #[cfg(not(unix))]
+        {
+            meta.is_file()
+        }
+    })
+}
+
+/// Why the `#SBATCH` lines of a farm job with scripts in `out`, run from the working
+/// directory, cannot be written ([`sbatch_directive::refusal`]); `None` when they can.
+pub fn directive_refusal(out: &Path) -> Option<String> {
+    let workdir = std::env::current_dir().ok()?;
+    let out = if out.is_absolute() {
+        out.to_path_buf()
+    } else {
+        workdir.join(out)
+    };
+    sbatch_directive::refusal(&out.join("logs"), &workdir)
 }
 
 /// The job for `scene` with scripts and parts in `out`, the executable being this one and

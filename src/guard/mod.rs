@@ -4,6 +4,7 @@
 //!
 //! - [`extent`]: coordinates beyond what `f32` tracing supports;
 //! - [`outputs`]: outputs that would overwrite an input or each other;
+//! - [`part_files`]: outputs of a merge (or of a farm's merge job) that would overwrite a part file;
 //! - [`dir_flags`]: output paths and directories of flags that cannot be used (a file in the
 //!   way, a directory that takes no file or cannot be created);
 //! - [`writable`]: whether a path could be written, tried before the first stage;
@@ -22,6 +23,7 @@ pub mod interrupt;
 pub use crate::limits;
 pub mod locate;
 pub mod outputs;
+pub mod part_files;
 pub mod writable;
 
 pub use crate::scene::message::io_reason;

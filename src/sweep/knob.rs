@@ -49,7 +49,7 @@ pub enum KnobError {
     #[error("expected --knob NAME=V1,V2,… (e.g. spp=1,4,16), found \"{0}\"")]
     Syntax(String),
     /// Unknown knob name.
-    #[error("unknown knob \"{0}\"; knobs: spp, adaptive_contrast, light_samples, max_depth, bvh_quality, tessellation, bake_samples, photons, gather_radius, gather_count, passes, filter")]
+    #[error("unknown knob \"{0}\"\n  help: the knobs are spp, adaptive_contrast, light_samples, max_depth, bvh_quality, tessellation, bake_samples, photons, gather_radius, gather_count, passes and filter (e.g. --knob spp=1,4,16,64)")]
     Unknown(String),
     /// A value does not parse.
     #[error("knob {knob}: cannot read \"{value}\" ({expected})")]

@@ -87,6 +87,10 @@ pub enum SweepError {
     /// `--reference` is not of the runs' size (a usage error).
     #[error("error: {0}")]
     ReferenceSize(String),
+    /// `--reference` holds no RGB image to compare with (a part file, a cut file; a usage
+    /// error).
+    #[error("error: {0}")]
+    Reference(String),
     /// Reading or writing a file failed.
     #[error("error: {path}: {message}")]
     Io {
@@ -454,7 +458,12 @@ fn sweep_runs(
     // size checked: a bad `--reference` leaves nothing behind.
     let (reference, ref_width, ref_height) = match &opts.reference {
         Some(path) => {
-            let (image, width, height) = read_exr_rgb(path)?;
+            let (image, width, height) = read_exr_rgb(path).map_err(|e| match e {
+                SweepError::Io { message, .. } => {
+                    SweepError::Reference(reference_file::unreadable(path, &message))
+                }
+                other => other,
+            })?;
             if let Some(size) = camera_size.filter(|&s| s != (width, height)) {
                 return Err(SweepError::ReferenceSize(reference_file::size_mismatch(
                     path,

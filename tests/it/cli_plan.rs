@@ -270,7 +270,7 @@ fn dash_o_is_a_run_input_that_leaves_the_scene_alone() {
     assert_eq!(o.status.code(), Some(2));
     assert_eq!(
         text(&o.stderr).trim_end(),
-        "error: cannot tell the output format of x.tiff: use a .png, .exr, .svg or .eps extension"
+        "error: cannot tell the output format of x.tiff from its extension\n  help: name a .png or .exr file for the image, or an .svg or .eps file for the contour lines"
     );
 }
 

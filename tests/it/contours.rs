@@ -733,7 +733,7 @@ fn dash_o_vector_without_contour_shaders_is_a_usage_error() {
     assert_eq!(o.status.code(), Some(2));
     assert_eq!(
         stderr_of(&o).trim_end(),
-        "error: cannot tell the output format of lines.ps: use a .png, .exr, .svg or .eps extension"
+        "error: cannot tell the output format of lines.ps from its extension\n  help: name a .png or .exr file for the image, or an .svg or .eps file for the contour lines"
     );
     assert_eq!(crate::common::dir_names(&dir), ["plain.ron"]);
     let _ = std::fs::remove_dir_all(dir);

@@ -319,3 +319,47 @@ fn sigint_stops_render_and_sweep_even_when_ignored_at_the_start() {
         assert_eq!(dir_names(&dir), ["scene.ron"], "{args:?}");
     }
 }
+
+/// `merge` stops on SIGTERM, and on SIGINT ignored at the start, as `render` does: exit 130,
+/// "interrupted", nothing written. It had no handler until its stages ran, so SIGTERM
+/// while it read its parts killed it (no message, status 143) and an ignored SIGINT was
+/// lost (a background `merge … &` wrote its output after `kill -INT`). Its second part is a
+/// FIFO that nothing writes, so the merge waits in reading it until the signal comes.
+#[test]
+fn merge_stops_on_sigterm_and_an_ignored_sigint_while_reading_its_parts() {
+    let dir = scratch_dir("merge-signals");
+    std::fs::write(
+        dir.join("scene.ron"),
+        small_scene(&quad_object("quad"), r#"(name: "q", of: "quad")"#, "", ""),
+    )
+    .unwrap();
+    let o = run_in(
+        &dir,
+        &["render", "scene.ron", "--part", "1/2", "-o", "part_1.exr"],
+    );
+    assert!(o.status.success(), "{}", stderr_of(&o));
+    let fifo = std::process::Command::new("mkfifo")
+        .arg(dir.join("part_2.exr"))
+        .status()
+        .expect("mkfifo");
+    assert!(fifo.success());
+    let args = ["merge", "part_1.exr", "part_2.exr", "-o", "out.png"];
+    let plain = {
+        let mut cmd = stagelight_in(&dir);
+        cmd.args(args);
+        cmd
+    };
+    for (cmd, signal) in [(plain, "-TERM"), (with_sigint_ignored(&dir, &args), "-INT")] {
+        let (code, seconds, stderr) = signal_command(cmd, signal, || {
+            std::thread::sleep(Duration::from_millis(700))
+        });
+        assert_eq!(code, Some(130), "{signal}: {stderr}");
+        assert_eq!(stderr, "interrupted; no output written\n", "{signal}");
+        assert!(seconds < 0.5, "{signal}: took {seconds:.3} s");
+        assert_eq!(
+            dir_names(&dir),
+            ["part_1.exr", "part_2.exr", "scene.ron"],
+            "{signal}"
+        );
+    }
+}
