@@ -203,8 +203,11 @@ pub fn same_file_key(path: &Path) -> PathBuf {
     }
 }
 
-/// Refuses every output that is an input or that an earlier output already writes.
-pub fn clashes(inputs: &[PathBuf], outputs: &[PlannedOutput]) -> Vec<Clash> {
+/// Refuses every output that is an input or that an earlier output already writes; `scene`
+/// is the scene file itself (also in `inputs`, not necessarily first: the MTL files of its
+/// OBJ meshes come before it).
+pub fn clashes(scene: &Path, inputs: &[PathBuf], outputs: &[PlannedOutput]) -> Vec<Clash> {
+    let scene_key = same_file_key(scene);
     let input_keys: Vec<PathBuf> = inputs.iter().map(|p| same_file_key(p)).collect();
     let mut seen: Vec<(PathBuf, usize)> = Vec::new();
     let mut found = Vec::new();
@@ -213,7 +216,7 @@ pub fn clashes(inputs: &[PathBuf], outputs: &[PlannedOutput]) -> Vec<Clash> {
         // A clash a flag takes part in is a usage error, whichever of the two it names.
         let mut flagged = matches!(out.origin, Origin::Flag(_));
         let problem = if let Some(k) = input_keys.iter().position(|k| *k == key) {
-            let what = if k == 0 {
+            let what = if input_keys[k] == scene_key {
                 "the scene file"
             } else {
                 "an input of the scene"
@@ -323,7 +326,11 @@ pub fn check(
             }
         }
     }
-    let mut refused = clashes(&crate::scene::inputs::scene_inputs(scene, None), &outputs);
+    let mut refused = clashes(
+        scene,
+        &crate::scene::inputs::scene_inputs(scene, None),
+        &outputs,
+    );
     refused.extend(unwritable(&outputs));
     refused
 }

@@ -1,5 +1,6 @@
 //! Checks of the area-light shapes beyond `Rect` (disc, sphere, cylinder) and of the light
-//! options `visible` and `attenuation`, each error located at its value.
+//! options `visible`, `attenuation` and the photon controls of an ambient light, each error
+//! located at its value.
 
 use glam::DVec3;
 
@@ -133,10 +134,42 @@ pub fn visible(ck: &mut Checker<'_>, item: &Item<'_, LightDesc>, is_area: bool) 
         ck.src.error(
             ck.file,
             &item.at(".visible"),
-            "only area lights can be visible (a point, spot or directional light has no surface)",
+            "only area lights can be visible (a point, spot, directional or ambient light has no \
+             surface)",
             Some("remove `visible`, or use a Rect, Disc, Sphere or Cylinder light".into()),
         );
         return None;
     }
     Some(item.desc.visible)
+}
+
+/// `energy`, `caustic_photons` and `globillum_photons` on an `Ambient` light, which emits no
+/// photons: each refused at its value, as `attenuation` and `samples` are there. Values
+/// that ask for no photons (`0`, `(0, 0, 0)`) pass.
+pub fn ambient_photons(ck: &mut Checker<'_>, item: &Item<'_, LightDesc>) -> Option<()> {
+    let l = item.desc;
+    if !matches!(l.kind, LightKindDesc::Ambient) {
+        return Some(());
+    }
+    let written = [
+        ("energy", l.energy.is_some_and(|e| e != (0.0, 0.0, 0.0))),
+        ("caustic_photons", l.caustic_photons.is_some_and(|n| n > 0)),
+        (
+            "globillum_photons",
+            l.globillum_photons.is_some_and(|n| n > 0),
+        ),
+    ];
+    let mut ok = true;
+    for (field, _) in written.iter().filter(|(_, set)| *set) {
+        ck.src.error(
+            ck.file,
+            &item.at(&format!(".{field}")),
+            "an ambient light emits no photons",
+            Some(format!(
+                "remove `{field}`; photons leave point, spot, directional and area lights"
+            )),
+        );
+        ok = false;
+    }
+    ok.then_some(())
 }

@@ -743,10 +743,14 @@ pub fn light(src: &mut Sources, item: &Item<'_, LightDesc>) -> Option<Emitter> {
         }
         (Some(n), true) => Some(n),
         (Some(n), false) => {
+            let what = match l.kind {
+                LightKindDesc::Ambient => "an ambient",
+                _ => "a delta",
+            };
             ck.src.error(
                 ck.file,
                 &item.at(".samples"),
-                format!("samples must be 1 for a delta light, found {n}"),
+                format!("samples must be 1 for {what} light, found {n}"),
                 Some("only area lights take several samples; remove `samples`".into()),
             );
             None
@@ -855,6 +859,8 @@ pub fn light(src: &mut Sources, item: &Item<'_, LightDesc>) -> Option<Emitter> {
     };
     let attenuation = super::lights::attenuation(&mut ck, item);
     let visible = super::lights::visible(&mut ck, item, is_area);
+    let photons = super::lights::ambient_photons(&mut ck, item);
+    photons?;
     Some(Emitter {
         shape,
         radiant: ck

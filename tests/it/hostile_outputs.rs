@@ -203,3 +203,33 @@ fn an_output_flag_equal_to_a_scene_output_is_a_usage_error() {
     );
     assert_eq!(dir_names(&dir), ["scene.ron"]);
 }
+
+/// An OBJ mesh's MTL file is an input of the scene, not the scene file: it read "would
+/// overwrite the scene file cube.mtl" (the MTL came first in the list of inputs).
+#[test]
+fn an_output_onto_an_mtl_file_names_it_an_input() {
+    let dir = scratch_dir("out-mtl");
+    std::fs::write(
+        dir.join("cube.obj"),
+        "mtllib cube.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl red\nf 1 2 3\n",
+    )
+    .unwrap();
+    std::fs::write(dir.join("cube.mtl"), "newmtl red\nKd 0.8 0.1 0.1\n").unwrap();
+    let text = small_scene(
+        r#"(name: "box", mesh: Obj(file: "cube.obj")),"#,
+        r#"(name: "b", of: "box")"#,
+        r#"(file: "cube.mtl", format: Png)"#,
+        "",
+    );
+    std::fs::write(dir.join("scene.ron"), text).unwrap();
+    let o = run_in(&dir, &["check", "scene.ron"]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr_of(&o));
+    assert_eq!(
+        stderr_of(&o),
+        format!("scene.ron:10:80: error: camera \"cam\" output 1 (\"cube.mtl\") would overwrite an input of the scene cube.mtl\n{HELP}\n1 error in scene.ron\n")
+    );
+    assert_eq!(
+        std::fs::read_to_string(dir.join("cube.mtl")).unwrap(),
+        "newmtl red\nKd 0.8 0.1 0.1\n"
+    );
+}

@@ -1,7 +1,8 @@
 //! RON written by hand, the way a tester wrote it: each mistake reported as what it is, at
 //! the place to fix it — shader nodes called in the wrong style, a file ending inside an
 //! unclosed bracket, a `(` left open before the next field or element, a list left open,
-//! `Box()`, `Obj("x.obj")`, a missing comma, text after the scene — and the loader's nits
+//! `Box()`, `Obj("x.obj")`, a missing comma, text after the scene, a `#` comment, a block
+//! comment left open, a tuple with an extra value — and the loader's nits
 //! (a missing image file, a non-finite node input, a directory given as a scene, a palette
 //! PNG without its palette, an EXR displacement).
 
@@ -248,6 +249,87 @@ fn an_unclosed_parenthesis_before_the_next_field_or_element_is_named_where_it_op
     assert_eq!(
         first("  materials: [(name: \"m\", shader: Lambert(albedo: (0.5, 0.5, 0.5), bnd: 1)],"),
         "s.ron:2:68: error: unknown field \"bnd\" in Lambert\n  help: expected \"albedo\""
+    );
+}
+
+#[test]
+fn a_hash_comment_is_named_at_the_hash() {
+    let scene = SCENE.join("\n") + "\n";
+    let help = "help: RON comments are `// …` (to the end of the line) and `/* … */`: write `//` instead of `#`";
+    // `ron` said `Scene takes named fields: Scene(<field>: <value>, …)` at 1:1 for the first,
+    // `expected identifier` for the others.
+    for (text, at) in [
+        (scene.replace("Scene(", "Scene(\n    # main camera"), "2:5"),
+        (
+            scene.replace("  groups:", "  # a comment in the middle\n  groups:"),
+            "5:3",
+        ),
+        (
+            with_line(4, "  instances: [(name: \"i\", of: \"q\")], # the instance"),
+            "4:38",
+        ),
+    ] {
+        assert_eq!(
+            first_error(&text),
+            format!("s.ron:{at}: error: `#` does not start a comment in RON\n  {help}"),
+            "\n{text}"
+        );
+    }
+    // A `#` in a string or a comment is no comment.
+    let fine = with_line(
+        3,
+        "  objects: [(name: \"q#1\", mesh: Sphere(radius: 1))], // # 1",
+    )
+    .replace("of: \"q\"", "of: \"q#1\"");
+    assert!(load_scene_str(&fine, Path::new("s.ron")).is_ok());
+}
+
+#[test]
+fn an_unclosed_block_comment_is_named_where_it_opens() {
+    // `ron` said `the file ends inside an unclosed `(`` at the end of the file for both.
+    let nested = SCENE
+        .join("\n")
+        .replace("Scene(", "Scene(\n    /* note: a /* nested */ comment");
+    assert_eq!(
+        first_error(&nested),
+        "s.ron:2:5: error: unclosed block comment: the file ends inside it\n  help: RON block comments nest: the `/*` at 2:16 opens a comment inside this one, and a `*/` closes only the innermost open comment; remove that `/*` or give it its own `*/`"
+    );
+    let trailing =
+        SCENE[..5].join("\n") + "\n  render: (root: \"w\", camera: \"c\"), /* trailing\n";
+    assert_eq!(
+        first_error(&trailing),
+        "s.ron:6:37: error: unclosed block comment: the file ends inside it\n  help: close it with `*/` (RON block comments nest: each `/*` inside it needs its own `*/`)"
+    );
+    // Nested comments that close load.
+    let closed = nested.replace("comment", "comment */");
+    assert!(load_scene_str(&closed, Path::new("s.ron")).is_ok());
+}
+
+#[test]
+fn a_tuple_with_an_extra_value_is_named_at_the_value() {
+    let scene = SCENE.join("\n") + "\n";
+    let first = |line: &str| first_error(&scene.replace("Scene(", &format!("Scene(\n{line}")));
+    // `ron` said `expected closing `)`` / `close the `(` with `)``.
+    assert_eq!(
+        first("  materials: [(name: \"m\", shader: Lambert(albedo: (0.5, 0.5, 0.5, 1)))],"),
+        "s.ron:2:67: error: expected a tuple of size 3 but found 4 elements\n  help: remove the extra value: colours are RGB, write exactly 3 values in `(…)` (no alpha)"
+    );
+    assert_eq!(
+        first("  materials: [(name: \"m\", shader: Lambert(albedo: (1, 1, 1, 0, 0)))],"),
+        "s.ron:2:61: error: expected a tuple of size 3 but found 5 elements\n  help: remove the 2 extra values: colours are RGB, write exactly 3 values in `(…)` (no alpha)"
+    );
+    assert_eq!(
+        first("  lights: [(name: \"k\", kind: Point(position: (0, 4, 2, 1)))],"),
+        "s.ron:2:56: error: expected a tuple of size 3 but found 4 elements\n  help: remove the extra value: write exactly 3 values in `(…)`"
+    );
+    assert_eq!(
+        first_error(&with_line(2, "  cameras: [(name: \"c\", fov_y: 40, resolution: (4, 4, 3), placement: LookAt(eye: (0, 0, 5), target: (0, 0, 0), up: (0, 1, 0)))],")),
+        "s.ron:2:55: error: expected a tuple of size 2 but found 3 elements\n  help: remove the extra value: write exactly 2 values in `(…)`"
+    );
+    // Too few, as `ron` says it.
+    assert_eq!(
+        first("  materials: [(name: \"m\", shader: Lambert(albedo: (0.5, 0.5)))],"),
+        "s.ron:2:60: error: expected a tuple of size 3 but found 2 elements\n  help: write exactly 3 values in `(…)`"
     );
 }
 

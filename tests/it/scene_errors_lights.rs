@@ -29,7 +29,7 @@ fn area_lights() {
             "tests/fixtures/scenes/bad/area_lights.ron:4:63: error: radius must be positive, found -1\n  help: the radius is the light's size in scene units, above 0 (such as 0.5); a light with no size is a point light",
             "tests/fixtures/scenes/bad/area_lights.ron:5:59: error: end must differ from start",
             concat!(
-                "tests/fixtures/scenes/bad/area_lights.ron:6:64: error: only area lights can be visible (a point, spot or directional light has no surface)\n",
+                "tests/fixtures/scenes/bad/area_lights.ron:6:64: error: only area lights can be visible (a point, spot, directional or ambient light has no surface)\n",
                 "  help: remove `visible`, or use a Rect, Disc, Sphere or Cylinder light",
             ),
             concat!(
@@ -134,6 +134,39 @@ fn radiant_values_beyond_1e20_are_errors() {
             format!("bright.ron:2:69: error: color × intensity 2e20 is brighter than stagelight carries (at most 1e20)\n{help}"),
             format!("bright.ron:5:89: error: color × intensity 3e39 is brighter than stagelight carries (at most 1e20)\n{help}"),
             format!("bright.ron:8:83: error: emission 2e20 is brighter than stagelight carries (at most 1e20)\n{help}"),
+        ],
+        "\n{errors}"
+    );
+}
+
+/// An ambient light has no samples to take and emits no photons: `samples` said "delta
+/// light", and photon counts and `energy` passed without a word.
+#[test]
+fn ambient_lights_refuse_samples_and_photons() {
+    let text = r#"Scene(
+    cameras: [(name: "cam", fov_y: 40, resolution: (4, 4), placement: LookAt(eye: (0, 0, 1), target: (0, 0, 0)))],
+    lights: [
+        (name: "a", kind: Ambient, samples: 8),
+        (name: "b", kind: Ambient, caustic_photons: 1000, globillum_photons: 10, energy: (1, 1, 1)),
+        (name: "c", kind: Ambient, samples: 1, caustic_photons: 0, energy: (0, 0, 0)),
+    ],
+    groups: [(name: "world")],
+    render: (root: "world", camera: "cam"),
+)"#;
+    let errors = load_scene_str(text, Path::new("amb.ron"))
+        .err()
+        .expect("errors");
+    let got: Vec<String> = errors.0.iter().map(ToString::to_string).collect();
+    let photons = |field: &str| {
+        format!("an ambient light emits no photons\n  help: remove `{field}`; photons leave point, spot, directional and area lights")
+    };
+    assert_eq!(
+        got,
+        [
+            "amb.ron:4:45: error: samples must be 1 for an ambient light, found 8\n  help: only area lights take several samples; remove `samples`".to_string(),
+            format!("amb.ron:5:53: error: {}", photons("caustic_photons")),
+            format!("amb.ron:5:78: error: {}", photons("globillum_photons")),
+            format!("amb.ron:5:90: error: {}", photons("energy")),
         ],
         "\n{errors}"
     );

@@ -38,10 +38,12 @@ pub mod relocate;
 pub mod rib;
 pub mod ron;
 mod ron_brackets;
+mod ron_comments;
 mod ron_forms;
 mod ron_hints;
 mod ron_integers;
 mod ron_spans;
+mod ron_tuples;
 mod ron_unclosed;
 pub mod to_ron;
 

@@ -53,6 +53,11 @@ pub fn read(path: &Path, bytes: &[u8]) -> Result<ReadScene, super::ReadFailure> 
             if let Some(style) = wrong_call_style(path, &index, Some(at)) {
                 return Err(vec![style].into());
             }
+            if let Some(hint) = super::ron_comments::explain(text, at) {
+                (d.line, d.column) = (hint.at.line, hint.at.column);
+                (d.message, d.help) = (hint.message, Some(hint.help));
+                return Err(vec![d].into());
+            }
             let before = (d.line, d.column, d.message.clone());
             if let RonError::IntegerOutOfBounds = err.code {
                 if let Some((message, help)) =
@@ -85,7 +90,8 @@ pub fn read(path: &Path, bytes: &[u8]) -> Result<ReadScene, super::ReadFailure> 
                         Pos { line, column }
                     })
                 };
-                let hint = super::ron_unclosed::explain(text, at, first_error)
+                let hint = super::ron_tuples::extra_values(text, &err.code, at)
+                    .or_else(|| super::ron_unclosed::explain(text, at, first_error))
                     .or_else(|| super::ron_hints::explain(text, &err.code, at));
                 if let Some(hint) = hint {
                     (d.line, d.column) = (hint.at.line, hint.at.column);

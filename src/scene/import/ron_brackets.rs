@@ -1,7 +1,8 @@
 //! The bracket structure of RON text as written, for syntax messages: which `(` and `[`
-//! are open at a position, where the value before a position ends, and which bracket a
-//! file that ends unbalanced most likely left open. Strings, characters and comments are
-//! skipped; nothing here needs the text to parse.
+//! are open at a position, where the value before a position ends, which bracket a file
+//! that ends unbalanced most likely left open, a block comment still open at a position
+//! and the first `#` written outside strings and comments. Strings, characters and
+//! comments are skipped; nothing here needs the text to parse.
 
 use super::located::Pos;
 
@@ -30,6 +31,21 @@ pub struct Scan {
     pub suspects: Vec<Open>,
     /// Openers minus closers.
     pub depth: isize,
+    /// A block comment open at the position (the text ends inside it when the scan ran to
+    /// the end).
+    pub open_comment: Option<BlockComment>,
+    /// The first `#` outside strings and comments that starts neither a raw identifier
+    /// (`r#name`) nor an attribute (`#![…]`): RON has no `#` comments.
+    pub hash: Option<Pos>,
+}
+
+/// A block comment `/* … */` not closed.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct BlockComment {
+    /// Its `/*`.
+    pub pos: Pos,
+    /// The `/*` inside it, each opening a nested comment (RON block comments nest).
+    pub inner: Vec<Pos>,
 }
 
 /// Character index of 1-based `line:column` in `text` (its end when past it).
@@ -92,10 +108,17 @@ pub fn scan(text: &str, upto: usize) -> Scan {
             continue;
         }
         if c == '/' && next == Some('*') {
+            let mut comment = BlockComment {
+                pos: Pos { line, column },
+                inner: Vec::new(),
+            };
             let mut nest = 0usize;
             while i < upto {
                 match (chars[i], chars.get(i + 1).copied()) {
                     ('/', Some('*')) => {
+                        if nest > 0 {
+                            comment.inner.push(Pos { line, column });
+                        }
                         nest += 1;
                         advance(&mut i, &mut line, &mut column, 2);
                     }
@@ -108,6 +131,9 @@ pub fn scan(text: &str, upto: usize) -> Scan {
                     }
                     _ => advance(&mut i, &mut line, &mut column, 1),
                 }
+            }
+            if nest > 0 {
+                out.open_comment = Some(comment);
             }
             continue;
         }
@@ -142,6 +168,10 @@ pub fn scan(text: &str, upto: usize) -> Scan {
                     }
                 }
             }
+            '#' if out.hash.is_none() && !raw_identifier_or_attribute(&chars, i) => {
+                out.hash = Some(pos);
+                advance(&mut i, &mut line, &mut column, 1);
+            }
             '(' | '[' | '{' => {
                 out.open.push(Open {
                     bracket: c,
@@ -169,6 +199,17 @@ pub fn scan(text: &str, upto: usize) -> Scan {
         out.last_end = Some(Pos { line, column });
     }
     out
+}
+
+/// Whether the `#` at `at` is the `#` of a raw identifier `r#name` or starts an attribute
+/// `#![…]`.
+fn raw_identifier_or_attribute(chars: &[char], at: usize) -> bool {
+    let word = |c: &char| c.is_alphanumeric() || *c == '_';
+    let raw = at > 0
+        && chars[at - 1] == 'r'
+        && (at < 2 || !word(&chars[at - 2]))
+        && chars.get(at + 1).is_some_and(word);
+    raw || chars.get(at + 1) == Some(&'!')
 }
 
 /// Whether a raw string `r"…"` / `r#"…"#` starts with the quote or hashes at `at`.
@@ -226,6 +267,20 @@ mod tests {
         let open = unclosed_at_end("Scene(\n  a: [1, 2,\n").unwrap();
         assert_eq!((open.bracket, open.pos), ('[', pos(2, 6)));
         assert_eq!(end_of_last_line("a\n  bc \n\n"), pos(2, 5));
+    }
+
+    #[test]
+    fn an_open_block_comment_and_a_stray_hash_are_found() {
+        let text = "(a: \"#\", b: r#c, // #\n /* x /* y */ z\n";
+        let s = scan(text, usize::MAX);
+        assert_eq!(s.hash, None);
+        let comment = s.open_comment.unwrap();
+        assert_eq!((comment.pos, comment.inner), (pos(2, 2), vec![pos(2, 7)]));
+        let s = scan(
+            "#![enable(implicit_some)]\n(/* ok */ a: 1, # no\n)",
+            usize::MAX,
+        );
+        assert_eq!((s.hash, s.open_comment), (Some(pos(2, 17)), None));
     }
 
     #[test]
