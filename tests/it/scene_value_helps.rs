@@ -228,9 +228,11 @@ fn a_misspelt_reference_beside_an_empty_name_is_still_reported() {
     let o = run_in(&dir, &["check", "s.ron"]);
     assert_eq!(
         stderr_of(&o),
-        "s.ron:6:24: error: instance name is empty\n\
+        "s.ron:6:47: warning: instance \"tee\" is never placed: no group reachable from the render root \"world\" lists it\n  \
+         help: add \"tee\" to the `members` of group \"world\" (or of a group placed in it), or remove the instance\n\
+         s.ron:6:24: error: instance name is empty\n\
          s.ron:7:40: error: unknown instance \"tea\"\n  help: did you mean \"tee\"?\n\
-         2 errors in s.ron\n"
+         2 errors and 1 warning in s.ron\n"
     );
 }
 
