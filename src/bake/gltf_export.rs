@@ -8,7 +8,8 @@
 //! render space plus the scene origin, in f64, rounded once to f32 (render space itself when
 //! the scene was not rebased) — in the world triangles' winding (a mirrored instance's corners
 //! swapped, so the front stays the front). Attributes: `POSITION` (with `min`/`max`),
-//! `NORMAL` (the mesh's shading normals in world space, else the triangle's normal),
+//! `NORMAL` (the mesh's shading normals in world space, turned to the front of the written
+//! winding where they point behind it, as the renderer turns them; else the triangle's normal),
 //! `TEXCOORD_0` (the mesh's own UVs; without them the bake's, the same accessor, since glTF
 //! numbers the sets without gaps), `TEXCOORD_1` (the bake's UVs) and
 //! `COLOR_0` (a per-vertex bake). glTF's `v` runs down the image: every UV is written as
@@ -293,13 +294,17 @@ fn corner_vertices(
             .map_or(Vec3::Z, |n| n.as_vec3());
         let bake_corner = bake_uvs.map(|u| inst.world_order(u[local]));
         for (k, &i) in corners.iter().enumerate() {
+            // A shading normal on the other side of the front (an object whose orientation is
+            // reversed keeps its normals as written) is turned over, as the renderer turns
+            // it at every hit (`SceneGeometry::shading_point_on`): glTF's front is the
+            // counter-clockwise winding, and its `NORMAL` must point out of it.
             let normal = mesh
                 .normals
                 .as_ref()
                 .and_then(|ns| {
                     Vec3::from(inst.normal_from_object * glam::Vec3A::from(ns[i])).try_normalize()
                 })
-                .unwrap_or(face);
+                .map_or(face, |n| if n.dot(face) < 0.0 { -n } else { n });
             out.push(Vertex {
                 position: world(mesh.positions[i]),
                 normal: normal.to_array(),
