@@ -12,7 +12,8 @@
 //! shape), else in render space under a node whose `translation` is the scene origin, so a
 //! small part far from the origin keeps its shape (node translation + vertex = the traced
 //! world position). Attributes: `POSITION` (with `min`/`max`),
-//! `NORMAL` (the mesh's shading normals in world space, else the triangle's normal),
+//! `NORMAL` (the mesh's shading normals in world space, turned to the front of the written
+//! winding where they point behind it, as the renderer turns them; else the triangle's normal),
 //! `TEXCOORD_0` (the mesh's own UVs; without them the bake's, the same accessor, since glTF
 //! numbers the sets without gaps), `TEXCOORD_1` (the bake's UVs) and
 //! `COLOR_0` (a per-vertex bake). glTF's `v` runs down the image: every UV is written as
@@ -319,13 +320,17 @@ fn corner_vertices(
             .map_or(Vec3::Z, |n| n.as_vec3());
         let bake_corner = bake_uvs.map(|u| inst.world_order(u[local]));
         for (k, &i) in corners.iter().enumerate() {
+            // A shading normal on the other side of the front (an object whose orientation is
+            // reversed keeps its normals as written) is turned over, as the renderer turns
+            // it at every hit (`SceneGeometry::shading_point_on`): glTF's front is the
+            // counter-clockwise winding, and its `NORMAL` must point out of it.
             let normal = mesh
                 .normals
                 .as_ref()
                 .and_then(|ns| {
                     Vec3::from(inst.normal_from_object * glam::Vec3A::from(ns[i])).try_normalize()
                 })
-                .unwrap_or(face);
+                .map_or(face, |n| if n.dot(face) < 0.0 { -n } else { n });
             out.push(Vertex {
                 position: position(mesh.positions[i]),
                 normal: normal.to_array(),

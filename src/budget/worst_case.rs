@@ -67,11 +67,20 @@ pub fn warnings(world: &World, budget: &Budget) -> Vec<Diagnostic> {
         let fitting = (min_level..level)
             .rev()
             .find(|&l| worst(patches, l) <= limit);
+        let syntax = syntax_of(&file);
+        // The subdivision bound as the scene's format sets it: RON's `max_subdiv`, the `.mi`
+        // `approximate` statement's max, the subdivisions a RIB `ShadingRate` allows.
+        let at_level = syntax.help_each(Helps {
+            ron: &format!("at max_subdiv {level}"),
+            mi: &format!("at the `approximate` statement's max subdivision {level}"),
+            rib: &format!("at the {level} subdivisions a `ShadingRate` allows"),
+            gltf: &format!("at max_subdiv {level}"),
+        });
         let help = match fitting {
             Some(l) => {
                 let at_most = worst(patches, l);
                 let min = approx.min_subdiv;
-                let bound = syntax_of(&file).help_each(Helps {
+                let bound = syntax.help_each(Helps {
                     ron: &format!("set `max_subdiv: {l}` (at most {at_most} triangles)"),
                     mi: &format!("end the `approximate` technique with the subdivision bounds `{min} {l}` (at most {at_most} triangles)"),
                     rib: &format!("write the scene as RON and set `max_subdiv: {l}` there (at most {at_most} triangles; a RIB `ShadingRate` subdivides up to {level} times)"),
@@ -86,7 +95,7 @@ pub fn warnings(world: &World, budget: &Budget) -> Vec<Diagnostic> {
             line,
             column,
             message: format!(
-                "object \"{name}\": its adaptive approximation may make up to {triangles} triangles ({patches} patch(es) × {segments}² at max_subdiv {level}, about {}), more than the {limit} the memory budget of {budget} allows one object; render refuses it if dicing makes more",
+                "object \"{name}\": its adaptive approximation may make up to {triangles} triangles ({patches} patch(es) × {segments}² {at_level}, about {}), more than the {limit} the memory budget of {budget} allows one object; render refuses it if dicing makes more",
                 human(triangles.saturating_mul(BYTES_PER_TRIANGLE))
             ),
             help: Some(help),

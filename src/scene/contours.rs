@@ -11,6 +11,7 @@ use super::checker::{Checker, Item};
 use super::desc::{CameraDesc, MaterialDesc, OptionsDesc, OutputDesc, PassDesc};
 use super::desc_contour::{ContourDesc, V4};
 use super::diagnostics::{Diagnostic, Sources};
+use super::syntax::Syntax;
 use crate::components::{ContourContrast, ContourShader, ImageFormat, OutputSpec, Pass};
 
 /// The contour shader of a material, if it has a valid one (errors recorded otherwise).
@@ -38,6 +39,8 @@ pub fn contour(src: &mut Sources, item: &Item<'_, MaterialDesc>) -> Option<Conto
         Vec4::new(c.0 as f32, c.1 as f32, c.2 as f32, c.3 as f32)
     };
     let mut ok = true;
+    // A `.mi` contour shader's own parameter names, for the messages about its values.
+    let syntax = ck.src.syntax(ck.file);
     let (variant, shader) = match *d {
         ContourDesc::Simple { color, width } => (
             "Simple",
@@ -62,15 +65,22 @@ pub fn contour(src: &mut Sources, item: &Item<'_, MaterialDesc>) -> Option<Conto
             far_width,
         } => {
             let v = "DepthFade";
+            let (near_name, far_name) = (
+                syntax.named("near", "near_z", "near"),
+                syntax.named("far", "far_z", "far"),
+            );
             let mut distances_ok = ck
-                .non_negative(&format!("{base}.{v}.near"), "near", near)
+                .non_negative(&format!("{base}.{v}.near"), near_name, near)
                 .is_some();
-            distances_ok &= ck.finite(&format!("{base}.{v}.far"), "far", far);
+            distances_ok &= ck.finite(&format!("{base}.{v}.far"), far_name, far);
             if distances_ok && far <= near {
-                ck.error(
-                    &format!("{base}.{v}.far"),
-                    format!("far must be greater than near ({near}), found {far}"),
-                );
+                // `.mi` depths are camera-space z (negative in front): compared as distances.
+                let message = if syntax == Syntax::Mi {
+                    format!("far_z must lie farther from the camera than near_z (distance {near}), found distance {far}")
+                } else {
+                    format!("far must be greater than near ({near}), found {far}")
+                };
+                ck.error(&format!("{base}.{v}.far"), message);
                 distances_ok = false;
             }
             ok &= distances_ok;
@@ -127,8 +137,9 @@ pub fn contour(src: &mut Sources, item: &Item<'_, MaterialDesc>) -> Option<Conto
             thinning,
         } => {
             let p = format!("{base}.Layered.thinning");
-            if ck.finite(&p, "thinning", thinning) && !(thinning > 0.0 && thinning <= 1.0) {
-                ck.error(&p, format!("thinning must be in (0, 1], found {thinning}"));
+            let name = syntax.named("thinning", "factor", "thinning");
+            if ck.finite(&p, name, thinning) && !(thinning > 0.0 && thinning <= 1.0) {
+                ck.error(&p, format!("{name} must be in (0, 1], found {thinning}"));
                 ok = false;
             }
             (
@@ -142,8 +153,9 @@ pub fn contour(src: &mut Sources, item: &Item<'_, MaterialDesc>) -> Option<Conto
         }
     };
     let mut ok = colours_ok.get() && ok;
-    for (name, w) in width_fields(d) {
-        let path = format!("{base}.{variant}.{name}");
+    for (field, mi, w) in width_fields(d) {
+        let path = format!("{base}.{variant}.{field}");
+        let name = syntax.named(field, mi, field);
         if !ck.finite(&path, name, w) {
             ok = false;
         } else if w <= 0.0 {
@@ -169,28 +181,39 @@ pub fn contour(src: &mut Sources, item: &Item<'_, MaterialDesc>) -> Option<Conto
     ok.then_some(shader)
 }
 
-/// The width fields of a contour shader, by name.
-fn width_fields(d: &ContourDesc) -> Vec<(&'static str, f64)> {
+/// The width fields of a contour shader: the field, the `.mi` shader parameter that sets it
+/// (`contour_shader_widthfromlight`'s `"max_width"` is the width where it is dark) and
+/// the value.
+fn width_fields(d: &ContourDesc) -> Vec<(&'static str, &'static str, f64)> {
     match *d {
         ContourDesc::Simple { width, .. }
         | ContourDesc::Silhouette { width, .. }
         | ContourDesc::FactorColor { width, .. }
-        | ContourDesc::Layered { width, .. } => vec![("width", width)],
+        | ContourDesc::Layered { width, .. } => vec![("width", "width", width)],
         ContourDesc::DepthFade {
             near_width,
             far_width,
             ..
-        } => vec![("near_width", near_width), ("far_width", far_width)],
+        } => vec![
+            ("near_width", "near_width", near_width),
+            ("far_width", "far_width", far_width),
+        ],
         ContourDesc::Curvature {
             min_width,
             max_width,
             ..
-        } => vec![("min_width", min_width), ("max_width", max_width)],
+        } => vec![
+            ("min_width", "min_width", min_width),
+            ("max_width", "max_width", max_width),
+        ],
         ContourDesc::WidthFromLight {
             dark_width,
             lit_width,
             ..
-        } => vec![("dark_width", dark_width), ("lit_width", lit_width)],
+        } => vec![
+            ("dark_width", "max_width", dark_width),
+            ("lit_width", "min_width", lit_width),
+        ],
     }
 }
 
@@ -209,13 +232,16 @@ pub fn contrast(src: &mut Sources, options: Option<&Item<'_, OptionsDesc>>) -> C
     };
     let path = item.at(".contours.contrast");
     let angle = format!("{path}.normal_angle");
-    if ck.finite(&angle, "normal_angle", c.normal_angle)
-        && !(c.normal_angle > 0.0 && c.normal_angle <= 180.0)
+    let name = ck
+        .src
+        .syntax(ck.file)
+        .named("normal_angle", "ndelta", "normal_angle");
+    if ck.finite(&angle, name, c.normal_angle) && !(c.normal_angle > 0.0 && c.normal_angle <= 180.0)
     {
         ck.error(
             &angle,
             format!(
-                "normal_angle must be in (0, 180] degrees, found {}",
+                "{name} must be in (0, 180] degrees, found {}",
                 c.normal_angle
             ),
         );

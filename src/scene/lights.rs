@@ -6,6 +6,7 @@ use glam::DVec3;
 
 use super::checker::{Checker, Item};
 use super::desc::{LightDesc, LightKindDesc};
+use super::syntax::Syntax;
 use crate::components::LightShape;
 
 /// A radius: finite and positive.
@@ -104,12 +105,26 @@ pub fn attenuation(ck: &mut Checker<'_>, item: &Item<'_, LightDesc>) -> Option<O
         );
         return None;
     }
-    let ok_s = ck.finite(&format!("{path}[0]"), "attenuation start", start);
-    let ok_e = ck.finite(&format!("{path}[1]"), "attenuation end", end);
+    // The two distances as the scene's format names them: a `.mi` light shader's `"start"`
+    // and `"stop"`, the RIB tutorial light's `near` and `far`.
+    let syntax = ck.src.syntax(ck.file);
+    let (s, e) = (
+        syntax.named("start", "start", "near"),
+        syntax.named("end", "stop", "far"),
+    );
+    let (start_name, end_name) = match syntax {
+        Syntax::Ron | Syntax::Gltf => (
+            "attenuation start".to_string(),
+            "attenuation end".to_string(),
+        ),
+        Syntax::Mi | Syntax::Rib => (s.to_string(), e.to_string()),
+    };
+    let ok_s = ck.finite(&format!("{path}[0]"), &start_name, start);
+    let ok_e = ck.finite(&format!("{path}[1]"), &end_name, end);
     if ok_s && start < 0.0 {
         ck.error(
             &format!("{path}[0]"),
-            format!("attenuation start must not be negative, found {start}"),
+            format!("{start_name} must not be negative, found {start}"),
         );
         return None;
     }
@@ -120,8 +135,10 @@ pub fn attenuation(ck: &mut Checker<'_>, item: &Item<'_, LightDesc>) -> Option<O
         ck.src.error(
             ck.file,
             &format!("{path}[1]"),
-            format!("attenuation end must be greater than start ({start}), found {end}"),
-            Some("light falls off linearly from full at `start` to none at `end`".into()),
+            format!("{end_name} must be greater than {s} ({start}), found {end}"),
+            Some(format!(
+                "light falls off linearly from full at `{s}` to none at `{e}`"
+            )),
         );
         return None;
     }
@@ -172,4 +189,31 @@ pub fn ambient_photons(ck: &mut Checker<'_>, item: &Item<'_, LightDesc>) -> Opti
         ok = false;
     }
     ok.then_some(())
+}
+
+/// The error of a light aimed nowhere, as the scene's format aims it: RON's spot `target` at
+/// its `position` (`spot`) or a zero `direction`, a `.mi` light's zero `direction`, a RIB
+/// spot or distant light whose `to` is its `from`.
+pub fn aim_error(syntax: Syntax, spot: bool) -> &'static str {
+    let ron = if spot {
+        "target must differ from position"
+    } else {
+        "direction must not be zero"
+    };
+    syntax.named(
+        ron,
+        "direction must not be zero",
+        "\"to\" must differ from \"from\"",
+    )
+}
+
+/// What makes a light's radiant value, as the scene's format writes it: RON's `color ×
+/// intensity`, a `.mi` light shader's `"color"` (`physical_light`'s power already spread over
+/// its sphere or shape), a RIB light's `intensity` times its `lightcolor`.
+pub fn radiant_name(syntax: Syntax) -> &'static str {
+    syntax.named(
+        "color × intensity",
+        "the light's emitted \"color\"",
+        "intensity × lightcolor",
+    )
 }

@@ -11,6 +11,9 @@ use crate::components::{LocalLobe, LocalModel, Shader};
 
 /// Checks one shader description at `path` (the path of the `shader` value itself).
 pub fn shader(ck: &mut Checker<'_>, path: &str, desc: &ShaderDesc) -> Option<Shader> {
+    // The parameters a `.mi` shader writes under names of its own: `mib_illum_*`'s
+    // `"diffuse"` is the `Local` colour, the tutorial's `"Ka"`/`"Kd"` `DefaultSurface`'s.
+    let syntax = ck.src.syntax(ck.file);
     let mut s = Fields { ck, path, ok: true };
     let shader = match desc {
         ShaderDesc::Lambert { albedo } => {
@@ -21,8 +24,8 @@ pub fn shader(ck: &mut Checker<'_>, path: &str, desc: &ShaderDesc) -> Option<Sha
             color: s.colour("Constant.color", "color", *color),
         },
         ShaderDesc::DefaultSurface { ka, kd, color } => Shader::DefaultSurface {
-            ka: s.weight("DefaultSurface.ka", "ka", *ka),
-            kd: s.weight("DefaultSurface.kd", "kd", *kd),
+            ka: s.weight("DefaultSurface.ka", syntax.named("ka", "Ka", "Ka"), *ka),
+            kd: s.weight("DefaultSurface.kd", syntax.named("kd", "Kd", "Kd"), *kd),
             color: s.colour("DefaultSurface.color", "color", *color),
         },
         ShaderDesc::Phong {
@@ -188,9 +191,13 @@ pub fn shader(ck: &mut Checker<'_>, path: &str, desc: &ShaderDesc) -> Option<Sha
             reflection,
             ambient,
         } => Shader::Local(LocalModel {
-            color: s.colour("Local.color", "color", *color),
-            ka: s.weight("Local.ka", "ka", *ka),
-            kd: s.weight("Local.kd", "kd", *kd),
+            color: s.colour(
+                "Local.color",
+                syntax.named("color", "diffuse", "Color"),
+                *color,
+            ),
+            ka: s.weight("Local.ka", syntax.named("ka", "ka", "Ka"), *ka),
+            kd: s.weight("Local.kd", syntax.named("kd", "kd", "Kd"), *kd),
             specular: s.colour("Local.specular", "specular", *specular),
             lobe: match lobe {
                 LocalLobeDesc::RenderMan { roughness } => LocalLobe::RenderMan {

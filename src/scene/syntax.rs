@@ -40,6 +40,18 @@ impl Syntax {
         .to_string()
     }
 
+    /// A value's name as this syntax writes it, for a message about it: `mi` for a mental
+    /// ray file (its statement word or shader parameter), `rib` for RIB (its request or
+    /// parameter), `ron` (RON's field) for RON and glTF, whose values the messages name by
+    /// their RON fields.
+    pub fn named<'a>(self, ron: &'a str, mi: &'a str, rib: &'a str) -> &'a str {
+        match self {
+            Self::Mi => mi,
+            Self::Rib => rib,
+            Self::Ron | Self::Gltf => ron,
+        }
+    }
+
     /// The format's name as messages write it: `RIB`, `glTF`, `.mi`, `RON`.
     pub fn name(self) -> &'static str {
         match self {

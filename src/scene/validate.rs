@@ -15,7 +15,7 @@ use super::desc::{
     ProgressiveDesc, RenderDesc, SceneDesc,
 };
 use super::diagnostics::Sources;
-use super::syntax::Helps;
+use super::syntax::{Helps, Syntax};
 use crate::components::{Camera, Emitter, ImageFormat, LightShape, Material, OutputSpec, Pass};
 use crate::features::{Feature, Features};
 use crate::settings::{
@@ -409,7 +409,12 @@ pub fn camera(src: &mut Sources, item: &Item<'_, CameraDesc>) -> Option<Camera> 
     };
     let mut ok = true;
     let fov_path = item.at(".fov_y");
-    if ck.finite(&fov_path, "fov_y", c.fov_y) && !(c.fov_y > 0.0 && c.fov_y < 180.0) {
+    // A `.mi` camera writes no field of view: its `aperture`, `focal` and `aspect` make it.
+    let fov = match ck.src.syntax(ck.file) {
+        Syntax::Mi => "the vertical field of view 2·atan(aperture / (2·focal·aspect))",
+        _ => "fov_y",
+    };
+    if ck.finite(&fov_path, fov, c.fov_y) && !(c.fov_y > 0.0 && c.fov_y < 180.0) {
         let wide = if c.fov_y >= 180.0 {
             "; a view of 180° or more needs a fisheye lens, `lens: [Fisheye(fov: 180)]`"
         } else {
@@ -419,7 +424,7 @@ pub fn camera(src: &mut Sources, item: &Item<'_, CameraDesc>) -> Option<Camera> 
             ck.file,
             &fov_path,
             format!(
-                "fov_y must be between 0 and 180 degrees (exclusive), found {}",
+                "{fov} must be between 0 and 180 degrees (exclusive), found {}",
                 c.fov_y
             ),
             Some(format!(
@@ -711,7 +716,8 @@ pub fn light(src: &mut Sources, item: &Item<'_, LightDesc>) -> Option<Emitter> {
         src,
         file: item.file,
     };
-    let color = ck.colour(&item.at(".color"), "color", l.color);
+    let color_name = ck.src.syntax(ck.file).named("color", "color", "lightcolor");
+    let color = ck.colour(&item.at(".color"), color_name, l.color);
     let intensity = ck.non_negative(&item.at(".intensity"), "intensity", l.intensity);
     let shadow_factor = ck
         .non_negative(&item.at(".shadow_factor"), "shadow_factor", l.shadow_factor)
@@ -802,15 +808,18 @@ pub fn light(src: &mut Sources, item: &Item<'_, LightDesc>) -> Option<Emitter> {
                 );
                 ok = false;
             }
+            let syntax = ck.src.syntax(ck.file);
             let beam = ck.non_negative(
                 &kind("Spot.beam_distribution"),
-                "beam_distribution",
+                syntax.named("beam_distribution", "beam_distribution", "beamdistribution"),
                 *beam_distribution,
             );
             let (p, t, beam) = (p?, t?, beam?);
             let direction = (t - p).normalize_or_zero();
             if direction == DVec3::ZERO {
-                ck.error(&kind("Spot.target"), "target must differ from position");
+                // A `.mi` spot is aimed by its `direction`, a RIB one from `from` to `to`.
+                let message = super::lights::aim_error(syntax, true);
+                ck.error(&kind("Spot.target"), message);
                 return None;
             }
             if !ok || !cone_angle.is_finite() || !penumbra.is_finite() {
@@ -828,7 +837,9 @@ pub fn light(src: &mut Sources, item: &Item<'_, LightDesc>) -> Option<Emitter> {
             let path = kind("Directional.direction");
             let d = ck.v3(&path, "direction", *direction)?.normalize_or_zero();
             if d == DVec3::ZERO {
-                ck.error(&path, "direction must not be zero");
+                // A RIB `distantlight` shines from `from` to `to`.
+                let message = super::lights::aim_error(ck.src.syntax(ck.file), false);
+                ck.error(&path, message);
                 return None;
             }
             LightShape::Directional { direction: f32v(d) }
@@ -843,9 +854,14 @@ pub fn light(src: &mut Sources, item: &Item<'_, LightDesc>) -> Option<Emitter> {
             let v = ck.v3(&kind("Rect.edge_v"), "edge_v", *edge_v);
             let (c, u, v) = (c?, u?, v?);
             if u.cross(v).length_squared() == 0.0 {
+                let edges = ck.src.syntax(ck.file).named(
+                    "edge_u and edge_v",
+                    "the two edges of `rectangle`",
+                    "edge_u and edge_v",
+                );
                 ck.error(
                     &kind("Rect.edge_v"),
-                    "edge_u and edge_v must span a non-zero area",
+                    format!("{edges} must span a non-zero area"),
                 );
                 return None;
             }
@@ -861,14 +877,12 @@ pub fn light(src: &mut Sources, item: &Item<'_, LightDesc>) -> Option<Emitter> {
     let visible = super::lights::visible(&mut ck, item, is_area);
     let photons = super::lights::ambient_photons(&mut ck, item);
     photons?;
+    // What makes the radiant value, named as the scene's format writes it.
+    let radiant = super::lights::radiant_name(ck.src.syntax(ck.file));
     Some(Emitter {
         shape,
         radiant: ck
-            .radiant(
-                &item.at(".intensity"),
-                "color × intensity",
-                color? * intensity?,
-            )?
+            .radiant(&item.at(".intensity"), radiant, color? * intensity?)?
             .as_vec3(),
         shadows: l.shadows,
         shadow_factor: shadow_factor?,
@@ -886,9 +900,15 @@ pub fn material(src: &mut Sources, item: &Item<'_, MaterialDesc>) -> Option<Mate
         src,
         file: item.file,
     };
+    // A RIB emission is an `AreaLightSource`'s `intensity` times its `lightcolor`.
+    let what = ck.src.syntax(ck.file).named(
+        "emission",
+        "emission",
+        "the area light's intensity × lightcolor",
+    );
     let emission = ck
-        .colour(&item.at(".emission"), "emission", m.emission)
-        .and_then(|e| ck.radiant(&item.at(".emission"), "emission", e));
+        .colour(&item.at(".emission"), what, m.emission)
+        .and_then(|e| ck.radiant(&item.at(".emission"), what, e));
     let shader = super::shaders::shader(&mut ck, &item.at(".shader"), &m.shader);
     let shadow = super::material_shaders::shadow(&mut ck, &item.at(".shadow"), m.shadow.as_ref());
     let environment = super::material_shaders::environment(

@@ -67,7 +67,7 @@ fn value_errors_point_at_the_value() {
         ),
         (
             replaced(&text, "\"ndelta\" 20.0,", "\"ndelta\" -5,"),
-            "bad.mi:15:10: error: normal_angle must be in (0, 180] degrees, found -5",
+            "bad.mi:15:10: error: ndelta must be in (0, 180] degrees, found -5",
         ),
         (
             replaced(&text, "\"width\" 1.0", "\"width\" -1.0"),

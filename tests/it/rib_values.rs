@@ -58,16 +58,16 @@ fn color_and_opacity_errors_are_at_their_values_once_per_request() {
 }
 
 #[test]
-fn a_sphere_range_quotes_z_max_as_written() {
+fn a_sphere_range_quotes_zmax_as_written() {
     assert_eq!(
         errors(&format!("{HEAD}Sphere 1 0.5 -1 360\nWorldEnd\n")),
-        "t.rib:5:14: error: object \"sphere_1\" (sphere): parameter `z_max` = -1 is out of range \
-         (expected > z_min)"
+        "t.rib:5:14: error: object \"sphere_1\" (sphere): parameter `zmax` = -1 is out of range \
+         (expected > zmin)"
     );
     assert_eq!(
         errors(&format!("{HEAD}Sphere 1 2 3.3 360\nWorldEnd\n")),
-        "t.rib:5:12: error: object \"sphere_1\" (sphere): parameter `z_max` = 3.3 is out of range \
-         (expected > z_min, both clamped to [-radius, radius])"
+        "t.rib:5:12: error: object \"sphere_1\" (sphere): parameter `zmax` = 3.3 is out of range \
+         (expected > zmin, both clamped to [-radius, radius])"
     );
     assert_eq!(
         errors(&format!("{HEAD}Sphere -0.3 -1 1 360\nWorldEnd\n")),

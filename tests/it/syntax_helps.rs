@@ -267,7 +267,10 @@ fn rib_fine_sphere() -> String {
 
 /// An adaptive approximation past the memory budget: `check`'s worst-case warning and
 /// `render`'s refusal say how to bound it in `.mi` (the `approximate` statement's
-/// subdivision bounds) and in RIB (RON's `max_subdiv`; a larger `ShadingRate`).
+/// subdivision bounds) and in RIB (RON's `max_subdiv`; a larger `ShadingRate`), and the
+/// warning names the bound it reached as the format sets it (the `approximate` statement's
+/// max subdivision, the subdivisions a `ShadingRate` allows; RON's `max_subdiv` stays in
+/// `tests/it/hostile_budget.rs`).
 #[test]
 fn an_approximation_past_the_budget_is_helped_in_the_scenes_format() {
     let check = ["check", "c.mi", "--memory-limit", "1M"];
@@ -276,7 +279,8 @@ fn an_approximation_past_the_budget_is_helped_in_the_scenes_format() {
     assert_eq!(
         err,
         "c.mi:10:3: warning: object \"Tri\": its adaptive approximation may make up to 33554432 \
-         triangles (1 patch(es) × 4096² at max_subdiv 12, about 12.0 GiB), more than the 2730 the \
+         triangles (1 patch(es) × 4096² at the `approximate` statement's max subdivision 12, about \
+         12.0 GiB), more than the 2730 the \
          memory budget of 1.0 MiB (--memory-limit) allows one object; render refuses it if dicing \
          makes more\n  help: adaptive rates usually stay far below this bound; to be sure it fits, \
          end the `approximate` technique with the subdivision bounds `0 5` (at most 2048 \
@@ -298,7 +302,8 @@ fn an_approximation_past_the_budget_is_helped_in_the_scenes_format() {
     assert_eq!(
         err,
         "s.rib:7:13: warning: object \"sphere_1\": its adaptive approximation may make up to 262144 \
-         triangles (8 patch(es) × 128² at max_subdiv 7, about 96.0 MiB), more than the 2730 the \
+         triangles (8 patch(es) × 128² at the 7 subdivisions a `ShadingRate` allows, about 96.0 \
+         MiB), more than the 2730 the \
          memory budget of 1.0 MiB (--memory-limit) allows one object; render refuses it if dicing \
          makes more\n  help: adaptive rates usually stay far below this bound; to be sure it fits, \
          write the scene as RON and set `max_subdiv: 3` there (at most 1024 triangles; a RIB \

@@ -12,6 +12,7 @@ use crate::components::{
 use crate::scene::desc::{
     ApproximationDesc, AxisDesc, DisplacementDesc, DisplacementModeDesc, ScalarDesc, SpaceDesc,
 };
+use crate::scene::syntax::Syntax;
 use crate::scene::validate::Checker;
 use crate::tessellation::displace::{self, Displacer};
 use crate::tessellation::rates::{RateContext, MAX_LEVEL};
@@ -87,10 +88,13 @@ pub fn approximation(
             }
         }
         if min_subdiv > max_subdiv {
-            ck.error(
-                &format!("{at}.min_subdiv"),
-                format!("min_subdiv ({min_subdiv}) must not exceed max_subdiv ({max_subdiv})"),
-            );
+            // `.mi` writes the two bounds last in its `approximate` technique.
+            let message = if ck.src.syntax(ck.file) == Syntax::Mi {
+                format!("the `approximate` statement's min subdivision ({min_subdiv}) must not exceed its max subdivision ({max_subdiv})")
+            } else {
+                format!("min_subdiv ({min_subdiv}) must not exceed max_subdiv ({max_subdiv})")
+            };
+            ck.error(&format!("{at}.min_subdiv"), message);
             return None;
         }
     }

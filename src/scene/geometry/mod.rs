@@ -333,10 +333,30 @@ pub(crate) fn report(
             _ => direct,
         };
     }
-    ck.error(
-        &path,
-        format!("object \"{object}\" ({what}): {}", tidy(err)),
-    );
+    let mut text = tidy(err);
+    if ck.src.syntax(ck.file) == super::syntax::Syntax::Rib {
+        text = rib_names(&text);
+    }
+    ck.error(&path, format!("object \"{object}\" ({what}): {text}"));
+}
+
+/// A geometry error's text with the quadric parameters under the names of RISpec 3.2's
+/// requests (`Torus majorradius minorradius phimin phimax thetamax`, `Sphere radius zmin
+/// zmax thetamax`) and a displacement's bound under its `Attribute "displacementbound"`,
+/// for a RIB scene.
+fn rib_names(text: &str) -> String {
+    [
+        ("r_major", "majorradius"),
+        ("r_minor", "minorradius"),
+        ("phi_min", "phimin"),
+        ("phi_max", "phimax"),
+        ("theta_max", "thetamax"),
+        ("z_min", "zmin"),
+        ("z_max", "zmax"),
+        ("`bound`", "`displacementbound`"),
+    ]
+    .iter()
+    .fold(text.to_string(), |t, (ron, rib)| t.replace(ron, rib))
 }
 
 /// The error's text for a located message: values shown as written (every parameter went

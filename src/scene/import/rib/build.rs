@@ -1030,7 +1030,11 @@ impl Builder {
             return Ok(());
         }
         match kind {
-            "Surface" => self.gs.attrs.surface = Some(call),
+            "Surface" => {
+                // Its problems are reported here, whether or not a primitive uses it.
+                shaders::check_coefficients(&call, problems);
+                self.gs.attrs.surface = Some(call);
+            }
             "Displacement" => {
                 // Its problems are reported here, whether or not a primitive uses it.
                 shaders::displacement(&call, problems);
@@ -1047,6 +1051,7 @@ impl Builder {
                         problems.push(e);
                     }
                 }
+                shaders::check_coefficients(&call, problems);
                 self.gs.attrs.area_light = Some(call);
                 let h = handle.map_or_else(String::new, |(h, _)| h);
                 self.handles.remove(&h);

@@ -229,6 +229,46 @@ pub fn check_colour(what: &str, opacity: bool, c: [f64; 3], at: [Pos; 3]) -> Res
     })
 }
 
+/// Checks the coefficients of a `Surface` or `AreaLightSource` call where it is written, so
+/// that a bad one is reported under the parameter's RIB name (`Kd of "plastic" must not be
+/// negative`), once, not as the description field it becomes (`Ks` and `specularcolor` are
+/// multiplied into one `specular` colour): `Ka`, `Kd`, `Ks`, `Kr` and `intensity` not
+/// negative and within f32, `roughness` positive, `specularcolor` and `lightcolor` colours.
+pub fn check_coefficients(call: &ShaderCall, problems: &mut Vec<Problem>) {
+    for p in &call.params {
+        let name = p.name.as_str();
+        let what = format!("{name} of \"{}\"", call.name);
+        match (name, p.nums()) {
+            ("Ka" | "Kd" | "Ks" | "Kr" | "intensity", &[x]) => {
+                if !x.is_finite() || x.abs() > f64::from(f32::MAX) {
+                    problems.push(Problem::error(
+                        p.pos(),
+                        format!("{what} {x:e} is beyond the f32 range"),
+                    ));
+                } else if x < 0.0 {
+                    problems.push(Problem::error(
+                        p.pos(),
+                        format!("{what} must not be negative, found {x}"),
+                    ));
+                }
+            }
+            ("roughness", &[x]) if !(x > 0.0 && x <= f64::from(f32::MAX)) => {
+                problems.push(Problem::error(
+                    p.pos(),
+                    format!("{what} must be positive, found {x}"),
+                ));
+            }
+            ("specularcolor" | "lightcolor", &[r, g, b]) => {
+                let at = [0, 1, 2].map(|k| p.value.item(k));
+                if let Err(e) = check_colour(&what, false, [r, g, b], at) {
+                    problems.push(e);
+                }
+            }
+            _ => {}
+        }
+    }
+}
+
 /// The surface shader of `call` (`None`: `defaultsurface`) with colour `cs` and opacity
 /// `os`; the tutorial's shaders are [`super::tutorial::surface`].
 ///
@@ -440,6 +480,13 @@ pub fn fog(call: &ShaderCall, problems: &mut Vec<Problem>) -> Option<FogValues> 
                 p.pos(),
                 format!("distance of \"fog\" must be above 0, found {distance}"),
             ));
+        }
+    }
+    if let Some(p) = v.found[1] {
+        let (r, g, b) = p.triple();
+        let at = [0, 1, 2].map(|k| p.value.item(k));
+        if let Err(e) = check_colour("background of \"fog\"", false, [r, g, b], at) {
+            problems.push(e);
         }
     }
     (problems.len() == before).then(|| FogValues {
