@@ -17,7 +17,7 @@ const OUTPUTS: &str = r#"outputs: [
 /// The tester's scene: a constant environment and a visible sphere light in front of the
 /// camera; with `triangle`, one triangle behind the camera.
 fn scene(triangle: bool) -> String {
-    let (materials, objects, members) = if triangle {
+    let (placed, members) = if triangle {
         (
             r#"materials: [(name: "grey", shader: Lambert(albedo: (0.5, 0.5, 0.5)))],
     objects: [(name: "tri", mesh: Inline(vertices: [(0, 0, 10), (1, 0, 10), (0, 1, 10)],
@@ -26,7 +26,7 @@ fn scene(triangle: bool) -> String {
             "\"tri_1\"",
         )
     } else {
-        ("", "", "")
+        ("", "")
     };
     format!(
         r#"Scene(
@@ -35,8 +35,7 @@ fn scene(triangle: bool) -> String {
         {OUTPUTS}) ],
     environment: (shader: Constant(color: (0.2, 0.4, 0.6))),
     lights: [ (name: "s", kind: Sphere(center: (0, 0, 0), radius: 1), intensity: 2.0, visible: true) ],
-    {materials}
-    {objects}
+    {placed}
     groups: [ (name: "world", members: [{members}]) ],
     render: (root: "world", camera: "cam"),
 )"#
