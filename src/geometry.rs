@@ -181,6 +181,20 @@ pub struct SceneGeometry {
 }
 
 impl SceneGeometry {
+    /// The geometry of a scene without triangles (`build_accel` skipped): no instance, no
+    /// material, no hierarchy; every ray misses. `shade` shades with it so that camera rays
+    /// still meet the visible lights and the environment.
+    pub fn empty(origin: glam::DVec3) -> Self {
+        Self {
+            accel: Accel::without_hierarchy(Vec::new()),
+            triangle_instance: Vec::new(),
+            instances: Vec::new(),
+            materials: Vec::new(),
+            material_entities: Vec::new(),
+            origin,
+        }
+    }
+
     /// Number of world triangles.
     pub fn triangle_count(&self) -> usize {
         self.accel.len()

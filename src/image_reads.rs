@@ -1,7 +1,8 @@
 //! What a run reads of the render camera's image: its camera samples (the shaded colour,
 //! the coverage, the component passes), or only what the pixel-centre rays give (depth,
 //! normal, ids, and the diagnostic views drawn from those rays). `shade` takes no sample
-//! where nothing reads one, and `trace_photons` traces no map that only the samples read.
+//! where nothing reads one, traces no pixel-centre ray where nothing reads a pixel-centre
+//! pass, and `trace_photons` traces no map that only the samples read.
 
 use hecs::World;
 
@@ -60,6 +61,32 @@ pub fn samples_unread(world: &World, inputs: &RunInputs) -> Option<String> {
             centre_passes_text(&outputs)
         ),
     })
+}
+
+/// Whether the run reads the pixel-centre passes `shade` fills from one ray through each
+/// pixel centre (depth, normal, ids; the camera-space passes are derived from them): an
+/// output it writes (after `-o`) holds one, or a caller that keeps the image, a farm part
+/// (its file carries them for the merge) or a merge reads them. Nothing else does: the
+/// coverage and the beauty come from the samples, and the diagnostic views
+/// ([`crate::diagnostic_view`]) and the contour store trace their own centre rays. Where
+/// nothing reads them, `shade` traces no pixel-centre ray.
+pub fn centres_read(world: &World, inputs: &RunInputs) -> bool {
+    if inputs.caller_keeps_image || inputs.part.is_some() || inputs.merging() {
+        return true;
+    }
+    crate::scene_view::written_outputs(world, inputs).map_or(true, |outputs| {
+        outputs
+            .iter()
+            .any(|o| o.passes.iter().any(|p| centre_pass(*p)))
+    })
+}
+
+/// Whether pass `p` comes from the pixel-centre rays rather than the samples.
+fn centre_pass(p: Pass) -> bool {
+    matches!(
+        p,
+        Pass::Depth | Pass::Normal | Pass::ObjectId | Pass::MaterialId
+    ) || Pass::CAMERA_SPACE.contains(&p)
 }
 
 /// Whether `d` is drawn from the pixel-centre rays alone (grid, photon, bvh), rather than

@@ -207,7 +207,8 @@ pub fn contours_drawn(world: &World, inputs: &crate::frame::RunInputs) -> Result
 
 /// Why nothing in this run traces rays into the scene geometry (`None`: something does — a
 /// render camera whose image is read, or a bake). A render part that computes nothing
-/// ([`part_share`]) reads no geometry either: the reason is then the part's. The geometry
+/// ([`part_share`]) reads no geometry either, nor does a bake part that owns no texel where
+/// the scene alone tells ([`idle_bake_part`]): the reason is then the part's. The geometry
 /// stages skip by it: without a reader, shapes expanded, surfaces diced and a hierarchy
 /// built are thrown away.
 pub fn geometry_unused(world: &World, inputs: &crate::frame::RunInputs) -> Option<String> {
@@ -218,7 +219,11 @@ pub fn geometry_unused(world: &World, inputs: &crate::frame::RunInputs) -> Optio
     };
     let renders =
         tasks.render && has_render_camera(world) && image_is_read(world, inputs) && idle.is_none();
-    let bakes = tasks.bake && crate::schedule::any_with::<crate::components::BakeRequest>(world);
+    let idle_bake = idle_bake_part(world, inputs);
+    let bakes = tasks.bake
+        && crate::schedule::any_with::<crate::components::BakeRequest>(world)
+        && idle_bake.is_none();
+    let idle = idle.or(idle_bake);
     match (renders || bakes, tasks.render, idle) {
         (true, ..) => None,
         (false, _, Some(why)) => Some(why),
@@ -241,11 +246,25 @@ pub fn part_share(world: &World, inputs: &crate::frame::RunInputs) -> Option<Sha
     Some(run.part.share(camera.width, camera.height, spp))
 }
 
+/// Why this run's bake part (`bake --part K/N`) owns no texel, when the scene alone tells:
+/// every request has a fixed size and only texture targets
+/// ([`crate::farm::idle_bake_part`]). Such a part needs no geometry: the geometry stages
+/// skip for this reason and `bake_lightmaps` writes only its empty part file. `None` in any
+/// other run, and where the requests' sizes come from the geometry.
+pub fn idle_bake_part(world: &World, inputs: &crate::frame::RunInputs) -> Option<String> {
+    let run = inputs.part.as_ref()?;
+    let tasks = inputs.tasks;
+    if tasks.render || !tasks.bake || inputs.merging() || inputs.merged_bake.is_some() {
+        return None;
+    }
+    crate::farm::idle_bake_part::idle_before_geometry(world, run.part)
+}
+
 /// [`geometry_unused`] for the stages that make geometry (`expand_geometry`, `tessellate`):
-/// only where a render camera exists, so that a library caller running them on a world
-/// without a camera still gets the meshes it asked for.
+/// only where a render camera exists or a bake part owns no texel, so that a library caller
+/// running them on a world without a camera still gets the meshes it asked for.
 pub fn geometry_discarded(world: &World, inputs: &crate::frame::RunInputs) -> Option<String> {
-    if has_render_camera(world) {
+    if has_render_camera(world) || idle_bake_part(world, inputs).is_some() {
         geometry_unused(world, inputs)
     } else {
         None
@@ -266,6 +285,16 @@ pub fn emitters(world: &World) -> Vec<Emitter> {
         .collect();
     emitters.sort_by_key(|(e, _)| e.to_bits());
     emitters.into_iter().map(|(_, l)| l).collect()
+}
+
+/// World-space position of render space's zero ([`crate::components::SceneOrigin`]; the
+/// world origin without one).
+pub fn scene_origin(world: &World) -> glam::DVec3 {
+    world
+        .query::<&crate::components::SceneOrigin>()
+        .iter()
+        .next()
+        .map_or(glam::DVec3::ZERO, |o| o.0)
 }
 
 /// The scene's environment, if any.

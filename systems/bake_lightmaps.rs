@@ -11,7 +11,11 @@
 //! the placed geometry (`crate::bake::gltf_export`);
 //! `outputs.bake_reports`.
 //! **Runs when:** the run bakes (`stagelight bake` or `render --bake`) and at least one
-//! instance carries a bake request.
+//! instance carries a bake request. A bake part that owns no texel writes only its empty
+//! part file: where every request has a fixed size and only texture targets this is known
+//! before the geometry stages (`crate::scene_view::idle_bake_part`: they skip, and the
+//! stage runs without geometry, its reason saying so); otherwise the stage finds it after
+//! sizing the requests and is reported skipped (`idle_part`).
 //! **After this stage:** every requested texture exists complete (or none was written), and
 //! a report per request gives texel density, coverage, invalid texels, rays and time.
 //!
@@ -43,7 +47,7 @@ use crate::bake::texels::{evaluate, TexelJob};
 use crate::bake::vertex_files::{encode_vertex_request, VertexValues};
 use crate::components::{BakeKind, BakeRequest};
 use crate::farm::bake_part::{first_tiles, tiles_of, BakePartFile, BakePartRequest, TexelOwner};
-use crate::farm::part::{plural, TILE};
+use crate::farm::idle_bake_part::owns_no_texel;
 use crate::farm::PartRun;
 use crate::progress::Progress;
 use crate::sampling::{fold_seed, hash_combine};
@@ -58,11 +62,34 @@ pub fn should_run(world: &World, frame: &Frame) -> Decision {
     if !frame.inputs.tasks.bake {
         return Decision::skip(format!("{n} bake request(s), but this run does not bake (use `stagelight bake` or `render --bake`)"));
     }
+    if let Some(why) = crate::scene_view::idle_bake_part(world, &frame.inputs) {
+        return Decision::run(format!("{n} bake request(s); {why}: {ONLY_EMPTY_PART}"));
+    }
     Decision::run(format!("{n} bake request(s)"))
+}
+
+/// What a bake part that owns no texel does, known before the geometry stages.
+const ONLY_EMPTY_PART: &str = "only its empty part file is written";
+
+/// The empty part file of a bake part that owns no texel, where the scene alone tells
+/// (`crate::scene_view::idle_bake_part`): made from the requests' fixed sizes, without
+/// geometry, and the same bytes a part that found itself idle after building it writes.
+fn empty_part(run: &PartRun, world: &World, frame: &Frame) -> Result<Work, StageError> {
+    let requests = crate::farm::idle_bake_part::empty_requests(world)
+        .ok_or_else(|| StageError::Internal("an idle bake part without fixed sizes".into()))?;
+    let file = part_file(run, frame, requests)?;
+    Ok(Work::new(0, "texels")
+        .with_pending(vec![file])
+        .with_output(StageOutput::BakeReports(Vec::new())))
 }
 
 /// Bakes every request.
 pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
+    if let Some(run) = frame.inputs.part.as_ref() {
+        if crate::scene_view::idle_bake_part(world, &frame.inputs).is_some() {
+            return empty_part(run, world, frame);
+        }
+    }
     // Phase 1: check and rasterize every request before baking anything.
     let prepared = prepare_bakes(world, frame.outputs.geometry.as_ref())?;
     for p in &prepared {
@@ -258,21 +285,20 @@ fn work_unit(prepared: &[PreparedBake]) -> &'static str {
 
 /// Why a bake part (`bake --part K/N`) owns no texel, if it owns none: `K` is past the
 /// number of tiles of all `prepared` requests. It traces no rays and writes an empty part
-/// file; the stage is then reported skipped for this reason. (The texture sizes of
-/// density-sized and per-vertex requests come from the built geometry, so this is known
-/// only here, after the geometry stages.)
+/// file; the stage is then reported skipped for this reason, which says what its time was
+/// spent on. (The texture sizes of density-sized and per-vertex requests come from the
+/// built geometry, so this is known only here, after the geometry stages; a part of
+/// fixed-size texture requests is found idle before them: [`empty_part`].)
 fn idle_part(frame: &Frame, prepared: &[PreparedBake]) -> Option<String> {
     let run = frame.inputs.part.as_ref()?;
     if frame.inputs.merged_bake.is_some() {
         return None;
     }
     let tiles = bake_tiles(prepared);
-    let (k, n) = (run.part.index, run.part.count);
-    (u64::from(k) > tiles).then(|| {
+    (u64::from(run.part.index) > tiles).then(|| {
         format!(
-            "part {k}/{n} owns no texel: the bake {} {} of {TILE}×{TILE} texels; its part file is written empty",
-            if prepared.len() == 1 { "request has" } else { "requests have" },
-            plural(tiles, "tile", "tiles")
+            "{}; its part file is written empty (the time reported: sizing the requests from the geometry and writing that file)",
+            owns_no_texel(run.part, tiles, prepared.len())
         )
     })
 }

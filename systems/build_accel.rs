@@ -15,8 +15,10 @@
 //! `crate::guard::cancellable`).
 //! **Writes:** `outputs.geometry` (returned to the runner).
 //! **Runs when:** at least one instance has triangles and something consumes rays (a render
-//! camera in a run that renders, or bake requests in a run that bakes); in a merge, only when
-//! it draws contours (`super::merge_skip`). A bake merge (`inputs.merged_bake`) places the
+//! camera in a run that renders, or bake requests in a run that bakes), not in a farm part
+//! that owns nothing (`crate::scene_view::geometry_unused`: a render part without pixels or
+//! samples, a bake part past the last texel tile of fixed-size texture requests,
+//! `crate::scene_view::idle_bake_part`); in a merge, only when it draws contours (`super::merge_skip`). A bake merge (`inputs.merged_bake`) places the
 //! triangles without building the BVH ([`Accel::without_hierarchy`]): it reads them and
 //! traces no ray.
 //! **After this stage:** `outputs.geometry` holds world triangles in instance order (each
@@ -34,8 +36,8 @@ use super::prelude::*;
 use crate::accel::Accel;
 use crate::components::{
     Displacement, DisplacementMode, FaceMaterials, Instance, Material, MaterialRef, ObjectLabel,
-    Procedural, RayFlags, ReverseOrientation, Scatter, SceneOrigin, SubdivMesh, Surface,
-    VertexColours, VertexTangents, WorldFromObject, ALL_RAYS, FRONT_ONLY,
+    Procedural, RayFlags, ReverseOrientation, Scatter, SubdivMesh, Surface, VertexColours,
+    VertexTangents, WorldFromObject, ALL_RAYS, FRONT_ONLY,
 };
 use crate::features::Feature;
 use crate::geometry::{InstanceGeometry, SceneGeometry};
@@ -253,11 +255,7 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
         instances,
         materials,
         material_entities,
-        origin: world
-            .query::<&SceneOrigin>()
-            .iter()
-            .next()
-            .map_or(glam::DVec3::ZERO, |o| o.0),
+        origin: crate::scene_view::scene_origin(world),
     };
     Ok(Work::new(count, "triangles").with_output(StageOutput::Geometry(geometry)))
 }

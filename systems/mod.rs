@@ -7,10 +7,10 @@
 //! | --- | --- | --- | --- | --- |
 //! | 1 | `expand_geometry` | any object has procedural geometry (`Procedural`, `Scatter`) | `Procedural`, `Scatter`, scatter surfaces and prototypes | meshes or `Surface`s on objects; scatter copies as instances (world) |
 //! | 2 | `tessellate` | a parametric surface, subdivision mesh or true displacement exists (or a quadric waits for expansion) | `Surface`, `SubdivMesh`, `Displacement`, `Approximation`, render camera (raster-space rates) | triangle meshes on objects and their instances (world) |
-//! | 3 | `build_accel` | instances with triangles (or geometry pending) and a render camera or bake request in this run | `Instance`, `WorldFromObject`, `MaterialRef`, `Material`, bump `Displacement`, `settings.bvh_quality` | `outputs.geometry` |
+//! | 3 | `build_accel` | instances with triangles (or geometry pending) and a render camera or bake request in this run, not a farm part that owns nothing (a render part without pixels or samples; a bake part past the last texel tile of fixed-size texture requests) | `Instance`, `WorldFromObject`, `MaterialRef`, `Material`, bump `Displacement`, `settings.bvh_quality` | `outputs.geometry` |
 //! | 4 | `trace_photons` | caustics or global illumination on (caustics with a caster), a `Direct` render whose samples an output reads (not only pixel-centre passes) or a photon diagnostic view, geometry, a surface that receives and stores photons, a light with power | `Emitter`s, `outputs.geometry`, `settings.photons` | `outputs.photons` |
-//! | 5 | `bake_lightmaps` | bake requests, in a run that bakes | `BakeRequest`s, `Emitter`s, `Environment`, `outputs.geometry`, `inputs.bake_dir`, `inputs.write_gltf` | texture files (and the baked glTF copy); `outputs.bake_reports` |
-//! | 6 | `shade` | a render camera, in a run that renders (a farm part: one that owns pixels or samples); only the pixel-centre rays when no output reads a sample | render camera, lenses, atmosphere, `Interior`s, `Emitter`s, `Environment`, `outputs.geometry`, `outputs.photons` | `outputs.image` |
+//! | 5 | `bake_lightmaps` | bake requests, in a run that bakes (a bake part that owns no texel: only its empty part file) | `BakeRequest`s, `Emitter`s, `Environment`, `outputs.geometry`, `inputs.bake_dir`, `inputs.write_gltf` | texture files (and the baked glTF copy); `outputs.bake_reports` |
+//! | 6 | `shade` | a render camera, in a run that renders (a farm part: one that owns pixels or samples); only the pixel-centre rays when no output reads a sample, none of them when nothing reads a pixel-centre pass | render camera, lenses, atmosphere, `Interior`s, `Emitter`s, `Environment`, `outputs.geometry`, `outputs.photons` | `outputs.image` |
 //! | 7 | `draw_contours` | a shaded image, a material with a contour shader, a contrast criterion on, an output showing contours, not a farm part | `outputs.image` (contour store), `outputs.geometry`, render camera, `ContourShader`s, `ContourContrast` | `outputs.contours` |
 //! | 8 | `write_output` | a shaded image and outputs to write (SVG/EPS only when contours are drawn), or a farm part that owns nothing (its empty part file) | `outputs.image`, `outputs.contours`, camera outputs with `inputs.outputs` overrides, `Imager` | image files, SVG contour lines |
 //! <!-- stage table end -->
@@ -79,7 +79,7 @@ pub const STAGES: &[Stage] = &[
     },
     Stage {
         name: "build_accel",
-        runs_when: "instances with triangles (or geometry pending) and a render camera or bake request in this run",
+        runs_when: "instances with triangles (or geometry pending) and a render camera or bake request in this run, not a farm part that owns nothing (a render part without pixels or samples; a bake part past the last texel tile of fixed-size texture requests)",
         reads: "`Instance`, `WorldFromObject`, `MaterialRef`, `Material`, bump `Displacement`, `settings.bvh_quality`",
         writes: "`outputs.geometry`",
         slot: Some(Slot::Geometry),
@@ -97,7 +97,7 @@ pub const STAGES: &[Stage] = &[
     },
     Stage {
         name: "bake_lightmaps",
-        runs_when: "bake requests, in a run that bakes",
+        runs_when: "bake requests, in a run that bakes (a bake part that owns no texel: only its empty part file)",
         reads: "`BakeRequest`s, `Emitter`s, `Environment`, `outputs.geometry`, `inputs.bake_dir`, `inputs.write_gltf`",
         writes: "texture files (and the baked glTF copy); `outputs.bake_reports`",
         slot: Some(Slot::BakeReports),
@@ -106,7 +106,7 @@ pub const STAGES: &[Stage] = &[
     },
     Stage {
         name: "shade",
-        runs_when: "a render camera, in a run that renders (a farm part: one that owns pixels or samples); only the pixel-centre rays when no output reads a sample",
+        runs_when: "a render camera, in a run that renders (a farm part: one that owns pixels or samples); only the pixel-centre rays when no output reads a sample, none of them when nothing reads a pixel-centre pass",
         reads: "render camera, lenses, atmosphere, `Interior`s, `Emitter`s, `Environment`, `outputs.geometry`, `outputs.photons`",
         writes: "`outputs.image`",
         slot: Some(Slot::Image),

@@ -2,8 +2,8 @@
 //! the camera's lens shaders, radiance from the chosen integrator (direct lighting with traced
 //! mirror/refraction rays, or the reference path tracer), the camera segment through the
 //! atmosphere or a material interior, pixel filter, and the centre-sample passes (depth,
-//! normal, ids; not in a part of a samples split other than part 1, whose centre passes the
-//! merge takes).
+//! normal, ids; only where something reads them, `crate::image_reads::centres_read`, and
+//! not in a part of a samples split other than part 1, whose centre passes the merge takes).
 //!
 //! Samples per pixel: `spp` everywhere, or adaptive (`settings.adaptive`, see
 //! `crate::adaptive`): pass 1 takes `min` samples in every pixel; pass 2 refines the pixels
@@ -11,8 +11,9 @@
 //!
 //! **Reads:** the `Camera` with `RenderCamera` (and its `Lenses`, `Atmosphere` or `AtmosphereFade`, and its
 //! `Imager`'s background, which hides the environment from camera rays); `Interior` of
-//! material entities; `Emitter` entities; the `Environment`; `outputs.geometry` (absent means an empty scene:
-//! every ray misses); `outputs.photons` (the `Direct` integrator's caustics and final gather;
+//! material entities; `Emitter` entities; the `Environment`; `outputs.geometry` (absent: a scene without
+//! triangles, shaded as one whose triangles are all out of sight — camera rays meet the
+//! visible lights and the environment — with no ray traced); `outputs.photons` (the `Direct` integrator's caustics and final gather;
 //! absent: none); `settings` (spp or adaptive samples, filter, seed, face, integrator,
 //! trace depths).
 //! **Writes:** `outputs.image` (with the samples each pixel took and, when the run draws
@@ -53,13 +54,14 @@ use crate::farm::part::Share;
 use crate::farm::{Part, Split};
 use crate::features::Feature;
 use crate::framebuffer::{FrameBuffers, PixelSums};
+use crate::geometry::SceneGeometry;
 use crate::progress::Progress;
 use crate::sampling::{fold_seed, Sampler};
-use crate::scene_view::{light_set, render_view, WithEnvironment};
+use crate::scene_view::{light_set, render_view, scene_origin, WithEnvironment};
 use crate::shading::integrator::components::{camera_sample, Component, Components};
 use crate::shading::integrator::material_bsdfs::MaterialBsdfs;
 use crate::shading::integrator::triangle_normals::TriangleNormals;
-use crate::shading::integrator::{camera_hit, CameraHit};
+use crate::shading::integrator::{camera_hit, camera_hit_with, CameraHit};
 use crate::shading::{CameraRays, FilterSampler, LightSet, ShadeContext, Volumes};
 use rows::{RowOut, Totals};
 
@@ -122,6 +124,9 @@ pub fn should_run(world: &World, frame: &Frame) -> Decision {
             reason += &format!(", {} shaders disabled", f.name());
         }
     }
+    if !frame.outputs.has(crate::frame::Slot::Geometry) {
+        reason += ", no geometry: camera rays meet only the visible lights and the environment, no ray is traced";
+    }
     if let Some(why) = crate::image_reads::samples_unread(world, &frame.inputs) {
         reason += &format!(", only the pixel-centre rays: {why}");
     }
@@ -154,17 +159,27 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
     let camera = view.camera;
     let background = view.imager.and_then(|i| i.background);
     let settings = frame.inputs.settings.clone();
-    let geometry = frame.outputs.geometry.as_ref();
-    let mut lights = light_set(world, geometry, &settings, WithEnvironment::Yes);
+    // A scene without triangles (`build_accel` skipped) is shaded as one whose triangles
+    // are all out of sight: camera rays still meet the visible lights and the environment.
+    // Nothing can be hit, so no ray is traced (`PixelShader::traces`).
+    let empty;
+    let geometry = match frame.outputs.geometry.as_ref() {
+        Some(g) => g,
+        None => {
+            empty = SceneGeometry::empty(scene_origin(world));
+            &empty
+        }
+    };
+    let traces = frame.outputs.geometry.is_some();
+    let mut lights = light_set(world, Some(geometry), &settings, WithEnvironment::Yes);
     lights.camera_sees_environment = background.is_none();
     let rays = CameraRays::with_lenses(&camera, &view.lenses);
-    let interiors: Vec<_> = geometry.map_or_else(Vec::new, |g| {
-        g.material_entities
-            .iter()
-            .map(|&e| world.get::<&Interior>(e).ok().map(|i| i.0))
-            .map(|i| i.filter(|_| !off.contains(Feature::Volume)))
-            .collect()
-    });
+    let interiors: Vec<_> = geometry
+        .material_entities
+        .iter()
+        .map(|&e| world.get::<&Interior>(e).ok().map(|i| i.0))
+        .map(|i| i.filter(|_| !off.contains(Feature::Volume)))
+        .collect();
     let volumes = Volumes::with_fade(view.atmosphere, view.fade, interiors);
     let filter = FilterSampler::new(settings.filter);
     let seed = fold_seed(settings.seed);
@@ -200,17 +215,16 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
     );
     let ticker = progress.ticker();
     let photons = frame.outputs.photons.as_ref();
-    let normals = geometry.and_then(TriangleNormals::new);
-    let bsdfs = geometry.map(MaterialBsdfs::new);
-    let ctx = geometry.map(|g| {
-        ShadeContext::new(g, &lights, &settings)
-            .with_volumes(volumes.as_ref())
-            .with_photons(photons)
-            .with_normals(normals.as_ref())
-            .with_bsdfs(bsdfs.as_ref())
-    });
+    let normals = TriangleNormals::new(geometry);
+    let bsdfs = MaterialBsdfs::new(geometry);
+    let ctx = ShadeContext::new(geometry, &lights, &settings)
+        .with_volumes(volumes.as_ref())
+        .with_photons(photons)
+        .with_normals(normals.as_ref())
+        .with_bsdfs(Some(&bsdfs));
     let shade = PixelShader {
-        ctx: ctx.as_ref(),
+        ctx: &ctx,
+        traces,
         rays: &rays,
         filter: &filter,
         seed,
@@ -223,7 +237,8 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
             && wants_components(&camera),
         variance: refines,
         environment,
-        centres: part_or_whole.traces_centres(),
+        centres: part_or_whole.traces_centres()
+            && crate::image_reads::centres_read(world, &frame.inputs),
     };
     // Pass 1: the centre-sample passes (not in a samples part other than 1) and `min`
     // samples everywhere (a tiles part: in its own pixels and, when refinement compares
@@ -338,10 +353,10 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
         fb.beauty = samples_view(&fb.samples, budget.max);
         fb.environment = None;
     }
-    if let (Some(d), Some(g)) = (settings.diagnostic, geometry) {
+    if let Some(d) = settings.diagnostic {
         let drawn = diagnostic_view::view(
             d,
-            g,
+            geometry,
             &rays,
             camera.world_from_camera,
             photons,
@@ -356,7 +371,8 @@ pub fn run(world: &World, frame: &Frame) -> Result<Work, StageError> {
     fb.components = components;
     fb.contour_store = contour_store(world, frame, &fb);
     if centres_only {
-        let traced = (width * height) as u64;
+        // One per pixel: the centre passes' or the diagnostic view's (none without geometry).
+        let traced = if traces { (width * height) as u64 } else { 0 };
         return Ok(Work::new(traced, "centre rays").with_output(StageOutput::Image(fb)));
     }
     Ok(Work::new(taken, "samples").with_output(StageOutput::Image(fb)))
@@ -478,7 +494,10 @@ impl PixelResult {
 
 /// Everything a pixel's samples need.
 struct PixelShader<'a> {
-    ctx: Option<&'a ShadeContext<'a>>,
+    ctx: &'a ShadeContext<'a>,
+    /// Whether there are triangles to trace rays against (`build_accel` ran). Without,
+    /// camera rays meet only the visible lights and the environment, and none is traced.
+    traces: bool,
     rays: &'a CameraRays,
     filter: &'a FilterSampler,
     seed: u32,
@@ -502,7 +521,8 @@ impl PixelShader<'_> {
     /// pixel `(x, y)`.
     fn first_pass(&self, x: usize, y: usize, count: u32) -> PixelResult {
         let mut result = PixelResult::empty();
-        if let Some(ctx) = self.ctx.filter(|_| self.centres) {
+        if self.centres && self.traces {
+            let ctx = self.ctx;
             // Through the aperture centre.
             let centre = Vec2::new(x as f32 + 0.5, y as f32 + 0.5);
             if let Some(ray) = self.rays.ray(centre.x, centre.y, Vec2::splat(0.5)) {
@@ -547,20 +567,14 @@ impl PixelShader<'_> {
         let mut sums = result.components.as_deref_mut();
         let mut missed = result.environment.as_deref_mut();
         let pixel = (y * self.width + x) as u64;
-        let Some(ctx) = self.ctx else {
-            // An empty scene: every sample misses.
-            for _ in 0..count {
-                result.samples.add(Vec3::ZERO, false);
-            }
-            return;
-        };
+        let ctx = self.ctx;
         let centre = Vec2::new(x as f32 + 0.5, y as f32 + 0.5);
         let lens = self.rays.needs_lens_sample();
         let first = self.sample_offset + samples.taken;
         // A pinhole's rays share the camera's origin: enough of them go to the tree as packets
         // (not on a small scene, whose lane kernel answers one ray faster than the gathering
         // costs: the Cornell box's path tracer took 3 % more instructions through it).
-        if !lens && ctx.geometry.accel.packs_shared_origin(count as usize) {
+        if !lens && self.traces && ctx.geometry.accel.packs_shared_origin(count as usize) {
             self.take_in_packets(ctx, samples, sums, missed, pixel, centre, first, count);
             return;
         }
@@ -582,10 +596,14 @@ impl PixelShader<'_> {
             } else {
                 Vec2::splat(0.5)
             };
-            let hit = self
-                .rays
-                .ray(film.x, film.y, lens_u)
-                .map(|ray| (ray, camera_hit(ctx, &ray)));
+            let hit = self.rays.ray(film.x, film.y, lens_u).map(|ray| {
+                let seen = if self.traces {
+                    camera_hit(ctx, &ray)
+                } else {
+                    camera_hit_with(ctx, &ray, None)
+                };
+                (ray, seen)
+            });
             let sums = sums.as_deref_mut();
             self.add_sample(ctx, hit, &mut sampler, samples, sums, missed.as_deref_mut());
         }

@@ -72,14 +72,10 @@ pub struct TexelResults {
 /// Values of one texel, one per image.
 type TexelValues = Vec<Option<Vec3>>;
 
-/// Evaluates every kind at every texel. Returns `None` when `cancel` was raised.
-pub fn evaluate(
-    job: &TexelJob<'_>,
-    cancel: &AtomicBool,
-    progress: &ProgressTicker,
-) -> Option<TexelResults> {
-    let (w, h) = (job.coverage.width, job.coverage.height);
-    let bent = job.kinds.iter().any(|k| {
+/// How many images a bake of `kinds` produces: one per kind, and a trailing one of bent
+/// normals when an ambient-occlusion kind asks for them.
+pub fn image_count(kinds: &[BakeKind]) -> usize {
+    let bent = kinds.iter().any(|k| {
         matches!(
             k,
             BakeKind::AmbientOcclusion {
@@ -88,7 +84,18 @@ pub fn evaluate(
             }
         )
     });
-    let n_images = job.kinds.len() + usize::from(bent);
+    kinds.len() + usize::from(bent)
+}
+
+/// Evaluates every kind at every texel. Returns `None` when `cancel` was raised.
+pub fn evaluate(
+    job: &TexelJob<'_>,
+    cancel: &AtomicBool,
+    progress: &ProgressTicker,
+) -> Option<TexelResults> {
+    let (w, h) = (job.coverage.width, job.coverage.height);
+    let n_images = image_count(job.kinds);
+    let bent = n_images > job.kinds.len();
     let needs_probe = job.kinds.iter().any(|k| {
         matches!(
             k,

@@ -12,6 +12,7 @@ pub mod bake_part;
 pub mod bake_part_file;
 pub mod changed_scene;
 pub mod exr_meta;
+pub mod idle_bake_part;
 pub mod merge;
 pub mod part;
 pub mod part_file;

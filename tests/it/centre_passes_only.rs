@@ -166,3 +166,71 @@ fn outputs_that_read_samples_keep_them() {
         );
     }
 }
+
+/// A lit square filling part of a 64×64 view, 1 sample per pixel, with `outputs`.
+fn square(outputs: &str) -> String {
+    format!(
+        r#"Scene(
+    options: (samples: 1),
+    cameras: [(name: "cam", fov_y: 40, resolution: (64, 64),
+        placement: LookAt(eye: (0, 0, 4), target: (0, 0, 0)), outputs: [{outputs}])],
+    lights: [(name: "lamp", kind: Point(position: (0, 2, 3)), intensity: 10)],
+    materials: [(name: "grey", shader: Lambert(albedo: (0.6, 0.6, 0.6)))],
+    objects: [(name: "sq", mesh: Inline(vertices: [(-1, -1, 0), (1, -1, 0), (1, 1, 0), (-1, 1, 0)],
+        polygons: [[0, 1, 2, 3]]), material: "grey")],
+    instances: [(name: "sq_1", of: "sq")],
+    groups: [(name: "world", members: ["sq_1"])],
+    render: (root: "world", camera: "cam"),
+)"#
+    )
+}
+
+/// `(rays_closest, rays_occlusion)` of `shade` in `dir/stats.json`.
+fn shade_rays(dir: &Path) -> (u64, u64) {
+    let json: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.join("stats.json")).unwrap()).unwrap();
+    let s = json["stages"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|s| s["stage"] == "shade")
+        .unwrap()
+        .clone();
+    (
+        s["rays_closest"].as_u64().unwrap(),
+        s["rays_occlusion"].as_u64().unwrap(),
+    )
+}
+
+/// Outputs that read no pixel-centre pass get no pixel-centre ray: a beauty PNG (with or
+/// without alpha) takes one closest-hit ray per sample, 4096, where 8192 were traced, and
+/// its bytes are those of the render that also writes a `Depth` pass (which traces them).
+#[test]
+fn no_pixel_centre_ray_where_no_output_reads_a_centre_pass() {
+    let dir = scratch_dir("centre-rays-unread");
+    let with_depth = r#"(file: "b.png"), (file: "a.png", passes: [Beauty, Alpha]), (file: "d.exr", passes: [Depth])"#;
+    std::fs::write(dir.join("s.ron"), square(with_depth)).unwrap();
+    render_stats(&dir);
+    let (closest, occlusion) = shade_rays(&dir);
+    assert_eq!(closest, 2 * 4096, "the centre rays and the samples'");
+    let beauty = std::fs::read(dir.join("b.png")).unwrap();
+    let alpha = std::fs::read(dir.join("a.png")).unwrap();
+    for outputs in [
+        r#"(file: "b.png"), (file: "a.png", passes: [Beauty, Alpha])"#,
+        r#"(file: "b.png", passes: [Beauty]), (file: "a.exr", beauty_alpha: false)"#,
+    ] {
+        for f in ["b.png", "a.png"] {
+            let _ = std::fs::remove_file(dir.join(f));
+        }
+        std::fs::write(dir.join("s.ron"), square(outputs)).unwrap();
+        render_stats(&dir);
+        assert_eq!(shade_rays(&dir), (4096, occlusion), "{outputs}");
+        assert!(
+            std::fs::read(dir.join("b.png")).unwrap() == beauty,
+            "{outputs}"
+        );
+        if outputs.contains("a.png") {
+            assert!(std::fs::read(dir.join("a.png")).unwrap() == alpha);
+        }
+    }
+}

@@ -453,10 +453,60 @@ fn cli_merge_stats_give_no_ray_rate_and_an_edited_scene_asks_for_new_parts() {
     assert!(!dir.join("again").exists());
 }
 
-/// A bake part past the last texel tile (the requests have 6 + 4 tiles) traces no rays and
-/// is reported skipped with the reason, and still writes its (empty) part file: the merge
-/// gives the single bake's files. `farm --bake` refuses more parts than tiles. Part 11/11
-/// reported "bake_lightmaps yes 0 texels", and `farm --bake --parts 40` wrote its scripts.
+/// `(stage, ran, reason)` of every stage in the `--stats-json` file `dir/name`, and whether
+/// every skipped stage reports 0 seconds.
+fn stage_rows(dir: &Path, name: &str) -> (Vec<(String, bool, String)>, bool) {
+    let v: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.join(name)).unwrap()).unwrap();
+    let stages = v["stages"].as_array().unwrap();
+    let rows = stages
+        .iter()
+        .map(|s| {
+            (
+                s["stage"].as_str().unwrap().to_string(),
+                s["ran"].as_bool().unwrap(),
+                s["reason"].as_str().unwrap().to_string(),
+            )
+        })
+        .collect();
+    let skipped_take_no_time = stages
+        .iter()
+        .filter(|s| s["ran"] == false)
+        .all(|s| s["seconds"].as_f64() == Some(0.0));
+    (rows, skipped_take_no_time)
+}
+
+/// `(stage, run, reason)` of every stage in the plan of `bake --part K/N` of `dir/scene.ron`.
+fn planned_rows(dir: &Path, index: u32, count: u32) -> Vec<(String, bool, String)> {
+    let scene = load_scene(&dir.join("scene.ron")).unwrap();
+    let mut frame = Frame::new(scene.settings.clone());
+    frame.inputs.tasks = Tasks {
+        render: false,
+        bake: true,
+    };
+    frame.inputs.caller_keeps_image = false;
+    frame.inputs.part = Some(PartRun {
+        part: Part {
+            index,
+            count,
+            split: Split::Tiles,
+        },
+        scene: "scene.ron".into(),
+        scene_hash: 1,
+    });
+    stagelight::systems::plan(&scene.world, &mut frame)
+        .into_iter()
+        .map(|p| (p.stage.to_string(), p.run, p.reason))
+        .collect()
+}
+
+/// A bake part past the last texel tile of fixed-size texture requests (6 + 4 tiles) needs
+/// no geometry: the geometry stages skip with the part's reason (as in a render part that
+/// owns no tile; the plan says the same) and `bake_lightmaps` writes only its (empty) part
+/// file: the merge gives the single bake's files. `farm --bake` refuses more parts than
+/// tiles. Part 11/11 used to build the BVH (`build_accel yes … 10 triangles`) and report
+/// `bake_lightmaps` skipped with the seconds it spent; `farm --bake --parts 40` wrote its
+/// scripts.
 #[test]
 fn a_bake_part_without_texels_is_skipped_and_farm_refuses_idle_bake_parts() {
     let dir = setup("idle");
@@ -474,20 +524,38 @@ fn a_bake_part_without_texels_is_skipped_and_farm_refuses_idle_bake_parts() {
             "p11.json",
         ],
     );
-    let v: serde_json::Value =
-        serde_json::from_slice(&std::fs::read(dir.join("p11.json")).unwrap()).unwrap();
-    let bake = v["stages"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .find(|s| s["stage"] == "bake_lightmaps")
-        .unwrap()
-        .clone();
-    assert_eq!(bake["ran"], false);
-    assert_eq!(
-        bake["reason"],
-        "part 11/11 owns no texel: the bake requests have 10 tiles of 16×16 texels; its part file is written empty"
-    );
+    let idle = "part 11/11 owns no texel: the bake requests have 10 tiles of 16×16 texels";
+    let row = |stage: &str, ran: bool, reason: &str| (stage.to_string(), ran, reason.to_string());
+    let expected = vec![
+        row("expand_geometry", false, "no procedural geometry"),
+        row(
+            "tessellate",
+            false,
+            "no parametric surfaces or displacement",
+        ),
+        row("build_accel", false, idle),
+        row(
+            "trace_photons",
+            false,
+            "caustics and global illumination are off",
+        ),
+        row(
+            "bake_lightmaps",
+            true,
+            &format!("2 bake request(s); {idle}: only its empty part file is written"),
+        ),
+        row("shade", false, "this run only bakes"),
+        row(
+            "draw_contours",
+            false,
+            "no material in use has a contour shader",
+        ),
+        row("write_output", false, "no shaded image"),
+    ];
+    let (rows, skipped_take_no_time) = stage_rows(&dir, "p11.json");
+    assert_eq!(rows, expected);
+    assert!(skipped_take_no_time);
+    assert_eq!(planned_rows(&dir, 11, 11), expected);
     bake_parts(&dir, 11, "parts", &[]);
     let mut args = vec!["merge".to_string()];
     args.extend((1..=11).map(|k| format!("parts/bake_part_{k}_of_11.exr")));
@@ -533,4 +601,47 @@ fn a_bake_part_without_texels_is_skipped_and_farm_refuses_idle_bake_parts() {
             "job",
         ],
     );
+}
+
+/// A density-sized request is sized by the geometry: a part past the last tile (6 + 1 tiles)
+/// still builds it, and `bake_lightmaps` finds the part idle only after sizing the requests;
+/// reported skipped, its reason says what the seconds it reports were spent on.
+#[test]
+fn an_idle_bake_part_of_a_density_sized_request_says_what_it_timed() {
+    let dir = setup("idle-density");
+    let density = SCENE.replace("resolution: (20, 20)", "texels_per_unit: 8.0");
+    assert_ne!(density, SCENE);
+    std::fs::write(dir.join("scene.ron"), density).unwrap();
+    ok(
+        &dir,
+        &[
+            "bake",
+            "scene.ron",
+            "--part",
+            "8/8",
+            "-o",
+            "parts",
+            "--stats-json",
+            "p8.json",
+        ],
+    );
+    let (rows, _) = stage_rows(&dir, "p8.json");
+    let of = |stage: &str| rows.iter().find(|r| r.0 == stage).unwrap().clone();
+    assert_eq!(
+        of("build_accel"),
+        (
+            "build_accel".into(),
+            true,
+            "2 instance(s) with 4 triangles".into()
+        )
+    );
+    assert_eq!(
+        of("bake_lightmaps"),
+        (
+            "bake_lightmaps".into(),
+            false,
+            "part 8/8 owns no texel: the bake requests have 7 tiles of 16×16 texels; its part file is written empty (the time reported: sizing the requests from the geometry and writing that file)".into()
+        )
+    );
+    assert_eq!(planned_rows(&dir, 8, 8)[2], of("build_accel"));
 }

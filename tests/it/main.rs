@@ -36,6 +36,7 @@ mod diagnostic_centre_rays;
 mod diagnostic_views;
 mod displacement_exr;
 mod docs_reference;
+mod empty_scene_lights;
 mod environment;
 mod face_cull;
 mod farm;
