@@ -5,7 +5,7 @@
 
 use super::diagnostics::{Diagnostic, Sources};
 use super::names::{Resolved, Target};
-use super::syntax::Helps;
+use super::syntax::{Helps, Syntax};
 use super::validate::Merged;
 
 /// Records both warnings (none of a kind whose render camera or root did not resolve: that
@@ -36,7 +36,10 @@ fn warn_other_cameras(src: &mut Sources, m: &Merged<'_>, r: &Resolved) {
             .outputs
             .iter()
             .all(|o| rendered.contains(&o.file.as_str()));
-        if Some(i) == r.camera || written || name == render_name {
+        // A glTF file's cameras all get an output of their own: one of them is rendered,
+        // the others are there to be chosen with `--camera`, not forgotten.
+        let gltf = src.syntax(c.file) == Syntax::Gltf;
+        if Some(i) == r.camera || written || name == render_name || gltf {
             continue;
         }
         let flag = format!("--camera {}", shell_word(name));

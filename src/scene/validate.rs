@@ -427,10 +427,18 @@ pub fn camera(src: &mut Sources, item: &Item<'_, CameraDesc>) -> Option<Camera> 
                 "{fov} must be between 0 and 180 degrees (exclusive), found {}",
                 c.fov_y
             ),
-            Some(format!(
-                "fov_y is the full vertical angle of the view in degrees, such as 40 (a normal \
-                 lens) or 90 (a wide one){wide}"
-            )),
+            Some(ck.src.syntax(ck.file).help_each(Helps {
+                ron: &format!(
+                    "fov_y is the full vertical angle of the view in degrees, such as 40 (a \
+                     normal lens) or 90 (a wide one){wide}"
+                ),
+                mi: "the camera's `aperture`, `focal` and `aspect` give the view's vertical \
+                     angle: with `aspect` and `focal` above 0 and an `aperture` of a few times \
+                     `focal` or less it lies well below 180 degrees",
+                rib: "the Projection's \"fov\" is the view's angle in degrees, such as 40 (a \
+                      normal lens) or 90 (a wide one)",
+                gltf: "a glTF camera's `yfov` is the vertical angle in radians, between 0 and π",
+            })),
         );
         ok = false;
     }

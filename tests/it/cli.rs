@@ -178,7 +178,7 @@ fn usage_errors_exit_2() {
         .arg(asset("test_plane.ron"))
         .args(["-o", "image.bmp"]));
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
-    assert!(stderr(&o).contains(".png, .exr, .svg or .eps"));
+    assert!(stderr(&o).contains("name a .png or .exr file for the image, or an .svg or .eps file"));
     let o = run(bin()
         .args(["render", "--spp", "0"])
         .arg(asset("test_plane.ron")));

@@ -101,7 +101,7 @@ fn mi_material_light_and_camera_values_are_named_by_their_mi_parameters() {
     let cases = [
         (
             replaced(&text, "\"diffuse\" 0.5 0.5 0.5", "\"diffuse\" -0.5 0.5 0.5"),
-            "bad.mi:71:11: error: diffuse must not be negative, found -0.5".to_string(),
+            "bad.mi:71:11: error: diffuse must not be negative, found -0.5\n  help: diffuse takes 0 or more: write 0.5 if only the sign is wrong".to_string(),
         ),
         (
             replaced(&text, lamp, "\"atten\" true,\n\"start\" 2,\n\"stop\" 1"),
@@ -124,7 +124,10 @@ fn mi_material_light_and_camera_values_are_named_by_their_mi_parameters() {
         (
             replaced(&text, "aspect 1.33333333333", "aspect 0"),
             "bad.mi:27:10: error: the vertical field of view 2·atan(aperture / (2·focal·aspect)) \
-             must be between 0 and 180 degrees (exclusive), found 180\n\
+             must be between 0 and 180 degrees (exclusive), found 180\n  help: the camera's \
+             `aperture`, `focal` and `aspect` give the view's vertical angle: with `aspect` and \
+             `focal` above 0 and an `aperture` of a few times `focal` or less it lies well below \
+             180 degrees\n\
              bad.mi:28:8: error: aspect must be positive, found 0"
                 .to_string(),
         ),
@@ -227,7 +230,7 @@ fn rib_surface_and_light_values_are_named_by_their_rib_parameters() {
                 "LightSource \"pointlight\" 2 \"lightcolor\" [-1 1 1]",
                 SPHERE,
             ),
-            "t.rib:5:41: error: lightcolor must not be negative, found -1",
+            "t.rib:5:41: error: lightcolor must not be negative, found -1\n  help: lightcolor takes 0 or more: write 1 if only the sign is wrong",
         ),
         (
             rib("LightSource \"pointlight\" 2 \"intensity\" 1e30", SPHERE),
@@ -249,7 +252,7 @@ fn rib_surface_and_light_values_are_named_by_their_rib_parameters() {
                 "LightSource \"spotlight\" 2 \"beamdistribution\" -1",
                 SPHERE,
             ),
-            "t.rib:5:46: error: beamdistribution must not be negative, found -1",
+            "t.rib:5:46: error: beamdistribution must not be negative, found -1\n  help: beamdistribution takes 0 or more: write 1 if only the sign is wrong",
         ),
         (
             rib(

@@ -446,11 +446,11 @@ fn an_exr_claiming_a_huge_image_is_refused_before_it_is_read() {
         "huge.exr",
     ];
     let o = run_in(&dir, &[&sweep[..], &["--out", "sweep"]].concat());
-    assert_eq!(o.status.code(), Some(1), "{}", stderr_of(&o));
+    assert_eq!(o.status.code(), Some(2), "{}", stderr_of(&o));
     assert_eq!(
         stderr_of(&o),
         format!(
-            "error: huge.exr: {claims} 268435456 samples (pixels × channels) this input may hold\n"
+            "error: --reference huge.exr cannot be read as an RGB image ({claims} 268435456 samples (pixels × channels) this input may hold)\n  help: give a linear EXR image of the runs' size (without --reference, the sweep renders one and caches it in --out)\n"
         )
     );
     // Nothing written: not even the output directory (made once the reference is read).

@@ -99,17 +99,13 @@ fn farm_refuses_a_merge_job_that_would_overwrite_a_part_file() {
         &dir,
         &["farm", "s.ron", "--parts", "3", "--out", "job", "-o", "job/part_2.exr"],
         2,
-        &format!(
-            "error: -o job/part_2.exr would overwrite the part file job/part_2.exr that part 2/3 writes and the merge job reads\n  help: give -o a path apart from the part files in --out DIR\n1 error in s.ron; no scripts written\n"
-        ),
+        "error: -o job/part_2.exr would overwrite the part file job/part_2.exr that part 2/3 writes and the merge job reads\n  help: give -o a path apart from the part files in --out DIR\n1 error in s.ron; no scripts written\n",
     );
     refused(
         &dir,
         &["farm", "fo.ron", "--parts", "2", "--out", "job"],
         1,
-        &format!(
-            "fo.ron:5:33: error: camera \"cam\" output 1 (\"job/part_1.exr\") would overwrite the part file job/part_1.exr that part 1/2 writes and the merge job reads\n  help: give --out a directory of its own for the part files, apart from the scene's outputs\n1 error in fo.ron; no scripts written\n"
-        ),
+        "fo.ron:5:33: error: camera \"cam\" output 1 (\"job/part_1.exr\") would overwrite the part file job/part_1.exr that part 1/2 writes and the merge job reads\n  help: give --out a directory of its own for the part files, apart from the scene's outputs\n1 error in fo.ron; no scripts written\n",
     );
     assert!(!dir.join("job").exists(), "scripts written into {job}");
     // Names the array does not write pass: part 4 of 3, and a padded number.
