@@ -261,7 +261,7 @@ fn clash(out: &PlannedOutput, message: String) -> Clash {
 
 /// `text` (a message and its help line) as the refusal of `out`: located at the scene
 /// element that names it, or a usage error of its flag.
-fn refusal(out: &PlannedOutput, text: String) -> Clash {
+pub(super) fn refusal(out: &PlannedOutput, text: String) -> Clash {
     match &out.origin {
         Origin::Flag(_) => Clash {
             text: format!("error: {text}"),

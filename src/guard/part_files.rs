@@ -6,7 +6,7 @@
 
 use std::path::{Path, PathBuf};
 
-use super::outputs::{same_file_key, Clash, Origin, PlannedOutput};
+use super::outputs::{refusal, same_file_key, Clash, Origin, PlannedOutput};
 
 /// The part files of a merge.
 pub enum PartFiles<'a> {
@@ -95,21 +95,7 @@ pub fn clashes(parts: &PartFiles, outputs: &[PlannedOutput]) -> Vec<Clash> {
             "{described} would overwrite {what}\n  help: {}",
             parts.help(&out.origin)
         );
-        found.push(match &out.origin {
-            Origin::Flag(_) => Clash {
-                text: format!("error: {text}"),
-                usage: true,
-            },
-            Origin::Scene(link, _) => Clash {
-                text: format!(
-                    "{}:{}:{}: error: {text}",
-                    link.file.display(),
-                    link.line,
-                    link.column
-                ),
-                usage: false,
-            },
-        });
+        found.push(refusal(out, text));
     }
     found
 }
