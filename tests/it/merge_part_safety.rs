@@ -226,7 +226,13 @@ fn farm_submit_checks_for_sbatch_first() {
         use std::os::unix::fs::PermissionsExt;
         std::fs::set_permissions(&sbatch, std::fs::Permissions::from_mode(0o755)).unwrap();
     }
-    let o = farm(&path_with(&bin));
+    // The fake first, then every system directory (the scripts need the shell's tools, and
+    // a host with Slurm installed keeps its real sbatch behind the fake one).
+    let system = std::env::var_os("PATH").unwrap_or_default();
+    let fake_first =
+        std::env::join_paths(std::iter::once(bin.clone()).chain(std::env::split_paths(&system)))
+            .unwrap();
+    let o = farm(&fake_first);
     assert!(o.status.success(), "{}", stderr_of(&o));
     let out = String::from_utf8_lossy(&o.stdout).into_owned();
     assert!(
