@@ -117,7 +117,7 @@ fn list_open_before_field(text: &str, chars: &[char], offset: usize, at: Pos) ->
 }
 
 /// The identifier that ends just before `offset` (blanks between allowed): its start.
-fn identifier_before(chars: &[char], offset: usize) -> Option<(usize, String)> {
+pub(super) fn identifier_before(chars: &[char], offset: usize) -> Option<(usize, String)> {
     let mut end = offset;
     while end > 0 && chars[end - 1].is_whitespace() {
         end -= 1;

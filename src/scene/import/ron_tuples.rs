@@ -143,16 +143,7 @@ fn field_before(chars: &[char], paren: usize) -> Option<String> {
         return None;
     }
     end -= 1;
-    while end > 0 && chars[end - 1].is_whitespace() {
-        end -= 1;
-    }
-    let mut start = end;
-    while start > 0 && (chars[start - 1].is_alphanumeric() || chars[start - 1] == '_') {
-        start -= 1;
-    }
-    let name: String = chars[start..end].iter().collect();
-    name.starts_with(|c: char| c.is_alphabetic() || c == '_')
-        .then_some(name)
+    super::ron_hints::identifier_before(chars, end).map(|(_, name)| name)
 }
 
 /// Whether a name is written just before the `(` at `paren` (`Add(`: a call, whose
